@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: MIT
+// Wire frames (DESIGN.md section 2, design): the same frames travel over every
+// transport (daemon socket, dual-port RAM mailbox, USB bulk endpoints).
+//
+//   offset size field
+//   0      4    magic   0x49435041 ("APCI" in little-endian byte order)
+//   4      2    version 1
+//   6      2    opcode  (replies: request opcode | 0x8000)
+//   8      4    sequence (echoed in the reply)
+//   12     4    payload length (<= kMaxPayload)
+//   16     n    payload
+//   16+n   4    CRC-32 (IEEE, zlib) over bytes 0..16+n-1
+// All integers little-endian. docs/wire-frame.md is the spec page.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "objif/descriptor.h"
+#include "objif/status.h"
+#include "objif/value.h"
+
+namespace objif {
+
+inline constexpr std::uint32_t kFrameMagic = 0x49435041;
+inline constexpr std::uint16_t kFrameVersion = 1;
+inline constexpr std::size_t kFrameHeaderSize = 16;
+inline constexpr std::size_t kFrameCrcSize = 4;
+inline constexpr std::size_t kFrameOverhead = kFrameHeaderSize + kFrameCrcSize;
+inline constexpr std::uint32_t kMaxPayload = 64 * 1024;
+inline constexpr std::uint16_t kReplyFlag = 0x8000;
+
+enum class Opcode : std::uint16_t {
+    kObjectRead = 0x0001,
+    kObjectWrite = 0x0002,
+    kSpoolProfile = 0x0003,
+    kDirectCommand = 0x0004,
+    kSsfCommand = 0x0005,
+    kClock = 0x0006,      // step / run the interpolation clock
+    kReadTrace = 0x0007,  // per-cycle axis samples
+    kError = 0x7FFF,      // reply only: the request could not be decoded
+};
+bool opcode_known(std::uint16_t op) noexcept;  // a request opcode we define
+std::string_view opcode_name(std::uint16_t op) noexcept;
+
+// Why a byte sequence is not a valid frame. Each is named for logs and errors.
+enum class FrameError : std::uint8_t {
+    kNone = 0,
+    kShort,          // fewer bytes than the header or than the header announces
+    kBadMagic,
+    kBadVersion,
+    kBadLength,      // payload length above kMaxPayload
+    kBadCrc,
+    kUnknownOpcode,
+    kBadPayload,     // payload size or content does not fit the opcode
+    kBadValueTag,    // value tag is neither int32 nor double
+    kNotFinite,      // a double value is NaN or infinite
+};
+std::string_view frame_error_name(FrameError e) noexcept;
+// The status a reply carries for a frame error.
+Status frame_error_status(FrameError e) noexcept;
+
+struct Frame {
+    std::uint16_t opcode = 0;
+    std::uint32_t sequence = 0;
+    std::vector<std::uint8_t> payload;
+};
+
+// Appends the encoded frame to `out`.
+void encode_frame(std::uint16_t opcode, std::uint32_t sequence,
+                  std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+
+// Decodes one frame from the front of `bytes`.
+//   kOk: `out` holds the frame, `consumed` its size.
+//   kShort with `need_more` = true: the bytes are a valid prefix; read more.
+//   any other error: the frame is malformed (`consumed` is 0). A stream
+//   transport drops the connection; a datagram transport answers kError.
+// Header fields are checked in order: magic, version, length, then CRC, then opcode.
+FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::size_t& consumed,
+                        bool& need_more);
+
+// ---- Payload codecs. Each decode checks size and content and never throws.
+
+// Little-endian byte writer/reader shared by the payload codecs.
+class ByteWriter {
+public:
+    explicit ByteWriter(std::vector<std::uint8_t>& out) : out_(out) {}
+    void u8(std::uint8_t v) { out_.push_back(v); }
+    void u16(std::uint16_t v);
+    void u32(std::uint32_t v);
+    void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
+    void u64(std::uint64_t v);
+    void f64(double v);
+    void value(const Value& v);  // tag byte + 4 (int32) or 8 (double) bytes
+    void address(const Address& a);
+    void descriptor(const Descriptor& d);
+
+private:
+    std::vector<std::uint8_t>& out_;
+};
+
+class ByteReader {
+public:
+    explicit ByteReader(std::span<const std::uint8_t> in) : in_(in) {}
+    bool u8(std::uint8_t& v);
+    bool u16(std::uint16_t& v);
+    bool u32(std::uint32_t& v);
+    bool i32(std::int32_t& v);
+    bool u64(std::uint64_t& v);
+    bool f64(double& v);
+    // Reads tag + value; tag errors and non-finite doubles are reported.
+    FrameError value(Value& v);
+    bool address(Address& a);
+    bool descriptor(Descriptor& d);
+    std::size_t remaining() const noexcept { return in_.size() - pos_; }
+    bool done() const noexcept { return pos_ == in_.size(); }
+
+private:
+    std::span<const std::uint8_t> in_;
+    std::size_t pos_ = 0;
+};
+
+struct ReadRequest {
+    Descriptor descriptor;
+    ValueType want = ValueType::kInt32;
+};
+struct ReadReply {
+    Status status = Status::kOk;
+    Handle handle = kNoHandle;
+    Value value;  // present on the wire only when status is kOk
+};
+struct WriteRequest {
+    Descriptor descriptor;
+    Value value;
+};
+struct WriteReply {
+    Status status = Status::kOk;
+    Handle handle = kNoHandle;
+};
+struct ErrorReply {
+    Status status = Status::kBadFrame;
+    FrameError reason = FrameError::kNone;
+};
+
+void encode(const ReadRequest& m, std::vector<std::uint8_t>& out);
+void encode(const ReadReply& m, std::vector<std::uint8_t>& out);
+void encode(const WriteRequest& m, std::vector<std::uint8_t>& out);
+void encode(const WriteReply& m, std::vector<std::uint8_t>& out);
+void encode(const ErrorReply& m, std::vector<std::uint8_t>& out);
+FrameError decode(std::span<const std::uint8_t> p, ReadRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, ReadReply& m);
+FrameError decode(std::span<const std::uint8_t> p, WriteRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, WriteReply& m);
+FrameError decode(std::span<const std::uint8_t> p, ErrorReply& m);
+
+// A reply's status word: the first 4 payload bytes of every reply.
+FrameError decode_status(std::span<const std::uint8_t> p, Status& s);
+
+}  // namespace objif

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+#include "objif/dictionary.h"
+
+#include <cmath>
+
+namespace objif {
+
+std::string_view access_name(Access a) noexcept {
+    switch (a) {
+        case Access::kRead: return "r";
+        case Access::kWrite: return "w";
+        case Access::kReadWrite: return "r/w";
+    }
+    return "?";
+}
+
+Status check_value(const ObjectInfo& info, const Value& v) noexcept {
+    if (v.type() != info.type) return Status::kTypeMismatch;
+    const double x = v.numeric();
+    if (!std::isfinite(x)) return Status::kInvalidValue;
+    if (x < info.min) return Status::kValueTooLow;
+    if (x > info.max) return Status::kValueTooHigh;
+    return Status::kOk;
+}
+
+Status Dictionary::add(Module* module) {
+    if (module == nullptr) return Status::kInvalidArgument;
+    for (auto* m : modules_)
+        if (m->bus() == module->bus()) return Status::kInvalidArgument;
+    modules_.push_back(module);
+    return Status::kOk;
+}
+
+Module* Dictionary::module(std::int32_t bus) const noexcept {
+    for (auto* m : modules_)
+        if (m->bus() == bus) return m;
+    return nullptr;
+}
+
+// Handle layout: bits 31..16 the module's handle generation at issue time,
+// bits 15..0 the slot number + 1. Slots are per address and never freed (the
+// address space of the object map is small and fixed), so a handle stays
+// cheap to check: one vector index and one compare.
+Status Dictionary::issue(const Address& a, Module* m, const ObjectInfo* info, Handle& out) {
+    std::size_t slot = slots_.size();
+    for (std::size_t i = 0; i < slots_.size(); ++i)
+        if (slots_[i].address == a) { slot = i; break; }
+    if (slot == slots_.size()) {
+        if (slots_.size() >= (1u << kSlotBits) - 1) return Status::kNoMemory;
+        slots_.push_back(Slot{a, m, info});
+    }
+    out = (static_cast<Handle>(m->generation()) << kSlotBits) | static_cast<Handle>(slot + 1);
+    return Status::kOk;
+}
+
+Status Dictionary::resolve(Descriptor& d, const ObjectInfo*& info, Module*& module) {
+    const Address& a = d.address;
+    Module* m = this->module(a.bus);
+    if (m == nullptr || !m->present()) return Status::kNoSuchDevice;
+    Status why = Status::kOk;
+    const ObjectInfo* found = m->find(a, why);
+    if (found == nullptr) return why;
+    if (d.handle != kNoHandle) {
+        const std::size_t slot = (d.handle & ((1u << kSlotBits) - 1));
+        const auto gen = static_cast<std::uint16_t>(d.handle >> kSlotBits);
+        if (slot == 0 || slot > slots_.size()) return Status::kStaleHandle;
+        const Slot& s = slots_[slot - 1];
+        if (gen != s.module->generation()) return Status::kStaleHandle;
+        if (!(s.address == a)) return Status::kHandleMismatch;
+    } else {
+        Handle h = kNoHandle;
+        const Status st = issue(a, m, found, h);
+        if (!ok(st)) return st;
+        d.handle = h;
+    }
+    info = found;
+    module = m;
+    return Status::kOk;
+}
+
+Status Dictionary::read(Descriptor& d, ValueType want, Value& out) {
+    // A resolved descriptor keeps its handle even if a later check fails: the
+    // firmware issues the handle on resolution, as it would on the board.
+    const ObjectInfo* info = nullptr;
+    Module* m = nullptr;
+    Status st = resolve(d, info, m);
+    if (!ok(st)) return st;
+    if (!can_read(info->access)) return Status::kWriteOnly;
+    if (want != info->type) return Status::kTypeMismatch;
+    Value v;
+    st = m->read(*info, d.address, v);
+    if (!ok(st)) return st;
+    out = v;
+    return Status::kOk;
+}
+
+Status Dictionary::write(Descriptor& d, const Value& v) {
+    const ObjectInfo* info = nullptr;
+    Module* m = nullptr;
+    Status st = resolve(d, info, m);
+    if (!ok(st)) return st;
+    if (!can_write(info->access)) return Status::kReadOnly;
+    st = check_value(*info, v);
+    if (!ok(st)) return st;
+    // The hook may discard handles (TC Clean); the caller's handle was issued
+    // under the old generation, which is exactly what makes it stale.
+    return m->write(*info, d.address, v);
+}
+
+}  // namespace objif

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Installs what is missing, builds everything, runs every test.
+set -euo pipefail
+cd "$(dirname "$0")"
+source scripts/deps.sh
+apci_install_deps
+apci_build build
+ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
