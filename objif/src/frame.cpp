@@ -109,16 +109,16 @@ FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::si
         need_more = true;
         return FrameError::kShort;
     }
+    // From here on the frame's boundary is known: a stream can skip it.
+    consumed = total;
+    out.opcode = load<std::uint16_t>(p + 6);
+    out.sequence = load<std::uint32_t>(p + 8);
     const auto crc = load<std::uint32_t>(p + kFrameHeaderSize + length);
     if (crc != crc32_of(p, kFrameHeaderSize + length)) return FrameError::kBadCrc;
-    const auto opcode = load<std::uint16_t>(p + 6);
-    const auto base = static_cast<std::uint16_t>(opcode & ~kReplyFlag);
+    const auto base = static_cast<std::uint16_t>(out.opcode & ~kReplyFlag);
     if (!opcode_known(base) && base != static_cast<std::uint16_t>(Opcode::kError))
         return FrameError::kUnknownOpcode;
-    out.opcode = opcode;
-    out.sequence = load<std::uint32_t>(p + 8);
     out.payload.assign(p + kFrameHeaderSize, p + kFrameHeaderSize + length);
-    consumed = total;
     return FrameError::kNone;
 }
 

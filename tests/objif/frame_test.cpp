@@ -111,6 +111,27 @@ TEST(WireFrame, BadCrcIsRefused) {
     EXPECT_EQ(decode(bytes2, f, more), FrameError::kBadCrc);
 }
 
+TEST(WireFrame, BadCrcFrameCanBeSkippedInAStream) {
+    auto bytes = write_frame(Value::of_int(1));
+    bytes[18] ^= 0x40;
+    objif::Frame f;
+    bool more;
+    std::size_t used = 0;
+    EXPECT_EQ(objif::decode_frame(bytes, f, used, more), FrameError::kBadCrc);
+    EXPECT_EQ(used, bytes.size());
+    EXPECT_EQ(f.sequence, 5u) << "the error reply can echo the sequence";
+}
+
+TEST(WireFrame, GarbageConsumesNothing) {
+    auto bytes = write_frame(Value::of_int(1));
+    bytes[4] = 9;
+    objif::Frame f;
+    bool more;
+    std::size_t used = 99;
+    EXPECT_EQ(objif::decode_frame(bytes, f, used, more), FrameError::kBadVersion);
+    EXPECT_EQ(used, 0u);
+}
+
 TEST(WireFrame, UnknownOpcodeIsRefused) {
     auto bytes = frame_of(0x0042, 1, {});
     objif::Frame f;

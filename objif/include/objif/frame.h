@@ -76,7 +76,10 @@ void encode_frame(std::uint16_t opcode, std::uint32_t sequence,
 // Decodes one frame from the front of `bytes`.
 //   kOk: `out` holds the frame, `consumed` its size.
 //   kShort with `need_more` = true: the bytes are a valid prefix; read more.
-//   any other error: the frame is malformed (`consumed` is 0). A stream
+//   kBadCrc, kUnknownOpcode: the frame's boundary is known: `consumed` is its
+//   size and `out.opcode`/`out.sequence` are filled, so a stream transport
+//   answers kError and goes on with the next frame.
+//   kBadMagic, kBadVersion, kBadLength: garbage, `consumed` is 0: a stream
 //   transport drops the connection; a datagram transport answers kError.
 // Header fields are checked in order: magic, version, length, then CRC, then opcode.
 FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::size_t& consumed,

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// Serves wire frames (objif/frame.h) from a Board: one request frame in, one
+// reply frame out. Every transport's emulator side (daemon socket, dual-port
+// RAM mailbox, USB bulk endpoints) goes through here, so every transport
+// answers a malformed frame the same way: an Error reply naming the reason,
+// and no state change.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "objif/frame.h"
+#include "rwmos/board.h"
+
+namespace rwmos {
+
+class FrameServer {
+public:
+    explicit FrameServer(Board& board) : board_(board) {}
+
+    // A whole request frame (datagram transports: mailbox, USB transfer).
+    // Appends exactly one reply frame to `reply`. Returns the decode error,
+    // kNone when the frame was well-formed (its reply may still carry an
+    // error status from the board).
+    objif::FrameError serve(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply);
+
+    // An already decoded request. Appends exactly one reply frame.
+    void handle(const objif::Frame& request, std::vector<std::uint8_t>& reply);
+
+    // The Error reply for a frame that could not be decoded; `sequence` is
+    // echoed when the header was readable, else 0.
+    static void reject(std::uint32_t sequence, objif::FrameError why, std::vector<std::uint8_t>& reply);
+
+private:
+    Board& board_;
+    std::vector<std::uint8_t> payload_;  // scratch, reused between requests
+};
+
+}  // namespace rwmos
