@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/frame_server.h"
+
+namespace rwmos {
+
+using objif::FrameError;
+using objif::Opcode;
+
+namespace {
+constexpr std::uint16_t reply_opcode(Opcode op) {
+    return static_cast<std::uint16_t>(static_cast<std::uint16_t>(op) | objif::kReplyFlag);
+}
+}  // namespace
+
+void FrameServer::reject(std::uint32_t sequence, FrameError why, std::vector<std::uint8_t>& reply) {
+    std::vector<std::uint8_t> payload;
+    objif::encode(objif::ErrorReply{objif::frame_error_status(why), why}, payload);
+    objif::encode_frame(reply_opcode(Opcode::kError), sequence, payload, reply);
+}
+
+FrameError FrameServer::serve(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply) {
+    objif::Frame frame;
+    std::size_t used = 0;
+    bool need_more = false;
+    FrameError e = objif::decode_frame(request, frame, used, need_more);
+    if (e == FrameError::kNone && used != request.size()) e = FrameError::kBadLength;  // trailing bytes
+    if (e != FrameError::kNone) {
+        reject(used != 0 ? frame.sequence : 0, e, reply);
+        return e;
+    }
+    handle(frame, reply);
+    return FrameError::kNone;
+}
+
+void FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
+    payload_.clear();
+    switch (static_cast<Opcode>(request.opcode)) {
+        case Opcode::kObjectRead: {
+            objif::ReadRequest req;
+            const FrameError e = objif::decode(request.payload, req);
+            if (e != FrameError::kNone) return reject(request.sequence, e, reply);
+            objif::ReadReply rep;
+            rep.status = board_.read(req.descriptor, req.want, rep.value);
+            rep.handle = req.descriptor.handle;
+            objif::encode(rep, payload_);
+            break;
+        }
+        case Opcode::kObjectWrite: {
+            objif::WriteRequest req;
+            const FrameError e = objif::decode(request.payload, req);
+            if (e != FrameError::kNone) return reject(request.sequence, e, reply);
+            objif::WriteReply rep;
+            rep.status = board_.write(req.descriptor, req.value);
+            rep.handle = req.descriptor.handle;
+            objif::encode(rep, payload_);
+            break;
+        }
+        default:
+            // A reply opcode, the Error opcode, or a request this board does not serve.
+            return reject(request.sequence, FrameError::kUnknownOpcode, reply);
+    }
+    objif::encode_frame(static_cast<std::uint16_t>(request.opcode | objif::kReplyFlag), request.sequence,
+                        payload_, reply);
+}
+
+}  // namespace rwmos
