@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: MIT
+# libapci: the userspace driver. The whole public API is include/apci/apci.h
+# (C) plus the header-only C++ wrapper include/apci/apci.hpp.
+if(NOT TARGET rwmos_emu)
+  message(STATUS "libapci: skipped, it needs the rwmos_emu library (rwmos_emu/emu.cmake)")
+  return()
+endif()
+add_library(apci SHARED
+  src/apci.cpp
+  src/tc_names.cpp
+  src/transport.cpp
+  src/transport_inproc.cpp)
+add_library(apci::apci ALIAS apci)
+set_target_properties(apci PROPERTIES
+  VERSION ${PROJECT_VERSION}
+  SOVERSION 0
+  C_VISIBILITY_PRESET hidden
+  CXX_VISIBILITY_PRESET hidden
+  VISIBILITY_INLINES_HIDDEN ON
+  LINK_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/apci.map)
+target_compile_definitions(apci PRIVATE APCI_BUILDING_LIBRARY)
+target_include_directories(apci
+  PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
+  PRIVATE src)
+target_link_libraries(apci PRIVATE rwmos_emu objif fmt::fmt)
+target_link_options(apci PRIVATE
+  -Wl,--version-script=${CMAKE_CURRENT_SOURCE_DIR}/apci.map
+  -Wl,--no-undefined)
+
+# ---- install: library, headers, CMake package, pkg-config file
+include(CMakePackageConfigHelpers)
+set(APCI_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/apci)
+install(TARGETS apci EXPORT apciTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES include/apci/apci.h include/apci/apci.hpp
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/apci)
+install(EXPORT apciTargets NAMESPACE apci:: DESTINATION ${APCI_CMAKE_DIR})
+configure_package_config_file(apciConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/apciConfig.cmake
+  INSTALL_DESTINATION ${APCI_CMAKE_DIR})
+# 0.x: a minor version may break the API, so only the same minor is compatible.
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/apciConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES
+  ${CMAKE_CURRENT_BINARY_DIR}/apciConfig.cmake
+  ${CMAKE_CURRENT_BINARY_DIR}/apciConfigVersion.cmake
+  DESTINATION ${APCI_CMAKE_DIR})
+# apci.pc finds its prefix relative to its own directory (pkg-config's
+# ${pcfiledir}), so the installed tree can be moved (cmake --install --prefix).
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}" OR IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDEDIR}")
+  set(APCI_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH APCI_PC_UP "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
+  set(APCI_PC_PREFIX "\${pcfiledir}/${APCI_PC_UP}")
+endif()
+configure_file(apci.pc.in ${CMAKE_CURRENT_BINARY_DIR}/apci.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/apci.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

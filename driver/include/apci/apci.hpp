@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+// apci.hpp - the thin C++ API of libapci: header-only, over apci.h.
+//
+//   apci::Board board("emu:");                      // RAII: closed by the destructor
+//   if (!board) { std::cerr << board.last_error(); }
+//   auto radius = apci::object(APCI_TC_BUS, 1, 1, APCI_TC_RADIUS);
+//   if (auto r = board.write(radius, 2.5); !r) std::cerr << board.last_error();
+//   auto v = board.read_double(radius);             // v.status, v.value
+//
+// Nothing here throws: results carry the status (apci.h codes) and a value.
+// Threading as apci.h: one thread at a time per Board.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include "apci/apci.h"
+
+namespace apci {
+
+using Status = apci_status;
+using ObjectDescriptor = apci_object_descriptor;
+
+// A descriptor for (bus, device, index, subindex) with an unresolved handle.
+constexpr ObjectDescriptor object(std::int32_t bus, std::int32_t device, std::int32_t index,
+                                  std::int32_t subindex) noexcept {
+    return ObjectDescriptor{bus, device, index, subindex, 0};
+}
+
+inline std::string_view status_name(Status s) noexcept { return apci_status_name(s); }
+inline std::string_view status_message(Status s) noexcept { return apci_status_message(s); }
+
+// Status of one call plus, for reads, the value (meaningful only when ok()).
+template <class T>
+struct Result {
+    Status status = APCI_OK;
+    T value{};
+
+    constexpr bool ok() const noexcept { return status == APCI_OK; }
+    constexpr explicit operator bool() const noexcept { return ok(); }
+    constexpr T value_or(T fallback) const noexcept { return ok() ? value : fallback; }
+    std::string_view name() const noexcept { return status_name(status); }
+    std::string_view message() const noexcept { return status_message(status); }
+};
+
+template <>
+struct Result<void> {
+    Status status = APCI_OK;
+
+    constexpr bool ok() const noexcept { return status == APCI_OK; }
+    constexpr explicit operator bool() const noexcept { return ok(); }
+    std::string_view name() const noexcept { return status_name(status); }
+    std::string_view message() const noexcept { return status_message(status); }
+};
+
+// An open board (apci_board*), closed when the Board is destroyed. Move-only.
+class Board {
+public:
+    // Not open; every access answers APCI_INVALID_ARGUMENT.
+    Board() noexcept = default;
+    // Opens `uri` (apci_open: nullptr, "" and "emu:" are the embedded
+    // emulator). Check is_open() / open_status(); last_error() says why not.
+    explicit Board(const char* uri) noexcept {
+        open_status_ = apci_open(uri, &handle_);
+        if (handle_ == nullptr) keep_open_error(apci_last_error(nullptr));
+    }
+    explicit Board(const std::string& uri) noexcept : Board(uri.c_str()) {}
+
+    Board(Board&& other) noexcept
+        : handle_(std::exchange(other.handle_, nullptr)),
+          open_status_(other.open_status_),
+          open_error_(std::move(other.open_error_)) {}
+    Board& operator=(Board&& other) noexcept {
+        if (this != &other) {
+            apci_close(handle_);
+            handle_ = std::exchange(other.handle_, nullptr);
+            open_status_ = other.open_status_;
+            open_error_ = std::move(other.open_error_);
+        }
+        return *this;
+    }
+    Board(const Board&) = delete;
+    Board& operator=(const Board&) = delete;
+    ~Board() { apci_close(handle_); }
+
+    bool is_open() const noexcept { return handle_ != nullptr; }
+    explicit operator bool() const noexcept { return is_open(); }
+    // The status apci_open answered (APCI_NOT_SUPPORTED, ... or APCI_OK).
+    Status open_status() const noexcept { return open_status_; }
+    // apci_last_error() of this board; why it did not open if it is not open.
+    std::string_view last_error() const noexcept {
+        return is_open() ? std::string_view(apci_last_error(handle_)) : open_error_;
+    }
+    apci_board* native_handle() const noexcept { return handle_; }
+
+    Result<std::int32_t> read_int(ObjectDescriptor& o) noexcept {
+        Result<std::int32_t> r;
+        r.status = apci_read_int(handle_, &o, &r.value);
+        return r;
+    }
+    Result<double> read_double(ObjectDescriptor& o) noexcept {
+        Result<double> r;
+        r.status = apci_read_double(handle_, &o, &r.value);
+        return r;
+    }
+    // read<std::int32_t>(o) or read<double>(o).
+    template <class T>
+    Result<T> read(ObjectDescriptor& o) noexcept {
+        static_assert(std::is_same_v<T, std::int32_t> || std::is_same_v<T, double>,
+                      "objects hold int32 or double");
+        if constexpr (std::is_same_v<T, double>) {
+            return read_double(o);
+        } else {
+            return read_int(o);
+        }
+    }
+
+    Result<void> write_int(ObjectDescriptor& o, std::int32_t v) noexcept {
+        return Result<void>{apci_write_int(handle_, &o, v)};
+    }
+    Result<void> write_double(ObjectDescriptor& o, double v) noexcept {
+        return Result<void>{apci_write_double(handle_, &o, v)};
+    }
+    // The argument's type picks the accessor: write(o, 5) is int, write(o, 2.5) double.
+    Result<void> write(ObjectDescriptor& o, std::int32_t v) noexcept { return write_int(o, v); }
+    Result<void> write(ObjectDescriptor& o, double v) noexcept { return write_double(o, v); }
+
+private:
+    void keep_open_error(const char* text) noexcept {
+        try {
+            open_error_ = text;
+        } catch (...) {
+            open_error_.clear();
+        }
+    }
+
+    apci_board* handle_ = nullptr;
+    Status open_status_ = APCI_INVALID_ARGUMENT;  // "not opened" for a default Board
+    std::string open_error_ = "board not open";
+};
+
+}  // namespace apci

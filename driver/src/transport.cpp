@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// Device URI parsing and the scheme table: one row per backend.
+#include "transport.h"
+
+#include <array>
+#include <new>
+
+#include <fmt/format.h>
+
+namespace apci {
+namespace {
+
+using OpenFn = objif::Status (*)(const DeviceUri&, std::unique_ptr<Transport>&,
+                                 std::string&) noexcept;
+
+struct Scheme {
+    std::string_view name;
+    OpenFn open;  // nullptr: known scheme, backend not built yet
+    std::string_view form;
+};
+
+// DESIGN.md section 6. A new backend fills in its row's `open`.
+constexpr std::array kSchemes{
+    Scheme{"emu", open_inproc, "emu:[?no-option-tc]"},
+    Scheme{"unix", nullptr, "unix:PATH"},
+    Scheme{"shm", nullptr, "shm:PATH"},
+    Scheme{"pci", nullptr, "pci:DOMAIN:BUS:DEV.FN"},
+    Scheme{"usb", nullptr, "usb:[BUS:ADDR]"},
+};
+
+constexpr bool scheme_char(char c) noexcept {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.';
+}
+
+std::string known_schemes() {
+    std::string s;
+    for (const auto& row : kSchemes) {
+        if (!s.empty()) s += ", ";
+        s += row.form;
+    }
+    return s;
+}
+
+}  // namespace
+
+objif::Status parse_device_uri(std::string_view text, DeviceUri& out, std::string& why) noexcept {
+    try {
+        DeviceUri uri;
+        if (text.empty()) text = "emu:";
+        const auto colon = text.find(':');
+        if (colon == std::string_view::npos || colon == 0) {
+            why = fmt::format("device URI '{}' has no scheme (expected one of: {})", text,
+                              known_schemes());
+            return objif::Status::kInvalidArgument;
+        }
+        uri.scheme = std::string(text.substr(0, colon));
+        for (char c : uri.scheme) {
+            if (!scheme_char(c)) {
+                why = fmt::format("device URI '{}': scheme '{}' has an invalid character '{}'",
+                                  text, uri.scheme, c);
+                return objif::Status::kInvalidArgument;
+            }
+        }
+        std::string_view rest = text.substr(colon + 1);
+        const auto q = rest.find('?');
+        uri.target = std::string(rest.substr(0, q));
+        if (q != std::string_view::npos) {
+            std::string_view opts = rest.substr(q + 1);
+            while (true) {
+                const auto amp = opts.find('&');
+                const std::string_view item = opts.substr(0, amp);
+                if (item.empty()) {
+                    why = fmt::format("device URI '{}' has an empty option", text);
+                    return objif::Status::kInvalidArgument;
+                }
+                uri.options.emplace_back(item);
+                if (amp == std::string_view::npos) break;
+                opts = opts.substr(amp + 1);
+            }
+        }
+        out = std::move(uri);
+        return objif::Status::kOk;
+    } catch (const std::bad_alloc&) {
+        return objif::Status::kNoMemory;
+    } catch (...) {
+        return objif::Status::kGeneralError;
+    }
+}
+
+objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                             std::string& why) noexcept {
+    try {
+        for (const auto& row : kSchemes) {
+            if (row.name != uri.scheme) continue;
+            if (row.open == nullptr) {
+                why = fmt::format("transport '{}:' is not supported yet (available: emu:)",
+                                  uri.scheme);
+                return objif::Status::kNotSupported;
+            }
+            return row.open(uri, out, why);
+        }
+        why = fmt::format("unknown device URI scheme '{}:' (expected one of: {})", uri.scheme,
+                          known_schemes());
+        return objif::Status::kInvalidArgument;
+    } catch (const std::bad_alloc&) {
+        return objif::Status::kNoMemory;
+    } catch (...) {
+        return objif::Status::kGeneralError;
+    }
+}
+
+}  // namespace apci

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+// The one interface between the C API (apci.cpp) and the ways to reach a
+// board. One file per backend (transport_<scheme>.cpp); each fills one row
+// of the scheme table in transport.cpp.
+//
+// Methods work at the request level (object read, object write; the motion
+// work adds spool / direct / ssf / clock / trace), not at the frame level, so
+// the in-process backend calls the emulated board directly and pays no frame
+// encoding. Backends that cross a process or device boundary (unix, shm, usb,
+// pci) encode each request as one objif/frame.h wire frame and decode the
+// reply; their errno / libusb codes become objif::Status in exactly one place
+// per backend, and the detail text (strerror, libusb_error_name) is kept for
+// failure_detail().
+//
+// Contract for every method of every backend:
+//  - noexcept: no exception crosses this boundary; failures are statuses.
+//  - Threading: a Transport is owned by one apci_board and called by one
+//    thread at a time (the C API does not lock; see apci.h "Threading").
+//    Backends need no locking of their own unless they run helper threads.
+//  - A failed request changes no board state (the board guarantees this for
+//    refused requests; a transport that loses a reply says kTransportError or
+//    kTimeout and the caller cannot know whether the board acted).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "objif/descriptor.h"
+#include "objif/status.h"
+#include "objif/value.h"
+
+namespace apci {
+
+class Transport {
+public:
+    virtual ~Transport() = default;
+
+    // Reads the object `d` names, expecting type `want`. On kOk `out` holds
+    // the value. `d.handle` is filled in when the board resolves the object
+    // (also when a later check fails), and kept as is otherwise.
+    // Blocking: until the board answers (inproc: returns at once; remote:
+    // one round trip, at most the backend's timeout, then kTimeout).
+    virtual objif::Status read(objif::Descriptor& d, objif::ValueType want,
+                               objif::Value& out) noexcept = 0;
+
+    // Writes `v` to the object `d` names; the board checks the type against
+    // the object's. Handle and blocking as for read().
+    virtual objif::Status write(objif::Descriptor& d, const objif::Value& v) noexcept = 0;
+
+    // Extra words about the most recent failed call when the failure is the
+    // transport's own (e.g. "connect /run/apci.sock: No such file or
+    // directory"); empty for statuses the board answered. Non-blocking.
+    virtual std::string_view failure_detail() const noexcept { return {}; }
+};
+
+// A device URI split into its parts: "scheme:target?opt1&opt2".
+struct DeviceUri {
+    std::string scheme;                // "emu", "unix", "shm", "pci", "usb"
+    std::string target;                // what follows "scheme:" up to '?'
+    std::vector<std::string> options;  // the '&'-separated items after '?'
+};
+
+// Parses a device URI. NULL-equivalent (empty) means "emu:". kInvalidArgument
+// with `why` set for a string without "scheme:" or with an empty option.
+objif::Status parse_device_uri(std::string_view text, DeviceUri& out, std::string& why) noexcept;
+
+// Opens the transport the URI names (scheme table in transport.cpp).
+// kInvalidArgument for an unknown scheme or bad target/options, kNotSupported
+// for a known scheme whose backend is not built yet, or the backend's own
+// status; `why` says what was wrong. Blocking: as the backend's connect.
+objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                             std::string& why) noexcept;
+
+// Backend constructors, one per transport_<scheme>.cpp.
+objif::Status open_inproc(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                          std::string& why) noexcept;
+
+}  // namespace apci

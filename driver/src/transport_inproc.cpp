@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+// The in-process transport ("emu:"): owns an emulated rwmos::Board and calls
+// it directly, without frames. Blocking: never (virtual time; every call
+// returns as soon as the board has served it). Threading: as the Board, one
+// thread at a time, which the C API's contract already guarantees.
+#include <new>
+
+#include <fmt/format.h>
+
+#include "rwmos/board.h"
+#include "transport.h"
+
+namespace apci {
+namespace {
+
+class InprocTransport final : public Transport {
+public:
+    explicit InprocTransport(const rwmos::BoardConfig& config) : board_(config) {}
+
+    objif::Status read(objif::Descriptor& d, objif::ValueType want,
+                       objif::Value& out) noexcept override {
+        try {
+            return board_.read(d, want, out);
+        } catch (const std::bad_alloc&) {
+            return objif::Status::kNoMemory;
+        } catch (...) {
+            return objif::Status::kGeneralError;
+        }
+    }
+
+    objif::Status write(objif::Descriptor& d, const objif::Value& v) noexcept override {
+        try {
+            return board_.write(d, v);
+        } catch (const std::bad_alloc&) {
+            return objif::Status::kNoMemory;
+        } catch (...) {
+            return objif::Status::kGeneralError;
+        }
+    }
+
+private:
+    rwmos::Board board_;
+};
+
+// "emu:?no-option-tc&option-tc": the last word on an option wins.
+objif::Status board_config_from(const DeviceUri& uri, rwmos::BoardConfig& config,
+                                std::string& why) {
+    if (!uri.target.empty()) {
+        why = fmt::format("device URI 'emu:{}': the embedded emulator takes no target "
+                          "(use 'emu:' or 'emu:?no-option-tc')",
+                          uri.target);
+        return objif::Status::kInvalidArgument;
+    }
+    for (const auto& option : uri.options) {
+        if (option == "no-option-tc") {
+            config.option_tc = false;
+        } else if (option == "option-tc") {
+            config.option_tc = true;
+        } else {
+            why = fmt::format("unknown emu: option '{}' (known: option-tc, no-option-tc)", option);
+            return objif::Status::kInvalidArgument;
+        }
+    }
+    return objif::Status::kOk;
+}
+
+}  // namespace
+
+objif::Status open_inproc(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                          std::string& why) noexcept {
+    try {
+        rwmos::BoardConfig config;
+        const objif::Status st = board_config_from(uri, config, why);
+        if (!objif::ok(st)) return st;
+        out = std::make_unique<InprocTransport>(config);
+        return objif::Status::kOk;
+    } catch (const std::bad_alloc&) {
+        return objif::Status::kNoMemory;
+    } catch (...) {
+        why = "the embedded emulator failed to start";
+        return objif::Status::kGeneralError;
+    }
+}
+
+}  // namespace apci

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// apcictl's commands: one table of rows, each naming a command, whether it
+// may appear as a script line, and a factory. The command line offers every
+// row as a subcommand; `script` offers the rows marked for scripts, parsing
+// each line with the same declaration, so a command behaves the same typed
+// on the command line or written in a script. New commands (spool, direct,
+// ssf, step) are new rows in commands.cpp.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <CLI/CLI.hpp>
+
+#include "apci/apci.hpp"
+
+namespace apcictl {
+
+// Process exit codes (DESIGN.md section 7).
+enum class Exit : int { kOk = 0, kBoard = 1, kUsage = 2 };
+
+// What a command did: kOk, or an exit code and one line saying what failed,
+// starting with the command as typed ("write 1300 1 1 4 2: WrongDeviceState (...)").
+struct Outcome {
+    Exit exit = Exit::kOk;
+    std::string error;
+
+    bool ok() const noexcept { return exit == Exit::kOk; }
+    static Outcome success() { return {}; }
+    static Outcome board_error(std::string text) { return {Exit::kBoard, std::move(text)}; }
+    static Outcome usage_error(std::string text) { return {Exit::kUsage, std::move(text)}; }
+};
+
+// One board session: every command of one invocation, and every line of a
+// script, runs against the same open board, so state carries over.
+class Session {
+public:
+    explicit Session(std::string uri) : uri_(std::move(uri)) {}
+
+    // The open board, opened on first use (so --help and usage errors never
+    // open one); nullptr with `failure` set if it cannot be opened.
+    apci::Board* board(Outcome& failure);
+    const std::string& uri() const noexcept { return uri_; }
+
+private:
+    std::string uri_;
+    apci::Board board_;
+    bool opened_ = false;
+    Outcome open_failure_;
+};
+
+class Command {
+public:
+    virtual ~Command() = default;
+    // Declares the positionals and options on `app` (a subcommand of the
+    // command line, or the parser of one script line), bound to members.
+    virtual void declare(CLI::App& app) = 0;
+    // Checks the parsed arguments before anything runs (usage errors).
+    virtual Outcome prepare() { return Outcome::success(); }
+    // Runs against the session's board and prints its result on stdout.
+    virtual Outcome run(Session& session) = 0;
+};
+
+struct CommandSpec {
+    std::string_view name;
+    std::string_view summary;
+    bool in_scripts;  // may be a line of `apcictl script`
+    std::unique_ptr<Command> (*make)();
+};
+
+// The command table (commands.cpp), in help order.
+std::span<const CommandSpec> command_table() noexcept;
+const CommandSpec* find_command(std::string_view name) noexcept;
+
+// Factories, one per command file.
+std::unique_ptr<Command> make_read_command();
+std::unique_ptr<Command> make_write_command();
+std::unique_ptr<Command> make_script_command();
+std::unique_ptr<Command> make_status_command();
+
+// "WrongDeviceState (not possible in the present device state)".
+std::string describe_status(apci::Status status);
+
+}  // namespace apcictl

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// `read BUS DEV IDX SUB` and `write BUS DEV IDX SUB VALUE`: the type follows
+// the object. Objects hold int32 or double; the board answers TypeMismatch
+// to the wrong accessor without touching state, so asking is safe.
+#include <fmt/format.h>
+
+#include "command.h"
+#include "value_text.h"
+
+namespace apcictl {
+namespace {
+
+struct ObjectArgs {
+    std::int32_t bus = 0, device = 0, index = 0, subindex = 0;
+
+    void declare(CLI::App& app) {
+        app.add_option("BUS", bus, "BusNumber (1300: TC module)")->required();
+        app.add_option("DEV", device, "DeviceNumber")->required();
+        app.add_option("IDX", index, "Index")->required();
+        app.add_option("SUB", subindex, "SubIndex")->required();
+    }
+    apci::ObjectDescriptor descriptor() const { return apci::object(bus, device, index, subindex); }
+    std::string text() const { return fmt::format("{} {} {} {}", bus, device, index, subindex); }
+    std::string address() const { return fmt::format("{}/{}/{}/{}", bus, device, index, subindex); }
+};
+
+struct TypeFlags {
+    bool force_int = false;
+    bool force_double = false;
+
+    void declare(CLI::App& app, std::string_view verb) {
+        auto* i = app.add_flag("--int", force_int, fmt::format("{} as int32, whatever the object", verb));
+        auto* d = app.add_flag("--double", force_double, fmt::format("{} as double, whatever the object", verb));
+        i->excludes(d);
+    }
+    std::string text() const { return force_int ? " --int" : (force_double ? " --double" : ""); }
+};
+
+class ReadCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        object_.declare(app);
+        type_.declare(app, "Read");
+        app.footer("Prints the value. Without --int/--double the type follows the object: "
+                   "int32 is tried first, then double.");
+    }
+
+    Outcome run(Session& session) override {
+        Outcome failure;
+        apci::Board* board = session.board(failure);
+        if (board == nullptr) return failure;
+        auto o = object_.descriptor();
+        if (!type_.force_double) {
+            const auto r = board->read_int(o);
+            if (r) {
+                fmt::print("{}\n", r.value);
+                return Outcome::success();
+            }
+            if (type_.force_int || r.status != APCI_TYPE_MISMATCH) return failed(r.status);
+        }
+        const auto r = board->read_double(o);
+        if (!r) return failed(r.status);
+        fmt::print("{}\n", r.value);
+        return Outcome::success();
+    }
+
+private:
+    Outcome failed(apci::Status s) const {
+        return Outcome::board_error(
+            fmt::format("read{} {}: {}", type_.text(), object_.text(), describe_status(s)));
+    }
+
+    ObjectArgs object_;
+    TypeFlags type_;
+};
+
+class WriteCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        object_.declare(app);
+        app.add_option("VALUE", value_text_, "Value: int32 (5, -3, 0x1F) or double (2.5, 1e-3)")
+            ->required();
+        type_.declare(app, "Write");
+        app.footer("Without --int/--double the value's type follows the object: an integer "
+                   "written to a double object is written as that double; a value with a "
+                   "fraction (2.5) written to an int object is an error. Prints nothing on "
+                   "success.");
+    }
+
+    Outcome prepare() override {
+        is_int_ = parse_int32(value_text_, int_value_);
+        const bool is_number = parse_double(value_text_, double_value_);
+        if (type_.force_int && !is_int_)
+            return usage(fmt::format("VALUE '{}' is not an int32 (--int)", value_text_));
+        if (!is_number && !is_int_)
+            return usage(fmt::format("VALUE '{}' is not a number", value_text_));
+        if (type_.force_double && is_int_) double_value_ = int_value_;
+        return Outcome::success();
+    }
+
+    Outcome run(Session& session) override {
+        Outcome failure;
+        apci::Board* board = session.board(failure);
+        if (board == nullptr) return failure;
+        auto o = object_.descriptor();
+        if (type_.force_int) return result(board->write_int(o, int_value_).status);
+        if (type_.force_double) return result(board->write_double(o, double_value_).status);
+        if (is_int_) {
+            const auto r = board->write_int(o, int_value_);
+            if (r.status != APCI_TYPE_MISMATCH) return result(r.status);
+            // A double object: every int32 is exactly a double.
+            return result(board->write_double(o, static_cast<double>(int_value_)).status);
+        }
+        const auto r = board->write_double(o, double_value_);
+        if (r.status == APCI_TYPE_MISMATCH) {
+            return Outcome::board_error(fmt::format(
+                "{}: {}: object {} holds an int32, and {} is not an int32 value", command_text(),
+                describe_status(r.status), object_.address(), value_text_));
+        }
+        return result(r.status);
+    }
+
+private:
+    std::string command_text() const {
+        return fmt::format("write{} {} {}", type_.text(), object_.text(), value_text_);
+    }
+    Outcome usage(std::string why) const {
+        return Outcome::usage_error(fmt::format("{}: {}", command_text(), why));
+    }
+    Outcome result(apci::Status s) const {
+        if (s == APCI_OK) return Outcome::success();
+        return Outcome::board_error(fmt::format("{}: {}", command_text(), describe_status(s)));
+    }
+
+    ObjectArgs object_;
+    TypeFlags type_;
+    std::string value_text_;
+    bool is_int_ = false;
+    std::int32_t int_value_ = 0;
+    double double_value_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_read_command() { return std::make_unique<ReadCommand>(); }
+std::unique_ptr<Command> make_write_command() { return std::make_unique<WriteCommand>(); }
+
+}  // namespace apcictl

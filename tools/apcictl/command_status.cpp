@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+// `status`: the TC registers ERROR (Table 4) and STATUS (Table 5) of each
+// compensation group and of the active group, decoded by the seed's bit names
+// (APCI-8001 TC document, section 2.3 "Fehlerabfrage von TC").
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "command.h"
+
+namespace apcictl {
+namespace {
+
+constexpr std::int32_t kGroupCount = 3;  // Index 1..3; Index 0 = the active group
+
+std::string_view plane_name(std::int32_t plane) {
+    switch (plane) {
+        case 17: return "X-Y";
+        case 18: return "Z-X";
+        case 19: return "Y-Z";
+    }
+    return "unknown plane";
+}
+
+// "0x01 InitError", "0x00 none", "0x41 InitError, bit6".
+std::string decode_error(std::int32_t value) {
+    const auto bits = static_cast<std::uint32_t>(value);
+    std::string names;
+    for (int bit = 0; bit < 32; ++bit) {
+        if ((bits & (1u << bit)) == 0) continue;
+        if (!names.empty()) names += ", ";
+        const char* name = apci_tc_error_bit_name(bit);
+        names += name != nullptr ? std::string(name) : fmt::format("bit{}", bit);
+    }
+    return fmt::format("0x{:02X} {}", bits, names.empty() ? "none" : names);
+}
+
+// "0x01 (Run on, ProfMarked off)"; bits the seed does not name are listed too.
+std::string decode_status(std::int32_t value) {
+    const auto bits = static_cast<std::uint32_t>(value);
+    std::string flags;
+    for (int bit = 0; bit < 32; ++bit) {
+        const char* name = apci_tc_status_bit_name(bit);
+        const bool set = (bits & (1u << bit)) != 0;
+        if (name == nullptr && !set) continue;
+        if (!flags.empty()) flags += ", ";
+        flags += name != nullptr ? fmt::format("{} {}", name, set ? "on" : "off")
+                                 : fmt::format("bit{} on", bit);
+    }
+    return fmt::format("0x{:02X} ({})", bits, flags);
+}
+
+class StatusCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        app.footer(
+            "Reads TcPlane, then ERROR (SubIndex 1) and STATUS (SubIndex 3) of compensation "
+            "groups 1..3 and of the active group (Index 0) on bus 1300, DeviceNumber 1, and "
+            "names the set bits. Says so when the firmware has no optionTC. Exit 1 if a "
+            "register could not be read.");
+    }
+
+    Outcome run(Session& session) override {
+        Outcome failure;
+        apci::Board* board = session.board(failure);
+        if (board == nullptr) return failure;
+
+        auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
+        const auto plane = board->read_int(plane_object);
+        if (plane.status == APCI_NO_SUCH_DEVICE) {
+            fmt::print("TC module (bus {}): absent, the firmware has no optionTC\n", APCI_TC_BUS);
+            return Outcome::success();
+        }
+        if (!plane) return failed("TcPlane", plane.status);
+        fmt::print("TC module (bus {}): TcPlane {} ({})\n", APCI_TC_BUS, plane.value,
+                   plane_name(plane.value));
+
+        Outcome outcome;
+        for (std::int32_t group = 1; group <= kGroupCount; ++group)
+            show_group(*board, group, fmt::format("group {}", group), outcome);
+        show_group(*board, 0, "active group", outcome);
+        return outcome;
+    }
+
+private:
+    // Prints one line; the first unreadable register becomes the outcome.
+    static void show_group(apci::Board& board, std::int32_t index, const std::string& label,
+                           Outcome& outcome) {
+        auto error_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_GROUP, index, APCI_TC_ERROR);
+        auto status_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_GROUP, index, APCI_TC_STATUS);
+        const auto error = board.read_int(error_object);
+        const auto status = board.read_int(status_object);
+        const std::string error_text =
+            error ? decode_error(error.value) : fmt::format("unreadable, {}", describe_status(error.status));
+        const std::string status_text =
+            status ? decode_status(status.value) : fmt::format("unreadable, {}", describe_status(status.status));
+        fmt::print("{}: ERROR {}; STATUS {}\n", label, error_text, status_text);
+        if (!outcome.ok()) return;
+        if (!error) outcome = failed(label + " ERROR", error.status);
+        else if (!status) outcome = failed(label + " STATUS", status.status);
+    }
+
+    static Outcome failed(const std::string& what, apci::Status s) {
+        return Outcome::board_error(fmt::format("status: {}: {}", what, describe_status(s)));
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_status_command() { return std::make_unique<StatusCommand>(); }
+
+}  // namespace apcictl

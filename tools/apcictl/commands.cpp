@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#include <array>
+
+#include <fmt/format.h>
+
+#include "command.h"
+
+namespace apcictl {
+namespace {
+
+// The command table. The motion work adds spool, direct, ssf and step here
+// (in_scripts = true), each in its own command_<name>.cpp.
+constexpr std::array kCommands{
+    CommandSpec{"read", "Read one object (type follows the object)", true, make_read_command},
+    CommandSpec{"write", "Write one object (the value's type follows the object)", true,
+                make_write_command},
+    CommandSpec{"script", "Run commands from a file (or - for stdin) against one board session",
+                false, make_script_command},
+    CommandSpec{"status", "Show the TC registers ERROR and STATUS per group, decoded by name",
+                true, make_status_command},
+};
+
+}  // namespace
+
+std::span<const CommandSpec> command_table() noexcept { return kCommands; }
+
+const CommandSpec* find_command(std::string_view name) noexcept {
+    for (const auto& row : kCommands)
+        if (row.name == name) return &row;
+    return nullptr;
+}
+
+std::string describe_status(apci::Status status) {
+    return fmt::format("{} ({})", apci::status_name(status), apci::status_message(status));
+}
+
+apci::Board* Session::board(Outcome& failure) {
+    if (!opened_) {
+        opened_ = true;
+        board_ = apci::Board(uri_);
+        if (!board_) {
+            // A URI the library cannot parse is the user's typing: a usage error.
+            const bool usage = board_.open_status() == APCI_INVALID_ARGUMENT;
+            std::string text(board_.last_error());
+            open_failure_ = usage ? Outcome::usage_error(text) : Outcome::board_error(text);
+        }
+    }
+    if (!board_) {
+        failure = open_failure_;
+        return nullptr;
+    }
+    return &board_;
+}
+
+}  // namespace apcictl

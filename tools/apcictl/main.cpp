@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+// apcictl: inspect and drive an APCI-8001/8008 board, or the emulator,
+// through libapci's public API only. DESIGN.md section 7; docs/apcictl.md.
+#include <cstdio>
+#include <exception>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "command.h"
+
+namespace {
+
+constexpr const char* kFooter =
+    "Device URIs: emu: (embedded emulator, the default; each run starts a fresh board, "
+    "so use 'script' to keep state), emu:?no-option-tc (without optionTC), unix:PATH, "
+    "shm:PATH, pci:DOMAIN:BUS:DEV.FN, usb:[BUS:ADDR].\n"
+    "Exit codes: 0 ok, 1 board or program error, 2 usage.";
+
+int run(int argc, char** argv) {
+    using apcictl::Exit;
+    CLI::App app("apcictl - read, write and inspect APCI-8001/8008 objects", "apcictl");
+    std::string device = "emu:";
+    app.add_option("-d,--device", device, "Device URI (default emu:, or $APCI_DEVICE)")
+        ->envname("APCI_DEVICE");
+    app.set_version_flag("--version", std::string(apci_version()));
+    app.require_subcommand(1);
+    app.fallthrough();  // --device may also follow the command
+    app.footer(kFooter);
+
+    std::vector<std::pair<CLI::App*, std::unique_ptr<apcictl::Command>>> commands;
+    for (const auto& spec : apcictl::command_table()) {
+        auto command = spec.make();
+        CLI::App* sub = app.add_subcommand(std::string(spec.name), std::string(spec.summary));
+        command->declare(*sub);
+        commands.emplace_back(sub, std::move(command));
+    }
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);  // prints help / version, or the error
+        return code == 0 ? 0 : static_cast<int>(Exit::kUsage);
+    }
+
+    for (auto& [sub, command] : commands) {
+        if (!sub->parsed()) continue;
+        apcictl::Outcome outcome = command->prepare();
+        if (outcome.ok()) {
+            apcictl::Session session(device);
+            outcome = command->run(session);
+        }
+        if (!outcome.error.empty()) fmt::print(stderr, "apcictl: {}\n", outcome.error);
+        return static_cast<int>(outcome.exit);
+    }
+    return static_cast<int>(Exit::kUsage);  // unreachable: require_subcommand(1)
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "apcictl: internal error: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "apcictl: internal error\n");
+    }
+    return 1;
+}
