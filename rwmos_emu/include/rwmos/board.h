@@ -35,6 +35,10 @@ public:
     objif::Dictionary& dictionary() noexcept;
 
     struct State;  // all device state, defined in board_state.h
+    // The state behind the objects, for the emulator's own layers (motion,
+    // spooler, clock) and for tests; PCAP-style code goes through read/write.
+    State& state() noexcept;
+    const State& state() const noexcept;
 
 private:
     std::unique_ptr<State> state_;

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+// All device state of the emulated board in one struct (Board::State), plus
+// the modules that serve it through the object dictionary. The motion layer
+// reaches the state through Board::state().
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "objif/dictionary.h"
+#include "rwmos/board.h"
+#include "rwmos/board_module.h"
+#include "rwmos/object_map.h"
+#include "rwmos/tc_module.h"
+#include "rwmos/tc_state.h"
+
+namespace rwmos {
+
+inline constexpr std::int32_t kAxisCount = 8;
+inline constexpr std::int32_t kSpoolerCapacity = 256;  // profiles (design)
+inline constexpr std::int32_t kDefaultInterpolationCycleUs = 1000;  // 1 ms (DESIGN.md section 4)
+inline constexpr std::int32_t kMinInterpolationCycleUs = 250;
+inline constexpr std::int32_t kMaxInterpolationCycleUs = 10000;
+// Firmware version the emulator reports: (major << 16) | (minor << 8) | patch.
+inline constexpr std::int32_t kFirmwareVersion = (1 << 16) | (0 << 8) | 0;
+
+struct AxisState {
+    double position = 0.0;  // interpolation units (PU)
+};
+
+// Placeholders the motion layer serves: SpoolerCapacity and SpoolerFill read these fields.
+struct SpoolerState {
+    std::int32_t capacity = kSpoolerCapacity;
+    std::int32_t fill = 0;
+};
+
+struct Board::State {
+    explicit State(const BoardConfig& cfg);
+    State(const State&) = delete;
+    State& operator=(const State&) = delete;
+
+    BoardConfig config;
+    // Board module (bus 1000).
+    std::int32_t interpolation_cycle_us = kDefaultInterpolationCycleUs;
+    std::int32_t pu = board::kPuMillimetre;
+    std::array<AxisState, kAxisCount> axes{};
+    SpoolerState spooler;
+    // TC module (bus 1300).
+    TcState tc;
+    TcMotion* tc_motion = nullptr;  // the motion layer, if attached (not owned)
+
+    // The modules serve the fields above; the dictionary routes to them.
+    BoardModule board_module;
+    TcModule tc_module;
+    objif::Dictionary dictionary;
+};
+
+}  // namespace rwmos

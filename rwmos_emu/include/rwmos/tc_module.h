@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+// The TC module, bus 1300 (seed 003; DESIGN.md section 3): DeviceNumber 0
+// initialisation objects (Table 2) and DeviceNumber 1 compensation groups
+// (Table 3). Each object's rule lives in its hook (tc_module.cpp), next to the
+// table row; docs/object-map.md is the spec page.
+#pragma once
+
+#include <span>
+
+#include "objif/dictionary.h"
+#include "rwmos/board.h"
+#include "rwmos/tc_state.h"
+
+namespace rwmos {
+
+class TcModule : public objif::TableModule<TcModule> {
+public:
+    explicit TcModule(Board::State& state) noexcept : state_(state) {}
+    std::int32_t bus() const noexcept override;
+    std::string_view name() const noexcept override { return "TC"; }
+    // Seed 003 section 1: only with the firmware option optionTC.
+    bool present() const noexcept override;
+    std::span<const objif::Entry<TcModule>> table() const noexcept;
+
+    // ReInit and Reset ignore their SubIndex (seed 003 Table 2: "Subindex und
+    // Parameter sind unbedeutend"): every SubIndex finds the SubIndex 0 row.
+    const objif::ObjectInfo* find(const objif::Address& a, objif::Status& why) const noexcept override;
+    // Every successful access marks the TC objects as accessed (TcState::objects_accessed).
+    objif::Status read(const objif::ObjectInfo& info, const objif::Address& a, objif::Value& out) override;
+    objif::Status write(const objif::ObjectInfo& info, const objif::Address& a, const objif::Value& v) override;
+
+private:
+    using Status = objif::Status;
+    using Info = objif::ObjectInfo;
+    using Address = objif::Address;
+    using Value = objif::Value;
+
+    TcState& tc() noexcept;
+    // Index 0 -> the active group, 1..3 -> that group; kWrongDeviceState when
+    // Index 0 names no group.
+    Status group_at(const Address& a, TcGroup*& g, std::int32_t& number) noexcept;
+    Status with_group(const Address& a, TcGroup*& g) noexcept;
+    void discard_held_profile(std::int32_t number);
+
+    // DeviceNumber 0.
+    Status write_clean(const Info&, const Address&, const Value&);
+    Status read_axis_nr(const Info&, const Address& a, Value& out);
+    Status write_axis_nr(const Info&, const Address& a, const Value& v);
+    Status read_tc_plane(const Info&, const Address&, Value& out);
+    Status write_tc_plane(const Info&, const Address&, const Value& v);
+    Status write_reinit(const Info&, const Address&, const Value&);
+    Status write_reset(const Info&, const Address&, const Value&);
+    Status read_rot_angle(const Info&, const Address&, Value& out);
+    Status write_rot_angle(const Info&, const Address&, const Value& v);
+    Status read_rot_center_x(const Info&, const Address&, Value& out);
+    Status write_rot_center_x(const Info&, const Address&, const Value& v);
+    Status read_rot_center_y(const Info&, const Address&, Value& out);
+    Status write_rot_center_y(const Info&, const Address&, const Value& v);
+
+    // DeviceNumber 1.
+    Status read_error(const Info&, const Address& a, Value& out);
+    Status write_error(const Info&, const Address& a, const Value& v);
+    Status write_group_reset(const Info&, const Address& a, const Value& v);
+    Status read_status(const Info&, const Address& a, Value& out);
+    Status write_status(const Info&, const Address& a, const Value& v);
+    Status read_x_axis(const Info&, const Address& a, Value& out);
+    Status write_x_axis(const Info&, const Address& a, const Value& v);
+    Status read_y_axis(const Info&, const Address& a, Value& out);
+    Status write_y_axis(const Info&, const Address& a, const Value& v);
+    Status read_z_axis(const Info&, const Address& a, Value& out);
+    Status write_z_axis(const Info&, const Address& a, const Value& v);
+    Status read_radius(const Info&, const Address& a, Value& out);
+    Status write_radius(const Info&, const Address& a, const Value& v);
+    Status read_wkz_index(const Info&, const Address& a, Value& out);
+    Status write_wkz_index(const Info&, const Address& a, const Value& v);
+    Status write_left(const Info&, const Address& a, const Value& v);
+    Status write_right(const Info&, const Address& a, const Value& v);
+    Status read_wkz_len(const Info&, const Address& a, Value& out);
+    Status write_wkz_len(const Info&, const Address& a, const Value& v);
+    Status read_corner_mode(const Info&, const Address& a, Value& out);
+    Status write_corner_mode(const Info&, const Address& a, const Value& v);
+    Status read_side(const Info&, const Address& a, Value& out);
+
+    // Shared by the "only while inactive" objects (XAxis, YAxis, ZAxis,
+    // WKZINDEX, Left, Right): refuse and flag InitError while Run is set.
+    Status write_while_inactive(const Address& a, std::int32_t TcGroup::*field, std::int32_t value);
+
+    Board::State& state_;
+};
+
+}  // namespace rwmos

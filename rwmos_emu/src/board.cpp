@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/board.h"
+
+#include "rwmos/board_state.h"
+
+namespace rwmos {
+
+Board::State::State(const BoardConfig& cfg) : config(cfg), board_module(*this), tc_module(*this) {
+    // Two modules on distinct buses: add() cannot fail here.
+    dictionary.add(&board_module);
+    dictionary.add(&tc_module);
+}
+
+Board::Board(const BoardConfig& config) : state_(std::make_unique<State>(config)) {}
+Board::~Board() = default;
+
+objif::Status Board::read(objif::Descriptor& d, objif::ValueType want, objif::Value& out) {
+    return state_->dictionary.read(d, want, out);
+}
+
+objif::Status Board::write(objif::Descriptor& d, const objif::Value& v) {
+    return state_->dictionary.write(d, v);
+}
+
+const BoardConfig& Board::config() const noexcept { return state_->config; }
+objif::Dictionary& Board::dictionary() noexcept { return state_->dictionary; }
+Board::State& Board::state() noexcept { return *state_; }
+const Board::State& Board::state() const noexcept { return *state_; }
+
+}  // namespace rwmos

@@ -1,0 +1,492 @@
+// SPDX-License-Identifier: MIT
+// TC module, bus 1300 (seed 003_b9a5ae40d5986970.txt, the APCI-8001 TC
+// document; DESIGN.md section 3). The table declares every object; the hooks
+// below it hold the state rules, each citing the seed heading it comes from.
+// The dictionary has already checked bus/device, index, subindex, handle,
+// access, type and range when a hook runs, so a hook only checks state, and
+// changes nothing when it refuses (save the InitError bit the seed asks for).
+#include "rwmos/tc_module.h"
+
+#include <array>
+#include <limits>
+
+#include "rwmos/board_state.h"
+
+namespace rwmos {
+
+using objif::Access;
+using objif::Address;
+using objif::Entry;
+using objif::ObjectInfo;
+using objif::Status;
+using objif::Value;
+using objif::ValueType;
+
+namespace {
+constexpr double kIntMin = objif::kInt32Min;
+constexpr double kIntMax = objif::kInt32Max;
+constexpr double kDoubleMin = std::numeric_limits<double>::lowest();
+constexpr double kDoubleMax = std::numeric_limits<double>::max();
+constexpr double kLastAxis = kAxisCount - 1;
+// Tool radius and length limits in PU units (design): a radius is a size,
+// so not negative; a length correction may be negative.
+constexpr double kMaxRadius = 1.0e6;
+constexpr double kMaxLength = 1.0e6;
+
+constexpr ObjectInfo init_object(std::int32_t index, std::int32_t sub, std::string_view name,
+                                 ValueType type, Access access, double min, double max,
+                                 Value def, std::string_view rule) {
+    return {tc::kDevInit, index, index, sub, name, type, access, min, max, def, rule};
+}
+constexpr ObjectInfo group_object(std::int32_t sub, std::string_view name, ValueType type,
+                                  Access access, double min, double max, Value def,
+                                  std::string_view rule) {
+    return {tc::kDevGroups, tc::kActiveGroupIndex, tc::kGroupCount, sub, name, type, access,
+            min, max, def, rule};
+}
+
+// Run and ProfMarked cleared, stored offsets gone: the group no longer compensates.
+void end_compensation(TcGroup& g) noexcept {
+    g.status = 0;
+    g.offset = {};
+}
+
+// The programmed values of a group back to their defaults (RESET, Clean):
+// axes, tool index, side, corner mode, the whole tool table, and ERROR.
+void discard_programming(TcGroup& g) noexcept {
+    g.error = 0;
+    g.x_axis = 0;
+    g.y_axis = 1;
+    g.z_axis = 2;
+    g.tool_index = 0;
+    g.side = tc::kSideNone;
+    g.corner_mode = tc::kCornerCircular;
+    g.tools.fill(TcTool{});
+}
+}  // namespace
+
+std::int32_t TcModule::bus() const noexcept { return tc::kBus; }
+bool TcModule::present() const noexcept { return state_.config.option_tc; }
+TcState& TcModule::tc() noexcept { return state_.tc; }
+
+std::span<const Entry<TcModule>> TcModule::table() const noexcept {
+    using M = TcModule;
+    constexpr auto kInt = ValueType::kInt32;
+    constexpr auto kDouble = ValueType::kDouble;
+    constexpr auto kR = Access::kRead;
+    constexpr auto kW = Access::kWrite;
+    constexpr auto kRW = Access::kReadWrite;
+    static constexpr std::array<Entry<M>, 23> kTable{{
+        // ---- DeviceNumber 0: initialisation (seed 003 Table 2).
+        {init_object(tc::kIdxClean, 0, "Clean", kInt, kW, 1, 1, Value::of_int(1),
+                     "seed 003 Table 2 Clean: parameter 1; discards all TC objects, handles stale"),
+         nullptr, &M::write_clean},
+        {init_object(tc::kIdxAxisNr, tc::kSubX, "X-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(0),
+                     "seed 003 Table 2: board axis used as X"),
+         &M::read_axis_nr, &M::write_axis_nr},
+        {init_object(tc::kIdxAxisNr, tc::kSubY, "Y-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(1),
+                     "seed 003 Table 2: board axis used as Y"),
+         &M::read_axis_nr, &M::write_axis_nr},
+        {init_object(tc::kIdxAxisNr, tc::kSubZ, "Z-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(2),
+                     "seed 003 Table 2: board axis used as Z"),
+         &M::read_axis_nr, &M::write_axis_nr},
+        {init_object(tc::kIdxTcPlane, 0, "TcPlane", kInt, kRW, tc::kPlaneXY, tc::kPlaneYZ,
+                     Value::of_int(tc::kPlaneXY), "seed 003 Table 2: 17 X-Y, 18 Z-X, 19 Y-Z"),
+         &M::read_tc_plane, &M::write_tc_plane},
+        {init_object(tc::kIdxReInit, 0, "ReInit", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
+                     "seed 003 Table 2 ReInit (index: design): clear stored offsets; tools stay"),
+         nullptr, &M::write_reinit},
+        {init_object(tc::kIdxReset, 0, "Reset", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
+                     "seed 003 Table 2 Reset (index: design): stop corrections, clear offsets and "
+                     "held profiles; tools stay"),
+         nullptr, &M::write_reset},
+        {init_object(tc::kIdxRotAngle, 0, "RotAngle", kDouble, kRW, kDoubleMin, kDoubleMax,
+                     Value::of_double(0.0), "seed 003 Table 2 / 2.1.1: degrees; zeroed by rs()"),
+         &M::read_rot_angle, &M::write_rot_angle},
+        {init_object(tc::kIdxRotCenterX, 0, "RotCenterX", kDouble, kRW, kDoubleMin, kDoubleMax,
+                     Value::of_double(0.0), "seed 003 Table 2: first plane axis; zeroed by rs()"),
+         &M::read_rot_center_x, &M::write_rot_center_x},
+        {init_object(tc::kIdxRotCenterY, 0, "RotCenterY", kDouble, kRW, kDoubleMin, kDoubleMax,
+                     Value::of_double(0.0), "seed 003 Table 2: second plane axis; zeroed by rs()"),
+         &M::read_rot_center_y, &M::write_rot_center_y},
+
+        // ---- DeviceNumber 1: compensation groups (seed 003 Table 3), Index 0..3.
+        {group_object(tc::kSubError, "ERROR", kInt, kRW, kIntMin, kIntMax, Value::of_int(0),
+                      "seed 003 Table 3/4: error bits; a write clears them"),
+         &M::read_error, &M::write_error},
+        {group_object(tc::kSubReset, "RESET", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
+                      "seed 003 Table 3: ends compensation, discards programmed values; "
+                      "Index and value meaningless"),
+         nullptr, &M::write_group_reset},
+        {group_object(tc::kSubStatus, "STATUS", kInt, kRW, 0, 1, Value::of_int(0),
+                      "seed 003 Table 3/5: 1 activates (InitError if not initialised), 0 deactivates"),
+         &M::read_status, &M::write_status},
+        {group_object(tc::kSubXAxis, "XAxis", kInt, kRW, 0, kLastAxis, Value::of_int(0),
+                      "seed 003 Table 3: only while inactive, else InitError"),
+         &M::read_x_axis, &M::write_x_axis},
+        {group_object(tc::kSubYAxis, "YAxis", kInt, kRW, 0, kLastAxis, Value::of_int(1),
+                      "seed 003 Table 3: only while inactive, else InitError"),
+         &M::read_y_axis, &M::write_y_axis},
+        {group_object(tc::kSubRadius, "RADIUS", kDouble, kRW, 0.0, kMaxRadius, Value::of_double(0.0),
+                      "seed 003 Table 3: radius of the current WKZINDEX's tool, PU units"),
+         &M::read_radius, &M::write_radius},
+        {group_object(tc::kSubWkzIndex, "WKZINDEX", kInt, kRW, 0, tc::kToolCount - 1, Value::of_int(0),
+                      "seed 003 Table 3: tool index 0..1023, only while inactive"),
+         &M::read_wkz_index, &M::write_wkz_index},
+        {group_object(tc::kSubLeft, "Left", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
+                      "seed 003 Table 3: select left (G41); only while inactive; value meaningless"),
+         nullptr, &M::write_left},
+        {group_object(tc::kSubRight, "Right", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
+                      "seed 003 Table 3: select right (G42); only while inactive; value meaningless"),
+         nullptr, &M::write_right},
+        {group_object(tc::kSubZAxis, "ZAxis", kInt, kRW, 0, kLastAxis, Value::of_int(2),
+                      "seed 003 Table 3: only while inactive, else InitError"),
+         &M::read_z_axis, &M::write_z_axis},
+        {group_object(tc::kSubWkzLen, "WkzLen", kDouble, kRW, -kMaxLength, kMaxLength,
+                      Value::of_double(0.0),
+                      "seed 003 Table 3: length of the current WKZINDEX's tool, PU units"),
+         &M::read_wkz_len, &M::write_wkz_len},
+        {group_object(tc::kSubCornerMode, "CornerMode", kInt, kRW, tc::kCornerLinear,
+                      tc::kCornerCircular, Value::of_int(tc::kCornerCircular),
+                      "design: outside corners 26 circular (default) / 25 linear (DESIGN.md section 3)"),
+         &M::read_corner_mode, &M::write_corner_mode},
+        {group_object(tc::kSubSide, "Side", kInt, kR, tc::kSideNone, tc::kSideRight,
+                      Value::of_int(tc::kSideNone),
+                      "design: reads back the Left/Right selection: 40 none, 41 left, 42 right"),
+         &M::read_side, nullptr},
+    }};
+    return kTable;
+}
+
+// ---- Lookup and access bookkeeping.
+
+const ObjectInfo* TcModule::find(const Address& a, Status& why) const noexcept {
+    if (a.device == tc::kDevInit && (a.index == tc::kIdxReInit || a.index == tc::kIdxReset)) {
+        Address any_sub = a;
+        any_sub.subindex = 0;
+        return TableModule<TcModule>::find(any_sub, why);
+    }
+    return TableModule<TcModule>::find(a, why);
+}
+
+Status TcModule::read(const ObjectInfo& info, const Address& a, Value& out) {
+    const Status st = TableModule<TcModule>::read(info, a, out);
+    if (objif::ok(st)) tc().objects_accessed = true;
+    return st;
+}
+
+Status TcModule::write(const ObjectInfo& info, const Address& a, const Value& v) {
+    const Status st = TableModule<TcModule>::write(info, a, v);
+    // Clean discards the objects, so it leaves them un-accessed.
+    const bool clean = a.device == tc::kDevInit && a.index == tc::kIdxClean;
+    if (objif::ok(st) && !clean) tc().objects_accessed = true;
+    return st;
+}
+
+Status TcModule::group_at(const Address& a, TcGroup*& g, std::int32_t& number) noexcept {
+    // Seed 003 section 2.2: Index 0 addresses the active group, the one whose
+    // plane TcPlane selects. With no such group there is nothing to address.
+    number = a.index == tc::kActiveGroupIndex ? active_group(tc()) : a.index;
+    if (number == 0) return Status::kWrongDeviceState;
+    g = &tc().group(number);
+    return Status::kOk;
+}
+
+Status TcModule::with_group(const Address& a, TcGroup*& g) noexcept {
+    std::int32_t number = 0;
+    return group_at(a, g, number);
+}
+
+void TcModule::discard_held_profile(std::int32_t number) {
+    if (state_.tc_motion != nullptr && tc().group(number).profile_held())
+        state_.tc_motion->discard_held_profile(number);
+}
+
+// ---- DeviceNumber 0.
+
+// Seed 003 Table 2 Clean: "Mit diesem Kommando werden alle vorhandenen Objekte
+// des TC-Interface ... verworfen. In PCAP-Programmen muss deshalb bei allen
+// initialisierten Object-Descriptor-Elementen des TC-Interface das Handle
+// abgenullt werden." Every TC value returns to its power-on default (design:
+// discarded objects come back as new ones), and every handle goes stale.
+Status TcModule::write_clean(const ObjectInfo&, const Address&, const Value&) {
+    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
+        discard_held_profile(n);
+        end_compensation(tc().group(n));
+        discard_programming(tc().group(n));
+    }
+    TcState& s = tc();
+    s.axis_nr = {0, 1, 2};
+    s.plane = tc::kPlaneXY;
+    s.rot_angle = s.rot_center_x = s.rot_center_y = 0.0;
+    s.objects_accessed = false;
+    discard_handles();
+    return Status::kOk;
+}
+
+Status TcModule::read_axis_nr(const ObjectInfo&, const Address& a, Value& out) {
+    out = Value::of_int(tc().axis_nr[static_cast<std::size_t>(a.subindex)]);
+    return Status::kOk;
+}
+
+Status TcModule::write_axis_nr(const ObjectInfo&, const Address& a, const Value& v) {
+    tc().axis_nr[static_cast<std::size_t>(a.subindex)] = v.as_int();
+    return Status::kOk;
+}
+
+Status TcModule::read_tc_plane(const ObjectInfo&, const Address&, Value& out) {
+    out = Value::of_int(tc().plane);
+    return Status::kOk;
+}
+
+// The range 17..19 leaves 17, 18, 19: every value in range is a plane.
+Status TcModule::write_tc_plane(const ObjectInfo&, const Address&, const Value& v) {
+    tc().plane = v.as_int();
+    return Status::kOk;
+}
+
+// Seed 003 Table 2 ReInit: "Intern gespeicherte Verschiebungswerte der
+// Korrekturachsen werden gelöscht ... Die programmierten Werkzeuge bleiben
+// aber aktiv." Only the offsets go; Run, held profiles and tools stay.
+Status TcModule::write_reinit(const ObjectInfo&, const Address&, const Value&) {
+    for (auto& g : tc().groups) g.offset = {};
+    return Status::kOk;
+}
+
+// Seed 003 Table 2 Reset: "Alle aktiven Korrekturen werden gestoppt, intern
+// gespeicherte Verschiebungswerte der Korrekturachsen und Zwischenprofile
+// werden gelöscht ... Die programmierten Werkzeuge bleiben erhalten."
+// Configuration (axes, side, WKZINDEX, tools) and ERROR stay.
+Status TcModule::write_reset(const ObjectInfo&, const Address&, const Value&) {
+    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
+        discard_held_profile(n);
+        end_compensation(tc().group(n));
+    }
+    return Status::kOk;
+}
+
+Status TcModule::read_rot_angle(const ObjectInfo&, const Address&, Value& out) {
+    out = Value::of_double(tc().rot_angle);
+    return Status::kOk;
+}
+Status TcModule::write_rot_angle(const ObjectInfo&, const Address&, const Value& v) {
+    tc().rot_angle = v.as_double();
+    return Status::kOk;
+}
+Status TcModule::read_rot_center_x(const ObjectInfo&, const Address&, Value& out) {
+    out = Value::of_double(tc().rot_center_x);
+    return Status::kOk;
+}
+Status TcModule::write_rot_center_x(const ObjectInfo&, const Address&, const Value& v) {
+    tc().rot_center_x = v.as_double();
+    return Status::kOk;
+}
+Status TcModule::read_rot_center_y(const ObjectInfo&, const Address&, Value& out) {
+    out = Value::of_double(tc().rot_center_y);
+    return Status::kOk;
+}
+Status TcModule::write_rot_center_y(const ObjectInfo&, const Address&, const Value& v) {
+    tc().rot_center_y = v.as_double();
+    return Status::kOk;
+}
+
+// ---- DeviceNumber 1.
+
+Status TcModule::read_error(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->error);
+    return Status::kOk;
+}
+
+// Seed 003 Table 3 ERROR: "Fehlerstatus ... lesen / rücksetzen". Any written
+// value clears every bit (the seed gives the value no meaning).
+Status TcModule::write_error(const ObjectInfo&, const Address& a, const Value&) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->error = 0;
+    return Status::kOk;
+}
+
+// Seed 003 Table 3 RESET: "beendet die Tool-Kompensation und verwirft die
+// programmierten Werte. Diese können nun reprogrammiert werden. Der Index und
+// der Übergabewert sind bei dieser Funktion bedeutungslos." Since the Index is
+// meaningless, RESET acts on the whole tool compensation: every group ends
+// compensating (held profile dropped, offsets cleared) and its programmed
+// values (axes, WKZINDEX, side, corner mode, tool table, ERROR) return to
+// their defaults. The TcPlane settings of DeviceNumber 0 stay.
+Status TcModule::write_group_reset(const ObjectInfo&, const Address&, const Value&) {
+    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
+        discard_held_profile(n);
+        end_compensation(tc().group(n));
+        discard_programming(tc().group(n));
+    }
+    return Status::kOk;
+}
+
+Status TcModule::read_status(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->status);
+    return Status::kOk;
+}
+
+// Seed 003 Table 3 STATUS: "Schreiben von 1 aktiviert den Korrekturmodus,
+// vorausgesetzt alle anderen Parameter sind richtig initialisiert. Durch
+// Schreiben von 0 wird der Korrekturmodus abgeschaltet. Bei fehlerhafter
+// Initialisierung der Parameter wird InitError angezeigt."
+// Seed 003 section 1: deactivating spools the held profile.
+Status TcModule::write_status(const ObjectInfo&, const Address& a, const Value& v) {
+    TcGroup* g = nullptr;
+    std::int32_t number = 0;
+    const Status st = group_at(a, g, number);
+    if (!objif::ok(st)) return st;
+    if (v.as_int() == 1) {
+        if (g->running()) return Status::kOk;
+        if (initialisation_fault(tc(), number) != InitFault::kNone) {
+            g->error |= tc::kInitError;
+            return Status::kWrongDeviceState;
+        }
+        g->status |= tc::kRun;
+        if (state_.tc_motion != nullptr) state_.tc_motion->compensation_started(number);
+        return Status::kOk;
+    }
+    if (g->profile_held() && state_.tc_motion != nullptr) {
+        const Status released = state_.tc_motion->release_held_profile(number);
+        if (!objif::ok(released)) return released;
+    }
+    g->status &= ~(tc::kRun | tc::kProfMarked);
+    return Status::kOk;
+}
+
+// Seed 003 Table 3 XAxis, YAxis, ZAxis: "Dieser Wert darf nur verändert
+// werden, wenn die Werkzeugradius-Korrektur nicht aktiv ist, ansonsten wird
+// InitError angezeigt"; WKZINDEX, Left, Right likewise. The write is refused
+// (kWrongDeviceState, value unchanged) and InitError is set in the group's ERROR.
+Status TcModule::write_while_inactive(const Address& a, std::int32_t TcGroup::*field,
+                                      std::int32_t value) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    if (g->running()) {
+        g->error |= tc::kInitError;
+        return Status::kWrongDeviceState;
+    }
+    g->*field = value;
+    return Status::kOk;
+}
+
+Status TcModule::read_x_axis(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->x_axis);
+    return Status::kOk;
+}
+Status TcModule::write_x_axis(const ObjectInfo&, const Address& a, const Value& v) {
+    return write_while_inactive(a, &TcGroup::x_axis, v.as_int());
+}
+Status TcModule::read_y_axis(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->y_axis);
+    return Status::kOk;
+}
+Status TcModule::write_y_axis(const ObjectInfo&, const Address& a, const Value& v) {
+    return write_while_inactive(a, &TcGroup::y_axis, v.as_int());
+}
+Status TcModule::read_z_axis(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->z_axis);
+    return Status::kOk;
+}
+Status TcModule::write_z_axis(const ObjectInfo&, const Address& a, const Value& v) {
+    return write_while_inactive(a, &TcGroup::z_axis, v.as_int());
+}
+
+// Seed 003 Table 3 RADIUS: "Korrekturwert für den aktuellen Werkzeugindex".
+// Not restricted to an inactive group by the seed: a new radius applies from
+// the next profile the motion layer compensates.
+Status TcModule::read_radius(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_double(g->tool().radius);
+    return Status::kOk;
+}
+Status TcModule::write_radius(const ObjectInfo&, const Address& a, const Value& v) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->tool().radius = v.as_double();
+    return Status::kOk;
+}
+
+Status TcModule::read_wkz_index(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->tool_index);
+    return Status::kOk;
+}
+Status TcModule::write_wkz_index(const ObjectInfo&, const Address& a, const Value& v) {
+    return write_while_inactive(a, &TcGroup::tool_index, v.as_int());
+}
+
+// Seed 003 Table 3 Left/Right: "die Auswahl erfolgt nur durch den Aufruf, der
+// Übergabeparameter ist unerheblich"; section 2.5: only while no compensation is active.
+Status TcModule::write_left(const ObjectInfo&, const Address& a, const Value&) {
+    return write_while_inactive(a, &TcGroup::side, tc::kSideLeft);
+}
+Status TcModule::write_right(const ObjectInfo&, const Address& a, const Value&) {
+    return write_while_inactive(a, &TcGroup::side, tc::kSideRight);
+}
+
+// Seed 003 Table 3 WkzLen: the length of the current tool, like RADIUS.
+Status TcModule::read_wkz_len(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_double(g->tool().length);
+    return Status::kOk;
+}
+Status TcModule::write_wkz_len(const ObjectInfo&, const Address& a, const Value& v) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->tool().length = v.as_double();
+    return Status::kOk;
+}
+
+// Design (DESIGN.md section 3): the outside-corner transition, like G25/G26,
+// may change at any time; it applies from the next transition computed.
+Status TcModule::read_corner_mode(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->corner_mode);
+    return Status::kOk;
+}
+Status TcModule::write_corner_mode(const ObjectInfo&, const Address& a, const Value& v) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->corner_mode = v.as_int();
+    return Status::kOk;
+}
+
+Status TcModule::read_side(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->side);
+    return Status::kOk;
+}
+
+}  // namespace rwmos

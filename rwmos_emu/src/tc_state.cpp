@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/tc_state.h"
+
+namespace rwmos {
+
+PlaneAxes plane_axes(const TcState& tc) noexcept {
+    const auto& nr = tc.axis_nr;
+    switch (tc.plane) {
+        case tc::kPlaneZX: return {nr[2], nr[0]};
+        case tc::kPlaneYZ: return {nr[1], nr[2]};
+        default: return {nr[0], nr[1]};
+    }
+}
+
+std::int32_t active_group(const TcState& tc) noexcept {
+    const PlaneAxes p = plane_axes(tc);
+    if (p.first == p.second) return 0;
+    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
+        const TcGroup& g = tc.group(n);
+        if ((g.x_axis == p.first && g.y_axis == p.second) ||
+            (g.x_axis == p.second && g.y_axis == p.first))
+            return n;
+    }
+    return 0;
+}
+
+namespace {
+bool uses_axis(const TcGroup& g, std::int32_t axis) noexcept {
+    return g.x_axis == axis || g.y_axis == axis || g.z_axis == axis;
+}
+}  // namespace
+
+InitFault initialisation_fault(const TcState& tc, std::int32_t group) noexcept {
+    const TcGroup& g = tc.group(group);
+    if (g.x_axis == g.y_axis || g.x_axis == g.z_axis || g.y_axis == g.z_axis)
+        return InitFault::kAxesNotDistinct;
+    if (g.side == tc::kSideNone) return InitFault::kNoSide;
+    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
+        if (n == group || !tc.group(n).running()) continue;
+        const TcGroup& other = tc.group(n);
+        if (uses_axis(other, g.x_axis) || uses_axis(other, g.y_axis) || uses_axis(other, g.z_axis))
+            return InitFault::kAxisInUse;
+    }
+    return InitFault::kNone;
+}
+
+std::string_view init_fault_message(InitFault f) noexcept {
+    switch (f) {
+        case InitFault::kNone: return "initialised";
+        case InitFault::kAxesNotDistinct: return "XAxis, YAxis and ZAxis must name three different board axes";
+        case InitFault::kNoSide: return "no compensation side selected: write Left or Right first";
+        case InitFault::kAxisInUse: return "another running compensation group uses one of these axes";
+    }
+    return "unknown";
+}
+
+}  // namespace rwmos
