@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// The executor: the board's move queue and interpolation clock. It runs the
+// queued moves one after the other, one interpolation cycle at a time when the
+// cycles are observed (trace on, or a time-dependent module active), or
+// analytically (one position evaluation per move) when nothing observes them;
+// both ways give the same positions, bit for bit (interpolator.h).
+// It knows nothing of profiles or compensation: the spooler (spooler.h) fills it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+
+#include "rwmos/motion/interpolator.h"
+#include "rwmos/motion/ring.h"
+#include "rwmos/motion/types.h"
+
+namespace rwmos::motion {
+
+inline constexpr std::size_t kDefaultSegmentLogCapacity = 4096;
+inline constexpr std::size_t kDefaultTraceCapacity = 65536;
+
+class Executor {
+public:
+    Executor() : segments_(kDefaultSegmentLogCapacity) {}
+
+    // ---- Queue
+    // Moves not yet finished (the one under way included).
+    std::size_t fill() const noexcept { return moves_.size(); }
+    void push(const Move& m) { moves_.push_back(m); }
+    // Where the axes are now.
+    const AxisVector& position() const noexcept { return position_; }
+    // Where the axes will be when every queued move has run.
+    const AxisVector& planned_end() const noexcept {
+        return moves_.empty() ? position_ : moves_.back().end;
+    }
+    // Drops every queued move; the one under way stops where it is and is
+    // logged as interrupted. Used by direct commands.
+    void discard();
+
+    // A held spooler (TC error) starts no spooled move; the move under way
+    // ends, direct moves run.
+    void set_halted(bool halted) noexcept { halted_ = halted; }
+    bool halted() const noexcept { return halted_; }
+
+    // ---- Clock
+    std::uint64_t now() const noexcept { return now_; }
+    // Nothing can move: the queue is empty, or only spooled moves wait behind a halt.
+    bool idle() const noexcept;
+    // Advances the clock by exactly `cycles` cycles (idle cycles included).
+    void advance(std::uint64_t cycles, double cycle_seconds);
+    // Advances until idle() or `max_cycles` ran; returns the cycles that ran.
+    std::uint64_t run_until_idle(std::uint64_t max_cycles, double cycle_seconds);
+
+    // ---- Observation
+    // Per-cycle samples: on (with a ring of `capacity` samples) or off.
+    void set_trace(bool on, std::size_t capacity = kDefaultTraceCapacity);
+    bool tracing() const noexcept { return tracing_; }
+    // A time-dependent module (e.g. discrete OTC offsets) needs every cycle run.
+    void set_time_dependent(bool on) noexcept { time_dependent_ = on; }
+    bool per_cycle() const noexcept { return tracing_ || time_dependent_; }
+    Ring<TraceSample>& trace() noexcept { return trace_; }
+    Ring<Segment>& segments() noexcept { return segments_; }
+    const Ring<TraceSample>& trace() const noexcept { return trace_; }
+    const Ring<Segment>& segments() const noexcept { return segments_; }
+
+private:
+    bool can_start_front() const noexcept;
+    void start_front(double cycle_seconds);
+    void finish_front(bool interrupted);
+    // Runs moves for at most `budget` cycles; returns the cycles used. Stops
+    // early only when idle.
+    std::uint64_t run_moves(std::uint64_t budget, double cycle_seconds);
+    void idle_cycles(std::uint64_t cycles);
+
+    std::deque<Move> moves_;
+    bool started_ = false;  // the front move is under way
+    std::uint64_t k_ = 0;   // cycles of the front move done
+    std::uint64_t n_ = 0;   // cycles the front move takes
+    std::uint64_t front_start_cycle_ = 0;
+    std::uint64_t now_ = 0;
+    AxisVector position_{};
+    bool halted_ = false;
+    bool tracing_ = false;
+    bool time_dependent_ = false;
+    Ring<TraceSample> trace_;
+    Ring<Segment> segments_;
+};
+
+}  // namespace rwmos::motion

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// The interpolator: where the axes are at cycle k of a move. Pure functions,
+// no state: the executor (executor.h) calls them per cycle when cycles are
+// observed, or once at the end of a stretch when nothing observes them, and
+// both give the same bits because position_at(k) depends only on k and n.
+//
+// A move of path length L at feed F (units/min) with cycle length T (s) takes
+// n = ceil(L / (F/60 * T)) cycles; cycle k puts the axes at the fraction k/n
+// of the path (so the speed never exceeds F and the last cycle lands exactly
+// on the end). No acceleration model (docs/motion.md, design).
+// Lines: all axes linear in k/n. Arcs: the two plane axes on the circle (angle
+// linear in k/n), every other axis linear in k/n (a helix for the third axis).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "rwmos/motion/types.h"
+
+namespace rwmos::motion {
+
+struct Move {
+    SegmentKind kind = SegmentKind::kLine;
+    SegmentRole role = SegmentRole::kUncompensated;
+    std::uint32_t tag = 0;
+    bool direct = false;  // started by a direct command (JA), not spooled
+    AxisVector start{};
+    AxisVector end{};
+    double feed = 0.0;  // units/min, > 0
+    // Arcs: plane axes, centre, radius (from the start point), start angle and
+    // signed sweep (> 0 counter-clockwise from the first axis to the second).
+    std::array<std::uint8_t, 2> plane_axes{0, 1};
+    double cx = 0.0, cy = 0.0;
+    double radius = 0.0;
+    double start_angle = 0.0;
+    double sweep = 0.0;
+};
+
+// Start and end in plane coordinates closer than this make an arc a full circle.
+inline constexpr double kFullCircleTolerance = 1e-9;
+
+Move line_move(const AxisVector& start, const AxisVector& end, double feed, SegmentRole role,
+               std::uint32_t tag);
+// The arc from `start` to `end` around (cx, cy) on `plane_axes`, turning
+// counter-clockwise when `ccw`. Start and end on the same point: a full circle.
+Move arc_move(const AxisVector& start, const AxisVector& end, std::array<std::uint8_t, 2> plane_axes,
+              double cx, double cy, bool ccw, double feed, SegmentRole role, std::uint32_t tag);
+
+// Path length over all moving axes (arcs: sqrt(arc length^2 + other axes^2)).
+double path_length(const Move& m) noexcept;
+
+// Cycles a path of `length` takes at `feed` units/min with cycles of
+// `cycle_seconds`; 0 for a zero length. Saturates at kMaxMoveCycles.
+inline constexpr std::uint64_t kMaxMoveCycles = std::uint64_t{1} << 52;
+std::uint64_t cycles_for(double length, double feed, double cycle_seconds) noexcept;
+
+// Axis positions after cycle k of n (0 <= k <= n, n > 0); k == n is exactly `end`.
+void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;
+
+// The Segment record of a move (start/end cycle and interruption filled by the caller).
+Segment segment_of(const Move& m);
+
+}  // namespace rwmos::motion

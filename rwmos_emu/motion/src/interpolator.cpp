@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/motion/interpolator.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace rwmos::motion {
+
+Move line_move(const AxisVector& start, const AxisVector& end, double feed, SegmentRole role,
+               std::uint32_t tag) {
+    Move m;
+    m.kind = SegmentKind::kLine;
+    m.role = role;
+    m.tag = tag;
+    m.start = start;
+    m.end = end;
+    m.feed = feed;
+    return m;
+}
+
+Move arc_move(const AxisVector& start, const AxisVector& end, std::array<std::uint8_t, 2> plane_axes,
+              double cx, double cy, bool ccw, double feed, SegmentRole role, std::uint32_t tag) {
+    Move m = line_move(start, end, feed, role, tag);
+    m.kind = SegmentKind::kArc;
+    m.plane_axes = plane_axes;
+    m.cx = cx;
+    m.cy = cy;
+    const double sx = start[plane_axes[0]] - cx, sy = start[plane_axes[1]] - cy;
+    const double ex = end[plane_axes[0]] - cx, ey = end[plane_axes[1]] - cy;
+    m.radius = std::hypot(sx, sy);
+    m.start_angle = std::atan2(sy, sx);
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    double sweep = 0.0;
+    if (std::hypot(ex - sx, ey - sy) > kFullCircleTolerance) {
+        sweep = std::atan2(ey, ex) - m.start_angle;  // in (-2pi, 2pi)
+        if (ccw && sweep <= 0.0) sweep += kTwoPi;
+        if (!ccw && sweep >= 0.0) sweep -= kTwoPi;
+    } else {
+        sweep = kTwoPi;
+        if (!ccw) sweep = -sweep;
+    }
+    m.sweep = sweep;
+    return m;
+}
+
+double path_length(const Move& m) noexcept {
+    double other = 0.0;
+    for (int a = 0; a < kAxisCount; ++a) {
+        if (m.kind == SegmentKind::kArc && (a == m.plane_axes[0] || a == m.plane_axes[1])) continue;
+        const double d = m.end[a] - m.start[a];
+        other += d * d;
+    }
+    if (m.kind == SegmentKind::kLine) return std::sqrt(other);
+    const double arc = m.radius * std::fabs(m.sweep);
+    return std::sqrt(arc * arc + other);
+}
+
+std::uint64_t cycles_for(double length, double feed, double cycle_seconds) noexcept {
+    if (!(length > 0.0)) return 0;
+    const double per_cycle = feed / 60.0 * cycle_seconds;
+    if (!(per_cycle > 0.0)) return kMaxMoveCycles;
+    const double n = std::ceil(length / per_cycle);
+    if (!(n < static_cast<double>(kMaxMoveCycles))) return kMaxMoveCycles;
+    return n < 1.0 ? 1 : static_cast<std::uint64_t>(n);
+}
+
+void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept {
+    if (k >= n) {
+        out = m.end;
+        return;
+    }
+    const double t = static_cast<double>(k) / static_cast<double>(n);
+    for (int a = 0; a < kAxisCount; ++a) out[a] = m.start[a] + (m.end[a] - m.start[a]) * t;
+    if (m.kind == SegmentKind::kArc) {
+        const double angle = m.start_angle + m.sweep * t;
+        out[m.plane_axes[0]] = m.cx + m.radius * std::cos(angle);
+        out[m.plane_axes[1]] = m.cy + m.radius * std::sin(angle);
+    }
+}
+
+Segment segment_of(const Move& m) {
+    Segment s;
+    s.tag = m.tag;
+    s.kind = m.kind;
+    s.role = m.role;
+    s.start = m.start;
+    s.end = m.end;
+    s.feed = m.feed;
+    if (m.kind == SegmentKind::kArc) {
+        s.plane_axes = m.plane_axes;
+        s.center = m.start;
+        s.center[m.plane_axes[0]] = m.cx;
+        s.center[m.plane_axes[1]] = m.cy;
+        s.ccw = m.sweep > 0.0;
+    }
+    return s;
+}
+
+}  // namespace rwmos::motion
