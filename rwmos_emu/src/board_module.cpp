@@ -46,7 +46,7 @@ std::span<const Entry<BoardModule>> BoardModule::table() const noexcept {
                          "design: axis position, written by the motion layer"},
                         &M::read_axis_position, nullptr};
     };
-    static constexpr std::array<Entry<M>, 17> kTable{{
+    static constexpr std::array<Entry<M>, 16> kTable{{
         {ro_int(board::kIdxFirmwareVersion, "FirmwareVersion", kFirmwareVersion),
          &M::read_firmware_version, nullptr},
         {ro_int(board::kIdxOptions, "Options", board::kOptionTc), &M::read_options, nullptr},

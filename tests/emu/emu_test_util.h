@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+// Helpers shared by the emulator tests: descriptors for the board and TC
+// objects, typed read/write through Board, and a snapshot of the device state
+// to prove that a refused request changed nothing.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "rwmos/board.h"
+#include "rwmos/board_state.h"
+#include "rwmos/object_map.h"
+
+namespace emu_test {
+
+using objif::Descriptor;
+using objif::Status;
+using objif::Value;
+using objif::ValueType;
+
+inline Descriptor at(std::int32_t bus, std::int32_t dev, std::int32_t idx, std::int32_t sub) {
+    return Descriptor{{bus, dev, idx, sub}, objif::kNoHandle};
+}
+inline Descriptor board_obj(std::int32_t idx, std::int32_t sub = 0) {
+    return at(rwmos::board::kBus, rwmos::board::kDevice, idx, sub);
+}
+inline Descriptor tc_init(std::int32_t idx, std::int32_t sub = 0) {
+    return at(rwmos::tc::kBus, rwmos::tc::kDevInit, idx, sub);
+}
+inline Descriptor tc_group(std::int32_t group, std::int32_t sub) {
+    return at(rwmos::tc::kBus, rwmos::tc::kDevGroups, group, sub);
+}
+
+// The device state a request may change, copied so a test can compare before/after.
+struct Snapshot {
+    std::int32_t interpolation_cycle_us;
+    std::int32_t pu;
+    std::unique_ptr<rwmos::TcState> tc;
+};
+inline Snapshot snapshot(const rwmos::Board& board) {
+    const auto& s = board.state();
+    return Snapshot{s.interpolation_cycle_us, s.pu, std::make_unique<rwmos::TcState>(s.tc)};
+}
+
+inline bool same_group(const rwmos::TcGroup& a, const rwmos::TcGroup& b) {
+    if (a.error != b.error || a.status != b.status || a.x_axis != b.x_axis || a.y_axis != b.y_axis ||
+        a.z_axis != b.z_axis || a.tool_index != b.tool_index || a.side != b.side ||
+        a.corner_mode != b.corner_mode || a.offset != b.offset)
+        return false;
+    for (std::size_t i = 0; i < a.tools.size(); ++i)
+        if (a.tools[i].radius != b.tools[i].radius || a.tools[i].length != b.tools[i].length)
+            return false;
+    return true;
+}
+
+// True when nothing of the snapshot differs from the board's state now.
+inline ::testing::AssertionResult unchanged(const Snapshot& before, const rwmos::Board& board) {
+    const auto& s = board.state();
+    const auto& t = *before.tc;
+    if (s.interpolation_cycle_us != before.interpolation_cycle_us) return ::testing::AssertionFailure() << "interpolation cycle changed";
+    if (s.pu != before.pu) return ::testing::AssertionFailure() << "PU changed";
+    if (s.tc.axis_nr != t.axis_nr) return ::testing::AssertionFailure() << "Axis-Nr changed";
+    if (s.tc.plane != t.plane) return ::testing::AssertionFailure() << "TcPlane changed";
+    if (s.tc.rot_angle != t.rot_angle || s.tc.rot_center_x != t.rot_center_x ||
+        s.tc.rot_center_y != t.rot_center_y)
+        return ::testing::AssertionFailure() << "rotation changed";
+    if (s.tc.objects_accessed != t.objects_accessed) return ::testing::AssertionFailure() << "accessed flag changed";
+    for (std::int32_t n = 1; n <= rwmos::tc::kGroupCount; ++n)
+        if (!same_group(s.tc.group(n), t.group(n)))
+            return ::testing::AssertionFailure() << "group " << n << " changed";
+    return ::testing::AssertionSuccess();
+}
+
+// Typed access through the board's public read/write.
+class BoardFixture : public ::testing::Test {
+protected:
+    explicit BoardFixture(rwmos::BoardConfig config = {}) : board(config) {}
+
+    Status write_int(Descriptor d, std::int32_t v) { return board.write(d, Value::of_int(v)); }
+    Status write_double(Descriptor d, double v) { return board.write(d, Value::of_double(v)); }
+    std::int32_t read_int(Descriptor d) {
+        Value v;
+        const Status st = board.read(d, ValueType::kInt32, v);
+        EXPECT_EQ(st, Status::kOk) << "read " << d.address.to_string();
+        return v.as_int();
+    }
+    double read_double(Descriptor d) {
+        Value v;
+        const Status st = board.read(d, ValueType::kDouble, v);
+        EXPECT_EQ(st, Status::kOk) << "read " << d.address.to_string();
+        return v.as_double();
+    }
+    Status read_status_of(Descriptor d, ValueType want) {
+        Value v;
+        return board.read(d, want, v);
+    }
+
+    // Seed 003 section 2.5 initialisation of one group in the X-Y plane:
+    // axes 0/1/2, tool `tool` with `radius`, right side.
+    void initialise_group(std::int32_t group, std::int32_t tool = 1, double radius = 2.0) {
+        ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubXAxis), 0), Status::kOk);
+        ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubYAxis), 1), Status::kOk);
+        ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubZAxis), 2), Status::kOk);
+        ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubWkzIndex), tool), Status::kOk);
+        ASSERT_EQ(write_double(tc_group(group, rwmos::tc::kSubRadius), radius), Status::kOk);
+        ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubRight), 1), Status::kOk);
+    }
+    void activate(std::int32_t group) {
+        ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubStatus), 1), Status::kOk);
+    }
+
+    rwmos::Board board;
+};
+
+}  // namespace emu_test

@@ -1,0 +1,239 @@
+// SPDX-License-Identifier: MIT
+// Every object of the object map (docs/object-map.md), bus 1000 and bus 1300:
+// read gives the default, a valid write reads back, the wrong type is
+// refused, values out of range are refused, and the wrong access kind is
+// refused; every refusal leaves the state unchanged. The expected rows are
+// written here from the spec page, not taken from the module tables, and
+// EveryDeclaredObjectIsCovered keeps the two in step.
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emu_test_util.h"
+
+using namespace emu_test;
+using objif::Access;
+using objif::Address;
+namespace board = rwmos::board;
+namespace tc = rwmos::tc;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct BadValue {
+    Value value;
+    Status expect;
+};
+
+struct ObjectRow {
+    std::string name;  // test name suffix
+    Address address;
+    ValueType type;
+    Access access;
+    Value default_value;            // for readable objects
+    std::optional<Value> valid;     // a value the write accepts (writable objects)
+    bool reads_back = true;         // a readable object returns `valid` after the write
+    std::vector<BadValue> out_of_range;
+};
+
+Value I(std::int32_t v) { return Value::of_int(v); }
+Value D(double v) { return Value::of_double(v); }
+BadValue low(Value v) { return {v, Status::kValueTooLow}; }
+BadValue high(Value v) { return {v, Status::kValueTooHigh}; }
+BadValue invalid(double v) { return {D(v), Status::kInvalidValue}; }
+
+Address B(std::int32_t idx, std::int32_t sub = 0) { return {board::kBus, board::kDevice, idx, sub}; }
+Address T0(std::int32_t idx, std::int32_t sub = 0) { return {tc::kBus, tc::kDevInit, idx, sub}; }
+Address T1(std::int32_t sub) { return {tc::kBus, tc::kDevGroups, 1, sub}; }
+
+std::vector<ObjectRow> object_rows() {
+    const auto kI = ValueType::kInt32;
+    const auto kD = ValueType::kDouble;
+    const auto r = Access::kRead;
+    const auto w = Access::kWrite;
+    const auto rw = Access::kReadWrite;
+    std::vector<ObjectRow> rows{
+        // ---- Board, bus 1000.
+        {"FirmwareVersion", B(1), kI, r, I(0x010000), {}, true, {}},
+        {"Options", B(2), kI, r, I(board::kOptionTc), {}, true, {}},
+        {"AxisCount", B(3), kI, r, I(8), {}, true, {}},
+        {"InterpolationCycle", B(4), kI, rw, I(1000), I(2000), true, {low(I(249)), high(I(10001))}},
+        {"PU", B(5), kI, rw, I(0), I(2), true, {low(I(-1)), high(I(3))}},
+        {"SpoolerCapacity", B(6), kI, r, I(256), {}, true, {}},
+        {"SpoolerFill", B(7), kI, r, I(0), {}, true, {}},
+        {"rs", B(30), kI, w, I(0), I(0), false, {}},
+        // ---- TC DeviceNumber 0.
+        {"Clean", T0(1), kI, w, I(1), I(1), false, {low(I(0)), high(I(2))}},
+        {"X_Axis_Nr", T0(11, 0), kI, rw, I(0), I(5), true, {low(I(-1)), high(I(8))}},
+        {"Y_Axis_Nr", T0(11, 1), kI, rw, I(1), I(6), true, {low(I(-1)), high(I(8))}},
+        {"Z_Axis_Nr", T0(11, 2), kI, rw, I(2), I(7), true, {low(I(-1)), high(I(8))}},
+        {"TcPlane", T0(12), kI, rw, I(17), I(19), true, {low(I(16)), high(I(20))}},
+        {"ReInit", T0(13), kI, w, I(0), I(12345), false, {}},
+        {"Reset", T0(14), kI, w, I(0), I(-7), false, {}},
+        {"RotAngle", T0(20), kD, rw, D(0.0), D(-45.5), true, {invalid(kNaN), invalid(kInf), invalid(-kInf)}},
+        {"RotCenterX", T0(21), kD, rw, D(0.0), D(12.25), true, {invalid(kNaN), invalid(kInf)}},
+        {"RotCenterY", T0(22), kD, rw, D(0.0), D(-3.5), true, {invalid(kNaN), invalid(-kInf)}},
+        // ---- TC DeviceNumber 1, group 1.
+        {"ERROR", T1(1), kI, rw, I(0), I(0x1F), false, {}},
+        {"RESET", T1(2), kI, w, I(0), I(99), false, {}},
+        {"STATUS", T1(3), kI, rw, I(0), I(0), true, {low(I(-1)), high(I(2))}},
+        {"XAxis", T1(4), kI, rw, I(0), I(3), true, {low(I(-1)), high(I(8))}},
+        {"YAxis", T1(5), kI, rw, I(1), I(4), true, {low(I(-1)), high(I(8))}},
+        {"RADIUS", T1(7), kD, rw, D(0.0), D(2.5), true,
+         {low(D(-0.001)), high(D(1.0e6 + 1.0)), invalid(kNaN), invalid(kInf)}},
+        {"WKZINDEX", T1(8), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
+        {"Left", T1(9), kI, w, I(0), I(-1), false, {}},
+        {"Right", T1(10), kI, w, I(0), I(2'000'000'000), false, {}},
+        {"ZAxis", T1(11), kI, rw, I(2), I(7), true, {low(I(-1)), high(I(8))}},
+        {"WkzLen", T1(12), kD, rw, D(0.0), D(-12.5), true,
+         {low(D(-1.0e6 - 1.0)), high(D(1.0e6 + 1.0)), invalid(kNaN), invalid(-kInf)}},
+        {"CornerMode", T1(20), kI, rw, I(26), I(25), true, {low(I(24)), high(I(27))}},
+        {"Side", T1(21), kI, r, I(40), {}, true, {}},
+    };
+    for (std::int32_t axis = 0; axis < 8; ++axis)
+        rows.push_back({"Position" + std::to_string(axis), B(10, axis), kD, r, D(0.0), {}, true, {}});
+    return rows;
+}
+
+Descriptor descriptor(const ObjectRow& row) { return Descriptor{row.address, objif::kNoHandle}; }
+ValueType other(ValueType t) { return t == ValueType::kInt32 ? ValueType::kDouble : ValueType::kInt32; }
+Value of_other_type(const ObjectRow& row) {
+    return row.type == ValueType::kInt32 ? Value::of_double(1.0) : Value::of_int(1);
+}
+
+template <class Pred>
+std::vector<ObjectRow> rows_where(Pred pred) {
+    std::vector<ObjectRow> out;
+    for (auto& row : object_rows())
+        if (pred(row)) out.push_back(row);
+    return out;
+}
+bool readable(const ObjectRow& r) { return objif::can_read(r.access); }
+bool writable(const ObjectRow& r) { return objif::can_write(r.access); }
+
+class ObjectRead : public BoardFixture, public ::testing::WithParamInterface<ObjectRow> {};
+class ObjectWrite : public BoardFixture, public ::testing::WithParamInterface<ObjectRow> {};
+class ObjectType : public BoardFixture, public ::testing::WithParamInterface<ObjectRow> {};
+class ObjectRange : public BoardFixture, public ::testing::WithParamInterface<ObjectRow> {};
+class ObjectAccess : public BoardFixture, public ::testing::WithParamInterface<ObjectRow> {};
+
+TEST_P(ObjectRead, ReadGivesTheDefault) {
+    const ObjectRow& row = GetParam();
+    auto d = descriptor(row);
+    Value v;
+    ASSERT_EQ(board.read(d, row.type, v), Status::kOk);
+    EXPECT_EQ(v, row.default_value);
+    EXPECT_NE(d.handle, objif::kNoHandle) << "a resolved descriptor carries its handle";
+}
+
+TEST_P(ObjectWrite, ValidWriteIsAcceptedAndReadsBack) {
+    const ObjectRow& row = GetParam();
+    ASSERT_TRUE(row.valid.has_value());
+    auto d = descriptor(row);
+    ASSERT_EQ(board.write(d, *row.valid), Status::kOk);
+    if (!readable(row) || !row.reads_back) return;
+    auto again = descriptor(row);
+    Value v;
+    ASSERT_EQ(board.read(again, row.type, v), Status::kOk);
+    EXPECT_EQ(v, *row.valid);
+}
+
+TEST_P(ObjectType, WrongTypeIsTypeMismatchAndChangesNothing) {
+    const ObjectRow& row = GetParam();
+    const auto before = snapshot(board);
+    if (readable(row)) {
+        auto d = descriptor(row);
+        Value v;
+        EXPECT_EQ(board.read(d, other(row.type), v), Status::kTypeMismatch);
+    }
+    if (writable(row)) {
+        auto d = descriptor(row);
+        EXPECT_EQ(board.write(d, of_other_type(row)), Status::kTypeMismatch);
+    }
+    EXPECT_TRUE(unchanged(before, board));
+}
+
+TEST_P(ObjectRange, OutOfRangeIsRefusedAndChangesNothing) {
+    const ObjectRow& row = GetParam();
+    const auto before = snapshot(board);
+    for (const auto& bad : row.out_of_range) {
+        auto d = descriptor(row);
+        EXPECT_EQ(board.write(d, bad.value), bad.expect) << "value " << bad.value.to_string();
+    }
+    EXPECT_TRUE(unchanged(before, board));
+}
+
+TEST_P(ObjectAccess, WrongAccessIsRefusedAndChangesNothing) {
+    const ObjectRow& row = GetParam();
+    const auto before = snapshot(board);
+    auto d = descriptor(row);
+    Value v;
+    if (row.access == Access::kRead) {
+        // Access is checked before type and range: even a wrong-typed NaN is ReadOnly.
+        EXPECT_EQ(board.write(d, Value::of_double(kNaN)), Status::kReadOnly);
+        EXPECT_EQ(board.write(d, row.default_value), Status::kReadOnly);
+    } else {
+        EXPECT_EQ(board.read(d, row.type, v), Status::kWriteOnly);
+        EXPECT_EQ(board.read(d, other(row.type), v), Status::kWriteOnly);
+    }
+    EXPECT_TRUE(unchanged(before, board));
+}
+
+std::string row_name(const ::testing::TestParamInfo<ObjectRow>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(EveryReadableObject, ObjectRead, ::testing::ValuesIn(rows_where(readable)), row_name);
+INSTANTIATE_TEST_SUITE_P(EveryWritableObject, ObjectWrite, ::testing::ValuesIn(rows_where(writable)), row_name);
+INSTANTIATE_TEST_SUITE_P(EveryObject, ObjectType, ::testing::ValuesIn(object_rows()), row_name);
+INSTANTIATE_TEST_SUITE_P(EveryRangedObject, ObjectRange,
+                         ::testing::ValuesIn(rows_where([](const ObjectRow& r) { return !r.out_of_range.empty(); })),
+                         row_name);
+INSTANTIATE_TEST_SUITE_P(EveryOneWayObject, ObjectAccess,
+                         ::testing::ValuesIn(rows_where([](const ObjectRow& r) { return r.access != Access::kReadWrite; })),
+                         row_name);
+
+// Objects whose range is the whole int32 type cannot be written out of range;
+// the rows without out-of-range values are exactly those (and read-only ones).
+TEST(ObjectMapCoverage, RowsWithoutRangeValuesAreFullRangeOrReadOnly) {
+    rwmos::Board board;
+    for (const auto& row : object_rows()) {
+        if (!row.out_of_range.empty() || !writable(row)) continue;
+        objif::Status why;
+        const auto* info = board.dictionary().module(row.address.bus)->find(row.address, why);
+        ASSERT_NE(info, nullptr) << row.name;
+        EXPECT_EQ(info->min, objif::kInt32Min) << row.name;
+        EXPECT_EQ(info->max, objif::kInt32Max) << row.name;
+    }
+}
+
+// The rows above name every object both modules declare, with its type and access.
+TEST(ObjectMapCoverage, EveryDeclaredObjectIsCovered) {
+    rwmos::Board board;
+    const auto rows = object_rows();
+    std::size_t declared = 0;
+    for (auto* module : board.dictionary().modules()) {
+        for (std::size_t i = 0; i < module->object_count(); ++i) {
+            const auto& info = module->object_at(i);
+            ++declared;
+            const Address probe{module->bus(), info.device, info.index_first == 0 ? 1 : info.index_first,
+                                info.subindex};
+            bool found = false;
+            for (const auto& row : rows) {
+                if (!(row.address == probe)) continue;
+                found = true;
+                EXPECT_EQ(row.type, info.type) << info.name;
+                EXPECT_EQ(row.access, info.access) << info.name;
+                if (objif::can_read(info.access)) {
+                    EXPECT_EQ(row.default_value, info.default_value) << info.name;
+                }
+            }
+            EXPECT_TRUE(found) << "no test row for " << info.name << " at " << probe.to_string();
+        }
+    }
+    EXPECT_EQ(declared, rows.size());
+}
+
+}  // namespace
