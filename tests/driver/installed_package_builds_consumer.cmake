@@ -1,0 +1,60 @@
+# SPDX-License-Identifier: MIT
+# Installs the build tree into a scratch prefix, then builds and runs a
+# consumer through find_package(apci) and through pkg-config apci, and runs
+# the installed apcictl.
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+function(expect_tc_plane what)
+  if(NOT last_output MATCHES "TcPlane 17 \\(Ok\\)")
+    message(FATAL_ERROR "${what} printed '${last_output}', expected 'TcPlane 17 (Ok)'")
+  endif()
+endfunction()
+
+set(prefix ${WORK_DIR}/prefix)
+file(REMOVE_RECURSE ${WORK_DIR})
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+foreach(f include/apci/apci.h include/apci/apci.hpp)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "not installed: ${f}")
+  endif()
+endforeach()
+file(GLOB_RECURSE config_files ${prefix}/*/apciConfig.cmake ${prefix}/*/apciConfigVersion.cmake ${prefix}/*/apci.pc)
+list(LENGTH config_files n)
+if(NOT n EQUAL 3)
+  message(FATAL_ERROR "expected apciConfig.cmake, apciConfigVersion.cmake and apci.pc, found: ${config_files}")
+endif()
+
+# find_package(apci)
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/consumer -DCMAKE_PREFIX_PATH=${prefix}
+  -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/consumer)
+run(${WORK_DIR}/consumer/consumer_c)
+expect_tc_plane("find_package consumer (C)")
+run(${WORK_DIR}/consumer/consumer_cpp)
+expect_tc_plane("find_package consumer (C++)")
+
+# pkg-config apci
+find_program(PKG_CONFIG pkg-config REQUIRED)
+find_program(CC NAMES cc gcc REQUIRED)
+file(GLOB_RECURSE pc_file ${prefix}/*/apci.pc)
+get_filename_component(pc_dir ${pc_file} DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} ${pc_dir})
+run(${PKG_CONFIG} --cflags --libs apci)
+string(STRIP "${last_output}" flags)
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run(${CC} -std=c11 -Wall -Werror ${SOURCE_DIR}/consumer.c ${flags} -o ${WORK_DIR}/consumer_pc)
+run(${PKG_CONFIG} --variable=libdir apci)
+string(STRIP "${last_output}" libdir)
+set(ENV{LD_LIBRARY_PATH} ${libdir})
+run(${WORK_DIR}/consumer_pc)
+expect_tc_plane("pkg-config consumer")
+unset(ENV{LD_LIBRARY_PATH})
+
+# The installed apcictl finds the installed libapci by itself (RPATH).
+run(${prefix}/bin/apcictl --version)
+message(STATUS "installed package OK")

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// examples/pcap_tc_init.c run as a process: the seed's TC sequence (seed 003,
+// section 2.5) and the Clean rule, with the registers printed decoded.
+#include <gtest/gtest.h>
+
+#include "process.h"
+
+namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+TEST(PcapTcInit, SeedSequenceRunsAndPrintsTheRegistersDecoded) {
+    const auto r = test_support::run_process({PCAP_TC_INIT_PATH});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_EQ(r.err, "");
+    const char* expected[] = {
+        "group 1: RESET, plane XAxis 0, YAxis 1, ZAxis 2\n",
+        "tool 1: RADIUS 2.5\n",
+        "tool 2: RADIUS 5\n",
+        "tool 7: RADIUS 0.8\n",
+        "compensation on: tool 2, left\n  STATUS 0x01 Run=on ProfMarked=off\n  ERROR  0x00 none\n",
+        "compensation off:\n  STATUS 0x00 Run=off ProfMarked=off\n",
+        "after Clean, the old STATUS handle is refused: read int 1300/1/1/3: StaleHandle",
+        "with the handle zeroed, STATUS reads again:\n  STATUS 0x00 Run=off ProfMarked=off\n",
+        "done\n",
+    };
+    std::size_t from = 0;
+    for (const char* line : expected) {
+        const auto at = r.out.find(line, from);
+        ASSERT_NE(at, std::string::npos) << "missing, in order: " << line << "\n---\n" << r.out;
+        from = at;
+    }
+}
+
+TEST(PcapTcInit, FailsWithTheFailedStepWhenTheBoardLacksOptionTc) {
+    const auto r = test_support::run_process({PCAP_TC_INIT_PATH, "emu:?no-option-tc"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "pcap_tc_init: RESET failed: write int 1300/1/1/2 = 0: NoSuchDevice"))
+        << r.err;
+    EXPECT_TRUE(contains(r.out, "FAILED")) << r.out;
+}
+
+TEST(PcapTcInit, FailsOnAnUnsupportedDevice) {
+    const auto r = test_support::run_process({PCAP_TC_INIT_PATH, "usb:"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "open failed: open 'usb:': NotSupported")) << r.err;
+}
+
+}  // namespace

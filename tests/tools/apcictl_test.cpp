@@ -1,0 +1,334 @@
+// SPDX-License-Identifier: MIT
+// apcictl run as a process: commands, scripts, status, exit codes, help.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "process.h"
+
+namespace {
+
+using test_support::ProcessResult;
+
+ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {},
+                      const std::vector<std::pair<std::string, std::string>>& env = {}) {
+    args.insert(args.begin(), APCICTL_PATH);
+    return test_support::run_process(args, input, env);
+}
+
+ProcessResult script(const std::string& text, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args{"script", "-"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return apcictl(args, text);
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// ---- the must-show lines
+
+TEST(Apcictl, MustShowScriptWritesTheRadiusAndReadsItBack) {
+    const auto r = script("write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "2.5\n");
+    EXPECT_EQ(r.err, "");
+}
+
+TEST(Apcictl, MustShowStatusNamesTheBits) {
+    const auto r = apcictl({"status"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "TC module (bus 1300): TcPlane 17 (X-Y)\n")) << r.out;
+    for (int g = 1; g <= 3; ++g)
+        EXPECT_TRUE(contains(r.out, "group " + std::to_string(g) + ": ERROR 0x")) << r.out;
+    EXPECT_TRUE(contains(r.out, "active group: ERROR")) << r.out;
+    EXPECT_TRUE(contains(r.out, "(Run off, ProfMarked off)")) << r.out;
+}
+
+// ---- read
+
+TEST(ApcictlRead, TypeFollowsTheObject) {
+    auto r = apcictl({"read", "1300", "0", "12", "0"});  // TcPlane, int
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "17\n");
+    r = script("write 1300 1 1 7 0.125\nread 1300 1 1 7\n");  // RADIUS, double
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "0.125\n");
+}
+
+TEST(ApcictlRead, ForcedTypeThatDoesNotMatchIsABoardError) {
+    const auto r = apcictl({"read", "--int", "1300", "1", "1", "7"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(contains(r.err, "apcictl: read --int 1300 1 1 7: TypeMismatch (")) << r.err;
+}
+
+TEST(ApcictlRead, ForcedTypeThatMatchesReads) {
+    const auto r = apcictl({"read", "--double", "1300", "0", "20", "0"});  // RotAngle
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "0\n");
+}
+
+TEST(ApcictlRead, MissingObjectIsABoardErrorNamingIt) {
+    const auto r = apcictl({"read", "1300", "1", "9", "3"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "read 1300 1 9 3: ObjectMissing (object index does not exist)"))
+        << r.err;
+}
+
+TEST(ApcictlRead, NonNumericAddressIsUsage) {
+    const auto r = apcictl({"read", "1300", "one", "1", "7"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "DEV")) << r.err;
+}
+
+TEST(ApcictlRead, MissingArgumentIsUsage) {
+    const auto r = apcictl({"read", "1300", "1", "1"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "SUB")) << r.err;
+}
+
+TEST(ApcictlRead, IntAndDoubleFlagsExcludeEachOther) {
+    const auto r = apcictl({"read", "--int", "--double", "1300", "1", "1", "7"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+}
+
+// ---- write
+
+TEST(ApcictlWrite, IntegerToADoubleObjectIsWrittenAsThatDouble) {
+    const auto r = script("write 1300 1 1 7 3\nread 1300 1 1 7\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "3\n");
+}
+
+TEST(ApcictlWrite, FractionToAnIntObjectIsAClearError) {
+    const auto r = apcictl({"write", "1300", "1", "1", "8", "2.5"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "write 1300 1 1 8 2.5: TypeMismatch (")) << r.err;
+    EXPECT_TRUE(contains(r.err, "object 1300/1/1/8 holds an int32, and 2.5 is not an int32 value"))
+        << r.err;
+}
+
+TEST(ApcictlWrite, FractionToAnIntObjectChangesNothing) {
+    const auto r = script("write 1300 1 1 8 5\nwrite 1300 1 1 8 2.5\nread 1300 1 1 8\n",
+                          {"--keep-going"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "5\n");
+}
+
+TEST(ApcictlWrite, HexIntegersAreInts) {
+    const auto r = script("write 1300 1 1 8 0x10\nread 1300 1 1 8\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "16\n");
+}
+
+TEST(ApcictlWrite, NegativeValueReachesTheBoard) {
+    const auto r = apcictl({"write", "1300", "1", "1", "8", "-1"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "write 1300 1 1 8 -1: ValueTooLow")) << r.err;
+}
+
+TEST(ApcictlWrite, NotANumberIsUsage) {
+    const auto r = apcictl({"write", "1300", "1", "1", "8", "five"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "VALUE 'five' is not a number")) << r.err;
+}
+
+TEST(ApcictlWrite, ForcedIntWithAFractionIsUsage) {
+    const auto r = apcictl({"write", "--int", "1300", "1", "1", "8", "2.5"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "VALUE '2.5' is not an int32 (--int)")) << r.err;
+}
+
+TEST(ApcictlWrite, ForcedDoubleOnAnIntObjectIsABoardError) {
+    const auto r = apcictl({"write", "--double", "1300", "1", "1", "8", "3"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "write --double 1300 1 1 8 3: TypeMismatch")) << r.err;
+}
+
+TEST(ApcictlWrite, NanIsRefusedByTheBoard) {
+    const auto r = apcictl({"write", "1300", "1", "1", "7", "nan"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "InvalidValue")) << r.err;
+}
+
+TEST(ApcictlWrite, IntegerOutOfInt32RangeToAnIntObjectIsAClearError) {
+    const auto r = apcictl({"write", "1300", "1", "1", "8", "3000000000"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "3000000000 is not an int32 value")) << r.err;
+}
+
+// ---- script
+
+TEST(ApcictlScript, StateCarriesFromLineToLine) {
+    const auto r = script("write 1300 1 2 8 12\nwrite 1300 1 2 7 1.5\nwrite 1300 1 2 8 13\n"
+                          "write 1300 1 2 7 0.5\nwrite 1300 1 2 8 12\nread 1300 1 2 7\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "1.5\n");  // RADIUS belongs to the tool WKZINDEX selects
+}
+
+TEST(ApcictlScript, CommentsAndBlankLinesAreIgnoredButCounted) {
+    const auto r = script("# set up\n\n   \nwrite 1300 1 1 8 4   # tool 4\nread 1300 1 1 8\n"
+                          "read 1300 1 9 3\n");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "4\n");
+    EXPECT_TRUE(contains(r.err, "line 6: read 1300 1 9 3: ObjectMissing")) << r.err;
+}
+
+TEST(ApcictlScript, StopsAtTheFirstFailingLineAndNamesIt) {
+    const auto r = script("read 1300 1 1 8\nwrite 1300 1 1 8 2000\nread 1300 1 1 8\n");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "0\n");  // the third line did not run
+    EXPECT_EQ(r.err,
+              "line 2: write 1300 1 1 8 2000: ValueTooHigh (value above the object's range)\n");
+}
+
+TEST(ApcictlScript, KeepGoingRunsEveryLineAndExitsWithTheFirstFailure) {
+    const auto r = script("write 1300 1 1 8 2000\nread 1300 1 1 8\nread 1300 1 9 3\nread 1300 0 12 0\n",
+                          {"--keep-going"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "0\n17\n");
+    EXPECT_TRUE(contains(r.err, "line 1: write 1300 1 1 8 2000: ValueTooHigh")) << r.err;
+    EXPECT_TRUE(contains(r.err, "line 3: read 1300 1 9 3: ObjectMissing")) << r.err;
+    EXPECT_TRUE(contains(r.err, "script: 2 of 4 lines failed")) << r.err;
+}
+
+TEST(ApcictlScript, AMalformedLineRunsNothing) {
+    const auto r = script("read 1300 0 12 0\nwrite 1300 1 1 8\nread 1300 0 12 0\n");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(contains(r.err, "line 2: write 1300 1 1 8: VALUE is required")) << r.err;
+}
+
+TEST(ApcictlScript, UnknownCommandNamesTheScriptCommands) {
+    const auto r = script("frobnicate 1\n");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "line 1: unknown command 'frobnicate' (script commands: read, "
+                                "write, status)"))
+        << r.err;
+}
+
+TEST(ApcictlScript, ScriptInAScriptIsNotACommand) {
+    const auto r = script("script -\n");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "unknown command 'script'")) << r.err;
+}
+
+TEST(ApcictlScript, LineOptionsWorkAsOnTheCommandLine) {
+    const auto r = script("read --double 1300 0 21 0\nwrite --int 1300 1 1 8 7\nread 1300 1 1 8\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "0\n7\n");
+}
+
+TEST(ApcictlScript, StatusIsAScriptCommand) {
+    const auto r = script("status\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "group 1: ERROR")) << r.out;
+}
+
+TEST(ApcictlScript, ReadsAFile) {
+    const std::string path = ::testing::TempDir() + "apcictl_script_test.txt";
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("write 1300 1 3 8 9\nread 1300 1 3 8\n", f);
+    std::fclose(f);
+    const auto r = apcictl({"script", path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "9\n");
+}
+
+TEST(ApcictlScript, MissingFileIsUsage) {
+    const auto r = apcictl({"script", "/nonexistent/script.txt"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "cannot open '/nonexistent/script.txt'")) << r.err;
+}
+
+TEST(ApcictlScript, EmptyScriptSucceeds) {
+    const auto r = script("# nothing\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+// ---- status
+
+TEST(ApcictlStatus, WithoutOptionTcSaysSo) {
+    const auto r = apcictl({"--device", "emu:?no-option-tc", "status"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "TC module (bus 1300): absent, the firmware has no optionTC\n");
+}
+
+TEST(ApcictlStatus, DeviceComesFromTheEnvironment) {
+    const auto r = apcictl({"status"}, {}, {{"APCI_DEVICE", "emu:?no-option-tc"}});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "absent")) << r.out;
+}
+
+TEST(ApcictlStatus, NamesTheRunBitOfAnActiveGroup) {
+    const auto r = script("write 1300 1 1 2 0\nwrite 1300 1 1 4 0\nwrite 1300 1 1 5 1\n"
+                          "write 1300 1 1 11 2\nwrite 1300 1 1 8 1\nwrite 1300 1 1 7 2\n"
+                          "write 1300 1 1 9 1\nwrite 1300 1 1 3 1\nstatus\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "group 1: ERROR 0x00 none; STATUS 0x01 (Run on, ProfMarked off)"))
+        << r.out;
+}
+
+// ---- devices and exit codes
+
+TEST(ApcictlDevice, UnsupportedTransportIsABoardError) {
+    const auto r = apcictl({"--device", "unix:/run/apci8001.sock", "read", "1300", "0", "12", "0"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "NotSupported")) << r.err;
+    EXPECT_TRUE(contains(r.err, "'unix:' is not supported yet")) << r.err;
+}
+
+TEST(ApcictlDevice, MalformedUriIsUsage) {
+    const auto r = apcictl({"--device", "emu:?turbo", "status"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "unknown emu: option 'turbo'")) << r.err;
+}
+
+TEST(ApcictlDevice, DeviceMayFollowTheCommand) {
+    const auto r = apcictl({"status", "--device", "emu:?no-option-tc"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "absent")) << r.out;
+}
+
+TEST(ApcictlUsage, NoCommandIsUsage) {
+    const auto r = apcictl({});
+    EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(ApcictlUsage, UnknownCommandIsUsage) {
+    const auto r = apcictl({"launch"});
+    EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(ApcictlUsage, UnknownOptionIsUsage) {
+    const auto r = apcictl({"read", "--float", "1300", "1", "1", "7"});
+    EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(ApcictlUsage, VersionPrintsTheLibraryVersion) {
+    const auto r = apcictl({"--version"});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.out, "0.1.0\n");
+}
+
+class ApcictlHelp : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ApcictlHelp, EveryCommandHasHelp) {
+    std::vector<std::string> args;
+    if (std::string(GetParam()) != "") args.emplace_back(GetParam());
+    args.emplace_back("--help");
+    const auto r = apcictl(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "Usage:")) << r.out;
+    EXPECT_TRUE(contains(r.out, "apcictl")) << r.out;
+    EXPECT_TRUE(contains(r.out, GetParam())) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Commands, ApcictlHelp,
+                         ::testing::Values("", "read", "write", "script", "status"));
+
+}  // namespace
