@@ -1,10 +1,6 @@
 # SPDX-License-Identifier: MIT
 # libapci: the userspace driver. The whole public API is include/apci/apci.h
 # (C) plus the header-only C++ wrapper include/apci/apci.hpp.
-if(NOT TARGET rwmos_emu)
-  message(STATUS "libapci: skipped, it needs the rwmos_emu library (rwmos_emu/emu.cmake)")
-  return()
-endif()
 add_library(apci SHARED
   src/apci.cpp
   src/tc_names.cpp

@@ -319,6 +319,21 @@ TEST_F(Board, LastErrorNamesOperationObjectAndStatus) {
                             "object (int vs double))");
 }
 
+TEST_F(Board, LastErrorNamesAStateRuleRefusal) {
+    auto wkzindex = tc_group(1, APCI_TC_WKZINDEX);
+    auto radius = tc_group(1, APCI_TC_RADIUS);
+    auto left = tc_group(1, APCI_TC_LEFT);
+    auto status = tc_group(1, APCI_TC_STATUS);
+    auto x_axis = tc_group(1, APCI_TC_XAXIS);
+    ASSERT_EQ(apci_write_int(board_, &wkzindex, 1), APCI_OK);
+    ASSERT_EQ(apci_write_double(board_, &radius, 2.0), APCI_OK);
+    ASSERT_EQ(apci_write_int(board_, &left, 1), APCI_OK);
+    ASSERT_EQ(apci_write_int(board_, &status, 1), APCI_OK) << last_error();
+    ASSERT_EQ(apci_write_int(board_, &x_axis, 2), APCI_WRONG_DEVICE_STATE);
+    EXPECT_EQ(last_error(), "write int 1300/1/1/4 = 2: WrongDeviceState (not possible in the "
+                            "present device state)");
+}
+
 TEST_F(Board, LastErrorIsEmptyAfterASuccessfulCall) {
     auto missing = tc_group(9, APCI_TC_STATUS);
     int32_t v = 0;

@@ -184,6 +184,16 @@ TEST(ApcictlScript, StopsAtTheFirstFailingLineAndNamesIt) {
               "line 2: write 1300 1 1 8 2000: ValueTooHigh (value above the object's range)\n");
 }
 
+TEST(ApcictlScript, StateRuleFailureStopsTheScriptAndNamesTheLine) {
+    // XAxis may change only while compensation is inactive (seed 003 Table 3).
+    const auto r = script("write 1300 1 1 8 1\nwrite 1300 1 1 7 2\nwrite 1300 1 1 9 1\n"
+                          "write 1300 1 1 3 1\nwrite 1300 1 1 4 2\nread 1300 1 1 3\n");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "line 5: write 1300 1 1 4 2: WrongDeviceState (not possible in the present "
+                     "device state)\n");
+}
+
 TEST(ApcictlScript, KeepGoingRunsEveryLineAndExitsWithTheFirstFailure) {
     const auto r = script("write 1300 1 1 8 2000\nread 1300 1 1 8\nread 1300 1 9 3\nread 1300 0 12 0\n",
                           {"--keep-going"});
@@ -251,6 +261,15 @@ TEST(ApcictlScript, EmptyScriptSucceeds) {
 }
 
 // ---- status
+
+TEST(ApcictlStatus, NamesInitErrorAfterAnActivationWithoutInitialisation) {
+    const auto r = script("write 1300 1 1 3 1\nstatus\n", {"--keep-going"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.out, "group 1: ERROR 0x01 InitError; STATUS 0x00 (Run off, ProfMarked off)\n"))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, "group 2: ERROR 0x00 none; STATUS 0x00 (Run off, ProfMarked off)\n"))
+        << r.out;
+}
 
 TEST(ApcictlStatus, WithoutOptionTcSaysSo) {
     const auto r = apcictl({"--device", "emu:?no-option-tc", "status"});
