@@ -1,0 +1,402 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/interpreter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "apci/nc/arc.h"
+#include "apci/nc/parser.h"
+#include "apci/nc/tools.h"
+#include "nc_test_util.h"
+
+namespace apci::nc {
+namespace {
+
+using test::error_of;
+using test::events_of;
+using test::only;
+
+using V = Eigen::Vector3d;
+
+void expect_near(const V& got, const V& want, const char* what = "") {
+    EXPECT_NEAR((got - want).norm(), 0.0, 1e-9) << what << ": got " << got.transpose()
+                                                << ", want " << want.transpose();
+}
+
+ArcMove single_arc(std::string_view text) {
+    const auto arcs = only<ArcMove>(events_of(text));
+    EXPECT_EQ(arcs.size(), 1U) << text;
+    return arcs.empty() ? ArcMove{} : arcs.front();
+}
+
+TEST(Interpreter, MotionModeIsModal) {
+    const auto ev = events_of("G1 X1 F100\nY2\nG0 X5\nZ1\nM30\n");
+    const auto lines = only<LineMove>(ev);
+    const auto rapids = only<RapidMove>(ev);
+    ASSERT_EQ(lines.size(), 2U);
+    ASSERT_EQ(rapids.size(), 2U);
+    expect_near(lines[1].end, V(1, 2, 0));
+    expect_near(rapids[1].end, V(5, 2, 1));
+}
+
+TEST(Interpreter, MoveStartsWhereThePreviousEnded) {
+    const auto lines = only<LineMove>(events_of("G1 X1 F100\nY2\nX3 Y4 Z5\nM30"));
+    ASSERT_EQ(lines.size(), 3U);
+    expect_near(lines[0].start, V(0, 0, 0));
+    expect_near(lines[1].start, V(1, 0, 0));
+    expect_near(lines[2].start, V(1, 2, 0));
+    expect_near(lines[2].end, V(3, 4, 5));
+}
+
+TEST(Interpreter, FeedIsModalAndCarriedByMoves) {
+    const auto ev = events_of("G1 X1 F100\nX2\nX3 F250\nG2 X5 I1 \nM30");
+    const auto lines = only<LineMove>(ev);
+    ASSERT_EQ(lines.size(), 3U);
+    EXPECT_EQ(lines[0].feed, 100.0);
+    EXPECT_EQ(lines[1].feed, 100.0);
+    EXPECT_EQ(lines[2].feed, 250.0);
+    EXPECT_EQ(only<ArcMove>(ev).at(0).feed, 250.0);
+}
+
+TEST(Interpreter, RapidNeedsNoFeed) {
+    EXPECT_EQ(only<RapidMove>(events_of("G0 X1\nM30")).size(), 1U);
+}
+
+TEST(Interpreter, NoFeedBeforeFirstFeedMoveIsError) {
+    EXPECT_EQ(error_of("N10 G1 X1\nM30"),
+              "prog.nc:1:8: no feed rate: program F before the first G1 move");
+    EXPECT_EQ(error_of("G0 X1\nG2 X2 I.5\nM30"),
+              "prog.nc:2:4: no feed rate: program F before the first G2 move");
+}
+
+TEST(Interpreter, NoMotionModeBeforeFirstMoveIsError) {
+    EXPECT_EQ(error_of("F100\nN20 X1\nM30"),
+              "prog.nc:2:5: no motion mode: program G0, G1, G2 or G3 before the first move");
+}
+
+TEST(Interpreter, AbsoluteAndIncrementalDistance) {
+    const auto rapids = only<RapidMove>(
+        events_of("G90 G0 X10 Y10\nG91 X5 Y-5\nZ2\nG90 X1\nM30"));
+    ASSERT_EQ(rapids.size(), 4U);
+    expect_near(rapids[0].end, V(10, 10, 0));
+    expect_near(rapids[1].end, V(15, 5, 0));
+    expect_near(rapids[2].end, V(15, 5, 2));
+    expect_near(rapids[3].end, V(1, 5, 2));
+}
+
+TEST(Interpreter, DistanceModeDefaultsToAbsolute) {
+    const auto rapids = only<RapidMove>(events_of("G0 X10\nX10\nM30"));
+    expect_near(rapids[1].end, V(10, 0, 0));
+}
+
+TEST(Interpreter, StartPositionOption) {
+    InterpreterOptions o;
+    o.start_position = V(1, 2, 3);
+    const auto lines = only<LineMove>(events_of("G91 G1 X1 F10\nM30", o));
+    ASSERT_EQ(lines.size(), 1U);
+    expect_near(lines[0].start, V(1, 2, 3));
+    expect_near(lines[0].end, V(2, 2, 3));
+}
+
+TEST(Interpreter, CenterWordsAreIncrementalFromStartInG90) {
+    const ArcMove a = single_arc("G0 X10 Y5\nG2 X20 Y5 I5 J0 F100\nM30");
+    expect_near(a.start, V(10, 5, 0));
+    expect_near(a.end, V(20, 5, 0));
+    expect_near(a.center, V(15, 5, 0));
+    EXPECT_FALSE(a.ccw);
+    EXPECT_EQ(a.plane, Plane::kXY);
+}
+
+TEST(Interpreter, CenterWordsAreIncrementalFromStartInG91) {
+    const ArcMove a = single_arc("G0 X10 Y5\nG91 G3 X10 I5 F100\nM30");
+    expect_near(a.end, V(20, 5, 0));
+    expect_near(a.center, V(15, 5, 0));
+    EXPECT_TRUE(a.ccw);
+}
+
+TEST(Interpreter, ArcWithIJInG17) {
+    const ArcMove q = single_arc("G0 X10\nG17 G3 X0 Y10 I-10 J0 F100\nM30");
+    expect_near(q.center, V(0, 0, 0));
+    EXPECT_TRUE(q.ccw);
+    EXPECT_EQ(q.plane, Plane::kXY);
+}
+
+TEST(Interpreter, ArcWithKIInG18) {
+    const ArcMove a = single_arc("G18\nG0 Z10\nG2 Z0 X10 K-10 F100\nM30");
+    expect_near(a.start, V(0, 0, 10));
+    expect_near(a.end, V(10, 0, 0));
+    expect_near(a.center, V(0, 0, 0));
+    EXPECT_EQ(a.plane, Plane::kZX);
+    EXPECT_FALSE(a.ccw);
+}
+
+TEST(Interpreter, ArcWithJKInG19) {
+    const ArcMove a = single_arc("G19\nG0 Y10\nG3 Y0 Z10 J-10 F100\nM30");
+    expect_near(a.center, V(0, 0, 0));
+    expect_near(a.end, V(0, 0, 10));
+    EXPECT_EQ(a.plane, Plane::kYZ);
+    EXPECT_TRUE(a.ccw);
+}
+
+TEST(Interpreter, CenterWordOfTheWrongPlaneIsError) {
+    EXPECT_EQ(error_of("G17 G2 X1 K1 F1\nM30"),
+              "prog.nc:1:11: K is not a centre word in the G17 plane (use I and J)");
+    EXPECT_EQ(error_of("G18 G2 X1 J1 F1\nM30"),
+              "prog.nc:1:11: J is not a centre word in the G18 plane (use K and I)");
+    EXPECT_EQ(error_of("G19 G2 Y1 I1 F1\nM30"),
+              "prog.nc:1:11: I is not a centre word in the G19 plane (use J and K)");
+}
+
+// R > 0: the shorter arc; R < 0: the longer one. From (0,0) to (10,0) with |R| = 10 the centre
+// is (5, +-8.660): left of the chord for the shorter counter-clockwise arc.
+TEST(Interpreter, RadiusArcSignSelectsShorterOrLongerArcInG17) {
+    const double h = std::sqrt(75.0);
+    expect_near(single_arc("G3 X10 R10 F1\nM30").center, V(5, h, 0), "G3 R10");
+    expect_near(single_arc("G2 X10 R10 F1\nM30").center, V(5, -h, 0), "G2 R10");
+    expect_near(single_arc("G3 X10 R-10 F1\nM30").center, V(5, -h, 0), "G3 R-10");
+    expect_near(single_arc("G2 X10 R-10 F1\nM30").center, V(5, h, 0), "G2 R-10");
+}
+
+TEST(Interpreter, RadiusArcInG18) {
+    const double h = std::sqrt(75.0);
+    // Z-X plane: first axis Z, second X; "left" of a chord along +Z is +X.
+    expect_near(single_arc("G18 G3 Z10 R10 F1\nM30").center, V(h, 0, 5), "G18 G3 R10");
+    expect_near(single_arc("G18 G2 Z10 R10 F1\nM30").center, V(-h, 0, 5), "G18 G2 R10");
+    expect_near(single_arc("G18 G3 Z10 R-10 F1\nM30").center, V(-h, 0, 5), "G18 G3 R-10");
+}
+
+TEST(Interpreter, RadiusArcInG19) {
+    const double h = std::sqrt(75.0);
+    // Y-Z plane: first axis Y, second Z; "left" of a chord along +Y is +Z.
+    expect_near(single_arc("G19 G3 Y10 R10 F1\nM30").center, V(0, 5, h), "G19 G3 R10");
+    expect_near(single_arc("G19 G2 Y10 R10 F1\nM30").center, V(0, 5, -h), "G19 G2 R10");
+    expect_near(single_arc("G19 G2 Y10 R-10 F1\nM30").center, V(0, 5, h), "G19 G2 R-10");
+}
+
+TEST(Interpreter, RadiusArcCenterIsOnBothEndPoints) {
+    // Every R arc's centre lies at |R| from start and end.
+    for (const char* text : {"G0 X3 Y-2\nG2 X7 Y4 R-6 F1\nM30", "G0 X3 Y-2\nG3 X7 Y4 R6 F1\nM30"}) {
+        const ArcMove a = single_arc(text);
+        EXPECT_NEAR((a.center - a.start).norm(), 6.0, 1e-9) << text;
+        EXPECT_NEAR((a.center - a.end).norm(), 6.0, 1e-9) << text;
+    }
+}
+
+TEST(Interpreter, RadiusArcOverHalfCircleChordIsMidpoint) {
+    expect_near(single_arc("G2 X20 R10 F1\nM30").center, V(10, 0, 0));
+    // Within the tolerance, a chord a little longer than the diameter is a half circle.
+    expect_near(single_arc("G2 X20.001 R10 F1\nM30").center, V(10.0005, 0, 0));
+}
+
+TEST(Interpreter, RadiusArcImpossibleForChordIsError) {
+    EXPECT_EQ(error_of("N10 G0 X0 Y0\nN20 G2 X20.01 R10 F100\nM30"),
+              "prog.nc:2:15: R arc impossible: the chord from start to end is 20.0100 mm long, "
+              "more than the diameter 20.0000 mm of R10");
+    const test::RunResult r = test::run("N10 G0 X0 Y0\nN20 G2 X20.01 R10 F100\nM30");
+    ASSERT_TRUE(r.error);
+    EXPECT_EQ(r.error->kind, ErrorKind::kGeometry);
+    EXPECT_EQ(r.error->block, 20);
+}
+
+TEST(Interpreter, RadiusArcToItsStartIsError) {
+    EXPECT_EQ(error_of("G2 Z5 R10 F1\nM30"),
+              "prog.nc:1:7: R arc impossible: its end point equals the start point in the plane "
+              "(program a full circle with I/J/K)");
+}
+
+TEST(Interpreter, CenterArcEndOffCircleIsError) {
+    EXPECT_EQ(error_of("G2 X10 Y1 I5 F1\nM30"),
+              "prog.nc:1:1: arc end point is not on the circle: radius 5.0000 mm at the start, "
+              "5.0990 mm at the end (tolerance 0.002 mm)");
+    // Within the tolerance it runs.
+    EXPECT_EQ(error_of("G2 X10.0015 I5 F1\nM30"), "");
+}
+
+TEST(Interpreter, CenterOnStartIsError) {
+    EXPECT_EQ(error_of("G2 X0 I0 J0 F1\nM30"),
+              "prog.nc:1:1: arc radius is 0: the centre (I/J/K) is the start point");
+}
+
+TEST(Interpreter, FullCircleWithCenterOnly) {
+    const ArcMove a = single_arc("G0 X1 Y1\nG2 I5 F1\nM30");
+    expect_near(a.start, V(1, 1, 0));
+    expect_near(a.end, V(1, 1, 0));
+    expect_near(a.center, V(6, 1, 0));
+}
+
+TEST(Interpreter, HelixKeepsCenterOnStartLevel) {
+    const ArcMove a = single_arc("G0 Z2\nG3 X10 Z7 I5 F1\nM30");
+    expect_near(a.end, V(10, 0, 7));
+    expect_near(a.center, V(5, 0, 2));
+}
+
+TEST(Interpreter, ArcNeedsCenterOrRadius) {
+    EXPECT_EQ(error_of("G2 X10 F1\nM30"),
+              "prog.nc:1:4: G2 arc needs its centre (I J) or its radius (R)");
+    EXPECT_EQ(error_of("G18 G3 X10 F1\nM30"),
+              "prog.nc:1:8: G3 arc needs its centre (K I) or its radius (R)");
+}
+
+TEST(Interpreter, CenterOrRadiusWithoutArcIsError) {
+    EXPECT_EQ(error_of("G1 X10 I5 F1\nM30"), "prog.nc:1:8: I belongs to arcs (G2/G3), not to G1");
+    EXPECT_EQ(error_of("G0 X10 R5\nM30"), "prog.nc:1:8: R belongs to arcs (G2/G3), not to G0");
+    const test::RunResult r = test::run("G1 X1 F1\nJ5\nM30");
+    ASSERT_TRUE(r.error);
+    EXPECT_EQ(r.error->kind, ErrorKind::kConflict);
+}
+
+TEST(Interpreter, ModalOnlyBlockMakesNoMove) {
+    const auto ev = events_of("G2\nG1 F100\nM30");
+    EXPECT_TRUE(only<LineMove>(ev).empty());
+    EXPECT_TRUE(only<ArcMove>(ev).empty());
+}
+
+TEST(Interpreter, CompensationSideEventsOnChange) {
+    const auto ev = events_of("G41\nG41\nG42\nG40\nG40\nM30");
+    const auto comp = only<CompensationChange>(ev);
+    ASSERT_EQ(comp.size(), 3U);
+    EXPECT_EQ(comp[0].side, Compensation::kLeft);
+    EXPECT_EQ(comp[1].side, Compensation::kRight);
+    EXPECT_EQ(comp[2].side, Compensation::kOff);
+}
+
+TEST(Interpreter, CornerModeDefaultsToCircularAndEventsOnChange) {
+    const auto ev = events_of("G26\nG25\nG25\nG26\nM30");
+    const auto corner = only<CornerModeChange>(ev);
+    ASSERT_EQ(corner.size(), 2U);
+    EXPECT_EQ(corner[0].mode, CornerMode::kLinear);
+    EXPECT_EQ(corner[1].mode, CornerMode::kCircular);
+}
+
+TEST(Interpreter, PlaneDefaultsToG17AndEventsOnChange) {
+    const auto planes = only<PlaneChange>(events_of("G17\nG18\nG18\nG19\nG17\nM30"));
+    ASSERT_EQ(planes.size(), 3U);
+    EXPECT_EQ(planes[0].plane, Plane::kZX);
+    EXPECT_EQ(planes[1].plane, Plane::kYZ);
+    EXPECT_EQ(planes[2].plane, Plane::kXY);
+}
+
+TEST(Interpreter, ToolSelectOnEveryDWord) {
+    const auto tools = only<ToolSelect>(events_of("D1\nD1\nD0\nM30"));
+    ASSERT_EQ(tools.size(), 3U);
+    EXPECT_EQ(tools[0].tool, 1);
+    EXPECT_EQ(tools[1].tool, 1);
+    EXPECT_EQ(tools[2].tool, 0);
+}
+
+TEST(Interpreter, EventOrderWithinBlock) {
+    const auto ev = events_of("N5 D1 G18 G25 G1 X1 F1\nN6 G42 G1 Z1 M30");
+    ASSERT_EQ(ev.size(), 7U);
+    EXPECT_EQ(event_name(ev[0].data), "tool");
+    EXPECT_EQ(event_name(ev[1].data), "plane");
+    EXPECT_EQ(event_name(ev[2].data), "corner");
+    EXPECT_EQ(event_name(ev[3].data), "line");
+    EXPECT_EQ(event_name(ev[4].data), "compensation");
+    EXPECT_EQ(event_name(ev[5].data), "line");
+    EXPECT_EQ(event_name(ev[6].data), "end");
+    EXPECT_EQ(ev[0].origin.block, 5);
+    EXPECT_EQ(ev[0].origin.line, 1U);
+    EXPECT_EQ(ev[6].origin.block, 6);
+    EXPECT_EQ(ev[6].origin.line, 2U);
+}
+
+TEST(Interpreter, BlockWithoutNumberHasNoBlockNumber) {
+    const auto ev = events_of("G0 X1\nM30");
+    EXPECT_EQ(ev[0].origin.block, kNoBlockNumber);
+}
+
+TEST(Interpreter, PlaneChangeWithCompensationOnIsError) {
+    EXPECT_EQ(error_of("G41\nN20 G18\nM30"),
+              "prog.nc:2:5: G18 changes the plane while radius compensation is on: program G40 "
+              "before changing the plane");
+    EXPECT_EQ(error_of("G18 G42\nM30"),
+              "prog.nc:1:1: G18 changes the plane while radius compensation is on: program G40 "
+              "before changing the plane");
+    // Repeating the active plane is no change.
+    EXPECT_EQ(error_of("G41\nG17\nG40\nG18\nM30"), "");
+}
+
+TEST(Interpreter, ToolChangeWithCompensationOnIsError) {
+    EXPECT_EQ(error_of("G42\nD2\nM30"),
+              "prog.nc:2:1: D2 while radius compensation G42 is on: program G40 in an earlier "
+              "block before selecting a tool");
+    EXPECT_EQ(error_of("G42\nG40 D2\nM30").empty(), false);
+    // Selecting the tool and switching compensation on in one block is the seed's usage.
+    EXPECT_EQ(error_of("D1 G41\nM30"), "");
+}
+
+TEST(Interpreter, CompensationSwitchInArcBlockIsError) {
+    EXPECT_EQ(error_of("G0 X10\nG41 G2 X0 I-5 F1\nM30"),
+              "prog.nc:2:1: G41 switched in an arc block: switch radius compensation with G0/G1 "
+              "or in a block without a move");
+    EXPECT_EQ(error_of("G0 X10\nG41 G1 X0 F1\nG2 X-10 I-5\nG40 G1 X-20\nM30"), "");
+}
+
+TEST(Interpreter, ProgramEndEvent) {
+    const auto ev = events_of("G0 X1 M30");
+    ASSERT_EQ(ev.size(), 2U);
+    EXPECT_EQ(event_name(ev[0].data), "rapid");
+    EXPECT_EQ(event_name(ev[1].data), "end");
+}
+
+TEST(Interpreter, BlockAfterM30IsError) {
+    EXPECT_EQ(error_of("M30\n\n; comment\n(c)\nG0 X1\n"),
+              "prog.nc:5:1: block after M30: the program has already ended");
+    EXPECT_EQ(error_of("M30\n\n; trailing comments are fine\n"), "");
+}
+
+TEST(Interpreter, ProgramWithoutM30IsError) {
+    EXPECT_EQ(error_of("G0 X1\nG0 X2\n"), "prog.nc:2:1: the program ends without M30");
+    EXPECT_EQ(error_of(""), "prog.nc:1:1: the program ends without M30");
+}
+
+TEST(Interpreter, FailedBlockChangesNoState) {
+    Interpreter in;
+    EventBatch out;
+    Diagnostic err;
+    ParsedLine p;
+    ASSERT_TRUE(parse_din_line("D1 G25 G1 X1 F100", 1, "p", p, err));
+    ASSERT_TRUE(in.apply(p.block, "p", out, err)) << err.to_string();
+    const ModalState before = in.state();
+    // Good words (G42, F, G91, G18 ...) before a bad arc: nothing of it may stick.
+    ASSERT_TRUE(parse_din_line("G91 G26 F5 G2 X100 R10", 2, "p", p, err));
+    EXPECT_FALSE(in.apply(p.block, "p", out, err));
+    EXPECT_EQ(err.kind, ErrorKind::kGeometry);
+    EXPECT_TRUE(out.empty());
+    const ModalState& after = in.state();
+    EXPECT_EQ(after.motion, before.motion);
+    EXPECT_EQ(after.distance, before.distance);
+    EXPECT_EQ(after.corner, before.corner);
+    EXPECT_EQ(after.feed, before.feed);
+    EXPECT_EQ(after.tool, before.tool);
+    EXPECT_EQ(after.position, before.position);
+}
+
+TEST(Interpreter, ToolTableRequiresDefinedValidTool) {
+    Result<ToolTable> tools = parse_tool_table("wz[1].gueltig 1\nwz[2].radius 5\n", "t.tools");
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    InterpreterOptions o;
+    o.tools = &tools.value();
+    EXPECT_EQ(error_of("D1\nD0\nM30", o), "");
+    EXPECT_EQ(error_of("N7 D3\nM30", o),
+              "prog.nc:1:4: D3 selects tool 3, which the tool list does not define");
+    EXPECT_EQ(error_of("D2\nM30", o),
+              "prog.nc:1:1: D2 selects tool 2, which is not valid (wz[2].gueltig is 0, not 1; "
+              "unset data is 0)");
+    // Without a table any D is accepted.
+    EXPECT_EQ(error_of("D3\nM30"), "");
+}
+
+TEST(ArcGeometry, PlaneAxesAreRightHanded) {
+    for (Plane p : {Plane::kXY, Plane::kZX, Plane::kYZ}) {
+        const PlaneAxes a = plane_axes(p);
+        const V e1 = V::Unit(a.first), e2 = V::Unit(a.second), n = V::Unit(a.normal);
+        expect_near(e1.cross(e2), n);
+    }
+}
+
+}  // namespace
+}  // namespace apci::nc

@@ -1,0 +1,302 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/parser.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace apci::nc {
+namespace {
+
+struct Parsed {
+    bool ok = false;
+    ParsedLine line;
+    Diagnostic err;
+};
+
+Parsed parse(std::string_view text, std::uint64_t line_number = 12) {
+    Parsed p;
+    p.ok = parse_din_line(text, line_number, "prog.nc", p.line, p.err);
+    return p;
+}
+
+Block block(std::string_view text) {
+    Parsed p = parse(text);
+    EXPECT_TRUE(p.ok) << p.err.to_string();
+    EXPECT_EQ(p.line.kind, LineKind::kBlock) << text;
+    return p.line.block;
+}
+
+std::string error(std::string_view text) {
+    Parsed p = parse(text);
+    EXPECT_FALSE(p.ok) << text;
+    return p.ok ? std::string() : p.err.to_string();
+}
+
+ErrorKind error_kind(std::string_view text) {
+    Parsed p = parse(text);
+    EXPECT_FALSE(p.ok) << text;
+    return p.err.kind;
+}
+
+TEST(Parser, ProgramNameLine) {
+    Parsed p = parse("%wr_quad_disc.nc");
+    ASSERT_TRUE(p.ok);
+    EXPECT_EQ(p.line.kind, LineKind::kProgramName);
+    EXPECT_EQ(p.line.program_name, "wr_quad_disc.nc");
+    Parsed with_comment = parse("  %prog-1 (name) ; more");
+    ASSERT_TRUE(with_comment.ok) << with_comment.err.to_string();
+    EXPECT_EQ(with_comment.line.program_name, "prog-1");
+}
+
+TEST(Parser, ProgramNameErrors) {
+    EXPECT_EQ(error("%"), "prog.nc:12:2: expected a program name after '%' (letters, digits, "
+                          "'_', '.', '-')");
+    EXPECT_EQ(error("%abc G1"),
+              "prog.nc:12:6: unexpected 'G' after the program name: the '%' line holds only "
+              "the name");
+}
+
+TEST(Parser, BlankAndCommentOnlyLinesAreEmpty) {
+    for (std::string_view t : {"", "   \t ", "(comment)", "; comment", "  (a) (b) ; c"}) {
+        Parsed p = parse(t);
+        ASSERT_TRUE(p.ok) << t << ": " << p.err.to_string();
+        EXPECT_EQ(p.line.kind, LineKind::kEmpty) << t;
+    }
+}
+
+TEST(Parser, BlockNumber) {
+    const Block b = block("N99999 M30");
+    EXPECT_EQ(b.block_number(), 99999);
+    EXPECT_EQ(b.number.column, 1U);
+    EXPECT_EQ(b.line, 12U);
+    EXPECT_EQ(block("G1").block_number(), kNoBlockNumber);
+    EXPECT_EQ(block("N10").block_number(), 10);  // a block with only N is still a block
+}
+
+TEST(Parser, BlockNumberMustBeFirstWord) {
+    EXPECT_EQ(error("G1 N10"), "prog.nc:12:4: the block number 'N' must be the first word of "
+                               "the block");
+}
+
+TEST(Parser, EveryWordAndItsValue) {
+    const Block b = block("N5 G1 X1 Y-2 Z3.5 F600 D7 M30");
+    EXPECT_EQ(b.motion.value, Motion::kLine);
+    EXPECT_EQ(b.axis[0].value, 1.0);
+    EXPECT_EQ(b.axis[1].value, -2.0);
+    EXPECT_EQ(b.axis[2].value, 3.5);
+    EXPECT_EQ(b.feed.value, 600.0);
+    EXPECT_EQ(b.tool.value, 7);
+    EXPECT_TRUE(b.end_of_program.present());
+    const Block arc = block("G2 X1 I2 J3 K4");
+    EXPECT_EQ(arc.center[0].value, 2.0);
+    EXPECT_EQ(arc.center[1].value, 3.0);
+    EXPECT_EQ(arc.center[2].value, 4.0);
+    EXPECT_EQ(block("G3 X1 R-5").radius.value, -5.0);
+}
+
+TEST(Parser, WordColumnsAreRecorded) {
+    const Block b = block("N10 G1 X5");
+    EXPECT_EQ(b.number.column, 1U);
+    EXPECT_EQ(b.motion.column, 5U);
+    EXPECT_EQ(b.axis[0].column, 8U);
+    EXPECT_FALSE(b.axis[1].present());
+}
+
+TEST(Parser, WordsWithoutSpaces) {
+    const Block b = block("N20 G17G90");
+    EXPECT_EQ(b.plane.value, Plane::kXY);
+    EXPECT_EQ(b.distance.value, DistanceMode::kAbsolute);
+    const Block xyz = block("G1 X0Y0Z0 F600");
+    EXPECT_TRUE(xyz.axis[0].present() && xyz.axis[1].present() && xyz.axis[2].present());
+    const Block tight = block("N40G1X-1.5Y.5Z+2F600");
+    EXPECT_EQ(tight.axis[0].value, -1.5);
+    EXPECT_EQ(tight.axis[1].value, 0.5);
+    EXPECT_EQ(tight.axis[2].value, 2.0);
+    EXPECT_EQ(tight.feed.value, 600.0);
+}
+
+TEST(Parser, EveryGCodeWithAndWithoutLeadingZero) {
+    struct Case {
+        std::string_view text;
+        int g;
+    };
+    const Case cases[] = {{"G0", 0},   {"G00", 0},  {"G1", 1},   {"G01", 1},  {"G2", 2},
+                          {"G02", 2},  {"G3", 3},   {"G03", 3},  {"G17", 17}, {"G18", 18},
+                          {"G19", 19}, {"G25", 25}, {"G26", 26}, {"G40", 40}, {"G41", 41},
+                          {"G42", 42}, {"G90", 90}, {"G91", 91}};
+    for (const Case& c : cases) {
+        const Block b = block(c.text);
+        int got = -1;
+        if (b.motion.present()) got = g_number(b.motion.value);
+        if (b.plane.present()) got = g_number(b.plane.value);
+        if (b.corner.present()) got = g_number(b.corner.value);
+        if (b.compensation.present()) got = g_number(b.compensation.value);
+        if (b.distance.present()) got = g_number(b.distance.value);
+        EXPECT_EQ(got, c.g) << c.text;
+    }
+}
+
+TEST(Parser, LowercaseAddressLetters) {
+    const Block b = block("n10 g1 x5 y6 f100");
+    EXPECT_EQ(b.block_number(), 10);
+    EXPECT_EQ(b.motion.value, Motion::kLine);
+    EXPECT_EQ(b.axis[1].value, 6.0);
+}
+
+TEST(Parser, CommentsInParenthesesAndAfterSemicolon) {
+    const Block b = block("N22 D1 G25 ( Linearer Übergangssatz) X1 ; G1 Y2");
+    EXPECT_EQ(b.tool.value, 1);
+    EXPECT_EQ(b.corner.value, CornerMode::kLinear);
+    EXPECT_TRUE(b.axis[0].present());
+    EXPECT_FALSE(b.motion.present());
+    EXPECT_FALSE(b.axis[1].present());
+}
+
+TEST(Parser, UnclosedCommentIsSyntaxError) {
+    EXPECT_EQ(error("N10 G1 (no end"), "prog.nc:12:8: comment not closed: expected ')' before "
+                                       "the end of the line");
+}
+
+TEST(Parser, ExpectedNumberAfterAddress) {
+    EXPECT_EQ(error("N10 G1 X"), "prog.nc:12:9: expected a number after 'X'");
+    EXPECT_EQ(error("N10 G1 X Y2"), "prog.nc:12:9: expected a number after 'X'");
+    EXPECT_EQ(error("G1 X- Y2"), "prog.nc:12:5: expected a number after 'X'");
+    EXPECT_EQ(error("G1 X."), "prog.nc:12:5: expected a number after 'X'");
+    EXPECT_EQ(error("G"), "prog.nc:12:2: expected a number after 'G'");
+    EXPECT_EQ(error("N"), "prog.nc:12:2: expected a number after 'N'");
+    EXPECT_EQ(error("G2 I"), "prog.nc:12:5: expected a number after 'I'");
+    EXPECT_EQ(error("F"), "prog.nc:12:2: expected a number after 'F'");
+    EXPECT_EQ(error("D"), "prog.nc:12:2: expected a number after 'D'");
+    EXPECT_EQ(error("M"), "prog.nc:12:2: expected a number after 'M'");
+    EXPECT_EQ(error("G3 R"), "prog.nc:12:5: expected a number after 'R'");
+}
+
+TEST(Parser, NumberOutOfRange) {
+    const std::string huge = "X" + std::string(400, '9');
+    EXPECT_EQ(error(huge), "prog.nc:12:2: the number after 'X' is out of range");
+    EXPECT_EQ(error("N99999999999999999999"), "prog.nc:12:2: the number after 'N' is out of range");
+}
+
+TEST(Parser, WholeNumberWords) {
+    EXPECT_EQ(error("G1.5"), "prog.nc:12:3: 'G' takes a whole number without decimal point");
+    EXPECT_EQ(error("G-1"), "prog.nc:12:2: 'G' takes a whole number without sign or decimal point");
+    EXPECT_EQ(error("D1.0"), "prog.nc:12:3: 'D' takes a whole number without decimal point");
+    EXPECT_EQ(error("N1.5"), "prog.nc:12:3: 'N' takes a whole number without decimal point");
+    EXPECT_EQ(error("M+30"), "prog.nc:12:2: 'M' takes a whole number without sign or decimal point");
+    EXPECT_EQ(error_kind("G1.5"), ErrorKind::kValue);
+}
+
+TEST(Parser, UnknownWordsAreErrors) {
+    EXPECT_EQ(error("N10 E5"),
+              "prog.nc:12:5: unknown word 'E' (known words: N G X Y Z I J K R F D M)");
+    EXPECT_EQ(error("G1 B45"),
+              "prog.nc:12:4: unknown word 'B' (known words: N G X Y Z I J K R F D M)");
+    EXPECT_EQ(error_kind("S1000"), ErrorKind::kUnknownWord);
+}
+
+TEST(Parser, UnknownGCode) {
+    EXPECT_EQ(error("N10 G04"), "prog.nc:12:5: unknown G code G4 (known: G0-G3, G17-G19, G25, "
+                                "G26, G40-G42, G90, G91)");
+    EXPECT_EQ(error_kind("G138"), ErrorKind::kUnknownWord);
+}
+
+TEST(Parser, UnknownMCode) {
+    EXPECT_EQ(error("M3"), "prog.nc:12:1: unknown M code M3 (known: M30)");
+    EXPECT_EQ(error_kind("M02"), ErrorKind::kUnknownWord);
+}
+
+TEST(Parser, UnexpectedCharacter) {
+    EXPECT_EQ(error("G1 X1 @"),
+              "prog.nc:12:7: unexpected character '@': expected a word (N G X Y Z I J K R F D M)");
+    EXPECT_EQ(error("G1 X1\x01"), "prog.nc:12:6: unexpected character byte 0x01: expected a word "
+                                  "(N G X Y Z I J K R F D M)");
+    EXPECT_EQ(error("G1 X1.2.3"),
+              "prog.nc:12:8: unexpected character '.': expected a word (N G X Y Z I J K R F D M)");
+}
+
+TEST(Parser, LeadingNumberHintsAtKlartext) {
+    EXPECT_EQ(error("11 L X+36.0084 Y+6.177 R0"),
+              "prog.nc:12:1: expected a word (an address letter: N G X Y Z I J K R F D M), found "
+              "a number; Klartext programs must begin with 'BEGIN PGM'");
+}
+
+TEST(Parser, ConflictingMotionWords) {
+    EXPECT_EQ(error("G0 X1 G2"), "prog.nc:12:7: G0 and G2 in one block: both set the motion mode");
+    EXPECT_EQ(error_kind("G1 G3"), ErrorKind::kConflict);
+}
+
+TEST(Parser, ConflictingCompensationWords) {
+    EXPECT_EQ(error("G41 G42"),
+              "prog.nc:12:5: G41 and G42 in one block: both set the radius compensation");
+    EXPECT_EQ(error_kind("G40 G41"), ErrorKind::kConflict);
+}
+
+TEST(Parser, ConflictingPlaneCornerDistanceWords) {
+    EXPECT_EQ(error("G17G18"), "prog.nc:12:4: G17 and G18 in one block: both set the plane");
+    EXPECT_EQ(error("G25 G26"), "prog.nc:12:5: G25 and G26 in one block: both set the corner mode");
+    EXPECT_EQ(error("G90 G91"),
+              "prog.nc:12:5: G90 and G91 in one block: both set the distance mode");
+}
+
+TEST(Parser, SameGCodeTwice) {
+    EXPECT_EQ(error("G1 X1 G01"), "prog.nc:12:7: G1 appears twice in one block");
+}
+
+TEST(Parser, SameWordTwice) {
+    EXPECT_EQ(error("G1 X1 X2"), "prog.nc:12:7: 'X' appears twice in one block");
+    EXPECT_EQ(error("G2 I1 I2"), "prog.nc:12:7: 'I' appears twice in one block");
+    EXPECT_EQ(error("D1 D2"), "prog.nc:12:4: 'D' appears twice in one block");
+    EXPECT_EQ(error("F1 F2"), "prog.nc:12:4: 'F' appears twice in one block");
+    EXPECT_EQ(error("M30 M30"), "prog.nc:12:5: M30 appears twice in one block");
+}
+
+TEST(Parser, RadiusAndCenterExcludeEachOther) {
+    EXPECT_EQ(error("G2 X1 I1 R2"), "prog.nc:12:10: R and I/J/K in one block: give the arc centre "
+                                    "or its radius, not both");
+    EXPECT_EQ(error("G2 X1 R2 J1"), "prog.nc:12:10: R and I/J/K in one block: give the arc centre "
+                                    "or its radius, not both");
+}
+
+TEST(Parser, ToolNumberRange) {
+    EXPECT_EQ(block("D0").tool.value, 0);
+    EXPECT_EQ(block("D1023").tool.value, 1023);
+    EXPECT_EQ(error("D1024"), "prog.nc:12:2: tool number D1024 out of range 0..1023");
+}
+
+TEST(Parser, FeedMustBePositive) {
+    EXPECT_EQ(error("F0"), "prog.nc:12:2: feed rate F must be greater than 0");
+    EXPECT_EQ(error("F-5"), "prog.nc:12:2: feed rate F must be greater than 0");
+}
+
+TEST(Parser, RadiusMustNotBeZero) {
+    EXPECT_EQ(error("G2 X1 R0"), "prog.nc:12:8: arc radius R must not be 0");
+}
+
+TEST(Parser, IsgCommandsAreRecognisedButNotSupportedYet) {
+    EXPECT_EQ(error("N50 #OTC ON[RADIUS DISC]"),
+              "prog.nc:12:5: ISG command '#OTC' is not supported yet");
+    EXPECT_EQ(error("N90 $FOR P1=0, 5, 1"), "prog.nc:12:5: ISG command '$FOR' is not supported yet");
+    EXPECT_EQ(error_kind("#TRAFO ON"), ErrorKind::kUnsupported);
+    EXPECT_EQ(error("# ON"), "prog.nc:12:1: expected a command name after '#'");
+}
+
+TEST(Parser, ErrorColumnsCountCharactersNotBytes) {
+    EXPECT_EQ(error("N22 (Übergang) Q1"),
+              "prog.nc:12:16: unknown word 'Q' (known words: N G X Y Z I J K R F D M)");
+}
+
+TEST(Parser, DialectDetection) {
+    EXPECT_EQ(detect_dialect("0  BEGIN PGM 3DTEST MM").dialect, Dialect::kKlartext);
+    EXPECT_EQ(detect_dialect("0  BEGIN PGM 3DTEST MM").offset, 3U);
+    EXPECT_EQ(detect_dialect("BEGIN PGM X MM").dialect, Dialect::kKlartext);
+    EXPECT_EQ(detect_dialect("  (c) ; x").dialect, Dialect::kUndecided);
+    EXPECT_EQ(detect_dialect("").dialect, Dialect::kUndecided);
+    EXPECT_EQ(detect_dialect("%wr_quad_disc.nc").dialect, Dialect::kDin66025);
+    EXPECT_EQ(detect_dialect("N10 G1 X1").dialect, Dialect::kDin66025);
+    EXPECT_EQ(detect_dialect("BEGIN X").dialect, Dialect::kDin66025);
+    EXPECT_EQ(detect_dialect("BEGINPGM").dialect, Dialect::kDin66025);
+}
+
+}  // namespace
+}  // namespace apci::nc

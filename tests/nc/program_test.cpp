@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/program.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "apci/nc/tools.h"
+#include "nc_test_util.h"
+
+namespace apci::nc {
+namespace {
+
+using test::error_of;
+using test::events_of;
+using test::only;
+using V = Eigen::Vector3d;
+
+const std::string kExamples = APCI_EXAMPLES_DIR;
+
+std::string temp_file(const std::string& name, const std::string& text) {
+    const std::string path = ::testing::TempDir() + name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<Event> execute(const Program& p) {
+    Result<EventStream> s = p.events();
+    EXPECT_TRUE(s) << s.error().to_string();
+    std::vector<Event> out;
+    if (!s) return out;
+    Event ev;
+    while (s.value().next(ev) == EventStream::Next::kEvent) out.push_back(ev);
+    return out;
+}
+
+TEST(Program, ProgramNameIsReported) {
+    Result<Program> p = Program::from_text("; header\n%demo.nc\nG0 X1\nM30\n", "demo");
+    ASSERT_TRUE(p) << p.error().to_string();
+    EXPECT_EQ(p.value().summary().name, "demo.nc");
+}
+
+TEST(Program, ProgramNameOnlyOnFirstSignificantLine) {
+    EXPECT_EQ(error_of("G0 X1\n%late\nM30"),
+              "prog.nc:2:1: '%name' must be the first line of the program (and appear once)");
+    EXPECT_EQ(error_of("%a\n%b\nM30"),
+              "prog.nc:2:1: '%name' must be the first line of the program (and appear once)");
+}
+
+TEST(Program, KlartextDialectIsDetectedAndRefused) {
+    EXPECT_EQ(error_of("0  BEGIN PGM 3DTEST MM\n1 TOOL CALL 1 Z\n"),
+              "prog.nc:1:4: Klartext dialect not supported yet (the program begins with 'BEGIN "
+              "PGM'); only DIN 66025 programs are accepted");
+    EXPECT_EQ(error_of("\n; header\nBEGIN PGM X MM\n"),
+              "prog.nc:3:1: Klartext dialect not supported yet (the program begins with 'BEGIN "
+              "PGM'); only DIN 66025 programs are accepted");
+    const test::RunResult r = test::run("BEGIN PGM X MM\n");
+    ASSERT_TRUE(r.error);
+    EXPECT_EQ(r.error->kind, ErrorKind::kUnsupported);
+}
+
+TEST(Program, WindowsLineEndsAndMissingFinalNewline) {
+    const auto ev = events_of("G0 X1\r\nG0 X2\r\nM30");
+    ASSERT_EQ(ev.size(), 3U);
+    EXPECT_EQ(ev[2].origin.line, 3U);
+}
+
+TEST(Program, SummaryCountsLinesBlocksEventsMoves) {
+    Result<Program> p = Program::from_text("%p\nN1 D1 G0 X1\n\nN2 G1 X2 F1\nN3 M30\n", "p");
+    ASSERT_TRUE(p) << p.error().to_string();
+    const ProgramSummary& s = p.value().summary();
+    EXPECT_EQ(s.lines, 5U);
+    EXPECT_EQ(s.blocks, 3U);
+    EXPECT_EQ(s.events, 4U);  // tool, rapid, line, end
+    EXPECT_EQ(s.moves, 2U);
+}
+
+// A stream on its own executes blocks until it meets the error; Program::load refuses the whole
+// program first, so nothing of it is executed.
+TEST(Program, NothingIsExecutedFromAProgramThatDoesNotParse) {
+    const std::string text = "G0 X1\nG0 X2\nG0 X3\nG0 Q4\nM30\n";
+    EventStream raw = EventStream::from_text(text, "bad.nc");
+    Event ev;
+    int executed = 0;
+    while (raw.next(ev) == EventStream::Next::kEvent) ++executed;
+    EXPECT_EQ(executed, 3);
+    EXPECT_EQ(raw.error().to_string(),
+              "bad.nc:4:4: unknown word 'Q' (known words: N G X Y Z I J K R F D M)");
+    EXPECT_EQ(raw.next(ev), EventStream::Next::kError);  // stays in error
+
+    const std::string path = temp_file("bad.nc", text);
+    Result<Program> p = Program::load(path);
+    ASSERT_FALSE(p);
+    EXPECT_EQ(p.error().to_string(),
+              path + ":4:4: unknown word 'Q' (known words: N G X Y Z I J K R F D M)");
+}
+
+TEST(Program, ExecutionPassRepeatsTheValidatedEvents) {
+    const std::string path = temp_file("twice.nc", "G0 X1\nG1 Y2 F10\nG2 X3 Y4 R2\nM30\n");
+    Result<Program> p = Program::load(path);
+    ASSERT_TRUE(p) << p.error().to_string();
+    const auto first = execute(p.value());
+    const auto second = execute(p.value());
+    ASSERT_EQ(first.size(), p.value().summary().events);
+    ASSERT_EQ(first.size(), second.size());
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        EXPECT_EQ(first[i].data.index(), second[i].data.index());
+        EXPECT_EQ(first[i].origin.line, second[i].origin.line);
+    }
+}
+
+TEST(Program, FileChangedSinceValidationIsRefused) {
+    const std::string path = temp_file("changing.nc", "G0 X1\nM30\n");
+    Result<Program> p = Program::load(path);
+    ASSERT_TRUE(p) << p.error().to_string();
+    std::ofstream(path, std::ios::binary | std::ios::app) << "; appended\n";
+    Result<EventStream> s = p.value().events();
+    ASSERT_FALSE(s);
+    EXPECT_EQ(s.error().kind, ErrorKind::kIo);
+    EXPECT_EQ(s.error().to_string(),
+              path + ": the file changed since it was validated; load it again");
+}
+
+TEST(Program, MissingFileIsIoError) {
+    Result<Program> p = Program::load("/nonexistent/dir/prog.nc");
+    ASSERT_FALSE(p);
+    EXPECT_EQ(p.error().kind, ErrorKind::kIo);
+    EXPECT_EQ(p.error().to_string(), "/nonexistent/dir/prog.nc: cannot open: No such file or directory");
+}
+
+TEST(Program, OverlongLineIsError) {
+    std::string text = "G0 X1 ;";
+    text.append(LineSource::kMaxLineLength, 'x');
+    text += "\nM30\n";
+    EXPECT_EQ(error_of(text), "prog.nc:1:65537: line longer than 65536 characters");
+    const std::string path = temp_file("long.nc", text);
+    Result<Program> p = Program::load(path);
+    ASSERT_FALSE(p);
+    EXPECT_EQ(p.error().to_string(), path + ":1:65537: line longer than 65536 characters");
+}
+
+TEST(Program, LinesAcrossTheReadBufferKeepTheirText) {
+    // Enough lines of varying length that many straddle the file reader's buffer boundary.
+    std::string text = "G1 F100\n";
+    int n = 0;
+    while (text.size() < 3 * 2 * LineSource::kMaxLineLength) {
+        ++n;
+        text += "N" + std::to_string(n) + " X" + std::to_string(n % 997) + ".5 ( " +
+                std::string(static_cast<std::size_t>(n % 13), 'c') + ")\n";
+    }
+    text += "M30\n";
+    const std::string path = temp_file("straddle.nc", text);
+    Result<Program> p = Program::load(path);
+    ASSERT_TRUE(p) << p.error().to_string();
+    const auto lines = only<LineMove>(execute(p.value()));
+    ASSERT_EQ(lines.size(), static_cast<std::size_t>(n));
+    for (int i = 1; i <= n; ++i) {
+        ASSERT_EQ(lines[static_cast<std::size_t>(i - 1)].end.x(), (i % 997) + 0.5) << i;
+    }
+}
+
+// The seed's wr_quad_disc.nc (ISG FCT-C20 section 2.2) without its #OTC lines.
+TEST(Program, SeedProgramWrQuadDiscParses) {
+    Result<ToolTable> tools = load_tool_table(kExamples + "/tools/wr_quad_disc.tools");
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    InterpreterOptions o;
+    o.tools = &tools.value();
+    Result<Program> p = Program::load(kExamples + "/wr_quad_disc.nc", o);
+    ASSERT_TRUE(p) << p.error().to_string();
+    EXPECT_EQ(p.value().summary().name, "wr_quad_disc.nc");
+    const auto ev = execute(p.value());
+    std::vector<std::string> names;
+    std::vector<std::int64_t> blocks;
+    for (const Event& e : ev) {
+        names.emplace_back(event_name(e.data));
+        blocks.push_back(e.origin.block);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"tool", "corner", "line", "compensation", "line",
+                                                "line", "corner", "line", "line", "line",
+                                                "compensation", "line", "end"}));
+    EXPECT_EQ(blocks, (std::vector<std::int64_t>{22, 22, 40, 55, 60, 70, 80, 80, 90, 95, 100,
+                                                  100, 99999}));
+    const auto lines = only<LineMove>(ev);
+    ASSERT_EQ(lines.size(), 7U);
+    EXPECT_EQ(lines[2].end, V(102, 0, 0));
+    EXPECT_EQ(lines[3].end, V(102, 100, 0));
+    EXPECT_EQ(lines[6].end, V(0, 0, 0));
+    for (const LineMove& l : lines) EXPECT_EQ(l.feed, 600.0);
+    EXPECT_EQ(std::get<CompensationChange>(ev[3].data).side, Compensation::kRight);
+    EXPECT_EQ(std::get<CornerModeChange>(ev[1].data).mode, CornerMode::kLinear);
+    EXPECT_EQ(std::get<CornerModeChange>(ev[6].data).mode, CornerMode::kCircular);
+}
+
+TEST(Program, SeedGeneralOtcExampleParses) {
+    Result<Program> p = Program::load(kExamples + "/otc_general.nc");
+    ASSERT_TRUE(p) << p.error().to_string();
+    const auto ev = execute(p.value());
+    const auto lines = only<LineMove>(ev);
+    ASSERT_EQ(lines.size(), 3U);
+    EXPECT_EQ(lines[0].feed, 10000.0);
+    EXPECT_EQ(lines[1].end, V(1000, 0, 0));
+}
+
+TEST(Program, SeedProgramWithOtcLinesNamesTheFirstOtcLine) {
+    // The example with its #OTC lines put back: refused at N50, with nothing executed.
+    std::string text = read_file(kExamples + "/wr_quad_disc.nc");
+    const std::size_t at = text.find("N55");
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at, "N50 #OTC ON[RADIUS DISC]\n");
+    EXPECT_EQ(error_of(text), "prog.nc:8:5: ISG command '#OTC' is not supported yet");
+}
+
+}  // namespace
+}  // namespace apci::nc

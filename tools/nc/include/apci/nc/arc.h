@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// Arc geometry of the program (pure functions): which axes span a plane, the centre of an
+// R-programmed arc, and the checks that an arc the program asks for exists.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "apci/nc/block.h"
+
+namespace apci::nc {
+
+// End points may miss the circle by this much (start radius vs end radius), and an R arc's
+// chord may exceed the diameter by this much (then it is a half circle): CAM output rounded to
+// 3 decimals stays well inside it.
+inline constexpr double kArcRadiusTolerance = 0.002;  // mm
+// An arc radius below this is zero (centre on the start point).
+inline constexpr double kMinArcRadius = 1e-6;  // mm
+
+// Indices (0 X, 1 Y, 2 Z) of the plane's first and second axis and of its normal, ordered so
+// that first x second = normal: G17 X,Y,Z; G18 Z,X,Y; G19 Y,Z,X.
+struct PlaneAxes {
+    int first;
+    int second;
+    int normal;
+};
+constexpr PlaneAxes plane_axes(Plane p) noexcept {
+    switch (p) {
+        case Plane::kZX: return {2, 0, 1};
+        case Plane::kYZ: return {1, 2, 0};
+        case Plane::kXY: break;
+    }
+    return {0, 1, 2};
+}
+
+struct ArcCenterResult {
+    bool ok = false;
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();
+    std::string message;  // why there is no such arc (when !ok)
+};
+
+// Centre of the arc from start to end with radius r in plane p (the normal coordinate is the
+// start's). r > 0: the shorter arc (<= 180 degrees); r < 0: the longer one (> 180 degrees), the
+// usual DIN 66025 convention. Fails when end equals start in the plane or the chord is longer
+// than the diameter (beyond kArcRadiusTolerance).
+ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                                       double r, bool ccw, Plane p);
+
+// Checks an I/J/K arc: the centre must not sit on the start point and the end must lie on the
+// circle through the start (radii equal within kArcRadiusTolerance). Empty string when fine.
+std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                             const Eigen::Vector3d& center, Plane p);
+
+}  // namespace apci::nc

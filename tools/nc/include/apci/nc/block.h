@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// One parsed DIN 66025 block (one line): which words it has, their values and columns.
+// Fixed size, no heap: the parser refills the same Block for every line.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace apci::nc {
+
+// Modal groups of the DIN 66025 subset; the enumerator values are the G numbers.
+enum class Motion : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 3 };
+enum class Plane : std::uint8_t { kXY = 17, kZX = 18, kYZ = 19 };
+enum class DistanceMode : std::uint8_t { kAbsolute = 90, kIncremental = 91 };
+enum class Compensation : std::uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
+// Outside corners under radius compensation (ISG seed, wr_quad_disc.nc: G25 "linearer
+// Übergangssatz", G26 "zirkularer Übergangssatz").
+enum class CornerMode : std::uint8_t { kLinear = 25, kCircular = 26 };
+
+constexpr int g_number(Motion m) noexcept { return static_cast<int>(m); }
+constexpr int g_number(Plane p) noexcept { return static_cast<int>(p); }
+constexpr int g_number(DistanceMode d) noexcept { return static_cast<int>(d); }
+constexpr int g_number(Compensation c) noexcept { return static_cast<int>(c); }
+constexpr int g_number(CornerMode c) noexcept { return static_cast<int>(c); }
+
+// A word of the block: its value and the 1-based column of its address letter; column 0 means
+// the block does not have the word.
+template <typename T>
+struct Word {
+    T value{};
+    std::uint32_t column = 0;
+    constexpr bool present() const noexcept { return column != 0; }
+};
+
+inline constexpr int kMaxToolNumber = 1023;  // D and wz[i] (TC module WKZINDEX 0..1023)
+
+struct Block {
+    std::uint64_t line = 0;                     // 1-based source line
+    Word<std::int64_t> number;                  // N
+    Word<Motion> motion;                        // G0 G1 G2 G3
+    Word<Plane> plane;                          // G17 G18 G19
+    Word<DistanceMode> distance;                // G90 G91
+    Word<Compensation> compensation;            // G40 G41 G42
+    Word<CornerMode> corner;                    // G25 G26
+    std::array<Word<double>, 3> axis;           // X Y Z, program units (mm)
+    std::array<Word<double>, 3> center;         // I J K, incremental from the arc start
+    Word<double> radius;                        // R (negative: the larger arc)
+    Word<double> feed;                          // F, mm/min, > 0
+    Word<int> tool;                             // D, 0..kMaxToolNumber (0: no tool)
+    Word<bool> end_of_program;                  // M30
+
+    bool has_axis_word() const noexcept {
+        return axis[0].present() || axis[1].present() || axis[2].present();
+    }
+    bool has_center_word() const noexcept {
+        return center[0].present() || center[1].present() || center[2].present();
+    }
+    // N number, or kNoBlockNumber (-1) when the block has none.
+    std::int64_t block_number() const noexcept { return number.present() ? number.value : -1; }
+};
+
+}  // namespace apci::nc

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// Character-level scanning of one line, shared by the DIN 66025 block parser, the tool file
+// parser and (later) the ISG # command and Klartext parsers: a cursor with primitives for
+// blanks, numbers, identifiers and comments. Nothing allocates.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace apci::nc {
+
+// 1-based column of byte offset `offset` in `line`, counting UTF-8 characters (so a comment
+// with umlauts before the error does not shift the column) and a tab as one column.
+std::uint32_t column_at(std::string_view line, std::size_t offset) noexcept;
+
+enum class NumberScan : std::uint8_t {
+    kNone,        // no number at the cursor (cursor unchanged)
+    kOk,          // value set, cursor behind the number
+    kOutOfRange,  // well-formed but not a finite double (cursor behind the number)
+};
+
+class LineCursor {
+public:
+    explicit LineCursor(std::string_view line) noexcept : line_(line) {}
+
+    std::string_view line() const noexcept { return line_; }
+    std::size_t offset() const noexcept { return pos_; }
+    std::uint32_t column() const noexcept { return column_at(line_, pos_); }
+    bool at_end() const noexcept { return pos_ >= line_.size(); }
+    // The character at the cursor, '\0' at the end.
+    char peek() const noexcept { return pos_ < line_.size() ? line_[pos_] : '\0'; }
+    char peek_at(std::size_t ahead) const noexcept {
+        return pos_ + ahead < line_.size() ? line_[pos_ + ahead] : '\0';
+    }
+    void advance(std::size_t n = 1) noexcept { pos_ = pos_ + n < line_.size() ? pos_ + n : line_.size(); }
+    void skip_blanks() noexcept {
+        while (pos_ < line_.size() && (line_[pos_] == ' ' || line_[pos_] == '\t')) ++pos_;
+    }
+    std::string_view rest() const noexcept { return line_.substr(pos_); }
+
+    // Number syntax of NC programs and tool files: [+-] then digits with an optional decimal
+    // point and fraction, or a leading point ("X.5", "X-.5", "X1.", "X+2"). No exponent.
+    NumberScan scan_number(double& value) noexcept;
+    // Letters, digits and '_' starting with a letter or '_'; empty when none at the cursor.
+    std::string_view scan_identifier() noexcept;
+    // At '(': skips to behind the matching ')' and returns true; false (cursor unchanged) when
+    // the line ends first.
+    bool skip_paren_comment() noexcept;
+
+private:
+    std::string_view line_;
+    std::size_t pos_ = 0;
+};
+
+constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
+constexpr bool is_letter(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+constexpr char to_upper(char c) noexcept { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
+
+}  // namespace apci::nc

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+// Streaming NC programs: text -> lines -> blocks -> events with flat memory (one line buffer,
+// one block, one batch of at most EventBatch::kCapacity events; nothing kept per block).
+//
+// Two passes make "nothing is executed from a program that does not parse" hold for streamed
+// input (DESIGN.md section 8): Program::load() reads the whole program once, parsing and
+// interpreting every block but keeping no event (the validation pass); only a program that
+// passed gives an EventStream for the execution pass, which reads it again.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "apci/nc/diagnostic.h"
+#include "apci/nc/events.h"
+#include "apci/nc/interpreter.h"
+#include "apci/nc/parser.h"
+#include "apci/nc/source.h"
+
+namespace apci::nc {
+
+// One pass over a program, pulling one event at a time.
+class EventStream {
+public:
+    static Result<EventStream> open_file(const std::string& path, InterpreterOptions options = {});
+    // The text must outlive the stream; nothing is copied.
+    static EventStream from_text(std::string_view text, std::string name,
+                                 InterpreterOptions options = {});
+
+    enum class Next { kEvent, kEnd, kError };
+    // kEvent: `out` holds the next event. kEnd: the program ended with M30 and only blank or
+    // comment lines follow. kError: error() says why; every later call returns kError again.
+    Next next(Event& out);
+
+    const Diagnostic& error() const noexcept { return error_; }
+    const ModalState& state() const noexcept { return interpreter_.state(); }
+    const std::string& file() const noexcept { return source_.name(); }
+    // The "%name" of the program, empty when it has none.
+    const std::string& program_name() const noexcept { return program_name_; }
+    std::uint64_t lines_read() const noexcept { return source_.line_number(); }
+    std::uint64_t blocks_read() const noexcept { return blocks_; }
+
+private:
+    EventStream(LineSource source, InterpreterOptions options);
+    bool read_batch();  // fills batch_ from the next block with events; false at end or error
+    bool fail(Diagnostic d);
+    bool line(std::string_view text);
+
+    LineSource source_;
+    Interpreter interpreter_;
+    ParsedLine parsed_;
+    EventBatch batch_;
+    std::size_t batch_pos_ = 0;
+    Dialect dialect_ = Dialect::kUndecided;
+    bool seen_block_ = false;
+    bool at_end_ = false;
+    bool failed_ = false;
+    std::uint64_t blocks_ = 0;
+    std::string program_name_;
+    Diagnostic error_;
+};
+
+struct ProgramSummary {
+    std::string file;
+    std::string name;            // "%name", empty when the program has none
+    std::uint64_t lines = 0;     // source lines
+    std::uint64_t blocks = 0;    // lines holding a block
+    std::uint64_t events = 0;
+    std::uint64_t moves = 0;     // rapid, line and arc events
+};
+
+// Runs the whole stream, keeping nothing but counts: the validation pass.
+Result<ProgramSummary> validate(EventStream& stream);
+
+// A program that passed validation and can be executed (streamed again) any number of times.
+class Program {
+public:
+    // Validates the file; the error is the first one in the program.
+    static Result<Program> load(const std::string& path, InterpreterOptions options = {});
+    // Validates text held by the caller (it must outlive the Program and its streams).
+    static Result<Program> from_text(std::string_view text, std::string name,
+                                     InterpreterOptions options = {});
+
+    const ProgramSummary& summary() const noexcept { return summary_; }
+    // The execution pass. For a file, fails with kIo when the file changed (size or time of
+    // last change) since validation; the stream re-checks every block anyway.
+    Result<EventStream> events() const;
+
+private:
+    Program() = default;
+    ProgramSummary summary_;
+    InterpreterOptions options_;
+    bool from_file_ = false;
+    std::string_view text_;
+    std::uint64_t file_size_ = 0;
+    std::int64_t file_mtime_ns_ = 0;
+};
+
+}  // namespace apci::nc

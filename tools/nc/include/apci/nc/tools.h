@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// The tool list file in the ISG seed's form (FCT-C20, section 2.6 "Spezielle Einstellungen in
+// den Werkzeugdaten"): one "wz[i].field value [comment]" a line, '#' comments, blank lines.
+// Raw values are kept as written, in the seed's units; accessors convert to mm and degrees.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "apci/nc/block.h"
+#include "apci/nc/diagnostic.h"
+
+namespace apci::nc {
+
+// wz[i].typ, P-TOOL-00001 (seed section 3.2).
+enum class ToolType : std::int32_t { kMilling = 0, kTurning = 1, kGrinding = 2, kWire = 3 };
+
+// wz[i].ax_ersatz[k]: k = 0..7 (the board has 8 axes).
+inline constexpr std::size_t kAxisOffsetCount = 8;
+
+struct ToolData {
+    int index = 0;  // i of wz[i], 1..kMaxToolNumber
+
+    // Raw values as in the file; unset data is 0 (seed section 2.6, "Hinweis").
+    std::int32_t gueltig = 0;       // 1: the data set is valid
+    std::int32_t typ = 0;           // ToolType
+    std::int32_t mass_einheit = 0;  // 0: lengths in 0.1 um, 1: lengths in mm
+    double laenge = 0.0;            // tool length, length unit
+    double radius = 0.0;            // tool radius, length unit
+    std::array<double, kAxisOffsetCount> ax_ersatz{};  // per-axis offsets, length unit
+    double grinding_wear_const = 0.0;       // P-TOOL-00030, always 0.1 um/m
+    double grinding_max_infeed = 0.0;       // P-TOOL-00031, always 0.1 um
+    double grinding_disc_tilt_angle = 0.0;  // P-TOOL-00138, always 0.0001 degree
+    // 3D compensation (TNC seed: R2, DL, DR, DR2), length unit like radius.
+    double r2 = 0.0;
+    double dl = 0.0;
+    double dr = 0.0;
+    double dr2 = 0.0;
+
+    bool valid() const noexcept { return gueltig == 1; }
+    ToolType type() const noexcept { return static_cast<ToolType>(typ); }
+    // mm per unit of the length fields: 0.0001 with mass_einheit 0 (0.1 um), 1 with 1 (mm).
+    double length_unit_mm() const noexcept { return mass_einheit == 0 ? 1e-4 : 1.0; }
+
+    double length_mm() const noexcept { return laenge * length_unit_mm(); }
+    double radius_mm() const noexcept { return radius * length_unit_mm(); }
+    double axis_offset_mm(std::size_t k) const noexcept {
+        return k < kAxisOffsetCount ? ax_ersatz[k] * length_unit_mm() : 0.0;
+    }
+    double r2_mm() const noexcept { return r2 * length_unit_mm(); }
+    double dl_mm() const noexcept { return dl * length_unit_mm(); }
+    double dr_mm() const noexcept { return dr * length_unit_mm(); }
+    double dr2_mm() const noexcept { return dr2 * length_unit_mm(); }
+    // 0.1 um/m -> mm per m of path.
+    double wear_const_mm_per_m() const noexcept { return grinding_wear_const * 1e-4; }
+    // 0.1 um -> mm.
+    double max_infeed_mm() const noexcept { return grinding_max_infeed * 1e-4; }
+    // 0.0001 degree -> degree.
+    double disc_tilt_angle_deg() const noexcept { return grinding_disc_tilt_angle * 1e-4; }
+};
+
+class ToolTable {
+public:
+    // The tool wz[index], or nullptr when no line of the file names it.
+    const ToolData* find(int index) const noexcept;
+    // Defined tools, ascending by index.
+    const std::vector<ToolData>& tools() const noexcept { return tools_; }
+    std::size_t size() const noexcept { return tools_.size(); }
+
+    // Creates wz[index] (all zero) if absent; index must be 1..kMaxToolNumber.
+    ToolData& define(int index);
+
+private:
+    std::vector<ToolData> tools_;
+};
+
+// Parses a tool list. Errors name file, line and column: unknown field, bad index, missing or
+// malformed value, value out of range, a field set twice for one tool.
+Result<ToolTable> parse_tool_table(std::string_view text, std::string_view file);
+// Reads and parses a tool list file (line by line, as the NC programs).
+Result<ToolTable> load_tool_table(const std::string& path);
+
+}  // namespace apci::nc

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/arc.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace apci::nc {
+
+namespace {
+Eigen::Vector2d in_plane(const Eigen::Vector3d& v, PlaneAxes a) {
+    return {v[a.first], v[a.second]};
+}
+}  // namespace
+
+ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                                       double r, bool ccw, Plane p) {
+    ArcCenterResult out;
+    const PlaneAxes a = plane_axes(p);
+    const Eigen::Vector2d s = in_plane(start, a);
+    const Eigen::Vector2d e = in_plane(end, a);
+    const Eigen::Vector2d chord = e - s;
+    const double d = chord.norm();
+    const double abs_r = std::fabs(r);
+    if (d < kMinArcRadius) {
+        out.message = "R arc impossible: its end point equals the start point in the plane "
+                      "(program a full circle with I/J/K)";
+        return out;
+    }
+    if (d > 2.0 * abs_r + kArcRadiusTolerance) {
+        out.message = fmt::format(
+            "R arc impossible: the chord from start to end is {:.4f} mm long, more than the "
+            "diameter {:.4f} mm of R{}",
+            d, 2.0 * abs_r, r);
+        return out;
+    }
+    const double half = d / 2.0;
+    const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
+    const Eigen::Vector2d u = chord / d;
+    const Eigen::Vector2d left(-u.y(), u.x());
+    // The shorter counter-clockwise arc turns around a centre left of the chord; clockwise or the
+    // longer arc puts it on the right.
+    const double side = (ccw ? 1.0 : -1.0) * (r > 0.0 ? 1.0 : -1.0);
+    const Eigen::Vector2d c = (s + e) / 2.0 + side * h * left;
+    out.center = start;
+    out.center[a.first] = c.x();
+    out.center[a.second] = c.y();
+    out.ok = true;
+    return out;
+}
+
+std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                             const Eigen::Vector3d& center, Plane p) {
+    const PlaneAxes a = plane_axes(p);
+    const Eigen::Vector2d c = in_plane(center, a);
+    const double rs = (in_plane(start, a) - c).norm();
+    const double re = (in_plane(end, a) - c).norm();
+    if (rs < kMinArcRadius) return "arc radius is 0: the centre (I/J/K) is the start point";
+    if (std::fabs(rs - re) > kArcRadiusTolerance) {
+        return fmt::format(
+            "arc end point is not on the circle: radius {:.4f} mm at the start, {:.4f} mm at the "
+            "end (tolerance {} mm)",
+            rs, re, kArcRadiusTolerance);
+    }
+    return {};
+}
+
+}  // namespace apci::nc

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/interpreter.h"
+
+#include <fmt/format.h>
+
+#include "apci/nc/arc.h"
+#include "apci/nc/tools.h"
+
+namespace apci::nc {
+
+namespace {
+
+constexpr char kCenterLetter[3] = {'I', 'J', 'K'};
+
+bool is_arc(Motion m) { return m == Motion::kArcCw || m == Motion::kArcCcw; }
+
+// The context of one apply() call, so that the rule checks below stay short.
+struct BlockCheck {
+    const Block& b;
+    std::string_view file;
+    Diagnostic& err;
+
+    bool fail(ErrorKind kind, std::uint32_t column, std::string message) const {
+        err.kind = kind;
+        err.file = std::string(file);
+        err.line = b.line;
+        err.column = column == 0 ? 1 : column;
+        err.block = b.block_number();
+        err.message = std::move(message);
+        return false;
+    }
+};
+
+bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* tools) {
+    const Word<int>& d = c.b.tool;
+    if (!d.present()) return true;
+    // The TC module takes a tool index only while compensation is inactive (seed TC document,
+    // Table 3: WKZINDEX), so a tool change needs G40 first.
+    if (before.compensation != Compensation::kOff) {
+        return c.fail(ErrorKind::kProgramRule, d.column,
+                      fmt::format("D{} while radius compensation G{} is on: program G40 in an "
+                                  "earlier block before selecting a tool",
+                                  d.value, g_number(before.compensation)));
+    }
+    if (tools == nullptr || d.value == 0) return true;
+    const ToolData* t = tools->find(d.value);
+    if (t == nullptr) {
+        return c.fail(ErrorKind::kProgramRule, d.column,
+                      fmt::format("D{} selects tool {}, which the tool list does not define",
+                                  d.value, d.value));
+    }
+    if (!t->valid()) {
+        return c.fail(ErrorKind::kProgramRule, d.column,
+                      fmt::format("D{} selects tool {}, which is not valid (wz[{}].gueltig is {}, "
+                                  "not 1; unset data is 0)",
+                                  d.value, d.value, d.value, t->gueltig));
+    }
+    return true;
+}
+
+bool check_plane(const BlockCheck& c, const ModalState& before, Compensation comp_after) {
+    const Word<Plane>& p = c.b.plane;
+    if (!p.present() || p.value == before.plane) return true;
+    if (before.compensation != Compensation::kOff || comp_after != Compensation::kOff) {
+        return c.fail(ErrorKind::kProgramRule, p.column,
+                      fmt::format("G{} changes the plane while radius compensation is on: "
+                                  "program G40 before changing the plane",
+                                  g_number(p.value)));
+    }
+    return true;
+}
+
+// Resolves the end point of a move from the axis words and the distance mode.
+Eigen::Vector3d end_point(const Block& b, const Eigen::Vector3d& from, DistanceMode mode) {
+    Eigen::Vector3d end = from;
+    for (int k = 0; k < 3; ++k) {
+        const Word<double>& w = b.axis[static_cast<std::size_t>(k)];
+        if (!w.present()) continue;
+        end[k] = mode == DistanceMode::kIncremental ? from[k] + w.value : w.value;
+    }
+    return end;
+}
+
+// First column among the words that make the block a move (axis, centre, radius).
+std::uint32_t first_motion_column(const Block& b) {
+    std::uint32_t col = 0;
+    auto take = [&col](const Word<double>& w) {
+        if (w.present() && (col == 0 || w.column < col)) col = w.column;
+    };
+    for (const auto& w : b.axis) take(w);
+    for (const auto& w : b.center) take(w);
+    take(b.radius);
+    return col;
+}
+
+bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eigen::Vector3d& start,
+              const Eigen::Vector3d& end, EventData& out) {
+    const Block& b = c.b;
+    const PlaneAxes axes = plane_axes(s.plane);
+    const auto n = static_cast<std::size_t>(axes.normal);
+    if (b.center[n].present()) {
+        return c.fail(ErrorKind::kConflict, b.center[n].column,
+                      fmt::format("{} is not a centre word in the G{} plane (use {} and {})",
+                                  kCenterLetter[n], g_number(s.plane),
+                                  kCenterLetter[axes.first], kCenterLetter[axes.second]));
+    }
+    ArcMove arc;
+    arc.start = start;
+    arc.end = end;
+    arc.ccw = motion == Motion::kArcCcw;
+    arc.plane = s.plane;
+    arc.feed = s.feed;
+    if (b.radius.present()) {
+        ArcCenterResult r = arc_center_from_radius(start, end, b.radius.value, arc.ccw, s.plane);
+        if (!r.ok) return c.fail(ErrorKind::kGeometry, b.radius.column, std::move(r.message));
+        arc.center = r.center;
+    } else if (b.has_center_word()) {
+        // I/J/K are incremental from the start point in G90 and G91 alike (DIN 66025 practice).
+        arc.center = start;
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (b.center[k].present()) arc.center[static_cast<int>(k)] += b.center[k].value;
+        }
+        std::string why = check_arc_center(start, end, arc.center, s.plane);
+        if (!why.empty()) {
+            return c.fail(ErrorKind::kGeometry, b.motion.present() ? b.motion.column
+                                                                   : first_motion_column(b),
+                          std::move(why));
+        }
+    } else {
+        return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
+                      fmt::format("G{} arc needs its centre ({} {}) or its radius (R)",
+                                  g_number(motion), kCenterLetter[axes.first],
+                                  kCenterLetter[axes.second]));
+    }
+    out = arc;
+    return true;
+}
+
+}  // namespace
+
+Interpreter::Interpreter(InterpreterOptions options) : options_(options) {
+    state_.position = options_.start_position;
+}
+
+bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, Diagnostic& err) {
+    out.clear();
+    const BlockCheck c{b, file, err};
+    if (state_.ended) {
+        return c.fail(ErrorKind::kProgramRule, 1,
+                      "block after M30: the program has already ended");
+    }
+    ModalState s = state_;  // committed only when every check has passed
+    if (b.motion.present()) s.motion = b.motion.value;
+    if (b.distance.present()) s.distance = b.distance.value;
+    if (b.feed.present()) s.feed = b.feed.value;
+    if (b.corner.present()) s.corner = b.corner.value;
+    if (b.compensation.present()) s.compensation = b.compensation.value;
+    if (!check_tool(c, state_, options_.tools)) return false;
+    if (b.tool.present()) s.tool = b.tool.value;
+    if (!check_plane(c, state_, s.compensation)) return false;
+    if (b.plane.present()) s.plane = b.plane.value;
+
+    const bool moves = b.has_axis_word() || b.has_center_word() || b.radius.present();
+    EventData move;
+    if (moves) {
+        if (!s.motion) {
+            return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
+                          "no motion mode: program G0, G1, G2 or G3 before the first move");
+        }
+        const Motion m = *s.motion;
+        if (!is_arc(m) && (b.has_center_word() || b.radius.present())) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                if (b.center[k].present()) {
+                    return c.fail(ErrorKind::kConflict, b.center[k].column,
+                                  fmt::format("{} belongs to arcs (G2/G3), not to G{}",
+                                              kCenterLetter[k], g_number(m)));
+                }
+            }
+            return c.fail(ErrorKind::kConflict, b.radius.column,
+                          fmt::format("R belongs to arcs (G2/G3), not to G{}", g_number(m)));
+        }
+        if (m != Motion::kRapid && !(s.feed > 0.0)) {
+            return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
+                          fmt::format("no feed rate: program F before the first G{} move",
+                                      g_number(m)));
+        }
+        if (is_arc(m) && s.compensation != state_.compensation) {
+            return c.fail(ErrorKind::kProgramRule, b.compensation.column,
+                          fmt::format("G{} switched in an arc block: switch radius compensation "
+                                      "with G0/G1 or in a block without a move",
+                                      g_number(s.compensation)));
+        }
+        const Eigen::Vector3d end = end_point(b, state_.position, s.distance);
+        switch (m) {
+            case Motion::kRapid: move = RapidMove{state_.position, end}; break;
+            case Motion::kLine: move = LineMove{state_.position, end, s.feed}; break;
+            case Motion::kArcCw:
+            case Motion::kArcCcw:
+                if (!arc_move(c, s, m, state_.position, end, move)) return false;
+                break;
+        }
+        s.position = end;
+    }
+    if (b.end_of_program.present()) s.ended = true;
+
+    // Every check passed: emit in the documented order and commit.
+    const BlockOrigin origin{b.block_number(), b.line};
+    if (b.tool.present()) out.push(origin, ToolSelect{b.tool.value});
+    if (s.plane != state_.plane) out.push(origin, PlaneChange{s.plane});
+    if (s.corner != state_.corner) out.push(origin, CornerModeChange{s.corner});
+    if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
+    if (moves) out.push(origin, move);
+    if (s.ended) out.push(origin, ProgramEnd{});
+    state_ = s;
+    return true;
+}
+
+}  // namespace apci::nc

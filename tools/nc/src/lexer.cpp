@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/lexer.h"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+
+namespace apci::nc {
+
+std::uint32_t column_at(std::string_view line, std::size_t offset) noexcept {
+    if (offset > line.size()) offset = line.size();
+    std::uint32_t col = 1;
+    for (std::size_t i = 0; i < offset; ++i) {
+        // UTF-8 continuation bytes (10xxxxxx) do not start a character.
+        if ((static_cast<unsigned char>(line[i]) & 0xC0U) != 0x80U) ++col;
+    }
+    return col;
+}
+
+namespace {
+
+constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                           1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                           1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+constexpr std::uint64_t kExactMantissa = std::uint64_t{1} << 53;
+
+}  // namespace
+
+NumberScan LineCursor::scan_number(double& value) noexcept {
+    std::size_t p = pos_;
+    const std::size_t n = line_.size();
+    bool negative = false;
+    if (p < n && (line_[p] == '+' || line_[p] == '-')) {
+        negative = line_[p] == '-';
+        ++p;
+    }
+    const std::size_t digits_begin = p;
+    std::uint64_t mantissa = 0;
+    bool exact = true;  // mantissa still below 2^53 (every digit taken)
+    std::size_t int_digits = 0;
+    while (p < n && is_digit(line_[p])) {
+        if (mantissa < kExactMantissa) {
+            mantissa = mantissa * 10 + static_cast<std::uint64_t>(line_[p] - '0');
+        } else {
+            exact = false;
+        }
+        ++p;
+        ++int_digits;
+    }
+    std::size_t frac_digits = 0;
+    if (p < n && line_[p] == '.') {
+        ++p;
+        while (p < n && is_digit(line_[p])) {
+            if (mantissa < kExactMantissa) {
+                mantissa = mantissa * 10 + static_cast<std::uint64_t>(line_[p] - '0');
+            } else {
+                exact = false;
+            }
+            ++p;
+            ++frac_digits;
+        }
+    }
+    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", ".", "-."
+    pos_ = p;
+    if (exact && mantissa <= kExactMantissa && frac_digits < kPow10.size()) {
+        // Both operands are exact doubles, so one correctly rounded division gives the same
+        // double as a full decimal conversion.
+        const double v = static_cast<double>(mantissa) / kPow10[frac_digits];
+        value = negative ? -v : v;
+        return NumberScan::kOk;
+    }
+    double v = 0.0;
+    const char* first = line_.data() + digits_begin;
+    const char* last = line_.data() + p;
+    const auto res = std::from_chars(first, last, v, std::chars_format::fixed);
+    if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;
+    value = negative ? -v : v;
+    return NumberScan::kOk;
+}
+
+std::string_view LineCursor::scan_identifier() noexcept {
+    const std::size_t begin = pos_;
+    if (pos_ < line_.size() && (is_letter(line_[pos_]) || line_[pos_] == '_')) {
+        ++pos_;
+        while (pos_ < line_.size() &&
+               (is_letter(line_[pos_]) || is_digit(line_[pos_]) || line_[pos_] == '_')) {
+            ++pos_;
+        }
+    }
+    return line_.substr(begin, pos_ - begin);
+}
+
+bool LineCursor::skip_paren_comment() noexcept {
+    const std::size_t close = line_.find(')', pos_ + 1);
+    if (close == std::string_view::npos) return false;
+    pos_ = close + 1;
+    return true;
+}
+
+}  // namespace apci::nc

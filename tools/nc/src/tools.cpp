@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/tools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "apci/nc/lexer.h"
+#include "apci/nc/source.h"
+
+namespace apci::nc {
+
+const ToolData* ToolTable::find(int index) const noexcept {
+    const auto it = std::lower_bound(tools_.begin(), tools_.end(), index,
+                                     [](const ToolData& t, int i) { return t.index < i; });
+    return it != tools_.end() && it->index == index ? &*it : nullptr;
+}
+
+ToolData& ToolTable::define(int index) {
+    auto it = std::lower_bound(tools_.begin(), tools_.end(), index,
+                               [](const ToolData& t, int i) { return t.index < i; });
+    if (it == tools_.end() || it->index != index) {
+        ToolData t;
+        t.index = index;
+        it = tools_.insert(it, t);
+    }
+    return *it;
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// One tool field: its name, whether it takes an axis index, its value rule and its slot.
+struct FieldSpec {
+    std::string_view name;
+    bool indexed;  // ax_ersatz[k]
+    bool whole;    // whole number (int32 slot)
+    double min;
+    double max;
+    std::string_view range;  // for the error message
+    std::int32_t ToolData::*integer;
+    double ToolData::*real;
+};
+
+// Units and ranges: seed FCT-C20 section 3.2 (P-TOOL-00001/00030/00031/00138) and section 2.6.
+constexpr FieldSpec kFields[] = {
+    {"gueltig", false, true, 0, 1, "0..1", &ToolData::gueltig, nullptr},
+    {"typ", false, true, 0, 3, "0..3", &ToolData::typ, nullptr},
+    {"mass_einheit", false, true, 0, 1, "0..1", &ToolData::mass_einheit, nullptr},
+    {"laenge", false, false, -kInf, kInf, "", nullptr, &ToolData::laenge},
+    {"radius", false, false, 0, kInf, ">= 0", nullptr, &ToolData::radius},
+    {"ax_ersatz", true, false, -kInf, kInf, "", nullptr, nullptr},
+    {"grinding_wear_const", false, false, 0, kInf, ">= 0", nullptr,
+     &ToolData::grinding_wear_const},
+    {"grinding_max_infeed", false, false, -2147483648.0, 2147483647.0,
+     "-2147483648..2147483647 (SGN32)", nullptr, &ToolData::grinding_max_infeed},
+    {"grinding_disc_tilt_angle", false, false, -450000, 450000,
+     "-450000..450000 (-45..45 degrees in 0.0001 degree)", nullptr,
+     &ToolData::grinding_disc_tilt_angle},
+    {"r2", false, false, 0, kInf, ">= 0", nullptr, &ToolData::r2},
+    {"dl", false, false, -kInf, kInf, "", nullptr, &ToolData::dl},
+    {"dr", false, false, -kInf, kInf, "", nullptr, &ToolData::dr},
+    {"dr2", false, false, -kInf, kInf, "", nullptr, &ToolData::dr2},
+};
+
+constexpr std::string_view kFieldList =
+    "gueltig, typ, mass_einheit, laenge, radius, ax_ersatz[k], grinding_wear_const, "
+    "grinding_max_infeed, grinding_disc_tilt_angle, r2, dl, dr, dr2";
+
+const FieldSpec* find_field(std::string_view name) {
+    for (const FieldSpec& f : kFields) {
+        if (f.name == name) return &f;
+    }
+    return nullptr;
+}
+
+class ToolLineParser {
+public:
+    ToolLineParser(std::string_view file, ToolTable& table) : file_(file), table_(table) {}
+
+    bool line(std::string_view text, std::uint64_t line_number, Diagnostic& err) {
+        LineCursor c(text);
+        line_ = line_number;
+        err_ = &err;
+        c.skip_blanks();
+        if (c.at_end() || c.peek() == '#') return true;
+        const std::uint32_t start_col = c.column();
+        if (c.scan_identifier() != "wz") {
+            return fail(ErrorKind::kSyntax, start_col,
+                        "expected 'wz[i].field value' or a '#' comment");
+        }
+        std::uint64_t index = 0;
+        if (!bracketed(c, "after 'wz'", "a tool number", index)) return false;
+        if (index < 1 || index > static_cast<std::uint64_t>(kMaxToolNumber)) {
+            return fail(ErrorKind::kValue, index_col_,
+                        fmt::format("tool number {} out of range 1..{}", index, kMaxToolNumber));
+        }
+        const int tool = static_cast<int>(index);
+        if (c.peek() != '.') {
+            return fail(ErrorKind::kSyntax, c.column(),
+                        fmt::format("expected '.' and a field name after 'wz[{}]'", tool));
+        }
+        c.advance();
+        const std::uint32_t field_col = c.column();
+        const std::string_view name = c.scan_identifier();
+        if (name.empty()) {
+            return fail(ErrorKind::kSyntax, field_col,
+                        fmt::format("expected a field name after 'wz[{}].'", tool));
+        }
+        const FieldSpec* field = find_field(name);
+        if (field == nullptr) {
+            return fail(ErrorKind::kUnknownWord, field_col,
+                        fmt::format("unknown tool field '{}' (known: {})", name, kFieldList));
+        }
+        std::uint64_t axis = 0;
+        std::string label = fmt::format("wz[{}].{}", tool, name);
+        if (field->indexed) {
+            if (!bracketed(c, fmt::format("after '{}'", label), "an axis index", axis)) return false;
+            if (axis >= kAxisOffsetCount) {
+                return fail(ErrorKind::kValue, index_col_,
+                            fmt::format("axis index {} out of range 0..{}", axis,
+                                        kAxisOffsetCount - 1));
+            }
+            label = fmt::format("{}[{}]", label, axis);
+        } else if (c.peek() == '[') {
+            return fail(ErrorKind::kSyntax, c.column(),
+                        fmt::format("'{}' takes no index", name));
+        }
+        double value = 0.0;
+        if (!field_value(c, *field, label, value)) return false;
+        // A field given twice would silently depend on line order; refuse it.
+        const auto key = std::make_tuple(tool, static_cast<int>(field - kFields), axis);
+        const auto [it, fresh] = seen_.emplace(key, line_);
+        if (!fresh) {
+            return fail(ErrorKind::kConflict, field_col,
+                        fmt::format("{} set twice (first on line {})", label, it->second));
+        }
+        ToolData& t = table_.define(tool);
+        if (field->integer != nullptr) {
+            t.*(field->integer) = static_cast<std::int32_t>(value);
+        } else if (field->real != nullptr) {
+            t.*(field->real) = value;
+        } else {
+            t.ax_ersatz[axis] = value;
+        }
+        return true;
+    }
+
+private:
+    bool fail(ErrorKind kind, std::uint32_t column, std::string message) {
+        err_->kind = kind;
+        err_->file = std::string(file_);
+        err_->line = line_;
+        err_->column = column;
+        err_->block = kNoBlockNumber;
+        err_->message = std::move(message);
+        return false;
+    }
+
+    // "[digits]" at the cursor.
+    bool bracketed(LineCursor& c, std::string_view where, std::string_view what,
+                   std::uint64_t& out) {
+        if (c.peek() != '[') {
+            return fail(ErrorKind::kSyntax, c.column(), fmt::format("expected '[' {}", where));
+        }
+        c.advance();
+        index_col_ = c.column();
+        if (!is_digit(c.peek())) {
+            return fail(ErrorKind::kSyntax, index_col_, fmt::format("expected {} after '['", what));
+        }
+        out = 0;
+        while (is_digit(c.peek())) {
+            if (out < 1'000'000) out = out * 10 + static_cast<std::uint64_t>(c.peek() - '0');
+            c.advance();
+        }
+        if (c.peek() != ']') {
+            return fail(ErrorKind::kSyntax, c.column(), "expected ']'");
+        }
+        c.advance();
+        return true;
+    }
+
+    bool field_value(LineCursor& c, const FieldSpec& f, const std::string& label, double& value) {
+        const std::size_t before = c.offset();
+        c.skip_blanks();
+        const std::uint32_t col = c.column();
+        if (c.offset() == before && !c.at_end()) {
+            return fail(ErrorKind::kSyntax, col,
+                        fmt::format("expected a blank and the value after '{}'", label));
+        }
+        switch (c.scan_number(value)) {
+            case NumberScan::kNone:
+                return fail(ErrorKind::kSyntax, col,
+                            fmt::format("expected a value after '{}'", label));
+            case NumberScan::kOutOfRange:
+                return fail(ErrorKind::kValue, col,
+                            fmt::format("the value of {} is out of range", label));
+            case NumberScan::kOk: break;
+        }
+        if (!c.at_end() && c.peek() != ' ' && c.peek() != '\t') {
+            return fail(ErrorKind::kSyntax, c.column(),
+                        fmt::format("expected a blank or the end of the line after the value of "
+                                    "{}",
+                                    label));
+        }
+        if (f.whole && value != std::floor(value)) {
+            return fail(ErrorKind::kValue, col, fmt::format("{} must be a whole number", label));
+        }
+        if (value < f.min || value > f.max) {
+            return fail(ErrorKind::kValue, col,
+                        fmt::format("{} {} out of range {}", label, value, f.range));
+        }
+        return true;
+    }
+
+    std::string_view file_;
+    ToolTable& table_;
+    std::uint64_t line_ = 0;
+    Diagnostic* err_ = nullptr;
+    std::uint32_t index_col_ = 0;
+    std::map<std::tuple<int, int, std::uint64_t>, std::uint64_t> seen_;
+};
+
+Result<ToolTable> parse_lines(LineSource& source) {
+    ToolTable table;
+    ToolLineParser parser(source.name(), table);
+    Diagnostic err;
+    std::string_view text;
+    for (;;) {
+        switch (source.next(text, err)) {
+            case LineSource::Read::kEnd: return table;
+            case LineSource::Read::kError: return err;
+            case LineSource::Read::kLine:
+                if (!parser.line(text, source.line_number(), err)) return err;
+                break;
+        }
+    }
+}
+
+}  // namespace
+
+Result<ToolTable> parse_tool_table(std::string_view text, std::string_view file) {
+    LineSource source = LineSource::from_text(text, std::string(file));
+    return parse_lines(source);
+}
+
+Result<ToolTable> load_tool_table(const std::string& path) {
+    Result<LineSource> source = LineSource::open_file(path);
+    if (!source) return source.error();
+    return parse_lines(source.value());
+}
+
+}  // namespace apci::nc
