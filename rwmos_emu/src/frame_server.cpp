@@ -28,17 +28,19 @@ FrameError FrameServer::serve(std::span<const std::uint8_t> request, std::vector
         reject(used != 0 ? frame.sequence : 0, e, reply);
         return e;
     }
-    handle(frame, reply);
-    return FrameError::kNone;
+    return handle(frame, reply);
 }
 
-void FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
+FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
     payload_.clear();
     switch (static_cast<Opcode>(request.opcode)) {
         case Opcode::kObjectRead: {
             objif::ReadRequest req;
             const FrameError e = objif::decode(request.payload, req);
-            if (e != FrameError::kNone) return reject(request.sequence, e, reply);
+            if (e != FrameError::kNone) {
+                reject(request.sequence, e, reply);
+                return e;
+            }
             objif::ReadReply rep;
             rep.status = board_.read(req.descriptor, req.want, rep.value);
             rep.handle = req.descriptor.handle;
@@ -48,7 +50,10 @@ void FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>&
         case Opcode::kObjectWrite: {
             objif::WriteRequest req;
             const FrameError e = objif::decode(request.payload, req);
-            if (e != FrameError::kNone) return reject(request.sequence, e, reply);
+            if (e != FrameError::kNone) {
+                reject(request.sequence, e, reply);
+                return e;
+            }
             objif::WriteReply rep;
             rep.status = board_.write(req.descriptor, req.value);
             rep.handle = req.descriptor.handle;
@@ -57,10 +62,12 @@ void FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>&
         }
         default:
             // A reply opcode, the Error opcode, or a request this board does not serve.
-            return reject(request.sequence, FrameError::kUnknownOpcode, reply);
+            reject(request.sequence, FrameError::kUnknownOpcode, reply);
+            return FrameError::kUnknownOpcode;
     }
     objif::encode_frame(static_cast<std::uint16_t>(request.opcode | objif::kReplyFlag), request.sequence,
                         payload_, reply);
+    return FrameError::kNone;
 }
 
 }  // namespace rwmos

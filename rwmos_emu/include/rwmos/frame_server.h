@@ -25,8 +25,9 @@ public:
     // error status from the board).
     objif::FrameError serve(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply);
 
-    // An already decoded request. Appends exactly one reply frame.
-    void handle(const objif::Frame& request, std::vector<std::uint8_t>& reply);
+    // An already decoded request. Appends exactly one reply frame. Returns
+    // the payload's decode error (or kUnknownOpcode), kNone when it was served.
+    objif::FrameError handle(const objif::Frame& request, std::vector<std::uint8_t>& reply);
 
     // The Error reply for a frame that could not be decoded; `sequence` is
     // echoed when the header was readable, else 0.
