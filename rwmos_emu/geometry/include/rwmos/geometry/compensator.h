@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// The streaming tool radius compensator with one element of lookahead (seed 003,
+// "1 Einfuhrung": one profile is always held back; when the next one arrives the held
+// one is corrected, the transition computed, both spooled and the new one held).
+//
+// Pure: no I/O, no allocation. The spooler (profile queue, STATUS, JOG, direct commands,
+// the third axis) lives in rwmos_emu and calls this class:
+//   begin(config, position)  when compensation is activated (STATUS = 1) or after a
+//                            JOG/G00 move, to re-approach from the current position;
+//   push(element, index, out) for every G01/G02/G03 profile, projected to the plane;
+//   finish(out)              on deactivation (STATUS = 0) or SSF 2001: spools the held
+//                            element and the departure;
+//   discard()                on a direct command or Reset: the held element is dropped.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "rwmos/geometry/corner.h"
+#include "rwmos/geometry/tolerances.h"
+
+namespace rwmos::geom {
+
+// What an emitted segment is part of.
+enum class SegmentRole : std::uint8_t {
+    kContour,     // the offset of a programmed element (possibly trimmed, possibly empty)
+    kTransition,  // outside-corner transition after the element `index`
+    kApproach,    // from the position at begin() to the first offset element
+    kDeparture,   // from the last offset end to the programmed end point
+};
+
+// One piece of the tool-centre path in plane coordinates. index is the caller's index of
+// the programmed element it belongs to: a transition belongs to the element before the
+// corner, the approach to the first element, the departure to the last.
+struct Segment {
+    Element path;
+    SegmentRole role = SegmentRole::kContour;
+    std::uint32_t index = 0;
+};
+
+// The most segments one push() or finish() emits: approach, held contour, the plane-free
+// elements waiting with it, and a transition of up to three elements.
+inline constexpr std::size_t kMaxSegmentsPerStep = 1 + 1 + kMaxPlaneFreeElements + 3;
+
+// Fixed-capacity output of one step; the caller keeps one and reuses it (no allocation).
+class SegmentBatch {
+public:
+    static constexpr std::size_t kCapacity = kMaxSegmentsPerStep;
+    std::size_t size() const noexcept { return size_; }
+    bool empty() const noexcept { return size_ == 0; }
+    const Segment& operator[](std::size_t i) const noexcept { return items_[i]; }
+    const Segment* begin() const noexcept { return items_.data(); }
+    const Segment* end() const noexcept { return items_.data() + size_; }
+    void clear() noexcept { size_ = 0; }
+    // Appends; the compensator never emits more than kCapacity in one step.
+    void add(const Element& path, SegmentRole role, std::uint32_t index) noexcept {
+        if (size_ < kCapacity) items_[size_++] = Segment{path, role, index};
+    }
+
+private:
+    std::array<Segment, kCapacity> items_{};
+    std::size_t size_ = 0;
+};
+
+struct CompensatorConfig {
+    Side side = Side::kLeft;                                // G41 / G42
+    double tool_radius = 0.0;                               // >= 0, interpolation units
+    TransitionMode transition = TransitionMode::kCircular;  // G26 / G25
+};
+
+// The outcome of one step. On failure nothing was emitted and the compensator is exactly
+// as before the call.
+struct StepResult {
+    Reason reason = Reason::kNone;
+    ErrorBits errors = 0;     // Table 4 bits of reason; 0 on success
+    std::uint32_t index = 0;  // the element at fault: the pushed one, or the held one
+                              // for kHeldElementTooShort
+    bool ok() const noexcept { return reason == Reason::kNone; }
+};
+
+// Validates a configuration: kInvalidToolRadius, kInvalidSetting or kNone.
+Reason check_config(const CompensatorConfig& config) noexcept;
+
+class PathCompensator {
+public:
+    // Starts compensating from the tool position (plane coordinates). Fails with
+    // kAlreadyStarted while running, or on a bad config or position.
+    StepResult begin(const CompensatorConfig& config, const Vec2& position) noexcept;
+
+    // Takes the next programmed element. out is cleared, then receives: the approach (on
+    // the first plane element), or the finished held element, the plane-free elements
+    // that waited with it (zero-length lines at its end), and the corner's transition.
+    // The new element is held. A plane-free element (no motion in the plane) waits with
+    // the held element, or, before the first plane element, is emitted at once as a
+    // zero-length approach at the start position.
+    StepResult push(const Element& programmed, std::uint32_t index, SegmentBatch& out) noexcept;
+
+    // Ends compensation: emits the held element to its untrimmed offset end, the
+    // plane-free elements that waited with it, and the departure to the programmed end.
+    StepResult finish(SegmentBatch& out) noexcept;
+
+    // Drops the held element and ends compensation without output (direct command).
+    void discard() noexcept;
+
+    bool running() const noexcept { return state_ != State::kIdle; }
+    // A programmed element is held back (STATUS bit ProfMarked).
+    bool holds_element() const noexcept { return state_ == State::kHolding; }
+    std::uint32_t held_index() const noexcept { return held_index_; }
+    const CompensatorConfig& config() const noexcept { return config_; }
+
+private:
+    enum class State : std::uint8_t { kIdle, kStarted, kHolding };
+
+    StepResult fail(Reason reason, std::uint32_t index, SegmentBatch& out) const noexcept;
+    void emit_plane_free(const Vec2& at, SegmentBatch& out) const noexcept;
+
+    State state_ = State::kIdle;
+    CompensatorConfig config_;
+    Vec2 position_ = Vec2::Zero();        // tool position at begin()
+    OffsetElement held_;                  // held offset element, its start final
+    Vec2 held_corner_ = Vec2::Zero();     // programmed end of the held element
+    Vec2 held_end_tangent_ = Vec2::Zero();
+    std::uint32_t held_index_ = 0;
+    std::array<std::uint32_t, kMaxPlaneFreeElements> plane_free_{};
+    std::size_t plane_free_count_ = 0;
+};
+
+}  // namespace rwmos::geom

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// Elements of a path in the 2D coordinates of the active plane: a line, or a circular
+// arc (G02 clockwise / G03 counter-clockwise, seen from the positive third axis).
+// Pure functions over them: tangents, length, points, distance.
+#pragma once
+
+#include <cstdint>
+
+#include "rwmos/geometry/plane.h"
+
+namespace rwmos::geom {
+
+enum class ElementKind : std::uint8_t { kLine, kArc };
+
+// A line from start to end, or an arc from start to end about centre. An arc whose end
+// lies within kPointTolerance of its start is a full circle. An arc's radius is its
+// start radius; its end point gives its end angle (the end radius may differ by up to
+// kCenterRadiusTolerance, else CenterError).
+struct Element {
+    ElementKind kind = ElementKind::kLine;
+    bool ccw = false;  // arcs: true = G03, false = G02
+    Vec2 start = Vec2::Zero();
+    Vec2 end = Vec2::Zero();
+    Vec2 centre = Vec2::Zero();  // arcs only
+};
+
+Element make_line(const Vec2& start, const Vec2& end) noexcept;
+Element make_arc(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept;
+
+constexpr bool is_arc(const Element& e) noexcept { return e.kind == ElementKind::kArc; }
+
+// v turned by +90 degrees: the left normal of a direction of travel.
+inline Vec2 left_normal(const Vec2& v) noexcept { return {-v.y(), v.x()}; }
+// z of the 3D cross product: > 0 when b lies counter-clockwise of a.
+inline double cross(const Vec2& a, const Vec2& b) noexcept {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+// Angle in [0, 2 pi) from direction a to direction b, counted counter-clockwise when
+// ccw, clockwise otherwise. Neither needs to be unit length; both must be non-zero.
+double angle_between(const Vec2& a, const Vec2& b, bool ccw) noexcept;
+
+double radius(const Element& arc) noexcept;      // start radius
+double end_radius(const Element& arc) noexcept;  // |end - centre|
+bool is_full_circle(const Element& e) noexcept;  // an arc with end == start
+// Signed angle the arc turns through: > 0 counter-clockwise, magnitude in (0, 2 pi];
+// 0 for lines.
+double sweep(const Element& e) noexcept;
+double length(const Element& e) noexcept;
+// A line shorter than kPointTolerance: a move with no motion in the plane.
+bool is_plane_free(const Element& e) noexcept;
+// All coordinates finite and within kMaxCoordinate.
+bool is_valid_coordinate(const Vec2& p) noexcept;
+bool has_valid_coordinates(const Element& e) noexcept;
+
+// Unit direction of travel. A plane-free line has none: the zero vector.
+Vec2 start_tangent(const Element& e) noexcept;
+Vec2 end_tangent(const Element& e) noexcept;
+// t in [0, 1] is the fraction of the length travelled (clamped). Arcs run on the
+// circle of their start radius.
+Vec2 point_at(const Element& e, double t) noexcept;
+Vec2 tangent_at(const Element& e, double t) noexcept;
+// The point of the element nearest p, and its distance.
+Vec2 closest_point(const Element& e, const Vec2& p) noexcept;
+double distance_to(const Element& e, const Vec2& p) noexcept;
+
+// The element rotated about centre by degrees (coordinate rotation, plane.h).
+Element rotate_about(const Element& e, const Vec2& centre, double degrees) noexcept;
+
+}  // namespace rwmos::geom

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// Offsetting a programmed element by the tool radius, left (G41) or right (G42) of the
+// direction of travel, and the trimming of offset elements at corners.
+#pragma once
+
+#include <cstdint>
+
+#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/errors.h"
+
+namespace rwmos::geom {
+
+// G41: tool left of the direction of travel; G42: right. (TC Left / Right objects.)
+enum class Side : std::uint8_t { kLeft, kRight };
+
+// +1 for Left, -1 for Right: the offset point is p + side_sign * r * left_normal(t).
+constexpr double side_sign(Side s) noexcept { return s == Side::kLeft ? 1.0 : -1.0; }
+
+// An element of the offset path. Its sweep is kept explicitly: trimming can leave an arc
+// almost full or almost empty, and start == end alone would not tell which.
+struct OffsetElement {
+    Element path;
+    double sweep = 0.0;                // arcs: signed, counter-clockwise > 0; lines: 0
+    Vec2 direction = Vec2::Zero();     // lines: unit direction, kept when trimmed to nothing
+};
+
+// The checks every programmed element passes before it is offset: coordinates
+// (CalcError), and for arcs the centre (CenterError). kNone when fine.
+Reason check_element(const Element& e) noexcept;
+
+// The point at distance r beside p, on the given side of the direction tangent.
+Vec2 offset_point(const Vec2& p, const Vec2& tangent, double r, Side side) noexcept;
+// An arc's offset radius: its radius minus r on the concave side, plus r on the convex.
+double offset_radius(const Element& arc, double r, Side side) noexcept;
+
+struct OffsetResult {
+    Reason reason = Reason::kNone;  // kOffsetRadiusNotPositive (CalcError) or kNone
+    OffsetElement element;
+};
+// The element moved sideways by r. Expects check_element(e) == kNone and a line that is
+// not plane-free. A full circle stays a full circle (its offset end is its offset start).
+OffsetResult offset_element(const Element& e, double r, Side side) noexcept;
+
+// Length of an offset element (trimmed arcs by their explicit sweep).
+double offset_length(const OffsetElement& o) noexcept;
+// Circumference of an offset arc, 0 for a line.
+double circumference(const OffsetElement& o) noexcept;
+// Distance travelled from the start to x, for x on the element's line or circle:
+// lines by projection (negative before the start); arcs in [0, circumference).
+double distance_along(const OffsetElement& o, const Vec2& x) noexcept;
+
+// The element ending at x, where x lies `along` from its start (0 <= along <= length).
+OffsetElement trim_end(const OffsetElement& o, const Vec2& x, double along) noexcept;
+// The element starting at x, where x lies `along` from its start (0 <= along <= length).
+OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) noexcept;
+
+// What the spooler receives: arcs turning less than half a circle with a chord of at
+// most kMinArcChord become lines (so no emitted arc reads as a full circle), a full
+// offset circle ends exactly at its start.
+Element emitted_path(const OffsetElement& o) noexcept;
+
+}  // namespace rwmos::geom

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/geometry/compensator.h"
+
+#include <cmath>
+
+#include "rwmos/geometry/approach.h"
+
+namespace rwmos::geom {
+
+Reason check_config(const CompensatorConfig& config) noexcept {
+    const double r = config.tool_radius;
+    if (!std::isfinite(r) || r < 0.0 || r > kMaxCoordinate) return Reason::kInvalidToolRadius;
+    if (config.side != Side::kLeft && config.side != Side::kRight) return Reason::kInvalidSetting;
+    if (config.transition != TransitionMode::kCircular &&
+        config.transition != TransitionMode::kLinear)
+        return Reason::kInvalidSetting;
+    return Reason::kNone;
+}
+
+StepResult PathCompensator::fail(Reason reason, std::uint32_t index,
+                                 SegmentBatch& out) const noexcept {
+    out.clear();
+    return StepResult{reason, reason_bits(reason), index};
+}
+
+void PathCompensator::emit_plane_free(const Vec2& at, SegmentBatch& out) const noexcept {
+    for (std::size_t i = 0; i < plane_free_count_; ++i)
+        out.add(make_line(at, at), SegmentRole::kContour, plane_free_[i]);
+}
+
+StepResult PathCompensator::begin(const CompensatorConfig& config, const Vec2& position) noexcept {
+    if (state_ != State::kIdle) return StepResult{Reason::kAlreadyStarted, reason_bits(Reason::kAlreadyStarted), 0};
+    if (const Reason r = check_config(config); r != Reason::kNone)
+        return StepResult{r, reason_bits(r), 0};
+    if (!is_valid_coordinate(position))
+        return StepResult{Reason::kInvalidCoordinate, reason_bits(Reason::kInvalidCoordinate), 0};
+    config_ = config;
+    position_ = position;
+    plane_free_count_ = 0;
+    state_ = State::kStarted;
+    return {};
+}
+
+StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
+                                 SegmentBatch& out) noexcept {
+    out.clear();
+    if (state_ == State::kIdle) return fail(Reason::kNotStarted, index, out);
+    if (const Reason r = check_element(programmed); r != Reason::kNone) return fail(r, index, out);
+    if (state_ == State::kHolding &&
+        (programmed.start - held_corner_).norm() > kContinuityTolerance)
+        return fail(Reason::kDiscontinuous, index, out);
+
+    if (is_plane_free(programmed)) {
+        if (state_ == State::kStarted) {
+            out.add(make_line(position_, position_), SegmentRole::kApproach, index);
+            return {};
+        }
+        if (plane_free_count_ == kMaxPlaneFreeElements)
+            return fail(Reason::kTooManyPlaneFreeElements, index, out);
+        plane_free_[plane_free_count_++] = index;
+        return {};
+    }
+
+    const double r = config_.tool_radius;
+    const OffsetResult offset = offset_element(programmed, r, config_.side);
+    if (offset.reason != Reason::kNone) return fail(offset.reason, index, out);
+
+    if (state_ == State::kStarted) {
+        const Element approach = approach_move(position_, offset.element);
+        if (worth_moving(approach)) out.add(approach, SegmentRole::kApproach, index);
+        held_ = offset.element;
+    } else {
+        const CornerJoin join =
+            join_corner(held_, offset.element, held_corner_, held_end_tangent_,
+                        start_tangent(programmed), config_.side, r, config_.transition);
+        if (join.reason != Reason::kNone)
+            return fail(join.reason,
+                        join.reason == Reason::kHeldElementTooShort ? held_index_ : index, out);
+        out.add(emitted_path(join.held), SegmentRole::kContour, held_index_);
+        emit_plane_free(join.held.path.end, out);
+        for (std::size_t i = 0; i < join.transition.count; ++i)
+            out.add(join.transition.elements[i], SegmentRole::kTransition, held_index_);
+        held_ = join.next;
+    }
+    held_corner_ = programmed.end;
+    held_end_tangent_ = end_tangent(programmed);
+    held_index_ = index;
+    plane_free_count_ = 0;
+    state_ = State::kHolding;
+    return {};
+}
+
+StepResult PathCompensator::finish(SegmentBatch& out) noexcept {
+    out.clear();
+    if (state_ == State::kIdle) return fail(Reason::kNotStarted, 0, out);
+    if (state_ == State::kHolding) {
+        out.add(emitted_path(held_), SegmentRole::kContour, held_index_);
+        emit_plane_free(held_.path.end, out);
+        const Element departure = departure_move(held_, held_corner_);
+        if (worth_moving(departure)) out.add(departure, SegmentRole::kDeparture, held_index_);
+    }
+    discard();
+    return {};
+}
+
+void PathCompensator::discard() noexcept {
+    state_ = State::kIdle;
+    plane_free_count_ = 0;
+}
+
+}  // namespace rwmos::geom

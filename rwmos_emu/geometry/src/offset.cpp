@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/geometry/offset.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "rwmos/geometry/tolerances.h"
+
+namespace rwmos::geom {
+
+Reason check_element(const Element& e) noexcept {
+    if (!has_valid_coordinates(e)) return Reason::kInvalidCoordinate;
+    if (!is_arc(e)) return Reason::kNone;
+    const double r_start = radius(e);
+    const double r_end = end_radius(e);
+    if (r_start <= kPointTolerance || r_end <= kPointTolerance) return Reason::kArcCentreOnEndPoint;
+    // seed 003 "Tabelle 4": CenterError, the radii at start and end point differ.
+    if (std::abs(r_start - r_end) > kCenterRadiusTolerance) return Reason::kArcRadiiDiffer;
+    return Reason::kNone;
+}
+
+Vec2 offset_point(const Vec2& p, const Vec2& tangent, double r, Side side) noexcept {
+    return p + (side_sign(side) * r) * left_normal(tangent);
+}
+
+double offset_radius(const Element& arc, double r, Side side) noexcept {
+    // The left normal of a counter-clockwise arc points at its centre.
+    const double towards_centre = arc.ccw ? 1.0 : -1.0;
+    return radius(arc) - side_sign(side) * towards_centre * r;
+}
+
+OffsetResult offset_element(const Element& e, double r, Side side) noexcept {
+    OffsetResult out;
+    OffsetElement& o = out.element;
+    o.path = e;
+    if (!is_arc(e)) {
+        const Vec2 t = start_tangent(e);
+        o.path.start = offset_point(e.start, t, r, side);
+        o.path.end = offset_point(e.end, t, r, side);
+        o.direction = t;
+        return out;
+    }
+    const double rho = offset_radius(e, r, side);
+    // seed 003 "Tabelle 4": CalcError, arc radius smaller than the tool radius.
+    if (rho <= kMinOffsetRadius) {
+        out.reason = Reason::kOffsetRadiusNotPositive;
+        return out;
+    }
+    const Vec2 u_start = (e.start - e.centre) / radius(e);
+    const Vec2 u_end = (e.end - e.centre) / end_radius(e);
+    o.sweep = sweep(e);
+    o.path.start = e.centre + rho * u_start;
+    o.path.end = is_full_circle(e) ? o.path.start : Vec2(e.centre + rho * u_end);
+    return out;
+}
+
+double circumference(const OffsetElement& o) noexcept {
+    return is_arc(o.path) ? 2 * std::numbers::pi * radius(o.path) : 0.0;
+}
+
+double offset_length(const OffsetElement& o) noexcept {
+    if (!is_arc(o.path)) return (o.path.end - o.path.start).norm();
+    return std::abs(o.sweep) * radius(o.path);
+}
+
+double distance_along(const OffsetElement& o, const Vec2& x) noexcept {
+    if (!is_arc(o.path)) return (x - o.path.start).dot(o.direction);
+    return angle_between(o.path.start - o.path.centre, x - o.path.centre, o.path.ccw) *
+           radius(o.path);
+}
+
+OffsetElement trim_end(const OffsetElement& o, const Vec2& x, double along) noexcept {
+    OffsetElement out = o;
+    out.path.end = x;
+    if (is_arc(o.path)) {
+        const double turned = std::clamp(along / radius(o.path), 0.0, std::abs(o.sweep));
+        out.sweep = std::copysign(turned, o.sweep);
+    }
+    return out;
+}
+
+OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) noexcept {
+    OffsetElement out = o;
+    out.path.start = x;
+    if (is_arc(o.path)) {
+        const double turned = std::clamp(along / radius(o.path), 0.0, std::abs(o.sweep));
+        out.sweep = std::copysign(std::abs(o.sweep) - turned, o.sweep);
+    }
+    return out;
+}
+
+Element emitted_path(const OffsetElement& o) noexcept {
+    if (!is_arc(o.path)) return o.path;
+    if (std::abs(o.sweep) < std::numbers::pi &&
+        (o.path.end - o.path.start).norm() <= kMinArcChord)
+        return make_line(o.path.start, o.path.end);
+    return o.path;
+}
+
+}  // namespace rwmos::geom

@@ -1,0 +1,395 @@
+// SPDX-License-Identifier: MIT
+// PathCompensator: one element of lookahead (seed 003 "1 Einfuhrung"), approach and
+// departure, roles and indices, errors (seed 003 "Tabelle 4") without state change.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "rwmos/geometry/compensator.h"
+
+namespace rwmos::geom {
+namespace {
+
+constexpr double kEps = 1e-12;
+
+void expect_near(const Vec2& a, const Vec2& b, double tol = kEps) {
+    EXPECT_NEAR(a.x(), b.x(), tol) << "x";
+    EXPECT_NEAR(a.y(), b.y(), tol) << "y";
+}
+
+CompensatorConfig config(double r, Side side = Side::kLeft,
+                         TransitionMode mode = TransitionMode::kCircular) {
+    return CompensatorConfig{side, r, mode};
+}
+
+bool same(const Element& a, const Element& b) {
+    return a.kind == b.kind && a.ccw == b.ccw && a.start == b.start && a.end == b.end &&
+           (a.kind == ElementKind::kLine || a.centre == b.centre);
+}
+
+// A square 10 x 10 from (0,0) counter-clockwise: every corner turns left.
+const std::vector<Element> kSquare = {
+    make_line({0, 0}, {10, 0}), make_line({10, 0}, {10, 10}), make_line({10, 10}, {0, 10}),
+    make_line({0, 10}, {0, 0})};
+
+TEST(Compensator, PushBeforeBeginIsInitError) {
+    PathCompensator c;
+    SegmentBatch out;
+    const StepResult r = c.push(kSquare[0], 3, out);
+    EXPECT_EQ(r.reason, Reason::kNotStarted);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kInitError));
+    EXPECT_EQ(r.index, 3u);
+    EXPECT_TRUE(out.empty());
+    EXPECT_EQ(c.finish(out).reason, Reason::kNotStarted);
+}
+
+TEST(Compensator, BeginRefusesBadToolRadiusSettingsAndPositionWithoutStarting) {
+    PathCompensator c;
+    EXPECT_EQ(c.begin(config(-1), {0, 0}).reason, Reason::kInvalidToolRadius);
+    EXPECT_EQ(c.begin(config(NAN), {0, 0}).reason, Reason::kInvalidToolRadius);
+    EXPECT_EQ(c.begin(config(INFINITY), {0, 0}).reason, Reason::kInvalidToolRadius);
+    EXPECT_EQ(c.begin(config(2e5), {0, 0}).reason, Reason::kInvalidToolRadius);
+    EXPECT_EQ(c.begin(config(1, static_cast<Side>(7)), {0, 0}).reason, Reason::kInvalidSetting);
+    EXPECT_EQ(c.begin(config(1, Side::kLeft, static_cast<TransitionMode>(9)), {0, 0}).reason,
+              Reason::kInvalidSetting);
+    EXPECT_EQ(c.begin(config(-1), {0, 0}).errors, bits(ErrorBit::kInitError));
+    EXPECT_EQ(c.begin(config(1), {NAN, 0}).reason, Reason::kInvalidCoordinate);
+    EXPECT_FALSE(c.running());
+    EXPECT_TRUE(c.begin(config(1), {0, 0}).ok());
+    EXPECT_TRUE(c.running());
+}
+
+TEST(Compensator, BeginWhileRunningIsInitErrorAndKeepsTheHeldElement) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, 0}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    EXPECT_EQ(c.begin(config(2), {0, 0}).reason, Reason::kAlreadyStarted);
+    EXPECT_TRUE(c.holds_element());
+    EXPECT_EQ(c.config().tool_radius, 1.0);
+}
+
+TEST(Compensator, FirstElementEmitsTheApproachToItsOffsetStartAndIsHeld) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 7, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(out[0].index, 7u);
+    expect_near(out[0].path.start, {-5, -5});
+    expect_near(out[0].path.end, {0, 1});
+    EXPECT_TRUE(c.holds_element());
+    EXPECT_EQ(c.held_index(), 7u);
+}
+
+TEST(Compensator, ApproachOfZeroLengthIsNotEmitted) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {0, 1}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    EXPECT_TRUE(out.empty());
+}
+
+TEST(Compensator, NextElementReleasesTheHeldOneTrimmedAtTheInsideCorner) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    ASSERT_TRUE(c.push(kSquare[1], 1, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kContour);
+    EXPECT_EQ(out[0].index, 0u);
+    expect_near(out[0].path.start, {0, 1});
+    expect_near(out[0].path.end, {9, 1});
+    EXPECT_EQ(c.held_index(), 1u);
+}
+
+TEST(Compensator, OutsideCornerTransitionBelongsToTheElementBeforeIt) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1, Side::kRight), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 4, out).ok());
+    ASSERT_TRUE(c.push(kSquare[1], 5, out).ok());
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_EQ(out[0].role, SegmentRole::kContour);
+    expect_near(out[0].path.end, {10, -1});
+    EXPECT_EQ(out[1].role, SegmentRole::kTransition);
+    EXPECT_EQ(out[1].index, 4u);
+    EXPECT_EQ(out[1].path.kind, ElementKind::kArc);
+    expect_near(out[1].path.centre, {10, 0});
+    expect_near(out[1].path.end, {11, 0});
+}
+
+TEST(Compensator, LinearModeEmitsTheExtendedOffsetsAsTransition) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1, Side::kRight, TransitionMode::kLinear), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    ASSERT_TRUE(c.push(kSquare[1], 1, out).ok());
+    ASSERT_EQ(out.size(), 3u);
+    EXPECT_EQ(out[1].role, SegmentRole::kTransition);
+    EXPECT_EQ(out[2].role, SegmentRole::kTransition);
+    expect_near(out[1].path.end, {11, -1});
+    expect_near(out[2].path.end, {11, 0});
+}
+
+TEST(Compensator, FinishEmitsTheHeldElementUntrimmedAndTheDepartureToTheProgrammedEnd) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    ASSERT_TRUE(c.push(kSquare[1], 1, out).ok());
+    ASSERT_TRUE(c.finish(out).ok());
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_EQ(out[0].role, SegmentRole::kContour);
+    EXPECT_EQ(out[0].index, 1u);
+    expect_near(out[0].path.start, {9, 1});
+    expect_near(out[0].path.end, {9, 10});
+    EXPECT_EQ(out[1].role, SegmentRole::kDeparture);
+    EXPECT_EQ(out[1].index, 1u);
+    expect_near(out[1].path.start, {9, 10});
+    expect_near(out[1].path.end, {10, 10});
+    EXPECT_FALSE(c.running());
+    EXPECT_FALSE(c.holds_element());
+}
+
+TEST(Compensator, FinishWithoutAnyElementEmitsNothing) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {0, 0}).ok());
+    ASSERT_TRUE(c.finish(out).ok());
+    EXPECT_TRUE(out.empty());
+    EXPECT_FALSE(c.running());
+}
+
+TEST(Compensator, HoldsExactlyOneElement) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        ASSERT_TRUE(c.push(kSquare[i], i, out).ok());
+        EXPECT_EQ(c.held_index(), i);
+        for (const Segment& s : out)
+            if (s.role == SegmentRole::kContour) {
+                EXPECT_EQ(s.index + 1, i);
+            }
+    }
+}
+
+TEST(Compensator, ErrorEmitsNothingAndLeavesTheStateAsBefore) {
+    // Two compensators see the same elements; one also gets a failing arc in between.
+    PathCompensator clean, failing;
+    SegmentBatch a, b;
+    ASSERT_TRUE(clean.begin(config(2), {-5, -5}).ok());
+    ASSERT_TRUE(failing.begin(config(2), {-5, -5}).ok());
+    ASSERT_TRUE(clean.push(kSquare[0], 0, a).ok());
+    ASSERT_TRUE(failing.push(kSquare[0], 0, b).ok());
+    // Concave arc of radius 1 < tool radius 2: CalcError.
+    const Element small_arc = make_arc({10, 0}, {11, 1}, {10, 1}, true);
+    const StepResult r = failing.push(small_arc, 1, b);
+    EXPECT_EQ(r.reason, Reason::kOffsetRadiusNotPositive);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kCalcError));
+    EXPECT_EQ(r.index, 1u);
+    EXPECT_TRUE(b.empty());
+    EXPECT_TRUE(failing.holds_element());
+    EXPECT_EQ(failing.held_index(), 0u);
+    for (std::uint32_t i = 1; i < 4; ++i) {
+        ASSERT_TRUE(clean.push(kSquare[i], i, a).ok());
+        ASSERT_TRUE(failing.push(kSquare[i], i, b).ok());
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t k = 0; k < a.size(); ++k) EXPECT_TRUE(same(a[k].path, b[k].path));
+    }
+}
+
+TEST(Compensator, CenterErrorForAnArcWhoseRadiiDiffer) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    const StepResult r = c.push(make_arc({10, 0}, {15, 6}, {15, 0}, true), 1, out);
+    EXPECT_EQ(r.reason, Reason::kArcRadiiDiffer);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kCenterError));
+    EXPECT_TRUE(out.empty());
+}
+
+TEST(Compensator, KorrErrorNamesTheHeldElementWhenItIsTooShortForTheCorner) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {0.5, 0}), 10, out).ok());
+    const StepResult r = c.push(make_line({0.5, 0}, {0.5, 5}), 11, out);
+    EXPECT_EQ(r.reason, Reason::kHeldElementTooShort);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
+    EXPECT_EQ(r.index, 10u);
+    EXPECT_TRUE(out.empty());
+    EXPECT_EQ(c.held_index(), 10u);
+}
+
+TEST(Compensator, KorrErrorNamesThePushedElementWhenItIsTooShortForTheCorner) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    const StepResult r = c.push(make_line({10, 0}, {10, 0.5}), 1, out);
+    EXPECT_EQ(r.reason, Reason::kNextElementTooShort);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
+    EXPECT_EQ(r.index, 1u);
+}
+
+TEST(Compensator, KorrErrorWhenTheElementDoesNotStartWhereTheHeldOneEnds) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    const StepResult r = c.push(make_line({10, 0.001}, {10, 10}), 1, out);
+    EXPECT_EQ(r.reason, Reason::kDiscontinuous);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
+}
+
+TEST(Compensator, CalcErrorForCoordinatesNotFinite) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    const StepResult r = c.push(make_line({0, 0}, {NAN, 0}), 0, out);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kCalcError));
+    EXPECT_FALSE(c.holds_element());
+}
+
+TEST(Compensator, PlaneFreeElementsWaitWithTheHeldOneAndComeOutAtItsTrimmedEnd) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1, Side::kRight), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    ASSERT_TRUE(c.push(make_line({10, 0}, {10, 0}), 1, out).ok());  // a pure Z move
+    EXPECT_TRUE(out.empty());
+    ASSERT_TRUE(c.push(make_line({10, 0}, {10, 0}), 2, out).ok());
+    EXPECT_EQ(c.held_index(), 0u);
+    ASSERT_TRUE(c.push(kSquare[1], 3, out).ok());
+    ASSERT_EQ(out.size(), 4u);  // contour 0, the two waiting moves, the transition
+    EXPECT_EQ(out[0].index, 0u);
+    for (std::size_t k : {1u, 2u}) {
+        EXPECT_EQ(out[k].role, SegmentRole::kContour);
+        EXPECT_EQ(out[k].index, k);
+        EXPECT_EQ(out[k].path.kind, ElementKind::kLine);
+        expect_near(out[k].path.start, {10, -1});
+        expect_near(out[k].path.end, {10, -1});
+    }
+    EXPECT_EQ(out[3].role, SegmentRole::kTransition);
+}
+
+TEST(Compensator, PlaneFreeElementsWaitAtTheInsideCornerPointWhenFinished) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    ASSERT_TRUE(c.push(make_line({10, 0}, {10, 0}), 1, out).ok());
+    ASSERT_TRUE(c.push(kSquare[1], 2, out).ok());
+    ASSERT_EQ(out.size(), 2u);
+    expect_near(out[1].path.start, {9, 1});
+    ASSERT_TRUE(c.push(make_line({10, 10}, {10, 10}), 3, out).ok());
+    ASSERT_TRUE(c.finish(out).ok());
+    ASSERT_EQ(out.size(), 3u);
+    EXPECT_EQ(out[1].index, 3u);
+    expect_near(out[1].path.start, {9, 10});
+    EXPECT_EQ(out[2].role, SegmentRole::kDeparture);
+}
+
+TEST(Compensator, PlaneFreeElementBeforeTheFirstPlaneMoveIsEmittedAtTheStartPosition) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(make_line({-5, -5}, {-5, -5}), 0, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    expect_near(out[0].path.start, {-5, -5});
+    expect_near(out[0].path.end, {-5, -5});
+    EXPECT_FALSE(c.holds_element());
+}
+
+TEST(Compensator, KorrErrorForTooManyPlaneFreeElementsInARow) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    const Element z_move = make_line({10, 0}, {10, 0});
+    for (std::uint32_t i = 1; i <= kMaxPlaneFreeElements; ++i)
+        ASSERT_TRUE(c.push(z_move, i, out).ok());
+    const StepResult r = c.push(z_move, 99, out);
+    EXPECT_EQ(r.reason, Reason::kTooManyPlaneFreeElements);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
+    // The elements that waited are all still there.
+    ASSERT_TRUE(c.push(kSquare[1], 100, out).ok());
+    EXPECT_EQ(out.size(), 1 + kMaxPlaneFreeElements);
+}
+
+TEST(Compensator, DiscardDropsTheHeldElementWithoutOutput) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    c.discard();
+    EXPECT_FALSE(c.running());
+    EXPECT_FALSE(c.holds_element());
+    EXPECT_EQ(c.push(kSquare[1], 1, out).reason, Reason::kNotStarted);
+    // A new begin re-approaches from the given position.
+    ASSERT_TRUE(c.begin(config(1), {10, -3}).ok());
+    ASSERT_TRUE(c.push(kSquare[1], 1, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    expect_near(out[0].path.end, {9, 0});
+}
+
+TEST(Compensator, ZeroToolRadiusReproducesTheProgrammedPath) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(0), {0, 0}).ok());
+    std::vector<Segment> path;
+    const std::vector<Element> program = {
+        make_line({0, 0}, {10, 0}), make_arc({10, 0}, {10, 10}, {10, 5}, true),
+        make_line({10, 10}, {0, 0})};
+    for (std::uint32_t i = 0; i < program.size(); ++i) {
+        ASSERT_TRUE(c.push(program[i], i, out).ok());
+        for (const Segment& s : out) path.push_back(s);
+    }
+    ASSERT_TRUE(c.finish(out).ok());
+    for (const Segment& s : out) path.push_back(s);
+    ASSERT_EQ(path.size(), program.size());
+    for (std::size_t i = 0; i < program.size(); ++i) {
+        EXPECT_EQ(path[i].role, SegmentRole::kContour);
+        EXPECT_TRUE(same(path[i].path, program[i])) << i;
+    }
+}
+
+TEST(Compensator, FullCircleIsCompensatedAsFullCircle) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1, Side::kRight), {-5, 0}).ok());
+    ASSERT_TRUE(c.push(make_line({-5, 0}, {0, 0}), 0, out).ok());
+    // Full circle about (0, 5) starting along +x (ccw): tangent to the line.
+    ASSERT_TRUE(c.push(make_arc({0, 0}, {0, 0}, {0, 5}, true), 1, out).ok());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {5, 0}), 2, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].path.kind, ElementKind::kArc);
+    EXPECT_TRUE(is_full_circle(out[0].path));
+    EXPECT_NEAR(length(out[0].path), 2 * M_PI * 6, 1e-9);
+}
+
+TEST(Compensator, BatchCapacityCoversTheLargestStep) {
+    // Approach, contour, every waiting plane-free element and a three-line transition.
+    EXPECT_EQ(SegmentBatch::kCapacity, 2 + kMaxPlaneFreeElements + 3);
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1, Side::kRight, TransitionMode::kLinear), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    for (std::uint32_t i = 1; i <= kMaxPlaneFreeElements; ++i)
+        ASSERT_TRUE(c.push(make_line({10, 0}, {10, 0}), i, out).ok());
+    // Turning left by 150 degrees with the tool right: an outside corner with a bounded
+    // linear transition of three lines.
+    ASSERT_TRUE(c.push(make_line({10, 0}, {10 - 8.66, 5}), 50, out).ok());
+    EXPECT_EQ(out.size(), 1 + kMaxPlaneFreeElements + 3);
+}
+
+}  // namespace
+}  // namespace rwmos::geom

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// Elements: tangents, sweep, length, points and distances.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/tolerances.h"
+
+namespace rwmos::geom {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kEps = 1e-12;
+
+void expect_near(const Vec2& a, const Vec2& b, double tol = kEps) {
+    EXPECT_NEAR(a.x(), b.x(), tol) << "x";
+    EXPECT_NEAR(a.y(), b.y(), tol) << "y";
+}
+
+TEST(Element, LineTangentIsUnitDirectionOfTravel) {
+    const Element e = make_line({1, 1}, {4, 5});
+    expect_near(start_tangent(e), {0.6, 0.8});
+    expect_near(end_tangent(e), {0.6, 0.8});
+    EXPECT_DOUBLE_EQ(length(e), 5.0);
+}
+
+TEST(Element, PlaneFreeLineHasNoTangent) {
+    const Element e = make_line({2, 3}, {2, 3});
+    EXPECT_TRUE(is_plane_free(e));
+    expect_near(start_tangent(e), Vec2::Zero());
+    EXPECT_FALSE(is_plane_free(make_line({2, 3}, {2, 3 + 10 * kPointTolerance})));
+}
+
+TEST(Element, CounterClockwiseArcTangentIsLeftOfRadius) {
+    // Quarter circle from (1,0) to (0,1) about the origin, G03.
+    const Element e = make_arc({1, 0}, {0, 1}, {0, 0}, true);
+    expect_near(start_tangent(e), {0, 1});
+    expect_near(end_tangent(e), {-1, 0});
+    EXPECT_NEAR(sweep(e), kPi / 2, kEps);
+    EXPECT_NEAR(length(e), kPi / 2, kEps);
+}
+
+TEST(Element, ClockwiseArcSweepsTheLongWayForTheSameEndPoints) {
+    const Element e = make_arc({1, 0}, {0, 1}, {0, 0}, false);
+    expect_near(start_tangent(e), {0, -1});
+    expect_near(end_tangent(e), {1, 0});
+    EXPECT_NEAR(sweep(e), -3 * kPi / 2, kEps);
+    EXPECT_NEAR(length(e), 3 * kPi / 2, kEps);
+}
+
+TEST(Element, ArcWithEndEqualStartIsFullCircle) {
+    const Element ccw = make_arc({3, 0}, {3, 0}, {1, 0}, true);
+    EXPECT_TRUE(is_full_circle(ccw));
+    EXPECT_NEAR(sweep(ccw), 2 * kPi, kEps);
+    EXPECT_NEAR(length(ccw), 4 * kPi, kEps);
+    const Element cw = make_arc({3, 0}, {3, 0}, {1, 0}, false);
+    EXPECT_NEAR(sweep(cw), -2 * kPi, kEps);
+}
+
+TEST(Element, HalfCircleSweepsPiInEitherDirection) {
+    EXPECT_NEAR(sweep(make_arc({1, 0}, {-1, 0}, {0, 0}, true)), kPi, kEps);
+    EXPECT_NEAR(sweep(make_arc({1, 0}, {-1, 0}, {0, 0}, false)), -kPi, kEps);
+}
+
+TEST(Element, PointAtFollowsTheLength) {
+    const Element line = make_line({0, 0}, {10, 0});
+    expect_near(point_at(line, 0.25), {2.5, 0});
+    expect_near(point_at(line, 2.0), {10, 0});  // clamped
+    const Element arc = make_arc({1, 0}, {-1, 0}, {0, 0}, true);
+    expect_near(point_at(arc, 0.5), {0, 1});
+    expect_near(tangent_at(arc, 0.5), {-1, 0});
+    const Element cw = make_arc({1, 0}, {-1, 0}, {0, 0}, false);
+    expect_near(point_at(cw, 0.5), {0, -1});
+}
+
+TEST(Element, DistanceToLineIsPerpendicularInsideAndToEndPointsOutside) {
+    const Element e = make_line({0, 0}, {10, 0});
+    EXPECT_NEAR(distance_to(e, {5, 3}), 3.0, kEps);
+    EXPECT_NEAR(distance_to(e, {-3, 4}), 5.0, kEps);
+    EXPECT_NEAR(distance_to(e, {13, -4}), 5.0, kEps);
+}
+
+TEST(Element, DistanceToArcIsRadialWithinSweepAndToEndPointsOutside) {
+    const Element e = make_arc({1, 0}, {0, 1}, {0, 0}, true);  // first quadrant
+    EXPECT_NEAR(distance_to(e, {2, 2}), 2 * std::sqrt(2.0) - 1, kEps);
+    EXPECT_NEAR(distance_to(e, {0.5, 0.5}), 1 - std::sqrt(0.5), kEps);
+    // Third quadrant lies outside the sweep: nearest are the end points.
+    EXPECT_NEAR(distance_to(e, {-1, -1}), std::sqrt(5.0), kEps);
+    // The centre is at one radius from every arc point.
+    EXPECT_NEAR(distance_to(e, {0, 0}), 1.0, kEps);
+}
+
+TEST(Element, DistanceToClockwiseArcUsesItsOwnSweep) {
+    const Element e = make_arc({1, 0}, {0, 1}, {0, 0}, false);  // three quadrants
+    EXPECT_NEAR(distance_to(e, {-2, -2}), 2 * std::sqrt(2.0) - 1, kEps);
+    EXPECT_NEAR(distance_to(e, {2, 2}), std::sqrt(5.0), kEps);
+}
+
+TEST(Element, AngleBetweenCountsInTheGivenDirection) {
+    EXPECT_NEAR(angle_between({1, 0}, {0, 1}, true), kPi / 2, kEps);
+    EXPECT_NEAR(angle_between({1, 0}, {0, 1}, false), 3 * kPi / 2, kEps);
+    EXPECT_EQ(angle_between({1, 0}, {2, 0}, true), 0.0);
+}
+
+TEST(Element, CoordinatesBeyondLimitOrNotFiniteAreInvalid) {
+    EXPECT_TRUE(has_valid_coordinates(make_line({0, 0}, {kMaxCoordinate, -kMaxCoordinate})));
+    EXPECT_FALSE(has_valid_coordinates(make_line({0, 0}, {2 * kMaxCoordinate, 0})));
+    EXPECT_FALSE(has_valid_coordinates(make_line({NAN, 0}, {1, 0})));
+    EXPECT_FALSE(has_valid_coordinates(make_arc({1, 0}, {0, 1}, {INFINITY, 0}, true)));
+    // A line's unused centre is not checked.
+    Element line = make_line({0, 0}, {1, 0});
+    line.centre = {NAN, NAN};
+    EXPECT_TRUE(has_valid_coordinates(line));
+}
+
+TEST(Element, RotationTurnsAllPointsAndKeepsDirection) {
+    const Element e = make_arc({2, 0}, {1, 1}, {1, 0}, true);
+    const Element r = rotate_about(e, {1, 0}, 90.0);
+    expect_near(r.start, {1, 1});
+    expect_near(r.end, {0, 0});
+    expect_near(r.centre, {1, 0});
+    EXPECT_TRUE(r.ccw);
+    EXPECT_NEAR(sweep(r), sweep(e), kEps);
+}
+
+}  // namespace
+}  // namespace rwmos::geom
