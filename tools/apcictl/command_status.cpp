@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "command.h"
+#include "rwmos/object_map.h"
 
 namespace apcictl {
 namespace {
@@ -56,7 +57,7 @@ class StatusCommand final : public Command {
 public:
     void declare(CLI::App& app) override {
         app.footer(
-            "Reads TcPlane, then ERROR (SubIndex 1) and STATUS (SubIndex 3) of compensation "
+            "Reads the spooler fill level (bus 1000), TcPlane, then ERROR (SubIndex 1) and STATUS (SubIndex 3) of compensation "
             "groups 1..3 and of the active group (Index 0) on bus 1300, DeviceNumber 1, and "
             "names the set bits. Says so when the firmware has no optionTC. Exit 1 if a "
             "register could not be read.");
@@ -67,17 +68,18 @@ public:
         apci::Board* board = session.board(failure);
         if (board == nullptr) return failure;
 
+        Outcome outcome = show_spooler(*board);
+
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
         const auto plane = board->read_int(plane_object);
         if (plane.status == APCI_NO_SUCH_DEVICE) {
             fmt::print("TC module (bus {}): absent, the firmware has no optionTC\n", APCI_TC_BUS);
-            return Outcome::success();
+            return outcome;
         }
         if (!plane) return failed("TcPlane", plane.status);
         fmt::print("TC module (bus {}): TcPlane {} ({})\n", APCI_TC_BUS, plane.value,
                    plane_name(plane.value));
 
-        Outcome outcome;
         for (std::int32_t group = 1; group <= kGroupCount; ++group)
             show_group(*board, group, fmt::format("group {}", group), outcome);
         show_group(*board, 0, "active group", outcome);
@@ -85,6 +87,23 @@ public:
     }
 
 private:
+    // "board (bus 1000): spooler 0 of 256 profiles" (board module, design numbers).
+    static Outcome show_spooler(apci::Board& board) {
+        namespace b = rwmos::board;
+        auto fill_object = apci::object(b::kBus, b::kDevice, b::kIdxSpoolerFill, 0);
+        auto capacity_object = apci::object(b::kBus, b::kDevice, b::kIdxSpoolerCapacity, 0);
+        const auto fill = board.read_int(fill_object);
+        const auto capacity = board.read_int(capacity_object);
+        if (fill && capacity) {
+            fmt::print("board (bus {}): spooler {} of {} profiles\n", b::kBus, fill.value,
+                       capacity.value);
+            return Outcome::success();
+        }
+        const apci::Status s = fill ? capacity.status : fill.status;
+        fmt::print("board (bus {}): spooler unreadable, {}\n", b::kBus, describe_status(s));
+        return failed("spooler", s);
+    }
+
     // Prints one line; the first unreadable register becomes the outcome.
     static void show_group(apci::Board& board, std::int32_t index, const std::string& label,
                            Outcome& outcome) {

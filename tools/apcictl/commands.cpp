@@ -16,7 +16,7 @@ constexpr std::array kCommands{
                 make_write_command},
     CommandSpec{"script", "Run commands from a file (or - for stdin) against one board session",
                 false, make_script_command},
-    CommandSpec{"status", "Show the TC registers ERROR and STATUS per group, decoded by name",
+    CommandSpec{"status", "Show the spooler fill and the TC registers ERROR and STATUS per group, by bit name",
                 true, make_status_command},
 };
 
