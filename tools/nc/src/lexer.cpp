@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 namespace apci::nc {
 
@@ -15,6 +16,19 @@ std::uint32_t column_at(std::string_view line, std::size_t offset) noexcept {
         if ((static_cast<unsigned char>(line[i]) & 0xC0U) != 0x80U) ++col;
     }
     return col;
+}
+
+bool LineCursor::is_ascii(std::string_view s) noexcept {
+    // Eight bytes at a time: any byte with its top bit set is not ASCII.
+    std::uint64_t any = 0;
+    std::size_t i = 0;
+    for (; i + 8 <= s.size(); i += 8) {
+        std::uint64_t w = 0;
+        std::memcpy(&w, s.data() + i, 8);
+        any |= w;
+    }
+    for (; i < s.size(); ++i) any |= static_cast<unsigned char>(s[i]);
+    return (any & 0x8080808080808080ULL) == 0;
 }
 
 namespace {

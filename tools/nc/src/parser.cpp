@@ -63,8 +63,7 @@ public:
         out_.kind = LineKind::kEmpty;
         out_.program_name = {};
         out_.program_name_column = 0;
-        b_ = Block{};
-        b_.line = line_;
+        b_.clear(line_);
         c_.skip_blanks();
         if (c_.peek() == '%') return parse_program_name();
         bool first = true;

@@ -50,6 +50,16 @@ struct Block {
     Word<int> tool;                             // D, 0..kMaxToolNumber (0: no tool)
     Word<bool> end_of_program;                  // M30
 
+    // Forgets every word (cheaper than assigning Block{}: only the columns say what is present).
+    void clear(std::uint64_t line_number) noexcept {
+        line = line_number;
+        number.column = motion.column = plane.column = distance.column = 0;
+        compensation.column = corner.column = radius.column = feed.column = 0;
+        tool.column = end_of_program.column = 0;
+        for (auto& w : axis) w.column = 0;
+        for (auto& w : center) w.column = 0;
+    }
+
     bool has_axis_word() const noexcept {
         return axis[0].present() || axis[1].present() || axis[2].present();
     }

@@ -22,11 +22,14 @@ enum class NumberScan : std::uint8_t {
 
 class LineCursor {
 public:
-    explicit LineCursor(std::string_view line) noexcept : line_(line) {}
+    explicit LineCursor(std::string_view line) noexcept : line_(line), ascii_(is_ascii(line)) {}
 
     std::string_view line() const noexcept { return line_; }
     std::size_t offset() const noexcept { return pos_; }
-    std::uint32_t column() const noexcept { return column_at(line_, pos_); }
+    // Columns are needed for every word; a pure ASCII line (the usual case) needs no counting.
+    std::uint32_t column() const noexcept {
+        return ascii_ ? static_cast<std::uint32_t>(pos_ + 1) : column_at(line_, pos_);
+    }
     bool at_end() const noexcept { return pos_ >= line_.size(); }
     // The character at the cursor, '\0' at the end.
     char peek() const noexcept { return pos_ < line_.size() ? line_[pos_] : '\0'; }
@@ -49,7 +52,10 @@ public:
     bool skip_paren_comment() noexcept;
 
 private:
+    static bool is_ascii(std::string_view s) noexcept;
+
     std::string_view line_;
+    bool ascii_;
     std::size_t pos_ = 0;
 };
 
