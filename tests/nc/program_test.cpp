@@ -136,6 +136,16 @@ TEST(Program, MissingFileIsIoError) {
     EXPECT_EQ(p.error().to_string(), "/nonexistent/dir/prog.nc: cannot open: No such file or directory");
 }
 
+TEST(Program, ReadErrorIsIoError) {
+    // A directory opens but cannot be read.
+    const std::string dir = ::testing::TempDir() + "nc_dir_as_program";
+    std::filesystem::create_directories(dir);
+    Result<Program> p = Program::load(dir);
+    ASSERT_FALSE(p);
+    EXPECT_EQ(p.error().kind, ErrorKind::kIo);
+    EXPECT_EQ(p.error().to_string(), dir + ":1:1: read error: Is a directory");
+}
+
 TEST(Program, OverlongLineIsError) {
     std::string text = "G0 X1 ;";
     text.append(LineSource::kMaxLineLength, 'x');

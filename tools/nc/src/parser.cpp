@@ -68,19 +68,22 @@ public:
         if (c_.peek() == '%') return parse_program_name();
         bool first = true;
         for (;;) {
-            if (!skip_blanks_and_comments(c_, file_, line_, err_)) return false;
+            if (!skip_blanks_and_comments(c_, file_, line_, err_)) {
+                err_.block = b_.block_number();
+                return false;
+            }
             if (c_.at_end()) break;
             const char ch = c_.peek();
             if (ch == '#' || ch == '$') return isg_command();
             if (!is_letter(ch)) {
                 if (first && is_digit(ch)) {
-                    return fail(err_, ErrorKind::kSyntax, file_, line_, c_.column(),
+                    return fail_here(ErrorKind::kSyntax, c_.column(),
                                 fmt::format("expected a word (an address letter: {}), found a "
                                             "number; Klartext programs must begin with "
                                             "'BEGIN PGM'",
                                             kKnownWords));
                 }
-                return fail(err_, ErrorKind::kSyntax, file_, line_, c_.column(),
+                return fail_here(ErrorKind::kSyntax, c_.column(),
                             fmt::format("unexpected character {}: expected a word ({})",
                                         describe_char(ch), kKnownWords));
             }
@@ -92,6 +95,13 @@ public:
     }
 
 private:
+    // Parse errors carry the block number when the N word came before the error.
+    bool fail_here(ErrorKind kind, std::uint32_t column, std::string message) {
+        fail(err_, kind, file_, line_, column, std::move(message));
+        err_.block = b_.number.present() ? b_.number.value : kNoBlockNumber;
+        return false;
+    }
+
     bool parse_program_name() {
         c_.advance();
         const std::size_t begin = c_.offset();
@@ -99,12 +109,12 @@ private:
         while (is_program_name_char(c_.peek())) c_.advance();
         const std::string_view name = c_.line().substr(begin, c_.offset() - begin);
         if (name.empty()) {
-            return fail(err_, ErrorKind::kSyntax, file_, line_, col,
+            return fail_here(ErrorKind::kSyntax, col,
                         "expected a program name after '%' (letters, digits, '_', '.', '-')");
         }
         if (!skip_blanks_and_comments(c_, file_, line_, err_)) return false;
         if (!c_.at_end()) {
-            return fail(err_, ErrorKind::kSyntax, file_, line_, c_.column(),
+            return fail_here(ErrorKind::kSyntax, c_.column(),
                         fmt::format("unexpected {} after the program name: the '%' line holds "
                                     "only the name",
                                     describe_char(c_.peek())));
@@ -123,10 +133,10 @@ private:
         c_.advance();
         const std::string_view name = c_.scan_identifier();
         if (name.empty()) {
-            return fail(err_, ErrorKind::kSyntax, file_, line_, col,
+            return fail_here(ErrorKind::kSyntax, col,
                         fmt::format("expected a command name after '{}'", sigil));
         }
-        return fail(err_, ErrorKind::kUnsupported, file_, line_, col,
+        return fail_here(ErrorKind::kUnsupported, col,
                     fmt::format("ISG command '{}{}' is not supported yet", sigil, name));
     }
 
@@ -149,7 +159,7 @@ private:
             case 'R': return arc_radius(col);
             case 'F': return feed(col);
             default:
-                return fail(err_, ErrorKind::kUnknownWord, file_, line_, col,
+                return fail_here(ErrorKind::kUnknownWord, col,
                             fmt::format("unknown word '{}' (known words: {})", raw, kKnownWords));
         }
     }
@@ -161,7 +171,7 @@ private:
     }
 
     bool twice(char letter, std::uint32_t col) {
-        return fail(err_, ErrorKind::kConflict, file_, line_, col,
+        return fail_here(ErrorKind::kConflict, col,
                     fmt::format("'{}' appears twice in one block", letter));
     }
 
@@ -171,10 +181,10 @@ private:
         const std::uint32_t num_col = c_.column();
         switch (c_.scan_number(v)) {
             case NumberScan::kNone:
-                return fail(err_, ErrorKind::kSyntax, file_, line_, num_col,
+                return fail_here(ErrorKind::kSyntax, num_col,
                             fmt::format("expected a number after '{}'", letter));
             case NumberScan::kOutOfRange:
-                return fail(err_, ErrorKind::kValue, file_, line_, num_col,
+                return fail_here(ErrorKind::kValue, num_col,
                             fmt::format("the number after '{}' is out of range", letter));
             case NumberScan::kOk: break;
         }
@@ -189,11 +199,11 @@ private:
         const char ch = c_.peek();
         if (!is_digit(ch)) {
             if (ch == '+' || ch == '-' || ch == '.') {
-                return fail(err_, ErrorKind::kValue, file_, line_, num_col,
+                return fail_here(ErrorKind::kValue, num_col,
                             fmt::format("'{}' takes a whole number without sign or decimal point",
                                         letter));
             }
-            return fail(err_, ErrorKind::kSyntax, file_, line_, num_col,
+            return fail_here(ErrorKind::kSyntax, num_col,
                         fmt::format("expected a number after '{}'", letter));
         }
         value = 0;
@@ -204,11 +214,11 @@ private:
             c_.advance();
         }
         if (c_.peek() == '.') {
-            return fail(err_, ErrorKind::kValue, file_, line_, c_.column(),
+            return fail_here(ErrorKind::kValue, c_.column(),
                         fmt::format("'{}' takes a whole number without decimal point", letter));
         }
         if (overflow) {
-            return fail(err_, ErrorKind::kValue, file_, line_, num_col,
+            return fail_here(ErrorKind::kValue, num_col,
                         fmt::format("the number after '{}' is out of range", letter));
         }
         return true;
@@ -216,7 +226,7 @@ private:
 
     bool block_number(std::uint32_t col, bool first) {
         if (!first) {
-            return fail(err_, ErrorKind::kSyntax, file_, line_, col,
+            return fail_here(ErrorKind::kSyntax, col,
                         "the block number 'N' must be the first word of the block");
         }
         std::uint64_t v = 0;
@@ -230,10 +240,10 @@ private:
     bool set_group(Word<E>& w, E value, std::uint32_t col, std::string_view group) {
         if (w.present()) {
             if (w.value == value) {
-                return fail(err_, ErrorKind::kConflict, file_, line_, col,
+                return fail_here(ErrorKind::kConflict, col,
                             fmt::format("G{} appears twice in one block", g_number(value)));
             }
-            return fail(err_, ErrorKind::kConflict, file_, line_, col,
+            return fail_here(ErrorKind::kConflict, col,
                         fmt::format("G{} and G{} in one block: both set the {}",
                                     g_number(w.value), g_number(value), group));
         }
@@ -261,7 +271,7 @@ private:
             case 90: return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
             case 91: return set_group(b_.distance, DistanceMode::kIncremental, col, "distance mode");
             default:
-                return fail(err_, ErrorKind::kUnknownWord, file_, line_, col,
+                return fail_here(ErrorKind::kUnknownWord, col,
                             fmt::format("unknown G code G{} (known: {})", g, kKnownGCodes));
         }
     }
@@ -270,11 +280,11 @@ private:
         std::uint64_t m = 0;
         if (!whole('M', m)) return false;
         if (m != 30) {
-            return fail(err_, ErrorKind::kUnknownWord, file_, line_, col,
+            return fail_here(ErrorKind::kUnknownWord, col,
                         fmt::format("unknown M code M{} (known: M30)", m));
         }
         if (b_.end_of_program.present()) {
-            return fail(err_, ErrorKind::kConflict, file_, line_, col,
+            return fail_here(ErrorKind::kConflict, col,
                         "M30 appears twice in one block");
         }
         b_.end_of_program.value = true;
@@ -288,7 +298,7 @@ private:
         std::uint64_t d = 0;
         if (!whole('D', d)) return false;
         if (d > static_cast<std::uint64_t>(kMaxToolNumber)) {
-            return fail(err_, ErrorKind::kValue, file_, line_, num_col,
+            return fail_here(ErrorKind::kValue, num_col,
                         fmt::format("tool number D{} out of range 0..{}", d, kMaxToolNumber));
         }
         b_.tool.value = static_cast<int>(d);
@@ -300,7 +310,7 @@ private:
         const std::uint32_t num_col = c_.column();
         if (!real(b_.feed, 'F', col)) return false;
         if (!(b_.feed.value > 0.0)) {
-            return fail(err_, ErrorKind::kValue, file_, line_, num_col,
+            return fail_here(ErrorKind::kValue, num_col,
                         "feed rate F must be greater than 0");
         }
         return true;
@@ -310,7 +320,7 @@ private:
         const std::uint32_t num_col = c_.column();
         if (!real(b_.radius, 'R', col)) return false;
         if (b_.radius.value == 0.0) {
-            return fail(err_, ErrorKind::kValue, file_, line_, num_col,
+            return fail_here(ErrorKind::kValue, num_col,
                         "arc radius R must not be 0");
         }
         if (b_.has_center_word()) return r_with_center(col);
@@ -318,7 +328,7 @@ private:
     }
 
     bool r_with_center(std::uint32_t col) {
-        return fail(err_, ErrorKind::kConflict, file_, line_, col,
+        return fail_here(ErrorKind::kConflict, col,
                     "R and I/J/K in one block: give the arc centre or its radius, not both");
     }
 
