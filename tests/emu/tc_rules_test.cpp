@@ -589,3 +589,43 @@ TEST_F(TcAbsent, WithoutOptionTcTheBoardModuleStillAnswers) {
 }
 
 }  // namespace
+
+namespace {
+
+// ---- Pure queries over TcState.
+
+TEST(TcState, PlaneAxesFollowTcPlaneAndTheAxisAssignment) {
+    rwmos::TcState s;
+    s.axis_nr = {4, 5, 6};
+    s.plane = tc::kPlaneXY;
+    EXPECT_EQ(rwmos::plane_axes(s).first, 4);
+    EXPECT_EQ(rwmos::plane_axes(s).second, 5);
+    s.plane = tc::kPlaneZX;
+    EXPECT_EQ(rwmos::plane_axes(s).first, 6);
+    EXPECT_EQ(rwmos::plane_axes(s).second, 4);
+    s.plane = tc::kPlaneYZ;
+    EXPECT_EQ(rwmos::plane_axes(s).first, 5);
+    EXPECT_EQ(rwmos::plane_axes(s).second, 6);
+}
+
+TEST(TcState, NoActiveGroupWhenThePlaneAxesCoincide) {
+    rwmos::TcState s;
+    s.axis_nr = {1, 1, 2};
+    s.group(2).x_axis = 1;
+    s.group(2).y_axis = 1;
+    EXPECT_EQ(rwmos::active_group(s), 0);
+}
+
+TEST(TcState, EveryInitFaultHasItsOwnMessage) {
+    using rwmos::InitFault;
+    const std::array faults{InitFault::kNone, InitFault::kAxesNotDistinct, InitFault::kNoSide,
+                            InitFault::kAxisInUse};
+    for (std::size_t i = 0; i < faults.size(); ++i) {
+        EXPECT_FALSE(rwmos::init_fault_message(faults[i]).empty());
+        for (std::size_t j = i + 1; j < faults.size(); ++j)
+            EXPECT_NE(rwmos::init_fault_message(faults[i]), rwmos::init_fault_message(faults[j]));
+    }
+    EXPECT_NE(rwmos::init_fault_message(InitFault::kNoSide).find("Left or Right"), std::string_view::npos);
+}
+
+}  // namespace

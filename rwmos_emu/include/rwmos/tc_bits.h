@@ -10,6 +10,7 @@
 
 namespace rwmos::tc {
 
+// Names and meanings are string literals, so .data() is NUL-terminated (the C API relies on it).
 struct BitName {
     std::int32_t mask;
     std::string_view name;     // the seed's name
