@@ -23,12 +23,18 @@ std::string make_program(std::size_t blocks) {
         const std::size_t n = i + 3;
         int len = 0;
         switch (i % 4) {
-            case 0: len = std::snprintf(line, sizeof line, "N%zu G1 X10.125 Y0\n", n); break;
+            case 0:
+                len = std::snprintf(line, sizeof line, "N%zu G1 X10.125 Y0\n", n);
+                break;
             case 1:
                 len = std::snprintf(line, sizeof line, "N%zu G3 X20.125 Y10 I0 J10 ; arc\n", n);
                 break;
-            case 2: len = std::snprintf(line, sizeof line, "N%zu G2 X10.125 Y20 R10\n", n); break;
-            default: len = std::snprintf(line, sizeof line, "N%zu G1 X0 Y0 Z-.5 (back)\n", n); break;
+            case 2:
+                len = std::snprintf(line, sizeof line, "N%zu G2 X10.125 Y20 R10\n", n);
+                break;
+            default:
+                len = std::snprintf(line, sizeof line, "N%zu G1 X0 Y0 Z-.5 (back)\n", n);
+                break;
         }
         text.append(line, static_cast<std::size_t>(len));
     }
@@ -122,8 +128,8 @@ void BM_ParseOneLine(benchmark::State& state) {
         benchmark::DoNotOptimize(parse_din_line(line, 1, "bench.nc", out, err));
         benchmark::DoNotOptimize(out.block.axis[0].value);
     }
-    state.counters["blocks/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                    benchmark::Counter::kIsRate);
+    state.counters["blocks/s"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ParseOneLine);
 

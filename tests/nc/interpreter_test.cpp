@@ -3,9 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "apci/nc/arc.h"
 #include "apci/nc/parser.h"
@@ -22,8 +21,8 @@ using test::only;
 using V = Eigen::Vector3d;
 
 void expect_near(const V& got, const V& want, const char* what = "") {
-    EXPECT_NEAR((got - want).norm(), 0.0, 1e-9) << what << ": got " << got.transpose()
-                                                << ", want " << want.transpose();
+    EXPECT_NEAR((got - want).norm(), 0.0, 1e-9)
+        << what << ": got " << got.transpose() << ", want " << want.transpose();
 }
 
 ArcMove single_arc(std::string_view text) {
@@ -78,8 +77,7 @@ TEST(Interpreter, NoMotionModeBeforeFirstMoveIsError) {
 }
 
 TEST(Interpreter, AbsoluteAndIncrementalDistance) {
-    const auto rapids = only<RapidMove>(
-        events_of("G90 G0 X10 Y10\nG91 X5 Y-5\nZ2\nG90 X1\nM30"));
+    const auto rapids = only<RapidMove>(events_of("G90 G0 X10 Y10\nG91 X5 Y-5\nZ2\nG90 X1\nM30"));
     ASSERT_EQ(rapids.size(), 4U);
     expect_near(rapids[0].end, V(10, 10, 0));
     expect_near(rapids[1].end, V(15, 5, 0));

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/parser.h"
 
-#include "apci/nc/interpreter.h"
-#include "apci/nc/lexer.h"
-
 #include <gtest/gtest.h>
 
 #include <string>
+
+#include "apci/nc/interpreter.h"
+#include "apci/nc/lexer.h"
 
 namespace apci::nc {
 namespace {
@@ -53,8 +53,9 @@ TEST(Parser, ProgramNameLine) {
 }
 
 TEST(Parser, ProgramNameErrors) {
-    EXPECT_EQ(error("%"), "prog.nc:12:2: expected a program name after '%' (letters, digits, "
-                          "'_', '.', '-')");
+    EXPECT_EQ(error("%"),
+              "prog.nc:12:2: expected a program name after '%' (letters, digits, "
+              "'_', '.', '-')");
     EXPECT_EQ(error("%abc G1"),
               "prog.nc:12:6: unexpected 'G' after the program name: the '%' line holds only "
               "the name");
@@ -90,8 +91,9 @@ TEST(Parser, ErrorsCarryTheBlockNumberWhenKnown) {
 }
 
 TEST(Parser, BlockNumberMustBeFirstWord) {
-    EXPECT_EQ(error("G1 N10"), "prog.nc:12:4: the block number 'N' must be the first word of "
-                               "the block");
+    EXPECT_EQ(error("G1 N10"),
+              "prog.nc:12:4: the block number 'N' must be the first word of "
+              "the block");
 }
 
 TEST(Parser, EveryWordAndItsValue) {
@@ -169,8 +171,9 @@ TEST(Parser, CommentsInParenthesesAndAfterSemicolon) {
 }
 
 TEST(Parser, UnclosedCommentIsSyntaxError) {
-    EXPECT_EQ(error("N10 G1 (no end"), "prog.nc:12:8: comment not closed: expected ')' before "
-                                       "the end of the line");
+    EXPECT_EQ(error("N10 G1 (no end"),
+              "prog.nc:12:8: comment not closed: expected ')' before "
+              "the end of the line");
 }
 
 TEST(Parser, ExpectedNumberAfterAddress) {
@@ -198,7 +201,8 @@ TEST(Parser, WholeNumberWords) {
     EXPECT_EQ(error("G-1"), "prog.nc:12:2: 'G' takes a whole number without sign or decimal point");
     EXPECT_EQ(error("D1.0"), "prog.nc:12:3: 'D' takes a whole number without decimal point");
     EXPECT_EQ(error("N1.5"), "prog.nc:12:3: 'N' takes a whole number without decimal point");
-    EXPECT_EQ(error("M+30"), "prog.nc:12:2: 'M' takes a whole number without sign or decimal point");
+    EXPECT_EQ(error("M+30"),
+              "prog.nc:12:2: 'M' takes a whole number without sign or decimal point");
     EXPECT_EQ(error_kind("G1.5"), ErrorKind::kValue);
 }
 
@@ -211,8 +215,9 @@ TEST(Parser, UnknownWordsAreErrors) {
 }
 
 TEST(Parser, UnknownGCode) {
-    EXPECT_EQ(error("N10 G04"), "prog.nc:12:5: unknown G code G4 (known: G0-G3, G17-G19, G25, "
-                                "G26, G40-G42, G90, G91)");
+    EXPECT_EQ(error("N10 G04"),
+              "prog.nc:12:5: unknown G code G4 (known: G0-G3, G17-G19, G25, "
+              "G26, G40-G42, G90, G91)");
     EXPECT_EQ(error_kind("G138"), ErrorKind::kUnknownWord);
 }
 
@@ -224,8 +229,9 @@ TEST(Parser, UnknownMCode) {
 TEST(Parser, UnexpectedCharacter) {
     EXPECT_EQ(error("G1 X1 @"),
               "prog.nc:12:7: unexpected character '@': expected a word (N G X Y Z I J K R F D M)");
-    EXPECT_EQ(error("G1 X1\x01"), "prog.nc:12:6: unexpected character byte 0x01: expected a word "
-                                  "(N G X Y Z I J K R F D M)");
+    EXPECT_EQ(error("G1 X1\x01"),
+              "prog.nc:12:6: unexpected character byte 0x01: expected a word "
+              "(N G X Y Z I J K R F D M)");
     EXPECT_EQ(error("G1 X1.2.3"),
               "prog.nc:12:8: unexpected character '.': expected a word (N G X Y Z I J K R F D M)");
 }
@@ -267,10 +273,12 @@ TEST(Parser, SameWordTwice) {
 }
 
 TEST(Parser, RadiusAndCenterExcludeEachOther) {
-    EXPECT_EQ(error("G2 X1 I1 R2"), "prog.nc:12:10: R and I/J/K in one block: give the arc centre "
-                                    "or its radius, not both");
-    EXPECT_EQ(error("G2 X1 R2 J1"), "prog.nc:12:10: R and I/J/K in one block: give the arc centre "
-                                    "or its radius, not both");
+    EXPECT_EQ(error("G2 X1 I1 R2"),
+              "prog.nc:12:10: R and I/J/K in one block: give the arc centre "
+              "or its radius, not both");
+    EXPECT_EQ(error("G2 X1 R2 J1"),
+              "prog.nc:12:10: R and I/J/K in one block: give the arc centre "
+              "or its radius, not both");
 }
 
 TEST(Parser, ToolNumberRange) {
@@ -291,7 +299,8 @@ TEST(Parser, RadiusMustNotBeZero) {
 TEST(Parser, IsgCommandsAreRecognisedButNotSupportedYet) {
     EXPECT_EQ(error("N50 #OTC ON[RADIUS DISC]"),
               "prog.nc:12:5: ISG command '#OTC' is not supported yet");
-    EXPECT_EQ(error("N90 $FOR P1=0, 5, 1"), "prog.nc:12:5: ISG command '$FOR' is not supported yet");
+    EXPECT_EQ(error("N90 $FOR P1=0, 5, 1"),
+              "prog.nc:12:5: ISG command '$FOR' is not supported yet");
     EXPECT_EQ(error_kind("#TRAFO ON"), ErrorKind::kUnsupported);
     EXPECT_EQ(error("# ON"), "prog.nc:12:1: expected a command name after '#'");
 }
@@ -341,7 +350,8 @@ TEST(Parser, RandomLinesGiveErrorsWithinTheLineNeverACrash) {
         Diagnostic err;
         if (parse_din_line(line, 1, "fuzz.nc", out, err)) {
             ++parsed;
-            if (out.kind == LineKind::kBlock && !interpreter.apply(out.block, "fuzz.nc", batch, err)) {
+            if (out.kind == LineKind::kBlock &&
+                !interpreter.apply(out.block, "fuzz.nc", batch, err)) {
                 EXPECT_GE(err.column, 1U) << line;
                 EXPECT_LE(err.column, column_at(line, line.size())) << line;
             }

@@ -133,7 +133,8 @@ TEST(Program, MissingFileIsIoError) {
     Result<Program> p = Program::load("/nonexistent/dir/prog.nc");
     ASSERT_FALSE(p);
     EXPECT_EQ(p.error().kind, ErrorKind::kIo);
-    EXPECT_EQ(p.error().to_string(), "/nonexistent/dir/prog.nc: cannot open: No such file or directory");
+    EXPECT_EQ(p.error().to_string(),
+              "/nonexistent/dir/prog.nc: cannot open: No such file or directory");
 }
 
 TEST(Program, ReadErrorIsIoError) {
@@ -194,10 +195,10 @@ TEST(Program, SeedProgramWrQuadDiscParses) {
         blocks.push_back(e.origin.block);
     }
     EXPECT_EQ(names, (std::vector<std::string>{"tool", "corner", "line", "compensation", "line",
-                                                "line", "corner", "line", "line", "line",
-                                                "compensation", "line", "end"}));
-    EXPECT_EQ(blocks, (std::vector<std::int64_t>{22, 22, 40, 55, 60, 70, 80, 80, 90, 95, 100,
-                                                  100, 99999}));
+                                               "line", "corner", "line", "line", "line",
+                                               "compensation", "line", "end"}));
+    EXPECT_EQ(blocks,
+              (std::vector<std::int64_t>{22, 22, 40, 55, 60, 70, 80, 80, 90, 95, 100, 100, 99999}));
     const auto lines = only<LineMove>(ev);
     ASSERT_EQ(lines.size(), 7U);
     EXPECT_EQ(lines[2].end, V(102, 0, 0));

@@ -37,12 +37,24 @@ void counted_free(void* q) noexcept {
 
 }  // namespace
 
-void* operator new(std::size_t n) { return counted_alloc(n); }
-void* operator new[](std::size_t n) { return counted_alloc(n); }
-void operator delete(void* p) noexcept { counted_free(p); }
-void operator delete[](void* p) noexcept { counted_free(p); }
-void operator delete(void* p, std::size_t) noexcept { counted_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { counted_free(p); }
+void* operator new(std::size_t n) {
+    return counted_alloc(n);
+}
+void* operator new[](std::size_t n) {
+    return counted_alloc(n);
+}
+void operator delete(void* p) noexcept {
+    counted_free(p);
+}
+void operator delete[](void* p) noexcept {
+    counted_free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    counted_free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+    counted_free(p);
+}
 
 namespace apci::nc {
 namespace {
@@ -57,10 +69,18 @@ std::string write_program(const std::string& name, std::size_t blocks) {
     for (std::size_t i = 0; i < blocks; ++i) {
         const std::size_t n = i + 3;
         switch (i % 4) {
-            case 0: std::fprintf(f, "N%zu G1 X10 Y0\n", n); break;
-            case 1: std::fprintf(f, "N%zu G3 X20Y10 I0 J10 ; quarter\n", n); break;
-            case 2: std::fprintf(f, "N%zu G2 X10 Y20 R10\n", n); break;
-            default: std::fprintf(f, "N%zu G1 X0 Y0 (back)\n", n); break;
+            case 0:
+                std::fprintf(f, "N%zu G1 X10 Y0\n", n);
+                break;
+            case 1:
+                std::fprintf(f, "N%zu G3 X20Y10 I0 J10 ; quarter\n", n);
+                break;
+            case 2:
+                std::fprintf(f, "N%zu G2 X10 Y20 R10\n", n);
+                break;
+            default:
+                std::fprintf(f, "N%zu G1 X0 Y0 (back)\n", n);
+                break;
         }
     }
     std::fputs("M30\n", f);

@@ -150,8 +150,7 @@ TEST(ToolTable, ToolNumberRange) {
 }
 
 TEST(ToolTable, AxisIndexRules) {
-    EXPECT_EQ(error("wz[1].ax_ersatz 0"),
-              "t.tools:1:16: expected '[' after 'wz[1].ax_ersatz'");
+    EXPECT_EQ(error("wz[1].ax_ersatz 0"), "t.tools:1:16: expected '[' after 'wz[1].ax_ersatz'");
     EXPECT_EQ(error("wz[1].ax_ersatz[8] 0"), "t.tools:1:17: axis index 8 out of range 0..7");
     EXPECT_EQ(error("wz[1].radius[0] 5"), "t.tools:1:13: 'radius' takes no index");
 }
@@ -187,7 +186,8 @@ TEST(ToolTable, RangesFromTheSeed) {
     EXPECT_EQ(error("wz[1].grinding_disc_tilt_angle 450001"),
               "t.tools:1:32: wz[1].grinding_disc_tilt_angle 450001 out of range -450000..450000 "
               "(-45..45 degrees in 0.0001 degree)");
-    EXPECT_EQ(table("wz[1].grinding_disc_tilt_angle -450000").find(1)->disc_tilt_angle_deg(), -45.0);
+    EXPECT_EQ(table("wz[1].grinding_disc_tilt_angle -450000").find(1)->disc_tilt_angle_deg(),
+              -45.0);
 }
 
 TEST(ToolTable, FieldSetTwiceIsError) {
@@ -205,7 +205,8 @@ TEST(ToolTable, MissingFileIsIoError) {
     Result<ToolTable> t = load_tool_table("/nonexistent/x.tools");
     ASSERT_FALSE(t);
     EXPECT_EQ(t.error().kind, ErrorKind::kIo);
-    EXPECT_EQ(t.error().to_string(), "/nonexistent/x.tools: cannot open: No such file or directory");
+    EXPECT_EQ(t.error().to_string(),
+              "/nonexistent/x.tools: cannot open: No such file or directory");
 }
 
 }  // namespace

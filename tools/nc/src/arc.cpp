@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/arc.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace apci::nc {
 
@@ -23,8 +23,9 @@ ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen
     const double d = chord.norm();
     const double abs_r = std::fabs(r);
     if (d < kMinArcRadius) {
-        out.message = "R arc impossible: its end point equals the start point in the plane "
-                      "(program a full circle with I/J/K)";
+        out.message =
+            "R arc impossible: its end point equals the start point in the plane "
+            "(program a full circle with I/J/K)";
         return out;
     }
     if (d > 2.0 * abs_r + kArcRadiusTolerance) {

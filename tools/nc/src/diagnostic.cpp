@@ -9,14 +9,22 @@ namespace apci::nc {
 
 std::string_view error_kind_name(ErrorKind k) noexcept {
     switch (k) {
-        case ErrorKind::kIo: return "Io";
-        case ErrorKind::kSyntax: return "Syntax";
-        case ErrorKind::kUnknownWord: return "UnknownWord";
-        case ErrorKind::kConflict: return "Conflict";
-        case ErrorKind::kValue: return "Value";
-        case ErrorKind::kGeometry: return "Geometry";
-        case ErrorKind::kProgramRule: return "ProgramRule";
-        case ErrorKind::kUnsupported: return "Unsupported";
+        case ErrorKind::kIo:
+            return "Io";
+        case ErrorKind::kSyntax:
+            return "Syntax";
+        case ErrorKind::kUnknownWord:
+            return "UnknownWord";
+        case ErrorKind::kConflict:
+            return "Conflict";
+        case ErrorKind::kValue:
+            return "Value";
+        case ErrorKind::kGeometry:
+            return "Geometry";
+        case ErrorKind::kProgramRule:
+            return "ProgramRule";
+        case ErrorKind::kUnsupported:
+            return "Unsupported";
     }
     return "Unknown";
 }
@@ -27,7 +35,7 @@ std::string Diagnostic::to_string() const {
 }
 
 std::string_view event_name(const EventData& data) noexcept {
-    static constexpr std::string_view kNames[] = {"rapid",  "line",   "arc",   "tool",
+    static constexpr std::string_view kNames[] = {"rapid",        "line",   "arc",   "tool",
                                                   "compensation", "corner", "plane", "end"};
     static_assert(std::size(kNames) == std::variant_size_v<EventData>);
     return kNames[data.index()];

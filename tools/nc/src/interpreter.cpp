@@ -12,7 +12,9 @@ namespace {
 
 constexpr char kCenterLetter[3] = {'I', 'J', 'K'};
 
-bool is_arc(Motion m) { return m == Motion::kArcCw || m == Motion::kArcCcw; }
+bool is_arc(Motion m) {
+    return m == Motion::kArcCw || m == Motion::kArcCcw;
+}
 
 // The context of one apply() call, so that the rule checks below stay short.
 struct BlockCheck {
@@ -101,8 +103,8 @@ bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eig
     if (b.center[n].present()) {
         return c.fail(ErrorKind::kConflict, b.center[n].column,
                       fmt::format("{} is not a centre word in the G{} plane (use {} and {})",
-                                  kCenterLetter[n], g_number(s.plane),
-                                  kCenterLetter[axes.first], kCenterLetter[axes.second]));
+                                  kCenterLetter[n], g_number(s.plane), kCenterLetter[axes.first],
+                                  kCenterLetter[axes.second]));
     }
     ArcMove arc;
     arc.start = start;
@@ -122,15 +124,15 @@ bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eig
         }
         std::string why = check_arc_center(start, end, arc.center, s.plane);
         if (!why.empty()) {
-            return c.fail(ErrorKind::kGeometry, b.motion.present() ? b.motion.column
-                                                                   : first_motion_column(b),
+            return c.fail(ErrorKind::kGeometry,
+                          b.motion.present() ? b.motion.column : first_motion_column(b),
                           std::move(why));
         }
     } else {
-        return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
-                      fmt::format("G{} arc needs its centre ({} {}) or its radius (R)",
-                                  g_number(motion), kCenterLetter[axes.first],
-                                  kCenterLetter[axes.second]));
+        return c.fail(
+            ErrorKind::kProgramRule, first_motion_column(b),
+            fmt::format("G{} arc needs its centre ({} {}) or its radius (R)", g_number(motion),
+                        kCenterLetter[axes.first], kCenterLetter[axes.second]));
     }
     out = arc;
     return true;
@@ -146,8 +148,7 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
     out.clear();
     const BlockCheck c{b, file, err};
     if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1,
-                      "block after M30: the program has already ended");
+        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
     }
     ModalState s = state_;  // committed only when every check has passed
     if (b.motion.present()) s.motion = b.motion.value;
@@ -180,9 +181,9 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
                           fmt::format("R belongs to arcs (G2/G3), not to G{}", g_number(m)));
         }
         if (m != Motion::kRapid && !(s.feed > 0.0)) {
-            return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
-                          fmt::format("no feed rate: program F before the first G{} move",
-                                      g_number(m)));
+            return c.fail(
+                ErrorKind::kProgramRule, first_motion_column(b),
+                fmt::format("no feed rate: program F before the first G{} move", g_number(m)));
         }
         if (is_arc(m) && s.compensation != state_.compensation) {
             return c.fail(ErrorKind::kProgramRule, b.compensation.column,
@@ -192,8 +193,12 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
         }
         const Eigen::Vector3d end = end_point(b, state_.position, s.distance);
         switch (m) {
-            case Motion::kRapid: move = RapidMove{state_.position, end}; break;
-            case Motion::kLine: move = LineMove{state_.position, end, s.feed}; break;
+            case Motion::kRapid:
+                move = RapidMove{state_.position, end};
+                break;
+            case Motion::kLine:
+                move = LineMove{state_.position, end, s.feed};
+                break;
             case Motion::kArcCw:
             case Motion::kArcCcw:
                 if (!arc_move(c, s, m, state_.position, end, move)) return false;

@@ -54,7 +54,7 @@ bool skip_blanks_and_comments(LineCursor& c, std::string_view file, std::uint64_
 }
 
 class BlockParser {
-public:
+  public:
     BlockParser(std::string_view line, std::uint64_t line_number, std::string_view file,
                 ParsedLine& out, Diagnostic& err)
         : c_(line), line_(line_number), file_(file), out_(out), b_(out.block), err_(err) {}
@@ -78,14 +78,14 @@ public:
             if (!is_letter(ch)) {
                 if (first && is_digit(ch)) {
                     return fail_here(ErrorKind::kSyntax, c_.column(),
-                                fmt::format("expected a word (an address letter: {}), found a "
-                                            "number; Klartext programs must begin with "
-                                            "'BEGIN PGM'",
-                                            kKnownWords));
+                                     fmt::format("expected a word (an address letter: {}), found a "
+                                                 "number; Klartext programs must begin with "
+                                                 "'BEGIN PGM'",
+                                                 kKnownWords));
                 }
                 return fail_here(ErrorKind::kSyntax, c_.column(),
-                            fmt::format("unexpected character {}: expected a word ({})",
-                                        describe_char(ch), kKnownWords));
+                                 fmt::format("unexpected character {}: expected a word ({})",
+                                             describe_char(ch), kKnownWords));
             }
             if (!word(first)) return false;
             first = false;
@@ -94,7 +94,7 @@ public:
         return true;
     }
 
-private:
+  private:
     // Parse errors carry the block number when the N word came before the error.
     bool fail_here(ErrorKind kind, std::uint32_t column, std::string message) {
         fail(err_, kind, file_, line_, column, std::move(message));
@@ -110,14 +110,14 @@ private:
         const std::string_view name = c_.line().substr(begin, c_.offset() - begin);
         if (name.empty()) {
             return fail_here(ErrorKind::kSyntax, col,
-                        "expected a program name after '%' (letters, digits, '_', '.', '-')");
+                             "expected a program name after '%' (letters, digits, '_', '.', '-')");
         }
         if (!skip_blanks_and_comments(c_, file_, line_, err_)) return false;
         if (!c_.at_end()) {
             return fail_here(ErrorKind::kSyntax, c_.column(),
-                        fmt::format("unexpected {} after the program name: the '%' line holds "
-                                    "only the name",
-                                    describe_char(c_.peek())));
+                             fmt::format("unexpected {} after the program name: the '%' line holds "
+                                         "only the name",
+                                         describe_char(c_.peek())));
         }
         out_.kind = LineKind::kProgramName;
         out_.program_name = name;
@@ -134,10 +134,10 @@ private:
         const std::string_view name = c_.scan_identifier();
         if (name.empty()) {
             return fail_here(ErrorKind::kSyntax, col,
-                        fmt::format("expected a command name after '{}'", sigil));
+                             fmt::format("expected a command name after '{}'", sigil));
         }
         return fail_here(ErrorKind::kUnsupported, col,
-                    fmt::format("ISG command '{}{}' is not supported yet", sigil, name));
+                         fmt::format("ISG command '{}{}' is not supported yet", sigil, name));
     }
 
     bool word(bool first) {
@@ -146,21 +146,34 @@ private:
         const char letter = to_upper(raw);
         c_.advance();
         switch (letter) {
-            case 'N': return block_number(col, first);
-            case 'G': return g_code(col);
-            case 'M': return m_code(col);
-            case 'D': return tool(col);
-            case 'X': return real(b_.axis[0], 'X', col);
-            case 'Y': return real(b_.axis[1], 'Y', col);
-            case 'Z': return real(b_.axis[2], 'Z', col);
-            case 'I': return center(0, 'I', col);
-            case 'J': return center(1, 'J', col);
-            case 'K': return center(2, 'K', col);
-            case 'R': return arc_radius(col);
-            case 'F': return feed(col);
+            case 'N':
+                return block_number(col, first);
+            case 'G':
+                return g_code(col);
+            case 'M':
+                return m_code(col);
+            case 'D':
+                return tool(col);
+            case 'X':
+                return real(b_.axis[0], 'X', col);
+            case 'Y':
+                return real(b_.axis[1], 'Y', col);
+            case 'Z':
+                return real(b_.axis[2], 'Z', col);
+            case 'I':
+                return center(0, 'I', col);
+            case 'J':
+                return center(1, 'J', col);
+            case 'K':
+                return center(2, 'K', col);
+            case 'R':
+                return arc_radius(col);
+            case 'F':
+                return feed(col);
             default:
-                return fail_here(ErrorKind::kUnknownWord, col,
-                            fmt::format("unknown word '{}' (known words: {})", raw, kKnownWords));
+                return fail_here(
+                    ErrorKind::kUnknownWord, col,
+                    fmt::format("unknown word '{}' (known words: {})", raw, kKnownWords));
         }
     }
 
@@ -172,7 +185,7 @@ private:
 
     bool twice(char letter, std::uint32_t col) {
         return fail_here(ErrorKind::kConflict, col,
-                    fmt::format("'{}' appears twice in one block", letter));
+                         fmt::format("'{}' appears twice in one block", letter));
     }
 
     bool real(Word<double>& w, char letter, std::uint32_t col) {
@@ -182,11 +195,12 @@ private:
         switch (c_.scan_number(v)) {
             case NumberScan::kNone:
                 return fail_here(ErrorKind::kSyntax, num_col,
-                            fmt::format("expected a number after '{}'", letter));
+                                 fmt::format("expected a number after '{}'", letter));
             case NumberScan::kOutOfRange:
                 return fail_here(ErrorKind::kValue, num_col,
-                            fmt::format("the number after '{}' is out of range", letter));
-            case NumberScan::kOk: break;
+                                 fmt::format("the number after '{}' is out of range", letter));
+            case NumberScan::kOk:
+                break;
         }
         w.value = v;
         w.column = col;
@@ -199,12 +213,12 @@ private:
         const char ch = c_.peek();
         if (!is_digit(ch)) {
             if (ch == '+' || ch == '-' || ch == '.') {
-                return fail_here(ErrorKind::kValue, num_col,
-                            fmt::format("'{}' takes a whole number without sign or decimal point",
-                                        letter));
+                return fail_here(
+                    ErrorKind::kValue, num_col,
+                    fmt::format("'{}' takes a whole number without sign or decimal point", letter));
             }
             return fail_here(ErrorKind::kSyntax, num_col,
-                        fmt::format("expected a number after '{}'", letter));
+                             fmt::format("expected a number after '{}'", letter));
         }
         value = 0;
         bool overflow = false;
@@ -214,12 +228,13 @@ private:
             c_.advance();
         }
         if (c_.peek() == '.') {
-            return fail_here(ErrorKind::kValue, c_.column(),
-                        fmt::format("'{}' takes a whole number without decimal point", letter));
+            return fail_here(
+                ErrorKind::kValue, c_.column(),
+                fmt::format("'{}' takes a whole number without decimal point", letter));
         }
         if (overflow) {
             return fail_here(ErrorKind::kValue, num_col,
-                        fmt::format("the number after '{}' is out of range", letter));
+                             fmt::format("the number after '{}' is out of range", letter));
         }
         return true;
     }
@@ -227,7 +242,7 @@ private:
     bool block_number(std::uint32_t col, bool first) {
         if (!first) {
             return fail_here(ErrorKind::kSyntax, col,
-                        "the block number 'N' must be the first word of the block");
+                             "the block number 'N' must be the first word of the block");
         }
         std::uint64_t v = 0;
         if (!whole('N', v)) return false;
@@ -241,11 +256,11 @@ private:
         if (w.present()) {
             if (w.value == value) {
                 return fail_here(ErrorKind::kConflict, col,
-                            fmt::format("G{} appears twice in one block", g_number(value)));
+                                 fmt::format("G{} appears twice in one block", g_number(value)));
             }
             return fail_here(ErrorKind::kConflict, col,
-                        fmt::format("G{} and G{} in one block: both set the {}",
-                                    g_number(w.value), g_number(value), group));
+                             fmt::format("G{} and G{} in one block: both set the {}",
+                                         g_number(w.value), g_number(value), group));
         }
         w.value = value;
         w.column = col;
@@ -256,23 +271,37 @@ private:
         std::uint64_t g = 0;
         if (!whole('G', g)) return false;
         switch (g) {
-            case 0: return set_group(b_.motion, Motion::kRapid, col, "motion mode");
-            case 1: return set_group(b_.motion, Motion::kLine, col, "motion mode");
-            case 2: return set_group(b_.motion, Motion::kArcCw, col, "motion mode");
-            case 3: return set_group(b_.motion, Motion::kArcCcw, col, "motion mode");
-            case 17: return set_group(b_.plane, Plane::kXY, col, "plane");
-            case 18: return set_group(b_.plane, Plane::kZX, col, "plane");
-            case 19: return set_group(b_.plane, Plane::kYZ, col, "plane");
-            case 25: return set_group(b_.corner, CornerMode::kLinear, col, "corner mode");
-            case 26: return set_group(b_.corner, CornerMode::kCircular, col, "corner mode");
-            case 40: return set_group(b_.compensation, Compensation::kOff, col, "radius compensation");
-            case 41: return set_group(b_.compensation, Compensation::kLeft, col, "radius compensation");
-            case 42: return set_group(b_.compensation, Compensation::kRight, col, "radius compensation");
-            case 90: return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
-            case 91: return set_group(b_.distance, DistanceMode::kIncremental, col, "distance mode");
+            case 0:
+                return set_group(b_.motion, Motion::kRapid, col, "motion mode");
+            case 1:
+                return set_group(b_.motion, Motion::kLine, col, "motion mode");
+            case 2:
+                return set_group(b_.motion, Motion::kArcCw, col, "motion mode");
+            case 3:
+                return set_group(b_.motion, Motion::kArcCcw, col, "motion mode");
+            case 17:
+                return set_group(b_.plane, Plane::kXY, col, "plane");
+            case 18:
+                return set_group(b_.plane, Plane::kZX, col, "plane");
+            case 19:
+                return set_group(b_.plane, Plane::kYZ, col, "plane");
+            case 25:
+                return set_group(b_.corner, CornerMode::kLinear, col, "corner mode");
+            case 26:
+                return set_group(b_.corner, CornerMode::kCircular, col, "corner mode");
+            case 40:
+                return set_group(b_.compensation, Compensation::kOff, col, "radius compensation");
+            case 41:
+                return set_group(b_.compensation, Compensation::kLeft, col, "radius compensation");
+            case 42:
+                return set_group(b_.compensation, Compensation::kRight, col, "radius compensation");
+            case 90:
+                return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
+            case 91:
+                return set_group(b_.distance, DistanceMode::kIncremental, col, "distance mode");
             default:
                 return fail_here(ErrorKind::kUnknownWord, col,
-                            fmt::format("unknown G code G{} (known: {})", g, kKnownGCodes));
+                                 fmt::format("unknown G code G{} (known: {})", g, kKnownGCodes));
         }
     }
 
@@ -281,11 +310,10 @@ private:
         if (!whole('M', m)) return false;
         if (m != 30) {
             return fail_here(ErrorKind::kUnknownWord, col,
-                        fmt::format("unknown M code M{} (known: M30)", m));
+                             fmt::format("unknown M code M{} (known: M30)", m));
         }
         if (b_.end_of_program.present()) {
-            return fail_here(ErrorKind::kConflict, col,
-                        "M30 appears twice in one block");
+            return fail_here(ErrorKind::kConflict, col, "M30 appears twice in one block");
         }
         b_.end_of_program.value = true;
         b_.end_of_program.column = col;
@@ -299,7 +327,7 @@ private:
         if (!whole('D', d)) return false;
         if (d > static_cast<std::uint64_t>(kMaxToolNumber)) {
             return fail_here(ErrorKind::kValue, num_col,
-                        fmt::format("tool number D{} out of range 0..{}", d, kMaxToolNumber));
+                             fmt::format("tool number D{} out of range 0..{}", d, kMaxToolNumber));
         }
         b_.tool.value = static_cast<int>(d);
         b_.tool.column = col;
@@ -310,8 +338,7 @@ private:
         const std::uint32_t num_col = c_.column();
         if (!real(b_.feed, 'F', col)) return false;
         if (!(b_.feed.value > 0.0)) {
-            return fail_here(ErrorKind::kValue, num_col,
-                        "feed rate F must be greater than 0");
+            return fail_here(ErrorKind::kValue, num_col, "feed rate F must be greater than 0");
         }
         return true;
     }
@@ -320,8 +347,7 @@ private:
         const std::uint32_t num_col = c_.column();
         if (!real(b_.radius, 'R', col)) return false;
         if (b_.radius.value == 0.0) {
-            return fail_here(ErrorKind::kValue, num_col,
-                        "arc radius R must not be 0");
+            return fail_here(ErrorKind::kValue, num_col, "arc radius R must not be 0");
         }
         if (b_.has_center_word()) return r_with_center(col);
         return true;
@@ -329,7 +355,7 @@ private:
 
     bool r_with_center(std::uint32_t col) {
         return fail_here(ErrorKind::kConflict, col,
-                    "R and I/J/K in one block: give the arc centre or its radius, not both");
+                         "R and I/J/K in one block: give the arc centre or its radius, not both");
     }
 
     LineCursor c_;

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/program.h"
 
+#include <fmt/format.h>
 #include <sys/stat.h>
 
 #include <cerrno>
 #include <cstring>
-
-#include <fmt/format.h>
 
 #include "apci/nc/lexer.h"
 
@@ -42,8 +41,9 @@ bool EventStream::line(std::string_view text) {
             d.file = source_.name();
             d.line = n;
             d.column = column_at(text, probe.offset);
-            d.message = "Klartext dialect not supported yet (the program begins with 'BEGIN PGM'); "
-                        "only DIN 66025 programs are accepted";
+            d.message =
+                "Klartext dialect not supported yet (the program begins with 'BEGIN PGM'); "
+                "only DIN 66025 programs are accepted";
             return fail(std::move(d));
         }
         dialect_ = probe.dialect;
@@ -51,7 +51,8 @@ bool EventStream::line(std::string_view text) {
     }
     if (!parse_din_line(text, n, source_.name(), parsed_, error_)) return fail(error_);
     switch (parsed_.kind) {
-        case LineKind::kEmpty: return true;
+        case LineKind::kEmpty:
+            return true;
         case LineKind::kProgramName:
             if (seen_block_ || !program_name_.empty()) {
                 Diagnostic d;
@@ -81,7 +82,8 @@ bool EventStream::read_batch() {
     std::string_view text;
     for (;;) {
         switch (source_.next(text, error_)) {
-            case LineSource::Read::kError: return fail(error_);
+            case LineSource::Read::kError:
+                return fail(error_);
             case LineSource::Read::kEnd:
                 if (!interpreter_.state().ended) {
                     Diagnostic d;
@@ -131,7 +133,8 @@ Result<ProgramSummary> validate(EventStream& stream) {
                 s.lines = stream.lines_read();
                 s.blocks = stream.blocks_read();
                 return s;
-            case EventStream::Next::kError: return stream.error();
+            case EventStream::Next::kError:
+                return stream.error();
         }
     }
 }

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/source.h"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cstring>
-
-#include <fmt/format.h>
 
 namespace apci::nc {
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/tools.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <tuple>
-
-#include <fmt/format.h>
 
 #include "apci/nc/lexer.h"
 #include "apci/nc/source.h"
@@ -55,8 +55,7 @@ constexpr FieldSpec kFields[] = {
     {"laenge", false, false, -kInf, kInf, "", nullptr, &ToolData::laenge},
     {"radius", false, false, 0, kInf, ">= 0", nullptr, &ToolData::radius},
     {"ax_ersatz", true, false, -kInf, kInf, "", nullptr, nullptr},
-    {"grinding_wear_const", false, false, 0, kInf, ">= 0", nullptr,
-     &ToolData::grinding_wear_const},
+    {"grinding_wear_const", false, false, 0, kInf, ">= 0", nullptr, &ToolData::grinding_wear_const},
     {"grinding_max_infeed", false, false, -2147483648.0, 2147483647.0,
      "-2147483648..2147483647 (SGN32)", nullptr, &ToolData::grinding_max_infeed},
     {"grinding_disc_tilt_angle", false, false, -450000, 450000,
@@ -80,7 +79,7 @@ const FieldSpec* find_field(std::string_view name) {
 }
 
 class ToolLineParser {
-public:
+  public:
     ToolLineParser(std::string_view file, ToolTable& table) : file_(file), table_(table) {}
 
     bool line(std::string_view text, std::uint64_t line_number, Diagnostic& err) {
@@ -120,16 +119,16 @@ public:
         std::uint64_t axis = 0;
         std::string label = fmt::format("wz[{}].{}", tool, name);
         if (field->indexed) {
-            if (!bracketed(c, fmt::format("after '{}'", label), "an axis index", axis)) return false;
+            if (!bracketed(c, fmt::format("after '{}'", label), "an axis index", axis))
+                return false;
             if (axis >= kAxisOffsetCount) {
-                return fail(ErrorKind::kValue, index_col_,
-                            fmt::format("axis index {} out of range 0..{}", axis,
-                                        kAxisOffsetCount - 1));
+                return fail(
+                    ErrorKind::kValue, index_col_,
+                    fmt::format("axis index {} out of range 0..{}", axis, kAxisOffsetCount - 1));
             }
             label = fmt::format("{}[{}]", label, axis);
         } else if (c.peek() == '[') {
-            return fail(ErrorKind::kSyntax, c.column(),
-                        fmt::format("'{}' takes no index", name));
+            return fail(ErrorKind::kSyntax, c.column(), fmt::format("'{}' takes no index", name));
         }
         double value = 0.0;
         if (!field_value(c, *field, label, value)) return false;
@@ -151,7 +150,7 @@ public:
         return true;
     }
 
-private:
+  private:
     bool fail(ErrorKind kind, std::uint32_t column, std::string message) {
         err_->kind = kind;
         err_->file = std::string(file_);
@@ -200,7 +199,8 @@ private:
             case NumberScan::kOutOfRange:
                 return fail(ErrorKind::kValue, col,
                             fmt::format("the value of {} is out of range", label));
-            case NumberScan::kOk: break;
+            case NumberScan::kOk:
+                break;
         }
         if (!c.at_end() && c.peek() != ' ' && c.peek() != '\t') {
             return fail(ErrorKind::kSyntax, c.column(),
@@ -233,8 +233,10 @@ Result<ToolTable> parse_lines(LineSource& source) {
     std::string_view text;
     for (;;) {
         switch (source.next(text, err)) {
-            case LineSource::Read::kEnd: return table;
-            case LineSource::Read::kError: return err;
+            case LineSource::Read::kEnd:
+                return table;
+            case LineSource::Read::kError:
+                return err;
             case LineSource::Read::kLine:
                 if (!parser.line(text, source.line_number(), err)) return err;
                 break;

@@ -3,9 +3,8 @@
 // R-programmed arc, and the checks that an arc the program asks for exists.
 #pragma once
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 #include "apci/nc/block.h"
 
@@ -27,9 +26,12 @@ struct PlaneAxes {
 };
 constexpr PlaneAxes plane_axes(Plane p) noexcept {
     switch (p) {
-        case Plane::kZX: return {2, 0, 1};
-        case Plane::kYZ: return {1, 2, 0};
-        case Plane::kXY: break;
+        case Plane::kZX:
+            return {2, 0, 1};
+        case Plane::kYZ:
+            return {1, 2, 0};
+        case Plane::kXY:
+            break;
     }
     return {0, 1, 2};
 }

@@ -18,11 +18,21 @@ enum class Compensation : std::uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
 // Übergangssatz", G26 "zirkularer Übergangssatz").
 enum class CornerMode : std::uint8_t { kLinear = 25, kCircular = 26 };
 
-constexpr int g_number(Motion m) noexcept { return static_cast<int>(m); }
-constexpr int g_number(Plane p) noexcept { return static_cast<int>(p); }
-constexpr int g_number(DistanceMode d) noexcept { return static_cast<int>(d); }
-constexpr int g_number(Compensation c) noexcept { return static_cast<int>(c); }
-constexpr int g_number(CornerMode c) noexcept { return static_cast<int>(c); }
+constexpr int g_number(Motion m) noexcept {
+    return static_cast<int>(m);
+}
+constexpr int g_number(Plane p) noexcept {
+    return static_cast<int>(p);
+}
+constexpr int g_number(DistanceMode d) noexcept {
+    return static_cast<int>(d);
+}
+constexpr int g_number(Compensation c) noexcept {
+    return static_cast<int>(c);
+}
+constexpr int g_number(CornerMode c) noexcept {
+    return static_cast<int>(c);
+}
 
 // A word of the block: its value and the 1-based column of its address letter; column 0 means
 // the block does not have the word.
@@ -36,19 +46,19 @@ struct Word {
 inline constexpr int kMaxToolNumber = 1023;  // D and wz[i] (TC module WKZINDEX 0..1023)
 
 struct Block {
-    std::uint64_t line = 0;                     // 1-based source line
-    Word<std::int64_t> number;                  // N
-    Word<Motion> motion;                        // G0 G1 G2 G3
-    Word<Plane> plane;                          // G17 G18 G19
-    Word<DistanceMode> distance;                // G90 G91
-    Word<Compensation> compensation;            // G40 G41 G42
-    Word<CornerMode> corner;                    // G25 G26
-    std::array<Word<double>, 3> axis;           // X Y Z, program units (mm)
-    std::array<Word<double>, 3> center;         // I J K, incremental from the arc start
-    Word<double> radius;                        // R (negative: the larger arc)
-    Word<double> feed;                          // F, mm/min, > 0
-    Word<int> tool;                             // D, 0..kMaxToolNumber (0: no tool)
-    Word<bool> end_of_program;                  // M30
+    std::uint64_t line = 0;              // 1-based source line
+    Word<std::int64_t> number;           // N
+    Word<Motion> motion;                 // G0 G1 G2 G3
+    Word<Plane> plane;                   // G17 G18 G19
+    Word<DistanceMode> distance;         // G90 G91
+    Word<Compensation> compensation;     // G40 G41 G42
+    Word<CornerMode> corner;             // G25 G26
+    std::array<Word<double>, 3> axis;    // X Y Z, program units (mm)
+    std::array<Word<double>, 3> center;  // I J K, incremental from the arc start
+    Word<double> radius;                 // R (negative: the larger arc)
+    Word<double> feed;                   // F, mm/min, > 0
+    Word<int> tool;                      // D, 0..kMaxToolNumber (0: no tool)
+    Word<bool> end_of_program;           // M30
 
     // Forgets every word (cheaper than assigning Block{}: only the columns say what is present).
     void clear(std::uint64_t line_number) noexcept {

@@ -30,11 +30,11 @@ inline constexpr std::int64_t kNoBlockNumber = -1;
 
 struct Diagnostic {
     ErrorKind kind = ErrorKind::kSyntax;
-    std::string file;     // as the caller named the source
+    std::string file;          // as the caller named the source
     std::uint64_t line = 0;    // 1-based; 0 only for errors about the whole file (cannot open)
     std::uint32_t column = 0;  // 1-based, in characters (UTF-8 aware); 0 with line 0
     std::int64_t block = kNoBlockNumber;  // N number of the block, where known
-    std::string message;  // what was wrong / what was expected, no location prefix
+    std::string message;                  // what was wrong / what was expected, no location prefix
 
     // "file:line:col: message" ("file: message" when line is 0).
     std::string to_string() const;
@@ -43,8 +43,8 @@ struct Diagnostic {
 // A value or the diagnostic that explains why there is none.
 template <typename T>
 class [[nodiscard]] Result {
-public:
-    Result(T value) : v_(std::in_place_index<0>, std::move(value)) {}            // NOLINT
+  public:
+    Result(T value) : v_(std::in_place_index<0>, std::move(value)) {}           // NOLINT
     Result(Diagnostic error) : v_(std::in_place_index<1>, std::move(error)) {}  // NOLINT
 
     bool ok() const noexcept { return v_.index() == 0; }
@@ -55,7 +55,7 @@ public:
     T&& value() && { return std::get<0>(std::move(v_)); }
     const Diagnostic& error() const { return std::get<1>(v_); }
 
-private:
+  private:
     std::variant<T, Diagnostic> v_;
 };
 

@@ -5,11 +5,10 @@
 // units (mm); compensation itself is the board's job (TC module, DESIGN.md section 3).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
 #include <variant>
-
-#include <Eigen/Core>
 
 #include "apci/nc/block.h"
 #include "apci/nc/diagnostic.h"
@@ -84,7 +83,7 @@ std::string_view event_name(const EventData& data) noexcept;
 // The events of one block, in the order the executor must act on them (docs/nc-programs.md):
 // tool select, plane, corner mode, compensation, the move, program end.
 class EventBatch {
-public:
+  public:
     static constexpr std::size_t kCapacity = 6;
 
     void clear() noexcept { size_ = 0; }
@@ -100,7 +99,7 @@ public:
         ++size_;
     }
 
-private:
+  private:
     Event events_[kCapacity];
     std::size_t size_ = 0;
 };

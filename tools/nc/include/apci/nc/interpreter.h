@@ -3,9 +3,8 @@
 // I/O and no board; the executor drives the board from the events.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "apci/nc/block.h"
 #include "apci/nc/diagnostic.h"
@@ -16,15 +15,15 @@ namespace apci::nc {
 class ToolTable;
 
 struct ModalState {
-    std::optional<Motion> motion;                      // none until G0..G3 is programmed
-    Plane plane = Plane::kXY;                          // G17
-    DistanceMode distance = DistanceMode::kAbsolute;   // G90
-    Compensation compensation = Compensation::kOff;    // G40
-    CornerMode corner = CornerMode::kCircular;         // G26 (DESIGN.md section 3: the default)
-    double feed = 0.0;                                 // mm/min; 0 until F is programmed
-    int tool = 0;                                      // D0: no tool
+    std::optional<Motion> motion;                        // none until G0..G3 is programmed
+    Plane plane = Plane::kXY;                            // G17
+    DistanceMode distance = DistanceMode::kAbsolute;     // G90
+    Compensation compensation = Compensation::kOff;      // G40
+    CornerMode corner = CornerMode::kCircular;           // G26 (DESIGN.md section 3: the default)
+    double feed = 0.0;                                   // mm/min; 0 until F is programmed
+    int tool = 0;                                        // D0: no tool
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // absolute, mm
-    bool ended = false;                                // M30 seen
+    bool ended = false;                                  // M30 seen
 };
 
 struct InterpreterOptions {
@@ -36,7 +35,7 @@ struct InterpreterOptions {
 };
 
 class Interpreter {
-public:
+  public:
     explicit Interpreter(InterpreterOptions options = {});
 
     // Applies one block: checks the program rules against the modal state, then commits the new
@@ -48,7 +47,7 @@ public:
     const ModalState& state() const noexcept { return state_; }
     const InterpreterOptions& options() const noexcept { return options_; }
 
-private:
+  private:
     InterpreterOptions options_;
     ModalState state_;
 };

@@ -21,7 +21,7 @@ enum class NumberScan : std::uint8_t {
 };
 
 class LineCursor {
-public:
+  public:
     explicit LineCursor(std::string_view line) noexcept : line_(line), ascii_(is_ascii(line)) {}
 
     std::string_view line() const noexcept { return line_; }
@@ -36,7 +36,9 @@ public:
     char peek_at(std::size_t ahead) const noexcept {
         return pos_ + ahead < line_.size() ? line_[pos_ + ahead] : '\0';
     }
-    void advance(std::size_t n = 1) noexcept { pos_ = pos_ + n < line_.size() ? pos_ + n : line_.size(); }
+    void advance(std::size_t n = 1) noexcept {
+        pos_ = pos_ + n < line_.size() ? pos_ + n : line_.size();
+    }
     void skip_blanks() noexcept {
         while (pos_ < line_.size() && (line_[pos_] == ' ' || line_[pos_] == '\t')) ++pos_;
     }
@@ -51,7 +53,7 @@ public:
     // the line ends first.
     bool skip_paren_comment() noexcept;
 
-private:
+  private:
     static bool is_ascii(std::string_view s) noexcept;
 
     std::string_view line_;
@@ -59,8 +61,14 @@ private:
     std::size_t pos_ = 0;
 };
 
-constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
-constexpr bool is_letter(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
-constexpr char to_upper(char c) noexcept { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
+constexpr bool is_digit(char c) noexcept {
+    return c >= '0' && c <= '9';
+}
+constexpr bool is_letter(char c) noexcept {
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
+constexpr char to_upper(char c) noexcept {
+    return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c;
+}
 
 }  // namespace apci::nc

@@ -35,7 +35,7 @@ struct ParsedLine {
     LineKind kind = LineKind::kEmpty;
     std::string_view program_name;  // kProgramName: a view into the parsed line
     std::uint32_t program_name_column = 0;
-    Block block;                    // kBlock (cleared for every line)
+    Block block;  // kBlock (cleared for every line)
 };
 
 // Parses one line of a DIN 66025 program. On error returns false and fills err (file, line,

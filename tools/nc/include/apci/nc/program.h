@@ -22,7 +22,7 @@ namespace apci::nc {
 
 // One pass over a program, pulling one event at a time.
 class EventStream {
-public:
+  public:
     static Result<EventStream> open_file(const std::string& path, InterpreterOptions options = {});
     // The text must outlive the stream; nothing is copied.
     static EventStream from_text(std::string_view text, std::string name,
@@ -41,7 +41,7 @@ public:
     std::uint64_t lines_read() const noexcept { return source_.line_number(); }
     std::uint64_t blocks_read() const noexcept { return blocks_; }
 
-private:
+  private:
     EventStream(LineSource source, InterpreterOptions options);
     bool read_batch();  // fills batch_ from the next block with events; false at end or error
     bool fail(Diagnostic d);
@@ -63,11 +63,11 @@ private:
 
 struct ProgramSummary {
     std::string file;
-    std::string name;            // "%name", empty when the program has none
-    std::uint64_t lines = 0;     // source lines
-    std::uint64_t blocks = 0;    // lines holding a block
+    std::string name;          // "%name", empty when the program has none
+    std::uint64_t lines = 0;   // source lines
+    std::uint64_t blocks = 0;  // lines holding a block
     std::uint64_t events = 0;
-    std::uint64_t moves = 0;     // rapid, line and arc events
+    std::uint64_t moves = 0;  // rapid, line and arc events
 };
 
 // Runs the whole stream, keeping nothing but counts: the validation pass.
@@ -75,7 +75,7 @@ Result<ProgramSummary> validate(EventStream& stream);
 
 // A program that passed validation and can be executed (streamed again) any number of times.
 class Program {
-public:
+  public:
     // Validates the file; the error is the first one in the program.
     static Result<Program> load(const std::string& path, InterpreterOptions options = {});
     // Validates text held by the caller (it must outlive the Program and its streams).
@@ -87,7 +87,7 @@ public:
     // last change) since validation; the stream re-checks every block anyway.
     Result<EventStream> events() const;
 
-private:
+  private:
     Program() = default;
     ProgramSummary summary_;
     InterpreterOptions options_;

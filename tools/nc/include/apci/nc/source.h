@@ -15,7 +15,7 @@
 namespace apci::nc {
 
 class LineSource {
-public:
+  public:
     // Longest accepted line in bytes (without its line end); longer lines are an error, so that
     // memory stays bounded whatever the input.
     static constexpr std::size_t kMaxLineLength = 64 * 1024;
@@ -40,7 +40,7 @@ public:
     std::uint64_t line_number() const noexcept { return line_number_; }
     const std::string& name() const noexcept { return name_; }
 
-private:
+  private:
     LineSource(std::string name, std::FILE* file);
     LineSource(std::string name, std::string_view text);
     bool refill(Diagnostic& err);  // keeps [pos_, end_) and reads more behind it

@@ -25,15 +25,15 @@ struct ToolData {
     int index = 0;  // i of wz[i], 1..kMaxToolNumber
 
     // Raw values as in the file; unset data is 0 (seed section 2.6, "Hinweis").
-    std::int32_t gueltig = 0;       // 1: the data set is valid
-    std::int32_t typ = 0;           // ToolType
-    std::int32_t mass_einheit = 0;  // 0: lengths in 0.1 um, 1: lengths in mm
-    double laenge = 0.0;            // tool length, length unit
-    double radius = 0.0;            // tool radius, length unit
+    std::int32_t gueltig = 0;                          // 1: the data set is valid
+    std::int32_t typ = 0;                              // ToolType
+    std::int32_t mass_einheit = 0;                     // 0: lengths in 0.1 um, 1: lengths in mm
+    double laenge = 0.0;                               // tool length, length unit
+    double radius = 0.0;                               // tool radius, length unit
     std::array<double, kAxisOffsetCount> ax_ersatz{};  // per-axis offsets, length unit
-    double grinding_wear_const = 0.0;       // P-TOOL-00030, always 0.1 um/m
-    double grinding_max_infeed = 0.0;       // P-TOOL-00031, always 0.1 um
-    double grinding_disc_tilt_angle = 0.0;  // P-TOOL-00138, always 0.0001 degree
+    double grinding_wear_const = 0.0;                  // P-TOOL-00030, always 0.1 um/m
+    double grinding_max_infeed = 0.0;                  // P-TOOL-00031, always 0.1 um
+    double grinding_disc_tilt_angle = 0.0;             // P-TOOL-00138, always 0.0001 degree
     // 3D compensation (TNC seed: R2, DL, DR, DR2), length unit like radius.
     double r2 = 0.0;
     double dl = 0.0;
@@ -63,7 +63,7 @@ struct ToolData {
 };
 
 class ToolTable {
-public:
+  public:
     // The tool wz[index], or nullptr when no line of the file names it.
     const ToolData* find(int index) const noexcept;
     // Defined tools, ascending by index.
@@ -73,7 +73,7 @@ public:
     // Creates wz[index] (all zero) if absent; index must be 1..kMaxToolNumber.
     ToolData& define(int index);
 
-private:
+  private:
     std::vector<ToolData> tools_;
 };
 
