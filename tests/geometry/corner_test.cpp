@@ -85,6 +85,21 @@ TEST(InsideCorner, ArcArcTrimsAtTheIntersectionNearestTheCorner) {
     EXPECT_GT(j.held.sweep * offset_element(kArcIn, 1, Side::kLeft).element.sweep, 0.0);
 }
 
+TEST(InsideCorner, ChoosesTheValidIntersectionNearestTheCorner) {
+    // The offset circle of the half circle (radius 9 about (-10, 0)) crosses the offset
+    // line y = 1 twice, both within both elements: at x = -10 + sqrt 80 and -10 - sqrt 80.
+    const Element a = make_line({-20, 0}, {0, 0});
+    const Element b = make_arc({0, 0}, {-20, 0}, {-10, 0}, true);
+    const OffsetElement ao = offset_element(a, 1, Side::kLeft).element;
+    const OffsetElement bo = offset_element(b, 1, Side::kLeft).element;
+    ASSERT_EQ(intersect_carriers(ao, bo).count, 2u);
+    const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b),
+                                     Side::kLeft, 1, TransitionMode::kCircular);
+    ASSERT_EQ(j.reason, Reason::kNone);
+    expect_near(j.held.path.end, {-10 + std::sqrt(80.0), 1});
+    expect_near(j.next.path.start, {-10 + std::sqrt(80.0), 1});
+}
+
 TEST(OutsideCorner, CircularLineLineIsQuarterArcAboutTheCorner) {
     const CornerJoin j = join({kLineIn, kLineUp}, Side::kRight);
     ASSERT_EQ(j.reason, Reason::kNone);
