@@ -5,7 +5,9 @@
 
 namespace rwmos {
 
-Board::State::State(const BoardConfig& cfg) : config(cfg), board_module(*this), tc_module(*this) {
+Board::State::State(const BoardConfig& cfg)
+    : config(cfg), motion(*this), board_module(*this), tc_module(*this) {
+    tc_motion = &motion;
     // Two modules on distinct buses: add() cannot fail here.
     dictionary.add(&board_module);
     dictionary.add(&tc_module);

@@ -5,13 +5,16 @@
 // Not thread-safe: one thread at a time (the daemon serialises its clients).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include "objif/descriptor.h"
 #include "objif/dictionary.h"
 #include "objif/status.h"
 #include "objif/value.h"
+#include "rwmos/motion/types.h"
 
 namespace rwmos {
 
@@ -30,6 +33,32 @@ public:
 
     objif::Status read(objif::Descriptor& d, objif::ValueType want, objif::Value& out);
     objif::Status write(objif::Descriptor& d, const objif::Value& v);
+
+    // ---- Motion (docs/motion.md). Each call checks its input first: a bad
+    // one changes nothing and the result says what was wrong. TC errors set
+    // the group's ERROR bits, clear its Run and hold the spooler until ERROR
+    // is written; the result names the group, bits and block tag.
+    //
+    // Spools one profile (G00/G01/G02/G03). kBusy: the queue cannot take the
+    // moves it yields; nothing was taken, run the clock and try again.
+    motion::MotionResult spool(const motion::Profile& p);
+    // A direct command (JA, JS): discards the spooler and the held profile first.
+    motion::MotionResult direct(const motion::DirectCommand& c);
+    // An SSF command to the axes in `axes` (2001: release the held profile).
+    motion::MotionResult ssf(motion::AxisMask axes, std::int32_t command);
+    // Advances the interpolation clock by exactly `cycles` cycles (virtual time).
+    void step(std::uint64_t cycles);
+    // Advances until nothing can move or `max_cycles` ran; returns the cycles run.
+    std::uint64_t run_until_idle(std::uint64_t max_cycles);
+    motion::MotionStatus motion_status() const noexcept;
+    // Per-cycle samples on (ring of `capacity` samples, 1..kMaxTraceCapacity)
+    // or off. Turning it on or off drops the samples not yet read.
+    objif::Status set_trace(bool on, std::size_t capacity);
+    static constexpr std::size_t kMaxTraceCapacity = std::size_t{1} << 24;
+    // Moves the oldest samples / executed segments (up to out.size()) into
+    // `out` and returns how many; read ones are gone.
+    std::size_t read_trace(std::span<motion::TraceSample> out);
+    std::size_t read_segments(std::span<motion::Segment> out);
 
     const BoardConfig& config() const noexcept;
     objif::Dictionary& dictionary() noexcept;

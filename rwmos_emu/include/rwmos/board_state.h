@@ -10,6 +10,7 @@
 #include "objif/dictionary.h"
 #include "rwmos/board.h"
 #include "rwmos/board_module.h"
+#include "rwmos/motion_layer.h"
 #include "rwmos/object_map.h"
 #include "rwmos/tc_module.h"
 #include "rwmos/tc_state.h"
@@ -48,6 +49,8 @@ struct Board::State {
     // TC module (bus 1300).
     TcState tc;
     TcMotion* tc_motion = nullptr;  // the motion layer, if attached (not owned)
+    // Motion: spooler, held profile, move queue, interpolation clock, trace.
+    MotionLayer motion;
 
     // The modules serve the fields above; the dictionary routes to them.
     BoardModule board_module;

@@ -92,6 +92,7 @@ Segment segment_of(const Move& m) {
         s.center[m.plane_axes[0]] = m.cx;
         s.center[m.plane_axes[1]] = m.cy;
         s.ccw = m.sweep > 0.0;
+        s.plane = m.plane;
     }
     return s;
 }

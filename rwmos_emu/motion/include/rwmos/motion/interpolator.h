@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 
+#include "rwmos/geometry/tolerances.h"
 #include "rwmos/motion/types.h"
 
 namespace rwmos::motion {
@@ -24,6 +25,7 @@ struct Move {
     SegmentRole role = SegmentRole::kUncompensated;
     std::uint32_t tag = 0;
     bool direct = false;  // started by a direct command (JA), not spooled
+    std::int32_t plane = 0;  // arcs: G code of their plane (17, 18, 19), 0 if not a TC plane
     AxisVector start{};
     AxisVector end{};
     double feed = 0.0;  // units/min, > 0
@@ -36,8 +38,9 @@ struct Move {
     double sweep = 0.0;
 };
 
-// Start and end in plane coordinates closer than this make an arc a full circle.
-inline constexpr double kFullCircleTolerance = 1e-9;
+// Start and end in plane coordinates closer than this make an arc a full
+// circle: the geometry's point tolerance, so both agree on what a full circle is.
+inline constexpr double kFullCircleTolerance = geom::kPointTolerance;
 
 Move line_move(const AxisVector& start, const AxisVector& end, double feed, SegmentRole role,
                std::uint32_t tag);

@@ -12,6 +12,9 @@
 #include <cstdint>
 #include <string_view>
 
+#include "objif/status.h"
+#include "rwmos/geometry/tolerances.h"
+
 namespace rwmos::motion {
 
 inline constexpr int kAxisCount = 8;
@@ -23,8 +26,9 @@ inline constexpr AxisMask kAllAxes = 0xFF;
 inline constexpr double kDefaultRapidFeed = 60000.0;  // units/min = 1 unit per ms
 // Upper bound of any feed: keeps cycle counts and positions finite. Design.
 inline constexpr double kMaxFeed = 1.0e9;
-// Upper bound of any coordinate's magnitude: design (2^40 units).
-inline constexpr double kMaxCoordinate = 1099511627776.0;
+// Upper bound of any coordinate's magnitude: the compensation geometry's
+// (rwmos/geometry/tolerances.h), so every profile can be compensated.
+inline constexpr double kMaxCoordinate = geom::kMaxCoordinate;
 
 // G00 / G01 / G02 / G03. The numeric values travel on the wire.
 enum class ProfileKind : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 3 };
@@ -98,6 +102,7 @@ struct Segment {
     std::array<std::uint8_t, 2> plane_axes{0, 1};
     AxisVector center{};
     bool ccw = false;
+    std::int32_t plane = 0;           // arcs: 17, 18, 19 when in a TC plane's axes, else 0
     double feed = 0.0;                // units/min actually used
     std::uint64_t start_cycle = 0;    // clock value when it started
     std::uint64_t end_cycle = 0;      // clock value when it ended
@@ -109,6 +114,35 @@ struct Segment {
 struct TraceSample {
     std::uint64_t cycle = 0;
     AxisVector position{};
+};
+
+// The answer to every motion call (spool, direct, SSF).
+struct MotionResult {
+    objif::Status status = objif::Status::kOk;
+    // TC errors this call set: the group whose ERROR gets `errors` (Table 4
+    // bits) and whose Run clears; `tag` is the block at fault.
+    std::int32_t group = 0;
+    std::int32_t errors = 0;
+    std::uint32_t tag = 0;
+    std::string_view message;  // why, in one line (static text); empty when ok
+    bool ok() const noexcept { return objif::ok(status); }
+};
+
+// A snapshot of the motion part for the host (Board::motion_status()).
+struct MotionStatus {
+    std::uint64_t now = 0;           // interpolation cycles since power-on
+    bool idle = true;                // nothing moves: queue empty, or held
+    bool held = false;               // the spooler holds after a TC error (ERROR set)
+    std::uint32_t fill = 0;          // moves in the queue (the one under way included)
+    std::uint32_t capacity = 0;      // the most moves the queue takes
+    std::int32_t compensating_group = 0;  // 0: no compensation under way
+    bool profile_held = false;       // the compensating group holds a profile (ProfMarked)
+    bool tracing = false;            // per-cycle samples are recorded
+    std::uint64_t trace_pending = 0;     // samples waiting to be read
+    std::uint64_t trace_lost = 0;        // samples dropped because nobody read them
+    std::uint64_t segments_pending = 0;  // executed segments waiting to be read
+    std::uint64_t segments_lost = 0;
+    AxisVector position{};           // axis positions now (machine coordinates)
 };
 
 }  // namespace rwmos::motion

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// The spooler: the state machine between the host's profiles and the move
+// queue (executor.h). It resolves each profile to board axes (named axes,
+// rotation, arc plane), keeps the one-profile lookahead of the TC module
+// (seed 003 section 1: one profile is always held back while compensation
+// runs), and applies the JOG, direct-command and SSF rules. The geometry is
+// rwmos::geom's (PathCompensator); this file only maps between 8 board axes
+// and the plane, and decides when to begin, push, finish or discard.
+//
+// It sees the TC module through a TcSettings snapshot taken at each call and
+// reports what the TC module must record (ERROR bits, Run, ProfMarked) in the
+// MotionResult; rwmos::MotionLayer does both against the Board's state.
+// docs/motion.md states every rule with its seed citation.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <string_view>
+
+#include "objif/status.h"
+#include "rwmos/geometry/compensator.h"
+#include "rwmos/motion/executor.h"
+#include "rwmos/motion/types.h"
+
+namespace rwmos::motion {
+
+// The TC module's settings as the spooler needs them, read at each call.
+struct TcSettings {
+    bool present = false;           // firmware option optionTC
+    bool objects_accessed = false;  // a TC object was accessed: arcs run in the active plane
+    // The active plane (TcPlane through X/Y/Z-Axis-Nr): board axes of its
+    // first, second and third axis, and its G code (17, 18, 19).
+    std::array<std::uint8_t, 3> plane_axes{0, 1, 2};
+    std::int32_t plane = 17;
+    std::array<std::uint8_t, 3> axis_nr{0, 1, 2};  // X-, Y-, Z-Axis-Nr
+    // Coordinate rotation in the active plane (seed 003 section 2.1.1).
+    double rot_angle = 0.0;  // degrees
+    double rot_center_first = 0.0;
+    double rot_center_second = 0.0;
+    // Some group's ERROR is set: the spooler holds (takes no profile).
+    bool error_pending = false;
+    // The active group (its XAxis/YAxis span the active plane; 0: none) and
+    // its settings. It compensates while `run`.
+    std::int32_t active_group = 0;
+    bool run = false;
+    geom::Side side = geom::Side::kLeft;
+    double radius = 0.0;
+    geom::TransitionMode transition = geom::TransitionMode::kCircular;
+    std::uint8_t length_axis = 2;  // the group's ZAxis
+    double length = 0.0;           // WkzLen of the group's current tool
+};
+
+class Spooler {
+public:
+    // A profile from the host. Checks it (nothing changes when it is bad),
+    // then spools the moves it yields into `exec` (at most `capacity` moves
+    // in the queue: kBusy and nothing taken when they do not fit).
+    MotionResult spool(const Profile& p, const TcSettings& tc, Executor& exec, std::size_t capacity);
+
+    // STATUS = 0 on `group`: the held profile is corrected and spooled with the
+    // departure to its programmed end (seed 003 section 1).
+    MotionResult release_for_deactivation(std::int32_t group, const TcSettings& tc, Executor& exec,
+                                          std::size_t capacity);
+    // SSF command to the axes in `axes`. 2001 releases the held profile of the
+    // compensating group if it owns one of those axes; the contour ends at its
+    // compensated end (no departure) and the next profile re-approaches.
+    MotionResult ssf(AxisMask axes, std::int32_t command, const TcSettings& tc, Executor& exec,
+                     std::size_t capacity);
+    // Direct command: discards the queue and the held profile (seed 003
+    // section 1), then acts (JA: jog to the target; JS: stop).
+    MotionResult direct(const DirectCommand& c, Executor& exec);
+    // RESET, Reset, Clean: the held profile of `group` is dropped unspooled.
+    void discard_held(std::int32_t group);
+
+    // The group whose compensation is under way (0: none), and whether a
+    // profile is held back for it (STATUS bit ProfMarked).
+    std::int32_t compensating_group() const noexcept {
+        return comp_.comp.running() ? comp_.group : 0;
+    }
+    bool holds_profile() const noexcept { return comp_.comp.holds_element(); }
+    // The programmed position (program coordinates, before rotation) the next
+    // profile starts from; unnamed axes keep it.
+    const AxisVector& program_position() const noexcept { return program_; }
+    // The same after rotation: where the programmed path is (no compensation).
+    const AxisVector& path_position() const noexcept { return path_; }
+
+private:
+    // The compensator and where it works (fixed when it begins). Calls work
+    // on a copy and store it back only when everything fits.
+    struct Compensation {
+        geom::PathCompensator comp;
+        std::int32_t group = 0;
+        std::array<std::uint8_t, 2> plane_axes{0, 1};
+        std::int32_t plane = 17;
+        std::uint8_t length_axis = 2;
+        double length = 0.0;  // WkzLen at the last profile compensated
+    };
+    // A profile the compensator knows by index: held, or waiting with the held one.
+    struct Pending {
+        std::uint32_t index = 0;
+        std::uint32_t tag = 0;
+        double feed = 0.0;
+        AxisVector start{};  // programmed start (rotated), without length compensation
+        AxisVector end{};    // programmed end (rotated), without length compensation
+        bool plane_free = false;
+    };
+    // A profile resolved to board axes.
+    struct Resolved {
+        AxisVector program{};  // named axes applied, program coordinates
+        AxisVector path{};     // after rotation: what the axes should follow
+        std::array<std::uint8_t, 2> arc_axes{0, 1};
+        double cx = 0.0, cy = 0.0;  // arc centre on arc_axes, after rotation
+        bool ccw = false;
+        std::int32_t plane = 0;  // G code of the arc's plane, 0 if not a TC plane
+    };
+    // Moves one call adds; built first, pushed only if they all fit.
+    struct Batch {
+        explicit Batch(const AxisVector& from) : end(from) {}
+        AxisVector end;  // where the last move ends (the queue's end before the first)
+        std::size_t count = 0;
+        std::array<Move, 2 * geom::kMaxSegmentsPerStep + 1> moves{};
+        void add(const Move& m) noexcept {
+            moves[count++] = m;
+            end = m.end;
+        }
+    };
+
+    MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
+    // The compensator's segments as board-axis moves, appended to `batch`.
+    // Departures are dropped unless `keep_departure`.
+    void append_segments(const Compensation& c, const geom::SegmentBatch& segs,
+                         bool keep_departure, Batch& batch) const;
+    // Ends the contour under way into `batch`, with or without the departure.
+    void end_contour(Compensation& c, bool keep_departure, Batch& batch);
+    const Pending* pending(std::uint32_t index) const noexcept;
+    void forget_finished();
+    // kBusy if the batch does not fit the queue, else pushes it.
+    static MotionResult commit(const Batch& batch, Executor& exec, std::size_t capacity);
+
+    Compensation comp_;
+    std::deque<Pending> pending_;
+    std::uint32_t next_index_ = 1;
+    AxisVector program_{};  // programmed position, program coordinates
+    AxisVector path_{};     // programmed position after rotation (start of the next element)
+    geom::SegmentBatch segs_;  // scratch
+};
+
+}  // namespace rwmos::motion

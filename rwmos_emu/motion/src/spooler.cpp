@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: MIT
+// The spooler state machine (spooler.h). Rules and their seed citations are
+// listed in docs/motion.md; the comments here name the rule they implement.
+#include "rwmos/motion/spooler.h"
+
+#include <cmath>
+
+#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/errors.h"
+#include "rwmos/geometry/plane.h"
+
+namespace rwmos::motion {
+
+using objif::Status;
+
+namespace {
+
+MotionResult refuse(Status s, std::string_view why) {
+    MotionResult r;
+    r.status = s;
+    r.message = why;
+    return r;
+}
+
+// A TC error: recorded in `group`'s ERROR, Run cleared, the spooler holds.
+MotionResult tc_error(std::int32_t group, geom::ErrorBits bits, std::uint32_t tag,
+                      std::string_view why) {
+    MotionResult r;
+    r.status = Status::kWrongDeviceState;
+    r.group = group;
+    r.errors = static_cast<std::int32_t>(bits);
+    r.tag = tag;
+    r.message = why;
+    return r;
+}
+MotionResult tc_error(std::int32_t group, geom::Reason reason, std::uint32_t tag) {
+    return tc_error(group, geom::reason_bits(reason), tag, geom::reason_message(reason));
+}
+
+Status check_coordinate(double v) {
+    if (!std::isfinite(v)) return Status::kInvalidValue;
+    if (v > kMaxCoordinate) return Status::kValueTooHigh;
+    if (v < -kMaxCoordinate) return Status::kValueTooLow;
+    return Status::kOk;
+}
+
+// Checks the feed of a move: `rapid` moves accept 0 (kDefaultRapidFeed).
+MotionResult check_feed(double feed, bool rapid) {
+    if (!std::isfinite(feed)) return refuse(Status::kInvalidValue, "feed is NaN or infinite");
+    if (feed < 0.0) return refuse(Status::kValueTooLow, "feed is negative");
+    if (feed == 0.0 && !rapid)
+        return refuse(Status::kValueTooLow, "G01/G02/G03 need a feed above 0 (units per minute)");
+    if (feed > kMaxFeed) return refuse(Status::kValueTooHigh, "feed above 1e9 units per minute");
+    return {};
+}
+
+MotionResult check_targets(AxisMask axes, const AxisVector& target) {
+    for (int a = 0; a < kAxisCount; ++a) {
+        if ((axes & (1u << a)) == 0) continue;
+        const Status s = check_coordinate(target[a]);
+        if (!objif::ok(s))
+            return refuse(s, "target coordinate NaN, infinite or beyond the coordinate limit");
+    }
+    return {};
+}
+
+MotionResult check_profile(const Profile& p) {
+    if (static_cast<std::uint8_t>(p.kind) > static_cast<std::uint8_t>(ProfileKind::kArcCcw))
+        return refuse(Status::kInvalidValue, "profile kind is not G00, G01, G02 or G03");
+    if (MotionResult r = check_feed(p.feed, p.kind == ProfileKind::kRapid); !r.ok()) return r;
+    if (MotionResult r = check_targets(p.axes, p.target); !r.ok()) return r;
+    if (is_arc(p.kind)) {
+        if (p.arc_axes[0] >= kAxisCount || p.arc_axes[1] >= kAxisCount)
+            return refuse(Status::kValueTooHigh, "arc axis number above 7");
+        if (p.arc_axes[0] == p.arc_axes[1])
+            return refuse(Status::kInvalidValue, "arc axes must be two different axes");
+        for (double c : p.center)
+            if (const Status s = check_coordinate(c); !objif::ok(s))
+                return refuse(s, "arc centre NaN, infinite or beyond the coordinate limit");
+    }
+    return {};
+}
+
+SegmentRole role_of(geom::SegmentRole r) {
+    switch (r) {
+        case geom::SegmentRole::kContour: return SegmentRole::kContour;
+        case geom::SegmentRole::kTransition: return SegmentRole::kTransition;
+        case geom::SegmentRole::kApproach: return SegmentRole::kApproach;
+        case geom::SegmentRole::kDeparture: return SegmentRole::kDeparture;
+    }
+    return SegmentRole::kContour;
+}
+
+geom::Vec2 on_plane(const AxisVector& v, const std::array<std::uint8_t, 2>& axes) {
+    return {v[axes[0]], v[axes[1]]};
+}
+
+// The G code of the plane the two axes span in this order, 0 if none.
+std::int32_t plane_code_of(std::array<std::uint8_t, 2> axes, const std::array<std::uint8_t, 3>& nr) {
+    if (axes[0] == nr[0] && axes[1] == nr[1]) return 17;
+    if (axes[0] == nr[2] && axes[1] == nr[0]) return 18;
+    if (axes[0] == nr[1] && axes[1] == nr[2]) return 19;
+    return 0;
+}
+
+}  // namespace
+
+// ---- Resolving a profile to board axes
+
+MotionResult Spooler::resolve(const Profile& p, const TcSettings& tc, Resolved& out) const {
+    out.program = program_;
+    for (int a = 0; a < kAxisCount; ++a)
+        if ((p.axes & (1u << a)) != 0) out.program[a] = p.target[a];
+    out.path = out.program;
+    if (p.kind == ProfileKind::kRapid) return {};
+
+    const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
+    out.ccw = p.kind == ProfileKind::kArcCcw;
+    out.arc_axes = p.arc_axes;
+    out.cx = p.center[0];
+    out.cy = p.center[1];
+    if (is_arc(p.kind)) {
+        if (tc.present && tc.objects_accessed) {
+            // Seed 003 section 2.2 "Wichtiger Hinweis": once a TC object was
+            // accessed, arcs run in the active plane, not in the plane of the
+            // axes named first. An arc named in other axes is outside it.
+            const bool same_order = p.arc_axes[0] == plane[0] && p.arc_axes[1] == plane[1];
+            const bool swapped = p.arc_axes[0] == plane[1] && p.arc_axes[1] == plane[0];
+            if (!same_order && !swapped) {
+                if (tc.active_group == 0)
+                    return refuse(Status::kWrongDeviceState,
+                                  "arc outside the active plane (PlaneError; no active group "
+                                  "to record it)");
+                return tc_error(tc.active_group, geom::bits(geom::ErrorBit::kPlaneError), p.tag,
+                                "arc outside the active plane");
+            }
+            out.arc_axes = plane;
+            if (swapped) std::swap(out.cx, out.cy);
+            out.plane = tc.plane;
+        } else {
+            out.plane = plane_code_of(p.arc_axes, tc.axis_nr);
+        }
+    }
+    // Seed 003 section 2.1.1: the rotation acts on interpolation profiles in
+    // the active plane; it needs no compensation object. A zero angle leaves
+    // the coordinates untouched (bit for bit).
+    if (tc.present && tc.rot_angle != 0.0) {
+        const geom::Vec2 centre{tc.rot_center_first, tc.rot_center_second};
+        const geom::Vec2 q = geom::rotate_about(on_plane(out.program, plane), centre, tc.rot_angle);
+        out.path[plane[0]] = q.x();
+        out.path[plane[1]] = q.y();
+        if (is_arc(p.kind)) {
+            // Arcs run in the active plane here (rotation means TC objects were accessed).
+            const geom::Vec2 c = geom::rotate_about({out.cx, out.cy}, centre, tc.rot_angle);
+            out.cx = c.x();
+            out.cy = c.y();
+        }
+    }
+    return {};
+}
+
+// ---- Compensator output to moves
+
+const Spooler::Pending* Spooler::pending(std::uint32_t index) const noexcept {
+    for (const Pending& p : pending_)
+        if (p.index == index) return &p;
+    return nullptr;
+}
+
+void Spooler::forget_finished() {
+    if (!comp_.comp.running()) {
+        pending_.clear();
+        return;
+    }
+    const std::uint32_t keep = comp_.comp.holds_element() ? comp_.comp.held_index() : next_index_;
+    while (!pending_.empty() && pending_.front().index < keep) pending_.pop_front();
+}
+
+void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& segs,
+                              bool keep_departure, Batch& batch) const {
+    const std::uint8_t z = c.length_axis;
+    for (const geom::Segment& seg : segs) {
+        if (seg.role == geom::SegmentRole::kDeparture && !keep_departure) continue;
+        const Pending* pd = pending(seg.index);
+        if (pd == nullptr) continue;  // cannot happen: every index pushed is pending
+        // The axes outside the plane: the third axis runs linearly along the
+        // plane element (with WkzLen added while compensating), the others too.
+        AxisVector end = batch.end;
+        switch (seg.role) {
+            case geom::SegmentRole::kContour:
+                end = pd->end;
+                end[z] += c.length;
+                break;
+            case geom::SegmentRole::kApproach:
+                // A plane-free element before the first plane element is
+                // consumed by its (zero-length) approach, so it goes to its end.
+                end = pd->plane_free ? pd->end : pd->start;
+                end[z] += c.length;
+                break;
+            case geom::SegmentRole::kTransition:
+                break;  // at the corner: only the plane axes move
+            case geom::SegmentRole::kDeparture:
+                end = path_;  // back to the programmed end, length compensation removed
+                break;
+        }
+        AxisVector start = batch.end;
+        start[c.plane_axes[0]] = seg.path.start.x();
+        start[c.plane_axes[1]] = seg.path.start.y();
+        end[c.plane_axes[0]] = seg.path.end.x();
+        end[c.plane_axes[1]] = seg.path.end.y();
+        Move m = geom::is_arc(seg.path)
+                     ? arc_move(start, end, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(),
+                                seg.path.ccw, pd->feed, role_of(seg.role), pd->tag)
+                     : line_move(start, end, pd->feed, role_of(seg.role), pd->tag);
+        if (m.kind == SegmentKind::kArc) m.plane = c.plane;
+        batch.add(m);
+    }
+}
+
+void Spooler::end_contour(Compensation& c, bool keep_departure, Batch& batch) {
+    // finish() fails only when not running; callers check running() first.
+    c.comp.finish(segs_);
+    append_segments(c, segs_, keep_departure, batch);
+}
+
+MotionResult Spooler::commit(const Batch& batch, Executor& exec, std::size_t capacity) {
+    if (exec.fill() + batch.count > capacity)
+        return refuse(Status::kBusy,
+                      "spooler full: nothing taken; run the clock and try again");
+    for (std::size_t i = 0; i < batch.count; ++i) exec.push(batch.moves[i]);
+    return {};
+}
+
+// ---- Calls
+
+MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& exec,
+                            std::size_t capacity) {
+    if (MotionResult r = check_profile(p); !r.ok()) return r;
+    if (tc.error_pending)
+        return refuse(Status::kWrongDeviceState,
+                      "the spooler holds after a TC error: write ERROR to clear it");
+    Resolved res;
+    if (MotionResult r = resolve(p, tc, res); !r.ok()) return r;
+
+    Compensation trial = comp_;
+    Batch batch(exec.planned_end());
+    // Seed 003 section 1: only G01/G02/G03 are compensated, by the active
+    // group while it runs. Anything else ends the contour under way (seed 003
+    // section 2.4: a JOG/G00 makes the compensation ineffective; the next
+    // interpolation profile approaches the compensated path anew). No
+    // departure: the tool leaves from where the compensated path ended.
+    const bool compensate =
+        is_interpolation(p.kind) && tc.present && tc.run && tc.active_group != 0;
+    if (trial.comp.running() && (!compensate || trial.group != tc.active_group))
+        end_contour(trial, /*keep_departure=*/false, batch);
+
+    const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
+    bool pushed = false;
+    if (p.kind == ProfileKind::kRapid) {
+        // Seed 003 section 2.1.1: no rotation for JOG moves; no compensation.
+        batch.add(line_move(batch.end, res.program, feed, SegmentRole::kRapid, p.tag));
+    } else if (!compensate) {
+        if (is_arc(p.kind)) {
+            const geom::Element e =
+                geom::make_arc(on_plane(batch.end, res.arc_axes), on_plane(res.path, res.arc_axes),
+                               {res.cx, res.cy}, res.ccw);
+            if (const geom::Reason why = geom::check_element(e); why != geom::Reason::kNone) {
+                if (tc.present && tc.objects_accessed && tc.active_group != 0)
+                    return tc_error(tc.active_group, why, p.tag);
+                return refuse(Status::kInvalidValue, geom::reason_message(why));
+            }
+            Move m = arc_move(batch.end, res.path, res.arc_axes, res.cx, res.cy, res.ccw, feed,
+                              SegmentRole::kUncompensated, p.tag);
+            m.plane = res.plane;
+            batch.add(m);
+        } else {
+            batch.add(line_move(batch.end, res.path, feed, SegmentRole::kUncompensated, p.tag));
+        }
+    } else {
+        const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
+        if (!trial.comp.running()) {
+            trial.group = tc.active_group;
+            trial.plane_axes = plane;
+            trial.plane = tc.plane;
+            trial.length_axis = tc.length_axis;
+            const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition};
+            const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
+            if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
+        }
+        trial.length = tc.length;
+        const geom::Element e =
+            is_arc(p.kind)
+                ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
+                                 {res.cx, res.cy}, res.ccw)
+                : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
+        pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path, geom::is_plane_free(e)});
+        pushed = true;
+        const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
+        if (!step.ok()) {
+            pending_.pop_back();
+            const Pending* at = pending(step.index);
+            return tc_error(tc.active_group, step.reason, at != nullptr ? at->tag : p.tag);
+        }
+        append_segments(trial, segs_, /*keep_departure=*/false, batch);
+    }
+
+    if (MotionResult r = commit(batch, exec, capacity); !r.ok()) {
+        if (pushed) pending_.pop_back();
+        return r;
+    }
+    comp_ = trial;
+    program_ = res.program;
+    path_ = p.kind == ProfileKind::kRapid ? res.program : res.path;
+    if (pushed) ++next_index_;
+    forget_finished();
+    return {};
+}
+
+MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSettings&,
+                                               Executor& exec, std::size_t capacity) {
+    if (comp_.group != group || !comp_.comp.running()) return {};
+    // Seed 003 section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
+    // auch das letzte zwischengespeicherte Verfahrprofil gespoolt."
+    Compensation trial = comp_;
+    Batch batch(exec.planned_end());
+    end_contour(trial, /*keep_departure=*/true, batch);
+    if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
+    comp_ = trial;
+    forget_finished();
+    return {};
+}
+
+MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&, Executor& exec,
+                          std::size_t capacity) {
+    if (axes == 0) return refuse(Status::kInvalidValue, "SSF command names no axis");
+    if (command != kSsfReleaseHeldProfile)
+        return refuse(Status::kInvalidValue, "SSF command not emulated (only 2001)");
+    if (!comp_.comp.running()) return {};
+    const AxisMask group_axes =
+        static_cast<AxisMask>((1u << comp_.plane_axes[0]) | (1u << comp_.plane_axes[1]));
+    if ((axes & group_axes) == 0) return {};
+    // Seed 003 section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
+    // die entsprechenden Achsen gesendet werden": the held profile is spooled.
+    Compensation trial = comp_;
+    Batch batch(exec.planned_end());
+    end_contour(trial, /*keep_departure=*/false, batch);
+    if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
+    comp_ = trial;
+    forget_finished();
+    return {};
+}
+
+MotionResult Spooler::direct(const DirectCommand& c, Executor& exec) {
+    if (c.code != DirectCode::kJA && c.code != DirectCode::kJS)
+        return refuse(Status::kInvalidValue, "direct command is not JA or JS");
+    if (c.code == DirectCode::kJA) {
+        if (c.axes == 0) return refuse(Status::kInvalidValue, "JA names no axis");
+        if (MotionResult r = check_feed(c.feed, /*rapid=*/true); !r.ok()) return r;
+        if (MotionResult r = check_targets(c.axes, c.target); !r.ok()) return r;
+    } else if (c.axes != 0) {
+        return refuse(Status::kInvalidValue, "JS stops every axis and takes no axes");
+    }
+    // Seed 003 section 1: "Beim Aufruf eines direkten Befehls (z.B. JA, oder
+    // JS) wird der komplette Spooler-Inhalt und das zwischengespeicherte
+    // Verfahrprofil verworfen."
+    comp_.comp.discard();
+    pending_.clear();
+    exec.discard();
+    AxisVector end = exec.position();
+    if (c.code == DirectCode::kJA) {
+        for (int a = 0; a < kAxisCount; ++a)
+            if ((c.axes & (1u << a)) != 0) end[a] = c.target[a];
+        Move m = line_move(exec.position(), end, c.feed == 0.0 ? kDefaultRapidFeed : c.feed,
+                           SegmentRole::kRapid, 0);
+        m.direct = true;
+        exec.push(m);
+    }
+    program_ = end;
+    path_ = end;
+    return {};
+}
+
+void Spooler::discard_held(std::int32_t group) {
+    if (comp_.group != group || !comp_.comp.running()) return;
+    comp_.comp.discard();
+    pending_.clear();
+}
+
+}  // namespace rwmos::motion

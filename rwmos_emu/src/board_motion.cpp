@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// The Board's motion calls: thin wrappers over the motion layer in its state.
+#include "rwmos/board.h"
+#include "rwmos/board_state.h"
+
+namespace rwmos {
+
+motion::MotionResult Board::spool(const motion::Profile& p) { return state_->motion.spool(p); }
+
+motion::MotionResult Board::direct(const motion::DirectCommand& c) {
+    return state_->motion.direct(c);
+}
+
+motion::MotionResult Board::ssf(motion::AxisMask axes, std::int32_t command) {
+    return state_->motion.ssf(axes, command);
+}
+
+void Board::step(std::uint64_t cycles) { state_->motion.step(cycles); }
+
+std::uint64_t Board::run_until_idle(std::uint64_t max_cycles) {
+    return state_->motion.run_until_idle(max_cycles);
+}
+
+motion::MotionStatus Board::motion_status() const noexcept {
+    const MotionLayer& m = state_->motion;
+    const motion::Executor& e = m.executor();
+    motion::MotionStatus s;
+    s.now = e.now();
+    s.idle = e.idle();
+    s.held = m.error_pending();
+    s.fill = static_cast<std::uint32_t>(e.fill());
+    s.capacity = static_cast<std::uint32_t>(state_->spooler.capacity);
+    s.compensating_group = m.spooler().compensating_group();
+    s.profile_held = m.spooler().holds_profile();
+    s.tracing = e.tracing();
+    s.trace_pending = e.trace().size();
+    s.trace_lost = e.trace().lost();
+    s.segments_pending = e.segments().size();
+    s.segments_lost = e.segments().lost();
+    s.position = e.position();
+    return s;
+}
+
+objif::Status Board::set_trace(bool on, std::size_t capacity) {
+    if (on && capacity == 0) return objif::Status::kValueTooLow;
+    if (on && capacity > kMaxTraceCapacity) return objif::Status::kValueTooHigh;
+    state_->motion.executor().set_trace(on, capacity);
+    return objif::Status::kOk;
+}
+
+std::size_t Board::read_trace(std::span<motion::TraceSample> out) {
+    return state_->motion.executor().trace().take(out);
+}
+
+std::size_t Board::read_segments(std::span<motion::Segment> out) {
+    return state_->motion.executor().segments().take(out);
+}
+
+}  // namespace rwmos

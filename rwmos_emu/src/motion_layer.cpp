@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/motion_layer.h"
+
+#include "rwmos/board_state.h"
+
+namespace rwmos {
+
+static_assert(motion::kAxisCount == kAxisCount, "the motion layer drives every board axis");
+
+using motion::MotionResult;
+
+double MotionLayer::cycle_seconds() const noexcept {
+    return static_cast<double>(state_.interpolation_cycle_us) * 1e-6;
+}
+
+bool MotionLayer::error_pending() const noexcept {
+    if (!state_.config.option_tc) return false;
+    for (const TcGroup& g : state_.tc.groups)
+        if (g.error != 0) return true;
+    return false;
+}
+
+motion::TcSettings MotionLayer::settings() const noexcept {
+    motion::TcSettings s;
+    const TcState& tc = state_.tc;
+    s.present = state_.config.option_tc;
+    if (!s.present) return s;
+    s.objects_accessed = tc.objects_accessed;
+    const PlaneAxes plane = plane_axes(tc);
+    // The third axis of TcPlane's plane: 17 Z, 18 Y, 19 X (through X/Y/Z-Axis-Nr).
+    const std::int32_t third = tc.plane == tc::kPlaneZX   ? tc.axis_nr[1]
+                               : tc.plane == tc::kPlaneYZ ? tc.axis_nr[0]
+                                                          : tc.axis_nr[2];
+    s.plane_axes = {static_cast<std::uint8_t>(plane.first), static_cast<std::uint8_t>(plane.second),
+                    static_cast<std::uint8_t>(third)};
+    s.plane = tc.plane;
+    s.axis_nr = {static_cast<std::uint8_t>(tc.axis_nr[0]), static_cast<std::uint8_t>(tc.axis_nr[1]),
+                 static_cast<std::uint8_t>(tc.axis_nr[2])};
+    s.rot_angle = tc.rot_angle;
+    s.rot_center_first = tc.rot_center_x;
+    s.rot_center_second = tc.rot_center_y;
+    s.error_pending = error_pending();
+    s.active_group = plane.first == plane.second ? 0 : active_group(tc);
+    if (s.active_group != 0) {
+        const TcGroup& g = tc.group(s.active_group);
+        s.run = g.running();
+        s.side = g.side == tc::kSideRight ? geom::Side::kRight : geom::Side::kLeft;
+        s.radius = g.tool().radius;
+        s.length = g.tool().length;
+        s.transition = g.corner_mode == tc::kCornerLinear ? geom::TransitionMode::kLinear
+                                                          : geom::TransitionMode::kCircular;
+        s.length_axis = static_cast<std::uint8_t>(g.z_axis);
+    }
+    return s;
+}
+
+void MotionLayer::record(const MotionResult& r) noexcept {
+    if (r.errors == 0 || r.group < 1 || r.group > tc::kGroupCount) return;
+    TcGroup& g = state_.tc.group(r.group);
+    g.error |= r.errors;
+    g.status &= ~tc::kRun;
+}
+
+void MotionLayer::sync() noexcept {
+    const std::int32_t comp = spooler_.compensating_group();
+    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
+        TcGroup& g = state_.tc.group(n);
+        if (n == comp && spooler_.holds_profile())
+            g.status |= tc::kProfMarked;
+        else
+            g.status &= ~tc::kProfMarked;
+        if (n == comp) {
+            // The stored displacement of the correction axes: where the queue
+            // ends against where the programmed path ends.
+            const auto& end = exec_.planned_end();
+            const auto& path = spooler_.path_position();
+            const std::array<std::int32_t, 3> axes{g.x_axis, g.y_axis, g.z_axis};
+            for (std::size_t i = 0; i < 3; ++i)
+                g.offset[i] = end[static_cast<std::size_t>(axes[i])] -
+                              path[static_cast<std::size_t>(axes[i])];
+        }
+    }
+    // Seed 003 Table 4 via DESIGN.md section 3: on any TC error the spooler
+    // holds until ERROR is written.
+    exec_.set_halted(error_pending());
+    state_.spooler.fill = static_cast<std::int32_t>(exec_.fill());
+    for (std::size_t a = 0; a < state_.axes.size(); ++a)
+        state_.axes[a].position = exec_.position()[a];
+}
+
+MotionResult MotionLayer::spool(const motion::Profile& p) {
+    const MotionResult r = spooler_.spool(p, settings(), exec_,
+                                          static_cast<std::size_t>(state_.spooler.capacity));
+    record(r);
+    sync();
+    return r;
+}
+
+MotionResult MotionLayer::direct(const motion::DirectCommand& c) {
+    const MotionResult r = spooler_.direct(c, exec_);
+    sync();
+    return r;
+}
+
+MotionResult MotionLayer::ssf(motion::AxisMask axes, std::int32_t command) {
+    const MotionResult r = spooler_.ssf(axes, command, settings(), exec_,
+                                        static_cast<std::size_t>(state_.spooler.capacity));
+    record(r);
+    sync();
+    return r;
+}
+
+void MotionLayer::step(std::uint64_t cycles) {
+    sync();
+    exec_.advance(cycles, cycle_seconds());
+    sync();
+}
+
+std::uint64_t MotionLayer::run_until_idle(std::uint64_t max_cycles) {
+    sync();
+    const std::uint64_t ran = exec_.run_until_idle(max_cycles, cycle_seconds());
+    sync();
+    return ran;
+}
+
+objif::Status MotionLayer::release_held_profile(std::int32_t group) {
+    const MotionResult r = spooler_.release_for_deactivation(
+        group, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity));
+    record(r);
+    sync();
+    return r.status;
+}
+
+void MotionLayer::discard_held_profile(std::int32_t group) {
+    spooler_.discard_held(group);
+    sync();
+}
+
+void MotionLayer::compensation_started(std::int32_t) { sync(); }
+
+}  // namespace rwmos

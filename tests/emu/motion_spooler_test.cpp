@@ -1,0 +1,441 @@
+// SPDX-License-Identifier: MIT
+// Spooler rules on a Board: the one-profile lookahead (seed 003 section 1),
+// SSF 2001, direct commands JA/JS, JOG/G00 re-approach (seed 003 section
+// 2.4), a full spooler, bad profiles, and the board objects that show it.
+#include <cmath>
+#include <limits>
+
+#include "motion_fixture.h"
+
+using namespace motion_test;
+namespace tc = rwmos::tc;
+namespace board_obj = rwmos::board;
+
+namespace {
+
+class Spooler : public MotionBoard {};
+
+constexpr double kEps = 1e-9;
+
+void expect_at(const AxisVector& p, double x, double y, double z = 0.0) {
+    EXPECT_NEAR(p[0], x, kEps);
+    EXPECT_NEAR(p[1], y, kEps);
+    EXPECT_NEAR(p[2], z, kEps);
+}
+
+// ---- The held profile (seed 003 section 1, Table 5 ProfMarked)
+
+TEST_F(Spooler, FirstProfileWhileCompensatingIsHeldAndSetsProfMarked) {
+    setup_group(1.0);
+    activate();
+    EXPECT_FALSE(prof_marked());
+    spool_ok(line(1, 10, 0));
+    EXPECT_TRUE(prof_marked());
+    EXPECT_TRUE(running());
+    run();
+    // Only the approach to the compensated path ran; the profile itself waits.
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[0].tag, 1u);
+    expect_at(position(), 0, 1);
+    EXPECT_TRUE(prof_marked());
+}
+
+TEST_F(Spooler, NextProfileReleasesTheHeldOneCorrectedWithTheTransition) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_TRUE(prof_marked());
+    // A right turn: for left compensation an outside corner, bridged by an
+    // arc of the tool radius about the programmed corner.
+    spool_ok(line(2, 10, -10));
+    EXPECT_TRUE(prof_marked()) << "the new profile is held in turn";
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 3u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[1].tag, 1u);
+    expect_at(segs[1].start, 0, 1);
+    expect_at(segs[1].end, 10, 1);
+    EXPECT_EQ(segs[2].role, SegmentRole::kTransition);
+    EXPECT_EQ(segs[2].kind, SegmentKind::kArc);
+    EXPECT_EQ(segs[2].tag, 1u);
+    EXPECT_FALSE(segs[2].ccw);
+    expect_at(segs[2].center, 10, 0);
+    expect_at(segs[2].end, 11, 0);
+    EXPECT_EQ(segs[2].plane, 17);
+}
+
+TEST_F(Spooler, DeactivationReleasesTheLastProfileWithItsDeparture) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, -10));
+    ASSERT_TRUE(prof_marked());
+    ASSERT_EQ(deactivate(), Status::kOk);
+    EXPECT_FALSE(prof_marked());
+    EXPECT_FALSE(running());
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 5u);
+    EXPECT_EQ(segs[3].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[3].tag, 2u);
+    expect_at(segs[3].start, 11, 0);
+    expect_at(segs[3].end, 11, -10);
+    EXPECT_EQ(segs[4].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[4].tag, 2u);
+    expect_at(position(), 10, -10);
+}
+
+TEST_F(Spooler, Ssf2001ReleasesTheHeldProfileAndCompensationGoesOn) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, -10));
+    const MotionResult r = board.ssf(0x03, rwmos::motion::kSsfReleaseHeldProfile);
+    ASSERT_EQ(r.status, Status::kOk) << r.message;
+    EXPECT_FALSE(prof_marked());
+    EXPECT_TRUE(running());
+    run();
+    auto segs = segments();
+    ASSERT_EQ(segs.size(), 4u) << "held contour released, no departure";
+    EXPECT_EQ(segs[3].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[3].tag, 2u);
+    expect_at(position(), 11, -10);
+    // The contour ended: the next profile approaches the compensated path anew.
+    spool_ok(line(3, 20, -10));
+    EXPECT_TRUE(prof_marked());
+    run();
+    segs = segments();
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[0].tag, 3u);
+    expect_at(segs[0].end, 10, -9);
+}
+
+TEST_F(Spooler, Ssf2001ToAxesOutsideTheGroupReleasesNothing) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(board.ssf(0x04, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kOk);
+    EXPECT_TRUE(prof_marked());
+}
+
+TEST_F(Spooler, SsfCommandOtherThan2001IsRefusedAndChangesNothing) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    const MotionResult r = board.ssf(0x03, 2000);
+    EXPECT_EQ(r.status, Status::kInvalidValue);
+    EXPECT_FALSE(r.message.empty());
+    EXPECT_TRUE(prof_marked());
+}
+
+TEST_F(Spooler, SsfNamingNoAxisIsRefused) {
+    EXPECT_EQ(board.ssf(0x00, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kInvalidValue);
+}
+
+// ---- Direct commands (seed 003 section 1: JA, JS discard spooler and held profile)
+
+TEST_F(Spooler, DirectCommandJsDiscardsSpoolerAndHeldProfileAndStopsTheAxes) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, -10));
+    spool_ok(line(3, 0, -10));
+    ASSERT_GT(board.motion_status().fill, 0u);
+    board.step(50);  // halfway along the approach (0,0) -> (0,1)
+    DirectCommand js;
+    js.code = DirectCode::kJS;
+    ASSERT_EQ(board.direct(js).status, Status::kOk);
+    EXPECT_EQ(board.motion_status().fill, 0u);
+    EXPECT_FALSE(prof_marked());
+    EXPECT_TRUE(running()) << "a direct command does not end compensation";
+    expect_at(position(), 0, 0.5);
+    run();
+    expect_at(position(), 0, 0.5);
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_TRUE(segs[0].interrupted);
+}
+
+TEST_F(Spooler, DirectCommandJaDiscardsSpoolerAndHeldProfileThenJogsToTheTarget) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, -10));
+    DirectCommand ja;
+    ja.code = DirectCode::kJA;
+    ja.axes = 0x03;
+    ja.target[0] = 5;
+    ja.target[1] = 5;
+    ASSERT_EQ(board.direct(ja).status, Status::kOk);
+    EXPECT_FALSE(prof_marked());
+    EXPECT_EQ(board.motion_status().fill, 1u);
+    run();
+    expect_at(position(), 5, 5);
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kRapid);
+}
+
+TEST_F(Spooler, NextProfileAfterADirectCommandReApproachesTheCompensatedPath) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    DirectCommand ja;
+    ja.code = DirectCode::kJA;
+    ja.axes = 0x03;
+    ja.target = xyz(0, -5);
+    ASSERT_EQ(board.direct(ja).status, Status::kOk);
+    spool_ok(line(2, 10, -5));
+    run();
+    const auto segs = segments();
+    ASSERT_GE(segs.size(), 2u);
+    EXPECT_EQ(segs[1].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].tag, 2u);
+    expect_at(segs[1].start, 0, -5);
+    expect_at(segs[1].end, 0, -4);
+}
+
+TEST_F(Spooler, JsNamingAxesIsRefusedAndChangesNothing) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    const auto fill = board.motion_status().fill;
+    DirectCommand js;
+    js.code = DirectCode::kJS;
+    js.axes = 0x01;
+    EXPECT_EQ(board.direct(js).status, Status::kInvalidValue);
+    EXPECT_TRUE(prof_marked());
+    EXPECT_EQ(board.motion_status().fill, fill);
+}
+
+TEST_F(Spooler, BadJaIsRefusedAndChangesNothing) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    const auto fill = board.motion_status().fill;
+    DirectCommand ja;
+    ja.code = DirectCode::kJA;
+    EXPECT_EQ(board.direct(ja).status, Status::kInvalidValue) << "no axis named";
+    ja.axes = 0x01;
+    ja.target[0] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(board.direct(ja).status, Status::kInvalidValue);
+    ja.target[0] = 1.0;
+    ja.feed = -1.0;
+    EXPECT_EQ(board.direct(ja).status, Status::kValueTooLow);
+    ja.feed = 0.0;
+    ja.code = static_cast<DirectCode>(9);
+    EXPECT_EQ(board.direct(ja).status, Status::kInvalidValue) << "unknown direct command";
+    EXPECT_TRUE(prof_marked());
+    EXPECT_EQ(board.motion_status().fill, fill);
+}
+
+// ---- JOG / G00 (seed 003 section 2.4; section 1: only G01/G02/G03 compensated)
+
+TEST_F(Spooler, RapidMakesCompensationIneffectiveAndTheNextProfileReApproaches) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(rapid(2, 20, 20));
+    EXPECT_FALSE(prof_marked()) << "the rapid released the held profile";
+    EXPECT_TRUE(running());
+    spool_ok(line(3, 30, 20));
+    EXPECT_TRUE(prof_marked());
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 10, 1);  // untrimmed offset end, no departure
+    EXPECT_EQ(segs[2].role, SegmentRole::kRapid);
+    EXPECT_EQ(segs[2].tag, 2u);
+    expect_at(segs[2].start, 10, 1);
+    EXPECT_EQ(segs[2].end, xyz(20, 20)) << "the rapid itself is not compensated";
+    EXPECT_EQ(segs[3].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[3].tag, 3u);
+    expect_at(segs[3].end, 20, 21);
+}
+
+TEST_F(Spooler, RapidWithoutFeedRunsAtTheDefaultRapidFeed) {
+    // 60 units at 60000 units/min and 1 ms cycles: 1 unit per cycle.
+    spool_ok(rapid(1, 60, 0));
+    EXPECT_EQ(board.run_until_idle(1'000'000), 60u);
+}
+
+// ---- Feed and clock
+
+TEST_F(Spooler, FeedIsInterpolationUnitsPerMinute) {
+    spool_ok(line(1, 10, 0, 600.0));  // 10 units/s, 1 ms cycles
+    EXPECT_EQ(board.run_until_idle(1'000'000), 1000u);
+    EXPECT_EQ(position(), xyz(10, 0));
+}
+
+TEST_F(Spooler, InterpolationCycleObjectSetsTheCycleLength) {
+    ASSERT_EQ(write_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxInterpolationCycle, 0,
+                        2000),
+              Status::kOk);
+    spool_ok(line(1, 10, 0, 600.0));
+    EXPECT_EQ(board.run_until_idle(1'000'000), 500u);
+}
+
+TEST_F(Spooler, StepAdvancesVirtualTimeByExactlyTheCyclesAsked) {
+    spool_ok(line(1, 10, 0, 600.0));
+    board.step(250);
+    EXPECT_EQ(board.motion_status().now, 250u);
+    EXPECT_DOUBLE_EQ(position()[0], 2.5);
+    board.step(5000);
+    EXPECT_EQ(board.motion_status().now, 5250u);
+    EXPECT_TRUE(board.motion_status().idle);
+}
+
+TEST_F(Spooler, SpoolerFillAndPositionObjectsShowTheMotion) {
+    spool_ok(line(1, 1, 0));
+    spool_ok(line(2, 1, 1));
+    spool_ok(line(3, 0, 1));
+    EXPECT_EQ(read_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxSpoolerFill, 0), 3);
+    board.step(50);
+    EXPECT_DOUBLE_EQ(read_double(board_obj::kBus, board_obj::kDevice, board_obj::kIdxAxisPosition, 0),
+                     0.5);
+    run();
+    EXPECT_EQ(read_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxSpoolerFill, 0), 0);
+    EXPECT_DOUBLE_EQ(read_double(board_obj::kBus, board_obj::kDevice, board_obj::kIdxAxisPosition, 1),
+                     1.0);
+}
+
+TEST_F(Spooler, UnnamedAxesKeepTheirProgrammedPosition) {
+    spool_ok(line3(1, 1, 2, 3));
+    Profile only_x = line(2, 5, 0);
+    only_x.axes = 0x01;
+    spool_ok(only_x);
+    run();
+    EXPECT_EQ(position(), xyz(5, 2, 3));
+}
+
+// ---- A full spooler (busy, nothing dropped)
+
+TEST_F(Spooler, FullSpoolerAnswersBusyAndDropsNoProfile) {
+    const std::uint32_t capacity = board.motion_status().capacity;
+    ASSERT_GT(capacity, 0u);
+    for (std::uint32_t i = 1; i <= capacity; ++i) spool_ok(line(i, 0.1 * i, 0));
+    EXPECT_EQ(board.motion_status().fill, capacity);
+    const MotionResult busy = board.spool(line(capacity + 1, 0.1 * (capacity + 1), 0));
+    EXPECT_EQ(busy.status, Status::kBusy);
+    EXPECT_EQ(board.motion_status().fill, capacity);
+    board.step(10);  // the first 0.1-unit line takes 10 cycles
+    spool_ok(line(capacity + 1, 0.1 * (capacity + 1), 0));
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), capacity + 1);
+    for (std::uint32_t i = 0; i < segs.size(); ++i) EXPECT_EQ(segs[i].tag, i + 1);
+    EXPECT_NEAR(position()[0], 0.1 * (capacity + 1), kEps);
+}
+
+TEST_F(Spooler, BusyWhileCompensatingLeavesTheHeldProfileAsItWas) {
+    // Two boards get the same program; one of them is made to refuse a
+    // profile with Busy first. Both must execute the same path.
+    auto program = [](Rig& b, bool provoke_busy) {
+        b.setup_group(1.0);
+        b.activate();
+        b.spool_ok(line(1, 10, 0));
+        if (provoke_busy) {
+            // A queue exactly full: the next profile's moves do not fit.
+            b.board.state().spooler.capacity = static_cast<std::int32_t>(b.board.motion_status().fill);
+            EXPECT_EQ(b.board.spool(line(2, 10, -10)).status, Status::kBusy);
+            EXPECT_TRUE(b.prof_marked());
+            b.board.state().spooler.capacity = rwmos::kSpoolerCapacity;
+        }
+        b.spool_ok(line(2, 10, -10));
+        b.spool_ok(line(3, 0, -10));
+        EXPECT_EQ(b.deactivate(), Status::kOk);
+        b.run();
+    };
+    Rig plain, refused;
+    program(plain, false);
+    program(refused, true);
+    const auto a = plain.segments();
+    const auto b = refused.segments();
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].tag, b[i].tag);
+        EXPECT_EQ(a[i].role, b[i].role);
+        EXPECT_EQ(a[i].end, b[i].end);
+    }
+}
+
+// ---- Bad profiles: refused with a named reason, nothing changes
+
+TEST_F(Spooler, BadProfilesAreRefusedAndChangeNothing) {
+    spool_ok(line(1, 1, 1));
+    const auto before = board.motion_status();
+    struct Case {
+        const char* what;
+        Profile p;
+        Status want;
+    };
+    auto with = [](auto change) {
+        Profile p = arc(9, true, 2, 2, 1, 2);
+        change(p);
+        return p;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    const Case cases[] = {
+        {"unknown kind", with([](Profile& p) { p.kind = static_cast<ProfileKind>(4); }),
+         Status::kInvalidValue},
+        {"feed NaN", with([&](Profile& p) { p.feed = nan; }), Status::kInvalidValue},
+        {"feed negative", with([](Profile& p) { p.feed = -1; }), Status::kValueTooLow},
+        {"G02 without feed", with([](Profile& p) { p.feed = 0; }), Status::kValueTooLow},
+        {"feed too high", with([](Profile& p) { p.feed = 2e9; }), Status::kValueTooHigh},
+        {"target too high", with([](Profile& p) { p.target[1] = 1e6; }), Status::kValueTooHigh},
+        {"target too low", with([](Profile& p) { p.target[0] = -1e6; }), Status::kValueTooLow},
+        {"target infinite", with([&](Profile& p) { p.target[0] = inf; }), Status::kInvalidValue},
+        {"arc axes equal", with([](Profile& p) { p.arc_axes = {1, 1}; }), Status::kInvalidValue},
+        {"arc axis 8", with([](Profile& p) { p.arc_axes = {0, 8}; }), Status::kValueTooHigh},
+        {"arc centre NaN", with([&](Profile& p) { p.center[0] = nan; }), Status::kInvalidValue},
+        {"arc end not on the circle", with([](Profile& p) { p.center = {1.5, 1.0}; }),
+         Status::kInvalidValue},
+    };
+    for (const Case& c : cases) {
+        const MotionResult r = board.spool(c.p);
+        EXPECT_EQ(r.status, c.want) << c.what;
+        EXPECT_FALSE(r.message.empty()) << c.what;
+        const auto now = board.motion_status();
+        EXPECT_EQ(now.fill, before.fill) << c.what;
+        EXPECT_EQ(now.held, false) << c.what;
+    }
+    run();
+    EXPECT_EQ(position(), xyz(1, 1)) << "only the good profile moved";
+    EXPECT_EQ(segments().size(), 1u);
+}
+
+// ---- Reset objects drop the held profile
+
+TEST_F(Spooler, ResetClearsTheHeldProfile) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_TRUE(prof_marked());
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxReset, 0, 0), Status::kOk);
+    EXPECT_FALSE(prof_marked());
+    EXPECT_FALSE(running());
+    EXPECT_EQ(board.motion_status().compensating_group, 0);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1u) << "only the approach ran; the held profile is gone";
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+}
+
+TEST_F(Spooler, GroupResetDiscardsTheHeldProfile) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubReset, 0), Status::kOk);
+    EXPECT_FALSE(prof_marked());
+    EXPECT_EQ(board.motion_status().compensating_group, 0);
+}
+
+}  // namespace
