@@ -17,18 +17,12 @@ using namespace rwmos::geom;
 // A 100 x 60 plate with rounded corners, a rectangular notch and a circular dip,
 // counter-clockwise from (0, 0).
 const std::array<Element, 13> kContour = {
-    make_line({0, 0}, {40, 0}),
-    make_line({40, 0}, {40, 10}),
-    make_line({40, 10}, {60, 10}),
-    make_line({60, 10}, {60, 0}),
-    make_line({60, 0}, {90, 0}),
-    make_arc({90, 0}, {100, 10}, {90, 10}, true),
-    make_line({100, 10}, {100, 50}),
-    make_arc({100, 50}, {90, 60}, {90, 50}, true),
-    make_line({90, 60}, {60, 60}),
-    make_arc({60, 60}, {40, 60}, {50, 60}, false),
-    make_line({40, 60}, {10, 60}),
-    make_arc({10, 60}, {0, 50}, {10, 50}, true),
+    make_line({0, 0}, {40, 0}),      make_line({40, 0}, {40, 10}),
+    make_line({40, 10}, {60, 10}),   make_line({60, 10}, {60, 0}),
+    make_line({60, 0}, {90, 0}),     make_arc({90, 0}, {100, 10}, {90, 10}, true),
+    make_line({100, 10}, {100, 50}), make_arc({100, 50}, {90, 60}, {90, 50}, true),
+    make_line({90, 60}, {60, 60}),   make_arc({60, 60}, {40, 60}, {50, 60}, false),
+    make_line({40, 60}, {10, 60}),   make_arc({10, 60}, {0, 50}, {10, 50}, true),
     make_line({0, 50}, {0, 0}),
 };
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // PathCompensator: one element of lookahead (seed 003 "1 Einfuhrung"), approach and
 // departure, roles and indices, errors (seed 003 "Tabelle 4") without state change.
+#include "rwmos/geometry/compensator.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
-
-#include "rwmos/geometry/compensator.h"
 
 namespace rwmos::geom {
 namespace {
@@ -29,9 +29,8 @@ bool same(const Element& a, const Element& b) {
 }
 
 // A square 10 x 10 from (0,0) counter-clockwise: every corner turns left.
-const std::vector<Element> kSquare = {
-    make_line({0, 0}, {10, 0}), make_line({10, 0}, {10, 10}), make_line({10, 10}, {0, 10}),
-    make_line({0, 10}, {0, 0})};
+const std::vector<Element> kSquare = {make_line({0, 0}, {10, 0}), make_line({10, 0}, {10, 10}),
+                                      make_line({10, 10}, {0, 10}), make_line({0, 10}, {0, 0})};
 
 TEST(Compensator, PushBeforeBeginIsInitError) {
     PathCompensator c;
@@ -346,9 +345,9 @@ TEST(Compensator, ZeroToolRadiusReproducesTheProgrammedPath) {
     SegmentBatch out;
     ASSERT_TRUE(c.begin(config(0), {0, 0}).ok());
     std::vector<Segment> path;
-    const std::vector<Element> program = {
-        make_line({0, 0}, {10, 0}), make_arc({10, 0}, {10, 10}, {10, 5}, true),
-        make_line({10, 10}, {0, 0})};
+    const std::vector<Element> program = {make_line({0, 0}, {10, 0}),
+                                          make_arc({10, 0}, {10, 10}, {10, 5}, true),
+                                          make_line({10, 10}, {0, 0})};
     for (std::uint32_t i = 0; i < program.size(); ++i) {
         ASSERT_TRUE(c.push(program[i], i, out).ok());
         for (const Segment& s : out) path.push_back(s);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Corner joins: classification, inside trims, outside transitions (circular G26, linear
 // G25), tangent joins, for line-line, line-arc, arc-line and arc-arc, on both sides.
+#include "rwmos/geometry/corner.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "rwmos/geometry/corner.h"
 #include "rwmos/geometry/intersect.h"
 #include "rwmos/geometry/tolerances.h"
 
@@ -33,10 +34,10 @@ Vec2 dir(double degrees) {
 struct Pair {
     Element a, b;
 };
-const Element kLineIn = make_line({-10, 0}, {0, 0});                  // along +x
-const Element kLineUp = make_line({0, 0}, {0, 10});                   // along +y
-const Element kArcIn = make_arc({-5, -5}, {0, 0}, {0, -5}, false);    // cw, ends along +x
-const Element kArcUp = make_arc({0, 0}, {-5, 5}, {-5, 0}, true);      // ccw, starts along +y
+const Element kLineIn = make_line({-10, 0}, {0, 0});                // along +x
+const Element kLineUp = make_line({0, 0}, {0, 10});                 // along +y
+const Element kArcIn = make_arc({-5, -5}, {0, 0}, {0, -5}, false);  // cw, ends along +x
+const Element kArcUp = make_arc({0, 0}, {-5, 5}, {-5, 0}, true);    // ccw, starts along +y
 
 CornerJoin join(const Pair& p, Side side, TransitionMode mode = TransitionMode::kCircular) {
     const OffsetElement a = offset_element(p.a, 1.0, side).element;
@@ -81,7 +82,8 @@ TEST(InsideCorner, ArcArcTrimsAtTheIntersectionNearestTheCorner) {
     expect_near(j.held.path.end, nearest);
     expect_near(j.next.path.start, nearest);
     // The trimmed arcs keep their direction and lose length.
-    EXPECT_LT(std::abs(j.held.sweep), std::abs(offset_element(kArcIn, 1, Side::kLeft).element.sweep));
+    EXPECT_LT(std::abs(j.held.sweep),
+              std::abs(offset_element(kArcIn, 1, Side::kLeft).element.sweep));
     EXPECT_GT(j.held.sweep * offset_element(kArcIn, 1, Side::kLeft).element.sweep, 0.0);
 }
 
@@ -93,8 +95,8 @@ TEST(InsideCorner, ChoosesTheValidIntersectionNearestTheCorner) {
     const OffsetElement ao = offset_element(a, 1, Side::kLeft).element;
     const OffsetElement bo = offset_element(b, 1, Side::kLeft).element;
     ASSERT_EQ(intersect_carriers(ao, bo).count, 2u);
-    const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b),
-                                     Side::kLeft, 1, TransitionMode::kCircular);
+    const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b), Side::kLeft,
+                                     1, TransitionMode::kCircular);
     ASSERT_EQ(j.reason, Reason::kNone);
     expect_near(j.held.path.end, {-10 + std::sqrt(80.0), 1});
     expect_near(j.next.path.start, {-10 + std::sqrt(80.0), 1});
@@ -182,7 +184,9 @@ std::string case_name(const testing::TestParamInfo<CornerCase>& info) {
     return s;
 }
 
-bool towards_tool(const CornerCase& c) { return (c.turn_degrees > 0) == (c.side == Side::kLeft); }
+bool towards_tool(const CornerCase& c) {
+    return (c.turn_degrees > 0) == (c.side == Side::kLeft);
+}
 
 enum class Filter { kAll, kInside, kOutsideCircular, kOutsideLinear };
 std::vector<CornerCase> cases(Filter f) {
@@ -191,23 +195,23 @@ std::vector<CornerCase> cases(Filter f) {
         for (Kind b : {Kind::kLine, Kind::kConvexArc, Kind::kConcaveArc})
             for (double turn : {-150.0, -90.0, -45.0, 45.0, 90.0, 135.0})
                 for (Side side : {Side::kLeft, Side::kRight})
-                    for (TransitionMode mode : {TransitionMode::kCircular, TransitionMode::kLinear}) {
+                    for (TransitionMode mode :
+                         {TransitionMode::kCircular, TransitionMode::kLinear}) {
                         const CornerCase c{a, b, turn, side, mode};
-                        const bool keep =
-                            f == Filter::kAll ||
-                            (f == Filter::kInside && towards_tool(c) &&
-                             mode == TransitionMode::kCircular) ||
-                            (f == Filter::kOutsideCircular && !towards_tool(c) &&
-                             mode == TransitionMode::kCircular) ||
-                            (f == Filter::kOutsideLinear && !towards_tool(c) &&
-                             mode == TransitionMode::kLinear);
+                        const bool keep = f == Filter::kAll ||
+                                          (f == Filter::kInside && towards_tool(c) &&
+                                           mode == TransitionMode::kCircular) ||
+                                          (f == Filter::kOutsideCircular && !towards_tool(c) &&
+                                           mode == TransitionMode::kCircular) ||
+                                          (f == Filter::kOutsideLinear && !towards_tool(c) &&
+                                           mode == TransitionMode::kLinear);
                         if (keep) out.push_back(c);
                     }
     return out;
 }
 
 class CornerRule : public testing::TestWithParam<CornerCase> {
-protected:
+  protected:
     void SetUp() override {
         const CornerCase& c = GetParam();
         a_ = make_piece(c.a, dir(0), true, c.side);
@@ -218,7 +222,9 @@ protected:
                             start_tangent(b_), c.side, r_, c.mode);
     }
     // Distance of p from the programmed pair.
-    double clearance(const Vec2& p) const { return std::min(distance_to(a_, p), distance_to(b_, p)); }
+    double clearance(const Vec2& p) const {
+        return std::min(distance_to(a_, p), distance_to(b_, p));
+    }
     bool turns_towards_tool() const { return towards_tool(GetParam()); }
 
     const double r_ = 1.0;
@@ -333,10 +339,9 @@ TEST(TangentJoin, LineIntoTangentArcAddsNoElementAndMeetsExactly) {
     for (bool ccw : {true, false}) {
         const Element arc = make_arc({0, 0}, {5, ccw ? 5.0 : -5.0}, {0, ccw ? 5.0 : -5.0}, ccw);
         for (Side side : {Side::kLeft, Side::kRight}) {
-            const CornerJoin j =
-                join_corner(offset_element(line, 1, side).element,
-                            offset_element(arc, 1, side).element, {0, 0}, end_tangent(line),
-                            start_tangent(arc), side, 1, TransitionMode::kCircular);
+            const CornerJoin j = join_corner(
+                offset_element(line, 1, side).element, offset_element(arc, 1, side).element, {0, 0},
+                end_tangent(line), start_tangent(arc), side, 1, TransitionMode::kCircular);
             EXPECT_EQ(j.kind, CornerKind::kTangent);
             EXPECT_EQ(j.transition.count, 0u);
             EXPECT_EQ(j.held.path.end, j.next.path.start);
@@ -349,10 +354,9 @@ TEST(TangentJoin, NearlyTangentGapIsSnappedToTheHeldEnd) {
     const double a = 0.5 * kTangentAngleTolerance;
     const Element l1 = make_line({-10, 0}, {0, 0});
     const Element l2 = make_line({0, 0}, {10 * std::cos(a), 10 * std::sin(a)});
-    const CornerJoin j =
-        join_corner(offset_element(l1, 50, Side::kLeft).element,
-                    offset_element(l2, 50, Side::kLeft).element, {0, 0}, end_tangent(l1),
-                    start_tangent(l2), Side::kLeft, 50, TransitionMode::kCircular);
+    const CornerJoin j = join_corner(
+        offset_element(l1, 50, Side::kLeft).element, offset_element(l2, 50, Side::kLeft).element,
+        {0, 0}, end_tangent(l1), start_tangent(l2), Side::kLeft, 50, TransitionMode::kCircular);
     EXPECT_EQ(j.kind, CornerKind::kTangent);
     EXPECT_EQ(j.held.path.end, j.next.path.start);
 }
@@ -360,20 +364,18 @@ TEST(TangentJoin, NearlyTangentGapIsSnappedToTheHeldEnd) {
 TEST(CornerFailure, KorrErrorWhenHeldLineIsShorterThanTheInsideCornerNeeds) {
     // 90 degree inside corner with r = 1 needs 1 of the held line; it has 0.5.
     const Element a = make_line({-0.5, 0}, {0, 0});
-    const CornerJoin j =
-        join_corner(offset_element(a, 1, Side::kLeft).element,
-                    offset_element(kLineUp, 1, Side::kLeft).element, {0, 0}, end_tangent(a),
-                    start_tangent(kLineUp), Side::kLeft, 1, TransitionMode::kCircular);
+    const CornerJoin j = join_corner(
+        offset_element(a, 1, Side::kLeft).element, offset_element(kLineUp, 1, Side::kLeft).element,
+        {0, 0}, end_tangent(a), start_tangent(kLineUp), Side::kLeft, 1, TransitionMode::kCircular);
     EXPECT_EQ(j.reason, Reason::kHeldElementTooShort);
     EXPECT_EQ(reason_bits(j.reason), bits(ErrorBit::kKorrError));
 }
 
 TEST(CornerFailure, KorrErrorWhenNextLineIsShorterThanTheInsideCornerNeeds) {
     const Element b = make_line({0, 0}, {0, 0.5});
-    const CornerJoin j =
-        join_corner(offset_element(kLineIn, 1, Side::kLeft).element,
-                    offset_element(b, 1, Side::kLeft).element, {0, 0}, end_tangent(kLineIn),
-                    start_tangent(b), Side::kLeft, 1, TransitionMode::kCircular);
+    const CornerJoin j = join_corner(
+        offset_element(kLineIn, 1, Side::kLeft).element, offset_element(b, 1, Side::kLeft).element,
+        {0, 0}, end_tangent(kLineIn), start_tangent(b), Side::kLeft, 1, TransitionMode::kCircular);
     EXPECT_EQ(j.reason, Reason::kNextElementTooShort);
 }
 
@@ -383,10 +385,9 @@ TEST(CornerFailure, KorrErrorWhenToolDoesNotFitBetweenLineAndConcaveArc) {
     const Element a = make_line({-8, 0}, {0, 0});
     const Vec2 centre = 8 * Vec2(-0.5, std::sqrt(3.0) / 2);
     const Element b = make_arc({0, 0}, centre + Vec2(0, -8), centre, false);
-    const CornerJoin j =
-        join_corner(offset_element(a, 1, Side::kRight).element,
-                    offset_element(b, 1, Side::kRight).element, {0, 0}, end_tangent(a),
-                    start_tangent(b), Side::kRight, 1, TransitionMode::kCircular);
+    const CornerJoin j = join_corner(
+        offset_element(a, 1, Side::kRight).element, offset_element(b, 1, Side::kRight).element,
+        {0, 0}, end_tangent(a), start_tangent(b), Side::kRight, 1, TransitionMode::kCircular);
     EXPECT_EQ(j.kind, CornerKind::kInside);
     EXPECT_EQ(j.reason, Reason::kNoCornerSolution);
 }
@@ -398,15 +399,16 @@ TEST(CornerFailure, KorrErrorWhenOffsetElementsDoNotMeetAtAnInsideCorner) {
     const Element b = make_arc({0, 0}, {-4, 4}, {-4, 0}, true);  // starts along +y, radius 4
     const OffsetElement ao = offset_element(a, 3.5, Side::kLeft).element;  // y = 3.5
     const OffsetElement bo = offset_element(b, 3.5, Side::kLeft).element;  // radius 0.5
-    const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b),
-                                     Side::kLeft, 3.5, TransitionMode::kCircular);
+    const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b), Side::kLeft,
+                                     3.5, TransitionMode::kCircular);
     EXPECT_EQ(j.kind, CornerKind::kInside);
     EXPECT_EQ(j.reason, Reason::kNoCornerSolution);
     EXPECT_EQ(intersect_carriers(ao, bo).count, 0u);
 }
 
 TEST(Intersections, LineCircleNearTangentCountsAsTouching) {
-    const Intersections t = intersect_line_circle({0, 1 + 0.5 * kPointTolerance}, {1, 0}, {0, 0}, 1);
+    const Intersections t =
+        intersect_line_circle({0, 1 + 0.5 * kPointTolerance}, {1, 0}, {0, 0}, 1);
     ASSERT_EQ(t.count, 1u);
     expect_near(t.points[0], {0, 1}, 1e-9);
     EXPECT_EQ(intersect_line_circle({0, 1.1}, {1, 0}, {0, 0}, 1).count, 0u);

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Elements: tangents, sweep, length, points and distances.
+#include "rwmos/geometry/element.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "rwmos/geometry/element.h"
 #include "rwmos/geometry/tolerances.h"
 
 namespace rwmos::geom {

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Offsetting elements by the tool radius, the element checks (seed 003 "Tabelle 4":
 // CalcError, CenterError), trimming and emission.
+#include "rwmos/geometry/offset.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "rwmos/geometry/offset.h"
 #include "rwmos/geometry/tolerances.h"
 
 namespace rwmos::geom {
@@ -81,8 +82,7 @@ TEST(Offset, CenterErrorWhenStartAndEndRadiusDifferBeyondTolerance) {
 }
 
 TEST(Offset, CenterErrorWhenCentreLiesOnStartOrEndPoint) {
-    EXPECT_EQ(check_element(make_arc({0, 0}, {0, 0}, {0, 0}, true)),
-              Reason::kArcCentreOnEndPoint);
+    EXPECT_EQ(check_element(make_arc({0, 0}, {0, 0}, {0, 0}, true)), Reason::kArcCentreOnEndPoint);
     EXPECT_EQ(check_element(make_arc({0.001, 0}, {0, 0}, {0, 0}, true)),
               Reason::kArcCentreOnEndPoint);
     EXPECT_EQ(reason_bits(Reason::kArcCentreOnEndPoint), bits(ErrorBit::kCenterError));

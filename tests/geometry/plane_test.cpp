@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Plane mapping (TcPlane 17/18/19, seed 003 "Tabelle 2") and coordinate rotation
 // (seed 003 "2.1.1 Koordinatendrehung").
+#include "rwmos/geometry/plane.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
-
-#include "rwmos/geometry/plane.h"
 
 namespace rwmos::geom {
 namespace {
@@ -96,8 +96,7 @@ TEST(Rotation, ThirtyDegreesKeepsTheDistanceToTheCentre) {
     const Vec2 p{4, 1};
     const Vec2 r = rotate_about(p, c, 30.0);
     EXPECT_NEAR((r - c).norm(), (p - c).norm(), 1e-12);
-    EXPECT_NEAR(std::acos((r - c).normalized().dot((p - c).normalized())) * 180 / M_PI, 30.0,
-                1e-9);
+    EXPECT_NEAR(std::acos((r - c).normalized().dot((p - c).normalized())) * 180 / M_PI, 30.0, 1e-9);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ constexpr double kPropertyTolerance = 1e-6;
 
 // ---- Deterministic random numbers (splitmix64) ----
 class Rng {
-public:
+  public:
     explicit Rng(std::uint64_t seed) : state_(seed) {}
     std::uint64_t next() {
         std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
@@ -59,15 +59,19 @@ public:
     bool chance(double p) { return uniform() < p; }
     int integer(int lo, int hi) { return lo + static_cast<int>(next() % (hi - lo + 1)); }
 
-private:
+  private:
     std::uint64_t state_;
 };
 
-Vec2 dir(double angle) { return {std::cos(angle), std::sin(angle)}; }
+Vec2 dir(double angle) {
+    return {std::cos(angle), std::sin(angle)};
+}
 Vec2 turned(const Vec2& v, double a) {
     return {std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y()};
 }
-double heading(const Vec2& t) { return std::atan2(t.y(), t.x()); }
+double heading(const Vec2& t) {
+    return std::atan2(t.y(), t.x());
+}
 
 // ---- Contour generation ----
 
@@ -143,7 +147,8 @@ Contour open_chain(Rng& rng, double r) {
             const double start_heading = h + turn;
             Element e;
             if (rng.chance(0.5)) {
-                const double len = r * (short_prone ? rng.log_uniform(0.2, 8) : rng.log_uniform(2, 20));
+                const double len =
+                    r * (short_prone ? rng.log_uniform(0.2, 8) : rng.log_uniform(2, 20));
                 e = make_line(p, p + len * dir(start_heading));
             } else {
                 const double radius = r * rng.log_uniform(0.6, 30);
@@ -215,7 +220,9 @@ Contour closed_loop(Rng& rng, double r) {
 
 // ---- The independent expectation ----
 
-bool concave_for(const Element& arc, Side side) { return arc.ccw == (side == Side::kLeft); }
+bool concave_for(const Element& arc, Side side) {
+    return arc.ccw == (side == Side::kLeft);
+}
 
 // Offset point at fraction t of the element: beside point_at(t), r to the tool side.
 Vec2 offset_at(const Element& e, double t, double r, Side side) {
@@ -291,7 +298,7 @@ Expectation expect(const Contour& c, Side side) {
         const Element& a = E[k - 1];
         const double turn = std::atan2(cross(end_tangent(a), start_tangent(b)),
                                        end_tangent(a).dot(start_tangent(b)));
-        if (std::abs(turn) < 1e-7) continue;               // generated tangent join
+        if (std::abs(turn) < 1e-7) continue;                // generated tangent join
         if ((turn > 0) != (side == Side::kLeft)) continue;  // outside corner: no trim
         const double len_a = offset_length_of(a, r, side);
         const double len_b = offset_length_of(b, r, side);
@@ -369,9 +376,10 @@ struct CompensationRun {
     int failing_push = -1;
     std::string label() const {
         std::ostringstream s;
-        s << "seed " << contour->seed << (contour->closed ? " closed" : " open") << " r " << contour->r
-          << (side == Side::kLeft ? " G41" : " G42") << (mode == TransitionMode::kCircular ? " G26" : " G25")
-          << " plane " << plane_code(plane) << " elements " << contour->elements.size();
+        s << "seed " << contour->seed << (contour->closed ? " closed" : " open") << " r "
+          << contour->r << (side == Side::kLeft ? " G41" : " G42")
+          << (mode == TransitionMode::kCircular ? " G26" : " G25") << " plane " << plane_code(plane)
+          << " elements " << contour->elements.size();
         return s.str();
     }
 };
@@ -394,10 +402,12 @@ CompensationRun compensate(const Contour& c, Side side, TransitionMode mode, Pla
     EXPECT_TRUE(comp.begin({side, c.r, mode}, position).ok());
     auto take = [&](double third) {
         for (const Segment& s : batch)
-            out.path.push_back({s, from_plane(s.path.start, third, plane), from_plane(s.path.end, third, plane)});
+            out.path.push_back(
+                {s, from_plane(s.path.start, third, plane), from_plane(s.path.end, third, plane)});
     };
     for (std::size_t k = 0; k < program.size(); ++k) {
-        const StepResult r = comp.push(project(program[k], plane), static_cast<std::uint32_t>(k), batch);
+        const StepResult r =
+            comp.push(project(program[k], plane), static_cast<std::uint32_t>(k), batch);
         if (!r.ok()) {
             out.failed = true;
             out.emitted_on_failure = batch.size();
@@ -416,8 +426,8 @@ std::string describe(const Contour& c) {
     std::ostringstream s;
     s.precision(17);
     for (const Element& e : c.elements) {
-        s << "\n  " << (is_arc(e) ? (e.ccw ? "G03 " : "G02 ") : "G01 ") << "(" << e.start.x() << ", "
-          << e.start.y() << ") -> (" << e.end.x() << ", " << e.end.y() << ")";
+        s << "\n  " << (is_arc(e) ? (e.ccw ? "G03 " : "G02 ") : "G01 ") << "(" << e.start.x()
+          << ", " << e.start.y() << ") -> (" << e.end.x() << ", " << e.end.y() << ")";
         if (is_arc(e))
             s << " centre (" << e.centre.x() << ", " << e.centre.y() << ") R " << radius(e)
               << " sweep " << sweep(e) * 180 / kPi;
@@ -524,8 +534,8 @@ TEST(CompensationProperty, UncompensableContourGetsTheRightErrorBitInsteadOfAPat
                                                        std::to_string(x.failing_push))
                           << ", got "
                           << (r.failed ? "bits " + std::to_string(r.error.errors) + " (" +
-                                             std::string(reason_name(r.error.reason)) + ") at push " +
-                                             std::to_string(r.failing_push)
+                                             std::string(reason_name(r.error.reason)) +
+                                             ") at push " + std::to_string(r.failing_push)
                                        : std::string("a path"))
                           << (mismatches <= 3 ? describe(*r.contour) : std::string());
         if (r.failed) {
@@ -548,9 +558,10 @@ TEST(CompensationProperty, NoPointOfTheCompensatedPathGouges) {
             for_samples(s.plane.path, tool, [&](const Vec2& p) {
                 const double d = clearance(*r.contour, p);
                 if (d < tool - kPropertyTolerance && ++gouges <= 10)
-                    ADD_FAILURE() << r.label() << ": point (" << p.x() << ", " << p.y() << ") of element "
-                                  << s.plane.index << " (role " << int(s.plane.role) << ") is " << d
-                                  << " from the contour" << (gouges <= 2 ? describe(*r.contour) : std::string());
+                    ADD_FAILURE() << r.label() << ": point (" << p.x() << ", " << p.y()
+                                  << ") of element " << s.plane.index << " (role "
+                                  << int(s.plane.role) << ") is " << d << " from the contour"
+                                  << (gouges <= 2 ? describe(*r.contour) : std::string());
             });
         }
     }
@@ -564,12 +575,13 @@ TEST(CompensationProperty, EveryPointIsAtToolRadiusExceptOnLinearTransitions) {
         const double tool = r.contour->r;
         for (const Segment3& s : r.path) {
             if (!checked_role(s.plane.role)) continue;
-            if (s.plane.role == SegmentRole::kTransition && r.mode == TransitionMode::kLinear) continue;
+            if (s.plane.role == SegmentRole::kTransition && r.mode == TransitionMode::kLinear)
+                continue;
             for_samples(s.plane.path, tool, [&](const Vec2& p) {
                 const double d = clearance(*r.contour, p);
                 if (std::abs(d - tool) > kPropertyTolerance && ++off <= 10)
-                    ADD_FAILURE() << r.label() << ": point of element " << s.plane.index << " is " << d
-                                  << " from the contour, r = " << tool;
+                    ADD_FAILURE() << r.label() << ": point of element " << s.plane.index << " is "
+                                  << d << " from the contour, r = " << tool;
             });
         }
     }
@@ -585,9 +597,11 @@ TEST(CompensationProperty, EverySurvivingProgrammedElementIsCoveredByItsOffset) 
             bool any = false;
             for (const Segment3& s : r.path)
                 any |= s.plane.role == SegmentRole::kContour && s.plane.index == k;
-            if (!any && ++missing <= 10) ADD_FAILURE() << r.label() << ": element " << k << " not emitted";
+            if (!any && ++missing <= 10)
+                ADD_FAILURE() << r.label() << ": element " << k << " not emitted";
             const double t0 = r.expected.t_start[k], t1 = r.expected.t_end[k];
-            if ((t1 - t0) * length(c.elements[k]) < 1e-6 * std::max(1.0, c.r)) continue;  // consumed
+            if ((t1 - t0) * length(c.elements[k]) < 1e-6 * std::max(1.0, c.r))
+                continue;  // consumed
             for (double f : {0.25, 0.5, 0.75}) {
                 const Vec2 p = offset_at(c.elements[k], t0 + f * (t1 - t0), c.r, r.side);
                 double best = INFINITY;
@@ -614,7 +628,8 @@ TEST(CompensationProperty, PathIsContinuousFromApproachToDeparture) {
         }
         ASSERT_FALSE(r.path.empty());
         EXPECT_EQ(r.path.back().plane.role, SegmentRole::kDeparture) << r.label();
-        EXPECT_NEAR((r.path.back().plane.path.end - r.contour->elements.back().end).norm(), 0, 1e-12);
+        EXPECT_NEAR((r.path.back().plane.path.end - r.contour->elements.back().end).norm(), 0,
+                    1e-12);
         if (r.contour->closed) {
             // Closed loops start and end in the middle of an element: the path closes.
             const Segment3* first = nullptr;
@@ -624,7 +639,8 @@ TEST(CompensationProperty, PathIsContinuousFromApproachToDeparture) {
                     if (!first) first = &s;
                     last = &s;
                 }
-            EXPECT_LT((first->plane.path.start - last->plane.path.end).norm(), 1e-9 * std::max(1.0, r.contour->r))
+            EXPECT_LT((first->plane.path.start - last->plane.path.end).norm(),
+                      1e-9 * std::max(1.0, r.contour->r))
                 << r.label();
         }
     }

@@ -13,6 +13,8 @@ Element departure_move(const OffsetElement& last, const Vec2& programmed_end) no
     return make_line(last.path.end, programmed_end);
 }
 
-bool worth_moving(const Element& move) noexcept { return length(move) > kPointTolerance; }
+bool worth_moving(const Element& move) noexcept {
+    return length(move) > kPointTolerance;
+}
 
 }  // namespace rwmos::geom

@@ -29,7 +29,8 @@ void PathCompensator::emit_plane_free(const Vec2& at, SegmentBatch& out) const n
 }
 
 StepResult PathCompensator::begin(const CompensatorConfig& config, const Vec2& position) noexcept {
-    if (state_ != State::kIdle) return StepResult{Reason::kAlreadyStarted, reason_bits(Reason::kAlreadyStarted), 0};
+    if (state_ != State::kIdle)
+        return StepResult{Reason::kAlreadyStarted, reason_bits(Reason::kAlreadyStarted), 0};
     if (const Reason r = check_config(config); r != Reason::kNone)
         return StepResult{r, reason_bits(r), 0};
     if (!is_valid_coordinate(position))

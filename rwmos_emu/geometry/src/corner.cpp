@@ -33,7 +33,9 @@ bool locate_on(const OffsetElement& o, const Vec2& x, bool near_end, double& alo
     return found;
 }
 
-Element line(const Vec2& a, const Vec2& b) noexcept { return make_line(a, b); }
+Element line(const Vec2& a, const Vec2& b) noexcept {
+    return make_line(a, b);
+}
 
 }  // namespace
 
@@ -101,7 +103,8 @@ Transition outside_transition(const Vec2& corner, const Vec2& held_end, const Ve
     }
     const double turn = std::abs(turn_angle(end_tangent, start_tangent));
     if (turn <= kLinearCornerMaxTurn) {
-        const Intersections meet = intersect_lines(held_end, end_tangent, next_start, start_tangent);
+        const Intersections meet =
+            intersect_lines(held_end, end_tangent, next_start, start_tangent);
         if (meet.count == 1) {
             out.elements[0] = line(held_end, meet.points[0]);
             out.elements[1] = line(meet.points[0], next_start);
@@ -140,8 +143,8 @@ CornerJoin join_corner(const OffsetElement& held, const OffsetElement& next, con
             return out;
         }
         case CornerKind::kOutside:
-            out.transition = outside_transition(corner, held.path.end, end_tangent,
-                                                next.path.start, start_tangent, side, r, mode);
+            out.transition = outside_transition(corner, held.path.end, end_tangent, next.path.start,
+                                                start_tangent, side, r, mode);
             return out;
     }
     return out;

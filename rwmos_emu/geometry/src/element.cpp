@@ -56,8 +56,12 @@ double angle_between(const Vec2& a, const Vec2& b, bool ccw) noexcept {
     return angle >= kTwoPi ? 0.0 : angle;
 }
 
-double radius(const Element& arc) noexcept { return (arc.start - arc.centre).norm(); }
-double end_radius(const Element& arc) noexcept { return (arc.end - arc.centre).norm(); }
+double radius(const Element& arc) noexcept {
+    return (arc.start - arc.centre).norm();
+}
+double end_radius(const Element& arc) noexcept {
+    return (arc.end - arc.centre).norm();
+}
 
 bool is_full_circle(const Element& e) noexcept {
     return is_arc(e) && (e.end - e.start).norm() <= kPointTolerance;

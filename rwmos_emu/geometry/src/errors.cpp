@@ -66,11 +66,16 @@ const ReasonRow* find_row(Reason r) noexcept {
 
 std::string_view error_bit_name(ErrorBit b) noexcept {
     switch (b) {
-        case ErrorBit::kInitError: return "InitError";
-        case ErrorBit::kKorrError: return "KorrError";
-        case ErrorBit::kCalcError: return "CalcError";
-        case ErrorBit::kPlaneError: return "PlaneError";
-        case ErrorBit::kCenterError: return "CenterError";
+        case ErrorBit::kInitError:
+            return "InitError";
+        case ErrorBit::kKorrError:
+            return "KorrError";
+        case ErrorBit::kCalcError:
+            return "CalcError";
+        case ErrorBit::kPlaneError:
+            return "PlaneError";
+        case ErrorBit::kCenterError:
+            return "CenterError";
     }
     return "Unknown";
 }

@@ -36,8 +36,7 @@ Intersections intersect_line_circle(const Vec2& p, const Vec2& d, const Vec2& c,
     return out;
 }
 
-Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2,
-                                double rho2) noexcept {
+Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2, double rho2) noexcept {
     Intersections out;
     const Vec2 between = c2 - c1;
     const double dist = between.norm();
@@ -63,9 +62,12 @@ Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2,
 Intersections intersect_carriers(const OffsetElement& a, const OffsetElement& b) noexcept {
     const bool a_arc = is_arc(a.path);
     const bool b_arc = is_arc(b.path);
-    if (!a_arc && !b_arc) return intersect_lines(a.path.start, a.direction, b.path.start, b.direction);
-    if (!a_arc) return intersect_line_circle(a.path.start, a.direction, b.path.centre, radius(b.path));
-    if (!b_arc) return intersect_line_circle(b.path.start, b.direction, a.path.centre, radius(a.path));
+    if (!a_arc && !b_arc)
+        return intersect_lines(a.path.start, a.direction, b.path.start, b.direction);
+    if (!a_arc)
+        return intersect_line_circle(a.path.start, a.direction, b.path.centre, radius(b.path));
+    if (!b_arc)
+        return intersect_line_circle(b.path.start, b.direction, a.path.centre, radius(a.path));
     return intersect_circles(a.path.centre, radius(a.path), b.path.centre, radius(b.path));
 }
 

@@ -92,8 +92,7 @@ OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) no
 
 Element emitted_path(const OffsetElement& o) noexcept {
     if (!is_arc(o.path)) return o.path;
-    if (std::abs(o.sweep) < std::numbers::pi &&
-        (o.path.end - o.path.start).norm() <= kMinArcChord)
+    if (std::abs(o.sweep) < std::numbers::pi && (o.path.end - o.path.start).norm() <= kMinArcChord)
         return make_line(o.path.start, o.path.end);
     return o.path;
 }

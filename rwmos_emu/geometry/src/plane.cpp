@@ -8,10 +8,14 @@ namespace rwmos::geom {
 
 std::optional<Plane> plane_from_code(int code) noexcept {
     switch (code) {
-        case 17: return Plane::kXY;
-        case 18: return Plane::kZX;
-        case 19: return Plane::kYZ;
-        default: return std::nullopt;
+        case 17:
+            return Plane::kXY;
+        case 18:
+            return Plane::kZX;
+        case 19:
+            return Plane::kYZ;
+        default:
+            return std::nullopt;
     }
 }
 
@@ -26,7 +30,9 @@ Vec2 to_plane(const Vec3& p, Plane plane) noexcept {
     return {p[a.first], p[a.second]};
 }
 
-double third_coordinate(const Vec3& p, Plane plane) noexcept { return p[plane_axes(plane).third]; }
+double third_coordinate(const Vec3& p, Plane plane) noexcept {
+    return p[plane_axes(plane).third];
+}
 
 Vec3 from_plane(const Vec2& q, double third, Plane plane) noexcept {
     const PlaneAxes a = plane_axes(plane);

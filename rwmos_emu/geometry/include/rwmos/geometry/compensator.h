@@ -45,7 +45,7 @@ inline constexpr std::size_t kMaxSegmentsPerStep = 1 + 1 + kMaxPlaneFreeElements
 
 // Fixed-capacity output of one step; the caller keeps one and reuses it (no allocation).
 class SegmentBatch {
-public:
+  public:
     static constexpr std::size_t kCapacity = kMaxSegmentsPerStep;
     std::size_t size() const noexcept { return size_; }
     bool empty() const noexcept { return size_ == 0; }
@@ -58,7 +58,7 @@ public:
         if (size_ < kCapacity) items_[size_++] = Segment{path, role, index};
     }
 
-private:
+  private:
     std::array<Segment, kCapacity> items_{};
     std::size_t size_ = 0;
 };
@@ -83,7 +83,7 @@ struct StepResult {
 Reason check_config(const CompensatorConfig& config) noexcept;
 
 class PathCompensator {
-public:
+  public:
     // Starts compensating from the tool position (plane coordinates). Fails with
     // kAlreadyStarted while running, or on a bad config or position.
     StepResult begin(const CompensatorConfig& config, const Vec2& position) noexcept;
@@ -109,7 +109,7 @@ public:
     std::uint32_t held_index() const noexcept { return held_index_; }
     const CompensatorConfig& config() const noexcept { return config_; }
 
-private:
+  private:
     enum class State : std::uint8_t { kIdle, kStarted, kHolding };
 
     StepResult fail(Reason reason, std::uint32_t index, SegmentBatch& out) const noexcept;
@@ -117,9 +117,9 @@ private:
 
     State state_ = State::kIdle;
     CompensatorConfig config_;
-    Vec2 position_ = Vec2::Zero();        // tool position at begin()
-    OffsetElement held_;                  // held offset element, its start final
-    Vec2 held_corner_ = Vec2::Zero();     // programmed end of the held element
+    Vec2 position_ = Vec2::Zero();     // tool position at begin()
+    OffsetElement held_;               // held offset element, its start final
+    Vec2 held_corner_ = Vec2::Zero();  // programmed end of the held element
     Vec2 held_end_tangent_ = Vec2::Zero();
     std::uint32_t held_index_ = 0;
     std::array<std::uint32_t, kMaxPlaneFreeElements> plane_free_{};

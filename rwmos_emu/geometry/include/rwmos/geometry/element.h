@@ -27,10 +27,14 @@ struct Element {
 Element make_line(const Vec2& start, const Vec2& end) noexcept;
 Element make_arc(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept;
 
-constexpr bool is_arc(const Element& e) noexcept { return e.kind == ElementKind::kArc; }
+constexpr bool is_arc(const Element& e) noexcept {
+    return e.kind == ElementKind::kArc;
+}
 
 // v turned by +90 degrees: the left normal of a direction of travel.
-inline Vec2 left_normal(const Vec2& v) noexcept { return {-v.y(), v.x()}; }
+inline Vec2 left_normal(const Vec2& v) noexcept {
+    return {-v.y(), v.x()};
+}
 // z of the 3D cross product: > 0 when b lies counter-clockwise of a.
 inline double cross(const Vec2& a, const Vec2& b) noexcept {
     return a.x() * b.y() - a.y() * b.x();

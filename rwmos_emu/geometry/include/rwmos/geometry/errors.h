@@ -23,8 +23,12 @@ enum class ErrorBit : std::uint32_t {
 // A set of ErrorBit values as the ERROR object holds them.
 using ErrorBits = std::uint32_t;
 
-constexpr ErrorBits bits(ErrorBit b) noexcept { return static_cast<ErrorBits>(b); }
-constexpr bool has(ErrorBits set, ErrorBit b) noexcept { return (set & bits(b)) != 0; }
+constexpr ErrorBits bits(ErrorBit b) noexcept {
+    return static_cast<ErrorBits>(b);
+}
+constexpr bool has(ErrorBits set, ErrorBit b) noexcept {
+    return (set & bits(b)) != 0;
+}
 
 // "KorrError" etc.; "Unknown" for a value that is not one bit of Table 4.
 std::string_view error_bit_name(ErrorBit b) noexcept;
@@ -33,28 +37,28 @@ std::string_view error_bit_name(ErrorBit b) noexcept;
 enum class Reason : std::uint8_t {
     kNone = 0,
     // InitError: configuration and call order.
-    kNotStarted,           // push/finish before begin (or after finish)
-    kAlreadyStarted,       // begin while compensating: finish or discard first
-    kInvalidToolRadius,    // tool radius negative, not finite or beyond kMaxCoordinate
-    kInvalidSetting,       // side or transition mode not one of the defined values
+    kNotStarted,         // push/finish before begin (or after finish)
+    kAlreadyStarted,     // begin while compensating: finish or discard first
+    kInvalidToolRadius,  // tool radius negative, not finite or beyond kMaxCoordinate
+    kInvalidSetting,     // side or transition mode not one of the defined values
     // CalcError: input that cannot be computed with.
-    kInvalidCoordinate,    // a coordinate is not finite or beyond kMaxCoordinate
+    kInvalidCoordinate,        // a coordinate is not finite or beyond kMaxCoordinate
     kOffsetRadiusNotPositive,  // arc radius <= tool radius on the concave side
     // CenterError: the arc centre is wrong.
     kArcCentreOnEndPoint,  // the centre coincides with the start or end point
     kArcRadiiDiffer,       // start and end radius differ by more than kCenterRadiusTolerance
     // KorrError: the compensated path does not exist.
-    kDiscontinuous,        // the element does not start where the held one ends
-    kHeldElementTooShort,  // the corner would reverse the held element
-    kNextElementTooShort,  // the corner would consume more than the whole new element
-    kNoCornerSolution,     // the offset elements do not meet at an inside corner
+    kDiscontinuous,             // the element does not start where the held one ends
+    kHeldElementTooShort,       // the corner would reverse the held element
+    kNextElementTooShort,       // the corner would consume more than the whole new element
+    kNoCornerSolution,          // the offset elements do not meet at an inside corner
     kTooManyPlaneFreeElements,  // more than kMaxPlaneFreeElements without plane motion
 };
 
 inline constexpr std::size_t kReasonCount = 14;
 
-ErrorBits reason_bits(Reason r) noexcept;             // 0 for kNone
-std::string_view reason_name(Reason r) noexcept;      // "HeldElementTooShort"
-std::string_view reason_message(Reason r) noexcept;   // one line of English
+ErrorBits reason_bits(Reason r) noexcept;            // 0 for kNone
+std::string_view reason_name(Reason r) noexcept;     // "HeldElementTooShort"
+std::string_view reason_message(Reason r) noexcept;  // one line of English
 
 }  // namespace rwmos::geom

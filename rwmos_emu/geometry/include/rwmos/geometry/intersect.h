@@ -24,8 +24,7 @@ Intersections intersect_lines(const Vec2& p1, const Vec2& d1, const Vec2& p2,
 Intersections intersect_line_circle(const Vec2& p, const Vec2& d, const Vec2& c,
                                     double rho) noexcept;
 // Circles about c1 and c2; none when concentric.
-Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2,
-                                double rho2) noexcept;
+Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2, double rho2) noexcept;
 // The carriers of two offset elements (line-line, line-arc, arc-line, arc-arc).
 Intersections intersect_carriers(const OffsetElement& a, const OffsetElement& b) noexcept;
 

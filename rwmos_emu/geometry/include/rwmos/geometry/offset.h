@@ -14,14 +14,16 @@ namespace rwmos::geom {
 enum class Side : std::uint8_t { kLeft, kRight };
 
 // +1 for Left, -1 for Right: the offset point is p + side_sign * r * left_normal(t).
-constexpr double side_sign(Side s) noexcept { return s == Side::kLeft ? 1.0 : -1.0; }
+constexpr double side_sign(Side s) noexcept {
+    return s == Side::kLeft ? 1.0 : -1.0;
+}
 
 // An element of the offset path. Its sweep is kept explicitly: trimming can leave an arc
 // almost full or almost empty, and start == end alone would not tell which.
 struct OffsetElement {
     Element path;
-    double sweep = 0.0;                // arcs: signed, counter-clockwise > 0; lines: 0
-    Vec2 direction = Vec2::Zero();     // lines: unit direction, kept when trimmed to nothing
+    double sweep = 0.0;             // arcs: signed, counter-clockwise > 0; lines: 0
+    Vec2 direction = Vec2::Zero();  // lines: unit direction, kept when trimmed to nothing
 };
 
 // The checks every programmed element passes before it is offset: coordinates

@@ -20,7 +20,9 @@ enum class Plane : int { kXY = 17, kZX = 18, kYZ = 19 };
 // 17, 18, 19 -> the plane; anything else -> nullopt (the caller reports PlaneError or a
 // range error, as the object demands).
 std::optional<Plane> plane_from_code(int code) noexcept;
-constexpr int plane_code(Plane p) noexcept { return static_cast<int>(p); }
+constexpr int plane_code(Plane p) noexcept {
+    return static_cast<int>(p);
+}
 
 // Logical axis numbers: 0 = X, 1 = Y, 2 = Z.
 // The plane's first and second axis span it; (first, second, third) is right-handed, so
@@ -33,9 +35,12 @@ struct PlaneAxes {
 };
 constexpr PlaneAxes plane_axes(Plane p) noexcept {
     switch (p) {
-        case Plane::kXY: return {0, 1, 2};
-        case Plane::kZX: return {2, 0, 1};
-        case Plane::kYZ: return {1, 2, 0};
+        case Plane::kXY:
+            return {0, 1, 2};
+        case Plane::kZX:
+            return {2, 0, 1};
+        case Plane::kYZ:
+            return {1, 2, 0};
     }
     return {0, 1, 2};
 }
