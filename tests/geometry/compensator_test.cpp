@@ -32,6 +32,13 @@ bool same(const Element& a, const Element& b) {
 const std::vector<Element> kSquare = {make_line({0, 0}, {10, 0}), make_line({10, 0}, {10, 10}),
                                       make_line({10, 10}, {0, 10}), make_line({0, 10}, {0, 0})};
 
+TEST(Compensator, RoleNamesAreThoseOfTheRunJson) {
+    EXPECT_EQ(role_name(SegmentRole::kContour), "contour");
+    EXPECT_EQ(role_name(SegmentRole::kTransition), "transition");
+    EXPECT_EQ(role_name(SegmentRole::kApproach), "approach");
+    EXPECT_EQ(role_name(SegmentRole::kDeparture), "departure");
+}
+
 TEST(Compensator, PushBeforeBeginIsInitError) {
     PathCompensator c;
     SegmentBatch out;
@@ -245,6 +252,20 @@ TEST(Compensator, KorrErrorWhenTheElementDoesNotStartWhereTheHeldOneEnds) {
     const StepResult r = c.push(make_line({10, 0.001}, {10, 10}), 1, out);
     EXPECT_EQ(r.reason, Reason::kDiscontinuous);
     EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
+}
+
+TEST(Compensator, CalcErrorForAnUnknownElementKindChangesNothing) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    Element bad = kSquare[1];
+    bad.kind = static_cast<ElementKind>(3);
+    const StepResult r = c.push(bad, 1, out);
+    EXPECT_EQ(r.reason, Reason::kInvalidElementKind);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kCalcError));
+    EXPECT_TRUE(out.empty());
+    EXPECT_EQ(c.held_index(), 0u);
 }
 
 TEST(Compensator, CalcErrorForCoordinatesNotFinite) {

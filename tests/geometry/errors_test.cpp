@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Error bits exactly as seed 003 "Tabelle 4: Fehlerstatuswort Error des TC-Moduls", and the
 // one reason table.
+#include "rwmos/geometry/errors.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
 #include <string>
-
-#include "rwmos/geometry/errors.h"
 
 namespace rwmos::geom {
 namespace {

@@ -96,6 +96,13 @@ TEST(Offset, CalcErrorForCoordinatesNotFiniteOrOutOfRange) {
     EXPECT_EQ(reason_bits(Reason::kInvalidCoordinate), bits(ErrorBit::kCalcError));
 }
 
+TEST(Offset, CalcErrorForAnElementKindThatIsNeitherLineNorArc) {
+    Element e = make_line({0, 0}, {1, 0});
+    e.kind = static_cast<ElementKind>(7);
+    EXPECT_EQ(check_element(e), Reason::kInvalidElementKind);
+    EXPECT_EQ(reason_bits(Reason::kInvalidElementKind), bits(ErrorBit::kCalcError));
+}
+
 TEST(Offset, EndRadiusWithinToleranceKeepsTheStartRadius) {
     // The arc is the circle through its start; the end point gives the end angle.
     const Element arc = make_arc({5, 0}, {0, 5.002}, {0, 0}, true);

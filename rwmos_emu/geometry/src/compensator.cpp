@@ -7,6 +7,20 @@
 
 namespace rwmos::geom {
 
+std::string_view role_name(SegmentRole role) noexcept {
+    switch (role) {
+        case SegmentRole::kContour:
+            return "contour";
+        case SegmentRole::kTransition:
+            return "transition";
+        case SegmentRole::kApproach:
+            return "approach";
+        case SegmentRole::kDeparture:
+            return "departure";
+    }
+    return "unknown";
+}
+
 Reason check_config(const CompensatorConfig& config) noexcept {
     const double r = config.tool_radius;
     if (!std::isfinite(r) || r < 0.0 || r > kMaxCoordinate) return Reason::kInvalidToolRadius;

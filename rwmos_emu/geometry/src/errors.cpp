@@ -31,6 +31,8 @@ constexpr std::array kReasonTable{
               "side or transition mode is not one of the defined values"},
     ReasonRow{Reason::kInvalidCoordinate, kCalc, "InvalidCoordinate",
               "a coordinate is not finite or lies beyond +-1e5"},
+    ReasonRow{Reason::kInvalidElementKind, kCalc, "InvalidElementKind",
+              "element is neither a line nor an arc"},
     ReasonRow{Reason::kOffsetRadiusNotPositive, kCalc, "OffsetRadiusNotPositive",
               "arc radius is not larger than the tool radius on the concave side"},
     ReasonRow{Reason::kArcCentreOnEndPoint, kCenter, "ArcCentreOnEndPoint",

@@ -10,6 +10,8 @@
 namespace rwmos::geom {
 
 Reason check_element(const Element& e) noexcept {
+    if (e.kind != ElementKind::kLine && e.kind != ElementKind::kArc)
+        return Reason::kInvalidElementKind;
     if (!has_valid_coordinates(e)) return Reason::kInvalidCoordinate;
     if (!is_arc(e)) return Reason::kNone;
     const double r_start = radius(e);

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 #include "rwmos/geometry/corner.h"
 #include "rwmos/geometry/tolerances.h"
@@ -29,6 +30,9 @@ enum class SegmentRole : std::uint8_t {
     kApproach,    // from the position at begin() to the first offset element
     kDeparture,   // from the last offset end to the programmed end point
 };
+
+// "contour", "transition", "approach", "departure" (the role names of `apcictl run --json`).
+std::string_view role_name(SegmentRole role) noexcept;
 
 // One piece of the tool-centre path in plane coordinates. index is the caller's index of
 // the programmed element it belongs to: a transition belongs to the element before the

@@ -43,6 +43,7 @@ enum class Reason : std::uint8_t {
     kInvalidSetting,     // side or transition mode not one of the defined values
     // CalcError: input that cannot be computed with.
     kInvalidCoordinate,        // a coordinate is not finite or beyond kMaxCoordinate
+    kInvalidElementKind,       // an element that is neither a line nor an arc
     kOffsetRadiusNotPositive,  // arc radius <= tool radius on the concave side
     // CenterError: the arc centre is wrong.
     kArcCentreOnEndPoint,  // the centre coincides with the start or end point
@@ -55,7 +56,7 @@ enum class Reason : std::uint8_t {
     kTooManyPlaneFreeElements,  // more than kMaxPlaneFreeElements without plane motion
 };
 
-inline constexpr std::size_t kReasonCount = 14;
+inline constexpr std::size_t kReasonCount = 15;
 
 ErrorBits reason_bits(Reason r) noexcept;            // 0 for kNone
 std::string_view reason_name(Reason r) noexcept;     // "HeldElementTooShort"

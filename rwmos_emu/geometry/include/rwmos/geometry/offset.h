@@ -26,7 +26,7 @@ struct OffsetElement {
     Vec2 direction = Vec2::Zero();  // lines: unit direction, kept when trimmed to nothing
 };
 
-// The checks every programmed element passes before it is offset: coordinates
+// The checks every programmed element passes before it is offset: its kind and coordinates
 // (CalcError), and for arcs the centre (CenterError). kNone when fine.
 Reason check_element(const Element& e) noexcept;
 
