@@ -3,6 +3,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -276,6 +277,253 @@ FrameError decode(std::span<const std::uint8_t> p, ErrorReply& m) {
     m.reason = static_cast<FrameError>(reason);
     return FrameError::kNone;
 }
+
+// ---- Motion payloads
+
+namespace {
+
+FrameError finite(ByteReader& r, double& v) {
+    if (!r.f64(v)) return FrameError::kBadPayload;
+    return std::isfinite(v) ? FrameError::kNone : FrameError::kNotFinite;
+}
+
+template <std::size_t N>
+FrameError finite(ByteReader& r, std::array<double, N>& v) {
+    for (double& d : v)
+        if (const FrameError e = finite(r, d); e != FrameError::kNone) return e;
+    return FrameError::kNone;
+}
+
+template <std::size_t N>
+void put(ByteWriter& w, const std::array<double, N>& v) {
+    for (double d : v) w.f64(d);
+}
+
+FrameError status_of(ByteReader& r, Status& s) {
+    std::uint32_t code;
+    if (!r.u32(code) || !status_from_code(code, s)) return FrameError::kBadPayload;
+    return FrameError::kNone;
+}
+
+bool flag(ByteReader& r, bool& b) {
+    std::uint8_t v;
+    if (!r.u8(v) || v > 1) return false;
+    b = v == 1;
+    return true;
+}
+
+// Runs the checks in order; the first failure wins.
+#define OBJIF_TRY(expr)                                 \
+    do {                                                \
+        if (const FrameError e_ = (expr); e_ != FrameError::kNone) return e_; \
+    } while (0)
+#define OBJIF_NEED(cond) \
+    do {                 \
+        if (!(cond)) return FrameError::kBadPayload; \
+    } while (0)
+
+}  // namespace
+
+void encode(const SpoolRequest& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u8(m.kind);
+    w.u8(m.axes);
+    w.u8(m.arc_axes[0]);
+    w.u8(m.arc_axes[1]);
+    w.u32(m.tag);
+    w.f64(m.feed);
+    put(w, m.target);
+    put(w, m.center);
+}
+FrameError decode(std::span<const std::uint8_t> p, SpoolRequest& m) {
+    ByteReader r(p);
+    OBJIF_NEED(r.u8(m.kind) && r.u8(m.axes) && r.u8(m.arc_axes[0]) && r.u8(m.arc_axes[1]) &&
+               r.u32(m.tag));
+    OBJIF_TRY(finite(r, m.feed));
+    OBJIF_TRY(finite(r, m.target));
+    OBJIF_TRY(finite(r, m.center));
+    OBJIF_NEED(r.done());
+    return FrameError::kNone;
+}
+
+void encode(const DirectRequest& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u16(m.code);
+    w.u8(m.axes);
+    w.f64(m.feed);
+    put(w, m.target);
+}
+FrameError decode(std::span<const std::uint8_t> p, DirectRequest& m) {
+    ByteReader r(p);
+    OBJIF_NEED(r.u16(m.code) && r.u8(m.axes));
+    OBJIF_TRY(finite(r, m.feed));
+    OBJIF_TRY(finite(r, m.target));
+    OBJIF_NEED(r.done());
+    return FrameError::kNone;
+}
+
+void encode(const SsfRequest& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u8(m.axes);
+    w.i32(m.command);
+}
+FrameError decode(std::span<const std::uint8_t> p, SsfRequest& m) {
+    ByteReader r(p);
+    OBJIF_NEED(r.u8(m.axes) && r.i32(m.command) && r.done());
+    return FrameError::kNone;
+}
+
+void encode(const MotionReply& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u32(status_code(m.status));
+    w.i32(m.group);
+    w.i32(m.errors);
+    w.u32(m.tag);
+    const std::size_t n = m.message.size() < kMaxMotionMessage ? m.message.size() : kMaxMotionMessage;
+    w.u16(static_cast<std::uint16_t>(n));
+    out.insert(out.end(), m.message.begin(), m.message.begin() + static_cast<std::ptrdiff_t>(n));
+}
+FrameError decode(std::span<const std::uint8_t> p, MotionReply& m) {
+    ByteReader r(p);
+    OBJIF_TRY(status_of(r, m.status));
+    std::uint16_t n;
+    OBJIF_NEED(r.i32(m.group) && r.i32(m.errors) && r.u32(m.tag) && r.u16(n));
+    OBJIF_NEED(n <= kMaxMotionMessage && r.remaining() == n);
+    const auto text = p.subspan(p.size() - n);
+    m.message.assign(text.begin(), text.end());
+    return FrameError::kNone;
+}
+
+void encode(const ClockRequest& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u8(static_cast<std::uint8_t>(m.mode));
+    w.u64(m.cycles);
+}
+FrameError decode(std::span<const std::uint8_t> p, ClockRequest& m) {
+    ByteReader r(p);
+    std::uint8_t mode;
+    OBJIF_NEED(r.u8(mode) && r.u64(m.cycles) && r.done());
+    OBJIF_NEED(mode <= static_cast<std::uint8_t>(ClockMode::kTraceOff));
+    m.mode = static_cast<ClockMode>(mode);
+    return FrameError::kNone;
+}
+
+void encode(const ClockReply& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u32(status_code(m.status));
+    w.u64(m.ran);
+    w.u64(m.now);
+    w.u8(m.flags);
+    w.u32(m.fill);
+    w.u32(m.capacity);
+    w.i32(m.compensating_group);
+    w.u64(m.trace_pending);
+    w.u64(m.trace_lost);
+    w.u64(m.segments_pending);
+    w.u64(m.segments_lost);
+    put(w, m.position);
+}
+FrameError decode(std::span<const std::uint8_t> p, ClockReply& m) {
+    ByteReader r(p);
+    OBJIF_TRY(status_of(r, m.status));
+    OBJIF_NEED(r.u64(m.ran) && r.u64(m.now) && r.u8(m.flags) && r.u32(m.fill) &&
+               r.u32(m.capacity) && r.i32(m.compensating_group) && r.u64(m.trace_pending) &&
+               r.u64(m.trace_lost) && r.u64(m.segments_pending) && r.u64(m.segments_lost));
+    OBJIF_NEED((m.flags & ~kClockFlagMask) == 0);
+    OBJIF_TRY(finite(r, m.position));
+    OBJIF_NEED(r.done());
+    return FrameError::kNone;
+}
+
+void encode(const TraceRequest& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u8(static_cast<std::uint8_t>(m.what));
+    w.u32(m.max);
+}
+FrameError decode(std::span<const std::uint8_t> p, TraceRequest& m) {
+    ByteReader r(p);
+    std::uint8_t what;
+    OBJIF_NEED(r.u8(what) && r.u32(m.max) && r.done());
+    OBJIF_NEED(what <= static_cast<std::uint8_t>(TraceKind::kSegments));
+    m.what = static_cast<TraceKind>(what);
+    return FrameError::kNone;
+}
+
+namespace {
+void put(ByteWriter& w, const WireSegment& s) {
+    w.u32(s.tag);
+    w.u8(s.kind);
+    w.u8(s.role);
+    w.u8(s.ccw ? 1 : 0);
+    w.u8(s.interrupted ? 1 : 0);
+    w.u8(s.plane_axes[0]);
+    w.u8(s.plane_axes[1]);
+    w.i32(s.plane);
+    put(w, s.start);
+    put(w, s.end);
+    put(w, s.center);
+    w.f64(s.feed);
+    w.u64(s.start_cycle);
+    w.u64(s.end_cycle);
+}
+FrameError take(ByteReader& r, WireSegment& s) {
+    OBJIF_NEED(r.u32(s.tag) && r.u8(s.kind) && r.u8(s.role) && flag(r, s.ccw) &&
+               flag(r, s.interrupted) && r.u8(s.plane_axes[0]) && r.u8(s.plane_axes[1]) &&
+               r.i32(s.plane));
+    OBJIF_NEED(s.kind <= 1 && s.role <= 5);
+    OBJIF_TRY(finite(r, s.start));
+    OBJIF_TRY(finite(r, s.end));
+    OBJIF_TRY(finite(r, s.center));
+    OBJIF_TRY(finite(r, s.feed));
+    OBJIF_NEED(r.u64(s.start_cycle) && r.u64(s.end_cycle));
+    return FrameError::kNone;
+}
+}  // namespace
+
+void encode(const TraceReply& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u32(status_code(m.status));
+    w.u8(static_cast<std::uint8_t>(m.what));
+    if (m.what == TraceKind::kSamples) {
+        const std::size_t n = std::min(m.samples.size(), kMaxSamplesPerReply);
+        w.u32(static_cast<std::uint32_t>(n));
+        for (std::size_t i = 0; i < n; ++i) {
+            w.u64(m.samples[i].cycle);
+            put(w, m.samples[i].position);
+        }
+    } else {
+        const std::size_t n = std::min(m.segments.size(), kMaxSegmentsPerReply);
+        w.u32(static_cast<std::uint32_t>(n));
+        for (std::size_t i = 0; i < n; ++i) put(w, m.segments[i]);
+    }
+}
+FrameError decode(std::span<const std::uint8_t> p, TraceReply& m) {
+    ByteReader r(p);
+    OBJIF_TRY(status_of(r, m.status));
+    std::uint8_t what;
+    std::uint32_t count;
+    OBJIF_NEED(r.u8(what) && r.u32(count));
+    OBJIF_NEED(what <= static_cast<std::uint8_t>(TraceKind::kSegments));
+    m.what = static_cast<TraceKind>(what);
+    m.samples.clear();
+    m.segments.clear();
+    if (m.what == TraceKind::kSamples) {
+        OBJIF_NEED(count <= kMaxSamplesPerReply && r.remaining() == count * kWireSampleSize);
+        m.samples.resize(count);
+        for (WireSample& s : m.samples) {
+            OBJIF_NEED(r.u64(s.cycle));
+            OBJIF_TRY(finite(r, s.position));
+        }
+    } else {
+        OBJIF_NEED(count <= kMaxSegmentsPerReply && r.remaining() == count * kWireSegmentSize);
+        m.segments.resize(count);
+        for (WireSegment& s : m.segments) OBJIF_TRY(take(r, s));
+    }
+    return FrameError::kNone;
+}
+
+#undef OBJIF_TRY
+#undef OBJIF_NEED
 
 FrameError decode_status(std::span<const std::uint8_t> p, Status& s) {
     ByteReader r(p);

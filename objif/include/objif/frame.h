@@ -13,9 +13,11 @@
 // All integers little-endian. docs/wire-frame.md is the spec page.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -158,6 +160,131 @@ FrameError decode(std::span<const std::uint8_t> p, ReadReply& m);
 FrameError decode(std::span<const std::uint8_t> p, WriteRequest& m);
 FrameError decode(std::span<const std::uint8_t> p, WriteReply& m);
 FrameError decode(std::span<const std::uint8_t> p, ErrorReply& m);
+
+// ---- Motion payloads (docs/motion.md "Wire payloads"). Plain wire structs:
+// the board's motion types (rwmos/motion/types.h) map onto them one to one.
+// Every double must be finite (kNotFinite otherwise); enumerations the codec
+// knows (clock mode, trace kind, segment kind/role) are checked here, values
+// with a meaning on the board (profile kind, direct code, axis numbers,
+// ranges) are checked by the board, which answers with a status.
+
+inline constexpr std::size_t kWireAxisCount = 8;
+using WireAxes = std::array<double, kWireAxisCount>;
+
+struct SpoolRequest {
+    std::uint8_t kind = 1;  // 0 G00, 1 G01, 2 G02, 3 G03
+    std::uint8_t axes = 0;  // bit i: axis i named
+    std::array<std::uint8_t, 2> arc_axes{0, 1};
+    std::uint32_t tag = 0;  // NC block number
+    double feed = 0.0;      // units per minute
+    WireAxes target{};
+    std::array<double, 2> center{};
+};
+struct DirectRequest {
+    std::uint16_t code = 0;  // 1 JA, 2 JS
+    std::uint8_t axes = 0;
+    double feed = 0.0;
+    WireAxes target{};
+};
+struct SsfRequest {
+    std::uint8_t axes = 0;
+    std::int32_t command = 0;
+};
+// Reply to SpoolProfile, DirectCommand and SsfCommand.
+inline constexpr std::size_t kMaxMotionMessage = 1024;
+struct MotionReply {
+    Status status = Status::kOk;
+    std::int32_t group = 0;   // TC group whose ERROR got `errors` (0: none)
+    std::int32_t errors = 0;  // Table 4 bits this request set
+    std::uint32_t tag = 0;    // block at fault
+    std::string message;      // why, at most kMaxMotionMessage bytes
+};
+
+enum class ClockMode : std::uint8_t {
+    kStep = 0,          // advance exactly `cycles` cycles
+    kRunUntilIdle = 1,  // advance until nothing moves, at most `cycles` cycles
+    kQuery = 2,         // only the status
+    kTraceOn = 3,       // per-cycle samples on, ring of `cycles` samples
+    kTraceOff = 4,      // per-cycle samples off
+};
+struct ClockRequest {
+    ClockMode mode = ClockMode::kQuery;
+    std::uint64_t cycles = 0;
+};
+// Flag bits of ClockReply::flags.
+inline constexpr std::uint8_t kClockIdle = 0x01;
+inline constexpr std::uint8_t kClockHeld = 0x02;         // spooler holds after a TC error
+inline constexpr std::uint8_t kClockProfileHeld = 0x04;  // ProfMarked of the compensating group
+inline constexpr std::uint8_t kClockTracing = 0x08;
+inline constexpr std::uint8_t kClockFlagMask = 0x0F;
+struct ClockReply {
+    Status status = Status::kOk;
+    std::uint64_t ran = 0;  // cycles this request advanced
+    std::uint64_t now = 0;  // cycles since power-on
+    std::uint8_t flags = 0;
+    std::uint32_t fill = 0;
+    std::uint32_t capacity = 0;
+    std::int32_t compensating_group = 0;
+    std::uint64_t trace_pending = 0;
+    std::uint64_t trace_lost = 0;
+    std::uint64_t segments_pending = 0;
+    std::uint64_t segments_lost = 0;
+    WireAxes position{};
+};
+
+enum class TraceKind : std::uint8_t { kSamples = 0, kSegments = 1 };
+struct TraceRequest {
+    TraceKind what = TraceKind::kSamples;
+    std::uint32_t max = 0;  // the most items wanted; the reply may carry fewer
+};
+struct WireSample {
+    std::uint64_t cycle = 0;
+    WireAxes position{};
+};
+struct WireSegment {
+    std::uint32_t tag = 0;
+    std::uint8_t kind = 0;  // 0 line, 1 arc
+    std::uint8_t role = 0;  // 0 contour, 1 transition, 2 approach, 3 departure, 4 uncompensated, 5 rapid
+    bool ccw = false;
+    bool interrupted = false;
+    std::array<std::uint8_t, 2> plane_axes{0, 1};
+    std::int32_t plane = 0;
+    WireAxes start{};
+    WireAxes end{};
+    WireAxes center{};
+    double feed = 0.0;
+    std::uint64_t start_cycle = 0;
+    std::uint64_t end_cycle = 0;
+};
+inline constexpr std::size_t kWireSampleSize = 8 + 8 * kWireAxisCount;
+inline constexpr std::size_t kWireSegmentSize = 4 + 4 + 2 + 4 + 3 * 8 * kWireAxisCount + 8 + 16;
+inline constexpr std::size_t kTraceReplyHeader = 4 + 1 + 4;
+// The most items one ReadTrace reply carries (the payload limit).
+inline constexpr std::size_t kMaxSamplesPerReply = (kMaxPayload - kTraceReplyHeader) / kWireSampleSize;
+inline constexpr std::size_t kMaxSegmentsPerReply = (kMaxPayload - kTraceReplyHeader) / kWireSegmentSize;
+struct TraceReply {
+    Status status = Status::kOk;
+    TraceKind what = TraceKind::kSamples;
+    std::vector<WireSample> samples;    // what == kSamples
+    std::vector<WireSegment> segments;  // what == kSegments
+};
+
+void encode(const SpoolRequest& m, std::vector<std::uint8_t>& out);
+void encode(const DirectRequest& m, std::vector<std::uint8_t>& out);
+void encode(const SsfRequest& m, std::vector<std::uint8_t>& out);
+void encode(const MotionReply& m, std::vector<std::uint8_t>& out);
+void encode(const ClockRequest& m, std::vector<std::uint8_t>& out);
+void encode(const ClockReply& m, std::vector<std::uint8_t>& out);
+void encode(const TraceRequest& m, std::vector<std::uint8_t>& out);
+void encode(const TraceReply& m, std::vector<std::uint8_t>& out);
+FrameError decode(std::span<const std::uint8_t> p, SpoolRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, DirectRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, SsfRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, MotionReply& m);
+FrameError decode(std::span<const std::uint8_t> p, ClockRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, ClockReply& m);
+FrameError decode(std::span<const std::uint8_t> p, TraceRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, TraceReply& m);
 
 // A reply's status word: the first 4 payload bytes of every reply.
 FrameError decode_status(std::span<const std::uint8_t> p, Status& s);
