@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// `apcictl run --json`: one JSON object (DESIGN.md section 7), written as the run goes. The
+// "segments" array is streamed, one segment a line, so a run of any length is written in
+// constant memory; "errors", "registers" and "variables" follow at the end:
+//
+//   {"segments":[
+//   {"block":70,"kind":"line","role":"contour","start":[2,-30,0],"end":[102,-30,0]},
+//   {"block":80,"kind":"arc","role":"transition","start":[..],"end":[..],"center":[..],"ccw":true,"plane":17},
+//   ...],
+//   "errors":[{"block":80,"code":"KorrError","message":"..."}],
+//   "registers":{"1":{"ERROR":0,"ERROR_bits":[],"STATUS":0,"STATUS_bits":[]},"2":...,"3":...},
+//   "variables":{}}
+//
+// A block without an N number is "block": -1 with its source "line" added.
+#pragma once
+
+#include <cstdio>
+#include <span>
+
+#include "apci/run/path.h"
+#include "apci/run/text_sink.h"
+
+namespace apci::run {
+
+class JsonRunWriter {
+  public:
+    // Writes to `out` (not owned; open until finish() returned).
+    explicit JsonRunWriter(std::FILE* out) : sink_(out) {}
+
+    // Appends one executed segment.
+    void segment(const PathSegment& s);
+    // Closes "segments" and writes the rest of the object. True when every byte was written.
+    bool finish(std::span<const RunError> errors, std::span<const GroupRegisters> registers);
+
+    std::uint64_t segments_written() const noexcept { return count_; }
+
+  private:
+    void begin_segments();
+    void point(const Point& p);
+    void block(const BlockRef& b);
+
+    TextSink sink_;
+    std::uint64_t count_ = 0;
+    bool begun_ = false;
+};
+
+}  // namespace apci::run

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// The executed path as `apcictl run` reports it (DESIGN.md section 7): segments of the tool
+// centre path and of the programmed contour, in program coordinates X, Y, Z (mm), each tagged
+// with the NC block it came from; the errors of a run; the TC registers at its end.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace apci::run {
+
+using Point = Eigen::Vector3d;
+
+// JSON "kind".
+enum class SegmentKind : std::uint8_t { kRapid = 0, kLine = 1, kArc = 2 };
+std::string_view kind_name(SegmentKind k) noexcept;  // "rapid", "line", "arc"
+
+// JSON "role". Rapid moves are "uncompensated" (the TC module never compensates G00).
+enum class Role : std::uint8_t {
+    kContour = 0,        // a compensated G01/G02/G03 element
+    kTransition = 1,     // the transition at an outside corner
+    kApproach = 2,       // onto the compensated path
+    kDeparture = 3,      // from the compensated path back to the programmed end point
+    kUncompensated = 4,  // G00, or G01/G02/G03 without radius compensation
+};
+std::string_view role_name(Role r) noexcept;  // "contour", "transition", ...
+
+// The NC block a segment or error belongs to: its N number, or kNoBlock when the block has
+// none (then `line` says which source line it was, when known; 0 = unknown).
+inline constexpr std::int64_t kNoBlock = -1;
+struct BlockRef {
+    std::int64_t number = kNoBlock;
+    std::uint64_t line = 0;
+};
+
+// Planes by their G codes (TcPlane values): 17 X-Y, 18 Z-X, 19 Y-Z.
+struct PlaneAxes {
+    int first;  // index into X, Y, Z
+    int second;
+    int third;
+};
+// {0,1,2} for 17, {2,0,1} for 18, {1,2,0} for 19; 17's for anything else.
+PlaneAxes plane_axes(int plane) noexcept;
+// "X-Y", "Z-X", "Y-Z".
+std::string_view plane_name(int plane) noexcept;
+char axis_letter(int axis) noexcept;  // 'X', 'Y', 'Z'
+
+struct PathSegment {
+    BlockRef block;
+    SegmentKind kind = SegmentKind::kLine;
+    Role role = Role::kUncompensated;
+    Point start = Point::Zero();
+    Point end = Point::Zero();
+    // Arcs only: centre (its coordinate on the plane's third axis is the start's), sense seen
+    // from the positive third axis, and the plane (17, 18, 19). start == end in the plane is a
+    // full circle.
+    Point center = Point::Zero();
+    bool ccw = false;
+    int plane = 17;
+};
+
+// Two points this close in the plane are one point (an arc between them is a full circle).
+inline constexpr double kSamePointTolerance = 1e-9;
+
+// Signed angle an arc turns through, counter-clockwise positive, magnitude in (0, 2 pi].
+double arc_sweep(const PathSegment& arc) noexcept;
+// Radius of an arc (at its start).
+double arc_radius(const PathSegment& arc) noexcept;
+// The point at fraction t (0..1) of the way along a segment (arcs by angle, helix-linear in
+// the third axis).
+Point point_along(const PathSegment& s, double t) noexcept;
+// Length in space: chord of a line or rapid, helix length of an arc.
+double segment_length(const PathSegment& s) noexcept;
+
+// One error of a run: from the board (code = the Table 4 bit name, e.g. "KorrError", or a
+// status name such as "InvalidValue") or from the program's execution pass (code = the
+// apci_nc error kind name).
+struct RunError {
+    BlockRef block;
+    std::string code;
+    std::string message;
+};
+
+// ERROR and STATUS of one compensation group (bus 1300, DeviceNumber 1, Index `group`) at the
+// end of the run; `readable` false when the board could not be asked (e.g. no optionTC).
+struct GroupRegisters {
+    int group = 0;
+    bool readable = false;
+    std::int32_t error = 0;
+    std::int32_t status = 0;
+};
+
+}  // namespace apci::run

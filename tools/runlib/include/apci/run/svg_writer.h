@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// `apcictl run --svg`: a plot of one run in one plane (17 X-Y, 18 Z-X, 19 Y-Z): the programmed
+// contour, the compensated tool-centre path, its transitions, approach and departure moves in
+// their own styles, rapid moves, error markers with block number and error name, a scale bar,
+// the plane's axes and a legend; the view box fits the drawing.
+//
+// Streamed: segments go to a temporary file as fixed-size records while the run goes (memory
+// stays flat however long the program); finish() reads them back, one pass per layer, and
+// writes the document. Seen from the positive third axis of the plane, as the NC program's
+// G2/G3 and G41/G42 are: the first axis points right, the second up.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "apci/run/path.h"
+
+namespace apci::run {
+
+// What a segment is in the plot; one style each, drawn in this order.
+enum class PlotLayer : std::uint8_t {
+    kProgrammed = 0,     // the programmed contour (G01/G02/G03 of the program)
+    kRapid = 1,          // executed G00
+    kUncompensated = 2,  // executed G01/G02/G03 without compensation
+    kApproach = 3,
+    kDeparture = 4,
+    kContour = 5,  // compensated tool-centre path
+    kTransition = 6,
+};
+inline constexpr std::size_t kPlotLayerCount = 7;
+std::string_view layer_class(PlotLayer l) noexcept;  // the CSS class: "programmed", ...
+std::string_view layer_label(PlotLayer l) noexcept;  // the legend text
+// The layer of an executed segment.
+PlotLayer executed_layer(const PathSegment& s) noexcept;
+
+// Axis-aligned bounds in X, Y, Z; empty until the first point.
+struct Bounds {
+    Point lo = Point::Constant(0.0);
+    Point hi = Point::Constant(0.0);
+    bool empty = true;
+    void add(const Point& p) noexcept;
+    // The segment's points and, for arcs, the extreme points of the circle it passes.
+    void add(const PathSegment& s) noexcept;
+};
+
+class SvgPlotWriter {
+  public:
+    SvgPlotWriter();
+    ~SvgPlotWriter();
+    SvgPlotWriter(const SvgPlotWriter&) = delete;
+    SvgPlotWriter& operator=(const SvgPlotWriter&) = delete;
+
+    // False when the temporary file could not be made (or written); finish() then fails too.
+    bool ok() const noexcept { return records_ != nullptr && !failed_; }
+
+    void programmed(const PathSegment& s);  // a move of the program, before compensation
+    void executed(const PathSegment& s);    // a segment of the executed tool-centre path
+    // A red marker at `where` labelled "N80 KorrError".
+    void error_marker(const BlockRef& block, const Point& where, std::string_view code);
+
+    // Writes the document, drawn in `plane` (17, 18, 19), titled `title`. True when written.
+    bool finish(std::FILE* out, int plane, std::string_view title);
+
+    const Bounds& bounds() const noexcept { return bounds_; }
+    std::uint64_t count(PlotLayer l) const noexcept { return counts_[static_cast<std::size_t>(l)]; }
+
+  private:
+    struct Marker {
+        BlockRef block;
+        Point where;
+        std::string code;
+    };
+    void record(PlotLayer layer, const PathSegment& s);
+
+    std::FILE* records_ = nullptr;
+    bool failed_ = false;
+    Bounds bounds_;
+    std::array<std::uint64_t, kPlotLayerCount> counts_{};
+    std::vector<Marker> markers_;
+    std::uint64_t markers_dropped_ = 0;
+};
+
+// Markers kept for the plot; further errors are counted in a note, not drawn.
+inline constexpr std::size_t kMaxErrorMarkers = 100;
+
+}  // namespace apci::run

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/csv_writer.h"
+
+namespace apci::run {
+
+TraceCsvWriter::TraceCsvWriter(std::FILE* out, std::span<const std::string> axis_names)
+    : sink_(out) {
+    sink_.append("cycle,time_s");
+    for (const std::string& name : axis_names) {
+        sink_.put(',');
+        sink_.append(name);
+    }
+    sink_.put('\n');
+}
+
+void TraceCsvWriter::sample(std::uint64_t cycle, double time_s, std::span<const double> positions) {
+    sink_.print("{},{}", cycle, time_s);
+    for (const double p : positions) sink_.print(",{}", p);
+    sink_.put('\n');
+    ++count_;
+}
+
+std::string axis_column_name(int axis, int x, int y, int z) {
+    if (axis == x) return "X";
+    if (axis == y) return "Y";
+    if (axis == z) return "Z";
+    return "a" + std::to_string(axis);
+}
+
+}  // namespace apci::run

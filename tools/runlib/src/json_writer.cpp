@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/json_writer.h"
+
+#include "apci/apci.h"
+
+namespace apci::run {
+
+void JsonRunWriter::begin_segments() {
+    if (begun_) return;
+    begun_ = true;
+    sink_.append("{\"segments\":[");
+}
+
+void JsonRunWriter::point(const Point& p) {
+    sink_.put('[');
+    append_json_number(sink_, p.x());
+    sink_.put(',');
+    append_json_number(sink_, p.y());
+    sink_.put(',');
+    append_json_number(sink_, p.z());
+    sink_.put(']');
+}
+
+void JsonRunWriter::block(const BlockRef& b) {
+    sink_.print("\"block\":{}", b.number);
+    if (b.number == kNoBlock && b.line != 0) sink_.print(",\"line\":{}", b.line);
+}
+
+void JsonRunWriter::segment(const PathSegment& s) {
+    begin_segments();
+    sink_.append(count_ == 0 ? "\n{" : ",\n{");
+    block(s.block);
+    sink_.print(",\"kind\":\"{}\",\"role\":\"{}\",\"start\":", kind_name(s.kind),
+                role_name(s.role));
+    point(s.start);
+    sink_.append(",\"end\":");
+    point(s.end);
+    if (s.kind == SegmentKind::kArc) {
+        sink_.append(",\"center\":");
+        point(s.center);
+        sink_.print(",\"ccw\":{},\"plane\":{}", s.ccw, s.plane);
+    }
+    sink_.put('}');
+    ++count_;
+}
+
+namespace {
+
+// ["KorrError","CalcError"]: the seed's names of the set bits (bits it does not name as "bitN").
+void bit_names(TextSink& sink, std::int32_t value, const char* (*name_of)(int)) {
+    sink.put('[');
+    bool first = true;
+    for (int bit = 0; bit < 32; ++bit) {
+        if ((static_cast<std::uint32_t>(value) & (1u << bit)) == 0) continue;
+        if (!first) sink.put(',');
+        first = false;
+        const char* name = name_of(bit);
+        if (name != nullptr) {
+            append_json_string(sink, name);
+        } else {
+            sink.print("\"bit{}\"", bit);
+        }
+    }
+    sink.put(']');
+}
+
+}  // namespace
+
+bool JsonRunWriter::finish(std::span<const RunError> errors,
+                           std::span<const GroupRegisters> registers) {
+    begin_segments();
+    sink_.append("],\n\"errors\":[");
+    for (std::size_t i = 0; i < errors.size(); ++i) {
+        sink_.append(i == 0 ? "\n{" : ",\n{");
+        block(errors[i].block);
+        sink_.append(",\"code\":");
+        append_json_string(sink_, errors[i].code);
+        sink_.append(",\"message\":");
+        append_json_string(sink_, errors[i].message);
+        sink_.put('}');
+    }
+    sink_.append("],\n\"registers\":{");
+    for (std::size_t i = 0; i < registers.size(); ++i) {
+        const GroupRegisters& g = registers[i];
+        if (i != 0) sink_.put(',');
+        sink_.print("\"{}\":", g.group);
+        if (!g.readable) {
+            sink_.append("null");
+            continue;
+        }
+        sink_.print("{{\"ERROR\":{},\"ERROR_bits\":", g.error);
+        bit_names(sink_, g.error, apci_tc_error_bit_name);
+        sink_.print(",\"STATUS\":{},\"STATUS_bits\":", g.status);
+        bit_names(sink_, g.status, apci_tc_status_bit_name);
+        sink_.put('}');
+    }
+    // The readable NC variables: none yet (the OTC module adds its wear variables).
+    sink_.append("},\n\"variables\":{}}\n");
+    return sink_.flush();
+}
+
+}  // namespace apci::run

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/path.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace apci::run {
+
+std::string_view kind_name(SegmentKind k) noexcept {
+    switch (k) {
+        case SegmentKind::kRapid:
+            return "rapid";
+        case SegmentKind::kLine:
+            return "line";
+        case SegmentKind::kArc:
+            return "arc";
+    }
+    return "line";
+}
+
+std::string_view role_name(Role r) noexcept {
+    switch (r) {
+        case Role::kContour:
+            return "contour";
+        case Role::kTransition:
+            return "transition";
+        case Role::kApproach:
+            return "approach";
+        case Role::kDeparture:
+            return "departure";
+        case Role::kUncompensated:
+            return "uncompensated";
+    }
+    return "uncompensated";
+}
+
+PlaneAxes plane_axes(int plane) noexcept {
+    switch (plane) {
+        case 18:
+            return {2, 0, 1};
+        case 19:
+            return {1, 2, 0};
+        default:
+            return {0, 1, 2};
+    }
+}
+
+std::string_view plane_name(int plane) noexcept {
+    switch (plane) {
+        case 18:
+            return "Z-X";
+        case 19:
+            return "Y-Z";
+        default:
+            return "X-Y";
+    }
+}
+
+char axis_letter(int axis) noexcept {
+    static constexpr char kLetters[] = {'X', 'Y', 'Z'};
+    return axis >= 0 && axis < 3 ? kLetters[axis] : '?';
+}
+
+namespace {
+
+// Angle of p about c in the plane (first, second).
+double angle_about(const Point& p, const Point& c, const PlaneAxes& a) noexcept {
+    return std::atan2(p[a.second] - c[a.second], p[a.first] - c[a.first]);
+}
+
+}  // namespace
+
+double arc_sweep(const PathSegment& arc) noexcept {
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    const PlaneAxes a = plane_axes(arc.plane);
+    const double du = arc.end[a.first] - arc.start[a.first];
+    const double dv = arc.end[a.second] - arc.start[a.second];
+    if (std::hypot(du, dv) <= kSamePointTolerance) return arc.ccw ? kTwoPi : -kTwoPi;
+    double sweep = angle_about(arc.end, arc.center, a) - angle_about(arc.start, arc.center, a);
+    if (arc.ccw) {
+        while (sweep <= 0.0) sweep += kTwoPi;
+    } else {
+        while (sweep >= 0.0) sweep -= kTwoPi;
+    }
+    return sweep;
+}
+
+double arc_radius(const PathSegment& arc) noexcept {
+    const PlaneAxes a = plane_axes(arc.plane);
+    return std::hypot(arc.start[a.first] - arc.center[a.first],
+                      arc.start[a.second] - arc.center[a.second]);
+}
+
+Point point_along(const PathSegment& s, double t) noexcept {
+    if (s.kind != SegmentKind::kArc) return s.start + t * (s.end - s.start);
+    const PlaneAxes a = plane_axes(s.plane);
+    const double r = arc_radius(s);
+    const double phi = angle_about(s.start, s.center, a) + t * arc_sweep(s);
+    Point p;
+    p[a.first] = s.center[a.first] + r * std::cos(phi);
+    p[a.second] = s.center[a.second] + r * std::sin(phi);
+    p[a.third] = s.start[a.third] + t * (s.end[a.third] - s.start[a.third]);
+    return p;
+}
+
+double segment_length(const PathSegment& s) noexcept {
+    if (s.kind != SegmentKind::kArc) return (s.end - s.start).norm();
+    const PlaneAxes a = plane_axes(s.plane);
+    const double planar = std::abs(arc_sweep(s)) * arc_radius(s);
+    return std::hypot(planar, s.end[a.third] - s.start[a.third]);
+}
+
+}  // namespace apci::run

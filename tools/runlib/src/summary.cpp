@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/summary.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace apci::run {
+
+void count_segment(RunTotals& totals, const PathSegment& s) noexcept {
+    const double length = segment_length(s);
+    totals.path_length += length;
+    if (s.kind == SegmentKind::kRapid) totals.rapid_length += length;
+    ++totals.segments;
+}
+
+std::vector<std::pair<std::string, std::size_t>> count_by_code(std::span<const RunError> errors) {
+    std::vector<std::pair<std::string, std::size_t>> counts;
+    for (const RunError& e : errors) {
+        auto it = std::find_if(counts.begin(), counts.end(),
+                               [&](const auto& c) { return c.first == e.code; });
+        if (it == counts.end()) {
+            counts.emplace_back(e.code, 1);
+        } else {
+            ++it->second;
+        }
+    }
+    return counts;
+}
+
+std::string block_text(const BlockRef& b) {
+    if (b.number != kNoBlock) return fmt::format("N{}", b.number);
+    if (b.line != 0) return fmt::format("line {}", b.line);
+    return "-";
+}
+
+namespace {
+
+// "1 ms", "250 us".
+std::string cycle_text(double seconds) {
+    const double us = seconds * 1e6;
+    if (us >= 1000.0 && std::fmod(us, 1000.0) == 0.0) return fmt::format("{:g} ms", us / 1000.0);
+    return fmt::format("{:g} us", us);
+}
+
+}  // namespace
+
+void print_summary(std::FILE* out, const RunTotals& t, std::span<const RunError> errors) {
+    fmt::print(out, "{}: {} blocks, {} executed, {} segments\n", t.file, t.blocks,
+               t.blocks_executed, t.segments);
+    fmt::print(out, "path {:.3f} mm (rapid {:.3f} mm), time {:.3f} s ({} cycles of {})\n",
+               t.path_length, t.rapid_length, static_cast<double>(t.cycles) * t.cycle_seconds,
+               t.cycles, cycle_text(t.cycle_seconds));
+    if (errors.empty()) {
+        fmt::print(out, "errors: none\n");
+        return;
+    }
+    std::string counts;
+    for (const auto& [code, n] : count_by_code(errors)) {
+        if (!counts.empty()) counts += ", ";
+        counts += fmt::format("{} {}", code, n);
+    }
+    fmt::print(out, "errors: {} ({})\n", errors.size(), counts);
+    for (std::size_t i = 0; i < errors.size() && i < kSummaryErrorLines; ++i)
+        fmt::print(out, "  {}: {}: {}\n", block_text(errors[i].block), errors[i].code,
+                   errors[i].message);
+    if (errors.size() > kSummaryErrorLines)
+        fmt::print(out, "  ... and {} more\n", errors.size() - kSummaryErrorLines);
+}
+
+}  // namespace apci::run
