@@ -12,16 +12,20 @@
 
 #include <fmt/format.h>
 
+#include "c_api.h"
 #include "objif/status.h"
 #include "transport.h"
 
-struct apci_board {
-    std::unique_ptr<apci::Transport> transport;
-    std::string last_error;  // "" after a successful call
-};
+namespace apci {
+// Errors of calls that have no board (apci_open, NULL board).
+thread_local std::string t_last_error;
+}  // namespace apci
 
 namespace {
 
+using apci::fail;
+using apci::t_last_error;
+using apci::to_c;
 using objif::Status;
 
 // The C codes are the objif codes; the compiler keeps the two lists in step.
@@ -49,34 +53,6 @@ static_assert(same(APCI_NOT_SUPPORTED, Status::kNotSupported));
 static_assert(same(APCI_INVALID_ARGUMENT, Status::kInvalidArgument));
 static_assert(same(APCI_NO_MEMORY, Status::kNoMemory));
 static_assert(APCI_STATUS_COUNT == objif::kStatusCount, "apci.h lists every objif status");
-
-constexpr apci_status to_c(Status s) noexcept { return static_cast<apci_status>(s); }
-
-// Errors of calls that have no board (apci_open, NULL board).
-thread_local std::string t_last_error;
-
-// Stores `text` as the last error; an allocation failure leaves a short text.
-void record(std::string& slot, std::string_view text) noexcept {
-    try {
-        slot.assign(text);
-    } catch (...) {
-        slot.clear();  // never throws, keeps capacity
-    }
-}
-
-std::string& error_slot(apci_board* board) noexcept {
-    return board != nullptr ? board->last_error : t_last_error;
-}
-
-template <class Format>
-apci_status fail(apci_board* board, Status s, Format&& format) noexcept {
-    try {
-        record(error_slot(board), format());
-    } catch (...) {
-        record(error_slot(board), objif::status_name(s));
-    }
-    return to_c(s);
-}
 
 objif::Descriptor to_objif(const apci_object_descriptor& o) noexcept {
     return objif::Descriptor{objif::Address{o.bus, o.device, o.index, o.subindex}, o.handle};

@@ -3,8 +3,8 @@
 // board. One file per backend (transport_<scheme>.cpp); each fills one row
 // of the scheme table in transport.cpp.
 //
-// Methods work at the request level (object read, object write; the motion
-// work adds spool / direct / ssf / clock / trace), not at the frame level, so
+// Methods work at the request level (object read, object write, spool,
+// direct, ssf, clock, trace), not at the frame level, so
 // the in-process backend calls the emulated board directly and pays no frame
 // encoding. Backends that cross a process or device boundary (unix, shm, usb,
 // pci) encode each request as one objif/frame.h wire frame and decode the
@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "objif/descriptor.h"
+#include "objif/frame.h"
 #include "objif/status.h"
 #include "objif/value.h"
 
@@ -48,6 +49,45 @@ public:
     // Writes `v` to the object `d` names; the board checks the type against
     // the object's. Handle and blocking as for read().
     virtual objif::Status write(objif::Descriptor& d, const objif::Value& v) noexcept = 0;
+
+    // ---- Motion (docs/motion.md). Requests and replies are the wire payload
+    // structs of objif/frame.h, so framed backends encode them as they are.
+    // Each returns the transport's own failure, or else the board's status
+    // (also in the reply); the reply is filled whenever the board answered.
+    // Blocking: as read(); a clock request returns when the clock has run
+    // (virtual time: as fast as the CPU allows). Backends without motion
+    // support keep these defaults: kNotSupported, nothing sent.
+
+    // SpoolProfile: one G00/G01/G02/G03 profile.
+    virtual objif::Status spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept {
+        (void)req;
+        (void)rep;
+        return objif::Status::kNotSupported;
+    }
+    // DirectCommand: JA, JS (discard the spooler and the held profile).
+    virtual objif::Status direct(const objif::DirectRequest& req, objif::MotionReply& rep) noexcept {
+        (void)req;
+        (void)rep;
+        return objif::Status::kNotSupported;
+    }
+    // SsfCommand: e.g. 2001 (release the held profile).
+    virtual objif::Status ssf(const objif::SsfRequest& req, objif::MotionReply& rep) noexcept {
+        (void)req;
+        (void)rep;
+        return objif::Status::kNotSupported;
+    }
+    // Clock: step, run until idle, query, trace on/off.
+    virtual objif::Status clock(const objif::ClockRequest& req, objif::ClockReply& rep) noexcept {
+        (void)req;
+        (void)rep;
+        return objif::Status::kNotSupported;
+    }
+    // ReadTrace: per-cycle samples or executed segments, oldest first.
+    virtual objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept {
+        (void)req;
+        (void)rep;
+        return objif::Status::kNotSupported;
+    }
 
     // Extra words about the most recent failed call when the failure is the
     // transport's own (e.g. "connect /run/apci.sock: No such file or

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "rwmos/board.h"
+#include "rwmos/motion_wire.h"
 #include "transport.h"
 
 namespace apci {
@@ -38,7 +39,34 @@ public:
         }
     }
 
+    objif::Status spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept override {
+        return guarded([&] { rep = rwmos::serve_spool(board_, req); return rep.status; });
+    }
+    objif::Status direct(const objif::DirectRequest& req, objif::MotionReply& rep) noexcept override {
+        return guarded([&] { rep = rwmos::serve_direct(board_, req); return rep.status; });
+    }
+    objif::Status ssf(const objif::SsfRequest& req, objif::MotionReply& rep) noexcept override {
+        return guarded([&] { rep = rwmos::serve_ssf(board_, req); return rep.status; });
+    }
+    objif::Status clock(const objif::ClockRequest& req, objif::ClockReply& rep) noexcept override {
+        return guarded([&] { rep = rwmos::serve_clock(board_, req); return rep.status; });
+    }
+    objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept override {
+        return guarded([&] { rep = rwmos::serve_trace(board_, req); return rep.status; });
+    }
+
 private:
+    template <class F>
+    static objif::Status guarded(F&& serve) noexcept {
+        try {
+            return serve();
+        } catch (const std::bad_alloc&) {
+            return objif::Status::kNoMemory;
+        } catch (...) {
+            return objif::Status::kGeneralError;
+        }
+    }
+
     rwmos::Board board_;
 };
 

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/frame_server.h"
 
-#include <algorithm>
-#include <string>
+#include "rwmos/motion_wire.h"
 
 namespace rwmos {
 
@@ -13,104 +12,7 @@ namespace {
 constexpr std::uint16_t reply_opcode(Opcode op) {
     return static_cast<std::uint16_t>(static_cast<std::uint16_t>(op) | objif::kReplyFlag);
 }
-
-// ---- Motion payloads <-> the board's motion types (docs/motion.md).
-// Values with a meaning on the board (kind, code, axes) pass through as they
-// are; the board checks them and answers with a status.
-
-motion::Profile profile_of(const objif::SpoolRequest& r) {
-    motion::Profile p;
-    p.kind = static_cast<motion::ProfileKind>(r.kind);
-    p.tag = r.tag;
-    p.feed = r.feed;
-    p.axes = r.axes;
-    p.target = r.target;
-    p.arc_axes = r.arc_axes;
-    p.center = r.center;
-    return p;
-}
-
-motion::DirectCommand direct_of(const objif::DirectRequest& r) {
-    motion::DirectCommand c;
-    c.code = static_cast<motion::DirectCode>(r.code);
-    c.axes = r.axes;
-    c.target = r.target;
-    c.feed = r.feed;
-    return c;
-}
-
-objif::MotionReply motion_reply(const motion::MotionResult& r) {
-    return {r.status, r.group, r.errors, r.tag, std::string(r.message)};
-}
-
-objif::WireSegment wire_segment(const motion::Segment& s) {
-    objif::WireSegment w;
-    w.tag = s.tag;
-    w.kind = static_cast<std::uint8_t>(s.kind);
-    w.role = static_cast<std::uint8_t>(s.role);
-    w.ccw = s.ccw;
-    w.interrupted = s.interrupted;
-    w.plane_axes = s.plane_axes;
-    w.plane = s.plane;
-    w.start = s.start;
-    w.end = s.end;
-    w.center = s.center;
-    w.feed = s.feed;
-    w.start_cycle = s.start_cycle;
-    w.end_cycle = s.end_cycle;
-    return w;
-}
 }  // namespace
-
-objif::ClockReply FrameServer::clock(const objif::ClockRequest& req) {
-    objif::ClockReply rep;
-    switch (req.mode) {
-        case objif::ClockMode::kStep:
-            board_.step(req.cycles);
-            rep.ran = req.cycles;
-            break;
-        case objif::ClockMode::kRunUntilIdle: rep.ran = board_.run_until_idle(req.cycles); break;
-        case objif::ClockMode::kQuery: break;
-        case objif::ClockMode::kTraceOn:
-            rep.status = req.cycles > Board::kMaxTraceCapacity
-                             ? objif::Status::kValueTooHigh
-                             : board_.set_trace(true, static_cast<std::size_t>(req.cycles));
-            break;
-        case objif::ClockMode::kTraceOff: rep.status = board_.set_trace(false, 0); break;
-    }
-    const motion::MotionStatus s = board_.motion_status();
-    rep.now = s.now;
-    rep.flags = static_cast<std::uint8_t>((s.idle ? objif::kClockIdle : 0) |
-                                          (s.held ? objif::kClockHeld : 0) |
-                                          (s.profile_held ? objif::kClockProfileHeld : 0) |
-                                          (s.tracing ? objif::kClockTracing : 0));
-    rep.fill = s.fill;
-    rep.capacity = s.capacity;
-    rep.compensating_group = s.compensating_group;
-    rep.trace_pending = s.trace_pending;
-    rep.trace_lost = s.trace_lost;
-    rep.segments_pending = s.segments_pending;
-    rep.segments_lost = s.segments_lost;
-    rep.position = s.position;
-    return rep;
-}
-
-objif::TraceReply FrameServer::read_trace(const objif::TraceRequest& req) {
-    objif::TraceReply rep;
-    rep.what = req.what;
-    if (req.what == objif::TraceKind::kSamples) {
-        samples_.resize(std::min<std::size_t>(req.max, objif::kMaxSamplesPerReply));
-        samples_.resize(board_.read_trace(samples_));
-        rep.samples.reserve(samples_.size());
-        for (const auto& s : samples_) rep.samples.push_back({s.cycle, s.position});
-    } else {
-        segments_.resize(std::min<std::size_t>(req.max, objif::kMaxSegmentsPerReply));
-        segments_.resize(board_.read_segments(segments_));
-        rep.segments.reserve(segments_.size());
-        for (const auto& s : segments_) rep.segments.push_back(wire_segment(s));
-    }
-    return rep;
-}
 
 void FrameServer::reject(std::uint32_t sequence, FrameError why, std::vector<std::uint8_t>& reply) {
     std::vector<std::uint8_t> payload;
@@ -166,7 +68,7 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
                 reject(request.sequence, e, reply);
                 return e;
             }
-            objif::encode(motion_reply(board_.spool(profile_of(req))), payload_);
+            objif::encode(serve_spool(board_, req), payload_);
             break;
         }
         case Opcode::kDirectCommand: {
@@ -175,7 +77,7 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
                 reject(request.sequence, e, reply);
                 return e;
             }
-            objif::encode(motion_reply(board_.direct(direct_of(req))), payload_);
+            objif::encode(serve_direct(board_, req), payload_);
             break;
         }
         case Opcode::kSsfCommand: {
@@ -184,7 +86,7 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
                 reject(request.sequence, e, reply);
                 return e;
             }
-            objif::encode(motion_reply(board_.ssf(req.axes, req.command)), payload_);
+            objif::encode(serve_ssf(board_, req), payload_);
             break;
         }
         case Opcode::kClock: {
@@ -193,7 +95,7 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
                 reject(request.sequence, e, reply);
                 return e;
             }
-            objif::encode(clock(req), payload_);
+            objif::encode(serve_clock(board_, req), payload_);
             break;
         }
         case Opcode::kReadTrace: {
@@ -202,7 +104,7 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
                 reject(request.sequence, e, reply);
                 return e;
             }
-            objif::encode(read_trace(req), payload_);
+            objif::encode(serve_trace(board_, req), payload_);
             break;
         }
         default:

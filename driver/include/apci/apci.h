@@ -233,6 +233,172 @@ APCI_API apci_status apci_write_double(apci_board* board, apci_object_descriptor
 APCI_API const char* apci_tc_error_bit_name(int bit) APCI_NOEXCEPT;
 APCI_API const char* apci_tc_status_bit_name(int bit) APCI_NOEXCEPT;
 
+/* ---- Motion: profiles, direct and SSF commands, clock, trace ----------- */
+/*
+ * The board moves APCI_AXIS_COUNT axes along spooled profiles (docs/motion.md).
+ * Positions are in interpolation units, feeds in interpolation units per
+ * minute (F of DIN 66025), time in interpolation cycles (board object
+ * InterpolationCycle, bus 1000, default 1 ms). The embedded emulator runs in
+ * virtual time: nothing moves until the clock is advanced (apci_step,
+ * apci_run_until_idle), and the same calls give the same results bit for bit.
+ *
+ * Seed rules (APCI-8001 TC document, section 1): while a TC group
+ * compensates, one profile is held back (STATUS bit ProfMarked); the next
+ * profile releases it corrected, with the transition between them; writing
+ * STATUS = 0 or sending SSF command 2001 releases the last one; a direct
+ * command (JA, JS) discards the spooler and the held profile; a G00 profile
+ * is never compensated nor rotated, and the next G01/G02/G03 approaches the
+ * compensated path anew. On a TC error nothing moves incorrectly: the
+ * spooler holds, Run clears, and the ERROR bit stays until ERROR is written.
+ *
+ * Blocking: as the object accessors; a clock call returns when the clock
+ * has run. Every call answers APCI_NOT_SUPPORTED on a transport without
+ * motion support; a refused call changes nothing.
+ */
+
+#define APCI_AXIS_COUNT 8
+
+/* Profile kinds: the G codes. */
+#define APCI_PROFILE_RAPID 0   /* G00: point to point, never compensated or rotated */
+#define APCI_PROFILE_LINE 1    /* G01 */
+#define APCI_PROFILE_ARC_CW 2  /* G02 */
+#define APCI_PROFILE_ARC_CCW 3 /* G03 */
+
+/* One motion profile (one NC block's move). Unnamed axes keep their position. */
+typedef struct apci_profile {
+    uint8_t kind;        /* APCI_PROFILE_* */
+    uint8_t axes;        /* bit i set: axis i is named and moves to target[i] */
+    uint8_t arc_axes[2]; /* arcs: the axes the arc is named in, first and second;
+                            once a TC object was accessed the arc runs in the
+                            active plane (TcPlane) and must be named in its axes */
+    uint32_t tag;        /* the NC block number, carried into every executed segment */
+    double feed;         /* units per minute, > 0; G00: 0 = the board's rapid feed */
+    double target[APCI_AXIS_COUNT]; /* absolute targets (program coordinates) */
+    double center[2];    /* arcs: centre on arc_axes[0], arc_axes[1], absolute */
+} apci_profile;
+
+/* What a motion call set on the TC module besides its status. */
+typedef struct apci_motion_result {
+    int32_t group;  /* TC group whose ERROR got `errors` and whose Run cleared; 0: none */
+    int32_t errors; /* ERROR bits (APCI_TC_ERROR_*) this call set */
+    uint32_t tag;   /* the block (profile tag) at fault */
+} apci_motion_result;
+
+/*
+ * Spools one profile. `result` may be NULL; it is filled whenever the board
+ * answered. APCI_BUSY: the spooler cannot take the moves the profile yields;
+ * nothing was taken: advance the clock and spool it again.
+ * APCI_WRONG_DEVICE_STATE with result->errors != 0: a TC error (the spooler
+ * holds until ERROR is written); with errors == 0: the spooler already holds,
+ * or an arc lies outside the active plane and no group is there to record it.
+ * Range and value errors name the bad field in apci_last_error().
+ */
+APCI_API apci_status apci_spool_profile(apci_board* board, const apci_profile* profile,
+                                        apci_motion_result* result) APCI_NOEXCEPT;
+
+/* Direct commands (the seed names JA and JS; their meaning is this project's). */
+#define APCI_DIRECT_JA 1 /* jog absolute: the named axes move to target at feed (0: rapid) */
+#define APCI_DIRECT_JS 2 /* jog stop: every axis stops where it is; axes must be 0 */
+
+typedef struct apci_direct_command {
+    uint16_t code; /* APCI_DIRECT_* */
+    uint8_t axes;  /* JA: the axes to move (bit i = axis i) */
+    double feed;   /* JA: units per minute, 0 = rapid feed */
+    double target[APCI_AXIS_COUNT]; /* JA: absolute targets of the named axes */
+} apci_direct_command;
+
+/* Discards the spooler content and the held profile, then acts. */
+APCI_API apci_status apci_direct_command_send(apci_board* board,
+                                              const apci_direct_command* command) APCI_NOEXCEPT;
+
+/* SSF command 2001 to the axes of a compensation group releases its held profile. */
+#define APCI_SSF_RELEASE_HELD_PROFILE 2001
+
+/* Sends SSF `command` to the axes in `axes` (bit i = axis i). `result` may be NULL. */
+APCI_API apci_status apci_ssf_command(apci_board* board, uint8_t axes, int32_t command,
+                                      apci_motion_result* result) APCI_NOEXCEPT;
+
+/* Flags of apci_motion_status.flags. */
+#define APCI_MOTION_IDLE 0x01u         /* nothing moves: spooler empty, or held */
+#define APCI_MOTION_HELD 0x02u         /* the spooler holds after a TC error */
+#define APCI_MOTION_PROFILE_HELD 0x04u /* the compensating group holds a profile */
+#define APCI_MOTION_TRACING 0x08u      /* per-cycle samples are recorded */
+
+typedef struct apci_motion_status {
+    uint64_t now;        /* interpolation cycles since the board started */
+    uint64_t ran;        /* cycles the call that filled this advanced the clock */
+    uint32_t flags;      /* APCI_MOTION_* */
+    uint32_t fill;       /* moves in the spooler (the one under way included) */
+    uint32_t capacity;   /* the most moves the spooler takes */
+    int32_t compensating_group; /* 0: no compensation under way */
+    uint64_t trace_pending, trace_lost;       /* samples waiting / dropped unread */
+    uint64_t segments_pending, segments_lost; /* executed segments waiting / dropped */
+    double position[APCI_AXIS_COUNT];         /* axis positions now */
+} apci_motion_status;
+
+/* Advances the clock by exactly `cycles` cycles. `status` may be NULL. */
+APCI_API apci_status apci_step(apci_board* board, uint64_t cycles,
+                               apci_motion_status* status) APCI_NOEXCEPT;
+/* Advances until nothing moves, at most `max_cycles`; status->ran says how far. */
+APCI_API apci_status apci_run_until_idle(apci_board* board, uint64_t max_cycles,
+                                         apci_motion_status* status) APCI_NOEXCEPT;
+/* The motion status without advancing the clock. */
+APCI_API apci_status apci_motion_status_get(apci_board* board,
+                                            apci_motion_status* status) APCI_NOEXCEPT;
+/* Spooler fill level and capacity (the bus 1000 objects SpoolerFill, SpoolerCapacity). */
+APCI_API apci_status apci_spooler_fill(apci_board* board, uint32_t* fill,
+                                       uint32_t* capacity) APCI_NOEXCEPT;
+
+/*
+ * Per-cycle samples: capacity > 0 turns them on with a ring of `capacity`
+ * samples (at most 2^24; the oldest unread ones are dropped and counted when
+ * it is full); 0 turns them off. Either drops the samples not yet read.
+ * With samples off the emulator runs through a move at no cost per cycle.
+ */
+APCI_API apci_status apci_trace_enable(apci_board* board, uint32_t capacity) APCI_NOEXCEPT;
+
+typedef struct apci_trace_sample {
+    uint64_t cycle;                   /* clock value after the cycle (1 = the first) */
+    double position[APCI_AXIS_COUNT]; /* axis positions after it */
+} apci_trace_sample;
+
+/* Moves up to `max` of the oldest samples into `out`; *count says how many. */
+APCI_API apci_status apci_read_trace(apci_board* board, apci_trace_sample* out, size_t max,
+                                     size_t* count) APCI_NOEXCEPT;
+
+/* Executed segment kinds and roles (DESIGN.md section 7, `run --json`). */
+#define APCI_SEGMENT_LINE 0
+#define APCI_SEGMENT_ARC 1
+#define APCI_ROLE_CONTOUR 0       /* a compensated G01/G02/G03 element */
+#define APCI_ROLE_TRANSITION 1    /* corner transition (tag: the element before the corner) */
+#define APCI_ROLE_APPROACH 2      /* onto the compensated path (tag: the first element) */
+#define APCI_ROLE_DEPARTURE 3     /* back to the programmed end (tag: the last element) */
+#define APCI_ROLE_UNCOMPENSATED 4 /* a G01/G02/G03 element without compensation */
+#define APCI_ROLE_RAPID 5         /* a G00 profile, or a JA move (tag 0) */
+
+/* One executed segment in machine coordinates (after rotation and compensation). */
+typedef struct apci_segment {
+    uint32_t tag;        /* block number of the profile it came from */
+    uint8_t kind;        /* APCI_SEGMENT_* */
+    uint8_t role;        /* APCI_ROLE_* */
+    uint8_t ccw;         /* arcs: 1 counter-clockwise (G03 sense), 0 clockwise */
+    uint8_t interrupted; /* 1: cut short by a direct command; end is where it stopped */
+    uint8_t plane_axes[2]; /* arcs: the board axes of the arc's plane, first and second */
+    int32_t plane;       /* arcs: 17, 18, 19 when those are a TC plane's axes, else 0 */
+    double start[APCI_AXIS_COUNT];
+    double end[APCI_AXIS_COUNT];
+    double center[APCI_AXIS_COUNT]; /* arcs: centre on plane_axes, start on the others */
+    double feed;                    /* units per minute */
+    uint64_t start_cycle, end_cycle;
+} apci_segment;
+
+/* Moves up to `max` of the oldest executed segments into `out`; *count says how many. */
+APCI_API apci_status apci_read_segments(apci_board* board, apci_segment* out, size_t max,
+                                        size_t* count) APCI_NOEXCEPT;
+
+/* "contour", "transition", "approach", "departure", "uncompensated", "rapid"; NULL otherwise. */
+APCI_API const char* apci_segment_role_name(int role) APCI_NOEXCEPT;
+
 #ifdef __cplusplus
 }
 #endif

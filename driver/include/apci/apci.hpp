@@ -11,6 +11,7 @@
 // Threading as apci.h: one thread at a time per Board.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -127,6 +128,52 @@ public:
     // The argument's type picks the accessor: write(o, 5) is int, write(o, 2.5) double.
     Result<void> write(ObjectDescriptor& o, std::int32_t v) noexcept { return write_int(o, v); }
     Result<void> write(ObjectDescriptor& o, double v) noexcept { return write_double(o, v); }
+
+    // ---- Motion (apci.h "Motion"; docs/motion.md). The value of a spool or
+    // ssf result says which TC group and ERROR bits a TC error set.
+    Result<apci_motion_result> spool(const apci_profile& p) noexcept {
+        Result<apci_motion_result> r;
+        r.status = apci_spool_profile(handle_, &p, &r.value);
+        return r;
+    }
+    Result<void> direct(const apci_direct_command& c) noexcept {
+        return Result<void>{apci_direct_command_send(handle_, &c)};
+    }
+    Result<apci_motion_result> ssf(std::uint8_t axes, std::int32_t command) noexcept {
+        Result<apci_motion_result> r;
+        r.status = apci_ssf_command(handle_, axes, command, &r.value);
+        return r;
+    }
+    Result<apci_motion_status> step(std::uint64_t cycles) noexcept {
+        Result<apci_motion_status> r;
+        r.status = apci_step(handle_, cycles, &r.value);
+        return r;
+    }
+    Result<apci_motion_status> run_until_idle(std::uint64_t max_cycles) noexcept {
+        Result<apci_motion_status> r;
+        r.status = apci_run_until_idle(handle_, max_cycles, &r.value);
+        return r;
+    }
+    Result<apci_motion_status> motion_status() noexcept {
+        Result<apci_motion_status> r;
+        r.status = apci_motion_status_get(handle_, &r.value);
+        return r;
+    }
+    // capacity 0: per-cycle samples off.
+    Result<void> trace_enable(std::uint32_t capacity) noexcept {
+        return Result<void>{apci_trace_enable(handle_, capacity)};
+    }
+    // Reads up to `max` into `out`; the value is how many.
+    Result<std::size_t> read_trace(apci_trace_sample* out, std::size_t max) noexcept {
+        Result<std::size_t> r;
+        r.status = apci_read_trace(handle_, out, max, &r.value);
+        return r;
+    }
+    Result<std::size_t> read_segments(apci_segment* out, std::size_t max) noexcept {
+        Result<std::size_t> r;
+        r.status = apci_read_segments(handle_, out, max, &r.value);
+        return r;
+    }
 
 private:
     void keep_open_error(const char* text) noexcept {

@@ -34,13 +34,8 @@ public:
     static void reject(std::uint32_t sequence, objif::FrameError why, std::vector<std::uint8_t>& reply);
 
 private:
-    objif::ClockReply clock(const objif::ClockRequest& req);
-    objif::TraceReply read_trace(const objif::TraceRequest& req);
-
     Board& board_;
     std::vector<std::uint8_t> payload_;  // scratch, reused between requests
-    std::vector<motion::TraceSample> samples_;  // scratch for ReadTrace
-    std::vector<motion::Segment> segments_;
 };
 
 }  // namespace rwmos

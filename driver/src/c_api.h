@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// Internals shared by the C API's source files (apci.cpp, apci_motion.cpp):
+// the board handle and the one way a call records its last-error text.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "apci/apci.h"
+#include "objif/status.h"
+#include "transport.h"
+
+struct apci_board {
+    std::unique_ptr<apci::Transport> transport;
+    std::string last_error;  // "" after a successful call
+};
+
+namespace apci {
+
+// Errors of calls that have no board (apci_open, NULL board); apci.cpp.
+extern thread_local std::string t_last_error;
+
+constexpr apci_status to_c(objif::Status s) noexcept { return static_cast<apci_status>(s); }
+
+// Stores `text` as the last error; an allocation failure leaves a short text.
+inline void record(std::string& slot, std::string_view text) noexcept {
+    try {
+        slot.assign(text);
+    } catch (...) {
+        slot.clear();  // never throws, keeps capacity
+    }
+}
+
+inline std::string& error_slot(apci_board* board) noexcept {
+    return board != nullptr ? board->last_error : t_last_error;
+}
+
+// Records the text `format()` makes as the last error and returns `s` as a C code.
+template <class Format>
+apci_status fail(apci_board* board, objif::Status s, Format&& format) noexcept {
+    try {
+        record(error_slot(board), format());
+    } catch (...) {
+        record(error_slot(board), objif::status_name(s));
+    }
+    return to_c(s);
+}
+
+}  // namespace apci
