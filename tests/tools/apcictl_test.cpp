@@ -218,7 +218,7 @@ TEST(ApcictlScript, UnknownCommandNamesTheScriptCommands) {
     const auto r = script("frobnicate 1\n");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.err, "line 1: unknown command 'frobnicate' (script commands: read, "
-                                "write, status)"))
+                                "write, status, spool, direct, ssf, step)"))
         << r.err;
 }
 

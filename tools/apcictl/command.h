@@ -79,6 +79,10 @@ std::unique_ptr<Command> make_read_command();
 std::unique_ptr<Command> make_write_command();
 std::unique_ptr<Command> make_script_command();
 std::unique_ptr<Command> make_status_command();
+std::unique_ptr<Command> make_spool_command();
+std::unique_ptr<Command> make_direct_command();
+std::unique_ptr<Command> make_ssf_command();
+std::unique_ptr<Command> make_step_command();
 
 // "WrongDeviceState (not possible in the present device state)".
 std::string describe_status(apci::Status status);

@@ -8,8 +8,7 @@
 namespace apcictl {
 namespace {
 
-// The command table. The motion work adds spool, direct, ssf and step here
-// (in_scripts = true), each in its own command_<name>.cpp.
+// The command table, in help order.
 constexpr std::array kCommands{
     CommandSpec{"read", "Read one object (type follows the object)", true, make_read_command},
     CommandSpec{"write", "Write one object (the value's type follows the object)", true,
@@ -18,6 +17,14 @@ constexpr std::array kCommands{
                 false, make_script_command},
     CommandSpec{"status", "Show the spooler fill and the TC registers ERROR and STATUS per group, by bit name",
                 true, make_status_command},
+    CommandSpec{"spool", "Spool one profile: G00..G03 with N, F, axis and centre words", true,
+                make_spool_command},
+    CommandSpec{"direct", "Direct command JA (jog absolute) or JS (stop); discards the spooler",
+                true, make_direct_command},
+    CommandSpec{"ssf", "Send an SSF command to axes (2001: release the held profile)", true,
+                make_ssf_command},
+    CommandSpec{"step", "Advance the interpolation clock by N cycles, or --idle", true,
+                make_step_command},
 };
 
 }  // namespace
