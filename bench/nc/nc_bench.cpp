@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Throughput of the NC front end in blocks per second: parse + interpret, from memory and from a
-// file, and both passes (validation + execution) as `apcictl run` does them.
+// file, and both passes (validation + execution) as `apcictl run` does them; Klartext LN lines.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -39,6 +39,28 @@ std::string make_program(std::size_t blocks) {
         text.append(line, static_cast<std::size_t>(len));
     }
     text += "M30\n";
+    return text;
+}
+
+// CAM-style Klartext: LN lines with N (and every other one with T under M128), 7 decimals.
+std::string make_klartext_program(std::size_t blocks) {
+    std::string text = "0  BEGIN PGM BENCH MM\n1  TOOL CALL 1 Z S8000\n2  L X+0 Y+0 Z+50 R0 FMAX\n";
+    char line[192];
+    for (std::size_t i = 0; i < blocks; ++i) {
+        const std::size_t n = i + 3;
+        const int len =
+            i % 2 == 0
+                ? std::snprintf(line, sizeof line,
+                                "%zu LN X+36.0084 Y+6.177 Z-1.9209 NX-0.4658107 NY+0 NZ+0.8848844 "
+                                "R0 F1000\n",
+                                n)
+                : std::snprintf(line, sizeof line,
+                                "%zu LN X+36.0084 Y+6.177 Z-1.9209 NX-0.4658107 NY+0 NZ+0.8848844 "
+                                "TX+0.0000000 TY+0.6558846 TZ+0.7548612 R0 M128\n",
+                                n);
+        text.append(line, static_cast<std::size_t>(len));
+    }
+    text += std::to_string(blocks + 3) + " END PGM BENCH MM\n";
     return text;
 }
 
@@ -119,6 +141,18 @@ void BM_ValidateThenExecuteFile(benchmark::State& state) {
     set_rate(state, blocks);
 }
 BENCHMARK(BM_ValidateThenExecuteFile)->Unit(benchmark::kMillisecond);
+
+void BM_KlartextLnFromMemory(benchmark::State& state) {
+    static const std::string text = make_klartext_program(kBlocks);
+    std::uint64_t blocks = 0;
+    for (auto _ : state) {
+        EventStream s = EventStream::from_text(text, "bench.h");
+        benchmark::DoNotOptimize(drain(s, state));
+        blocks = s.blocks_read();
+    }
+    set_rate(state, blocks);
+}
+BENCHMARK(BM_KlartextLnFromMemory)->Unit(benchmark::kMillisecond);
 
 void BM_ParseOneLine(benchmark::State& state) {
     ParsedLine out;

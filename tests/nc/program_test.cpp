@@ -55,16 +55,18 @@ TEST(Program, ProgramNameOnlyOnFirstSignificantLine) {
               "prog.nc:2:1: '%name' must be the first line of the program (and appear once)");
 }
 
-TEST(Program, KlartextDialectIsDetectedAndRefused) {
+TEST(Program, KlartextDialectIsDetectedByBeginPgm) {
+    // Told by content: these are Klartext programs (tests/nc/klartext_test.cpp), refused here
+    // only because they stop before END PGM.
     EXPECT_EQ(error_of("0  BEGIN PGM 3DTEST MM\n1 TOOL CALL 1 Z\n"),
-              "prog.nc:1:4: Klartext dialect not supported yet (the program begins with 'BEGIN "
-              "PGM'); only DIN 66025 programs are accepted");
+              "prog.nc:2:1: the program ends without END PGM");
     EXPECT_EQ(error_of("\n; header\nBEGIN PGM X MM\n"),
-              "prog.nc:3:1: Klartext dialect not supported yet (the program begins with 'BEGIN "
-              "PGM'); only DIN 66025 programs are accepted");
-    const test::RunResult r = test::run("BEGIN PGM X MM\n");
-    ASSERT_TRUE(r.error);
-    EXPECT_EQ(r.error->kind, ErrorKind::kUnsupported);
+              "prog.nc:3:1: the program ends without END PGM");
+    Result<EventStream> s =
+        Program::from_text("BEGIN PGM X MM\nEND PGM X MM\n", "p").value().events();
+    Event ev;
+    ASSERT_EQ(s.value().next(ev), EventStream::Next::kEvent);
+    EXPECT_EQ(s.value().dialect(), Dialect::kKlartext);
 }
 
 TEST(Program, WindowsLineEndsAndMissingFinalNewline) {

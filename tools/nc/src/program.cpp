@@ -12,7 +12,9 @@
 namespace apci::nc {
 
 EventStream::EventStream(LineSource source, InterpreterOptions options)
-    : source_(std::move(source)), interpreter_(options) {}
+    : source_(std::move(source)),
+      interpreter_(options),
+      klartext_(KlartextOptions{options.start_position, options.tools}) {}
 
 Result<EventStream> EventStream::open_file(const std::string& path, InterpreterOptions options) {
     Result<LineSource> source = LineSource::open_file(path);
@@ -34,21 +36,9 @@ bool EventStream::fail(Diagnostic d) {
 bool EventStream::line(std::string_view text) {
     const std::uint64_t n = source_.line_number();
     if (dialect_ == Dialect::kUndecided) {
-        const DialectProbe probe = detect_dialect(text);
-        if (probe.dialect == Dialect::kKlartext) {
-            Diagnostic d;
-            d.kind = ErrorKind::kUnsupported;
-            d.file = source_.name();
-            d.line = n;
-            d.column = column_at(text, probe.offset);
-            d.message =
-                "Klartext dialect not supported yet (the program begins with 'BEGIN PGM'); "
-                "only DIN 66025 programs are accepted";
-            return fail(std::move(d));
-        }
-        dialect_ = probe.dialect;
-        // Further dialects (and ISG "#" command lines) plug in here.
+        dialect_ = detect_dialect(text).dialect;
     }
+    if (dialect_ == Dialect::kKlartext) return klartext_line(text);
     if (!parse_din_line(text, n, source_.name(), parsed_, error_)) return fail(error_);
     switch (parsed_.kind) {
         case LineKind::kEmpty:
@@ -76,6 +66,24 @@ bool EventStream::line(std::string_view text) {
     return true;
 }
 
+bool EventStream::klartext_line(std::string_view text) {
+    const std::uint64_t n = source_.line_number();
+    if (!parse_klartext_line(text, n, source_.name(), klartext_block_, error_)) {
+        return fail(error_);
+    }
+    if (klartext_block_.kind == KlartextKind::kEmpty) return true;
+    ++blocks_;
+    if (!klartext_.apply(klartext_block_, source_.name(), batch_, error_)) return fail(error_);
+    if (klartext_block_.kind == KlartextKind::kBeginPgm) {
+        program_name_ = klartext_.program_name();
+    }
+    return true;
+}
+
+bool EventStream::program_complete() const noexcept {
+    return dialect_ == Dialect::kKlartext ? klartext_.state().closed : interpreter_.state().ended;
+}
+
 bool EventStream::read_batch() {
     batch_.clear();
     batch_pos_ = 0;
@@ -85,13 +93,14 @@ bool EventStream::read_batch() {
             case LineSource::Read::kError:
                 return fail(error_);
             case LineSource::Read::kEnd:
-                if (!interpreter_.state().ended) {
+                if (!program_complete()) {
                     Diagnostic d;
                     d.kind = ErrorKind::kProgramRule;
                     d.file = source_.name();
                     d.line = source_.line_number() == 0 ? 1 : source_.line_number();
                     d.column = 1;
-                    d.message = "the program ends without M30";
+                    d.message = dialect_ == Dialect::kKlartext ? "the program ends without END PGM"
+                                                               : "the program ends without M30";
                     return fail(std::move(d));
                 }
                 at_end_ = true;
@@ -124,7 +133,8 @@ Result<ProgramSummary> validate(EventStream& stream) {
                 ++s.events;
                 if (std::holds_alternative<RapidMove>(ev.data) ||
                     std::holds_alternative<LineMove>(ev.data) ||
-                    std::holds_alternative<ArcMove>(ev.data)) {
+                    std::holds_alternative<ArcMove>(ev.data) ||
+                    std::holds_alternative<VectorLineMove>(ev.data)) {
                     ++s.moves;
                 }
                 break;

@@ -66,22 +66,91 @@ struct PlaneChange {
     Plane plane = Plane::kXY;
 };
 
-// M30.
+// M30 (DIN 66025); Klartext: M30 or M2, else END PGM.
 struct ProgramEnd {};
 
-using EventData = std::variant<RapidMove, LineMove, ArcMove, ToolSelect, CompensationChange,
-                               CornerModeChange, PlaneChange, ProgramEnd>;
+// ---- Klartext (TNC seed 002: 3D tool compensation), docs/nc-programs.md ----
+
+// TOOL CALL n Z [S..] [DL..] [DR..] [DR2..]: the delta values of the tool call (mm), which the
+// 3D compensation adds to those of the tool table and the correction table. Sent right after
+// ToolSelect{n} (the tool data set, as D n); a TOOL CALL without delta words sends zeros, so
+// the deltas of an earlier call do not carry over.
+struct ToolCallDeltas {
+    int tool = 0;
+    double dl = 0.0;
+    double dr = 0.0;
+    double dr2 = 0.0;
+    double spindle_speed = 0.0;  // S, 1/min; 0 when not programmed
+};
+
+// Where on the tool the programmed points lie (FUNCTION TCPM ... REFPNT): the tip (TIP-TIP,
+// TIP-CENTER, M128) or the centre on the tool axis at height R2 above the tip (CENTER-CENTER).
+enum class ToolReference : std::uint8_t { kTip, kCentre };
+
+// M128 / FUNCTION TCPM (on) and M129 / FUNCTION RESET TCPM (off), sent when the state or the
+// reference point changes.
+struct TcpmChange {
+    bool on = false;
+    ToolReference reference = ToolReference::kTip;
+};
+
+// FUNCTION PROG PATH IS CONTOUR (contour = true) / OFF, sent when it changes.
+struct ProgPathChange {
+    bool contour = false;
+};
+
+// M107 (allowed = true: a tool with positive delta values may be called) / M108, sent when it
+// changes.
+struct OversizeChange {
+    bool allowed = false;
+};
+
+// The rotary axes of the documented head (B tilts the tool in the Z-X plane, C turns the head
+// about Z), programmed in an L block: the positions, in degrees, that the block's move (if
+// any) reaches at its end. Each axis not programmed keeps its position.
+struct HeadOrientation {
+    double b = 0.0;
+    double c = 0.0;
+};
+
+// LN: a straight line with the surface normal N and the tool vector T (seed 002, "Gerade LN").
+// Points are the programmed ones (tool tip, tool centre or contour point, by TcpmChange and
+// ProgPathChange); the 3D compensation is the board's job.
+struct VectorLineMove {
+    Eigen::Vector3d start;
+    Eigen::Vector3d end;
+    // N, normalised; absent only in a peripheral-milling line with T under TCPM.
+    bool has_normal = false;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    // The tool vector the line runs with under TCPM: the programmed T, or N when the line has
+    // none (the tool stands perpendicular to the contour). Without TCPM has_tool_vector is
+    // false: the machine's current tool axis applies, and a programmed T is ignored.
+    bool has_tool_vector = false;
+    bool tool_vector_programmed = false;  // the line gave TX TY TZ (even when ignored)
+    Eigen::Vector3d tool_vector = Eigen::Vector3d::Zero();
+    Compensation side = Compensation::kOff;  // R0 / RL / RR in force (RL = kLeft, RR = kRight)
+    double feed = 0.0;                       // mm/min; 0 with FMAX
+    bool rapid = false;                      // FMAX
+};
+
+using EventData =
+    std::variant<RapidMove, LineMove, ArcMove, ToolSelect, CompensationChange, CornerModeChange,
+                 PlaneChange, ProgramEnd, ToolCallDeltas, TcpmChange, ProgPathChange,
+                 OversizeChange, HeadOrientation, VectorLineMove>;
 
 struct Event {
     BlockOrigin origin;
     EventData data;
 };
 
-// "rapid", "line", "arc", "tool", "compensation", "corner", "plane", "end".
+// "rapid", "line", "arc", "tool", "compensation", "corner", "plane", "end", "tool_call",
+// "tcpm", "prog_path", "oversize", "head", "vector_line".
 std::string_view event_name(const EventData& data) noexcept;
 
 // The events of one block, in the order the executor must act on them (docs/nc-programs.md):
-// tool select, plane, corner mode, compensation, the move, program end.
+// DIN 66025: tool select, plane, corner mode, compensation, the move, program end.
+// Klartext: tool select and tool call deltas (TOOL CALL blocks), or oversize, TCPM, prog path,
+// compensation, head orientation, the move, program end. At most six either way.
 class EventBatch {
   public:
     static constexpr std::size_t kCapacity = 6;

@@ -15,6 +15,7 @@
 #include "apci/nc/diagnostic.h"
 #include "apci/nc/events.h"
 #include "apci/nc/interpreter.h"
+#include "apci/nc/klartext.h"
 #include "apci/nc/parser.h"
 #include "apci/nc/source.h"
 
@@ -34,9 +35,14 @@ class EventStream {
     Next next(Event& out);
 
     const Diagnostic& error() const noexcept { return error_; }
+    // The dialect, known once the first significant line was read.
+    Dialect dialect() const noexcept { return dialect_; }
+    // The modal state of a DIN 66025 program ...
     const ModalState& state() const noexcept { return interpreter_.state(); }
+    // ... and of a Klartext program.
+    const KlartextState& klartext_state() const noexcept { return klartext_.state(); }
     const std::string& file() const noexcept { return source_.name(); }
-    // The "%name" of the program, empty when it has none.
+    // The "%name" (DIN 66025) or BEGIN PGM name (Klartext) of the program, empty when none.
     const std::string& program_name() const noexcept { return program_name_; }
     std::uint64_t lines_read() const noexcept { return source_.line_number(); }
     std::uint64_t blocks_read() const noexcept { return blocks_; }
@@ -46,10 +52,14 @@ class EventStream {
     bool read_batch();  // fills batch_ from the next block with events; false at end or error
     bool fail(Diagnostic d);
     bool line(std::string_view text);
+    bool klartext_line(std::string_view text);
+    bool program_complete() const noexcept;  // M30 (DIN 66025) or END PGM (Klartext) seen
 
     LineSource source_;
     Interpreter interpreter_;
     ParsedLine parsed_;
+    KlartextInterpreter klartext_;
+    KlartextBlock klartext_block_;
     EventBatch batch_;
     std::size_t batch_pos_ = 0;
     Dialect dialect_ = Dialect::kUndecided;
@@ -63,11 +73,11 @@ class EventStream {
 
 struct ProgramSummary {
     std::string file;
-    std::string name;          // "%name", empty when the program has none
+    std::string name;          // "%name" or BEGIN PGM name, empty when the program has none
     std::uint64_t lines = 0;   // source lines
     std::uint64_t blocks = 0;  // lines holding a block
     std::uint64_t events = 0;
-    std::uint64_t moves = 0;  // rapid, line and arc events
+    std::uint64_t moves = 0;  // rapid, line, arc and vector line events
 };
 
 // Runs the whole stream, keeping nothing but counts: the validation pass.

@@ -1,0 +1,385 @@
+// SPDX-License-Identifier: MIT
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "apci/nc/klartext.h"
+#include "apci/nc/tools.h"
+
+namespace apci::nc {
+
+namespace {
+
+// A summed delta above this is an oversize (the board's kOversizeTolerance).
+constexpr double kOversizeTolerance = 1e-9;
+// R2 may exceed R by this much (the board's kShapeTolerance).
+constexpr double kShapeTolerance = 1e-9;
+
+constexpr char kAxisLetter[3] = {'X', 'Y', 'Z'};
+
+struct BlockCheck {
+    const KlartextBlock& b;
+    std::string_view file;
+    Diagnostic& err;
+
+    bool fail(ErrorKind kind, std::uint32_t column, std::string message) const {
+        err.kind = kind;
+        err.file = std::string(file);
+        err.line = b.line;
+        err.column = column == 0 ? 1 : column;
+        err.block = b.block_number();
+        err.message = std::move(message);
+        return false;
+    }
+};
+
+std::uint32_t m_column(const KlartextBlock& b, int code) {
+    for (std::size_t i = 0; i < b.m_count; ++i) {
+        if (b.m[i].value == code) return b.m[i].column;
+    }
+    return 0;
+}
+
+// The summed deltas of the tool list and the tool call, and the tool they leave.
+struct CalledTool {
+    double r = 0.0, r2 = 0.0;
+    double dl = 0.0, dr = 0.0, dr2 = 0.0;
+};
+
+bool has_oversize(const CalledTool& t) {
+    return t.dl > kOversizeTolerance || t.dr > kOversizeTolerance || t.dr2 > kOversizeTolerance;
+}
+
+bool check_tool_call(const BlockCheck& c, const KlartextState& before, const ToolTable* tools,
+                     CalledTool& called) {
+    const KlartextBlock& b = c.b;
+    const int n = b.tool.value;
+    // As D in DIN 66025: the TC module takes a tool index only while compensation is off
+    // (seed 003, Table 3: WKZINDEX).
+    if (before.radius_comp != Compensation::kOff) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      fmt::format("TOOL CALL {} while radius compensation {} is on: program R0 "
+                                  "in an earlier block",
+                                  n, before.radius_comp == Compensation::kLeft ? "RL" : "RR"));
+    }
+    if (b.tool_axis.present() && b.tool_axis.value != 'Z') {
+        return c.fail(ErrorKind::kUnsupported, b.tool_axis.column,
+                      fmt::format("tool axis {}: only Z is supported (the documented head tilts "
+                                  "the Z tool axis)",
+                                  b.tool_axis.value));
+    }
+    called.dl = b.dl.present() ? b.dl.value : 0.0;
+    called.dr = b.dr.present() ? b.dr.value : 0.0;
+    called.dr2 = b.dr2.present() ? b.dr2.value : 0.0;
+    if (tools != nullptr && n > 0) {
+        const ToolData* t = tools->find(n);
+        if (t == nullptr) {
+            return c.fail(ErrorKind::kProgramRule, b.tool.column,
+                          fmt::format("TOOL CALL {}: the tool list does not define tool {}", n, n));
+        }
+        if (!t->valid()) {
+            return c.fail(ErrorKind::kProgramRule, b.tool.column,
+                          fmt::format("TOOL CALL {}: tool {} is not valid (wz[{}].gueltig is {}, "
+                                      "not 1; unset data is 0)",
+                                      n, n, n, t->gueltig));
+        }
+        called.r = t->radius_mm();
+        called.r2 = t->r2_mm();
+        called.dl += t->dl_mm();
+        called.dr += t->dr_mm();
+        called.dr2 += t->dr2_mm();
+        if (called.r2 > called.r + kShapeTolerance) {
+            return c.fail(ErrorKind::kProgramRule, b.tool.column,
+                          fmt::format("TOOL CALL {}: corner radius R2 {:.4f} mm is larger than the "
+                                      "radius R {:.4f} mm in the tool list",
+                                      n, called.r2, called.r));
+        }
+    }
+    // Without a tool list R and R2 are unknown: only the oversize rule can be checked here.
+    const bool known = tools != nullptr && n > 0;
+    const double r = called.r + called.dr;
+    const double r2 = called.r2 + called.dr2;
+    if (known && (r < -kShapeTolerance || r2 < -kShapeTolerance)) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      fmt::format("TOOL CALL {}: R + DR = {:.4f} mm, R2 + DR2 = {:.4f} mm: the "
+                                  "deltas take away more than the tool has",
+                                  n, r, r2));
+    }
+    if (known && r2 > r + kShapeTolerance) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      fmt::format("TOOL CALL {}: R2 + DR2 = {:.4f} mm is larger than R + DR = "
+                                  "{:.4f} mm: no such tool",
+                                  n, r2, r));
+    }
+    // Seed 002: calling a tool with positive delta values is an error unless M107 allows it.
+    if (n > 0 && has_oversize(called) && !before.m107) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      fmt::format("TOOL CALL {} with a positive oversize (summed DL {:+.4f}, DR "
+                                  "{:+.4f}, DR2 {:+.4f} mm): program M107 before the TOOL CALL to "
+                                  "allow it",
+                                  n, called.dl, called.dr, called.dr2));
+    }
+    return true;
+}
+
+struct VectorCheck {
+    bool present = false;
+    Eigen::Vector3d unit = Eigen::Vector3d::Zero();
+};
+
+// All three components or none; normalised within kVectorLengthTolerance.
+bool check_vector(const BlockCheck& c, const std::array<Word<double>, 3>& w, char prefix,
+                  std::string_view name, VectorCheck& out) {
+    int count = 0;
+    for (const auto& x : w) count += x.present() ? 1 : 0;
+    if (count == 0) return true;
+    if (count < 3) {
+        std::string missing;
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (w[k].present()) continue;
+            if (!missing.empty()) missing += ' ';
+            missing += fmt::format("{}{}", prefix, kAxisLetter[k]);
+        }
+        return c.fail(
+            ErrorKind::kSyntax, c.b.kind_column,
+            fmt::format("LN needs all three components of {} {}X {}Y {}Z: {} {} missing", name,
+                        prefix, prefix, prefix, missing, missing.size() > 2 ? "are" : "is"));
+    }
+    const Eigen::Vector3d v(w[0].value, w[1].value, w[2].value);
+    const double length = v.norm();
+    if (!(std::abs(length - 1.0) <= kVectorLengthTolerance)) {
+        return c.fail(ErrorKind::kValue, w[0].column,
+                      fmt::format("{} ({}X {}Y {}Z) is not normalised: its length is {:.7f}, not 1 "
+                                  "(tolerance {})",
+                                  name, prefix, prefix, prefix, length, kVectorLengthTolerance));
+    }
+    out.present = true;
+    out.unit = v / length;
+    return true;
+}
+
+bool vector_line(const BlockCheck& c, const KlartextState& s, const Eigen::Vector3d& start,
+                 VectorLineMove& out) {
+    const KlartextBlock& b = c.b;
+    std::string missing;
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (b.axis[k].present()) continue;
+        if (!missing.empty()) missing += ' ';
+        missing += kAxisLetter[k];
+    }
+    // Seed 002, "Gerade LN", Hinweise: every LN block holds all coordinates, even unchanged.
+    if (!missing.empty()) {
+        return c.fail(ErrorKind::kSyntax, b.kind_column,
+                      fmt::format("LN needs all coordinates X Y Z, even when unchanged: {} {} "
+                                  "missing",
+                                  missing, missing.size() > 1 ? "are" : "is"));
+    }
+    VectorCheck n;
+    VectorCheck t;
+    if (!check_vector(c, b.normal, 'N', "the surface normal N", n)) return false;
+    if (!check_vector(c, b.tool_vector, 'T', "the tool vector T", t)) return false;
+    // Seed 002, peripheral milling: "LN-Satz mit Werkzeugorientierung T ohne N-Vektor, M128 oder
+    // FUNCTION TCPM aktiv" is the only LN without N.
+    if (!n.present && !(t.present && s.tcpm)) {
+        return c.fail(ErrorKind::kSyntax, b.kind_column,
+                      t.present ? "LN without NX NY NZ needs M128 or FUNCTION TCPM (peripheral "
+                                  "milling with the tool vector T)"
+                                : "LN needs the surface normal NX NY NZ (only peripheral milling "
+                                  "with TX TY TZ under M128 or FUNCTION TCPM may leave it out)");
+    }
+    if (n.present && t.present && s.tcpm && n.unit.dot(t.unit) < -kNormalAgainstToolTolerance) {
+        return c.fail(ErrorKind::kGeometry, b.normal[0].column,
+                      fmt::format("the surface normal N points against the tool vector T (N.T = "
+                                  "{:.4f}): the tool cannot touch the surface from this side",
+                                  n.unit.dot(t.unit)));
+    }
+    out.start = start;
+    out.end = Eigen::Vector3d(b.axis[0].value, b.axis[1].value, b.axis[2].value);
+    out.has_normal = n.present;
+    out.normal = n.unit;
+    out.tool_vector_programmed = t.present;
+    // Seed 002, face milling: with TCPM the programmed T, or N; without TCPM T is ignored.
+    out.has_tool_vector = s.tcpm;
+    out.tool_vector = !s.tcpm ? Eigen::Vector3d::Zero() : t.present ? t.unit : n.unit;
+    out.side = s.radius_comp;
+    out.rapid = b.fmax.present();
+    out.feed = out.rapid ? 0.0 : s.feed;
+    return true;
+}
+
+Eigen::Vector3d line_end(const KlartextBlock& b, const Eigen::Vector3d& from) {
+    Eigen::Vector3d end = from;
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (!b.axis[k].present()) continue;
+        const auto i = static_cast<int>(k);
+        end[i] = b.axis_incremental[k] ? from[i] + b.axis[k].value : b.axis[k].value;
+    }
+    return end;
+}
+
+std::uint32_t first_axis_column(const KlartextBlock& b) {
+    std::uint32_t col = 0;
+    for (const auto& w : b.axis) {
+        if (w.present() && (col == 0 || w.column < col)) col = w.column;
+    }
+    return col == 0 ? b.kind_column : col;
+}
+
+}  // namespace
+
+KlartextInterpreter::KlartextInterpreter(KlartextOptions options) : options_(options) {
+    state_.position = options_.start_position;
+}
+
+bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, EventBatch& out,
+                                Diagnostic& err) {
+    out.clear();
+    const BlockCheck c{b, file, err};
+    if (b.kind == KlartextKind::kEmpty) return true;
+    if (state_.closed) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      "block after END PGM: the program has already ended");
+    }
+    if (!state_.begun && b.kind != KlartextKind::kBeginPgm) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      "a Klartext program begins with 'BEGIN PGM name MM'");
+    }
+    if (state_.ended && b.kind != KlartextKind::kEndPgm) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      "block after M2/M30: only END PGM may follow");
+    }
+    KlartextState s = state_;  // committed only when every check has passed
+    const BlockOrigin origin{b.block_number(), b.line};
+
+    switch (b.kind) {
+        case KlartextKind::kEmpty:
+            return true;
+        case KlartextKind::kBeginPgm:
+            if (state_.begun) {
+                return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                              "BEGIN PGM appears twice: one program per file");
+            }
+            if (b.inch.value) {
+                return c.fail(ErrorKind::kUnsupported, b.inch.column,
+                              "INCH programs are not supported: the emulator works in mm (write "
+                              "the program in MM)");
+            }
+            s.begun = true;
+            s.inch = b.inch.value;
+            program_name_.assign(b.program_name);
+            state_ = s;
+            return true;
+        case KlartextKind::kEndPgm:
+            if (b.program_name != program_name_) {
+                return c.fail(ErrorKind::kProgramRule, b.program_name_column,
+                              fmt::format("END PGM {} does not match BEGIN PGM {}", b.program_name,
+                                          program_name_));
+            }
+            if (b.inch.value != state_.inch) {
+                return c.fail(ErrorKind::kProgramRule, b.inch.column,
+                              "END PGM gives another unit than BEGIN PGM");
+            }
+            if (!state_.ended) out.push(origin, ProgramEnd{});
+            s.closed = true;
+            state_ = s;
+            return true;
+        case KlartextKind::kToolCall: {
+            CalledTool called;
+            if (!check_tool_call(c, state_, options_.tools, called)) return false;
+            s.tool = b.tool.value;
+            s.call_dl = b.dl.present() ? b.dl.value : 0.0;
+            s.call_dr = b.dr.present() ? b.dr.value : 0.0;
+            s.call_dr2 = b.dr2.present() ? b.dr2.value : 0.0;
+            s.tool_oversize = s.tool > 0 && has_oversize(called);
+            out.push(origin, ToolSelect{s.tool});
+            out.push(origin,
+                     ToolCallDeltas{s.tool, s.call_dl, s.call_dr, s.call_dr2,
+                                    b.spindle_speed.present() ? b.spindle_speed.value : 0.0});
+            state_ = s;
+            return true;
+        }
+        case KlartextKind::kProgPath:
+            s.prog_path_contour = b.prog_path_contour;
+            if (s.prog_path_contour != state_.prog_path_contour) {
+                out.push(origin, ProgPathChange{s.prog_path_contour});
+            }
+            state_ = s;
+            return true;
+        case KlartextKind::kTcpm:
+        case KlartextKind::kResetTcpm:
+            s.tcpm = b.kind == KlartextKind::kTcpm;
+            s.reference = s.tcpm ? b.reference : ToolReference::kTip;
+            if (s.tcpm != state_.tcpm || s.reference != state_.reference) {
+                out.push(origin, TcpmChange{s.tcpm, s.reference});
+            }
+            state_ = s;
+            return true;
+        case KlartextKind::kLine:
+        case KlartextKind::kVectorLine:
+        case KlartextKind::kMOnly:
+            break;
+    }
+
+    // L, LN and M blocks. M functions act at the start of the block, M2/M30 at its end.
+    if (b.has_m(107)) s.m107 = true;
+    if (b.has_m(108)) {
+        if (state_.tool_oversize) {
+            return c.fail(ErrorKind::kProgramRule, m_column(b, 108),
+                          fmt::format("M108 while tool {} with a positive oversize is loaded: "
+                                      "call a tool without oversize first",
+                                      state_.tool));
+        }
+        s.m107 = false;
+    }
+    if (b.has_m(128)) {
+        s.tcpm = true;
+        s.reference = ToolReference::kTip;
+    }
+    if (b.has_m(129)) {
+        s.tcpm = false;
+        s.reference = ToolReference::kTip;
+    }
+    if (b.radius_comp.present()) s.radius_comp = b.radius_comp.value;
+    if (b.feed.present()) s.feed = b.feed.value;
+    if (b.b.present()) s.b = b.b.value;
+    if (b.c.present()) s.c = b.c.value;
+
+    EventData move;
+    bool moves = false;
+    if (b.kind == KlartextKind::kVectorLine) {
+        VectorLineMove ln;
+        if (!vector_line(c, s, state_.position, ln)) return false;
+        moves = true;
+        move = ln;
+        s.position = ln.end;
+    } else if (b.kind == KlartextKind::kLine && b.has_axis_word()) {
+        moves = true;
+        const Eigen::Vector3d end = line_end(b, state_.position);
+        if (b.fmax.present()) {
+            move = RapidMove{state_.position, end};
+        } else {
+            move = LineMove{state_.position, end, s.feed};
+        }
+        s.position = end;
+    }
+    if (moves && !b.fmax.present() && !(s.feed > 0.0)) {
+        return c.fail(ErrorKind::kProgramRule, first_axis_column(b),
+                      fmt::format("no feed rate: program F (or FMAX) before the first {} move",
+                                  b.kind == KlartextKind::kVectorLine ? "LN" : "L"));
+    }
+    if (b.has_m(2) || b.has_m(30)) s.ended = true;
+
+    // Every check passed: emit in the documented order and commit.
+    if (s.m107 != state_.m107) out.push(origin, OversizeChange{s.m107});
+    if (s.tcpm != state_.tcpm || s.reference != state_.reference) {
+        out.push(origin, TcpmChange{s.tcpm, s.reference});
+    }
+    if (s.radius_comp != state_.radius_comp) out.push(origin, CompensationChange{s.radius_comp});
+    if (b.b.present() || b.c.present()) out.push(origin, HeadOrientation{s.b, s.c});
+    if (moves) out.push(origin, move);
+    if (s.ended) out.push(origin, ProgramEnd{});
+    state_ = s;
+    return true;
+}
+
+}  // namespace apci::nc
