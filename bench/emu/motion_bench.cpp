@@ -72,14 +72,18 @@ void sampled(benchmark::State& state, const Profile& p, double start_x) {
     }
     if (board.motion_status().idle) state.SkipWithError("the move ended during the run");
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kChunk));
-    state.counters["cycles/s"] = benchmark::Counter(static_cast<double>(state.iterations() * kChunk),
-                                                    benchmark::Counter::kIsRate);
+    state.counters["cycles/s"] = benchmark::Counter(
+        static_cast<double>(state.iterations() * kChunk), benchmark::Counter::kIsRate);
 }
 
-void BM_SampledCyclesLine8Axes(benchmark::State& state) { sampled(state, long_line(), 0.0); }
+void BM_SampledCyclesLine8Axes(benchmark::State& state) {
+    sampled(state, long_line(), 0.0);
+}
 BENCHMARK(BM_SampledCyclesLine8Axes);
 
-void BM_SampledCyclesHelix8Axes(benchmark::State& state) { sampled(state, long_helix(), 10000.0); }
+void BM_SampledCyclesHelix8Axes(benchmark::State& state) {
+    sampled(state, long_helix(), 10000.0);
+}
 BENCHMARK(BM_SampledCyclesHelix8Axes);
 
 // Sampled and read out by a consumer after every chunk (what `apcictl run --csv` does).
@@ -97,8 +101,8 @@ void BM_SampledCyclesLineDrained(benchmark::State& state) {
     }
     if (board.motion_status().idle) state.SkipWithError("the move ended during the run");
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kChunk));
-    state.counters["cycles/s"] = benchmark::Counter(static_cast<double>(state.iterations() * kChunk),
-                                                    benchmark::Counter::kIsRate);
+    state.counters["cycles/s"] = benchmark::Counter(
+        static_cast<double>(state.iterations() * kChunk), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SampledCyclesLineDrained);
 
@@ -125,10 +129,12 @@ void BM_UnobservedMove(benchmark::State& state) {
         ran = board.run_until_idle(~std::uint64_t{0});
         benchmark::DoNotOptimize(ran);
     }
-    if (ran + 1 < cycles || ran > cycles + 1) state.SkipWithError("the move did not take `cycles` cycles");
+    if (ran + 1 < cycles || ran > cycles + 1)
+        state.SkipWithError("the move did not take `cycles` cycles");
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
-    state.counters["virtual cycles/s"] = benchmark::Counter(
-        static_cast<double>(cycles) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["virtual cycles/s"] =
+        benchmark::Counter(static_cast<double>(cycles) * static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_UnobservedMove)->Arg(1'000)->Arg(1'000'000)->Arg(1'000'000'000);
 

@@ -2,11 +2,11 @@
 // The C API's motion calls (apci.h "Motion"): argument checks, the request
 // through the board's Transport, the reply into the caller's structs, the
 // last-error text. Like apci.cpp: noexcept, statuses only.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstring>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "apci/apci.h"
 #include "c_api.h"
@@ -59,8 +59,8 @@ apci_status motion_outcome(apci_board* board, Status s, const objif::MotionReply
     if (result != nullptr) *result = apci_motion_result{rep.group, rep.errors, rep.tag};
     if (objif::ok(s)) return done(board);
     return fail(board, s, [&] {
-        std::string text = fmt::format("{}: {}", what,
-                                       reason(s, rep.message, board->transport->failure_detail()));
+        std::string text =
+            fmt::format("{}: {}", what, reason(s, rep.message, board->transport->failure_detail()));
         if (rep.errors != 0)
             text += fmt::format(" (TC group {} ERROR bits 0x{:02x}, block {})", rep.group,
                                 rep.errors, rep.tag);
@@ -145,7 +145,8 @@ apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::
             if (!objif::ok(s)) {
                 *count = got;  // what was read so far is the caller's now
                 return fail(board, s, [&] {
-                    return fmt::format("{}: {}", op, reason(s, {}, board->transport->failure_detail()));
+                    return fmt::format("{}: {}", op,
+                                       reason(s, {}, board->transport->failure_detail()));
                 });
             }
             std::size_t n = 0;
@@ -197,7 +198,8 @@ apci_status apci_spool_profile(apci_board* board, const apci_profile* profile,
     }
 }
 
-apci_status apci_direct_command_send(apci_board* board, const apci_direct_command* command) noexcept {
+apci_status apci_direct_command_send(apci_board* board,
+                                     const apci_direct_command* command) noexcept {
     constexpr const char* op = "apci_direct_command_send";
     apci_status st = APCI_OK;
     if (!have(board, op, st) || !have(board, command, op, "command", st)) return st;

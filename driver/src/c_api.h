@@ -21,7 +21,9 @@ namespace apci {
 // Errors of calls that have no board (apci_open, NULL board); apci.cpp.
 extern thread_local std::string t_last_error;
 
-constexpr apci_status to_c(objif::Status s) noexcept { return static_cast<apci_status>(s); }
+constexpr apci_status to_c(objif::Status s) noexcept {
+    return static_cast<apci_status>(s);
+}
 
 // Stores `text` as the last error; an allocation failure leaves a short text.
 inline void record(std::string& slot, std::string_view text) noexcept {

@@ -5,7 +5,9 @@
 
 namespace rwmos {
 
-motion::MotionResult Board::spool(const motion::Profile& p) { return state_->motion.spool(p); }
+motion::MotionResult Board::spool(const motion::Profile& p) {
+    return state_->motion.spool(p);
+}
 
 motion::MotionResult Board::direct(const motion::DirectCommand& c) {
     return state_->motion.direct(c);
@@ -15,7 +17,9 @@ motion::MotionResult Board::ssf(motion::AxisMask axes, std::int32_t command) {
     return state_->motion.ssf(axes, command);
 }
 
-void Board::step(std::uint64_t cycles) { state_->motion.step(cycles); }
+void Board::step(std::uint64_t cycles) {
+    state_->motion.step(cycles);
+}
 
 std::uint64_t Board::run_until_idle(std::uint64_t max_cycles) {
     return state_->motion.run_until_idle(max_cycles);

@@ -89,8 +89,8 @@ void MotionLayer::sync() noexcept {
 }
 
 MotionResult MotionLayer::spool(const motion::Profile& p) {
-    const MotionResult r = spooler_.spool(p, settings(), exec_,
-                                          static_cast<std::size_t>(state_.spooler.capacity));
+    const MotionResult r =
+        spooler_.spool(p, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity));
     record(r);
     sync();
     return r;
@@ -136,6 +136,8 @@ void MotionLayer::discard_held_profile(std::int32_t group) {
     sync();
 }
 
-void MotionLayer::compensation_started(std::int32_t) { sync(); }
+void MotionLayer::compensation_started(std::int32_t) {
+    sync();
+}
 
 }  // namespace rwmos

@@ -75,21 +75,25 @@ objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req) {
             board.step(req.cycles);
             rep.ran = req.cycles;
             break;
-        case objif::ClockMode::kRunUntilIdle: rep.ran = board.run_until_idle(req.cycles); break;
-        case objif::ClockMode::kQuery: break;
+        case objif::ClockMode::kRunUntilIdle:
+            rep.ran = board.run_until_idle(req.cycles);
+            break;
+        case objif::ClockMode::kQuery:
+            break;
         case objif::ClockMode::kTraceOn:
             rep.status = req.cycles > Board::kMaxTraceCapacity
                              ? objif::Status::kValueTooHigh
                              : board.set_trace(true, static_cast<std::size_t>(req.cycles));
             break;
-        case objif::ClockMode::kTraceOff: rep.status = board.set_trace(false, 0); break;
+        case objif::ClockMode::kTraceOff:
+            rep.status = board.set_trace(false, 0);
+            break;
     }
     const motion::MotionStatus s = board.motion_status();
     rep.now = s.now;
-    rep.flags = static_cast<std::uint8_t>((s.idle ? objif::kClockIdle : 0) |
-                                          (s.held ? objif::kClockHeld : 0) |
-                                          (s.profile_held ? objif::kClockProfileHeld : 0) |
-                                          (s.tracing ? objif::kClockTracing : 0));
+    rep.flags = static_cast<std::uint8_t>(
+        (s.idle ? objif::kClockIdle : 0) | (s.held ? objif::kClockHeld : 0) |
+        (s.profile_held ? objif::kClockProfileHeld : 0) | (s.tracing ? objif::kClockTracing : 0));
     rep.fill = s.fill;
     rep.capacity = s.capacity;
     rep.compensating_group = s.compensating_group;

@@ -29,8 +29,10 @@ apci_profile line(uint32_t tag, double x, double y, double feed = 600.0) {
 }
 
 class Motion : public ::testing::Test {
-protected:
-    void SetUp() override { ASSERT_EQ(apci_open("emu:", &board_), APCI_OK) << apci_last_error(nullptr); }
+  protected:
+    void SetUp() override {
+        ASSERT_EQ(apci_open("emu:", &board_), APCI_OK) << apci_last_error(nullptr);
+    }
     void TearDown() override { apci_close(board_); }
     std::string last_error() const { return apci_last_error(board_); }
 
@@ -247,4 +249,6 @@ TEST(MotionCpp, WrapperCarriesStatusAndValue) {
 
 extern "C" int c_motion_round_trip(void);
 
-TEST(MotionFromC, SpoolRunAndReadSegmentsFromC) { EXPECT_EQ(c_motion_round_trip(), 0); }
+TEST(MotionFromC, SpoolRunAndReadSegmentsFromC) {
+    EXPECT_EQ(c_motion_round_trip(), 0);
+}

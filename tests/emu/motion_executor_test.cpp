@@ -34,8 +34,8 @@ std::vector<Segment> drain_segments(Executor& e) {
 
 TEST(Executor, MovesRunOneAfterTheOtherAndLogTheirSegments) {
     Executor e;
-    e.push(line(at(0, 0), at(1, 0), 10));   // 100 cycles
-    e.push(line(at(1, 0), at(1, 2), 20));   // 200 cycles
+    e.push(line(at(0, 0), at(1, 0), 10));  // 100 cycles
+    e.push(line(at(1, 0), at(1, 2), 20));  // 200 cycles
     EXPECT_EQ(e.fill(), 2u);
     EXPECT_EQ(e.run_until_idle(1'000'000, kCycle), 300u);
     EXPECT_EQ(e.now(), 300u);

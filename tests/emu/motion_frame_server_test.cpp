@@ -45,7 +45,7 @@ objif::SpoolRequest wire_line(std::uint32_t tag, double x, double y) {
 }
 
 class MotionFrames : public MotionBoard {
-protected:
+  protected:
     rwmos::FrameServer server{board};
 
     // Serves one well-formed request and decodes its reply payload as M.
@@ -57,7 +57,8 @@ protected:
         std::size_t used = 0;
         bool more = false;
         EXPECT_EQ(objif::decode_frame(out, f, used, more), FrameError::kNone);
-        EXPECT_EQ(f.opcode, static_cast<std::uint16_t>(static_cast<std::uint16_t>(op) | objif::kReplyFlag));
+        EXPECT_EQ(f.opcode,
+                  static_cast<std::uint16_t>(static_cast<std::uint16_t>(op) | objif::kReplyFlag));
         M m;
         EXPECT_EQ(objif::decode(f.payload, m), FrameError::kNone);
         return m;
@@ -97,7 +98,8 @@ TEST_F(MotionFrames, SpoolProfileFrameSpoolsAndRepliesOk) {
 TEST_F(MotionFrames, SpoolProfileReplyNamesTheTcErrorGroupBitsAndBlock) {
     setup_group(5.0);
     activate();
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 10, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 10, 0)).status,
+              Status::kOk);
     objif::SpoolRequest bad_arc = wire_line(2, 10, 4);
     bad_arc.kind = 3;
     bad_arc.center = {10, 2};
@@ -118,12 +120,15 @@ TEST_F(MotionFrames, BadProfileTravelsAsReplyStatus) {
 
 TEST_F(MotionFrames, SpoolerFullTravelsAsBusy) {
     board.state().spooler.capacity = 1;
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status, Status::kOk);
-    EXPECT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(2, 2, 0)).status, Status::kBusy);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status,
+              Status::kOk);
+    EXPECT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(2, 2, 0)).status,
+              Status::kBusy);
 }
 
 TEST_F(MotionFrames, DirectCommandFrameDiscardsTheSpooler) {
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status,
+              Status::kOk);
     objif::DirectRequest js;
     js.code = static_cast<std::uint16_t>(DirectCode::kJS);
     EXPECT_EQ(call<objif::MotionReply>(Opcode::kDirectCommand, js).status, Status::kOk);
@@ -133,7 +138,8 @@ TEST_F(MotionFrames, DirectCommandFrameDiscardsTheSpooler) {
 TEST_F(MotionFrames, SsfCommandFrameReleasesTheHeldProfile) {
     setup_group(1.0);
     activate();
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 10, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 10, 0)).status,
+              Status::kOk);
     ASSERT_TRUE(prof_marked());
     EXPECT_EQ(call<objif::MotionReply>(Opcode::kSsfCommand, objif::SsfRequest{0x03, 2001}).status,
               Status::kOk);
@@ -143,7 +149,8 @@ TEST_F(MotionFrames, SsfCommandFrameReleasesTheHeldProfile) {
 }
 
 TEST_F(MotionFrames, ClockFrameStepsRunsAndReports) {
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status,
+              Status::kOk);
     auto r = clock(objif::ClockMode::kStep, 30);
     EXPECT_EQ(r.status, Status::kOk);
     EXPECT_EQ(r.ran, 30u);
@@ -166,9 +173,11 @@ TEST_F(MotionFrames, ClockFrameTurnsTheTraceOnAndReadTraceFetchesTheSamples) {
     auto r = clock(objif::ClockMode::kTraceOn, 1000);
     ASSERT_EQ(r.status, Status::kOk);
     EXPECT_NE(r.flags & objif::kClockTracing, 0);
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 0.05, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 0.05, 0)).status,
+              Status::kOk);
     clock(objif::ClockMode::kStep, 5);
-    const auto t = call<objif::TraceReply>(Opcode::kReadTrace, objif::TraceRequest{objif::TraceKind::kSamples, 3});
+    const auto t = call<objif::TraceReply>(Opcode::kReadTrace,
+                                           objif::TraceRequest{objif::TraceKind::kSamples, 3});
     ASSERT_EQ(t.samples.size(), 3u);
     EXPECT_EQ(t.samples[0].cycle, 1u);
     EXPECT_DOUBLE_EQ(t.samples[2].position[0], 0.03);
@@ -181,14 +190,15 @@ TEST_F(MotionFrames, ClockFrameTurnsTheTraceOnAndReadTraceFetchesTheSamples) {
 }
 
 TEST_F(MotionFrames, ReadTraceFetchesExecutedSegmentsWithRoleAndTag) {
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(7, 1, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(7, 1, 0)).status,
+              Status::kOk);
     objif::SpoolRequest arc = wire_line(8, 0, 1);
     arc.kind = 3;
     arc.center = {0, 0};
     ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, arc).status, Status::kOk);
     clock(objif::ClockMode::kRunUntilIdle, 1'000'000);
-    const auto t =
-        call<objif::TraceReply>(Opcode::kReadTrace, objif::TraceRequest{objif::TraceKind::kSegments, 100});
+    const auto t = call<objif::TraceReply>(Opcode::kReadTrace,
+                                           objif::TraceRequest{objif::TraceKind::kSegments, 100});
     ASSERT_EQ(t.segments.size(), 2u);
     EXPECT_EQ(t.segments[0].tag, 7u);
     EXPECT_EQ(t.segments[0].role, static_cast<std::uint8_t>(SegmentRole::kUncompensated));
@@ -200,7 +210,8 @@ TEST_F(MotionFrames, ReadTraceFetchesExecutedSegmentsWithRoleAndTag) {
 }
 
 TEST_F(MotionFrames, EveryTruncatedOrOverlongMotionPayloadIsRejected) {
-    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status, Status::kOk);
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status,
+              Status::kOk);
     std::vector<std::pair<Opcode, std::vector<std::uint8_t>>> valid;
     auto add = [&](Opcode op, const auto& m) {
         std::vector<std::uint8_t> p;
@@ -214,8 +225,9 @@ TEST_F(MotionFrames, EveryTruncatedOrOverlongMotionPayloadIsRejected) {
     add(Opcode::kReadTrace, objif::TraceRequest{objif::TraceKind::kSegments, 10});
     for (const auto& [op, payload] : valid) {
         for (std::size_t n = 0; n < payload.size(); ++n)
-            expect_rejected(raw_frame(op, {payload.begin(), payload.begin() + static_cast<long>(n)}),
-                            FrameError::kBadPayload);
+            expect_rejected(
+                raw_frame(op, {payload.begin(), payload.begin() + static_cast<long>(n)}),
+                FrameError::kBadPayload);
         auto longer = payload;
         longer.push_back(1);
         expect_rejected(raw_frame(op, longer), FrameError::kBadPayload);

@@ -32,14 +32,17 @@ TEST(Interpolator, CycleCountRoundsUpSoSpeedNeverExceedsFeed) {
     EXPECT_LE(per_cycle, 600.0 / 60.0 * 0.001);
 }
 
-TEST(Interpolator, ZeroLengthTakesNoCycle) { EXPECT_EQ(cycles_for(0.0, 600.0, 0.001), 0u); }
+TEST(Interpolator, ZeroLengthTakesNoCycle) {
+    EXPECT_EQ(cycles_for(0.0, 600.0, 0.001), 0u);
+}
 
 TEST(Interpolator, CycleCountSaturatesInsteadOfOverflowing) {
     EXPECT_EQ(cycles_for(1e300, 1e-300, 0.001), kMaxMoveCycles);
 }
 
 TEST(Interpolator, LastCycleLandsExactlyOnTheEnd) {
-    const Move m = line_move(at(0.1, 0.2), at(10.3, -7.7, 3.3), 1000.0, SegmentRole::kUncompensated, 1);
+    const Move m =
+        line_move(at(0.1, 0.2), at(10.3, -7.7, 3.3), 1000.0, SegmentRole::kUncompensated, 1);
     const std::uint64_t n = cycles_for(path_length(m), m.feed, 0.001);
     AxisVector p{};
     position_at(m, n, n, p);

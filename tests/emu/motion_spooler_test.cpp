@@ -275,9 +275,9 @@ TEST_F(Spooler, FeedIsInterpolationUnitsPerMinute) {
 }
 
 TEST_F(Spooler, InterpolationCycleObjectSetsTheCycleLength) {
-    ASSERT_EQ(write_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxInterpolationCycle, 0,
-                        2000),
-              Status::kOk);
+    ASSERT_EQ(
+        write_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxInterpolationCycle, 0, 2000),
+        Status::kOk);
     spool_ok(line(1, 10, 0, 600.0));
     EXPECT_EQ(board.run_until_idle(1'000'000), 500u);
 }
@@ -298,12 +298,12 @@ TEST_F(Spooler, SpoolerFillAndPositionObjectsShowTheMotion) {
     spool_ok(line(3, 0, 1));
     EXPECT_EQ(read_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxSpoolerFill, 0), 3);
     board.step(50);
-    EXPECT_DOUBLE_EQ(read_double(board_obj::kBus, board_obj::kDevice, board_obj::kIdxAxisPosition, 0),
-                     0.5);
+    EXPECT_DOUBLE_EQ(
+        read_double(board_obj::kBus, board_obj::kDevice, board_obj::kIdxAxisPosition, 0), 0.5);
     run();
     EXPECT_EQ(read_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxSpoolerFill, 0), 0);
-    EXPECT_DOUBLE_EQ(read_double(board_obj::kBus, board_obj::kDevice, board_obj::kIdxAxisPosition, 1),
-                     1.0);
+    EXPECT_DOUBLE_EQ(
+        read_double(board_obj::kBus, board_obj::kDevice, board_obj::kIdxAxisPosition, 1), 1.0);
 }
 
 TEST_F(Spooler, UnnamedAxesKeepTheirProgrammedPosition) {
@@ -343,7 +343,8 @@ TEST_F(Spooler, BusyWhileCompensatingLeavesTheHeldProfileAsItWas) {
         b.spool_ok(line(1, 10, 0));
         if (provoke_busy) {
             // A queue exactly full: the next profile's moves do not fit.
-            b.board.state().spooler.capacity = static_cast<std::int32_t>(b.board.motion_status().fill);
+            b.board.state().spooler.capacity =
+                static_cast<std::int32_t>(b.board.motion_status().fill);
             EXPECT_EQ(b.board.spool(line(2, 10, -10)).status, Status::kBusy);
             EXPECT_TRUE(b.prof_marked());
             b.board.state().spooler.capacity = rwmos::kSpoolerCapacity;
@@ -393,10 +394,18 @@ TEST_F(Spooler, BadProfilesAreRefusedAndChangeNothing) {
         {"target too high", with([](Profile& p) { p.target[1] = 1e6; }), Status::kValueTooHigh},
         {"target too low", with([](Profile& p) { p.target[0] = -1e6; }), Status::kValueTooLow},
         {"target infinite", with([&](Profile& p) { p.target[0] = inf; }), Status::kInvalidValue},
-        {"arc axes equal", with([](Profile& p) { p.arc_axes = {1, 1}; }), Status::kInvalidValue},
-        {"arc axis 8", with([](Profile& p) { p.arc_axes = {0, 8}; }), Status::kValueTooHigh},
+        {"arc axes equal", with([](Profile& p) {
+             p.arc_axes = {1, 1};
+         }),
+         Status::kInvalidValue},
+        {"arc axis 8", with([](Profile& p) {
+             p.arc_axes = {0, 8};
+         }),
+         Status::kValueTooHigh},
         {"arc centre NaN", with([&](Profile& p) { p.center[0] = nan; }), Status::kInvalidValue},
-        {"arc end not on the circle", with([](Profile& p) { p.center = {1.5, 1.0}; }),
+        {"arc end not on the circle", with([](Profile& p) {
+             p.center = {1.5, 1.0};
+         }),
          Status::kInvalidValue},
     };
     for (const Case& c : cases) {

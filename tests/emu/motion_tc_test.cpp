@@ -17,7 +17,7 @@ namespace tc = rwmos::tc;
 namespace {
 
 class TcRules : public MotionBoard {
-protected:
+  protected:
     void rotate(double degrees, double cx = 0.0, double cy = 0.0) {
         ASSERT_EQ(write_double(tc::kBus, tc::kDevInit, tc::kIdxRotAngle, 0, degrees), Status::kOk);
         ASSERT_EQ(write_double(tc::kBus, tc::kDevInit, tc::kIdxRotCenterX, 0, cx), Status::kOk);
@@ -75,8 +75,8 @@ TEST_F(TcRules, RotationNeverAppliesToDirectJogMoves) {
 
 TEST_F(TcRules, RotationTurnsArcCentresToo) {
     rotate(90.0);
-    spool_ok(line(1, 10, 0));                // to (0, 10) on the machine
-    spool_ok(arc(2, true, 0, 10, 0, 0));     // quarter circle to (0, 10) -> (-10, 0)
+    spool_ok(line(1, 10, 0));             // to (0, 10) on the machine
+    spool_ok(arc(2, true, 0, 10, 0, 0));  // quarter circle to (0, 10) -> (-10, 0)
     run();
     const auto segs = segments();
     ASSERT_EQ(segs.size(), 2u);
@@ -173,6 +173,49 @@ TEST_F(TcRules, ArcInTheActivePlaneZxTurnsAboutTheThirdAxisY) {
     expect_at(position(), 10, 0, 0);
 }
 
+// ---- Settings changed during a contour
+
+TEST_F(TcRules, CornerModeWrittenDuringAContourAppliesFromTheNextCorner) {
+    setup_group(1.0, /*left=*/false);  // right: the left turns of a ccw square are outside corners
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, 10));  // corner 1: circular (default)
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCornerMode, tc::kCornerLinear),
+              Status::kOk);
+    EXPECT_TRUE(prof_marked()) << "the contour goes on";
+    spool_ok(line(3, 0, 10));  // corner 2: linear
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 6u);  // approach, contour 1, arc, contour 2, two lines
+    EXPECT_EQ(segs[2].role, SegmentRole::kTransition);
+    EXPECT_EQ(segs[2].kind, SegmentKind::kArc);
+    EXPECT_EQ(segs[4].role, SegmentRole::kTransition);
+    EXPECT_EQ(segs[4].kind, SegmentKind::kLine);
+    EXPECT_EQ(segs[5].role, SegmentRole::kTransition);
+    EXPECT_EQ(segs[5].kind, SegmentKind::kLine);
+    expect_at(segs[4].end, 11, 11);  // the extended offsets meet at the corner's diagonal
+}
+
+TEST_F(TcRules, RadiusWrittenDuringAContourAppliesFromTheNextProfile) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubRadius, 2.0), Status::kOk);
+    spool_ok(line(2, 20, 0));
+    EXPECT_TRUE(prof_marked());
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 5u);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 10, 1);  // profile 1 at the old radius, to its offset end
+    EXPECT_EQ(segs[2].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[2].tag, 2u);
+    expect_at(segs[2].end, 10, 2);  // onto the new radius's path
+    expect_at(segs[3].end, 20, 2);
+    EXPECT_EQ(segs[4].role, SegmentRole::kDeparture);
+}
+
 // ---- Tool length compensation (seed 003 Table 3 ZAxis, WkzLen)
 
 TEST_F(TcRules, ToolLengthCompensationAddsWkzLenAlongTheGroupsThirdAxis) {
@@ -187,9 +230,9 @@ TEST_F(TcRules, ToolLengthCompensationAddsWkzLenAlongTheGroupsThirdAxis) {
     ASSERT_EQ(segs.size(), 5u);
     EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
     EXPECT_NEAR(segs[0].end[2], 5.0, kEps);
-    EXPECT_NEAR(segs[1].end[2], 5.0, kEps);   // contour 1 at Z 0 + 5
-    EXPECT_NEAR(segs[2].end[2], 5.0, kEps);   // transition at the corner
-    EXPECT_NEAR(segs[3].end[2], 3.0, kEps);   // contour 2 down to Z -2 + 5
+    EXPECT_NEAR(segs[1].end[2], 5.0, kEps);  // contour 1 at Z 0 + 5
+    EXPECT_NEAR(segs[2].end[2], 5.0, kEps);  // transition at the corner
+    EXPECT_NEAR(segs[3].end[2], 3.0, kEps);  // contour 2 down to Z -2 + 5
     EXPECT_EQ(segs[4].role, SegmentRole::kDeparture);
     EXPECT_NEAR(segs[4].end[2], -2.0, kEps);  // compensation removed at the end
 }
@@ -394,13 +437,15 @@ TEST_F(TcRules, TraceSamplesEveryCycleOnce) {
 TEST(MotionWithoutOptionTc, ProfilesRunAsProgrammed) {
     Rig r(rwmos::BoardConfig{false});
     Profile p = arc(1, true, 0, 10, 0, 0);
-    ASSERT_EQ(r.board.direct([] {
-        DirectCommand ja;
-        ja.code = DirectCode::kJA;
-        ja.axes = 0x01;
-        ja.target[0] = 10;
-        return ja;
-    }()).status,
+    ASSERT_EQ(r.board
+                  .direct([] {
+                      DirectCommand ja;
+                      ja.code = DirectCode::kJA;
+                      ja.axes = 0x01;
+                      ja.target[0] = 10;
+                      return ja;
+                  }())
+                  .status,
               Status::kOk);
     r.spool_ok(p);
     r.run();

@@ -141,6 +141,33 @@ TEST(Compensator, LinearModeEmitsTheExtendedOffsetsAsTransition) {
     expect_near(out[2].path.end, {11, 0});
 }
 
+TEST(Compensator, TransitionModeSetDuringAContourAppliesFromTheNextCorner) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1, Side::kRight), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+    ASSERT_EQ(c.set_transition(TransitionMode::kLinear), Reason::kNone);
+    EXPECT_EQ(c.config().transition, TransitionMode::kLinear);
+    EXPECT_TRUE(c.holds_element()) << "the contour goes on";
+    ASSERT_TRUE(c.push(kSquare[1], 1, out).ok());
+    ASSERT_EQ(out.size(), 3u) << "contour and the two lines of a linear transition";
+    EXPECT_EQ(out[1].role, SegmentRole::kTransition);
+    EXPECT_EQ(out[1].path.kind, ElementKind::kLine);
+    expect_near(out[1].path.end, {11, -1});
+    ASSERT_EQ(c.set_transition(TransitionMode::kCircular), Reason::kNone);
+    ASSERT_TRUE(c.push(kSquare[2], 2, out).ok());
+    ASSERT_EQ(out.size(), 2u) << "contour and one transition arc";
+    EXPECT_EQ(out[1].path.kind, ElementKind::kArc);
+}
+
+TEST(Compensator, UndefinedTransitionModeIsRefusedAndChangesNothing) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+    EXPECT_EQ(c.set_transition(static_cast<TransitionMode>(7)), Reason::kInvalidSetting);
+    EXPECT_EQ(c.config().transition, TransitionMode::kCircular);
+}
+
 TEST(Compensator, FinishEmitsTheHeldElementUntrimmedAndTheDepartureToTheProgrammedEnd) {
     PathCompensator c;
     SegmentBatch out;

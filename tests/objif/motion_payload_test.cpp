@@ -53,7 +53,8 @@ objif::SpoolRequest sample_spool() {
     m.arc_axes = {2, 0};
     m.tag = 4711;
     m.feed = 1234.5;
-    for (std::size_t i = 0; i < m.target.size(); ++i) m.target[i] = 0.5 * static_cast<double>(i) - 1;
+    for (std::size_t i = 0; i < m.target.size(); ++i)
+        m.target[i] = 0.5 * static_cast<double>(i) - 1;
     m.center = {-3.25, 7.0};
     return m;
 }
@@ -192,8 +193,9 @@ TEST(MotionPayload, MotionReplyEncodesAtMostTheMessageLimit) {
 // ---- Clock
 
 TEST(MotionPayload, ClockRequestRoundTripsEveryMode) {
-    for (auto mode : {objif::ClockMode::kStep, objif::ClockMode::kRunUntilIdle, objif::ClockMode::kQuery,
-                      objif::ClockMode::kTraceOn, objif::ClockMode::kTraceOff}) {
+    for (auto mode :
+         {objif::ClockMode::kStep, objif::ClockMode::kRunUntilIdle, objif::ClockMode::kQuery,
+          objif::ClockMode::kTraceOn, objif::ClockMode::kTraceOff}) {
         const objif::ClockRequest m{mode, 0x0102030405060708ull};
         const auto b = bytes_of(m);
         EXPECT_EQ(b.size(), 9u);

@@ -44,7 +44,8 @@ TEST(ApcictlMotion, HeldProfileShowsInStatusAndSsf2001ReleasesIt) {
     const auto r = script(kCompensate + "spool G01 N1 X10 Y0 F600\nstatus\nssf XY 2001\nstatus\n");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const auto first = r.out.find("group 1: ERROR 0x00 none; STATUS 0x03 (Run on, ProfMarked on)");
-    const auto second = r.out.find("group 1: ERROR 0x00 none; STATUS 0x01 (Run on, ProfMarked off)");
+    const auto second =
+        r.out.find("group 1: ERROR 0x00 none; STATUS 0x01 (Run on, ProfMarked off)");
     EXPECT_NE(first, std::string::npos) << r.out;
     EXPECT_NE(second, std::string::npos) << r.out;
     EXPECT_LT(first, second);
@@ -56,7 +57,8 @@ TEST(ApcictlMotion, TcErrorNamesTheLineGroupBitsAndBlock) {
                           "spool G03 N3 X0 Y10 I0 J0 F600\n"
                           "step --idle\n");
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_TRUE(contains(r.err, "line 5: spool G03 N3 X0 Y10 I0 J0 F600: WrongDeviceState")) << r.err;
+    EXPECT_TRUE(contains(r.err, "line 5: spool G03 N3 X0 Y10 I0 J0 F600: WrongDeviceState"))
+        << r.err;
     EXPECT_TRUE(contains(r.err, "TC group 1 ERROR bits 0x10, block 3")) << r.err;
     EXPECT_EQ(r.out, "") << "the script stops at the failing line";
 }
@@ -109,8 +111,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLine{"direct JS X1", "JS takes no words"},
                       BadLine{"direct JA F100", "JA needs an axis target"},
                       BadLine{"direct JX X1", "is not JA or JS"},
-                      BadLine{"ssf XQ 2001", "AXES 'XQ'"},
-                      BadLine{"ssf XY two", "COMMAND 'two'"},
+                      BadLine{"ssf XQ 2001", "AXES 'XQ'"}, BadLine{"ssf XY two", "COMMAND 'two'"},
                       BadLine{"step", "give CYCLES > 0 or --idle"}));
 
 }  // namespace

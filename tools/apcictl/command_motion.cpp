@@ -7,13 +7,13 @@
 //   ssf XY 2001                        SSF command to axes X and Y
 //   step 1000 | step --idle            advance the interpolation clock
 // Axis letters name board axes: X Y Z U V W A B = 0..7.
+#include <fmt/format.h>
+
 #include <array>
 #include <cctype>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.h"
 #include "value_text.h"
@@ -72,7 +72,8 @@ struct Words {
                 continue;
             }
             double v = 0.0;
-            if (!parse_double(number, v)) return fmt::format("'{}': '{}' is not a number", w, number);
+            if (!parse_double(number, v))
+                return fmt::format("'{}': '{}' is not a number", w, number);
             if (axis >= 0) {
                 named[static_cast<std::size_t>(axis)] = true;
                 target[static_cast<std::size_t>(axis)] = v;
@@ -112,7 +113,7 @@ bool axes_of(std::string_view letters, std::uint8_t& mask) {
 // ---- spool
 
 class SpoolCommand final : public Command {
-public:
+  public:
     void declare(CLI::App& app) override {
         app.add_option("KIND", kind_text_, "G00, G01, G02 or G03 (G0..G3)")->required();
         app.add_option("WORDS", words_text_,
@@ -120,9 +121,10 @@ public:
                        "arcs: I J = centre on the arc's first and second axis (absolute)");
         app.add_option("--arc-axes", arc_axes_text_,
                        "The two axes an arc is named in, first then second (default XY)");
-        app.footer("Spools one profile. Prints nothing on success. A TC error names the group, "
-                   "its ERROR bits and the block; Busy means the spooler is full: step, then "
-                   "spool again.");
+        app.footer(
+            "Spools one profile. Prints nothing on success. A TC error names the group, "
+            "its ERROR bits and the block; Busy means the spooler is full: step, then "
+            "spool again.");
     }
 
     Outcome prepare() override {
@@ -146,8 +148,8 @@ public:
         if (arc && !(w.has_i && w.has_j)) return usage("an arc needs its centre: I and J");
         std::uint8_t plane = 0;
         if (!axes_of(arc_axes_text_, plane) || arc_axes_text_.size() != 2)
-            return usage(fmt::format("--arc-axes '{}' is not two different axis letters",
-                                     arc_axes_text_));
+            return usage(
+                fmt::format("--arc-axes '{}' is not two different axis letters", arc_axes_text_));
         profile_.axes = w.mask();
         profile_.tag = w.tag;
         profile_.feed = w.feed;
@@ -167,7 +169,7 @@ public:
         return Outcome::board_error(fmt::format("{}: {}", text(), board_says(*board)));
     }
 
-private:
+  private:
     std::string text() const {
         std::string t = fmt::format("spool {}", kind_text_);
         if (!words_text_.empty()) t += " " + joined(words_text_);
@@ -187,13 +189,15 @@ private:
 // ---- direct
 
 class DirectCommand final : public Command {
-public:
+  public:
     void declare(CLI::App& app) override {
         app.add_option("CODE", code_text_, "JA (jog absolute) or JS (jog stop)")->required();
-        app.add_option("WORDS", words_text_, "JA: axis targets X Y Z U V W A B, F<feed> (0: rapid)");
-        app.footer("Discards the spooler and the held profile first (seed: APCI-8001 TC document, "
-                   "section 1), then JA moves the named axes, JS stops every axis. Prints nothing "
-                   "on success.");
+        app.add_option("WORDS", words_text_,
+                       "JA: axis targets X Y Z U V W A B, F<feed> (0: rapid)");
+        app.footer(
+            "Discards the spooler and the held profile first (seed: APCI-8001 TC document, "
+            "section 1), then JA moves the named axes, JS stops every axis. Prints nothing "
+            "on success.");
     }
 
     Outcome prepare() override {
@@ -209,7 +213,8 @@ public:
         }
         Words w;
         if (std::string why = w.parse(words_text_, "F"); !why.empty()) return usage(why);
-        if (command_.code == APCI_DIRECT_JA && w.mask() == 0) return usage("JA needs an axis target");
+        if (command_.code == APCI_DIRECT_JA && w.mask() == 0)
+            return usage("JA needs an axis target");
         command_.axes = w.mask();
         command_.feed = w.feed;
         for (std::size_t a = 0; a < w.target.size(); ++a) command_.target[a] = w.target[a];
@@ -224,7 +229,7 @@ public:
         return Outcome::board_error(fmt::format("{}: {}", text(), board_says(*board)));
     }
 
-private:
+  private:
     std::string text() const {
         return words_text_.empty() ? fmt::format("direct {}", code_text_)
                                    : fmt::format("direct {} {}", code_text_, joined(words_text_));
@@ -241,11 +246,12 @@ private:
 // ---- ssf
 
 class SsfCommand final : public Command {
-public:
+  public:
     void declare(CLI::App& app) override {
         app.add_option("AXES", axes_text_, "Axis letters, e.g. XY (X Y Z U V W A B = axes 0..7)")
             ->required();
-        app.add_option("COMMAND", command_text_, "SSF command number (2001: release the held profile)")
+        app.add_option("COMMAND", command_text_,
+                       "SSF command number (2001: release the held profile)")
             ->required();
         app.footer("Prints nothing on success.");
     }
@@ -266,7 +272,7 @@ public:
         return Outcome::board_error(fmt::format("{}: {}", text(), board_says(*board)));
     }
 
-private:
+  private:
     std::string text() const { return fmt::format("ssf {} {}", axes_text_, command_text_); }
     Outcome usage(std::string why) const {
         return Outcome::usage_error(fmt::format("{}: {}", text(), why));
@@ -280,14 +286,16 @@ private:
 // ---- step
 
 class StepCommand final : public Command {
-public:
+  public:
     void declare(CLI::App& app) override {
         auto* cycles = app.add_option("CYCLES", cycles_, "Interpolation cycles to advance");
-        auto* idle = app.add_flag("--idle", idle_, "Advance until nothing moves (at most --max cycles)");
+        auto* idle =
+            app.add_flag("--idle", idle_, "Advance until nothing moves (at most --max cycles)");
         app.add_option("--max", max_, "With --idle: the most cycles to run (default 1e9)");
         cycles->excludes(idle);
-        app.footer("Prints one line: 'cycle NOW (+RAN) fill F/C idle|moving|held X.. Y.. ...' "
-                   "with the axis positions after the step.");
+        app.footer(
+            "Prints one line: 'cycle NOW (+RAN) fill F/C idle|moving|held X.. Y.. ...' "
+            "with the axis positions after the step.");
     }
 
     Outcome prepare() override {
@@ -300,21 +308,20 @@ public:
         apci::Board* board = session.board(failure);
         if (board == nullptr) return failure;
         const auto r = idle_ ? board->run_until_idle(max_) : board->step(cycles_);
-        if (!r)
-            return Outcome::board_error(fmt::format("{}: {}", text(), board_says(*board)));
+        if (!r) return Outcome::board_error(fmt::format("{}: {}", text(), board_says(*board)));
         const apci_motion_status& s = r.value;
         const char* state = (s.flags & APCI_MOTION_HELD) != 0   ? "held"
                             : (s.flags & APCI_MOTION_IDLE) != 0 ? "idle"
                                                                 : "moving";
-        std::string line = fmt::format("cycle {} (+{}) fill {}/{} {}", s.now, s.ran, s.fill,
-                                       s.capacity, state);
+        std::string line =
+            fmt::format("cycle {} (+{}) fill {}/{} {}", s.now, s.ran, s.fill, s.capacity, state);
         for (std::size_t a = 0; a < kAxisLetters.size(); ++a)
             line += fmt::format(" {}{}", kAxisLetters[a], s.position[a]);
         fmt::print("{}\n", line);
         return Outcome::success();
     }
 
-private:
+  private:
     std::string text() const {
         return idle_ ? fmt::format("step --idle --max {}", max_) : fmt::format("step {}", cycles_);
     }
@@ -326,9 +333,17 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Command> make_spool_command() { return std::make_unique<SpoolCommand>(); }
-std::unique_ptr<Command> make_direct_command() { return std::make_unique<DirectCommand>(); }
-std::unique_ptr<Command> make_ssf_command() { return std::make_unique<SsfCommand>(); }
-std::unique_ptr<Command> make_step_command() { return std::make_unique<StepCommand>(); }
+std::unique_ptr<Command> make_spool_command() {
+    return std::make_unique<SpoolCommand>();
+}
+std::unique_ptr<Command> make_direct_command() {
+    return std::make_unique<DirectCommand>();
+}
+std::unique_ptr<Command> make_ssf_command() {
+    return std::make_unique<SsfCommand>();
+}
+std::unique_ptr<Command> make_step_command() {
+    return std::make_unique<StepCommand>();
+}
 
 }  // namespace apcictl

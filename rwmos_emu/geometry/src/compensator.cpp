@@ -118,6 +118,14 @@ StepResult PathCompensator::finish(SegmentBatch& out) noexcept {
     return {};
 }
 
+Reason PathCompensator::set_transition(TransitionMode mode) noexcept {
+    CompensatorConfig changed = config_;
+    changed.transition = mode;
+    if (const Reason r = check_config(changed); r != Reason::kNone) return r;
+    config_ = changed;
+    return Reason::kNone;
+}
+
 void PathCompensator::discard() noexcept {
     state_ = State::kIdle;
     plane_free_count_ = 0;

@@ -18,7 +18,7 @@
 namespace rwmos {
 
 class MotionLayer final : public TcMotion {
-public:
+  public:
     explicit MotionLayer(Board::State& state) noexcept : state_(state) {}
     MotionLayer(const MotionLayer&) = delete;
     MotionLayer& operator=(const MotionLayer&) = delete;
@@ -42,7 +42,7 @@ public:
     void discard_held_profile(std::int32_t group) override;
     void compensation_started(std::int32_t group) override;
 
-private:
+  private:
     motion::TcSettings settings() const noexcept;
     // Records a call's TC errors: ERROR bits set, Run cleared (seed 003 Table 4/5).
     void record(const motion::MotionResult& r) noexcept;

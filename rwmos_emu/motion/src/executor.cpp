@@ -9,7 +9,9 @@ bool Executor::can_start_front() const noexcept {
     return !moves_.empty() && (started_ || !halted_ || moves_.front().direct);
 }
 
-bool Executor::idle() const noexcept { return !can_start_front(); }
+bool Executor::idle() const noexcept {
+    return !can_start_front();
+}
 
 void Executor::start_front(double cycle_seconds) {
     const Move& m = moves_.front();

@@ -18,8 +18,9 @@ Move line_move(const AxisVector& start, const AxisVector& end, double feed, Segm
     return m;
 }
 
-Move arc_move(const AxisVector& start, const AxisVector& end, std::array<std::uint8_t, 2> plane_axes,
-              double cx, double cy, bool ccw, double feed, SegmentRole role, std::uint32_t tag) {
+Move arc_move(const AxisVector& start, const AxisVector& end,
+              std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw, double feed,
+              SegmentRole role, std::uint32_t tag) {
     Move m = line_move(start, end, feed, role, tag);
     m.kind = SegmentKind::kArc;
     m.plane_axes = plane_axes;

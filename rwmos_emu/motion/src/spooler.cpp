@@ -83,10 +83,14 @@ MotionResult check_profile(const Profile& p) {
 
 SegmentRole role_of(geom::SegmentRole r) {
     switch (r) {
-        case geom::SegmentRole::kContour: return SegmentRole::kContour;
-        case geom::SegmentRole::kTransition: return SegmentRole::kTransition;
-        case geom::SegmentRole::kApproach: return SegmentRole::kApproach;
-        case geom::SegmentRole::kDeparture: return SegmentRole::kDeparture;
+        case geom::SegmentRole::kContour:
+            return SegmentRole::kContour;
+        case geom::SegmentRole::kTransition:
+            return SegmentRole::kTransition;
+        case geom::SegmentRole::kApproach:
+            return SegmentRole::kApproach;
+        case geom::SegmentRole::kDeparture:
+            return SegmentRole::kDeparture;
     }
     return SegmentRole::kContour;
 }
@@ -96,7 +100,8 @@ geom::Vec2 on_plane(const AxisVector& v, const std::array<std::uint8_t, 2>& axes
 }
 
 // The G code of the plane the two axes span in this order, 0 if none.
-std::int32_t plane_code_of(std::array<std::uint8_t, 2> axes, const std::array<std::uint8_t, 3>& nr) {
+std::int32_t plane_code_of(std::array<std::uint8_t, 2> axes,
+                           const std::array<std::uint8_t, 3>& nr) {
     if (axes[0] == nr[0] && axes[1] == nr[1]) return 17;
     if (axes[0] == nr[2] && axes[1] == nr[0]) return 18;
     if (axes[0] == nr[1] && axes[1] == nr[2]) return 19;
@@ -225,8 +230,7 @@ void Spooler::end_contour(Compensation& c, bool keep_departure, Batch& batch) {
 
 MotionResult Spooler::commit(const Batch& batch, Executor& exec, std::size_t capacity) {
     if (exec.fill() + batch.count > capacity)
-        return refuse(Status::kBusy,
-                      "spooler full: nothing taken; run the clock and try again");
+        return refuse(Status::kBusy, "spooler full: nothing taken; run the clock and try again");
     for (std::size_t i = 0; i < batch.count; ++i) exec.push(batch.moves[i]);
     return {};
 }
@@ -278,6 +282,17 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         }
     } else {
         const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
+        if (trial.comp.running()) {
+            const geom::CompensatorConfig& now = trial.comp.config();
+            if (now.tool_radius != tc.radius || now.side != tc.side) {
+                // A new RADIUS applies from the next profile: the contour ends at
+                // the held profile's offset end and this one approaches the new path.
+                end_contour(trial, /*keep_departure=*/false, batch);
+            } else if (now.transition != tc.transition) {
+                // CornerMode (G25/G26) applies from the next corner; the contour goes on.
+                trial.comp.set_transition(tc.transition);
+            }
+        }
         if (!trial.comp.running()) {
             trial.group = tc.active_group;
             trial.plane_axes = plane;
@@ -289,11 +304,11 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         }
         trial.length = tc.length;
         const geom::Element e =
-            is_arc(p.kind)
-                ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
-                                 {res.cx, res.cy}, res.ccw)
-                : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
-        pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path, geom::is_plane_free(e)});
+            is_arc(p.kind) ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
+                                            {res.cx, res.cy}, res.ccw)
+                           : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
+        pending_.push_back(
+            Pending{next_index_, p.tag, feed, path_, res.path, geom::is_plane_free(e)});
         pushed = true;
         const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
         if (!step.ok()) {

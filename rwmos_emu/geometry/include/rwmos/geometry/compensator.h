@@ -107,6 +107,11 @@ class PathCompensator {
     // Drops the held element and ends compensation without output (direct command).
     void discard() noexcept;
 
+    // Changes the outside-corner transition (G25 / G26, the TC CornerMode object) for the
+    // corners still to come, the one after the held element included; the running contour
+    // goes on. kInvalidSetting (nothing changes) for an undefined mode.
+    Reason set_transition(TransitionMode mode) noexcept;
+
     bool running() const noexcept { return state_ != State::kIdle; }
     // A programmed element is held back (STATUS bit ProfMarked).
     bool holds_element() const noexcept { return state_ == State::kHolding; }

@@ -21,7 +21,7 @@ inline constexpr std::size_t kDefaultSegmentLogCapacity = 4096;
 inline constexpr std::size_t kDefaultTraceCapacity = 65536;
 
 class Executor {
-public:
+  public:
     Executor() : segments_(kDefaultSegmentLogCapacity) {}
 
     // ---- Queue
@@ -64,7 +64,7 @@ public:
     const Ring<TraceSample>& trace() const noexcept { return trace_; }
     const Ring<Segment>& segments() const noexcept { return segments_; }
 
-private:
+  private:
     bool can_start_front() const noexcept;
     void start_front(double cycle_seconds);
     void finish_front(bool interrupted);

@@ -24,7 +24,7 @@ struct Move {
     SegmentKind kind = SegmentKind::kLine;
     SegmentRole role = SegmentRole::kUncompensated;
     std::uint32_t tag = 0;
-    bool direct = false;  // started by a direct command (JA), not spooled
+    bool direct = false;     // started by a direct command (JA), not spooled
     std::int32_t plane = 0;  // arcs: G code of their plane (17, 18, 19), 0 if not a TC plane
     AxisVector start{};
     AxisVector end{};
@@ -46,8 +46,9 @@ Move line_move(const AxisVector& start, const AxisVector& end, double feed, Segm
                std::uint32_t tag);
 // The arc from `start` to `end` around (cx, cy) on `plane_axes`, turning
 // counter-clockwise when `ccw`. Start and end on the same point: a full circle.
-Move arc_move(const AxisVector& start, const AxisVector& end, std::array<std::uint8_t, 2> plane_axes,
-              double cx, double cy, bool ccw, double feed, SegmentRole role, std::uint32_t tag);
+Move arc_move(const AxisVector& start, const AxisVector& end,
+              std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw, double feed,
+              SegmentRole role, std::uint32_t tag);
 
 // Path length over all moving axes (arcs: sqrt(arc length^2 + other axes^2)).
 double path_length(const Move& m) noexcept;

@@ -13,7 +13,7 @@ namespace rwmos::motion {
 
 template <class T>
 class Ring {
-public:
+  public:
     explicit Ring(std::size_t capacity = 0) { set_capacity(capacity); }
 
     // Changes the capacity; drops the content (and resets the lost count).
@@ -63,7 +63,7 @@ public:
     // Entries dropped because the ring was full since the last set_capacity().
     std::uint64_t lost() const noexcept { return lost_; }
 
-private:
+  private:
     std::vector<T> buf_;
     std::size_t head_ = 0;
     std::size_t size_ = 0;

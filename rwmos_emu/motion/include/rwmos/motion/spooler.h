@@ -51,11 +51,12 @@ struct TcSettings {
 };
 
 class Spooler {
-public:
+  public:
     // A profile from the host. Checks it (nothing changes when it is bad),
     // then spools the moves it yields into `exec` (at most `capacity` moves
     // in the queue: kBusy and nothing taken when they do not fit).
-    MotionResult spool(const Profile& p, const TcSettings& tc, Executor& exec, std::size_t capacity);
+    MotionResult spool(const Profile& p, const TcSettings& tc, Executor& exec,
+                       std::size_t capacity);
 
     // STATUS = 0 on `group`: the held profile is corrected and spooled with the
     // departure to its programmed end (seed 003 section 1).
@@ -84,7 +85,7 @@ public:
     // The same after rotation: where the programmed path is (no compensation).
     const AxisVector& path_position() const noexcept { return path_; }
 
-private:
+  private:
     // The compensator and where it works (fixed when it begins). Calls work
     // on a copy and store it back only when everything fits.
     struct Compensation {
@@ -128,8 +129,8 @@ private:
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
     // The compensator's segments as board-axis moves, appended to `batch`.
     // Departures are dropped unless `keep_departure`.
-    void append_segments(const Compensation& c, const geom::SegmentBatch& segs,
-                         bool keep_departure, Batch& batch) const;
+    void append_segments(const Compensation& c, const geom::SegmentBatch& segs, bool keep_departure,
+                         Batch& batch) const;
     // Ends the contour under way into `batch`, with or without the departure.
     void end_contour(Compensation& c, bool keep_departure, Batch& batch);
     const Pending* pending(std::uint32_t index) const noexcept;
@@ -140,8 +141,8 @@ private:
     Compensation comp_;
     std::deque<Pending> pending_;
     std::uint32_t next_index_ = 1;
-    AxisVector program_{};  // programmed position, program coordinates
-    AxisVector path_{};     // programmed position after rotation (start of the next element)
+    AxisVector program_{};     // programmed position, program coordinates
+    AxisVector path_{};        // programmed position after rotation (start of the next element)
     geom::SegmentBatch segs_;  // scratch
 };
 

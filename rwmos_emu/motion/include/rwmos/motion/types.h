@@ -33,7 +33,9 @@ inline constexpr double kMaxCoordinate = geom::kMaxCoordinate;
 // G00 / G01 / G02 / G03. The numeric values travel on the wire.
 enum class ProfileKind : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 3 };
 std::string_view profile_kind_name(ProfileKind k) noexcept;  // "G00" ...
-constexpr bool is_interpolation(ProfileKind k) noexcept { return k != ProfileKind::kRapid; }
+constexpr bool is_interpolation(ProfileKind k) noexcept {
+    return k != ProfileKind::kRapid;
+}
 constexpr bool is_arc(ProfileKind k) noexcept {
     return k == ProfileKind::kArcCw || k == ProfileKind::kArcCcw;
 }
@@ -102,11 +104,11 @@ struct Segment {
     std::array<std::uint8_t, 2> plane_axes{0, 1};
     AxisVector center{};
     bool ccw = false;
-    std::int32_t plane = 0;           // arcs: 17, 18, 19 when in a TC plane's axes, else 0
-    double feed = 0.0;                // units/min actually used
-    std::uint64_t start_cycle = 0;    // clock value when it started
-    std::uint64_t end_cycle = 0;      // clock value when it ended
-    bool interrupted = false;         // cut short by a direct command or Reset
+    std::int32_t plane = 0;         // arcs: 17, 18, 19 when in a TC plane's axes, else 0
+    double feed = 0.0;              // units/min actually used
+    std::uint64_t start_cycle = 0;  // clock value when it started
+    std::uint64_t end_cycle = 0;    // clock value when it ended
+    bool interrupted = false;       // cut short by a direct command or Reset
 };
 
 // One interpolation cycle's axis positions (machine coordinates), taken after
@@ -130,19 +132,19 @@ struct MotionResult {
 
 // A snapshot of the motion part for the host (Board::motion_status()).
 struct MotionStatus {
-    std::uint64_t now = 0;           // interpolation cycles since power-on
-    bool idle = true;                // nothing moves: queue empty, or held
-    bool held = false;               // the spooler holds after a TC error (ERROR set)
-    std::uint32_t fill = 0;          // moves in the queue (the one under way included)
-    std::uint32_t capacity = 0;      // the most moves the queue takes
+    std::uint64_t now = 0;                // interpolation cycles since power-on
+    bool idle = true;                     // nothing moves: queue empty, or held
+    bool held = false;                    // the spooler holds after a TC error (ERROR set)
+    std::uint32_t fill = 0;               // moves in the queue (the one under way included)
+    std::uint32_t capacity = 0;           // the most moves the queue takes
     std::int32_t compensating_group = 0;  // 0: no compensation under way
-    bool profile_held = false;       // the compensating group holds a profile (ProfMarked)
-    bool tracing = false;            // per-cycle samples are recorded
-    std::uint64_t trace_pending = 0;     // samples waiting to be read
-    std::uint64_t trace_lost = 0;        // samples dropped because nobody read them
-    std::uint64_t segments_pending = 0;  // executed segments waiting to be read
+    bool profile_held = false;            // the compensating group holds a profile (ProfMarked)
+    bool tracing = false;                 // per-cycle samples are recorded
+    std::uint64_t trace_pending = 0;      // samples waiting to be read
+    std::uint64_t trace_lost = 0;         // samples dropped because nobody read them
+    std::uint64_t segments_pending = 0;   // executed segments waiting to be read
     std::uint64_t segments_lost = 0;
-    AxisVector position{};           // axis positions now (machine coordinates)
+    AxisVector position{};  // axis positions now (machine coordinates)
 };
 
 }  // namespace rwmos::motion
