@@ -96,6 +96,22 @@ TEST(SeedExample, AllowanceViaToolCallCentreOutputStandsOffByTheAllowance) {
     EXPECT_NEAR((c.tip + 3.0 * kT - (kS + 3.2 * kN)).norm(), 0.0, kSeedTolerance);
 }
 
+// The numbers docs/3d-compensation.md section 9 shows, to its 4 decimals.
+TEST(SeedExample, TcpValuesShownInTheDocs) {
+    constexpr double kShown = 5e-5;
+    EXPECT_LT((kCamTip - V(34.6110, 4.2093, -1.5308)).cwiseAbs().maxCoeff(), kShown);
+    EXPECT_LT((kCamCentre - V(34.6110, 6.1770, 0.7338)).cwiseAbs().maxCoeff(), kShown);
+    const V reground(34.6575, 4.2749, -1.5438);
+    const V allowance(34.5178, 4.2093, -1.3539);
+    for (const ReferencePoint ref : {ReferencePoint::kTip, ReferencePoint::kCentre}) {
+        const V p = ref == ReferencePoint::kTip ? kCamTip : kCamCentre;
+        const Compensated a = compensate(p, kN, kT, seed_settings({0.0, -0.1, -0.1}, {}, ref));
+        const Compensated b = compensate(p, kN, kT, seed_settings({}, {0.2, 0.2, 0.2}, ref));
+        EXPECT_LT((a.tip - reground).cwiseAbs().maxCoeff(), kShown);
+        EXPECT_LT((b.tip - allowance).cwiseAbs().maxCoeff(), kShown);
+    }
+}
+
 // "Nachgeschliffenen Schaftfräser korrigieren, CAM-Ausgabe Werkzeugmitte": an end mill of
 // 11.8 mm instead of 12 mm in peripheral milling; tool table R 6, R2 0, DL 0, DR -0.1.
 // Block 12 of the seed's peripheral example gives N and T (T perpendicular to N).
