@@ -83,6 +83,7 @@ std::unique_ptr<Command> make_spool_command();
 std::unique_ptr<Command> make_direct_command();
 std::unique_ptr<Command> make_ssf_command();
 std::unique_ptr<Command> make_step_command();
+std::unique_ptr<Command> make_run_command();
 
 // "WrongDeviceState (not possible in the present device state)".
 std::string describe_status(apci::Status status);

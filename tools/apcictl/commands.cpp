@@ -25,6 +25,8 @@ constexpr std::array kCommands{
                 make_ssf_command},
     CommandSpec{"step", "Advance the interpolation clock by N cycles, or --idle", true,
                 make_step_command},
+    CommandSpec{"run", "Execute an NC program; write its path as JSON, CSV and SVG", false,
+                make_run_command},
 };
 
 }  // namespace

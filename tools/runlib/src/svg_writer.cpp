@@ -361,17 +361,26 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     const double x0 = frame.u0() - margin;
     const double header = 2.2 * font;
     // Legend entries (layers drawn, then the error marker) in rows of `per_row`.
-    const double entry = 11.0 * font;
+    const double entry = 14.0 * font;
     std::size_t entries = markers_.empty() && markers_dropped_ == 0 ? 0 : 1;
     for (const std::uint64_t c : counts_) entries += c != 0 ? 1 : 0;
-    const double plot_width = (frame.u1() - frame.u0()) + 2 * margin;
+    // Error labels ("N80 KorrError") stand right of and above their markers: room for them.
+    double label_right = frame.u1() + margin;
+    double label_top = frame.v1() + margin;
+    for (const Marker& m : markers_) {
+        const double chars = static_cast<double>(block_label(m.block).size() + m.code.size() + 1);
+        label_right =
+            std::max(label_right, m.where[frame.axes().first] + (1.6 + 0.62 * chars) * font);
+        label_top = std::max(label_top, m.where[frame.axes().second] + 2.0 * font);
+    }
+    const double plot_width = label_right - x0;
     const double box_width = std::max(plot_width, 16.0 * font);
     const auto per_row =
         std::max<std::size_t>(1, static_cast<std::size_t>((box_width - 0.5 * margin) / entry));
     const std::size_t rows = (entries + per_row - 1) / per_row;
     const double footer = (3.0 + 1.5 * static_cast<double>(rows)) * font + margin;
-    const double y0 = -frame.v1() - margin - header;
-    const double height = (frame.v1() - frame.v0()) + 2 * margin + header + footer;
+    const double y0 = -label_top - header;
+    const double height = (label_top - frame.v0()) + margin + header + footer;
     const double pixels = 1000.0;
 
     TextSink sink(out);
@@ -410,7 +419,7 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     sink.append("<text x=\"");
     frame.number(sink, frame.u0());
     sink.append("\" y=\"");
-    frame.number(sink, -frame.v1() - margin - 0.8 * font);
+    frame.number(sink, y0 + 1.4 * font);
     sink.append("\">");
     append_xml_text(sink, title);
     sink.print(" \xe2\x80\x94 G{} plane {}, seen from +{}</text>\n", plane, plane_name(plane),

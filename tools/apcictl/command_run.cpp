@@ -1,0 +1,269 @@
+// SPDX-License-Identifier: MIT
+// `run PROGRAM.nc [--tools F] [--svg F] [--json F] [--csv F]`: executes an NC program on the
+// board (DESIGN.md section 7): validation pass first (nothing runs from a program that does not
+// parse), then the events drive the board through libapci (apci_run's ProgramExecutor), the
+// executed path streams into the outputs, and a summary goes to standard output.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apci/nc/program.h"
+#include "apci/nc/tools.h"
+#include "apci/run/csv_writer.h"
+#include "apci/run/executor.h"
+#include "apci/run/json_writer.h"
+#include "apci/run/summary.h"
+#include "apci/run/svg_writer.h"
+#include "command.h"
+
+namespace apcictl {
+namespace {
+
+using apci::run::PathSegment;
+using apci::run::RunError;
+
+// An output file, opened before the run and closed after it.
+struct OutputFile {
+    std::string path;
+    std::FILE* file = nullptr;
+    ~OutputFile() {
+        if (file != nullptr) std::fclose(file);
+    }
+    // Closes it; false when closing (the last write) failed.
+    bool close() {
+        if (file == nullptr) return true;
+        const bool ok = std::fclose(file) == 0;
+        file = nullptr;
+        return ok;
+    }
+};
+
+// A program read from standard input, copied to a temporary file so it can be read twice
+// (validation, then execution); removed when done.
+class StdinCopy {
+  public:
+    ~StdinCopy() {
+        if (!path_.empty()) ::unlink(path_.c_str());
+    }
+    // Empty on success, else why not.
+    std::string make() {
+        const char* dir = std::getenv("TMPDIR");
+        std::string templ =
+            fmt::format("{}/apcictl-run-XXXXXX", dir != nullptr && *dir ? dir : "/tmp");
+        const int fd = ::mkstemp(templ.data());
+        if (fd < 0)
+            return fmt::format("cannot make a temporary file in {}: {}", templ,
+                               std::strerror(errno));
+        path_ = templ;
+        char buffer[1 << 16];
+        for (;;) {
+            const std::size_t n = std::fread(buffer, 1, sizeof buffer, stdin);
+            if (n > 0 && ::write(fd, buffer, n) != static_cast<ssize_t>(n)) {
+                ::close(fd);
+                return fmt::format("cannot copy standard input to {}: {}", path_,
+                                   std::strerror(errno));
+            }
+            if (n < sizeof buffer) break;
+        }
+        const bool read_error = std::ferror(stdin) != 0;
+        ::close(fd);
+        if (read_error) return "cannot read standard input";
+        return {};
+    }
+    const std::string& path() const noexcept { return path_; }
+
+  private:
+    std::string path_;
+};
+
+// Where the run's output goes: the writers the user asked for, the plot, a progress bar.
+class Outputs final : public apci::run::RunSink {
+  public:
+    std::unique_ptr<apci::run::JsonRunWriter> json;
+    std::unique_ptr<apci::run::SvgPlotWriter> svg;
+    std::FILE* csv_file = nullptr;
+    std::unique_ptr<apci::run::TraceCsvWriter> csv;
+    std::uint64_t total_blocks = 0;
+    bool progress_bar = false;
+
+    void programmed(const PathSegment& s) override {
+        if (svg) svg->programmed(s);
+    }
+    bool wants_programmed() const override { return svg != nullptr; }
+    void executed(const PathSegment& s) override {
+        if (json) json->segment(s);
+        if (svg) svg->executed(s);
+    }
+    bool wants_samples() const override { return csv_file != nullptr; }
+    void axes(std::span<const std::string> names) override {
+        if (csv_file != nullptr) csv = std::make_unique<apci::run::TraceCsvWriter>(csv_file, names);
+    }
+    void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override {
+        if (csv) csv->sample(cycle, time_s, axes);
+    }
+    void error(const RunError& e, const apci::run::Point& where) override {
+        if (svg) svg->error_marker(e.block, where, e.code);
+    }
+    void progress(std::uint64_t blocks) override {
+        if (!progress_bar || total_blocks == 0) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_draw_ < std::chrono::milliseconds(100)) return;
+        last_draw_ = now;
+        constexpr int kWidth = 30;
+        const double done =
+            std::min(1.0, static_cast<double>(blocks) / static_cast<double>(total_blocks));
+        const int filled = static_cast<int>(done * kWidth);
+        fmt::print(stderr, "\r[{:=<{}}{: <{}}] {:3.0f}% {} of {} blocks", "", filled, "",
+                   kWidth - filled, 100.0 * done, blocks, total_blocks);
+        std::fflush(stderr);
+        drawn_ = true;
+    }
+    void clear_progress() {
+        if (drawn_) fmt::print(stderr, "\r\x1b[K");
+        drawn_ = false;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point last_draw_{};
+    bool drawn_ = false;
+};
+
+class RunCommand final : public Command {
+  public:
+    void declare(CLI::App& app) override {
+        app.add_option("PROGRAM", program_, "NC program (DIN 66025), or - to read standard input")
+            ->required();
+        app.add_option("--tools", tools_, "Tool list file (wz[i].field value), for D words");
+        app.add_option("--svg", svg_, "Write a plot of the programmed contour and the tool path");
+        app.add_option("--json", json_, "Write the executed path, errors and registers as JSON");
+        app.add_option("--csv", csv_, "Write the axis positions of every interpolation cycle");
+        app.footer(
+            "Validates the whole program first: a program that does not parse runs nothing and "
+            "its error names file:line:column. Then every block drives the board (spooled "
+            "profiles tagged with the block number, TC objects for D, G17-G19, G25/G26, "
+            "G40-G42) and a summary is printed: blocks, path length, time, errors by name. "
+            "Coordinates in the outputs are the tool centre point in mm. Exit 0 ok, 1 board or "
+            "program error (the run stops at the first board error), 2 usage (bad option, "
+            "unreadable program, output file that cannot be written). See docs/apcictl.md.");
+    }
+
+    Outcome run(Session& session) override {
+        // Tool list: without one, D n (n > 0) is refused by the validation pass.
+        apci::nc::ToolTable tools;
+        if (!tools_.empty()) {
+            auto loaded = apci::nc::load_tool_table(tools_);
+            if (!loaded) return nc_failure(loaded.error());
+            tools = std::move(loaded.value());
+        }
+        StdinCopy stdin_copy;
+        std::string path = program_;
+        if (program_ == "-") {
+            if (std::string why = stdin_copy.make(); !why.empty())
+                return Outcome::usage_error("run: " + why);
+            path = stdin_copy.path();
+        }
+
+        Outcome failure;
+        apci::Board* board = session.board(failure);
+        if (board == nullptr) return failure;
+
+        Outputs outputs;
+        apci::run::ProgramExecutor executor(*board, outputs, &tools);
+        apci::nc::InterpreterOptions options;
+        options.start_position = executor.position();
+        options.tools = &tools;
+        auto program = apci::nc::Program::load(path, options);
+        if (!program) {
+            apci::nc::Diagnostic d = program.error();
+            if (program_ == "-") d.file = "<stdin>";
+            if (tools_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
+                d.message.find("tool list does not define") != std::string::npos)
+                d.message += " (no --tools file given)";
+            return nc_failure(d);
+        }
+        auto stream = program.value().events();
+        if (!stream) return nc_failure(stream.error());
+
+        OutputFile json_file, svg_file, csv_file;
+        for (auto [out, name] : {std::pair{&json_file, &json_}, std::pair{&svg_file, &svg_},
+                                 std::pair{&csv_file, &csv_}}) {
+            if (name->empty()) continue;
+            out->path = *name;
+            out->file = std::fopen(name->c_str(), "w");
+            if (out->file == nullptr)
+                return Outcome::usage_error(
+                    fmt::format("run: cannot write {}: {}", *name, std::strerror(errno)));
+        }
+        if (json_file.file != nullptr)
+            outputs.json = std::make_unique<apci::run::JsonRunWriter>(json_file.file);
+        if (svg_file.file != nullptr) {
+            outputs.svg = std::make_unique<apci::run::SvgPlotWriter>();
+            if (!outputs.svg->ok())
+                return Outcome::board_error("run: cannot make a temporary file for the plot");
+        }
+        outputs.csv_file = csv_file.file;
+        outputs.total_blocks = program.value().summary().blocks;
+        outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
+
+        apci::run::RunOutcome result = executor.run(stream.value());
+        outputs.clear_progress();
+        result.totals.file = program_ == "-" ? "<stdin>" : program_;
+        result.totals.blocks = program.value().summary().blocks;
+
+        std::string written_error;
+        const auto check = [&](bool ok, const OutputFile& f) {
+            if (!ok && written_error.empty())
+                written_error = fmt::format("run: writing {} failed", f.path);
+        };
+        if (outputs.json) check(outputs.json->finish(result.errors, result.registers), json_file);
+        if (outputs.svg)
+            check(outputs.svg->finish(svg_file.file, result.plot_plane, result.totals.file),
+                  svg_file);
+        if (outputs.csv) check(outputs.csv->finish(), csv_file);
+        check(json_file.close(), json_file);
+        check(svg_file.close(), svg_file);
+        check(csv_file.close(), csv_file);
+
+        apci::run::print_summary(stdout, result.totals, result.errors);
+        std::fflush(stdout);
+        if (!result.errors.empty()) {
+            const RunError& first = result.errors.front();
+            return Outcome::board_error(fmt::format("run {}: stopped at {}: {}", result.totals.file,
+                                                    apci::run::block_text(first.block),
+                                                    first.code));
+        }
+        if (!written_error.empty()) return Outcome::board_error(written_error);
+        return Outcome::success();
+    }
+
+  private:
+    // A program or tool list that cannot be read is a usage error; one that does not parse is
+    // a program error. Either way nothing ran.
+    static Outcome nc_failure(const apci::nc::Diagnostic& d) {
+        const std::string text = d.to_string();
+        return d.kind == apci::nc::ErrorKind::kIo ? Outcome::usage_error(text)
+                                                  : Outcome::board_error(text);
+    }
+
+    std::string program_;
+    std::string tools_;
+    std::string svg_;
+    std::string json_;
+    std::string csv_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_run_command() {
+    return std::make_unique<RunCommand>();
+}
+
+}  // namespace apcictl

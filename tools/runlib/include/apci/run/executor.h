@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+// The executor behind `apcictl run`: a PCAP application that drives a board through libapci's
+// public API (apci.hpp) from an NC program's events (apci_nc), and reads back what the board
+// executed. docs/apcictl.md ("run") states every mapping; in short:
+//
+//   start     RESET the TC groups; group 1 in X-Y, 2 in Z-X, 3 in Y-Z (XAxis, YAxis, ZAxis
+//             from the board's X/Y/Z-Axis-Nr), so TcPlane picks the group (Index 0)
+//   D n       WKZINDEX n, RADIUS and WkzLen of wz[n] (mm), in every group; waits until the
+//             axes stop first (a tool change)
+//   G17..G19  TcPlane (waits until the axes stop)
+//   G25/G26   CornerMode of every group
+//   G41/G42   Left/Right then STATUS = 1 on the active group (STATUS = 0 first when switching
+//             sides); G40: STATUS = 0 (the held profile is spooled with the departure)
+//   G0..G3    a spooled profile tagged with the block number; Busy: run the clock, retry
+//   M30       STATUS = 0 if compensation is still on, then run until idle
+//
+// The first board error stops the run: the axes finish the move under way (the board holds
+// after a TC error), the error is recorded with its block and its Table 4 bit name (or the
+// status name), and the registers are read.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "apci/apci.hpp"
+#include "apci/nc/program.h"
+#include "apci/nc/tools.h"
+#include "apci/run/path.h"
+#include "apci/run/summary.h"
+
+namespace apci::run {
+
+// Where the executor's output goes; every method is optional.
+class RunSink {
+  public:
+    virtual ~RunSink() = default;
+    // A move of the program (absolute, before compensation), as the executor sends it.
+    virtual void programmed(const PathSegment& s) { (void)s; }
+    // True to get the rest of the program's moves through programmed() after an error stopped
+    // the run (a plot shows the whole contour).
+    virtual bool wants_programmed() const { return false; }
+    // A segment the board executed, in program coordinates (tool centre point).
+    virtual void executed(const PathSegment& s) { (void)s; }
+    // Before the first sample: the column names of the board's axes ("X", ..., "a7").
+    virtual void axes(std::span<const std::string> names) { (void)names; }
+    // True to record the axis positions of every interpolation cycle (costs time).
+    virtual bool wants_samples() const { return false; }
+    // One cycle: the clock value after it, its time, the positions of the board's axes.
+    virtual void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) {
+        (void)cycle;
+        (void)time_s;
+        (void)axes;
+    }
+    // An error, and where on the programmed path it happened.
+    virtual void error(const RunError& e, const Point& where) {
+        (void)e;
+        (void)where;
+    }
+    // Blocks read so far by the execution pass (called every few thousand blocks).
+    virtual void progress(std::uint64_t blocks) { (void)blocks; }
+};
+
+// The board's block tag: the N number, or (no N, or N beyond 2^31 - 1) the source line with
+// the top bit set. Executed segments carry it back.
+std::uint32_t encode_block_tag(const BlockRef& b) noexcept;
+BlockRef decode_block_tag(std::uint32_t tag) noexcept;
+
+struct RunOutcome {
+    RunTotals totals;                       // file and blocks are the caller's to fill
+    std::vector<RunError> errors;           // empty: the program ran to its end
+    std::vector<GroupRegisters> registers;  // groups 1..3 at the end; empty without optionTC
+    int plot_plane = 17;  // the plane of the first compensation, else the last plane in force
+    std::array<int, 3> axis_numbers{0, 1, 2};             // board axes of X, Y, Z
+    std::array<std::string, APCI_AXIS_COUNT> axis_names;  // CSV columns: "X", ..., "a7"
+    bool tc_present = true;
+};
+
+class ProgramExecutor {
+  public:
+    // Per-cycle samples are read in chunks of this many cycles (the board's trace ring holds
+    // twice as many), so none is lost however long a move.
+    static constexpr std::uint32_t kTraceChunk = 1u << 15;
+    // Executed segments and samples read per call.
+    static constexpr std::size_t kReadBatch = 256;
+    // Events between two progress() calls.
+    static constexpr std::uint64_t kProgressEvery = 4096;
+
+    // `tools` may be null: every D n then has radius and length 0.
+    ProgramExecutor(apci::Board& board, RunSink& sink, const nc::ToolTable* tools) noexcept
+        : board_(board), sink_(sink), tools_(tools) {}
+
+    // Where the board's X, Y, Z axes stand (program units): the interpreter's start position.
+    // Zero when the board cannot say (run() then reports why).
+    Point position();
+    // Executes the stream to its end or to the first error.
+    RunOutcome run(nc::EventStream& events);
+
+  private:
+    apci::Board& board_;
+    RunSink& sink_;
+    const nc::ToolTable* tools_;
+};
+
+}  // namespace apci::run
