@@ -1,0 +1,498 @@
+// SPDX-License-Identifier: MIT
+// `apcictl run` as a process on the embedded emulator: the seed program, one program per corner
+// type (docs/figures/), errors with block and name, parse errors, exit codes, the outputs.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apci/run/path.h"
+#include "process.h"
+#include "rwmos/geometry/element.h"
+
+namespace {
+
+using nlohmann::json;
+using test_support::ProcessResult;
+namespace geom = rwmos::geom;
+
+const std::string kExamples = APCI_SOURCE_DIR "/examples";
+const std::string kFigures = APCI_SOURCE_DIR "/docs/figures";
+constexpr double kTol = 1e-6;
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+bool exists(const std::string& path) {
+    struct stat st;
+    return ::stat(path.c_str(), &st) == 0;
+}
+
+class ApcictlRun : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::string templ = ::testing::TempDir() + "apcictl_run_XXXXXX";
+        ASSERT_NE(::mkdtemp(templ.data()), nullptr);
+        dir_ = templ;
+    }
+    void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
+
+    std::string path(const std::string& name) const { return dir_ + "/" + name; }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream(path(name)) << text;
+        return path(name);
+    }
+    // A tool list with D1 of radius r and length len, in mm.
+    std::string tools(double r, double len = 0.0) const {
+        return write("t.tools", "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius " +
+                                    std::to_string(r) + "\nwz[1].laenge " + std::to_string(len) +
+                                    "\n");
+    }
+
+    static ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {}) {
+        args.insert(args.begin(), APCICTL_PATH);
+        return test_support::run_process(args, input);
+    }
+    // Runs a program with --json (and the given extra arguments); returns the JSON document.
+    json run_json(const std::string& program, std::vector<std::string> extra = {},
+                  int expected_exit = 0) {
+        std::vector<std::string> args{"run", program, "--json", path("out.json")};
+        args.insert(args.end(), extra.begin(), extra.end());
+        last_ = apcictl(args);
+        EXPECT_EQ(last_.exit_code, expected_exit) << last_.out << last_.err;
+        return json::parse(read_text(path("out.json")));
+    }
+
+    std::string dir_;
+    ProcessResult last_;
+};
+
+// ---- JSON helpers
+
+apci::run::Point point(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
+
+apci::run::PathSegment segment_of(const json& s) {
+    apci::run::PathSegment p;
+    p.start = point(s.at("start"));
+    p.end = point(s.at("end"));
+    p.kind = s.at("kind") == "arc" ? apci::run::SegmentKind::kArc : apci::run::SegmentKind::kLine;
+    if (p.kind == apci::run::SegmentKind::kArc) {
+        p.center = point(s.at("center"));
+        p.ccw = s.at("ccw").get<bool>();
+        p.plane = s.at("plane").get<int>();
+    }
+    return p;
+}
+
+std::vector<json> with_role(const json& doc, const std::string& role) {
+    std::vector<json> out;
+    for (const auto& s : doc.at("segments"))
+        if (s.at("role") == role) out.push_back(s);
+    return out;
+}
+
+std::string roles(const json& doc) {
+    std::string out;
+    for (const auto& s : doc.at("segments")) {
+        if (!out.empty()) out += ' ';
+        out += s.at("role").get<std::string>() + "/" + std::to_string(s.at("block").get<int>());
+    }
+    return out;
+}
+
+// The distance from p (in the plane's coordinates) to the nearest programmed element.
+double distance_to_contour(const std::vector<geom::Element>& contour, const geom::Vec2& p) {
+    double d = INFINITY;
+    for (const auto& e : contour) d = std::min(d, geom::distance_to(e, p));
+    return d;
+}
+
+// Every point of every segment with one of `roles` (21 samples each), in the plane `plane`,
+// lies `r` from the programmed contour (exactly, or at least when `at_least`).
+// Segments of the blocks in `skip` are left out.
+void expect_at_radius(const json& doc, const std::vector<geom::Element>& contour, double r,
+                      const std::vector<std::string>& which, bool at_least = false, int plane = 17,
+                      const std::vector<int>& skip = {}) {
+    const apci::run::PlaneAxes a = apci::run::plane_axes(plane);
+    int checked = 0;
+    for (const auto& s : doc.at("segments")) {
+        if (std::find(which.begin(), which.end(), s.at("role").get<std::string>()) == which.end())
+            continue;
+        if (std::find(skip.begin(), skip.end(), s.at("block").get<int>()) != skip.end()) continue;
+        const apci::run::PathSegment seg = segment_of(s);
+        for (int i = 0; i <= 20; ++i) {
+            const apci::run::Point q = apci::run::point_along(seg, i / 20.0);
+            const double d = distance_to_contour(contour, {q[a.first], q[a.second]});
+            if (at_least) {
+                EXPECT_GE(d, r - kTol) << s.dump() << " at t=" << i / 20.0;
+            } else {
+                EXPECT_NEAR(d, r, kTol) << s.dump() << " at t=" << i / 20.0;
+            }
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 0);
+}
+
+void expect_continuous(const json& doc) {
+    const auto& segs = doc.at("segments");
+    for (std::size_t i = 1; i < segs.size(); ++i)
+        EXPECT_LT((point(segs[i].at("start")) - point(segs[i - 1].at("end"))).norm(), 1e-9)
+            << segs[i - 1].dump() << "\n" << segs[i].dump();
+}
+
+void expect_registers_clear(const json& doc) {
+    for (const char* g : {"1", "2", "3"}) {
+        EXPECT_EQ(doc.at("registers").at(g).at("ERROR"), 0) << g;
+        EXPECT_EQ(doc.at("registers").at(g).at("STATUS"), 0) << g;
+    }
+}
+
+// ---- The seed program
+
+TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
+    const auto r = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
+                            kExamples + "/tools/wr_quad_disc.tools", "--svg", path("p.svg"), "--json",
+                            path("p.json")});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 12 segments\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "\nerrors: none\n")) << r.out;
+    EXPECT_EQ(r.err, "");
+    const json doc = json::parse(read_text(path("p.json")));
+    // N22 G25 is overridden by N80 G26 before the first real corner (N70/N80): all circular.
+    EXPECT_EQ(roles(doc),
+              "uncompensated/40 approach/60 contour/60 contour/70 transition/70 contour/80 "
+              "transition/80 contour/90 transition/90 contour/95 departure/95 uncompensated/100");
+    expect_continuous(doc);
+    // The square N70..N95 (N60 is its lead-in on the same line).
+    const std::vector<geom::Element> square{
+        geom::make_line({2, 0}, {102, 0}), geom::make_line({102, 0}, {102, 100}),
+        geom::make_line({102, 100}, {2, 100}), geom::make_line({2, 100}, {2, 0})};
+    expect_at_radius(doc, square, 30.0, {"contour", "transition"}, false, 17, {60});
+    // G42 on a counter-clockwise loop: the tool runs outside, right of the direction of travel.
+    EXPECT_EQ(point(with_role(doc, "contour")[1].at("start")), apci::run::Point(2, -30, 0));
+    expect_registers_clear(doc);
+    EXPECT_EQ(doc.at("variables"), json::object());
+    EXPECT_EQ(doc.at("errors"), json::array());
+    const std::string svg = read_text(path("p.svg"));
+    for (const char* cls : {"programmed", "contour", "transition", "approach", "departure"})
+        EXPECT_TRUE(contains(svg, std::string("<path class=\"") + cls + "\"")) << cls;
+}
+
+// ---- One program per corner type (docs/figures)
+
+TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
+    const json doc = run_json(kFigures + "/inside_corners.nc", {"--tools", kFigures + "/figures.tools"});
+    EXPECT_TRUE(with_role(doc, "transition").empty()) << roles(doc);
+    expect_continuous(doc);
+    // line-line: N40 ends and N50 starts at the intersection (35, 5) of the offset lines.
+    const auto contour = with_role(doc, "contour");
+    ASSERT_GE(contour.size(), 4u);
+    EXPECT_EQ(contour[0].at("block"), 40);
+    EXPECT_LT((point(contour[0].at("end")) - apci::run::Point(35, 5, 0)).norm(), 1e-9);
+    EXPECT_EQ(contour[1].at("block"), 50);
+    expect_at_radius(doc,
+                     {geom::make_line({0, 0}, {40, 0}), geom::make_line({40, 0}, {40, 30}),
+                      geom::make_arc({60, 0}, {100, 0}, {80, 20}, true),
+                      geom::make_arc({100, 0}, {75, 25}, {75, 0}, true)},
+                     5.0, {"contour"});
+    // arc-arc: both offset arcs (radii 28.28 - 5 and 25 - 5) end and start at one point.
+    EXPECT_EQ(contour[2].at("kind"), "arc");
+    EXPECT_EQ(contour[3].at("kind"), "arc");
+    EXPECT_LT((point(contour[2].at("end")) - point(contour[3].at("start"))).norm(), 1e-9);
+    EXPECT_NEAR((point(contour[2].at("end")) - apci::run::Point(80, 20, 0)).norm(),
+                std::sqrt(800.0) - 5.0, kTol);
+    EXPECT_NEAR((point(contour[3].at("start")) - apci::run::Point(75, 0, 0)).norm(), 20.0, kTol);
+    expect_registers_clear(doc);
+}
+
+TEST_F(ApcictlRun, OutsideCornerGetsACircularTransitionAboutTheCorner) {
+    const json doc = run_json(kFigures + "/outside_circular.nc", {"--tools", kFigures + "/figures.tools"});
+    const auto transitions = with_role(doc, "transition");
+    ASSERT_EQ(transitions.size(), 2u) << roles(doc);
+    EXPECT_EQ(transitions[0].at("block"), 40);  // belongs to the element before the corner
+    EXPECT_EQ(transitions[0].at("kind"), "arc");
+    EXPECT_EQ(point(transitions[0].at("center")), apci::run::Point(40, 0, 0));
+    EXPECT_EQ(transitions[0].at("ccw"), true);  // G42: counter-clockwise round the corner
+    EXPECT_EQ(transitions[1].at("block"), 50);
+    EXPECT_EQ(point(transitions[1].at("center")), apci::run::Point(40, 30, 0));
+    expect_continuous(doc);
+    expect_at_radius(doc,
+                     {geom::make_line({0, 0}, {40, 0}), geom::make_line({40, 0}, {40, 30}),
+                      geom::make_arc({40, 30}, {20, 30}, {30, 20}, true)},
+                     5.0, {"contour", "transition"});
+}
+
+TEST_F(ApcictlRun, LinearTransitionExtendsTheOffsetsAndIsBoundedBeyond90Degrees) {
+    const json doc = run_json(kFigures + "/outside_linear.nc", {"--tools", kFigures + "/figures.tools"});
+    std::vector<json> at60, at150;
+    for (const auto& t : with_role(doc, "transition")) {
+        EXPECT_EQ(t.at("kind"), "line");
+        (t.at("block") == 40 ? at60 : at150).push_back(t);
+    }
+    // 60 degrees: two lines meeting at the tangent intersection, r / cos(30) from the corner.
+    ASSERT_EQ(at60.size(), 2u) << roles(doc);
+    EXPECT_NEAR((point(at60[0].at("end")) - apci::run::Point(40, 0, 0)).norm(),
+                5.0 / std::cos(std::numbers::pi / 6), kTol);
+    // 150 degrees: A extended by exactly r, a chamfer, B's start reached backwards by r.
+    ASSERT_EQ(at150.size(), 3u) << roles(doc);
+    EXPECT_NEAR(segment_length(segment_of(at150[0])), 5.0, kTol);
+    EXPECT_NEAR(segment_length(segment_of(at150[2])), 5.0, kTol);
+    expect_continuous(doc);
+    const std::vector<geom::Element> contour{
+        geom::make_line({0, 0}, {40, 0}), geom::make_line({40, 0}, {55, 25.980762}),
+        geom::make_line({70, 0}, {110, 0}), geom::make_line({110, 0}, {75.358984, 20})};
+    expect_at_radius(doc, contour, 5.0, {"contour"});
+    expect_at_radius(doc, contour, 5.0, {"transition"}, /*at_least=*/true);
+}
+
+TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
+    const json doc = run_json(kFigures + "/closed_contour.nc", {"--tools", kFigures + "/figures.tools"});
+    const auto approach = with_role(doc, "approach");
+    const auto departure = with_role(doc, "departure");
+    ASSERT_EQ(approach.size(), 1u);
+    ASSERT_EQ(departure.size(), 1u);
+    EXPECT_EQ(approach[0].at("block"), 40);  // the first compensated element
+    EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(30, -20, 0));
+    EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(35, -20, 0));
+    EXPECT_EQ(departure[0].at("block"), 150);  // the last
+    EXPECT_EQ(point(departure[0].at("end")), apci::run::Point(30, -20, 0));
+    expect_continuous(doc);
+    const std::vector<geom::Element> plate{
+        geom::make_line({30, -20}, {30, 0}), geom::make_line({30, 0}, {80, 0}),
+        geom::make_line({80, 0}, {80, 30}), geom::make_arc({80, 30}, {60, 50}, {60, 30}, true),
+        geom::make_line({60, 50}, {45, 50}), geom::make_line({45, 50}, {45, 35}),
+        geom::make_line({45, 35}, {35, 35}), geom::make_line({35, 35}, {35, 50}),
+        geom::make_line({35, 50}, {0, 50}), geom::make_line({0, 50}, {0, 0}),
+        geom::make_line({0, 0}, {30, 0}), geom::make_line({30, 0}, {30, -20})};
+    expect_at_radius(doc, plate, 5.0, {"contour", "transition"});
+}
+
+TEST_F(ApcictlRun, SwitchingSidesDepartsAndApproachesAgain) {
+    const std::string prog = write("sides.nc",
+                                   "N10 F1000 D1\nN20 G41 G1 X10\nN30 X20\nN40 G42 X30\nN50 X40\n"
+                                   "N60 G40 X50\nM30\n");
+    const json doc = run_json(prog, {"--tools", tools(2.0)});
+    EXPECT_EQ(roles(doc),
+              "approach/20 contour/20 contour/30 departure/30 approach/40 contour/40 contour/50 "
+              "departure/50 uncompensated/60")
+        << doc.dump();
+    EXPECT_NEAR(point(with_role(doc, "contour")[1].at("end")).y(), 2.0, kTol);   // G41: left
+    EXPECT_NEAR(point(with_role(doc, "contour")[3].at("end")).y(), -2.0, kTol);  // G42: right
+}
+
+// ---- Planes and tool length
+
+TEST_F(ApcictlRun, ZxPlaneCompensatesArcsInThatPlaneSeenFromPlusY) {
+    // G18: first axis Z, second X. A G3 half circle in Z-X and lines, G41.
+    const std::string prog = write("zx.nc",
+                                   "N10 G18 F1000 D1\nN20 G41 G1 Z20\nN30 G3 Z40 X0 K10 I0\n"
+                                   "N40 G1 Z60\nN50 G40\nM30\n");
+    const json doc = run_json(prog, {"--tools", tools(3.0)});
+    bool saw_arc = false;
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("kind") != "arc") continue;
+        saw_arc = true;
+        EXPECT_EQ(s.at("plane"), 18) << s.dump();
+        EXPECT_NEAR(point(s.at("start")).y(), 0.0, kTol);
+    }
+    EXPECT_TRUE(saw_arc);
+    // Plane coordinates of G18: (Z, X).
+    expect_at_radius(doc,
+                     {geom::make_line({0, 0}, {20, 0}), geom::make_arc({20, 0}, {40, 0}, {30, 0}, true),
+                      geom::make_line({40, 0}, {60, 0})},
+                     3.0, {"contour", "transition"}, false, 18);
+}
+
+TEST_F(ApcictlRun, ToolLengthIsTakenOffTheToolCentrePointButMovesTheAxis) {
+    const std::string prog = write("len.nc", "N10 F6000 D1\nN20 G41 G1 X10 Y0 Z-1\nN30 X20\nN40 G40\nM30\n");
+    const json doc = run_json(prog, {"--tools", tools(1.0, 25.0), "--csv", path("len.csv")});
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("role") == "approach") continue;  // from Z 0 down to the programmed Z -1
+        EXPECT_NEAR(point(s.at("end")).z(), -1.0, kTol) << s.dump();
+    }
+    // The axis itself carries the length: Z = -1 + 25 while compensating.
+    const std::string csv = read_text(path("len.csv"));
+    std::istringstream lines(csv);
+    std::string line, header;
+    std::getline(lines, header);
+    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,a3,a4,a5,a6,a7");
+    int on_n30 = 0;
+    while (std::getline(lines, line)) {
+        std::vector<double> v;
+        std::stringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+        ASSERT_EQ(v.size(), 10u) << line;
+        if (v[2] > 10.5 && v[2] < 19.5) {  // on N30, programmed Z -1 throughout
+            EXPECT_NEAR(v[4], 24.0, kTol) << line;
+            ++on_n30;
+        }
+    }
+    EXPECT_GT(on_n30, 50);
+}
+
+TEST_F(ApcictlRun, CsvHasOneLineForEveryCycle) {
+    const std::string prog = write("csv.nc", "N10 G1 X1 F600\nM30\n");  // 1 mm at 10 mm/s: 100 ms
+    const auto r = apcictl({"run", prog, "--csv", path("c.csv")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "time 0.100 s (100 cycles of 1 ms)")) << r.out;
+    const std::string csv = read_text(path("c.csv"));
+    std::istringstream lines(csv);
+    std::string line;
+    std::getline(lines, line);
+    std::uint64_t n = 0;
+    std::string last;
+    while (std::getline(lines, line)) {
+        ++n;
+        EXPECT_EQ(line.substr(0, line.find(',')), std::to_string(n));
+        last = line;
+    }
+    EXPECT_EQ(n, 100u);
+    EXPECT_EQ(last, "100,0.1,1,0,0,0,0,0,0,0");
+}
+
+// ---- Errors from the board: block and Table 4 name
+
+TEST_F(ApcictlRun, KorrErrorIsReportedWithBlockAndNameAndTheRunStops) {
+    const std::string prog = write("korr.nc",
+                                   "N10 F1000 D1\nN40 G41 G1 X0 Y0\nN50 X60\nN60 Y2\nN70 X0\n"
+                                   "N100 G40 G1 X0 Y-20\nN110 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0), "--svg", path("k.svg")}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "KorrError");
+    EXPECT_TRUE(contains(doc.at("errors")[0].at("message").get<std::string>(), "too short"));
+    EXPECT_EQ(doc.at("registers").at("1").at("ERROR_bits"), json::array({"KorrError"}));
+    EXPECT_TRUE(contains(last_.out, "errors: 1 (KorrError 1)\n  N60: KorrError: ")) << last_.out;
+    EXPECT_TRUE(contains(last_.err, "apcictl: run " + prog + ": stopped at N60: KorrError\n"))
+        << last_.err;
+    // The board holds: nothing spooled after the error ran.
+    for (const auto& s : doc.at("segments")) EXPECT_LT(s.at("block").get<int>(), 70);
+    const std::string svg = read_text(path("k.svg"));
+    EXPECT_TRUE(contains(svg, ">N60 KorrError</text>"));
+    // The rest of the program is still drawn, so the place of the error is seen.
+    EXPECT_TRUE(contains(svg, "L0 20") || contains(svg, "L0 2"));
+}
+
+TEST_F(ApcictlRun, CalcErrorForAConcaveArcSmallerThanTheTool) {
+    const std::string prog = write("calc.nc",
+                                   "N10 F1000 D1\nN40 G41 G1 X0 Y0\nN50 X20\nN60 G3 X24 Y4 I0 J4\n"
+                                   "N70 G1 Y20\nN100 G40 G1 X40\nN110 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0)}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "CalcError");
+}
+
+TEST_F(ApcictlRun, CompensationWithoutTheTcOptionIsAnErrorNamingIt) {
+    const std::string prog = write("g41.nc", "N10 F1000\nN20 G1 X5\nN30 G41 X10\nM30\n");
+    const json doc = run_json(prog, {"--device", "emu:?no-option-tc"}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 30);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "NoSuchDevice");
+    EXPECT_TRUE(contains(doc.at("errors")[0].at("message").get<std::string>(), "optionTC"));
+    EXPECT_EQ(doc.at("registers"), json::object());
+}
+
+TEST_F(ApcictlRun, ProgramWithoutCompensationRunsWithoutTheTcOption) {
+    const std::string prog = write("plain.nc", "N10 G1 X5 F600\nN20 G2 X10 Y0 I2.5 J0\nM30\n");
+    const json doc = run_json(prog, {"--device", "emu:?no-option-tc"});
+    EXPECT_EQ(roles(doc), "uncompensated/10 uncompensated/20");
+    EXPECT_EQ(doc.at("segments")[1].at("kind"), "arc");
+    EXPECT_EQ(doc.at("segments")[1].at("ccw"), false);
+}
+
+// ---- Program errors: nothing runs
+
+TEST_F(ApcictlRun, ParseErrorNamesFileLineAndColumnAndRunsNothing) {
+    const std::string prog = write("bad.nc", "N10 G1 X1 F100\nN20 G1 X\nM30\n");
+    const auto r = apcictl({"run", prog, "--json", path("bad.json"), "--svg", path("bad.svg")});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "apcictl: " + prog + ":2:9: expected a number after 'X'\n");
+    EXPECT_FALSE(exists(path("bad.json")));
+    EXPECT_FALSE(exists(path("bad.svg")));
+}
+
+TEST_F(ApcictlRun, ToolNotInTheToolListSaysThatNoneWasGiven) {
+    const std::string prog = write("d1.nc", "N10 D1\nM30\n");
+    const auto r = apcictl({"run", prog});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, ":1:5: D1 selects tool 1, which the tool list does not define "
+                                "(no --tools file given)"))
+        << r.err;
+}
+
+TEST_F(ApcictlRun, BadToolListNamesFileAndLine) {
+    const std::string t = write("bad.tools", "wz[1].radius 5\nwz[1].typ 9\n");
+    const auto r = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools", t});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "bad.tools:2:")) << r.err;
+}
+
+// ---- Exit codes and usage
+
+TEST_F(ApcictlRun, UsageErrorsExitTwo) {
+    EXPECT_EQ(apcictl({"run"}).exit_code, 2);
+    EXPECT_EQ(apcictl({"run", "x.nc", "--bogus"}).exit_code, 2);
+    const auto missing = apcictl({"run", path("missing.nc")});
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_TRUE(contains(missing.err, "missing.nc: cannot open")) << missing.err;
+    const auto unwritable = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
+                                     kExamples + "/tools/wr_quad_disc.tools", "--json",
+                                     path("no/such/dir.json")});
+    EXPECT_EQ(unwritable.exit_code, 2);
+    EXPECT_EQ(unwritable.out, "");  // nothing ran
+    EXPECT_TRUE(contains(unwritable.err, "cannot write " + path("no/such/dir.json"))) << unwritable.err;
+}
+
+TEST_F(ApcictlRun, HelpNamesTheOptions) {
+    const auto r = apcictl({"run", "--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* opt : {"--tools", "--svg", "--json", "--csv"}) EXPECT_TRUE(contains(r.out, opt)) << opt;
+}
+
+TEST_F(ApcictlRun, ProgramFromStandardInput) {
+    const auto r = apcictl({"run", "-", "--json", path("in.json")}, "N10 G1 X3 Y4 F600\nM30\n");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "<stdin>: 2 blocks, 2 executed, 1 segments\npath 5.000 mm")) << r.out;
+    const auto bad = apcictl({"run", "-"}, "N10 G1 X\n");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_TRUE(contains(bad.err, "<stdin>:1:9: expected a number after 'X'")) << bad.err;
+}
+
+TEST_F(ApcictlRun, BlocksWithoutNumberCarryTheirLine) {
+    const std::string prog = write("nonum.nc", "F600\n\nG1 X1\nN7 X2\nM30\n");
+    const json doc = run_json(prog);
+    ASSERT_EQ(doc.at("segments").size(), 2u);
+    EXPECT_EQ(doc.at("segments")[0].at("block"), -1);
+    EXPECT_EQ(doc.at("segments")[0].at("line"), 3);
+    EXPECT_EQ(doc.at("segments")[1].at("block"), 7);
+    EXPECT_FALSE(doc.at("segments")[1].contains("line"));
+}
+
+TEST_F(ApcictlRun, RapidMovesAreRapidAndUncompensated) {
+    const std::string prog = write("g0.nc", "N10 G0 X10 Y5\nM30\n");
+    const json doc = run_json(prog);
+    ASSERT_EQ(doc.at("segments").size(), 1u);
+    EXPECT_EQ(doc.at("segments")[0].at("kind"), "rapid");
+    EXPECT_EQ(doc.at("segments")[0].at("role"), "uncompensated");
+    EXPECT_TRUE(contains(last_.out, "(rapid 11.180 mm)")) << last_.out;
+}
+
+}  // namespace
