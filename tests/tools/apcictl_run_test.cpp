@@ -44,7 +44,7 @@ bool exists(const std::string& path) {
 }
 
 class ApcictlRun : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         std::string templ = ::testing::TempDir() + "apcictl_run_XXXXXX";
         ASSERT_NE(::mkdtemp(templ.data()), nullptr);
@@ -84,7 +84,9 @@ protected:
 
 // ---- JSON helpers
 
-apci::run::Point point(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
+apci::run::Point point(const json& a) {
+    return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
+}
 
 apci::run::PathSegment segment_of(const json& s) {
     apci::run::PathSegment p;
@@ -153,7 +155,8 @@ void expect_continuous(const json& doc) {
     const auto& segs = doc.at("segments");
     for (std::size_t i = 1; i < segs.size(); ++i)
         EXPECT_LT((point(segs[i].at("start")) - point(segs[i - 1].at("end"))).norm(), 1e-9)
-            << segs[i - 1].dump() << "\n" << segs[i].dump();
+            << segs[i - 1].dump() << "\n"
+            << segs[i].dump();
 }
 
 void expect_registers_clear(const json& doc) {
@@ -167,8 +170,8 @@ void expect_registers_clear(const json& doc) {
 
 TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     const auto r = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
-                            kExamples + "/tools/wr_quad_disc.tools", "--svg", path("p.svg"), "--json",
-                            path("p.json")});
+                            kExamples + "/tools/wr_quad_disc.tools", "--svg", path("p.svg"),
+                            "--json", path("p.json")});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 12 segments\n")) << r.out;
     EXPECT_TRUE(contains(r.out, "\nerrors: none\n")) << r.out;
@@ -197,7 +200,8 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
 // ---- One program per corner type (docs/figures)
 
 TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
-    const json doc = run_json(kFigures + "/inside_corners.nc", {"--tools", kFigures + "/figures.tools"});
+    const json doc =
+        run_json(kFigures + "/inside_corners.nc", {"--tools", kFigures + "/figures.tools"});
     EXPECT_TRUE(with_role(doc, "transition").empty()) << roles(doc);
     expect_continuous(doc);
     // line-line: N40 ends and N50 starts at the intersection (35, 5) of the offset lines.
@@ -222,7 +226,8 @@ TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
 }
 
 TEST_F(ApcictlRun, OutsideCornerGetsACircularTransitionAboutTheCorner) {
-    const json doc = run_json(kFigures + "/outside_circular.nc", {"--tools", kFigures + "/figures.tools"});
+    const json doc =
+        run_json(kFigures + "/outside_circular.nc", {"--tools", kFigures + "/figures.tools"});
     const auto transitions = with_role(doc, "transition");
     ASSERT_EQ(transitions.size(), 2u) << roles(doc);
     EXPECT_EQ(transitions[0].at("block"), 40);  // belongs to the element before the corner
@@ -239,7 +244,8 @@ TEST_F(ApcictlRun, OutsideCornerGetsACircularTransitionAboutTheCorner) {
 }
 
 TEST_F(ApcictlRun, LinearTransitionExtendsTheOffsetsAndIsBoundedBeyond90Degrees) {
-    const json doc = run_json(kFigures + "/outside_linear.nc", {"--tools", kFigures + "/figures.tools"});
+    const json doc =
+        run_json(kFigures + "/outside_linear.nc", {"--tools", kFigures + "/figures.tools"});
     std::vector<json> at60, at150;
     for (const auto& t : with_role(doc, "transition")) {
         EXPECT_EQ(t.at("kind"), "line");
@@ -262,7 +268,8 @@ TEST_F(ApcictlRun, LinearTransitionExtendsTheOffsetsAndIsBoundedBeyond90Degrees)
 }
 
 TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
-    const json doc = run_json(kFigures + "/closed_contour.nc", {"--tools", kFigures + "/figures.tools"});
+    const json doc =
+        run_json(kFigures + "/closed_contour.nc", {"--tools", kFigures + "/figures.tools"});
     const auto approach = with_role(doc, "approach");
     const auto departure = with_role(doc, "departure");
     ASSERT_EQ(approach.size(), 1u);
@@ -275,11 +282,11 @@ TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
     expect_continuous(doc);
     const std::vector<geom::Element> plate{
         geom::make_line({30, -20}, {30, 0}), geom::make_line({30, 0}, {80, 0}),
-        geom::make_line({80, 0}, {80, 30}), geom::make_arc({80, 30}, {60, 50}, {60, 30}, true),
+        geom::make_line({80, 0}, {80, 30}),  geom::make_arc({80, 30}, {60, 50}, {60, 30}, true),
         geom::make_line({60, 50}, {45, 50}), geom::make_line({45, 50}, {45, 35}),
         geom::make_line({45, 35}, {35, 35}), geom::make_line({35, 35}, {35, 50}),
-        geom::make_line({35, 50}, {0, 50}), geom::make_line({0, 50}, {0, 0}),
-        geom::make_line({0, 0}, {30, 0}), geom::make_line({30, 0}, {30, -20})};
+        geom::make_line({35, 50}, {0, 50}),  geom::make_line({0, 50}, {0, 0}),
+        geom::make_line({0, 0}, {30, 0}),    geom::make_line({30, 0}, {30, -20})};
     expect_at_radius(doc, plate, 5.0, {"contour", "transition"});
 }
 
@@ -313,14 +320,16 @@ TEST_F(ApcictlRun, ZxPlaneCompensatesArcsInThatPlaneSeenFromPlusY) {
     }
     EXPECT_TRUE(saw_arc);
     // Plane coordinates of G18: (Z, X).
-    expect_at_radius(doc,
-                     {geom::make_line({0, 0}, {20, 0}), geom::make_arc({20, 0}, {40, 0}, {30, 0}, true),
-                      geom::make_line({40, 0}, {60, 0})},
-                     3.0, {"contour", "transition"}, false, 18);
+    expect_at_radius(
+        doc,
+        {geom::make_line({0, 0}, {20, 0}), geom::make_arc({20, 0}, {40, 0}, {30, 0}, true),
+         geom::make_line({40, 0}, {60, 0})},
+        3.0, {"contour", "transition"}, false, 18);
 }
 
 TEST_F(ApcictlRun, ToolLengthIsTakenOffTheToolCentrePointButMovesTheAxis) {
-    const std::string prog = write("len.nc", "N10 F6000 D1\nN20 G41 G1 X10 Y0 Z-1\nN30 X20\nN40 G40\nM30\n");
+    const std::string prog =
+        write("len.nc", "N10 F6000 D1\nN20 G41 G1 X10 Y0 Z-1\nN30 X20\nN40 G40\nM30\n");
     const json doc = run_json(prog, {"--tools", tools(1.0, 25.0), "--csv", path("len.csv")});
     for (const auto& s : doc.at("segments")) {
         if (s.at("role") == "approach") continue;  // from Z 0 down to the programmed Z -1
@@ -417,6 +426,16 @@ TEST_F(ApcictlRun, ProgramWithoutCompensationRunsWithoutTheTcOption) {
     EXPECT_EQ(doc.at("segments")[1].at("ccw"), false);
 }
 
+TEST_F(ApcictlRun, KlartextThreeDEventsAreRefusedByNameNotRunApproximately) {
+    const json doc = run_json(kExamples + "/3d_face_milling.h",
+                              {"--tools", kExamples + "/tools/3d_tools.tools"}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 1);  // TOOL CALL 1 Z S8000
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "Unsupported");
+    EXPECT_TRUE(contains(doc.at("errors")[0].at("message").get<std::string>(), "tool_call"));
+    EXPECT_EQ(doc.at("segments"), json::array());
+}
+
 // ---- Program errors: nothing runs
 
 TEST_F(ApcictlRun, ParseErrorNamesFileLineAndColumnAndRunsNothing) {
@@ -433,8 +452,9 @@ TEST_F(ApcictlRun, ToolNotInTheToolListSaysThatNoneWasGiven) {
     const std::string prog = write("d1.nc", "N10 D1\nM30\n");
     const auto r = apcictl({"run", prog});
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_TRUE(contains(r.err, ":1:5: D1 selects tool 1, which the tool list does not define "
-                                "(no --tools file given)"))
+    EXPECT_TRUE(contains(r.err,
+                         ":1:5: D1 selects tool 1, which the tool list does not define "
+                         "(no --tools file given)"))
         << r.err;
 }
 
@@ -453,24 +473,27 @@ TEST_F(ApcictlRun, UsageErrorsExitTwo) {
     const auto missing = apcictl({"run", path("missing.nc")});
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_TRUE(contains(missing.err, "missing.nc: cannot open")) << missing.err;
-    const auto unwritable = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
-                                     kExamples + "/tools/wr_quad_disc.tools", "--json",
-                                     path("no/such/dir.json")});
+    const auto unwritable =
+        apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
+                 kExamples + "/tools/wr_quad_disc.tools", "--json", path("no/such/dir.json")});
     EXPECT_EQ(unwritable.exit_code, 2);
     EXPECT_EQ(unwritable.out, "");  // nothing ran
-    EXPECT_TRUE(contains(unwritable.err, "cannot write " + path("no/such/dir.json"))) << unwritable.err;
+    EXPECT_TRUE(contains(unwritable.err, "cannot write " + path("no/such/dir.json")))
+        << unwritable.err;
 }
 
 TEST_F(ApcictlRun, HelpNamesTheOptions) {
     const auto r = apcictl({"run", "--help"});
     EXPECT_EQ(r.exit_code, 0);
-    for (const char* opt : {"--tools", "--svg", "--json", "--csv"}) EXPECT_TRUE(contains(r.out, opt)) << opt;
+    for (const char* opt : {"--tools", "--svg", "--json", "--csv"})
+        EXPECT_TRUE(contains(r.out, opt)) << opt;
 }
 
 TEST_F(ApcictlRun, ProgramFromStandardInput) {
     const auto r = apcictl({"run", "-", "--json", path("in.json")}, "N10 G1 X3 Y4 F600\nM30\n");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(contains(r.out, "<stdin>: 2 blocks, 2 executed, 1 segments\npath 5.000 mm")) << r.out;
+    EXPECT_TRUE(contains(r.out, "<stdin>: 2 blocks, 2 executed, 1 segments\npath 5.000 mm"))
+        << r.out;
     const auto bad = apcictl({"run", "-"}, "N10 G1 X\n");
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_TRUE(contains(bad.err, "<stdin>:1:9: expected a number after 'X'")) << bad.err;
