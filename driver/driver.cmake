@@ -6,7 +6,13 @@ add_library(apci SHARED
   src/apci_motion.cpp
   src/tc_names.cpp
   src/transport.cpp
-  src/transport_inproc.cpp)
+  src/frame_transport.cpp
+  src/mailbox_link.cpp
+  src/mapped_file.cpp
+  src/transport_inproc.cpp
+  src/transport_unix.cpp
+  src/transport_shm.cpp
+  src/transport_pci.cpp)
 add_library(apci::apci ALIAS apci)
 set_target_properties(apci PROPERTIES
   VERSION ${PROJECT_VERSION}
@@ -22,6 +28,13 @@ target_include_directories(apci
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
   PRIVATE src)
 target_link_libraries(apci PRIVATE rwmos_emu objif fmt::fmt)
+if(TARGET PkgConfig::LIBUSB)
+  target_sources(apci PRIVATE src/transport_usb.cpp)
+  target_compile_definitions(apci PRIVATE APCI_HAVE_LIBUSB)
+  target_link_libraries(apci PRIVATE PkgConfig::LIBUSB)
+else()
+  message(STATUS "libapci: libusb-1.0 not found, the usb: transport is left out")
+endif()
 target_link_options(apci PRIVATE
   -Wl,--version-script=${CMAKE_CURRENT_SOURCE_DIR}/apci.map
   -Wl,--no-undefined)

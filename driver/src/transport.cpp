@@ -12,20 +12,31 @@ namespace {
 
 using OpenFn = objif::Status (*)(const DeviceUri&, std::unique_ptr<Transport>&,
                                  std::string&) noexcept;
+using ListFn = objif::Status (*)(std::vector<FoundDevice>&, std::string&) noexcept;
 
 struct Scheme {
     std::string_view name;
-    OpenFn open;  // nullptr: known scheme, backend not built yet
+    OpenFn open;  // nullptr: known scheme, backend not built
+    ListFn list;  // nullptr: nothing to enumerate (emu:)
     std::string_view form;
 };
 
-// DESIGN.md section 6. A new backend fills in its row's `open`.
+#if defined(APCI_HAVE_LIBUSB)
+constexpr OpenFn kOpenUsb = open_usb;
+constexpr ListFn kListUsb = list_usb;
+#else
+constexpr OpenFn kOpenUsb = nullptr;  // built without libusb-1.0
+constexpr ListFn kListUsb = nullptr;
+#endif
+
+// DESIGN.md section 6. One row per backend; list_devices() walks the rows in
+// this order, so boards come before emulators.
 constexpr std::array kSchemes{
-    Scheme{"emu", open_inproc, "emu:[?no-option-tc]"},
-    Scheme{"unix", nullptr, "unix:PATH"},
-    Scheme{"shm", nullptr, "shm:PATH"},
-    Scheme{"pci", nullptr, "pci:DOMAIN:BUS:DEV.FN"},
-    Scheme{"usb", nullptr, "usb:[BUS:ADDR]"},
+    Scheme{"usb", kOpenUsb, kListUsb, "usb:[BUS:ADDR]"},
+    Scheme{"pci", open_pci, list_pci, "pci:DOMAIN:BUS:DEV.FN"},
+    Scheme{"unix", open_unix, list_unix, "unix:PATH"},
+    Scheme{"shm", open_shm, list_shm, "shm:PATH"},
+    Scheme{"emu", open_inproc, nullptr, "emu:[?no-option-tc]"},
 };
 
 constexpr bool scheme_char(char c) noexcept {
@@ -93,7 +104,8 @@ objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& o
         for (const auto& row : kSchemes) {
             if (row.name != uri.scheme) continue;
             if (row.open == nullptr) {
-                why = fmt::format("transport '{}:' is not supported yet (available: emu:)",
+                why = fmt::format("transport '{}:' is not available: this libapci was built "
+                                  "without its library",
                                   uri.scheme);
                 return objif::Status::kNotSupported;
             }
@@ -102,6 +114,24 @@ objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& o
         why = fmt::format("unknown device URI scheme '{}:' (expected one of: {})", uri.scheme,
                           known_schemes());
         return objif::Status::kInvalidArgument;
+    } catch (const std::bad_alloc&) {
+        return objif::Status::kNoMemory;
+    } catch (...) {
+        return objif::Status::kGeneralError;
+    }
+}
+
+objif::Status list_devices(std::vector<FoundDevice>& out, std::vector<std::string>& problems) noexcept {
+    try {
+        for (const auto& row : kSchemes) {
+            if (row.list == nullptr) continue;
+            std::string why;
+            const objif::Status s = row.list(out, why);
+            if (!objif::ok(s))
+                problems.push_back(fmt::format("{}: {} ({})", row.name, why.empty() ? "enumeration failed" : why,
+                                               objif::status_name(s)));
+        }
+        return objif::Status::kOk;
     } catch (const std::bad_alloc&) {
         return objif::Status::kNoMemory;
     } catch (...) {

@@ -22,6 +22,7 @@
 //    kTimeout and the caller cannot know whether the board acted).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -93,6 +94,35 @@ public:
     // transport's own (e.g. "connect /run/apci.sock: No such file or
     // directory"); empty for statuses the board answered. Non-blocking.
     virtual std::string_view failure_detail() const noexcept { return {}; }
+
+    // The longest one request may block before it answers kTimeout.
+    // kInvalidArgument for zero. Backends that never block (inproc) keep the
+    // value and ignore it. Non-blocking.
+    virtual objif::Status set_timeout(std::chrono::milliseconds timeout) noexcept {
+        if (timeout.count() <= 0) return objif::Status::kInvalidArgument;
+        timeout_ = timeout;
+        return objif::Status::kOk;
+    }
+    virtual std::chrono::milliseconds timeout() const noexcept { return timeout_; }
+
+    // Closes the link to the board and opens it again (after the daemon
+    // restarted, the board was re-plugged). Board state is whatever the
+    // board kept. Blocking: as open. inproc: nothing to do, kOk.
+    virtual objif::Status reconnect() noexcept { return objif::Status::kOk; }
+
+    // False once the link is known to be lost (peer closed, device
+    // unplugged); requests then answer kTransportError until reconnect()
+    // succeeds. Non-blocking.
+    virtual bool connected() const noexcept { return true; }
+
+private:
+    std::chrono::milliseconds timeout_{2000};
+};
+
+// A board found by list_devices(): its URI and one line about it.
+struct FoundDevice {
+    std::string uri;
+    std::string description;
 };
 
 // A device URI split into its parts: "scheme:target?opt1&opt2".
@@ -113,8 +143,28 @@ objif::Status parse_device_uri(std::string_view text, DeviceUri& out, std::strin
 objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& out,
                              std::string& why) noexcept;
 
-// Backend constructors, one per transport_<scheme>.cpp.
+// Every board the backends can find (scheme table order): USB boards,
+// PCI boards, running emulator daemons. Backends that cannot enumerate are
+// skipped; a backend that fails says why in `problems` (one line each).
+// Blocking: enumeration and one probe per candidate.
+objif::Status list_devices(std::vector<FoundDevice>& out, std::vector<std::string>& problems) noexcept;
+
+// Backend constructors and enumerators, one pair per transport_<scheme>.cpp.
+// An enumerator appends what it finds; it returns kOk, or a status with
+// `why` when it could not look.
 objif::Status open_inproc(const DeviceUri& uri, std::unique_ptr<Transport>& out,
                           std::string& why) noexcept;
+objif::Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                        std::string& why) noexcept;
+objif::Status list_unix(std::vector<FoundDevice>& out, std::string& why) noexcept;
+objif::Status open_shm(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                       std::string& why) noexcept;
+objif::Status list_shm(std::vector<FoundDevice>& out, std::string& why) noexcept;
+objif::Status open_pci(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                       std::string& why) noexcept;
+objif::Status list_pci(std::vector<FoundDevice>& out, std::string& why) noexcept;
+objif::Status open_usb(const DeviceUri& uri, std::unique_ptr<Transport>& out,
+                       std::string& why) noexcept;
+objif::Status list_usb(std::vector<FoundDevice>& out, std::string& why) noexcept;
 
 }  // namespace apci

@@ -122,14 +122,20 @@ typedef struct apci_board apci_board;
  *                         every access to it answers APCI_NO_SUCH_DEVICE.
  *                         Options follow '?' and are separated by '&';
  *                         "option-tc" (the default) turns it back on.
- *   "unix:PATH"           the emulator daemon's socket         } answer
- *   "shm:PATH"            a dual-port RAM image / mailbox file  } APCI_NOT_SUPPORTED
- *   "pci:DOMAIN:BUS:DEV.FN"  a board's PCI BAR                  } in this version
- *   "usb:[BUS:ADDR]"      a board on USB                        }
+ *   "unix:PATH"           the emulator daemon (rwmos-emu --socket PATH)
+ *   "shm:PATH"            the dual-port RAM file rwmos-emu --shm PATH serves
+ *   "pci:DOMAIN:BUS:DEV.FN"  a board's dual-port RAM through its PCI BAR
+ *                         (sysfs resourceN; options bar=N, offset=BYTES, uio)
+ *   "usb:" / "usb:BUS:ADDR"  the first USB board, or the one at BUS:ADDR
+ *                         (options pid=0xNNNN)
+ * Every transport but emu: takes "?timeout=MS" (default 2000): the longest
+ * one request waits for its reply (see apci_set_timeout()). docs/transports.md
+ * describes each one; apcictl list prints the URIs of the boards found.
  *
  * Errors: APCI_INVALID_ARGUMENT (out is NULL; unknown scheme or option;
- * malformed URI), APCI_NOT_SUPPORTED (transport not available), transport
- * errors. On failure *out is set to NULL and apci_last_error(NULL) says why.
+ * malformed URI), APCI_NOT_SUPPORTED (transport not built in), transport
+ * errors (APCI_TRANSPORT_ERROR: no such socket, file, board; no permission).
+ * On failure *out is set to NULL and apci_last_error(NULL) says why.
  * Blocks until the board answers (the embedded emulator answers at once).
  */
 APCI_API apci_status apci_open(const char* uri, apci_board** out) APCI_NOEXCEPT;
@@ -146,6 +152,56 @@ APCI_API void apci_close(apci_board* board) APCI_NOEXCEPT;
  * board (or, for NULL, on the same thread). Never NULL.
  */
 APCI_API const char* apci_last_error(const apci_board* board) APCI_NOEXCEPT;
+
+/* ---- The link to the board ---------------------------------------------- */
+
+/*
+ * Timeout: the longest one request (read, write, ...) waits for the board's
+ * answer before it fails with APCI_TIMEOUT, in milliseconds (1 .. 3600000;
+ * default 2000, or the URI's ?timeout=MS). After a timeout the board may
+ * still act on the request; its late reply is recognised and dropped.
+ * The embedded emulator never waits and keeps the value only to report it.
+ * Errors: APCI_INVALID_ARGUMENT (board NULL, milliseconds 0 or too large).
+ */
+APCI_API apci_status apci_set_timeout(apci_board* board, uint32_t milliseconds) APCI_NOEXCEPT;
+APCI_API apci_status apci_get_timeout(const apci_board* board, uint32_t* milliseconds) APCI_NOEXCEPT;
+
+/*
+ * 1 while the link to the board works, 0 once it is known to be lost (the
+ * daemon closed the socket or stopped, the dual-port RAM's board stopped or
+ * restarted, the USB board was unplugged; or board is NULL). A lost link is
+ * not reopened behind the caller's back: every call answers
+ * APCI_TRANSPORT_ERROR, apci_last_error() saying what happened, until
+ * apci_reconnect() succeeds. Non-blocking.
+ */
+APCI_API int apci_is_connected(const apci_board* board) APCI_NOEXCEPT;
+
+/*
+ * Closes the link and opens it again to the same device: the same socket or
+ * file, the same PCI function, the USB board on the same port (for "usb:",
+ * the first board found). The board's own state is what the board kept (a
+ * re-plugged board or a restarted daemon starts afresh: zero the handles of
+ * your descriptors). The embedded emulator has no link: APCI_OK, state kept.
+ * Errors: as apci_open(); on failure the link stays closed.
+ */
+APCI_API apci_status apci_reconnect(apci_board* board) APCI_NOEXCEPT;
+
+/* ---- Finding boards ------------------------------------------------------- */
+
+/* Called once per board found: its device URI (for apci_open) and one line
+ * describing it. Both strings are valid during the call only. */
+typedef void (*apci_found_fn)(const char* uri, const char* description, void* user);
+
+/*
+ * Lists the boards this machine can reach: USB boards (libusb: ADDI-DATA
+ * vendor IDs 0x15B8 and 0x10E8 with the frame interface), PCI boards (sysfs)
+ * and running emulator daemons (their sockets and dual-port RAM files), in
+ * that order, calling `found` for each. A kind of board that cannot be
+ * enumerated is skipped; apci_last_error(NULL) then names it, and the call
+ * still answers APCI_OK. Errors: APCI_INVALID_ARGUMENT (found is NULL).
+ * Blocking: enumeration of the buses and one connect per emulator socket.
+ */
+APCI_API apci_status apci_list_devices(apci_found_fn found, void* user) APCI_NOEXCEPT;
 
 /* ---- Objects ------------------------------------------------------------ */
 

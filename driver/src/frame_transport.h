@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// The remote half of the Transport interface: every backend that crosses a
+// process or device boundary (unix, shm, pci, usb) is a FrameLink that moves
+// one request frame out and one reply frame back; FrameTransport turns
+// requests into frames and replies into statuses for all of them. A new
+// opcode needs its payload codec (objif/frame.h) and one method here, never
+// work in a backend.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "objif/frame.h"
+#include "transport.h"
+
+namespace apci {
+
+using Millis = std::chrono::milliseconds;
+
+inline constexpr Millis kDefaultTimeout{2000};
+// The largest frame either side may send (header, largest payload, CRC).
+inline constexpr std::size_t kMaxFrameSize = objif::kFrameOverhead + objif::kMaxPayload;
+
+// One link to a board that carries whole frames. One file per backend.
+// Contract for every method: noexcept; called by one thread at a time (the
+// FrameTransport that owns it); `why` receives the words for a failure and is
+// left alone on success.
+class FrameLink {
+public:
+    virtual ~FrameLink() = default;
+
+    // Sends the request frame `request` (sequence number `sequence`) and
+    // receives the board's reply to it into `reply` (whole frame, cleared
+    // first). Stream links skip replies to earlier sequences (late replies to
+    // requests that timed out). Blocking: at most `timeout`, then kTimeout.
+    // kTransportError when the link failed; a link that is gone for good
+    // (peer closed, device unplugged) marks itself disconnected and answers
+    // kTransportError at once until reconnect() succeeds.
+    virtual objif::Status exchange(std::span<const std::uint8_t> request, std::uint32_t sequence,
+                                   std::vector<std::uint8_t>& reply, Millis timeout,
+                                   std::string& why) noexcept = 0;
+
+    // Closes the link and opens it again to the same device. Blocking: as
+    // the backend's open.
+    virtual objif::Status reconnect(std::string& why) noexcept = 0;
+
+    // False once the link is known to be gone. Non-blocking.
+    virtual bool connected() const noexcept = 0;
+};
+
+// Reads one reply frame from a byte stream (unix socket, USB bulk IN):
+// `read_some` appends at least one byte or fails. Replies to other sequences
+// are skipped. kTransportError for bytes that are not a frame.
+using ReadSome = std::function<objif::Status(std::vector<std::uint8_t>& buffer,
+                                             std::chrono::steady_clock::time_point deadline,
+                                             std::string& why)>;
+objif::Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
+                            std::vector<std::uint8_t>& reply,
+                            std::chrono::steady_clock::time_point deadline,
+                            const ReadSome& read_some, std::string& why) noexcept;
+
+class FrameTransport final : public Transport {
+public:
+    // `name` is the URI, used in failure texts.
+    FrameTransport(std::unique_ptr<FrameLink> link, std::string name, Millis timeout) noexcept;
+
+    objif::Status read(objif::Descriptor& d, objif::ValueType want,
+                       objif::Value& out) noexcept override;
+    objif::Status write(objif::Descriptor& d, const objif::Value& v) noexcept override;
+    std::string_view failure_detail() const noexcept override { return detail_; }
+
+    objif::Status set_timeout(Millis timeout) noexcept override;
+    Millis timeout() const noexcept override { return timeout_; }
+    objif::Status reconnect() noexcept override;
+    bool connected() const noexcept override { return link_->connected(); }
+
+    // One request of any opcode: sends `payload` as opcode `op` and returns
+    // the reply's payload. An Error reply becomes its status (detail names
+    // the frame error); a reply with the wrong opcode or sequence, or one
+    // that does not decode, is kBadFrame.
+    objif::Status call(objif::Opcode op, std::span<const std::uint8_t> payload,
+                       std::vector<std::uint8_t>& reply_payload) noexcept;
+
+private:
+    objif::Status fail(objif::Status s, std::string text) noexcept;
+    objif::Status bad_reply(objif::FrameError e, std::string_view what) noexcept;
+
+    std::unique_ptr<FrameLink> link_;
+    std::string name_;
+    Millis timeout_;
+    std::uint32_t sequence_ = 0;
+    std::string detail_;
+    // Scratch buffers, reused so a round trip allocates nothing once warm.
+    std::vector<std::uint8_t> payload_;
+    std::vector<std::uint8_t> request_;
+    std::vector<std::uint8_t> reply_;
+    std::vector<std::uint8_t> reply_payload_;
+    objif::Frame frame_;
+};
+
+// Options every remote scheme takes after '?': "timeout=MS". Options it does
+// not know are left in `rest` for the backend. kInvalidArgument with `why`
+// for a malformed value.
+struct LinkOptions {
+    Millis timeout = kDefaultTimeout;
+    std::vector<std::string> rest;
+};
+objif::Status parse_link_options(const DeviceUri& uri, LinkOptions& out, std::string& why);
+
+// "0x15B8", "5560" -> value. False for anything else or out of range.
+bool parse_unsigned(std::string_view text, std::uint32_t max, std::uint32_t& out) noexcept;
+
+}  // namespace apci

@@ -1,0 +1,332 @@
+// SPDX-License-Identifier: MIT
+#include "objif/mailbox.h"
+
+#include <linux/futex.h>
+#include <sys/syscall.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <thread>
+
+#include <fmt/format.h>
+
+namespace objif::mailbox {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+inline void cpu_relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    asm volatile("yield");
+#endif
+}
+
+// Spins until the status word holds `want` or `spin` passes; returns the last value seen.
+std::uint32_t spin_until(Window& w, MailboxStatus want, std::chrono::nanoseconds spin) noexcept {
+    const auto target = static_cast<std::uint32_t>(want);
+    std::uint32_t now = w.load(kOffStatus);
+    if (now == target || spin.count() <= 0) return now;
+    const auto until = Clock::now() + spin;
+    for (unsigned i = 1;; ++i) {
+        cpu_relax();
+        now = w.load(kOffStatus);
+        if (now == target) return now;
+        if ((i & 63) == 0 && Clock::now() >= until) return now;
+    }
+}
+
+// Sleeps on the status word while it holds `seen`, announcing the sleep in
+// `sleeping_flag` so the other side knows to wake us. The flag store and the
+// status re-load are sequentially consistent, as are the other side's status
+// store and flag load: one of the two sides sees the other.
+void sleep_on_status(Window& w, std::size_t sleeping_flag, std::uint32_t seen,
+                     std::chrono::nanoseconds timeout) noexcept {
+    w.store_fence(sleeping_flag, 1);
+    if (w.load_fence(kOffStatus) == seen) w.wait(kOffStatus, seen, timeout);
+    w.store(sleeping_flag, 0);
+}
+
+// Publishes a new status and wakes the other side if it sleeps.
+void publish_status(Window& w, MailboxStatus s, std::size_t other_sleeping_flag) noexcept {
+    w.store_fence(kOffStatus, static_cast<std::uint32_t>(s));
+    if (w.load_fence(other_sleeping_flag) != 0) w.wake(kOffStatus);
+}
+
+std::string_view status_word_name(std::uint32_t s) {
+    switch (static_cast<MailboxStatus>(s)) {
+        case MailboxStatus::kIdle: return "Idle";
+        case MailboxStatus::kRequest: return "Request";
+        case MailboxStatus::kBusy: return "Busy";
+        case MailboxStatus::kReply: return "Reply";
+    }
+    return "invalid";
+}
+
+}  // namespace
+
+// ---- Window
+
+void Window::wait(std::size_t, std::uint32_t, std::chrono::nanoseconds timeout) noexcept {
+    // Device memory: nothing to sleep on; poll again soon without burning the CPU.
+    std::this_thread::sleep_for(std::min<std::chrono::nanoseconds>(timeout, std::chrono::microseconds(20)));
+}
+
+std::uint32_t MappedWindow::load(std::size_t offset) noexcept {
+    return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+        .load(std::memory_order_acquire);
+}
+void MappedWindow::store(std::size_t offset, std::uint32_t value) noexcept {
+    std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+        .store(value, std::memory_order_release);
+}
+void MappedWindow::store_fence(std::size_t offset, std::uint32_t value) noexcept {
+    std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+        .store(value, std::memory_order_seq_cst);
+}
+std::uint32_t MappedWindow::load_fence(std::size_t offset) noexcept {
+    return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+        .load(std::memory_order_seq_cst);
+}
+bool MappedWindow::compare_exchange(std::size_t offset, std::uint32_t expected,
+                                    std::uint32_t desired) noexcept {
+    return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+        .compare_exchange_strong(expected, desired, std::memory_order_acq_rel);
+}
+void MappedWindow::read(std::size_t offset, std::uint8_t* out, std::size_t size) noexcept {
+    std::memcpy(out, base_ + offset, size);
+}
+void MappedWindow::write(std::size_t offset, const std::uint8_t* in, std::size_t size) noexcept {
+    std::memcpy(base_ + offset, in, size);
+}
+
+void MappedWindow::wait(std::size_t offset, std::uint32_t expected,
+                        std::chrono::nanoseconds timeout) noexcept {
+    if (!can_sleep_) return Window::wait(offset, expected, timeout);
+    const auto secs = std::chrono::duration_cast<std::chrono::seconds>(timeout);
+    timespec ts{static_cast<time_t>(secs.count()),
+                static_cast<long>((timeout - secs).count())};
+    // A shared (not FUTEX_PRIVATE) futex: the other side is another process.
+    // EAGAIN (value already changed), EINTR and ETIMEDOUT all mean "look again".
+    ::syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(base_ + offset), FUTEX_WAIT, expected,
+              &ts, nullptr, 0);
+}
+
+void MappedWindow::wake(std::size_t offset) noexcept {
+    // Harmless on memory that no one sleeps on (device memory answers EFAULT).
+    ::syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(base_ + offset), FUTEX_WAKE, INT_MAX,
+              nullptr, nullptr, 0);
+}
+
+// ---- Layout
+
+std::string check_layout(Window& w) {
+    const std::uint32_t signature = w.load(kOffSignature);
+    if (w.error() != Status::kOk) return w.error_text();
+    if (signature != kSignature)
+        return fmt::format("no mailbox here: signature is {:#010x}, expected {:#010x} (\"DRPM\")",
+                           signature, kSignature);
+    if (const auto v = w.load(kOffVersion); v != kLayoutVersion)
+        return fmt::format("mailbox layout version {} (this driver speaks {})", v, kLayoutVersion);
+    if (const auto size = w.load(kOffWindowSize); size != kWindowSize)
+        return fmt::format("mailbox window size {:#x} (expected {:#x})", size, kWindowSize);
+    if (const auto cap = w.load(kOffRecordCapacity); cap != kRecordCapacity)
+        return fmt::format("mailbox record capacity {} (expected {})", cap, kRecordCapacity);
+    if (const auto s = w.load(kOffStatus); s > static_cast<std::uint32_t>(MailboxStatus::kReply))
+        return fmt::format("mailbox status word holds {} (not a status)", s);
+    if (w.error() != Status::kOk) return w.error_text();
+    return {};
+}
+
+// ---- Board side
+
+void format(Window& w) {
+    w.store(kOffBoardState, static_cast<std::uint32_t>(BoardState::kStopped));
+    w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
+    w.store(kOffHostLock, 0);
+    w.store(kOffBoardSleeping, 0);
+    w.store(kOffHostSleeping, 0);
+    w.store(kOffRequest, 0);
+    w.store(kOffReply, 0);
+    w.store(kOffVersion, kLayoutVersion);
+    w.store(kOffWindowSize, static_cast<std::uint32_t>(kWindowSize));
+    w.store(kOffRecordCapacity, static_cast<std::uint32_t>(kRecordCapacity));
+    w.store_fence(kOffSignature, kSignature);  // last: the header is complete
+}
+
+void set_board_state(Window& w, BoardState state) {
+    if (state == BoardState::kServing) w.store(kOffGeneration, w.load(kOffGeneration) + 1);
+    w.store_fence(kOffBoardState, static_cast<std::uint32_t>(state));
+    // A host sleeping on the status must notice a board that stops.
+    w.wake(kOffStatus);
+}
+
+bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
+                  std::chrono::nanoseconds timeout) {
+    constexpr auto kRequest = static_cast<std::uint32_t>(MailboxStatus::kRequest);
+    std::uint32_t s = spin_until(w, MailboxStatus::kRequest, spin);
+    if (s != kRequest) {
+        sleep_on_status(w, kOffBoardSleeping, s, timeout);
+        s = w.load(kOffStatus);
+    }
+    if (s != kRequest) return false;
+    w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kBusy));
+    const std::uint32_t length = w.load(kOffRequest);
+    request.clear();
+    // An impossible length is the host's garbage: the caller answers it as a
+    // short frame (empty bytes) and goes on.
+    if (length < kFrameOverhead || length > kRecordCapacity) return true;
+    request.resize(length);
+    w.read(kOffRequest + 4, request.data(), length);
+    return true;
+}
+
+void put_reply(Window& w, std::span<const std::uint8_t> reply) {
+    const std::size_t n = std::min(reply.size(), kRecordCapacity);
+    w.write(kOffReply + 4, reply.data(), n);
+    w.store(kOffReply, static_cast<std::uint32_t>(n));
+    publish_status(w, MailboxStatus::kReply, kOffHostSleeping);
+}
+
+void wake_board(Window& w) { w.wake(kOffStatus); }
+
+// ---- Host side
+
+namespace {
+
+struct Exchange {
+    Window& w;
+    const HostOptions& options;
+    Clock::time_point deadline;
+    std::string& why;
+
+    std::chrono::nanoseconds left() const { return std::max(deadline - Clock::now(), Clock::duration::zero()); }
+
+    Status window_failed() {
+        why = w.error_text();
+        return w.error();
+    }
+
+    Status board_stopped() {
+        why = "the board stopped serving the mailbox";
+        return Status::kTransportError;
+    }
+
+    bool serving() { return w.load(kOffBoardState) == static_cast<std::uint32_t>(BoardState::kServing); }
+
+    Status lock() {
+        for (;;) {
+            if (w.compare_exchange(kOffHostLock, 0, options.token)) return Status::kOk;
+            if (w.error() != Status::kOk) return window_failed();
+            const std::uint32_t holder = w.load(kOffHostLock);
+            if (holder != 0 && options.lock_holder_gone != nullptr &&
+                options.lock_holder_gone(holder) &&
+                w.compare_exchange(kOffHostLock, holder, options.token))
+                return Status::kOk;  // taken over from a host that died holding it
+            if (left().count() == 0) {
+                why = fmt::format("mailbox held by another host (token {}) for longer than the timeout",
+                                  holder);
+                return Status::kTimeout;
+            }
+            std::this_thread::sleep_for(std::chrono::microseconds(20));
+        }
+    }
+
+    void unlock() { w.store(kOffHostLock, 0); }
+
+    // Waits until the status leaves Request/Busy; true when it is Reply.
+    Status wait_reply() {
+        constexpr auto kReply = static_cast<std::uint32_t>(MailboxStatus::kReply);
+        std::uint32_t s = spin_until(w, MailboxStatus::kReply, options.spin);
+        for (;;) {
+            if (s == kReply) return Status::kOk;
+            if (w.error() != Status::kOk) return window_failed();
+            if (s != static_cast<std::uint32_t>(MailboxStatus::kRequest) &&
+                s != static_cast<std::uint32_t>(MailboxStatus::kBusy)) {
+                why = fmt::format("mailbox status changed to {} while waiting for a reply",
+                                  status_word_name(s));
+                return Status::kTransportError;
+            }
+            if (!serving()) return board_stopped();
+            const auto remaining = left();
+            if (remaining.count() == 0) {
+                why = fmt::format("no reply from the board within {} ms (status {})",
+                                  options.timeout.count(), status_word_name(s));
+                return Status::kTimeout;
+            }
+            // Wake now and then to notice a board that stopped without waking us.
+            sleep_on_status(w, kOffHostSleeping, s,
+                            std::min<std::chrono::nanoseconds>(remaining, std::chrono::milliseconds(50)));
+            s = spin_until(w, MailboxStatus::kReply, options.spin);
+        }
+    }
+
+    // A host that timed out left a request behind: let the board finish it and drop its reply.
+    Status settle() {
+        const std::uint32_t s = w.load(kOffStatus);
+        if (s == static_cast<std::uint32_t>(MailboxStatus::kIdle)) return Status::kOk;
+        if (s == static_cast<std::uint32_t>(MailboxStatus::kRequest) ||
+            s == static_cast<std::uint32_t>(MailboxStatus::kBusy)) {
+            const Status st = wait_reply();
+            if (st != Status::kOk) return st;
+        } else if (s != static_cast<std::uint32_t>(MailboxStatus::kReply)) {
+            why = fmt::format("mailbox status word holds {} (not a status)", s);
+            return Status::kTransportError;
+        }
+        w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
+        return Status::kOk;
+    }
+
+    Status run(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply) {
+        if (!serving()) {
+            if (w.error() != Status::kOk) return window_failed();
+            why = "the board is not serving the mailbox (is the emulator running?)";
+            return Status::kTransportError;
+        }
+        Status st = settle();
+        if (st != Status::kOk) return st;
+        w.write(kOffRequest + 4, request.data(), request.size());
+        w.store(kOffRequest, static_cast<std::uint32_t>(request.size()));
+        publish_status(w, MailboxStatus::kRequest, kOffBoardSleeping);
+        st = wait_reply();
+        if (st != Status::kOk) return st;
+        const std::uint32_t length = w.load(kOffReply);
+        if (length > kRecordCapacity) {
+            w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
+            why = fmt::format("reply record length {} exceeds the record capacity {}", length,
+                              kRecordCapacity);
+            return Status::kTransportError;
+        }
+        reply.resize(length);
+        w.read(kOffReply + 4, reply.data(), length);
+        w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
+        if (w.error() != Status::kOk) return window_failed();
+        return Status::kOk;
+    }
+};
+
+}  // namespace
+
+Status exchange(Window& w, const HostOptions& options, std::span<const std::uint8_t> request,
+                std::vector<std::uint8_t>& reply, std::string& why) {
+    if (request.size() > kRecordCapacity) {
+        why = fmt::format("request frame of {} bytes exceeds the mailbox record ({} bytes)",
+                          request.size(), kRecordCapacity);
+        return Status::kInvalidArgument;
+    }
+    Exchange x{w, options, Clock::now() + options.timeout, why};
+    Status st = x.lock();
+    if (st != Status::kOk) return st;
+    st = x.run(request, reply);
+    x.unlock();
+    return st;
+}
+
+}  // namespace objif::mailbox

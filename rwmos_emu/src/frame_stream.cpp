@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+#include "rwmos/frame_stream.h"
+
+namespace rwmos {
+
+FrameStream::Result FrameStream::feed(std::span<const std::uint8_t> bytes, FrameServer& server,
+                                      std::vector<std::uint8_t>& replies) {
+    Result result;
+    buffer_.insert(buffer_.end(), bytes.begin(), bytes.end());
+    while (start_ < buffer_.size()) {
+        const std::span<const std::uint8_t> rest(buffer_.data() + start_, buffer_.size() - start_);
+        std::size_t consumed = 0;
+        bool need_more = false;
+        const objif::FrameError e = objif::decode_frame(rest, frame_, consumed, need_more);
+        if (e == objif::FrameError::kNone) {
+            server.handle(frame_, replies);
+        } else if (need_more) {
+            break;
+        } else if (consumed == 0) {
+            result.keep = false;
+            result.garbage = e;
+            clear();
+            return result;
+        } else {
+            FrameServer::reject(frame_.sequence, e, replies);
+            ++result.rejected;
+        }
+        ++result.frames;
+        start_ += consumed;
+    }
+    // Keep only the unconsumed tail, at the front of the buffer.
+    buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(start_));
+    start_ = 0;
+    return result;
+}
+
+}  // namespace rwmos

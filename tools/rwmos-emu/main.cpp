@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+// rwmos-emu: the emulator daemon. One emulated APCI-8001 board, served to
+// many clients at once on a Unix socket (--socket) and/or a dual-port RAM
+// file (--shm), every request serialised on the one board state.
+// DESIGN.md sections 6 and 7; docs/rwmos-emu.md.
+#include <signal.h>
+#include <sys/epoll.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "board_host.h"
+#include "log.h"
+#include "rwmos/registry.h"
+#include "shm_server.h"
+#include "socket_server.h"
+
+namespace rwmos_emu {
+namespace {
+
+// Exit codes (DESIGN.md section 7).
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+struct Options {
+    std::string socket;
+    std::string shm;
+    bool realtime = false;
+    bool no_option_tc = false;
+    std::size_t max_clients = 64;
+    std::string log_level = "info";
+};
+
+// Owns the epoll and signal descriptors.
+struct Fds {
+    int epoll = -1;
+    int signal = -1;
+    ~Fds() {
+        if (signal >= 0) ::close(signal);
+        if (epoll >= 0) ::close(epoll);
+    }
+};
+
+bool add_watch(int epoll, int fd) {
+    epoll_event ev{};
+    ev.events = EPOLLIN;
+    ev.data.fd = fd;
+    return ::epoll_ctl(epoll, EPOLL_CTL_ADD, fd, &ev) == 0;
+}
+
+// SIGTERM and SIGINT arrive through a signalfd in the event loop, so a
+// shutdown happens between requests, never inside one. Blocked before any
+// thread starts, so every thread inherits the mask.
+int block_shutdown_signals() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGINT);
+    if (::pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return -1;
+    ::signal(SIGPIPE, SIG_IGN);
+    return ::signalfd(-1, &set, SFD_CLOEXEC | SFD_NONBLOCK);
+}
+
+int serve(const Options& o) {
+    Level level{};
+    parse_level(o.log_level, level);
+    set_log_level(level);
+
+    Fds fds;
+    fds.signal = block_shutdown_signals();
+    fds.epoll = ::epoll_create1(EPOLL_CLOEXEC);
+    if (fds.signal < 0 || fds.epoll < 0 || !add_watch(fds.epoll, fds.signal)) {
+        log(Level::kError, "cannot set up the event loop: {}", std::strerror(errno));
+        return kExitFailure;
+    }
+
+    rwmos::BoardConfig config;
+    config.option_tc = !o.no_option_tc;
+    BoardHost host(config);
+    SocketServer sockets(host, fds.epoll, o.max_clients);
+    ShmServer shm(host);
+    std::string why;
+    if (!o.socket.empty() && !sockets.open(o.socket, why)) {
+        log(Level::kError, "{}", why);
+        return kExitFailure;
+    }
+    if (!o.shm.empty() && !shm.open(o.shm, why)) {
+        log(Level::kError, "{}", why);
+        return kExitFailure;
+    }
+    shm.start();
+    if (o.realtime)
+        log(Level::kWarn, "--realtime: this board has no interpolation clock to pace yet; "
+                          "requests are served as they come");
+
+    rwmos::RegisteredDaemon self{::getpid(), o.socket, o.shm};
+    if (!rwmos::register_daemon(self, why)) log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
+    log(Level::kInfo, "serving one board (optionTC {}){}{}{}{}", o.no_option_tc ? "off" : "on",
+        o.socket.empty() ? "" : " on socket ", o.socket, o.shm.empty() ? "" : " and dual-port RAM file ",
+        o.shm);
+
+    int exit_code = kExitOk;
+    bool running = true;
+    while (running) {
+        epoll_event events[64];
+        const int n = ::epoll_wait(fds.epoll, events, 64, -1);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            log(Level::kError, "epoll_wait: {}", std::strerror(errno));
+            exit_code = kExitFailure;
+            break;
+        }
+        for (int i = 0; i < n; ++i) {
+            const int fd = events[i].data.fd;
+            if (fd == fds.signal) {
+                signalfd_siginfo info{};
+                if (::read(fds.signal, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
+                    log(Level::kInfo, "{}: shutting down", info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM");
+                    running = false;
+                }
+            } else if (fd == sockets.listen_fd()) {
+                sockets.on_listen_ready();
+            } else {
+                sockets.on_client_ready(fd, events[i].events);
+            }
+        }
+    }
+
+    sockets.close_all();
+    shm.stop();
+    rwmos::unregister_daemon(self.pid);
+    const ServedCounts counts = host.counts();
+    log(Level::kInfo, "stopped: served {} request frames ({} answered with Error)", counts.frames,
+        counts.rejected);
+    return exit_code;
+}
+
+int run(int argc, char** argv) {
+    CLI::App app("rwmos-emu - the RWMOS emulator daemon: one emulated APCI-8001 board served to "
+                 "many clients",
+                 "rwmos-emu");
+    Options o;
+    app.add_option("--socket", o.socket,
+                   "Serve wire frames on this Unix socket (created mode 0660; a stale socket is "
+                   "removed, a live one refused)");
+    app.add_option("--shm", o.shm,
+                   "Also serve a dual-port RAM mailbox in this file (created mode 0660), e.g. "
+                   "/dev/shm/rwmos-emu");
+    app.add_flag("--realtime", o.realtime, "Pace the interpolation clock to wall time");
+    app.add_flag("--no-option-tc", o.no_option_tc,
+                 "Emulate firmware without optionTC: the TC module (bus 1300) is absent");
+    app.add_option("--max-clients", o.max_clients, "Most socket clients at once (default 64)")
+        ->check(CLI::Range(1, 4096));
+    app.add_option("--log-level", o.log_level, "error, warn, info (default) or debug")
+        ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
+    app.footer("Clients open the board with the device URI unix:PATH or shm:PATH (libapci, "
+               "apcictl --device). SIGTERM or SIGINT stops the daemon and removes its socket and "
+               "file. Logs go to stderr.\nExit codes: 0 ok, 1 could not serve, 2 usage.");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? kExitOk : kExitUsage;
+    }
+    if (o.socket.empty() && o.shm.empty()) {
+        std::fprintf(stderr, "rwmos-emu: give --socket PATH, --shm PATH or both (see --help)\n");
+        return kExitUsage;
+    }
+    return serve(o);
+}
+
+}  // namespace
+}  // namespace rwmos_emu
+
+int main(int argc, char** argv) {
+    try {
+        return rwmos_emu::run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rwmos-emu: internal error: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "rwmos-emu: internal error\n");
+    }
+    return 1;
+}
