@@ -15,7 +15,6 @@
 // time. errno becomes a status in status_of_errno() and nowhere else.
 #include <dirent.h>
 #include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -109,7 +108,7 @@ bool read_bar(const std::string& device_dir, unsigned index, Bar& bar) {
 
 // An I/O BAR through sysfs: 32-bit pread/pwrite at aligned offsets. The host
 // lock's compare-and-swap is made atomic among the hosts of this machine
-// with flock() on the resource file (the board never touches that word).
+// with a byte-range lock on that word (the board never touches it).
 class IoPortWindow final : public mb::Window {
 public:
     IoPortWindow(int fd, std::size_t base, std::string path)
@@ -129,13 +128,10 @@ public:
     }
     bool compare_exchange(std::size_t offset, std::uint32_t expected,
                           std::uint32_t desired) noexcept override {
-        if (::flock(fd_, LOCK_EX) != 0) {
-            note(errno, "lock", offset);
-            return false;
-        }
+        if (!lock_word(offset, F_WRLCK)) return false;
         const bool equal = load(offset) == expected;
         if (equal) store(offset, desired);
-        ::flock(fd_, LOCK_UN);
+        lock_word(offset, F_UNLCK);
         return equal && error_ == 0;
     }
     void read(std::size_t offset, std::uint8_t* out, std::size_t size) noexcept override {
@@ -155,6 +151,22 @@ public:
     std::string error_text() const override { return error_text_; }
 
 private:
+    // An open-file-description lock on the word's 4 bytes: excludes the
+    // other hosts of this machine, threads included.
+    bool lock_word(std::size_t offset, short type) noexcept {
+        struct flock l {};
+        l.l_type = type;
+        l.l_whence = SEEK_SET;
+        l.l_start = static_cast<off_t>(base_ + offset);
+        l.l_len = 4;
+        while (::fcntl(fd_, F_OFD_SETLKW, &l) != 0) {
+            if (errno == EINTR) continue;
+            note(errno, "lock", offset);
+            return false;
+        }
+        return true;
+    }
+
     void note(int err, std::string_view what, std::size_t offset) noexcept {
         if (error_ != 0) return;  // keep the first
         error_ = err == 0 ? EIO : err;

@@ -1,0 +1,288 @@
+// SPDX-License-Identifier: MIT
+// One conformance suite, run on every transport that can run here: a PCAP
+// program must see the same board through the embedded emulator, the daemon
+// socket, the dual-port RAM mailbox (shared-memory file, PCI BAR) and USB.
+// Every test opens a fresh board through the public C API only and expects
+// exactly what the embedded emulator answers: the object interface's check
+// order, handles, and the TC module's state rules (DESIGN.md sections 2, 3).
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "apci/apci.h"
+#include "board_sources.h"
+
+namespace {
+
+using conformance::BoardSource;
+using conformance::Transport;
+
+constexpr std::int32_t kBoardBus = 1000;
+constexpr std::int32_t kGroup = APCI_TC_DEVICE_GROUP;
+constexpr std::int32_t kInit = APCI_TC_DEVICE_INIT;
+
+apci_object_descriptor object(std::int32_t bus, std::int32_t device, std::int32_t index,
+                              std::int32_t sub) {
+    return apci_object_descriptor{bus, device, index, sub, 0};
+}
+apci_object_descriptor tc_init(std::int32_t index, std::int32_t sub = 0) {
+    return object(APCI_TC_BUS, kInit, index, sub);
+}
+apci_object_descriptor tc_group(std::int32_t group, std::int32_t sub) {
+    return object(APCI_TC_BUS, kGroup, group, sub);
+}
+apci_object_descriptor board_object(std::int32_t index, std::int32_t sub = 0) {
+    return object(kBoardBus, 0, index, sub);
+}
+
+class Conformance : public ::testing::TestWithParam<Transport> {
+protected:
+    void SetUp() override { open_board(true); }
+    void TearDown() override {
+        apci_close(board_);
+        board_ = nullptr;
+        source_.reset();
+    }
+
+    void open_board(bool option_tc) {
+        apci_close(board_);
+        board_ = nullptr;
+        source_.reset();  // before the next one starts: one board at a time
+        source_ = GetParam().make(option_tc);
+        ASSERT_NE(source_, nullptr) << "could not start a board for " << GetParam().name;
+        ASSERT_EQ(apci_open(source_->uri().c_str(), &board_), APCI_OK) << apci_last_error(nullptr);
+    }
+
+    apci_status write_int(apci_object_descriptor o, std::int32_t v) { return apci_write_int(board_, &o, v); }
+    apci_status write_double(apci_object_descriptor o, double v) { return apci_write_double(board_, &o, v); }
+    apci_status read_int_status(apci_object_descriptor o) {
+        std::int32_t v = 0;
+        return apci_read_int(board_, &o, &v);
+    }
+    apci_status read_double_status(apci_object_descriptor o) {
+        double v = 0;
+        return apci_read_double(board_, &o, &v);
+    }
+    std::int32_t read_int(apci_object_descriptor o) {
+        std::int32_t v = -12345;
+        EXPECT_EQ(apci_read_int(board_, &o, &v), APCI_OK) << apci_last_error(board_);
+        return v;
+    }
+    double read_double(apci_object_descriptor o) {
+        double v = -12345.0;
+        EXPECT_EQ(apci_read_double(board_, &o, &v), APCI_OK) << apci_last_error(board_);
+        return v;
+    }
+
+    // DESIGN.md section 3 / the seed's initialisation: axes, tool, radius, side.
+    void initialise_group(std::int32_t g) {
+        ASSERT_EQ(write_int(tc_group(g, APCI_TC_XAXIS), 0), APCI_OK);
+        ASSERT_EQ(write_int(tc_group(g, APCI_TC_YAXIS), 1), APCI_OK);
+        ASSERT_EQ(write_int(tc_group(g, APCI_TC_ZAXIS), 2), APCI_OK);
+        ASSERT_EQ(write_int(tc_group(g, APCI_TC_WKZINDEX), 1), APCI_OK);
+        ASSERT_EQ(write_double(tc_group(g, APCI_TC_RADIUS), 2.0), APCI_OK);
+        ASSERT_EQ(write_int(tc_group(g, APCI_TC_RIGHT), 1), APCI_OK);
+    }
+
+    std::unique_ptr<BoardSource> source_;
+    apci_board* board_ = nullptr;
+};
+
+// ---- Object interface
+
+TEST_P(Conformance, BoardModuleAnswersItsConstants) {
+    EXPECT_EQ(read_int(board_object(1)), 0x010000) << "FirmwareVersion 1.0.0";
+    EXPECT_EQ(read_int(board_object(3)), 8) << "AxisCount";
+    EXPECT_EQ(read_int(board_object(2)) & 0x01, 0x01) << "Options: optionTC";
+}
+
+TEST_P(Conformance, WrittenIntReadsBack) {
+    ASSERT_EQ(write_int(board_object(4), 2000), APCI_OK) << apci_last_error(board_);
+    EXPECT_EQ(read_int(board_object(4)), 2000);
+}
+
+TEST_P(Conformance, WrittenDoubleReadsBackBitForBit) {
+    const double angle = 0.1 + 0.2;  // not representable exactly in decimal
+    ASSERT_EQ(write_double(tc_init(APCI_TC_ROT_ANGLE), angle), APCI_OK);
+    const double back = read_double(tc_init(APCI_TC_ROT_ANGLE));
+    EXPECT_EQ(std::memcmp(&back, &angle, sizeof angle), 0);
+}
+
+TEST_P(Conformance, FirstAccessFillsTheHandleAndLaterAccessesKeepIt) {
+    auto o = tc_group(1, APCI_TC_RADIUS);
+    double v = 0;
+    ASSERT_EQ(apci_read_double(board_, &o, &v), APCI_OK);
+    const std::uint32_t handle = o.handle;
+    EXPECT_NE(handle, 0u);
+    ASSERT_EQ(apci_write_double(board_, &o, 3.0), APCI_OK);
+    EXPECT_EQ(o.handle, handle);
+}
+
+TEST_P(Conformance, AddressingErrorsInCheckOrder) {
+    EXPECT_EQ(read_int_status(object(999, 0, 1, 0)), APCI_NO_SUCH_DEVICE);
+    EXPECT_EQ(read_int_status(object(APCI_TC_BUS, 7, 1, 0)), APCI_NO_SUCH_DEVICE);
+    EXPECT_EQ(read_int_status(board_object(99)), APCI_OBJECT_MISSING);
+    EXPECT_EQ(read_int_status(tc_group(4, APCI_TC_ERROR)), APCI_OBJECT_MISSING);
+    EXPECT_EQ(read_int_status(tc_group(1, 99)), APCI_SUB_MISSING);
+}
+
+TEST_P(Conformance, AccessErrors) {
+    EXPECT_EQ(write_int(board_object(1), 5), APCI_READ_ONLY) << "FirmwareVersion";
+    EXPECT_EQ(read_int_status(tc_init(APCI_TC_CLEAN)), APCI_WRITE_ONLY);
+}
+
+TEST_P(Conformance, TypeErrors) {
+    EXPECT_EQ(read_int_status(tc_init(APCI_TC_ROT_ANGLE)), APCI_TYPE_MISMATCH);
+    EXPECT_EQ(read_double_status(tc_init(APCI_TC_PLANE)), APCI_TYPE_MISMATCH);
+    EXPECT_EQ(write_double(tc_init(APCI_TC_PLANE), 17.0), APCI_TYPE_MISMATCH);
+}
+
+TEST_P(Conformance, RangeErrors) {
+    EXPECT_EQ(write_int(tc_init(APCI_TC_PLANE), 20), APCI_VALUE_TOO_HIGH);
+    EXPECT_EQ(write_int(tc_init(APCI_TC_PLANE), 16), APCI_VALUE_TOO_LOW);
+    EXPECT_EQ(write_int(tc_group(1, APCI_TC_WKZINDEX), 1024), APCI_VALUE_TOO_HIGH);
+}
+
+TEST_P(Conformance, NanAndInfinityAreInvalidValues) {
+    EXPECT_EQ(write_double(tc_init(APCI_TC_ROT_ANGLE), std::numeric_limits<double>::quiet_NaN()),
+              APCI_INVALID_VALUE);
+    EXPECT_EQ(write_double(tc_init(APCI_TC_ROT_ANGLE), std::numeric_limits<double>::infinity()),
+              APCI_INVALID_VALUE);
+    EXPECT_EQ(read_double(tc_init(APCI_TC_ROT_ANGLE)), 0.0) << "nothing was written";
+}
+
+TEST_P(Conformance, RefusedWriteChangesNothing) {
+    ASSERT_EQ(write_int(tc_init(APCI_TC_PLANE), 18), APCI_OK);
+    EXPECT_EQ(write_int(tc_init(APCI_TC_PLANE), 99), APCI_VALUE_TOO_HIGH);
+    EXPECT_EQ(write_double(tc_init(APCI_TC_PLANE), 19.0), APCI_TYPE_MISMATCH);
+    EXPECT_EQ(read_int(tc_init(APCI_TC_PLANE)), 18);
+}
+
+TEST_P(Conformance, HandleOfAnotherObjectIsAMismatch) {
+    auto o = tc_group(1, APCI_TC_RADIUS);
+    double v = 0;
+    ASSERT_EQ(apci_read_double(board_, &o, &v), APCI_OK);
+    o.subindex = APCI_TC_WKZLEN;  // handle kept: names RADIUS
+    EXPECT_EQ(apci_read_double(board_, &o, &v), APCI_HANDLE_MISMATCH);
+}
+
+TEST_P(Conformance, CleanMakesTcHandlesStaleUntilZeroed) {
+    auto radius = tc_group(1, APCI_TC_RADIUS);
+    auto clean = tc_init(APCI_TC_CLEAN);
+    auto axis_count = board_object(3);
+    double r = 0;
+    std::int32_t n = 0;
+    ASSERT_EQ(apci_write_double(board_, &radius, 4.0), APCI_OK);
+    ASSERT_EQ(apci_read_int(board_, &axis_count, &n), APCI_OK);
+    ASSERT_EQ(apci_write_int(board_, &clean, 1), APCI_OK);
+    EXPECT_EQ(apci_read_double(board_, &radius, &r), APCI_STALE_HANDLE);
+    EXPECT_EQ(apci_read_int(board_, &axis_count, &n), APCI_OK) << "bus 1000 handles stay";
+    radius.handle = 0;
+    ASSERT_EQ(apci_read_double(board_, &radius, &r), APCI_OK);
+    EXPECT_EQ(r, 0.0) << "Clean discarded the tool data";
+}
+
+TEST_P(Conformance, LastErrorNamesTheOperationObjectAndStatus) {
+    EXPECT_EQ(read_int_status(tc_group(1, 99)), APCI_SUB_MISSING);
+    const std::string text = apci_last_error(board_);
+    EXPECT_NE(text.find("read int 1300/1/1/99"), std::string::npos) << text;
+    EXPECT_NE(text.find("SubMissing"), std::string::npos) << text;
+    EXPECT_EQ(read_int(board_object(3)), 8);
+    EXPECT_STREQ(apci_last_error(board_), "") << "a successful call clears it";
+}
+
+TEST_P(Conformance, LinkIsConnectedAndTimeoutIsSettable) {
+    EXPECT_EQ(apci_is_connected(board_), 1);
+    ASSERT_EQ(apci_set_timeout(board_, 750), APCI_OK);
+    std::uint32_t ms = 0;
+    ASSERT_EQ(apci_get_timeout(board_, &ms), APCI_OK);
+    EXPECT_EQ(ms, 750u);
+    EXPECT_EQ(apci_set_timeout(board_, 0), APCI_INVALID_ARGUMENT);
+    EXPECT_EQ(apci_reconnect(board_), APCI_OK) << apci_last_error(board_);
+    EXPECT_EQ(read_int(board_object(3)), 8) << "the board answers after a reconnect";
+}
+
+// ---- TC state rules (seed: APCI-8001 TC document; DESIGN.md section 3)
+
+TEST_P(Conformance, StatusOneWithoutInitialisationIsInitError) {
+    EXPECT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_WRONG_DEVICE_STATE);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_ERROR)), static_cast<std::int32_t>(APCI_TC_ERROR_INIT));
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)), 0);
+}
+
+TEST_P(Conformance, StatusOneWhenInitialisedSetsRun) {
+    initialise_group(1);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_OK) << apci_last_error(board_);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)), static_cast<std::int32_t>(APCI_TC_STATUS_RUN));
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_ERROR)), 0);
+}
+
+TEST_P(Conformance, AxisWriteWhileActiveIsRefusedWithInitError) {
+    initialise_group(1);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_OK);
+    EXPECT_EQ(write_int(tc_group(1, APCI_TC_XAXIS), 3), APCI_WRONG_DEVICE_STATE);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_XAXIS)), 0) << "refused: unchanged";
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_ERROR)), static_cast<std::int32_t>(APCI_TC_ERROR_INIT));
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)), static_cast<std::int32_t>(APCI_TC_STATUS_RUN));
+}
+
+TEST_P(Conformance, WritingErrorClearsIt) {
+    ASSERT_EQ(write_int(tc_group(2, APCI_TC_STATUS), 1), APCI_WRONG_DEVICE_STATE);
+    ASSERT_NE(read_int(tc_group(2, APCI_TC_ERROR)), 0);
+    ASSERT_EQ(write_int(tc_group(2, APCI_TC_ERROR), 0), APCI_OK);
+    EXPECT_EQ(read_int(tc_group(2, APCI_TC_ERROR)), 0);
+}
+
+TEST_P(Conformance, StatusZeroDeactivates) {
+    initialise_group(1);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_OK);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 0), APCI_OK);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)), 0);
+    EXPECT_EQ(write_int(tc_group(1, APCI_TC_XAXIS), 3), APCI_OK) << "writable again while inactive";
+}
+
+TEST_P(Conformance, RadiusBelongsToTheCurrentToolIndex) {
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_WKZINDEX), 5), APCI_OK);
+    ASSERT_EQ(write_double(tc_group(1, APCI_TC_RADIUS), 1.5), APCI_OK);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_WKZINDEX), 6), APCI_OK);
+    EXPECT_EQ(read_double(tc_group(1, APCI_TC_RADIUS)), 0.0);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_WKZINDEX), 5), APCI_OK);
+    EXPECT_EQ(read_double(tc_group(1, APCI_TC_RADIUS)), 1.5);
+}
+
+TEST_P(Conformance, IndexZeroFollowsTcPlane) {
+    ASSERT_EQ(write_int(tc_group(3, APCI_TC_XAXIS), 2), APCI_OK);
+    ASSERT_EQ(write_int(tc_group(3, APCI_TC_YAXIS), 0), APCI_OK);
+    ASSERT_EQ(write_int(tc_group(3, APCI_TC_ZAXIS), 1), APCI_OK);
+    ASSERT_EQ(write_int(tc_group(3, APCI_TC_WKZINDEX), 33), APCI_OK);
+    EXPECT_EQ(read_int(tc_group(0, APCI_TC_WKZINDEX)), 0) << "X-Y plane: group 1";
+    ASSERT_EQ(write_int(tc_init(APCI_TC_PLANE), 18), APCI_OK);
+    EXPECT_EQ(read_int(tc_group(0, APCI_TC_WKZINDEX)), 33) << "Z-X plane: group 3";
+}
+
+TEST_P(Conformance, GroupResetEndsCompensation) {
+    initialise_group(1);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_OK);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_GROUP_RESET), 1), APCI_OK);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)), 0);
+}
+
+TEST_P(Conformance, WithoutOptionTcEveryTcAccessIsNoSuchDevice) {
+    open_board(false);
+    EXPECT_EQ(read_int_status(tc_init(APCI_TC_PLANE)), APCI_NO_SUCH_DEVICE);
+    EXPECT_EQ(write_double(tc_group(1, APCI_TC_RADIUS), 1.0), APCI_NO_SUCH_DEVICE);
+    EXPECT_EQ(read_int(board_object(2)) & 0x01, 0) << "Options: no optionTC";
+    EXPECT_EQ(read_int(board_object(3)), 8) << "the board module still answers";
+}
+
+std::string transport_name(const ::testing::TestParamInfo<Transport>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Transports, Conformance, ::testing::ValuesIn(conformance::transports()),
+                         transport_name);
+
+}  // namespace
