@@ -148,7 +148,7 @@ private:
                 continue;
             }
             if (err == EPIPE || err == ECONNRESET)
-                return lose(errno_text(fmt::format("send to {}", path_), err), why);
+                return lose(fmt::format("{} closed the connection (send: {})", path_, std::strerror(err)), why);
             return failed(err, "send", why);
         }
         return Status::kOk;
@@ -170,7 +170,8 @@ private:
                 if (s != Status::kOk) return s;
                 continue;
             }
-            if (err == ECONNRESET) return lose(errno_text(fmt::format("recv from {}", path_), err), why);
+            if (err == ECONNRESET)
+                return lose(fmt::format("{} closed the connection (recv: {})", path_, std::strerror(err)), why);
             return failed(err, "recv", why);
         }
     }

@@ -112,6 +112,8 @@ TempDir::~TempDir() {
 
 std::unique_ptr<Daemon> Daemon::start(const DaemonOptions& options) {
     std::unique_ptr<Daemon> d(new Daemon);
+    d->socket_path_ = options.socket_path.empty() ? d->dir_.file("rwmos-emu.sock") : options.socket_path;
+    d->shm_path_ = options.shm_path.empty() ? d->dir_.file("dpram") : options.shm_path;
     std::vector<std::string> args;
     if (options.socket) args.insert(args.end(), {"--socket", d->socket_path()});
     if (options.shm) args.insert(args.end(), {"--shm", d->shm_path()});

@@ -31,6 +31,10 @@ private:
 struct DaemonOptions {
     bool socket = true;
     bool shm = false;
+    // Paths other than the daemon's own temporary directory (e.g. to start
+    // a daemon where another one served); empty: the defaults below.
+    std::string socket_path;
+    std::string shm_path;
     bool option_tc = true;
     std::vector<std::string> extra_args;
 };
@@ -44,8 +48,8 @@ public:
     Daemon(const Daemon&) = delete;
     Daemon& operator=(const Daemon&) = delete;
 
-    std::string socket_path() const { return dir_.file("rwmos-emu.sock"); }
-    std::string shm_path() const { return dir_.file("dpram"); }
+    std::string socket_path() const { return socket_path_; }
+    std::string shm_path() const { return shm_path_; }
     std::string unix_uri() const { return "unix:" + socket_path(); }
     std::string shm_uri() const { return "shm:" + shm_path(); }
     const TempDir& dir() const noexcept { return dir_; }
@@ -61,6 +65,8 @@ public:
 private:
     Daemon() = default;
     TempDir dir_;
+    std::string socket_path_;
+    std::string shm_path_;
     pid_t pid_ = -1;
 };
 

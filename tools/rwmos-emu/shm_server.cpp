@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -21,8 +22,13 @@ namespace {
 // After a request the board spins this long for the next one before it
 // sleeps: back-to-back requests are answered without a futex round trip.
 constexpr std::chrono::microseconds kSpin{50};
-// The longest sleep between looks at the stop flag (stop() also wakes it).
-constexpr std::chrono::milliseconds kSleep{200};
+// Sleeps between looks at the mailbox. A host that can write but not wake
+// the board (a PCI I/O BAR, read and written through sysfs) is noticed by
+// these looks: within 1 ms while requests come, within 64 ms after a quiet
+// spell; the sleep doubles while idle so an idle daemon wakes ~16 times a
+// second. Hosts on a mapping wake the board at once (futex).
+constexpr std::chrono::milliseconds kFirstSleep{1};
+constexpr std::chrono::milliseconds kLongestSleep{64};
 }  // namespace
 
 ShmServer::~ShmServer() { stop(); }
@@ -77,8 +83,13 @@ void ShmServer::serve_loop() {
     std::vector<std::uint8_t> reply;
     request.reserve(mb::kRecordCapacity);
     reply.reserve(mb::kRecordCapacity);
+    std::chrono::milliseconds sleep = kFirstSleep;
     while (!stop_.load(std::memory_order_relaxed)) {
-        if (!mb::take_request(*window_, request, kSpin, kSleep)) continue;
+        if (!mb::take_request(*window_, request, kSpin, sleep)) {
+            sleep = std::min(sleep * 2, kLongestSleep);
+            continue;
+        }
+        sleep = kFirstSleep;
         reply.clear();
         host_.serve_frame(request, reply);
         mb::put_reply(*window_, reply);

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// One object read round trip (apci_read_int of AxisCount) on each transport,
+// through the public C API: inproc (the embedded emulator), unix (the daemon's
+// socket) and shm (the daemon's dual-port RAM file, served by another
+// process). The daemon is started from build/bin and stopped by this program.
+// Targets on the 2-core reference machine (docs/performance.md): inproc
+// under 100 ns, shm under 2 us, unix under 20 us (medians).
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "apci/apci.h"
+
+extern char** environ;
+
+namespace {
+
+// The emulator daemon in a temporary directory, for the whole program.
+class DaemonProcess {
+public:
+    DaemonProcess() {
+        char pattern[] = "/tmp/apci-bench-XXXXXX";
+        if (::mkdtemp(pattern) == nullptr) return;
+        dir_ = pattern;
+        std::string binary = RWMOS_EMU_BINARY;
+        std::string socket = "--socket=" + socket_path(), shm = "--shm=" + shm_path(),
+                    level = "--log-level=warn";
+        std::vector<char*> argv{binary.data(), socket.data(), shm.data(), level.data(), nullptr};
+        std::string runtime = "APCI_RUNTIME_DIR=" + dir_;
+        std::vector<char*> env;
+        for (char** e = environ; *e != nullptr; ++e) env.push_back(*e);
+        env.push_back(runtime.data());
+        env.push_back(nullptr);
+        if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), env.data()) != 0) pid_ = -1;
+        // Serving once both URIs open.
+        for (int i = 0; i < 500 && pid_ > 0; ++i) {
+            apci_board* a = nullptr;
+            apci_board* b = nullptr;
+            const bool up = apci_open(unix_uri().c_str(), &a) == APCI_OK &&
+                            apci_open(shm_uri().c_str(), &b) == APCI_OK;
+            apci_close(a);
+            apci_close(b);
+            if (up) return;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        std::fprintf(stderr, "transport_bench: rwmos-emu did not start\n");
+    }
+    ~DaemonProcess() {
+        if (pid_ > 0) {
+            ::kill(pid_, SIGTERM);
+            int status = 0;
+            ::waitpid(pid_, &status, 0);
+        }
+        if (!dir_.empty()) {
+            std::string rm = "rm -rf '" + dir_ + "'";
+            if (std::system(rm.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", dir_.c_str());
+        }
+    }
+    std::string socket_path() const { return dir_ + "/rwmos-emu.sock"; }
+    std::string shm_path() const { return dir_ + "/dpram"; }
+    std::string unix_uri() const { return "unix:" + socket_path(); }
+    std::string shm_uri() const { return "shm:" + shm_path(); }
+
+private:
+    std::string dir_;
+    pid_t pid_ = -1;
+};
+
+DaemonProcess& daemon_process() {
+    static DaemonProcess d;
+    return d;
+}
+
+void read_round_trip(benchmark::State& state, const std::string& uri) {
+    apci_board* board = nullptr;
+    if (apci_open(uri.c_str(), &board) != APCI_OK) {
+        state.SkipWithError(apci_last_error(nullptr));
+        return;
+    }
+    apci_object_descriptor axis_count{1000, 0, 3, 0, 0};
+    std::int32_t value = 0;
+    for (auto _ : state) {
+        if (apci_read_int(board, &axis_count, &value) != APCI_OK) {
+            state.SkipWithError(apci_last_error(board));
+            break;
+        }
+        benchmark::DoNotOptimize(value);
+    }
+    apci_close(board);
+}
+
+void BM_ReadRoundTrip_Inproc(benchmark::State& state) { read_round_trip(state, "emu:"); }
+void BM_ReadRoundTrip_Unix(benchmark::State& state) { read_round_trip(state, daemon_process().unix_uri()); }
+void BM_ReadRoundTrip_Shm(benchmark::State& state) { read_round_trip(state, daemon_process().shm_uri()); }
+
+BENCHMARK(BM_ReadRoundTrip_Inproc)->Repetitions(9)->ReportAggregatesOnly(true);
+BENCHMARK(BM_ReadRoundTrip_Shm)->Repetitions(9)->ReportAggregatesOnly(true);
+BENCHMARK(BM_ReadRoundTrip_Unix)->Repetitions(9)->ReportAggregatesOnly(true);
+
+}  // namespace
+
+BENCHMARK_MAIN();

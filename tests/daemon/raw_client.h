@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// A bare socket client for the daemon tests: sends any bytes (well-formed
+// frames or not) and reads back whole reply frames, or notices that the
+// daemon closed the connection.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "objif/frame.h"
+
+namespace daemon_test {
+
+class RawClient {
+public:
+    explicit RawClient(const std::string& socket_path);
+    ~RawClient();
+    RawClient(const RawClient&) = delete;
+    RawClient& operator=(const RawClient&) = delete;
+
+    bool connected() const noexcept { return fd_ >= 0; }
+    bool send(std::span<const std::uint8_t> bytes);
+    // Reads one whole frame; false on timeout, close or garbage.
+    bool receive(objif::Frame& frame, std::chrono::milliseconds timeout = std::chrono::seconds(5));
+    // True when the daemon closed the connection within `timeout` (EOF).
+    bool closed_by_peer(std::chrono::milliseconds timeout = std::chrono::seconds(5));
+    void close();
+
+private:
+    int fd_ = -1;
+    std::vector<std::uint8_t> pending_;
+};
+
+// Frames for the tests.
+std::vector<std::uint8_t> frame_bytes(objif::Opcode op, std::uint32_t sequence,
+                                      std::span<const std::uint8_t> payload);
+std::vector<std::uint8_t> write_double_frame(std::uint32_t sequence, objif::Address a, double v);
+
+}  // namespace daemon_test

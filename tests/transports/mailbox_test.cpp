@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: MIT
+// The dual-port RAM mailbox protocol (objif/mailbox.h, docs/dpram.md), host
+// and board in one process on a window of ordinary memory.
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "objif/mailbox.h"
+
+namespace {
+
+namespace mb = objif::mailbox;
+using objif::Status;
+using namespace std::chrono_literals;
+
+class Mailbox : public ::testing::Test {
+protected:
+    Mailbox() : memory_(mb::kWindowSize / 4 + 1, 0), window_(memory_.data(), mb::kWindowSize, true) {
+        mb::format(window_);
+    }
+    ~Mailbox() override { stop_board(); }
+
+    // A board that answers each request with the request's bytes reversed.
+    void start_board() {
+        mb::set_board_state(window_, mb::BoardState::kServing);
+        board_ = std::thread([this] {
+            std::vector<std::uint8_t> request;
+            while (!stop_) {
+                if (!mb::take_request(window_, request, 10us, 20ms)) continue;
+                ++served_;
+                std::vector<std::uint8_t> reply(request.rbegin(), request.rend());
+                mb::put_reply(window_, reply);
+            }
+        });
+    }
+    void stop_board() {
+        stop_ = true;
+        mb::wake_board(window_);
+        if (board_.joinable()) board_.join();
+    }
+
+    mb::HostOptions host(std::chrono::milliseconds timeout = 2000ms) {
+        mb::HostOptions o;
+        o.token = 4242;
+        o.timeout = timeout;
+        return o;
+    }
+
+    std::vector<std::uint32_t> memory_;
+    mb::MappedWindow window_;
+    std::thread board_;
+    std::atomic<bool> stop_{false};
+    std::atomic<int> served_{0};
+};
+
+std::vector<std::uint8_t> bytes(std::size_t n, std::uint8_t first = 1) {
+    std::vector<std::uint8_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<std::uint8_t>(first + i);
+    return v;
+}
+
+TEST_F(Mailbox, FormatWritesAValidHeaderWithTheBoardStopped) {
+    EXPECT_EQ(mb::check_layout(window_), "");
+    EXPECT_EQ(window_.load(mb::kOffBoardState), 0u);
+    EXPECT_EQ(window_.load(mb::kOffStatus), static_cast<std::uint32_t>(mb::MailboxStatus::kIdle));
+}
+
+TEST_F(Mailbox, CheckLayoutNamesAWrongSignature) {
+    window_.store(mb::kOffSignature, 0x12345678);
+    EXPECT_NE(mb::check_layout(window_).find("signature is 0x12345678"), std::string::npos);
+}
+
+TEST_F(Mailbox, CheckLayoutNamesAWrongVersion) {
+    window_.store(mb::kOffVersion, 9);
+    EXPECT_NE(mb::check_layout(window_).find("layout version 9"), std::string::npos);
+}
+
+TEST_F(Mailbox, ExchangeCarriesTheRequestAndReturnsTheReply) {
+    start_board();
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    const auto request = bytes(41);
+    ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
+    EXPECT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend()));
+    EXPECT_EQ(window_.load(mb::kOffStatus), static_cast<std::uint32_t>(mb::MailboxStatus::kIdle));
+    EXPECT_EQ(window_.load(mb::kOffHostLock), 0u) << "the lock is free again";
+}
+
+TEST_F(Mailbox, ExchangeCarriesAWholeRecord) {
+    start_board();
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    const auto request = bytes(mb::kRecordCapacity, 7);
+    ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
+    EXPECT_EQ(reply.size(), mb::kRecordCapacity);
+    EXPECT_EQ(reply.front(), request.back());
+}
+
+TEST_F(Mailbox, ManyExchangesInARowEachGetTheirOwnReply) {
+    start_board();
+    for (std::uint8_t i = 0; i < 200; ++i) {
+        std::vector<std::uint8_t> reply;
+        std::string why;
+        const auto request = bytes(20 + i % 7, i);
+        ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
+        ASSERT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend()));
+    }
+    EXPECT_EQ(served_.load(), 200);
+}
+
+TEST_F(Mailbox, RequestLargerThanARecordIsRefused) {
+    start_board();
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    EXPECT_EQ(mb::exchange(window_, host(), bytes(mb::kRecordCapacity + 1), reply, why),
+              Status::kInvalidArgument);
+    EXPECT_NE(why.find("exceeds the mailbox record"), std::string::npos) << why;
+    EXPECT_EQ(served_.load(), 0);
+}
+
+TEST_F(Mailbox, NoBoardServingIsATransportError) {
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    EXPECT_EQ(mb::exchange(window_, host(), bytes(20), reply, why), Status::kTransportError);
+    EXPECT_NE(why.find("not serving"), std::string::npos) << why;
+}
+
+TEST_F(Mailbox, BoardThatNeverAnswersIsATimeout) {
+    mb::set_board_state(window_, mb::BoardState::kServing);  // serving, but nobody takes requests
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(mb::exchange(window_, host(100ms), bytes(20), reply, why), Status::kTimeout);
+    EXPECT_GE(std::chrono::steady_clock::now() - t0, 100ms);
+    EXPECT_NE(why.find("no reply from the board within 100 ms"), std::string::npos) << why;
+    EXPECT_EQ(window_.load(mb::kOffHostLock), 0u);
+}
+
+TEST_F(Mailbox, RequestLeftByATimedOutHostIsSettledBeforeTheNext) {
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    ASSERT_EQ(mb::exchange(window_, host(20ms), bytes(20, 1), reply, why), Status::kTimeout);
+    start_board();  // the board comes back and answers the old request first
+    const auto request = bytes(24, 50);
+    ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
+    EXPECT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend())) << "not the stale reply";
+    EXPECT_EQ(served_.load(), 2);
+}
+
+TEST_F(Mailbox, LockHeldByALiveHostIsATimeout) {
+    start_board();
+    window_.store(mb::kOffHostLock, 99);
+    auto o = host(50ms);
+    o.lock_holder_gone = [](std::uint32_t) { return false; };
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    EXPECT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kTimeout);
+    EXPECT_NE(why.find("held by another host (token 99)"), std::string::npos) << why;
+    EXPECT_EQ(served_.load(), 0);
+}
+
+TEST_F(Mailbox, LockLeftByADeadHostIsTakenOver) {
+    start_board();
+    window_.store(mb::kOffHostLock, 99);
+    auto o = host();
+    o.lock_holder_gone = [](std::uint32_t token) { return token == 99; };
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    EXPECT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kOk) << why;
+    EXPECT_EQ(window_.load(mb::kOffHostLock), 0u);
+}
+
+TEST_F(Mailbox, ReplyRecordLengthOutOfRangeIsATransportError) {
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    std::thread liar([this] {
+        std::vector<std::uint8_t> request;
+        while (!mb::take_request(window_, request, 10us, 20ms)) {
+        }
+        window_.store(mb::kOffReply, static_cast<std::uint32_t>(mb::kRecordCapacity + 1));
+        window_.store(mb::kOffStatus, static_cast<std::uint32_t>(mb::MailboxStatus::kReply));
+        window_.wake(mb::kOffStatus);
+    });
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    EXPECT_EQ(mb::exchange(window_, host(), bytes(20), reply, why), Status::kTransportError);
+    EXPECT_NE(why.find("exceeds the record capacity"), std::string::npos) << why;
+    liar.join();
+}
+
+TEST_F(Mailbox, RequestRecordLengthOutOfRangeReachesTheBoardAsNoBytes) {
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    window_.store(mb::kOffRequest, 3);  // shorter than any frame
+    window_.store(mb::kOffStatus, static_cast<std::uint32_t>(mb::MailboxStatus::kRequest));
+    std::vector<std::uint8_t> request{1, 2, 3};
+    ASSERT_TRUE(mb::take_request(window_, request, 10us, 20ms));
+    EXPECT_TRUE(request.empty());
+}
+
+TEST_F(Mailbox, BoardStoppingWhileAHostWaitsEndsTheWait) {
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    std::thread stopper([this] {
+        std::this_thread::sleep_for(30ms);
+        mb::set_board_state(window_, mb::BoardState::kStopped);
+    });
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(mb::exchange(window_, host(5000ms), bytes(20), reply, why), Status::kTransportError);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, 1000ms);
+    EXPECT_NE(why.find("stopped serving"), std::string::npos) << why;
+    stopper.join();
+}
+
+TEST_F(Mailbox, SetBoardStateServingBumpsTheGeneration) {
+    const auto g = window_.load(mb::kOffGeneration);
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    EXPECT_EQ(window_.load(mb::kOffGeneration), g + 1);
+}
+
+}  // namespace
