@@ -3,6 +3,7 @@
 # (C) plus the header-only C++ wrapper include/apci/apci.hpp.
 add_library(apci SHARED
   src/apci.cpp
+  src/apci_link.cpp
   src/apci_motion.cpp
   src/tc_names.cpp
   src/transport.cpp

@@ -204,4 +204,42 @@ Status FrameTransport::write(objif::Descriptor& d, const objif::Value& v) noexce
     }
 }
 
+template <class Request, class Reply>
+Status FrameTransport::request(objif::Opcode op, const Request& req, Reply& rep) noexcept {
+    try {
+        payload_.clear();
+        objif::encode(req, payload_);
+        const Status s = call(op, payload_, reply_payload_);
+        if (s != Status::kOk) return s;
+        Reply decoded;
+        const FrameError e = objif::decode(reply_payload_, decoded);
+        if (e != FrameError::kNone)
+            return bad_reply(e, fmt::format("({}) has a bad payload",
+                                            objif::opcode_name(static_cast<std::uint16_t>(
+                                                static_cast<std::uint16_t>(op) | objif::kReplyFlag))));
+        rep = std::move(decoded);
+        return rep.status;
+    } catch (const std::bad_alloc&) {
+        return Status::kNoMemory;
+    } catch (...) {
+        return Status::kGeneralError;
+    }
+}
+
+Status FrameTransport::spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept {
+    return request(objif::Opcode::kSpoolProfile, req, rep);
+}
+Status FrameTransport::direct(const objif::DirectRequest& req, objif::MotionReply& rep) noexcept {
+    return request(objif::Opcode::kDirectCommand, req, rep);
+}
+Status FrameTransport::ssf(const objif::SsfRequest& req, objif::MotionReply& rep) noexcept {
+    return request(objif::Opcode::kSsfCommand, req, rep);
+}
+Status FrameTransport::clock(const objif::ClockRequest& req, objif::ClockReply& rep) noexcept {
+    return request(objif::Opcode::kClock, req, rep);
+}
+Status FrameTransport::read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept {
+    return request(objif::Opcode::kReadTrace, req, rep);
+}
+
 }  // namespace apci

@@ -73,6 +73,12 @@ public:
     objif::Status read(objif::Descriptor& d, objif::ValueType want,
                        objif::Value& out) noexcept override;
     objif::Status write(objif::Descriptor& d, const objif::Value& v) noexcept override;
+    // Motion requests: each is one line over request() below.
+    objif::Status spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept override;
+    objif::Status direct(const objif::DirectRequest& req, objif::MotionReply& rep) noexcept override;
+    objif::Status ssf(const objif::SsfRequest& req, objif::MotionReply& rep) noexcept override;
+    objif::Status clock(const objif::ClockRequest& req, objif::ClockReply& rep) noexcept override;
+    objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept override;
     std::string_view failure_detail() const noexcept override { return detail_; }
 
     objif::Status set_timeout(Millis timeout) noexcept override;
@@ -88,6 +94,12 @@ public:
                        std::vector<std::uint8_t>& reply_payload) noexcept;
 
 private:
+    // One request whose reply payload struct carries the board's status:
+    // encodes `req`, call()s, decodes `rep`; returns the transport's failure
+    // or else the board's status.
+    template <class Request, class Reply>
+    objif::Status request(objif::Opcode op, const Request& req, Reply& rep) noexcept;
+
     objif::Status fail(objif::Status s, std::string text) noexcept;
     objif::Status bad_reply(objif::FrameError e, std::string_view what) noexcept;
 

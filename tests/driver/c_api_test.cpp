@@ -96,12 +96,16 @@ TEST_P(OpenRefuses, WithAClearStatusAndTextAndNullBoard) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    UnsupportedAndMalformedUris, OpenRefuses,
+    UnreachableAndMalformedUris, OpenRefuses,
     ::testing::Values(
-        BadUri{"unix:/run/apci8001.sock", APCI_NOT_SUPPORTED, "'unix:' is not supported yet"},
-        BadUri{"shm:/dev/shm/apci", APCI_NOT_SUPPORTED, "'shm:' is not supported yet"},
-        BadUri{"pci:0000:03:00.0", APCI_NOT_SUPPORTED, "'pci:' is not supported yet"},
-        BadUri{"usb:", APCI_NOT_SUPPORTED, "'usb:' is not supported yet"},
+        BadUri{"unix:/nonexistent/apci8001.sock", APCI_TRANSPORT_ERROR,
+               "connect /nonexistent/apci8001.sock: No such file or directory"},
+        BadUri{"shm:/nonexistent/apci", APCI_TRANSPORT_ERROR, "open /nonexistent/apci"},
+        BadUri{"pci:0000:ff:1f.7", APCI_TRANSPORT_ERROR, "no PCI function 0000:ff:1f.7"},
+        BadUri{"usb:9:99", APCI_TRANSPORT_ERROR, "no ADDI-DATA USB board at bus 9 address 99"},
+        BadUri{"unix:", APCI_INVALID_ARGUMENT, "needs the daemon's socket path"},
+        BadUri{"pci:3:0.0", APCI_INVALID_ARGUMENT, "pci:DOMAIN:BUS:DEV.FN"},
+        BadUri{"usb:1", APCI_INVALID_ARGUMENT, "usb:BUS:ADDR"},
         BadUri{"tcp:host:1", APCI_INVALID_ARGUMENT, "unknown device URI scheme 'tcp:'"},
         BadUri{"emulator", APCI_INVALID_ARGUMENT, "has no scheme"},
         BadUri{":x", APCI_INVALID_ARGUMENT, "has no scheme"},

@@ -21,10 +21,10 @@ TEST(CppBoard, OpensTheEmbeddedEmulatorByUri) {
 }
 
 TEST(CppBoard, FailedOpenKeepsStatusAndReason) {
-    apci::Board board("shm:/tmp/apci");
+    apci::Board board("shm:/nonexistent/apci");
     EXPECT_FALSE(board);
-    EXPECT_EQ(board.open_status(), APCI_NOT_SUPPORTED);
-    EXPECT_NE(board.last_error().find("not supported yet"), std::string_view::npos);
+    EXPECT_EQ(board.open_status(), APCI_TRANSPORT_ERROR);
+    EXPECT_NE(board.last_error().find("open /nonexistent/apci"), std::string_view::npos);
     auto o = apci::object(APCI_TC_BUS, 1, 1, APCI_TC_STATUS);
     EXPECT_EQ(board.read_int(o).status, APCI_INVALID_ARGUMENT);
 }
