@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -38,6 +39,11 @@ apci_object_descriptor tc_group(std::int32_t group, std::int32_t sub) {
 }
 apci_object_descriptor board_object(std::int32_t index, std::int32_t sub = 0) {
     return object(kBoardBus, 0, index, sub);
+}
+// The address of a temporary, for C calls that take a pointer to const.
+template <class T>
+const T* ptr(const T& value) {
+    return &value;
 }
 
 class Conformance : public ::testing::TestWithParam<Transport> {
@@ -278,6 +284,110 @@ TEST_P(Conformance, WithoutOptionTcEveryTcAccessIsNoSuchDevice) {
     EXPECT_EQ(write_double(tc_group(1, APCI_TC_RADIUS), 1.0), APCI_NO_SUCH_DEVICE);
     EXPECT_EQ(read_int(board_object(2)) & 0x01, 0) << "Options: no optionTC";
     EXPECT_EQ(read_int(board_object(3)), 8) << "the board module still answers";
+}
+
+// ---- Motion: the same moves, the same positions, cycle for cycle
+
+apci_profile line_to(double x, double y, std::uint32_t tag, double feed = 600.0) {
+    apci_profile p{};
+    p.kind = APCI_PROFILE_LINE;
+    p.axes = 0x03;
+    p.tag = tag;
+    p.feed = feed;
+    p.target[0] = x;
+    p.target[1] = y;
+    return p;
+}
+
+// What a board did for one motion scenario, compared field by field.
+struct MotionRecord {
+    std::vector<apci_status> statuses;
+    std::vector<std::uint64_t> cycles;
+    std::vector<double> values;  // positions, trace samples, segment end points
+    bool operator==(const MotionRecord&) const = default;
+};
+
+MotionRecord run_lines_with_trace(apci_board* b) {
+    MotionRecord r;
+    r.statuses.push_back(apci_trace_enable(b, 4096));
+    r.statuses.push_back(apci_spool_profile(b, ptr(line_to(10.0, 5.0, 1)), nullptr));
+    r.statuses.push_back(apci_spool_profile(b, ptr(line_to(-3.25, 7.5, 2)), nullptr));
+    apci_motion_status st{};
+    r.statuses.push_back(apci_run_until_idle(b, 100000, &st));
+    r.cycles.push_back(st.now);
+    r.cycles.push_back(st.ran);
+    r.values.insert(r.values.end(), st.position, st.position + APCI_AXIS_COUNT);
+    std::vector<apci_trace_sample> samples(4096);
+    std::size_t n = 0;
+    r.statuses.push_back(apci_read_trace(b, samples.data(), samples.size(), &n));
+    for (std::size_t i = 0; i < n; ++i) {
+        r.cycles.push_back(samples[i].cycle);
+        r.values.insert(r.values.end(), samples[i].position, samples[i].position + 2);
+    }
+    std::vector<apci_segment> segments(16);
+    r.statuses.push_back(apci_read_segments(b, segments.data(), segments.size(), &n));
+    for (std::size_t i = 0; i < n; ++i) {
+        r.cycles.push_back(segments[i].tag);
+        r.cycles.push_back(segments[i].end_cycle);
+        r.values.insert(r.values.end(), segments[i].end, segments[i].end + 2);
+    }
+    return r;
+}
+
+TEST_P(Conformance, SpooledLinesRunAsOnTheEmbeddedBoardCycleForCycle) {
+    apci_board* reference = nullptr;
+    ASSERT_EQ(apci_open("emu:", &reference), APCI_OK);
+    const MotionRecord expected = run_lines_with_trace(reference);
+    apci_close(reference);
+    ASSERT_GT(expected.cycles.size(), 100u) << "the lines take many cycles";
+    const MotionRecord got = run_lines_with_trace(board_);
+    EXPECT_EQ(got.statuses, expected.statuses) << apci_last_error(board_);
+    EXPECT_EQ(got.cycles, expected.cycles);
+    EXPECT_EQ(got.values, expected.values) << "positions bit for bit";
+    EXPECT_EQ(got.values[0], -3.25);
+    EXPECT_EQ(got.values[1], 7.5);
+}
+
+TEST_P(Conformance, CompensationHoldsAProfileUntilSsf2001) {
+    initialise_group(1);
+    ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_OK);
+    apci_motion_result result{};
+    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(10.0, 0.0, 1)), &result), APCI_OK) << apci_last_error(board_);
+    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(10.0, 10.0, 2)), &result), APCI_OK) << apci_last_error(board_);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)),
+              static_cast<std::int32_t>(APCI_TC_STATUS_RUN | APCI_TC_STATUS_PROF_MARKED));
+    ASSERT_EQ(apci_ssf_command(board_, 0x03, APCI_SSF_RELEASE_HELD_PROFILE, &result), APCI_OK)
+        << apci_last_error(board_);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)) & static_cast<std::int32_t>(APCI_TC_STATUS_PROF_MARKED), 0);
+    apci_motion_status st{};
+    ASSERT_EQ(apci_run_until_idle(board_, 1000000, &st), APCI_OK);
+    EXPECT_NE(st.position[0], 0.0) << "the released profiles ran";
+}
+
+TEST_P(Conformance, DirectCommandDiscardsTheSpooler) {
+    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(50.0, 0.0, 1)), nullptr), APCI_OK);
+    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(50.0, 50.0, 2)), nullptr), APCI_OK);
+    apci_direct_command stop{};
+    stop.code = APCI_DIRECT_JS;
+    ASSERT_EQ(apci_direct_command_send(board_, &stop), APCI_OK) << apci_last_error(board_);
+    std::uint32_t fill = 99, capacity = 0;
+    ASSERT_EQ(apci_spooler_fill(board_, &fill, &capacity), APCI_OK);
+    EXPECT_EQ(fill, 0u);
+    EXPECT_GT(capacity, 0u);
+}
+
+TEST_P(Conformance, RefusedProfileChangesNothing) {
+    apci_profile bad = line_to(1.0, 1.0, 1);
+    bad.feed = -5.0;
+    apci_board* reference = nullptr;
+    ASSERT_EQ(apci_open("emu:", &reference), APCI_OK);
+    const apci_status expected = apci_spool_profile(reference, &bad, nullptr);
+    apci_close(reference);
+    ASSERT_NE(expected, APCI_OK);
+    EXPECT_EQ(apci_spool_profile(board_, &bad, nullptr), expected);
+    std::uint32_t fill = 99, capacity = 0;
+    ASSERT_EQ(apci_spooler_fill(board_, &fill, &capacity), APCI_OK);
+    EXPECT_EQ(fill, 0u);
 }
 
 std::string transport_name(const ::testing::TestParamInfo<Transport>& info) { return info.param.name; }
