@@ -492,7 +492,11 @@ TEST(ListDevices, NamesPciBoardsAndRunningDaemons) {
     FakePciSysfs sysfs(d->shm_path(), FakePciSysfs::BarKind::kMemory);
     ::setenv("APCI_RUNTIME_DIR", d->dir().path().c_str(), 1);
     Found found;
-    ASSERT_EQ(apci_list_devices(Found::add, &found), APCI_OK);
+    // The daemon registers itself just after it starts serving.
+    EXPECT_TRUE(apci_test::eventually([&] {
+        found.boards.clear();
+        return apci_list_devices(Found::add, &found) == APCI_OK && found.has(d->unix_uri());
+    }));
     ::unsetenv("APCI_RUNTIME_DIR");
     EXPECT_TRUE(found.has(sysfs.uri()));
     EXPECT_TRUE(found.has(d->unix_uri()));
