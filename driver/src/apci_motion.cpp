@@ -54,13 +54,16 @@ apci_status done(apci_board* board) noexcept {
 }
 
 // A spool / direct / ssf reply: its status, the result fields, the text.
+// `what` names the call ("spool G01 N60"); it is made only when the call failed, since a
+// successful spool is the hot path of `apcictl run`.
+template <typename What>
 apci_status motion_outcome(apci_board* board, Status s, const objif::MotionReply& rep,
-                           apci_motion_result* result, const std::string& what) noexcept {
+                           apci_motion_result* result, const What& what) noexcept {
     if (result != nullptr) *result = apci_motion_result{rep.group, rep.errors, rep.tag};
     if (objif::ok(s)) return done(board);
     return fail(board, s, [&] {
-        std::string text =
-            fmt::format("{}: {}", what, reason(s, rep.message, board->transport->failure_detail()));
+        std::string text = fmt::format("{}: {}", what(),
+                                       reason(s, rep.message, board->transport->failure_detail()));
         if (rep.errors != 0)
             text += fmt::format(" (TC group {} ERROR bits 0x{:02x}, block {})", rep.group,
                                 rep.errors, rep.tag);
@@ -191,8 +194,9 @@ apci_status apci_spool_profile(apci_board* board, const apci_profile* profile,
         req.center = {profile->center[0], profile->center[1]};
         objif::MotionReply rep;
         const Status s = board->transport->spool(req, rep);
-        return motion_outcome(board, s, rep, result,
-                              fmt::format("spool {} N{}", kind_name(profile->kind), profile->tag));
+        return motion_outcome(board, s, rep, result, [&] {
+            return fmt::format("spool {} N{}", kind_name(profile->kind), profile->tag);
+        });
     } catch (...) {
         return fail(board, Status::kNoMemory, [&] { return fmt::format("{}: out of memory", op); });
     }
@@ -214,7 +218,7 @@ apci_status apci_direct_command_send(apci_board* board,
         const char* name = command->code == APCI_DIRECT_JA   ? "JA"
                            : command->code == APCI_DIRECT_JS ? "JS"
                                                              : "?";
-        return motion_outcome(board, s, rep, nullptr, fmt::format("direct {}", name));
+        return motion_outcome(board, s, rep, nullptr, [&] { return fmt::format("direct {}", name); });
     } catch (...) {
         return fail(board, Status::kNoMemory, [&] { return fmt::format("{}: out of memory", op); });
     }
@@ -228,8 +232,9 @@ apci_status apci_ssf_command(apci_board* board, uint8_t axes, int32_t command,
     try {
         objif::MotionReply rep;
         const Status s = board->transport->ssf(objif::SsfRequest{axes, command}, rep);
-        return motion_outcome(board, s, rep, result,
-                              fmt::format("ssf {} to axes 0x{:02x}", command, axes));
+        return motion_outcome(board, s, rep, result, [&] {
+            return fmt::format("ssf {} to axes 0x{:02x}", command, axes);
+        });
     } catch (...) {
         return fail(board, Status::kNoMemory, [&] { return fmt::format("{}: out of memory", op); });
     }

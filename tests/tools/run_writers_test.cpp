@@ -212,6 +212,33 @@ TEST(RunJson, WriteFailureIsReported) {
     std::fclose(full);
 }
 
+TEST(RunTextSink, TextLongerThanTheBufferIsWrittenWhole) {
+    MemoryFile f;
+    const std::string big(TextSink::kCapacity * 2 + 17, 'x');
+    {
+        TextSink sink(f.get());
+        sink.append("<");
+        sink.append(big);
+        sink.put('>');
+        EXPECT_TRUE(sink.flush());
+    }
+    EXPECT_EQ(f.text(), "<" + big + ">");
+}
+
+TEST(RunTextSink, ManySmallPiecesKeepTheirOrder) {
+    MemoryFile f;
+    std::string expected;
+    {
+        TextSink sink(f.get());
+        for (int i = 0; i < 50000; ++i) {
+            append_integer(sink, i);
+            sink.put(',');
+            expected += std::to_string(i) + ",";
+        }
+    }
+    EXPECT_EQ(f.text(), expected);
+}
+
 // ---- CSV
 
 TEST(RunCsv, HeaderNamesTheAxesAndOneLineACycle) {

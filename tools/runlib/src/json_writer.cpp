@@ -22,23 +22,32 @@ void JsonRunWriter::point(const Point& p) {
 }
 
 void JsonRunWriter::block(const BlockRef& b) {
-    sink_.print("\"block\":{}", b.number);
-    if (b.number == kNoBlock && b.line != 0) sink_.print(",\"line\":{}", b.line);
+    sink_.append("\"block\":");
+    append_integer(sink_, b.number);
+    if (b.number == kNoBlock && b.line != 0) {
+        sink_.append(",\"line\":");
+        append_integer(sink_, static_cast<std::int64_t>(b.line));
+    }
 }
 
+// Plain appends rather than format strings: this runs once per executed segment.
 void JsonRunWriter::segment(const PathSegment& s) {
     begin_segments();
     sink_.append(count_ == 0 ? "\n{" : ",\n{");
     block(s.block);
-    sink_.print(",\"kind\":\"{}\",\"role\":\"{}\",\"start\":", kind_name(s.kind),
-                role_name(s.role));
+    sink_.append(",\"kind\":\"");
+    sink_.append(kind_name(s.kind));
+    sink_.append("\",\"role\":\"");
+    sink_.append(role_name(s.role));
+    sink_.append("\",\"start\":");
     point(s.start);
     sink_.append(",\"end\":");
     point(s.end);
     if (s.kind == SegmentKind::kArc) {
         sink_.append(",\"center\":");
         point(s.center);
-        sink_.print(",\"ccw\":{},\"plane\":{}", s.ccw, s.plane);
+        sink_.append(s.ccw ? ",\"ccw\":true,\"plane\":" : ",\"ccw\":false,\"plane\":");
+        append_integer(sink_, s.plane);
     }
     sink_.put('}');
     ++count_;

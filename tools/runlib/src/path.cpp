@@ -34,17 +34,6 @@ std::string_view role_name(Role r) noexcept {
     return "uncompensated";
 }
 
-PlaneAxes plane_axes(int plane) noexcept {
-    switch (plane) {
-        case 18:
-            return {2, 0, 1};
-        case 19:
-            return {1, 2, 0};
-        default:
-            return {0, 1, 2};
-    }
-}
-
 std::string_view plane_name(int plane) noexcept {
     switch (plane) {
         case 18:

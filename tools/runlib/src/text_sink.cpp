@@ -1,15 +1,23 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/text_sink.h"
 
+#include <charconv>
 #include <cmath>
 
 namespace apci::run {
 
+void TextSink::write_out() noexcept {
+    if (!failed_ && used_ > 0 && std::fwrite(buffer_.get(), 1, used_, out_) != used_)
+        failed_ = true;
+    used_ = 0;
+}
+
+void TextSink::write_through(std::string_view text) noexcept {
+    if (!failed_ && std::fwrite(text.data(), 1, text.size(), out_) != text.size()) failed_ = true;
+}
+
 bool TextSink::flush() noexcept {
-    if (!failed_ && buffer_.size() > 0) {
-        if (std::fwrite(buffer_.data(), 1, buffer_.size(), out_) != buffer_.size()) failed_ = true;
-    }
-    buffer_.clear();
+    write_out();
     if (!failed_ && std::fflush(out_) != 0) failed_ = true;
     return !failed_;
 }
@@ -19,7 +27,18 @@ void append_json_number(TextSink& sink, double v) {
         sink.append("null");
         return;
     }
-    sink.print("{}", v);
+    // std::to_chars without a format is the shortest text that reads back exactly; it writes
+    // straight into a small array, with no format string to parse (the segments of a long run
+    // are mostly numbers).
+    char text[32];
+    const auto r = std::to_chars(text, text + sizeof text, v);
+    sink.append(std::string_view(text, static_cast<std::size_t>(r.ptr - text)));
+}
+
+void append_integer(TextSink& sink, std::int64_t v) {
+    char text[24];
+    const auto r = std::to_chars(text, text + sizeof text, v);
+    sink.append(std::string_view(text, static_cast<std::size_t>(r.ptr - text)));
 }
 
 void append_json_string(TextSink& sink, std::string_view text) {

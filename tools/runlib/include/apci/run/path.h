@@ -42,7 +42,16 @@ struct PlaneAxes {
     int third;
 };
 // {0,1,2} for 17, {2,0,1} for 18, {1,2,0} for 19; 17's for anything else.
-PlaneAxes plane_axes(int plane) noexcept;
+constexpr PlaneAxes plane_axes(int plane) noexcept {
+    switch (plane) {
+        case 18:
+            return {2, 0, 1};
+        case 19:
+            return {1, 2, 0};
+        default:
+            return {0, 1, 2};
+    }
+}
 // "X-Y", "Z-X", "Y-Z".
 std::string_view plane_name(int plane) noexcept;
 char axis_letter(int axis) noexcept;  // 'X', 'Y', 'Z'

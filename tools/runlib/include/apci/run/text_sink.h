@@ -1,51 +1,70 @@
 // SPDX-License-Identifier: MIT
-// A buffered text sink over a FILE* the caller owns: formats into one buffer and writes it out
-// in large pieces, so streaming millions of records costs no allocation per record. The first
-// write error is remembered; later output is dropped.
+// A buffered text sink over a FILE* the caller owns: collects text in one fixed buffer and
+// writes it out in large pieces, so streaming millions of records costs no allocation per
+// record. The first write error is remembered; later output is dropped.
 #pragma once
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <memory>
 #include <string_view>
 
 namespace apci::run {
 
 class TextSink {
   public:
-    static constexpr std::size_t kFlushAt = std::size_t{1} << 16;
+    static constexpr std::size_t kCapacity = std::size_t{1} << 16;
 
-    explicit TextSink(std::FILE* out) noexcept : out_(out) {}
+    explicit TextSink(std::FILE* out) : out_(out), buffer_(new char[kCapacity]) {}
     TextSink(const TextSink&) = delete;
     TextSink& operator=(const TextSink&) = delete;
     ~TextSink() { flush(); }
 
+    // Formatted text (fmt syntax), for the parts written once or rarely.
     template <typename... Args>
     void print(fmt::format_string<Args...> format, Args&&... args) {
-        fmt::format_to(fmt::appender(buffer_), format, std::forward<Args>(args)...);
-        if (buffer_.size() >= kFlushAt) flush();
+        fmt::memory_buffer text;
+        fmt::format_to(fmt::appender(text), format, std::forward<Args>(args)...);
+        append(std::string_view(text.data(), text.size()));
     }
+    // Plain text: a copy into the buffer (the per-record path).
     void append(std::string_view text) {
-        buffer_.append(text);
-        if (buffer_.size() >= kFlushAt) flush();
+        if (text.size() > kCapacity - used_) {
+            write_out();
+            if (text.size() > kCapacity) {
+                write_through(text);
+                return;
+            }
+        }
+        std::memcpy(buffer_.get() + used_, text.data(), text.size());
+        used_ += text.size();
     }
     void put(char c) {
-        buffer_.push_back(c);
-        if (buffer_.size() >= kFlushAt) flush();
+        if (used_ == kCapacity) write_out();
+        buffer_[used_++] = c;
     }
     // Writes the buffer out and flushes the FILE; false if any write failed so far.
     bool flush() noexcept;
     bool failed() const noexcept { return failed_; }
 
   private:
+    void write_out() noexcept;
+    void write_through(std::string_view text) noexcept;
+
     std::FILE* out_;
-    fmt::memory_buffer buffer_;
+    std::unique_ptr<char[]> buffer_;
+    std::size_t used_ = 0;
     bool failed_ = false;
 };
 
 // A JSON number: shortest text that reads back exactly ("102", "-0.5", "1e-05");
 // non-finite values (which JSON cannot hold) as null.
 void append_json_number(TextSink& sink, double v);
+// A whole number in decimal.
+void append_integer(TextSink& sink, std::int64_t v);
 // A JSON string literal with its quotes, escaping what JSON requires.
 void append_json_string(TextSink& sink, std::string_view text);
 
