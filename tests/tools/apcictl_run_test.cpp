@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: MIT
 // `apcictl run` as a process on the embedded emulator: the seed program, one program per corner
 // type (docs/figures/), errors with block and name, parse errors, exit codes, the outputs.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <pty.h>
 #include <stdlib.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -201,7 +206,7 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
 
 TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
     const json doc =
-        run_json(kFigures + "/inside_corners.nc", {"--tools", kFigures + "/figures.tools"});
+        run_json(kFigures + "/tc-inside-corners.nc", {"--tools", kFigures + "/tc-figures.tools"});
     EXPECT_TRUE(with_role(doc, "transition").empty()) << roles(doc);
     expect_continuous(doc);
     // line-line: N40 ends and N50 starts at the intersection (35, 5) of the offset lines.
@@ -227,7 +232,7 @@ TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
 
 TEST_F(ApcictlRun, OutsideCornerGetsACircularTransitionAboutTheCorner) {
     const json doc =
-        run_json(kFigures + "/outside_circular.nc", {"--tools", kFigures + "/figures.tools"});
+        run_json(kFigures + "/tc-outside-circular.nc", {"--tools", kFigures + "/tc-figures.tools"});
     const auto transitions = with_role(doc, "transition");
     ASSERT_EQ(transitions.size(), 2u) << roles(doc);
     EXPECT_EQ(transitions[0].at("block"), 40);  // belongs to the element before the corner
@@ -245,7 +250,7 @@ TEST_F(ApcictlRun, OutsideCornerGetsACircularTransitionAboutTheCorner) {
 
 TEST_F(ApcictlRun, LinearTransitionExtendsTheOffsetsAndIsBoundedBeyond90Degrees) {
     const json doc =
-        run_json(kFigures + "/outside_linear.nc", {"--tools", kFigures + "/figures.tools"});
+        run_json(kFigures + "/tc-outside-linear.nc", {"--tools", kFigures + "/tc-figures.tools"});
     std::vector<json> at60, at150;
     for (const auto& t : with_role(doc, "transition")) {
         EXPECT_EQ(t.at("kind"), "line");
@@ -269,7 +274,7 @@ TEST_F(ApcictlRun, LinearTransitionExtendsTheOffsetsAndIsBoundedBeyond90Degrees)
 
 TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
     const json doc =
-        run_json(kFigures + "/closed_contour.nc", {"--tools", kFigures + "/figures.tools"});
+        run_json(kFigures + "/tc-closed-contour.nc", {"--tools", kFigures + "/tc-figures.tools"});
     const auto approach = with_role(doc, "approach");
     const auto departure = with_role(doc, "departure");
     ASSERT_EQ(approach.size(), 1u);
@@ -301,6 +306,30 @@ TEST_F(ApcictlRun, SwitchingSidesDepartsAndApproachesAgain) {
         << doc.dump();
     EXPECT_NEAR(point(with_role(doc, "contour")[1].at("end")).y(), 2.0, kTol);   // G41: left
     EXPECT_NEAR(point(with_role(doc, "contour")[3].at("end")).y(), -2.0, kTol);  // G42: right
+}
+
+// The figures of docs/compensation.md are what apcictl draws now (scripts/tc_figures.sh
+// redraws them). Run from the source root, so the titles name the programs as the script does.
+TEST_F(ApcictlRun, CompensationFiguresAreCurrent) {
+    const std::string cwd = std::filesystem::current_path();
+    std::filesystem::current_path(APCI_SOURCE_DIR);
+    int figures = 0;
+    for (const auto& entry : std::filesystem::directory_iterator("docs/figures")) {
+        const std::string name = entry.path().filename();
+        if (name.rfind("tc-", 0) != 0 || entry.path().extension() != ".nc") continue;
+        const std::string program = "docs/figures/" + name;
+        const std::string svg = program.substr(0, program.size() - 3) + ".svg";
+        const auto r = apcictl({"run", program, "--tools", "docs/figures/tc-figures.tools", "--svg",
+                                path("figure.svg")});
+        const bool shows_error = name.find("-error.nc") != std::string::npos;
+        EXPECT_EQ(r.exit_code, shows_error ? 1 : 0) << name << r.err;
+        EXPECT_TRUE(exists(svg)) << svg;
+        EXPECT_EQ(read_text(path("figure.svg")), read_text(svg))
+            << svg << " is stale: run scripts/tc_figures.sh";
+        ++figures;
+    }
+    std::filesystem::current_path(cwd);
+    EXPECT_EQ(figures, 5);
 }
 
 // ---- Planes and tool length
@@ -497,6 +526,50 @@ TEST_F(ApcictlRun, ProgramFromStandardInput) {
     const auto bad = apcictl({"run", "-"}, "N10 G1 X\n");
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_TRUE(contains(bad.err, "<stdin>:1:9: expected a number after 'X'")) << bad.err;
+}
+
+// Runs apcictl with standard error on a pseudo-terminal; returns what it wrote there.
+std::string stderr_on_a_terminal(const std::vector<std::string>& args, int& exit_code) {
+    int master = -1;
+    const pid_t pid = ::forkpty(&master, nullptr, nullptr, nullptr);
+    if (pid == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 1);  // only standard error stays on the terminal
+        std::vector<char*> argv{const_cast<char*>(APCICTL_PATH)};
+        for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    std::string text;
+    char buf[4096];
+    for (;;) {
+        const ssize_t n = ::read(master, buf, sizeof buf);
+        if (n <= 0) break;  // EIO once the child closed the terminal
+        text.append(buf, static_cast<std::size_t>(n));
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ::close(master);
+    exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return text;
+}
+
+TEST_F(ApcictlRun, ProgressBarOnlyOnATerminalAndClearedAtTheEnd) {
+    std::string text = "N1 G1 F60000\n";
+    for (int i = 0; i < 10000; ++i) text += (i % 2 == 0 ? "X1\n" : "X0\n");
+    text += "M30\n";
+    const std::string prog = write("long.nc", text);
+    int exit_code = -1;
+    const std::string terminal = stderr_on_a_terminal({"run", prog}, exit_code);
+    EXPECT_EQ(exit_code, 0) << terminal;
+    EXPECT_TRUE(contains(terminal, "\r[")) << terminal;
+    EXPECT_TRUE(contains(terminal, " of 10002 blocks")) << terminal;
+    EXPECT_TRUE(terminal.size() >= 4 && terminal.substr(terminal.size() - 4) == "\r\x1b[K")
+        << terminal;
+    const auto piped = apcictl({"run", prog});  // standard error is a pipe here
+    EXPECT_EQ(piped.exit_code, 0);
+    EXPECT_EQ(piped.err, "");
 }
 
 TEST_F(ApcictlRun, BlocksWithoutNumberCarryTheirLine) {

@@ -1,4 +1,4 @@
-%closed_contour.nc
+%tc-closed-contour.nc
 ; A closed contour with approach and departure (docs/compensation.md, figure 4): a plate with
 ; a rounded corner and a notch as wide as the tool, milled outside with G42 (tool D1, r = 5)
 ; and circular transitions. A lead-in element N40 and a lead-out element N150 are compensated

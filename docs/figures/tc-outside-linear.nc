@@ -1,4 +1,4 @@
-%outside_linear.nc
+%tc-outside-linear.nc
 ; Outside corners with linear transitions, G25 (docs/compensation.md, figure 3): at a turn of
 ; 60 degrees the offset lines are extended until they meet; at 150 degrees each is extended by
 ; r only and a chamfer joins them (the bounded form). Tool D1, r = 5, on the outside (G42).

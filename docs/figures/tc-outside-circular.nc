@@ -1,4 +1,4 @@
-%outside_circular.nc
+%tc-outside-circular.nc
 ; Outside corners with circular transitions, G26 (docs/compensation.md, figure 2): the tool
 ; (D1, r = 5) is on the outside of each corner (G42); an arc of radius r about the corner
 ; joins the offset elements: line-line at (40, 0), line-arc at (40, 30).

@@ -1,4 +1,4 @@
-%inside_corners.nc
+%tc-inside-corners.nc
 ; Inside corners (docs/compensation.md, figure 1): the tool (D1, r = 5) is on the inside of
 ; each corner, so both offset elements are cut back to their intersection.
 N10 G17 G90 G26 F1000 D1
