@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 // One object read round trip (apci_read_int of AxisCount) on each transport,
 // through the public C API: inproc (the embedded emulator), unix (the daemon's
-// socket) and shm (the daemon's dual-port RAM file, served by another
-// process). The daemon is started from build/bin and stopped by this program.
+// socket), shm (the daemon's dual-port RAM file, served by another process),
+// pci (that file seen as a memory BAR and as an I/O BAR through a fake sysfs
+// tree), and usb (libusb against the emulated USB board of umockdev, only
+// when run under umockdev-wrapper). The daemon is started from build/bin and
+// stopped by this program.
 // Targets on the 2-core reference machine (docs/performance.md): inproc
 // under 100 ns, shm under 2 us, unix under 20 us (medians).
 #include <signal.h>
@@ -17,9 +20,16 @@
 #include <thread>
 #include <vector>
 
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
 #include <benchmark/benchmark.h>
 
 #include "apci/apci.h"
+#if defined(APCI_BENCH_USB)
+#include "usb_emulator.h"
+#endif
 
 extern char** environ;
 
@@ -70,6 +80,7 @@ public:
     std::string shm_path() const { return dir_ + "/dpram"; }
     std::string unix_uri() const { return "unix:" + socket_path(); }
     std::string shm_uri() const { return "shm:" + shm_path(); }
+    const std::string& dir() const { return dir_; }
 
 private:
     std::string dir_;
@@ -99,13 +110,44 @@ void read_round_trip(benchmark::State& state, const std::string& uri) {
     apci_close(board);
 }
 
+// The daemon's dual-port RAM file as BAR 0 of a PCI function in a fake sysfs
+// tree ($APCI_SYSFS_ROOT); `io` flags it an I/O BAR (pread/pwrite per word).
+std::string fake_pci_board(bool io) {
+    const std::string root = daemon_process().dir() + (io ? "/sys-io" : "/sys-mem");
+    const std::string dev = root + "/bus/pci/devices/0000:01:00.0";
+    std::filesystem::create_directories(dev);
+    std::ofstream(dev + "/vendor") << "0x15b8\n";
+    std::ofstream(dev + "/device") << "0x8001\n";
+    std::ofstream(dev + "/resource") << "0x00000000fe000000 0x00000000fe03ffff "
+                                     << (io ? "0x0000000000040101" : "0x0000000000040200") << "\n";
+    std::error_code ec;
+    std::filesystem::create_symlink(daemon_process().shm_path(), dev + "/resource0", ec);
+    ::setenv("APCI_SYSFS_ROOT", root.c_str(), 1);
+    return "pci:0000:01:00.0";
+}
+
 void BM_ReadRoundTrip_Inproc(benchmark::State& state) { read_round_trip(state, "emu:"); }
+void BM_ReadRoundTrip_PciMemoryBar(benchmark::State& state) { read_round_trip(state, fake_pci_board(false)); }
+void BM_ReadRoundTrip_PciIoBar(benchmark::State& state) { read_round_trip(state, fake_pci_board(true)); }
+#if defined(APCI_BENCH_USB)
+void BM_ReadRoundTrip_UsbUmockdev(benchmark::State& state) {
+    if (!apci_test::UsbBoard::available()) {
+        state.SkipWithError("run under umockdev-wrapper to measure usb:");
+        return;
+    }
+    apci_test::UsbBoard usb;
+    read_round_trip(state, usb.uri());
+}
+BENCHMARK(BM_ReadRoundTrip_UsbUmockdev)->Repetitions(9)->ReportAggregatesOnly(true);
+#endif
 void BM_ReadRoundTrip_Unix(benchmark::State& state) { read_round_trip(state, daemon_process().unix_uri()); }
 void BM_ReadRoundTrip_Shm(benchmark::State& state) { read_round_trip(state, daemon_process().shm_uri()); }
 
 BENCHMARK(BM_ReadRoundTrip_Inproc)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Shm)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Unix)->Repetitions(9)->ReportAggregatesOnly(true);
+BENCHMARK(BM_ReadRoundTrip_PciMemoryBar)->Repetitions(9)->ReportAggregatesOnly(true);
+BENCHMARK(BM_ReadRoundTrip_PciIoBar)->Repetitions(9)->ReportAggregatesOnly(true);
 
 }  // namespace
 

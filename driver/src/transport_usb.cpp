@@ -271,6 +271,10 @@ private:
     Status open_device(libusb_device* dev, std::string& why) {
         libusb_device_handle* h = nullptr;
         int rc = libusb_open(dev, &h);
+        if (rc == LIBUSB_ERROR_NO_DEVICE) {  // gone since the enumeration (being unplugged)
+            why = not_found_text();
+            return Status::kTransportError;
+        }
         if (rc != LIBUSB_SUCCESS) {
             why = libusb_text(fmt::format("open USB device {}:{}", libusb_get_bus_number(dev),
                                           libusb_get_device_address(dev)),
@@ -281,7 +285,7 @@ private:
         rc = libusb_claim_interface(h, usb::kInterfaceNumber);
         if (rc != LIBUSB_SUCCESS) {
             libusb_close(h);
-            why = libusb_text("claim interface 0", rc);
+            why = rc == LIBUSB_ERROR_NO_DEVICE ? not_found_text() : libusb_text("claim interface 0", rc);
             return status_of_libusb(rc);
         }
         handle_ = h;

@@ -1,8 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "board_sources.h"
 
+#include <gtest/gtest.h>
+
 #include "daemon.h"
 #include "fake_sysfs.h"
+#if defined(APCI_CONFORMANCE_USB)
+#include "usb_emulator.h"
+#endif
 
 namespace conformance {
 namespace {
@@ -44,6 +49,33 @@ private:
     FakePciSysfs sysfs_;
 };
 
+#if defined(APCI_CONFORMANCE_USB)
+// An emulated board on USB (umockdev), reached through unmodified libusb.
+class UsbSource final : public BoardSource {
+public:
+    explicit UsbSource(bool option_tc) : usb_(options(option_tc)) {}
+    std::string uri() const override { return usb_.uri(); }
+    std::string problem() const { return usb_.problem(); }
+
+private:
+    static apci_test::UsbBoard::Options options(bool option_tc) {
+        apci_test::UsbBoard::Options o;
+        o.option_tc = option_tc;
+        return o;
+    }
+    apci_test::UsbBoard usb_;
+};
+
+std::unique_ptr<BoardSource> make_usb(bool option_tc) {
+    auto source = std::make_unique<UsbSource>(option_tc);
+    if (!source->problem().empty()) {
+        ADD_FAILURE() << source->problem();
+        return nullptr;
+    }
+    return source;
+}
+#endif
+
 std::unique_ptr<BoardSource> make_inproc(bool option_tc) { return std::make_unique<InprocSource>(option_tc); }
 
 std::unique_ptr<Daemon> start_daemon(bool socket, bool option_tc) {
@@ -81,6 +113,9 @@ std::vector<Transport> transports() {
         {"inproc", make_inproc}, {"unix", make_unix},     {"shm", make_shm},
         {"pci_mem", make_pci_mem}, {"pci_io", make_pci_io},
     };
+#if defined(APCI_CONFORMANCE_USB)
+    if (apci_test::UsbBoard::available()) all.push_back({"usb", make_usb});
+#endif
     return all;
 }
 

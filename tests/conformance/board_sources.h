@@ -30,8 +30,9 @@ struct Transport {
     friend void PrintTo(const Transport& t, std::ostream* os) { *os << t.name; }
 };
 
-// Every transport this binary can run: inproc, unix, shm, and pci (the
-// daemon's dual-port RAM file as a memory BAR and as an I/O BAR).
+// Every transport this binary can run: inproc, unix, shm, pci (the daemon's
+// dual-port RAM file as a memory BAR and as an I/O BAR), and usb (an
+// emulated board behind umockdev) when run under umockdev-wrapper.
 std::vector<Transport> transports();
 
 }  // namespace conformance
