@@ -57,5 +57,46 @@ TEST(BHeadKinematics, PivotSitsOneToolLengthBehindTheTip) {
     EXPECT_NEAR((back - tip).norm(), 0.0, 1e-12);
 }
 
+TEST(BcHeadKinematics, CZeroIsTheBHeadAlone) {
+    for (double b : {-75.0, -20.0115, 0.0, 10.0, 90.0}) {
+        EXPECT_NEAR((bc_head_tool_direction(b, 0.0) - b_head_tool_direction(b)).norm(), 0.0, kEps);
+    }
+}
+
+TEST(BcHeadKinematics, CTurnsTheTiltedToolAboutZ) {
+    const Eigen::Vector3d t = bc_head_tool_direction(90.0, 90.0);
+    EXPECT_NEAR((t - Eigen::Vector3d(0, 1, 0)).norm(), 0.0, kEps);
+    for (double c = -270.0; c <= 270.0; c += 22.5) {
+        const Eigen::Vector3d tc = bc_head_tool_direction(30.0, c);
+        EXPECT_NEAR(tc.norm(), 1.0, kEps);
+        EXPECT_NEAR(tc.z(), std::cos(degrees_to_radians(30.0)), kEps);
+        const Eigen::Vector3d turned =
+            Eigen::AngleAxisd(degrees_to_radians(c), Eigen::Vector3d::UnitZ()) *
+            b_head_tool_direction(30.0);
+        EXPECT_NEAR((tc - turned).norm(), 0.0, kEps) << c;
+    }
+}
+
+TEST(BcHeadKinematics, RotationTurnsPlusZIntoTheToolDirectionAndIsOrthonormal) {
+    for (double b : {-60.0, 0.0, 25.0}) {
+        for (double c : {-267.9784, 0.0, 45.0, 180.0}) {
+            const Eigen::Matrix3d r = bc_head_rotation(b, c);
+            EXPECT_NEAR((r * Eigen::Vector3d::UnitZ() - bc_head_tool_direction(b, c)).norm(), 0.0,
+                        1e-15);
+            EXPECT_NEAR((r.transpose() * r - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-15);
+            EXPECT_NEAR(r.determinant(), 1.0, 1e-15);
+        }
+    }
+}
+
+TEST(BcHeadKinematics, SeedPeripheralBlock11PointsNearBlock12sToolVector) {
+    // TNC seed 002, peripheral milling: block 11 turns the head to C-267.9784 B-20.0115; block 12
+    // (a little further along the wall) gives T = (-0.0807, -0.3409, 0.9366).
+    const Eigen::Vector3d t = bc_head_tool_direction(-20.0115, -267.9784);
+    EXPECT_NEAR(t.z(), 0.9396, 1e-4);
+    EXPECT_NEAR(t.y(), -0.3419, 1e-4);
+    EXPECT_LT((t - Eigen::Vector3d(-0.0807, -0.3409, 0.9366)).norm(), 0.1);
+}
+
 }  // namespace
 }  // namespace rwmos::geom

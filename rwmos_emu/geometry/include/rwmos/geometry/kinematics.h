@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The one head kinematics the emulator knows (DESIGN.md section 8, design): a B axis that
-// tilts the tool in the Z-X plane. Shared by OTC (tool direction for TOOL_DIR and
-// SURF_NORM_DIR), 3D tool compensation and temperature compensation in tool direction.
+// tilts the tool in the Z-X plane, optionally turned about Z by a C axis (bc_head_*; C = 0 is
+// the B head). Shared by OTC (tool direction for TOOL_DIR and SURF_NORM_DIR), 3D tool
+// compensation and temperature compensation in tool direction.
 //
 // B is in degrees. B = 0: the tool points along +Z (from the tool tip towards the spindle).
 // Positive B turns it about +Y (right-handed), from +Z towards +X:
@@ -36,6 +37,26 @@ inline Eigen::Vector3d b_head_tool_direction(double b_deg) noexcept {
 inline Eigen::Vector3d b_head_pivot_from_tip(const Eigen::Vector3d& tip, double b_deg,
                                              double length) noexcept {
     return tip + length * b_head_tool_direction(b_deg);
+}
+
+// A C axis that turns the B head about +Z (a head-head kinematics, as in the TNC seed 002
+// peripheral-milling example "C-267.9784 B-20.0115"): the head is first tilted by B, then turned
+// by C, so t(B, C) = Rz(C) t(B) = (cos C sin B, sin C sin B, cos B). C = 0 is the B head alone.
+inline Eigen::Matrix3d bc_head_rotation(double b_deg, double c_deg) noexcept {
+    const double b = degrees_to_radians(b_deg);
+    const double c = degrees_to_radians(c_deg);
+    Eigen::Matrix3d rz;
+    rz << std::cos(c), -std::sin(c), 0.0, std::sin(c), std::cos(c), 0.0, 0.0, 0.0, 1.0;
+    Eigen::Matrix3d ry;
+    ry << std::cos(b), 0.0, std::sin(b), 0.0, 1.0, 0.0, -std::sin(b), 0.0, std::cos(b);
+    return rz * ry;
+}
+
+// Unit tool direction at tilt b_deg and turn c_deg: the rotation applied to +Z.
+inline Eigen::Vector3d bc_head_tool_direction(double b_deg, double c_deg) noexcept {
+    const double b = degrees_to_radians(b_deg);
+    const double c = degrees_to_radians(c_deg);
+    return {std::cos(c) * std::sin(b), std::sin(c) * std::sin(b), std::cos(b)};
 }
 
 // The inverse: the tool tip of a machine (pivot) position.
