@@ -6,11 +6,12 @@
 namespace rwmos {
 
 Board::State::State(const BoardConfig& cfg)
-    : config(cfg), motion(*this), board_module(*this), tc_module(*this) {
+    : config(cfg), motion(*this), board_module(*this), tc_module(*this), comp3d_module(*this) {
     tc_motion = &motion;
-    // Two modules on distinct buses: add() cannot fail here.
+    // Modules on distinct buses: add() cannot fail here.
     dictionary.add(&board_module);
     dictionary.add(&tc_module);
+    dictionary.add(&comp3d_module);
 }
 
 Board::Board(const BoardConfig& config) : state_(std::make_unique<State>(config)) {}

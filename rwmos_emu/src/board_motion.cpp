@@ -5,8 +5,23 @@
 
 namespace rwmos {
 
+// The 3D compensation module (bus 1310) acts on a profile before the spooler sees it: an armed
+// LN profile gets its compensated end point (docs/object-map.md section 6).
 motion::MotionResult Board::spool(const motion::Profile& p) {
-    return state_->motion.spool(p);
+    motion::Profile q = p;
+    const Comp3dPlan plan =
+        plan_profile(state_->comp3d, state_->tc, state_->motion.spooler().program_position(), q);
+    if (plan.refusal != comp3d::Refusal::kNone) {
+        state_->comp3d.last_error = static_cast<std::int32_t>(plan.refusal);
+        motion::MotionResult r;
+        r.status = refusal_status(plan.refusal);
+        r.tag = p.tag;
+        r.message = comp3d::refusal_message(plan.refusal);
+        return r;
+    }
+    const motion::MotionResult r = state_->motion.spool(q);
+    if (r.ok()) commit_profile(state_->comp3d, plan);
+    return r;
 }
 
 motion::MotionResult Board::direct(const motion::DirectCommand& c) {

@@ -37,10 +37,33 @@ struct Snapshot {
     std::int32_t interpolation_cycle_us;
     std::int32_t pu;
     std::unique_ptr<rwmos::TcState> tc;
+    std::unique_ptr<rwmos::Comp3dState> comp3d;
 };
 inline Snapshot snapshot(const rwmos::Board& board) {
     const auto& s = board.state();
-    return Snapshot{s.interpolation_cycle_us, s.pu, std::make_unique<rwmos::TcState>(s.tc)};
+    return Snapshot{s.interpolation_cycle_us, s.pu, std::make_unique<rwmos::TcState>(s.tc),
+                    std::make_unique<rwmos::Comp3dState>(s.comp3d)};
+}
+
+inline bool same_deltas(const rwmos::comp3d::Deltas& a, const rwmos::comp3d::Deltas& b) {
+    return a.dl == b.dl && a.dr == b.dr && a.dr2 == b.dr2;
+}
+inline bool same_comp3d(const rwmos::Comp3dState& a, const rwmos::Comp3dState& b) {
+    if (a.tool != b.tool || !same_deltas(a.call, b.call) || !same_deltas(a.pending_call, b.pending_call) ||
+        a.correction_row != b.correction_row || a.prog_path != b.prog_path ||
+        a.reference != b.reference || a.tcpm != b.tcpm || a.allow_oversize != b.allow_oversize ||
+        a.side != b.side || a.head_axis_b != b.head_axis_b || a.head_axis_c != b.head_axis_c ||
+        a.normal != b.normal || a.tool_vector != b.tool_vector || a.armed != b.armed ||
+        a.armed_normal != b.armed_normal || a.armed_tool_vector != b.armed_tool_vector ||
+        a.last_error != b.last_error || a.last_tip != b.last_tip)
+        return false;
+    for (std::size_t i = 0; i < a.tools.size(); ++i)
+        if (a.tools[i].r != b.tools[i].r || a.tools[i].r2 != b.tools[i].r2 ||
+            !same_deltas(a.tools[i].deltas, b.tools[i].deltas))
+            return false;
+    for (std::size_t i = 0; i < a.corrections.size(); ++i)
+        if (!same_deltas(a.corrections[i], b.corrections[i])) return false;
+    return true;
 }
 
 inline bool same_group(const rwmos::TcGroup& a, const rwmos::TcGroup& b) {
@@ -69,6 +92,7 @@ inline ::testing::AssertionResult unchanged(const Snapshot& before, const rwmos:
     for (std::int32_t n = 1; n <= rwmos::tc::kGroupCount; ++n)
         if (!same_group(s.tc.group(n), t.group(n)))
             return ::testing::AssertionFailure() << "group " << n << " changed";
+    if (!same_comp3d(*before.comp3d, s.comp3d)) return ::testing::AssertionFailure() << "3D compensation changed";
     return ::testing::AssertionSuccess();
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Every object of the object map (docs/object-map.md), bus 1000 and bus 1300:
+// Every object of the object map (docs/object-map.md), buses 1000, 1300 and 1310:
 // read gives the default, a valid write reads back, the wrong type is
 // refused, values out of range are refused, and the wrong access kind is
 // refused; every refusal leaves the state unchanged. The expected rows are
@@ -49,6 +49,14 @@ BadValue invalid(double v) { return {D(v), Status::kInvalidValue}; }
 Address B(std::int32_t idx, std::int32_t sub = 0) { return {board::kBus, board::kDevice, idx, sub}; }
 Address T0(std::int32_t idx, std::int32_t sub = 0) { return {tc::kBus, tc::kDevInit, idx, sub}; }
 Address T1(std::int32_t sub) { return {tc::kBus, tc::kDevGroups, 1, sub}; }
+namespace c3 = rwmos::comp3d;
+Address C0(std::int32_t idx, std::int32_t sub = 0) { return {c3::kBus, c3::kDevSettings, idx, sub}; }
+Address C1(std::int32_t sub) { return {c3::kBus, c3::kDevTools, 1, sub}; }
+Address C2(std::int32_t sub) { return {c3::kBus, c3::kDevCorrections, 1, sub}; }
+// The range of a 3D compensation value (+-1e5) with NaN and infinity.
+std::vector<BadValue> c3_range(double min = -1.0e5) {
+    return {low(D(min - (min == 0.0 ? 0.001 : 1.0))), high(D(1.0e5 + 1.0)), invalid(kNaN), invalid(kInf)};
+}
 
 std::vector<ObjectRow> object_rows() {
     const auto kI = ValueType::kInt32;
@@ -93,6 +101,42 @@ std::vector<ObjectRow> object_rows() {
          {low(D(-1.0e6 - 1.0)), high(D(1.0e6 + 1.0)), invalid(kNaN), invalid(-kInf)}},
         {"CornerMode", T1(20), kI, rw, I(26), I(25), true, {low(I(24)), high(I(27))}},
         {"Side", T1(21), kI, r, I(40), {}, true, {}},
+        // ---- 3D compensation, bus 1310, DeviceNumber 0.
+        {"C3_Tool", C0(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
+        {"C3_CallDL", C0(2, 0), kD, rw, D(0.0), D(-0.5), true, c3_range()},
+        {"C3_CallDR", C0(2, 1), kD, rw, D(0.0), D(-0.25), true, c3_range()},
+        {"C3_CallDR2", C0(2, 2), kD, rw, D(0.0), D(0.125), true, c3_range()},
+        {"C3_CorrectionRow", C0(3), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
+        {"C3_ProgPath", C0(4), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"C3_Reference", C0(5), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"C3_Tcpm", C0(6), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"C3_AllowOversize", C0(7), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"C3_Side", C0(8), kI, rw, I(40), I(41), true, {low(I(39)), high(I(43))}},
+        {"C3_HeadAxisB", C0(9), kI, rw, I(4), I(7), true, {low(I(-1)), high(I(8))}},
+        {"C3_HeadAxisC", C0(10), kI, rw, I(-1), I(5), true, {low(I(-2)), high(I(8))}},
+        {"C3_NX", C0(11, 0), kD, rw, D(0.0), D(0.6), true, c3_range()},
+        {"C3_NY", C0(11, 1), kD, rw, D(0.0), D(-0.8), true, c3_range()},
+        {"C3_NZ", C0(11, 2), kD, rw, D(0.0), D(1.0), true, c3_range()},
+        {"C3_TX", C0(12, 0), kD, rw, D(0.0), D(0.6), true, c3_range()},
+        {"C3_TY", C0(12, 1), kD, rw, D(0.0), D(-0.8), true, c3_range()},
+        {"C3_TZ", C0(12, 2), kD, rw, D(0.0), D(1.0), true, c3_range()},
+        {"C3_Arm", C0(13), kI, rw, I(0), I(0), true, {low(I(-1)), high(I(4))}},
+        {"C3_LastError", C0(14), kI, rw, I(0), I(5), false, {}},
+        {"C3_DL", C0(20, 0), kD, r, D(0.0), {}, true, {}},
+        {"C3_DR", C0(20, 1), kD, r, D(0.0), {}, true, {}},
+        {"C3_DR2", C0(20, 2), kD, r, D(0.0), {}, true, {}},
+        {"C3_LastTipX", C0(21, 0), kD, r, D(0.0), {}, true, {}},
+        {"C3_LastTipY", C0(21, 1), kD, r, D(0.0), {}, true, {}},
+        {"C3_LastTipZ", C0(21, 2), kD, r, D(0.0), {}, true, {}},
+        // ---- 3D compensation, DeviceNumber 1 (tool table) and 2 (correction table), row 1.
+        {"C3_ToolR", C1(1), kD, rw, D(0.0), D(3.0), true, c3_range(0.0)},
+        {"C3_ToolR2", C1(2), kD, rw, D(0.0), D(3.0), true, c3_range(0.0)},
+        {"C3_ToolDL", C1(3), kD, rw, D(0.0), D(-0.1), true, c3_range()},
+        {"C3_ToolDR", C1(4), kD, rw, D(0.0), D(-0.1), true, c3_range()},
+        {"C3_ToolDR2", C1(5), kD, rw, D(0.0), D(-0.1), true, c3_range()},
+        {"C3_CorrDL", C2(1), kD, rw, D(0.0), D(0.01), true, c3_range()},
+        {"C3_CorrDR", C2(2), kD, rw, D(0.0), D(-0.02), true, c3_range()},
+        {"C3_CorrDR2", C2(3), kD, rw, D(0.0), D(0.03), true, c3_range()},
     };
     for (std::int32_t axis = 0; axis < 8; ++axis)
         rows.push_back({"Position" + std::to_string(axis), B(10, axis), kD, r, D(0.0), {}, true, {}});

@@ -38,6 +38,9 @@ constexpr std::array kRefusalTable{
                "RL/RR give no side: the motion is zero or parallel to the tool vector"},
     RefusalRow{Refusal::kNoCompensationSide, "NoCompensationSide",
                "peripheral milling needs a side: a surface normal N or RL/RR"},
+    RefusalRow{Refusal::kRadiusCompensationRunning, "RadiusCompensationRunning",
+               "the TC module's radius compensation runs: 3D compensation and 2D radius "
+               "compensation do not combine (STATUS = 0 first)"},
 };
 static_assert(kRefusalTable.size() == kRefusalCount, "refusal table and enum out of step");
 

@@ -10,6 +10,8 @@
 #include "objif/dictionary.h"
 #include "rwmos/board.h"
 #include "rwmos/board_module.h"
+#include "rwmos/comp3d_module.h"
+#include "rwmos/comp3d_state.h"
 #include "rwmos/motion_layer.h"
 #include "rwmos/object_map.h"
 #include "rwmos/tc_module.h"
@@ -51,10 +53,13 @@ struct Board::State {
     TcMotion* tc_motion = nullptr;  // the motion layer, if attached (not owned)
     // Motion: spooler, held profile, move queue, interpolation clock, trace.
     MotionLayer motion;
+    // 3D tool compensation module (bus 1310): applied to profiles before the spooler.
+    Comp3dState comp3d;
 
     // The modules serve the fields above; the dictionary routes to them.
     BoardModule board_module;
     TcModule tc_module;
+    Comp3dModule comp3d_module;
     objif::Dictionary dictionary;
 };
 

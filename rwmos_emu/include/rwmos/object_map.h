@@ -82,4 +82,51 @@ inline constexpr std::int32_t kSideLeft = 41;
 inline constexpr std::int32_t kSideRight = 42;
 }  // namespace tc
 
+// ---- 3D tool compensation module, bus 1310 (TNC seed 002; design numbers, DESIGN.md section 4;
+// docs/object-map.md section 6, docs/3d-compensation.md).
+namespace comp3d {
+inline constexpr std::int32_t kBus = 1310;
+inline constexpr std::int32_t kDevSettings = 0;     // the tool in force, modes, the next LN
+inline constexpr std::int32_t kDevTools = 1;        // tool table, Index = tool 0..1023
+inline constexpr std::int32_t kDevCorrections = 2;  // correction table, Index = row 0..1023
+
+// DeviceNumber 0.
+inline constexpr std::int32_t kIdxTool = 1;            // int r/w 0..1023: TOOL CALL n
+inline constexpr std::int32_t kIdxCallDeltas = 2;      // double r/w, Sub 0 DL 1 DR 2 DR2
+inline constexpr std::int32_t kIdxCorrectionRow = 3;   // int r/w 0..1023
+inline constexpr std::int32_t kIdxProgPath = 4;        // int r/w: 0 OFF, 1 IS CONTOUR
+inline constexpr std::int32_t kIdxReference = 5;       // int r/w: 0 tip, 1 centre
+inline constexpr std::int32_t kIdxTcpm = 6;            // int r/w: 0 off, 1 M128 / FUNCTION TCPM
+inline constexpr std::int32_t kIdxAllowOversize = 7;   // int r/w: 1 M107, 0 M108
+inline constexpr std::int32_t kIdxSide = 8;            // int r/w: 40 R0, 41 RL, 42 RR
+inline constexpr std::int32_t kIdxHeadAxisB = 9;       // int r/w 0..7: board axis of B
+inline constexpr std::int32_t kIdxHeadAxisC = 10;      // int r/w -1..7: board axis of C, -1 none
+inline constexpr std::int32_t kIdxSurfaceNormal = 11;  // double r/w, Sub 0 NX 1 NY 2 NZ
+inline constexpr std::int32_t kIdxToolVector = 12;     // double r/w, Sub 0 TX 1 TY 2 TZ
+inline constexpr std::int32_t kIdxArm = 13;            // int r/w 0..3: the next profile is an LN
+inline constexpr std::int32_t kIdxLastError = 14;      // int r/w: Refusal code; a write clears
+inline constexpr std::int32_t kIdxDeltas = 20;         // double r, Sub 0..2: summed DL DR DR2
+inline constexpr std::int32_t kIdxLastTip = 21;        // double r, Sub 0..2: last TCP X Y Z
+
+// DeviceNumber 1 SubIndex (Index = tool).
+inline constexpr std::int32_t kSubR = 1;
+inline constexpr std::int32_t kSubR2 = 2;
+inline constexpr std::int32_t kSubDl = 3;
+inline constexpr std::int32_t kSubDr = 4;
+inline constexpr std::int32_t kSubDr2 = 5;
+// DeviceNumber 2 SubIndex (Index = row).
+inline constexpr std::int32_t kSubCorrDl = 1;
+inline constexpr std::int32_t kSubCorrDr = 2;
+inline constexpr std::int32_t kSubCorrDr2 = 3;
+
+inline constexpr std::int32_t kToolCount = 1024;
+inline constexpr std::int32_t kCorrectionRows = 1024;
+// Arm bits: what the next spooled profile carries.
+inline constexpr std::int32_t kArmNormal = 0x01;
+inline constexpr std::int32_t kArmToolVector = 0x02;
+inline constexpr std::int32_t kNoHeadAxis = -1;
+// Largest magnitude of a tool value, delta or vector component (the math's kMaxCoordinate).
+inline constexpr double kMaxValue = 1e5;
+}  // namespace comp3d
+
 }  // namespace rwmos

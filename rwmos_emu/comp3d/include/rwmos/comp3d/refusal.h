@@ -22,9 +22,10 @@ enum class Refusal : std::uint8_t {
     kNormalAgainstTool,             // N.T < -kNormalAgainstToolTolerance
     kNoSideFromMotion,              // RL/RR, but the motion is zero or parallel to T
     kNoCompensationSide,            // peripheral milling without N and without RL/RR
+    kRadiusCompensationRunning,     // the TC module's 2D radius compensation runs
 };
 
-inline constexpr std::size_t kRefusalCount = 12;
+inline constexpr std::size_t kRefusalCount = 13;
 
 std::string_view refusal_name(Refusal r) noexcept;     // "PositiveOversize"
 std::string_view refusal_message(Refusal r) noexcept;  // one line of English
