@@ -182,6 +182,19 @@ TEST(RunJson, CoordinatesReadBackExactly) {
     }
 }
 
+TEST(RunJson, WholeNumbersAreWrittenAsIntegersAndReadBackExactly) {
+    std::string text;
+    const auto doc =
+        write_json({line({1e5, -0.0, 123456789012345.0}, {-7, 0.5, 1e15})}, {}, {}, &text);
+    EXPECT_TRUE(contains(text, "\"start\":[100000,-0,123456789012345],\"end\":[-7,0.5,1e+15]"))
+        << text;
+    const auto& s = doc.at("segments")[0];
+    EXPECT_EQ(s.at("start")[0].get<double>(), 1e5);
+    EXPECT_EQ(s.at("start")[1].get<double>(), 0.0);  // "-0": JSON readers may drop the sign
+    EXPECT_EQ(s.at("start")[2].get<double>(), 123456789012345.0);
+    EXPECT_EQ(s.at("end")[2].get<double>(), 1e15);
+}
+
 TEST(RunJson, NonFiniteCoordinateIsNull) {
     const auto doc = write_json({line({0, 0, 0}, {std::nan(""), 0, 0})}, {}, {});
     EXPECT_TRUE(doc.at("segments")[0].at("end")[0].is_null());

@@ -523,7 +523,9 @@ class Execution {
                 board_.run_until_idle(tracing_ ? ProgramExecutor::kTraceChunk : kRunForever);
             if (!st) return board_failure({}, st.status, "run clock");
             cycles_seen_ = st.value.now;
-            if (!drain_segments() || (tracing_ && !drain_samples())) return false;
+            if (!drain_segments(st.value.segments_pending) ||
+                (tracing_ && !drain_samples(st.value.trace_pending)))
+                return false;
             if (st.value.segments_lost != segments_lost_ || st.value.trace_lost != trace_lost_) {
                 segments_lost_ = st.value.segments_lost;
                 trace_lost_ = st.value.trace_lost;
@@ -534,22 +536,30 @@ class Execution {
         }
     }
 
-    bool drain_segments() {
-        for (;;) {
-            const auto r = board_.read_segments(segments_.data(), segments_.size());
+    // Reads the `pending` executed segments the clock call reported, in batches of at most
+    // kReadBatch (asking for no more than are there keeps each read small).
+    bool drain_segments(std::uint64_t pending) {
+        while (pending > 0) {
+            const std::size_t want =
+                static_cast<std::size_t>(std::min<std::uint64_t>(pending, segments_.size()));
+            const auto r = board_.read_segments(segments_.data(), want);
             if (!r) return board_failure({}, r.status, "read segments");
             for (std::size_t i = 0; i < r.value; ++i) {
                 const PathSegment s = convert(segments_[i]);
                 count_segment(out_.totals, s);
                 sink_.executed(s);
             }
-            if (r.value < segments_.size()) return true;
+            if (r.value == 0) break;
+            pending -= std::min<std::uint64_t>(pending, r.value);
         }
+        return true;
     }
 
-    bool drain_samples() {
-        for (;;) {
-            const auto r = board_.read_trace(samples_.data(), samples_.size());
+    bool drain_samples(std::uint64_t pending) {
+        while (pending > 0) {
+            const std::size_t want =
+                static_cast<std::size_t>(std::min<std::uint64_t>(pending, samples_.size()));
+            const auto r = board_.read_trace(samples_.data(), want);
             if (!r) return board_failure({}, r.status, "read trace");
             for (std::size_t i = 0; i < r.value; ++i) {
                 const apci_trace_sample& t = samples_[i];
@@ -557,8 +567,10 @@ class Execution {
                     static_cast<double>(t.cycle * static_cast<std::uint64_t>(cycle_us_)) / 1e6;
                 sink_.sample(t.cycle, time, std::span<const double>(t.position, APCI_AXIS_COUNT));
             }
-            if (r.value < samples_.size()) return true;
+            if (r.value == 0) break;
+            pending -= std::min<std::uint64_t>(pending, r.value);
         }
+        return true;
     }
 
     // A board segment in program coordinates: X, Y, Z from their board axes, the tool length

@@ -31,6 +31,13 @@ void append_json_number(TextSink& sink, double v) {
     // straight into a small array, with no format string to parse (the segments of a long run
     // are mostly numbers).
     char text[32];
+    // Whole numbers (common in NC coordinates) as integers: the same value, and much cheaper
+    // than the shortest-float search. -0 keeps its sign.
+    constexpr double kExactInteger = 1e15;
+    if (v == std::trunc(v) && std::abs(v) < kExactInteger && !(v == 0.0 && std::signbit(v))) {
+        append_integer(sink, static_cast<std::int64_t>(v));
+        return;
+    }
     const auto r = std::to_chars(text, text + sizeof text, v);
     sink.append(std::string_view(text, static_cast<std::size_t>(r.ptr - text)));
 }
