@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -330,6 +331,35 @@ TEST_F(ApcictlRun, CompensationFiguresAreCurrent) {
     }
     std::filesystem::current_path(cwd);
     EXPECT_EQ(figures, 5);
+}
+
+// The executor uses libapci only, so the run is the same through the emulator daemon's socket
+// as on the embedded board: the same JSON, byte for byte.
+TEST_F(ApcictlRun, SamePathThroughTheDaemonSocketAsOnTheEmbeddedBoard) {
+    const std::string socket = path("emu.sock");
+    const pid_t daemon = ::fork();
+    if (daemon == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 2);
+        ::execl(RWMOS_EMU_PATH, RWMOS_EMU_PATH, "--socket", socket.c_str(), nullptr);
+        ::_exit(127);
+    }
+    ASSERT_GT(daemon, 0);
+    for (int i = 0; i < 500 && !exists(socket); ++i) ::usleep(10'000);
+    ASSERT_TRUE(exists(socket));
+    const std::vector<std::string> args{"run", kExamples + "/wr_quad_disc.nc", "--tools",
+                                        kExamples + "/tools/wr_quad_disc.tools", "--json"};
+    auto via_socket = args;
+    via_socket.push_back(path("socket.json"));
+    via_socket.insert(via_socket.begin(), {"--device", "unix:" + socket});
+    const auto r = apcictl(via_socket);
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto embedded = args;
+    embedded.push_back(path("emu.json"));
+    ASSERT_EQ(apcictl(embedded).exit_code, 0);
+    EXPECT_EQ(read_text(path("socket.json")), read_text(path("emu.json")));
 }
 
 // ---- Planes and tool length

@@ -277,11 +277,13 @@ class Execution {
                     return end_of_program(at);
                 } else {
                     // The Klartext 3D events (TOOL CALL deltas, TCPM, PROG PATH, M107, head
-                    // orientation, LN) need the board's 3D compensation, which the driver's
-                    // API does not offer yet: refused by name, never run approximately.
+                    // orientation, LN) belong to the board's 3D compensation module (bus
+                    // 1310), which this executor does not drive yet: refused by name, never
+                    // run approximately.
                     return record(at, "Unsupported",
-                                  fmt::format("'{}' events are not executed yet: the board's 3D "
-                                              "compensation is not reachable through libapci",
+                                  fmt::format("'{}' events are not executed by apcictl run yet "
+                                              "(the 3D compensation module, bus 1310, is not "
+                                              "driven by the executor)",
                                               nc::event_name(ev.data)));
                 }
             },
