@@ -15,6 +15,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -294,6 +295,45 @@ TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
         geom::make_line({35, 50}, {0, 50}),  geom::make_line({0, 50}, {0, 0}),
         geom::make_line({0, 0}, {30, 0}),    geom::make_line({30, 0}, {30, -20})};
     expect_at_radius(doc, plate, 5.0, {"contour", "transition"});
+}
+
+// More profiles than the spooler holds: Busy makes the executor run the clock and spool again;
+// every block runs, in order, and the path stays r from the contour throughout.
+TEST_F(ApcictlRun, ProgramLongerThanTheSpoolerRunsWhole) {
+    const char* turn[] = {"G1 X40 Y0", "G3 X50 Y10 I0 J10",
+                          "G1 Y30",    "G3 X40 Y40 I-10 J0",
+                          "G1 X30",    "G1 Y30",
+                          "G1 X20",    "G1 Y40",
+                          "G1 X10",    "G3 X0 Y30 I0 J-10",
+                          "G1 Y10",    "G3 X10 Y0 I10 J0"};
+    std::string text = "N1 G17 G90 G26 F3000 D1\nN2 G0 X10 Y0 Z0\nN3 G41\n";
+    int n = 4;
+    for (int k = 0; k < 100; ++k)
+        for (const char* b : turn) text += "N" + std::to_string(n++) + " " + b + "\n";
+    text += "N" + std::to_string(n) + " G40\nM30\n";
+    const json doc = run_json(write("long.nc", text), {"--tools", tools(1.0)});
+    EXPECT_TRUE(contains(last_.out, ": 1205 blocks, 1205 executed, ")) << last_.out;
+    expect_continuous(doc);
+    int last_block = 0;
+    std::set<int> contour_blocks;
+    for (const auto& s : doc.at("segments")) {
+        const int b = s.at("block").get<int>();
+        EXPECT_GE(b, last_block) << s.dump();  // in program order
+        if (s.at("role") == "contour") contour_blocks.insert(b);
+        last_block = b;
+    }
+    EXPECT_EQ(contour_blocks.size(), 1200u);
+    EXPECT_EQ(*contour_blocks.begin(), 4);
+    EXPECT_EQ(*contour_blocks.rbegin(), 1203);
+    expect_at_radius(
+        doc,
+        {geom::make_line({10, 0}, {40, 0}), geom::make_arc({40, 0}, {50, 10}, {40, 10}, true),
+         geom::make_line({50, 10}, {50, 30}), geom::make_arc({50, 30}, {40, 40}, {40, 30}, true),
+         geom::make_line({40, 40}, {30, 40}), geom::make_line({30, 40}, {30, 30}),
+         geom::make_line({30, 30}, {20, 30}), geom::make_line({20, 30}, {20, 40}),
+         geom::make_line({20, 40}, {10, 40}), geom::make_arc({10, 40}, {0, 30}, {10, 30}, true),
+         geom::make_line({0, 30}, {0, 10}), geom::make_arc({0, 10}, {10, 0}, {10, 10}, true)},
+        1.0, {"contour", "transition"});
 }
 
 TEST_F(ApcictlRun, SwitchingSidesDepartsAndApproachesAgain) {

@@ -111,7 +111,8 @@ class Execution {
     }
 
     RunOutcome run(nc::EventStream& events) {
-        if (setup()) {
+        set_up_ = setup();
+        if (set_up_) {
             nc::Event ev;
             std::uint64_t count = 0;
             for (;;) {
@@ -228,10 +229,9 @@ class Execution {
     }
 
     void finish() {
-        // The move under way ends (after an error the board holds the rest).
-        if (!run_clock()) {
-            // recorded; the registers may still be readable
-        }
+        // The move under way ends (after a TC error the board holds the rest). A clock that
+        // failed already is not asked again; its error is recorded.
+        if (set_up_ && clock_ok_) (void)run_clock();
         if (out_.tc_present) read_registers();
         out_.totals.cycles = cycles_seen_ - start_cycle_;
         if (!comp_plane_seen_) out_.plot_plane = plane_;
@@ -520,6 +520,12 @@ class Execution {
     // Runs the clock until the axes stop (in chunks while samples are recorded), reading the
     // executed segments and samples as they come.
     bool run_clock() {
+        if (run_clock_until_idle()) return true;
+        clock_ok_ = false;
+        return false;
+    }
+
+    bool run_clock_until_idle() {
         for (;;) {
             const auto st =
                 board_.run_until_idle(tracing_ ? ProgramExecutor::kTraceChunk : kRunForever);
@@ -631,6 +637,8 @@ class Execution {
     std::uint64_t segments_lost_ = 0;
     std::uint64_t trace_lost_ = 0;
     bool tracing_ = false;
+    bool set_up_ = false;   // setup() succeeded: the board was configured for the run
+    bool clock_ok_ = true;  // no clock call failed
     int plane_ = 17;
     int comp_plane_ = 17;  // the plane of the compensation under way or last run
     bool comp_on_ = false;
