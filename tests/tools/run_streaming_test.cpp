@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// `apcictl run` keeps memory flat in the program length: this binary counts the live heap
+// (global operator new replaced, which the driver and the emulator inside libapci use too) and
+// checks that executing a compensated program ten times longer, with the JSON and the SVG
+// writers attached, needs no more heap at its peak.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <string>
+
+#include "apci/apci.hpp"
+#include "apci/nc/program.h"
+#include "apci/run/executor.h"
+#include "apci/run/json_writer.h"
+#include "apci/run/svg_writer.h"
+
+namespace {
+
+std::size_t g_live_bytes = 0;
+std::size_t g_peak_bytes = 0;
+
+void* counted_alloc(std::size_t n) {
+    auto* p = static_cast<std::size_t*>(std::malloc(n + sizeof(std::max_align_t)));
+    if (p == nullptr) throw std::bad_alloc();
+    *p = n;
+    g_live_bytes += n;
+    if (g_live_bytes > g_peak_bytes) g_peak_bytes = g_live_bytes;
+    return reinterpret_cast<char*>(p) + sizeof(std::max_align_t);
+}
+
+void counted_free(void* q) noexcept {
+    if (q == nullptr) return;
+    auto* p = reinterpret_cast<std::size_t*>(static_cast<char*>(q) - sizeof(std::max_align_t));
+    g_live_bytes -= *p;
+    std::free(p);
+}
+
+}  // namespace
+
+void* operator new(std::size_t n) {
+    return counted_alloc(n);
+}
+void* operator new[](std::size_t n) {
+    return counted_alloc(n);
+}
+void operator delete(void* p) noexcept {
+    counted_free(p);
+}
+void operator delete[](void* p) noexcept {
+    counted_free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    counted_free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+    counted_free(p);
+}
+
+namespace apci::run {
+namespace {
+
+// `turns` turns of a plate contour (12 blocks: 8 lines, 4 arcs, inside and outside corners)
+// under G41 with a tool of radius 1.
+std::string program_text(int turns) {
+    static const char* kTurn[] = {"G1 X40 Y0", "G3 X50 Y10 I0 J10",
+                                  "G1 Y30",    "G3 X40 Y40 I-10 J0",
+                                  "G1 X30",    "G1 Y30",
+                                  "G1 X20",    "G1 Y40",
+                                  "G1 X10",    "G3 X0 Y30 I0 J-10",
+                                  "G1 Y10",    "G3 X10 Y0 I10 J0"};
+    std::string text = "N1 G17 G90 G26 F3000 D1\nN2 G0 X10 Y0 Z0\nN3 G41\n";
+    int n = 4;
+    for (int k = 0; k < turns; ++k)
+        for (const char* b : kTurn) text += "N" + std::to_string(n++) + " " + b + "\n";
+    return text + "N" + std::to_string(n) + " G40\nM30\n";
+}
+
+class Writers final : public RunSink {
+  public:
+    explicit Writers(std::FILE* json) : json_(json) {}
+    void programmed(const PathSegment& s) override { svg_.programmed(s); }
+    void executed(const PathSegment& s) override {
+        json_.segment(s);
+        svg_.executed(s);
+        ++segments;
+    }
+    std::uint64_t segments = 0;
+
+  private:
+    JsonRunWriter json_;
+    SvgPlotWriter svg_;
+};
+
+struct Footprint {
+    std::size_t peak_bytes = 0;  // above what was live before the run
+    std::uint64_t segments = 0;
+    bool ok = false;
+};
+
+Footprint run_program(const std::string& text, const nc::ToolTable& tools) {
+    Footprint fp;
+    std::FILE* null = std::fopen("/dev/null", "w");
+    const std::size_t base = g_live_bytes;
+    g_peak_bytes = g_live_bytes;
+    {
+        apci::Board board("emu:");
+        EXPECT_TRUE(board.is_open());
+        nc::InterpreterOptions options;
+        options.tools = &tools;
+        auto program = nc::Program::from_text(text, "flat.nc", options);
+        EXPECT_TRUE(program) << program.error().to_string();
+        if (!program) return fp;
+        auto stream = program.value().events();
+        Writers writers(null);
+        ProgramExecutor executor(board, writers, &tools);
+        const RunOutcome out = executor.run(stream.value());
+        EXPECT_TRUE(out.errors.empty()) << out.errors.front().message;
+        fp.segments = writers.segments;
+        fp.ok = out.errors.empty();
+    }
+    fp.peak_bytes = g_peak_bytes - base;
+    std::fclose(null);
+    return fp;
+}
+
+TEST(RunStreaming, TenTimesTheBlocksNeedNoMoreHeap) {
+    auto tools =
+        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 1\n", "t.tools");
+    ASSERT_TRUE(tools);
+    // The program text itself is the caller's (held here for from_text): not part of the run.
+    const std::string small_text = program_text(500);   // 6,005 blocks
+    const std::string large_text = program_text(5000);  // 60,005 blocks
+    const Footprint small = run_program(small_text, tools.value());
+    const Footprint large = run_program(large_text, tools.value());
+    ASSERT_TRUE(small.ok && large.ok);
+    EXPECT_GT(large.segments, 9 * small.segments);
+    RecordProperty("small_peak_bytes", std::to_string(small.peak_bytes));
+    RecordProperty("large_peak_bytes", std::to_string(large.peak_bytes));
+    std::printf("peak heap: %zu bytes for %llu segments, %zu bytes for %llu segments\n",
+                small.peak_bytes, static_cast<unsigned long long>(small.segments), large.peak_bytes,
+                static_cast<unsigned long long>(large.segments));
+    EXPECT_LE(large.peak_bytes, small.peak_bytes);
+}
+
+}  // namespace
+}  // namespace apci::run
