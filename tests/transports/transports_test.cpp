@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "apci/apci.h"
+#include "apci/apci.hpp"
 #include "daemon.h"
 #include "fake_sysfs.h"
 #include "objif/frame.h"
@@ -547,6 +548,36 @@ TEST(LinkApi, TimeoutOutOfRangeIsInvalidAndKeepsTheOldOne) {
     ASSERT_EQ(apci_get_timeout(b, &ms), APCI_OK);
     EXPECT_EQ(ms, 2000u);
     apci_close(b);
+}
+
+// ---- The C++ wrapper's link calls
+
+TEST(CppLink, TimeoutConnectedReconnectAndListWrapTheCApi) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apci::Board board(d->unix_uri());
+    ASSERT_TRUE(board) << board.last_error();
+    ASSERT_TRUE(board.set_timeout(1234));
+    EXPECT_EQ(board.timeout().value_or(0), 1234u);
+    EXPECT_EQ(board.set_timeout(0).status, APCI_INVALID_ARGUMENT);
+    EXPECT_TRUE(board.connected());
+    ASSERT_EQ(d->stop(), 0);
+    auto o = apci::object(1000, 0, 3, 0);
+    EXPECT_EQ(board.read_int(o).status, APCI_TRANSPORT_ERROR);
+    EXPECT_FALSE(board.connected());
+    EXPECT_EQ(board.reconnect().status, APCI_TRANSPORT_ERROR);
+    DaemonOptions again;
+    again.socket_path = d->socket_path();
+    auto d2 = Daemon::start(again);
+    ASSERT_NE(d2, nullptr);
+    EXPECT_TRUE(board.reconnect()) << board.last_error();
+    ::setenv("APCI_RUNTIME_DIR", d2->dir().path().c_str(), 1);
+    EXPECT_TRUE(apci_test::eventually([&] {
+        for (const auto& b : apci::list_boards())
+            if (b.uri == d->unix_uri()) return true;
+        return false;
+    }));
+    ::unsetenv("APCI_RUNTIME_DIR");
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -70,6 +71,17 @@ struct CommandSpec {
     std::unique_ptr<Command> (*make)();
 };
 
+// One parsed line of a script: its number, its words as typed, the command.
+struct ScriptLine {
+    int number = 0;
+    std::string text;
+    std::unique_ptr<Command> command;
+};
+// Reads and parses every line of a script file ("-": standard input),
+// printing one error per bad line on stderr (command_script.cpp). A script
+// with a bad line gives a failed outcome; `lines` holds the good ones.
+Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines);
+
 // The command table (commands.cpp), in help order.
 std::span<const CommandSpec> command_table() noexcept;
 const CommandSpec* find_command(std::string_view name) noexcept;
@@ -84,6 +96,8 @@ std::unique_ptr<Command> make_direct_command();
 std::unique_ptr<Command> make_ssf_command();
 std::unique_ptr<Command> make_step_command();
 std::unique_ptr<Command> make_run_command();
+std::unique_ptr<Command> make_list_command();
+std::unique_ptr<Command> make_diff_command();
 
 // "WrongDeviceState (not possible in the present device state)".
 std::string describe_status(apci::Status status);

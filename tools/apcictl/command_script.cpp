@@ -48,11 +48,6 @@ std::string joined(const std::vector<std::string>& words) {
     return fmt::format("{}", fmt::join(words, " "));
 }
 
-struct ScriptLine {
-    int number = 0;
-    std::unique_ptr<Command> command;
-};
-
 // Parses one non-empty line into a ready command, or a usage error.
 Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
     const CommandSpec* spec = find_command(words.front());
@@ -95,7 +90,7 @@ public:
 
     Outcome run(Session& session) override {
         std::vector<ScriptLine> lines;
-        Outcome outcome = read_script(lines);
+        Outcome outcome = read_script(file_, lines);
         if (!outcome.ok()) return outcome;
 
         std::size_t failures = 0;
@@ -113,42 +108,42 @@ public:
     }
 
 private:
-    // Reads and parses every line. Errors are printed here, one per bad line.
-    Outcome read_script(std::vector<ScriptLine>& lines) {
-        std::ifstream file;
-        std::istream* in = &std::cin;
-        if (file_ != "-") {
-            file.open(file_);
-            if (!file) {
-                return Outcome::usage_error(
-                    fmt::format("script: cannot open '{}': {}", file_, std::strerror(errno)));
-            }
-            in = &file;
-        }
-        Outcome outcome;
-        std::string text;
-        for (int number = 1; std::getline(*in, text); ++number) {
-            const auto words = words_of(text);
-            if (words.empty()) continue;
-            ScriptLine line{number, nullptr};
-            const Outcome parsed = parse_line(words, line);
-            if (!parsed.ok()) {
-                fmt::print(stderr, "line {}: {}\n", number, parsed.error);
-                if (outcome.ok()) outcome.exit = parsed.exit;
-                continue;
-            }
-            lines.push_back(std::move(line));
-        }
-        if (in->bad())
-            return Outcome::board_error(fmt::format("script: reading '{}' failed", file_));
-        return outcome;
-    }
-
     std::string file_;
     bool keep_going_ = false;
 };
 
 }  // namespace
+
+// Reads and parses every line of `file` ("-": standard input). Errors are
+// printed here, one per bad line.
+Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines) {
+    std::ifstream stream;
+    std::istream* in = &std::cin;
+    if (file != "-") {
+        stream.open(file);
+        if (!stream) {
+            return Outcome::usage_error(
+                fmt::format("script: cannot open '{}': {}", file, std::strerror(errno)));
+        }
+        in = &stream;
+    }
+    Outcome outcome;
+    std::string text;
+    for (int number = 1; std::getline(*in, text); ++number) {
+        const auto words = words_of(text);
+        if (words.empty()) continue;
+        ScriptLine line{number, joined(words), nullptr};
+        const Outcome parsed = parse_line(words, line);
+        if (!parsed.ok()) {
+            fmt::print(stderr, "line {}: {}\n", number, parsed.error);
+            if (outcome.ok()) outcome.exit = parsed.exit;
+            continue;
+        }
+        lines.push_back(std::move(line));
+    }
+    if (in->bad()) return Outcome::board_error(fmt::format("script: reading '{}' failed", file));
+    return outcome;
+}
 
 std::unique_ptr<Command> make_script_command() { return std::make_unique<ScriptCommand>(); }
 

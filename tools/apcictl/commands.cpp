@@ -27,6 +27,10 @@ constexpr std::array kCommands{
                 make_step_command},
     CommandSpec{"run", "Execute an NC program; write its path as JSON, CSV and SVG", false,
                 make_run_command},
+    CommandSpec{"list", "List the boards found: USB, PCI, running emulator daemons (URI each)",
+                false, make_list_command},
+    CommandSpec{"diff", "Run a script or NC program on two devices; report the first difference",
+                false, make_diff_command},
 };
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "apci/apci.h"
 
@@ -96,6 +97,18 @@ public:
         return is_open() ? std::string_view(apci_last_error(handle_)) : open_error_;
     }
     apci_board* native_handle() const noexcept { return handle_; }
+
+    // The link (apci.h "The link to the board").
+    Result<void> set_timeout(std::uint32_t milliseconds) noexcept {
+        return Result<void>{apci_set_timeout(handle_, milliseconds)};
+    }
+    Result<std::uint32_t> timeout() const noexcept {
+        Result<std::uint32_t> r;
+        r.status = apci_get_timeout(handle_, &r.value);
+        return r;
+    }
+    bool connected() const noexcept { return apci_is_connected(handle_) != 0; }
+    Result<void> reconnect() noexcept { return Result<void>{apci_reconnect(handle_)}; }
 
     Result<std::int32_t> read_int(ObjectDescriptor& o) noexcept {
         Result<std::int32_t> r;
@@ -188,5 +201,29 @@ private:
     Status open_status_ = APCI_INVALID_ARGUMENT;  // "not opened" for a default Board
     std::string open_error_ = "board not open";
 };
+
+// A board apci_list_devices() found.
+struct FoundBoard {
+    std::string uri;
+    std::string description;
+};
+
+// Every board this machine can reach (apci_list_devices); problems, if any,
+// are in apci_last_error(nullptr). Empty if the list cannot be made.
+inline std::vector<FoundBoard> list_boards() noexcept {
+    std::vector<FoundBoard> found;
+    try {
+        apci_list_devices(
+            [](const char* uri, const char* description, void* user) {
+                try {
+                    static_cast<std::vector<FoundBoard>*>(user)->push_back({uri, description});
+                } catch (...) {
+                }
+            },
+            &found);
+    } catch (...) {
+    }
+    return found;
+}
 
 }  // namespace apci

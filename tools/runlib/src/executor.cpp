@@ -587,6 +587,8 @@ class Execution {
         PathSegment s;
         s.block = decode_block_tag(b.tag);
         s.role = role_of(b.role);
+        s.start_cycle = b.start_cycle;
+        s.end_cycle = b.end_cycle;
         s.kind = b.role == APCI_ROLE_RAPID    ? SegmentKind::kRapid
                  : b.kind == APCI_SEGMENT_ARC ? SegmentKind::kArc
                                               : SegmentKind::kLine;

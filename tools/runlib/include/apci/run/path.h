@@ -68,6 +68,10 @@ struct PathSegment {
     Point center = Point::Zero();
     bool ccw = false;
     int plane = 17;
+    // Executed segments: the interpolation cycles it ran in (start_cycle, end_cycle];
+    // 0, 0 for programmed moves.
+    std::uint64_t start_cycle = 0;
+    std::uint64_t end_cycle = 0;
 };
 
 // Two points this close in the plane are one point (an arc between them is a full circle).

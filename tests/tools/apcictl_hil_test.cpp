@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: MIT
+// apcictl list and apcictl diff (the hardware-in-loop mode) as processes,
+// against the emulator daemon, a fake sysfs PCI board and the embedded board.
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "daemon.h"
+#include "fake_sysfs.h"
+#include "process.h"
+
+namespace {
+
+using apci_test::Daemon;
+using apci_test::DaemonOptions;
+using apci_test::FakePciSysfs;
+using apci_test::TempDir;
+using test_support::ProcessResult;
+
+const std::string kTools = std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-figures.tools";
+const std::string kInsideCorners = std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-inside-corners.nc";
+
+ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {},
+                      const std::vector<std::pair<std::string, std::string>>& env = {}) {
+    args.insert(args.begin(), APCICTL_PATH);
+    return test_support::run_process(args, input, env);
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A line of `apcictl list`: the URI, spaces, the description.
+bool has_line(const std::string& out, const std::string& uri, const std::string& description) {
+    std::size_t at = 0;
+    while ((at = out.find(uri, at)) != std::string::npos) {
+        const bool line_start = at == 0 || out[at - 1] == '\n';
+        const std::size_t text = out.find_first_not_of(' ', at + uri.size());
+        if (line_start && text > at + uri.size() + 1 && out.compare(text, description.size(), description) == 0)
+            return true;
+        ++at;
+    }
+    return false;
+}
+
+// A script file in `dir`.
+std::string script_file(const TempDir& dir, const std::string& text) {
+    const std::string path = dir.file("work.script");
+    FILE* f = std::fopen(path.c_str(), "w");
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
+    return path;
+}
+
+// ---- list
+
+TEST(ApcictlList, NamesPciBoardsAndDaemonsOneLineEachUriFirst) {
+    DaemonOptions o;
+    o.shm = true;
+    auto d = Daemon::start(o);
+    ASSERT_NE(d, nullptr);
+    FakePciSysfs sysfs(d->shm_path(), FakePciSysfs::BarKind::kMemory);
+    ProcessResult r;
+    ASSERT_TRUE(apci_test::eventually([&] {
+        r = apcictl({"list"}, {}, {{"APCI_RUNTIME_DIR", d->dir().path()}});
+        return contains(r.out, d->unix_uri());
+    })) << r.out << r.err;
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(has_line(r.out, "pci:0000:01:00.0", "ADDI-DATA PCI board 15b8:8001")) << r.out;
+    EXPECT_TRUE(has_line(r.out, d->unix_uri(), "rwmos-emu daemon, pid " + std::to_string(d->pid()))) << r.out;
+    EXPECT_TRUE(has_line(r.out, d->shm_uri(), "rwmos-emu dual-port RAM file")) << r.out;
+}
+
+TEST(ApcictlList, NoBoardPrintsNothingAndSucceeds) {
+    TempDir empty;
+    const auto r = apcictl({"list"}, {}, {{"APCI_RUNTIME_DIR", empty.path()}, {"APCI_SYSFS_ROOT", empty.path()}});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+// ---- diff: scripts
+
+class ApcictlDiff : public ::testing::Test {
+protected:
+    void SetUp() override {
+        daemon_ = Daemon::start();
+        ASSERT_NE(daemon_, nullptr);
+    }
+    ProcessResult diff(std::vector<std::string> args, const std::string& device = "") {
+        std::vector<std::string> all{"--device", device.empty() ? daemon_->unix_uri() : device, "diff"};
+        all.insert(all.end(), args.begin(), args.end());
+        return apcictl(all);
+    }
+    TempDir dir_;
+    std::unique_ptr<Daemon> daemon_;
+};
+
+TEST_F(ApcictlDiff, SameScriptOnTheDaemonAndTheEmbeddedBoardHasNoDifference) {
+    const auto file = script_file(dir_, "write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\nstatus\n");
+    const auto r = diff({"--against", "emu:", file});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "no difference between " + daemon_->unix_uri() + " and emu: (4 script lines compared)"))
+        << r.out;
+}
+
+TEST_F(ApcictlDiff, ScriptReportsTheFirstDifferingLineWithBothResults) {
+    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1300", "1", "1", "7", "4.5"}).exit_code, 0);
+    const auto file = script_file(dir_, "read 1000 0 3 0\n\nread 1300 1 1 7\nread 1300 1 2 7\n");
+    const auto r = diff({"--against", "emu:", file});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.out, "first difference at line 3: read 1300 1 1 7")) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("unix:[^ ]+ +4\\.5\n  emu: +0\n"))) << r.out;
+    EXPECT_TRUE(contains(r.err, "differ at line 3")) << r.err;
+}
+
+TEST_F(ApcictlDiff, ScriptFailureOnOneBoardOnlyIsADifference) {
+    const auto file = script_file(dir_, "read 1300 0 12 0\n");
+    const auto r = diff({"--against", "emu:?no-option-tc", file});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.out, "first difference at line 1: read 1300 0 12 0")) << r.out;
+    EXPECT_TRUE(contains(r.out, "failed: read 1300 0 12 0: NoSuchDevice")) << r.out;
+}
+
+TEST_F(ApcictlDiff, BadScriptLineIsAUsageErrorAndNothingRuns) {
+    const auto file = script_file(dir_, "write 1300 1 1 7 2.5\nfrobnicate\n");
+    const auto r = diff({"--against", "emu:", file});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "line 2: unknown command 'frobnicate'")) << r.err;
+    EXPECT_EQ(apcictl({"--device", daemon_->unix_uri(), "read", "1300", "1", "1", "7"}).out, "0\n")
+        << "the good first line did not run either";
+}
+
+TEST_F(ApcictlDiff, AgainstIsRequired) {
+    const auto file = script_file(dir_, "read 1000 0 3 0\n");
+    EXPECT_EQ(diff({file}).exit_code, 2);
+}
+
+// ---- diff: NC programs
+
+TEST_F(ApcictlDiff, NcProgramRunsTheSameOnTheDaemonAndTheEmbeddedBoard) {
+    const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners});
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("no difference .* \\(([1-9][0-9]{3,}) interpolation cycles compared\\)")))
+        << r.out;
+}
+
+TEST_F(ApcictlDiff, NcProgramReportsTheFirstDifferingPositionWithBlockAndCycle) {
+    // A 2 ms interpolation cycle on one board only: the first move (N40; N20 goes nowhere)
+    // covers twice the distance per cycle there.
+    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1000", "0", "4", "0", "2000"}).exit_code, 0);
+    const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("first difference at N40, cycle 1: axis [XY] position\n")))
+        << r.out;
+}
+
+TEST_F(ApcictlDiff, ToleranceAbsorbsDifferencesBelowIt) {
+    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1300", "0", "20", "0", "1e-9"}).exit_code, 0);
+    EXPECT_EQ(diff({"--against", "emu:", "--tools", kTools, kInsideCorners}).exit_code, 1);
+    // The axes are back at the start of the program after the first run: a fresh daemon board.
+    auto fresh = Daemon::start();
+    ASSERT_NE(fresh, nullptr);
+    ASSERT_EQ(apcictl({"--device", fresh->unix_uri(), "write", "1300", "0", "20", "0", "1e-9"}).exit_code, 0);
+    const auto r = diff({"--against", "emu:", "--tolerance", "1e-6", "--tools", kTools, kInsideCorners},
+                        fresh->unix_uri());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+}
+
+TEST_F(ApcictlDiff, NcProgramReportsTheFirstDifferingError) {
+    const auto r = diff({"--against", "emu:?no-option-tc", "--tools", kTools, kInsideCorners}, "emu:");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.out, "first difference at N30: error 1")) << r.out;
+    EXPECT_TRUE(contains(r.out, "NoSuchDevice at N30")) << r.out;
+}
+
+TEST_F(ApcictlDiff, DifferentStartPositionsAreReportedFirst) {
+    ASSERT_EQ(diff({"--against", "emu:", "--tools", kTools, kInsideCorners}).exit_code, 0);
+    // The daemon's axes stay where the first run left them; a fresh embedded board starts at 0.
+    const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.out, "first difference at the start of the run: axis X position")) << r.out;
+}
+
+TEST_F(ApcictlDiff, NcProgramFromStandardInputIsAUsageError) {
+    EXPECT_EQ(diff({"--against", "emu:", "--nc", "-"}).exit_code, 2);
+}
+
+}  // namespace

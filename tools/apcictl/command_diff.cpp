@@ -1,0 +1,380 @@
+// SPDX-License-Identifier: MIT
+// `diff --against URI PROGRAM`: the hardware-in-loop mode (DESIGN.md section
+// 7). Runs the same work on the --device board and on the --against board
+// (typically a real board and emu:) and reports the first thing that differs:
+//  - a script (apcictl script syntax): each line runs on both boards in turn;
+//    the first line whose printed result or failure differs is reported with
+//    its line number;
+//  - an NC program (*.nc, or --nc): `run` on both boards, recording every
+//    interpolation cycle's axis positions, the executed segments, the errors
+//    and the TC registers at the end; the first difference is reported, in
+//    this order: start position, a position in a cycle both runs had (with
+//    its block and cycle), an error, the length of the run, a TC register
+//    bit at the end, an executed segment.
+// Exit 0: no difference; 1: a difference, or a board or program error; 2: usage.
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "apci/nc/program.h"
+#include "apci/nc/tools.h"
+#include "apci/run/executor.h"
+#include "command.h"
+
+namespace apcictl {
+namespace {
+
+using apci::run::BlockRef;
+using apci::run::PathSegment;
+using apci::run::RunError;
+
+// The first thing that differs between the two runs.
+struct Difference {
+    std::string where;  // "line 3", "N40, cycle 1234"
+    std::string what;   // "read 1300 1 1 7", "axis X position"
+    std::string here;   // on --device
+    std::string there;  // on --against
+};
+
+// Everything a command prints on stdout while it runs, for comparison.
+class StdoutCapture {
+public:
+    StdoutCapture() {
+        std::fflush(stdout);
+        fd_ = ::memfd_create("apcictl-diff", MFD_CLOEXEC);
+        saved_ = ::dup(STDOUT_FILENO);
+        if (fd_ >= 0 && saved_ >= 0) ::dup2(fd_, STDOUT_FILENO);
+    }
+    ~StdoutCapture() { finish(); }
+    StdoutCapture(const StdoutCapture&) = delete;
+    StdoutCapture& operator=(const StdoutCapture&) = delete;
+
+    std::string finish() {
+        if (saved_ < 0) return text_;
+        std::fflush(stdout);
+        ::dup2(saved_, STDOUT_FILENO);
+        ::close(saved_);
+        saved_ = -1;
+        if (fd_ >= 0) {
+            char buffer[4096];
+            ssize_t n = 0;
+            ::lseek(fd_, 0, SEEK_SET);
+            while ((n = ::read(fd_, buffer, sizeof buffer)) > 0) text_.append(buffer, static_cast<std::size_t>(n));
+            ::close(fd_);
+            fd_ = -1;
+        }
+        return text_;
+    }
+
+private:
+    int fd_ = -1;
+    int saved_ = -1;
+    std::string text_;
+};
+
+// What one script line did on one board: its output, or why it failed.
+std::string line_result(Command& command, Session& session) {
+    StdoutCapture capture;
+    const Outcome outcome = command.run(session);
+    std::string printed = capture.finish();
+    if (!printed.empty() && printed.back() == '\n') printed.pop_back();
+    if (outcome.ok()) return printed;
+    return printed.empty() ? "failed: " + outcome.error : printed + "\nfailed: " + outcome.error;
+}
+
+Outcome diff_script(const std::string& file, Session& here, Session& there, std::optional<Difference>& first,
+                    std::size_t& compared) {
+    std::vector<ScriptLine> lines;
+    if (Outcome read = read_script(file, lines); !read.ok()) return read;
+    for (auto& line : lines) {
+        ++compared;
+        std::string a = line_result(*line.command, here);
+        std::string b = line_result(*line.command, there);
+        if (a != b) {
+            first = Difference{fmt::format("line {}", line.number), line.text, std::move(a), std::move(b)};
+            return Outcome::success();
+        }
+    }
+    return Outcome::success();
+}
+
+// ---- NC programs
+
+struct Sample {
+    std::uint64_t cycle = 0;
+    std::array<double, APCI_AXIS_COUNT> position{};
+};
+
+// What `run` did on one board.
+struct Recording final : apci::run::RunSink {
+    std::vector<Sample> samples;
+    std::vector<PathSegment> segments;
+    std::vector<std::string> axis_names;
+    apci::run::Point start = apci::run::Point::Zero();  // X, Y, Z where the run began
+    apci::run::RunOutcome outcome;
+
+    void executed(const PathSegment& s) override { segments.push_back(s); }
+    bool wants_samples() const override { return true; }
+    void axes(std::span<const std::string> names) override { axis_names.assign(names.begin(), names.end()); }
+    void sample(std::uint64_t cycle, double, std::span<const double> axes) override {
+        Sample s;
+        s.cycle = cycle;
+        std::copy_n(axes.begin(), std::min(axes.size(), s.position.size()), s.position.begin());
+        samples.push_back(s);
+    }
+
+    // The block whose segment ran in `cycle`.
+    std::string block_at(std::uint64_t cycle) const {
+        for (const auto& s : segments)
+            if (s.start_cycle < cycle && cycle <= s.end_cycle) return apci::run::block_text(s.block);
+        return "no block";
+    }
+};
+
+Outcome nc_failure(const apci::nc::Diagnostic& d) {
+    const std::string text = d.to_string();
+    return d.kind == apci::nc::ErrorKind::kIo ? Outcome::usage_error(text) : Outcome::board_error(text);
+}
+
+Outcome record_run(const std::string& path, const apci::nc::ToolTable& tools, Session& session, Recording& out) {
+    Outcome failure;
+    apci::Board* board = session.board(failure);
+    if (board == nullptr) return failure;
+    apci::run::ProgramExecutor executor(*board, out, &tools);
+    apci::nc::InterpreterOptions options;
+    out.start = executor.position();
+    options.start_position = out.start;
+    options.tools = &tools;
+    auto program = apci::nc::Program::load(path, options);
+    if (!program) return nc_failure(program.error());
+    auto stream = program.value().events();
+    if (!stream) return nc_failure(stream.error());
+    out.outcome = executor.run(stream.value());
+    return Outcome::success();
+}
+
+std::string number(double v) { return fmt::format("{}", v); }
+
+std::string error_text(const RunError& e) {
+    return fmt::format("{} at {}: {}", e.code, apci::run::block_text(e.block), e.message);
+}
+
+std::string registers_text(std::int32_t error, std::int32_t status) {
+    std::string errors;
+    for (int bit = 0; bit < 8; ++bit) {
+        if ((error & (1 << bit)) == 0) continue;
+        const char* name = apci_tc_error_bit_name(bit);
+        errors += fmt::format("{}{}", errors.empty() ? "" : "|", name != nullptr ? name : "?");
+    }
+    return fmt::format("ERROR {:#04x} ({}), STATUS {:#04x}", error, errors.empty() ? "none" : errors, status);
+}
+
+// Positions cycle by cycle. The boards' clocks need not agree (a daemon's
+// board has run before), so cycles count from the start of the run: the
+// trace holds every cycle, the first sample is cycle 1 of the run.
+std::optional<Difference> compare_samples(const Recording& a, const Recording& b, double tolerance) {
+    const std::size_t n = std::min(a.samples.size(), b.samples.size());
+    const auto where = [&](const Recording& r, std::size_t i) {
+        return fmt::format("{}, cycle {}", r.block_at(r.samples[i].cycle), i + 1);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        const Sample& x = a.samples[i];
+        const Sample& y = b.samples[i];
+        for (std::size_t axis = 0; axis < x.position.size(); ++axis) {
+            if (std::abs(x.position[axis] - y.position[axis]) <= tolerance) continue;
+            const std::string name = axis < a.axis_names.size() ? a.axis_names[axis] : fmt::format("a{}", axis);
+            return Difference{where(a, i), fmt::format("axis {} position", name), number(x.position[axis]),
+                              number(y.position[axis])};
+        }
+    }
+    return std::nullopt;
+}
+
+// One run went on after the other stopped (compared after the errors, which
+// usually say why).
+std::optional<Difference> compare_length(const Recording& a, const Recording& b) {
+    if (a.samples.size() == b.samples.size()) return std::nullopt;
+    const Recording& longer = a.samples.size() > b.samples.size() ? a : b;
+    const std::size_t n = std::min(a.samples.size(), b.samples.size());
+    const auto ran = [](const Recording& r) { return fmt::format("the run took {} cycles", r.samples.size()); };
+    return Difference{fmt::format("{}, cycle {}", longer.block_at(longer.samples[n].cycle), n + 1),
+                      "length of the run", ran(a), ran(b)};
+}
+
+std::optional<Difference> compare_start(const Recording& a, const Recording& b, double tolerance) {
+    for (int i = 0; i < 3; ++i) {
+        if (std::abs(a.start[i] - b.start[i]) <= tolerance) continue;
+        return Difference{"the start of the run", fmt::format("axis {} position", apci::run::axis_letter(i)),
+                          number(a.start[i]), number(b.start[i])};
+    }
+    return std::nullopt;
+}
+
+std::optional<Difference> compare_errors(const Recording& a, const Recording& b) {
+    const auto& x = a.outcome.errors;
+    const auto& y = b.outcome.errors;
+    for (std::size_t i = 0; i < std::max(x.size(), y.size()); ++i) {
+        const std::string p = i < x.size() ? error_text(x[i]) : "no error";
+        const std::string q = i < y.size() ? error_text(y[i]) : "no error";
+        const bool same = i < x.size() && i < y.size() && x[i].code == y[i].code &&
+                          x[i].block.number == y[i].block.number && x[i].block.line == y[i].block.line;
+        if (!same) {
+            const BlockRef& at = i < x.size() ? x[i].block : y[i].block;
+            return Difference{apci::run::block_text(at), fmt::format("error {}", i + 1), p, q};
+        }
+    }
+    return std::nullopt;
+}
+
+std::optional<Difference> compare_registers(const Recording& a, const Recording& b) {
+    const auto& x = a.outcome.registers;
+    const auto& y = b.outcome.registers;
+    if (x.size() != y.size())
+        return Difference{"end of the run", "TC module", x.empty() ? "absent" : "present",
+                          y.empty() ? "absent" : "present"};
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (x[i].readable == y[i].readable && x[i].error == y[i].error && x[i].status == y[i].status) continue;
+        return Difference{"end of the run", fmt::format("registers of TC group {}", x[i].group),
+                          x[i].readable ? registers_text(x[i].error, x[i].status) : "unreadable",
+                          y[i].readable ? registers_text(y[i].error, y[i].status) : "unreadable"};
+    }
+    return std::nullopt;
+}
+
+std::string segment_text(const PathSegment& s) {
+    return fmt::format("{} {} from ({}, {}, {}) to ({}, {}, {})", apci::run::kind_name(s.kind),
+                       apci::run::role_name(s.role), s.start.x(), s.start.y(), s.start.z(), s.end.x(), s.end.y(),
+                       s.end.z());
+}
+
+std::optional<Difference> compare_segments(const Recording& a, const Recording& b, double tolerance) {
+    for (std::size_t i = 0; i < std::max(a.segments.size(), b.segments.size()); ++i) {
+        const PathSegment* x = i < a.segments.size() ? &a.segments[i] : nullptr;
+        const PathSegment* y = i < b.segments.size() ? &b.segments[i] : nullptr;
+        const bool same = x != nullptr && y != nullptr && x->kind == y->kind && x->role == y->role &&
+                          x->block.number == y->block.number && (x->end - y->end).cwiseAbs().maxCoeff() <= tolerance &&
+                          (x->start - y->start).cwiseAbs().maxCoeff() <= tolerance;
+        if (!same) {
+            const PathSegment& at = x != nullptr ? *x : *y;
+            return Difference{apci::run::block_text(at.block), fmt::format("executed segment {}", i + 1),
+                              x ? segment_text(*x) : "none",
+                              y ? segment_text(*y) : "none"};
+        }
+    }
+    return std::nullopt;
+}
+
+bool ends_with_nc(std::string_view path) {
+    if (path.size() < 3) return false;
+    std::string tail(path.substr(path.size() - 3));
+    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+    return tail == ".nc";
+}
+
+class DiffCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        app.add_option("PROGRAM", program_, "Script (apcictl script syntax) or NC program (*.nc)")->required();
+        app.add_option("--against", against_, "The device URI to compare --device with (e.g. emu:)")->required();
+        app.add_option("--tools", tools_, "Tool list file for an NC program's D words");
+        app.add_option("--tolerance", tolerance_,
+                       "NC programs: positions closer than this are equal (program units; default 0: "
+                       "bit for bit)")
+            ->check(CLI::NonNegativeNumber);
+        auto* nc = app.add_flag("--nc", force_nc_, "Treat PROGRAM as an NC program whatever its name");
+        auto* script = app.add_flag("--script", force_script_, "Treat PROGRAM as a script whatever its name");
+        nc->excludes(script);
+        app.footer("Runs the work on --device and on --against and reports the first difference: for "
+                   "a script, the first line whose printed result or failure differs; for an NC "
+                   "program, the first interpolation cycle whose axis positions differ (with its "
+                   "block), then the first differing error, TC register at the end, or executed "
+                   "segment. Exit 0 no difference, 1 a difference or a board/program error, 2 usage.");
+    }
+
+    Outcome prepare() override {
+        if (program_ == "-" && is_nc())
+            return Outcome::usage_error("diff: an NC program must be a file (it runs twice)");
+        return Outcome::success();
+    }
+
+    Outcome run(Session& session) override {
+        Session there(against_);
+        std::optional<Difference> first;
+        std::size_t compared = 0;
+        std::string unit = "script lines";
+        Outcome outcome;
+        if (is_nc()) {
+            outcome = diff_nc(session, there, first, compared);
+            unit = "interpolation cycles";
+        } else {
+            outcome = diff_script(program_, session, there, first, compared);
+        }
+        if (!outcome.ok()) return outcome;
+        if (!first) {
+            fmt::print("diff: no difference between {} and {} ({} {} compared)\n", session.uri(), against_,
+                       compared, unit);
+            return Outcome::success();
+        }
+        const std::size_t width = std::max(session.uri().size(), against_.size());
+        fmt::print("diff: first difference at {}: {}\n", first->where, first->what);
+        fmt::print("  {:<{}}  {}\n", session.uri(), width, indented(first->here, width));
+        fmt::print("  {:<{}}  {}\n", against_, width, indented(first->there, width));
+        return Outcome::board_error(fmt::format("diff: {} and {} differ at {}", session.uri(), against_, first->where));
+    }
+
+private:
+    bool is_nc() const { return force_nc_ || (!force_script_ && ends_with_nc(program_)); }
+
+    static std::string indented(const std::string& text, std::size_t width) {
+        std::string out;
+        for (char c : text) {
+            out += c;
+            if (c == '\n') out += std::string(width + 4, ' ');
+        }
+        return out.empty() ? "(nothing printed)" : out;
+    }
+
+    Outcome diff_nc(Session& here, Session& there, std::optional<Difference>& first, std::size_t& compared) {
+        apci::nc::ToolTable tools;
+        if (!tools_.empty()) {
+            auto loaded = apci::nc::load_tool_table(tools_);
+            if (!loaded) return nc_failure(loaded.error());
+            tools = std::move(loaded.value());
+        }
+        Recording a, b;
+        if (Outcome o = record_run(program_, tools, here, a); !o.ok()) return o;
+        if (Outcome o = record_run(program_, tools, there, b); !o.ok()) return o;
+        compared = std::min(a.samples.size(), b.samples.size());
+        first = compare_start(a, b, tolerance_);
+        if (!first) first = compare_samples(a, b, tolerance_);
+        if (!first) first = compare_errors(a, b);
+        if (!first) first = compare_length(a, b);
+        if (!first) first = compare_registers(a, b);
+        if (!first) first = compare_segments(a, b, tolerance_);
+        return Outcome::success();
+    }
+
+    std::string program_;
+    std::string against_;
+    std::string tools_;
+    double tolerance_ = 0.0;
+    bool force_nc_ = false;
+    bool force_script_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_diff_command() { return std::make_unique<DiffCommand>(); }
+
+}  // namespace apcictl
