@@ -6,12 +6,15 @@
 namespace rwmos {
 
 Board::State::State(const BoardConfig& cfg)
-    : config(cfg), motion(*this), board_module(*this), tc_module(*this), comp3d_module(*this) {
+    : config(cfg), motion(*this), otc_engine(*this), board_module(*this), tc_module(*this),
+      comp3d_module(*this), otc_module(*this) {
     tc_motion = &motion;
+    motion.executor().set_offsets(&otc_engine);
     // Modules on distinct buses: add() cannot fail here.
     dictionary.add(&board_module);
     dictionary.add(&tc_module);
     dictionary.add(&comp3d_module);
+    dictionary.add(&otc_module);
 }
 
 Board::Board(const BoardConfig& config) : state_(std::make_unique<State>(config)) {}

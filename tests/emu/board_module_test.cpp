@@ -18,8 +18,8 @@ TEST_F(BoardModule, FirmwareVersionIsTheEmulatorsVersion) {
 
 TEST_F(BoardModule, AxisCountIsEight) { EXPECT_EQ(read_int(board_obj(board::kIdxAxisCount)), 8); }
 
-TEST_F(BoardModule, OptionsReportOptionTc) {
-    EXPECT_EQ(read_int(board_obj(board::kIdxOptions)), board::kOptionTc);
+TEST_F(BoardModule, OptionsReportOptionTcAndOtc) {
+    EXPECT_EQ(read_int(board_obj(board::kIdxOptions)), board::kOptionTc | board::kOptionOtc);
 }
 
 TEST_F(BoardModule, InterpolationCycleDefaultsToOneMillisecondAndIsStored) {

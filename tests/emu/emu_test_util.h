@@ -38,11 +38,12 @@ struct Snapshot {
     std::int32_t pu;
     std::unique_ptr<rwmos::TcState> tc;
     std::unique_ptr<rwmos::Comp3dState> comp3d;
+    rwmos::OtcState otc;
 };
 inline Snapshot snapshot(const rwmos::Board& board) {
     const auto& s = board.state();
     return Snapshot{s.interpolation_cycle_us, s.pu, std::make_unique<rwmos::TcState>(s.tc),
-                    std::make_unique<rwmos::Comp3dState>(s.comp3d)};
+                    std::make_unique<rwmos::Comp3dState>(s.comp3d), s.otc};
 }
 
 inline bool same_deltas(const rwmos::comp3d::Deltas& a, const rwmos::comp3d::Deltas& b) {
@@ -64,6 +65,28 @@ inline bool same_comp3d(const rwmos::Comp3dState& a, const rwmos::Comp3dState& b
     for (std::size_t i = 0; i < a.corrections.size(); ++i)
         if (!same_deltas(a.corrections[i], b.corrections[i])) return false;
     return true;
+}
+
+// The OTC settings, units, tool and wear (LastError is the refusal's own record, not compared).
+inline bool same_otc(const rwmos::OtcState& a, const rwmos::OtcState& b) {
+    auto unit_eq = [](const rwmos::OtcControlUnit& x, const rwmos::OtcControlUnit& y) {
+        return x.command == y.command && x.enable == y.enable;
+    };
+    if (a.active != b.active || a.type != b.type || a.mode != b.mode ||
+        a.programmed_wear_const != b.programmed_wear_const ||
+        a.use_programmed_wear_const != b.use_programmed_wear_const || a.acc_weight != b.acc_weight ||
+        a.ramp_velocity != b.ramp_velocity || a.ramp_acceleration != b.ramp_acceleration ||
+        a.kinematics != b.kinematics || a.trafo != b.trafo || a.tool_axis_b != b.tool_axis_b)
+        return false;
+    if (!unit_eq(a.radius_offset_unit, b.radius_offset_unit)) return false;
+    for (std::size_t i = 0; i < a.axis_units.size(); ++i)
+        if (!unit_eq(a.axis_units[i], b.axis_units[i])) return false;
+    if (a.tool.number != b.tool.number || a.tool.type != b.tool.type ||
+        a.tool.wear_const != b.tool.wear_const || a.tool.max_infeed != b.tool.max_infeed ||
+        a.tool.tilt_angle != b.tool.tilt_angle)
+        return false;
+    return a.wear.radius == b.wear.radius && a.wear.radius_cont == b.wear.radius_cont &&
+           a.wear.axis == b.wear.axis;
 }
 
 inline bool same_group(const rwmos::TcGroup& a, const rwmos::TcGroup& b) {
@@ -93,6 +116,7 @@ inline ::testing::AssertionResult unchanged(const Snapshot& before, const rwmos:
         if (!same_group(s.tc.group(n), t.group(n)))
             return ::testing::AssertionFailure() << "group " << n << " changed";
     if (!same_comp3d(*before.comp3d, s.comp3d)) return ::testing::AssertionFailure() << "3D compensation changed";
+    if (!same_otc(s.otc, before.otc)) return ::testing::AssertionFailure() << "OTC state changed";
     return ::testing::AssertionSuccess();
 }
 

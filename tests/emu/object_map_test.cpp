@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Every object of the object map (docs/object-map.md), buses 1000, 1300 and 1310:
+// Every object of the object map (docs/object-map.md), buses 1000, 1300, 1310 and 1330:
 // read gives the default, a valid write reads back, the wrong type is
 // refused, values out of range are refused, and the wrong access kind is
 // refused; every refusal leaves the state unchanged. The expected rows are
@@ -18,6 +18,7 @@ using objif::Access;
 using objif::Address;
 namespace board = rwmos::board;
 namespace tc = rwmos::tc;
+namespace otc = rwmos::otc;
 
 namespace {
 
@@ -57,6 +58,9 @@ Address C2(std::int32_t sub) { return {c3::kBus, c3::kDevCorrections, 1, sub}; }
 std::vector<BadValue> c3_range(double min = -1.0e5) {
     return {low(D(min - (min == 0.0 ? 0.001 : 1.0))), high(D(1.0e5 + 1.0)), invalid(kNaN), invalid(kInf)};
 }
+Address O0(std::int32_t idx, std::int32_t sub = 0) { return {otc::kBus, otc::kDevChannel, idx, sub}; }
+Address O1(std::int32_t sub) { return {otc::kBus, otc::kDevAxisUnits, 1, sub}; }
+Address O2(std::int32_t idx, std::int32_t sub = 0) { return {otc::kBus, otc::kDevTool, idx, sub}; }
 
 std::vector<ObjectRow> object_rows() {
     const auto kI = ValueType::kInt32;
@@ -67,7 +71,7 @@ std::vector<ObjectRow> object_rows() {
     std::vector<ObjectRow> rows{
         // ---- Board, bus 1000.
         {"FirmwareVersion", B(1), kI, r, I(0x010000), {}, true, {}},
-        {"Options", B(2), kI, r, I(board::kOptionTc), {}, true, {}},
+        {"Options", B(2), kI, r, I(board::kOptionTc | board::kOptionOtc), {}, true, {}},
         {"AxisCount", B(3), kI, r, I(8), {}, true, {}},
         {"InterpolationCycle", B(4), kI, rw, I(1000), I(2000), true, {low(I(249)), high(I(10001))}},
         {"PU", B(5), kI, rw, I(0), I(2), true, {low(I(-1)), high(I(3))}},
@@ -137,7 +141,42 @@ std::vector<ObjectRow> object_rows() {
         {"C3_CorrDL", C2(1), kD, rw, D(0.0), D(0.01), true, c3_range()},
         {"C3_CorrDR", C2(2), kD, rw, D(0.0), D(-0.02), true, c3_range()},
         {"C3_CorrDR2", C2(3), kD, rw, D(0.0), D(0.03), true, c3_range()},
+        // ---- OTC DeviceNumber 0.
+        {"OtcActive", O0(1), kI, rw, I(0), I(0), true, {low(I(-1)), high(I(2))}},
+        {"OtcProcessingType", O0(2), kI, rw, I(1), I(3), true, {low(I(-1)), high(I(4))}},
+        {"OtcMode", O0(3), kI, rw, I(2), I(1), true, {low(I(-1)), high(I(3))}},
+        {"OtcWearConst", O0(4), kD, rw, D(0.0), D(500.0), true, {low(D(-0.5)), invalid(kNaN), invalid(kInf)}},
+        {"OtcWearConstSource", O0(5), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"OtcAccWeight", O0(6), kI, rw, I(100), I(1), true, {low(I(0)), high(I(101))}},
+        {"OtcLastError", O0(7), kI, rw, I(0), I(5), false, {}},
+        {"OtcEffectiveWearConst", O0(8), kD, r, D(0.0), {}, true, {}},
+        {"OtcRampVelocity", O0(10), kD, rw, D(0.5), D(2.0), true, {low(D(0.0)), high(D(1.0e6 + 1.0)), invalid(kNaN)}},
+        {"OtcRampAcceleration", O0(11), kD, rw, D(1.0), D(0.25), true, {low(D(-1.0)), high(D(2.0e6)), invalid(kInf)}},
+        {"OtcKinematics", O0(12), kI, rw, I(0), I(4), true, {low(I(-1)), high(I(5)), {I(2), Status::kInvalidValue}}},
+        {"OtcTrafo", O0(13), kI, rw, I(0), I(0), true, {low(I(-1)), high(I(2))}},
+        {"OtcToolAxisB", O0(14), kI, rw, I(4), I(5), true, {low(I(-1)), high(I(8))}},
+        {"OtcRadiusOffsetCommand", O0(20, 1), kI, rw, I(0), I(0), true, {}},
+        {"OtcRadiusOffsetEnable", O0(20, 2), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"OtcRadiusOffsetRequest", O0(20, 3), kI, r, I(0), {}, true, {}},
+        {"OtcRadiusOffsetState", O0(20, 4), kI, r, I(0), {}, true, {}},
+        // ---- OTC DeviceNumber 1, axis 1.
+        {"OtcOffsetCommand", O1(1), kI, rw, I(0), I(0), true, {}},
+        {"OtcOffsetEnable", O1(2), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"OtcOffsetRequest", O1(3), kI, r, I(0), {}, true, {}},
+        {"OtcOffsetState", O1(4), kI, r, I(0), {}, true, {}},
+        // ---- OTC DeviceNumber 2.
+        {"OtcToolNumber", O2(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
+        {"OtcToolType", O2(2), kI, rw, I(0), I(2), true, {low(I(-1)), high(I(4))}},
+        {"OtcToolWearConst", O2(3), kD, rw, D(0.0), D(100000.0), true, {low(D(-1.0)), invalid(kNaN)}},
+        {"OtcToolMaxInfeed", O2(4), kD, rw, D(0.0), D(200000.0), true,
+         {low(D(-2147483649.0)), high(D(2147483648.0)), invalid(kNaN)}},
+        {"OtcToolTiltAngle", O2(5), kD, rw, D(0.0), D(-450000.0), true,
+         {low(D(-450001.0)), high(D(450001.0)), invalid(kInf)}},
+        {"OtcWearRadius", O2(10), kD, r, D(0.0), {}, true, {}},
+        {"OtcWearRadiusCont", O2(11), kD, r, D(0.0), {}, true, {}},
     };
+    for (std::int32_t axis = 0; axis < 8; ++axis)
+        rows.push_back({"OtcWear" + std::to_string(axis), O2(12, axis), kD, r, D(0.0), {}, true, {}});
     for (std::int32_t axis = 0; axis < 8; ++axis)
         rows.push_back({"Position" + std::to_string(axis), B(10, axis), kD, r, D(0.0), {}, true, {}});
     return rows;

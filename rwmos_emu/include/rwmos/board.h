@@ -22,6 +22,9 @@ struct BoardConfig {
     // Firmware option "optionTC" (seed 003, section 1): without it the TC
     // module (bus 1300) does not exist and every access answers NoSuchDevice.
     bool option_tc = true;
+    // The OTC module (bus 1330, online tool compensation, DESIGN.md section 4; design option,
+    // Options bit 0x02): without it every access to bus 1330 answers NoSuchDevice.
+    bool option_otc = true;
 };
 
 class Board {

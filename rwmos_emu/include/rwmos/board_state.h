@@ -14,6 +14,9 @@
 #include "rwmos/comp3d_state.h"
 #include "rwmos/motion_layer.h"
 #include "rwmos/object_map.h"
+#include "rwmos/otc_engine.h"
+#include "rwmos/otc_module.h"
+#include "rwmos/otc_state.h"
 #include "rwmos/tc_module.h"
 #include "rwmos/tc_state.h"
 
@@ -55,11 +58,15 @@ struct Board::State {
     MotionLayer motion;
     // 3D tool compensation module (bus 1310): applied to profiles before the spooler.
     Comp3dState comp3d;
+    // OTC module (bus 1330): its objects' state and the per-cycle wear offsets.
+    OtcState otc;
+    OtcEngine otc_engine;
 
     // The modules serve the fields above; the dictionary routes to them.
     BoardModule board_module;
     TcModule tc_module;
     Comp3dModule comp3d_module;
+    OtcModule otc_module;
     objif::Dictionary dictionary;
 };
 

@@ -23,7 +23,8 @@ inline constexpr std::int32_t kIdxAxisPosition = 10;     // double r, SubIndex =
 inline constexpr std::int32_t kIdxRs = 30;               // int w, rs() command
 
 // Options register bits.
-inline constexpr std::int32_t kOptionTc = 0x01;  // optionTC: TC module (bus 1300) present
+inline constexpr std::int32_t kOptionTc = 0x01;   // optionTC: TC module (bus 1300) present
+inline constexpr std::int32_t kOptionOtc = 0x02;  // OTC module (bus 1330) present (design)
 
 // PU: the unit of lengths given to the firmware (RADIUS, WkzLen, positions).
 enum PuUnit : std::int32_t { kPuMillimetre = 0, kPuMicrometre = 1, kPuInch = 2 };
@@ -128,5 +129,50 @@ inline constexpr std::int32_t kNoHeadAxis = -1;
 // Largest magnitude of a tool value, delta or vector component (the math's kMaxCoordinate).
 inline constexpr double kMaxValue = 1e5;
 }  // namespace comp3d
+
+// ---- OTC module, bus 1330: online tool (wear) compensation (seed 000, ISG FCT-C20; design
+// numbers, DESIGN.md section 4; docs/object-map.md section 5, docs/otc.md).
+namespace otc {
+inline constexpr std::int32_t kBus = 1330;
+inline constexpr std::int32_t kDevChannel = 0;    // #OTC settings, channel control unit
+inline constexpr std::int32_t kDevAxisUnits = 1;  // per-axis control units, Index = board axis
+inline constexpr std::int32_t kDevTool = 2;       // the current tool (V.G.WZ_AKT)
+
+// DeviceNumber 0.
+inline constexpr std::int32_t kIdxActive = 1;          // int r/w: V.G.OTC_ACTIVE; 1 ON, 0 OFF
+inline constexpr std::int32_t kIdxProcessingType = 2;  // int r/w: 0 RADIUS .. 3 SURF_NORM_DIR
+inline constexpr std::int32_t kIdxMode = 3;            // int r/w: 0 CONT, 1 DISC, 2 AUTO
+inline constexpr std::int32_t kIdxWearConst = 4;       // double r/w: WEAR_CONST=, 0.1 um/m
+inline constexpr std::int32_t kIdxWearConstSource = 5;  // int r/w: 0 tool, 1 programmed
+inline constexpr std::int32_t kIdxAccWeight = 6;       // int r/w: ACC_WEIGHT 1..100 %
+inline constexpr std::int32_t kIdxLastError = 7;       // int r/w: error number; a write clears
+inline constexpr std::int32_t kIdxEffectiveWearConst = 8;  // double r: the constant in force
+inline constexpr std::int32_t kIdxRampVelocity = 10;      // double r/w: PU/s
+inline constexpr std::int32_t kIdxRampAcceleration = 11;  // double r/w: PU/s^2
+inline constexpr std::int32_t kIdxKinematics = 12;     // int r/w: #KIN ID, 0 none, 4 B head
+inline constexpr std::int32_t kIdxTrafo = 13;          // int r/w: #TRAFO 0 OFF, 1 ON
+inline constexpr std::int32_t kIdxToolAxisB = 14;      // int r/w: board axis of B (default 4)
+inline constexpr std::int32_t kIdxRadiusOffsetUnit = 20;  // otc_radius_offset, SubIndex below
+
+// Control unit SubIndex (MC_CONTROL_SGN32_UNIT, seed 000 section 2.7), on DeviceNumber 0
+// Index 20 and on every Index of DeviceNumber 1. Values in 0.1 um.
+inline constexpr std::int32_t kSubCommand = 1;  // command_w: int r/w
+inline constexpr std::int32_t kSubEnable = 2;   // enable_w: int r/w 0..1
+inline constexpr std::int32_t kSubRequest = 3;  // request_r: int r
+inline constexpr std::int32_t kSubState = 4;    // state_r: int r
+
+// DeviceNumber 2 (Sub 0 unless noted).
+inline constexpr std::int32_t kIdxToolNumber = 1;      // int r/w 0..1023: a change is a tool change
+inline constexpr std::int32_t kIdxToolType = 2;        // int r/w: P-TOOL-00001 typ 0..3
+inline constexpr std::int32_t kIdxToolWearConst = 3;   // double r/w: P-TOOL-00030, V.G.WZ_AKT.WEAR_CONST
+inline constexpr std::int32_t kIdxToolMaxInfeed = 4;   // double r/w: P-TOOL-00031, 0.1 um
+inline constexpr std::int32_t kIdxToolTiltAngle = 5;   // double r/w: P-TOOL-00138, 0.0001 degree
+inline constexpr std::int32_t kIdxWearRadius = 10;     // double r: V.G.WZ_AKT.WEAR_RADIUS
+inline constexpr std::int32_t kIdxWearRadiusCont = 11;  // double r: V.G.WZ_AKT.WEAR_RADIUS_CONT
+inline constexpr std::int32_t kIdxWear = 12;           // double r: V.G.WZ_AKT.WEAR[Sub], Sub = axis
+
+inline constexpr std::int32_t kGrindingToolType = 2;  // P-TOOL-00001: 2 Schleifwerkzeug
+inline constexpr std::int32_t kNoKinematics = 0;
+}  // namespace otc
 
 }  // namespace rwmos

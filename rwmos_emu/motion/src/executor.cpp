@@ -19,15 +19,17 @@ void Executor::start_front(double cycle_seconds) {
     k_ = 0;
     started_ = true;
     front_start_cycle_ = now_;
+    if (offsets_ != nullptr) offsets_->move_started(m, moves_.size() > 1 ? &moves_[1] : nullptr);
 }
 
 void Executor::finish_front(bool interrupted) {
     Segment s = segment_of(moves_.front());
-    s.end = position_;
+    s.end = nominal_;
     s.start_cycle = front_start_cycle_;
     s.end_cycle = now_;
     s.interrupted = interrupted;
     segments_.push(s);
+    if (offsets_ != nullptr) offsets_->move_finished(moves_.front(), k_, n_);
     moves_.pop_front();
     started_ = false;
     k_ = n_ = 0;
@@ -38,14 +40,27 @@ void Executor::discard() {
     moves_.clear();
 }
 
-void Executor::idle_cycles(std::uint64_t cycles) {
-    if (per_cycle()) {
-        for (std::uint64_t i = 0; i < cycles; ++i) {
-            ++now_;
-            if (tracing_) trace_.push(TraceSample{now_, position_});
-        }
-    } else {
-        now_ += cycles;
+void Executor::place(const Move* m, std::uint64_t k, std::uint64_t n, double cycle_seconds,
+                     bool stepped) {
+    position_ = nominal_;
+    if (offsets_ == nullptr) return;
+    if (stepped)
+        offsets_->step(m, k, n, cycle_seconds, position_);
+    else
+        offsets_->at(m, k, n, position_);
+}
+
+void Executor::idle_cycles(std::uint64_t cycles, double cycle_seconds) {
+    std::uint64_t left = cycles;
+    while (left > 0 && per_cycle(nullptr, 0, 0)) {
+        ++now_;
+        --left;
+        place(nullptr, 0, 0, cycle_seconds, /*stepped=*/true);
+        if (tracing_) trace_.push(TraceSample{now_, position_});
+    }
+    if (left > 0) {
+        now_ += left;
+        place(nullptr, 0, 0, cycle_seconds, /*stepped=*/false);
     }
 }
 
@@ -58,24 +73,28 @@ std::uint64_t Executor::run_moves(std::uint64_t budget, double cycle_seconds) {
         }
         const Move& m = moves_.front();
         if (n_ == 0) {  // a zero-length move takes no cycle
-            position_ = m.end;
+            nominal_ = m.end;
+            place(&m, 1, 1, cycle_seconds, /*stepped=*/false);
             finish_front(/*interrupted=*/false);
             continue;
         }
-        const std::uint64_t take = std::min(n_ - k_, budget - used);
-        if (per_cycle()) {
-            for (std::uint64_t i = 0; i < take; ++i) {
+        while (k_ < n_ && used < budget) {
+            if (per_cycle(&m, k_, n_)) {
                 ++k_;
                 ++now_;
-                position_at(m, k_, n_, position_);
+                ++used;
+                position_at(m, k_, n_, nominal_);
+                place(&m, k_, n_, cycle_seconds, /*stepped=*/true);
                 if (tracing_) trace_.push(TraceSample{now_, position_});
+            } else {
+                const std::uint64_t take = std::min(n_ - k_, budget - used);
+                k_ += take;
+                now_ += take;
+                used += take;
+                position_at(m, k_, n_, nominal_);
+                place(&m, k_, n_, cycle_seconds, /*stepped=*/false);
             }
-        } else if (take > 0) {
-            k_ += take;
-            now_ += take;
-            position_at(m, k_, n_, position_);
         }
-        used += take;
         if (k_ < n_) break;  // budget spent inside this move
         finish_front(/*interrupted=*/false);
     }
@@ -84,7 +103,7 @@ std::uint64_t Executor::run_moves(std::uint64_t budget, double cycle_seconds) {
 
 void Executor::advance(std::uint64_t cycles, double cycle_seconds) {
     const std::uint64_t used = run_moves(cycles, cycle_seconds);
-    idle_cycles(cycles - used);
+    idle_cycles(cycles - used, cycle_seconds);
 }
 
 std::uint64_t Executor::run_until_idle(std::uint64_t max_cycles, double cycle_seconds) {

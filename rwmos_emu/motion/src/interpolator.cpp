@@ -79,6 +79,16 @@ void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& ou
     }
 }
 
+void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept {
+    for (int a = 0; a < kAxisCount; ++a) out[a] = m.end[a] - m.start[a];
+    if (m.kind == SegmentKind::kArc) {
+        const double t = n == 0 || k >= n ? 1.0 : static_cast<double>(k) / static_cast<double>(n);
+        const double angle = m.start_angle + m.sweep * t;
+        out[m.plane_axes[0]] = -m.radius * m.sweep * std::sin(angle);
+        out[m.plane_axes[1]] = m.radius * m.sweep * std::cos(angle);
+    }
+}
+
 Segment segment_of(const Move& m) {
     Segment s;
     s.tag = m.tag;

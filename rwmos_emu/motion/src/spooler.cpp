@@ -218,6 +218,7 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
                                 seg.path.ccw, pd->feed, role_of(seg.role), pd->tag)
                      : line_move(start, end, pd->feed, role_of(seg.role), pd->tag);
         if (m.kind == SegmentKind::kArc) m.plane = c.plane;
+        m.side = c.side;
         batch.add(m);
     }
 }
@@ -298,6 +299,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             trial.plane_axes = plane;
             trial.plane = tc.plane;
             trial.length_axis = tc.length_axis;
+            trial.side = tc.side == geom::Side::kRight ? std::int8_t{-1} : std::int8_t{1};
             const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition};
             const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
             if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
@@ -381,11 +383,12 @@ MotionResult Spooler::direct(const DirectCommand& c, Executor& exec) {
     comp_.comp.discard();
     pending_.clear();
     exec.discard();
-    AxisVector end = exec.position();
+    // The jog starts where the path stands (offsets such as OTC's stay on top of it).
+    AxisVector end = exec.nominal_position();
     if (c.code == DirectCode::kJA) {
         for (int a = 0; a < kAxisCount; ++a)
             if ((c.axes & (1u << a)) != 0) end[a] = c.target[a];
-        Move m = line_move(exec.position(), end, c.feed == 0.0 ? kDefaultRapidFeed : c.feed,
+        Move m = line_move(exec.nominal_position(), end, c.feed == 0.0 ? kDefaultRapidFeed : c.feed,
                            SegmentRole::kRapid, 0);
         m.direct = true;
         exec.push(m);

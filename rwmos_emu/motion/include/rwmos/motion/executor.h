@@ -5,12 +5,15 @@
 // analytically (one position evaluation per move) when nothing observes them;
 // both ways give the same positions, bit for bit (interpolator.h).
 // It knows nothing of profiles or compensation: the spooler (spooler.h) fills it.
+// A cycle-offset module (cycle_offsets.h, e.g. OTC) displaces the axes from the
+// nominal path; the queue and the spooler work on the nominal path.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 
+#include "rwmos/motion/cycle_offsets.h"
 #include "rwmos/motion/interpolator.h"
 #include "rwmos/motion/ring.h"
 #include "rwmos/motion/types.h"
@@ -28,12 +31,17 @@ class Executor {
     // Moves not yet finished (the one under way included).
     std::size_t fill() const noexcept { return moves_.size(); }
     void push(const Move& m) { moves_.push_back(m); }
-    // Where the axes are now.
+    // Where the axes are now (the nominal path plus the cycle offsets).
     const AxisVector& position() const noexcept { return position_; }
-    // Where the axes will be when every queued move has run.
+    // Where the nominal path stands now (the queued moves' geometry, without offsets).
+    const AxisVector& nominal_position() const noexcept { return nominal_; }
+    // Where the nominal path will be when every queued move has run.
     const AxisVector& planned_end() const noexcept {
-        return moves_.empty() ? position_ : moves_.back().end;
+        return moves_.empty() ? nominal_ : moves_.back().end;
     }
+    // The i-th queued move (0: the one under way or next). For the modules that annotate
+    // the moves a call just queued; i < fill().
+    Move& queued(std::size_t i) noexcept { return moves_[i]; }
     // Drops every queued move; the one under way stops where it is and is
     // logged as interrupted. Used by direct commands.
     void discard();
@@ -59,6 +67,9 @@ class Executor {
     // A time-dependent module (e.g. discrete OTC offsets) needs every cycle run.
     void set_time_dependent(bool on) noexcept { time_dependent_ = on; }
     bool per_cycle() const noexcept { return tracing_ || time_dependent_; }
+    // The cycle-offset module (not owned; nullptr: none). It decides itself, move by move,
+    // whether its offsets need every cycle run (CycleOffsets::per_cycle).
+    void set_offsets(CycleOffsets* offsets) noexcept { offsets_ = offsets; }
     Ring<TraceSample>& trace() noexcept { return trace_; }
     Ring<Segment>& segments() noexcept { return segments_; }
     const Ring<TraceSample>& trace() const noexcept { return trace_; }
@@ -71,7 +82,13 @@ class Executor {
     // Runs moves for at most `budget` cycles; returns the cycles used. Stops
     // early only when idle.
     std::uint64_t run_moves(std::uint64_t budget, double cycle_seconds);
-    void idle_cycles(std::uint64_t cycles);
+    void idle_cycles(std::uint64_t cycles, double cycle_seconds);
+    // Every cycle of move `m` (nullptr: standing still) from cycle k on must be run.
+    bool per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const noexcept {
+        return per_cycle() || (offsets_ != nullptr && offsets_->per_cycle(m, k, n));
+    }
+    // nominal_ moved to cycle k of n of `m` (nullptr: standing): position_ follows.
+    void place(const Move* m, std::uint64_t k, std::uint64_t n, double cycle_seconds, bool stepped);
 
     std::deque<Move> moves_;
     bool started_ = false;  // the front move is under way
@@ -80,6 +97,8 @@ class Executor {
     std::uint64_t front_start_cycle_ = 0;
     std::uint64_t now_ = 0;
     AxisVector position_{};
+    AxisVector nominal_{};
+    CycleOffsets* offsets_ = nullptr;
     bool halted_ = false;
     bool tracing_ = false;
     bool time_dependent_ = false;

@@ -25,6 +25,10 @@ struct Move {
     SegmentRole role = SegmentRole::kUncompensated;
     std::uint32_t tag = 0;
     bool direct = false;     // started by a direct command (JA), not spooled
+    // Radius compensation the move was computed for: +1 left (G41), -1 right (G42), 0 none
+    // (uncompensated moves, rapids). Contour, transition, approach and departure moves carry
+    // their group's side (OTC RADIUS wear acts towards it, docs/otc.md).
+    std::int8_t side = 0;
     std::int32_t plane = 0;  // arcs: G code of their plane (17, 18, 19), 0 if not a TC plane
     AxisVector start{};
     AxisVector end{};
@@ -60,6 +64,11 @@ std::uint64_t cycles_for(double length, double feed, double cycle_seconds) noexc
 
 // Axis positions after cycle k of n (0 <= k <= n, n > 0); k == n is exactly `end`.
 void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;
+
+// The path direction at cycle k of n (0 <= k <= n, n > 0): the derivative of the position by
+// the fraction k/n of the move (not unit; a line's is end - start, an arc's plane part is
+// tangent to the circle with length radius * |sweep|).
+void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;
 
 // The Segment record of a move (start/end cycle and interruption filled by the caller).
 Segment segment_of(const Move& m);

@@ -95,6 +95,7 @@ class Spooler {
         std::int32_t plane = 17;
         std::uint8_t length_axis = 2;
         double length = 0.0;  // WkzLen at the last profile compensated
+        std::int8_t side = 0;  // +1 left, -1 right (Move::side)
     };
     // A profile the compensator knows by index: held, or waiting with the held one.
     struct Pending {

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The seam between the executor and the modules that displace the axes from the interpolated
+// path cycle by cycle (the OTC wear offsets, docs/otc.md; temperature compensation). The
+// executor interpolates the nominal path (the spooled moves) and asks the module for the
+// offsets of each evaluated cycle; the axes are at nominal + offsets.
+//
+// Virtual time stays cheap: while the offsets are a function of the move and its cycle k alone
+// (per_cycle() false), the executor evaluates them once at the end of a stretch with at(), and
+// must get the same bits as stepping every cycle with step(). While a ramp or another
+// time-dependent state is under way (per_cycle() true) it steps every cycle.
+#pragma once
+
+#include <cstdint>
+
+#include "rwmos/motion/interpolator.h"
+#include "rwmos/motion/types.h"
+
+namespace rwmos::motion {
+
+class CycleOffsets {
+public:
+    virtual ~CycleOffsets() = default;
+
+    // `m` starts now; `next` is the move queued behind it (nullptr if none yet).
+    virtual void move_started(const Move& m, const Move* next) noexcept = 0;
+    // `m` ended after k of its n cycles (k < n: interrupted by a direct command).
+    virtual void move_finished(const Move& m, std::uint64_t k, std::uint64_t n) noexcept = 0;
+
+    // True when the offsets from cycle k of n of `m` on (m == nullptr: standing still after
+    // the last move) must be stepped cycle by cycle.
+    virtual bool per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const noexcept = 0;
+    // One cycle of `dt` seconds ran and left the nominal path at cycle k of n of `m` (m ==
+    // nullptr: standing still): steps the time-dependent state, then adds the offsets to `pos`.
+    virtual void step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
+                      AxisVector& pos) noexcept = 0;
+    // The offsets at cycle k of n of `m` without stepping (valid while !per_cycle), added to `pos`.
+    virtual void at(const Move* m, std::uint64_t k, std::uint64_t n, AxisVector& pos) const noexcept = 0;
+};
+
+}  // namespace rwmos::motion

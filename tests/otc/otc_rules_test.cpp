@@ -1,0 +1,471 @@
+// SPDX-License-Identifier: MIT
+// The rules of the OTC module (bus 1330), one test per rule, named after it (seed 000, ISG
+// FCT-C20; docs/otc.md and docs/object-map.md section 5). Every refusal names its error in
+// LastError and changes nothing else.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "emu_test_util.h"
+#include "otc_fixture.h"
+
+namespace otc_test {
+namespace {
+
+constexpr double kEps = 1e-9;
+
+// ---- Selection
+
+// Seed 000 section 1: "Wird ein anderer Werkzeugtyp verwendet, so wird die Fehlermeldung
+// P-ERR-21391 ausgegeben."
+TEST_F(OtcBoard, ToolTypeMustBeGrindingElsePErr21391AndOtcStaysOff) {
+    for (std::int32_t type : {0, 1, 3}) {
+        grinding_tool(type);
+        const auto before = emu_test::snapshot(board);
+        EXPECT_EQ(otc_on(), Status::kWrongDeviceState) << type;
+        EXPECT_EQ(last_error(), static_cast<std::int32_t>(otc::Error::kToolNotGrinding));
+        EXPECT_FALSE(otc_active());
+        EXPECT_TRUE(emu_test::unchanged(before, board));
+    }
+    grinding_tool(2);
+    EXPECT_EQ(otc_on(), Status::kOk);
+    EXPECT_TRUE(otc_active());
+}
+
+// Seed 000 section 2.6 "Hinweis": data not set is 0, so a tool without typ is not a grinding tool.
+TEST_F(OtcBoard, AToolWithoutDataIsNoGrindingTool) {
+    EXPECT_EQ(otc_on(), Status::kWrongDeviceState);
+    EXPECT_EQ(last_error(), 21391);
+}
+
+TEST_F(OtcBoard, LastErrorIsClearedByWritingIt) {
+    EXPECT_EQ(otc_on(), Status::kWrongDeviceState);
+    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxLastError, 0, 0), Status::kOk);
+    EXPECT_EQ(last_error(), 0);
+}
+
+TEST_F(OtcBoard, OnAndOffWaitForTheQueueToEmpty) {
+    grinding_tool();
+    spool_ok(line(1, 10.0, 0.0));
+    EXPECT_EQ(otc_on(), Status::kBusy);
+    EXPECT_FALSE(otc_active());
+    run();
+    EXPECT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(2, 20.0, 0.0));
+    EXPECT_EQ(otc_off(), Status::kBusy);
+    EXPECT_TRUE(otc_active());
+    run();
+    EXPECT_EQ(otc_off(), Status::kOk);
+}
+
+TEST_F(OtcBoard, SwitchingToTheStateInForceIsANoOp) {
+    grinding_tool();
+    EXPECT_EQ(otc_off(), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    EXPECT_EQ(otc_on(), Status::kOk);
+    EXPECT_TRUE(otc_active());
+}
+
+// Seed 000 section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen."
+TEST_F(OtcBoard, TypeModeAccWeightAndKinematicsAreNotChangedWhileOn) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    const auto before = emu_test::snapshot(board);
+    EXPECT_EQ(set_type(otc::ProcessingType::kRadius), Status::kWrongDeviceState);
+    EXPECT_EQ(last_error(), static_cast<std::int32_t>(otc::Error::kChangeWhileActive));
+    EXPECT_EQ(set_mode(otc::Mode::kCont), Status::kWrongDeviceState);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxAccWeight, 0, 50), Status::kWrongDeviceState);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxKinematics, 0, 4), Status::kWrongDeviceState);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxToolAxisB, 0, 5), Status::kWrongDeviceState);
+    EXPECT_TRUE(emu_test::unchanged(before, board));
+    // Writing the value in force is fine.
+    EXPECT_EQ(set_type(otc::ProcessingType::kLength), Status::kOk);
+}
+
+TEST_F(OtcBoard, TheToolIsNotChangedWhileOn) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    const auto before = emu_test::snapshot(board);
+    EXPECT_EQ(otc_int(otc::kDevTool, otc::kIdxToolNumber, 0, 2), Status::kWrongDeviceState);
+    EXPECT_EQ(last_error(), static_cast<std::int32_t>(otc::Error::kToolChangeWhileActive));
+    EXPECT_EQ(otc_int(otc::kDevTool, otc::kIdxToolType, 0, 0), Status::kWrongDeviceState);
+    EXPECT_EQ(otc_double(otc::kDevTool, otc::kIdxToolMaxInfeed, 0, 5.0), Status::kWrongDeviceState);
+    EXPECT_EQ(otc_double(otc::kDevTool, otc::kIdxToolTiltAngle, 0, 5.0), Status::kWrongDeviceState);
+    EXPECT_TRUE(emu_test::unchanged(before, board));
+}
+
+TEST_F(OtcBoard, TrafoNeedsAKinematics) {
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxTrafo, 0, 1), Status::kWrongDeviceState);
+    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxKinematics, 0, 4), Status::kOk);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxTrafo, 0, 1), Status::kOk);
+}
+
+// ---- Deselection
+
+// Seed 000 section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor #OTC OFF
+// eingehalten werden."
+TEST_F(OtcBoard, G40MustComeBeforeOtcOff) {
+    setup_group(kSeedRadius, /*left=*/true);
+    grinding_tool();
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);  // G41
+    spool_ok(line(60, 50.0, 0.0));
+    spool_ok(line(70, 100.0, 0.0));
+    run();
+    const auto before = emu_test::snapshot(board);
+    EXPECT_EQ(otc_off(), Status::kWrongDeviceState);
+    EXPECT_EQ(last_error(), static_cast<std::int32_t>(otc::Error::kOffBeforeG40));
+    EXPECT_TRUE(otc_active());
+    EXPECT_TRUE(emu_test::unchanged(before, board));
+    ASSERT_EQ(deactivate(1), Status::kOk);  // G40
+    run();
+    EXPECT_EQ(otc_off(), Status::kOk);
+}
+
+// The rule belongs to RADIUS (seed 000 section 2.2); other types may end with TRC on.
+TEST_F(OtcBoard, G40RuleBindsOnlyRadius) {
+    setup_group(kSeedRadius);
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);  // LENGTH
+    activate(1);
+    EXPECT_EQ(otc_off(), Status::kOk);
+}
+
+// ---- Wear accrual
+
+// Seed 000 section 2: "Eilgangssätze sind verschleißfrei!"
+TEST_F(OtcBoard, RapidMovesAreWearFree) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(rapid(1, 1000.0, 0.0));
+    run();
+    EXPECT_EQ(offset()[2], 0.0);
+    run_and_off();
+    EXPECT_EQ(wear(2), 0.0);
+}
+
+// Seed 000 section 2.2 "Hinweis": the approach after G41/G42 and the move after G40 are
+// wear-free; only the compensated contour (with its transitions) wears the radius.
+TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
+    setup_group(kSeedRadius, /*left=*/true);
+    grinding_tool();
+    ASSERT_EQ(board.state().tc.group(1).tool().radius, kSeedRadius);  // tool 0, by setup_group
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);                        // N60 G41 G01 X50 (approach)
+    spool_ok(line(60, 50.0, 0.0, 10000.0));
+    spool_ok(line(70, 1000.0, 0.0, 10000.0));  // N70 X1000
+    ASSERT_EQ(deactivate(1), Status::kOk);      // N80 G40 X50 (departure)
+    spool_ok(line(80, 50.0, 0.0, 10000.0));
+    run();
+    double contour = 0.0, other = 0.0;
+    for (const Segment& s : segments()) {
+        const double len = std::hypot(s.end[0] - s.start[0], s.end[1] - s.start[1]);
+        if (s.role == SegmentRole::kContour || s.role == SegmentRole::kTransition)
+            contour += len;
+        else
+            other += len;
+    }
+    EXPECT_GT(other, 900.0);  // the return run N80 and the approach/departure
+    run_and_off();
+    EXPECT_NEAR(wear_radius_cont(), contour * kSeedWearConst * 1e-7, kEps);
+    EXPECT_NEAR(wear_radius(), wear_radius_cont(), kEps);
+}
+
+// Seed 000 section 2.2: "In der Betriebsart Radiuskompensation wird der Verschleiß nur bei
+// aktiver Werkzeugradiuskompensation (WRK) berücksichtigt."
+TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
+    grinding_tool();
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 1000.0, 0.0, 10000.0));
+    run();
+    EXPECT_EQ(norm(offset()), 0.0);
+    run_and_off();
+    EXPECT_EQ(wear_radius(), 0.0);
+}
+
+// Seed 000 section 2.1 WEAR_CONST=..: "wirkt modal" instead of the tool's; WEAR_CONST_TOOL
+// switches back.
+TEST_F(OtcBoard, WearConstOverridesTheToolsModallyAndWearConstToolSwitchesBack) {
+    grinding_tool();
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 50000.0), Status::kOk);
+    EXPECT_EQ(otc_read_double(otc::kDevChannel, otc::kIdxEffectiveWearConst), 50000.0);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 1000.0, 0.0, 10000.0));
+    spool_ok(line(2, 0.0, 0.0, 10000.0));  // still the programmed constant: modal
+    run();
+    EXPECT_NEAR(offset()[2], -10.0, kEps);
+    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxWearConstSource, 0, 0), Status::kOk);  // WEAR_CONST_TOOL
+    EXPECT_EQ(otc_read_double(otc::kDevChannel, otc::kIdxEffectiveWearConst), kSeedWearConst);
+    spool_ok(line(3, 1000.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_NEAR(wear(2), 20.0, kEps);
+}
+
+// Seed 000 section 2.8: V.G.WZ_AKT.WEAR_CONST can be written in the program.
+TEST_F(OtcBoard, ToolWearConstIsWritableWhileOnAndActsFromTheNextMove) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 500.0, 0.0, 10000.0));
+    run();
+    ASSERT_EQ(otc_double(otc::kDevTool, otc::kIdxToolWearConst, 0, 0.0), Status::kOk);
+    spool_ok(line(2, 1000.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_NEAR(wear(2), 5.0, kEps);
+}
+
+// Seed 000 section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
+// Versatz abhängig vom Weg nicht ermittelt werden."
+TEST_F(OtcBoard, WithoutWearConstNoContinuousWearAccrues) {
+    grinding_tool(otc::kGrindingToolType, 0.0);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 1000.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_EQ(wear(2), 0.0);
+}
+
+TEST_F(OtcBoard, DiscModeAccruesNoContinuousWear) {
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 1000.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_EQ(wear(2), 0.0);
+}
+
+// ---- Discrete offsets (seed 000 section 2.7)
+
+// Seed 000 section 2.6: "Wenn grinding_max_infeed nicht gesetzt wird, kann kein diskreter
+// Versatz beauftragt werden."
+TEST_F(OtcBoard, WithoutMaxInfeedNoDiscreteOffsetCanBeCommanded) {
+    grinding_tool(otc::kGrindingToolType, kSeedWearConst, 0.0);
+    const auto before = emu_test::snapshot(board);
+    EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, 1), Status::kValueTooHigh);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, otc::kSubCommand, -1),
+              Status::kValueTooLow);
+    EXPECT_EQ(last_error(), static_cast<std::int32_t>(otc::Error::kInfeedBeyondLimit));
+    EXPECT_TRUE(emu_test::unchanged(before, board));
+}
+
+// Seed 000 section 2.7: "Wertebereich [-P-TOOL-00031, P-TOOL-00031]".
+TEST_F(OtcBoard, CommandBeyondMaxInfeedIsRefused) {
+    grinding_tool();
+    EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, 200001), Status::kValueTooHigh);
+    EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, -200001), Status::kValueTooLow);
+    EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, 200000), Status::kOk);
+    EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, -200000), Status::kOk);
+}
+
+// Seed 000 section 2.7.1: "Ändert sich der Verschleißwert, wird diese Änderung auf mehrere
+// Interpolationszyklen verteilt, so dass sprunghafte Änderungen vermieden werden."
+TEST_F(OtcBoard, DiscreteOffsetIsRampedNeverAJump) {
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    ASSERT_EQ(plc(2, 20000), Status::kOk);
+    EXPECT_EQ(unit_request(2), 20000);
+    EXPECT_EQ(unit_state(2), 0);
+    double prev = 0.0;
+    int cycles = 0;
+    while (std::abs(offset()[2] + 2.0) > 0.0 && cycles < 100000) {
+        board.step(1);
+        ++cycles;
+        EXPECT_LE(std::abs(offset()[2] - prev), 0.5e-3 * (1 + 1e-12));
+        prev = offset()[2];
+    }
+    EXPECT_EQ(offset()[2], -2.0);
+    EXPECT_GT(cycles, 4000);
+    EXPECT_EQ(unit_state(2), 20000);
+}
+
+// Seed 000 section 2.1: ACC_WEIGHT "Beschleunigungsgewichtung in Prozent [1;100]".
+TEST_F(OtcBoard, AccWeightWeightsTheAccelerationOfTheRamp) {
+    auto cycles_to_reach = [](std::int32_t weight) {
+        OtcRig r;
+        r.grinding_tool();
+        EXPECT_EQ(r.otc_int(otc::kDevChannel, otc::kIdxAccWeight, 0, weight), Status::kOk);
+        EXPECT_EQ(r.set_mode(otc::Mode::kDisc), Status::kOk);
+        EXPECT_EQ(r.otc_on(), Status::kOk);
+        EXPECT_EQ(r.plc(2, 1000), Status::kOk);
+        int n = 0;
+        while (r.offset()[2] != -0.1 && n < 1000000) {
+            r.board.step(1);
+            ++n;
+        }
+        return n;
+    };
+    const int full = cycles_to_reach(100);
+    const int tenth = cycles_to_reach(10);
+    EXPECT_GT(tenth, full + 100);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxAccWeight, 0, 0), Status::kValueTooLow);
+    EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxAccWeight, 0, 101), Status::kValueTooHigh);
+}
+
+// Seed 000 section 2.1 CONT: "Vorgabe der Werte nur aus Berechnung des zurückgelegten Weges".
+TEST_F(OtcBoard, ContModeIgnoresTheControlUnits) {
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    ASSERT_EQ(plc(2, 20000), Status::kOk);
+    board.step(10000);
+    EXPECT_EQ(offset()[2], 0.0);
+    EXPECT_EQ(unit_request(2), 0);
+}
+
+// Seed 000 section 2.7.1: the channel unit acts only in RADIUS or TOOL_DIR.
+TEST_F(OtcBoard, ChannelUnitActsOnlyInRadiusOrToolDir) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);  // LENGTH
+    ASSERT_EQ(plc(-1, 20000), Status::kOk);
+    board.step(10000);
+    EXPECT_EQ(norm(offset()), 0.0);
+    EXPECT_EQ(unit_request(-1), 0);
+}
+
+// Seed 000 section 2.7.2: in LENGTH every axis takes its own wear offset.
+TEST_F(OtcBoard, AxisUnitsActOnTheirAxisInLength) {
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    ASSERT_EQ(plc(0, 1000), Status::kOk);
+    ASSERT_EQ(plc(5, -2000), Status::kOk);
+    board.step(20000);
+    EXPECT_NEAR(offset()[0], -0.1, kEps);
+    EXPECT_NEAR(offset()[5], 0.2, kEps);
+    EXPECT_EQ(offset()[2], 0.0);
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_NEAR(wear(0), 0.1, kEps);
+    EXPECT_NEAR(wear(5), -0.2, kEps);
+}
+
+// Seed 000 sections 2.7.1/2.7.2: in TOOL_DIR and SURF_NORM_DIR the first two axes' units are
+// ignored.
+TEST_F(OtcBoard, FirstTwoAxisUnitsAreIgnoredInToolDirAndSurfNormDir) {
+    for (auto type : {otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        OtcRig r;
+        r.grinding_tool();
+        ASSERT_EQ(r.set_type(type), Status::kOk);
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        ASSERT_EQ(r.plc(0, 1000), Status::kOk);
+        ASSERT_EQ(r.plc(1, 1000), Status::kOk);
+        r.board.step(20000);
+        EXPECT_EQ(norm(r.offset()), 0.0) << otc::processing_type_name(type);
+        // The third axis carries the offset along the direction (here the tool along Z).
+        ASSERT_EQ(r.plc(2, 1000), Status::kOk);
+        r.board.step(20000);
+        EXPECT_NEAR(r.offset()[2], -0.1, kEps) << otc::processing_type_name(type);
+    }
+}
+
+// ---- The variables (seed 000 section 2.8) and the fold into the tool
+
+// "Während aktiver OTC sind die V.G.WZ_AKT-Verschleißwerte nicht aktuell, sie werden erst nach
+// Abwahl der OTC (#OTC OFF) aktualisiert!"
+TEST_F(OtcBoard, WearVariablesAreUpdatedOnlyAtOtcOff) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 1000.0, 0.0, 10000.0));
+    run();
+    EXPECT_NEAR(offset()[2], -10.0, kEps);
+    EXPECT_EQ(wear(2), 0.0);
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_NEAR(wear(2), 10.0, kEps);
+}
+
+// "Bei mehrfacher An- und Abwahl der OTC im NC-Programm enthalten die obigen Variablen den
+// kumulierten Verschleiß!"
+TEST_F(OtcBoard, RepeatedOnOffAccumulatesTheWear) {
+    grinding_tool();
+    for (int i = 0; i < 3; ++i) {
+        ASSERT_EQ(otc_on(), Status::kOk);
+        spool_ok(line(1, i % 2 == 0 ? 500.0 : 0.0, 0.0, 10000.0));
+        run_and_off();
+        EXPECT_NEAR(wear(2), 5.0 * (i + 1), kEps) << i;
+        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kSeedLength - 5.0 * (i + 1), kEps);
+    }
+}
+
+TEST_F(OtcBoard, RadiusWearVariablesAfterOneAndSeveralCycles) {
+    setup_group(kSeedRadius, /*left=*/true);
+    grinding_tool();
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex, kTool),
+              Status::kOk);
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    for (int i = 1; i <= 2; ++i) {
+        ASSERT_EQ(otc_on(), Status::kOk);
+        ASSERT_EQ(plc(-1, 1000), Status::kOk);  // AUTO: 0.1 mm discrete on top
+        activate(1);
+        spool_ok(line(60, 10.0, 0.0, 10000.0));
+        spool_ok(line(70, 510.0, 0.0, 10000.0));  // 510 mm of contour: 5.1 mm of wear
+        ASSERT_EQ(deactivate(1), Status::kOk);
+        spool_ok(line(80, 0.0, 0.0, 10000.0));
+        run_and_off();
+        EXPECT_NEAR(wear_radius_cont(), 5.1 * i, kEps) << i;
+        EXPECT_NEAR(wear_radius(), 5.2 * i, kEps) << i;
+        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].radius, kSeedRadius - 5.2 * i, kEps);
+        board.step(50000);  // let the discrete offset ramp out
+    }
+}
+
+// Seed 000 section 2.9: the wear belongs to the tool since it was changed in.
+TEST_F(OtcBoard, ToolChangeStartsTheWearFromZero) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 500.0, 0.0, 10000.0));
+    run_and_off();
+    ASSERT_NEAR(wear(2), 5.0, kEps);
+    ASSERT_EQ(otc_int(otc::kDevTool, otc::kIdxToolNumber, 0, kTool), Status::kOk);  // same tool
+    EXPECT_NEAR(wear(2), 5.0, kEps);
+    ASSERT_EQ(otc_int(otc::kDevTool, otc::kIdxToolNumber, 0, 2), Status::kOk);
+    EXPECT_EQ(wear(2), 0.0);
+}
+
+// Design (docs/otc.md): after #OTC OFF the wear is tool data; the offset leaves the axes over
+// several cycles, never in a jump.
+TEST_F(OtcBoard, OffsetRampsOutAfterOtcOffWithoutAJump) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    run_and_off();
+    double prev = offset()[2];
+    EXPECT_NEAR(prev, -1.0, kEps);
+    int cycles = 0;
+    while (offset()[2] != 0.0 && cycles < 100000) {
+        board.step(1);
+        ++cycles;
+        EXPECT_LE(std::abs(offset()[2] - prev), 0.5e-3 * (1 + 1e-12));
+        prev = offset()[2];
+    }
+    EXPECT_EQ(offset()[2], 0.0);
+    EXPECT_GT(cycles, 1000);
+}
+
+// Design: the discrete infeed is consumed by the fold; the next session starts from 0.
+TEST_F(OtcBoard, OtcOffConsumesTheDiscreteCommands) {
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    ASSERT_EQ(plc(2, 1000), Status::kOk);
+    board.step(5000);
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_EQ(otc_read_int(otc::kDevAxisUnits, 2, otc::kSubCommand), 0);
+    EXPECT_NEAR(wear(2), 0.1, kEps);
+}
+
+TEST(OtcOption, WithoutTheOptionBus1330IsMissing) {
+    rwmos::BoardConfig cfg;
+    cfg.option_otc = false;
+    rwmos::Board board(cfg);
+    objif::Descriptor d{{otc::kBus, otc::kDevChannel, otc::kIdxActive, 0}, 0};
+    objif::Value v;
+    EXPECT_EQ(board.read(d, objif::ValueType::kInt32, v), Status::kNoSuchDevice);
+    objif::Descriptor o{{rwmos::board::kBus, 0, rwmos::board::kIdxOptions, 0}, 0};
+    ASSERT_EQ(board.read(o, objif::ValueType::kInt32, v), Status::kOk);
+    EXPECT_EQ(v.as_int() & rwmos::board::kOptionOtc, 0);
+}
+
+}  // namespace
+}  // namespace otc_test
