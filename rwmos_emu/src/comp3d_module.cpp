@@ -151,9 +151,9 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
         {setting(comp3d::kIdxToolVector, 2, "TZ", kDouble, kRW, -kMax, kMax, Value::of_double(0.0),
                  kVectorT),
          &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxArm, 0, "Arm", kInt, kRW, 0, 3, Value::of_int(0),
-                 "seed 002 LN: 1 N, 2 T, 3 both for the next profile; refused when a vector is "
-                 "not normalised"),
+        {setting(comp3d::kIdxArm, 0, "Arm", kInt, kRW, 0, 7, Value::of_int(0),
+                 "seed 002 LN: bit 0 N, bit 1 T, bit 2 a line without vectors (L with RL/RR) "
+                 "for the next profile; refused when a vector is not normalised"),
          &M::read_arm, &M::write_arm},
         {setting(comp3d::kIdxLastError, 0, "LastError", kInt, kRW, kIntMin, kIntMax,
                  Value::of_int(0), "design: the Refusal code of the last refusal; a write clears"),

@@ -307,6 +307,27 @@ TEST_F(Comp3dBoard, PeripheralLnWithoutNTakesTheSideFromRlAndTheMotion) {
     expect_near(end_of_last_segment(), V(10, -0.1, 0));
 }
 
+// Seed 002, peripheral variant 1: an L line with the rotary axes programmed, TCPM and RL: T from
+// the head (B tilted by a G00 of axis 4), the side across the motion and T.
+TEST_F(Comp3dBoard, PeripheralLLineWithRlTakesTFromTheHead) {
+    tool(2, 6, 0, 0, -0.1, 0);
+    ASSERT_EQ(set(c3::kIdxTool, 2), Status::kOk);
+    ASSERT_EQ(set(c3::kIdxTcpm, 1), Status::kOk);
+    ASSERT_EQ(set(c3::kIdxSide, rwmos::tc::kSideLeft), Status::kOk);
+    Profile tilt;
+    tilt.kind = ProfileKind::kRapid;
+    tilt.axes = 0x10;
+    tilt.target[4] = -20.0;
+    spool_ok(tilt);
+    ASSERT_EQ(set(c3::kIdxArm, c3::kArmLine), Status::kOk);
+    spool_ok(to(V(0, 10, 0)));  // along +Y
+    run();
+    const V t(std::sin(-20.0 * M_PI / 180), 0.0, std::cos(-20.0 * M_PI / 180));
+    const V n = t.cross(V(0, 1, 0)).normalized();  // RL: T x D
+    expect_near(end_of_last_segment(), V(0, 10, 0) - 0.1 * n);
+    EXPECT_NEAR(n.dot(t), 0.0, 1e-15);
+}
+
 TEST_F(Comp3dBoard, PeripheralLnWithoutNAndWithoutSideIsRefused) {
     const V t(0, 0, 1);
     ASSERT_EQ(set(c3::kIdxTcpm, 1), Status::kOk);

@@ -124,7 +124,7 @@ std::vector<ObjectRow> object_rows() {
         {"C3_TX", C0(12, 0), kD, rw, D(0.0), D(0.6), true, c3_range()},
         {"C3_TY", C0(12, 1), kD, rw, D(0.0), D(-0.8), true, c3_range()},
         {"C3_TZ", C0(12, 2), kD, rw, D(0.0), D(1.0), true, c3_range()},
-        {"C3_Arm", C0(13), kI, rw, I(0), I(0), true, {low(I(-1)), high(I(4))}},
+        {"C3_Arm", C0(13), kI, rw, I(0), I(4), true, {low(I(-1)), high(I(8))}},
         {"C3_LastError", C0(14), kI, rw, I(0), I(5), false, {}},
         {"C3_DL", C0(20, 0), kD, r, D(0.0), {}, true, {}},
         {"C3_DR", C0(20, 1), kD, r, D(0.0), {}, true, {}},

@@ -74,9 +74,10 @@ struct Comp3dPlan {
 };
 
 // Plans the 3D compensation of `p` (modified in place when compensated). `program` is the
-// spooler's programmed position (where the profile starts). Nothing happens unless vectors are
-// armed; armed vectors are used by the next profile whatever its kind, and only a G01 is
-// compensated (rapids and arcs never are). Refusals change nothing.
+// spooler's programmed position (where the profile starts). Nothing happens unless the module
+// is armed (Arm: N, T, or a line without vectors for peripheral milling with RL/RR); the arming
+// is used by the next profile whatever its kind, and only a G01 is compensated (rapids and arcs
+// never are). Refusals change nothing.
 Comp3dPlan plan_profile(const Comp3dState& s, const TcState& tc, const motion::AxisVector& program,
                         motion::Profile& p) noexcept;
 // After the spooler took the profile: the armed vectors are used up, the tip remembered.

@@ -104,7 +104,7 @@ inline constexpr std::int32_t kIdxHeadAxisB = 9;       // int r/w 0..7: board ax
 inline constexpr std::int32_t kIdxHeadAxisC = 10;      // int r/w -1..7: board axis of C, -1 none
 inline constexpr std::int32_t kIdxSurfaceNormal = 11;  // double r/w, Sub 0 NX 1 NY 2 NZ
 inline constexpr std::int32_t kIdxToolVector = 12;     // double r/w, Sub 0 TX 1 TY 2 TZ
-inline constexpr std::int32_t kIdxArm = 13;            // int r/w 0..3: the next profile is an LN
+inline constexpr std::int32_t kIdxArm = 13;            // int r/w 0..7: the next profile is an LN
 inline constexpr std::int32_t kIdxLastError = 14;      // int r/w: Refusal code; a write clears
 inline constexpr std::int32_t kIdxDeltas = 20;         // double r, Sub 0..2: summed DL DR DR2
 inline constexpr std::int32_t kIdxLastTip = 21;        // double r, Sub 0..2: last TCP X Y Z
@@ -125,6 +125,7 @@ inline constexpr std::int32_t kCorrectionRows = 1024;
 // Arm bits: what the next spooled profile carries.
 inline constexpr std::int32_t kArmNormal = 0x01;
 inline constexpr std::int32_t kArmToolVector = 0x02;
+inline constexpr std::int32_t kArmLine = 0x04;  // compensate without vectors (L with RL/RR)
 inline constexpr std::int32_t kNoHeadAxis = -1;
 // Largest magnitude of a tool value, delta or vector component (the math's kMaxCoordinate).
 inline constexpr double kMaxValue = 1e5;
