@@ -33,6 +33,25 @@ bool tc_compensating(const TcState& tc) noexcept {
     return false;
 }
 
+// Peripheral milling without N (seed 002): the side from RL/RR and the motion; where that
+// gives none (no motion, a plunge, or R0), the normal of the line before, while the 3D path
+// goes on (the seed's block 13 repeats block 12's point with T only, "Kompensation möglich").
+comp3d::SideNormal peripheral_normal(const Comp3dState& s, const Eigen::Vector3d& motion,
+                                     const Eigen::Vector3d& tool_axis) noexcept {
+    comp3d::SideNormal side{Refusal::kNoCompensationSide, Eigen::Vector3d::Zero()};
+    if (s.side != tc::kSideNone) {
+        side = comp3d::side_normal(
+            motion, tool_axis,
+            s.side == tc::kSideLeft ? comp3d::Side::kLeft : comp3d::Side::kRight);
+        if (side.refusal == Refusal::kNone) return side;
+    }
+    if (s.has_last_normal) {
+        const comp3d::SideNormal kept = comp3d::previous_side_normal(s.last_normal, tool_axis);
+        if (kept.refusal == Refusal::kNone) return kept;
+    }
+    return side;
+}
+
 }  // namespace
 
 Comp3dPlan plan_profile(const Comp3dState& s, const TcState& tc, const motion::AxisVector& program,
@@ -62,14 +81,7 @@ Comp3dPlan plan_profile(const Comp3dState& s, const TcState& tc, const motion::A
         comp3d::effective_tool_vector(s.tcpm != 0, t, n, machine_tool_axis(s, p, program));
     Eigen::Vector3d normal = s.armed_normal;
     if (!has_n) {
-        // Peripheral milling without N (seed 002): the side from RL/RR and the motion.
-        if (s.side == tc::kSideNone) {
-            plan.refusal = Refusal::kNoCompensationSide;
-            return plan;
-        }
-        const comp3d::SideNormal side = comp3d::side_normal(
-            end - start, tool_axis,
-            s.side == tc::kSideLeft ? comp3d::Side::kLeft : comp3d::Side::kRight);
+        const comp3d::SideNormal side = peripheral_normal(s, end - start, tool_axis);
         if (side.refusal != Refusal::kNone) {
             plan.refusal = side.refusal;
             return plan;
@@ -99,12 +111,17 @@ Comp3dPlan plan_profile(const Comp3dState& s, const TcState& tc, const motion::A
     }
     plan.compensated = true;
     plan.tip = c.tip;
+    plan.normal = normal;
     return plan;
 }
 
 void commit_profile(Comp3dState& s, const Comp3dPlan& plan) noexcept {
     if (plan.consumes) s.armed = 0;
-    if (plan.compensated) s.last_tip = plan.tip;
+    s.has_last_normal = plan.compensated;
+    if (plan.compensated) {
+        s.last_tip = plan.tip;
+        s.last_normal = plan.normal;
+    }
 }
 
 objif::Status refusal_status(comp3d::Refusal r) noexcept {

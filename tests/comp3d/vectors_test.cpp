@@ -141,5 +141,22 @@ TEST(PeripheralSide, NoSideWithoutMotionOrForAPlunge) {
               Refusal::kNone);
 }
 
+TEST(PeripheralSide, PreviousNormalIsMadePerpendicularToT) {
+    // Seed 002, peripheral example: block 13 (T only) at block 12's point keeps 12's N.
+    const V n12(0.0, 0.9397, 0.3420);
+    const V t = V(-0.0807, -0.3409, 0.9366).normalized();
+    const SideNormal s = previous_side_normal(n12.normalized(), t);
+    ASSERT_EQ(s.refusal, Refusal::kNone);
+    EXPECT_NEAR(s.n.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(s.n.dot(t), 0.0, 1e-15);
+    EXPECT_NEAR((s.n - n12.normalized()).norm(), 0.0, 1e-4);
+}
+
+TEST(PeripheralSide, PreviousNormalAlongTGivesNoSide) {
+    const V t(0.0, 0.0, 1.0);
+    EXPECT_EQ(previous_side_normal(t, t).refusal, Refusal::kNoSideFromMotion);
+    EXPECT_EQ(previous_side_normal(V::Zero(), t).refusal, Refusal::kNoSideFromMotion);
+}
+
 }  // namespace
 }  // namespace rwmos::comp3d

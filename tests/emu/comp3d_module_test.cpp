@@ -328,6 +328,42 @@ TEST_F(Comp3dBoard, PeripheralLLineWithRlTakesTFromTheHead) {
     EXPECT_NEAR(n.dot(t), 0.0, 1e-15);
 }
 
+// Seed 002, peripheral example: block 12 (N and T) then block 13 at the same point with T only
+// and R0 in force: the side of block 12 is kept ("Kompensation möglich").
+TEST_F(Comp3dBoard, PeripheralLnWithoutNAtTheSamePointKeepsThePreviousSide) {
+    tool(2, 6, 0, 0, -0.1, 0);
+    ASSERT_EQ(set(c3::kIdxTool, 2), Status::kOk);
+    ASSERT_EQ(set(c3::kIdxTcpm, 1), Status::kOk);
+    const V n12 = V(0.0, 0.9397, 0.3420).normalized();
+    const V t = V(-0.0807, -0.3409, 0.9366).normalized();
+    const V p(60.6593, 102.4690, -7.1012);
+    ASSERT_EQ(arm(&n12, &t), Status::kOk);
+    spool_ok(to(p, 12));
+    ASSERT_EQ(arm(nullptr, &t), Status::kOk);
+    spool_ok(to(p, 13));
+    run();
+    const std::vector<Segment> segs = segments();
+    ASSERT_GE(segs.size(), 1U);
+    const V tip12 = expected(p, n12, t, {6, 0}, {0, -0.1, 0});
+    const V kept = (n12 - n12.dot(t) * t).normalized();
+    const V tip13 = expected(p, kept, t, {6, 0}, {0, -0.1, 0});
+    expect_near(V(position()[0], position()[1], position()[2]), tip13);
+    expect_near(tip13, tip12, 1e-4);  // the same side, 4-decimal vectors
+}
+
+TEST_F(Comp3dBoard, UncompensatedProfileEndsThePathAndItsSide) {
+    ASSERT_EQ(set(c3::kIdxTcpm, 1), Status::kOk);
+    const V n(0, 1, 0);
+    const V t(0, 0, 1);
+    ASSERT_EQ(arm(&n, &t), Status::kOk);
+    spool_ok(to(V(1, 0, 0)));
+    spool_ok(to(V(2, 0, 0)));  // plain line
+    ASSERT_EQ(arm(nullptr, &t), Status::kOk);
+    const MotionResult r = board.spool(to(V(2, 0, 0)));
+    EXPECT_EQ(r.status, Status::kWrongDeviceState);
+    EXPECT_EQ(get(c3::kIdxLastError), static_cast<std::int32_t>(Refusal::kNoCompensationSide));
+}
+
 TEST_F(Comp3dBoard, PeripheralLnWithoutNAndWithoutSideIsRefused) {
     const V t(0, 0, 1);
     ASSERT_EQ(set(c3::kIdxTcpm, 1), Status::kOk);

@@ -56,7 +56,8 @@ inline bool same_comp3d(const rwmos::Comp3dState& a, const rwmos::Comp3dState& b
         a.side != b.side || a.head_axis_b != b.head_axis_b || a.head_axis_c != b.head_axis_c ||
         a.normal != b.normal || a.tool_vector != b.tool_vector || a.armed != b.armed ||
         a.armed_normal != b.armed_normal || a.armed_tool_vector != b.armed_tool_vector ||
-        a.last_error != b.last_error || a.last_tip != b.last_tip)
+        a.last_error != b.last_error || a.last_tip != b.last_tip ||
+        a.has_last_normal != b.has_last_normal || a.last_normal != b.last_normal)
         return false;
     for (std::size_t i = 0; i < a.tools.size(); ++i)
         if (a.tools[i].r != b.tools[i].r || a.tools[i].r2 != b.tools[i].r2 ||

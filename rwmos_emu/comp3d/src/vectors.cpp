@@ -45,4 +45,14 @@ SideNormal side_normal(const Eigen::Vector3d& motion, const Eigen::Vector3d& t,
     return {Refusal::kNone, side == Side::kLeft ? n : Eigen::Vector3d(-n)};
 }
 
+SideNormal previous_side_normal(const Eigen::Vector3d& previous,
+                                const Eigen::Vector3d& t) noexcept {
+    const Eigen::Vector3d across = previous - previous.dot(t) * t;
+    const double length = across.norm();
+    if (!(length > kPlungeAngleTolerance)) {
+        return {Refusal::kNoSideFromMotion, Eigen::Vector3d::Zero()};
+    }
+    return {Refusal::kNone, across / length};
+}
+
 }  // namespace rwmos::comp3d

@@ -44,6 +44,10 @@ struct Comp3dState {
     Eigen::Vector3d armed_tool_vector = Eigen::Vector3d::Zero();
     std::int32_t last_error = 0;  // comp3d::Refusal of the last refusal
     Eigen::Vector3d last_tip = Eigen::Vector3d::Zero();
+    // The normal of the last compensated line, while the 3D path goes on: an LN without N
+    // whose motion gives no side keeps it. A profile that is not compensated ends the path.
+    bool has_last_normal = false;
+    Eigen::Vector3d last_normal = Eigen::Vector3d::Zero();
     std::array<Comp3dTool, comp3d::kToolCount> tools{};
     std::array<comp3d::Deltas, comp3d::kCorrectionRows> corrections{};
 
@@ -71,6 +75,7 @@ struct Comp3dPlan {
     bool consumes = false;     // the armed vectors are used up when the profile is taken
     bool compensated = false;  // the profile's X/Y/Z target was moved to `tip`
     Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the normal it was compensated along
 };
 
 // Plans the 3D compensation of `p` (modified in place when compensated). `program` is the
@@ -80,7 +85,8 @@ struct Comp3dPlan {
 // never are). Refusals change nothing.
 Comp3dPlan plan_profile(const Comp3dState& s, const TcState& tc, const motion::AxisVector& program,
                         motion::Profile& p) noexcept;
-// After the spooler took the profile: the armed vectors are used up, the tip remembered.
+// After the spooler took the profile: the armed vectors are used up, the tip and normal
+// remembered (or forgotten, when the profile was not compensated).
 void commit_profile(Comp3dState& s, const Comp3dPlan& plan) noexcept;
 // The status a refused profile answers with: InvalidValue for geometry the program gives,
 // WrongDeviceState for the tool and the module's state.

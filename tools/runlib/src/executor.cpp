@@ -7,9 +7,11 @@
 #include <cmath>
 #include <limits>
 #include <type_traits>
+#include <unordered_map>
 #include <variant>
 
 #include "apci/run/csv_writer.h"
+#include "rwmos/comp3d/refusal.h"
 #include "rwmos/object_map.h"
 
 namespace apci::run {
@@ -36,6 +38,7 @@ namespace {
 
 namespace tc = rwmos::tc;
 namespace bm = rwmos::board;
+namespace c3 = rwmos::comp3d;
 
 constexpr std::int32_t kGroups = tc::kGroupCount;
 // Clock calls without a trace run until idle in one go.
@@ -50,6 +53,13 @@ ObjectDescriptor group_object(std::int32_t group, std::int32_t sub) noexcept {
 ObjectDescriptor init_object(std::int32_t index, std::int32_t sub = 0) noexcept {
     return apci::object(tc::kBus, tc::kDevInit, index, sub);
 }
+ObjectDescriptor c3_object(std::int32_t index, std::int32_t sub = 0) noexcept {
+    return apci::object(c3::kBus, c3::kDevSettings, index, sub);
+}
+
+// Feed of an LN with FMAX: spooled as a G01 (so that it is compensated) at the board's rapid
+// feed (docs/motion.md: 60000 units/min).
+constexpr double kLnRapidFeed = 60000.0;
 
 BlockRef block_of(const nc::BlockOrigin& o) noexcept {
     return BlockRef{o.block == nc::kNoBlockNumber ? kNoBlock : o.block, o.line};
@@ -123,6 +133,7 @@ class Execution {
                     break;
                 }
                 out_.totals.blocks_executed = events.blocks_read();
+                klartext_ = events.dialect() == nc::Dialect::kKlartext;
                 if (!dispatch(ev)) {
                     draw_rest(events);
                     break;
@@ -149,6 +160,8 @@ class Execution {
                 sink_.programmed(line_segment(at, SegmentKind::kLine, l->start, l->end));
             } else if (const auto* a = std::get_if<nc::ArcMove>(&ev.data)) {
                 sink_.programmed(arc_segment(at, *a));
+            } else if (const auto* v = std::get_if<nc::VectorLineMove>(&ev.data)) {
+                sink_.programmed(line_segment(at, SegmentKind::kLine, v->start, v->end));
             }
         }
     }
@@ -256,6 +269,12 @@ class Execution {
 
     bool dispatch(const nc::Event& ev) {
         const BlockRef at = block_of(ev.origin);
+        // The head's rotary axes go with the block's move; a block that turns the head only
+        // gets a move of its own.
+        const bool is_move = std::holds_alternative<nc::RapidMove>(ev.data) ||
+                             std::holds_alternative<nc::LineMove>(ev.data) ||
+                             std::holds_alternative<nc::VectorLineMove>(ev.data);
+        if (head_pending_ && !is_move && !head_only_move(head_at_)) return false;
         return std::visit(
             [&](const auto& e) -> bool {
                 using E = std::decay_t<decltype(e)>;
@@ -268,23 +287,27 @@ class Execution {
                 } else if constexpr (std::is_same_v<E, nc::ToolSelect>) {
                     return tool(at, e.tool);
                 } else if constexpr (std::is_same_v<E, nc::CompensationChange>) {
-                    return compensation(at, e.side);
+                    return klartext_ ? klartext_compensation(at, e.side) : compensation(at, e.side);
                 } else if constexpr (std::is_same_v<E, nc::CornerModeChange>) {
                     return corner(at, e.mode);
                 } else if constexpr (std::is_same_v<E, nc::PlaneChange>) {
                     return plane(at, e.plane);
                 } else if constexpr (std::is_same_v<E, nc::ProgramEnd>) {
                     return end_of_program(at);
+                } else if constexpr (std::is_same_v<E, nc::ToolCallDeltas>) {
+                    return tool_call(at, e);
+                } else if constexpr (std::is_same_v<E, nc::TcpmChange>) {
+                    return tcpm(at, e);
+                } else if constexpr (std::is_same_v<E, nc::ProgPathChange>) {
+                    return c3_setting(at, c3::kIdxProgPath, e.contour ? 1 : 0, "ProgPath");
+                } else if constexpr (std::is_same_v<E, nc::OversizeChange>) {
+                    return c3_setting(at, c3::kIdxAllowOversize, e.allowed ? 1 : 0,
+                                      "AllowOversize");
+                } else if constexpr (std::is_same_v<E, nc::HeadOrientation>) {
+                    return head(at, e);
                 } else {
-                    // The Klartext 3D events (TOOL CALL deltas, TCPM, PROG PATH, M107, head
-                    // orientation, LN) belong to the board's 3D compensation module (bus
-                    // 1310), which this executor does not drive yet: refused by name, never
-                    // run approximately.
-                    return record(at, "Unsupported",
-                                  fmt::format("'{}' events are not executed by apcictl run yet "
-                                              "(the 3D compensation module, bus 1310, is not "
-                                              "driven by the executor)",
-                                              nc::event_name(ev.data)));
+                    static_assert(std::is_same_v<E, nc::VectorLineMove>);
+                    return vector_line(at, e);
                 }
             },
             ev.data);
@@ -319,7 +342,17 @@ class Execution {
               std::uint8_t kind, double feed) {
         const PathSegment s = line_segment(
             at, kind == APCI_PROFILE_RAPID ? SegmentKind::kRapid : SegmentKind::kLine, start, end);
-        return spool(at, s, profile(at, kind, end, feed));
+        // Seed 002, peripheral milling: "L-Satz mit programmierten Drehachsen, M128 oder
+        // FUNCTION TCPM aktiv, Korrekturrichtung mit Radiuskorrektur RL oder RR".
+        const bool peripheral =
+            klartext_ && kind == APCI_PROFILE_LINE && tcpm_ && side_ != nc::Compensation::kOff;
+        if (peripheral) {
+            if (!c3_setting(at, c3::kIdxArm, c3::kArmLine, "Arm")) return false;
+            return c3_spool(at, s, profile(at, kind, end, feed));
+        }
+        const bool ok = spool(at, s, profile(at, kind, end, feed));
+        head_pending_ = false;
+        return ok;
     }
 
     bool arc(const BlockRef& at, const nc::ArcMove& a) {
@@ -345,7 +378,14 @@ class Execution {
             p.axes = static_cast<std::uint8_t>(p.axes | (1u << a));
             p.target[a] = end[i];
         }
+        if (head_pending_) add_head(p);
         return p;
+    }
+
+    void add_head(apci_profile& p) const noexcept {
+        p.axes = static_cast<std::uint8_t>(p.axes | (1u << head_b_axis_) | (1u << head_c_axis_));
+        p.target[head_b_axis_] = head_b_;
+        p.target[head_c_axis_] = head_c_;
     }
 
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p) {
@@ -440,6 +480,204 @@ class Execution {
     bool end_of_program(const BlockRef& at) {
         if (comp_on_ && !compensation_off(at)) return false;
         return run_clock();
+    }
+
+    // ---- Klartext 3D compensation (bus 1310; docs/apcictl.md "run", docs/object-map.md 6)
+
+    // The first Klartext 3D event puts the module in the program's start state: no tool, no
+    // deltas, PROG PATH OFF, TCPM off (tip), M108, R0, nothing armed; the head's B and C on the
+    // first two board axes that are not X, Y or Z.
+    bool c3_setup(const BlockRef& at) {
+        if (c3_ready_) return true;
+        std::array<bool, APCI_AXIS_COUNT> used{};
+        for (const int a : axes_) used[static_cast<std::size_t>(a)] = true;
+        std::array<std::int32_t, 2> head{-1, -1};
+        std::size_t found = 0;
+        for (std::int32_t a : {4, 5, 6, 7, 3}) {
+            if (found < head.size() && !used[static_cast<std::size_t>(a)]) head[found++] = a;
+        }
+        head_b_axis_ = head[0];
+        head_c_axis_ = head[1];
+        auto probe = c3_object(c3::kIdxTool);
+        if (board_.read_int(probe).status == APCI_NO_SUCH_DEVICE) {
+            return record(at, "NoSuchDevice",
+                          "Klartext LN lines, TOOL CALL deltas, TCPM and PROG PATH need the 3D "
+                          "compensation module (bus 1310), which this board does not have");
+        }
+        c3_ready_ = true;
+        const std::pair<std::int32_t, std::int32_t> settings[] = {
+            {c3::kIdxAllowOversize, 1},
+            {c3::kIdxTool, 0},
+            {c3::kIdxCorrectionRow, 0},
+            {c3::kIdxAllowOversize, 0},
+            {c3::kIdxProgPath, 0},
+            {c3::kIdxReference, 0},
+            {c3::kIdxTcpm, 0},
+            {c3::kIdxSide, 40},
+            {c3::kIdxArm, 0},
+            {c3::kIdxHeadAxisB, head_b_axis_},
+            {c3::kIdxHeadAxisC, head_c_axis_}};
+        for (int k = 0; k < 3; ++k) {
+            auto o = c3_object(c3::kIdxCallDeltas, k);
+            if (!c3_write(o, 0.0, at, "CallDeltas")) return false;
+        }
+        for (const auto& [index, value] : settings) {
+            auto o = c3_object(index);
+            if (!c3_write(o, value, at, "3D compensation setup")) return false;
+        }
+        return true;
+    }
+
+    bool c3_setting(const BlockRef& at, std::int32_t index, std::int32_t value,
+                    std::string_view what) {
+        if (!c3_setup(at)) return false;
+        auto o = c3_object(index);
+        return c3_write(o, value, at, what);
+    }
+
+    // TOOL CALL n Z DL DR DR2: the tool list's R, R2 and deltas into the module's tool table
+    // row n, the call's deltas, then Tool = n (the board checks the oversize rule).
+    bool tool_call(const BlockRef& at, const nc::ToolCallDeltas& e) {
+        if (!c3_setup(at)) return false;
+        const nc::ToolData* t = tools_ != nullptr && e.tool > 0 ? tools_->find(e.tool) : nullptr;
+        const double row[] = {t ? t->radius_mm() : 0.0, t ? t->r2_mm() : 0.0, t ? t->dl_mm() : 0.0,
+                              t ? t->dr_mm() : 0.0, t ? t->dr2_mm() : 0.0};
+        for (std::int32_t sub = c3::kSubR; sub <= c3::kSubDr2; ++sub) {
+            auto o = apci::object(c3::kBus, c3::kDevTools, e.tool, sub);
+            if (!c3_write(o, row[sub - c3::kSubR], at, "tool table")) return false;
+        }
+        const double call[] = {e.dl, e.dr, e.dr2};
+        for (int k = 0; k < 3; ++k) {
+            auto o = c3_object(c3::kIdxCallDeltas, k);
+            if (!c3_write(o, call[k], at, "CallDeltas")) return false;
+        }
+        auto o = c3_object(c3::kIdxTool);
+        return c3_write(o, std::int32_t{e.tool}, at, "TOOL CALL");
+    }
+
+    // M128 / FUNCTION TCPM / M129 / FUNCTION RESET TCPM. Lines with RL/RR under TCPM are the 3D
+    // module's (peripheral milling), so a 2D radius compensation under way ends first.
+    bool tcpm(const BlockRef& at, const nc::TcpmChange& e) {
+        if (e.on && comp_on_ && !compensation_off(at)) return false;
+        if (!c3_setting(at, c3::kIdxReference, e.reference == nc::ToolReference::kCentre ? 1 : 0,
+                        "Reference") ||
+            !c3_setting(at, c3::kIdxTcpm, e.on ? 1 : 0, "Tcpm"))
+            return false;
+        tcpm_ = e.on;
+        return true;
+    }
+
+    // R0 / RL / RR of a Klartext program: the 3D module's side (LN lines, and L lines under
+    // TCPM); without TCPM an L line's RL/RR is the TC module's 2D radius compensation.
+    bool klartext_compensation(const BlockRef& at, nc::Compensation side) {
+        side_ = side;
+        const std::int32_t code = side == nc::Compensation::kLeft    ? tc::kSideLeft
+                                  : side == nc::Compensation::kRight ? tc::kSideRight
+                                                                     : tc::kSideNone;
+        if (!c3_setting(at, c3::kIdxSide, code, "Side")) return false;
+        if (tcpm_) return true;
+        return compensation(at, side);
+    }
+
+    bool head(const BlockRef& at, const nc::HeadOrientation& e) {
+        if (!c3_setup(at)) return false;
+        if (head_b_axis_ < 0 || head_c_axis_ < 0)
+            return record(at, "Unsupported", "no free board axes for the head's B and C");
+        head_pending_ = true;
+        head_at_ = at;
+        head_b_ = e.b;
+        head_c_ = e.c;
+        return true;
+    }
+
+    // A block that only turns the head: the rotary axes move at the rapid feed.
+    bool head_only_move(const BlockRef& at) {
+        apci_profile p{};
+        p.kind = APCI_PROFILE_RAPID;
+        p.tag = encode_block_tag(at);
+        add_head(p);
+        head_pending_ = false;
+        for (;;) {
+            const auto r = board_.spool(p);
+            if (r.ok()) return true;
+            if (r.status == APCI_BUSY) {
+                if (!make_room()) return false;
+                continue;
+            }
+            return record(at, std::string(apci::status_name(r.status)),
+                          std::string(board_.last_error()));
+        }
+    }
+
+    // LN: N and T into the module, armed, then the line as a G01 profile; the board puts the
+    // compensated tool tip into its end point.
+    bool vector_line(const BlockRef& at, const nc::VectorLineMove& e) {
+        if (!c3_setup(at)) return false;
+        std::int32_t bits = 0;
+        if (e.has_normal) {
+            for (int k = 0; k < 3; ++k) {
+                auto o = c3_object(c3::kIdxSurfaceNormal, k);
+                if (!c3_write(o, e.normal[k], at, "SurfaceNormal")) return false;
+            }
+            bits |= c3::kArmNormal;
+        }
+        // Without TCPM a programmed T is ignored (seed 002); with TCPM and no T the board
+        // takes N.
+        if (e.has_tool_vector && e.tool_vector_programmed) {
+            for (int k = 0; k < 3; ++k) {
+                auto o = c3_object(c3::kIdxToolVector, k);
+                if (!c3_write(o, e.tool_vector[k], at, "ToolVector")) return false;
+            }
+            bits |= c3::kArmToolVector;
+        }
+        if (bits == 0) bits = c3::kArmLine;
+        auto arm = c3_object(c3::kIdxArm);
+        if (!c3_write(arm, bits, at, "Arm")) return false;
+        const PathSegment s = line_segment(at, SegmentKind::kLine, e.start, e.end);
+        return c3_spool(at, s,
+                        profile(at, APCI_PROFILE_LINE, e.end, e.rapid ? kLnRapidFeed : e.feed));
+    }
+
+    // A profile for the 3D module: its refusal is named by the module's LastError.
+    bool c3_spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p) {
+        sink_.programmed(programmed);
+        recent_.add(p.tag, programmed);
+        head_pending_ = false;
+        for (;;) {
+            const auto r = board_.spool(p);
+            if (r.ok()) {
+                ++c3_pending_[p.tag];
+                return true;
+            }
+            if (r.status == APCI_BUSY) {
+                if (!make_room()) return false;
+                continue;
+            }
+            return c3_failure(at, r.status, "LN");
+        }
+    }
+
+    template <typename T>
+    bool c3_write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
+        const auto r = board_.write(o, value);
+        if (r.ok()) return true;
+        return c3_failure(at, r.status, what);
+    }
+
+    // The module's LastError names a refusal (rwmos::comp3d::Refusal); it is cleared for the
+    // next one.
+    bool c3_failure(const BlockRef& at, apci::Status status, std::string_view what) {
+        const std::string text = fmt::format("{}: {}", what, board_.last_error());
+        auto last = c3_object(c3::kIdxLastError);
+        const auto code = board_.read_int(last);
+        if (code && code.value != 0) {
+            auto clear = c3_object(c3::kIdxLastError);
+            (void)board_.write(clear, std::int32_t{0});
+            return record(at, std::string(c3::refusal_name(static_cast<c3::Refusal>(code.value))),
+                          fmt::format("{} ({})", text,
+                                      c3::refusal_message(static_cast<c3::Refusal>(code.value))));
+        }
+        return record(at, std::string(apci::status_name(status)), text);
     }
 
     // ---- board access
@@ -605,6 +843,16 @@ class Execution {
         s.center[z] -= start_offset_;
         s.end[z] -= end_offset;
         start_offset_ = end_offset;
+        // A line the 3D module compensated is a contour element (the board's spooler, which
+        // knows only the TC module, calls it uncompensated; the TC's length compensation did
+        // not act on it, as the offsets above say).
+        if (s.role == Role::kUncompensated && b.role != APCI_ROLE_RAPID) {
+            const auto it = c3_pending_.find(b.tag);
+            if (it != c3_pending_.end()) {
+                s.role = Role::kContour;
+                if (--it->second == 0) c3_pending_.erase(it);
+            }
+        }
         return s;
     }
 
@@ -645,7 +893,19 @@ class Execution {
     int comp_plane_ = 17;  // the plane of the compensation under way or last run
     bool comp_on_ = false;
     bool comp_plane_seen_ = false;
-    double length_ = 0.0;        // WkzLen of the current tool
+    double length_ = 0.0;  // WkzLen of the current tool
+    // Klartext (3D compensation module, bus 1310).
+    bool klartext_ = false;
+    bool c3_ready_ = false;
+    bool tcpm_ = false;
+    nc::Compensation side_ = nc::Compensation::kOff;
+    std::int32_t head_b_axis_ = 4;
+    std::int32_t head_c_axis_ = 5;
+    bool head_pending_ = false;
+    std::unordered_map<std::uint32_t, std::uint32_t> c3_pending_;  // 3D lines not yet read back
+    BlockRef head_at_{};
+    double head_b_ = 0.0;
+    double head_c_ = 0.0;
     double start_offset_ = 0.0;  // length compensation at the end of the last segment read
     RecentMoves recent_;
     std::vector<apci_segment> segments_;

@@ -51,4 +51,10 @@ struct SideNormal {
 // kPlungeAngleTolerance of T.
 SideNormal side_normal(const Eigen::Vector3d& motion, const Eigen::Vector3d& t, Side side) noexcept;
 
+// Peripheral milling where the motion gives no side (an LN without N at the point of the line
+// before: seed 002, peripheral example, block 13 repeats block 12's point): the previous line's
+// normal, made perpendicular to T and unit. kNoSideFromMotion when it is within
+// kPlungeAngleTolerance of T.
+SideNormal previous_side_normal(const Eigen::Vector3d& previous, const Eigen::Vector3d& t) noexcept;
+
 }  // namespace rwmos::comp3d

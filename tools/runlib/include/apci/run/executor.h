@@ -13,6 +13,9 @@
 //             sides); G40: STATUS = 0 (the held profile is spooled with the departure)
 //   G0..G3    a spooled profile tagged with the block number; Busy: run the clock, retry
 //   M30       STATUS = 0 if compensation is still on, then run until idle
+//   Klartext  the 3D compensation module (bus 1310): TOOL CALL into its tool table and Tool,
+//             M107/M108, TCPM, PROG PATH, RL/RR as its Side; LN as armed N/T and a G01 whose end
+//             the board compensates; B/C of L lines as board axes 4 and 5 (the first free ones)
 //
 // The first board error stops the run: the axes finish the move under way (the board holds
 // after a TC error), the error is recorded with its block and its Table 4 bit name (or the
