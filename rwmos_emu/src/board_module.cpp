@@ -49,7 +49,8 @@ std::span<const Entry<BoardModule>> BoardModule::table() const noexcept {
     static constexpr std::array<Entry<M>, 16> kTable{{
         {ro_int(board::kIdxFirmwareVersion, "FirmwareVersion", kFirmwareVersion),
          &M::read_firmware_version, nullptr},
-        {ro_int(board::kIdxOptions, "Options", board::kOptionTc | board::kOptionOtc), &M::read_options, nullptr},
+        {ro_int(board::kIdxOptions, "Options", board::kOptionTc | board::kOptionOtc | board::kOptionTempComp),
+         &M::read_options, nullptr},
         {ro_int(board::kIdxAxisCount, "AxisCount", kAxisCount), &M::read_axis_count, nullptr},
         {{board::kDevice, board::kIdxInterpolationCycle, board::kIdxInterpolationCycle, 0,
           "InterpolationCycle", ValueType::kInt32, Access::kReadWrite, kMinInterpolationCycleUs,
@@ -80,7 +81,8 @@ Status BoardModule::read_firmware_version(const ObjectInfo&, const Address&, Val
 
 Status BoardModule::read_options(const ObjectInfo&, const Address&, Value& out) {
     out = Value::of_int((state_.config.option_tc ? board::kOptionTc : 0) |
-                        (state_.config.option_otc ? board::kOptionOtc : 0));
+                        (state_.config.option_otc ? board::kOptionOtc : 0) |
+                        (state_.config.option_temp_comp ? board::kOptionTempComp : 0));
     return Status::kOk;
 }
 

@@ -19,7 +19,8 @@ TEST_F(BoardModule, FirmwareVersionIsTheEmulatorsVersion) {
 TEST_F(BoardModule, AxisCountIsEight) { EXPECT_EQ(read_int(board_obj(board::kIdxAxisCount)), 8); }
 
 TEST_F(BoardModule, OptionsReportOptionTcAndOtc) {
-    EXPECT_EQ(read_int(board_obj(board::kIdxOptions)), board::kOptionTc | board::kOptionOtc);
+    EXPECT_EQ(read_int(board_obj(board::kIdxOptions)),
+              board::kOptionTc | board::kOptionOtc | board::kOptionTempComp);
 }
 
 TEST_F(BoardModule, InterpolationCycleDefaultsToOneMillisecondAndIsStored) {

@@ -39,11 +39,12 @@ struct Snapshot {
     std::unique_ptr<rwmos::TcState> tc;
     std::unique_ptr<rwmos::Comp3dState> comp3d;
     rwmos::OtcState otc;
+    rwmos::TempCompState temp_comp;
 };
 inline Snapshot snapshot(const rwmos::Board& board) {
     const auto& s = board.state();
     return Snapshot{s.interpolation_cycle_us, s.pu, std::make_unique<rwmos::TcState>(s.tc),
-                    std::make_unique<rwmos::Comp3dState>(s.comp3d), s.otc};
+                    std::make_unique<rwmos::Comp3dState>(s.comp3d), s.otc, s.temp_comp};
 }
 
 inline bool same_deltas(const rwmos::comp3d::Deltas& a, const rwmos::comp3d::Deltas& b) {
@@ -117,6 +118,11 @@ inline ::testing::AssertionResult unchanged(const Snapshot& before, const rwmos:
         if (!same_group(s.tc.group(n), t.group(n)))
             return ::testing::AssertionFailure() << "group " << n << " changed";
     if (!same_comp3d(*before.comp3d, s.comp3d)) return ::testing::AssertionFailure() << "3D compensation changed";
+    const auto& tt = before.temp_comp;
+    if (tt.comp != s.temp_comp.comp || tt.on != s.temp_comp.on || tt.type != s.temp_comp.type ||
+        tt.tool_holder != s.temp_comp.tool_holder || tt.head_axis_b != s.temp_comp.head_axis_b ||
+        tt.head_axis_c != s.temp_comp.head_axis_c || tt.ramp_velocity != s.temp_comp.ramp_velocity)
+        return ::testing::AssertionFailure() << "temperature compensation changed";
     if (!same_otc(s.otc, before.otc)) return ::testing::AssertionFailure() << "OTC state changed";
     return ::testing::AssertionSuccess();
 }

@@ -54,6 +54,8 @@ namespace c3 = rwmos::comp3d;
 Address C0(std::int32_t idx, std::int32_t sub = 0) { return {c3::kBus, c3::kDevSettings, idx, sub}; }
 Address C1(std::int32_t sub) { return {c3::kBus, c3::kDevTools, 1, sub}; }
 Address C2(std::int32_t sub) { return {c3::kBus, c3::kDevCorrections, 1, sub}; }
+namespace tcomp = rwmos::tempcomp;
+Address TT(std::int32_t idx, std::int32_t sub = 0) { return {tcomp::kBus, tcomp::kDevice, idx, sub}; }
 // The range of a 3D compensation value (+-1e5) with NaN and infinity.
 std::vector<BadValue> c3_range(double min = -1.0e5) {
     return {low(D(min - (min == 0.0 ? 0.001 : 1.0))), high(D(1.0e5 + 1.0)), invalid(kNaN), invalid(kInf)};
@@ -71,7 +73,7 @@ std::vector<ObjectRow> object_rows() {
     std::vector<ObjectRow> rows{
         // ---- Board, bus 1000.
         {"FirmwareVersion", B(1), kI, r, I(0x010000), {}, true, {}},
-        {"Options", B(2), kI, r, I(board::kOptionTc | board::kOptionOtc), {}, true, {}},
+        {"Options", B(2), kI, r, I(board::kOptionTc | board::kOptionOtc | board::kOptionTempComp), {}, true, {}},
         {"AxisCount", B(3), kI, r, I(8), {}, true, {}},
         {"InterpolationCycle", B(4), kI, rw, I(1000), I(2000), true, {low(I(249)), high(I(10001))}},
         {"PU", B(5), kI, rw, I(0), I(2), true, {low(I(-1)), high(I(3))}},
@@ -174,7 +176,23 @@ std::vector<ObjectRow> object_rows() {
          {low(D(-450001.0)), high(D(450001.0)), invalid(kInf)}},
         {"OtcWearRadius", O2(10), kD, r, D(0.0), {}, true, {}},
         {"OtcWearRadiusCont", O2(11), kD, r, D(0.0), {}, true, {}},
+        // ---- Temperature compensation, bus 1320.
+        {"TT_TOOL_TEMP_COMP0", TT(1, 0), kD, rw, D(0.0), D(0.01), true, c3_range()},
+        {"TT_TOOL_TEMP_COMP1", TT(1, 1), kD, rw, D(0.0), D(-0.02), true, c3_range()},
+        {"TT_TOOL_TEMP_COMP2", TT(1, 2), kD, rw, D(0.0), D(0.03), true, c3_range()},
+        {"TT_TOOL_TEMP_COMP_ON", TT(2), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"TT_ToolHolder", TT(4), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"TT_HeadAxisB", TT(5), kI, rw, I(4), I(6), true, {low(I(-1)), high(I(8))}},
+        {"TT_HeadAxisC", TT(6), kI, rw, I(-1), I(5), true, {low(I(-2)), high(I(8))}},
+        {"TT_RampVelocity", TT(7), kD, rw, D(1.0), D(2.5), true,
+         {low(D(0.0)), high(D(1.0e5 + 1.0)), invalid(kNaN), invalid(kInf)}},
     };
+    for (std::int32_t axis = 0; axis < 8; ++axis) {
+        rows.push_back({"TT_TEMP_COMP_TYPE" + std::to_string(axis), TT(3, axis), kI, rw, I(0),
+                        I(4), true, {low(I(-1)), high(I(256))}});
+        rows.push_back(
+            {"TT_Offset" + std::to_string(axis), TT(10, axis), kD, r, D(0.0), {}, true, {}});
+    }
     for (std::int32_t axis = 0; axis < 8; ++axis)
         rows.push_back({"OtcWear" + std::to_string(axis), O2(12, axis), kD, r, D(0.0), {}, true, {}});
     for (std::int32_t axis = 0; axis < 8; ++axis)

@@ -25,6 +25,9 @@ struct BoardConfig {
     // The OTC module (bus 1330, online tool compensation, DESIGN.md section 4; design option,
     // Options bit 0x02): without it every access to bus 1330 answers NoSuchDevice.
     bool option_otc = true;
+    // Temperature compensation in tool direction (bus 1320; seed 004: "eine Option, die vorher
+    // freigeschaltet werden muß"). Options bit 0x04.
+    bool option_temp_comp = true;
 };
 
 class Board {

@@ -17,6 +17,8 @@
 #include "rwmos/otc_engine.h"
 #include "rwmos/otc_module.h"
 #include "rwmos/otc_state.h"
+#include "rwmos/tempcomp_module.h"
+#include "rwmos/tempcomp_state.h"
 #include "rwmos/tc_module.h"
 #include "rwmos/tc_state.h"
 
@@ -61,12 +63,18 @@ struct Board::State {
     // OTC module (bus 1330): its objects' state and the per-cycle wear offsets.
     OtcState otc;
     OtcEngine otc_engine;
+    // Temperature compensation in tool direction (bus 1320), per interpolation cycle.
+    TempCompState temp_comp;
+    TempCompEngine temp_comp_engine;
+    // The executor's cycle-offset modules, in order: OTC wear, then temperature.
+    motion::CycleOffsetsChain cycle_offsets;
 
     // The modules serve the fields above; the dictionary routes to them.
     BoardModule board_module;
     TcModule tc_module;
     Comp3dModule comp3d_module;
     OtcModule otc_module;
+    TempCompModule temp_comp_module;
     objif::Dictionary dictionary;
 };
 

@@ -25,6 +25,7 @@ inline constexpr std::int32_t kIdxRs = 30;               // int w, rs() command
 // Options register bits.
 inline constexpr std::int32_t kOptionTc = 0x01;   // optionTC: TC module (bus 1300) present
 inline constexpr std::int32_t kOptionOtc = 0x02;  // OTC module (bus 1330) present (design)
+inline constexpr std::int32_t kOptionTempComp = 0x04;  // temperature compensation (bus 1320)
 
 // PU: the unit of lengths given to the firmware (RADIUS, WkzLen, positions).
 enum PuUnit : std::int32_t { kPuMillimetre = 0, kPuMicrometre = 1, kPuInch = 2 };
@@ -175,5 +176,23 @@ inline constexpr std::int32_t kIdxWear = 12;           // double r: V.G.WZ_AKT.W
 inline constexpr std::int32_t kGrindingToolType = 2;  // P-TOOL-00001: 2 Schleifwerkzeug
 inline constexpr std::int32_t kNoKinematics = 0;
 }  // namespace otc
+
+// ---- Temperature compensation in tool direction, bus 1320 (SINUMERIK seed 004; design numbers,
+// DESIGN.md section 4; docs/object-map.md section 7, docs/temperature-compensation.md).
+namespace tempcomp {
+inline constexpr std::int32_t kBus = 1320;
+inline constexpr std::int32_t kDevice = 0;
+inline constexpr std::int32_t kIdxToolTempComp = 1;   // double r/w, Sub 0..2: SD 42960 [0..2]
+inline constexpr std::int32_t kIdxToolTempCompOn = 2;  // int r/w 0..1: MD 20390
+inline constexpr std::int32_t kIdxTempCompType = 3;   // int r/w 0..255, Sub = axis: MD 32750
+inline constexpr std::int32_t kIdxToolHolder = 4;     // int r/w 0..1: orientable tool holder
+inline constexpr std::int32_t kIdxHeadAxisB = 5;      // int r/w 0..7: board axis of the head's B
+inline constexpr std::int32_t kIdxHeadAxisC = 6;      // int r/w -1..7: of its C, -1 none
+inline constexpr std::int32_t kIdxRampVelocity = 7;   // double r/w: PU/s, ramp to zero
+inline constexpr std::int32_t kIdxOffset = 10;        // double r, Sub = axis: the displacement
+inline constexpr std::int32_t kNoHeadAxis = -1;
+inline constexpr double kDefaultRampVelocity = 1.0;  // PU/s: 1 um per 1 ms cycle
+inline constexpr double kMaxValue = 1e5;
+}  // namespace tempcomp
 
 }  // namespace rwmos

@@ -10,6 +10,8 @@
 // time-dependent state is under way (per_cycle() true) it steps every cycle.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "rwmos/motion/interpolator.h"
@@ -35,6 +37,43 @@ public:
                       AxisVector& pos) noexcept = 0;
     // The offsets at cycle k of n of `m` without stepping (valid while !per_cycle), added to `pos`.
     virtual void at(const Move* m, std::uint64_t k, std::uint64_t n, AxisVector& pos) const noexcept = 0;
+};
+
+// Several modules' offsets (OTC wear, temperature), added in order: each module sees the
+// position with the offsets of those before it. Every module is told of every move and every
+// cycle; the chain needs every cycle run when any of them does.
+class CycleOffsetsChain final : public CycleOffsets {
+public:
+    static constexpr std::size_t kMaxModules = 4;
+    // Not owned; false when the chain is full.
+    bool add(CycleOffsets* module) noexcept {
+        if (count_ == kMaxModules) return false;
+        modules_[count_++] = module;
+        return true;
+    }
+
+    void move_started(const Move& m, const Move* next) noexcept override {
+        for (std::size_t i = 0; i < count_; ++i) modules_[i]->move_started(m, next);
+    }
+    void move_finished(const Move& m, std::uint64_t k, std::uint64_t n) noexcept override {
+        for (std::size_t i = 0; i < count_; ++i) modules_[i]->move_finished(m, k, n);
+    }
+    bool per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const noexcept override {
+        bool any = false;
+        for (std::size_t i = 0; i < count_; ++i) any = modules_[i]->per_cycle(m, k, n) || any;
+        return any;
+    }
+    void step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
+              AxisVector& pos) noexcept override {
+        for (std::size_t i = 0; i < count_; ++i) modules_[i]->step(m, k, n, dt, pos);
+    }
+    void at(const Move* m, std::uint64_t k, std::uint64_t n, AxisVector& pos) const noexcept override {
+        for (std::size_t i = 0; i < count_; ++i) modules_[i]->at(m, k, n, pos);
+    }
+
+private:
+    std::array<CycleOffsets*, kMaxModules> modules_{};
+    std::size_t count_ = 0;
 };
 
 }  // namespace rwmos::motion

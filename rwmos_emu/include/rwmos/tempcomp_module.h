@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// The temperature compensation module, bus 1320 (SINUMERIK seed 004; design numbers): SD 42960,
+// MD 20390, MD 32750, the orientable tool holder and the ramp; the displacement it applies.
+// docs/object-map.md section 7 is the spec page.
+#pragma once
+
+#include <span>
+
+#include "objif/dictionary.h"
+#include "rwmos/board.h"
+#include "rwmos/tempcomp_state.h"
+
+namespace rwmos {
+
+class TempCompModule : public objif::TableModule<TempCompModule> {
+  public:
+    explicit TempCompModule(Board::State& state) noexcept : state_(state) {}
+    std::int32_t bus() const noexcept override;
+    std::string_view name() const noexcept override { return "Temperature compensation"; }
+    // Seed 004: "eine Option, die vorher freigeschaltet werden muß"
+    // (BoardConfig::option_temp_comp).
+    bool present() const noexcept override;
+    std::span<const objif::Entry<TempCompModule>> table() const noexcept;
+
+  private:
+    using Status = objif::Status;
+    using Info = objif::ObjectInfo;
+    using Address = objif::Address;
+    using Value = objif::Value;
+
+    Status read_comp(const Info&, const Address& a, Value& out);
+    Status write_comp(const Info&, const Address& a, const Value& v);
+    Status read_int(const Info&, const Address& a, Value& out);
+    Status write_int(const Info&, const Address& a, const Value& v);
+    Status read_ramp(const Info&, const Address&, Value& out);
+    Status write_ramp(const Info&, const Address&, const Value& v);
+    Status read_offset(const Info&, const Address& a, Value& out);
+
+    std::int32_t& int_field(const Address& a) noexcept;
+
+    Board::State& state_;
+};
+
+}  // namespace rwmos
