@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -262,6 +263,70 @@ TEST(DaemonSocket, OptionNoOptionTcRemovesTheTcModule) {
     apci_object_descriptor plane{1300, 0, 12, 0, 0};
     std::int32_t v = 0;
     EXPECT_EQ(apci_read_int(b, &plane, &v), APCI_NO_SUCH_DEVICE);
+    apci_close(b);
+}
+
+// ---- Time
+
+std::uint64_t board_cycles(apci_board* b) {
+    apci_motion_status st{};
+    EXPECT_EQ(apci_motion_status_get(b, &st), APCI_OK) << apci_last_error(b);
+    return st.now;
+}
+
+TEST(DaemonTime, WithoutRealtimeTheClockRunsOnlyWhenAClientStepsIt) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apci_board* b = nullptr;
+    ASSERT_EQ(apci_open(d->unix_uri().c_str(), &b), APCI_OK);
+    const std::uint64_t before = board_cycles(b);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    EXPECT_EQ(board_cycles(b), before);
+    ASSERT_EQ(apci_step(b, 7, nullptr), APCI_OK);
+    EXPECT_EQ(board_cycles(b), before + 7);
+    apci_close(b);
+}
+
+TEST(DaemonTime, RealtimePacesTheClockToWallTime) {
+    DaemonOptions o;
+    o.extra_args = {"--realtime"};
+    auto d = Daemon::start(o);
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->log().find("wall time"), std::string::npos) << d->log();
+    apci_board* b = nullptr;
+    ASSERT_EQ(apci_open(d->unix_uri().c_str(), &b), APCI_OK);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::uint64_t c0 = board_cycles(b);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const std::uint64_t c1 = board_cycles(b);
+    const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count();
+    // One cycle per millisecond (InterpolationCycle 1000 us); the pacer may lag by a few ticks.
+    EXPECT_LE(c1 - c0, static_cast<std::uint64_t>(wall_ms) + 2);
+    EXPECT_GE(c1 - c0, static_cast<std::uint64_t>(wall_ms) * 8 / 10) << "wall " << wall_ms << " ms";
+    apci_close(b);
+}
+
+TEST(DaemonTime, RealtimeMovesTheAxesAtTheProgrammedFeed) {
+    DaemonOptions o;
+    o.extra_args = {"--realtime"};
+    auto d = Daemon::start(o);
+    ASSERT_NE(d, nullptr);
+    apci_board* b = nullptr;
+    ASSERT_EQ(apci_open(d->unix_uri().c_str(), &b), APCI_OK);
+    apci_profile p{};
+    p.kind = APCI_PROFILE_LINE;
+    p.axes = 0x01;
+    p.feed = 6000.0;  // 100 units a second
+    p.target[0] = 1000.0;
+    ASSERT_EQ(apci_spool_profile(b, &p, nullptr), APCI_OK) << apci_last_error(b);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    apci_motion_status st{};
+    ASSERT_EQ(apci_motion_status_get(b, &st), APCI_OK);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_GT(st.position[0], 0.0) << "the axis moves without any client stepping the clock";
+    EXPECT_LE(st.position[0], 100.0 * seconds + 1.0);
+    EXPECT_GE(st.position[0], 100.0 * seconds * 0.7);
     apci_close(b);
 }
 

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "board_host.h"
 
+#include "rwmos/board_state.h"
+#include "rwmos/motion_wire.h"
+
 namespace rwmos_emu {
 
 rwmos::FrameStream::Result BoardHost::serve_stream(rwmos::FrameStream& stream,
@@ -18,6 +21,24 @@ void BoardHost::serve_frame(std::span<const std::uint8_t> request, std::vector<s
     const objif::FrameError e = server_.serve(request, reply);
     ++counts_.frames;
     if (e != objif::FrameError::kNone) ++counts_.rejected;
+}
+
+std::uint64_t BoardHost::pace(std::chrono::steady_clock::time_point now) {
+    const std::lock_guard lock(mutex_);
+    const std::int32_t cycle_us = board_.state().interpolation_cycle_us;
+    const std::uint64_t board_now =
+        rwmos::serve_clock(board_, objif::ClockRequest{objif::ClockMode::kQuery, 0}).now;
+    if (!anchored_ || cycle_us != anchor_cycle_us_) {
+        anchored_ = true;
+        anchor_time_ = now;
+        anchor_cycle_ = board_now;
+        anchor_cycle_us_ = cycle_us;
+        return 0;
+    }
+    const auto elapsed = std::chrono::duration_cast<std::chrono::microseconds>(now - anchor_time_).count();
+    const std::uint64_t target = anchor_cycle_ + static_cast<std::uint64_t>(elapsed / cycle_us);
+    if (board_now >= target) return 0;
+    return rwmos::serve_clock(board_, objif::ClockRequest{objif::ClockMode::kStep, target - board_now}).ran;
 }
 
 ServedCounts BoardHost::counts() const {

@@ -5,6 +5,7 @@
 // requests are serialised on one board state.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <span>
@@ -34,11 +35,23 @@ public:
 
     ServedCounts counts() const;
 
+    // --realtime: advances the interpolation clock so that the board has
+    // run at least one cycle per interpolation cycle of wall time since
+    // pacing began (clients may step it further ahead; it then waits).
+    // A change of InterpolationCycle re-anchors the pace. Returns the cycles
+    // it ran.
+    std::uint64_t pace(std::chrono::steady_clock::time_point now);
+
 private:
     mutable std::mutex mutex_;
     rwmos::Board board_;
     rwmos::FrameServer server_;
     ServedCounts counts_;
+    // Pacing anchor: wall time and board cycle when pacing (re)started.
+    bool anchored_ = false;
+    std::chrono::steady_clock::time_point anchor_time_{};
+    std::uint64_t anchor_cycle_ = 0;
+    std::int32_t anchor_cycle_us_ = 0;
 };
 
 }  // namespace rwmos_emu

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <sys/epoll.h>
 #include <sys/signalfd.h>
+#include <sys/timerfd.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -44,7 +45,9 @@ struct Options {
 struct Fds {
     int epoll = -1;
     int signal = -1;
+    int timer = -1;  // --realtime pacing
     ~Fds() {
+        if (timer >= 0) ::close(timer);
         if (signal >= 0) ::close(signal);
         if (epoll >= 0) ::close(epoll);
     }
@@ -98,13 +101,22 @@ int serve(const Options& o) {
         return kExitFailure;
     }
     shm.start();
-    if (o.realtime)
-        log(Level::kWarn, "--realtime: this board has no interpolation clock to pace yet; "
-                          "requests are served as they come");
+    if (o.realtime) {
+        // Every millisecond the clock catches up with wall time (DESIGN.md section 5).
+        fds.timer = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
+        const itimerspec every_ms{{0, 1'000'000}, {0, 1'000'000}};
+        if (fds.timer < 0 || ::timerfd_settime(fds.timer, 0, &every_ms, nullptr) != 0 ||
+            !add_watch(fds.epoll, fds.timer)) {
+            log(Level::kError, "--realtime: cannot set up the pacing timer: {}", std::strerror(errno));
+            return kExitFailure;
+        }
+        host.pace(std::chrono::steady_clock::now());
+    }
 
     rwmos::RegisteredDaemon self{::getpid(), o.socket, o.shm};
     if (!rwmos::register_daemon(self, why)) log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
-    log(Level::kInfo, "serving one board (optionTC {}){}{}{}{}", o.no_option_tc ? "off" : "on",
+    log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}", o.no_option_tc ? "off" : "on",
+        o.realtime ? "wall" : "virtual",
         o.socket.empty() ? "" : " on socket ", o.socket, o.shm.empty() ? "" : " and dual-port RAM file ",
         o.shm);
 
@@ -127,6 +139,10 @@ int serve(const Options& o) {
                     log(Level::kInfo, "{}: shutting down", info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM");
                     running = false;
                 }
+            } else if (fd == fds.timer) {
+                std::uint64_t expirations = 0;
+                if (::read(fds.timer, &expirations, sizeof expirations) > 0)
+                    host.pace(std::chrono::steady_clock::now());
             } else if (fd == sockets.listen_fd()) {
                 sockets.on_listen_ready();
             } else {
@@ -155,7 +171,9 @@ int run(int argc, char** argv) {
     app.add_option("--shm", o.shm,
                    "Also serve a dual-port RAM mailbox in this file (created mode 0660), e.g. "
                    "/dev/shm/rwmos-emu");
-    app.add_flag("--realtime", o.realtime, "Pace the interpolation clock to wall time");
+    app.add_flag("--realtime", o.realtime,
+                 "Pace the interpolation clock to wall time (one cycle per InterpolationCycle); "
+                 "without it the clock runs only when a client steps it (virtual time)");
     app.add_flag("--no-option-tc", o.no_option_tc,
                  "Emulate firmware without optionTC: the TC module (bus 1300) is absent");
     app.add_option("--max-clients", o.max_clients, "Most socket clients at once (default 64)")
