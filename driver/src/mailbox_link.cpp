@@ -66,6 +66,7 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
         mb::HostOptions options;
         options.token = static_cast<std::uint32_t>(::getpid());
         options.timeout = timeout;
+        options.adaptive = &spin_;
         options.lock_holder_gone = holder_process_gone;
         const Status s = mb::exchange(*window_, options, request, reply, why);
         if (s == Status::kOk) return s;

@@ -39,6 +39,8 @@ private:
     std::string name_;
     std::unique_ptr<objif::mailbox::Window> window_;
     std::uint32_t generation_ = 0;  // the board's generation when opened
+    // How long to spin for a reply before sleeping: learnt from the replies.
+    objif::mailbox::AdaptiveSpin spin_{std::chrono::microseconds(1), std::chrono::microseconds(20)};
     std::string lost_;
 };
 

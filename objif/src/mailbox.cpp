@@ -168,10 +168,12 @@ void set_board_state(Window& w, BoardState state) {
     w.wake(kOffStatus);
 }
 
-bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
-                  std::chrono::nanoseconds timeout) {
+namespace {
+bool take_request_impl(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
+                       std::chrono::nanoseconds timeout, bool& caught) {
     constexpr auto kRequest = static_cast<std::uint32_t>(MailboxStatus::kRequest);
     std::uint32_t s = spin_until(w, MailboxStatus::kRequest, spin);
+    caught = s == kRequest;
     if (s != kRequest) {
         sleep_on_status(w, kOffBoardSleeping, s, timeout);
         s = w.load(kOffStatus);
@@ -186,6 +188,21 @@ bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::na
     request.resize(length);
     w.read(kOffRequest + 4, request.data(), length);
     return true;
+}
+}  // namespace
+
+bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
+                  std::chrono::nanoseconds timeout) {
+    bool caught = false;
+    return take_request_impl(w, request, spin, timeout, caught);
+}
+
+bool take_request(Window& w, std::vector<std::uint8_t>& request, AdaptiveSpin& spin,
+                  std::chrono::nanoseconds timeout) {
+    bool caught = false;
+    const bool got = take_request_impl(w, request, spin.budget(), timeout, caught);
+    spin.learn(caught);
+    return got;
 }
 
 void put_reply(Window& w, std::span<const std::uint8_t> reply) {
@@ -241,10 +258,15 @@ struct Exchange {
 
     void unlock() { w.store(kOffHostLock, 0); }
 
+    std::chrono::nanoseconds spin() const {
+        return options.adaptive != nullptr ? options.adaptive->budget() : options.spin;
+    }
+
     // Waits until the status leaves Request/Busy; true when it is Reply.
     Status wait_reply() {
         constexpr auto kReply = static_cast<std::uint32_t>(MailboxStatus::kReply);
-        std::uint32_t s = spin_until(w, MailboxStatus::kReply, options.spin);
+        std::uint32_t s = spin_until(w, MailboxStatus::kReply, spin());
+        if (options.adaptive != nullptr) options.adaptive->learn(s == kReply);
         for (;;) {
             if (s == kReply) return Status::kOk;
             if (w.error() != Status::kOk) return window_failed();
@@ -264,7 +286,7 @@ struct Exchange {
             // Wake now and then to notice a board that stopped without waking us.
             sleep_on_status(w, kOffHostSleeping, s,
                             std::min<std::chrono::nanoseconds>(remaining, std::chrono::milliseconds(50)));
-            s = spin_until(w, MailboxStatus::kReply, options.spin);
+            s = spin_until(w, MailboxStatus::kReply, spin());
         }
     }
 

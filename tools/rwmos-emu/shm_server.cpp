@@ -19,9 +19,11 @@ namespace rwmos_emu {
 namespace mb = objif::mailbox;
 
 namespace {
-// After a request the board spins this long for the next one before it
-// sleeps: back-to-back requests are answered without a futex round trip.
-constexpr std::chrono::microseconds kSpin{50};
+// After a request the board spins up to this long for the next one before it
+// sleeps, so back-to-back requests are answered without a futex round trip;
+// the budget shrinks while requests do not come that fast (AdaptiveSpin).
+constexpr std::chrono::microseconds kShortestSpin{1};
+constexpr std::chrono::microseconds kLongestSpin{50};
 // Sleeps between looks at the mailbox. A host that can write but not wake
 // the board (a PCI I/O BAR, read and written through sysfs) is noticed by
 // these looks: within 1 ms while requests come, within 64 ms after a quiet
@@ -84,8 +86,9 @@ void ShmServer::serve_loop() {
     request.reserve(mb::kRecordCapacity);
     reply.reserve(mb::kRecordCapacity);
     std::chrono::milliseconds sleep = kFirstSleep;
+    mb::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
     while (!stop_.load(std::memory_order_relaxed)) {
-        if (!mb::take_request(*window_, request, kSpin, sleep)) {
+        if (!mb::take_request(*window_, request, spin, sleep)) {
             sleep = std::min(sleep * 2, kLongestSleep);
             continue;
         }

@@ -25,6 +25,7 @@
 // through sysfs answers 1, 2 or 4 bytes at a time).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -134,6 +135,30 @@ private:
     bool can_sleep_;
 };
 
+// A spin budget that follows how the other side behaves: it doubles (up to
+// `longest`) each time the awaited change came while spinning, and halves
+// (down to `shortest`) each time the spin ran out and the waiter slept. While
+// the other side runs on another core, round trips stay in the microsecond
+// range; on a loaded machine, where the other side often is not running,
+// spinning would only take its CPU away, so the waiter soon sleeps at once
+// and is woken through the futex like any blocked process.
+class AdaptiveSpin {
+public:
+    AdaptiveSpin(std::chrono::nanoseconds shortest, std::chrono::nanoseconds longest) noexcept
+        : shortest_(shortest), longest_(longest), budget_(longest) {}
+    std::chrono::nanoseconds budget() const noexcept { return budget_; }
+    // `caught`: the change came within the spin.
+    void learn(bool caught) noexcept {
+        budget_ = caught ? std::min(budget_ * 2, longest_) : std::max(budget_ / 2, shortest_);
+        if (caught && budget_ < shortest_ * 2) budget_ = shortest_ * 2;
+    }
+
+private:
+    std::chrono::nanoseconds shortest_;
+    std::chrono::nanoseconds longest_;
+    std::chrono::nanoseconds budget_;
+};
+
 // Why a window is not a usable mailbox, in words; "" when it is.
 std::string check_layout(Window& w);
 
@@ -153,6 +178,9 @@ void set_board_state(Window& w, BoardState state);
 // frame bytes given are then empty.
 bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
                   std::chrono::nanoseconds timeout);
+// The same with a spin budget that learns from each wait.
+bool take_request(Window& w, std::vector<std::uint8_t>& request, AdaptiveSpin& spin,
+                  std::chrono::nanoseconds timeout);
 // Writes the reply record and sets Reply, waking a sleeping host.
 void put_reply(Window& w, std::span<const std::uint8_t> reply);
 // Wakes a board sleeping in take_request (used to stop the serving thread).
@@ -163,6 +191,7 @@ void wake_board(Window& w);
 struct HostOptions {
     std::uint32_t token = 1;                      // this host's lock token (non-zero)
     std::chrono::nanoseconds spin{20'000};        // spin before sleeping while waiting
+    AdaptiveSpin* adaptive = nullptr;             // if set: its budget instead of `spin`, and it learns
     std::chrono::milliseconds timeout{5'000};     // whole exchange
     // Whether a lock held by `token` belongs to a host that is gone (e.g. a
     // dead process); such a lock is taken over. Null: never.
