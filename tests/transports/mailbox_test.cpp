@@ -222,4 +222,29 @@ TEST_F(Mailbox, SetBoardStateServingBumpsTheGeneration) {
     EXPECT_EQ(window_.load(mb::kOffGeneration), g + 1);
 }
 
+TEST(AdaptiveSpin, StartsAtTheLongestHalvesOnEachMissDoublesOnEachCatch) {
+    mb::AdaptiveSpin spin(1us, 16us);
+    EXPECT_EQ(spin.budget(), 16us);
+    spin.learn(false);
+    EXPECT_EQ(spin.budget(), 8us);
+    for (int i = 0; i < 10; ++i) spin.learn(false);
+    EXPECT_EQ(spin.budget(), 1us) << "never below the shortest";
+    spin.learn(true);
+    EXPECT_EQ(spin.budget(), 2us);
+    for (int i = 0; i < 10; ++i) spin.learn(true);
+    EXPECT_EQ(spin.budget(), 16us) << "never above the longest";
+}
+
+TEST_F(Mailbox, AdaptiveHostSpinLearnsFromAnAnsweringBoard) {
+    start_board();
+    mb::AdaptiveSpin spin(1us, 20us);
+    auto o = host();
+    o.adaptive = &spin;
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    for (int i = 0; i < 20; ++i) ASSERT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kOk) << why;
+    EXPECT_GE(spin.budget(), 1us);
+    EXPECT_LE(spin.budget(), 20us);
+}
+
 }  // namespace
