@@ -8,6 +8,7 @@
 // stopped by this program.
 // Targets on the 2-core reference machine (docs/performance.md): inproc
 // under 100 ns, shm under 2 us, unix under 20 us (medians).
+#include <benchmark/benchmark.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -16,15 +17,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
-#include <thread>
-#include <vector>
-
 #include <filesystem>
 #include <fstream>
 #include <memory>
-
-#include <benchmark/benchmark.h>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "apci/apci.h"
 #if defined(APCI_BENCH_USB)
@@ -37,7 +35,7 @@ namespace {
 
 // The emulator daemon in a temporary directory, for the whole program.
 class DaemonProcess {
-public:
+  public:
     DaemonProcess() {
         char pattern[] = "/tmp/apci-bench-XXXXXX";
         if (::mkdtemp(pattern) == nullptr) return;
@@ -73,7 +71,8 @@ public:
         }
         if (!dir_.empty()) {
             std::string rm = "rm -rf '" + dir_ + "'";
-            if (std::system(rm.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", dir_.c_str());
+            if (std::system(rm.c_str()) != 0)
+                std::fprintf(stderr, "could not remove %s\n", dir_.c_str());
         }
     }
     std::string socket_path() const { return dir_ + "/rwmos-emu.sock"; }
@@ -82,7 +81,7 @@ public:
     std::string shm_uri() const { return "shm:" + shm_path(); }
     const std::string& dir() const { return dir_; }
 
-private:
+  private:
     std::string dir_;
     pid_t pid_ = -1;
 };
@@ -126,9 +125,15 @@ std::string fake_pci_board(bool io) {
     return "pci:0000:01:00.0";
 }
 
-void BM_ReadRoundTrip_Inproc(benchmark::State& state) { read_round_trip(state, "emu:"); }
-void BM_ReadRoundTrip_PciMemoryBar(benchmark::State& state) { read_round_trip(state, fake_pci_board(false)); }
-void BM_ReadRoundTrip_PciIoBar(benchmark::State& state) { read_round_trip(state, fake_pci_board(true)); }
+void BM_ReadRoundTrip_Inproc(benchmark::State& state) {
+    read_round_trip(state, "emu:");
+}
+void BM_ReadRoundTrip_PciMemoryBar(benchmark::State& state) {
+    read_round_trip(state, fake_pci_board(false));
+}
+void BM_ReadRoundTrip_PciIoBar(benchmark::State& state) {
+    read_round_trip(state, fake_pci_board(true));
+}
 #if defined(APCI_BENCH_USB)
 void BM_ReadRoundTrip_UsbUmockdev(benchmark::State& state) {
     if (!apci_test::UsbBoard::available()) {
@@ -140,8 +145,12 @@ void BM_ReadRoundTrip_UsbUmockdev(benchmark::State& state) {
 }
 BENCHMARK(BM_ReadRoundTrip_UsbUmockdev)->Repetitions(9)->ReportAggregatesOnly(true);
 #endif
-void BM_ReadRoundTrip_Unix(benchmark::State& state) { read_round_trip(state, daemon_process().unix_uri()); }
-void BM_ReadRoundTrip_Shm(benchmark::State& state) { read_round_trip(state, daemon_process().shm_uri()); }
+void BM_ReadRoundTrip_Unix(benchmark::State& state) {
+    read_round_trip(state, daemon_process().unix_uri());
+}
+void BM_ReadRoundTrip_Shm(benchmark::State& state) {
+    read_round_trip(state, daemon_process().shm_uri());
+}
 
 BENCHMARK(BM_ReadRoundTrip_Inproc)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Shm)->Repetitions(9)->ReportAggregatesOnly(true);

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The C API of the link to the board: timeouts, lost links and reconnect,
 // and finding boards (apci.h "The link to the board", "Finding boards").
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <chrono>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "apci/apci.h"
 #include "c_api.h"
@@ -20,7 +20,8 @@ using objif::Status;
 constexpr uint32_t kMaxTimeoutMs = 3'600'000;
 
 std::string describe_link(std::string_view op, Status s, std::string_view detail) {
-    std::string text = fmt::format("{}: {} ({})", op, objif::status_name(s), objif::status_message(s));
+    std::string text =
+        fmt::format("{}: {} ({})", op, objif::status_name(s), objif::status_message(s));
     if (!detail.empty()) text += fmt::format(": {}", detail);
     return text;
 }
@@ -36,12 +37,14 @@ apci_status apci_set_timeout(apci_board* board, uint32_t milliseconds) noexcept 
     }
     if (milliseconds == 0 || milliseconds > kMaxTimeoutMs) {
         return fail(board, Status::kInvalidArgument, [&] {
-            return fmt::format("apci_set_timeout: {} ms is outside 1 .. {}", milliseconds, kMaxTimeoutMs);
+            return fmt::format("apci_set_timeout: {} ms is outside 1 .. {}", milliseconds,
+                               kMaxTimeoutMs);
         });
     }
     const Status s = board->transport->set_timeout(std::chrono::milliseconds(milliseconds));
     if (!objif::ok(s)) {
-        return fail(board, s, [&] { return fmt::format("apci_set_timeout: {}", objif::status_name(s)); });
+        return fail(board, s,
+                    [&] { return fmt::format("apci_set_timeout: {}", objif::status_name(s)); });
     }
     board->last_error.clear();
     return APCI_OK;
@@ -50,7 +53,8 @@ apci_status apci_set_timeout(apci_board* board, uint32_t milliseconds) noexcept 
 apci_status apci_get_timeout(const apci_board* board, uint32_t* milliseconds) noexcept {
     if (board == nullptr || milliseconds == nullptr) {
         return fail(nullptr, Status::kInvalidArgument, [&] {
-            return fmt::format("apci_get_timeout: {} is NULL", board == nullptr ? "board" : "milliseconds");
+            return fmt::format("apci_get_timeout: {} is NULL",
+                               board == nullptr ? "board" : "milliseconds");
         });
     }
     *milliseconds = static_cast<uint32_t>(board->transport->timeout().count());

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "frame_transport.h"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <new>
-
-#include <fmt/format.h>
 
 namespace apci {
 
@@ -41,8 +41,8 @@ Status parse_link_options(const DeviceUri& uri, LinkOptions& out, std::string& w
             std::uint32_t ms = 0;
             if (!parse_unsigned(std::string_view(option).substr(kTimeout.size()), 3'600'000, ms) ||
                 ms == 0) {
-                why = fmt::format("option '{}': the timeout is a number of milliseconds, 1 to 3600000",
-                                  option);
+                why = fmt::format(
+                    "option '{}': the timeout is a number of milliseconds, 1 to 3600000", option);
                 return Status::kInvalidArgument;
             }
             out.timeout = Millis(ms);
@@ -54,8 +54,9 @@ Status parse_link_options(const DeviceUri& uri, LinkOptions& out, std::string& w
 }
 
 Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
-                     std::vector<std::uint8_t>& reply, std::chrono::steady_clock::time_point deadline,
-                     const ReadSome& read_some, std::string& why) noexcept {
+                     std::vector<std::uint8_t>& reply,
+                     std::chrono::steady_clock::time_point deadline, const ReadSome& read_some,
+                     std::string& why) noexcept {
     try {
         objif::Frame frame;
         for (;;) {
@@ -75,7 +76,9 @@ Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
             }
             // A whole frame (maybe with a bad CRC: the caller reports that).
             const bool ours = frame.sequence == sequence;
-            if (ours) reply.assign(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(consumed));
+            if (ours)
+                reply.assign(pending.begin(),
+                             pending.begin() + static_cast<std::ptrdiff_t>(consumed));
             pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(consumed));
             if (ours) return Status::kOk;
             // A late reply to a request that timed out: skip it.
@@ -88,7 +91,8 @@ Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
     }
 }
 
-FrameTransport::FrameTransport(std::unique_ptr<FrameLink> link, std::string name, Millis timeout) noexcept
+FrameTransport::FrameTransport(std::unique_ptr<FrameLink> link, std::string name,
+                               Millis timeout) noexcept
     : link_(std::move(link)), name_(std::move(name)), timeout_(timeout) {}
 
 Status FrameTransport::fail(Status s, std::string text) noexcept {
@@ -98,8 +102,8 @@ Status FrameTransport::fail(Status s, std::string text) noexcept {
 
 Status FrameTransport::bad_reply(FrameError e, std::string_view what) noexcept {
     try {
-        return fail(Status::kBadFrame,
-                    fmt::format("{}: the board's reply {}: {}", name_, what, objif::frame_error_name(e)));
+        return fail(Status::kBadFrame, fmt::format("{}: the board's reply {}: {}", name_, what,
+                                                   objif::frame_error_name(e)));
     } catch (...) {
         return Status::kBadFrame;
     }
@@ -148,9 +152,10 @@ Status FrameTransport::call(objif::Opcode op, std::span<const std::uint8_t> payl
             objif::ErrorReply error;
             e = objif::decode(frame_.payload, error);
             if (e != FrameError::kNone) return bad_reply(e, "(Error) has a bad payload");
-            return fail(error.status, fmt::format("{}: the board refused the {} frame: {}", name_,
-                                                  objif::opcode_name(static_cast<std::uint16_t>(op)),
-                                                  objif::frame_error_name(error.reason)));
+            return fail(error.status,
+                        fmt::format("{}: the board refused the {} frame: {}", name_,
+                                    objif::opcode_name(static_cast<std::uint16_t>(op)),
+                                    objif::frame_error_name(error.reason)));
         }
         if (frame_.opcode != reply_opcode(op))
             return fail(Status::kBadFrame,
@@ -167,7 +172,8 @@ Status FrameTransport::call(objif::Opcode op, std::span<const std::uint8_t> payl
     }
 }
 
-Status FrameTransport::read(objif::Descriptor& d, objif::ValueType want, objif::Value& out) noexcept {
+Status FrameTransport::read(objif::Descriptor& d, objif::ValueType want,
+                            objif::Value& out) noexcept {
     try {
         payload_.clear();
         objif::encode(objif::ReadRequest{d, want}, payload_);
@@ -214,9 +220,10 @@ Status FrameTransport::request(objif::Opcode op, const Request& req, Reply& rep)
         Reply decoded;
         const FrameError e = objif::decode(reply_payload_, decoded);
         if (e != FrameError::kNone)
-            return bad_reply(e, fmt::format("({}) has a bad payload",
-                                            objif::opcode_name(static_cast<std::uint16_t>(
-                                                static_cast<std::uint16_t>(op) | objif::kReplyFlag))));
+            return bad_reply(e,
+                             fmt::format("({}) has a bad payload",
+                                         objif::opcode_name(static_cast<std::uint16_t>(
+                                             static_cast<std::uint16_t>(op) | objif::kReplyFlag))));
         rep = std::move(decoded);
         return rep.status;
     } catch (const std::bad_alloc&) {

@@ -32,7 +32,7 @@ inline constexpr std::size_t kMaxFrameSize = objif::kFrameOverhead + objif::kMax
 // FrameTransport that owns it); `why` receives the words for a failure and is
 // left alone on success.
 class FrameLink {
-public:
+  public:
     virtual ~FrameLink() = default;
 
     // Sends the request frame `request` (sequence number `sequence`) and
@@ -57,16 +57,16 @@ public:
 // Reads one reply frame from a byte stream (unix socket, USB bulk IN):
 // `read_some` appends at least one byte or fails. Replies to other sequences
 // are skipped. kTransportError for bytes that are not a frame.
-using ReadSome = std::function<objif::Status(std::vector<std::uint8_t>& buffer,
-                                             std::chrono::steady_clock::time_point deadline,
-                                             std::string& why)>;
+using ReadSome =
+    std::function<objif::Status(std::vector<std::uint8_t>& buffer,
+                                std::chrono::steady_clock::time_point deadline, std::string& why)>;
 objif::Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
                             std::vector<std::uint8_t>& reply,
                             std::chrono::steady_clock::time_point deadline,
                             const ReadSome& read_some, std::string& why) noexcept;
 
 class FrameTransport final : public Transport {
-public:
+  public:
     // `name` is the URI, used in failure texts.
     FrameTransport(std::unique_ptr<FrameLink> link, std::string name, Millis timeout) noexcept;
 
@@ -75,10 +75,12 @@ public:
     objif::Status write(objif::Descriptor& d, const objif::Value& v) noexcept override;
     // Motion requests: each is one line over request() below.
     objif::Status spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept override;
-    objif::Status direct(const objif::DirectRequest& req, objif::MotionReply& rep) noexcept override;
+    objif::Status direct(const objif::DirectRequest& req,
+                         objif::MotionReply& rep) noexcept override;
     objif::Status ssf(const objif::SsfRequest& req, objif::MotionReply& rep) noexcept override;
     objif::Status clock(const objif::ClockRequest& req, objif::ClockReply& rep) noexcept override;
-    objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept override;
+    objif::Status read_trace(const objif::TraceRequest& req,
+                             objif::TraceReply& rep) noexcept override;
     std::string_view failure_detail() const noexcept override { return detail_; }
 
     objif::Status set_timeout(Millis timeout) noexcept override;
@@ -93,7 +95,7 @@ public:
     objif::Status call(objif::Opcode op, std::span<const std::uint8_t> payload,
                        std::vector<std::uint8_t>& reply_payload) noexcept;
 
-private:
+  private:
     // One request whose reply payload struct carries the board's status:
     // encodes `req`, call()s, decodes `rep`; returns the transport's failure
     // or else the board's status.

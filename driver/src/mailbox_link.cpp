@@ -1,13 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "mailbox_link.h"
 
+#include <fmt/format.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <new>
-
-#include <fmt/format.h>
 
 namespace apci {
 
@@ -34,7 +33,8 @@ Status MailboxLink::open(std::string& why) noexcept {
             why = std::move(bad);
             return window->error() != Status::kOk ? window->error() : Status::kTransportError;
         }
-        if (window->load(mb::kOffBoardState) != static_cast<std::uint32_t>(mb::BoardState::kServing)) {
+        if (window->load(mb::kOffBoardState) !=
+            static_cast<std::uint32_t>(mb::BoardState::kServing)) {
             why = "no board serves this mailbox (is the emulator running?)";
             return Status::kTransportError;
         }
@@ -72,8 +72,8 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
         if (s == Status::kOk) return s;
         // A board that stopped, or restarted (another generation), has lost
         // what this link knew: say so once and require a reconnect.
-        const bool stopped =
-            window_->load(mb::kOffBoardState) != static_cast<std::uint32_t>(mb::BoardState::kServing);
+        const bool stopped = window_->load(mb::kOffBoardState) !=
+                             static_cast<std::uint32_t>(mb::BoardState::kServing);
         const bool restarted = window_->load(mb::kOffGeneration) != generation_;
         if (stopped || restarted || window_->error() != Status::kOk) {
             lost_ = restarted && !stopped ? "the board restarted" : why;

@@ -17,13 +17,14 @@
 namespace apci {
 
 // Opens (or re-opens) the window; kOk with `out` set, or a status and `why`.
-using OpenWindow = std::function<objif::Status(std::unique_ptr<objif::mailbox::Window>& out,
-                                               std::string& why)>;
+using OpenWindow =
+    std::function<objif::Status(std::unique_ptr<objif::mailbox::Window>& out, std::string& why)>;
 
 class MailboxLink final : public FrameLink {
-public:
+  public:
     // `name` ("shm:/path") is used in failure texts.
-    MailboxLink(OpenWindow open, std::string name) : open_(std::move(open)), name_(std::move(name)) {}
+    MailboxLink(OpenWindow open, std::string name)
+        : open_(std::move(open)), name_(std::move(name)) {}
 
     // Opens the window and checks its layout and that a board serves it.
     objif::Status open(std::string& why) noexcept;
@@ -34,7 +35,7 @@ public:
     objif::Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return window_ != nullptr; }
 
-private:
+  private:
     OpenWindow open_;
     std::string name_;
     std::unique_ptr<objif::mailbox::Window> window_;

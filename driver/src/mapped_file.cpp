@@ -2,19 +2,18 @@
 #include "mapped_file.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 
-#include <fmt/format.h>
-
 namespace apci {
 namespace {
 
 class MappedFile final : public objif::mailbox::MappedWindow {
-public:
+  public:
     MappedFile(void* map, std::size_t map_size, std::size_t skip, std::size_t size, bool can_sleep)
         : MappedWindow(static_cast<std::uint8_t*>(map) + skip, size, can_sleep),
           map_(map),
@@ -23,7 +22,7 @@ public:
     MappedFile(const MappedFile&) = delete;
     MappedFile& operator=(const MappedFile&) = delete;
 
-private:
+  private:
     void* map_;
     std::size_t map_size_;
 };
@@ -57,8 +56,8 @@ int map_file(const MapRequest& request, std::unique_ptr<objif::mailbox::Window>&
     const std::size_t start = request.offset / page * page;
     const std::size_t skip = request.offset - start;
     const std::size_t length = skip + request.size;
-    void* map = ::mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_SHARED, fd,
-                       static_cast<off_t>(start));
+    void* map =
+        ::mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_SHARED, fd, static_cast<off_t>(start));
     const int err = errno;
     ::close(fd);  // the mapping keeps the file
     if (map == MAP_FAILED) {

@@ -15,6 +15,7 @@
 // time. errno becomes a status in status_of_errno() and nowhere else.
 #include <dirent.h>
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,8 +27,6 @@
 #include <memory>
 #include <new>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "mailbox_link.h"
 #include "mapped_file.h"
@@ -42,12 +41,15 @@ using objif::Status;
 // The one place where this backend turns errno into a status.
 Status status_of_errno(int err) noexcept {
     switch (err) {
-        case ENOMEM: return Status::kNoMemory;
-        case ENAMETOOLONG: return Status::kInvalidArgument;
+        case ENOMEM:
+            return Status::kNoMemory;
+        case ENAMETOOLONG:
+            return Status::kInvalidArgument;
         case ENODEV:
         case ENXIO:
         case EIO:
-        default: return Status::kTransportError;
+        default:
+            return Status::kTransportError;
     }
 }
 
@@ -59,9 +61,15 @@ std::string env_or(const char* name, const char* fallback) {
     const char* v = std::getenv(name);
     return v != nullptr && *v != '\0' ? v : fallback;
 }
-std::string sysfs_root() { return env_or("APCI_SYSFS_ROOT", "/sys"); }
-std::string dev_root() { return env_or("APCI_DEV_ROOT", "/dev"); }
-std::string pci_devices_dir() { return sysfs_root() + "/bus/pci/devices"; }
+std::string sysfs_root() {
+    return env_or("APCI_SYSFS_ROOT", "/sys");
+}
+std::string dev_root() {
+    return env_or("APCI_DEV_ROOT", "/dev");
+}
+std::string pci_devices_dir() {
+    return sysfs_root() + "/bus/pci/devices";
+}
 
 bool read_first_line(const std::string& path, std::string& line) {
     std::ifstream f(path);
@@ -110,7 +118,7 @@ bool read_bar(const std::string& device_dir, unsigned index, Bar& bar) {
 // lock's compare-and-swap is made atomic among the hosts of this machine
 // with a byte-range lock on that word (the board never touches it).
 class IoPortWindow final : public mb::Window {
-public:
+  public:
     IoPortWindow(int fd, std::size_t base, std::string path)
         : fd_(fd), base_(base), path_(std::move(path)) {}
     ~IoPortWindow() override { ::close(fd_); }
@@ -119,7 +127,8 @@ public:
 
     std::uint32_t load(std::size_t offset) noexcept override {
         std::uint32_t v = 0;
-        if (::pread(fd_, &v, 4, static_cast<off_t>(base_ + offset)) != 4) note(errno, "read", offset);
+        if (::pread(fd_, &v, 4, static_cast<off_t>(base_ + offset)) != 4)
+            note(errno, "read", offset);
         return v;
     }
     void store(std::size_t offset, std::uint32_t value) noexcept override {
@@ -147,10 +156,12 @@ public:
             store(offset + i, word);
         }
     }
-    Status error() const noexcept override { return error_ == 0 ? Status::kOk : status_of_errno(error_); }
+    Status error() const noexcept override {
+        return error_ == 0 ? Status::kOk : status_of_errno(error_);
+    }
     std::string error_text() const override { return error_text_; }
 
-private:
+  private:
     // An open-file-description lock on the word's 4 bytes: excludes the
     // other hosts of this machine, threads included.
     bool lock_word(std::size_t offset, short type) noexcept {
@@ -196,7 +207,8 @@ Status parse_pci_options(const std::vector<std::string>& options, PciTarget& t, 
     for (const auto& o : options) {
         const auto eq = o.find('=');
         const std::string_view key = std::string_view(o).substr(0, eq);
-        const std::string_view value = eq == std::string::npos ? std::string_view() : std::string_view(o).substr(eq + 1);
+        const std::string_view value =
+            eq == std::string::npos ? std::string_view() : std::string_view(o).substr(eq + 1);
         std::uint32_t v = 0;
         if (key == "uio" && eq == std::string::npos) {
             t.uio = true;
@@ -208,9 +220,10 @@ Status parse_pci_options(const std::vector<std::string>& options, PciTarget& t, 
             t.uio = true;
             t.uio_map = v;
         } else {
-            why = fmt::format("pci: option '{}' is not one of bar=0..5, offset=BYTES (a multiple "
-                              "of 4), uio, uio-map=0..4, timeout=MS",
-                              o);
+            why = fmt::format(
+                "pci: option '{}' is not one of bar=0..5, offset=BYTES (a multiple "
+                "of 4), uio, uio-map=0..4, timeout=MS",
+                o);
             return Status::kInvalidArgument;
         }
     }
@@ -232,9 +245,10 @@ Status find_uio(const std::string& device_dir, std::string& uio, std::string& wh
             }
         }
     }
-    why = fmt::format("no UIO device is bound to {} (load uio_pci_generic and bind the board "
-                      "to it, or drop the uio option)",
-                      device_dir);
+    why = fmt::format(
+        "no UIO device is bound to {} (load uio_pci_generic and bind the board "
+        "to it, or drop the uio option)",
+        device_dir);
     return Status::kTransportError;
 }
 
@@ -256,8 +270,9 @@ Status open_window(const PciTarget& t, std::unique_ptr<mb::Window>& out, std::st
         return Status::kTransportError;
     }
     if (bar.size() < t.offset + mb::kWindowSize) {
-        why = fmt::format("BAR {} of {} holds {:#x} bytes; the mailbox window needs {:#x} from offset {:#x}",
-                          t.bar, t.address, bar.size(), mb::kWindowSize, t.offset);
+        why = fmt::format(
+            "BAR {} of {} holds {:#x} bytes; the mailbox window needs {:#x} from offset {:#x}",
+            t.bar, t.address, bar.size(), mb::kWindowSize, t.offset);
         return Status::kTransportError;
     }
     std::string what;
@@ -307,9 +322,10 @@ Status open_pci(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
         PciTarget target;
         target.address = uri.target;
         if (!valid_pci_address(target.address)) {
-            why = fmt::format("pci:{}: expected pci:DOMAIN:BUS:DEV.FN in hexadecimal, e.g. "
-                              "pci:0000:03:00.0 (apcictl list names the boards found)",
-                              uri.target);
+            why = fmt::format(
+                "pci:{}: expected pci:DOMAIN:BUS:DEV.FN in hexadecimal, e.g. "
+                "pci:0000:03:00.0 (apcictl list names the boards found)",
+                uri.target);
             return Status::kInvalidArgument;
         }
         s = parse_pci_options(options.rest, target, why);
@@ -351,10 +367,11 @@ Status list_pci(std::vector<FoundDevice>& out, std::string& why) noexcept {
             Bar bar;
             std::string bar_text = "BAR 0 not assigned";
             if (read_bar(dir, 0, bar) && bar.size() != 0)
-                bar_text = fmt::format("BAR 0 {} {:#x} bytes",
-                                       (bar.flags & kIoResourceIo) != 0 ? "I/O" : "memory", bar.size());
-            found.push_back({"pci:" + address,
-                             fmt::format("ADDI-DATA PCI board {:04x}:{:04x}, {}", vendor, device, bar_text)});
+                bar_text =
+                    fmt::format("BAR 0 {} {:#x} bytes",
+                                (bar.flags & kIoResourceIo) != 0 ? "I/O" : "memory", bar.size());
+            found.push_back({"pci:" + address, fmt::format("ADDI-DATA PCI board {:04x}:{:04x}, {}",
+                                                           vendor, device, bar_text)});
         }
         std::sort(found.begin(), found.end(), [](auto& a, auto& b) { return a.uri < b.uri; });
         out.insert(out.end(), found.begin(), found.end());

@@ -4,11 +4,11 @@
 // process. The mailbox protocol is MailboxLink's; this file only maps the
 // file. Blocking and threading: as MailboxLink. errno becomes a status in
 // status_of_errno() and nowhere else.
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cstring>
 #include <new>
-
-#include <fmt/format.h>
 
 #include "mailbox_link.h"
 #include "mapped_file.h"
@@ -22,9 +22,12 @@ using objif::Status;
 // The one place where this backend turns errno into a status.
 Status status_of_errno(int err) noexcept {
     switch (err) {
-        case ENOMEM: return Status::kNoMemory;
-        case ENAMETOOLONG: return Status::kInvalidArgument;
-        default: return Status::kTransportError;
+        case ENOMEM:
+            return Status::kNoMemory;
+        case ENAMETOOLONG:
+            return Status::kInvalidArgument;
+        default:
+            return Status::kTransportError;
     }
 }
 
@@ -73,7 +76,8 @@ Status list_shm(std::vector<FoundDevice>& out, std::string& why) noexcept {
         if (!rwmos::registered_daemons(daemons, why)) return Status::kTransportError;
         for (const auto& d : daemons) {
             if (!d.shm.empty())
-                out.push_back({"shm:" + d.shm, fmt::format("rwmos-emu dual-port RAM file, pid {}", d.pid)});
+                out.push_back(
+                    {"shm:" + d.shm, fmt::format("rwmos-emu dual-port RAM file, pid {}", d.pid)});
         }
         return Status::kOk;
     } catch (const std::bad_alloc&) {

@@ -5,19 +5,15 @@
 // reconnect block in connect() (a local socket answers at once).
 // Threading: one caller at a time (the FrameTransport that owns the link).
 // errno becomes a status in status_of_errno() and nowhere else.
-#include <fcntl.h>
+#include <fmt/format.h>
 #include <poll.h>
-#include <signal.h>
 #include <sys/socket.h>
-#include <sys/stat.h>
 #include <sys/un.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <new>
-
-#include <fmt/format.h>
 
 #include "frame_transport.h"
 #include "rwmos/registry.h"
@@ -32,12 +28,16 @@ using SteadyClock = std::chrono::steady_clock;
 Status status_of_errno(int err) noexcept {
     switch (err) {
         case ETIMEDOUT:
-        case EAGAIN: return Status::kTimeout;
+        case EAGAIN:
+            return Status::kTimeout;
         case ENOMEM:
-        case ENOBUFS: return Status::kNoMemory;
+        case ENOBUFS:
+            return Status::kNoMemory;
         case ENAMETOOLONG:
-        case EINVAL: return Status::kInvalidArgument;
-        default: return Status::kTransportError;
+        case EINVAL:
+            return Status::kInvalidArgument;
+        default:
+            return Status::kTransportError;
     }
 }
 
@@ -51,7 +51,7 @@ int remaining_ms(SteadyClock::time_point deadline) {
 }
 
 class UnixLink final : public FrameLink {
-public:
+  public:
     explicit UnixLink(std::string path) : path_(std::move(path)) {}
     ~UnixLink() override { close_socket(); }
     UnixLink(const UnixLink&) = delete;
@@ -72,7 +72,8 @@ public:
         if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
             const int err = errno;
             ::close(fd);
-            const char* hint = err == ENOENT || err == ECONNREFUSED ? " (is rwmos-emu running?)" : "";
+            const char* hint =
+                err == ENOENT || err == ECONNREFUSED ? " (is rwmos-emu running?)" : "";
             why = fmt::format("connect {}: {}{}", path_, std::strerror(err), hint);
             return status_of_errno(err);
         }
@@ -102,7 +103,7 @@ public:
     Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return fd_ >= 0; }
 
-private:
+  private:
     Status failed(int err, std::string_view what, std::string& why) {
         why = errno_text(what, err);
         return status_of_errno(err);
@@ -134,8 +135,8 @@ private:
                     std::string& why) {
         std::size_t sent = 0;
         while (sent < bytes.size()) {
-            const ssize_t n = ::send(fd_, bytes.data() + sent, bytes.size() - sent,
-                                     MSG_NOSIGNAL | MSG_DONTWAIT);
+            const ssize_t n =
+                ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL | MSG_DONTWAIT);
             if (n > 0) {
                 sent += static_cast<std::size_t>(n);
                 continue;
@@ -148,7 +149,9 @@ private:
                 continue;
             }
             if (err == EPIPE || err == ECONNRESET)
-                return lose(fmt::format("{} closed the connection (send: {})", path_, std::strerror(err)), why);
+                return lose(
+                    fmt::format("{} closed the connection (send: {})", path_, std::strerror(err)),
+                    why);
             return failed(err, "send", why);
         }
         return Status::kOk;
@@ -171,7 +174,9 @@ private:
                 continue;
             }
             if (err == ECONNRESET)
-                return lose(fmt::format("{} closed the connection (recv: {})", path_, std::strerror(err)), why);
+                return lose(
+                    fmt::format("{} closed the connection (recv: {})", path_, std::strerror(err)),
+                    why);
             return failed(err, "recv", why);
         }
     }
@@ -210,7 +215,8 @@ Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::str
         Status s = parse_link_options(uri, options, why);
         if (s != Status::kOk) return s;
         if (!options.rest.empty()) {
-            why = fmt::format("unknown unix: option '{}' (known: timeout=MS)", options.rest.front());
+            why =
+                fmt::format("unknown unix: option '{}' (known: timeout=MS)", options.rest.front());
             return Status::kInvalidArgument;
         }
         if (uri.target.empty()) {
@@ -220,7 +226,8 @@ Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::str
         auto link = std::make_unique<UnixLink>(uri.target);
         s = link->open(why);
         if (s != Status::kOk) return s;
-        out = std::make_unique<FrameTransport>(std::move(link), "unix:" + uri.target, options.timeout);
+        out = std::make_unique<FrameTransport>(std::move(link), "unix:" + uri.target,
+                                               options.timeout);
         return Status::kOk;
     } catch (const std::bad_alloc&) {
         return Status::kNoMemory;

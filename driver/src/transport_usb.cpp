@@ -12,6 +12,7 @@
 // timeout. Threading: one caller at a time; each link has its own libusb
 // context, so distinct boards are independent. libusb codes become a status
 // in status_of_libusb() and nowhere else.
+#include <fmt/format.h>
 #include <libusb.h>
 
 #include <algorithm>
@@ -20,8 +21,6 @@
 #include <memory>
 #include <new>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "frame_transport.h"
 #include "objif/usb_layout.h"
@@ -36,11 +35,16 @@ using SteadyClock = std::chrono::steady_clock;
 // The one place where this backend turns a libusb code into a status.
 Status status_of_libusb(int rc) noexcept {
     switch (rc) {
-        case LIBUSB_SUCCESS: return Status::kOk;
-        case LIBUSB_ERROR_TIMEOUT: return Status::kTimeout;
-        case LIBUSB_ERROR_NO_MEM: return Status::kNoMemory;
-        case LIBUSB_ERROR_INVALID_PARAM: return Status::kInvalidArgument;
-        case LIBUSB_ERROR_NOT_SUPPORTED: return Status::kNotSupported;
+        case LIBUSB_SUCCESS:
+            return Status::kOk;
+        case LIBUSB_ERROR_TIMEOUT:
+            return Status::kTimeout;
+        case LIBUSB_ERROR_NO_MEM:
+            return Status::kNoMemory;
+        case LIBUSB_ERROR_INVALID_PARAM:
+            return Status::kInvalidArgument;
+        case LIBUSB_ERROR_NOT_SUPPORTED:
+            return Status::kNotSupported;
         case LIBUSB_ERROR_BUSY:  // interface claimed by another program
         case LIBUSB_ERROR_ACCESS:
         case LIBUSB_ERROR_NO_DEVICE:
@@ -48,7 +52,8 @@ Status status_of_libusb(int rc) noexcept {
         case LIBUSB_ERROR_PIPE:
         case LIBUSB_ERROR_OVERFLOW:
         case LIBUSB_ERROR_IO:
-        default: return Status::kTransportError;
+        default:
+            return Status::kTransportError;
     }
 }
 
@@ -89,9 +94,10 @@ Status parse_target(const DeviceUri& uri, const std::vector<std::string>& option
             !parse_unsigned(std::string_view(uri.target).substr(0, colon), 255, bus) ||
             !parse_unsigned(std::string_view(uri.target).substr(colon + 1), 127, address) ||
             bus == 0 || address == 0) {
-            why = fmt::format("usb:{}: expected usb: (first board) or usb:BUS:ADDR with decimal bus "
-                              "1..255 and address 1..127, as apcictl list prints them",
-                              uri.target);
+            why = fmt::format(
+                "usb:{}: expected usb: (first board) or usb:BUS:ADDR with decimal bus "
+                "1..255 and address 1..127, as apcictl list prints them",
+                uri.target);
             return Status::kInvalidArgument;
         }
         t.any = false;
@@ -99,15 +105,16 @@ Status parse_target(const DeviceUri& uri, const std::vector<std::string>& option
         t.address = static_cast<std::uint8_t>(address);
     }
     for (const auto& o : options) {
-        if (!o.starts_with("pid=") || !parse_product_list(std::string_view(o).substr(4), t.products)) {
+        if (!o.starts_with("pid=") ||
+            !parse_product_list(std::string_view(o).substr(4), t.products)) {
             why = fmt::format("usb: option '{}' is not pid=0xNNNN or timeout=MS", o);
             return Status::kInvalidArgument;
         }
     }
     if (const char* env = std::getenv("APCI_USB_PRODUCT_IDS"); env != nullptr && *env != '\0') {
         if (!parse_product_list(env, t.products)) {
-            why = fmt::format("APCI_USB_PRODUCT_IDS='{}' is not a comma-separated list of product IDs",
-                              env);
+            why = fmt::format(
+                "APCI_USB_PRODUCT_IDS='{}' is not a comma-separated list of product IDs", env);
             return Status::kInvalidArgument;
         }
     }
@@ -131,7 +138,8 @@ Status make_context(Context& out, std::string& why) {
 bool is_board(libusb_device* dev, const std::vector<std::uint16_t>& products) {
     libusb_device_descriptor desc{};
     if (libusb_get_device_descriptor(dev, &desc) != LIBUSB_SUCCESS) return false;
-    if (std::find(usb::kVendorIds.begin(), usb::kVendorIds.end(), desc.idVendor) == usb::kVendorIds.end())
+    if (std::find(usb::kVendorIds.begin(), usb::kVendorIds.end(), desc.idVendor) ==
+        usb::kVendorIds.end())
         return false;
     if (!products.empty() &&
         std::find(products.begin(), products.end(), desc.idProduct) == products.end())
@@ -144,7 +152,8 @@ bool is_board(libusb_device* dev, const std::vector<std::uint16_t>& products) {
     for (int i = 0; i < config->bNumInterfaces; ++i) {
         for (int a = 0; a < config->interface[i].num_altsetting; ++a) {
             const libusb_interface_descriptor& alt = config->interface[i].altsetting[a];
-            if (alt.bInterfaceNumber != usb::kInterfaceNumber || alt.bInterfaceClass != usb::kInterfaceClass)
+            if (alt.bInterfaceNumber != usb::kInterfaceNumber ||
+                alt.bInterfaceClass != usb::kInterfaceClass)
                 continue;
             for (int e = 0; e < alt.bNumEndpoints; ++e) {
                 const auto& ep = alt.endpoint[e];
@@ -175,12 +184,13 @@ PortPath port_path_of(libusb_device* dev) {
 
 std::string port_text(const PortPath& p) {
     std::string s = fmt::format("{}", p.bus);
-    for (std::size_t i = 0; i < p.ports.size(); ++i) s += fmt::format("{}{}", i == 0 ? '-' : '.', p.ports[i]);
+    for (std::size_t i = 0; i < p.ports.size(); ++i)
+        s += fmt::format("{}{}", i == 0 ? '-' : '.', p.ports[i]);
     return s;
 }
 
 class UsbLink final : public FrameLink {
-public:
+  public:
     explicit UsbLink(UsbTarget target) : target_(std::move(target)) {}
     ~UsbLink() override { close_handle(); }
     UsbLink(const UsbLink&) = delete;
@@ -246,10 +256,11 @@ public:
     Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return handle_ != nullptr; }
 
-private:
+  private:
     static unsigned remaining_ms(SteadyClock::time_point deadline) {
         const auto left = std::chrono::ceil<Millis>(deadline - SteadyClock::now()).count();
-        return static_cast<unsigned>(std::clamp<long long>(left, 1, 1 << 30));  // 0 would be "forever"
+        return static_cast<unsigned>(
+            std::clamp<long long>(left, 1, 1 << 30));  // 0 would be "forever"
     }
 
     bool matches(libusb_device* dev) const {
@@ -261,11 +272,14 @@ private:
     }
 
     std::string not_found_text() const {
-        if (port_.bus != 0) return fmt::format("no APCI board on USB port {} (still unplugged?)", port_text(port_));
+        if (port_.bus != 0)
+            return fmt::format("no APCI board on USB port {} (still unplugged?)", port_text(port_));
         if (target_.any)
-            return "no ADDI-DATA USB board found (vendor 0x15b8 or 0x10e8 with a bulk frame interface)";
-        return fmt::format("no ADDI-DATA USB board at bus {} address {} (apcictl list names the boards found)",
-                           target_.bus, target_.address);
+            return "no ADDI-DATA USB board found (vendor 0x15b8 or 0x10e8 with a bulk frame "
+                   "interface)";
+        return fmt::format(
+            "no ADDI-DATA USB board at bus {} address {} (apcictl list names the boards found)",
+            target_.bus, target_.address);
     }
 
     Status open_device(libusb_device* dev, std::string& why) {
@@ -281,16 +295,19 @@ private:
                               rc);
             return status_of_libusb(rc);
         }
-        libusb_set_auto_detach_kernel_driver(h, 1);  // NOT_SUPPORTED where there is no kernel driver: fine
+        libusb_set_auto_detach_kernel_driver(
+            h, 1);  // NOT_SUPPORTED where there is no kernel driver: fine
         rc = libusb_claim_interface(h, usb::kInterfaceNumber);
         if (rc != LIBUSB_SUCCESS) {
             libusb_close(h);
-            why = rc == LIBUSB_ERROR_NO_DEVICE ? not_found_text() : libusb_text("claim interface 0", rc);
+            why = rc == LIBUSB_ERROR_NO_DEVICE ? not_found_text()
+                                               : libusb_text("claim interface 0", rc);
             return status_of_libusb(rc);
         }
         handle_ = h;
         port_ = port_path_of(dev);
-        name_ = fmt::format("usb:{}:{}", libusb_get_bus_number(dev), libusb_get_device_address(dev));
+        name_ =
+            fmt::format("usb:{}:{}", libusb_get_bus_number(dev), libusb_get_device_address(dev));
         pending_.clear();
         lost_.clear();
         return Status::kOk;
@@ -301,8 +318,9 @@ private:
         const std::size_t old = buffer.size();
         buffer.resize(old + kReadChunk);
         int done = 0;
-        const int rc = libusb_bulk_transfer(handle_, usb::kEndpointIn, buffer.data() + old,
-                                            static_cast<int>(kReadChunk), &done, remaining_ms(deadline));
+        const int rc =
+            libusb_bulk_transfer(handle_, usb::kEndpointIn, buffer.data() + old,
+                                 static_cast<int>(kReadChunk), &done, remaining_ms(deadline));
         buffer.resize(old + static_cast<std::size_t>(std::max(done, 0)));
         if (rc == LIBUSB_SUCCESS && done > 0) return Status::kOk;
         if (rc == LIBUSB_SUCCESS) return read_some(buffer, deadline, why);  // zero-length packet
@@ -355,7 +373,8 @@ Status open_usb(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
         auto link = std::make_unique<UsbLink>(std::move(target));
         s = link->open(why);
         if (s != Status::kOk) return s;
-        out = std::make_unique<FrameTransport>(std::move(link), "usb:" + uri.target, options.timeout);
+        out =
+            std::make_unique<FrameTransport>(std::move(link), "usb:" + uri.target, options.timeout);
         return Status::kOk;
     } catch (const std::bad_alloc&) {
         return Status::kNoMemory;

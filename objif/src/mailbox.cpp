@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "objif/mailbox.h"
 
+#include <fmt/format.h>
 #include <linux/futex.h>
 #include <sys/syscall.h>
 #include <time.h>
@@ -12,8 +13,6 @@
 #include <climits>
 #include <cstring>
 #include <thread>
-
-#include <fmt/format.h>
 
 namespace objif::mailbox {
 
@@ -62,10 +61,14 @@ void publish_status(Window& w, MailboxStatus s, std::size_t other_sleeping_flag)
 
 std::string_view status_word_name(std::uint32_t s) {
     switch (static_cast<MailboxStatus>(s)) {
-        case MailboxStatus::kIdle: return "Idle";
-        case MailboxStatus::kRequest: return "Request";
-        case MailboxStatus::kBusy: return "Busy";
-        case MailboxStatus::kReply: return "Reply";
+        case MailboxStatus::kIdle:
+            return "Idle";
+        case MailboxStatus::kRequest:
+            return "Request";
+        case MailboxStatus::kBusy:
+            return "Busy";
+        case MailboxStatus::kReply:
+            return "Reply";
     }
     return "invalid";
 }
@@ -76,7 +79,8 @@ std::string_view status_word_name(std::uint32_t s) {
 
 void Window::wait(std::size_t, std::uint32_t, std::chrono::nanoseconds timeout) noexcept {
     // Device memory: nothing to sleep on; poll again soon without burning the CPU.
-    std::this_thread::sleep_for(std::min<std::chrono::nanoseconds>(timeout, std::chrono::microseconds(20)));
+    std::this_thread::sleep_for(
+        std::min<std::chrono::nanoseconds>(timeout, std::chrono::microseconds(20)));
 }
 
 std::uint32_t MappedWindow::load(std::size_t offset) noexcept {
@@ -111,8 +115,7 @@ void MappedWindow::wait(std::size_t offset, std::uint32_t expected,
                         std::chrono::nanoseconds timeout) noexcept {
     if (!can_sleep_) return Window::wait(offset, expected, timeout);
     const auto secs = std::chrono::duration_cast<std::chrono::seconds>(timeout);
-    timespec ts{static_cast<time_t>(secs.count()),
-                static_cast<long>((timeout - secs).count())};
+    timespec ts{static_cast<time_t>(secs.count()), static_cast<long>((timeout - secs).count())};
     // A shared (not FUTEX_PRIVATE) futex: the other side is another process.
     // EAGAIN (value already changed), EINTR and ETIMEDOUT all mean "look again".
     ::syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(base_ + offset), FUTEX_WAIT, expected,
@@ -212,7 +215,9 @@ void put_reply(Window& w, std::span<const std::uint8_t> reply) {
     publish_status(w, MailboxStatus::kReply, kOffHostSleeping);
 }
 
-void wake_board(Window& w) { w.wake(kOffStatus); }
+void wake_board(Window& w) {
+    w.wake(kOffStatus);
+}
 
 // ---- Host side
 
@@ -224,7 +229,9 @@ struct Exchange {
     Clock::time_point deadline;
     std::string& why;
 
-    std::chrono::nanoseconds left() const { return std::max(deadline - Clock::now(), Clock::duration::zero()); }
+    std::chrono::nanoseconds left() const {
+        return std::max(deadline - Clock::now(), Clock::duration::zero());
+    }
 
     Status window_failed() {
         why = w.error_text();
@@ -236,7 +243,9 @@ struct Exchange {
         return Status::kTransportError;
     }
 
-    bool serving() { return w.load(kOffBoardState) == static_cast<std::uint32_t>(BoardState::kServing); }
+    bool serving() {
+        return w.load(kOffBoardState) == static_cast<std::uint32_t>(BoardState::kServing);
+    }
 
     Status lock() {
         for (;;) {
@@ -248,8 +257,8 @@ struct Exchange {
                 w.compare_exchange(kOffHostLock, holder, options.token))
                 return Status::kOk;  // taken over from a host that died holding it
             if (left().count() == 0) {
-                why = fmt::format("mailbox held by another host (token {}) for longer than the timeout",
-                                  holder);
+                why = fmt::format(
+                    "mailbox held by another host (token {}) for longer than the timeout", holder);
                 return Status::kTimeout;
             }
             std::this_thread::sleep_for(std::chrono::microseconds(20));
@@ -284,8 +293,9 @@ struct Exchange {
                 return Status::kTimeout;
             }
             // Wake now and then to notice a board that stopped without waking us.
-            sleep_on_status(w, kOffHostSleeping, s,
-                            std::min<std::chrono::nanoseconds>(remaining, std::chrono::milliseconds(50)));
+            sleep_on_status(
+                w, kOffHostSleeping, s,
+                std::min<std::chrono::nanoseconds>(remaining, std::chrono::milliseconds(50)));
             s = spin_until(w, MailboxStatus::kReply, spin());
         }
     }

@@ -2,6 +2,7 @@
 #include "rwmos/registry.h"
 
 #include <dirent.h>
+#include <fmt/format.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -13,21 +14,24 @@
 #include <fstream>
 #include <memory>
 
-#include <fmt/format.h>
-
 namespace rwmos {
 namespace {
 
 constexpr std::string_view kPrefix = "rwmos-emu.";
 
-std::string entry_path(pid_t pid) { return fmt::format("{}/{}{}", registry_dir(), kPrefix, pid); }
+std::string entry_path(pid_t pid) {
+    return fmt::format("{}/{}{}", registry_dir(), kPrefix, pid);
+}
 
-bool alive(pid_t pid) { return pid > 0 && (::kill(pid, 0) == 0 || errno == EPERM); }
+bool alive(pid_t pid) {
+    return pid > 0 && (::kill(pid, 0) == 0 || errno == EPERM);
+}
 
 }  // namespace
 
 std::string registry_dir() {
-    if (const char* dir = std::getenv("APCI_RUNTIME_DIR"); dir != nullptr && *dir != '\0') return dir;
+    if (const char* dir = std::getenv("APCI_RUNTIME_DIR"); dir != nullptr && *dir != '\0')
+        return dir;
     if (const char* xdg = std::getenv("XDG_RUNTIME_DIR"); xdg != nullptr && *xdg != '\0')
         return fmt::format("{}/apci", xdg);
     return fmt::format("/tmp/apci-{}", ::getuid());
@@ -58,7 +62,9 @@ bool register_daemon(const RegisteredDaemon& self, std::string& why) {
     return true;
 }
 
-void unregister_daemon(pid_t pid) { ::unlink(entry_path(pid).c_str()); }
+void unregister_daemon(pid_t pid) {
+    ::unlink(entry_path(pid).c_str());
+}
 
 bool registered_daemons(std::vector<RegisteredDaemon>& out, std::string& why) {
     const std::string dir = registry_dir();
@@ -73,8 +79,10 @@ bool registered_daemons(std::vector<RegisteredDaemon>& out, std::string& why) {
         if (!name.starts_with(kPrefix)) continue;
         const std::string_view digits = name.substr(kPrefix.size());
         RegisteredDaemon entry;
-        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), entry.pid);
-        if (ec != std::errc() || end != digits.data() + digits.size() || !alive(entry.pid)) continue;
+        const auto [end, ec] =
+            std::from_chars(digits.data(), digits.data() + digits.size(), entry.pid);
+        if (ec != std::errc() || end != digits.data() + digits.size() || !alive(entry.pid))
+            continue;
         std::ifstream f(fmt::format("{}/{}", dir, name));
         std::string key, value;
         while (f >> key && std::getline(f >> std::ws, value)) {

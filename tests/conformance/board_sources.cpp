@@ -17,34 +17,34 @@ using apci_test::DaemonOptions;
 using apci_test::FakePciSysfs;
 
 class InprocSource final : public BoardSource {
-public:
+  public:
     explicit InprocSource(bool option_tc) : option_tc_(option_tc) {}
     std::string uri() const override { return option_tc_ ? "emu:" : "emu:?no-option-tc"; }
 
-private:
+  private:
     bool option_tc_;
 };
 
 // The daemon with its socket (unix) or only its dual-port RAM file (shm).
 class DaemonSource final : public BoardSource {
-public:
+  public:
     DaemonSource(std::unique_ptr<Daemon> daemon, bool socket)
         : daemon_(std::move(daemon)), socket_(socket) {}
     std::string uri() const override { return socket_ ? daemon_->unix_uri() : daemon_->shm_uri(); }
 
-private:
+  private:
     std::unique_ptr<Daemon> daemon_;
     bool socket_;
 };
 
 // The daemon's dual-port RAM file seen as a PCI board's BAR 0.
 class PciSource final : public BoardSource {
-public:
+  public:
     PciSource(std::unique_ptr<Daemon> daemon, FakePciSysfs::BarKind kind)
         : daemon_(std::move(daemon)), sysfs_(daemon_->shm_path(), kind) {}
     std::string uri() const override { return sysfs_.uri(); }
 
-private:
+  private:
     std::unique_ptr<Daemon> daemon_;
     FakePciSysfs sysfs_;
 };
@@ -52,12 +52,12 @@ private:
 #if defined(APCI_CONFORMANCE_USB)
 // An emulated board on USB (umockdev), reached through unmodified libusb.
 class UsbSource final : public BoardSource {
-public:
+  public:
     explicit UsbSource(bool option_tc) : usb_(options(option_tc)) {}
     std::string uri() const override { return usb_.uri(); }
     std::string problem() const { return usb_.problem(); }
 
-private:
+  private:
     static apci_test::UsbBoard::Options options(bool option_tc) {
         apci_test::UsbBoard::Options o;
         o.option_tc = option_tc;
@@ -76,7 +76,9 @@ std::unique_ptr<BoardSource> make_usb(bool option_tc) {
 }
 #endif
 
-std::unique_ptr<BoardSource> make_inproc(bool option_tc) { return std::make_unique<InprocSource>(option_tc); }
+std::unique_ptr<BoardSource> make_inproc(bool option_tc) {
+    return std::make_unique<InprocSource>(option_tc);
+}
 
 std::unique_ptr<Daemon> start_daemon(bool socket, bool option_tc) {
     DaemonOptions o;
@@ -110,7 +112,7 @@ std::unique_ptr<BoardSource> make_pci_io(bool option_tc) {
 
 std::vector<Transport> transports() {
     std::vector<Transport> all{
-        {"inproc", make_inproc}, {"unix", make_unix},     {"shm", make_shm},
+        {"inproc", make_inproc},   {"unix", make_unix},     {"shm", make_shm},
         {"pci_mem", make_pci_mem}, {"pci_io", make_pci_io},
     };
 #if defined(APCI_CONFORMANCE_USB)

@@ -13,7 +13,7 @@
 namespace conformance {
 
 class BoardSource {
-public:
+  public:
     virtual ~BoardSource() = default;
     // The URI of a fresh board, with (true) or without (false) optionTC.
     virtual std::string uri() const = 0;

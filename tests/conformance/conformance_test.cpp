@@ -5,15 +5,15 @@
 // Every test opens a fresh board through the public C API only and expects
 // exactly what the embedded emulator answers: the object interface's check
 // order, handles, and the TC module's state rules (DESIGN.md sections 2, 3).
+#include <gtest/gtest.h>
+
 #include <cmath>
-#include <cstring>
-#include <memory>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "apci/apci.h"
 #include "board_sources.h"
@@ -47,7 +47,7 @@ const T* ptr(const T& value) {
 }
 
 class Conformance : public ::testing::TestWithParam<Transport> {
-protected:
+  protected:
     void SetUp() override { open_board(true); }
     void TearDown() override {
         apci_close(board_);
@@ -64,8 +64,12 @@ protected:
         ASSERT_EQ(apci_open(source_->uri().c_str(), &board_), APCI_OK) << apci_last_error(nullptr);
     }
 
-    apci_status write_int(apci_object_descriptor o, std::int32_t v) { return apci_write_int(board_, &o, v); }
-    apci_status write_double(apci_object_descriptor o, double v) { return apci_write_double(board_, &o, v); }
+    apci_status write_int(apci_object_descriptor o, std::int32_t v) {
+        return apci_write_int(board_, &o, v);
+    }
+    apci_status write_double(apci_object_descriptor o, double v) {
+        return apci_write_double(board_, &o, v);
+    }
     apci_status read_int_status(apci_object_descriptor o) {
         std::int32_t v = 0;
         return apci_read_int(board_, &o, &v);
@@ -352,13 +356,17 @@ TEST_P(Conformance, CompensationHoldsAProfileUntilSsf2001) {
     initialise_group(1);
     ASSERT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_OK);
     apci_motion_result result{};
-    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(10.0, 0.0, 1)), &result), APCI_OK) << apci_last_error(board_);
-    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(10.0, 10.0, 2)), &result), APCI_OK) << apci_last_error(board_);
+    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(10.0, 0.0, 1)), &result), APCI_OK)
+        << apci_last_error(board_);
+    ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(10.0, 10.0, 2)), &result), APCI_OK)
+        << apci_last_error(board_);
     EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)),
               static_cast<std::int32_t>(APCI_TC_STATUS_RUN | APCI_TC_STATUS_PROF_MARKED));
     ASSERT_EQ(apci_ssf_command(board_, 0x03, APCI_SSF_RELEASE_HELD_PROFILE, &result), APCI_OK)
         << apci_last_error(board_);
-    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)) & static_cast<std::int32_t>(APCI_TC_STATUS_PROF_MARKED), 0);
+    EXPECT_EQ(read_int(tc_group(1, APCI_TC_STATUS)) &
+                  static_cast<std::int32_t>(APCI_TC_STATUS_PROF_MARKED),
+              0);
     apci_motion_status st{};
     ASSERT_EQ(apci_run_until_idle(board_, 1000000, &st), APCI_OK);
     EXPECT_NE(st.position[0], 0.0) << "the released profiles ran";
@@ -390,7 +398,9 @@ TEST_P(Conformance, RefusedProfileChangesNothing) {
     EXPECT_EQ(fill, 0u);
 }
 
-std::string transport_name(const ::testing::TestParamInfo<Transport>& info) { return info.param.name; }
+std::string transport_name(const ::testing::TestParamInfo<Transport>& info) {
+    return info.param.name;
+}
 
 INSTANTIATE_TEST_SUITE_P(Transports, Conformance, ::testing::ValuesIn(conformance::transports()),
                          transport_name);

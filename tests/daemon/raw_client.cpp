@@ -19,7 +19,9 @@ RawClient::RawClient(const std::string& socket_path) {
     if (fd_ >= 0 && ::connect(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) close();
 }
 
-RawClient::~RawClient() { close(); }
+RawClient::~RawClient() {
+    close();
+}
 
 void RawClient::close() {
     if (fd_ >= 0) ::close(fd_);
@@ -44,11 +46,13 @@ bool RawClient::receive(objif::Frame& frame, std::chrono::milliseconds timeout) 
         bool need_more = false;
         const auto e = objif::decode_frame(pending_, frame, consumed, need_more);
         if (e == objif::FrameError::kNone) {
-            pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(consumed));
+            pending_.erase(pending_.begin(),
+                           pending_.begin() + static_cast<std::ptrdiff_t>(consumed));
             return true;
         }
         if (!need_more && !pending_.empty()) return false;
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            until - std::chrono::steady_clock::now());
         if (fd_ < 0 || left.count() <= 0) return false;
         pollfd p{fd_, POLLIN, 0};
         if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;
@@ -62,7 +66,8 @@ bool RawClient::receive(objif::Frame& frame, std::chrono::milliseconds timeout) 
 bool RawClient::closed_by_peer(std::chrono::milliseconds timeout) {
     const auto until = std::chrono::steady_clock::now() + timeout;
     while (fd_ >= 0) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            until - std::chrono::steady_clock::now());
         if (left.count() <= 0) return false;
         pollfd p{fd_, POLLIN, 0};
         if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;
@@ -83,8 +88,9 @@ std::vector<std::uint8_t> frame_bytes(objif::Opcode op, std::uint32_t sequence,
 
 std::vector<std::uint8_t> write_double_frame(std::uint32_t sequence, objif::Address a, double v) {
     std::vector<std::uint8_t> payload;
-    objif::encode(objif::WriteRequest{objif::Descriptor{a, objif::kNoHandle}, objif::Value::of_double(v)},
-                  payload);
+    objif::encode(
+        objif::WriteRequest{objif::Descriptor{a, objif::kNoHandle}, objif::Value::of_double(v)},
+        payload);
     return frame_bytes(objif::Opcode::kObjectWrite, sequence, payload);
 }
 

@@ -15,7 +15,7 @@
 namespace daemon_test {
 
 class RawClient {
-public:
+  public:
     explicit RawClient(const std::string& socket_path);
     ~RawClient();
     RawClient(const RawClient&) = delete;
@@ -29,7 +29,7 @@ public:
     bool closed_by_peer(std::chrono::milliseconds timeout = std::chrono::seconds(5));
     void close();
 
-private:
+  private:
     int fd_ = -1;
     std::vector<std::uint8_t> pending_;
 };

@@ -2,12 +2,14 @@
 #include "daemon.h"
 
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -16,9 +18,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <time.h>
-
-#include <gtest/gtest.h>
 
 #include "objif/mailbox.h"
 
@@ -96,11 +95,14 @@ int exit_code_of(int status) {
 
 }  // namespace
 
-const char* daemon_binary() { return RWMOS_EMU_BINARY; }
+const char* daemon_binary() {
+    return RWMOS_EMU_BINARY;
+}
 
 TempDir::TempDir() {
     const char* tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/apci-test-XXXXXX";
+    std::string pattern =
+        std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/apci-test-XXXXXX";
     if (::mkdtemp(pattern.data()) == nullptr) ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
     path_ = pattern;
 }
@@ -112,7 +114,8 @@ TempDir::~TempDir() {
 
 std::unique_ptr<Daemon> Daemon::start(const DaemonOptions& options) {
     std::unique_ptr<Daemon> d(new Daemon);
-    d->socket_path_ = options.socket_path.empty() ? d->dir_.file("rwmos-emu.sock") : options.socket_path;
+    d->socket_path_ =
+        options.socket_path.empty() ? d->dir_.file("rwmos-emu.sock") : options.socket_path;
     d->shm_path_ = options.shm_path.empty() ? d->dir_.file("dpram") : options.shm_path;
     std::vector<std::string> args;
     if (options.socket) args.insert(args.end(), {"--socket", d->socket_path()});
@@ -161,9 +164,12 @@ int Daemon::stop(int signal, std::chrono::milliseconds grace) {
     return exit_code_of(status);
 }
 
-std::string Daemon::log() const { return read_file(dir_.file("daemon.log")); }
+std::string Daemon::log() const {
+    return read_file(dir_.file("daemon.log"));
+}
 
-int run_daemon(const std::vector<std::string>& args, std::string& output, const std::string& runtime_dir) {
+int run_daemon(const std::vector<std::string>& args, std::string& output,
+               const std::string& runtime_dir) {
     const std::string file = runtime_dir + "/run.out";
     ::unlink(file.c_str());
     const pid_t pid = spawn(args, file, runtime_dir);

@@ -16,7 +16,7 @@ namespace apci_test {
 
 // A directory under $TMPDIR (or /tmp), removed with its contents.
 class TempDir {
-public:
+  public:
     TempDir();
     ~TempDir();
     TempDir(const TempDir&) = delete;
@@ -24,7 +24,7 @@ public:
     const std::string& path() const noexcept { return path_; }
     std::string file(std::string_view name) const { return path_ + "/" + std::string(name); }
 
-private:
+  private:
     std::string path_;
 };
 
@@ -40,7 +40,7 @@ struct DaemonOptions {
 };
 
 class Daemon {
-public:
+  public:
     // Starts the daemon and waits until it serves (at most 10 s). Test
     // failures (ADD_FAILURE) name what went wrong; the result is then null.
     static std::unique_ptr<Daemon> start(const DaemonOptions& options = {});
@@ -62,7 +62,7 @@ public:
     // Whatever the daemon wrote on stderr so far.
     std::string log() const;
 
-private:
+  private:
     Daemon() = default;
     TempDir dir_;
     std::string socket_path_;
@@ -84,7 +84,9 @@ bool eventually(F done, std::chrono::milliseconds limit = std::chrono::seconds(1
     const auto until = std::chrono::steady_clock::now() + limit;
     while (!done()) {
         if (std::chrono::steady_clock::now() >= until) return false;
-        struct timespec ts {0, 2'000'000};
+        struct timespec ts {
+            0, 2'000'000
+        };
         nanosleep(&ts, nullptr);
     }
     return true;

@@ -12,7 +12,7 @@
 namespace apci_test {
 
 class FakePciSysfs {
-public:
+  public:
     enum class BarKind { kMemory, kIo };
     static constexpr const char* kAddress = "0000:01:00.0";
 
@@ -25,7 +25,7 @@ public:
     std::string uri() const { return std::string("pci:") + kAddress; }
     std::string device_dir() const;
 
-private:
+  private:
     TempDir root_;
 };
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "usb_emulator.h"
 
+#include <fmt/format.h>
 #include <linux/ioctl.h>
 #include <linux/usbdevice_fs.h>
 #include <umockdev.h>
@@ -13,8 +14,6 @@
 #include <deque>
 #include <mutex>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "objif/usb_layout.h"
 #include "rwmos/board.h"
@@ -31,10 +30,10 @@ namespace {
 std::string descriptors_hex(const UsbBoard::Options& o) {
     return fmt::format(
         "12010002000000{:02x}{:02x}{:02x}{:02x}{:02x}000101020301"  // device
-        "0902200001010080fa"                                         // configuration, 32 bytes in all
-        "09040000 02{:02x}000000"                                    // interface 0
-        "0705{:02x}02000200"                                         // bulk OUT
-        "0705{:02x}02000200",                                        // bulk IN
+        "0902200001010080fa"       // configuration, 32 bytes in all
+        "09040000 02{:02x}000000"  // interface 0
+        "0705{:02x}02000200"       // bulk OUT
+        "0705{:02x}02000200",      // bulk IN
         0x40, o.vendor & 0xFF, o.vendor >> 8, o.product & 0xFF, o.product >> 8, o.interface_class,
         objif::usb::kEndpointOut, objif::usb::kEndpointIn);
 }
@@ -103,7 +102,8 @@ struct UsbBoard::Impl {
         GError* error = nullptr;
         if (!umockdev_testbed_add_from_string(testbed, description.c_str(), &error)) {
             const std::lock_guard lock(mutex);
-            problem = fmt::format("umockdev: {}", error != nullptr ? error->message : "add_from_string failed");
+            problem = fmt::format("umockdev: {}",
+                                  error != nullptr ? error->message : "add_from_string failed");
             if (error != nullptr) g_error_free(error);
         }
     }
@@ -114,7 +114,8 @@ struct UsbBoard::Impl {
             UMockdevIoctlData* urb_data = waiting_in.front();
             waiting_in.pop_front();
             auto* urb = reinterpret_cast<usbdevfs_urb*>(urb_data->data);
-            const std::size_t n = std::min<std::size_t>(replies.size(), static_cast<std::size_t>(urb->buffer_length));
+            const std::size_t n =
+                std::min<std::size_t>(replies.size(), static_cast<std::size_t>(urb->buffer_length));
             // The test shares the address space with libusb: the buffer
             // pointer is libusb's own (libusb/tests/umockdev.c does the same).
             std::copy_n(replies.begin(), n, static_cast<std::uint8_t*>(urb->buffer));
@@ -126,10 +127,11 @@ struct UsbBoard::Impl {
     }
 
     gboolean submit(UMockdevIoctlClient* client, UMockdevIoctlData* arg) {
-        UMockdevIoctlData* urb_data = umockdev_ioctl_data_resolve(arg, 0, sizeof(usbdevfs_urb), nullptr);
+        UMockdevIoctlData* urb_data =
+            umockdev_ioctl_data_resolve(arg, 0, sizeof(usbdevfs_urb), nullptr);
         auto* urb = reinterpret_cast<usbdevfs_urb*>(urb_data->data);
-        if (urb->type != USBDEVFS_URB_TYPE_BULK ||
-            (urb->endpoint != objif::usb::kEndpointOut && urb->endpoint != objif::usb::kEndpointIn)) {
+        if (urb->type != USBDEVFS_URB_TYPE_BULK || (urb->endpoint != objif::usb::kEndpointOut &&
+                                                    urb->endpoint != objif::usb::kEndpointIn)) {
             umockdev_ioctl_data_unref(urb_data);
             umockdev_ioctl_client_complete(client, -1, EINVAL);
             return TRUE;
@@ -137,16 +139,18 @@ struct UsbBoard::Impl {
         if (urb->endpoint == objif::usb::kEndpointIn) {
             waiting_in.push_back(urb_data);
         } else {
-            UMockdevIoctlData* buffer =
-                umockdev_ioctl_data_resolve(urb_data, offsetof(usbdevfs_urb, buffer), urb->buffer_length, nullptr);
+            UMockdevIoctlData* buffer = umockdev_ioctl_data_resolve(
+                urb_data, offsetof(usbdevfs_urb, buffer), urb->buffer_length, nullptr);
             scratch.clear();
             const auto before = scratch.size();
-            const auto result = stream.feed({buffer->data, static_cast<std::size_t>(urb->buffer_length)}, *server,
-                                            scratch);
+            const auto result = stream.feed(
+                {buffer->data, static_cast<std::size_t>(urb->buffer_length)}, *server, scratch);
             served += result.frames;
-            if (options.answers) replies.insert(replies.end(), scratch.begin() + static_cast<std::ptrdiff_t>(before),
-                                                scratch.end());
-            if (!result.keep) stream.clear();  // garbage: the board resynchronises on the next frame
+            if (options.answers)
+                replies.insert(replies.end(), scratch.begin() + static_cast<std::ptrdiff_t>(before),
+                               scratch.end());
+            if (!result.keep)
+                stream.clear();  // garbage: the board resynchronises on the next frame
             umockdev_ioctl_data_unref(buffer);
             urb->actual_length = urb->buffer_length;
             urb->status = 0;
@@ -198,12 +202,12 @@ struct UsbBoard::Impl {
         }
         switch (request) {
             case USBDEVFS_GET_CAPABILITIES: {
-                UMockdevIoctlData* d = umockdev_ioctl_data_resolve(arg, 0, sizeof(guint32), nullptr);
-                *reinterpret_cast<guint32*>(d->data) = USBDEVFS_CAP_BULK_SCATTER_GATHER |
-                                                       USBDEVFS_CAP_BULK_CONTINUATION |
-                                                       USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
-                                                       USBDEVFS_CAP_REAP_AFTER_DISCONNECT |
-                                                       USBDEVFS_CAP_ZERO_PACKET;
+                UMockdevIoctlData* d =
+                    umockdev_ioctl_data_resolve(arg, 0, sizeof(guint32), nullptr);
+                *reinterpret_cast<guint32*>(d->data) =
+                    USBDEVFS_CAP_BULK_SCATTER_GATHER | USBDEVFS_CAP_BULK_CONTINUATION |
+                    USBDEVFS_CAP_NO_PACKET_SIZE_LIM | USBDEVFS_CAP_REAP_AFTER_DISCONNECT |
+                    USBDEVFS_CAP_ZERO_PACKET;
                 umockdev_ioctl_data_unref(d);
                 umockdev_ioctl_client_complete(client, 0, 0);
                 return TRUE;
@@ -219,10 +223,13 @@ struct UsbBoard::Impl {
             case USBDEVFS_IOCTL:      // so there is none to disconnect (what the kernel answers)
                 umockdev_ioctl_client_complete(client, -1, ENODATA);
                 return TRUE;
-            case USBDEVFS_SUBMITURB: return submit(client, arg);
+            case USBDEVFS_SUBMITURB:
+                return submit(client, arg);
             case USBDEVFS_REAPURB:
-            case USBDEVFS_REAPURBNDELAY: return reap(client, arg);
-            case USBDEVFS_DISCARDURB: return discard(client, arg);
+            case USBDEVFS_REAPURBNDELAY:
+                return reap(client, arg);
+            case USBDEVFS_DISCARDURB:
+                return discard(client, arg);
             default:
                 umockdev_ioctl_client_complete(client, -1, ENOTTY);
                 return TRUE;
@@ -264,8 +271,12 @@ UsbBoard::~UsbBoard() {
     impl_->drop_urbs();
 }
 
-std::string UsbBoard::uri() const { return fmt::format("usb:{}:{}", bus(), address()); }
-int UsbBoard::bus() const { return 1; }
+std::string UsbBoard::uri() const {
+    return fmt::format("usb:{}:{}", bus(), address());
+}
+int UsbBoard::bus() const {
+    return 1;
+}
 int UsbBoard::address() const {
     const std::lock_guard lock(impl_->mutex);
     return impl_->address;

@@ -19,7 +19,7 @@
 namespace apci_test {
 
 class UsbBoard {
-public:
+  public:
     struct Options {
         std::uint16_t vendor = 0x15B8;
         std::uint16_t product = 0x8001;
@@ -57,7 +57,7 @@ public:
 
     struct Impl;
 
-private:
+  private:
     std::unique_ptr<Impl> impl_;
 };
 

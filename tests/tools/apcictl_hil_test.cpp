@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // apcictl list and apcictl diff (the hardware-in-loop mode) as processes,
 // against the emulator daemon, a fake sysfs PCI board and the embedded board.
+#include <gtest/gtest.h>
+
 #include <regex>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "daemon.h"
 #include "fake_sysfs.h"
@@ -20,7 +20,8 @@ using apci_test::TempDir;
 using test_support::ProcessResult;
 
 const std::string kTools = std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-figures.tools";
-const std::string kInsideCorners = std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-inside-corners.nc";
+const std::string kInsideCorners =
+    std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-inside-corners.nc";
 
 ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {},
                       const std::vector<std::pair<std::string, std::string>>& env = {}) {
@@ -28,7 +29,9 @@ ProcessResult apcictl(std::vector<std::string> args, const std::string& input = 
     return test_support::run_process(args, input, env);
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
 // A line of `apcictl list`: the URI, spaces, the description.
 bool has_line(const std::string& out, const std::string& uri, const std::string& description) {
@@ -36,7 +39,8 @@ bool has_line(const std::string& out, const std::string& uri, const std::string&
     while ((at = out.find(uri, at)) != std::string::npos) {
         const bool line_start = at == 0 || out[at - 1] == '\n';
         const std::size_t text = out.find_first_not_of(' ', at + uri.size());
-        if (line_start && text > at + uri.size() + 1 && out.compare(text, description.size(), description) == 0)
+        if (line_start && text > at + uri.size() + 1 &&
+            out.compare(text, description.size(), description) == 0)
             return true;
         ++at;
     }
@@ -64,16 +68,19 @@ TEST(ApcictlList, NamesPciBoardsAndDaemonsOneLineEachUriFirst) {
     ASSERT_TRUE(apci_test::eventually([&] {
         r = apcictl({"list"}, {}, {{"APCI_RUNTIME_DIR", d->dir().path()}});
         return contains(r.out, d->unix_uri());
-    })) << r.out << r.err;
+    })) << r.out
+        << r.err;
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(has_line(r.out, "pci:0000:01:00.0", "ADDI-DATA PCI board 15b8:8001")) << r.out;
-    EXPECT_TRUE(has_line(r.out, d->unix_uri(), "rwmos-emu daemon, pid " + std::to_string(d->pid()))) << r.out;
+    EXPECT_TRUE(has_line(r.out, d->unix_uri(), "rwmos-emu daemon, pid " + std::to_string(d->pid())))
+        << r.out;
     EXPECT_TRUE(has_line(r.out, d->shm_uri(), "rwmos-emu dual-port RAM file")) << r.out;
 }
 
 TEST(ApcictlList, NoBoardPrintsNothingAndSucceeds) {
     TempDir empty;
-    const auto r = apcictl({"list"}, {}, {{"APCI_RUNTIME_DIR", empty.path()}, {"APCI_SYSFS_ROOT", empty.path()}});
+    const auto r = apcictl({"list"}, {},
+                           {{"APCI_RUNTIME_DIR", empty.path()}, {"APCI_SYSFS_ROOT", empty.path()}});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, "");
 }
@@ -81,13 +88,14 @@ TEST(ApcictlList, NoBoardPrintsNothingAndSucceeds) {
 // ---- diff: scripts
 
 class ApcictlDiff : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         daemon_ = Daemon::start();
         ASSERT_NE(daemon_, nullptr);
     }
     ProcessResult diff(std::vector<std::string> args, const std::string& device = "") {
-        std::vector<std::string> all{"--device", device.empty() ? daemon_->unix_uri() : device, "diff"};
+        std::vector<std::string> all{"--device", device.empty() ? daemon_->unix_uri() : device,
+                                     "diff"};
         all.insert(all.end(), args.begin(), args.end());
         return apcictl(all);
     }
@@ -96,15 +104,19 @@ protected:
 };
 
 TEST_F(ApcictlDiff, SameScriptOnTheDaemonAndTheEmbeddedBoardHasNoDifference) {
-    const auto file = script_file(dir_, "write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\nstatus\n");
+    const auto file =
+        script_file(dir_, "write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\nstatus\n");
     const auto r = diff({"--against", "emu:", file});
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(contains(r.out, "no difference between " + daemon_->unix_uri() + " and emu: (4 script lines compared)"))
+    EXPECT_TRUE(contains(r.out, "no difference between " + daemon_->unix_uri() +
+                                    " and emu: (4 script lines compared)"))
         << r.out;
 }
 
 TEST_F(ApcictlDiff, ScriptReportsTheFirstDifferingLineWithBothResults) {
-    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1300", "1", "1", "7", "4.5"}).exit_code, 0);
+    ASSERT_EQ(
+        apcictl({"--device", daemon_->unix_uri(), "write", "1300", "1", "1", "7", "4.5"}).exit_code,
+        0);
     const auto file = script_file(dir_, "read 1000 0 3 0\n\nread 1300 1 1 7\nread 1300 1 2 7\n");
     const auto r = diff({"--against", "emu:", file});
     EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -140,34 +152,44 @@ TEST_F(ApcictlDiff, AgainstIsRequired) {
 TEST_F(ApcictlDiff, NcProgramRunsTheSameOnTheDaemonAndTheEmbeddedBoard) {
     const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners});
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-    EXPECT_TRUE(std::regex_search(r.out, std::regex("no difference .* \\(([1-9][0-9]{3,}) interpolation cycles compared\\)")))
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("no difference .* \\(([1-9][0-9]{3,}) interpolation cycles compared\\)")))
         << r.out;
 }
 
 TEST_F(ApcictlDiff, NcProgramReportsTheFirstDifferingPositionWithBlockAndCycle) {
     // A 2 ms interpolation cycle on one board only: the first move (N40; N20 goes nowhere)
     // covers twice the distance per cycle there.
-    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1000", "0", "4", "0", "2000"}).exit_code, 0);
+    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1000", "0", "4", "0", "2000"})
+                  .exit_code,
+              0);
     const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners});
     EXPECT_EQ(r.exit_code, 1) << r.err;
-    EXPECT_TRUE(std::regex_search(r.out, std::regex("first difference at N40, cycle 1: axis [XY] position\n")))
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("first difference at N40, cycle 1: axis [XY] position\n")))
         << r.out;
 }
 
 TEST_F(ApcictlDiff, ToleranceAbsorbsDifferencesBelowIt) {
-    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1300", "0", "20", "0", "1e-9"}).exit_code, 0);
+    ASSERT_EQ(apcictl({"--device", daemon_->unix_uri(), "write", "1300", "0", "20", "0", "1e-9"})
+                  .exit_code,
+              0);
     EXPECT_EQ(diff({"--against", "emu:", "--tools", kTools, kInsideCorners}).exit_code, 1);
     // The axes are back at the start of the program after the first run: a fresh daemon board.
     auto fresh = Daemon::start();
     ASSERT_NE(fresh, nullptr);
-    ASSERT_EQ(apcictl({"--device", fresh->unix_uri(), "write", "1300", "0", "20", "0", "1e-9"}).exit_code, 0);
-    const auto r = diff({"--against", "emu:", "--tolerance", "1e-6", "--tools", kTools, kInsideCorners},
-                        fresh->unix_uri());
+    ASSERT_EQ(
+        apcictl({"--device", fresh->unix_uri(), "write", "1300", "0", "20", "0", "1e-9"}).exit_code,
+        0);
+    const auto r =
+        diff({"--against", "emu:", "--tolerance", "1e-6", "--tools", kTools, kInsideCorners},
+             fresh->unix_uri());
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
 
 TEST_F(ApcictlDiff, NcProgramReportsTheFirstDifferingError) {
-    const auto r = diff({"--against", "emu:?no-option-tc", "--tools", kTools, kInsideCorners}, "emu:");
+    const auto r =
+        diff({"--against", "emu:?no-option-tc", "--tools", kTools, kInsideCorners}, "emu:");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.out, "first difference at N30: error 1")) << r.out;
     EXPECT_TRUE(contains(r.out, "NoSuchDevice at N30")) << r.out;
@@ -178,7 +200,8 @@ TEST_F(ApcictlDiff, DifferentStartPositionsAreReportedFirst) {
     // The daemon's axes stay where the first run left them; a fresh embedded board starts at 0.
     const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners});
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_TRUE(contains(r.out, "first difference at the start of the run: axis X position")) << r.out;
+    EXPECT_TRUE(contains(r.out, "first difference at the start of the run: axis X position"))
+        << r.out;
 }
 
 TEST_F(ApcictlDiff, NcProgramFromStandardInputIsAUsageError) {

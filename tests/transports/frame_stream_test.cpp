@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 // rwmos::FrameStream: request frames from a byte stream, served in order,
 // malformed ones answered or the stream dropped (docs/wire-frame.md).
-#include <cstring>
-#include <vector>
+#include "rwmos/frame_stream.h"
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <vector>
+
 #include "objif/frame.h"
 #include "rwmos/board.h"
-#include "rwmos/frame_stream.h"
 
 namespace {
 
@@ -16,7 +17,9 @@ using objif::FrameError;
 
 std::vector<std::uint8_t> read_frame(std::uint32_t seq) {
     std::vector<std::uint8_t> payload, out;
-    objif::encode(objif::ReadRequest{objif::Descriptor{{1000, 0, 3, 0}, 0}, objif::ValueType::kInt32}, payload);
+    objif::encode(
+        objif::ReadRequest{objif::Descriptor{{1000, 0, 3, 0}, 0}, objif::ValueType::kInt32},
+        payload);
     objif::encode_frame(static_cast<std::uint16_t>(objif::Opcode::kObjectRead), seq, payload, out);
     return out;
 }
@@ -28,7 +31,8 @@ std::vector<objif::Frame> frames_in(const std::vector<std::uint8_t>& bytes) {
         objif::Frame f;
         std::size_t used = 0;
         bool more = false;
-        if (objif::decode_frame(std::span(bytes).subspan(at), f, used, more) != FrameError::kNone) break;
+        if (objif::decode_frame(std::span(bytes).subspan(at), f, used, more) != FrameError::kNone)
+            break;
         frames.push_back(f);
         at += used;
     }
@@ -36,7 +40,7 @@ std::vector<objif::Frame> frames_in(const std::vector<std::uint8_t>& bytes) {
 }
 
 class FrameStreamTest : public ::testing::Test {
-protected:
+  protected:
     rwmos::Board board;
     rwmos::FrameServer server{board};
     rwmos::FrameStream stream;

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
 // The dual-port RAM mailbox protocol (objif/mailbox.h, docs/dpram.md), host
 // and board in one process on a window of ordinary memory.
+#include "objif/mailbox.h"
+
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <chrono>
 #include <cstring>
 #include <thread>
 #include <vector>
-
-#include <gtest/gtest.h>
-
-#include "objif/mailbox.h"
 
 namespace {
 
@@ -18,8 +18,9 @@ using objif::Status;
 using namespace std::chrono_literals;
 
 class Mailbox : public ::testing::Test {
-protected:
-    Mailbox() : memory_(mb::kWindowSize / 4 + 1, 0), window_(memory_.data(), mb::kWindowSize, true) {
+  protected:
+    Mailbox()
+        : memory_(mb::kWindowSize / 4 + 1, 0), window_(memory_.data(), mb::kWindowSize, true) {
         mb::format(window_);
     }
     ~Mailbox() override { stop_board(); }
@@ -148,7 +149,8 @@ TEST_F(Mailbox, RequestLeftByATimedOutHostIsSettledBeforeTheNext) {
     start_board();  // the board comes back and answers the old request first
     const auto request = bytes(24, 50);
     ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
-    EXPECT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend())) << "not the stale reply";
+    EXPECT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend()))
+        << "not the stale reply";
     EXPECT_EQ(served_.load(), 2);
 }
 
@@ -251,7 +253,8 @@ TEST_F(Mailbox, HostStopsSpinningForABoardThatAnswersSlowly) {
     o.adaptive = &spin;
     std::vector<std::uint8_t> reply;
     std::string why;
-    for (int i = 0; i < 8; ++i) ASSERT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kOk) << why;
+    for (int i = 0; i < 8; ++i)
+        ASSERT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kOk) << why;
     slow_board.join();
     EXPECT_EQ(spin.budget(), 1us) << "eight misses: 20 -> 10 -> 5 -> 2.5 -> 1.25 -> 1 us";
 }

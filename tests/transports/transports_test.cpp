@@ -4,6 +4,7 @@
 // board listing. What the transports have in common with the embedded
 // emulator is the conformance suite's (tests/conformance).
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/un.h>
@@ -18,8 +19,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "apci/apci.h"
 #include "apci/apci.hpp"
@@ -36,7 +35,9 @@ using apci_test::FakePciSysfs;
 using apci_test::TempDir;
 using namespace std::chrono_literals;
 
-apci_object_descriptor axis_count() { return {1000, 0, 3, 0, 0}; }
+apci_object_descriptor axis_count() {
+    return {1000, 0, 3, 0, 0};
+}
 
 std::string open_error(const std::string& uri, apci_status expected) {
     apci_board* b = reinterpret_cast<apci_board*>(0x1);
@@ -47,7 +48,9 @@ std::string open_error(const std::string& uri, apci_status expected) {
     return apci_last_error(nullptr);
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
 // A file of `size` zero bytes.
 void make_file(const std::string& path, std::uintmax_t size) {
@@ -58,7 +61,7 @@ void make_file(const std::string& path, std::uintmax_t size) {
 // A socket server whose replies the test scripts: it reads each request frame
 // and hands it to `answer`, which writes whatever bytes it likes.
 class ScriptedServer {
-public:
+  public:
     using Answer = std::function<void(int fd, const objif::Frame& request, int index)>;
 
     explicit ScriptedServer(Answer answer) : answer_(std::move(answer)) {
@@ -87,11 +90,12 @@ public:
     }
     static void send_read_reply(int fd, std::uint32_t sequence, std::int32_t value) {
         std::vector<std::uint8_t> payload;
-        objif::encode(objif::ReadReply{objif::Status::kOk, 1, objif::Value::of_int(value)}, payload);
+        objif::encode(objif::ReadReply{objif::Status::kOk, 1, objif::Value::of_int(value)},
+                      payload);
         send_frame(fd, 0x8001, sequence, payload);
     }
 
-private:
+  private:
     void run() {
         while (!stop_) {
             const int fd = ::accept(listen_, nullptr, nullptr);
@@ -107,7 +111,8 @@ private:
                 std::size_t used = 0;
                 bool more = false;
                 while (objif::decode_frame(pending, f, used, more) == objif::FrameError::kNone) {
-                    pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(used));
+                    pending.erase(pending.begin(),
+                                  pending.begin() + static_cast<std::ptrdiff_t>(used));
                     answer_(fd, f, index++);
                 }
             }
@@ -125,33 +130,41 @@ private:
 // ---- Device URIs and options
 
 TEST(TransportUri, UnixWithoutPathIsInvalid) {
-    EXPECT_TRUE(contains(open_error("unix:", APCI_INVALID_ARGUMENT), "needs the daemon's socket path"));
+    EXPECT_TRUE(
+        contains(open_error("unix:", APCI_INVALID_ARGUMENT), "needs the daemon's socket path"));
 }
 
 TEST(TransportUri, UnknownOptionIsInvalid) {
-    EXPECT_TRUE(contains(open_error("unix:/tmp/x.sock?colour=blue", APCI_INVALID_ARGUMENT), "colour=blue"));
-    EXPECT_TRUE(contains(open_error("shm:/tmp/x?colour=blue", APCI_INVALID_ARGUMENT), "colour=blue"));
+    EXPECT_TRUE(
+        contains(open_error("unix:/tmp/x.sock?colour=blue", APCI_INVALID_ARGUMENT), "colour=blue"));
+    EXPECT_TRUE(
+        contains(open_error("shm:/tmp/x?colour=blue", APCI_INVALID_ARGUMENT), "colour=blue"));
 }
 
 TEST(TransportUri, TimeoutOptionMustBeMilliseconds) {
     for (const char* bad : {"timeout=0", "timeout=-5", "timeout=1s", "timeout=3600001", "timeout="})
-        EXPECT_TRUE(contains(open_error(std::string("unix:/tmp/x.sock?") + bad, APCI_INVALID_ARGUMENT),
-                             "milliseconds"))
+        EXPECT_TRUE(
+            contains(open_error(std::string("unix:/tmp/x.sock?") + bad, APCI_INVALID_ARGUMENT),
+                     "milliseconds"))
             << bad;
 }
 
 TEST(TransportUri, SocketPathTooLongIsInvalid) {
-    EXPECT_TRUE(contains(open_error("unix:/" + std::string(200, 'a'), APCI_INVALID_ARGUMENT), "too long"));
+    EXPECT_TRUE(
+        contains(open_error("unix:/" + std::string(200, 'a'), APCI_INVALID_ARGUMENT), "too long"));
 }
 
 TEST(TransportUri, PciAddressMustBeDomainBusDevFn) {
-    for (const char* bad : {"pci:", "pci:03:00.0", "pci:0000:03:00", "pci:0000:03:00.8", "pci:000g:03:00.0"})
-        EXPECT_TRUE(contains(open_error(bad, APCI_INVALID_ARGUMENT), "pci:DOMAIN:BUS:DEV.FN")) << bad;
+    for (const char* bad :
+         {"pci:", "pci:03:00.0", "pci:0000:03:00", "pci:0000:03:00.8", "pci:000g:03:00.0"})
+        EXPECT_TRUE(contains(open_error(bad, APCI_INVALID_ARGUMENT), "pci:DOMAIN:BUS:DEV.FN"))
+            << bad;
 }
 
 TEST(TransportUri, PciOptionsAreChecked) {
     for (const char* bad : {"?bar=6", "?offset=3", "?uio-map=9", "?speed=fast"})
-        EXPECT_TRUE(contains(open_error(std::string("pci:0000:01:00.0") + bad, APCI_INVALID_ARGUMENT), "bar=0..5"))
+        EXPECT_TRUE(contains(
+            open_error(std::string("pci:0000:01:00.0") + bad, APCI_INVALID_ARGUMENT), "bar=0..5"))
             << bad;
 }
 
@@ -168,7 +181,8 @@ TEST(UnixTransport, NoDaemonIsATransportErrorNamingThePath) {
 TEST(UnixTransport, UnansweredRequestTimesOutAfterTheTimeout) {
     ScriptedServer server([](int, const objif::Frame&, int) {});  // never answers
     apci_board* b = nullptr;
-    ASSERT_EQ(apci_open(server.uri("?timeout=150").c_str(), &b), APCI_OK) << apci_last_error(nullptr);
+    ASSERT_EQ(apci_open(server.uri("?timeout=150").c_str(), &b), APCI_OK)
+        << apci_last_error(nullptr);
     std::uint32_t ms = 0;
     ASSERT_EQ(apci_get_timeout(b, &ms), APCI_OK);
     EXPECT_EQ(ms, 150u) << "the URI option sets the timeout";
@@ -222,7 +236,8 @@ TEST(UnixTransport, ReplyWithTheWrongOpcodeIsABadFrame) {
     ScriptedServer server([](int fd, const objif::Frame& request, int) {
         std::vector<std::uint8_t> payload;
         objif::encode(objif::WriteReply{objif::Status::kOk, 1}, payload);
-        ScriptedServer::send_frame(fd, 0x8002, request.sequence, payload);  // a write reply to a read
+        ScriptedServer::send_frame(fd, 0x8002, request.sequence,
+                                   payload);  // a write reply to a read
     });
     apci_board* b = nullptr;
     ASSERT_EQ(apci_open(server.uri().c_str(), &b), APCI_OK);
@@ -230,14 +245,16 @@ TEST(UnixTransport, ReplyWithTheWrongOpcodeIsABadFrame) {
     std::int32_t v = -1;
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_BAD_FRAME);
     EXPECT_EQ(v, -1) << "a failed call changes no output";
-    EXPECT_TRUE(contains(apci_last_error(b), "answered ObjectWriteReply to ObjectRead")) << apci_last_error(b);
+    EXPECT_TRUE(contains(apci_last_error(b), "answered ObjectWriteReply to ObjectRead"))
+        << apci_last_error(b);
     apci_close(b);
 }
 
 TEST(UnixTransport, ErrorReplyBecomesItsStatusWithTheReason) {
     ScriptedServer server([](int fd, const objif::Frame& request, int) {
         std::vector<std::uint8_t> payload;
-        objif::encode(objif::ErrorReply{objif::Status::kBadFrame, objif::FrameError::kBadCrc}, payload);
+        objif::encode(objif::ErrorReply{objif::Status::kBadFrame, objif::FrameError::kBadCrc},
+                      payload);
         ScriptedServer::send_frame(fd, 0xFFFF, request.sequence, payload);
     });
     apci_board* b = nullptr;
@@ -245,7 +262,8 @@ TEST(UnixTransport, ErrorReplyBecomesItsStatusWithTheReason) {
     auto o = axis_count();
     std::int32_t v = 0;
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_BAD_FRAME);
-    EXPECT_TRUE(contains(apci_last_error(b), "refused the ObjectRead frame: bad CRC")) << apci_last_error(b);
+    EXPECT_TRUE(contains(apci_last_error(b), "refused the ObjectRead frame: bad CRC"))
+        << apci_last_error(b);
     apci_close(b);
 }
 
@@ -274,7 +292,8 @@ TEST(UnixTransport, DaemonStoppingLosesTheLinkUntilReconnect) {
     ASSERT_NE(d2, nullptr);
     ASSERT_EQ(apci_reconnect(b), APCI_OK) << apci_last_error(b);
     EXPECT_EQ(apci_is_connected(b), 1);
-    EXPECT_EQ(apci_read_int(b, &o, &v), APCI_STALE_HANDLE) << "a new board: the old handle means nothing";
+    EXPECT_EQ(apci_read_int(b, &o, &v), APCI_STALE_HANDLE)
+        << "a new board: the old handle means nothing";
     o.handle = 0;
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_OK) << apci_last_error(b);
     EXPECT_EQ(v, 8);
@@ -309,13 +328,15 @@ TEST(ShmTransport, MissingFileIsATransportErrorNamingIt) {
 TEST(ShmTransport, FileTooShortIsRefused) {
     TempDir dir;
     std::ofstream(dir.file("short")) << "hello";
-    EXPECT_TRUE(contains(open_error("shm:" + dir.file("short"), APCI_TRANSPORT_ERROR), "a mailbox window needs"));
+    EXPECT_TRUE(contains(open_error("shm:" + dir.file("short"), APCI_TRANSPORT_ERROR),
+                         "a mailbox window needs"));
 }
 
 TEST(ShmTransport, FileThatIsNotAMailboxIsRefused) {
     TempDir dir;
     make_file(dir.file("zeros"), objif::mailbox::kWindowSize);
-    EXPECT_TRUE(contains(open_error("shm:" + dir.file("zeros"), APCI_TRANSPORT_ERROR), "no mailbox here"));
+    EXPECT_TRUE(
+        contains(open_error("shm:" + dir.file("zeros"), APCI_TRANSPORT_ERROR), "no mailbox here"));
 }
 
 TEST(ShmTransport, DaemonStoppingLosesTheLinkAndReconnectFindsTheNewOne) {
@@ -341,7 +362,8 @@ TEST(ShmTransport, DaemonStoppingLosesTheLinkAndReconnectFindsTheNewOne) {
     again.shm_path = d->shm_path();
     auto d2 = Daemon::start(again);
     ASSERT_NE(d2, nullptr);
-    ASSERT_TRUE(apci_test::eventually([&] { return apci_reconnect(b) == APCI_OK; })) << apci_last_error(b);
+    ASSERT_TRUE(apci_test::eventually([&] { return apci_reconnect(b) == APCI_OK; }))
+        << apci_last_error(b);
     obj.handle = 0;  // a new board
     EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_OK) << apci_last_error(b);
     EXPECT_EQ(v, 8);
@@ -356,22 +378,25 @@ TEST(ShmTransport, MailboxNobodyServesTimesOut) {
         objif::mailbox::MappedWindow w(words.data(), objif::mailbox::kWindowSize, false);
         objif::mailbox::format(w);
         objif::mailbox::set_board_state(w, objif::mailbox::BoardState::kServing);
-        std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(words.data()),
-                                                    static_cast<std::streamsize>(objif::mailbox::kWindowSize));
+        std::ofstream(path, std::ios::binary)
+            .write(reinterpret_cast<const char*>(words.data()),
+                   static_cast<std::streamsize>(objif::mailbox::kWindowSize));
     }
     apci_board* b = nullptr;
-    ASSERT_EQ(apci_open(("shm:" + path + "?timeout=100").c_str(), &b), APCI_OK) << apci_last_error(nullptr);
+    ASSERT_EQ(apci_open(("shm:" + path + "?timeout=100").c_str(), &b), APCI_OK)
+        << apci_last_error(nullptr);
     auto o = axis_count();
     std::int32_t v = 0;
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_TIMEOUT);
-    EXPECT_TRUE(contains(apci_last_error(b), "no reply from the board within 100 ms")) << apci_last_error(b);
+    EXPECT_TRUE(contains(apci_last_error(b), "no reply from the board within 100 ms"))
+        << apci_last_error(b);
     apci_close(b);
 }
 
 // ---- pci: (a fake sysfs tree; the BAR is the daemon's dual-port RAM file)
 
 class PciTransport : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         DaemonOptions o;
         o.socket = false;
@@ -425,7 +450,8 @@ TEST_F(PciTransport, PciAndShmHostsShareTheMailbox) {
 
 TEST_F(PciTransport, OtherVendorIsRefusedNamingIt) {
     FakePciSysfs sysfs(daemon_->shm_path(), FakePciSysfs::BarKind::kMemory, 0x8086);
-    EXPECT_TRUE(contains(open_error(sysfs.uri(), APCI_INVALID_ARGUMENT), "vendor 0x8086, not ADDI-DATA"));
+    EXPECT_TRUE(
+        contains(open_error(sysfs.uri(), APCI_INVALID_ARGUMENT), "vendor 0x8086, not ADDI-DATA"));
 }
 
 TEST_F(PciTransport, OlderVendorIdIsAccepted) {
@@ -437,7 +463,8 @@ TEST_F(PciTransport, OlderVendorIdIsAccepted) {
 
 TEST_F(PciTransport, MissingFunctionIsATransportError) {
     FakePciSysfs sysfs(daemon_->shm_path(), FakePciSysfs::BarKind::kMemory);
-    EXPECT_TRUE(contains(open_error("pci:0000:02:00.0", APCI_TRANSPORT_ERROR), "no PCI function 0000:02:00.0"));
+    EXPECT_TRUE(contains(open_error("pci:0000:02:00.0", APCI_TRANSPORT_ERROR),
+                         "no PCI function 0000:02:00.0"));
 }
 
 TEST_F(PciTransport, UnassignedBarIsATransportError) {
@@ -453,7 +480,8 @@ TEST_F(PciTransport, WindowBeyondTheBarIsRefused) {
 
 TEST_F(PciTransport, UioWithoutAUioDeviceSaysHowToBindOne) {
     FakePciSysfs sysfs(daemon_->shm_path(), FakePciSysfs::BarKind::kMemory);
-    EXPECT_TRUE(contains(open_error(sysfs.uri() + "?uio", APCI_TRANSPORT_ERROR), "uio_pci_generic"));
+    EXPECT_TRUE(
+        contains(open_error(sysfs.uri() + "?uio", APCI_TRANSPORT_ERROR), "uio_pci_generic"));
 }
 
 TEST_F(PciTransport, UioMapIsMapped) {
@@ -524,7 +552,9 @@ TEST(ListDevices, StoppedDaemonsAreNotListed) {
     EXPECT_FALSE(found.has(uri));
 }
 
-TEST(ListDevices, NullCallbackIsInvalid) { EXPECT_EQ(apci_list_devices(nullptr, nullptr), APCI_INVALID_ARGUMENT); }
+TEST(ListDevices, NullCallbackIsInvalid) {
+    EXPECT_EQ(apci_list_devices(nullptr, nullptr), APCI_INVALID_ARGUMENT);
+}
 
 // ---- The link API on any board
 

@@ -5,12 +5,12 @@
 // group-accessible; both vendor IDs. udevadm cannot check rules without a
 // device here, so the rules are read the way udev reads them: one rule a
 // line, comma-separated KEY op "value" pairs.
+#include <gtest/gtest.h>
+
 #include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace {
 
@@ -100,7 +100,9 @@ TEST(UdevRules, UioNodesOfBothVendorsGetUaccessMode0660AndPlugdev) {
     const auto uio = rules_for("uio");
     ASSERT_EQ(uio.size(), 2u);
     for (const auto& r : uio) {
-        EXPECT_TRUE(r.has("TAG+=\"uaccess\"") && r.has("MODE=\"0660\"") && r.has("GROUP=\"plugdev\"")) << r.text;
+        EXPECT_TRUE(r.has("TAG+=\"uaccess\"") && r.has("MODE=\"0660\"") &&
+                    r.has("GROUP=\"plugdev\""))
+            << r.text;
     }
 }
 

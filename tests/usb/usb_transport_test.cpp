@@ -2,11 +2,11 @@
 // The usb: transport through unmodified libusb against an emulated board on
 // USB (umockdev serves the usbfs URBs from rwmos::FrameServer; see
 // tests/support/usb_emulator.h). Run under umockdev-wrapper.
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "apci/apci.h"
 #include "usb_emulator.h"
@@ -16,12 +16,16 @@ namespace {
 using apci_test::UsbBoard;
 using namespace std::chrono_literals;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
-apci_object_descriptor axis_count() { return {1000, 0, 3, 0, 0}; }
+apci_object_descriptor axis_count() {
+    return {1000, 0, 3, 0, 0};
+}
 
 class UsbTransport : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         if (!UsbBoard::available()) GTEST_SKIP() << "not running under umockdev-wrapper";
     }
@@ -75,7 +79,8 @@ TEST_F(UsbTransport, OtherVendorIsNotABoard) {
     UsbBoard usb(o);
     apci_board* b = nullptr;
     EXPECT_EQ(apci_open("usb:", &b), APCI_TRANSPORT_ERROR);
-    EXPECT_TRUE(contains(apci_last_error(nullptr), "no ADDI-DATA USB board found")) << apci_last_error(nullptr);
+    EXPECT_TRUE(contains(apci_last_error(nullptr), "no ADDI-DATA USB board found"))
+        << apci_last_error(nullptr);
 }
 
 TEST_F(UsbTransport, DeviceWithoutTheFrameInterfaceIsNotABoard) {
@@ -106,7 +111,8 @@ TEST_F(UsbTransport, BoardThatNeverAnswersTimesOut) {
     const auto t0 = std::chrono::steady_clock::now();
     EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_TIMEOUT) << apci_last_error(b);
     EXPECT_GE(std::chrono::steady_clock::now() - t0, 190ms);
-    EXPECT_TRUE(contains(apci_last_error(b), "no bulk IN (reply) within the timeout")) << apci_last_error(b);
+    EXPECT_TRUE(contains(apci_last_error(b), "no bulk IN (reply) within the timeout"))
+        << apci_last_error(b);
     EXPECT_EQ(apci_is_connected(b), 1);
     apci_close(b);
 }
@@ -153,7 +159,8 @@ TEST_F(UsbTransport, ReplyLargerThanOnePacketArrivesWhole) {
     ASSERT_EQ(apci_run_until_idle(b, 100000, &st), APCI_OK);
     std::vector<apci_trace_sample> samples(8192);
     std::size_t n = 0;
-    ASSERT_EQ(apci_read_trace(b, samples.data(), samples.size(), &n), APCI_OK) << apci_last_error(b);
+    ASSERT_EQ(apci_read_trace(b, samples.data(), samples.size(), &n), APCI_OK)
+        << apci_last_error(b);
     ASSERT_EQ(n, st.ran);
     EXPECT_EQ(samples[n - 1].position[0], 20.0);
     for (std::size_t i = 1; i < n; ++i) ASSERT_EQ(samples[i].cycle, samples[i - 1].cycle + 1);

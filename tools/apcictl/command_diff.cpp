@@ -12,6 +12,7 @@
 //    its block and cycle), an error, the length of the run, a TC register
 //    bit at the end, an executed segment.
 // Exit 0: no difference; 1: a difference, or a board or program error; 2: usage.
+#include <fmt/format.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -24,8 +25,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
@@ -49,7 +48,7 @@ struct Difference {
 
 // Everything a command prints on stdout while it runs, for comparison.
 class StdoutCapture {
-public:
+  public:
     StdoutCapture() {
         std::fflush(stdout);
         fd_ = ::memfd_create("apcictl-diff", MFD_CLOEXEC);
@@ -70,14 +69,15 @@ public:
             char buffer[4096];
             ssize_t n = 0;
             ::lseek(fd_, 0, SEEK_SET);
-            while ((n = ::read(fd_, buffer, sizeof buffer)) > 0) text_.append(buffer, static_cast<std::size_t>(n));
+            while ((n = ::read(fd_, buffer, sizeof buffer)) > 0)
+                text_.append(buffer, static_cast<std::size_t>(n));
             ::close(fd_);
             fd_ = -1;
         }
         return text_;
     }
 
-private:
+  private:
     int fd_ = -1;
     int saved_ = -1;
     std::string text_;
@@ -93,8 +93,8 @@ std::string line_result(Command& command, Session& session) {
     return printed.empty() ? "failed: " + outcome.error : printed + "\nfailed: " + outcome.error;
 }
 
-Outcome diff_script(const std::string& file, Session& here, Session& there, std::optional<Difference>& first,
-                    std::size_t& compared) {
+Outcome diff_script(const std::string& file, Session& here, Session& there,
+                    std::optional<Difference>& first, std::size_t& compared) {
     std::vector<ScriptLine> lines;
     if (Outcome read = read_script(file, lines); !read.ok()) return read;
     for (auto& line : lines) {
@@ -102,7 +102,8 @@ Outcome diff_script(const std::string& file, Session& here, Session& there, std:
         std::string a = line_result(*line.command, here);
         std::string b = line_result(*line.command, there);
         if (a != b) {
-            first = Difference{fmt::format("line {}", line.number), line.text, std::move(a), std::move(b)};
+            first = Difference{fmt::format("line {}", line.number), line.text, std::move(a),
+                               std::move(b)};
             return Outcome::success();
         }
     }
@@ -126,7 +127,9 @@ struct Recording final : apci::run::RunSink {
 
     void executed(const PathSegment& s) override { segments.push_back(s); }
     bool wants_samples() const override { return true; }
-    void axes(std::span<const std::string> names) override { axis_names.assign(names.begin(), names.end()); }
+    void axes(std::span<const std::string> names) override {
+        axis_names.assign(names.begin(), names.end());
+    }
     void sample(std::uint64_t cycle, double, std::span<const double> axes) override {
         Sample s;
         s.cycle = cycle;
@@ -137,17 +140,20 @@ struct Recording final : apci::run::RunSink {
     // The block whose segment ran in `cycle`.
     std::string block_at(std::uint64_t cycle) const {
         for (const auto& s : segments)
-            if (s.start_cycle < cycle && cycle <= s.end_cycle) return apci::run::block_text(s.block);
+            if (s.start_cycle < cycle && cycle <= s.end_cycle)
+                return apci::run::block_text(s.block);
         return "no block";
     }
 };
 
 Outcome nc_failure(const apci::nc::Diagnostic& d) {
     const std::string text = d.to_string();
-    return d.kind == apci::nc::ErrorKind::kIo ? Outcome::usage_error(text) : Outcome::board_error(text);
+    return d.kind == apci::nc::ErrorKind::kIo ? Outcome::usage_error(text)
+                                              : Outcome::board_error(text);
 }
 
-Outcome record_run(const std::string& path, const apci::nc::ToolTable& tools, Session& session, Recording& out) {
+Outcome record_run(const std::string& path, const apci::nc::ToolTable& tools, Session& session,
+                   Recording& out) {
     Outcome failure;
     apci::Board* board = session.board(failure);
     if (board == nullptr) return failure;
@@ -164,7 +170,9 @@ Outcome record_run(const std::string& path, const apci::nc::ToolTable& tools, Se
     return Outcome::success();
 }
 
-std::string number(double v) { return fmt::format("{}", v); }
+std::string number(double v) {
+    return fmt::format("{}", v);
+}
 
 std::string error_text(const RunError& e) {
     return fmt::format("{} at {}: {}", e.code, apci::run::block_text(e.block), e.message);
@@ -177,13 +185,15 @@ std::string registers_text(std::int32_t error, std::int32_t status) {
         const char* name = apci_tc_error_bit_name(bit);
         errors += fmt::format("{}{}", errors.empty() ? "" : "|", name != nullptr ? name : "?");
     }
-    return fmt::format("ERROR {:#04x} ({}), STATUS {:#04x}", error, errors.empty() ? "none" : errors, status);
+    return fmt::format("ERROR {:#04x} ({}), STATUS {:#04x}", error,
+                       errors.empty() ? "none" : errors, status);
 }
 
 // Positions cycle by cycle. The boards' clocks need not agree (a daemon's
 // board has run before), so cycles count from the start of the run: the
 // trace holds every cycle, the first sample is cycle 1 of the run.
-std::optional<Difference> compare_samples(const Recording& a, const Recording& b, double tolerance) {
+std::optional<Difference> compare_samples(const Recording& a, const Recording& b,
+                                          double tolerance) {
     const std::size_t n = std::min(a.samples.size(), b.samples.size());
     const auto where = [&](const Recording& r, std::size_t i) {
         return fmt::format("{}, cycle {}", r.block_at(r.samples[i].cycle), i + 1);
@@ -193,9 +203,10 @@ std::optional<Difference> compare_samples(const Recording& a, const Recording& b
         const Sample& y = b.samples[i];
         for (std::size_t axis = 0; axis < x.position.size(); ++axis) {
             if (std::abs(x.position[axis] - y.position[axis]) <= tolerance) continue;
-            const std::string name = axis < a.axis_names.size() ? a.axis_names[axis] : fmt::format("a{}", axis);
-            return Difference{where(a, i), fmt::format("axis {} position", name), number(x.position[axis]),
-                              number(y.position[axis])};
+            const std::string name =
+                axis < a.axis_names.size() ? a.axis_names[axis] : fmt::format("a{}", axis);
+            return Difference{where(a, i), fmt::format("axis {} position", name),
+                              number(x.position[axis]), number(y.position[axis])};
         }
     }
     return std::nullopt;
@@ -207,7 +218,9 @@ std::optional<Difference> compare_length(const Recording& a, const Recording& b)
     if (a.samples.size() == b.samples.size()) return std::nullopt;
     const Recording& longer = a.samples.size() > b.samples.size() ? a : b;
     const std::size_t n = std::min(a.samples.size(), b.samples.size());
-    const auto ran = [](const Recording& r) { return fmt::format("the run took {} cycles", r.samples.size()); };
+    const auto ran = [](const Recording& r) {
+        return fmt::format("the run took {} cycles", r.samples.size());
+    };
     return Difference{fmt::format("{}, cycle {}", longer.block_at(longer.samples[n].cycle), n + 1),
                       "length of the run", ran(a), ran(b)};
 }
@@ -215,7 +228,8 @@ std::optional<Difference> compare_length(const Recording& a, const Recording& b)
 std::optional<Difference> compare_start(const Recording& a, const Recording& b, double tolerance) {
     for (int i = 0; i < 3; ++i) {
         if (std::abs(a.start[i] - b.start[i]) <= tolerance) continue;
-        return Difference{"the start of the run", fmt::format("axis {} position", apci::run::axis_letter(i)),
+        return Difference{"the start of the run",
+                          fmt::format("axis {} position", apci::run::axis_letter(i)),
                           number(a.start[i]), number(b.start[i])};
     }
     return std::nullopt;
@@ -228,7 +242,8 @@ std::optional<Difference> compare_errors(const Recording& a, const Recording& b)
         const std::string p = i < x.size() ? error_text(x[i]) : "no error";
         const std::string q = i < y.size() ? error_text(y[i]) : "no error";
         const bool same = i < x.size() && i < y.size() && x[i].code == y[i].code &&
-                          x[i].block.number == y[i].block.number && x[i].block.line == y[i].block.line;
+                          x[i].block.number == y[i].block.number &&
+                          x[i].block.line == y[i].block.line;
         if (!same) {
             const BlockRef& at = i < x.size() ? x[i].block : y[i].block;
             return Difference{apci::run::block_text(at), fmt::format("error {}", i + 1), p, q};
@@ -244,7 +259,9 @@ std::optional<Difference> compare_registers(const Recording& a, const Recording&
         return Difference{"end of the run", "TC module", x.empty() ? "absent" : "present",
                           y.empty() ? "absent" : "present"};
     for (std::size_t i = 0; i < x.size(); ++i) {
-        if (x[i].readable == y[i].readable && x[i].error == y[i].error && x[i].status == y[i].status) continue;
+        if (x[i].readable == y[i].readable && x[i].error == y[i].error &&
+            x[i].status == y[i].status)
+            continue;
         return Difference{"end of the run", fmt::format("registers of TC group {}", x[i].group),
                           x[i].readable ? registers_text(x[i].error, x[i].status) : "unreadable",
                           y[i].readable ? registers_text(y[i].error, y[i].status) : "unreadable"};
@@ -254,22 +271,24 @@ std::optional<Difference> compare_registers(const Recording& a, const Recording&
 
 std::string segment_text(const PathSegment& s) {
     return fmt::format("{} {} from ({}, {}, {}) to ({}, {}, {})", apci::run::kind_name(s.kind),
-                       apci::run::role_name(s.role), s.start.x(), s.start.y(), s.start.z(), s.end.x(), s.end.y(),
-                       s.end.z());
+                       apci::run::role_name(s.role), s.start.x(), s.start.y(), s.start.z(),
+                       s.end.x(), s.end.y(), s.end.z());
 }
 
-std::optional<Difference> compare_segments(const Recording& a, const Recording& b, double tolerance) {
+std::optional<Difference> compare_segments(const Recording& a, const Recording& b,
+                                           double tolerance) {
     for (std::size_t i = 0; i < std::max(a.segments.size(), b.segments.size()); ++i) {
         const PathSegment* x = i < a.segments.size() ? &a.segments[i] : nullptr;
         const PathSegment* y = i < b.segments.size() ? &b.segments[i] : nullptr;
-        const bool same = x != nullptr && y != nullptr && x->kind == y->kind && x->role == y->role &&
-                          x->block.number == y->block.number && (x->end - y->end).cwiseAbs().maxCoeff() <= tolerance &&
+        const bool same = x != nullptr && y != nullptr && x->kind == y->kind &&
+                          x->role == y->role && x->block.number == y->block.number &&
+                          (x->end - y->end).cwiseAbs().maxCoeff() <= tolerance &&
                           (x->start - y->start).cwiseAbs().maxCoeff() <= tolerance;
         if (!same) {
             const PathSegment& at = x != nullptr ? *x : *y;
-            return Difference{apci::run::block_text(at.block), fmt::format("executed segment {}", i + 1),
-                              x ? segment_text(*x) : "none",
-                              y ? segment_text(*y) : "none"};
+            return Difference{apci::run::block_text(at.block),
+                              fmt::format("executed segment {}", i + 1),
+                              x ? segment_text(*x) : "none", y ? segment_text(*y) : "none"};
         }
     }
     return std::nullopt;
@@ -278,28 +297,35 @@ std::optional<Difference> compare_segments(const Recording& a, const Recording& 
 bool ends_with_nc(std::string_view path) {
     if (path.size() < 3) return false;
     std::string tail(path.substr(path.size() - 3));
-    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(tail.begin(), tail.end(), tail.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return tail == ".nc";
 }
 
 class DiffCommand final : public Command {
-public:
+  public:
     void declare(CLI::App& app) override {
-        app.add_option("PROGRAM", program_, "Script (apcictl script syntax) or NC program (*.nc)")->required();
-        app.add_option("--against", against_, "The device URI to compare --device with (e.g. emu:)")->required();
+        app.add_option("PROGRAM", program_, "Script (apcictl script syntax) or NC program (*.nc)")
+            ->required();
+        app.add_option("--against", against_, "The device URI to compare --device with (e.g. emu:)")
+            ->required();
         app.add_option("--tools", tools_, "Tool list file for an NC program's D words");
-        app.add_option("--tolerance", tolerance_,
-                       "NC programs: positions closer than this are equal (program units; default 0: "
-                       "bit for bit)")
+        app.add_option(
+               "--tolerance", tolerance_,
+               "NC programs: positions closer than this are equal (program units; default 0: "
+               "bit for bit)")
             ->check(CLI::NonNegativeNumber);
-        auto* nc = app.add_flag("--nc", force_nc_, "Treat PROGRAM as an NC program whatever its name");
-        auto* script = app.add_flag("--script", force_script_, "Treat PROGRAM as a script whatever its name");
+        auto* nc =
+            app.add_flag("--nc", force_nc_, "Treat PROGRAM as an NC program whatever its name");
+        auto* script =
+            app.add_flag("--script", force_script_, "Treat PROGRAM as a script whatever its name");
         nc->excludes(script);
-        app.footer("Runs the work on --device and on --against and reports the first difference: for "
-                   "a script, the first line whose printed result or failure differs; for an NC "
-                   "program, the first interpolation cycle whose axis positions differ (with its "
-                   "block), then the first differing error, TC register at the end, or executed "
-                   "segment. Exit 0 no difference, 1 a difference or a board/program error, 2 usage.");
+        app.footer(
+            "Runs the work on --device and on --against and reports the first difference: for "
+            "a script, the first line whose printed result or failure differs; for an NC "
+            "program, the first interpolation cycle whose axis positions differ (with its "
+            "block), then the first differing error, TC register at the end, or executed "
+            "segment. Exit 0 no difference, 1 a difference or a board/program error, 2 usage.");
     }
 
     Outcome prepare() override {
@@ -322,18 +348,19 @@ public:
         }
         if (!outcome.ok()) return outcome;
         if (!first) {
-            fmt::print("diff: no difference between {} and {} ({} {} compared)\n", session.uri(), against_,
-                       compared, unit);
+            fmt::print("diff: no difference between {} and {} ({} {} compared)\n", session.uri(),
+                       against_, compared, unit);
             return Outcome::success();
         }
         const std::size_t width = std::max(session.uri().size(), against_.size());
         fmt::print("diff: first difference at {}: {}\n", first->where, first->what);
         fmt::print("  {:<{}}  {}\n", session.uri(), width, indented(first->here, width));
         fmt::print("  {:<{}}  {}\n", against_, width, indented(first->there, width));
-        return Outcome::board_error(fmt::format("diff: {} and {} differ at {}", session.uri(), against_, first->where));
+        return Outcome::board_error(
+            fmt::format("diff: {} and {} differ at {}", session.uri(), against_, first->where));
     }
 
-private:
+  private:
     bool is_nc() const { return force_nc_ || (!force_script_ && ends_with_nc(program_)); }
 
     static std::string indented(const std::string& text, std::size_t width) {
@@ -345,7 +372,8 @@ private:
         return out.empty() ? "(nothing printed)" : out;
     }
 
-    Outcome diff_nc(Session& here, Session& there, std::optional<Difference>& first, std::size_t& compared) {
+    Outcome diff_nc(Session& here, Session& there, std::optional<Difference>& first,
+                    std::size_t& compared) {
         apci::nc::ToolTable tools;
         if (!tools_.empty()) {
             auto loaded = apci::nc::load_tool_table(tools_);
@@ -375,6 +403,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Command> make_diff_command() { return std::make_unique<DiffCommand>(); }
+std::unique_ptr<Command> make_diff_command() {
+    return std::make_unique<DiffCommand>();
+}
 
 }  // namespace apcictl

@@ -5,11 +5,11 @@
 //   usb:1:5                       ADDI-DATA USB board 15b8:8001, port 1-2
 //   pci:0000:03:00.0              ADDI-DATA PCI board 15b8:1005, BAR 0 memory 0x40000 bytes
 //   unix:/run/user/1000/rwmos-emu.sock  rwmos-emu daemon, pid 4242
+#include <fmt/format.h>
+
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.h"
 
@@ -17,13 +17,14 @@ namespace apcictl {
 namespace {
 
 class ListCommand final : public Command {
-public:
+  public:
     void declare(CLI::App& app) override {
-        app.footer("Prints one line per board: its device URI (for --device) and what it is. "
-                   "Emulator daemons are found through their registry directory "
-                   "($APCI_RUNTIME_DIR, else $XDG_RUNTIME_DIR/apci, else /tmp/apci-UID). Kinds "
-                   "of board that cannot be enumerated are named on stderr. Prints nothing "
-                   "when there is no board; exit 0 either way.");
+        app.footer(
+            "Prints one line per board: its device URI (for --device) and what it is. "
+            "Emulator daemons are found through their registry directory "
+            "($APCI_RUNTIME_DIR, else $XDG_RUNTIME_DIR/apci, else /tmp/apci-UID). Kinds "
+            "of board that cannot be enumerated are named on stderr. Prints nothing "
+            "when there is no board; exit 0 either way.");
     }
 
     Outcome run(Session&) override {
@@ -38,7 +39,8 @@ public:
             return Outcome::board_error(fmt::format("list: {}", apci_last_error(nullptr)));
         std::size_t width = 0;
         for (const auto& [uri, description] : found) width = std::max(width, uri.size());
-        for (const auto& [uri, description] : found) fmt::print("{:<{}}  {}\n", uri, width, description);
+        for (const auto& [uri, description] : found)
+            fmt::print("{:<{}}  {}\n", uri, width, description);
         if (const std::string problems = apci_last_error(nullptr); !problems.empty())
             fmt::print(stderr, "apcictl: {}\n", problems);
         return Outcome::success();
@@ -47,6 +49,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Command> make_list_command() { return std::make_unique<ListCommand>(); }
+std::unique_ptr<Command> make_list_command() {
+    return std::make_unique<ListCommand>();
+}
 
 }  // namespace apcictl

@@ -16,7 +16,8 @@ rwmos::FrameStream::Result BoardHost::serve_stream(rwmos::FrameStream& stream,
     return result;
 }
 
-void BoardHost::serve_frame(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply) {
+void BoardHost::serve_frame(std::span<const std::uint8_t> request,
+                            std::vector<std::uint8_t>& reply) {
     const std::lock_guard lock(mutex_);
     const objif::FrameError e = server_.serve(request, reply);
     ++counts_.frames;
@@ -35,10 +36,13 @@ std::uint64_t BoardHost::pace(std::chrono::steady_clock::time_point now) {
         anchor_cycle_us_ = cycle_us;
         return 0;
     }
-    const auto elapsed = std::chrono::duration_cast<std::chrono::microseconds>(now - anchor_time_).count();
+    const auto elapsed =
+        std::chrono::duration_cast<std::chrono::microseconds>(now - anchor_time_).count();
     const std::uint64_t target = anchor_cycle_ + static_cast<std::uint64_t>(elapsed / cycle_us);
     if (board_now >= target) return 0;
-    return rwmos::serve_clock(board_, objif::ClockRequest{objif::ClockMode::kStep, target - board_now}).ran;
+    return rwmos::serve_clock(board_,
+                              objif::ClockRequest{objif::ClockMode::kStep, target - board_now})
+        .ran;
 }
 
 ServedCounts BoardHost::counts() const {

@@ -23,7 +23,7 @@ struct ServedCounts {
 };
 
 class BoardHost {
-public:
+  public:
     explicit BoardHost(const rwmos::BoardConfig& config) : board_(config), server_(board_) {}
 
     // Serves a chunk of a client's byte stream (see rwmos::FrameStream).
@@ -42,7 +42,7 @@ public:
     // it ran.
     std::uint64_t pace(std::chrono::steady_clock::time_point now);
 
-private:
+  private:
     mutable std::mutex mutex_;
     rwmos::Board board_;
     rwmos::FrameServer server_;

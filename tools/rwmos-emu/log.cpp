@@ -15,9 +15,13 @@ constexpr std::array<std::string_view, 4> kNames{"error", "warn", "info", "debug
 
 }  // namespace
 
-void set_log_level(Level level) noexcept { g_level = static_cast<int>(level); }
+void set_log_level(Level level) noexcept {
+    g_level = static_cast<int>(level);
+}
 
-bool log_enabled(Level level) noexcept { return static_cast<int>(level) <= g_level.load(); }
+bool log_enabled(Level level) noexcept {
+    return static_cast<int>(level) <= g_level.load();
+}
 
 bool parse_level(std::string_view text, Level& out) noexcept {
     for (std::size_t i = 0; i < kNames.size(); ++i) {

@@ -3,9 +3,9 @@
 // filtered by --log-level. Thread-safe (one write(2) per line).
 #pragma once
 
-#include <string_view>
-
 #include <fmt/format.h>
+
+#include <string_view>
 
 namespace rwmos_emu {
 

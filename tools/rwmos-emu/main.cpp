@@ -9,14 +9,13 @@
 #include <sys/timerfd.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <memory>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "board_host.h"
 #include "log.h"
@@ -107,18 +106,20 @@ int serve(const Options& o) {
         const itimerspec every_ms{{0, 1'000'000}, {0, 1'000'000}};
         if (fds.timer < 0 || ::timerfd_settime(fds.timer, 0, &every_ms, nullptr) != 0 ||
             !add_watch(fds.epoll, fds.timer)) {
-            log(Level::kError, "--realtime: cannot set up the pacing timer: {}", std::strerror(errno));
+            log(Level::kError, "--realtime: cannot set up the pacing timer: {}",
+                std::strerror(errno));
             return kExitFailure;
         }
         host.pace(std::chrono::steady_clock::now());
     }
 
     rwmos::RegisteredDaemon self{::getpid(), o.socket, o.shm};
-    if (!rwmos::register_daemon(self, why)) log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
-    log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}", o.no_option_tc ? "off" : "on",
-        o.realtime ? "wall" : "virtual",
-        o.socket.empty() ? "" : " on socket ", o.socket, o.shm.empty() ? "" : " and dual-port RAM file ",
-        o.shm);
+    if (!rwmos::register_daemon(self, why))
+        log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
+    log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}",
+        o.no_option_tc ? "off" : "on", o.realtime ? "wall" : "virtual",
+        o.socket.empty() ? "" : " on socket ", o.socket,
+        o.shm.empty() ? "" : " and dual-port RAM file ", o.shm);
 
     int exit_code = kExitOk;
     bool running = true;
@@ -136,7 +137,8 @@ int serve(const Options& o) {
             if (fd == fds.signal) {
                 signalfd_siginfo info{};
                 if (::read(fds.signal, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
-                    log(Level::kInfo, "{}: shutting down", info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM");
+                    log(Level::kInfo, "{}: shutting down",
+                        info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM");
                     running = false;
                 }
             } else if (fd == fds.timer) {
@@ -161,9 +163,10 @@ int serve(const Options& o) {
 }
 
 int run(int argc, char** argv) {
-    CLI::App app("rwmos-emu - the RWMOS emulator daemon: one emulated APCI-8001 board served to "
-                 "many clients",
-                 "rwmos-emu");
+    CLI::App app(
+        "rwmos-emu - the RWMOS emulator daemon: one emulated APCI-8001 board served to "
+        "many clients",
+        "rwmos-emu");
     Options o;
     app.add_option("--socket", o.socket,
                    "Serve wire frames on this Unix socket (created mode 0660; a stale socket is "
@@ -180,9 +183,10 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(1, 4096));
     app.add_option("--log-level", o.log_level, "error, warn, info (default) or debug")
         ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
-    app.footer("Clients open the board with the device URI unix:PATH or shm:PATH (libapci, "
-               "apcictl --device). SIGTERM or SIGINT stops the daemon and removes its socket and "
-               "file. Logs go to stderr.\nExit codes: 0 ok, 1 could not serve, 2 usage.");
+    app.footer(
+        "Clients open the board with the device URI unix:PATH or shm:PATH (libapci, "
+        "apcictl --device). SIGTERM or SIGINT stops the daemon and removes its socket and "
+        "file. Logs go to stderr.\nExit codes: 0 ok, 1 could not serve, 2 usage.");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

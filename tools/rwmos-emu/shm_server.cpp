@@ -7,8 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <vector>
 
@@ -33,7 +33,9 @@ constexpr std::chrono::milliseconds kFirstSleep{1};
 constexpr std::chrono::milliseconds kLongestSleep{64};
 }  // namespace
 
-ShmServer::~ShmServer() { stop(); }
+ShmServer::~ShmServer() {
+    stop();
+}
 
 bool ShmServer::open(const std::string& path, std::string& why) {
     const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0660);
@@ -44,9 +46,11 @@ bool ShmServer::open(const std::string& path, std::string& why) {
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
         const int err = errno;
         ::close(fd);
-        why = err == EWOULDBLOCK
-                  ? fmt::format("{} is served by another daemon; stop it first or choose another --shm", path)
-                  : fmt::format("lock {}: {}", path, std::strerror(err));
+        why =
+            err == EWOULDBLOCK
+                ? fmt::format(
+                      "{} is served by another daemon; stop it first or choose another --shm", path)
+                : fmt::format("lock {}: {}", path, std::strerror(err));
         return false;
     }
     struct stat st {};

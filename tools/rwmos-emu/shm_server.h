@@ -20,7 +20,7 @@
 namespace rwmos_emu {
 
 class ShmServer {
-public:
+  public:
     explicit ShmServer(BoardHost& host) : host_(host) {}
     ~ShmServer();
     ShmServer(const ShmServer&) = delete;
@@ -34,7 +34,7 @@ public:
     // once), removes the file if it is still ours.
     void stop();
 
-private:
+  private:
     void serve_loop();
 
     BoardHost& host_;

@@ -50,9 +50,10 @@ bool clear_path(const std::string& path, const sockaddr_un& addr, std::string& w
     const int err = errno;
     ::close(probe);
     if (rc == 0) {
-        why = fmt::format("{} is the live socket of another daemon; stop it first or choose "
-                          "another --socket",
-                          path);
+        why = fmt::format(
+            "{} is the live socket of another daemon; stop it first or choose "
+            "another --socket",
+            path);
         return false;
     }
     if (err != ECONNREFUSED) {
@@ -70,7 +71,9 @@ bool clear_path(const std::string& path, const sockaddr_un& addr, std::string& w
 
 }  // namespace
 
-SocketServer::~SocketServer() { close_all(); }
+SocketServer::~SocketServer() {
+    close_all();
+}
 
 bool SocketServer::open(const std::string& path, std::string& why) {
     sockaddr_un addr{};
@@ -91,7 +94,8 @@ bool SocketServer::open(const std::string& path, std::string& why) {
         return false;
     }
     struct stat st {};
-    if (::chmod(path.c_str(), 0660) != 0 || ::stat(path.c_str(), &st) != 0 || ::listen(fd, 64) != 0) {
+    if (::chmod(path.c_str(), 0660) != 0 || ::stat(path.c_str(), &st) != 0 ||
+        ::listen(fd, 64) != 0) {
         why = fmt::format("{}: {}", path, std::strerror(errno));
         ::close(fd);
         ::unlink(path.c_str());
@@ -162,7 +166,8 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
     if (n == 0 || (n < 0 && errno != EAGAIN && errno != EINTR)) {
         const std::size_t partial = c.stream.pending();
         if (partial != 0)
-            return drop(fd, fmt::format("disconnected mid-frame ({} bytes of a frame unread)", partial));
+            return drop(
+                fd, fmt::format("disconnected mid-frame ({} bytes of a frame unread)", partial));
         if (n < 0) return drop(fd, fmt::format("recv: {}", std::strerror(errno)));
         log(Level::kDebug, "client {} disconnected", c.id);
         return drop(fd, {});
@@ -171,7 +176,8 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
     const auto result =
         host_.serve_stream(c.stream, {read_buffer_.data(), static_cast<std::size_t>(n)}, c.out);
     if (result.rejected != 0)
-        log(Level::kDebug, "client {}: {} malformed frame(s) answered with Error", c.id, result.rejected);
+        log(Level::kDebug, "client {}: {} malformed frame(s) answered with Error", c.id,
+            result.rejected);
     if (!flush(fd, c)) return;
     if (!result.keep) {
         log(Level::kWarn, "client {} sent garbage ({}): connection dropped", c.id,

@@ -22,7 +22,7 @@
 namespace rwmos_emu {
 
 class SocketServer {
-public:
+  public:
     SocketServer(BoardHost& host, int epoll_fd, std::size_t max_clients)
         : host_(host), epoll_fd_(epoll_fd), max_clients_(max_clients) {}
     ~SocketServer();
@@ -45,13 +45,13 @@ public:
     // it is still the one this daemon created).
     void close_all();
 
-private:
+  private:
     struct Client {
         std::uint64_t id = 0;
         rwmos::FrameStream stream;
         std::vector<std::uint8_t> out;  // replies not yet sent
         std::size_t out_pos = 0;
-        bool reading = true;            // EPOLLIN armed
+        bool reading = true;  // EPOLLIN armed
     };
 
     void drop(int fd, std::string_view why);

@@ -74,14 +74,16 @@ enum class MailboxStatus : std::uint32_t {
 // pread/pwrite on a PCI I/O BAR in the driver. Every method is noexcept and
 // blocks no longer than the device access itself, except wait().
 class Window {
-public:
+  public:
     virtual ~Window() = default;
 
     // 32-bit accesses at a word-aligned offset. load() acquires, store() releases.
     virtual std::uint32_t load(std::size_t offset) noexcept = 0;
     virtual void store(std::size_t offset, std::uint32_t value) noexcept = 0;
     // Sequentially consistent store and load, for the sleeping-flag handshake.
-    virtual void store_fence(std::size_t offset, std::uint32_t value) noexcept { store(offset, value); }
+    virtual void store_fence(std::size_t offset, std::uint32_t value) noexcept {
+        store(offset, value);
+    }
     virtual std::uint32_t load_fence(std::size_t offset) noexcept { return load(offset); }
     // Atomic compare-and-swap where the window can do one; false if not equal.
     virtual bool compare_exchange(std::size_t offset, std::uint32_t expected,
@@ -109,7 +111,7 @@ public:
 // A window on memory mapped into this process (MAP_SHARED): atomics on the
 // words, memcpy for the records, futex wait/wake when `can_sleep`.
 class MappedWindow : public Window {
-public:
+  public:
     MappedWindow(void* base, std::size_t size, bool can_sleep) noexcept
         : base_(static_cast<std::uint8_t*>(base)), size_(size), can_sleep_(can_sleep) {}
 
@@ -129,7 +131,7 @@ public:
     std::uint8_t* base() const noexcept { return base_; }
     std::size_t size() const noexcept { return size_; }
 
-private:
+  private:
     std::uint8_t* base_;
     std::size_t size_;
     bool can_sleep_;
@@ -143,7 +145,7 @@ private:
 // spinning would only take its CPU away, so the waiter soon sleeps at once
 // and is woken through the futex like any blocked process.
 class AdaptiveSpin {
-public:
+  public:
     AdaptiveSpin(std::chrono::nanoseconds shortest, std::chrono::nanoseconds longest) noexcept
         : shortest_(shortest), longest_(longest), budget_(longest) {}
     std::chrono::nanoseconds budget() const noexcept { return budget_; }
@@ -153,7 +155,7 @@ public:
         if (caught && budget_ < shortest_ * 2) budget_ = shortest_ * 2;
     }
 
-private:
+  private:
     std::chrono::nanoseconds shortest_;
     std::chrono::nanoseconds longest_;
     std::chrono::nanoseconds budget_;
@@ -189,10 +191,10 @@ void wake_board(Window& w);
 // ---- Host side (the driver).
 
 struct HostOptions {
-    std::uint32_t token = 1;                      // this host's lock token (non-zero)
-    std::chrono::nanoseconds spin{20'000};        // spin before sleeping while waiting
-    AdaptiveSpin* adaptive = nullptr;             // if set: its budget instead of `spin`, and it learns
-    std::chrono::milliseconds timeout{5'000};     // whole exchange
+    std::uint32_t token = 1;                // this host's lock token (non-zero)
+    std::chrono::nanoseconds spin{20'000};  // spin before sleeping while waiting
+    AdaptiveSpin* adaptive = nullptr;       // if set: its budget instead of `spin`, and it learns
+    std::chrono::milliseconds timeout{5'000};  // whole exchange
     // Whether a lock held by `token` belongs to a host that is gone (e.g. a
     // dead process); such a lock is taken over. Null: never.
     bool (*lock_holder_gone)(std::uint32_t token) = nullptr;

@@ -19,12 +19,12 @@
 namespace rwmos {
 
 class FrameStream {
-public:
+  public:
     struct Result {
-        bool keep = true;                                 // false: drop the connection
+        bool keep = true;                                      // false: drop the connection
         objif::FrameError garbage = objif::FrameError::kNone;  // why, when !keep
-        std::size_t frames = 0;                           // frames answered (Error replies included)
-        std::size_t rejected = 0;                         // of those, answered with an Error reply
+        std::size_t frames = 0;    // frames answered (Error replies included)
+        std::size_t rejected = 0;  // of those, answered with an Error reply
     };
 
     // Appends `bytes` and serves every complete frame now buffered, appending
@@ -39,7 +39,7 @@ public:
         start_ = 0;
     }
 
-private:
+  private:
     std::vector<std::uint8_t> buffer_;
     std::size_t start_ = 0;  // first byte not yet consumed
     objif::Frame frame_;     // scratch, reused

@@ -9,8 +9,9 @@
 // /tmp/apci-UID. docs/rwmos-emu.md describes it.
 #pragma once
 
-#include <string>
 #include <sys/types.h>
+
+#include <string>
 #include <vector>
 
 namespace rwmos {
