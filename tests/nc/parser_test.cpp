@@ -208,9 +208,9 @@ TEST(Parser, WholeNumberWords) {
 
 TEST(Parser, UnknownWordsAreErrors) {
     EXPECT_EQ(error("N10 E5"),
-              "prog.nc:12:5: unknown word 'E' (known words: N G X Y Z I J K R F D M)");
-    EXPECT_EQ(error("G1 B45"),
-              "prog.nc:12:4: unknown word 'B' (known words: N G X Y Z I J K R F D M)");
+              "prog.nc:12:5: unknown word 'E' (known words: N G X Y Z B I J K R F D M)");
+    EXPECT_EQ(error("G1 U45"),
+              "prog.nc:12:4: unknown word 'U' (known words: N G X Y Z B I J K R F D M)");
     EXPECT_EQ(error_kind("S1000"), ErrorKind::kUnknownWord);
 }
 
@@ -228,17 +228,17 @@ TEST(Parser, UnknownMCode) {
 
 TEST(Parser, UnexpectedCharacter) {
     EXPECT_EQ(error("G1 X1 @"),
-              "prog.nc:12:7: unexpected character '@': expected a word (N G X Y Z I J K R F D M)");
+              "prog.nc:12:7: unexpected character '@': expected a word (N G X Y Z B I J K R F D M)");
     EXPECT_EQ(error("G1 X1\x01"),
               "prog.nc:12:6: unexpected character byte 0x01: expected a word "
-              "(N G X Y Z I J K R F D M)");
+              "(N G X Y Z B I J K R F D M)");
     EXPECT_EQ(error("G1 X1.2.3"),
-              "prog.nc:12:8: unexpected character '.': expected a word (N G X Y Z I J K R F D M)");
+              "prog.nc:12:8: unexpected character '.': expected a word (N G X Y Z B I J K R F D M)");
 }
 
 TEST(Parser, LeadingNumberHintsAtKlartext) {
     EXPECT_EQ(error("11 L X+36.0084 Y+6.177 R0"),
-              "prog.nc:12:1: expected a word (an address letter: N G X Y Z I J K R F D M), found "
+              "prog.nc:12:1: expected a word (an address letter: N G X Y Z B I J K R F D M), found "
               "a number; Klartext programs must begin with 'BEGIN PGM'");
 }
 
@@ -296,18 +296,17 @@ TEST(Parser, RadiusMustNotBeZero) {
     EXPECT_EQ(error("G2 X1 R0"), "prog.nc:12:8: arc radius R must not be 0");
 }
 
-TEST(Parser, IsgCommandsAreRecognisedButNotSupportedYet) {
-    EXPECT_EQ(error("N50 #OTC ON[RADIUS DISC]"),
-              "prog.nc:12:5: ISG command '#OTC' is not supported yet");
-    EXPECT_EQ(error("N90 $FOR P1=0, 5, 1"),
-              "prog.nc:12:5: ISG command '$FOR' is not supported yet");
-    EXPECT_EQ(error_kind("#TRAFO ON"), ErrorKind::kUnsupported);
+TEST(Parser, UnknownIsgCommandsAreUnsupportedByName) {
+    EXPECT_EQ(error("N50 #CHANNEL INIT"),
+              "prog.nc:12:5: ISG command '#CHANNEL' is not supported (known: #OTC, #KIN, #TRAFO, "
+              "#HSC, $FOR, $ENDFOR)");
+    EXPECT_EQ(error_kind("$IF P1 == 1"), ErrorKind::kUnsupported);
     EXPECT_EQ(error("# ON"), "prog.nc:12:1: expected a command name after '#'");
 }
 
 TEST(Parser, ErrorColumnsCountCharactersNotBytes) {
     EXPECT_EQ(error("N22 (Übergang) Q1"),
-              "prog.nc:12:16: unknown word 'Q' (known words: N G X Y Z I J K R F D M)");
+              "prog.nc:12:16: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
 }
 
 TEST(Parser, DialectDetection) {

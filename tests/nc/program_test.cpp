@@ -95,14 +95,14 @@ TEST(Program, NothingIsExecutedFromAProgramThatDoesNotParse) {
     while (raw.next(ev) == EventStream::Next::kEvent) ++executed;
     EXPECT_EQ(executed, 3);
     EXPECT_EQ(raw.error().to_string(),
-              "bad.nc:4:4: unknown word 'Q' (known words: N G X Y Z I J K R F D M)");
+              "bad.nc:4:4: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
     EXPECT_EQ(raw.next(ev), EventStream::Next::kError);  // stays in error
 
     const std::string path = temp_file("bad.nc", text);
     Result<Program> p = Program::load(path);
     ASSERT_FALSE(p);
     EXPECT_EQ(p.error().to_string(),
-              path + ":4:4: unknown word 'Q' (known words: N G X Y Z I J K R F D M)");
+              path + ":4:4: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
 }
 
 TEST(Program, ExecutionPassRepeatsTheValidatedEvents) {
@@ -222,13 +222,25 @@ TEST(Program, SeedGeneralOtcExampleParses) {
     EXPECT_EQ(lines[1].end, V(1000, 0, 0));
 }
 
-TEST(Program, SeedProgramWithOtcLinesNamesTheFirstOtcLine) {
-    // The example with its #OTC lines put back: refused at N50, with nothing executed.
+TEST(Program, SeedProgramWithOtcLinesGivesTheOtcEventInItsPlace) {
     std::string text = read_file(kExamples + "/wr_quad_disc.nc");
     const std::size_t at = text.find("N55");
     ASSERT_NE(at, std::string::npos);
     text.insert(at, "N50 #OTC ON[RADIUS DISC]\n");
-    EXPECT_EQ(error_of(text), "prog.nc:8:5: ISG command '#OTC' is not supported yet");
+    Result<Program> p = Program::from_text(text, "prog.nc");
+    ASSERT_TRUE(p) << p.error().to_string();
+    const auto ev = execute(p.value());
+    bool found = false;
+    for (const Event& e : ev) {
+        if (const auto* o = std::get_if<OtcChange>(&e.data)) {
+            found = true;
+            EXPECT_EQ(e.origin.block, 50);
+            EXPECT_EQ(o->command.on, true);
+            EXPECT_EQ(o->command.type, OtcType::kRadius);
+            EXPECT_EQ(o->command.mode, OtcMode::kDisc);
+        }
+    }
+    EXPECT_TRUE(found);
 }
 
 }  // namespace

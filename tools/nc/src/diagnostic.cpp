@@ -37,7 +37,8 @@ std::string Diagnostic::to_string() const {
 std::string_view event_name(const EventData& data) noexcept {
     static constexpr std::string_view kNames[] = {
         "rapid", "line",      "arc",  "tool",      "compensation", "corner", "plane",
-        "end",   "tool_call", "tcpm", "prog_path", "oversize",     "head",   "vector_line"};
+        "end",   "tool_call", "tcpm", "prog_path", "oversize",     "head",   "vector_line",
+        "otc",   "kinematics", "trafo", "not_emulated", "variable_write"};
     static_assert(std::size(kNames) == std::variant_size_v<EventData>);
     return kNames[data.index()];
 }

@@ -36,6 +36,13 @@ struct BlockCheck {
 bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* tools) {
     const Word<int>& d = c.b.tool;
     if (!d.present()) return true;
+    // The OTC module keeps the tool while OTC is on (docs/otc.md, OTC_TOOL_CHANGE_WHILE_ACTIVE).
+    if (before.otc_active && d.value != before.tool) {
+        return c.fail(ErrorKind::kProgramRule, d.column,
+                      fmt::format("OTC_TOOL_CHANGE_WHILE_ACTIVE: D{} while OTC is on: program "
+                                  "#OTC OFF before a tool change",
+                                  d.value));
+    }
     // The TC module takes a tool index only while compensation is inactive (seed TC document,
     // Table 3: WKZINDEX), so a tool change needs G40 first.
     if (before.compensation != Compensation::kOff) {
@@ -157,11 +164,13 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
     if (b.corner.present()) s.corner = b.corner.value;
     if (b.compensation.present()) s.compensation = b.compensation.value;
     if (!check_tool(c, state_, options_.tools)) return false;
+    if (b.tool.present() && b.tool.value != state_.tool) s.tool_wear_const.reset();
     if (b.tool.present()) s.tool = b.tool.value;
     if (!check_plane(c, state_, s.compensation)) return false;
     if (b.plane.present()) s.plane = b.plane.value;
 
-    const bool moves = b.has_axis_word() || b.has_center_word() || b.radius.present();
+    const bool moves =
+        b.has_axis_word() || b.has_center_word() || b.radius.present() || b.b_axis.present();
     EventData move;
     if (moves) {
         if (!s.motion) {
@@ -191,6 +200,10 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
                                       "with G0/G1 or in a block without a move",
                                       g_number(s.compensation)));
         }
+        if (b.b_axis.present() && is_arc(m)) {
+            return c.fail(ErrorKind::kProgramRule, b.b_axis.column,
+                          "B in an arc block: tilt the head in a G0 or G1 block");
+        }
         const Eigen::Vector3d end = end_point(b, state_.position, s.distance);
         switch (m) {
             case Motion::kRapid:
@@ -205,6 +218,8 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
                 break;
         }
         s.position = end;
+        if (b.b_axis.present())
+            s.b = s.distance == DistanceMode::kIncremental ? state_.b + b.b_axis.value : b.b_axis.value;
     }
     if (b.end_of_program.present()) s.ended = true;
 
@@ -214,10 +229,155 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
     if (s.plane != state_.plane) out.push(origin, PlaneChange{s.plane});
     if (s.corner != state_.corner) out.push(origin, CornerModeChange{s.corner});
     if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
+    if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
     if (moves) out.push(origin, move);
     if (s.ended) out.push(origin, ProgramEnd{});
     state_ = s;
     return true;
+}
+
+namespace {
+
+// The kinematics the emulator knows (DESIGN.md section 8; seed 000 sections 2.4, 2.5 "#KIN ID[4]").
+constexpr int kBHeadKinematics = 4;
+
+}  // namespace
+
+bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view file,
+                            EventBatch& out, Diagnostic& err) {
+    out.clear();
+    const BlockCheck c{b, file, err};
+    if (state_.ended) {
+        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
+    }
+    const BlockOrigin origin{b.block_number(), b.line};
+    ModalState s = state_;
+    switch (isg.kind) {
+        case IsgKind::kOtc: {
+            const OtcCommand& cmd = isg.otc;
+            // Seed 000 section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON
+            // erfolgen": not while OTC is on.
+            const bool changes = (cmd.type && *cmd.type != s.otc_type) ||
+                                 (cmd.mode && *cmd.mode != s.otc_mode) ||
+                                 (cmd.acc_weight && *cmd.acc_weight != s.otc_acc_weight);
+            if (s.otc_active && changes) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              "OTC_CHANGE_WHILE_ACTIVE: processing type, mode and ACC_WEIGHT are "
+                              "set before or with #OTC ON, not while OTC is on");
+            }
+            if (cmd.type) s.otc_type = *cmd.type;
+            if (cmd.mode) s.otc_mode = *cmd.mode;
+            if (cmd.acc_weight) s.otc_acc_weight = *cmd.acc_weight;
+            if (cmd.wear_const == WearConstChoice::kProgrammed) {
+                s.otc_programmed_wear_const = true;
+                s.otc_wear_const = cmd.wear_const_value;
+            } else if (cmd.wear_const == WearConstChoice::kTool) {
+                s.otc_programmed_wear_const = false;
+            }
+            if (cmd.on && *cmd.on && !s.otc_active) {
+                // Seed 000 section 1: only with tool type 2, else P-ERR-21391. The tool list
+                // tells the type; without one the board checks it.
+                if (options_.tools != nullptr) {
+                    const ToolData* t = s.tool > 0 ? options_.tools->find(s.tool) : nullptr;
+                    const int typ = t != nullptr ? t->typ : 0;
+                    if (typ != 2) {
+                        return c.fail(ErrorKind::kProgramRule, isg.column,
+                                      fmt::format("P-ERR-21391: #OTC ON needs a grinding tool "
+                                                  "(tool type 2, P-TOOL-00001); D{} is type {}",
+                                                  s.tool, typ));
+                    }
+                }
+                s.otc_active = true;
+            } else if (cmd.on && !*cmd.on && s.otc_active) {
+                // Seed 000 section 2.2 "Hinweis": G40 before #OTC OFF.
+                if (s.otc_type == OtcType::kRadius && s.compensation != Compensation::kOff) {
+                    return c.fail(ErrorKind::kProgramRule, isg.column,
+                                  fmt::format("OTC_OFF_BEFORE_G40: #OTC OFF while radius "
+                                              "compensation G{} is on: program G40 before #OTC OFF",
+                                              g_number(s.compensation)));
+                }
+                s.otc_active = false;
+            }
+            out.push(origin, OtcChange{cmd});
+            break;
+        }
+        case IsgKind::kKin:
+            if (isg.kinematics != 0 && isg.kinematics != kBHeadKinematics) {
+                return c.fail(ErrorKind::kUnsupported, isg.column,
+                              fmt::format("#KIN ID[{}]: kinematics {} is not emulated (ID[4]: the "
+                                          "B head, DESIGN.md section 8; ID[0]: none)",
+                                          isg.kinematics, isg.kinematics));
+            }
+            if (s.otc_active && isg.kinematics != s.kinematics) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              "OTC_CHANGE_WHILE_ACTIVE: #KIN while OTC is on: select the "
+                              "kinematics before #OTC ON");
+            }
+            if (isg.kinematics == 0 && s.trafo) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              "#KIN ID[0] while #TRAFO is on: program #TRAFO OFF first");
+            }
+            s.kinematics = isg.kinematics;
+            out.push(origin, KinematicsSelect{isg.kinematics});
+            break;
+        case IsgKind::kTrafo:
+            if (isg.on && s.kinematics == 0) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              "#TRAFO ON needs a kinematics: program #KIN ID[4] first");
+            }
+            if (s.otc_active && isg.on != s.trafo) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              "OTC_CHANGE_WHILE_ACTIVE: #TRAFO while OTC is on: switch the "
+                              "transformation before #OTC ON or after #OTC OFF");
+            }
+            s.trafo = isg.on;
+            out.push(origin, TrafoChange{isg.on});
+            break;
+        case IsgKind::kHsc:
+            out.push(origin, NotEmulated{"#HSC"});
+            break;
+        case IsgKind::kFor:
+        case IsgKind::kEndFor:
+            return c.fail(ErrorKind::kProgramRule, isg.column,
+                          "$FOR/$ENDFOR are the program stream's (internal error)");
+    }
+    state_ = s;
+    return true;
+}
+
+bool Interpreter::apply_variable_write(const Assignment& a, const Block& b, std::string_view file,
+                                       EventBatch& out, Diagnostic& err) {
+    out.clear();
+    const BlockCheck c{b, file, err};
+    if (state_.ended) {
+        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
+    }
+    if (!variable_writable(a.variable)) {
+        return c.fail(ErrorKind::kProgramRule, a.column,
+                      fmt::format("{} is read-only", variable_name(a.variable)));
+    }
+    state_.tool_wear_const = a.value;
+    out.push(BlockOrigin{b.block_number(), b.line}, VariableWrite{a.variable, a.value});
+    return true;
+}
+
+double Interpreter::model_variable(const VariableRef& v) const noexcept {
+    switch (v.variable) {
+        case NcVariable::kOtcActive:
+            return state_.otc_active ? 1.0 : 0.0;
+        case NcVariable::kWearConst: {
+            if (state_.tool_wear_const) return *state_.tool_wear_const;
+            const ToolData* t = options_.tools != nullptr && state_.tool > 0
+                                    ? options_.tools->find(state_.tool)
+                                    : nullptr;
+            return t != nullptr ? t->grinding_wear_const : 0.0;
+        }
+        case NcVariable::kWearRadius:
+        case NcVariable::kWearRadiusCont:
+        case NcVariable::kWear:
+            return 0.0;
+    }
+    return 0.0;
 }
 
 }  // namespace apci::nc

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 
 #include "apci/nc/lexer.h"
@@ -14,7 +15,9 @@ namespace apci::nc {
 EventStream::EventStream(LineSource source, InterpreterOptions options)
     : source_(std::move(source)),
       interpreter_(options),
-      klartext_(KlartextOptions{options.start_position, options.tools}) {}
+      klartext_(KlartextOptions{options.start_position, options.tools}) {
+    loops_.reserve(kMaxLoopDepth);
+}
 
 Result<EventStream> EventStream::open_file(const std::string& path, InterpreterOptions options) {
     Result<LineSource> source = LineSource::open_file(path);
@@ -39,8 +42,32 @@ bool EventStream::line(std::string_view text) {
         dialect_ = detect_dialect(text).dialect;
     }
     if (dialect_ == Dialect::kKlartext) return klartext_line(text);
-    if (!parse_din_line(text, n, source_.name(), parsed_, error_)) return fail(error_);
+    if (!parse_din_line(text, n, source_.name(), parsed_, error_, this)) return fail(error_);
     switch (parsed_.kind) {
+        case LineKind::kIsg:
+            seen_block_ = true;
+            ++blocks_;
+            if (parsed_.isg.kind == IsgKind::kFor) return loop_start(parsed_.isg);
+            if (parsed_.isg.kind == IsgKind::kEndFor) return loop_end(parsed_.isg);
+            if (!interpreter_.apply_isg(parsed_.isg, parsed_.block, source_.name(), batch_, error_))
+                return fail(error_);
+            return true;
+        case LineKind::kAssignment:
+            seen_block_ = true;
+            ++blocks_;
+            if (interpreter_.state().ended)
+                return fail(here(ErrorKind::kProgramRule, 1,
+                                 "block after M30: the program has already ended"));
+            if (parsed_.assignment.to_parameter) {
+                const auto i = static_cast<std::size_t>(parsed_.assignment.parameter);
+                params_[i] = parsed_.assignment.value;
+                params_set_.set(i);
+                return true;
+            }
+            if (!interpreter_.apply_variable_write(parsed_.assignment, parsed_.block,
+                                                   source_.name(), batch_, error_))
+                return fail(error_);
+            return true;
         case LineKind::kEmpty:
             return true;
         case LineKind::kProgramName:
@@ -93,6 +120,16 @@ bool EventStream::read_batch() {
             case LineSource::Read::kError:
                 return fail(error_);
             case LineSource::Read::kEnd:
+                if (!loops_.empty()) {
+                    const LoopFrame& f = loops_.back();
+                    Diagnostic d;
+                    d.kind = ErrorKind::kProgramRule;
+                    d.file = source_.name();
+                    d.line = f.line;
+                    d.column = f.column;
+                    d.message = "$FOR without $ENDFOR: the program ends inside the loop";
+                    return fail(std::move(d));
+                }
                 if (!program_complete()) {
                     Diagnostic d;
                     d.kind = ErrorKind::kProgramRule;
@@ -121,6 +158,105 @@ EventStream::Next EventStream::next(Event& out) {
     }
     out = batch_[batch_pos_++];
     return Next::kEvent;
+}
+
+// ---- Expressions and loops
+
+std::optional<double> EventStream::parameter_value(int n) const noexcept {
+    if (n < 0 || n >= kParameterCount || !params_set_.test(static_cast<std::size_t>(n)))
+        return std::nullopt;
+    return params_[static_cast<std::size_t>(n)];
+}
+
+bool EventStream::parameter(int n, double& out) const {
+    const std::optional<double> v = parameter_value(n);
+    if (!v) return false;
+    out = *v;
+    return true;
+}
+
+bool EventStream::variable(const VariableRef& v, double& out, std::string& why) const {
+    if (variables_ != nullptr) return variables_->read(v, out, why);
+    out = interpreter_.model_variable(v);
+    return true;
+}
+
+Diagnostic EventStream::here(ErrorKind kind, std::uint32_t column, std::string message) const {
+    Diagnostic d;
+    d.kind = kind;
+    d.file = source_.name();
+    d.line = source_.line_number();
+    d.column = column == 0 ? 1 : column;
+    d.block = parsed_.block.block_number();
+    d.message = std::move(message);
+    return d;
+}
+
+bool EventStream::loop_continues(const LoopFrame& f) const noexcept {
+    const double p = params_[static_cast<std::size_t>(f.loop.parameter)];
+    return f.loop.step > 0.0 ? p <= f.loop.end : p >= f.loop.end;
+}
+
+bool EventStream::loop_start(const IsgLine& isg) {
+    if (interpreter_.state().ended)
+        return fail(here(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended"));
+    if (loops_.size() >= kMaxLoopDepth)
+        return fail(here(ErrorKind::kProgramRule, isg.column,
+                         fmt::format("$FOR nested deeper than {} loops", kMaxLoopDepth)));
+    const auto i = static_cast<std::size_t>(isg.loop.parameter);
+    params_[i] = isg.loop.start;
+    params_set_.set(i);
+    LoopFrame f{isg.loop, source_.tell(), source_.line_number(), isg.column};
+    if (!loop_continues(f)) return skip_loop(isg);
+    loops_.push_back(f);
+    return true;
+}
+
+// The condition fails at once: the body is skipped to its $ENDFOR, unparsed.
+bool EventStream::skip_loop(const IsgLine& isg) {
+    const std::uint64_t for_line = source_.line_number();
+    std::size_t depth = 1;
+    std::string_view text;
+    for (;;) {
+        switch (source_.next(text, error_)) {
+            case LineSource::Read::kError:
+                return fail(error_);
+            case LineSource::Read::kEnd: {
+                Diagnostic d;
+                d.kind = ErrorKind::kProgramRule;
+                d.file = source_.name();
+                d.line = for_line;
+                d.column = isg.column;
+                d.message = "$FOR without $ENDFOR: the program ends inside the loop";
+                return fail(std::move(d));
+            }
+            case LineSource::Read::kLine:
+                switch (loop_marker(text)) {
+                    case LoopMarker::kFor: ++depth; break;
+                    case LoopMarker::kEndFor:
+                        if (--depth == 0) return true;
+                        break;
+                    case LoopMarker::kNone: break;
+                }
+                break;
+        }
+    }
+}
+
+bool EventStream::loop_end(const IsgLine& isg) {
+    if (loops_.empty())
+        return fail(here(ErrorKind::kProgramRule, isg.column, "$ENDFOR without $FOR"));
+    LoopFrame& f = loops_.back();
+    const auto i = static_cast<std::size_t>(f.loop.parameter);
+    params_[i] += f.loop.step;
+    if (!std::isfinite(params_[i]))
+        return fail(here(ErrorKind::kValue, isg.column, "the $FOR parameter is no longer finite"));
+    if (!loop_continues(f)) {
+        loops_.pop_back();
+        return true;
+    }
+    if (!source_.seek(f.body, error_)) return fail(error_);
+    return true;
 }
 
 Result<ProgramSummary> validate(EventStream& stream) {

@@ -45,6 +45,7 @@ LineSource::LineSource(LineSource&& o) noexcept
       data_(o.data_),
       pos_(o.pos_),
       end_(o.end_),
+      base_(o.base_),
       eof_(o.eof_),
       failed_(o.failed_),
       line_number_(o.line_number_) {
@@ -60,6 +61,7 @@ LineSource& LineSource::operator=(LineSource&& o) noexcept {
         data_ = o.data_;
         pos_ = o.pos_;
         end_ = o.end_;
+        base_ = o.base_;
         eof_ = o.eof_;
         failed_ = o.failed_;
         line_number_ = o.line_number_;
@@ -76,6 +78,7 @@ bool LineSource::refill(Diagnostic& err) {
     const std::size_t kept = end_ - pos_;
     char* buf = storage_.get();
     if (pos_ != 0 && kept != 0) std::memmove(buf, buf + pos_, kept);
+    base_ += pos_;
     pos_ = 0;
     end_ = kept;
     while (end_ < kBufferSize) {
@@ -140,6 +143,30 @@ LineSource::Read LineSource::next(std::string_view& line, Diagnostic& err) {
     err.column = static_cast<std::uint32_t>(kMaxLineLength + 1);
     err.message = fmt::format("line longer than {} characters", kMaxLineLength);
     return Read::kError;
+}
+
+bool LineSource::seek(const Position& p, Diagnostic& err) {
+    if (failed_) return false;
+    line_number_ = p.line_number;
+    // Still buffered (a small loop body, or caller's text): no read at all.
+    if (p.offset >= base_ && p.offset <= base_ + end_) {
+        pos_ = static_cast<std::size_t>(p.offset - base_);
+        return true;
+    }
+    if (file_ == nullptr || std::fseek(file_, static_cast<long>(p.offset), SEEK_SET) != 0) {
+        failed_ = true;
+        err.kind = ErrorKind::kIo;
+        err.file = name_;
+        err.line = p.line_number + 1;
+        err.column = 1;
+        err.message = fmt::format("cannot go back to offset {} to repeat a loop: {}", p.offset,
+                                  file_ == nullptr ? "not in the text" : std::strerror(errno));
+        return false;
+    }
+    base_ = p.offset;
+    pos_ = end_ = 0;
+    eof_ = false;
+    return true;
 }
 
 }  // namespace apci::nc

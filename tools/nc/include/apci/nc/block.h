@@ -45,6 +45,15 @@ struct Word {
 
 inline constexpr int kMaxToolNumber = 1023;  // D and wz[i] (TC module WKZINDEX 0..1023)
 
+// ISG online tool compensation (seed 000, FCT-C20, section 2.1): the processing types and
+// modes #OTC names. The values are the OTC module's object values (bus 1330).
+enum class OtcType : std::uint8_t { kRadius = 0, kLength = 1, kToolDir = 2, kSurfNormDir = 3 };
+enum class OtcMode : std::uint8_t { kCont = 0, kDisc = 1, kAuto = 2 };
+std::string_view otc_type_name(OtcType t) noexcept;  // "RADIUS", ...
+std::string_view otc_mode_name(OtcMode m) noexcept;  // "CONT", ...
+// WEAR_CONST=.. (the programmed constant) / WEAR_CONST_TOOL (the tool's) / neither.
+enum class WearConstChoice : std::uint8_t { kUnchanged, kProgrammed, kTool };
+
 struct Block {
     std::uint64_t line = 0;              // 1-based source line
     Word<std::int64_t> number;           // N
@@ -54,6 +63,7 @@ struct Block {
     Word<Compensation> compensation;     // G40 G41 G42
     Word<CornerMode> corner;             // G25 G26
     std::array<Word<double>, 3> axis;    // X Y Z, program units (mm)
+    Word<double> b_axis;                 // B, degrees: the B head's tilt (DESIGN.md section 8)
     std::array<Word<double>, 3> center;  // I J K, incremental from the arc start
     Word<double> radius;                 // R (negative: the larger arc)
     Word<double> feed;                   // F, mm/min, > 0
@@ -65,7 +75,7 @@ struct Block {
         line = line_number;
         number.column = motion.column = plane.column = distance.column = 0;
         compensation.column = corner.column = radius.column = feed.column = 0;
-        tool.column = end_of_program.column = 0;
+        tool.column = end_of_program.column = b_axis.column = 0;
         for (auto& w : axis) w.column = 0;
         for (auto& w : center) w.column = 0;
     }

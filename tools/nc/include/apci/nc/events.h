@@ -12,6 +12,8 @@
 
 #include "apci/nc/block.h"
 #include "apci/nc/diagnostic.h"
+#include "apci/nc/expression.h"
+#include "apci/nc/parser.h"
 
 namespace apci::nc {
 
@@ -133,10 +135,43 @@ struct VectorLineMove {
     bool rapid = false;                      // FMAX
 };
 
+// ---- ISG commands of the DIN 66025 dialect (seed 000, FCT-C20; DESIGN.md section 8) ----
+
+// #OTC ...: what the command sets (OtcCommand, parser.h). Sent as written; the interpreter has
+// checked its rules (tool type 2 where the tool list tells, G40 before #OTC OFF in RADIUS, no
+// parameter change while OTC is on).
+struct OtcChange {
+    OtcCommand command;
+};
+
+// #KIN ID[n] (0: none, 4: the B head, DESIGN.md section 8).
+struct KinematicsSelect {
+    int id = 0;
+};
+
+// #TRAFO ON / OFF.
+struct TrafoChange {
+    bool on = false;
+};
+
+// A command the front end accepts but the emulator does not emulate (#HSC): the executor reports
+// it. `command` is a static string ("#HSC").
+struct NotEmulated {
+    std::string_view command;
+};
+
+// V.G.WZ_AKT.WEAR_CONST = value (seed 000 section 2.8): the executor writes the tool's wear
+// constant (0.1 um/m).
+struct VariableWrite {
+    VariableRef variable;
+    double value = 0.0;
+};
+
 using EventData =
     std::variant<RapidMove, LineMove, ArcMove, ToolSelect, CompensationChange, CornerModeChange,
                  PlaneChange, ProgramEnd, ToolCallDeltas, TcpmChange, ProgPathChange,
-                 OversizeChange, HeadOrientation, VectorLineMove>;
+                 OversizeChange, HeadOrientation, VectorLineMove, OtcChange, KinematicsSelect,
+                 TrafoChange, NotEmulated, VariableWrite>;
 
 struct Event {
     BlockOrigin origin;
@@ -150,10 +185,11 @@ std::string_view event_name(const EventData& data) noexcept;
 // The events of one block, in the order the executor must act on them (docs/nc-programs.md):
 // DIN 66025: tool select, plane, corner mode, compensation, the move, program end.
 // Klartext: tool select and tool call deltas (TOOL CALL blocks), or oversize, TCPM, prog path,
-// compensation, head orientation, the move, program end. At most six either way.
+// compensation, head orientation, the move, program end. A DIN block adds the B head's
+// orientation (B word) before its move; an ISG command line gives one event of its own.
 class EventBatch {
   public:
-    static constexpr std::size_t kCapacity = 6;
+    static constexpr std::size_t kCapacity = 8;
 
     void clear() noexcept { size_ = 0; }
     std::size_t size() const noexcept { return size_; }

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <optional>
 
+#include "apci/nc/parser.h"
+
 #include "apci/nc/block.h"
 #include "apci/nc/diagnostic.h"
 #include "apci/nc/events.h"
@@ -23,7 +25,19 @@ struct ModalState {
     double feed = 0.0;                                   // mm/min; 0 until F is programmed
     int tool = 0;                                        // D0: no tool
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // absolute, mm
+    double b = 0.0;                                      // B head tilt, degrees
     bool ended = false;                                  // M30 seen
+    // ISG OTC (seed 000 section 2.1) as programmed: on/off and the parameters in force.
+    bool otc_active = false;
+    OtcType otc_type = OtcType::kLength;  // seed: LENGTH "(Standard)"
+    OtcMode otc_mode = OtcMode::kAuto;    // seed: AUTO "(Standard)"
+    int otc_acc_weight = 100;
+    bool otc_programmed_wear_const = false;  // WEAR_CONST=.. in force (else the tool's)
+    double otc_wear_const = 0.0;             // the WEAR_CONST=.. value
+    // V.G.WZ_AKT.WEAR_CONST written by the program (the tool's constant from then on).
+    std::optional<double> tool_wear_const;
+    int kinematics = 0;  // #KIN ID
+    bool trafo = false;  // #TRAFO ON
 };
 
 struct InterpreterOptions {
@@ -43,6 +57,17 @@ class Interpreter {
     // fills err (with `file`, the block's line and the column of the offending word) and changes
     // no state.
     bool apply(const Block& block, std::string_view file, EventBatch& out, Diagnostic& err);
+    // An ISG command line (#OTC, #KIN, #TRAFO, #HSC; $FOR/$ENDFOR are the stream's): checks its
+    // rules, commits, fills `out`. `block` carries the line's N number and line.
+    bool apply_isg(const IsgLine& isg, const Block& block, std::string_view file, EventBatch& out,
+                   Diagnostic& err);
+    // V.G.WZ_AKT.WEAR_CONST = value.
+    bool apply_variable_write(const Assignment& a, const Block& block, std::string_view file,
+                              EventBatch& out, Diagnostic& err);
+    // The front end's own view of a variable (docs/nc-programs.md): V.G.OTC_ACTIVE as
+    // programmed, V.G.WZ_AKT.WEAR_CONST from the tool list or as written; the wear itself is the
+    // board's (0 here; the executor supplies the board's values through a VariableSource).
+    double model_variable(const VariableRef& v) const noexcept;
 
     const ModalState& state() const noexcept { return state_; }
     const InterpreterOptions& options() const noexcept { return options_; }

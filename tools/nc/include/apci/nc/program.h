@@ -8,7 +8,11 @@
 // passed gives an EventStream for the execution pass, which reads it again.
 #pragma once
 
+#include <array>
+#include <bitset>
 #include <cstdint>
+#include <optional>
+#include <vector>
 #include <string>
 #include <string_view>
 
@@ -21,8 +25,20 @@
 
 namespace apci::nc {
 
+// Where the V.G. variables come from while a program executes: the board's values (the
+// executor's). Without one the stream uses the interpreter's own view (model_variable).
+class VariableSource {
+  public:
+    virtual ~VariableSource() = default;
+    // False with `why` when the value cannot be read.
+    virtual bool read(const VariableRef& v, double& out, std::string& why) = 0;
+};
+
+// $FOR loops nest at most this deep (the replay keeps one position per level: flat memory).
+inline constexpr std::size_t kMaxLoopDepth = 16;
+
 // One pass over a program, pulling one event at a time.
-class EventStream {
+class EventStream : private ExpressionContext {
   public:
     static Result<EventStream> open_file(const std::string& path, InterpreterOptions options = {});
     // The text must outlive the stream; nothing is copied.
@@ -46,8 +62,27 @@ class EventStream {
     const std::string& program_name() const noexcept { return program_name_; }
     std::uint64_t lines_read() const noexcept { return source_.line_number(); }
     std::uint64_t blocks_read() const noexcept { return blocks_; }
+    // The board's variables for the rest of the pass (not owned; null: the interpreter's view).
+    void set_variable_source(VariableSource* source) noexcept { variables_ = source; }
+    // P parameter n, if set.
+    std::optional<double> parameter_value(int n) const noexcept;
 
   private:
+    struct LoopFrame {
+        ForLoop loop;
+        LineSource::Position body;  // where the line after $FOR starts
+        std::uint64_t line = 0;     // of the $FOR
+        std::uint32_t column = 0;
+    };
+    // ExpressionContext
+    bool parameter(int n, double& out) const override;
+    bool variable(const VariableRef& v, double& out, std::string& why) const override;
+    bool loop_start(const IsgLine& isg);
+    bool loop_end(const IsgLine& isg);
+    bool skip_loop(const IsgLine& isg);
+    bool loop_continues(const LoopFrame& f) const noexcept;
+    Diagnostic here(ErrorKind kind, std::uint32_t column, std::string message) const;
+
     EventStream(LineSource source, InterpreterOptions options);
     bool read_batch();  // fills batch_ from the next block with events; false at end or error
     bool fail(Diagnostic d);
@@ -69,6 +104,10 @@ class EventStream {
     std::uint64_t blocks_ = 0;
     std::string program_name_;
     Diagnostic error_;
+    VariableSource* variables_ = nullptr;
+    std::array<double, kParameterCount> params_{};
+    std::bitset<kParameterCount> params_set_;
+    std::vector<LoopFrame> loops_;  // at most kMaxLoopDepth
 };
 
 struct ProgramSummary {

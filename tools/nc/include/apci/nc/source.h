@@ -38,6 +38,19 @@ class LineSource {
 
     // 1-based number of the line last returned (0 before the first).
     std::uint64_t line_number() const noexcept { return line_number_; }
+
+    // Where the next line starts, to come back to it ($FOR loops replay their body): the byte
+    // offset in the file or text and the number of the line before it. Memory stays flat: a
+    // position is two numbers; seek() reuses the buffer when the place is still in it and
+    // re-reads the file from there otherwise.
+    struct Position {
+        std::uint64_t offset = 0;
+        std::uint64_t line_number = 0;
+    };
+    Position tell() const noexcept { return {base_ + pos_, line_number_}; }
+    // Back to a position tell() gave on this source. False with err when the file cannot be
+    // positioned (the source then stays in error).
+    bool seek(const Position& p, Diagnostic& err);
     const std::string& name() const noexcept { return name_; }
 
   private:
@@ -51,6 +64,7 @@ class LineSource {
     const char* data_ = nullptr;       // start of the buffered bytes (storage_ or caller's text)
     std::size_t pos_ = 0;              // next unread byte
     std::size_t end_ = 0;              // one past the last buffered byte
+    std::uint64_t base_ = 0;           // file offset of data_[0]
     bool eof_ = false;                 // nothing more to read behind end_
     bool failed_ = false;
     std::uint64_t line_number_ = 0;
