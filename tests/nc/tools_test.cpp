@@ -126,7 +126,7 @@ TEST(ToolTable, UnknownFieldIsError) {
     EXPECT_EQ(error("wz[1].radiu 5"),
               "t.tools:1:7: unknown tool field 'radiu' (known: gueltig, typ, mass_einheit, laenge, "
               "radius, ax_ersatz[k], grinding_wear_const, grinding_max_infeed, "
-              "grinding_disc_tilt_angle, r2, dl, dr, dr2)");
+              "grinding_disc_tilt_angle, r2, dl, dr, dr2, wear_radius, wear_radius_cont)");
 }
 
 TEST(ToolTable, LineMustStartWithWz) {

@@ -201,7 +201,11 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     // G42 on a counter-clockwise loop: the tool runs outside, right of the direction of travel.
     EXPECT_EQ(point(with_role(doc, "contour")[1].at("start")), apci::run::Point(2, -30, 0));
     expect_registers_clear(doc);
-    EXPECT_EQ(doc.at("variables"), json::object());
+    // The OTC variables by their seed names (no #OTC here: no wear; D1's wear constant).
+    EXPECT_EQ(doc.at("variables").at("V.G.OTC_ACTIVE"), 0);
+    EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS"), 0);
+    EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]"), 0);
+    EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_CONST"), 100000);
     EXPECT_EQ(doc.at("errors"), json::array());
     const std::string svg = read_text(path("p.svg"));
     for (const char* cls : {"programmed", "contour", "transition", "approach", "departure"})

@@ -364,6 +364,8 @@ TEST(RunSvg, EachRoleHasItsOwnStyleAndLegendEntry) {
     w.executed(line({4, 0, 0}, {5, 0, 0}, Role::kTransition));
     w.executed(line({5, 0, 0}, {6, 0, 0}, Role::kDeparture));
     w.programmed(line({0, 1, 0}, {6, 1, 0}));
+    w.cycle({0, 2, 0});
+    w.cycle({6, 2, 0});
     const std::string svg = write_svg(w);
     for (std::size_t l = 0; l < kPlotLayerCount; ++l) {
         const auto layer = static_cast<PlotLayer>(l);
@@ -373,6 +375,22 @@ TEST(RunSvg, EachRoleHasItsOwnStyleAndLegendEntry) {
         EXPECT_TRUE(contains(svg, ">" + std::string(layer_label(layer)) + "</text>")) << cls;
         EXPECT_EQ(w.count(layer), 1u) << cls;
     }
+}
+
+// The per-cycle axes (apcictl run --svg-cycles): points closer than kCycleStep are merged, the
+// last point is always drawn, and a plot without them has no style for them.
+TEST(RunSvg, CyclesAreDecimatedToTheStepAndEndOnTheLastPoint) {
+    SvgPlotWriter w;
+    for (int i = 0; i <= 128; ++i) w.cycle({i / 128.0, 0, 0});  // 1 mm in 2^-7 mm steps
+    w.cycle({1.0, 0.005, 0});
+    const std::string svg = write_svg(w);
+    // Every third point is 0.0234 mm on (>= 0.02): 42 segments to x = 126/128, then one to
+    // the last point.
+    EXPECT_EQ(w.count(PlotLayer::kCycles), 43u);
+    EXPECT_TRUE(contains(svg, "L1 -0.005\"")) << svg;
+    SvgPlotWriter plain;
+    plain.executed(line({0, 0, 0}, {1, 0, 0}, Role::kContour));
+    EXPECT_FALSE(contains(write_svg(plain), ".cycles {"));
 }
 
 TEST(RunSvg, ProgrammedRapidIsNotDrawnTwice) {

@@ -20,6 +20,7 @@
 #include "apci/run/csv_writer.h"
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
+#include "apci/run/plc_script.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
 #include "command.h"
@@ -102,12 +103,18 @@ class Outputs final : public apci::run::RunSink {
         if (json) json->segment(s);
         if (svg) svg->executed(s);
     }
-    bool wants_samples() const override { return csv_file != nullptr; }
+    bool svg_cycles = false;  // --svg-cycles: the per-cycle axes in the plot
+    bool wants_samples() const override { return csv_file != nullptr || (svg && svg_cycles); }
     void axes(std::span<const std::string> names) override {
         if (csv_file != nullptr) csv = std::make_unique<apci::run::TraceCsvWriter>(csv_file, names);
     }
+    void axis_numbers(const std::array<int, 3>& xyz) override { xyz_ = xyz; }
     void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override {
         if (csv) csv->sample(cycle, time_s, axes);
+        if (svg && svg_cycles)
+            svg->cycle(apci::run::Point(axes[static_cast<std::size_t>(xyz_[0])],
+                                        axes[static_cast<std::size_t>(xyz_[1])],
+                                        axes[static_cast<std::size_t>(xyz_[2])]));
     }
     void error(const RunError& e, const apci::run::Point& where) override {
         if (svg) svg->error_marker(e.block, where, e.code);
@@ -132,6 +139,7 @@ class Outputs final : public apci::run::RunSink {
     }
 
   private:
+    std::array<int, 3> xyz_{0, 1, 2};
     std::chrono::steady_clock::time_point last_draw_{};
     bool drawn_ = false;
 };
@@ -145,6 +153,18 @@ class RunCommand final : public Command {
         app.add_option("--svg", svg_, "Write a plot of the programmed contour and the tool path");
         app.add_option("--json", json_, "Write the executed path, errors and registers as JSON");
         app.add_option("--csv", csv_, "Write the axis positions of every interpolation cycle");
+        app.add_flag("--svg-cycles", svg_cycles_,
+                     "Draw the axes of every interpolation cycle in the plot too (the OTC offsets "
+                     "show there, not in the segments)");
+        app.add_option("--plane", plane_, "Draw the plot in this plane (17, 18, 19) instead of "
+                                          "the program's")
+            ->check(CLI::IsMember({17, 18, 19}));
+        app.add_option("--plc", plc_,
+                       "A scripted PLC: OTC control-unit writes at cycles or blocks "
+                       "(docs/apcictl.md)");
+        app.add_option("--tools-out", tools_out_,
+                       "Write the tool list as the run left it (the OTC wear folded in at tool "
+                       "change, seed FCT-C20 section 2.9)");
         app.footer(
             "Validates the whole program first: a program that does not parse runs nothing and "
             "its error names file:line:column. Then every block drives the board (spooled "
@@ -163,6 +183,12 @@ class RunCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             tools = std::move(loaded.value());
         }
+        apci::run::PlcScript plc;
+        if (!plc_.empty()) {
+            auto loaded = apci::run::load_plc_script(plc_);
+            if (!loaded) return nc_failure(loaded.error());
+            plc = std::move(loaded.value());
+        }
         StdinCopy stdin_copy;
         std::string path = program_;
         if (program_ == "-") {
@@ -176,7 +202,7 @@ class RunCommand final : public Command {
         if (board == nullptr) return failure;
 
         Outputs outputs;
-        apci::run::ProgramExecutor executor(*board, outputs, &tools);
+        apci::run::ProgramExecutor executor(*board, outputs, &tools, plc_.empty() ? nullptr : &plc);
         apci::nc::InterpreterOptions options;
         options.start_position = executor.position();
         options.tools = &tools;
@@ -193,8 +219,9 @@ class RunCommand final : public Command {
         if (!stream) return nc_failure(stream.error());
 
         OutputFile json_file, svg_file, csv_file;
+        OutputFile tools_file;
         for (auto [out, name] : {std::pair{&json_file, &json_}, std::pair{&svg_file, &svg_},
-                                 std::pair{&csv_file, &csv_}}) {
+                                 std::pair{&csv_file, &csv_}, std::pair{&tools_file, &tools_out_}}) {
             if (name->empty()) continue;
             out->path = *name;
             out->file = std::fopen(name->c_str(), "w");
@@ -210,6 +237,7 @@ class RunCommand final : public Command {
                 return Outcome::board_error("run: cannot make a temporary file for the plot");
         }
         outputs.csv_file = csv_file.file;
+        outputs.svg_cycles = svg_cycles_;
         outputs.total_blocks = program.value().summary().blocks;
         outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
 
@@ -223,9 +251,19 @@ class RunCommand final : public Command {
             if (!ok && written_error.empty())
                 written_error = fmt::format("run: writing {} failed", f.path);
         };
-        if (outputs.json) check(outputs.json->finish(result.errors, result.registers), json_file);
+        if (outputs.json)
+            check(outputs.json->finish(result.errors, result.registers, result.variables,
+                                       result.notices),
+                  json_file);
+        if (tools_file.file != nullptr) {
+            const std::string text = apci::nc::format_tool_table(result.tools_after);
+            check(std::fwrite(text.data(), 1, text.size(), tools_file.file) == text.size(),
+                  tools_file);
+        }
+        check(tools_file.close(), tools_file);
         if (outputs.svg)
-            check(outputs.svg->finish(svg_file.file, result.plot_plane, result.totals.file),
+            check(outputs.svg->finish(svg_file.file, plane_ != 0 ? plane_ : result.plot_plane,
+                                      result.totals.file),
                   svg_file);
         if (outputs.csv) check(outputs.csv->finish(), csv_file);
         check(json_file.close(), json_file);
@@ -233,6 +271,8 @@ class RunCommand final : public Command {
         check(csv_file.close(), csv_file);
 
         apci::run::print_summary(stdout, result.totals, result.errors);
+        for (const RunError& n : result.notices)
+            fmt::print("notice: {}: {}\n", apci::run::block_text(n.block), n.message);
         std::fflush(stdout);
         if (!result.errors.empty()) {
             const RunError& first = result.errors.front();
@@ -258,6 +298,10 @@ class RunCommand final : public Command {
     std::string svg_;
     std::string json_;
     std::string csv_;
+    std::string plc_;
+    std::string tools_out_;
+    bool svg_cycles_ = false;
+    int plane_ = 0;
 };
 
 }  // namespace

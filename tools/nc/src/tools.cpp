@@ -65,11 +65,14 @@ constexpr FieldSpec kFields[] = {
     {"dl", false, false, -kInf, kInf, "", nullptr, &ToolData::dl},
     {"dr", false, false, -kInf, kInf, "", nullptr, &ToolData::dr},
     {"dr2", false, false, -kInf, kInf, "", nullptr, &ToolData::dr2},
+    {"wear_radius", false, false, -kInf, kInf, "", nullptr, &ToolData::wear_radius},
+    {"wear_radius_cont", false, false, -kInf, kInf, "", nullptr, &ToolData::wear_radius_cont},
 };
 
 constexpr std::string_view kFieldList =
     "gueltig, typ, mass_einheit, laenge, radius, ax_ersatz[k], grinding_wear_const, "
-    "grinding_max_infeed, grinding_disc_tilt_angle, r2, dl, dr, dr2";
+    "grinding_max_infeed, grinding_disc_tilt_angle, r2, dl, dr, dr2, wear_radius, "
+    "wear_radius_cont";
 
 const FieldSpec* find_field(std::string_view name) {
     for (const FieldSpec& f : kFields) {
@@ -245,6 +248,42 @@ Result<ToolTable> parse_lines(LineSource& source) {
 }
 
 }  // namespace
+
+ToolData* ToolTable::find_mutable(int index) noexcept {
+    return const_cast<ToolData*>(static_cast<const ToolTable&>(*this).find(index));
+}
+
+namespace {
+// Up to 6 decimals, trailing zeros and point dropped: "300000", "-12.5", "0.000001".
+std::string format_value(double v) {
+    std::string s = fmt::format("{:.6f}", v);
+    while (!s.empty() && s.back() == '0') s.pop_back();
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    if (s == "-0") s = "0";
+    return s;
+}
+}  // namespace
+
+std::string format_tool_table(const ToolTable& table) {
+    std::string out;
+    for (const ToolData& t : table.tools()) {
+        const auto line = [&](std::string_view field, const std::string& value) {
+            out += fmt::format("wz[{}].{:<26}{}\n", t.index, field, value);
+        };
+        line("gueltig", std::to_string(t.gueltig));
+        line("typ", std::to_string(t.typ));
+        line("mass_einheit", std::to_string(t.mass_einheit));
+        for (const FieldSpec& f : kFields) {
+            if (f.real == nullptr) continue;
+            const double v = t.*f.real;
+            if (v != 0.0) line(f.name, format_value(v));
+        }
+        for (std::size_t k = 0; k < kAxisOffsetCount; ++k)
+            if (t.ax_ersatz[k] != 0.0)
+                line(fmt::format("ax_ersatz[{}]", k), format_value(t.ax_ersatz[k]));
+    }
+    return out;
+}
 
 Result<ToolTable> parse_tool_table(std::string_view text, std::string_view file) {
     LineSource source = LineSource::from_text(text, std::string(file));

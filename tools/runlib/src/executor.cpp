@@ -11,8 +11,10 @@
 #include <variant>
 
 #include "apci/run/csv_writer.h"
+#include "apci/run/plc_script.h"
 #include "rwmos/comp3d/refusal.h"
 #include "rwmos/object_map.h"
+#include "rwmos/otc/errors.h"
 
 namespace apci::run {
 
@@ -112,15 +114,24 @@ class RecentMoves {
     std::size_t next_ = 0;
 };
 
+namespace otc = rwmos::otc;
+
+ObjectDescriptor otc_object(std::int32_t dev, std::int32_t index, std::int32_t sub = 0) noexcept {
+    return apci::object(otc::kBus, dev, index, sub);
+}
+
 class Execution {
   public:
-    Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools)
-        : board_(board), sink_(sink), tools_(tools) {
+    Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc)
+        : board_(board), sink_(sink), tools_(tools), plc_(plc), variables_(*this) {
         segments_.resize(ProgramExecutor::kReadBatch);
         samples_.resize(ProgramExecutor::kReadBatch);
+        if (tools_ != nullptr) tools_mut_ = *tools_;
     }
 
     RunOutcome run(nc::EventStream& events) {
+        // The program reads the board's V.G. variables (seed 000 section 2.8).
+        events.set_variable_source(&variables_);
         set_up_ = setup();
         if (set_up_) {
             nc::Event ev;
@@ -192,8 +203,10 @@ class Execution {
             out_.axis_names[i] =
                 axis_column_name(static_cast<int>(i), axes_[0], axes_[1], axes_[2]);
         if (out_.tc_present && !setup_groups()) return false;
+        if (!otc_setup()) return false;
 
         sink_.axes(out_.axis_names);
+        sink_.axis_numbers(axes_);
         if (sink_.wants_samples()) {
             const auto r = board_.trace_enable(2 * ProgramExecutor::kTraceChunk);
             if (!r) return board_failure({}, r.status, "trace on");
@@ -245,6 +258,13 @@ class Execution {
         // The move under way ends (after a TC error the board holds the rest). A clock that
         // failed already is not asked again; its error is recorded.
         if (set_up_ && clock_ok_) (void)run_clock();
+        // PLC writes due after the program's last move: the clock runs on to them.
+        if (set_up_ && clock_ok_ && out_.errors.empty()) (void)plc_after_end();
+        if (set_up_ && out_.otc_present) {
+            check_out_tool();
+            read_variables();
+        }
+        out_.tools_after = tools_mut_;
         if (out_.tc_present) read_registers();
         out_.totals.cycles = cycles_seen_ - start_cycle_;
         if (!comp_plane_seen_) out_.plot_plane = plane_;
@@ -275,6 +295,7 @@ class Execution {
                              std::holds_alternative<nc::LineMove>(ev.data) ||
                              std::holds_alternative<nc::VectorLineMove>(ev.data);
         if (head_pending_ && !is_move && !head_only_move(head_at_)) return false;
+        if (!plc_block(ev.origin)) return false;
         return std::visit(
             [&](const auto& e) -> bool {
                 using E = std::decay_t<decltype(e)>;
@@ -305,6 +326,20 @@ class Execution {
                                       "AllowOversize");
                 } else if constexpr (std::is_same_v<E, nc::HeadOrientation>) {
                     return head(at, e);
+                } else if constexpr (std::is_same_v<E, nc::OtcChange>) {
+                    return otc_command(at, e.command);
+                } else if constexpr (std::is_same_v<E, nc::KinematicsSelect>) {
+                    return otc_setting(at, otc::kIdxKinematics, e.id, "#KIN (Kinematics)");
+                } else if constexpr (std::is_same_v<E, nc::TrafoChange>) {
+                    return otc_setting(at, otc::kIdxTrafo, e.on ? 1 : 0, "#TRAFO (Trafo)");
+                } else if constexpr (std::is_same_v<E, nc::NotEmulated>) {
+                    out_.notices.push_back(RunError{
+                        at, "NotEmulated",
+                        fmt::format("{} is accepted and not emulated (DESIGN.md section 8)",
+                                    e.command)});
+                    return true;
+                } else if constexpr (std::is_same_v<E, nc::VariableWrite>) {
+                    return variable_write(at, e);
                 } else {
                     static_assert(std::is_same_v<E, nc::VectorLineMove>);
                     return vector_line(at, e);
@@ -406,8 +441,16 @@ class Execution {
     }
 
     bool tool(const BlockRef& at, int index) {
+        if (out_.otc_present) {
+            // Seed 000 section 2.9: the wear of the tool going out reaches the tool list.
+            if (!run_clock()) return false;
+            check_out_tool();
+            if (index != current_tool_) reported_radius_wear_ = reported_cont_wear_ = 0.0;
+            if (!otc_tool(at, index)) return false;
+        }
+        current_tool_ = index;
         if (!out_.tc_present) return true;  // no TC module: nothing takes a tool
-        const nc::ToolData* t = tools_ != nullptr && index > 0 ? tools_->find(index) : nullptr;
+        const nc::ToolData* t = tools_ != nullptr && index > 0 ? tools_mut_.find(index) : nullptr;
         const double radius = t != nullptr ? t->radius_mm() : 0.0;
         const double length = t != nullptr ? t->length_mm() : 0.0;
         // A tool change: the axes stop first, so every segment read back so far ran with the
@@ -680,6 +723,301 @@ class Execution {
         return record(at, std::string(apci::status_name(status)), text);
     }
 
+    // ---- OTC (bus 1330): #OTC, #KIN, #TRAFO, the tool's grinding data, the PLC script,
+    // the V.G. variables (docs/apcictl.md "run", docs/otc.md)
+
+    // The program's start state: OTC off, LENGTH, AUTO, the tool's wear constant, ACC_WEIGHT
+    // 100, no kinematics, the control units off; the B head's B on the first free board axis
+    // (as the 3D module's). Without the module (NoSuchDevice) OTC events are refused by name.
+    bool otc_setup() {
+        auto active = otc_object(otc::kDevChannel, otc::kIdxActive);
+        const auto r = board_.read_int(active);
+        if (r.status == APCI_NO_SUCH_DEVICE) {
+            out_.otc_present = false;
+            return true;
+        }
+        if (!r) return board_failure({}, r.status, "read OTC Active");
+        out_.otc_present = true;
+        if (r.value != 0 && !otc_write(active, std::int32_t{0}, {}, "#OTC OFF (start)")) return false;
+        std::array<bool, APCI_AXIS_COUNT> used{};
+        for (const int a : axes_) used[static_cast<std::size_t>(a)] = true;
+        std::int32_t b_axis = 4;
+        for (std::int32_t a : {4, 5, 6, 7, 3}) {
+            if (!used[static_cast<std::size_t>(a)]) {
+                b_axis = a;
+                break;
+            }
+        }
+        const std::pair<std::int32_t, std::int32_t> settings[] = {
+            {otc::kIdxTrafo, 0},
+            {otc::kIdxKinematics, 0},
+            {otc::kIdxToolAxisB, b_axis},
+            {otc::kIdxProcessingType, 1},
+            {otc::kIdxMode, 2},
+            {otc::kIdxWearConstSource, 0},
+            {otc::kIdxAccWeight, 100}};
+        for (const auto& [index, value] : settings) {
+            auto o = otc_object(otc::kDevChannel, index);
+            if (!otc_write(o, value, {}, "OTC setup")) return false;
+        }
+        auto ch_enable = otc_object(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, otc::kSubEnable);
+        if (!otc_write(ch_enable, std::int32_t{0}, {}, "OTC setup")) return false;
+        for (std::int32_t a = 0; a < APCI_AXIS_COUNT; ++a) {
+            auto en = otc_object(otc::kDevAxisUnits, a, otc::kSubEnable);
+            if (!otc_write(en, std::int32_t{0}, {}, "OTC setup")) return false;
+        }
+        return true;
+    }
+
+    bool otc_needed(const BlockRef& at, std::string_view what) {
+        if (out_.otc_present) return true;
+        return record(at, "NoSuchDevice",
+                      fmt::format("{} needs the OTC module (bus 1330), which this board does not "
+                                  "have",
+                                  what));
+    }
+
+    // A refused OTC write is named by the module's LastError (rwmos/otc/errors.h), else by
+    // the status; LastError is cleared for the next one. Busy (moves queued under #OTC ON/OFF)
+    // runs the clock and writes again.
+    template <typename T>
+    bool otc_write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
+        for (;;) {
+            const auto r = board_.write(o, value);
+            if (r.ok()) return true;
+            if (r.status == APCI_BUSY) {
+                if (!run_clock()) return false;
+                continue;
+            }
+            const std::string text = fmt::format("{}: {}", what, board_.last_error());
+            auto last = otc_object(otc::kDevChannel, otc::kIdxLastError);
+            const auto code = board_.read_int(last);
+            if (code && code.value != 0) {
+                (void)board_.write(last, std::int32_t{0});
+                const auto e = static_cast<otc::Error>(code.value);
+                return record(at, std::string(otc::error_name(e)),
+                              fmt::format("{} ({})", text, otc::error_message(e)));
+            }
+            return record(at, std::string(apci::status_name(r.status)), text);
+        }
+    }
+
+    bool otc_setting(const BlockRef& at, std::int32_t index, std::int32_t value,
+                     std::string_view what) {
+        if (!otc_needed(at, what)) return false;
+        auto o = otc_object(otc::kDevChannel, index);
+        return otc_write(o, value, at, what);
+    }
+
+    // #OTC: the parameters first, then ON/OFF (the board answers Busy until the moves before
+    // it have run: OTC switches at its place in the program).
+    bool otc_command(const BlockRef& at, const nc::OtcCommand& c) {
+        if (!otc_needed(at, "#OTC")) return false;
+        if (c.type && !otc_setting(at, otc::kIdxProcessingType, static_cast<std::int32_t>(*c.type),
+                                   "#OTC processing type"))
+            return false;
+        if (c.mode && !otc_setting(at, otc::kIdxMode, static_cast<std::int32_t>(*c.mode), "#OTC mode"))
+            return false;
+        if (c.acc_weight && !otc_setting(at, otc::kIdxAccWeight, *c.acc_weight, "#OTC ACC_WEIGHT"))
+            return false;
+        if (c.wear_const == nc::WearConstChoice::kProgrammed) {
+            auto o = otc_object(otc::kDevChannel, otc::kIdxWearConst);
+            if (!otc_write(o, c.wear_const_value, at, "#OTC WEAR_CONST")) return false;
+        } else if (c.wear_const == nc::WearConstChoice::kTool &&
+                   !otc_setting(at, otc::kIdxWearConstSource, 0, "#OTC WEAR_CONST_TOOL")) {
+            return false;
+        }
+        if (!c.on) return true;
+        if (!otc_setting(at, otc::kIdxActive, *c.on ? 1 : 0, *c.on ? "#OTC ON" : "#OTC OFF"))
+            return false;
+        // The wear folded into the tool's length: the segments read back from here on carry
+        // the new length.
+        if (!*c.on && out_.tc_present) {
+            auto len = group_object(1, tc::kSubWkzLen);
+            const auto l = board_.read_double(len);
+            if (l) length_ = l.value;
+        }
+        return true;
+    }
+
+    // D n: the grinding data of wz[n] (seed 000 section 2.6) become the OTC module's current
+    // tool. A new ToolNumber starts the tool's wear from 0 on the board (section 2.9).
+    bool otc_tool(const BlockRef& at, int index) {
+        const nc::ToolData* t = index > 0 ? tools_mut_.find(index) : nullptr;
+        auto number = otc_object(otc::kDevTool, otc::kIdxToolNumber);
+        auto typ = otc_object(otc::kDevTool, otc::kIdxToolType);
+        auto wear = otc_object(otc::kDevTool, otc::kIdxToolWearConst);
+        auto infeed = otc_object(otc::kDevTool, otc::kIdxToolMaxInfeed);
+        auto tilt = otc_object(otc::kDevTool, otc::kIdxToolTiltAngle);
+        return otc_write(number, std::int32_t{index}, at, "OTC ToolNumber") &&
+               otc_write(typ, std::int32_t{t != nullptr ? t->typ : 0}, at, "OTC typ") &&
+               otc_write(wear, t != nullptr ? t->grinding_wear_const : 0.0, at,
+                         "OTC grinding_wear_const") &&
+               otc_write(infeed, t != nullptr ? t->grinding_max_infeed : 0.0, at,
+                         "OTC grinding_max_infeed") &&
+               otc_write(tilt, t != nullptr ? t->grinding_disc_tilt_angle : 0.0, at,
+                         "OTC grinding_disc_tilt_angle");
+    }
+
+    // Seed 000 section 2.9: "Beim Auswechseln des Werkzeugs wird der externen
+    // Werkzeugverwaltung der Verschleiß durch die CNC mitgeteilt" (wear_radius,
+    // wear_radius_cont); the tool management folds it into the tool's geometry. The board has
+    // folded it into its tool table at #OTC OFF: the tool list takes the board's radius and
+    // length of the tool and adds the wear to its wear fields.
+    void check_out_tool() {
+        if (current_tool_ <= 0) return;
+        nc::ToolData* t = tools_mut_.find_mutable(current_tool_);
+        if (t == nullptr) return;
+        auto wr = otc_object(otc::kDevTool, otc::kIdxWearRadius);
+        auto wc = otc_object(otc::kDevTool, otc::kIdxWearRadiusCont);
+        const auto radius_wear = board_.read_double(wr);
+        const auto cont_wear = board_.read_double(wc);
+        if (radius_wear && cont_wear) {
+            t->set_wear_radius_mm(t->wear_radius_mm() + radius_wear.value - reported_radius_wear_);
+            t->set_wear_radius_cont_mm(t->wear_radius_cont_mm() + cont_wear.value -
+                                       reported_cont_wear_);
+            reported_radius_wear_ = radius_wear.value;
+            reported_cont_wear_ = cont_wear.value;
+        }
+        if (out_.tc_present) {
+            auto r = group_object(1, tc::kSubRadius);
+            auto l = group_object(1, tc::kSubWkzLen);
+            const auto radius = board_.read_double(r);
+            const auto length = board_.read_double(l);
+            if (radius && length) {
+                t->set_radius_mm(radius.value);
+                t->set_length_mm(length.value);
+            }
+        }
+    }
+
+    // V.G.WZ_AKT.WEAR_CONST = value: the tool's wear constant, on the board and in the list.
+    bool variable_write(const BlockRef& at, const nc::VariableWrite& e) {
+        if (!otc_needed(at, "V.G.WZ_AKT.WEAR_CONST")) return false;
+        auto o = otc_object(otc::kDevTool, otc::kIdxToolWearConst);
+        if (!otc_write(o, e.value, at, "V.G.WZ_AKT.WEAR_CONST")) return false;
+        if (nc::ToolData* t = current_tool_ > 0 ? tools_mut_.find_mutable(current_tool_) : nullptr)
+            t->grinding_wear_const = e.value;
+        return true;
+    }
+
+    // The board axis of channel axis i (0 X, 1 Y, 2 Z through Axis-Nr; the others as numbered).
+    std::int32_t channel_axis(int i) const noexcept { return i < 3 ? axis(i) : i; }
+
+    bool read_variable(const nc::VariableRef& v, double& out, std::string& why) {
+        if (!out_.otc_present) {
+            why = "the board has no OTC module (bus 1330)";
+            return false;
+        }
+        ObjectDescriptor o{};
+        bool is_int = false;
+        switch (v.variable) {
+            case nc::NcVariable::kWearRadius:
+                o = otc_object(otc::kDevTool, otc::kIdxWearRadius);
+                break;
+            case nc::NcVariable::kWearRadiusCont:
+                o = otc_object(otc::kDevTool, otc::kIdxWearRadiusCont);
+                break;
+            case nc::NcVariable::kWear:
+                o = otc_object(otc::kDevTool, otc::kIdxWear, channel_axis(v.index));
+                break;
+            case nc::NcVariable::kWearConst:
+                o = otc_object(otc::kDevTool, otc::kIdxToolWearConst);
+                break;
+            case nc::NcVariable::kOtcActive:
+                o = otc_object(otc::kDevChannel, otc::kIdxActive);
+                is_int = true;
+                break;
+        }
+        if (is_int) {
+            const auto r = board_.read_int(o);
+            if (!r) {
+                why = std::string(board_.last_error());
+                return false;
+            }
+            out = r.value;
+            return true;
+        }
+        const auto r = board_.read_double(o);
+        if (!r) {
+            why = std::string(board_.last_error());
+            return false;
+        }
+        out = r.value;
+        return true;
+    }
+
+    // The variables at the end of the run, by their seed names (DESIGN.md section 7 JSON).
+    void read_variables() {
+        auto add = [&](std::string name, nc::VariableRef v) {
+            double value = 0.0;
+            std::string why;
+            if (read_variable(v, value, why)) out_.variables.emplace_back(std::move(name), value);
+        };
+        add("V.G.OTC_ACTIVE", {nc::NcVariable::kOtcActive, 0});
+        add("V.G.WZ_AKT.WEAR_CONST", {nc::NcVariable::kWearConst, 0});
+        add("V.G.WZ_AKT.WEAR_RADIUS", {nc::NcVariable::kWearRadius, 0});
+        add("V.G.WZ_AKT.WEAR_RADIUS_CONT", {nc::NcVariable::kWearRadiusCont, 0});
+        for (int i = 0; i < APCI_AXIS_COUNT; ++i)
+            add(fmt::format("V.G.WZ_AKT.WEAR[{}]", i), {nc::NcVariable::kWear, i});
+    }
+
+    // ---- the scripted PLC (apcictl run --plc)
+
+    const std::uint64_t* next_plc_cycle() const noexcept {
+        if (plc_ == nullptr || plc_next_cycle_ >= plc_->cycle_writes().size()) return nullptr;
+        return &plc_->cycle_writes()[plc_next_cycle_].at;
+    }
+
+    // Writes every cycle entry whose cycle has come.
+    bool plc_due() {
+        while (const std::uint64_t* due = next_plc_cycle()) {
+            if (*due > cycles_seen_ - start_cycle_) break;
+            if (!plc_write(plc_->cycle_writes()[plc_next_cycle_++])) return false;
+        }
+        return true;
+    }
+
+    // After the program: the clock runs on to the remaining cycle entries.
+    bool plc_after_end() {
+        while (const std::uint64_t* due = next_plc_cycle()) {
+            const std::uint64_t now = cycles_seen_ - start_cycle_;
+            if (*due > now && !step_clock(*due - now)) return false;
+            if (!plc_due()) return false;
+        }
+        return true;
+    }
+
+    // The first event of a block: its block entries, after the moves before it have run.
+    bool plc_block(const nc::BlockOrigin& o) {
+        if (plc_ == nullptr || plc_->block_writes().empty()) return true;
+        if (o.block == plc_last_block_ && o.line == plc_last_line_) return true;
+        plc_last_block_ = o.block;
+        plc_last_line_ = o.line;
+        if (o.block < 0) return true;
+        bool synced = false;
+        for (const PlcWrite& w : plc_->block_writes()) {
+            if (w.at != static_cast<std::uint64_t>(o.block)) continue;
+            if (!synced && !run_clock()) return false;
+            synced = true;
+            if (!plc_write(w)) return false;
+        }
+        return true;
+    }
+
+    bool plc_write(const PlcWrite& w) {
+        const BlockRef at = w.when == PlcWrite::When::kBlock
+                                ? BlockRef{static_cast<std::int64_t>(w.at), 0}
+                                : BlockRef{};
+        const std::string what =
+            fmt::format("{}:{}: PLC {} = {}", plc_->file(), w.line, plc_unit_name(w), w.value);
+        if (!otc_needed(at, what)) return false;
+        const std::int32_t sub = w.field == PlcWrite::Field::kCommand ? otc::kSubCommand : otc::kSubEnable;
+        auto o = w.channel ? otc_object(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, sub)
+                           : otc_object(otc::kDevAxisUnits, channel_axis(w.axis), sub);
+        return otc_write(o, w.value, at, what);
+    }
+
     // ---- board access
 
     // Writes an object; Busy (the spooler cannot take what the write releases) runs the clock
@@ -765,8 +1103,11 @@ class Execution {
 
     bool run_clock_until_idle() {
         for (;;) {
-            const auto st =
-                board_.run_until_idle(tracing_ ? ProgramExecutor::kTraceChunk : kRunForever);
+            if (!plc_due()) return false;
+            std::uint64_t chunk = tracing_ ? ProgramExecutor::kTraceChunk : kRunForever;
+            if (const std::uint64_t* due = next_plc_cycle())
+                chunk = std::min(chunk, *due - (cycles_seen_ - start_cycle_));
+            const auto st = board_.run_until_idle(chunk);
             if (!st) return board_failure({}, st.status, "run clock");
             cycles_seen_ = st.value.now;
             if (!drain_segments(st.value.segments_pending) ||
@@ -778,8 +1119,24 @@ class Execution {
                 return record({}, "Lost",
                               "executed segments or samples were lost before they were read");
             }
-            if ((st.value.flags & APCI_MOTION_IDLE) != 0) return true;
+            if ((st.value.flags & APCI_MOTION_IDLE) != 0) return plc_due();
         }
+    }
+
+    // Steps the clock by exactly `cycles` (idle cycles included), reading what it produced.
+    bool step_clock(std::uint64_t cycles) {
+        while (cycles > 0) {
+            const std::uint64_t chunk =
+                tracing_ ? std::min<std::uint64_t>(cycles, ProgramExecutor::kTraceChunk) : cycles;
+            const auto st = board_.step(chunk);
+            if (!st) return board_failure({}, st.status, "step clock");
+            cycles_seen_ = st.value.now;
+            cycles -= chunk;
+            if (!drain_segments(st.value.segments_pending) ||
+                (tracing_ && !drain_samples(st.value.trace_pending)))
+                return false;
+        }
+        return true;
     }
 
     // Reads the `pending` executed segments the clock call reported, in batches of at most
@@ -895,6 +1252,28 @@ class Execution {
     bool comp_plane_seen_ = false;
     double length_ = 0.0;  // WkzLen of the current tool
     // Klartext (3D compensation module, bus 1310).
+    // ---- OTC (bus 1330; docs/otc.md, docs/apcictl.md "run")
+    const PlcScript* plc_;
+    std::size_t plc_next_cycle_ = 0;  // next entry of plc_->cycle_writes()
+    std::int64_t plc_last_block_ = std::numeric_limits<std::int64_t>::min();
+    std::uint64_t plc_last_line_ = 0;
+    nc::ToolTable tools_mut_;  // the tool list as the run changes it (wear at tool change)
+    int current_tool_ = 0;
+    double reported_radius_wear_ = 0.0;  // the board's wear variables already in the list
+    double reported_cont_wear_ = 0.0;
+
+    class BoardVariables final : public nc::VariableSource {
+      public:
+        explicit BoardVariables(Execution& e) : e_(e) {}
+        bool read(const nc::VariableRef& v, double& out, std::string& why) override {
+            return e_.read_variable(v, out, why);
+        }
+
+      private:
+        Execution& e_;
+    };
+    BoardVariables variables_;
+
     bool klartext_ = false;
     bool c3_ready_ = false;
     bool tcpm_ = false;
@@ -933,7 +1312,7 @@ Point ProgramExecutor::position() {
 }
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
-    auto execution = std::make_unique<Execution>(board_, sink_, tools_);
+    auto execution = std::make_unique<Execution>(board_, sink_, tools_, plc_);
     return execution->run(events);
 }
 

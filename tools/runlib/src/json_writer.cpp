@@ -77,8 +77,10 @@ void bit_names(TextSink& sink, std::int32_t value, const char* (*name_of)(int)) 
 
 bool JsonRunWriter::finish(std::span<const RunError> errors,
                            std::span<const GroupRegisters> registers) {
-    begin_segments();
-    sink_.append("],\n\"errors\":[");
+    return finish(errors, registers, {}, {});
+}
+
+void JsonRunWriter::error_list(std::span<const RunError> errors) {
     for (std::size_t i = 0; i < errors.size(); ++i) {
         sink_.append(i == 0 ? "\n{" : ",\n{");
         block(errors[i].block);
@@ -87,6 +89,19 @@ bool JsonRunWriter::finish(std::span<const RunError> errors,
         sink_.append(",\"message\":");
         append_json_string(sink_, errors[i].message);
         sink_.put('}');
+    }
+}
+
+bool JsonRunWriter::finish(std::span<const RunError> errors,
+                           std::span<const GroupRegisters> registers,
+                           std::span<const std::pair<std::string, double>> variables,
+                           std::span<const RunError> notices) {
+    begin_segments();
+    sink_.append("],\n\"errors\":[");
+    error_list(errors);
+    if (!notices.empty()) {
+        sink_.append("],\n\"notices\":[");
+        error_list(notices);
     }
     sink_.append("],\n\"registers\":{");
     for (std::size_t i = 0; i < registers.size(); ++i) {
@@ -103,8 +118,15 @@ bool JsonRunWriter::finish(std::span<const RunError> errors,
         bit_names(sink_, g.status, apci_tc_status_bit_name);
         sink_.put('}');
     }
-    // The readable NC variables: none yet (the OTC module adds its wear variables).
-    sink_.append("},\n\"variables\":{}}\n");
+    // The readable NC variables by their seed names (the OTC module's; DESIGN.md section 7).
+    sink_.append("},\n\"variables\":{");
+    for (std::size_t i = 0; i < variables.size(); ++i) {
+        if (i != 0) sink_.put(',');
+        append_json_string(sink_, variables[i].first);
+        sink_.put(':');
+        append_json_number(sink_, variables[i].second);
+    }
+    sink_.append("}}\n");
     return sink_.flush();
 }
 

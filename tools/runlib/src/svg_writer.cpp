@@ -26,6 +26,8 @@ std::string_view layer_class(PlotLayer l) noexcept {
             return "contour";
         case PlotLayer::kTransition:
             return "transition";
+        case PlotLayer::kCycles:
+            return "cycles";
     }
     return "programmed";
 }
@@ -46,6 +48,8 @@ std::string_view layer_label(PlotLayer l) noexcept {
             return "tool centre path";
         case PlotLayer::kTransition:
             return "corner transition";
+        case PlotLayer::kCycles:
+            return "axes per cycle (with OTC offsets)";
     }
     return "";
 }
@@ -341,6 +345,24 @@ void SvgPlotWriter::executed(const PathSegment& s) {
     record(executed_layer(s), s);
 }
 
+void SvgPlotWriter::cycle(const Point& p) {
+    if (!have_cycle_) {
+        have_cycle_ = true;
+        cycle_kept_ = cycle_last_ = p;
+        return;
+    }
+    cycle_last_ = p;
+    cycle_pending_ = true;
+    if ((p - cycle_kept_).norm() < kCycleStep) return;
+    PathSegment s;
+    s.kind = SegmentKind::kLine;
+    s.start = cycle_kept_;
+    s.end = p;
+    record(PlotLayer::kCycles, s);
+    cycle_kept_ = p;
+    cycle_pending_ = false;
+}
+
 void SvgPlotWriter::error_marker(const BlockRef& block, const Point& where, std::string_view code) {
     if (markers_.size() >= kMaxErrorMarkers) {
         ++markers_dropped_;
@@ -351,6 +373,14 @@ void SvgPlotWriter::error_marker(const BlockRef& block, const Point& where, std:
 }
 
 bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
+    if (cycle_pending_) {
+        PathSegment s;
+        s.kind = SegmentKind::kLine;
+        s.start = cycle_kept_;
+        s.end = cycle_last_;
+        record(PlotLayer::kCycles, s);
+        cycle_pending_ = false;
+    }
     if (!ok() || std::fflush(records_) != 0) return false;
     const Frame frame(plane, bounds_);
     const double e = frame.extent();
@@ -406,13 +436,17 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         ".departure {{ stroke: #b8860b; stroke-width: {1}; stroke-dasharray: {5} {4}; }}\n"
         ".contour {{ stroke: #1f5fbf; stroke-width: {1}; }}\n"
         ".transition {{ stroke: #e4572e; stroke-width: {2}; }}\n"
+        "{8}"
         ".error {{ fill: none; stroke: #d00000; stroke-width: {1}; }}\n"
         "text {{ font-family: sans-serif; font-size: {6:.6g}px; fill: #222222; }}\n"
         "text.error {{ fill: #d00000; stroke: none; }}\n"
         ".frame {{ fill: none; stroke: #cccccc; stroke-width: {7}; }}\n"
         ".axis {{ fill: none; stroke: #222222; stroke-width: {0}; }}\n"
         "</style>\n",
-        w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), font, w(0.5));
+        w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), font, w(0.5),
+        counts_[static_cast<std::size_t>(PlotLayer::kCycles)] == 0
+            ? std::string()
+            : fmt::format(".cycles {{ stroke: #c2185b; stroke-width: {}; }}\n", w(1.0)));
     sink.print(
         "<rect x=\"{:.6g}\" y=\"{:.6g}\" width=\"{:.6g}\" height=\"{:.6g}\" fill=\"white\"/>\n", x0,
         y0, box_width, height);

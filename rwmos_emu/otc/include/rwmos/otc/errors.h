@@ -4,6 +4,7 @@
 // object reads the number; the NC front end and apcictl print the name and message.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string_view>
 
@@ -34,8 +35,27 @@ struct ErrorInfo {
     std::string_view message;  // one line
 };
 
+// One table; header-only, so tools name the errors without linking the emulator.
+inline constexpr std::array<ErrorInfo, 6> kErrors{{
+    {Error::kNone, "none", "no error"},
+    {Error::kToolNotGrinding, "P-ERR-21391",
+     "OTC needs a grinding tool (tool type 2, P-TOOL-00001); OTC stays off"},
+    {Error::kOffBeforeG40, "OTC_OFF_BEFORE_G40",
+     "#OTC OFF while tool radius compensation is on: program G40 before #OTC OFF"},
+    {Error::kChangeWhileActive, "OTC_CHANGE_WHILE_ACTIVE",
+     "processing type, mode and ACC_WEIGHT are set before or with #OTC ON, not while OTC is on"},
+    {Error::kToolChangeWhileActive, "OTC_TOOL_CHANGE_WHILE_ACTIVE",
+     "the tool is not changed while OTC is on: program #OTC OFF first"},
+    {Error::kInfeedBeyondLimit, "OTC_INFEED_BEYOND_LIMIT",
+     "discrete offset beyond grinding_max_infeed (P-TOOL-00031) of the current tool"},
+}};
+
 // The table row of `e` (kNone for unknown numbers).
-const ErrorInfo& error_info(Error e) noexcept;
+constexpr const ErrorInfo& error_info(Error e) noexcept {
+    for (const ErrorInfo& i : kErrors)
+        if (i.error == e) return i;
+    return kErrors[0];
+}
 inline std::string_view error_name(Error e) noexcept {
     return error_info(e).name;
 }

@@ -39,6 +39,11 @@ struct ToolData {
     double dl = 0.0;
     double dr = 0.0;
     double dr2 = 0.0;
+    // The wear the CNC reported at tool change (seed 000 section 2.9: wear_radius, the total of
+    // discrete and continuous; wear_radius_cont, the continuous part), length unit, added up over
+    // the runs that changed the tool out. Already folded into radius and laenge.
+    double wear_radius = 0.0;
+    double wear_radius_cont = 0.0;
 
     bool valid() const noexcept { return gueltig == 1; }
     ToolType type() const noexcept { return static_cast<ToolType>(typ); }
@@ -56,6 +61,13 @@ struct ToolData {
     double dr2_mm() const noexcept { return dr2 * length_unit_mm(); }
     // 0.1 um/m -> mm per m of path.
     double wear_const_mm_per_m() const noexcept { return grinding_wear_const * 1e-4; }
+    double wear_radius_mm() const noexcept { return wear_radius * length_unit_mm(); }
+    double wear_radius_cont_mm() const noexcept { return wear_radius_cont * length_unit_mm(); }
+    // Setters in mm, stored in the tool's length unit (the tool management folding the wear).
+    void set_radius_mm(double mm) noexcept { radius = mm / length_unit_mm(); }
+    void set_length_mm(double mm) noexcept { laenge = mm / length_unit_mm(); }
+    void set_wear_radius_mm(double mm) noexcept { wear_radius = mm / length_unit_mm(); }
+    void set_wear_radius_cont_mm(double mm) noexcept { wear_radius_cont = mm / length_unit_mm(); }
     // 0.1 um -> mm.
     double max_infeed_mm() const noexcept { return grinding_max_infeed * 1e-4; }
     // 0.0001 degree -> degree.
@@ -66,6 +78,7 @@ class ToolTable {
   public:
     // The tool wz[index], or nullptr when no line of the file names it.
     const ToolData* find(int index) const noexcept;
+    ToolData* find_mutable(int index) noexcept;
     // Defined tools, ascending by index.
     const std::vector<ToolData>& tools() const noexcept { return tools_; }
     std::size_t size() const noexcept { return tools_.size(); }
@@ -82,5 +95,9 @@ class ToolTable {
 Result<ToolTable> parse_tool_table(std::string_view text, std::string_view file);
 // Reads and parses a tool list file (line by line, as the NC programs).
 Result<ToolTable> load_tool_table(const std::string& path);
+// The table in the same form ("wz[1].radius 300000"), every field a tool has that is not 0
+// (gueltig, typ and mass_einheit always), values with at most 6 decimals: parse_tool_table()
+// reads it back to the same table (tested).
+std::string format_tool_table(const ToolTable& table);
 
 }  // namespace apci::nc

@@ -13,6 +13,11 @@
 //             sides); G40: STATUS = 0 (the held profile is spooled with the departure)
 //   G0..G3    a spooled profile tagged with the block number; Busy: run the clock, retry
 //   M30       STATUS = 0 if compensation is still on, then run until idle
+//   #OTC      the OTC module (bus 1330): type, mode, WEAR_CONST, ACC_WEIGHT, then Active (Busy
+//             until the moves before it have run); #KIN/#TRAFO its Kinematics/Trafo; D n also
+//             the tool's grinding data (typ, P-TOOL-00030/31/138) after checking the old tool's
+//             wear into the tool list (seed 000 section 2.9); V.G. variables read from it
+//   --plc     a scripted PLC writing the control units at cycles or blocks (plc_script.h)
 //   Klartext  the 3D compensation module (bus 1310): TOOL CALL into its tool table and Tool,
 //             M107/M108, TCPM, PROG PATH, RL/RR as its Side; LN as armed N/T and a G01 whose end
 //             the board compensates; B/C of L lines as board axes 4 and 5 (the first free ones)
@@ -32,6 +37,7 @@
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "apci/run/path.h"
+#include "apci/run/plc_script.h"
 #include "apci/run/summary.h"
 
 namespace apci::run {
@@ -49,6 +55,8 @@ class RunSink {
     virtual void executed(const PathSegment& s) { (void)s; }
     // Before the first sample: the column names of the board's axes ("X", ..., "a7").
     virtual void axes(std::span<const std::string> names) { (void)names; }
+    // Before the first sample: the board axes of X, Y and Z.
+    virtual void axis_numbers(const std::array<int, 3>& xyz) { (void)xyz; }
     // True to record the axis positions of every interpolation cycle (costs time).
     virtual bool wants_samples() const { return false; }
     // One cycle: the clock value after it, its time, the positions of the board's axes.
@@ -79,6 +87,15 @@ struct RunOutcome {
     std::array<int, 3> axis_numbers{0, 1, 2};             // board axes of X, Y, Z
     std::array<std::string, APCI_AXIS_COUNT> axis_names;  // CSV columns: "X", ..., "a7"
     bool tc_present = true;
+    bool otc_present = false;  // the board has the OTC module (bus 1330)
+    // Accepted commands the emulator does not emulate (#HSC), by block; not errors.
+    std::vector<RunError> notices;
+    // The readable NC variables at the end by their seed names (V.G.OTC_ACTIVE,
+    // V.G.WZ_AKT.WEAR_RADIUS, ...); empty without the OTC module.
+    std::vector<std::pair<std::string, double>> variables;
+    // The tool list as the run left it: the wear of every tool changed out (and of the last
+    // one, at the end) folded into its radius and length, its wear fields added up.
+    nc::ToolTable tools_after;
 };
 
 class ProgramExecutor {
@@ -91,9 +108,11 @@ class ProgramExecutor {
     // Events between two progress() calls.
     static constexpr std::uint64_t kProgressEvery = 4096;
 
-    // `tools` may be null: every D n then has radius and length 0.
-    ProgramExecutor(apci::Board& board, RunSink& sink, const nc::ToolTable* tools) noexcept
-        : board_(board), sink_(sink), tools_(tools) {}
+    // `tools` may be null: every D n then has radius and length 0. `plc` (may be null) is a
+    // scripted PLC; it must outlive run().
+    ProgramExecutor(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
+                    const PlcScript* plc = nullptr) noexcept
+        : board_(board), sink_(sink), tools_(tools), plc_(plc) {}
 
     // Where the board's X, Y, Z axes stand (program units): the interpreter's start position.
     // Zero when the board cannot say (run() then reports why).
@@ -105,6 +124,7 @@ class ProgramExecutor {
     apci::Board& board_;
     RunSink& sink_;
     const nc::ToolTable* tools_;
+    const PlcScript* plc_;
 };
 
 }  // namespace apci::run

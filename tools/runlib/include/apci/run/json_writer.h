@@ -16,6 +16,8 @@
 
 #include <cstdio>
 #include <span>
+#include <string>
+#include <utility>
 
 #include "apci/run/path.h"
 #include "apci/run/text_sink.h"
@@ -31,6 +33,12 @@ class JsonRunWriter {
     void segment(const PathSegment& s);
     // Closes "segments" and writes the rest of the object. True when every byte was written.
     bool finish(std::span<const RunError> errors, std::span<const GroupRegisters> registers);
+    // The same with the readable NC variables ("variables": {"V.G.OTC_ACTIVE": 0, ...}) and the
+    // notices ("notices": [{"block":85,"code":"NotEmulated","message":...}], written only when
+    // there are any).
+    bool finish(std::span<const RunError> errors, std::span<const GroupRegisters> registers,
+                std::span<const std::pair<std::string, double>> variables,
+                std::span<const RunError> notices);
 
     std::uint64_t segments_written() const noexcept { return count_; }
 
@@ -38,6 +46,7 @@ class JsonRunWriter {
     void begin_segments();
     void point(const Point& p);
     void block(const BlockRef& b);
+    void error_list(std::span<const RunError> errors);
 
     TextSink sink_;
     std::uint64_t count_ = 0;

@@ -30,8 +30,9 @@ enum class PlotLayer : std::uint8_t {
     kDeparture = 4,
     kContour = 5,  // compensated tool-centre path
     kTransition = 6,
+    kCycles = 7,  // the axes cycle by cycle (nominal path plus offsets such as OTC's)
 };
-inline constexpr std::size_t kPlotLayerCount = 7;
+inline constexpr std::size_t kPlotLayerCount = 8;
 std::string_view layer_class(PlotLayer l) noexcept;  // the CSS class: "programmed", ...
 std::string_view layer_label(PlotLayer l) noexcept;  // the legend text
 // The layer of an executed segment.
@@ -59,6 +60,10 @@ class SvgPlotWriter {
 
     void programmed(const PathSegment& s);  // a move of the program, before compensation
     void executed(const PathSegment& s);    // a segment of the executed tool-centre path
+    // The axes (X, Y, Z) after one interpolation cycle: drawn as the kCycles polyline, a point
+    // kept when it lies kCycleStep or more from the last one kept (and the last point always).
+    static constexpr double kCycleStep = 0.02;  // mm
+    void cycle(const Point& p);
     // A red marker at `where` labelled "N80 KorrError".
     void error_marker(const BlockRef& block, const Point& where, std::string_view code);
 
@@ -78,6 +83,10 @@ class SvgPlotWriter {
 
     std::FILE* records_ = nullptr;
     bool failed_ = false;
+    bool have_cycle_ = false;
+    bool cycle_pending_ = false;  // the last point seen was not kept yet
+    Point cycle_kept_ = Point::Zero();
+    Point cycle_last_ = Point::Zero();
     Bounds bounds_;
     std::array<std::uint64_t, kPlotLayerCount> counts_{};
     std::vector<Marker> markers_;

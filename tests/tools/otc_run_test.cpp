@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: MIT
+// OTC through `apcictl run` (a process on the embedded emulator): the seed's OTC programs in
+// examples/otc/ with their documented commands, the scripted PLC (--plc), the V.G. variables in
+// the JSON and in NC expressions, the wear reaching the tool list at tool change (--tools-out),
+// #HSC reported as not emulated, refusals by name. docs/otc.md, docs/apcictl.md.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apci/nc/tools.h"
+#include "apci/run/plc_script.h"
+#include "process.h"
+
+namespace {
+
+using nlohmann::json;
+using test_support::ProcessResult;
+
+const std::string kSource = APCI_SOURCE_DIR;
+const std::string kExamples = kSource + "/examples";
+constexpr double kEps = 1e-9;
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// The CSV of --csv: cycle, time, then the 8 axes.
+std::vector<std::vector<double>> read_csv(const std::string& path) {
+    std::vector<std::vector<double>> rows;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        std::vector<double> row;
+        std::stringstream s(line);
+        std::string cell;
+        while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+class OtcRun : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::string templ = ::testing::TempDir() + "otc_run_XXXXXX";
+        ASSERT_NE(::mkdtemp(templ.data()), nullptr);
+        dir_ = templ;
+    }
+    void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
+
+    std::string path(const std::string& name) const { return dir_ + "/" + name; }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream(path(name)) << text;
+        return path(name);
+    }
+    static ProcessResult apcictl(std::vector<std::string> args) {
+        args.insert(args.begin(), APCICTL_PATH);
+        return test_support::run_process(args);
+    }
+    json run_json(std::vector<std::string> args, int expected_exit = 0) {
+        args.insert(args.begin(), "run");
+        args.push_back("--json");
+        args.push_back(path("out.json"));
+        last_ = apcictl(args);
+        EXPECT_EQ(last_.exit_code, expected_exit) << last_.out << last_.err;
+        return json::parse(read_text(path("out.json")));
+    }
+    // The seed's grinding disc D1 (section 2.6) and a milling cutter D2.
+    std::string seed_tools() const { return kExamples + "/tools/wr_quad_disc.tools"; }
+
+    std::string dir_;
+    ProcessResult last_;
+};
+
+// Every OTC example runs with the command its header documents (paths from the source tree).
+TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
+    const char* programs[] = {"general", "length", "length_tilt", "tool_dir", "surf_norm_dir",
+                              "wr_quad_disc"};
+    for (const char* name : programs) {
+        const std::string file = kExamples + "/otc/" + name + ".nc";
+        const std::string text = read_text(file);
+        const std::string marker = "; ./build/bin/apcictl ";
+        const std::size_t at = text.find(marker);
+        ASSERT_NE(at, std::string::npos) << file;
+        std::stringstream cmd(text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
+        std::vector<std::string> args;
+        for (std::string word; cmd >> word;)
+            args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+        args.push_back("--json");
+        args.push_back(path("out.json"));
+        const ProcessResult r = apcictl(args);
+        EXPECT_EQ(r.exit_code, 0) << name << ": " << r.out << r.err;
+        const json doc = json::parse(read_text(path("out.json")));
+        EXPECT_EQ(doc.at("errors"), json::array()) << name;
+        EXPECT_EQ(doc.at("variables").at("V.G.OTC_ACTIVE"), 0) << name;
+    }
+}
+
+// Seed 000 section 2.3 with the tool data of 2.6: 10.000 mm on Z within 1e-9, linear along the
+// path (5.000 mm at X500), folded into the tool's length (500000 - 100000 x 0.1 um).
+TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
+    const json doc = run_json({kExamples + "/otc/length.nc", "--tools", seed_tools(), "--csv",
+                               path("out.csv"), "--tools-out", path("out.tools")});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 10.0, kEps);
+    EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR[0]").get<double>(), 0.0);
+    const auto rows = read_csv(path("out.csv"));
+    ASSERT_EQ(rows.size(), 6000u);
+    bool half = false;
+    for (const auto& r : rows) {
+        EXPECT_NEAR(r[4], -0.01 * r[2], kEps) << "cycle " << r[0];
+        if (r[2] == 500.0) {
+            half = true;
+            EXPECT_NEAR(r[4], -5.0, kEps);
+        }
+    }
+    EXPECT_TRUE(half);
+    EXPECT_NEAR(rows.back()[4], -10.0, kEps);
+    auto tools = apci::nc::load_tool_table(path("out.tools"));
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    EXPECT_NEAR(tools.value().find(1)->length_mm(), 40.0, 1e-6);
+}
+
+// Seed 000 section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.
+TEST_F(OtcRun, TiltedDiscSplitsTheWearOverXAndZ) {
+    const json doc = run_json({kExamples + "/otc/length_tilt.nc", "--tools",
+                               kExamples + "/tools/otc_tilt.tools"});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[0]").get<double>(), 10.0 * 0.5, kEps);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(),
+                10.0 * std::sqrt(3.0) / 2.0, kEps);
+}
+
+// wr_quad_disc.nc with the PLC's 2 mm: the wear reaches WEAR_RADIUS and, at the end, the tool
+// list: radius 30 - 2 mm, wear_radius 2 mm.
+TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
+    const json doc = run_json({kExamples + "/otc/wr_quad_disc.nc", "--tools", seed_tools(), "--plc",
+                               kExamples + "/otc/plc/wr_quad_disc.plc", "--csv", path("out.csv"),
+                               "--tools-out", path("out.tools")});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 2.0, kEps);
+    EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS_CONT").get<double>(), 0.0);
+    auto tools = apci::nc::load_tool_table(path("out.tools"));
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    EXPECT_NEAR(tools.value().find(1)->radius_mm(), 28.0, 1e-6);
+    EXPECT_NEAR(tools.value().find(1)->wear_radius_mm(), 2.0, 1e-6);
+    // Along the bottom edge, once built up, the tool runs 2 mm closer to the contour: y = -28.
+    const auto rows = read_csv(path("out.csv"));
+    bool seen = false;
+    for (const auto& r : rows) {
+        if (r[2] > 90.0 && r[2] < 100.0 && r[3] < -20.0) {
+            seen = true;
+            EXPECT_NEAR(r[3], -28.0, kEps) << "cycle " << r[0];
+        }
+    }
+    EXPECT_TRUE(seen);
+}
+
+// The scripted PLC's cycle entries act at their cycle: nothing moves Z before cycle 2000.
+TEST_F(OtcRun, PlcCycleWritesActAtTheirCycle) {
+    const std::string prog = write("p.nc", "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X100 F1000\n"
+                                           "N40 #OTC OFF\nM30\n");
+    const std::string plc = write("p.plc", "cycle 0 otc_offset[2].enable 1\n"
+                                           "cycle 2000 otc_offset[2].command 1000\n");
+    const json doc = run_json({prog, "--tools", seed_tools(), "--plc", plc, "--csv", path("c.csv")});
+    const auto rows = read_csv(path("c.csv"));
+    ASSERT_GT(rows.size(), 5000u);
+    for (const auto& r : rows) {
+        if (r[0] <= 2000) {
+            EXPECT_EQ(r[4], 0.0) << r[0];
+        }
+    }
+    EXPECT_LT(rows[2200][4], 0.0);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 0.1, kEps);
+}
+
+TEST_F(OtcRun, PlcCommandBeyondMaxInfeedIsNamed) {
+    const std::string prog = write("p.nc", "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X10 F1000\n"
+                                           "N40 #OTC OFF\nM30\n");
+    const std::string plc = write("p.plc", "block 30 otc_offset[2].command 200001\n");
+    const json doc = run_json({prog, "--tools", seed_tools(), "--plc", plc}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "OTC_INFEED_BEYOND_LIMIT");
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 30);
+}
+
+TEST_F(OtcRun, PlcScriptErrorsNameFileLineAndColumn) {
+    const std::string plc = write("bad.plc", "cycle 0 otc_radius_offset.enable 1\nblock x1 foo 3\n");
+    const ProcessResult r = apcictl({"run", kExamples + "/otc/length.nc", "--tools", seed_tools(),
+                                     "--plc", plc});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, plc + ":2:7: expected a whole number after 'block'")) << r.err;
+}
+
+// Seed 000 section 1: P-ERR-21391, found by the validation pass from the tool list.
+TEST_F(OtcRun, OtcOnWithAMillingToolIsPErr21391) {
+    const std::string tools = write("t.tools", "wz[1].gueltig 1\nwz[1].typ 0\n");
+    const ProcessResult r = apcictl({"run", kExamples + "/otc/length.nc", "--tools", tools});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "P-ERR-21391")) << r.err;
+}
+
+// Seed 000 section 2.8: the program reads the board's wear after #OTC OFF.
+TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
+    const std::string prog = write(
+        "v.nc", "N10 D1\nN20 #OTC ON\nN30 G1 X500 F10000\nN40 #OTC OFF\n"
+                "N50 P1 = V.G.WZ_AKT.WEAR.Z\nN60 P2 = V.G.OTC_ACTIVE\nN70 G0 X[P1 * 10] Y[P2]\nM30\n");
+    const json doc = run_json({prog, "--tools", seed_tools()});
+    const json& last = doc.at("segments").back();
+    EXPECT_EQ(last.at("block"), 70);
+    EXPECT_NEAR(last.at("end")[0].get<double>(), 50.0, 1e-9);
+    EXPECT_EQ(last.at("end")[1].get<double>(), 0.0);
+}
+
+// Seed 000 section 2.9: at a tool change the wear of the tool going out reaches the tool list;
+// the tool comes back folded (its second contour runs at the worn radius).
+TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
+    const std::string tools = write("t.tools", read_text(seed_tools()) +
+                                                   "wz[2].gueltig 1\nwz[2].typ 2\nwz[2].radius 100000\n");
+    const std::string prog = write(
+        "c.nc", "N10 F10000\nN20 D1\nN30 #OTC ON [RADIUS CONT]\nN40 G41 G1 X10\nN50 X510\n"
+                "N60 G40 G1 X600\nN70 #OTC OFF\nN80 D2\nN90 D1\nN100 G0 X0 Y0\nN110 G41 G1 X10\n"
+                "N120 X100\nN130 G40 X200\nM30\n");
+    const json doc = run_json({prog, "--tools", tools, "--tools-out", path("out.tools")});
+    auto out = apci::nc::load_tool_table(path("out.tools"));
+    ASSERT_TRUE(out) << out.error().to_string();
+    // 510 mm of contour at 100000 x 0.1 um/m: 5.1 mm.
+    EXPECT_NEAR(out.value().find(1)->radius_mm(), 30.0 - 5.1, 1e-6);
+    EXPECT_NEAR(out.value().find(1)->wear_radius_mm(), 5.1, 1e-6);
+    EXPECT_NEAR(out.value().find(1)->wear_radius_cont_mm(), 5.1, 1e-6);
+    EXPECT_EQ(out.value().find(2)->wear_radius, 0.0);
+    int worn_contours = 0;
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("block") == 120 && s.at("role") == "contour") {
+            ++worn_contours;
+            EXPECT_NEAR(s.at("start")[1].get<double>(), 30.0 - 5.1, 1e-6);
+        }
+    }
+    EXPECT_EQ(worn_contours, 1);
+}
+
+// DESIGN.md section 8: #HSC is accepted and reported as not emulated.
+TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
+    const std::string prog = write("h.nc", "N85 #HSC ON[BSPLINE PATH_DEV 5 MERGE = 0]\nG0 X1\nM30\n");
+    const json doc = run_json({prog});
+    ASSERT_EQ(doc.at("notices").size(), 1u);
+    EXPECT_EQ(doc.at("notices")[0].at("code"), "NotEmulated");
+    EXPECT_EQ(doc.at("notices")[0].at("block"), 85);
+    EXPECT_TRUE(contains(last_.out, "notice: N85: #HSC is accepted and not emulated")) << last_.out;
+}
+
+// ---- The PLC script parser (apci/run/plc_script.h)
+
+TEST(PlcScript, ParsesCycleAndBlockWritesInOrder) {
+    auto s = apci::run::parse_plc_script(
+        "# comment\ncycle 500 otc_offset[2].command -500  # trailing\n"
+        "block 60 otc_radius_offset.enable TRUE\ncycle 0 otc_radius_offset.command_w 20000\n",
+        "p.plc");
+    ASSERT_TRUE(s) << s.error().to_string();
+    const auto& c = s.value().cycle_writes();
+    ASSERT_EQ(c.size(), 2u);
+    EXPECT_EQ(c[0].at, 0u);  // sorted by cycle
+    EXPECT_TRUE(c[0].channel);
+    EXPECT_EQ(c[0].value, 20000);
+    EXPECT_EQ(c[1].axis, 2);
+    EXPECT_EQ(c[1].value, -500);
+    ASSERT_EQ(s.value().block_writes().size(), 1u);
+    EXPECT_EQ(s.value().block_writes()[0].field, apci::run::PlcWrite::Field::kEnable);
+    EXPECT_EQ(s.value().block_writes()[0].value, 1);
+    EXPECT_EQ(apci::run::plc_unit_name(c[1]), "otc_offset[2].command");
+}
+
+TEST(PlcScript, ErrorsSayWhatWasExpected) {
+    auto err = [](const char* text) {
+        auto s = apci::run::parse_plc_script(text, "p.plc");
+        return s ? std::string() : s.error().to_string();
+    };
+    EXPECT_EQ(err("at 5 x 1"), "p.plc:1:1: expected 'cycle N' or 'block N' at the start of the line");
+    EXPECT_EQ(err("cycle 5 motor.command 1"),
+              "p.plc:1:9: unknown unit (known: otc_radius_offset, otc_offset[i])");
+    EXPECT_EQ(err("cycle 5 otc_offset[9].command 1"), "p.plc:1:9: otc_offset[i]: axis index 0..7");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].speed 1"),
+              "p.plc:1:23: unknown field (known: command, enable)");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].enable 2"), "p.plc:1:30: enable takes 0, 1, TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].command 1.5"),
+              "p.plc:1:31: the value must be a whole number in the DINT range (0.1 um)");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].command 3000000000"),
+              "p.plc:1:31: the value must be a whole number in the DINT range (0.1 um)");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].command 1 2"), "p.plc:1:33: unexpected text after the value");
+}
+
+}  // namespace

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// `apcictl run --plc FILE`: a scripted PLC for the OTC control units (seed 000, FCT-C20,
+// section 2.7), so that a DISC program runs end to end without a real PLC. One write a line:
+//
+//   # when        unit                        value
+//   cycle 0       otc_radius_offset.enable    1
+//   block 60      otc_radius_offset.command   20000
+//   cycle 15000   otc_offset[2].command       -500
+//
+// `cycle N`: when the board's clock, counted from the start of the run, reaches N (the executor
+// stops the clock there; entries past the program's end are written after it, the clock running
+// on to them). `block N`: when the program reaches block N, after every move before it has run
+// (each time the block is reached, also in a loop). Units: `otc_radius_offset` (the channel
+// unit) and `otc_offset[i]` (the axis unit of channel axis i: 0 X, 1 Y, 2 Z through the TC
+// Axis-Nr, 3..7 the board axis of that number), field `command` (0.1 um, DINT) or `enable`
+// (0/1, TRUE/FALSE). `#` starts a comment. docs/apcictl.md ("run --plc") is the spec.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "apci/nc/diagnostic.h"
+
+namespace apci::run {
+
+struct PlcWrite {
+    enum class When : std::uint8_t { kCycle, kBlock };
+    enum class Field : std::uint8_t { kCommand, kEnable };
+    When when = When::kCycle;
+    std::uint64_t at = 0;  // cycle count from the run's start, or the block's N number
+    bool channel = true;   // otc_radius_offset; else otc_offset[axis]
+    int axis = 0;          // channel axis index 0..7
+    Field field = Field::kCommand;
+    std::int32_t value = 0;
+    std::uint64_t line = 0;  // in the script
+};
+
+// "otc_radius_offset.command", "otc_offset[2].enable".
+std::string plc_unit_name(const PlcWrite& w);
+
+class PlcScript {
+  public:
+    // The cycle writes in order of their cycle (ties in file order), then the block writes.
+    const std::vector<PlcWrite>& cycle_writes() const noexcept { return cycle_; }
+    const std::vector<PlcWrite>& block_writes() const noexcept { return block_; }
+    const std::string& file() const noexcept { return file_; }
+
+  private:
+    friend nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view file);
+    std::vector<PlcWrite> cycle_;
+    std::vector<PlcWrite> block_;
+    std::string file_;
+};
+
+// Errors name file, line and column and what was expected.
+nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view file);
+nc::Result<PlcScript> load_plc_script(const std::string& path);
+
+}  // namespace apci::run
