@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # The main job on the embedded emulator: the seed's wr_quad_disc.nc (without its #OTC lines)
-# with its tool list, through `apcictl run`; the summary on standard output, the plot and the
-# executed path in out/.
+# with its tool list, through `apcictl run`; then the complete seed program with its #OTC lines
+# and the PLC's 2 mm (docs/otc.md); the summaries on standard output, plots and paths in out/.
 set -euo pipefail
 cd "$(dirname "$0")"
 source scripts/deps.sh
@@ -12,3 +12,7 @@ mkdir -p out
 ./build/bin/apcictl run examples/wr_quad_disc.nc --tools examples/tools/wr_quad_disc.tools \
   --svg out/wr_quad_disc.svg --json out/wr_quad_disc.json
 echo "wrote out/wr_quad_disc.svg and out/wr_quad_disc.json"
+./build/bin/apcictl run examples/otc/wr_quad_disc.nc --tools examples/tools/wr_quad_disc.tools \
+  --plc examples/otc/plc/wr_quad_disc.plc --svg out/otc_wr_quad_disc.svg --svg-cycles \
+  --json out/otc_wr_quad_disc.json --tools-out out/otc_wr_quad_disc.tools
+echo "wrote out/otc_wr_quad_disc.svg, .json and .tools (the tool list with the wear folded in)"

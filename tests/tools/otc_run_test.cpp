@@ -260,6 +260,32 @@ TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
     EXPECT_TRUE(contains(last_.out, "notice: N85: #HSC is accepted and not emulated")) << last_.out;
 }
 
+// The plots of docs/otc.md are what apcictl draws now (scripts/otc_figures.sh redraws them from
+// docs/figures/otc-figures.txt). Run from the source root, as the script does.
+TEST_F(OtcRun, OtcFiguresAreCurrent) {
+    std::stringstream list(read_text(kSource + "/docs/figures/otc-figures.txt"));
+    int figures = 0;
+    for (std::string line; std::getline(list, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::stringstream f(line);
+        std::string name, program, tools, plc, plane;
+        f >> name >> program >> tools >> plc >> plane;
+        std::vector<std::string> args{"/bin/sh", "-c", ""};
+        std::string cmd = "cd '" + kSource + "' && '" + APCICTL_PATH + "' run " + program +
+                          " --tools " + tools + " --plane " + plane + " --svg '" +
+                          path(name + ".svg") + "' --svg-cycles";
+        if (plc != "-") cmd += " --plc " + plc;
+        args[2] = cmd + " > /dev/null";
+        const ProcessResult r = test_support::run_process(args);
+        EXPECT_EQ(r.exit_code, 0) << name << r.err;
+        EXPECT_EQ(read_text(path(name + ".svg")),
+                  read_text(kSource + "/docs/figures/" + name + ".svg"))
+            << name << ".svg is stale: run scripts/otc_figures.sh";
+        ++figures;
+    }
+    EXPECT_EQ(figures, 3);
+}
+
 // ---- The PLC script parser (apci/run/plc_script.h)
 
 TEST(PlcScript, ParsesCycleAndBlockWritesInOrder) {

@@ -377,17 +377,18 @@ TEST(RunSvg, EachRoleHasItsOwnStyleAndLegendEntry) {
     }
 }
 
-// The per-cycle axes (apcictl run --svg-cycles): points closer than kCycleStep are merged, the
-// last point is always drawn, and a plot without them has no style for them.
-TEST(RunSvg, CyclesAreDecimatedToTheStepAndEndOnTheLastPoint) {
+// The per-cycle axes (apcictl run --svg-cycles): straight stretches become one line, a turn
+// keeps its vertex, the last point is always drawn, and a plot without them has no style for
+// them.
+TEST(RunSvg, CyclesAreSimplifiedAndEndOnTheLastPoint) {
     SvgPlotWriter w;
-    for (int i = 0; i <= 128; ++i) w.cycle({i / 128.0, 0, 0});  // 1 mm in 2^-7 mm steps
-    w.cycle({1.0, 0.005, 0});
+    for (int i = 0; i <= 128; ++i) w.cycle({i / 128.0, 0, 0});  // 1 mm along X
+    for (int i = 1; i <= 128; ++i) w.cycle({1.0, i / 128.0, 0});  // then 1 mm along Y
+    w.cycle({1.0, 1.0, 0.005});
     const std::string svg = write_svg(w);
-    // Every third point is 0.0234 mm on (>= 0.02): 42 segments to x = 126/128, then one to
-    // the last point.
-    EXPECT_EQ(w.count(PlotLayer::kCycles), 43u);
-    EXPECT_TRUE(contains(svg, "L1 -0.005\"")) << svg;
+    // (0,0) -> (1,0) -> (1,1) -> (1,1,0.005): three lines.
+    EXPECT_EQ(w.count(PlotLayer::kCycles), 3u);
+    EXPECT_TRUE(contains(svg, "M0 0 L1 0 L1 -1")) << svg;
     SvgPlotWriter plain;
     plain.executed(line({0, 0, 0}, {1, 0, 0}, Role::kContour));
     EXPECT_FALSE(contains(write_svg(plain), ".cycles {"));

@@ -345,22 +345,39 @@ void SvgPlotWriter::executed(const PathSegment& s) {
     record(executed_layer(s), s);
 }
 
-void SvgPlotWriter::cycle(const Point& p) {
-    if (!have_cycle_) {
-        have_cycle_ = true;
-        cycle_kept_ = cycle_last_ = p;
-        return;
-    }
-    cycle_last_ = p;
-    cycle_pending_ = true;
-    if ((p - cycle_kept_).norm() < kCycleStep) return;
+void SvgPlotWriter::cycle_vertex(const Point& p) {
     PathSegment s;
     s.kind = SegmentKind::kLine;
     s.start = cycle_kept_;
     s.end = p;
     record(PlotLayer::kCycles, s);
     cycle_kept_ = p;
-    cycle_pending_ = false;
+}
+
+void SvgPlotWriter::cycle(const Point& p) {
+    if (!have_cycle_) {
+        have_cycle_ = true;
+        cycle_kept_ = cycle_last_ = p;
+        return;
+    }
+    if (!cycle_have_dir_) {
+        if ((p - cycle_kept_).norm() >= kCycleStep) {
+            cycle_dir_ = p;
+            cycle_have_dir_ = true;
+        }
+    } else {
+        const Point d = (cycle_dir_ - cycle_kept_).normalized();
+        const Point v = p - cycle_kept_;
+        const double off = (v - v.dot(d) * d).norm();
+        // Leaving the line (or turning back along it): the last point seen is a vertex.
+        if (off > kCycleTolerance || v.dot(d) < -kCycleTolerance) {
+            cycle_vertex(cycle_last_);
+            cycle_have_dir_ = (p - cycle_kept_).norm() >= kCycleStep;
+            cycle_dir_ = p;
+        }
+    }
+    cycle_last_ = p;
+    cycle_pending_ = cycle_last_ != cycle_kept_;
 }
 
 void SvgPlotWriter::error_marker(const BlockRef& block, const Point& where, std::string_view code) {
@@ -374,11 +391,7 @@ void SvgPlotWriter::error_marker(const BlockRef& block, const Point& where, std:
 
 bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     if (cycle_pending_) {
-        PathSegment s;
-        s.kind = SegmentKind::kLine;
-        s.start = cycle_kept_;
-        s.end = cycle_last_;
-        record(PlotLayer::kCycles, s);
+        cycle_vertex(cycle_last_);
         cycle_pending_ = false;
     }
     if (!ok() || std::fflush(records_) != 0) return false;

@@ -60,9 +60,12 @@ class SvgPlotWriter {
 
     void programmed(const PathSegment& s);  // a move of the program, before compensation
     void executed(const PathSegment& s);    // a segment of the executed tool-centre path
-    // The axes (X, Y, Z) after one interpolation cycle: drawn as the kCycles polyline, a point
-    // kept when it lies kCycleStep or more from the last one kept (and the last point always).
-    static constexpr double kCycleStep = 0.02;  // mm
+    // The axes (X, Y, Z) after one interpolation cycle: drawn as the kCycles polyline,
+    // simplified as it streams in (Reumann-Witkam): a vertex is kept where the path leaves, by
+    // more than kCycleTolerance, the line through the last vertex and the first point at least
+    // kCycleStep from it; the last point is always drawn. Straight stretches become one line.
+    static constexpr double kCycleStep = 0.02;         // mm
+    static constexpr double kCycleTolerance = 0.001;   // mm
     void cycle(const Point& p);
     // A red marker at `where` labelled "N80 KorrError".
     void error_marker(const BlockRef& block, const Point& where, std::string_view code);
@@ -84,9 +87,12 @@ class SvgPlotWriter {
     std::FILE* records_ = nullptr;
     bool failed_ = false;
     bool have_cycle_ = false;
-    bool cycle_pending_ = false;  // the last point seen was not kept yet
-    Point cycle_kept_ = Point::Zero();
-    Point cycle_last_ = Point::Zero();
+    bool cycle_pending_ = false;    // the last point seen was not drawn yet
+    bool cycle_have_dir_ = false;   // cycle_dir_ is set
+    Point cycle_kept_ = Point::Zero();  // the last vertex drawn
+    Point cycle_dir_ = Point::Zero();   // a point giving the direction from it
+    Point cycle_last_ = Point::Zero();  // the last point seen
+    void cycle_vertex(const Point& p);
     Bounds bounds_;
     std::array<std::uint64_t, kPlotLayerCount> counts_{};
     std::vector<Marker> markers_;
