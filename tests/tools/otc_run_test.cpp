@@ -146,7 +146,15 @@ TEST_F(OtcRun, TiltedDiscSplitsTheWearOverXAndZ) {
 // wr_quad_disc.nc with the PLC's 2 mm: the wear reaches WEAR_RADIUS and, at the end, the tool
 // list: radius 30 - 2 mm, wear_radius 2 mm.
 TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
-    const json doc = run_json({kExamples + "/otc/wr_quad_disc.nc", "--tools", seed_tools(), "--plc",
+    // The seed's tool with length 0, so that the approach is only the 30 mm to the offset path
+    // (with 50 mm the TC's length compensation lowers Z on it, and the offset builds up there).
+    std::string tool_text = read_text(seed_tools());
+    const std::size_t length_line = tool_text.find("wz[1].laenge");
+    const std::size_t value = tool_text.find("500000", length_line);
+    ASSERT_NE(value, std::string::npos);
+    tool_text.replace(value, 6, "0");
+    const std::string zero_length = write("t.tools", tool_text);
+    const json doc = run_json({kExamples + "/otc/wr_quad_disc.nc", "--tools", zero_length, "--plc",
                                kExamples + "/otc/plc/wr_quad_disc.plc", "--csv", path("out.csv"),
                                "--tools-out", path("out.tools")});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 2.0, kEps);
@@ -165,6 +173,26 @@ TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
         }
     }
     EXPECT_TRUE(seen);
+    // On the bottom edge the nominal y is -30: the offset is y + 30, built up over many cycles,
+    // no step larger than the ramp allows (0.5 mm/s x 1 ms).
+    std::size_t building = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        const auto& a = rows[i - 1];
+        const auto& b = rows[i];
+        if (a[2] < 2.0 || b[2] > 102.0 || a[3] > -27.9 || b[3] > -27.9) continue;
+        EXPECT_LE(std::abs(b[3] - a[3]), 0.5e-3 + 1e-12) << "cycle " << b[0];
+        if (b[3] > a[3]) ++building;
+    }
+    EXPECT_GT(building, 500u);
+    // Around the G26 corner at (102, 0) the tool centre runs on the 30 mm arc; 2 mm of wear
+    // would put the axes 28 mm from the corner, but the offset lags behind the turning normal
+    // (seed 001, explanations 2 and 3), so they leave that circle by far more than rounding.
+    double worst = 0.0;
+    for (const auto& r : rows) {
+        if (r[2] <= 102.0 || r[3] >= 0.0) continue;  // the quadrant of the transition arc
+        worst = std::max(worst, std::abs(std::hypot(r[2] - 102.0, r[3]) - 28.0));
+    }
+    EXPECT_GT(worst, 0.1);
 }
 
 // The scripted PLC's cycle entries act at their cycle: nothing moves Z before cycle 2000.
