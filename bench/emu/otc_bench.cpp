@@ -33,7 +33,8 @@ void grinding_tool_on(rwmos::Board& b, otc::ProcessingType type, otc::Mode mode)
     write(b, otc::kDevTool, otc::kIdxToolMaxInfeed, 0, objif::Value::of_double(200000.0));
     write(b, otc::kDevChannel, otc::kIdxProcessingType, 0,
           objif::Value::of_int(static_cast<std::int32_t>(type)));
-    write(b, otc::kDevChannel, otc::kIdxMode, 0, objif::Value::of_int(static_cast<std::int32_t>(mode)));
+    write(b, otc::kDevChannel, otc::kIdxMode, 0,
+          objif::Value::of_int(static_cast<std::int32_t>(mode)));
     write(b, otc::kDevChannel, otc::kIdxActive, 0, objif::Value::of_int(1));
 }
 

@@ -45,12 +45,14 @@ int OtcEngine::sequence_position(int axis) const noexcept {
 }
 
 OtcEngine::Vec3 OtcEngine::to_xyz(const AxisVector& v) const noexcept {
-    return {v[static_cast<std::size_t>(session_.xyz[0])], v[static_cast<std::size_t>(session_.xyz[1])],
+    return {v[static_cast<std::size_t>(session_.xyz[0])],
+            v[static_cast<std::size_t>(session_.xyz[1])],
             v[static_cast<std::size_t>(session_.xyz[2])]};
 }
 
 void OtcEngine::add_xyz(const Vec3& v, double scale, AxisVector& out) const noexcept {
-    for (int i = 0; i < 3; ++i) out[static_cast<std::size_t>(session_.xyz[static_cast<std::size_t>(i)])] += scale * v[i];
+    for (int i = 0; i < 3; ++i)
+        out[static_cast<std::size_t>(session_.xyz[static_cast<std::size_t>(i)])] += scale * v[i];
 }
 
 OtcEngine::Vec3 OtcEngine::tool_direction(const AxisVector& nominal) const noexcept {
@@ -74,7 +76,8 @@ OtcEngine::Vec3 OtcEngine::surface_normal_at(const Move* m, std::uint64_t k, std
                                              const AxisVector& nominal) const noexcept {
     // Seed 000 section 2.5: from the tool direction and the path tangent. Rapid moves grind
     // nothing: the last normal stays (design).
-    if (m == nullptr || m->direct || m->role == SegmentRole::kRapid) return ctx_.last_surface_normal;
+    if (m == nullptr || m->direct || m->role == SegmentRole::kRapid)
+        return ctx_.last_surface_normal;
     AxisVector t{};
     motion::tangent_at(*m, k, n, t);
     return otc::surface_normal(tool_direction(nominal), to_xyz(t), ctx_.last_surface_normal);
@@ -94,7 +97,8 @@ AxisVector OtcEngine::direction(const Move* m, std::uint64_t k, std::uint64_t n,
                 weight = ctx_.end_weight;
             } else {
                 switch (ctx_.blend) {
-                    case Blend::kNone: break;
+                    case Blend::kNone:
+                        break;
                     case Blend::kFull:
                         normal = contour_normal_at(*m, k, n);
                         weight = 1.0;
@@ -135,7 +139,8 @@ double OtcEngine::wear_at(const Move* m, std::uint64_t k, std::uint64_t n) const
 
 double OtcEngine::channel_command() const noexcept {
     const OtcState& o = state_.otc;
-    if (!o.active || !o.radius_offset_unit.enable || !otc::channel_unit_acts(session_.type, session_.mode))
+    if (!o.active || !o.radius_offset_unit.enable ||
+        !otc::channel_unit_acts(session_.type, session_.mode))
         return 0.0;
     return otc::tenth_um_to_length(o.radius_offset_unit.command, session_.unit);
 }
@@ -145,7 +150,8 @@ double OtcEngine::direction_command() const noexcept {
     if (!o.active) return 0.0;
     const int third = session_.xyz[2];
     const OtcControlUnit& u = o.axis_units[static_cast<std::size_t>(third)];
-    if (!u.enable || otc::axis_unit_role(session_.type, session_.mode, 2) != otc::AxisUnitRole::kDirection)
+    if (!u.enable ||
+        otc::axis_unit_role(session_.type, session_.mode, 2) != otc::AxisUnitRole::kDirection)
         return 0.0;
     return otc::tenth_um_to_length(u.command, session_.unit);
 }
@@ -154,8 +160,8 @@ double OtcEngine::axis_command(int axis) const noexcept {
     const OtcState& o = state_.otc;
     if (!o.active) return 0.0;
     const OtcControlUnit& u = o.axis_units[static_cast<std::size_t>(axis)];
-    if (!u.enable ||
-        otc::axis_unit_role(session_.type, session_.mode, sequence_position(axis)) != otc::AxisUnitRole::kAxis)
+    if (!u.enable || otc::axis_unit_role(session_.type, session_.mode, sequence_position(axis)) !=
+                         otc::AxisUnitRole::kAxis)
         return 0.0;
     return otc::tenth_um_to_length(u.command, session_.unit);
 }
@@ -182,23 +188,27 @@ bool OtcEngine::ramps_settled() const noexcept {
     const Targets t = state_.otc.active ? targets(direction(nullptr, 0, 0, nominal)) : Targets{};
     for (std::size_t a = 0; a < t.axes.size(); ++a)
         if (!otc::settled(ramp_channel_[a], t.channel[a]) ||
-            !otc::settled(ramp_direction_[a], t.direction[a]) || !otc::settled(ramp_axes_[a], t.axes[a]))
+            !otc::settled(ramp_direction_[a], t.direction[a]) ||
+            !otc::settled(ramp_axes_[a], t.axes[a]))
             return false;
     return true;
 }
 
 bool OtcEngine::direction_turns(const Move* m) const noexcept {
     if (m == nullptr || (channel_command() == 0.0 && direction_command() == 0.0)) return false;
-    const bool b_turns = session_.tool_from_b &&
-                         m->start[static_cast<std::size_t>(session_.b_axis)] !=
-                             m->end[static_cast<std::size_t>(session_.b_axis)];
+    const bool b_turns =
+        session_.tool_from_b && m->start[static_cast<std::size_t>(session_.b_axis)] !=
+                                    m->end[static_cast<std::size_t>(session_.b_axis)];
     switch (session_.type) {
         case otc::ProcessingType::kRadius:
             return ctx_.blend == Blend::kIn || ctx_.blend == Blend::kOut ||
                    (ctx_.blend == Blend::kFull && m->kind == SegmentKind::kArc);
-        case otc::ProcessingType::kLength: return false;
-        case otc::ProcessingType::kToolDir: return b_turns;
-        case otc::ProcessingType::kSurfNormDir: return b_turns || m->kind == SegmentKind::kArc;
+        case otc::ProcessingType::kLength:
+            return false;
+        case otc::ProcessingType::kToolDir:
+            return b_turns;
+        case otc::ProcessingType::kSurfNormDir:
+            return b_turns || m->kind == SegmentKind::kArc;
     }
     return true;
 }
@@ -215,7 +225,8 @@ std::int32_t OtcEngine::axis_request(int axis) const noexcept {
 
 namespace {
 // How far a ramp vector has come along `dir` (0 when there is no direction).
-double along(const std::array<otc::RampState, kOtcAxisCount>& ramp, const AxisVector& dir) noexcept {
+double along(const std::array<otc::RampState, kOtcAxisCount>& ramp,
+             const AxisVector& dir) noexcept {
     double dot = 0.0, norm = 0.0;
     for (std::size_t a = 0; a < ramp.size(); ++a) {
         dot += ramp[a].position * dir[a];
@@ -296,7 +307,8 @@ void OtcEngine::end_session() noexcept {
         case otc::ProcessingType::kToolDir:
         case otc::ProcessingType::kSurfNormDir: {
             const double s = w + d_direction + d_channel;
-            for (std::size_t a = 0; a < d_axes.size(); ++a) o.wear.axis[a] += s * unit_dir[a] + d_axes[a];
+            for (std::size_t a = 0; a < d_axes.size(); ++a)
+                o.wear.axis[a] += s * unit_dir[a] + d_axes[a];
             // Along the tool a worn disc is shorter; along the surface normal its rim is smaller.
             if (session_.type == otc::ProcessingType::kToolDir)
                 fold_length = s;
@@ -314,7 +326,8 @@ void OtcEngine::end_session() noexcept {
 
     // The offsets now on the axes ramp out from where they are: never a jump.
     for (std::size_t a = 0; a < ramp_axes_.size(); ++a) {
-        ramp_axes_[a].position += -w * dir[a] + ramp_channel_[a].position + ramp_direction_[a].position;
+        ramp_axes_[a].position +=
+            -w * dir[a] + ramp_channel_[a].position + ramp_direction_[a].position;
         ramp_axes_[a].velocity += ramp_channel_[a].velocity + ramp_direction_[a].velocity;
         ramp_channel_[a] = {};
         ramp_direction_[a] = {};
@@ -350,7 +363,8 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
     }
     for (int axis : xyz) {
         if (arc_in_main && (axis == m.plane_axes[0] || axis == m.plane_axes[1])) continue;
-        const double d = m.end[static_cast<std::size_t>(axis)] - m.start[static_cast<std::size_t>(axis)];
+        const double d =
+            m.end[static_cast<std::size_t>(axis)] - m.start[static_cast<std::size_t>(axis)];
         other += d * d;
     }
     return std::sqrt(plane * plane + other);
@@ -366,14 +380,15 @@ void OtcEngine::move_started(const Move& m, const Move* next) noexcept {
                        m.role != SegmentRole::kRapid && m.role != SegmentRole::kApproach &&
                        m.role != SegmentRole::kDeparture &&
                        (session_.type != otc::ProcessingType::kRadius || is_contour(m));
-    ctx_.wear_per_fraction =
-        wears ? otc::continuous_wear(main_axes_length(m, session_.xyz), state_.otc.effective_wear_const())
-              : 0.0;
+    ctx_.wear_per_fraction = wears ? otc::continuous_wear(main_axes_length(m, session_.xyz),
+                                                          state_.otc.effective_wear_const())
+                                   : 0.0;
     if (session_.type == otc::ProcessingType::kRadius) {
         const double carried = have_last_ ? ctx_.end_weight : 0.0;
         if (is_contour(m)) {
             ctx_.blend = Blend::kFull;
-        } else if (m.side != 0 && m.role == SegmentRole::kApproach && next != nullptr && is_contour(*next)) {
+        } else if (m.side != 0 && m.role == SegmentRole::kApproach && next != nullptr &&
+                   is_contour(*next)) {
             ctx_.blend = Blend::kIn;
             ctx_.fixed_normal = contour_normal_at(*next, 0, 1);
         } else if (carried > 0.0) {
@@ -427,7 +442,8 @@ bool OtcEngine::per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const
     const Targets t = state_.otc.active ? targets(direction(m, k, n, nominal)) : Targets{};
     for (std::size_t a = 0; a < t.axes.size(); ++a)
         if (!otc::settled(ramp_channel_[a], t.channel[a]) ||
-            !otc::settled(ramp_direction_[a], t.direction[a]) || !otc::settled(ramp_axes_[a], t.axes[a]))
+            !otc::settled(ramp_direction_[a], t.direction[a]) ||
+            !otc::settled(ramp_axes_[a], t.axes[a]))
             return true;
     return state_.otc.active && direction_turns(m);
 }
@@ -452,7 +468,8 @@ void OtcEngine::step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
     add_offsets(dir, state_.otc.active ? wear_at(m, k, n) : 0.0, pos);
 }
 
-void OtcEngine::at(const Move* m, std::uint64_t k, std::uint64_t n, AxisVector& pos) const noexcept {
+void OtcEngine::at(const Move* m, std::uint64_t k, std::uint64_t n,
+                   AxisVector& pos) const noexcept {
     const AxisVector dir = state_.otc.active ? direction(m, k, n, pos) : AxisVector{};
     last_dir_ = dir;
     add_offsets(dir, state_.otc.active ? wear_at(m, k, n) : 0.0, pos);

@@ -34,20 +34,24 @@ constexpr double kMaxRamp = 1.0e6;
 // P-TOOL-00138 in 0.0001 degree: [-45, 45] degrees.
 constexpr double kMaxTiltUnits = otc::kMaxTiltDegrees / otc::kTiltUnitInDegrees;
 
-constexpr ObjectInfo obj(std::int32_t dev, std::int32_t index, std::int32_t sub, std::string_view name,
-                         ValueType type, Access access, double min, double max, Value def,
-                         std::string_view rule) {
+constexpr ObjectInfo obj(std::int32_t dev, std::int32_t index, std::int32_t sub,
+                         std::string_view name, ValueType type, Access access, double min,
+                         double max, Value def, std::string_view rule) {
     return {dev, index, index, sub, name, type, access, min, max, def, rule};
 }
 constexpr ObjectInfo axis_unit_obj(std::int32_t sub, std::string_view name, ValueType type,
                                    Access access, double min, double max, std::string_view rule) {
-    return {otc::kDevAxisUnits, 0, kOtcAxisCount - 1, sub, name, type, access, min, max,
-            Value::of_int(0), rule};
+    return {otc::kDevAxisUnits, 0,   kOtcAxisCount - 1, sub, name, type, access, min, max,
+            Value::of_int(0),   rule};
 }
 }  // namespace
 
-std::int32_t OtcModule::bus() const noexcept { return otc::kBus; }
-bool OtcModule::present() const noexcept { return state_.config.option_otc; }
+std::int32_t OtcModule::bus() const noexcept {
+    return otc::kBus;
+}
+bool OtcModule::present() const noexcept {
+    return state_.config.option_otc;
+}
 
 std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
     using M = OtcModule;
@@ -65,14 +69,16 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
              "0 = #OTC OFF (G40 first in RADIUS; folds the wear); Busy while moves are queued"),
          &M::read_active, &M::write_active},
         {obj(kCh, otc::kIdxProcessingType, 0, "ProcessingType", kInt, kRW, 0, 3, Value::of_int(1),
-             "seed 000 2.1: 0 RADIUS, 1 LENGTH (default), 2 TOOL_DIR, 3 SURF_NORM_DIR; not while on"),
+             "seed 000 2.1: 0 RADIUS, 1 LENGTH (default), 2 TOOL_DIR, 3 SURF_NORM_DIR; not while "
+             "on"),
          &M::read_type, &M::write_type},
         {obj(kCh, otc::kIdxMode, 0, "Mode", kInt, kRW, 0, 2, Value::of_int(2),
              "seed 000 2.1: 0 CONT, 1 DISC, 2 AUTO (default); not while on"),
          &M::read_mode, &M::write_mode},
         {obj(kCh, otc::kIdxWearConst, 0, "WearConst", kDouble, kRW, 0.0, kDoubleMax,
              Value::of_double(0.0),
-             "seed 000 2.1 WEAR_CONST=..: 0.1 um/m, modal; a write also selects it (WearConstSource 1)"),
+             "seed 000 2.1 WEAR_CONST=..: 0.1 um/m, modal; a write also selects it "
+             "(WearConstSource 1)"),
          &M::read_wear_const, &M::write_wear_const},
         {obj(kCh, otc::kIdxWearConstSource, 0, "WearConstSource", kInt, kRW, 0, 1, Value::of_int(0),
              "seed 000 2.1: 0 WEAR_CONST_TOOL (default), 1 the programmed WEAR_CONST"),
@@ -84,44 +90,50 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
         {obj(kCh, otc::kIdxLastError, 0, "LastError", kInt, kRW, kIntMin, kIntMax, Value::of_int(0),
              "design: number of the last refused rule (21391 = P-ERR-21391); a write clears it"),
          &M::read_last_error, &M::write_last_error},
-        {obj(kCh, otc::kIdxEffectiveWearConst, 0, "EffectiveWearConst", kDouble, kR, 0.0, kDoubleMax,
-             Value::of_double(0.0), "design: the wear constant in force, 0.1 um/m"),
+        {obj(kCh, otc::kIdxEffectiveWearConst, 0, "EffectiveWearConst", kDouble, kR, 0.0,
+             kDoubleMax, Value::of_double(0.0), "design: the wear constant in force, 0.1 um/m"),
          &M::read_effective_wear_const, nullptr},
         {obj(kCh, otc::kIdxRampVelocity, 0, "RampVelocity", kDouble, kRW, kMinRamp, kMaxRamp,
              Value::of_double(kDefaultRampVelocity),
              "design: largest speed of a discrete offset, PU/s (seed: over several cycles)"),
          &M::read_ramp_velocity, &M::write_ramp_velocity},
-        {obj(kCh, otc::kIdxRampAcceleration, 0, "RampAcceleration", kDouble, kRW, kMinRamp, kMaxRamp,
-             Value::of_double(kDefaultRampAcceleration),
+        {obj(kCh, otc::kIdxRampAcceleration, 0, "RampAcceleration", kDouble, kRW, kMinRamp,
+             kMaxRamp, Value::of_double(kDefaultRampAcceleration),
              "design: largest acceleration of a discrete offset at ACC_WEIGHT 100, PU/s^2"),
          &M::read_ramp_acceleration, &M::write_ramp_acceleration},
         {obj(kCh, otc::kIdxKinematics, 0, "Kinematics", kInt, kRW, 0, geom::kBHeadKinematicsId,
-             Value::of_int(0), "design: #KIN ID; 0 none, 4 the B head (DESIGN.md section 8); not while on"),
+             Value::of_int(0),
+             "design: #KIN ID; 0 none, 4 the B head (DESIGN.md section 8); not while on"),
          &M::read_kinematics, &M::write_kinematics},
         {obj(kCh, otc::kIdxTrafo, 0, "Trafo", kInt, kRW, 0, 1, Value::of_int(0),
-             "design: #TRAFO ON/OFF; with the B head on, TOOL_DIR/SURF_NORM_DIR follow B; not while on"),
+             "design: #TRAFO ON/OFF; with the B head on, TOOL_DIR/SURF_NORM_DIR follow B; not "
+             "while on"),
          &M::read_trafo, &M::write_trafo},
         {obj(kCh, otc::kIdxToolAxisB, 0, "ToolAxisB", kInt, kRW, 0, kLastAxis,
-             Value::of_int(kDefaultToolAxisB), "design: board axis of the B head's B; not while on"),
+             Value::of_int(kDefaultToolAxisB),
+             "design: board axis of the B head's B; not while on"),
          &M::read_tool_axis_b, &M::write_tool_axis_b},
-        {obj(kCh, kUnit, otc::kSubCommand, "otc_radius_offset.command_w", kInt, kRW, kIntMin, kIntMax,
-             Value::of_int(0),
-             "seed 000 2.7.1: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS or TOOL_DIR, DISC/AUTO"),
+        {obj(kCh, kUnit, otc::kSubCommand, "otc_radius_offset.command_w", kInt, kRW, kIntMin,
+             kIntMax, Value::of_int(0),
+             "seed 000 2.7.1: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS or TOOL_DIR, "
+             "DISC/AUTO"),
          &M::read_unit_command, &M::write_unit_command},
         {obj(kCh, kUnit, otc::kSubEnable, "otc_radius_offset.enable_w", kInt, kRW, 0, 1,
              Value::of_int(0), "seed 000 2.7.1: the PLC enables the unit"),
          &M::read_unit_enable, &M::write_unit_enable},
-        {obj(kCh, kUnit, otc::kSubRequest, "otc_radius_offset.request_r", kInt, kR, kIntMin, kIntMax,
-             Value::of_int(0), "design reading of 2.7.1: the offset the ramp heads for, 0.1 um"),
+        {obj(kCh, kUnit, otc::kSubRequest, "otc_radius_offset.request_r", kInt, kR, kIntMin,
+             kIntMax, Value::of_int(0),
+             "design reading of 2.7.1: the offset the ramp heads for, 0.1 um"),
          &M::read_unit_request, nullptr},
         {obj(kCh, kUnit, otc::kSubState, "otc_radius_offset.state_r", kInt, kR, kIntMin, kIntMax,
              Value::of_int(0), "design reading of 2.7.1: the offset reached, 0.1 um"),
          &M::read_unit_state, nullptr},
 
         // ---- DeviceNumber 1: otc_offset of every board axis (seed 000 section 2.7.2).
-        {axis_unit_obj(otc::kSubCommand, "otc_offset.command_w", kInt, kRW, kIntMin, kIntMax,
-                       "seed 000 2.7.2: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS, LENGTH; "
-                       "third axis along the direction in TOOL_DIR/SURF_NORM_DIR"),
+        {axis_unit_obj(
+             otc::kSubCommand, "otc_offset.command_w", kInt, kRW, kIntMin, kIntMax,
+             "seed 000 2.7.2: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS, LENGTH; "
+             "third axis along the direction in TOOL_DIR/SURF_NORM_DIR"),
          &M::read_unit_command, &M::write_unit_command},
         {axis_unit_obj(otc::kSubEnable, "otc_offset.enable_w", kInt, kRW, 0, 1,
                        "seed 000 2.7.2: the PLC enables the unit"),
@@ -146,8 +158,8 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
              Value::of_double(0.0),
              "seed 000 3.2 P-TOOL-00030, 0.1 um/m; V.G.WZ_AKT.WEAR_CONST (2.8: read and write)"),
          &M::read_tool_wear_const, &M::write_tool_wear_const},
-        {obj(kTool, otc::kIdxToolMaxInfeed, 0, "grinding_max_infeed", kDouble, kRW, kIntMin, kIntMax,
-             Value::of_double(0.0),
+        {obj(kTool, otc::kIdxToolMaxInfeed, 0, "grinding_max_infeed", kDouble, kRW, kIntMin,
+             kIntMax, Value::of_double(0.0),
              "seed 000 3.2 P-TOOL-00031: 0.1 um, SGN32 range; 0: no discrete offset; not while on"),
          &M::read_tool_max_infeed, &M::write_tool_max_infeed},
         {obj(kTool, otc::kIdxToolTiltAngle, 0, "grinding_disc_tilt_angle", kDouble, kRW,
@@ -163,29 +175,38 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
              "seed 000 2.8: continuous radius wear, PU; updated at #OTC OFF"),
          &M::read_wear_radius_cont, nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 0, "V.G.WZ_AKT.WEAR[0]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 0, PU; updated at #OTC OFF"},
-         &M::read_wear, nullptr},
+          kDoubleMax, Value::of_double(0.0),
+          "seed 000 2.8: wear on axis 0, PU; updated at #OTC OFF"},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 1, "V.G.WZ_AKT.WEAR[1]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 1"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 2, "V.G.WZ_AKT.WEAR[2]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 2"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 3, "V.G.WZ_AKT.WEAR[3]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 3"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 4, "V.G.WZ_AKT.WEAR[4]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 4"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 5, "V.G.WZ_AKT.WEAR[5]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 5"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 6, "V.G.WZ_AKT.WEAR[6]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 6"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 7, "V.G.WZ_AKT.WEAR[7]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 7"},
-         &M::read_wear, nullptr},
+         &M::read_wear,
+         nullptr},
     }};
     return kTable;
 }

@@ -97,12 +97,14 @@ TEST(Otc, ConflictingOrUnknownParametersAreNamed) {
               "prog.nc:1:17: RADIUS and LENGTH in one #OTC: both set the processing type");
     EXPECT_EQ(parse_error("#OTC ON [DISC AUTO]"),
               "prog.nc:1:15: DISC and AUTO in one #OTC: both set the mode");
-    EXPECT_EQ(parse_error("#OTC [WEAR_CONST=1 WEAR_CONST_TOOL]"),
-              "prog.nc:1:20: WEAR_CONST and WEAR_CONST_TOOL in one #OTC: both set the wear constant");
+    EXPECT_EQ(
+        parse_error("#OTC [WEAR_CONST=1 WEAR_CONST_TOOL]"),
+        "prog.nc:1:20: WEAR_CONST and WEAR_CONST_TOOL in one #OTC: both set the wear constant");
     EXPECT_NE(parse_error("#OTC [ACC_WEIGHT=5 ACC_WEIGHT=6]"), "");
     EXPECT_EQ(parse_error("#OTC ON [RADIUSS]").find("unknown #OTC parameter 'RADIUSS'"),
               std::string("prog.nc:1:10: ").size());
-    EXPECT_EQ(parse_error("#OTC ON [LENGTH"), "prog.nc:1:16: expected ']' to close the '[' in column 9");
+    EXPECT_EQ(parse_error("#OTC ON [LENGTH"),
+              "prog.nc:1:16: expected ']' to close the '[' in column 9");
     EXPECT_EQ(parse_error("#OTC MAYBE").find("expected ON, OFF or '[' after #OTC"),
               std::string("prog.nc:1:6: ").size());
     EXPECT_EQ(parse_error("#OTC ON X1"), "prog.nc:1:9: unexpected 'X' after #OTC");
@@ -123,12 +125,14 @@ TEST(OtcRules, OtcOnNeedsAGrindingToolPErr21391) {
     const ToolTable tools = seed_tools();
     InterpreterOptions o;
     o.tools = &tools;
-    EXPECT_EQ(error_of("N10 D2\nN20 #OTC ON\nM30\n", o),
-              "prog.nc:2:5: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
-              "D2 is type 0");
-    EXPECT_EQ(error_of("N20 #OTC ON\nM30\n", o),
-              "prog.nc:1:5: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
-              "D0 is type 0");
+    EXPECT_EQ(
+        error_of("N10 D2\nN20 #OTC ON\nM30\n", o),
+        "prog.nc:2:5: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
+        "D2 is type 0");
+    EXPECT_EQ(
+        error_of("N20 #OTC ON\nM30\n", o),
+        "prog.nc:1:5: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
+        "D0 is type 0");
     EXPECT_EQ(error_of("N10 D1\nN20 #OTC ON\nN30 #OTC OFF\nM30\n", o), "");
 }
 
@@ -139,9 +143,11 @@ TEST(OtcRules, G40MustComeBeforeOtcOff) {
     EXPECT_EQ(error_of(bad),
               "prog.nc:6:1: OTC_OFF_BEFORE_G40: #OTC OFF while radius compensation G41 is on: "
               "program G40 before #OTC OFF");
-    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40 X30\n#OTC OFF\nM30\n"), "");
+    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40 X30\n#OTC OFF\nM30\n"),
+              "");
     // Seed: "Bei der Anwahl ist ein Vertauschen der Befehle G41/G42 und #OTC ON möglich."
-    EXPECT_EQ(error_of("F600\nD1\nG41 G1 X10\n#OTC ON [RADIUS]\nX20\nG40 X30\n#OTC OFF\nM30\n"), "");
+    EXPECT_EQ(error_of("F600\nD1\nG41 G1 X10\n#OTC ON [RADIUS]\nX20\nG40 X30\n#OTC OFF\nM30\n"),
+              "");
 }
 
 TEST(OtcRules, ParametersAreNotChangedWhileOtcIsOn) {
@@ -149,7 +155,8 @@ TEST(OtcRules, ParametersAreNotChangedWhileOtcIsOn) {
               "prog.nc:2:1: OTC_CHANGE_WHILE_ACTIVE: processing type, mode and ACC_WEIGHT are set "
               "before or with #OTC ON, not while OTC is on");
     EXPECT_EQ(error_of("#OTC ON\n#OTC [LENGTH AUTO ACC_WEIGHT=100]\nM30\n"), "");  // in force
-    EXPECT_EQ(error_of("#OTC ON\n#OTC [WEAR_CONST=5]\n#OTC [WEAR_CONST_TOOL]\nM30\n"), "");  // modal
+    EXPECT_EQ(error_of("#OTC ON\n#OTC [WEAR_CONST=5]\n#OTC [WEAR_CONST_TOOL]\nM30\n"),
+              "");  // modal
 }
 
 TEST(OtcRules, NoToolChangeWhileOtcIsOn) {
@@ -185,7 +192,8 @@ TEST(Kinematics, TrafoOnNeedsAKinematics) {
     ASSERT_EQ(t.size(), 2u);
     EXPECT_TRUE(t[0].on);
     EXPECT_FALSE(t[1].on);
-    EXPECT_EQ(parse_error("#TRAFO MAYBE"), "prog.nc:1:8: expected ON or OFF after #TRAFO, found 'MAYBE'");
+    EXPECT_EQ(parse_error("#TRAFO MAYBE"),
+              "prog.nc:1:8: expected ON or OFF after #TRAFO, found 'MAYBE'");
 }
 
 TEST(Kinematics, TrafoIsNotSwitchedWhileOtcIsOn) {
@@ -199,7 +207,8 @@ TEST(Hsc, AcceptedAndReportedAsNotEmulated) {
     const auto n = only<NotEmulated>(ev);
     ASSERT_EQ(n.size(), 2u);
     EXPECT_EQ(n[0].command, "#HSC");
-    EXPECT_EQ(parse_error("#HSC ON[BSPLINE"), "prog.nc:1:8: the '[' of #HSC is not closed before the end of the line");
+    EXPECT_EQ(parse_error("#HSC ON[BSPLINE"),
+              "prog.nc:1:8: the '[' of #HSC is not closed before the end of the line");
 }
 
 TEST(BAxis, TiltsTheHeadBeforeTheBlocksMove) {
@@ -220,7 +229,8 @@ TEST(BAxis, TiltsTheHeadBeforeTheBlocksMove) {
 TEST(ForLoop, SeedToolDirLoopRunsTwentyOneTimes) {
     // Seed 000 section 2.4: $FOR P1=0, 20, 1 with two moves.
     const auto ev = events_of(
-        "F1000\nN90 $FOR P1=0, 20, 1\nN100 G91 G01 X10 Z-10 F2000\nN110 X-10 Z10\nN120 $ENDFOR\nM30\n");
+        "F1000\nN90 $FOR P1=0, 20, 1\nN100 G91 G01 X10 Z-10 F2000\nN110 X-10 Z10\nN120 "
+        "$ENDFOR\nM30\n");
     const auto lines = only<LineMove>(ev);
     EXPECT_EQ(lines.size(), 42u);
     EXPECT_EQ(lines.back().end, Eigen::Vector3d(0, 0, 0));
@@ -245,15 +255,15 @@ TEST(ForLoop, NegativeStepsCountDown) {
 }
 
 TEST(ForLoop, LoopsNest) {
-    const auto lines = only<RapidMove>(events_of(
-        "$FOR P1=1,3,1\n$FOR P2=1,2,1\nG0 X[P1] Y[P2]\n$ENDFOR\n$ENDFOR\nM30\n"));
+    const auto lines = only<RapidMove>(
+        events_of("$FOR P1=1,3,1\n$FOR P2=1,2,1\nG0 X[P1] Y[P2]\n$ENDFOR\n$ENDFOR\nM30\n"));
     ASSERT_EQ(lines.size(), 6u);
     EXPECT_EQ(lines[5].end, Eigen::Vector3d(3, 2, 0));
 }
 
 TEST(ForLoop, ALoopWhoseConditionFailsAtOnceIsSkipped) {
-    const auto lines = only<RapidMove>(events_of(
-        "$FOR P1=5,1,1\nG0 X[P1]\n$FOR P2=1,2,1\nG0 Y1\n$ENDFOR\n$ENDFOR\nG0 Z7\nM30\n"));
+    const auto lines = only<RapidMove>(
+        events_of("$FOR P1=5,1,1\nG0 X[P1]\n$FOR P2=1,2,1\nG0 Y1\n$ENDFOR\n$ENDFOR\nG0 Z7\nM30\n"));
     ASSERT_EQ(lines.size(), 1u);
     EXPECT_EQ(lines[0].end.z(), 7.0);
 }
@@ -269,13 +279,16 @@ TEST(ForLoop, UnmatchedForAndEndForAreNamed) {
               "prog.nc:1:4: $FOR without $ENDFOR: the program ends inside the loop");
     EXPECT_EQ(error_of("$FOR P1=2,1,1\nG0 X1\nM30\n"),
               "prog.nc:1:1: $FOR without $ENDFOR: the program ends inside the loop");
-    EXPECT_EQ(parse_error("$FOR X1=0,1,1"), "prog.nc:1:6: expected a P parameter after $FOR ($FOR P1 = 0, 10, 1)");
-    EXPECT_EQ(parse_error("$FOR P1=0,1"), "prog.nc:1:12: expected ',' in $FOR Pn = start, end, step");
+    EXPECT_EQ(parse_error("$FOR X1=0,1,1"),
+              "prog.nc:1:6: expected a P parameter after $FOR ($FOR P1 = 0, 10, 1)");
+    EXPECT_EQ(parse_error("$FOR P1=0,1"),
+              "prog.nc:1:12: expected ',' in $FOR Pn = start, end, step");
 }
 
 TEST(ForLoop, NestingIsBounded) {
     std::string text;
-    for (std::size_t i = 0; i <= kMaxLoopDepth; ++i) text += "$FOR P" + std::to_string(i) + "=1,1,1\n";
+    for (std::size_t i = 0; i <= kMaxLoopDepth; ++i)
+        text += "$FOR P" + std::to_string(i) + "=1,1,1\n";
     text += "M30\n";
     EXPECT_NE(error_of(text).find("$FOR nested deeper than 16 loops"), std::string::npos);
 }
@@ -286,7 +299,8 @@ TEST(ForLoop, LongBodiesAreReplayedFromTheFile) {
     {
         std::ofstream f(path);
         f << "$FOR P1=1,3,1\n";
-        for (int i = 0; i < 20000; ++i) f << "G0 X" << i << " Y[P1] (a comment to make the line longer)\n";
+        for (int i = 0; i < 20000; ++i)
+            f << "G0 X" << i << " Y[P1] (a comment to make the line longer)\n";
         f << "$ENDFOR\nM30\n";
     }
     Result<Program> p = Program::load(path);
@@ -334,7 +348,8 @@ TEST(Variables, WearConstIsReadFromTheToolAndWritable) {
     InterpreterOptions o;
     o.tools = &tools;
     const auto ev = events_of(
-        "D1\nP1 = V.G.WZ_AKT.WEAR_CONST\nV.G.WZ_AKT.WEAR_CONST = P1 / 2\nP2 = V.G.WZ_AKT.WEAR_CONST\n"
+        "D1\nP1 = V.G.WZ_AKT.WEAR_CONST\nV.G.WZ_AKT.WEAR_CONST = P1 / 2\nP2 = "
+        "V.G.WZ_AKT.WEAR_CONST\n"
         "G0 X[P1] Y[P2]\nM30\n",
         o);
     const auto w = only<VariableWrite>(ev);
@@ -358,9 +373,11 @@ TEST(Variables, AllSeedNamesAreKnown) {
                              "V.G.WZ_AKT.WEAR.Z", "V.G.WZ_AKT.WEAR_CONST", "V.G.OTC_ACTIVE"}) {
         EXPECT_EQ(error_of(std::string("P1 = ") + name + "\nM30\n"), "") << name;
     }
-    EXPECT_NE(error_of("P1 = V.G.WZ_AKT.WEAR[8]\nM30\n").find("axis index 0..7"), std::string::npos);
+    EXPECT_NE(error_of("P1 = V.G.WZ_AKT.WEAR[8]\nM30\n").find("axis index 0..7"),
+              std::string::npos);
     EXPECT_NE(error_of("P1 = V.G.WZ_AKT.WEAR.Q\nM30\n").find("unknown axis"), std::string::npos);
-    EXPECT_NE(error_of("P1 = V.G.NOPE\nM30\n").find("unknown variable V.G.NOPE"), std::string::npos);
+    EXPECT_NE(error_of("P1 = V.G.NOPE\nM30\n").find("unknown variable V.G.NOPE"),
+              std::string::npos);
 }
 
 // The executor's values (the board's) replace the front end's view while it executes.

@@ -1,13 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Wear directions of the four processing types (seed 000, FCT-C20, sections 2.2 to 2.5;
 // rwmos/otc/direction.h).
-#include "rwmos/otc/direction.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "rwmos/geometry/kinematics.h"
+#include "rwmos/otc/direction.h"
 
 namespace rwmos::otc {
 namespace {

@@ -40,8 +40,9 @@ struct OtcRig : Rig {
 
     // The tool data the host writes at a tool change: OTC's current tool and TC's tool table
     // (every group, WKZINDEX = the tool number).
-    void grinding_tool(std::int32_t type = otc::kGrindingToolType, double wear_const = kSeedWearConst,
-                       double max_infeed = kSeedMaxInfeed, double tilt_units = 0.0) {
+    void grinding_tool(std::int32_t type = otc::kGrindingToolType,
+                       double wear_const = kSeedWearConst, double max_infeed = kSeedMaxInfeed,
+                       double tilt_units = 0.0) {
         using namespace rwmos::otc;
         ASSERT_EQ(otc_int(kDevTool, kIdxToolNumber, 0, kTool), Status::kOk);
         ASSERT_EQ(otc_int(kDevTool, kIdxToolType, 0, type), Status::kOk);
@@ -77,8 +78,9 @@ struct OtcRig : Rig {
                         : otc_read_int(otc::kDevAxisUnits, axis, otc::kSubState);
     }
     std::int32_t unit_request(int axis) {
-        return axis < 0 ? otc_read_int(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, otc::kSubRequest)
-                        : otc_read_int(otc::kDevAxisUnits, axis, otc::kSubRequest);
+        return axis < 0
+                   ? otc_read_int(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, otc::kSubRequest)
+                   : otc_read_int(otc::kDevAxisUnits, axis, otc::kSubRequest);
     }
 
     double wear(int axis) { return otc_read_double(otc::kDevTool, otc::kIdxWear, axis); }

@@ -142,13 +142,14 @@ struct Cycle {
 };
 
 class WrQuadDisc : public OtcBoard {
-protected:
+  protected:
     void SetUp() override {
         using namespace rwmos::tc;
         setup_group(kSeedRadius, /*left=*/false);  // N55 G42
         grinding_tool();
         ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubWkzIndex, kTool), Status::kOk);  // N22 D1
-        ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubCornerMode, kCornerLinear), Status::kOk);  // G25
+        ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubCornerMode, kCornerLinear),
+                  Status::kOk);                                          // G25
         ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);  // N50 #OTC ON[RADIUS DISC]
         ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
         ASSERT_EQ(otc_on(), Status::kOk);
@@ -156,7 +157,8 @@ protected:
         activate(1);
         spool_ok(line(60, 2.0, 0.0));
         spool_ok(line(70, 102.0, 0.0));
-        ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubCornerMode, kCornerCircular), Status::kOk);  // G26
+        ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubCornerMode, kCornerCircular),
+                  Status::kOk);  // G26
         spool_ok(line(80, 102.0, 100.0));
         spool_ok(line(90, 2.0, 100.0));
         spool_ok(line(95, 2.0, 0.0));
@@ -215,7 +217,8 @@ TEST_F(WrQuadDisc, OffsetLagsAtTheG26CornerAndCatchesUpAfter) {
     double worst = 0.0;
     for (const Cycle& c : cycles) {
         if (c.tag != 80 || c.role != SegmentRole::kTransition) continue;
-        const Eigen::Vector2d n = (Eigen::Vector2d(c.nominal[0], c.nominal[1]) - corner).normalized();
+        const Eigen::Vector2d n =
+            (Eigen::Vector2d(c.nominal[0], c.nominal[1]) - corner).normalized();
         const Eigen::Vector2d target = -2.0 * n;
         worst = std::max(worst, (Eigen::Vector2d(c.offset[0], c.offset[1]) - target).norm());
     }
@@ -255,11 +258,12 @@ TEST_F(OtcBoard, ToolDirOffsetFollowsTheBHeadToolDirection) {
     t[2] = 50.0;
     spool_ok(line_to(70, t, 1000.0, 0x05));  // N70 G01 X100 Z50 F1000
     run();
-    ASSERT_EQ(set_type(otc::ProcessingType::kToolDir), Status::kOk);  // N80 #OTC ON [TOOL_DIR, DISC]
+    ASSERT_EQ(set_type(otc::ProcessingType::kToolDir),
+              Status::kOk);  // N80 #OTC ON [TOOL_DIR, DISC]
     ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
     ASSERT_EQ(otc_on(), Status::kOk);
     ASSERT_EQ(plc(-1, 10000), Status::kOk);  // 1 mm along the tool
-    for (int i = 0; i <= 20; ++i) {  // N90 $FOR P1=0, 20, 1
+    for (int i = 0; i <= 20; ++i) {          // N90 $FOR P1=0, 20, 1
         t[0] += 10.0;
         t[2] -= 10.0;
         spool_ok(line_to(100, t, 2000.0, 0x05));  // N100 G91 G01 X10 Z-10 F2000
@@ -303,9 +307,9 @@ TEST_F(OtcBoard, SurfNormDirOffsetIsAlongTheSurfaceNormal) {
     ASSERT_EQ(otc_on(), Status::kOk);
     ASSERT_EQ(plc(2, 5000), Status::kOk);  // the third axis carries the offset: 0.5 mm
     // N100..N270: the seed's loop body, incremental X Z.
-    const double steps[][2] = {{3, -3}, {2, -2}, {5, -2}, {5, -1}, {5, 0}, {5, -1}, {5, -2}, {2, -2},
-                               {3, -3}, {-3, 3}, {-2, 2}, {-5, 2}, {-5, 1}, {-5, 0}, {-5, 1},
-                               {-5, 2}, {-2, 2}, {-3, 3}};
+    const double steps[][2] = {{3, -3}, {2, -2}, {5, -2}, {5, -1}, {5, 0},  {5, -1},
+                               {5, -2}, {2, -2}, {3, -3}, {-3, 3}, {-2, 2}, {-5, 2},
+                               {-5, 1}, {-5, 0}, {-5, 1}, {-5, 2}, {-2, 2}, {-3, 3}};
     const Eigen::Vector3d tool{0, 0, 1};
     int distinct = 0;
     Eigen::Vector3d previous = Eigen::Vector3d::Zero();
@@ -316,7 +320,8 @@ TEST_F(OtcBoard, SurfNormDirOffsetIsAlongTheSurfaceNormal) {
         run();
         const Eigen::Vector3d fn = otc::surface_normal(tool, Eigen::Vector3d(s[0], 0, s[1]), tool);
         EXPECT_NEAR(fn.dot(Eigen::Vector3d(s[0], 0, s[1])), 0.0, 1e-12);
-        for (int a = 0; a < 3; ++a) EXPECT_NEAR(offset()[a], -0.5 * fn[a], kEps) << s[0] << " " << s[1];
+        for (int a = 0; a < 3; ++a)
+            EXPECT_NEAR(offset()[a], -0.5 * fn[a], kEps) << s[0] << " " << s[1];
         if ((fn - previous).norm() > 1e-6) ++distinct;
         previous = fn;
     }

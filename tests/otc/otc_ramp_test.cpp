@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The offset ramp (seed 000, FCT-C20, section 2.7.1: a changed wear value is distributed over
 // several interpolation cycles; rwmos/otc/ramp.h).
-#include "rwmos/otc/ramp.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include "rwmos/otc/ramp.h"
 
 namespace rwmos::otc {
 namespace {
@@ -81,7 +81,8 @@ TEST(OtcRamp, AccWeightScalesTheAcceleration) {
         }
         return n;
     };
-    EXPECT_GT(cycles_to(weighted_acceleration(1.0, 10)), cycles_to(weighted_acceleration(1.0, 100)));
+    EXPECT_GT(cycles_to(weighted_acceleration(1.0, 10)),
+              cycles_to(weighted_acceleration(1.0, 100)));
 }
 
 TEST(OtcRamp, BrakingSpeedMatchesTheDiscreteBrakingDistance) {

@@ -154,10 +154,10 @@ TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
     ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
     ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
     ASSERT_EQ(otc_on(), Status::kOk);
-    activate(1);                        // N60 G41 G01 X50 (approach)
+    activate(1);  // N60 G41 G01 X50 (approach)
     spool_ok(line(60, 50.0, 0.0, 10000.0));
     spool_ok(line(70, 1000.0, 0.0, 10000.0));  // N70 X1000
-    ASSERT_EQ(deactivate(1), Status::kOk);      // N80 G40 X50 (departure)
+    ASSERT_EQ(deactivate(1), Status::kOk);     // N80 G40 X50 (departure)
     spool_ok(line(80, 50.0, 0.0, 10000.0));
     run();
     double contour = 0.0, other = 0.0;
@@ -198,7 +198,8 @@ TEST_F(OtcBoard, WearConstOverridesTheToolsModallyAndWearConstToolSwitchesBack) 
     spool_ok(line(2, 0.0, 0.0, 10000.0));  // still the programmed constant: modal
     run();
     EXPECT_NEAR(offset()[2], -10.0, kEps);
-    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxWearConstSource, 0, 0), Status::kOk);  // WEAR_CONST_TOOL
+    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxWearConstSource, 0, 0),
+              Status::kOk);  // WEAR_CONST_TOOL
     EXPECT_EQ(otc_read_double(otc::kDevChannel, otc::kIdxEffectiveWearConst), kSeedWearConst);
     spool_ok(line(3, 1000.0, 0.0, 10000.0));
     run_and_off();
@@ -384,7 +385,8 @@ TEST_F(OtcBoard, RepeatedOnOffAccumulatesTheWear) {
         spool_ok(line(1, i % 2 == 0 ? 500.0 : 0.0, 0.0, 10000.0));
         run_and_off();
         EXPECT_NEAR(wear(2), 5.0 * (i + 1), kEps) << i;
-        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kSeedLength - 5.0 * (i + 1), kEps);
+        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kSeedLength - 5.0 * (i + 1),
+                    kEps);
     }
 }
 

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Processing types, modes, which control unit acts where (seed 000, FCT-C20, sections 2.1 and
 // 2.7), and the error table.
-#include "rwmos/otc/types.h"
-
 #include <gtest/gtest.h>
 
 #include "rwmos/otc/errors.h"
+#include "rwmos/otc/types.h"
 
 namespace rwmos::otc {
 namespace {
@@ -48,8 +47,8 @@ TEST(OtcTypes, ChannelUnitActsOnlyInRadiusOrToolDirWithDiscOrAuto) {
     for (auto t : {ProcessingType::kRadius, ProcessingType::kLength, ProcessingType::kToolDir,
                    ProcessingType::kSurfNormDir})
         for (auto m : {Mode::kCont, Mode::kDisc, Mode::kAuto}) {
-            const bool expected = (t == ProcessingType::kRadius || t == ProcessingType::kToolDir) &&
-                                  m != Mode::kCont;
+            const bool expected =
+                (t == ProcessingType::kRadius || t == ProcessingType::kToolDir) && m != Mode::kCont;
             EXPECT_EQ(channel_unit_acts(t, m), expected)
                 << processing_type_name(t) << " " << mode_name(m);
         }

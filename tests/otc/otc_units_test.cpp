@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Units and wear accrual of the online tool compensation (seed 000, FCT-C20, sections 2.1, 2.6,
 // 3.2; rwmos/otc/units.h).
-#include "rwmos/otc/units.h"
-
 #include <gtest/gtest.h>
+
+#include "rwmos/otc/units.h"
 
 namespace rwmos::otc {
 namespace {
@@ -39,8 +39,9 @@ TEST(OtcUnits, ControlUnitValuesAreTenthMicrometre) {
     EXPECT_DOUBLE_EQ(tenth_um_to_length(20000.0, LengthUnit::kMicrometre), 2000.0);
     EXPECT_NEAR(tenth_um_to_length(254000.0, LengthUnit::kInch), 1.0, 1e-15);
     EXPECT_NEAR(length_to_tenth_um(2.0, LengthUnit::kMillimetre), 20000.0, 1e-9);
-    EXPECT_NEAR(length_to_tenth_um(tenth_um_to_length(-12345.0, LengthUnit::kInch), LengthUnit::kInch),
-                -12345.0, 1e-9);
+    EXPECT_NEAR(
+        length_to_tenth_um(tenth_um_to_length(-12345.0, LengthUnit::kInch), LengthUnit::kInch),
+        -12345.0, 1e-9);
 }
 
 TEST(OtcUnits, TiltAngleIsTenThousandthDegreeWithinFortyFiveDegrees) {

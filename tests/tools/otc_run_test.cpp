@@ -88,15 +88,16 @@ class OtcRun : public ::testing::Test {
 
 // Every OTC example runs with the command its header documents (paths from the source tree).
 TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
-    const char* programs[] = {"general", "length", "length_tilt", "tool_dir", "surf_norm_dir",
-                              "wr_quad_disc"};
+    const char* programs[] = {"general",  "length",        "length_tilt",
+                              "tool_dir", "surf_norm_dir", "wr_quad_disc"};
     for (const char* name : programs) {
         const std::string file = kExamples + "/otc/" + name + ".nc";
         const std::string text = read_text(file);
         const std::string marker = "; ./build/bin/apcictl ";
         const std::size_t at = text.find(marker);
         ASSERT_NE(at, std::string::npos) << file;
-        std::stringstream cmd(text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
+        std::stringstream cmd(
+            text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
         std::vector<std::string> args;
         for (std::string word; cmd >> word;)
             args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
@@ -136,8 +137,8 @@ TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
 
 // Seed 000 section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.
 TEST_F(OtcRun, TiltedDiscSplitsTheWearOverXAndZ) {
-    const json doc = run_json({kExamples + "/otc/length_tilt.nc", "--tools",
-                               kExamples + "/tools/otc_tilt.tools"});
+    const json doc = run_json(
+        {kExamples + "/otc/length_tilt.nc", "--tools", kExamples + "/tools/otc_tilt.tools"});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[0]").get<double>(), 10.0 * 0.5, kEps);
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(),
                 10.0 * std::sqrt(3.0) / 2.0, kEps);
@@ -197,11 +198,14 @@ TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
 
 // The scripted PLC's cycle entries act at their cycle: nothing moves Z before cycle 2000.
 TEST_F(OtcRun, PlcCycleWritesActAtTheirCycle) {
-    const std::string prog = write("p.nc", "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X100 F1000\n"
-                                           "N40 #OTC OFF\nM30\n");
-    const std::string plc = write("p.plc", "cycle 0 otc_offset[2].enable 1\n"
-                                           "cycle 2000 otc_offset[2].command 1000\n");
-    const json doc = run_json({prog, "--tools", seed_tools(), "--plc", plc, "--csv", path("c.csv")});
+    const std::string prog = write("p.nc",
+                                   "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X100 F1000\n"
+                                   "N40 #OTC OFF\nM30\n");
+    const std::string plc = write("p.plc",
+                                  "cycle 0 otc_offset[2].enable 1\n"
+                                  "cycle 2000 otc_offset[2].command 1000\n");
+    const json doc =
+        run_json({prog, "--tools", seed_tools(), "--plc", plc, "--csv", path("c.csv")});
     const auto rows = read_csv(path("c.csv"));
     ASSERT_GT(rows.size(), 5000u);
     for (const auto& r : rows) {
@@ -214,8 +218,9 @@ TEST_F(OtcRun, PlcCycleWritesActAtTheirCycle) {
 }
 
 TEST_F(OtcRun, PlcCommandBeyondMaxInfeedIsNamed) {
-    const std::string prog = write("p.nc", "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X10 F1000\n"
-                                           "N40 #OTC OFF\nM30\n");
+    const std::string prog = write("p.nc",
+                                   "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X10 F1000\n"
+                                   "N40 #OTC OFF\nM30\n");
     const std::string plc = write("p.plc", "block 30 otc_offset[2].command 200001\n");
     const json doc = run_json({prog, "--tools", seed_tools(), "--plc", plc}, 1);
     ASSERT_EQ(doc.at("errors").size(), 1u);
@@ -224,9 +229,10 @@ TEST_F(OtcRun, PlcCommandBeyondMaxInfeedIsNamed) {
 }
 
 TEST_F(OtcRun, PlcScriptErrorsNameFileLineAndColumn) {
-    const std::string plc = write("bad.plc", "cycle 0 otc_radius_offset.enable 1\nblock x1 foo 3\n");
-    const ProcessResult r = apcictl({"run", kExamples + "/otc/length.nc", "--tools", seed_tools(),
-                                     "--plc", plc});
+    const std::string plc =
+        write("bad.plc", "cycle 0 otc_radius_offset.enable 1\nblock x1 foo 3\n");
+    const ProcessResult r =
+        apcictl({"run", kExamples + "/otc/length.nc", "--tools", seed_tools(), "--plc", plc});
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.err, plc + ":2:7: expected a whole number after 'block'")) << r.err;
 }
@@ -242,8 +248,9 @@ TEST_F(OtcRun, OtcOnWithAMillingToolIsPErr21391) {
 // Seed 000 section 2.8: the program reads the board's wear after #OTC OFF.
 TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
     const std::string prog = write(
-        "v.nc", "N10 D1\nN20 #OTC ON\nN30 G1 X500 F10000\nN40 #OTC OFF\n"
-                "N50 P1 = V.G.WZ_AKT.WEAR.Z\nN60 P2 = V.G.OTC_ACTIVE\nN70 G0 X[P1 * 10] Y[P2]\nM30\n");
+        "v.nc",
+        "N10 D1\nN20 #OTC ON\nN30 G1 X500 F10000\nN40 #OTC OFF\n"
+        "N50 P1 = V.G.WZ_AKT.WEAR.Z\nN60 P2 = V.G.OTC_ACTIVE\nN70 G0 X[P1 * 10] Y[P2]\nM30\n");
     const json doc = run_json({prog, "--tools", seed_tools()});
     const json& last = doc.at("segments").back();
     EXPECT_EQ(last.at("block"), 70);
@@ -254,12 +261,13 @@ TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
 // Seed 000 section 2.9: at a tool change the wear of the tool going out reaches the tool list;
 // the tool comes back folded (its second contour runs at the worn radius).
 TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
-    const std::string tools = write("t.tools", read_text(seed_tools()) +
-                                                   "wz[2].gueltig 1\nwz[2].typ 2\nwz[2].radius 100000\n");
-    const std::string prog = write(
-        "c.nc", "N10 F10000\nN20 D1\nN30 #OTC ON [RADIUS CONT]\nN40 G41 G1 X10\nN50 X510\n"
-                "N60 G40 G1 X600\nN70 #OTC OFF\nN80 D2\nN90 D1\nN100 G0 X0 Y0\nN110 G41 G1 X10\n"
-                "N120 X100\nN130 G40 X200\nM30\n");
+    const std::string tools = write(
+        "t.tools", read_text(seed_tools()) + "wz[2].gueltig 1\nwz[2].typ 2\nwz[2].radius 100000\n");
+    const std::string prog =
+        write("c.nc",
+              "N10 F10000\nN20 D1\nN30 #OTC ON [RADIUS CONT]\nN40 G41 G1 X10\nN50 X510\n"
+              "N60 G40 G1 X600\nN70 #OTC OFF\nN80 D2\nN90 D1\nN100 G0 X0 Y0\nN110 G41 G1 X10\n"
+              "N120 X100\nN130 G40 X200\nM30\n");
     const json doc = run_json({prog, "--tools", tools, "--tools-out", path("out.tools")});
     auto out = apci::nc::load_tool_table(path("out.tools"));
     ASSERT_TRUE(out) << out.error().to_string();
@@ -280,7 +288,8 @@ TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
 
 // DESIGN.md section 8: #HSC is accepted and reported as not emulated.
 TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
-    const std::string prog = write("h.nc", "N85 #HSC ON[BSPLINE PATH_DEV 5 MERGE = 0]\nG0 X1\nM30\n");
+    const std::string prog =
+        write("h.nc", "N85 #HSC ON[BSPLINE PATH_DEV 5 MERGE = 0]\nG0 X1\nM30\n");
     const json doc = run_json({prog});
     ASSERT_EQ(doc.at("notices").size(), 1u);
     EXPECT_EQ(doc.at("notices")[0].at("code"), "NotEmulated");
@@ -340,18 +349,21 @@ TEST(PlcScript, ErrorsSayWhatWasExpected) {
         auto s = apci::run::parse_plc_script(text, "p.plc");
         return s ? std::string() : s.error().to_string();
     };
-    EXPECT_EQ(err("at 5 x 1"), "p.plc:1:1: expected 'cycle N' or 'block N' at the start of the line");
+    EXPECT_EQ(err("at 5 x 1"),
+              "p.plc:1:1: expected 'cycle N' or 'block N' at the start of the line");
     EXPECT_EQ(err("cycle 5 motor.command 1"),
               "p.plc:1:9: unknown unit (known: otc_radius_offset, otc_offset[i])");
     EXPECT_EQ(err("cycle 5 otc_offset[9].command 1"), "p.plc:1:9: otc_offset[i]: axis index 0..7");
     EXPECT_EQ(err("cycle 5 otc_offset[1].speed 1"),
               "p.plc:1:23: unknown field (known: command, enable)");
-    EXPECT_EQ(err("cycle 5 otc_offset[1].enable 2"), "p.plc:1:30: enable takes 0, 1, TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].enable 2"),
+              "p.plc:1:30: enable takes 0, 1, TRUE or FALSE");
     EXPECT_EQ(err("cycle 5 otc_offset[1].command 1.5"),
               "p.plc:1:31: the value must be a whole number in the DINT range (0.1 um)");
     EXPECT_EQ(err("cycle 5 otc_offset[1].command 3000000000"),
               "p.plc:1:31: the value must be a whole number in the DINT range (0.1 um)");
-    EXPECT_EQ(err("cycle 5 otc_offset[1].command 1 2"), "p.plc:1:33: unexpected text after the value");
+    EXPECT_EQ(err("cycle 5 otc_offset[1].command 1 2"),
+              "p.plc:1:33: unexpected text after the value");
 }
 
 }  // namespace

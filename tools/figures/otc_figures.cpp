@@ -125,8 +125,13 @@ class Chart {
   public:
     Chart(std::string title, std::string xlabel, std::string ylabel, double x0, double x1,
           double y0, double y1)
-        : title_(std::move(title)), xlabel_(std::move(xlabel)), ylabel_(std::move(ylabel)),
-          x0_(x0), x1_(x1), y0_(y0), y1_(y1) {}
+        : title_(std::move(title)),
+          xlabel_(std::move(xlabel)),
+          ylabel_(std::move(ylabel)),
+          x0_(x0),
+          x1_(x1),
+          y0_(y0),
+          y1_(y1) {}
     void add(Series s) { series_.push_back(std::move(s)); }
     void note(double x, double y, std::string text) { notes_.push_back({x, y, std::move(text)}); }
 
@@ -140,14 +145,15 @@ class Chart {
           << "\" width=\"" << w << "\" height=\"" << h << "\">\n"
           << "<rect width=\"" << w << "\" height=\"" << h << "\" fill=\"white\"/>\n"
           << "<style>text { font-family: sans-serif; font-size: 13px; fill: #222222; }"
-          << " .grid { stroke: #dddddd; stroke-width: 1; } .axis { stroke: #222222; stroke-width: 1; fill: none; }"
+          << " .grid { stroke: #dddddd; stroke-width: 1; } .axis { stroke: #222222; stroke-width: "
+             "1; fill: none; }"
           << " path.s { fill: none; stroke-width: 2; }</style>\n"
           << "<text x=\"" << l << "\" y=\"24\">" << title_ << "</text>\n";
         for (double x = std::ceil(x0_ / xstep) * xstep; x <= x1_ + 1e-9; x += xstep) {
             o << "<path class=\"grid\" d=\"M" << num(px(x)) << ' ' << num(py(y0_)) << " L"
               << num(px(x)) << ' ' << num(py(y1_)) << "\"/>\n"
-              << "<text x=\"" << num(px(x) - 8) << "\" y=\"" << num(py(y0_) + 18) << "\">"
-              << num(x) << "</text>\n";
+              << "<text x=\"" << num(px(x) - 8) << "\" y=\"" << num(py(y0_) + 18) << "\">" << num(x)
+              << "</text>\n";
         }
         for (double y = std::ceil(y0_ / ystep) * ystep; y <= y1_ + 1e-9; y += ystep) {
             o << "<path class=\"grid\" d=\"M" << num(px(x0_)) << ' ' << num(py(y)) << " L"
@@ -214,8 +220,10 @@ std::vector<std::pair<double, double>> sampled(Scene& s, int every, F&& point) {
 
 // Seed 000 section 2.1, modes: G1 X200 F1200 on LENGTH; the PLC commands 1 mm at X100.
 std::string modes() {
-    Chart c("LENGTH: the offset on Z along G1 X200 (F1200; wear constant 100000 x 0.1 um/m; PLC: 1 mm at X100)",
-            "X (mm)", "offset on Z (mm)", 0, 200, -3.5, 0.5);
+    Chart c(
+        "LENGTH: the offset on Z along G1 X200 (F1200; wear constant 100000 x 0.1 um/m; PLC: 1 mm "
+        "at X100)",
+        "X (mm)", "offset on Z (mm)", 0, 200, -3.5, 0.5);
     const struct {
         otc::Mode mode;
         const char* label;
@@ -243,8 +251,8 @@ std::string modes() {
 
 // Seed 000 section 2.3.1: a disc tilted by 30 degrees splits the wear over X and Z.
 std::string tilt() {
-    Chart c("LENGTH with the disc tilted by 30 degrees (P-TOOL-00138): G1 X1000 F10000",
-            "X (mm)", "offset (mm)", 0, 1000, -10, 1);
+    Chart c("LENGTH with the disc tilted by 30 degrees (P-TOOL-00138): G1 X1000 F10000", "X (mm)",
+            "offset (mm)", 0, 1000, -10, 1);
     Scene s;
     s.write_double(otc::kDevTool, otc::kIdxToolTiltAngle, 300000.0);
     s.on(otc::ProcessingType::kLength, otc::Mode::kCont);
@@ -290,8 +298,7 @@ class SideView {
           << "<text x=\"30\" y=\"24\">" << title_ << "</text>\n";
         for (std::size_t i = 0; i < paths_.size(); ++i) {
             const auto& p = paths_[i];
-            o << "<path stroke=\"" << p.colour << "\" stroke-width=\"" << num(p.width)
-              << "\" d=\"";
+            o << "<path stroke=\"" << p.colour << "\" stroke-width=\"" << num(p.width) << "\" d=\"";
             for (std::size_t k = 0; k < p.points.size(); ++k)
                 o << (k == 0 ? "M" : " L") << num(px(p.points[k].first)) << ' '
                   << num(pz(p.points[k].second));
@@ -308,9 +315,9 @@ class SideView {
             const double hx = ux / len * 7, hz = uz / len * 7;
             o << "<path stroke=\"" << a.colour << "\" stroke-width=\"1.5\" d=\"M" << num(px(a.x))
               << ' ' << num(pz(a.z)) << " L" << num(x2) << ' ' << num(z2) << " M"
-              << num(x2 - hx - hz * 0.5) << ' ' << num(z2 - hz + hx * 0.5) << " L" << num(x2)
-              << ' ' << num(z2) << " L" << num(x2 - hx + hz * 0.5) << ' '
-              << num(z2 - hz - hx * 0.5) << "\"/>\n";
+              << num(x2 - hx - hz * 0.5) << ' ' << num(z2 - hz + hx * 0.5) << " L" << num(x2) << ' '
+              << num(z2) << " L" << num(x2 - hx + hz * 0.5) << ' ' << num(z2 - hz - hx * 0.5)
+              << "\"/>\n";
             if (!a.label.empty())
                 o << "<text x=\"" << num(x2 + 6) << "\" y=\"" << num(z2 + 4) << "\">" << a.label
                   << "</text>\n";
@@ -359,8 +366,8 @@ std::string tool_dir() {
         nominal.emplace_back(n[0], n[2]);
         actual.emplace_back(a[0], a[2]);
     });
-    SideView v("TOOL_DIR: B45, the PLC's wear (3 mm here) along the tool direction t(B)", 96,
-               116, 36, 54);
+    SideView v("TOOL_DIR: B45, the PLC's wear (3 mm here) along the tool direction t(B)", 96, 116,
+               36, 54);
     v.path(nominal, "#1f5fbf", 2, "programmed (nominal) path: X10 Z-10 / X-10 Z10, three times");
     v.path(actual, "#c2185b", 1.5, "axes per cycle: the offset ramps in to -W t(45)");
     const Eigen::Vector3d t = rwmos::geom::b_head_tool_direction(45.0);
@@ -379,11 +386,13 @@ std::string surf_norm_dir() {
     s.board_run_idle();
     s.on(otc::ProcessingType::kSurfNormDir, otc::Mode::kDisc);
     s.axis_unit(2, 5000);
-    const double steps[][2] = {{3, -3}, {2, -2}, {5, -2}, {5, -1}, {5, 0}, {5, -1}, {5, -2}, {2, -2}, {3, -3}};
+    const double steps[][2] = {{3, -3}, {2, -2}, {5, -2}, {5, -1}, {5, 0},
+                               {5, -1}, {5, -2}, {2, -2}, {3, -3}};
     double x = 100, z = 50;
     std::vector<std::pair<double, double>> nominal{{x, z}}, actual;
-    SideView v("SURF_NORM_DIR: 0.5 mm along the surface normal fn (tool direction B0, path tangent)",
-               98, 137, 33, 52);
+    SideView v(
+        "SURF_NORM_DIR: 0.5 mm along the surface normal fn (tool direction B0, path tangent)", 98,
+        137, 33, 52);
     for (const auto& st : steps) {
         const Eigen::Vector3d fn = otc::surface_normal({0, 0, 1}, {st[0], 0, st[1]}, {0, 0, 1});
         v.arrow(x + st[0] / 2, z + st[1] / 2, 2.5 * fn.x(), 2.5 * fn.z(), "#222222");
@@ -408,7 +417,9 @@ struct Figure {
 };
 
 std::vector<Figure> figures() {
-    return {{"otc-modes", modes}, {"otc-tilt", tilt}, {"otc-tool-dir-side", tool_dir},
+    return {{"otc-modes", modes},
+            {"otc-tilt", tilt},
+            {"otc-tool-dir-side", tool_dir},
             {"otc-surf-norm-dir-side", surf_norm_dir}};
 }
 
@@ -434,9 +445,10 @@ int main(int argc, char** argv) {
         const std::string svg = f.draw();
         if (check) {
             if (read_file(path) != svg) {
-                std::fprintf(stderr,
-                             "%s is not what tools/figures/otc_figures.cpp draws: run otc_figures %s\n",
-                             path.c_str(), dir.c_str());
+                std::fprintf(
+                    stderr,
+                    "%s is not what tools/figures/otc_figures.cpp draws: run otc_figures %s\n",
+                    path.c_str(), dir.c_str());
                 status = 1;
             }
             continue;

@@ -12,10 +12,9 @@
 // they rest and their targets do not turn, the executor keeps its analytic fast path.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
-
-#include <Eigen/Core>
 
 #include "objif/status.h"
 #include "rwmos/board.h"
@@ -30,7 +29,7 @@
 namespace rwmos {
 
 class OtcEngine final : public motion::CycleOffsets {
-public:
+  public:
     explicit OtcEngine(Board::State& state) noexcept : state_(state) {}
     OtcEngine(const OtcEngine&) = delete;
     OtcEngine& operator=(const OtcEngine&) = delete;
@@ -65,7 +64,7 @@ public:
     void at(const motion::Move* m, std::uint64_t k, std::uint64_t n,
             motion::AxisVector& pos) const noexcept override;
 
-private:
+  private:
     using AxisVector = motion::AxisVector;
     using Vec3 = Eigen::Vector3d;
 
@@ -74,7 +73,7 @@ private:
         otc::ProcessingType type = otc::kDefaultProcessingType;
         otc::Mode mode = otc::kDefaultMode;
         geom::Plane plane = geom::Plane::kXY;
-        std::array<int, 3> xyz{0, 1, 2};    // board axes of X, Y, Z (TC X/Y/Z-Axis-Nr)
+        std::array<int, 3> xyz{0, 1, 2};      // board axes of X, Y, Z (TC X/Y/Z-Axis-Nr)
         std::array<int, 2> plane_axes{0, 1};  // board axes of the plane's first and second axis
         otc::LengthUnit unit = otc::LengthUnit::kMillimetre;
         Vec3 length_direction{0, 0, 1};  // LENGTH: third main axis tilted by P-TOOL-00138
@@ -94,8 +93,8 @@ private:
         double wear_per_fraction = 0.0;  // wear the whole move adds (0: wear-free)
         Blend blend = Blend::kNone;
         Eigen::Vector2d fixed_normal{0, 0};  // kIn / kOut
-        double out_weight = 0.0;  // kOut: the weight it starts from
-        Eigen::Vector2d end_normal{0, 0};  // the normal and weight the move ended with
+        double out_weight = 0.0;             // kOut: the weight it starts from
+        Eigen::Vector2d end_normal{0, 0};    // the normal and weight the move ended with
         double end_weight = 0.0;
         Vec3 last_surface_normal{0, 0, 1};  // SURF_NORM_DIR when the path gives none
     };

@@ -17,7 +17,7 @@
 namespace rwmos {
 
 class OtcModule : public objif::TableModule<OtcModule> {
-public:
+  public:
     explicit OtcModule(Board::State& state) noexcept : state_(state) {}
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "OTC"; }
@@ -25,7 +25,7 @@ public:
     bool present() const noexcept override;
     std::span<const objif::Entry<OtcModule>> table() const noexcept;
 
-private:
+  private:
     using Status = objif::Status;
     using Info = objif::ObjectInfo;
     using Address = objif::Address;

@@ -25,18 +25,18 @@ struct OtcControlUnit {
 
 // The current tool's data (seed 000 section 2.6 / 3.2, the host writes them at a tool change).
 struct OtcTool {
-    std::int32_t number = 0;     // the tool (D n, TC WKZINDEX) the wear is folded into
-    std::int32_t type = 0;       // P-TOOL-00001 typ; 2 = grinding
-    double wear_const = 0.0;     // P-TOOL-00030 grinding_wear_const, 0.1 um/m
-    double max_infeed = 0.0;     // P-TOOL-00031 grinding_max_infeed, 0.1 um
-    double tilt_angle = 0.0;     // P-TOOL-00138 grinding_disc_tilt_angle, 0.0001 degree
+    std::int32_t number = 0;  // the tool (D n, TC WKZINDEX) the wear is folded into
+    std::int32_t type = 0;    // P-TOOL-00001 typ; 2 = grinding
+    double wear_const = 0.0;  // P-TOOL-00030 grinding_wear_const, 0.1 um/m
+    double max_infeed = 0.0;  // P-TOOL-00031 grinding_max_infeed, 0.1 um
+    double tilt_angle = 0.0;  // P-TOOL-00138 grinding_disc_tilt_angle, 0.0001 degree
 };
 
 // The wear of the current tool since it was changed in (seed 000 section 2.8), in PU. Updated
 // at #OTC OFF only ("Während aktiver OTC sind die V.G.WZ_AKT-Verschleißwerte nicht aktuell").
 struct OtcWear {
-    double radius = 0.0;       // V.G.WZ_AKT.WEAR_RADIUS: discrete + continuous
-    double radius_cont = 0.0;  // V.G.WZ_AKT.WEAR_RADIUS_CONT
+    double radius = 0.0;                       // V.G.WZ_AKT.WEAR_RADIUS: discrete + continuous
+    double radius_cont = 0.0;                  // V.G.WZ_AKT.WEAR_RADIUS_CONT
     std::array<double, kOtcAxisCount> axis{};  // V.G.WZ_AKT.WEAR[i], by board axis
 };
 
@@ -50,7 +50,7 @@ struct OtcState {
     bool active = false;  // V.G.OTC_ACTIVE
     otc::ProcessingType type = otc::kDefaultProcessingType;
     otc::Mode mode = otc::kDefaultMode;
-    double programmed_wear_const = 0.0;   // WEAR_CONST=.., 0.1 um/m
+    double programmed_wear_const = 0.0;      // WEAR_CONST=.., 0.1 um/m
     bool use_programmed_wear_const = false;  // WEAR_CONST=.. (true) / WEAR_CONST_TOOL (false)
     std::int32_t acc_weight = otc::kDefaultAccWeight;
     double ramp_velocity = kDefaultRampVelocity;
@@ -60,7 +60,7 @@ struct OtcState {
     std::int32_t tool_axis_b = kDefaultToolAxisB;
     otc::Error last_error = otc::Error::kNone;
 
-    OtcControlUnit radius_offset_unit;  // otc_radius_offset (channel)
+    OtcControlUnit radius_offset_unit;                       // otc_radius_offset (channel)
     std::array<OtcControlUnit, kOtcAxisCount> axis_units{};  // otc_offset per board axis
     OtcTool tool;
     OtcWear wear;

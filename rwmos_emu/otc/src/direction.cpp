@@ -23,7 +23,8 @@ Vec2 contour_normal(const Vec2& tangent, Side side) noexcept {
     return side == Side::kLeft ? left : Vec2(-left);
 }
 
-Vec3 surface_normal(const Vec3& tool_direction, const Vec3& tangent, const Vec3& fallback) noexcept {
+Vec3 surface_normal(const Vec3& tool_direction, const Vec3& tangent,
+                    const Vec3& fallback) noexcept {
     const double tlen = tangent.norm();
     if (tlen <= kDirectionTolerance) return fallback;
     const Vec3 tau = tangent / tlen;

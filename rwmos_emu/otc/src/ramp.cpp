@@ -18,12 +18,14 @@ double braking_speed(double distance, double acceleration, double dt) noexcept {
     return adt * std::max(m, 0.0);
 }
 
-RampState ramp_step(const RampState& s, double target, const RampLimits& limits, double dt) noexcept {
+RampState ramp_step(const RampState& s, double target, const RampLimits& limits,
+                    double dt) noexcept {
     const double error = target - s.position;
     if (error == 0.0 && s.velocity == 0.0) return s;
     const double adt = limits.acceleration * dt;
     const double land = error / dt;  // the speed that ends this cycle on the target
-    const double reachable = std::min(limits.velocity, braking_speed(std::abs(error), limits.acceleration, dt));
+    const double reachable =
+        std::min(limits.velocity, braking_speed(std::abs(error), limits.acceleration, dt));
     const double wanted = std::abs(land) <= reachable ? land : std::copysign(reachable, error);
     const double velocity = s.velocity + std::clamp(wanted - s.velocity, -adt, adt);
     if (velocity == land) return {target, velocity};

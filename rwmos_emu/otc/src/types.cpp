@@ -5,19 +5,26 @@ namespace rwmos::otc {
 
 std::string_view processing_type_name(ProcessingType t) noexcept {
     switch (t) {
-        case ProcessingType::kRadius: return "RADIUS";
-        case ProcessingType::kLength: return "LENGTH";
-        case ProcessingType::kToolDir: return "TOOL_DIR";
-        case ProcessingType::kSurfNormDir: return "SURF_NORM_DIR";
+        case ProcessingType::kRadius:
+            return "RADIUS";
+        case ProcessingType::kLength:
+            return "LENGTH";
+        case ProcessingType::kToolDir:
+            return "TOOL_DIR";
+        case ProcessingType::kSurfNormDir:
+            return "SURF_NORM_DIR";
     }
     return "?";
 }
 
 std::string_view mode_name(Mode m) noexcept {
     switch (m) {
-        case Mode::kCont: return "CONT";
-        case Mode::kDisc: return "DISC";
-        case Mode::kAuto: return "AUTO";
+        case Mode::kCont:
+            return "CONT";
+        case Mode::kDisc:
+            return "DISC";
+        case Mode::kAuto:
+            return "AUTO";
     }
     return "?";
 }

@@ -123,11 +123,13 @@ class Evaluator {
             n = n * 10 + (c_.peek() - '0');
             c_.advance();
             if (n >= kParameterCount)
-                return fail(ErrorKind::kValue, col,
-                            fmt::format("P parameter number out of range 0..{}", kParameterCount - 1));
+                return fail(
+                    ErrorKind::kValue, col,
+                    fmt::format("P parameter number out of range 0..{}", kParameterCount - 1));
         }
         if (ctx_ == nullptr || !ctx_->parameter(n, out))
-            return fail(ErrorKind::kProgramRule, col, fmt::format("P{} is used before it is set", n));
+            return fail(ErrorKind::kProgramRule, col,
+                        fmt::format("P{} is used before it is set", n));
         return true;
     }
 
@@ -150,12 +152,18 @@ class Evaluator {
         const std::uint32_t col = c_.column();
         const std::string_view name = c_.scan_identifier();
         enum class Fn { kAbs, kSqrt, kSin, kCos, kTan, kAtan } fn;
-        if (keyword_is(name, "ABS")) fn = Fn::kAbs;
-        else if (keyword_is(name, "SQRT")) fn = Fn::kSqrt;
-        else if (keyword_is(name, "SIN")) fn = Fn::kSin;
-        else if (keyword_is(name, "COS")) fn = Fn::kCos;
-        else if (keyword_is(name, "TAN")) fn = Fn::kTan;
-        else if (keyword_is(name, "ATAN")) fn = Fn::kAtan;
+        if (keyword_is(name, "ABS"))
+            fn = Fn::kAbs;
+        else if (keyword_is(name, "SQRT"))
+            fn = Fn::kSqrt;
+        else if (keyword_is(name, "SIN"))
+            fn = Fn::kSin;
+        else if (keyword_is(name, "COS"))
+            fn = Fn::kCos;
+        else if (keyword_is(name, "TAN"))
+            fn = Fn::kTan;
+        else if (keyword_is(name, "ATAN"))
+            fn = Fn::kAtan;
         else
             return fail(ErrorKind::kSyntax, col,
                         fmt::format("unknown name '{}' in an expression (known: numbers, P "
@@ -169,15 +177,25 @@ class Evaluator {
         if (!bracketed(x)) return false;
         constexpr double kDeg = std::numbers::pi / 180.0;
         switch (fn) {
-            case Fn::kAbs: out = std::fabs(x); break;
+            case Fn::kAbs:
+                out = std::fabs(x);
+                break;
             case Fn::kSqrt:
                 if (x < 0.0) return fail(ErrorKind::kValue, col, "SQRT of a negative number");
                 out = std::sqrt(x);
                 break;
-            case Fn::kSin: out = std::sin(x * kDeg); break;
-            case Fn::kCos: out = std::cos(x * kDeg); break;
-            case Fn::kTan: out = std::tan(x * kDeg); break;
-            case Fn::kAtan: out = std::atan(x) / kDeg; break;
+            case Fn::kSin:
+                out = std::sin(x * kDeg);
+                break;
+            case Fn::kCos:
+                out = std::cos(x * kDeg);
+                break;
+            case Fn::kTan:
+                out = std::tan(x * kDeg);
+                break;
+            case Fn::kAtan:
+                out = std::atan(x) / kDeg;
+                break;
         }
         return finite(out, name);
     }
@@ -191,11 +209,16 @@ class Evaluator {
 
 std::string variable_name(const VariableRef& v) {
     switch (v.variable) {
-        case NcVariable::kWearRadius: return "V.G.WZ_AKT.WEAR_RADIUS";
-        case NcVariable::kWearRadiusCont: return "V.G.WZ_AKT.WEAR_RADIUS_CONT";
-        case NcVariable::kWear: return fmt::format("V.G.WZ_AKT.WEAR[{}]", v.index);
-        case NcVariable::kWearConst: return "V.G.WZ_AKT.WEAR_CONST";
-        case NcVariable::kOtcActive: return "V.G.OTC_ACTIVE";
+        case NcVariable::kWearRadius:
+            return "V.G.WZ_AKT.WEAR_RADIUS";
+        case NcVariable::kWearRadiusCont:
+            return "V.G.WZ_AKT.WEAR_RADIUS_CONT";
+        case NcVariable::kWear:
+            return fmt::format("V.G.WZ_AKT.WEAR[{}]", v.index);
+        case NcVariable::kWearConst:
+            return "V.G.WZ_AKT.WEAR_CONST";
+        case NcVariable::kOtcActive:
+            return "V.G.OTC_ACTIVE";
     }
     return "?";
 }
@@ -215,7 +238,8 @@ bool scan_variable(LineCursor& c, VariableRef& out, ExpressionError& err) {
     auto part = [&](std::string_view upper) { return keyword_is(c.scan_identifier(), upper); };
     if (!part("V") || c.peek() != '.') return fail(fmt::format("expected a variable ({})", kKnown));
     c.advance();
-    if (!part("G") || c.peek() != '.') return fail(fmt::format("unknown variable (known: {})", kKnown));
+    if (!part("G") || c.peek() != '.')
+        return fail(fmt::format("unknown variable (known: {})", kKnown));
     c.advance();
     const std::string_view first = c.scan_identifier();
     if (keyword_is(first, "OTC_ACTIVE")) {
@@ -253,7 +277,8 @@ bool scan_variable(LineCursor& c, VariableRef& out, ExpressionError& err) {
         }
         c.skip_blanks();
         if (!any || n >= kWearAxisCount || c.peek() != ']')
-            return fail(fmt::format("V.G.WZ_AKT.WEAR[i] takes an axis index 0..{}", kWearAxisCount - 1));
+            return fail(
+                fmt::format("V.G.WZ_AKT.WEAR[i] takes an axis index 0..{}", kWearAxisCount - 1));
         c.advance();
         out = {NcVariable::kWear, n};
         return true;

@@ -74,7 +74,8 @@ class LineParser {
     }
     bool whole(std::uint64_t& out, std::string_view what) {
         const std::uint32_t col = c_.column();
-        if (!nc::is_digit(c_.peek())) return fail(col, fmt::format("expected a whole number after '{}'", what));
+        if (!nc::is_digit(c_.peek()))
+            return fail(col, fmt::format("expected a whole number after '{}'", what));
         out = 0;
         while (nc::is_digit(c_.peek())) {
             if (out > (std::numeric_limits<std::uint64_t>::max() - 9) / 10)
@@ -102,7 +103,8 @@ class LineParser {
         } else {
             return fail(col, "unknown unit (known: otc_radius_offset, otc_offset[i])");
         }
-        if (c_.peek() != '.') return fail(c_.column(), "expected '.command' or '.enable' after the unit");
+        if (c_.peek() != '.')
+            return fail(c_.column(), "expected '.command' or '.enable' after the unit");
         c_.advance();
         const std::uint32_t fcol = c_.column();
         const std::string_view field = c_.scan_identifier();
@@ -162,7 +164,8 @@ nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view f
     std::size_t pos = 0;
     while (pos <= text.size()) {
         const std::size_t nl = text.find('\n', pos);
-        std::string_view line = text.substr(pos, nl == std::string_view::npos ? text.size() - pos : nl - pos);
+        std::string_view line =
+            text.substr(pos, nl == std::string_view::npos ? text.size() - pos : nl - pos);
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         ++n;
         Diagnostic err;

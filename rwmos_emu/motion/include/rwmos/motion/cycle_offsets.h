@@ -20,7 +20,7 @@
 namespace rwmos::motion {
 
 class CycleOffsets {
-public:
+  public:
     virtual ~CycleOffsets() = default;
 
     // `m` starts now; `next` is the move queued behind it (nullptr if none yet).
@@ -36,14 +36,15 @@ public:
     virtual void step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
                       AxisVector& pos) noexcept = 0;
     // The offsets at cycle k of n of `m` without stepping (valid while !per_cycle), added to `pos`.
-    virtual void at(const Move* m, std::uint64_t k, std::uint64_t n, AxisVector& pos) const noexcept = 0;
+    virtual void at(const Move* m, std::uint64_t k, std::uint64_t n,
+                    AxisVector& pos) const noexcept = 0;
 };
 
 // Several modules' offsets (OTC wear, temperature), added in order: each module sees the
 // position with the offsets of those before it. Every module is told of every move and every
 // cycle; the chain needs every cycle run when any of them does.
 class CycleOffsetsChain final : public CycleOffsets {
-public:
+  public:
     static constexpr std::size_t kMaxModules = 4;
     // Not owned; false when the chain is full.
     bool add(CycleOffsets* module) noexcept {
@@ -67,11 +68,12 @@ public:
               AxisVector& pos) noexcept override {
         for (std::size_t i = 0; i < count_; ++i) modules_[i]->step(m, k, n, dt, pos);
     }
-    void at(const Move* m, std::uint64_t k, std::uint64_t n, AxisVector& pos) const noexcept override {
+    void at(const Move* m, std::uint64_t k, std::uint64_t n,
+            AxisVector& pos) const noexcept override {
         for (std::size_t i = 0; i < count_; ++i) modules_[i]->at(m, k, n, pos);
     }
 
-private:
+  private:
     std::array<CycleOffsets*, kMaxModules> modules_{};
     std::size_t count_ = 0;
 };

@@ -31,7 +31,8 @@ inline constexpr int kDefaultAccWeight = 100;
 double weighted_acceleration(double acceleration, int weight_percent) noexcept;
 
 // One interpolation cycle of `dt` seconds towards `target`.
-RampState ramp_step(const RampState& s, double target, const RampLimits& limits, double dt) noexcept;
+RampState ramp_step(const RampState& s, double target, const RampLimits& limits,
+                    double dt) noexcept;
 
 // On the target and at rest: further steps change nothing.
 constexpr bool settled(const RampState& s, double target) noexcept {

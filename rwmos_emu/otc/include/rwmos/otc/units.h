@@ -25,9 +25,12 @@ enum class LengthUnit : std::int32_t { kMillimetre = 0, kMicrometre = 1, kInch =
 // Length of one unit of `unit` in mm.
 constexpr double millimetres_per_unit(LengthUnit unit) noexcept {
     switch (unit) {
-        case LengthUnit::kMillimetre: return 1.0;
-        case LengthUnit::kMicrometre: return 1e-3;
-        case LengthUnit::kInch: return kMillimetresPerInch;
+        case LengthUnit::kMillimetre:
+            return 1.0;
+        case LengthUnit::kMicrometre:
+            return 1e-3;
+        case LengthUnit::kInch:
+            return kMillimetresPerInch;
     }
     return 1.0;
 }
