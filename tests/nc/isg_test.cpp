@@ -4,6 +4,7 @@
 // 2.8); docs/nc-programs.md. One test per rule, named after it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -194,6 +195,39 @@ TEST(Kinematics, TrafoOnNeedsAKinematics) {
     EXPECT_FALSE(t[1].on);
     EXPECT_EQ(parse_error("#TRAFO MAYBE"),
               "prog.nc:1:8: expected ON or OFF after #TRAFO, found 'MAYBE'");
+}
+
+// DESIGN.md section 8: with the transformation the program gives the tool tip; at the switch the
+// position in force is re-expressed (tip = pivot - length t(B)).
+TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
+    const ToolTable tools = seed_tools();  // D1: laenge 50 mm
+    InterpreterOptions o;
+    o.tools = &tools;
+    const auto ev = events_of(
+        "D1\nG0 X0 Y0 Z300 B0\n#KIN ID[4]\n#TRAFO ON\nG0 B45\nG1 X100 Z50 F1000\n#TRAFO OFF\nG0 X0\n"
+        "M30\n",
+        o);
+    const auto t = only<TrafoChange>(ev);
+    ASSERT_EQ(t.size(), 2u);
+    EXPECT_EQ(t[0].tool_length, 50.0);
+    const auto rapids = only<RapidMove>(ev);
+    ASSERT_EQ(rapids.size(), 3u);
+    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 0, 250));  // the tip under the pivot at Z300
+    EXPECT_EQ(rapids[1].end, Eigen::Vector3d(0, 0, 250));    // B45: the tip stays
+    // After #TRAFO OFF the pivot again: tip (100, 0, 50) + 50 (sin 45, 0, cos 45).
+    EXPECT_NEAR(rapids[2].start.x(), 100 + 50 * std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(rapids[2].start.z(), 50 + 50 * std::sqrt(0.5), 1e-12);
+}
+
+TEST(Kinematics, NoToolChangeOrRadiusCompensationUnderTrafo) {
+    EXPECT_EQ(error_of("D1\n#KIN ID[4]\n#TRAFO ON\nD2\nM30\n"),
+              "prog.nc:4:1: D2 while #TRAFO is on: the transformation holds the tool's length; "
+              "program #TRAFO OFF before a tool change");
+    EXPECT_EQ(error_of("#KIN ID[4]\n#TRAFO ON\nG41\nM30\n"),
+              "prog.nc:3:1: G41 while #TRAFO is on: radius compensation and the transformation do "
+              "not combine here; program #TRAFO OFF first");
+    EXPECT_NE(error_of("#KIN ID[4]\nG42\n#TRAFO ON\nM30\n").find("#TRAFO ON while radius compensation G42"),
+              std::string::npos);
 }
 
 TEST(Kinematics, TrafoIsNotSwitchedWhileOtcIsOn) {

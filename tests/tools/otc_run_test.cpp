@@ -286,6 +286,28 @@ TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
     EXPECT_EQ(worn_contours, 1);
 }
 
+// DESIGN.md section 8: with #TRAFO ON the program gives the tool tip; the board's axes carry the
+// pivot one tool length (50 mm) behind it along t(B); the JSON shows the tip.
+TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
+    const std::string prog = write("t.nc", "N30 D1\nN40 G00 X0 Y0 Z300 B0\nN50 #KIN ID[4]\n"
+                                           "N55 #TRAFO ON\nN60 G00 B45\nN70 G01 X100 Z50 F1000\n"
+                                           "N80 #TRAFO OFF\nM30\n");
+    const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("t.csv")});
+    bool seen = false;
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("block") != 70) continue;
+        seen = true;
+        EXPECT_NEAR(s.at("end")[0].get<double>(), 100.0, 1e-9);
+        EXPECT_NEAR(s.at("end")[2].get<double>(), 50.0, 1e-9);
+    }
+    EXPECT_TRUE(seen);
+    const auto rows = read_csv(path("t.csv"));
+    const auto& last = rows.back();
+    EXPECT_NEAR(last[2], 100.0 + 50.0 * std::sqrt(0.5), 1e-9);
+    EXPECT_NEAR(last[4], 50.0 + 50.0 * std::sqrt(0.5), 1e-9);
+    EXPECT_EQ(last[6], 45.0);  // B on board axis 4
+}
+
 // DESIGN.md section 8: #HSC is accepted and reported as not emulated.
 TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
     const std::string prog =

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "apci/nc/arc.h"
 #include "apci/nc/tools.h"
 
@@ -36,6 +38,12 @@ struct BlockCheck {
 bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* tools) {
     const Word<int>& d = c.b.tool;
     if (!d.present()) return true;
+    if (before.trafo && d.value != before.tool) {
+        return c.fail(ErrorKind::kProgramRule, d.column,
+                      fmt::format("D{} while #TRAFO is on: the transformation holds the tool's "
+                                  "length; program #TRAFO OFF before a tool change",
+                                  d.value));
+    }
     // The OTC module keeps the tool while OTC is on (docs/otc.md, OTC_TOOL_CHANGE_WHILE_ACTIVE).
     if (before.otc_active && d.value != before.tool) {
         return c.fail(ErrorKind::kProgramRule, d.column,
@@ -163,6 +171,13 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
     if (b.feed.present()) s.feed = b.feed.value;
     if (b.corner.present()) s.corner = b.corner.value;
     if (b.compensation.present()) s.compensation = b.compensation.value;
+    if (state_.trafo && s.compensation != Compensation::kOff &&
+        s.compensation != state_.compensation) {
+        return c.fail(ErrorKind::kProgramRule, b.compensation.column,
+                      fmt::format("G{} while #TRAFO is on: radius compensation and the "
+                                  "transformation do not combine here; program #TRAFO OFF first",
+                                  g_number(s.compensation)));
+    }
     if (!check_tool(c, state_, options_.tools)) return false;
     if (b.tool.present() && b.tool.value != state_.tool) s.tool_wear_const.reset();
     if (b.tool.present()) s.tool = b.tool.value;
@@ -330,8 +345,27 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                               "OTC_CHANGE_WHILE_ACTIVE: #TRAFO while OTC is on: switch the "
                               "transformation before #OTC ON or after #OTC OFF");
             }
+            if (isg.on && s.compensation != Compensation::kOff) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              fmt::format("#TRAFO ON while radius compensation G{} is on: "
+                                          "program G40 first (the transformation and radius "
+                                          "compensation do not combine here)",
+                                          g_number(s.compensation)));
+            }
+            if (isg.on != s.trafo) {
+                // The B head's transformation (DESIGN.md section 8, rwmos/geometry/kinematics.h):
+                // with it the program gives the tool tip, the pivot one tool length behind it
+                // along t(B) = (sin B, 0, cos B). The position in force changes its meaning.
+                const double length = tool_length_mm(s.tool);
+                constexpr double kDeg = 3.14159265358979323846 / 180.0;
+                const Eigen::Vector3d along =
+                    length * Eigen::Vector3d(std::sin(s.b * kDeg), 0.0, std::cos(s.b * kDeg));
+                s.position = isg.on ? Eigen::Vector3d(s.position - along)
+                                    : Eigen::Vector3d(s.position + along);
+                s.trafo_length = length;
+            }
             s.trafo = isg.on;
-            out.push(origin, TrafoChange{isg.on});
+            out.push(origin, TrafoChange{isg.on, s.trafo_length});
             break;
         case IsgKind::kHsc:
             out.push(origin, NotEmulated{"#HSC"});
@@ -359,6 +393,11 @@ bool Interpreter::apply_variable_write(const Assignment& a, const Block& b, std:
     state_.tool_wear_const = a.value;
     out.push(BlockOrigin{b.block_number(), b.line}, VariableWrite{a.variable, a.value});
     return true;
+}
+
+double Interpreter::tool_length_mm(int tool) const noexcept {
+    const ToolData* t = options_.tools != nullptr && tool > 0 ? options_.tools->find(tool) : nullptr;
+    return t != nullptr ? t->length_mm() : 0.0;
 }
 
 double Interpreter::model_variable(const VariableRef& v) const noexcept {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <type_traits>
 #include <unordered_map>
 #include <variant>
@@ -331,7 +332,7 @@ class Execution {
                 } else if constexpr (std::is_same_v<E, nc::KinematicsSelect>) {
                     return otc_setting(at, otc::kIdxKinematics, e.id, "#KIN (Kinematics)");
                 } else if constexpr (std::is_same_v<E, nc::TrafoChange>) {
-                    return otc_setting(at, otc::kIdxTrafo, e.on ? 1 : 0, "#TRAFO (Trafo)");
+                    return trafo(at, e);
                 } else if constexpr (std::is_same_v<E, nc::NotEmulated>) {
                     out_.notices.push_back(RunError{
                         at, "NotEmulated",
@@ -397,30 +398,58 @@ class Execution {
         const PlaneAxes pa = plane_axes(s.plane);
         p.arc_axes[0] = static_cast<std::uint8_t>(axis(pa.first));
         p.arc_axes[1] = static_cast<std::uint8_t>(axis(pa.second));
-        p.center[0] = a.center[pa.first];
-        p.center[1] = a.center[pa.second];
+        const Eigen::Vector3d centre =
+            trafo_ ? pivot_of(a.center, head_pending_ ? head_b_ : b_now_) : a.center;
+        p.center[0] = centre[pa.first];
+        p.center[1] = centre[pa.second];
         return spool(at, s, p);
     }
 
     apci_profile profile(const BlockRef& at, std::uint8_t kind, const Eigen::Vector3d& end,
-                         double feed) const noexcept {
+                         double feed) noexcept {
         apci_profile p{};
         p.kind = kind;
         p.tag = encode_block_tag(at);
         p.feed = feed;
+        const Eigen::Vector3d target = trafo_ ? pivot_of(end, head_pending_ ? head_b_ : b_now_) : end;
         for (int i = 0; i < 3; ++i) {
             const std::int32_t a = axis(i);
             p.axes = static_cast<std::uint8_t>(p.axes | (1u << a));
-            p.target[a] = end[i];
+            p.target[a] = target[i];
         }
         if (head_pending_) add_head(p);
         return p;
     }
 
-    void add_head(apci_profile& p) const noexcept {
+    void add_head(apci_profile& p) noexcept {
         p.axes = static_cast<std::uint8_t>(p.axes | (1u << head_b_axis_) | (1u << head_c_axis_));
         p.target[head_b_axis_] = head_b_;
         p.target[head_c_axis_] = head_c_;
+        b_now_ = head_b_;
+    }
+
+    // ---- #TRAFO: the B head's tool-tip transformation (DESIGN.md section 8; docs/otc.md)
+
+    static Eigen::Vector3d tool_axis(double b_deg) noexcept {
+        const double b = b_deg * (std::numbers::pi / 180.0);
+        return {std::sin(b), 0.0, std::cos(b)};
+    }
+    // The pivot (the machine's X, Y, Z) of a tool tip at tilt b: one tool length behind it.
+    Eigen::Vector3d pivot_of(const Eigen::Vector3d& tip, double b_deg) const noexcept {
+        return tip + trafo_length_ * tool_axis(b_deg);
+    }
+
+    // The axes stop first, so the segments read back before belong to the old state.
+    bool trafo(const BlockRef& at, const nc::TrafoChange& e) {
+        if (e.on && head_b_axis_ < 0)
+            return record(at, "Unsupported", "no free board axis for the head's B");
+        if (!run_clock()) return false;
+        if (out_.otc_present &&
+            !otc_setting(at, otc::kIdxTrafo, e.on ? 1 : 0, e.on ? "#TRAFO ON" : "#TRAFO OFF"))
+            return false;
+        trafo_ = e.on;
+        trafo_length_ = e.tool_length;
+        return true;
     }
 
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p) {
@@ -782,11 +811,21 @@ class Execution {
     // runs the clock and writes again.
     template <typename T>
     bool otc_write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
+        std::uint64_t busy_clock = ~std::uint64_t{0};  // the clock at this write's last Busy
         for (;;) {
             const auto r = board_.write(o, value);
             if (r.ok()) return true;
             if (r.status == APCI_BUSY) {
+                // Zero-length moves leave without a cycle: only a second Busy with the clock
+                // standing still means the board holds.
+                const bool stood_still = busy_clock == cycles_seen_;
+                busy_clock = cycles_seen_;
                 if (!run_clock()) return false;
+                if (stood_still && cycles_seen_ == busy_clock)
+                    return record(at, "Busy",
+                                  fmt::format("{}: moves are queued and the clock does not run "
+                                              "them (the board holds)",
+                                              what));
                 continue;
             }
             const std::string text = fmt::format("{}: {}", what, board_.last_error());
@@ -1194,6 +1233,14 @@ class Execution {
             s.center[i] = b.center[a];
         }
         if (s.kind == SegmentKind::kArc) arc_plane(b, s);
+        if (trafo_) {
+            // Back to the tool tip, at the B each end has (a B that turns along a line moves the
+            // pivot linearly, so the tip is exact at the ends).
+            const double b0 = b.start[head_b_axis_], b1 = b.end[head_b_axis_];
+            s.start -= trafo_length_ * tool_axis(b0);
+            s.end -= trafo_length_ * tool_axis(b1);
+            s.center -= trafo_length_ * tool_axis(b0);
+        }
         const int z = plane_axes(comp_plane_).third;
         const double end_offset = ends_length_compensated(s.role) ? length_ : 0.0;
         s.start[z] -= start_offset_;
@@ -1273,6 +1320,10 @@ class Execution {
         Execution& e_;
     };
     BoardVariables variables_;
+
+    bool trafo_ = false;          // #TRAFO ON: programs give the tool tip
+    double trafo_length_ = 0.0;   // the tool length it uses (mm)
+    double b_now_ = 0.0;          // the B the spooled moves end at
 
     bool klartext_ = false;
     bool c3_ready_ = false;

@@ -149,9 +149,12 @@ struct KinematicsSelect {
     int id = 0;
 };
 
-// #TRAFO ON / OFF.
+// #TRAFO ON / OFF: with it the moves' X Y Z are the tool tip; the machine's pivot is
+// `tool_length` (mm, the tool in force) behind it along t(B) = (sin B, 0, cos B) (DESIGN.md
+// section 8). At the switch the position in force is re-expressed (tip = pivot - length t(B)).
 struct TrafoChange {
     bool on = false;
+    double tool_length = 0.0;
 };
 
 // A command the front end accepts but the emulator does not emulate (#HSC): the executor reports

@@ -37,7 +37,8 @@ struct ModalState {
     // V.G.WZ_AKT.WEAR_CONST written by the program (the tool's constant from then on).
     std::optional<double> tool_wear_const;
     int kinematics = 0;  // #KIN ID
-    bool trafo = false;  // #TRAFO ON
+    bool trafo = false;  // #TRAFO ON: positions are the tool tip (DESIGN.md section 8)
+    double trafo_length = 0.0;  // the tool length (mm) the transformation uses
 };
 
 struct InterpreterOptions {
@@ -68,6 +69,11 @@ class Interpreter {
     // programmed, V.G.WZ_AKT.WEAR_CONST from the tool list or as written; the wear itself is the
     // board's (0 here; the executor supplies the board's values through a VariableSource).
     double model_variable(const VariableRef& v) const noexcept;
+
+  private:
+    double tool_length_mm(int tool) const noexcept;
+
+  public:
 
     const ModalState& state() const noexcept { return state_; }
     const InterpreterOptions& options() const noexcept { return options_; }
