@@ -4,7 +4,6 @@
 // embedded board; a script keeps one). Every line is parsed before any runs:
 // a script with a malformed line runs nothing. Then the lines run in order
 // and the first failing one stops the script, unless --keep-going.
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -16,63 +15,10 @@
 #include <fmt/format.h>
 
 #include "command.h"
+#include "script_reader.h"
 
 namespace apcictl {
 namespace {
-
-// Whitespace-separated words of a line, without its `#` comment.
-std::vector<std::string> words_of(std::string_view line) {
-    line = line.substr(0, line.find('#'));
-    std::vector<std::string> words;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-        if (i > start) words.emplace_back(line.substr(start, i - start));
-    }
-    return words;
-}
-
-std::string script_command_names() {
-    std::string names;
-    for (const auto& row : command_table()) {
-        if (!row.in_scripts) continue;
-        if (!names.empty()) names += ", ";
-        names += row.name;
-    }
-    return names;
-}
-
-std::string joined(const std::vector<std::string>& words) {
-    return fmt::format("{}", fmt::join(words, " "));
-}
-
-// Parses one non-empty line into a ready command, or a usage error.
-Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
-    const CommandSpec* spec = find_command(words.front());
-    if (spec == nullptr || !spec->in_scripts) {
-        return Outcome::usage_error(fmt::format("unknown command '{}' (script commands: {})",
-                                                words.front(), script_command_names()));
-    }
-    auto command = spec->make();
-    CLI::App parser(std::string(spec->summary), std::string(spec->name));
-    command->declare(parser);
-    std::vector<std::string> args(words.rbegin(), words.rend() - 1);  // CLI11 wants them reversed
-    try {
-        parser.parse(args);
-    } catch (const CLI::CallForHelp&) {
-        return Outcome::usage_error(
-            fmt::format("{}: --help is not a script command; run 'apcictl {} --help'",
-                        joined(words), spec->name));
-    } catch (const CLI::ParseError& e) {
-        return Outcome::usage_error(fmt::format("{}: {}", joined(words), e.what()));
-    }
-    Outcome prepared = command->prepare();
-    if (!prepared.ok()) return prepared;
-    line.command = std::move(command);
-    return Outcome::success();
-}
 
 class ScriptCommand final : public Command {
 public:
@@ -114,8 +60,8 @@ private:
 
 }  // namespace
 
-// Reads and parses every line of `file` ("-": standard input). Errors are
-// printed here, one per bad line.
+// Reads and parses every line of `file` ("-": standard input) with
+// parse_script (script_reader.h). Errors are printed here, one per bad line.
 Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines) {
     std::ifstream stream;
     std::istream* in = &std::cin;
@@ -127,21 +73,14 @@ Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines) {
         }
         in = &stream;
     }
+    ParsedScript parsed = parse_script(*in);
     Outcome outcome;
-    std::string text;
-    for (int number = 1; std::getline(*in, text); ++number) {
-        const auto words = words_of(text);
-        if (words.empty()) continue;
-        ScriptLine line{number, joined(words), nullptr};
-        const Outcome parsed = parse_line(words, line);
-        if (!parsed.ok()) {
-            fmt::print(stderr, "line {}: {}\n", number, parsed.error);
-            if (outcome.ok()) outcome.exit = parsed.exit;
-            continue;
-        }
-        lines.push_back(std::move(line));
+    for (const auto& error : parsed.errors) {
+        fmt::print(stderr, "line {}: {}\n", error.number, error.outcome.error);
+        if (outcome.ok()) outcome.exit = error.outcome.exit;
     }
-    if (in->bad()) return Outcome::board_error(fmt::format("script: reading '{}' failed", file));
+    if (parsed.read_failed) return Outcome::board_error(fmt::format("script: reading '{}' failed", file));
+    lines = std::move(parsed.lines);
     return outcome;
 }
 

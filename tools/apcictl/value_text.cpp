@@ -21,10 +21,11 @@ bool parse_int32(std::string_view text, std::int32_t& out) noexcept {
     std::uint64_t magnitude = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), magnitude, base);
     if (ec != std::errc() || end != text.data() + text.size()) return false;
+    // Bound the magnitude before negating it: -(2^63) does not fit an int64.
+    if (magnitude > std::uint64_t{1} << 32) return false;
     const std::int64_t value =
         negative ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
-    if (magnitude > std::uint64_t{1} << 32 || value < std::numeric_limits<std::int32_t>::min() ||
-        value > std::numeric_limits<std::int32_t>::max())
+    if (value < std::numeric_limits<std::int32_t>::min() || value > std::numeric_limits<std::int32_t>::max())
         return false;
     out = static_cast<std::int32_t>(value);
     return true;

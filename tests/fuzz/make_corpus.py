@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# Refreshes the seed corpora in corpus/ from the tests and the examples:
+#   corpus/nc/              examples/*.nc and the NC programs in tests/nc/*.cpp
+#   corpus/tools/           examples/tools/*.tools and the tool lists in tests/nc/tools_test.cpp
+#   corpus/apcictl_script/  the scripts in tests/tools/apcictl_test.cpp
+#   corpus/frame/           wire frames (docs/wire-frame.md): object reads and writes of the
+#                           objects the tests use, replies, a two-frame stream, a bad CRC
+# Each seed is named by the SHA-1 of its content, so a rerun adds only new ones.
+# A maintainer's tool: the build and CI use the committed files.
+import hashlib
+import pathlib
+import re
+import struct
+import zlib
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+CORPUS = pathlib.Path(__file__).resolve().parent / "corpus"
+
+# A run of adjacent C++ string literals ("a" "b" joins to "ab").
+LITERALS = re.compile(r'(?:"(?:[^"\\\n]|\\.)*"\s*)+')
+ONE = re.compile(r'"((?:[^"\\\n]|\\.)*)"')
+ESCAPES = {"n": "\n", "t": "\t", "r": "\r", '"': '"', "\\": "\\", "'": "'", "0": "\0"}
+
+
+def unescape(body):
+    return re.sub(r"\\(.)", lambda m: ESCAPES.get(m.group(1), m.group(1)), body)
+
+
+def literals(path):
+    text = path.read_text(encoding="utf-8")
+    for run in LITERALS.finditer(text):
+        yield "".join(unescape(m.group(1)) for m in ONE.finditer(run.group(0)))
+
+
+def save(kind, content):
+    data = content.encode("utf-8") if isinstance(content, str) else content
+    if not data:
+        return
+    out = CORPUS / kind
+    out.mkdir(parents=True, exist_ok=True)
+    (out / hashlib.sha1(data).hexdigest()).write_bytes(data)
+
+
+MAGIC, VERSION, REPLY = 0x49435041, 1, 0x8000
+READ, WRITE, ERROR = 0x0001, 0x0002, 0x7FFF
+INT32, DOUBLE = 1, 2
+
+
+def frame(opcode, sequence, payload):
+    head = struct.pack("<IHHII", MAGIC, VERSION, opcode, sequence, len(payload)) + payload
+    return head + struct.pack("<I", zlib.crc32(head))
+
+
+def descriptor(bus, dev, idx, sub, handle=0):
+    return struct.pack("<iiiiI", bus, dev, idx, sub, handle)
+
+
+def value(v):
+    return struct.pack("<Bi", INT32, v) if isinstance(v, int) else struct.pack("<Bd", DOUBLE, v)
+
+
+def frames():
+    objects = [((1300, 1, 1, 8), INT32, 5), ((1300, 1, 1, 7), DOUBLE, 2.5),
+               ((1300, 1, 1, 3), INT32, 1), ((1300, 0, 12, 0), INT32, 18),
+               ((1300, 0, 20, 0), DOUBLE, 30.0), ((1300, 0, 1, 0), INT32, 1),
+               ((1000, 0, 1, 0), INT32, 0), ((1300, 1, 0, 1), INT32, 0)]
+    for seq, (address, tag, v) in enumerate(objects, start=1):
+        yield frame(READ, seq, descriptor(*address) + bytes([tag]))
+        yield frame(WRITE, seq, descriptor(*address) + value(v))
+    yield frame(READ | REPLY, 7, struct.pack("<II", 0, 0x10001) + value(5))
+    yield frame(WRITE | REPLY, 8, struct.pack("<II", 0x08000022, 0x10001))
+    yield frame(ERROR | REPLY, 9, struct.pack("<IB", 0x0F000100, 5))
+    yield frame(WRITE, 10, descriptor(1300, 1, 1, 8) + value(3)) + frame(READ, 11, descriptor(1300, 1, 1, 8) + bytes([INT32]))
+    good = frame(READ, 12, descriptor(1300, 1, 1, 8) + bytes([INT32]))
+    yield good[:-1] + bytes([good[-1] ^ 0xFF])  # bad CRC
+    yield frame(0x0042, 13, b"")                 # unknown opcode
+
+
+def main():
+    for f in frames():
+        save("frame", f)
+    for p in sorted((ROOT / "examples").glob("**/*.nc")):
+        save("nc", p.read_bytes())
+    for p in sorted((ROOT / "tests" / "nc").glob("*.cpp")):
+        for s in literals(p):
+            if "\n" in s and re.search(r"\b[GM]\d", s):
+                save("nc", s)
+    for p in sorted((ROOT / "examples").glob("**/*.tools")):
+        save("tools", p.read_bytes())
+    for s in literals(ROOT / "tests" / "nc" / "tools_test.cpp"):
+        if "wz[" in s:
+            save("tools", s)
+    for s in literals(ROOT / "tests" / "tools" / "apcictl_test.cpp"):
+        if re.match(r"(#|\s|read|write|status|spool|direct|ssf|step)", s) and "\n" in s:
+            save("apcictl_script", s)
+
+
+if __name__ == "__main__":
+    main()

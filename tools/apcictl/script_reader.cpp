@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+#include "script_reader.h"
+
+#include <cctype>
+#include <string>
+#include <string_view>
+
+#include <fmt/format.h>
+
+namespace apcictl {
+namespace {
+
+// Whitespace-separated words of a line, without its `#` comment.
+std::vector<std::string> words_of(std::string_view line) {
+    line = line.substr(0, line.find('#'));
+    std::vector<std::string> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        if (i > start) words.emplace_back(line.substr(start, i - start));
+    }
+    return words;
+}
+
+std::string joined(const std::vector<std::string>& words) {
+    return fmt::format("{}", fmt::join(words, " "));
+}
+
+// Parses one non-empty line into a ready command, or a usage error.
+Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
+    const CommandSpec* spec = find_command(words.front());
+    if (spec == nullptr || !spec->in_scripts) {
+        return Outcome::usage_error(fmt::format("unknown command '{}' (script commands: {})",
+                                                words.front(), script_command_names()));
+    }
+    auto command = spec->make();
+    CLI::App parser(std::string(spec->summary), std::string(spec->name));
+    command->declare(parser);
+    std::vector<std::string> args(words.rbegin(), words.rend() - 1);  // CLI11 wants them reversed
+    try {
+        parser.parse(args);
+    } catch (const CLI::CallForHelp&) {
+        return Outcome::usage_error(
+            fmt::format("{}: --help is not a script command; run 'apcictl {} --help'",
+                        joined(words), spec->name));
+    } catch (const CLI::ParseError& e) {
+        return Outcome::usage_error(fmt::format("{}: {}", joined(words), e.what()));
+    }
+    Outcome prepared = command->prepare();
+    if (!prepared.ok()) return prepared;
+    line.command = std::move(command);
+    return Outcome::success();
+}
+
+}  // namespace
+
+std::string script_command_names() {
+    std::string names;
+    for (const auto& row : command_table()) {
+        if (!row.in_scripts) continue;
+        if (!names.empty()) names += ", ";
+        names += row.name;
+    }
+    return names;
+}
+
+ParsedScript parse_script(std::istream& in) {
+    ParsedScript script;
+    std::string text;
+    for (int number = 1; std::getline(in, text); ++number) {
+        const auto words = words_of(text);
+        if (words.empty()) continue;
+        ScriptLine line{number, joined(words), nullptr};
+        Outcome parsed = parse_line(words, line);
+        if (parsed.ok())
+            script.lines.push_back(std::move(line));
+        else
+            script.errors.push_back({number, std::move(parsed)});
+    }
+    script.read_failed = in.bad();
+    return script;
+}
+
+}  // namespace apcictl
