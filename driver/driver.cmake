@@ -36,9 +36,11 @@ if(TARGET PkgConfig::LIBUSB)
 else()
   message(STATUS "libapci: libusb-1.0 not found, the usb: transport is left out")
 endif()
-target_link_options(apci PRIVATE
-  -Wl,--version-script=${CMAKE_CURRENT_SOURCE_DIR}/apci.map
-  -Wl,--no-undefined)
+target_link_options(apci PRIVATE -Wl,--version-script=${CMAKE_CURRENT_SOURCE_DIR}/apci.map)
+# clang's sanitizer runtimes live in the executable, not in shared libraries.
+if(NOT APCI_SANITIZER_RUNTIME_IN_EXECUTABLE)
+  target_link_options(apci PRIVATE -Wl,--no-undefined)
+endif()
 
 # ---- install: library, headers, CMake package, pkg-config file
 include(CMakePackageConfigHelpers)

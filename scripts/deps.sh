@@ -1,18 +1,25 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Installs the Debian 12 packages the project needs, only those missing.
-# Idempotent and quiet; sourced by test.sh and run.sh.
+# Idempotent and quiet; sourced by test.sh, run.sh and the CI stages.
 APCI_DEB_PACKAGES=(
   cmake g++ make pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev zlib1g-dev
   libusb-1.0-0-dev umockdev libumockdev-dev
 )
+# Only the CI stages after ./test.sh need these (scripts/ci/): clang and its
+# libFuzzer/sanitizer runtimes for the fuzzers, clang-tidy and cppcheck for
+# static analysis, dpkg-dev (dpkg-shlibdeps) and file for the Debian package.
+APCI_CI_DEB_PACKAGES=(
+  clang-14 libclang-rt-14-dev clang-tidy-14 cppcheck
+  dpkg-dev file
+)
 
-apci_install_deps() {
+apci_install_packages() {
   local missing=()
   local p
-  for p in "${APCI_DEB_PACKAGES[@]}"; do
+  for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -27,8 +34,19 @@ apci_install_deps() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+apci_install_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}"; }
+apci_install_ci_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}" "${APCI_CI_DEB_PACKAGES[@]}"; }
+
+# ccache, where installed, makes a rebuild of an unchanged tree cheap.
+apci_launcher_args() {
+  if command -v ccache >/dev/null 2>&1; then
+    echo "-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
+  fi
+}
+
 apci_build() {
   local build_dir="${1:-build}"
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  # shellcheck disable=SC2046
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo $(apci_launcher_args) >/dev/null
   cmake --build "$build_dir" -j"$(nproc)"
 }
