@@ -27,6 +27,8 @@ namespace {
 using objif::FrameError;
 using Bytes = std::span<const std::uint8_t>;
 
+// Every payload codec of objif/frame.h is listed in check_payload_codecs: a
+// new opcode's codecs go there too.
 // A payload that decodes as M must re-encode to exactly the same bytes: the
 // codecs have one encoding per message, so nothing is silently dropped.
 template <class M>
@@ -45,6 +47,14 @@ void check_payload_codecs(Bytes payload) {
     check_payload_round_trip<objif::WriteRequest>(payload);
     check_payload_round_trip<objif::WriteReply>(payload);
     check_payload_round_trip<objif::ErrorReply>(payload);
+    check_payload_round_trip<objif::SpoolRequest>(payload);
+    check_payload_round_trip<objif::DirectRequest>(payload);
+    check_payload_round_trip<objif::SsfRequest>(payload);
+    check_payload_round_trip<objif::MotionReply>(payload);
+    check_payload_round_trip<objif::ClockRequest>(payload);
+    check_payload_round_trip<objif::ClockReply>(payload);
+    check_payload_round_trip<objif::TraceRequest>(payload);
+    check_payload_round_trip<objif::TraceReply>(payload);
     objif::Status status;
     (void)objif::decode_status(payload, status);
 }

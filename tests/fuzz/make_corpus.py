@@ -43,7 +43,7 @@ def save(kind, content):
 
 
 MAGIC, VERSION, REPLY = 0x49435041, 1, 0x8000
-READ, WRITE, ERROR = 0x0001, 0x0002, 0x7FFF
+READ, WRITE, SPOOL, DIRECT, SSF, CLOCK, TRACE, ERROR = 1, 2, 3, 4, 5, 6, 7, 0x7FFF
 INT32, DOUBLE = 1, 2
 
 
@@ -72,12 +72,63 @@ def frames():
     yield frame(WRITE | REPLY, 8, struct.pack("<II", 0x08000022, 0x10001))
     yield frame(ERROR | REPLY, 9, struct.pack("<IB", 0x0F000100, 5))
     yield frame(WRITE, 10, descriptor(1300, 1, 1, 8) + value(3)) + frame(READ, 11, descriptor(1300, 1, 1, 8) + bytes([INT32]))
+    # Motion payloads (docs/motion.md "Wire payloads"): spool G01/G02, JA/JS, SSF 2001,
+    # clock step / run until idle / query / trace on, trace read.
+    axes8 = lambda *v: struct.pack("<8d", *(list(v) + [0.0] * (8 - len(v))))
+    yield frame(SPOOL, 20, struct.pack("<BBBBI", 1, 0x03, 0, 1, 10) + struct.pack("<d", 600.0)
+                + axes8(10.0, 5.0) + struct.pack("<2d", 0.0, 0.0))
+    yield frame(SPOOL, 21, struct.pack("<BBBBI", 3, 0x03, 0, 1, 20) + struct.pack("<d", 600.0)
+                + axes8(0.0, 10.0) + struct.pack("<2d", 0.0, 5.0))
+    yield frame(DIRECT, 22, struct.pack("<HB", 1, 0x01) + struct.pack("<d", 0.0) + axes8(3.0))
+    yield frame(DIRECT, 23, struct.pack("<HB", 2, 0x00) + struct.pack("<d", 0.0) + axes8())
+    yield frame(SSF, 24, struct.pack("<Bi", 0x03, 2001))
+    for mode, cycles in ((0, 100), (1, 100000), (2, 0), (3, 64), (4, 0)):
+        yield frame(CLOCK, 25 + mode, struct.pack("<BQ", mode, cycles))
+    yield frame(TRACE, 30, struct.pack("<BI", 0, 16))
+    yield frame(TRACE, 31, struct.pack("<BI", 1, 16))
     good = frame(READ, 12, descriptor(1300, 1, 1, 8) + bytes([INT32]))
     yield good[:-1] + bytes([good[-1] ^ 0xFF])  # bad CRC
     yield frame(0x0042, 13, b"")                 # unknown opcode
 
 
+# fuzz_emulator's operations (tests/fuzz/emulator_harness.h, Op) in its byte encoding.
+OP_SPOOL, OP_DIRECT, OP_SSF, OP_STEP, OP_RUN, OP_TRACE, OP_SETUP = 2, 3, 4, 5, 6, 7, 8
+
+
+def emu_line(x, y, kind=1):
+    return bytes([OP_SPOOL, 0, kind, 0, 0, int(x * 2) & 0xFF, 0, int(y * 2) & 0xFF, 2])
+
+
+def emu_arc(x, y, cx, cy, kind=3):
+    return emu_line(x, y, kind) + bytes([0, 0, int(cx * 2) & 0xFF, 0, int(cy * 2) & 0xFF])
+
+
+def emu_setup(group=1, tool=0, radius_step=1, right=0):
+    return bytes([OP_SETUP, group - 1, tool, radius_step, right])
+
+
+def emu_step(cycles):
+    return bytes([OP_STEP, cycles & 0xFF, cycles >> 8])
+
+
+EMU_RUN = bytes([OP_RUN, 0x40, 0x42, 0x0F, 0])
+
+
+def emulator_sequences():
+    square = emu_line(10, 0) + emu_line(10, 10) + emu_line(0, 10) + emu_line(0, 0)
+    yield square + EMU_RUN
+    yield emu_setup() + square + emu_step(100) + EMU_RUN
+    yield emu_setup(right=1) + square + bytes([OP_SSF, 0, 1]) + EMU_RUN
+    yield emu_setup(2, 1, 3) + emu_line(10, 0) + emu_arc(10, 10, 10, 5) + emu_line(0, 10) + EMU_RUN
+    yield emu_setup() + emu_line(10, 0) + emu_step(50) + bytes([OP_DIRECT, 1]) + emu_line(5, 5) + EMU_RUN
+    yield emu_setup() + emu_line(4, 0) + emu_line(4, 0.5) + emu_line(-4, 0.5) + EMU_RUN
+    yield bytes([OP_TRACE, 0, 64]) + square + emu_step(3000) + bytes([OP_TRACE, 2]) + EMU_RUN
+    yield emu_setup() + emu_line(10, 0, kind=0) + emu_line(10, 10) + EMU_RUN
+
+
 def main():
+    for seq in emulator_sequences():
+        save("emulator", seq)
     for f in frames():
         save("frame", f)
     for p in sorted((ROOT / "examples").glob("**/*.nc")):
