@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The packaging stage (docs/hardening.md, "Debian package"): builds the .deb
+# with CPack in build-pkg (prefix /usr, no tests), installs it on this
+# machine, and runs the installed tools and one example against the installed
+# files only: apcictl --help, rwmos-emu --help, the man pages, pkg-config and
+# the CMake package, and examples/pcap_tc_init.c compiled against the
+# installed headers and library. The package is removed again at the end
+# unless APCI_KEEP_PACKAGE=1.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+source scripts/deps.sh
+apci_install_ci_deps
+
+build=build-pkg
+# shellcheck disable=SC2046
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX=/usr \
+  -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF $(apci_launcher_args) >/dev/null
+cmake --build "$build" -j"$(nproc)" >/dev/null
+rm -f "$build"/apci8001_*.deb
+(cd "$build" && cpack -G DEB >/dev/null)
+deb=$(ls "$build"/apci8001_*.deb)
+echo "== built $deb"
+dpkg-deb --info "$deb" | sed -n '/Package:/,$p'
+dpkg-deb --contents "$deb" | awk '{print $6}'
+
+work="$(mktemp -d)"
+cleanup() {
+  rm -rf "$work"
+  if [ "${APCI_KEEP_PACKAGE:-0}" != 1 ]; then
+    DEBIAN_FRONTEND=noninteractive apt-get remove -y -qq apci8001 >/dev/null 2>&1 || true
+  fi
+}
+trap cleanup EXIT
+
+echo "== installing"
+DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$(realpath "$deb")" >/dev/null
+
+# From here on only installed files: run from an empty directory with a PATH
+# that does not reach the build tree.
+cd "$work"
+export PATH=/usr/sbin:/usr/bin:/sbin:/bin
+unset APCI_DEVICE LD_LIBRARY_PATH
+
+echo "== installed tools"
+test "$(command -v apcictl)" = /usr/bin/apcictl
+apcictl --help >/dev/null
+apcictl --version
+if dpkg -L apci8001 | grep -qx /usr/bin/rwmos-emu; then
+  rwmos-emu --help >/dev/null
+  echo "rwmos-emu --help: ok"
+else
+  echo "rwmos-emu: not in this tree yet, not packaged" >&2
+fi
+for page in $(dpkg -L apci8001 | grep '/man1/'); do
+  man -l "$page" >/dev/null 2>&1 || { echo "man page $page does not render" >&2; exit 1; }
+  echo "man page: $page"
+done
+
+echo "== example against the installed package: pcap_tc_init (pkg-config apci $(pkg-config --modversion apci))"
+# shellcheck disable=SC2046
+cc -std=c11 -Wall -Wextra -Werror -o pcap_tc_init "$OLDPWD/examples/pcap_tc_init.c" $(pkg-config --cflags --libs apci)
+ldd ./pcap_tc_init | grep -q "libapci.so.0 => /usr/lib/" || { echo "pcap_tc_init does not use the installed libapci" >&2; exit 1; }
+./pcap_tc_init
+
+echo "== CMake package: find_package(apci)"
+mkdir consumer && cat > consumer/CMakeLists.txt <<'CMAKE'
+cmake_minimum_required(VERSION 3.25)
+project(consumer C)
+find_package(apci 0.1 REQUIRED)
+add_executable(consumer main.c)
+target_link_libraries(consumer PRIVATE apci::apci)
+CMAKE
+printf '#include <stdio.h>\n#include "apci/apci.h"\nint main(void) { printf("libapci %%s\\n", apci_version()); return 0; }\n' > consumer/main.c
+cmake -S consumer -B consumer/build >/dev/null && cmake --build consumer/build >/dev/null && ./consumer/build/consumer
+
+echo "== apcictl script against the embedded emulator"
+printf 'write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\nstatus\n' | apcictl script -
+echo "package: installed, tools and example ran from the installed files"
