@@ -8,9 +8,11 @@
 //   - STATUS ProfMarked of a group is set exactly when that group holds a
 //     profile (docs/motion.md section 4);
 //   - no profile lost or duplicated: every executed segment belongs to an
-//     accepted profile, a profile's own segment runs at most once and in
-//     spool order, and once the board is idle every accepted profile has run
-//     unless a direct command, Reset, RESET or Clean discarded it;
+//     accepted profile, a profile's own segment (contour, uncompensated,
+//     rapid) runs at most once and in spool order, and once the board is idle
+//     every accepted profile has a segment (its own, or an approach,
+//     transition or departure) unless a direct command, Reset, RESET or Clean
+//     discarded it;
 //   - axis positions finite, and the board objects (positions, SpoolerFill,
 //     SpoolerCapacity) agree with the motion status; fill <= capacity;
 //   - the clock never runs backwards and advances by what was asked.
