@@ -3,6 +3,7 @@
 // many clients at once on a Unix socket (--socket) and/or a dual-port RAM
 // file (--shm), every request serialised on the one board state.
 // DESIGN.md sections 6 and 7; docs/rwmos-emu.md.
+#include <grp.h>
 #include <signal.h>
 #include <sys/epoll.h>
 #include <sys/signalfd.h>
@@ -16,6 +17,7 @@
 #include <exception>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "board_host.h"
 #include "log.h"
@@ -38,7 +40,29 @@ struct Options {
     bool no_option_tc = false;
     std::size_t max_clients = 64;
     std::string log_level = "info";
+    std::string group;  // --group: owner group of the socket and the shm file
+    gid_t gid = static_cast<gid_t>(-1);  // resolved from `group`; -1 leaves the daemon's own
 };
+
+// The gid of a group name or number; false if there is no such group.
+bool resolve_group(const std::string& name, gid_t& gid) {
+    std::vector<char> buf(16384);
+    group entry{};
+    group* found = nullptr;
+    if (::getgrnam_r(name.c_str(), &entry, buf.data(), buf.size(), &found) == 0 && found != nullptr) {
+        gid = found->gr_gid;
+        return true;
+    }
+    return false;
+}
+
+// Hands the socket or shm file the chosen group (lchown: never through a symlink).
+bool give_group(const std::string& path, gid_t gid) {
+    if (path.empty() || gid == static_cast<gid_t>(-1)) return true;
+    if (::lchown(path.c_str(), static_cast<uid_t>(-1), gid) == 0) return true;
+    log(Level::kError, "{}: cannot give it group {}: {}", path, gid, std::strerror(errno));
+    return false;
+}
 
 // Owns the epoll and signal descriptors.
 struct Fds {
@@ -99,6 +123,7 @@ int serve(const Options& o) {
         log(Level::kError, "{}", why);
         return kExitFailure;
     }
+    if (!give_group(o.socket, o.gid) || !give_group(o.shm, o.gid)) return kExitFailure;
     shm.start();
     if (o.realtime) {
         // Every millisecond the clock catches up with wall time (DESIGN.md section 5).
@@ -181,6 +206,9 @@ int run(int argc, char** argv) {
                  "Emulate firmware without optionTC: the TC module (bus 1300) is absent");
     app.add_option("--max-clients", o.max_clients, "Most socket clients at once (default 64)")
         ->check(CLI::Range(1, 4096));
+    app.add_option("--group", o.group,
+                   "Group of the socket and the dual-port RAM file, so its members may connect "
+                   "(default: the daemon's own group)");
     app.add_option("--log-level", o.log_level, "error, warn, info (default) or debug")
         ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
     app.footer(
@@ -192,6 +220,10 @@ int run(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);
         return code == 0 ? kExitOk : kExitUsage;
+    }
+    if (!o.group.empty() && !resolve_group(o.group, o.gid)) {
+        std::fprintf(stderr, "rwmos-emu: --group %s: no such group\n", o.group.c_str());
+        return kExitUsage;
     }
     if (o.socket.empty() && o.shm.empty()) {
         std::fprintf(stderr, "rwmos-emu: give --socket PATH, --shm PATH or both (see --help)\n");
