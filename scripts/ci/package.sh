@@ -57,11 +57,26 @@ for page in $(dpkg -L apci8001 | grep '/man1/'); do
   echo "man page: $page"
 done
 
+echo "== udev rule and systemd unit"
+test -f /usr/lib/udev/rules.d/60-apci8001.rules && echo "udev rule: /usr/lib/udev/rules.d/60-apci8001.rules"
+if dpkg -L apci8001 | grep -q 'rwmos-emu.service$'; then
+  echo "systemd unit: $(dpkg -L apci8001 | grep 'rwmos-emu.service$')"
+fi
+
 echo "== example against the installed package: pcap_tc_init (pkg-config apci $(pkg-config --modversion apci))"
 # shellcheck disable=SC2046
 cc -std=c11 -Wall -Wextra -Werror -o pcap_tc_init "$OLDPWD/examples/pcap_tc_init.c" $(pkg-config --cflags --libs apci)
 ldd ./pcap_tc_init | grep -q "libapci.so.0 => /usr/lib/" || { echo "pcap_tc_init does not use the installed libapci" >&2; exit 1; }
 ./pcap_tc_init
+if command -v rwmos-emu >/dev/null; then
+  echo "== the same example through the installed daemon (unix:$work/emu.sock)"
+  rwmos-emu --socket "$work/emu.sock" --log-level warn &
+  daemon=$!
+  for _ in $(seq 50); do [ -S "$work/emu.sock" ] && break; sleep 0.1; done
+  ./pcap_tc_init "unix:$work/emu.sock"
+  apcictl --device "unix:$work/emu.sock" status
+  kill "$daemon" && wait "$daemon"
+fi
 
 echo "== CMake package: find_package(apci)"
 mkdir consumer && cat > consumer/CMakeLists.txt <<'CMAKE'
