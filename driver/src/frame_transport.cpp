@@ -91,6 +91,7 @@ Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
     }
 }
 
+// cppcheck-suppress passedByValue ; a sink argument, moved into name_
 FrameTransport::FrameTransport(std::unique_ptr<FrameLink> link, std::string name,
                                Millis timeout) noexcept
     : link_(std::move(link)), name_(std::move(name)), timeout_(timeout) {}

@@ -23,7 +23,7 @@ const V kP(36.0084, 6.177, -1.9209);  // seed 002, face milling, block 13
 const V kN = V(-0.4658107, 0.0, 0.8848844).normalized();
 const V kT = V(0.0, 0.6558846, 0.7548612).normalized();
 
-Settings settings(ToolDimensions tool, Deltas d, ProgPath path = ProgPath::kOff,
+Settings settings(ToolDimensions tool, const Deltas& d, ProgPath path = ProgPath::kOff,
                   ReferencePoint ref = ReferencePoint::kTip) {
     Settings s;
     s.tool = tool;

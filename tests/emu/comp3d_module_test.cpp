@@ -76,7 +76,7 @@ class Comp3dBoard : public MotionBoard {
         return V(e[0], e[1], e[2]);
     }
     // The compensated tip rwmos_comp3d gives for these settings.
-    static V expected(const V& p, const V& n, const V& t, c3::ToolDimensions d, c3::Deltas sum,
+    static V expected(const V& p, const V& n, const V& t, c3::ToolDimensions d, const c3::Deltas& sum,
                       c3::ProgPath path = c3::ProgPath::kOff,
                       c3::ReferencePoint ref = c3::ReferencePoint::kTip) {
         c3::Settings s;

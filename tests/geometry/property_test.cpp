@@ -175,12 +175,14 @@ Contour closed_loop(Rng& rng, double r) {
     const int n = rng.integer(3, 9);
     const double size = r * rng.log_uniform(4, 40);
     std::vector<double> angles;
+    angles.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) angles.push_back(rng.uniform(0, 2 * kPi));
     std::sort(angles.begin(), angles.end());
     const bool reverse = rng.chance(0.5);
     if (reverse) std::reverse(angles.begin(), angles.end());
     std::vector<Vec2> corners;
-    for (double a : angles) corners.push_back(size * rng.uniform(0.6, 1.4) * dir(a));
+    corners.reserve(angles.size());
+    for (double a : angles) corners.emplace_back(size * rng.uniform(0.6, 1.4) * dir(a));
     std::vector<Element> loop;
     for (int i = 0; i < n; ++i) {
         const Vec2 a = corners[i];

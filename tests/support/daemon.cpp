@@ -21,8 +21,6 @@
 
 #include "objif/mailbox.h"
 
-extern char** environ;
-
 namespace apci_test {
 namespace {
 
@@ -37,6 +35,7 @@ std::vector<std::string> environment_with(const std::string& runtime_dir) {
 
 std::vector<char*> pointers(std::vector<std::string>& strings) {
     std::vector<char*> p;
+    p.reserve(strings.size() + 1);
     for (auto& s : strings) p.push_back(s.data());
     p.push_back(nullptr);
     return p;

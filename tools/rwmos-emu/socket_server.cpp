@@ -15,7 +15,7 @@
 namespace rwmos_emu {
 namespace {
 
-constexpr std::size_t kReadChunk = 64 * 1024;
+constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
 
 bool make_address(const std::string& path, sockaddr_un& addr, std::string& why) {
     addr = {};
@@ -207,7 +207,7 @@ bool SocketServer::flush(int fd, Client& c) {
     return true;
 }
 
-void SocketServer::rearm(int fd, Client& c) {
+void SocketServer::rearm(int fd, Client& c) const {
     const std::size_t queued = c.out.size() - c.out_pos;
     // Backpressure: a client that does not read its replies is not read from.
     c.reading = queued < kMaxQueuedReplies;

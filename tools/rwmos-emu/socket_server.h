@@ -56,7 +56,7 @@ class SocketServer {
 
     void drop(int fd, std::string_view why);
     bool flush(int fd, Client& c);  // false: the client is gone
-    void rearm(int fd, Client& c);
+    void rearm(int fd, Client& c) const;
 
     BoardHost& host_;
     int epoll_fd_;

@@ -257,7 +257,7 @@ struct WireSegment {
     std::uint64_t end_cycle = 0;
 };
 inline constexpr std::size_t kWireSampleSize = 8 + 8 * kWireAxisCount;
-inline constexpr std::size_t kWireSegmentSize = 4 + 4 + 2 + 4 + 3 * 8 * kWireAxisCount + 8 + 16;
+inline constexpr std::size_t kWireSegmentSize = 4 + 4 + 2 + 4 + kWireAxisCount * 3 * 8 + 8 + 16;
 inline constexpr std::size_t kTraceReplyHeader = 4 + 1 + 4;
 // The most items one ReadTrace reply carries (the payload limit).
 inline constexpr std::size_t kMaxSamplesPerReply = (kMaxPayload - kTraceReplyHeader) / kWireSampleSize;

@@ -18,7 +18,7 @@ class LineSource {
   public:
     // Longest accepted line in bytes (without its line end); longer lines are an error, so that
     // memory stays bounded whatever the input.
-    static constexpr std::size_t kMaxLineLength = 64 * 1024;
+    static constexpr std::size_t kMaxLineLength = std::size_t{64} * 1024;
 
     // Opens a file for reading; the diagnostic names the path and the system's reason.
     static Result<LineSource> open_file(const std::string& path);
