@@ -37,7 +37,10 @@ apci_install_packages() {
 apci_install_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}"; }
 apci_install_ci_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}" "${APCI_CI_DEB_PACKAGES[@]}"; }
 
-# ccache, where installed, makes a rebuild of an unchanged tree cheap.
+# ccache, where installed, makes a rebuild of an unchanged tree cheap, also
+# across build directories of one checkout (build, build-pkg: same flags).
+# Sourced from the checkout's top directory.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-true}"
 apci_launcher_args() {
   if command -v ccache >/dev/null 2>&1; then
     echo "-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
