@@ -40,14 +40,26 @@ Module* Dictionary::module(std::int32_t bus) const noexcept {
 // Handle layout: bits 31..16 the module's handle generation at issue time,
 // bits 15..0 the slot number + 1. Slots are per address and never freed (the
 // address space of the object map is small and fixed), so a handle stays
-// cheap to check: one vector index and one compare.
+// cheap to check: one vector index and one compare. Issuing finds an
+// address's slot by hash, so resolving every object of the map once costs
+// time linear in the number of objects.
+std::size_t Dictionary::AddressHash::operator()(const Address& a) const noexcept {
+    std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a style, a field at a time
+    for (const std::int32_t field : {a.bus, a.device, a.index, a.subindex}) {
+        h ^= static_cast<std::uint32_t>(field);
+        h *= 0x100000001b3ULL;
+    }
+    return static_cast<std::size_t>(h);
+}
+
 Status Dictionary::issue(const Address& a, Module* m, const ObjectInfo* info, Handle& out) {
     std::size_t slot = slots_.size();
-    for (std::size_t i = 0; i < slots_.size(); ++i)
-        if (slots_[i].address == a) { slot = i; break; }
-    if (slot == slots_.size()) {
+    if (const auto it = slot_of_.find(a); it != slot_of_.end()) {
+        slot = it->second;
+    } else {
         if (slots_.size() >= (1u << kSlotBits) - 1) return Status::kNoMemory;
         slots_.push_back(Slot{a, m, info});
+        slot_of_.emplace(a, slot);
     }
     out = (static_cast<Handle>(m->generation()) << kSlotBits) | static_cast<Handle>(slot + 1);
     return Status::kOk;

@@ -12,6 +12,10 @@
 #   APCI_FUZZ_SEED   libFuzzer's random seed (default 1: the same tree fuzzes
 #                    the same way; 0 picks a new seed each run)
 #   APCI_FUZZ_ONLY   run only these fuzzers (space-separated names)
+#   APCI_FUZZ_MAX_SECONDS  wall-time bound per fuzzer (default 600): a fuzzer
+#                    that has not finished its executions by then fails the
+#                    stage (too slow an input path is a finding too), so the
+#                    stage can never hold CI up
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/deps.sh
@@ -19,6 +23,7 @@ apci_install_ci_deps
 
 runs="${APCI_FUZZ_RUNS:-100000}"
 seed="${APCI_FUZZ_SEED:-1}"
+max_seconds="${APCI_FUZZ_MAX_SECONDS:-600}"
 build=build-fuzz
 # shellcheck disable=SC2046
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -46,7 +51,7 @@ failed=0
 total=0
 for name in "${names[@]}"; do
   mkdir -p "$work/$name"
-  args=(-runs="$runs" -seed="$seed" -timeout=10 -rss_limit_mb=2048 -max_len=4096
+  args=(-runs="$runs" -seed="$seed" -max_total_time="$max_seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096
         -print_final_stats=1 -artifact_prefix="$findings/$name-")
   [ -f "tests/fuzz/$name.dict" ] && args+=(-dict="tests/fuzz/$name.dict")
   dirs=("$work/$name" "tests/fuzz/corpus/$name")
@@ -56,7 +61,7 @@ for name in "${names[@]}"; do
   if "$build/bin/fuzz_$name" "${args[@]}" "${dirs[@]}" >"$log" 2>&1; then
     done_runs=$(sed -n 's/^Done \([0-9]*\) runs.*/\1/p' "$log" | tail -n 1)
     if [ -z "$done_runs" ] || [ "$done_runs" -lt "$runs" ]; then
-      echo "fuzz_$name: ran ${done_runs:-no} executions, expected $runs" >&2
+      echo "fuzz_$name: ran ${done_runs:-no} executions in $((SECONDS - start)) s, expected $runs within $max_seconds s" >&2
       failed=1
       continue
     fi

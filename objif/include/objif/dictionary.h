@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "objif/descriptor.h"
@@ -162,8 +163,13 @@ private:
     static constexpr unsigned kSlotBits = 16;
     Status issue(const Address& a, Module* m, const ObjectInfo* info, Handle& out);
 
+    struct AddressHash {
+        std::size_t operator()(const Address& a) const noexcept;
+    };
+
     std::vector<Module*> modules_;
     std::vector<Slot> slots_;  // slot i <-> handle low bits i+1
+    std::unordered_map<Address, std::size_t, AddressHash> slot_of_;  // address -> slot i
 };
 
 }  // namespace objif
