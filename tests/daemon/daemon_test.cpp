@@ -12,6 +12,8 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/wait.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -215,6 +217,59 @@ TEST(DaemonSocket, PathThatIsNotASocketIsRefusedAndKept) {
     std::string line;
     std::getline(f, line);
     EXPECT_EQ(line, "keep me");
+}
+
+// A client (or a script, or a service manager) that waits for the socket file
+// to appear can connect the moment it sees it: the daemon publishes the file
+// only once it listens. Checked with a client that polls without sleeping,
+// over several starts.
+TEST(DaemonSocket, SocketFileAppearsOnlyOnceTheDaemonListens) {
+    for (int start = 0; start < 20; ++start) {
+        TempDir dir;
+        const std::string path = dir.file("emu.sock");
+        const pid_t pid = ::fork();
+        ASSERT_GE(pid, 0);
+        if (pid == 0) {
+            const int null = ::open("/dev/null", O_WRONLY);
+            ::dup2(null, 2);
+            ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket",
+                    path.c_str(), nullptr);
+            ::_exit(127);
+        }
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (!std::filesystem::exists(path) && std::chrono::steady_clock::now() < deadline) {
+        }
+        const bool appeared = std::filesystem::exists(path);
+        const bool connected = appeared && RawClient(path).connected();
+        ::kill(pid, SIGTERM);
+        ::waitpid(pid, nullptr, 0);
+        ASSERT_TRUE(appeared) << "start " << start;
+        ASSERT_TRUE(connected) << "start " << start << ": the file was there before anyone listened";
+        EXPECT_FALSE(std::filesystem::exists(path + ".new")) << "the staging name is gone";
+    }
+}
+
+TEST(DaemonSocket, StagingNameThatIsNotASocketIsRefusedAndKept) {
+    TempDir dir;
+    const std::string path = dir.file("emu.sock");
+    std::ofstream(path + ".new") << "keep me\n";
+    std::string out;
+    EXPECT_EQ(apci_test::run_daemon({"--socket", path}, out, dir.path()), 1);
+    EXPECT_NE(out.find(path + ".new exists and is not a socket"), std::string::npos) << out;
+    EXPECT_FALSE(std::filesystem::exists(path));
+    std::ifstream f(path + ".new");
+    std::string line;
+    std::getline(f, line);
+    EXPECT_EQ(line, "keep me");
+}
+
+TEST(DaemonSocket, PathTooLongForTheStagingNameIsRefusedWithTheLimit) {
+    TempDir dir;
+    std::string path = dir.path() + "/";
+    path += std::string(sizeof(sockaddr_un::sun_path) - 1 - path.size() - 2, 's');  // fits, its .new not
+    std::string out;
+    EXPECT_EQ(apci_test::run_daemon({"--socket", path}, out, dir.path()), 1);
+    EXPECT_NE(out.find("is too long (at most 103 bytes"), std::string::npos) << out;
 }
 
 TEST(DaemonSocket, SecondDaemonOnTheSameShmFileIsRefused) {

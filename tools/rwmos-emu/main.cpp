@@ -115,7 +115,7 @@ int serve(const Options& o) {
     SocketServer sockets(host, fds.epoll, o.max_clients);
     ShmServer shm(host);
     std::string why;
-    if (!o.socket.empty() && !sockets.open(o.socket, why)) {
+    if (!o.socket.empty() && !sockets.open(o.socket, o.gid, why)) {
         log(Level::kError, "{}", why);
         return kExitFailure;
     }
@@ -123,7 +123,7 @@ int serve(const Options& o) {
         log(Level::kError, "{}", why);
         return kExitFailure;
     }
-    if (!give_group(o.socket, o.gid) || !give_group(o.shm, o.gid)) return kExitFailure;
+    if (!give_group(o.shm, o.gid)) return kExitFailure;
     shm.start();
     if (o.realtime) {
         // Every millisecond the clock catches up with wall time (DESIGN.md section 5).

@@ -16,6 +16,7 @@ namespace rwmos_emu {
 namespace {
 
 constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
+constexpr const char* kStagingSuffix = ".new";
 
 bool make_address(const std::string& path, sockaddr_un& addr, std::string& why) {
     addr = {};
@@ -75,40 +76,71 @@ SocketServer::~SocketServer() {
     close_all();
 }
 
-bool SocketServer::open(const std::string& path, std::string& why) {
+// The socket is made ready under a staging name (`PATH.new`: bound, mode
+// 0660, its group, listening) and only then published at PATH by link(2),
+// which never replaces an existing file. A client that sees PATH can connect
+// at once: there is no window in which the file exists but nobody listens
+// (a client polling for the file would get ECONNREFUSED there), nor one with
+// the wrong group; and a daemon that started meanwhile on the same path is
+// never displaced.
+bool SocketServer::open(const std::string& path, gid_t group, std::string& why) {
     sockaddr_un addr{};
-    if (!make_address(path, addr, why) || !clear_path(path, addr, why)) return false;
+    sockaddr_un staging_addr{};
+    const std::string staging = path + kStagingSuffix;
+    if (!make_address(path, addr, why)) return false;
+    if (!make_address(staging, staging_addr, why)) {
+        why = fmt::format("socket path '{}' is too long (at most {} bytes: the socket is made "
+                          "ready as '{}' first)",
+                          path, sizeof addr.sun_path - 1 - std::strlen(kStagingSuffix), staging);
+        return false;
+    }
+    if (!clear_path(path, addr, why) || !clear_path(staging, staging_addr, why)) return false;
     const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     if (fd < 0) {
         why = fmt::format("socket: {}", std::strerror(errno));
         return false;
     }
+    const auto fail = [&](const std::string& what, int err) {
+        why = fmt::format("{}: {}", what, std::strerror(err));
+        ::close(fd);
+        ::unlink(staging.c_str());
+        return false;
+    };
     // Created 0660 from the start (no window with wider permissions).
     const mode_t old_mask = ::umask(0117);
-    const int rc = ::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr);
+    const int rc = ::bind(fd, reinterpret_cast<const sockaddr*>(&staging_addr), sizeof staging_addr);
     const int err = errno;
     ::umask(old_mask);
     if (rc != 0) {
         ::close(fd);
-        why = fmt::format("bind {}: {}", path, std::strerror(err));
+        why = fmt::format("bind {}: {}", staging, std::strerror(err));
         return false;
     }
-    struct stat st {};
-    if (::chmod(path.c_str(), 0660) != 0 || ::stat(path.c_str(), &st) != 0 ||
-        ::listen(fd, 64) != 0) {
-        why = fmt::format("{}: {}", path, std::strerror(errno));
-        ::close(fd);
-        ::unlink(path.c_str());
-        return false;
-    }
+    if (::chmod(staging.c_str(), 0660) != 0) return fail(staging, errno);
+    if (group != static_cast<gid_t>(-1) && ::lchown(staging.c_str(), static_cast<uid_t>(-1), group) != 0)
+        return fail(fmt::format("{}: cannot give it group {}", staging, group), errno);
+    if (::listen(fd, 64) != 0) return fail(fmt::format("listen {}", staging), errno);
     epoll_event ev{};
     ev.events = EPOLLIN;
     ev.data.fd = fd;
-    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) {
-        why = fmt::format("epoll_ctl: {}", std::strerror(errno));
-        ::close(fd);
+    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) return fail("epoll_ctl", errno);
+    if (::link(staging.c_str(), path.c_str()) != 0) {
+        const int link_err = errno;
+        ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
+        if (link_err == EEXIST)
+            return fail(fmt::format("{} appeared while this daemon was starting (another daemon?); "
+                                    "not replacing it",
+                                    path),
+                        link_err);
+        return fail(fmt::format("publishing {} as {}", staging, path), link_err);
+    }
+    ::unlink(staging.c_str());
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) {
+        const int stat_err = errno;
+        ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
         ::unlink(path.c_str());
-        return false;
+        return fail(path, stat_err);
     }
     listen_fd_ = fd;
     path_ = path;

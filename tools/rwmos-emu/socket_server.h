@@ -29,10 +29,11 @@ class SocketServer {
     SocketServer(const SocketServer&) = delete;
     SocketServer& operator=(const SocketServer&) = delete;
 
-    // Binds and listens on `path` (mode 0660). A stale socket (nobody
-    // listening) is removed first; a live one, or a path that is not a
-    // socket, is refused. False with `why`.
-    bool open(const std::string& path, std::string& why);
+    // Listens on `path` (mode 0660, owned by `group` unless it is -1). A
+    // stale socket (nobody listening) is removed first; a live one, or a path
+    // that is not a socket, is refused. The file appears only once the
+    // daemon listens. False with `why`.
+    bool open(const std::string& path, gid_t group, std::string& why);
 
     int listen_fd() const noexcept { return listen_fd_; }
     bool owns(int fd) const { return clients_.count(fd) != 0; }
