@@ -46,37 +46,32 @@ echo "== installed tools"
 test "$(command -v apcictl)" = /usr/bin/apcictl
 apcictl --help >/dev/null
 apcictl --version
-if dpkg -L apci8001 | grep -qx /usr/bin/rwmos-emu; then
-  rwmos-emu --help >/dev/null
-  echo "rwmos-emu --help: ok"
-else
-  echo "rwmos-emu: not in this tree yet, not packaged" >&2
-fi
+test "$(command -v rwmos-emu)" = /usr/bin/rwmos-emu
+rwmos-emu --help >/dev/null
+echo "rwmos-emu --help: ok"
 for page in $(dpkg -L apci8001 | grep '/man1/'); do
   man -l "$page" >/dev/null 2>&1 || { echo "man page $page does not render" >&2; exit 1; }
   echo "man page: $page"
 done
 
 echo "== udev rule and systemd unit"
-test -f /usr/lib/udev/rules.d/60-apci8001.rules && echo "udev rule: /usr/lib/udev/rules.d/60-apci8001.rules"
-if dpkg -L apci8001 | grep -q 'rwmos-emu.service$'; then
-  echo "systemd unit: $(dpkg -L apci8001 | grep 'rwmos-emu.service$')"
-fi
+test -f /usr/lib/udev/rules.d/60-apci8001.rules
+echo "udev rule: /usr/lib/udev/rules.d/60-apci8001.rules"
+unit=$(dpkg -L apci8001 | grep 'rwmos-emu.service$') || { echo "the systemd unit is not packaged" >&2; exit 1; }
+echo "systemd unit: $unit"
 
 echo "== example against the installed package: pcap_tc_init (pkg-config apci $(pkg-config --modversion apci))"
 # shellcheck disable=SC2046
 cc -std=c11 -Wall -Wextra -Werror -o pcap_tc_init "$OLDPWD/examples/pcap_tc_init.c" $(pkg-config --cflags --libs apci)
 ldd ./pcap_tc_init | grep -q "libapci.so.0 => /usr/lib/" || { echo "pcap_tc_init does not use the installed libapci" >&2; exit 1; }
 ./pcap_tc_init
-if command -v rwmos-emu >/dev/null; then
-  echo "== the same example through the installed daemon (unix:$work/emu.sock)"
-  rwmos-emu --socket "$work/emu.sock" --log-level warn &
-  daemon=$!
-  for _ in $(seq 50); do [ -S "$work/emu.sock" ] && break; sleep 0.1; done
-  ./pcap_tc_init "unix:$work/emu.sock"
-  apcictl --device "unix:$work/emu.sock" status
-  kill "$daemon" && wait "$daemon"
-fi
+echo "== the same example through the installed daemon (unix:$work/emu.sock)"
+rwmos-emu --socket "$work/emu.sock" --log-level warn &
+daemon=$!
+for _ in $(seq 100); do [ -S "$work/emu.sock" ] && break; sleep 0.1; done
+./pcap_tc_init "unix:$work/emu.sock"
+apcictl --device "unix:$work/emu.sock" status
+kill "$daemon" && wait "$daemon"
 
 echo "== CMake package: find_package(apci)"
 mkdir consumer && cat > consumer/CMakeLists.txt <<'CMAKE'
@@ -91,4 +86,8 @@ cmake -S consumer -B consumer/build >/dev/null && cmake --build consumer/build >
 
 echo "== apcictl script against the embedded emulator"
 printf 'write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\nstatus\n' | apcictl script -
+echo "== apcictl run: an NC program with its path plot, by the installed apcictl"
+apcictl run "$OLDPWD/examples/wr_quad_disc.nc" --tools "$OLDPWD/examples/tools/wr_quad_disc.tools" \
+  --svg run.svg --json run.json
+test -s run.svg && test -s run.json
 echo "package: installed, tools and example ran from the installed files"
