@@ -63,7 +63,12 @@ echo "systemd unit: $unit"
 echo "== example against the installed package: pcap_tc_init (pkg-config apci $(pkg-config --modversion apci))"
 # shellcheck disable=SC2046
 cc -std=c11 -Wall -Wextra -Werror -o pcap_tc_init "$OLDPWD/examples/pcap_tc_init.c" $(pkg-config --cflags --libs apci)
-ldd ./pcap_tc_init | grep -q "libapci.so.0 => /usr/lib/" || { echo "pcap_tc_init does not use the installed libapci" >&2; exit 1; }
+# The loader finds the installed library in the multiarch directory, reached
+# as /usr/lib/... or, on a merged-/usr system, /lib/... (the same file).
+used=$(ldd ./pcap_tc_init | sed -n 's/^\s*libapci\.so\.0 => \(\S*\).*/\1/p')
+installed=$(dpkg -L apci8001 | grep '/libapci\.so\.0$')
+[ -n "$used" ] && [ "$(realpath "$used")" = "$(realpath "$installed")" ] || {
+  echo "pcap_tc_init uses '${used:-no libapci}', not the installed $installed" >&2; exit 1; }
 ./pcap_tc_init
 echo "== the same example through the installed daemon (unix:$work/emu.sock)"
 rwmos-emu --socket "$work/emu.sock" --log-level warn &
