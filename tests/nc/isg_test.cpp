@@ -396,8 +396,8 @@ TEST(Variables, WearConstIsReadFromTheToolAndWritable) {
 
 TEST(Variables, WearVariablesAreReadOnly) {
     EXPECT_EQ(error_of("V.G.WZ_AKT.WEAR_RADIUS = 1\nM30\n"),
-              "prog.nc:1:1: V.G.WZ_AKT.WEAR_RADIUS is read-only (only V.G.WZ_AKT.WEAR_CONST is "
-              "written by programs)");
+              "prog.nc:1:1: V.G.WZ_AKT.WEAR_RADIUS is read-only (only V.G.WZ_AKT.WEAR_CONST and "
+              "$SC_TOOL_TEMP_COMP[i] are written by programs)");
     EXPECT_NE(error_of("V.G.WZ_AKT.WEAR_CONST = -1\nM30\n"), "");
 }
 

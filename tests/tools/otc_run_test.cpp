@@ -356,9 +356,10 @@ TEST(PlcScript, ParsesCycleAndBlockWritesInOrder) {
     const auto& c = s.value().cycle_writes();
     ASSERT_EQ(c.size(), 2u);
     EXPECT_EQ(c[0].at, 0u);  // sorted by cycle
-    EXPECT_TRUE(c[0].channel);
+    EXPECT_EQ(c[0].unit, apci::run::PlcWrite::Unit::kOtcRadiusOffset);
     EXPECT_EQ(c[0].value, 20000);
-    EXPECT_EQ(c[1].axis, 2);
+    EXPECT_EQ(c[1].unit, apci::run::PlcWrite::Unit::kOtcOffset);
+    EXPECT_EQ(c[1].index, 2);
     EXPECT_EQ(c[1].value, -500);
     ASSERT_EQ(s.value().block_writes().size(), 1u);
     EXPECT_EQ(s.value().block_writes()[0].field, apci::run::PlcWrite::Field::kEnable);
@@ -374,7 +375,8 @@ TEST(PlcScript, ErrorsSayWhatWasExpected) {
     EXPECT_EQ(err("at 5 x 1"),
               "p.plc:1:1: expected 'cycle N' or 'block N' at the start of the line");
     EXPECT_EQ(err("cycle 5 motor.command 1"),
-              "p.plc:1:9: unknown unit (known: otc_radius_offset, otc_offset[i])");
+              "p.plc:1:9: unknown unit (known: otc_radius_offset, otc_offset[i], "
+              "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i])");
     EXPECT_EQ(err("cycle 5 otc_offset[9].command 1"), "p.plc:1:9: otc_offset[i]: axis index 0..7");
     EXPECT_EQ(err("cycle 5 otc_offset[1].speed 1"),
               "p.plc:1:23: unknown field (known: command, enable)");

@@ -160,8 +160,8 @@ class RunCommand final : public Command {
                                           "the program's")
             ->check(CLI::IsMember({17, 18, 19}));
         app.add_option("--plc", plc_,
-                       "A scripted PLC: OTC control-unit writes at cycles or blocks "
-                       "(docs/apcictl.md)");
+                       "A scripted PLC: writes to the OTC control units and the temperature "
+                       "compensation's data at cycles or blocks (docs/apcictl.md)");
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
                        "change, seed FCT-C20 section 2.9)");

@@ -106,6 +106,7 @@ class Evaluator {
         }
         if (to_upper(ch) == 'P' && is_digit(c_.peek_at(1))) return parameter(out);
         if (to_upper(ch) == 'V' && c_.peek_at(1) == '.') return variable(out);
+        if (ch == '$' && at_setting_data(c_)) return variable(out);
         if (is_letter(ch)) return function(out);
         if (c_.at_end() || ch == ';' || ch == '(')
             return fail(ErrorKind::kSyntax, col, "expected a value: the expression ends here");
@@ -167,7 +168,8 @@ class Evaluator {
         else
             return fail(ErrorKind::kSyntax, col,
                         fmt::format("unknown name '{}' in an expression (known: numbers, P "
-                                    "parameters, V.G. variables, ABS SQRT SIN COS TAN ATAN)",
+                                    "parameters, V.G. variables, $SC_ setting data, ABS SQRT SIN COS "
+                                    "TAN ATAN)",
                                     name));
         c_.skip_blanks();
         if (c_.peek() != '[')
@@ -219,11 +221,69 @@ std::string variable_name(const VariableRef& v) {
             return "V.G.WZ_AKT.WEAR_CONST";
         case NcVariable::kOtcActive:
             return "V.G.OTC_ACTIVE";
+        case NcVariable::kToolTempComp:
+            return fmt::format("$SC_TOOL_TEMP_COMP[{}]", v.index);
     }
     return "?";
 }
 
+bool at_setting_data(const LineCursor& c) noexcept {
+    return c.peek() == '$' && is_letter(c.peek_at(1)) && is_letter(c.peek_at(2)) &&
+           c.peek_at(3) == '_';
+}
+
+namespace {
+
+// At "$": the setting data of seed 004 (SD 42960 TOOL_TEMP_COMP[i], a channel setting datum,
+// so $SC_); the machine data next to it are named, since programs do not write them.
+bool scan_setting_data(LineCursor& c, VariableRef& out, ExpressionError& err) {
+    const std::uint32_t col = c.column();
+    auto fail = [&](std::string message) {
+        err.kind = ErrorKind::kSyntax;
+        err.column = col;
+        err.message = std::move(message);
+        return false;
+    };
+    c.advance();  // '$'
+    const std::string_view name = c.scan_identifier();
+    if (keyword_is(name, "SN_TOOL_TEMP_COMP") || keyword_is(name, "SA_TOOL_TEMP_COMP"))
+        return fail(fmt::format("${}: SD 42960 TOOL_TEMP_COMP is a channel setting datum, "
+                                "$SC_TOOL_TEMP_COMP[i]",
+                                name));
+    if (keyword_is(name, "MC_TOOL_TEMP_COMP_ON") || keyword_is(name, "MA_TEMP_COMP_TYPE"))
+        return fail(fmt::format("${} is machine data (MD 20390 / MD 32750), which programs do "
+                                "not write: it is set on the board (bus 1320), e.g. by the "
+                                "apcictl run --plc script",
+                                name));
+    if (!keyword_is(name, "SC_TOOL_TEMP_COMP"))
+        return fail(fmt::format("unknown setting datum ${} (known: $SC_TOOL_TEMP_COMP[i])", name));
+    auto bad_index = [&] {
+        return fail(fmt::format("$SC_TOOL_TEMP_COMP[i] takes a component index 0..{} (X, Y, Z "
+                                "of the geometry axes)",
+                                kToolTempCompCount - 1));
+    };
+    if (c.peek() != '[') return bad_index();
+    c.advance();
+    c.skip_blanks();
+    int n = 0;
+    bool any = false;
+    while (is_digit(c.peek())) {
+        n = n * 10 + (c.peek() - '0');
+        any = true;
+        c.advance();
+        if (n >= kToolTempCompCount) break;
+    }
+    c.skip_blanks();
+    if (!any || n >= kToolTempCompCount || c.peek() != ']') return bad_index();
+    c.advance();
+    out = {NcVariable::kToolTempComp, n};
+    return true;
+}
+
+}  // namespace
+
 bool scan_variable(LineCursor& c, VariableRef& out, ExpressionError& err) {
+    if (c.peek() == '$') return scan_setting_data(c, out, err);
     const std::uint32_t col = c.column();
     auto fail = [&](std::string message) {
         err.kind = ErrorKind::kSyntax;
@@ -233,7 +293,7 @@ bool scan_variable(LineCursor& c, VariableRef& out, ExpressionError& err) {
     };
     constexpr std::string_view kKnown =
         "V.G.WZ_AKT.WEAR_RADIUS, V.G.WZ_AKT.WEAR_RADIUS_CONT, V.G.WZ_AKT.WEAR[i], "
-        "V.G.WZ_AKT.WEAR.<axis>, V.G.WZ_AKT.WEAR_CONST, V.G.OTC_ACTIVE";
+        "V.G.WZ_AKT.WEAR.<axis>, V.G.WZ_AKT.WEAR_CONST, V.G.OTC_ACTIVE, $SC_TOOL_TEMP_COMP[i]";
     // The name: identifiers joined by '.', case-insensitive.
     auto part = [&](std::string_view upper) { return keyword_is(c.scan_identifier(), upper); };
     if (!part("V") || c.peek() != '.') return fail(fmt::format("expected a variable ({})", kKnown));

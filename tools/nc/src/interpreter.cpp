@@ -390,7 +390,10 @@ bool Interpreter::apply_variable_write(const Assignment& a, const Block& b, std:
         return c.fail(ErrorKind::kProgramRule, a.column,
                       fmt::format("{} is read-only", variable_name(a.variable)));
     }
-    state_.tool_wear_const = a.value;
+    if (a.variable.variable == NcVariable::kToolTempComp)
+        state_.tool_temp_comp[static_cast<std::size_t>(a.variable.index)] = a.value;
+    else
+        state_.tool_wear_const = a.value;
     out.push(BlockOrigin{b.block_number(), b.line}, VariableWrite{a.variable, a.value});
     return true;
 }
@@ -411,6 +414,8 @@ double Interpreter::model_variable(const VariableRef& v) const noexcept {
                                     : nullptr;
             return t != nullptr ? t->grinding_wear_const : 0.0;
         }
+        case NcVariable::kToolTempComp:
+            return state_.tool_temp_comp[static_cast<std::size_t>(v.index)];
         case NcVariable::kWearRadius:
         case NcVariable::kWearRadiusCont:
         case NcVariable::kWear:

@@ -91,7 +91,8 @@ class BlockParser {
                                      "ISG commands and assignments stand in a block of their own "
                                      "(after an optional N number)");
                 }
-                return ch == '#' || ch == '$' ? isg_command() : assignment();
+                return (ch == '#' || ch == '$') && !at_setting_data(c_) ? isg_command()
+                                                                          : assignment();
             }
             if (!is_letter(ch)) {
                 if (first && is_digit(ch)) {
@@ -149,6 +150,7 @@ class BlockParser {
     bool is_assignment_start() const {
         const char ch = to_upper(c_.peek());
         if (ch == 'V' && c_.peek_at(1) == '.') return true;
+        if (at_setting_data(c_)) return true;
         if (ch != 'P' || !is_digit(c_.peek_at(1))) return false;
         std::size_t i = 1;
         while (is_digit(c_.peek_at(i))) ++i;
@@ -199,8 +201,8 @@ class BlockParser {
             if (!scan_variable(c_, a.variable, e)) return fail_here(e.kind, e.column, e.message);
             if (!variable_writable(a.variable)) {
                 return fail_here(ErrorKind::kProgramRule, a.column,
-                                 fmt::format("{} is read-only (only V.G.WZ_AKT.WEAR_CONST is "
-                                             "written by programs)",
+                                 fmt::format("{} is read-only (only V.G.WZ_AKT.WEAR_CONST and "
+                                             "$SC_TOOL_TEMP_COMP[i] are written by programs)",
                                              variable_name(a.variable)));
             }
             a.to_parameter = false;
@@ -211,9 +213,16 @@ class BlockParser {
         }
         c_.advance();
         if (!expression(a.value)) return false;
-        if (!a.to_parameter && a.value < 0.0) {
+        if (!a.to_parameter && a.variable.variable == NcVariable::kWearConst && a.value < 0.0) {
             return fail_here(ErrorKind::kValue, a.column,
                              "V.G.WZ_AKT.WEAR_CONST must not be negative (0.1 um/m, P-TOOL-00030)");
+        }
+        if (!a.to_parameter && a.variable.variable == NcVariable::kToolTempComp &&
+            !(std::fabs(a.value) <= kToolTempCompLimit)) {
+            return fail_here(ErrorKind::kValue, a.column,
+                             fmt::format("{} = {} out of range: SD 42960 takes -{:g}..{:g} mm",
+                                         variable_name(a.variable), a.value, kToolTempCompLimit,
+                                         kToolTempCompLimit));
         }
         if (!end_of_command("the assignment")) return false;
         out_.kind = LineKind::kAssignment;

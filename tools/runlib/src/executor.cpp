@@ -116,9 +116,17 @@ class RecentMoves {
 };
 
 namespace otc = rwmos::otc;
+namespace tcomp = rwmos::tempcomp;
+
+// The front end checks $SC_TOOL_TEMP_COMP[i] against the range of the board's object.
+static_assert(nc::kToolTempCompLimit == tcomp::kMaxValue);
+static_assert(nc::kToolTempCompCount == 3);
 
 ObjectDescriptor otc_object(std::int32_t dev, std::int32_t index, std::int32_t sub = 0) noexcept {
     return apci::object(otc::kBus, dev, index, sub);
+}
+ObjectDescriptor temp_object(std::int32_t index, std::int32_t sub = 0) noexcept {
+    return apci::object(tcomp::kBus, tcomp::kDevice, index, sub);
 }
 
 class Execution {
@@ -205,6 +213,7 @@ class Execution {
                 axis_column_name(static_cast<int>(i), axes_[0], axes_[1], axes_[2]);
         if (out_.tc_present && !setup_groups()) return false;
         if (!otc_setup()) return false;
+        if (!temp_setup()) return false;
 
         sink_.axes(out_.axis_names);
         sink_.axis_numbers(axes_);
@@ -261,10 +270,8 @@ class Execution {
         if (set_up_ && clock_ok_) (void)run_clock();
         // PLC writes due after the program's last move: the clock runs on to them.
         if (set_up_ && clock_ok_ && out_.errors.empty()) (void)plc_after_end();
-        if (set_up_ && out_.otc_present) {
-            check_out_tool();
-            read_variables();
-        }
+        if (set_up_ && out_.otc_present) check_out_tool();
+        if (set_up_) read_variables();
         out_.tools_after = tools_mut_;
         if (out_.tc_present) read_registers();
         out_.totals.cycles = cycles_seen_ - start_cycle_;
@@ -931,7 +938,15 @@ class Execution {
     }
 
     // V.G.WZ_AKT.WEAR_CONST = value: the tool's wear constant, on the board and in the list.
+    // $SC_TOOL_TEMP_COMP[i] = value: the setting datum on the board, after the moves before it
+    // have run (the axes stop: it takes effect at its place in the program).
     bool variable_write(const BlockRef& at, const nc::VariableWrite& e) {
+        if (e.variable.variable == nc::NcVariable::kToolTempComp) {
+            const std::string what = nc::variable_name(e.variable);
+            if (!temp_needed(at, what) || !run_clock()) return false;
+            return temp_write(temp_object(tcomp::kIdxToolTempComp, e.variable.index), e.value, at,
+                              what);
+        }
         if (!otc_needed(at, "V.G.WZ_AKT.WEAR_CONST")) return false;
         auto o = otc_object(otc::kDevTool, otc::kIdxToolWearConst);
         if (!otc_write(o, e.value, at, "V.G.WZ_AKT.WEAR_CONST")) return false;
@@ -944,6 +959,20 @@ class Execution {
     std::int32_t channel_axis(int i) const noexcept { return i < 3 ? axis(i) : i; }
 
     bool read_variable(const nc::VariableRef& v, double& out, std::string& why) {
+        if (v.variable == nc::NcVariable::kToolTempComp) {
+            if (!temp_present_) {
+                why = "the board has no temperature compensation (bus 1320)";
+                return false;
+            }
+            auto o = temp_object(tcomp::kIdxToolTempComp, v.index);
+            const auto r = board_.read_double(o);
+            if (!r) {
+                why = std::string(board_.last_error());
+                return false;
+            }
+            out = r.value;
+            return true;
+        }
         if (!out_.otc_present) {
             why = "the board has no OTC module (bus 1330)";
             return false;
@@ -967,6 +996,8 @@ class Execution {
                 o = otc_object(otc::kDevChannel, otc::kIdxActive);
                 is_int = true;
                 break;
+            case nc::NcVariable::kToolTempComp:
+                break;  // above
         }
         if (is_int) {
             const auto r = board_.read_int(o);
@@ -993,12 +1024,46 @@ class Execution {
             std::string why;
             if (read_variable(v, value, why)) out_.variables.emplace_back(std::move(name), value);
         };
-        add("V.G.OTC_ACTIVE", {nc::NcVariable::kOtcActive, 0});
-        add("V.G.WZ_AKT.WEAR_CONST", {nc::NcVariable::kWearConst, 0});
-        add("V.G.WZ_AKT.WEAR_RADIUS", {nc::NcVariable::kWearRadius, 0});
-        add("V.G.WZ_AKT.WEAR_RADIUS_CONT", {nc::NcVariable::kWearRadiusCont, 0});
-        for (int i = 0; i < APCI_AXIS_COUNT; ++i)
-            add(fmt::format("V.G.WZ_AKT.WEAR[{}]", i), {nc::NcVariable::kWear, i});
+        if (out_.otc_present) {
+            add("V.G.OTC_ACTIVE", {nc::NcVariable::kOtcActive, 0});
+            add("V.G.WZ_AKT.WEAR_CONST", {nc::NcVariable::kWearConst, 0});
+            add("V.G.WZ_AKT.WEAR_RADIUS", {nc::NcVariable::kWearRadius, 0});
+            add("V.G.WZ_AKT.WEAR_RADIUS_CONT", {nc::NcVariable::kWearRadiusCont, 0});
+            for (int i = 0; i < APCI_AXIS_COUNT; ++i)
+                add(fmt::format("V.G.WZ_AKT.WEAR[{}]", i), {nc::NcVariable::kWear, i});
+        }
+        for (int i = 0; i < nc::kToolTempCompCount; ++i) {
+            const nc::VariableRef v{nc::NcVariable::kToolTempComp, i};
+            add(nc::variable_name(v), v);
+        }
+    }
+
+    // ---- temperature compensation (bus 1320; docs/temperature-compensation.md)
+
+    // Only whether the board has it: its setting and machine data are the machine's, kept from
+    // run to run as on a control (the PLC or the program writes the setting data).
+    bool temp_setup() {
+        auto on = temp_object(tcomp::kIdxToolTempCompOn);
+        const auto r = board_.read_int(on);
+        if (r.status == APCI_NO_SUCH_DEVICE) return true;
+        if (!r) return board_failure({}, r.status, "read TOOL_TEMP_COMP_ON");
+        temp_present_ = true;
+        return true;
+    }
+
+    bool temp_needed(const BlockRef& at, std::string_view what) {
+        if (temp_present_) return true;
+        return record(at, "NoSuchDevice",
+                      fmt::format("{} needs the temperature compensation (bus 1320, firmware "
+                                  "option 0x04), which this board does not have",
+                                  what));
+    }
+
+    template <typename T>
+    bool temp_write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
+        const auto r = board_.write(o, value);
+        if (r.ok()) return true;
+        return board_failure(at, r.status, what);
     }
 
     // ---- the scripted PLC (apcictl run --plc)
@@ -1050,11 +1115,28 @@ class Execution {
                                 : BlockRef{};
         const std::string what =
             fmt::format("{}:{}: PLC {} = {}", plc_->file(), w.line, plc_unit_name(w), w.value);
+        switch (w.unit) {
+            case PlcWrite::Unit::kToolTempComp:
+                return temp_needed(at, what) &&
+                       temp_write(temp_object(tcomp::kIdxToolTempComp, w.index), w.value, at, what);
+            case PlcWrite::Unit::kToolTempCompOn:
+                return temp_needed(at, what) &&
+                       temp_write(temp_object(tcomp::kIdxToolTempCompOn),
+                                  static_cast<std::int32_t>(w.value), at, what);
+            case PlcWrite::Unit::kTempCompType:
+                return temp_needed(at, what) &&
+                       temp_write(temp_object(tcomp::kIdxTempCompType, channel_axis(w.index)),
+                                  static_cast<std::int32_t>(w.value), at, what);
+            case PlcWrite::Unit::kOtcRadiusOffset:
+            case PlcWrite::Unit::kOtcOffset:
+                break;
+        }
         if (!otc_needed(at, what)) return false;
         const std::int32_t sub = w.field == PlcWrite::Field::kCommand ? otc::kSubCommand : otc::kSubEnable;
-        auto o = w.channel ? otc_object(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, sub)
-                           : otc_object(otc::kDevAxisUnits, channel_axis(w.axis), sub);
-        return otc_write(o, w.value, at, what);
+        auto o = w.unit == PlcWrite::Unit::kOtcRadiusOffset
+                     ? otc_object(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, sub)
+                     : otc_object(otc::kDevAxisUnits, channel_axis(w.index), sub);
+        return otc_write(o, static_cast<std::int32_t>(w.value), at, what);
     }
 
     // ---- board access
@@ -1308,6 +1390,7 @@ class Execution {
     int current_tool_ = 0;
     double reported_radius_wear_ = 0.0;  // the board's wear variables already in the list
     double reported_cont_wear_ = 0.0;
+    bool temp_present_ = false;  // the board has the temperature compensation (bus 1320)
 
     class BoardVariables final : public nc::VariableSource {
       public:

@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "apci/nc/lexer.h"
+#include "rwmos/object_map.h"
 
 namespace apci::run {
 
@@ -85,23 +87,42 @@ class LineParser {
         }
         return true;
     }
+    // "[i]" with i in 0..last; `what` names the unit in the error.
+    bool bracket_index(int& out, int last, std::string_view what, std::uint32_t col) {
+        if (c_.peek() != '[')
+            return fail(c_.column(), fmt::format("expected '[i]' after {}", what));
+        c_.advance();
+        std::uint64_t i = 0;
+        if (!whole(i, fmt::format("{}[", what))) return false;
+        if (i > static_cast<std::uint64_t>(last))
+            return fail(col, fmt::format("{}[i]: {} index 0..{}", what,
+                                         what == "tool_temp_comp" ? "component" : "axis", last));
+        if (c_.peek() != ']') return fail(c_.column(), "expected ']' after the index");
+        c_.advance();
+        out = static_cast<int>(i);
+        return true;
+    }
     bool unit(PlcWrite& w) {
         const std::uint32_t col = c_.column();
         const std::string_view name = c_.scan_identifier();
         if (word_is(name, "otc_radius_offset")) {
-            w.channel = true;
+            w.unit = PlcWrite::Unit::kOtcRadiusOffset;
         } else if (word_is(name, "otc_offset")) {
-            w.channel = false;
-            if (c_.peek() != '[') return fail(c_.column(), "expected '[axis]' after otc_offset");
-            c_.advance();
-            std::uint64_t axis = 0;
-            if (!whole(axis, "otc_offset[")) return false;
-            if (axis > 7) return fail(col, "otc_offset[i]: axis index 0..7");
-            if (c_.peek() != ']') return fail(c_.column(), "expected ']' after the axis index");
-            c_.advance();
-            w.axis = static_cast<int>(axis);
+            w.unit = PlcWrite::Unit::kOtcOffset;
+            if (!bracket_index(w.index, 7, "otc_offset", col)) return false;
+        } else if (word_is(name, "tool_temp_comp")) {
+            w.unit = PlcWrite::Unit::kToolTempComp;
+            return bracket_index(w.index, 2, "tool_temp_comp", col);
+        } else if (word_is(name, "tool_temp_comp_on")) {
+            w.unit = PlcWrite::Unit::kToolTempCompOn;
+            return true;
+        } else if (word_is(name, "temp_comp_type")) {
+            w.unit = PlcWrite::Unit::kTempCompType;
+            return bracket_index(w.index, 7, "temp_comp_type", col);
         } else {
-            return fail(col, "unknown unit (known: otc_radius_offset, otc_offset[i])");
+            return fail(col,
+                        "unknown unit (known: otc_radius_offset, otc_offset[i], "
+                        "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i])");
         }
         if (c_.peek() != '.')
             return fail(c_.column(), "expected '.command' or '.enable' after the unit");
@@ -119,7 +140,11 @@ class LineParser {
     }
     bool value(PlcWrite& w) {
         const std::uint32_t col = c_.column();
-        if (w.field == PlcWrite::Field::kEnable && nc::is_letter(c_.peek())) {
+        const bool flag = (w.otc() && w.field == PlcWrite::Field::kEnable) ||
+                          w.unit == PlcWrite::Unit::kToolTempCompOn;
+        const char* flag_error = w.otc() ? "enable takes 0, 1, TRUE or FALSE"
+                                         : "tool_temp_comp_on (MD 20390) takes 0, 1, TRUE or FALSE";
+        if (flag && nc::is_letter(c_.peek())) {
             const std::string_view v = c_.scan_identifier();
             if (word_is(v, "true")) {
                 w.value = 1;
@@ -129,17 +154,41 @@ class LineParser {
                 w.value = 0;
                 return true;
             }
-            return fail(col, "enable takes 0, 1, TRUE or FALSE");
+            return fail(col, flag_error);
         }
         double d = 0.0;
-        if (c_.scan_number(d) != nc::NumberScan::kOk) return fail(col, "expected a value");
+        if (c_.scan_number(d) != nc::NumberScan::kOk || !std::isfinite(d))
+            return fail(col, "expected a value (a finite number)");
+        switch (w.unit) {
+            case PlcWrite::Unit::kToolTempComp:
+                // The object's range (bus 1320 Index 1, docs/object-map.md section 7).
+                if (!(std::fabs(d) <= rwmos::tempcomp::kMaxValue))
+                    return fail(col, fmt::format("tool_temp_comp[{}] (SD 42960, mm) takes "
+                                                 "-{:g}..{:g}",
+                                                 w.index, rwmos::tempcomp::kMaxValue,
+                                                 rwmos::tempcomp::kMaxValue));
+                w.value = d;
+                return true;
+            case PlcWrite::Unit::kToolTempCompOn:
+                if (d != 0.0 && d != 1.0) return fail(col, flag_error);
+                w.value = d;
+                return true;
+            case PlcWrite::Unit::kTempCompType:
+                if (d != std::floor(d) || d < 0.0 || d > 255.0)
+                    return fail(col, "temp_comp_type[i] (MD 32750) takes a whole number 0..255 "
+                                     "(bit 2, 4: the axis takes the vector)");
+                w.value = d;
+                return true;
+            case PlcWrite::Unit::kOtcRadiusOffset:
+            case PlcWrite::Unit::kOtcOffset:
+                break;
+        }
         if (d != static_cast<double>(static_cast<std::int64_t>(d)) ||
             d < static_cast<double>(std::numeric_limits<std::int32_t>::min()) ||
             d > static_cast<double>(std::numeric_limits<std::int32_t>::max()))
             return fail(col, "the value must be a whole number in the DINT range (0.1 um)");
-        if (w.field == PlcWrite::Field::kEnable && d != 0.0 && d != 1.0)
-            return fail(col, "enable takes 0, 1, TRUE or FALSE");
-        w.value = static_cast<std::int32_t>(d);
+        if (w.field == PlcWrite::Field::kEnable && d != 0.0 && d != 1.0) return fail(col, flag_error);
+        w.value = d;
         return true;
     }
 
@@ -153,8 +202,19 @@ class LineParser {
 
 std::string plc_unit_name(const PlcWrite& w) {
     const char* field = w.field == PlcWrite::Field::kCommand ? "command" : "enable";
-    if (w.channel) return fmt::format("otc_radius_offset.{}", field);
-    return fmt::format("otc_offset[{}].{}", w.axis, field);
+    switch (w.unit) {
+        case PlcWrite::Unit::kOtcRadiusOffset:
+            return fmt::format("otc_radius_offset.{}", field);
+        case PlcWrite::Unit::kOtcOffset:
+            return fmt::format("otc_offset[{}].{}", w.index, field);
+        case PlcWrite::Unit::kToolTempComp:
+            return fmt::format("tool_temp_comp[{}]", w.index);
+        case PlcWrite::Unit::kToolTempCompOn:
+            return "tool_temp_comp_on";
+        case PlcWrite::Unit::kTempCompType:
+            return fmt::format("temp_comp_type[{}]", w.index);
+    }
+    return "?";
 }
 
 nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view file) {

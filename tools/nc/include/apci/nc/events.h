@@ -164,7 +164,8 @@ struct NotEmulated {
 };
 
 // V.G.WZ_AKT.WEAR_CONST = value (seed 000 section 2.8): the executor writes the tool's wear
-// constant (0.1 um/m).
+// constant (0.1 um/m). $SC_TOOL_TEMP_COMP[i] = value (seed 004, SD 42960): the executor writes
+// the temperature compensation's component i (mm) after the moves before it have run.
 struct VariableWrite {
     VariableRef variable;
     double value = 0.0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 
 #include "apci/nc/parser.h"
@@ -36,6 +37,8 @@ struct ModalState {
     double otc_wear_const = 0.0;             // the WEAR_CONST=.. value
     // V.G.WZ_AKT.WEAR_CONST written by the program (the tool's constant from then on).
     std::optional<double> tool_wear_const;
+    // $SC_TOOL_TEMP_COMP[0..2] (SD 42960, seed 004) as written by the program, 0 before.
+    std::array<double, kToolTempCompCount> tool_temp_comp{};
     int kinematics = 0;  // #KIN ID
     bool trafo = false;  // #TRAFO ON: positions are the tool tip (DESIGN.md section 8)
     double trafo_length = 0.0;  // the tool length (mm) the transformation uses
@@ -62,12 +65,13 @@ class Interpreter {
     // rules, commits, fills `out`. `block` carries the line's N number and line.
     bool apply_isg(const IsgLine& isg, const Block& block, std::string_view file, EventBatch& out,
                    Diagnostic& err);
-    // V.G.WZ_AKT.WEAR_CONST = value.
+    // V.G.WZ_AKT.WEAR_CONST = value, $SC_TOOL_TEMP_COMP[i] = value.
     bool apply_variable_write(const Assignment& a, const Block& block, std::string_view file,
                               EventBatch& out, Diagnostic& err);
     // The front end's own view of a variable (docs/nc-programs.md): V.G.OTC_ACTIVE as
-    // programmed, V.G.WZ_AKT.WEAR_CONST from the tool list or as written; the wear itself is the
-    // board's (0 here; the executor supplies the board's values through a VariableSource).
+    // programmed, V.G.WZ_AKT.WEAR_CONST from the tool list or as written, $SC_TOOL_TEMP_COMP[i]
+    // as written (0 before); the wear itself is the board's (0 here; the executor supplies the
+    // board's values through a VariableSource).
     double model_variable(const VariableRef& v) const noexcept;
 
   private:

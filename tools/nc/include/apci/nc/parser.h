@@ -33,7 +33,8 @@ enum class LineKind : std::uint8_t {
     kProgramName,  // "%name"
     kBlock,        // at least one word (an "N10" alone is a block)
     kIsg,          // an ISG command: #OTC, #KIN, #TRAFO, #HSC, $FOR, $ENDFOR (after an optional N)
-    kAssignment,   // "P1 = expr" or "V.G.WZ_AKT.WEAR_CONST = expr" (after an optional N)
+    kAssignment,   // "P1 = expr", "V.G.WZ_AKT.WEAR_CONST = expr" or
+                   // "$SC_TOOL_TEMP_COMP[i] = expr" (after an optional N)
 };
 
 // #OTC ON | OFF [ RADIUS | LENGTH | TOOL_DIR | SURF_NORM_DIR  DISC | CONT | AUTO

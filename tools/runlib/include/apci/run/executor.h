@@ -17,7 +17,10 @@
 //             until the moves before it have run); #KIN/#TRAFO its Kinematics/Trafo; D n also
 //             the tool's grinding data (typ, P-TOOL-00030/31/138) after checking the old tool's
 //             wear into the tool list (seed 000 section 2.9); V.G. variables read from it
-//   --plc     a scripted PLC writing the control units at cycles or blocks (plc_script.h)
+//   $SC_TOOL_TEMP_COMP[i]  the temperature compensation (bus 1320): SD 42960 component i,
+//             after the moves before it have run
+//   --plc     a scripted PLC writing the OTC control units and the temperature compensation's
+//             data at cycles or blocks (plc_script.h)
 //   Klartext  the 3D compensation module (bus 1310): TOOL CALL into its tool table and Tool,
 //             M107/M108, TCPM, PROG PATH, RL/RR as its Side; LN as armed N/T and a G01 whose end
 //             the board compensates; B/C of L lines as board axes 4 and 5 (the first free ones)
@@ -91,7 +94,8 @@ struct RunOutcome {
     // Accepted commands the emulator does not emulate (#HSC), by block; not errors.
     std::vector<RunError> notices;
     // The readable NC variables at the end by their seed names (V.G.OTC_ACTIVE,
-    // V.G.WZ_AKT.WEAR_RADIUS, ...); empty without the OTC module.
+    // V.G.WZ_AKT.WEAR_RADIUS, ... with the OTC module; $SC_TOOL_TEMP_COMP[0..2] with the
+    // temperature compensation).
     std::vector<std::pair<std::string, double>> variables;
     // The tool list as the run left it: the wear of every tool changed out (and of the last
     // one, at the end) folded into its radius and length, its wear fields added up.

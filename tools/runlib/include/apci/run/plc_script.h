@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: MIT
 // `apcictl run --plc FILE`: a scripted PLC for the OTC control units (seed 000, FCT-C20,
-// section 2.7), so that a DISC program runs end to end without a real PLC. One write a line:
+// section 2.7) and the temperature compensation's setting data (seed 004, SD 42960: "von der
+// PLC aus vom Anwender beschrieben"), so that a program runs end to end without a real PLC.
+// One write a line:
 //
 //   # when        unit                        value
 //   cycle 0       otc_radius_offset.enable    1
 //   block 60      otc_radius_offset.command   20000
 //   cycle 15000   otc_offset[2].command       -500
+//   cycle 0       tool_temp_comp_on           1
+//   cycle 0       temp_comp_type[2]           4
+//   cycle 8000    tool_temp_comp[2]           0.015
 //
 // `cycle N`: when the board's clock, counted from the start of the run, reaches N (the executor
 // stops the clock there; entries past the program's end are written after it, the clock running
@@ -13,7 +18,9 @@
 // (each time the block is reached, also in a loop). Units: `otc_radius_offset` (the channel
 // unit) and `otc_offset[i]` (the axis unit of channel axis i: 0 X, 1 Y, 2 Z through the TC
 // Axis-Nr, 3..7 the board axis of that number), field `command` (0.1 um, DINT) or `enable`
-// (0/1, TRUE/FALSE). `#` starts a comment. docs/apcictl.md ("run --plc") is the spec.
+// (0/1, TRUE/FALSE); `tool_temp_comp[i]` (SD 42960 component i 0..2, mm, within the object's
+// +-1e5), `tool_temp_comp_on` (MD 20390, 0/1) and `temp_comp_type[i]` (MD 32750 of channel
+// axis i, 0..255) of bus 1320. `#` starts a comment. docs/apcictl.md ("run --plc") is the spec.
 #pragma once
 
 #include <cstdint>
@@ -27,17 +34,27 @@ namespace apci::run {
 
 struct PlcWrite {
     enum class When : std::uint8_t { kCycle, kBlock };
-    enum class Field : std::uint8_t { kCommand, kEnable };
+    // OTC control units (bus 1330) and the temperature compensation's objects (bus 1320).
+    enum class Unit : std::uint8_t {
+        kOtcRadiusOffset,  // otc_radius_offset.<field>
+        kOtcOffset,        // otc_offset[index].<field>
+        kToolTempComp,     // tool_temp_comp[index]: SD 42960
+        kToolTempCompOn,   // tool_temp_comp_on: MD 20390
+        kTempCompType,     // temp_comp_type[index]: MD 32750
+    };
+    enum class Field : std::uint8_t { kCommand, kEnable };  // the OTC units' field
     When when = When::kCycle;
     std::uint64_t at = 0;  // cycle count from the run's start, or the block's N number
-    bool channel = true;   // otc_radius_offset; else otc_offset[axis]
-    int axis = 0;          // channel axis index 0..7
+    Unit unit = Unit::kOtcRadiusOffset;
+    int index = 0;  // kOtcOffset, kTempCompType: channel axis 0..7; kToolTempComp: 0..2
     Field field = Field::kCommand;
-    std::int32_t value = 0;
+    double value = 0.0;  // a whole number (int32 object) for every unit but kToolTempComp
     std::uint64_t line = 0;  // in the script
+
+    bool otc() const noexcept { return unit == Unit::kOtcRadiusOffset || unit == Unit::kOtcOffset; }
 };
 
-// "otc_radius_offset.command", "otc_offset[2].enable".
+// "otc_radius_offset.command", "otc_offset[2].enable", "tool_temp_comp[2]", ...
 std::string plc_unit_name(const PlcWrite& w);
 
 class PlcScript {
