@@ -20,8 +20,8 @@ using test::only;
 // The write is an event of its own block, between the moves before and after it, so the
 // executor can act on it at its place in the program.
 TEST(TemperatureSettingData, WriteIsAnEventAtItsPlaceInTheBlockSequence) {
-    const auto ev = events_of(
-        "N10 G1 X10 F100\nN20 $SC_TOOL_TEMP_COMP[2] = 0.02\nN30 G1 X20\nN40 M30\n");
+    const auto ev =
+        events_of("N10 G1 X10 F100\nN20 $SC_TOOL_TEMP_COMP[2] = 0.02\nN30 G1 X20\nN40 M30\n");
     ASSERT_EQ(ev.size(), 4u);
     EXPECT_TRUE(std::holds_alternative<LineMove>(ev[0].data));
     const auto* w = std::get_if<VariableWrite>(&ev[1].data);
@@ -64,8 +64,7 @@ TEST(TemperatureSettingData, ABoardsValueReplacesTheFrontEndsView) {
             return true;
         }
     } board;
-    Result<Program> p =
-        Program::from_text("G0 X[$SC_TOOL_TEMP_COMP[2]]\nM30\n", "prog.nc");
+    Result<Program> p = Program::from_text("G0 X[$SC_TOOL_TEMP_COMP[2]]\nM30\n", "prog.nc");
     ASSERT_TRUE(p) << p.error().to_string();
     Result<EventStream> s = p.value().events();
     ASSERT_TRUE(s);

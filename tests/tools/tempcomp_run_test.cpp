@@ -77,8 +77,8 @@ class TempCompRun : public ::testing::Test {
     // to `json_name`.
     std::vector<std::vector<double>> trace(const std::string& program, const std::string& plc,
                                            const std::string& json_name = "out.json") {
-        std::vector<std::string> args{"run", program, "--csv", path("out.csv"), "--json",
-                                      path(json_name)};
+        std::vector<std::string> args{"run",           program,  "--csv",
+                                      path("out.csv"), "--json", path(json_name)};
         if (!plc.empty()) {
             args.push_back("--plc");
             args.push_back(plc);
@@ -101,7 +101,8 @@ TEST_F(TempCompRun, ExampleRunsWithItsDocumentedCommand) {
     const std::string marker = "; ./build/bin/apcictl ";
     const std::size_t at = text.find(marker);
     ASSERT_NE(at, std::string::npos);
-    std::stringstream cmd(text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
+    std::stringstream cmd(
+        text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
     std::vector<std::string> args;
     for (std::string word; cmd >> word;)
         args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
@@ -154,9 +155,10 @@ TEST_F(TempCompRun, ProgramWriteActsFromItsBlockOn) {
 // The value a program reads is the board's when the line is read, after the blocks before it
 // were sent: the PLC's write at block 10 is seen by N20.
 TEST_F(TempCompRun, ProgramReadsTheBoardsSettingData) {
-    const std::string program = write(
-        "p.nc", "N10 G1 X10 F6000\nN20 $SC_TOOL_TEMP_COMP[0] = $SC_TOOL_TEMP_COMP[1] * 2\n"
-                "N30 M30\n");
+    const std::string program =
+        write("p.nc",
+              "N10 G1 X10 F6000\nN20 $SC_TOOL_TEMP_COMP[0] = $SC_TOOL_TEMP_COMP[1] * 2\n"
+              "N30 M30\n");
     const std::string plc = write("p.plc", "block 10 tool_temp_comp[1] 0.125\n");
     (void)trace(program, plc);
     const json v = doc().at("variables");
@@ -171,12 +173,12 @@ TEST_F(TempCompRun, ProgramReadsTheBoardsSettingData) {
 TEST_F(TempCompRun, PlcWritesActAtTheirCycleAndBlock) {
     const std::string program =
         write("p.nc", "N10 G1 X100 F6000\nN20 G1 Y50\nN30 G1 X0\nN40 M30\n");
-    const std::string md = "cycle 0 tool_temp_comp_on TRUE\ncycle 0 temp_comp_type[0] 4\n"
-                           "cycle 0 temp_comp_type[1] 7\n";
-    const std::string plc = write("on.plc", md +
-                                                "cycle 400 tool_temp_comp[0] 0.05\n"
-                                                "block 30 tool_temp_comp[1] -0.02\n"
-                                                "block 20 tool_temp_comp[2] 0.5\n");
+    const std::string md =
+        "cycle 0 tool_temp_comp_on TRUE\ncycle 0 temp_comp_type[0] 4\n"
+        "cycle 0 temp_comp_type[1] 7\n";
+    const std::string plc = write("on.plc", md + "cycle 400 tool_temp_comp[0] 0.05\n"
+                                                 "block 30 tool_temp_comp[1] -0.02\n"
+                                                 "block 20 tool_temp_comp[2] 0.5\n");
     const auto on = trace(program, plc, "on.json");
     const auto off = trace(program, write("off.plc", md));
     ASSERT_EQ(on.size(), off.size());
