@@ -124,10 +124,10 @@ TEST(Klartext, UnsupportedBlocksAreNamed) {
     EXPECT_EQ(error_of(pgm("2 CC X+0 Y+0\n")),
               "prog.nc:3:3: Klartext block 'CC' is not in the supported subset (known: BEGIN PGM, "
               "END PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET TCPM, "
-              "M functions)");
+              "FUNCTION CORRDATA, M functions)");
     EXPECT_EQ(error_of(pgm("2 FUNCTION MODE MILL\n")),
               "prog.nc:3:12: FUNCTION MODE is not in the supported subset (known: FUNCTION PROG "
-              "PATH, FUNCTION TCPM, FUNCTION RESET TCPM)");
+              "PATH, FUNCTION TCPM, FUNCTION RESET TCPM, FUNCTION CORRDATA)");
 }
 
 // ---- L ----
@@ -200,8 +200,8 @@ TEST(KlartextL, WordErrors) {
     EXPECT_EQ(error_of(pgm("2 L X+\n")), "prog.nc:3:6: expected a number after 'X'");
     EXPECT_EQ(error_of(pgm("2 l X+1\n")),
               "prog.nc:3:3: unexpected character 'l': expected a Klartext block (BEGIN PGM, END "
-              "PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET TCPM, M "
-              "functions)");
+              "PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET TCPM, "
+              "FUNCTION CORRDATA, M functions)");
 }
 
 // ---- LN (seed 002, "Gerade LN") ----

@@ -34,7 +34,8 @@ using test_support::ProcessResult;
 namespace geom = rwmos::geom;
 namespace c3 = rwmos::comp3d;
 
-const std::string kExamples = APCI_SOURCE_DIR "/examples";
+const std::string kSource = APCI_SOURCE_DIR;
+const std::string kExamples = kSource + "/examples";
 const std::string kFigures = APCI_SOURCE_DIR "/docs/figures";
 constexpr double kTol = 1e-6;
 
@@ -642,6 +643,95 @@ TEST_F(ApcictlRun, SeedAllowanceExampleStandsOffTheSurfaceByTheAllowance) {
         const V3 surface = ball_centre_programmed - 3.0 * n;
         expect_point(got + 3.0 * t, surface + 3.2 * n);
     }
+}
+
+// Seed 002: the deltas are summed "aus der Werkzeugverwaltung, dem Werkzeugaufruf und den
+// Korrekturtabellen". The face milling example with the tool as designed (tool 3) and the
+// regrinding in correction table row 1 (FUNCTION CORRDATA TCS #1) reaches the tips of the
+// reground tool 1 of the tool table; the example runs with the command its header documents.
+TEST_F(ApcictlRun, CorrectionTableRowActsAsTheToolTablesDeltas) {
+    const std::string program = kExamples + "/3d_correction_table.h";
+    const json doc = run_json(program, {"--tools", kExamples + "/tools/3d_tools.tools", "--corr",
+                                        kExamples + "/tools/3d_corrections.corr"});
+    EXPECT_EQ(doc.at("errors"), json::array());
+    const V3 p(36.0084, 6.177, -1.9209);
+    const V3 n = V3(-0.4658107, 0, 0.8848844).normalized();
+    const V3 t = V3(0, 0.6558846, 0.7548612).normalized();
+    const c3::Deltas reground{0.0, -0.1, -0.1};
+    expect_point(end_of_block(doc, 12), tcp(p, n, V3(0, 0, 1), {3, 3}, reground));
+    expect_point(end_of_block(doc, 13), tcp(p, n, t, {3, 3}, reground));
+    expect_point(end_of_block(doc, 14), tcp(p, n, n, {3, 3}, reground));
+    const json table = run_json(kExamples + "/3d_face_milling.h",
+                                {"--tools", kExamples + "/tools/3d_tools.tools"});
+    for (const int block : {12, 13, 14})
+        EXPECT_EQ(end_of_block(doc, block), end_of_block(table, block)) << block;
+    // The header's command.
+    const std::string text = read_text(program);
+    const std::string marker = "; ./build/bin/apcictl ";
+    const std::size_t at = text.find(marker);
+    ASSERT_NE(at, std::string::npos);
+    std::stringstream cmd(
+        text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
+    std::vector<std::string> args;
+    for (std::string word; cmd >> word;)
+        args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+    EXPECT_EQ(apcictl(args).exit_code, 0);
+}
+
+// A row selected in the middle of the program acts from its block on; RESET TCS leaves it.
+TEST_F(ApcictlRun, CorrectionRowActsFromItsBlockUntilReset) {
+    const std::string prog = write(
+        "corr.h",
+        "0 BEGIN PGM C MM\n1 TOOL CALL 3 Z\n2 L X+0 Y+0 Z+50 R0 F1000\n"
+        "3 LN X+10 Y+0 Z+0 NX+0.6 NY+0 NZ+0.8 TX+0 TY+0 TZ+1 R0 M128\n"
+        "4 FUNCTION CORRDATA TCS #1\n"
+        "5 LN X+20 Y+0 Z+0 NX+0.6 NY+0 NZ+0.8 TX+0 TY+0 TZ+1\n"
+        "6 FUNCTION CORRDATA RESET TCS\n"
+        "7 LN X+30 Y+0 Z+0 NX+0.6 NY+0 NZ+0.8 TX+0 TY+0 TZ+1\n"
+        "8 L Z+50 FMAX M129\n9 END PGM C MM\n");
+    const json doc = run_json(prog, {"--tools", kExamples + "/tools/3d_tools.tools", "--corr",
+                                     kExamples + "/tools/3d_corrections.corr"});
+    EXPECT_EQ(doc.at("errors"), json::array());
+    const V3 n(0.6, 0, 0.8);
+    const V3 t(0, 0, 1);
+    const c3::Deltas none{0.0, 0.0, 0.0};
+    const c3::Deltas row1{0.0, -0.1, -0.1};
+    expect_point(end_of_block(doc, 3), tcp(V3(10, 0, 0), n, t, {3, 3}, none));
+    expect_point(end_of_block(doc, 5), tcp(V3(20, 0, 0), n, t, {3, 3}, row1));
+    expect_point(end_of_block(doc, 7), tcp(V3(30, 0, 0), n, t, {3, 3}, none));
+    // Row 1 moves the tip (the reground ball is 0.1 smaller), so the comparison means something.
+    EXPECT_GT((tcp(V3(20, 0, 0), n, t, {3, 3}, row1) - V3(20, 0, 0)).norm(), 0.01);
+}
+
+TEST_F(ApcictlRun, CorrectionRowWithoutATableSaysThatNoneWasGiven) {
+    const std::string prog =
+        write("c.h", "0 BEGIN PGM C MM\n1 FUNCTION CORRDATA TCS #1\n2 END PGM C MM\n");
+    const auto r = apcictl({"run", prog, "--json", path("c.json")});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err,
+                         ":2:26: FUNCTION CORRDATA TCS #1: the correction table does not define "
+                         "row 1 (no --corr file given)"))
+        << r.err;
+    EXPECT_FALSE(exists(path("c.json")));
+}
+
+TEST_F(ApcictlRun, CorrectionRowWithAPositiveOversizeNeedsM107BeforeAnythingRuns) {
+    const std::string prog = write(
+        "c.h", "0 BEGIN PGM C MM\n1 TOOL CALL 3 Z\n2 FUNCTION CORRDATA TCS #2\n3 END PGM C MM\n");
+    const auto r = apcictl({"run", prog, "--tools", kExamples + "/tools/3d_tools.tools", "--corr",
+                            kExamples + "/tools/3d_corrections.corr", "--json", path("c.json")});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, ":3:3: FUNCTION CORRDATA TCS #2 (tool 3) with a positive oversize"))
+        << r.err;
+    EXPECT_FALSE(exists(path("c.json")));
+}
+
+TEST_F(ApcictlRun, BadCorrectionTableNamesFileAndLine) {
+    const std::string t = write("bad.corr", "corr[1].dr -0.1\ncorr[1].dx 1\n");
+    const auto r = apcictl({"run", kExamples + "/3d_face_milling.h", "--corr", t});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, t + ":2:9: unknown correction field 'dx' (known: dl, dr, dr2)"))
+        << r.err;
 }
 
 TEST_F(ApcictlRun, LnWhileTheRadiusCompensationRunsIsRefusedByTheBoardByName) {

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "apci/nc/correction_table.h"
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "apci/run/csv_writer.h"
@@ -162,6 +163,9 @@ class RunCommand final : public Command {
         app.add_option("--plc", plc_,
                        "A scripted PLC: writes to the OTC control units and the temperature "
                        "compensation's data at cycles or blocks (docs/apcictl.md)");
+        app.add_option("--corr", corr_,
+                       "Correction table file (corr[n].dl|dr|dr2 value, mm), for Klartext "
+                       "FUNCTION CORRDATA TCS #n");
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
                        "change, seed FCT-C20 section 2.9)");
@@ -183,6 +187,14 @@ class RunCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             tools = std::move(loaded.value());
         }
+        // Correction table: without one, FUNCTION CORRDATA TCS #n is refused by the validation
+        // pass (the table defines no row).
+        apci::nc::CorrectionTable corrections;
+        if (!corr_.empty()) {
+            auto loaded = apci::nc::load_correction_table(corr_);
+            if (!loaded) return nc_failure(loaded.error());
+            corrections = std::move(loaded.value());
+        }
         apci::run::PlcScript plc;
         if (!plc_.empty()) {
             auto loaded = apci::run::load_plc_script(plc_);
@@ -202,10 +214,12 @@ class RunCommand final : public Command {
         if (board == nullptr) return failure;
 
         Outputs outputs;
-        apci::run::ProgramExecutor executor(*board, outputs, &tools, plc_.empty() ? nullptr : &plc);
+        apci::run::ProgramExecutor executor(*board, outputs, &tools, plc_.empty() ? nullptr : &plc,
+                                            &corrections);
         apci::nc::InterpreterOptions options;
         options.start_position = executor.position();
         options.tools = &tools;
+        options.corrections = &corrections;
         auto program = apci::nc::Program::load(path, options);
         if (!program) {
             apci::nc::Diagnostic d = program.error();
@@ -213,6 +227,9 @@ class RunCommand final : public Command {
             if (tools_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
                 d.message.find("tool list does not define") != std::string::npos)
                 d.message += " (no --tools file given)";
+            if (corr_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
+                d.message.find("correction table does not define") != std::string::npos)
+                d.message += " (no --corr file given)";
             return nc_failure(d);
         }
         auto stream = program.value().events();
@@ -295,6 +312,7 @@ class RunCommand final : public Command {
 
     std::string program_;
     std::string tools_;
+    std::string corr_;
     std::string svg_;
     std::string json_;
     std::string csv_;

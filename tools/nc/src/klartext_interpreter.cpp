@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "apci/nc/correction_table.h"
 #include "apci/nc/klartext.h"
 #include "apci/nc/tools.h"
 
@@ -50,8 +51,76 @@ bool has_oversize(const CalledTool& t) {
     return t.dl > kOversizeTolerance || t.dr > kOversizeTolerance || t.dr2 > kOversizeTolerance;
 }
 
-bool check_tool_call(const BlockCheck& c, const KlartextState& before, const ToolTable* tools,
-                     CalledTool& called) {
+// The correction table row's deltas: 0 for row 0, and when no table is given.
+CorrectionRow correction_deltas(const CorrectionTable* table, int row) {
+    const CorrectionRow* r = table != nullptr && row > 0 ? table->find(row) : nullptr;
+    return r != nullptr ? *r : CorrectionRow{};
+}
+
+// The checks on the tool the deltas leave (the board's check_tool_load): `subject` names the
+// block ("TOOL CALL 3", "FUNCTION CORRDATA TCS #2 (tool 3)"), `known`: R and R2 are known.
+bool check_called(const BlockCheck& c, std::string_view subject, std::string_view before_what,
+                  bool known, const CalledTool& called, bool m107, std::uint32_t column) {
+    const double r = called.r + called.dr;
+    const double r2 = called.r2 + called.dr2;
+    if (known && (r < -kShapeTolerance || r2 < -kShapeTolerance)) {
+        return c.fail(ErrorKind::kProgramRule, column,
+                      fmt::format("{}: R + DR = {:.4f} mm, R2 + DR2 = {:.4f} mm: the deltas take "
+                                  "away more than the tool has",
+                                  subject, r, r2));
+    }
+    if (known && r2 > r + kShapeTolerance) {
+        return c.fail(ErrorKind::kProgramRule, column,
+                      fmt::format("{}: R2 + DR2 = {:.4f} mm is larger than R + DR = {:.4f} mm: "
+                                  "no such tool",
+                                  subject, r2, r));
+    }
+    // Seed 002: calling a tool with positive delta values is an error unless M107 allows it.
+    if (has_oversize(called) && !m107) {
+        return c.fail(ErrorKind::kProgramRule, column,
+                      fmt::format("{} with a positive oversize (summed DL {:+.4f}, DR {:+.4f}, DR2 "
+                                  "{:+.4f} mm): program M107 before {} to allow it",
+                                  subject, called.dl, called.dr, called.dr2, before_what));
+    }
+    return true;
+}
+
+// Tool n of the list with the given call deltas and correction row; false when the list does
+// not define a valid tool n or its R2 exceeds R.
+bool called_tool(const BlockCheck& c, const ToolTable* tools, int n, std::uint32_t column,
+                 double call_dl, double call_dr, double call_dr2, const CorrectionRow& corr,
+                 CalledTool& called) {
+    called.dl = call_dl + corr.dl;
+    called.dr = call_dr + corr.dr;
+    called.dr2 = call_dr2 + corr.dr2;
+    if (tools == nullptr || n <= 0) return true;
+    const ToolData* t = tools->find(n);
+    if (t == nullptr) {
+        return c.fail(ErrorKind::kProgramRule, column,
+                      fmt::format("TOOL CALL {}: the tool list does not define tool {}", n, n));
+    }
+    if (!t->valid()) {
+        return c.fail(ErrorKind::kProgramRule, column,
+                      fmt::format("TOOL CALL {}: tool {} is not valid (wz[{}].gueltig is {}, not "
+                                  "1; unset data is 0)",
+                                  n, n, n, t->gueltig));
+    }
+    called.r = t->radius_mm();
+    called.r2 = t->r2_mm();
+    called.dl += t->dl_mm();
+    called.dr += t->dr_mm();
+    called.dr2 += t->dr2_mm();
+    if (called.r2 > called.r + kShapeTolerance) {
+        return c.fail(ErrorKind::kProgramRule, column,
+                      fmt::format("TOOL CALL {}: corner radius R2 {:.4f} mm is larger than the "
+                                  "radius R {:.4f} mm in the tool list",
+                                  n, called.r2, called.r));
+    }
+    return true;
+}
+
+bool check_tool_call(const BlockCheck& c, const KlartextState& before,
+                     const KlartextOptions& options, CalledTool& called) {
     const KlartextBlock& b = c.b;
     const int n = b.tool.value;
     // As D in DIN 66025: the TC module takes a tool index only while compensation is off
@@ -68,58 +137,37 @@ bool check_tool_call(const BlockCheck& c, const KlartextState& before, const Too
                                   "the Z tool axis)",
                                   b.tool_axis.value));
     }
-    called.dl = b.dl.present() ? b.dl.value : 0.0;
-    called.dr = b.dr.present() ? b.dr.value : 0.0;
-    called.dr2 = b.dr2.present() ? b.dr2.value : 0.0;
-    if (tools != nullptr && n > 0) {
-        const ToolData* t = tools->find(n);
-        if (t == nullptr) {
-            return c.fail(ErrorKind::kProgramRule, b.tool.column,
-                          fmt::format("TOOL CALL {}: the tool list does not define tool {}", n, n));
-        }
-        if (!t->valid()) {
-            return c.fail(ErrorKind::kProgramRule, b.tool.column,
-                          fmt::format("TOOL CALL {}: tool {} is not valid (wz[{}].gueltig is {}, "
-                                      "not 1; unset data is 0)",
-                                      n, n, n, t->gueltig));
-        }
-        called.r = t->radius_mm();
-        called.r2 = t->r2_mm();
-        called.dl += t->dl_mm();
-        called.dr += t->dr_mm();
-        called.dr2 += t->dr2_mm();
-        if (called.r2 > called.r + kShapeTolerance) {
-            return c.fail(ErrorKind::kProgramRule, b.tool.column,
-                          fmt::format("TOOL CALL {}: corner radius R2 {:.4f} mm is larger than the "
-                                      "radius R {:.4f} mm in the tool list",
-                                      n, called.r2, called.r));
-        }
-    }
+    if (!called_tool(c, options.tools, n, b.tool.column, b.dl.present() ? b.dl.value : 0.0,
+                     b.dr.present() ? b.dr.value : 0.0, b.dr2.present() ? b.dr2.value : 0.0,
+                     correction_deltas(options.corrections, before.corr_row), called))
+        return false;
     // Without a tool list R and R2 are unknown: only the oversize rule can be checked here.
-    const bool known = tools != nullptr && n > 0;
-    const double r = called.r + called.dr;
-    const double r2 = called.r2 + called.dr2;
-    if (known && (r < -kShapeTolerance || r2 < -kShapeTolerance)) {
-        return c.fail(ErrorKind::kProgramRule, b.kind_column,
-                      fmt::format("TOOL CALL {}: R + DR = {:.4f} mm, R2 + DR2 = {:.4f} mm: the "
-                                  "deltas take away more than the tool has",
-                                  n, r, r2));
+    if (n <= 0) return true;
+    return check_called(c, fmt::format("TOOL CALL {}", n), "the TOOL CALL",
+                        options.tools != nullptr, called, before.m107, b.kind_column);
+}
+
+// FUNCTION CORRDATA: the row must be in the table (when one is given); the tool in force with
+// the new row's deltas passes the tool checks, as the board's CorrectionRow write does.
+bool check_corrdata(const BlockCheck& c, const KlartextState& before,
+                    const KlartextOptions& options, CalledTool& called) {
+    const KlartextBlock& b = c.b;
+    const int row = b.corr_row.value;
+    if (options.corrections != nullptr && row > 0 && options.corrections->find(row) == nullptr) {
+        return c.fail(ErrorKind::kProgramRule, b.corr_row.column,
+                      fmt::format("FUNCTION CORRDATA TCS #{}: the correction table does not "
+                                  "define row {}",
+                                  row, row));
     }
-    if (known && r2 > r + kShapeTolerance) {
-        return c.fail(ErrorKind::kProgramRule, b.kind_column,
-                      fmt::format("TOOL CALL {}: R2 + DR2 = {:.4f} mm is larger than R + DR = "
-                                  "{:.4f} mm: no such tool",
-                                  n, r2, r));
-    }
-    // Seed 002: calling a tool with positive delta values is an error unless M107 allows it.
-    if (n > 0 && has_oversize(called) && !before.m107) {
-        return c.fail(ErrorKind::kProgramRule, b.kind_column,
-                      fmt::format("TOOL CALL {} with a positive oversize (summed DL {:+.4f}, DR "
-                                  "{:+.4f}, DR2 {:+.4f} mm): program M107 before the TOOL CALL to "
-                                  "allow it",
-                                  n, called.dl, called.dr, called.dr2));
-    }
-    return true;
+    if (before.tool <= 0) return true;
+    if (!called_tool(c, options.tools, before.tool, b.kind_column, before.call_dl, before.call_dr,
+                     before.call_dr2, correction_deltas(options.corrections, row), called))
+        return false;
+    const std::string subject =
+        row > 0 ? fmt::format("FUNCTION CORRDATA TCS #{} (tool {})", row, before.tool)
+                : fmt::format("FUNCTION CORRDATA RESET TCS (tool {})", before.tool);
+    return check_called(c, subject, "FUNCTION CORRDATA", options.tools != nullptr, called,
+                        before.m107, b.kind_column);
 }
 
 struct VectorCheck {
@@ -285,7 +333,7 @@ bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, E
             return true;
         case KlartextKind::kToolCall: {
             CalledTool called;
-            if (!check_tool_call(c, state_, options_.tools, called)) return false;
+            if (!check_tool_call(c, state_, options_, called)) return false;
             s.tool = b.tool.value;
             s.call_dl = b.dl.present() ? b.dl.value : 0.0;
             s.call_dr = b.dr.present() ? b.dr.value : 0.0;
@@ -295,6 +343,15 @@ bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, E
             out.push(origin,
                      ToolCallDeltas{s.tool, s.call_dl, s.call_dr, s.call_dr2,
                                     b.spindle_speed.present() ? b.spindle_speed.value : 0.0});
+            state_ = s;
+            return true;
+        }
+        case KlartextKind::kCorrData: {
+            CalledTool called;
+            if (!check_corrdata(c, state_, options_, called)) return false;
+            s.corr_row = b.corr_row.value;
+            s.tool_oversize = s.tool > 0 && has_oversize(called);
+            out.push(origin, CorrectionSelect{s.corr_row});
             state_ = s;
             return true;
         }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <fmt/format.h>
 
+#include "apci/nc/correction_table.h"
 #include "apci/nc/klartext.h"
 #include "apci/nc/lexer.h"
 
@@ -10,7 +11,7 @@ namespace {
 
 constexpr std::string_view kKnownBlocks =
     "BEGIN PGM, END PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET "
-    "TCPM, M functions";
+    "TCPM, FUNCTION CORRDATA, M functions";
 constexpr std::string_view kKnownMFunctions = "M2, M30, M107, M108, M128, M129";
 constexpr std::string_view kLineWords = "X Y Z IX IY IZ B C R0 RL RR F FMAX M";
 constexpr std::string_view kVectorLineWords = "X Y Z NX NY NZ TX TY TZ R0 RL RR F FMAX M";
@@ -302,10 +303,58 @@ class KlartextParser {
             b_.kind = KlartextKind::kTcpm;
             return tcpm_options();
         }
+        if (what == "CORRDATA") {
+            b_.kind = KlartextKind::kCorrData;
+            return corrdata();
+        }
         return fail(ErrorKind::kUnsupported, col,
                     fmt::format("FUNCTION {} is not in the supported subset (known: FUNCTION PROG "
-                                "PATH, FUNCTION TCPM, FUNCTION RESET TCPM)",
+                                "PATH, FUNCTION TCPM, FUNCTION RESET TCPM, FUNCTION CORRDATA)",
                                 what.empty() ? c_.rest().substr(0, 1) : what));
+    }
+
+    // FUNCTION CORRDATA TCS #n | FUNCTION CORRDATA RESET TCS: the correction table row in
+    // force (the tool's delta values; seed 002 "Korrekturtabellen"). WPL (workpiece
+    // corrections) is not emulated.
+    bool corrdata() {
+        c_.skip_blanks();
+        const std::uint32_t col = c_.column();
+        std::string_view what = letters();
+        const bool reset = what == "RESET";
+        if (reset) {
+            c_.skip_blanks();
+            what = letters();
+        }
+        if (what == "WPL" && is_word_end(c_.peek())) {
+            return fail(ErrorKind::kUnsupported, col,
+                        "FUNCTION CORRDATA WPL (workpiece corrections) is not emulated: only TCS, "
+                        "the correction table of the tool's delta values");
+        }
+        if (what != "TCS" || !is_word_end(c_.peek())) {
+            return fail(ErrorKind::kSyntax, col,
+                        "expected 'TCS #n' or 'RESET TCS' after 'FUNCTION CORRDATA'");
+        }
+        if (reset) {
+            b_.corr_row = Word<int>{0, col};
+            return expect_end("FUNCTION CORRDATA RESET TCS");
+        }
+        c_.skip_blanks();
+        if (c_.peek() != '#') {
+            return fail(ErrorKind::kSyntax, c_.column(),
+                        "expected '#' and the row number after 'FUNCTION CORRDATA TCS'");
+        }
+        c_.advance();
+        const std::uint32_t row_col = c_.column();
+        std::uint64_t n = 0;
+        if (!whole_number(n, "the row number after 'FUNCTION CORRDATA TCS #'")) return false;
+        if (n < 1 || n > static_cast<std::uint64_t>(kMaxCorrectionRow)) {
+            return fail(ErrorKind::kValue, row_col,
+                        fmt::format("correction row {} out of range 1..{} (FUNCTION CORRDATA "
+                                    "RESET TCS leaves the table)",
+                                    n, kMaxCorrectionRow));
+        }
+        b_.corr_row = Word<int>{static_cast<int>(n), row_col};
+        return expect_end("FUNCTION CORRDATA TCS #n");
     }
 
     // F TCP|CONT, AXIS POS|SPAT, PATHCTRL AXIS|VECTOR are accepted (feed and rotary-axis

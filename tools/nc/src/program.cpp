@@ -15,7 +15,7 @@ namespace apci::nc {
 EventStream::EventStream(LineSource source, InterpreterOptions options)
     : source_(std::move(source)),
       interpreter_(options),
-      klartext_(KlartextOptions{options.start_position, options.tools}) {
+      klartext_(KlartextOptions{options.start_position, options.tools, options.corrections}) {
     loops_.reserve(kMaxLoopDepth);
 }
 

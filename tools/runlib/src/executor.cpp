@@ -121,6 +121,9 @@ namespace tcomp = rwmos::tempcomp;
 // The front end checks $SC_TOOL_TEMP_COMP[i] against the range of the board's object.
 static_assert(nc::kToolTempCompLimit == tcomp::kMaxValue);
 static_assert(nc::kToolTempCompCount == 3);
+// The correction table's rows and values fit the 3D module's table (DeviceNumber 2).
+static_assert(nc::kMaxCorrectionRow == rwmos::comp3d::kCorrectionRows - 1);
+static_assert(nc::kCorrectionLimit == rwmos::comp3d::kMaxValue);
 
 ObjectDescriptor otc_object(std::int32_t dev, std::int32_t index, std::int32_t sub = 0) noexcept {
     return apci::object(otc::kBus, dev, index, sub);
@@ -131,8 +134,14 @@ ObjectDescriptor temp_object(std::int32_t index, std::int32_t sub = 0) noexcept 
 
 class Execution {
   public:
-    Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc)
-        : board_(board), sink_(sink), tools_(tools), plc_(plc), variables_(*this) {
+    Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
+              const nc::CorrectionTable* corrections)
+        : board_(board),
+          sink_(sink),
+          tools_(tools),
+          corrections_(corrections),
+          plc_(plc),
+          variables_(*this) {
         segments_.resize(ProgramExecutor::kReadBatch);
         samples_.resize(ProgramExecutor::kReadBatch);
         if (tools_ != nullptr) tools_mut_ = *tools_;
@@ -348,6 +357,9 @@ class Execution {
                     return true;
                 } else if constexpr (std::is_same_v<E, nc::VariableWrite>) {
                     return variable_write(at, e);
+                } else if constexpr (std::is_same_v<E, nc::CorrectionSelect>) {
+                    return c3_setting(at, c3::kIdxCorrectionRow, e.row,
+                                      "FUNCTION CORRDATA (CorrectionRow)");
                 } else {
                     static_assert(std::is_same_v<E, nc::VectorLineMove>);
                     return vector_line(at, e);
@@ -603,6 +615,22 @@ class Execution {
         for (const auto& [index, value] : settings) {
             auto o = c3_object(index);
             if (!c3_write(o, value, at, "3D compensation setup")) return false;
+        }
+        // The correction table: row 0 (FUNCTION CORRDATA RESET TCS, the start) without
+        // correction, then the rows of --corr.
+        if (!c3_correction_row(at, nc::CorrectionRow{})) return false;
+        if (corrections_ != nullptr)
+            for (const nc::CorrectionRow& r : corrections_->rows())
+                if (!c3_correction_row(at, r)) return false;
+        return true;
+    }
+
+    bool c3_correction_row(const BlockRef& at, const nc::CorrectionRow& r) {
+        const std::pair<std::int32_t, double> values[] = {
+            {c3::kSubCorrDl, r.dl}, {c3::kSubCorrDr, r.dr}, {c3::kSubCorrDr2, r.dr2}};
+        for (const auto& [sub, value] : values) {
+            auto o = apci::object(c3::kBus, c3::kDevCorrections, r.row, sub);
+            if (!c3_write(o, value, at, "correction table")) return false;
         }
         return true;
     }
@@ -1382,6 +1410,7 @@ class Execution {
     double length_ = 0.0;  // WkzLen of the current tool
     // Klartext (3D compensation module, bus 1310).
     // ---- OTC (bus 1330; docs/otc.md, docs/apcictl.md "run")
+    const nc::CorrectionTable* corrections_;  // --corr, may be null
     const PlcScript* plc_;
     std::size_t plc_next_cycle_ = 0;  // next entry of plc_->cycle_writes()
     std::int64_t plc_last_block_ = std::numeric_limits<std::int64_t>::min();
@@ -1446,7 +1475,7 @@ Point ProgramExecutor::position() {
 }
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
-    auto execution = std::make_unique<Execution>(board_, sink_, tools_, plc_);
+    auto execution = std::make_unique<Execution>(board_, sink_, tools_, plc_, corrections_);
     return execution->run(events);
 }
 

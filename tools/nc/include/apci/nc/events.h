@@ -96,6 +96,13 @@ struct TcpmChange {
     ToolReference reference = ToolReference::kTip;
 };
 
+// FUNCTION CORRDATA TCS #n (row n) / FUNCTION CORRDATA RESET TCS (row 0): the correction
+// table row whose delta values the 3D compensation adds to the tool's. Sent for every such
+// block.
+struct CorrectionSelect {
+    int row = 0;
+};
+
 // FUNCTION PROG PATH IS CONTOUR (contour = true) / OFF, sent when it changes.
 struct ProgPathChange {
     bool contour = false;
@@ -175,7 +182,7 @@ using EventData =
     std::variant<RapidMove, LineMove, ArcMove, ToolSelect, CompensationChange, CornerModeChange,
                  PlaneChange, ProgramEnd, ToolCallDeltas, TcpmChange, ProgPathChange,
                  OversizeChange, HeadOrientation, VectorLineMove, OtcChange, KinematicsSelect,
-                 TrafoChange, NotEmulated, VariableWrite>;
+                 TrafoChange, NotEmulated, VariableWrite, CorrectionSelect>;
 
 struct Event {
     BlockOrigin origin;
@@ -183,7 +190,8 @@ struct Event {
 };
 
 // "rapid", "line", "arc", "tool", "compensation", "corner", "plane", "end", "tool_call",
-// "tcpm", "prog_path", "oversize", "head", "vector_line".
+// "tcpm", "prog_path", "oversize", "head", "vector_line", "otc", "kinematics", "trafo",
+// "not_emulated", "variable_write", "correction_row".
 std::string_view event_name(const EventData& data) noexcept;
 
 // The events of one block, in the order the executor must act on them (docs/nc-programs.md):

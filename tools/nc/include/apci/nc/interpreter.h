@@ -16,6 +16,7 @@
 namespace apci::nc {
 
 class ToolTable;
+class CorrectionTable;
 
 struct ModalState {
     std::optional<Motion> motion;                        // none until G0..G3 is programmed
@@ -50,6 +51,9 @@ struct InterpreterOptions {
     // With a tool table, D n (n > 0) must name a valid tool (wz[n].gueltig 1). Not owned; must
     // outlive the interpreter. Without one, any D 0..1023 is accepted.
     const ToolTable* tools = nullptr;
+    // Klartext: FUNCTION CORRDATA TCS #n must name a row of this table (KlartextOptions). Not
+    // owned; null: any row 1..1023.
+    const CorrectionTable* corrections = nullptr;
 };
 
 class Interpreter {

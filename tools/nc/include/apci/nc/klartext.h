@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The Klartext (TNC) subset for the 3D tool compensation, as the TNC seed (002) writes it:
 // BEGIN PGM / END PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET
-// TCPM and the M functions M2 M30 M107 M108 M128 M129. One line is one block. The parser
+// TCPM, FUNCTION CORRDATA TCS (the correction table row) and the M functions M2 M30 M107 M108
+// M128 M129. One line is one block. The parser
 // turns a line into a KlartextBlock (checking what can be checked inside the line); the
 // interpreter checks the program rules against the modal state and emits events.
 // docs/nc-programs.md is the specification.
@@ -20,6 +21,7 @@
 namespace apci::nc {
 
 class ToolTable;
+class CorrectionTable;
 
 // A programmed N or T vector whose length differs from 1 by more than this is refused (seed
 // 002, "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten"). Every
@@ -40,6 +42,7 @@ enum class KlartextKind : std::uint8_t {
     kProgPath,    // FUNCTION PROG PATH IS CONTOUR | FUNCTION PROG PATH [IS] OFF
     kTcpm,        // FUNCTION TCPM [...] [REFPNT ...]
     kResetTcpm,   // FUNCTION RESET TCPM
+    kCorrData,    // FUNCTION CORRDATA TCS #n | FUNCTION CORRDATA RESET TCS
     kMOnly,       // a block of M functions only
 };
 
@@ -79,6 +82,8 @@ struct KlartextBlock {
     bool prog_path_contour = false;
     // FUNCTION TCPM: the programmed points' reference (REFPNT), kTip when not given.
     ToolReference reference = ToolReference::kTip;
+    // FUNCTION CORRDATA: the row 1..1023, 0 for RESET TCS.
+    Word<int> corr_row;
 
     void clear(std::uint64_t line_number) noexcept {
         *this = KlartextBlock();
@@ -111,7 +116,9 @@ struct KlartextState {
     double feed = 0.0;                              // mm/min, 0 until F is programmed
     int tool = 0;                                   // no tool
     double call_dl = 0.0, call_dr = 0.0, call_dr2 = 0.0;
-    bool tool_oversize = false;  // the called tool's summed deltas (list + call) are positive
+    int corr_row = 0;  // FUNCTION CORRDATA TCS #n in force; 0: none
+    // The called tool's summed deltas (list + call + correction row) are positive.
+    bool tool_oversize = false;
     bool tcpm = false;
     ToolReference reference = ToolReference::kTip;
     bool prog_path_contour = false;  // FUNCTION PROG PATH OFF
@@ -126,6 +133,10 @@ struct KlartextOptions {
     // summed deltas of table and call are checked (effective tool, oversize without M107).
     // Not owned.
     const ToolTable* tools = nullptr;
+    // With a correction table, FUNCTION CORRDATA TCS #n must name one of its rows, and the
+    // row's deltas join the checks above. Without one any row 1..1023 is accepted and its
+    // deltas are unknown (0 here). Not owned.
+    const CorrectionTable* corrections = nullptr;
 };
 
 class KlartextInterpreter {

@@ -22,7 +22,9 @@
 //   --plc     a scripted PLC writing the OTC control units and the temperature compensation's
 //             data at cycles or blocks (plc_script.h)
 //   Klartext  the 3D compensation module (bus 1310): TOOL CALL into its tool table and Tool,
-//             M107/M108, TCPM, PROG PATH, RL/RR as its Side; LN as armed N/T and a G01 whose end
+//             M107/M108, TCPM, PROG PATH, RL/RR as its Side, FUNCTION CORRDATA TCS #n as its
+//             CorrectionRow (the --corr table written at its start); LN as armed N/T and a
+//             G01 whose end
 //             the board compensates; B/C of L lines as board axes 4 and 5 (the first free ones)
 //
 // The first board error stops the run: the axes finish the move under way (the board holds
@@ -37,6 +39,7 @@
 #include <vector>
 
 #include "apci/apci.hpp"
+#include "apci/nc/correction_table.h"
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "apci/run/path.h"
@@ -113,10 +116,12 @@ class ProgramExecutor {
     static constexpr std::uint64_t kProgressEvery = 4096;
 
     // `tools` may be null: every D n then has radius and length 0. `plc` (may be null) is a
-    // scripted PLC; it must outlive run().
+    // scripted PLC; `corrections` (may be null) the 3D compensation's correction table, written
+    // to the board with the module's start state. Both must outlive run().
     ProgramExecutor(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
-                    const PlcScript* plc = nullptr) noexcept
-        : board_(board), sink_(sink), tools_(tools), plc_(plc) {}
+                    const PlcScript* plc = nullptr,
+                    const nc::CorrectionTable* corrections = nullptr) noexcept
+        : board_(board), sink_(sink), tools_(tools), plc_(plc), corrections_(corrections) {}
 
     // Where the board's X, Y, Z axes stand (program units): the interpreter's start position.
     // Zero when the board cannot say (run() then reports why).
@@ -129,6 +134,7 @@ class ProgramExecutor {
     RunSink& sink_;
     const nc::ToolTable* tools_;
     const PlcScript* plc_;
+    const nc::CorrectionTable* corrections_;
 };
 
 }  // namespace apci::run
