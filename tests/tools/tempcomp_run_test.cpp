@@ -152,6 +152,43 @@ TEST_F(TempCompRun, ProgramWriteActsFromItsBlockOn) {
     EXPECT_EQ(doc().at("variables").at("$SC_TOOL_TEMP_COMP[2]"), 0.0);
 }
 
+// Under radius compensation the TC module holds the last contour element back until the next
+// one arrives (seed 003 section 1, docs/compensation.md): the write comes after every move that
+// could run, so the held element of the block before it (N40) runs with the new value, and the
+// elements before it (N30) without.
+TEST_F(TempCompRun, UnderRadiusCompensationTheHeldElementTakesTheWrite) {
+    const std::string tools = write("m.tools", "wz[2].gueltig 1\nwz[2].mass_einheit 1\n"
+                                               "wz[2].radius 5\n");
+    const std::string program = write(
+        "g41.nc", "N10 D2\nN20 G0 X0 Y0 Z0\nN30 G41 G1 X10 Y0 F3000\nN40 G1 X50\n"
+                  "N50 $SC_TOOL_TEMP_COMP[2] = 0.1\nN60 G1 Y40\nN70 G40 G1 X0 Y0\nN80 M30\n");
+    auto run = [&](const std::string& plc) {
+        std::vector<std::string> args{"run", program, "--tools", tools, "--csv", path("g.csv")};
+        if (!plc.empty()) args.insert(args.end(), {"--plc", plc});
+        const ProcessResult r = apcictl(args);
+        EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+        return read_csv(path("g.csv"));
+    };
+    const auto on = run(kMachineData);
+    const auto off = run("");
+    ASSERT_EQ(on.size(), off.size());
+    // The compensated path: N30 ends at (10, 5), N40 runs along Y = 5 to X = 45; from N40's
+    // first cycle on (to the end) Z carries the value, before it not.
+    std::size_t first_n40 = on.size();
+    for (std::size_t i = 0; i < off.size() && first_n40 == on.size(); ++i)
+        if (off[i][kY] == 5.0 && off[i][kX] > 10.0) first_n40 = i;
+    ASSERT_GT(first_n40, 100u);
+    ASSERT_LT(first_n40 + 100, on.size());
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        const auto& n = off[i];
+        EXPECT_NEAR(on[i][kZ] - n[kZ], i < first_n40 ? 0.0 : 0.1, kEps) << "cycle " << n[kCycle];
+    }
+    int n40 = 0;
+    for (const auto& n : off)
+        if (n[kY] == 5.0 && n[kX] > 10.0) ++n40;
+    EXPECT_GT(n40, 100);
+}
+
 // The value a program reads is the board's when the line is read, after the blocks before it
 // were sent: the PLC's write at block 10 is seen by N20.
 TEST_F(TempCompRun, ProgramReadsTheBoardsSettingData) {
