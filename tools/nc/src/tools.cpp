@@ -259,7 +259,7 @@ std::string format_value(double v) {
     std::string s = fmt::format("{:.6f}", v);
     while (!s.empty() && s.back() == '0') s.pop_back();
     if (!s.empty() && s.back() == '.') s.pop_back();
-    if (s == "-0") s = "0";
+    if (s == "-0") return "0";
     return s;
 }
 }  // namespace
