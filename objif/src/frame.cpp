@@ -92,8 +92,8 @@ FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::si
     const std::size_t n = bytes.size();
     // Check what is there as soon as it is there, so garbage is refused early.
     if (n >= 4 && load<std::uint32_t>(p) != kFrameMagic) return FrameError::kBadMagic;
-    if (n < 4) {
-        // A prefix of the magic is still a valid prefix.
+    if (n > 0 && n < 4) {
+        // A prefix of the magic is still a valid prefix (an empty one too).
         std::uint8_t magic[4];
         std::memcpy(magic, &kFrameMagic, 4);
         if (std::memcmp(p, magic, n) != 0) return FrameError::kBadMagic;
