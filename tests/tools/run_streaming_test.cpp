@@ -126,6 +126,13 @@ Footprint run_program(const std::string& text, const nc::ToolTable& tools) {
 }
 
 TEST(RunStreaming, TenTimesTheBlocksNeedNoMoreHeap) {
+#if defined(__SANITIZE_ADDRESS__)
+    // AddressSanitizer brings its own allocator and intercepts operator new and
+    // delete in the shared libraries, so this binary's counting replacement does
+    // not see every allocation (and frees the runtime's blocks as its own). The
+    // measurement runs in every build without ASan.
+    GTEST_SKIP() << "heap counting needs the program's own operator new, which ASan replaces";
+#endif
     auto tools =
         nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 1\n", "t.tools");
     ASSERT_TRUE(tools);
