@@ -567,8 +567,9 @@ TEST(DaemonRobustness, ClientThatDoesNotReadItsRepliesDoesNotStallOthers) {
     for (int i = 0; i < 100; ++i)
         ASSERT_EQ(apci_read_int(b, &o, &n), APCI_OK) << apci_last_error(b);
     apci_close(b);
-    lazy.close();  // unblocks the writer
+    lazy.shutdown();  // unblocks the writer
     writer.join();
+    lazy.close();
     EXPECT_EQ(d->stop(), 0);
 }
 

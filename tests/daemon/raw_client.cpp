@@ -28,6 +28,10 @@ void RawClient::close() {
     fd_ = -1;
 }
 
+void RawClient::shutdown() {
+    if (fd_ >= 0) ::shutdown(fd_, SHUT_RDWR);
+}
+
 bool RawClient::send(std::span<const std::uint8_t> bytes) {
     std::size_t sent = 0;
     while (fd_ >= 0 && sent < bytes.size()) {

@@ -28,6 +28,11 @@ class RawClient {
     // True when the daemon closed the connection within `timeout` (EOF).
     bool closed_by_peer(std::chrono::milliseconds timeout = std::chrono::seconds(5));
     void close();
+    // Shuts both directions down without closing the descriptor: a send()
+    // blocked in another thread returns, and the descriptor stays this
+    // client's until close() (closing it under a concurrent send() would be
+    // a race, and the number could be reused meanwhile).
+    void shutdown();
 
   private:
     int fd_ = -1;
