@@ -174,6 +174,27 @@ apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::
     }
 }
 
+// Step and RunUntilIdle in requests of at most objif::kMaxClockCycles each
+// (the board's per-request bound, which lets a daemon serve its other clients
+// in between); `ran` in the status is the sum. Stops at the first failure.
+apci_status clock_run(apci_board* board, objif::ClockMode mode, std::uint64_t cycles,
+                      apci_motion_status* status, const char* op) noexcept {
+    std::uint64_t ran = 0;
+    for (;;) {
+        const std::uint64_t chunk = std::min(cycles - ran, objif::kMaxClockCycles);
+        objif::ClockReply rep;
+        const apci_status st = clock_call(board, {mode, chunk}, nullptr, op, &rep);
+        if (st != APCI_OK) return st;
+        ran += rep.ran;
+        const bool idle = (rep.flags & objif::kClockIdle) != 0;
+        if (ran == cycles || (mode == objif::ClockMode::kRunUntilIdle && (idle || rep.ran < chunk))) {
+            rep.ran = ran;
+            fill_status(rep, status);
+            return st;
+        }
+    }
+}
+
 }  // namespace
 
 extern "C" {
@@ -241,13 +262,13 @@ apci_status apci_ssf_command(apci_board* board, uint8_t axes, int32_t command,
 }
 
 apci_status apci_step(apci_board* board, uint64_t cycles, apci_motion_status* status) noexcept {
-    return clock_call(board, {objif::ClockMode::kStep, cycles}, status, "apci_step");
+    return clock_run(board, objif::ClockMode::kStep, cycles, status, "apci_step");
 }
 
 apci_status apci_run_until_idle(apci_board* board, uint64_t max_cycles,
                                 apci_motion_status* status) noexcept {
-    return clock_call(board, {objif::ClockMode::kRunUntilIdle, max_cycles}, status,
-                      "apci_run_until_idle");
+    return clock_run(board, objif::ClockMode::kRunUntilIdle, max_cycles, status,
+                     "apci_run_until_idle");
 }
 
 apci_status apci_motion_status_get(apci_board* board, apci_motion_status* status) noexcept {

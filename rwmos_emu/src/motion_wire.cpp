@@ -72,10 +72,18 @@ objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req) {
     objif::ClockReply rep;
     switch (req.mode) {
         case objif::ClockMode::kStep:
+            if (req.cycles > objif::kMaxClockCycles) {
+                rep.status = objif::Status::kValueTooHigh;
+                break;
+            }
             board.step(req.cycles);
             rep.ran = req.cycles;
             break;
         case objif::ClockMode::kRunUntilIdle:
+            if (req.cycles > objif::kMaxClockCycles) {
+                rep.status = objif::Status::kValueTooHigh;
+                break;
+            }
             rep.ran = board.run_until_idle(req.cycles);
             break;
         case objif::ClockMode::kQuery:

@@ -573,6 +573,46 @@ TEST(DaemonRobustness, ClientThatDoesNotReadItsRepliesDoesNotStallOthers) {
     EXPECT_EQ(d->stop(), 0);
 }
 
+// One client advancing a long, sampled stretch of time (each cycle computed)
+// does not hold the board for the others: the board takes at most 2^20
+// cycles per Clock request and libapci splits longer steps, so the daemon
+// serves other clients in between. The other client sees the clock part of
+// the way through, which it could not if the step were served as one request.
+TEST(DaemonRobustness, LongSampledStepOfOneClientLetsOthersBeServedMeanwhile) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apci_board* stepper = nullptr;
+    apci_board* other = nullptr;
+    ASSERT_EQ(apci_open(d->unix_uri().c_str(), &stepper), APCI_OK);
+    ASSERT_EQ(apci_open(d->unix_uri().c_str(), &other), APCI_OK);
+    ASSERT_EQ(apci_trace_enable(stepper, 1024), APCI_OK) << apci_last_error(stepper);
+    constexpr std::uint64_t kCycles = 8 * objif::kMaxClockCycles;
+    std::atomic<bool> stepped{false};
+    apci_status step_status = APCI_OK;
+    apci_motion_status after{};
+    std::thread t([&] {
+        step_status = apci_step(stepper, kCycles, &after);
+        stepped = true;
+    });
+    std::uint64_t seen_midway = 0;
+    std::size_t served = 0;
+    while (!stepped) {
+        apci_motion_status st{};
+        ASSERT_EQ(apci_motion_status_get(other, &st), APCI_OK) << apci_last_error(other);
+        ++served;
+        if (st.now > 0 && st.now < kCycles) seen_midway = st.now;
+    }
+    t.join();
+    ASSERT_EQ(step_status, APCI_OK) << apci_last_error(stepper);
+    EXPECT_EQ(after.ran, kCycles);
+    EXPECT_EQ(after.now, kCycles);
+    EXPECT_NE(seen_midway, 0u) << "the other client was served only before or after the step ("
+                               << served << " requests)";
+    apci_close(other);
+    apci_close(stepper);
+    EXPECT_EQ(d->stop(), 0);
+}
+
 // 16 clients, each with an object of its own, 10,000 writes each; every
 // write is read back at once, so a lost write shows as the old value and a
 // duplicated (replayed) one as a value the client wrote earlier. The daemon

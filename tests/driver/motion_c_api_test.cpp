@@ -4,6 +4,7 @@
 // the last-error text, Busy, direct and SSF commands, bad arguments.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -94,6 +95,36 @@ TEST_F(Motion, StepAdvancesExactlyTheCyclesAsked) {
     ASSERT_EQ(apci_spooler_fill(board_, &fill, &capacity), APCI_OK);
     EXPECT_EQ(fill, 1u);
     EXPECT_GT(capacity, 0u);
+}
+
+// The board advances at most 2^20 cycles per Clock request; the C API takes
+// any count and sends as many requests as it takes, with the same result as
+// one long run of the board.
+TEST_F(Motion, StepBeyondOneRequestsBoundAdvancesExactlyTheCyclesAsked) {
+    const uint64_t cycles = 3 * (uint64_t{1} << 20) + 5;
+    apci_motion_status st{};
+    ASSERT_EQ(apci_step(board_, cycles, &st), APCI_OK) << last_error();
+    EXPECT_EQ(st.ran, cycles);
+    EXPECT_EQ(st.now, cycles);
+}
+
+TEST_F(Motion, RunUntilIdleBeyondOneRequestsBoundRunsTheMoveToItsEnd) {
+    // 2,500 units at 60 units/min: 2,500,000 cycles, more than two requests' worth.
+    apci_profile slow = line(1, 2500, 0, 60.0);
+    ASSERT_EQ(apci_spool_profile(board_, &slow, nullptr), APCI_OK) << last_error();
+    apci_motion_status st{};
+    ASSERT_EQ(apci_run_until_idle(board_, UINT64_MAX, &st), APCI_OK) << last_error();
+    EXPECT_EQ(st.ran, 2'500'000u);
+    EXPECT_EQ(st.now, 2'500'000u);
+    EXPECT_NE(st.flags & APCI_MOTION_IDLE, 0u);
+    EXPECT_EQ(st.position[0], 2500.0);
+    // A bound that ends mid-move stops there, across requests too.
+    apci_profile back = line(2, 0, 0, 60.0);
+    ASSERT_EQ(apci_spool_profile(board_, &back, nullptr), APCI_OK) << last_error();
+    ASSERT_EQ(apci_run_until_idle(board_, 2'000'000, &st), APCI_OK) << last_error();
+    EXPECT_EQ(st.ran, 2'000'000u);
+    EXPECT_EQ(st.flags & APCI_MOTION_IDLE, 0u);
+    EXPECT_DOUBLE_EQ(st.position[0], 500.0);
 }
 
 TEST_F(Motion, HeldProfileAndSsf2001ThroughTheCApi) {

@@ -169,6 +169,24 @@ TEST_F(MotionFrames, ClockFrameStepsRunsAndReports) {
     EXPECT_EQ(r.capacity, board.motion_status().capacity);
 }
 
+TEST_F(MotionFrames, ClockFrameAdvancesAtMostMaxClockCyclesPerRequest) {
+    ASSERT_EQ(call<objif::MotionReply>(Opcode::kSpoolProfile, wire_line(1, 1, 0)).status,
+              Status::kOk);
+    const auto before = board.motion_status();
+    for (const auto mode : {objif::ClockMode::kStep, objif::ClockMode::kRunUntilIdle}) {
+        const auto r = clock(mode, objif::kMaxClockCycles + 1);
+        EXPECT_EQ(r.status, Status::kValueTooHigh);
+        EXPECT_EQ(r.ran, 0u);
+        EXPECT_EQ(r.now, before.now) << "a refused request runs nothing";
+        EXPECT_EQ(r.fill, before.fill);
+    }
+    EXPECT_EQ(board.motion_status().position, before.position);
+    const auto r = clock(objif::ClockMode::kStep, objif::kMaxClockCycles);
+    EXPECT_EQ(r.status, Status::kOk);
+    EXPECT_EQ(r.ran, objif::kMaxClockCycles);
+    EXPECT_EQ(r.now, before.now + objif::kMaxClockCycles);
+}
+
 TEST_F(MotionFrames, ClockFrameTurnsTheTraceOnAndReadTraceFetchesTheSamples) {
     auto r = clock(objif::ClockMode::kTraceOn, 1000);
     ASSERT_EQ(r.status, Status::kOk);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "board_host.h"
 
+#include <algorithm>
+
 #include "rwmos/board_state.h"
 #include "rwmos/motion_wire.h"
 
@@ -40,9 +42,11 @@ std::uint64_t BoardHost::pace(std::chrono::steady_clock::time_point now) {
         std::chrono::duration_cast<std::chrono::microseconds>(now - anchor_time_).count();
     const std::uint64_t target = anchor_cycle_ + static_cast<std::uint64_t>(elapsed / cycle_us);
     if (board_now >= target) return 0;
-    return rwmos::serve_clock(board_,
-                              objif::ClockRequest{objif::ClockMode::kStep, target - board_now})
-        .ran;
+    // At most one request's worth per call, so that a daemon far behind
+    // (stopped for a while, say) catches up tick by tick, serving its clients
+    // in between.
+    const std::uint64_t behind = std::min(target - board_now, objif::kMaxClockCycles);
+    return rwmos::serve_clock(board_, objif::ClockRequest{objif::ClockMode::kStep, behind}).ran;
 }
 
 ServedCounts BoardHost::counts() const {

@@ -392,7 +392,13 @@ typedef struct apci_motion_status {
     double position[APCI_AXIS_COUNT];         /* axis positions now */
 } apci_motion_status;
 
-/* Advances the clock by exactly `cycles` cycles. `status` may be NULL. */
+/*
+ * Advances the clock by exactly `cycles` cycles. `status` may be NULL.
+ * The board advances at most 2^20 cycles per request; these two calls send
+ * as many requests as it takes (a daemon serves its other clients in
+ * between), and status->ran is the sum. On a failure part-way the clock may
+ * have advanced by whole requests; apci_motion_status_get tells where it is.
+ */
 APCI_API apci_status apci_step(apci_board* board, uint64_t cycles,
                                apci_motion_status* status) APCI_NOEXCEPT;
 /* Advances until nothing moves, at most `max_cycles`; status->ran says how far. */
