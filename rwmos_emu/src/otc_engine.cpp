@@ -332,6 +332,7 @@ void OtcEngine::end_session() noexcept {
         ramp_channel_[a] = {};
         ramp_direction_[a] = {};
     }
+    ramps_quiet_ = ramps_at_rest_at_zero();
     // The discrete infeed is consumed by the fold (design: P-TOOL-00031 is the largest
     // "relative Änderung"; the next session starts from a command of 0).
     o.radius_offset_unit.command = 0;
@@ -454,10 +455,25 @@ void OtcEngine::add_offsets(const AxisVector& dir, double wear, AxisVector& pos)
                   ramp_axes_[a].position;
 }
 
+bool OtcEngine::ramps_at_rest_at_zero() const noexcept {
+    const auto rest = [](const otc::RampState& r) { return r.position == 0.0 && r.velocity == 0.0; };
+    for (std::size_t a = 0; a < ramp_axes_.size(); ++a) {
+        if (!rest(ramp_channel_[a]) || !rest(ramp_direction_[a]) || !rest(ramp_axes_[a]))
+            return false;
+    }
+    return true;
+}
+
 void OtcEngine::step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
                      AxisVector& pos) noexcept {
     const AxisVector dir = state_.otc.active ? direction(m, k, n, pos) : AxisVector{};
     last_dir_ = dir;
+    // OTC off and every ramp at rest on its target 0: ramp_step would return
+    // each state unchanged, so the (per-cycle, 24-ramp) loop is skipped.
+    if (!state_.otc.active && ramps_quiet_) {
+        add_offsets(dir, 0.0, pos);
+        return;
+    }
     const Targets t = state_.otc.active ? targets(dir) : Targets{};
     const otc::RampLimits lim = limits();
     for (std::size_t a = 0; a < t.axes.size(); ++a) {
@@ -465,6 +481,7 @@ void OtcEngine::step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
         ramp_direction_[a] = otc::ramp_step(ramp_direction_[a], t.direction[a], lim, dt);
         ramp_axes_[a] = otc::ramp_step(ramp_axes_[a], t.axes[a], lim, dt);
     }
+    ramps_quiet_ = !state_.otc.active && ramps_at_rest_at_zero();
     add_offsets(dir, state_.otc.active ? wear_at(m, k, n) : 0.0, pos);
 }
 

@@ -63,6 +63,16 @@ bool TempCompEngine::ramping() const noexcept {
 
 void TempCompEngine::apply(const motion::AxisVector& nominal, double max_step,
                            motion::AxisVector& pos) const noexcept {
+    if (!state_.config.option_temp_comp || state_.temp_comp.on == 0) {
+        // Off: every axis gets 0 at once (the else branch below with targets of 0),
+        // without evaluating the vector and the targets each cycle.
+        for (std::size_t i = 0; i < applied_.size(); ++i) {
+            ramping_[i] = false;
+            applied_[i] = 0.0;
+            pos[i] += applied_[i];
+        }
+        return;
+    }
     const tempcomp::Settings s = settings();
     const tempcomp::AxisValues target = tempcomp::targets(s, vector_at(nominal));
     for (std::size_t i = 0; i < applied_.size(); ++i) {

@@ -120,6 +120,7 @@ class OtcEngine final : public motion::CycleOffsets {
     bool direction_turns(const motion::Move* m) const noexcept;
     void add_offsets(const AxisVector& dir, double wear, AxisVector& pos) const noexcept;
     otc::RampLimits limits() const noexcept;
+    bool ramps_at_rest_at_zero() const noexcept;
     // A unit's commanded offset in PU, 0 when it does not act.
     double channel_command() const noexcept;
     double direction_command() const noexcept;
@@ -137,6 +138,9 @@ class OtcEngine final : public motion::CycleOffsets {
     std::array<otc::RampState, kOtcAxisCount> ramp_channel_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_direction_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_axes_{};
+    // Every ramp at {0, 0} while OTC is off (then a cycle steps no ramp):
+    // updated by step() and wherever the ramps are set otherwise.
+    bool ramps_quiet_ = true;
     mutable AxisVector last_dir_{};  // the direction at the last evaluated cycle
 };
 
