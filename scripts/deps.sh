@@ -7,6 +7,7 @@ APCI_DEB_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev zlib1g-dev
   libusb-1.0-0-dev umockdev libumockdev-dev
+  ccache
 )
 # Only the CI stages after ./test.sh need these (scripts/ci/): clang and its
 # libFuzzer/sanitizer runtimes for the fuzzers, clang-tidy and cppcheck for
@@ -37,8 +38,10 @@ apci_install_packages() {
 apci_install_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}"; }
 apci_install_ci_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}" "${APCI_CI_DEB_PACKAGES[@]}"; }
 
-# ccache, where installed, makes a rebuild of an unchanged tree cheap, also
-# across build directories of one checkout (build, build-pkg: same flags).
+# ccache (installed with the rest) makes a rebuild of an unchanged tree cheap,
+# also across build directories of one checkout: the package stage's build-pkg
+# compiles the same sources with the same flags as ./test.sh's build, so in CI
+# it costs links, not a second full build.
 # Sourced from the checkout's top directory.
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-true}"
 apci_launcher_args() {

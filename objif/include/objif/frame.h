@@ -214,8 +214,8 @@ struct ClockRequest {
 // The most cycles one Step or RunUntilIdle request may advance (2^20, about
 // 17 minutes at the default 1 ms cycle); more is answered ValueTooHigh and
 // nothing runs. The board serves requests one at a time, and with the trace
-// on each cycle is computed (about 10 ns), so this bounds how long one
-// request holds the board for every other client. libapci's apci_step and
+// on each cycle is computed (30 to 45 ns), so this bounds how long one
+// request holds the board for every other client (about 50 ms). libapci's apci_step and
 // apci_run_until_idle take any count and send as many requests as it takes.
 inline constexpr std::uint64_t kMaxClockCycles = std::uint64_t{1} << 20;
 // Flag bits of ClockReply::flags.
