@@ -2,6 +2,10 @@
 // A bounded FIFO that keeps the newest entries: when full, a push drops the
 // oldest and counts it as lost. Used for the per-cycle trace and the executed
 // segment log, which the host drains at its own pace.
+// The storage grows with the content, up to the capacity: a board that never
+// logs many segments never pays for the whole log (a fresh board is built per
+// request in the frame fuzzer and per test), and a large trace capacity costs
+// memory only once that many samples wait unread.
 #pragma once
 
 #include <cstddef>
@@ -18,26 +22,34 @@ class Ring {
 
     // Changes the capacity; drops the content (and resets the lost count).
     void set_capacity(std::size_t capacity) {
-        buf_.assign(capacity, T{});
+        std::vector<T>().swap(buf_);
+        capacity_ = capacity;
         head_ = size_ = 0;
         lost_ = 0;
     }
     void clear() noexcept { head_ = size_ = 0; }
 
     void push(const T& v) {
-        if (buf_.empty()) {
+        if (capacity_ == 0) {
             ++lost_;
             return;
         }
-        std::size_t slot = head_ + size_;
-        if (slot >= buf_.size()) slot -= buf_.size();
-        buf_[slot] = v;
-        if (size_ < buf_.size()) {
-            ++size_;
-        } else {
+        if (size_ == capacity_) {  // full (so buf_ has its whole capacity): the oldest goes
+            buf_[head_] = v;
             head_ = head_ + 1 == buf_.size() ? 0 : head_ + 1;
             ++lost_;
+            return;
         }
+        // While buf_ is shorter than the capacity the content has never
+        // wrapped: it lies at [head_, head_ + size_) with head_ + size_ <= buf_.size().
+        std::size_t slot = head_ + size_;
+        if (slot == buf_.size() && buf_.size() < capacity_) {
+            buf_.push_back(v);
+        } else {
+            if (slot >= buf_.size()) slot -= buf_.size();
+            buf_[slot] = v;
+        }
+        ++size_;
     }
 
     // Moves up to out.size() entries, oldest first, into `out`; returns how many.
@@ -58,13 +70,14 @@ class Ring {
     }
 
     std::size_t size() const noexcept { return size_; }
-    std::size_t capacity() const noexcept { return buf_.size(); }
+    std::size_t capacity() const noexcept { return capacity_; }
     bool empty() const noexcept { return size_ == 0; }
     // Entries dropped because the ring was full since the last set_capacity().
     std::uint64_t lost() const noexcept { return lost_; }
 
   private:
-    std::vector<T> buf_;
+    std::vector<T> buf_;  // grows to capacity_, then wraps
+    std::size_t capacity_ = 0;
     std::size_t head_ = 0;
     std::size_t size_ = 0;
     std::uint64_t lost_ = 0;

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// The bounded FIFO behind the trace and the executed-segment log: it keeps
+// the newest entries, counts the dropped ones, and grows its storage with the
+// content. Checked against a reference model (std::deque) on random sequences
+// of pushes and takes, at every capacity from 0 to 9.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <random>
+#include <vector>
+
+#include "rwmos/motion/ring.h"
+
+namespace {
+
+using rwmos::motion::Ring;
+
+void expect_same(const Ring<int>& ring, const std::deque<int>& model, std::uint64_t lost) {
+    ASSERT_EQ(ring.size(), model.size());
+    ASSERT_EQ(ring.empty(), model.empty());
+    ASSERT_EQ(ring.lost(), lost);
+    for (std::size_t i = 0; i < model.size(); ++i) ASSERT_EQ(ring.at(i), model[i]) << "entry " << i;
+}
+
+TEST(MotionRing, MatchesAFifoThatKeepsTheNewestOnRandomPushesAndTakes) {
+    std::mt19937 rng(7);
+    for (std::size_t capacity = 0; capacity < 10; ++capacity) {
+        Ring<int> ring(capacity);
+        EXPECT_EQ(ring.capacity(), capacity);
+        std::deque<int> model;
+        std::uint64_t lost = 0;
+        int next = 0;
+        for (int step = 0; step < 2000; ++step) {
+            if (rng() % 3 != 0) {
+                ring.push(next);
+                model.push_back(next++);
+                if (model.size() > capacity) {
+                    model.pop_front();
+                    ++lost;
+                }
+            } else {
+                std::vector<int> out(rng() % 5);
+                const std::size_t n = ring.take(out);
+                const std::size_t expected = std::min(out.size(), model.size());
+                ASSERT_EQ(n, expected);
+                for (std::size_t i = 0; i < n; ++i) {
+                    ASSERT_EQ(out[i], model.front());
+                    model.pop_front();
+                }
+            }
+            expect_same(ring, model, lost);
+        }
+    }
+}
+
+TEST(MotionRing, NewCapacityDropsTheContentAndTheLostCount) {
+    Ring<int> ring(2);
+    for (int i = 0; i < 5; ++i) ring.push(i);
+    expect_same(ring, {3, 4}, 3);
+    ring.set_capacity(3);
+    EXPECT_EQ(ring.capacity(), 3U);
+    expect_same(ring, {}, 0);
+    for (int i = 10; i < 14; ++i) ring.push(i);
+    expect_same(ring, {11, 12, 13}, 1);
+    ring.clear();
+    expect_same(ring, {}, 1);
+}
+
+TEST(MotionRing, ZeroCapacityKeepsNothingAndCountsEveryPush) {
+    Ring<int> ring;
+    ring.push(1);
+    ring.push(2);
+    expect_same(ring, {}, 2);
+}
+
+}  // namespace
