@@ -131,7 +131,8 @@ TEST_F(FrameServerTest, BoardRefusalTravelsAsReplyStatus) {
 
 TEST_F(FrameServerTest, ShortFrameIsRejected) {
     auto bytes = write_request(radius, Value::of_double(9.0));
-    bytes.resize(bytes.size() - 1);
+    ASSERT_FALSE(bytes.empty());
+    bytes.pop_back();
     expect_rejected(bytes, FrameError::kShort, 0);
     expect_rejected({}, FrameError::kShort, 0);
 }
