@@ -17,7 +17,7 @@ void BM_ReadIntCachedHandle(benchmark::State& state) {
     apci_object_descriptor status{APCI_TC_BUS, APCI_TC_DEVICE_GROUP, 1, APCI_TC_STATUS, 0};
     int32_t v = 0;
     apci_read_int(board, &status, &v);  // resolves the handle
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         benchmark::DoNotOptimize(apci_read_int(board, &status, &v));
         benchmark::DoNotOptimize(v);
     }
@@ -32,7 +32,7 @@ void BM_ReadIntFirstAccess(benchmark::State& state) {
         return;
     }
     int32_t v = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         apci_object_descriptor status{APCI_TC_BUS, APCI_TC_DEVICE_GROUP, 1, APCI_TC_STATUS, 0};
         benchmark::DoNotOptimize(apci_read_int(board, &status, &v));
     }
@@ -48,7 +48,7 @@ void BM_WriteDoubleCachedHandle(benchmark::State& state) {
     }
     apci_object_descriptor radius{APCI_TC_BUS, APCI_TC_DEVICE_GROUP, 1, APCI_TC_RADIUS, 0};
     double r = 1.0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         benchmark::DoNotOptimize(apci_write_double(board, &radius, r));
         r = r < 100.0 ? r + 0.5 : 1.0;
     }
@@ -65,7 +65,7 @@ void BM_ReadRefusedTypeMismatch(benchmark::State& state) {
     }
     apci_object_descriptor radius{APCI_TC_BUS, APCI_TC_DEVICE_GROUP, 1, APCI_TC_RADIUS, 0};
     int32_t v = 0;
-    for (auto _ : state) benchmark::DoNotOptimize(apci_read_int(board, &radius, &v));
+    for ([[maybe_unused]] auto _ : state) benchmark::DoNotOptimize(apci_read_int(board, &radius, &v));
     apci_close(board);
 }
 BENCHMARK(BM_ReadRefusedTypeMismatch);
@@ -77,12 +77,12 @@ void BM_CppReadDouble(benchmark::State& state) {
         return;
     }
     auto radius = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_GROUP, 1, APCI_TC_RADIUS);
-    for (auto _ : state) benchmark::DoNotOptimize(board.read_double(radius));
+    for ([[maybe_unused]] auto _ : state) benchmark::DoNotOptimize(board.read_double(radius));
 }
 BENCHMARK(BM_CppReadDouble);
 
 void BM_OpenClose(benchmark::State& state) {
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         apci_board* board = nullptr;
         benchmark::DoNotOptimize(apci_open("emu:", &board));
         apci_close(board);

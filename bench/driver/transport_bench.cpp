@@ -29,8 +29,6 @@
 #include "usb_emulator.h"
 #endif
 
-extern char** environ;
-
 namespace {
 
 // The emulator daemon in a temporary directory, for the whole program.
@@ -99,7 +97,7 @@ void read_round_trip(benchmark::State& state, const std::string& uri) {
     }
     apci_object_descriptor axis_count{1000, 0, 3, 0, 0};
     std::int32_t value = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         if (apci_read_int(board, &axis_count, &value) != APCI_OK) {
             state.SkipWithError(apci_last_error(board));
             break;

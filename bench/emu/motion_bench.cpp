@@ -66,7 +66,7 @@ void sampled(benchmark::State& state, const Profile& p, double start_x) {
         state.SkipWithError("spool failed");
         return;
     }
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         board.step(kChunk);
         benchmark::DoNotOptimize(board.motion_status().position);
     }
@@ -95,7 +95,7 @@ void BM_SampledCyclesLineDrained(benchmark::State& state) {
         return;
     }
     std::vector<TraceSample> out(kChunk);
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         board.step(kChunk);
         benchmark::DoNotOptimize(board.read_trace(out));
     }
@@ -115,7 +115,7 @@ void BM_UnobservedMove(benchmark::State& state) {
     const double feed = 2.8284271247461903 * 100.0 * 60000.0 / static_cast<double>(cycles);
     double x = 0.0;
     std::uint64_t ran = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         Profile p;
         p.kind = ProfileKind::kLine;
         p.feed = feed;
@@ -176,7 +176,7 @@ void BM_SpoolCompensatedProfiles(benchmark::State& state) {
     contour[7] = arc(5, 0, 5, 5);
     board.spool(line(5, 0));
     std::uint32_t i = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         Profile p = contour[i % 8];
         p.tag = i++;
         const auto r = board.spool(p);

@@ -62,7 +62,7 @@ void BM_OtcRampingCycles(benchmark::State& state) {
         state.SkipWithError("spool failed");
         return;
     }
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         board.step(kChunk);
         benchmark::DoNotOptimize(board.motion_status().position);
     }
@@ -83,7 +83,7 @@ void BM_OtcContinuousWearUnobservedMove(benchmark::State& state) {
     const double feed = length * 60000.0 / static_cast<double>(cycles);
     double x = 0.0;
     std::uint64_t ran = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         x = x > 0.0 ? 0.0 : 100.0;
         if (!board.spool(line_to(x, feed)).ok()) {
             state.SkipWithError("spool failed");

@@ -35,7 +35,7 @@ void compensate_contour(benchmark::State& state, Side side, TransitionMode mode)
     }
     std::uint32_t index = 0;
     std::size_t emitted = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         const StepResult r = compensator.push(kContour[index % kContour.size()], index, batch);
         if (!r.ok()) {
             state.SkipWithError("push failed");

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "apci/nc/parser.h"
@@ -71,8 +72,9 @@ const std::string& program_text() {
 
 const std::string& program_file() {
     static const std::string path = [] {
-        const std::string p = "/tmp/apci_nc_bench_" + std::to_string(::getpid()) + ".nc";
+        std::string p = "/tmp/apci_nc_bench_" + std::to_string(::getpid()) + ".nc";
         std::FILE* f = std::fopen(p.c_str(), "wb");
+        if (f == nullptr) std::abort();  // the benchmark cannot run without its program file
         std::fwrite(program_text().data(), 1, program_text().size(), f);
         std::fclose(f);
         return p;
@@ -97,7 +99,7 @@ void set_rate(benchmark::State& state, std::uint64_t blocks_per_iteration) {
 
 void BM_ParseInterpretFromMemory(benchmark::State& state) {
     std::uint64_t blocks = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         EventStream s = EventStream::from_text(program_text(), "bench.nc");
         benchmark::DoNotOptimize(drain(s, state));
         blocks = s.blocks_read();
@@ -108,7 +110,7 @@ BENCHMARK(BM_ParseInterpretFromMemory)->Unit(benchmark::kMillisecond);
 
 void BM_ParseInterpretFromFile(benchmark::State& state) {
     std::uint64_t blocks = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         Result<EventStream> s = EventStream::open_file(program_file());
         if (!s) {
             state.SkipWithError(s.error().to_string().c_str());
@@ -124,7 +126,7 @@ BENCHMARK(BM_ParseInterpretFromFile)->Unit(benchmark::kMillisecond);
 // Validation pass + execution pass; blocks/s counts each program block once.
 void BM_ValidateThenExecuteFile(benchmark::State& state) {
     std::uint64_t blocks = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         Result<Program> p = Program::load(program_file());
         if (!p) {
             state.SkipWithError(p.error().to_string().c_str());
@@ -145,7 +147,7 @@ BENCHMARK(BM_ValidateThenExecuteFile)->Unit(benchmark::kMillisecond);
 void BM_KlartextLnFromMemory(benchmark::State& state) {
     static const std::string text = make_klartext_program(kBlocks);
     std::uint64_t blocks = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         EventStream s = EventStream::from_text(text, "bench.h");
         benchmark::DoNotOptimize(drain(s, state));
         blocks = s.blocks_read();
@@ -158,7 +160,7 @@ void BM_ParseOneLine(benchmark::State& state) {
     ParsedLine out;
     Diagnostic err;
     const std::string_view line = "N12345 G3 X20.125 Y10 I0 J10 ; arc";
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         benchmark::DoNotOptimize(parse_din_line(line, 1, "bench.nc", out, err));
         benchmark::DoNotOptimize(out.block.axis[0].value);
     }

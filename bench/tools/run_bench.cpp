@@ -85,6 +85,7 @@ ChildRun run_child(const std::vector<std::string>& argv) {
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, 1);
         std::vector<char*> args;
+        args.reserve(argv.size() + 1);
         for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
         args.push_back(nullptr);
         ::execv(args[0], args.data());
@@ -109,7 +110,7 @@ void run_program(benchmark::State& state, const std::vector<std::string>& output
     argv.insert(argv.end(), outputs.begin(), outputs.end());
     double wall = 0.0, cpu = 0.0;
     long rss = 0;
-    for (auto _ : state) {
+    for ([[maybe_unused]] auto _ : state) {
         const ChildRun r = run_child(argv);
         if (r.exit_code != 0) {
             state.SkipWithError("apcictl run failed");

@@ -361,7 +361,9 @@ Status list_pci(std::vector<FoundDevice>& out, std::string& why) noexcept {
             const std::string address = e->d_name;
             if (!valid_pci_address(address)) continue;
             std::uint32_t vendor = 0, device = 0;
-            const std::string dir = root + "/" + address;
+            std::string dir = root;
+            dir += '/';
+            dir += address;
             if (!read_id(dir + "/vendor", vendor) || !addi_data_vendor(vendor)) continue;
             read_id(dir + "/device", device);
             Bar bar;

@@ -187,7 +187,7 @@ class UnixLink final : public FrameLink {
         pending_.clear();
     }
 
-    static constexpr std::size_t kReadChunk = 64 * 1024;
+    static constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
     std::string path_;
     int fd_ = -1;
     std::vector<std::uint8_t> pending_;  // received bytes not yet a whole frame

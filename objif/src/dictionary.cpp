@@ -71,7 +71,8 @@ Status Dictionary::resolve(Descriptor& d, const ObjectInfo*& info, Module*& modu
     if (m == nullptr || !m->present()) return Status::kNoSuchDevice;
     Status why = Status::kOk;
     const ObjectInfo* found = m->find(a, why);
-    if (found == nullptr) return why;
+    // A module that finds nothing names why; one that forgets is still refused.
+    if (found == nullptr) return ok(why) ? Status::kObjectMissing : why;
     if (d.handle != kNoHandle) {
         const std::size_t slot = (d.handle & ((1u << kSlotBits) - 1));
         const auto gen = static_cast<std::uint16_t>(d.handle >> kSlotBits);

@@ -46,7 +46,7 @@ comp3d::SideNormal peripheral_normal(const Comp3dState& s, const Eigen::Vector3d
         if (side.refusal == Refusal::kNone) return side;
     }
     if (s.has_last_normal) {
-        const comp3d::SideNormal kept = comp3d::previous_side_normal(s.last_normal, tool_axis);
+        comp3d::SideNormal kept = comp3d::previous_side_normal(s.last_normal, tool_axis);
         if (kept.refusal == Refusal::kNone) return kept;
     }
     return side;

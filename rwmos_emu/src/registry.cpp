@@ -47,8 +47,8 @@ bool register_daemon(const RegisteredDaemon& self, std::string& why) {
     const std::string tmp = path + ".tmp";
     {
         std::ofstream f(tmp, std::ios::trunc);
-        if (self.socket.size()) f << "socket " << self.socket << '\n';
-        if (self.shm.size()) f << "shm " << self.shm << '\n';
+        if (!self.socket.empty()) f << "socket " << self.socket << '\n';
+        if (!self.shm.empty()) f << "shm " << self.shm << '\n';
         if (!f) {
             why = fmt::format("cannot write {}", tmp);
             return false;

@@ -7,6 +7,7 @@
 // order, handles, and the TC module's state rules (DESIGN.md sections 2, 3).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -120,7 +121,7 @@ TEST_P(Conformance, WrittenDoubleReadsBackBitForBit) {
     const double angle = 0.1 + 0.2;  // not representable exactly in decimal
     ASSERT_EQ(write_double(tc_init(APCI_TC_ROT_ANGLE), angle), APCI_OK);
     const double back = read_double(tc_init(APCI_TC_ROT_ANGLE));
-    EXPECT_EQ(std::memcmp(&back, &angle, sizeof angle), 0);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(back), std::bit_cast<std::uint64_t>(angle));
 }
 
 TEST_P(Conformance, FirstAccessFillsTheHandleAndLaterAccessesKeepIt) {

@@ -70,7 +70,7 @@ TEST(CppBoard, MoveTransfersTheOpenBoard) {
     auto wkzindex = apci::object(APCI_TC_BUS, 1, 1, APCI_TC_WKZINDEX);
     ASSERT_TRUE(a.write(wkzindex, 9));
     apci::Board b(std::move(a));
-    EXPECT_FALSE(a.is_open());  // NOLINT(bugprone-use-after-move): moved-from state is documented
+    EXPECT_FALSE(a.is_open());  // NOLINT(bugprone-use-after-move,clang-analyzer-cplusplus.Move): moved-from state is documented
     ASSERT_TRUE(b.is_open());
     EXPECT_EQ(b.read_int(wkzindex).value, 9);  // same board, same handle
     apci::Board c;

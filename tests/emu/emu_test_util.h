@@ -43,8 +43,10 @@ struct Snapshot {
 };
 inline Snapshot snapshot(const rwmos::Board& board) {
     const auto& s = board.state();
-    return Snapshot{s.interpolation_cycle_us, s.pu, std::make_unique<rwmos::TcState>(s.tc),
-                    std::make_unique<rwmos::Comp3dState>(s.comp3d), s.otc, s.temp_comp};
+    Snapshot snap{s.interpolation_cycle_us, s.pu, nullptr, nullptr, s.otc, s.temp_comp};
+    snap.tc = std::make_unique<rwmos::TcState>(s.tc);
+    snap.comp3d = std::make_unique<rwmos::Comp3dState>(s.comp3d);
+    return snap;
 }
 
 inline bool same_deltas(const rwmos::comp3d::Deltas& a, const rwmos::comp3d::Deltas& b) {

@@ -137,7 +137,7 @@ struct Rig {
         out.resize(board.read_segments(out));
         return out;
     }
-    AxisVector position() { return board.motion_status().position; }
+    AxisVector position() const { return board.motion_status().position; }
 };
 
 class MotionBoard : public ::testing::Test, public Rig {};

@@ -274,7 +274,8 @@ TEST_P(CircularTransitionRule, IsArcOfToolRadiusAboutTheCornerNeverCloser) {
     EXPECT_EQ(arc.kind, ElementKind::kArc);
     EXPECT_EQ(arc.centre, a_.end);
     EXPECT_NEAR(std::abs(sweep(arc)), std::abs(GetParam().turn_degrees) * kPi / 180, 1e-9);
-    for (double t = 0; t <= 1.0; t += 1.0 / 64) {
+    for (int step = 0; step <= 64; ++step) {
+        const double t = step / 64.0;
         EXPECT_NEAR((point_at(arc, t) - a_.end).norm(), r_, 1e-12);
         EXPECT_GE(clearance(point_at(arc, t)), r_ - 1e-9) << t;
     }
@@ -296,8 +297,10 @@ TEST_P(LinearTransitionRule, ExtendsAlongTheTangentsAndNeverGouges) {
         EXPECT_NEAR(length(last), r_, 1e-12);
     }
     for (std::size_t i = 0; i < t.count; ++i)
-        for (double s = 0; s <= 1.0; s += 1.0 / 64)
+        for (int step = 0; step <= 64; ++step) {
+            const double s = step / 64.0;
             EXPECT_GE(clearance(point_at(t.elements[i], s)), r_ - 1e-9) << i << " " << s;
+        }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryCombination, CornerRule, testing::ValuesIn(cases(Filter::kAll)),

@@ -31,7 +31,8 @@ TEST(BHeadKinematics, PositiveBTiltsFromPlusZTowardsPlusX) {
 }
 
 TEST(BHeadKinematics, DirectionIsAUnitVectorInTheZXPlane) {
-    for (double b = -180.0; b <= 180.0; b += 7.5) {
+    for (int step = -24; step <= 24; ++step) {
+        const double b = 7.5 * step;
         const Eigen::Vector3d t = b_head_tool_direction(b);
         EXPECT_NEAR(t.norm(), 1.0, kEps) << b;
         EXPECT_EQ(t.y(), 0.0) << b;
@@ -66,7 +67,8 @@ TEST(BcHeadKinematics, CZeroIsTheBHeadAlone) {
 TEST(BcHeadKinematics, CTurnsTheTiltedToolAboutZ) {
     const Eigen::Vector3d t = bc_head_tool_direction(90.0, 90.0);
     EXPECT_NEAR((t - Eigen::Vector3d(0, 1, 0)).norm(), 0.0, kEps);
-    for (double c = -270.0; c <= 270.0; c += 22.5) {
+    for (int step = -12; step <= 12; ++step) {
+        const double c = 22.5 * step;
         const Eigen::Vector3d tc = bc_head_tool_direction(30.0, c);
         EXPECT_NEAR(tc.norm(), 1.0, kEps);
         EXPECT_NEAR(tc.z(), std::cos(degrees_to_radians(30.0)), kEps);

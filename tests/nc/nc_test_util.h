@@ -17,7 +17,7 @@ struct RunResult {
 };
 
 // Validation pass, then the execution pass collecting every event.
-inline RunResult run(std::string_view text, InterpreterOptions options = {}) {
+inline RunResult run(std::string_view text, const InterpreterOptions& options = {}) {
     RunResult r;
     Result<Program> program = Program::from_text(text, "prog.nc", options);
     if (!program) {
@@ -43,13 +43,13 @@ inline RunResult run(std::string_view text, InterpreterOptions options = {}) {
 }
 
 // "file:line:col: message" of the first error, or "" when the program runs.
-inline std::string error_of(std::string_view text, InterpreterOptions options = {}) {
+inline std::string error_of(std::string_view text, const InterpreterOptions& options = {}) {
     RunResult r = run(text, options);
     return r.error ? r.error->to_string() : std::string();
 }
 
 // The events of a program that must run; moves only when moves_only.
-inline std::vector<Event> events_of(std::string_view text, InterpreterOptions options = {}) {
+inline std::vector<Event> events_of(std::string_view text, const InterpreterOptions& options = {}) {
     RunResult r = run(text, options);
     if (r.error) ADD_FAILURE() << "unexpected error: " << r.error->to_string();
     return r.events;

@@ -22,7 +22,7 @@ using V = Eigen::Vector3d;
 const std::string kExamples = APCI_EXAMPLES_DIR;
 
 std::string temp_file(const std::string& name, const std::string& text) {
-    const std::string path = ::testing::TempDir() + name;
+    std::string path = ::testing::TempDir() + name;
     std::ofstream(path, std::ios::binary) << text;
     return path;
 }
@@ -164,7 +164,7 @@ TEST(Program, LinesAcrossTheReadBufferKeepTheirText) {
     // Enough lines of varying length that many straddle the file reader's buffer boundary.
     std::string text = "G1 F100\n";
     int n = 0;
-    while (text.size() < 3 * 2 * LineSource::kMaxLineLength) {
+    while (text.size() < std::size_t{3} * 2 * LineSource::kMaxLineLength) {
         ++n;
         text += "N" + std::to_string(n) + " X" + std::to_string(n % 997) + ".5 ( " +
                 std::string(static_cast<std::size_t>(n % 13), 'c') + ")\n";

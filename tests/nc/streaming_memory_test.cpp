@@ -62,7 +62,7 @@ namespace {
 // Writes a valid program of `blocks` motion blocks: lines and arcs (I/J and R) round a square,
 // with comments, so that every part of the reader, parser and interpreter runs.
 std::string write_program(const std::string& name, std::size_t blocks) {
-    const std::string path = ::testing::TempDir() + name;
+    std::string path = ::testing::TempDir() + name;
     std::FILE* f = std::fopen(path.c_str(), "wb");
     EXPECT_NE(f, nullptr);
     std::fputs("%generated.nc\nN1 G17 G90 G25 F1000 (setup)\nN2 D1 G0 X0 Y0 Z0\n", f);

@@ -49,8 +49,12 @@ bool has_line(const std::string& out, const std::string& uri, const std::string&
 
 // A script file in `dir`.
 std::string script_file(const TempDir& dir, const std::string& text) {
-    const std::string path = dir.file("work.script");
+    std::string path = dir.file("work.script");
     FILE* f = std::fopen(path.c_str(), "w");
+    if (f == nullptr) {
+        ADD_FAILURE() << "cannot create " << path;
+        return path;
+    }
     std::fputs(text.c_str(), f);
     std::fclose(f);
     return path;

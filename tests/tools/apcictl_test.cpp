@@ -344,7 +344,7 @@ class ApcictlHelp : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ApcictlHelp, EveryCommandHasHelp) {
     std::vector<std::string> args;
-    if (std::string(GetParam()) != "") args.emplace_back(GetParam());
+    if (!std::string(GetParam()).empty()) args.emplace_back(GetParam());
     args.emplace_back("--help");
     const auto r = apcictl(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;

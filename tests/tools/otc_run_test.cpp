@@ -73,7 +73,7 @@ class OtcRun : public ::testing::Test {
     }
     json run_json(std::vector<std::string> args, int expected_exit = 0) {
         args.insert(args.begin(), "run");
-        args.push_back("--json");
+        args.emplace_back("--json");
         args.push_back(path("out.json"));
         last_ = apcictl(args);
         EXPECT_EQ(last_.exit_code, expected_exit) << last_.out << last_.err;
@@ -101,7 +101,7 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
         std::vector<std::string> args;
         for (std::string word; cmd >> word;)
             args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
-        args.push_back("--json");
+        args.emplace_back("--json");
         args.push_back(path("out.json"));
         const ProcessResult r = apcictl(args);
         EXPECT_EQ(r.exit_code, 0) << name << ": " << r.out << r.err;

@@ -43,7 +43,7 @@ class MemoryFile {
     std::FILE* file_;
 };
 
-PathSegment line(Point a, Point b, Role role = Role::kContour, std::int64_t n = 10) {
+PathSegment line(const Point& a, const Point& b, Role role = Role::kContour, std::int64_t n = 10) {
     PathSegment s;
     s.block.number = n;
     s.kind = SegmentKind::kLine;
@@ -53,8 +53,8 @@ PathSegment line(Point a, Point b, Role role = Role::kContour, std::int64_t n = 
     return s;
 }
 
-PathSegment arc(Point a, Point b, Point c, bool ccw, int plane = 17, Role role = Role::kContour,
-                std::int64_t n = 20) {
+PathSegment arc(const Point& a, const Point& b, const Point& c, bool ccw, int plane = 17,
+                Role role = Role::kContour, std::int64_t n = 20) {
     PathSegment s = line(a, b, role, n);
     s.kind = SegmentKind::kArc;
     s.center = c;
@@ -257,6 +257,7 @@ TEST(RunTextSink, ManySmallPiecesKeepTheirOrder) {
 TEST(RunCsv, HeaderNamesTheAxesAndOneLineACycle) {
     MemoryFile f;
     std::vector<std::string> names;
+    names.reserve(8);
     for (int i = 0; i < 8; ++i) names.push_back(axis_column_name(i, 0, 1, 2));
     TraceCsvWriter w(f.get(), names);
     const double p1[8] = {0.01, 0, 0, 0, 0, 0, 0, 0};

@@ -80,7 +80,7 @@ class TempCompRun : public ::testing::Test {
         std::vector<std::string> args{"run",           program,  "--csv",
                                       path("out.csv"), "--json", path(json_name)};
         if (!plc.empty()) {
-            args.push_back("--plc");
+            args.emplace_back("--plc");
             args.push_back(plc);
         }
         const ProcessResult r = apcictl(args);
@@ -106,7 +106,7 @@ TEST_F(TempCompRun, ExampleRunsWithItsDocumentedCommand) {
     std::vector<std::string> args;
     for (std::string word; cmd >> word;)
         args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
-    args.push_back("--json");
+    args.emplace_back("--json");
     args.push_back(path("out.json"));
     const ProcessResult r = apcictl(args);
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;

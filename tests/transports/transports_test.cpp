@@ -54,7 +54,7 @@ bool contains(const std::string& text, const std::string& part) {
 
 // A file of `size` zero bytes.
 void make_file(const std::string& path, std::uintmax_t size) {
-    std::ofstream{path};
+    { std::ofstream created(path); }
     std::filesystem::resize_file(path, size);
 }
 

@@ -280,6 +280,7 @@ std::optional<Difference> compare_segments(const Recording& a, const Recording& 
     for (std::size_t i = 0; i < std::max(a.segments.size(), b.segments.size()); ++i) {
         const PathSegment* x = i < a.segments.size() ? &a.segments[i] : nullptr;
         const PathSegment* y = i < b.segments.size() ? &b.segments[i] : nullptr;
+        if (x == nullptr && y == nullptr) break;  // cannot happen below the longer size
         const bool same = x != nullptr && y != nullptr && x->kind == y->kind &&
                           x->role == y->role && x->block.number == y->block.number &&
                           (x->end - y->end).cwiseAbs().maxCoeff() <= tolerance &&

@@ -149,13 +149,18 @@ class Chart {
              "1; fill: none; }"
           << " path.s { fill: none; stroke-width: 2; }</style>\n"
           << "<text x=\"" << l << "\" y=\"24\">" << title_ << "</text>\n";
-        for (double x = std::ceil(x0_ / xstep) * xstep; x <= x1_ + 1e-9; x += xstep) {
+        // Grid lines at whole multiples of the step (no accumulated rounding).
+        for (auto k = static_cast<long>(std::ceil(x0_ / xstep));; ++k) {
+            const double x = static_cast<double>(k) * xstep;
+            if (x > x1_ + 1e-9) break;
             o << "<path class=\"grid\" d=\"M" << num(px(x)) << ' ' << num(py(y0_)) << " L"
               << num(px(x)) << ' ' << num(py(y1_)) << "\"/>\n"
               << "<text x=\"" << num(px(x) - 8) << "\" y=\"" << num(py(y0_) + 18) << "\">" << num(x)
               << "</text>\n";
         }
-        for (double y = std::ceil(y0_ / ystep) * ystep; y <= y1_ + 1e-9; y += ystep) {
+        for (auto k = static_cast<long>(std::ceil(y0_ / ystep));; ++k) {
+            const double y = static_cast<double>(k) * ystep;
+            if (y > y1_ + 1e-9) break;
             o << "<path class=\"grid\" d=\"M" << num(px(x0_)) << ' ' << num(py(y)) << " L"
               << num(px(x1_)) << ' ' << num(py(y)) << "\"/>\n"
               << "<text x=\"" << num(l - 40) << "\" y=\"" << num(py(y) + 4) << "\">" << num(y)
@@ -176,8 +181,9 @@ class Chart {
                 o << (k == 0 ? "M" : " L") << num(px(s.points[k].first)) << ' '
                   << num(py(s.points[k].second));
             o << "\"/>\n";
-            const double lx = l + static_cast<double>(i % 3) * 240.0;
-            const double ly = h - 36 + static_cast<double>(i / 3) * 18.0;
+            const auto column = i % 3, row = i / 3;  // three legend entries a row
+            const double lx = l + static_cast<double>(column) * 240.0;
+            const double ly = h - 36 + static_cast<double>(row) * 18.0;
             o << "<path class=\"s\" stroke=\"" << s.colour << "\""
               << (s.dashed ? " stroke-dasharray=\"6 4\"" : "") << " d=\"M" << num(lx) << ' '
               << num(ly) << " L" << num(lx + 24) << ' ' << num(ly) << "\"/>\n"

@@ -155,7 +155,7 @@ bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eig
 
 }  // namespace
 
-Interpreter::Interpreter(InterpreterOptions options) : options_(options) {
+Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) {
     state_.position = options_.start_position;
 }
 

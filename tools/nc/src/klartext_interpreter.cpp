@@ -275,7 +275,7 @@ std::uint32_t first_axis_column(const KlartextBlock& b) {
 
 }  // namespace
 
-KlartextInterpreter::KlartextInterpreter(KlartextOptions options) : options_(options) {
+KlartextInterpreter::KlartextInterpreter(const KlartextOptions& options) : options_(options) {
     state_.position = options_.start_position;
 }
 

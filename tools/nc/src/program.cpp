@@ -12,21 +12,22 @@
 
 namespace apci::nc {
 
-EventStream::EventStream(LineSource source, InterpreterOptions options)
+EventStream::EventStream(LineSource source, const InterpreterOptions& options)
     : source_(std::move(source)),
       interpreter_(options),
       klartext_(KlartextOptions{options.start_position, options.tools, options.corrections}) {
     loops_.reserve(kMaxLoopDepth);
 }
 
-Result<EventStream> EventStream::open_file(const std::string& path, InterpreterOptions options) {
+Result<EventStream> EventStream::open_file(const std::string& path,
+                                               const InterpreterOptions& options) {
     Result<LineSource> source = LineSource::open_file(path);
     if (!source) return source.error();
     return EventStream(std::move(source).value(), options);
 }
 
 EventStream EventStream::from_text(std::string_view text, std::string name,
-                                   InterpreterOptions options) {
+                                   const InterpreterOptions& options) {
     return EventStream(LineSource::from_text(text, std::move(name)), options);
 }
 
@@ -310,7 +311,7 @@ bool stamp_file(const std::string& path, FileStamp& out, Diagnostic& err) {
 
 }  // namespace
 
-Result<Program> Program::load(const std::string& path, InterpreterOptions options) {
+Result<Program> Program::load(const std::string& path, const InterpreterOptions& options) {
     Diagnostic err;
     FileStamp stamp;
     if (!stamp_file(path, stamp, err)) return err;
@@ -328,7 +329,7 @@ Result<Program> Program::load(const std::string& path, InterpreterOptions option
 }
 
 Result<Program> Program::from_text(std::string_view text, std::string name,
-                                   InterpreterOptions options) {
+                                   const InterpreterOptions& options) {
     EventStream stream = EventStream::from_text(text, std::move(name), options);
     Result<ProgramSummary> summary = validate(stream);
     if (!summary) return summary.error();

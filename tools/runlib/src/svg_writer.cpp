@@ -544,7 +544,8 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     std::size_t slot = 0;
     const auto slot_x = [&] { return bx + static_cast<double>(slot % per_row) * entry; };
     const auto slot_y = [&] {
-        return fy + (2.4 + 1.5 * static_cast<double>(slot / per_row)) * font;
+        const std::size_t row = slot / per_row;  // whole rows
+        return fy + (2.4 + 1.5 * static_cast<double>(row)) * font;
     };
     for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
         if (counts_[layer] == 0) continue;

@@ -40,21 +40,23 @@ constexpr bool is_arc(ProfileKind k) noexcept {
     return k == ProfileKind::kArcCw || k == ProfileKind::kArcCcw;
 }
 
-// One spooled motion profile (one NC block's move).
+// One spooled motion profile (one NC block's move). Members ordered by size
+// (no padding inside; the spooler holds 256 of them per group).
 struct Profile {
-    ProfileKind kind = ProfileKind::kLine;
-    std::uint32_t tag = 0;  // the NC block number; carried into every segment it produces
     // Interpolation units per minute along the path; > 0 for G01..G03.
     // G00: 0 means kDefaultRapidFeed.
     double feed = 0.0;
-    AxisMask axes = 0;    // the axes named; the others keep their position
     AxisVector target{};  // absolute target of each named axis (program coordinates)
-    // Arcs only: the two axes the arc is named in (first, second), and its
-    // centre on those two axes (absolute). G03 turns from the first axis
-    // towards the second. Once a TC object was accessed, the arc runs in the
-    // active plane instead (seed 003 section 2.2 "Wichtiger Hinweis").
-    std::array<std::uint8_t, 2> arc_axes{0, 1};
+    // Arcs only: the two axes the arc is named in (first, second, in
+    // arc_axes), and its centre on those two axes (absolute). G03 turns from
+    // the first axis towards the second. Once a TC object was accessed, the
+    // arc runs in the active plane instead (seed 003 section 2.2 "Wichtiger
+    // Hinweis").
     std::array<double, 2> center{};
+    std::uint32_t tag = 0;  // the NC block number; carried into every segment it produces
+    ProfileKind kind = ProfileKind::kLine;
+    AxisMask axes = 0;  // the axes named; the others keep their position
+    std::array<std::uint8_t, 2> arc_axes{0, 1};
 };
 
 // Direct commands (seed 003 section 1 names JA and JS as examples; their

@@ -58,7 +58,7 @@ struct InterpreterOptions {
 
 class Interpreter {
   public:
-    explicit Interpreter(InterpreterOptions options = {});
+    explicit Interpreter(const InterpreterOptions& options = {});
 
     // Applies one block: checks the program rules against the modal state, then commits the new
     // state and fills `out` (cleared first) with the block's events. On error returns false,

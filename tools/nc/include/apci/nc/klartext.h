@@ -141,7 +141,7 @@ struct KlartextOptions {
 
 class KlartextInterpreter {
   public:
-    explicit KlartextInterpreter(KlartextOptions options = {});
+    explicit KlartextInterpreter(const KlartextOptions& options = {});
 
     // Applies one block: checks the program rules against the modal state, then commits the
     // new state and fills `out` (cleared first). On error returns false, fills err and changes

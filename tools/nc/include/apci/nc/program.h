@@ -40,10 +40,11 @@ inline constexpr std::size_t kMaxLoopDepth = 16;
 // One pass over a program, pulling one event at a time.
 class EventStream : private ExpressionContext {
   public:
-    static Result<EventStream> open_file(const std::string& path, InterpreterOptions options = {});
+    static Result<EventStream> open_file(const std::string& path,
+                                         const InterpreterOptions& options = {});
     // The text must outlive the stream; nothing is copied.
     static EventStream from_text(std::string_view text, std::string name,
-                                 InterpreterOptions options = {});
+                                 const InterpreterOptions& options = {});
 
     enum class Next { kEvent, kEnd, kError };
     // kEvent: `out` holds the next event. kEnd: the program ended with M30 and only blank or
@@ -83,7 +84,7 @@ class EventStream : private ExpressionContext {
     bool loop_continues(const LoopFrame& f) const noexcept;
     Diagnostic here(ErrorKind kind, std::uint32_t column, std::string message) const;
 
-    EventStream(LineSource source, InterpreterOptions options);
+    EventStream(LineSource source, const InterpreterOptions& options);
     bool read_batch();  // fills batch_ from the next block with events; false at end or error
     bool fail(Diagnostic d);
     bool line(std::string_view text);
@@ -126,10 +127,10 @@ Result<ProgramSummary> validate(EventStream& stream);
 class Program {
   public:
     // Validates the file; the error is the first one in the program.
-    static Result<Program> load(const std::string& path, InterpreterOptions options = {});
+    static Result<Program> load(const std::string& path, const InterpreterOptions& options = {});
     // Validates text held by the caller (it must outlive the Program and its streams).
     static Result<Program> from_text(std::string_view text, std::string name,
-                                     InterpreterOptions options = {});
+                                     const InterpreterOptions& options = {});
 
     const ProgramSummary& summary() const noexcept { return summary_; }
     // The execution pass. For a file, fails with kIo when the file changed (size or time of
