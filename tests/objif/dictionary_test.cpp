@@ -214,6 +214,29 @@ TEST_F(DictionaryTest, DuplicateBusIsRefused) {
     EXPECT_EQ(dict.add(nullptr), Status::kInvalidArgument);
 }
 
+// A module whose find() returns nothing without naming why: the dictionary
+// still refuses the access (ObjectMissing) and never calls the module's hooks.
+class SilentModule : public TestModule {
+public:
+    std::int32_t bus() const noexcept override { return 43; }
+    const objif::ObjectInfo* find(const objif::Address&, Status&) const noexcept override {
+        return nullptr;
+    }
+};
+
+TEST_F(DictionaryTest, ModuleThatFindsNothingWithoutAReasonIsStillRefused) {
+    SilentModule silent;
+    ASSERT_EQ(dict.add(&silent), Status::kOk);
+    auto r = at(43, 0, 1, 0);
+    Value v = Value::of_int(77);
+    EXPECT_EQ(dict.read(r, ValueType::kInt32, v), Status::kObjectMissing);
+    EXPECT_EQ(v, Value::of_int(77));
+    auto w = at(43, 0, 1, 0);
+    EXPECT_EQ(dict.write(w, Value::of_int(9)), Status::kObjectMissing);
+    EXPECT_EQ(silent.level, 3);  // its default: no hook ran
+    EXPECT_EQ(w.handle, objif::kNoHandle);
+}
+
 TEST_F(DictionaryTest, TableIsListable) {
     ASSERT_EQ(mod.object_count(), 6u);
     EXPECT_EQ(mod.object_at(0).name, "Level");
