@@ -55,7 +55,11 @@ std::set<std::string> socket_inodes(const std::string& table) {
 // A group other than the daemon's own (root's), to hand the socket.
 bool some_other_group(gid_t& gid, std::string& name) {
     for (const char* candidate : {"daemon", "nogroup", "users", "bin", "sys"}) {
-        if (const group* g = ::getgrnam(candidate); g != nullptr && g->gr_gid != ::getegid()) {
+        group entry{};
+        group* g = nullptr;
+        std::vector<char> buffer(16384);
+        const int err = ::getgrnam_r(candidate, &entry, buffer.data(), buffer.size(), &g);
+        if (err == 0 && g != nullptr && g->gr_gid != ::getegid()) {
             gid = g->gr_gid;
             name = candidate;
             return true;

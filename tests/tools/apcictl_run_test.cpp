@@ -560,7 +560,7 @@ V3 end_of_block(const json& doc, int block) {
     return point(s.at("end"));
 }
 
-V3 tcp(const V3& p, const V3& n, const V3& t, c3::ToolDimensions tool, c3::Deltas d,
+V3 tcp(const V3& p, const V3& n, const V3& t, const c3::ToolDimensions& tool, const c3::Deltas& d,
        c3::ReferencePoint ref = c3::ReferencePoint::kTip) {
     c3::Settings s;
     s.tool = tool;

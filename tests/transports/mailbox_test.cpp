@@ -15,7 +15,10 @@ namespace {
 
 namespace mb = objif::mailbox;
 using objif::Status;
-using namespace std::chrono_literals;
+// Durations spelled out, not as chrono literals: cppcheck 2.10 stops on 20us
+// and 20ms in this file ("MathLib::toLongNumber: input was not completely consumed").
+using std::chrono::microseconds;
+using std::chrono::milliseconds;
 
 class Mailbox : public ::testing::Test {
   protected:
@@ -31,7 +34,8 @@ class Mailbox : public ::testing::Test {
         board_ = std::thread([this] {
             std::vector<std::uint8_t> request;
             while (!stop_) {
-                if (!mb::take_request(window_, request, 10us, 20ms)) continue;
+                if (!mb::take_request(window_, request, microseconds(10), milliseconds(20)))
+                    continue;
                 ++served_;
                 std::vector<std::uint8_t> reply(request.rbegin(), request.rend());
                 mb::put_reply(window_, reply);
@@ -44,7 +48,7 @@ class Mailbox : public ::testing::Test {
         if (board_.joinable()) board_.join();
     }
 
-    mb::HostOptions host(std::chrono::milliseconds timeout = 2000ms) {
+    mb::HostOptions host(std::chrono::milliseconds timeout = milliseconds(2000)) {
         mb::HostOptions o;
         o.token = 4242;
         o.timeout = timeout;
@@ -135,8 +139,9 @@ TEST_F(Mailbox, BoardThatNeverAnswersIsATimeout) {
     std::vector<std::uint8_t> reply;
     std::string why;
     const auto t0 = std::chrono::steady_clock::now();
-    EXPECT_EQ(mb::exchange(window_, host(100ms), bytes(20), reply, why), Status::kTimeout);
-    EXPECT_GE(std::chrono::steady_clock::now() - t0, 100ms);
+    EXPECT_EQ(mb::exchange(window_, host(milliseconds(100)), bytes(20), reply, why),
+              Status::kTimeout);
+    EXPECT_GE(std::chrono::steady_clock::now() - t0, milliseconds(100));
     EXPECT_NE(why.find("no reply from the board within 100 ms"), std::string::npos) << why;
     EXPECT_EQ(window_.load(mb::kOffHostLock), 0u);
 }
@@ -145,7 +150,8 @@ TEST_F(Mailbox, RequestLeftByATimedOutHostIsSettledBeforeTheNext) {
     mb::set_board_state(window_, mb::BoardState::kServing);
     std::vector<std::uint8_t> reply;
     std::string why;
-    ASSERT_EQ(mb::exchange(window_, host(20ms), bytes(20, 1), reply, why), Status::kTimeout);
+    ASSERT_EQ(mb::exchange(window_, host(milliseconds(20)), bytes(20, 1), reply, why),
+              Status::kTimeout);
     start_board();  // the board comes back and answers the old request first
     const auto request = bytes(24, 50);
     ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
@@ -157,7 +163,7 @@ TEST_F(Mailbox, RequestLeftByATimedOutHostIsSettledBeforeTheNext) {
 TEST_F(Mailbox, LockHeldByALiveHostIsATimeout) {
     start_board();
     window_.store(mb::kOffHostLock, 99);
-    auto o = host(50ms);
+    auto o = host(milliseconds(50));
     o.lock_holder_gone = [](std::uint32_t) { return false; };
     std::vector<std::uint8_t> reply;
     std::string why;
@@ -181,7 +187,7 @@ TEST_F(Mailbox, ReplyRecordLengthOutOfRangeIsATransportError) {
     mb::set_board_state(window_, mb::BoardState::kServing);
     std::thread liar([this] {
         std::vector<std::uint8_t> request;
-        while (!mb::take_request(window_, request, 10us, 20ms)) {
+        while (!mb::take_request(window_, request, microseconds(10), milliseconds(20))) {
         }
         window_.store(mb::kOffReply, static_cast<std::uint32_t>(mb::kRecordCapacity + 1));
         window_.store(mb::kOffStatus, static_cast<std::uint32_t>(mb::MailboxStatus::kReply));
@@ -199,21 +205,22 @@ TEST_F(Mailbox, RequestRecordLengthOutOfRangeReachesTheBoardAsNoBytes) {
     window_.store(mb::kOffRequest, 3);  // shorter than any frame
     window_.store(mb::kOffStatus, static_cast<std::uint32_t>(mb::MailboxStatus::kRequest));
     std::vector<std::uint8_t> request{1, 2, 3};
-    ASSERT_TRUE(mb::take_request(window_, request, 10us, 20ms));
+    ASSERT_TRUE(mb::take_request(window_, request, microseconds(10), milliseconds(20)));
     EXPECT_TRUE(request.empty());
 }
 
 TEST_F(Mailbox, BoardStoppingWhileAHostWaitsEndsTheWait) {
     mb::set_board_state(window_, mb::BoardState::kServing);
     std::thread stopper([this] {
-        std::this_thread::sleep_for(30ms);
+        std::this_thread::sleep_for(milliseconds(30));
         mb::set_board_state(window_, mb::BoardState::kStopped);
     });
     std::vector<std::uint8_t> reply;
     std::string why;
     const auto t0 = std::chrono::steady_clock::now();
-    EXPECT_EQ(mb::exchange(window_, host(5000ms), bytes(20), reply, why), Status::kTransportError);
-    EXPECT_LT(std::chrono::steady_clock::now() - t0, 1000ms);
+    EXPECT_EQ(mb::exchange(window_, host(milliseconds(5000)), bytes(20), reply, why),
+              Status::kTransportError);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, milliseconds(1000));
     EXPECT_NE(why.find("stopped serving"), std::string::npos) << why;
     stopper.join();
 }
@@ -225,16 +232,16 @@ TEST_F(Mailbox, SetBoardStateServingBumpsTheGeneration) {
 }
 
 TEST(AdaptiveSpin, StartsAtTheLongestHalvesOnEachMissDoublesOnEachCatch) {
-    mb::AdaptiveSpin spin(1us, 16us);
-    EXPECT_EQ(spin.budget(), 16us);
+    mb::AdaptiveSpin spin(microseconds(1), microseconds(16));
+    EXPECT_EQ(spin.budget(), microseconds(16));
     spin.learn(false);
-    EXPECT_EQ(spin.budget(), 8us);
+    EXPECT_EQ(spin.budget(), microseconds(8));
     for (int i = 0; i < 10; ++i) spin.learn(false);
-    EXPECT_EQ(spin.budget(), 1us) << "never below the shortest";
+    EXPECT_EQ(spin.budget(), microseconds(1)) << "never below the shortest";
     spin.learn(true);
-    EXPECT_EQ(spin.budget(), 2us);
+    EXPECT_EQ(spin.budget(), microseconds(2));
     for (int i = 0; i < 10; ++i) spin.learn(true);
-    EXPECT_EQ(spin.budget(), 16us) << "never above the longest";
+    EXPECT_EQ(spin.budget(), microseconds(16)) << "never above the longest";
 }
 
 TEST_F(Mailbox, HostStopsSpinningForABoardThatAnswersSlowly) {
@@ -242,13 +249,13 @@ TEST_F(Mailbox, HostStopsSpinningForABoardThatAnswersSlowly) {
     std::thread slow_board([this] {  // 2 ms per request: far beyond any spin
         std::vector<std::uint8_t> request;
         for (int served = 0; served < 8;) {
-            if (!mb::take_request(window_, request, 0us, 20ms)) continue;
-            std::this_thread::sleep_for(2ms);
+            if (!mb::take_request(window_, request, microseconds(0), milliseconds(20))) continue;
+            std::this_thread::sleep_for(milliseconds(2));
             mb::put_reply(window_, request);
             ++served;
         }
     });
-    mb::AdaptiveSpin spin(1us, 20us);
+    mb::AdaptiveSpin spin(microseconds(1), microseconds(20));
     auto o = host();
     o.adaptive = &spin;
     std::vector<std::uint8_t> reply;
@@ -256,7 +263,8 @@ TEST_F(Mailbox, HostStopsSpinningForABoardThatAnswersSlowly) {
     for (int i = 0; i < 8; ++i)
         ASSERT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kOk) << why;
     slow_board.join();
-    EXPECT_EQ(spin.budget(), 1us) << "eight misses: 20 -> 10 -> 5 -> 2.5 -> 1.25 -> 1 us";
+    EXPECT_EQ(spin.budget(), microseconds(1))
+        << "eight misses: 20 -> 10 -> 5 -> 2.5 -> 1.25 -> 1 us";
 }
 
 }  // namespace
