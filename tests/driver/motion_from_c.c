@@ -9,12 +9,8 @@
 int c_motion_round_trip(void) {
     apci_board* board = NULL;
     if (apci_open("emu:", &board) != APCI_OK) return 1;
-    apci_profile line;
-    memset(&line, 0, sizeof line);
-    line.kind = APCI_PROFILE_LINE;
-    line.axes = 0x03;
-    line.tag = 1;
-    line.feed = 600.0;
+    /* Members not named are zero (C11 6.7.9). */
+    apci_profile line = {.kind = APCI_PROFILE_LINE, .axes = 0x03, .tag = 1, .feed = 600.0};
     line.target[0] = 10.0;
     apci_profile arc = line;
     arc.kind = APCI_PROFILE_ARC_CCW;
