@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <string>
 
 #include "apci/nc/arc.h"
 #include "apci/nc/parser.h"
@@ -187,6 +188,18 @@ TEST(Interpreter, RadiusArcOverHalfCircleChordIsMidpoint) {
     expect_near(single_arc("G2 X20 R10 F1\nM30").center, V(10, 0, 0));
     // Within the tolerance, a chord a little longer than the diameter is a half circle.
     expect_near(single_arc("G2 X20.001 R10 F1\nM30").center, V(10.0005, 0, 0));
+}
+
+// R beyond 1e154 squares to infinity; the centre must still be the finite point
+// R away from both ends (fuzzer nc, tests/fuzz/crashes/nc/).
+TEST(Interpreter, RadiusTooLargeToSquareStillGivesItsFiniteCentre) {
+    const double r = 1e200;
+    const std::string program = "G2 X20 R1" + std::string(200, '0') + " F1\nM30";
+    const Eigen::Vector3d c = single_arc(program).center;
+    ASSERT_TRUE(c.allFinite()) << c.transpose();
+    EXPECT_NEAR(c.x(), 10.0, 1e-9);
+    EXPECT_NEAR(-c.y() / r, 1.0, 1e-12);  // G2, the shorter arc: centre right of the chord
+    EXPECT_EQ(c.z(), 0.0);
 }
 
 TEST(Interpreter, RadiusArcImpossibleForChordIsError) {

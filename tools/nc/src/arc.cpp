@@ -36,13 +36,23 @@ ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen
         return out;
     }
     const double half = d / 2.0;
-    const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
+    double h = 0.0;
+    if (abs_r > half) {
+        // r^2 overflows for |R| beyond 1e154; the factored form stays finite there.
+        const double rr = abs_r * abs_r;
+        h = std::isfinite(rr) ? std::sqrt(rr - half * half)
+                              : std::sqrt(abs_r - half) * std::sqrt(abs_r + half);
+    }
     const Eigen::Vector2d u = chord / d;
     const Eigen::Vector2d left(-u.y(), u.x());
     // The shorter counter-clockwise arc turns around a centre left of the chord; clockwise or the
     // longer arc puts it on the right.
     const double side = (ccw ? 1.0 : -1.0) * (r > 0.0 ? 1.0 : -1.0);
     const Eigen::Vector2d c = (s + e) / 2.0 + side * h * left;
+    if (!c.allFinite()) {
+        out.message = fmt::format("R arc impossible: R{} puts its centre beyond any coordinate", r);
+        return out;
+    }
     out.center = start;
     out.center[a.first] = c.x();
     out.center[a.second] = c.y();
