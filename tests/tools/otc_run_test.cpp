@@ -376,7 +376,8 @@ TEST(PlcScript, ErrorsSayWhatWasExpected) {
               "p.plc:1:1: expected 'cycle N' or 'block N' at the start of the line");
     EXPECT_EQ(err("cycle 5 motor.command 1"),
               "p.plc:1:9: unknown unit (known: otc_radius_offset, otc_offset[i], "
-              "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i])");
+              "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i], tool_holder, "
+              "tool_holder_axis_b, tool_holder_axis_c, temp_ramp_velocity)");
     EXPECT_EQ(err("cycle 5 otc_offset[9].command 1"), "p.plc:1:9: otc_offset[i]: axis index 0..7");
     EXPECT_EQ(err("cycle 5 otc_offset[1].speed 1"),
               "p.plc:1:23: unknown field (known: command, enable)");

@@ -11,9 +11,11 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -247,6 +249,47 @@ TEST_F(TempCompRun, PlcWriteAfterTheProgramsEndIsWritten) {
     EXPECT_EQ(doc().at("variables").at("$SC_TOOL_TEMP_COMP[0]"), 0.5);
 }
 
+// Seed 004: with an orientable tool holder the vector turns with the tool orientation, at once.
+// The PLC switches the holder on (tool_holder); the program turns the head's B (board axis 4)
+// from 0 to 90 degrees during N30: at every cycle the displacement is Ry(B) (0, 0, 0.1), so Z's
+// 0.1 goes over to X. With the holder's B on another axis (tool_holder_axis_b 5, which stays at
+// 0) nothing turns; without the holder nothing turns either.
+TEST_F(TempCompRun, PlcToolHolderTurnsTheVectorWithTheHead) {
+    constexpr std::size_t kB = 6;  // board axis 4
+    const std::string program =
+        write("h.nc", "N10 G0 X0 Y0 Z10 B0\nN20 $SC_TOOL_TEMP_COMP[2] = 0.1\n"
+                      "N30 G1 X10 B90 F3000\nN40 G1 X20\nN50 M30\n");
+    const std::string md = "cycle 0 tool_temp_comp_on 1\ncycle 0 temp_comp_type[0] 4\n"
+                           "cycle 0 temp_comp_type[2] 4\ncycle 0 temp_ramp_velocity 0.5\n";
+    const auto off = trace(program, "");
+    const auto still = trace(program, write("still.plc", md), "still.json");
+    const auto turned = trace(program, write("on.plc", md + "cycle 0 tool_holder TRUE\n"));
+    const auto other_axis =
+        trace(program, write("b5.plc", md + "cycle 0 tool_holder 1\ncycle 0 tool_holder_axis_b 5\n"
+                                            "cycle 0 tool_holder_axis_c -1\n"));
+    ASSERT_EQ(turned.size(), off.size());
+    ASSERT_EQ(still.size(), off.size());
+    ASSERT_EQ(other_axis.size(), off.size());
+    int turning = 0;
+    for (std::size_t i = 0; i < off.size(); ++i) {
+        const auto& n = off[i];
+        const double b = n[kB] * std::numbers::pi / 180.0;
+        // N10 runs before the write; from N20 on (the axes standing at X0 Z10) the vector acts,
+        // and N30 moves X and B from its first cycle.
+        const double v = n[kX] > 0.0 || n[kB] > 0.0 ? 0.1 : 0.0;
+        EXPECT_NEAR(turned[i][kX] - n[kX], v * std::sin(b), kEps) << "cycle " << n[kCycle];
+        EXPECT_NEAR(turned[i][kZ] - n[kZ], v * std::cos(b), kEps) << "cycle " << n[kCycle];
+        EXPECT_EQ(turned[i][kB], n[kB]);  // the head itself is not displaced
+        EXPECT_NEAR(still[i][kX] - n[kX], 0.0, kEps) << "cycle " << n[kCycle];
+        EXPECT_NEAR(still[i][kZ] - n[kZ], v, kEps) << "cycle " << n[kCycle];
+        EXPECT_NEAR(other_axis[i][kX] - n[kX], 0.0, kEps) << "cycle " << n[kCycle];
+        EXPECT_NEAR(other_axis[i][kZ] - n[kZ], v, kEps) << "cycle " << n[kCycle];
+        if (n[kB] > 1.0 && n[kB] < 89.0) ++turning;
+    }
+    EXPECT_GT(turning, 50);  // N30 turns the head over many cycles
+    EXPECT_EQ(off.back()[kB], 90.0);
+}
+
 // ---- refusals: named by file and line, and nothing runs (no output file is written)
 
 TEST_F(TempCompRun, BadProgramWriteIsRefusedBeforeAnythingRuns) {
@@ -339,6 +382,48 @@ TEST(PlcScriptTemperature, RefusalsNameTheLineAndWhatWasWrong) {
               "p.plc:1:27: temp_comp_type[i] (MD 32750) takes a whole number 0..255 (bit 2, 4: "
               "the axis takes the vector)");
     EXPECT_EQ(err("cycle 5 tool_temp_comp[0] 1 2"), "p.plc:1:29: unexpected text after the value");
+    EXPECT_EQ(err("cycle 5 tool_holder 2"), "p.plc:1:21: tool_holder takes 0, 1, TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 tool_holder yes"), "p.plc:1:21: tool_holder takes 0, 1, TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 tool_holder_axis_b -1"),
+              "p.plc:1:28: tool_holder_axis_b takes a board axis 0..7");
+    EXPECT_EQ(err("cycle 5 tool_holder_axis_b 8"),
+              "p.plc:1:28: tool_holder_axis_b takes a board axis 0..7");
+    EXPECT_EQ(err("cycle 5 tool_holder_axis_c -2"),
+              "p.plc:1:28: tool_holder_axis_c takes a board axis 0..7, or -1 (no C axis)");
+    EXPECT_EQ(err("cycle 5 tool_holder_axis_c 4.5"),
+              "p.plc:1:28: tool_holder_axis_c takes a board axis 0..7, or -1 (no C axis)");
+    EXPECT_EQ(err("cycle 5 temp_ramp_velocity 0"),
+              "p.plc:1:28: temp_ramp_velocity (mm/s) takes 1e-06..100000");
+    EXPECT_EQ(err("cycle 5 temp_ramp_velocity 100001"),
+              "p.plc:1:28: temp_ramp_velocity (mm/s) takes 1e-06..100000");
+    EXPECT_EQ(err("cycle 5 temp_ramp_velocity nan"),
+              "p.plc:1:28: expected a value (a finite number)");
+    EXPECT_EQ(err("cycle 5 tool_holder.enable 1"), "p.plc:1:20: expected a value (a finite number)");
+}
+
+TEST(PlcScriptTemperature, ParsesTheToolHolderUnits) {
+    using apci::run::PlcWrite;
+    auto s = apci::run::parse_plc_script(
+        "cycle 1 tool_holder TRUE\ncycle 2 TOOL_HOLDER_AXIS_B 6\ncycle 3 tool_holder_axis_c -1\n"
+        "cycle 4 temp_ramp_velocity 2.5\ncycle 5 tool_holder 0\n",
+        "p.plc");
+    ASSERT_TRUE(s) << s.error().to_string();
+    const auto& c = s.value().cycle_writes();
+    ASSERT_EQ(c.size(), 5u);
+    const PlcWrite::Unit units[] = {PlcWrite::Unit::kToolHolder, PlcWrite::Unit::kToolHolderAxisB,
+                                    PlcWrite::Unit::kToolHolderAxisC,
+                                    PlcWrite::Unit::kTempRampVelocity, PlcWrite::Unit::kToolHolder};
+    const double values[] = {1.0, 6.0, -1.0, 2.5, 0.0};
+    const char* names[] = {"tool_holder", "tool_holder_axis_b", "tool_holder_axis_c",
+                           "temp_ramp_velocity", "tool_holder"};
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        EXPECT_EQ(c[i].unit, units[i]) << i;
+        EXPECT_EQ(c[i].value, values[i]) << i;
+        EXPECT_EQ(apci::run::plc_unit_name(c[i]), names[i]) << i;
+        EXPECT_FALSE(c[i].otc()) << i;
+    }
+    EXPECT_TRUE(c[0].flag());
+    EXPECT_FALSE(c[1].flag());
 }
 
 }  // namespace

@@ -1155,6 +1155,19 @@ class Execution {
                 return temp_needed(at, what) &&
                        temp_write(temp_object(tcomp::kIdxTempCompType, channel_axis(w.index)),
                                   static_cast<std::int32_t>(w.value), at, what);
+            case PlcWrite::Unit::kToolHolder:
+            case PlcWrite::Unit::kToolHolderAxisB:
+            case PlcWrite::Unit::kToolHolderAxisC: {
+                const std::int32_t index = w.unit == PlcWrite::Unit::kToolHolder ? tcomp::kIdxToolHolder
+                                           : w.unit == PlcWrite::Unit::kToolHolderAxisB
+                                               ? tcomp::kIdxHeadAxisB
+                                               : tcomp::kIdxHeadAxisC;
+                return temp_needed(at, what) &&
+                       temp_write(temp_object(index), static_cast<std::int32_t>(w.value), at, what);
+            }
+            case PlcWrite::Unit::kTempRampVelocity:
+                return temp_needed(at, what) &&
+                       temp_write(temp_object(tcomp::kIdxRampVelocity), w.value, at, what);
             case PlcWrite::Unit::kOtcRadiusOffset:
             case PlcWrite::Unit::kOtcOffset:
                 break;

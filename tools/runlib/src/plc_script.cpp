@@ -119,10 +119,23 @@ class LineParser {
         } else if (word_is(name, "temp_comp_type")) {
             w.unit = PlcWrite::Unit::kTempCompType;
             return bracket_index(w.index, 7, "temp_comp_type", col);
+        } else if (word_is(name, "tool_holder")) {
+            w.unit = PlcWrite::Unit::kToolHolder;
+            return true;
+        } else if (word_is(name, "tool_holder_axis_b")) {
+            w.unit = PlcWrite::Unit::kToolHolderAxisB;
+            return true;
+        } else if (word_is(name, "tool_holder_axis_c")) {
+            w.unit = PlcWrite::Unit::kToolHolderAxisC;
+            return true;
+        } else if (word_is(name, "temp_ramp_velocity")) {
+            w.unit = PlcWrite::Unit::kTempRampVelocity;
+            return true;
         } else {
             return fail(col,
                         "unknown unit (known: otc_radius_offset, otc_offset[i], "
-                        "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i])");
+                        "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i], tool_holder, "
+                        "tool_holder_axis_b, tool_holder_axis_c, temp_ramp_velocity)");
         }
         if (c_.peek() != '.')
             return fail(c_.column(), "expected '.command' or '.enable' after the unit");
@@ -140,11 +153,11 @@ class LineParser {
     }
     bool value(PlcWrite& w) {
         const std::uint32_t col = c_.column();
-        const bool flag = (w.otc() && w.field == PlcWrite::Field::kEnable) ||
-                          w.unit == PlcWrite::Unit::kToolTempCompOn;
         const char* flag_error = w.otc() ? "enable takes 0, 1, TRUE or FALSE"
-                                         : "tool_temp_comp_on (MD 20390) takes 0, 1, TRUE or FALSE";
-        if (flag && nc::is_letter(c_.peek())) {
+                                 : w.unit == PlcWrite::Unit::kToolHolder
+                                     ? "tool_holder takes 0, 1, TRUE or FALSE"
+                                     : "tool_temp_comp_on (MD 20390) takes 0, 1, TRUE or FALSE";
+        if (w.flag() && nc::is_letter(c_.peek())) {
             const std::string_view v = c_.scan_identifier();
             if (word_is(v, "true")) {
                 w.value = 1;
@@ -170,7 +183,28 @@ class LineParser {
                 w.value = d;
                 return true;
             case PlcWrite::Unit::kToolTempCompOn:
+            case PlcWrite::Unit::kToolHolder:
                 if (d != 0.0 && d != 1.0) return fail(col, flag_error);
+                w.value = d;
+                return true;
+            case PlcWrite::Unit::kToolHolderAxisB:
+            case PlcWrite::Unit::kToolHolderAxisC: {
+                // The objects' ranges (bus 1320 Index 5, 6): B on a board axis, C also none.
+                const bool b = w.unit == PlcWrite::Unit::kToolHolderAxisB;
+                const double lowest = b ? 0.0 : static_cast<double>(rwmos::tempcomp::kNoHeadAxis);
+                if (d != std::floor(d) || d < lowest || d > 7.0)
+                    return fail(col, b ? "tool_holder_axis_b takes a board axis 0..7"
+                                       : "tool_holder_axis_c takes a board axis 0..7, or -1 "
+                                         "(no C axis)");
+                w.value = d;
+                return true;
+            }
+            case PlcWrite::Unit::kTempRampVelocity:
+                if (!(d >= rwmos::tempcomp::kMinRampVelocity &&
+                      d <= rwmos::tempcomp::kMaxRampVelocity))
+                    return fail(col, fmt::format("temp_ramp_velocity (mm/s) takes {:g}..{:g}",
+                                                 rwmos::tempcomp::kMinRampVelocity,
+                                                 rwmos::tempcomp::kMaxRampVelocity));
                 w.value = d;
                 return true;
             case PlcWrite::Unit::kTempCompType:
@@ -213,6 +247,14 @@ std::string plc_unit_name(const PlcWrite& w) {
             return "tool_temp_comp_on";
         case PlcWrite::Unit::kTempCompType:
             return fmt::format("temp_comp_type[{}]", w.index);
+        case PlcWrite::Unit::kToolHolder:
+            return "tool_holder";
+        case PlcWrite::Unit::kToolHolderAxisB:
+            return "tool_holder_axis_b";
+        case PlcWrite::Unit::kToolHolderAxisC:
+            return "tool_holder_axis_c";
+        case PlcWrite::Unit::kTempRampVelocity:
+            return "temp_ramp_velocity";
     }
     return "?";
 }

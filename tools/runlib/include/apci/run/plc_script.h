@@ -11,6 +11,7 @@
 //   cycle 0       tool_temp_comp_on           1
 //   cycle 0       temp_comp_type[2]           4
 //   cycle 8000    tool_temp_comp[2]           0.015
+//   cycle 0       tool_holder                 1
 //
 // `cycle N`: when the board's clock, counted from the start of the run, reaches N (the executor
 // stops the clock there; entries past the program's end are written after it, the clock running
@@ -19,8 +20,11 @@
 // unit) and `otc_offset[i]` (the axis unit of channel axis i: 0 X, 1 Y, 2 Z through the TC
 // Axis-Nr, 3..7 the board axis of that number), field `command` (0.1 um, DINT) or `enable`
 // (0/1, TRUE/FALSE); `tool_temp_comp[i]` (SD 42960 component i 0..2, mm, within the object's
-// +-1e5), `tool_temp_comp_on` (MD 20390, 0/1) and `temp_comp_type[i]` (MD 32750 of channel
-// axis i, 0..255) of bus 1320. `#` starts a comment. docs/apcictl.md ("run --plc") is the spec.
+// +-1e5), `tool_temp_comp_on` (MD 20390, 0/1), `temp_comp_type[i]` (MD 32750 of channel
+// axis i, 0..255), and the design objects `tool_holder` (0/1: the vector turns with the head),
+// `tool_holder_axis_b` (board axis 0..7), `tool_holder_axis_c` (-1..7, -1 none) and
+// `temp_ramp_velocity` (mm/s, 1e-6..1e5) of bus 1320. `#` starts a comment. docs/apcictl.md
+// ("run --plc") is the spec.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +45,10 @@ struct PlcWrite {
         kToolTempComp,     // tool_temp_comp[index]: SD 42960
         kToolTempCompOn,   // tool_temp_comp_on: MD 20390
         kTempCompType,     // temp_comp_type[index]: MD 32750
+        kToolHolder,       // tool_holder: ToolHolder (Index 4)
+        kToolHolderAxisB,  // tool_holder_axis_b: HeadAxisB (Index 5)
+        kToolHolderAxisC,  // tool_holder_axis_c: HeadAxisC (Index 6)
+        kTempRampVelocity, // temp_ramp_velocity: RampVelocity (Index 7)
     };
     enum class Field : std::uint8_t { kCommand, kEnable };  // the OTC units' field
     When when = When::kCycle;
@@ -48,10 +56,15 @@ struct PlcWrite {
     Unit unit = Unit::kOtcRadiusOffset;
     int index = 0;  // kOtcOffset, kTempCompType: channel axis 0..7; kToolTempComp: 0..2
     Field field = Field::kCommand;
-    double value = 0.0;  // a whole number (int32 object) for every unit but kToolTempComp
+    double value = 0.0;  // a whole number (int32 object) but for kToolTempComp, kTempRampVelocity
     std::uint64_t line = 0;  // in the script
 
     bool otc() const noexcept { return unit == Unit::kOtcRadiusOffset || unit == Unit::kOtcOffset; }
+    // A 0/1 unit (TRUE and FALSE accepted).
+    bool flag() const noexcept {
+        return (otc() && field == Field::kEnable) || unit == Unit::kToolTempCompOn ||
+               unit == Unit::kToolHolder;
+    }
 };
 
 // "otc_radius_offset.command", "otc_offset[2].enable", "tool_temp_comp[2]", ...
