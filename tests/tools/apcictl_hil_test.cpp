@@ -47,9 +47,10 @@ bool has_line(const std::string& out, const std::string& uri, const std::string&
     return false;
 }
 
-// A script file in `dir`.
-std::string script_file(const TempDir& dir, const std::string& text) {
-    std::string path = dir.file("work.script");
+// A script (or any text) file in `dir`.
+std::string script_file(const TempDir& dir, const std::string& text,
+                        const std::string& name = "work.script") {
+    std::string path = dir.file(name);
     FILE* f = std::fopen(path.c_str(), "w");
     if (f == nullptr) {
         ADD_FAILURE() << "cannot create " << path;
@@ -206,6 +207,49 @@ TEST_F(ApcictlDiff, DifferentStartPositionsAreReportedFirst) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.out, "first difference at the start of the run: axis X position"))
         << r.out;
+}
+
+// A Klartext program (*.h) with its correction table (--corr, as for run) on both boards.
+TEST_F(ApcictlDiff, KlartextProgramTakesItsCorrectionTable) {
+    const std::string examples = std::string(APCI_SOURCE_DIR) + "/examples";
+    const std::string program = examples + "/3d_correction_table.h";
+    const std::string tools = examples + "/tools/3d_tools.tools";
+    // Without the table its FUNCTION CORRDATA TCS #1 is refused before anything runs.
+    const auto without = diff({"--against", "emu:", "--tools", tools, program});
+    EXPECT_EQ(without.exit_code, 1) << without.out;
+    EXPECT_TRUE(contains(without.err, "correction table does not define")) << without.err;
+    const auto r = diff({"--against", "emu:", "--tools", tools, "--corr",
+                         examples + "/tools/3d_corrections.corr", program});
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("no difference .* \\(([1-9][0-9]{2,}) interpolation cycles compared\\)")))
+        << r.out;
+}
+
+// --plc writes the script in both runs at the same cycle: on the daemon, whose machine data
+// switch the temperature compensation on for Z, the write at cycle 300 lifts Z from cycle 301;
+// on the fresh embedded board it displaces nothing. Without the script nothing differs.
+TEST_F(ApcictlDiff, PlcScriptIsWrittenInBothRunsAtItsCycle) {
+    for (const auto& w : std::vector<std::vector<std::string>>{{"1320", "0", "2", "0", "1"},
+                                                               {"1320", "0", "3", "2", "4"}}) {
+        std::vector<std::string> args{"--device", daemon_->unix_uri(), "write"};
+        args.insert(args.end(), w.begin(), w.end());
+        ASSERT_EQ(apcictl(args).exit_code, 0);
+    }
+    const std::string program = script_file(dir_, "N10 G1 X10 F600\nN20 G1 X0\nN30 M30\n", "back.nc");
+    const std::string plc = script_file(dir_, "cycle 300 tool_temp_comp[2] 0.5\n", "lift.plc");
+    const auto same = diff({"--against", "emu:", program});
+    EXPECT_EQ(same.exit_code, 0) << same.out << same.err;
+    const auto r = diff({"--against", "emu:", "--plc", plc, program});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.out, "first difference at N10, cycle 301: axis Z position")) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("unix:[^ ]+ +0\\.5\n  emu: +0\n"))) << r.out;
+    // A script that does not parse runs nothing, on either board.
+    const std::string bad_plc = script_file(dir_, "cycle 300 tool_holder 2\n", "bad.plc");
+    const auto bad = diff({"--against", "emu:", "--plc", bad_plc, program});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_TRUE(contains(bad.err, "bad.plc:1:23: tool_holder takes 0, 1, TRUE or FALSE"))
+        << bad.err;
 }
 
 TEST_F(ApcictlDiff, NcProgramFromStandardInputIsAUsageError) {

@@ -5,7 +5,8 @@
 //  - a script (apcictl script syntax): each line runs on both boards in turn;
 //    the first line whose printed result or failure differs is reported with
 //    its line number;
-//  - an NC program (*.nc, or --nc): `run` on both boards, recording every
+//  - an NC program (*.nc, Klartext *.h, or --nc): `run` on both boards (with
+//    --tools, --corr and --plc as `run` takes them), recording every
 //    interpolation cycle's axis positions, the executed segments, the errors
 //    and the TC registers at the end; the first difference is reported, in
 //    this order: start position, a position in a cycle both runs had (with
@@ -26,9 +27,11 @@
 #include <string>
 #include <vector>
 
+#include "apci/nc/correction_table.h"
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "apci/run/executor.h"
+#include "apci/run/plc_script.h"
 #include "command.h"
 
 namespace apcictl {
@@ -152,16 +155,25 @@ Outcome nc_failure(const apci::nc::Diagnostic& d) {
                                               : Outcome::board_error(text);
 }
 
-Outcome record_run(const std::string& path, const apci::nc::ToolTable& tools, Session& session,
+// What an NC run takes besides the program, loaded once for both runs (as `run` takes them).
+struct RunInputs {
+    apci::nc::ToolTable tools;
+    apci::nc::CorrectionTable corrections;
+    std::optional<apci::run::PlcScript> plc;
+};
+
+Outcome record_run(const std::string& path, const RunInputs& in, Session& session,
                    Recording& out) {
     Outcome failure;
     apci::Board* board = session.board(failure);
     if (board == nullptr) return failure;
-    apci::run::ProgramExecutor executor(*board, out, &tools);
+    apci::run::ProgramExecutor executor(*board, out, &in.tools, in.plc ? &*in.plc : nullptr,
+                                        &in.corrections);
     apci::nc::InterpreterOptions options;
     out.start = executor.position();
     options.start_position = out.start;
-    options.tools = &tools;
+    options.tools = &in.tools;
+    options.corrections = &in.corrections;
     auto program = apci::nc::Program::load(path, options);
     if (!program) return nc_failure(program.error());
     auto stream = program.value().events();
@@ -295,22 +307,29 @@ std::optional<Difference> compare_segments(const Recording& a, const Recording& 
     return std::nullopt;
 }
 
+// An NC program by its name: *.nc (DIN 66025, ISG) or *.h (Klartext, as TNC controls name them).
 bool ends_with_nc(std::string_view path) {
-    if (path.size() < 3) return false;
-    std::string tail(path.substr(path.size() - 3));
-    std::transform(tail.begin(), tail.end(), tail.begin(),
+    std::string name(path);
+    std::transform(name.begin(), name.end(), name.begin(),
                    [](unsigned char c) { return std::tolower(c); });
-    return tail == ".nc";
+    return name.ends_with(".nc") || name.ends_with(".h");
 }
 
 class DiffCommand final : public Command {
   public:
     void declare(CLI::App& app) override {
-        app.add_option("PROGRAM", program_, "Script (apcictl script syntax) or NC program (*.nc)")
+        app.add_option("PROGRAM", program_,
+                       "Script (apcictl script syntax) or NC program (*.nc, Klartext *.h)")
             ->required();
         app.add_option("--against", against_, "The device URI to compare --device with (e.g. emu:)")
             ->required();
         app.add_option("--tools", tools_, "Tool list file for an NC program's D words");
+        app.add_option("--corr", corr_,
+                       "Correction table file for a Klartext program's FUNCTION CORRDATA (as "
+                       "for run)");
+        app.add_option("--plc", plc_,
+                       "A scripted PLC, written in both runs at the same cycles and blocks (as "
+                       "for run)");
         app.add_option(
                "--tolerance", tolerance_,
                "NC programs: positions closer than this are equal (program units; default 0: "
@@ -375,15 +394,25 @@ class DiffCommand final : public Command {
 
     Outcome diff_nc(Session& here, Session& there, std::optional<Difference>& first,
                     std::size_t& compared) {
-        apci::nc::ToolTable tools;
+        RunInputs in;
         if (!tools_.empty()) {
             auto loaded = apci::nc::load_tool_table(tools_);
             if (!loaded) return nc_failure(loaded.error());
-            tools = std::move(loaded.value());
+            in.tools = std::move(loaded.value());
+        }
+        if (!corr_.empty()) {
+            auto loaded = apci::nc::load_correction_table(corr_);
+            if (!loaded) return nc_failure(loaded.error());
+            in.corrections = std::move(loaded.value());
+        }
+        if (!plc_.empty()) {
+            auto loaded = apci::run::load_plc_script(plc_);
+            if (!loaded) return nc_failure(loaded.error());
+            in.plc = std::move(loaded.value());
         }
         Recording a, b;
-        if (Outcome o = record_run(program_, tools, here, a); !o.ok()) return o;
-        if (Outcome o = record_run(program_, tools, there, b); !o.ok()) return o;
+        if (Outcome o = record_run(program_, in, here, a); !o.ok()) return o;
+        if (Outcome o = record_run(program_, in, there, b); !o.ok()) return o;
         compared = std::min(a.samples.size(), b.samples.size());
         first = compare_start(a, b, tolerance_);
         if (!first) first = compare_samples(a, b, tolerance_);
@@ -397,6 +426,8 @@ class DiffCommand final : public Command {
     std::string program_;
     std::string against_;
     std::string tools_;
+    std::string corr_;
+    std::string plc_;
     double tolerance_ = 0.0;
     bool force_nc_ = false;
     bool force_script_ = false;
