@@ -2,9 +2,11 @@
 #include "mailbox_link.h"
 
 #include <fmt/format.h>
+#include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <new>
 
@@ -19,6 +21,26 @@ namespace {
 // belongs to a host that died mid-exchange.
 bool holder_process_gone(std::uint32_t token) {
     return ::kill(static_cast<pid_t>(token), 0) != 0 && errno == ESRCH;
+}
+
+// The host lock's token: this process's pid. getpid() is a system call on
+// every exchange otherwise (glibc does not cache it), and a system call costs
+// as much as the whole shared-memory round trip in a virtual machine
+// (docs/performance.md); the cache is refreshed in a forked child.
+std::atomic<pid_t> cached_pid{0};
+
+void refresh_pid() noexcept {
+    cached_pid.store(::getpid(), std::memory_order_relaxed);
+}
+
+std::uint32_t process_token() noexcept {
+    static const bool registered = [] {
+        refresh_pid();
+        return ::pthread_atfork(nullptr, nullptr, refresh_pid) == 0;
+    }();
+    pid_t pid = cached_pid.load(std::memory_order_relaxed);
+    if (!registered) pid = ::getpid();  // no fork hook: ask every time
+    return static_cast<std::uint32_t>(pid);
 }
 
 }  // namespace
@@ -64,7 +86,7 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
             return Status::kTransportError;
         }
         mb::HostOptions options;
-        options.token = static_cast<std::uint32_t>(::getpid());
+        options.token = process_token();
         options.timeout = timeout;
         options.adaptive = &spin_;
         options.lock_holder_gone = holder_process_gone;

@@ -41,7 +41,10 @@ class MailboxLink final : public FrameLink {
     std::unique_ptr<objif::mailbox::Window> window_;
     std::uint32_t generation_ = 0;  // the board's generation when opened
     // How long to spin for a reply before sleeping: learnt from the replies.
-    objif::mailbox::AdaptiveSpin spin_{std::chrono::microseconds(1), std::chrono::microseconds(20)};
+    // Up to 50 us, as the daemon socket's client: that covers a board woken
+    // from its futex sleep (tens of us on a virtual machine), so neither side
+    // settles into sleeping on every exchange (docs/performance.md).
+    objif::mailbox::AdaptiveSpin spin_{std::chrono::microseconds(1), std::chrono::microseconds(50)};
     std::string lost_;
 };
 

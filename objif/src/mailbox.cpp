@@ -28,49 +28,36 @@ inline void cpu_relax() noexcept {
 #endif
 }
 
-// Spins until the status word holds `want` or `spin` passes; returns the last value seen.
-std::uint32_t spin_until(Window& w, MailboxStatus want, std::chrono::nanoseconds spin) noexcept {
-    const auto target = static_cast<std::uint32_t>(want);
-    std::uint32_t now = w.load(kOffStatus);
-    if (now == target || spin.count() <= 0) return now;
+// Spins until the word at `offset` leaves `from`, or `spin` passes; returns the last value seen.
+std::uint32_t spin_while(Window& w, std::size_t offset, std::uint32_t from,
+                         std::chrono::nanoseconds spin) noexcept {
+    std::uint32_t now = w.load(offset);
+    if (now != from || spin.count() <= 0) return now;
     const auto until = Clock::now() + spin;
     for (unsigned i = 1;; ++i) {
         cpu_relax();
-        now = w.load(kOffStatus);
-        if (now == target) return now;
+        now = w.load(offset);
+        if (now != from) return now;
         if ((i & 63) == 0 && Clock::now() >= until) return now;
     }
 }
 
-// Sleeps on the status word while it holds `seen`, announcing the sleep in
-// `sleeping_flag` so the other side knows to wake us. The flag store and the
-// status re-load are sequentially consistent, as are the other side's status
-// store and flag load: one of the two sides sees the other.
-void sleep_on_status(Window& w, std::size_t sleeping_flag, std::uint32_t seen,
-                     std::chrono::nanoseconds timeout) noexcept {
+// Sleeps on the doorbell at `offset` while it holds `seen`, announcing the
+// sleep in `sleeping_flag` so the other side knows to wake us. The flag store
+// and the doorbell re-load are sequentially consistent, as are the other
+// side's doorbell store and flag load: one of the two sides sees the other.
+void sleep_on(Window& w, std::size_t offset, std::size_t sleeping_flag, std::uint32_t seen,
+              std::chrono::nanoseconds timeout) noexcept {
     w.store_fence(sleeping_flag, 1);
-    if (w.load_fence(kOffStatus) == seen) w.wait(kOffStatus, seen, timeout);
+    if (w.load_fence(offset) == seen) w.wait(offset, seen, timeout);
     w.store(sleeping_flag, 0);
 }
 
-// Publishes a new status and wakes the other side if it sleeps.
-void publish_status(Window& w, MailboxStatus s, std::size_t other_sleeping_flag) noexcept {
-    w.store_fence(kOffStatus, static_cast<std::uint32_t>(s));
-    if (w.load_fence(other_sleeping_flag) != 0) w.wake(kOffStatus);
-}
-
-std::string_view status_word_name(std::uint32_t s) {
-    switch (static_cast<MailboxStatus>(s)) {
-        case MailboxStatus::kIdle:
-            return "Idle";
-        case MailboxStatus::kRequest:
-            return "Request";
-        case MailboxStatus::kBusy:
-            return "Busy";
-        case MailboxStatus::kReply:
-            return "Reply";
-    }
-    return "invalid";
+// Rings a doorbell: publishes the new sequence and wakes the other side if it sleeps.
+void ring(Window& w, std::size_t offset, std::uint32_t sequence,
+          std::size_t other_sleeping_flag) noexcept {
+    w.store_fence(offset, sequence);
+    if (w.load_fence(other_sleeping_flag) != 0) w.wake(offset);
 }
 
 }  // namespace
@@ -142,8 +129,6 @@ std::string check_layout(Window& w) {
         return fmt::format("mailbox window size {:#x} (expected {:#x})", size, kWindowSize);
     if (const auto cap = w.load(kOffRecordCapacity); cap != kRecordCapacity)
         return fmt::format("mailbox record capacity {} (expected {})", cap, kRecordCapacity);
-    if (const auto s = w.load(kOffStatus); s > static_cast<std::uint32_t>(MailboxStatus::kReply))
-        return fmt::format("mailbox status word holds {} (not a status)", s);
     if (w.error() != Status::kOk) return w.error_text();
     return {};
 }
@@ -152,8 +137,9 @@ std::string check_layout(Window& w) {
 
 void format(Window& w) {
     w.store(kOffBoardState, static_cast<std::uint32_t>(BoardState::kStopped));
-    w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
     w.store(kOffHostLock, 0);
+    w.store(kOffRequestSequence, 0);
+    w.store(kOffReplySequence, 0);
     w.store(kOffBoardSleeping, 0);
     w.store(kOffHostSleeping, 0);
     w.store(kOffRequest, 0);
@@ -167,56 +153,48 @@ void format(Window& w) {
 void set_board_state(Window& w, BoardState state) {
     if (state == BoardState::kServing) w.store(kOffGeneration, w.load(kOffGeneration) + 1);
     w.store_fence(kOffBoardState, static_cast<std::uint32_t>(state));
-    // A host sleeping on the status must notice a board that stops.
-    w.wake(kOffStatus);
+    // A host sleeping on the reply doorbell must notice a board that stops.
+    w.wake(kOffReplySequence);
 }
 
-namespace {
-bool take_request_impl(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
-                       std::chrono::nanoseconds timeout, bool& caught) {
-    constexpr auto kRequest = static_cast<std::uint32_t>(MailboxStatus::kRequest);
-    std::uint32_t s = spin_until(w, MailboxStatus::kRequest, spin);
-    caught = s == kRequest;
-    if (s != kRequest) {
-        sleep_on_status(w, kOffBoardSleeping, s, timeout);
-        s = w.load(kOffStatus);
+bool take_request(Window& w, Request& request, std::chrono::nanoseconds spin,
+                  std::chrono::nanoseconds timeout) {
+    // The reply sequence is the board's own word: the last request it answered.
+    const std::uint32_t answered = w.load(kOffReplySequence);
+    std::uint32_t s = spin_while(w, kOffRequestSequence, answered, spin);
+    if (s == answered) {
+        sleep_on(w, kOffRequestSequence, kOffBoardSleeping, answered, timeout);
+        s = w.load(kOffRequestSequence);
     }
-    if (s != kRequest) return false;
-    w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kBusy));
+    if (s == answered) return false;
+    request.sequence = s;
     const std::uint32_t length = w.load(kOffRequest);
-    request.clear();
+    request.frame.clear();
     // An impossible length is the host's garbage: the caller answers it as a
     // short frame (empty bytes) and goes on.
     if (length < kFrameOverhead || length > kRecordCapacity) return true;
-    request.resize(length);
-    w.read(kOffRequest + 4, request.data(), length);
+    request.frame.resize(length);
+    w.read(kOffRequest + 4, request.frame.data(), length);
     return true;
 }
-}  // namespace
 
-bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
+bool take_request(Window& w, Request& request, AdaptiveSpin& spin,
                   std::chrono::nanoseconds timeout) {
-    bool caught = false;
-    return take_request_impl(w, request, spin, timeout, caught);
-}
-
-bool take_request(Window& w, std::vector<std::uint8_t>& request, AdaptiveSpin& spin,
-                  std::chrono::nanoseconds timeout) {
-    bool caught = false;
-    const bool got = take_request_impl(w, request, spin.budget(), timeout, caught);
-    spin.learn(caught);
+    const auto start = Clock::now();
+    const bool got = take_request(w, request, spin.budget(), timeout);
+    spin.learn(Clock::now() - start);
     return got;
 }
 
-void put_reply(Window& w, std::span<const std::uint8_t> reply) {
+void put_reply(Window& w, const Request& request, std::span<const std::uint8_t> reply) {
     const std::size_t n = std::min(reply.size(), kRecordCapacity);
     w.write(kOffReply + 4, reply.data(), n);
     w.store(kOffReply, static_cast<std::uint32_t>(n));
-    publish_status(w, MailboxStatus::kReply, kOffHostSleeping);
+    ring(w, kOffReplySequence, request.sequence, kOffHostSleeping);
 }
 
 void wake_board(Window& w) {
-    w.wake(kOffStatus);
+    w.wake(kOffRequestSequence);
 }
 
 // ---- Host side
@@ -271,49 +249,48 @@ struct Exchange {
         return options.adaptive != nullptr ? options.adaptive->budget() : options.spin;
     }
 
-    // Waits until the status leaves Request/Busy; true when it is Reply.
-    Status wait_reply() {
-        constexpr auto kReply = static_cast<std::uint32_t>(MailboxStatus::kReply);
-        std::uint32_t s = spin_until(w, MailboxStatus::kReply, spin());
-        if (options.adaptive != nullptr) options.adaptive->learn(s == kReply);
+    // Waits until the reply sequence reaches `sequence` (from the one before it).
+    Status wait_reply(std::uint32_t sequence) {
+        const std::uint32_t before = sequence - 1;
+        const auto start = Clock::now();
+        std::uint32_t s = spin_while(w, kOffReplySequence, before, spin());
         for (;;) {
-            if (s == kReply) return Status::kOk;
+            if (s == sequence) {
+                if (options.adaptive != nullptr) options.adaptive->learn(Clock::now() - start);
+                return Status::kOk;
+            }
             if (w.error() != Status::kOk) return window_failed();
-            if (s != static_cast<std::uint32_t>(MailboxStatus::kRequest) &&
-                s != static_cast<std::uint32_t>(MailboxStatus::kBusy)) {
-                why = fmt::format("mailbox status changed to {} while waiting for a reply",
-                                  status_word_name(s));
+            if (s != before) {
+                why = fmt::format("mailbox reply sequence jumped to {} while waiting for {}", s,
+                                  sequence);
                 return Status::kTransportError;
             }
             if (!serving()) return board_stopped();
             const auto remaining = left();
             if (remaining.count() == 0) {
-                why = fmt::format("no reply from the board within {} ms (status {})",
-                                  options.timeout.count(), status_word_name(s));
+                why = fmt::format("no reply from the board within {} ms (request {} pending)",
+                                  options.timeout.count(), sequence);
                 return Status::kTimeout;
             }
             // Wake now and then to notice a board that stopped without waking us.
-            sleep_on_status(
-                w, kOffHostSleeping, s,
-                std::min<std::chrono::nanoseconds>(remaining, std::chrono::milliseconds(50)));
-            s = spin_until(w, MailboxStatus::kReply, spin());
+            sleep_on(w, kOffReplySequence, kOffHostSleeping, s,
+                     std::min<std::chrono::nanoseconds>(remaining, std::chrono::milliseconds(50)));
+            s = spin_while(w, kOffReplySequence, before, spin());
         }
     }
 
-    // A host that timed out left a request behind: let the board finish it and drop its reply.
-    Status settle() {
-        const std::uint32_t s = w.load(kOffStatus);
-        if (s == static_cast<std::uint32_t>(MailboxStatus::kIdle)) return Status::kOk;
-        if (s == static_cast<std::uint32_t>(MailboxStatus::kRequest) ||
-            s == static_cast<std::uint32_t>(MailboxStatus::kBusy)) {
-            const Status st = wait_reply();
-            if (st != Status::kOk) return st;
-        } else if (s != static_cast<std::uint32_t>(MailboxStatus::kReply)) {
-            why = fmt::format("mailbox status word holds {} (not a status)", s);
+    // A host that timed out left a request behind: let the board answer it (the reply is
+    // dropped). Returns the request sequence the next request follows.
+    Status settle(std::uint32_t& last) {
+        last = w.load(kOffRequestSequence);
+        const std::uint32_t answered = w.load(kOffReplySequence);
+        if (answered == last) return Status::kOk;
+        if (answered != last - 1) {
+            why = fmt::format("mailbox sequences out of step: request {}, reply {}", last,
+                              answered);
             return Status::kTransportError;
         }
-        w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
-        return Status::kOk;
+        return wait_reply(last);
     }
 
     Status run(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply) {
@@ -322,23 +299,23 @@ struct Exchange {
             why = "the board is not serving the mailbox (is the emulator running?)";
             return Status::kTransportError;
         }
-        Status st = settle();
+        std::uint32_t last = 0;
+        Status st = settle(last);
         if (st != Status::kOk) return st;
+        const std::uint32_t sequence = last + 1;
         w.write(kOffRequest + 4, request.data(), request.size());
         w.store(kOffRequest, static_cast<std::uint32_t>(request.size()));
-        publish_status(w, MailboxStatus::kRequest, kOffBoardSleeping);
-        st = wait_reply();
+        ring(w, kOffRequestSequence, sequence, kOffBoardSleeping);
+        st = wait_reply(sequence);
         if (st != Status::kOk) return st;
         const std::uint32_t length = w.load(kOffReply);
         if (length > kRecordCapacity) {
-            w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
             why = fmt::format("reply record length {} exceeds the record capacity {}", length,
                               kRecordCapacity);
             return Status::kTransportError;
         }
         reply.resize(length);
         w.read(kOffReply + 4, reply.data(), length);
-        w.store(kOffStatus, static_cast<std::uint32_t>(MailboxStatus::kIdle));
         if (w.error() != Status::kOk) return window_failed();
         return Status::kOk;
     }

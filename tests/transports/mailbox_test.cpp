@@ -19,6 +19,7 @@ using objif::Status;
 // and 20ms in this file ("MathLib::toLongNumber: input was not completely consumed").
 using std::chrono::microseconds;
 using std::chrono::milliseconds;
+using std::chrono::nanoseconds;
 
 class Mailbox : public ::testing::Test {
   protected:
@@ -32,13 +33,13 @@ class Mailbox : public ::testing::Test {
     void start_board() {
         mb::set_board_state(window_, mb::BoardState::kServing);
         board_ = std::thread([this] {
-            std::vector<std::uint8_t> request;
+            mb::Request request;
             while (!stop_) {
                 if (!mb::take_request(window_, request, microseconds(10), milliseconds(20)))
                     continue;
                 ++served_;
-                std::vector<std::uint8_t> reply(request.rbegin(), request.rend());
-                mb::put_reply(window_, reply);
+                std::vector<std::uint8_t> reply(request.frame.rbegin(), request.frame.rend());
+                mb::put_reply(window_, request, reply);
             }
         });
     }
@@ -71,7 +72,8 @@ std::vector<std::uint8_t> bytes(std::size_t n, std::uint8_t first = 1) {
 TEST_F(Mailbox, FormatWritesAValidHeaderWithTheBoardStopped) {
     EXPECT_EQ(mb::check_layout(window_), "");
     EXPECT_EQ(window_.load(mb::kOffBoardState), 0u);
-    EXPECT_EQ(window_.load(mb::kOffStatus), static_cast<std::uint32_t>(mb::MailboxStatus::kIdle));
+    EXPECT_EQ(window_.load(mb::kOffRequestSequence), 0u);
+    EXPECT_EQ(window_.load(mb::kOffReplySequence), 0u) << "no request pending";
 }
 
 TEST_F(Mailbox, CheckLayoutNamesAWrongSignature) {
@@ -91,7 +93,8 @@ TEST_F(Mailbox, ExchangeCarriesTheRequestAndReturnsTheReply) {
     const auto request = bytes(41);
     ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
     EXPECT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend()));
-    EXPECT_EQ(window_.load(mb::kOffStatus), static_cast<std::uint32_t>(mb::MailboxStatus::kIdle));
+    EXPECT_EQ(window_.load(mb::kOffRequestSequence), 1u);
+    EXPECT_EQ(window_.load(mb::kOffReplySequence), 1u) << "answered: nothing pending";
     EXPECT_EQ(window_.load(mb::kOffHostLock), 0u) << "the lock is free again";
 }
 
@@ -186,12 +189,12 @@ TEST_F(Mailbox, LockLeftByADeadHostIsTakenOver) {
 TEST_F(Mailbox, ReplyRecordLengthOutOfRangeIsATransportError) {
     mb::set_board_state(window_, mb::BoardState::kServing);
     std::thread liar([this] {
-        std::vector<std::uint8_t> request;
+        mb::Request request;
         while (!mb::take_request(window_, request, microseconds(10), milliseconds(20))) {
         }
         window_.store(mb::kOffReply, static_cast<std::uint32_t>(mb::kRecordCapacity + 1));
-        window_.store(mb::kOffStatus, static_cast<std::uint32_t>(mb::MailboxStatus::kReply));
-        window_.wake(mb::kOffStatus);
+        window_.store(mb::kOffReplySequence, request.sequence);
+        window_.wake(mb::kOffReplySequence);
     });
     std::vector<std::uint8_t> reply;
     std::string why;
@@ -203,10 +206,52 @@ TEST_F(Mailbox, ReplyRecordLengthOutOfRangeIsATransportError) {
 TEST_F(Mailbox, RequestRecordLengthOutOfRangeReachesTheBoardAsNoBytes) {
     mb::set_board_state(window_, mb::BoardState::kServing);
     window_.store(mb::kOffRequest, 3);  // shorter than any frame
-    window_.store(mb::kOffStatus, static_cast<std::uint32_t>(mb::MailboxStatus::kRequest));
-    std::vector<std::uint8_t> request{1, 2, 3};
+    window_.store(mb::kOffRequestSequence, 1);
+    mb::Request request{{1, 2, 3}, 0};
     ASSERT_TRUE(mb::take_request(window_, request, microseconds(10), milliseconds(20)));
-    EXPECT_TRUE(request.empty());
+    EXPECT_TRUE(request.frame.empty());
+    EXPECT_EQ(request.sequence, 1u);
+}
+
+TEST_F(Mailbox, NoRequestPendingMeansTheBoardTakesNothing) {
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    window_.store(mb::kOffRequestSequence, 7);
+    window_.store(mb::kOffReplySequence, 7);  // request 7 was answered
+    mb::Request request;
+    EXPECT_FALSE(mb::take_request(window_, request, microseconds(10), milliseconds(5)));
+    window_.store(mb::kOffRequest, 20);
+    window_.store(mb::kOffRequestSequence, 8);
+    ASSERT_TRUE(mb::take_request(window_, request, microseconds(10), milliseconds(5)));
+    EXPECT_EQ(request.sequence, 8u);
+    EXPECT_EQ(request.frame.size(), 20u);
+}
+
+TEST_F(Mailbox, SequencesWrapAround) {
+    window_.store(mb::kOffRequestSequence, 0xFFFFFFFFu);
+    window_.store(mb::kOffReplySequence, 0xFFFFFFFFu);
+    start_board();
+    for (std::uint8_t i = 0; i < 3; ++i) {
+        std::vector<std::uint8_t> reply;
+        std::string why;
+        const auto request = bytes(20, i);
+        ASSERT_EQ(mb::exchange(window_, host(), request, reply, why), Status::kOk) << why;
+        ASSERT_EQ(reply, std::vector<std::uint8_t>(request.rbegin(), request.rend()));
+    }
+    EXPECT_EQ(window_.load(mb::kOffRequestSequence), 2u);
+    EXPECT_EQ(window_.load(mb::kOffReplySequence), 2u);
+}
+
+TEST_F(Mailbox, SequencesOutOfStepAreATransportErrorAndNothingIsSent) {
+    mb::set_board_state(window_, mb::BoardState::kServing);
+    window_.store(mb::kOffRequestSequence, 9);
+    window_.store(mb::kOffReplySequence, 3);  // neither answered nor one request pending
+    std::vector<std::uint8_t> reply;
+    std::string why;
+    EXPECT_EQ(mb::exchange(window_, host(milliseconds(100)), bytes(20), reply, why),
+              Status::kTransportError);
+    EXPECT_NE(why.find("out of step: request 9, reply 3"), std::string::npos) << why;
+    EXPECT_EQ(window_.load(mb::kOffRequestSequence), 9u);
+    EXPECT_EQ(window_.load(mb::kOffHostLock), 0u);
 }
 
 TEST_F(Mailbox, BoardStoppingWhileAHostWaitsEndsTheWait) {
@@ -231,27 +276,44 @@ TEST_F(Mailbox, SetBoardStateServingBumpsTheGeneration) {
     EXPECT_EQ(window_.load(mb::kOffGeneration), g + 1);
 }
 
-TEST(AdaptiveSpin, StartsAtTheLongestHalvesOnEachMissDoublesOnEachCatch) {
+TEST(AdaptiveSpin, StartsAtTheLongestHalvesOnEachLongWaitGrowsOnEachShortOne) {
     mb::AdaptiveSpin spin(microseconds(1), microseconds(16));
     EXPECT_EQ(spin.budget(), microseconds(16));
-    spin.learn(false);
-    EXPECT_EQ(spin.budget(), microseconds(8));
-    for (int i = 0; i < 10; ++i) spin.learn(false);
+    spin.learn(microseconds(17));
+    EXPECT_EQ(spin.budget(), microseconds(8)) << "a wait beyond the longest spin halves it";
+    for (int i = 0; i < 10; ++i) spin.learn(milliseconds(1));
     EXPECT_EQ(spin.budget(), microseconds(1)) << "never below the shortest";
-    spin.learn(true);
-    EXPECT_EQ(spin.budget(), microseconds(2));
-    for (int i = 0; i < 10; ++i) spin.learn(true);
+    spin.learn(nanoseconds(300));
+    EXPECT_EQ(spin.budget(), microseconds(2)) << "a short wait doubles it";
+    spin.learn(microseconds(6));
+    EXPECT_EQ(spin.budget(), microseconds(12)) << "and makes it cover twice that wait";
+    for (int i = 0; i < 10; ++i) spin.learn(microseconds(1));
     EXPECT_EQ(spin.budget(), microseconds(16)) << "never above the longest";
+    spin.learn(microseconds(16));
+    EXPECT_EQ(spin.budget(), microseconds(16)) << "a wait of exactly the longest still counts";
+}
+
+TEST(AdaptiveSpin, ABudgetThatShrankBelowThePeersAnswerTimeGrowsBack) {
+    // The peer answers in 10 us; the budget had shrunk to 1 us, so the spin
+    // misses and the waiter sleeps: the wait still shows that a longer spin
+    // would have caught the answer.
+    mb::AdaptiveSpin spin(microseconds(1), microseconds(50));
+    for (int i = 0; i < 10; ++i) spin.learn(milliseconds(5));
+    ASSERT_EQ(spin.budget(), microseconds(1));
+    spin.learn(microseconds(10) + microseconds(25));  // answer time + a wake-up
+    EXPECT_EQ(spin.budget(), microseconds(50));
+    spin.learn(microseconds(10));
+    EXPECT_EQ(spin.budget(), microseconds(50)) << "caught: it stays";
 }
 
 TEST_F(Mailbox, HostStopsSpinningForABoardThatAnswersSlowly) {
     mb::set_board_state(window_, mb::BoardState::kServing);
     std::thread slow_board([this] {  // 2 ms per request: far beyond any spin
-        std::vector<std::uint8_t> request;
+        mb::Request request;
         for (int served = 0; served < 8;) {
             if (!mb::take_request(window_, request, microseconds(0), milliseconds(20))) continue;
             std::this_thread::sleep_for(milliseconds(2));
-            mb::put_reply(window_, request);
+            mb::put_reply(window_, request, request.frame);
             ++served;
         }
     });

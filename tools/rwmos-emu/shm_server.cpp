@@ -85,9 +85,9 @@ void ShmServer::start() {
 }
 
 void ShmServer::serve_loop() {
-    std::vector<std::uint8_t> request;
+    mb::Request request;
     std::vector<std::uint8_t> reply;
-    request.reserve(mb::kRecordCapacity);
+    request.frame.reserve(mb::kRecordCapacity);
     reply.reserve(mb::kRecordCapacity);
     std::chrono::milliseconds sleep = kFirstSleep;
     mb::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
@@ -98,8 +98,8 @@ void ShmServer::serve_loop() {
         }
         sleep = kFirstSleep;
         reply.clear();
-        host_.serve_frame(request, reply);
-        mb::put_reply(*window_, reply);
+        host_.serve_frame(request.frame, reply);
+        mb::put_reply(*window_, request, reply);
     }
 }
 

@@ -5,24 +5,32 @@
 //
 //   offset   size     field
 //   0x0000   4        signature  0x4D505244 ("DRPM")
-//   0x0004   4        layout version 1
+//   0x0004   4        layout version 2
 //   0x0008   4        window size in bytes (kWindowSize)
 //   0x000C   4        record capacity in bytes (kRecordCapacity)
 //   0x0010   4        board state: 0 stopped, 1 serving
-//   0x0014   4        mailbox status: Idle, Request, Busy, Reply (MailboxStatus)
-//   0x0018   4        host lock: 0 free, else the owning host's token
-//   0x001C   4        board sleeping: 1 while the board waits for the status to change
-//   0x0020   4        host sleeping: 1 while a host waits for the status to change
-//   0x0024   4        board generation: incremented each time a board starts serving
-//   0x0100   4 + n    request record: length in bytes, then the request frame
-//   0x10200  4 + n    reply record: length in bytes, then the reply frame
+//   0x0014   4        board generation: incremented each time a board starts serving
+//   0x0040   4        host lock: 0 free, else the owning host's token
+//   0x0100   4        request sequence: the host's doorbell, one more for each request
+//   0x0104   4        board sleeping: 1 while the board waits for the next request
+//   0x0108   4 + n    request record: length in bytes, then the request frame
+//   0x10200  4        reply sequence: the board's doorbell, the request sequence it answered
+//   0x10204  4        host sleeping: 1 while a host waits for the reply
+//   0x10208  4 + n    reply record: length in bytes, then the reply frame
 //
-// The host owns the request record while the status is Idle, the board owns
-// it from Request until Reply; the reply record is the board's from Busy until
-// Reply and the host's from Reply until it writes Idle. Every status store is
-// a release, every status load an acquire, so a record is complete before its
-// status says so. Only 32-bit aligned accesses are made (a PCI I/O BAR read
-// through sysfs answers 1, 2 or 4 bytes at a time).
+// A request is pending while the two sequences differ. The host owns the
+// request record while they are equal and the board from the host's bump of
+// the request sequence until its reply sequence catches up; the reply record
+// is the board's until then and the host's after. Every sequence store is a
+// release and every sequence load an acquire, so a record is complete before
+// its sequence says so. Only 32-bit aligned accesses are made (a PCI I/O BAR
+// read through sysfs answers 1, 2 or 4 bytes at a time).
+//
+// Each side's doorbell shares its 64-byte cache line with the first bytes of
+// its record and with the other side's sleeping word, and the words both
+// sides read on every exchange (header) or only hosts write (lock) sit on
+// lines of their own: an exchange moves the request line to the board and
+// the reply line to the host, and nothing else (docs/performance.md).
 #pragma once
 
 #include <algorithm>
@@ -33,41 +41,40 @@
 #include <string>
 #include <vector>
 
+#include "objif/adaptive_spin.h"
 #include "objif/frame.h"
 #include "objif/status.h"
 
 namespace objif::mailbox {
 
 inline constexpr std::uint32_t kSignature = 0x4D505244;  // "DRPM" in little-endian byte order
-inline constexpr std::uint32_t kLayoutVersion = 1;
+inline constexpr std::uint32_t kLayoutVersion = 2;
 
 inline constexpr std::size_t kOffSignature = 0x0000;
 inline constexpr std::size_t kOffVersion = 0x0004;
 inline constexpr std::size_t kOffWindowSize = 0x0008;
 inline constexpr std::size_t kOffRecordCapacity = 0x000C;
 inline constexpr std::size_t kOffBoardState = 0x0010;
-inline constexpr std::size_t kOffStatus = 0x0014;
-inline constexpr std::size_t kOffHostLock = 0x0018;
-inline constexpr std::size_t kOffBoardSleeping = 0x001C;
-inline constexpr std::size_t kOffHostSleeping = 0x0020;
-inline constexpr std::size_t kOffGeneration = 0x0024;
+inline constexpr std::size_t kOffGeneration = 0x0014;
+inline constexpr std::size_t kOffHostLock = 0x0040;
 
 // One record holds one whole frame of the largest payload, rounded to words.
 inline constexpr std::size_t kRecordCapacity = (kFrameOverhead + kMaxPayload + 3) / 4 * 4;
-inline constexpr std::size_t kOffRequest = 0x00100;
-inline constexpr std::size_t kOffReply = 0x10200;
+inline constexpr std::size_t kOffRequestSequence = 0x00100;
+inline constexpr std::size_t kOffBoardSleeping = 0x00104;
+inline constexpr std::size_t kOffRequest = 0x00108;  // length, then the frame
+inline constexpr std::size_t kOffReplySequence = 0x10200;
+inline constexpr std::size_t kOffHostSleeping = 0x10204;
+inline constexpr std::size_t kOffReply = 0x10208;  // length, then the frame
 inline constexpr std::size_t kWindowSize = kOffReply + 4 + kRecordCapacity;
-static_assert(kOffRequest + 4 + kRecordCapacity <= kOffReply, "records overlap");
+static_assert(kOffRequest + 4 + kRecordCapacity <= kOffReplySequence, "records overlap");
 static_assert(kWindowSize <= 0x40000, "the window fits a 256 KiB BAR");
+static_assert(kOffRequestSequence % 64 == 0 && kOffReplySequence % 64 == 0 &&
+                  kOffHostLock % 64 == 0,
+              "doorbells and the lock start cache lines of their own");
 
 enum class BoardState : std::uint32_t { kStopped = 0, kServing = 1 };
 
-enum class MailboxStatus : std::uint32_t {
-    kIdle = 0,     // no exchange under way: a host may write a request
-    kRequest = 1,  // a request record is complete: the board takes it
-    kBusy = 2,     // the board is serving the request
-    kReply = 3,    // the reply record is complete: the host reads it, then writes Idle
-};
 
 // How host and board reach the window's words. Implementations: a memory
 // mapping (shared-memory file, PCI memory BAR, UIO map) in mailbox.cpp, and
@@ -137,54 +144,40 @@ class MappedWindow : public Window {
     bool can_sleep_;
 };
 
-// A spin budget that follows how the other side behaves: it doubles (up to
-// `longest`) each time the awaited change came while spinning, and halves
-// (down to `shortest`) each time the spin ran out and the waiter slept. While
-// the other side runs on another core, round trips stay in the microsecond
-// range; on a loaded machine, where the other side often is not running,
-// spinning would only take its CPU away, so the waiter soon sleeps at once
-// and is woken through the futex like any blocked process.
-class AdaptiveSpin {
-  public:
-    AdaptiveSpin(std::chrono::nanoseconds shortest, std::chrono::nanoseconds longest) noexcept
-        : shortest_(shortest), longest_(longest), budget_(longest) {}
-    std::chrono::nanoseconds budget() const noexcept { return budget_; }
-    // `caught`: the change came within the spin.
-    void learn(bool caught) noexcept {
-        budget_ = caught ? std::min(budget_ * 2, longest_) : std::max(budget_ / 2, shortest_);
-        if (caught && budget_ < shortest_ * 2) budget_ = shortest_ * 2;
-    }
-
-  private:
-    std::chrono::nanoseconds shortest_;
-    std::chrono::nanoseconds longest_;
-    std::chrono::nanoseconds budget_;
-};
+// The spin budget of a waiting side (objif/adaptive_spin.h).
+using objif::AdaptiveSpin;
 
 // Why a window is not a usable mailbox, in words; "" when it is.
 std::string check_layout(Window& w);
 
 // ---- Board side (the emulator; the firmware on a real board).
 
-// Writes the header of a fresh mailbox (signature, version, sizes, Idle,
+// Writes the header of a fresh mailbox (signature, version, sizes, sequences 0,
 // lock free) and leaves the board state Stopped.
 void format(Window& w);
 // Marks the board serving (bumping the generation) or stopped.
 void set_board_state(Window& w, BoardState state);
 
-// Waits for a request. Spins for `spin` first (low latency while a host is
-// busy), then sleeps on the status word until a request arrives, `timeout`
-// passes, or wake_board() is called. Returns true with the request frame in
-// `request` when the status was Request (now Busy). A request record whose
-// length is out of range is answered by the caller like any bad frame: the
-// frame bytes given are then empty.
-bool take_request(Window& w, std::vector<std::uint8_t>& request, std::chrono::nanoseconds spin,
+// A request the board took: its frame and the sequence number its reply answers.
+struct Request {
+    std::vector<std::uint8_t> frame;
+    std::uint32_t sequence = 0;
+};
+
+// Waits for a request (the request sequence differing from the reply
+// sequence). Spins for `spin` first (low latency while a host is busy), then
+// sleeps on the request sequence until a request arrives, `timeout` passes,
+// or wake_board() is called. Returns true with the request in `request`. A
+// request record whose length is out of range is answered by the caller like
+// any bad frame: the frame bytes given are then empty.
+bool take_request(Window& w, Request& request, std::chrono::nanoseconds spin,
                   std::chrono::nanoseconds timeout);
 // The same with a spin budget that learns from each wait.
-bool take_request(Window& w, std::vector<std::uint8_t>& request, AdaptiveSpin& spin,
+bool take_request(Window& w, Request& request, AdaptiveSpin& spin,
                   std::chrono::nanoseconds timeout);
-// Writes the reply record and sets Reply, waking a sleeping host.
-void put_reply(Window& w, std::span<const std::uint8_t> reply);
+// Writes the reply record and the request's sequence as the reply sequence,
+// waking a sleeping host.
+void put_reply(Window& w, const Request& request, std::span<const std::uint8_t> reply);
 // Wakes a board sleeping in take_request (used to stop the serving thread).
 void wake_board(Window& w);
 
@@ -200,8 +193,9 @@ struct HostOptions {
     bool (*lock_holder_gone)(std::uint32_t token) = nullptr;
 };
 
-// One request/reply exchange: takes the host lock, writes the request, waits
-// for the reply, reads it into `reply`, sets Idle and frees the lock.
+// One request/reply exchange: takes the host lock, writes the request, rings
+// the request doorbell, waits for the reply doorbell, reads the reply into
+// `reply` and frees the lock.
 //  kOk; kTimeout (lock not free, or no reply in time: the board may still act
 //  on the request); kTransportError (board not serving, window error, reply
 //  record out of range) with `why` saying which; kInvalidArgument (request
