@@ -8,12 +8,20 @@
 // stopped by this program.
 // Targets on the 2-core reference machine (docs/performance.md): inproc
 // under 100 ns, shm under 2 us, unix under 20 us (medians).
+// Beside them, the floors of this machine, with no driver or emulator code:
+// one cache line bounced between two processes (what any shared-memory round
+// trip costs at least) and 40 bytes bounced over a Unix socket pair by two
+// processes that poll (what any socket round trip costs at least).
 #include <benchmark/benchmark.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -150,6 +158,84 @@ void BM_ReadRoundTrip_Shm(benchmark::State& state) {
     read_round_trip(state, daemon_process().shm_uri());
 }
 
+// ---- Floors
+
+inline void cpu_relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+// Two words on separate cache lines of a shared mapping: the parent writes
+// `ping`, a child process answers on `pong`. 0 stops the child.
+void BM_Floor_CacheLinePingPong(benchmark::State& state) {
+    void* m = ::mmap(nullptr, 4096, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (m == MAP_FAILED) {
+        state.SkipWithError("mmap failed");
+        return;
+    }
+    auto* ping = static_cast<std::atomic<std::uint32_t>*>(m);
+    auto* pong = reinterpret_cast<std::atomic<std::uint32_t>*>(static_cast<char*>(m) + 128);
+    ping->store(1);  // 1: idle, 0: stop, anything else: a ping
+    pong->store(1);
+    const pid_t child = ::fork();
+    if (child == 0) {
+        std::uint32_t last = 1;
+        for (;;) {
+            std::uint32_t v;
+            while ((v = ping->load(std::memory_order_acquire)) == last) cpu_relax();
+            if (v == 0) ::_exit(0);
+            pong->store(v, std::memory_order_release);
+            last = v;
+        }
+    }
+    std::uint32_t i = 1;
+    for ([[maybe_unused]] auto _ : state) {
+        if (++i == 0) i = 2;
+        ping->store(i, std::memory_order_release);
+        while (pong->load(std::memory_order_acquire) != i) cpu_relax();
+    }
+    ping->store(0, std::memory_order_release);
+    ::waitpid(child, nullptr, 0);
+    ::munmap(m, 4096);
+}
+
+// 40 bytes (the size of an object read frame) to a child process and back
+// over a socket pair; both sides poll with MSG_DONTWAIT, never sleeping.
+void BM_Floor_UnixSocketPairPolling(benchmark::State& state) {
+    int sv[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM, 0, sv) != 0) {
+        state.SkipWithError("socketpair failed");
+        return;
+    }
+    auto receive = [](int fd, char* b) {
+        for (;;) {
+            const ssize_t n = ::recv(fd, b, 64, MSG_DONTWAIT);
+            if (n >= 0 || errno != EAGAIN) return n;
+        }
+    };
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::close(sv[0]);
+        char b[64] = {};
+        while (receive(sv[1], b) > 0)
+            if (::send(sv[1], b, 40, MSG_NOSIGNAL) != 40) break;
+        ::_exit(0);
+    }
+    ::close(sv[1]);
+    char b[64] = {};
+    for ([[maybe_unused]] auto _ : state) {
+        if (::send(sv[0], b, 40, MSG_NOSIGNAL) != 40 || receive(sv[0], b) <= 0) {
+            state.SkipWithError("socket pair failed");
+            break;
+        }
+    }
+    ::close(sv[0]);  // the child sees the end and exits
+    ::waitpid(child, nullptr, 0);
+}
+
+BENCHMARK(BM_Floor_CacheLinePingPong)->Repetitions(9)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Floor_UnixSocketPairPolling)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Inproc)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Shm)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Unix)->Repetitions(9)->ReportAggregatesOnly(true);

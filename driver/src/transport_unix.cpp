@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The daemon socket transport ("unix:PATH"): a stream socket to rwmos-emu
 // carrying wire frames, one request and its reply at a time.
-// Blocking: exchange() blocks in poll() for at most the timeout; open and
+// Blocking: exchange() polls the socket for a learned spin budget (at most
+// 50 us), then blocks in poll(), for at most the timeout in all; open and
 // reconnect block in connect() (a local socket answers at once).
 // Threading: one caller at a time (the FrameTransport that owns the link).
 // errno becomes a status in status_of_errno() and nowhere else.
@@ -16,6 +17,7 @@
 #include <new>
 
 #include "frame_transport.h"
+#include "objif/adaptive_spin.h"
 #include "rwmos/registry.h"
 
 namespace apci {
@@ -157,18 +159,28 @@ class UnixLink final : public FrameLink {
         return Status::kOk;
     }
 
+    // Appends what the socket holds to `buffer`. Nothing there yet: polls the
+    // socket for the spin budget first (the daemon answers an object request in
+    // a few microseconds, while a blocked caller's wake-up costs tens of them on
+    // a virtual machine), then sleeps in poll().
     Status read_some(std::vector<std::uint8_t>& buffer, SteadyClock::time_point deadline,
                      std::string& why) {
+        const auto start = SteadyClock::now();
+        const auto spin_end = start + spin_.budget();
+        bool spinning = true;
         for (;;) {
-            const std::size_t old = buffer.size();
-            buffer.resize(old + kReadChunk);
-            const ssize_t n = ::recv(fd_, buffer.data() + old, kReadChunk, MSG_DONTWAIT);
+            const ssize_t n = ::recv(fd_, chunk_.data(), chunk_.size(), MSG_DONTWAIT);
             const int err = errno;
-            buffer.resize(old + (n > 0 ? static_cast<std::size_t>(n) : 0));
-            if (n > 0) return Status::kOk;
+            if (n > 0) {
+                spin_.learn(SteadyClock::now() - start);
+                buffer.insert(buffer.end(), chunk_.begin(), chunk_.begin() + n);
+                return Status::kOk;
+            }
             if (n == 0) return lose(fmt::format("{} closed the connection", path_), why);
             if (err == EINTR) continue;
             if (err == EAGAIN) {
+                if (spinning && SteadyClock::now() < spin_end) continue;
+                spinning = false;
                 const Status s = wait_for(POLLIN, deadline, "reply from the board", why);
                 if (s != Status::kOk) return s;
                 continue;
@@ -188,8 +200,13 @@ class UnixLink final : public FrameLink {
     }
 
     static constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
+    // How long read_some() polls before it sleeps (objif/adaptive_spin.h).
+    static constexpr std::chrono::microseconds kShortestSpin{1};
+    static constexpr std::chrono::microseconds kLongestSpin{50};
     std::string path_;
     int fd_ = -1;
+    std::vector<std::uint8_t> chunk_ = std::vector<std::uint8_t>(kReadChunk);  // one recv()
+    objif::AdaptiveSpin spin_{kShortestSpin, kLongestSpin};
     std::vector<std::uint8_t> pending_;  // received bytes not yet a whole frame
     std::string lost_;                   // why the link was lost
 };

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -21,6 +22,7 @@
 
 #include "board_host.h"
 #include "log.h"
+#include "objif/adaptive_spin.h"
 #include "rwmos/registry.h"
 #include "shm_server.h"
 #include "socket_server.h"
@@ -32,6 +34,11 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
+// How long the loop polls for a client's next request before it sleeps: a
+// sleeping daemon's wake-up costs tens of microseconds on a virtual machine,
+// the poll a fraction of one; the budget halves while requests come slower.
+constexpr std::chrono::microseconds kShortestSpin{1};
+constexpr std::chrono::microseconds kLongestSpin{50};
 
 struct Options {
     std::string socket;
@@ -148,9 +155,23 @@ int serve(const Options& o) {
 
     int exit_code = kExitOk;
     bool running = true;
+    // After serving a client the loop polls for the next request for a learned
+    // budget before it sleeps in epoll_wait (docs/performance.md, "Transports").
+    objif::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
+    bool served_client = false;
     while (running) {
         epoll_event events[64];
-        const int n = ::epoll_wait(fds.epoll, events, 64, -1);
+        int n = 0;
+        const auto start = std::chrono::steady_clock::now();
+        if (served_client) {
+            const auto until = start + spin.budget();
+            do {
+                n = ::epoll_wait(fds.epoll, events, 64, 0);
+            } while (n == 0 && std::chrono::steady_clock::now() < until);
+        }
+        if (n == 0) n = ::epoll_wait(fds.epoll, events, 64, -1);
+        if (served_client) spin.learn(std::chrono::steady_clock::now() - start);
+        served_client = false;
         if (n < 0) {
             if (errno == EINTR) continue;
             log(Level::kError, "epoll_wait: {}", std::strerror(errno));
@@ -174,6 +195,7 @@ int serve(const Options& o) {
                 sockets.on_listen_ready();
             } else {
                 sockets.on_client_ready(fd, events[i].events);
+                served_client = true;
             }
         }
     }

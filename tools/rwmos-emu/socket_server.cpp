@@ -179,6 +179,7 @@ void SocketServer::on_listen_ready() {
         }
         Client& c = clients_[fd];
         c.id = next_id_++;
+        c.armed = ev.events;
         log(Level::kDebug, "client {} connected ({} connected)", c.id, clients_.size());
     }
 }
@@ -243,10 +244,13 @@ void SocketServer::rearm(int fd, Client& c) const {
     const std::size_t queued = c.out.size() - c.out_pos;
     // Backpressure: a client that does not read its replies is not read from.
     c.reading = queued < kMaxQueuedReplies;
+    const std::uint32_t events =
+        (c.reading ? EPOLLIN | EPOLLRDHUP : 0u) | (queued != 0 ? EPOLLOUT : 0u);
+    if (events == c.armed) return;
     epoll_event ev{};
-    ev.events = (c.reading ? EPOLLIN | EPOLLRDHUP : 0u) | (queued != 0 ? EPOLLOUT : 0u);
+    ev.events = events;
     ev.data.fd = fd;
-    ::epoll_ctl(epoll_fd_, EPOLL_CTL_MOD, fd, &ev);
+    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_MOD, fd, &ev) == 0) c.armed = events;
 }
 
 void SocketServer::drop(int fd, std::string_view why) {

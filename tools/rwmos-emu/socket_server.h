@@ -53,6 +53,9 @@ class SocketServer {
         std::vector<std::uint8_t> out;  // replies not yet sent
         std::size_t out_pos = 0;
         bool reading = true;  // EPOLLIN armed
+        // The epoll events registered now: rearm() changes them only when
+        // they differ (each epoll_ctl is a system call per request otherwise).
+        std::uint32_t armed = 0;
     };
 
     void drop(int fd, std::string_view why);
