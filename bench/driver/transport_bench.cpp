@@ -11,7 +11,8 @@
 // Beside them, the floors of this machine, with no driver or emulator code:
 // one cache line bounced between two processes (what any shared-memory round
 // trip costs at least) and 40 bytes bounced over a Unix socket pair by two
-// processes that poll (what any socket round trip costs at least).
+// processes that poll (what any socket round trip costs at least), and the
+// same with both blocking in recv (what a round trip costs once both sleep).
 #include <benchmark/benchmark.h>
 #include <signal.h>
 #include <spawn.h>
@@ -201,17 +202,18 @@ void BM_Floor_CacheLinePingPong(benchmark::State& state) {
 }
 
 // 40 bytes (the size of an object read frame) to a child process and back
-// over a socket pair; both sides poll with MSG_DONTWAIT, never sleeping.
-void BM_Floor_UnixSocketPairPolling(benchmark::State& state) {
+// over a socket pair; both sides poll with MSG_DONTWAIT, never sleeping
+// (`polling`), or block in recv.
+void socket_pair_ping_pong(benchmark::State& state, bool polling) {
     int sv[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM, 0, sv) != 0) {
         state.SkipWithError("socketpair failed");
         return;
     }
-    auto receive = [](int fd, char* b) {
+    auto receive = [polling](int fd, char* b) {
         for (;;) {
-            const ssize_t n = ::recv(fd, b, 64, MSG_DONTWAIT);
-            if (n >= 0 || errno != EAGAIN) return n;
+            const ssize_t n = ::recv(fd, b, 64, polling ? MSG_DONTWAIT : 0);
+            if (n >= 0 || (errno != EAGAIN && errno != EINTR)) return n;
         }
     };
     const pid_t child = ::fork();
@@ -233,9 +235,16 @@ void BM_Floor_UnixSocketPairPolling(benchmark::State& state) {
     ::close(sv[0]);  // the child sees the end and exits
     ::waitpid(child, nullptr, 0);
 }
+void BM_Floor_UnixSocketPairPolling(benchmark::State& state) {
+    socket_pair_ping_pong(state, true);
+}
+void BM_Floor_UnixSocketPairBlocking(benchmark::State& state) {
+    socket_pair_ping_pong(state, false);
+}
 
 BENCHMARK(BM_Floor_CacheLinePingPong)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Floor_UnixSocketPairPolling)->Repetitions(9)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Floor_UnixSocketPairBlocking)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Inproc)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Shm)->Repetitions(9)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRoundTrip_Unix)->Repetitions(9)->ReportAggregatesOnly(true);
