@@ -286,8 +286,8 @@ struct Exchange {
         const std::uint32_t answered = w.load(kOffReplySequence);
         if (answered == last) return Status::kOk;
         if (answered != last - 1) {
-            why = fmt::format("mailbox sequences out of step: request {}, reply {}", last,
-                              answered);
+            why =
+                fmt::format("mailbox sequences out of step: request {}, reply {}", last, answered);
             return Status::kTransportError;
         }
         return wait_reply(last);

@@ -236,7 +236,8 @@ TEST_F(ApcictlDiff, PlcScriptIsWrittenInBothRunsAtItsCycle) {
         args.insert(args.end(), w.begin(), w.end());
         ASSERT_EQ(apcictl(args).exit_code, 0);
     }
-    const std::string program = script_file(dir_, "N10 G1 X10 F600\nN20 G1 X0\nN30 M30\n", "back.nc");
+    const std::string program =
+        script_file(dir_, "N10 G1 X10 F600\nN20 G1 X0\nN30 M30\n", "back.nc");
     const std::string plc = script_file(dir_, "cycle 300 tool_temp_comp[2] 0.5\n", "lift.plc");
     const auto same = diff({"--against", "emu:", program});
     EXPECT_EQ(same.exit_code, 0) << same.out << same.err;

@@ -256,11 +256,12 @@ TEST_F(TempCompRun, PlcWriteAfterTheProgramsEndIsWritten) {
 // 0) nothing turns; without the holder nothing turns either.
 TEST_F(TempCompRun, PlcToolHolderTurnsTheVectorWithTheHead) {
     constexpr std::size_t kB = 6;  // board axis 4
-    const std::string program =
-        write("h.nc", "N10 G0 X0 Y0 Z10 B0\nN20 $SC_TOOL_TEMP_COMP[2] = 0.1\n"
-                      "N30 G1 X10 B90 F3000\nN40 G1 X20\nN50 M30\n");
-    const std::string md = "cycle 0 tool_temp_comp_on 1\ncycle 0 temp_comp_type[0] 4\n"
-                           "cycle 0 temp_comp_type[2] 4\ncycle 0 temp_ramp_velocity 0.5\n";
+    const std::string program = write("h.nc",
+                                      "N10 G0 X0 Y0 Z10 B0\nN20 $SC_TOOL_TEMP_COMP[2] = 0.1\n"
+                                      "N30 G1 X10 B90 F3000\nN40 G1 X20\nN50 M30\n");
+    const std::string md =
+        "cycle 0 tool_temp_comp_on 1\ncycle 0 temp_comp_type[0] 4\n"
+        "cycle 0 temp_comp_type[2] 4\ncycle 0 temp_ramp_velocity 0.5\n";
     const auto off = trace(program, "");
     const auto still = trace(program, write("still.plc", md), "still.json");
     const auto turned = trace(program, write("on.plc", md + "cycle 0 tool_holder TRUE\n"));
@@ -398,7 +399,8 @@ TEST(PlcScriptTemperature, RefusalsNameTheLineAndWhatWasWrong) {
               "p.plc:1:28: temp_ramp_velocity (mm/s) takes 1e-06..100000");
     EXPECT_EQ(err("cycle 5 temp_ramp_velocity nan"),
               "p.plc:1:28: expected a value (a finite number)");
-    EXPECT_EQ(err("cycle 5 tool_holder.enable 1"), "p.plc:1:20: expected a value (a finite number)");
+    EXPECT_EQ(err("cycle 5 tool_holder.enable 1"),
+              "p.plc:1:20: expected a value (a finite number)");
 }
 
 TEST(PlcScriptTemperature, ParsesTheToolHolderUnits) {

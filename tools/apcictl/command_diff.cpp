@@ -162,8 +162,7 @@ struct RunInputs {
     std::optional<apci::run::PlcScript> plc;
 };
 
-Outcome record_run(const std::string& path, const RunInputs& in, Session& session,
-                   Recording& out) {
+Outcome record_run(const std::string& path, const RunInputs& in, Session& session, Recording& out) {
     Outcome failure;
     apci::Board* board = session.board(failure);
     if (board == nullptr) return failure;

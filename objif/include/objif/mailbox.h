@@ -75,7 +75,6 @@ static_assert(kOffRequestSequence % 64 == 0 && kOffReplySequence % 64 == 0 &&
 
 enum class BoardState : std::uint32_t { kStopped = 0, kServing = 1 };
 
-
 // How host and board reach the window's words. Implementations: a memory
 // mapping (shared-memory file, PCI memory BAR, UIO map) in mailbox.cpp, and
 // pread/pwrite on a PCI I/O BAR in the driver. Every method is noexcept and

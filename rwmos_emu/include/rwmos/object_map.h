@@ -193,7 +193,7 @@ inline constexpr std::int32_t kIdxOffset = 10;        // double r, Sub = axis: t
 inline constexpr std::int32_t kNoHeadAxis = -1;
 inline constexpr double kDefaultRampVelocity = 1.0;  // PU/s: 1 um per 1 ms cycle
 inline constexpr double kMaxValue = 1e5;
-inline constexpr double kMinRampVelocity = 1e-6;       // PU/s: RampVelocity's range
+inline constexpr double kMinRampVelocity = 1e-6;  // PU/s: RampVelocity's range
 inline constexpr double kMaxRampVelocity = kMaxValue;
 }  // namespace tempcomp
 

@@ -1158,10 +1158,10 @@ class Execution {
             case PlcWrite::Unit::kToolHolder:
             case PlcWrite::Unit::kToolHolderAxisB:
             case PlcWrite::Unit::kToolHolderAxisC: {
-                const std::int32_t index = w.unit == PlcWrite::Unit::kToolHolder ? tcomp::kIdxToolHolder
-                                           : w.unit == PlcWrite::Unit::kToolHolderAxisB
-                                               ? tcomp::kIdxHeadAxisB
-                                               : tcomp::kIdxHeadAxisC;
+                const std::int32_t index =
+                    w.unit == PlcWrite::Unit::kToolHolder        ? tcomp::kIdxToolHolder
+                    : w.unit == PlcWrite::Unit::kToolHolderAxisB ? tcomp::kIdxHeadAxisB
+                                                                 : tcomp::kIdxHeadAxisC;
                 return temp_needed(at, what) &&
                        temp_write(temp_object(index), static_cast<std::int32_t>(w.value), at, what);
             }

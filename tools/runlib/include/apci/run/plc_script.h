@@ -40,15 +40,15 @@ struct PlcWrite {
     enum class When : std::uint8_t { kCycle, kBlock };
     // OTC control units (bus 1330) and the temperature compensation's objects (bus 1320).
     enum class Unit : std::uint8_t {
-        kOtcRadiusOffset,  // otc_radius_offset.<field>
-        kOtcOffset,        // otc_offset[index].<field>
-        kToolTempComp,     // tool_temp_comp[index]: SD 42960
-        kToolTempCompOn,   // tool_temp_comp_on: MD 20390
-        kTempCompType,     // temp_comp_type[index]: MD 32750
-        kToolHolder,       // tool_holder: ToolHolder (Index 4)
-        kToolHolderAxisB,  // tool_holder_axis_b: HeadAxisB (Index 5)
-        kToolHolderAxisC,  // tool_holder_axis_c: HeadAxisC (Index 6)
-        kTempRampVelocity, // temp_ramp_velocity: RampVelocity (Index 7)
+        kOtcRadiusOffset,   // otc_radius_offset.<field>
+        kOtcOffset,         // otc_offset[index].<field>
+        kToolTempComp,      // tool_temp_comp[index]: SD 42960
+        kToolTempCompOn,    // tool_temp_comp_on: MD 20390
+        kTempCompType,      // temp_comp_type[index]: MD 32750
+        kToolHolder,        // tool_holder: ToolHolder (Index 4)
+        kToolHolderAxisB,   // tool_holder_axis_b: HeadAxisB (Index 5)
+        kToolHolderAxisC,   // tool_holder_axis_c: HeadAxisC (Index 6)
+        kTempRampVelocity,  // temp_ramp_velocity: RampVelocity (Index 7)
     };
     enum class Field : std::uint8_t { kCommand, kEnable };  // the OTC units' field
     When when = When::kCycle;
