@@ -170,6 +170,7 @@ inline void cpu_relax() noexcept {
 // Two words on separate cache lines of a shared mapping: the parent writes
 // `ping`, a child process answers on `pong`. 0 stops the child.
 void BM_Floor_CacheLinePingPong(benchmark::State& state) {
+    // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
     void* m = ::mmap(nullptr, 4096, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (m == MAP_FAILED) {
         state.SkipWithError("mmap failed");
