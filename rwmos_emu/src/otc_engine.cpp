@@ -360,7 +360,7 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
             return axis == xyz[0] || axis == xyz[1] || axis == xyz[2];
         };
         arc_in_main = in_xyz(m.plane_axes[0]) && in_xyz(m.plane_axes[1]);
-        if (arc_in_main) plane = m.radius * std::fabs(m.sweep);
+        if (arc_in_main) plane = motion::arc_plane_length(m);
     }
     for (int axis : xyz) {
         if (arc_in_main && (axis == m.plane_axes[0] || axis == m.plane_axes[1])) continue;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -42,7 +43,8 @@ const Element kArcUp = make_arc({0, 0}, {-5, 5}, {-5, 0}, true);    // ccw, star
 CornerJoin join(const Pair& p, Side side, TransitionMode mode = TransitionMode::kCircular) {
     const OffsetElement a = offset_element(p.a, 1.0, side).element;
     const OffsetElement b = offset_element(p.b, 1.0, side).element;
-    return join_corner(a, b, p.a.end, end_tangent(p.a), start_tangent(p.b), side, 1.0, mode);
+    return join_corner(a, b, p.a.end, end_tangent(p.a), start_tangent(p.b), side, 1.0, mode,
+                       std::min(length(p.a), length(p.b)));
 }
 
 TEST(InsideCorner, LineLineTrimsAtTheOffsetLinesIntersection) {
@@ -96,10 +98,45 @@ TEST(InsideCorner, ChoosesTheValidIntersectionNearestTheCorner) {
     const OffsetElement bo = offset_element(b, 1, Side::kLeft).element;
     ASSERT_EQ(intersect_carriers(ao, bo).count, 2u);
     const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b), Side::kLeft,
-                                     1, TransitionMode::kCircular);
+                                     1, TransitionMode::kCircular, 20);
     ASSERT_EQ(j.reason, Reason::kNone);
     expect_near(j.held.path.end, {-10 + std::sqrt(80.0), 1});
     expect_near(j.next.path.start, {-10 + std::sqrt(80.0), 1});
+}
+
+TEST(InsideCorner, ChoosesTheValidIntersectionLatestOnTheHeldElementWhateverTheirOrder) {
+    // The mirror image of the case above (travelling -x, tool on the right): the two
+    // meetings come in the other order, and the one nearest the corner still wins.
+    const Element a = make_line({20, 0}, {0, 0});
+    const Element b = make_arc({0, 0}, {20, 0}, {10, 0}, false);
+    const OffsetElement ao = offset_element(a, 1, Side::kRight).element;
+    const OffsetElement bo = offset_element(b, 1, Side::kRight).element;
+    ASSERT_EQ(intersect_carriers(ao, bo).count, 2u);
+    const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b),
+                                     Side::kRight, 1, TransitionMode::kCircular, 20);
+    ASSERT_EQ(j.reason, Reason::kNone);
+    expect_near(j.held.path.end, {10 - std::sqrt(80.0), 1});
+    expect_near(j.next.path.start, {10 - std::sqrt(80.0), 1});
+    // Arc-arc: a circle crossing the concave offset circle twice, both meetings within
+    // both elements; again the one nearest the corner, latest on the held arc.
+    for (const bool mirrored : {false, true}) {
+        const double m = mirrored ? -1.0 : 1.0;
+        const Side side = mirrored ? Side::kRight : Side::kLeft;
+        const Element held = make_arc({m * -20, 0}, {0, 0}, {m * -10, -40}, mirrored);
+        const Element next = make_arc({0, 0}, {m * -20, 0}, {m * -10, 0}, !mirrored);
+        const OffsetElement ho = offset_element(held, 1, side).element;
+        const OffsetElement no = offset_element(next, 1, side).element;
+        ASSERT_EQ(intersect_carriers(ho, no).count, 2u);
+        const CornerJoin k = join_corner(ho, no, {0, 0}, end_tangent(held), start_tangent(next),
+                                         side, 1, TransitionMode::kCircular, 20);
+        ASSERT_EQ(k.reason, Reason::kNone) << mirrored;
+        const Intersections both = intersect_carriers(ho, no);
+        const Vec2 nearest = both.points[0].norm() < both.points[1].norm() ? both.points[0]
+                                                                             : both.points[1];
+        expect_near(k.held.path.end, nearest, 1e-9);
+        EXPECT_NEAR(distance_to(held, k.held.path.end), 1.0, 1e-9);
+        EXPECT_NEAR(distance_to(next, k.held.path.end), 1.0, 1e-9);
+    }
 }
 
 TEST(OutsideCorner, CircularLineLineIsQuarterArcAboutTheCorner) {
@@ -219,7 +256,8 @@ class CornerRule : public testing::TestWithParam<CornerCase> {
         ASSERT_NEAR((a_.end - b_.start).norm(), 0.0, 1e-12);
         join_ = join_corner(offset_element(a_, r_, c.side).element,
                             offset_element(b_, r_, c.side).element, a_.end, end_tangent(a_),
-                            start_tangent(b_), c.side, r_, c.mode);
+                            start_tangent(b_), c.side, r_, c.mode,
+                            std::min(length(a_), length(b_)));
     }
     // Distance of p from the programmed pair.
     double clearance(const Vec2& p) const {
@@ -319,22 +357,49 @@ INSTANTIATE_TEST_SUITE_P(EveryCombination, LinearTransitionRule,
 // ---- Classification, tangent joins, failures ----
 
 TEST(CornerClassification, ReversalIsOutsideOnBothSides) {
-    EXPECT_EQ(classify_corner(dir(0), dir(180), Side::kLeft, 1), CornerKind::kOutside);
-    EXPECT_EQ(classify_corner(dir(0), dir(180), Side::kRight, 1), CornerKind::kOutside);
+    EXPECT_EQ(classify_corner(dir(0), dir(180), Side::kLeft, 1, 10), CornerKind::kOutside);
+    EXPECT_EQ(classify_corner(dir(0), dir(180), Side::kRight, 1, 10), CornerKind::kOutside);
 }
 
-TEST(CornerClassification, TurnWithinAngularToleranceIsTangent) {
-    const double tiny = 0.5 * kTangentAngleTolerance;
-    EXPECT_EQ(classify_corner(dir(0), Vec2(std::cos(tiny), std::sin(tiny)), Side::kLeft, 50),
-              CornerKind::kTangent);
-    const double small = 10 * kTangentAngleTolerance;
-    EXPECT_EQ(classify_corner(dir(0), Vec2(std::cos(small), std::sin(small)), Side::kLeft, 50),
-              CornerKind::kInside);
+TEST(CornerClassification, NearReversalIsAReversalWhileTheWedgeIsNarrowerThanRounding) {
+    // An inside turn of 180 degrees less delta: a wedge shorter_length * sin(delta) wide.
+    const double length = 10;
+    const double narrow = std::asin(0.9 * kReversalWedgeWidth / length);
+    const double wide = std::asin(1.1 * kReversalWedgeWidth / length);
+    for (const Side side : {Side::kLeft, Side::kRight}) {
+        const double s = side == Side::kLeft ? 1.0 : -1.0;  // inside: towards the tool
+        const Vec2 t_narrow(-std::cos(narrow), s * std::sin(narrow));
+        const Vec2 t_wide(-std::cos(wide), s * std::sin(wide));
+        EXPECT_EQ(classify_corner(dir(0), t_narrow, side, 1, length), CornerKind::kOutside);
+        EXPECT_EQ(classify_corner(dir(0), t_wide, side, 1, length), CornerKind::kInside);
+        // Turning away from the tool it is an outside corner however wide.
+        EXPECT_EQ(classify_corner(dir(0), Vec2(t_wide.x(), -t_wide.y()), side, 1, length),
+                  CornerKind::kOutside);
+    }
+}
+
+TEST(CornerClassification, TangentWhenTheOffsetEndsLieWithinThePathTolerance) {
+    // The gap between the offset ends is 2 r sin(turn / 2).
+    for (const double r : {0.01, 0.5, 5.0, 50.0}) {
+        const double just_in = 2 * std::asin(0.99 * kPathTolerance / (2 * r));
+        const double just_out = 2 * std::asin(1.01 * kPathTolerance / (2 * r));
+        for (const double sign : {1.0, -1.0}) {
+            EXPECT_EQ(classify_corner(dir(0), Vec2(std::cos(just_in), sign * std::sin(just_in)),
+                                      Side::kLeft, r, 10),
+                      CornerKind::kTangent)
+                << r;
+            EXPECT_EQ(classify_corner(dir(0), Vec2(std::cos(just_out), sign * std::sin(just_out)),
+                                      Side::kLeft, r, 10),
+                      sign > 0 ? CornerKind::kInside : CornerKind::kOutside)
+                << r;
+        }
+        EXPECT_NEAR(offset_gap(just_in, r), 0.99 * kPathTolerance, 1e-15);
+    }
 }
 
 TEST(CornerClassification, ZeroToolRadiusMakesEveryCornerTangent) {
-    EXPECT_EQ(classify_corner(dir(0), dir(90), Side::kLeft, 0), CornerKind::kTangent);
-    EXPECT_EQ(classify_corner(dir(0), dir(-170), Side::kRight, 0), CornerKind::kTangent);
+    EXPECT_EQ(classify_corner(dir(0), dir(90), Side::kLeft, 0, 10), CornerKind::kTangent);
+    EXPECT_EQ(classify_corner(dir(0), dir(-170), Side::kRight, 0, 10), CornerKind::kTangent);
 }
 
 TEST(TangentJoin, LineIntoTangentArcAddsNoElementAndMeetsExactly) {
@@ -342,9 +407,10 @@ TEST(TangentJoin, LineIntoTangentArcAddsNoElementAndMeetsExactly) {
     for (bool ccw : {true, false}) {
         const Element arc = make_arc({0, 0}, {5, ccw ? 5.0 : -5.0}, {0, ccw ? 5.0 : -5.0}, ccw);
         for (Side side : {Side::kLeft, Side::kRight}) {
-            const CornerJoin j = join_corner(
-                offset_element(line, 1, side).element, offset_element(arc, 1, side).element, {0, 0},
-                end_tangent(line), start_tangent(arc), side, 1, TransitionMode::kCircular);
+            const CornerJoin j = join_corner(offset_element(line, 1, side).element,
+                                             offset_element(arc, 1, side).element, {0, 0},
+                                             end_tangent(line), start_tangent(arc), side, 1,
+                                             TransitionMode::kCircular, 10);
             EXPECT_EQ(j.kind, CornerKind::kTangent);
             EXPECT_EQ(j.transition.count, 0u);
             EXPECT_EQ(j.held.path.end, j.next.path.start);
@@ -353,15 +419,82 @@ TEST(TangentJoin, LineIntoTangentArcAddsNoElementAndMeetsExactly) {
     }
 }
 
-TEST(TangentJoin, NearlyTangentGapIsSnappedToTheHeldEnd) {
-    const double a = 0.5 * kTangentAngleTolerance;
+TEST(TangentJoin, NearlyTangentGapIsJoinedAtTheHeldEnd) {
+    // r = 50 and a turn whose offset gap is half the path tolerance, both ways.
+    for (const double sign : {1.0, -1.0}) {
+        const double a = sign * 2 * std::asin(0.5 * kPathTolerance / 100);
+        const Element l1 = make_line({-10, 0}, {0, 0});
+        const Element l2 = make_line({0, 0}, {10 * std::cos(a), 10 * std::sin(a)});
+        const CornerJoin j = join_corner(offset_element(l1, 50, Side::kLeft).element,
+                                         offset_element(l2, 50, Side::kLeft).element, {0, 0},
+                                         end_tangent(l1), start_tangent(l2), Side::kLeft, 50,
+                                         TransitionMode::kCircular, 10);
+        EXPECT_EQ(j.kind, CornerKind::kTangent);
+        EXPECT_EQ(j.held.path.end, j.next.path.start);
+        // Neither element moved by more than the gap.
+        expect_near(j.held.path.end, {0, 50}, 1e-12);
+        EXPECT_LT(distance_to(l2, j.next.path.start) - 50, 1e-12);
+        EXPECT_GT(distance_to(l2, j.next.path.start) - 50, -kPathTolerance);
+    }
+}
+
+TEST(TangentJoin, ArcStartMovedToTheHeldEndTurnsByAsMuchLess) {
+    // A line into a concave arc whose tangent differs by a turn within the path tolerance:
+    // the arc starts at the line's offset end, and its sweep tells the truth about it.
+    const double a = 2 * std::asin(0.5 * kPathTolerance / 2);  // r = 1: gap 0.5 kPathTolerance
     const Element l1 = make_line({-10, 0}, {0, 0});
-    const Element l2 = make_line({0, 0}, {10 * std::cos(a), 10 * std::sin(a)});
-    const CornerJoin j = join_corner(
-        offset_element(l1, 50, Side::kLeft).element, offset_element(l2, 50, Side::kLeft).element,
-        {0, 0}, end_tangent(l1), start_tangent(l2), Side::kLeft, 50, TransitionMode::kCircular);
-    EXPECT_EQ(j.kind, CornerKind::kTangent);
-    EXPECT_EQ(j.held.path.end, j.next.path.start);
+    const Vec2 t(std::cos(a), std::sin(a));
+    const Vec2 centre = 10 * left_normal(t);
+    const Element arc = make_arc({0, 0}, centre + 10 * Vec2(1, 0), centre, true);
+    const OffsetElement ao = offset_element(arc, 1, Side::kLeft).element;
+    const CornerJoin j = join_corner(offset_element(l1, 1, Side::kLeft).element, ao, {0, 0},
+                                     end_tangent(l1), start_tangent(arc), Side::kLeft, 1,
+                                     TransitionMode::kCircular, 10);
+    ASSERT_EQ(j.kind, CornerKind::kTangent);
+    const Vec2 u0 = j.next.path.start - centre;
+    const Vec2 u1 = j.next.path.end - centre;
+    EXPECT_NEAR(j.next.sweep, angle_between(u0, u1, true), 1e-12);
+    EXPECT_NEAR(offset_length(j.next), offset_length(ao), 2 * kPathTolerance);
+}
+
+TEST(NearlyTangentCorner, TrimsExactlyHoweverSmallTheTurn) {
+    // Two lines meeting at turns from 1e-9 rad upwards, written as CAM output rounds them:
+    // every one that is not tangent is trimmed at r tan(turn / 2) from the corner, both
+    // ways and on both sides, at any orientation, without refusal.
+    for (const double heading : {0.0, 15.0, 105.0, 195.0, 285.0})
+        for (const double turn : {1e-9, 1e-7, 1e-5, 1e-4, 1e-3, 1e-2, 0.05})
+            for (const double r : {0.5, 2.0, 5.0})
+                for (const Side side : {Side::kLeft, Side::kRight})
+                    for (const double sign : {1.0, -1.0}) {
+                        const Vec2 t1 = dir(heading);
+                        const Vec2 t2 = dir(heading + sign * turn * 180 / kPi);
+                        const Vec2 c(19.318517, 5.176381);
+                        const Element a = make_line(c - 20 * t1, c);
+                        const Element b = make_line(c, c + 20 * t2);
+                        const CornerJoin j = join_corner(
+                            offset_element(a, r, side).element, offset_element(b, r, side).element,
+                            c, end_tangent(a), start_tangent(b), side, r,
+                            TransitionMode::kCircular, 20);
+                        ASSERT_EQ(j.reason, Reason::kNone)
+                            << heading << " " << turn << " " << r << " " << sign;
+                        const Vec2 x = j.held.path.end;
+                        if (j.kind == CornerKind::kOutside) {
+                            ASSERT_EQ(j.transition.count, 1u);
+                            EXPECT_EQ(j.transition.elements[0].start, x);
+                            EXPECT_EQ(j.transition.elements[0].end, j.next.path.start);
+                        } else {
+                            EXPECT_EQ(x, j.next.path.start);
+                        }
+                        if (j.kind == CornerKind::kInside) {
+                            EXPECT_NEAR(distance_to(a, x), r, 1e-9);
+                            EXPECT_NEAR(distance_to(b, x), r, 1e-9);
+                            EXPECT_NEAR((j.held.path.end - offset_element(a, r, side).element.path.end)
+                                            .norm(),
+                                        r * std::tan(turn / 2), 1e-9);
+                        }
+                        EXPECT_EQ(j.kind == CornerKind::kTangent,
+                                  offset_gap(turn, r) <= kPathTolerance);
+                    }
 }
 
 TEST(CornerFailure, KorrErrorWhenHeldLineIsShorterThanTheInsideCornerNeeds) {
@@ -369,7 +502,8 @@ TEST(CornerFailure, KorrErrorWhenHeldLineIsShorterThanTheInsideCornerNeeds) {
     const Element a = make_line({-0.5, 0}, {0, 0});
     const CornerJoin j = join_corner(
         offset_element(a, 1, Side::kLeft).element, offset_element(kLineUp, 1, Side::kLeft).element,
-        {0, 0}, end_tangent(a), start_tangent(kLineUp), Side::kLeft, 1, TransitionMode::kCircular);
+        {0, 0}, end_tangent(a), start_tangent(kLineUp), Side::kLeft, 1, TransitionMode::kCircular,
+        0.5);
     EXPECT_EQ(j.reason, Reason::kHeldElementTooShort);
     EXPECT_EQ(reason_bits(j.reason), bits(ErrorBit::kKorrError));
 }
@@ -378,7 +512,8 @@ TEST(CornerFailure, KorrErrorWhenNextLineIsShorterThanTheInsideCornerNeeds) {
     const Element b = make_line({0, 0}, {0, 0.5});
     const CornerJoin j = join_corner(
         offset_element(kLineIn, 1, Side::kLeft).element, offset_element(b, 1, Side::kLeft).element,
-        {0, 0}, end_tangent(kLineIn), start_tangent(b), Side::kLeft, 1, TransitionMode::kCircular);
+        {0, 0}, end_tangent(kLineIn), start_tangent(b), Side::kLeft, 1, TransitionMode::kCircular,
+        0.5);
     EXPECT_EQ(j.reason, Reason::kNextElementTooShort);
 }
 
@@ -390,7 +525,7 @@ TEST(CornerFailure, KorrErrorWhenToolDoesNotFitBetweenLineAndConcaveArc) {
     const Element b = make_arc({0, 0}, centre + Vec2(0, -8), centre, false);
     const CornerJoin j = join_corner(
         offset_element(a, 1, Side::kRight).element, offset_element(b, 1, Side::kRight).element,
-        {0, 0}, end_tangent(a), start_tangent(b), Side::kRight, 1, TransitionMode::kCircular);
+        {0, 0}, end_tangent(a), start_tangent(b), Side::kRight, 1, TransitionMode::kCircular, 8);
     EXPECT_EQ(j.kind, CornerKind::kInside);
     EXPECT_EQ(j.reason, Reason::kNoCornerSolution);
 }
@@ -403,7 +538,7 @@ TEST(CornerFailure, KorrErrorWhenOffsetElementsDoNotMeetAtAnInsideCorner) {
     const OffsetElement ao = offset_element(a, 3.5, Side::kLeft).element;  // y = 3.5
     const OffsetElement bo = offset_element(b, 3.5, Side::kLeft).element;  // radius 0.5
     const CornerJoin j = join_corner(ao, bo, {0, 0}, end_tangent(a), start_tangent(b), Side::kLeft,
-                                     3.5, TransitionMode::kCircular);
+                                     3.5, TransitionMode::kCircular, 6);
     EXPECT_EQ(j.kind, CornerKind::kInside);
     EXPECT_EQ(j.reason, Reason::kNoCornerSolution);
     EXPECT_EQ(intersect_carriers(ao, bo).count, 0u);

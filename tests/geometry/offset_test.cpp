@@ -63,11 +63,22 @@ TEST(Offset, FullCircleStaysFullCircle) {
     EXPECT_NEAR(offset_length(o.element), 8 * kPi, 1e-12);
 }
 
-TEST(Offset, CalcErrorWhenConcaveArcRadiusIsNotLargerThanToolRadius) {
+TEST(Offset, CalcErrorWhenConcaveArcRadiusIsSmallerThanToolRadius) {
+    // TC Table 4: CalcError when the radius of the arc is smaller than the tool radius,
+    // beyond the path tolerance. A tool that fits the arc keeps its centre on the arc's.
     const Element arc = make_arc({5, 0}, {0, 5}, {0, 0}, true);
-    EXPECT_EQ(offset_element(arc, 5.0, Side::kLeft).reason, Reason::kOffsetRadiusNotPositive);
+    EXPECT_EQ(offset_element(arc, 5.0 + 2 * kOffsetRadiusTolerance, Side::kLeft).reason,
+              Reason::kOffsetRadiusNotPositive);
     EXPECT_EQ(offset_element(arc, 6.0, Side::kLeft).reason, Reason::kOffsetRadiusNotPositive);
     EXPECT_EQ(offset_element(arc, 4.999, Side::kLeft).reason, Reason::kNone);
+    for (const double r : {5.0 - 0.5 * kOffsetRadiusTolerance, 5.0, 5.0 + 0.5 * kOffsetRadiusTolerance}) {
+        const OffsetResult fits = offset_element(arc, r, Side::kLeft);
+        ASSERT_EQ(fits.reason, Reason::kNone) << r;
+        EXPECT_LT((fits.element.path.start - arc.centre).norm(), kOffsetRadiusTolerance) << r;
+        EXPECT_LT((fits.element.path.end - arc.centre).norm(), kOffsetRadiusTolerance) << r;
+        EXPECT_NEAR(fits.element.sweep, kPi / 2, kEps);
+        EXPECT_LT(length(emitted_path(fits.element)), kOffsetRadiusTolerance);
+    }
     // The convex side has no such limit.
     EXPECT_EQ(offset_element(arc, 6.0, Side::kRight).reason, Reason::kNone);
     EXPECT_EQ(reason_bits(Reason::kOffsetRadiusNotPositive), bits(ErrorBit::kCalcError));
@@ -103,11 +114,23 @@ TEST(Offset, CalcErrorForAnElementKindThatIsNeitherLineNorArc) {
     EXPECT_EQ(reason_bits(Reason::kInvalidElementKind), bits(ErrorBit::kCalcError));
 }
 
-TEST(Offset, EndRadiusWithinToleranceKeepsTheStartRadius) {
-    // The arc is the circle through its start; the end point gives the end angle.
+TEST(Offset, ArcWithRadiiDifferingWithinToleranceRunsFromStartToEndAndSoDoesItsOffset) {
+    // Rounding made the end radius 5.002: the arc runs from its start to its programmed
+    // end, its radius changing linearly with the angle; its offset keeps that shape.
     const Element arc = make_arc({5, 0}, {0, 5.002}, {0, 0}, true);
+    EXPECT_EQ(point_at(arc, 1.0), arc.end);
+    EXPECT_NEAR((point_at(arc, 0.5) - arc.centre).norm(), 5.001, 1e-12);
+    EXPECT_NEAR(length(arc), kPi / 2 * 5.001, 1e-12);
     const OffsetResult o = offset_element(arc, 1.0, Side::kRight);
-    expect_near(o.element.path.end, {0, 6});
+    expect_near(o.element.path.start, {6, 0});
+    expect_near(o.element.path.end, {0, 6.002});
+    EXPECT_NEAR(offset_length(o.element), kPi / 2 * 6.001, 1e-12);
+    // Every point of the offset is r from the arc (the spiral's normal tilts by
+    // dR / (R dphi), here 4e-4: its distance differs from r by about r * 8e-8).
+    for (int i = 0; i <= 16; ++i) {
+        const Vec2 p = point_at(o.element.path, i / 16.0);
+        EXPECT_NEAR(distance_to(arc, p), 1.0, 1e-6) << i;
+    }
 }
 
 TEST(Offset, DistanceAlongCountsFromStartInTheDirectionOfTravel) {

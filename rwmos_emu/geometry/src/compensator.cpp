@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/geometry/compensator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "rwmos/geometry/approach.h"
@@ -85,9 +86,9 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
         if (worth_moving(approach)) out.add(approach, SegmentRole::kApproach, index);
         held_ = offset.element;
     } else {
-        const CornerJoin join =
-            join_corner(held_, offset.element, held_corner_, held_end_tangent_,
-                        start_tangent(programmed), config_.side, r, config_.transition);
+        const CornerJoin join = join_corner(
+            held_, offset.element, held_corner_, held_end_tangent_, start_tangent(programmed),
+            config_.side, r, config_.transition, std::min(held_length_, length(programmed)));
         if (join.reason != Reason::kNone)
             return fail(join.reason,
                         join.reason == Reason::kHeldElementTooShort ? held_index_ : index, out);
@@ -99,6 +100,7 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     }
     held_corner_ = programmed.end;
     held_end_tangent_ = end_tangent(programmed);
+    held_length_ = length(programmed);
     held_index_ = index;
     plane_free_count_ = 0;
     state_ = State::kHolding;

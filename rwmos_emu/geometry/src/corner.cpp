@@ -12,22 +12,140 @@
 namespace rwmos::geom {
 namespace {
 
-// Where x lies on an offset element, as distance along it, choosing among the readings
-// of an arc's angle (x - C, x, x + C for circumference C) the one that lies on the
-// element and is nearest the given end (the corner's end). Returns false if none does.
-bool locate_on(const OffsetElement& o, const Vec2& x, bool near_end, double& along) noexcept {
-    const double len = offset_length(o);
-    const double raw = distance_along(o, x);
-    const double period = circumference(o);
-    const double readings[3] = {raw, raw - period, raw + period};
-    const int count = period > 0.0 ? 3 : 1;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+// The roots of s^2 + 2 b s + c = 0, computed without cancellation (the smaller one from
+// the larger by Vieta). Near-tangent meetings (a discriminant within rounding of zero)
+// count as touching.
+struct Roots {
+    double s[2] = {0.0, 0.0};
+    int count = 0;
+};
+Roots half_b_quadratic(double b, double c) noexcept {
+    Roots out;
+    double disc = b * b - c;
+    const double scale = std::max(b * b, std::abs(c));
+    if (disc < 0.0) {
+        if (disc < -1e-12 * scale) return out;
+        disc = 0.0;
+    }
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    if (q == 0.0) {  // b == 0 and c == 0: a double root at 0
+        out.count = 1;
+        return out;
+    }
+    out.s[0] = q;
+    out.s[1] = c / q;
+    out.count = 2;
+    return out;
+}
+
+// One intersection of the two carriers, as a displacement y from the held element's end
+// P1 (X = P1 + y). Displacements stay small near the corner, so they keep their
+// precision where absolute coordinates would cancel.
+struct Meeting {
+    Vec2 y = Vec2::Zero();
+};
+
+// The carrier of an offset element at the corner: the held element at its end, the
+// next at its start. Arcs: the circle about the centre through that end.
+struct Carrier {
+    bool arc = false;
+    Vec2 direction = Vec2::Zero();  // lines
+    Vec2 centre = Vec2::Zero();     // arcs
+};
+
+Carrier carrier_of(const OffsetElement& o) noexcept {
+    Carrier c;
+    c.arc = is_arc(o.path);
+    c.direction = o.direction;
+    c.centre = o.path.centre;
+    return c;
+}
+
+// Intersections of the held carrier (through P1) and the next carrier (through P1 + gap),
+// with u = P1 - centre of the held arc and v = P2 - centre of the next arc.
+int meet(const Carrier& h, const Carrier& n, const Vec2& p1, const Vec2& p2, const Vec2& gap,
+         Meeting out[2]) noexcept {
+    if (!h.arc && !n.arc) {
+        // P1 + y with y = -a t1 = gap + b t2: a = -cross(gap, t2) / cross(t1, t2).
+        const double den = cross(h.direction, n.direction);
+        if (den == 0.0) return 0;
+        const double a = -cross(gap, n.direction) / den;
+        out[0].y = -a * h.direction;
+        return 1;
+    }
+    if (!h.arc) {
+        // y = -a t1 on the circle about cB through P2: with w = P1 - cB = v - gap,
+        // |w - a t1|^2 = |v|^2, i.e. a^2 - 2 (t1.w) a + (|gap|^2 - 2 v.gap) = 0.
+        const Vec2 v = p2 - n.centre;
+        const Vec2 w = v - gap;
+        const Roots r = half_b_quadratic(-h.direction.dot(w), gap.squaredNorm() - 2 * v.dot(gap));
+        for (int i = 0; i < r.count; ++i) out[i].y = -r.s[i] * h.direction;
+        return r.count;
+    }
+    if (!n.arc) {
+        // y = gap + b t2 on the circle about cA through P1 (u = P1 - cA):
+        // |u + gap + b t2|^2 = |u|^2, i.e. b^2 + 2 t2.(u + gap) b + (2 u.gap + |gap|^2) = 0.
+        const Vec2 u = p1 - h.centre;
+        const Roots r =
+            half_b_quadratic(n.direction.dot(u + gap), 2 * u.dot(gap) + gap.squaredNorm());
+        for (int i = 0; i < r.count; ++i) out[i].y = gap + r.s[i] * n.direction;
+        return r.count;
+    }
+    // Two circles: |u + y| = |u| and |v - gap + y| = |v|. Their difference is the radical
+    // line e.y = k with e = cA - cB; y = y0 + s e_perp on it, then on the first circle.
+    const Vec2 u = p1 - h.centre;
+    const Vec2 v = p2 - n.centre;
+    const Vec2 e = h.centre - n.centre;
+    const double e2 = e.squaredNorm();
+    if (e2 == 0.0) return 0;  // concentric
+    const double k = v.dot(gap) - 0.5 * gap.squaredNorm();
+    const Vec2 y0 = (k / e2) * e;
+    const Vec2 e_perp = left_normal(e) / std::sqrt(e2);
+    const Roots r = half_b_quadratic(u.dot(e_perp), 2 * u.dot(y0) + y0.squaredNorm());
+    for (int i = 0; i < r.count; ++i) out[i].y = y0 + r.s[i] * e_perp;
+    return r.count;
+}
+
+// How far back from the held element's end the point P1 + y lies, along the element (mm;
+// arcs: the angle turned from there to the end times the mean radius). Arcs give the
+// readings within a turn; `wrapped` the one a circumference earlier (a point just past the
+// end reads as almost a full turn back, and as slightly negative).
+double back_from_end(const OffsetElement& o, const Vec2& p1, const Vec2& y, double& wrapped) noexcept {
+    if (!is_arc(o.path)) {
+        wrapped = std::numeric_limits<double>::quiet_NaN();
+        return -y.dot(o.direction);
+    }
+    const Vec2 u = p1 - o.path.centre;
+    const double angle = angle_between(u + y, u, o.path.ccw);
+    const double mean = 0.5 * (radius(o.path) + end_radius(o.path));
+    wrapped = (angle - kTwoPi) * mean;
+    return angle * mean;
+}
+
+// How far beyond the next element's start the point P1 + y lies, along the element.
+double past_start(const OffsetElement& o, const Vec2& p2, const Vec2& gap, const Vec2& y,
+                  double& wrapped) noexcept {
+    if (!is_arc(o.path)) {
+        wrapped = std::numeric_limits<double>::quiet_NaN();
+        return (y - gap).dot(o.direction);
+    }
+    const Vec2 v = p2 - o.path.centre;
+    const double angle = angle_between(v, v - gap + y, o.path.ccw);
+    const double mean = 0.5 * (radius(o.path) + end_radius(o.path));
+    wrapped = (angle - kTwoPi) * mean;
+    return angle * mean;
+}
+
+// Picks the reading within [-kTrimTolerance, len + kTrimTolerance] nearest 0 (the corner),
+// clamped to [0, len]. False if neither reading lies there.
+bool on_element(double reading, double wrapped, double len, double& along) noexcept {
     bool found = false;
-    for (int i = 0; i < count; ++i) {
-        const double v = readings[i];
-        if (v < -kTrimTolerance || v > len + kTrimTolerance) continue;
+    for (double v : {reading, wrapped}) {
+        if (!(v >= -kTrimTolerance && v <= len + kTrimTolerance)) continue;  // NaN fails too
         const double clamped = std::clamp(v, 0.0, len);
-        const bool better = near_end ? clamped > along : clamped < along;
-        if (!found || better) along = clamped;
+        if (!found || clamped < along) along = clamped;
         found = true;
     }
     return found;
@@ -37,57 +155,95 @@ Element line(const Vec2& a, const Vec2& b) noexcept {
     return make_line(a, b);
 }
 
+// The offset element starting at x instead of its start (x within kPathTolerance of it):
+// an arc keeps its centre and turns by as much less as x lies ahead of the old start.
+OffsetElement with_start(const OffsetElement& o, const Vec2& x) noexcept {
+    OffsetElement out = o;
+    out.path.start = x;
+    if (is_arc(o.path)) {
+        const Vec2 before = o.path.start - o.path.centre;
+        const Vec2 after = x - o.path.centre;
+        const double moved = std::atan2(cross(before, after), before.dot(after));
+        out.sweep = o.sweep - moved;
+    }
+    return out;
+}
+
 }  // namespace
 
 double turn_angle(const Vec2& t1, const Vec2& t2) noexcept {
     return std::atan2(cross(t1, t2), t1.dot(t2));
 }
 
+double offset_gap(double turn, double r) noexcept {
+    return 2 * r * std::abs(std::sin(0.5 * turn));
+}
+
 CornerKind classify_corner(const Vec2& end_tangent, const Vec2& start_tangent, Side side,
-                           double r) noexcept {
+                           double r, double shorter_length) noexcept {
     const double turn = turn_angle(end_tangent, start_tangent);
-    const double magnitude = std::abs(turn);
-    if (magnitude <= kTangentAngleTolerance || r * magnitude <= kPointTolerance)
-        return CornerKind::kTangent;
-    // A reversal has no inside: the tool goes round the end of the element.
-    if (magnitude >= std::numbers::pi - kTangentAngleTolerance) return CornerKind::kOutside;
+    if (offset_gap(turn, r) <= kPathTolerance) return CornerKind::kTangent;
     const bool turns_left = turn > 0.0;
-    return turns_left == (side == Side::kLeft) ? CornerKind::kInside : CornerKind::kOutside;
+    if (turns_left != (side == Side::kLeft)) return CornerKind::kOutside;
+    // An inside turn of nearly 180 degrees: a wedge of angle pi - |turn|, as wide as
+    // shorter_length * sin(pi - |turn|) at the far end of the shorter element.
+    const double wedge = std::numbers::pi - std::abs(turn);
+    if (wedge <= kMaxReversalWedgeAngle && shorter_length * std::sin(wedge) <= kReversalWedgeWidth)
+        return CornerKind::kOutside;
+    return CornerKind::kInside;
 }
 
 InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& next,
                               const Vec2& corner) noexcept {
     InsideTrim out;
-    const Intersections meet = intersect_carriers(held, next);
-    if (meet.count == 0) {
+    const Vec2 p1 = held.path.end;
+    const Vec2 p2 = next.path.start;
+    const Vec2 gap = p2 - p1;
+    Meeting meetings[2];
+    const int count = meet(carrier_of(held), carrier_of(next), p1, p2, gap, meetings);
+    if (count == 0) {
         out.reason = Reason::kNoCornerSolution;
         return out;
     }
-    double best_distance = std::numeric_limits<double>::infinity();
-    double nearest_distance = std::numeric_limits<double>::infinity();
+    const double held_len = offset_length(held);
+    const double next_len = offset_length(next);
+    bool found = false;
+    double best_back = 0.0, best_past = 0.0;
+    Vec2 best_y = Vec2::Zero();
+    double nearest = std::numeric_limits<double>::infinity();
     Reason nearest_failure = Reason::kNoCornerSolution;
-    for (std::size_t i = 0; i < meet.count; ++i) {
-        const Vec2& x = meet.points[i];
-        const double to_corner = (x - corner).norm();
-        double held_along = 0.0;
-        double next_along = 0.0;
-        const bool on_held = locate_on(held, x, true, held_along);
-        const bool on_next = locate_on(next, x, false, next_along);
+    for (int i = 0; i < count; ++i) {
+        const Vec2& y = meetings[i].y;
+        double held_wrapped = 0.0, next_wrapped = 0.0;
+        const double held_reading = back_from_end(held, p1, y, held_wrapped);
+        const double next_reading = past_start(next, p2, gap, y, next_wrapped);
+        double back = 0.0, past = 0.0;
+        const bool on_held = on_element(held_reading, held_wrapped, held_len, back);
+        const bool on_next = on_element(next_reading, next_wrapped, next_len, past);
         if (!on_held || !on_next) {
-            if (to_corner < nearest_distance) {
-                nearest_distance = to_corner;
+            const double to_corner = (p1 - corner + y).norm();
+            if (to_corner < nearest) {
+                nearest = to_corner;
                 nearest_failure =
                     on_held ? Reason::kNextElementTooShort : Reason::kHeldElementTooShort;
             }
             continue;
         }
-        if (to_corner < best_distance) {
-            best_distance = to_corner;
-            out.held = trim_end(held, x, held_along);
-            out.next = trim_start(next, x, next_along);
+        // The meeting latest on the held element (nearest its end); equal: earliest on next.
+        if (!found || back < best_back || (back == best_back && past < best_past)) {
+            best_back = back;
+            best_past = past;
+            best_y = y;
         }
+        found = true;
     }
-    if (best_distance == std::numeric_limits<double>::infinity()) out.reason = nearest_failure;
+    if (!found) {
+        out.reason = nearest_failure;
+        return out;
+    }
+    const Vec2 x = p1 + best_y;
+    out.held = trim_end(held, x, held_len - best_back);
+    out.next = trim_start(next, x, best_past);
     return out;
 }
 
@@ -103,11 +259,11 @@ Transition outside_transition(const Vec2& corner, const Vec2& held_end, const Ve
     }
     const double turn = std::abs(turn_angle(end_tangent, start_tangent));
     if (turn <= kLinearCornerMaxTurn) {
-        const Intersections meet =
+        const Intersections meet_at =
             intersect_lines(held_end, end_tangent, next_start, start_tangent);
-        if (meet.count == 1) {
-            out.elements[0] = line(held_end, meet.points[0]);
-            out.elements[1] = line(meet.points[0], next_start);
+        if (meet_at.count == 1) {
+            out.elements[0] = line(held_end, meet_at.points[0]);
+            out.elements[1] = line(meet_at.points[0], next_start);
             out.count = 2;
             return out;
         }
@@ -123,15 +279,16 @@ Transition outside_transition(const Vec2& corner, const Vec2& held_end, const Ve
 
 CornerJoin join_corner(const OffsetElement& held, const OffsetElement& next, const Vec2& corner,
                        const Vec2& end_tangent, const Vec2& start_tangent, Side side, double r,
-                       TransitionMode mode) noexcept {
+                       TransitionMode mode, double shorter_length) noexcept {
     CornerJoin out;
-    out.kind = classify_corner(end_tangent, start_tangent, side, r);
+    out.kind = classify_corner(end_tangent, start_tangent, side, r, shorter_length);
     out.held = held;
     out.next = next;
     switch (out.kind) {
         case CornerKind::kTangent:
-            // The offset ends lie at most r * kTangentAngleTolerance apart: make them one.
-            out.next.path.start = held.path.end;
+            // The offset ends lie at most kPathTolerance apart: the next starts where the
+            // held one ends, so the path is continuous.
+            out.next = with_start(next, held.path.end);
             return out;
         case CornerKind::kInside: {
             const InsideTrim trim = trim_inside_corner(held, next, corner);

@@ -76,7 +76,10 @@ double sweep(const Element& e) noexcept {
 }
 
 double length(const Element& e) noexcept {
-    return is_arc(e) ? std::abs(sweep(e)) * radius(e) : (e.end - e.start).norm();
+    // An arc's radius changes linearly with the angle: its length is the sweep times the
+    // mean radius (exact for the spiral up to (dR / R)^2, far below the path tolerance).
+    return is_arc(e) ? std::abs(sweep(e)) * 0.5 * (radius(e) + end_radius(e))
+                     : (e.end - e.start).norm();
 }
 
 bool is_plane_free(const Element& e) noexcept {
@@ -106,8 +109,11 @@ Vec2 end_tangent(const Element& e) noexcept {
 Vec2 point_at(const Element& e, double t) noexcept {
     t = std::clamp(t, 0.0, 1.0);
     if (!is_arc(e)) return e.start + t * (e.end - e.start);
+    if (t == 1.0) return e.end;
     const Vec2 r0 = e.start - e.centre;
-    return e.centre + turned(r0, t * sweep(e));
+    const double r_start = r0.norm();
+    const double r_t = r_start + t * (end_radius(e) - r_start);
+    return e.centre + turned(r0, t * sweep(e)) * (r_start > 0.0 ? r_t / r_start : 0.0);
 }
 
 Vec2 tangent_at(const Element& e, double t) noexcept {
@@ -125,12 +131,15 @@ Vec2 closest_point(const Element& e, const Vec2& p) noexcept {
     }
     const Vec2 v = p - e.centre;
     const Vec2 r0 = e.start - e.centre;
-    const double r = r0.norm();
-    if (v.norm() == 0.0) return e.start;  // every arc point is equally near the centre
+    if (v.norm() == 0.0) return e.start;  // every arc point is (about) equally near the centre
     const double along = angle_between(r0, v, e.ccw);
-    if (along <= std::abs(sweep(e))) return e.centre + v * (r / v.norm());
-    const Vec2 arc_end = point_at(e, 1.0);
-    return (p - e.start).norm() <= (p - arc_end).norm() ? e.start : arc_end;
+    const double turn = std::abs(sweep(e));
+    if (along <= turn) {
+        // The point of the arc on the ray through p (the radius there interpolated).
+        const double r = r0.norm() + (along / turn) * (end_radius(e) - r0.norm());
+        return e.centre + v * (r / v.norm());
+    }
+    return (p - e.start).norm() <= (p - e.end).norm() ? e.start : e.end;
 }
 
 double distance_to(const Element& e, const Vec2& p) noexcept {

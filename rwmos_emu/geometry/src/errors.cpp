@@ -34,7 +34,7 @@ constexpr std::array kReasonTable{
     ReasonRow{Reason::kInvalidElementKind, kCalc, "InvalidElementKind",
               "element is neither a line nor an arc"},
     ReasonRow{Reason::kOffsetRadiusNotPositive, kCalc, "OffsetRadiusNotPositive",
-              "arc radius is not larger than the tool radius on the concave side"},
+              "arc radius is smaller than the tool radius on the concave side: the tool would cut into the arc"},
     ReasonRow{Reason::kArcCentreOnEndPoint, kCenter, "ArcCentreOnEndPoint",
               "arc centre coincides with the arc's start or end point"},
     ReasonRow{Reason::kArcRadiiDiffer, kCenter, "ArcRadiiDiffer",

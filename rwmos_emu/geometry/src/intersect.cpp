@@ -59,16 +59,19 @@ Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2, dou
     return out;
 }
 
-Intersections intersect_carriers(const OffsetElement& a, const OffsetElement& b) noexcept {
-    const bool a_arc = is_arc(a.path);
-    const bool b_arc = is_arc(b.path);
+Intersections intersect_carriers(const OffsetElement& held, const OffsetElement& next) noexcept {
+    const bool a_arc = is_arc(held.path);
+    const bool b_arc = is_arc(next.path);
     if (!a_arc && !b_arc)
-        return intersect_lines(a.path.start, a.direction, b.path.start, b.direction);
+        return intersect_lines(held.path.start, held.direction, next.path.start, next.direction);
     if (!a_arc)
-        return intersect_line_circle(a.path.start, a.direction, b.path.centre, radius(b.path));
+        return intersect_line_circle(held.path.start, held.direction, next.path.centre,
+                                     radius(next.path));
     if (!b_arc)
-        return intersect_line_circle(b.path.start, b.direction, a.path.centre, radius(a.path));
-    return intersect_circles(a.path.centre, radius(a.path), b.path.centre, radius(b.path));
+        return intersect_line_circle(next.path.start, next.direction, held.path.centre,
+                                     end_radius(held.path));
+    return intersect_circles(held.path.centre, end_radius(held.path), next.path.centre,
+                             radius(next.path));
 }
 
 }  // namespace rwmos::geom

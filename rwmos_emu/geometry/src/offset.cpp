@@ -43,40 +43,53 @@ OffsetResult offset_element(const Element& e, double r, Side side) noexcept {
         o.direction = t;
         return out;
     }
-    const double rho = offset_radius(e, r, side);
-    // seed 003 "Tabelle 4": CalcError, arc radius smaller than the tool radius.
-    if (rho <= kMinOffsetRadius) {
+    // The offset of the arc (a spiral when its radii differ) keeps its centre, sweep and
+    // direction; each radius moves by r: rho = R - r on the concave side.
+    const double shift = radius(e) - offset_radius(e, r, side);
+    const double rho_start = radius(e) - shift;
+    const double rho_end = end_radius(e) - shift;
+    // seed 003 "Tabelle 4": CalcError, the radius of the arc is smaller than the tool
+    // radius. A tool that fits it (within the path tolerance) keeps its centre there.
+    if (std::min(rho_start, rho_end) < -kOffsetRadiusTolerance) {
         out.reason = Reason::kOffsetRadiusNotPositive;
         return out;
     }
     const Vec2 u_start = (e.start - e.centre) / radius(e);
     const Vec2 u_end = (e.end - e.centre) / end_radius(e);
     o.sweep = sweep(e);
-    o.path.start = e.centre + rho * u_start;
-    o.path.end = is_full_circle(e) ? o.path.start : Vec2(e.centre + rho * u_end);
+    o.path.start = e.centre + std::max(rho_start, kMinOffsetRadius) * u_start;
+    o.path.end =
+        is_full_circle(e) ? o.path.start : Vec2(e.centre + std::max(rho_end, kMinOffsetRadius) * u_end);
     return out;
 }
 
+namespace {
+// Mean of an offset arc's start and end radius: lengths along it are angles times this.
+double mean_radius(const OffsetElement& o) noexcept {
+    return 0.5 * (radius(o.path) + end_radius(o.path));
+}
+}  // namespace
+
 double circumference(const OffsetElement& o) noexcept {
-    return is_arc(o.path) ? 2 * std::numbers::pi * radius(o.path) : 0.0;
+    return is_arc(o.path) ? 2 * std::numbers::pi * mean_radius(o) : 0.0;
 }
 
 double offset_length(const OffsetElement& o) noexcept {
     if (!is_arc(o.path)) return (o.path.end - o.path.start).norm();
-    return std::abs(o.sweep) * radius(o.path);
+    return std::abs(o.sweep) * mean_radius(o);
 }
 
 double distance_along(const OffsetElement& o, const Vec2& x) noexcept {
     if (!is_arc(o.path)) return (x - o.path.start).dot(o.direction);
     return angle_between(o.path.start - o.path.centre, x - o.path.centre, o.path.ccw) *
-           radius(o.path);
+           mean_radius(o);
 }
 
 OffsetElement trim_end(const OffsetElement& o, const Vec2& x, double along) noexcept {
     OffsetElement out = o;
     out.path.end = x;
     if (is_arc(o.path)) {
-        const double turned = std::clamp(along / radius(o.path), 0.0, std::abs(o.sweep));
+        const double turned = std::clamp(along / mean_radius(o), 0.0, std::abs(o.sweep));
         out.sweep = std::copysign(turned, o.sweep);
     }
     return out;
@@ -86,7 +99,7 @@ OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) no
     OffsetElement out = o;
     out.path.start = x;
     if (is_arc(o.path)) {
-        const double turned = std::clamp(along / radius(o.path), 0.0, std::abs(o.sweep));
+        const double turned = std::clamp(along / mean_radius(o), 0.0, std::abs(o.sweep));
         out.sweep = std::copysign(std::abs(o.sweep) - turned, o.sweep);
     }
     return out;

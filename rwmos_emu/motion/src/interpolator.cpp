@@ -29,6 +29,7 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
     const double sx = start[plane_axes[0]] - cx, sy = start[plane_axes[1]] - cy;
     const double ex = end[plane_axes[0]] - cx, ey = end[plane_axes[1]] - cy;
     m.radius = std::hypot(sx, sy);
+    m.end_radius = std::hypot(ex, ey);
     m.start_angle = std::atan2(sy, sx);
     constexpr double kTwoPi = 2.0 * std::numbers::pi;
     double sweep = 0.0;
@@ -44,6 +45,10 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
     return m;
 }
 
+double arc_plane_length(const Move& m) noexcept {
+    return 0.5 * (m.radius + m.end_radius) * std::fabs(m.sweep);
+}
+
 double path_length(const Move& m) noexcept {
     double other = 0.0;
     for (int a = 0; a < kAxisCount; ++a) {
@@ -52,7 +57,7 @@ double path_length(const Move& m) noexcept {
         other += d * d;
     }
     if (m.kind == SegmentKind::kLine) return std::sqrt(other);
-    const double arc = m.radius * std::fabs(m.sweep);
+    const double arc = arc_plane_length(m);
     return std::sqrt(arc * arc + other);
 }
 
@@ -74,8 +79,9 @@ void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& ou
     for (int a = 0; a < kAxisCount; ++a) out[a] = m.start[a] + (m.end[a] - m.start[a]) * t;
     if (m.kind == SegmentKind::kArc) {
         const double angle = m.start_angle + m.sweep * t;
-        out[m.plane_axes[0]] = m.cx + m.radius * std::cos(angle);
-        out[m.plane_axes[1]] = m.cy + m.radius * std::sin(angle);
+        const double r = m.radius + (m.end_radius - m.radius) * t;
+        out[m.plane_axes[0]] = m.cx + r * std::cos(angle);
+        out[m.plane_axes[1]] = m.cy + r * std::sin(angle);
     }
 }
 
@@ -84,8 +90,10 @@ void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out
     if (m.kind == SegmentKind::kArc) {
         const double t = n == 0 || k >= n ? 1.0 : static_cast<double>(k) / static_cast<double>(n);
         const double angle = m.start_angle + m.sweep * t;
-        out[m.plane_axes[0]] = -m.radius * m.sweep * std::sin(angle);
-        out[m.plane_axes[1]] = m.radius * m.sweep * std::cos(angle);
+        const double r = m.radius + (m.end_radius - m.radius) * t;
+        const double dr = m.end_radius - m.radius;
+        out[m.plane_axes[0]] = dr * std::cos(angle) - r * m.sweep * std::sin(angle);
+        out[m.plane_axes[1]] = dr * std::sin(angle) + r * m.sweep * std::cos(angle);
     }
 }
 

@@ -80,10 +80,16 @@ double arc_radius(const PathSegment& arc) noexcept {
                       arc.start[a.second] - arc.center[a.second]);
 }
 
+double arc_end_radius(const PathSegment& arc) noexcept {
+    const PlaneAxes a = plane_axes(arc.plane);
+    return std::hypot(arc.end[a.first] - arc.center[a.first],
+                      arc.end[a.second] - arc.center[a.second]);
+}
+
 Point point_along(const PathSegment& s, double t) noexcept {
     if (s.kind != SegmentKind::kArc) return s.start + t * (s.end - s.start);
     const PlaneAxes a = plane_axes(s.plane);
-    const double r = arc_radius(s);
+    const double r = arc_radius(s) + t * (arc_end_radius(s) - arc_radius(s));
     const double phi = angle_about(s.start, s.center, a) + t * arc_sweep(s);
     Point p;
     p[a.first] = s.center[a.first] + r * std::cos(phi);
@@ -95,7 +101,7 @@ Point point_along(const PathSegment& s, double t) noexcept {
 double segment_length(const PathSegment& s) noexcept {
     if (s.kind != SegmentKind::kArc) return (s.end - s.start).norm();
     const PlaneAxes a = plane_axes(s.plane);
-    const double planar = std::abs(arc_sweep(s)) * arc_radius(s);
+    const double planar = std::abs(arc_sweep(s)) * 0.5 * (arc_radius(s) + arc_end_radius(s));
     return std::hypot(planar, s.end[a.third] - s.start[a.third]);
 }
 

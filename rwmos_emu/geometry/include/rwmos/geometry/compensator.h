@@ -130,6 +130,7 @@ class PathCompensator {
     OffsetElement held_;               // held offset element, its start final
     Vec2 held_corner_ = Vec2::Zero();  // programmed end of the held element
     Vec2 held_end_tangent_ = Vec2::Zero();
+    double held_length_ = 0.0;  // programmed length of the held element
     std::uint32_t held_index_ = 0;
     std::array<std::uint32_t, kMaxPlaneFreeElements> plane_free_{};
     std::size_t plane_free_count_ = 0;

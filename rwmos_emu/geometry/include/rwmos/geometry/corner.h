@@ -18,19 +18,29 @@ namespace rwmos::geom {
 // their intersection (bounded beyond kLinearCornerMaxTurn, see tolerances.h).
 enum class TransitionMode : std::uint8_t { kCircular, kLinear };
 
-// kTangent: no transition, the offset elements meet. kInside: the path turns towards the
-// tool; the offset elements overlap and are trimmed. kOutside: it turns away; they leave
-// a gap that a transition bridges.
+// kTangent: the offset elements meet (within kPathTolerance) and are joined as they are.
+// kInside: the path turns towards the tool; the offset elements overlap and are trimmed.
+// kOutside: it turns away; they leave a gap that a transition bridges.
 enum class CornerKind : std::uint8_t { kTangent, kInside, kOutside };
 
 // Signed angle from direction t1 to t2, in (-pi, pi], counter-clockwise positive.
 double turn_angle(const Vec2& t1, const Vec2& t2) noexcept;
 
+// The distance between the two offset ends at a corner of tool radius r that turns by
+// `turn`: 2 r |sin(turn / 2)| (the chord of the circular transition).
+double offset_gap(double turn, double r) noexcept;
+
 // The corner between an element ending with unit tangent end_tangent and the next one
-// starting with start_tangent. Tangent when it turns by at most kTangentAngleTolerance
-// or the gap r * |turn| is at most kPointTolerance; a reversal (|turn| = pi) is outside.
+// starting with start_tangent (docs/compensation.md, "The tolerance model"):
+// - tangent when the offset ends lie at most kPathTolerance apart (offset_gap);
+// - outside when it turns away from the tool;
+// - an inside turn of nearly 180 degrees is a reversal, outside too, when the wedge
+//   between the elements is at most kMaxReversalWedgeAngle and narrower than
+//   kReversalWedgeWidth over shorter_length (the length of the shorter of the two
+//   programmed elements): an exact reversal written with rounded coordinates;
+// - inside otherwise.
 CornerKind classify_corner(const Vec2& end_tangent, const Vec2& start_tangent, Side side,
-                           double r) noexcept;
+                           double r, double shorter_length) noexcept;
 
 struct InsideTrim {
     Reason reason = Reason::kNone;  // KorrError reasons, or kNone
@@ -38,10 +48,12 @@ struct InsideTrim {
     OffsetElement next;             // starts at the intersection
 };
 // Trims the held offset element's end and the next one's start at the intersection of
-// their carriers that lies on both (within kTrimTolerance) and is nearest the programmed
-// corner. No such point: kHeldElementTooShort / kNextElementTooShort when the nearest
-// intersection lies outside the held / the next element, kNoCornerSolution when the
-// carriers do not meet.
+// their carriers (at the corner: the held one's at its end, the next one's at its start)
+// that lies on both, within kTrimTolerance of their ends, and is latest on the held
+// element (nearest its end). The intersections are computed relative to the corner, so
+// nearly tangent corners lose no precision. No such point: kHeldElementTooShort /
+// kNextElementTooShort when the intersection nearest the corner lies beyond the held /
+// the next element, kNoCornerSolution when the carriers do not meet.
 InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& next,
                               const Vec2& corner) noexcept;
 
@@ -68,10 +80,11 @@ struct CornerJoin {
     OffsetElement next;     // the next offset element, its start final
     Transition transition;  // outside corners only
 };
-// The whole corner: classify, then snap (tangent), trim (inside) or bridge (outside).
-// end_tangent / start_tangent are the programmed unit tangents at the corner.
+// The whole corner: classify, then join (tangent), trim (inside) or bridge (outside).
+// end_tangent / start_tangent are the programmed unit tangents at the corner;
+// shorter_length the length of the shorter programmed element (classify_corner).
 CornerJoin join_corner(const OffsetElement& held, const OffsetElement& next, const Vec2& corner,
                        const Vec2& end_tangent, const Vec2& start_tangent, Side side, double r,
-                       TransitionMode mode) noexcept;
+                       TransitionMode mode, double shorter_length) noexcept;
 
 }  // namespace rwmos::geom

@@ -13,9 +13,11 @@ namespace rwmos::geom {
 enum class ElementKind : std::uint8_t { kLine, kArc };
 
 // A line from start to end, or an arc from start to end about centre. An arc whose end
-// lies within kPointTolerance of its start is a full circle. An arc's radius is its
-// start radius; its end point gives its end angle (the end radius may differ by up to
-// kCenterRadiusTolerance, else CenterError).
+// lies within kPointTolerance of its start is a full circle. An arc runs from its start
+// point to its end point with its radius changing linearly with the angle, from the
+// start radius to the end radius (they may differ by up to kCenterRadiusTolerance, else
+// CenterError): a circle when they are equal, a slight spiral when rounding made them
+// differ. Its tangents are perpendicular to the radius.
 struct Element {
     ElementKind kind = ElementKind::kLine;
     bool ccw = false;  // arcs: true = G03, false = G02
@@ -60,8 +62,8 @@ bool has_valid_coordinates(const Element& e) noexcept;
 // Unit direction of travel. A plane-free line has none: the zero vector.
 Vec2 start_tangent(const Element& e) noexcept;
 Vec2 end_tangent(const Element& e) noexcept;
-// t in [0, 1] is the fraction of the length travelled (clamped). Arcs run on the
-// circle of their start radius.
+// t in [0, 1] is the fraction of the element travelled (clamped; for arcs, of the
+// angle turned, with the radius interpolated from the start to the end radius).
 Vec2 point_at(const Element& e, double t) noexcept;
 Vec2 tangent_at(const Element& e, double t) noexcept;
 // The point of the element nearest p, and its distance.

@@ -44,7 +44,7 @@ enum class Reason : std::uint8_t {
     // CalcError: input that cannot be computed with.
     kInvalidCoordinate,        // a coordinate is not finite or beyond kMaxCoordinate
     kInvalidElementKind,       // an element that is neither a line nor an arc
-    kOffsetRadiusNotPositive,  // arc radius <= tool radius on the concave side
+    kOffsetRadiusNotPositive,  // arc radius < tool radius on the concave side (beyond tolerance)
     // CenterError: the arc centre is wrong.
     kArcCentreOnEndPoint,  // the centre coincides with the start or end point
     kArcRadiiDiffer,       // start and end radius differ by more than kCenterRadiusTolerance

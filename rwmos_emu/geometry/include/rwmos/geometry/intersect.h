@@ -25,7 +25,9 @@ Intersections intersect_line_circle(const Vec2& p, const Vec2& d, const Vec2& c,
                                     double rho) noexcept;
 // Circles about c1 and c2; none when concentric.
 Intersections intersect_circles(const Vec2& c1, double rho1, const Vec2& c2, double rho2) noexcept;
-// The carriers of two offset elements (line-line, line-arc, arc-line, arc-arc).
-Intersections intersect_carriers(const OffsetElement& a, const OffsetElement& b) noexcept;
+// The carriers of a held offset element at its end and the next one at its start (lines;
+// arcs: the circle through that end). trim_inside_corner (corner.h) computes the same
+// meetings relative to the corner, where these absolute formulas lose precision.
+Intersections intersect_carriers(const OffsetElement& held, const OffsetElement& next) noexcept;
 
 }  // namespace rwmos::geom

@@ -40,7 +40,11 @@ struct OffsetResult {
     OffsetElement element;
 };
 // The element moved sideways by r. Expects check_element(e) == kNone and a line that is
-// not plane-free. A full circle stays a full circle (its offset end is its offset start).
+// not plane-free. An arc keeps its centre, direction and sweep; its start and end radius
+// each move by r (rho = R - r on the concave side). CalcError when rho < 0 by more than
+// kOffsetRadiusTolerance (the tool is larger than the arc); a rho within it is kept at
+// kMinOffsetRadius (the tool fits the arc: its centre stays at the arc's centre). A full
+// circle stays a full circle (its offset end is its offset start).
 OffsetResult offset_element(const Element& e, double r, Side side) noexcept;
 
 // Length of an offset element (trimmed arcs by their explicit sweep).

@@ -8,8 +8,10 @@
 // n = ceil(L / (F/60 * T)) cycles; cycle k puts the axes at the fraction k/n
 // of the path (so the speed never exceeds F and the last cycle lands exactly
 // on the end). No acceleration model (docs/motion.md, design).
-// Lines: all axes linear in k/n. Arcs: the two plane axes on the circle (angle
-// linear in k/n), every other axis linear in k/n (a helix for the third axis).
+// Lines: all axes linear in k/n. Arcs: the two plane axes on the arc (angle and
+// radius linear in k/n: a circle, or a slight spiral from the start radius to the end
+// radius when rounding made them differ, docs/motion.md), every other axis linear in
+// k/n (a helix for the third axis).
 #pragma once
 
 #include <array>
@@ -33,11 +35,12 @@ struct Move {
     AxisVector start{};
     AxisVector end{};
     double feed = 0.0;  // units/min, > 0
-    // Arcs: plane axes, centre, radius (from the start point), start angle and
-    // signed sweep (> 0 counter-clockwise from the first axis to the second).
+    // Arcs: plane axes, centre, start and end radius, start angle and signed sweep
+    // (> 0 counter-clockwise from the first axis to the second).
     std::array<std::uint8_t, 2> plane_axes{0, 1};
     double cx = 0.0, cy = 0.0;
     double radius = 0.0;
+    double end_radius = 0.0;
     double start_angle = 0.0;
     double sweep = 0.0;
 };
@@ -54,6 +57,8 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
               std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw, double feed,
               SegmentRole role, std::uint32_t tag);
 
+// Length of an arc in its plane: |sweep| times the mean of start and end radius.
+double arc_plane_length(const Move& m) noexcept;
 // Path length over all moving axes (arcs: sqrt(arc length^2 + other axes^2)).
 double path_length(const Move& m) noexcept;
 
@@ -67,7 +72,7 @@ void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& ou
 
 // The path direction at cycle k of n (0 <= k <= n, n > 0): the derivative of the position by
 // the fraction k/n of the move (not unit; a line's is end - start, an arc's plane part is
-// tangent to the circle with length radius * |sweep|).
+// radius(k/n) * sweep along the circle's tangent plus the radius change along the radius).
 void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;
 
 // The Segment record of a move (start/end cycle and interruption filled by the caller).

@@ -79,10 +79,12 @@ inline constexpr double kSamePointTolerance = 1e-9;
 
 // Signed angle an arc turns through, counter-clockwise positive, magnitude in (0, 2 pi].
 double arc_sweep(const PathSegment& arc) noexcept;
-// Radius of an arc (at its start).
+// Radius of an arc at its start, and at its end (they differ by rounding at most: the arc's
+// radius changes linearly with the angle, as the board runs it).
 double arc_radius(const PathSegment& arc) noexcept;
-// The point at fraction t (0..1) of the way along a segment (arcs by angle, helix-linear in
-// the third axis).
+double arc_end_radius(const PathSegment& arc) noexcept;
+// The point at fraction t (0..1) of the way along a segment (arcs by angle with the radius
+// interpolated, helix-linear in the third axis).
 Point point_along(const PathSegment& s, double t) noexcept;
 // Length in space: chord of a line or rapid, helix length of an arc.
 double segment_length(const PathSegment& s) noexcept;
