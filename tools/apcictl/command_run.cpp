@@ -120,6 +120,9 @@ class Outputs final : public apci::run::RunSink {
     void error(const RunError& e, const apci::run::Point& where) override {
         if (svg) svg->error_marker(e.block, where, e.code);
     }
+    void warning(const RunError& w, const apci::run::Point& where) override {
+        if (svg) svg->error_marker(w.block, where, w.code);
+    }
     void progress(std::uint64_t blocks) override {
         if (!progress_bar || total_blocks == 0) return;
         const auto now = std::chrono::steady_clock::now();
@@ -166,6 +169,11 @@ class RunCommand final : public Command {
         app.add_option("--corr", corr_,
                        "Correction table file (corr[n].dl|dr|dr2 value, mm), for Klartext "
                        "FUNCTION CORRDATA TCS #n");
+        app.add_option("--self-approach", self_approach_,
+                       "Where the compensated path comes closer than the tool radius to the "
+                       "contour away from its corners (the contour comes back near itself): "
+                       "warn (default), error (the run fails there) or off")
+            ->check(CLI::IsMember({"warn", "error", "off"}));
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
                        "change, seed FCT-C20 section 2.9)");
@@ -216,6 +224,9 @@ class RunCommand final : public Command {
         Outputs outputs;
         apci::run::ProgramExecutor executor(*board, outputs, &tools, plc_.empty() ? nullptr : &plc,
                                             &corrections);
+        executor.set_self_approach(self_approach_ == "error" ? apci::run::SelfApproachMode::kError
+                                   : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
+                                                             : apci::run::SelfApproachMode::kWarn);
         apci::nc::InterpreterOptions options;
         options.start_position = executor.position();
         options.tools = &tools;
@@ -270,7 +281,7 @@ class RunCommand final : public Command {
         };
         if (outputs.json)
             check(outputs.json->finish(result.errors, result.registers, result.variables,
-                                       result.notices),
+                                       result.notices, result.warnings),
                   json_file);
         if (tools_file.file != nullptr) {
             const std::string text = apci::nc::format_tool_table(result.tools_after);
@@ -288,6 +299,8 @@ class RunCommand final : public Command {
         check(csv_file.close(), csv_file);
 
         apci::run::print_summary(stdout, result.totals, result.errors);
+        for (const RunError& w : result.warnings)
+            fmt::print("warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code, w.message);
         for (const RunError& n : result.notices)
             fmt::print("notice: {}: {}\n", apci::run::block_text(n.block), n.message);
         std::fflush(stdout);
@@ -318,6 +331,7 @@ class RunCommand final : public Command {
     std::string csv_;
     std::string plc_;
     std::string tools_out_;
+    std::string self_approach_ = "warn";
     bool svg_cycles_ = false;
     int plane_ = 0;
 };

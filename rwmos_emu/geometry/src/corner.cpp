@@ -13,6 +13,9 @@ namespace rwmos::geom {
 namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
+// Radius differences of a spiral below this are not corrected at a corner: the path is then at
+// most this far from the exact one, far below kPathTolerance.
+constexpr double kSpiralCorrection = 1e-7;
 
 // The roots of s^2 + 2 b s + c = 0, computed without cancellation (the smaller one from
 // the larger by Vieta). Near-tangent meetings (a discriminant within rounding of zero)
@@ -64,9 +67,11 @@ Carrier carrier_of(const OffsetElement& o) noexcept {
 }
 
 // Intersections of the held carrier (through P1) and the next carrier (through P1 + gap),
-// with u = P1 - centre of the held arc and v = P2 - centre of the next arc.
+// with u = P1 - centre of the held arc and v = P2 - centre of the next arc. An arc's carrier
+// is the circle through its corner end, its radius changed by dh (held) or dn (next): an arc
+// whose radius changes along it (a spiral) meets the other carrier where its radius is that.
 int meet(const Carrier& h, const Carrier& n, const Vec2& p1, const Vec2& p2, const Vec2& gap,
-         Meeting out[2]) noexcept {
+         double dh, double dn, Meeting out[2]) noexcept {
     if (!h.arc && !n.arc) {
         // P1 + y with y = -a t1 = gap + b t2: a = -cross(gap, t2) / cross(t1, t2).
         const double den = cross(h.direction, n.direction);
@@ -76,36 +81,82 @@ int meet(const Carrier& h, const Carrier& n, const Vec2& p1, const Vec2& p2, con
         return 1;
     }
     if (!h.arc) {
-        // y = -a t1 on the circle about cB through P2: with w = P1 - cB = v - gap,
-        // |w - a t1|^2 = |v|^2, i.e. a^2 - 2 (t1.w) a + (|gap|^2 - 2 v.gap) = 0.
+        // y = -a t1 on the circle about cB of radius |v| + dn: with w = P1 - cB = v - gap,
+        // |w - a t1|^2 = (|v| + dn)^2, i.e.
+        // a^2 - 2 (t1.w) a + (|gap|^2 - 2 v.gap - 2 |v| dn - dn^2) = 0.
         const Vec2 v = p2 - n.centre;
         const Vec2 w = v - gap;
-        const Roots r = half_b_quadratic(-h.direction.dot(w), gap.squaredNorm() - 2 * v.dot(gap));
+        const Roots r = half_b_quadratic(
+            -h.direction.dot(w), gap.squaredNorm() - 2 * v.dot(gap) - dn * (2 * v.norm() + dn));
         for (int i = 0; i < r.count; ++i) out[i].y = -r.s[i] * h.direction;
         return r.count;
     }
     if (!n.arc) {
-        // y = gap + b t2 on the circle about cA through P1 (u = P1 - cA):
-        // |u + gap + b t2|^2 = |u|^2, i.e. b^2 + 2 t2.(u + gap) b + (2 u.gap + |gap|^2) = 0.
+        // y = gap + b t2 on the circle about cA of radius |u| + dh (u = P1 - cA):
+        // b^2 + 2 t2.(u + gap) b + (2 u.gap + |gap|^2 - 2 |u| dh - dh^2) = 0.
         const Vec2 u = p1 - h.centre;
-        const Roots r =
-            half_b_quadratic(n.direction.dot(u + gap), 2 * u.dot(gap) + gap.squaredNorm());
+        const Roots r = half_b_quadratic(n.direction.dot(u + gap),
+                                         2 * u.dot(gap) + gap.squaredNorm() - dh * (2 * u.norm() + dh));
         for (int i = 0; i < r.count; ++i) out[i].y = gap + r.s[i] * n.direction;
         return r.count;
     }
-    // Two circles: |u + y| = |u| and |v - gap + y| = |v|. Their difference is the radical
-    // line e.y = k with e = cA - cB; y = y0 + s e_perp on it, then on the first circle.
+    // Two circles: |u + y| = |u| + dh and |v - gap + y| = |v| + dn. Their difference is the
+    // radical line e.y = k with e = cA - cB; y = y0 + s e_perp on it, then on the first circle.
     const Vec2 u = p1 - h.centre;
     const Vec2 v = p2 - n.centre;
     const Vec2 e = h.centre - n.centre;
     const double e2 = e.squaredNorm();
     if (e2 == 0.0) return 0;  // concentric
-    const double k = v.dot(gap) - 0.5 * gap.squaredNorm();
+    const double kh = dh * (2 * u.norm() + dh);
+    const double kn = dn * (2 * v.norm() + dn);
+    const double k = v.dot(gap) - 0.5 * gap.squaredNorm() + 0.5 * (kn - kh);
     const Vec2 y0 = (k / e2) * e;
     const Vec2 e_perp = left_normal(e) / std::sqrt(e2);
-    const Roots r = half_b_quadratic(u.dot(e_perp), 2 * u.dot(y0) + y0.squaredNorm());
+    const Roots r = half_b_quadratic(u.dot(e_perp), 2 * u.dot(y0) + y0.squaredNorm() - kh);
     for (int i = 0; i < r.count; ++i) out[i].y = y0 + r.s[i] * e_perp;
     return r.count;
+}
+
+// The radius of an offset arc (a spiral from the radius at its start to the one at its end)
+// at the point c + x, less its radius at the held end (from_end) or next start.
+double spiral_offset(const OffsetElement& o, const Vec2& x, bool from_end) noexcept {
+    const double turn = std::abs(o.sweep);
+    if (!is_arc(o.path) || turn == 0.0) return 0.0;
+    const double r0 = radius(o.path), r1 = end_radius(o.path);
+    // The angle from the corner end to x, along the arc (held: back from its end; next: on
+    // from its start). Beyond the corner end (nearer it that way round) counts as at it.
+    const double from_corner = from_end
+                                   ? angle_between(x, o.path.end - o.path.centre, o.path.ccw)
+                                   : angle_between(o.path.start - o.path.centre, x, o.path.ccw);
+    const double beyond = from_corner > std::numbers::pi + 0.5 * turn ? 0.0 : from_corner;
+    const double t = std::clamp(from_end ? 1.0 - beyond / turn : beyond / turn, 0.0, 1.0);
+    return r0 + t * (r1 - r0) - (from_end ? r1 : r0);
+}
+
+// Moves a meeting of the circles through the corner ends onto the spirals the arcs really
+// are: a few rounds of taking each arc's radius where the meeting lies.
+Vec2 on_spirals(const OffsetElement& held, const OffsetElement& next, const Carrier& h,
+                const Carrier& n, const Vec2& p1, const Vec2& p2, const Vec2& gap,
+                Vec2 y) noexcept {
+    if (!h.arc && !n.arc) return y;
+    for (int round = 0; round < 4; ++round) {
+        const double dh = h.arc ? spiral_offset(held, p1 - h.centre + y, true) : 0.0;
+        const double dn = n.arc ? spiral_offset(next, p1 - n.centre + y, false) : 0.0;
+        // Near the corner ends the spirals have the circles' radii: a meeting that close needs
+        // no correction (and where the carriers nearly touch, a correction of a few nm would
+        // slide it along them far more than it moves it across).
+        if (std::abs(dh) <= kSpiralCorrection && std::abs(dn) <= kSpiralCorrection) return y;
+        Meeting again[2];
+        const int count = meet(h, n, p1, p2, gap, dh, dn, again);
+        if (count == 0) return y;
+        Vec2 best = again[0].y;
+        for (int i = 1; i < count; ++i)
+            if ((again[i].y - y).norm() < (best - y).norm()) best = again[i].y;
+        const bool settled = (best - y).norm() < 1e-13;
+        y = best;
+        if (settled) break;
+    }
+    return y;
 }
 
 // How far back from the held element's end the point P1 + y lies, along the element (mm;
@@ -169,6 +220,28 @@ OffsetElement with_start(const OffsetElement& o, const Vec2& x) noexcept {
     return out;
 }
 
+// The offset element ending at x instead of its end (x just past it): an arc turns by as much
+// more.
+OffsetElement with_end(const OffsetElement& o, const Vec2& x) noexcept {
+    OffsetElement out = o;
+    out.path.end = x;
+    if (is_arc(o.path)) {
+        const Vec2 before = o.path.end - o.path.centre;
+        const Vec2 after = x - o.path.centre;
+        out.sweep = o.sweep + std::atan2(cross(before, after), before.dot(after));
+    }
+    return out;
+}
+
+// A reading from the corner end (back from the held end, or on from the next start) that lies
+// on the element: not just beyond the corner end (a negative or wrapped-round reading).
+bool back_is_before_end(double reading, double wrapped, double len) noexcept {
+    if (reading <= len) return reading >= 0.0;
+    // Beyond the far end, or (an arc read round the circle) just before the corner end:
+    // whichever is nearer.
+    return !(wrapped <= 0.0 && -wrapped < reading - len);
+}
+
 }  // namespace
 
 double turn_angle(const Vec2& t1, const Vec2& t2) noexcept {
@@ -200,7 +273,8 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
     const Vec2 p2 = next.path.start;
     const Vec2 gap = p2 - p1;
     Meeting meetings[2];
-    const int count = meet(carrier_of(held), carrier_of(next), p1, p2, gap, meetings);
+    const Carrier hc = carrier_of(held), nc = carrier_of(next);
+    const int count = meet(hc, nc, p1, p2, gap, 0.0, 0.0, meetings);
     if (count == 0) {
         out.reason = Reason::kNoCornerSolution;
         return out;
@@ -213,6 +287,9 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
     double nearest = std::numeric_limits<double>::infinity();
     Reason nearest_failure = Reason::kNoCornerSolution;
     for (int i = 0; i < count; ++i) {
+        // Which meeting, and whether it lies on both, is read on the circles through the
+        // corner ends: there each arc has exactly that radius, and near a tangent meeting a
+        // spiral's slight change of radius would move the meeting along far more than across.
         const Vec2& y = meetings[i].y;
         double held_wrapped = 0.0, next_wrapped = 0.0;
         const double held_reading = back_from_end(held, p1, y, held_wrapped);
@@ -241,9 +318,19 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
         out.reason = nearest_failure;
         return out;
     }
-    const Vec2 x = p1 + best_y;
-    out.held = trim_end(held, x, held_len - best_back);
-    out.next = trim_start(next, x, best_past);
+    // Then the meeting moves onto the spirals the arcs are (a trim deep into an arc whose
+    // radii differ by rounding), and both elements end and start there.
+    const Vec2 y = on_spirals(held, next, hc, nc, p1, p2, gap, best_y);
+    const Vec2 x = p1 + y;
+    double held_wrapped = 0.0, next_wrapped = 0.0;
+    const double back = back_from_end(held, p1, y, held_wrapped);
+    const double past = past_start(next, p2, gap, y, next_wrapped);
+    out.held = back_is_before_end(back, held_wrapped, held_len)
+                   ? trim_end(held, x, held_len - std::clamp(back, 0.0, held_len))
+                   : with_end(held, x);
+    out.next = back_is_before_end(past, next_wrapped, next_len)
+                   ? trim_start(next, x, std::clamp(past, 0.0, next_len))
+                   : with_start(next, x);
     return out;
 }
 

@@ -248,7 +248,8 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     if (MotionResult r = resolve(p, tc, res); !r.ok()) return r;
 
     Compensation trial = comp_;
-    Batch batch(exec.planned_end());
+    Batch& batch = batch_;
+    batch.reset(exec.planned_end());
     // Seed 003 section 1: only G01/G02/G03 are compensated, by the active
     // group while it runs. Anything else ends the contour under way (seed 003
     // section 2.4: a JOG/G00 makes the compensation ineffective; the next
@@ -339,7 +340,8 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     // Seed 003 section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
     // auch das letzte zwischengespeicherte Verfahrprofil gespoolt."
     Compensation trial = comp_;
-    Batch batch(exec.planned_end());
+    Batch& batch = batch_;
+    batch.reset(exec.planned_end());
     end_contour(trial, /*keep_departure=*/true, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
@@ -359,7 +361,8 @@ MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&
     // Seed 003 section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
     // die entsprechenden Achsen gesendet werden": the held profile is spooled.
     Compensation trial = comp_;
-    Batch batch(exec.planned_end());
+    Batch& batch = batch_;
+    batch.reset(exec.planned_end());
     end_contour(trial, /*keep_departure=*/false, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/executor.h"
+#include "apci/run/self_approach.h"
 
 #include <fmt/format.h>
 
@@ -135,13 +136,14 @@ ObjectDescriptor temp_object(std::int32_t index, std::int32_t sub = 0) noexcept 
 class Execution {
   public:
     Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
-              const nc::CorrectionTable* corrections)
+              const nc::CorrectionTable* corrections, SelfApproachMode self_approach)
         : board_(board),
           sink_(sink),
           tools_(tools),
           corrections_(corrections),
           plc_(plc),
-          variables_(*this) {
+          variables_(*this),
+          self_approach_mode_(self_approach) {
         segments_.resize(ProgramExecutor::kReadBatch);
         samples_.resize(ProgramExecutor::kReadBatch);
         if (tools_ != nullptr) tools_mut_ = *tools_;
@@ -282,6 +284,13 @@ class Execution {
         if (set_up_ && out_.otc_present) check_out_tool();
         if (set_up_) read_variables();
         out_.tools_after = tools_mut_;
+        if (self_approach_.truncated())
+            out_.notices.push_back(RunError{
+                {},
+                "SelfApproachTruncated",
+                fmt::format("the self-approach check kept {} distinct elements per plane and did "
+                            "not check those beyond",
+                            SelfApproachCheck::kMaxElements)});
         if (out_.tc_present) read_registers();
         out_.totals.cycles = cycles_seen_ - start_cycle_;
         if (!comp_plane_seen_) out_.plot_plane = plane_;
@@ -474,6 +483,17 @@ class Execution {
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p) {
         sink_.programmed(programmed);
         recent_.add(p.tag, programmed);
+        if (comp_on_ && self_approach_mode_ != SelfApproachMode::kOff) {
+            // A rapid ends the contour on the board; the next move approaches it anew.
+            if (programmed.kind == SegmentKind::kRapid) {
+                self_approach_.end(findings_);
+                if (!take_findings()) return false;
+            } else {
+                if (!self_approach_.active()) self_approach_.begin(radius_, comp_plane_);
+                self_approach_.programmed(programmed, findings_);
+                if (!take_findings()) return false;
+            }
+        }
         for (;;) {
             const auto r = board_.spool(p);
             if (r.ok()) return true;
@@ -514,6 +534,7 @@ class Execution {
                 return false;
         }
         length_ = length;
+        radius_ = radius;
         return true;
     }
 
@@ -553,6 +574,7 @@ class Execution {
             return false;
         comp_on_ = true;
         comp_plane_ = plane_;
+        self_approach_.begin(radius_, plane_);
         if (!comp_plane_seen_) {
             comp_plane_seen_ = true;
             out_.plot_plane = plane_;
@@ -565,7 +587,8 @@ class Execution {
         auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
         if (!write(status, std::int32_t{0}, at, "STATUS = 0")) return false;
         comp_on_ = false;
-        return true;
+        self_approach_.end(findings_);
+        return take_findings();
     }
 
     bool end_of_program(const BlockRef& at) {
@@ -1228,6 +1251,21 @@ class Execution {
                std::string(nc::error_kind_name(d.kind)), d.to_string());
     }
 
+    // Self-approach findings (self_approach.h): warnings, or with --self-approach=error the
+    // first one is the run's error (the run stops).
+    bool take_findings() {
+        for (const SelfApproachFinding& f : findings_) {
+            if (self_approach_mode_ == SelfApproachMode::kError) {
+                findings_.clear();
+                return record(f.path_block, "SelfApproach", describe(f));
+            }
+            out_.warnings.push_back(RunError{f.path_block, "SelfApproach", describe(f)});
+            sink_.warning(out_.warnings.back(), f.where);
+        }
+        findings_.clear();
+        return true;
+    }
+
     // Records an error; returns false (the run stops).
     bool record(const BlockRef& at, std::string code, std::string message) {
         RunError e{at, std::move(code), std::move(message)};
@@ -1313,6 +1351,10 @@ class Execution {
                 const PathSegment s = convert(segments_[i]);
                 count_segment(out_.totals, s);
                 sink_.executed(s);
+                if (self_approach_mode_ != SelfApproachMode::kOff) {
+                    self_approach_.executed(s, findings_);
+                    if (!take_findings()) return false;
+                }
             }
             if (r.value == 0) break;
             pending -= std::min<std::uint64_t>(pending, r.value);
@@ -1421,6 +1463,7 @@ class Execution {
     bool comp_on_ = false;
     bool comp_plane_seen_ = false;
     double length_ = 0.0;  // WkzLen of the current tool
+    double radius_ = 0.0;  // RADIUS of the current tool
     // Klartext (3D compensation module, bus 1310).
     // ---- OTC (bus 1330; docs/otc.md, docs/apcictl.md "run")
     const nc::CorrectionTable* corrections_;  // --corr, may be null
@@ -1465,6 +1508,9 @@ class Execution {
     RecentMoves recent_;
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;
+    SelfApproachMode self_approach_mode_;
+    SelfApproachCheck self_approach_;
+    std::vector<SelfApproachFinding> findings_;
 };
 
 }  // namespace
@@ -1488,7 +1534,8 @@ Point ProgramExecutor::position() {
 }
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
-    auto execution = std::make_unique<Execution>(board_, sink_, tools_, plc_, corrections_);
+    auto execution =
+        std::make_unique<Execution>(board_, sink_, tools_, plc_, corrections_, self_approach_);
     return execution->run(events);
 }
 

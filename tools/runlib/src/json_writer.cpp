@@ -95,10 +95,15 @@ void JsonRunWriter::error_list(std::span<const RunError> errors) {
 bool JsonRunWriter::finish(std::span<const RunError> errors,
                            std::span<const GroupRegisters> registers,
                            std::span<const std::pair<std::string, double>> variables,
-                           std::span<const RunError> notices) {
+                           std::span<const RunError> notices,
+                           std::span<const RunError> warnings) {
     begin_segments();
     sink_.append("],\n\"errors\":[");
     error_list(errors);
+    if (!warnings.empty()) {
+        sink_.append("],\n\"warnings\":[");
+        error_list(warnings);
+    }
     if (!notices.empty()) {
         sink_.append("],\n\"notices\":[");
         error_list(notices);

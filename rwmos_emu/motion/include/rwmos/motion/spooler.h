@@ -116,11 +116,15 @@ class Spooler {
         std::int32_t plane = 0;  // G code of the arc's plane, 0 if not a TC plane
     };
     // Moves one call adds; built first, pushed only if they all fit.
+    // The moves of one call; the spooler keeps one and reuses it (no 5 KB to clear per call).
     struct Batch {
-        explicit Batch(const AxisVector& from) : end(from) {}
-        AxisVector end;  // where the last move ends (the queue's end before the first)
+        AxisVector end{};  // where the last move ends (the queue's end before the first)
         std::size_t count = 0;
-        std::array<Move, 2 * geom::kMaxSegmentsPerStep + 1> moves{};
+        std::array<Move, 2 * geom::kMaxSegmentsPerStep + 1> moves;
+        void reset(const AxisVector& from) noexcept {
+            end = from;
+            count = 0;
+        }
         void add(const Move& m) noexcept {
             moves[count++] = m;
             end = m.end;
@@ -140,6 +144,7 @@ class Spooler {
     static MotionResult commit(const Batch& batch, Executor& exec, std::size_t capacity);
 
     Compensation comp_;
+    Batch batch_;
     std::deque<Pending> pending_;
     std::uint32_t next_index_ = 1;
     AxisVector program_{};     // programmed position, program coordinates

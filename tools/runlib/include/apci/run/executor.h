@@ -76,6 +76,11 @@ class RunSink {
         (void)e;
         (void)where;
     }
+    // A warning (the path comes near the contour, self_approach.h), and where.
+    virtual void warning(const RunError& w, const Point& where) {
+        (void)w;
+        (void)where;
+    }
     // Blocks read so far by the execution pass (called every few thousand blocks).
     virtual void progress(std::uint64_t blocks) { (void)blocks; }
 };
@@ -88,6 +93,10 @@ BlockRef decode_block_tag(std::uint32_t tag) noexcept;
 struct RunOutcome {
     RunTotals totals;                       // file and blocks are the caller's to fill
     std::vector<RunError> errors;           // empty: the program ran to its end
+    // What the run found questionable without stopping: the compensated path coming closer
+    // than the tool radius to the contour where it comes back near itself ("SelfApproach",
+    // self_approach.h).
+    std::vector<RunError> warnings;
     std::vector<GroupRegisters> registers;  // groups 1..3 at the end; empty without optionTC
     int plot_plane = 17;  // the plane of the first compensation, else the last plane in force
     std::array<int, 3> axis_numbers{0, 1, 2};             // board axes of X, Y, Z
@@ -104,6 +113,10 @@ struct RunOutcome {
     // one, at the end) folded into its radius and length, its wear fields added up.
     nc::ToolTable tools_after;
 };
+
+// What the run does where the compensated path comes near the contour away from its corners
+// (self_approach.h): a warning (the default), the run's error, or nothing checked.
+enum class SelfApproachMode { kWarn, kError, kOff };
 
 class ProgramExecutor {
   public:
@@ -128,6 +141,7 @@ class ProgramExecutor {
     Point position();
     // Executes the stream to its end or to the first error.
     RunOutcome run(nc::EventStream& events);
+    void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
 
   private:
     apci::Board& board_;
@@ -135,6 +149,7 @@ class ProgramExecutor {
     const nc::ToolTable* tools_;
     const PlcScript* plc_;
     const nc::CorrectionTable* corrections_;
+    SelfApproachMode self_approach_ = SelfApproachMode::kWarn;
 };
 
 }  // namespace apci::run

@@ -38,7 +38,8 @@ class JsonRunWriter {
     // there are any).
     bool finish(std::span<const RunError> errors, std::span<const GroupRegisters> registers,
                 std::span<const std::pair<std::string, double>> variables,
-                std::span<const RunError> notices);
+                std::span<const RunError> notices,
+                std::span<const RunError> warnings = {});
 
     std::uint64_t segments_written() const noexcept { return count_; }
 

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// LinuxCNC's standalone interpreter rs274 as an independent implementation of tool radius
+// compensation: found where scripts/fetch_linuxcnc.sh unpacked Debian's linuxcnc-uspace,
+// run on many programs at once (one process each, several in flight), its canonical moves
+// parsed into plane elements. docs/testing.md ("The LinuxCNC differential test").
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rwmos/geometry/element.h"
+
+namespace apci::test {
+
+// Where rs274 and its libraries are; empty `why` when it can be run.
+struct Rs274 {
+    std::string binary;        // .../usr/bin/rs274
+    std::string library_path;  // LD_LIBRARY_PATH for it
+    std::string ncfiles;       // .../usr/share/linuxcnc/ncfiles (its example programs)
+    std::string why;           // why rs274 cannot be had (the test skips with it)
+};
+// Looks under `root` (the unpacked packages), and runs a trivial program once.
+Rs274 find_rs274(const std::string& root);
+
+// One move of rs274's output in the plane's coordinates (first, second): G17 (X, Y), G18
+// (Z, X). Arcs keep LinuxCNC's form: end point and centre (a spiral when rounding made the
+// radii differ, as its motion planner runs them).
+struct CanonMove {
+    rwmos::geom::Element path;
+    bool rapid = false;  // STRAIGHT_TRAVERSE
+};
+
+struct Rs274Result {
+    bool ran = false;      // the process ran and exited
+    int exit_code = -1;
+    std::string error;     // its error message (standard error, last line), when exit_code != 0
+    std::vector<CanonMove> moves;
+};
+
+// Runs rs274 -t tool_table -g on every program (NGC text), at most `parallel` at a time; the
+// moves are read in `plane` (17 or 18). Results in the order of the programs.
+std::vector<Rs274Result> run_rs274(const Rs274& rs, const std::vector<std::string>& programs,
+                                   const std::string& tool_table, int plane, int parallel);
+
+// A tool table for rs274 (standalone rs274 reads it in inches: D is the diameter) with tool
+// 1 of radius r mm.
+std::string rs274_tool_table(double radius_mm);
+
+}  // namespace apci::test

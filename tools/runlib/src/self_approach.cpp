@@ -1,0 +1,442 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/self_approach.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <unordered_map>
+#include <utility>
+
+namespace apci::run {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Start and end of an arc closer than this: a full circle (as in path.h).
+constexpr double kFullCircle = kSamePointTolerance;
+// The most distance evaluations one pair may take (the refinement stops there).
+constexpr int kMaxEvaluations = 4096;
+
+}  // namespace
+
+// A line or arc in the plane's coordinates (first, second). An arc runs from start to end about
+// centre, its radius changing linearly with the angle (as the board runs it).
+struct detail::Shape {
+    bool arc = false;
+    bool ccw = false;
+    Vec2 start = Vec2::Zero(), end = Vec2::Zero(), centre = Vec2::Zero();
+    double sweep = 0.0;  // arcs: signed, magnitude in (0, 2 pi]
+    double length = 0.0;
+};
+
+namespace {
+
+using detail::Shape;
+
+double angle_ccw(const Vec2& a, const Vec2& b) {
+    double t = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    if (t < 0) t += kTwoPi;
+    return t >= kTwoPi ? 0.0 : t;
+}
+
+Shape shape_of(const PathSegment& s, int plane) {
+    const PlaneAxes a = plane_axes(plane);
+    Shape out;
+    out.start = {s.start[a.first], s.start[a.second]};
+    out.end = {s.end[a.first], s.end[a.second]};
+    out.arc = s.kind == SegmentKind::kArc && s.plane == plane;
+    if (!out.arc) {
+        out.length = (out.end - out.start).norm();
+        return out;
+    }
+    out.ccw = s.ccw;
+    out.centre = {s.center[a.first], s.center[a.second]};
+    const Vec2 u0 = out.start - out.centre, u1 = out.end - out.centre;
+    double turn = (out.end - out.start).norm() <= kFullCircle
+                      ? kTwoPi
+                      : (s.ccw ? angle_ccw(u0, u1) : angle_ccw(u1, u0));
+    if (turn == 0.0) turn = kTwoPi;
+    out.sweep = s.ccw ? turn : -turn;
+    out.length = turn * 0.5 * (u0.norm() + u1.norm());
+    return out;
+}
+
+Vec2 point_at(const Shape& e, double t) {
+    if (!e.arc) return e.start + t * (e.end - e.start);
+    if (t >= 1.0) return e.end;
+    const Vec2 u0 = e.start - e.centre;
+    const double r0 = u0.norm(), r1 = (e.end - e.centre).norm();
+    const double phi = std::atan2(u0.y(), u0.x()) + t * e.sweep;
+    const double r = r0 + t * (r1 - r0);
+    return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
+}
+
+double distance_to(const Shape& e, const Vec2& p) {
+    if (!e.arc) {
+        const Vec2 d = e.end - e.start;
+        const double n2 = d.squaredNorm();
+        const double t = n2 == 0.0 ? 0.0 : std::clamp((p - e.start).dot(d) / n2, 0.0, 1.0);
+        return (p - (e.start + t * d)).norm();
+    }
+    const Vec2 v = p - e.centre;
+    const Vec2 u0 = e.start - e.centre;
+    const double turn = std::abs(e.sweep);
+    const double along = e.ccw ? angle_ccw(u0, v) : angle_ccw(v, u0);
+    if (v.norm() > 0.0 && along <= turn) {
+        const double r0 = u0.norm(), r1 = (e.end - e.centre).norm();
+        return std::abs(v.norm() - (r0 + (along / turn) * (r1 - r0)));
+    }
+    return std::min((p - e.start).norm(), (p - e.end).norm());
+}
+
+// The least distance from `path` to `contour`, refined until it is known to be at least
+// `threshold` (then some value >= threshold is returned) or a point closer is found.
+double least_distance(const Shape& path, const Shape& contour, double threshold) {
+    struct Span {
+        double t0, t1, d0, d1;
+    };
+    double best = std::min(distance_to(contour, path.start), distance_to(contour, path.end));
+    if (best < threshold) return best;
+    std::vector<Span> stack{{0.0, 1.0, distance_to(contour, path.start),
+                             distance_to(contour, path.end)}};
+    int evaluations = 2;
+    while (!stack.empty() && evaluations < kMaxEvaluations) {
+        const Span s = stack.back();
+        stack.pop_back();
+        const double len = path.length * (s.t1 - s.t0);
+        // The distance is 1-Lipschitz along the path: nothing between the ends is closer than
+        // (d0 + d1 - len) / 2.
+        if ((s.d0 + s.d1 - len) / 2 >= threshold || len < 1e-7) continue;
+        const double tm = 0.5 * (s.t0 + s.t1);
+        const double dm = distance_to(contour, point_at(path, tm));
+        ++evaluations;
+        if (dm < best) best = dm;
+        if (best < threshold) return best;
+        stack.push_back({s.t0, tm, s.d0, dm});
+        stack.push_back({tm, s.t1, dm, s.d1});
+    }
+    return best;
+}
+
+std::uint64_t bits_of(double v) {
+    std::uint64_t u = 0;
+    std::memcpy(&u, &v, sizeof u);
+    return v == 0.0 ? 0 : u;  // -0 and +0 alike
+}
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
+    h ^= x + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
+    return h;
+}
+
+// The geometry of a segment in the plane and the tool radius, as one 64-bit hash of their exact
+// values: the same geometry is checked once (a program that repeats a contour repeats its
+// numbers; a hash collision, about one in 2^64 per pair, would skip one check).
+std::uint64_t key_of(const PathSegment& s, int plane, double r) {
+    const PlaneAxes a = plane_axes(plane);
+    const bool arc = s.kind == SegmentKind::kArc;
+    std::uint64_t h = arc ? (s.ccw ? 3 : 2) : 1;
+    h = mix(h, bits_of(s.start[a.first]));
+    h = mix(h, bits_of(s.start[a.second]));
+    h = mix(h, bits_of(s.end[a.first]));
+    h = mix(h, bits_of(s.end[a.second]));
+    if (arc) {
+        h = mix(h, bits_of(s.center[a.first]));
+        h = mix(h, bits_of(s.center[a.second]));
+    }
+    return mix(h, bits_of(r));
+}
+
+// A set of 64-bit keys: open addressing, linear probing, at most half full.
+class KeySet {
+  public:
+    // True when the key was not in the set (it is now).
+    bool insert(std::uint64_t key) {
+        if (key == 0) key = 1;  // 0 marks an empty slot
+        if (2 * (count_ + 1) > slots_.size()) grow();
+        if (place(slots_, key)) {
+            ++count_;
+            return true;
+        }
+        return false;
+    }
+
+  private:
+    static bool place(std::vector<std::uint64_t>& slots, std::uint64_t key) {
+        const std::size_t mask = slots.size() - 1;
+        for (std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;; i = (i + 1) & mask) {
+            if (slots[i] == key) return false;
+            if (slots[i] == 0) {
+                slots[i] = key;
+                return true;
+            }
+        }
+    }
+    void grow() {
+        std::vector<std::uint64_t> bigger(slots_.empty() ? 1024 : 2 * slots_.size(), 0);
+        for (const std::uint64_t k : slots_)
+            if (k != 0) place(bigger, k);
+        slots_.swap(bigger);
+    }
+    std::vector<std::uint64_t> slots_;
+    std::size_t count_ = 0;
+};
+
+// The same block: by N number when both have one (executed segments carry only the N number
+// of a block that has one), else by source line.
+bool same_block(const BlockRef& a, const BlockRef& b) {
+    if (a.number != kNoBlock || b.number != kNoBlock) return a.number == b.number;
+    return a.line == b.line;
+}
+
+std::string block_name(const BlockRef& b) {
+    if (b.number != kNoBlock) return fmt::format("N{}", b.number);
+    return fmt::format("line {}", b.line);
+}
+
+}  // namespace
+
+std::string describe(const SelfApproachFinding& f) {
+    return fmt::format(
+        "the tool path of {} comes within {:.4f} mm of the contour at {} (tool radius {:.4f} mm): "
+        "the contour comes back near itself there, which no corner rule sees; the path cuts "
+        "{:.4f} mm into it",
+        block_name(f.path_block), f.distance, block_name(f.contour_block), f.radius,
+        f.radius - f.distance);
+}
+
+struct SelfApproachCheck::Grid {
+    struct Item {
+        Shape shape;
+        BlockRef block;
+        std::uint64_t index = 0;
+        std::uint64_t stretch = 0;
+        double r = 0.0;
+        bool transition = false;
+        // Contour elements: the path must keep r from it. Not the first and the last element
+        // of a stretch: they are its approach and departure in the program's own terms.
+        bool protect = true;
+    };
+    double cell = 0.0;   // fixed by the first stretch in this plane
+    double max_r = 0.0;  // the largest tool radius of its paths
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> contour_cells, path_cells;
+    std::vector<Item> contour, path;
+    KeySet contour_keys, path_keys;
+    bool truncated = false;
+
+    static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
+        return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
+    }
+    std::int64_t index_of(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+
+    template <typename F>
+    void for_samples(const Shape& e, F&& f) const {
+        const int n = std::max(1, static_cast<int>(std::ceil(e.length / (0.5 * cell))));
+        for (int i = 0; i <= n; ++i) f(point_at(e, static_cast<double>(i) / n));
+    }
+
+    void insert(std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>& cells,
+                const Shape& e, std::uint32_t id) const {
+        for_samples(e, [&](const Vec2& p) {
+            auto& list = cells[cell_key(index_of(p.x()), index_of(p.y()))];
+            if (list.empty() || list.back() != id) list.push_back(id);
+        });
+    }
+
+    // Ids of the items in `cells` with a sample within r + cell / 2 of a sample of e: every item
+    // that has a point closer than r to a point of e.
+    std::vector<std::uint32_t> near(
+        const std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>& cells,
+        const Shape& e, double r) const {
+        std::vector<std::uint32_t> out;
+        const double reach = r + 0.5 * cell;
+        for_samples(e, [&](const Vec2& p) {
+            for (std::int64_t i = index_of(p.x() - reach); i <= index_of(p.x() + reach); ++i)
+                for (std::int64_t j = index_of(p.y() - reach); j <= index_of(p.y() + reach); ++j) {
+                    const auto it = cells.find(cell_key(i, j));
+                    if (it != cells.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+                }
+        });
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
+};
+
+namespace {
+
+// The contour element and the path item are neighbours: their corner rules already keep the
+// path r from it.
+bool neighbours(std::uint64_t contour_index, std::uint64_t contour_stretch,
+                std::uint64_t path_index, std::uint64_t path_stretch, bool transition) {
+    if (contour_stretch != path_stretch) return false;
+    if (transition) return contour_index == path_index || contour_index == path_index + 1;
+    return contour_index + 1 >= path_index && contour_index <= path_index + 1;
+}
+
+}  // namespace
+
+SelfApproachCheck::SelfApproachCheck() = default;
+SelfApproachCheck::~SelfApproachCheck() = default;
+
+SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
+    const int i = plane == 18 ? 1 : plane == 19 ? 2 : 0;
+    if (!grids_[i]) grids_[i] = std::make_unique<Grid>();
+    return *grids_[i];
+}
+
+bool SelfApproachCheck::truncated() const noexcept {
+    for (const auto& g : grids_)
+        if (g && g->truncated) return true;
+    return false;
+}
+
+void SelfApproachCheck::begin(double r, int plane) {
+    active_ = true;
+    first_in_stretch_ = true;
+    latest_ = kNone;
+    r_ = std::max(0.0, r);
+    plane_ = plane;
+    ++stretch_;
+    Grid& g = grid(plane);
+    if (g.cell == 0.0) g.cell = std::max(2.0 * r_, 0.5);
+    g.max_r = std::max(g.max_r, r_);
+}
+
+void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
+    if (!active_) return;
+    active_ = false;
+    // The stretch's last element is its departure: not contour; what came near it was not.
+    if (latest_ != kNone) grid(plane_).contour[latest_].protect = false;
+    for (const auto& [f, id] : held_)
+        if (id != latest_) out.push_back(f);
+    held_.clear();
+    latest_ = kNone;
+}
+
+void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+    if (!active_ || r_ <= 0.0) return;
+    if (s.kind != SegmentKind::kLine && s.kind != SegmentKind::kArc) return;
+    const std::uint64_t index = next_index_++;
+    pending_.push_back(Pending{s.block, index, stretch_, r_, plane_});
+    if (pending_.size() - pending_head_ > 4096) ++pending_head_;  // never executed: not checked
+    if (pending_head_ > 1024 && 2 * pending_head_ > pending_.size()) {
+        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
+        pending_head_ = 0;
+    }
+    Grid& g = grid(plane_);
+    const bool first = first_in_stretch_;
+    first_in_stretch_ = false;
+    // The element before is not the last: what came near it counts.
+    for (const auto& [f, id] : held_) out.push_back(f);
+    held_.clear();
+    latest_ = kNone;
+    if (!g.contour_keys.insert(key_of(s, plane_, 0.0))) return;  // programmed before
+    const Shape e = shape_of(s, plane_);
+    if (e.length <= kFullCircle) return;
+    if (g.contour.size() >= kMaxElements) {
+        g.truncated = true;
+        return;
+    }
+    const auto id = static_cast<std::uint32_t>(g.contour.size());
+    g.contour.push_back(Grid::Item{e, s.block, index, stretch_, r_, false, !first});
+    g.insert(g.contour_cells, e, id);
+    latest_ = id;
+    if (first) return;
+    // Paths executed before it that come near it (the contour comes back later): held until
+    // the element is known not to be the stretch's last.
+    for (const std::uint32_t pid : g.near(g.path_cells, e, g.max_r)) {
+        const Grid::Item& p = g.path[pid];
+        if (neighbours(index, stretch_, p.index, p.stretch, p.transition)) continue;
+        SelfApproachFinding f;
+        if (report(p.shape, p.block, p.r, plane_, e, s.block, p.r - kTolerance, f))
+            held_.emplace_back(f, id);
+    }
+}
+
+void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+    if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach &&
+        s.role != Role::kDeparture)
+        return;
+    // The programmed element it belongs to: the first pending one of its block (executed
+    // segments come in program order; transitions and the departure belong to the element
+    // before, the approach to the first).
+    const std::size_t waiting = pending_.size() - pending_head_;
+    std::size_t at = waiting;
+    for (std::size_t i = 0; i < waiting && i < 64; ++i)
+        if (same_block(pending_[pending_head_ + i].block, s.block)) {
+            at = i;
+            break;
+        }
+    if (at == waiting) return;
+    pending_head_ += at;
+    const Pending p = pending_[pending_head_];
+    // Compact now and then: the elements before the head are done.
+    if (pending_head_ > 1024 && 2 * pending_head_ > pending_.size()) {
+        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
+        pending_head_ = 0;
+    }
+    if (s.role != Role::kContour && s.role != Role::kTransition) return;
+    Grid& g = grid(p.plane);
+    if (!g.path_keys.insert(key_of(s, p.plane, p.r))) return;  // the same path checked before
+    const Shape e = shape_of(s, p.plane);
+    if (e.length <= kFullCircle) return;
+    const bool transition = s.role == Role::kTransition;
+    const double threshold = p.r - kTolerance;
+    for (const std::uint32_t id : g.near(g.contour_cells, e, p.r)) {
+        const Grid::Item& c = g.contour[id];
+        if (!c.protect || neighbours(c.index, c.stretch, p.index, p.stretch, transition)) continue;
+        SelfApproachFinding f;
+        if (!report(e, s.block, p.r, p.plane, c.shape, c.block, threshold, f)) continue;
+        if (active_ && id == latest_)
+            held_.emplace_back(f, id);  // the stretch's last element, perhaps
+        else
+            out.push_back(f);
+    }
+    if (g.path.size() < kMaxElements) {
+        const auto id = static_cast<std::uint32_t>(g.path.size());
+        g.path.push_back(Grid::Item{e, s.block, p.index, p.stretch, p.r, transition});
+        g.insert(g.path_cells, e, id);
+    } else {
+        g.truncated = true;
+    }
+}
+
+bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, double r, int plane,
+                               const Shape& contour, const BlockRef& contour_block,
+                               double threshold, SelfApproachFinding& f) {
+    if (reported_.size() >= kMaxFindings) return false;
+    const std::array<std::uint64_t, 4> pair{static_cast<std::uint64_t>(path_block.number),
+                                            path_block.line,
+                                            static_cast<std::uint64_t>(contour_block.number),
+                                            contour_block.line};
+    if (std::find(reported_.begin(), reported_.end(), pair) != reported_.end()) return false;
+    const double d = least_distance(path, contour, threshold);
+    if (d >= threshold) return false;
+    reported_.push_back(pair);
+    f = SelfApproachFinding{};
+    f.path_block = path_block;
+    f.contour_block = contour_block;
+    f.distance = d;
+    f.radius = r;
+    // The point of the path nearest the element, for the plot's marker (the third axis at
+    // the plane's origin: the plot shows the plane).
+    double best_t = 0.0, best_d = INFINITY;
+    for (int i = 0; i <= 64; ++i) {
+        const double t = i / 64.0;
+        const double di = distance_to(contour, point_at(path, t));
+        if (di < best_d) best_d = di, best_t = t;
+    }
+    const Vec2 q = point_at(path, best_t);
+    const PlaneAxes a = plane_axes(plane);
+    f.where = Point::Zero();
+    f.where[a.first] = q.x();
+    f.where[a.second] = q.y();
+    return true;
+}
+
+}  // namespace apci::run
