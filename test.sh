@@ -6,4 +6,6 @@ cd "$(dirname "$0")"
 source scripts/deps.sh
 apci_install_deps
 apci_build build
+# LinuxCNC's rs274 for the differential test of the compensation (skipped where it cannot be had).
+scripts/fetch_linuxcnc.sh build
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600

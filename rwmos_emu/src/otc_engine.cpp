@@ -435,6 +435,9 @@ void OtcEngine::move_finished(const Move& m, std::uint64_t k, std::uint64_t n) n
 }
 
 bool OtcEngine::per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const noexcept {
+    // Off with every ramp at rest at 0: the targets are 0 and settled, nothing to step (the
+    // same answer as below, without its position and 24 ramp checks per move).
+    if (!state_.otc.active && ramps_quiet_) return false;
     AxisVector nominal{};
     if (m != nullptr)
         motion::position_at(*m, k == 0 && n == 0 ? 1 : k, n == 0 ? 1 : n, nominal);

@@ -129,8 +129,7 @@ std::uint64_t bits_of(double v) {
 }
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
-    h ^= x + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
-    return h;
+    return (h ^ x) * 0x9E3779B97F4A7C15ULL;
 }
 
 // The geometry of a segment in the plane and the tool radius, as one 64-bit hash of their exact
@@ -148,7 +147,8 @@ std::uint64_t key_of(const PathSegment& s, int plane, double r) {
         h = mix(h, bits_of(s.center[a.first]));
         h = mix(h, bits_of(s.center[a.second]));
     }
-    return mix(h, bits_of(r));
+    h = mix(h, bits_of(r));
+    return h ^ (h >> 29);
 }
 
 // A set of 64-bit keys: open addressing, linear probing, at most half full.
