@@ -872,6 +872,132 @@ TEST_F(ApcictlRun, BlocksWithoutNumberCarryTheirLine) {
     EXPECT_FALSE(doc.at("segments")[1].contains("line"));
 }
 
+// ---- Programs as CAM systems write them (the compensation issue's reproductions)
+
+// Rounds to `decimals` places, as a program writes a coordinate.
+std::string fixed(double v, int decimals) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+TEST_F(ApcictlRun, CollinearLinesWrittenWithSixDecimalsCompensateAtEveryHeading) {
+    // Two collinear 20 mm lines, a lead-in and a lead-out, written to 6 decimals: the join's
+    // turn is rounding noise (about 1e-6 degrees). It used to stop with KorrError at 15, 105,
+    // 195 and 285 degrees (the same pair along X ran).
+    const std::string tool_list =
+        write("t05.tools",
+              "wz[1].gueltig 1\nwz[1].typ 0\nwz[1].mass_einheit 0\nwz[1].laenge 0\n"
+              "wz[1].radius 5000\n");
+    // The program as reported, number for number.
+    const json reported = run_json(
+        write("reported.nc",
+              "%collinear\nG17 G90\nD1\nG0 X-7.071068 Y-12.247449\nG41 G1 X0 Y0 F600\n"
+              "G1 X19.318517 Y5.176381\nG1 X38.637033 Y10.352762\n"
+              "G40 G1 X46.033840 Y3.623182\nM30\n"),
+        {"--tools", tool_list});
+    EXPECT_TRUE(reported.at("errors").empty()) << reported.at("errors").dump();
+    EXPECT_TRUE(contains(last_.out, "errors: none")) << last_.out;
+    for (const double heading : {0.0, 15.0, 105.0, 195.0, 285.0}) {
+        const double a = heading * std::numbers::pi / 180;
+        const geom::Vec2 t(std::cos(a), std::sin(a)), n(-std::sin(a), std::cos(a));
+        const auto p = [](const geom::Vec2& v) {
+            return "X" + fixed(v.x(), 6) + " Y" + fixed(v.y(), 6);
+        };
+        const geom::Vec2 start = 14.142136 * geom::Vec2(std::cos(a - std::numbers::pi * 3 / 4),
+                                                        std::sin(a - std::numbers::pi * 3 / 4));
+        const geom::Vec2 mid = 20 * t, end = 40 * t, exit = end + 10 * geom::Vec2(t - n).normalized();
+        std::string text = "%collinear\nG17 G90\nD1\nG0 " + p(start) + "\nG41 G1 X0 Y0 F600\nG1 " +
+                           p(mid) + "\nG1 " + p(end) + "\nG40 G1 " + p(exit) + "\nM30\n";
+        const json doc = run_json(write("c.nc", text), {"--tools", tool_list});
+        EXPECT_TRUE(doc.at("errors").empty()) << heading << " " << doc.at("errors").dump();
+        expect_continuous(doc);
+        // The two lines as written: their offsets keep 0.5 mm, with no transition between them.
+        const auto as_written = [](const geom::Vec2& v) {
+            return geom::Vec2(std::stod(fixed(v.x(), 6)), std::stod(fixed(v.y(), 6)));
+        };
+        const std::vector<geom::Element> lines{
+            geom::make_line({0, 0}, as_written(mid)),
+            geom::make_line(as_written(mid), as_written(end))};
+        // The segments of the two lines (program lines 6 and 7; the blocks have no N).
+        json of_lines = doc;
+        of_lines["segments"] = json::array();
+        for (const auto& s : doc.at("segments"))
+            if (s.at("line") == 6 || s.at("line") == 7) of_lines["segments"].push_back(s);
+        expect_at_radius(of_lines, lines, 0.5, {"contour"});
+        // At the collinear join (after line 6) nothing but a transition of rounding size.
+        for (const auto& s : of_lines.at("segments")) {
+            if (s.at("role") == "transition") {
+                EXPECT_LT((point(s.at("end")) - point(s.at("start"))).norm(), 1e-4) << heading;
+            }
+        }
+    }
+}
+
+TEST_F(ApcictlRun, LineTangentArcLineWrittenWithThreeDecimalsCompensatesOnBothSides) {
+    // The commonest shape of CAM output: a line, a tangent arc, a tangent line, to 0.001 mm.
+    // The arc's end radius is 9.99978 (rounding); with G42 it used to stop at N50 with
+    // "previous element is too short".
+    for (const char* side : {"G41", "G42"}) {
+        const std::string prog = write(
+            "tangent.nc", std::string("%tangent\nN10 G17 G90 D1 F600\nN20 G0 X-10 Y-5\nN30 ") +
+                              side +
+                              " G1 X-10 Y0\nN40 X10 Y0\nN50 G3 X15 Y1.34 I0 J10\n"
+                              "N60 G1 X32.321 Y11.34\nN70 G40 G1 X40 Y20\nN80 M30\n");
+        const json doc = run_json(prog, {"--tools", tools(5.0)});
+        EXPECT_TRUE(doc.at("errors").empty()) << side << " " << doc.at("errors").dump();
+        expect_continuous(doc);
+        // Tangent joins (up to rounding): at most a transition of rounding size (the arc's end
+        // tangent and the line differ by 2.5e-5 rad, 1.25e-4 mm at r = 5), every contour point
+        // 5 mm from the contour as written (the arc runs from its start to its end point).
+        for (const auto& s : with_role(doc, "transition")) {
+            if (s.at("block") != 30) {
+                EXPECT_LT((point(s.at("end")) - point(s.at("start"))).norm(), 2e-4) << side;
+            }
+        }
+        const std::vector<geom::Element> contour{
+            geom::make_line({-10, 0}, {10, 0}), geom::make_arc({10, 0}, {15, 1.34}, {10, 10}, true),
+            geom::make_line({15, 1.34}, {32.321, 11.34})};
+        expect_at_radius(doc, contour, 5.0, {"contour"}, false, 17, {30});
+        EXPECT_EQ(with_role(doc, "contour").size(), 4u) << roles(doc);
+    }
+}
+
+TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
+    // A spike: N60 is 1.1 mm long, its neighbours come back within the tool's 5 mm of each
+    // other, and each corner alone is an outside corner. The path of N70 cuts into N50.
+    const std::string prog = write(
+        "spike.nc",
+        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n");
+    json doc = run_json(prog, {"--tools", tools(5.0), "--svg", path("s.svg")});
+    EXPECT_TRUE(doc.at("errors").empty());
+    ASSERT_FALSE(doc.at("warnings").empty());
+    bool named = false;
+    for (const auto& w : doc.at("warnings")) {
+        EXPECT_EQ(w.at("code"), "SelfApproach");
+        named |= w.at("block") == 70 &&
+                 contains(w.at("message").get<std::string>(), "the tool path of N70 comes within") &&
+                 contains(w.at("message").get<std::string>(), "of the contour at N50");
+    }
+    EXPECT_TRUE(named) << doc.at("warnings").dump();
+    EXPECT_TRUE(contains(last_.out, "\nwarning: N70: SelfApproach: the tool path of N70"))
+        << last_.out;
+    EXPECT_TRUE(contains(read_text(path("s.svg")), ">N70 SelfApproach</text>"));
+    // As an error the run stops there and exits 1.
+    doc = run_json(prog, {"--tools", tools(5.0), "--self-approach", "error"}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "SelfApproach");
+    // Off: nothing checked.
+    doc = run_json(prog, {"--tools", tools(5.0), "--self-approach", "off"});
+    EXPECT_FALSE(doc.contains("warnings"));
+    // A contour that keeps its distance gets no warning: the seed's square with its lead-in.
+    doc = run_json(kExamples + "/wr_quad_disc.nc",
+                   {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+}
+
 TEST_F(ApcictlRun, RapidMovesAreRapidAndUncompensated) {
     const std::string prog = write("g0.nc", "N10 G0 X10 Y5\nM30\n");
     const json doc = run_json(prog);

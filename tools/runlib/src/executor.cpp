@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/executor.h"
+#include "apci/nc/arc.h"
 #include "apci/run/self_approach.h"
+#include "rwmos/geometry/tolerances.h"
 
 #include <fmt/format.h>
 
@@ -119,6 +121,8 @@ class RecentMoves {
 namespace otc = rwmos::otc;
 namespace tcomp = rwmos::tempcomp;
 
+// The front end refuses the arcs the board's TC module would refuse with CenterError, no more.
+static_assert(nc::kArcRadiusTolerance == rwmos::geom::kCenterRadiusTolerance);
 // The front end checks $SC_TOOL_TEMP_COMP[i] against the range of the board's object.
 static_assert(nc::kToolTempCompLimit == tcomp::kMaxValue);
 static_assert(nc::kToolTempCompCount == 3);

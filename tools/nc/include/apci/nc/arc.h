@@ -11,9 +11,11 @@
 namespace apci::nc {
 
 // End points may miss the circle by this much (start radius vs end radius), and an R arc's
-// chord may exceed the diameter by this much (then it is a half circle): CAM output rounded to
-// 3 decimals stays well inside it.
-inline constexpr double kArcRadiusTolerance = 0.002;  // mm
+// chord may exceed the diameter by this much (then it is a half circle). The board's CenterError
+// tolerance (docs/compensation.md, "The tolerance model"): rounding start, end and centre to
+// 3 decimals moves the radii apart by up to 0.0021 mm. Such an arc runs from its start to its
+// end point, its radius changing linearly with the angle.
+inline constexpr double kArcRadiusTolerance = 0.003;  // mm
 // An arc radius below this is zero (centre on the start point).
 inline constexpr double kMinArcRadius = 1e-6;  // mm
 
