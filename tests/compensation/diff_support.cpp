@@ -196,6 +196,7 @@ OurRun run_ours(const DiffProgram& p) {
     for (const apci::run::RunError& w : result.warnings) out.self_approach |= w.code == "SelfApproach";
     if (!result.errors.empty()) {
         out.error = result.errors.front().code + ": " + result.errors.front().message;
+        out.error_line = result.errors.front().block.line;
         return out;
     }
     out.ok = true;

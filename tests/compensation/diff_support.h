@@ -39,6 +39,7 @@ std::string linuxcnc_program(const DiffProgram& p);  // RS274/NGC for rs274, G21
 struct OurRun {
     bool ok = false;
     std::string error;  // the first error's code and message
+    std::uint64_t error_line = 0;  // the program line of the block at fault
     std::vector<Element> path;  // every executed segment, plane coordinates, in order
     std::vector<int> roles;     // apci::run::Role of each
     std::vector<std::uint64_t> lines;  // the program line of each (its block)

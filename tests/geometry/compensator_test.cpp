@@ -412,15 +412,15 @@ TEST(Compensator, ZeroToolRadiusReproducesTheProgrammedPath) {
 TEST(Compensator, FullCircleIsCompensatedAsFullCircle) {
     PathCompensator c;
     SegmentBatch out;
-    ASSERT_TRUE(c.begin(config(1, Side::kRight), {-5, 0}).ok());
+    ASSERT_TRUE(c.begin(config(1, Side::kLeft), {-5, 0}).ok());
     ASSERT_TRUE(c.push(make_line({-5, 0}, {0, 0}), 0, out).ok());
-    // Full circle about (0, 5) starting along +x (ccw): tangent to the line.
+    // Full circle about (0, 5) starting along +x (ccw): tangent to the line, the tool inside.
     ASSERT_TRUE(c.push(make_arc({0, 0}, {0, 0}, {0, 5}, true), 1, out).ok());
     ASSERT_TRUE(c.push(make_line({0, 0}, {5, 0}), 2, out).ok());
     ASSERT_EQ(out.size(), 1u);
     EXPECT_EQ(out[0].path.kind, ElementKind::kArc);
     EXPECT_TRUE(is_full_circle(out[0].path));
-    EXPECT_NEAR(length(out[0].path), 2 * M_PI * 6, 1e-9);
+    EXPECT_NEAR(length(out[0].path), 2 * M_PI * 4, 1e-9);
 }
 
 TEST(Compensator, BatchCapacityCoversTheLargestStep) {

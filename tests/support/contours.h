@@ -99,6 +99,56 @@ inline Box box_of(const Element& e, double grow) {
     return b;
 }
 
+// ---- Offsets from their definition (independent of the library's offset, intersection and
+// trim code): r to the tool's side (left for G41), an arc's radius linear in the angle from
+// its start to its end radius (the spiral the board runs from start to end point).
+
+// The tool lies inside the arc (on its concave side).
+inline bool concave_for(const Element& arc, bool left) {
+    return arc.ccw == left;
+}
+
+// The offset of e at fraction t (by angle for arcs); t may lie a little outside [0, 1] (the
+// element continued: a line straight on, an arc round its circle at its end radius).
+inline Vec2 offset_point(const Element& e, double t, double r, bool left) {
+    using namespace rwmos::geom;
+    const double side = left ? 1.0 : -1.0;
+    if (!is_arc(e)) {
+        const Vec2 d = e.end - e.start;
+        return e.start + t * d + side * r * left_normal(d.normalized());
+    }
+    const Vec2 u0 = e.start - e.centre;
+    const double r0 = u0.norm(), r1 = end_radius(e);
+    const double a = std::atan2(u0.y(), u0.x()) + t * sweep(e);
+    const double rad = r0 + std::clamp(t, 0.0, 1.0) * (r1 - r0);
+    const double towards = concave_for(e, left) ? -1.0 : 1.0;
+    return e.centre + (rad + towards * r) * Vec2(std::cos(a), std::sin(a));
+}
+
+// Where p lies with respect to the offset of e: its signed distance from the offset (the line,
+// or the spiral at p's angle; < 0 towards the element) and the fraction of e its foot lies at
+// (lines unbounded; arcs in [0, 2 pi / sweep)).
+struct OffsetReading {
+    double residual;
+    double fraction;
+};
+inline OffsetReading read_offset(const Element& e, const Vec2& p, double r, bool left) {
+    using namespace rwmos::geom;
+    if (!is_arc(e)) {
+        const Vec2 t = (e.end - e.start).normalized();
+        const Vec2 v = p - e.start;
+        return {(left ? 1.0 : -1.0) * cross(t, v) - r, v.dot(t) / length(e)};
+    }
+    const double turn = std::abs(sweep(e));
+    const double fraction = angle_between(e.start - e.centre, p - e.centre, e.ccw) / turn;
+    const double t = std::min(fraction, 1.0);
+    const double radius_there = radius(e) + t * (end_radius(e) - radius(e));
+    const double rho = radius_there + (concave_for(e, left) ? -r : r);
+    // Towards the element is inward on the convex side, outward on the concave.
+    const double outward = (p - e.centre).norm() - rho;
+    return {concave_for(e, left) ? -outward : outward, fraction};
+}
+
 // Sampled minimum distance from a to b; at most spacing / 2 above the true minimum.
 inline double sampled_distance(const Element& a, const Element& b, double spacing) {
     const int n =
@@ -148,54 +198,61 @@ inline bool clear_of(const Element& e, const Element& other, double r, double ma
 inline bool walks_away(const Element& from, bool outwards_from_end, const Element& other,
                        double r) {
     const double spacing = std::max(r, 1e-3) / 8;
-    const int n =
-        std::max(16, static_cast<int>(std::ceil(rwmos::geom::length(from) / spacing)) + 1);
     const double len = rwmos::geom::length(from);
+    const double step = len / std::max(16.0, std::ceil(len / spacing) + 1);
+    const double reach = 2 * r + spacing;
+    const auto at = [&](double s) {
+        const double t = std::min(s / len, 1.0);
+        return rwmos::geom::distance_to(other, rwmos::geom::point_at(from, outwards_from_end ? 1.0 - t : t));
+    };
     double last = 0;
-    bool clear = false;
-    for (int i = 1; i <= n; ++i) {
-        const double t = outwards_from_end ? 1.0 - double(i) / n : double(i) / n;
-        const double d = rwmos::geom::distance_to(other, rwmos::geom::point_at(from, t));
-        if (clear) {
-            if (d <= 2 * r + spacing) return false;
-            // The distance changes no faster than the walk: the rest cannot come back.
-            if (d - len * (1.0 - double(i) / n) > 2 * r + spacing) return true;
-        } else {
-            if (d < last) return false;
-            clear = d > 2 * r + spacing;
-        }
+    double s = step;
+    // Until it is 2r away the distance must grow at every step.
+    for (; s < len + 0.5 * step; s += step) {
+        const double d = at(s);
+        if (d < last) return false;
         last = d;
+        if (d > reach) break;
     }
-    return true;
+    // Then it must stay beyond 2r: the distance changes no faster than the walk, so the next
+    // look is as far on as it has room to fall.
+    while (s < len) {
+        const double d = at(s);
+        if (d <= reach) return false;
+        if (d - (len - s) > reach) return true;
+        s += std::max(step, d - reach);
+    }
+    return len <= 0 || at(len) > reach || last <= reach;
 }
 
 inline bool diverge(const Element& a, const Element& b, double r) {
     return walks_away(b, false, a, r) && walks_away(a, true, b, r);
 }
 
-// A new element may join a chain: it diverges from its predecessor and stays clear of all
-// others. An element shorter than 2r cannot get 2r away from its neighbours: around it the
-// rule moves one element on (the element after it diverges from the one before it, as if they
-// met), and no two short elements follow each other.
+// A new element may join a chain: it walks away from its predecessor (and the predecessor from
+// it) and stays clear of all others. An element shorter than 2r cannot get 2r away from its
+// neighbours: around it the rule is relaxed to "moves away" (the element after it moves away
+// from the one before it, which it cannot be 2r from), and no two short elements follow each
+// other. With may_come_back the contour may come back near itself (the self-approach no
+// corner rule sees): between neighbours the rule is "moves away" throughout (an arc may curl
+// back within 2r of its neighbour, a contour come back alongside after a sharp turn), and
+// other elements need only stay r / 2 apart (a path r from one then comes closer than r to
+// the other).
 inline bool fits_chain(const std::vector<Element>& chain, const Element& e, double r,
-                       double margin = 0.0) {
+                       double margin = 0.0, bool may_come_back = false) {
     if (chain.empty()) return true;
     const auto is_short = [r](const Element& x) { return rwmos::geom::length(x) < 2 * r; };
     const std::size_t n = chain.size();
-    const bool after_short = is_short(chain.back());
+    const Element& before = chain.back();
+    const bool after_short = is_short(before);
     if (is_short(e) && after_short) return false;
-    if (is_short(e)) {
-        // It cannot diverge from its predecessor by 2r; it must not turn back into it.
-        if (!walks_away(e, false, chain.back(), 0.0)) return false;
-    } else if (after_short) {
-        if (n >= 2 && !diverge(chain[n - 2], e, r)) return false;
-        if (!walks_away(e, false, chain.back(), 0.0)) return false;
-    } else if (!diverge(chain.back(), e, r)) {
-        return false;
-    }
+    const double apart = may_come_back ? 0.0 : r;
+    if (!walks_away(e, false, before, is_short(e) ? 0.0 : apart)) return false;
+    if (!walks_away(before, true, e, after_short ? 0.0 : apart)) return false;
+    if (after_short && n >= 2 && !walks_away(e, false, chain[n - 2], 0.0)) return false;
     const std::size_t skip = after_short ? 2 : 1;  // the neighbours checked above
     for (std::size_t j = 0; j + skip < n; ++j)
-        if (!clear_of(e, chain[j], r, margin)) return false;
+        if (!clear_of(e, chain[j], may_come_back ? r / 4 : r, margin)) return false;
     return true;
 }
 

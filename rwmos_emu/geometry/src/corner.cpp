@@ -211,6 +211,11 @@ Element line(const Vec2& a, const Vec2& b) noexcept {
 OffsetElement with_start(const OffsetElement& o, const Vec2& x) noexcept {
     OffsetElement out = o;
     out.path.start = x;
+    // A full circle still closes where it starts: a whole turn from x.
+    if (is_arc(o.path) && std::abs(o.sweep) >= kTwoPi) {
+        out.path.end = x;
+        return out;
+    }
     if (is_arc(o.path)) {
         const Vec2 before = o.path.start - o.path.centre;
         const Vec2 after = x - o.path.centre;
@@ -355,8 +360,16 @@ Transition outside_transition(const Vec2& corner, const Vec2& held_end, const Ve
             return out;
         }
     }
-    const Vec2 extended_end = held_end + r * end_tangent;
-    const Vec2 extended_start = next_start - r * start_tangent;
+    // The turn the tool makes round the corner: away from the tool (clockwise for G41). A
+    // reversal read from a wedge turns a little over 180 degrees; there extensions of r would
+    // cut the chamfer into the circle of radius r about the corner, so they are lengthened to
+    // r tan(turn / 4), which lays the chamfer on that circle's tangent.
+    double around = turn_angle(end_tangent, start_tangent);
+    if (side == Side::kLeft) around = -around;
+    if (around < 0) around += 2 * std::numbers::pi;
+    const double reach = r * std::max(1.0, std::tan(0.25 * around));
+    const Vec2 extended_end = held_end + reach * end_tangent;
+    const Vec2 extended_start = next_start - reach * start_tangent;
     out.elements[0] = line(held_end, extended_end);
     out.elements[1] = line(extended_end, extended_start);
     out.elements[2] = line(extended_start, next_start);

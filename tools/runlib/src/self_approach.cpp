@@ -93,16 +93,18 @@ double distance_to(const Shape& e, const Vec2& p) {
     return std::min((p - e.start).norm(), (p - e.end).norm());
 }
 
+
 // The least distance from `path` to `contour`, refined until it is known to be at least
 // `threshold` (then some value >= threshold is returned) or a point closer is found.
 double least_distance(const Shape& path, const Shape& contour, double threshold) {
     struct Span {
         double t0, t1, d0, d1;
     };
-    double best = std::min(distance_to(contour, path.start), distance_to(contour, path.end));
+    const double d_start = distance_to(contour, path.start);
+    const double d_end = distance_to(contour, path.end);
+    double best = std::min(d_start, d_end);
     if (best < threshold) return best;
-    std::vector<Span> stack{{0.0, 1.0, distance_to(contour, path.start),
-                             distance_to(contour, path.end)}};
+    std::vector<Span> stack{{0.0, 1.0, d_start, d_end}};
     int evaluations = 2;
     while (!stack.empty() && evaluations < kMaxEvaluations) {
         const Span s = stack.back();
@@ -269,13 +271,56 @@ struct SelfApproachCheck::Grid {
 
 namespace {
 
-// The contour element and the path item are neighbours: their corner rules already keep the
-// path r from it.
-bool neighbours(std::uint64_t contour_index, std::uint64_t contour_stretch,
-                std::uint64_t path_index, std::uint64_t path_stretch, bool transition) {
-    if (contour_stretch != path_stretch) return false;
-    if (transition) return contour_index == path_index || contour_index == path_index + 1;
-    return contour_index + 1 >= path_index && contour_index <= path_index + 1;
+// How a contour element stands to a path item. kOwn: the path is its offset (an offset keeps r
+// from the whole element). kHeld, kNext: the path is the transition at the corner where the
+// element ends or starts; there the corner rule keeps the path r from it, but an arc of more
+// than half a turn comes back round towards that corner (a near-full arc followed by a sharp
+// corner): its part more than half a turn away is checked. kBefore, kAfter: the element before
+// or after the path's element; at their common corner the corner rule keeps the path r from
+// it (trimmed at a point r from both, or bridged round the corner at r), away from it nothing
+// does (an arc curling round, a contour that comes back alongside after a reversal).
+enum class Relation { kOther, kOwn, kHeld, kNext, kBefore, kAfter };
+Relation relation(std::uint64_t contour_index, std::uint64_t contour_stretch,
+                  std::uint64_t path_index, std::uint64_t path_stretch, bool transition) {
+    if (contour_stretch != path_stretch) return Relation::kOther;
+    if (transition) {
+        if (contour_index == path_index) return Relation::kHeld;
+        if (contour_index == path_index + 1) return Relation::kNext;
+        return Relation::kOther;
+    }
+    if (contour_index == path_index) return Relation::kOwn;
+    if (contour_index + 1 == path_index) return Relation::kBefore;
+    if (contour_index == path_index + 1) return Relation::kAfter;
+    return Relation::kOther;
+}
+
+// How much closer than r a path may come: the path tolerance; to a neighbour twice that (a
+// tangent join may move the next element's start by up to the path tolerance).
+double threshold_for(Relation rel, double r) {
+    const bool neighbour = rel == Relation::kBefore || rel == Relation::kAfter;
+    return r - (neighbour ? 2.0 : 1.0) * SelfApproachCheck::kTolerance;
+}
+
+// The part of `c` a path of relation `rel` is checked against: all of it, or for a transition
+// at its own corner the part of an arc more than half a turn from that corner (false: none).
+bool checked_part(const Shape& c, Relation rel, Shape& out) {
+    if (rel == Relation::kOther || rel == Relation::kBefore || rel == Relation::kAfter) {
+        out = c;
+        return true;
+    }
+    if (rel == Relation::kOwn || !c.arc) return false;
+    const double turn = std::abs(c.sweep);
+    if (turn <= std::numbers::pi) return false;
+    const double cut = rel == Relation::kHeld ? (turn - std::numbers::pi) / turn
+                                              : std::numbers::pi / turn;
+    const double t0 = rel == Relation::kHeld ? 0.0 : cut;
+    const double t1 = rel == Relation::kHeld ? cut : 1.0;
+    out = c;
+    out.start = point_at(c, t0);
+    out.end = point_at(c, t1);
+    out.sweep = c.sweep * (t1 - t0);
+    out.length = c.length * (t1 - t0);
+    return true;
 }
 
 }  // namespace
@@ -351,9 +396,11 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     // the element is known not to be the stretch's last.
     for (const std::uint32_t pid : g.near(g.path_cells, e, g.max_r)) {
         const Grid::Item& p = g.path[pid];
-        if (neighbours(index, stretch_, p.index, p.stretch, p.transition)) continue;
+        const Relation rel = relation(index, stretch_, p.index, p.stretch, p.transition);
+        Shape part;
+        if (!checked_part(e, rel, part)) continue;
         SelfApproachFinding f;
-        if (report(p.shape, p.block, p.r, plane_, e, s.block, p.r - kTolerance, f))
+        if (report(p.shape, p.block, p.r, plane_, part, s.block, threshold_for(rel, p.r), f))
             held_.emplace_back(f, id);
     }
 }
@@ -386,12 +433,14 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     const Shape e = shape_of(s, p.plane);
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
-    const double threshold = p.r - kTolerance;
     for (const std::uint32_t id : g.near(g.contour_cells, e, p.r)) {
         const Grid::Item& c = g.contour[id];
-        if (!c.protect || neighbours(c.index, c.stretch, p.index, p.stretch, transition)) continue;
+        const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
+        Shape part;
+        if (!c.protect || !checked_part(c.shape, rel, part)) continue;
         SelfApproachFinding f;
-        if (!report(e, s.block, p.r, p.plane, c.shape, c.block, threshold, f)) continue;
+        if (!report(e, s.block, p.r, p.plane, part, c.block, threshold_for(rel, p.r), f))
+            continue;
         if (active_ && id == latest_)
             held_.emplace_back(f, id);  // the stretch's last element, perhaps
         else

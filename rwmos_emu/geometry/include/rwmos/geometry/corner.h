@@ -68,7 +68,9 @@ struct Transition {
 // kCircular: one arc about the corner of radius r.
 // kLinear: turns up to kLinearCornerMaxTurn: two lines along the tangents meeting at
 // their intersection; sharper turns: a line along end_tangent of length r, a chamfer line,
-// and a line of length r arriving along start_tangent.
+// and a line of length r arriving along start_tangent (r tan(turn / 4) for a reversal read
+// from a wedge, whose turn round the corner is a little over 180 degrees: the chamfer then
+// touches the circle of radius r about the corner).
 Transition outside_transition(const Vec2& corner, const Vec2& held_end, const Vec2& end_tangent,
                               const Vec2& next_start, const Vec2& start_tangent, Side side,
                               double r, TransitionMode mode) noexcept;

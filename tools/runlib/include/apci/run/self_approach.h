@@ -6,9 +6,12 @@
 // and no corner rule sees it. `apcictl run` sees the whole program: this check compares every
 // executed compensated segment with every programmed compensated element that is not its
 // neighbour, in the plane of compensation, and reports each place where they come closer than
-// the tool radius less the path tolerance (docs/compensation.md, "Self-approach"). The first and
-// the last element of each compensated stretch are its approach and departure: paths must not
-// come near the elements between, not near those two.
+// the tool radius less the path tolerance (docs/compensation.md, "Self-approach"); the element
+// before and the one after count too (at their common corner the corner rule keeps the path r
+// from them; away from it an arc curling round, or a contour coming back alongside after a
+// reversal, can come closer), with twice the tolerance (a tangent join may move a start by it).
+// The first and the last element of each compensated stretch are its approach and departure:
+// paths must not come near the elements between, not near those two.
 //
 // Cost: a uniform grid of the programmed elements and of the executed segments, each kept once
 // (an element programmed again with the same geometry, as depth passes repeat a contour, is
