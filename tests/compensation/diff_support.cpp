@@ -27,16 +27,18 @@ std::string number(double v, int decimals) {
     return s;
 }
 
-// "X.. Y.." (G17) or "X.. Z.." (G18) of a plane point.
+// "X.. Y.." (G17), "X.. Z.." (G18) or "Y.. Z.." (G19) of a plane point.
 std::string axes(const DiffProgram& p, const Vec2& q) {
     if (p.plane == 18) return "X" + number(q.y(), p.decimals) + " Z" + number(q.x(), p.decimals);
+    if (p.plane == 19) return "Y" + number(q.x(), p.decimals) + " Z" + number(q.y(), p.decimals);
     return "X" + number(q.x(), p.decimals) + " Y" + number(q.y(), p.decimals);
 }
 
-// I/J (G17) or I/K (G18) of an arc: its centre from its start.
+// I/J (G17), I/K (G18) or J/K (G19) of an arc: its centre from its start.
 std::string centre_words(const DiffProgram& p, const Element& e) {
     const Vec2 d = e.centre - e.start;
     if (p.plane == 18) return "I" + number(d.y(), p.decimals) + " K" + number(d.x(), p.decimals);
+    if (p.plane == 19) return "J" + number(d.x(), p.decimals) + " K" + number(d.y(), p.decimals);
     return "I" + number(d.x(), p.decimals) + " J" + number(d.y(), p.decimals);
 }
 

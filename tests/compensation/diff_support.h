@@ -15,7 +15,8 @@
 namespace apci::test {
 
 // A compensated contour with its lead-in and lead-out, in the plane's coordinates (first,
-// second): G17 (X, Y), G18 (Z, X). The program: rapid to `start`, G41/G42 with a line to
+// second): G17 (X, Y), G18 (Z, X), G19 (Y, Z; our dialect only, LinuxCNC has no G19). The
+// program: rapid to `start`, G41/G42 with a line to
 // `entry_end` (the selection block), then `elements` (the lead-in line, the contour, the
 // lead-out line), then G40 with a line to `exit_end` (the deselection block).
 struct DiffProgram {
