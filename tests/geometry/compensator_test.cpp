@@ -281,6 +281,24 @@ TEST(Compensator, KorrErrorWhenTheElementDoesNotStartWhereTheHeldOneEnds) {
     EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
 }
 
+TEST(Compensator, ContinuityAllowsRoundingUpToItsToleranceAndNoMore) {
+    // kContinuityTolerance (1e-6): the spooler composes each start from the previous end, so
+    // only rounding may part them; twice that is a gap.
+    for (const double off : {0.5 * kContinuityTolerance, 2 * kContinuityTolerance}) {
+        PathCompensator c;
+        SegmentBatch out;
+        ASSERT_TRUE(c.begin(config(1), {-5, -5}).ok());
+        ASSERT_TRUE(c.push(kSquare[0], 0, out).ok());
+        const StepResult r = c.push(make_line({10, off}, {10, 10}), 1, out);
+        if (off < kContinuityTolerance) {
+            EXPECT_TRUE(r.ok()) << off;
+        } else {
+            EXPECT_EQ(r.reason, Reason::kDiscontinuous) << off;
+            EXPECT_TRUE(out.empty());
+        }
+    }
+}
+
 TEST(Compensator, CalcErrorForAnUnknownElementKindChangesNothing) {
     PathCompensator c;
     SegmentBatch out;

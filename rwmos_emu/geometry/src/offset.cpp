@@ -109,6 +109,8 @@ Element emitted_path(const OffsetElement& o) noexcept {
     if (!is_arc(o.path)) return o.path;
     if (std::abs(o.sweep) < std::numbers::pi && (o.path.end - o.path.start).norm() <= kMinArcChord)
         return make_line(o.path.start, o.path.end);
+    if (!is_full_circle(o.path) && std::max(radius(o.path), end_radius(o.path)) < kPathTolerance)
+        return make_line(o.path.start, o.path.end);
     return o.path;
 }
 

@@ -62,7 +62,10 @@ OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) no
 
 // What the spooler receives: arcs turning less than half a circle with a chord of at
 // most kMinArcChord become lines (so no emitted arc reads as a full circle), a full
-// offset circle ends exactly at its start.
+// offset circle ends exactly at its start, and an offset arc whose radius is below the path
+// tolerance at both ends (a tool that just fits a concave arc: its centre stays at the arc's
+// centre) becomes a line, because its angles say nothing once a tangent join has moved one of
+// its ends by as much as its radius.
 Element emitted_path(const OffsetElement& o) noexcept;
 
 }  // namespace rwmos::geom
