@@ -260,6 +260,66 @@ TEST_F(Spooler, RapidMakesCompensationIneffectiveAndTheNextProfileReApproaches) 
     expect_at(segs[3].end, 20, 21);
 }
 
+// Design (docs/motion.md section 4): a profile while another group is active does not continue
+// the contour under way. The held profile is spooled to its offset end without departure, and
+// the new active group's first profile approaches its own compensated path.
+TEST_F(Spooler, ChangeOfTheActiveGroupEndsTheContourAndTheNewGroupApproaches) {
+    setup_group(1.0);  // group 1: X0 Y1 Z2, left, radius 1
+    // Group 2 on axes 3/4/5 with the same radius and side (setup_group's RESET acts on every
+    // group, so it is written here object by object).
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 2, tc::kSubXAxis, 3), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 2, tc::kSubYAxis, 4), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 2, tc::kSubZAxis, 5), Status::kOk);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 2, tc::kSubRadius, 1.0), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 2, tc::kSubLeft, 0), Status::kOk);
+    activate(1);
+    activate(2);
+    spool_ok(line(1, 10, 0));
+    ASSERT_TRUE(prof_marked(1));
+    ASSERT_EQ(board.motion_status().compensating_group, 1);
+    // X/Y/Z-Axis-Nr name axes 3/4/5: TcPlane's plane is now group 2's.
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxAxisNr, tc::kSubX, 3), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxAxisNr, tc::kSubY, 4), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxAxisNr, tc::kSubZ, 5), Status::kOk);
+    Profile p;
+    p.kind = ProfileKind::kLine;
+    p.tag = 2;
+    p.feed = 600.0;
+    p.axes = 0x18;  // axes 3 and 4
+    p.target[3] = 10.0;
+    spool_ok(p);
+    EXPECT_FALSE(prof_marked(1)) << "group 1's held profile was spooled";
+    EXPECT_TRUE(running(1)) << "group 1 still runs; it is only no longer the active group";
+    EXPECT_TRUE(prof_marked(2));
+    EXPECT_EQ(board.motion_status().compensating_group, 2);
+    EXPECT_EQ(error(1), 0);
+    EXPECT_EQ(error(2), 0);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 3u) << "approach 1, contour 1 (no departure), approach 2";
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[1].tag, 1u);
+    expect_at(segs[1].end, 10, 1);  // group 1's offset end: the tool does not leave the path
+    EXPECT_EQ(segs[2].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[2].tag, 2u);
+    EXPECT_EQ(segs[2].start[3], 0.0);
+    EXPECT_EQ(segs[2].start[4], 0.0);
+    EXPECT_NEAR(segs[2].end[3], 0.0, kEps);
+    EXPECT_NEAR(segs[2].end[4], 1.0, kEps);  // onto group 2's path, left of +axis 3
+    // Axes outside group 2's plane go to the element's start (docs/motion.md section 5): group
+    // 1's axes to their programmed position, which group 1 no longer compensates.
+    expect_at(segs[2].end, 10, 0);
+    ASSERT_EQ(deactivate(2), Status::kOk);
+    run();
+    const auto rest = segments();
+    ASSERT_EQ(rest.size(), 2u);
+    EXPECT_EQ(rest[0].role, SegmentRole::kContour);
+    EXPECT_NEAR(rest[0].end[3], 10.0, kEps);
+    EXPECT_NEAR(rest[0].end[4], 1.0, kEps);
+    EXPECT_EQ(rest[1].role, SegmentRole::kDeparture);
+    EXPECT_NEAR(rest[1].end[4], 0.0, kEps);
+}
+
 TEST_F(Spooler, RapidWithoutFeedRunsAtTheDefaultRapidFeed) {
     // 60 units at 60000 units/min and 1 ms cycles: 1 unit per cycle.
     spool_ok(rapid(1, 60, 0));

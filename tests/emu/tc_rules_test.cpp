@@ -249,6 +249,53 @@ TEST_F(TcRules, StatusOneWithAnAxisOfARunningGroupSetsInitError) {
     EXPECT_EQ(status_of(2), tc::kRun);
 }
 
+// Initialised, condition 1 (design, docs/object-map.md STATUS): XAxis, YAxis and ZAxis name three
+// different board axes; ZAxis counts like the other two (the length correction acts on it).
+TEST_F(TcRules, StatusOneWithAnyTwoOfTheThreeAxesEqualSetsInitError) {
+    const std::int32_t subs[3] = {tc::kSubXAxis, tc::kSubYAxis, tc::kSubZAxis};
+    for (int a = 0; a < 3; ++a) {
+        for (int b = a + 1; b < 3; ++b) {
+            initialise_group(1);
+            ASSERT_EQ(write_int(tc_group(1, tc::kSubError), 0), Status::kOk);
+            // Axis b on axis a's board axis.
+            ASSERT_EQ(write_int(tc_group(1, subs[b]), a), Status::kOk);
+            EXPECT_EQ(rwmos::initialisation_fault(tc_state(), 1),
+                      rwmos::InitFault::kAxesNotDistinct)
+                << "axis " << b << " = axis " << a;
+            EXPECT_EQ(write_int(tc_group(1, tc::kSubStatus), 1), Status::kWrongDeviceState);
+            EXPECT_EQ(status_of(1), 0);
+            EXPECT_EQ(error_of(1), tc::kInitError);
+        }
+    }
+}
+
+// Initialised, condition 3 (design, docs/object-map.md STATUS): no other running group uses any
+// of its three axes. Each of the three axes of the group to activate, ZAxis included, against
+// each of the running group's three, ZAxis included.
+TEST_F(TcRules, StatusOneWithAnyAxisOnAnyAxisOfARunningGroupSetsInitError) {
+    initialise_group(1);  // X0 Y1 Z2
+    activate(1);
+    const std::int32_t subs[3] = {tc::kSubXAxis, tc::kSubYAxis, tc::kSubZAxis};
+    for (int mine = 0; mine < 3; ++mine) {
+        for (std::int32_t theirs = 0; theirs < 3; ++theirs) {
+            // Group 2 on axes 3/4/5, save one that lands on group 1's axis `theirs`.
+            std::int32_t axes[3] = {3, 4, 5};
+            axes[mine] = theirs;
+            for (int i = 0; i < 3; ++i)
+                ASSERT_EQ(write_int(tc_group(2, subs[i]), axes[i]), Status::kOk);
+            ASSERT_EQ(write_int(tc_group(2, tc::kSubLeft), 0), Status::kOk);
+            ASSERT_EQ(write_int(tc_group(2, tc::kSubError), 0), Status::kOk);
+            EXPECT_EQ(rwmos::initialisation_fault(tc_state(), 2), rwmos::InitFault::kAxisInUse)
+                << "group 2 axis " << mine << " on board axis " << theirs;
+            EXPECT_EQ(write_int(tc_group(2, tc::kSubStatus), 1), Status::kWrongDeviceState);
+            EXPECT_EQ(status_of(2), 0);
+            EXPECT_EQ(error_of(2), tc::kInitError);
+            EXPECT_EQ(error_of(1), 0);
+            EXPECT_EQ(status_of(1), tc::kRun);
+        }
+    }
+}
+
 TEST_F(TcRules, StatusOneWhenInitialisedSetsRun) {
     RecordingMotion motion;
     board.state().tc_motion = &motion;

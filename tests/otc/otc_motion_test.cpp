@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <string>
 #include <vector>
 
 #include "otc_fixture.h"
@@ -87,6 +89,79 @@ TEST_F(OtcBoard, TiltedDiscSplitsTheWearIntoSinAndCosParts) {
     EXPECT_NEAR(wear(2), 10.0 * std::sqrt(3.0) / 2.0, kEps);
     // The length wear is the whole 10 mm along the tilted disc axis.
     EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, 40.0, kEps);
+}
+
+// ---- The continuous wear along arcs and helices (seed 000 section 2.1, docs/otc.md section 1)
+
+// W = wear constant x the path length on the main axes, with the length worked out by hand: an
+// arc R |sweep|, a helix sqrt((R sweep)^2 + dz^2). In every processing type and both modes with
+// continuous wear, W after the move and the wear #OTC OFF folds into the variables and the tool.
+// RADIUS wears only on the compensated contour, the tool-centre path: G41 on a CCW arc of
+// radius 20 with a tool of radius 5 runs on radius 15 (the approach and departure wear nothing).
+TEST(OtcWear, ArcsAndHelicesWearTheWearConstantTimesTheirLengthOnTheMainAxes) {
+    constexpr double kRatio = kSeedWearConst * 1e-7;  // wear per unit of path
+    constexpr double kArcRadius = 20.0;
+    constexpr double kToolRadius = 5.0;
+    constexpr double kPi = std::numbers::pi;
+    struct Shape {
+        const char* name;
+        double sweep;  // CCW, from (20, 0) about (0, 0)
+        double dz;     // third-axis travel
+    };
+    const Shape shapes[] = {
+        {"quarter arc", kPi / 2, 0.0}, {"full circle", 2 * kPi, 0.0}, {"helix", kPi / 2, 10.0}};
+    for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
+                      otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        for (auto mode : {otc::Mode::kCont, otc::Mode::kAuto}) {
+            for (const Shape& shape : shapes) {
+                const std::string label = std::string(otc::processing_type_name(type)) + " " +
+                                          std::string(otc::mode_name(mode)) + " " + shape.name;
+                const bool radius = type == otc::ProcessingType::kRadius;
+                const double rho = radius ? kArcRadius - kToolRadius : kArcRadius;
+                const double expected = kRatio * std::hypot(rho * shape.sweep, shape.dz);
+                OtcRig r;
+                if (radius) r.setup_group(kToolRadius, /*left=*/true);
+                r.grinding_tool();
+                ASSERT_EQ(r.set_type(type), Status::kOk);
+                ASSERT_EQ(r.set_mode(mode), Status::kOk);
+                ASSERT_EQ(r.otc_on(), Status::kOk);
+                r.spool_ok(rapid(1, kArcRadius, 0.0));  // wear-free
+                if (radius) r.activate(1);              // G41
+                const bool full = shape.sweep == 2 * kPi;
+                Profile p =
+                    arc(2, /*ccw=*/true, full ? kArcRadius : kArcRadius * std::cos(shape.sweep),
+                        full ? 0.0 : kArcRadius * std::sin(shape.sweep), 0.0, 0.0, 10000.0);
+                if (shape.dz != 0.0) {
+                    p.axes = 0x07;
+                    p.target[2] = shape.dz;
+                }
+                r.spool_ok(p);
+                if (radius) {
+                    ASSERT_EQ(r.deactivate(1), Status::kOk);  // G40
+                }
+                r.run();
+                EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), expected, kEps) << label;
+                ASSERT_EQ(r.otc_off(), Status::kOk);
+                const auto& tool = r.board.state().tc.group(1).tools[kTool];
+                if (radius) {
+                    EXPECT_NEAR(r.wear_radius_cont(), expected, kEps) << label;
+                    EXPECT_NEAR(r.wear_radius(), expected, kEps) << label;
+                } else {
+                    // Along d, a unit vector: the wear vector over the axes is W long.
+                    double sum = 0.0;
+                    for (int a = 0; a < 8; ++a) sum += r.wear(a) * r.wear(a);
+                    EXPECT_NEAR(std::sqrt(sum), expected, kEps) << label;
+                }
+                // The fold: RADIUS and SURF_NORM_DIR shorten the radius, LENGTH and TOOL_DIR
+                // the length (docs/otc.md section 6).
+                const bool into_radius = radius || type == otc::ProcessingType::kSurfNormDir;
+                EXPECT_NEAR(tool.radius, kSeedRadius - (into_radius ? expected : 0.0), kEps)
+                    << label;
+                EXPECT_NEAR(tool.length, kSeedLength - (into_radius ? 0.0 : expected), kEps)
+                    << label;
+            }
+        }
+    }
 }
 
 // The analytic fast path gives the same bits as stepping every cycle (docs/motion.md).
@@ -241,6 +316,38 @@ TEST_F(WrQuadDisc, OffsetRampsOutAfterTheDepartureAndTheWearFoldsIntoTheRadius) 
     EXPECT_NEAR(wear_radius(), 2.0, kEps);
     EXPECT_EQ(wear_radius_cont(), 0.0);  // DISC: nothing continuous
     EXPECT_NEAR(board.state().tc.group(1).tools[kTool].radius, 28.0, kEps);
+}
+
+// Design (docs/otc.md section 2, RADIUS in detail): along the approach after G41/G42 the first
+// contour move's normal is weighed in from 0 to 1. A fast ramp makes the offset follow its
+// target, so the channel unit's 1 mm shows the weight cycle by cycle.
+TEST_F(OtcBoard, RadiusNormalIsWeighedInAlongTheApproach) {
+    setup_group(kSeedRadius, /*left=*/true);  // the approach runs 30 mm
+    grinding_tool();
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxRampVelocity, 0, 1000.0), Status::kOk);
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxRampAcceleration, 0, 1.0e6), Status::kOk);
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    ASSERT_EQ(plc(-1, 10000), Status::kOk);  // 1 mm
+    activate(1);                             // G41
+    spool_ok(line(1, 100.0, 0.0));
+    spool_ok(line(2, 200.0, 0.0));
+    auto& e = board.state().motion.executor();
+    std::vector<double> sizes;  // |offset| at every cycle of the approach
+    while (e.fill() > 0 && e.queued(0).role == SegmentRole::kApproach) {
+        board.step(1);
+        sizes.push_back(norm(offset()));
+    }
+    ASSERT_GT(sizes.size(), 1000u);
+    EXPECT_LT(sizes.front(), 0.01);
+    for (std::size_t i = 1; i < sizes.size(); ++i)
+        EXPECT_GE(sizes[i], sizes[i - 1] - 1e-12) << "cycle " << i;
+    EXPECT_NEAR(sizes.back(), 1.0, 1e-3);
+    // On the contour it stays at 1 mm, towards the contour (left of +X, -Y).
+    board.step(1000);
+    EXPECT_NEAR(offset()[0], 0.0, kEps);
+    EXPECT_NEAR(offset()[1], -1.0, kEps);
 }
 
 // ---- TOOL_DIR (seed 000 section 2.4, "OTC-Schleifen mit Kinematiktyp 4")

@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
+#include <numbers>
+#include <string>
+#include <vector>
 
 #include "emu_test_util.h"
 #include "otc_fixture.h"
@@ -185,6 +189,72 @@ TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
     EXPECT_EQ(norm(offset()), 0.0);
     run_and_off();
     EXPECT_EQ(wear_radius(), 0.0);
+}
+
+// Seed 000 section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2 "Hinweis": the approach
+// after G41/G42 and the move after G40 are wear-free, and RADIUS wears only with radius
+// compensation (docs/otc.md, "Wear-free moves"). One move of every role, in every processing
+// type and in both modes with continuous wear; the wear each move adds, taken as it ends,
+// against its path length worked out by hand.
+TEST(OtcWearByRole, RapidApproachAndDepartureAreWearFreeAndRadiusWearsOnlyTheContour) {
+    constexpr double kRatio = kSeedWearConst * 1e-7;  // wear per unit of path
+    // G00 X0 Y-20 / G01 Y0 / G41 (tool radius 5, G26) G01 X50 / X50 Y-50 / G40.
+    struct Expected {
+        SegmentRole role;
+        double length;
+    };
+    const Expected moves[] = {
+        {SegmentRole::kRapid, 20.0},                             // (0,0) to (0,-20)
+        {SegmentRole::kUncompensated, 20.0},                     // back to (0,0)
+        {SegmentRole::kApproach, 5.0},                           // to (0,5), left of +X
+        {SegmentRole::kContour, 50.0},                           // (0,5) to (50,5)
+        {SegmentRole::kTransition, 5.0 * std::numbers::pi / 2},  // quarter arc about (50,0)
+        {SegmentRole::kContour, 50.0},                           // (55,0) to (55,-50)
+        {SegmentRole::kDeparture, 5.0},                          // to the programmed end (50,-50)
+    };
+    for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
+                      otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        for (auto mode : {otc::Mode::kCont, otc::Mode::kAuto}) {
+            const std::string label = std::string(otc::processing_type_name(type)) + " " +
+                                      std::string(otc::mode_name(mode));
+            OtcRig r;
+            r.setup_group(5.0, /*left=*/true);
+            r.grinding_tool();
+            ASSERT_EQ(r.set_type(type), Status::kOk);
+            ASSERT_EQ(r.set_mode(mode), Status::kOk);
+            ASSERT_EQ(r.otc_on(), Status::kOk);
+            r.spool_ok(rapid(1, 0.0, -20.0));
+            r.spool_ok(line(2, 0.0, 0.0, 10000.0));
+            r.activate(1);
+            r.spool_ok(line(3, 50.0, 0.0, 10000.0));
+            r.spool_ok(line(4, 50.0, -50.0, 10000.0));
+            ASSERT_EQ(r.deactivate(1), Status::kOk);
+            const auto& engine = r.board.state().otc_engine;
+            std::vector<Segment> done;
+            std::vector<double> wear;  // the wear each move added
+            double before = engine.continuous_wear();
+            while (r.board.state().motion.executor().fill() > 0) {
+                r.board.step(1);
+                const auto ended = r.segments();
+                ASSERT_LE(ended.size(), 1u) << label << ": one move ends per cycle";
+                if (ended.empty()) continue;
+                done.push_back(ended[0]);
+                wear.push_back(engine.continuous_wear() - before);
+                before = engine.continuous_wear();
+            }
+            ASSERT_EQ(done.size(), std::size(moves)) << label;
+            for (std::size_t i = 0; i < done.size(); ++i) {
+                ASSERT_EQ(done[i].role, moves[i].role) << label << " move " << i;
+                const bool contour = moves[i].role == SegmentRole::kContour ||
+                                     moves[i].role == SegmentRole::kTransition;
+                const bool wears = contour || (moves[i].role == SegmentRole::kUncompensated &&
+                                               type != otc::ProcessingType::kRadius);
+                EXPECT_NEAR(wear[i], wears ? kRatio * moves[i].length : 0.0, kEps)
+                    << label << " move " << i << " ("
+                    << rwmos::motion::segment_role_name(moves[i].role) << ")";
+            }
+        }
+    }
 }
 
 // Seed 000 section 2.1 WEAR_CONST=..: "wirkt modal" instead of the tool's; WEAR_CONST_TOOL
@@ -455,6 +525,43 @@ TEST_F(OtcBoard, OtcOffConsumesTheDiscreteCommands) {
     ASSERT_EQ(otc_off(), Status::kOk);
     EXPECT_EQ(otc_read_int(otc::kDevAxisUnits, 2, otc::kSubCommand), 0);
     EXPECT_NEAR(wear(2), 0.1, kEps);
+}
+
+// docs/otc.md section 6, LENGTH: length -= W + sum of D_i d_i: of the discrete offsets, only
+// their parts along the disc axis shorten the tool. A 30-degree disc: d = (sin 30, 0, cos 30).
+TEST_F(OtcBoard, LengthFoldTakesTheDiscreteOffsetsAlongTheDiscAxis) {
+    grinding_tool(otc::kGrindingToolType, kSeedWearConst, kSeedMaxInfeed, 300000.0);
+    ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    ASSERT_EQ(plc(0, 10000), Status::kOk);  // 1 mm on X
+    ASSERT_EQ(plc(1, 10000), Status::kOk);  // 1 mm on Y: across the disc axis
+    ASSERT_EQ(plc(2, 20000), Status::kOk);  // 2 mm on Z
+    board.step(20000);
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_NEAR(wear(0), 1.0, kEps);
+    EXPECT_NEAR(wear(1), 1.0, kEps);
+    EXPECT_NEAR(wear(2), 2.0, kEps);
+    const double along = 1.0 * 0.5 + 2.0 * std::sqrt(3.0) / 2.0;
+    for (const auto& g : board.state().tc.groups) {
+        EXPECT_NEAR(g.tools[kTool].length, kSeedLength - along, kEps);
+        EXPECT_EQ(g.tools[kTool].radius, kSeedRadius);
+    }
+}
+
+// docs/otc.md section 6: the radius folds "not below 0"; the variables keep the whole wear.
+TEST_F(OtcBoard, FoldedRadiusStopsAtZero) {
+    grinding_tool();
+    for (auto& g : board.state().tc.groups) g.tools[kTool].radius = 4.0;
+    ASSERT_EQ(set_type(otc::ProcessingType::kSurfNormDir), Status::kOk);  // folds into the radius
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 1000.0, 0.0, 10000.0));  // 10 mm of wear, more than the radius
+    run_and_off();
+    EXPECT_NEAR(wear(2), 10.0, kEps);
+    for (const auto& g : board.state().tc.groups) {
+        EXPECT_EQ(g.tools[kTool].radius, 0.0);
+        EXPECT_EQ(g.tools[kTool].length, kSeedLength);
+    }
 }
 
 TEST(OtcOption, WithoutTheOptionBus1330IsMissing) {
