@@ -46,10 +46,9 @@ inline constexpr double kMinArcChord = 2 * kPointTolerance;
 // each start from the previous end, so only rounding of composed coordinates is allowed.
 inline constexpr double kContinuityTolerance = 1e-6;
 
-// A join is tangent when joining the two offset elements directly, without trimming
-// or a transition, moves the path at most kPathTolerance from the exact construction:
-// for a turn theta that deviation is r (1 - cos theta) (classify_corner, corner.h).
-inline constexpr double kTangentDeviation = kPathTolerance;
+// A join is tangent when its two offset ends lie at most kPathTolerance apart: 2 r
+// |sin(turn / 2)| (offset_gap, classify_corner in corner.h). The next element then starts
+// where the held one ends, which moves its start by at most that much.
 
 // Start and end radius of an arc may differ by this much before CenterError: rounding
 // start, end and centre to kCoordinateResolution moves each radius by up to
