@@ -284,13 +284,8 @@ double first_meeting(const Element& h, const Element& n, double r, bool left) {
         const double t = 1.0 - (1.0 - lowest) * u * u * u;
         const OffsetReading now = at(t);
         if ((now.residual <= 0) != (prev.residual <= 0)) {
-            double lo = t, hi = prev_t;
-            const bool lo_negative = now.residual <= 0;
-            for (int m = 0; m < 100 && hi - lo > 1e-15; ++m) {
-                const double mid = 0.5 * (lo + hi);
-                ((at(mid).residual <= 0) == lo_negative ? lo : hi) = mid;
-            }
-            const double root = 0.5 * (lo + hi);
+            const double root =
+                bisect_sign_change([&](double x) { return at(x).residual; }, t, prev_t);
             double f = at(root).fraction;
             // An arc's foot just before its start reads as almost a whole turn.
             if (is_arc(n)) {

@@ -32,46 +32,22 @@
 #include <string>
 #include <vector>
 
+#include "contours.h"
 #include "rwmos/geometry/compensator.h"
 #include "rwmos/geometry/plane.h"
 
 namespace rwmos::geom {
 namespace {
 
+using apci::test::arc_from;
+using apci::test::dir;
+using apci::test::diverge;
+using apci::test::heading;
+using apci::test::Rng;
+using apci::test::turned;
+
 constexpr double kPi = std::numbers::pi;
 constexpr double kPropertyTolerance = 1e-6;
-
-// ---- Deterministic random numbers (splitmix64) ----
-class Rng {
-  public:
-    explicit Rng(std::uint64_t seed) : state_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-    double log_uniform(double lo, double hi) {
-        return std::exp(uniform(std::log(lo), std::log(hi)));
-    }
-    bool chance(double p) { return uniform() < p; }
-    int integer(int lo, int hi) { return lo + static_cast<int>(next() % (hi - lo + 1)); }
-
-  private:
-    std::uint64_t state_;
-};
-
-Vec2 dir(double angle) {
-    return {std::cos(angle), std::sin(angle)};
-}
-Vec2 turned(const Vec2& v, double a) {
-    return {std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y()};
-}
-double heading(const Vec2& t) {
-    return std::atan2(t.y(), t.x());
-}
 
 // ---- Contour generation ----
 
@@ -82,51 +58,9 @@ struct Contour {
     std::uint64_t seed = 0;
 };
 
-// Sampled minimum distance from a to b; at most spacing / 2 above the true minimum.
-double sampled_distance(const Element& a, const Element& b, double spacing) {
-    const int n = std::max(8, static_cast<int>(std::ceil(length(a) / spacing)) + 1);
-    double best = INFINITY;
-    for (int i = 0; i <= n; ++i) best = std::min(best, distance_to(b, point_at(a, double(i) / n)));
-    return best;
-}
-
+// Non-adjacent elements stay more than 2r apart, with a margin of r / 4.
 bool clear_of(const Element& e, const Element& other, double r) {
-    const double spacing = r / 4;
-    return sampled_distance(e, other, spacing) > 2 * r + spacing;
-}
-
-// Adjacent elements a -> b may come close only at their common corner: walking away from
-// the corner along either, the distance to the other must grow until it exceeds 2r, and
-// stay above it. (An arc can curl back towards its neighbour far from the corner; that is
-// self-approach as much as between non-adjacent elements.)
-bool walks_away(const Element& from, bool outwards_from_end, const Element& other, double r) {
-    const double spacing = r / 8;
-    const int n = std::max(16, static_cast<int>(std::ceil(length(from) / spacing)) + 1);
-    double last = 0;
-    bool clear = false;
-    for (int i = 1; i <= n; ++i) {
-        const double t = outwards_from_end ? 1.0 - double(i) / n : double(i) / n;
-        const double d = distance_to(other, point_at(from, t));
-        if (clear) {
-            if (d <= 2 * r + spacing) return false;
-        } else {
-            if (d < last) return false;
-            clear = d > 2 * r + spacing;
-        }
-        last = d;
-    }
-    return true;
-}
-
-bool diverge(const Element& a, const Element& b, double r) {
-    return walks_away(b, false, a, r) && walks_away(a, true, b, r);
-}
-
-Element arc_from(const Vec2& start, double start_heading, double radius, double turn) {
-    const bool ccw = turn > 0;
-    const Vec2 centre = start + radius * (ccw ? left_normal(dir(start_heading))
-                                              : Vec2(-left_normal(dir(start_heading))));
-    return make_arc(start, centre + turned(start - centre, turn), centre, ccw);
+    return apci::test::clear_of(e, other, r, r / 4);
 }
 
 // A random walk of lines and arcs; each new element stays more than 2r from all but its

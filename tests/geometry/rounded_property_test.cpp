@@ -257,13 +257,8 @@ Expectation expect(const Contour& c, Side side, TransitionMode /*mode: the same 
             const apci::test::OffsetReading now = h(t);
             closest = std::min(closest, std::abs(now.residual));
             if ((now.residual <= 0) != (prev.residual <= 0)) {
-                double lo = t, hi = prev_t;
-                const bool lo_negative = now.residual <= 0;
-                for (int m = 0; m < 200 && hi - lo > 1e-16; ++m) {
-                    const double mid = 0.5 * (lo + hi);
-                    ((h(mid).residual <= 0) == lo_negative ? lo : hi) = mid;
-                }
-                const double root = 0.5 * (lo + hi);
+                const double root = apci::test::bisect_sign_change(
+                    [&](double x) { return h(x).residual; }, t, prev_t);
                 double f = h(root).fraction;
                 // An arc's foot just before its start reads as almost a whole turn.
                 if (is_arc(b) && f > 1.0 && (f - 2 * kPi / std::abs(sweep(b))) * len_b > -1.0)

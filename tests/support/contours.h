@@ -149,6 +149,18 @@ inline OffsetReading read_offset(const Element& e, const Vec2& p, double r, bool
     return {concave_for(e, left) ? -outward : outward, fraction};
 }
 
+// Where f (a function of t whose sign differs at lo and hi) changes sign, by bisection to
+// double precision.
+template <typename F>
+double bisect_sign_change(F&& f, double lo, double hi) {
+    const bool lo_negative = f(lo) <= 0;
+    for (int m = 0; m < 200 && std::abs(hi - lo) > 1e-16; ++m) {
+        const double mid = 0.5 * (lo + hi);
+        ((f(mid) <= 0) == lo_negative ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 // Sampled minimum distance from a to b; at most spacing / 2 above the true minimum.
 inline double sampled_distance(const Element& a, const Element& b, double spacing) {
     const int n =
