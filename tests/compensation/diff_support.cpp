@@ -162,26 +162,19 @@ std::string linuxcnc_program(const DiffProgram& p) {
     return s;
 }
 
-OurRun run_ours(const DiffProgram& p) {
-    OurRun out;
-    const std::string tool_text = our_tool_list(p.r);
-    auto tools = apci::nc::parse_tool_table(tool_text, "diff.tools");
-    if (!tools) {
-        out.error = "tool list: " + tools.error().to_string();
-        return out;
-    }
+EmulatorRun run_on_emulator(std::string_view text, const std::string& name,
+                            const apci::nc::ToolTable& tools, apci::run::RunSink& sink) {
+    EmulatorRun out;
     apci::Board board("emu:");
     if (!board.is_open()) {
         out.error = "cannot open the embedded emulator";
         return out;
     }
-    Collector sink(p.plane);
-    apci::run::ProgramExecutor executor(board, sink, &tools.value());
+    apci::run::ProgramExecutor executor(board, sink, &tools);
     apci::nc::InterpreterOptions options;
     options.start_position = executor.position();
-    options.tools = &tools.value();
-    const std::string text = our_program(p);
-    auto program = apci::nc::Program::from_text(text, "diff.nc", options);
+    options.tools = &tools;
+    auto program = apci::nc::Program::from_text(text, name, options);
     if (!program) {
         out.error = "program: " + program.error().to_string();
         return out;
@@ -191,7 +184,25 @@ OurRun run_ours(const DiffProgram& p) {
         out.error = "program: " + stream.error().to_string();
         return out;
     }
-    const apci::run::RunOutcome result = executor.run(stream.value());
+    out.outcome = executor.run(stream.value());
+    return out;
+}
+
+OurRun run_ours(const DiffProgram& p) {
+    OurRun out;
+    const std::string tool_text = our_tool_list(p.r);
+    auto tools = apci::nc::parse_tool_table(tool_text, "diff.tools");
+    if (!tools) {
+        out.error = "tool list: " + tools.error().to_string();
+        return out;
+    }
+    Collector sink(p.plane);
+    const EmulatorRun run = run_on_emulator(our_program(p), "diff.nc", tools.value(), sink);
+    if (!run.error.empty()) {
+        out.error = run.error;
+        return out;
+    }
+    const apci::run::RunOutcome& result = run.outcome;
     out.path = std::move(sink.path);
     out.roles = std::move(sink.roles);
     out.lines = std::move(sink.lines);

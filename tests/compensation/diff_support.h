@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "apci/nc/tools.h"
+#include "apci/run/executor.h"
 #include "contours.h"
 #include "rwmos/geometry/element.h"
 
@@ -35,6 +37,16 @@ struct DiffProgram {
 std::string our_program(const DiffProgram& p);      // DIN 66025 for apcictl run
 std::string our_tool_list(double radius_mm);        // wz[1] with that radius
 std::string linuxcnc_program(const DiffProgram& p);  // RS274/NGC for rs274, G21
+
+// An NC program's text (named `name` in messages) run with `tools` through the executor of
+// `apcictl run` on a fresh embedded board, the executed segments to `sink`. `error` says what
+// stopped it before it ran (no board, a program the front end refuses); else `outcome`.
+struct EmulatorRun {
+    std::string error;
+    apci::run::RunOutcome outcome;
+};
+EmulatorRun run_on_emulator(std::string_view text, const std::string& name,
+                            const apci::nc::ToolTable& tools, apci::run::RunSink& sink);
 
 // Our side: the program run on the embedded emulator through the executor of `apcictl run`.
 struct OurRun {

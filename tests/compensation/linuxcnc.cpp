@@ -110,32 +110,46 @@ std::vector<CanonMove> parse_moves(const std::string& text, int plane) {
     rwmos::geom::Vec2 at = rwmos::geom::Vec2::Zero();
     std::istringstream lines(text);
     std::string line;
+    int compensation = 40;
     const auto to_plane = [plane](const std::vector<double>& v) {
         // STRAIGHT_*(x, y, z, ...)
         return plane == 18 ? rwmos::geom::Vec2(v[2], v[0]) : rwmos::geom::Vec2(v[0], v[1]);
     };
+    const auto third_of = [plane](const std::vector<double>& v) {
+        return plane == 18 ? v[1] : v[2];
+    };
     while (std::getline(lines, line)) {
         std::size_t open = std::string::npos;
         CanonMove m;
+        if (line.find("COMMENT(\"interpreter: cutter radius compensation ") != std::string::npos) {
+            compensation = line.find("compensation on left") != std::string::npos    ? 41
+                           : line.find("compensation on right") != std::string::npos ? 42
+                                                                                     : 40;
+            continue;
+        }
         if ((open = line.find("STRAIGHT_TRAVERSE(")) != std::string::npos) {
             const auto v = arguments(line, line.find('(', open));
             if (v.size() < 3) continue;
             m.rapid = true;
             m.path = rwmos::geom::make_line(at, to_plane(v));
+            m.third = third_of(v);
         } else if ((open = line.find("STRAIGHT_FEED(")) != std::string::npos) {
             const auto v = arguments(line, line.find('(', open));
             if (v.size() < 3) continue;
             m.path = rwmos::geom::make_line(at, to_plane(v));
+            m.third = third_of(v);
         } else if ((open = line.find("ARC_FEED(")) != std::string::npos) {
             // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end, ...):
             // first and second are the plane's (G17 X, Y; G18 Z, X), rotation > 0 ccw.
             const auto v = arguments(line, line.find('(', open));
             if (v.size() < 6) continue;
             m.path = rwmos::geom::make_arc(at, {v[0], v[1]}, {v[2], v[3]}, v[4] > 0);
+            m.third = v[5];
         } else {
             continue;
         }
         at = m.path.end;
+        m.compensation = compensation;
         out.push_back(m);
     }
     return out;
@@ -231,6 +245,14 @@ std::vector<Rs274Result> run_rs274(const Rs274& rs, const std::vector<std::strin
         finish_one();
     }
     return results;
+}
+
+const Rs274& test_rs274() {
+    static const Rs274 rs = [] {
+        const char* env = std::getenv("APCI_LINUXCNC_ROOT");
+        return find_rs274(env != nullptr && *env ? env : APCI_LINUXCNC_ROOT);
+    }();
+    return rs;
 }
 
 }  // namespace apci::test

@@ -22,6 +22,9 @@ struct Rs274 {
 };
 // Looks under `root` (the unpacked packages), and runs a trivial program once.
 Rs274 find_rs274(const std::string& root);
+// The tests' rs274: under $APCI_LINUXCNC_ROOT, else where the build unpacked it (the CMake
+// cache's APCI_LINUXCNC_ROOT); looked for once.
+const Rs274& test_rs274();
 
 // One move of rs274's output in the plane's coordinates (first, second): G17 (X, Y), G18
 // (Z, X). Arcs keep LinuxCNC's form: end point and centre (a spiral when rounding made the
@@ -29,6 +32,11 @@ Rs274 find_rs274(const std::string& root);
 struct CanonMove {
     rwmos::geom::Element path;
     bool rapid = false;  // STRAIGHT_TRAVERSE
+    // The cutter radius compensation in force when the interpreter issued the move: 40 off,
+    // 41 left, 42 right (from its comments "interpreter: cutter radius compensation on
+    // left/right/off", which it queues in order with the moves it holds back).
+    int compensation = 40;
+    double third = 0.0;  // the end point on the plane's third axis (G17 Z, G18 Y)
 };
 
 struct Rs274Result {

@@ -74,16 +74,8 @@ constexpr double kWindowTolerance = 2e-4;
 // as slack on LinuxCNC's side.
 constexpr double kStrictMismatch = 5e-5;
 
-const char* kRootDefault = APCI_LINUXCNC_ROOT;
-
-std::string root() {
-    const char* env = std::getenv("APCI_LINUXCNC_ROOT");
-    return env != nullptr && *env ? env : kRootDefault;
-}
-
 const Rs274& rs274() {
-    static const Rs274 rs = find_rs274(root());
-    return rs;
+    return test_rs274();
 }
 
 double turn_between(const Element& a, const Element& b) {

@@ -1,0 +1,863 @@
+// SPDX-License-Identifier: MIT
+// LinuxCNC's own example programs with cutter radius compensation (comp-g1.ngc, mmount.ngc,
+// gmoccapy_2_tools_with_cutter_radius_compensation.ngc, shipped with its package), rewritten
+// in our dialect in examples/linuxcnc/, run both ways: the original by LinuxCNC's interpreter
+// rs274, ours on the embedded emulator through the executor of `apcictl run`. The
+// compensated tool-centre paths are compared in the plane, in mm (docs/linuxcnc-examples.md):
+//
+// - every compensated stretch (G41 .. G40) of the one has its counterpart in the other, and
+//   our run has no errors (its warnings are printed: all must be SelfApproach);
+// - along the contour proper of each stretch (the elements after LinuxCNC's entry move, up to
+//   the last compensated one: from the start of the first one's offset, or its middle where
+//   the entry trims it, to the end of the last one's, or its middle) the two paths agree
+//   within 1e-3 mm (Hausdorff distance), and neither comes closer to the programmed contour
+//   than r - 2.5e-4 mm (where a program cuts into its own contour by design, against the
+//   part that stays: see "Clearance" below);
+// - the entry and exit moves (approach and departure) differ by design at present: they are
+//   left out of the comparison and their difference is printed, with the third axis of the
+//   move that leaves the contour;
+// - enough was compared: every stretch, and a stated length of contour per example.
+//
+// rs274 prints 4 decimals in the program's unit: 0.0025 mm in inches, more than the 1e-3 mm
+// the comparison needs. The two inch programs are therefore also run converted to mm (G21,
+// every length times 25.4, made here from the original's text); the converted run must agree
+// with the original's move for move within the printed rounding, and the comparison uses it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apci/apci.hpp"
+#include "apci/nc/program.h"
+#include "apci/nc/tools.h"
+#include "apci/run/executor.h"
+#include "apci/run/path.h"
+#include "diff_support.h"
+#include "linuxcnc.h"
+#include "rwmos/geometry/element.h"
+
+namespace apci::test {
+namespace {
+
+using rwmos::geom::closest_point;
+using rwmos::geom::distance_to;
+using rwmos::geom::is_arc;
+using rwmos::geom::left_normal;
+using rwmos::geom::length;
+using rwmos::geom::make_arc;
+using rwmos::geom::make_line;
+using rwmos::geom::point_at;
+using rwmos::geom::tangent_at;
+
+constexpr double kInch = 25.4;
+// The agreement along the contour proper, and how much closer than r a path may come.
+constexpr double kMaxDeviation = 1e-3;
+constexpr double kClearanceTolerance = 2.5e-4;
+// A window point is found on rs274's path within this (4 printed decimals), on ours within 1e-6.
+constexpr double kLinuxCncWindowTolerance = 2e-4;
+constexpr double kOurWindowTolerance = 1e-6;
+// Samples along the paths for the Hausdorff distance and the clearance (and at every end).
+constexpr double kSpacing = 0.02;
+// One coordinate printed by rs274 in inches (4 decimals) and one in mm (4 decimals): how far
+// the original's move and the converted one's may lie apart, per coordinate, in mm.
+constexpr double kPrintedRounding = 0.5e-4 * kInch + 0.5e-4 + 1e-9;
+
+const char* kSourceDir = APCI_SOURCE_DIR;
+
+const Rs274& rs274() {
+    return test_rs274();
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// ---- The inch programs in mm
+
+std::string scaled(const std::string& literal) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.10f", std::strtod(literal.c_str(), nullptr) * kInch);
+    std::string s = buf;
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s == "-0" ? "0" : s;
+}
+
+// An RS274/NGC program in inches (G20) rewritten in mm (G21), for the two originals here
+// (comp-g1.ngc, mmount.ngc): G20 becomes G21 and every number that is a length is multiplied
+// by 25.4 - the values of X Y Z I J K R Q and F words, of parameter assignments (#100=10.0,
+// the feeds), and inside [..] expressions every number that is neither multiplied nor divided
+// by (o100's arguments, its "#5-.020"; not the "/ 2" or "/4"). Parameter numbers, G M T D S
+// words and comments stay. Nothing else of RS274/NGC is needed by these programs; the test
+// checks that the converted program makes the original's moves, within rs274's rounding.
+std::string inch_to_mm(const std::string& ngc) {
+    std::string out;
+    std::istringstream lines(ngc);
+    std::string line;
+    const auto prev_non_space = [](const std::string& s, std::size_t i) -> char {
+        while (i > 0 && std::isspace(static_cast<unsigned char>(s[i - 1]))) --i;
+        return i > 0 ? s[i - 1] : '\0';
+    };
+    while (std::getline(lines, line)) {
+        std::string code;
+        int depth = 0;
+        std::size_t i = 0;
+        while (i < line.size()) {
+            const char c = line[i];
+            if (c == '(') {  // a comment to its ')'
+                const std::size_t end = line.find(')', i);
+                const std::size_t stop = end == std::string::npos ? line.size() : end + 1;
+                code += line.substr(i, stop - i);
+                i = stop;
+                continue;
+            }
+            if (c == ';') {
+                code += line.substr(i);
+                break;
+            }
+            if (c == '[') ++depth;
+            if (c == ']') --depth;
+            const bool starts_number = std::isdigit(static_cast<unsigned char>(c)) ||
+                                       (c == '.' && i + 1 < line.size() &&
+                                        std::isdigit(static_cast<unsigned char>(line[i + 1])));
+            if (!starts_number) {
+                code += c;
+                ++i;
+                continue;
+            }
+            std::size_t end = i;
+            while (end < line.size() &&
+                   (std::isdigit(static_cast<unsigned char>(line[end])) || line[end] == '.'))
+                ++end;
+            const std::string literal = line.substr(i, end - i);
+            // What the number belongs to: the character before it, a sign skipped (X-.5, [-1],
+            // [#5-.020]: the magnitude is what is scaled).
+            std::size_t at = i;
+            char before = prev_non_space(line, at);
+            if (before == '-' || before == '+') {
+                while (at > 0 && line[at - 1] != before) --at;
+                before = prev_non_space(line, at - 1);
+            }
+            std::size_t next = end;
+            while (next < line.size() && std::isspace(static_cast<unsigned char>(line[next])))
+                ++next;
+            const char after = next < line.size() ? line[next] : '\0';
+            const char word = static_cast<char>(std::toupper(static_cast<unsigned char>(before)));
+            bool length_value = false;
+            if (before == '#') {
+                length_value = false;  // a parameter's number
+            } else if (depth > 0) {
+                length_value = before != '*' && before != '/' && after != '*' && after != '/';
+            } else if (before == '=') {
+                length_value = true;
+            } else if (std::string("XYZIJKRQF").find(word) != std::string::npos && word != '\0') {
+                length_value = true;
+            }
+            if (word == 'G' && literal == "20")
+                code += "21";
+            else
+                code += length_value ? scaled(literal) : literal;
+            i = end;
+        }
+        out += code + "\n";
+    }
+    return out;
+}
+
+// ---- Our side
+
+struct Seg {
+    Element path;
+    double z0 = 0.0, z1 = 0.0;  // the third axis (Z) at its start and end
+    bool rapid = false;
+    int role = static_cast<int>(apci::run::Role::kUncompensated);
+    std::uint64_t line = 0;
+};
+
+Seg to_seg(const apci::run::PathSegment& s) {
+    Seg g;
+    const Vec2 a(s.start.x(), s.start.y()), b(s.end.x(), s.end.y());
+    g.path = s.kind == apci::run::SegmentKind::kArc
+                 ? make_arc(a, b, {s.center.x(), s.center.y()}, s.ccw)
+                 : make_line(a, b);
+    g.z0 = s.start.z();
+    g.z1 = s.end.z();
+    g.rapid = s.kind == apci::run::SegmentKind::kRapid;
+    g.role = static_cast<int>(s.role);
+    g.line = s.block.line;
+    return g;
+}
+
+class Sink final : public apci::run::RunSink {
+  public:
+    void programmed(const apci::run::PathSegment& s) override {
+        programmed_.push_back(to_seg(s));
+        planes_ok_ &= s.kind != apci::run::SegmentKind::kArc || s.plane == 17;
+    }
+    void executed(const apci::run::PathSegment& s) override { executed_.push_back(to_seg(s)); }
+    std::vector<Seg> programmed_, executed_;
+    bool planes_ok_ = true;
+};
+
+struct OurExampleRun {
+    std::string error;  // the tool list, program or board could not be had
+    std::vector<apci::run::RunError> errors, warnings;
+    std::vector<Seg> programmed, executed;
+    bool planes_ok = true;
+};
+
+// The example as `apcictl run FILE --tools TOOLS` runs it (the embedded emulator).
+OurExampleRun run_example(const std::string& program_path, const std::string& tools_path) {
+    OurExampleRun out;
+    auto tools = apci::nc::load_tool_table(tools_path);
+    if (!tools) {
+        out.error = "tool list: " + tools.error().to_string();
+        return out;
+    }
+    const std::string text = read_text(program_path);
+    if (text.empty()) {
+        out.error = "cannot read " + program_path;
+        return out;
+    }
+    Sink sink;
+    const EmulatorRun run = run_on_emulator(text, program_path, tools.value(), sink);
+    if (!run.error.empty()) {
+        out.error = run.error;
+        return out;
+    }
+    out.errors = run.outcome.errors;
+    out.warnings = run.outcome.warnings;
+    out.programmed = std::move(sink.programmed_);
+    out.executed = std::move(sink.executed_);
+    out.planes_ok = sink.planes_ok_;
+    return out;
+}
+
+// ---- Paths
+
+std::string point_text(const Vec2& p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.6f, %.6f)", p.x(), p.y());
+    return buf;
+}
+
+std::string element_text(const Element& e) {
+    if (!is_arc(e)) return "line " + point_text(e.start) + " -> " + point_text(e.end);
+    return std::string(e.ccw ? "G3 " : "G2 ") + point_text(e.start) + " -> " + point_text(e.end) +
+           " centre " + point_text(e.centre);
+}
+
+double path_length(const std::vector<Element>& path) {
+    double s = 0.0;
+    for (const Element& e : path) s += length(e);
+    return s;
+}
+
+// The point r to the left (G41) or right (G42) of e at fraction t: where the compensated
+// path of e lies.
+Vec2 offset_at(const Element& e, double t, double r, bool left) {
+    const Vec2 n = left_normal(tangent_at(e, t));
+    return point_at(e, t) + (left ? r : -r) * n;
+}
+
+// e from its start to the point q on it, and from q to its end (q found by closest_point).
+std::vector<Element> head_of(const Element& e, const Vec2& q) {
+    if ((q - e.start).norm() <= 1e-9) return {};
+    return {is_arc(e) ? make_arc(e.start, q, e.centre, e.ccw) : make_line(e.start, q)};
+}
+std::vector<Element> tail_of(const Element& e, const Vec2& q) {
+    if ((e.end - q).norm() <= 1e-9) return {};
+    return {is_arc(e) ? make_arc(q, e.end, e.centre, e.ccw) : make_line(q, e.end)};
+}
+
+// The first and the last element of the path within tol of p; npos when none is.
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+std::size_t first_near(const std::vector<Element>& path, const Vec2& p, double tol) {
+    for (std::size_t i = 0; i < path.size(); ++i)
+        if (length(path[i]) > 0 && distance_to(path[i], p) <= tol) return i;
+    return kNone;
+}
+std::size_t last_near(const std::vector<Element>& path, const Vec2& p, double tol) {
+    for (std::size_t i = path.size(); i-- > 0;)
+        if (length(path[i]) > 0 && distance_to(path[i], p) <= tol) return i;
+    return kNone;
+}
+
+// The path up to the first point within tol of p; empty when p is not on it.
+std::vector<Element> up_to_first(const std::vector<Element>& path, const Vec2& p, double tol) {
+    std::vector<Element> out;
+    for (const Element& e : path) {
+        if (length(e) > 0 && distance_to(e, p) <= tol) {
+            for (const Element& h : head_of(e, closest_point(e, p))) out.push_back(h);
+            return out;
+        }
+        out.push_back(e);
+    }
+    return {};
+}
+// The path from the last point within tol of p; empty when p is not on it.
+std::vector<Element> from_last(const std::vector<Element>& path, const Vec2& p, double tol) {
+    for (std::size_t i = path.size(); i-- > 0;) {
+        if (length(path[i]) > 0 && distance_to(path[i], p) <= tol) {
+            std::vector<Element> out = tail_of(path[i], closest_point(path[i], p));
+            out.insert(out.end(), path.begin() + static_cast<std::ptrdiff_t>(i) + 1, path.end());
+            return out;
+        }
+    }
+    return {};
+}
+
+// Where path a lies farthest from path b: the distance, the element of a and the point.
+struct Worst {
+    double distance = 0.0;
+    std::size_t element = 0;
+    Vec2 at = Vec2::Zero();
+};
+Worst farthest(const std::vector<Element>& a, const std::vector<Element>& b) {
+    Worst w;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const int n = std::max(1, static_cast<int>(std::ceil(length(a[i]) / kSpacing)));
+        for (int k = 0; k <= n; ++k) {
+            const Vec2 q = point_at(a[i], double(k) / n);
+            double d = INFINITY;
+            for (const Element& e : b) d = std::min(d, distance_to(e, q));
+            if (d > w.distance) w = {d, i, q};
+        }
+    }
+    return w;
+}
+
+// Where path comes nearest the walls: the distance, the element of the path, the point, and
+// the wall.
+struct Nearest {
+    double distance = INFINITY;
+    std::size_t element = 0, wall = 0;
+    Vec2 at = Vec2::Zero();
+};
+Nearest nearest(const std::vector<Element>& path, const std::vector<Element>& walls) {
+    Nearest n;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        const int m = std::max(1, static_cast<int>(std::ceil(length(path[i]) / kSpacing)));
+        for (int k = 0; k <= m; ++k) {
+            const Vec2 q = point_at(path[i], double(k) / m);
+            for (std::size_t j = 0; j < walls.size(); ++j) {
+                const double d = distance_to(walls[j], q);
+                if (d < n.distance) n = {d, i, j, q};
+            }
+        }
+    }
+    return n;
+}
+
+// ---- The examples
+
+// A stretch of compensation: what the spec says of it.
+struct StretchSpec {
+    double r = 0.0;     // mm
+    bool o100 = false;  // mmount's helical hole milling (below)
+    // The last compensated element leads the tool away past the part ("continue past edge",
+    // "out of the workpiece"): compared, but no wall the paths must keep r from.
+    bool lead_out = false;
+};
+
+struct Example {
+    std::string name;
+    std::string original;    // in LinuxCNC's ncfiles
+    bool inches = false;     // G20: run converted to mm as well
+    std::string tool_table;  // for rs274 (inches, D = diameter)
+    std::string program;     // ours, under the source tree
+    std::string tools;       // our tool list
+    std::vector<StretchSpec> stretches;
+    double min_compared_mm;  // the contour proper compared, at least (both paths)
+    std::size_t warnings;    // SelfApproach warnings of our run (the program's header says why)
+};
+
+// gtest names the parameter by this.
+void PrintTo(const Example& e, std::ostream* os) {
+    *os << e.name;
+}
+
+// Tool radius in mm of a diameter in inches.
+double radius_of(double diameter_inches) {
+    return diameter_inches / 2 * kInch;
+}
+
+std::vector<Example> examples() {
+    std::vector<Example> out;
+    {
+        Example e;
+        e.name = "comp-g1";
+        e.original = "comp-g1.ngc";
+        e.inches = true;
+        e.tool_table = "T4 P4 D1.0 ;1 inch end mill, as the program's header asks\n";
+        e.program = "examples/linuxcnc/comp_g1.nc";
+        e.tools = "examples/linuxcnc/comp_g1.tools";
+        e.stretches = {{radius_of(1.0), false}};
+        e.min_compared_mm = 480;
+        e.warnings = 0;
+        out.push_back(e);
+    }
+    {
+        Example e;
+        e.name = "mmount";
+        e.original = "mmount.ngc";
+        e.inches = true;
+        // The tools of its header comment: tool, pocket, Z offset, diameter (inches).
+        e.tool_table =
+            "T1 P1 Z-1.1901 D0.250 ;3/4 center drill\n"
+            "T2 P2 Z-0.2875 D0.209 ;#4 tap drill\n"
+            "T3 P3 Z0.0 D0.1406 ;9/64 clearance drill\n"
+            "T4 P4 Z-1.6630 D0.25 ;1/4 end mill\n"
+            "T5 P5 Z-1.5042 D0.5 ;1/2 end mill\n"
+            "T15 P15 Z-1.5042 D0.55 ;same 1/2 end mill oversize roughing\n"
+            "T6 P6 Z-0.1833 D0.25 ;1/4-20 pulley tap\n";
+        e.program = "examples/linuxcnc/mmount_milling.nc";
+        e.tools = "examples/linuxcnc/mmount.tools";
+        // Two curved slots, four holes and four counterbores (o100) with T4, four large holes
+        // (o100) with T5, the perimeter with D15 and with D5.
+        for (int i = 0; i < 2; ++i) e.stretches.push_back({radius_of(0.25), false});
+        for (int i = 0; i < 8; ++i) e.stretches.push_back({radius_of(0.25), true});
+        for (int i = 0; i < 4; ++i) e.stretches.push_back({radius_of(0.5), true});
+        e.stretches.push_back({radius_of(0.55), false});
+        e.stretches.push_back({radius_of(0.5), false, true});  // "continue past edge"
+        e.min_compared_mm = 5500;
+        e.warnings = 42;
+        out.push_back(e);
+    }
+    {
+        Example e;
+        e.name = "gmoccapy";
+        e.original = "gmoccapy_2_tools_with_cutter_radius_compensation.ngc";
+        e.inches = false;
+        // The diameters of T1 (1 mm) and T3 (3 mm) in the tool table of LinuxCNC's gmoccapy
+        // sample configuration (metric), written in inches for standalone rs274.
+        char table[160];
+        std::snprintf(table, sizeof table, "T1 P1 D%.15f ;1 mm\nT3 P3 D%.15f ;3 mm\n", 1.0 / kInch,
+                      3.0 / kInch);
+        e.tool_table = table;
+        e.program = "examples/linuxcnc/gmoccapy_two_circles.nc";
+        e.tools = "examples/linuxcnc/gmoccapy.tools";
+        e.stretches = {{1.5, false, true}, {0.5, false, true}};  // "out of the workpiece"
+        e.min_compared_mm = 240;
+        e.warnings = 2;
+        out.push_back(e);
+    }
+    return out;
+}
+
+// One compensated stretch on either side.
+struct Stretch {
+    std::size_t first = 0, last = 0;  // indices of its moves / segments
+};
+
+std::vector<Stretch> linuxcnc_stretches(const std::vector<CanonMove>& moves) {
+    std::vector<Stretch> out;
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+        if (moves[i].compensation == 40) continue;
+        if (i == 0 || moves[i - 1].compensation == 40) out.push_back({i, i});
+        out.back().last = i;
+    }
+    return out;
+}
+
+bool compensated_role(int role) {
+    using apci::run::Role;
+    return role == static_cast<int>(Role::kApproach) || role == static_cast<int>(Role::kContour) ||
+           role == static_cast<int>(Role::kTransition) ||
+           role == static_cast<int>(Role::kDeparture);
+}
+
+std::vector<Stretch> our_stretches(const std::vector<Seg>& segs) {
+    const int approach = static_cast<int>(apci::run::Role::kApproach);
+    std::vector<Stretch> out;
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        if (!compensated_role(segs[i].role)) continue;
+        const bool starts = i == 0 || !compensated_role(segs[i - 1].role) ||
+                            (segs[i].role == approach && segs[i - 1].role != approach);
+        if (starts) out.push_back({i, i});
+        out.back().last = i;
+    }
+    return out;
+}
+
+// A part of the contour proper and the programmed elements its path must keep r from.
+struct Pass {
+    const char* name;
+    Vec2 from, to;
+    std::vector<Element> walls;
+};
+
+struct Figures {
+    int stretches = 0;
+    double compared_ours = 0.0, compared_linuxcnc = 0.0;
+    double max_deviation = 0.0;
+    double min_clearance_margin = INFINITY;  // least (clearance - r) over both paths
+    double max_approach = 0.0, max_departure = 0.0;
+    double max_deviation_inch = 0.0;  // our path from rs274's output for the inch original
+};
+
+std::string dump(const std::vector<Element>& path, const std::vector<std::uint64_t>* lines) {
+    std::string s;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        s += "    ";
+        if (lines != nullptr) s += "line " + std::to_string((*lines)[i]) + ": ";
+        s += element_text(path[i]) + "\n";
+    }
+    return s;
+}
+
+class LinuxCncExamples : public ::testing::TestWithParam<Example> {};
+
+TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
+    if (!rs274().why.empty()) GTEST_SKIP() << rs274().why;
+    const Example& ex = GetParam();
+    const auto t0 = std::chrono::steady_clock::now();
+
+    // LinuxCNC: the original (and, for inch programs, the original in mm).
+    const std::string original = read_text(rs274().ncfiles + "/" + ex.original);
+    ASSERT_FALSE(original.empty()) << "cannot read " << rs274().ncfiles << "/" << ex.original;
+    std::vector<std::string> programs{original};
+    if (ex.inches) programs.push_back(inch_to_mm(original));
+    const std::vector<Rs274Result> runs = run_rs274(rs274(), programs, ex.tool_table, 17, 2);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        ASSERT_TRUE(runs[i].ran && runs[i].exit_code == 0 && !runs[i].moves.empty())
+            << "rs274 on " << ex.original << (i == 1 ? " (in mm)" : "") << ": exit "
+            << runs[i].exit_code << " " << runs[i].error;
+    }
+    const std::vector<CanonMove>& lc = runs.back().moves;
+    if (ex.inches) {
+        // The conversion keeps LinuxCNC's moves: the same moves, the same compensation, every
+        // coordinate within the two printed roundings.
+        const std::vector<CanonMove>& in = runs[0].moves;
+        ASSERT_EQ(in.size(), lc.size()) << "the original and its mm version differ in moves";
+        double worst = 0.0;
+        for (std::size_t i = 0; i < lc.size(); ++i) {
+            const Element &a = in[i].path, &b = lc[i].path;
+            ASSERT_TRUE(in[i].rapid == lc[i].rapid && in[i].compensation == lc[i].compensation &&
+                        a.kind == b.kind && a.ccw == b.ccw)
+                << "move " << i << ": " << element_text(a) << " (inches) vs " << element_text(b);
+            for (const auto& [p, q] : {std::pair{a.end, b.end}, std::pair{a.centre, b.centre}}) {
+                const Vec2 d = (kInch * p - q).cwiseAbs();
+                worst = std::max({worst, d.x(), d.y()});
+            }
+            worst = std::max(worst, std::abs(kInch * in[i].third - lc[i].third));
+        }
+        EXPECT_LE(worst, kPrintedRounding)
+            << "the mm version of " << ex.original << " moves differently from the original";
+        std::printf(
+            "%s: the original (inches) and its mm version: %zu moves alike, coordinates "
+            "within %.2e mm (rs274's printed rounding %.2e)\n",
+            ex.name.c_str(), lc.size(), worst, kPrintedRounding);
+    }
+
+    // Ours.
+    const OurExampleRun ours = run_example(std::string(kSourceDir) + "/" + ex.program,
+                                           std::string(kSourceDir) + "/" + ex.tools);
+    ASSERT_TRUE(ours.error.empty()) << ours.error;
+    ASSERT_TRUE(ours.planes_ok);
+    for (const apci::run::RunError& e : ours.errors)
+        ADD_FAILURE() << ex.program << ": line " << e.block.line << ": " << e.code << ": "
+                      << e.message;
+    ASSERT_TRUE(ours.errors.empty());
+    // The run's warnings: SelfApproach only, as many as the program's header and
+    // docs/linuxcnc-examples.md say (where the program cuts into its own contour by design).
+    for (const apci::run::RunError& w : ours.warnings)
+        EXPECT_EQ(w.code, "SelfApproach") << "line " << w.block.line << ": " << w.message;
+    EXPECT_EQ(ours.warnings.size(), ex.warnings);
+    std::printf("%s: our run: %zu segments, no errors, %zu SelfApproach warnings\n",
+                ex.name.c_str(), ours.executed.size(), ours.warnings.size());
+
+    const std::vector<Stretch> theirs_s = linuxcnc_stretches(lc);
+    const std::vector<Stretch> ours_s = our_stretches(ours.executed);
+    ASSERT_EQ(theirs_s.size(), ex.stretches.size()) << "LinuxCNC's compensated stretches";
+    ASSERT_EQ(ours_s.size(), ex.stretches.size()) << "our compensated stretches";
+
+    Figures f;
+    for (std::size_t k = 0; k < ex.stretches.size(); ++k) {
+        const StretchSpec& spec = ex.stretches[k];
+        const double r = spec.r;
+        const Stretch& ts = theirs_s[k];
+        const Stretch& os = ours_s[k];
+        const bool left = lc[ts.first].compensation == 41;
+        SCOPED_TRACE(ex.name + " stretch " + std::to_string(k + 1) + " (r " + std::to_string(r) +
+                     " mm, our lines " + std::to_string(ours.executed[os.first].line) + ".." +
+                     std::to_string(ours.executed[os.last].line) + ")");
+
+        // The programmed elements of the stretch: our executed segments name their blocks.
+        std::set<std::uint64_t> stretch_lines;
+        for (std::size_t i = os.first; i <= os.last; ++i)
+            stretch_lines.insert(ours.executed[i].line);
+        std::vector<Element> contour;
+        std::vector<std::uint64_t> contour_lines;
+        for (const Seg& s : ours.programmed) {
+            if (s.rapid || length(s.path) <= 1e-9 || !stretch_lines.count(s.line)) continue;
+            contour.push_back(s.path);
+            contour_lines.push_back(s.line);
+        }
+        // LinuxCNC's first move after G41 is its entry move: a feed move there is our first
+        // compensated element, reached by our approach. Not part of the contour proper.
+        const bool entry_is_feed = !lc[ts.first].rapid;
+        if (entry_is_feed && !contour.empty()) {
+            contour.erase(contour.begin());
+            contour_lines.erase(contour_lines.begin());
+        }
+        ASSERT_FALSE(contour.empty()) << "no contour proper";
+
+        // Both paths in the plane: LinuxCNC's feed moves of the stretch, our segments.
+        std::vector<Element> lc_path, our_path;
+        std::vector<std::uint64_t> our_lines;
+        for (std::size_t i = ts.first; i <= ts.last; ++i)
+            if (!lc[i].rapid) lc_path.push_back(lc[i].path);
+        for (std::size_t i = os.first; i <= os.last; ++i) {
+            our_path.push_back(ours.executed[i].path);
+            our_lines.push_back(ours.executed[i].line);
+        }
+        std::string both = "  LinuxCNC's path (stretch " + std::to_string(k + 1) + "):\n";
+        for (std::size_t i = ts.first; i <= ts.last; ++i)
+            both +=
+                std::string(lc[i].rapid ? "    rapid " : "    ") + element_text(lc[i].path) + "\n";
+        both += "  our path:\n" + dump(our_path, &our_lines);
+
+        // The contour proper: from the start of its first element's offset when both paths
+        // pass there on their way to its middle (the entry meets it at an outside or tangent
+        // corner on both), else from its middle (an inside corner trims it, each path at its
+        // own point); to the end of its last element's offset when both pass there after its
+        // middle, else to its middle.
+        const auto reaches_first = [&](const Vec2& p, const Vec2& mid) {
+            for (const auto& [path, tol] : {std::pair{&lc_path, kLinuxCncWindowTolerance},
+                                            std::pair{&our_path, kOurWindowTolerance}}) {
+                const std::size_t a = first_near(*path, p, tol), b = first_near(*path, mid, tol);
+                if (a == kNone || b == kNone || a > b) return false;
+            }
+            return true;
+        };
+        const auto leaves_last = [&](const Vec2& p, const Vec2& mid) {
+            for (const auto& [path, tol] : {std::pair{&lc_path, kLinuxCncWindowTolerance},
+                                            std::pair{&our_path, kOurWindowTolerance}}) {
+                const std::size_t a = last_near(*path, p, tol), b = last_near(*path, mid, tol);
+                if (a == kNone || b == kNone || a < b) return false;
+            }
+            return true;
+        };
+        const Vec2 first_mid = offset_at(contour.front(), 0.5, r, left);
+        const Vec2 last_mid = offset_at(contour.back(), 0.5, r, left);
+        Vec2 from = offset_at(contour.front(), 0.0, r, left);
+        if (!reaches_first(from, first_mid)) from = first_mid;
+        Vec2 to = offset_at(contour.back(), 1.0, r, left);
+        if (!leaves_last(to, last_mid)) to = last_mid;
+        const std::vector<Element> lc_win = window(lc_path, from, to, kLinuxCncWindowTolerance);
+        const std::vector<Element> our_win = window(our_path, from, to, kOurWindowTolerance);
+        ASSERT_FALSE(lc_win.empty()) << "the contour proper " << point_text(from) << " .. "
+                                     << point_text(to) << " is not on LinuxCNC's path\n"
+                                     << both;
+        ASSERT_FALSE(our_win.empty()) << "the contour proper " << point_text(from) << " .. "
+                                      << point_text(to) << " is not on our path\n"
+                                      << both;
+        const double dev = hausdorff(our_win, lc_win, kSpacing);
+        if (dev > kMaxDeviation) {
+            const Worst a = farthest(our_win, lc_win), b = farthest(lc_win, our_win);
+            ADD_FAILURE() << "the paths differ by " << dev << " mm on the contour proper: ours "
+                          << a.distance << " mm from LinuxCNC's at " << point_text(a.at) << " ("
+                          << element_text(our_win[a.element]) << "), LinuxCNC's " << b.distance
+                          << " mm from ours at " << point_text(b.at) << " ("
+                          << element_text(lc_win[b.element]) << ")\n"
+                          << "  programmed contour:\n"
+                          << dump(contour, &contour_lines) << both;
+        }
+
+        // Clearance, pass by pass. mmount's holes (o100) are roughed 0.020 in under size and
+        // then finished at size, by a half circle out to the hole, the full circle, and a half
+        // circle back: the finishing cuts 0.254 mm into the roughing contour, and the full
+        // circle's path into the half circles', by design. There the roughing path keeps r from
+        // the roughing circles (from the window's start to a quarter into the last), the
+        // finishing path (from the middle of the first half circle to the window's end) from
+        // the finished hole. Elsewhere the whole contour proper keeps r from all of it but a
+        // last element that leads out past the part (StretchSpec::lead_out).
+        std::vector<Pass> passes;
+        if (spec.o100) {
+            ASSERT_GE(contour.size(), 5u);
+            const std::size_t n = contour.size();
+            passes.push_back({"roughing", from, offset_at(contour[n - 4], 0.25, r, left),
+                              std::vector<Element>(contour.begin(), contour.end() - 3)});
+            passes.push_back({"finishing", offset_at(contour[n - 3], 0.5, r, left), to,
+                              std::vector<Element>{contour[n - 2]}});
+        } else {
+            std::vector<Element> walls = contour;
+            if (spec.lead_out && walls.size() > 1) walls.pop_back();
+            passes.push_back({"contour", from, to, walls});
+        }
+        for (const Pass& p : passes) {
+            for (const auto& [who, path, tol] :
+                 {std::tuple{"LinuxCNC's", &lc_path, kLinuxCncWindowTolerance},
+                  std::tuple{"our", &our_path, kOurWindowTolerance}}) {
+                const std::vector<Element> w = window(*path, p.from, p.to, tol);
+                ASSERT_FALSE(w.empty()) << p.name << " pass not on " << who << " path\n" << both;
+                const double c = clearance(w, p.walls, r, kSpacing);
+                f.min_clearance_margin = std::min(f.min_clearance_margin, c - r);
+                if (c < r - kClearanceTolerance) {
+                    const Nearest n = nearest(w, p.walls);
+                    ADD_FAILURE() << who << " path comes within " << c << " mm of the contour ("
+                                  << p.name << " pass, r " << r << ") at " << point_text(n.at)
+                                  << " on " << element_text(w[n.element]) << ", near "
+                                  << element_text(p.walls[n.wall]) << "\n  programmed contour:\n"
+                                  << dump(p.walls, nullptr) << both;
+                }
+            }
+        }
+
+        // rs274's output for the original itself (inches, 4 decimals): how far it lies from
+        // our path, its printed rounding included (not a verdict: that is the mm run's).
+        double dev_inch = NAN;
+        if (ex.inches) {
+            std::vector<Element> inch_path;
+            for (std::size_t i = ts.first; i <= ts.last; ++i) {
+                const Element& e = runs[0].moves[i].path;
+                if (runs[0].moves[i].rapid) continue;
+                inch_path.push_back(
+                    is_arc(e) ? make_arc(kInch * e.start, kInch * e.end, kInch * e.centre, e.ccw)
+                              : make_line(kInch * e.start, kInch * e.end));
+            }
+            const std::vector<Element> w =
+                window(inch_path, from, to, std::sqrt(2.0) * kPrintedRounding);
+            if (!w.empty()) dev_inch = hausdorff(our_win, w, kSpacing);
+            f.max_deviation_inch = std::max(f.max_deviation_inch, dev_inch);
+        }
+
+        // Approach and departure: not compared; how far apart they are. The lead-in runs from
+        // where the tool stood before G41 (LinuxCNC's stretch begins there) to the contour
+        // proper; the lead-out from the contour proper to where LinuxCNC's first move after
+        // G40 that moves in the plane ends, and ours reaches the same point.
+        std::vector<Element> lc_all, our_before;
+        for (std::size_t i = ts.first; i <= ts.last; ++i) lc_all.push_back(lc[i].path);
+        const Vec2 start = lc[ts.first].path.start;
+        std::size_t first = os.first;
+        for (std::size_t back = 0; back <= 3 && back <= os.first; ++back) {
+            if ((ours.executed[os.first - back].path.start - start).norm() <=
+                kLinuxCncWindowTolerance) {
+                first = os.first - back;
+                break;
+            }
+        }
+        for (std::size_t i = first; i < os.first; ++i) our_before.push_back(ours.executed[i].path);
+        our_before.insert(our_before.end(), our_path.begin(), our_path.end());
+        const std::vector<Element> lc_in = up_to_first(lc_all, from, kLinuxCncWindowTolerance);
+        const std::vector<Element> our_in = up_to_first(our_before, from, kOurWindowTolerance);
+        std::vector<Element> lc_out = from_last(lc_all, to, kLinuxCncWindowTolerance);
+        std::vector<Element> our_out = from_last(our_path, to, kOurWindowTolerance);
+        Vec2 exit_point = lc_all.back().end;
+        for (std::size_t i = ts.last + 1; i < lc.size(); ++i) {
+            lc_out.push_back(lc[i].path);
+            exit_point = lc[i].path.end;
+            if (length(lc[i].path) > 1e-9) break;
+        }
+        bool ours_reaches = false;
+        for (std::size_t i = os.last + 1;
+             i < ours.executed.size() && i <= os.last + 4 && !ours_reaches; ++i) {
+            our_out.push_back(ours.executed[i].path);
+            ours_reaches =
+                (ours.executed[i].path.end - exit_point).norm() <= kLinuxCncWindowTolerance;
+        }
+        const auto apart = [](const std::vector<Element>& a, const std::vector<Element>& b) {
+            return a.empty() || b.empty() ? NAN : hausdorff(a, b, kSpacing);
+        };
+        const double d_in = apart(our_in, lc_in);
+        const double d_out = apart(our_out, lc_out);
+        f.max_approach = std::max(f.max_approach, d_in);
+        f.max_departure = std::max(f.max_departure, d_out);
+        // The move that leaves the contour proper (the first after it that moves in the
+        // plane), with the third axis (Z) at its start and end: where the tool goes sideways.
+        std::string leaves;
+        {
+            std::size_t i = ts.last + 1;
+            for (std::size_t k2 = ts.first; k2 <= ts.last; ++k2)
+                if (length(lc[k2].path) > 0 &&
+                    distance_to(lc[k2].path, to) <= kLinuxCncWindowTolerance)
+                    i = k2 + 1;
+            while (i < lc.size() && length(lc[i].path) <= 1e-9) ++i;
+            char buf[200];
+            if (i < lc.size())
+                std::snprintf(buf, sizeof buf, "LinuxCNC %s to %s, Z %.3f -> %.3f",
+                              lc[i].rapid ? "rapid" : "feed", point_text(lc[i].path.end).c_str(),
+                              lc[i - 1].third, lc[i].third);
+            else
+                std::snprintf(buf, sizeof buf, "LinuxCNC stays (the program ends under G41)");
+            leaves = buf;
+            std::size_t o = os.last + 1;
+            for (std::size_t k2 = os.first; k2 <= os.last; ++k2)
+                if (length(our_path[k2 - os.first]) > 0 &&
+                    distance_to(our_path[k2 - os.first], to) <= kOurWindowTolerance)
+                    o = k2 + 1;
+            while (o < ours.executed.size() && length(ours.executed[o].path) <= 1e-9) ++o;
+            if (o < ours.executed.size()) {
+                const Seg& g = ours.executed[o];
+                std::snprintf(
+                    buf, sizeof buf, "; ours %s to %s, Z %.3f -> %.3f",
+                    std::string(apci::run::role_name(static_cast<apci::run::Role>(g.role))).c_str(),
+                    point_text(g.path.end).c_str(), g.z0, g.z1);
+                leaves += buf;
+            }
+        }
+        char inch_text[64] = "";
+        if (ex.inches)
+            std::snprintf(inch_text, sizeof inch_text, " (from the inch output: %.2e mm)",
+                          dev_inch);
+        std::printf(
+            "%s stretch %zu (r %.4f mm, our lines %llu..%llu): contour proper %zu elements, "
+            "compared %.3f mm (ours) / %.3f mm (LinuxCNC), deviation %.2e mm%s\n"
+            "    approach: LinuxCNC %.3f mm, ours %.3f mm, apart by up to %.4f mm; departure to "
+            "%s: LinuxCNC %.3f mm, ours %.3f mm%s, apart by up to %.4f mm\n"
+            "    leaving the contour: %s\n",
+            ex.name.c_str(), k + 1, r,
+            static_cast<unsigned long long>(ours.executed[os.first].line),
+            static_cast<unsigned long long>(ours.executed[os.last].line), contour.size(),
+            path_length(our_win), path_length(lc_win), dev, inch_text, path_length(lc_in),
+            path_length(our_in), d_in, point_text(exit_point).c_str(), path_length(lc_out),
+            path_length(our_out), ours_reaches ? "" : " (not reaching it)", d_out, leaves.c_str());
+        ++f.stretches;
+        f.compared_ours += path_length(our_win);
+        f.compared_linuxcnc += path_length(lc_win);
+        f.max_deviation = std::max(f.max_deviation, dev);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf(
+        "%s: %d stretches; contour proper compared %.1f mm (ours) / %.1f mm (LinuxCNC); "
+        "max deviation %.2e mm (limit %.0e); least clearance r %+.2e mm (limit -%.1e); "
+        "approach apart by up to %.4f mm, departure by up to %.4f mm; %.2f s\n",
+        ex.name.c_str(), f.stretches, f.compared_ours, f.compared_linuxcnc, f.max_deviation,
+        kMaxDeviation, f.min_clearance_margin, kClearanceTolerance, f.max_approach, f.max_departure,
+        seconds);
+    if (ex.inches)
+        std::printf(
+            "%s: our path from rs274's output for the inch original itself: up to %.2e mm "
+            "(its 4 printed decimals in inches alone allow %.2e)\n",
+            ex.name.c_str(), f.max_deviation_inch, std::sqrt(2.0) * 0.5e-4 * kInch);
+    // Enough was compared that an empty or shrunken window cannot pass.
+    EXPECT_EQ(f.stretches, static_cast<int>(ex.stretches.size()));
+    EXPECT_GE(f.compared_ours, ex.min_compared_mm);
+    EXPECT_GE(f.compared_linuxcnc, ex.min_compared_mm);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, LinuxCncExamples, ::testing::ValuesIn(examples()),
+                         [](const ::testing::TestParamInfo<Example>& info) {
+                             std::string n;
+                             for (char c : info.param.name)
+                                 n += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return n;
+                         });
+
+}  // namespace
+}  // namespace apci::test
