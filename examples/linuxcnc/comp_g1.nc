@@ -11,6 +11,7 @@
 ; - G17 G90 written out (the defaults of both); "J-1" and "I-1" keep their single centre word.
 ; - Kept as written: the uncompensated part outline first, then the same contour with G41 alone,
 ;   the entry move, the contour, G40 alone and the exit move, in the original's order.
+; - G26 added: LinuxCNC's outside corners are arcs; our programs start in G25 (the ISG default).
 ;
 ; Our G41 block switches the compensation before its move (docs/compensation.md): the entry
 ; move (G1 X50.8 Y76.2) is our first compensated element, reached by a straight approach, and
@@ -20,7 +21,7 @@
 (comp-g1.ngc)
 (this file needs X-4 to X5 travel and Y-3 to Y5 travel: X-101.6 to X127, Y-76.2 to Y127)
 
-G17 G90
+G17 G90 G26
 F1524 (set feed to 60 IPM)
 
 (first, no compensation so we can see the part outline)

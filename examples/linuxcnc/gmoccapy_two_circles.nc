@@ -13,6 +13,7 @@
 ; - Kept as written: G17 G40 G90, every move in the original's order, G41 alone before each
 ;   arc entry, the full circles "G3 I-20" and "G3 I-15", the arcs out with G41 still on, the
 ;   G0 Z30 under G41, G40 alone after it.
+; - G26 added: LinuxCNC's outside corners are arcs; our programs start in G25 (the ISG default).
 ;
 ; Our run warns SelfApproach twice: the arcs in and out of the first circle (tool 3) cross the
 ; second, smaller circle (tool 1), which the run checks as contour of the same program.
@@ -22,6 +23,7 @@
 G17
 G40
 G90
+G26
 
 ; get the first tool
 D3

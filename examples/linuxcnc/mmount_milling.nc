@@ -23,6 +23,7 @@
 ;   the original has them (G41 alone, G41 G0, G41 D15), and G0 Z moves under G41.
 ; - G00 G53 Z0 (machine Z0, the retract between sections) is the program Z it is in LinuxCNC
 ;   with G43 and the header's tool lengths: Z42.2402 with T4 (1.6630 in), Z38.20668 with T5.
+; - G26 added: LinuxCNC's outside corners are arcs; our programs start in G25 (the ISG default).
 ;
 ; Where our run differs from LinuxCNC's (docs/linuxcnc-examples.md): a G0 under G41 ends our
 ; compensation and runs to the programmed point, so each "G0 Z.." lift after a contour moves
@@ -31,7 +32,7 @@
 ; warns SelfApproach 42 times, where the program cuts into its own contour by design: each
 ; hole's finishing pass 0.254 mm beyond its roughing circle, holes milled again larger at the
 ; same centre, the curved slots' lead-in lines (above the part) near their end arcs.
-G17 G90 G40
+G17 G90 G40 G26
 
 (MILL 0.250: original lines 76-152)
 D4 (T4 M6 G43)

@@ -277,12 +277,14 @@ TEST(Interpreter, CompensationSideEventsOnChange) {
     EXPECT_EQ(comp[2].side, Compensation::kOff);
 }
 
-TEST(Interpreter, CornerModeDefaultsToCircularAndEventsOnChange) {
-    const auto ev = events_of("G26\nG25\nG25\nG26\nM30");
+TEST(Interpreter, CornerModeDefaultsToLinearAndEventsOnChange) {
+    // G25 is the start state (the ISG kernel's modal default): a G25 first is no change.
+    EXPECT_EQ(kStartCornerMode, CornerMode::kLinear);
+    const auto ev = events_of("G25\nG26\nG26\nG25\nM30");
     const auto corner = only<CornerModeChange>(ev);
     ASSERT_EQ(corner.size(), 2U);
-    EXPECT_EQ(corner[0].mode, CornerMode::kLinear);
-    EXPECT_EQ(corner[1].mode, CornerMode::kCircular);
+    EXPECT_EQ(corner[0].mode, CornerMode::kCircular);
+    EXPECT_EQ(corner[1].mode, CornerMode::kLinear);
 }
 
 TEST(Interpreter, PlaneDefaultsToG17AndEventsOnChange) {
@@ -302,12 +304,13 @@ TEST(Interpreter, ToolSelectOnEveryDWord) {
 }
 
 TEST(Interpreter, EventOrderWithinBlock) {
-    const auto ev = events_of("N5 D1 G18 G25 G1 X1 F1\nN6 G42 G1 Z1 M30");
+    // The corner mode comes after the block's move: it acts on the corners after it.
+    const auto ev = events_of("N5 D1 G18 G26 G1 X1 F1\nN6 G42 G1 Z1 M30");
     ASSERT_EQ(ev.size(), 7U);
     EXPECT_EQ(event_name(ev[0].data), "tool");
     EXPECT_EQ(event_name(ev[1].data), "plane");
-    EXPECT_EQ(event_name(ev[2].data), "corner");
-    EXPECT_EQ(event_name(ev[3].data), "line");
+    EXPECT_EQ(event_name(ev[2].data), "line");
+    EXPECT_EQ(event_name(ev[3].data), "corner");
     EXPECT_EQ(event_name(ev[4].data), "compensation");
     EXPECT_EQ(event_name(ev[5].data), "line");
     EXPECT_EQ(event_name(ev[6].data), "end");
@@ -338,7 +341,8 @@ TEST(Interpreter, ToolChangeWithCompensationOnIsError) {
               "prog.nc:2:1: D2 while radius compensation G42 is on: program G40 in an earlier "
               "block before selecting a tool");
     EXPECT_EQ(error_of("G42\nG40 D2\nM30").empty(), false);
-    // Selecting the tool and switching compensation on in one block is the seed's usage.
+    // Selecting the tool and switching compensation on in one block is allowed: the tool comes
+    // first, as [APCI-TC] section 2.5 writes WKZINDEX before Left/Right and STATUS.
     EXPECT_EQ(error_of("D1 G41\nM30"), "");
 }
 

@@ -180,7 +180,7 @@ TEST(Program, LinesAcrossTheReadBufferKeepTheirText) {
     }
 }
 
-// The seed's wr_quad_disc.nc (ISG FCT-C20 section 2.2) without its #OTC lines.
+// wr_quad_disc.nc of [ISG-OTC] section 2.2 without its #OTC lines.
 TEST(Program, SeedProgramWrQuadDiscParses) {
     Result<ToolTable> tools = load_tool_table(kExamples + "/tools/wr_quad_disc.tools");
     ASSERT_TRUE(tools) << tools.error().to_string();
@@ -196,19 +196,19 @@ TEST(Program, SeedProgramWrQuadDiscParses) {
         names.emplace_back(event_name(e.data));
         blocks.push_back(e.origin.block);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"tool", "corner", "line", "compensation", "line",
-                                               "line", "corner", "line", "line", "line",
-                                               "compensation", "line", "end"}));
+    // N22's G25 is the start state (no event); N80's G26 comes after N80's move.
+    EXPECT_EQ(names, (std::vector<std::string>{"tool", "line", "compensation", "line", "line",
+                                               "line", "corner", "line", "line", "compensation",
+                                               "line", "end"}));
     EXPECT_EQ(blocks,
-              (std::vector<std::int64_t>{22, 22, 40, 55, 60, 70, 80, 80, 90, 95, 100, 100, 99999}));
+              (std::vector<std::int64_t>{22, 40, 55, 60, 70, 80, 80, 90, 95, 100, 100, 99999}));
     const auto lines = only<LineMove>(ev);
     ASSERT_EQ(lines.size(), 7U);
     EXPECT_EQ(lines[2].end, V(102, 0, 0));
     EXPECT_EQ(lines[3].end, V(102, 100, 0));
     EXPECT_EQ(lines[6].end, V(0, 0, 0));
     for (const LineMove& l : lines) EXPECT_EQ(l.feed, 600.0);
-    EXPECT_EQ(std::get<CompensationChange>(ev[3].data).side, Compensation::kRight);
-    EXPECT_EQ(std::get<CornerModeChange>(ev[1].data).mode, CornerMode::kLinear);
+    EXPECT_EQ(std::get<CompensationChange>(ev[2].data).side, Compensation::kRight);
     EXPECT_EQ(std::get<CornerModeChange>(ev[6].data).mode, CornerMode::kCircular);
 }
 

@@ -185,20 +185,32 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
                             kExamples + "/tools/wr_quad_disc.tools", "--svg", path("p.svg"),
                             "--json", path("p.json")});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 12 segments\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 13 segments\n")) << r.out;
     EXPECT_TRUE(contains(r.out, "\nerrors: none\n")) << r.out;
     EXPECT_EQ(r.err, "");
     const json doc = json::parse(read_text(path("p.json")));
-    // N22 G25 is overridden by N80 G26 before the first real corner (N70/N80): all circular.
+    // As the program's text says: N22 G25 makes the corner after N70 linear (two lines along
+    // the tangents, a 90-degree turn), N80 G26 the corners after N80 and N90 circular.
     EXPECT_EQ(roles(doc),
-              "uncompensated/40 approach/60 contour/60 contour/70 transition/70 contour/80 "
-              "transition/80 contour/90 transition/90 contour/95 departure/95 uncompensated/100");
+              "uncompensated/40 approach/60 contour/60 contour/70 transition/70 transition/70 "
+              "contour/80 transition/80 contour/90 transition/90 contour/95 departure/95 "
+              "uncompensated/100");
     expect_continuous(doc);
-    // The square N70..N95 (N60 is its lead-in on the same line).
+    const auto linear = with_role(doc, "transition");
+    ASSERT_EQ(linear.size(), 4u);
+    EXPECT_EQ(linear[0].at("kind"), "line");
+    EXPECT_EQ(point(linear[0].at("end")), apci::run::Point(132, -30, 0));
+    EXPECT_EQ(point(linear[1].at("end")), apci::run::Point(132, 0, 0));
+    EXPECT_EQ(linear[2].at("kind"), "arc");
+    EXPECT_EQ(linear[3].at("kind"), "arc");
+    // The square N70..N95 (N60 is its lead-in on the same line): contour and circular
+    // transitions at 30 mm, the linear one no closer.
     const std::vector<geom::Element> square{
         geom::make_line({2, 0}, {102, 0}), geom::make_line({102, 0}, {102, 100}),
         geom::make_line({102, 100}, {2, 100}), geom::make_line({2, 100}, {2, 0})};
-    expect_at_radius(doc, square, 30.0, {"contour", "transition"}, false, 17, {60});
+    expect_at_radius(doc, square, 30.0, {"contour"}, false, 17, {60});
+    expect_at_radius(doc, square, 30.0, {"transition"}, false, 17, {70});
+    expect_at_radius(doc, square, 30.0, {"transition"}, true, 17, {80, 90});
     // G42 on a counter-clockwise loop: the tool runs outside, right of the direction of travel.
     EXPECT_EQ(point(with_role(doc, "contour")[1].at("start")), apci::run::Point(2, -30, 0));
     expect_registers_clear(doc);
@@ -416,7 +428,7 @@ TEST_F(ApcictlRun, SamePathThroughTheDaemonSocketAsOnTheEmbeddedBoard) {
 TEST_F(ApcictlRun, ZxPlaneCompensatesArcsInThatPlaneSeenFromPlusY) {
     // G18: first axis Z, second X. A G3 half circle in Z-X and lines, G41.
     const std::string prog = write("zx.nc",
-                                   "N10 G18 F1000 D1\nN20 G41 G1 Z20\nN30 G3 Z40 X0 K10 I0\n"
+                                   "N10 G18 G26 F1000 D1\nN20 G41 G1 Z20\nN30 G3 Z40 X0 K10 I0\n"
                                    "N40 G1 Z60\nN50 G40\nM30\n");
     const json doc = run_json(prog, {"--tools", tools(3.0)});
     bool saw_arc = false;

@@ -242,10 +242,13 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
     const BlockOrigin origin{b.block_number(), b.line};
     if (b.tool.present()) out.push(origin, ToolSelect{b.tool.value});
     if (s.plane != state_.plane) out.push(origin, PlaneChange{s.plane});
-    if (s.corner != state_.corner) out.push(origin, CornerModeChange{s.corner});
     if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
     if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
     if (moves) out.push(origin, move);
+    // G25/G26 act on the transitions after the block's move ([ISG-PROG]: the transition at
+    // the end of the block; [ISG-OTC-EN]'s wr_quad_disc.nc: N80 G26 Y100 leaves the corner
+    // before N80 linear), so the change comes after it.
+    if (s.corner != state_.corner) out.push(origin, CornerModeChange{s.corner});
     if (s.ended) out.push(origin, ProgramEnd{});
     state_ = s;
     return true;

@@ -258,7 +258,8 @@ class Execution {
     }
 
     // RESET (every group to power-on), then group g in the plane kGroupPlane[g - 1], and the
-    // program's start state: G17.
+    // program's start state: G17, and the NC start corner mode (G25; the board's own default is
+    // circular).
     bool setup_groups() {
         auto reset = group_object(1, tc::kSubReset);
         if (!write(reset, std::int32_t{1}, {}, "RESET")) return false;
@@ -267,8 +268,10 @@ class Execution {
             auto x = group_object(g, tc::kSubXAxis);
             auto y = group_object(g, tc::kSubYAxis);
             auto z = group_object(g, tc::kSubZAxis);
+            auto corner = group_object(g, tc::kSubCornerMode);
             if (!write(x, axis(p.first), {}, "XAxis") || !write(y, axis(p.second), {}, "YAxis") ||
-                !write(z, axis(p.third), {}, "ZAxis"))
+                !write(z, axis(p.third), {}, "ZAxis") ||
+                !write(corner, std::int32_t{nc::g_number(nc::kStartCornerMode)}, {}, "CornerMode"))
                 return false;
         }
         auto plane = init_object(tc::kIdxTcPlane);

@@ -58,9 +58,10 @@ struct CompensationChange {
     Compensation side = Compensation::kOff;
 };
 
-// G25 / G26, sent when the mode changes.
+// G25 / G26, sent when the mode changes, after the block's move (it acts on the corners after
+// the move).
 struct CornerModeChange {
-    CornerMode mode = CornerMode::kCircular;
+    CornerMode mode = CornerMode::kLinear;
 };
 
 // G17 / G18 / G19, sent when the plane changes.

@@ -18,12 +18,17 @@ namespace apci::nc {
 class ToolTable;
 class CorrectionTable;
 
+// The corner mode a program starts in: G25, linear transitions, the modal default of the ISG
+// kernel's programming manual ([ISG-PROG], "G25/G26"). (The board's TC module starts in its
+// own default, circular; `apcictl run` sets the board to this at the start of a program.)
+inline constexpr CornerMode kStartCornerMode = CornerMode::kLinear;
+
 struct ModalState {
     std::optional<Motion> motion;                        // none until G0..G3 is programmed
     Plane plane = Plane::kXY;                            // G17
     DistanceMode distance = DistanceMode::kAbsolute;     // G90
     Compensation compensation = Compensation::kOff;      // G40
-    CornerMode corner = CornerMode::kCircular;           // G26 (DESIGN.md section 3: the default)
+    CornerMode corner = kStartCornerMode;                // G25
     double feed = 0.0;                                   // mm/min; 0 until F is programmed
     int tool = 0;                                        // D0: no tool
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // absolute, mm
