@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The 3D compensation's correction table (TNC seed 002: the delta values are summed "aus der
+// The 3D compensation's correction table ([TNC-3D]: the delta values are summed "aus der
 // Werkzeugverwaltung, dem Werkzeugaufruf und den Korrekturtabellen"): the table file
 // (apci/nc/correction_table.h) and its selection in Klartext programs, FUNCTION CORRDATA TCS #n
 // / FUNCTION CORRDATA RESET TCS, with the tool checks over the summed deltas.
@@ -148,7 +148,7 @@ TEST(CorrData, SyntaxErrorsSayWhatWasExpected) {
               "prog.nc:3:31: unexpected '#' after FUNCTION CORRDATA RESET TCS");
 }
 
-// Seed 002: a positive oversize is an error unless M107 allows it, whichever of tool table,
+// [TNC-3D]: a positive oversize is an error unless M107 allows it, whichever of tool table,
 // tool call and correction table brings it; the board checks the same at CorrectionRow.
 TEST(CorrData, RowThatGivesAPositiveOversizeNeedsM107) {
     const Tables r;

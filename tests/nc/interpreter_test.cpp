@@ -287,6 +287,26 @@ TEST(Interpreter, CornerModeDefaultsToLinearAndEventsOnChange) {
     EXPECT_EQ(corner[1].mode, CornerMode::kLinear);
 }
 
+TEST(Interpreter, G70TakesLengthsAndFeedInInchesUntilG71) {
+    // [ISG-PROG]: G70 inch input, G71 metric (the initial state). Events are in mm.
+    const auto ev = events_of(
+        "G70 G1 X1 Y2 Z-0.5 F10\nG91 X1\nG90 G3 X3 Y3 I0 J1\nG2 X4 Y2 R1\nG71 G1 X100 F600\nM30");
+    const auto lines = only<LineMove>(ev);
+    ASSERT_EQ(lines.size(), 3U);
+    EXPECT_EQ(lines[0].end, V(25.4, 50.8, -12.7));
+    EXPECT_DOUBLE_EQ(lines[0].feed, 254.0);
+    EXPECT_DOUBLE_EQ(lines[1].end.x(), 50.8);  // incremental inches too
+    EXPECT_EQ(lines[2].end.x(), 100.0);        // G71: mm again
+    EXPECT_DOUBLE_EQ(lines[2].feed, 600.0);
+    const auto arcs = only<ArcMove>(ev);
+    ASSERT_EQ(arcs.size(), 2U);
+    EXPECT_DOUBLE_EQ(arcs[0].center.y(), 3 * 25.4);  // J1: one inch from the start
+    EXPECT_DOUBLE_EQ(arcs[0].end.x(), 3 * 25.4);
+    EXPECT_NEAR((arcs[1].center - arcs[1].start).norm(), 25.4, 1e-12);  // R1: one inch
+    EXPECT_EQ(error_of("G70 G71 X1\nM30"),
+              "prog.nc:1:5: G70 and G71 in one block: both set the input units");
+}
+
 TEST(Interpreter, PlaneDefaultsToG17AndEventsOnChange) {
     const auto planes = only<PlaneChange>(events_of("G17\nG18\nG18\nG19\nG17\nM30"));
     ASSERT_EQ(planes.size(), 3U);

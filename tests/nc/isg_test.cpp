@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The ISG commands of the DIN 66025 dialect: #OTC (seed 000, FCT-C20, section 2.1), $FOR ..
-// $ENDFOR, #KIN, #TRAFO, #HSC, the B word, assignments and the OTC variables (seed 000 section
+// The ISG commands of the DIN 66025 dialect: #OTC ([ISG-OTC], FCT-C20, section 2.1), $FOR ..
+// $ENDFOR, #KIN, #TRAFO, #HSC, the B word, assignments and the OTC variables ([ISG-OTC] section
 // 2.8); docs/nc-programs.md. One test per rule, named after it.
 #include <gtest/gtest.h>
 
@@ -20,7 +20,7 @@ using test::error_of;
 using test::events_of;
 using test::only;
 
-// Seed 000 section 2.6: D1 the grinding disc, D2 a milling cutter.
+// [ISG-OTC] section 2.6: D1 the grinding disc, D2 a milling cutter.
 ToolTable seed_tools() {
     Result<ToolTable> t = parse_tool_table(
         "wz[1].gueltig 1\nwz[1].typ 2\nwz[1].radius 300000\nwz[1].laenge 500000\n"
@@ -47,7 +47,7 @@ std::string parse_error(std::string_view line) {
     return err.to_string();
 }
 
-// ---- #OTC syntax: every form the seed writes
+// ---- #OTC syntax: every form [ISG-OTC] writes
 
 TEST(Otc, SeedFormsParse) {
     const OtcCommand on = otc_of("N50 #OTC ON (OTC-Anwahl)");
@@ -77,7 +77,7 @@ TEST(Otc, WearConstAccWeightAndWearConstTool) {
     EXPECT_EQ(otc_of("#otc on [length, wear_const = [2*1000]]").wear_const_value, 2000.0);
 }
 
-// Seed 000 section 2.1: ACC_WEIGHT "in Prozent [1;100]".
+// [ISG-OTC] section 2.1: ACC_WEIGHT "in Prozent [1;100]".
 TEST(Otc, AccWeightMustBeOneToHundredPercent) {
     EXPECT_EQ(parse_error("#OTC [ACC_WEIGHT=0]"),
               "prog.nc:1:7: ACC_WEIGHT=0 out of range: a whole percentage 1..100");
@@ -87,7 +87,7 @@ TEST(Otc, AccWeightMustBeOneToHundredPercent) {
     EXPECT_EQ(otc_of("#OTC [ACC_WEIGHT=100]").acc_weight, 100);
 }
 
-// Seed 000 section 3.2, P-TOOL-00030: 0 <= wear constant.
+// [ISG-OTC] section 3.2, P-TOOL-00030: 0 <= wear constant.
 TEST(Otc, WearConstMustNotBeNegative) {
     EXPECT_EQ(parse_error("#OTC [WEAR_CONST=-1]"),
               "prog.nc:1:7: WEAR_CONST=-1 must not be negative (0.1 um/m)");
@@ -120,7 +120,7 @@ TEST(Otc, IsgCommandsStandInABlockOfTheirOwn) {
 
 // ---- #OTC rules in the interpreter
 
-// Seed 000 section 1: "Wird ein anderer Werkzeugtyp verwendet, so wird die Fehlermeldung
+// [ISG-OTC] section 1: "Wird ein anderer Werkzeugtyp verwendet, so wird die Fehlermeldung
 // P-ERR-21391 ausgegeben."
 TEST(OtcRules, OtcOnNeedsAGrindingToolPErr21391) {
     const ToolTable tools = seed_tools();
@@ -137,7 +137,7 @@ TEST(OtcRules, OtcOnNeedsAGrindingToolPErr21391) {
     EXPECT_EQ(error_of("N10 D1\nN20 #OTC ON\nN30 #OTC OFF\nM30\n", o), "");
 }
 
-// Seed 000 section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor #OTC OFF
+// [ISG-OTC] section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor #OTC OFF
 // eingehalten werden."
 TEST(OtcRules, G40MustComeBeforeOtcOff) {
     const std::string bad = "F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\n#OTC OFF\nG40 X30\nM30\n";
@@ -146,7 +146,7 @@ TEST(OtcRules, G40MustComeBeforeOtcOff) {
               "program G40 before #OTC OFF");
     EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40 X30\n#OTC OFF\nM30\n"),
               "");
-    // Seed: "Bei der Anwahl ist ein Vertauschen der Befehle G41/G42 und #OTC ON möglich."
+    // [ISG-OTC]: "Bei der Anwahl ist ein Vertauschen der Befehle G41/G42 und #OTC ON möglich."
     EXPECT_EQ(error_of("F600\nD1\nG41 G1 X10\n#OTC ON [RADIUS]\nX20\nG40 X30\n#OTC OFF\nM30\n"),
               "");
 }
@@ -197,8 +197,8 @@ TEST(Kinematics, TrafoOnNeedsAKinematics) {
               "prog.nc:1:8: expected ON or OFF after #TRAFO, found 'MAYBE'");
 }
 
-// DESIGN.md section 8: with the transformation the program gives the tool tip; at the switch the
-// position in force is re-expressed (tip = pivot - length t(B)).
+// docs/design.md section 8: with the transformation the program gives the tool tip; at the switch
+// the position in force is re-expressed (tip = pivot - length t(B)).
 TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
     const ToolTable tools = seed_tools();  // D1: laenge 50 mm
     InterpreterOptions o;
@@ -235,7 +235,7 @@ TEST(Kinematics, TrafoIsNotSwitchedWhileOtcIsOn) {
               std::string::npos);
 }
 
-// DESIGN.md section 8: "#HSC is accepted and reported as not emulated".
+// docs/design.md section 8: "#HSC is accepted and reported as not emulated".
 TEST(Hsc, AcceptedAndReportedAsNotEmulated) {
     const auto ev = events_of("N85 #HSC ON[BSPLINE PATH_DEV 5 MERGE = 0]\nN290 #HSC OFF\nM30\n");
     const auto n = only<NotEmulated>(ev);
@@ -261,7 +261,7 @@ TEST(BAxis, TiltsTheHeadBeforeTheBlocksMove) {
 // ---- $FOR .. $ENDFOR
 
 TEST(ForLoop, SeedToolDirLoopRunsTwentyOneTimes) {
-    // Seed 000 section 2.4: $FOR P1=0, 20, 1 with two moves.
+    // [ISG-OTC] section 2.4: $FOR P1=0, 20, 1 with two moves.
     const auto ev = events_of(
         "F1000\nN90 $FOR P1=0, 20, 1\nN100 G91 G01 X10 Z-10 F2000\nN110 X-10 Z10\nN120 "
         "$ENDFOR\nM30\n");
@@ -367,7 +367,7 @@ TEST(Variables, ParametersAreAssignedAndRead) {
     EXPECT_EQ(error_of("G0 X[P9]\nM30\n"), "prog.nc:1:6: P9 is used before it is set");
 }
 
-// Seed 000 section 2.8: V.G.OTC_ACTIVE reads the state of OTC.
+// [ISG-OTC] section 2.8: V.G.OTC_ACTIVE reads the state of OTC.
 TEST(Variables, OtcActiveReadsTheOtcState) {
     const auto r = only<RapidMove>(
         events_of("P1 = V.G.OTC_ACTIVE\n#OTC ON\nP2 = V.G.OTC_ACTIVE\nG0 X[P1] Y[P2]\nM30\n"));
@@ -375,7 +375,7 @@ TEST(Variables, OtcActiveReadsTheOtcState) {
     EXPECT_EQ(r[0].end, Eigen::Vector3d(0, 1, 0));
 }
 
-// Seed 000 section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
+// [ISG-OTC] section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
 // ... geschrieben bzw. gelesen werden."
 TEST(Variables, WearConstIsReadFromTheToolAndWritable) {
     const ToolTable tools = seed_tools();

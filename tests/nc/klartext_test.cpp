@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The Klartext subset for the 3D tool compensation (TNC seed 002): parsing, the program rules
-// and the events, with the seed's examples (examples/3d_*.h) and every refusal.
+// The Klartext subset for the 3D tool compensation ([TNC-3D]): parsing, the program rules
+// and the events, with [TNC-3D]'s examples (examples/3d_*.h) and every refusal.
 #include "apci/nc/klartext.h"
 
 #include <gtest/gtest.h>
@@ -204,9 +204,9 @@ TEST(KlartextL, WordErrors) {
               "FUNCTION CORRDATA, M functions)");
 }
 
-// ---- LN (seed 002, "Gerade LN") ----
+// ---- LN ([TNC-3D], "Gerade LN") ----
 
-// The seed's face-milling example (examples/3d_face_milling.h): the three variants.
+// [TNC-3D]'s face-milling example (examples/3d_face_milling.h): the three variants.
 TEST(KlartextLn, SeedFaceMillingExample) {
     const ToolTable table = example_tools();
     const auto ev = run_file(kExamples + "/3d_face_milling.h", &table);
@@ -247,7 +247,7 @@ TEST(KlartextLn, WithoutTcpmAProgrammedTIsIgnored) {
     EXPECT_TRUE(ln[0].tool_vector_programmed);
 }
 
-// The seed's peripheral-milling example (examples/3d_peripheral.h): the three variants.
+// [TNC-3D]'s peripheral-milling example (examples/3d_peripheral.h): the three variants.
 TEST(KlartextLn, SeedPeripheralMillingExample) {
     const ToolTable table = example_tools();
     const auto ev = run_file(kExamples + "/3d_peripheral.h", &table);
@@ -275,7 +275,7 @@ TEST(KlartextLn, SeedPeripheralMillingExample) {
 }
 
 TEST(KlartextLn, SeedSyntaxExampleIsRefusedBecauseItsVectorsAreNotNormalised) {
-    // Seed 002, "Gerade LN", Eingabe (decimal commas and the typeset dash written as in a
+    // [TNC-3D], "Gerade LN", Eingabe (decimal commas and the typeset dash written as in a
     // file): |N| = 0.9152961, |T| = 0.9139454.
     EXPECT_EQ(error_of(pgm("2 LN X+31.737 Y+21.954 Z+33.165 NX+0.2637581 NY+0.0078922 "
                            "NZ-0.8764339 TX+0.0078922 TY-0.8764339 TZ+0.2590319 F1000 M128\n")),
@@ -502,7 +502,7 @@ TEST(KlartextToolCall, SyntaxAndRules) {
               "earlier block");
 }
 
-// ---- The seed's allowance example as a whole program ----
+// ---- [TNC-3D]'s allowance example as a whole program ----
 
 TEST(Klartext, SeedAllowanceExampleRunsWithM107AndCentreReference) {
     const ToolTable table = example_tools();

@@ -217,7 +217,7 @@ TEST(Parser, UnknownWordsAreErrors) {
 TEST(Parser, UnknownGCode) {
     EXPECT_EQ(error("N10 G04"),
               "prog.nc:12:5: unknown G code G4 (known: G0-G3, G17-G19, G25, "
-              "G26, G40-G42, G90, G91)");
+              "G26, G40-G42, G70, G71, G90, G91)");
     EXPECT_EQ(error_kind("G138"), ErrorKind::kUnknownWord);
 }
 

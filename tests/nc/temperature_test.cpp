@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The setting data of the temperature compensation in tool direction (seed 004, SINUMERIK
+// The setting data of the temperature compensation in tool direction ([SIN-TEMP], SINUMERIK
 // 840D FB1 W1 section 2.8: SD 42960 TOOL_TEMP_COMP[0..2], "mittels Synchronaktionen oder von
 // der PLC aus vom Anwender beschrieben") written from DIN 66025 programs as
 // $SC_TOOL_TEMP_COMP[i] = expr; docs/nc-programs.md ("Variables"). One test per rule.

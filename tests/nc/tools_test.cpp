@@ -22,7 +22,7 @@ ToolTable table(std::string_view text) {
     return t ? t.value() : ToolTable{};
 }
 
-// Seed FCT-C20 section 2.6: the tool data of the grinding disc, kept raw and converted.
+// [ISG-OTC] section 2.6: the tool data of the grinding disc, kept raw and converted.
 TEST(ToolTable, SeedToolDataRawAndConverted) {
     Result<ToolTable> t = load_tool_table(kExamples + "/tools/wr_quad_disc.tools");
     ASSERT_TRUE(t) << t.error().to_string();

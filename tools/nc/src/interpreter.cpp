@@ -160,12 +160,26 @@ Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) 
 }
 
 bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, Diagnostic& err) {
+    const Units units = b.units.present() ? b.units.value : state_.units;
+    if (units == Units::kMetric) return apply_mm(b, units, file, out, err);
+    // G70: every length word and the feed in inches; the events are in mm.
+    Block mm = b;
+    for (auto& w : mm.axis) w.value *= kMillimetresPerInch;
+    for (auto& w : mm.center) w.value *= kMillimetresPerInch;
+    mm.radius.value *= kMillimetresPerInch;
+    mm.feed.value *= kMillimetresPerInch;
+    return apply_mm(mm, units, file, out, err);
+}
+
+bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, EventBatch& out,
+                           Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
     if (state_.ended) {
         return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
     }
     ModalState s = state_;  // committed only when every check has passed
+    s.units = units;
     if (b.motion.present()) s.motion = b.motion.value;
     if (b.distance.present()) s.distance = b.distance.value;
     if (b.feed.present()) s.feed = b.feed.value;

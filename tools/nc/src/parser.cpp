@@ -21,7 +21,8 @@ bool keyword_is(std::string_view id, std::string_view upper) {
         if (to_upper(id[i]) != upper[i]) return false;
     return true;
 }
-constexpr std::string_view kKnownGCodes = "G0-G3, G17-G19, G25, G26, G40-G42, G90, G91";
+constexpr std::string_view kKnownGCodes =
+    "G0-G3, G17-G19, G25, G26, G40-G42, G70, G71, G90, G91";
 
 // Fills err and returns false, so error paths read `return fail(...)`.
 bool fail(Diagnostic& err, ErrorKind kind, std::string_view file, std::uint64_t line,
@@ -687,6 +688,10 @@ class BlockParser {
                 return set_group(b_.compensation, Compensation::kLeft, col, "radius compensation");
             case 42:
                 return set_group(b_.compensation, Compensation::kRight, col, "radius compensation");
+            case 70:
+                return set_group(b_.units, Units::kInch, col, "input units");
+            case 71:
+                return set_group(b_.units, Units::kMetric, col, "input units");
             case 90:
                 return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
             case 91:

@@ -17,6 +17,10 @@ enum class Compensation : std::uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
 // Outside corners under radius compensation (ISG seed, wr_quad_disc.nc: G25 "linearer
 // Übergangssatz", G26 "zirkularer Übergangssatz").
 enum class CornerMode : std::uint8_t { kLinear = 25, kCircular = 26 };
+// Input units ([ISG-PROG]: G70 inch, G71 metric, the initial state): lengths and feeds of the
+// program's words. Events are in mm whatever the program's units.
+enum class Units : std::uint8_t { kInch = 70, kMetric = 71 };
+inline constexpr double kMillimetresPerInch = 25.4;
 
 constexpr int g_number(Motion m) noexcept {
     return static_cast<int>(m);
@@ -32,6 +36,9 @@ constexpr int g_number(Compensation c) noexcept {
 }
 constexpr int g_number(CornerMode c) noexcept {
     return static_cast<int>(c);
+}
+constexpr int g_number(Units u) noexcept {
+    return static_cast<int>(u);
 }
 
 // A word of the block: its value and the 1-based column of its address letter; column 0 means
@@ -62,11 +69,12 @@ struct Block {
     Word<DistanceMode> distance;         // G90 G91
     Word<Compensation> compensation;     // G40 G41 G42
     Word<CornerMode> corner;             // G25 G26
-    std::array<Word<double>, 3> axis;    // X Y Z, program units (mm)
+    Word<Units> units;                   // G70 G71
+    std::array<Word<double>, 3> axis;    // X Y Z, program units (mm, inches under G70)
     Word<double> b_axis;                 // B, degrees: the B head's tilt (DESIGN.md section 8)
     std::array<Word<double>, 3> center;  // I J K, incremental from the arc start
     Word<double> radius;                 // R (negative: the larger arc)
-    Word<double> feed;                   // F, mm/min, > 0
+    Word<double> feed;                   // F, mm/min (inch/min under G70), > 0
     Word<int> tool;                      // D, 0..kMaxToolNumber (0: no tool)
     Word<bool> end_of_program;           // M30
 
@@ -74,7 +82,7 @@ struct Block {
     void clear(std::uint64_t line_number) noexcept {
         line = line_number;
         number.column = motion.column = plane.column = distance.column = 0;
-        compensation.column = corner.column = radius.column = feed.column = 0;
+        compensation.column = corner.column = units.column = radius.column = feed.column = 0;
         tool.column = end_of_program.column = b_axis.column = 0;
         for (auto& w : axis) w.column = 0;
         for (auto& w : center) w.column = 0;

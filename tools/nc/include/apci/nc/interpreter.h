@@ -29,6 +29,7 @@ struct ModalState {
     DistanceMode distance = DistanceMode::kAbsolute;     // G90
     Compensation compensation = Compensation::kOff;      // G40
     CornerMode corner = kStartCornerMode;                // G25
+    Units units = Units::kMetric;                        // G71
     double feed = 0.0;                                   // mm/min; 0 until F is programmed
     int tool = 0;                                        // D0: no tool
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // absolute, mm
@@ -69,6 +70,7 @@ class Interpreter {
     // state and fills `out` (cleared first) with the block's events. On error returns false,
     // fills err (with `file`, the block's line and the column of the offending word) and changes
     // no state.
+    // Under G70 the block's lengths and feed are taken in inches (converted to mm first).
     bool apply(const Block& block, std::string_view file, EventBatch& out, Diagnostic& err);
     // An ISG command line (#OTC, #KIN, #TRAFO, #HSC; $FOR/$ENDFOR are the stream's): checks its
     // rules, commits, fills `out`. `block` carries the line's N number and line.
@@ -84,6 +86,9 @@ class Interpreter {
     double model_variable(const VariableRef& v) const noexcept;
 
   private:
+    // apply() of a block whose lengths are in mm, `units` the block's input units.
+    bool apply_mm(const Block& block, Units units, std::string_view file, EventBatch& out,
+                  Diagnostic& err);
     double tool_length_mm(int tool) const noexcept;
 
   public:
