@@ -218,7 +218,18 @@ TEST(Parser, UnknownGCode) {
     EXPECT_EQ(error("N10 G04"),
               "prog.nc:12:5: unknown G code G4 (known: G0-G3, G17-G19, G25, "
               "G26, G40-G42, G70, G71, G90, G91)");
-    EXPECT_EQ(error_kind("G138"), ErrorKind::kUnknownWord);
+}
+
+TEST(Parser, IsgSelectionMethodsAndSpindleFeedsAreRefusedAsNotEmulated) {
+    for (const char* g : {"G138", "G139", "G236", "G237", "G238", "G239", "G05"}) {
+        EXPECT_EQ(error_kind(g), ErrorKind::kUnsupported) << g;
+        EXPECT_NE(error(g).find("is not emulated"), std::string::npos) << g;
+    }
+    EXPECT_EQ(error("G1 X1 FZ0.1"),
+              "prog.nc:12:7: FZ (feed per tooth) is not emulated: it needs a spindle, which the "
+              "board has not; program F in mm/min");
+    EXPECT_EQ(error_kind("G1 X1 FU0.2"), ErrorKind::kUnsupported);
+    EXPECT_EQ(error_kind("G1 X1 F AUTO"), ErrorKind::kUnsupported);
 }
 
 TEST(Parser, UnknownMCode) {

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <utility>
 
@@ -692,6 +693,21 @@ class BlockParser {
                 return set_group(b_.units, Units::kInch, col, "input units");
             case 71:
                 return set_group(b_.units, Units::kMetric, col, "input units");
+            case 5:
+            case 138:
+            case 139:
+            case 236:
+            case 237:
+            case 238:
+            case 239:
+                // [ISG-PROG]'s selection and deselection methods of the radius compensation.
+                return fail_here(ErrorKind::kUnsupported, col,
+                                 fmt::format("G{} (a selection method of the radius compensation) "
+                                             "is not emulated: the G41/G42 block's move is the "
+                                             "first compensated element, reached by a straight "
+                                             "approach, and G40 ends with a straight departure "
+                                             "(docs/compensation.md)",
+                                             g));
             case 90:
                 return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
             case 91:
@@ -733,6 +749,18 @@ class BlockParser {
 
     bool feed(std::uint32_t col) {
         const std::uint32_t num_col = c_.column();
+        // The ISG kernel's other feed words ([ISG-PROG]): per tooth, per revolution, automatic.
+        // They depend on a spindle, which the emulated board does not have.
+        const char next = static_cast<char>(std::toupper(static_cast<unsigned char>(c_.peek())));
+        if (next == 'Z' || next == 'U' || next == 'A' || (next == ' ' && std::toupper(static_cast<unsigned char>(c_.peek_at(1))) == 'A')) {
+            const std::string_view word = next == 'Z' ? "FZ (feed per tooth)"
+                                          : next == 'U' ? "FU (feed per revolution)"
+                                                        : "F AUTO (automatic feed)";
+            return fail_here(ErrorKind::kUnsupported, col,
+                             fmt::format("{} is not emulated: it needs a spindle, which the "
+                                         "board has not; program F in mm/min",
+                                         word));
+        }
         if (!real(b_.feed, 'F', col)) return false;
         if (!(b_.feed.value > 0.0)) {
             return fail_here(ErrorKind::kValue, num_col, "feed rate F must be greater than 0");
