@@ -188,13 +188,30 @@ TEST(ApcictlScript, StopsAtTheFirstFailingLineAndNamesIt) {
 }
 
 TEST(ApcictlScript, StateRuleFailureStopsTheScriptAndNamesTheLine) {
-    // XAxis may change only while compensation is inactive (seed 003 Table 3).
+    // XAxis may change only while compensation is inactive ([APCI-TC] Table 3).
     const auto r = script("write 1300 1 1 8 1\nwrite 1300 1 1 7 2\nwrite 1300 1 1 9 1\n"
                           "write 1300 1 1 3 1\nwrite 1300 1 1 4 2\nread 1300 1 1 3\n");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.out, "");
-    EXPECT_EQ(r.err, "line 5: write 1300 1 1 4 2: WrongDeviceState (not possible in the present "
-                     "device state)\n");
+    EXPECT_EQ(r.err,
+              "line 5: write 1300 1 1 4 2: WrongDeviceState (not possible in the present device "
+              "state); group 1's ERROR now reads 0x01 (InitError); this object changes only while "
+              "the group is inactive: write STATUS = 0 first ([APCI-TC] Table 3) (clear it: write "
+              "1300 1 1 1 0)\n");
+}
+
+TEST(ApcictlWrite, StatusOneOnAGroupNotInitialisedSaysThatErrorNowReadsInitErrorAndWhatItNeeds) {
+    const auto r = apcictl({"write", "1300", "1", "2", "3", "1"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err,
+              "apcictl: write 1300 1 2 3 1: WrongDeviceState (not possible in the present device "
+              "state); group 2's ERROR now reads 0x01 (InitError); STATUS = 1 needs the group "
+              "initialised: XAxis, YAxis and ZAxis distinct and on no axis of a running group, and "
+              "Left or Right written ([APCI-TC] Table 3) (clear it: write 1300 1 2 1 0)\n");
+    // A refusal that sets no TC bit says nothing more.
+    const auto high = apcictl({"write", "1300", "1", "1", "8", "2000"});
+    EXPECT_EQ(high.err,
+              "apcictl: write 1300 1 1 8 2000: ValueTooHigh (value above the object's range)\n");
 }
 
 TEST(ApcictlScript, KeepGoingRunsEveryLineAndExitsWithTheFirstFailure) {

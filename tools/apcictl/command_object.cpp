@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "command.h"
+#include "rwmos/object_map.h"
 #include "value_text.h"
 
 namespace apcictl {
@@ -102,6 +103,7 @@ public:
         Outcome failure;
         apci::Board* board = session.board(failure);
         if (board == nullptr) return failure;
+        board_ = board;
         auto o = object_.descriptor();
         if (type_.force_int) return result(board->write_int(o, int_value_).status);
         if (type_.force_double) return result(board->write_double(o, double_value_).status);
@@ -129,11 +131,50 @@ private:
     }
     Outcome result(apci::Status s) const {
         if (s == APCI_OK) return Outcome::success();
-        return Outcome::board_error(fmt::format("{}: {}", command_text(), describe_status(s)));
+        return Outcome::board_error(
+            fmt::format("{}: {}{}", command_text(), describe_status(s), tc_consequence()));
+    }
+
+    // A refused write to a TC group may have set the group's ERROR ([APCI-TC] Table 3: InitError
+    // for STATUS = 1 on a group not initialised, and for the axes, WKZINDEX, Left or Right
+    // while it runs): the refusal says so, and what to change.
+    std::string tc_consequence() const {
+        namespace tc = rwmos::tc;
+        if (object_.bus != tc::kBus || object_.device != tc::kDevGroups || board_ == nullptr)
+            return {};
+        auto error = apci::object(tc::kBus, tc::kDevGroups, object_.index, tc::kSubError);
+        const auto bits = board_->read_int(error);
+        if (!bits || bits.value == 0) return {};
+        std::string names;
+        for (int bit = 0; bit < 32; ++bit) {
+            if ((static_cast<std::uint32_t>(bits.value) & (1u << bit)) == 0) continue;
+            const char* name = apci_tc_error_bit_name(bit);
+            names += names.empty() ? "" : ", ";
+            names += name != nullptr ? name : fmt::format("bit {}", bit);
+        }
+        const std::string group =
+            object_.index == tc::kActiveGroupIndex ? "the active group"
+                                                   : fmt::format("group {}", object_.index);
+        std::string hint;
+        if ((bits.value & 1) != 0) {
+            if (object_.subindex == tc::kSubStatus)
+                hint = "; STATUS = 1 needs the group initialised: XAxis, YAxis and ZAxis "
+                       "distinct and on no axis of a running group, and Left or Right written "
+                       "([APCI-TC] Table 3)";
+            else if (object_.subindex == tc::kSubXAxis || object_.subindex == tc::kSubYAxis ||
+                     object_.subindex == tc::kSubZAxis || object_.subindex == tc::kSubWkzIndex ||
+                     object_.subindex == tc::kSubLeft || object_.subindex == tc::kSubRight)
+                hint = "; this object changes only while the group is inactive: write STATUS = 0 "
+                       "first ([APCI-TC] Table 3)";
+        }
+        return fmt::format("; {}'s ERROR now reads 0x{:02x} ({}){} (clear it: write {} {} {} {} 0)",
+                           group, bits.value, names, hint, tc::kBus, tc::kDevGroups, object_.index,
+                           tc::kSubError);
     }
 
     ObjectArgs object_;
     TypeFlags type_;
+    apci::Board* board_ = nullptr;  // the board written to (its TC ERROR explains a refusal)
     std::string value_text_;
     bool is_int_ = false;
     std::int32_t int_value_ = 0;
