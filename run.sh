@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The main job on the embedded emulator: the seed's wr_quad_disc.nc (without its #OTC lines)
-# with its tool list, through `apcictl run`; then the complete seed program with its #OTC lines
+# The main job on the embedded emulator: wr_quad_disc.nc of [ISG-OTC-EN] (without its #OTC lines)
+# with its tool list, through `apcictl run`; then the complete program with its #OTC lines
 # and the PLC's 2 mm (docs/otc.md); the summaries on standard output, plots and paths in out/.
 set -euo pipefail
 cd "$(dirname "$0")"

@@ -1,4 +1,4 @@
-; TNC seed 002, "Werkstückaufmaß erzeugen, CAM-Ausgabe Kugelmitte": the 6 mm ball mill leaves a
+; [TNC-3D], "Werkstückaufmaß erzeugen, CAM-Ausgabe Kugelmitte": the 6 mm ball mill leaves a
 ; stock allowance of 0.2 mm. The CAM points are ball centres (REFPNT CNT-CNT); the allowance is
 ; in the TOOL CALL; M107 allows the positive oversize. Tool data: examples/tools/3d_tools.tools
 ; (tool 3). The design surface is the plane Z = 0 tilted about Y by 30 degrees, N in Z-X.

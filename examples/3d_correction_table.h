@@ -1,4 +1,4 @@
-; TNC seed 002, "3D-Werkzeugkorrektur beim Stirnfräsen", Beispiel (blocks 12 to 14 of
+; [TNC-3D], "3D-Werkzeugkorrektur beim Stirnfräsen", Beispiel (blocks 12 to 14 of
 ; examples/3d_face_milling.h) with the tool as designed (tool 3 of examples/tools/3d_tools.tools,
 ; the 6 mm ball mill without deltas) and the regrinding in the correction table
 ; (examples/tools/3d_corrections.corr row 1: DR -0.1, DR2 -0.1): the same tips as the reground

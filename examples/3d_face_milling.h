@@ -1,4 +1,4 @@
-; TNC seed 002, "3D-Werkzeugkorrektur beim Stirnfräsen", Beispiel: blocks 11 to 14 in a whole
+; [TNC-3D], "3D-Werkzeugkorrektur beim Stirnfräsen", Beispiel: blocks 11 to 14 in a whole
 ; program. Tool data: examples/tools/3d_tools.tools (tool 1: the reground 6 mm ball mill).
 ;   11 L:  no compensation possible
 ;   12 LN without T, no TCPM: compensation perpendicular to the contour (T = the machine axis)

@@ -1,4 +1,4 @@
-; TNC seed 002, "3D-Werkzeugkorrektur beim Umfangsfräsen", Beispiel: blocks 11 to 13 in a whole
+; [TNC-3D], "3D-Werkzeugkorrektur beim Umfangsfräsen", Beispiel: blocks 11 to 13 in a whole
 ; program. Tool data: examples/tools/3d_tools.tools (tool 2: the reground 12 mm end mill).
 ;   11 L with rotary axes, M128, RL: the side of the correction from RL
 ;   12 LN with T perpendicular to N, M128

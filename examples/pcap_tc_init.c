@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 /*
  * pcap_tc_init: a PCAP-style C program that initialises and uses the tool
- * radius compensation of an APCI-8001/8008 board, following the seed
- * (APCI-8001 TC document, section 2.5 "Verwendung von TC"):
+ * radius compensation of an APCI-8001/8008 board, following the APCI-8001 TC
+ * document, [APCI-TC] section 2.5 "Verwendung von TC" (docs/references.md):
  *
  *   initialisation: RESET; compensation plane (XAxis, YAxis, ZAxis);
  *                   tool table: for each tool WKZINDEX, then RADIUS
@@ -14,7 +14,7 @@
  * the old handles; zeroed descriptors work again.
  *
  * Usage: pcap_tc_init [DEVICE-URI]   (default: the embedded emulator, emu:)
- * Exit status 0 when every step answered as the seed says, 1 otherwise.
+ * Exit status 0 when every step answered as [APCI-TC] says, 1 otherwise.
  */
 #include <stdio.h>
 #include <stdlib.h>

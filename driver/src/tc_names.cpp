@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Seed names of the TC register bits: APCI-8001 TC document, Table 4 (ERROR)
+// The names of the TC register bits in [APCI-TC] Table 4 (ERROR)
 // and Table 5 (STATUS).
 #include "apci/apci.h"
 #include "rwmos/object_map.h"

@@ -29,7 +29,7 @@ constexpr OpenFn kOpenUsb = nullptr;  // built without libusb-1.0
 constexpr ListFn kListUsb = nullptr;
 #endif
 
-// DESIGN.md section 6. One row per backend; list_devices() walks the rows in
+// docs/design.md section 6. One row per backend; list_devices() walks the rows in
 // this order, so boards come before emulators.
 constexpr std::array kSchemes{
     Scheme{"usb", kOpenUsb, kListUsb, "usb:[BUS:ADDR]"},

@@ -1,5 +1,5 @@
-; ISG FCT-C20 section 2.3 "Verschleiß in Werkzeuglänge" (the seed's lines, its "..." left out).
-; Tool data: examples/tools/wr_quad_disc.tools (D1, the seed's section 2.6 grinding disc,
+; ISG FCT-C20 section 2.3 "Verschleiß in Werkzeuglänge" (its lines, its "..." left out).
+; Tool data: examples/tools/wr_quad_disc.tools (D1, the grinding disc of [ISG-OTC] section 2.6,
 ; grinding_wear_const 100000 x 0.1 um/m): 1000 mm of path wear the disc by 10 mm on Z.
 ; ./build/bin/apcictl run examples/otc/length.nc --tools examples/tools/wr_quad_disc.tools
 N30 D1                (Anwahl Datensatz für Schleifscheibe)

@@ -1,4 +1,4 @@
-; ISG FCT-C20 section 2.5 "OTC-Schleifen mit Kinematiktyp 4", SURF_NORM_DIR (the seed's lines,
+; ISG FCT-C20 section 2.5 "OTC-Schleifen mit Kinematiktyp 4", SURF_NORM_DIR (its lines,
 ; M30 added). #HSC is accepted and reported as not emulated. The PLC commands 0.5 mm along the
 ; surface normal through the third axis's unit: examples/otc/plc/surf_norm_dir.plc.
 ; ./build/bin/apcictl run examples/otc/surf_norm_dir.nc --tools examples/tools/wr_quad_disc.tools --plc examples/otc/plc/surf_norm_dir.plc

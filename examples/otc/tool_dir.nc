@@ -1,5 +1,5 @@
-; ISG FCT-C20 section 2.4 "OTC-Schleifen mit Kinematiktyp 4" (the seed's lines; its "..." left
-; out, M30 added). #KIN ID[4] is the B head (DESIGN.md section 8). The PLC commands 1 mm along
+; ISG FCT-C20 section 2.4 "OTC-Schleifen mit Kinematiktyp 4" (its lines; its "..." left
+; out, M30 added). #KIN ID[4] is the B head (docs/design.md section 8). The PLC commands 1 mm along
 ; the tool: examples/otc/plc/tool_dir.plc.
 ; ./build/bin/apcictl run examples/otc/tool_dir.nc --tools examples/tools/wr_quad_disc.tools --plc examples/otc/plc/tool_dir.plc
 N30 D1 (Anwahl Datensatz für Schleifscheibe)

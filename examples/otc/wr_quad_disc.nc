@@ -1,7 +1,7 @@
 %wr_quad_disc.nc
-; ISG FCT-C20 section 2.2 / seed 001 "OTC mit diskreter Zustellung", complete with its #OTC lines.
+; ISG FCT-C20 section 2.2 / [ISG-OTC-EN] "OTC mit diskreter Zustellung", complete with its #OTC lines.
 ; Tool data: examples/tools/wr_quad_disc.tools (D1, a grinding disc of radius 30 mm). The PLC
-; commands the seed's 2 mm: examples/otc/plc/wr_quad_disc.plc (or -2 mm: ..._negative.plc).
+; commands the 2 mm of [ISG-OTC-EN]: examples/otc/plc/wr_quad_disc.plc (or -2 mm: ..._negative.plc).
 ; ./build/bin/apcictl run examples/otc/wr_quad_disc.nc --tools examples/tools/wr_quad_disc.tools --plc examples/otc/plc/wr_quad_disc.plc
 N20 G17G90
 N22 D1 G25 ( Linearer Übergangssatz)

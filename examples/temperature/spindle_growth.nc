@@ -1,4 +1,4 @@
-; SINUMERIK 840D FB1 W1 section 2.8 (seed 004), temperature compensation in tool direction: the
+; SINUMERIK 840D FB1 W1 section 2.8 ([SIN-TEMP]), temperature compensation in tool direction: the
 ; program writes the spindle's growth, as the machine's thermal model estimates it after each
 ; pass, into SD 42960 TOOL_TEMP_COMP[2] (+Z: the tool is lifted by what the spindle grew). Each
 ; write acts from its block on (the axes stop at the write, as at a PLC block entry): N40 runs

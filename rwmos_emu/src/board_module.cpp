@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Board module, bus 1000 (design: DESIGN.md section 4 "Board"). Object
+// Board module, bus 1000 (design: docs/design.md section 4 "Board"). Object
 // numbers in rwmos/object_map.h; docs/object-map.md is the spec page.
 #include "rwmos/board_module.h"
 
@@ -23,7 +23,7 @@ constexpr double kIntMin = objif::kInt32Min;
 constexpr double kIntMax = objif::kInt32Max;
 constexpr double kDoubleMin = std::numeric_limits<double>::lowest();
 constexpr double kDoubleMax = std::numeric_limits<double>::max();
-constexpr std::string_view kDesign = "design: DESIGN.md section 4 Board";
+constexpr std::string_view kDesign = "design: docs/design.md section 4 Board";
 
 constexpr std::array<std::string_view, kAxisCount> kPositionNames{
     "Position0", "Position1", "Position2", "Position3",
@@ -55,11 +55,11 @@ std::span<const Entry<BoardModule>> BoardModule::table() const noexcept {
         {{board::kDevice, board::kIdxInterpolationCycle, board::kIdxInterpolationCycle, 0,
           "InterpolationCycle", ValueType::kInt32, Access::kReadWrite, kMinInterpolationCycleUs,
           kMaxInterpolationCycleUs, Value::of_int(kDefaultInterpolationCycleUs),
-          "design: DESIGN.md section 4, default 1 ms, in microseconds"},
+          "design: docs/design.md section 4, default 1 ms, in microseconds"},
          &M::read_interpolation_cycle, &M::write_interpolation_cycle},
         {{board::kDevice, board::kIdxPu, board::kIdxPu, 0, "PU", ValueType::kInt32,
           Access::kReadWrite, board::kPuMillimetre, board::kPuInch, Value::of_int(board::kPuMillimetre),
-          "design: unit of RADIUS/WkzLen (seed 003 Table 3 'mit PU angewaehlte Einheit')"},
+          "design: unit of RADIUS/WkzLen ([APCI-TC] Table 3 'mit PU angewaehlte Einheit')"},
          &M::read_pu, &M::write_pu},
         {ro_int(board::kIdxSpoolerCapacity, "SpoolerCapacity", kSpoolerCapacity),
          &M::read_spooler_capacity, nullptr},
@@ -68,7 +68,7 @@ std::span<const Entry<BoardModule>> BoardModule::table() const noexcept {
         position(4), position(5), position(6), position(7),
         {{board::kDevice, board::kIdxRs, board::kIdxRs, 0, "rs", ValueType::kInt32, Access::kWrite,
           kIntMin, kIntMax, Value::of_int(0),
-          "seed 003 Table 2: rs() zeroes RotAngle, RotCenterX, RotCenterY"},
+          "[APCI-TC] Table 2: rs() zeroes RotAngle, RotCenterX, RotCenterY"},
          nullptr, &M::write_rs},
     }};
     return kTable;
@@ -126,7 +126,7 @@ Status BoardModule::read_axis_position(const ObjectInfo&, const Address& a, Valu
     return Status::kOk;
 }
 
-// Seed 003 Table 2 (RotAngle, RotCenterX, RotCenterY): "Dieser Wert wird mit
+// [APCI-TC] Table 2 (RotAngle, RotCenterX, RotCenterY): "Dieser Wert wird mit
 // dem Kommando rs() abgenullt". The parameter is meaningless.
 Status BoardModule::write_rs(const ObjectInfo&, const Address&, const Value&) {
     state_.tc.rot_angle = 0.0;

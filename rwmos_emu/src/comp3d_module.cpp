@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// 3D tool compensation module, bus 1310 (TNC seed 002_3f94d3efec64ed2d.txt; design numbers,
-// DESIGN.md section 4). The table declares every object; the hooks below it hold the rules.
+// 3D tool compensation module, bus 1310 ([TNC-3D]; design numbers,
+// docs/design.md section 4). The table declares every object; the hooks below it hold the rules.
 // The dictionary has checked address, access, type and range when a hook runs; a hook checks
 // state only and changes nothing when it refuses (save LastError, which records why).
 #include "rwmos/comp3d_module.h"
@@ -61,7 +61,7 @@ constexpr ObjectInfo correction_row(std::int32_t sub, std::string_view name) {
             -kMax,
             kMax,
             Value::of_double(0.0),
-            "seed 002: delta from the correction table, summed with tool table and TOOL CALL"};
+            "[TNC-3D]: delta from the correction table, summed with tool table and TOOL CALL"};
 }
 
 double& delta_of(comp3d::Deltas& d, std::int32_t k) noexcept {
@@ -85,17 +85,17 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
     constexpr auto kR = Access::kRead;
     constexpr auto kRW = Access::kReadWrite;
     static constexpr std::string_view kCall =
-        "seed 002: delta of the TOOL CALL; taken by the next Tool write";
+        "[TNC-3D]: delta of the TOOL CALL; taken by the next Tool write";
     static constexpr std::string_view kVectorN =
-        "seed 002 LN: surface normal of the next LN profile (armed with Arm)";
+        "[TNC-3D] LN: surface normal of the next LN profile (armed with Arm)";
     static constexpr std::string_view kVectorT =
-        "seed 002 LN: tool vector of the next LN profile (armed with Arm)";
-    static constexpr std::string_view kSum = "seed 002: tool table + TOOL CALL + correction table";
+        "[TNC-3D] LN: tool vector of the next LN profile (armed with Arm)";
+    static constexpr std::string_view kSum = "[TNC-3D]: tool table + TOOL CALL + correction table";
     static constexpr std::string_view kTip = "design: the last compensated tool tip (TCP)";
     static constexpr std::array<Entry<M>, 34> kTable{{
         // ---- DeviceNumber 0.
         {setting(comp3d::kIdxTool, 0, "Tool", kInt, kRW, 0, kLastTool, Value::of_int(0),
-                 "seed 002 TOOL CALL: loads the tool with CallDeltas; refused with a positive "
+                 "[TNC-3D] TOOL CALL: loads the tool with CallDeltas; refused with a positive "
                  "oversize unless AllowOversize (M107)"),
          &M::read_tool, &M::write_tool},
         {setting(comp3d::kIdxCallDeltas, 0, "CallDL", kDouble, kRW, -kMax, kMax,
@@ -108,23 +108,23 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
                  Value::of_double(0.0), kCall),
          &M::read_call, &M::write_call},
         {setting(comp3d::kIdxCorrectionRow, 0, "CorrectionRow", kInt, kRW, 0, kLastRow,
-                 Value::of_int(0), "seed 002: the correction table row in force"),
+                 Value::of_int(0), "[TNC-3D]: the correction table row in force"),
          &M::read_correction_row, &M::write_correction_row},
         {setting(comp3d::kIdxProgPath, 0, "ProgPath", kInt, kRW, 0, 1, Value::of_int(0),
-                 "seed 002 FUNCTION PROG PATH: 0 OFF (deltas only), 1 IS CONTOUR (full radii)"),
+                 "[TNC-3D] FUNCTION PROG PATH: 0 OFF (deltas only), 1 IS CONTOUR (full radii)"),
          &M::read_mode, &M::write_mode},
         {setting(comp3d::kIdxReference, 0, "Reference", kInt, kRW, 0, 1, Value::of_int(0),
-                 "seed 002 TCPM REFPNT: 0 tip, 1 centre"),
+                 "[TNC-3D] TCPM REFPNT: 0 tip, 1 centre"),
          &M::read_mode, &M::write_mode},
         {setting(comp3d::kIdxTcpm, 0, "Tcpm", kInt, kRW, 0, 1, Value::of_int(0),
-                 "seed 002 M128 / FUNCTION TCPM: 1 the LN's T (or N) orients the tool"),
+                 "[TNC-3D] M128 / FUNCTION TCPM: 1 the LN's T (or N) orients the tool"),
          &M::read_mode, &M::write_mode},
         {setting(comp3d::kIdxAllowOversize, 0, "AllowOversize", kInt, kRW, 0, 1, Value::of_int(0),
-                 "seed 002 M107 (1) / M108 (0): 0 refused while the loaded tool is oversized"),
+                 "[TNC-3D] M107 (1) / M108 (0): 0 refused while the loaded tool is oversized"),
          &M::read_mode, &M::write_allow_oversize},
         {setting(comp3d::kIdxSide, 0, "Side", kInt, kRW, tc::kSideNone, tc::kSideRight,
                  Value::of_int(tc::kSideNone),
-                 "seed 002 peripheral milling: 40 R0, 41 RL, 42 RR (LN without N)"),
+                 "[TNC-3D] peripheral milling: 40 R0, 41 RL, 42 RR (LN without N)"),
          &M::read_mode, &M::write_mode},
         {setting(comp3d::kIdxHeadAxisB, 0, "HeadAxisB", kInt, kRW, 0, kLastAxis, Value::of_int(4),
                  "design: board axis of the head's B (degrees), kinematics.h"),
@@ -152,7 +152,7 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
                  kVectorT),
          &M::read_vector, &M::write_vector},
         {setting(comp3d::kIdxArm, 0, "Arm", kInt, kRW, 0, 7, Value::of_int(0),
-                 "seed 002 LN: bit 0 N, bit 1 T, bit 2 a line without vectors (L with RL/RR) "
+                 "[TNC-3D] LN: bit 0 N, bit 1 T, bit 2 a line without vectors (L with RL/RR) "
                  "for the next profile; refused when a vector is not normalised"),
          &M::read_arm, &M::write_arm},
         {setting(comp3d::kIdxLastError, 0, "LastError", kInt, kRW, kIntMin, kIntMax,
@@ -176,16 +176,16 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
         {setting(comp3d::kIdxLastTip, 2, "LastTipZ", kDouble, kR, -kMax, kMax,
                  Value::of_double(0.0), kTip),
          &M::read_last_tip, nullptr},
-        // ---- DeviceNumber 1: tool table (seed 002 "Werkzeugtabelle tool.t": R, R2, DL, DR, DR2).
-        {tool_row(comp3d::kSubR, "R", 0.0, "seed 002: tool radius R"), &M::read_tool_row,
+        // ---- DeviceNumber 1: tool table ([TNC-3D] "Werkzeugtabelle tool.t": R, R2, DL, DR, DR2).
+        {tool_row(comp3d::kSubR, "R", 0.0, "[TNC-3D]: tool radius R"), &M::read_tool_row,
          &M::write_tool_row},
-        {tool_row(comp3d::kSubR2, "R2", 0.0, "seed 002: corner radius R2 (0 end mill, R ball)"),
+        {tool_row(comp3d::kSubR2, "R2", 0.0, "[TNC-3D]: corner radius R2 (0 end mill, R ball)"),
          &M::read_tool_row, &M::write_tool_row},
-        {tool_row(comp3d::kSubDl, "DL", -kMax, "seed 002: delta of the tool table on L"),
+        {tool_row(comp3d::kSubDl, "DL", -kMax, "[TNC-3D]: delta of the tool table on L"),
          &M::read_tool_row, &M::write_tool_row},
-        {tool_row(comp3d::kSubDr, "DR", -kMax, "seed 002: delta of the tool table on R"),
+        {tool_row(comp3d::kSubDr, "DR", -kMax, "[TNC-3D]: delta of the tool table on R"),
          &M::read_tool_row, &M::write_tool_row},
-        {tool_row(comp3d::kSubDr2, "DR2", -kMax, "seed 002: delta of the tool table on R2"),
+        {tool_row(comp3d::kSubDr2, "DR2", -kMax, "[TNC-3D]: delta of the tool table on R2"),
          &M::read_tool_row, &M::write_tool_row},
         // ---- DeviceNumber 2: correction table.
         {correction_row(comp3d::kSubCorrDl, "CorrDL"), &M::read_correction, &M::write_correction},
@@ -208,7 +208,7 @@ Status Comp3dModule::read_tool(const ObjectInfo&, const Address&, Value& out) {
     return Status::kOk;
 }
 
-// Seed 002: "Wenn Sie ein Werkzeug mit einem Übermaß (positive Deltawerte) einwechseln, gibt
+// [TNC-3D]: "Wenn Sie ein Werkzeug mit einem Übermaß (positive Deltawerte) einwechseln, gibt
 // die Steuerung eine Fehlermeldung aus" unless M107 allows it; the tool must also exist.
 Status Comp3dModule::write_tool(const ObjectInfo&, const Address&, const Value& v) {
     const std::int32_t t = v.as_int();
@@ -305,7 +305,7 @@ Status Comp3dModule::read_arm(const ObjectInfo&, const Address&, Value& out) {
     return Status::kOk;
 }
 
-// Seed 002 "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten".
+// [TNC-3D] "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten".
 Status Comp3dModule::write_arm(const ObjectInfo&, const Address&, const Value& v) {
     const std::int32_t bits = v.as_int();
     comp3d::UnitVector n;

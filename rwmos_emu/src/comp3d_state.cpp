@@ -33,9 +33,9 @@ bool tc_compensating(const TcState& tc) noexcept {
     return false;
 }
 
-// Peripheral milling without N (seed 002): the side from RL/RR and the motion; where that
+// Peripheral milling without N ([TNC-3D]): the side from RL/RR and the motion; where that
 // gives none (no motion, a plunge, or R0), the normal of the line before, while the 3D path
-// goes on (the seed's block 13 repeats block 12's point with T only, "Kompensation möglich").
+// goes on ([TNC-3D]'s block 13 repeats block 12's point with T only, "Kompensation möglich").
 comp3d::SideNormal peripheral_normal(const Comp3dState& s, const Eigen::Vector3d& motion,
                                      const Eigen::Vector3d& tool_axis) noexcept {
     comp3d::SideNormal side{Refusal::kNoCompensationSide, Eigen::Vector3d::Zero()};

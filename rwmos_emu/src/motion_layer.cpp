@@ -80,7 +80,7 @@ void MotionLayer::sync() noexcept {
                               path[static_cast<std::size_t>(axes[i])];
         }
     }
-    // Seed 003 Table 4 via DESIGN.md section 3: on any TC error the spooler
+    // [APCI-TC] Table 4 via docs/design.md section 3: on any TC error the spooler
     // holds until ERROR is written.
     exec_.set_halted(error_pending());
     state_.spooler.fill = static_cast<std::int32_t>(exec_.fill());

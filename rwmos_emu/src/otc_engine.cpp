@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The OTC engine (otc_engine.h; docs/otc.md states every rule with its seed citation).
+// The OTC engine (otc_engine.h; docs/otc.md states every rule with its source).
 #include "rwmos/otc_engine.h"
 
 #include <algorithm>
@@ -56,7 +56,7 @@ void OtcEngine::add_xyz(const Vec3& v, double scale, AxisVector& out) const noex
 }
 
 OtcEngine::Vec3 OtcEngine::tool_direction(const AxisVector& nominal) const noexcept {
-    // Seed 000 section 2.4: along the tool orientation of the head kinematics; without the
+    // [ISG-OTC] section 2.4: along the tool orientation of the head kinematics; without the
     // transformation the tool stands along the third main axis (design).
     if (session_.tool_from_b)
         return geom::b_head_tool_direction(nominal[static_cast<std::size_t>(session_.b_axis)]);
@@ -74,7 +74,7 @@ Eigen::Vector2d OtcEngine::contour_normal_at(const Move& m, std::uint64_t k,
 
 OtcEngine::Vec3 OtcEngine::surface_normal_at(const Move* m, std::uint64_t k, std::uint64_t n,
                                              const AxisVector& nominal) const noexcept {
-    // Seed 000 section 2.5: from the tool direction and the path tangent. Rapid moves grind
+    // [ISG-OTC] section 2.5: from the tool direction and the path tangent. Rapid moves grind
     // nothing: the last normal stays (design).
     if (m == nullptr || m->direct || m->role == SegmentRole::kRapid)
         return ctx_.last_surface_normal;
@@ -88,7 +88,7 @@ AxisVector OtcEngine::direction(const Move* m, std::uint64_t k, std::uint64_t n,
     AxisVector d{};
     switch (session_.type) {
         case otc::ProcessingType::kRadius: {
-            // Seed 000 section 2.2: perpendicular to the contour, only with radius compensation;
+            // [ISG-OTC] section 2.2: perpendicular to the contour, only with radius compensation;
             // the approach after G41/G42 and the move after G40 are weighed in and out.
             Eigen::Vector2d normal{0, 0};
             double weight = 0.0;
@@ -281,7 +281,7 @@ void OtcEngine::end_session() noexcept {
     AxisVector d_axes{};
     for (std::size_t a = 0; a < d_axes.size(); ++a) d_axes[a] = axis_command(static_cast<int>(a));
 
-    // Seed 000 section 2.1 "Hinweis": "Mit Abwahl der OTC durch #OTC OFF wird der aufgetretene
+    // [ISG-OTC] section 2.1 "Hinweis": "Mit Abwahl der OTC durch #OTC OFF wird der aufgetretene
     // Verschleiß (diskret und/oder kontinuierlich) in das aktuelle Werkzeug eingerechnet"; section
     // 2.8: the variables hold the wear since the tool came in, accumulated over ON/OFF.
     double fold_radius = 0.0, fold_length = 0.0;
@@ -375,7 +375,7 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
 void OtcEngine::move_started(const Move& m, const Move* next) noexcept {
     if (!state_.otc.active) return;
     ctx_.wear_start = wear_;
-    // Seed 000 section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2: the approach after
+    // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2: the approach after
     // G41/G42 and the move after G40 are wear-free; RADIUS wears only with radius compensation.
     const bool wears = otc::mode_has_continuous(session_.mode) && !m.direct &&
                        m.role != SegmentRole::kRapid && m.role != SegmentRole::kApproach &&

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// OTC module, bus 1330 (seed 000_36f878cc714b6f2c.txt, ISG FCT-C20 "Online
-// Werkzeugkompensation", and 001, its English radius section; DESIGN.md section 4). The table
-// declares every object; the hooks below hold the rules, citing the seed heading each comes
-// from. The dictionary has checked address, access, type and range when a hook runs; a hook
+// OTC module, bus 1330 ([ISG-OTC], ISG FCT-C20 "Online Werkzeugkompensation", and
+// [ISG-OTC-EN], its English radius section; docs/design.md section 4). The table declares every
+// object; the hooks below hold the rules, citing the section of [ISG-OTC] each comes from. The
+// dictionary has checked address, access, type and range when a hook runs; a hook
 // that refuses changes nothing but LastError.
 #include "rwmos/otc_module.h"
 
@@ -63,29 +63,29 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
     constexpr auto kTool = otc::kDevTool;
     constexpr auto kUnit = otc::kIdxRadiusOffsetUnit;
     static constexpr std::array<Entry<M>, 36> kTable{{
-        // ---- DeviceNumber 0: #OTC (seed 000 section 2.1), ramp, kinematics, channel unit.
+        // ---- DeviceNumber 0: #OTC ([ISG-OTC] section 2.1), ramp, kinematics, channel unit.
         {obj(kCh, otc::kIdxActive, 0, "Active", kInt, kRW, 0, 1, Value::of_int(0),
-             "seed 000 2.1/2.8: V.G.OTC_ACTIVE; 1 = #OTC ON (tool type 2, else P-ERR-21391), "
+             "[ISG-OTC] 2.1/2.8: V.G.OTC_ACTIVE; 1 = #OTC ON (tool type 2, else P-ERR-21391), "
              "0 = #OTC OFF (G40 first in RADIUS; folds the wear); Busy while moves are queued"),
          &M::read_active, &M::write_active},
         {obj(kCh, otc::kIdxProcessingType, 0, "ProcessingType", kInt, kRW, 0, 3, Value::of_int(1),
-             "seed 000 2.1: 0 RADIUS, 1 LENGTH (default), 2 TOOL_DIR, 3 SURF_NORM_DIR; not while "
+             "[ISG-OTC] 2.1: 0 RADIUS, 1 LENGTH (default), 2 TOOL_DIR, 3 SURF_NORM_DIR; not while "
              "on"),
          &M::read_type, &M::write_type},
         {obj(kCh, otc::kIdxMode, 0, "Mode", kInt, kRW, 0, 2, Value::of_int(2),
-             "seed 000 2.1: 0 CONT, 1 DISC, 2 AUTO (default); not while on"),
+             "[ISG-OTC] 2.1: 0 CONT, 1 DISC, 2 AUTO (default); not while on"),
          &M::read_mode, &M::write_mode},
         {obj(kCh, otc::kIdxWearConst, 0, "WearConst", kDouble, kRW, 0.0, kDoubleMax,
              Value::of_double(0.0),
-             "seed 000 2.1 WEAR_CONST=..: 0.1 um/m, modal; a write also selects it "
+             "[ISG-OTC] 2.1 WEAR_CONST=..: 0.1 um/m, modal; a write also selects it "
              "(WearConstSource 1)"),
          &M::read_wear_const, &M::write_wear_const},
         {obj(kCh, otc::kIdxWearConstSource, 0, "WearConstSource", kInt, kRW, 0, 1, Value::of_int(0),
-             "seed 000 2.1: 0 WEAR_CONST_TOOL (default), 1 the programmed WEAR_CONST"),
+             "[ISG-OTC] 2.1: 0 WEAR_CONST_TOOL (default), 1 the programmed WEAR_CONST"),
          &M::read_wear_const_source, &M::write_wear_const_source},
         {obj(kCh, otc::kIdxAccWeight, 0, "AccWeight", kInt, kRW, otc::kMinAccWeight,
              otc::kMaxAccWeight, Value::of_int(otc::kDefaultAccWeight),
-             "seed 000 2.1 ACC_WEIGHT: percent [1;100] of the ramp acceleration; not while on"),
+             "[ISG-OTC] 2.1 ACC_WEIGHT: percent [1;100] of the ramp acceleration; not while on"),
          &M::read_acc_weight, &M::write_acc_weight},
         {obj(kCh, otc::kIdxLastError, 0, "LastError", kInt, kRW, kIntMin, kIntMax, Value::of_int(0),
              "design: number of the last refused rule (21391 = P-ERR-21391); a write clears it"),
@@ -95,7 +95,7 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
          &M::read_effective_wear_const, nullptr},
         {obj(kCh, otc::kIdxRampVelocity, 0, "RampVelocity", kDouble, kRW, kMinRamp, kMaxRamp,
              Value::of_double(kDefaultRampVelocity),
-             "design: largest speed of a discrete offset, PU/s (seed: over several cycles)"),
+             "design: largest speed of a discrete offset, PU/s ([ISG-OTC]: over several cycles)"),
          &M::read_ramp_velocity, &M::write_ramp_velocity},
         {obj(kCh, otc::kIdxRampAcceleration, 0, "RampAcceleration", kDouble, kRW, kMinRamp,
              kMaxRamp, Value::of_double(kDefaultRampAcceleration),
@@ -103,7 +103,7 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
          &M::read_ramp_acceleration, &M::write_ramp_acceleration},
         {obj(kCh, otc::kIdxKinematics, 0, "Kinematics", kInt, kRW, 0, geom::kBHeadKinematicsId,
              Value::of_int(0),
-             "design: #KIN ID; 0 none, 4 the B head (DESIGN.md section 8); not while on"),
+             "design: #KIN ID; 0 none, 4 the B head (docs/design.md section 8); not while on"),
          &M::read_kinematics, &M::write_kinematics},
         {obj(kCh, otc::kIdxTrafo, 0, "Trafo", kInt, kRW, 0, 1, Value::of_int(0),
              "design: #TRAFO ON/OFF; with the B head on, TOOL_DIR/SURF_NORM_DIR follow B; not "
@@ -115,11 +115,11 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
          &M::read_tool_axis_b, &M::write_tool_axis_b},
         {obj(kCh, kUnit, otc::kSubCommand, "otc_radius_offset.command_w", kInt, kRW, kIntMin,
              kIntMax, Value::of_int(0),
-             "seed 000 2.7.1: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS or TOOL_DIR, "
+             "[ISG-OTC] 2.7.1: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS or TOOL_DIR, "
              "DISC/AUTO"),
          &M::read_unit_command, &M::write_unit_command},
         {obj(kCh, kUnit, otc::kSubEnable, "otc_radius_offset.enable_w", kInt, kRW, 0, 1,
-             Value::of_int(0), "seed 000 2.7.1: the PLC enables the unit"),
+             Value::of_int(0), "[ISG-OTC] 2.7.1: the PLC enables the unit"),
          &M::read_unit_enable, &M::write_unit_enable},
         {obj(kCh, kUnit, otc::kSubRequest, "otc_radius_offset.request_r", kInt, kR, kIntMin,
              kIntMax, Value::of_int(0),
@@ -129,14 +129,14 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
              Value::of_int(0), "design reading of 2.7.1: the offset reached, 0.1 um"),
          &M::read_unit_state, nullptr},
 
-        // ---- DeviceNumber 1: otc_offset of every board axis (seed 000 section 2.7.2).
+        // ---- DeviceNumber 1: otc_offset of every board axis ([ISG-OTC] section 2.7.2).
         {axis_unit_obj(
              otc::kSubCommand, "otc_offset.command_w", kInt, kRW, kIntMin, kIntMax,
-             "seed 000 2.7.2: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS, LENGTH; "
+             "[ISG-OTC] 2.7.2: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS, LENGTH; "
              "third axis along the direction in TOOL_DIR/SURF_NORM_DIR"),
          &M::read_unit_command, &M::write_unit_command},
         {axis_unit_obj(otc::kSubEnable, "otc_offset.enable_w", kInt, kRW, 0, 1,
-                       "seed 000 2.7.2: the PLC enables the unit"),
+                       "[ISG-OTC] 2.7.2: the PLC enables the unit"),
          &M::read_unit_enable, &M::write_unit_enable},
         {axis_unit_obj(otc::kSubRequest, "otc_offset.request_r", kInt, kR, kIntMin, kIntMax,
                        "design reading of 2.7.2: the offset the ramp heads for, 0.1 um"),
@@ -145,66 +145,67 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
                        "design reading of 2.7.2: the offset reached, 0.1 um"),
          &M::read_unit_state, nullptr},
 
-        // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; seed 000 sections 2.6, 2.8, 3.2).
+        // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; [ISG-OTC] sections 2.6, 2.8, 3.2).
         {obj(kTool, otc::kIdxToolNumber, 0, "ToolNumber", kInt, kRW, 0, tc::kToolCount - 1,
              Value::of_int(0),
              "design: the tool (D n, TC WKZINDEX) the wear folds into; a change starts its wear "
-             "from 0 (seed 2.9); not while on"),
+             "from 0 ([ISG-OTC] section 2.9); not while on"),
          &M::read_tool_number, &M::write_tool_number},
         {obj(kTool, otc::kIdxToolType, 0, "typ", kInt, kRW, 0, 3, Value::of_int(0),
-             "seed 000 3.2 P-TOOL-00001: 0 milling, 1 turning, 2 grinding, 3 wire; not while on"),
+             "[ISG-OTC] 3.2 P-TOOL-00001: 0 milling, 1 turning, 2 grinding, 3 wire; not while on"),
          &M::read_tool_type, &M::write_tool_type},
         {obj(kTool, otc::kIdxToolWearConst, 0, "grinding_wear_const", kDouble, kRW, 0.0, kDoubleMax,
              Value::of_double(0.0),
-             "seed 000 3.2 P-TOOL-00030, 0.1 um/m; V.G.WZ_AKT.WEAR_CONST (2.8: read and write)"),
+             "[ISG-OTC] 3.2 P-TOOL-00030, 0.1 um/m; V.G.WZ_AKT.WEAR_CONST (2.8: read and write)"),
          &M::read_tool_wear_const, &M::write_tool_wear_const},
         {obj(kTool, otc::kIdxToolMaxInfeed, 0, "grinding_max_infeed", kDouble, kRW, kIntMin,
              kIntMax, Value::of_double(0.0),
-             "seed 000 3.2 P-TOOL-00031: 0.1 um, SGN32 range; 0: no discrete offset; not while on"),
+             "[ISG-OTC] 3.2 P-TOOL-00031: 0.1 um, SGN32 range; 0: no discrete offset; "
+             "not while on"),
          &M::read_tool_max_infeed, &M::write_tool_max_infeed},
         {obj(kTool, otc::kIdxToolTiltAngle, 0, "grinding_disc_tilt_angle", kDouble, kRW,
              -kMaxTiltUnits, kMaxTiltUnits, Value::of_double(0.0),
-             "seed 000 3.2 P-TOOL-00138: 0.0001 degree within [-45, 45] degrees; not while on"),
+             "[ISG-OTC] 3.2 P-TOOL-00138: 0.0001 degree within [-45, 45] degrees; not while on"),
          &M::read_tool_tilt, &M::write_tool_tilt},
         {obj(kTool, otc::kIdxWearRadius, 0, "V.G.WZ_AKT.WEAR_RADIUS", kDouble, kR, -kDoubleMax,
              kDoubleMax, Value::of_double(0.0),
-             "seed 000 2.8: radius wear, discrete + continuous, PU; updated at #OTC OFF"),
+             "[ISG-OTC] 2.8: radius wear, discrete + continuous, PU; updated at #OTC OFF"),
          &M::read_wear_radius, nullptr},
         {obj(kTool, otc::kIdxWearRadiusCont, 0, "V.G.WZ_AKT.WEAR_RADIUS_CONT", kDouble, kR,
              -kDoubleMax, kDoubleMax, Value::of_double(0.0),
-             "seed 000 2.8: continuous radius wear, PU; updated at #OTC OFF"),
+             "[ISG-OTC] 2.8: continuous radius wear, PU; updated at #OTC OFF"),
          &M::read_wear_radius_cont, nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 0, "V.G.WZ_AKT.WEAR[0]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0),
-          "seed 000 2.8: wear on axis 0, PU; updated at #OTC OFF"},
+          "[ISG-OTC] 2.8: wear on axis 0, PU; updated at #OTC OFF"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 1, "V.G.WZ_AKT.WEAR[1]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 1"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 1"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 2, "V.G.WZ_AKT.WEAR[2]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 2"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 2"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 3, "V.G.WZ_AKT.WEAR[3]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 3"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 3"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 4, "V.G.WZ_AKT.WEAR[4]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 4"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 4"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 5, "V.G.WZ_AKT.WEAR[5]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 5"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 5"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 6, "V.G.WZ_AKT.WEAR[6]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 6"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 6"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 7, "V.G.WZ_AKT.WEAR[7]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "seed 000 2.8: wear on axis 7"},
+          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 7"},
          &M::read_wear,
          nullptr},
     }};
@@ -246,14 +247,14 @@ Status OtcModule::write_active(const Info&, const Address&, const Value& v) {
     // the program; the host runs the clock until the queue is empty and writes again.
     if (queue_busy()) return Status::kBusy;
     if (on) {
-        // Seed 000 section 1 "Eigenschaften": only tool type 2, else P-ERR-21391.
+        // [ISG-OTC] section 1 "Eigenschaften": only tool type 2, else P-ERR-21391.
         if (o.tool.type != otc::kGrindingToolType)
             return refuse(otc::Error::kToolNotGrinding, Status::kWrongDeviceState);
         o.active = true;
         state_.otc_engine.start_session();
         return Status::kOk;
     }
-    // Seed 000 section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor
+    // [ISG-OTC] section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor
     // #OTC OFF eingehalten werden."
     if (o.type == otc::ProcessingType::kRadius) {
         for (const TcGroup& g : state_.tc.groups)
@@ -269,7 +270,7 @@ Status OtcModule::read_type(const Info&, const Address&, Value& out) {
     return Status::kOk;
 }
 
-// Seed 000 section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen."
+// [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen."
 Status OtcModule::write_type(const Info&, const Address&, const Value& v) {
     const auto t = static_cast<otc::ProcessingType>(v.as_int());
     if (t == state_.otc.type) return Status::kOk;
@@ -296,7 +297,7 @@ Status OtcModule::read_wear_const(const Info&, const Address&, Value& out) {
     return Status::kOk;
 }
 
-// Seed 000 section 2.1 WEAR_CONST=..: "wirkt modal"; it may change while OTC is on and acts
+// [ISG-OTC] section 2.1 WEAR_CONST=..: "wirkt modal"; it may change while OTC is on and acts
 // from the next move (design: a move's wear is linear along it).
 Status OtcModule::write_wear_const(const Info&, const Address&, const Value& v) {
     state_.otc.programmed_wear_const = v.as_double();
@@ -309,7 +310,7 @@ Status OtcModule::read_wear_const_source(const Info&, const Address&, Value& out
     return Status::kOk;
 }
 
-// Seed 000 section 2.1 WEAR_CONST_TOOL: "Umschalten auf die in den aktuellen Werkzeugdaten
+// [ISG-OTC] section 2.1 WEAR_CONST_TOOL: "Umschalten auf die in den aktuellen Werkzeugdaten
 // festgelegte Standardverschleißkonstante; wirkt modal".
 Status OtcModule::write_wear_const_source(const Info&, const Address&, const Value& v) {
     state_.otc.use_programmed_wear_const = v.as_int() == 1;
@@ -405,14 +406,14 @@ Status OtcModule::write_tool_axis_b(const Info&, const Address&, const Value& v)
     return Status::kOk;
 }
 
-// ---- Control units (seed 000 section 2.7)
+// ---- Control units ([ISG-OTC] section 2.7)
 
 Status OtcModule::read_unit_command(const Info&, const Address& a, Value& out) {
     out = Value::of_int(unit_at(a)->command);
     return Status::kOk;
 }
 
-// Seed 000 section 2.7: "Wertebereich [-P-TOOL-00031, P-TOOL-00031]"; section 2.6: "Wenn
+// [ISG-OTC] section 2.7: "Wertebereich [-P-TOOL-00031, P-TOOL-00031]"; section 2.6: "Wenn
 // grinding_max_infeed nicht gesetzt wird, kann kein diskreter Versatz beauftragt werden."
 Status OtcModule::write_unit_command(const Info&, const Address& a, const Value& v) {
     const double limit = std::fabs(state_.otc.tool.max_infeed);
@@ -477,7 +478,7 @@ Status OtcModule::read_tool_wear_const(const Info&, const Address&, Value& out) 
     return Status::kOk;
 }
 
-// Seed 000 section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
+// [ISG-OTC] section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
 // ... geschrieben bzw. gelesen werden": writable while OTC is on, from the next move.
 Status OtcModule::write_tool_wear_const(const Info&, const Address&, const Value& v) {
     state_.otc.tool.wear_const = v.as_double();

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// TC module, bus 1300 (seed 003_b9a5ae40d5986970.txt, the APCI-8001 TC
-// document; DESIGN.md section 3). The table declares every object; the hooks
-// below it hold the state rules, each citing the seed heading it comes from.
+// TC module, bus 1300 ([APCI-TC], the APCI-8001 TC
+// document; docs/design.md section 3). The table declares every object; the hooks
+// below it hold the state rules, each citing the section of [APCI-TC] it comes from.
 // The dictionary has already checked bus/device, index, subindex, handle,
 // access, type and range when a hook runs, so a hook only checks state, and
-// changes nothing when it refuses (save the InitError bit the seed asks for).
+// changes nothing when it refuses (save the InitError bit [APCI-TC] asks for).
 #include "rwmos/tc_module.h"
 
 #include <array>
@@ -77,78 +77,78 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
     constexpr auto kW = Access::kWrite;
     constexpr auto kRW = Access::kReadWrite;
     static constexpr std::array<Entry<M>, 23> kTable{{
-        // ---- DeviceNumber 0: initialisation (seed 003 Table 2).
+        // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
         {init_object(tc::kIdxClean, 0, "Clean", kInt, kW, 1, 1, Value::of_int(1),
-                     "seed 003 Table 2 Clean: parameter 1; discards all TC objects, handles stale"),
+                     "[APCI-TC] Table 2 Clean: parameter 1; drops all TC objects, handles stale"),
          nullptr, &M::write_clean},
         {init_object(tc::kIdxAxisNr, tc::kSubX, "X-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(0),
-                     "seed 003 Table 2: board axis used as X"),
+                     "[APCI-TC] Table 2: board axis used as X"),
          &M::read_axis_nr, &M::write_axis_nr},
         {init_object(tc::kIdxAxisNr, tc::kSubY, "Y-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(1),
-                     "seed 003 Table 2: board axis used as Y"),
+                     "[APCI-TC] Table 2: board axis used as Y"),
          &M::read_axis_nr, &M::write_axis_nr},
         {init_object(tc::kIdxAxisNr, tc::kSubZ, "Z-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(2),
-                     "seed 003 Table 2: board axis used as Z"),
+                     "[APCI-TC] Table 2: board axis used as Z"),
          &M::read_axis_nr, &M::write_axis_nr},
         {init_object(tc::kIdxTcPlane, 0, "TcPlane", kInt, kRW, tc::kPlaneXY, tc::kPlaneYZ,
-                     Value::of_int(tc::kPlaneXY), "seed 003 Table 2: 17 X-Y, 18 Z-X, 19 Y-Z"),
+                     Value::of_int(tc::kPlaneXY), "[APCI-TC] Table 2: 17 X-Y, 18 Z-X, 19 Y-Z"),
          &M::read_tc_plane, &M::write_tc_plane},
         {init_object(tc::kIdxReInit, 0, "ReInit", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                     "seed 003 Table 2 ReInit (index: design): clear stored offsets; tools stay"),
+                     "[APCI-TC] Table 2 ReInit (index: design): clear stored offsets; tools stay"),
          nullptr, &M::write_reinit},
         {init_object(tc::kIdxReset, 0, "Reset", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                     "seed 003 Table 2 Reset (index: design): stop corrections, clear offsets and "
+                     "[APCI-TC] Table 2 Reset (index: design): stop corrections, clear offsets and "
                      "held profiles; tools stay"),
          nullptr, &M::write_reset},
         {init_object(tc::kIdxRotAngle, 0, "RotAngle", kDouble, kRW, kDoubleMin, kDoubleMax,
-                     Value::of_double(0.0), "seed 003 Table 2 / 2.1.1: degrees; zeroed by rs()"),
+                     Value::of_double(0.0), "[APCI-TC] Table 2 / 2.1.1: degrees; zeroed by rs()"),
          &M::read_rot_angle, &M::write_rot_angle},
         {init_object(tc::kIdxRotCenterX, 0, "RotCenterX", kDouble, kRW, kDoubleMin, kDoubleMax,
-                     Value::of_double(0.0), "seed 003 Table 2: first plane axis; zeroed by rs()"),
+                     Value::of_double(0.0), "[APCI-TC] Table 2: first plane axis; zeroed by rs()"),
          &M::read_rot_center_x, &M::write_rot_center_x},
         {init_object(tc::kIdxRotCenterY, 0, "RotCenterY", kDouble, kRW, kDoubleMin, kDoubleMax,
-                     Value::of_double(0.0), "seed 003 Table 2: second plane axis; zeroed by rs()"),
+                     Value::of_double(0.0), "[APCI-TC] Table 2: second plane axis; zeroed by rs()"),
          &M::read_rot_center_y, &M::write_rot_center_y},
 
-        // ---- DeviceNumber 1: compensation groups (seed 003 Table 3), Index 0..3.
+        // ---- DeviceNumber 1: compensation groups ([APCI-TC] Table 3), Index 0..3.
         {group_object(tc::kSubError, "ERROR", kInt, kRW, kIntMin, kIntMax, Value::of_int(0),
-                      "seed 003 Table 3/4: error bits; a write clears them"),
+                      "[APCI-TC] Table 3/4: error bits; a write clears them"),
          &M::read_error, &M::write_error},
         {group_object(tc::kSubReset, "RESET", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                      "seed 003 Table 3: ends compensation, discards programmed values; "
+                      "[APCI-TC] Table 3: ends compensation, discards programmed values; "
                       "Index and value meaningless"),
          nullptr, &M::write_group_reset},
         {group_object(tc::kSubStatus, "STATUS", kInt, kRW, 0, 1, Value::of_int(0),
-                      "seed 003 Table 3/5: 1 activates (InitError if not initialised), 0 deactivates"),
+                      "[APCI-TC] Table 3/5: 1 activates (InitError if uninitialised), 0 deactivates"),
          &M::read_status, &M::write_status},
         {group_object(tc::kSubXAxis, "XAxis", kInt, kRW, 0, kLastAxis, Value::of_int(0),
-                      "seed 003 Table 3: only while inactive, else InitError"),
+                      "[APCI-TC] Table 3: only while inactive, else InitError"),
          &M::read_x_axis, &M::write_x_axis},
         {group_object(tc::kSubYAxis, "YAxis", kInt, kRW, 0, kLastAxis, Value::of_int(1),
-                      "seed 003 Table 3: only while inactive, else InitError"),
+                      "[APCI-TC] Table 3: only while inactive, else InitError"),
          &M::read_y_axis, &M::write_y_axis},
         {group_object(tc::kSubRadius, "RADIUS", kDouble, kRW, 0.0, kMaxRadius, Value::of_double(0.0),
-                      "seed 003 Table 3: radius of the current WKZINDEX's tool, PU units"),
+                      "[APCI-TC] Table 3: radius of the current WKZINDEX's tool, PU units"),
          &M::read_radius, &M::write_radius},
         {group_object(tc::kSubWkzIndex, "WKZINDEX", kInt, kRW, 0, tc::kToolCount - 1, Value::of_int(0),
-                      "seed 003 Table 3: tool index 0..1023, only while inactive"),
+                      "[APCI-TC] Table 3: tool index 0..1023, only while inactive"),
          &M::read_wkz_index, &M::write_wkz_index},
         {group_object(tc::kSubLeft, "Left", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                      "seed 003 Table 3: select left (G41); only while inactive; value meaningless"),
+                      "[APCI-TC] Table 3: select left (G41); only while inactive; value unused"),
          nullptr, &M::write_left},
         {group_object(tc::kSubRight, "Right", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                      "seed 003 Table 3: select right (G42); only while inactive; value meaningless"),
+                      "[APCI-TC] Table 3: select right (G42); only while inactive; value unused"),
          nullptr, &M::write_right},
         {group_object(tc::kSubZAxis, "ZAxis", kInt, kRW, 0, kLastAxis, Value::of_int(2),
-                      "seed 003 Table 3: only while inactive, else InitError"),
+                      "[APCI-TC] Table 3: only while inactive, else InitError"),
          &M::read_z_axis, &M::write_z_axis},
         {group_object(tc::kSubWkzLen, "WkzLen", kDouble, kRW, -kMaxLength, kMaxLength,
                       Value::of_double(0.0),
-                      "seed 003 Table 3: length of the current WKZINDEX's tool, PU units"),
+                      "[APCI-TC] Table 3: length of the current WKZINDEX's tool, PU units"),
          &M::read_wkz_len, &M::write_wkz_len},
         {group_object(tc::kSubCornerMode, "CornerMode", kInt, kRW, tc::kCornerLinear,
                       tc::kCornerCircular, Value::of_int(tc::kCornerCircular),
-                      "design: outside corners 26 circular (default) / 25 linear (DESIGN.md section 3)"),
+                      "design: corners 26 circular (default) / 25 linear (docs/design.md section 3)"),
          &M::read_corner_mode, &M::write_corner_mode},
         {group_object(tc::kSubSide, "Side", kInt, kR, tc::kSideNone, tc::kSideRight,
                       Value::of_int(tc::kSideNone),
@@ -184,7 +184,7 @@ Status TcModule::write(const ObjectInfo& info, const Address& a, const Value& v)
 }
 
 Status TcModule::group_at(const Address& a, TcGroup*& g, std::int32_t& number) noexcept {
-    // Seed 003 section 2.2: Index 0 addresses the active group, the one whose
+    // [APCI-TC] section 2.2: Index 0 addresses the active group, the one whose
     // plane TcPlane selects. With no such group there is nothing to address.
     number = a.index == tc::kActiveGroupIndex ? active_group(tc()) : a.index;
     if (number == 0) return Status::kWrongDeviceState;
@@ -204,7 +204,7 @@ void TcModule::discard_held_profile(std::int32_t number) {
 
 // ---- DeviceNumber 0.
 
-// Seed 003 Table 2 Clean: "Mit diesem Kommando werden alle vorhandenen Objekte
+// [APCI-TC] Table 2 Clean: "Mit diesem Kommando werden alle vorhandenen Objekte
 // des TC-Interface ... verworfen. In PCAP-Programmen muss deshalb bei allen
 // initialisierten Object-Descriptor-Elementen des TC-Interface das Handle
 // abgenullt werden." Every TC value returns to its power-on default (design:
@@ -245,7 +245,7 @@ Status TcModule::write_tc_plane(const ObjectInfo&, const Address&, const Value& 
     return Status::kOk;
 }
 
-// Seed 003 Table 2 ReInit: "Intern gespeicherte Verschiebungswerte der
+// [APCI-TC] Table 2 ReInit: "Intern gespeicherte Verschiebungswerte der
 // Korrekturachsen werden gelöscht ... Die programmierten Werkzeuge bleiben
 // aber aktiv." Only the offsets go; Run, held profiles and tools stay.
 Status TcModule::write_reinit(const ObjectInfo&, const Address&, const Value&) {
@@ -253,7 +253,7 @@ Status TcModule::write_reinit(const ObjectInfo&, const Address&, const Value&) {
     return Status::kOk;
 }
 
-// Seed 003 Table 2 Reset: "Alle aktiven Korrekturen werden gestoppt, intern
+// [APCI-TC] Table 2 Reset: "Alle aktiven Korrekturen werden gestoppt, intern
 // gespeicherte Verschiebungswerte der Korrekturachsen und Zwischenprofile
 // werden gelöscht ... Die programmierten Werkzeuge bleiben erhalten."
 // Configuration (axes, side, WKZINDEX, tools) and ERROR stay.
@@ -300,8 +300,8 @@ Status TcModule::read_error(const ObjectInfo&, const Address& a, Value& out) {
     return Status::kOk;
 }
 
-// Seed 003 Table 3 ERROR: "Fehlerstatus ... lesen / rücksetzen". Any written
-// value clears every bit (the seed gives the value no meaning).
+// [APCI-TC] Table 3 ERROR: "Fehlerstatus ... lesen / rücksetzen". Any written
+// value clears every bit ([APCI-TC] gives the value no meaning).
 Status TcModule::write_error(const ObjectInfo&, const Address& a, const Value&) {
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
@@ -310,7 +310,7 @@ Status TcModule::write_error(const ObjectInfo&, const Address& a, const Value&) 
     return Status::kOk;
 }
 
-// Seed 003 Table 3 RESET: "beendet die Tool-Kompensation und verwirft die
+// [APCI-TC] Table 3 RESET: "beendet die Tool-Kompensation und verwirft die
 // programmierten Werte. Diese können nun reprogrammiert werden. Der Index und
 // der Übergabewert sind bei dieser Funktion bedeutungslos." Since the Index is
 // meaningless, RESET acts on the whole tool compensation: every group ends
@@ -334,11 +334,11 @@ Status TcModule::read_status(const ObjectInfo&, const Address& a, Value& out) {
     return Status::kOk;
 }
 
-// Seed 003 Table 3 STATUS: "Schreiben von 1 aktiviert den Korrekturmodus,
+// [APCI-TC] Table 3 STATUS: "Schreiben von 1 aktiviert den Korrekturmodus,
 // vorausgesetzt alle anderen Parameter sind richtig initialisiert. Durch
 // Schreiben von 0 wird der Korrekturmodus abgeschaltet. Bei fehlerhafter
 // Initialisierung der Parameter wird InitError angezeigt."
-// Seed 003 section 1: deactivating spools the held profile.
+// [APCI-TC] section 1: deactivating spools the held profile.
 Status TcModule::write_status(const ObjectInfo&, const Address& a, const Value& v) {
     TcGroup* g = nullptr;
     std::int32_t number = 0;
@@ -362,7 +362,7 @@ Status TcModule::write_status(const ObjectInfo&, const Address& a, const Value& 
     return Status::kOk;
 }
 
-// Seed 003 Table 3 XAxis, YAxis, ZAxis: "Dieser Wert darf nur verändert
+// [APCI-TC] Table 3 XAxis, YAxis, ZAxis: "Dieser Wert darf nur verändert
 // werden, wenn die Werkzeugradius-Korrektur nicht aktiv ist, ansonsten wird
 // InitError angezeigt"; WKZINDEX, Left, Right likewise. The write is refused
 // (kWrongDeviceState, value unchanged) and InitError is set in the group's ERROR.
@@ -410,8 +410,8 @@ Status TcModule::write_z_axis(const ObjectInfo&, const Address& a, const Value& 
     return write_while_inactive(a, &TcGroup::z_axis, v.as_int());
 }
 
-// Seed 003 Table 3 RADIUS: "Korrekturwert für den aktuellen Werkzeugindex".
-// Not restricted to an inactive group by the seed: a new radius applies from
+// [APCI-TC] Table 3 RADIUS: "Korrekturwert für den aktuellen Werkzeugindex".
+// Not restricted to an inactive group by [APCI-TC]: a new radius applies from
 // the next profile the motion layer compensates.
 Status TcModule::read_radius(const ObjectInfo&, const Address& a, Value& out) {
     TcGroup* g = nullptr;
@@ -439,7 +439,7 @@ Status TcModule::write_wkz_index(const ObjectInfo&, const Address& a, const Valu
     return write_while_inactive(a, &TcGroup::tool_index, v.as_int());
 }
 
-// Seed 003 Table 3 Left/Right: "die Auswahl erfolgt nur durch den Aufruf, der
+// [APCI-TC] Table 3 Left/Right: "die Auswahl erfolgt nur durch den Aufruf, der
 // Übergabeparameter ist unerheblich"; section 2.5: only while no compensation is active.
 Status TcModule::write_left(const ObjectInfo&, const Address& a, const Value&) {
     return write_while_inactive(a, &TcGroup::side, tc::kSideLeft);
@@ -448,7 +448,7 @@ Status TcModule::write_right(const ObjectInfo&, const Address& a, const Value&) 
     return write_while_inactive(a, &TcGroup::side, tc::kSideRight);
 }
 
-// Seed 003 Table 3 WkzLen: the length of the current tool, like RADIUS.
+// [APCI-TC] Table 3 WkzLen: the length of the current tool, like RADIUS.
 Status TcModule::read_wkz_len(const ObjectInfo&, const Address& a, Value& out) {
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
@@ -464,7 +464,7 @@ Status TcModule::write_wkz_len(const ObjectInfo&, const Address& a, const Value&
     return Status::kOk;
 }
 
-// Design (DESIGN.md section 3): the outside-corner transition, like G25/G26,
+// Design (docs/design.md section 3): the outside-corner transition, like G25/G26,
 // may change at any time; it applies from the next transition computed.
 Status TcModule::read_corner_mode(const ObjectInfo&, const Address& a, Value& out) {
     TcGroup* g = nullptr;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Temperature compensation in tool direction, per interpolation cycle (seed 004_e252622732bfdfd6
-// .txt, SINUMERIK 840D FB1 W1 section 2.8; docs/temperature-compensation.md).
+// Temperature compensation in tool direction, per interpolation cycle ([SIN-TEMP],
+// SINUMERIK 840D FB1 W1 section 2.8; docs/temperature-compensation.md).
 #include "rwmos/board_state.h"
 #include "rwmos/geometry/kinematics.h"
 #include "rwmos/tempcomp_state.h"
@@ -26,7 +26,7 @@ tempcomp::Settings TempCompEngine::settings() const noexcept {
 Eigen::Vector3d TempCompEngine::vector_at(const motion::AxisVector& pos) const noexcept {
     const TempCompState& t = state_.temp_comp;
     if (t.tool_holder == 0) return t.comp;
-    // Seed 004: the vector turns with every orientation change of the tool holder, at once.
+    // [SIN-TEMP]: the vector turns with every orientation change of the tool holder, at once.
     const double b = pos[static_cast<std::size_t>(t.head_axis_b)];
     const double c =
         t.head_axis_c == tempcomp::kNoHeadAxis ? 0.0 : pos[static_cast<std::size_t>(t.head_axis_c)];
@@ -36,7 +36,7 @@ Eigen::Vector3d TempCompEngine::vector_at(const motion::AxisVector& pos) const n
 void TempCompEngine::follow_assignment() const noexcept {
     const std::array<int, 3> now = geometry_axes(state_.tc);
     if (now == assignment_) return;
-    // Seed 004: "Der Temperaturkompensationswert für eine Achse, die ... nicht mehr
+    // [SIN-TEMP]: "Der Temperaturkompensationswert für eine Achse, die ... nicht mehr
     // Geometrieachse ist, wird (interpolatorisch) auf Null reduziert. Umgekehrt baut sich in
     // einer Achse, die nach einer Umschaltung zur Geometrieachse wird, ... sofort auf."
     for (int a = 0; a < tempcomp::kAxisCount; ++a) {
@@ -80,7 +80,7 @@ void TempCompEngine::apply(const motion::AxisVector& nominal, double max_step,
             applied_[i] = tempcomp::ramp_to_zero(applied_[i], max_step);
             if (applied_[i] == 0.0) ramping_[i] = false;
         } else {
-            // Written values act at once (seed 004: "Werteveränderungen in den Settingdaten
+            // Written values act at once ([SIN-TEMP]: "Werteveränderungen in den Settingdaten
             // werden sofort wirksam"); an axis without bit 2 or with MD 20390 off gets 0.
             ramping_[i] = false;
             applied_[i] = target[i];

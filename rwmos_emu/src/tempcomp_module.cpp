@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Temperature compensation module, bus 1320 (seed 004_e252622732bfdfd6.txt, SINUMERIK 840D FB1
-// W1 section 2.8; design numbers, DESIGN.md section 4). Every value takes effect at the next
+// Temperature compensation module, bus 1320 ([SIN-TEMP], SINUMERIK 840D FB1
+// W1 section 2.8; design numbers, docs/design.md section 4). Every value takes effect at the next
 // interpolation cycle, also in the middle of a profile (the engine reads them each cycle), so
 // no hook has a state rule: the dictionary's type and range checks are the whole of it.
 #include "rwmos/tempcomp_module.h"
@@ -49,10 +49,10 @@ std::span<const Entry<TempCompModule>> TempCompModule::table() const noexcept {
     constexpr auto kR = Access::kRead;
     constexpr auto kRW = Access::kReadWrite;
     static constexpr std::string_view kSd =
-        "seed 004: SD 42960 TOOL_TEMP_COMP, a component of the vector on the geometry axes; "
+        "[SIN-TEMP]: SD 42960 TOOL_TEMP_COMP, a component of the vector on the geometry axes; "
         "acts at once";
     static constexpr std::string_view kMd32750 =
-        "seed 004: MD 32750 TEMP_COMP_TYPE of the axis; bit 2 (4): the axis takes the vector";
+        "[SIN-TEMP]: MD 32750 TEMP_COMP_TYPE of the axis; bit 2 (4): the axis takes the vector";
     static constexpr std::string_view kOffset =
         "design: the displacement the axis got at the last interpolation cycle";
     static constexpr auto type = [](std::int32_t axis) {
@@ -78,7 +78,7 @@ std::span<const Entry<TempCompModule>> TempCompModule::table() const noexcept {
              Value::of_double(0.0), kSd),
          &M::read_comp, &M::write_comp},
         {obj(tempcomp::kIdxToolTempCompOn, 0, "TOOL_TEMP_COMP_ON", kInt, kRW, 0, 1,
-             Value::of_int(0), "seed 004: MD 20390, activates the compensation"),
+             Value::of_int(0), "[SIN-TEMP]: MD 20390, activates the compensation"),
          &M::read_int, &M::write_int},
         type(0),
         type(1),
@@ -89,7 +89,7 @@ std::span<const Entry<TempCompModule>> TempCompModule::table() const noexcept {
         type(6),
         type(7),
         {obj(tempcomp::kIdxToolHolder, 0, "ToolHolder", kInt, kRW, 0, 1, Value::of_int(0),
-             "seed 004: orientable tool holder active: the vector turns with the head (B, C)"),
+             "[SIN-TEMP]: orientable tool holder active: the vector turns with the head (B, C)"),
          &M::read_int, &M::write_int},
         {obj(tempcomp::kIdxHeadAxisB, 0, "HeadAxisB", kInt, kRW, 0, kLastAxis, Value::of_int(4),
              "design: board axis of the head's B (degrees), kinematics.h"),

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // compensate() and the touching geometry: which delta acts along which vector, FUNCTION PROG
-// PATH, the reference point, and every refusal (seed 002).
+// PATH, the reference point, and every refusal ([TNC-3D]).
 #include "rwmos/comp3d/compensation.h"
 
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ using V = Eigen::Vector3d;
 
 constexpr double kTol = 1e-12;
 
-const V kP(36.0084, 6.177, -1.9209);  // seed 002, face milling, block 13
+const V kP(36.0084, 6.177, -1.9209);  // [TNC-3D], face milling, block 13
 const V kN = V(-0.4658107, 0.0, 0.8848844).normalized();
 const V kT = V(0.0, 0.6558846, 0.7548612).normalized();
 
@@ -44,7 +44,7 @@ TEST(TouchGeometry, ContactPointIsTheInverseOfTipTouching) {
 }
 
 TEST(TouchGeometry, NormalPointsToTheCornerRadiusCentre) {
-    // Seed 002: "Der Flächennormalenvektor zeigt immer auf das Zentrum Werkzeugradius 2 CR2".
+    // [TNC-3D]: "Der Flächennormalenvektor zeigt immer auf das Zentrum Werkzeugradius 2 CR2".
     const ToolDimensions d{5.0, 1.5};
     const V tip = tip_touching(kP, kN, kT, d);
     EXPECT_NEAR((corner_centre(tip, kN, kT, d) - (kP + 1.5 * kN)).norm(), 0.0, kTol);

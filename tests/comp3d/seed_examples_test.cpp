@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The worked examples of seed 002 ("Beispiele" under face and peripheral milling). In each,
+// The worked examples of [TNC-3D] ("Beispiele" under face and peripheral milling). In each,
 // the tool of the stated actual size, with its tip at the compensated tip, touches the design
 // surface point along N (or stands off it by the allowance) within 1e-9, checked with the
 // independent touch test of touch_check.h.
 //
-// The design surface point, normal and tool vector are those of the seed's face-milling block
+// The design surface point, normal and tool vector are those of [TNC-3D]'s face-milling block
 // 13 (N and T normalised to 7 decimals there). The tool is measured at its tip
 // ("Werkzeugvermessung auf Werkzeugspitze"): the tool table's L reaches the actual tip, so the
 // actual tip is where the compensated tip is.
@@ -57,7 +57,7 @@ TEST(SeedExample, RegroundBallMillTipOutputTouchesTheDesignSurface) {
     EXPECT_NEAR((c.tip + 2.9 * kT - (kS + 2.9 * kN)).norm(), 0.0, kSeedTolerance);
 }
 
-// "... CAM-Ausgabe Kugelmitte": same tool table, TCPM REFPNT CNT-CNT; seed: "Mit TCPM REFPNT
+// "... CAM-Ausgabe Kugelmitte": same tool table, TCPM REFPNT CNT-CNT; [TNC-3D]: "Mit TCPM REFPNT
 // CNT-CNT sind die Werkzeugkorrekturwerte für die Ausgaben auf Werkzeugspitze oder Kugelmitte
 // identisch".
 TEST(SeedExample, RegroundBallMillCentreOutputTouchesTheDesignSurface) {
@@ -114,7 +114,7 @@ TEST(SeedExample, TcpValuesShownInTheDocs) {
 
 // "Nachgeschliffenen Schaftfräser korrigieren, CAM-Ausgabe Werkzeugmitte": an end mill of
 // 11.8 mm instead of 12 mm in peripheral milling; tool table R 6, R2 0, DL 0, DR -0.1.
-// Block 12 of the seed's peripheral example gives N and T (T perpendicular to N).
+// Block 12 of [TNC-3D]'s peripheral example gives N and T (T perpendicular to N).
 const V kWallN = V(0.0, 0.9397, 0.3420).normalized();
 const V kWallT = V(-0.0807, -0.3409, 0.9366).normalized();
 const V kWallS(60.6593, 102.4690, -7.1012);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Tool shapes, delta sums, the effective tool and the oversize rule (seed 002, "Werkzeuge für
+// Tool shapes, delta sums, the effective tool and the oversize rule ([TNC-3D], "Werkzeuge für
 // die 3D-Werkzeugkorrektur" and M107).
 #include "rwmos/comp3d/tool.h"
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The vectors of LN lines: normalisation, the tool vector of face milling, the corner
-// direction and the side of peripheral milling (seed 002).
+// direction and the side of peripheral milling ([TNC-3D]).
 #include "rwmos/comp3d/vectors.h"
 
 #include <gtest/gtest.h>
@@ -16,13 +16,13 @@ namespace {
 using V = Eigen::Vector3d;
 
 TEST(Normalised, UnitVectorIsAccepted) {
-    const UnitVector u = normalised(V(-0.4658107, 0.0, 0.8848844));  // seed 002, block 12
+    const UnitVector u = normalised(V(-0.4658107, 0.0, 0.8848844));  // [TNC-3D], block 12
     EXPECT_EQ(u.refusal, Refusal::kNone);
     EXPECT_NEAR(u.v.norm(), 1.0, 1e-15);
 }
 
 TEST(Normalised, FourDecimalVectorsOfTheSeedAreAcceptedAndMadeUnit) {
-    // Seed 002, peripheral milling, block 12: written with 4 decimals.
+    // [TNC-3D], peripheral milling, block 12: written with 4 decimals.
     for (const V& v : {V(0.0, 0.9397, 0.3420), V(-0.0807, -0.3409, 0.9366)}) {
         const UnitVector u = normalised(v);
         EXPECT_EQ(u.refusal, Refusal::kNone) << v.transpose();
@@ -32,7 +32,7 @@ TEST(Normalised, FourDecimalVectorsOfTheSeedAreAcceptedAndMadeUnit) {
 }
 
 TEST(Normalised, NonNormalisedVectorIsRefused) {
-    // The seed's LN syntax example (seed 002, "Eingabe"): |N| = 0.9153, |T| = 0.9140.
+    // The LN syntax example of [TNC-3D] ("Eingabe"): |N| = 0.9153, |T| = 0.9140.
     EXPECT_EQ(normalised(V(0.2637581, 0.0078922, -0.8764339)).refusal,
               Refusal::kVectorNotNormalised);
     EXPECT_EQ(normalised(V(0.0078922, -0.8764339, 0.2590319)).refusal,
@@ -118,7 +118,7 @@ TEST(PeripheralSide, IsPerpendicularToMotionAndToolVector) {
 }
 
 TEST(PeripheralSide, SeedBlock11RlGivesTheNormalOfBlock12) {
-    // Seed 002, peripheral milling: block 11 "L ... RL M128" runs to block 12, whose LN gives
+    // [TNC-3D], peripheral milling: block 11 "L ... RL M128" runs to block 12, whose LN gives
     // N = (0, 0.9397, 0.3420) and T = (-0.0807, -0.3409, 0.9366): RL with that T and the
     // motion from block 11 to block 12 is the same side as N.
     const V from(48.4074, 102.4717, -7.1088);
@@ -142,7 +142,7 @@ TEST(PeripheralSide, NoSideWithoutMotionOrForAPlunge) {
 }
 
 TEST(PeripheralSide, PreviousNormalIsMadePerpendicularToT) {
-    // Seed 002, peripheral example: block 13 (T only) at block 12's point keeps 12's N.
+    // [TNC-3D], peripheral example: block 13 (T only) at block 12's point keeps 12's N.
     const V n12(0.0, 0.9397, 0.3420);
     const V t = V(-0.0807, -0.3409, 0.9366).normalized();
     const SideNormal s = previous_side_normal(n12.normalized(), t);

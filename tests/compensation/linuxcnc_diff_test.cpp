@@ -54,7 +54,7 @@ using rwmos::geom::start_tangent;
 // (TOLERANCE_CONCAVE_CORNER in its interpreter), and reads inside turns within it of a reversal
 // as outside corners.
 constexpr double kLinuxCncCornerBand = 0.05;
-// The agreement the issue asks for, and the gouge threshold on both paths.
+// The agreement required of the two paths, and the gouge threshold on both.
 constexpr double kMaxDeviation = 1e-3;
 // LinuxCNC's path keeps the radius when it comes no closer to the contour than r less this:
 // our path tolerance (1e-4), its printed rounding (4 decimals, up to 7e-5) and the largest

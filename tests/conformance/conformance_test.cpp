@@ -4,7 +4,7 @@
 // socket, the dual-port RAM mailbox (shared-memory file, PCI BAR) and USB.
 // Every test opens a fresh board through the public C API only and expects
 // exactly what the embedded emulator answers: the object interface's check
-// order, handles, and the TC module's state rules (DESIGN.md sections 2, 3).
+// order, handles, and the TC module's state rules (docs/design.md sections 2, 3).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -90,7 +90,7 @@ class Conformance : public ::testing::TestWithParam<Transport> {
         return v;
     }
 
-    // DESIGN.md section 3 / the seed's initialisation: axes, tool, radius, side.
+    // docs/design.md section 3, [APCI-TC] section 2.5: axes, tool, radius, side.
     void initialise_group(std::int32_t g) {
         ASSERT_EQ(write_int(tc_group(g, APCI_TC_XAXIS), 0), APCI_OK);
         ASSERT_EQ(write_int(tc_group(g, APCI_TC_YAXIS), 1), APCI_OK);
@@ -218,7 +218,7 @@ TEST_P(Conformance, LinkIsConnectedAndTimeoutIsSettable) {
     EXPECT_EQ(read_int(board_object(3)), 8) << "the board answers after a reconnect";
 }
 
-// ---- TC state rules (seed: APCI-8001 TC document; DESIGN.md section 3)
+// ---- TC state rules ([APCI-TC]; docs/design.md section 3)
 
 TEST_P(Conformance, StatusOneWithoutInitialisationIsInitError) {
     EXPECT_EQ(write_int(tc_group(1, APCI_TC_STATUS), 1), APCI_WRONG_DEVICE_STATE);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // rwmos-emu, the emulator daemon: its command line, its socket's life cycle,
-// and its robustness against clients (issue "The real driver paths", item 1):
+// and its robustness against clients (docs/rwmos-emu.md, docs/hardening.md):
 // malformed frames of every class and clients that vanish mid-frame leave it
 // serving with the board state unchanged; concurrent clients' writes are
 // neither lost nor duplicated.

@@ -73,7 +73,7 @@ TEST(Open, LastEmuOptionWins) {
     auto plane = apci_object_descriptor{APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0, 0};
     int32_t v = 0;
     EXPECT_EQ(apci_read_int(board, &plane, &v), APCI_OK) << apci_last_error(board);
-    EXPECT_EQ(v, 17);  // seed 003 Table 2: TcPlane default 17 (X-Y)
+    EXPECT_EQ(v, 17);  // [APCI-TC] Table 2: TcPlane default 17 (X-Y)
     apci_close(board);
 }
 
@@ -187,7 +187,7 @@ TEST_F(Board, NonFiniteDoubleIsInvalidValueAndChangesNothing) {
 }
 
 TEST_F(Board, OutOfRangeIntIsValueTooHighOrLow) {
-    auto wkzindex = tc_group(1, APCI_TC_WKZINDEX);  // seed 003 Table 3: 0..1023
+    auto wkzindex = tc_group(1, APCI_TC_WKZINDEX);  // [APCI-TC] Table 3: 0..1023
     EXPECT_EQ(apci_write_int(board_, &wkzindex, 1024), APCI_VALUE_TOO_HIGH);
     EXPECT_EQ(apci_write_int(board_, &wkzindex, -1), APCI_VALUE_TOO_LOW);
 }
@@ -358,7 +358,7 @@ TEST_F(Board, LastErrorIsPerBoard) {
     apci_close(other);
 }
 
-// ---- handles (seed 003 Table 2 "Clean")
+// ---- handles ([APCI-TC] Table 2 "Clean")
 
 TEST_F(Board, HandleIsFilledOnFirstAccessAndReused) {
     auto status = tc_group(1, APCI_TC_STATUS);

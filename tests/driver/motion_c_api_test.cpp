@@ -37,7 +37,7 @@ class Motion : public ::testing::Test {
     void TearDown() override { apci_close(board_); }
     std::string last_error() const { return apci_last_error(board_); }
 
-    // Group 1 on axes 0/1/2, radius r, left (seed 003 section 2.5), active.
+    // Group 1 on axes 0/1/2, radius r, left ([APCI-TC] section 2.5), active.
     void compensate(double r) {
         auto reset = tc_group(1, APCI_TC_GROUP_RESET);
         auto radius = tc_group(1, APCI_TC_RADIUS);

@@ -18,7 +18,7 @@ using rwmos::comp3d::Refusal;
 namespace c3 = rwmos::comp3d;
 using V = Eigen::Vector3d;
 
-// Seed 002, face milling block 13: the design surface point and vectors of the examples.
+// [TNC-3D], face milling block 13: the design surface point and vectors of the examples.
 const V kS(36.0084, 6.177, -1.9209);
 const V kN = V(-0.4658107, 0.0, 0.8848844).normalized();
 const V kT = V(0.0, 0.6558846, 0.7548612).normalized();
@@ -95,7 +95,7 @@ void expect_near(const V& got, const V& want, double tol = 1e-9) {
         << "got " << got.transpose() << ", want " << want.transpose();
 }
 
-// ---- Tool loading (seed 002: oversize, M107) ----
+// ---- Tool loading ([TNC-3D]: oversize, M107) ----
 
 TEST_F(Comp3dBoard, ToolWriteLoadsTheToolWithThePendingCallDeltas) {
     tool(1, 3, 3, 0, -0.1, -0.1);
@@ -172,10 +172,10 @@ TEST_F(Comp3dBoard, ToolThatCannotExistIsRefused) {
     EXPECT_EQ(get(c3::kIdxLastError), 0);  // a write clears
 }
 
-// ---- Arming the LN vectors (seed 002: normalised vectors) ----
+// ---- Arming the LN vectors ([TNC-3D]: normalised vectors) ----
 
 TEST_F(Comp3dBoard, NonNormalisedVectorIsRefusedAtArming) {
-    const V bad(0.2637581, 0.0078922, -0.8764339);  // the seed's syntax example, |N| = 0.9153
+    const V bad(0.2637581, 0.0078922, -0.8764339);  // [TNC-3D]'s syntax example, |N| = 0.9153
     EXPECT_EQ(arm(&bad, nullptr), Status::kInvalidValue);
     EXPECT_EQ(get(c3::kIdxArm), 0);
     EXPECT_EQ(get(c3::kIdxLastError), static_cast<std::int32_t>(Refusal::kVectorNotNormalised));
@@ -188,7 +188,7 @@ TEST_F(Comp3dBoard, NonNormalisedVectorIsRefusedAtArming) {
 
 // ---- LN profiles ----
 
-// Seed 002 "Nachgeschliffenen Kugelfräser korrigieren, CAM-Ausgabe Werkzeugspitze".
+// [TNC-3D] "Nachgeschliffenen Kugelfräser korrigieren, CAM-Ausgabe Werkzeugspitze".
 TEST_F(Comp3dBoard, RegroundBallMillLnProfileRunsToTheCompensatedTip) {
     tool(1, 3, 3, 0, -0.1, -0.1);
     ASSERT_EQ(set(c3::kIdxTool, 1), Status::kOk);
@@ -252,7 +252,7 @@ TEST_F(Comp3dBoard, RapidWithArmedVectorsIsNotCompensatedAndUsesThemUp) {
     EXPECT_EQ(get(c3::kIdxArm), 0);
 }
 
-// Seed 002, face milling: without M128 / FUNCTION TCPM the T vector is ignored, the machine's
+// [TNC-3D], face milling: without M128 / FUNCTION TCPM the T vector is ignored, the machine's
 // tool axis (the head's B, here tilted by a G00 of axis 4) applies.
 TEST_F(Comp3dBoard, WithoutTcpmTheHeadsToolAxisAppliesAndTIsIgnored) {
     tool(1, 3, 3, 0, -0.1, -0.1);
@@ -294,7 +294,7 @@ TEST_F(Comp3dBoard, ProgPathContourAppliesTheFullRadii) {
     expect_near(end_of_last_segment(), kS + 2.9 * kN - 2.9 * kT);
 }
 
-// Seed 002, peripheral milling, the reground end mill with RL and LN without N.
+// [TNC-3D], peripheral milling, the reground end mill with RL and LN without N.
 TEST_F(Comp3dBoard, PeripheralLnWithoutNTakesTheSideFromRlAndTheMotion) {
     tool(2, 6, 0, 0, -0.1, 0);
     ASSERT_EQ(set(c3::kIdxTool, 2), Status::kOk);
@@ -307,7 +307,7 @@ TEST_F(Comp3dBoard, PeripheralLnWithoutNTakesTheSideFromRlAndTheMotion) {
     expect_near(end_of_last_segment(), V(10, -0.1, 0));
 }
 
-// Seed 002, peripheral variant 1: an L line with the rotary axes programmed, TCPM and RL: T from
+// [TNC-3D], peripheral variant 1: an L line with the rotary axes programmed, TCPM and RL: T from
 // the head (B tilted by a G00 of axis 4), the side across the motion and T.
 TEST_F(Comp3dBoard, PeripheralLLineWithRlTakesTFromTheHead) {
     tool(2, 6, 0, 0, -0.1, 0);
@@ -328,7 +328,7 @@ TEST_F(Comp3dBoard, PeripheralLLineWithRlTakesTFromTheHead) {
     EXPECT_NEAR(n.dot(t), 0.0, 1e-15);
 }
 
-// Seed 002, peripheral example: block 12 (N and T) then block 13 at the same point with T only
+// [TNC-3D], peripheral example: block 12 (N and T) then block 13 at the same point with T only
 // and R0 in force: the side of block 12 is kept ("Kompensation möglich").
 TEST_F(Comp3dBoard, PeripheralLnWithoutNAtTheSamePointKeepsThePreviousSide) {
     tool(2, 6, 0, 0, -0.1, 0);

@@ -153,7 +153,7 @@ protected:
         return board.read(d, want, v);
     }
 
-    // Seed 003 section 2.5 initialisation of one group in the X-Y plane:
+    // [APCI-TC] section 2.5 initialisation of one group in the X-Y plane:
     // axes 0/1/2, tool `tool` with `radius`, right side.
     void initialise_group(std::int32_t group, std::int32_t tool = 1, double radius = 2.0) {
         ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubXAxis), 0), Status::kOk);

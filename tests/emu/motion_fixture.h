@@ -100,7 +100,7 @@ struct Rig {
     }
 
     // Group `g` on axes X=0, Y=1, Z=`z`, tool radius `r`, side left or right
-    // (seed 003 section 2.5 sequence), not yet activated.
+    // ([APCI-TC] section 2.5 sequence), not yet activated.
     void setup_group(double r, bool left = true, std::int32_t g = 1, std::int32_t z = 2) {
         using namespace rwmos::tc;
         ASSERT_EQ(write_int(kBus, kDevGroups, g, kSubReset, 0), Status::kOk);

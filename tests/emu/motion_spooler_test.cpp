@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Spooler rules on a Board: the one-profile lookahead (seed 003 section 1),
-// SSF 2001, direct commands JA/JS, JOG/G00 re-approach (seed 003 section
+// Spooler rules on a Board: the one-profile lookahead ([APCI-TC] section 1),
+// SSF 2001, direct commands JA/JS, JOG/G00 re-approach ([APCI-TC] section
 // 2.4), a full spooler, bad profiles, and the board objects that show it.
 #include <cmath>
 #include <limits>
@@ -23,7 +23,7 @@ void expect_at(const AxisVector& p, double x, double y, double z = 0.0) {
     EXPECT_NEAR(p[2], z, kEps);
 }
 
-// ---- The held profile (seed 003 section 1, Table 5 ProfMarked)
+// ---- The held profile ([APCI-TC] section 1, Table 5 ProfMarked)
 
 TEST_F(Spooler, FirstProfileWhileCompensatingIsHeldAndSetsProfMarked) {
     setup_group(1.0);
@@ -137,7 +137,7 @@ TEST_F(Spooler, SsfNamingNoAxisIsRefused) {
     EXPECT_EQ(board.ssf(0x00, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kInvalidValue);
 }
 
-// ---- Direct commands (seed 003 section 1: JA, JS discard spooler and held profile)
+// ---- Direct commands ([APCI-TC] section 1: JA, JS discard spooler and held profile)
 
 TEST_F(Spooler, DirectCommandJsDiscardsSpoolerAndHeldProfileAndStopsTheAxes) {
     setup_group(1.0);
@@ -234,7 +234,7 @@ TEST_F(Spooler, BadJaIsRefusedAndChangesNothing) {
     EXPECT_EQ(board.motion_status().fill, fill);
 }
 
-// ---- JOG / G00 (seed 003 section 2.4; section 1: only G01/G02/G03 compensated)
+// ---- JOG / G00 ([APCI-TC] section 2.4; section 1: only G01/G02/G03 compensated)
 
 TEST_F(Spooler, RapidMakesCompensationIneffectiveAndTheNextProfileReApproaches) {
     setup_group(1.0);

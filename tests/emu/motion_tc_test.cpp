@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// TC rules on the moving board: coordinate rotation (seed 003 section 2.1.1),
+// TC rules on the moving board: coordinate rotation ([APCI-TC] section 2.1.1),
 // the arc plane once TC objects were accessed (section 2.2 "Wichtiger
 // Hinweis"), tool length compensation (Table 3 WkzLen), every ERROR bit
-// holding the spooler with Run cleared (Table 4, DESIGN.md section 3), and
+// holding the spooler with Run cleared (Table 4, docs/design.md section 3), and
 // bit-for-bit determinism of virtual time.
 #include <cmath>
 #include <cstring>
@@ -40,7 +40,7 @@ void expect_at(const AxisVector& p, double x, double y, double z = 0.0) {
     EXPECT_NEAR(p[2], z, kEps);
 }
 
-// ---- Coordinate rotation (seed 003 section 2.1.1)
+// ---- Coordinate rotation ([APCI-TC] section 2.1.1)
 
 TEST_F(TcRules, RotationAppliesToInterpolationProfilesWithoutACompensationObject) {
     rotate(90.0);
@@ -109,7 +109,7 @@ TEST_F(TcRules, CompensationWorksOnTheRotatedPath) {
     expect_at(position(), 0, 10);
 }
 
-// ---- The arc plane (seed 003 section 2.2 "Wichtiger Hinweis")
+// ---- The arc plane ([APCI-TC] section 2.2 "Wichtiger Hinweis")
 
 // An arc named Y first, X second from (10, 0) to (0, 10) about the origin,
 // G03. In the (Y, X) plane G03 turns from Y towards X: the long way round
@@ -216,7 +216,7 @@ TEST_F(TcRules, RadiusWrittenDuringAContourAppliesFromTheNextProfile) {
     EXPECT_EQ(segs[4].role, SegmentRole::kDeparture);
 }
 
-// ---- Tool length compensation (seed 003 Table 3 ZAxis, WkzLen)
+// ---- Tool length compensation ([APCI-TC] Table 3 ZAxis, WkzLen)
 
 TEST_F(TcRules, ToolLengthCompensationAddsWkzLenAlongTheGroupsThirdAxis) {
     setup_group(1.0);
@@ -323,7 +323,7 @@ TEST_F(TcRules, PlaneErrorForAnArcOutsideTheActivePlane) {
 
 TEST_F(TcRules, InitErrorHoldsTheSpoolerUntilErrorIsWritten) {
     spool_ok(line(1, 10, 0));
-    // Activation without a side selected: InitError (seed 003 Table 3 STATUS).
+    // Activation without a side selected: InitError ([APCI-TC] Table 3 STATUS).
     ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubXAxis, 0), Status::kOk);
     ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubStatus, 1), Status::kWrongDeviceState);
     ASSERT_EQ(error() & tc::kInitError, tc::kInitError);
@@ -362,7 +362,7 @@ TEST_F(TcRules, ArcWithWrongCentreOnAnActiveTcBoardSetsCenterErrorEvenUncompensa
     EXPECT_EQ(board.motion_status().fill, 0u);
 }
 
-// ---- Determinism (DESIGN.md section 5: same input, same output bits)
+// ---- Determinism (docs/design.md section 5: same input, same output bits)
 
 // A rounded pocket (tangent arcs, one inside corner), a rapid, and a second
 // contour, rotated by 17 degrees, with length compensation and odd feeds.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Seed 003 section 2.5 "Verwendung von TC", end to end: initialisation
+// [APCI-TC] section 2.5 "Verwendung von TC", end to end: initialisation
 // (RESET, compensation plane, tool table) and use (WKZINDEX, side, STATUS=1,
 // STATUS=0), on a Board and over wire frames through the FrameServer.
 #include <functional>
@@ -19,7 +19,7 @@ using WriteFn = std::function<Status(Descriptor&, const Value&)>;
 using ReadFn = std::function<Status(Descriptor&, ValueType, Value&)>;
 
 // The PCAP program of section 2.5, written against read/write only. Group 2
-// is used so Index (group) and WKZINDEX (tool) cannot be confused (seed:
+// is used so Index (group) and WKZINDEX (tool) cannot be confused ([APCI-TC]:
 // "Achtung: Nicht verwechseln mit dem Werkzeugindex!").
 void run_section_2_5(const WriteFn& write, const ReadFn& read) {
     auto g = [](std::int32_t sub) { return tc_group(2, sub); };

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// ERROR and STATUS bit constants (seed 003 Tables 4 and 5) and their name lookups.
+// ERROR and STATUS bit constants ([APCI-TC] Tables 4 and 5) and their name lookups.
 #include <gtest/gtest.h>
 
 #include "rwmos/tc_bits.h"

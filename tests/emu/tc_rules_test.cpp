@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The TC module's state rules (seed 003; DESIGN.md section 3; the design
+// The TC module's state rules ([APCI-TC]; docs/design.md section 3; the design
 // decisions in docs/object-map.md), one test per rule, named after it.
 #include <vector>
 
@@ -152,7 +152,7 @@ TEST_P(TcWhileActive, WriteWhileActiveIsRefusedWithInitError) {
     activate(1);
     ASSERT_EQ(error_of(1), 0);
     auto before = snapshot(board);
-    before.tc->group(1).error |= tc::kInitError;  // the only change the seed asks for
+    before.tc->group(1).error |= tc::kInitError;  // the only change [APCI-TC] asks for
     EXPECT_EQ(write_int(tc_group(1, sub), 3), Status::kWrongDeviceState);
     EXPECT_TRUE(unchanged(before, board));
     EXPECT_EQ(error_of(1), tc::kInitError);
@@ -565,7 +565,7 @@ TEST_F(TcRules, CleanDiscardsAllTcDataBackToDefaults) {
     EXPECT_EQ(tc_state().rot_center_y, 0.0);
 }
 
-// ---- Accessed flag (seed 003 section 2.2 "Wichtiger Hinweis").
+// ---- Accessed flag ([APCI-TC] section 2.2 "Wichtiger Hinweis").
 
 TEST_F(TcRules, AnyTcAccessMarksTheObjectsAccessed) {
     EXPECT_FALSE(tc_state().objects_accessed);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The temperature compensation module on a Board (bus 1320; docs/object-map.md section 7): each
-// rule of seed 004 (SINUMERIK FB1 W1 section 2.8) as it shows on the axes, cycle by cycle. The
+// rule of [SIN-TEMP] (SINUMERIK FB1 W1 section 2.8) as it shows on the axes, cycle by cycle. The
 // nominal path is taken from a twin board without the compensation, driven the same way.
 #include <gtest/gtest.h>
 
@@ -82,7 +82,7 @@ TEST_F(TempCompBoard, VectorActsOnTheGeometryAxesAtTheNextCycle) {
               0.03);
 }
 
-// Seed 004: "Werteveränderungen in den Settingdaten werden sofort wirksam."
+// [SIN-TEMP]: "Werteveränderungen in den Settingdaten werden sofort wirksam."
 TEST_F(TempCompBoard, WrittenValueTakesEffectAtOnceInTheMiddleOfAProfile) {
     enable({0, 1, 2});
     comp(0.0, 0.0, 0.01);
@@ -109,7 +109,7 @@ TEST_F(TempCompBoard, WithoutMd20390NothingActs) {
     EXPECT_EQ(displacement()[2], 0.0);
 }
 
-// Seed 004: "Ist dieses Bit für eine bestimmte Kanalachse nicht gesetzt, kann in dieser Achse
+// [SIN-TEMP]: "Ist dieses Bit für eine bestimmte Kanalachse nicht gesetzt, kann in dieser Achse
 // kein Kompensationswert wirksam werden. Andere Achse bleiben davon jedoch unbeeinflußt. Ein
 // Alarm wird in diesem Fall nicht ausgegeben."
 TEST_F(TempCompBoard, AxisWithoutBit2GetsNoValueSilentlyAndTheOthersKeepTheirs) {
@@ -136,7 +136,7 @@ TEST_F(TempCompBoard, ClearingBit2TakesTheValueOffAtOnce) {
     EXPECT_EQ(displacement()[0], 0.01);
 }
 
-// Seed 004, "Orientierbarer Werkzeugträger": the vector turns with the tool.
+// [SIN-TEMP], "Orientierbarer Werkzeugträger": the vector turns with the tool.
 TEST_F(TempCompBoard, VectorTurnsWithTheOrientableToolHolder) {
     enable({0, 1, 2});
     ASSERT_EQ(set(tcomp::kIdxToolHolder, 0, 1), Status::kOk);
@@ -177,7 +177,7 @@ TEST_F(TempCompBoard, VectorTurnsWithTheHeadsCAxisToo) {
     EXPECT_NEAR(d[1], 0.05, 1e-15);
 }
 
-// Seed 004: "Die Temperaturkompensationswerte folgen unmittelbar jeder wirksam werdenden
+// [SIN-TEMP]: "Die Temperaturkompensationswerte folgen unmittelbar jeder wirksam werdenden
 // Orientierungsänderung": every cycle of a head move, the displacement is the vector turned by
 // the head's B at that cycle.
 TEST_F(TempCompBoard, DisplacementFollowsEveryCycleOfAnOrientationChange) {
@@ -222,7 +222,7 @@ TEST_F(TempCompBoard, SwitchingTheToolHolderActsAtTheNextCycle) {
     EXPECT_EQ(displacement()[2], 0.05);
 }
 
-// Seed 004: an axis that stops being a geometry axis is brought to zero "interpolatorisch";
+// [SIN-TEMP]: an axis that stops being a geometry axis is brought to zero "interpolatorisch";
 // one that becomes a geometry axis takes its value at once.
 TEST_F(TempCompBoard, AxisLeavingTheGeometryAxesRampsToZeroAndTheNewOneTakesItAtOnce) {
     enable({0, 1, 2, 3});

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// examples/pcap_tc_init.c run as a process: the seed's TC sequence (seed 003,
-// section 2.5) and the Clean rule, with the registers printed decoded.
+// examples/pcap_tc_init.c run as a process: the TC sequence of [APCI-TC]
+// section 2.5 and the Clean rule, with the registers printed decoded.
 #include <gtest/gtest.h>
 
 #include "process.h"

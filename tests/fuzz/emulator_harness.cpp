@@ -193,7 +193,7 @@ void EmulatorHarness::direct(ByteSource& b) {
     c.feed = feed(b);
     const motion::MotionResult r = port_.direct(c);
     note_motion(r);
-    if (r.ok()) discard_pending();  // a direct command discards the spooler (seed 003 section 1)
+    if (r.ok()) discard_pending();  // a direct command discards the spooler ([APCI-TC] section 1)
 }
 
 void EmulatorHarness::ssf(ByteSource& b) {
@@ -222,7 +222,7 @@ void EmulatorHarness::trace(ByteSource& b) {
 }
 
 void EmulatorHarness::set_up_group(ByteSource& b) {
-    // Seed 003 section 2.5 "Verwendung von TC": plane axes, tool, radius, side, STATUS = 1.
+    // [APCI-TC] section 2.5 "Verwendung von TC": plane axes, tool, radius, side, STATUS = 1.
     const auto group = static_cast<std::int32_t>(1 + b.pick(kGroups));
     const auto tool = static_cast<std::int32_t>(b.pick(4));
     write_tc(tc::kDevGroups, group, tc::kSubXAxis, Value::of_int(0));
@@ -255,7 +255,7 @@ void EmulatorHarness::run_until_idle(std::uint64_t max_cycles) {
 
 void EmulatorHarness::note_write(const objif::Address& a, Status st) {
     if (!objif::ok(st) || a.bus != tc::kBus) return;
-    // Reset, RESET and Clean drop the held profile (seed 003 Tables 2 and 3).
+    // Reset, RESET and Clean drop the held profile ([APCI-TC] Tables 2 and 3).
     const bool reset = a.device == tc::kDevInit && a.index == tc::kIdxReset;
     const bool clean = a.device == tc::kDevInit && a.index == tc::kIdxClean;
     const bool group_reset = a.device == tc::kDevGroups && a.subindex == tc::kSubReset;

@@ -4,7 +4,7 @@
 // spooled profiles, direct and SSF commands, clock steps, trace) and checks
 // the board's invariants after every step:
 //   - no crash (ASan/UBSan watch the run);
-//   - ERROR holds only Table 4 bits (seed 003), STATUS only Table 5 bits;
+//   - ERROR holds only Table 4 bits ([APCI-TC]), STATUS only Table 5 bits;
 //   - STATUS ProfMarked of a group is set exactly when that group holds a
 //     profile (docs/motion.md section 4);
 //   - no profile lost or duplicated: every executed segment belongs to an

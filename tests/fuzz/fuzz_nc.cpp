@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Fuzz target: the NC front end (tools/nc) on a whole program, both passes.
-// The dialect is told by content (DESIGN.md section 8), so one target covers
+// The dialect is told by content (docs/design.md section 8), so one target covers
 // every dialect: DIN 66025 programs and, once it lands, Klartext programs
 // (add those to corpus/nc/ and their keywords to nc.dict).
 //

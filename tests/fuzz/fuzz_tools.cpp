@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Fuzz target: the tool list parser (apci/nc/tools.h, the seed's
-// "wz[i].field value" form). Checked: an error names a line and column of the
-// input and what was wrong; a table that parses holds tools 1..1023 in
+// Fuzz target: the tool list parser (apci/nc/tools.h, the "wz[i].field value"
+// form of [ISG-OTC] section 2.6). Checked: an error names a line and column of
+// the input and what was wrong; a table that parses holds tools 1..1023 in
 // ascending order, each found by its index, with every field in its
 // documented range and finite.
 #include <algorithm>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// PathCompensator: one element of lookahead (seed 003 "1 Einfuhrung"), approach and
-// departure, roles and indices, errors (seed 003 "Tabelle 4") without state change.
+// PathCompensator: one element of lookahead ([APCI-TC] "1 Einfuhrung"), approach and
+// departure, roles and indices, errors ([APCI-TC] "Tabelle 4") without state change.
 #include "rwmos/geometry/compensator.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Error bits exactly as seed 003 "Tabelle 4: Fehlerstatuswort Error des TC-Moduls", and the
+// Error bits exactly as [APCI-TC] "Tabelle 4: Fehlerstatuswort Error des TC-Moduls", and the
 // one reason table.
 #include "rwmos/geometry/errors.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The B head kinematics (DESIGN.md section 8; rwmos/geometry/kinematics.h).
+// The B head kinematics (docs/design.md section 8; rwmos/geometry/kinematics.h).
 #include "rwmos/geometry/kinematics.h"
 
 #include <gtest/gtest.h>
@@ -92,7 +92,7 @@ TEST(BcHeadKinematics, RotationTurnsPlusZIntoTheToolDirectionAndIsOrthonormal) {
 }
 
 TEST(BcHeadKinematics, SeedPeripheralBlock11PointsNearBlock12sToolVector) {
-    // TNC seed 002, peripheral milling: block 11 turns the head to C-267.9784 B-20.0115; block 12
+    // [TNC-3D], peripheral milling: block 11 turns the head to C-267.9784 B-20.0115; block 12
     // (a little further along the wall) gives T = (-0.0807, -0.3409, 0.9366).
     const Eigen::Vector3d t = bc_head_tool_direction(-20.0115, -267.9784);
     EXPECT_NEAR(t.z(), 0.9396, 1e-4);

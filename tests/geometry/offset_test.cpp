@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Offsetting elements by the tool radius, the element checks (seed 003 "Tabelle 4":
+// Offsetting elements by the tool radius, the element checks ([APCI-TC] "Tabelle 4":
 // CalcError, CenterError), trimming and emission.
 #include "rwmos/geometry/offset.h"
 

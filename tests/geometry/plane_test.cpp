@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Plane mapping (TcPlane 17/18/19, seed 003 "Tabelle 2") and coordinate rotation
-// (seed 003 "2.1.1 Koordinatendrehung").
+// Plane mapping (TcPlane 17/18/19, [APCI-TC] "Tabelle 2") and coordinate rotation
+// ([APCI-TC] "2.1.1 Koordinatendrehung").
 #include "rwmos/geometry/plane.h"
 
 #include <gtest/gtest.h>

@@ -235,7 +235,7 @@ TEST(Kinematics, TrafoIsNotSwitchedWhileOtcIsOn) {
               std::string::npos);
 }
 
-// docs/design.md section 8: "#HSC is accepted and reported as not emulated".
+// docs/design.md section 8: #HSC is parsed and reported as not emulated.
 TEST(Hsc, AcceptedAndReportedAsNotEmulated) {
     const auto ev = events_of("N85 #HSC ON[BSPLINE PATH_DEV 5 MERGE = 0]\nN290 #HSC OFF\nM30\n");
     const auto n = only<NotEmulated>(ev);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Wear directions of the four processing types (seed 000, FCT-C20, sections 2.2 to 2.5;
+// Wear directions of the four processing types ([ISG-OTC], FCT-C20, sections 2.2 to 2.5;
 // rwmos/otc/direction.h).
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ TEST(OtcDirection, LengthWithoutTiltIsTheThirdMainAxis) {
     EXPECT_EQ(length_direction(0.0, geom::Plane::kYZ), Vec3(1, 0, 0));
 }
 
-// Seed 000 section 2.3.1: the tilt splits the wear over two main axes, for G17 X and Z.
+// [ISG-OTC] section 2.3.1: the tilt splits the wear over two main axes, for G17 X and Z.
 TEST(OtcDirection, LengthTiltSplitsIntoSinAndCosOnTwoAxes) {
     const Vec3 d = length_direction(30.0, geom::Plane::kXY);
     EXPECT_NEAR(d.x(), 0.5, kEps);
@@ -49,7 +49,7 @@ TEST(OtcDirection, LengthTiltInG17TurnsLikeTheBHead) {
             << a;
 }
 
-// Seed 000 section 2.2: the radius wear acts "senkrecht zur programmierten Kontur", towards the
+// [ISG-OTC] section 2.2: the radius wear acts "senkrecht zur programmierten Kontur", towards the
 // tool centre: left of the path for G41, right for G42.
 TEST(OtcDirection, RadiusNormalPointsToTheToolSide) {
     EXPECT_EQ(contour_normal(Vec2(1, 0), Side::kLeft), Vec2(0, 1));
@@ -64,7 +64,7 @@ TEST(OtcDirection, RadiusNormalOfAStandingPathIsZero) {
     EXPECT_EQ(contour_normal(Vec2(0, 0), Side::kLeft), Vec2(0, 0));
 }
 
-// Seed 000 section 2.5 example: the tool stands along Z (B0) and the path runs in X and Z.
+// [ISG-OTC] section 2.5 example: the tool stands along Z (B0) and the path runs in X and Z.
 TEST(OtcDirection, SurfaceNormalIsToolDirectionPerpendicularToThePath) {
     const Vec3 tool{0, 0, 1};
     const Vec3 fallback{0, 0, 1};

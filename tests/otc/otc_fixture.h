@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A Board with the OTC objects at hand (bus 1330): the seed's grinding tool (seed 000 section
+// A Board with the OTC objects at hand (bus 1330): the grinding tool of [ISG-OTC] (section
 // 2.6), #OTC ON/OFF, control-unit writes, and the offset of the axes from the nominal path.
 #pragma once
 
@@ -16,7 +16,7 @@ namespace otc_test {
 using namespace motion_test;
 namespace otc = rwmos::otc;
 
-// Seed 000 section 2.6: typ 2, laenge 500000 and radius 300000 (0.1 um: 50 mm and 30 mm),
+// [ISG-OTC] section 2.6: typ 2, laenge 500000 and radius 300000 (0.1 um: 50 mm and 30 mm),
 // grinding_wear_const 100000 (0.1 um/m), grinding_max_infeed 200000 (0.1 um), tilt 0.
 inline constexpr double kSeedWearConst = 100000.0;
 inline constexpr double kSeedMaxInfeed = 200000.0;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The OTC offsets inside the interpolation, cycle by cycle, on the seed's examples (seed 000,
-// ISG FCT-C20, sections 2.2 to 2.5; seed 001 for wr_quad_disc.nc). docs/otc.md states the model.
+// The OTC offsets inside the interpolation, cycle by cycle, on the examples of [ISG-OTC] (ISG
+// FCT-C20, sections 2.2 to 2.5; [ISG-OTC-EN] for wr_quad_disc.nc). docs/otc.md states the model.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,7 +38,7 @@ Profile line_to(std::uint32_t tag, const AxisVector& target, double feed,
     return p;
 }
 
-// ---- LENGTH (seed 000 section 2.3, "Verschleiß in Werkzeuglänge")
+// ---- LENGTH ([ISG-OTC] section 2.3, "Verschleiß in Werkzeuglänge")
 
 // N40 G00 X0 Y0 Z0 / N50 #OTC ON [LENGTH] / N60 G1 X1000 F10000 / N70 #OTC OFF, with the tool
 // data of section 2.6 (grinding_wear_const 100000 x 0.1 um/m).
@@ -67,11 +67,11 @@ TEST_F(OtcBoard, SeedLengthExampleWearsTenMillimetresLinearlyOnTheThirdAxis) {
     EXPECT_NEAR(wear(2), 10.0, kEps);
     EXPECT_EQ(wear(0), 0.0);
     EXPECT_EQ(wear(1), 0.0);
-    // Folded into the tool's length (seed 000 section 2.1 "Hinweis").
+    // Folded into the tool's length ([ISG-OTC] section 2.1 "Hinweis").
     for (const auto& g : board.state().tc.groups) EXPECT_NEAR(g.tools[kTool].length, 40.0, kEps);
 }
 
-// Seed 000 section 2.3.1: a tilted disc splits the wear over two main axes (G17: X and Z).
+// [ISG-OTC] section 2.3.1: a tilted disc splits the wear over two main axes (G17: X and Z).
 TEST_F(OtcBoard, TiltedDiscSplitsTheWearIntoSinAndCosParts) {
     grinding_tool(otc::kGrindingToolType, kSeedWearConst, kSeedMaxInfeed, 300000.0);  // 30 degrees
     ASSERT_EQ(otc_on(), Status::kOk);
@@ -91,7 +91,7 @@ TEST_F(OtcBoard, TiltedDiscSplitsTheWearIntoSinAndCosParts) {
     EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, 40.0, kEps);
 }
 
-// ---- The continuous wear along arcs and helices (seed 000 section 2.1, docs/otc.md section 1)
+// ---- The continuous wear along arcs and helices ([ISG-OTC] section 2.1, docs/otc.md section 1)
 
 // W = wear constant x the path length on the main axes, with the length worked out by hand: an
 // arc R |sweep|, a helix sqrt((R sweep)^2 + dz^2). In every processing type and both modes with
@@ -206,8 +206,8 @@ TEST_F(OtcBoard, RampingOffsetsStepEveryCycleAndSettledOnesDoNot) {
     EXPECT_NEAR(offset()[2], -0.1, 1e-12);
 }
 
-// ---- RADIUS with a discrete offset: wr_quad_disc.nc (seed 001, "OTC with discrete
-// compensation"; seed 000 section 2.2, Abb. 3) with the PLC commanding 2 mm.
+// ---- RADIUS with a discrete offset: wr_quad_disc.nc ([ISG-OTC-EN], "OTC with discrete
+// compensation"; [ISG-OTC] section 2.2, Abb. 3) with the PLC commanding 2 mm.
 
 struct Cycle {
     AxisVector offset;
@@ -284,7 +284,7 @@ TEST_F(WrQuadDisc, OffsetActsPerpendicularToTheContourTowardsIt) {
     EXPECT_TRUE(seen);
 }
 
-// Seed 001, explanations 2 and 3: "The TRC inserts a circular transition because of G26. But
+// [ISG-OTC-EN], explanations 2 and 3: "The TRC inserts a circular transition because of G26. But
 // the OTC offset is so large that the increase in offset is unable to keep up with the
 // continuous change in the contour." / "The OTC offset lags behind considerably."
 TEST_F(WrQuadDisc, OffsetLagsAtTheG26CornerAndCatchesUpAfter) {
@@ -350,7 +350,7 @@ TEST_F(OtcBoard, RadiusNormalIsWeighedInAlongTheApproach) {
     EXPECT_NEAR(offset()[1], -1.0, kEps);
 }
 
-// ---- TOOL_DIR (seed 000 section 2.4, "OTC-Schleifen mit Kinematiktyp 4")
+// ---- TOOL_DIR ([ISG-OTC] section 2.4, "OTC-Schleifen mit Kinematiktyp 4")
 
 TEST_F(OtcBoard, ToolDirOffsetFollowsTheBHeadToolDirection) {
     grinding_tool();
@@ -395,7 +395,7 @@ TEST_F(OtcBoard, ToolDirOffsetFollowsTheBHeadToolDirection) {
     EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kSeedLength - 1.0, kEps);
 }
 
-// ---- SURF_NORM_DIR (seed 000 section 2.5)
+// ---- SURF_NORM_DIR ([ISG-OTC] section 2.5)
 
 TEST_F(OtcBoard, SurfNormDirOffsetIsAlongTheSurfaceNormal) {
     grinding_tool();
@@ -413,7 +413,7 @@ TEST_F(OtcBoard, SurfNormDirOffsetIsAlongTheSurfaceNormal) {
     ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
     ASSERT_EQ(otc_on(), Status::kOk);
     ASSERT_EQ(plc(2, 5000), Status::kOk);  // the third axis carries the offset: 0.5 mm
-    // N100..N270: the seed's loop body, incremental X Z.
+    // N100..N270: [ISG-OTC]'s loop body, incremental X Z.
     const double steps[][2] = {{3, -3}, {2, -2}, {5, -2}, {5, -1}, {5, 0},  {5, -1},
                                {5, -2}, {2, -2}, {3, -3}, {-3, 3}, {-2, 2}, {-5, 2},
                                {-5, 1}, {-5, 0}, {-5, 1}, {-5, 2}, {-2, 2}, {-3, 3}};

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The offset ramp (seed 000, FCT-C20, section 2.7.1: a changed wear value is distributed over
+// The offset ramp ([ISG-OTC], FCT-C20, section 2.7.1: a changed wear value is distributed over
 // several interpolation cycles; rwmos/otc/ramp.h).
 #include <gtest/gtest.h>
 
@@ -66,7 +66,7 @@ TEST(OtcRamp, SettledStaysSettled) {
     EXPECT_EQ(n.velocity, 0.0);
 }
 
-// Seed 000 section 2.1: ACC_WEIGHT in percent [1;100] weights the acceleration.
+// [ISG-OTC] section 2.1: ACC_WEIGHT in percent [1;100] weights the acceleration.
 TEST(OtcRamp, AccWeightScalesTheAcceleration) {
     EXPECT_DOUBLE_EQ(weighted_acceleration(2.0, 100), 2.0);
     EXPECT_DOUBLE_EQ(weighted_acceleration(2.0, 50), 1.0);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The rules of the OTC module (bus 1330), one test per rule, named after it (seed 000, ISG
+// The rules of the OTC module (bus 1330), one test per rule, named after it ([ISG-OTC], ISG
 // FCT-C20; docs/otc.md and docs/object-map.md section 5). Every refusal names its error in
 // LastError and changes nothing else.
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@ constexpr double kEps = 1e-9;
 
 // ---- Selection
 
-// Seed 000 section 1: "Wird ein anderer Werkzeugtyp verwendet, so wird die Fehlermeldung
+// [ISG-OTC] section 1: "Wird ein anderer Werkzeugtyp verwendet, so wird die Fehlermeldung
 // P-ERR-21391 ausgegeben."
 TEST_F(OtcBoard, ToolTypeMustBeGrindingElsePErr21391AndOtcStaysOff) {
     for (std::int32_t type : {0, 1, 3}) {
@@ -36,7 +36,7 @@ TEST_F(OtcBoard, ToolTypeMustBeGrindingElsePErr21391AndOtcStaysOff) {
     EXPECT_TRUE(otc_active());
 }
 
-// Seed 000 section 2.6 "Hinweis": data not set is 0, so a tool without typ is not a grinding tool.
+// [ISG-OTC] section 2.6 "Hinweis": data not set is 0, so a tool without typ is not a grinding tool.
 TEST_F(OtcBoard, AToolWithoutDataIsNoGrindingTool) {
     EXPECT_EQ(otc_on(), Status::kWrongDeviceState);
     EXPECT_EQ(last_error(), 21391);
@@ -70,7 +70,7 @@ TEST_F(OtcBoard, SwitchingToTheStateInForceIsANoOp) {
     EXPECT_TRUE(otc_active());
 }
 
-// Seed 000 section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen."
+// [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen."
 TEST_F(OtcBoard, TypeModeAccWeightAndKinematicsAreNotChangedWhileOn) {
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);
@@ -106,7 +106,7 @@ TEST_F(OtcBoard, TrafoNeedsAKinematics) {
 
 // ---- Deselection
 
-// Seed 000 section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor #OTC OFF
+// [ISG-OTC] section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor #OTC OFF
 // eingehalten werden."
 TEST_F(OtcBoard, G40MustComeBeforeOtcOff) {
     setup_group(kSeedRadius, /*left=*/true);
@@ -127,7 +127,7 @@ TEST_F(OtcBoard, G40MustComeBeforeOtcOff) {
     EXPECT_EQ(otc_off(), Status::kOk);
 }
 
-// The rule belongs to RADIUS (seed 000 section 2.2); other types may end with TRC on.
+// The rule belongs to RADIUS ([ISG-OTC] section 2.2); other types may end with TRC on.
 TEST_F(OtcBoard, G40RuleBindsOnlyRadius) {
     setup_group(kSeedRadius);
     grinding_tool();
@@ -138,7 +138,7 @@ TEST_F(OtcBoard, G40RuleBindsOnlyRadius) {
 
 // ---- Wear accrual
 
-// Seed 000 section 2: "Eilgangssätze sind verschleißfrei!"
+// [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"
 TEST_F(OtcBoard, RapidMovesAreWearFree) {
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);
@@ -149,7 +149,7 @@ TEST_F(OtcBoard, RapidMovesAreWearFree) {
     EXPECT_EQ(wear(2), 0.0);
 }
 
-// Seed 000 section 2.2 "Hinweis": the approach after G41/G42 and the move after G40 are
+// [ISG-OTC] section 2.2 "Hinweis": the approach after G41/G42 and the move after G40 are
 // wear-free; only the compensated contour (with its transitions) wears the radius.
 TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
     setup_group(kSeedRadius, /*left=*/true);
@@ -178,7 +178,7 @@ TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
     EXPECT_NEAR(wear_radius(), wear_radius_cont(), kEps);
 }
 
-// Seed 000 section 2.2: "In der Betriebsart Radiuskompensation wird der Verschleiß nur bei
+// [ISG-OTC] section 2.2: "In der Betriebsart Radiuskompensation wird der Verschleiß nur bei
 // aktiver Werkzeugradiuskompensation (WRK) berücksichtigt."
 TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
     grinding_tool();
@@ -191,7 +191,7 @@ TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
     EXPECT_EQ(wear_radius(), 0.0);
 }
 
-// Seed 000 section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2 "Hinweis": the approach
+// [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2 "Hinweis": the approach
 // after G41/G42 and the move after G40 are wear-free, and RADIUS wears only with radius
 // compensation (docs/otc.md, "Wear-free moves"). One move of every role, in every processing
 // type and in both modes with continuous wear; the wear each move adds, taken as it ends,
@@ -257,7 +257,7 @@ TEST(OtcWearByRole, RapidApproachAndDepartureAreWearFreeAndRadiusWearsOnlyTheCon
     }
 }
 
-// Seed 000 section 2.1 WEAR_CONST=..: "wirkt modal" instead of the tool's; WEAR_CONST_TOOL
+// [ISG-OTC] section 2.1 WEAR_CONST=..: "wirkt modal" instead of the tool's; WEAR_CONST_TOOL
 // switches back.
 TEST_F(OtcBoard, WearConstOverridesTheToolsModallyAndWearConstToolSwitchesBack) {
     grinding_tool();
@@ -276,7 +276,7 @@ TEST_F(OtcBoard, WearConstOverridesTheToolsModallyAndWearConstToolSwitchesBack) 
     EXPECT_NEAR(wear(2), 20.0, kEps);
 }
 
-// Seed 000 section 2.8: V.G.WZ_AKT.WEAR_CONST can be written in the program.
+// [ISG-OTC] section 2.8: V.G.WZ_AKT.WEAR_CONST can be written in the program.
 TEST_F(OtcBoard, ToolWearConstIsWritableWhileOnAndActsFromTheNextMove) {
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);
@@ -288,7 +288,7 @@ TEST_F(OtcBoard, ToolWearConstIsWritableWhileOnAndActsFromTheNextMove) {
     EXPECT_NEAR(wear(2), 5.0, kEps);
 }
 
-// Seed 000 section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
+// [ISG-OTC] section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
 // Versatz abhängig vom Weg nicht ermittelt werden."
 TEST_F(OtcBoard, WithoutWearConstNoContinuousWearAccrues) {
     grinding_tool(otc::kGrindingToolType, 0.0);
@@ -307,9 +307,9 @@ TEST_F(OtcBoard, DiscModeAccruesNoContinuousWear) {
     EXPECT_EQ(wear(2), 0.0);
 }
 
-// ---- Discrete offsets (seed 000 section 2.7)
+// ---- Discrete offsets ([ISG-OTC] section 2.7)
 
-// Seed 000 section 2.6: "Wenn grinding_max_infeed nicht gesetzt wird, kann kein diskreter
+// [ISG-OTC] section 2.6: "Wenn grinding_max_infeed nicht gesetzt wird, kann kein diskreter
 // Versatz beauftragt werden."
 TEST_F(OtcBoard, WithoutMaxInfeedNoDiscreteOffsetCanBeCommanded) {
     grinding_tool(otc::kGrindingToolType, kSeedWearConst, 0.0);
@@ -321,7 +321,7 @@ TEST_F(OtcBoard, WithoutMaxInfeedNoDiscreteOffsetCanBeCommanded) {
     EXPECT_TRUE(emu_test::unchanged(before, board));
 }
 
-// Seed 000 section 2.7: "Wertebereich [-P-TOOL-00031, P-TOOL-00031]".
+// [ISG-OTC] section 2.7: "Wertebereich [-P-TOOL-00031, P-TOOL-00031]".
 TEST_F(OtcBoard, CommandBeyondMaxInfeedIsRefused) {
     grinding_tool();
     EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, 200001), Status::kValueTooHigh);
@@ -330,7 +330,7 @@ TEST_F(OtcBoard, CommandBeyondMaxInfeedIsRefused) {
     EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, -200000), Status::kOk);
 }
 
-// Seed 000 section 2.7.1: "Ändert sich der Verschleißwert, wird diese Änderung auf mehrere
+// [ISG-OTC] section 2.7.1: "Ändert sich der Verschleißwert, wird diese Änderung auf mehrere
 // Interpolationszyklen verteilt, so dass sprunghafte Änderungen vermieden werden."
 TEST_F(OtcBoard, DiscreteOffsetIsRampedNeverAJump) {
     grinding_tool();
@@ -352,7 +352,7 @@ TEST_F(OtcBoard, DiscreteOffsetIsRampedNeverAJump) {
     EXPECT_EQ(unit_state(2), 20000);
 }
 
-// Seed 000 section 2.1: ACC_WEIGHT "Beschleunigungsgewichtung in Prozent [1;100]".
+// [ISG-OTC] section 2.1: ACC_WEIGHT "Beschleunigungsgewichtung in Prozent [1;100]".
 TEST_F(OtcBoard, AccWeightWeightsTheAccelerationOfTheRamp) {
     auto cycles_to_reach = [](std::int32_t weight) {
         OtcRig r;
@@ -375,7 +375,7 @@ TEST_F(OtcBoard, AccWeightWeightsTheAccelerationOfTheRamp) {
     EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxAccWeight, 0, 101), Status::kValueTooHigh);
 }
 
-// Seed 000 section 2.1 CONT: "Vorgabe der Werte nur aus Berechnung des zurückgelegten Weges".
+// [ISG-OTC] section 2.1 CONT: "Vorgabe der Werte nur aus Berechnung des zurückgelegten Weges".
 TEST_F(OtcBoard, ContModeIgnoresTheControlUnits) {
     grinding_tool();
     ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
@@ -386,7 +386,7 @@ TEST_F(OtcBoard, ContModeIgnoresTheControlUnits) {
     EXPECT_EQ(unit_request(2), 0);
 }
 
-// Seed 000 section 2.7.1: the channel unit acts only in RADIUS or TOOL_DIR.
+// [ISG-OTC] section 2.7.1: the channel unit acts only in RADIUS or TOOL_DIR.
 TEST_F(OtcBoard, ChannelUnitActsOnlyInRadiusOrToolDir) {
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);  // LENGTH
@@ -396,7 +396,7 @@ TEST_F(OtcBoard, ChannelUnitActsOnlyInRadiusOrToolDir) {
     EXPECT_EQ(unit_request(-1), 0);
 }
 
-// Seed 000 section 2.7.2: in LENGTH every axis takes its own wear offset.
+// [ISG-OTC] section 2.7.2: in LENGTH every axis takes its own wear offset.
 TEST_F(OtcBoard, AxisUnitsActOnTheirAxisInLength) {
     grinding_tool();
     ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
@@ -412,7 +412,7 @@ TEST_F(OtcBoard, AxisUnitsActOnTheirAxisInLength) {
     EXPECT_NEAR(wear(5), -0.2, kEps);
 }
 
-// Seed 000 sections 2.7.1/2.7.2: in TOOL_DIR and SURF_NORM_DIR the first two axes' units are
+// [ISG-OTC] sections 2.7.1/2.7.2: in TOOL_DIR and SURF_NORM_DIR the first two axes' units are
 // ignored.
 TEST_F(OtcBoard, FirstTwoAxisUnitsAreIgnoredInToolDirAndSurfNormDir) {
     for (auto type : {otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
@@ -431,7 +431,7 @@ TEST_F(OtcBoard, FirstTwoAxisUnitsAreIgnoredInToolDirAndSurfNormDir) {
     }
 }
 
-// ---- The variables (seed 000 section 2.8) and the fold into the tool
+// ---- The variables ([ISG-OTC] section 2.8) and the fold into the tool
 
 // "Während aktiver OTC sind die V.G.WZ_AKT-Verschleißwerte nicht aktuell, sie werden erst nach
 // Abwahl der OTC (#OTC OFF) aktualisiert!"
@@ -482,7 +482,7 @@ TEST_F(OtcBoard, RadiusWearVariablesAfterOneAndSeveralCycles) {
     }
 }
 
-// Seed 000 section 2.9: the wear belongs to the tool since it was changed in.
+// [ISG-OTC] section 2.9: the wear belongs to the tool since it was changed in.
 TEST_F(OtcBoard, ToolChangeStartsTheWearFromZero) {
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);

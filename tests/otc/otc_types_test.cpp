@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Processing types, modes, which control unit acts where (seed 000, FCT-C20, sections 2.1 and
+// Processing types, modes, which control unit acts where ([ISG-OTC], FCT-C20, sections 2.1 and
 // 2.7), and the error table.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ TEST(OtcTypes, KeywordsAreTheSeedNames) {
     EXPECT_EQ(mode_name(Mode::kAuto), "AUTO");
 }
 
-// Seed 000 section 2.1: LENGTH "(Standard)", AUTO "(Standard)".
+// [ISG-OTC] section 2.1: LENGTH "(Standard)", AUTO "(Standard)".
 TEST(OtcTypes, DefaultsAreLengthAndAuto) {
     EXPECT_EQ(kDefaultProcessingType, ProcessingType::kLength);
     EXPECT_EQ(kDefaultMode, Mode::kAuto);
@@ -42,7 +42,7 @@ TEST(OtcTypes, AutoIsTheSumOfContAndDisc) {
     EXPECT_TRUE(mode_has_discrete(Mode::kAuto));
 }
 
-// Seed 000 section 2.7.1: only RADIUS or TOOL_DIR, only DISC or AUTO.
+// [ISG-OTC] section 2.7.1: only RADIUS or TOOL_DIR, only DISC or AUTO.
 TEST(OtcTypes, ChannelUnitActsOnlyInRadiusOrToolDirWithDiscOrAuto) {
     for (auto t : {ProcessingType::kRadius, ProcessingType::kLength, ProcessingType::kToolDir,
                    ProcessingType::kSurfNormDir})
@@ -54,7 +54,7 @@ TEST(OtcTypes, ChannelUnitActsOnlyInRadiusOrToolDirWithDiscOrAuto) {
         }
 }
 
-// Seed 000 section 2.7.2: RADIUS and LENGTH use every axis; in SURF_NORM_DIR (and TOOL_DIR,
+// [ISG-OTC] section 2.7.2: RADIUS and LENGTH use every axis; in SURF_NORM_DIR (and TOOL_DIR,
 // section 2.7.1) the third axis carries the offset along the direction, the first two are ignored;
 // later axes act as usual; CONT uses no unit.
 TEST(OtcTypes, AxisUnitRolesFollowTheSeed) {

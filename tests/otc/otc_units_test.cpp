@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Units and wear accrual of the online tool compensation (seed 000, FCT-C20, sections 2.1, 2.6,
+// Units and wear accrual of the online tool compensation ([ISG-OTC], FCT-C20, sections 2.1, 2.6,
 // 3.2; rwmos/otc/units.h).
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 namespace rwmos::otc {
 namespace {
 
-// Seed 000 section 2.6 tool data: grinding_wear_const 100000 (0.1 um/m); section 2.3 example
+// [ISG-OTC] section 2.6 tool data: grinding_wear_const 100000 (0.1 um/m); section 2.3 example
 // G1 X1000: 1000 mm of path.
 TEST(OtcUnits, SeedLengthExampleWearsTenMillimetresOverOneMetre) {
     EXPECT_NEAR(continuous_wear(1000.0, 100000.0), 10.0, 1e-12);
@@ -21,7 +21,7 @@ TEST(OtcUnits, WearIsLinearInPathLength) {
     EXPECT_EQ(continuous_wear(0.0, 100000.0), 0.0);
 }
 
-// Seed 000 section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
+// [ISG-OTC] section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
 // Versatz abhängig vom Weg nicht ermittelt werden": the default 0 accrues nothing.
 TEST(OtcUnits, WithoutWearConstNoContinuousWearAccrues) {
     EXPECT_EQ(continuous_wear(1000.0, 0.0), 0.0);

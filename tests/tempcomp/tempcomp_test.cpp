@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The rules of the temperature compensation in tool direction (seed 004, SINUMERIK FB1 W1
+// The rules of the temperature compensation in tool direction ([SIN-TEMP], SINUMERIK FB1 W1
 // section 2.8), as pure functions.
 #include "rwmos/tempcomp/tempcomp.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// udev/60-apci8001.rules (issue "The real driver paths", item 5): every rule
+// udev/60-apci8001.rules (docs/transports.md, "Permissions for real boards"): every rule
 // guarded by ACTION and SUBSYSTEM; USB and UIO nodes for the seat user
 // (uaccess) and group plugdev, mode 0660; the PCI BAR resource files made
 // group-accessible; both vendor IDs. udevadm cannot check rules without a

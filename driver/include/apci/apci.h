@@ -25,8 +25,8 @@
  *  - apci_status_name(), apci_status_message(), apci_tc_*_bit_name() and
  *    apci_version() are pure and may be called from any thread at any time.
  *
- * docs/c-api.md documents this API with the TC initialisation sequence of the
- * seed (APCI-8001 TC document, section 2.5) as a worked example.
+ * docs/c-api.md documents this API with the TC initialisation sequence of
+ * [APCI-TC] section 2.5 (docs/references.md) as a worked example.
  */
 #ifndef APCI_APCI_H
 #define APCI_APCI_H
@@ -208,7 +208,7 @@ APCI_API apci_status apci_list_devices(apci_found_fn found, void* user) APCI_NOE
 /*
  * An object descriptor. Set bus, device, index, subindex and handle = 0; the
  * first successful access fills in the handle and later accesses use it.
- * Seed rule (APCI-8001 TC document, Table 2, "Clean"): writing TC Clean
+ * Rule of [APCI-TC] Table 2, "Clean": writing TC Clean
  * (1300/0/1/0) discards every TC object; a descriptor that still carries an
  * old handle is refused with APCI_STALE_HANDLE. Zero the handle of every TC
  * descriptor after Clean. Changing bus/device/index/subindex without zeroing
@@ -245,7 +245,7 @@ APCI_API apci_status apci_read_double(apci_board* board, apci_object_descriptor*
 APCI_API apci_status apci_write_double(apci_board* board, apci_object_descriptor* object,
                                        double value) APCI_NOEXCEPT;
 
-/* ---- TC module (bus 1300): seed names, APCI-8001 TC document ------------ */
+/* ---- TC module (bus 1300): the names of the APCI-8001 TC document [APCI-TC] */
 
 #define APCI_TC_BUS 1300
 #define APCI_TC_DEVICE_INIT 0  /* Table 2: initialisation */
@@ -284,8 +284,8 @@ APCI_API apci_status apci_write_double(apci_board* board, apci_object_descriptor
 #define APCI_TC_STATUS_RUN 0x01u         /* Run */
 #define APCI_TC_STATUS_PROF_MARKED 0x02u /* ProfMarked: a profile is held back */
 
-/* Seed name of ERROR / STATUS bit number `bit` (0 = least significant):
- * "InitError", ..., "Run", "ProfMarked"; NULL for a bit the seed does not define. */
+/* [APCI-TC] name of ERROR / STATUS bit number `bit` (0 = least significant):
+ * "InitError", ..., "Run", "ProfMarked"; NULL for a bit [APCI-TC] does not define. */
 APCI_API const char* apci_tc_error_bit_name(int bit) APCI_NOEXCEPT;
 APCI_API const char* apci_tc_status_bit_name(int bit) APCI_NOEXCEPT;
 
@@ -298,7 +298,7 @@ APCI_API const char* apci_tc_status_bit_name(int bit) APCI_NOEXCEPT;
  * virtual time: nothing moves until the clock is advanced (apci_step,
  * apci_run_until_idle), and the same calls give the same results bit for bit.
  *
- * Seed rules (APCI-8001 TC document, section 1): while a TC group
+ * Rules of [APCI-TC] section 1: while a TC group
  * compensates, one profile is held back (STATUS bit ProfMarked); the next
  * profile releases it corrected, with the transition between them; writing
  * STATUS = 0 or sending SSF command 2001 releases the last one; a direct
@@ -352,7 +352,7 @@ typedef struct apci_motion_result {
 APCI_API apci_status apci_spool_profile(apci_board* board, const apci_profile* profile,
                                         apci_motion_result* result) APCI_NOEXCEPT;
 
-/* Direct commands (the seed names JA and JS; their meaning is this project's). */
+/* Direct commands ([APCI-TC] names JA and JS; their meaning is this project's). */
 #define APCI_DIRECT_JA 1 /* jog absolute: the named axes move to target at feed (0: rapid) */
 #define APCI_DIRECT_JS 2 /* jog stop: every axis stops where it is; axes must be 0 */
 
@@ -428,7 +428,7 @@ typedef struct apci_trace_sample {
 APCI_API apci_status apci_read_trace(apci_board* board, apci_trace_sample* out, size_t max,
                                      size_t* count) APCI_NOEXCEPT;
 
-/* Executed segment kinds and roles (DESIGN.md section 7, `run --json`). */
+/* Executed segment kinds and roles (docs/design.md section 7, `run --json`). */
 #define APCI_SEGMENT_LINE 0
 #define APCI_SEGMENT_ARC 1
 #define APCI_ROLE_CONTOUR 0       /* a compensated G01/G02/G03 element */

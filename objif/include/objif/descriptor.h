@@ -2,7 +2,7 @@
 // The object descriptor of the universal object interface: (BusNumber,
 // DeviceNumber, Index, SubIndex) plus the handle the firmware issues on first
 // access. The handle is cached in the descriptor; after TC Clean it is stale
-// and the board refuses it (seed 003, Table 2 "Clean": PCAP programs must zero
+// and the board refuses it ([APCI-TC], Table 2 "Clean": PCAP programs must zero
 // their handles).
 #pragma once
 

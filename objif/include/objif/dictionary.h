@@ -41,7 +41,7 @@ struct ObjectInfo {
     double min = kInt32Min;  // inclusive range checked on write
     double max = kInt32Max;
     Value default_value;
-    std::string_view rule;  // where the rule comes from ("seed 003 Table 2", "design: ...")
+    std::string_view rule;  // where the rule comes from ("[APCI-TC] Table 2", "design: ...")
 
     constexpr bool covers(const Address& a) const noexcept {
         return a.device == device && a.index >= index_first && a.index <= index_last &&

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Wire frames (DESIGN.md section 2, design): the same frames travel over every
+// Wire frames (docs/design.md section 2, design): the same frames travel over every
 // transport (daemon socket, dual-port RAM mailbox, USB bulk endpoints).
 //
 //   offset size field

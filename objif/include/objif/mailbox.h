@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The board's dual-port RAM mailbox (DESIGN.md section 6, design): the same
+// The board's dual-port RAM mailbox (docs/design.md section 6, design): the same
 // wire frames as every other transport (frame.h), carried through a window of
 // 32-bit words that host and board both see. docs/dpram.md is the spec page.
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The USB face of a board (DESIGN.md section 6, design): one vendor-specific
+// The USB face of a board (docs/design.md section 6, design): one vendor-specific
 // interface with one bulk OUT and one bulk IN endpoint carrying the wire
 // frames of frame.h, one request frame out, its reply frame in. docs/usb.md
 // is the spec page.

@@ -17,7 +17,7 @@ Reason check_element(const Element& e) noexcept {
     const double r_start = radius(e);
     const double r_end = end_radius(e);
     if (r_start <= kPointTolerance || r_end <= kPointTolerance) return Reason::kArcCentreOnEndPoint;
-    // seed 003 "Tabelle 4": CenterError, the radii at start and end point differ.
+    // [APCI-TC] "Tabelle 4": CenterError, the radii at start and end point differ.
     if (std::abs(r_start - r_end) > kCenterRadiusTolerance) return Reason::kArcRadiiDiffer;
     return Reason::kNone;
 }
@@ -48,7 +48,7 @@ OffsetResult offset_element(const Element& e, double r, Side side) noexcept {
     const double shift = radius(e) - offset_radius(e, r, side);
     const double rho_start = radius(e) - shift;
     const double rho_end = end_radius(e) - shift;
-    // seed 003 "Tabelle 4": CalcError, the radius of the arc is smaller than the tool
+    // [APCI-TC] "Tabelle 4": CalcError, the radius of the arc is smaller than the tool
     // radius. A tool that fits it (within the path tolerance) keeps its centre there.
     if (std::min(rho_start, rho_end) < -kOffsetRadiusTolerance) {
         out.reason = Reason::kOffsetRadiusNotPositive;

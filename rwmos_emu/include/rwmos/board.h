@@ -19,13 +19,13 @@
 namespace rwmos {
 
 struct BoardConfig {
-    // Firmware option "optionTC" (seed 003, section 1): without it the TC
+    // Firmware option "optionTC" ([APCI-TC], section 1): without it the TC
     // module (bus 1300) does not exist and every access answers NoSuchDevice.
     bool option_tc = true;
-    // The OTC module (bus 1330, online tool compensation, DESIGN.md section 4; design option,
+    // The OTC module (bus 1330, online tool compensation, docs/design.md section 4; design option,
     // Options bit 0x02): without it every access to bus 1330 answers NoSuchDevice.
     bool option_otc = true;
-    // Temperature compensation in tool direction (bus 1320; seed 004: "eine Option, die vorher
+    // Temperature compensation in tool direction (bus 1320; [SIN-TEMP]: "eine Option, die vorher
     // freigeschaltet werden muß"). Options bit 0x04.
     bool option_temp_comp = true;
 };

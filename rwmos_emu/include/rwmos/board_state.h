@@ -26,7 +26,8 @@ namespace rwmos {
 
 inline constexpr std::int32_t kAxisCount = 8;
 inline constexpr std::int32_t kSpoolerCapacity = 256;  // profiles (design)
-inline constexpr std::int32_t kDefaultInterpolationCycleUs = 1000;  // 1 ms (DESIGN.md section 4)
+// The default interpolation cycle, 1 ms (docs/design.md section 4).
+inline constexpr std::int32_t kDefaultInterpolationCycleUs = 1000;
 inline constexpr std::int32_t kMinInterpolationCycleUs = 250;
 inline constexpr std::int32_t kMaxInterpolationCycleUs = 10000;
 // Firmware version the emulator reports: (major << 16) | (minor << 8) | patch.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The 3D tool compensation module, bus 1310 (TNC seed 002; design numbers): DeviceNumber 0 the
+// The 3D tool compensation module, bus 1310 ([TNC-3D]; design numbers): DeviceNumber 0 the
 // tool in force, the modes and the vectors of the next LN profile; DeviceNumber 1 the tool
 // table (R, R2, DL, DR, DR2); DeviceNumber 2 the correction table (DL, DR, DR2). Each rule
 // lives in its hook (comp3d_module.cpp); docs/object-map.md section 6 is the spec page.

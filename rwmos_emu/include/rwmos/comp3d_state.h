@@ -55,7 +55,7 @@ struct Comp3dState {
         const Comp3dTool& row = tools[static_cast<std::size_t>(t)];
         return {row.r, row.r2};
     }
-    // Tool table + tool call + correction table (seed 002: "Summe der Deltawerte").
+    // Tool table + tool call + correction table ([TNC-3D]: "Summe der Deltawerte").
     comp3d::Deltas summed(std::int32_t t, const comp3d::Deltas& c,
                           std::int32_t row) const noexcept {
         return comp3d::sum_deltas({tools[static_cast<std::size_t>(t)].deltas, c,

@@ -44,7 +44,7 @@ class MotionLayer final : public TcMotion {
 
   private:
     motion::TcSettings settings() const noexcept;
-    // Records a call's TC errors: ERROR bits set, Run cleared (seed 003 Table 4/5).
+    // Records a call's TC errors: ERROR bits set, Run cleared ([APCI-TC] Table 4/5).
     void record(const motion::MotionResult& r) noexcept;
     // Mirrors the motion state into the objects: ProfMarked, offsets, spooler
     // fill level, axis positions; and holds the executor while an error is set.

@@ -31,7 +31,7 @@ inline constexpr std::int32_t kOptionTempComp = 0x04;  // temperature compensati
 enum PuUnit : std::int32_t { kPuMillimetre = 0, kPuMicrometre = 1, kPuInch = 2 };
 }  // namespace board
 
-// ---- TC module, bus 1300 (seed 003 Tables 1-3; lost OCR numbers per DESIGN.md section 3).
+// ---- TC module, bus 1300 ([APCI-TC] Tables 1-3; lost OCR numbers per docs/design.md section 3).
 namespace tc {
 inline constexpr std::int32_t kBus = 1300;
 inline constexpr std::int32_t kDevInit = 0;    // Table 2: initialisation
@@ -73,9 +73,9 @@ inline constexpr std::int32_t kSubWkzLen = 12;
 inline constexpr std::int32_t kSubCornerMode = 20;  // int r/w: 26 circular (default), 25 linear
 inline constexpr std::int32_t kSubSide = 21;        // int r: 40 none, 41 left, 42 right
 
-inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 (seed 003 Table 3)
+inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 ([APCI-TC] Table 3)
 
-// CornerMode values: the G-codes that select them in NC programs (DESIGN.md section 8).
+// CornerMode values: the G-codes that select them in NC programs (docs/design.md section 8).
 inline constexpr std::int32_t kCornerLinear = 25;
 inline constexpr std::int32_t kCornerCircular = 26;
 // Side values: the G-codes of the selection.
@@ -84,7 +84,7 @@ inline constexpr std::int32_t kSideLeft = 41;
 inline constexpr std::int32_t kSideRight = 42;
 }  // namespace tc
 
-// ---- 3D tool compensation module, bus 1310 (TNC seed 002; design numbers, DESIGN.md section 4;
+// ---- 3D tool compensation module, bus 1310 ([TNC-3D]; design numbers, docs/design.md section 4;
 // docs/object-map.md section 6, docs/3d-compensation.md).
 namespace comp3d {
 inline constexpr std::int32_t kBus = 1310;
@@ -132,8 +132,8 @@ inline constexpr std::int32_t kNoHeadAxis = -1;
 inline constexpr double kMaxValue = 1e5;
 }  // namespace comp3d
 
-// ---- OTC module, bus 1330: online tool (wear) compensation (seed 000, ISG FCT-C20; design
-// numbers, DESIGN.md section 4; docs/object-map.md section 5, docs/otc.md).
+// ---- OTC module, bus 1330: online tool (wear) compensation ([ISG-OTC], ISG FCT-C20; design
+// numbers, docs/design.md section 4; docs/object-map.md section 5, docs/otc.md).
 namespace otc {
 inline constexpr std::int32_t kBus = 1330;
 inline constexpr std::int32_t kDevChannel = 0;    // #OTC settings, channel control unit
@@ -156,7 +156,7 @@ inline constexpr std::int32_t kIdxTrafo = 13;          // int r/w: #TRAFO 0 OFF,
 inline constexpr std::int32_t kIdxToolAxisB = 14;      // int r/w: board axis of B (default 4)
 inline constexpr std::int32_t kIdxRadiusOffsetUnit = 20;  // otc_radius_offset, SubIndex below
 
-// Control unit SubIndex (MC_CONTROL_SGN32_UNIT, seed 000 section 2.7), on DeviceNumber 0
+// Control unit SubIndex (MC_CONTROL_SGN32_UNIT, [ISG-OTC] section 2.7), on DeviceNumber 0
 // Index 20 and on every Index of DeviceNumber 1. Values in 0.1 um.
 inline constexpr std::int32_t kSubCommand = 1;  // command_w: int r/w
 inline constexpr std::int32_t kSubEnable = 2;   // enable_w: int r/w 0..1
@@ -177,8 +177,8 @@ inline constexpr std::int32_t kGrindingToolType = 2;  // P-TOOL-00001: 2 Schleif
 inline constexpr std::int32_t kNoKinematics = 0;
 }  // namespace otc
 
-// ---- Temperature compensation in tool direction, bus 1320 (SINUMERIK seed 004; design numbers,
-// DESIGN.md section 4; docs/object-map.md section 7, docs/temperature-compensation.md).
+// ---- Temperature compensation in tool direction, bus 1320 ([SIN-TEMP]; design numbers,
+// docs/design.md section 4; docs/object-map.md section 7, docs/temperature-compensation.md).
 namespace tempcomp {
 inline constexpr std::int32_t kBus = 1320;
 inline constexpr std::int32_t kDevice = 0;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The OTC engine: the wear offsets of the online tool compensation (seed 000, ISG FCT-C20),
+// The OTC engine: the wear offsets of the online tool compensation ([ISG-OTC], ISG FCT-C20),
 // computed inside the interpolation, cycle by cycle (motion::CycleOffsets). docs/otc.md states
 // the model; in short, at cycle k of a move the axes are displaced by
 //
@@ -40,7 +40,7 @@ class OtcEngine final : public motion::CycleOffsets {
     // #OTC OFF: the wear is folded into the state's variables and the TC tool tables; the
     // offsets on the axes ramp out (never a jump).
     void end_session() noexcept;
-    // The current tool changed: its wear starts from zero (seed 000 section 2.9).
+    // The current tool changed: its wear starts from zero ([ISG-OTC] section 2.9).
     void tool_changed() noexcept;
 
     // The control units' request_r and state_r (0.1 um): the target the unit's ramp heads for

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The OTC module, bus 1330 (design numbers, seed 000 behaviour: ISG FCT-C20 online tool
-// compensation; DESIGN.md section 4). DeviceNumber 0: what #OTC programs, the ramp, the head
+// The OTC module, bus 1330 (design numbers, [ISG-OTC] behaviour: ISG FCT-C20 online tool
+// compensation; docs/design.md section 4). DeviceNumber 0: what #OTC programs, the ramp, the head
 // kinematics, the channel control unit otc_radius_offset. DeviceNumber 1: the per-axis control
 // units otc_offset (Index = board axis). DeviceNumber 2: the current tool's grinding data and
 // its wear (the V.G.WZ_AKT variables). docs/object-map.md section 5 is the spec page; every

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The OTC module's state (bus 1330; seed 000, ISG FCT-C20; docs/otc.md): what #OTC programs,
+// The OTC module's state (bus 1330; [ISG-OTC], ISG FCT-C20; docs/otc.md): what #OTC programs,
 // the PLC's control units, the current tool's grinding data and its wear. Plain data in
 // Board::State; the rules are in the module's hooks (otc_module.cpp) and the per-cycle
 // offsets in the engine (otc_engine.h).
@@ -16,14 +16,14 @@ namespace rwmos {
 
 inline constexpr std::int32_t kOtcAxisCount = 8;
 
-// A PLC control unit of type MC_CONTROL_SGN32_UNIT (seed 000 section 2.7): the PLC writes
+// A PLC control unit of type MC_CONTROL_SGN32_UNIT ([ISG-OTC] section 2.7): the PLC writes
 // command_w and enable_w; request_r and state_r are the engine's (OtcEngine).
 struct OtcControlUnit {
     std::int32_t command = 0;  // 0.1 um
     bool enable = false;
 };
 
-// The current tool's data (seed 000 section 2.6 / 3.2, the host writes them at a tool change).
+// The current tool's data ([ISG-OTC] section 2.6 / 3.2, the host writes them at a tool change).
 struct OtcTool {
     std::int32_t number = 0;  // the tool (D n, TC WKZINDEX) the wear is folded into
     std::int32_t type = 0;    // P-TOOL-00001 typ; 2 = grinding
@@ -32,7 +32,7 @@ struct OtcTool {
     double tilt_angle = 0.0;  // P-TOOL-00138 grinding_disc_tilt_angle, 0.0001 degree
 };
 
-// The wear of the current tool since it was changed in (seed 000 section 2.8), in PU. Updated
+// The wear of the current tool since it was changed in ([ISG-OTC] section 2.8), in PU. Updated
 // at #OTC OFF only ("Während aktiver OTC sind die V.G.WZ_AKT-Verschleißwerte nicht aktuell").
 struct OtcWear {
     double radius = 0.0;                       // V.G.WZ_AKT.WEAR_RADIUS: discrete + continuous
@@ -41,7 +41,7 @@ struct OtcWear {
 };
 
 // Design defaults of the offset ramp (docs/otc.md "The ramp"): a discrete offset of 2 mm takes
-// about 4.5 s, slow enough for the lag the seed describes at wr_quad_disc.nc's G26 corner.
+// about 4.5 s, slow enough for the lag [ISG-OTC] describes at wr_quad_disc.nc's G26 corner.
 inline constexpr double kDefaultRampVelocity = 0.5;      // PU per second
 inline constexpr double kDefaultRampAcceleration = 1.0;  // PU per second squared
 inline constexpr std::int32_t kDefaultToolAxisB = 4;     // A, B, C after X, Y, Z: B is axis 4
@@ -65,7 +65,7 @@ struct OtcState {
     OtcTool tool;
     OtcWear wear;
 
-    // The wear constant in force (seed 000 section 2.1 WEAR_CONST / WEAR_CONST_TOOL).
+    // The wear constant in force ([ISG-OTC] section 2.1 WEAR_CONST / WEAR_CONST_TOOL).
     double effective_wear_const() const noexcept {
         return use_programmed_wear_const ? programmed_wear_const : tool.wear_const;
     }

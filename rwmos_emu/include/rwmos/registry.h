@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Where running emulator daemons say what they serve, so `apcictl list` can
-// name them (DESIGN.md section 7, design). One file per daemon in the
+// name them (docs/design.md section 7, design). One file per daemon in the
 // registry directory, "rwmos-emu.PID", with lines "socket PATH" and
 // "shm PATH"; the daemon writes it after it serves and removes it when it
 // stops. Entries of daemons that are gone (no such pid) are skipped.

@@ -13,11 +13,11 @@ namespace rwmos::tc {
 // Names and meanings are string literals, so .data() is NUL-terminated (the C API relies on it).
 struct BitName {
     std::int32_t mask;
-    std::string_view name;     // the seed's name
+    std::string_view name;     // [APCI-TC]'s name
     std::string_view meaning;  // one line of English
 };
 
-// ---- ERROR register: DeviceNumber 1, SubIndex 1 (seed 003 Table 4).
+// ---- ERROR register: DeviceNumber 1, SubIndex 1 ([APCI-TC] Table 4).
 // Set by the firmware, cleared only by writing ERROR (or RESET / Clean).
 inline constexpr std::int32_t kInitError = 0x01;
 inline constexpr std::int32_t kKorrError = 0x02;
@@ -34,7 +34,7 @@ inline constexpr std::array<BitName, 5> kErrorBits{{
     {kCenterError, "CenterError", "arc centre wrong: start and end radius differ"},
 }};
 
-// ---- STATUS register: DeviceNumber 1, SubIndex 3 (seed 003 Table 5).
+// ---- STATUS register: DeviceNumber 1, SubIndex 3 ([APCI-TC] Table 5).
 inline constexpr std::int32_t kRun = 0x01;         // bit 0: compensation active
 inline constexpr std::int32_t kProfMarked = 0x02;  // bit 1: a profile waits in the buffer
 inline constexpr std::int32_t kStatusMask = 0x03;
@@ -103,7 +103,7 @@ constexpr bool status_bit_from_name(std::string_view name, std::int32_t& mask) n
     return detail::bit_from_name(kStatusBits, name, mask);
 }
 // A whole register word by name: "none", "InitError|CalcError",
-// "Run|unknown(0x80)" for bits the seed does not define.
+// "Run|unknown(0x80)" for bits [APCI-TC] does not define.
 inline std::string describe_error(std::int32_t word) {
     return detail::describe(kErrorBits, word, kErrorMask);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The TC module, bus 1300 (seed 003; DESIGN.md section 3): DeviceNumber 0
+// The TC module, bus 1300 ([APCI-TC]; docs/design.md section 3): DeviceNumber 0
 // initialisation objects (Table 2) and DeviceNumber 1 compensation groups
 // (Table 3). Each object's rule lives in its hook (tc_module.cpp), next to the
 // table row; docs/object-map.md is the spec page.
@@ -18,11 +18,11 @@ public:
     explicit TcModule(Board::State& state) noexcept : state_(state) {}
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "TC"; }
-    // Seed 003 section 1: only with the firmware option optionTC.
+    // [APCI-TC] section 1: only with the firmware option optionTC.
     bool present() const noexcept override;
     std::span<const objif::Entry<TcModule>> table() const noexcept;
 
-    // ReInit and Reset ignore their SubIndex (seed 003 Table 2: "Subindex und
+    // ReInit and Reset ignore their SubIndex ([APCI-TC] Table 2: "Subindex und
     // Parameter sind unbedeutend"): every SubIndex finds the SubIndex 0 row.
     const objif::ObjectInfo* find(const objif::Address& a, objif::Status& why) const noexcept override;
     // Every successful access marks the TC objects as accessed (TcState::objects_accessed).

@@ -16,7 +16,7 @@
 
 namespace rwmos {
 
-// One row of a group's tool table (seed 003 Table 3: RADIUS, WkzLen), in PU units.
+// One row of a group's tool table ([APCI-TC] Table 3: RADIUS, WkzLen), in PU units.
 struct TcTool {
     double radius = 0.0;
     double length = 0.0;
@@ -33,7 +33,7 @@ struct TcGroup {
     std::int32_t side = tc::kSideNone;              // Left/Right selection (41/42), 40 = none
     std::int32_t corner_mode = tc::kCornerCircular;  // outside corners (extension object)
     // Stored displacement of the correction axes X, Y, Z ("intern gespeicherte
-    // Verschiebungswerte der Korrekturachsen", seed 003 Table 2 ReInit/Reset).
+    // Verschiebungswerte der Korrekturachsen", [APCI-TC] Table 2 ReInit/Reset).
     // Written by the motion layer; cleared by ReInit, Reset, RESET, Clean.
     std::array<double, 3> offset{};
     std::array<TcTool, tc::kToolCount> tools{};
@@ -46,13 +46,13 @@ struct TcGroup {
 
 // The whole TC module.
 struct TcState {
-    // DeviceNumber 0 (seed 003 Table 2).
+    // DeviceNumber 0 ([APCI-TC] Table 2).
     std::array<std::int32_t, 3> axis_nr{0, 1, 2};  // X-, Y-, Z-Axis-Nr
     std::int32_t plane = tc::kPlaneXY;              // TcPlane 17/18/19
     double rot_angle = 0.0;                         // RotAngle, degrees
     double rot_center_x = 0.0;                      // RotCenterX, interpolation units
     double rot_center_y = 0.0;                      // RotCenterY
-    // Seed 003 section 2.2 "Wichtiger Hinweis": once a TC object was accessed,
+    // [APCI-TC] section 2.2 "Wichtiger Hinweis": once a TC object was accessed,
     // arcs run in the active plane, not in the plane of the first axes named.
     // Set by any successful access to bus 1300; cleared by Clean.
     bool objects_accessed = false;
@@ -75,10 +75,10 @@ PlaneAxes plane_axes(const TcState& tc) noexcept;
 
 // The active group (Index 0): the lowest-numbered group whose {XAxis, YAxis}
 // are the two board axes of the plane TcPlane selects (in either order).
-// 0 when no group matches. Design reading of seed 003 section 2.2.
+// 0 when no group matches. Design reading of [APCI-TC] section 2.2.
 std::int32_t active_group(const TcState& tc) noexcept;
 
-// Why a group cannot be activated (STATUS = 1). Seed 003 section 2.5 gives the
+// Why a group cannot be activated (STATUS = 1). [APCI-TC] section 2.5 gives the
 // initialisation steps; "initialised" is defined in docs/object-map.md.
 enum class InitFault : std::uint8_t {
     kNone,
@@ -95,8 +95,8 @@ std::string_view init_fault_message(InitFault f) noexcept;
 class TcMotion {
 public:
     virtual ~TcMotion() = default;
-    // STATUS = 0 on a running group: correct and spool the held profile (seed
-    // 003 section 1). Called before Run is cleared; a non-Ok status (e.g. kBusy:
+    // STATUS = 0 on a running group: correct and spool the held profile
+    // ([APCI-TC] section 1). Called before Run is cleared; a non-Ok status (e.g. kBusy:
     // spooler full) refuses the write, and the group stays as it was.
     virtual objif::Status release_held_profile(std::int32_t group) = 0;
     // RESET, Reset (dev 0 idx 14), Clean: drop the held profile unspooled.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The temperature compensation module, bus 1320 (SINUMERIK seed 004; design numbers): SD 42960,
+// The temperature compensation module, bus 1320 ([SIN-TEMP]; design numbers): SD 42960,
 // MD 20390, MD 32750, the orientable tool holder and the ramp; the displacement it applies.
 // docs/object-map.md section 7 is the spec page.
 #pragma once
@@ -17,7 +17,7 @@ class TempCompModule : public objif::TableModule<TempCompModule> {
     explicit TempCompModule(Board::State& state) noexcept : state_(state) {}
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "Temperature compensation"; }
-    // Seed 004: "eine Option, die vorher freigeschaltet werden muß"
+    // [SIN-TEMP]: "eine Option, die vorher freigeschaltet werden muß"
     // (BoardConfig::option_temp_comp).
     bool present() const noexcept override;
     std::span<const objif::Entry<TempCompModule>> table() const noexcept;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The temperature compensation module's state (bus 1320; docs/object-map.md section 7) and its
 // engine: the displacement of the axes along the tool direction, cycle by cycle
-// (motion::CycleOffsets), after the rules of seed 004 (rwmos_tempcomp,
+// (motion::CycleOffsets), after the rules of [SIN-TEMP] (rwmos_tempcomp,
 // docs/temperature-compensation.md).
 #pragma once
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The spooler state machine (spooler.h). Rules and their seed citations are
+// The spooler state machine (spooler.h). Rules and their sources are
 // listed in docs/motion.md; the comments here name the rule they implement.
 #include "rwmos/motion/spooler.h"
 
@@ -126,7 +126,7 @@ MotionResult Spooler::resolve(const Profile& p, const TcSettings& tc, Resolved& 
     out.cy = p.center[1];
     if (is_arc(p.kind)) {
         if (tc.present && tc.objects_accessed) {
-            // Seed 003 section 2.2 "Wichtiger Hinweis": once a TC object was
+            // [APCI-TC] section 2.2 "Wichtiger Hinweis": once a TC object was
             // accessed, arcs run in the active plane, not in the plane of the
             // axes named first. An arc named in other axes is outside it.
             const bool same_order = p.arc_axes[0] == plane[0] && p.arc_axes[1] == plane[1];
@@ -146,7 +146,7 @@ MotionResult Spooler::resolve(const Profile& p, const TcSettings& tc, Resolved& 
             out.plane = plane_code_of(p.arc_axes, tc.axis_nr);
         }
     }
-    // Seed 003 section 2.1.1: the rotation acts on interpolation profiles in
+    // [APCI-TC] section 2.1.1: the rotation acts on interpolation profiles in
     // the active plane; it needs no compensation object. A zero angle leaves
     // the coordinates untouched (bit for bit).
     if (tc.present && tc.rot_angle != 0.0) {
@@ -250,8 +250,8 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     Compensation trial = comp_;
     Batch& batch = batch_;
     batch.reset(exec.planned_end());
-    // Seed 003 section 1: only G01/G02/G03 are compensated, by the active
-    // group while it runs. Anything else ends the contour under way (seed 003
+    // [APCI-TC] section 1: only G01/G02/G03 are compensated, by the active
+    // group while it runs. Anything else ends the contour under way ([APCI-TC]
     // section 2.4: a JOG/G00 makes the compensation ineffective; the next
     // interpolation profile approaches the compensated path anew). No
     // departure: the tool leaves from where the compensated path ended.
@@ -263,7 +263,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
     bool pushed = false;
     if (p.kind == ProfileKind::kRapid) {
-        // Seed 003 section 2.1.1: no rotation for JOG moves; no compensation.
+        // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
         batch.add(line_move(batch.end, res.program, feed, SegmentRole::kRapid, p.tag));
     } else if (!compensate) {
         if (is_arc(p.kind)) {
@@ -337,7 +337,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
 MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSettings&,
                                                Executor& exec, std::size_t capacity) {
     if (comp_.group != group || !comp_.comp.running()) return {};
-    // Seed 003 section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
+    // [APCI-TC] section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
     // auch das letzte zwischengespeicherte Verfahrprofil gespoolt."
     Compensation trial = comp_;
     Batch& batch = batch_;
@@ -358,7 +358,7 @@ MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&
     const AxisMask group_axes =
         static_cast<AxisMask>((1u << comp_.plane_axes[0]) | (1u << comp_.plane_axes[1]));
     if ((axes & group_axes) == 0) return {};
-    // Seed 003 section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
+    // [APCI-TC] section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
     // die entsprechenden Achsen gesendet werden": the held profile is spooled.
     Compensation trial = comp_;
     Batch& batch = batch_;
@@ -380,7 +380,7 @@ MotionResult Spooler::direct(const DirectCommand& c, Executor& exec) {
     } else if (c.axes != 0) {
         return refuse(Status::kInvalidValue, "JS stops every axis and takes no axes");
     }
-    // Seed 003 section 1: "Beim Aufruf eines direkten Befehls (z.B. JA, oder
+    // [APCI-TC] section 1: "Beim Aufruf eines direkten Befehls (z.B. JA, oder
     // JS) wird der komplette Spooler-Inhalt und das zwischengespeicherte
     // Verfahrprofil verworfen."
     comp_.comp.discard();

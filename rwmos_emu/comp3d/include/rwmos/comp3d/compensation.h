@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The 3D tool compensation of one programmed point (seed 002): where the tool tip must go so
+// The 3D tool compensation of one programmed point ([TNC-3D]): where the tool tip must go so
 // that the tool, as dimensioned by the delta values, touches the same surface point along the
 // surface normal N as the programmed tool did. docs/3d-compensation.md derives the formulas.
 //
@@ -7,7 +7,7 @@
 // lower end is the disc of radius R - R2 around the axis at height R2 above the tip, grown by
 // R2 in every direction (a ball for R2 = R, a torus with its flat end face for 0 < R2 < R,
 // a flat end face for R2 = 0). Touching a surface point S with normal N (pointing from the
-// surface to the tool), the centre of the corner radius is CR2 = S + R2 N (seed 002: "Der
+// surface to the tool), the centre of the corner radius is CR2 = S + R2 N ([TNC-3D]: "Der
 // Flächennormalenvektor zeigt immer auf das Zentrum Werkzeugradius 2 CR2"), and
 //     tip = S + R2 N - R2 T - (R - R2) u,     u = corner_direction(N, T).
 #pragma once
@@ -20,7 +20,7 @@
 
 namespace rwmos::comp3d {
 
-// FUNCTION PROG PATH (seed 002, "3D-Werkzeugkorrektur mit gesamtem Werkzeugradius"): OFF (the
+// FUNCTION PROG PATH ([TNC-3D], "3D-Werkzeugkorrektur mit gesamtem Werkzeugradius"): OFF (the
 // default) - the programmed points are tool positions of the tool in the tool table, only the
 // deltas DR, DR2 are applied; IS CONTOUR - the programmed points are contour points, the full
 // radii R + DR and R2 + DR2 are applied. Modal until switched off.
@@ -28,7 +28,7 @@ enum class ProgPath : std::uint8_t { kOff, kContour };
 
 // Where on the tool the programmed points lie (TCPM REFPNT): the tip (TIP-TIP, the default) or
 // the centre on the axis at height R2 above the tip (CNT-CNT: the ball centre of a ball mill).
-// Seed 002: with REFPNT CNT-CNT the delta values for tip and centre output are the same.
+// [TNC-3D]: with REFPNT CNT-CNT the delta values for tip and centre output are the same.
 enum class ReferencePoint : std::uint8_t { kTip, kCentre };
 
 // ---- Geometry of a tool touching a surface (exact for every shape) ----

@@ -6,9 +6,9 @@
 
 namespace rwmos::comp3d {
 
-// A programmed N or T vector whose length differs from 1 by more than this is refused (seed
-// 002, "Gerade LN", Hinweise: "Das CAM-generierte NC-Programm muss normierte Vektoren
-// enthalten"). Every unit vector written with 4 decimals (the seed's own peripheral-milling
+// A programmed N or T vector whose length differs from 1 by more than this is refused
+// ([TNC-3D], "Gerade LN", Hinweise: "Das CAM-generierte NC-Programm muss normierte Vektoren
+// enthalten"). Every unit vector written with 4 decimals ([TNC-3D]'s own peripheral-milling
 // example) is inside it: rounding each component by at most 5e-5 changes the length by at
 // most sqrt(3) * 5e-5 = 8.7e-5. A vector within it is divided by its length before use.
 inline constexpr double kUnitVectorTolerance = 1e-4;
@@ -31,7 +31,7 @@ inline constexpr double kMinMotionLength = 1e-9;
 // the side across it would follow the rounding of the coordinates, not the program.
 inline constexpr double kPlungeAngleTolerance = 1e-6;
 
-// A summed delta value above this is an oversize (seed 002, M107). Far below the finest
+// A summed delta value above this is an oversize ([TNC-3D], M107). Far below the finest
 // programmable step (0.1 um), far above the rounding of summing three decimal values.
 inline constexpr double kOversizeTolerance = 1e-9;
 

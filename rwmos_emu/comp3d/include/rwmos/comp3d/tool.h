@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Tools of the 3D compensation (seed 002, "Werkzeuge für die 3D-Werkzeugkorrektur"): the
+// Tools of the 3D compensation ([TNC-3D], "Werkzeuge für die 3D-Werkzeugkorrektur"): the
 // shape by R and R2, the delta values DL, DR, DR2 and their sum, the effective tool the
 // control positions, and the oversize rule of M107.
 #pragma once
@@ -16,7 +16,7 @@ struct ToolDimensions {
     double r2 = 0.0;
 };
 
-// Seed 002: "Schaftfräser: R2 = 0, Torusfräser: R2 > 0, Kugelfräser: R2 = R".
+// [TNC-3D]: "Schaftfräser: R2 = 0, Torusfräser: R2 > 0, Kugelfräser: R2 = R".
 enum class ToolShape : std::uint8_t { kEndMill, kToroidal, kBall };
 
 // Finite, 0 <= R, 0 <= R2 <= R (+kShapeTolerance), at most kMaxCoordinate.
@@ -35,7 +35,7 @@ constexpr Deltas operator+(const Deltas& a, const Deltas& b) noexcept {
     return {a.dl + b.dl, a.dr + b.dr, a.dr2 + b.dr2};
 }
 
-// Where delta values come from (seed 002: "die Summe der Deltawerte aus der
+// Where delta values come from ([TNC-3D]: "die Summe der Deltawerte aus der
 // Werkzeugverwaltung, dem Werkzeugaufruf und den Korrekturtabellen").
 struct DeltaSources {
     Deltas tool_table;        // wz[i].dl, .dr, .dr2
@@ -60,7 +60,7 @@ Refusal check_effective_tool(const ToolDimensions& tool, const Deltas& d) noexce
 
 // A summed delta above kOversizeTolerance: the tool is larger than the tool table says.
 bool has_positive_oversize(const Deltas& sum) noexcept;
-// Seed 002: loading a tool with positive delta values is an error unless M107 allows it.
+// [TNC-3D]: loading a tool with positive delta values is an error unless M107 allows it.
 Refusal check_oversize(const Deltas& sum, bool m107_active) noexcept;
 
 // Everything a tool must pass when it is loaded: the table tool, the deltas, the effective

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The vectors of an LN line (seed 002, "Gerade LN"): the surface normal N and the tool vector
+// The vectors of an LN line ([TNC-3D], "Gerade LN"): the surface normal N and the tool vector
 // T, their normalisation check, which T a line runs with, and the directions the compensation
 // moves along.
 #pragma once
@@ -16,12 +16,12 @@ struct UnitVector {
     Refusal refusal = Refusal::kNone;
     Eigen::Vector3d v = Eigen::Vector3d::Zero();  // the vector divided by its length
 };
-// A programmed vector must be normalised (seed 002, "Gerade LN", Hinweise): refused with
+// A programmed vector must be normalised ([TNC-3D], "Gerade LN", Hinweise): refused with
 // kVectorNotNormalised when not finite or when its length differs from 1 by more than
 // kUnitVectorTolerance; otherwise divided by its length.
 UnitVector normalised(const Eigen::Vector3d& programmed) noexcept;
 
-// Seed 002, "3D-Werkzeugkorrektur beim Stirnfräsen", Funktionsbeschreibung: the tool vector an
+// [TNC-3D], "3D-Werkzeugkorrektur beim Stirnfräsen", Funktionsbeschreibung: the tool vector an
 // LN line runs with. With M128 / FUNCTION TCPM: the programmed T, or without one N (the tool
 // stands perpendicular to the contour). Without TCPM: the machine's current tool axis; a
 // programmed T is ignored. All vectors unit; with TCPM the line has N or T.
@@ -36,7 +36,7 @@ Eigen::Vector3d effective_tool_vector(bool tcpm, const std::optional<Eigen::Vect
 Eigen::Vector3d corner_direction(const Eigen::Vector3d& n, const Eigen::Vector3d& t) noexcept;
 
 // RL: the tool runs left of the contour seen along the motion with T pointing at the
-// viewer; RR: right (seed 002, peripheral milling: "Korrekturrichtung mit Radiuskorrektur RL
+// viewer; RR: right ([TNC-3D], peripheral milling: "Korrekturrichtung mit Radiuskorrektur RL
 // oder RR").
 enum class Side : std::uint8_t { kLeft, kRight };
 
@@ -45,14 +45,14 @@ struct SideNormal {
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
 };
 // Peripheral milling with RL/RR: the normal of the wall the tool cuts, pointing from the
-// wall to the tool, perpendicular to the motion and to the tool vector (seed 002: "senkrecht
+// wall to the tool, perpendicular to the motion and to the tool vector ([TNC-3D]: "senkrecht
 // zur Bewegungsrichtung und senkrecht zur Werkzeugrichtung"): T x D for RL, D x T for RR,
 // normalised. Refused when the motion is shorter than kMinMotionLength or within
 // kPlungeAngleTolerance of T.
 SideNormal side_normal(const Eigen::Vector3d& motion, const Eigen::Vector3d& t, Side side) noexcept;
 
 // Peripheral milling where the motion gives no side (an LN without N at the point of the line
-// before: seed 002, peripheral example, block 13 repeats block 12's point): the previous line's
+// before: [TNC-3D], peripheral example, block 13 repeats block 12's point): the previous line's
 // normal, made perpendicular to T and unit. kNoSideFromMotion when it is within
 // kPlungeAngleTolerance of T.
 SideNormal previous_side_normal(const Eigen::Vector3d& previous, const Eigen::Vector3d& t) noexcept;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Approach and departure moves (DESIGN.md section 3, geometry): straight lines from the
+// Approach and departure moves (docs/design.md section 3, geometry): straight lines from the
 // current position to the start of the first offset element, and from the last offset
 // end to the programmed end point.
 #pragma once

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The streaming tool radius compensator with one element of lookahead (seed 003,
+// The streaming tool radius compensator with one element of lookahead ([APCI-TC],
 // "1 Einfuhrung": one profile is always held back; when the next one arrives the held
 // one is corrected, the transition computed, both spooled and the new one held).
 //

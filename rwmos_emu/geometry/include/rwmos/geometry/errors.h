@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Error bits of the TC module's ERROR object (seed 003, "Tabelle 4: Fehlerstatuswort
+// Error bits of the TC module's ERROR object ([APCI-TC], "Tabelle 4: Fehlerstatuswort
 // Error des TC-Moduls") and the reasons the geometry gives for them. Each reason maps to
 // exactly one bit through one table (errors.cpp) and carries one line for the user.
 #pragma once

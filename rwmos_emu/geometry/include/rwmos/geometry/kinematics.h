@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The one head kinematics the emulator knows (DESIGN.md section 8, design): a B axis that
+// The one head kinematics the emulator knows (docs/design.md section 8, design): a B axis that
 // tilts the tool in the Z-X plane, optionally turned about Z by a C axis (bc_head_*; C = 0 is
 // the B head). Shared by OTC (tool direction for TOOL_DIR and SURF_NORM_DIR), 3D tool
 // compensation and temperature compensation in tool direction.
@@ -19,7 +19,7 @@
 
 namespace rwmos::geom {
 
-// #KIN ID[4] of the ISG seed's TOOL_DIR and SURF_NORM_DIR examples (seed 000, sections 2.4 and
+// #KIN ID[4] of the TOOL_DIR and SURF_NORM_DIR examples of [ISG-OTC] (sections 2.4 and
 // 2.5, "OTC-Schleifen mit Kinematiktyp 4") names this kinematics.
 inline constexpr int kBHeadKinematicsId = 4;
 
@@ -39,7 +39,7 @@ inline Eigen::Vector3d b_head_pivot_from_tip(const Eigen::Vector3d& tip, double 
     return tip + length * b_head_tool_direction(b_deg);
 }
 
-// A C axis that turns the B head about +Z (a head-head kinematics, as in the TNC seed 002
+// A C axis that turns the B head about +Z (a head-head kinematics, as in the [TNC-3D]
 // peripheral-milling example "C-267.9784 B-20.0115"): the head is first tilted by B, then turned
 // by C, so t(B, C) = Rz(C) t(B) = (cos C sin B, sin C sin B, cos B). C = 0 is the B head alone.
 inline Eigen::Matrix3d bc_head_rotation(double b_deg, double c_deg) noexcept {

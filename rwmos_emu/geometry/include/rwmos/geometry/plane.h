@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The compensation works in the 2D coordinates of the active plane (TcPlane, seed 003
+// The compensation works in the 2D coordinates of the active plane (TcPlane, [APCI-TC]
 // "Tabelle 2": 17 X-Y, 18 Z-X, 19 Y-Z). These pure helpers map 3D points to the plane's
 // first and second axis and back, name the third (perpendicular) axis, map the plane to
 // board axis numbers (X/Y/Z-Axis-Nr), and rotate plane coordinates (RotAngle,
-// RotCenterX/Y, seed 003 "2.1.1 Koordinatendrehung").
+// RotCenterX/Y, [APCI-TC] "2.1.1 Koordinatendrehung").
 #pragma once
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 // The spooler: the state machine between the host's profiles and the move
 // queue (executor.h). It resolves each profile to board axes (named axes,
 // rotation, arc plane), keeps the one-profile lookahead of the TC module
-// (seed 003 section 1: one profile is always held back while compensation
+// ([APCI-TC] section 1: one profile is always held back while compensation
 // runs), and applies the JOG, direct-command and SSF rules. The geometry is
 // rwmos::geom's (PathCompensator); this file only maps between 8 board axes
 // and the plane, and decides when to begin, push, finish or discard.
@@ -10,7 +10,7 @@
 // It sees the TC module through a TcSettings snapshot taken at each call and
 // reports what the TC module must record (ERROR bits, Run, ProfMarked) in the
 // MotionResult; rwmos::MotionLayer does both against the Board's state.
-// docs/motion.md states every rule with its seed citation.
+// docs/motion.md states every rule with its source.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +33,7 @@ struct TcSettings {
     std::array<std::uint8_t, 3> plane_axes{0, 1, 2};
     std::int32_t plane = 17;
     std::array<std::uint8_t, 3> axis_nr{0, 1, 2};  // X-, Y-, Z-Axis-Nr
-    // Coordinate rotation in the active plane (seed 003 section 2.1.1).
+    // Coordinate rotation in the active plane ([APCI-TC] section 2.1.1).
     double rot_angle = 0.0;  // degrees
     double rot_center_first = 0.0;
     double rot_center_second = 0.0;
@@ -59,7 +59,7 @@ class Spooler {
                        std::size_t capacity);
 
     // STATUS = 0 on `group`: the held profile is corrected and spooled with the
-    // departure to its programmed end (seed 003 section 1).
+    // departure to its programmed end ([APCI-TC] section 1).
     MotionResult release_for_deactivation(std::int32_t group, const TcSettings& tc, Executor& exec,
                                           std::size_t capacity);
     // SSF command to the axes in `axes`. 2001 releases the held profile of the
@@ -67,7 +67,7 @@ class Spooler {
     // compensated end (no departure) and the next profile re-approaches.
     MotionResult ssf(AxisMask axes, std::int32_t command, const TcSettings& tc, Executor& exec,
                      std::size_t capacity);
-    // Direct command: discards the queue and the held profile (seed 003
+    // Direct command: discards the queue and the held profile ([APCI-TC]
     // section 1), then acts (JA: jog to the target; JS: stop).
     MotionResult direct(const DirectCommand& c, Executor& exec);
     // RESET, Reset, Clean: the held profile of `group` is dropped unspooled.

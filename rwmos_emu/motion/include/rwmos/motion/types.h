@@ -50,7 +50,7 @@ struct Profile {
     // Arcs only: the two axes the arc is named in (first, second, in
     // arc_axes), and its centre on those two axes (absolute). G03 turns from
     // the first axis towards the second. Once a TC object was accessed, the
-    // arc runs in the active plane instead (seed 003 section 2.2 "Wichtiger
+    // arc runs in the active plane instead ([APCI-TC] section 2.2 "Wichtiger
     // Hinweis").
     std::array<double, 2> center{};
     std::uint32_t tag = 0;  // the NC block number; carried into every segment it produces
@@ -59,7 +59,7 @@ struct Profile {
     std::array<std::uint8_t, 2> arc_axes{0, 1};
 };
 
-// Direct commands (seed 003 section 1 names JA and JS as examples; their
+// Direct commands ([APCI-TC] section 1 names JA and JS as examples; their
 // meaning here is design, docs/motion.md). Every direct command discards the
 // spooler content and the held profile before it acts.
 enum class DirectCode : std::uint16_t {
@@ -76,10 +76,10 @@ struct DirectCommand {
 };
 
 // SSF command 2001 sent to the axes of a compensation group releases its held
-// profile (seed 003 section 1).
+// profile ([APCI-TC] section 1).
 inline constexpr std::int32_t kSsfReleaseHeldProfile = 2001;
 
-// What one executed segment was (DESIGN.md section 7 JSON "role").
+// What one executed segment was (docs/design.md section 7 JSON "role").
 enum class SegmentRole : std::uint8_t {
     kContour = 0,        // a compensated G01/G02/G03 element
     kTransition = 1,     // corner transition between two compensated elements

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The directions the wear acts in, one pure function per processing type (seed 000, FCT-C20,
+// The directions the wear acts in, one pure function per processing type ([ISG-OTC], FCT-C20,
 // sections 2.2 to 2.5). Every direction is a unit vector pointing from the work piece towards
 // the tool, so the axes are displaced by -wear * direction: the worn (smaller) tool is moved
 // towards the work by as much as it lost. Vectors are (X, Y, Z) in program axes.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The errors of the online tool compensation, one table: the seed's P-ERR-21391 and our own
+// The errors of the online tool compensation, one table: [ISG-OTC]'s P-ERR-21391 and our own
 // (design numbers from 21900, named after the rule they enforce). The OTC module's LastError
 // object reads the number; the NC front end and apcictl print the name and message.
 #pragma once
@@ -12,19 +12,19 @@ namespace rwmos::otc {
 
 enum class Error : std::int32_t {
     kNone = 0,
-    // Seed 000 section 1 "Eigenschaften": "Die Verschleißkompensation kann nur mit dem
+    // [ISG-OTC] section 1 "Eigenschaften": "Die Verschleißkompensation kann nur mit dem
     // Werkzeugtyp 2 (Schleifwerkzeug) aktiviert werden. Wird ein anderer Werkzeugtyp verwendet,
     // so wird die Fehlermeldung P-ERR-21391 ausgegeben."
     kToolNotGrinding = 21391,
-    // Seed 000 section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor
+    // [ISG-OTC] section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor
     // #OTC OFF eingehalten werden."
     kOffBeforeG40 = 21901,
-    // Seed 000 section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen":
+    // [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen":
     // type, mode and ACC_WEIGHT are not changed while OTC is on.
     kChangeWhileActive = 21902,
     // The current tool (its data and its wear) is not changed while OTC is on.
     kToolChangeWhileActive = 21903,
-    // Seed 000 section 2.6: "Wenn grinding_max_infeed nicht gesetzt wird, kann kein diskreter
+    // [ISG-OTC] section 2.6: "Wenn grinding_max_infeed nicht gesetzt wird, kann kein diskreter
     // Versatz beauftragt werden"; section 2.7: range [-P-TOOL-00031, P-TOOL-00031].
     kInfeedBeyondLimit = 21904,
 };

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-// The offset ramp: how a discrete wear offset commanded by the PLC reaches the axes. Seed 000,
+// The offset ramp: how a discrete wear offset commanded by the PLC reaches the axes. [ISG-OTC],
 // FCT-C20, section 2.7.1 "Ändert sich der Verschleißwert, wird diese Änderung auf mehrere
 // Interpolationszyklen verteilt, so dass sprunghafte Änderungen vermieden werden", and section
 // 2.2: at a change of orientation "der beauftragte Verschleiß [wird] nicht schlagartig auf die
 // Achse beaufschlagt ..., sondern über mehrere Takte verteilt".
 //
-// Each axis follows its target with bounded velocity and acceleration (design: the seed gives
+// Each axis follows its target with bounded velocity and acceleration (design: [ISG-OTC] gives
 // no numbers; docs/otc.md states ours). A step never moves farther than velocity * dt and never
 // changes the velocity by more than acceleration * dt; the ramp brakes in time to stop on the
 // target exactly (discrete braking distance), and lands on it bit for bit.
@@ -23,7 +23,7 @@ struct RampState {
     double velocity = 0.0;  // units per second
 };
 
-// Seed 000 section 2.1 ACC_WEIGHT: "Beschleunigungsgewichtung in Prozent [1;100]": the ramp's
+// [ISG-OTC] section 2.1 ACC_WEIGHT: "Beschleunigungsgewichtung in Prozent [1;100]": the ramp's
 // acceleration is `acceleration * weight_percent / 100`.
 inline constexpr int kMinAccWeight = 1;
 inline constexpr int kMaxAccWeight = 100;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The processing types and modes of the online tool compensation (seed 000, FCT-C20,
+// The processing types and modes of the online tool compensation ([ISG-OTC], FCT-C20,
 // "2 Beschreibung", "Betriebsarten" and "Modi"; section 2.1 "#OTC ON | OFF [ RADIUS | LENGTH |
 // TOOL_DIR | SURF_NORM_DIR  DISC | CONT | AUTO ... ]"), and which PLC control units act in which
 // of them (section 2.7). The numeric values are the OTC module's object values (bus 1330,
@@ -41,13 +41,13 @@ constexpr bool mode_has_discrete(Mode m) noexcept {
     return m != Mode::kCont;
 }
 
-// Seed 000 section 2.7.1: the channel unit otc_radius_offset is used "nur mit den Betriebsarten
+// [ISG-OTC] section 2.7.1: the channel unit otc_radius_offset is used "nur mit den Betriebsarten
 // RADIUS oder TOOL_DIR und dem Modus DISC oder AUTO".
 constexpr bool channel_unit_acts(ProcessingType t, Mode m) noexcept {
     return mode_has_discrete(m) && (t == ProcessingType::kRadius || t == ProcessingType::kToolDir);
 }
 
-// What the per-axis unit otc_offset of one axis does (seed 000 sections 2.7.1 and 2.7.2).
+// What the per-axis unit otc_offset of one axis does ([ISG-OTC] sections 2.7.1 and 2.7.2).
 enum class AxisUnitRole : std::uint8_t {
     kIgnored = 0,    // no effect in this type/mode
     kAxis = 1,       // wear along this axis

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The units of the seed's tool parameters and control units (seed 000, FCT-C20, section 3.2
+// The units of [ISG-OTC]'s tool parameters and control units ([ISG-OTC], FCT-C20, section 3.2
 // and 2.7) and their conversion to interpolation units (PU, board object bus 1000 Index 5).
 #pragma once
 
@@ -49,7 +49,7 @@ constexpr double wear_ratio(double wear_const_tenth_um_per_m) noexcept {
     return wear_const_tenth_um_per_m * kWearConstToRatio;
 }
 
-// Seed 000 section 2 "Die Verschleißkompensation ist vom zurückgelegten Weg abhängig" and
+// [ISG-OTC] section 2 "Die Verschleißkompensation ist vom zurückgelegten Weg abhängig" and
 // section 2.1 CONT: "Vorgabe der Werte nur aus Berechnung des zurückgelegten Weges und der
 // Verschleißkonstante": the wear a path of `path_length` (any unit) adds, in the same unit.
 constexpr double continuous_wear(double path_length, double wear_const_tenth_um_per_m) noexcept {
@@ -59,7 +59,7 @@ constexpr double continuous_wear(double path_length, double wear_const_tenth_um_
 constexpr double tilt_to_degrees(double tilt_units) noexcept {
     return tilt_units * kTiltUnitInDegrees;
 }
-// Seed 000 section 3.2, P-TOOL-00138: -45 <= angle <= 45 degrees.
+// [ISG-OTC] section 3.2, P-TOOL-00138: -45 <= angle <= 45 degrees.
 constexpr bool tilt_in_range(double tilt_units) noexcept {
     const double deg = tilt_to_degrees(tilt_units);
     return deg >= -kMaxTiltDegrees && deg <= kMaxTiltDegrees;

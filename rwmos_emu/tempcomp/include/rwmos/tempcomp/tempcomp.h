@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Temperature compensation in tool direction (seed 004, SINUMERIK 840D FB1 W1, section 2.8):
+// Temperature compensation in tool direction ([SIN-TEMP], SINUMERIK 840D FB1 W1, section 2.8):
 // the three setting data SD 42960 TOOL_TEMP_COMP[0..2] form one compensation vector on the
 // geometry axes (X, Y, Z), enabled by MD 20390 TOOL_TEMP_COMP_ON and per channel axis by bit 2 of
 // MD 32750 TEMP_COMP_TYPE; with an orientable tool holder the vector turns with the tool. Pure
@@ -33,13 +33,13 @@ struct Settings {
 bool is_geometry_axis(const Settings& s, int axis) noexcept;
 
 // The vector as it acts: in the geometry axes in the basic position; with an orientable tool
-// holder turned by its rotation `holder` (seed 004, "Orientierbarer Werkzeugträger": "so wird
+// holder turned by its rotation `holder` ([SIN-TEMP], "Orientierbarer Werkzeugträger": "so wird
 // der Vektor der Temperaturkompensation bei einer Orientierungsänderung mitgedreht").
 Eigen::Vector3d oriented(const Eigen::Vector3d& comp, const Eigen::Matrix3d& holder) noexcept;
 
 // The displacement each board axis takes at once: component k of `vector` on the k-th geometry
 // axis, if MD 20390 is on and that axis has bit 2 of MD 32750; 0 elsewhere. An axis without
-// the bit gets nothing, silently, and the others are unaffected (seed 004: "kann in dieser
+// the bit gets nothing, silently, and the others are unaffected ([SIN-TEMP]: "kann in dieser
 // Achse kein Kompensationswert wirksam werden. Andere Achse bleiben davon jedoch unbeeinflußt.
 // Ein Alarm wird in diesem Fall nicht ausgegeben.").
 AxisValues targets(const Settings& s, const Eigen::Vector3d& vector) noexcept;
