@@ -180,7 +180,7 @@ TEST(OtcRules, OtcEventsCarryTheCommandInProgramOrder) {
 TEST(Kinematics, OnlyTheBHeadIsEmulated) {
     EXPECT_EQ(only<KinematicsSelect>(events_of("#KIN ID[4]\nM30\n")).at(0).id, 4);
     EXPECT_EQ(error_of("#KIN ID[3]\nM30\n"),
-              "prog.nc:1:1: #KIN ID[3]: kinematics 3 is not emulated (ID[4]: the B head, DESIGN.md "
+              "prog.nc:1:1: #KIN ID[3]: kinematics 3 is not emulated (ID[4]: the B head, docs/design.md "
               "section 8; ID[0]: none)");
     EXPECT_EQ(parse_error("#KIN 4"), "prog.nc:1:6: expected ID[n] after #KIN");
 }

@@ -20,7 +20,7 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-// Group 1 (axes X Y Z), radius 1, left, active (seed 003 section 2.5).
+// Group 1 (axes X Y Z), radius 1, left, active ([APCI-TC] section 2.5).
 const std::string kCompensate =
     "write 1300 1 1 7 1\n"
     "write 1300 1 1 9 0\n"

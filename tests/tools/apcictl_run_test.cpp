@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `apcictl run` as a process on the embedded emulator: the seed program, one program per corner
+// `apcictl run` as a process on the embedded emulator: [ISG-OTC-EN]'s wr_quad_disc.nc, one program per corner
 // type (docs/figures/), errors with block and name, parse errors, exit codes, the outputs.
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -178,7 +178,7 @@ void expect_registers_clear(const json& doc) {
     }
 }
 
-// ---- The seed program
+// ---- wr_quad_disc.nc of [ISG-OTC-EN]
 
 TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     const auto r = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
@@ -214,7 +214,7 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     // G42 on a counter-clockwise loop: the tool runs outside, right of the direction of travel.
     EXPECT_EQ(point(with_role(doc, "contour")[1].at("start")), apci::run::Point(2, -30, 0));
     expect_registers_clear(doc);
-    // The OTC variables by their seed names (no #OTC here: no wear; D1's wear constant).
+    // The OTC variables by their names in [ISG-OTC] (no #OTC here: no wear; D1's wear constant).
     EXPECT_EQ(doc.at("variables").at("V.G.OTC_ACTIVE"), 0);
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS"), 0);
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]"), 0);
@@ -548,7 +548,7 @@ TEST_F(ApcictlRun, ProgramWithoutCompensationRunsWithoutTheTcOption) {
 
 // ---- Klartext programs: the 3D tool compensation (docs/3d-compensation.md; the board's module
 // on bus 1310, docs/object-map.md section 6). The segment end points are the commanded tool
-// tips (TCP); the expected ones come from rwmos_comp3d, and where the seed says what the tool
+// tips (TCP); the expected ones come from rwmos_comp3d, and where [TNC-3D] says what the tool
 // must do, that is checked directly.
 
 using V3 = Eigen::Vector3d;
@@ -588,7 +588,7 @@ void expect_point(const V3& got, const V3& want, double tol = 1e-9) {
         << "got " << got.transpose() << ", want " << want.transpose();
 }
 
-// Seed 002, face milling, blocks 12 to 14, with the reground ball mill of the tool list.
+// [TNC-3D], face milling, blocks 12 to 14, with the reground ball mill of the tool list.
 TEST_F(ApcictlRun, SeedFaceMillingExampleRunsToTheCompensatedTips) {
     const json doc = run_json(kExamples + "/3d_face_milling.h",
                               {"--tools", kExamples + "/tools/3d_tools.tools"});
@@ -612,7 +612,7 @@ TEST_F(ApcictlRun, SeedFaceMillingExampleRunsToTheCompensatedTips) {
     expect_point(end_of_block(doc, 13) + 2.9 * t, s + 2.9 * n);
 }
 
-// Seed 002, peripheral milling: 11 L with the head's C and B, M128 and RL; 12 LN with N and T;
+// [TNC-3D], peripheral milling: 11 L with the head's C and B, M128 and RL; 12 LN with N and T;
 // 13 LN with T only at 12's point (R0): the reground end mill (R 6, DR -0.1).
 TEST_F(ApcictlRun, SeedPeripheralExampleRunsWithTheSideFromRlNAndTheLineBefore) {
     const json doc =
@@ -633,7 +633,7 @@ TEST_F(ApcictlRun, SeedPeripheralExampleRunsWithTheSideFromRlNAndTheLineBefore) 
     EXPECT_GT(n11.dot(n12), 0.999);
 }
 
-// Seed 002, "Werkstückaufmaß erzeugen, CAM-Ausgabe Kugelmitte": the 6 mm ball with TOOL CALL
+// [TNC-3D], "Werkstückaufmaß erzeugen, CAM-Ausgabe Kugelmitte": the 6 mm ball with TOOL CALL
 // DL DR DR2 +0.2, M107, REFPNT CNT-CNT stands 0.2 off the design surface along N.
 TEST_F(ApcictlRun, SeedAllowanceExampleStandsOffTheSurfaceByTheAllowance) {
     const json doc =
@@ -657,7 +657,7 @@ TEST_F(ApcictlRun, SeedAllowanceExampleStandsOffTheSurfaceByTheAllowance) {
     }
 }
 
-// Seed 002: the deltas are summed "aus der Werkzeugverwaltung, dem Werkzeugaufruf und den
+// [TNC-3D]: the deltas are summed "aus der Werkzeugverwaltung, dem Werkzeugaufruf und den
 // Korrekturtabellen". The face milling example with the tool as designed (tool 3) and the
 // regrinding in correction table row 1 (FUNCTION CORRDATA TCS #1) reaches the tips of the
 // reground tool 1 of the tool table; the example runs with the command its header documents.
@@ -1004,7 +1004,7 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
     // Off: nothing checked.
     doc = run_json(prog, {"--tools", tools(5.0), "--self-approach", "off"});
     EXPECT_FALSE(doc.contains("warnings"));
-    // A contour that keeps its distance gets no warning: the seed's square with its lead-in.
+    // A contour that keeps its distance gets no warning: wr_quad_disc.nc's square with its lead-in.
     doc = run_json(kExamples + "/wr_quad_disc.nc",
                    {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();

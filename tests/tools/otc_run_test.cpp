@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// OTC through `apcictl run` (a process on the embedded emulator): the seed's OTC programs in
+// OTC through `apcictl run` (a process on the embedded emulator): the OTC programs of [ISG-OTC] in
 // examples/otc/ with their documented commands, the scripted PLC (--plc), the V.G. variables in
 // the JSON and in NC expressions, the wear reaching the tool list at tool change (--tools-out),
 // #HSC reported as not emulated, refusals by name. docs/otc.md, docs/apcictl.md.
@@ -79,7 +79,7 @@ class OtcRun : public ::testing::Test {
         EXPECT_EQ(last_.exit_code, expected_exit) << last_.out << last_.err;
         return json::parse(read_text(path("out.json")));
     }
-    // The seed's grinding disc D1 (section 2.6) and a milling cutter D2.
+    // The grinding disc D1 of [ISG-OTC] (section 2.6) and a milling cutter D2.
     std::string seed_tools() const { return kExamples + "/tools/wr_quad_disc.tools"; }
 
     std::string dir_;
@@ -111,7 +111,7 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
     }
 }
 
-// Seed 000 section 2.3 with the tool data of 2.6: 10.000 mm on Z within 1e-9, linear along the
+// [ISG-OTC] section 2.3 with the tool data of 2.6: 10.000 mm on Z within 1e-9, linear along the
 // path (5.000 mm at X500), folded into the tool's length (500000 - 100000 x 0.1 um).
 TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
     const json doc = run_json({kExamples + "/otc/length.nc", "--tools", seed_tools(), "--csv",
@@ -135,7 +135,7 @@ TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
     EXPECT_NEAR(tools.value().find(1)->length_mm(), 40.0, 1e-6);
 }
 
-// Seed 000 section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.
+// [ISG-OTC] section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.
 TEST_F(OtcRun, TiltedDiscSplitsTheWearOverXAndZ) {
     const json doc = run_json(
         {kExamples + "/otc/length_tilt.nc", "--tools", kExamples + "/tools/otc_tilt.tools"});
@@ -147,7 +147,7 @@ TEST_F(OtcRun, TiltedDiscSplitsTheWearOverXAndZ) {
 // wr_quad_disc.nc with the PLC's 2 mm: the wear reaches WEAR_RADIUS and, at the end, the tool
 // list: radius 30 - 2 mm, wear_radius 2 mm.
 TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
-    // The seed's tool with length 0, so that the approach is only the 30 mm to the offset path
+    // [ISG-OTC]'s tool with length 0, so that the approach is only the 30 mm to the offset path
     // (with 50 mm the TC's length compensation lowers Z on it, and the offset builds up there).
     std::string tool_text = read_text(seed_tools());
     const std::size_t length_line = tool_text.find("wz[1].laenge");
@@ -187,7 +187,7 @@ TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
     EXPECT_GT(building, 500u);
     // Around the G26 corner at (102, 0) the tool centre runs on the 30 mm arc; 2 mm of wear
     // would put the axes 28 mm from the corner, but the offset lags behind the turning normal
-    // (seed 001, explanations 2 and 3), so they leave that circle by far more than rounding.
+    // ([ISG-OTC-EN], explanations 2 and 3), so they leave that circle by far more than rounding.
     double worst = 0.0;
     for (const auto& r : rows) {
         if (r[2] <= 102.0 || r[3] >= 0.0) continue;  // the quadrant of the transition arc
@@ -237,7 +237,7 @@ TEST_F(OtcRun, PlcScriptErrorsNameFileLineAndColumn) {
     EXPECT_TRUE(contains(r.err, plc + ":2:7: expected a whole number after 'block'")) << r.err;
 }
 
-// Seed 000 section 1: P-ERR-21391, found by the validation pass from the tool list.
+// [ISG-OTC] section 1: P-ERR-21391, found by the validation pass from the tool list.
 TEST_F(OtcRun, OtcOnWithAMillingToolIsPErr21391) {
     const std::string tools = write("t.tools", "wz[1].gueltig 1\nwz[1].typ 0\n");
     const ProcessResult r = apcictl({"run", kExamples + "/otc/length.nc", "--tools", tools});
@@ -245,7 +245,7 @@ TEST_F(OtcRun, OtcOnWithAMillingToolIsPErr21391) {
     EXPECT_TRUE(contains(r.err, "P-ERR-21391")) << r.err;
 }
 
-// Seed 000 section 2.8: the program reads the board's wear after #OTC OFF.
+// [ISG-OTC] section 2.8: the program reads the board's wear after #OTC OFF.
 TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
     const std::string prog = write(
         "v.nc",
@@ -258,7 +258,7 @@ TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
     EXPECT_EQ(last.at("end")[1].get<double>(), 0.0);
 }
 
-// Seed 000 section 2.9: at a tool change the wear of the tool going out reaches the tool list;
+// [ISG-OTC] section 2.9: at a tool change the wear of the tool going out reaches the tool list;
 // the tool comes back folded (its second contour runs at the worn radius).
 TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
     const std::string tools = write(
@@ -286,7 +286,7 @@ TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
     EXPECT_EQ(worn_contours, 1);
 }
 
-// DESIGN.md section 8: with #TRAFO ON the program gives the tool tip; the board's axes carry the
+// docs/design.md section 8: with #TRAFO ON the program gives the tool tip; the board's axes carry the
 // pivot one tool length (50 mm) behind it along t(B); the JSON shows the tip.
 TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     const std::string prog = write("t.nc", "N30 D1\nN40 G00 X0 Y0 Z300 B0\nN50 #KIN ID[4]\n"
@@ -308,7 +308,7 @@ TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     EXPECT_EQ(last[6], 45.0);  // B on board axis 4
 }
 
-// DESIGN.md section 8: #HSC is accepted and reported as not emulated.
+// docs/design.md section 8: #HSC is accepted and reported as not emulated.
 TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
     const std::string prog =
         write("h.nc", "N85 #HSC ON[BSPLINE PATH_DEV 5 MERGE = 0]\nG0 X1\nM30\n");

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The output side of `apcictl run`: path geometry helpers, the streamed JSON of DESIGN.md
+// The output side of `apcictl run`: path geometry helpers, the streamed JSON of docs/design.md
 // section 7, the per-cycle CSV, the SVG plot and the summary.
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // Temperature compensation in tool direction through `apcictl run` (a process on the embedded
 // emulator): SD 42960 written by the NC program ($SC_TOOL_TEMP_COMP[i]) and by the scripted PLC
 // (--plc tool_temp_comp[i], with the machine data tool_temp_comp_on and temp_comp_type[i]), the
-// example in examples/temperature/, refusals before anything runs. Seed 004 (SINUMERIK 840D
+// example in examples/temperature/, refusals before anything runs. [SIN-TEMP] (SINUMERIK 840D
 // FB1 W1 section 2.8); docs/temperature-compensation.md, docs/apcictl.md ("run --plc").
 //
 // A run with the machine data and one without (which writes the same setting data and moves
@@ -117,7 +117,7 @@ TEST_F(TempCompRun, ExampleRunsWithItsDocumentedCommand) {
     EXPECT_EQ(d.at("variables").at("$SC_TOOL_TEMP_COMP[2]"), 0.0);  // N80 took it off
 }
 
-// Seed 004: the setting data act at once; a program's write acts from its block on, also in
+// [SIN-TEMP]: the setting data act at once; a program's write acts from its block on, also in
 // the middle of the program: N40 0.015, N60 and N70 0.025, N90 0 (the example's comments).
 // The positions the moves pass are the same with and without the compensation; Z differs by
 // the value in force, X and Y not at all.
@@ -155,7 +155,7 @@ TEST_F(TempCompRun, ProgramWriteActsFromItsBlockOn) {
 }
 
 // Under radius compensation the TC module holds the last contour element back until the next
-// one arrives (seed 003 section 1, docs/compensation.md): the write comes after every move that
+// one arrives ([APCI-TC] section 1, docs/compensation.md): the write comes after every move that
 // could run, so the held element of the block before it (N40) runs with the new value, and the
 // elements before it (N30) without.
 TEST_F(TempCompRun, UnderRadiusCompensationTheHeldElementTakesTheWrite) {
@@ -249,7 +249,7 @@ TEST_F(TempCompRun, PlcWriteAfterTheProgramsEndIsWritten) {
     EXPECT_EQ(doc().at("variables").at("$SC_TOOL_TEMP_COMP[0]"), 0.5);
 }
 
-// Seed 004: with an orientable tool holder the vector turns with the tool orientation, at once.
+// [SIN-TEMP]: with an orientable tool holder the vector turns with the tool orientation, at once.
 // The PLC switches the holder on (tool_holder); the program turns the head's B (board axis 4)
 // from 0 to 90 degrees during N30: at every cycle the displacement is Ry(B) (0, 0, 0.1), so Z's
 // 0.1 goes over to X. With the holder's B on another axis (tool_holder_axis_b 5, which stays at

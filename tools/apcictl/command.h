@@ -19,7 +19,7 @@
 
 namespace apcictl {
 
-// Process exit codes (DESIGN.md section 7).
+// Process exit codes (docs/design.md section 7).
 enum class Exit : int { kOk = 0, kBoard = 1, kUsage = 2 };
 
 // What a command did: kOk, or an exit code and one line saying what failed,

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `diff --against URI PROGRAM`: the hardware-in-loop mode (DESIGN.md section
+// `diff --against URI PROGRAM`: the hardware-in-loop mode (docs/design.md section
 // 7). Runs the same work on the --device board and on the --against board
 // (typically a real board and emu:) and reports the first thing that differs:
 //  - a script (apcictl script syntax): each line runs on both boards in turn;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `run PROGRAM.nc [--tools F] [--svg F] [--json F] [--csv F]`: executes an NC program on the
-// board (DESIGN.md section 7): validation pass first (nothing runs from a program that does not
+// board (docs/design.md section 7): validation pass first (nothing runs from a program that does not
 // parse), then the events drive the board through libapci (apci_run's ProgramExecutor), the
 // executed path streams into the outputs, and a summary goes to standard output.
 #include <fmt/format.h>
@@ -176,7 +176,7 @@ class RunCommand final : public Command {
             ->check(CLI::IsMember({"warn", "error", "off"}));
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
-                       "change, seed FCT-C20 section 2.9)");
+                       "change, [ISG-OTC] section 2.9)");
         app.footer(
             "Validates the whole program first: a program that does not parse runs nothing and "
             "its error names file:line:column. Then every block drives the board (spooled "

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `status`: the TC registers ERROR (Table 4) and STATUS (Table 5) of each
-// compensation group and of the active group, decoded by the seed's bit names
+// compensation group and of the active group, decoded by the bit names of [APCI-TC] (Tables 4 and 5)
 // (APCI-8001 TC document, section 2.3 "Fehlerabfrage von TC").
 #include <cstdint>
 #include <optional>
@@ -38,7 +38,7 @@ std::string decode_error(std::int32_t value) {
     return fmt::format("0x{:02X} {}", bits, names.empty() ? "none" : names);
 }
 
-// "0x01 (Run on, ProfMarked off)"; bits the seed does not name are listed too.
+// "0x01 (Run on, ProfMarked off)"; bits [APCI-TC] does not name are listed too.
 std::string decode_status(std::int32_t value) {
     const auto bits = static_cast<std::uint32_t>(value);
     std::string flags;

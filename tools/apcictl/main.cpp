@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // apcictl: inspect and drive an APCI-8001/8008 board, or the emulator,
-// through libapci's public API only. DESIGN.md section 7; docs/apcictl.md.
+// through libapci's public API only. docs/design.md section 7; docs/apcictl.md.
 #include <cstdio>
 #include <exception>
 #include <utility>

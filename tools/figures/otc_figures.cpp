@@ -6,8 +6,8 @@
 //   otc_figures DIR           writes DIR/otc-<name>.svg
 //   otc_figures --check DIR   exit 1 if a file in DIR differs from what would be written
 //
-// Scenes (seed 000, FCT-C20): the three modes on LENGTH (section 2.1), the tilted disc (2.3.1),
-// TOOL_DIR with the B head (2.4), SURF_NORM_DIR on the seed's profile (2.5).
+// Scenes ([ISG-OTC]): the three modes on LENGTH (section 2.1), the tilted disc (2.3.1),
+// TOOL_DIR with the B head (2.4), SURF_NORM_DIR on the profile of [ISG-OTC] (2.5).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -37,7 +37,7 @@ class Scene {
     Scene() {
         write_int(otc::kDevTool, otc::kIdxToolNumber, 1);
         write_int(otc::kDevTool, otc::kIdxToolType, otc::kGrindingToolType);
-        write_double(otc::kDevTool, otc::kIdxToolWearConst, 100000.0);  // seed 2.6
+        write_double(otc::kDevTool, otc::kIdxToolWearConst, 100000.0);  // [ISG-OTC] 2.6
         write_double(otc::kDevTool, otc::kIdxToolMaxInfeed, 200000.0);
     }
     void write_int(std::int32_t dev, std::int32_t idx, std::int32_t v, std::int32_t sub = 0) {
@@ -224,7 +224,7 @@ std::vector<std::pair<double, double>> sampled(Scene& s, int every, F&& point) {
 
 // ---- The figures
 
-// Seed 000 section 2.1, modes: G1 X200 F1200 on LENGTH; the PLC commands 1 mm at X100.
+// [ISG-OTC] section 2.1, modes: G1 X200 F1200 on LENGTH; the PLC commands 1 mm at X100.
 std::string modes() {
     Chart c(
         "LENGTH: the offset on Z along G1 X200 (F1200; wear constant 100000 x 0.1 um/m; PLC: 1 mm "
@@ -255,7 +255,7 @@ std::string modes() {
     return c.svg(20, 0.5);
 }
 
-// Seed 000 section 2.3.1: a disc tilted by 30 degrees splits the wear over X and Z.
+// [ISG-OTC] section 2.3.1: a disc tilted by 30 degrees splits the wear over X and Z.
 std::string tilt() {
     Chart c("LENGTH with the disc tilted by 30 degrees (P-TOOL-00138): G1 X1000 F10000", "X (mm)",
             "offset (mm)", 0, 1000, -10, 1);
@@ -351,7 +351,7 @@ class SideView {
     std::vector<Arrow> arrows_;
 };
 
-// Seed 000 section 2.4: B45, the zig-zag X10 Z-10 / X-10 Z10, 1 mm along the tool (here
+// [ISG-OTC] section 2.4: B45, the zig-zag X10 Z-10 / X-10 Z10, 1 mm along the tool (here
 // exaggerated to 3 mm so that it shows at the drawing's scale).
 std::string tool_dir() {
     Scene s;
@@ -381,7 +381,7 @@ std::string tool_dir() {
     return v.svg();
 }
 
-// Seed 000 section 2.5: one pass of the seed's profile with B0; 0.5 mm along the surface
+// [ISG-OTC] section 2.5: one pass of its profile with B0; 0.5 mm along the surface
 // normal through the third axis's unit (a fast ramp, so each block shows its own normal).
 std::string surf_norm_dir() {
     Scene s;

@@ -2,7 +2,7 @@
 // rwmos-emu: the emulator daemon. One emulated APCI-8001 board, served to
 // many clients at once on a Unix socket (--socket) and/or a dual-port RAM
 // file (--shm), every request serialised on the one board state.
-// DESIGN.md sections 6 and 7; docs/rwmos-emu.md.
+// docs/design.md sections 6 and 7; docs/rwmos-emu.md.
 #include <grp.h>
 #include <signal.h>
 #include <sys/epoll.h>
@@ -30,7 +30,7 @@
 namespace rwmos_emu {
 namespace {
 
-// Exit codes (DESIGN.md section 7).
+// Exit codes (docs/design.md section 7).
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
@@ -133,7 +133,7 @@ int serve(const Options& o) {
     if (!give_group(o.shm, o.gid)) return kExitFailure;
     shm.start();
     if (o.realtime) {
-        // Every millisecond the clock catches up with wall time (DESIGN.md section 5).
+        // Every millisecond the clock catches up with wall time (docs/design.md section 5).
         fds.timer = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
         const itimerspec every_ms{{0, 1'000'000}, {0, 1'000'000}};
         if (fds.timer < 0 || ::timerfd_settime(fds.timer, 0, &every_ms, nullptr) != 0 ||

@@ -234,7 +234,7 @@ bool at_setting_data(const LineCursor& c) noexcept {
 
 namespace {
 
-// At "$": the setting data of seed 004 (SD 42960 TOOL_TEMP_COMP[i], a channel setting datum,
+// At "$": the setting data of [SIN-TEMP] (SD 42960 TOOL_TEMP_COMP[i], a channel setting datum,
 // so $SC_); the machine data next to it are named, since programs do not write them.
 bool scan_setting_data(LineCursor& c, VariableRef& out, ExpressionError& err) {
     const std::uint32_t col = c.column();

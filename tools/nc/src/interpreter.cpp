@@ -270,7 +270,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
 
 namespace {
 
-// The kinematics the emulator knows (DESIGN.md section 8; seed 000 sections 2.4, 2.5 "#KIN ID[4]").
+// The kinematics the emulator knows (docs/design.md section 8; [ISG-OTC] sections 2.4, 2.5 "#KIN ID[4]").
 constexpr int kBHeadKinematics = 4;
 
 }  // namespace
@@ -287,7 +287,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
     switch (isg.kind) {
         case IsgKind::kOtc: {
             const OtcCommand& cmd = isg.otc;
-            // Seed 000 section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON
+            // [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON
             // erfolgen": not while OTC is on.
             const bool changes = (cmd.type && *cmd.type != s.otc_type) ||
                                  (cmd.mode && *cmd.mode != s.otc_mode) ||
@@ -307,7 +307,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                 s.otc_programmed_wear_const = false;
             }
             if (cmd.on && *cmd.on && !s.otc_active) {
-                // Seed 000 section 1: only with tool type 2, else P-ERR-21391. The tool list
+                // [ISG-OTC] section 1: only with tool type 2, else P-ERR-21391. The tool list
                 // tells the type; without one the board checks it.
                 if (options_.tools != nullptr) {
                     const ToolData* t = s.tool > 0 ? options_.tools->find(s.tool) : nullptr;
@@ -321,7 +321,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                 }
                 s.otc_active = true;
             } else if (cmd.on && !*cmd.on && s.otc_active) {
-                // Seed 000 section 2.2 "Hinweis": G40 before #OTC OFF.
+                // [ISG-OTC] section 2.2 "Hinweis": G40 before #OTC OFF.
                 if (s.otc_type == OtcType::kRadius && s.compensation != Compensation::kOff) {
                     return c.fail(ErrorKind::kProgramRule, isg.column,
                                   fmt::format("OTC_OFF_BEFORE_G40: #OTC OFF while radius "
@@ -337,7 +337,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
             if (isg.kinematics != 0 && isg.kinematics != kBHeadKinematics) {
                 return c.fail(ErrorKind::kUnsupported, isg.column,
                               fmt::format("#KIN ID[{}]: kinematics {} is not emulated (ID[4]: the "
-                                          "B head, DESIGN.md section 8; ID[0]: none)",
+                                          "B head, docs/design.md section 8; ID[0]: none)",
                                           isg.kinematics, isg.kinematics));
             }
             if (s.otc_active && isg.kinematics != s.kinematics) {
@@ -370,7 +370,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                                           g_number(s.compensation)));
             }
             if (isg.on != s.trafo) {
-                // The B head's transformation (DESIGN.md section 8, rwmos/geometry/kinematics.h):
+                // The B head's transformation (docs/design.md section 8, rwmos/geometry/kinematics.h):
                 // with it the program gives the tool tip, the pivot one tool length behind it
                 // along t(B) = (sin B, 0, cos B). The position in force changes its meaning.
                 const double length = tool_length_mm(s.tool);

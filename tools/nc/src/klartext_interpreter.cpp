@@ -75,7 +75,7 @@ bool check_called(const BlockCheck& c, std::string_view subject, std::string_vie
                                   "no such tool",
                                   subject, r2, r));
     }
-    // Seed 002: calling a tool with positive delta values is an error unless M107 allows it.
+    // [TNC-3D]: calling a tool with positive delta values is an error unless M107 allows it.
     if (has_oversize(called) && !m107) {
         return c.fail(ErrorKind::kProgramRule, column,
                       fmt::format("{} with a positive oversize (summed DL {:+.4f}, DR {:+.4f}, DR2 "
@@ -124,7 +124,7 @@ bool check_tool_call(const BlockCheck& c, const KlartextState& before,
     const KlartextBlock& b = c.b;
     const int n = b.tool.value;
     // As D in DIN 66025: the TC module takes a tool index only while compensation is off
-    // (seed 003, Table 3: WKZINDEX).
+    // ([APCI-TC], Table 3: WKZINDEX).
     if (before.radius_comp != Compensation::kOff) {
         return c.fail(ErrorKind::kProgramRule, b.kind_column,
                       fmt::format("TOOL CALL {} while radius compensation {} is on: program R0 "
@@ -215,7 +215,7 @@ bool vector_line(const BlockCheck& c, const KlartextState& s, const Eigen::Vecto
         if (!missing.empty()) missing += ' ';
         missing += kAxisLetter[k];
     }
-    // Seed 002, "Gerade LN", Hinweise: every LN block holds all coordinates, even unchanged.
+    // [TNC-3D], "Gerade LN", Hinweise: every LN block holds all coordinates, even unchanged.
     if (!missing.empty()) {
         return c.fail(ErrorKind::kSyntax, b.kind_column,
                       fmt::format("LN needs all coordinates X Y Z, even when unchanged: {} {} "
@@ -226,7 +226,7 @@ bool vector_line(const BlockCheck& c, const KlartextState& s, const Eigen::Vecto
     VectorCheck t;
     if (!check_vector(c, b.normal, 'N', "the surface normal N", n)) return false;
     if (!check_vector(c, b.tool_vector, 'T', "the tool vector T", t)) return false;
-    // Seed 002, peripheral milling: "LN-Satz mit Werkzeugorientierung T ohne N-Vektor, M128 oder
+    // [TNC-3D], peripheral milling: "LN-Satz mit Werkzeugorientierung T ohne N-Vektor, M128 oder
     // FUNCTION TCPM aktiv" is the only LN without N.
     if (!n.present && !(t.present && s.tcpm)) {
         return c.fail(ErrorKind::kSyntax, b.kind_column,
@@ -246,7 +246,7 @@ bool vector_line(const BlockCheck& c, const KlartextState& s, const Eigen::Vecto
     out.has_normal = n.present;
     out.normal = n.unit;
     out.tool_vector_programmed = t.present;
-    // Seed 002, face milling: with TCPM the programmed T, or N; without TCPM T is ignored.
+    // [TNC-3D], face milling: with TCPM the programmed T, or N; without TCPM T is ignored.
     out.has_tool_vector = s.tcpm;
     out.tool_vector = !s.tcpm ? Eigen::Vector3d::Zero() : t.present ? t.unit : n.unit;
     out.side = s.radius_comp;

@@ -31,7 +31,7 @@ std::string describe_char(char c) {
     return fmt::format("byte 0x{:02X}", u);
 }
 
-// The index of an LN coordinate or vector word in the seed's order X Y Z NX NY NZ TX TY TZ.
+// The index of an LN coordinate or vector word in the order of [TNC-3D], X Y Z NX NY NZ TX TY TZ.
 constexpr std::string_view kVectorLineOrder[] = {"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ"};
 
 class KlartextParser {
@@ -314,7 +314,7 @@ class KlartextParser {
     }
 
     // FUNCTION CORRDATA TCS #n | FUNCTION CORRDATA RESET TCS: the correction table row in
-    // force (the tool's delta values; seed 002 "Korrekturtabellen"). WPL (workpiece
+    // force (the tool's delta values; [TNC-3D] "Korrekturtabellen"). WPL (workpiece
     // corrections) is not emulated.
     bool corrdata() {
         c_.skip_blanks();

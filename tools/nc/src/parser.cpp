@@ -147,7 +147,7 @@ class BlockParser {
         return true;
     }
 
-    // ---- ISG commands (seed 000 section 2.1 #OTC; DESIGN.md section 8 $FOR, #KIN, #TRAFO, #HSC)
+    // ---- ISG commands ([ISG-OTC] section 2.1 #OTC; docs/design.md section 8 $FOR, #KIN, #TRAFO, #HSC)
 
     bool is_assignment_start() const {
         const char ch = to_upper(c_.peek());
@@ -294,7 +294,7 @@ class BlockParser {
     }
 
     // "#OTC ON", "#OTC OFF", "#OTC ON [LENGTH]", "#OTC ON[RADIUS DISC]", "#OTC[RADIUS, AUTO]",
-    // "#OTC ON [TOOL_DIR, DISC]": the seed writes all of these.
+    // "#OTC ON [TOOL_DIR, DISC]": [ISG-OTC] writes all of these.
     bool otc(OtcCommand& cmd) {
         bool on = false, seen = false;
         if (!on_off("#OTC", on, /*optional=*/true, &seen)) return false;
@@ -392,7 +392,7 @@ class BlockParser {
             }
             double v = 0.0;
             if (!equals_value("WEAR_CONST", v)) return false;
-            // Seed 000 section 3.2, P-TOOL-00030: 0 <= grinding_wear_const.
+            // [ISG-OTC] section 3.2, P-TOOL-00030: 0 <= grinding_wear_const.
             if (v < 0.0) {
                 return fail_here(ErrorKind::kValue, col,
                                  fmt::format("WEAR_CONST={} must not be negative (0.1 um/m)", v));
@@ -405,7 +405,7 @@ class BlockParser {
             if (cmd.acc_weight) return otc_conflict(col, "ACC_WEIGHT", "ACC_WEIGHT");
             double v = 0.0;
             if (!equals_value("ACC_WEIGHT", v)) return false;
-            // Seed 000 section 2.1: "Beschleunigungsgewichtung in Prozent [1;100]".
+            // [ISG-OTC] section 2.1: "Beschleunigungsgewichtung in Prozent [1;100]".
             if (v < 1.0 || v > 100.0 || v != std::floor(v)) {
                 return fail_here(ErrorKind::kValue, col,
                                  fmt::format("ACC_WEIGHT={} out of range: a whole percentage "
@@ -431,7 +431,7 @@ class BlockParser {
         return expression(v);
     }
 
-    // #KIN ID[n] (seed 000 sections 2.4 and 2.5: "#KIN ID[4]").
+    // #KIN ID[n] ([ISG-OTC] sections 2.4 and 2.5: "#KIN ID[4]").
     bool kin(IsgLine& isg) {
         c_.skip_blanks();
         const std::uint32_t col = c_.column();

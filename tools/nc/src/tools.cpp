@@ -47,7 +47,7 @@ struct FieldSpec {
     double ToolData::*real;
 };
 
-// Units and ranges: seed FCT-C20 section 3.2 (P-TOOL-00001/00030/00031/00138) and section 2.6.
+// Units and ranges: [ISG-OTC] section 3.2 (P-TOOL-00001/00030/00031/00138) and section 2.6.
 constexpr FieldSpec kFields[] = {
     {"gueltig", false, true, 0, 1, "0..1", &ToolData::gueltig, nullptr},
     {"typ", false, true, 0, 3, "0..3", &ToolData::typ, nullptr},

@@ -154,7 +154,7 @@ class Execution {
     }
 
     RunOutcome run(nc::EventStream& events) {
-        // The program reads the board's V.G. variables (seed 000 section 2.8).
+        // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
         events.set_variable_source(&variables_);
         set_up_ = setup();
         if (set_up_) {
@@ -368,7 +368,7 @@ class Execution {
                 } else if constexpr (std::is_same_v<E, nc::NotEmulated>) {
                     out_.notices.push_back(RunError{
                         at, "NotEmulated",
-                        fmt::format("{} is accepted and not emulated (DESIGN.md section 8)",
+                        fmt::format("{} is accepted and not emulated (docs/design.md section 8)",
                                     e.command)});
                     return true;
                 } else if constexpr (std::is_same_v<E, nc::VariableWrite>) {
@@ -413,7 +413,7 @@ class Execution {
               std::uint8_t kind, double feed) {
         const PathSegment s = line_segment(
             at, kind == APCI_PROFILE_RAPID ? SegmentKind::kRapid : SegmentKind::kLine, start, end);
-        // Seed 002, peripheral milling: "L-Satz mit programmierten Drehachsen, M128 oder
+        // [TNC-3D], peripheral milling: "L-Satz mit programmierten Drehachsen, M128 oder
         // FUNCTION TCPM aktiv, Korrekturrichtung mit Radiuskorrektur RL oder RR".
         const bool peripheral =
             klartext_ && kind == APCI_PROFILE_LINE && tcpm_ && side_ != nc::Compensation::kOff;
@@ -463,7 +463,7 @@ class Execution {
         b_now_ = head_b_;
     }
 
-    // ---- #TRAFO: the B head's tool-tip transformation (DESIGN.md section 8; docs/otc.md)
+    // ---- #TRAFO: the B head's tool-tip transformation (docs/design.md section 8; docs/otc.md)
 
     static Eigen::Vector3d tool_axis(double b_deg) noexcept {
         const double b = b_deg * (std::numbers::pi / 180.0);
@@ -517,7 +517,7 @@ class Execution {
 
     bool tool(const BlockRef& at, int index) {
         if (out_.otc_present) {
-            // Seed 000 section 2.9: the wear of the tool going out reaches the tool list.
+            // [ISG-OTC] section 2.9: the wear of the tool going out reaches the tool list.
             if (!run_clock()) return false;
             check_out_tool();
             if (index != current_tool_) reported_radius_wear_ = reported_cont_wear_ = 0.0;
@@ -589,7 +589,7 @@ class Execution {
         return true;
     }
 
-    // STATUS = 0: the held profile is spooled with the departure (seed 003 section 1).
+    // STATUS = 0: the held profile is spooled with the departure ([APCI-TC] section 1).
     bool compensation_off(const BlockRef& at) {
         auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
         if (!write(status, std::int32_t{0}, at, "STATUS = 0")) return false;
@@ -758,7 +758,7 @@ class Execution {
             }
             bits |= c3::kArmNormal;
         }
-        // Without TCPM a programmed T is ignored (seed 002); with TCPM and no T the board
+        // Without TCPM a programmed T is ignored ([TNC-3D]); with TCPM and no T the board
         // takes N.
         if (e.has_tool_vector && e.tool_vector_programmed) {
             for (int k = 0; k < 3; ++k) {
@@ -944,7 +944,7 @@ class Execution {
         return true;
     }
 
-    // D n: the grinding data of wz[n] (seed 000 section 2.6) become the OTC module's current
+    // D n: the grinding data of wz[n] ([ISG-OTC] section 2.6) become the OTC module's current
     // tool. A new ToolNumber starts the tool's wear from 0 on the board (section 2.9).
     bool otc_tool(const BlockRef& at, int index) {
         const nc::ToolData* t = index > 0 ? tools_mut_.find(index) : nullptr;
@@ -963,7 +963,7 @@ class Execution {
                          "OTC grinding_disc_tilt_angle");
     }
 
-    // Seed 000 section 2.9: "Beim Auswechseln des Werkzeugs wird der externen
+    // [ISG-OTC] section 2.9: "Beim Auswechseln des Werkzeugs wird der externen
     // Werkzeugverwaltung der Verschleiß durch die CNC mitgeteilt" (wear_radius,
     // wear_radius_cont); the tool management folds it into the tool's geometry. The board has
     // folded it into its tool table at #OTC OFF: the tool list takes the board's radius and
@@ -1075,7 +1075,7 @@ class Execution {
         return true;
     }
 
-    // The variables at the end of the run, by their seed names (DESIGN.md section 7 JSON).
+    // The variables at the end of the run, by their names in [ISG-OTC] (docs/design.md section 7 JSON).
     void read_variables() {
         auto add = [&](std::string name, nc::VariableRef v) {
             double value = 0.0;
@@ -1388,7 +1388,7 @@ class Execution {
     }
 
     // A board segment in program coordinates: X, Y, Z from their board axes, the tool length
-    // compensation taken off (the tool centre point, DESIGN.md section 7).
+    // compensation taken off (the tool centre point, docs/design.md section 7).
     PathSegment convert(const apci_segment& b) {
         PathSegment s;
         s.block = decode_block_tag(b.tag);

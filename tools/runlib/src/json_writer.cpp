@@ -55,7 +55,7 @@ void JsonRunWriter::segment(const PathSegment& s) {
 
 namespace {
 
-// ["KorrError","CalcError"]: the seed's names of the set bits (bits it does not name as "bitN").
+// ["KorrError","CalcError"]: the names of the set bits in [APCI-TC] Table 4 (bits it does not name as "bitN").
 void bit_names(TextSink& sink, std::int32_t value, const char* (*name_of)(int)) {
     sink.put('[');
     bool first = true;
@@ -123,7 +123,7 @@ bool JsonRunWriter::finish(std::span<const RunError> errors,
         bit_names(sink_, g.status, apci_tc_status_bit_name);
         sink_.put('}');
     }
-    // The readable NC variables by their seed names (the OTC module's; DESIGN.md section 7).
+    // The readable NC variables by their names in [ISG-OTC] (the OTC module's; docs/design.md section 7).
     sink_.append("},\n\"variables\":{");
     for (std::size_t i = 0; i < variables.size(); ++i) {
         if (i != 0) sink_.put(',');

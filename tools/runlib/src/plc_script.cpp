@@ -142,7 +142,7 @@ class LineParser {
         c_.advance();
         const std::uint32_t fcol = c_.column();
         const std::string_view field = c_.scan_identifier();
-        // The seed's ST names command_w / enable_w are accepted too.
+        // The ST names of [ISG-OTC], command_w / enable_w are accepted too.
         if (word_is(field, "command") || word_is(field, "command_w"))
             w.field = PlcWrite::Field::kCommand;
         else if (word_is(field, "enable") || word_is(field, "enable_w"))

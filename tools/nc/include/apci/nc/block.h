@@ -14,7 +14,7 @@ enum class Motion : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 
 enum class Plane : std::uint8_t { kXY = 17, kZX = 18, kYZ = 19 };
 enum class DistanceMode : std::uint8_t { kAbsolute = 90, kIncremental = 91 };
 enum class Compensation : std::uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
-// Outside corners under radius compensation (ISG seed, wr_quad_disc.nc: G25 "linearer
+// Outside corners under radius compensation ([ISG-OTC-EN], wr_quad_disc.nc: G25 "linearer
 // Übergangssatz", G26 "zirkularer Übergangssatz").
 enum class CornerMode : std::uint8_t { kLinear = 25, kCircular = 26 };
 // Input units ([ISG-PROG]: G70 inch, G71 metric, the initial state): lengths and feeds of the
@@ -52,7 +52,7 @@ struct Word {
 
 inline constexpr int kMaxToolNumber = 1023;  // D and wz[i] (TC module WKZINDEX 0..1023)
 
-// ISG online tool compensation (seed 000, FCT-C20, section 2.1): the processing types and
+// ISG online tool compensation ([ISG-OTC] section 2.1): the processing types and
 // modes #OTC names. The values are the OTC module's object values (bus 1330).
 enum class OtcType : std::uint8_t { kRadius = 0, kLength = 1, kToolDir = 2, kSurfNormDir = 3 };
 enum class OtcMode : std::uint8_t { kCont = 0, kDisc = 1, kAuto = 2 };
@@ -71,7 +71,7 @@ struct Block {
     Word<CornerMode> corner;             // G25 G26
     Word<Units> units;                   // G70 G71
     std::array<Word<double>, 3> axis;    // X Y Z, program units (mm, inches under G70)
-    Word<double> b_axis;                 // B, degrees: the B head's tilt (DESIGN.md section 8)
+    Word<double> b_axis;                 // B, degrees: the B head's tilt (docs/design.md section 8)
     std::array<Word<double>, 3> center;  // I J K, incremental from the arc start
     Word<double> radius;                 // R (negative: the larger arc)
     Word<double> feed;                   // F, mm/min (inch/min under G70), > 0

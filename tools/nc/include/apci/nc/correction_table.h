@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The 3D tool compensation's correction table (TNC seed 002: the control offsets the tool by
+// The 3D tool compensation's correction table ([TNC-3D]: the control offsets the tool by
 // "die Summe der Deltawerte aus der Werkzeugverwaltung, dem Werkzeugaufruf und den
 // Korrekturtabellen"; "programmierten Werkzeugkorrektur (Werkzeugaufruf oder
 // Korrekturtabelle)"). A Klartext program selects a row with FUNCTION CORRDATA TCS #n and

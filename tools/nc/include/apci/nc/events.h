@@ -2,7 +2,7 @@
 // What the interpreter hands to the executor: moves in absolute coordinates and the modal
 // changes the executor must act on, one event at a time, each with the block and line it came
 // from. Coordinates are the programmed contour (tool centre before compensation) in program
-// units (mm); compensation itself is the board's job (TC module, DESIGN.md section 3).
+// units (mm); compensation itself is the board's job (TC module, docs/design.md section 3).
 #pragma once
 
 #include <Eigen/Core>
@@ -72,7 +72,7 @@ struct PlaneChange {
 // M30 (DIN 66025); Klartext: M30 or M2, else END PGM.
 struct ProgramEnd {};
 
-// ---- Klartext (TNC seed 002: 3D tool compensation), docs/nc-programs.md ----
+// ---- Klartext ([TNC-3D]: 3D tool compensation), docs/nc-programs.md ----
 
 // TOOL CALL n Z [S..] [DL..] [DR..] [DR2..]: the delta values of the tool call (mm), which the
 // 3D compensation adds to those of the tool table and the correction table. Sent right after
@@ -123,7 +123,7 @@ struct HeadOrientation {
     double c = 0.0;
 };
 
-// LN: a straight line with the surface normal N and the tool vector T (seed 002, "Gerade LN").
+// LN: a straight line with the surface normal N and the tool vector T ([TNC-3D], "Gerade LN").
 // Points are the programmed ones (tool tip, tool centre or contour point, by TcpmChange and
 // ProgPathChange); the 3D compensation is the board's job.
 struct VectorLineMove {
@@ -143,7 +143,7 @@ struct VectorLineMove {
     bool rapid = false;                      // FMAX
 };
 
-// ---- ISG commands of the DIN 66025 dialect (seed 000, FCT-C20; DESIGN.md section 8) ----
+// ---- ISG commands of the DIN 66025 dialect ([ISG-OTC]; docs/design.md section 8) ----
 
 // #OTC ...: what the command sets (OtcCommand, parser.h). Sent as written; the interpreter has
 // checked its rules (tool type 2 where the tool list tells, G40 before #OTC OFF in RADIUS, no
@@ -152,13 +152,13 @@ struct OtcChange {
     OtcCommand command;
 };
 
-// #KIN ID[n] (0: none, 4: the B head, DESIGN.md section 8).
+// #KIN ID[n] (0: none, 4: the B head, docs/design.md section 8).
 struct KinematicsSelect {
     int id = 0;
 };
 
 // #TRAFO ON / OFF: with it the moves' X Y Z are the tool tip; the machine's pivot is
-// `tool_length` (mm, the tool in force) behind it along t(B) = (sin B, 0, cos B) (DESIGN.md
+// `tool_length` (mm, the tool in force) behind it along t(B) = (sin B, 0, cos B) (docs/design.md
 // section 8). At the switch the position in force is re-expressed (tip = pivot - length t(B)).
 struct TrafoChange {
     bool on = false;
@@ -171,8 +171,8 @@ struct NotEmulated {
     std::string_view command;
 };
 
-// V.G.WZ_AKT.WEAR_CONST = value (seed 000 section 2.8): the executor writes the tool's wear
-// constant (0.1 um/m). $SC_TOOL_TEMP_COMP[i] = value (seed 004, SD 42960): the executor writes
+// V.G.WZ_AKT.WEAR_CONST = value ([ISG-OTC] section 2.8): the executor writes the tool's wear
+// constant (0.1 um/m). $SC_TOOL_TEMP_COMP[i] = value ([SIN-TEMP], SD 42960): the executor writes
 // the temperature compensation's component i (mm) after the moves before it have run.
 struct VariableWrite {
     VariableRef variable;

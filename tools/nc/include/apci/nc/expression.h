@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // NC expressions and variables: the small evaluator behind `X[P1*2]`, `P1 = P1 + 1`,
-// `$FOR P1 = 0, 20, 1`, `#OTC [WEAR_CONST=[P2*10]]` and the OTC variables of the ISG seed
-// (seed 000, FCT-C20, section 2.8: V.G.WZ_AKT.WEAR_RADIUS, ..._CONT, .WEAR[i], .WEAR.<axis>,
+// `$FOR P1 = 0, 20, 1`, `#OTC [WEAR_CONST=[P2*10]]` and the OTC variables of [ISG-OTC]
+// ([ISG-OTC] section 2.8: V.G.WZ_AKT.WEAR_RADIUS, ..._CONT, .WEAR[i], .WEAR.<axis>,
 // .WEAR_CONST, V.G.OTC_ACTIVE) and the SINUMERIK setting data of the temperature compensation
-// (seed 004: $SC_TOOL_TEMP_COMP[i], SD 42960). docs/nc-programs.md ("Expressions and
+// ([SIN-TEMP]: $SC_TOOL_TEMP_COMP[i], SD 42960). docs/nc-programs.md ("Expressions and
 // variables") is the spec.
 //
 // Grammar (blanks allowed between tokens; '(' starts a comment in NC lines, so brackets group):
@@ -27,7 +27,7 @@ namespace apci::nc {
 // P parameters P0..P(kParameterCount - 1).
 inline constexpr int kParameterCount = 1000;
 
-// The variables by their seed names.
+// The variables by their names in [ISG-OTC].
 enum class NcVariable : std::uint8_t {
     kWearRadius,      // V.G.WZ_AKT.WEAR_RADIUS (mm, read)
     kWearRadiusCont,  // V.G.WZ_AKT.WEAR_RADIUS_CONT (mm, read)
@@ -44,7 +44,7 @@ struct VariableRef {
     int index = 0;  // kWear: the axis; kToolTempComp: the component 0..2
     bool operator==(const VariableRef&) const = default;
 };
-// SD 42960 TOOL_TEMP_COMP[0..2]: three components (seed 004), each within the range of its
+// SD 42960 TOOL_TEMP_COMP[0..2]: three components ([SIN-TEMP]), each within the range of its
 // object on the board (bus 1320 Index 1, docs/object-map.md section 7; the executor checks
 // that the two agree).
 inline constexpr int kToolTempCompCount = 3;

@@ -35,19 +35,19 @@ struct ModalState {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // absolute, mm
     double b = 0.0;                                      // B head tilt, degrees
     bool ended = false;                                  // M30 seen
-    // ISG OTC (seed 000 section 2.1) as programmed: on/off and the parameters in force.
+    // ISG OTC ([ISG-OTC] section 2.1) as programmed: on/off and the parameters in force.
     bool otc_active = false;
-    OtcType otc_type = OtcType::kLength;  // seed: LENGTH "(Standard)"
-    OtcMode otc_mode = OtcMode::kAuto;    // seed: AUTO "(Standard)"
+    OtcType otc_type = OtcType::kLength;  // [ISG-OTC]: LENGTH "(Standard)"
+    OtcMode otc_mode = OtcMode::kAuto;    // [ISG-OTC]: AUTO "(Standard)"
     int otc_acc_weight = 100;
     bool otc_programmed_wear_const = false;  // WEAR_CONST=.. in force (else the tool's)
     double otc_wear_const = 0.0;             // the WEAR_CONST=.. value
     // V.G.WZ_AKT.WEAR_CONST written by the program (the tool's constant from then on).
     std::optional<double> tool_wear_const;
-    // $SC_TOOL_TEMP_COMP[0..2] (SD 42960, seed 004) as written by the program, 0 before.
+    // $SC_TOOL_TEMP_COMP[0..2] (SD 42960, [SIN-TEMP]) as written by the program, 0 before.
     std::array<double, kToolTempCompCount> tool_temp_comp{};
     int kinematics = 0;  // #KIN ID
-    bool trafo = false;  // #TRAFO ON: positions are the tool tip (DESIGN.md section 8)
+    bool trafo = false;  // #TRAFO ON: positions are the tool tip (docs/design.md section 8)
     double trafo_length = 0.0;  // the tool length (mm) the transformation uses
 };
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The Klartext (TNC) subset for the 3D tool compensation, as the TNC seed (002) writes it:
+// The Klartext (TNC) subset for the 3D tool compensation, as [TNC-3D] writes it:
 // BEGIN PGM / END PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET
 // TCPM, FUNCTION CORRDATA TCS (the correction table row) and the M functions M2 M30 M107 M108
 // M128 M129. One line is one block. The parser

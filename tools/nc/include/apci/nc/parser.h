@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// DIN 66025 block parser (the subset the ISG seed writes) and the dialect detection hook.
+// DIN 66025 block parser (the subset the programs of [ISG-OTC] use) and the dialect detection hook.
 //
 // One line at a time: the parser turns a line into a Block, checking everything that can be
 // checked inside the line (known words, numbers, words that exclude each other). Modal rules that
@@ -18,7 +18,7 @@
 
 namespace apci::nc {
 
-// The dialect is told by content (DESIGN.md section 8): a program whose first significant line
+// The dialect is told by content (docs/design.md section 8): a program whose first significant line
 // is "[n] BEGIN PGM ..." is Klartext (TNC), anything else DIN 66025 (ISG).
 enum class Dialect : std::uint8_t { kUndecided, kDin66025, kKlartext };
 
@@ -38,7 +38,7 @@ enum class LineKind : std::uint8_t {
 };
 
 // #OTC ON | OFF [ RADIUS | LENGTH | TOOL_DIR | SURF_NORM_DIR  DISC | CONT | AUTO
-//                 WEAR_CONST=.. | WEAR_CONST_TOOL  ACC_WEIGHT=.. ] (seed 000 section 2.1): each
+//                 WEAR_CONST=.. | WEAR_CONST_TOOL  ACC_WEIGHT=.. ] ([ISG-OTC] section 2.1): each
 // part is optional; a command without ON/OFF only sets the parameters ("Die Parametrierung kann
 // vorab oder zusammen mit #OTC ON erfolgen").
 struct OtcCommand {

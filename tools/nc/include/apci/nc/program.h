@@ -3,7 +3,7 @@
 // one block, one batch of at most EventBatch::kCapacity events; nothing kept per block).
 //
 // Two passes make "nothing is executed from a program that does not parse" hold for streamed
-// input (DESIGN.md section 8): Program::load() reads the whole program once, parsing and
+// input (docs/design.md section 8): Program::load() reads the whole program once, parsing and
 // interpreting every block but keeping no event (the validation pass); only a program that
 // passed gives an EventStream for the execution pass, which reads it again.
 #pragma once

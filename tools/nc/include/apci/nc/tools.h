@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The tool list file in the ISG seed's form (FCT-C20, section 2.6 "Spezielle Einstellungen in
+// The tool list file in the form of [ISG-OTC] (section 2.6 "Spezielle Einstellungen in
 // den Werkzeugdaten"): one "wz[i].field value [comment]" a line, '#' comments, blank lines.
-// Raw values are kept as written, in the seed's units; accessors convert to mm and degrees.
+// Raw values are kept as written, in the units of [ISG-OTC] section 2.6; accessors convert to mm and degrees.
 #pragma once
 
 #include <array>
@@ -34,12 +34,12 @@ struct ToolData {
     double grinding_wear_const = 0.0;                  // P-TOOL-00030, always 0.1 um/m
     double grinding_max_infeed = 0.0;                  // P-TOOL-00031, always 0.1 um
     double grinding_disc_tilt_angle = 0.0;             // P-TOOL-00138, always 0.0001 degree
-    // 3D compensation (TNC seed: R2, DL, DR, DR2), length unit like radius.
+    // 3D compensation ([TNC-3D]: R2, DL, DR, DR2), length unit like radius.
     double r2 = 0.0;
     double dl = 0.0;
     double dr = 0.0;
     double dr2 = 0.0;
-    // The wear the CNC reported at tool change (seed 000 section 2.9: wear_radius, the total of
+    // The wear the CNC reported at tool change ([ISG-OTC] section 2.9: wear_radius, the total of
     // discrete and continuous; wear_radius_cont, the continuous part), length unit, added up over
     // the runs that changed the tool out. Already folded into radius and laenge.
     double wear_radius = 0.0;

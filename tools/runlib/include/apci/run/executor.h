@@ -16,7 +16,7 @@
 //   #OTC      the OTC module (bus 1330): type, mode, WEAR_CONST, ACC_WEIGHT, then Active (Busy
 //             until the moves before it have run); #KIN/#TRAFO its Kinematics/Trafo; D n also
 //             the tool's grinding data (typ, P-TOOL-00030/31/138) after checking the old tool's
-//             wear into the tool list (seed 000 section 2.9); V.G. variables read from it
+//             wear into the tool list ([ISG-OTC] section 2.9); V.G. variables read from it
 //   $SC_TOOL_TEMP_COMP[i]  the temperature compensation (bus 1320): SD 42960 component i,
 //             after the moves before it have run
 //   --plc     a scripted PLC writing the OTC control units and the temperature compensation's
@@ -105,7 +105,7 @@ struct RunOutcome {
     bool otc_present = false;  // the board has the OTC module (bus 1330)
     // Accepted commands the emulator does not emulate (#HSC), by block; not errors.
     std::vector<RunError> notices;
-    // The readable NC variables at the end by their seed names (V.G.OTC_ACTIVE,
+    // The readable NC variables at the end by their names in [ISG-OTC] (V.G.OTC_ACTIVE,
     // V.G.WZ_AKT.WEAR_RADIUS, ... with the OTC module; $SC_TOOL_TEMP_COMP[0..2] with the
     // temperature compensation).
     std::vector<std::pair<std::string, double>> variables;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `apcictl run --json`: one JSON object (DESIGN.md section 7), written as the run goes. The
+// `apcictl run --json`: one JSON object (docs/design.md section 7), written as the run goes. The
 // "segments" array is streamed, one segment a line, so a run of any length is written in
 // constant memory; "errors", "registers" and "variables" follow at the end:
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The executed path as `apcictl run` reports it (DESIGN.md section 7): segments of the tool
+// The executed path as `apcictl run` reports it (docs/design.md section 7): segments of the tool
 // centre path and of the programmed contour, in program coordinates X, Y, Z (mm), each tagged
 // with the NC block it came from; the errors of a run; the TC registers at its end.
 #pragma once

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// `apcictl run --plc FILE`: a scripted PLC for the OTC control units (seed 000, FCT-C20,
-// section 2.7) and the temperature compensation's setting data (seed 004, SD 42960: "von der
+// `apcictl run --plc FILE`: a scripted PLC for the OTC control units ([ISG-OTC],
+// section 2.7) and the temperature compensation's setting data ([SIN-TEMP], SD 42960: "von der
 // PLC aus vom Anwender beschrieben"), so that a program runs end to end without a real PLC.
 // One write a line:
 //
