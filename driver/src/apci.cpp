@@ -117,6 +117,7 @@ apci_status read_typed(apci_board* board, apci_object_descriptor* object, T* val
         *value = v.as_int();
     }
     board->last_error.clear();
+    board->board_message.clear();
     return APCI_OK;
 }
 
@@ -134,6 +135,7 @@ apci_status write_value(apci_board* board, apci_object_descriptor* object,
         });
     }
     board->last_error.clear();
+    board->board_message.clear();
     return APCI_OK;
 }
 
@@ -191,6 +193,10 @@ void apci_close(apci_board* board) noexcept {
 
 const char* apci_last_error(const apci_board* board) noexcept {
     return board != nullptr ? board->last_error.c_str() : t_last_error.c_str();
+}
+
+const char* apci_last_board_message(const apci_board* board) noexcept {
+    return board != nullptr ? board->board_message.c_str() : "";
 }
 
 apci_status apci_read_int(apci_board* board, apci_object_descriptor* object, int32_t* value) noexcept {

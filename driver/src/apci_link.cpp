@@ -47,6 +47,7 @@ apci_status apci_set_timeout(apci_board* board, uint32_t milliseconds) noexcept 
                     [&] { return fmt::format("apci_set_timeout: {}", objif::status_name(s)); });
     }
     board->last_error.clear();
+    board->board_message.clear();
     return APCI_OK;
 }
 
@@ -77,6 +78,7 @@ apci_status apci_reconnect(apci_board* board) noexcept {
         });
     }
     board->last_error.clear();
+    board->board_message.clear();
     return APCI_OK;
 }
 

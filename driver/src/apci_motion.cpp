@@ -50,6 +50,7 @@ std::string reason(Status s, std::string_view board_says, std::string_view detai
 
 apci_status done(apci_board* board) noexcept {
     board->last_error.clear();
+    board->board_message.clear();
     return APCI_OK;
 }
 
@@ -61,7 +62,7 @@ apci_status motion_outcome(apci_board* board, Status s, const objif::MotionReply
                            apci_motion_result* result, const What& what) noexcept {
     if (result != nullptr) *result = apci_motion_result{rep.group, rep.errors, rep.tag};
     if (objif::ok(s)) return done(board);
-    return fail(board, s, [&] {
+    const apci_status st = fail(board, s, [&] {
         std::string text = fmt::format("{}: {}", what(),
                                        reason(s, rep.message, board->transport->failure_detail()));
         if (rep.errors != 0)
@@ -69,6 +70,8 @@ apci_status motion_outcome(apci_board* board, Status s, const objif::MotionReply
                                 rep.errors, rep.tag);
         return text;
     });
+    apci::record(board->board_message, rep.message);
+    return st;
 }
 
 const char* kind_name(std::uint8_t kind) noexcept {

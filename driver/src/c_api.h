@@ -13,7 +13,8 @@
 
 struct apci_board {
     std::unique_ptr<apci::Transport> transport;
-    std::string last_error;  // "" after a successful call
+    std::string last_error;     // "" after a successful call
+    std::string board_message;  // the board's own words for the last failed motion call
 };
 
 namespace apci {
@@ -41,6 +42,7 @@ inline std::string& error_slot(apci_board* board) noexcept {
 // Records the text `format()` makes as the last error and returns `s` as a C code.
 template <class Format>
 apci_status fail(apci_board* board, objif::Status s, Format&& format) noexcept {
+    if (board != nullptr) board->board_message.clear();
     try {
         record(error_slot(board), format());
     } catch (...) {

@@ -158,7 +158,15 @@ TEST_F(Motion, TcErrorComesBackInTheResultAndTheLastError) {
     EXPECT_EQ(r.tag, 2u);
     EXPECT_NE(last_error().find("spool G03 N2"), std::string::npos) << last_error();
     EXPECT_NE(last_error().find("0x04"), std::string::npos) << last_error();
+    // The board's own words alone, for a program that shows the reason without the call.
+    EXPECT_EQ(std::string(apci_last_board_message(board_)),
+              "arc radius is smaller than the tool radius on the concave side: the tool would cut "
+              "into the arc (use a tool no larger than the arc's radius)");
+    EXPECT_NE(last_error().find(apci_last_board_message(board_)), std::string::npos);
     EXPECT_EQ(tc_status() & APCI_TC_STATUS_RUN, 0) << "Run cleared";
+    // Any later call replaces it (the read above succeeded); NULL gives "".
+    EXPECT_STREQ(apci_last_board_message(board_), "");
+    EXPECT_STREQ(apci_last_board_message(nullptr), "");
     apci_motion_status st{};
     ASSERT_EQ(apci_motion_status_get(board_, &st), APCI_OK);
     EXPECT_NE(st.flags & APCI_MOTION_HELD, 0u);

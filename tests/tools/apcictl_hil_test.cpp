@@ -196,8 +196,8 @@ TEST_F(ApcictlDiff, NcProgramReportsTheFirstDifferingError) {
     const auto r =
         diff({"--against", "emu:?no-option-tc", "--tools", kTools, kInsideCorners}, "emu:");
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_TRUE(contains(r.out, "first difference at N30: error 1")) << r.out;
-    EXPECT_TRUE(contains(r.out, "NoSuchDevice at N30")) << r.out;
+    EXPECT_TRUE(contains(r.out, "first difference at line 7 (N30): error 1")) << r.out;
+    EXPECT_TRUE(contains(r.out, "NoSuchDevice at line 7 (N30)")) << r.out;
 }
 
 TEST_F(ApcictlDiff, DifferentStartPositionsAreReportedFirst) {

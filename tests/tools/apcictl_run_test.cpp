@@ -505,10 +505,13 @@ TEST_F(ApcictlRun, KorrErrorIsReportedWithBlockAndNameAndTheRunStops) {
     ASSERT_EQ(doc.at("errors").size(), 1u);
     EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
     EXPECT_EQ(doc.at("errors")[0].at("code"), "KorrError");
-    EXPECT_TRUE(contains(doc.at("errors")[0].at("message").get<std::string>(), "too short"));
+    // The board's own words and what to change; not the driver's call, status or tag.
+    EXPECT_EQ(doc.at("errors")[0].at("message"),
+              "element is too short for the corner: its offset would reverse (lengthen it, join it "
+              "into its neighbour, or use a smaller tool)");
     EXPECT_EQ(doc.at("registers").at("1").at("ERROR_bits"), json::array({"KorrError"}));
-    EXPECT_TRUE(contains(last_.out, "errors: 1 (KorrError 1)\n  N60: KorrError: ")) << last_.out;
-    EXPECT_TRUE(contains(last_.err, "apcictl: run " + prog + ": stopped at N60: KorrError\n"))
+    EXPECT_TRUE(contains(last_.out, "errors: 1 (KorrError 1)\n  line 4 (N60): KorrError: ")) << last_.out;
+    EXPECT_TRUE(contains(last_.err, "apcictl: run " + prog + ": stopped at line 4 (N60): KorrError\n"))
         << last_.err;
     // The board holds: nothing spooled after the error ran.
     for (const auto& s : doc.at("segments")) EXPECT_LT(s.at("block").get<int>(), 70);
@@ -516,6 +519,23 @@ TEST_F(ApcictlRun, KorrErrorIsReportedWithBlockAndNameAndTheRunStops) {
     EXPECT_TRUE(contains(svg, ">N60 KorrError</text>"));
     // The rest of the program is still drawn, so the place of the error is seen.
     EXPECT_TRUE(contains(svg, "L0 20") || contains(svg, "L0 2"));
+}
+
+TEST_F(ApcictlRun, AnErrorInABlockWithoutNumberNamesItsLineNeverAnInternalTag) {
+    // Blocks without N carry their line through the board's tag (2^31 + line): the message
+    // names the line, and neither the tag nor the spool call's status.
+    const std::string prog = write("korr_lines.nc",
+                                   "F1000 D1\nG41 G1 X0 Y0\nX60\nY2\nX0\nG40 G1 X0 Y-20\nM30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0)}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("line"), 4);
+    EXPECT_TRUE(contains(last_.out, "\n  line 4: KorrError: element is too short for the corner"))
+        << last_.out;
+    EXPECT_TRUE(contains(last_.err, "stopped at line 4: KorrError")) << last_.err;
+    for (const std::string& text : {last_.out, last_.err, doc.dump()}) {
+        EXPECT_FALSE(contains(text, "2147483")) << text;
+        EXPECT_FALSE(contains(text, "WrongDeviceState")) << text;
+    }
 }
 
 TEST_F(ApcictlRun, CalcErrorForAConcaveArcSmallerThanTheTool) {

@@ -316,7 +316,7 @@ TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
     ASSERT_EQ(doc.at("notices").size(), 1u);
     EXPECT_EQ(doc.at("notices")[0].at("code"), "NotEmulated");
     EXPECT_EQ(doc.at("notices")[0].at("block"), 85);
-    EXPECT_TRUE(contains(last_.out, "notice: N85: #HSC is accepted and not emulated")) << last_.out;
+    EXPECT_TRUE(contains(last_.out, "notice: line 1 (N85): #HSC is accepted and not emulated")) << last_.out;
 }
 
 // The plots of docs/otc.md are what apcictl draws now (scripts/otc_figures.sh redraws them from

@@ -96,6 +96,10 @@ public:
     std::string_view last_error() const noexcept {
         return is_open() ? std::string_view(apci_last_error(handle_)) : open_error_;
     }
+    // apci_last_board_message(): the board's own reason for refusing the last motion call.
+    std::string_view last_board_message() const noexcept {
+        return is_open() ? std::string_view(apci_last_board_message(handle_)) : std::string_view();
+    }
     apci_board* native_handle() const noexcept { return handle_; }
 
     // The link (apci.h "The link to the board").

@@ -508,10 +508,14 @@ class Execution {
                 if (!make_room()) return false;
                 continue;
             }
-            const std::string text(board_.last_error());
+            // A TC error: the board's own words (the element at fault is the block the error
+            // names; the call's status and tag say nothing more).
+            const std::string_view said = board_.last_board_message();
             if (r.value.errors != 0)
-                return tc_errors(decode_block_tag(r.value.tag), r.value.errors, text);
-            return record(at, std::string(apci::status_name(r.status)), text);
+                return tc_errors(decode_block_tag(r.value.tag), r.value.errors,
+                                 std::string(said.empty() ? board_.last_error() : said));
+            return record(at, std::string(apci::status_name(r.status)),
+                          std::string(board_.last_error()));
         }
     }
 
@@ -1274,7 +1278,10 @@ class Execution {
     }
 
     // Records an error; returns false (the run stops).
-    bool record(const BlockRef& at, std::string code, std::string message) {
+    bool record(BlockRef at, std::string code, std::string message) {
+        // A board error names the block by its tag (its N); the line comes from the spooled move.
+        if (at.line == 0 && at.number != kNoBlock)
+            if (const PathSegment* s = recent_.find(encode_block_tag(at))) at.line = s->block.line;
         RunError e{at, std::move(code), std::move(message)};
         sink_.error(e, where(at));
         out_.errors.push_back(std::move(e));

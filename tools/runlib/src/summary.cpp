@@ -30,6 +30,7 @@ std::vector<std::pair<std::string, std::size_t>> count_by_code(std::span<const R
 }
 
 std::string block_text(const BlockRef& b) {
+    if (b.number != kNoBlock && b.line != 0) return fmt::format("line {} (N{})", b.line, b.number);
     if (b.number != kNoBlock) return fmt::format("N{}", b.number);
     if (b.line != 0) return fmt::format("line {}", b.line);
     return "-";

@@ -39,7 +39,8 @@ std::vector<std::pair<std::string, std::size_t>> count_by_code(std::span<const R
 
 inline constexpr std::size_t kSummaryErrorLines = 20;
 
-// "N80", "line 12" (a block without N), or "-" when unknown.
+// "line 12 (N80)" when both are known, "N80" (a segment carries only its N), "line 12" (a block
+// without N), or "-" when unknown.
 std::string block_text(const BlockRef& b);
 
 void print_summary(std::FILE* out, const RunTotals& totals, std::span<const RunError> errors);
