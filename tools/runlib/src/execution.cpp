@@ -1,0 +1,454 @@
+// SPDX-License-Identifier: MIT
+// The executor's core (execution.h): spooling moves and arcs, the board access helpers, the
+// clock, the trace and the executed segments read back, the record of errors and findings.
+#include "execution.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <span>
+
+#include "apci/nc/arc.h"
+#include "rwmos/geometry/tolerances.h"
+
+namespace apci::run::exec {
+
+namespace {
+
+namespace tc = rwmos::tc;
+namespace c3 = rwmos::comp3d;
+namespace otc = rwmos::otc;
+
+// Clock calls without a trace run until idle in one go.
+constexpr std::uint64_t kRunForever = std::uint64_t{1} << 62;
+
+// The front end refuses the arcs the board's TC module would refuse with CenterError, no more.
+static_assert(nc::kArcRadiusTolerance == rwmos::geom::kCenterRadiusTolerance);
+
+Role role_of(std::uint8_t role) noexcept {
+    switch (role) {
+        case APCI_ROLE_CONTOUR:
+            return Role::kContour;
+        case APCI_ROLE_TRANSITION:
+            return Role::kTransition;
+        case APCI_ROLE_APPROACH:
+            return Role::kApproach;
+        case APCI_ROLE_DEPARTURE:
+            return Role::kDeparture;
+        default:
+            return Role::kUncompensated;
+    }
+}
+
+// The roles whose end point carries the tool length compensation (rwmos spooler: the length is
+// added on the compensated path and taken off by the departure).
+bool ends_length_compensated(Role r) noexcept {
+    return r == Role::kContour || r == Role::kApproach || r == Role::kTransition;
+}
+
+// ---- #TRAFO: the B head's tool-tip transformation (docs/design.md section 8; docs/otc.md)
+
+Eigen::Vector3d tool_axis(double b_deg) noexcept {
+    const double b = b_deg * (std::numbers::pi / 180.0);
+    return {std::sin(b), 0.0, std::cos(b)};
+}
+
+}  // namespace
+
+// The pivot (the machine's X, Y, Z) of a tool tip at tilt b: one tool length behind it.
+Eigen::Vector3d Execution::pivot_of(const Eigen::Vector3d& tip, double b_deg) const noexcept {
+    return tip + head.trafo_length * tool_axis(b_deg);
+}
+
+// The axes stop first, so the segments read back before belong to the old state.
+bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
+    if (e.on && head.b_axis < 0)
+        return record(at, "Unsupported", "no free board axis for the head's B");
+    if (!run_clock()) return false;
+    if (out.otc_present &&
+        !otc_.setting(at, otc::kIdxTrafo, e.on ? 1 : 0, e.on ? "#TRAFO ON" : "#TRAFO OFF"))
+        return false;
+    head.trafo = e.on;
+    head.trafo_length = e.tool_length;
+    return true;
+}
+
+PathSegment Execution::line_segment(const BlockRef& at, SegmentKind kind,
+                                    const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
+    PathSegment s;
+    s.block = at;
+    s.kind = kind;
+    s.start = start;
+    s.end = end;
+    return s;
+}
+
+PathSegment Execution::arc_segment(const BlockRef& at, const nc::ArcMove& a) {
+    PathSegment s;
+    s.block = at;
+    s.kind = SegmentKind::kArc;
+    s.start = a.start;
+    s.end = a.end;
+    s.plane = nc::g_number(a.plane);
+    s.center = a.center;
+    // The centre's coordinate on the third axis is the start's (nc/events.h).
+    const int third = plane_axes(s.plane).third;
+    s.center[third] = a.start[third];
+    s.ccw = a.ccw;
+    return s;
+}
+
+bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                     std::uint8_t kind, double feed) {
+    const PathSegment s = line_segment(
+        at, kind == APCI_PROFILE_RAPID ? SegmentKind::kRapid : SegmentKind::kLine, start, end);
+    // [TNC-3D], peripheral milling: "L-Satz mit programmierten Drehachsen, M128 oder
+    // FUNCTION TCPM aktiv, Korrekturrichtung mit Radiuskorrektur RL oder RR".
+    const bool peripheral = klartext_ && kind == APCI_PROFILE_LINE && c3_.peripheral();
+    if (peripheral) {
+        if (!c3_.setting(at, c3::kIdxArm, c3::kArmLine, "Arm")) return false;
+        return c3_.spool(at, s, profile(at, kind, end, feed));
+    }
+    const bool ok = spool(at, s, profile(at, kind, end, feed));
+    head.pending = false;
+    return ok;
+}
+
+bool Execution::arc(const BlockRef& at, const nc::ArcMove& a) {
+    const PathSegment s = arc_segment(at, a);
+    apci_profile p =
+        profile(at, a.ccw ? APCI_PROFILE_ARC_CCW : APCI_PROFILE_ARC_CW, a.end, a.feed);
+    const PlaneAxes pa = plane_axes(s.plane);
+    p.arc_axes[0] = static_cast<std::uint8_t>(axis(pa.first));
+    p.arc_axes[1] = static_cast<std::uint8_t>(axis(pa.second));
+    const Eigen::Vector3d centre =
+        head.trafo ? pivot_of(a.center, head.pending ? head.b : head.b_now) : a.center;
+    p.center[0] = centre[pa.first];
+    p.center[1] = centre[pa.second];
+    return spool(at, s, p);
+}
+
+apci_profile Execution::profile(const BlockRef& at, std::uint8_t kind, const Eigen::Vector3d& end,
+                                double feed) noexcept {
+    apci_profile p{};
+    p.kind = kind;
+    p.tag = encode_block_tag(at);
+    p.feed = feed;
+    const Eigen::Vector3d target =
+        head.trafo ? pivot_of(end, head.pending ? head.b : head.b_now) : end;
+    for (int i = 0; i < 3; ++i) {
+        const std::int32_t a = axis(i);
+        p.axes = static_cast<std::uint8_t>(p.axes | (1u << a));
+        p.target[a] = target[i];
+    }
+    if (head.pending) add_head(p);
+    return p;
+}
+
+void Execution::add_head(apci_profile& p) noexcept {
+    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.b_axis) | (1u << head.c_axis));
+    p.target[head.b_axis] = head.b;
+    p.target[head.c_axis] = head.c;
+    head.b_now = head.b;
+}
+
+void Execution::programmed(const PathSegment& s, std::uint32_t tag) {
+    sink_.programmed(s);
+    recent_.add(tag, s);
+}
+
+bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
+                      const apci_profile& p) {
+    programmed(programmed_move, p.tag);
+    if (comp_on && self_approach_mode_ != SelfApproachMode::kOff) {
+        // A rapid ends the contour on the board; the next move approaches it anew.
+        if (programmed_move.kind == SegmentKind::kRapid) {
+            if (!end_self_approach()) return false;
+        } else {
+            if (!self_approach_.active()) begin_self_approach();
+            self_approach_.programmed(programmed_move, findings_);
+            if (!take_findings()) return false;
+        }
+    }
+    apci::Result<apci_motion_result> r;
+    if (!spool_profile(p, r)) return false;
+    if (r.ok()) return true;
+    // A TC error: the board's own words (the element at fault is the block the error
+    // names; the call's status and tag say nothing more).
+    const std::string_view said = board_.last_board_message();
+    if (r.value.errors != 0)
+        return tc_errors(decode_block_tag(r.value.tag), r.value.errors,
+                         std::string(said.empty() ? board_.last_error() : said));
+    return record(at, std::string(apci::status_name(r.status)), std::string(board_.last_error()));
+}
+
+// Spools p; Busy (the spooler is full) makes room and tries again. False when the clock could
+// not make room (recorded); else `r` is the board's answer, which is not Busy.
+bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r) {
+    for (;;) {
+        r = board_.spool(p);
+        if (r.status != APCI_BUSY) return true;
+        if (!make_room()) return false;
+    }
+}
+
+void Execution::begin_self_approach() { self_approach_.begin(radius, comp_plane); }
+
+bool Execution::end_self_approach() {
+    self_approach_.end(findings_);
+    return take_findings();
+}
+
+// ---- board access
+
+// Writes an object; Busy (the spooler cannot take what the write releases) runs the clock
+// and tries again.
+template <typename T>
+bool Execution::write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
+    for (;;) {
+        const auto r = board_.write(o, value);
+        if (r.ok()) return true;
+        if (r.status == APCI_BUSY) {
+            if (!make_room()) return false;
+            continue;
+        }
+        return write_failure(at, r.status, what);
+    }
+}
+
+template bool Execution::write(ObjectDescriptor, std::int32_t, const BlockRef&, std::string_view);
+template bool Execution::write(ObjectDescriptor, double, const BlockRef&, std::string_view);
+
+// A refused write: a TC error bit it set (InitError) names it, else the status does.
+bool Execution::write_failure(const BlockRef& at, apci::Status status, std::string_view what) {
+    const std::string text = fmt::format("{}: {}", what, board_.last_error());
+    if (out.tc_present && status != APCI_NO_SUCH_DEVICE) {
+        auto e = group_object(tc::kActiveGroupIndex, tc::kSubError);
+        const auto bits = board_.read_int(e);
+        if (bits && bits.value != 0) return tc_errors(at, bits.value, text);
+    }
+    return record(at, std::string(apci::status_name(status)), text);
+}
+
+// What needs a module the board does not have is refused by name.
+bool Execution::no_module(const BlockRef& at, std::string_view what, std::string_view module) {
+    return record(at, "NoSuchDevice",
+                  fmt::format("{} needs {}, which this board does not have", what, module));
+}
+
+bool Execution::board_failure(const BlockRef& at, apci::Status status, std::string_view what) {
+    return record(at, std::string(apci::status_name(status)),
+                  fmt::format("{}: {}", what, board_.last_error()));
+}
+
+// One error per Table 4 bit set.
+bool Execution::tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text) {
+    for (int bit = 0; bit < 32; ++bit) {
+        if ((static_cast<std::uint32_t>(bits) & (1u << bit)) == 0) continue;
+        const char* name = apci_tc_error_bit_name(bit);
+        record(at, name != nullptr ? std::string(name) : fmt::format("bit{}", bit), text);
+    }
+    return false;
+}
+
+void Execution::program_error(const nc::Diagnostic& d) {
+    record(BlockRef{d.block == nc::kNoBlockNumber ? kNoBlock : d.block, d.line},
+           std::string(nc::error_kind_name(d.kind)), d.to_string());
+}
+
+// Self-approach findings (self_approach.h): warnings, or with --self-approach=error the
+// first one is the run's error (the run stops).
+bool Execution::take_findings() {
+    for (const SelfApproachFinding& f : findings_) {
+        if (self_approach_mode_ == SelfApproachMode::kError) {
+            findings_.clear();
+            return record(f.path_block, "SelfApproach", describe(f));
+        }
+        out.warnings.push_back(RunError{f.path_block, "SelfApproach", describe(f)});
+        sink_.warning(out.warnings.back(), f.where);
+    }
+    findings_.clear();
+    return true;
+}
+
+// Records an error; returns false (the run stops).
+bool Execution::record(BlockRef at, std::string code, std::string message) {
+    // A board error names the block by its tag (its N); the line comes from the spooled move.
+    if (at.line == 0 && at.number != kNoBlock)
+        if (const PathSegment* s = recent_.find(encode_block_tag(at))) at.line = s->block.line;
+    RunError e{at, std::move(code), std::move(message)};
+    sink_.error(e, where(at));
+    out.errors.push_back(std::move(e));
+    return false;
+}
+
+// Midway along the programmed move of the block, else where the axes stand.
+Point Execution::where(const BlockRef& at) {
+    if (const PathSegment* s = recent_.find(encode_block_tag(at))) return point_along(*s, 0.5);
+    const auto st = board_.motion_status();
+    Point p = Point::Zero();
+    if (st)
+        for (int i = 0; i < 3; ++i) p[i] = st.value.position[axis(i)];
+    return p;
+}
+
+// Busy: the spooler is full; running until idle empties it.
+bool Execution::make_room() {
+    const std::uint64_t before = cycles_seen_;
+    if (!run_clock()) return false;
+    if (cycles_seen_ == before)
+        return record({}, "Busy", "the spooler is full and the clock does not move it");
+    return true;
+}
+
+// Runs the clock until the axes stop (in chunks while samples are recorded), reading the
+// executed segments and samples as they come.
+bool Execution::run_clock() {
+    if (run_clock_until_idle()) return true;
+    clock_ok_ = false;
+    return false;
+}
+
+bool Execution::run_clock_until_idle() {
+    for (;;) {
+        if (!plc_.due()) return false;
+        std::uint64_t chunk = tracing_ ? ProgramExecutor::kTraceChunk : kRunForever;
+        if (const std::uint64_t* due = plc_.next_cycle())
+            chunk = std::min(chunk, *due - (cycles_seen_ - start_cycle_));
+        const auto st = board_.run_until_idle(chunk);
+        if (!clocked(st, "run clock")) return false;
+        if (st.value.segments_lost != segments_lost_ || st.value.trace_lost != trace_lost_) {
+            segments_lost_ = st.value.segments_lost;
+            trace_lost_ = st.value.trace_lost;
+            return record({}, "Lost",
+                          "executed segments or samples were lost before they were read");
+        }
+        if ((st.value.flags & APCI_MOTION_IDLE) != 0) return plc_.due();
+    }
+}
+
+// Steps the clock by exactly `cycles` (idle cycles included), reading what it produced.
+bool Execution::step_clock(std::uint64_t cycles) {
+    while (cycles > 0) {
+        const std::uint64_t chunk =
+            tracing_ ? std::min<std::uint64_t>(cycles, ProgramExecutor::kTraceChunk) : cycles;
+        const auto st = board_.step(chunk);
+        if (!clocked(st, "step clock")) return false;
+        cycles -= chunk;
+    }
+    return true;
+}
+
+// What a clock call produced: the cycle it reached, and the executed segments and samples,
+// read.
+bool Execution::clocked(const apci::Result<apci_motion_status>& st, std::string_view what) {
+    if (!st) return board_failure({}, st.status, what);
+    cycles_seen_ = st.value.now;
+    return drain_segments(st.value.segments_pending) &&
+           (!tracing_ || drain_samples(st.value.trace_pending));
+}
+
+// Reads the `pending` executed segments the clock call reported, in batches of at most
+// kReadBatch (asking for no more than are there keeps each read small).
+bool Execution::drain_segments(std::uint64_t pending) {
+    while (pending > 0) {
+        const std::size_t want =
+            static_cast<std::size_t>(std::min<std::uint64_t>(pending, segments_.size()));
+        const auto r = board_.read_segments(segments_.data(), want);
+        if (!r) return board_failure({}, r.status, "read segments");
+        for (std::size_t i = 0; i < r.value; ++i) {
+            const PathSegment s = convert(segments_[i]);
+            count_segment(out.totals, s);
+            sink_.executed(s);
+            if (self_approach_mode_ != SelfApproachMode::kOff) {
+                self_approach_.executed(s, findings_);
+                if (!take_findings()) return false;
+            }
+        }
+        if (r.value == 0) break;
+        pending -= std::min<std::uint64_t>(pending, r.value);
+    }
+    return true;
+}
+
+bool Execution::drain_samples(std::uint64_t pending) {
+    while (pending > 0) {
+        const std::size_t want =
+            static_cast<std::size_t>(std::min<std::uint64_t>(pending, samples_.size()));
+        const auto r = board_.read_trace(samples_.data(), want);
+        if (!r) return board_failure({}, r.status, "read trace");
+        for (std::size_t i = 0; i < r.value; ++i) {
+            const apci_trace_sample& t = samples_[i];
+            const double time =
+                static_cast<double>(t.cycle * static_cast<std::uint64_t>(cycle_us_)) / 1e6;
+            sink_.sample(t.cycle, time, std::span<const double>(t.position, APCI_AXIS_COUNT));
+        }
+        if (r.value == 0) break;
+        pending -= std::min<std::uint64_t>(pending, r.value);
+    }
+    return true;
+}
+
+// A board segment in program coordinates: X, Y, Z from their board axes, the tool length
+// compensation taken off (the tool centre point, docs/design.md section 7).
+PathSegment Execution::convert(const apci_segment& b) {
+    PathSegment s;
+    s.block = decode_block_tag(b.tag);
+    s.role = role_of(b.role);
+    s.start_cycle = b.start_cycle;
+    s.end_cycle = b.end_cycle;
+    s.kind = b.role == APCI_ROLE_RAPID    ? SegmentKind::kRapid
+             : b.kind == APCI_SEGMENT_ARC ? SegmentKind::kArc
+                                          : SegmentKind::kLine;
+    for (int i = 0; i < 3; ++i) {
+        const std::int32_t a = axis(i);
+        s.start[i] = b.start[a];
+        s.end[i] = b.end[a];
+        s.center[i] = b.center[a];
+    }
+    if (s.kind == SegmentKind::kArc) arc_plane(b, s);
+    if (head.trafo) {
+        // Back to the tool tip, at the B each end has (a B that turns along a line moves the
+        // pivot linearly, so the tip is exact at the ends).
+        const double b0 = b.start[head.b_axis], b1 = b.end[head.b_axis];
+        s.start -= head.trafo_length * tool_axis(b0);
+        s.end -= head.trafo_length * tool_axis(b1);
+        s.center -= head.trafo_length * tool_axis(b0);
+    }
+    const int z = plane_axes(comp_plane).third;
+    const double end_offset = ends_length_compensated(s.role) ? length : 0.0;
+    s.start[z] -= start_offset_;
+    s.center[z] -= start_offset_;
+    s.end[z] -= end_offset;
+    start_offset_ = end_offset;
+    // A line the 3D module compensated is a contour element (the board's spooler, which
+    // knows only the TC module, calls it uncompensated; the TC's length compensation did
+    // not act on it, as the offsets above say).
+    if (s.role == Role::kUncompensated && b.role != APCI_ROLE_RAPID && c3_.read_back(b.tag))
+        s.role = Role::kContour;
+    return s;
+}
+
+// The arc's plane code and sense in program axes.
+void Execution::arc_plane(const apci_segment& b, PathSegment& s) const noexcept {
+    int first = -1, second = -1;
+    for (int i = 0; i < 3; ++i) {
+        if (axis(i) == b.plane_axes[0]) first = i;
+        if (axis(i) == b.plane_axes[1]) second = i;
+    }
+    s.ccw = b.ccw != 0;
+    s.plane = 17;
+    for (const int code : {17, 18, 19}) {
+        const PlaneAxes p = plane_axes(code);
+        if (p.first == first && p.second == second) {
+            s.plane = code;
+        } else if (p.first == second && p.second == first) {
+            s.plane = code;  // named the other way round: seen from the other side
+            s.ccw = !s.ccw;
+        }
+    }
+}
+
+}  // namespace apci::run::exec

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: MIT
+// The executor's shared context and core (executor.h; the units' interface is module_unit.h):
+// one run of a program against a board. The core sets the board up and finishes the run
+// (executor.cpp), dispatches each event to the unit of its module (Execution::dispatch, the one
+// table), and spools moves and arcs, reaches the board, runs the clock, reads the trace and the
+// executed segments back and records errors and self-approach findings (execution.cpp). The
+// units: TC (tc_unit.cpp), OTC (otc_unit.cpp), Klartext 3D (comp3d_unit.cpp), temperature
+// (temp_unit.cpp), the scripted PLC (plc_unit.cpp), the NC variables (variables_unit.cpp).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "apci/apci.hpp"
+#include "apci/nc/events.h"
+#include "apci/run/executor.h"
+#include "apci/run/self_approach.h"
+#include "comp3d_unit.h"
+#include "otc_unit.h"
+#include "plc_unit.h"
+#include "tc_unit.h"
+#include "temp_unit.h"
+#include "variables_unit.h"
+
+namespace apci::run::exec {
+
+// A small ring of the last programmed moves, to place an error reported by block tag.
+class RecentMoves {
+  public:
+    static constexpr std::size_t kSize = 64;
+    void add(std::uint32_t tag, const PathSegment& s) noexcept {
+        moves_[next_ % kSize] = Entry{tag, s};
+        ++next_;
+    }
+    const PathSegment* find(std::uint32_t tag) const noexcept {
+        const std::size_t n = std::min(next_, kSize);
+        for (std::size_t i = 1; i <= n; ++i) {
+            const Entry& e = moves_[(next_ - i) % kSize];
+            if (e.tag == tag) return &e.segment;
+        }
+        return nullptr;
+    }
+
+  private:
+    struct Entry {
+        std::uint32_t tag = 0;
+        PathSegment segment;
+    };
+    std::array<Entry, kSize> moves_{};
+    std::size_t next_ = 0;
+};
+
+// The head: the B (and C) axes the 3D module turns, and #TRAFO's tool-tip transformation of
+// the B head (docs/design.md section 8; docs/otc.md).
+struct HeadState {
+    bool trafo = false;         // #TRAFO ON: programs give the tool tip
+    double trafo_length = 0.0;  // the tool length it uses (mm)
+    double b_now = 0.0;         // the B the spooled moves end at
+    std::int32_t b_axis = 4;
+    std::int32_t c_axis = 5;
+    bool pending = false;  // a B/C programmed and not yet spooled with a move
+    BlockRef at{};
+    double b = 0.0;
+    double c = 0.0;
+};
+
+class Execution {
+  public:
+    Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
+              const nc::CorrectionTable* corrections, SelfApproachMode self_approach);
+
+    RunOutcome run(nc::EventStream& events);
+
+    // ---- what the units reach through the context
+
+    apci::Board& board() noexcept { return board_; }
+    const nc::ToolTable* tools() const noexcept { return tools_; }
+    TcUnit& tc_unit() noexcept { return tc_; }
+    OtcUnit& otc_unit() noexcept { return otc_; }
+    TempUnit& temp_unit() noexcept { return temp_; }
+
+    std::int32_t axis(int program_axis) const noexcept {
+        return axes[static_cast<std::size_t>(program_axis)];
+    }
+    // The board axis of channel axis i (0 X, 1 Y, 2 Z through Axis-Nr; the others as numbered).
+    std::int32_t channel_axis(int i) const noexcept { return i < 3 ? axis(i) : i; }
+    std::uint64_t cycles_seen() const noexcept { return cycles_seen_; }
+    // Cycles since the run's start.
+    std::uint64_t cycles_run() const noexcept { return cycles_seen_ - start_cycle_; }
+
+    template <typename T>
+    bool write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what);
+    bool board_failure(const BlockRef& at, apci::Status status, std::string_view what);
+    bool no_module(const BlockRef& at, std::string_view what, std::string_view module);
+    bool record(BlockRef at, std::string code, std::string message);
+    bool run_clock();
+    bool step_clock(std::uint64_t cycles);
+
+    static PathSegment line_segment(const BlockRef& at, SegmentKind kind,
+                                    const Eigen::Vector3d& start, const Eigen::Vector3d& end);
+    apci_profile profile(const BlockRef& at, std::uint8_t kind, const Eigen::Vector3d& end,
+                         double feed) noexcept;
+    void add_head(apci_profile& p) noexcept;
+    // A programmed move on its way to the board: to the sink, and to the recent moves.
+    void programmed(const PathSegment& s, std::uint32_t tag);
+    bool spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r);
+    void begin_self_approach();
+    bool end_self_approach();
+
+    // ---- state the units share
+    RunOutcome out;
+    std::array<int, 3> axes{0, 1, 2};
+    int plane = 17;
+    int comp_plane = 17;  // the plane of the compensation under way or last run
+    bool comp_on = false;
+    bool comp_plane_seen = false;
+    double length = 0.0;      // WkzLen of the current tool
+    double radius = 0.0;      // RADIUS of the current tool
+    nc::ToolTable tools_mut;  // the tool list as the run changes it (wear at tool change)
+    int current_tool = 0;
+    HeadState head;
+
+  private:
+    void draw_rest(nc::EventStream& events);
+    bool setup();
+    bool read_axis_numbers();
+    void finish();
+    bool dispatch(const nc::Event& ev);
+    bool end_of_program(const BlockRef& at);
+    bool trafo(const BlockRef& at, const nc::TrafoChange& e);
+
+    static PathSegment arc_segment(const BlockRef& at, const nc::ArcMove& a);
+    bool move(const BlockRef& at, const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+              std::uint8_t kind, double feed);
+    bool arc(const BlockRef& at, const nc::ArcMove& a);
+    Eigen::Vector3d pivot_of(const Eigen::Vector3d& tip, double b_deg) const noexcept;
+    bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p);
+
+    bool write_failure(const BlockRef& at, apci::Status status, std::string_view what);
+    bool tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text);
+    void program_error(const nc::Diagnostic& d);
+    bool take_findings();
+    Point where(const BlockRef& at);
+    bool make_room();
+    bool run_clock_until_idle();
+    bool clocked(const apci::Result<apci_motion_status>& st, std::string_view what);
+    bool drain_segments(std::uint64_t pending);
+    bool drain_samples(std::uint64_t pending);
+    PathSegment convert(const apci_segment& b);
+    void arc_plane(const apci_segment& b, PathSegment& s) const noexcept;
+
+    apci::Board& board_;
+    RunSink& sink_;
+    const nc::ToolTable* tools_;
+    std::int32_t cycle_us_ = 1000;
+    std::uint64_t start_cycle_ = 0;
+    std::uint64_t cycles_seen_ = 0;
+    std::uint64_t segments_lost_ = 0;
+    std::uint64_t trace_lost_ = 0;
+    bool tracing_ = false;
+    bool set_up_ = false;   // setup() succeeded: the board was configured for the run
+    bool clock_ok_ = true;  // no clock call failed
+    bool klartext_ = false;
+    double start_offset_ = 0.0;  // length compensation at the end of the last segment read
+    RecentMoves recent_;
+    std::vector<apci_segment> segments_;
+    std::vector<apci_trace_sample> samples_;
+    SelfApproachMode self_approach_mode_;
+    SelfApproachCheck self_approach_;
+    std::vector<SelfApproachFinding> findings_;
+
+    // The units, one per module.
+    TcUnit tc_;
+    OtcUnit otc_;
+    Comp3dUnit c3_;
+    TempUnit temp_;
+    PlcUnit plc_;
+    VariablesUnit variables_;
+};
+
+}  // namespace apci::run::exec

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+#include "tc_unit.h"
+
+#include <fmt/format.h>
+
+#include "execution.h"
+
+namespace apci::run::exec {
+
+namespace {
+
+namespace tc = rwmos::tc;
+
+// The plane each group compensates in (group g serves plane kGroupPlane[g - 1]).
+constexpr std::array<int, kGroups> kGroupPlane{17, 18, 19};
+
+}  // namespace
+
+// RESET (every group to power-on), then group g in the plane kGroupPlane[g - 1], and the
+// program's start state: G17, and the NC start corner mode (G25; the board's own default is
+// circular).
+bool TcUnit::setup() {
+    auto reset = group_object(1, tc::kSubReset);
+    if (!run_.write(reset, std::int32_t{1}, {}, "RESET")) return false;
+    for (std::int32_t g = 1; g <= kGroups; ++g) {
+        const PlaneAxes p = plane_axes(kGroupPlane[static_cast<std::size_t>(g - 1)]);
+        auto x = group_object(g, tc::kSubXAxis);
+        auto y = group_object(g, tc::kSubYAxis);
+        auto z = group_object(g, tc::kSubZAxis);
+        auto corner = group_object(g, tc::kSubCornerMode);
+        if (!run_.write(x, run_.axis(p.first), {}, "XAxis") ||
+            !run_.write(y, run_.axis(p.second), {}, "YAxis") ||
+            !run_.write(z, run_.axis(p.third), {}, "ZAxis") ||
+            !run_.write(corner, std::int32_t{nc::g_number(nc::kStartCornerMode)}, {},
+                        "CornerMode"))
+            return false;
+    }
+    auto plane = init_object(tc::kIdxTcPlane);
+    return run_.write(plane, std::int32_t{17}, {}, "TcPlane");
+}
+
+void TcUnit::read_registers() {
+    for (std::int32_t g = 1; g <= kGroups; ++g) {
+        GroupRegisters r;
+        r.group = g;
+        auto e = group_object(g, tc::kSubError);
+        auto s = group_object(g, tc::kSubStatus);
+        const auto error = run_.board().read_int(e);
+        const auto status = run_.board().read_int(s);
+        r.readable = error.ok() && status.ok();
+        r.error = error.value_or(0);
+        r.status = status.value_or(0);
+        run_.out.registers.push_back(r);
+    }
+}
+
+bool TcUnit::tool(const BlockRef& at, int index) {
+    if (run_.out.otc_present && !run_.otc_unit().change_tool(at, index)) return false;
+    run_.current_tool = index;
+    if (!run_.out.tc_present) return true;  // no TC module: nothing takes a tool
+    const nc::ToolData* t =
+        run_.tools() != nullptr && index > 0 ? run_.tools_mut.find(index) : nullptr;
+    const double radius = t != nullptr ? t->radius_mm() : 0.0;
+    const double length = t != nullptr ? t->length_mm() : 0.0;
+    // A tool change: the axes stop first, so every segment read back so far ran with the
+    // old tool's length.
+    if (!run_.run_clock()) return false;
+    for (std::int32_t g = 1; g <= kGroups; ++g) {
+        auto index_object = group_object(g, tc::kSubWkzIndex);
+        auto radius_object = group_object(g, tc::kSubRadius);
+        auto length_object = group_object(g, tc::kSubWkzLen);
+        if (!run_.write(index_object, std::int32_t{index}, at, "WKZINDEX") ||
+            !run_.write(radius_object, radius, at, "RADIUS") ||
+            !run_.write(length_object, length, at, "WkzLen"))
+            return false;
+    }
+    run_.length = length;
+    run_.radius = radius;
+    return true;
+}
+
+bool TcUnit::plane(const BlockRef& at, nc::Plane p) {
+    run_.plane = nc::g_number(p);
+    if (!run_.out.tc_present) return true;
+    // The length axis changes with the plane: segments of the last contour are read first.
+    if (!run_.run_clock()) return false;
+    auto o = init_object(tc::kIdxTcPlane);
+    return run_.write(o, std::int32_t{run_.plane}, at, "TcPlane");
+}
+
+bool TcUnit::corner(const BlockRef& at, nc::CornerMode m) {
+    if (!run_.out.tc_present) return true;
+    for (std::int32_t g = 1; g <= kGroups; ++g) {
+        auto o = group_object(g, tc::kSubCornerMode);
+        if (!run_.write(o, std::int32_t{nc::g_number(m)}, at, "CornerMode")) return false;
+    }
+    return true;
+}
+
+bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
+    if (!run_.out.tc_present) {
+        return run_.record(at, "NoSuchDevice",
+                           fmt::format("G{} needs the TC module (bus 1300), and this board's "
+                                       "firmware has no optionTC",
+                                       nc::g_number(side)));
+    }
+    if (run_.comp_on && !compensation_off(at)) return false;
+    if (side == nc::Compensation::kOff) return true;
+    auto select = group_object(tc::kActiveGroupIndex,
+                               side == nc::Compensation::kLeft ? tc::kSubLeft : tc::kSubRight);
+    auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
+    if (!run_.write(select, std::int32_t{1}, at,
+                    side == nc::Compensation::kLeft ? "Left" : "Right") ||
+        !run_.write(status, std::int32_t{1}, at, "STATUS = 1"))
+        return false;
+    run_.comp_on = true;
+    run_.comp_plane = run_.plane;
+    run_.begin_self_approach();
+    if (!run_.comp_plane_seen) {
+        run_.comp_plane_seen = true;
+        run_.out.plot_plane = run_.plane;
+    }
+    return true;
+}
+
+// STATUS = 0: the held profile is spooled with the departure ([APCI-TC] section 1).
+bool TcUnit::compensation_off(const BlockRef& at) {
+    auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
+    if (!run_.write(status, std::int32_t{0}, at, "STATUS = 0")) return false;
+    run_.comp_on = false;
+    return run_.end_self_approach();
+}
+
+}  // namespace apci::run::exec

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// The TC module's unit of the executor (bus 1300; docs/apcictl.md "run"): the three
+// compensation groups, the tool (D n), the plane (G17..G19), the corner mode (G25/G26) and the
+// radius compensation (G40..G42).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "apci/apci.hpp"
+#include "apci/nc/events.h"
+#include "apci/run/executor.h"
+#include "module_unit.h"
+#include "rwmos/object_map.h"
+
+namespace apci::run::exec {
+
+inline constexpr std::int32_t kGroups = rwmos::tc::kGroupCount;
+
+class TcUnit final : public ModuleUnit {
+  public:
+    explicit TcUnit(Execution& run) noexcept : ModuleUnit(run) {}
+
+    bool setup();
+    bool tool(const BlockRef& at, int index);
+    bool plane(const BlockRef& at, nc::Plane p);
+    bool corner(const BlockRef& at, nc::CornerMode m);
+    bool compensation(const BlockRef& at, nc::Compensation side);
+    bool compensation_off(const BlockRef& at);
+    void read_registers();
+};
+
+}  // namespace apci::run::exec
