@@ -180,7 +180,7 @@ std::vector<ObjectRow> object_rows() {
         {"TT_TOOL_TEMP_COMP0", TT(1, 0), kD, rw, D(0.0), D(0.01), true, c3_range()},
         {"TT_TOOL_TEMP_COMP1", TT(1, 1), kD, rw, D(0.0), D(-0.02), true, c3_range()},
         {"TT_TOOL_TEMP_COMP2", TT(1, 2), kD, rw, D(0.0), D(0.03), true, c3_range()},
-        {"TT_TOOL_TEMP_COMP_ON", TT(2), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"TT_TOOL_TEMP_COMP_ON", TT(2), kI, rw, I(0), I(-7), true, {}},  // int32: not 0 is on
         {"TT_ToolHolder", TT(4), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
         {"TT_HeadAxisB", TT(5), kI, rw, I(4), I(6), true, {low(I(-1)), high(I(8))}},
         {"TT_HeadAxisC", TT(6), kI, rw, I(-1), I(5), true, {low(I(-2)), high(I(8))}},

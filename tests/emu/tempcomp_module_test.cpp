@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "motion_fixture.h"
@@ -107,6 +108,23 @@ TEST_F(TempCompBoard, WithoutMd20390NothingActs) {
     ASSERT_EQ(set(tcomp::kIdxToolTempCompOn, 0, 0), Status::kOk);
     step_both(1);
     EXPECT_EQ(displacement()[2], 0.0);
+}
+
+// [SIN-TEMP]: MD 20390 activates the function with any value "ungleich Null"; the object keeps
+// the value as written (docs/object-map.md section 7).
+TEST_F(TempCompBoard, AnyNonZeroMd20390SwitchesOnAndReadsBackAsWritten) {
+    ASSERT_EQ(set(tcomp::kIdxTempCompType, 2, 0x04), Status::kOk);
+    comp(0.0, 0.0, 0.03);
+    for (const std::int32_t on : {2, -1, 7, std::numeric_limits<std::int32_t>::min(),
+                                  std::numeric_limits<std::int32_t>::max()}) {
+        ASSERT_EQ(set(tcomp::kIdxToolTempCompOn, 0, on), Status::kOk) << on;
+        EXPECT_EQ(board.read_int(tcomp::kBus, tcomp::kDevice, tcomp::kIdxToolTempCompOn, 0), on);
+        step_both(1);
+        EXPECT_EQ(displacement()[2], 0.03) << "MD 20390 = " << on;
+        ASSERT_EQ(set(tcomp::kIdxToolTempCompOn, 0, 0), Status::kOk);
+        step_both(1);
+        EXPECT_EQ(displacement()[2], 0.0) << "MD 20390 = 0 after " << on;
+    }
 }
 
 // [SIN-TEMP]: "Ist dieses Bit für eine bestimmte Kanalachse nicht gesetzt, kann in dieser Achse

@@ -357,6 +357,21 @@ TEST(PlcScriptTemperature, ParsesTheSettingAndMachineData) {
     EXPECT_EQ(apci::run::plc_unit_name(c[1]), "temp_comp_type[7]");
 }
 
+// [SIN-TEMP]: MD 20390 is on for any value "ungleich Null": the script passes any int32 on.
+TEST(PlcScriptTemperature, Md20390TakesAnyWholeInt32) {
+    auto s = apci::run::parse_plc_script(
+        "cycle 0 tool_temp_comp_on 2\ncycle 0 tool_temp_comp_on -2147483648\n"
+        "cycle 0 tool_temp_comp_on 2147483647\ncycle 0 tool_temp_comp_on FALSE\n",
+        "p.plc");
+    ASSERT_TRUE(s) << s.error().to_string();
+    const auto& c = s.value().cycle_writes();
+    ASSERT_EQ(c.size(), 4u);
+    EXPECT_EQ(c[0].value, 2.0);
+    EXPECT_EQ(c[1].value, -2147483648.0);
+    EXPECT_EQ(c[2].value, 2147483647.0);
+    EXPECT_EQ(c[3].value, 0.0);
+}
+
 TEST(PlcScriptTemperature, RefusalsNameTheLineAndWhatWasWrong) {
     auto err = [](const char* text) {
         auto s = apci::run::parse_plc_script(text, "p.plc");
@@ -374,8 +389,15 @@ TEST(PlcScriptTemperature, RefusalsNameTheLineAndWhatWasWrong) {
               "p.plc:1:27: expected a value (a finite number)");
     EXPECT_EQ(err("cycle 5 tool_temp_comp[0] inf"),
               "p.plc:1:27: expected a value (a finite number)");
-    EXPECT_EQ(err("cycle 5 tool_temp_comp_on 2"),
-              "p.plc:1:27: tool_temp_comp_on (MD 20390) takes 0, 1, TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 tool_temp_comp_on 2.5"),
+              "p.plc:1:27: tool_temp_comp_on (MD 20390) takes a whole number (int32; not 0: on), "
+              "TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 tool_temp_comp_on 2147483648"),
+              "p.plc:1:27: tool_temp_comp_on (MD 20390) takes a whole number (int32; not 0: on), "
+              "TRUE or FALSE");
+    EXPECT_EQ(err("cycle 5 tool_temp_comp_on on"),
+              "p.plc:1:27: tool_temp_comp_on (MD 20390) takes a whole number (int32; not 0: on), "
+              "TRUE or FALSE");
     EXPECT_EQ(err("cycle 5 temp_comp_type[1] 4.5"),
               "p.plc:1:27: temp_comp_type[i] (MD 32750) takes a whole number 0..255 (bit 2, 4: "
               "the axis takes the vector)");

@@ -183,7 +183,7 @@ namespace tempcomp {
 inline constexpr std::int32_t kBus = 1320;
 inline constexpr std::int32_t kDevice = 0;
 inline constexpr std::int32_t kIdxToolTempComp = 1;   // double r/w, Sub 0..2: SD 42960 [0..2]
-inline constexpr std::int32_t kIdxToolTempCompOn = 2;  // int r/w 0..1: MD 20390
+inline constexpr std::int32_t kIdxToolTempCompOn = 2;  // int r/w int32: MD 20390, != 0 on
 inline constexpr std::int32_t kIdxTempCompType = 3;   // int r/w 0..255, Sub = axis: MD 32750
 inline constexpr std::int32_t kIdxToolHolder = 4;     // int r/w 0..1: orientable tool holder
 inline constexpr std::int32_t kIdxHeadAxisB = 5;      // int r/w 0..7: board axis of the head's B

@@ -156,7 +156,8 @@ class LineParser {
         const char* flag_error = w.otc() ? "enable takes 0, 1, TRUE or FALSE"
                                  : w.unit == PlcWrite::Unit::kToolHolder
                                      ? "tool_holder takes 0, 1, TRUE or FALSE"
-                                     : "tool_temp_comp_on (MD 20390) takes 0, 1, TRUE or FALSE";
+                                     : "tool_temp_comp_on (MD 20390) takes a whole number "
+                                       "(int32; not 0: on), TRUE or FALSE";
         if (w.flag() && nc::is_letter(c_.peek())) {
             const std::string_view v = c_.scan_identifier();
             if (word_is(v, "true")) {
@@ -183,6 +184,12 @@ class LineParser {
                 w.value = d;
                 return true;
             case PlcWrite::Unit::kToolTempCompOn:
+                // [SIN-TEMP]: MD 20390 "ungleich Null" activates; the object takes any int32.
+                if (d != std::floor(d) || d < std::numeric_limits<std::int32_t>::min() ||
+                    d > std::numeric_limits<std::int32_t>::max())
+                    return fail(col, flag_error);
+                w.value = d;
+                return true;
             case PlcWrite::Unit::kToolHolder:
                 if (d != 0.0 && d != 1.0) return fail(col, flag_error);
                 w.value = d;
