@@ -45,8 +45,10 @@ motion::TcSettings MotionLayer::settings() const noexcept {
         const TcGroup& g = tc.group(s.active_group);
         s.run = g.running();
         s.side = g.side == tc::kSideRight ? geom::Side::kRight : geom::Side::kLeft;
-        s.radius = g.tool().radius;
-        s.length = g.tool().length;
+        // RADIUS and WkzLen are kept as written, in the unit PU selects ([APCI-TC]
+        // Table 3); the board moves in mm.
+        s.radius = board::pu_to_millimetres(g.tool().radius, state_.pu);
+        s.length = board::pu_to_millimetres(g.tool().length, state_.pu);
         s.transition = g.corner_mode == tc::kCornerLinear ? geom::TransitionMode::kLinear
                                                           : geom::TransitionMode::kCircular;
         s.length_axis = static_cast<std::uint8_t>(g.z_axis);

@@ -260,7 +260,9 @@ void OtcEngine::start_session() noexcept {
     const geom::PlaneAxes pa = geom::plane_axes(session_.plane);
     session_.plane_axes = {session_.xyz[static_cast<std::size_t>(pa.first)],
                            session_.xyz[static_cast<std::size_t>(pa.second)]};
-    session_.unit = static_cast<otc::LengthUnit>(state_.pu);
+    // The offsets act on positions, which are mm whatever PU says (PU is the unit of the TC
+    // tool values only, docs/object-map.md section 2).
+    session_.unit = otc::LengthUnit::kMillimetre;
     session_.length_direction =
         otc::length_direction(otc::tilt_to_degrees(o.tool.tilt_angle), session_.plane);
     session_.tool_from_b = o.kinematics == geom::kBHeadKinematicsId && o.trafo;
@@ -320,8 +322,9 @@ void OtcEngine::end_session() noexcept {
     const auto tool = static_cast<std::size_t>(o.tool.number);
     for (TcGroup& g : state_.tc.groups) {
         TcTool& t = g.tools[tool];
-        t.radius = std::max(0.0, t.radius - fold_radius);
-        t.length -= fold_length;
+        // The wear is mm; the tool values are kept in the unit PU selects.
+        t.radius = std::max(0.0, t.radius - board::millimetres_to_pu(fold_radius, state_.pu));
+        t.length -= board::millimetres_to_pu(fold_length, state_.pu);
     }
 
     // The offsets now on the axes ramp out from where they are: never a jump.

@@ -28,7 +28,7 @@ constexpr double kIntMin = objif::kInt32Min;
 constexpr double kIntMax = objif::kInt32Max;
 constexpr double kDoubleMax = std::numeric_limits<double>::max();
 constexpr double kLastAxis = kOtcAxisCount - 1;
-// The ramp's limits (design): above 0, at most 1e6 PU/s (or /s^2) like the TC tool sizes.
+// The ramp's limits (design): above 0, at most 1e6 mm/s (or /s^2) like the TC tool sizes.
 constexpr double kMinRamp = 1e-9;
 constexpr double kMaxRamp = 1.0e6;
 // P-TOOL-00138 in 0.0001 degree: [-45, 45] degrees.
@@ -95,11 +95,11 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
          &M::read_effective_wear_const, nullptr},
         {obj(kCh, otc::kIdxRampVelocity, 0, "RampVelocity", kDouble, kRW, kMinRamp, kMaxRamp,
              Value::of_double(kDefaultRampVelocity),
-             "design: largest speed of a discrete offset, PU/s ([ISG-OTC]: over several cycles)"),
+             "design: largest speed of a discrete offset, mm/s ([ISG-OTC]: over several cycles)"),
          &M::read_ramp_velocity, &M::write_ramp_velocity},
         {obj(kCh, otc::kIdxRampAcceleration, 0, "RampAcceleration", kDouble, kRW, kMinRamp,
              kMaxRamp, Value::of_double(kDefaultRampAcceleration),
-             "design: largest acceleration of a discrete offset at ACC_WEIGHT 100, PU/s^2"),
+             "design: largest acceleration of a discrete offset at ACC_WEIGHT 100, mm/s^2"),
          &M::read_ramp_acceleration, &M::write_ramp_acceleration},
         {obj(kCh, otc::kIdxKinematics, 0, "Kinematics", kInt, kRW, 0, geom::kBHeadKinematicsId,
              Value::of_int(0),
@@ -169,15 +169,15 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
          &M::read_tool_tilt, &M::write_tool_tilt},
         {obj(kTool, otc::kIdxWearRadius, 0, "V.G.WZ_AKT.WEAR_RADIUS", kDouble, kR, -kDoubleMax,
              kDoubleMax, Value::of_double(0.0),
-             "[ISG-OTC] 2.8: radius wear, discrete + continuous, PU; updated at #OTC OFF"),
+             "[ISG-OTC] 2.8: radius wear, discrete + continuous, mm; updated at #OTC OFF"),
          &M::read_wear_radius, nullptr},
         {obj(kTool, otc::kIdxWearRadiusCont, 0, "V.G.WZ_AKT.WEAR_RADIUS_CONT", kDouble, kR,
              -kDoubleMax, kDoubleMax, Value::of_double(0.0),
-             "[ISG-OTC] 2.8: continuous radius wear, PU; updated at #OTC OFF"),
+             "[ISG-OTC] 2.8: continuous radius wear, mm; updated at #OTC OFF"),
          &M::read_wear_radius_cont, nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 0, "V.G.WZ_AKT.WEAR[0]", kDouble, kR, -kDoubleMax,
           kDoubleMax, Value::of_double(0.0),
-          "[ISG-OTC] 2.8: wear on axis 0, PU; updated at #OTC OFF"},
+          "[ISG-OTC] 2.8: wear on axis 0, mm; updated at #OTC OFF"},
          &M::read_wear,
          nullptr},
         {{kTool, otc::kIdxWear, otc::kIdxWear, 1, "V.G.WZ_AKT.WEAR[1]", kDouble, kR, -kDoubleMax,

@@ -101,7 +101,7 @@ std::span<const Entry<TempCompModule>> TempCompModule::table() const noexcept {
         {obj(tempcomp::kIdxRampVelocity, 0, "RampVelocity", kDouble, kRW,
              tempcomp::kMinRampVelocity, tempcomp::kMaxRampVelocity,
              Value::of_double(tempcomp::kDefaultRampVelocity),
-             "design: PU/s at which an axis that left the geometry axes goes to zero"),
+             "design: mm/s at which an axis that left the geometry axes goes to zero"),
          &M::read_ramp, &M::write_ramp},
         offset(0),
         offset(1),

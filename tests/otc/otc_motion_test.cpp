@@ -71,6 +71,24 @@ TEST_F(OtcBoard, SeedLengthExampleWearsTenMillimetresLinearlyOnTheThirdAxis) {
     for (const auto& g : board.state().tc.groups) EXPECT_NEAR(g.tools[kTool].length, 40.0, kEps);
 }
 
+// PU (bus 1000 index 5) is the unit of the TC tool values only (docs/object-map.md section 2):
+// under PU 1 (um) the axes and the wear variables are mm as before, and the 10 mm fold into the
+// TC tool's length, which is kept in um, is 10000 um.
+TEST_F(OtcBoard, UnderPuMicrometreTheWearIsMmAndFoldsIntoTheToolInMicrometres) {
+    ASSERT_EQ(write_int(rwmos::board::kBus, rwmos::board::kDevice, rwmos::board::kIdxPu, 0,
+                        rwmos::board::kPuMicrometre),
+              Status::kOk);
+    grinding_tool();
+    const double before = board.state().tc.group(1).tools[kTool].length;
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(60, 1000.0, 0.0, 10000.0));
+    run();
+    EXPECT_NEAR(position()[2], -10.0, kEps);
+    run_and_off();
+    EXPECT_NEAR(wear(2), 10.0, kEps);
+    EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, before - 10000.0, 1e-6);
+}
+
 // [ISG-OTC] section 2.3.1: a tilted disc splits the wear over two main axes (G17: X and Z).
 TEST_F(OtcBoard, TiltedDiscSplitsTheWearIntoSinAndCosParts) {
     grinding_tool(otc::kGrindingToolType, kSeedWearConst, kSeedMaxInfeed, 300000.0);  // 30 degrees

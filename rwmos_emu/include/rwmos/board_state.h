@@ -34,7 +34,7 @@ inline constexpr std::int32_t kMaxInterpolationCycleUs = 10000;
 inline constexpr std::int32_t kFirmwareVersion = (1 << 16) | (0 << 8) | 0;
 
 struct AxisState {
-    double position = 0.0;  // interpolation units (PU)
+    double position = 0.0;  // interpolation units (mm)
 };
 
 // Placeholders the motion layer serves: SpoolerCapacity and SpoolerFill read these fields.

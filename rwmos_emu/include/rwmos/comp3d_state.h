@@ -17,7 +17,7 @@
 
 namespace rwmos {
 
-// One row of the tool table (DeviceNumber 1): R, R2 and the tool table's delta values, PU.
+// One row of the tool table (DeviceNumber 1): R, R2 and the tool table's delta values, mm.
 struct Comp3dTool {
     double r = 0.0;
     double r2 = 0.0;

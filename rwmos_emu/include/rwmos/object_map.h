@@ -27,8 +27,18 @@ inline constexpr std::int32_t kOptionTc = 0x01;   // optionTC: TC module (bus 13
 inline constexpr std::int32_t kOptionOtc = 0x02;  // OTC module (bus 1330) present (design)
 inline constexpr std::int32_t kOptionTempComp = 0x04;  // temperature compensation (bus 1320)
 
-// PU: the unit of lengths given to the firmware (RADIUS, WkzLen, positions).
+// PU: the unit of the TC tool values RADIUS and WkzLen ([APCI-TC] Table 3: "in der mit PU
+// angewählten Einheit"). The board moves in interpolation units, mm (positions, feeds,
+// profiles); docs/object-map.md section 2.
 enum PuUnit : std::int32_t { kPuMillimetre = 0, kPuMicrometre = 1, kPuInch = 2 };
+// A value in the unit `pu` selects, in interpolation units (mm), and back. A micrometre is
+// 1/1000 mm (a division, so 500 um is exactly 0.5 mm); an inch 25.4 mm.
+constexpr double pu_to_millimetres(double v, std::int32_t pu) noexcept {
+    return pu == kPuMicrometre ? v / 1000.0 : pu == kPuInch ? v * 25.4 : v;
+}
+constexpr double millimetres_to_pu(double mm, std::int32_t pu) noexcept {
+    return pu == kPuMicrometre ? mm * 1000.0 : pu == kPuInch ? mm / 25.4 : mm;
+}
 }  // namespace board
 
 // ---- TC module, bus 1300 ([APCI-TC] Tables 1-3; lost OCR numbers per docs/design.md section 3).
@@ -149,7 +159,7 @@ inline constexpr std::int32_t kIdxWearConstSource = 5;  // int r/w: 0 tool, 1 pr
 inline constexpr std::int32_t kIdxAccWeight = 6;       // int r/w: ACC_WEIGHT 1..100 %
 inline constexpr std::int32_t kIdxLastError = 7;       // int r/w: error number; a write clears
 inline constexpr std::int32_t kIdxEffectiveWearConst = 8;  // double r: the constant in force
-inline constexpr std::int32_t kIdxRampVelocity = 10;      // double r/w: PU/s
+inline constexpr std::int32_t kIdxRampVelocity = 10;      // double r/w: mm/s
 inline constexpr std::int32_t kIdxRampAcceleration = 11;  // double r/w: PU/s^2
 inline constexpr std::int32_t kIdxKinematics = 12;     // int r/w: #KIN ID, 0 none, 4 B head
 inline constexpr std::int32_t kIdxTrafo = 13;          // int r/w: #TRAFO 0 OFF, 1 ON

@@ -50,7 +50,7 @@ class OtcEngine final : public motion::CycleOffsets {
     std::int32_t axis_request(int axis) const noexcept;
     std::int32_t axis_state(int axis) const noexcept;
 
-    // The continuous wear of the session so far (PU), for tests and status.
+    // The continuous wear of the session so far (mm), for tests and status.
     double continuous_wear() const noexcept { return wear_; }
     // Every ramp rests on its target.
     bool ramps_settled() const noexcept;
@@ -121,7 +121,7 @@ class OtcEngine final : public motion::CycleOffsets {
     void add_offsets(const AxisVector& dir, double wear, AxisVector& pos) const noexcept;
     otc::RampLimits limits() const noexcept;
     bool ramps_at_rest_at_zero() const noexcept;
-    // A unit's commanded offset in PU, 0 when it does not act.
+    // A unit's commanded offset in mm, 0 when it does not act.
     double channel_command() const noexcept;
     double direction_command() const noexcept;
     double axis_command(int axis) const noexcept;
@@ -134,7 +134,7 @@ class OtcEngine final : public motion::CycleOffsets {
     Context ctx_;
     motion::Move last_move_{};
     bool have_last_ = false;
-    double wear_ = 0.0;  // continuous wear of the session so far (PU), at the last move's end
+    double wear_ = 0.0;  // continuous wear of the session so far (mm), at the last move's end
     std::array<otc::RampState, kOtcAxisCount> ramp_channel_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_direction_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_axes_{};

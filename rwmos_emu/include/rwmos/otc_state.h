@@ -32,7 +32,7 @@ struct OtcTool {
     double tilt_angle = 0.0;  // P-TOOL-00138 grinding_disc_tilt_angle, 0.0001 degree
 };
 
-// The wear of the current tool since it was changed in ([ISG-OTC] section 2.8), in PU. Updated
+// The wear of the current tool since it was changed in ([ISG-OTC] section 2.8), in mm. Updated
 // at #OTC OFF only ("Während aktiver OTC sind die V.G.WZ_AKT-Verschleißwerte nicht aktuell").
 struct OtcWear {
     double radius = 0.0;                       // V.G.WZ_AKT.WEAR_RADIUS: discrete + continuous

@@ -17,13 +17,13 @@
 namespace rwmos {
 
 struct TempCompState {
-    Eigen::Vector3d comp = Eigen::Vector3d::Zero();         // SD 42960 TOOL_TEMP_COMP[0..2], PU
+    Eigen::Vector3d comp = Eigen::Vector3d::Zero();         // SD 42960 TOOL_TEMP_COMP[0..2], mm
     std::int32_t on = 0;                                    // MD 20390 TOOL_TEMP_COMP_ON
     std::array<std::int32_t, tempcomp::kAxisCount> type{};  // MD 32750 TEMP_COMP_TYPE[axis]
     std::int32_t tool_holder = 0;  // 1: orientable tool holder (the B/C head)
     std::int32_t head_axis_b = 4;
     std::int32_t head_axis_c = tempcomp::kNoHeadAxis;
-    double ramp_velocity = tempcomp::kDefaultRampVelocity;  // PU/s
+    double ramp_velocity = tempcomp::kDefaultRampVelocity;  // mm/s
 };
 
 class TempCompEngine final : public motion::CycleOffsets {
@@ -32,7 +32,7 @@ class TempCompEngine final : public motion::CycleOffsets {
     TempCompEngine(const TempCompEngine&) = delete;
     TempCompEngine& operator=(const TempCompEngine&) = delete;
 
-    // The displacement of each board axis at the last evaluated cycle (PU).
+    // The displacement of each board axis at the last evaluated cycle (mm).
     const tempcomp::AxisValues& applied() const noexcept { return applied_; }
     // Some axis is still on its way to zero.
     bool ramping() const noexcept;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The units of [ISG-OTC]'s tool parameters and control units ([ISG-OTC], FCT-C20, section 3.2
-// and 2.7) and their conversion to interpolation units (PU, board object bus 1000 Index 5).
+// and 2.7) and their conversion to lengths; the OTC engine converts to mm, the unit the board
+// moves in (PU, board object bus 1000 Index 5, applies to the TC tool values only).
 #pragma once
 
 #include <cstdint>
