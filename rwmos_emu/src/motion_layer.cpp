@@ -71,7 +71,9 @@ void MotionLayer::sync() noexcept {
             g.status |= tc::kProfMarked;
         else
             g.status &= ~tc::kProfMarked;
-        if (n == comp) {
+        // The compensating group, or, with none, the group whose contour ended
+        // last: its shift stays until a profile, a direct command or ReInit removes it.
+        if (n == comp || (comp == 0 && n == spooler_.last_group())) {
             // The stored displacement of the correction axes: where the queue
             // ends against where the programmed path ends.
             const auto& end = exec_.planned_end();
@@ -139,6 +141,11 @@ void MotionLayer::discard_held_profile(std::int32_t group) {
 }
 
 void MotionLayer::compensation_started(std::int32_t) {
+    sync();
+}
+
+void MotionLayer::clear_shift() {
+    spooler_.clear_shift(settings(), exec_);
     sync();
 }
 

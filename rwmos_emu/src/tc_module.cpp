@@ -94,7 +94,8 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
                      Value::of_int(tc::kPlaneXY), "[APCI-TC] Table 2: 17 X-Y, 18 Z-X, 19 Y-Z"),
          &M::read_tc_plane, &M::write_tc_plane},
         {init_object(tc::kIdxReInit, 0, "ReInit", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                     "[APCI-TC] Table 2 ReInit (index: design): clear stored offsets; tools stay"),
+                     "[APCI-TC] Table 2 ReInit (index: design): clear stored offsets; tools stay; "
+                     "refused while a profile is held (not emulated)"),
          nullptr, &M::write_reinit},
         {init_object(tc::kIdxReset, 0, "Reset", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
                      "[APCI-TC] Table 2 Reset (index: design): stop corrections, clear offsets and "
@@ -202,6 +203,11 @@ void TcModule::discard_held_profile(std::int32_t number) {
         state_.tc_motion->discard_held_profile(number);
 }
 
+void TcModule::clear_shift() {
+    if (state_.tc_motion != nullptr) state_.tc_motion->clear_shift();
+    for (auto& g : tc().groups) g.offset = {};
+}
+
 // ---- DeviceNumber 0.
 
 // [APCI-TC] Table 2 Clean: "Mit diesem Kommando werden alle vorhandenen Objekte
@@ -215,6 +221,7 @@ Status TcModule::write_clean(const ObjectInfo&, const Address&, const Value&) {
         end_compensation(tc().group(n));
         discard_programming(tc().group(n));
     }
+    clear_shift();  // before the rotation goes: the programmed position was rotated with it
     TcState& s = tc();
     s.axis_nr = {0, 1, 2};
     s.plane = tc::kPlaneXY;
@@ -246,10 +253,19 @@ Status TcModule::write_tc_plane(const ObjectInfo&, const Address&, const Value& 
 }
 
 // [APCI-TC] Table 2 ReInit: "Intern gespeicherte Verschiebungswerte der
-// Korrekturachsen werden gelöscht ... Die programmierten Werkzeuge bleiben
-// aber aktiv." Only the offsets go; Run, held profiles and tools stay.
+// Korrekturachsen werden gelöscht. Dieses Kommando sollte vor einer
+// System-Reinitialisierung, z.B. erneute Referenzfahrt aufgerufen werden. Die
+// programmierten Werkzeuge bleiben aber aktiv." The shift a contour left (the
+// radius offset after SSF 2001 or an indirect deselection, WkzLen on the length
+// axis) is forgotten: where the queue ends becomes the programmed position.
+// Run, tools and every setting stay. While a profile is held a contour is under
+// way whose geometry starts from the shifted point; what ReInit does to it the
+// source does not say (it names the command for before a re-reference), so that
+// is refused as not emulated (WrongDeviceState, nothing changes; docs/object-map.md 3.4).
 Status TcModule::write_reinit(const ObjectInfo&, const Address&, const Value&) {
-    for (auto& g : tc().groups) g.offset = {};
+    for (const auto& g : tc().groups)
+        if (g.profile_held()) return Status::kWrongDeviceState;
+    clear_shift();
     return Status::kOk;
 }
 
@@ -262,6 +278,7 @@ Status TcModule::write_reset(const ObjectInfo&, const Address&, const Value&) {
         discard_held_profile(n);
         end_compensation(tc().group(n));
     }
+    clear_shift();
     return Status::kOk;
 }
 
@@ -323,6 +340,7 @@ Status TcModule::write_group_reset(const ObjectInfo&, const Address&, const Valu
         end_compensation(tc().group(n));
         discard_programming(tc().group(n));
     }
+    clear_shift();
     return Status::kOk;
 }
 

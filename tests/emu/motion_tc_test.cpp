@@ -455,4 +455,160 @@ TEST(MotionWithoutOptionTc, ProfilesRunAsProgrammed) {
     EXPECT_EQ(segs[1].role, SegmentRole::kUncompensated);
 }
 
+
+// ---- ReInit: the stored shift of the correction axes ([APCI-TC] Table 2; docs/motion.md 5)
+
+Profile line_x(std::uint32_t tag, double x) {
+    Profile p = line(tag, x, 0.0);
+    p.axes = 0x01;  // X only: Y and Z keep their programmed values
+    return p;
+}
+
+// A contour ended by SSF 2001 leaves the tool 1 to the left of the path and WkzLen 5 up. ReInit
+// forgets that shift: the board takes (10, 1, 5) as programmed, so a profile naming only X runs
+// its contour at Y 1 + 1 and Z 5 + 5, and the departure ends at (20, 1, 5), not (20, 0, 0).
+TEST_F(TcRules, ReInitForgetsTheShiftAContourLeftAndToolsStayActive) {
+    Rig twin;  // the same without ReInit
+    for (Rig* r : {static_cast<Rig*>(this), &twin}) {
+        r->setup_group(1.0);
+        ASSERT_EQ(r->write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
+        r->activate();
+        r->spool_ok(line3(1, 10, 0, 0));
+        ASSERT_EQ(r->board.ssf(0x03, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kOk);
+        r->run();
+        expect_at(r->position(), 10, 1, 5);
+    }
+    const auto& g = board.state().tc.group(1);
+    EXPECT_EQ(g.offset, (std::array<double, 3>{0.0, 1.0, 5.0})) << "the stored shift";
+
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxReInit, 0, 0), Status::kOk);
+    EXPECT_EQ(g.offset, (std::array<double, 3>{})) << "cleared";
+    expect_at(position(), 10, 1, 5);  // nothing moves
+    EXPECT_TRUE(running()) << "the programmed tools stay active";
+    EXPECT_EQ(read_double(tc::kBus, tc::kDevGroups, 1, tc::kSubRadius), 1.0);
+    EXPECT_EQ(read_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen), 5.0);
+
+    for (Rig* r : {static_cast<Rig*>(this), &twin}) {
+        r->segments();
+        r->spool_ok(line_x(2, 20));
+        ASSERT_EQ(r->deactivate(), Status::kOk);
+        r->run();
+    }
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 3u);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 20, 2, 10);
+    expect_at(position(), 20, 1, 5);
+    expect_at(twin.position(), 20, 0, 0);  // without ReInit the shift comes out at the departure
+}
+
+// Mid-contour the held profile's geometry starts from the shifted point; [APCI-TC] names ReInit
+// for before a re-reference only, so this is refused as not emulated and changes nothing.
+TEST_F(TcRules, ReInitWhileAProfileIsHeldIsRefusedAndChangesNothing) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_TRUE(prof_marked());
+    EXPECT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxReInit, 0, 0), Status::kWrongDeviceState);
+    EXPECT_TRUE(prof_marked());
+    EXPECT_TRUE(running());
+    EXPECT_EQ(error(), 0) << "no InitError: ReInit is no group setting";
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    expect_at(position(), 10, 0);
+    // With the contour ended, ReInit is accepted.
+    EXPECT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxReInit, 3, 1), Status::kOk);
+}
+
+// Under a rotation the programmed position is turned back with the shift: the rotated path
+// then starts where the tool stands. Rotation 90: program X runs along board Y; the left offset
+// of 1 is board -X. After ReInit a G01 naming only X stays at board X -1.
+TEST_F(TcRules, ReInitUnderARotationKeepsTheToolWhereItStands) {
+    rotate(90.0);
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(board.ssf(0x03, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kOk);
+    run();
+    expect_at(position(), -1, 10);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxReInit, 0, 0), Status::kOk);
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line_x(2, 20));
+    run();
+    expect_at(position(), -1, 20);
+}
+
+// Reset clears the shift as well ([APCI-TC] Table 2: "intern gespeicherte Verschiebungswerte
+// der Korrekturachsen ... werden gelöscht"): the uncompensated profile after it keeps Y and Z.
+TEST_F(TcRules, ResetForgetsTheShiftToo) {
+    setup_group(1.0);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
+    activate();
+    spool_ok(line3(1, 10, 0, 0));
+    ASSERT_EQ(board.ssf(0x03, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevInit, tc::kIdxReset, 0, 0), Status::kOk);
+    EXPECT_FALSE(running());
+    spool_ok(line_x(2, 20));
+    run();
+    expect_at(position(), 20, 1, 5);
+}
+
+// ---- PU: RADIUS and WkzLen in the unit PU selects, the board moves in mm (object-map 2)
+
+TEST_F(TcRules, RadiusInMicrometresCompensatesByItsMillimetreValue) {
+    Rig mm;
+    ASSERT_EQ(write_int(rwmos::board::kBus, rwmos::board::kDevice, rwmos::board::kIdxPu, 0,
+                        rwmos::board::kPuMicrometre),
+              Status::kOk);
+    setup_group(500.0);
+    EXPECT_EQ(read_double(tc::kBus, tc::kDevGroups, 1, tc::kSubRadius), 500.0) << "as written";
+    mm.setup_group(0.5);
+    for (Rig* r : {static_cast<Rig*>(this), &mm}) {
+        r->activate();
+        r->spool_ok(line(1, 10, 0));
+        r->spool_ok(line(2, 10, -10));
+        ASSERT_EQ(r->deactivate(), Status::kOk);
+        r->run();
+    }
+    const auto segs = segments();
+    const auto want = mm.segments();
+    ASSERT_EQ(segs.size(), want.size());
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        EXPECT_EQ(segs[i].role, want[i].role) << i;
+        EXPECT_EQ(segs[i].end, want[i].end) << i;
+    }
+    expect_at(segs[0].end, 0, 0.5);  // the approach: 0.5 mm to the left
+}
+
+TEST_F(TcRules, WkzLenInInchesShiftsZByItsMillimetreValue) {
+    ASSERT_EQ(write_int(rwmos::board::kBus, rwmos::board::kDevice, rwmos::board::kIdxPu, 0,
+                        rwmos::board::kPuInch),
+              Status::kOk);
+    setup_group(0.0);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 0.5), Status::kOk);
+    EXPECT_EQ(read_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen), 0.5) << "as written";
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(board.ssf(0x03, rwmos::motion::kSsfReleaseHeldProfile).status, Status::kOk);
+    run();
+    EXPECT_NEAR(position()[2], 12.7, kEps);
+}
+
+// The stored numbers are in the unit PU selects when they are used: a PU change reinterprets
+// them from the next profile (set PU with the machine setup, before the tool table).
+TEST_F(TcRules, PuChangeReinterpretsTheStoredToolValues) {
+    setup_group(2.0);
+    ASSERT_EQ(write_int(rwmos::board::kBus, rwmos::board::kDevice, rwmos::board::kIdxPu, 0,
+                        rwmos::board::kPuMicrometre),
+              Status::kOk);
+    EXPECT_EQ(read_double(tc::kBus, tc::kDevGroups, 1, tc::kSubRadius), 2.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_FALSE(segs.empty());
+    expect_at(segs[0].end, 0, 0.002);
+}
+
 }  // namespace

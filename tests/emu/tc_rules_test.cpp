@@ -20,9 +20,11 @@ public:
     }
     void discard_held_profile(std::int32_t group) override { discarded.push_back(group); }
     void compensation_started(std::int32_t group) override { started.push_back(group); }
+    void clear_shift() override { ++shifts_cleared; }
 
     Status release_answer = Status::kOk;
     std::vector<std::int32_t> released, discarded, started;
+    int shifts_cleared = 0;
 };
 
 class TcRules : public BoardFixture {
@@ -455,6 +457,7 @@ TEST_F(TcRules, ResetStopsAllCorrectionsAndClearsOffsetsAndHeldProfilesToolsStay
     EXPECT_EQ(write_int(tc_init(tc::kIdxReset), 0), Status::kOk);
 
     EXPECT_EQ(motion.discarded, std::vector<std::int32_t>{1});
+    EXPECT_EQ(motion.shifts_cleared, 1);
     for (std::int32_t n : {1, 2}) {
         EXPECT_EQ(status_of(n), 0) << "group " << n;
         EXPECT_EQ(group(n).offset, (std::array<double, 3>{})) << "group " << n;
@@ -470,16 +473,37 @@ TEST_F(TcRules, ResetStopsAllCorrectionsAndClearsOffsetsAndHeldProfilesToolsStay
 }
 
 TEST_F(TcRules, ReInitClearsStoredOffsetsOnlyToolsStayActive) {
+    RecordingMotion motion;
+    board.state().tc_motion = &motion;
+    initialise_group(1, 7, 3.0);
+    activate(1);
+    group(1).offset = {0.5, -0.5, 1.0};
+    group(3).offset = {2.0, 0.0, 0.0};
+    EXPECT_EQ(write_int(tc_init(tc::kIdxReInit), 0), Status::kOk);
+    EXPECT_EQ(motion.shifts_cleared, 1) << "the motion layer forgets the shift";
+    EXPECT_EQ(group(1).offset, (std::array<double, 3>{}));
+    EXPECT_EQ(group(3).offset, (std::array<double, 3>{}));
+    EXPECT_EQ(status_of(1), tc::kRun) << "compensation stays";
+    EXPECT_EQ(group(1).tools[7].radius, 3.0);
+    EXPECT_TRUE(motion.discarded.empty());
+}
+
+// While a profile is held (a contour under way) ReInit is not emulated: [APCI-TC] names it for
+// before a re-reference and does not say what it does to a contour. Refused, nothing changes,
+// no InitError.
+TEST_F(TcRules, ReInitIsRefusedWhileAProfileIsHeld) {
+    RecordingMotion motion;
+    board.state().tc_motion = &motion;
     initialise_group(1, 7, 3.0);
     activate(1);
     hold_profile(1);
     group(1).offset = {0.5, -0.5, 1.0};
-    group(3).offset = {2.0, 0.0, 0.0};
-    EXPECT_EQ(write_int(tc_init(tc::kIdxReInit), 0), Status::kOk);
-    EXPECT_EQ(group(1).offset, (std::array<double, 3>{}));
-    EXPECT_EQ(group(3).offset, (std::array<double, 3>{}));
-    EXPECT_EQ(status_of(1), tc::kRun | tc::kProfMarked) << "compensation and held profile stay";
-    EXPECT_EQ(group(1).tools[7].radius, 3.0);
+    const auto before = snapshot(board);
+    EXPECT_EQ(write_int(tc_init(tc::kIdxReInit), 0), Status::kWrongDeviceState);
+    EXPECT_TRUE(unchanged(before, board));
+    EXPECT_EQ(motion.shifts_cleared, 0);
+    EXPECT_EQ(status_of(1), tc::kRun | tc::kProfMarked);
+    EXPECT_EQ(error_of(1), 0);
 }
 
 TEST_F(TcRules, ReInitAndResetIgnoreSubIndexAndParameter) {

@@ -214,6 +214,19 @@ TEST(ApcictlWrite, StatusOneOnAGroupNotInitialisedSaysThatErrorNowReadsInitError
               "apcictl: write 1300 1 1 8 2000: ValueTooHigh (value above the object's range)\n");
 }
 
+// ReInit mid-contour is not emulated (docs/object-map.md 3.4): the refusal says so and what to do.
+TEST(ApcictlScript, ReInitWhileAProfileIsHeldSaysItIsNotEmulatedAndWhatToDo) {
+    const auto r = script("write 1300 1 1 9 1\nwrite 1300 1 1 3 1\nspool G01 N1 X10 Y0 F600\n"
+                          "write 1300 0 13 0 0\n");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err,
+              "line 4: write 1300 0 13 0 0: WrongDeviceState (not possible in the present device "
+              "state); ReInit while a contour is under way (a profile held, STATUS bit ProfMarked) "
+              "is not emulated: [APCI-TC] gives it for before a re-reference and does not say what "
+              "it does to a contour; end the contour first (STATUS = 0, or SSF 2001 to its axes), "
+              "or write Reset (1300 0 14) to drop it\n");
+}
+
 TEST(ApcictlScript, KeepGoingRunsEveryLineAndExitsWithTheFirstFailure) {
     const auto r = script("write 1300 1 1 8 2000\nread 1300 1 1 8\nread 1300 1 9 3\nread 1300 0 12 0\n",
                           {"--keep-going"});

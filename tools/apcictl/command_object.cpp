@@ -132,14 +132,20 @@ private:
     Outcome result(apci::Status s) const {
         if (s == APCI_OK) return Outcome::success();
         return Outcome::board_error(
-            fmt::format("{}: {}{}", command_text(), describe_status(s), tc_consequence()));
+            fmt::format("{}: {}{}", command_text(), describe_status(s), tc_consequence(s)));
     }
 
     // A refused write to a TC group may have set the group's ERROR ([APCI-TC] Table 3: InitError
     // for STATUS = 1 on a group not initialised, and for the axes, WKZINDEX, Left or Right
     // while it runs): the refusal says so, and what to change.
-    std::string tc_consequence() const {
+    std::string tc_consequence(apci::Status s) const {
         namespace tc = rwmos::tc;
+        if (object_.bus == tc::kBus && object_.device == tc::kDevInit &&
+            object_.index == tc::kIdxReInit && s == APCI_WRONG_DEVICE_STATE)
+            return "; ReInit while a contour is under way (a profile held, STATUS bit "
+                   "ProfMarked) is not emulated: [APCI-TC] gives it for before a re-reference "
+                   "and does not say what it does to a contour; end the contour first (STATUS = "
+                   "0, or SSF 2001 to its axes), or write Reset (1300 0 14) to drop it";
         if (object_.bus != tc::kBus || object_.device != tc::kDevGroups || board_ == nullptr)
             return {};
         auto error = apci::object(tc::kBus, tc::kDevGroups, object_.index, tc::kSubError);

@@ -41,6 +41,7 @@ class MotionLayer final : public TcMotion {
     objif::Status release_held_profile(std::int32_t group) override;
     void discard_held_profile(std::int32_t group) override;
     void compensation_started(std::int32_t group) override;
+    void clear_shift() override;
 
   private:
     motion::TcSettings settings() const noexcept;

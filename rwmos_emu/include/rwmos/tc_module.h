@@ -41,6 +41,8 @@ private:
     Status group_at(const Address& a, TcGroup*& g, std::int32_t& number) noexcept;
     Status with_group(const Address& a, TcGroup*& g) noexcept;
     void discard_held_profile(std::int32_t number);
+    // The stored shift of the correction axes cleared (motion layer and offsets).
+    void clear_shift();
 
     // DeviceNumber 0.
     Status write_clean(const Info&, const Address&, const Value&);

@@ -103,6 +103,10 @@ public:
     virtual void discard_held_profile(std::int32_t group) = 0;
     // STATUS = 1 accepted: the group starts compensating from the next profile.
     virtual void compensation_started(std::int32_t group) = 0;
+    // ReInit, Reset, RESET, Clean: the stored shift of the correction axes is
+    // cleared (the programmed position becomes where the queue ends). Called
+    // with no profile held (ReInit is refused while one is; the others drop it first).
+    virtual void clear_shift() {}
 };
 
 }  // namespace rwmos

@@ -407,4 +407,26 @@ void Spooler::discard_held(std::int32_t group) {
     pending_.clear();
 }
 
+void Spooler::clear_shift(const TcSettings& tc, const Executor& exec) {
+    if (comp_.comp.running()) return;
+    const AxisVector& end = exec.planned_end();
+    AxisVector d{};
+    bool shifted = false;
+    for (int a = 0; a < kAxisCount; ++a) {
+        d[a] = end[a] - path_[a];
+        shifted = shifted || d[a] != 0.0;
+    }
+    if (!shifted) return;
+    // program_ is path_ before the rotation of the active plane: turn the
+    // plane part of the shift back so that both name the queue's end.
+    if (tc.present && tc.rot_angle != 0.0) {
+        const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
+        const geom::Vec2 q = geom::rotate_about(on_plane(d, plane), {0.0, 0.0}, -tc.rot_angle);
+        d[plane[0]] = q.x();
+        d[plane[1]] = q.y();
+    }
+    for (int a = 0; a < kAxisCount; ++a) program_[a] += d[a];
+    path_ = end;
+}
+
 }  // namespace rwmos::motion

@@ -72,6 +72,14 @@ class Spooler {
     MotionResult direct(const DirectCommand& c, Executor& exec);
     // RESET, Reset, Clean: the held profile of `group` is dropped unspooled.
     void discard_held(std::int32_t group);
+    // ReInit, Reset, RESET, Clean ([APCI-TC] Table 2: "Intern gespeicherte
+    // Verschiebungswerte der Korrekturachsen werden gelöscht"): the shift a
+    // contour left between the programmed path and the queue's end (radius
+    // offset without departure, WkzLen on the length axis) is forgotten: where
+    // the queue ends becomes the programmed position, so the next profile starts
+    // from a point the board no longer considers shifted. Nothing moves. No-op
+    // while a contour is under way (the TC module refuses ReInit then).
+    void clear_shift(const TcSettings& tc, const Executor& exec);
 
     // The group whose compensation is under way (0: none), and whether a
     // profile is held back for it (STATUS bit ProfMarked).
@@ -79,6 +87,9 @@ class Spooler {
         return comp_.comp.running() ? comp_.group : 0;
     }
     bool holds_profile() const noexcept { return comp_.comp.holds_element(); }
+    // The group of the last contour (0: none yet); its shift stays after the contour
+    // ends without departure until a profile, a direct command or clear_shift() removes it.
+    std::int32_t last_group() const noexcept { return comp_.group; }
     // The programmed position (program coordinates, before rotation) the next
     // profile starts from; unnamed axes keep it.
     const AxisVector& program_position() const noexcept { return program_; }
