@@ -8,6 +8,14 @@ namespace rwmos {
 static_assert(motion::kAxisCount == kAxisCount, "the motion layer drives every board axis");
 
 using motion::MotionResult;
+using motion::TcSettings;
+
+namespace {
+geom::ApproachMode approach_mode(const TcGroup& g) noexcept {
+    return g.selection_mode == tc::kSelectionIndirect ? geom::ApproachMode::kIndirect
+                                                      : geom::ApproachMode::kPerpendicular;
+}
+}  // namespace
 
 double MotionLayer::cycle_seconds() const noexcept {
     return static_cast<double>(state_.interpolation_cycle_us) * 1e-6;
@@ -52,6 +60,7 @@ motion::TcSettings MotionLayer::settings() const noexcept {
         s.transition = g.corner_mode == tc::kCornerLinear ? geom::TransitionMode::kLinear
                                                           : geom::TransitionMode::kCircular;
         s.length_axis = static_cast<std::uint8_t>(g.z_axis);
+        s.approach = approach_mode(g);
     }
     return s;
 }
@@ -128,8 +137,11 @@ std::uint64_t MotionLayer::run_until_idle(std::uint64_t max_cycles) {
 }
 
 objif::Status MotionLayer::release_held_profile(std::int32_t group) {
+    // The departure follows the mode of the group that ends (docs/compensation.md).
+    TcSettings s = settings();
+    s.approach = approach_mode(state_.tc.group(group));
     const MotionResult r = spooler_.release_for_deactivation(
-        group, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity));
+        group, s, exec_, static_cast<std::size_t>(state_.spooler.capacity));
     record(r);
     sync();
     return r.status;

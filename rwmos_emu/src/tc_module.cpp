@@ -61,6 +61,7 @@ void discard_programming(TcGroup& g) noexcept {
     g.tool_index = 0;
     g.side = tc::kSideNone;
     g.corner_mode = tc::kCornerCircular;
+    g.selection_mode = tc::kSelectionPerpendicular;
     g.tools.fill(TcTool{});
 }
 }  // namespace
@@ -76,7 +77,7 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
     constexpr auto kR = Access::kRead;
     constexpr auto kW = Access::kWrite;
     constexpr auto kRW = Access::kReadWrite;
-    static constexpr std::array<Entry<M>, 23> kTable{{
+    static constexpr std::array<Entry<M>, 24> kTable{{
         // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
         {init_object(tc::kIdxClean, 0, "Clean", kInt, kW, 1, 1, Value::of_int(1),
                      "[APCI-TC] Table 2 Clean: parameter 1; drops all TC objects, handles stale"),
@@ -155,6 +156,11 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
                       Value::of_int(tc::kSideNone),
                       "design: reads back the Left/Right selection: 40 none, 41 left, 42 right"),
          &M::read_side, nullptr},
+        {group_object(tc::kSubSelectionMode, "SelectionMode", kInt, kRW, tc::kSelectionIndirect,
+                      tc::kSelectionPerpendicular, Value::of_int(tc::kSelectionPerpendicular),
+                      "design: approach and departure, 237 perpendicular (default) / 139 indirect "
+                      "(docs/compensation.md)"),
+         &M::read_selection_mode, &M::write_selection_mode},
     }};
     return kTable;
 }
@@ -496,6 +502,26 @@ Status TcModule::write_corner_mode(const ObjectInfo&, const Address& a, const Va
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
     g->corner_mode = v.as_int();
+    return Status::kOk;
+}
+
+// Design (docs/compensation.md "Approach and departure"): like G237/G139, changeable at any
+// time; the mode at activation shapes the approach, the mode at deactivation the departure.
+Status TcModule::read_selection_mode(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->selection_mode);
+    return Status::kOk;
+}
+Status TcModule::write_selection_mode(const ObjectInfo&, const Address& a, const Value& v) {
+    const std::int32_t mode = v.as_int();
+    if (mode != tc::kSelectionIndirect && mode != tc::kSelectionPerpendicular)
+        return Status::kInvalidValue;
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->selection_mode = mode;
     return Status::kOk;
 }
 

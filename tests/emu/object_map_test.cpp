@@ -107,6 +107,8 @@ std::vector<ObjectRow> object_rows() {
          {low(D(-1.0e6 - 1.0)), high(D(1.0e6 + 1.0)), invalid(kNaN), invalid(-kInf)}},
         {"CornerMode", T1(20), kI, rw, I(26), I(25), true, {low(I(24)), high(I(27))}},
         {"Side", T1(21), kI, r, I(40), {}, true, {}},
+        {"SelectionMode", T1(22), kI, rw, I(237), I(139), true,
+         {low(I(138)), high(I(238)), {I(140), Status::kInvalidValue}, {I(236), Status::kInvalidValue}}},
         // ---- 3D compensation, bus 1310, DeviceNumber 0.
         {"C3_Tool", C0(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
         {"C3_CallDL", C0(2, 0), kD, rw, D(0.0), D(-0.5), true, c3_range()},

@@ -456,5 +456,87 @@ TEST(Compensator, BatchCapacityCoversTheLargestStep) {
     EXPECT_EQ(out.size(), 1 + kMaxPlaneFreeElements + 3);
 }
 
+
+// ---- Indirect approach (ApproachMode::kIndirect, G139)
+
+CompensatorConfig indirect(double r, Side side = Side::kLeft) {
+    CompensatorConfig c = config(r, side);
+    c.approach = ApproachMode::kIndirect;
+    return c;
+}
+
+TEST(Compensator, IndirectApproachIsOneLineToTheFirstElementsOffsetEnd) {
+    // From (-10, -10) over (0, 0) to (20, 0), r 0.5 left: LinuxCNC's entry move ends at r left
+    // of (0, 0) at right angles to the entry; then the outside corner's arc about (0, 0).
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(indirect(0.5), {-10, -10}).ok());
+    ASSERT_TRUE(c.push(make_line({-10, -10}, {0, 0}), 1, out).ok());
+    EXPECT_TRUE(out.empty());  // nothing before the corner is known
+    ASSERT_TRUE(c.push(make_line({0, 0}, {20, 0}), 2, out).ok());
+    ASSERT_EQ(out.size(), 2u);
+    const double h = 0.5 / std::sqrt(2.0);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(out[0].index, 1u);
+    EXPECT_TRUE(same(out[0].path, make_line({-10, -10}, {-h, h})));
+    EXPECT_EQ(out[1].role, SegmentRole::kTransition);
+    EXPECT_TRUE(is_arc(out[1].path));
+    expect_near(out[1].path.end, {0, 0.5});
+}
+
+TEST(Compensator, IndirectApproachIntoAnInsideCornerEndsWhereTheOffsetsMeet) {
+    // Entry along +x to (10, 0), then up: left compensation turns left, an inside corner; the
+    // entry's offset (y = 0.5) meets the next one's (x = 9.5) at (9.5, 0.5).
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(indirect(0.5), {0, -3}).ok());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {10, 0}), 1, out).ok());
+    ASSERT_TRUE(c.push(make_line({10, 0}, {10, 10}), 2, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_TRUE(same(out[0].path, make_line({0, -3}, {9.5, 0.5})));
+}
+
+TEST(Compensator, IndirectApproachOfASingleElementRunsToItsOffsetEnd) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(indirect(2, Side::kRight), {0, 0}).ok());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {2, 0}), 7, out).ok());
+    ASSERT_TRUE(c.finish(out).ok());
+    // A block shorter than the tool radius still selects ([ISG-OTC-EN]'s wr_quad_disc.nc).
+    ASSERT_GE(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_TRUE(same(out[0].path, make_line({0, 0}, {2, -2})));
+}
+
+TEST(Compensator, IndirectApproachByAnArcArrivesAlongTheOffsetArc) {
+    // A quarter arc from (0, 0) about (0, 10) counter-clockwise to (10, 10), r 1 right (the tool
+    // outside): the offset end is (11, 10); the entry arc from (0, 0) has its centre on the line
+    // from (11, 10) to (0, 10), as far from (0, 0) as from (11, 10): (0.5, 10), radius 10.5...
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(indirect(1, Side::kRight), {0, 0}).ok());
+    ASSERT_TRUE(c.push(make_arc({0, 0}, {10, 10}, {0, 10}, true), 1, out).ok());
+    ASSERT_TRUE(c.finish(out).ok());
+    ASSERT_GE(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    ASSERT_TRUE(is_arc(out[0].path));
+    EXPECT_TRUE(out[0].path.ccw);
+    expect_near(out[0].path.start, {0, 0});
+    expect_near(out[0].path.end, {11, 10});
+    const Vec2 centre = out[0].path.centre;
+    // ... on that line, equidistant from both ends.
+    EXPECT_NEAR(centre.y(), 10.0, kEps);
+    EXPECT_NEAR((centre - Vec2(0, 0)).norm(), (centre - Vec2(11, 10)).norm(), 1e-9);
+}
+
+TEST(Compensator, IndirectApproachConfigIsCheckedLikeTheOthers) {
+    PathCompensator c;
+    CompensatorConfig bad = indirect(1);
+    bad.approach = static_cast<ApproachMode>(5);
+    EXPECT_EQ(c.begin(bad, {0, 0}).reason, Reason::kInvalidSetting);
+    EXPECT_FALSE(c.running());
+}
+
 }  // namespace
 }  // namespace rwmos::geom

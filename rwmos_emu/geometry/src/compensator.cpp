@@ -29,6 +29,9 @@ Reason check_config(const CompensatorConfig& config) noexcept {
     if (config.transition != TransitionMode::kCircular &&
         config.transition != TransitionMode::kLinear)
         return Reason::kInvalidSetting;
+    if (config.approach != ApproachMode::kPerpendicular &&
+        config.approach != ApproachMode::kIndirect)
+        return Reason::kInvalidSetting;
     return Reason::kNone;
 }
 
@@ -41,6 +44,14 @@ StepResult PathCompensator::fail(Reason reason, std::uint32_t index,
 void PathCompensator::emit_plane_free(const Vec2& at, SegmentBatch& out) const noexcept {
     for (std::size_t i = 0; i < plane_free_count_; ++i)
         out.add(make_line(at, at), SegmentRole::kContour, plane_free_[i]);
+}
+
+Element PathCompensator::held_path(const OffsetElement& held) const noexcept {
+    Element approach;
+    if (held_role_ == SegmentRole::kApproach &&
+        indirect_approach(position_, first_programmed_, held, approach))
+        return approach;
+    return emitted_path(held);
 }
 
 StepResult PathCompensator::begin(const CompensatorConfig& config, const Vec2& position) noexcept {
@@ -81,10 +92,24 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     const OffsetResult offset = offset_element(programmed, r, config_.side);
     if (offset.reason != Reason::kNone) return fail(offset.reason, index, out);
 
-    if (state_ == State::kStarted) {
+    if (state_ == State::kStarted && config_.approach == ApproachMode::kIndirect) {
+        // Any length: [ISG-OTC-EN]'s wr_quad_disc.nc selects with a 2 mm block and a 30 mm disc
+        // (LinuxCNC asks for more than r). [ISG-PROG] builds approach blocks only on lines; an
+        // arc is taken as LinuxCNC takes it, rather than refusing a program that has no gouge
+        // (docs/compensation.md).
+        Element approach;
+        if (!indirect_approach(position_, programmed, offset.element, approach))
+            return fail(Reason::kApproachArcNoSolution, index, out);
+        first_programmed_ = programmed;
+        // Its corner is that of its offset element, parallel to it (as LinuxCNC's entry move,
+        // whose corner is taken from the programmed direction); only its start is the tool's.
+        held_ = offset.element;
+        held_role_ = SegmentRole::kApproach;
+    } else if (state_ == State::kStarted) {
         const Element approach = approach_move(position_, offset.element);
         if (worth_moving(approach)) out.add(approach, SegmentRole::kApproach, index);
         held_ = offset.element;
+        held_role_ = SegmentRole::kContour;
     } else {
         const CornerJoin join = join_corner(
             held_, offset.element, held_corner_, held_end_tangent_, start_tangent(programmed),
@@ -92,11 +117,12 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
         if (join.reason != Reason::kNone)
             return fail(join.reason,
                         join.reason == Reason::kHeldElementTooShort ? held_index_ : index, out);
-        out.add(emitted_path(join.held), SegmentRole::kContour, held_index_);
+        out.add(held_path(join.held), held_role_, held_index_);
         emit_plane_free(join.held.path.end, out);
         for (std::size_t i = 0; i < join.transition.count; ++i)
             out.add(join.transition.elements[i], SegmentRole::kTransition, held_index_);
         held_ = join.next;
+        held_role_ = SegmentRole::kContour;
     }
     held_corner_ = programmed.end;
     held_end_tangent_ = end_tangent(programmed);
@@ -111,7 +137,7 @@ StepResult PathCompensator::finish(SegmentBatch& out) noexcept {
     out.clear();
     if (state_ == State::kIdle) return fail(Reason::kNotStarted, 0, out);
     if (state_ == State::kHolding) {
-        out.add(emitted_path(held_), SegmentRole::kContour, held_index_);
+        out.add(held_path(held_), held_role_, held_index_);
         emit_plane_free(held_.path.end, out);
         const Element departure = departure_move(held_, held_corner_);
         if (worth_moving(departure)) out.add(departure, SegmentRole::kDeparture, held_index_);

@@ -54,6 +54,9 @@ constexpr std::array kReasonTable{
               "smaller tool)"},
     ReasonRow{Reason::kTooManyPlaneFreeElements, kKorr, "TooManyPlaneFreeElements",
               "too many consecutive elements without motion in the compensation plane"},
+    ReasonRow{Reason::kApproachArcNoSolution, kKorr, "ApproachArcNoSolution",
+              "the approach (the first move of the compensation) is an arc, and no arc leads from "
+              "the tool to its compensated end (start the approach elsewhere, or with a G01)"},
 };
 static_assert(kReasonTable.size() == kReasonCount, "reason table and enum out of step");
 

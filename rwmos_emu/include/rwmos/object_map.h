@@ -82,12 +82,17 @@ inline constexpr std::int32_t kSubWkzLen = 12;
 // Extension objects (design).
 inline constexpr std::int32_t kSubCornerMode = 20;  // int r/w: 26 circular (default), 25 linear
 inline constexpr std::int32_t kSubSide = 21;        // int r: 40 none, 41 left, 42 right
+inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect
 
 inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 ([APCI-TC] Table 3)
 
 // CornerMode values: the G-codes that select them in NC programs (docs/design.md section 8).
 inline constexpr std::int32_t kCornerLinear = 25;
 inline constexpr std::int32_t kCornerCircular = 26;
+// SelectionMode values: how the compensation reaches and leaves the contour, by the ISG G-codes
+// ([ISG-PROG]; docs/compensation.md "Approach and departure").
+inline constexpr std::int32_t kSelectionIndirect = 139;       // the first / G40 block approach and depart
+inline constexpr std::int32_t kSelectionPerpendicular = 237;  // right-angle moves (the board's own)
 // Side values: the G-codes of the selection.
 inline constexpr std::int32_t kSideNone = 40;
 inline constexpr std::int32_t kSideLeft = 41;

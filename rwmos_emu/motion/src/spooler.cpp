@@ -198,8 +198,11 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
                 break;
             case geom::SegmentRole::kApproach:
                 // A plane-free element before the first plane element is
-                // consumed by its (zero-length) approach, so it goes to its end.
-                end = pd->plane_free ? pd->end : pd->start;
+                // consumed by its (zero-length) approach, so it goes to its end; the
+                // indirect approach is its element's whole move.
+                end = pd->plane_free || c.comp.config().approach == geom::ApproachMode::kIndirect
+                          ? pd->end
+                          : pd->start;
                 end[z] += c.length;
                 break;
             case geom::SegmentRole::kTransition:
@@ -301,7 +304,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             trial.plane = tc.plane;
             trial.length_axis = tc.length_axis;
             trial.side = tc.side == geom::Side::kRight ? std::int8_t{-1} : std::int8_t{1};
-            const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition};
+            const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition, tc.approach};
             const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
             if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
         }
@@ -334,7 +337,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     return {};
 }
 
-MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSettings&,
+MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSettings& tc,
                                                Executor& exec, std::size_t capacity) {
     if (comp_.group != group || !comp_.comp.running()) return {};
     // [APCI-TC] section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
@@ -342,7 +345,11 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     Compensation trial = comp_;
     Batch& batch = batch_;
     batch.reset(exec.planned_end());
-    end_contour(trial, /*keep_departure=*/true, batch);
+    // Perpendicular (G237): a departure at right angles back to the programmed end. Indirect
+    // (G139): none; the tool stays at the last offset end and the next profile departs from
+    // there (docs/compensation.md "Approach and departure").
+    end_contour(trial, /*keep_departure=*/tc.approach == geom::ApproachMode::kPerpendicular,
+                batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
     forget_finished();

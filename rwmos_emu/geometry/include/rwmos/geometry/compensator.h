@@ -67,10 +67,22 @@ class SegmentBatch {
     std::size_t size_ = 0;
 };
 
+// How the compensation reaches the contour ([ISG-PROG], "Tool radius compensation (TRC)",
+// selection and deselection methods; docs/compensation.md "Approach and departure"):
+// kPerpendicular (G237, the board's own): a line at right angles from the tool position onto
+//   the first offset element's start; the first element then runs whole.
+// kIndirect (G139, the initial state of NC programs): the first programmed element is the
+//   approach: one line from the tool position straight to its compensated end (the point at the
+//   radius beside its programmed end, at right angles to it), joined to the next element at the
+//   corner as its offset element would be; an arc approaches by LinuxCNC's entry arc (approach.h).
+// The departure is the spooler's (it keeps or drops the departure finish() emits).
+enum class ApproachMode : std::uint8_t { kPerpendicular, kIndirect };
+
 struct CompensatorConfig {
     Side side = Side::kLeft;                                // G41 / G42
     double tool_radius = 0.0;                               // >= 0, interpolation units
     TransitionMode transition = TransitionMode::kCircular;  // G26 / G25
+    ApproachMode approach = ApproachMode::kPerpendicular;   // G237 / G139
 };
 
 // The outcome of one step. On failure nothing was emitted and the compensator is exactly
@@ -93,7 +105,8 @@ class PathCompensator {
     StepResult begin(const CompensatorConfig& config, const Vec2& position) noexcept;
 
     // Takes the next programmed element. out is cleared, then receives: the approach (on
-    // the first plane element), or the finished held element, the plane-free elements
+    // the first plane element; kIndirect: none yet, the first element is held as the approach
+    // and emitted with role kApproach), or the finished held element, the plane-free elements
     // that waited with it (zero-length lines at its end), and the corner's transition.
     // The new element is held. A plane-free element (no motion in the plane) waits with
     // the held element, or, before the first plane element, is emitted at once as a
@@ -123,11 +136,15 @@ class PathCompensator {
 
     StepResult fail(Reason reason, std::uint32_t index, SegmentBatch& out) const noexcept;
     void emit_plane_free(const Vec2& at, SegmentBatch& out) const noexcept;
+    // The held element as emitted: its offset path, or the indirect approach to its end.
+    Element held_path(const OffsetElement& held) const noexcept;
 
     State state_ = State::kIdle;
     CompensatorConfig config_;
     Vec2 position_ = Vec2::Zero();     // tool position at begin()
     OffsetElement held_;               // held offset element, its start final
+    SegmentRole held_role_ = SegmentRole::kContour;  // kApproach: the indirect approach
+    Element first_programmed_;                       // the indirect approach's programmed element
     Vec2 held_corner_ = Vec2::Zero();  // programmed end of the held element
     Vec2 held_end_tangent_ = Vec2::Zero();
     double held_length_ = 0.0;  // programmed length of the held element

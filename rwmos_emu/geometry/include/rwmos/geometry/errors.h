@@ -54,9 +54,10 @@ enum class Reason : std::uint8_t {
     kNextElementTooShort,       // the corner would consume more than the whole new element
     kNoCornerSolution,          // the offset elements do not meet at an inside corner
     kTooManyPlaneFreeElements,  // more than kMaxPlaneFreeElements without plane motion
+    kApproachArcNoSolution,     // indirect approach: no arc leads from the tool to the arc's offset
 };
 
-inline constexpr std::size_t kReasonCount = 15;
+inline constexpr std::size_t kReasonCount = 16;
 
 ErrorBits reason_bits(Reason r) noexcept;            // 0 for kNone
 std::string_view reason_name(Reason r) noexcept;     // "HeldElementTooShort"

@@ -46,6 +46,7 @@ struct TcSettings {
     geom::Side side = geom::Side::kLeft;
     double radius = 0.0;
     geom::TransitionMode transition = geom::TransitionMode::kCircular;
+    geom::ApproachMode approach = geom::ApproachMode::kPerpendicular;  // SelectionMode 237 / 139
     std::uint8_t length_axis = 2;  // the group's ZAxis
     double length = 0.0;           // WkzLen of the group's current tool
 };
