@@ -1,8 +1,9 @@
 %tc-closed-contour.nc
 ; A closed contour with approach and departure (docs/compensation.md, figure 4): a plate with
 ; a rounded corner and a notch as wide as the tool, milled outside with G42 (tool D1, r = 5)
-; and circular transitions. A lead-in element N40 and a lead-out element N150 are compensated
-; too, so the approach and the departure are short moves away from the part.
+; and circular transitions. A lead-in element N40 and a lead-out element N150: under G139 (the
+; programs' initial state) the lead-in is the approach and G40 leaves the tool at the lead-out's
+; offset end, away from the part.
 N10 G17 G90 G26 F1000 D1
 N20 G0 X30 Y-20 Z0
 N30 G42

@@ -25,10 +25,9 @@
 ;   with G43 and the header's tool lengths: Z42.2402 with T4 (1.6630 in), Z38.20668 with T5.
 ; - G26 added: LinuxCNC's outside corners are arcs; our programs start in G25 (the ISG default).
 ;
-; Where our run differs from LinuxCNC's (docs/linuxcnc-examples.md): a G0 under G41 ends our
-; compensation and runs to the programmed point, so each "G0 Z.." lift after a contour moves
-; the tool centre r sideways onto the programmed contour while it rises from the bottom;
-; LinuxCNC lifts at the compensated point and moves over at the top, after G40. And the run
+; The whole tool path agrees with LinuxCNC's, approach and departure included
+; (docs/linuxcnc-examples.md): a G0 under G41 is compensated (each "G0 Z.." lift stays at the
+; compensated point) and the move after G40 departs from there. The run
 ; warns SelfApproach 42 times, where the program cuts into its own contour by design: each
 ; hole's finishing pass 0.254 mm beyond its roughing circle, holes milled again larger at the
 ; same centre, the curved slots' lead-in lines (above the part) near their end arcs.
@@ -402,6 +401,7 @@ G1 X-16.31442 Y27.11958
 G1 X-5.70992 Y33.50006 (continue past edge)
 G0 Z6.35
 G40
+G0 Z38.20668 (G00 G53 Z0 before the tapping, which is left out: the move after G40)
 
 D0 (T0 M6 G49)
 M30

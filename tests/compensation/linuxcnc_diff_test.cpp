@@ -352,6 +352,18 @@ std::vector<Element> feed_path(const std::vector<CanonMove>& moves) {
     return out;
 }
 
+// Our whole path from the G41/G42 block on: the approach, the contour and the move after G40
+// (the G0 to the start before it left out, as feed_path leaves out rs274's).
+std::vector<Element> whole_path(const OurRun& ours) {
+    std::vector<Element> out;
+    bool started = false;
+    for (std::size_t i = 0; i < ours.path.size(); ++i) {
+        started = started || ours.roles[i] != static_cast<int>(apci::run::Role::kUncompensated);
+        if (started) out.push_back(ours.path[i]);
+    }
+    return out;
+}
+
 // Our compensated path: the segments of G41/G42 (not the rapid move before, nor the move
 // after G40).
 std::vector<Element> compensated_path(const OurRun& ours) {
@@ -373,6 +385,7 @@ struct Figures {
     double max_deviation_strict = 0.0, max_mismatch = 0.0;
     int by_plane[2] = {0, 0}, by_decimals[2] = {0, 0}, arcs = 0, short_elements = 0;
     double max_deviation = 0.0;
+    double max_whole = 0.0;  // the whole paths, approach and departure included
     std::vector<double> deviations;
 };
 
@@ -535,6 +548,15 @@ TEST(LinuxCncDifferential, RandomContoursAgreeWithRs274) {
             report("paths differ: by " + std::to_string(dev) + " mm (arc radii differ by " +
                        std::to_string(c.arc_mismatch) + ")",
                    c);
+        // The whole tool path: the entry move (our approach under G139) and the exit move after
+        // G40 as well.
+        const double whole = hausdorff(whole_path(ours), feed_path(lc.moves), spacing);
+        f.max_whole = std::max(f.max_whole, whole);
+        if (whole > kMaxDeviation + slack)
+            report("whole paths differ: by " + std::to_string(whole) +
+                       " mm with approach and departure (arc radii differ by " +
+                       std::to_string(c.arc_mismatch) + ")",
+                   c);
     }
     const auto t_end = std::chrono::steady_clock::now();
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
@@ -556,13 +578,14 @@ TEST(LinuxCncDifferential, RandomContoursAgreeWithRs274) {
         "  false refusals %d, missed gouges %d, our path gouges %d, unexpected %d\n"
         "  our path comes near the contour away from a corner %d (warned %d), rs274 also cuts in "
         "there %d\n"
-        "  left out: %d in LinuxCNC's tolerance bands, %d without room\n",
+        "  left out: %d in LinuxCNC's tolerance bands, %d without room\n"
+        "  the whole paths (approach and departure included): max %.2e mm\n",
         f.contours, f.by_plane[0], f.by_plane[1], f.by_decimals[0], f.by_decimals[1], f.arcs,
         f.short_elements, f.g19, f.both_paths, quantile(0.5), quantile(0.99), f.max_deviation,
         f.max_deviation_strict, f.strict, kStrictMismatch, f.max_mismatch,
         f.both_refuse, f.linuxcnc_gouges_ours_refuses, f.beyond_one_profile, f.false_refusals, f.missed_gouges,
         f.our_gouges, f.unexpected, f.near_self, f.ours_warns, f.both_run_near_itself,
-        f.skipped_band, f.skipped_room);
+        f.skipped_band, f.skipped_room, f.max_whole);
     EXPECT_GE(f.contours, 2000);
     EXPECT_GE(f.g19, 1000);
     EXPECT_GE(f.strict, 2000);

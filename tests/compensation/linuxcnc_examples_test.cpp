@@ -13,9 +13,10 @@
 //   within 1e-3 mm (Hausdorff distance), and neither comes closer to the programmed contour
 //   than r - 2.5e-4 mm (where a program cuts into its own contour by design, against the
 //   part that stays: see "Clearance" below);
-// - the entry and exit moves (approach and departure) differ by design at present: they are
-//   left out of the comparison and their difference is printed, with the third axis of the
-//   move that leaves the contour;
+// - the entry and exit moves (approach and departure: under G139, the NC programs' initial
+//   selection method, the G41 block's move and the move after G40) agree within 1e-3 mm too,
+//   and ours reaches the point where LinuxCNC's first move after G40 ends; the move that leaves
+//   the contour is printed with its third axis;
 // - enough was compared: every stretch, and a stated length of contour per example.
 //
 // rs274 prints 4 decimals in the program's unit: 0.0025 mm in inches, more than the 1e-3 mm
@@ -736,7 +737,7 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
             f.max_deviation_inch = std::max(f.max_deviation_inch, dev_inch);
         }
 
-        // Approach and departure: not compared; how far apart they are. The lead-in runs from
+        // Approach and departure: compared as the contour proper is. The lead-in runs from
         // where the tool stood before G41 (LinuxCNC's stretch begins there) to the contour
         // proper; the lead-out from the contour proper to where LinuxCNC's first move after
         // G40 that moves in the plane ends, and ours reaches the same point.
@@ -763,7 +764,9 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
             exit_point = lc[i].path.end;
             if (length(lc[i].path) > 1e-9) break;
         }
-        bool ours_reaches = false;
+        // A program that ends under G41 leaves the tool where the stretch ends, on both.
+        bool ours_reaches =
+            !our_path.empty() && (our_path.back().end - exit_point).norm() <= kLinuxCncWindowTolerance;
         for (std::size_t i = os.last + 1;
              i < ours.executed.size() && i <= os.last + 4 && !ours_reaches; ++i) {
             our_out.push_back(ours.executed[i].path);
@@ -777,6 +780,10 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
         const double d_out = apart(our_out, lc_out);
         f.max_approach = std::max(f.max_approach, d_in);
         f.max_departure = std::max(f.max_departure, d_out);
+        EXPECT_LE(d_in, kMaxDeviation) << ex.name << " stretch " << k + 1 << ": the approaches differ";
+        EXPECT_LE(d_out, kMaxDeviation) << ex.name << " stretch " << k + 1 << ": the departures differ";
+        EXPECT_TRUE(ours_reaches) << ex.name << " stretch " << k + 1
+                                  << ": our departure does not reach " << point_text(exit_point);
         // The move that leaves the contour proper (the first after it that moves in the
         // plane), with the third axis (Z) at its start and end: where the tool goes sideways.
         std::string leaves;

@@ -151,6 +151,23 @@ TEST(OtcRules, G40MustComeBeforeOtcOff) {
               "");
 }
 
+// [ISG-OTC] section 2.2 "Hinweis": "Mit den WRK Modi G138/G139 ist eine Verfahrbewegung zwischen
+// den beiden Befehlen zwingend erforderlich. Wenn der Fehler 90050 ausgegeben wird, dann ist bei
+// der Abwahl mit G138/G139 die Verfahrbewegung nicht vorhanden."
+TEST(OtcRules, UnderG139AMoveMustComeBetweenG40AndOtcOff) {
+    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\n#OTC OFF\nM30\n"),
+              "prog.nc:7:1: 90050: #OTC OFF right after G40 without a move: under G139 the block "
+              "after G40 departs from the contour, so program a move (with the G40 or after it) "
+              "before #OTC OFF");
+    // The move with G40 or after it; G237 departs at G40 itself.
+    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\nX30\n#OTC OFF\nM30\n"),
+              "");
+    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40 X30\n#OTC OFF\nM30\n"),
+              "");
+    EXPECT_EQ(
+        error_of("F600\nD1\nG237\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\n#OTC OFF\nM30\n"), "");
+}
+
 TEST(OtcRules, ParametersAreNotChangedWhileOtcIsOn) {
     EXPECT_EQ(error_of("#OTC ON\n#OTC [RADIUS]\nM30\n"),
               "prog.nc:2:1: OTC_CHANGE_WHILE_ACTIVE: processing type, mode and ACC_WEIGHT are set "

@@ -141,7 +141,8 @@ TEST(Parser, EveryGCodeWithAndWithoutLeadingZero) {
     const Case cases[] = {{"G0", 0},   {"G00", 0},  {"G1", 1},   {"G01", 1},  {"G2", 2},
                           {"G02", 2},  {"G3", 3},   {"G03", 3},  {"G17", 17}, {"G18", 18},
                           {"G19", 19}, {"G25", 25}, {"G26", 26}, {"G40", 40}, {"G41", 41},
-                          {"G42", 42}, {"G90", 90}, {"G91", 91}};
+                          {"G42", 42}, {"G90", 90}, {"G91", 91}, {"G139", 139},
+                          {"G237", 237}};
     for (const Case& c : cases) {
         const Block b = block(c.text);
         int got = -1;
@@ -150,6 +151,7 @@ TEST(Parser, EveryGCodeWithAndWithoutLeadingZero) {
         if (b.corner.present()) got = g_number(b.corner.value);
         if (b.compensation.present()) got = g_number(b.compensation.value);
         if (b.distance.present()) got = g_number(b.distance.value);
+        if (b.selection.present()) got = g_number(b.selection.value);
         EXPECT_EQ(got, c.g) << c.text;
     }
 }
@@ -221,7 +223,8 @@ TEST(Parser, UnknownGCode) {
 }
 
 TEST(Parser, IsgSelectionMethodsAndSpindleFeedsAreRefusedAsNotEmulated) {
-    for (const char* g : {"G138", "G139", "G236", "G237", "G238", "G239", "G05"}) {
+    // G139 (indirect, the initial state) and G237 (perpendicular) are emulated; the others not.
+    for (const char* g : {"G138", "G236", "G238", "G239", "G05"}) {
         EXPECT_EQ(error_kind(g), ErrorKind::kUnsupported) << g;
         EXPECT_NE(error(g).find("is not emulated"), std::string::npos) << g;
     }
@@ -267,6 +270,8 @@ TEST(Parser, ConflictingCompensationWords) {
 TEST(Parser, ConflictingPlaneCornerDistanceWords) {
     EXPECT_EQ(error("G17G18"), "prog.nc:12:4: G17 and G18 in one block: both set the plane");
     EXPECT_EQ(error("G25 G26"), "prog.nc:12:5: G25 and G26 in one block: both set the corner mode");
+    EXPECT_EQ(error("G139 G237"),
+              "prog.nc:12:6: G139 and G237 in one block: both set the selection method");
     EXPECT_EQ(error("G90 G91"),
               "prog.nc:12:5: G90 and G91 in one block: both set the distance mode");
 }

@@ -185,17 +185,34 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
                             kExamples + "/tools/wr_quad_disc.tools", "--svg", path("p.svg"),
                             "--json", path("p.json")});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 13 segments\n")) << r.out;
+    // 11 segments: N40, the approach N60, 4 contour elements, 4 transitions, N100.
+    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 11 segments\n")) << r.out;
     EXPECT_TRUE(contains(r.out, "\nerrors: none\n")) << r.out;
     EXPECT_EQ(r.err, "");
     const json doc = json::parse(read_text(path("p.json")));
     // As the program's text says: N22 G25 makes the corner after N70 linear (two lines along
-    // the tangents, a 90-degree turn), N80 G26 the corners after N80 and N90 circular.
+    // the tangents, a 90-degree turn), N80 G26 the corners after N80 and N90 circular. The
+    // program runs in G139 (indirect): N60, the first move after N55 G42, is the approach (no
+    // contour of its own), and G40 spools N95 to its offset end without a departure; the G40
+    // block's move N100 then runs uncompensated from there.
     EXPECT_EQ(roles(doc),
-              "uncompensated/40 approach/60 contour/60 contour/70 transition/70 transition/70 "
-              "contour/80 transition/80 contour/90 transition/90 contour/95 departure/95 "
-              "uncompensated/100");
+              "uncompensated/40 approach/60 contour/70 transition/70 transition/70 "
+              "contour/80 transition/80 contour/90 transition/90 contour/95 uncompensated/100");
     expect_continuous(doc);
+    // The approach runs straight from where the tool stands, (0, 0), to N60's compensated end:
+    // 30 mm right of its programmed end (2, 0) (G42, N60 along +X), where N70's offset starts
+    // (N60 and N70 are collinear: no corner).
+    const auto approach = with_role(doc, "approach");
+    ASSERT_EQ(approach.size(), 1u);
+    EXPECT_EQ(approach[0].at("kind"), "line");
+    EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(0, 0, 0));
+    EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(2, -30, 0));
+    // N100 (G40 G1 X0) starts at N95's offset end, 30 mm right of (2, 0) going -Y: (-28, 0).
+    const auto off = with_role(doc, "uncompensated");
+    ASSERT_EQ(off.size(), 2u);
+    EXPECT_EQ(off[1].at("block"), 100);
+    EXPECT_EQ(point(off[1].at("start")), apci::run::Point(-28, 0, 0));
+    EXPECT_EQ(point(off[1].at("end")), apci::run::Point(0, 0, 0));
     const auto linear = with_role(doc, "transition");
     ASSERT_EQ(linear.size(), 4u);
     EXPECT_EQ(linear[0].at("kind"), "line");
@@ -203,16 +220,18 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     EXPECT_EQ(point(linear[1].at("end")), apci::run::Point(132, 0, 0));
     EXPECT_EQ(linear[2].at("kind"), "arc");
     EXPECT_EQ(linear[3].at("kind"), "arc");
-    // The square N70..N95 (N60 is its lead-in on the same line): contour and circular
-    // transitions at 30 mm, the linear one no closer.
+    // The square N70..N95 (N60 is its lead-in on the same line, run as the approach): every
+    // contour element and the circular transitions at 30 mm, the linear one no closer.
     const std::vector<geom::Element> square{
         geom::make_line({2, 0}, {102, 0}), geom::make_line({102, 0}, {102, 100}),
         geom::make_line({102, 100}, {2, 100}), geom::make_line({2, 100}, {2, 0})};
-    expect_at_radius(doc, square, 30.0, {"contour"}, false, 17, {60});
+    expect_at_radius(doc, square, 30.0, {"contour"});
     expect_at_radius(doc, square, 30.0, {"transition"}, false, 17, {70});
     expect_at_radius(doc, square, 30.0, {"transition"}, true, 17, {80, 90});
-    // G42 on a counter-clockwise loop: the tool runs outside, right of the direction of travel.
-    EXPECT_EQ(point(with_role(doc, "contour")[1].at("start")), apci::run::Point(2, -30, 0));
+    // G42 on a counter-clockwise loop: the tool runs outside, right of the direction of travel;
+    // the first contour element N70 starts where the approach ended.
+    EXPECT_EQ(with_role(doc, "contour")[0].at("block"), 70);
+    EXPECT_EQ(point(with_role(doc, "contour")[0].at("start")), apci::run::Point(2, -30, 0));
     expect_registers_clear(doc);
     // The OTC variables by their names in [ISG-OTC] (no #OTC here: no wear; D1's wear constant).
     EXPECT_EQ(doc.at("variables").at("V.G.OTC_ACTIVE"), 0);
@@ -221,15 +240,80 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_CONST"), 100000);
     EXPECT_EQ(doc.at("errors"), json::array());
     const std::string svg = read_text(path("p.svg"));
-    for (const char* cls : {"programmed", "contour", "transition", "approach", "departure"})
+    for (const char* cls : {"programmed", "contour", "transition", "approach", "uncompensated"})
         EXPECT_TRUE(contains(svg, std::string("<path class=\"") + cls + "\"")) << cls;
+    // No departure under G139 (the G237 departure is drawn in
+    // ClosedContourUnderG237KeepsTheRadiusWithPerpendicularApproachAndDeparture).
+    EXPECT_FALSE(contains(svg, "<path class=\"departure\"")) << svg;
+}
+
+// A figure program (docs/figures) with G237 in its first block N10: the board's own
+// perpendicular approach and departure instead of the NC start state G139.
+std::string figure_with_g237(const std::string& name) {
+    std::string text = read_text(kFigures + "/" + name);
+    const std::size_t at = text.find("\nN10 ");
+    EXPECT_NE(at, std::string::npos) << name;
+    if (at != std::string::npos) text.insert(at + 5, "G237 ");
+    return text;
 }
 
 // ---- One program per corner type (docs/figures)
 
+const std::vector<geom::Element> kInsideCorners{
+    geom::make_line({0, 0}, {40, 0}), geom::make_line({40, 0}, {40, 30}),
+    geom::make_arc({60, 0}, {100, 0}, {80, 20}, true),
+    geom::make_arc({100, 0}, {75, 25}, {75, 0}, true)};
+
+// The NC start state G139: the first element of each stretch (N40, N90) is the approach, straight
+// (N40) or LinuxCNC's entry arc (N90) to its offset end, trimmed at the inside corner.
 TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
     const json doc =
         run_json(kFigures + "/tc-inside-corners.nc", {"--tools", kFigures + "/tc-figures.tools"});
+    EXPECT_TRUE(with_role(doc, "transition").empty()) << roles(doc);
+    EXPECT_TRUE(with_role(doc, "departure").empty()) << roles(doc);
+    expect_continuous(doc);
+    const auto approach = with_role(doc, "approach");
+    const auto contour = with_role(doc, "contour");
+    ASSERT_EQ(approach.size(), 2u) << roles(doc);
+    ASSERT_EQ(contour.size(), 2u) << roles(doc);
+    // line-line: the approach N40 runs from (0, 0) straight to the intersection (35, 5) of the
+    // offset lines y = 5 (N40, G41 along +X) and x = 35 (N50 along +Y), where N50 starts.
+    EXPECT_EQ(approach[0].at("block"), 40);
+    EXPECT_EQ(approach[0].at("kind"), "line");
+    EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(0, 0, 0));
+    EXPECT_LT((point(approach[0].at("end")) - apci::run::Point(35, 5, 0)).norm(), 1e-9);
+    EXPECT_EQ(contour[0].at("block"), 50);
+    EXPECT_LT((point(contour[0].at("start")) - apci::run::Point(35, 5, 0)).norm(), 1e-9);
+    expect_at_radius(doc, kInsideCorners, 5.0, {"contour"});
+    // arc-arc: the approach N90 ends where both offset arcs (radii 28.28 - 5 and 25 - 5) meet,
+    // and N100's offset arc starts there.
+    EXPECT_EQ(approach[1].at("block"), 90);
+    EXPECT_EQ(contour[1].at("block"), 100);
+    EXPECT_EQ(approach[1].at("kind"), "arc");
+    EXPECT_EQ(contour[1].at("kind"), "arc");
+    const apci::run::Point corner = point(approach[1].at("end"));
+    EXPECT_LT((corner - point(contour[1].at("start"))).norm(), 1e-9);
+    EXPECT_NEAR((corner - apci::run::Point(80, 20, 0)).norm(), std::sqrt(800.0) - 5.0, kTol);
+    EXPECT_NEAR((point(contour[1].at("start")) - apci::run::Point(75, 0, 0)).norm(), 20.0, kTol);
+    // The entry arc: from the tool at (60, 0), counter-clockwise as N90, about a centre on the
+    // line from its end to N90's centre (80, 20), on the same side: it arrives along the offset
+    // arc's tangent.
+    EXPECT_EQ(point(approach[1].at("start")), apci::run::Point(60, 0, 0));
+    EXPECT_EQ(approach[1].at("ccw"), true);
+    const apci::run::Point c = point(approach[1].at("center"));
+    const apci::run::Point to_c = c - corner;
+    const apci::run::Point to_programmed = apci::run::Point(80, 20, 0) - corner;
+    EXPECT_NEAR(to_c.x() * to_programmed.y() - to_c.y() * to_programmed.x(), 0.0, kTol);
+    EXPECT_GT(to_c.dot(to_programmed), 0.0);
+    EXPECT_NEAR((c - apci::run::Point(60, 0, 0)).norm(), to_c.norm(), kTol);
+    expect_registers_clear(doc);
+}
+
+// G237, the board's perpendicular approach: N40 and N90 run whole as offset elements, and both
+// offset elements of each corner are cut back to their intersection.
+TEST_F(ApcictlRun, InsideCornerUnderG237TrimsBothOffsetElements) {
+    const json doc = run_json(write("inside.nc", figure_with_g237("tc-inside-corners.nc")),
+                              {"--tools", kFigures + "/tc-figures.tools"});
     EXPECT_TRUE(with_role(doc, "transition").empty()) << roles(doc);
     expect_continuous(doc);
     // line-line: N40 ends and N50 starts at the intersection (35, 5) of the offset lines.
@@ -238,11 +322,7 @@ TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
     EXPECT_EQ(contour[0].at("block"), 40);
     EXPECT_LT((point(contour[0].at("end")) - apci::run::Point(35, 5, 0)).norm(), 1e-9);
     EXPECT_EQ(contour[1].at("block"), 50);
-    expect_at_radius(doc,
-                     {geom::make_line({0, 0}, {40, 0}), geom::make_line({40, 0}, {40, 30}),
-                      geom::make_arc({60, 0}, {100, 0}, {80, 20}, true),
-                      geom::make_arc({100, 0}, {75, 25}, {75, 0}, true)},
-                     5.0, {"contour"});
+    expect_at_radius(doc, kInsideCorners, 5.0, {"contour"});
     // arc-arc: both offset arcs (radii 28.28 - 5 and 25 - 5) end and start at one point.
     EXPECT_EQ(contour[2].at("kind"), "arc");
     EXPECT_EQ(contour[3].at("kind"), "arc");
@@ -250,6 +330,11 @@ TEST_F(ApcictlRun, InsideCornerIsTrimmedAtTheIntersectionOfTheOffsetElements) {
     EXPECT_NEAR((point(contour[2].at("end")) - apci::run::Point(80, 20, 0)).norm(),
                 std::sqrt(800.0) - 5.0, kTol);
     EXPECT_NEAR((point(contour[3].at("start")) - apci::run::Point(75, 0, 0)).norm(), 20.0, kTol);
+    // Perpendicular approach onto each first offset element's start, departure back to the
+    // programmed end of each last element.
+    EXPECT_EQ(roles(doc),
+              "uncompensated/20 approach/40 contour/40 contour/50 departure/50 uncompensated/70 "
+              "approach/90 contour/90 contour/100 departure/100");
     expect_registers_clear(doc);
 }
 
@@ -295,9 +380,48 @@ TEST_F(ApcictlRun, LinearTransitionExtendsTheOffsetsAndIsBoundedBeyond90Degrees)
     expect_at_radius(doc, contour, 5.0, {"transition"}, /*at_least=*/true);
 }
 
-TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
+// tc-closed-contour.nc's plate with its lead-in N40 and lead-out N150.
+const std::vector<geom::Element> kPlate{
+    geom::make_line({30, -20}, {30, 0}), geom::make_line({30, 0}, {80, 0}),
+    geom::make_line({80, 0}, {80, 30}),  geom::make_arc({80, 30}, {60, 50}, {60, 30}, true),
+    geom::make_line({60, 50}, {45, 50}), geom::make_line({45, 50}, {45, 35}),
+    geom::make_line({45, 35}, {35, 35}), geom::make_line({35, 35}, {35, 50}),
+    geom::make_line({35, 50}, {0, 50}),  geom::make_line({0, 50}, {0, 0}),
+    geom::make_line({0, 0}, {30, 0}),    geom::make_line({30, 0}, {30, -20})};
+
+// G139 (the NC start state): the lead-in N40 is the approach, the lead-out N150 the last contour
+// element, and G40 alone in N160 leaves the tool at N150's offset end (no departure).
+TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusFromTheApproachToTheLastOffsetEnd) {
     const json doc =
         run_json(kFigures + "/tc-closed-contour.nc", {"--tools", kFigures + "/tc-figures.tools"});
+    const auto approach = with_role(doc, "approach");
+    ASSERT_EQ(approach.size(), 1u);
+    EXPECT_TRUE(with_role(doc, "departure").empty()) << roles(doc);
+    // From the start point straight to N40's offset end, trimmed at the inside corner with N50:
+    // x = 35 (5 right of N40 going +Y) meets y = -5 (5 right of N50 going +X) at (35, -5).
+    EXPECT_EQ(approach[0].at("block"), 40);
+    EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(30, -20, 0));
+    EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(35, -5, 0));
+    const auto contour = with_role(doc, "contour");
+    ASSERT_FALSE(contour.empty());
+    EXPECT_EQ(contour.front().at("block"), 50);
+    EXPECT_EQ(point(contour.front().at("start")), apci::run::Point(35, -5, 0));
+    // The path ends with N150's offset, 5 left of it (right of -Y): at (25, -20).
+    const json& last = doc.at("segments").back();
+    EXPECT_EQ(last.at("block"), 150);
+    EXPECT_EQ(last.at("role"), "contour");
+    EXPECT_EQ(point(last.at("end")), apci::run::Point(25, -20, 0));
+    expect_continuous(doc);
+    // Every contour element after the approach, N50 to N150, and every transition at r.
+    expect_at_radius(doc, kPlate, 5.0, {"contour", "transition"});
+    expect_registers_clear(doc);
+}
+
+// G237 (the board's own): a perpendicular approach onto N40's offset start, N40 run whole, and
+// the departure at right angles from N150's offset back to its programmed end.
+TEST_F(ApcictlRun, ClosedContourUnderG237KeepsTheRadiusWithPerpendicularApproachAndDeparture) {
+    const json doc = run_json(write("closed.nc", figure_with_g237("tc-closed-contour.nc")),
+                              {"--tools", kFigures + "/tc-figures.tools", "--svg", path("c.svg")});
     const auto approach = with_role(doc, "approach");
     const auto departure = with_role(doc, "departure");
     ASSERT_EQ(approach.size(), 1u);
@@ -305,17 +429,16 @@ TEST_F(ApcictlRun, ClosedContourKeepsTheRadiusWithApproachAndDeparture) {
     EXPECT_EQ(approach[0].at("block"), 40);  // the first compensated element
     EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(30, -20, 0));
     EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(35, -20, 0));
+    EXPECT_EQ(with_role(doc, "contour").front().at("block"), 40);
     EXPECT_EQ(departure[0].at("block"), 150);  // the last
+    EXPECT_EQ(point(departure[0].at("start")), apci::run::Point(25, -20, 0));
     EXPECT_EQ(point(departure[0].at("end")), apci::run::Point(30, -20, 0));
     expect_continuous(doc);
-    const std::vector<geom::Element> plate{
-        geom::make_line({30, -20}, {30, 0}), geom::make_line({30, 0}, {80, 0}),
-        geom::make_line({80, 0}, {80, 30}),  geom::make_arc({80, 30}, {60, 50}, {60, 30}, true),
-        geom::make_line({60, 50}, {45, 50}), geom::make_line({45, 50}, {45, 35}),
-        geom::make_line({45, 35}, {35, 35}), geom::make_line({35, 35}, {35, 50}),
-        geom::make_line({35, 50}, {0, 50}),  geom::make_line({0, 50}, {0, 0}),
-        geom::make_line({0, 0}, {30, 0}),    geom::make_line({30, 0}, {30, -20})};
-    expect_at_radius(doc, plate, 5.0, {"contour", "transition"});
+    expect_at_radius(doc, kPlate, 5.0, {"contour", "transition"});
+    expect_registers_clear(doc);
+    const std::string svg = read_text(path("c.svg"));
+    for (const char* cls : {"approach", "departure"})
+        EXPECT_TRUE(contains(svg, std::string("<path class=\"") + cls + "\"")) << cls;
 }
 
 // More profiles than the spooler holds: Busy makes the executor run the clock and spool again;
@@ -343,9 +466,19 @@ TEST_F(ApcictlRun, ProgramLongerThanTheSpoolerRunsWhole) {
         if (s.at("role") == "contour") contour_blocks.insert(b);
         last_block = b;
     }
-    EXPECT_EQ(contour_blocks.size(), 1200u);
-    EXPECT_EQ(*contour_blocks.begin(), 4);
+    // G139: N4, the first move after N3 G41, is the approach (one line from (10, 0) to its
+    // offset end (40, 1), 1 left of (40, 0); N5's arc joins it tangentially); N5..N1203 are
+    // contour (1199 blocks), and N1204 G40 leaves the tool at N1203's offset end (10, 1).
+    const auto approach = with_role(doc, "approach");
+    ASSERT_EQ(approach.size(), 1u);
+    EXPECT_EQ(approach[0].at("block"), 4);
+    EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(10, 0, 0));
+    EXPECT_LT((point(approach[0].at("end")) - apci::run::Point(40, 1, 0)).norm(), 1e-9);
+    EXPECT_EQ(contour_blocks.size(), 1199u);
+    EXPECT_EQ(*contour_blocks.begin(), 5);
     EXPECT_EQ(*contour_blocks.rbegin(), 1203);
+    EXPECT_LT((point(doc.at("segments").back().at("end")) - apci::run::Point(10, 1, 0)).norm(),
+              1e-9);
     expect_at_radius(
         doc,
         {geom::make_line({10, 0}, {40, 0}), geom::make_arc({40, 0}, {50, 10}, {40, 10}, true),
@@ -357,10 +490,39 @@ TEST_F(ApcictlRun, ProgramLongerThanTheSpoolerRunsWhole) {
         1.0, {"contour", "transition"});
 }
 
-TEST_F(ApcictlRun, SwitchingSidesDepartsAndApproachesAgain) {
+// G139: the G42 block ends the left stretch at N30's offset end (no departure) and is the
+// approach of the right one, straight from there to its own offset end.
+TEST_F(ApcictlRun, SwitchingSidesApproachesTheOtherSideFromTheLastOffsetEnd) {
     const std::string prog = write("sides.nc",
                                    "N10 F1000 D1\nN20 G41 G1 X10\nN30 X20\nN40 G42 X30\nN50 X40\n"
                                    "N60 G40 X50\nM30\n");
+    const json doc = run_json(prog, {"--tools", tools(2.0)});
+    EXPECT_EQ(roles(doc), "approach/20 contour/30 approach/40 contour/50 uncompensated/60")
+        << doc.dump();
+    expect_continuous(doc);
+    const auto approach = with_role(doc, "approach");
+    const auto contour = with_role(doc, "contour");
+    ASSERT_EQ(approach.size(), 2u);
+    ASSERT_EQ(contour.size(), 2u);
+    // r = 2, along +X: G41 left (y = 2), G42 right (y = -2), each approach to its element's
+    // offset end, the G40 move N60 from the last offset end (40, -2) to (50, 0).
+    EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(0, 0, 0));
+    EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(10, 2, 0));
+    EXPECT_EQ(point(contour[0].at("end")), apci::run::Point(20, 2, 0));   // G41: left
+    EXPECT_EQ(point(approach[1].at("start")), apci::run::Point(20, 2, 0));
+    EXPECT_EQ(point(approach[1].at("end")), apci::run::Point(30, -2, 0));
+    EXPECT_EQ(point(contour[1].at("end")), apci::run::Point(40, -2, 0));  // G42: right
+    const json& off = doc.at("segments").back();
+    EXPECT_EQ(point(off.at("start")), apci::run::Point(40, -2, 0));
+    EXPECT_EQ(point(off.at("end")), apci::run::Point(50, 0, 0));
+}
+
+// G237: each side's stretch departs at right angles back to its programmed end, and the next
+// approaches at right angles onto its first offset element.
+TEST_F(ApcictlRun, SwitchingSidesUnderG237DepartsAndApproachesAgain) {
+    const std::string prog = write("sides.nc",
+                                   "N10 G237 F1000 D1\nN20 G41 G1 X10\nN30 X20\nN40 G42 X30\n"
+                                   "N50 X40\nN60 G40 X50\nM30\n");
     const json doc = run_json(prog, {"--tools", tools(2.0)});
     EXPECT_EQ(roles(doc),
               "approach/20 contour/20 contour/30 departure/30 approach/40 contour/40 contour/50 "
@@ -990,8 +1152,33 @@ TEST_F(ApcictlRun, LineTangentArcLineWrittenWithThreeDecimalsCompensatesOnBothSi
         const std::vector<geom::Element> contour{
             geom::make_line({-10, 0}, {10, 0}), geom::make_arc({10, 0}, {15, 1.34}, {10, 10}, true),
             geom::make_line({15, 1.34}, {32.321, 11.34})};
-        expect_at_radius(doc, contour, 5.0, {"contour"}, false, 17, {30});
-        EXPECT_EQ(with_role(doc, "contour").size(), 4u) << roles(doc);
+        expect_at_radius(doc, contour, 5.0, {"contour"});
+        // G139: N30 (the G41/G42 block, along +Y) is the approach from (-10, -5) to its offset
+        // end: G41 5 left of (-10, 0), (-15, 0), an outside corner with N40 (G25: transition
+        // lines); G42 5 right, x = -5, an inside corner trimmed where it meets N40's offset
+        // y = -5: (-5, -5). N40, N50 and N60 are the contour.
+        const bool left = std::string(side) == "G41";
+        const auto approach = with_role(doc, "approach");
+        ASSERT_EQ(approach.size(), 1u) << roles(doc);
+        EXPECT_EQ(approach[0].at("block"), 30);
+        EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(-10, -5, 0));
+        EXPECT_LT((point(approach[0].at("end")) -
+                   (left ? apci::run::Point(-15, 0, 0) : apci::run::Point(-5, -5, 0)))
+                      .norm(),
+                  1e-9)
+            << side;
+        EXPECT_EQ(with_role(doc, "contour").size(), 3u) << roles(doc);
+        // The G40 move N70 runs from N60's offset end, 5 beside (32.321, 11.34) at right angles
+        // to N60 (direction (17.321, 10) / 20.0000), to its programmed end (40, 20).
+        const apci::run::Point dir = apci::run::Point(17.321, 10, 0).normalized();
+        const apci::run::Point normal(-dir.y(), dir.x(), 0);  // left of the direction
+        const apci::run::Point n60_end =
+            apci::run::Point(32.321, 11.34, 0) + (left ? 5.0 : -5.0) * normal;
+        const json& off = doc.at("segments").back();
+        EXPECT_EQ(off.at("block"), 70);
+        EXPECT_EQ(off.at("role"), "uncompensated");
+        EXPECT_LT((point(off.at("start")) - n60_end).norm(), 1e-9) << side;
+        EXPECT_EQ(point(off.at("end")), apci::run::Point(40, 20, 0));
     }
 }
 
@@ -1037,6 +1224,91 @@ TEST_F(ApcictlRun, RapidMovesAreRapidAndUncompensated) {
     EXPECT_EQ(doc.at("segments")[0].at("kind"), "rapid");
     EXPECT_EQ(doc.at("segments")[0].at("role"), "uncompensated");
     EXPECT_TRUE(contains(last_.out, "(rapid 11.180 mm)")) << last_.out;
+}
+
+// ---- Approach and departure as the controls make them (G139, the NC programs' initial state)
+
+// A segment's plane end point, for the points the reproductions name.
+Eigen::Vector2d xy(const json& p) { return {p[0].get<double>(), p[1].get<double>()}; }
+
+TEST_F(ApcictlRun, TheSelectionBlockIsTheApproachStraightToTheOffsetPointAtItsEnd) {
+    // G0 X-10 Y-10, G41 G1 X0 Y0, G1 X20 Y0 (tool radius 0.5): LinuxCNC's entry move and the
+    // ISG selection block: one line from (-10, -10) to the point at r left of (0, 0), at right
+    // angles to the block, then the corner (G26: an arc about (0, 0)) onto the next element.
+    const std::string prog = write("in.nc",
+                                   "N10 D1 F1000 G26\nN20 G0 X-10 Y-10\nN30 G41 G1 X0 Y0\n"
+                                   "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5)});
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 transition/30 contour/40 uncompensated/50");
+    const json approach = with_role(doc, "approach").at(0);
+    const double h = 0.5 / std::sqrt(2.0);
+    EXPECT_LT((xy(approach.at("start")) - Eigen::Vector2d(-10, -10)).norm(), 1e-9);
+    EXPECT_LT((xy(approach.at("end")) - Eigen::Vector2d(-h, h)).norm(), 1e-9);
+    const json corner = with_role(doc, "transition").at(0);
+    EXPECT_EQ(corner.at("kind"), "arc");
+    EXPECT_LT((xy(corner.at("end")) - Eigen::Vector2d(0, 0.5)).norm(), 1e-9);
+    expect_continuous(doc);
+}
+
+TEST_F(ApcictlRun, TheG40BlockIsTheDepartureFromTheLastOffsetPoint) {
+    // G1 X20 Y0, then G40 G1 X30 Y-10: the G40 block itself runs from (20, 0.5) to (30, -10);
+    // no move back onto the programmed point first.
+    const std::string prog = write("out.nc",
+                                   "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\n"
+                                   "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5)});
+    EXPECT_TRUE(with_role(doc, "departure").empty()) << roles(doc);
+    const json& last = doc.at("segments").back();
+    EXPECT_EQ(last.at("block"), 50);
+    EXPECT_EQ(last.at("role"), "uncompensated");
+    EXPECT_LT((xy(last.at("start")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9);
+    EXPECT_LT((xy(last.at("end")) - Eigen::Vector2d(30, -10)).norm(), 1e-9);
+    expect_continuous(doc);
+}
+
+TEST_F(ApcictlRun, G237KeepsTheBoardsPerpendicularApproachAndDeparture) {
+    // The board's own way (SelectionMode 237): a right-angle approach onto the first element's
+    // offset start, the element whole, and a right-angle departure back to the programmed end.
+    const std::string prog = write("g237.nc",
+                                   "N10 D1 F1000 G237\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\n"
+                                   "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5)});
+    EXPECT_EQ(roles(doc),
+              "uncompensated/20 approach/30 contour/30 contour/40 departure/40 uncompensated/50");
+    const json approach = with_role(doc, "approach").at(0);
+    EXPECT_LT((xy(approach.at("end")) - Eigen::Vector2d(-10, 0.5)).norm(), 1e-9);
+    const json departure = with_role(doc, "departure").at(0);
+    EXPECT_LT((xy(departure.at("start")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9);
+    EXPECT_LT((xy(departure.at("end")) - Eigen::Vector2d(20, 0)).norm(), 1e-9);
+    expect_continuous(doc);
+}
+
+TEST_F(ApcictlRun, AG0UnderG41IsCompensatedSoALiftStaysBesideTheContour) {
+    // Lifting with G0 Z5 while G41 is on: the tool rises where it stands, at r from the contour,
+    // instead of crossing onto the programmed point at depth.
+    const std::string prog = write("lift.nc",
+                                   "N10 D1 F1000\nN20 G0 X-10 Y0 Z-2\nN30 G41 G1 X0 Y0\n"
+                                   "N40 G1 X20 Y0\nN50 G0 Z5\nN60 G40 G0 X30 Y10\nN70 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5)});
+    bool lifted = false;
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("block") != 50 || s.at("end")[2].get<double>() != 5.0) continue;
+        lifted = true;
+        EXPECT_LT((xy(s.at("start")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9) << s.dump();
+        EXPECT_LT((xy(s.at("end")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9) << s.dump();
+    }
+    EXPECT_TRUE(lifted) << roles(doc);
+    expect_continuous(doc);
+}
+
+TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
+    // [ISG-OTC] section 2.2's general example: N60 G41 (selection, "verschleißfreie Bewegung"),
+    // N70 X1000, N80 G40 X50 (deselection): only N70's 950 mm of contour wear, at the disc's
+    // 100000 x 0.1 um/m: 9.5 mm.
+    const json doc = run_json(kExamples + "/otc/general.nc",
+                              {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 9.5, 1e-9);
+    EXPECT_EQ(roles(doc), "uncompensated/30 approach/60 contour/70 uncompensated/80 uncompensated/100");
 }
 
 }  // namespace

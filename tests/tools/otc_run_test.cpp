@@ -271,16 +271,19 @@ TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
     const json doc = run_json({prog, "--tools", tools, "--tools-out", path("out.tools")});
     auto out = apci::nc::load_tool_table(path("out.tools"));
     ASSERT_TRUE(out) << out.error().to_string();
-    // 510 mm of contour at 100000 x 0.1 um/m: 5.1 mm.
-    EXPECT_NEAR(out.value().find(1)->radius_mm(), 30.0 - 5.1, 1e-6);
-    EXPECT_NEAR(out.value().find(1)->wear_radius_mm(), 5.1, 1e-6);
-    EXPECT_NEAR(out.value().find(1)->wear_radius_cont_mm(), 5.1, 1e-6);
+    // Only N50 wears: the G41 block N40 is the approach (G139: straight from (0, 0) to its
+    // offset end (10, 30)), wear-free as [ISG-OTC]'s "N60 G41 G01 X50 (select TRC, wear-free
+    // movement)"; N50 is 500 mm of contour ((10, 30) to (510, 30)); there is no transition, and
+    // the G40 move N60 is wear-free. 500 mm at 100000 x 0.1 um/m = 10 um/mm: 5.0 mm.
+    EXPECT_NEAR(out.value().find(1)->radius_mm(), 30.0 - 5.0, 1e-6);
+    EXPECT_NEAR(out.value().find(1)->wear_radius_mm(), 5.0, 1e-6);
+    EXPECT_NEAR(out.value().find(1)->wear_radius_cont_mm(), 5.0, 1e-6);
     EXPECT_EQ(out.value().find(2)->wear_radius, 0.0);
     int worn_contours = 0;
     for (const auto& s : doc.at("segments")) {
         if (s.at("block") == 120 && s.at("role") == "contour") {
             ++worn_contours;
-            EXPECT_NEAR(s.at("start")[1].get<double>(), 30.0 - 5.1, 1e-6);
+            EXPECT_NEAR(s.at("start")[1].get<double>(), 30.0 - 5.0, 1e-6);
         }
     }
     EXPECT_EQ(worn_contours, 1);

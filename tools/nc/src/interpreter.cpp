@@ -184,6 +184,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (b.distance.present()) s.distance = b.distance.value;
     if (b.feed.present()) s.feed = b.feed.value;
     if (b.corner.present()) s.corner = b.corner.value;
+    if (b.selection.present()) s.selection = b.selection.value;
     if (b.compensation.present()) s.compensation = b.compensation.value;
     if (state_.trafo && s.compensation != Compensation::kOff &&
         s.compensation != state_.compensation) {
@@ -200,6 +201,9 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
 
     const bool moves =
         b.has_axis_word() || b.has_center_word() || b.radius.present() || b.b_axis.present();
+    if (moves) s.departure_pending = false;
+    if (!moves && state_.compensation != Compensation::kOff && s.compensation == Compensation::kOff)
+        s.departure_pending = s.selection == SelectionMode::kIndirect;
     EventData move;
     if (moves) {
         if (!s.motion) {
@@ -256,6 +260,8 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     const BlockOrigin origin{b.block_number(), b.line};
     if (b.tool.present()) out.push(origin, ToolSelect{b.tool.value});
     if (s.plane != state_.plane) out.push(origin, PlaneChange{s.plane});
+    // The selection method acts on the G41/G42 or G40 of its own block.
+    if (s.selection != state_.selection) out.push(origin, SelectionModeChange{s.selection});
     if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
     if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
     if (moves) out.push(origin, move);
@@ -327,6 +333,12 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                                   fmt::format("OTC_OFF_BEFORE_G40: #OTC OFF while radius "
                                               "compensation G{} is on: program G40 before #OTC OFF",
                                               g_number(s.compensation)));
+                }
+                if (s.otc_type == OtcType::kRadius && s.departure_pending) {
+                    return c.fail(ErrorKind::kProgramRule, isg.column,
+                                  "90050: #OTC OFF right after G40 without a move: under G139 the "
+                                  "block after G40 departs from the contour, so program a move "
+                                  "(with the G40 or after it) before #OTC OFF");
                 }
                 s.otc_active = false;
             }

@@ -693,20 +693,23 @@ class BlockParser {
                 return set_group(b_.units, Units::kInch, col, "input units");
             case 71:
                 return set_group(b_.units, Units::kMetric, col, "input units");
+            case 139:
+                return set_group(b_.selection, SelectionMode::kIndirect, col, "selection method");
+            case 237:
+                return set_group(b_.selection, SelectionMode::kPerpendicular, col,
+                                 "selection method");
             case 5:
             case 138:
-            case 139:
             case 236:
-            case 237:
             case 238:
             case 239:
-                // [ISG-PROG]'s selection and deselection methods of the radius compensation.
+                // [ISG-PROG]'s other selection and deselection methods of the radius compensation.
                 return fail_here(ErrorKind::kUnsupported, col,
                                  fmt::format("G{} (a selection method of the radius compensation) "
-                                             "is not emulated: the G41/G42 block's move is the "
-                                             "first compensated element, reached by a straight "
-                                             "approach, and G40 ends with a straight departure "
-                                             "(docs/compensation.md)",
+                                             "is not emulated: G139 (indirect, the initial state: "
+                                             "the G41/G42 block is the approach and the G40 block "
+                                             "the departure) and G237 (perpendicular approach and "
+                                             "departure) are (docs/compensation.md)",
                                              g));
             case 90:
                 return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");

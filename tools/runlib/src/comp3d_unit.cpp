@@ -25,10 +25,6 @@ ObjectDescriptor c3_object(std::int32_t index, std::int32_t sub = 0) noexcept {
     return apci::object(c3::kBus, c3::kDevSettings, index, sub);
 }
 
-// Feed of an LN with FMAX: spooled as a G01 (so that it is compensated) at the board's rapid
-// feed (docs/motion.md: 60000 units/min).
-constexpr double kLnRapidFeed = 60000.0;
-
 }  // namespace
 
 // ---- Klartext 3D compensation (bus 1310; docs/apcictl.md "run", docs/object-map.md 6)
@@ -196,7 +192,7 @@ bool Comp3dUnit::vector_line(const BlockRef& at, const nc::VectorLineMove& e) {
     if (!write(arm, bits, at, "Arm")) return false;
     const PathSegment s = Execution::line_segment(at, SegmentKind::kLine, e.start, e.end);
     return spool(at, s,
-                 run_.profile(at, APCI_PROFILE_LINE, e.end, e.rapid ? kLnRapidFeed : e.feed));
+                 run_.profile(at, APCI_PROFILE_LINE, e.end, e.rapid ? kRapidFeed : e.feed));
 }
 
 // A profile for the 3D module: its refusal is named by the module's LastError.

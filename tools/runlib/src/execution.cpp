@@ -111,6 +111,14 @@ bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eig
         if (!c3_.setting(at, c3::kIdxArm, c3::kArmLine, "Arm")) return false;
         return c3_.spool(at, s, profile(at, kind, end, feed));
     }
+    // A G0 under G41/G42 is compensated like a G01 ([ISG-PROG] compensates every move in the
+    // plane; LinuxCNC's interpreter likewise): the board compensates only interpolation
+    // profiles, so it goes as a G01 at the rapid feed (no surprise motion: a Z lift stays beside
+    // the contour instead of crossing onto it).
+    if (kind == APCI_PROFILE_RAPID && comp_on) {
+        kind = APCI_PROFILE_LINE;
+        feed = kRapidFeed;
+    }
     const bool ok = spool(at, s, profile(at, kind, end, feed));
     head.pending = false;
     return ok;
@@ -164,7 +172,7 @@ bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
     programmed(programmed_move, p.tag);
     if (comp_on && self_approach_mode_ != SelfApproachMode::kOff) {
         // A rapid ends the contour on the board; the next move approaches it anew.
-        if (programmed_move.kind == SegmentKind::kRapid) {
+        if (p.kind == APCI_PROFILE_RAPID) {
             if (!end_self_approach()) return false;
         } else {
             if (!self_approach_.active()) begin_self_approach();

@@ -29,6 +29,10 @@
 
 namespace apci::run::exec {
 
+// Feed of a rapid that must be compensated (a G0 under G41/G42, an LN with FMAX): spooled as a
+// G01 at the board's rapid feed (docs/motion.md: 60000 units/min).
+inline constexpr double kRapidFeed = 60000.0;
+
 // A small ring of the last programmed moves, to place an error reported by block tag.
 class RecentMoves {
   public:

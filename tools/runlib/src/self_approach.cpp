@@ -222,6 +222,9 @@ struct SelfApproachCheck::Grid {
         // Contour elements: the path must keep r from it. Not the first and the last element
         // of a stretch: they are its approach and departure in the program's own terms.
         bool protect = true;
+        // Paths: the approach. It starts where the tool stands, often within r of its own
+        // contour, so it is checked against the other stretches' contours only.
+        bool approach = false;
     };
     double cell = 0.0;   // fixed by the first stretch in this plane
     double max_r = 0.0;  // the largest tool radius of its paths
@@ -396,6 +399,7 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     // the element is known not to be the stretch's last.
     for (const std::uint32_t pid : g.near(g.path_cells, e, g.max_r)) {
         const Grid::Item& p = g.path[pid];
+        if (p.approach && p.stretch == stretch_) continue;
         const Relation rel = relation(index, stretch_, p.index, p.stretch, p.transition);
         Shape part;
         if (!checked_part(e, rel, part)) continue;
@@ -427,7 +431,10 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
         pending_head_ = 0;
     }
-    if (s.role != Role::kContour && s.role != Role::kTransition) return;
+    // The approach cuts as the contour does (under G139 it is the first element's whole move).
+    if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
+        return;
+    const bool approach = s.role == Role::kApproach;
     Grid& g = grid(p.plane);
     if (!g.path_keys.insert(key_of(s, p.plane, p.r))) return;  // the same path checked before
     const Shape e = shape_of(s, p.plane);
@@ -435,6 +442,7 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     const bool transition = s.role == Role::kTransition;
     for (const std::uint32_t id : g.near(g.contour_cells, e, p.r)) {
         const Grid::Item& c = g.contour[id];
+        if (approach && c.stretch == p.stretch) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
         Shape part;
         if (!c.protect || !checked_part(c.shape, rel, part)) continue;
@@ -448,7 +456,7 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     }
     if (g.path.size() < kMaxElements) {
         const auto id = static_cast<std::uint32_t>(g.path.size());
-        g.path.push_back(Grid::Item{e, s.block, p.index, p.stretch, p.r, transition});
+        g.path.push_back(Grid::Item{e, s.block, p.index, p.stretch, p.r, transition, true, approach});
         g.insert(g.path_cells, e, id);
     } else {
         g.truncated = true;

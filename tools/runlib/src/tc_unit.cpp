@@ -17,8 +17,8 @@ constexpr std::array<int, kGroups> kGroupPlane{17, 18, 19};
 }  // namespace
 
 // RESET (every group to power-on), then group g in the plane kGroupPlane[g - 1], and the
-// program's start state: G17, and the NC start corner mode (G25; the board's own default is
-// circular).
+// program's start state: G17, the NC start corner mode (G25; the board's own default is
+// circular) and selection method (G139; the board's own is perpendicular, G237).
 bool TcUnit::setup() {
     auto reset = group_object(1, tc::kSubReset);
     if (!run_.write(reset, std::int32_t{1}, {}, "RESET")) return false;
@@ -28,11 +28,14 @@ bool TcUnit::setup() {
         auto y = group_object(g, tc::kSubYAxis);
         auto z = group_object(g, tc::kSubZAxis);
         auto corner = group_object(g, tc::kSubCornerMode);
+        auto selection = group_object(g, tc::kSubSelectionMode);
         if (!run_.write(x, run_.axis(p.first), {}, "XAxis") ||
             !run_.write(y, run_.axis(p.second), {}, "YAxis") ||
             !run_.write(z, run_.axis(p.third), {}, "ZAxis") ||
             !run_.write(corner, std::int32_t{nc::g_number(nc::kStartCornerMode)}, {},
-                        "CornerMode"))
+                        "CornerMode") ||
+            !run_.write(selection, std::int32_t{nc::g_number(nc::kStartSelectionMode)}, {},
+                        "SelectionMode"))
             return false;
     }
     auto plane = init_object(tc::kIdxTcPlane);
@@ -89,10 +92,19 @@ bool TcUnit::plane(const BlockRef& at, nc::Plane p) {
 }
 
 bool TcUnit::corner(const BlockRef& at, nc::CornerMode m) {
+    return every_group(at, tc::kSubCornerMode, nc::g_number(m), "CornerMode");
+}
+
+bool TcUnit::selection(const BlockRef& at, nc::SelectionMode m) {
+    return every_group(at, tc::kSubSelectionMode, nc::g_number(m), "SelectionMode");
+}
+
+bool TcUnit::every_group(const BlockRef& at, std::int32_t sub, std::int32_t value,
+                         std::string_view what) {
     if (!run_.out.tc_present) return true;
     for (std::int32_t g = 1; g <= kGroups; ++g) {
-        auto o = group_object(g, tc::kSubCornerMode);
-        if (!run_.write(o, std::int32_t{nc::g_number(m)}, at, "CornerMode")) return false;
+        auto o = group_object(g, sub);
+        if (!run_.write(o, value, at, what)) return false;
     }
     return true;
 }
@@ -123,7 +135,8 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
     return true;
 }
 
-// STATUS = 0: the held profile is spooled with the departure ([APCI-TC] section 1).
+// STATUS = 0: the held profile is spooled ([APCI-TC] section 1); under G237 with the
+// departure, under G139 without: the G40 block's move departs (docs/compensation.md).
 bool TcUnit::compensation_off(const BlockRef& at) {
     auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
     if (!run_.write(status, std::int32_t{0}, at, "STATUS = 0")) return false;

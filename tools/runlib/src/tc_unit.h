@@ -25,9 +25,15 @@ class TcUnit final : public ModuleUnit {
     bool tool(const BlockRef& at, int index);
     bool plane(const BlockRef& at, nc::Plane p);
     bool corner(const BlockRef& at, nc::CornerMode m);
+    bool selection(const BlockRef& at, nc::SelectionMode m);
     bool compensation(const BlockRef& at, nc::Compensation side);
     bool compensation_off(const BlockRef& at);
     void read_registers();
+
+  private:
+    // Writes value to sub of every group (CornerMode, SelectionMode: the program's modes).
+    bool every_group(const BlockRef& at, std::int32_t sub, std::int32_t value,
+                     std::string_view what);
 };
 
 }  // namespace apci::run::exec

@@ -17,6 +17,10 @@ enum class Compensation : std::uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
 // Outside corners under radius compensation ([ISG-OTC-EN], wr_quad_disc.nc: G25 "linearer
 // Übergangssatz", G26 "zirkularer Übergangssatz").
 enum class CornerMode : std::uint8_t { kLinear = 25, kCircular = 26 };
+// How the radius compensation reaches and leaves the contour ([ISG-PROG], selection and
+// deselection methods): G139 indirect (the initial state: the selection block is the approach,
+// the G40 block the departure), G237 perpendicular (right-angle moves onto and off the contour).
+enum class SelectionMode : std::uint8_t { kIndirect = 139, kPerpendicular = 237 };
 // Input units ([ISG-PROG]: G70 inch, G71 metric, the initial state): lengths and feeds of the
 // program's words. Events are in mm whatever the program's units.
 enum class Units : std::uint8_t { kInch = 70, kMetric = 71 };
@@ -36,6 +40,9 @@ constexpr int g_number(Compensation c) noexcept {
 }
 constexpr int g_number(CornerMode c) noexcept {
     return static_cast<int>(c);
+}
+constexpr int g_number(SelectionMode m) noexcept {
+    return static_cast<int>(m);
 }
 constexpr int g_number(Units u) noexcept {
     return static_cast<int>(u);
@@ -69,6 +76,7 @@ struct Block {
     Word<DistanceMode> distance;         // G90 G91
     Word<Compensation> compensation;     // G40 G41 G42
     Word<CornerMode> corner;             // G25 G26
+    Word<SelectionMode> selection;       // G139 G237
     Word<Units> units;                   // G70 G71
     std::array<Word<double>, 3> axis;    // X Y Z, program units (mm, inches under G70)
     Word<double> b_axis;                 // B, degrees: the B head's tilt (docs/design.md section 8)
@@ -83,6 +91,7 @@ struct Block {
         line = line_number;
         number.column = motion.column = plane.column = distance.column = 0;
         compensation.column = corner.column = units.column = radius.column = feed.column = 0;
+        selection.column = 0;
         tool.column = end_of_program.column = b_axis.column = 0;
         for (auto& w : axis) w.column = 0;
         for (auto& w : center) w.column = 0;

@@ -64,6 +64,12 @@ struct CornerModeChange {
     CornerMode mode = CornerMode::kLinear;
 };
 
+// G139 / G237, sent when the method changes, before the block's G40/G41/G42 (it shapes the
+// approach of the selection and the departure of the deselection in the same block).
+struct SelectionModeChange {
+    SelectionMode mode = SelectionMode::kIndirect;
+};
+
 // G17 / G18 / G19, sent when the plane changes.
 struct PlaneChange {
     Plane plane = Plane::kXY;
@@ -183,7 +189,7 @@ using EventData =
     std::variant<RapidMove, LineMove, ArcMove, ToolSelect, CompensationChange, CornerModeChange,
                  PlaneChange, ProgramEnd, ToolCallDeltas, TcpmChange, ProgPathChange,
                  OversizeChange, HeadOrientation, VectorLineMove, OtcChange, KinematicsSelect,
-                 TrafoChange, NotEmulated, VariableWrite, CorrectionSelect>;
+                 TrafoChange, NotEmulated, VariableWrite, CorrectionSelect, SelectionModeChange>;
 
 struct Event {
     BlockOrigin origin;
@@ -192,11 +198,12 @@ struct Event {
 
 // "rapid", "line", "arc", "tool", "compensation", "corner", "plane", "end", "tool_call",
 // "tcpm", "prog_path", "oversize", "head", "vector_line", "otc", "kinematics", "trafo",
-// "not_emulated", "variable_write", "correction_row".
+// "not_emulated", "variable_write", "correction_row", "selection".
 std::string_view event_name(const EventData& data) noexcept;
 
 // The events of one block, in the order the executor must act on them (docs/nc-programs.md):
-// DIN 66025: tool select, plane, corner mode, compensation, the move, program end.
+// DIN 66025: tool select, plane, selection method, compensation, the move, corner mode,
+// program end.
 // Klartext: tool select and tool call deltas (TOOL CALL blocks), or oversize, TCPM, prog path,
 // compensation, head orientation, the move, program end. A DIN block adds the B head's
 // orientation (B word) before its move; an ISG command line gives one event of its own.

@@ -23,12 +23,17 @@ class CorrectionTable;
 // own default, circular; `apcictl run` sets the board to this at the start of a program.)
 inline constexpr CornerMode kStartCornerMode = CornerMode::kLinear;
 
+// The selection method a program starts in: G139, indirect, the initial state of [ISG-PROG].
+// (The board's TC module starts perpendicular, G237; `apcictl run` sets the board to this.)
+inline constexpr SelectionMode kStartSelectionMode = SelectionMode::kIndirect;
+
 struct ModalState {
     std::optional<Motion> motion;                        // none until G0..G3 is programmed
     Plane plane = Plane::kXY;                            // G17
     DistanceMode distance = DistanceMode::kAbsolute;     // G90
     Compensation compensation = Compensation::kOff;      // G40
     CornerMode corner = kStartCornerMode;                // G25
+    SelectionMode selection = kStartSelectionMode;       // G139
     Units units = Units::kMetric;                        // G71
     double feed = 0.0;                                   // mm/min; 0 until F is programmed
     int tool = 0;                                        // D0: no tool
@@ -37,6 +42,9 @@ struct ModalState {
     bool ended = false;                                  // M30 seen
     // ISG OTC ([ISG-OTC] section 2.1) as programmed: on/off and the parameters in force.
     bool otc_active = false;
+    // G40 under G139 in a block without a move: the departure is still to come ([ISG-OTC]
+    // section 2.2 "Hinweis": a path motion between G40 and #OTC OFF, else error 90050).
+    bool departure_pending = false;
     OtcType otc_type = OtcType::kLength;  // [ISG-OTC]: LENGTH "(Standard)"
     OtcMode otc_mode = OtcMode::kAuto;    // [ISG-OTC]: AUTO "(Standard)"
     int otc_acc_weight = 100;
