@@ -61,8 +61,17 @@ motion::TcSettings MotionLayer::settings() const noexcept {
                                                           : geom::TransitionMode::kCircular;
         s.length_axis = static_cast<std::uint8_t>(g.z_axis);
         s.approach = approach_mode(g);
+        s.length_always = g.length_mode == tc::kLengthAlways;
     }
     return s;
+}
+
+int MotionLayer::length_axis_of(std::int32_t tool) const noexcept {
+    const TcSettings s = settings();
+    if (!s.present || s.active_group == 0) return -1;
+    const TcGroup& g = state_.tc.group(s.active_group);
+    if (g.tool_index != tool || !(s.length_always || g.running())) return -1;
+    return s.length_axis;
 }
 
 void MotionLayer::record(const MotionResult& r) noexcept {

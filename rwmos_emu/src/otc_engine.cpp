@@ -327,10 +327,26 @@ void OtcEngine::end_session() noexcept {
         t.length -= board::millimetres_to_pu(fold_length, state_.pu);
     }
 
+    // Where the folded length acts on an axis now (the tool length on every profile, LengthMode
+    // 1, or the group compensating) and the wear lies along that axis alone (+Z of the TC
+    // plane, the way WkzLen acts), the offset passes into the tool length there without a
+    // motion: the nominal path takes the folded length (the next profile has the shorter tool)
+    // and that axis ramps only what had not yet arrived. So repeated passes add up.
+    AxisVector stays{};
+    const int length_axis = state_.motion.length_axis_of(o.tool.number);
+    if (fold_length != 0.0 && length_axis >= 0 && norm > 0.0) {
+        const auto z = static_cast<std::size_t>(length_axis);
+        bool along_z = unit_dir[z] > 1.0 - 1e-12;
+        for (std::size_t a = 0; a < unit_dir.size(); ++a)
+            if (a != z && std::abs(unit_dir[a]) > 1e-12) along_z = false;
+        if (along_z && state_.motion.executor().shift_nominal(length_axis, -fold_length))
+            stays[z] = -fold_length;
+    }
+
     // The offsets now on the axes ramp out from where they are: never a jump.
     for (std::size_t a = 0; a < ramp_axes_.size(); ++a) {
         ramp_axes_[a].position +=
-            -w * dir[a] + ramp_channel_[a].position + ramp_direction_[a].position;
+            -w * dir[a] - stays[a] + ramp_channel_[a].position + ramp_direction_[a].position;
         ramp_axes_[a].velocity += ramp_channel_[a].velocity + ramp_direction_[a].velocity;
         ramp_channel_[a] = {};
         ramp_direction_[a] = {};

@@ -62,6 +62,7 @@ void discard_programming(TcGroup& g) noexcept {
     g.side = tc::kSideNone;
     g.corner_mode = tc::kCornerCircular;
     g.selection_mode = tc::kSelectionPerpendicular;
+    g.length_mode = tc::kLengthWhileCompensating;
     g.tools.fill(TcTool{});
 }
 }  // namespace
@@ -77,7 +78,7 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
     constexpr auto kR = Access::kRead;
     constexpr auto kW = Access::kWrite;
     constexpr auto kRW = Access::kReadWrite;
-    static constexpr std::array<Entry<M>, 24> kTable{{
+    static constexpr std::array<Entry<M>, 25> kTable{{
         // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
         {init_object(tc::kIdxClean, 0, "Clean", kInt, kW, 1, 1, Value::of_int(1),
                      "[APCI-TC] Table 2 Clean: parameter 1; drops all TC objects, handles stale"),
@@ -161,6 +162,11 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
                       "design: approach and departure, 237 perpendicular (default) / 139 indirect "
                       "(docs/compensation.md)"),
          &M::read_selection_mode, &M::write_selection_mode},
+        {group_object(tc::kSubLengthMode, "LengthMode", kInt, kRW, tc::kLengthWhileCompensating,
+                      tc::kLengthAlways, Value::of_int(tc::kLengthWhileCompensating),
+                      "design: WkzLen on ZAxis 0 while compensating (default) / 1 on every profile "
+                      "(docs/compensation.md)"),
+         &M::read_length_mode, &M::write_length_mode},
     }};
     return kTable;
 }
@@ -522,6 +528,23 @@ Status TcModule::write_selection_mode(const ObjectInfo&, const Address& a, const
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
     g->selection_mode = mode;
+    return Status::kOk;
+}
+
+// Design (docs/compensation.md "Tool length"): changeable at any time; applies from the next
+// profile.
+Status TcModule::read_length_mode(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->length_mode);
+    return Status::kOk;
+}
+Status TcModule::write_length_mode(const ObjectInfo&, const Address& a, const Value& v) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->length_mode = v.as_int();
     return Status::kOk;
 }
 

@@ -259,6 +259,32 @@ TEST_F(TcRules, NoLengthCompensationWhileTheGroupDoesNotRun) {
     EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
 }
 
+// LengthMode 1 (extension, docs/compensation.md "Tool length"): WkzLen on every profile, the
+// uncompensated ones too, and the departure keeps it.
+TEST_F(TcRules, LengthModeOneAddsWkzLenToEveryProfile) {
+    setup_group(1.0);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, tc::kLengthAlways),
+              Status::kOk);
+    spool_ok(line3(1, 10, 0, 0));
+    run();
+    EXPECT_EQ(position(), xyz(10, 0, 5));
+    activate();
+    spool_ok(line3(2, 20, 0, 0));
+    spool_ok(line3(3, 20, -10, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_FALSE(segs.empty());
+    EXPECT_EQ(segs.back().role, SegmentRole::kDeparture);
+    EXPECT_NEAR(segs.back().end[2], 5.0, kEps);  // the departure keeps the length
+    for (const auto& s : segs) EXPECT_NEAR(s.end[2], 5.0, kEps);
+}
+TEST_F(TcRules, LengthModeTakesOnlyItsTwoValues) {
+    EXPECT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, 2), Status::kValueTooHigh);
+    EXPECT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, -1), Status::kValueTooLow);
+}
+
 // ---- Errors: the spooler holds, Run clears, ERROR stays until written
 
 // After a TC error: the call names group, bit and block; ERROR shows the bit,

@@ -109,6 +109,7 @@ std::vector<ObjectRow> object_rows() {
         {"Side", T1(21), kI, r, I(40), {}, true, {}},
         {"SelectionMode", T1(22), kI, rw, I(237), I(139), true,
          {low(I(138)), high(I(238)), {I(140), Status::kInvalidValue}, {I(236), Status::kInvalidValue}}},
+        {"LengthMode", T1(23), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
         // ---- 3D compensation, bus 1310, DeviceNumber 0.
         {"C3_Tool", C0(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
         {"C3_CallDL", C0(2, 0), kD, rw, D(0.0), D(-0.5), true, c3_range()},

@@ -1301,6 +1301,33 @@ TEST_F(ApcictlRun, AG0UnderG41IsCompensatedSoALiftStaysBesideTheContour) {
     expect_continuous(doc);
 }
 
+TEST_F(ApcictlRun, TheToolLengthHoldsFromTheToolsSelectionNotOnlyUnderG42) {
+    // wr_quad_disc.nc: D1 (length 50 mm) at N22, G42 at N55, G40 at N100. The Z axis takes the
+    // length with N40, the first move after D1, and keeps it through the approach, the contour
+    // and the departure: no lift at G42, no drop at G40 (as an NC control applies a tool length).
+    const auto r = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
+                            kExamples + "/tools/wr_quad_disc.tools", "--csv", path("z.csv")});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    std::istringstream csv(read_text(path("z.csv")));
+    std::string line;
+    std::getline(csv, line);  // header: cycle,time_s,X,Y,Z,...
+    std::size_t rows = 0, at_length = 0;
+    double last_z = 0.0;
+    while (std::getline(csv, line)) {
+        std::vector<double> v;
+        std::stringstream fields(line);
+        for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+        ASSERT_GE(v.size(), 5u);
+        ++rows;
+        last_z = v[4];
+        if (v[4] == 50.0) ++at_length;
+    }
+    ASSERT_GT(rows, 1000u);
+    // N40 rises from 0 to 50 at its feed (F600: 10 mm/s, 5000 cycles); from then on Z is 50.
+    EXPECT_EQ(at_length, rows - 4999) << "Z left the tool length somewhere";
+    EXPECT_EQ(last_z, 50.0);
+}
+
 TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     // [ISG-OTC] section 2.2's general example: N60 G41 (selection, "verschleißfreie Bewegung"),
     // N70 X1000, N80 G40 X50 (deselection): only N70's 950 mm of contour wear, at the disc's

@@ -118,21 +118,63 @@ TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
                                path("out.csv"), "--tools-out", path("out.tools")});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 10.0, kEps);
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR[0]").get<double>(), 0.0);
+    // N40 G00 X0 Y0 Z0 puts D1's 50 mm on Z (50 cycles at 1000 mm/s); N60 then grinds it down
+    // by 0.01 mm a mm of X. At #OTC OFF the 10 mm pass into the tool length (LengthMode 1: the
+    // length acts on every move), so Z stays at 40 and nothing ramps back: the program ends there.
     const auto rows = read_csv(path("out.csv"));
-    ASSERT_EQ(rows.size(), 6000u);
+    ASSERT_EQ(rows.size(), 6050u);
     bool half = false;
     for (const auto& r : rows) {
-        EXPECT_NEAR(r[4], -0.01 * r[2], kEps) << "cycle " << r[0];
+        if (r[0] <= 50) continue;
+        EXPECT_NEAR(r[4], 50.0 - 0.01 * r[2], kEps) << "cycle " << r[0];
         if (r[2] == 500.0) {
             half = true;
-            EXPECT_NEAR(r[4], -5.0, kEps);
+            EXPECT_NEAR(r[4], 45.0, kEps);
         }
     }
     EXPECT_TRUE(half);
-    EXPECT_NEAR(rows.back()[4], -10.0, kEps);
+    EXPECT_NEAR(rows.back()[4], 40.0, kEps);
     auto tools = apci::nc::load_tool_table(path("out.tools"));
     ASSERT_TRUE(tools) << tools.error().to_string();
     EXPECT_NEAR(tools.value().find(1)->length_mm(), 40.0, 1e-6);
+}
+
+// Two LENGTH passes of 10 mm wear each: at each #OTC OFF the wear passes into the tool length,
+// which acts on every move (LengthMode 1), so the passes add up: Z ends 20 mm below the
+// unworn tool, and never moves back up between the passes.
+TEST_F(OtcRun, TwoLengthPassesAddUp) {
+    const std::string prog = write("two.nc",
+                                   "N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH]\n"
+                                   "N40 G1 X1000 F10000\nN50 #OTC OFF\nN60 G0 X0\n"
+                                   "N70 #OTC ON [LENGTH]\nN80 G1 X1000 F10000\nN90 #OTC OFF\n"
+                                   "N100 G0 X0\nN110 M30\n");
+    const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("two.csv"),
+                               "--tools-out", path("two.tools")});
+    const auto rows = read_csv(path("two.csv"));
+    ASSERT_GT(rows.size(), 50u);
+    double previous = 50.0;
+    for (const auto& r : rows) {
+        if (r[0] <= 50) continue;  // N20 puts D1's 50 mm on Z
+        EXPECT_LE(r[4], previous + kEps) << "cycle " << r[0];
+        previous = r[4];
+    }
+    EXPECT_NEAR(rows.back()[4], 50.0 - 20.0, kEps);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 20.0, kEps);
+    auto tools = apci::nc::load_tool_table(path("two.tools"));
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    EXPECT_NEAR(tools.value().find(1)->length_mm(), 30.0, 1e-6);
+}
+
+// A program ends when the OTC offsets have settled, not with a ramp under way: the tilted disc's
+// wear (on X and Z, not along the tool length's axis alone) ramps back off after #OTC OFF, and
+// the run goes on until it has (the G1 X1000 itself takes 6000 cycles).
+TEST_F(OtcRun, AProgramEndsWhenTheOtcRampsHaveSettled) {
+    run_json({kExamples + "/otc/length_tilt.nc", "--tools", kExamples + "/tools/otc_tilt.tools",
+              "--csv", path("t.csv")});
+    const auto rows = read_csv(path("t.csv"));
+    ASSERT_GT(rows.size(), 6050u);
+    EXPECT_EQ(rows.back()[2], 1000.0);  // X: the 5 mm offset all ramped back
+    EXPECT_EQ(rows.back()[4], 50.0);    // Z: the tool length, the 8.66 mm offset ramped back
 }
 
 // [ISG-OTC] section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.
@@ -196,11 +238,12 @@ TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
     EXPECT_GT(worst, 0.1);
 }
 
-// The scripted PLC's cycle entries act at their cycle: nothing moves Z before cycle 2000.
+// The scripted PLC's cycle entries act at their cycle: nothing moves Z before cycle 2000 (but
+// N15's rapid that puts the 50 mm tool length on Z, cycles 1..50 at 1000 mm/s).
 TEST_F(OtcRun, PlcCycleWritesActAtTheirCycle) {
     const std::string prog = write("p.nc",
-                                   "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X100 F1000\n"
-                                   "N40 #OTC OFF\nM30\n");
+                                   "N10 D1\nN15 G0 Z0\nN20 #OTC ON [LENGTH DISC]\n"
+                                   "N30 G1 X100 F1000\nN40 #OTC OFF\nM30\n");
     const std::string plc = write("p.plc",
                                   "cycle 0 otc_offset[2].enable 1\n"
                                   "cycle 2000 otc_offset[2].command 1000\n");
@@ -209,11 +252,11 @@ TEST_F(OtcRun, PlcCycleWritesActAtTheirCycle) {
     const auto rows = read_csv(path("c.csv"));
     ASSERT_GT(rows.size(), 5000u);
     for (const auto& r : rows) {
-        if (r[0] <= 2000) {
-            EXPECT_EQ(r[4], 0.0) << r[0];
+        if (r[0] > 50 && r[0] <= 2000) {
+            EXPECT_EQ(r[4], 50.0) << r[0];
         }
     }
-    EXPECT_LT(rows[2200][4], 0.0);
+    EXPECT_LT(rows[2200][4], 50.0);  // the infeed has begun to act
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 0.1, kEps);
 }
 
@@ -249,7 +292,8 @@ TEST_F(OtcRun, OtcOnWithAMillingToolIsPErr21391) {
 TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
     const std::string prog = write(
         "v.nc",
-        "N10 D1\nN20 #OTC ON\nN30 G1 X500 F10000\nN40 #OTC OFF\n"
+        // N15 puts the tool length on Z first (a rapid, wear-free): N30 then wears X's 500 mm.
+        "N10 D1\nN15 G0 Z0\nN20 #OTC ON\nN30 G1 X500 F10000\nN40 #OTC OFF\n"
         "N50 P1 = V.G.WZ_AKT.WEAR.Z\nN60 P2 = V.G.OTC_ACTIVE\nN70 G0 X[P1 * 10] Y[P2]\nM30\n");
     const json doc = run_json({prog, "--tools", seed_tools()});
     const json& last = doc.at("segments").back();

@@ -43,6 +43,10 @@ class MotionLayer final : public TcMotion {
     void compensation_started(std::int32_t group) override;
     void clear_shift() override;
 
+    // The board axis on which the active group's WkzLen of `tool` acts now (LengthMode 1, or
+    // the group compensating), or -1.
+    int length_axis_of(std::int32_t tool) const noexcept;
+
   private:
     motion::TcSettings settings() const noexcept;
     // Records a call's TC errors: ERROR bits set, Run cleared ([APCI-TC] Table 4/5).

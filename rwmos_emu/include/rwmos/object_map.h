@@ -83,6 +83,7 @@ inline constexpr std::int32_t kSubWkzLen = 12;
 inline constexpr std::int32_t kSubCornerMode = 20;  // int r/w: 26 circular (default), 25 linear
 inline constexpr std::int32_t kSubSide = 21;        // int r: 40 none, 41 left, 42 right
 inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect
+inline constexpr std::int32_t kSubLengthMode = 23;     // int r/w: 0 while compensating (default), 1 always
 
 inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 ([APCI-TC] Table 3)
 
@@ -93,6 +94,9 @@ inline constexpr std::int32_t kCornerCircular = 26;
 // ([ISG-PROG]; docs/compensation.md "Approach and departure").
 inline constexpr std::int32_t kSelectionIndirect = 139;       // the first / G40 block approach and depart
 inline constexpr std::int32_t kSelectionPerpendicular = 237;  // right-angle moves (the board's own)
+// LengthMode values: when WkzLen acts on the group's ZAxis (docs/compensation.md "Tool length").
+inline constexpr std::int32_t kLengthWhileCompensating = 0;  // [APCI-TC]'s: while STATUS Run
+inline constexpr std::int32_t kLengthAlways = 1;             // every profile, as NC controls do
 // Side values: the G-codes of the selection.
 inline constexpr std::int32_t kSideNone = 40;
 inline constexpr std::int32_t kSideLeft = 41;

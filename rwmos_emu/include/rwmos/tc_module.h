@@ -83,6 +83,8 @@ private:
     Status write_corner_mode(const Info&, const Address& a, const Value& v);
     Status read_selection_mode(const Info&, const Address& a, Value& out);
     Status write_selection_mode(const Info&, const Address& a, const Value& v);
+    Status read_length_mode(const Info&, const Address& a, Value& out);
+    Status write_length_mode(const Info&, const Address& a, const Value& v);
     Status read_side(const Info&, const Address& a, Value& out);
 
     // Shared by the "only while inactive" objects (XAxis, YAxis, ZAxis,

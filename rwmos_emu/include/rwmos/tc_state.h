@@ -33,6 +33,7 @@ struct TcGroup {
     std::int32_t side = tc::kSideNone;              // Left/Right selection (41/42), 40 = none
     std::int32_t corner_mode = tc::kCornerCircular;  // outside corners (extension object)
     std::int32_t selection_mode = tc::kSelectionPerpendicular;  // approach/departure (extension)
+    std::int32_t length_mode = tc::kLengthWhileCompensating;    // when WkzLen acts (extension)
     // Stored displacement of the correction axes X, Y, Z ("intern gespeicherte
     // Verschiebungswerte der Korrekturachsen", [APCI-TC] Table 2 ReInit/Reset).
     // Written by the motion layer; cleared by ReInit, Reset, RESET, Clean.

@@ -107,7 +107,17 @@ void Executor::advance(std::uint64_t cycles, double cycle_seconds) {
 }
 
 std::uint64_t Executor::run_until_idle(std::uint64_t max_cycles, double cycle_seconds) {
-    return run_moves(max_cycles, cycle_seconds);
+    std::uint64_t used = run_moves(max_cycles, cycle_seconds);
+    // Idle means nothing moves, the offsets included: offsets still settling (the OTC ramps
+    // after #OTC OFF) run on until they rest, within the same bound.
+    while (used < max_cycles && idle() && offsets_ != nullptr &&
+           offsets_->per_cycle(nullptr, 0, 0)) {
+        ++now_;
+        ++used;
+        place(nullptr, 0, 0, cycle_seconds, /*stepped=*/true);
+        if (tracing_) trace_.push(TraceSample{now_, position_});
+    }
+    return used;
 }
 
 void Executor::set_trace(bool on, std::size_t capacity) {

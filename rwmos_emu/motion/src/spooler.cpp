@@ -208,7 +208,10 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
             case geom::SegmentRole::kTransition:
                 break;  // at the corner: only the plane axes move
             case geom::SegmentRole::kDeparture:
-                end = path_;  // back to the programmed end, length compensation removed
+                // Back to the programmed end, length compensation removed (LengthMode 0) or
+                // kept (LengthMode 1).
+                end = path_;
+                if (c.length_always) end[z] += c.length;
                 break;
         }
         AxisVector start = batch.end;
@@ -265,9 +268,17 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
 
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
     bool pushed = false;
+    // LengthMode 1: the tool length acts on every profile, compensated or not (design,
+    // docs/compensation.md "Tool length"); compensated ones get it below as always.
+    AxisVector length{};
+    if (tc.present && tc.active_group != 0 && tc.length_always) length[tc.length_axis] = tc.length;
+    const auto lengthened = [&length](AxisVector v) {
+        for (int a = 0; a < kAxisCount; ++a) v[a] += length[a];
+        return v;
+    };
     if (p.kind == ProfileKind::kRapid) {
         // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
-        batch.add(line_move(batch.end, res.program, feed, SegmentRole::kRapid, p.tag));
+        batch.add(line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag));
     } else if (!compensate) {
         if (is_arc(p.kind)) {
             const geom::Element e =
@@ -278,12 +289,18 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
                     return tc_error(tc.active_group, why, p.tag);
                 return refuse(Status::kInvalidValue, geom::reason_message(why));
             }
-            Move m = arc_move(batch.end, res.path, res.arc_axes, res.cx, res.cy, res.ccw, feed,
+            // The length axis is the third of the TC plane, outside an arc of that plane; an arc
+            // in another plane that holds it keeps its end as programmed (its circle would move).
+            const bool in_arc_plane =
+                tc.length_axis == res.arc_axes[0] || tc.length_axis == res.arc_axes[1];
+            Move m = arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path),
+                              res.arc_axes, res.cx, res.cy, res.ccw, feed,
                               SegmentRole::kUncompensated, p.tag);
             m.plane = res.plane;
             batch.add(m);
         } else {
-            batch.add(line_move(batch.end, res.path, feed, SegmentRole::kUncompensated, p.tag));
+            batch.add(line_move(batch.end, lengthened(res.path), feed, SegmentRole::kUncompensated,
+                                p.tag));
         }
     } else {
         const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
@@ -309,6 +326,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
         }
         trial.length = tc.length;
+        trial.length_always = tc.length_always;
         const geom::Element e =
             is_arc(p.kind) ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
                                             {res.cx, res.cy}, res.ccw)

@@ -76,6 +76,14 @@ bool Comp3dUnit::setup(const BlockRef& at) {
     if (corrections_ != nullptr)
         for (const nc::CorrectionRow& r : corrections_->rows())
             if (!correction_row(at, r)) return false;
+    // A Klartext program's tool length is this module's (TOOL CALL, the tip along the tool):
+    // the TC groups apply theirs only under RL/RR, the board's own way (LengthMode 0).
+    if (run_.out.tc_present)
+        for (std::int32_t g = 1; g <= rwmos::tc::kGroupCount; ++g) {
+            auto o = group_object(g, rwmos::tc::kSubLengthMode);
+            if (!write(o, rwmos::tc::kLengthWhileCompensating, at, "LengthMode")) return false;
+        }
+    run_.length_always = false;
     return true;
 }
 

@@ -426,7 +426,7 @@ PathSegment Execution::convert(const apci_segment& b) {
         s.center -= head.trafo_length * tool_axis(b0);
     }
     const int z = plane_axes(comp_plane).third;
-    const double end_offset = ends_length_compensated(s.role) ? length : 0.0;
+    const double end_offset = length_always || ends_length_compensated(s.role) ? length : 0.0;
     s.start[z] -= start_offset_;
     s.center[z] -= start_offset_;
     s.end[z] -= end_offset;

@@ -124,6 +124,7 @@ class Execution {
     bool comp_on = false;
     bool comp_plane_seen = false;
     double length = 0.0;      // WkzLen of the current tool
+    bool length_always = false;  // the TC groups' LengthMode 1: the length on every move
     double radius = 0.0;      // RADIUS of the current tool
     nc::ToolTable tools_mut;  // the tool list as the run changes it (wear at tool change)
     int current_tool = 0;

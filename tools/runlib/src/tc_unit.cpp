@@ -18,7 +18,9 @@ constexpr std::array<int, kGroups> kGroupPlane{17, 18, 19};
 
 // RESET (every group to power-on), then group g in the plane kGroupPlane[g - 1], and the
 // program's start state: G17, the NC start corner mode (G25; the board's own default is
-// circular) and selection method (G139; the board's own is perpendicular, G237).
+// circular) and selection method (G139; the board's own is perpendicular, G237), and the tool
+// length on every move from the tool's selection on, as NC controls apply it (LengthMode 1; the
+// board's own applies it while compensating).
 bool TcUnit::setup() {
     auto reset = group_object(1, tc::kSubReset);
     if (!run_.write(reset, std::int32_t{1}, {}, "RESET")) return false;
@@ -29,15 +31,18 @@ bool TcUnit::setup() {
         auto z = group_object(g, tc::kSubZAxis);
         auto corner = group_object(g, tc::kSubCornerMode);
         auto selection = group_object(g, tc::kSubSelectionMode);
+        auto length = group_object(g, tc::kSubLengthMode);
         if (!run_.write(x, run_.axis(p.first), {}, "XAxis") ||
             !run_.write(y, run_.axis(p.second), {}, "YAxis") ||
             !run_.write(z, run_.axis(p.third), {}, "ZAxis") ||
             !run_.write(corner, std::int32_t{nc::g_number(nc::kStartCornerMode)}, {},
                         "CornerMode") ||
             !run_.write(selection, std::int32_t{nc::g_number(nc::kStartSelectionMode)}, {},
-                        "SelectionMode"))
+                        "SelectionMode") ||
+            !run_.write(length, tc::kLengthAlways, {}, "LengthMode"))
             return false;
     }
+    run_.length_always = true;
     auto plane = init_object(tc::kIdxTcPlane);
     return run_.write(plane, std::int32_t{17}, {}, "TcPlane");
 }

@@ -39,6 +39,14 @@ class Executor {
     const AxisVector& planned_end() const noexcept {
         return moves_.empty() ? nominal_ : moves_.back().end;
     }
+    // Moves the nominal path's standing point by delta on one axis while nothing is queued
+    // (false and no change otherwise): an offset that the cycle offsets held passes into the
+    // nominal path (the OTC wear folded into the tool length), the axes stay where they are.
+    bool shift_nominal(int axis, double delta) noexcept {
+        if (!moves_.empty() || axis < 0 || axis >= kAxisCount) return false;
+        nominal_[static_cast<std::size_t>(axis)] += delta;
+        return true;
+    }
     // The i-th queued move (0: the one under way or next). For the modules that annotate
     // the moves a call just queued; i < fill().
     Move& queued(std::size_t i) noexcept { return moves_[i]; }
@@ -57,7 +65,8 @@ class Executor {
     bool idle() const noexcept;
     // Advances the clock by exactly `cycles` cycles (idle cycles included).
     void advance(std::uint64_t cycles, double cycle_seconds);
-    // Advances until idle() or `max_cycles` ran; returns the cycles that ran.
+    // Advances until idle() and the offsets rest (CycleOffsets::per_cycle at no move is false),
+    // or `max_cycles` ran; returns the cycles that ran.
     std::uint64_t run_until_idle(std::uint64_t max_cycles, double cycle_seconds);
 
     // ---- Observation

@@ -47,6 +47,7 @@ struct TcSettings {
     double radius = 0.0;
     geom::TransitionMode transition = geom::TransitionMode::kCircular;
     geom::ApproachMode approach = geom::ApproachMode::kPerpendicular;  // SelectionMode 237 / 139
+    bool length_always = false;  // LengthMode 1: `length` on every profile, not only compensated
     std::uint8_t length_axis = 2;  // the group's ZAxis
     double length = 0.0;           // WkzLen of the group's current tool
 };
@@ -107,6 +108,7 @@ class Spooler {
         std::int32_t plane = 17;
         std::uint8_t length_axis = 2;
         double length = 0.0;  // WkzLen at the last profile compensated
+        bool length_always = false;  // LengthMode 1 when the contour began (the departure keeps it)
         std::int8_t side = 0;  // +1 left, -1 right (Move::side)
     };
     // A profile the compensator knows by index: held, or waiting with the held one.
