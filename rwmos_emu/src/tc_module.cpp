@@ -152,21 +152,24 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
         {group_object(tc::kSubCornerMode, "CornerMode", kInt, kRW, tc::kCornerLinear,
                       tc::kCornerCircular, Value::of_int(tc::kCornerCircular),
                       "design: corners 26 circular (default) / 25 linear (docs/design.md section 3)"),
-         &M::read_corner_mode, &M::write_corner_mode},
+         &M::read_group_mode<&TcGroup::corner_mode>,
+         &M::write_group_mode<&TcGroup::corner_mode>},
         {group_object(tc::kSubSide, "Side", kInt, kR, tc::kSideNone, tc::kSideRight,
                       Value::of_int(tc::kSideNone),
                       "design: reads back the Left/Right selection: 40 none, 41 left, 42 right"),
-         &M::read_side, nullptr},
+         &M::read_group_mode<&TcGroup::side>, nullptr},
         {group_object(tc::kSubSelectionMode, "SelectionMode", kInt, kRW, tc::kSelectionIndirect,
                       tc::kSelectionPerpendicular, Value::of_int(tc::kSelectionPerpendicular),
                       "design: approach and departure, 237 perpendicular (default) / 139 indirect "
                       "(docs/compensation.md)"),
-         &M::read_selection_mode, &M::write_selection_mode},
+         &M::read_group_mode<&TcGroup::selection_mode>,
+         &M::write_group_mode<&TcGroup::selection_mode>},
         {group_object(tc::kSubLengthMode, "LengthMode", kInt, kRW, tc::kLengthWhileCompensating,
                       tc::kLengthAlways, Value::of_int(tc::kLengthWhileCompensating),
                       "design: WkzLen on ZAxis 0 while compensating (default) / 1 on every profile "
                       "(docs/compensation.md)"),
-         &M::read_length_mode, &M::write_length_mode},
+         &M::read_group_mode<&TcGroup::length_mode>,
+         &M::write_group_mode<&TcGroup::length_mode>},
     }};
     return kTable;
 }
@@ -494,65 +497,28 @@ Status TcModule::write_wkz_len(const ObjectInfo&, const Address& a, const Value&
     return Status::kOk;
 }
 
-// Design (docs/design.md section 3): the outside-corner transition, like G25/G26,
-// may change at any time; it applies from the next transition computed.
-Status TcModule::read_corner_mode(const ObjectInfo&, const Address& a, Value& out) {
+// The extension objects that hold a group's mode as written (docs/design.md section 3):
+// CornerMode (like G25/G26, applies from the next transition computed), SelectionMode (like
+// G237/G139: the mode at activation shapes the approach, the mode at deactivation the
+// departure), LengthMode (from the next profile) and Side (read only). All may change at any
+// time; the table's range checks them, SelectionMode's two values below.
+template <std::int32_t TcGroup::*Field>
+Status TcModule::read_group_mode(const ObjectInfo&, const Address& a, Value& out) {
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
-    out = Value::of_int(g->corner_mode);
+    out = Value::of_int(g->*Field);
     return Status::kOk;
 }
-Status TcModule::write_corner_mode(const ObjectInfo&, const Address& a, const Value& v) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    g->corner_mode = v.as_int();
-    return Status::kOk;
-}
-
-// Design (docs/compensation.md "Approach and departure"): like G237/G139, changeable at any
-// time; the mode at activation shapes the approach, the mode at deactivation the departure.
-Status TcModule::read_selection_mode(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->selection_mode);
-    return Status::kOk;
-}
-Status TcModule::write_selection_mode(const ObjectInfo&, const Address& a, const Value& v) {
-    const std::int32_t mode = v.as_int();
-    if (mode != tc::kSelectionIndirect && mode != tc::kSelectionPerpendicular)
+template <std::int32_t TcGroup::*Field>
+Status TcModule::write_group_mode(const ObjectInfo&, const Address& a, const Value& v) {
+    if (Field == &TcGroup::selection_mode && v.as_int() != tc::kSelectionIndirect &&
+        v.as_int() != tc::kSelectionPerpendicular)
         return Status::kInvalidValue;
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
-    g->selection_mode = mode;
-    return Status::kOk;
-}
-
-// Design (docs/compensation.md "Tool length"): changeable at any time; applies from the next
-// profile.
-Status TcModule::read_length_mode(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->length_mode);
-    return Status::kOk;
-}
-Status TcModule::write_length_mode(const ObjectInfo&, const Address& a, const Value& v) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    g->length_mode = v.as_int();
-    return Status::kOk;
-}
-
-Status TcModule::read_side(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->side);
+    g->*Field = v.as_int();
     return Status::kOk;
 }
 

@@ -79,13 +79,11 @@ private:
     Status write_right(const Info&, const Address& a, const Value& v);
     Status read_wkz_len(const Info&, const Address& a, Value& out);
     Status write_wkz_len(const Info&, const Address& a, const Value& v);
-    Status read_corner_mode(const Info&, const Address& a, Value& out);
-    Status write_corner_mode(const Info&, const Address& a, const Value& v);
-    Status read_selection_mode(const Info&, const Address& a, Value& out);
-    Status write_selection_mode(const Info&, const Address& a, const Value& v);
-    Status read_length_mode(const Info&, const Address& a, Value& out);
-    Status write_length_mode(const Info&, const Address& a, const Value& v);
-    Status read_side(const Info&, const Address& a, Value& out);
+    // The int modes of a group (CornerMode, Side, SelectionMode, LengthMode).
+    template <std::int32_t TcGroup::*Field>
+    Status read_group_mode(const Info&, const Address& a, Value& out);
+    template <std::int32_t TcGroup::*Field>
+    Status write_group_mode(const Info&, const Address& a, const Value& v);
 
     // Shared by the "only while inactive" objects (XAxis, YAxis, ZAxis,
     // WKZINDEX, Left, Right): refuse and flag InitError while Run is set.
