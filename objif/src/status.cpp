@@ -28,13 +28,13 @@ constexpr std::array kStatusTable{
     StatusRow{Status::kInvalidValue, "InvalidValue", "value not allowed (NaN, infinity or not one of the permitted values)"},
     StatusRow{Status::kWrongDeviceState, "WrongDeviceState", "not possible in the present device state"},
     StatusRow{Status::kBusy, "Busy", "spooler full, nothing taken; try again"},
-    StatusRow{Status::kGeneralError, "GeneralError", "general error"},
+    StatusRow{Status::kGeneralError, "GeneralError", "general error (the message says where)"},
     StatusRow{Status::kBadFrame, "BadFrame", "malformed wire frame"},
     StatusRow{Status::kUnknownOpcode, "UnknownOpcode", "frame opcode not served"},
     StatusRow{Status::kTransportError, "TransportError", "transport to the board failed"},
     StatusRow{Status::kTimeout, "Timeout", "board did not answer in time"},
     StatusRow{Status::kNotSupported, "NotSupported", "not supported by this device or transport"},
-    StatusRow{Status::kInvalidArgument, "InvalidArgument", "invalid argument"},
+    StatusRow{Status::kInvalidArgument, "InvalidArgument", "invalid argument (a null pointer, a bad device URI or option)"},
     StatusRow{Status::kNoMemory, "NoMemory", "out of memory"},
 };
 static_assert(kStatusTable.size() == kStatusCount, "status table and enum out of step");
