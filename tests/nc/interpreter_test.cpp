@@ -373,6 +373,17 @@ TEST(Interpreter, CompensationSwitchInArcBlockIsError) {
     EXPECT_EQ(error_of("G0 X10\nG41 G1 X0 F1\nG2 X-10 I-5\nG40 G1 X-20\nM30"), "");
 }
 
+TEST(Interpreter, AnArcRightAfterALoneG40IsRefusedUnderG139) {
+    // The move after a lone G40 departs from the compensated point (G139): an arc would not
+    // start where it is programmed. A line first, or G237, and the arc runs.
+    EXPECT_EQ(error_of("G0 X10\nG41 G1 X0 F1\nG40\nG2 X-10 I-5\nM30"),
+              "prog.nc:4:1: G2 right after G40: under G139 this move departs from the compensated "
+              "point, r beside the contour, not from the arc's programmed start; program a G1 (or "
+              "G0) first, or G40 with G237");
+    EXPECT_EQ(error_of("G0 X10\nG41 G1 X0 F1\nG40\nG1 X-1\nG2 X-11 I-5\nM30"), "");
+    EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG40\nG2 X-10 I-5\nM30"), "");
+}
+
 TEST(Interpreter, ProgramEndEvent) {
     const auto ev = events_of("G0 X1 M30");
     ASSERT_EQ(ev.size(), 2U);

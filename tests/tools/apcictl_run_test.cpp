@@ -1328,6 +1328,21 @@ TEST_F(ApcictlRun, TheToolLengthHoldsFromTheToolsSelectionNotOnlyUnderG42) {
     EXPECT_EQ(last_z, 50.0);
 }
 
+TEST_F(ApcictlRun, TheReportedPathIsTheToolTipWhicheverPlaneTheLengthActsIn) {
+    // D2 (length 100) in G17, then G18 and G17 again: the length moves from Z to Y and back on
+    // the axes; the JSON shows the programmed tip throughout.
+    const std::string prog = write("planes.nc",
+                                   "N10 D1\nN15 G18\nN20 G0 X-10 Y0 Z5\nN30 G1 X0 F1000\n"
+                                   "N40 G17\nN50 G1 Z0\nN60 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5, 100.0)});
+    ASSERT_EQ(doc.at("segments").size(), 3u) << roles(doc);
+    EXPECT_EQ(point(doc.at("segments")[0].at("end")), apci::run::Point(-10, 0, 5));
+    EXPECT_EQ(point(doc.at("segments")[1].at("end")), apci::run::Point(0, 0, 5));
+    EXPECT_EQ(point(doc.at("segments")[2].at("start")), apci::run::Point(0, 0, 5));
+    EXPECT_EQ(point(doc.at("segments")[2].at("end")), apci::run::Point(0, 0, 0));
+    EXPECT_TRUE(contains(last_.out, "path 26.180 mm (rapid 11.180 mm)")) << last_.out;
+}
+
 TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     // [ISG-OTC] section 2.2's general example: N60 G41 (selection, "verschleißfreie Bewegung"),
     // N70 X1000, N80 G40 X50 (deselection): only N70's 950 mm of contour wear, at the disc's

@@ -160,6 +160,16 @@ TEST_F(OtcRun, TwoLengthPassesAddUp) {
     }
     EXPECT_NEAR(rows.back()[4], 50.0 - 20.0, kEps);
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 20.0, kEps);
+    // The reported path (the tool tip) stays at Z 0 and continuous across both folds.
+    const json* before = nullptr;
+    for (const auto& s : doc.at("segments")) {
+        EXPECT_NEAR(s.at("start")[2].get<double>(), 0.0, kEps) << s.dump();
+        EXPECT_NEAR(s.at("end")[2].get<double>(), 0.0, kEps) << s.dump();
+        if (before != nullptr) {
+            EXPECT_EQ(s.at("start"), before->at("end")) << s.dump();
+        }
+        before = &s;
+    }
     auto tools = apci::nc::load_tool_table(path("two.tools"));
     ASSERT_TRUE(tools) << tools.error().to_string();
     EXPECT_NEAR(tools.value().find(1)->length_mm(), 30.0, 1e-6);

@@ -59,7 +59,7 @@ MotionResult check_targets(AxisMask axes, const AxisVector& target) {
         if ((axes & (1u << a)) == 0) continue;
         const Status s = check_coordinate(target[a]);
         if (!objif::ok(s))
-            return refuse(s, "target coordinate NaN, infinite or beyond the coordinate limit");
+            return refuse(s, "a target coordinate is beyond the board's limit of +-100000, or not finite");
     }
     return {};
 }
@@ -76,7 +76,7 @@ MotionResult check_profile(const Profile& p) {
             return refuse(Status::kInvalidValue, "arc axes must be two different axes");
         for (double c : p.center)
             if (const Status s = check_coordinate(c); !objif::ok(s))
-                return refuse(s, "arc centre NaN, infinite or beyond the coordinate limit");
+                return refuse(s, "an arc centre coordinate is beyond the board's limit of +-100000, or not finite");
     }
     return {};
 }

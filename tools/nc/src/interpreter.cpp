@@ -13,6 +13,9 @@ namespace apci::nc {
 namespace {
 
 constexpr char kCenterLetter[3] = {'I', 'J', 'K'};
+constexpr char kAxisLetter[3] = {'X', 'Y', 'Z'};
+// The board's coordinate limit (rwmos motion kMaxCoordinate, docs/motion.md), in mm.
+constexpr double kMaxProgramCoordinate = 1e5;
 
 bool is_arc(Motion m) {
     return m == Motion::kArcCw || m == Motion::kArcCcw;
@@ -227,6 +230,19 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                 ErrorKind::kProgramRule, first_motion_column(b),
                 fmt::format("no feed rate: program F before the first G{} move", g_number(m)));
         }
+        // Under G139 the move after a lone G40 departs from the last compensated point, r beside
+        // the contour: an arc from there would not start where it was programmed ([ISG-PROG]
+        // G239: "An arc programmed directly after G40 causes an error message"; LinuxCNC: "must
+        // be straight, not an arc").
+        if (is_arc(m) && state_.departure_pending) {
+            return c.fail(ErrorKind::kProgramRule,
+                          b.motion.present() ? b.motion.column : first_motion_column(b),
+                          fmt::format("G{} right after G40: under G139 this move departs from the "
+                                      "compensated point, r beside the contour, not from the arc's "
+                                      "programmed start; program a G1 (or G0) first, or G40 with "
+                                      "G237",
+                                      g_number(m)));
+        }
         if (is_arc(m) && s.compensation != state_.compensation) {
             return c.fail(ErrorKind::kProgramRule, b.compensation.column,
                           fmt::format("G{} switched in an arc block: switch radius compensation "
@@ -238,6 +254,17 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                           "B in an arc block: tilt the head in a G0 or G1 block");
         }
         const Eigen::Vector3d end = end_point(b, state_.position, s.distance);
+        // The board takes coordinates within +-1e5 (docs/motion.md): a point beyond is refused
+        // here, with its word, rather than by the board at the spool.
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (std::abs(end[static_cast<Eigen::Index>(k)]) <= kMaxProgramCoordinate) continue;
+            return c.fail(ErrorKind::kValue,
+                          b.axis[k].present() ? b.axis[k].column : first_motion_column(b),
+                          fmt::format("{} {:g} mm is beyond the board's coordinate range of "
+                                      "+-{:g} mm",
+                                      kAxisLetter[k], end[static_cast<Eigen::Index>(k)],
+                                      kMaxProgramCoordinate));
+        }
         switch (m) {
             case Motion::kRapid:
                 move = RapidMove{state_.position, end};

@@ -189,7 +189,9 @@ bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
     if (r.value.errors != 0)
         return tc_errors(decode_block_tag(r.value.tag), r.value.errors,
                          std::string(said.empty() ? board_.last_error() : said));
-    return record(at, std::string(apci::status_name(r.status)), std::string(board_.last_error()));
+    // Any other refusal: the board's words too, not the driver's call and tag.
+    return record(at, std::string(apci::status_name(r.status)),
+                  std::string(said.empty() ? board_.last_error() : said));
 }
 
 // Spools p; Busy (the spooler is full) makes room and tries again. False when the clock could
@@ -425,11 +427,24 @@ PathSegment Execution::convert(const apci_segment& b) {
         s.end -= head.trafo_length * tool_axis(b1);
         s.center -= head.trafo_length * tool_axis(b0);
     }
-    const int z = plane_axes(comp_plane).third;
-    const double end_offset = length_always || ends_length_compensated(s.role) ? length : 0.0;
-    s.start[z] -= start_offset_;
-    s.center[z] -= start_offset_;
-    s.end[z] -= end_offset;
+    // The length acts on the tool axis of the plane in force: the plane of the contour under
+    // G41/G42 (LengthMode 0), the plane now (LengthMode 1; a plane change drains the segments
+    // before it, so every segment read after it ran in it).
+    const int z = plane_axes(length_always ? plane : comp_plane).third;
+    Eigen::Vector3d end_offset = Eigen::Vector3d::Zero();
+    if (length_always || ends_length_compensated(s.role)) end_offset[z] = length;
+    if (have_last_board_end_ && segments_lost_ == 0) {
+        // The nominal path moved by the fold on the tool axis alone: so did the length.
+        const Eigen::Vector3d jump = s.start - last_board_end_;
+        if (std::abs(jump[z]) > 1e-9 && std::abs(jump[(z + 1) % 3]) <= 1e-9 &&
+            std::abs(jump[(z + 2) % 3]) <= 1e-9)
+            start_offset_[z] += jump[z];
+    }
+    last_board_end_ = s.end;
+    have_last_board_end_ = true;
+    s.start -= start_offset_;
+    s.center -= start_offset_;
+    s.end -= end_offset;
     start_offset_ = end_offset;
     // A line the 3D module compensated is a contour element (the board's spooler, which
     // knows only the TC module, calls it uncompensated; the TC's length compensation did

@@ -171,7 +171,14 @@ class Execution {
     bool set_up_ = false;   // setup() succeeded: the board was configured for the run
     bool clock_ok_ = true;  // no clock call failed
     bool klartext_ = false;
-    double start_offset_ = 0.0;  // length compensation at the end of the last segment read
+    // Length compensation at the end of the last segment read, per program axis (the tool axis
+    // changes with the plane).
+    Eigen::Vector3d start_offset_ = Eigen::Vector3d::Zero();
+    // The board's end of the last segment read (program axes), and whether there is one: a
+    // segment that starts elsewhere on the tool axis follows a fold of OTC wear into the tool
+    // length, which moved the nominal path and not the axes.
+    Eigen::Vector3d last_board_end_ = Eigen::Vector3d::Zero();
+    bool have_last_board_end_ = false;
     RecentMoves recent_;
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;

@@ -88,10 +88,14 @@ bool TcUnit::tool(const BlockRef& at, int index) {
 }
 
 bool TcUnit::plane(const BlockRef& at, nc::Plane p) {
-    run_.plane = nc::g_number(p);
-    if (!run_.out.tc_present) return true;
-    // The length axis changes with the plane: segments of the last contour are read first.
+    if (!run_.out.tc_present) {
+        run_.plane = nc::g_number(p);
+        return true;
+    }
+    // The length axis changes with the plane: the segments that ran in the old one are read
+    // first, in the old one.
     if (!run_.run_clock()) return false;
+    run_.plane = nc::g_number(p);
     auto o = init_object(tc::kIdxTcPlane);
     return run_.write(o, std::int32_t{run_.plane}, at, "TcPlane");
 }
