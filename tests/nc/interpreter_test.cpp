@@ -384,6 +384,14 @@ TEST(Interpreter, AnArcRightAfterALoneG40IsRefusedUnderG139) {
     EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG40\nG2 X-10 I-5\nM30"), "");
 }
 
+TEST(Interpreter, ACoordinateBeyondTheBoardsRangeIsRefusedWithItsWord) {
+    EXPECT_EQ(error_of("G1 X99999999999 F1\nM30"),
+              "prog.nc:1:4: X 1e+11 mm is beyond the board's coordinate range of +-100000 mm");
+    EXPECT_EQ(error_of("G91\nG0 Z60000\nG0 Z60000\nM30"),
+              "prog.nc:3:4: Z 120000 mm is beyond the board's coordinate range of +-100000 mm");
+    EXPECT_EQ(error_of("G0 X100000 Y-100000\nM30"), "");
+}
+
 TEST(Interpreter, ProgramEndEvent) {
     const auto ev = events_of("G0 X1 M30");
     ASSERT_EQ(ev.size(), 2U);

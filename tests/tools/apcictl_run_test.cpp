@@ -1343,6 +1343,18 @@ TEST_F(ApcictlRun, TheReportedPathIsTheToolTipWhicheverPlaneTheLengthActsIn) {
     EXPECT_TRUE(contains(last_.out, "path 26.180 mm (rapid 11.180 mm)")) << last_.out;
 }
 
+TEST_F(ApcictlRun, ABoardRefusalOfAMoveIsInTheBoardsWordsWithoutTheDriversCallOrTag) {
+    const std::string prog = write("feed.nc", "F2000000000\nG1 X1\nM30\n");
+    const json doc = run_json(prog, {}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "ValueTooHigh");
+    EXPECT_EQ(doc.at("errors")[0].at("message"), "feed above 1e9 units per minute");
+    EXPECT_TRUE(contains(last_.out, "\n  line 2: ValueTooHigh: feed above 1e9 units per minute\n"))
+        << last_.out;
+    for (const std::string& text : {last_.out, last_.err})
+        EXPECT_FALSE(contains(text, "spool") || contains(text, "N2147")) << text;
+}
+
 TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     // [ISG-OTC] section 2.2's general example: N60 G41 (selection, "verschleißfreie Bewegung"),
     // N70 X1000, N80 G40 X50 (deselection): only N70's 950 mm of contour wear, at the disc's
