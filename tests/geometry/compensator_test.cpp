@@ -509,6 +509,21 @@ TEST(Compensator, IndirectApproachOfASingleElementRunsToItsOffsetEnd) {
     EXPECT_TRUE(same(out[0].path, make_line({0, 0}, {2, -2})));
 }
 
+TEST(Compensator, IndirectApproachShorterThanItsInsideCornerEndsBackWhereTheOffsetsMeet) {
+    // A selection block of 1 mm with r 5, then up: the offsets y = 5 and x = -4 meet 4 mm behind
+    // the block's offset start. The approach comes from the tool, so it runs there; nothing is
+    // too short.
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(indirect(5), {0, 0}).ok());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {1, 0}), 1, out).ok());
+    const StepResult r = c.push(make_line({1, 0}, {1, 20}), 2, out);
+    ASSERT_TRUE(r.ok()) << reason_name(r.reason);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_TRUE(same(out[0].path, make_line({0, 0}, {-4, 5})));
+}
+
 TEST(Compensator, IndirectApproachByAnArcArrivesAlongTheOffsetArc) {
     // A quarter arc from (0, 0) about (0, 10) counter-clockwise to (10, 10), r 1 right (the tool
     // outside): the offset end is (11, 10); the entry arc from (0, 0) has its centre on the line

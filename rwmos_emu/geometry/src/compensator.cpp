@@ -105,6 +105,14 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
         // whose corner is taken from the programmed direction); only its start is the tool's.
         held_ = offset.element;
         held_role_ = SegmentRole::kApproach;
+        // The approach comes from the tool, not from the offset line's start: an inside corner
+        // may trim it anywhere back along that line (a short selection block), so the line
+        // reaches back past the tool for the trim.
+        if (!is_arc(programmed)) {
+            const double back = offset_length(held_) + (programmed.end - position_).norm() + 2 * r;
+            const Vec2 start = held_.path.end - back * held_.direction;
+            if (is_valid_coordinate(start)) held_.path.start = start;
+        }
     } else if (state_ == State::kStarted) {
         const Element approach = approach_move(position_, offset.element);
         if (worth_moving(approach)) out.add(approach, SegmentRole::kApproach, index);
