@@ -5,6 +5,19 @@
 # and the PLC's 2 mm (docs/otc.md); the summaries on standard output, plots and paths in out/.
 set -euo pipefail
 cd "$(dirname "$0")"
+if [[ $# -gt 0 ]]; then
+  case "$1" in
+    -h|--help)
+      echo "usage: ./run.sh"
+      echo "Installs what is missing (apt-get), builds, and runs the main job on the embedded"
+      echo "emulator: examples/wr_quad_disc.nc and examples/otc/wr_quad_disc.nc through apcictl run;"
+      echo "the summaries on standard output, plots, paths and the worn tool list in out/."
+      exit 0 ;;
+    *)
+      echo "run.sh: takes no arguments (got '$1'); ./run.sh --help says what it does" >&2
+      exit 2 ;;
+  esac
+fi
 source scripts/deps.sh
 apci_install_deps
 apci_build build >/dev/null
