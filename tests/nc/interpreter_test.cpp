@@ -67,14 +67,14 @@ TEST(Interpreter, RapidNeedsNoFeed) {
 
 TEST(Interpreter, NoFeedBeforeFirstFeedMoveIsError) {
     EXPECT_EQ(error_of("N10 G1 X1\nM30"),
-              "prog.nc:1:8: no feed rate: program F before the first G1 move");
+              "prog.nc:1:8: N10: no feed rate: program F before the first G1 move");
     EXPECT_EQ(error_of("G0 X1\nG2 X2 I.5\nM30"),
               "prog.nc:2:4: no feed rate: program F before the first G2 move");
 }
 
 TEST(Interpreter, NoMotionModeBeforeFirstMoveIsError) {
     EXPECT_EQ(error_of("F100\nN20 X1\nM30"),
-              "prog.nc:2:5: no motion mode: program G0, G1, G2 or G3 before the first move");
+              "prog.nc:2:5: N20: no motion mode: program G0, G1, G2 or G3 before the first move");
 }
 
 TEST(Interpreter, AbsoluteAndIncrementalDistance) {
@@ -204,7 +204,7 @@ TEST(Interpreter, RadiusTooLargeToSquareStillGivesItsFiniteCentre) {
 
 TEST(Interpreter, RadiusArcImpossibleForChordIsError) {
     EXPECT_EQ(error_of("N10 G0 X0 Y0\nN20 G2 X20.01 R10 F100\nM30"),
-              "prog.nc:2:15: R arc impossible: the chord from start to end is 20.0100 mm long, "
+              "prog.nc:2:15: N20: R arc impossible: the chord from start to end is 20.0100 mm long, "
               "more than the diameter 20.0000 mm of R10");
     const test::RunResult r = test::run("N10 G0 X0 Y0\nN20 G2 X20.01 R10 F100\nM30");
     ASSERT_TRUE(r.error);
@@ -347,7 +347,7 @@ TEST(Interpreter, BlockWithoutNumberHasNoBlockNumber) {
 
 TEST(Interpreter, PlaneChangeWithCompensationOnIsError) {
     EXPECT_EQ(error_of("G41\nN20 G18\nM30"),
-              "prog.nc:2:5: G18 changes the plane while radius compensation is on: program G40 "
+              "prog.nc:2:5: N20: G18 changes the plane while radius compensation is on: program G40 "
               "before changing the plane");
     EXPECT_EQ(error_of("G18 G42\nM30"),
               "prog.nc:1:1: G18 changes the plane while radius compensation is on: program G40 "
@@ -439,7 +439,7 @@ TEST(Interpreter, ToolTableRequiresDefinedValidTool) {
     o.tools = &tools.value();
     EXPECT_EQ(error_of("D1\nD0\nM30", o), "");
     EXPECT_EQ(error_of("N7 D3\nM30", o),
-              "prog.nc:1:4: D3 selects tool 3, which the tool list does not define");
+              "prog.nc:1:4: N7: D3 selects tool 3, which the tool list does not define");
     EXPECT_EQ(error_of("D2\nM30", o),
               "prog.nc:1:1: D2 selects tool 2, which is not valid (wz[2].gueltig is 0, not 1; "
               "unset data is 0)");

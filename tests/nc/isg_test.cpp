@@ -128,11 +128,11 @@ TEST(OtcRules, OtcOnNeedsAGrindingToolPErr21391) {
     o.tools = &tools;
     EXPECT_EQ(
         error_of("N10 D2\nN20 #OTC ON\nM30\n", o),
-        "prog.nc:2:5: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
+        "prog.nc:2:5: N20: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
         "D2 is type 0");
     EXPECT_EQ(
         error_of("N20 #OTC ON\nM30\n", o),
-        "prog.nc:1:5: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
+        "prog.nc:1:5: N20: P-ERR-21391: #OTC ON needs a grinding tool (tool type 2, P-TOOL-00001); "
         "D0 is type 0");
     EXPECT_EQ(error_of("N10 D1\nN20 #OTC ON\nN30 #OTC OFF\nM30\n", o), "");
 }

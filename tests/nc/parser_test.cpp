@@ -174,13 +174,13 @@ TEST(Parser, CommentsInParenthesesAndAfterSemicolon) {
 
 TEST(Parser, UnclosedCommentIsSyntaxError) {
     EXPECT_EQ(error("N10 G1 (no end"),
-              "prog.nc:12:8: comment not closed: expected ')' before "
+              "prog.nc:12:8: N10: comment not closed: expected ')' before "
               "the end of the line");
 }
 
 TEST(Parser, ExpectedNumberAfterAddress) {
-    EXPECT_EQ(error("N10 G1 X"), "prog.nc:12:9: expected a number after 'X'");
-    EXPECT_EQ(error("N10 G1 X Y2"), "prog.nc:12:9: expected a number after 'X'");
+    EXPECT_EQ(error("N10 G1 X"), "prog.nc:12:9: N10: expected a number after 'X'");
+    EXPECT_EQ(error("N10 G1 X Y2"), "prog.nc:12:9: N10: expected a number after 'X'");
     EXPECT_EQ(error("G1 X- Y2"), "prog.nc:12:5: expected a number after 'X'");
     EXPECT_EQ(error("G1 X."), "prog.nc:12:5: expected a number after 'X'");
     EXPECT_EQ(error("G"), "prog.nc:12:2: expected a number after 'G'");
@@ -210,7 +210,7 @@ TEST(Parser, WholeNumberWords) {
 
 TEST(Parser, UnknownWordsAreErrors) {
     EXPECT_EQ(error("N10 E5"),
-              "prog.nc:12:5: unknown word 'E' (known words: N G X Y Z B I J K R F D M)");
+              "prog.nc:12:5: N10: unknown word 'E' (known words: N G X Y Z B I J K R F D M)");
     EXPECT_EQ(error("G1 U45"),
               "prog.nc:12:4: unknown word 'U' (known words: N G X Y Z B I J K R F D M)");
     EXPECT_EQ(error_kind("S1000"), ErrorKind::kUnknownWord);
@@ -218,7 +218,7 @@ TEST(Parser, UnknownWordsAreErrors) {
 
 TEST(Parser, UnknownGCode) {
     EXPECT_EQ(error("N10 G04"),
-              "prog.nc:12:5: unknown G code G4 (known: G0-G3, G17-G19, G25, "
+              "prog.nc:12:5: N10: unknown G code G4 (known: G0-G3, G17-G19, G25, "
               "G26, G40-G42, G70, G71, G90, G91)");
 }
 
@@ -314,7 +314,7 @@ TEST(Parser, RadiusMustNotBeZero) {
 
 TEST(Parser, UnknownIsgCommandsAreUnsupportedByName) {
     EXPECT_EQ(error("N50 #CHANNEL INIT"),
-              "prog.nc:12:5: ISG command '#CHANNEL' is not supported (known: #OTC, #KIN, #TRAFO, "
+              "prog.nc:12:5: N50: ISG command '#CHANNEL' is not supported (known: #OTC, #KIN, #TRAFO, "
               "#HSC, $FOR, $ENDFOR)");
     EXPECT_EQ(error_kind("$IF P1 == 1"), ErrorKind::kUnsupported);
     EXPECT_EQ(error("# ON"), "prog.nc:12:1: expected a command name after '#'");
@@ -322,7 +322,7 @@ TEST(Parser, UnknownIsgCommandsAreUnsupportedByName) {
 
 TEST(Parser, ErrorColumnsCountCharactersNotBytes) {
     EXPECT_EQ(error("N22 (Übergang) Q1"),
-              "prog.nc:12:16: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
+              "prog.nc:12:16: N22: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
 }
 
 TEST(Parser, DialectDetection) {

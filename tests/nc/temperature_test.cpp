@@ -79,7 +79,7 @@ TEST(TemperatureSettingData, ABoardsValueReplacesTheFrontEndsView) {
 TEST(TemperatureSettingData, IndexOutsideZeroToTwoIsRefused) {
     const std::string why =
         "$SC_TOOL_TEMP_COMP[i] takes a component index 0..2 (X, Y, Z of the geometry axes)";
-    EXPECT_EQ(error_of("G0 X1\nN20 $SC_TOOL_TEMP_COMP[3] = 0.1\nM30\n"), "prog.nc:2:5: " + why);
+    EXPECT_EQ(error_of("G0 X1\nN20 $SC_TOOL_TEMP_COMP[3] = 0.1\nM30\n"), "prog.nc:2:5: N20: " + why);
     EXPECT_EQ(error_of("$SC_TOOL_TEMP_COMP = 0.1\nM30\n"), "prog.nc:1:1: " + why);
     EXPECT_EQ(error_of("$SC_TOOL_TEMP_COMP[] = 0.1\nM30\n"), "prog.nc:1:1: " + why);
     EXPECT_EQ(error_of("$SC_TOOL_TEMP_COMP[-1] = 0.1\nM30\n"), "prog.nc:1:1: " + why);
@@ -89,7 +89,7 @@ TEST(TemperatureSettingData, IndexOutsideZeroToTwoIsRefused) {
 // The object on the board takes -1e5..1e5 (docs/object-map.md section 7).
 TEST(TemperatureSettingData, ValueBeyondTheObjectsRangeIsRefused) {
     EXPECT_EQ(error_of("N7 $SC_TOOL_TEMP_COMP[2] = 100000.5\nM30\n"),
-              "prog.nc:1:4: $SC_TOOL_TEMP_COMP[2] = 100000.5 out of range: SD 42960 takes "
+              "prog.nc:1:4: N7: $SC_TOOL_TEMP_COMP[2] = 100000.5 out of range: SD 42960 takes "
               "-100000..100000 mm");
     EXPECT_EQ(error_of("$SC_TOOL_TEMP_COMP[0] = -1000000\nM30\n"),
               "prog.nc:1:1: $SC_TOOL_TEMP_COMP[0] = -1000000 out of range: SD 42960 takes "

@@ -956,7 +956,7 @@ TEST_F(ApcictlRun, ParseErrorNamesFileLineAndColumnAndRunsNothing) {
     const auto r = apcictl({"run", prog, "--json", path("bad.json"), "--svg", path("bad.svg")});
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.out, "");
-    EXPECT_EQ(r.err, "apcictl: " + prog + ":2:9: expected a number after 'X'\n");
+    EXPECT_EQ(r.err, "apcictl: " + prog + ":2:9: N20: expected a number after 'X'\n");
     EXPECT_FALSE(exists(path("bad.json")));
     EXPECT_FALSE(exists(path("bad.svg")));
 }
@@ -966,7 +966,7 @@ TEST_F(ApcictlRun, ToolNotInTheToolListSaysThatNoneWasGiven) {
     const auto r = apcictl({"run", prog});
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.err,
-                         ":1:5: D1 selects tool 1, which the tool list does not define "
+                         ":1:5: N10: D1 selects tool 1, which the tool list does not define "
                          "(no --tools file given)"))
         << r.err;
 }
@@ -1009,7 +1009,7 @@ TEST_F(ApcictlRun, ProgramFromStandardInput) {
         << r.out;
     const auto bad = apcictl({"run", "-"}, "N10 G1 X\n");
     EXPECT_EQ(bad.exit_code, 1);
-    EXPECT_TRUE(contains(bad.err, "<stdin>:1:9: expected a number after 'X'")) << bad.err;
+    EXPECT_TRUE(contains(bad.err, "<stdin>:1:9: N10: expected a number after 'X'")) << bad.err;
 }
 
 // Runs apcictl with standard error on a pseudo-terminal; returns what it wrote there.

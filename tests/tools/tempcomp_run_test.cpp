@@ -300,11 +300,11 @@ TEST_F(TempCompRun, BadProgramWriteIsRefusedBeforeAnythingRuns) {
     };
     const Case cases[] = {
         {"N20 $SC_TOOL_TEMP_COMP[3] = 0.1",
-         ":2:5: $SC_TOOL_TEMP_COMP[i] takes a component index 0..2"},
+         ":2:5: N20: $SC_TOOL_TEMP_COMP[i] takes a component index 0..2"},
         {"N20 $SC_TOOL_TEMP_COMP[1] = 200000",
-         ":2:5: $SC_TOOL_TEMP_COMP[1] = 200000 out of range: SD 42960 takes -100000..100000 mm"},
+         ":2:5: N20: $SC_TOOL_TEMP_COMP[1] = 200000 out of range: SD 42960 takes -100000..100000 mm"},
         {"N20 $SC_TOOL_TEMP_COMP[1] = 1 / 0", ":2:"},
-        {"N20 $SN_TOOL_TEMP_COMP[1] = 1", ":2:5: $SN_TOOL_TEMP_COMP: SD 42960 TOOL_TEMP_COMP is"},
+        {"N20 $SN_TOOL_TEMP_COMP[1] = 1", ":2:5: N20: $SN_TOOL_TEMP_COMP: SD 42960 TOOL_TEMP_COMP is"},
     };
     for (const Case& c : cases) {
         const std::string program =

@@ -31,6 +31,9 @@ std::string_view error_kind_name(ErrorKind k) noexcept {
 
 std::string Diagnostic::to_string() const {
     if (line == 0) return fmt::format("{}: {}", file, message);
+    // The block's N number too, where it has one: the machinist looks for it in the program.
+    if (block != kNoBlockNumber && !klartext)
+        return fmt::format("{}:{}:{}: N{}: {}", file, line, column, block, message);
     return fmt::format("{}:{}:{}: {}", file, line, column, message);
 }
 

@@ -29,6 +29,7 @@ struct BlockCheck {
         err.line = b.line;
         err.column = column == 0 ? 1 : column;
         err.block = b.block_number();
+        err.klartext = true;
         err.message = std::move(message);
         return false;
     }

@@ -80,6 +80,7 @@ class KlartextParser {
         err_.line = line_;
         err_.column = column;
         err_.block = b_.block_number();
+        err_.klartext = true;
         err_.message = std::move(message);
         return false;
     }

@@ -189,6 +189,7 @@ Diagnostic EventStream::here(ErrorKind kind, std::uint32_t column, std::string m
     d.line = source_.line_number();
     d.column = column == 0 ? 1 : column;
     d.block = parsed_.block.block_number();
+    d.klartext = dialect_ == Dialect::kKlartext;
     d.message = std::move(message);
     return d;
 }

@@ -240,7 +240,7 @@ bool check_sizes(const ToolTable& table, const std::string& file, Diagnostic& er
                                                                {"laenge", t.length_mm()}};
         for (const auto& [field, mm] : sizes) {
             if (std::abs(mm) <= kMaxToolSize) continue;
-            err = Diagnostic{ErrorKind::kValue, file, 0, 0, kNoBlockNumber,
+            err = Diagnostic{ErrorKind::kValue, file, 0, 0, kNoBlockNumber, false,
                              fmt::format("wz[{}].{} is {:g} mm: beyond the board's tool sizes of "
                                          "+-{:g} mm (check mass_einheit: 0 is 0.1 um, 1 is mm)",
                                          t.index, field, mm, kMaxToolSize)};

@@ -34,9 +34,11 @@ struct Diagnostic {
     std::uint64_t line = 0;    // 1-based; 0 only for errors about the whole file (cannot open)
     std::uint32_t column = 0;  // 1-based, in characters (UTF-8 aware); 0 with line 0
     std::int64_t block = kNoBlockNumber;  // N number of the block, where known
+    bool klartext = false;  // a Klartext block number (the line's leading number): not printed
     std::string message;                  // what was wrong / what was expected, no location prefix
 
-    // "file:line:col: message" ("file: message" when line is 0).
+    // "file:line:col: N50: message" ("file:line:col: message" for a block without N or a
+    // Klartext block; "file: message" when line is 0).
     std::string to_string() const;
 };
 
