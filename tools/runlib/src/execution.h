@@ -121,13 +121,13 @@ class Execution {
     std::array<int, 3> axes{0, 1, 2};
     int plane = 17;
     int comp_plane = 17;  // the plane of the compensation under way or last run
+    int current_tool = 0;
     bool comp_on = false;
     bool comp_plane_seen = false;
-    double length = 0.0;      // WkzLen of the current tool
     bool length_always = false;  // the TC groups' LengthMode 1: the length on every move
-    double radius = 0.0;      // RADIUS of the current tool
-    nc::ToolTable tools_mut;  // the tool list as the run changes it (wear at tool change)
-    int current_tool = 0;
+    double length = 0.0;         // WkzLen of the current tool
+    double radius = 0.0;         // RADIUS of the current tool
+    nc::ToolTable tools_mut;     // the tool list as the run changes it (wear at tool change)
     HeadState head;
 
   private:
@@ -162,27 +162,28 @@ class Execution {
     apci::Board& board_;
     RunSink& sink_;
     const nc::ToolTable* tools_;
+    SelfApproachMode self_approach_mode_;
     std::int32_t cycle_us_ = 1000;
-    std::uint64_t start_cycle_ = 0;
-    std::uint64_t cycles_seen_ = 0;
-    std::uint64_t segments_lost_ = 0;
-    std::uint64_t trace_lost_ = 0;
     bool tracing_ = false;
     bool set_up_ = false;   // setup() succeeded: the board was configured for the run
     bool clock_ok_ = true;  // no clock call failed
     bool klartext_ = false;
+    // Whether last_board_end_ holds a segment's end.
+    bool have_last_board_end_ = false;
+    std::uint64_t start_cycle_ = 0;
+    std::uint64_t cycles_seen_ = 0;
+    std::uint64_t segments_lost_ = 0;
+    std::uint64_t trace_lost_ = 0;
     // Length compensation at the end of the last segment read, per program axis (the tool axis
     // changes with the plane).
     Eigen::Vector3d start_offset_ = Eigen::Vector3d::Zero();
-    // The board's end of the last segment read (program axes), and whether there is one: a
-    // segment that starts elsewhere on the tool axis follows a fold of OTC wear into the tool
-    // length, which moved the nominal path and not the axes.
+    // The board's end of the last segment read (program axes): a segment that starts elsewhere
+    // on the tool axis follows a fold of OTC wear into the tool length, which moved the nominal
+    // path and not the axes.
     Eigen::Vector3d last_board_end_ = Eigen::Vector3d::Zero();
-    bool have_last_board_end_ = false;
     RecentMoves recent_;
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;
-    SelfApproachMode self_approach_mode_;
     SelfApproachCheck self_approach_;
     std::vector<SelfApproachFinding> findings_;
 

@@ -33,11 +33,13 @@ inline ObjectDescriptor temp_object(std::int32_t index, std::int32_t sub = 0) no
 }
 
 class ModuleUnit {
+  public:
+    ModuleUnit(const ModuleUnit&) = delete;
+    ModuleUnit& operator=(const ModuleUnit&) = delete;
+
   protected:
     explicit ModuleUnit(Execution& run) noexcept : run_(run) {}
     ~ModuleUnit() = default;
-    ModuleUnit(const ModuleUnit&) = delete;
-    ModuleUnit& operator=(const ModuleUnit&) = delete;
 
     Execution& run_;  // the shared context: board, clock, spooler, record, shared state
 };

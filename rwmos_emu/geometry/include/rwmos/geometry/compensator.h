@@ -139,18 +139,18 @@ class PathCompensator {
     // The held element as emitted: its offset path, or the indirect approach to its end.
     Element held_path(const OffsetElement& held) const noexcept;
 
-    State state_ = State::kIdle;
     CompensatorConfig config_;
     Vec2 position_ = Vec2::Zero();     // tool position at begin()
     OffsetElement held_;               // held offset element, its start final
-    SegmentRole held_role_ = SegmentRole::kContour;  // kApproach: the indirect approach
-    Element first_programmed_;                       // the indirect approach's programmed element
+    Element first_programmed_;         // the indirect approach's programmed element
     Vec2 held_corner_ = Vec2::Zero();  // programmed end of the held element
     Vec2 held_end_tangent_ = Vec2::Zero();
     double held_length_ = 0.0;  // programmed length of the held element
-    std::uint32_t held_index_ = 0;
-    std::array<std::uint32_t, kMaxPlaneFreeElements> plane_free_{};
     std::size_t plane_free_count_ = 0;
+    std::array<std::uint32_t, kMaxPlaneFreeElements> plane_free_{};
+    std::uint32_t held_index_ = 0;
+    State state_ = State::kIdle;
+    SegmentRole held_role_ = SegmentRole::kContour;  // kApproach: the indirect approach
 };
 
 }  // namespace rwmos::geom
