@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "apci/run/path.h"
+#include "apci/run/self_approach.h"
 #include "process.h"
 #include "rwmos/comp3d/compensation.h"
 #include "rwmos/geometry/element.h"
@@ -1215,6 +1216,115 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
     doc = run_json(kExamples + "/wr_quad_disc.nc",
                    {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+}
+
+// The run's SelfApproach message for N40's path at distance d from the contour at N<n>, r 5.
+std::string fmt_message(int n, double d) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "the tool path of N40 comes within %.4f mm of the contour at N%d (tool radius "
+                  "5.0000 mm): the contour comes back near itself there, which no corner rule "
+                  "sees; the path cuts %.4f mm into it",
+                  d, n, 5.0 - d);
+    return text;
+}
+
+// An executed segment of the JSON as the run's check takes it: block, role and rapids too.
+apci::run::PathSegment executed_segment(const json& s) {
+    using apci::run::Role;
+    using apci::run::SegmentKind;
+    apci::run::PathSegment out;
+    out.block.number = s.at("block").get<std::int64_t>();
+    out.block.line = s.value("line", std::uint64_t{0});
+    const std::string kind = s.at("kind"), role = s.at("role");
+    out.kind = kind == "arc" ? SegmentKind::kArc : kind == "rapid" ? SegmentKind::kRapid : SegmentKind::kLine;
+    out.role = role == "contour"      ? Role::kContour
+               : role == "transition" ? Role::kTransition
+               : role == "approach"   ? Role::kApproach
+               : role == "departure"  ? Role::kDeparture
+                                      : Role::kUncompensated;
+    out.start = point(s.at("start"));
+    out.end = point(s.at("end"));
+    if (out.kind == SegmentKind::kArc) {
+        out.center = point(s.at("center"));
+        out.ccw = s.at("ccw").get<bool>();
+        out.plane = s.at("plane").get<int>();
+    }
+    return out;
+}
+
+TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCircleCrosses) {
+    // A user's report: N30 a line to (20, 0), N40 a full circle G2 about (20, -10) back to
+    // (20, 0), N45 a line on to (40, 0), r = 5 (G41: the circle's path is its offset outside,
+    // radius 15 about (20, -10)). That path crosses y = 0 at x = 20 -+ sqrt(15^2 - 10^2), on N30
+    // at (8.8197, 0) and on N45 at (31.1803, 0): the least distance to both is 0. The check used
+    // to stop at the first point it found closer than r (0.6066 mm, t = 7/8 of the circle) and
+    // took N45, the stretch's last element, for its departure although the G40 block departs.
+    // N60 (the variant below) comes back under the circle: the least distance is
+    // 27 - 10 - 15 = 2 mm at (20, -25).
+    const double root = std::sqrt(125.0);
+    const std::string head =
+        "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\nN30 G1 X20 Y0\n"
+        "N40 G2 X20 Y0 I0 J-10\nN45 G1 X40 Y0\n";
+    struct Case {
+        std::string tail;
+        std::vector<apci::run::PathSegment> programmed;  // N25 .. (the check's elements)
+        std::vector<std::tuple<int, double, Eigen::Vector2d>> expected;  // N, distance, where
+    };
+    const auto line = [](int n, double x0, double y0, double x1, double y1) {
+        apci::run::PathSegment s;
+        s.block.number = n;
+        s.start = {x0, y0, 0};
+        s.end = {x1, y1, 0};
+        return s;
+    };
+    apci::run::PathSegment circle = line(40, 20, 0, 20, 0);
+    circle.kind = apci::run::SegmentKind::kArc;
+    circle.center = {20, -10, 0};
+    const std::vector<apci::run::PathSegment> common{line(25, -10, 0, 0, 0), line(30, 0, 0, 20, 0),
+                                                     circle, line(45, 20, 0, 40, 0)};
+    std::vector<Case> cases(2);
+    cases[0].tail = "N50 G40 G1 X50 Y0\nN60 M30\n";
+    cases[0].programmed = common;
+    cases[0].expected = {{30, 0.0, {20 - root, 0}}, {45, 0.0, {20 + root, 0}}};
+    cases[1].tail = "N50 G1 X40 Y-27\nN60 G1 X0 Y-27\nN70 G1 X0 Y-40\nN80 G40 G1 X-10 Y-50\nN90 M30\n";
+    cases[1].programmed = common;
+    for (const auto& s : {line(50, 40, 0, 40, -27), line(60, 40, -27, 0, -27), line(70, 0, -27, 0, -40)})
+        cases[1].programmed.push_back(s);
+    cases[1].expected = cases[0].expected;
+    cases[1].expected.emplace_back(60, 2.0, Eigen::Vector2d(20, -25));
+
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.tail);
+        const json doc = run_json(write("q4.nc", head + c.tail), {"--tools", tools(5.0)});
+        EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+        // The run: one warning per element the circle's path comes near, with its distance.
+        ASSERT_EQ(doc.at("warnings").size(), c.expected.size()) << doc.at("warnings").dump();
+        for (std::size_t i = 0; i < c.expected.size(); ++i) {
+            const auto& [n, d, where] = c.expected[i];
+            const json& w = doc.at("warnings")[i];
+            EXPECT_EQ(w.at("block"), 40);
+            EXPECT_EQ(w.at("message").get<std::string>(),
+                      fmt_message(n, d)) << w.dump();
+        }
+        // The check itself on the run's segments: the least distances exactly.
+        apci::run::SelfApproachCheck check;
+        std::vector<apci::run::SelfApproachFinding> found;
+        check.begin(5.0, 17);
+        for (const auto& s : c.programmed) check.programmed(s, found);
+        check.end(found);
+        for (const auto& s : doc.at("segments")) check.executed(executed_segment(s), found);
+        ASSERT_EQ(found.size(), c.expected.size());
+        for (std::size_t i = 0; i < c.expected.size(); ++i) {
+            const auto& [n, d, where] = c.expected[i];
+            EXPECT_EQ(found[i].path_block.number, 40);
+            EXPECT_EQ(found[i].contour_block.number, n);
+            EXPECT_NEAR(found[i].distance, d, 1e-6) << "N" << n;
+            EXPECT_EQ(found[i].radius, 5.0);
+            EXPECT_LT((Eigen::Vector2d(found[i].where.x(), found[i].where.y()) - where).norm(), 1e-6)
+                << "N" << n << ": " << found[i].where.transpose();
+        }
+    }
 }
 
 TEST_F(ApcictlRun, RapidMovesAreRapidAndUncompensated) {

@@ -94,32 +94,82 @@ double distance_to(const Shape& e, const Vec2& p) {
 }
 
 
-// The least distance from `path` to `contour`, refined until it is known to be at least
-// `threshold` (then some value >= threshold is returned) or a point closer is found.
-double least_distance(const Shape& path, const Shape& contour, double threshold) {
-    struct Span {
-        double t0, t1, d0, d1;
-    };
-    const double d_start = distance_to(contour, path.start);
-    const double d_end = distance_to(contour, path.end);
-    double best = std::min(d_start, d_end);
-    if (best < threshold) return best;
-    std::vector<Span> stack{{0.0, 1.0, d_start, d_end}};
-    int evaluations = 2;
-    while (!stack.empty() && evaluations < kMaxEvaluations) {
-        const Span s = stack.back();
-        stack.pop_back();
-        const double len = path.length * (s.t1 - s.t0);
-        // The distance is 1-Lipschitz along the path: nothing between the ends is closer than
-        // (d0 + d1 - len) / 2.
-        if ((s.d0 + s.d1 - len) / 2 >= threshold || len < 1e-7) continue;
-        const double tm = 0.5 * (s.t0 + s.t1);
-        const double dm = distance_to(contour, point_at(path, tm));
+// The least distance from `path` to `contour`, and the fraction of `path` where it is.
+struct Nearest {
+    double distance = INFINITY;
+    double t = 0.0;
+};
+
+// The least distance of `contour` from the part [a, b] of `path`, where it has one minimum
+// (golden-section search, to 1e-11 mm along the path).
+Nearest polish(const Shape& path, const Shape& contour, double a, double b, int& evaluations) {
+    constexpr double kInvPhi = 0.6180339887498949;
+    const auto at = [&](double t) {
         ++evaluations;
-        if (dm < best) best = dm;
-        if (best < threshold) return best;
-        stack.push_back({s.t0, tm, s.d0, dm});
-        stack.push_back({tm, s.t1, dm, s.d1});
+        return distance_to(contour, point_at(path, t));
+    };
+    double x1 = b - kInvPhi * (b - a), x2 = a + kInvPhi * (b - a);
+    double f1 = at(x1), f2 = at(x2);
+    for (int i = 0; i < 100 && (b - a) * path.length > 1e-11; ++i) {
+        if (f1 <= f2) {
+            b = x2, x2 = x1, f2 = f1;
+            x1 = b - kInvPhi * (b - a), f1 = at(x1);
+        } else {
+            a = x1, x1 = x2, f1 = f2;
+            x2 = a + kInvPhi * (b - a), f2 = at(x2);
+        }
+    }
+    return f1 <= f2 ? Nearest{f1, x1} : Nearest{f2, x2};
+}
+
+// The least distance from `path` to `contour` when it is below `threshold` (within 1e-9 mm, or
+// as near as kMaxRefinement evaluations get), else some value >= threshold. A branch and bound
+// along the path: the distance is 1-Lipschitz along it, so nothing on a span of length len
+// between points at d0 and d1 is closer than (d0 + d1 - len) / 2; spans are split nearest
+// bound first until every bound is at least the threshold (nothing is near) or at least the
+// least distance found. Once a point below the threshold is found, the minimum near it is
+// polished, so the search ends at the minimum rather than at the first point below the
+// threshold.
+Nearest least_distance(const Shape& path, const Shape& contour, double threshold) {
+    constexpr double kExact = 1e-9;         // mm: the least distance to this
+    constexpr int kMaxRefinement = 1 << 15;  // evaluations once a point below is found
+    struct Span {
+        double t0, t1, d0, d1, bound;
+        bool operator<(const Span& o) const { return bound > o.bound; }  // heap: least first
+    };
+    const auto at = [&](double t) { return distance_to(contour, point_at(path, t)); };
+    const double d_start = at(0.0), d_end = at(1.0);
+    Nearest best = d_start <= d_end ? Nearest{d_start, 0.0} : Nearest{d_end, 1.0};
+    int evaluations = 2;
+    const auto span = [&](double t0, double t1, double d0, double d1) {
+        return Span{t0, t1, d0, d1, 0.5 * (d0 + d1 - path.length * (t1 - t0))};
+    };
+    const auto improve = [&](const Nearest& n, double a, double b) {
+        if (n.distance >= best.distance) return;
+        best = n;
+        if (best.distance >= threshold) return;
+        const Nearest p = polish(path, contour, a, b, evaluations);
+        if (p.distance < best.distance) best = p;
+    };
+    if (best.distance < threshold)
+        improve(best, best.t == 0.0 ? 0.0 : 0.5, best.t == 0.0 ? 0.5 : 1.0);  // at an end
+    std::vector<Span> heap{span(0.0, 1.0, d_start, d_end)};
+    while (!heap.empty()) {
+        const double limit = best.distance < threshold ? best.distance - kExact : threshold;
+        if (evaluations >= (best.distance < threshold ? kMaxRefinement : kMaxEvaluations)) break;
+        std::pop_heap(heap.begin(), heap.end());
+        const Span s = heap.back();
+        heap.pop_back();
+        if (s.bound >= limit) break;  // so is every other span's
+        if (path.length * (s.t1 - s.t0) < kExact) continue;
+        const double tm = 0.5 * (s.t0 + s.t1);
+        const double dm = at(tm);
+        ++evaluations;
+        improve(Nearest{dm, tm}, s.t0, s.t1);
+        heap.push_back(span(s.t0, tm, s.d0, dm));
+        std::push_heap(heap.begin(), heap.end());
+        heap.push_back(span(tm, s.t1, dm, s.d1));
+        std::push_heap(heap.begin(), heap.end());
     }
     return best;
 }
@@ -345,8 +395,8 @@ bool SelfApproachCheck::truncated() const noexcept {
 
 void SelfApproachCheck::begin(double r, int plane) {
     active_ = true;
-    first_in_stretch_ = true;
     latest_ = kNone;
+    first_in_stretch_ = true;
     r_ = std::max(0.0, r);
     plane_ = plane;
     ++stretch_;
@@ -358,12 +408,89 @@ void SelfApproachCheck::begin(double r, int plane) {
 void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
     if (!active_) return;
     active_ = false;
-    // The stretch's last element is its departure: not contour; what came near it was not.
-    if (latest_ != kNone) grid(plane_).contour[latest_].protect = false;
-    for (const auto& [f, id] : held_)
-        if (id != latest_) out.push_back(f);
+    // Whether the stretch's last element is its departure is known from the first segment
+    // after its own (leave()); until then what came near it stays held.
+    if (latest_ != kNone && next_index_ > 0) {
+        if (undecided_.size() >= 64) {  // never executed: taken as departed
+            for (const SelfApproachFinding& f : undecided_.front().held) take(f, false, out);
+            undecided_.erase(undecided_.begin());
+        }
+        undecided_.push_back(Undecided{latest_, next_index_ - 1, plane_, false, {}});
+        undecided_.back().held.swap(held_);
+    }
     held_.clear();
     latest_ = kNone;
+}
+
+// The first segment after a stretch whose last element is held: a move in the plane (the G40
+// block's move, the move after a lone G40, G237's departure, the next approach) departs from
+// the last element's offset end, so the last element is contour and what came near it goes
+// out; a lift (G0 Z.. under G41/G42) or no move at all leaves it as the program's own way out
+// (a lead-out arc, as LinuxCNC's examples write it): not contour.
+void SelfApproachCheck::leave(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+    Undecided& u = undecided_.front();
+    const PlaneAxes a = plane_axes(u.plane);
+    const Vec2 d(s.end[a.first] - s.start[a.first], s.end[a.second] - s.start[a.second]);
+    const bool departs =
+        d.norm() > kSamePointTolerance || (s.kind == SegmentKind::kArc && s.plane == u.plane);
+    if (departs) {
+        for (const SelfApproachFinding& f : u.held) take(f, false, out);
+    } else {
+        grid(u.plane).contour[u.id].protect = false;
+    }
+    undecided_.erase(undecided_.begin());
+}
+
+SelfApproachCheck::Undecided* SelfApproachCheck::undecided_of(std::uint32_t id) {
+    for (Undecided& u : undecided_)
+        if (u.id == id) return &u;
+    return nullptr;
+}
+
+void SelfApproachCheck::hold(std::vector<SelfApproachFinding>& held, const SelfApproachFinding& f) {
+    for (SelfApproachFinding& h : held)
+        if (same_block(h.path_block, f.path_block) && same_block(h.contour_block, f.contour_block)) {
+            if (f.distance < h.distance) h = f;
+            return;
+        }
+    held.push_back(f);
+}
+
+SelfApproachCheck::Pair SelfApproachCheck::pair_of(const BlockRef& path, const BlockRef& contour) {
+    return {static_cast<std::uint64_t>(path.number), path.line,
+            static_cast<std::uint64_t>(contour.number), contour.line};
+}
+
+SelfApproachFinding* SelfApproachCheck::open_finding(const Pair& pair) {
+    for (SelfApproachFinding& f : open_)
+        if (pair_of(f.path_block, f.contour_block) == pair) return &f;
+    return nullptr;
+}
+
+bool SelfApproachCheck::closed(const Pair& pair) {
+    if (open_finding(pair) != nullptr) return false;
+    return reported_.size() >= kMaxFindings ||
+           std::find(reported_.begin(), reported_.end(), pair) != reported_.end();
+}
+
+void SelfApproachCheck::take(const SelfApproachFinding& f, bool running,
+                             std::vector<SelfApproachFinding>& out) {
+    const Pair pair = pair_of(f.path_block, f.contour_block);
+    if (SelfApproachFinding* o = open_finding(pair)) {
+        if (f.distance < o->distance) *o = f;
+        return;
+    }
+    if (closed(pair)) return;
+    reported_.push_back(pair);
+    if (running)
+        open_.push_back(f);
+    else
+        out.push_back(f);
+}
+
+void SelfApproachCheck::flush(std::vector<SelfApproachFinding>& out) {
+    out.insert(out.end(), open_.begin(), open_.end());
+    open_.clear();
 }
 
 void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
@@ -380,7 +507,7 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     const bool first = first_in_stretch_;
     first_in_stretch_ = false;
     // The element before is not the last: what came near it counts.
-    for (const auto& [f, id] : held_) out.push_back(f);
+    for (const SelfApproachFinding& f : held_) take(f, seen_ && same_block(f.path_block, current_), out);
     held_.clear();
     latest_ = kNone;
     if (!g.contour_keys.insert(key_of(s, plane_, 0.0))) return;  // programmed before
@@ -395,8 +522,9 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     g.insert(g.contour_cells, e, id);
     latest_ = id;
     if (first) return;
-    // Paths executed before it that come near it (the contour comes back later): held until
-    // the element is known not to be the stretch's last.
+    // Paths executed before it that come near it (the contour comes back later): the least
+    // distance over all the segments of each path block.
+    std::vector<SelfApproachFinding> found;
     for (const std::uint32_t pid : g.near(g.path_cells, e, g.max_r)) {
         const Grid::Item& p = g.path[pid];
         if (p.approach && p.stretch == stretch_) continue;
@@ -404,15 +532,27 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
         Shape part;
         if (!checked_part(e, rel, part)) continue;
         SelfApproachFinding f;
-        if (report(p.shape, p.block, p.r, plane_, part, s.block, threshold_for(rel, p.r), f))
-            held_.emplace_back(f, id);
+        if (!report(p.shape, p.block, p.r, plane_, part, s.block, threshold_for(rel, p.r), f))
+            continue;
+        const auto same = std::find_if(found.begin(), found.end(), [&](const auto& o) {
+            return same_block(o.path_block, f.path_block);
+        });
+        if (same == found.end())
+            found.push_back(f);
+        else if (f.distance < same->distance)
+            *same = f;
     }
+    // Held until the element is known not to be the stretch's departure (leave()).
+    for (const SelfApproachFinding& f : found) hold(held_, f);
 }
 
 void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
-    if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach &&
-        s.role != Role::kDeparture)
-        return;
+    // A segment of another block: the findings of the one before are final.
+    if (!seen_ || !same_block(current_, s.block)) {
+        flush(out);
+        current_ = s.block;
+        seen_ = true;
+    }
     // The programmed element it belongs to: the first pending one of its block (executed
     // segments come in program order; transitions and the departure belong to the element
     // before, the approach to the first).
@@ -423,9 +563,28 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
             at = i;
             break;
         }
+    // The first segment after the last element of a stretch that ended undecided.
+    while (!undecided_.empty()) {
+        Undecided& u = undecided_.front();
+        const bool found = at != waiting;
+        const std::uint64_t index = found ? pending_[pending_head_ + at].index : 0;
+        if (found && index == u.last_index) {
+            u.reached = true;
+            break;
+        }
+        if (!(u.reached || (found && index > u.last_index))) break;
+        leave(s, out);
+    }
+    if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach &&
+        s.role != Role::kDeparture)
+        return;
     if (at == waiting) return;
     pending_head_ += at;
     const Pending p = pending_[pending_head_];
+    // The last element of a stretch that has ended: no segment of its block is checked after
+    // this one (G139: the G40 block departs; G237: the board's departure, not checked), and
+    // none of another block may come to give its findings out.
+    const bool running = active_ || pending_head_ + 1 < pending_.size();
     // Compact now and then: the elements before the head are done.
     if (pending_head_ > 1024 && 2 * pending_head_ > pending_.size()) {
         pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
@@ -449,11 +608,15 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         SelfApproachFinding f;
         if (!report(e, s.block, p.r, p.plane, part, c.block, threshold_for(rel, p.r), f))
             continue;
+        // Against a stretch's last element, perhaps its departure: held.
         if (active_ && id == latest_)
-            held_.emplace_back(f, id);  // the stretch's last element, perhaps
+            hold(held_, f);
+        else if (Undecided* u = undecided_of(id))
+            hold(u->held, f);
         else
-            out.push_back(f);
+            take(f, running, out);
     }
+    if (!running) flush(out);
     if (g.path.size() < kMaxElements) {
         const auto id = static_cast<std::uint32_t>(g.path.size());
         g.path.push_back(Grid::Item{e, s.block, p.index, p.stretch, p.r, transition, true, approach});
@@ -466,29 +629,17 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
 bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, double r, int plane,
                                const Shape& contour, const BlockRef& contour_block,
                                double threshold, SelfApproachFinding& f) {
-    if (reported_.size() >= kMaxFindings) return false;
-    const std::array<std::uint64_t, 4> pair{static_cast<std::uint64_t>(path_block.number),
-                                            path_block.line,
-                                            static_cast<std::uint64_t>(contour_block.number),
-                                            contour_block.line};
-    if (std::find(reported_.begin(), reported_.end(), pair) != reported_.end()) return false;
-    const double d = least_distance(path, contour, threshold);
-    if (d >= threshold) return false;
-    reported_.push_back(pair);
+    if (closed(pair_of(path_block, contour_block))) return false;
+    const Nearest n = least_distance(path, contour, threshold);
+    if (n.distance >= threshold) return false;
     f = SelfApproachFinding{};
     f.path_block = path_block;
     f.contour_block = contour_block;
-    f.distance = d;
+    f.distance = n.distance;
     f.radius = r;
     // The point of the path nearest the element, for the plot's marker (the third axis at
     // the plane's origin: the plot shows the plane).
-    double best_t = 0.0, best_d = INFINITY;
-    for (int i = 0; i <= 64; ++i) {
-        const double t = i / 64.0;
-        const double di = distance_to(contour, point_at(path, t));
-        if (di < best_d) best_d = di, best_t = t;
-    }
-    const Vec2 q = point_at(path, best_t);
+    const Vec2 q = point_at(path, n.t);
     const PlaneAxes a = plane_axes(plane);
     f.where = Point::Zero();
     f.where[a.first] = q.x();

@@ -10,8 +10,12 @@
 // before and the one after count too (at their common corner the corner rule keeps the path r
 // from them; away from it an arc curling round, or a contour coming back alongside after a
 // reversal, can come closer), with twice the tolerance (a tangent join may move a start by it).
-// The first and the last element of each compensated stretch are its approach and departure:
-// paths must not come near the elements between, not near those two.
+// The first element of each compensated stretch is its approach: paths may come near it. The
+// last is its departure only where no move in the plane departs from it (the stretch is left
+// by a lift under G41/G42, or the program ends): a lead-out as LinuxCNC's examples write it;
+// where the G40 block's move (or the next move in the plane) departs, it is contour.
+// The distance reported is the least distance between the path block's segments and the
+// element (within 1e-9 mm), not the first point found closer than the threshold.
 //
 // Cost: a uniform grid of the programmed elements and of the executed segments, each kept once
 // (an element programmed again with the same geometry, as depth passes repeat a contour, is
@@ -60,8 +64,8 @@ class SelfApproachCheck {
     // A compensated stretch begins (G41/G42, or the first move after a rapid under G41/G42):
     // tool radius r (mm) in plane 17, 18 or 19.
     void begin(double r, int plane);
-    // It ends (G40, a rapid move, the end of the program); findings against elements that were
-    // not its last are appended to `out`.
+    // It ends (G40, a rapid move, the end of the program). Findings against its last element
+    // come with the first executed segment after that element's (its departure, or not).
     void end(std::vector<SelfApproachFinding>& out);
     bool active() const noexcept { return active_; }
     // A line or arc spooled in the stretch, in program order; findings (a path executed
@@ -82,21 +86,49 @@ class SelfApproachCheck {
         double r = 0.0;
         int plane = 17;
     };
+    using Pair = std::array<std::uint64_t, 4>;  // (path, contour) blocks: number, line each
     Grid& grid(int plane);
-    // True with `f` filled when path comes closer than threshold to contour (each pair of
-    // blocks once).
+    // True with `f` filled when path comes closer than threshold to contour (the least
+    // distance, and where); false at once for a pair already given out.
     bool report(const Shape& path, const BlockRef& path_block, double r, int plane,
                 const Shape& contour, const BlockRef& contour_block, double threshold,
                 SelfApproachFinding& f);
+    static Pair pair_of(const BlockRef& path, const BlockRef& contour);
+    SelfApproachFinding* open_finding(const Pair& pair);
+    // The pair was given out (or kMaxFindings were): nothing more of it is looked at.
+    bool closed(const Pair& pair);
+    // A finding: the least distance of its pair while the pair is open; opened when its path
+    // block is still running (more of its segments may come closer), else given out.
+    void take(const SelfApproachFinding& f, bool running, std::vector<SelfApproachFinding>& out);
+    void flush(std::vector<SelfApproachFinding>& out);  // the open findings go out
+    // Findings against the stretch's latest element (its departure, perhaps): merged per pair.
+    static void hold(std::vector<SelfApproachFinding>& held, const SelfApproachFinding& f);
+    // The first segment after a stretch: decides whether its last element was its departure.
+    void leave(const PathSegment& s, std::vector<SelfApproachFinding>& out);
 
     std::unique_ptr<Grid> grids_[3];
     std::vector<Pending> pending_;  // programmed compensated elements, from pending_head_
     std::size_t pending_head_ = 0;  // the first not yet executed
-    std::vector<std::array<std::uint64_t, 4>> reported_;  // (path, contour) block pairs, once
+    std::vector<Pair> reported_;    // pairs given out or open, each once
+    // Findings of the path block whose segments are coming (current_), the least distance per
+    // contour block: given out with the first segment of another block.
+    std::vector<SelfApproachFinding> open_;
+    BlockRef current_{};  // the block of the last executed segment
+    bool seen_ = false;   // a segment was executed
     static constexpr std::uint32_t kNone = ~std::uint32_t{0};
-    // Findings against the stretch's latest element, held until it is known not to be the last.
-    std::vector<std::pair<SelfApproachFinding, std::uint32_t>> held_;
+    std::vector<SelfApproachFinding> held_;  // against latest_, until it is known not the departure
     std::uint32_t latest_ = kNone;  // grid id of the stretch's latest element (new geometry)
+    // Stretches that ended, oldest first, whose last element (grid id, in `plane`) may be their
+    // departure: known from the first segment after that element's (leave()).
+    struct Undecided {
+        std::uint32_t id = 0;
+        std::uint64_t last_index = 0;  // of the stretch's last element
+        int plane = 17;
+        bool reached = false;  // a segment of the last element was executed
+        std::vector<SelfApproachFinding> held;  // against it
+    };
+    std::vector<Undecided> undecided_;
+    Undecided* undecided_of(std::uint32_t id);
     bool first_in_stretch_ = false;
     bool active_ = false;
     double r_ = 0.0;
