@@ -207,7 +207,8 @@ Made make_case(std::uint64_t seed, Case& out) {
 
 // Where our path comes near the contour away from its corners, found here independently of the
 // run's own check (tools/runlib self_approach.h states the rule): a path segment against every
-// element of the stretch but the first and the last (approach and departure) and its own; a
+// element of the stretch but the first (the approach) and its own (the last one too: the
+// programs' G40 G1 departs from it in the plane); a
 // transition against its corner's elements only where an arc of more than half a turn comes
 // back round (its part more than half a turn from the corner); the neighbours before and after
 // with twice the tolerance. kNear: closer than the run's threshold less 5e-5; kBorderline:
@@ -242,7 +243,7 @@ Approach our_path_approaches(const OurRun& ours, const Case& c) {
         if (ours.lines[i] < 4 || ours.lines[i] >= 4 + elements.size()) continue;
         const std::size_t k = ours.lines[i] - 4;
         const Element& seg = ours.path[i];
-        for (std::size_t j = 1; j + 1 < elements.size(); ++j) {
+        for (std::size_t j = 1; j < elements.size(); ++j) {
             Element part = elements[j];
             double threshold = r - kTolerance;
             if (transition && (j == k || j == k + 1)) {
