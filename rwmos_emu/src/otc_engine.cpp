@@ -319,28 +319,30 @@ void OtcEngine::end_session() noexcept {
             break;
         }
     }
+    // Where the folded length acts on an axis now (the tool length on every profile, LengthMode
+    // 1, or the group compensating) and the wear points along +Z of the TC plane (the way WkzLen
+    // acts), the offset's part on that axis passes into the tool length without a motion: the
+    // nominal path takes it (the next profile has the shorter tool) and that axis ramps only
+    // what had not yet arrived. So repeated passes add up. WkzLen then shrinks by that part
+    // (a disc tilted by a: the wear times cos a); a tilted disc's part across the axis (X)
+    // ramps off, as without a length that acts (docs/otc.md section 6).
+    AxisVector stays{};
+    double folded_length = fold_length;
+    const int length_axis = state_.motion.length_axis_of(o.tool.number);
+    if (fold_length != 0.0 && length_axis >= 0 && norm > 0.0) {
+        const auto z = static_cast<std::size_t>(length_axis);
+        const double along = fold_length * unit_dir[z];
+        if (unit_dir[z] > 1e-12 && state_.motion.executor().shift_nominal(length_axis, -along)) {
+            stays[z] = -along;
+            folded_length = along;
+        }
+    }
     const auto tool = static_cast<std::size_t>(o.tool.number);
     for (TcGroup& g : state_.tc.groups) {
         TcTool& t = g.tools[tool];
         // The wear is mm; the tool values are kept in the unit PU selects.
         t.radius = std::max(0.0, t.radius - board::millimetres_to_pu(fold_radius, state_.pu));
-        t.length -= board::millimetres_to_pu(fold_length, state_.pu);
-    }
-
-    // Where the folded length acts on an axis now (the tool length on every profile, LengthMode
-    // 1, or the group compensating) and the wear lies along that axis alone (+Z of the TC
-    // plane, the way WkzLen acts), the offset passes into the tool length there without a
-    // motion: the nominal path takes the folded length (the next profile has the shorter tool)
-    // and that axis ramps only what had not yet arrived. So repeated passes add up.
-    AxisVector stays{};
-    const int length_axis = state_.motion.length_axis_of(o.tool.number);
-    if (fold_length != 0.0 && length_axis >= 0 && norm > 0.0) {
-        const auto z = static_cast<std::size_t>(length_axis);
-        bool along_z = unit_dir[z] > 1.0 - 1e-12;
-        for (std::size_t a = 0; a < unit_dir.size(); ++a)
-            if (a != z && std::abs(unit_dir[a]) > 1e-12) along_z = false;
-        if (along_z && state_.motion.executor().shift_nominal(length_axis, -fold_length))
-            stays[z] = -fold_length;
+        t.length -= board::millimetres_to_pu(folded_length, state_.pu);
     }
 
     // The offsets now on the axes ramp out from where they are: never a jump.

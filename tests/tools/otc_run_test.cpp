@@ -176,15 +176,19 @@ TEST_F(OtcRun, TwoLengthPassesAddUp) {
 }
 
 // A program ends when the OTC offsets have settled, not with a ramp under way: the tilted disc's
-// wear (on X and Z, not along the tool length's axis alone) ramps back off after #OTC OFF, and
-// the run goes on until it has (the G1 X1000 itself takes 6000 cycles).
+// wear lies on X and Z (30 degrees: 5 and 8.66 mm); Z's part passes into the tool length, which
+// acts on Z, and stays; X's ramps back off after #OTC OFF, and the run goes on until it has (the
+// G1 X1000 itself takes 6000 cycles).
 TEST_F(OtcRun, AProgramEndsWhenTheOtcRampsHaveSettled) {
     run_json({kExamples + "/otc/length_tilt.nc", "--tools", kExamples + "/tools/otc_tilt.tools",
-              "--csv", path("t.csv")});
+              "--csv", path("t.csv"), "--tools-out", path("t.tools")});
     const auto rows = read_csv(path("t.csv"));
     ASSERT_GT(rows.size(), 6050u);
-    EXPECT_EQ(rows.back()[2], 1000.0);  // X: the 5 mm offset all ramped back
-    EXPECT_EQ(rows.back()[4], 50.0);    // Z: the tool length, the 8.66 mm offset ramped back
+    EXPECT_EQ(rows.back()[2], 1000.0);                             // X: ramped back
+    EXPECT_NEAR(rows.back()[4], 50.0 - 10.0 * std::sqrt(3.0) / 2.0, kEps);  // Z: it stays
+    auto tools = apci::nc::load_tool_table(path("t.tools"));
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    EXPECT_NEAR(tools.value().find(1)->length_mm(), 50.0 - 10.0 * std::sqrt(3.0) / 2.0, 1e-6);
 }
 
 // [ISG-OTC] section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.
