@@ -34,24 +34,29 @@ constexpr std::array kReasonTable{
     ReasonRow{Reason::kInvalidElementKind, kCalc, "InvalidElementKind",
               "element is neither a line nor an arc"},
     ReasonRow{Reason::kOffsetRadiusNotPositive, kCalc, "OffsetRadiusNotPositive",
-              "arc radius is smaller than the tool radius on the concave side: the tool would cut into the "
+              "arc radius is smaller than the tool radius on the concave side: the tool would cut "
+              "into the "
               "arc (use a tool no larger than the arc's radius)"},
     ReasonRow{Reason::kArcCentreOnEndPoint, kCenter, "ArcCentreOnEndPoint",
               "arc centre coincides with the arc's start or end point"},
-    ReasonRow{Reason::kArcRadiiDiffer, kCenter, "ArcRadiiDiffer",
-              "arc start and end radius differ by more than 0.003: the end point is not on the circle "
-              "through the start (check the centre words and the end point)"},
+    ReasonRow{
+        Reason::kArcRadiiDiffer, kCenter, "ArcRadiiDiffer",
+        "arc start and end radius differ by more than 0.003: the end point is not on the circle "
+        "through the start (check the centre words and the end point)"},
     ReasonRow{Reason::kDiscontinuous, kKorr, "Discontinuous",
               "element does not start where the previous element ends"},
-    ReasonRow{Reason::kHeldElementTooShort, kKorr, "HeldElementTooShort",
-              "previous element is too short for the corner: its offset would reverse (lengthen it, "
-              "join it into its neighbour, or use a smaller tool)"},
-    ReasonRow{Reason::kNextElementTooShort, kKorr, "NextElementTooShort",
-              "element is too short for the corner: its offset would reverse (lengthen it, join it into "
-              "its neighbour, or use a smaller tool)"},
-    ReasonRow{Reason::kNoCornerSolution, kKorr, "NoCornerSolution",
-              "offset elements do not meet at this inside corner: the tool does not fit into it (use a "
-              "smaller tool)"},
+    ReasonRow{
+        Reason::kHeldElementTooShort, kKorr, "HeldElementTooShort",
+        "previous element is too short for the corner: its offset would reverse (lengthen it, "
+        "join it into its neighbour, or use a smaller tool)"},
+    ReasonRow{
+        Reason::kNextElementTooShort, kKorr, "NextElementTooShort",
+        "element is too short for the corner: its offset would reverse (lengthen it, join it into "
+        "its neighbour, or use a smaller tool)"},
+    ReasonRow{
+        Reason::kNoCornerSolution, kKorr, "NoCornerSolution",
+        "offset elements do not meet at this inside corner: the tool does not fit into it (use a "
+        "smaller tool)"},
     ReasonRow{Reason::kTooManyPlaneFreeElements, kKorr, "TooManyPlaneFreeElements",
               "too many consecutive elements without motion in the compensation plane"},
     ReasonRow{Reason::kApproachArcNoSolution, kKorr, "ApproachArcNoSolution",

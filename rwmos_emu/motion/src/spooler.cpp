@@ -59,7 +59,8 @@ MotionResult check_targets(AxisMask axes, const AxisVector& target) {
         if ((axes & (1u << a)) == 0) continue;
         const Status s = check_coordinate(target[a]);
         if (!objif::ok(s))
-            return refuse(s, "a target coordinate is beyond the board's limit of +-100000, or not finite");
+            return refuse(
+                s, "a target coordinate is beyond the board's limit of +-100000, or not finite");
     }
     return {};
 }
@@ -76,7 +77,9 @@ MotionResult check_profile(const Profile& p) {
             return refuse(Status::kInvalidValue, "arc axes must be two different axes");
         for (double c : p.center)
             if (const Status s = check_coordinate(c); !objif::ok(s))
-                return refuse(s, "an arc centre coordinate is beyond the board's limit of +-100000, or not finite");
+                return refuse(s,
+                              "an arc centre coordinate is beyond the board's limit of +-100000, "
+                              "or not finite");
     }
     return {};
 }
@@ -293,9 +296,9 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             // in another plane that holds it keeps its end as programmed (its circle would move).
             const bool in_arc_plane =
                 tc.length_axis == res.arc_axes[0] || tc.length_axis == res.arc_axes[1];
-            Move m = arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path),
-                              res.arc_axes, res.cx, res.cy, res.ccw, feed,
-                              SegmentRole::kUncompensated, p.tag);
+            Move m =
+                arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path), res.arc_axes,
+                         res.cx, res.cy, res.ccw, feed, SegmentRole::kUncompensated, p.tag);
             m.plane = res.plane;
             batch.add(m);
         } else {
@@ -366,8 +369,7 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     // Perpendicular (G237): a departure at right angles back to the programmed end. Indirect
     // (G139): none; the tool stays at the last offset end and the next profile departs from
     // there (docs/compensation.md "Approach and departure").
-    end_contour(trial, /*keep_departure=*/tc.approach == geom::ApproachMode::kPerpendicular,
-                batch);
+    end_contour(trial, /*keep_departure=*/tc.approach == geom::ApproachMode::kPerpendicular, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
     forget_finished();
