@@ -173,8 +173,15 @@ OtcEngine::Targets OtcEngine::targets(const AxisVector& dir) const noexcept {
     for (std::size_t a = 0; a < t.axes.size(); ++a) {
         t.channel[a] = ch == 0.0 ? 0.0 : -ch * dir[a];
         t.direction[a] = dc == 0.0 ? 0.0 : -dc * dir[a];
-        t.axes[a] = -axis_command(static_cast<int>(a));
+        t.axes[a] = -axis_command(static_cast<int>(a)) + standing_[a];
     }
+    return t;
+}
+
+OtcEngine::Targets OtcEngine::targets_now(const AxisVector& dir) const noexcept {
+    if (state_.otc.active) return targets(dir);
+    Targets t;
+    t.axes = standing_;
     return t;
 }
 
@@ -185,7 +192,8 @@ otc::RampLimits OtcEngine::limits() const noexcept {
 
 bool OtcEngine::ramps_settled() const noexcept {
     const AxisVector nominal = state_.motion.executor().nominal_position();
-    const Targets t = state_.otc.active ? targets(direction(nullptr, 0, 0, nominal)) : Targets{};
+    const Targets t =
+        targets_now(state_.otc.active ? direction(nullptr, 0, 0, nominal) : AxisVector{});
     for (std::size_t a = 0; a < t.axes.size(); ++a)
         if (!otc::settled(ramp_channel_[a], t.channel[a]) ||
             !otc::settled(ramp_direction_[a], t.direction[a]) ||
@@ -324,17 +332,26 @@ void OtcEngine::end_session() noexcept {
     // acts), the offset's part on that axis passes into the tool length without a motion: the
     // nominal path takes it (the next profile has the shorter tool) and that axis ramps only
     // what had not yet arrived. So repeated passes add up. WkzLen then shrinks by that part
-    // (a disc tilted by a: the wear times cos a); a tilted disc's part across the axis (X)
-    // ramps off, as without a length that acts (docs/otc.md section 6).
+    // (a disc tilted by a: the wear times cos a); the part across the axis (a tilted disc's X)
+    // stays on its axes as a standing offset while the tool is in (docs/otc.md section 6).
     AxisVector stays{};
     double folded_length = fold_length;
     const int length_axis = state_.motion.length_axis_of(o.tool.number);
     if (fold_length != 0.0 && length_axis >= 0 && norm > 0.0) {
         const auto z = static_cast<std::size_t>(length_axis);
-        const double along = fold_length * unit_dir[z];
+        // The offsets the session's targets held on each axis: the wear along the direction,
+        // the channel's, the direction's and the axes' commands.
+        const Targets held = targets(dir);
+        AxisVector offset{};
+        for (std::size_t a = 0; a < offset.size(); ++a)
+            offset[a] =
+                -w * dir[a] + held.channel[a] + held.direction[a] + held.axes[a] - standing_[a];
+        const double along = -offset[z];
         if (unit_dir[z] > 1e-12 && state_.motion.executor().shift_nominal(length_axis, -along)) {
             stays[z] = -along;
             folded_length = along;
+            for (std::size_t a = 0; a < offset.size(); ++a)
+                if (a != z) standing_[a] += offset[a];
         }
     }
     const auto tool = static_cast<std::size_t>(o.tool.number);
@@ -353,7 +370,7 @@ void OtcEngine::end_session() noexcept {
         ramp_channel_[a] = {};
         ramp_direction_[a] = {};
     }
-    ramps_quiet_ = ramps_at_rest_at_zero();
+    ramps_quiet_ = ramps_at_rest();
     // The discrete infeed is consumed by the fold (design: P-TOOL-00031 is the largest
     // "relative Änderung"; the next session starts from a command of 0).
     o.radius_offset_unit.command = 0;
@@ -366,6 +383,9 @@ void OtcEngine::end_session() noexcept {
 
 void OtcEngine::tool_changed() noexcept {
     state_.otc.wear = OtcWear{};
+    // The tool that goes out takes its standing offsets with it (the ramps run them off).
+    standing_ = {};
+    ramps_quiet_ = ramps_at_rest();
 }
 
 // ---- motion::CycleOffsets
@@ -464,7 +484,7 @@ bool OtcEngine::per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const
         motion::position_at(*m, k == 0 && n == 0 ? 1 : k, n == 0 ? 1 : n, nominal);
     else
         nominal = state_.motion.executor().nominal_position();
-    const Targets t = state_.otc.active ? targets(direction(m, k, n, nominal)) : Targets{};
+    const Targets t = targets_now(state_.otc.active ? direction(m, k, n, nominal) : AxisVector{});
     for (std::size_t a = 0; a < t.axes.size(); ++a)
         if (!otc::settled(ramp_channel_[a], t.channel[a]) ||
             !otc::settled(ramp_direction_[a], t.direction[a]) ||
@@ -479,10 +499,13 @@ void OtcEngine::add_offsets(const AxisVector& dir, double wear, AxisVector& pos)
                   ramp_axes_[a].position;
 }
 
-bool OtcEngine::ramps_at_rest_at_zero() const noexcept {
-    const auto rest = [](const otc::RampState& r) { return r.position == 0.0 && r.velocity == 0.0; };
+bool OtcEngine::ramps_at_rest() const noexcept {
+    const auto rest = [](const otc::RampState& r, double at) {
+        return r.position == at && r.velocity == 0.0;
+    };
     for (std::size_t a = 0; a < ramp_axes_.size(); ++a) {
-        if (!rest(ramp_channel_[a]) || !rest(ramp_direction_[a]) || !rest(ramp_axes_[a]))
+        if (!rest(ramp_channel_[a], 0.0) || !rest(ramp_direction_[a], 0.0) ||
+            !rest(ramp_axes_[a], standing_[a]))
             return false;
     }
     return true;
@@ -498,14 +521,14 @@ void OtcEngine::step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
         add_offsets(dir, 0.0, pos);
         return;
     }
-    const Targets t = state_.otc.active ? targets(dir) : Targets{};
+    const Targets t = targets_now(dir);
     const otc::RampLimits lim = limits();
     for (std::size_t a = 0; a < t.axes.size(); ++a) {
         ramp_channel_[a] = otc::ramp_step(ramp_channel_[a], t.channel[a], lim, dt);
         ramp_direction_[a] = otc::ramp_step(ramp_direction_[a], t.direction[a], lim, dt);
         ramp_axes_[a] = otc::ramp_step(ramp_axes_[a], t.axes[a], lim, dt);
     }
-    ramps_quiet_ = !state_.otc.active && ramps_at_rest_at_zero();
+    ramps_quiet_ = !state_.otc.active && ramps_at_rest();
     add_offsets(dir, state_.otc.active ? wear_at(m, k, n) : 0.0, pos);
 }
 

@@ -175,20 +175,45 @@ TEST_F(OtcRun, TwoLengthPassesAddUp) {
     EXPECT_NEAR(tools.value().find(1)->length_mm(), 30.0, 1e-6);
 }
 
-// A program ends when the OTC offsets have settled, not with a ramp under way: the tilted disc's
-// wear lies on X and Z (30 degrees: 5 and 8.66 mm); Z's part passes into the tool length, which
-// acts on Z, and stays; X's ramps back off after #OTC OFF, and the run goes on until it has (the
-// G1 X1000 itself takes 6000 cycles).
+// A program ends when the OTC offsets have settled, not with a ramp under way: in wr_quad_disc.nc
+// with the PLC's 2 mm the radius offset ramps off after G40 and #OTC OFF (the radius takes the
+// wear, and no compensation is left to apply it); the run goes on until it rests at N100's end.
 TEST_F(OtcRun, AProgramEndsWhenTheOtcRampsHaveSettled) {
-    run_json({kExamples + "/otc/length_tilt.nc", "--tools", kExamples + "/tools/otc_tilt.tools",
-              "--csv", path("t.csv"), "--tools-out", path("t.tools")});
+    run_json({kExamples + "/otc/wr_quad_disc.nc", "--tools", seed_tools(), "--plc",
+              kExamples + "/otc/plc/wr_quad_disc.plc", "--csv", path("q.csv")});
+    const auto rows = read_csv(path("q.csv"));
+    ASSERT_GT(rows.size(), 200u);
+    EXPECT_NE(rows[rows.size() - 200][2], 0.0);  // still ramping 200 cycles before the end
+    EXPECT_EQ(rows.back()[2], 0.0);
+    EXPECT_EQ(rows.back()[3], 0.0);
+    EXPECT_EQ(rows.back()[4], 50.0);
+}
+
+// A tilted disc (30 degrees): each pass's 10 mm of wear lies on X and Z (5 and 8.66 mm). Z's part
+// passes into the tool length, which acts on Z; X's stays on the axis as a standing offset while
+// the tool is in. Two passes add up on both axes, and nothing ramps back in between.
+TEST_F(OtcRun, TwoTiltedLengthPassesAddUpOnBothAxes) {
+    const std::string prog = write("tilt2.nc",
+                                   "N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH]\n"
+                                   "N40 G1 X1000 F10000\nN50 #OTC OFF\nN60 G0 X0\n"
+                                   "N70 #OTC ON [LENGTH]\nN80 G1 X1000 F10000\nN90 #OTC OFF\n"
+                                   "N100 G0 X0\nN110 M30\n");
+    run_json({prog, "--tools", kExamples + "/tools/otc_tilt.tools", "--csv", path("t.csv"),
+              "--tools-out", path("t.tools")});
     const auto rows = read_csv(path("t.csv"));
-    ASSERT_GT(rows.size(), 6050u);
-    EXPECT_EQ(rows.back()[2], 1000.0);                             // X: ramped back
-    EXPECT_NEAR(rows.back()[4], 50.0 - 10.0 * std::sqrt(3.0) / 2.0, kEps);  // Z: it stays
+    ASSERT_GT(rows.size(), 50u);
+    double previous_z = 50.0;
+    for (const auto& r : rows) {
+        if (r[0] <= 50) continue;  // N20 puts D1's 50 mm on Z
+        EXPECT_LE(r[4], previous_z + kEps) << "cycle " << r[0];
+        previous_z = r[4];
+    }
+    const double cos30 = std::sqrt(3.0) / 2.0;
+    EXPECT_NEAR(rows.back()[2], 0.0 - 2 * 5.0, kEps);           // X: N100's 0, 10 mm standing
+    EXPECT_NEAR(rows.back()[4], 50.0 - 2 * 10.0 * cos30, kEps);  // Z: in the length
     auto tools = apci::nc::load_tool_table(path("t.tools"));
     ASSERT_TRUE(tools) << tools.error().to_string();
-    EXPECT_NEAR(tools.value().find(1)->length_mm(), 50.0 - 10.0 * std::sqrt(3.0) / 2.0, 1e-6);
+    EXPECT_NEAR(tools.value().find(1)->length_mm(), 50.0 - 2 * 10.0 * cos30, 1e-6);
 }
 
 // [ISG-OTC] section 2.3.1: with the disc tilted by 30 degrees the same wear splits into sin/cos.

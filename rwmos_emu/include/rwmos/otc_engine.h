@@ -116,11 +116,13 @@ class OtcEngine final : public motion::CycleOffsets {
                                       std::uint64_t n) const noexcept;
     double wear_at(const motion::Move* m, std::uint64_t k, std::uint64_t n) const noexcept;
     Targets targets(const AxisVector& dir) const noexcept;
+    // The targets now: targets() while OTC is on, the standing offsets while it is off.
+    Targets targets_now(const AxisVector& dir) const noexcept;
     // The direction turns during `m` while a direction-bound unit commands an offset.
     bool direction_turns(const motion::Move* m) const noexcept;
     void add_offsets(const AxisVector& dir, double wear, AxisVector& pos) const noexcept;
     otc::RampLimits limits() const noexcept;
-    bool ramps_at_rest_at_zero() const noexcept;
+    bool ramps_at_rest() const noexcept;
     // A unit's commanded offset in mm, 0 when it does not act.
     double channel_command() const noexcept;
     double direction_command() const noexcept;
@@ -138,8 +140,11 @@ class OtcEngine final : public motion::CycleOffsets {
     std::array<otc::RampState, kOtcAxisCount> ramp_channel_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_direction_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_axes_{};
-    // Every ramp at {0, 0} while OTC is off (then a cycle steps no ramp):
-    // updated by step() and wherever the ramps are set otherwise.
+    // Offsets that stay on the axes while OTC is off: the part of a folded wear across the tool
+    // length's axis (a tilted disc's X), until the tool changes.
+    AxisVector standing_{};
+    // Every ramp at rest on its off target (0, the axes' at standing_) while OTC is off (then a
+    // cycle steps no ramp): updated by step() and wherever the ramps are set otherwise.
     bool ramps_quiet_ = true;
     mutable AxisVector last_dir_{};  // the direction at the last evaluated cycle
 };
