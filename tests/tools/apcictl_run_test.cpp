@@ -1465,6 +1465,19 @@ TEST_F(ApcictlRun, ABoardRefusalOfAMoveIsInTheBoardsWordsWithoutTheDriversCallOr
         EXPECT_FALSE(contains(text, "spool") || contains(text, "N2147")) << text;
 }
 
+TEST_F(ApcictlRun, AProgramThatEndsUnderG41IsToldSo) {
+    const std::string prog =
+        write("open.nc", "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\nN40 G1 X20\nN50 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5)});
+    ASSERT_EQ(doc.at("notices").size(), 1u) << doc.dump();
+    EXPECT_EQ(doc.at("notices")[0].at("code"), "CompensationOnAtEnd");
+    EXPECT_TRUE(contains(last_.out, "notice: line 5 (N50): the program ends with radius "
+                                    "compensation still on"))
+        << last_.out;
+    // The tool stays at the last compensated point (G139).
+    EXPECT_LT((xy(doc.at("segments").back().at("end")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9);
+}
+
 TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     // [ISG-OTC] section 2.2's general example: N60 G41 (selection, "verschleißfreie Bewegung"),
     // N70 X1000, N80 G40 X50 (deselection): only N70's 950 mm of contour wear, at the disc's

@@ -260,7 +260,15 @@ bool Execution::dispatch(const nc::Event& ev) {
 }
 
 bool Execution::end_of_program(const BlockRef& at) {
-    if (comp_on && !tc_.compensation_off(at)) return false;
+    if (comp_on) {
+        // The board ends the compensation at M30 (STATUS = 0): under G139 the tool stays at the
+        // last compensated point, under G237 it departs at right angles. Said, as controls do.
+        out.notices.push_back(RunError{
+            at, "CompensationOnAtEnd",
+            "the program ends with radius compensation still on: M30 switches it off where the "
+            "tool stands (program G40 with a move to leave the contour)"});
+        if (!tc_.compensation_off(at)) return false;
+    }
     return run_clock();
 }
 
