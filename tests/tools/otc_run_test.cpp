@@ -139,25 +139,32 @@ TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
     EXPECT_NEAR(tools.value().find(1)->length_mm(), 40.0, 1e-6);
 }
 
+// Two LENGTH passes over X0..X1000, each ended by #OTC OFF, with D1 (length 50 mm).
+const char* const kTwoLengthPasses =
+    "N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH]\nN40 G1 X1000 F10000\nN50 #OTC OFF\n"
+    "N60 G0 X0\nN70 #OTC ON [LENGTH]\nN80 G1 X1000 F10000\nN90 #OTC OFF\nN100 G0 X0\n"
+    "N110 M30\n";
+
+// After N20 puts D1's 50 mm on Z (cycles 1..50), Z only ever goes down: the folds move nothing.
+void expect_z_never_rises_after_the_length(const std::vector<std::vector<double>>& rows) {
+    double previous = 50.0;
+    for (const auto& r : rows) {
+        if (r[0] <= 50) continue;
+        EXPECT_LE(r[4], previous + kEps) << "cycle " << r[0];
+        previous = r[4];
+    }
+}
+
 // Two LENGTH passes of 10 mm wear each: at each #OTC OFF the wear passes into the tool length,
 // which acts on every move (LengthMode 1), so the passes add up: Z ends 20 mm below the
 // unworn tool, and never moves back up between the passes.
 TEST_F(OtcRun, TwoLengthPassesAddUp) {
-    const std::string prog = write("two.nc",
-                                   "N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH]\n"
-                                   "N40 G1 X1000 F10000\nN50 #OTC OFF\nN60 G0 X0\n"
-                                   "N70 #OTC ON [LENGTH]\nN80 G1 X1000 F10000\nN90 #OTC OFF\n"
-                                   "N100 G0 X0\nN110 M30\n");
+    const std::string prog = write("two.nc", kTwoLengthPasses);
     const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("two.csv"),
                                "--tools-out", path("two.tools")});
     const auto rows = read_csv(path("two.csv"));
     ASSERT_GT(rows.size(), 50u);
-    double previous = 50.0;
-    for (const auto& r : rows) {
-        if (r[0] <= 50) continue;  // N20 puts D1's 50 mm on Z
-        EXPECT_LE(r[4], previous + kEps) << "cycle " << r[0];
-        previous = r[4];
-    }
+    expect_z_never_rises_after_the_length(rows);
     EXPECT_NEAR(rows.back()[4], 50.0 - 20.0, kEps);
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 20.0, kEps);
     // The reported path (the tool tip) stays at Z 0 and continuous across both folds.
@@ -193,21 +200,12 @@ TEST_F(OtcRun, AProgramEndsWhenTheOtcRampsHaveSettled) {
 // passes into the tool length, which acts on Z; X's stays on the axis as a standing offset while
 // the tool is in. Two passes add up on both axes, and nothing ramps back in between.
 TEST_F(OtcRun, TwoTiltedLengthPassesAddUpOnBothAxes) {
-    const std::string prog = write("tilt2.nc",
-                                   "N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH]\n"
-                                   "N40 G1 X1000 F10000\nN50 #OTC OFF\nN60 G0 X0\n"
-                                   "N70 #OTC ON [LENGTH]\nN80 G1 X1000 F10000\nN90 #OTC OFF\n"
-                                   "N100 G0 X0\nN110 M30\n");
+    const std::string prog = write("tilt2.nc", kTwoLengthPasses);
     run_json({prog, "--tools", kExamples + "/tools/otc_tilt.tools", "--csv", path("t.csv"),
               "--tools-out", path("t.tools")});
     const auto rows = read_csv(path("t.csv"));
     ASSERT_GT(rows.size(), 50u);
-    double previous_z = 50.0;
-    for (const auto& r : rows) {
-        if (r[0] <= 50) continue;  // N20 puts D1's 50 mm on Z
-        EXPECT_LE(r[4], previous_z + kEps) << "cycle " << r[0];
-        previous_z = r[4];
-    }
+    expect_z_never_rises_after_the_length(rows);
     const double cos30 = std::sqrt(3.0) / 2.0;
     EXPECT_NEAR(rows.back()[2], 0.0 - 2 * 5.0, kEps);           // X: N100's 0, 10 mm standing
     EXPECT_NEAR(rows.back()[4], 50.0 - 2 * 10.0 * cos30, kEps);  // Z: in the length
