@@ -394,6 +394,39 @@ TEST_F(Spooler, FullSpoolerAnswersBusyAndDropsNoProfile) {
     EXPECT_NEAR(position()[0], 0.1 * (capacity + 1), kEps);
 }
 
+// Zero-length moves take no cycle, however many: a spooler full of them empties when the clock
+// runs although no cycle passes, and the clock stands where it was.
+TEST_F(Spooler, ASpoolerFullOfZeroLengthMovesEmptiesWithoutACycle) {
+    spool_ok(line(1, 1, 0));  // 1 unit at 600/min: 100 cycles
+    run();
+    const std::uint64_t start = board.motion_status().now;
+    ASSERT_EQ(start, 100u);
+    const std::uint32_t capacity = board.motion_status().capacity;
+    for (int round = 0; round < 3; ++round) {
+        for (std::uint32_t i = 0; i < capacity; ++i) spool_ok(line(2 + i, 1, 0));
+        EXPECT_EQ(board.spool(line(2 + capacity, 1, 0)).status, Status::kBusy);
+        EXPECT_EQ(board.run_until_idle(1000), 0u);
+        const auto st = board.motion_status();
+        EXPECT_EQ(st.fill, 0u);
+        EXPECT_TRUE(st.idle);
+        EXPECT_EQ(st.now, start);
+    }
+    // Stepping consumes them too, and the cycle stepped is an idle one.
+    for (std::uint32_t i = 0; i < capacity; ++i) spool_ok(line(2 + i, 1, 0));
+    board.step(1);
+    EXPECT_EQ(board.motion_status().fill, 0u);
+    EXPECT_EQ(board.motion_status().now, start + 1);
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1 + 4 * std::size_t{capacity});
+    for (std::size_t i = 1; i < segs.size(); ++i) {
+        EXPECT_EQ(segs[i].start_cycle, start);
+        EXPECT_EQ(segs[i].end_cycle, start);
+        expect_at(segs[i].start, 1, 0);
+        expect_at(segs[i].end, 1, 0);
+    }
+    expect_at(position(), 1, 0);
+}
+
 TEST_F(Spooler, BusyWhileCompensatingLeavesTheHeldProfileAsItWas) {
     // Two boards get the same program; one of them is made to refuse a
     // profile with Busy first. Both must execute the same path.

@@ -1488,4 +1488,25 @@ TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     EXPECT_EQ(roles(doc), "uncompensated/30 approach/60 contour/70 uncompensated/80 uncompensated/100");
 }
 
+// Zero-length moves take no cycle, however many: a spooler full of them empties while the clock
+// stands still, and the run goes on (make_room counts moves consumed, not only cycles run).
+TEST_F(ApcictlRun, ManyZeroLengthMovesRunWhole) {
+    std::string text = "F1000\nG1 X1\n";
+    for (int k = 0; k < 1000; ++k) text += "G1 X1\n";
+    text += "M30\n";
+    const json doc = run_json(write("zero.nc", text));
+    EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+    EXPECT_EQ(doc.at("segments").size(), 1001u);
+    EXPECT_TRUE(contains(last_.out, ": 1003 blocks, 1003 executed, 1001 segments")) << last_.out;
+    EXPECT_TRUE(contains(last_.out, "(60 cycles of 1 ms)")) << last_.out;  // 1 mm at 1000 mm/min
+    // From the start: none of the moves takes a cycle.
+    std::string still = "F1000\n";
+    for (int k = 0; k < 1000; ++k) still += "G1 X0\n";
+    still += "M30\n";
+    const json doc2 = run_json(write("still.nc", still));
+    EXPECT_TRUE(doc2.at("errors").empty()) << doc2.at("errors").dump();
+    EXPECT_EQ(doc2.at("segments").size(), 1000u);
+    EXPECT_TRUE(contains(last_.out, "(0 cycles of 1 ms)")) << last_.out;
+}
+
 }  // namespace

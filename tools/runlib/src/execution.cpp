@@ -304,11 +304,14 @@ Point Execution::where(const BlockRef& at) {
     return p;
 }
 
-// Busy: the spooler is full; running until idle empties it.
+// Busy: the spooler is full; running until idle empties it. Progress is a move consumed (each
+// logs one executed segment) or a cycle run: zero-length moves take no cycle, so a spooler full
+// of them empties with the clock standing still.
 bool Execution::make_room() {
-    const std::uint64_t before = cycles_seen_;
+    const std::uint64_t cycles_before = cycles_seen_;
+    const std::uint64_t segments_before = out.totals.segments;
     if (!run_clock()) return false;
-    if (cycles_seen_ == before)
+    if (cycles_seen_ == cycles_before && out.totals.segments == segments_before)
         return record({}, "Busy", "the spooler is full and the clock does not move it");
     return true;
 }
