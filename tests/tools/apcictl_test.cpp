@@ -386,4 +386,44 @@ TEST_P(ApcictlHelp, EveryCommandHasHelp) {
 INSTANTIATE_TEST_SUITE_P(Commands, ApcictlHelp,
                          ::testing::Values("", "read", "write", "script", "status"));
 
+// ---- negative values reach the write (hardening issue, item 10)
+
+TEST(ApcictlNegativeValues, ReachTheWriteAndTheObjectsOwnRangeCheck) {
+    // RADIUS (1300 1 1 7) refuses a negative value; CLI11 took -.5 for an option.
+    const auto half = apcictl({"write", "1300", "1", "1", "7", "-.5"});
+    EXPECT_EQ(half.exit_code, 1) << half.err;
+    EXPECT_TRUE(contains(half.err, "write 1300 1 1 7 -.5: ValueTooLow")) << half.err;
+    for (const char* v : {"-inf", "-nan"}) {
+        const auto r = apcictl({"write", "1300", "1", "1", "7", v});
+        EXPECT_EQ(r.exit_code, 1) << v;
+        EXPECT_TRUE(contains(r.err, std::string("write 1300 1 1 7 ") + v + ": InvalidValue"))
+            << r.err;
+    }
+    // `--` still works, and options may still follow the value.
+    const auto mark = apcictl({"write", "1300", "1", "1", "7", "--", "-.5"});
+    EXPECT_EQ(mark.exit_code, 1);
+    EXPECT_TRUE(contains(mark.err, "write 1300 1 1 7 -.5: ValueTooLow")) << mark.err;
+    const auto forced = apcictl({"write", "1300", "1", "1", "7", "-.5", "--int"});
+    EXPECT_EQ(forced.exit_code, 2);
+    EXPECT_TRUE(contains(forced.err, "VALUE '-.5' is not an int32 (--int)")) << forced.err;
+    // A negative value an object takes: RotAngle (1300 0 20 0, double).
+    const auto angle = script("write 1300 0 20 0 -.5\nread 1300 0 20 0\n");
+    EXPECT_EQ(angle.exit_code, 0) << angle.err;
+    EXPECT_EQ(angle.out, "-0.5\n");
+}
+
+TEST(ApcictlNegativeValues, InScriptLinesToo) {
+    const auto r = script("write 1300 1 1 7 -.5\nwrite 1300 1 1 7 -inf\nwrite 1300 1 1 7 -nan\n",
+                          {"--keep-going"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.err, "line 1: write 1300 1 1 7 -.5: ValueTooLow")) << r.err;
+    EXPECT_TRUE(contains(r.err, "line 2: write 1300 1 1 7 -inf: InvalidValue")) << r.err;
+    EXPECT_TRUE(contains(r.err, "line 3: write 1300 1 1 7 -nan: InvalidValue")) << r.err;
+    EXPECT_FALSE(contains(r.err, "is required")) << r.err;
+    // An unexpected negative number is named as typed.
+    const auto extra = apcictl({"step", "5", "-.5"});
+    EXPECT_EQ(extra.exit_code, 2);
+    EXPECT_TRUE(contains(extra.err, "not expected: -.5\n")) << extra.err;
+}
+
 }  // namespace

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // apcictl: inspect and drive an APCI-8001/8008 board, or the emulator,
 // through libapci's public API only. docs/design.md section 7; docs/apcictl.md.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "arguments.h"
 #include "command.h"
 
 namespace {
@@ -28,17 +31,29 @@ int run(int argc, char** argv) {
     app.require_subcommand(1);
     app.fallthrough();  // --device may also follow the command
     app.footer(kFooter);
+    // Parse errors without the marks of protected negative numbers (arguments.h).
+    app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
+        return apcictl::plain_text(CLI::FailureMessage::simple(failed, e));
+    });
+    apcictl::accept_negative_numbers(app);
 
     std::vector<std::pair<CLI::App*, std::unique_ptr<apcictl::Command>>> commands;
     for (const auto& spec : apcictl::command_table()) {
         auto command = spec.make();
         CLI::App* sub = app.add_subcommand(std::string(spec.name), std::string(spec.summary));
         command->declare(*sub);
+        apcictl::accept_negative_numbers(*sub);
         commands.emplace_back(sub, std::move(command));
     }
 
+    // A negative number (-.5, -inf) is a value, not an option: CLI11 wants the
+    // arguments reversed, without the program's name.
+    std::vector<std::string> args;
+    for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+    apcictl::protect_negative_numbers(args);
+    std::reverse(args.begin(), args.end());
     try {
-        app.parse(argc, argv);
+        app.parse(args);
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);  // prints help / version, or the error
         return code == 0 ? 0 : static_cast<int>(Exit::kUsage);

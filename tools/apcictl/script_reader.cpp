@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "script_reader.h"
 
+#include <algorithm>
 #include <cctype>
 #include <string>
 #include <string_view>
 
 #include <fmt/format.h>
+
+#include "arguments.h"
 
 namespace apcictl {
 namespace {
@@ -38,7 +41,11 @@ Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
     auto command = spec->make();
     CLI::App parser(std::string(spec->summary), std::string(spec->name));
     command->declare(parser);
-    std::vector<std::string> args(words.rbegin(), words.rend() - 1);  // CLI11 wants them reversed
+    accept_negative_numbers(parser);
+    // A negative number (-.5, -inf) is a value, not an option (arguments.h).
+    std::vector<std::string> args(words.begin() + 1, words.end());
+    protect_negative_numbers(args);
+    std::reverse(args.begin(), args.end());  // CLI11 wants them reversed
     try {
         parser.parse(args);
     } catch (const CLI::CallForHelp&) {
@@ -46,7 +53,7 @@ Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
             fmt::format("{}: --help is not a script command; run 'apcictl {} --help'",
                         joined(words), spec->name));
     } catch (const CLI::ParseError& e) {
-        return Outcome::usage_error(fmt::format("{}: {}", joined(words), e.what()));
+        return Outcome::usage_error(fmt::format("{}: {}", joined(words), plain_text(e.what())));
     }
     Outcome prepared = command->prepare();
     if (!prepared.ok()) return prepared;
