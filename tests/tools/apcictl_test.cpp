@@ -386,6 +386,64 @@ TEST_P(ApcictlHelp, EveryCommandHasHelp) {
 INSTANTIATE_TEST_SUITE_P(Commands, ApcictlHelp,
                          ::testing::Values("", "read", "write", "script", "status"));
 
+// ---- numbers: parsed with their range checked (hardening issue, item 4)
+
+TEST(ApcictlNumbers, NegativeOrWrappingCyclesAreUsageErrorsNamingTheRange) {
+    // `step -- -1` was 2^64-1 cycles and `step 2^64` wrapped: both ran the clock for hours.
+    for (const char* cycles : {"-1", "18446744073709551616", "18446744073709551615", "0",
+                               "1000000001", "1e3", "5x"}) {
+        const auto r = apcictl({"step", "--", cycles});
+        EXPECT_EQ(r.exit_code, 2) << cycles;
+        EXPECT_EQ(r.out, "") << cycles;
+        EXPECT_TRUE(contains(r.err, std::string("CYCLES '") + cycles +
+                                        "' is not a whole number in 1..1000000000"))
+            << r.err;
+    }
+    const auto max = apcictl({"step", "--idle", "--max", "-1"});
+    EXPECT_EQ(max.exit_code, 2);
+    EXPECT_TRUE(contains(max.err, "--max '-1' is not a whole number in 1..1000000000")) << max.err;
+    const auto ok = apcictl({"step", "1000000000"});
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+    EXPECT_TRUE(contains(ok.out, "cycle 1000000000 (+1000000000)")) << ok.out;
+}
+
+TEST(ApcictlNumbers, ObjectAddressesAreInt32s) {
+    const auto r = apcictl({"read", "1300", "1", "1", "99999999999"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "read 1300 1 1 99999999999: SUB '99999999999' is not a whole "
+                                "number in -2147483648..2147483647"))
+        << r.err;
+    const auto w = apcictl({"write", "4294968596", "1", "1", "7", "1"});  // 2^32 + 1300
+    EXPECT_EQ(w.exit_code, 2);
+    EXPECT_TRUE(contains(w.err, "BUS '4294968596' is not a whole number")) << w.err;
+    // In range but no such bus: the board says so.
+    const auto b = apcictl({"read", "--", "-1", "1", "1", "1"});
+    EXPECT_EQ(b.exit_code, 1);
+    EXPECT_TRUE(contains(b.err, "NoSuchDevice")) << b.err;
+    // Hexadecimal as for VALUE.
+    const auto hex = apcictl({"read", "0x514", "0", "12", "0"});  // TcPlane
+    EXPECT_EQ(hex.exit_code, 0) << hex.err;
+    EXPECT_EQ(hex.out, "17\n");
+}
+
+TEST(ApcictlNumbers, ScriptLinesCheckTheirNumbersBeforeAnyRuns) {
+    const auto r = script("step 1\nstep -1\nread 1300 1 1 -99999999999\n");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(contains(r.err, "line 2: step -1: CYCLES '-1' is not a whole number")) << r.err;
+    EXPECT_TRUE(contains(r.err, "line 3: read 1300 1 1 -99999999999: SUB")) << r.err;
+}
+
+TEST(ApcictlNumbers, DiffToleranceMustBeFiniteAndNotNegative) {
+    for (const char* t : {"nan", "inf", "-1", "-.5", "x"}) {
+        const auto r = apcictl({"diff", "--against", "emu:", "--tolerance", t, "no-such.nc"});
+        EXPECT_EQ(r.exit_code, 2) << t;
+        EXPECT_TRUE(contains(r.err, std::string("--tolerance '") + t +
+                                        "' is not a finite number >= 0"))
+            << r.err;
+    }
+}
+
 // ---- negative values reach the write (hardening issue, item 10)
 
 TEST(ApcictlNegativeValues, ReachTheWriteAndTheObjectsOwnRangeCheck) {

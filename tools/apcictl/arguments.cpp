@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "arguments.h"
 
-#include <cstdint>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
 
 #include "value_text.h"
 
@@ -19,6 +23,60 @@ bool reads_as_negative_number(std::string_view text) {
 }
 
 }  // namespace
+
+std::string parse_integer(std::string_view name, std::string_view text, std::int64_t min,
+                          std::int64_t max, std::int64_t& out) {
+    const auto refused = [&] {
+        return fmt::format("{} '{}' is not a whole number in {}..{}", name, text, min, max);
+    };
+    std::string_view digits = text;
+    bool negative = false;
+    if (!digits.empty() && (digits.front() == '-' || digits.front() == '+')) {
+        negative = digits.front() == '-';
+        digits.remove_prefix(1);
+    }
+    int base = 10;
+    if (digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
+        base = 16;
+        digits.remove_prefix(2);
+    }
+    if (digits.empty() || digits.front() == '-' || digits.front() == '+') return refused();
+    std::uint64_t magnitude = 0;
+    const auto [end, ec] =
+        std::from_chars(digits.data(), digits.data() + digits.size(), magnitude, base);
+    if (ec != std::errc() || end != digits.data() + digits.size()) return refused();
+    constexpr auto kMaxMagnitude =
+        static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+    std::int64_t value = 0;
+    if (negative) {
+        if (magnitude > kMaxMagnitude + 1) return refused();
+        value = magnitude == kMaxMagnitude + 1 ? std::numeric_limits<std::int64_t>::min()
+                                               : -static_cast<std::int64_t>(magnitude);
+    } else {
+        if (magnitude > kMaxMagnitude) return refused();
+        value = static_cast<std::int64_t>(magnitude);
+    }
+    if (value < min || value > max) return refused();
+    out = value;
+    return {};
+}
+
+std::string parse_int32_argument(std::string_view name, std::string_view text, std::int32_t& out) {
+    std::int64_t value = 0;
+    std::string why = parse_integer(name, text, std::numeric_limits<std::int32_t>::min(),
+                                    std::numeric_limits<std::int32_t>::max(), value);
+    if (why.empty()) out = static_cast<std::int32_t>(value);
+    return why;
+}
+
+std::string parse_non_negative(std::string_view name, std::string_view text, double& out) {
+    double value = 0.0;
+    if (!parse_double(text, value) || !std::isfinite(value) || value < 0.0 ||
+        std::signbit(value))
+        return fmt::format("{} '{}' is not a finite number >= 0", name, text);
+    out = value;
+    return {};
+}
 
 void protect_negative_numbers(std::vector<std::string>& args) {
     for (auto& arg : args)

@@ -32,6 +32,7 @@
 #include "apci/nc/tools.h"
 #include "apci/run/executor.h"
 #include "apci/run/plc_script.h"
+#include "arguments.h"
 #include "command.h"
 
 namespace apcictl {
@@ -329,11 +330,10 @@ class DiffCommand final : public Command {
         app.add_option("--plc", plc_,
                        "A scripted PLC, written in both runs at the same cycles and blocks (as "
                        "for run)");
-        app.add_option(
-               "--tolerance", tolerance_,
-               "NC programs: positions closer than this are equal (program units; default 0: "
-               "bit for bit)")
-            ->check(CLI::NonNegativeNumber);
+        app.add_option("--tolerance", tolerance_text_,
+                       "NC programs: positions closer than this are equal (program units, a "
+                       "finite number >= 0; default 0: bit for bit)")
+            ->type_name("FLOAT");
         auto* nc =
             app.add_flag("--nc", force_nc_, "Treat PROGRAM as an NC program whatever its name");
         auto* script =
@@ -348,6 +348,11 @@ class DiffCommand final : public Command {
     }
 
     Outcome prepare() override {
+        if (!tolerance_text_.empty()) {
+            if (std::string why = parse_non_negative("--tolerance", tolerance_text_, tolerance_);
+                !why.empty())
+                return Outcome::usage_error("diff: " + why);
+        }
         if (program_ == "-" && is_nc())
             return Outcome::usage_error("diff: an NC program must be a file (it runs twice)");
         return Outcome::success();
@@ -427,6 +432,7 @@ class DiffCommand final : public Command {
     std::string tools_;
     std::string corr_;
     std::string plc_;
+    std::string tolerance_text_;
     double tolerance_ = 0.0;
     bool force_nc_ = false;
     bool force_script_ = false;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "arguments.h"
 #include "command.h"
 #include "value_text.h"
 
@@ -66,7 +67,7 @@ struct Words {
             if (letter == 'N') {
                 std::int32_t n = 0;
                 if (!parse_int32(number, n) || n < 0)
-                    return fmt::format("'{}': N needs a block number >= 0", w);
+                    return fmt::format("'{}': N needs a block number in 0..2147483647", w);
                 has_tag = true;
                 tag = static_cast<std::uint32_t>(n);
                 continue;
@@ -259,8 +260,9 @@ class SsfCommand final : public Command {
     Outcome prepare() override {
         if (!axes_of(axes_text_, axes_))
             return usage(fmt::format("AXES '{}' is not a set of axis letters", axes_text_));
-        if (!parse_int32(command_text_, command_))
-            return usage(fmt::format("COMMAND '{}' is not an int32", command_text_));
+        if (std::string why = parse_int32_argument("COMMAND", command_text_, command_);
+            !why.empty())
+            return usage(why);
         return Outcome::success();
     }
 
@@ -287,11 +289,21 @@ class SsfCommand final : public Command {
 
 class StepCommand final : public Command {
   public:
+    // The most cycles one step may ask for (at the default 1 ms cycle, 11.6 days of board time):
+    // a mistyped count must not hold a shared daemon's clock for hours.
+    static constexpr std::int64_t kMaxCycles = 1'000'000'000;
+
     void declare(CLI::App& app) override {
-        auto* cycles = app.add_option("CYCLES", cycles_, "Interpolation cycles to advance");
+        auto* cycles = app.add_option("CYCLES", cycles_text_,
+                                      fmt::format("Interpolation cycles to advance (1..{})",
+                                                  kMaxCycles))
+                           ->type_name("UINT");
         auto* idle =
             app.add_flag("--idle", idle_, "Advance until nothing moves (at most --max cycles)");
-        app.add_option("--max", max_, "With --idle: the most cycles to run (default 1e9)");
+        app.add_option("--max", max_text_,
+                       fmt::format("With --idle: the most cycles to run (1..{0}, default {0})",
+                                   kMaxCycles))
+            ->type_name("UINT");
         cycles->excludes(idle);
         app.footer(
             "Prints one line: 'cycle NOW (+RAN) fill F/C idle|moving|held X.. Y.. ...' "
@@ -299,7 +311,21 @@ class StepCommand final : public Command {
     }
 
     Outcome prepare() override {
-        if (!idle_ && cycles_ == 0) return Outcome::usage_error("step: give CYCLES > 0 or --idle");
+        if (!idle_ && cycles_text_.empty())
+            return Outcome::usage_error("step: give CYCLES > 0 or --idle");
+        std::int64_t value = 0;
+        if (!idle_) {
+            if (std::string why = parse_integer("CYCLES", cycles_text_, 1, kMaxCycles, value);
+                !why.empty())
+                return Outcome::usage_error(fmt::format("step {}: {}", cycles_text_, why));
+            cycles_ = static_cast<std::uint64_t>(value);
+        }
+        if (!max_text_.empty()) {
+            if (std::string why = parse_integer("--max", max_text_, 1, kMaxCycles, value);
+                !why.empty())
+                return Outcome::usage_error(fmt::format("step --max {}: {}", max_text_, why));
+            max_ = static_cast<std::uint64_t>(value);
+        }
         return Outcome::success();
     }
 
@@ -326,9 +352,10 @@ class StepCommand final : public Command {
         return idle_ ? fmt::format("step --idle --max {}", max_) : fmt::format("step {}", cycles_);
     }
 
+    std::string cycles_text_, max_text_;
     std::uint64_t cycles_ = 0;
     bool idle_ = false;
-    std::uint64_t max_ = 1'000'000'000;
+    std::uint64_t max_ = kMaxCycles;
 };
 
 }  // namespace

@@ -4,6 +4,10 @@
 // to the wrong accessor without touching state, so asking is safe.
 #include <fmt/format.h>
 
+#include <string>
+#include <tuple>
+
+#include "arguments.h"
 #include "command.h"
 #include "rwmos/object_map.h"
 #include "value_text.h"
@@ -13,15 +17,29 @@ namespace {
 
 struct ObjectArgs {
     std::int32_t bus = 0, device = 0, index = 0, subindex = 0;
+    std::string bus_text, device_text, index_text, subindex_text;  // as typed
 
     void declare(CLI::App& app) {
-        app.add_option("BUS", bus, "BusNumber (1300: TC module)")->required();
-        app.add_option("DEV", device, "DeviceNumber")->required();
-        app.add_option("IDX", index, "Index")->required();
-        app.add_option("SUB", subindex, "SubIndex")->required();
+        app.add_option("BUS", bus_text, "BusNumber (1300: TC module)")->type_name("INT")->required();
+        app.add_option("DEV", device_text, "DeviceNumber")->type_name("INT")->required();
+        app.add_option("IDX", index_text, "Index")->type_name("INT")->required();
+        app.add_option("SUB", subindex_text, "SubIndex")->type_name("INT")->required();
+    }
+    // Each number an int32 (decimal, or hexadecimal after 0x): empty, else why not.
+    std::string parse() {
+        for (auto [name, text, value] :
+             {std::tuple{"BUS", &bus_text, &bus}, std::tuple{"DEV", &device_text, &device},
+              std::tuple{"IDX", &index_text, &index},
+              std::tuple{"SUB", &subindex_text, &subindex}}) {
+            if (std::string why = parse_int32_argument(name, *text, *value); !why.empty())
+                return why;
+        }
+        return {};
     }
     apci::ObjectDescriptor descriptor() const { return apci::object(bus, device, index, subindex); }
-    std::string text() const { return fmt::format("{} {} {} {}", bus, device, index, subindex); }
+    std::string text() const {
+        return fmt::format("{} {} {} {}", bus_text, device_text, index_text, subindex_text);
+    }
     std::string address() const { return fmt::format("{}/{}/{}/{}", bus, device, index, subindex); }
 };
 
@@ -44,6 +62,12 @@ public:
         type_.declare(app, "Read");
         app.footer("Prints the value. Without --int/--double the type follows the object: "
                    "int32 is tried first, then double.");
+    }
+
+    Outcome prepare() override {
+        if (std::string why = object_.parse(); !why.empty())
+            return Outcome::usage_error(fmt::format("read{} {}: {}", type_.text(), object_.text(), why));
+        return Outcome::success();
     }
 
     Outcome run(Session& session) override {
@@ -89,6 +113,7 @@ public:
     }
 
     Outcome prepare() override {
+        if (std::string why = object_.parse(); !why.empty()) return usage(why);
         is_int_ = parse_int32(value_text_, int_value_);
         const bool is_number = parse_double(value_text_, double_value_);
         if (type_.force_int && !is_int_)

@@ -24,6 +24,7 @@
 #include "apci/run/plc_script.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
+#include "arguments.h"
 #include "command.h"
 
 namespace apcictl {
@@ -160,9 +161,9 @@ class RunCommand final : public Command {
         app.add_flag("--svg-cycles", svg_cycles_,
                      "Draw the axes of every interpolation cycle in the plot too (the OTC offsets "
                      "show there, not in the segments)");
-        app.add_option("--plane", plane_, "Draw the plot in this plane (17, 18, 19) instead of "
-                                          "the program's")
-            ->check(CLI::IsMember({17, 18, 19}));
+        app.add_option("--plane", plane_text_, "Draw the plot in this plane (17, 18, 19) instead of "
+                                               "the program's")
+            ->type_name("INT");
         app.add_option("--plc", plc_,
                        "A scripted PLC: writes to the OTC control units and the temperature "
                        "compensation's data at cycles or blocks (docs/apcictl.md)");
@@ -185,6 +186,17 @@ class RunCommand final : public Command {
             "Coordinates in the outputs are the tool centre point in mm. Exit 0 ok, 1 board or "
             "program error (the run stops at the first board error), 2 usage (bad option, "
             "unreadable program, output file that cannot be written). See docs/apcictl.md.");
+    }
+
+    Outcome prepare() override {
+        if (!plane_text_.empty()) {
+            std::int64_t plane = 0;
+            if (!parse_integer("--plane", plane_text_, 17, 19, plane).empty())
+                return Outcome::usage_error(
+                    fmt::format("run: --plane '{}' is not 17, 18 or 19", plane_text_));
+            plane_ = static_cast<int>(plane);
+        }
+        return Outcome::success();
     }
 
     Outcome run(Session& session) override {
@@ -333,6 +345,7 @@ class RunCommand final : public Command {
     std::string tools_out_;
     std::string self_approach_ = "warn";
     bool svg_cycles_ = false;
+    std::string plane_text_;
     int plane_ = 0;
 };
 
