@@ -1509,4 +1509,54 @@ TEST_F(ApcictlRun, ManyZeroLengthMovesRunWhole) {
     EXPECT_TRUE(contains(last_.out, "(0 cycles of 1 ms)")) << last_.out;
 }
 
+// An output that names an input or another output is refused before anything runs (hardening
+// issue, item 6): `--json p.nc` overwrote the program, `--json X --csv X` mixed both outputs, and
+// both exited 0. The same file is found through `..`, symlinks and hard links.
+TEST_F(ApcictlRun, AnOutputThatIsAnInputOrAnotherOutputIsRefusedBeforeAnythingRuns) {
+    const std::string program_text = "N10 G1 X3 Y4 F600\nM30\n";
+    const std::string prog = write("p.nc", program_text);
+    const std::string tools_file = tools(1.0);
+    const std::string plc = write("s.plc", "");
+    const std::string corr = write("c.corr", "");
+    ASSERT_EQ(::symlink(prog.c_str(), path("link.nc").c_str()), 0);
+    ASSERT_EQ(::link(tools_file.c_str(), path("hard.tools").c_str()), 0);
+    const std::string dotted = dir_ + "/../" + std::filesystem::path(dir_).filename().string();
+    struct Case {
+        std::vector<std::string> args;
+        std::string says;
+    };
+    const std::vector<Case> cases{
+        {{"--json", prog}, "--json '" + prog + "' is the same file as PROGRAM '" + prog + "'"},
+        {{"--svg", dotted + "/p.nc"}, "--svg '" + dotted + "/p.nc' is the same file as PROGRAM"},
+        {{"--csv", path("link.nc")}, "--csv '" + path("link.nc") + "' is the same file as PROGRAM"},
+        {{"--tools", tools_file, "--json", tools_file}, "--json '" + tools_file +
+                                                           "' is the same file as --tools"},
+        {{"--tools", tools_file, "--tools-out", path("hard.tools")},
+         "--tools-out '" + path("hard.tools") + "' is the same file as --tools"},
+        {{"--plc", plc, "--csv", plc}, "--csv '" + plc + "' is the same file as --plc"},
+        {{"--corr", corr, "--svg", corr}, "--svg '" + corr + "' is the same file as --corr"},
+        {{"--json", path("x"), "--csv", path("x")},
+         "--csv '" + path("x") + "' is the same file as --json '" + path("x") + "'"},
+        {{"--svg", path("y"), "--tools-out", path("y")}, "--tools-out '" + path("y") +
+                                                             "' is the same file as --svg"},
+    };
+    for (const auto& c : cases) {
+        std::vector<std::string> args{"run", prog};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        const auto r = apcictl(args);
+        EXPECT_EQ(r.exit_code, 2) << c.says;
+        EXPECT_EQ(r.out, "") << c.says;
+        EXPECT_TRUE(contains(r.err, c.says)) << r.err;
+    }
+    // Nothing ran and nothing was written: the inputs are as they were, no output was made.
+    EXPECT_EQ(read_text(prog), program_text);
+    EXPECT_TRUE(contains(read_text(tools_file), "wz[1].radius 1.0")) << read_text(tools_file);
+    EXPECT_FALSE(exists(path("x")));
+    EXPECT_FALSE(exists(path("y")));
+    // A program from standard input has no file to clash with; distinct outputs still run.
+    const auto ok = apcictl({"run", "-", "--json", path("a.json"), "--csv", path("a.csv")},
+                            program_text);
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
+
 }  // namespace

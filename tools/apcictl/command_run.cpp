@@ -11,9 +11,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
 
 #include "apci/nc/correction_table.h"
 #include "apci/nc/program.h"
@@ -196,7 +201,7 @@ class RunCommand final : public Command {
                     fmt::format("run: --plane '{}' is not 17, 18 or 19", plane_text_));
             plane_ = static_cast<int>(plane);
         }
-        return Outcome::success();
+        return refuse_output_over_input();
     }
 
     Outcome run(Session& session) override {
@@ -327,6 +332,52 @@ class RunCommand final : public Command {
     }
 
   private:
+    // An output that is an input (the program, --tools, --plc, --corr) or another output would
+    // overwrite it or mix two outputs in one file: refused before anything runs. The same file:
+    // the same path once absolute and normalised, or (when both exist) the same device and
+    // inode, so a symlink or a hard link to an input is caught too.
+    Outcome refuse_output_over_input() const {
+        std::vector<std::pair<std::string_view, const std::string*>> files;
+        if (program_ != "-") files.emplace_back("PROGRAM", &program_);
+        files.emplace_back("--tools", &tools_);
+        files.emplace_back("--plc", &plc_);
+        files.emplace_back("--corr", &corr_);
+        const std::size_t inputs = files.size();
+        files.emplace_back("--json", &json_);
+        files.emplace_back("--svg", &svg_);
+        files.emplace_back("--csv", &csv_);
+        files.emplace_back("--tools-out", &tools_out_);
+        for (std::size_t out = inputs; out < files.size(); ++out) {
+            if (files[out].second->empty()) continue;
+            for (std::size_t other = 0; other < out; ++other) {
+                if (files[other].second->empty()) continue;
+                if (!same_file(*files[out].second, *files[other].second)) continue;
+                return Outcome::usage_error(fmt::format(
+                    "run: {} '{}' is the same file as {} '{}' ({})", files[out].first,
+                    *files[out].second, files[other].first, *files[other].second,
+                    other < inputs ? "the output would overwrite the input"
+                                   : "the two outputs would be mixed in one file"));
+            }
+        }
+        return Outcome::success();
+    }
+
+    static bool same_file(const std::string& a, const std::string& b) {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const fs::path pa = fs::absolute(a, ec).lexically_normal();
+        const fs::path pb = fs::absolute(b, ec).lexically_normal();
+        if (pa == pb) return true;
+        // Symlinks along the way (a file not yet there in a linked directory).
+        const fs::path ca = fs::weakly_canonical(pa, ec);
+        const bool resolved_a = !ec;
+        const fs::path cb = fs::weakly_canonical(pb, ec);
+        if (resolved_a && !ec && ca == cb) return true;
+        // Hard links (and symlinks) to an existing file: the same device and inode.
+        const bool equivalent = fs::equivalent(pa, pb, ec);
+        return !ec && equivalent;
+    }
+
     // A program or tool list that cannot be read is a usage error; one that does not parse is
     // a program error. Either way nothing ran.
     static Outcome nc_failure(const apci::nc::Diagnostic& d) {
