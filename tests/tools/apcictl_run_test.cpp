@@ -1529,16 +1529,16 @@ TEST_F(ApcictlRun, AnOutputThatIsAnInputOrAnotherOutputIsRefusedBeforeAnythingRu
         {{"--json", prog}, "--json '" + prog + "' is the same file as PROGRAM '" + prog + "'"},
         {{"--svg", dotted + "/p.nc"}, "--svg '" + dotted + "/p.nc' is the same file as PROGRAM"},
         {{"--csv", path("link.nc")}, "--csv '" + path("link.nc") + "' is the same file as PROGRAM"},
-        {{"--tools", tools_file, "--json", tools_file}, "--json '" + tools_file +
-                                                           "' is the same file as --tools"},
+        {{"--tools", tools_file, "--json", tools_file},
+         "--json '" + tools_file + "' is the same file as --tools"},
         {{"--tools", tools_file, "--tools-out", path("hard.tools")},
          "--tools-out '" + path("hard.tools") + "' is the same file as --tools"},
         {{"--plc", plc, "--csv", plc}, "--csv '" + plc + "' is the same file as --plc"},
         {{"--corr", corr, "--svg", corr}, "--svg '" + corr + "' is the same file as --corr"},
         {{"--json", path("x"), "--csv", path("x")},
          "--csv '" + path("x") + "' is the same file as --json '" + path("x") + "'"},
-        {{"--svg", path("y"), "--tools-out", path("y")}, "--tools-out '" + path("y") +
-                                                             "' is the same file as --svg"},
+        {{"--svg", path("y"), "--tools-out", path("y")},
+         "--tools-out '" + path("y") + "' is the same file as --svg"},
     };
     for (const auto& c : cases) {
         std::vector<std::string> args{"run", prog};
@@ -1554,8 +1554,8 @@ TEST_F(ApcictlRun, AnOutputThatIsAnInputOrAnotherOutputIsRefusedBeforeAnythingRu
     EXPECT_FALSE(exists(path("x")));
     EXPECT_FALSE(exists(path("y")));
     // A program from standard input has no file to clash with; distinct outputs still run.
-    const auto ok = apcictl({"run", "-", "--json", path("a.json"), "--csv", path("a.csv")},
-                            program_text);
+    const auto ok =
+        apcictl({"run", "-", "--json", path("a.json"), "--csv", path("a.csv")}, program_text);
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 

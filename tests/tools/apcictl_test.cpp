@@ -390,13 +390,13 @@ INSTANTIATE_TEST_SUITE_P(Commands, ApcictlHelp,
 
 TEST(ApcictlNumbers, NegativeOrWrappingCyclesAreUsageErrorsNamingTheRange) {
     // `step -- -1` was 2^64-1 cycles and `step 2^64` wrapped: both ran the clock for hours.
-    for (const char* cycles : {"-1", "18446744073709551616", "18446744073709551615", "0",
-                               "1000000001", "1e3", "5x"}) {
+    for (const char* cycles :
+         {"-1", "18446744073709551616", "18446744073709551615", "0", "1000000001", "1e3", "5x"}) {
         const auto r = apcictl({"step", "--", cycles});
         EXPECT_EQ(r.exit_code, 2) << cycles;
         EXPECT_EQ(r.out, "") << cycles;
-        EXPECT_TRUE(contains(r.err, std::string("CYCLES '") + cycles +
-                                        "' is not a whole number in 1..1000000000"))
+        EXPECT_TRUE(contains(
+            r.err, std::string("CYCLES '") + cycles + "' is not a whole number in 1..1000000000"))
             << r.err;
     }
     const auto max = apcictl({"step", "--idle", "--max", "-1"});
@@ -410,8 +410,9 @@ TEST(ApcictlNumbers, NegativeOrWrappingCyclesAreUsageErrorsNamingTheRange) {
 TEST(ApcictlNumbers, ObjectAddressesAreInt32s) {
     const auto r = apcictl({"read", "1300", "1", "1", "99999999999"});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(contains(r.err, "read 1300 1 1 99999999999: SUB '99999999999' is not a whole "
-                                "number in -2147483648..2147483647"))
+    EXPECT_TRUE(contains(r.err,
+                         "read 1300 1 1 99999999999: SUB '99999999999' is not a whole "
+                         "number in -2147483648..2147483647"))
         << r.err;
     const auto w = apcictl({"write", "4294968596", "1", "1", "7", "1"});  // 2^32 + 1300
     EXPECT_EQ(w.exit_code, 2);
@@ -438,8 +439,8 @@ TEST(ApcictlNumbers, DiffToleranceMustBeFiniteAndNotNegative) {
     for (const char* t : {"nan", "inf", "-1", "-.5", "x"}) {
         const auto r = apcictl({"diff", "--against", "emu:", "--tolerance", t, "no-such.nc"});
         EXPECT_EQ(r.exit_code, 2) << t;
-        EXPECT_TRUE(contains(r.err, std::string("--tolerance '") + t +
-                                        "' is not a finite number >= 0"))
+        EXPECT_TRUE(
+            contains(r.err, std::string("--tolerance '") + t + "' is not a finite number >= 0"))
             << r.err;
     }
 }

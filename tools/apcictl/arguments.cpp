@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "arguments.h"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "value_text.h"
 
@@ -71,8 +71,7 @@ std::string parse_int32_argument(std::string_view name, std::string_view text, s
 
 std::string parse_non_negative(std::string_view name, std::string_view text, double& out) {
     double value = 0.0;
-    if (!parse_double(text, value) || !std::isfinite(value) || value < 0.0 ||
-        std::signbit(value))
+    if (!parse_double(text, value) || !std::isfinite(value) || value < 0.0 || std::signbit(value))
         return fmt::format("{} '{}' is not a finite number >= 0", name, text);
     out = value;
     return {};

@@ -294,15 +294,15 @@ class StepCommand final : public Command {
     static constexpr std::int64_t kMaxCycles = 1'000'000'000;
 
     void declare(CLI::App& app) override {
-        auto* cycles = app.add_option("CYCLES", cycles_text_,
-                                      fmt::format("Interpolation cycles to advance (1..{})",
-                                                  kMaxCycles))
-                           ->type_name("UINT");
+        auto* cycles =
+            app.add_option("CYCLES", cycles_text_,
+                           fmt::format("Interpolation cycles to advance (1..{})", kMaxCycles))
+                ->type_name("UINT");
         auto* idle =
             app.add_flag("--idle", idle_, "Advance until nothing moves (at most --max cycles)");
-        app.add_option("--max", max_text_,
-                       fmt::format("With --idle: the most cycles to run (1..{0}, default {0})",
-                                   kMaxCycles))
+        app.add_option(
+               "--max", max_text_,
+               fmt::format("With --idle: the most cycles to run (1..{0}, default {0})", kMaxCycles))
             ->type_name("UINT");
         cycles->excludes(idle);
         app.footer(

@@ -20,7 +20,9 @@ struct ObjectArgs {
     std::string bus_text, device_text, index_text, subindex_text;  // as typed
 
     void declare(CLI::App& app) {
-        app.add_option("BUS", bus_text, "BusNumber (1300: TC module)")->type_name("INT")->required();
+        app.add_option("BUS", bus_text, "BusNumber (1300: TC module)")
+            ->type_name("INT")
+            ->required();
         app.add_option("DEV", device_text, "DeviceNumber")->type_name("INT")->required();
         app.add_option("IDX", index_text, "Index")->type_name("INT")->required();
         app.add_option("SUB", subindex_text, "SubIndex")->type_name("INT")->required();
@@ -66,7 +68,8 @@ public:
 
     Outcome prepare() override {
         if (std::string why = object_.parse(); !why.empty())
-            return Outcome::usage_error(fmt::format("read{} {}: {}", type_.text(), object_.text(), why));
+            return Outcome::usage_error(
+                fmt::format("read{} {}: {}", type_.text(), object_.text(), why));
         return Outcome::success();
     }
 

@@ -166,8 +166,9 @@ class RunCommand final : public Command {
         app.add_flag("--svg-cycles", svg_cycles_,
                      "Draw the axes of every interpolation cycle in the plot too (the OTC offsets "
                      "show there, not in the segments)");
-        app.add_option("--plane", plane_text_, "Draw the plot in this plane (17, 18, 19) instead of "
-                                               "the program's")
+        app.add_option("--plane", plane_text_,
+                       "Draw the plot in this plane (17, 18, 19) instead of "
+                       "the program's")
             ->type_name("INT");
         app.add_option("--plc", plc_,
                        "A scripted PLC: writes to the OTC control units and the temperature "
@@ -352,11 +353,11 @@ class RunCommand final : public Command {
             for (std::size_t other = 0; other < out; ++other) {
                 if (files[other].second->empty()) continue;
                 if (!same_file(*files[out].second, *files[other].second)) continue;
-                return Outcome::usage_error(fmt::format(
-                    "run: {} '{}' is the same file as {} '{}' ({})", files[out].first,
-                    *files[out].second, files[other].first, *files[other].second,
-                    other < inputs ? "the output would overwrite the input"
-                                   : "the two outputs would be mixed in one file"));
+                return Outcome::usage_error(
+                    fmt::format("run: {} '{}' is the same file as {} '{}' ({})", files[out].first,
+                                *files[out].second, files[other].first, *files[other].second,
+                                other < inputs ? "the output would overwrite the input"
+                                               : "the two outputs would be mixed in one file"));
             }
         }
         return Outcome::success();
