@@ -512,9 +512,10 @@ Status TcModule::read_group_mode(const ObjectInfo&, const Address& a, Value& out
 }
 template <std::int32_t TcGroup::*Field>
 Status TcModule::write_group_mode(const ObjectInfo&, const Address& a, const Value& v) {
-    if (Field == &TcGroup::selection_mode && v.as_int() != tc::kSelectionIndirect &&
-        v.as_int() != tc::kSelectionPerpendicular)
-        return Status::kInvalidValue;
+    if constexpr (Field == &TcGroup::selection_mode) {
+        if (v.as_int() != tc::kSelectionIndirect && v.as_int() != tc::kSelectionPerpendicular)
+            return Status::kInvalidValue;
+    }
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;

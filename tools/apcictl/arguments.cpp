@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
 #include <cmath>
 #include <limits>
 
@@ -29,33 +28,8 @@ std::string parse_integer(std::string_view name, std::string_view text, std::int
     const auto refused = [&] {
         return fmt::format("{} '{}' is not a whole number in {}..{}", name, text, min, max);
     };
-    std::string_view digits = text;
-    bool negative = false;
-    if (!digits.empty() && (digits.front() == '-' || digits.front() == '+')) {
-        negative = digits.front() == '-';
-        digits.remove_prefix(1);
-    }
-    int base = 10;
-    if (digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
-        base = 16;
-        digits.remove_prefix(2);
-    }
-    if (digits.empty() || digits.front() == '-' || digits.front() == '+') return refused();
-    std::uint64_t magnitude = 0;
-    const auto [end, ec] =
-        std::from_chars(digits.data(), digits.data() + digits.size(), magnitude, base);
-    if (ec != std::errc() || end != digits.data() + digits.size()) return refused();
-    constexpr auto kMaxMagnitude =
-        static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
     std::int64_t value = 0;
-    if (negative) {
-        if (magnitude > kMaxMagnitude + 1) return refused();
-        value = magnitude == kMaxMagnitude + 1 ? std::numeric_limits<std::int64_t>::min()
-                                               : -static_cast<std::int64_t>(magnitude);
-    } else {
-        if (magnitude > kMaxMagnitude) return refused();
-        value = static_cast<std::int64_t>(magnitude);
-    }
+    if (!parse_int64(text, value)) return refused();
     if (value < min || value > max) return refused();
     out = value;
     return {};

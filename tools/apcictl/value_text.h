@@ -7,7 +7,9 @@
 
 namespace apcictl {
 
-// "5", "-12", "+3", "0x1F", "-0x10": an int32, all characters used, in range.
+// "5", "-12", "+3", "0x1F", "-0x10": an int64, all characters used, no wrap-around.
+bool parse_int64(std::string_view text, std::int64_t& out) noexcept;
+// The same, in the int32 range.
 bool parse_int32(std::string_view text, std::int32_t& out) noexcept;
 // Any decimal floating-point form strtod knows ("2.5", "-1e-3", "7", "nan"),
 // all characters used. Non-finite values parse; the board refuses them.

@@ -14,8 +14,6 @@ namespace {
 
 constexpr char kCenterLetter[3] = {'I', 'J', 'K'};
 constexpr char kAxisLetter[3] = {'X', 'Y', 'Z'};
-// The board's coordinate limit (rwmos motion kMaxCoordinate, docs/motion.md), in mm.
-constexpr double kMaxProgramCoordinate = 1e5;
 
 bool is_arc(Motion m) {
     return m == Motion::kArcCw || m == Motion::kArcCcw;
@@ -257,13 +255,13 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
         // The board takes coordinates within +-1e5 (docs/motion.md): a point beyond is refused
         // here, with its word, rather than by the board at the spool.
         for (std::size_t k = 0; k < 3; ++k) {
-            if (std::abs(end[static_cast<Eigen::Index>(k)]) <= kMaxProgramCoordinate) continue;
+            if (std::abs(end[static_cast<Eigen::Index>(k)]) <= kBoardCoordinateLimit) continue;
             return c.fail(ErrorKind::kValue,
                           b.axis[k].present() ? b.axis[k].column : first_motion_column(b),
                           fmt::format("{} {:g} mm is beyond the board's coordinate range of "
                                       "+-{:g} mm",
                                       kAxisLetter[k], end[static_cast<Eigen::Index>(k)],
-                                      kMaxProgramCoordinate));
+                                      kBoardCoordinateLimit));
         }
         switch (m) {
             case Motion::kRapid:

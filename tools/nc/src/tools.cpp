@@ -9,6 +9,7 @@
 #include <map>
 #include <tuple>
 
+#include "apci/nc/block.h"
 #include "apci/nc/lexer.h"
 #include "apci/nc/source.h"
 
@@ -229,21 +230,20 @@ class ToolLineParser {
     std::map<std::tuple<int, int, std::uint64_t>, std::uint64_t> seen_;
 };
 
-// The board's TC module takes a tool radius up to 1e5 and a length within +-1e5 (mm; the
-// geometry's coordinate limit, docs/object-map.md): a tool beyond is refused with its name here,
-// once mass_einheit is known, rather than by the object write at its D.
-constexpr double kMaxToolSize = 1e5;
+// The board's TC module takes a tool radius and length within its coordinate limit
+// (docs/object-map.md): a tool beyond is refused with its name here, once mass_einheit is known,
+// rather than by the object write at its D.
 
 bool check_sizes(const ToolTable& table, const std::string& file, Diagnostic& err) {
     for (const ToolData& t : table.tools()) {
         const std::pair<std::string_view, double> sizes[] = {{"radius", t.radius_mm()},
                                                                {"laenge", t.length_mm()}};
         for (const auto& [field, mm] : sizes) {
-            if (std::abs(mm) <= kMaxToolSize) continue;
+            if (std::abs(mm) <= kBoardCoordinateLimit) continue;
             err = Diagnostic{ErrorKind::kValue, file, 0, 0, kNoBlockNumber, false,
                              fmt::format("wz[{}].{} is {:g} mm: beyond the board's tool sizes of "
                                          "+-{:g} mm (check mass_einheit: 0 is 0.1 um, 1 is mm)",
-                                         t.index, field, mm, kMaxToolSize)};
+                                         t.index, field, mm, kBoardCoordinateLimit)};
             return false;
         }
     }

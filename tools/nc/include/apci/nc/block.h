@@ -25,6 +25,9 @@ enum class SelectionMode : std::uint8_t { kIndirect = 139, kPerpendicular = 237 
 // program's words. Events are in mm whatever the program's units.
 enum class Units : std::uint8_t { kInch = 70, kMetric = 71 };
 inline constexpr double kMillimetresPerInch = 25.4;
+// The board's coordinate limit (rwmos geometry kMaxCoordinate, docs/motion.md), in mm: end points
+// beyond it, and tool sizes beyond it, are refused by the front end by name.
+inline constexpr double kBoardCoordinateLimit = 1e5;
 
 constexpr int g_number(Motion m) noexcept {
     return static_cast<int>(m);
