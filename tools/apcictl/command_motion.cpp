@@ -196,8 +196,8 @@ class DirectCommand final : public Command {
         app.add_option("WORDS", words_text_,
                        "JA: axis targets X Y Z U V W A B, F<feed> (0: rapid)");
         app.footer(
-            "Discards the spooler and the held profile first (seed: APCI-8001 TC document, "
-            "section 1), then JA moves the named axes, JS stops every axis. Prints nothing "
+            "Discards the spooler and the held profile first ([APCI-TC] section 1), "
+            "then JA moves the named axes, JS stops every axis. Prints nothing "
             "on success.");
     }
 

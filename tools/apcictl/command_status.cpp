@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `status`: the TC registers ERROR (Table 4) and STATUS (Table 5) of each
 // compensation group and of the active group, decoded by the bit names of [APCI-TC] (Tables 4 and 5)
-// (APCI-8001 TC document, section 2.3 "Fehlerabfrage von TC").
+// ([APCI-TC] section 2.3 "Fehlerabfrage von TC").
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -52,7 +52,7 @@ bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* 
                                   "#OTC OFF before a tool change",
                                   d.value));
     }
-    // The TC module takes a tool index only while compensation is inactive (seed TC document,
+    // The TC module takes a tool index only while compensation is inactive ([APCI-TC]
     // Table 3: WKZINDEX), so a tool change needs G40 first.
     if (before.compensation != Compensation::kOff) {
         return c.fail(ErrorKind::kProgramRule, d.column,

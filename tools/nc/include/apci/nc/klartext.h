@@ -23,9 +23,9 @@ namespace apci::nc {
 class ToolTable;
 class CorrectionTable;
 
-// A programmed N or T vector whose length differs from 1 by more than this is refused (seed
-// 002, "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten"). Every
-// unit vector written with 4 decimals passes (rounding changes its length by at most 8.7e-5);
+// A programmed N or T vector whose length differs from 1 by more than this is refused
+// ([TNC-3D], "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten").
+// Every unit vector written with 4 decimals passes (rounding changes its length by at most 8.7e-5);
 // the board's 3D compensation uses the same value (rwmos/comp3d/tolerances.h).
 inline constexpr double kVectorLengthTolerance = 1e-4;
 // With TCPM and a programmed T, N may point against T by this much (N.T >= -this); the board's

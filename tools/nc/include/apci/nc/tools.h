@@ -15,7 +15,7 @@
 
 namespace apci::nc {
 
-// wz[i].typ, P-TOOL-00001 (seed section 3.2).
+// wz[i].typ, P-TOOL-00001 ([ISG-OTC] section 3.2).
 enum class ToolType : std::int32_t { kMilling = 0, kTurning = 1, kGrinding = 2, kWire = 3 };
 
 // wz[i].ax_ersatz[k]: k = 0..7 (the board has 8 axes).
@@ -24,7 +24,7 @@ inline constexpr std::size_t kAxisOffsetCount = 8;
 struct ToolData {
     int index = 0;  // i of wz[i], 1..kMaxToolNumber
 
-    // Raw values as in the file; unset data is 0 (seed section 2.6, "Hinweis").
+    // Raw values as in the file; unset data is 0 ([ISG-OTC] section 2.6, "Hinweis").
     std::int32_t gueltig = 0;                          // 1: the data set is valid
     std::int32_t typ = 0;                              // ToolType
     std::int32_t mass_einheit = 0;                     // 0: lengths in 0.1 um, 1: lengths in mm
