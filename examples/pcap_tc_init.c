@@ -13,7 +13,7 @@
  * then shows the Clean rule (Table 2, "Clean"): after Clean the board refuses
  * the old handles; zeroed descriptors work again.
  *
- * Usage: pcap_tc_init [DEVICE-URI]   (default: the embedded emulator, emu:)
+ * Usage: pcap_tc_init [URI]   (default: the embedded emulator, emu:)
  * Exit status 0 when every step answered as [APCI-TC] says, 1 otherwise.
  */
 #include <stdio.h>
