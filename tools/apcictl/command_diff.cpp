@@ -24,7 +24,9 @@
 #include <cstdio>
 #include <cstring>
 #include <optional>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "apci/nc/correction_table.h"
@@ -116,38 +118,175 @@ Outcome diff_script(const std::string& file, Session& here, Session& there,
 
 // ---- NC programs
 
+// Fixed-size records in an unnamed temporary file (tmpfile(3): gone however the process
+// ends), written in large pieces and read back in order: a run of any length is compared in
+// the same memory.
+template <typename Record>
+class Spool {
+  public:
+    static_assert(std::is_trivially_copyable_v<Record>);
+    Spool() : file_(std::tmpfile()) {
+        if (file_ == nullptr) {
+            error_ = errno != 0 ? errno : EIO;
+            return;
+        }
+        std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 16);
+    }
+    ~Spool() {
+        if (file_ != nullptr) std::fclose(file_);
+    }
+    Spool(const Spool&) = delete;
+    Spool& operator=(const Spool&) = delete;
+
+    void push(const Record& r) {
+        if (error_ != 0) return;
+        if (std::fwrite(&r, sizeof r, 1, file_) != 1) {
+            error_ = errno != 0 ? errno : EIO;
+            return;
+        }
+        ++size_;
+    }
+    // Reads from the first record again.
+    void rewind() {
+        read_ = 0;
+        if (error_ == 0 && (std::fflush(file_) != 0 || std::fseek(file_, 0, SEEK_SET) != 0))
+            error_ = errno != 0 ? errno : EIO;
+    }
+    // The next record; false at the end or on an error.
+    bool next(Record& r) {
+        if (error_ != 0 || read_ >= size_) return false;
+        if (std::fread(&r, sizeof r, 1, file_) != 1) {
+            error_ = errno != 0 ? errno : EIO;
+            return false;
+        }
+        ++read_;
+        return true;
+    }
+    std::uint64_t size() const noexcept { return size_; }
+    int error() const noexcept { return error_; }
+
+  private:
+    std::FILE* file_;
+    std::uint64_t size_ = 0;
+    std::uint64_t read_ = 0;
+    int error_ = 0;
+};
+
 struct Sample {
     std::uint64_t cycle = 0;
     std::array<double, APCI_AXIS_COUNT> position{};
 };
 
-// What `run` did on one board.
-struct Recording final : apci::run::RunSink {
-    std::vector<Sample> samples;
-    std::vector<PathSegment> segments;
+// What the comparison needs of an executed segment.
+struct SegmentRecord {
+    std::int64_t number = 0;
+    std::uint64_t line = 0;
+    apci::run::SegmentKind kind = apci::run::SegmentKind::kLine;
+    apci::run::Role role = apci::run::Role::kUncompensated;
+    std::array<double, 3> start{};
+    std::array<double, 3> end{};
+    std::uint64_t start_cycle = 0;
+    std::uint64_t end_cycle = 0;
+
+    BlockRef block() const { return BlockRef{number, line}; }
+};
+
+SegmentRecord segment_record(const PathSegment& s) {
+    SegmentRecord r;
+    r.number = s.block.number;
+    r.line = s.block.line;
+    r.kind = s.kind;
+    r.role = s.role;
+    for (int i = 0; i < 3; ++i) {
+        r.start[static_cast<std::size_t>(i)] = s.start[i];
+        r.end[static_cast<std::size_t>(i)] = s.end[i];
+    }
+    r.start_cycle = s.start_cycle;
+    r.end_cycle = s.end_cycle;
+    return r;
+}
+
+Sample sample_of(std::uint64_t cycle, std::span<const double> axes) {
+    Sample s;
+    s.cycle = cycle;
+    std::copy_n(axes.begin(), std::min(axes.size(), s.position.size()), s.position.begin());
+    return s;
+}
+
+// What `run` did on one board: the executed segments spooled, the rest (errors, registers:
+// a few each) in memory.
+struct Recording : apci::run::RunSink {
+    Spool<SegmentRecord> segments;
     std::vector<std::string> axis_names;
     apci::run::Point start = apci::run::Point::Zero();  // X, Y, Z where the run began
     apci::run::RunOutcome outcome;
+    std::uint64_t samples = 0;
 
-    void executed(const PathSegment& s) override { segments.push_back(s); }
+    void executed(const PathSegment& s) override { segments.push(segment_record(s)); }
     bool wants_samples() const override { return true; }
     void axes(std::span<const std::string> names) override {
         axis_names.assign(names.begin(), names.end());
     }
-    void sample(std::uint64_t cycle, double, std::span<const double> axes) override {
-        Sample s;
-        s.cycle = cycle;
-        std::copy_n(axes.begin(), std::min(axes.size(), s.position.size()), s.position.begin());
-        samples.push_back(s);
-    }
 
     // The block whose segment ran in `cycle`.
-    std::string block_at(std::uint64_t cycle) const {
-        for (const auto& s : segments)
+    std::string block_at(std::uint64_t cycle) {
+        segments.rewind();
+        SegmentRecord s;
+        while (segments.next(s))
             if (s.start_cycle < cycle && cycle <= s.end_cycle)
-                return apci::run::block_text(s.block);
+                return apci::run::block_text(s.block());
         return "no block";
     }
+};
+
+// The first run (--device): its positions cycle by cycle go to a spool.
+struct FirstRun final : Recording {
+    Spool<Sample> positions;
+    void sample(std::uint64_t cycle, double, std::span<const double> axes) override {
+        positions.push(sample_of(cycle, axes));
+        ++samples;
+    }
+};
+
+// The first place two runs' positions differ, as found cycle by cycle.
+struct SampleDifference {
+    std::uint64_t index = 0;        // 0: the first sample of the run
+    std::uint64_t first_cycle = 0;  // the first run's clock there
+    std::size_t axis = 0;
+    double here = 0.0;
+    double there = 0.0;
+};
+
+// The second run (--against): each cycle is compared with the first run's at once (cycles count
+// from the start of the run: the boards' clocks need not agree, a daemon's board has run
+// before), so neither run's cycles are kept.
+struct SecondRun final : Recording {
+    SecondRun(Spool<Sample>& first, double tolerance) : first_(first), tolerance_(tolerance) {
+        first_.rewind();
+    }
+    std::optional<SampleDifference> difference;
+    // The clock of this run's first cycle that the first run did not have.
+    std::optional<std::uint64_t> first_cycle_beyond;
+
+    void sample(std::uint64_t cycle, double, std::span<const double> axes) override {
+        const std::uint64_t index = samples++;
+        Sample x;
+        if (!first_.next(x)) {
+            if (!first_cycle_beyond) first_cycle_beyond = cycle;
+            return;
+        }
+        if (difference) return;
+        const Sample y = sample_of(cycle, axes);
+        for (std::size_t axis = 0; axis < x.position.size(); ++axis) {
+            if (std::abs(x.position[axis] - y.position[axis]) <= tolerance_) continue;
+            difference = SampleDifference{index, x.cycle, axis, x.position[axis], y.position[axis]};
+            return;
+        }
+    }
+
+  private:
+    Spool<Sample>& first_;
+    double tolerance_;
 };
 
 Outcome nc_failure(const apci::nc::Diagnostic& d) {
@@ -201,40 +340,34 @@ std::string registers_text(std::int32_t error, std::int32_t status) {
                        errors.empty() ? "none" : errors, status);
 }
 
-// Positions cycle by cycle. The boards' clocks need not agree (a daemon's
-// board has run before), so cycles count from the start of the run: the
-// trace holds every cycle, the first sample is cycle 1 of the run.
-std::optional<Difference> compare_samples(const Recording& a, const Recording& b,
-                                          double tolerance) {
-    const std::size_t n = std::min(a.samples.size(), b.samples.size());
-    const auto where = [&](const Recording& r, std::size_t i) {
-        return fmt::format("{}, cycle {}", r.block_at(r.samples[i].cycle), i + 1);
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-        const Sample& x = a.samples[i];
-        const Sample& y = b.samples[i];
-        for (std::size_t axis = 0; axis < x.position.size(); ++axis) {
-            if (std::abs(x.position[axis] - y.position[axis]) <= tolerance) continue;
-            const std::string name =
-                axis < a.axis_names.size() ? a.axis_names[axis] : fmt::format("a{}", axis);
-            return Difference{where(a, i), fmt::format("axis {} position", name),
-                              number(x.position[axis]), number(y.position[axis])};
-        }
-    }
-    return std::nullopt;
+// Positions cycle by cycle (found while the second run went, SecondRun).
+std::optional<Difference> compare_samples(FirstRun& a, const SecondRun& b) {
+    if (!b.difference) return std::nullopt;
+    const SampleDifference& d = *b.difference;
+    const std::string name =
+        d.axis < a.axis_names.size() ? a.axis_names[d.axis] : fmt::format("a{}", d.axis);
+    return Difference{fmt::format("{}, cycle {}", a.block_at(d.first_cycle), d.index + 1),
+                      fmt::format("axis {} position", name), number(d.here), number(d.there)};
 }
 
 // One run went on after the other stopped (compared after the errors, which
 // usually say why).
-std::optional<Difference> compare_length(const Recording& a, const Recording& b) {
-    if (a.samples.size() == b.samples.size()) return std::nullopt;
-    const Recording& longer = a.samples.size() > b.samples.size() ? a : b;
-    const std::size_t n = std::min(a.samples.size(), b.samples.size());
+std::optional<Difference> compare_length(FirstRun& a, SecondRun& b) {
+    if (a.samples == b.samples) return std::nullopt;
+    const std::uint64_t n = std::min(a.samples, b.samples);
+    std::string block;
+    if (a.samples > b.samples) {
+        // The first run's cycle n is the next one the second run did not read.
+        Sample s;
+        block = a.positions.next(s) ? a.block_at(s.cycle) : "no block";
+    } else {
+        block = b.first_cycle_beyond ? b.block_at(*b.first_cycle_beyond) : "no block";
+    }
     const auto ran = [](const Recording& r) {
-        return fmt::format("the run took {} cycles", r.samples.size());
+        return fmt::format("the run took {} cycles", r.samples);
     };
-    return Difference{fmt::format("{}, cycle {}", longer.block_at(longer.samples[n].cycle), n + 1),
-                      "length of the run", ran(a), ran(b)};
+    return Difference{fmt::format("{}, cycle {}", block, n + 1), "length of the run", ran(a),
+                      ran(b)};
 }
 
 std::optional<Difference> compare_start(const Recording& a, const Recording& b, double tolerance) {
@@ -281,27 +414,35 @@ std::optional<Difference> compare_registers(const Recording& a, const Recording&
     return std::nullopt;
 }
 
-std::string segment_text(const PathSegment& s) {
+std::string segment_text(const SegmentRecord& s) {
     return fmt::format("{} {} from ({}, {}, {}) to ({}, {}, {})", apci::run::kind_name(s.kind),
-                       apci::run::role_name(s.role), s.start.x(), s.start.y(), s.start.z(),
-                       s.end.x(), s.end.y(), s.end.z());
+                       apci::run::role_name(s.role), s.start[0], s.start[1], s.start[2], s.end[0],
+                       s.end[1], s.end[2]);
 }
 
-std::optional<Difference> compare_segments(const Recording& a, const Recording& b,
-                                           double tolerance) {
-    for (std::size_t i = 0; i < std::max(a.segments.size(), b.segments.size()); ++i) {
-        const PathSegment* x = i < a.segments.size() ? &a.segments[i] : nullptr;
-        const PathSegment* y = i < b.segments.size() ? &b.segments[i] : nullptr;
-        if (x == nullptr && y == nullptr) break;  // cannot happen below the longer size
-        const bool same = x != nullptr && y != nullptr && x->kind == y->kind &&
-                          x->role == y->role && x->block.number == y->block.number &&
-                          (x->end - y->end).cwiseAbs().maxCoeff() <= tolerance &&
-                          (x->start - y->start).cwiseAbs().maxCoeff() <= tolerance;
+bool same_point(const std::array<double, 3>& p, const std::array<double, 3>& q, double tolerance) {
+    for (std::size_t i = 0; i < 3; ++i)
+        if (!(std::abs(p[i] - q[i]) <= tolerance)) return false;
+    return true;
+}
+
+// The executed segments, both spools read side by side.
+std::optional<Difference> compare_segments(Recording& a, Recording& b, double tolerance) {
+    a.segments.rewind();
+    b.segments.rewind();
+    for (std::uint64_t i = 0;; ++i) {
+        SegmentRecord xs, ys;
+        const bool have_x = a.segments.next(xs);
+        const bool have_y = b.segments.next(ys);
+        if (!have_x && !have_y) break;
+        const bool same = have_x && have_y && xs.kind == ys.kind && xs.role == ys.role &&
+                          xs.number == ys.number && same_point(xs.end, ys.end, tolerance) &&
+                          same_point(xs.start, ys.start, tolerance);
         if (!same) {
-            const PathSegment& at = x != nullptr ? *x : *y;
-            return Difference{apci::run::block_text(at.block),
-                              fmt::format("executed segment {}", i + 1),
-                              x ? segment_text(*x) : "none", y ? segment_text(*y) : "none"};
+            const SegmentRecord& at = have_x ? xs : ys;
+            return Difference{
+                apci::run::block_text(at.block()), fmt::format("executed segment {}", i + 1),
+                have_x ? segment_text(xs) : "none", have_y ? segment_text(ys) : "none"};
         }
     }
     return std::nullopt;
@@ -414,16 +555,24 @@ class DiffCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             in.plc = std::move(loaded.value());
         }
-        Recording a, b;
+        // The first run spools its positions; the second compares its own with them cycle
+        // by cycle as it goes. Memory stays the same however long the runs.
+        FirstRun a;
         if (Outcome o = record_run(program_, in, here, a); !o.ok()) return o;
+        SecondRun b(a.positions, tolerance_);
         if (Outcome o = record_run(program_, in, there, b); !o.ok()) return o;
-        compared = std::min(a.samples.size(), b.samples.size());
+        compared = std::min(a.samples, b.samples);
         first = compare_start(a, b, tolerance_);
-        if (!first) first = compare_samples(a, b, tolerance_);
+        if (!first) first = compare_samples(a, b);
         if (!first) first = compare_errors(a, b);
         if (!first) first = compare_length(a, b);
         if (!first) first = compare_registers(a, b);
         if (!first) first = compare_segments(a, b, tolerance_);
+        for (const int error : {a.positions.error(), a.segments.error(), b.segments.error()})
+            if (error != 0)
+                return Outcome::board_error(
+                    fmt::format("diff: cannot keep the runs' cycles in a temporary file: {}",
+                                std::strerror(error)));
         return Outcome::success();
     }
 
