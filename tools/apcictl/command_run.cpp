@@ -6,10 +6,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -27,6 +27,7 @@
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/plc_script.h"
+#include "apci/run/run_files.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
 #include "arguments.h"
@@ -35,62 +36,28 @@
 namespace apcictl {
 namespace {
 
+using apci::run::OutputFile;
 using apci::run::PathSegment;
 using apci::run::RunError;
 
-// An output file, opened before the run and closed after it.
-struct OutputFile {
-    std::string path;
-    std::FILE* file = nullptr;
-    ~OutputFile() {
-        if (file != nullptr) std::fclose(file);
+// A program read from standard input, held in memory (it is read twice: validation, then
+// execution) up to apci::run::kStdinProgramLimit. Empty on success, else why not.
+std::string read_standard_input(std::string& text) {
+    int error = 0;
+    switch (apci::run::read_bounded(STDIN_FILENO, apci::run::kStdinProgramLimit, text, error)) {
+        case apci::run::BoundedRead::kOk:
+            return {};
+        case apci::run::BoundedRead::kTooLarge:
+            text.clear();
+            return fmt::format(
+                "standard input is larger than {} MiB; save the program to a file and give its "
+                "path instead of -",
+                apci::run::kStdinProgramLimit >> 20);
+        case apci::run::BoundedRead::kError:
+            break;
     }
-    // Closes it; false when closing (the last write) failed.
-    bool close() {
-        if (file == nullptr) return true;
-        const bool ok = std::fclose(file) == 0;
-        file = nullptr;
-        return ok;
-    }
-};
-
-// A program read from standard input, copied to a temporary file so it can be read twice
-// (validation, then execution); removed when done.
-class StdinCopy {
-  public:
-    ~StdinCopy() {
-        if (!path_.empty()) ::unlink(path_.c_str());
-    }
-    // Empty on success, else why not.
-    std::string make() {
-        const char* dir = std::getenv("TMPDIR");
-        std::string templ =
-            fmt::format("{}/apcictl-run-XXXXXX", dir != nullptr && *dir ? dir : "/tmp");
-        const int fd = ::mkstemp(templ.data());
-        if (fd < 0)
-            return fmt::format("cannot make a temporary file in {}: {}", templ,
-                               std::strerror(errno));
-        path_ = templ;
-        char buffer[1 << 16];
-        for (;;) {
-            const std::size_t n = std::fread(buffer, 1, sizeof buffer, stdin);
-            if (n > 0 && ::write(fd, buffer, n) != static_cast<ssize_t>(n)) {
-                ::close(fd);
-                return fmt::format("cannot copy standard input to {}: {}", path_,
-                                   std::strerror(errno));
-            }
-            if (n < sizeof buffer) break;
-        }
-        const bool read_error = std::ferror(stdin) != 0;
-        ::close(fd);
-        if (read_error) return "cannot read standard input";
-        return {};
-    }
-    const std::string& path() const noexcept { return path_; }
-
-  private:
-    std::string path_;
-};
+    return fmt::format("cannot read standard input: {}", std::strerror(error));
+}
 
 // Where the run's output goes: the writers the user asked for, the plot, a progress bar.
 class Outputs final : public apci::run::RunSink {
@@ -160,9 +127,15 @@ class RunCommand final : public Command {
         app.add_option("PROGRAM", program_, "NC program (DIN 66025), or - to read standard input")
             ->required();
         app.add_option("--tools", tools_, "Tool list file (wz[i].field value), for D words");
-        app.add_option("--svg", svg_, "Write a plot of the programmed contour and the tool path");
-        app.add_option("--json", json_, "Write the executed path, errors and registers as JSON");
-        app.add_option("--csv", csv_, "Write the axis positions of every interpolation cycle");
+        app.add_option("--svg", svg_,
+                       "Write a plot of the programmed contour and the tool path (- for standard "
+                       "output)");
+        app.add_option("--json", json_,
+                       "Write the executed path, errors and registers as JSON (- for standard "
+                       "output)");
+        app.add_option("--csv", csv_,
+                       "Write the axis positions of every interpolation cycle (- for standard "
+                       "output)");
         app.add_flag("--svg-cycles", svg_cycles_,
                      "Draw the axes of every interpolation cycle in the plot too (the OTC offsets "
                      "show there, not in the segments)");
@@ -191,7 +164,10 @@ class RunCommand final : public Command {
             "G40-G42) and a summary is printed: blocks, path length, time, errors by name. "
             "Coordinates in the outputs are the tool centre point in mm. Exit 0 ok, 1 board or "
             "program error (the run stops at the first board error), 2 usage (bad option, "
-            "unreadable program, output file that cannot be written). See docs/apcictl.md.");
+            "unreadable program, output file that cannot be written). Outputs are written to "
+            "temporary files beside them and replace them only when the whole run was written; "
+            "with an output on standard output (-) the summary goes to standard error. A "
+            "program on standard input may be at most 64 MiB. See docs/apcictl.md.");
     }
 
     Outcome prepare() override {
@@ -227,18 +203,24 @@ class RunCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             plc = std::move(loaded.value());
         }
-        StdinCopy stdin_copy;
-        std::string path = program_;
+        std::string stdin_text;
         if (program_ == "-") {
-            if (std::string why = stdin_copy.make(); !why.empty())
+            if (std::string why = read_standard_input(stdin_text); !why.empty())
                 return Outcome::usage_error("run: " + why);
-            path = stdin_copy.path();
         }
 
         Outcome failure;
         apci::Board* board = session.board(failure);
         if (board == nullptr) return failure;
 
+        // Outputs, declared before the writers (which go first): temporary files beside their
+        // targets, renamed over them at the end only if every output was written (run_files.h).
+        OutputFile json_file, svg_file, csv_file, tools_file;
+        const std::array<std::pair<OutputFile*, const std::string*>, 4> files{
+            {{&json_file, &json_},
+             {&svg_file, &svg_},
+             {&csv_file, &csv_},
+             {&tools_file, &tools_out_}}};
         Outputs outputs;
         apci::run::ProgramExecutor executor(*board, outputs, &tools, plc_.empty() ? nullptr : &plc,
                                             &corrections);
@@ -249,10 +231,11 @@ class RunCommand final : public Command {
         options.start_position = executor.position();
         options.tools = &tools;
         options.corrections = &corrections;
-        auto program = apci::nc::Program::load(path, options);
+        auto program = program_ == "-"
+                           ? apci::nc::Program::from_text(stdin_text, "<stdin>", options)
+                           : apci::nc::Program::load(program_, options);
         if (!program) {
             apci::nc::Diagnostic d = program.error();
-            if (program_ == "-") d.file = "<stdin>";
             if (tools_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
                 d.message.find("tool list does not define") != std::string::npos)
                 d.message += " (no --tools file given)";
@@ -264,25 +247,19 @@ class RunCommand final : public Command {
         auto stream = program.value().events();
         if (!stream) return nc_failure(stream.error());
 
-        OutputFile json_file, svg_file, csv_file;
-        OutputFile tools_file;
-        for (auto [out, name] : {std::pair{&json_file, &json_}, std::pair{&svg_file, &svg_},
-                                 std::pair{&csv_file, &csv_}, std::pair{&tools_file, &tools_out_}}) {
+        for (auto [out, name] : files) {
             if (name->empty()) continue;
-            out->path = *name;
-            out->file = std::fopen(name->c_str(), "w");
-            if (out->file == nullptr)
-                return Outcome::usage_error(
-                    fmt::format("run: cannot write {}: {}", *name, std::strerror(errno)));
+            if (std::string why = out->open(*name); !why.empty())
+                return Outcome::usage_error(fmt::format("run: cannot write {}: {}", *name, why));
         }
-        if (json_file.file != nullptr)
-            outputs.json = std::make_unique<apci::run::JsonRunWriter>(json_file.file);
-        if (svg_file.file != nullptr) {
+        if (json_file.file() != nullptr)
+            outputs.json = std::make_unique<apci::run::JsonRunWriter>(json_file.file());
+        if (svg_file.file() != nullptr) {
             outputs.svg = std::make_unique<apci::run::SvgPlotWriter>();
             if (!outputs.svg->ok())
                 return Outcome::board_error("run: cannot make a temporary file for the plot");
         }
-        outputs.csv_file = csv_file.file;
+        outputs.csv_file = csv_file.file();
         outputs.svg_cycles = svg_cycles_;
         outputs.total_blocks = program.value().summary().blocks;
         outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
@@ -292,36 +269,58 @@ class RunCommand final : public Command {
         result.totals.file = program_ == "-" ? "<stdin>" : program_;
         result.totals.blocks = program.value().summary().blocks;
 
-        std::string written_error;
-        const auto check = [&](bool ok, const OutputFile& f) {
-            if (!ok && written_error.empty())
-                written_error = fmt::format("run: writing {} failed", f.path);
-        };
+        // The writers finish; every output is closed (its last bytes written, synced), and only
+        // when all of them are complete are they renamed over their targets, together.
+        enum : std::size_t { kJson, kSvg, kCsv, kToolsOut };
+        std::array<bool, 4> failed{};
         if (outputs.json)
-            check(outputs.json->finish(result.errors, result.registers, result.variables,
-                                       result.notices, result.warnings),
-                  json_file);
-        if (tools_file.file != nullptr) {
+            failed[kJson] = !outputs.json->finish(result.errors, result.registers, result.variables,
+                                                  result.notices, result.warnings);
+        if (tools_file.file() != nullptr) {
             const std::string text = apci::nc::format_tool_table(result.tools_after);
-            check(std::fwrite(text.data(), 1, text.size(), tools_file.file) == text.size(),
-                  tools_file);
+            failed[kToolsOut] =
+                std::fwrite(text.data(), 1, text.size(), tools_file.file()) != text.size();
         }
-        check(tools_file.close(), tools_file);
         if (outputs.svg)
-            check(outputs.svg->finish(svg_file.file, plane_ != 0 ? plane_ : result.plot_plane,
-                                      result.totals.file),
-                  svg_file);
-        if (outputs.csv) check(outputs.csv->finish(), csv_file);
-        check(json_file.close(), json_file);
-        check(svg_file.close(), svg_file);
-        check(csv_file.close(), csv_file);
+            failed[kSvg] = !outputs.svg->finish(
+                svg_file.file(), plane_ != 0 ? plane_ : result.plot_plane, result.totals.file);
+        if (outputs.csv) failed[kCsv] = !outputs.csv->finish();
+        outputs.json.reset();
+        outputs.csv.reset();
+        std::string written_error;
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            // The output's own record of its first failed write names the cause; the plot
+            // can fail reading back its temporary records too.
+            const std::string why = files[i].first->close();
+            if (written_error.empty() && (failed[i] || !why.empty()))
+                written_error =
+                    fmt::format("run: cannot write {}: {}", *files[i].second,
+                                why.empty() ? "its temporary records could not be read back" : why);
+        }
+        if (written_error.empty()) {
+            const apci::run::DeferSignals together;
+            for (auto [out, name] : files) {
+                if (std::string why = out->publish(); !why.empty()) {
+                    written_error = fmt::format("run: cannot write {}: {}", *name, why);
+                    break;
+                }
+            }
+        }
+        for (auto [out, name] : files) out->discard();  // an output not published is removed
 
-        apci::run::print_summary(stdout, result.totals, result.errors);
+        // The summary goes to standard error when an output is standard output.
+        std::FILE* report = stdout;
+        for (auto [out, name] : files)
+            if (out->is_stdout()) report = stderr;
+        apci::run::print_summary(report, result.totals, result.errors);
         for (const RunError& w : result.warnings)
-            fmt::print("warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code, w.message);
+            fmt::print(report, "warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code,
+                       w.message);
         for (const RunError& n : result.notices)
-            fmt::print("notice: {}: {}\n", apci::run::block_text(n.block), n.message);
-        std::fflush(stdout);
+            fmt::print(report, "notice: {}: {}\n", apci::run::block_text(n.block), n.message);
+        std::fflush(report);
+        if (!result.errors.empty() && !written_error.empty())
+            fmt::print(stderr, "apcictl: {}\n", written_error);
         if (!result.errors.empty()) {
             const RunError& first = result.errors.front();
             return Outcome::board_error(fmt::format("run {}: stopped at {}: {}", result.totals.file,
@@ -348,8 +347,18 @@ class RunCommand final : public Command {
         files.emplace_back("--svg", &svg_);
         files.emplace_back("--csv", &csv_);
         files.emplace_back("--tools-out", &tools_out_);
+        // "-" is standard output: one output at most, and no file to compare.
+        std::size_t on_stdout = 0;
         for (std::size_t out = inputs; out < files.size(); ++out) {
-            if (files[out].second->empty()) continue;
+            if (*files[out].second != "-") continue;
+            if (on_stdout != 0)
+                return Outcome::usage_error(fmt::format(
+                    "run: {} and {} both write to standard output (-); give one of them a file",
+                    files[on_stdout].first, files[out].first));
+            on_stdout = out;
+        }
+        for (std::size_t out = inputs; out < files.size(); ++out) {
+            if (files[out].second->empty() || *files[out].second == "-") continue;
             for (std::size_t other = 0; other < out; ++other) {
                 if (files[other].second->empty()) continue;
                 if (!same_file(*files[out].second, *files[other].second)) continue;

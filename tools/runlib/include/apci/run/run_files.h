@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// The files of `apcictl run` (docs/apcictl.md, "Outputs"):
+//
+//  - an output is written to a temporary file beside its target (same directory, a unique
+//    hidden name ".NAME.apcictl-XXXXXXXXXXXXXXXX", created with O_EXCL and the mode of any new
+//    file) and renamed over the target only when the whole run succeeded; on any error the
+//    temporary file is removed and an existing target is left as it was. "-" is standard
+//    output; an existing target that is not a regular file (/dev/null, a FIFO) is written in
+//    place. A signal that ends the process (SIGTERM, SIGINT, SIGHUP, SIGPIPE, SIGXFSZ, ...)
+//    removes the temporary files first, then ends it as the signal would have (SIGKILL cannot
+//    be caught: its temporary files stay behind);
+//  - a program read from standard input is held in memory, at most kStdinProgramLimit bytes.
+#pragma once
+
+#include <sys/types.h>
+
+#include <csignal>
+#include <cstddef>
+#include <cstdio>
+#include <string>
+
+namespace apci::run {
+
+// The largest program `apcictl run -` reads from standard input (a larger one is a file).
+inline constexpr std::size_t kStdinProgramLimit = std::size_t{64} << 20;  // 64 MiB
+
+enum class BoundedRead {
+    kOk,        // all of it, in `text`
+    kTooLarge,  // more than `limit` bytes: refused after reading limit + 1 of them
+    kError,     // read failed: `error` is its errno
+};
+// Reads `fd` to its end into `text`, refusing more than `limit` bytes.
+BoundedRead read_bounded(int fd, std::size_t limit, std::string& text, int& error);
+
+// Blocks the signals that remove temporary files while it lives (a temporary file is created
+// and registered, or renamed and forgotten, as one step; a group of outputs is published
+// together). Signals arriving meanwhile are delivered when it ends.
+class DeferSignals {
+  public:
+    DeferSignals() noexcept;
+    ~DeferSignals();
+    DeferSignals(const DeferSignals&) = delete;
+    DeferSignals& operator=(const DeferSignals&) = delete;
+
+  private:
+    sigset_t saved_{};
+};
+
+// One output of a run. Not copyable or movable (the FILE refers to it).
+class OutputFile {
+  public:
+    OutputFile() = default;
+    ~OutputFile() { discard(); }
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+
+    // Opens the output for `target` ("-": standard output). Empty on success, else why not
+    // (strerror text: "No such file or directory", "Is a directory", "Permission denied").
+    std::string open(const std::string& target);
+    std::FILE* file() const noexcept { return file_; }
+    const std::string& target() const noexcept { return target_; }
+    // The temporary file being written; empty for standard output and in-place targets.
+    const std::string& temporary() const noexcept { return temp_; }
+    bool is_stdout() const noexcept { return target_ == "-"; }
+
+    // Flushes, syncs and closes the file. Empty on success, else why the first write (or the
+    // flush, sync or close) failed: "No space left on device".
+    std::string close();
+    // Renames the (closed) temporary file over the target. Empty on success, else why not.
+    std::string publish();
+    // Closes and removes the temporary file, if any; the target is not touched.
+    void discard() noexcept;
+
+  private:
+    static ssize_t cookie_write(void* cookie, const char* data, std::size_t size);
+    static int cookie_close(void* cookie);
+    std::string open_temporary(const std::string& final_path);
+    std::string open_in_place(const std::string& path);
+    std::string attach(int fd, bool owns_fd);
+
+    std::string target_;
+    std::string final_;  // where publish() renames to: the target, a symbolic link followed
+    std::string temp_;
+    int fd_ = -1;
+    bool owns_fd_ = false;
+    std::FILE* file_ = nullptr;
+    int write_error_ = 0;  // errno of the first failed write
+    int slot_ = -1;        // in the signal handler's list of temporary files
+};
+
+namespace detail {
+// The number of temporary files the signal handler can remove at once.
+inline constexpr int kTemporarySlots = 8;
+}  // namespace detail
+
+}  // namespace apci::run

@@ -1,0 +1,281 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/run_files.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <limits.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+
+namespace apci::run {
+
+namespace {
+
+// ---- Temporary files removed by a signal that ends the process
+
+// A slot is written only while `used` is 0 (the handler skips it) and with the signals
+// blocked (DeferSignals), so the handler never sees half a path.
+struct TemporarySlot {
+    volatile std::sig_atomic_t used = 0;
+    std::array<char, PATH_MAX> path{};
+};
+std::array<TemporarySlot, detail::kTemporarySlots> g_temporaries;
+bool g_handlers_installed = false;
+
+// Only async-signal-safe calls: unlink(2) and raise(3). SA_RESETHAND has put back the default
+// action, so the signal raised again ends the process as it would have without the handler,
+// once the handler returns (the signal is blocked while it runs).
+extern "C" void remove_temporaries_and_reraise(int sig) {
+    for (TemporarySlot& slot : g_temporaries)
+        if (slot.used != 0) ::unlink(slot.path.data());
+    ::raise(sig);
+}
+
+// Every signal whose default action ends the process and that can be caught (Linux).
+constexpr std::array kTerminatingSignals{SIGHUP,  SIGINT,  SIGQUIT,   SIGILL,  SIGTRAP, SIGABRT,
+                                         SIGBUS,  SIGFPE,  SIGUSR1,   SIGSEGV, SIGUSR2, SIGPIPE,
+                                         SIGALRM, SIGTERM, SIGSTKFLT, SIGXCPU, SIGXFSZ, SIGVTALRM,
+                                         SIGPROF, SIGIO,   SIGPWR,    SIGSYS};
+
+template <typename F>
+void for_each_terminating_signal(F&& f) {
+    for (const int sig : kTerminatingSignals) f(sig);
+    for (int sig = SIGRTMIN; sig <= SIGRTMAX; ++sig) f(sig);  // real-time: default ends too
+}
+
+sigset_t cleanup_signal_set() noexcept {
+    sigset_t set;
+    sigemptyset(&set);
+    for_each_terminating_signal([&](int sig) { sigaddset(&set, sig); });
+    return set;
+}
+
+// Installs the handler for the signals still at their default action (an ignored SIGHUP under
+// nohup stays ignored, a handler someone else installed stays).
+void install_handlers() {
+    if (g_handlers_installed) return;
+    g_handlers_installed = true;
+    struct sigaction action {};
+    action.sa_handler = remove_temporaries_and_reraise;
+    sigfillset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    for_each_terminating_signal([&](int sig) {
+        struct sigaction old {};
+        if (::sigaction(sig, nullptr, &old) != 0) return;
+        if ((old.sa_flags & SA_SIGINFO) != 0 || old.sa_handler != SIG_DFL) return;
+        ::sigaction(sig, &action, nullptr);
+    });
+}
+
+// Call with the signals deferred. -1 when every slot is taken or the path is too long.
+int remember_temporary(const std::string& path) {
+    if (path.size() >= PATH_MAX) return -1;
+    for (std::size_t i = 0; i < g_temporaries.size(); ++i) {
+        TemporarySlot& slot = g_temporaries[i];
+        if (slot.used != 0) continue;
+        std::memcpy(slot.path.data(), path.c_str(), path.size() + 1);
+        slot.used = 1;
+        return static_cast<int>(i);
+    }
+    return -1;
+}
+
+void forget_temporary(int slot) {
+    if (slot >= 0) g_temporaries[static_cast<std::size_t>(slot)].used = 0;
+}
+
+// 16 hex digits, from the kernel's random source (the clock when it has none).
+std::string unique_suffix() {
+    std::uint64_t value = 0;
+    if (::getrandom(&value, sizeof value, GRND_NONBLOCK) != static_cast<ssize_t>(sizeof value))
+        value = static_cast<std::uint64_t>(
+                    std::chrono::steady_clock::now().time_since_epoch().count()) ^
+                (static_cast<std::uint64_t>(::getpid()) << 32);
+    return fmt::format("{:016x}", value);
+}
+
+}  // namespace
+
+BoundedRead read_bounded(int fd, std::size_t limit, std::string& text, int& error) {
+    text.clear();
+    constexpr std::size_t kChunk = std::size_t{1} << 16;
+    for (;;) {
+        // Never more than limit + 1 bytes: one byte past the limit is enough to refuse.
+        const std::size_t room = limit + 1 - text.size();
+        const std::size_t want = room < kChunk ? room : kChunk;
+        const std::size_t old = text.size();
+        text.resize(old + want);
+        const ssize_t n = ::read(fd, text.data() + old, want);
+        if (n < 0) {
+            text.resize(old);
+            if (errno == EINTR) continue;
+            error = errno;
+            return BoundedRead::kError;
+        }
+        text.resize(old + static_cast<std::size_t>(n));
+        if (n == 0) return BoundedRead::kOk;
+        if (text.size() > limit) return BoundedRead::kTooLarge;
+    }
+}
+
+DeferSignals::DeferSignals() noexcept {
+    const sigset_t set = cleanup_signal_set();
+    ::sigprocmask(SIG_BLOCK, &set, &saved_);
+}
+
+DeferSignals::~DeferSignals() {
+    ::sigprocmask(SIG_SETMASK, &saved_, nullptr);
+}
+
+std::string OutputFile::open(const std::string& target) {
+    target_ = target;
+    if (target == "-") return attach(STDOUT_FILENO, false);
+    namespace fs = std::filesystem;
+    // A symbolic link stays a link: the file it names is replaced.
+    std::string final_path = target;
+    struct stat st {};
+    if (::lstat(target.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+        std::error_code ec;
+        const fs::path resolved = fs::weakly_canonical(target, ec);
+        if (ec) return ec.message();
+        final_path = resolved.string();
+    }
+    if (::stat(final_path.c_str(), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return std::strerror(EISDIR);
+        if (!S_ISREG(st.st_mode)) return open_in_place(final_path);
+        // A file we may not write is not replaced either.
+        if (::access(final_path.c_str(), W_OK) != 0) return std::strerror(errno);
+    }
+    return open_temporary(final_path);
+}
+
+std::string OutputFile::open_in_place(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return std::strerror(errno);
+    final_ = path;
+    return attach(fd, true);
+}
+
+std::string OutputFile::open_temporary(const std::string& final_path) {
+    namespace fs = std::filesystem;
+    const fs::path p(final_path);
+    const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
+    const std::string base = p.filename().string();
+    constexpr int kAttempts = 64;
+    for (int attempt = 0; attempt < kAttempts; ++attempt) {
+        std::string name = fmt::format("{}/.{}.apcictl-{}", dir, base, unique_suffix());
+        int fd = -1;
+        int slot = -1;
+        {
+            const DeferSignals defer;
+            // 0666 less the umask (and a default ACL): the mode of any new file.
+            fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+            if (fd >= 0) {
+                slot = remember_temporary(name);
+                if (slot < 0) {
+                    ::unlink(name.c_str());
+                    ::close(fd);
+                    return "too many temporary files at once";
+                }
+            }
+        }
+        if (fd < 0) {
+            if (errno == EEXIST) continue;
+            return std::strerror(errno);
+        }
+        install_handlers();
+        final_ = final_path;
+        temp_ = std::move(name);
+        slot_ = slot;
+        return attach(fd, true);
+    }
+    return "cannot find an unused temporary file name";
+}
+
+std::string OutputFile::attach(int fd, bool owns_fd) {
+    fd_ = fd;
+    owns_fd_ = owns_fd;
+    const cookie_io_functions_t io{nullptr, &OutputFile::cookie_write, nullptr,
+                                   &OutputFile::cookie_close};
+    file_ = ::fopencookie(this, "w", io);
+    if (file_ == nullptr) {
+        const int e = errno;
+        discard();
+        return std::strerror(e);
+    }
+    // Large writes: the writers hand over 64 KiB at a time, and so does the FILE.
+    std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 16);
+    return {};
+}
+
+ssize_t OutputFile::cookie_write(void* cookie, const char* data, std::size_t size) {
+    auto* self = static_cast<OutputFile*>(cookie);
+    std::size_t done = 0;
+    while (done < size) {
+        const ssize_t n = ::write(self->fd_, data + done, size - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            if (self->write_error_ == 0) self->write_error_ = n < 0 ? errno : ENOSPC;
+            errno = self->write_error_;
+            // The FILE reads a short count as an error; what was written stays counted.
+            return static_cast<ssize_t>(done);
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    return static_cast<ssize_t>(done);
+}
+
+int OutputFile::cookie_close(void* cookie) {
+    auto* self = static_cast<OutputFile*>(cookie);
+    if (!self->owns_fd_ || self->fd_ < 0) return 0;
+    const int fd = self->fd_;
+    self->fd_ = -1;
+    return ::close(fd);
+}
+
+std::string OutputFile::close() {
+    if (file_ == nullptr) return {};
+    int error = 0;
+    if (std::fflush(file_) != 0) error = write_error_ != 0 ? write_error_ : errno;
+    // What the kernel could not place yet (delayed allocation, NFS) fails here.
+    if (error == 0 && !temp_.empty() && ::fsync(fd_) != 0) error = errno;
+    std::FILE* f = file_;
+    file_ = nullptr;
+    if (std::fclose(f) != 0 && error == 0) error = write_error_ != 0 ? write_error_ : errno;
+    if (error == 0 && write_error_ != 0) error = write_error_;
+    return error == 0 ? std::string() : std::strerror(error);
+}
+
+std::string OutputFile::publish() {
+    if (temp_.empty()) return {};
+    const DeferSignals defer;
+    if (::rename(temp_.c_str(), final_.c_str()) != 0) return std::strerror(errno);
+    forget_temporary(slot_);
+    slot_ = -1;
+    temp_.clear();
+    return {};
+}
+
+void OutputFile::discard() noexcept {
+    if (file_ != nullptr) {
+        std::fclose(file_);
+        file_ = nullptr;
+    }
+    if (!temp_.empty()) {
+        const DeferSignals defer;
+        ::unlink(temp_.c_str());
+        forget_temporary(slot_);
+        slot_ = -1;
+        temp_.clear();
+    }
+}
+
+}  // namespace apci::run
