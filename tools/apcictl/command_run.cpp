@@ -292,10 +292,11 @@ class RunCommand final : public Command {
             // The output's own record of its first failed write names the cause; the plot
             // can fail reading back its temporary records too.
             const std::string why = files[i].first->close();
-            if (written_error.empty() && (failed[i] || !why.empty()))
-                written_error =
-                    fmt::format("run: cannot write {}: {}", *files[i].second,
-                                why.empty() ? "its temporary records could not be read back" : why);
+            if (!written_error.empty() || (!failed[i] && why.empty())) continue;
+            const char* other = i == kSvg ? "the plot's temporary records could not be read back"
+                                          : "the write failed";
+            written_error = fmt::format("run: cannot write {}: {}", *files[i].second,
+                                        why.empty() ? std::string(other) : why);
         }
         if (written_error.empty()) {
             const apci::run::DeferSignals together;

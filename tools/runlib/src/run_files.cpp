@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -21,12 +22,14 @@ namespace {
 
 // ---- Temporary files removed by a signal that ends the process
 
-// A slot is written only while `used` is 0 (the handler skips it) and with the signals
-// blocked (DeferSignals), so the handler never sees half a path.
+// A slot's path is written only while `used` is 0 (the handler skips it) and with the signals
+// blocked (DeferSignals); `used` is a lock-free atomic (safe in a handler) stored with release
+// after the path, so a handler on any thread never sees half a path.
 struct TemporarySlot {
-    volatile std::sig_atomic_t used = 0;
+    std::atomic<int> used{0};
     std::array<char, PATH_MAX> path{};
 };
+static_assert(std::atomic<int>::is_always_lock_free);
 std::array<TemporarySlot, detail::kTemporarySlots> g_temporaries;
 bool g_handlers_installed = false;
 
@@ -35,7 +38,7 @@ bool g_handlers_installed = false;
 // once the handler returns (the signal is blocked while it runs).
 extern "C" void remove_temporaries_and_reraise(int sig) {
     for (TemporarySlot& slot : g_temporaries)
-        if (slot.used != 0) ::unlink(slot.path.data());
+        if (slot.used.load(std::memory_order_acquire) != 0) ::unlink(slot.path.data());
     ::raise(sig);
 }
 
@@ -80,16 +83,16 @@ int remember_temporary(const std::string& path) {
     if (path.size() >= PATH_MAX) return -1;
     for (std::size_t i = 0; i < g_temporaries.size(); ++i) {
         TemporarySlot& slot = g_temporaries[i];
-        if (slot.used != 0) continue;
+        if (slot.used.load(std::memory_order_relaxed) != 0) continue;
         std::memcpy(slot.path.data(), path.c_str(), path.size() + 1);
-        slot.used = 1;
+        slot.used.store(1, std::memory_order_release);
         return static_cast<int>(i);
     }
     return -1;
 }
 
 void forget_temporary(int slot) {
-    if (slot >= 0) g_temporaries[static_cast<std::size_t>(slot)].used = 0;
+    if (slot >= 0) g_temporaries[static_cast<std::size_t>(slot)].used.store(0);
 }
 
 // 16 hex digits, from the kernel's random source (the clock when it has none).
@@ -169,6 +172,7 @@ std::string OutputFile::open_temporary(const std::string& final_path) {
     const fs::path p(final_path);
     const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
     const std::string base = p.filename().string();
+    install_handlers();  // before the first temporary file exists
     constexpr int kAttempts = 64;
     for (int attempt = 0; attempt < kAttempts; ++attempt) {
         std::string name = fmt::format("{}/.{}.apcictl-{}", dir, base, unique_suffix());
@@ -191,7 +195,6 @@ std::string OutputFile::open_temporary(const std::string& final_path) {
             if (errno == EEXIST) continue;
             return std::strerror(errno);
         }
-        install_handlers();
         final_ = final_path;
         temp_ = std::move(name);
         slot_ = slot;
@@ -211,8 +214,9 @@ std::string OutputFile::attach(int fd, bool owns_fd) {
         discard();
         return std::strerror(e);
     }
-    // Large writes: the writers hand over 64 KiB at a time, and so does the FILE.
-    std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 16);
+    // Large writes: the writers gather 64 KiB (TextSink) and hand it over in one piece; the
+    // FILE passes each piece straight to one write(2) instead of cutting it into its own.
+    std::setvbuf(file_, nullptr, _IONBF, 0);
     return {};
 }
 
