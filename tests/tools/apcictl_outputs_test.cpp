@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -25,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include "apci/run/csv_writer.h"
 #include "apci/run/run_files.h"
 #include "process.h"
 
@@ -368,6 +370,55 @@ TEST_F(ApcictlOutputs, OutputThatCannotBeMadeIsRefusedBeforeTheRun) {
                          "apcictl: run: cannot write no/such/out.csv: No such file or directory\n"))
         << missing.err;
     EXPECT_EQ(names_in(dir()), (std::set<std::string>{"p.nc", "adir"}));
+}
+
+// ---- OutputFile in the process
+
+// The write(2) calls this process has made (/proc/self/io), -1 when the kernel does not count.
+long write_calls() {
+    std::ifstream io("/proc/self/io");
+    std::string key;
+    long value = -1;
+    while (io >> key >> value)
+        if (key == "syscw:") return value;
+    return -1;
+}
+
+// Published whole, in large writes: 100,000 CSV lines (about 4 MB) reach the file in pieces of
+// 64 KiB, not one write a line; until publish() the target keeps its old content, and
+// discard() leaves it so.
+TEST_F(ApcictlOutputs, OutputFileWritesInLargePiecesAndPublishesByRename) {
+    write("trace.csv", "old\n");
+    apci::run::OutputFile out;
+    ASSERT_EQ(out.open(path("trace.csv")), "");
+    EXPECT_EQ(out.temporary().rfind(path(".trace.csv.apcictl-"), 0), 0u) << out.temporary();
+    const long before = write_calls();
+    {
+        const std::vector<std::string> axes{"X", "Y", "Z"};
+        apci::run::TraceCsvWriter csv(out.file(), axes);
+        const std::array<double, 3> p{1.25, -2.5, 0.125};
+        for (std::uint64_t i = 1; i <= 100000; ++i) csv.sample(i, 0.001 * i, p);
+        ASSERT_TRUE(csv.finish());
+    }
+    ASSERT_EQ(out.close(), "");
+    const long calls = write_calls() - before;
+    struct stat st {};
+    ASSERT_EQ(::stat(out.temporary().c_str(), &st), 0);
+    if (before >= 0) {
+        EXPECT_LE(calls, st.st_size / 65536 + 4)
+            << st.st_size << " bytes in " << calls << " writes";
+    }
+    EXPECT_EQ(read_text(path("trace.csv")), "old\n");
+    ASSERT_EQ(out.publish(), "");
+    EXPECT_EQ(read_text(path("trace.csv")).size(), static_cast<std::size_t>(st.st_size));
+    EXPECT_EQ(names_in(dir()), (std::set<std::string>{"trace.csv"}));
+
+    apci::run::OutputFile dropped;
+    ASSERT_EQ(dropped.open(path("trace.csv")), "");
+    std::fputs("new\n", dropped.file());
+    dropped.discard();
+    EXPECT_EQ(read_text(path("trace.csv")).size(), static_cast<std::size_t>(st.st_size));
+    EXPECT_EQ(names_in(dir()), (std::set<std::string>{"trace.csv"}));
 }
 
 // ---- "-" is standard output
