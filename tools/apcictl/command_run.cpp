@@ -156,7 +156,7 @@ class RunCommand final : public Command {
             ->check(CLI::IsMember({"warn", "error", "off"}));
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
-                       "change, [ISG-OTC] section 2.9)");
+                       "change, [ISG-OTC] section 2.9; - for standard output)");
         app.footer(
             "Validates the whole program first: a program that does not parse runs nothing and "
             "its error names file:line:column. Then every block drives the board (spooled "
