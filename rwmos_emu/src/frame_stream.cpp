@@ -13,7 +13,9 @@ FrameStream::Result FrameStream::feed(std::span<const std::uint8_t> bytes, Frame
         bool need_more = false;
         const objif::FrameError e = objif::decode_frame(rest, frame_, consumed, need_more);
         if (e == objif::FrameError::kNone) {
-            server.handle(frame_, replies);
+            // A frame whose payload does not decode, or whose opcode is not
+            // served, is answered with an Error reply too: counted.
+            if (server.handle(frame_, replies) != objif::FrameError::kNone) ++result.rejected;
         } else if (need_more) {
             break;
         } else if (consumed == 0) {
