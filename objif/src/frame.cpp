@@ -28,6 +28,8 @@ std::string_view opcode_name(std::uint16_t op) noexcept {
         case Opcode::kSsfCommand: return reply ? "SsfCommandReply" : "SsfCommand";
         case Opcode::kClock: return reply ? "ClockReply" : "Clock";
         case Opcode::kReadTrace: return reply ? "ReadTraceReply" : "ReadTrace";
+        case Opcode::kNotice:
+            return "Notice";
         case Opcode::kError: return "Error";
     }
     return "Unknown";
@@ -117,7 +119,8 @@ FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::si
     const auto crc = load<std::uint32_t>(p + kFrameHeaderSize + length);
     if (crc != crc32_of(p, kFrameHeaderSize + length)) return FrameError::kBadCrc;
     const auto base = static_cast<std::uint16_t>(out.opcode & ~kReplyFlag);
-    if (!opcode_known(base) && base != static_cast<std::uint16_t>(Opcode::kError))
+    if (!opcode_known(base) && base != static_cast<std::uint16_t>(Opcode::kError) &&
+        base != static_cast<std::uint16_t>(Opcode::kNotice))
         return FrameError::kUnknownOpcode;
     out.payload.assign(p + kFrameHeaderSize, p + kFrameHeaderSize + length);
     return FrameError::kNone;
@@ -275,6 +278,35 @@ FrameError decode(std::span<const std::uint8_t> p, ErrorReply& m) {
     if (!status_from_code(code, m.status)) return FrameError::kBadPayload;
     if (reason > static_cast<std::uint8_t>(FrameError::kNotFinite)) return FrameError::kBadPayload;
     m.reason = static_cast<FrameError>(reason);
+    return FrameError::kNone;
+}
+
+namespace {
+constexpr bool printable(std::uint8_t c) noexcept {
+    return c >= 0x20 && c < 0x7F;
+}
+}  // namespace
+
+void encode(const Notice& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u32(status_code(m.status));
+    const std::size_t n = std::min(m.text.size(), kMaxNoticeText);
+    w.u16(static_cast<std::uint16_t>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<std::uint8_t>(m.text[i]);
+        w.u8(printable(c) ? c : static_cast<std::uint8_t>('?'));
+    }
+}
+FrameError decode(std::span<const std::uint8_t> p, Notice& m) {
+    ByteReader r(p);
+    std::uint32_t code;
+    std::uint16_t n;
+    if (!r.u32(code) || !r.u16(n) || n > kMaxNoticeText || r.remaining() != n)
+        return FrameError::kBadPayload;
+    if (!status_from_code(code, m.status)) return FrameError::kBadPayload;
+    const auto text = p.subspan(p.size() - n);
+    if (!std::all_of(text.begin(), text.end(), printable)) return FrameError::kBadPayload;
+    m.text.assign(text.begin(), text.end());
     return FrameError::kNone;
 }
 

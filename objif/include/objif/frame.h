@@ -43,6 +43,8 @@ enum class Opcode : std::uint16_t {
     kSsfCommand = 0x0005,
     kClock = 0x0006,      // step / run the interpolation clock
     kReadTrace = 0x0007,  // per-cycle axis samples
+    kNotice = 0x7FFE,     // sent by the daemon on its own (as 0xFFFE, sequence 0): greeting,
+                          // refusal, or why it closes the connection (NoticeFrame)
     kError = 0x7FFF,      // reply only: the request could not be decoded
 };
 bool opcode_known(std::uint16_t op) noexcept;  // a request opcode we define
@@ -150,6 +152,20 @@ struct ErrorReply {
     FrameError reason = FrameError::kNone;
 };
 
+// The frame the daemon sends on its own on a stream connection (opcode
+// kNotice | kReplyFlag, sequence 0; docs/wire-frame.md "Notices"): at once
+// after accepting it, status Ok and the text kDaemonGreeting (a client opens
+// the link only once it has read it); a refused connection, or one the daemon
+// closes (idle, shutting down), gets a status other than Ok and the reason,
+// then the daemon closes it. The text is printable ASCII, at most
+// kMaxNoticeText bytes.
+inline constexpr std::size_t kMaxNoticeText = 256;
+inline constexpr std::string_view kDaemonGreeting = "rwmos-emu";
+struct Notice {
+    Status status = Status::kOk;
+    std::string text;
+};
+
 void encode(const ReadRequest& m, std::vector<std::uint8_t>& out);
 void encode(const ReadReply& m, std::vector<std::uint8_t>& out);
 void encode(const WriteRequest& m, std::vector<std::uint8_t>& out);
@@ -160,6 +176,10 @@ FrameError decode(std::span<const std::uint8_t> p, ReadReply& m);
 FrameError decode(std::span<const std::uint8_t> p, WriteRequest& m);
 FrameError decode(std::span<const std::uint8_t> p, WriteReply& m);
 FrameError decode(std::span<const std::uint8_t> p, ErrorReply& m);
+// Text longer than kMaxNoticeText is cut; bytes that are not printable ASCII
+// become '?'. decode refuses both.
+void encode(const Notice& m, std::vector<std::uint8_t>& out);
+FrameError decode(std::span<const std::uint8_t> p, Notice& m);
 
 // ---- Motion payloads (docs/motion.md "Wire payloads"). Plain wire structs:
 // the board's motion types (rwmos/motion/types.h) map onto them one to one.
