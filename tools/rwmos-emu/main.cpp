@@ -46,6 +46,9 @@ struct Options {
     bool realtime = false;
     bool no_option_tc = false;
     std::size_t max_clients = 64;
+    // --idle-timeout: seconds a socket client may send and read nothing
+    // before the daemon closes it (0: never). docs/rwmos-emu.md says why 300.
+    std::int64_t idle_timeout_s = 300;
     std::string log_level = "info";
     std::string group;  // --group: owner group of the socket and the shm file
     gid_t gid = static_cast<gid_t>(-1);  // resolved from `group`; -1 leaves the daemon's own
@@ -90,17 +93,42 @@ bool add_watch(int epoll, int fd) {
     return ::epoll_ctl(epoll, EPOLL_CTL_ADD, fd, &ev) == 0;
 }
 
-// SIGTERM and SIGINT arrive through a signalfd in the event loop, so a
-// shutdown happens between requests, never inside one. Blocked before any
-// thread starts, so every thread inherits the mask.
+// Every signal whose default action ends the process and that a process
+// may catch, except the ones the kernel raises for a fault of the process
+// itself (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS, SIGABRT: blocking
+// those does not stop them, and they need no cleanup, they are a crash).
+// SIGPIPE is ignored instead (a client that vanished is an EPIPE).
+constexpr int kShutdownSignals[] = {SIGHUP,  SIGINT,  SIGQUIT,   SIGTERM,  SIGUSR1,
+                                    SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF,  SIGXCPU,
+                                    SIGXFSZ, SIGPOLL, SIGPWR,    SIGSTKFLT};
+
+// Each of them arrives through a signalfd in the event loop, so a shutdown
+// happens between requests, never inside one, and always cleans up the same
+// way. Blocked before any thread starts, so every thread inherits the mask.
+// The real-time signals (SIGRTMIN..SIGRTMAX) end a process too: included.
 int block_shutdown_signals() {
     sigset_t set;
     sigemptyset(&set);
-    sigaddset(&set, SIGTERM);
-    sigaddset(&set, SIGINT);
+    for (const int sig : kShutdownSignals) sigaddset(&set, sig);
+    for (int sig = SIGRTMIN; sig <= SIGRTMAX; ++sig) sigaddset(&set, sig);
     if (::pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return -1;
     ::signal(SIGPIPE, SIG_IGN);
     return ::signalfd(-1, &set, SFD_CLOEXEC | SFD_NONBLOCK);
+}
+
+// "SIGHUP", ... for the log; sigabbrev_np knows every signal but the real-time ones.
+std::string signal_name(int sig) {
+    if (sig >= SIGRTMIN && sig <= SIGRTMAX) return fmt::format("SIGRTMIN+{}", sig - SIGRTMIN);
+    const char* abbrev = ::sigabbrev_np(sig);
+    return abbrev != nullptr ? fmt::format("SIG{}", abbrev) : fmt::format("signal {}", sig);
+}
+
+// SIGTERM and SIGINT are the requested stop: exit 0. Any other shutdown
+// signal stops the daemon the same way, then exits 128 + its number (what a
+// shell reports for a process that signal ended), so whoever started it can
+// tell.
+int exit_code_for(int sig) {
+    return sig == SIGTERM || sig == SIGINT ? kExitOk : 128 + sig;
 }
 
 int serve(const Options& o) {
@@ -119,7 +147,8 @@ int serve(const Options& o) {
     rwmos::BoardConfig config;
     config.option_tc = !o.no_option_tc;
     BoardHost host(config);
-    SocketServer sockets(host, fds.epoll, o.max_clients);
+    SocketServer sockets(host, fds.epoll,
+                         ClientLimits{o.max_clients, std::chrono::seconds(o.idle_timeout_s)});
     ShmServer shm(host);
     std::string why;
     if (!o.socket.empty() && !sockets.open(o.socket, o.gid, why)) {
@@ -154,6 +183,7 @@ int serve(const Options& o) {
         o.shm.empty() ? "" : " and dual-port RAM file ", o.shm);
 
     int exit_code = kExitOk;
+    std::string stop_reason;
     bool running = true;
     // After serving a client the loop polls for the next request for a learned
     // budget before it sleeps in epoll_wait (docs/performance.md, "Transports").
@@ -183,8 +213,10 @@ int serve(const Options& o) {
             if (fd == fds.signal) {
                 signalfd_siginfo info{};
                 if (::read(fds.signal, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
-                    log(Level::kInfo, "{}: shutting down",
-                        info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM");
+                    const int sig = static_cast<int>(info.ssi_signo);
+                    stop_reason = fmt::format("shutting down ({})", signal_name(sig));
+                    log(Level::kInfo, "{}: shutting down", signal_name(sig));
+                    exit_code = exit_code_for(sig);
                     running = false;
                 }
             } else if (fd == fds.timer) {
@@ -193,6 +225,8 @@ int serve(const Options& o) {
                     host.pace(std::chrono::steady_clock::now());
             } else if (fd == sockets.listen_fd()) {
                 sockets.on_listen_ready();
+            } else if (fd == sockets.idle_timer_fd()) {
+                sockets.on_idle_timer();
             } else {
                 sockets.on_client_ready(fd, events[i].events);
                 served_client = true;
@@ -200,7 +234,7 @@ int serve(const Options& o) {
         }
     }
 
-    sockets.close_all();
+    sockets.close_all(stop_reason);
     shm.stop();
     rwmos::unregister_daemon(self.pid);
     const ServedCounts counts = host.counts();
@@ -226,8 +260,15 @@ int run(int argc, char** argv) {
                  "without it the clock runs only when a client steps it (virtual time)");
     app.add_flag("--no-option-tc", o.no_option_tc,
                  "Emulate firmware without optionTC: the TC module (bus 1300) is absent");
-    app.add_option("--max-clients", o.max_clients, "Most socket clients at once (default 64)")
+    app.add_option("--max-clients", o.max_clients,
+                   "Most socket clients connected at once (default 64); clients that hung up "
+                   "are not counted. One more is told 'too many clients (N)' and closed")
         ->check(CLI::Range(1, 4096));
+    app.add_option("--idle-timeout", o.idle_timeout_s,
+                   "Close a socket client that sent and read nothing for SECONDS, telling it "
+                   "why (default 300; 0 = never; at most 86400)")
+        ->type_name("SECONDS")
+        ->check(CLI::Range(0, 86400));
     app.add_option("--group", o.group,
                    "Group of the socket and the dual-port RAM file, so its members may connect "
                    "(default: the daemon's own group)");
@@ -235,8 +276,12 @@ int run(int argc, char** argv) {
         ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
     app.footer(
         "Clients open the board with the device URI unix:PATH or shm:PATH (libapci, "
-        "apcictl --device). SIGTERM or SIGINT stops the daemon and removes its socket and "
-        "file. Logs go to stderr.\nExit codes: 0 ok, 1 could not serve, 2 usage.");
+        "apcictl --device). SIGTERM or SIGINT stops the daemon and removes its socket, its "
+        "file and its registry entry; so does every other signal that would end it (SIGHUP, "
+        "SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ, SIGPOLL, "
+        "SIGPWR, SIGSTKFLT, real-time signals); SIGPIPE is ignored. Logs go to stderr.\n"
+        "Exit codes: 0 ok (stopped by SIGTERM or SIGINT), 1 could not serve, 2 usage, "
+        "128+N stopped by signal N.");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

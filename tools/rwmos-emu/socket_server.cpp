@@ -1,22 +1,36 @@
 // SPDX-License-Identifier: MIT
 #include "socket_server.h"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/epoll.h>
+#include <sys/file.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/timerfd.h>
 #include <sys/un.h>
+#include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <thread>
 
 #include "log.h"
+#include "objif/frame.h"
 
 namespace rwmos_emu {
 namespace {
 
 constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
-constexpr const char* kStagingSuffix = ".new";
+// How long a starting daemon waits for another one starting in the same
+// directory (a neighbour holding the lock longer makes it give up).
+constexpr std::chrono::seconds kDirectoryLockWait{2};
+constexpr std::chrono::milliseconds kDirectoryLockPoll{5};
+// Reads of a hung-up client served before it is released (its requests
+// still reach the board, as they would have on the next turn of the loop).
+constexpr int kReapReads = 8;
 
 bool make_address(const std::string& path, sockaddr_un& addr, std::string& why) {
     addr = {};
@@ -70,77 +84,149 @@ bool clear_path(const std::string& path, const sockaddr_un& addr, std::string& w
     return true;
 }
 
+// The directory part of `path` ("." for a bare name).
+std::string directory_of(const std::string& path) {
+    const auto slash = path.rfind('/');
+    if (slash == std::string::npos) return ".";
+    if (slash == 0) return "/";
+    return path.substr(0, slash);
+}
+
+// An exclusive flock on a directory, taken by every daemon while it clears,
+// binds and starts listening on a socket there: a daemon that finds a socket
+// nobody listens on yet knows it is stale, not another daemon's between bind
+// and listen. Released when it goes out of scope.
+class DirectoryLock {
+  public:
+    DirectoryLock() = default;
+    ~DirectoryLock() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    DirectoryLock(const DirectoryLock&) = delete;
+    DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+    bool take(const std::string& dir, std::string& why) {
+        fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (fd_ < 0) {
+            why = fmt::format("socket directory {}: {}", dir, std::strerror(errno));
+            return false;
+        }
+        const auto until = SteadyClock::now() + kDirectoryLockWait;
+        for (;;) {
+            if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return true;
+            if (errno != EWOULDBLOCK && errno != EINTR) {
+                why = fmt::format("locking socket directory {}: {}", dir, std::strerror(errno));
+                return false;
+            }
+            if (SteadyClock::now() >= until) {
+                why = fmt::format(
+                    "socket directory {} stayed locked for {} s (another rwmos-emu starting "
+                    "there, or a process holding flock on it); try again or choose another "
+                    "--socket directory",
+                    dir, kDirectoryLockWait.count());
+                return false;
+            }
+            std::this_thread::sleep_for(kDirectoryLockPoll);
+        }
+    }
+
+  private:
+    int fd_ = -1;
+};
+
+// Binds `fd` at `addr` with mode 0660 from the start (umask) and, when
+// `group` is not the daemon's own, with that group from the start (the
+// effective gid while binding; lchown after listen covers what this cannot).
+int bind_socket(int fd, const sockaddr_un& addr, gid_t group) {
+    const gid_t own = ::getegid();
+    const bool switch_gid =
+        group != static_cast<gid_t>(-1) && group != own && ::setegid(group) == 0;
+    const mode_t old_mask = ::umask(0117);
+    const int rc = ::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr);
+    const int err = errno;
+    ::umask(old_mask);
+    if (switch_gid && ::setegid(own) != 0) {
+        // Cannot happen (the saved set-group-ID is ours); refuse rather than go on wrong.
+        return -1;
+    }
+    errno = err;
+    return rc;
+}
+
 }  // namespace
+
+bool send_notice(int fd, objif::Status status, std::string_view text) {
+    try {
+        std::vector<std::uint8_t> payload;
+        objif::encode(objif::Notice{status, std::string(text)}, payload);
+        std::vector<std::uint8_t> frame;
+        objif::encode_frame(
+            static_cast<std::uint16_t>(static_cast<std::uint16_t>(objif::Opcode::kNotice) |
+                                       objif::kReplyFlag),
+            0, payload, frame);
+        const ssize_t n = ::send(fd, frame.data(), frame.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+        return n == static_cast<ssize_t>(frame.size());
+    } catch (...) {
+        return false;
+    }
+}
 
 SocketServer::~SocketServer() {
     close_all();
+    if (idle_timer_fd_ >= 0) ::close(idle_timer_fd_);
 }
 
-// The socket is made ready under a staging name (`PATH.new`: bound, mode
-// 0660, its group, listening) and only then published at PATH by link(2),
-// which never replaces an existing file. A client that sees PATH can connect
-// at once: there is no window in which the file exists but nobody listens
-// (a client polling for the file would get ECONNREFUSED there), nor one with
-// the wrong group; and a daemon that started meanwhile on the same path is
-// never displaced.
+// Bound at PATH itself (so ss, lsof and /proc/net/unix name the socket by
+// its path), under the directory lock: clear_path() (lstat, never through a
+// symlink; a stale socket removed, anything else refused), bind with mode
+// 0660 and the group from the start, listen at once; bind never replaces a
+// file, so a socket or file that appeared meanwhile is never displaced.
 bool SocketServer::open(const std::string& path, gid_t group, std::string& why) {
     sockaddr_un addr{};
-    sockaddr_un staging_addr{};
-    const std::string staging = path + kStagingSuffix;
     if (!make_address(path, addr, why)) return false;
-    if (!make_address(staging, staging_addr, why)) {
-        why = fmt::format("socket path '{}' is too long (at most {} bytes: the socket is made "
-                          "ready as '{}' first)",
-                          path, sizeof addr.sun_path - 1 - std::strlen(kStagingSuffix), staging);
-        return false;
-    }
-    if (!clear_path(path, addr, why) || !clear_path(staging, staging_addr, why)) return false;
+    DirectoryLock lock;
+    if (!lock.take(directory_of(path), why)) return false;
+    if (!clear_path(path, addr, why)) return false;
     const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     if (fd < 0) {
         why = fmt::format("socket: {}", std::strerror(errno));
         return false;
     }
-    const auto fail = [&](const std::string& what, int err) {
-        why = fmt::format("{}: {}", what, std::strerror(err));
+    if (bind_socket(fd, addr, group) != 0) {
+        const int err = errno;
         ::close(fd);
-        ::unlink(staging.c_str());
-        return false;
-    };
-    // Created 0660 from the start (no window with wider permissions).
-    const mode_t old_mask = ::umask(0117);
-    const int rc = ::bind(fd, reinterpret_cast<const sockaddr*>(&staging_addr), sizeof staging_addr);
-    const int err = errno;
-    ::umask(old_mask);
-    if (rc != 0) {
-        ::close(fd);
-        why = fmt::format("bind {}: {}", staging, std::strerror(err));
+        why =
+            err == EADDRINUSE
+                ? fmt::format("{} appeared while this daemon was starting; not replacing it", path)
+                : fmt::format("bind {}: {}", path, std::strerror(err));
         return false;
     }
-    if (::chmod(staging.c_str(), 0660) != 0) return fail(staging, errno);
-    if (group != static_cast<gid_t>(-1) && ::lchown(staging.c_str(), static_cast<uid_t>(-1), group) != 0)
-        return fail(fmt::format("{}: cannot give it group {}", staging, group), errno);
-    if (::listen(fd, 64) != 0) return fail(fmt::format("listen {}", staging), errno);
+    // From here on PATH is ours: a failure removes it.
+    const auto fail = [&](const std::string& what, int err) {
+        why = fmt::format("{}: {}", what, std::strerror(err));
+        ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
+        ::close(fd);
+        ::unlink(path.c_str());
+        return false;
+    };
+    if (::listen(fd, 64) != 0) return fail(fmt::format("listen {}", path), errno);
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) return fail(path, errno);
+    if ((st.st_mode & 07777) != 0660 &&
+        ::fchmodat(AT_FDCWD, path.c_str(), 0660, AT_SYMLINK_NOFOLLOW) != 0)
+        return fail(fmt::format("{}: setting mode 0660", path), errno);
+    if (group != static_cast<gid_t>(-1) && st.st_gid != group &&
+        ::lchown(path.c_str(), static_cast<uid_t>(-1), group) != 0)
+        return fail(fmt::format("{}: cannot give it group {}", path, group), errno);
     epoll_event ev{};
     ev.events = EPOLLIN;
     ev.data.fd = fd;
     if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) return fail("epoll_ctl", errno);
-    if (::link(staging.c_str(), path.c_str()) != 0) {
-        const int link_err = errno;
-        ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
-        if (link_err == EEXIST)
-            return fail(fmt::format("{} appeared while this daemon was starting (another daemon?); "
-                                    "not replacing it",
-                                    path),
-                        link_err);
-        return fail(fmt::format("publishing {} as {}", staging, path), link_err);
-    }
-    ::unlink(staging.c_str());
-    struct stat st {};
-    if (::lstat(path.c_str(), &st) != 0) {
-        const int stat_err = errno;
-        ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
-        ::unlink(path.c_str());
-        return fail(path, stat_err);
+    if (limits_.idle_timeout.count() > 0) {
+        idle_timer_fd_ = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
+        ev.data.fd = idle_timer_fd_;
+        if (idle_timer_fd_ < 0 || ::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, idle_timer_fd_, &ev) != 0)
+            return fail("--idle-timeout timer", errno);
     }
     listen_fd_ = fd;
     path_ = path;
@@ -163,25 +249,93 @@ void SocketServer::on_listen_ready() {
             log(Level::kError, "accept: {}", std::strerror(errno));
             return;
         }
-        if (clients_.size() >= max_clients_) {
-            log(Level::kWarn, "refused a client: {} clients connected (--max-clients {})",
-                clients_.size(), max_clients_);
-            ::close(fd);
-            continue;
-        }
-        epoll_event ev{};
-        ev.events = EPOLLIN | EPOLLRDHUP;
-        ev.data.fd = fd;
-        if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) {
-            log(Level::kError, "epoll_ctl: {}", std::strerror(errno));
-            ::close(fd);
-            continue;
-        }
-        Client& c = clients_[fd];
-        c.id = next_id_++;
-        c.armed = ev.events;
-        log(Level::kDebug, "client {} connected ({} connected)", c.id, clients_.size());
+        accept_one(fd);
     }
+}
+
+void SocketServer::accept_one(int fd) {
+    // Clients that hung up but whose EOF the loop has not read yet are not
+    // counted: released first.
+    if (clients_.size() >= limits_.max_clients) reap_hung_up();
+    if (clients_.size() >= limits_.max_clients) {
+        log(Level::kWarn, "refused a client: {} clients connected (--max-clients {})",
+            clients_.size(), limits_.max_clients);
+        send_notice(fd, objif::Status::kTransportError,
+                    fmt::format("too many clients ({})", limits_.max_clients));
+        ::close(fd);
+        return;
+    }
+    // A client that hung up already misses its greeting, but what it sent
+    // before is still served (and a half frame still logged), as for any client.
+    send_notice(fd, objif::Status::kOk, objif::kDaemonGreeting);
+    epoll_event ev{};
+    ev.events = EPOLLIN | EPOLLRDHUP;
+    ev.data.fd = fd;
+    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) {
+        log(Level::kError, "epoll_ctl: {}", std::strerror(errno));
+        ::close(fd);
+        return;
+    }
+    Client& c = clients_[fd];
+    c.id = next_id_++;
+    c.armed = ev.events;
+    c.last_active = SteadyClock::now();
+    if (limits_.idle_timeout.count() > 0 && !idle_timer_armed_)
+        arm_idle_timer(c.last_active + limits_.idle_timeout);
+    log(Level::kDebug, "client {} connected ({} connected)", c.id, clients_.size());
+}
+
+std::size_t SocketServer::reap_hung_up() {
+    std::vector<pollfd> polled;
+    polled.reserve(clients_.size());
+    for (const auto& [fd, c] : clients_) polled.push_back(pollfd{fd, POLLIN | POLLRDHUP, 0});
+    if (::poll(polled.data(), polled.size(), 0) <= 0) return 0;
+    std::size_t released = 0;
+    for (const pollfd& p : polled) {
+        // POLLHUP: the peer closed both directions (a client that only shut
+        // down its sending side still waits for replies: kept).
+        if ((p.revents & (POLLHUP | POLLERR)) == 0) continue;
+        constexpr std::uint32_t kHungUp = EPOLLIN | EPOLLRDHUP | EPOLLHUP;
+        for (int i = 0; i < kReapReads && owns(p.fd); ++i) on_client_ready(p.fd, kHungUp);
+        if (owns(p.fd)) drop(p.fd, "hung up");
+        ++released;
+    }
+    return released;
+}
+
+void SocketServer::arm_idle_timer(SteadyClock::time_point when) {
+    const auto since_epoch =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(when.time_since_epoch()).count();
+    itimerspec at{};
+    at.it_value.tv_sec = static_cast<time_t>(since_epoch / 1'000'000'000);
+    at.it_value.tv_nsec = static_cast<long>(since_epoch % 1'000'000'000);
+    if (at.it_value.tv_sec == 0 && at.it_value.tv_nsec == 0) at.it_value.tv_nsec = 1;
+    idle_timer_armed_ = ::timerfd_settime(idle_timer_fd_, TFD_TIMER_ABSTIME, &at, nullptr) == 0;
+    if (!idle_timer_armed_) log(Level::kError, "--idle-timeout timer: {}", std::strerror(errno));
+}
+
+void SocketServer::on_idle_timer() {
+    std::uint64_t expirations = 0;
+    if (::read(idle_timer_fd_, &expirations, sizeof expirations) < 0 && errno == EAGAIN) return;
+    idle_timer_armed_ = false;
+    const auto now = SteadyClock::now();
+    const auto limit = limits_.idle_timeout;
+    std::vector<int> idle;
+    auto next = SteadyClock::time_point::max();
+    for (const auto& [fd, c] : clients_) {
+        if (now - c.last_active >= limit)
+            idle.push_back(fd);
+        else
+            next = std::min(next, c.last_active + limit);
+    }
+    const std::string reason =
+        fmt::format("idle for {} s (--idle-timeout {})", limit.count(), limit.count());
+    for (const int fd : idle) {
+        const Client& c = clients_.at(fd);
+        if (c.out_pos == c.out.size()) send_notice(fd, objif::Status::kTransportError, reason);
+        drop(fd, reason);
+    }
+    if (next != SteadyClock::time_point::max()) arm_idle_timer(next);
 }
 
 void SocketServer::on_client_ready(int fd, std::uint32_t events) {
@@ -201,11 +355,15 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
         if (partial != 0)
             return drop(
                 fd, fmt::format("disconnected mid-frame ({} bytes of a frame unread)", partial));
-        if (n < 0) return drop(fd, fmt::format("recv: {}", std::strerror(errno)));
+        // ECONNRESET: the client closed with bytes unread (its greeting, a
+        // late reply): a disconnect like any other.
+        if (n < 0 && errno != ECONNRESET)
+            return drop(fd, fmt::format("recv: {}", std::strerror(errno)));
         log(Level::kDebug, "client {} disconnected", c.id);
         return drop(fd, {});
     }
     if (n < 0) return;
+    c.last_active = SteadyClock::now();
     const auto result =
         host_.serve_stream(c.stream, {read_buffer_.data(), static_cast<std::size_t>(n)}, c.out);
     if (result.rejected != 0)
@@ -226,6 +384,7 @@ bool SocketServer::flush(int fd, Client& c) {
                                  MSG_NOSIGNAL | MSG_DONTWAIT);
         if (n > 0) {
             c.out_pos += static_cast<std::size_t>(n);
+            c.last_active = SteadyClock::now();
             continue;
         }
         if (n < 0 && errno == EINTR) continue;
@@ -262,8 +421,13 @@ void SocketServer::drop(int fd, std::string_view why) {
     clients_.erase(it);
 }
 
-void SocketServer::close_all() {
-    while (!clients_.empty()) drop(clients_.begin()->first, {});
+void SocketServer::close_all(std::string_view reason) {
+    while (!clients_.empty()) {
+        const auto& [fd, c] = *clients_.begin();
+        if (!reason.empty() && c.out_pos == c.out.size())
+            send_notice(fd, objif::Status::kTransportError, reason);
+        drop(fd, {});
+    }
     if (listen_fd_ >= 0) {
         ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, listen_fd_, nullptr);
         ::close(listen_fd_);
