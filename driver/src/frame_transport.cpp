@@ -17,8 +17,13 @@ constexpr std::uint16_t reply_opcode(objif::Opcode op) noexcept {
     return static_cast<std::uint16_t>(static_cast<std::uint16_t>(op) | objif::kReplyFlag);
 }
 constexpr std::uint16_t kErrorReply = reply_opcode(objif::Opcode::kError);
+constexpr std::uint16_t kNoticeFrame = reply_opcode(objif::Opcode::kNotice);
 
 }  // namespace
+
+bool notice_of(const objif::Frame& frame, objif::Notice& out) {
+    return frame.opcode == kNoticeFrame && objif::decode(frame.payload, out) == FrameError::kNone;
+}
 
 bool parse_unsigned(std::string_view text, std::uint32_t max, std::uint32_t& out) noexcept {
     int base = 10;
@@ -56,7 +61,7 @@ Status parse_link_options(const DeviceUri& uri, LinkOptions& out, std::string& w
 Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
                      std::vector<std::uint8_t>& reply,
                      std::chrono::steady_clock::time_point deadline, const ReadSome& read_some,
-                     std::string& why) noexcept {
+                     std::string& why, objif::Notice* closing) noexcept {
     try {
         objif::Frame frame;
         for (;;) {
@@ -75,6 +80,14 @@ Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
                 return Status::kTransportError;
             }
             // A whole frame (maybe with a bad CRC: the caller reports that).
+            if (objif::Notice notice; e == FrameError::kNone && notice_of(frame, notice)) {
+                pending.erase(pending.begin(),
+                              pending.begin() + static_cast<std::ptrdiff_t>(consumed));
+                if (notice.status == Status::kOk) continue;  // a greeting: nothing to do
+                why = notice.text;
+                if (closing != nullptr) *closing = std::move(notice);
+                return Status::kTransportError;
+            }
             const bool ours = frame.sequence == sequence;
             if (ours)
                 reply.assign(pending.begin(),

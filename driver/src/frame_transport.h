@@ -56,14 +56,22 @@ class FrameLink {
 
 // Reads one reply frame from a byte stream (unix socket, USB bulk IN):
 // `read_some` appends at least one byte or fails. Replies to other sequences
-// are skipped. kTransportError for bytes that are not a frame.
+// are skipped. kTransportError for bytes that are not a frame. A Notice frame
+// (objif/frame.h: the daemon closes the connection and says why) whose
+// status is not Ok ends the wait: kTransportError, its text in `why` and, if
+// `closing` is not null, in `*closing`; a Notice with status Ok is skipped.
 using ReadSome =
     std::function<objif::Status(std::vector<std::uint8_t>& buffer,
                                 std::chrono::steady_clock::time_point deadline, std::string& why)>;
 objif::Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
                             std::vector<std::uint8_t>& reply,
                             std::chrono::steady_clock::time_point deadline,
-                            const ReadSome& read_some, std::string& why) noexcept;
+                            const ReadSome& read_some, std::string& why,
+                            objif::Notice* closing = nullptr) noexcept;
+
+// The Notice a whole frame carries: true and `out` when `frame` is a Notice
+// frame (opcode 0xFFFE) with a valid payload.
+bool notice_of(const objif::Frame& frame, objif::Notice& out);
 
 class FrameTransport final : public Transport {
   public:

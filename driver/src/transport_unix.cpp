@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <cstring>
 #include <new>
+#include <thread>
 
 #include "frame_transport.h"
 #include "objif/adaptive_spin.h"
@@ -52,14 +53,33 @@ int remaining_ms(SteadyClock::time_point deadline) {
     return left <= 0 ? 0 : static_cast<int>(std::min<long long>(left, 1 << 30));
 }
 
+// What answered a connection: nothing (connect failed), the daemon's
+// greeting, its refusal, or something that is not an rwmos-emu daemon (it
+// said something else, or nothing in time).
+enum class Greeting { kNone, kWelcome, kRefused, kStranger };
+
+// A connect() refused by a socket file that exists is retried this long: a
+// daemon binds its socket at the path and listens right after, and a client
+// that saw the file appear may be that quick.
+constexpr int kRefusedRetries = 10;
+constexpr auto kRefusedRetryPause = std::chrono::milliseconds(1);
+
 class UnixLink final : public FrameLink {
   public:
-    explicit UnixLink(std::string path) : path_(std::move(path)) {}
+    UnixLink(std::string path, Millis greeting_timeout)
+        : path_(std::move(path)), greeting_timeout_(greeting_timeout) {}
     ~UnixLink() override { close_socket(); }
     UnixLink(const UnixLink&) = delete;
     UnixLink& operator=(const UnixLink&) = delete;
 
-    Status open(std::string& why) noexcept {
+    // Connects and reads the daemon's greeting (docs/wire-frame.md
+    // "Notices"): the link is open only once the daemon has accepted it.
+    Status open(std::string& why) noexcept { return open(why, greeting_); }
+
+    // As open(); `greeting` tells who answered (apci_list_devices tells an
+    // rwmos-emu daemon from anything else listening).
+    Status open(std::string& why, Greeting& greeting) noexcept {
+        greeting = Greeting::kNone;
         close_socket();
         sockaddr_un addr{};
         addr.sun_family = AF_UNIX;
@@ -71,8 +91,15 @@ class UnixLink final : public FrameLink {
         std::memcpy(addr.sun_path, path_.c_str(), path_.size() + 1);
         const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
         if (fd < 0) return failed(errno, "socket", why);
-        if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
-            const int err = errno;
+        int rc = -1;
+        int err = 0;
+        for (int attempt = 0;; ++attempt) {
+            rc = ::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr);
+            err = errno;
+            if (rc == 0 || err != ECONNREFUSED || attempt == kRefusedRetries) break;
+            std::this_thread::sleep_for(kRefusedRetryPause);
+        }
+        if (rc != 0) {
             ::close(fd);
             const char* hint =
                 err == ENOENT || err == ECONNREFUSED ? " (is rwmos-emu running?)" : "";
@@ -82,7 +109,9 @@ class UnixLink final : public FrameLink {
         fd_ = fd;
         pending_.clear();
         lost_.clear();
-        return Status::kOk;
+        const Status s = read_greeting(why, greeting);
+        if (s != Status::kOk) close_socket();
+        return s;
     }
 
     Status exchange(std::span<const std::uint8_t> request, std::uint32_t sequence,
@@ -95,17 +124,108 @@ class UnixLink final : public FrameLink {
         const auto deadline = SteadyClock::now() + timeout;
         Status s = send_all(request, deadline, why);
         if (s != Status::kOk) return s;
-        return receive_reply(
+        objif::Notice closing;
+        closing.status = Status::kOk;
+        s = receive_reply(
             pending_, sequence, reply, deadline,
             [this](std::vector<std::uint8_t>& buffer, SteadyClock::time_point until,
                    std::string& text) { return read_some(buffer, until, text); },
-            why);
+            why, &closing);
+        if (s == Status::kTransportError && closing.status != Status::kOk && fd_ >= 0)
+            return closed_by_daemon(closing.text, why);
+        return s;
     }
 
     Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return fd_ >= 0; }
+    // After open() was refused, or found a peer that is not a daemon: what
+    // the peer did instead of greeting.
+    const std::string& answer() const noexcept { return answer_; }
 
   private:
+    // The first frame on a new connection: the daemon's Notice. Welcome:
+    // kOk. Refusal (too many clients): kTransportError naming the reason.
+    // Anything else, or nothing within the greeting timeout: not a daemon.
+    Status read_greeting(std::string& why, Greeting& greeting) {
+        const auto deadline = SteadyClock::now() + greeting_timeout_;
+        const auto not_a_daemon = [&](std::string what) {
+            greeting = Greeting::kStranger;
+            why = fmt::format("{} is not an rwmos-emu daemon ({})", path_, what);
+            answer_ = std::move(what);
+            return Status::kTransportError;
+        };
+        for (;;) {
+            objif::Frame frame;
+            std::size_t consumed = 0;
+            bool need_more = false;
+            const objif::FrameError e = objif::decode_frame(pending_, frame, consumed, need_more);
+            if (e == objif::FrameError::kNone) {
+                objif::Notice notice;
+                if (!notice_of(frame, notice))
+                    return not_a_daemon(fmt::format("its first frame is {}, not the greeting",
+                                                    objif::opcode_name(frame.opcode)));
+                pending_.erase(pending_.begin(),
+                               pending_.begin() + static_cast<std::ptrdiff_t>(consumed));
+                if (notice.status != Status::kOk) {
+                    greeting = Greeting::kRefused;
+                    why = fmt::format("daemon {} refused the connection: {}", path_, notice.text);
+                    answer_ = "refused the connection: " + notice.text;
+                    return Status::kTransportError;
+                }
+                if (notice.text != objif::kDaemonGreeting)
+                    return not_a_daemon(fmt::format("it greets as '{}'", notice.text));
+                greeting = Greeting::kWelcome;
+                return Status::kOk;
+            }
+            if (!need_more)
+                return not_a_daemon(fmt::format("it sent bytes that are not a frame: {}",
+                                                objif::frame_error_name(e)));
+            pollfd p{fd_, POLLIN, 0};
+            const int n = ::poll(&p, 1, remaining_ms(deadline));
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) return failed(errno, "poll", why);
+            if (n == 0)
+                return not_a_daemon(
+                    fmt::format("no greeting within {} ms", greeting_timeout_.count()));
+            const ssize_t got = ::recv(fd_, chunk_.data(), chunk_.size(), MSG_DONTWAIT);
+            if (got > 0) {
+                pending_.insert(pending_.end(), chunk_.begin(), chunk_.begin() + got);
+            } else if (got == 0 || errno == ECONNRESET) {
+                return not_a_daemon("it closed the connection without a greeting");
+            } else if (errno != EAGAIN && errno != EINTR) {
+                return failed(errno, "recv", why);
+            }
+        }
+    }
+
+    // The daemon went away during a send: it may have said why (a Notice
+    // waiting in the socket, e.g. the idle timeout). Its text, or "".
+    std::string parting_words() {
+        for (int reads = 0; reads < 64; ++reads) {
+            const ssize_t n = ::recv(fd_, chunk_.data(), chunk_.size(), MSG_DONTWAIT);
+            if (n <= 0) break;
+            pending_.insert(pending_.end(), chunk_.begin(), chunk_.begin() + n);
+        }
+        std::span<const std::uint8_t> rest(pending_);
+        objif::Frame frame;
+        for (;;) {
+            std::size_t consumed = 0;
+            bool need_more = false;
+            const objif::FrameError e = objif::decode_frame(rest, frame, consumed, need_more);
+            if (consumed == 0) return {};
+            objif::Notice notice;
+            if (e == objif::FrameError::kNone && notice_of(frame, notice) &&
+                notice.status != Status::kOk)
+                return notice.text;
+            rest = rest.subspan(consumed);
+        }
+    }
+
+    // The daemon closed the connection after telling why.
+    Status closed_by_daemon(std::string_view reason, std::string& why) {
+        return lose(fmt::format("daemon {} closed the connection: {}", path_, reason), why);
+    }
+
     Status failed(int err, std::string_view what, std::string& why) {
         why = errno_text(what, err);
         return status_of_errno(err);
@@ -150,10 +270,13 @@ class UnixLink final : public FrameLink {
                 if (s != Status::kOk) return s;
                 continue;
             }
-            if (err == EPIPE || err == ECONNRESET)
+            if (err == EPIPE || err == ECONNRESET) {
+                if (const std::string reason = parting_words(); !reason.empty())
+                    return closed_by_daemon(reason, why);
                 return lose(
                     fmt::format("{} closed the connection (send: {})", path_, std::strerror(err)),
                     why);
+            }
             return failed(err, "send", why);
         }
         return Status::kOk;
@@ -204,6 +327,9 @@ class UnixLink final : public FrameLink {
     static constexpr std::chrono::microseconds kShortestSpin{1};
     static constexpr std::chrono::microseconds kLongestSpin{50};
     std::string path_;
+    Millis greeting_timeout_;
+    Greeting greeting_ = Greeting::kNone;  // who answered the last open()
+    std::string answer_;  // what the peer did instead of greeting (refusal, or not a daemon)
     int fd_ = -1;
     std::vector<std::uint8_t> chunk_ = std::vector<std::uint8_t>(kReadChunk);  // one recv()
     objif::AdaptiveSpin spin_{kShortestSpin, kLongestSpin};
@@ -211,18 +337,8 @@ class UnixLink final : public FrameLink {
     std::string lost_;                   // why the link was lost
 };
 
-// A socket answers connect() only when something listens on it.
-bool socket_is_live(const std::string& path) {
-    sockaddr_un addr{};
-    if (path.size() >= sizeof addr.sun_path) return false;
-    addr.sun_family = AF_UNIX;
-    std::memcpy(addr.sun_path, path.c_str(), path.size() + 1);
-    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    if (fd < 0) return false;
-    const bool live = ::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
-    ::close(fd);
-    return live;
-}
+// How long apci_list_devices waits for a registered socket's greeting.
+constexpr Millis kListGreetingTimeout{500};
 
 }  // namespace
 
@@ -240,7 +356,7 @@ Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::str
             why = "unix: needs the daemon's socket path, e.g. unix:/run/user/1000/rwmos-emu.sock";
             return Status::kInvalidArgument;
         }
-        auto link = std::make_unique<UnixLink>(uri.target);
+        auto link = std::make_unique<UnixLink>(uri.target, options.timeout);
         s = link->open(why);
         if (s != Status::kOk) return s;
         out = std::make_unique<FrameTransport>(std::move(link), "unix:" + uri.target,
@@ -257,9 +373,25 @@ Status list_unix(std::vector<FoundDevice>& out, std::string& why) noexcept {
     try {
         std::vector<rwmos::RegisteredDaemon> daemons;
         if (!rwmos::registered_daemons(daemons, why)) return Status::kTransportError;
+        // Only a socket that greets as rwmos-emu is listed as a daemon; one
+        // that accepts but answers otherwise (another program listening
+        // there now) is listed as not one, one nobody listens on is left out.
         for (const auto& d : daemons) {
-            if (!d.socket.empty() && socket_is_live(d.socket))
-                out.push_back({"unix:" + d.socket, fmt::format("rwmos-emu daemon, pid {}", d.pid)});
+            if (d.socket.empty()) continue;
+            UnixLink probe(d.socket, kListGreetingTimeout);
+            std::string probe_why;
+            Greeting greeting = Greeting::kNone;
+            probe.open(probe_why, greeting);
+            if (greeting == Greeting::kWelcome || greeting == Greeting::kRefused)
+                out.push_back(
+                    {"unix:" + d.socket,
+                     greeting == Greeting::kWelcome
+                         ? fmt::format("rwmos-emu daemon, pid {}", d.pid)
+                         : fmt::format("rwmos-emu daemon, pid {} ({})", d.pid, probe.answer())});
+            else if (greeting == Greeting::kStranger)
+                out.push_back({"unix:" + d.socket,
+                               fmt::format("not an rwmos-emu daemon (registered by pid {}; {})",
+                                           d.pid, probe.answer())});
         }
         return Status::kOk;
     } catch (const std::bad_alloc&) {
