@@ -5,6 +5,10 @@
 //   usb:1:5                       ADDI-DATA USB board 15b8:8001, port 1-2
 //   pci:0000:03:00.0              ADDI-DATA PCI board 15b8:1005, BAR 0 memory 0x40000 bytes
 //   unix:/run/user/1000/rwmos-emu.sock  rwmos-emu daemon, pid 4242
+//
+// A registered socket is a daemon only if it greets as one (libapci waits
+// 500 ms for the greeting); anything else listening there is listed as
+// "not an rwmos-emu daemon (registered by pid N; what it did)".
 #include <fmt/format.h>
 
 #include <string>
@@ -22,7 +26,10 @@ class ListCommand final : public Command {
         app.footer(
             "Prints one line per board: its device URI (for --device) and what it is. "
             "Emulator daemons are found through their registry directory "
-            "($APCI_RUNTIME_DIR, else $XDG_RUNTIME_DIR/apci, else /tmp/apci-UID). Kinds "
+            "($APCI_RUNTIME_DIR, else $XDG_RUNTIME_DIR/apci, else /tmp/apci-UID) and "
+            "named daemons only when they greet as rwmos-emu (waiting up to 500 ms each); "
+            "another program listening on a registered socket is listed as 'not an "
+            "rwmos-emu daemon'. Kinds "
             "of board that cannot be enumerated are named on stderr. Prints nothing "
             "when there is no board; exit 0 either way.");
     }
