@@ -6,10 +6,19 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
 namespace daemon_test {
+
+bool is_greeting(const objif::Frame& frame) {
+    objif::Notice notice;
+    return frame.opcode ==
+               (static_cast<std::uint16_t>(objif::Opcode::kNotice) | objif::kReplyFlag) &&
+           objif::decode(frame.payload, notice) == objif::FrameError::kNone &&
+           notice.status == objif::Status::kOk;
+}
 
 RawClient::RawClient(const std::string& socket_path) {
     sockaddr_un addr{};
@@ -44,6 +53,16 @@ bool RawClient::send(std::span<const std::uint8_t> bytes) {
 }
 
 bool RawClient::receive(objif::Frame& frame, std::chrono::milliseconds timeout) {
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            until - std::chrono::steady_clock::now());
+        if (!receive_any(frame, std::max(left, std::chrono::milliseconds(0)))) return false;
+        if (!is_greeting(frame)) return true;
+    }
+}
+
+bool RawClient::receive_any(objif::Frame& frame, std::chrono::milliseconds timeout) {
     const auto until = std::chrono::steady_clock::now() + timeout;
     for (;;) {
         std::size_t consumed = 0;

@@ -23,8 +23,12 @@ class RawClient {
 
     bool connected() const noexcept { return fd_ >= 0; }
     bool send(std::span<const std::uint8_t> bytes);
-    // Reads one whole frame; false on timeout, close or garbage.
+    // Reads one whole frame, skipping the daemon's greeting (a Notice with
+    // status Ok); false on timeout, close or garbage.
     bool receive(objif::Frame& frame, std::chrono::milliseconds timeout = std::chrono::seconds(5));
+    // As receive(), the greeting included.
+    bool receive_any(objif::Frame& frame,
+                     std::chrono::milliseconds timeout = std::chrono::seconds(5));
     // True when the daemon closed the connection within `timeout` (EOF).
     bool closed_by_peer(std::chrono::milliseconds timeout = std::chrono::seconds(5));
     void close();
@@ -38,6 +42,9 @@ class RawClient {
     int fd_ = -1;
     std::vector<std::uint8_t> pending_;
 };
+
+// The daemon's greeting: a Notice frame with status Ok.
+bool is_greeting(const objif::Frame& frame);
 
 // Frames for the tests.
 std::vector<std::uint8_t> frame_bytes(objif::Opcode op, std::uint32_t sequence,

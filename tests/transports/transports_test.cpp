@@ -95,11 +95,20 @@ class ScriptedServer {
         send_frame(fd, 0x8001, sequence, payload);
     }
 
+    // What rwmos-emu sends first on every connection (docs/wire-frame.md "Notices").
+    static void greet(int fd) {
+        std::vector<std::uint8_t> payload;
+        objif::encode(objif::Notice{objif::Status::kOk, std::string(objif::kDaemonGreeting)},
+                      payload);
+        send_frame(fd, 0xFFFE, 0, payload);
+    }
+
   private:
     void run() {
         while (!stop_) {
             const int fd = ::accept(listen_, nullptr, nullptr);
             if (fd < 0) return;
+            greet(fd);
             std::vector<std::uint8_t> pending;
             int index = 0;
             for (;;) {
