@@ -9,6 +9,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <sys/wait.h>
@@ -85,6 +86,17 @@ bool first_notice(RawClient& client, objif::Notice& notice,
     return frame.opcode == 0xFFFE &&
            objif::decode(frame.payload, notice) == objif::FrameError::kNone;
 }
+
+// Closes a descriptor when the test ends, however it ends.
+struct Descriptor {
+    explicit Descriptor(int f) : fd(f) {}
+    ~Descriptor() {
+        if (fd >= 0) ::close(fd);
+    }
+    Descriptor(const Descriptor&) = delete;
+    Descriptor& operator=(const Descriptor&) = delete;
+    int fd;
+};
 
 // ---- Point: live clients only, a reason for the refused, idle clients closed
 
@@ -457,18 +469,35 @@ TEST(DaemonSocketName, TwoDaemonsStartingTogetherOnOnePathOneServes) {
     }
 }
 
-// ---- Point: apcictl list names only rwmos-emu daemons as daemons
+// A process that holds the directory lock (flock) does not make a daemon
+// wait for ever: it waits at most 2 s, then says what blocks it (exit 1);
+// a lock released within that time is waited for.
+TEST(DaemonSocketName, DirectoryLockHeldByAnotherProcessIsWaitedForAtMostTwoSeconds) {
+    TempDir dir;
+    const Descriptor held(::open(dir.path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    ASSERT_EQ(::flock(held.fd, LOCK_EX), 0);
+    std::string out;
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(apci_test::run_daemon({"--socket", dir.file("emu.sock")}, out, dir.path()), 1);
+    const auto took = std::chrono::steady_clock::now() - t0;
+    EXPECT_GE(took, std::chrono::milliseconds(1900));
+    EXPECT_LT(took, std::chrono::seconds(6));
+    EXPECT_TRUE(contains(out, "socket directory " + dir.path() + " stayed locked for 2 s")) << out;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("emu.sock")));
 
-// Closes a descriptor when the test ends, however it ends.
-struct Descriptor {
-    explicit Descriptor(int f) : fd(f) {}
-    ~Descriptor() {
-        if (fd >= 0) ::close(fd);
-    }
-    Descriptor(const Descriptor&) = delete;
-    Descriptor& operator=(const Descriptor&) = delete;
-    int fd;
-};
+    std::thread release([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        ::flock(held.fd, LOCK_UN);
+    });
+    DaemonOptions o;
+    o.socket_path = dir.file("emu.sock");
+    auto d = Daemon::start(o);
+    release.join();
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->stop(), 0);
+}
+
+// ---- Point: apcictl list names only rwmos-emu daemons as daemons
 
 TEST(DaemonList, ListenerThatIsNotADaemonIsListedAsNotOne) {
     TempDir dir;

@@ -107,16 +107,25 @@ class DirectoryLock {
 
     bool take(const std::string& dir, std::string& why) {
         fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-        if (fd_ < 0) {
+        if (fd_ < 0 && (errno == ENOENT || errno == ENOTDIR)) {
             why = fmt::format("socket directory {}: {}", dir, std::strerror(errno));
             return false;
+        }
+        if (fd_ < 0) {
+            // A directory we may write in but not read (mode 0300): no lock to take.
+            log(Level::kWarn, "cannot open socket directory {} to lock it ({}); starting unlocked",
+                dir, std::strerror(errno));
+            return true;
         }
         const auto until = SteadyClock::now() + kDirectoryLockWait;
         for (;;) {
             if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return true;
             if (errno != EWOULDBLOCK && errno != EINTR) {
-                why = fmt::format("locking socket directory {}: {}", dir, std::strerror(errno));
-                return false;
+                // A file system without flock (ENOLCK, EOPNOTSUPP): start
+                // without taking turns rather than not at all.
+                log(Level::kWarn, "cannot lock socket directory {} ({}); starting unlocked", dir,
+                    std::strerror(errno));
+                return true;
             }
             if (SteadyClock::now() >= until) {
                 why = fmt::format(
