@@ -112,14 +112,15 @@ void MotionLayer::sync() noexcept {
 
 MotionResult MotionLayer::spool(const motion::Profile& p) {
     const MotionResult r =
-        spooler_.spool(p, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity));
+        spooler_.spool(p, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity),
+                       cycle_seconds());
     record(r);
     sync();
     return r;
 }
 
 MotionResult MotionLayer::direct(const motion::DirectCommand& c) {
-    const MotionResult r = spooler_.direct(c, exec_);
+    const MotionResult r = spooler_.direct(c, exec_, cycle_seconds());
     sync();
     return r;
 }

@@ -37,7 +37,7 @@ TEST(Interpolator, ZeroLengthTakesNoCycle) {
 }
 
 TEST(Interpolator, CycleCountSaturatesInsteadOfOverflowing) {
-    EXPECT_EQ(cycles_for(1e300, 1e-300, 0.001), kMaxMoveCycles);
+    EXPECT_EQ(cycles_for(1e300, 1e-300, 0.001), kCycleCountCeiling);
 }
 
 TEST(Interpolator, LastCycleLandsExactlyOnTheEnd) {

@@ -540,4 +540,57 @@ TEST_F(Spooler, GroupResetDiscardsTheHeldProfile) {
     EXPECT_EQ(board.motion_status().compensating_group, 0);
 }
 
+
+// ---- The limit on one move's duration (kMaxMoveCycles): refused, not cut short
+
+TEST_F(Spooler, AMoveLongerThanTheCycleLimitIsRefusedAndChangesNothing) {
+    spool_ok(line(1, 1, 0));
+    const auto before = board.motion_status();
+    // 1 unit at 1e-6 units/min: 6e10 cycles of 1 ms (it ran capped at 2^52 cycles).
+    MotionResult r = board.spool(line(2, 2, 0, 1e-6));
+    EXPECT_EQ(r.status, Status::kValueTooLow);
+    EXPECT_NE(r.message.find("raise the feed"), std::string_view::npos) << r.message;
+    // Arcs and rapids with a feed are measured too.
+    EXPECT_EQ(board.spool(arc(3, true, 1, 0, 1, 1, 1e-9)).status, Status::kValueTooLow);
+    Profile rapid = line(4, 5, 0, 1e-7);
+    rapid.kind = ProfileKind::kRapid;
+    EXPECT_EQ(board.spool(rapid).status, Status::kValueTooLow);
+    EXPECT_EQ(board.motion_status().fill, before.fill);
+    run();
+    EXPECT_EQ(position(), xyz(1, 0)) << "only the good profile moved";
+}
+
+TEST_F(Spooler, AMoveWithinTheCycleLimitRunsItsExactCycleCount) {
+    // 1 unit at 7e-5 units/min: 857142858 cycles of 1 ms, below 10^9; analytic, so fast.
+    spool_ok(line(1, 1, 0, 7e-5));
+    const std::uint64_t ran = board.run_until_idle(rwmos::motion::kMaxMoveCycles);
+    EXPECT_EQ(ran, rwmos::motion::cycles_for(1.0, 7e-5, 0.001));
+    EXPECT_NEAR(static_cast<double>(ran), 857142858.0, 1.0);
+    EXPECT_EQ(position(), xyz(1, 0));
+}
+
+TEST_F(Spooler, TheCycleLimitIsCountedInTheBoardsInterpolationCycle) {
+    // 1 unit at 5e-5 units/min: 1.2e9 cycles of 1 ms (refused), 1.2e8 of 10 ms (taken).
+    EXPECT_EQ(board.spool(line(1, 1, 0, 5e-5)).status, Status::kValueTooLow);
+    ASSERT_EQ(
+        write_int(board_obj::kBus, board_obj::kDevice, board_obj::kIdxInterpolationCycle, 0, 10000),
+        Status::kOk);
+    spool_ok(line(1, 1, 0, 5e-5));
+    const std::uint64_t ran = board.run_until_idle(rwmos::motion::kMaxMoveCycles);
+    EXPECT_EQ(ran, rwmos::motion::cycles_for(1.0, 5e-5, 0.01));
+    EXPECT_NEAR(static_cast<double>(ran), 1.2e8, 1.0);
+}
+
+TEST_F(Spooler, AJogLongerThanTheCycleLimitIsRefusedAndKeepsTheQueue) {
+    spool_ok(line(1, 10, 0));
+    const auto fill = board.motion_status().fill;
+    DirectCommand ja;
+    ja.code = DirectCode::kJA;
+    ja.axes = 0x01;
+    ja.target[0] = 1.0;
+    ja.feed = 1e-9;
+    EXPECT_EQ(board.direct(ja).status, Status::kValueTooLow);
+    EXPECT_EQ(board.motion_status().fill, fill) << "a refused jog discards nothing";
+}
+
 }  // namespace

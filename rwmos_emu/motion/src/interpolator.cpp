@@ -64,10 +64,14 @@ double path_length(const Move& m) noexcept {
 std::uint64_t cycles_for(double length, double feed, double cycle_seconds) noexcept {
     if (!(length > 0.0)) return 0;
     const double per_cycle = feed / 60.0 * cycle_seconds;
-    if (!(per_cycle > 0.0)) return kMaxMoveCycles;
+    if (!(per_cycle > 0.0)) return kCycleCountCeiling;
     const double n = std::ceil(length / per_cycle);
-    if (!(n < static_cast<double>(kMaxMoveCycles))) return kMaxMoveCycles;
+    if (!(n < static_cast<double>(kCycleCountCeiling))) return kCycleCountCeiling;
     return n < 1.0 ? 1 : static_cast<std::uint64_t>(n);
+}
+
+bool within_move_limit(const Move& m, double cycle_seconds) noexcept {
+    return cycles_for(path_length(m), m.feed, cycle_seconds) <= kMaxMoveCycles;
 }
 
 void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept {

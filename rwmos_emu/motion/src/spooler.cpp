@@ -84,6 +84,12 @@ MotionResult check_profile(const Profile& p) {
     return {};
 }
 
+// The board's limit on one move (interpolator.h kMaxMoveCycles); static text (MotionResult).
+static_assert(kMaxMoveCycles == 1'000'000'000, "kTooLong names the limit");
+constexpr std::string_view kTooLong =
+    "the move takes more than 1000000000 interpolation cycles at this feed (11.6 days at 1 ms): "
+    "raise the feed";
+
 SegmentRole role_of(geom::SegmentRole r) {
     switch (r) {
         case geom::SegmentRole::kContour:
@@ -248,13 +254,15 @@ MotionResult Spooler::commit(const Batch& batch, Executor& exec, std::size_t cap
 // ---- Calls
 
 MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& exec,
-                            std::size_t capacity) {
+                            std::size_t capacity, double cycle_seconds) {
     if (MotionResult r = check_profile(p); !r.ok()) return r;
     if (tc.error_pending)
         return refuse(Status::kWrongDeviceState,
                       "the spooler holds after a TC error: write ERROR to clear it");
     Resolved res;
     if (MotionResult r = resolve(p, tc, res); !r.ok()) return r;
+    if (!within_move_limit(programmed_move(p, res, exec), cycle_seconds))
+        return refuse(Status::kValueTooLow, kTooLong);
 
     Compensation trial = comp_;
     Batch& batch = batch_;
@@ -358,6 +366,18 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     return {};
 }
 
+// The profile's move as programmed (before compensation and tool length): from where the
+// programmed path stands (a rapid: from where the queue ends) to its end, at its feed.
+Move Spooler::programmed_move(const Profile& p, const Resolved& res, const Executor& exec) const {
+    const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
+    if (p.kind == ProfileKind::kRapid)
+        return line_move(exec.planned_end(), res.program, feed, SegmentRole::kRapid, p.tag);
+    if (is_arc(p.kind))
+        return arc_move(path_, res.path, res.arc_axes, res.cx, res.cy, res.ccw, feed,
+                        SegmentRole::kUncompensated, p.tag);
+    return line_move(path_, res.path, feed, SegmentRole::kUncompensated, p.tag);
+}
+
 MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSettings& tc,
                                                Executor& exec, std::size_t capacity) {
     if (comp_.group != group || !comp_.comp.running()) return {};
@@ -397,13 +417,22 @@ MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&
     return {};
 }
 
-MotionResult Spooler::direct(const DirectCommand& c, Executor& exec) {
+MotionResult Spooler::direct(const DirectCommand& c, Executor& exec, double cycle_seconds) {
     if (c.code != DirectCode::kJA && c.code != DirectCode::kJS)
         return refuse(Status::kInvalidValue, "direct command is not JA or JS");
+    // The jog starts where the path stands (offsets such as OTC's stay on top of it); the
+    // discard below stops the move under way there.
+    AxisVector end = exec.nominal_position();
+    Move jog;
     if (c.code == DirectCode::kJA) {
         if (c.axes == 0) return refuse(Status::kInvalidValue, "JA names no axis");
         if (MotionResult r = check_feed(c.feed, /*rapid=*/true); !r.ok()) return r;
         if (MotionResult r = check_targets(c.axes, c.target); !r.ok()) return r;
+        for (int a = 0; a < kAxisCount; ++a)
+            if ((c.axes & (1u << a)) != 0) end[a] = c.target[a];
+        jog = line_move(exec.nominal_position(), end, c.feed == 0.0 ? kDefaultRapidFeed : c.feed,
+                        SegmentRole::kRapid, 0);
+        if (!within_move_limit(jog, cycle_seconds)) return refuse(Status::kValueTooLow, kTooLong);
     } else if (c.axes != 0) {
         return refuse(Status::kInvalidValue, "JS stops every axis and takes no axes");
     }
@@ -413,15 +442,9 @@ MotionResult Spooler::direct(const DirectCommand& c, Executor& exec) {
     comp_.comp.discard();
     pending_.clear();
     exec.discard();
-    // The jog starts where the path stands (offsets such as OTC's stay on top of it).
-    AxisVector end = exec.nominal_position();
     if (c.code == DirectCode::kJA) {
-        for (int a = 0; a < kAxisCount; ++a)
-            if ((c.axes & (1u << a)) != 0) end[a] = c.target[a];
-        Move m = line_move(exec.nominal_position(), end, c.feed == 0.0 ? kDefaultRapidFeed : c.feed,
-                           SegmentRole::kRapid, 0);
-        m.direct = true;
-        exec.push(m);
+        jog.direct = true;
+        exec.push(jog);
     }
     program_ = end;
     path_ = end;

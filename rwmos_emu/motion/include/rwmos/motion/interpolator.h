@@ -62,10 +62,20 @@ double arc_plane_length(const Move& m) noexcept;
 // Path length over all moving axes (arcs: sqrt(arc length^2 + other axes^2)).
 double path_length(const Move& m) noexcept;
 
+// The most interpolation cycles one move may take: 10^9, 11.6 days at the default cycle of
+// 1 ms. The spooler refuses a profile or jog with a move longer than that (ValueTooLow: a feed
+// too low for its length) instead of running it for weeks or cutting it short; 10^9 is also
+// the bound of `apcictl step` and `step --max`, so one command runs any move to its end.
+inline constexpr std::uint64_t kMaxMoveCycles = 1'000'000'000;
+// Where cycles_for() saturates: beyond 2^52 a double no longer counts cycles one by one. Only a
+// move the spooler would refuse gets there (a queued move runs longer than kMaxMoveCycles only
+// when InterpolationCycle is shortened after it was spooled: at most 40 times, 250 us for 10 ms).
+inline constexpr std::uint64_t kCycleCountCeiling = std::uint64_t{1} << 52;
 // Cycles a path of `length` takes at `feed` units/min with cycles of
-// `cycle_seconds`; 0 for a zero length. Saturates at kMaxMoveCycles.
-inline constexpr std::uint64_t kMaxMoveCycles = std::uint64_t{1} << 52;
+// `cycle_seconds`; 0 for a zero length. Saturates at kCycleCountCeiling.
 std::uint64_t cycles_for(double length, double feed, double cycle_seconds) noexcept;
+// The move fits the board's limit: at most kMaxMoveCycles cycles of `cycle_seconds`.
+bool within_move_limit(const Move& m, double cycle_seconds) noexcept;
 
 // Axis positions after cycle k of n (0 <= k <= n, n > 0); k == n is exactly `end`.
 void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;

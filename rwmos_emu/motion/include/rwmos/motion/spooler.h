@@ -56,9 +56,11 @@ class Spooler {
   public:
     // A profile from the host. Checks it (nothing changes when it is bad),
     // then spools the moves it yields into `exec` (at most `capacity` moves
-    // in the queue: kBusy and nothing taken when they do not fit).
+    // in the queue: kBusy and nothing taken when they do not fit). A profile
+    // whose programmed move takes more than kMaxMoveCycles cycles of
+    // `cycle_seconds` at its feed is refused (kValueTooLow).
     MotionResult spool(const Profile& p, const TcSettings& tc, Executor& exec,
-                       std::size_t capacity);
+                       std::size_t capacity, double cycle_seconds);
 
     // STATUS = 0 on `group`: the held profile is corrected and spooled with the
     // departure to its programmed end ([APCI-TC] section 1).
@@ -70,8 +72,9 @@ class Spooler {
     MotionResult ssf(AxisMask axes, std::int32_t command, const TcSettings& tc, Executor& exec,
                      std::size_t capacity);
     // Direct command: discards the queue and the held profile ([APCI-TC]
-    // section 1), then acts (JA: jog to the target; JS: stop).
-    MotionResult direct(const DirectCommand& c, Executor& exec);
+    // section 1), then acts (JA: jog to the target; JS: stop). A jog longer
+    // than kMaxMoveCycles cycles of `cycle_seconds` is refused (kValueTooLow).
+    MotionResult direct(const DirectCommand& c, Executor& exec, double cycle_seconds);
     // RESET, Reset, Clean: the held profile of `group` is dropped unspooled.
     void discard_held(std::int32_t group);
     // ReInit, Reset, RESET, Clean ([APCI-TC] Table 2: "Intern gespeicherte
@@ -146,6 +149,7 @@ class Spooler {
     };
 
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
+    Move programmed_move(const Profile& p, const Resolved& res, const Executor& exec) const;
     // The compensator's segments as board-axis moves, appended to `batch`.
     // Departures are dropped unless `keep_departure`.
     void append_segments(const Compensation& c, const geom::SegmentBatch& segs, bool keep_departure,
