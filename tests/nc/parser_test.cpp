@@ -195,7 +195,8 @@ TEST(Parser, ExpectedNumberAfterAddress) {
 TEST(Parser, NumberOutOfRange) {
     const std::string huge = "X" + std::string(400, '9');
     EXPECT_EQ(error(huge), "prog.nc:12:2: the number after 'X' is out of range");
-    EXPECT_EQ(error("N99999999999999999999"), "prog.nc:12:2: the number after 'N' is out of range");
+    EXPECT_EQ(error("N99999999999999999999"),
+              "prog.nc:12:2: block number N99999999999999999999 out of range 0..9999999999999");
 }
 
 TEST(Parser, WholeNumberWords) {

@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <string_view>
 #include <utility>
 
 #include "apci/nc/lexer.h"
@@ -42,21 +44,19 @@ class RowParser {
                         "expected 'corr[n].dl|dr|dr2 value' or a '#' comment");
         c.advance();
         const std::uint32_t index_col = c.column();
-        std::uint64_t index = 0;
         if (!is_digit(c.peek()))
             return fail(ErrorKind::kSyntax, index_col, "expected a row number after '['");
-        while (is_digit(c.peek())) {
-            if (index < 1'000'000) index = index * 10 + static_cast<std::uint64_t>(c.peek() - '0');
-            c.advance();
-        }
+        const std::string_view digits = c.scan_digits();
         if (c.peek() != ']') return fail(ErrorKind::kSyntax, c.column(), "expected ']'");
         c.advance();
-        if (index < 1 || index > static_cast<std::uint64_t>(kMaxCorrectionRow))
+        const std::optional<std::uint64_t> index =
+            whole_at_most(digits, static_cast<std::uint64_t>(kMaxCorrectionRow));
+        if (!index || *index < 1)
             return fail(ErrorKind::kValue, index_col,
                         fmt::format("correction row {} out of range 1..{} (row 0 is no "
                                     "correction: FUNCTION CORRDATA RESET TCS)",
-                                    index, kMaxCorrectionRow));
-        const int r = static_cast<int>(index);
+                                    digits, kMaxCorrectionRow));
+        const int r = static_cast<int>(*index);
         if (c.peek() != '.')
             return fail(ErrorKind::kSyntax, c.column(),
                         fmt::format("expected '.' and a field name after 'corr[{}]'", r));

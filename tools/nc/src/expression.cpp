@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string_view>
 
 namespace apci::nc {
 
@@ -119,15 +121,14 @@ class Evaluator {
     bool parameter(double& out) {
         const std::uint32_t col = c_.column();
         c_.advance();  // 'P'
-        int n = 0;
-        while (is_digit(c_.peek())) {
-            n = n * 10 + (c_.peek() - '0');
-            c_.advance();
-            if (n >= kParameterCount)
-                return fail(
-                    ErrorKind::kValue, col,
-                    fmt::format("P parameter number out of range 0..{}", kParameterCount - 1));
-        }
+        const std::string_view digits = c_.scan_digits();
+        const std::optional<std::uint64_t> v =
+            whole_at_most(digits, static_cast<std::uint64_t>(kParameterCount - 1));
+        if (!v)
+            return fail(ErrorKind::kValue, col,
+                        fmt::format("P parameter number P{} out of range 0..{}", digits,
+                                    kParameterCount - 1));
+        const int n = static_cast<int>(*v);
         if (ctx_ == nullptr || !ctx_->parameter(n, out))
             return fail(ErrorKind::kProgramRule, col,
                         fmt::format("P{} is used before it is set", n));

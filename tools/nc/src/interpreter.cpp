@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "apci/nc/arc.h"
+#include "apci/nc/move_time.h"
 #include "apci/nc/tools.h"
 
 namespace apci::nc {
@@ -274,6 +275,15 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
             case Motion::kArcCcw:
                 if (!arc_move(c, s, m, state_.position, end, move)) return false;
                 break;
+        }
+        if (m != Motion::kRapid) {
+            const double length = m == Motion::kLine ? move_length(state_.position, end)
+                                                     : move_length(std::get<ArcMove>(move));
+            std::string why = check_move_cycles(length, s.feed, options_.cycle_seconds);
+            if (!why.empty())
+                return c.fail(ErrorKind::kValue,
+                              b.feed.present() ? b.feed.column : first_motion_column(b),
+                              std::move(why));
         }
         s.position = end;
         if (b.b_axis.present())

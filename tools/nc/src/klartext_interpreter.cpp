@@ -425,6 +425,13 @@ bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, E
                       fmt::format("no feed rate: program F (or FMAX) before the first {} move",
                                   b.kind == KlartextKind::kVectorLine ? "LN" : "L"));
     }
+    if (moves && !b.fmax.present()) {
+        std::string why = check_move_cycles(move_length(state_.position, s.position), s.feed,
+                                            options_.cycle_seconds);
+        if (!why.empty())
+            return c.fail(ErrorKind::kValue,
+                          b.feed.present() ? b.feed.column : first_axis_column(b), std::move(why));
+    }
     if (b.has_m(2) || b.has_m(30)) s.ended = true;
 
     // Every check passed: emit in the documented order and commit.

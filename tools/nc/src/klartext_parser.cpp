@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include <fmt/format.h>
 
+#include <optional>
+#include <string_view>
+
 #include "apci/nc/correction_table.h"
 #include "apci/nc/klartext.h"
 #include "apci/nc/lexer.h"
@@ -111,30 +114,40 @@ class KlartextParser {
                     fmt::format("unexpected {} after {}", describe_char(c_.peek()), what));
     }
 
-    bool whole_number(std::uint64_t& value, std::string_view what) {
+    // The digits of a whole number (`what` names it when there are none or it has a sign or a
+    // decimal point); the callers check the range and name a number out of it as written.
+    bool whole_digits(std::string_view& digits, std::string_view what) {
         const std::uint32_t col = c_.column();
         if (!is_digit(c_.peek())) {
             return fail(ErrorKind::kSyntax, col, fmt::format("expected {}", what));
         }
-        value = 0;
-        bool overflow = false;
-        while (is_digit(c_.peek())) {
-            if (value > 999'999'999'999ULL) overflow = true;
-            value = value * 10 + static_cast<std::uint64_t>(c_.peek() - '0');
-            c_.advance();
-        }
+        digits = c_.scan_digits();
         if (c_.peek() == '.' || c_.peek() == '+' || c_.peek() == '-') {
             return fail(ErrorKind::kValue, col,
                         fmt::format("{} is a whole number without sign or decimal point", what));
         }
-        if (overflow) return fail(ErrorKind::kValue, col, fmt::format("{} is out of range", what));
+        return true;
+    }
+
+    // A whole number in 0..max; one beyond is named as written: "`name` <digits> out of range".
+    bool whole_number(std::uint64_t& value, std::string_view what, std::string_view name,
+                      std::uint64_t max = kMaxWordNumber) {
+        const std::uint32_t col = c_.column();
+        std::string_view digits;
+        if (!whole_digits(digits, what)) return false;
+        const std::optional<std::uint64_t> v = whole_at_most(digits, max);
+        if (!v) {
+            return fail(ErrorKind::kValue, col,
+                        fmt::format("{} {} out of range 0..{}", name, digits, max));
+        }
+        value = *v;
         return true;
     }
 
     bool block_number() {
         const std::uint32_t col = c_.column();
         std::uint64_t n = 0;
-        if (!whole_number(n, "a block number")) return false;
+        if (!whole_number(n, "a block number", "block number")) return false;
         if (!is_word_end(c_.peek())) {
             return fail(ErrorKind::kSyntax, c_.column(),
                         fmt::format("expected a blank after the block number, found {}",
@@ -213,11 +226,9 @@ class KlartextParser {
                         "tools are called by number (TOOL CALL 5 Z), not by name");
         }
         std::uint64_t n = 0;
-        if (!whole_number(n, "the tool number after 'TOOL CALL'")) return false;
-        if (n > static_cast<std::uint64_t>(kMaxToolNumber)) {
-            return fail(ErrorKind::kValue, tool_col,
-                        fmt::format("tool number {} out of range 0..{}", n, kMaxToolNumber));
-        }
+        if (!whole_number(n, "the tool number after 'TOOL CALL'", "tool number",
+                          static_cast<std::uint64_t>(kMaxToolNumber)))
+            return false;
         if (!is_word_end(c_.peek())) {
             return fail(ErrorKind::kSyntax, c_.column(),
                         fmt::format("expected a blank after the tool number, found {}",
@@ -346,15 +357,17 @@ class KlartextParser {
         }
         c_.advance();
         const std::uint32_t row_col = c_.column();
-        std::uint64_t n = 0;
-        if (!whole_number(n, "the row number after 'FUNCTION CORRDATA TCS #'")) return false;
-        if (n < 1 || n > static_cast<std::uint64_t>(kMaxCorrectionRow)) {
+        std::string_view digits;
+        if (!whole_digits(digits, "the row number after 'FUNCTION CORRDATA TCS #'")) return false;
+        const std::optional<std::uint64_t> n =
+            whole_at_most(digits, static_cast<std::uint64_t>(kMaxCorrectionRow));
+        if (!n || *n < 1) {
             return fail(ErrorKind::kValue, row_col,
                         fmt::format("correction row {} out of range 1..{} (FUNCTION CORRDATA "
                                     "RESET TCS leaves the table)",
-                                    n, kMaxCorrectionRow));
+                                    digits, kMaxCorrectionRow));
         }
-        b_.corr_row = Word<int>{static_cast<int>(n), row_col};
+        b_.corr_row = Word<int>{static_cast<int>(*n), row_col};
         return expect_end("FUNCTION CORRDATA TCS #n");
     }
 
@@ -561,7 +574,7 @@ class KlartextParser {
 
     bool m_function(std::uint32_t col) {
         std::uint64_t m = 0;
-        if (!whole_number(m, "a number after 'M'")) return false;
+        if (!whole_number(m, "a number after 'M'", "M function")) return false;
         if (!is_word_end(c_.peek())) {
             return fail(ErrorKind::kSyntax, c_.column(),
                         fmt::format("expected a blank after the M function, found {}",

@@ -104,6 +104,22 @@ std::string_view LineCursor::scan_identifier() noexcept {
     return line_.substr(begin, pos_ - begin);
 }
 
+std::string_view LineCursor::scan_digits() noexcept {
+    const std::size_t begin = pos_;
+    while (pos_ < line_.size() && is_digit(line_[pos_])) ++pos_;
+    return line_.substr(begin, pos_ - begin);
+}
+
+std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept {
+    std::uint64_t v = 0;
+    for (const char c : digits) {
+        const auto d = static_cast<std::uint64_t>(c - '0');
+        if (d > max || v > (max - d) / 10) return std::nullopt;  // v * 10 + d > max
+        v = v * 10 + d;
+    }
+    return v;
+}
+
 bool LineCursor::skip_paren_comment() noexcept {
     const std::size_t close = line_.find(')', pos_ + 1);
     if (close == std::string_view::npos) return false;

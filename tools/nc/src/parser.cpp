@@ -5,6 +5,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <optional>
+#include <string_view>
 #include <utility>
 
 #include "apci/nc/lexer.h"
@@ -186,16 +188,15 @@ class BlockParser {
         a.column = c_.column();
         if (to_upper(c_.peek()) == 'P') {
             c_.advance();
-            int n = 0;
-            while (is_digit(c_.peek())) {
-                n = n * 10 + (c_.peek() - '0');
-                c_.advance();
-                if (n >= kParameterCount) {
-                    return fail_here(ErrorKind::kValue, a.column,
-                                     fmt::format("P parameter number out of range 0..{}",
-                                                 kParameterCount - 1));
-                }
+            const std::string_view digits = c_.scan_digits();
+            const std::optional<std::uint64_t> v =
+                whole_at_most(digits, static_cast<std::uint64_t>(kParameterCount - 1));
+            if (!v) {
+                return fail_here(ErrorKind::kValue, a.column,
+                                 fmt::format("P parameter number P{} out of range 0..{}", digits,
+                                             kParameterCount - 1));
             }
+            const int n = static_cast<int>(*v);
             a.to_parameter = true;
             a.parameter = n;
         } else {
@@ -489,15 +490,15 @@ class BlockParser {
             return fail_here(ErrorKind::kSyntax, col, "expected a P parameter after $FOR ($FOR P1 = 0, 10, 1)");
         }
         c_.advance();
-        int n = 0;
-        while (is_digit(c_.peek())) {
-            n = n * 10 + (c_.peek() - '0');
-            c_.advance();
-            if (n >= kParameterCount) {
-                return fail_here(ErrorKind::kValue, col,
-                                 fmt::format("P parameter number out of range 0..{}", kParameterCount - 1));
-            }
+        const std::string_view digits = c_.scan_digits();
+        const std::optional<std::uint64_t> v =
+            whole_at_most(digits, static_cast<std::uint64_t>(kParameterCount - 1));
+        if (!v) {
+            return fail_here(ErrorKind::kValue, col,
+                             fmt::format("P parameter number P{} out of range 0..{}", digits,
+                                         kParameterCount - 1));
         }
+        const int n = static_cast<int>(*v);
         loop.parameter = n;
         c_.skip_blanks();
         if (c_.peek() != '=') return fail_here(ErrorKind::kSyntax, c_.column(), "expected '=' after the $FOR parameter");
@@ -602,7 +603,10 @@ class BlockParser {
     }
 
     // Digits only: G, M, D and N take whole numbers without sign or decimal point.
-    bool whole(char letter, std::uint64_t& value) {
+    // A whole number after `letter`, at most `max`; one beyond is named as written with its
+    // range ("tool number D<40 digits> out of range 0..1023"), never clamped or wrapped.
+    bool whole(char letter, std::uint64_t& value, std::string_view what,
+               std::uint64_t max = kMaxWordNumber) {
         const std::uint32_t num_col = c_.column();
         const char ch = c_.peek();
         if (!is_digit(ch)) {
@@ -614,22 +618,18 @@ class BlockParser {
             return fail_here(ErrorKind::kSyntax, num_col,
                              fmt::format("expected a number after '{}'", letter));
         }
-        value = 0;
-        bool overflow = false;
-        while (is_digit(c_.peek())) {
-            if (value > 999'999'999'999ULL) overflow = true;
-            value = value * 10 + static_cast<std::uint64_t>(c_.peek() - '0');
-            c_.advance();
-        }
+        const std::string_view digits = c_.scan_digits();
         if (c_.peek() == '.') {
             return fail_here(
                 ErrorKind::kValue, c_.column(),
                 fmt::format("'{}' takes a whole number without decimal point", letter));
         }
-        if (overflow) {
+        const std::optional<std::uint64_t> v = whole_at_most(digits, max);
+        if (!v) {
             return fail_here(ErrorKind::kValue, num_col,
-                             fmt::format("the number after '{}' is out of range", letter));
+                             fmt::format("{} {}{} out of range 0..{}", what, letter, digits, max));
         }
+        value = *v;
         return true;
     }
 
@@ -639,7 +639,7 @@ class BlockParser {
                              "the block number 'N' must be the first word of the block");
         }
         std::uint64_t v = 0;
-        if (!whole('N', v)) return false;
+        if (!whole('N', v, "block number")) return false;
         b_.number.value = static_cast<std::int64_t>(v);
         b_.number.column = col;
         return true;
@@ -663,7 +663,7 @@ class BlockParser {
 
     bool g_code(std::uint32_t col) {
         std::uint64_t g = 0;
-        if (!whole('G', g)) return false;
+        if (!whole('G', g, "G code")) return false;
         switch (g) {
             case 0:
                 return set_group(b_.motion, Motion::kRapid, col, "motion mode");
@@ -723,7 +723,7 @@ class BlockParser {
 
     bool m_code(std::uint32_t col) {
         std::uint64_t m = 0;
-        if (!whole('M', m)) return false;
+        if (!whole('M', m, "M code")) return false;
         if (m != 30) {
             return fail_here(ErrorKind::kUnknownWord, col,
                              fmt::format("unknown M code M{} (known: M30)", m));
@@ -738,13 +738,9 @@ class BlockParser {
 
     bool tool(std::uint32_t col) {
         if (b_.tool.present()) return twice('D', col);
-        const std::uint32_t num_col = c_.column();
         std::uint64_t d = 0;
-        if (!whole('D', d)) return false;
-        if (d > static_cast<std::uint64_t>(kMaxToolNumber)) {
-            return fail_here(ErrorKind::kValue, num_col,
-                             fmt::format("tool number D{} out of range 0..{}", d, kMaxToolNumber));
-        }
+        if (!whole('D', d, "tool number", static_cast<std::uint64_t>(kMaxToolNumber)))
+            return false;
         b_.tool.value = static_cast<int>(d);
         b_.tool.column = col;
         return true;

@@ -15,7 +15,9 @@ namespace apci::nc {
 EventStream::EventStream(LineSource source, const InterpreterOptions& options)
     : source_(std::move(source)),
       interpreter_(options),
-      klartext_(KlartextOptions{options.start_position, options.tools, options.corrections}) {
+      klartext_(KlartextOptions{options.start_position, options.tools, options.corrections,
+                                options.cycle_seconds}),
+      max_loop_blocks_(options.max_loop_blocks) {
     loops_.reserve(kMaxLoopDepth);
 }
 
@@ -44,6 +46,9 @@ bool EventStream::line(std::string_view text) {
     }
     if (dialect_ == Dialect::kKlartext) return klartext_line(text);
     if (!parse_din_line(text, n, source_.name(), parsed_, error_, this)) return fail(error_);
+    const bool is_block = parsed_.kind == LineKind::kIsg || parsed_.kind == LineKind::kAssignment ||
+                          parsed_.kind == LineKind::kBlock;
+    if (is_block && !count_loop_block()) return false;
     switch (parsed_.kind) {
         case LineKind::kIsg:
             seen_block_ = true;
@@ -208,7 +213,8 @@ bool EventStream::loop_start(const IsgLine& isg) {
     const auto i = static_cast<std::size_t>(isg.loop.parameter);
     params_[i] = isg.loop.start;
     params_set_.set(i);
-    LoopFrame f{isg.loop, source_.tell(), source_.line_number(), isg.column};
+    LoopFrame f{isg.loop, source_.tell(), source_.line_number(), isg.column,
+                parsed_.block.block_number()};
     if (!loop_continues(f)) return skip_loop(isg);
     loops_.push_back(f);
     return true;
@@ -258,7 +264,29 @@ bool EventStream::loop_end(const IsgLine& isg) {
         return true;
     }
     if (!source_.seek(f.body, error_)) return fail(error_);
+    ++f.repetitions;
     return true;
+}
+
+// The loop named is the open one that repeated most since its $FOR: the one that does not end
+// (an inner loop that ends and starts again inside an endless outer one repeats less).
+bool EventStream::count_loop_block() {
+    if (loops_.empty() || ++loop_blocks_ <= max_loop_blocks_) return true;
+    const LoopFrame* worst = &loops_.back();
+    for (const LoopFrame& f : loops_)
+        if (f.repetitions > worst->repetitions) worst = &f;
+    Diagnostic d;
+    d.kind = ErrorKind::kProgramRule;
+    d.file = source_.name();
+    d.line = worst->line;
+    d.column = worst->column;
+    d.block = worst->block;
+    d.message = fmt::format(
+        "$FOR P{} does not end: $FOR loops may run at most {} blocks in all, every repetition "
+        "counted, and this loop has repeated its body {} times: does the body set P{} back, or "
+        "is the end value too far?",
+        worst->loop.parameter, max_loop_blocks_, worst->repetitions, worst->loop.parameter);
+    return fail(std::move(d));
 }
 
 Result<ProgramSummary> validate(EventStream& stream) {

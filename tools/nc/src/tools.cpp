@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string_view>
 #include <tuple>
 
 #include "apci/nc/block.h"
@@ -97,13 +99,15 @@ class ToolLineParser {
             return fail(ErrorKind::kSyntax, start_col,
                         "expected 'wz[i].field value' or a '#' comment");
         }
-        std::uint64_t index = 0;
-        if (!bracketed(c, "after 'wz'", "a tool number", index)) return false;
-        if (index < 1 || index > static_cast<std::uint64_t>(kMaxToolNumber)) {
+        std::string_view digits;
+        if (!bracketed(c, "after 'wz'", "a tool number", digits)) return false;
+        const std::optional<std::uint64_t> index =
+            whole_at_most(digits, static_cast<std::uint64_t>(kMaxToolNumber));
+        if (!index || *index < 1) {
             return fail(ErrorKind::kValue, index_col_,
-                        fmt::format("tool number {} out of range 1..{}", index, kMaxToolNumber));
+                        fmt::format("tool number {} out of range 1..{}", digits, kMaxToolNumber));
         }
-        const int tool = static_cast<int>(index);
+        const int tool = static_cast<int>(*index);
         if (c.peek() != '.') {
             return fail(ErrorKind::kSyntax, c.column(),
                         fmt::format("expected '.' and a field name after 'wz[{}]'", tool));
@@ -123,13 +127,17 @@ class ToolLineParser {
         std::uint64_t axis = 0;
         std::string label = fmt::format("wz[{}].{}", tool, name);
         if (field->indexed) {
-            if (!bracketed(c, fmt::format("after '{}'", label), "an axis index", axis))
+            std::string_view axis_digits;
+            if (!bracketed(c, fmt::format("after '{}'", label), "an axis index", axis_digits))
                 return false;
-            if (axis >= kAxisOffsetCount) {
-                return fail(
-                    ErrorKind::kValue, index_col_,
-                    fmt::format("axis index {} out of range 0..{}", axis, kAxisOffsetCount - 1));
+            const std::optional<std::uint64_t> a =
+                whole_at_most(axis_digits, static_cast<std::uint64_t>(kAxisOffsetCount - 1));
+            if (!a) {
+                return fail(ErrorKind::kValue, index_col_,
+                            fmt::format("axis index {} out of range 0..{}", axis_digits,
+                                        kAxisOffsetCount - 1));
             }
+            axis = *a;
             label = fmt::format("{}[{}]", label, axis);
         } else if (c.peek() == '[') {
             return fail(ErrorKind::kSyntax, c.column(), fmt::format("'{}' takes no index", name));
@@ -166,8 +174,9 @@ class ToolLineParser {
     }
 
     // "[digits]" at the cursor.
+    // "[digits]": the digits as written (range checks name them so, never clamped).
     bool bracketed(LineCursor& c, std::string_view where, std::string_view what,
-                   std::uint64_t& out) {
+                   std::string_view& out) {
         if (c.peek() != '[') {
             return fail(ErrorKind::kSyntax, c.column(), fmt::format("expected '[' {}", where));
         }
@@ -176,11 +185,7 @@ class ToolLineParser {
         if (!is_digit(c.peek())) {
             return fail(ErrorKind::kSyntax, index_col_, fmt::format("expected {} after '['", what));
         }
-        out = 0;
-        while (is_digit(c.peek())) {
-            if (out < 1'000'000) out = out * 10 + static_cast<std::uint64_t>(c.peek() - '0');
-            c.advance();
-        }
+        out = c.scan_digits();
         if (c.peek() != ']') {
             return fail(ErrorKind::kSyntax, c.column(), "expected ']'");
         }

@@ -9,8 +9,10 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
+#include "apci/nc/block.h"
 #include "apci/nc/lexer.h"
 #include "rwmos/object_map.h"
 
@@ -51,7 +53,13 @@ class LineParser {
         else
             return fail(col, "expected 'cycle N' or 'block N' at the start of the line");
         skip();
-        if (!whole(w.at, w.when == PlcWrite::When::kCycle ? "cycle" : "block")) return false;
+        const bool cycle = w.when == PlcWrite::When::kCycle;
+        if (!whole(w.at, cycle ? "cycle" : "block", cycle ? kMaxPlcCycle : nc::kMaxWordNumber,
+                   cycle ? fmt::format(" (the clock runs on to it: at most {:.1f} days of board "
+                                       "time at 1 ms)",
+                                       static_cast<double>(kMaxPlcCycle) * 1e-3 / 86400.0)
+                         : " (an N number of the program)"))
+            return false;
         skip();
         if (!unit(w)) return false;
         skip();
@@ -74,17 +82,18 @@ class LineParser {
         err_.message = std::move(message);
         return false;
     }
-    bool whole(std::uint64_t& out, std::string_view what) {
+    // A whole number in 0..max after `what`; one beyond is named as written, with its range
+    // and `why` (never clamped or wrapped).
+    bool whole(std::uint64_t& out, std::string_view what, std::uint64_t max,
+               std::string_view why) {
         const std::uint32_t col = c_.column();
         if (!nc::is_digit(c_.peek()))
             return fail(col, fmt::format("expected a whole number after '{}'", what));
-        out = 0;
-        while (nc::is_digit(c_.peek())) {
-            if (out > (std::numeric_limits<std::uint64_t>::max() - 9) / 10)
-                return fail(col, fmt::format("the {} number is out of range", what));
-            out = out * 10 + static_cast<std::uint64_t>(c_.peek() - '0');
-            c_.advance();
-        }
+        const std::string_view digits = c_.scan_digits();
+        const std::optional<std::uint64_t> v = nc::whole_at_most(digits, max);
+        if (!v)
+            return fail(col, fmt::format("{} {} out of range 0..{}{}", what, digits, max, why));
+        out = *v;
         return true;
     }
     // "[i]" with i in 0..last; `what` names the unit in the error.
@@ -92,14 +101,17 @@ class LineParser {
         if (c_.peek() != '[')
             return fail(c_.column(), fmt::format("expected '[i]' after {}", what));
         c_.advance();
-        std::uint64_t i = 0;
-        if (!whole(i, fmt::format("{}[", what))) return false;
-        if (i > static_cast<std::uint64_t>(last))
+        const std::uint32_t digits_col = c_.column();
+        if (!nc::is_digit(c_.peek()))
+            return fail(digits_col, fmt::format("expected a whole number after '{}['", what));
+        const std::optional<std::uint64_t> i =
+            nc::whole_at_most(c_.scan_digits(), static_cast<std::uint64_t>(last));
+        if (!i)
             return fail(col, fmt::format("{}[i]: {} index 0..{}", what,
                                          what == "tool_temp_comp" ? "component" : "axis", last));
         if (c_.peek() != ']') return fail(c_.column(), "expected ']' after the index");
         c_.advance();
-        out = static_cast<int>(i);
+        out = static_cast<int>(*i);
         return true;
     }
     bool unit(PlcWrite& w) {

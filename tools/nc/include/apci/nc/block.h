@@ -61,6 +61,9 @@ struct Word {
 };
 
 inline constexpr int kMaxToolNumber = 1023;  // D and wz[i] (TC module WKZINDEX 0..1023)
+// The largest N number, G code or M code a word may carry (13 digits); one beyond is an error
+// that shows it as written.
+inline constexpr std::uint64_t kMaxWordNumber = 9'999'999'999'999;
 
 // ISG online tool compensation ([ISG-OTC] section 2.1): the processing types and
 // modes #OTC names. The values are the OTC module's object values (bus 1330).

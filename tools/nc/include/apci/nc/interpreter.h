@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <optional>
 
 #include "apci/nc/parser.h"
@@ -12,6 +13,7 @@
 #include "apci/nc/block.h"
 #include "apci/nc/diagnostic.h"
 #include "apci/nc/events.h"
+#include "apci/nc/move_time.h"
 
 namespace apci::nc {
 
@@ -59,6 +61,13 @@ struct ModalState {
     double trafo_length = 0.0;  // the tool length (mm) the transformation uses
 };
 
+// The blocks $FOR loops may run in one pass over a program, every repetition of a body counted
+// (blocks outside loops are not counted: a long program is bounded by its file). A loop whose
+// body sets its own parameter back, or `$FOR P1 = 0, 1e15, 1`, ends with an error naming the
+// loop instead of running on for hours (docs/nc-programs.md "Limits"). 10^7 blocks: ~10 s of
+// validation, far beyond the loops of real programs ([ISG-OTC]'s examples run 21 times).
+inline constexpr std::uint64_t kMaxLoopBlocks = 10'000'000;
+
 struct InterpreterOptions {
     // Where the tool stands when the program starts (mm); the first move starts here.
     Eigen::Vector3d start_position = Eigen::Vector3d::Zero();
@@ -68,6 +77,11 @@ struct InterpreterOptions {
     // Klartext: FUNCTION CORRDATA TCS #n must name a row of this table (KlartextOptions). Not
     // owned; null: any row 1..1023.
     const CorrectionTable* corrections = nullptr;
+    // The board's interpolation cycle (s): a G1/G2/G3 whose feed makes it take more than
+    // kMaxMoveCycles of them is an error naming its block (move_time.h).
+    double cycle_seconds = kDefaultCycleSeconds;
+    // $FOR loops run at most this many blocks in all, every repetition counted (program.h).
+    std::uint64_t max_loop_blocks = kMaxLoopBlocks;
 };
 
 class Interpreter {

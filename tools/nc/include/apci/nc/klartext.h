@@ -17,6 +17,7 @@
 #include "apci/nc/block.h"
 #include "apci/nc/diagnostic.h"
 #include "apci/nc/events.h"
+#include "apci/nc/move_time.h"
 
 namespace apci::nc {
 
@@ -137,6 +138,9 @@ struct KlartextOptions {
     // row's deltas join the checks above. Without one any row 1..1023 is accepted and its
     // deltas are unknown (0 here). Not owned.
     const CorrectionTable* corrections = nullptr;
+    // The board's interpolation cycle (s): an L or LN whose feed makes it take more than
+    // kMaxMoveCycles of them is an error naming its block (move_time.h).
+    double cycle_seconds = kDefaultCycleSeconds;
 };
 
 class KlartextInterpreter {

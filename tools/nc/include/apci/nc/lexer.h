@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace apci::nc {
@@ -49,6 +50,10 @@ class LineCursor {
     NumberScan scan_number(double& value) noexcept;
     // Letters, digits and '_' starting with a letter or '_'; empty when none at the cursor.
     std::string_view scan_identifier() noexcept;
+    // The run of decimal digits at the cursor, cursor behind it; empty when none. Whole numbers
+    // (N, G, M, D, indexes, PLC cycles) are scanned as text first, so that one out of range is
+    // named as written (whole_at_most), never clamped or wrapped.
+    std::string_view scan_digits() noexcept;
     // At '(': skips to behind the matching ')' and returns true; false (cursor unchanged) when
     // the line ends first.
     bool skip_paren_comment() noexcept;
@@ -60,6 +65,10 @@ class LineCursor {
     bool ascii_;
     std::size_t pos_ = 0;
 };
+
+// The value of `digits` (decimal digits only, as scan_digits() gives them) when it is at most
+// `max`; nullopt when it is above, however many digits it has (leading zeros count for nothing).
+std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept;
 
 constexpr bool is_digit(char c) noexcept {
     return c >= '0' && c <= '9';

@@ -74,6 +74,8 @@ class EventStream : private ExpressionContext {
         LineSource::Position body;  // where the line after $FOR starts
         std::uint64_t line = 0;     // of the $FOR
         std::uint32_t column = 0;
+        std::int64_t block = kNoBlockNumber;  // the $FOR line's N number
+        std::uint64_t repetitions = 0;        // bodies run again since this $FOR
     };
     // ExpressionContext
     bool parameter(int n, double& out) const override;
@@ -82,6 +84,8 @@ class EventStream : private ExpressionContext {
     bool loop_end(const IsgLine& isg);
     bool skip_loop(const IsgLine& isg);
     bool loop_continues(const LoopFrame& f) const noexcept;
+    // Counts a block run inside a $FOR loop; false (error) beyond max_loop_blocks.
+    bool count_loop_block();
     Diagnostic here(ErrorKind kind, std::uint32_t column, std::string message) const;
 
     EventStream(LineSource source, const InterpreterOptions& options);
@@ -109,6 +113,8 @@ class EventStream : private ExpressionContext {
     std::array<double, kParameterCount> params_{};
     std::bitset<kParameterCount> params_set_;
     std::vector<LoopFrame> loops_;  // at most kMaxLoopDepth
+    std::uint64_t loop_blocks_ = 0;  // blocks run inside $FOR loops, repetitions counted
+    std::uint64_t max_loop_blocks_ = kMaxLoopBlocks;
 };
 
 struct ProgramSummary {

@@ -36,6 +36,11 @@
 
 namespace apci::run {
 
+// The latest cycle a `cycle N` entry may name: 10^9, 11.6 days of board time at 1 ms. After the
+// program the clock runs on to the last entry; a larger N would keep a run going for hours (10^18
+// ran on without end). The bound of `apcictl step`, for the same reason.
+inline constexpr std::uint64_t kMaxPlcCycle = 1'000'000'000;
+
 struct PlcWrite {
     enum class When : std::uint8_t { kCycle, kBlock };
     // OTC control units (bus 1330) and the temperature compensation's objects (bus 1320).

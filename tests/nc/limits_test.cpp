@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: MIT
+// The front end's bounds on work (docs/nc-programs.md "Limits"): a feed so low that one move
+// would take more than kMaxMoveCycles interpolation cycles, $FOR loops that do not end, and
+// whole numbers out of range named as written (never clamped or wrapped).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "apci/nc/correction_table.h"
+#include "apci/nc/lexer.h"
+#include "apci/nc/move_time.h"
+#include "apci/nc/tools.h"
+#include "nc_test_util.h"
+
+namespace apci::nc {
+namespace {
+
+using test::error_of;
+using test::events_of;
+using test::only;
+
+const std::string kForty = "1234567890123456789012345678901234567890";
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// ---- Cycles per move
+
+TEST(MoveLimit, CyclesAreTheBoardsCount) {
+    EXPECT_EQ(move_cycles(10.0, 600.0, 0.001), 1000.0);  // 10 mm/s, 1 ms cycles
+    EXPECT_EQ(move_cycles(10.005, 600.0, 0.001), 1001.0);
+    EXPECT_EQ(move_cycles(0.0, 600.0, 0.001), 0.0);
+    EXPECT_TRUE(std::isinf(move_cycles(1.0, 0.0, 0.001)));
+    EXPECT_TRUE(check_move_cycles(1.0, 7e-5, 0.001).empty());  // 8.6e8 cycles
+    EXPECT_FALSE(check_move_cycles(1.0, 5e-5, 0.001).empty());  // 1.2e9 cycles
+    ArcMove half;
+    half.start = {0, 0, 0};
+    half.end = {2, 0, 0};
+    half.center = {1, 0, 0};
+    EXPECT_NEAR(move_length(half), std::numbers::pi, 1e-12);
+    ArcMove full = half;
+    full.end = full.start;
+    full.ccw = true;
+    EXPECT_NEAR(move_length(full), 2.0 * std::numbers::pi, 1e-12);
+    // A radius far beyond the chord: nearly the chord, not a full circle of that radius.
+    ArcMove flat;
+    flat.start = {0, 0, 0};
+    flat.end = {20, 0, 0};
+    flat.center = {10, -1e200, 0};
+    EXPECT_NEAR(move_length(flat), 20.0, 1e-9);
+}
+
+TEST(MoveLimit, AFeedTooLowForOneMoveIsAnErrorNamingTheBlockBeforeAnythingRuns) {
+    // F0.000001 over 1 mm: 6e10 cycles of 1 ms. The validation pass refuses the program, so
+    // nothing of it reaches a board (it ran for minutes, capped at 2^52 cycles, exit 0).
+    const char* text = "N10 G1 X1 F100\nN20 G1 X2 F0.000001\nN30 M30\n";
+    Result<Program> p = Program::from_text(text, "p.nc");
+    ASSERT_FALSE(p);
+    EXPECT_EQ(p.error().to_string(),
+              "p.nc:2:11: N20: feed F1e-06 makes this 1 mm move take 60000000000 interpolation "
+              "cycles; at most 1000000000 cycles (11.6 days at 1 ms) are allowed per move: "
+              "raise F");
+    // The feed is modal: a later move at the same feed is measured too, the block named.
+    EXPECT_EQ(error_of("N10 G1 X0.000001 F0.000001\nN20 X5\nN30 M30\n").substr(0, 25),
+              "prog.nc:2:5: N20: feed F1");
+    // Arcs by their arc length: a half circle of radius 1 at F0.0002 is 9.4e8 cycles (taken),
+    // the full circle 1.9e9 (refused).
+    EXPECT_EQ(error_of("G2 X2 Y0 I1 J0 F0.0002\nM30\n"), "");
+    EXPECT_TRUE(contains(error_of("G2 X0 Y0 I1 J0 F0.0002\nM30\n"), "prog.nc:1:16: feed F0.0002 "
+                                                                      "makes this 6.28319 mm"));
+    // Rapid moves have no feed of their own; G0 after a tiny F is fine.
+    EXPECT_EQ(error_of("G1 X0 F0.000001\nG0 X100\nM30\n"), "");
+}
+
+TEST(MoveLimit, TheCycleTimeOfTheBoardDecides) {
+    InterpreterOptions o;
+    o.cycle_seconds = 0.01;  // 10 ms: F0.00005 over 1 mm is 1.2e8 cycles
+    EXPECT_EQ(error_of("G1 X1 F0.00005\nM30\n", o), "");
+    EXPECT_TRUE(contains(error_of("G1 X1 F0.00005\nM30\n"), "(11.6 days at 1 ms)"));
+    o.cycle_seconds = 0.00025;
+    EXPECT_TRUE(contains(error_of("G1 X1 F0.0002\nM30\n", o), "(2.9 days at 0.25 ms)"));
+}
+
+TEST(MoveLimit, KlartextLinesAreMeasuredToo) {
+    const std::string text =
+        "0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 F1000\n2 L X+1 F0.000001\n3 END PGM T MM\n";
+    EXPECT_TRUE(contains(error_of(text), "prog.nc:3:9: feed F1e-06 makes this 1 mm move take "
+                                         "60000000000 interpolation cycles"));
+    EXPECT_EQ(error_of("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 F0.000001\n2 L X+100 FMAX\n"
+                       "3 END PGM T MM\n"),
+              "");
+}
+
+// ---- $FOR loops
+
+TEST(LoopLimit, ALoopWhoseBodyResetsItsParameterEndsWithAnErrorNamingTheLoop) {
+    // It ran for ever. At the default limit (10^7 blocks) the error comes within seconds.
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string e = error_of("N5 G1 X0 F100\nN10 $FOR P1 = 0, 10, 1\nN20 P1 = 0\n$ENDFOR\nM30\n");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(e,
+              "prog.nc:2:5: N10: $FOR P1 does not end: $FOR loops may run at most 10000000 "
+              "blocks in all, every repetition counted, and this loop has repeated its body "
+              "5000000 times: does the body set P1 back, or is the end value too far?");
+    EXPECT_LT(seconds, 30.0);
+}
+
+TEST(LoopLimit, EveryRepetitionCountsAndBlocksOutsideLoopsDoNot) {
+    InterpreterOptions o;
+    o.max_loop_blocks = 100;
+    // 50 repetitions of a one-block body plus its $ENDFOR: 100 blocks in the loop.
+    EXPECT_EQ(error_of("$FOR P1 = 1, 50, 1\nP2 = P1\n$ENDFOR\nM30\n", o), "");
+    // 51: one block too many.
+    EXPECT_TRUE(contains(error_of("$FOR P1 = 1, 51, 1\nP2 = P1\n$ENDFOR\nM30\n", o),
+                         "prog.nc:1:1: $FOR P1 does not end"));
+    // A far end value is the same mistake.
+    EXPECT_TRUE(contains(error_of("$FOR P1 = 0, 1000000000000000, 1\n$ENDFOR\nM30\n", o),
+                         "has repeated its body 100 times"));
+    // 200 blocks outside any loop: not counted.
+    std::string flat;
+    for (int i = 0; i < 200; ++i) flat += "P2 = 1\n";
+    EXPECT_EQ(error_of(flat + "M30\n", o), "");
+}
+
+TEST(LoopLimit, TheLoopThatDoesNotEndIsNamedNotTheOneInsideIt) {
+    InterpreterOptions o;
+    o.max_loop_blocks = 1000;
+    // The outer loop resets its parameter; the inner one ends every time.
+    EXPECT_TRUE(contains(error_of("$FOR P1 = 0, 3, 1\n$FOR P2 = 0, 3, 1\n$ENDFOR\nP1 = 0\n"
+                                  "$ENDFOR\nM30\n",
+                                  o),
+                         "prog.nc:1:1: $FOR P1 does not end"));
+    // The inner loop resets its parameter inside a finite outer one.
+    EXPECT_TRUE(contains(error_of("$FOR P1 = 0, 3, 1\n$FOR P2 = 0, 3, 1\nP2 = 0\n$ENDFOR\n"
+                                  "$ENDFOR\nM30\n",
+                                  o),
+                         "prog.nc:2:1: $FOR P2 does not end"));
+}
+
+// ---- Whole numbers out of range, as written
+
+TEST(NumbersAsWritten, WholeAtMostNeverWrapsOrClamps) {
+    EXPECT_EQ(whole_at_most("18446744073709551615", std::numeric_limits<std::uint64_t>::max()),
+              std::numeric_limits<std::uint64_t>::max());
+    EXPECT_FALSE(whole_at_most("18446744073709551616", std::numeric_limits<std::uint64_t>::max()));
+    EXPECT_FALSE(whole_at_most(kForty, std::numeric_limits<std::uint64_t>::max()));
+    EXPECT_EQ(whole_at_most("000000000000000000000000000001023", 1023), 1023u);
+    EXPECT_FALSE(whole_at_most("1024", 1023));
+    EXPECT_FALSE(whole_at_most("9", 7));
+    EXPECT_EQ(whole_at_most("", 7), 0u);
+}
+
+TEST(NumbersAsWritten, AFortyDigitToolNumberIsShownAsWritten) {
+    // The tool list showed "tool number 9999999".
+    const Result<ToolTable> t = parse_tool_table("wz[" + kForty + "].typ 1\n", "t.tools");
+    ASSERT_FALSE(t);
+    EXPECT_EQ(t.error().to_string(),
+              "t.tools:1:4: tool number " + kForty + " out of range 1..1023");
+    const Result<ToolTable> a = parse_tool_table("wz[1].ax_ersatz[" + kForty + "] 0\n", "t.tools");
+    ASSERT_FALSE(a);
+    EXPECT_EQ(a.error().to_string(), "t.tools:1:17: axis index " + kForty + " out of range 0..7");
+    EXPECT_EQ(error_of("N10 D" + kForty + "\nM30\n"),
+              "prog.nc:1:6: N10: tool number D" + kForty + " out of range 0..1023");
+    EXPECT_EQ(error_of("0 BEGIN PGM T MM\n1 TOOL CALL " + kForty + " Z\n2 END PGM T MM\n"),
+              "prog.nc:2:13: tool number " + kForty + " out of range 0..1023");
+}
+
+TEST(NumbersAsWritten, OtherWholeNumbersToo) {
+    const Result<CorrectionTable> c = parse_correction_table("corr[" + kForty + "].dr 1\n", "t.corr");
+    ASSERT_FALSE(c);
+    EXPECT_TRUE(contains(c.error().to_string(), "correction row " + kForty + " out of range 1..1023"));
+    EXPECT_EQ(error_of("N" + kForty + " G1 X1 F100\nM30\n"),
+              "prog.nc:1:2: block number N" + kForty + " out of range 0..9999999999999");
+    EXPECT_EQ(error_of("G" + kForty + "\nM30\n"),
+              "prog.nc:1:2: G code G" + kForty + " out of range 0..9999999999999");
+    EXPECT_EQ(error_of("P" + kForty + " = 1\nM30\n"),
+              "prog.nc:1:1: P parameter number P" + kForty + " out of range 0..999");
+    EXPECT_EQ(error_of("P1 = P" + kForty + "\nM30\n"),
+              "prog.nc:1:6: P parameter number P" + kForty + " out of range 0..999");
+    EXPECT_EQ(error_of("$FOR P" + kForty + " = 0, 1, 1\n$ENDFOR\nM30\n"),
+              "prog.nc:1:6: P parameter number P" + kForty + " out of range 0..999");
+    EXPECT_EQ(error_of("0 BEGIN PGM T MM\n1 FUNCTION CORRDATA TCS #" + kForty +
+                       "\n2 END PGM T MM\n"),
+              "prog.nc:2:26: correction row " + kForty +
+                  " out of range 1..1023 (FUNCTION CORRDATA RESET TCS leaves the table)");
+}
+
+}  // namespace
+}  // namespace apci::nc

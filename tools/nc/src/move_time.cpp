@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+#include "apci/nc/move_time.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "apci/nc/arc.h"
+
+namespace apci::nc {
+
+namespace {
+
+// Start and end closer than this in the plane make an arc a full circle (the board's point
+// tolerance is finer; a full circle here only makes the move longer, never shorter).
+constexpr double kSamePoint = 1e-9;
+
+// "60000000000" while the count is a whole number a double holds exactly, else "6.0e+43".
+std::string cycles_text(double cycles) {
+    if (cycles < 1e15) return fmt::format("{:.0f}", cycles);
+    return fmt::format("{:.1e}", cycles);
+}
+
+}  // namespace
+
+double move_length(const Eigen::Vector3d& start, const Eigen::Vector3d& end) noexcept {
+    return (end - start).norm();
+}
+
+double move_length(const ArcMove& arc) noexcept {
+    const PlaneAxes a = plane_axes(arc.plane);
+    const double sx = arc.start[a.first] - arc.center[a.first];
+    const double sy = arc.start[a.second] - arc.center[a.second];
+    const double ex = arc.end[a.first] - arc.center[a.first];
+    const double ey = arc.end[a.second] - arc.center[a.second];
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    const double rs = std::hypot(sx, sy);
+    const double re = std::hypot(ex, ey);
+    double sweep = kTwoPi;
+    if (std::hypot(ex - sx, ey - sy) > kSamePoint && rs > 0.0 && re > 0.0) {
+        // The angle between the unit radii: exact also for a radius far beyond the chord (R1e200
+        // over 20 mm), where the difference of two atan2 angles vanishes.
+        const double ux = sx / rs, uy = sy / rs, vx = ex / re, vy = ey / re;
+        sweep = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+        if (arc.ccw && sweep <= 0.0) sweep += kTwoPi;
+        if (!arc.ccw && sweep >= 0.0) sweep -= kTwoPi;
+    }
+    const double planar = 0.5 * (rs + re) * std::fabs(sweep);
+    return std::hypot(planar, arc.end[a.normal] - arc.start[a.normal]);
+}
+
+double move_cycles(double length, double feed, double cycle_seconds) noexcept {
+    if (!(length > 0.0)) return 0.0;
+    const double per_cycle = feed / 60.0 * cycle_seconds;
+    if (!(per_cycle > 0.0)) return HUGE_VAL;
+    return std::ceil(length / per_cycle);
+}
+
+std::string check_move_cycles(double length, double feed, double cycle_seconds) {
+    const double cycles = move_cycles(length, feed, cycle_seconds);
+    if (cycles <= static_cast<double>(kMaxMoveCycles)) return {};
+    const double limit = static_cast<double>(kMaxMoveCycles);
+    return fmt::format(
+        "feed F{:g} makes this {:g} mm move take {} interpolation cycles; at most {} cycles "
+        "({:.1f} days at {:g} ms) are allowed per move: raise F",
+        feed, length, cycles_text(cycles), kMaxMoveCycles, limit * cycle_seconds / 86400.0,
+        cycle_seconds * 1000.0);
+}
+
+}  // namespace apci::nc
