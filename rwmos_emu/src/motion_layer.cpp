@@ -111,9 +111,8 @@ void MotionLayer::sync() noexcept {
 }
 
 MotionResult MotionLayer::spool(const motion::Profile& p) {
-    const MotionResult r =
-        spooler_.spool(p, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity),
-                       cycle_seconds());
+    const MotionResult r = spooler_.spool(
+        p, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity), cycle_seconds());
     record(r);
     sync();
     return r;

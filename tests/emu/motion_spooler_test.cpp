@@ -540,7 +540,6 @@ TEST_F(Spooler, GroupResetDiscardsTheHeldProfile) {
     EXPECT_EQ(board.motion_status().compensating_group, 0);
 }
 
-
 // ---- The limit on one move's duration (kMaxMoveCycles): refused, not cut short
 
 TEST_F(Spooler, AMoveLongerThanTheCycleLimitIsRefusedAndChangesNothing) {

@@ -37,7 +37,7 @@ TEST(MoveLimit, CyclesAreTheBoardsCount) {
     EXPECT_EQ(move_cycles(10.005, 600.0, 0.001), 1001.0);
     EXPECT_EQ(move_cycles(0.0, 600.0, 0.001), 0.0);
     EXPECT_TRUE(std::isinf(move_cycles(1.0, 0.0, 0.001)));
-    EXPECT_TRUE(check_move_cycles(1.0, 7e-5, 0.001).empty());  // 8.6e8 cycles
+    EXPECT_TRUE(check_move_cycles(1.0, 7e-5, 0.001).empty());   // 8.6e8 cycles
     EXPECT_FALSE(check_move_cycles(1.0, 5e-5, 0.001).empty());  // 1.2e9 cycles
     ArcMove half;
     half.start = {0, 0, 0};
@@ -72,8 +72,9 @@ TEST(MoveLimit, AFeedTooLowForOneMoveIsAnErrorNamingTheBlockBeforeAnythingRuns) 
     // Arcs by their arc length: a half circle of radius 1 at F0.0002 is 9.4e8 cycles (taken),
     // the full circle 1.9e9 (refused).
     EXPECT_EQ(error_of("G2 X2 Y0 I1 J0 F0.0002\nM30\n"), "");
-    EXPECT_TRUE(contains(error_of("G2 X0 Y0 I1 J0 F0.0002\nM30\n"), "prog.nc:1:16: feed F0.0002 "
-                                                                      "makes this 6.28319 mm"));
+    EXPECT_TRUE(contains(error_of("G2 X0 Y0 I1 J0 F0.0002\nM30\n"),
+                         "prog.nc:1:16: feed F0.0002 "
+                         "makes this 6.28319 mm"));
     // Rapid moves have no feed of their own; G0 after a tiny F is fine.
     EXPECT_EQ(error_of("G1 X0 F0.000001\nG0 X100\nM30\n"), "");
 }
@@ -90,8 +91,9 @@ TEST(MoveLimit, TheCycleTimeOfTheBoardDecides) {
 TEST(MoveLimit, KlartextLinesAreMeasuredToo) {
     const std::string text =
         "0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 F1000\n2 L X+1 F0.000001\n3 END PGM T MM\n";
-    EXPECT_TRUE(contains(error_of(text), "prog.nc:3:9: feed F1e-06 makes this 1 mm move take "
-                                         "60000000000 interpolation cycles"));
+    EXPECT_TRUE(contains(error_of(text),
+                         "prog.nc:3:9: feed F1e-06 makes this 1 mm move take "
+                         "60000000000 interpolation cycles"));
     EXPECT_EQ(error_of("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 F0.000001\n2 L X+100 FMAX\n"
                        "3 END PGM T MM\n"),
               "");
@@ -102,7 +104,8 @@ TEST(MoveLimit, KlartextLinesAreMeasuredToo) {
 TEST(LoopLimit, ALoopWhoseBodyResetsItsParameterEndsWithAnErrorNamingTheLoop) {
     // It ran for ever. At the default limit (10^7 blocks) the error comes within seconds.
     const auto t0 = std::chrono::steady_clock::now();
-    const std::string e = error_of("N5 G1 X0 F100\nN10 $FOR P1 = 0, 10, 1\nN20 P1 = 0\n$ENDFOR\nM30\n");
+    const std::string e =
+        error_of("N5 G1 X0 F100\nN10 $FOR P1 = 0, 10, 1\nN20 P1 = 0\n$ENDFOR\nM30\n");
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(e,
@@ -173,9 +176,11 @@ TEST(NumbersAsWritten, AFortyDigitToolNumberIsShownAsWritten) {
 }
 
 TEST(NumbersAsWritten, OtherWholeNumbersToo) {
-    const Result<CorrectionTable> c = parse_correction_table("corr[" + kForty + "].dr 1\n", "t.corr");
+    const Result<CorrectionTable> c =
+        parse_correction_table("corr[" + kForty + "].dr 1\n", "t.corr");
     ASSERT_FALSE(c);
-    EXPECT_TRUE(contains(c.error().to_string(), "correction row " + kForty + " out of range 1..1023"));
+    EXPECT_TRUE(
+        contains(c.error().to_string(), "correction row " + kForty + " out of range 1..1023"));
     EXPECT_EQ(error_of("N" + kForty + " G1 X1 F100\nM30\n"),
               "prog.nc:1:2: block number N" + kForty + " out of range 0..9999999999999");
     EXPECT_EQ(error_of("G" + kForty + "\nM30\n"),
@@ -186,10 +191,10 @@ TEST(NumbersAsWritten, OtherWholeNumbersToo) {
               "prog.nc:1:6: P parameter number P" + kForty + " out of range 0..999");
     EXPECT_EQ(error_of("$FOR P" + kForty + " = 0, 1, 1\n$ENDFOR\nM30\n"),
               "prog.nc:1:6: P parameter number P" + kForty + " out of range 0..999");
-    EXPECT_EQ(error_of("0 BEGIN PGM T MM\n1 FUNCTION CORRDATA TCS #" + kForty +
-                       "\n2 END PGM T MM\n"),
-              "prog.nc:2:26: correction row " + kForty +
-                  " out of range 1..1023 (FUNCTION CORRDATA RESET TCS leaves the table)");
+    EXPECT_EQ(
+        error_of("0 BEGIN PGM T MM\n1 FUNCTION CORRDATA TCS #" + kForty + "\n2 END PGM T MM\n"),
+        "prog.nc:2:26: correction row " + kForty +
+            " out of range 1..1023 (FUNCTION CORRDATA RESET TCS leaves the table)");
 }
 
 }  // namespace

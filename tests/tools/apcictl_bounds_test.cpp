@@ -32,14 +32,15 @@ class ApcictlBounds : public ::testing::Test {
     void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
 
     std::string write(const std::string& name, const std::string& text) const {
-        const std::string path = dir_ + "/" + name;
+        std::string path = dir_ + "/" + name;
         std::ofstream(path) << text;
         return path;
     }
     // Runs apcictl (cwd: the test's directory, so files are named as written); the seconds it
     // took go to `seconds_`.
     ProcessResult apcictl(std::vector<std::string> args) {
-        args.insert(args.begin(), {"/bin/sh", "-c", "cd \"$0\" && exec \"$@\"", dir_, APCICTL_PATH});
+        args.insert(args.begin(),
+                    {"/bin/sh", "-c", "cd \"$0\" && exec \"$@\"", dir_, APCICTL_PATH});
         const auto t0 = std::chrono::steady_clock::now();
         ProcessResult r = test_support::run_process(args);
         seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -68,8 +69,9 @@ TEST_F(ApcictlBounds, AFeedTooLowForOneMoveIsAnErrorNamingTheLineBeforeAnyMotion
 TEST_F(ApcictlBounds, APlcCycleBeyondTheLimitIsAnErrorNamingTheLine) {
     // The clock ran on towards cycle 10^18 without end.
     write("p.nc", "N10 G1 X1 F600\nN20 M30\n");
-    write("p.plc", "cycle 0 otc_radius_offset.enable 1\ncycle 1000000000000000000 "
-                   "otc_radius_offset.command 5\n");
+    write("p.plc",
+          "cycle 0 otc_radius_offset.enable 1\ncycle 1000000000000000000 "
+          "otc_radius_offset.command 5\n");
     const ProcessResult r = apcictl({"run", "p.nc", "--plc", "p.plc"});
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
     EXPECT_EQ(r.err,
@@ -107,12 +109,14 @@ TEST(PlcScriptBounds, CycleAndBlockNumbersOutOfRangeAreNamedAsWritten) {
 
 TEST_F(ApcictlBounds, AForLoopThatDoesNotEndIsAnErrorNamingTheLoop) {
     // It ran for ever.
-    write("p.nc", "N5 G1 X0 F100\nN10 $FOR P1 = 0, 10, 1\nN20 G1 X[P1]\nN30 P1 = 0\n$ENDFOR\n"
-                  "N40 M30\n");
+    write("p.nc",
+          "N5 G1 X0 F100\nN10 $FOR P1 = 0, 10, 1\nN20 G1 X[P1]\nN30 P1 = 0\n$ENDFOR\n"
+          "N40 M30\n");
     const ProcessResult r = apcictl({"run", "p.nc"});
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-    EXPECT_TRUE(contains(r.err, "apcictl: p.nc:2:5: N10: $FOR P1 does not end: $FOR loops may run "
-                                "at most 10000000 blocks in all"))
+    EXPECT_TRUE(contains(r.err,
+                         "apcictl: p.nc:2:5: N10: $FOR P1 does not end: $FOR loops may run "
+                         "at most 10000000 blocks in all"))
         << r.err;
     EXPECT_LT(seconds_, 60.0);
 }
@@ -127,8 +131,7 @@ TEST_F(ApcictlBounds, AFortyDigitToolNumberIsNamedAsWritten) {
     write("d.nc", "N10 D" + kForty + "\nN20 M30\n");
     r = apcictl({"run", "d.nc"});
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-    EXPECT_EQ(r.err,
-              "apcictl: d.nc:1:6: N10: tool number D" + kForty + " out of range 0..1023\n");
+    EXPECT_EQ(r.err, "apcictl: d.nc:1:6: N10: tool number D" + kForty + " out of range 0..1023\n");
 }
 
 }  // namespace

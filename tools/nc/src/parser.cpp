@@ -739,8 +739,7 @@ class BlockParser {
     bool tool(std::uint32_t col) {
         if (b_.tool.present()) return twice('D', col);
         std::uint64_t d = 0;
-        if (!whole('D', d, "tool number", static_cast<std::uint64_t>(kMaxToolNumber)))
-            return false;
+        if (!whole('D', d, "tool number", static_cast<std::uint64_t>(kMaxToolNumber))) return false;
         b_.tool.value = static_cast<int>(d);
         b_.tool.column = col;
         return true;

@@ -84,15 +84,13 @@ class LineParser {
     }
     // A whole number in 0..max after `what`; one beyond is named as written, with its range
     // and `why` (never clamped or wrapped).
-    bool whole(std::uint64_t& out, std::string_view what, std::uint64_t max,
-               std::string_view why) {
+    bool whole(std::uint64_t& out, std::string_view what, std::uint64_t max, std::string_view why) {
         const std::uint32_t col = c_.column();
         if (!nc::is_digit(c_.peek()))
             return fail(col, fmt::format("expected a whole number after '{}'", what));
         const std::string_view digits = c_.scan_digits();
         const std::optional<std::uint64_t> v = nc::whole_at_most(digits, max);
-        if (!v)
-            return fail(col, fmt::format("{} {} out of range 0..{}{}", what, digits, max, why));
+        if (!v) return fail(col, fmt::format("{} {} out of range 0..{}{}", what, digits, max, why));
         out = *v;
         return true;
     }

@@ -59,8 +59,8 @@ class Spooler {
     // in the queue: kBusy and nothing taken when they do not fit). A profile
     // whose programmed move takes more than kMaxMoveCycles cycles of
     // `cycle_seconds` at its feed is refused (kValueTooLow).
-    MotionResult spool(const Profile& p, const TcSettings& tc, Executor& exec,
-                       std::size_t capacity, double cycle_seconds);
+    MotionResult spool(const Profile& p, const TcSettings& tc, Executor& exec, std::size_t capacity,
+                       double cycle_seconds);
 
     // STATUS = 0 on `group`: the held profile is corrected and spooled with the
     // departure to its programmed end ([APCI-TC] section 1).
