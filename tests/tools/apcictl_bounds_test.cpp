@@ -11,8 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "apci/apci.hpp"
+#include "apci/nc/program.h"
+#include "apci/run/executor.h"
 #include "apci/run/plc_script.h"
 #include "process.h"
+#include "rwmos/object_map.h"
 
 namespace {
 
@@ -132,6 +136,30 @@ TEST_F(ApcictlBounds, AFortyDigitToolNumberIsNamedAsWritten) {
     r = apcictl({"run", "d.nc"});
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
     EXPECT_EQ(r.err, "apcictl: d.nc:1:6: N10: tool number D" + kForty + " out of range 0..1023\n");
+}
+
+TEST(RunBounds, TheCycleLimitIsCountedInTheBoardsInterpolationCycleNamingTheBlock) {
+    // F0.0002 over 1 mm: 3e8 cycles of 1 ms (the front end takes it), 1.2e9 of 250 us: the
+    // executor refuses it in the board's cycle, in the program's words, before the board does.
+    apci::Board board("emu:");
+    ASSERT_TRUE(board.is_open());
+    auto cycle = apci::object(rwmos::board::kBus, rwmos::board::kDevice,
+                              rwmos::board::kIdxInterpolationCycle, 0);
+    ASSERT_TRUE(board.write_int(cycle, 250));
+    auto program = apci::nc::Program::from_text("N10 G1 X1 F0.0002\nN20 M30\n", "p.nc");
+    ASSERT_TRUE(program) << program.error().to_string();
+    auto stream = program.value().events();
+    ASSERT_TRUE(stream);
+    apci::run::RunSink sink;
+    apci::run::ProgramExecutor executor(board, sink, nullptr);
+    const apci::run::RunOutcome out = executor.run(stream.value());
+    ASSERT_EQ(out.errors.size(), 1u);
+    EXPECT_EQ(out.errors[0].code, "Value");
+    EXPECT_EQ(out.errors[0].block.number, 10);
+    EXPECT_EQ(out.errors[0].message,
+              "feed F0.0002 makes this 1 mm move take 1200000000 interpolation cycles; at most "
+              "1000000000 cycles (2.9 days at 0.25 ms) are allowed per move: raise F");
+    EXPECT_EQ(out.totals.cycles, 0u) << "nothing moved";
 }
 
 }  // namespace

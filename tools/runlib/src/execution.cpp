@@ -11,6 +11,7 @@
 #include <span>
 
 #include "apci/nc/arc.h"
+#include "apci/nc/move_time.h"
 #include "rwmos/geometry/tolerances.h"
 
 namespace apci::run::exec {
@@ -169,6 +170,13 @@ void Execution::programmed(const PathSegment& s, std::uint32_t tag) {
 
 bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
                       const apci_profile& p) {
+    // The board's limit on one move, in the board's own cycle (the front end counted in 1 ms
+    // cycles): said in the program's words before the board refuses the profile with its own.
+    if (p.feed > 0.0) {
+        std::string why = nc::check_move_cycles(segment_length(programmed_move), p.feed,
+                                                static_cast<double>(cycle_us_) * 1e-6);
+        if (!why.empty()) return record(at, "Value", std::move(why));
+    }
     programmed(programmed_move, p.tag);
     if (comp_on && self_approach_mode_ != SelfApproachMode::kOff) {
         // A rapid ends the contour on the board; the next move approaches it anew.
