@@ -162,4 +162,23 @@ TEST(RunBounds, TheCycleLimitIsCountedInTheBoardsInterpolationCycleNamingTheBloc
     EXPECT_EQ(out.totals.cycles, 0u) << "nothing moved";
 }
 
+TEST(RunBounds, TheValidationPassCountsInTheBoardsInterpolationCycle) {
+    // apcictl run gives the interpreter the board's cycle (ProgramExecutor::cycle_seconds), so
+    // the same F0.0002 move is refused before anything runs, not only when it is spooled.
+    apci::Board board("emu:");
+    ASSERT_TRUE(board.is_open());
+    auto cycle = apci::object(rwmos::board::kBus, rwmos::board::kDevice,
+                              rwmos::board::kIdxInterpolationCycle, 0);
+    ASSERT_TRUE(board.write_int(cycle, 250));
+    apci::run::RunSink sink;
+    apci::run::ProgramExecutor executor(board, sink, nullptr);
+    EXPECT_DOUBLE_EQ(executor.cycle_seconds(), 250e-6);
+    apci::nc::InterpreterOptions options;
+    options.cycle_seconds = executor.cycle_seconds();
+    auto program = apci::nc::Program::from_text("N10 G1 X1 F0.0002\nN20 M30\n", "p.nc", options);
+    ASSERT_FALSE(program);
+    EXPECT_NE(program.error().message.find("1200000000 interpolation cycles"), std::string::npos)
+        << program.error().message;
+}
+
 }  // namespace

@@ -229,6 +229,7 @@ class RunCommand final : public Command {
                                                              : apci::run::SelfApproachMode::kWarn);
         apci::nc::InterpreterOptions options;
         options.start_position = executor.position();
+        options.cycle_seconds = executor.cycle_seconds();
         options.tools = &tools;
         options.corrections = &corrections;
         auto program = program_ == "-"

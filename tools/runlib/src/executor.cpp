@@ -274,6 +274,14 @@ bool Execution::end_of_program(const BlockRef& at) {
 
 }  // namespace exec
 
+double ProgramExecutor::cycle_seconds() {
+    auto cycle = apci::object(rwmos::board::kBus, rwmos::board::kDevice,
+                              rwmos::board::kIdxInterpolationCycle, 0);
+    const auto us = board_.read_int(cycle);
+    if (!us || us.value <= 0) return nc::kDefaultCycleSeconds;
+    return static_cast<double>(us.value) * 1e-6;
+}
+
 Point ProgramExecutor::position() {
     std::array<int, 3> axes{0, 1, 2};
     for (int i = 0; i < 3; ++i) {

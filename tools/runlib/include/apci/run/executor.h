@@ -139,6 +139,9 @@ class ProgramExecutor {
     // Where the board's X, Y, Z axes stand (program units): the interpreter's start position.
     // Zero when the board cannot say (run() then reports why).
     Point position();
+    // The board's interpolation cycle in seconds: the interpreter counts a move's cycles in it.
+    // The default 1 ms when the board cannot say (run() then reports why).
+    double cycle_seconds();
     // Executes the stream to its end or to the first error.
     RunOutcome run(nc::EventStream& events);
     void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
