@@ -184,7 +184,7 @@ TEST(ApcictlScript, StopsAtTheFirstFailingLineAndNamesIt) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.out, "0\n");  // the third line did not run
     EXPECT_EQ(r.err,
-              "line 2: write 1300 1 1 8 2000: ValueTooHigh (value above the object's range)\n");
+              "apcictl: line 2: write 1300 1 1 8 2000: ValueTooHigh (value above the object's range)\n");
 }
 
 TEST(ApcictlScript, StateRuleFailureStopsTheScriptAndNamesTheLine) {
@@ -194,7 +194,7 @@ TEST(ApcictlScript, StateRuleFailureStopsTheScriptAndNamesTheLine) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err,
-              "line 5: write 1300 1 1 4 2: WrongDeviceState (not possible in the present device "
+              "apcictl: line 5: write 1300 1 1 4 2: WrongDeviceState (not possible in the present device "
               "state); group 1's ERROR now reads 0x01 (InitError); this object changes only while "
               "the group is inactive: write STATUS = 0 first ([APCI-TC] Table 3) (clear it: write "
               "1300 1 1 1 0)\n");
@@ -220,7 +220,7 @@ TEST(ApcictlScript, ReInitWhileAProfileIsHeldSaysItIsNotEmulatedAndWhatToDo) {
                           "write 1300 0 13 0 0\n");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err,
-              "line 4: write 1300 0 13 0 0: WrongDeviceState (not possible in the present device "
+              "apcictl: line 4: write 1300 0 13 0 0: WrongDeviceState (not possible in the present device "
               "state); ReInit while a contour is under way (a profile held, STATUS bit ProfMarked) "
               "is not emulated: [APCI-TC] gives it for before a re-reference and does not say what "
               "it does to a contour; end the contour first (STATUS = 0, or SSF 2001 to its axes), "

@@ -44,12 +44,12 @@ public:
             const Outcome result = line.command->run(session);
             if (result.ok()) continue;
             ++failures;
-            fmt::print(stderr, "line {}: {}\n", line.number, result.error);
+            fmt::print(stderr, "apcictl: line {}: {}\n", line.number, result.error);
             if (outcome.ok()) outcome.exit = result.exit;
             if (!keep_going_) break;
         }
         if (keep_going_ && failures > 0)
-            fmt::print(stderr, "script: {} of {} lines failed\n", failures, lines.size());
+            fmt::print(stderr, "apcictl: script: {} of {} lines failed\n", failures, lines.size());
         return outcome;  // errors already printed, line by line
     }
 
@@ -76,7 +76,7 @@ Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines) {
     ParsedScript parsed = parse_script(*in);
     Outcome outcome;
     for (const auto& error : parsed.errors) {
-        fmt::print(stderr, "line {}: {}\n", error.number, error.outcome.error);
+        fmt::print(stderr, "apcictl: line {}: {}\n", error.number, error.outcome.error);
         if (outcome.ok()) outcome.exit = error.outcome.exit;
     }
     if (parsed.read_failed) return Outcome::board_error(fmt::format("script: reading '{}' failed", file));

@@ -12,6 +12,7 @@
 
 #include "arguments.h"
 #include "command.h"
+#include "suggest.h"
 
 namespace {
 
@@ -31,10 +32,6 @@ int run(int argc, char** argv) {
     app.require_subcommand(1);
     app.fallthrough();  // --device may also follow the command
     app.footer(kFooter);
-    // Parse errors without the marks of protected negative numbers (arguments.h).
-    app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
-        return apcictl::plain_text(CLI::FailureMessage::simple(failed, e));
-    });
     apcictl::accept_negative_numbers(app);
 
     std::vector<std::pair<CLI::App*, std::unique_ptr<apcictl::Command>>> commands;
@@ -55,8 +52,10 @@ int run(int argc, char** argv) {
     try {
         app.parse(args);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);  // prints help / version, or the error
-        return code == 0 ? 0 : static_cast<int>(Exit::kUsage);
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        // One line naming what is wrong: an unknown command or option with the one meant.
+        fmt::print(stderr, "apcictl: {}\n", apcictl::explain_parse_error(app, e));
+        return static_cast<int>(Exit::kUsage);
     }
 
     for (auto& [sub, command] : commands) {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "arguments.h"
+#include "suggest.h"
 
 namespace apcictl {
 namespace {
@@ -35,6 +36,13 @@ std::string joined(const std::vector<std::string>& words) {
 Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
     const CommandSpec* spec = find_command(words.front());
     if (spec == nullptr || !spec->in_scripts) {
+        std::vector<std::string> names;
+        for (const auto& row : command_table())
+            if (row.in_scripts) names.emplace_back(row.name);
+        const std::string meant = closest_name(words.front(), names);
+        if (!meant.empty())
+            return Outcome::usage_error(
+                fmt::format("unknown command '{}'; did you mean '{}'?", words.front(), meant));
         return Outcome::usage_error(fmt::format("unknown command '{}' (script commands: {})",
                                                 words.front(), script_command_names()));
     }
@@ -53,7 +61,8 @@ Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
             fmt::format("{}: --help is not a script command; run 'apcictl {} --help'",
                         joined(words), spec->name));
     } catch (const CLI::ParseError& e) {
-        return Outcome::usage_error(fmt::format("{}: {}", joined(words), plain_text(e.what())));
+        return Outcome::usage_error(
+            fmt::format("{}: {}", joined(words), explain_parse_error(parser, e)));
     }
     Outcome prepared = command->prepare();
     if (!prepared.ok()) return prepared;

@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: MIT
+// apcictl's command line as its users meet it: a mistyped command or option names the one
+// meant, and every error line on stderr starts with "apcictl:".
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "process.h"
+#include "suggest.h"
+
+namespace {
+
+using apcictl::closest_name;
+using apcictl::edit_distance;
+using test_support::ProcessResult;
+
+ProcessResult apcictl_run(std::vector<std::string> args, const std::string& input = {}) {
+    args.insert(args.begin(), APCICTL_PATH);
+    return test_support::run_process(args, input);
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+// ---- the distance and the closest name (pure functions)
+
+TEST(ApcictlSuggest, EditDistanceCountsInsertionsDeletionsSubstitutionsAndSwaps) {
+    EXPECT_EQ(edit_distance("read", "read"), 0u);
+    EXPECT_EQ(edit_distance("raed", "read"), 1u);  // two neighbours swapped: one edit
+    EXPECT_EQ(edit_distance("--tool", "--tools"), 1u);
+    EXPECT_EQ(edit_distance("stat", "status"), 2u);
+    EXPECT_EQ(edit_distance("", "abc"), 3u);
+    EXPECT_EQ(edit_distance("abc", ""), 3u);
+    EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+    EXPECT_EQ(edit_distance("READ", "read"), 0u);  // case is not a difference
+    EXPECT_EQ(edit_distance("ca", "abc"), 3u);     // optimal string alignment, not unrestricted
+}
+
+TEST(ApcictlSuggest, ClosestNameWithinTheBoundOrNone) {
+    const std::vector<std::string> commands{"read", "write", "script", "status", "spool", "direct",
+                                            "ssf",  "step",  "run",    "list",   "diff"};
+    EXPECT_EQ(closest_name("raed", commands), "read");
+    EXPECT_EQ(closest_name("wirte", commands), "write");
+    EXPECT_EQ(closest_name("stat", commands), "status");
+    EXPECT_EQ(closest_name("rn", commands), "run");
+    EXPECT_EQ(closest_name("frobnicate", commands), "");
+    EXPECT_EQ(closest_name("xyz", commands), "");
+    const std::vector<std::string> options{"--tools", "--svg",    "--json", "--csv",
+                                           "-d",      "--device", "--help", "-h"};
+    EXPECT_EQ(closest_name("--tool", options), "--tools");
+    EXPECT_EQ(closest_name("--jsno", options), "--json");
+    EXPECT_EQ(closest_name("--devise", options), "--device");
+    EXPECT_EQ(closest_name("-tools", options), "--tools");
+    // One letter from another is no hint: "-x" is not a typo of "-d".
+    EXPECT_EQ(closest_name("-x", options), "");
+    EXPECT_EQ(closest_name("--frobnicate", options), "");
+    // The closest wins, then the first.
+    EXPECT_EQ(closest_name("--sv", options), "--svg");  // --csv is as close: the first wins
+    EXPECT_EQ(closest_name("abcd", std::vector<std::string>{"abce", "abcd"}), "abcd");
+    EXPECT_EQ(closest_name("abcd", std::vector<std::string>{}), "");
+}
+
+// ---- the command line
+
+TEST(ApcictlCli, MistypedCommandSaysWhatWasMeant) {
+    const auto r = apcictl_run({"raed", "1300", "0", "12", "0"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "apcictl: unknown command 'raed'; did you mean 'read'?\n");
+    EXPECT_EQ(apcictl_run({"stat"}).err,
+              "apcictl: unknown command 'stat'; did you mean 'status'?\n");
+}
+
+TEST(ApcictlCli, UnknownCommandWithNothingCloseListsTheCommands) {
+    const auto r = apcictl_run({"frobnicate"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err,
+              "apcictl: unknown command 'frobnicate' (commands: read, write, script, status, "
+              "spool, direct, ssf, step, run, list, diff)\n");
+}
+
+TEST(ApcictlCli, NoCommandSaysSoAndListsThem) {
+    const auto r = apcictl_run({});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.err.starts_with("apcictl: no command given (commands: read, write,")) << r.err;
+    EXPECT_TRUE(r.err.ends_with("see 'apcictl --help')\n")) << r.err;
+}
+
+TEST(ApcictlCli, MistypedOptionSaysWhatWasMeant) {
+    auto r = apcictl_run({"run", "p.nc", "--tool", "t"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: unknown option '--tool'; did you mean '--tools'?\n");
+    r = apcictl_run({"run", "p.nc", "--tool=t"});
+    EXPECT_EQ(r.err, "apcictl: unknown option '--tool'; did you mean '--tools'?\n");
+    r = apcictl_run({"step", "--idel"});
+    EXPECT_EQ(r.err, "apcictl: unknown option '--idel'; did you mean '--idle'?\n");
+    // The command line's own options count too: --device may follow the command.
+    r = apcictl_run({"status", "--devise", "emu:"});
+    EXPECT_EQ(r.err, "apcictl: unknown option '--devise'; did you mean '--device'?\n");
+}
+
+TEST(ApcictlCli, UnknownOptionWithNothingCloseNamesTheHelp) {
+    const auto r = apcictl_run({"read", "--frobnicate", "1300", "0", "12", "0"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: unknown option '--frobnicate' (see 'apcictl read --help')\n");
+    EXPECT_EQ(apcictl_run({"-x"}).err, "apcictl: unknown option '-x' (see 'apcictl --help')\n");
+}
+
+TEST(ApcictlCli, LeftOverArgumentsAreNamedInTheOrderTyped) {
+    const auto r = apcictl_run({"read", "1300", "0", "12", "0", "5", "6"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: The following arguments were not expected: 5 6\n");
+}
+
+TEST(ApcictlCli, MistypedScriptLinesSayWhatWasMeantToo) {
+    const auto r =
+        apcictl_run({"script", "-"}, "raed 1300 0 12 0\nstep --idel\nwrite --itn 1300 1 1 8 1\n");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err,
+              "apcictl: line 1: unknown command 'raed'; did you mean 'read'?\n"
+              "apcictl: line 2: step --idel: unknown option '--idel'; did you mean '--idle'?\n"
+              "apcictl: line 3: write --itn 1300 1 1 8 1: unknown option '--itn'; did you mean "
+              "'--int'?\n");
+}
+
+// Every line apcictl writes on stderr for these inputs is an error starting with "apcictl:".
+TEST(ApcictlCli, EveryErrorLineStartsWithTheProgramName) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("apcictl_cli_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string bad_nc = (dir / "bad.nc").string();
+    std::ofstream(bad_nc) << "N10 G01 X10 Q5\n";
+    const std::string no_tool = (dir / "d.nc").string();
+    std::ofstream(no_tool) << "N10 G01 X10 Y0 F600\nN20 G41 D1 X20\nM30\n";
+    const std::string bad_tools = (dir / "bad.tools").string();
+    std::ofstream(bad_tools) << "wz[1].radius abc\n";
+
+    struct Case {
+        std::vector<std::string> args;
+        std::string input;
+    };
+    const std::vector<Case> cases{
+        {{"raed"}, {}},                                               // bad command
+        {{}, {}},                                                     // no command
+        {{"run", no_tool, "--tool", "t"}, {}},                        // bad option
+        {{"read", "--int", "--double", "1300", "0", "12", "0"}, {}},  // options that exclude
+        {{"run", (dir / "missing.nc").string()}, {}},                 // missing file
+        {{"script", (dir / "missing.script").string()}, {}},          // missing script
+        {{"run", no_tool, "--plc", (dir / "missing.plc").string()}, {}},
+        {{"read", "1300", "one", "1", "7"}, {}},         // bad object address
+        {{"read", "9999", "0", "0", "0"}, {}},           // no such device
+        {{"read", "1300", "1", "9", "3"}, {}},           // no such object
+        {{"read", "1300", "1", "1"}, {}},                // address too short
+        {{"write", "1300", "1", "1", "8", "abc"}, {}},   // bad value
+        {{"write", "1300", "1", "1", "8", "2000"}, {}},  // value out of range
+        {{"step", "0"}, {}},                             // count out of range
+        {{"spool", "G01", "Q5"}, {}},                    // bad word
+        {{"run", "--plane", "5", no_tool}, {}},
+        {{"run", "--self-approach", "bogus", no_tool}, {}},
+        {{"run", bad_nc}, {}},                                         // bad program
+        {{"run", no_tool}, {}},                                        // run error
+        {{"run", no_tool, "--tools", bad_tools}, {}},                  // bad tool list
+        {{"-d", "unix:" + (dir / "no.sock").string(), "status"}, {}},  // unreachable device
+        {{"-d", "bogus:", "status"}, {}},                              // bad device URI
+        {{"-d", "usb:9:9", "status"}, {}},
+        {{"script", "-"}, "write 1300 1 1 8 2000\nread 1300 1 9 3\n"},  // script line errors
+        {{"script", "-", "--keep-going"}, "write 1300 1 1 8 2000\nread 1300 1 9 3\n"},
+        {{"script", "-"}, "frobnicate\nwrite 1300 1 1 8\n"},
+        {{"diff", "--against", "emu:", (dir / "missing.script").string()}, {}},
+    };
+    for (const Case& c : cases) {
+        const auto r = apcictl_run(c.args, c.input);
+        std::string typed;
+        for (const auto& a : c.args) typed += " " + a;
+        EXPECT_NE(r.exit_code, 0) << typed;
+        const auto lines = lines_of(r.err);
+        EXPECT_FALSE(lines.empty()) << typed;
+        for (const std::string& line : lines)
+            EXPECT_TRUE(line.starts_with("apcictl: ")) << typed << "\n  stderr line: " << line;
+    }
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: MIT
+#include "suggest.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <vector>
+
+#include "arguments.h"
+
+namespace apcictl {
+namespace {
+
+char lower(char c) {
+    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+}
+
+std::string_view without_dashes(std::string_view name) {
+    while (name.starts_with('-')) name.remove_prefix(1);
+    return name;
+}
+
+bool is_option(std::string_view word) {
+    return word.size() > 1 && word.starts_with('-');
+}
+
+// The subcommand of `app` that was parsed, else `app` itself.
+const CLI::App& active_command(const CLI::App& app) {
+    for (const CLI::App* sub : app.get_subcommands({}))
+        if (sub->parsed()) return *sub;
+    return app;
+}
+
+// "apcictl run --help" for the command line's `run` and for a script line's `run` parser.
+std::string help_command(const CLI::App& top, const CLI::App& active) {
+    std::string command = top.get_name() == "apcictl" ? "apcictl" : "apcictl " + top.get_name();
+    if (&active != &top) command += " " + active.get_name();
+    return command + " --help";
+}
+
+// "--tools", "-d": the option names `app` takes.
+void add_option_names(const CLI::App& app, std::vector<std::string>& names) {
+    for (const CLI::Option* option : app.get_options()) {
+        if (!option->nonpositional()) continue;
+        for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+        for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+    }
+}
+
+std::string unknown_option(const CLI::App& top, const CLI::App& active, std::string_view typed) {
+    const std::string_view name = typed.substr(0, typed.find('='));
+    std::vector<std::string> names;
+    add_option_names(active, names);
+    if (&active != &top) add_option_names(top, names);  // --device may follow the command
+    const std::string meant = closest_name(name, names);
+    if (!meant.empty()) return fmt::format("unknown option '{}'; did you mean '{}'?", name, meant);
+    return fmt::format("unknown option '{}' (see '{}')", name, help_command(top, active));
+}
+
+std::string unknown_command(const CLI::App& top, std::string_view typed) {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : top.get_subcommands({})) names.push_back(sub->get_name());
+    const std::string meant = closest_name(typed, names);
+    if (!meant.empty())
+        return fmt::format("unknown command '{}'; did you mean '{}'?", typed, meant);
+    return fmt::format("unknown command '{}' (commands: {})", typed, fmt::join(names, ", "));
+}
+
+}  // namespace
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    // d[i][j]: the distance between the first i characters of a and the first j of b.
+    const std::size_t width = b.size() + 1;
+    std::vector<std::size_t> d((a.size() + 1) * width);
+    const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return d[i * width + j]; };
+    for (std::size_t i = 0; i <= a.size(); ++i) at(i, 0) = i;
+    for (std::size_t j = 0; j <= b.size(); ++j) at(0, j) = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + cost});
+            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+                lower(a[i - 2]) == lower(b[j - 1]))
+                at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
+        }
+    }
+    return at(a.size(), b.size());
+}
+
+std::string closest_name(std::string_view typed, std::span<const std::string> candidates) {
+    const std::string* best = nullptr;
+    std::size_t best_distance = 0;
+    for (const std::string& candidate : candidates) {
+        const std::size_t longer =
+            std::max(without_dashes(typed).size(), without_dashes(candidate).size());
+        const std::size_t bound = std::min<std::size_t>(2, longer == 0 ? 0 : (longer - 1) / 2);
+        const std::size_t distance = edit_distance(typed, candidate);
+        if (distance > bound) continue;
+        if (best == nullptr || distance < best_distance) {
+            best = &candidate;
+            best_distance = distance;
+        }
+    }
+    return best == nullptr ? std::string() : *best;
+}
+
+std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error) {
+    const CLI::App& active = active_command(app);
+    // The words no option or positional took; a negative number (marked, arguments.h) is not an
+    // option. An unknown option first: the words after it may be its value.
+    std::vector<std::string> extras = app.remaining(true);
+    for (const std::string& word : extras)
+        if (is_option(word)) return unknown_option(app, active, word);
+    for (std::string& word : extras) word = plain_text(word);
+    const bool has_commands = !app.get_subcommands({}).empty();
+    if (has_commands && &active == &app) {
+        if (!extras.empty()) return unknown_command(app, extras.front());
+        std::vector<std::string> names;
+        for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+        return fmt::format("no command given (commands: {}; see '{}')", fmt::join(names, ", "),
+                           help_command(app, active));
+    }
+    // Words left over after a command's arguments, in the order typed (CLI11's message has
+    // them last first).
+    if (!extras.empty() && dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) {
+        return fmt::format("The following argument{} not expected: {}",
+                           extras.size() == 1 ? " was" : "s were", fmt::join(extras, " "));
+    }
+    return plain_text(error.what());
+}
+
+}  // namespace apcictl

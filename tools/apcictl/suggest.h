@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// Parse errors that say what was meant: an unknown command or option is named with the
+// closest known one ("unknown command 'raed'; did you mean 'read'?"), on the command line and
+// in script lines alike.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace apcictl {
+
+// The Damerau-Levenshtein distance (optimal string alignment: insertions, deletions,
+// substitutions and swaps of two neighbours, each 1), ignoring ASCII case.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// The candidate closest to `typed`, or empty when none is close enough: a distance of at most
+// 2, and at most (n - 1) / 2 where n is the longer of the two names without their leading
+// dashes (so "-x" suggests nothing for "-d", "raed" suggests "read"). Ties: the first.
+std::string closest_name(std::string_view typed, std::span<const std::string> candidates);
+
+// One line saying what is wrong with the arguments `app` failed to parse (with `error`): an
+// unknown command or option named, with the one meant if there is a close one, else CLI11's
+// message. `app` is apcictl's command line or the parser of one script line.
+std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error);
+
+}  // namespace apcictl
