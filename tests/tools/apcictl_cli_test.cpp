@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -190,6 +191,34 @@ TEST(ApcictlCli, EveryErrorLineStartsWithTheProgramName) {
             EXPECT_TRUE(line.starts_with("apcictl: ")) << typed << "\n  stderr line: " << line;
     }
     std::filesystem::remove_all(dir);
+}
+
+// The CSV of `run` names the board's axes as `step` (and spool, direct, ssf) names them.
+TEST(ApcictlCli, CsvColumnsAreNamedAsTheCommandLineNamesTheAxes) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("apcictl_csv_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string program = (dir / "p.nc").string();
+    std::ofstream(program) << "N10 G01 X1 Y0 F600\nM30\n";
+    const std::string csv = (dir / "p.csv").string();
+    const auto run = apcictl_run({"run", program, "--csv", csv});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    std::filesystem::remove_all(dir);
+
+    // "cycle 1 (+1) fill 0/256 idle X0 Y0 Z0 U0 V0 W0 A0 B0": the letters before the numbers.
+    const auto step = apcictl_run({"step", "1"});
+    ASSERT_EQ(step.exit_code, 0) << step.err;
+    std::string letters;
+    std::istringstream words(step.out);
+    for (std::string word; words >> word;)
+        if (word.size() >= 2 && std::isupper(static_cast<unsigned char>(word[0])) != 0 &&
+            (std::isdigit(static_cast<unsigned char>(word[1])) != 0 || word[1] == '-'))
+            letters += std::string(",") + word[0];
+    EXPECT_EQ(letters, ",X,Y,Z,U,V,W,A,B") << step.out;
+    EXPECT_EQ(header, "cycle,time_s" + letters);
 }
 
 }  // namespace

@@ -623,7 +623,7 @@ TEST_F(ApcictlRun, ToolLengthIsTakenOffTheToolCentrePointButMovesTheAxis) {
     std::istringstream lines(csv);
     std::string line, header;
     std::getline(lines, header);
-    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,a3,a4,a5,a6,a7");
+    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,U,V,W,A,B");
     int on_n30 = 0;
     while (std::getline(lines, line)) {
         std::vector<double> v;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "apci/run/csv_writer.h"
 #include "arguments.h"
 #include "command.h"
 #include "value_text.h"
@@ -22,7 +23,8 @@
 namespace apcictl {
 namespace {
 
-constexpr std::array<char, APCI_AXIS_COUNT> kAxisLetters{'X', 'Y', 'Z', 'U', 'V', 'W', 'A', 'B'};
+// The board's axis letters, the same as the columns of `run --csv`.
+constexpr std::array<char, APCI_AXIS_COUNT> kAxisLetters = apci::run::kBoardAxisLetters;
 
 int axis_of(char letter) {
     const char up = static_cast<char>(std::toupper(static_cast<unsigned char>(letter)));

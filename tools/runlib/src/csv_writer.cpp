@@ -20,10 +20,9 @@ void TraceCsvWriter::sample(std::uint64_t cycle, double time_s, std::span<const 
     ++count_;
 }
 
-std::string axis_column_name(int axis, int x, int y, int z) {
-    if (axis == x) return "X";
-    if (axis == y) return "Y";
-    if (axis == z) return "Z";
+std::string axis_column_name(int axis) {
+    if (axis >= 0 && static_cast<std::size_t>(axis) < kBoardAxisLetters.size())
+        return std::string(1, kBoardAxisLetters[static_cast<std::size_t>(axis)]);
     return "a" + std::to_string(axis);
 }
 

@@ -138,7 +138,7 @@ bool Execution::setup() {
 
     if (!read_axis_numbers()) return false;
     for (std::size_t i = 0; i < out.axis_names.size(); ++i)
-        out.axis_names[i] = axis_column_name(static_cast<int>(i), axes[0], axes[1], axes[2]);
+        out.axis_names[i] = axis_column_name(static_cast<int>(i));
     if (out.tc_present && !tc_.setup()) return false;
     if (!otc_.setup()) return false;
     if (!temp_.setup()) return false;

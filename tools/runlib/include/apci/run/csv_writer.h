@@ -1,15 +1,16 @@
 // SPDX-License-Identifier: MIT
 // `apcictl run --csv`: the axis positions of every interpolation cycle, one line a cycle,
-// streamed. Header: "cycle,time_s," then one column per board axis, named by the axis it
-// serves (X, Y, Z through the TC Axis-Nr objects, a<i> for the others):
+// streamed. Header: "cycle,time_s," then one column per board axis, board axes 0..7 in order,
+// named by the letters the command line names them by (`spool`, `direct`, `ssf`, `step`):
 //
-//   cycle,time_s,X,Y,Z,a3,a4,a5,a6,a7
+//   cycle,time_s,X,Y,Z,U,V,W,A,B
 //   1,0.001,0.01,0,0,0,0,0,0,0
 //
 // `cycle` is the board's clock at the end of the cycle (1 for the first), time_s = cycle times
 // the interpolation cycle. Positions are machine coordinates in program units.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <span>
@@ -34,7 +35,10 @@ class TraceCsvWriter {
     std::uint64_t count_ = 0;
 };
 
-// The column name of board axis `axis` when X, Y and Z are board axes x, y and z.
-std::string axis_column_name(int axis, int x, int y, int z);
+// The letters of board axes 0..7, as apcictl's command line and the CSV name them.
+inline constexpr std::array<char, 8> kBoardAxisLetters{'X', 'Y', 'Z', 'U', 'V', 'W', 'A', 'B'};
+
+// The column name of board axis `axis`: its letter ("U" for axis 3); "a<i>" beyond the eighth.
+std::string axis_column_name(int axis);
 
 }  // namespace apci::run

@@ -100,7 +100,7 @@ struct RunOutcome {
     std::vector<GroupRegisters> registers;  // groups 1..3 at the end; empty without optionTC
     int plot_plane = 17;  // the plane of the first compensation, else the last plane in force
     std::array<int, 3> axis_numbers{0, 1, 2};             // board axes of X, Y, Z
-    std::array<std::string, APCI_AXIS_COUNT> axis_names;  // CSV columns: "X", ..., "a7"
+    std::array<std::string, APCI_AXIS_COUNT> axis_names;  // CSV columns: "X", ..., "B"
     bool tc_present = true;
     bool otc_present = false;  // the board has the OTC module (bus 1330)
     // Accepted commands the emulator does not emulate (#HSC), by block; not errors.
