@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/svg_writer.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "apci/run/text_sink.h"
 
@@ -172,19 +176,14 @@ class Frame {
     // A coordinate with as many decimals as the plot resolves, trailing zeros dropped.
     void number(TextSink& sink, double v) const {
         char text[64];
-        int n = std::snprintf(text, sizeof text, "%.*f", decimals_, v);
-        if (n <= 0 || n >= static_cast<int>(sizeof text)) {
-            sink.append("0");
-            return;
-        }
-        if (std::memchr(text, '.', static_cast<std::size_t>(n)) != nullptr) {
-            while (n > 0 && text[n - 1] == '0') --n;
-            if (n > 0 && text[n - 1] == '.') --n;
-        }
-        std::string_view out(text, static_cast<std::size_t>(n));
-        if (out == "-0") out = "0";
-        sink.append(out);
+        sink.append(format(text, v));
     }
+    std::string text(double v) const {
+        char text[64];
+        return std::string(format(text, v));
+    }
+    // The smallest step a written coordinate shows.
+    double resolution() const noexcept { return std::pow(10.0, -decimals_); }
     void xy(TextSink& sink, const Point& p) const {
         number(sink, p[axes_.first]);
         sink.put(' ');
@@ -192,6 +191,18 @@ class Frame {
     }
 
   private:
+    std::string_view format(char (&text)[64], double v) const {
+        int n = std::snprintf(text, sizeof text, "%.*f", decimals_, v);
+        if (n <= 0 || n >= static_cast<int>(sizeof text)) return "0";
+        if (std::memchr(text, '.', static_cast<std::size_t>(n)) != nullptr) {
+            while (n > 0 && text[n - 1] == '0') --n;
+            if (n > 0 && text[n - 1] == '.') --n;
+        }
+        std::string_view out(text, static_cast<std::size_t>(n));
+        if (out == "-0") out = "0";
+        return out;
+    }
+
     PlaneAxes axes_;
     double u0_ = 0.0, u1_ = 0.0, v0_ = 0.0, v1_ = 0.0;
     double extent_ = 1.0;
@@ -280,13 +291,19 @@ class PathEmitter {
     Point last_ = Point::Zero();
 };
 
-// 1, 2 or 5 times a power of ten, at most `limit`.
-double round_length(double limit) {
-    const double p = std::pow(10.0, std::floor(std::log10(limit)));
-    for (const double m : {5.0, 2.0, 1.0})
-        if (m * p <= limit) return m * p;
-    return p;
-}
+// DejaVu Sans advance widths in units of 1/2048 em, for ' ' (32) .. '~' (126).
+constexpr std::array<std::uint16_t, 95> kDejaVuSansAdvance{
+    651,  821,  942,  1716, 1303, 1946, 1597, 563,  799,  799,  1024, 1716, 651,  739,  651,  690,
+    1303, 1303, 1303, 1303, 1303, 1303, 1303, 1303, 1303, 1303, 690,  690,  1716, 1716, 1716, 1087,
+    2048, 1401, 1405, 1430, 1577, 1294, 1178, 1587, 1540, 604,  604,  1343, 1141, 1767, 1532, 1612,
+    1235, 1612, 1423, 1300, 1251, 1499, 1401, 2025, 1403, 1251, 1403, 799,  690,  799,  1716, 1024,
+    1024, 1255, 1300, 1126, 1300, 1260, 721,  1300, 1298, 569,  569,  1186, 569,  1995, 1298, 1253,
+    1300, 1300, 842,  1067, 803,  1298, 1212, 1675, 1212, 1212, 1075, 1303, 690,  1303, 1716};
+constexpr double kUnitsPerEm = 2048.0;
+// The font size of the plot's text in its own units (the text is scaled into the drawing).
+constexpr double kTextUnits = 10.0;
+// The title widens the page up to this many em; a longer one is wrapped.
+constexpr double kTitleEms = 40.0;
 
 void append_xml_text(TextSink& sink, std::string_view text) {
     for (const char c : text) {
@@ -315,7 +332,65 @@ std::string block_label(const BlockRef& b) {
     return "";
 }
 
+// "N80 KorrError", or the error's name alone.
+std::string marker_label(const BlockRef& b, std::string_view code) {
+    std::string label = block_label(b);
+    if (!label.empty()) label += ' ';
+    return label.append(code);
+}
+
 }  // namespace
+
+double text_width(std::string_view text, double size) noexcept {
+    double units = 0.0;
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c >= 32 && c <= 126) {
+            units += kDejaVuSansAdvance[static_cast<std::size_t>(c - 32)];
+        } else if ((c & 0xC0U) != 0x80U) {  // not a UTF-8 continuation byte: one character
+            units += kUnitsPerEm;
+        }
+    }
+    return units / kUnitsPerEm * size;
+}
+
+std::vector<std::string> wrap_text(std::string_view text, double width, double size) {
+    std::vector<std::string> lines;
+    while (!text.empty()) {
+        // The longest start that fits (at least one character), cut after its last space or
+        // slash if it has one; a UTF-8 character is never cut.
+        std::size_t fits = 0, cut = 0;
+        for (std::size_t i = 1; i <= text.size(); ++i) {
+            if (i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0U) == 0x80U) continue;
+            if (fits != 0 && text_width(text.substr(0, i), size) > width) break;
+            fits = i;
+            if (text[i - 1] == ' ' || text[i - 1] == '/') cut = i;
+        }
+        const std::size_t n = fits == text.size() || cut == 0 ? fits : cut;
+        std::string_view line = text.substr(0, n);
+        while (line.size() > 1 && line.back() == ' ') line.remove_suffix(1);
+        lines.emplace_back(line);
+        text.remove_prefix(n);
+    }
+    return lines;
+}
+
+double scale_bar_length(double width) noexcept {
+    if (!(width > 0.0) || !std::isfinite(width)) return 1.0;
+    const double quarter = width / 4.0;
+    const int exponent = static_cast<int>(std::floor(std::log10(quarter)));
+    double best = 0.0;
+    // The candidates around the quarter: 1, 2, 5 times 10^(exponent - 1 .. exponent + 1). A
+    // negative power divides by an exact power of ten, so 0.0005 is the double nearest 5e-4.
+    for (int k = exponent - 1; k <= exponent + 1; ++k) {
+        for (const double m : {1.0, 2.0, 5.0}) {
+            const double v = k >= 0 ? m * std::pow(10.0, k) : m / std::pow(10.0, -k);
+            if (best == 0.0 || std::abs(std::log(v / quarter)) < std::abs(std::log(best / quarter)))
+                best = v;
+        }
+    }
+    return best;
+}
 
 SvgPlotWriter::SvgPlotWriter() : records_(std::tmpfile()) {
     if (records_ != nullptr) std::setvbuf(records_, nullptr, _IOFBF, std::size_t{1} << 16);
@@ -396,48 +471,93 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     }
     if (!ok() || std::fflush(records_) != 0) return false;
     const Frame frame(plane, bounds_);
+    const PlaneAxes& axes = frame.axes();
+    const char first = axis_letter(axes.first);
+    const char second = axis_letter(axes.second);
     const double e = frame.extent();
     const double margin = 0.06 * e;
     const double font = 0.028 * e;
     const double stroke = e / 500.0;
-    // View box: title band above, plot, footer band below (scale bar, axes, legend).
+    const double gap = 1.5 * font;  // between texts side by side
+    const auto width_of = [&](std::string_view text) { return text_width(text, font); };
+
+    // Plot band: the drawing, and the error labels ("N80 KorrError") right of and above their
+    // markers.
     const double x0 = frame.u0() - margin;
-    const double header = 2.2 * font;
-    // Legend entries (layers drawn, then the error marker) in rows of `per_row`.
-    const double entry = 14.0 * font;
-    std::size_t entries = markers_.empty() && markers_dropped_ == 0 ? 0 : 1;
-    for (const std::uint64_t c : counts_) entries += c != 0 ? 1 : 0;
-    // Error labels ("N80 KorrError") stand right of and above their markers: room for them.
-    double label_right = frame.u1() + margin;
-    double label_top = frame.v1() + margin;
+    double plot_right = frame.u1() + margin;
+    double plot_top = frame.v1() + margin;
     for (const Marker& m : markers_) {
-        const double chars = static_cast<double>(block_label(m.block).size() + m.code.size() + 1);
-        label_right =
-            std::max(label_right, m.where[frame.axes().first] + (1.6 + 0.62 * chars) * font);
-        label_top = std::max(label_top, m.where[frame.axes().second] + 2.0 * font);
+        plot_right = std::max(plot_right, m.where[axes.first] + 1.2 * font +
+                                              width_of(marker_label(m.block, m.code)) + gap);
+        plot_top = std::max(plot_top, m.where[axes.second] + 2.0 * font);
     }
-    const double plot_width = label_right - x0;
-    const double box_width = std::max(plot_width, 16.0 * font);
-    const auto per_row =
-        std::max<std::size_t>(1, static_cast<std::size_t>((box_width - 0.5 * margin) / entry));
-    const std::size_t rows = (entries + per_row - 1) / per_row;
-    const double footer = (3.0 + 1.5 * static_cast<double>(rows)) * font + margin;
-    const double y0 = -label_top - header;
-    const double height = (label_top - frame.v0()) + margin + header + footer;
+
+    // The texts, measured: title, coordinate ranges, legend labels.
+    const std::string heading = fmt::format("{} \xe2\x80\x94 G{} plane {}, seen from +{}", title,
+                                            plane, plane_name(plane), axis_letter(axes.third));
+    const std::string ranges =
+        fmt::format("{} {} .. {}, {} {} .. {} mm", first, frame.text(frame.u0()),
+                    frame.text(frame.u1()), second, frame.text(frame.v0()), frame.text(frame.v1()));
+    std::vector<std::string> legend;  // the layers drawn, then the error marker
+    for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer)
+        if (counts_[layer] != 0) legend.emplace_back(layer_label(static_cast<PlotLayer>(layer)));
+    if (!markers_.empty() || markers_dropped_ != 0) {
+        legend.emplace_back(markers_dropped_ == 0
+                                ? std::string("error")
+                                : fmt::format("error ({} more not drawn)", markers_dropped_));
+    }
+    double entry = 0.0;  // a legend entry: its sample (2 em), then its label
+    for (const std::string& label : legend) entry = std::max(entry, 2.5 * font + width_of(label));
+
+    // The page's width: the plot band, the ranges beside the axis cross, one legend entry, the
+    // title (wrapped rather than widen the page beyond kTitleEms), the scale bar and its label
+    // beside the cross. The bar follows the width (a 1-2-5 length near a quarter of it), and
+    // the width the bar: repeated until the bar fits (it is at most 0.4 of the width).
+    const double cross = 0.35 * font + 2.2 * font + 0.3 * font + width_of(std::string(1, first));
+    double width = std::max(
+        {plot_right - x0, 2.0 * margin + width_of(ranges) + gap + cross, 2.0 * margin + entry});
+    width = std::max(width, std::min(2.0 * margin + width_of(heading),
+                                     std::max(width, 2.0 * margin + kTitleEms * font)));
+    const std::vector<std::string> title_lines = wrap_text(heading, width - 2.0 * margin, font);
+    double bar = 0.0;
+    std::string bar_label;
+    for (int pass = 0; pass < 64; ++pass) {
+        bar = scale_bar_length(width);
+        bar_label = fmt::format("{} mm", bar);
+        const double needs = 2.0 * margin + bar + 0.6 * font + width_of(bar_label) + gap + cross;
+        if (needs <= width) break;
+        width = needs;
+    }
+
+    // Heights: title band, plot band, footer (scale bar, ranges, legend rows).
+    const double line_pitch = 1.25 * font;
+    const double header = 2.2 * font + static_cast<double>(title_lines.size() - 1) * line_pitch;
+    const double y0 = -plot_top - header;
+    const double fy = -frame.v0() + margin + 1.2 * font;  // the scale bar's line
+    const double ranges_y = fy + 1.85 * font;             // the ranges' baseline
+    const auto per_row = static_cast<std::size_t>(
+        std::max(1.0, std::floor((width - 2.0 * margin - entry) / (entry + gap)) + 1.0));
+    const std::size_t rows = (legend.size() + per_row - 1) / per_row;
+    const auto row_y = [&](std::size_t row) {  // a legend row's sample line
+        return fy + (3.4 + 1.5 * static_cast<double>(row)) * font;
+    };
+    const double bottom =
+        rows == 0 ? ranges_y + kTextDescent * font : row_y(rows - 1) + (0.35 + kTextDescent) * font;
+    // The view box, out to what the coordinates as written resolve.
+    const double step = frame.resolution();
+    const double box_x = std::floor(x0 / step) * step;
+    const double box_y = std::floor(y0 / step) * step;
+    const double box_width = std::ceil((x0 + width) / step) * step - box_x;
+    const double box_height = std::ceil((bottom + 0.5 * margin) / step) * step - box_y;
     const double pixels = 1000.0;
 
     TextSink sink(out);
+    const auto at = [&](double v) { return frame.text(v); };
     sink.append("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     sink.append("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"");
-    frame.number(sink, x0);
-    sink.put(' ');
-    frame.number(sink, y0);
-    sink.put(' ');
-    frame.number(sink, box_width);
-    sink.put(' ');
-    frame.number(sink, height);
+    sink.print("{} {} {} {}", at(box_x), at(box_y), at(box_width), at(box_height));
     sink.print("\" width=\"{:.0f}\" height=\"{:.0f}\">\n", pixels,
-               std::ceil(pixels * height / box_width));
+               std::ceil(pixels * box_height / box_width));
     const auto w = [&](double factor) { return fmt::format("{:.6g}", stroke * factor); };
     sink.print(
         "<style>\n"
@@ -451,26 +571,29 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         ".transition {{ stroke: #e4572e; stroke-width: {2}; }}\n"
         "{8}"
         ".error {{ fill: none; stroke: #d00000; stroke-width: {1}; }}\n"
-        "text {{ font-family: sans-serif; font-size: {6:.6g}px; fill: #222222; }}\n"
+        "text {{ font-family: 'DejaVu Sans', sans-serif; font-size: {6}px; fill: #222222; }}\n"
         "text.error {{ fill: #d00000; stroke: none; }}\n"
         ".frame {{ fill: none; stroke: #cccccc; stroke-width: {7}; }}\n"
         ".axis {{ fill: none; stroke: #222222; stroke-width: {0}; }}\n"
         "</style>\n",
-        w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), font, w(0.5),
+        w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), kTextUnits, w(0.5),
         counts_[static_cast<std::size_t>(PlotLayer::kCycles)] == 0
             ? std::string()
             : fmt::format(".cycles {{ stroke: #c2185b; stroke-width: {}; }}\n", w(1.0)));
-    sink.print(
-        "<rect x=\"{:.6g}\" y=\"{:.6g}\" width=\"{:.6g}\" height=\"{:.6g}\" fill=\"white\"/>\n", x0,
-        y0, box_width, height);
-    sink.append("<text x=\"");
-    frame.number(sink, frame.u0());
-    sink.append("\" y=\"");
-    frame.number(sink, y0 + 1.4 * font);
-    sink.append("\">");
-    append_xml_text(sink, title);
-    sink.print(" \xe2\x80\x94 G{} plane {}, seen from +{}</text>\n", plane, plane_name(plane),
-               axis_letter(frame.axes().third));
+    sink.print("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"white\"/>\n", at(box_x),
+               at(box_y), at(box_width), at(box_height));
+    // Text in its own units (kTextUnits to the font size), placed and scaled into the drawing's,
+    // so that no renderer sees a font size of a tiny part's fraction of a millimetre.
+    const auto put_text = [&](double x, double y, std::string_view attributes,
+                              std::string_view content) {
+        sink.print("<text{} transform=\"translate({} {}) scale({:.6g})\">", attributes, at(x),
+                   at(y), font / kTextUnits);
+        append_xml_text(sink, content);
+        sink.append("</text>\n");
+    };
+    for (std::size_t i = 0; i < title_lines.size(); ++i)
+        put_text(frame.u0(), y0 + 1.4 * font + static_cast<double>(i) * line_pitch,
+                 " class=\"title\"", title_lines[i]);
 
     // The layers, one pass over the records each, bottom to top.
     bool read_ok = true;
@@ -487,83 +610,53 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     // Error markers: a circle and "N80 KorrError".
     for (const Marker& m : markers_) {
         sink.append("<circle class=\"error\" cx=\"");
-        frame.number(sink, m.where[frame.axes().first]);
+        frame.number(sink, m.where[axes.first]);
         sink.append("\" cy=\"");
-        frame.number(sink, -m.where[frame.axes().second]);
+        frame.number(sink, -m.where[axes.second]);
         sink.print("\" r=\"{:.6g}\"/>\n", 0.9 * font);
-        sink.append("<text class=\"error\" x=\"");
-        frame.number(sink, m.where[frame.axes().first] + 1.2 * font);
-        sink.append("\" y=\"");
-        frame.number(sink, -m.where[frame.axes().second] - 1.0 * font);
-        sink.append("\">");
-        std::string label = block_label(m.block);
-        if (!label.empty()) label += ' ';
-        append_xml_text(sink, label + m.code);
-        sink.append("</text>\n");
+        put_text(m.where[axes.first] + 1.2 * font, -m.where[axes.second] - 1.0 * font,
+                 " class=\"error\"", marker_label(m.block, m.code));
     }
 
-    // Footer: scale bar and range, the plane's axes, the legend.
-    const double fy = -frame.v0() + margin + 1.2 * font;
-    const double bar =
-        round_length(0.25 * (frame.u1() - frame.u0() > 0 ? frame.u1() - frame.u0() : e));
+    // Footer: the scale bar and its length, the coordinate ranges below, the plane's axes at
+    // the right, the legend.
     const double bx = frame.u0();
     sink.print(
-        "<path class=\"axis\" d=\"M{0:.6g} {1:.6g} L{2:.6g} {1:.6g} M{0:.6g} {3:.6g} L{0:.6g} "
-        "{4:.6g} M{2:.6g} {3:.6g} L{2:.6g} {4:.6g}\"/>\n",
-        bx, fy, bx + bar, fy - 0.4 * font, fy + 0.4 * font);
-    sink.print("<text x=\"{:.6g}\" y=\"{:.6g}\">{:g} mm</text>\n", bx + bar + 0.6 * font,
-               fy + 0.35 * font, bar);
-    const char first = axis_letter(frame.axes().first);
-    const char second = axis_letter(frame.axes().second);
-    sink.print("<text x=\"{:.6g}\" y=\"{:.6g}\">", bx + bar + 6.0 * font, fy + 0.35 * font);
-    sink.print("{} ", first);
-    frame.number(sink, frame.u0());
-    sink.append(" .. ");
-    frame.number(sink, frame.u1());
-    sink.print(", {} ", second);
-    frame.number(sink, frame.v0());
-    sink.append(" .. ");
-    frame.number(sink, frame.v1());
-    sink.append(" mm</text>\n");
-    // Axis cross at the right end of the footer: the first axis right, the second up.
-    const double ax = x0 + box_width - margin - 3.0 * font;
-    const double ay = fy + 0.6 * font;
+        "<path class=\"axis\" id=\"scale-bar\" d=\"M{0} {1} L{2} {1} M{0} {3} L{0} {4} M{2} {3} "
+        "L{2} {4}\"/>\n",
+        at(bx), at(fy), at(bx + bar), at(fy - 0.4 * font), at(fy + 0.4 * font));
+    put_text(bx + bar + 0.6 * font, fy + 0.35 * font, " id=\"scale-label\"", bar_label);
+    put_text(bx, ranges_y, "", ranges);
+    // Axis cross: the first axis right, the second up.
+    const double ax = x0 + width - margin - (cross - 0.35 * font);
+    const double ay = fy + 1.5 * font;
     const double len = 2.2 * font;
     sink.print(
-        "<path class=\"axis\" d=\"M{0:.6g} {1:.6g} L{2:.6g} {1:.6g} M{0:.6g} {1:.6g} L{0:.6g} "
-        "{3:.6g}"
-        " M{4:.6g} {5:.6g} L{2:.6g} {1:.6g} L{4:.6g} {6:.6g}"
-        " M{7:.6g} {8:.6g} L{0:.6g} {3:.6g} L{9:.6g} {8:.6g}\"/>\n",
-        ax, ay, ax + len, ay - len, ax + len - 0.4 * font, ay - 0.25 * font, ay + 0.25 * font,
-        ax - 0.25 * font, ay - len + 0.4 * font, ax + 0.25 * font);
-    sink.print("<text x=\"{:.6g}\" y=\"{:.6g}\">{}</text>\n", ax + len + 0.3 * font,
-               ay + 0.35 * font, first);
-    sink.print("<text x=\"{:.6g}\" y=\"{:.6g}\">{}</text>\n", ax - 0.35 * font,
-               ay - len - 0.4 * font, second);
+        "<path class=\"axis\" d=\"M{0} {1} L{2} {1} M{0} {1} L{0} {3} M{4} {5} L{2} {1} L{4} {6} "
+        "M{7} {8} L{0} {3} L{9} {8}\"/>\n",
+        at(ax), at(ay), at(ax + len), at(ay - len), at(ax + len - 0.4 * font), at(ay - 0.25 * font),
+        at(ay + 0.25 * font), at(ax - 0.25 * font), at(ay - len + 0.4 * font),
+        at(ax + 0.25 * font));
+    put_text(ax + len + 0.3 * font, ay + 0.35 * font, "", std::string(1, first));
+    put_text(ax - 0.35 * font, ay - len - 0.4 * font, "", std::string(1, second));
     // Legend: a short sample of each layer drawn, then the error marker.
     std::size_t slot = 0;
-    const auto slot_x = [&] { return bx + static_cast<double>(slot % per_row) * entry; };
-    const auto slot_y = [&] {
-        const std::size_t row = slot / per_row;  // whole rows
-        return fy + (2.4 + 1.5 * static_cast<double>(row)) * font;
-    };
     for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
         if (counts_[layer] == 0) continue;
         const auto l = static_cast<PlotLayer>(layer);
-        const double lx = slot_x(), ly = slot_y();
-        sink.print("<path class=\"{}\" d=\"M{:.6g} {:.6g} L{:.6g} {:.6g}\"/>\n", layer_class(l), lx,
-                   ly, lx + 2.0 * font, ly);
-        sink.print("<text x=\"{:.6g}\" y=\"{:.6g}\">{}</text>\n", lx + 2.5 * font, ly + 0.35 * font,
-                   layer_label(l));
+        const double lx = bx + static_cast<double>(slot % per_row) * (entry + gap);
+        const double ly = row_y(slot / per_row);
+        sink.print("<path class=\"{}\" d=\"M{} {} L{} {}\"/>\n", layer_class(l), at(lx), at(ly),
+                   at(lx + 2.0 * font), at(ly));
+        put_text(lx + 2.5 * font, ly + 0.35 * font, "", legend[slot]);
         ++slot;
     }
-    if (!markers_.empty() || markers_dropped_ != 0) {
-        const double lx = slot_x(), ly = slot_y();
-        sink.print("<circle class=\"error\" cx=\"{:.6g}\" cy=\"{:.6g}\" r=\"{:.6g}\"/>\n",
-                   lx + font, ly, 0.5 * font);
-        sink.print("<text x=\"{:.6g}\" y=\"{:.6g}\">error", lx + 2.5 * font, ly + 0.35 * font);
-        if (markers_dropped_ != 0) sink.print(" ({} more not drawn)", markers_dropped_);
-        sink.append("</text>\n");
+    if (slot < legend.size()) {
+        const double lx = bx + static_cast<double>(slot % per_row) * (entry + gap);
+        const double ly = row_y(slot / per_row);
+        sink.print("<circle class=\"error\" cx=\"{}\" cy=\"{}\" r=\"{:.6g}\"/>\n", at(lx + font),
+                   at(ly), 0.5 * font);
+        put_text(lx + 2.5 * font, ly + 0.35 * font, "", legend[slot]);
     }
     sink.append("</svg>\n");
     return sink.flush() && read_ok;

@@ -2,7 +2,8 @@
 // `apcictl run --svg`: a plot of one run in one plane (17 X-Y, 18 Z-X, 19 Y-Z): the programmed
 // contour, the compensated tool-centre path, its transitions, approach and departure moves in
 // their own styles, rapid moves, error markers with block number and error name, a scale bar,
-// the plane's axes and a legend; the view box fits the drawing.
+// the plane's axes and a legend; the view box fits the drawing, and the page is wide enough
+// for the title, the coordinate ranges and the legend (text measured, text_width below).
 //
 // Streamed: segments go to a temporary file as fixed-size records while the run goes (memory
 // stays flat however long the program); finish() reads them back, one pass per layer, and
@@ -101,5 +102,24 @@ class SvgPlotWriter {
 
 // Markers kept for the plot; further errors are counted in a note, not drawn.
 inline constexpr std::size_t kMaxErrorMarkers = 100;
+
+// The plot's text is set in DejaVu Sans (CSS: 'DejaVu Sans', sans-serif), and the layout
+// measures it: text_width is the advance width of `text` (UTF-8) at font size `size`, from
+// DejaVu Sans's advance widths for printable ASCII; any other character counts one em (the em
+// dash of the title is one em). The usual fallbacks (Helvetica, Arial, Liberation Sans) are
+// narrower, so text measured so fits with them too. A line of text reaches kTextAscent em
+// above its baseline and kTextDescent em below (DejaVu Sans: 1901 and 483 of 2048 units).
+double text_width(std::string_view text, double size) noexcept;
+inline constexpr double kTextAscent = 0.93;
+inline constexpr double kTextDescent = 0.24;
+
+// `text` in lines of at most `width` at font size `size` (by text_width), cut after a space or
+// a slash where one fits, else between two characters; a line holds at least one character.
+std::vector<std::string> wrap_text(std::string_view text, double width, double size);
+
+// The scale bar's length for a page `width` wide: the 1-2-5 value (1, 2 or 5 times a power of
+// ten) nearest, by ratio, to a quarter of the width. It lies between width / 5 and width / 3
+// whenever a 1-2-5 value does, and always between width / 6.33 and width / 2.53.
+double scale_bar_length(double width) noexcept;
 
 }  // namespace apci::run

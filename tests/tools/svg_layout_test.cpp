@@ -1,0 +1,296 @@
+// SPDX-License-Identifier: MIT
+// The layout of `apcictl run --svg`: for parts of any aspect ratio and size, the title, the
+// coordinate ranges, the legend and the labels lie inside the view box and do not overlap, by
+// the same text metric the writer lays them out with; the scale bar is a 1-2-5 length about a
+// quarter of the page's width and its label says the length drawn.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apci/run/svg_writer.h"
+
+namespace apci::run {
+namespace {
+
+std::string write_svg(SvgPlotWriter& w, int plane, std::string_view title) {
+    std::FILE* f = std::tmpfile();
+    EXPECT_NE(f, nullptr);
+    if (f == nullptr) return {};
+    EXPECT_TRUE(w.finish(f, plane, title));
+    std::rewind(f);
+    std::string text;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+    std::fclose(f);
+    return text;
+}
+
+PathSegment line(const Point& a, const Point& b, Role role) {
+    PathSegment s;
+    s.block.number = 10;
+    s.kind = SegmentKind::kLine;
+    s.role = role;
+    s.start = a;
+    s.end = b;
+    return s;
+}
+
+double number(const std::string& text) {
+    return std::stod(text);
+}
+
+std::string xml_text(std::string text) {
+    for (const auto& [entity, c] : std::vector<std::pair<std::string, std::string>>{
+             {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}}) {
+        for (auto at = text.find(entity); at != std::string::npos; at = text.find(entity, at + 1))
+            text.replace(at, entity.size(), c);
+    }
+    return text;
+}
+
+struct Box {
+    double x0, y0, x1, y1;
+    std::string text;
+};
+
+struct Layout {
+    double vx = 0, vy = 0, vw = 0, vh = 0;  // the viewBox
+    std::vector<Box> texts;
+    std::vector<double> sizes;       // each text's font size in the drawing's units
+    std::vector<std::string> title;  // the title's lines
+    double bar = 0.0;                // the scale bar's drawn length
+    double bar_label = 0.0;          // what its label says, in mm
+};
+
+// Reads the view box, the font sizes of the stylesheet, every <text> (as a box by
+// text_width, kTextAscent and kTextDescent), the scale bar and its label.
+Layout parse(const std::string& svg) {
+    Layout out;
+    std::smatch m;
+    EXPECT_TRUE(
+        std::regex_search(svg, m, std::regex("viewBox=\"([^ ]+) ([^ ]+) ([^ ]+) ([^\"]+)\"")));
+    out.vx = number(m[1]);
+    out.vy = number(m[2]);
+    out.vw = number(m[3]);
+    out.vh = number(m[4]);
+    EXPECT_TRUE(std::regex_search(svg, m, std::regex("\ntext \\{[^}]*font-size: ([^p]+)px")));
+    const double font = number(m[1]);  // in the text's own units, scaled into the drawing's
+    const std::regex text_element("<text ([^>]*)>([^<]*)</text>");
+    const std::regex placed("transform=\"translate\\(([^ ]+) ([^)]+)\\) scale\\(([^)]+)\\)\"");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text_element);
+         it != std::sregex_iterator(); ++it) {
+        const std::string attributes = (*it)[1];
+        const std::string content = xml_text((*it)[2]);
+        std::smatch a;
+        EXPECT_TRUE(std::regex_search(attributes, a, placed)) << attributes;
+        const double x = number(a[1]);
+        const double y = number(a[2]);
+        const double size = font * number(a[3]);
+        out.texts.push_back(Box{x, y - kTextAscent * size, x + text_width(content, size),
+                                y + kTextDescent * size, content});
+        out.sizes.push_back(size);
+        if (attributes.find("class=\"title\"") != std::string::npos) out.title.push_back(content);
+        if (attributes.find("id=\"scale-label\"") != std::string::npos) {
+            EXPECT_TRUE(content.ends_with(" mm")) << content;
+            out.bar_label = number(content.substr(0, content.size() - 3));
+        }
+    }
+    EXPECT_TRUE(std::regex_search(
+        svg, m, std::regex("id=\"scale-bar\" d=\"M([^ ]+) ([^ ]+) L([^ ]+) ([^ ]+) ")));
+    out.bar = number(m[3]) - number(m[1]);
+    EXPECT_EQ(m[2], m[4]);  // horizontal
+    return out;
+}
+
+bool is_1_2_5(double v) {
+    const double p = std::pow(10.0, std::floor(std::log10(v) + 1e-9));
+    const double mantissa = v / p;
+    for (const double m : {1.0, 2.0, 5.0})
+        if (std::abs(mantissa - m) < 1e-9 * m) return true;
+    return false;
+}
+
+// Whether a 1-2-5 value lies in lo..hi.
+bool any_1_2_5_within(double lo, double hi) {
+    for (int k = -12; k <= 12; ++k)
+        for (const double m : {1.0, 2.0, 5.0})
+            if (m * std::pow(10.0, k) >= lo && m * std::pow(10.0, k) <= hi) return true;
+    return false;
+}
+
+void check_layout(const std::string& svg, const std::string& what) {
+    SCOPED_TRACE(what);
+    const Layout l = parse(svg);
+    ASSERT_GT(l.vw, 0.0);
+    ASSERT_GT(l.vh, 0.0);
+    ASSERT_FALSE(l.texts.empty());
+    const double slack = 1e-9 * std::max(l.vw, l.vh);
+    for (const Box& b : l.texts) {
+        EXPECT_GE(b.x0, l.vx - slack) << b.text;
+        EXPECT_LE(b.x1, l.vx + l.vw + slack)
+            << b.text << " ends at " << b.x1 << ", the page at " << l.vx + l.vw;
+        EXPECT_GE(b.y0, l.vy - slack) << b.text;
+        EXPECT_LE(b.y1, l.vy + l.vh + slack) << b.text;
+    }
+    for (std::size_t i = 0; i < l.texts.size(); ++i) {
+        for (std::size_t j = i + 1; j < l.texts.size(); ++j) {
+            const Box& a = l.texts[i];
+            const Box& b = l.texts[j];
+            const bool apart = a.x1 <= b.x0 || b.x1 <= a.x0 || a.y1 <= b.y0 || b.y1 <= a.y0;
+            EXPECT_TRUE(apart) << "'" << a.text << "' overlaps '" << b.text << "'";
+        }
+    }
+    // The bar: a 1-2-5 length, its label the length drawn, about a quarter of the page.
+    EXPECT_TRUE(is_1_2_5(l.bar_label)) << l.bar_label;
+    EXPECT_NEAR(l.bar, l.bar_label, 1e-3 * l.bar_label);
+    EXPECT_GE(l.bar, l.vw / 6.33) << "page " << l.vw;
+    EXPECT_LE(l.bar, l.vw / 2.53) << "page " << l.vw;
+    if (any_1_2_5_within(l.vw / 5.0, l.vw / 3.0)) {
+        EXPECT_GE(l.bar, l.vw / 5.0 * (1 - 1e-6)) << "page " << l.vw;
+        EXPECT_LE(l.bar, l.vw / 3.0 * (1 + 1e-6)) << "page " << l.vw;
+    }
+}
+
+// A rectangle w x h at (x, y): programmed, executed as a contour, and (with `everything`)
+// every other layer, per-cycle points and two error markers, so the legend is full.
+std::string rectangle_svg(double x, double y, double w, double h, bool everything,
+                          std::string_view title = "part.nc") {
+    SvgPlotWriter plot;
+    const Point a(x, y, 0), b(x + w, y, 0), c(x + w, y + h, 0), d(x, y + h, 0);
+    for (const auto& [p, q] : {std::pair{a, b}, {b, c}, {c, d}, {d, a}}) {
+        plot.programmed(line(p, q, Role::kContour));
+        plot.executed(line(p, q, Role::kContour));
+    }
+    if (everything) {
+        PathSegment rapid = line(a, c, Role::kUncompensated);
+        rapid.kind = SegmentKind::kRapid;
+        plot.executed(rapid);
+        plot.executed(line(a, c, Role::kUncompensated));
+        plot.executed(line(b, d, Role::kApproach));
+        plot.executed(line(d, b, Role::kDeparture));
+        plot.executed(line(a, d, Role::kTransition));
+        plot.cycle(a);
+        plot.cycle(c);
+        BlockRef n80;
+        n80.number = 80;
+        plot.error_marker(n80, a, "KorrError");
+        BlockRef line12;
+        line12.line = 12;
+        plot.error_marker(line12, c, "CalcError");
+    }
+    return write_svg(plot, 17, title);
+}
+
+// ---- the text metric and the bar's length (pure functions)
+
+TEST(SvgLayout, TextWidthIsDejaVuSansAdvanceWidths) {
+    EXPECT_EQ(text_width("", 10.0), 0.0);
+    EXPECT_DOUBLE_EQ(text_width("A", 2048.0), 1401.0);
+    EXPECT_DOUBLE_EQ(text_width(" ", 2048.0), 651.0);
+    EXPECT_DOUBLE_EQ(text_width("mm", 2048.0), 2.0 * 1995.0);
+    EXPECT_DOUBLE_EQ(text_width("X 0 .. 10", 1.0), 2.0 * text_width("X 0 .. 10", 0.5));
+    EXPECT_LT(text_width("iiii", 1.0), text_width("MMMM", 1.0));
+    // Any other character, the em dash (three UTF-8 bytes) among them, is one em.
+    EXPECT_DOUBLE_EQ(text_width("\xe2\x80\x94", 10.0), 10.0);
+    EXPECT_DOUBLE_EQ(text_width("a\xc3\xa9z", 2048.0), 1255.0 + 2048.0 + 1075.0);
+}
+
+TEST(SvgLayout, ScaleBarIsTheOneTwoFiveLengthNearestAQuarterOfTheWidth) {
+    EXPECT_EQ(scale_bar_length(100.0), 20.0);  // a quarter: 25
+    EXPECT_EQ(scale_bar_length(224.0), 50.0);  // 56
+    EXPECT_EQ(scale_bar_length(135.0), 50.0);  // 33.75: nearer 50 than 20 by ratio
+    EXPECT_EQ(scale_bar_length(0.0112), 0.002);
+    EXPECT_EQ(scale_bar_length(0.002), 0.0005);  // the double nearest 5e-4, printed so
+    EXPECT_EQ(fmt::format("{}", scale_bar_length(0.002)), "0.0005");
+    for (int step = 0; step < 400; ++step) {  // widths from 1e-4 to beyond 1e7
+        const double width = 1e-4 * std::pow(1.07, step);
+        const double bar = scale_bar_length(width);
+        EXPECT_TRUE(is_1_2_5(bar)) << width;
+        EXPECT_GE(bar, width / 6.33) << width;
+        EXPECT_LE(bar, width / 2.53) << width;
+        if (any_1_2_5_within(width / 5.0, width / 3.0)) {
+            EXPECT_GE(bar, width / 5.0 * (1 - 1e-12)) << width;
+            EXPECT_LE(bar, width / 3.0 * (1 + 1e-12)) << width;
+        }
+    }
+}
+
+// ---- pages of any shape
+
+TEST(SvgLayout, TallPartOneToTwenty) {
+    check_layout(rectangle_svg(0, 0, 10, 200, false), "10 x 200");
+    check_layout(rectangle_svg(0, 0, 10, 200, true), "10 x 200, every layer and markers");
+}
+
+TEST(SvgLayout, WidePartTwentyToOne) {
+    check_layout(rectangle_svg(0, 0, 200, 10, false), "200 x 10");
+    check_layout(rectangle_svg(0, 0, 200, 10, true), "200 x 10, every layer and markers");
+}
+
+TEST(SvgLayout, SquarePart) {
+    check_layout(rectangle_svg(0, 0, 100, 100, false), "100 x 100");
+    check_layout(rectangle_svg(-50, -50, 100, 100, true), "100 x 100, every layer and markers");
+}
+
+TEST(SvgLayout, TinyPart) {
+    check_layout(rectangle_svg(0, 0, 0.01, 0.01, false), "0.01 x 0.01");
+    check_layout(rectangle_svg(1000, -1000, 0.01, 0.01, true), "0.01 x 0.01 at (1000, -1000)");
+}
+
+TEST(SvgLayout, HugePart) {
+    check_layout(rectangle_svg(0, 0, 1e5, 1e5, false), "1e5 x 1e5");
+    check_layout(rectangle_svg(-1e5, 0, 1e5, 2e3, true), "1e5 x 2e3, every layer and markers");
+}
+
+TEST(SvgLayout, LongTitleIsWrappedOnThePage) {
+    const std::string title = "/a/very/long/directory/name/" + std::string(250, 'W') + ".nc";
+    const std::string svg = rectangle_svg(0, 0, 10, 200, false, title);
+    check_layout(svg, "long title");
+    const Layout l = parse(svg);
+    ASSERT_GT(l.title.size(), 2u);
+    std::string joined;
+    for (const std::string& line : l.title) joined += line;
+    EXPECT_EQ(joined, title + " \xe2\x80\x94 G17 plane X-Y, seen from +Z");
+    EXPECT_EQ(l.title.front(), "/a/very/long/directory/name/");  // cut after a slash
+    // Every text at one size, the page not many times the drawing's width.
+    for (const double size : l.sizes) EXPECT_DOUBLE_EQ(size, l.sizes.front());
+    EXPECT_LT(l.vw, 45.0 * l.sizes.front());
+}
+
+TEST(SvgLayout, WrapCutsAfterASpaceOrSlashElseBetweenCharacters) {
+    const double size = 1.0;
+    const auto width = [&](std::string_view t) { return text_width(t, size); };
+    EXPECT_EQ(wrap_text("", 10.0, size), std::vector<std::string>{});
+    EXPECT_EQ(wrap_text("abc def", 100.0, size), std::vector<std::string>{"abc def"});
+    EXPECT_EQ(wrap_text("abc def", width("abc de"), size),
+              (std::vector<std::string>{"abc", "def"}));
+    EXPECT_EQ(wrap_text("/dir/file.nc", width("/dir/file"), size),
+              (std::vector<std::string>{"/dir/", "file.nc"}));
+    EXPECT_EQ(wrap_text("abcdef", width("abcd"), size), (std::vector<std::string>{"abcd", "ef"}));
+    // Narrower than one character: one a line. A UTF-8 character is never cut.
+    EXPECT_EQ(wrap_text("ab", 0.01, size), (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(wrap_text("a\xe2\x80\x94"
+                        "b",
+                        width("a") + 0.5, size),
+              (std::vector<std::string>{"a", "\xe2\x80\x94", "b"}));
+}
+
+// The text is set in its own units, scaled into the drawing's: a tiny part's font size is
+// not a fraction of a micrometre, which renderers round to nothing.
+TEST(SvgLayout, TextUnitsDoNotShrinkWithThePart) {
+    for (const double size : {0.01, 1.0, 1e5}) {
+        const std::string svg = rectangle_svg(0, 0, size, size, false);
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(svg, m, std::regex("\ntext \\{[^}]*font-size: ([^p]+)px")));
+        EXPECT_EQ(m[1], "10") << size;
+    }
+}
+
+}  // namespace
+}  // namespace apci::run
