@@ -97,6 +97,18 @@ TEST(ApcictlCli, NoCommandSaysSoAndListsThem) {
     EXPECT_TRUE(r.err.ends_with("see 'apcictl --help')\n")) << r.err;
 }
 
+TEST(ApcictlCli, AfterTheEndOfOptionsAMistypedCommandIsStillNamed) {
+    EXPECT_EQ(apcictl_run({"--", "raed"}).err,
+              "apcictl: unknown command 'raed'; did you mean 'read'?\n");
+}
+
+// An option without its value is that error, not "no command given".
+TEST(ApcictlCli, OptionWithoutItsValueSaysSo) {
+    const auto r = apcictl_run({"--device"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: --device: 1 required TEXT missing\n");
+}
+
 TEST(ApcictlCli, MistypedOptionSaysWhatWasMeant) {
     auto r = apcictl_run({"run", "p.nc", "--tool", "t"});
     EXPECT_EQ(r.exit_code, 2);

@@ -21,8 +21,9 @@ std::string_view without_dashes(std::string_view name) {
     return name;
 }
 
+// "--" ends the options; it is not one.
 bool is_option(std::string_view word) {
-    return word.size() > 1 && word.starts_with('-');
+    return word.size() > 1 && word.starts_with('-') && word != "--";
 }
 
 // The subcommand of `app` that was parsed, else `app` itself.
@@ -110,12 +111,17 @@ std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& erro
     // The words no option or positional took; a negative number (marked, arguments.h) is not an
     // option. An unknown option first: the words after it may be its value.
     std::vector<std::string> extras = app.remaining(true);
+    std::erase(extras, std::string("--"));
     for (const std::string& word : extras)
         if (is_option(word)) return unknown_option(app, active, word);
     for (std::string& word : extras) word = plain_text(word);
     const bool has_commands = !app.get_subcommands({}).empty();
     if (has_commands && &active == &app) {
         if (!extras.empty()) return unknown_command(app, extras.front());
+    }
+    // The one error CLI11 gives when no command was named at all.
+    if (has_commands && &active == &app &&
+        dynamic_cast<const CLI::RequiredError*>(&error) != nullptr) {
         std::vector<std::string> names;
         for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
         return fmt::format("no command given (commands: {}; see '{}')", fmt::join(names, ", "),
