@@ -248,6 +248,16 @@ TEST(SvgLayout, HugePart) {
     check_layout(rectangle_svg(-1e5, 0, 1e5, 2e3, true), "1e5 x 2e3, every layer and markers");
 }
 
+TEST(SvgLayout, EmptyPlotAndASinglePoint) {
+    SvgPlotWriter empty;
+    check_layout(write_svg(empty, 17, "empty.nc"), "nothing drawn");
+    SvgPlotWriter point;
+    BlockRef n10;
+    n10.number = 10;
+    point.error_marker(n10, Point(5, 5, 0), "KorrError");
+    check_layout(write_svg(point, 18, "point.nc"), "one error marker");
+}
+
 TEST(SvgLayout, LongTitleIsWrappedOnThePage) {
     const std::string title = "/a/very/long/directory/name/" + std::string(250, 'W') + ".nc";
     const std::string svg = rectangle_svg(0, 0, 10, 200, false, title);
