@@ -1,9 +1,96 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/json_writer.h"
 
+#include <fmt/compile.h>
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
 #include "apci/apci.h"
 
 namespace apci::run {
+
+namespace {
+
+constexpr std::size_t kNumberMax = 32;  // the longest JSON number below: 24 characters
+
+// The decimal digits of `v`, at least `width` of them (leading zeros); returns their end.
+char* digits(char* out, std::uint64_t v, int width) {
+    char tmp[20];
+    int n = 0;
+    do {
+        tmp[n++] = static_cast<char>('0' + v % 10);
+        v /= 10;
+    } while (v != 0);
+    while (n < width) tmp[n++] = '0';
+    while (n > 0) *out++ = tmp[--n];
+    return out;
+}
+
+// A value with at most 4 decimals (program coordinates, arc centres), 1e-3 <= |v| < 1e9, as
+// the shortest text that reads back exactly: the decimal m / 10^4 nearest v reads back as v
+// (a correctly rounded division), and with the decimals' spacing far above v's ulp no other
+// such decimal does; without its trailing zeros it has the fewest digits, in fixed notation,
+// which std::to_chars also picks for these magnitudes. nullptr when v is not such a value.
+char* short_decimal(char* out, double v) {
+    const double a = std::fabs(v);
+    if (!(a >= 1e-3 && a < 1e9)) return nullptr;
+    constexpr double kScale = 1e4;
+    const double m = std::nearbyint(a * kScale);
+    if (m / kScale != a) return nullptr;
+    auto whole = static_cast<std::uint64_t>(m);
+    const std::uint64_t integer = whole / 10000;
+    std::uint64_t fraction = whole % 10000;
+    int decimals = 4;
+    while (fraction % 10 == 0) {  // never 0: a whole value is written as an integer
+        fraction /= 10;
+        --decimals;
+    }
+    if (v < 0) *out++ = '-';
+    out = digits(out, integer, 1);
+    *out++ = '.';
+    return digits(out, fraction, decimals);
+}
+
+// A JSON number: the same text as append_json_number (std::to_chars, the shortest text that
+// reads back exactly; whole numbers as integers; null for NaN and infinities), made faster:
+// values with few decimals by short_decimal, the rest by fmt's shortest round-trip (Dragonbox),
+// which writes the same text as std::to_chars where both choose fixed or scientific notation
+// alike: 1e-3 <= |v| < 1e15. Outside that (0.0001: "1e-04" for std::to_chars, "0.0001" for
+// fmt), std::to_chars itself. Writes at most kNumberMax characters.
+char* json_number(char* out, double v) {
+    if (!std::isfinite(v)) {
+        std::memcpy(out, "null", 4);
+        return out + 4;
+    }
+    constexpr double kExactInteger = 1e15;
+    if (v == std::trunc(v) && std::abs(v) < kExactInteger && !(v == 0.0 && std::signbit(v)))
+        return std::to_chars(out, out + kNumberMax, static_cast<std::int64_t>(v)).ptr;
+    if (char* end = short_decimal(out, v)) return end;
+    const double a = std::fabs(v);
+    if (a >= 1e-3 && a < kExactInteger) return fmt::format_to(out, FMT_COMPILE("{}"), v);
+    return std::to_chars(out, out + kNumberMax, v).ptr;
+}
+
+// "[x,y,z]"; returns its end.
+char* point_text(char* out, const Point& p) {
+    *out++ = '[';
+    out = json_number(out, p.x());
+    *out++ = ',';
+    out = json_number(out, p.y());
+    *out++ = ',';
+    out = json_number(out, p.z());
+    *out++ = ']';
+    return out;
+}
+
+bool same_bits(const Point& a, const Point& b) {
+    return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+}
+
+}  // namespace
 
 void JsonRunWriter::begin_segments() {
     if (begun_) return;
@@ -12,13 +99,8 @@ void JsonRunWriter::begin_segments() {
 }
 
 void JsonRunWriter::point(const Point& p) {
-    sink_.put('[');
-    append_json_number(sink_, p.x());
-    sink_.put(',');
-    append_json_number(sink_, p.y());
-    sink_.put(',');
-    append_json_number(sink_, p.z());
-    sink_.put(']');
+    char text[3 * kNumberMax + 4];
+    sink_.append(std::string_view(text, static_cast<std::size_t>(point_text(text, p) - text)));
 }
 
 void JsonRunWriter::block(const BlockRef& b) {
@@ -40,9 +122,17 @@ void JsonRunWriter::segment(const PathSegment& s) {
     sink_.append("\",\"role\":\"");
     sink_.append(role_name(s.role));
     sink_.append("\",\"start\":");
-    point(s.start);
+    // Mostly where the segment before ended (the same bits: the same text).
+    if (last_end_size_ != 0 && same_bits(s.start, last_end_))
+        sink_.append(std::string_view(last_end_text_.data(), last_end_size_));
+    else
+        point(s.start);
     sink_.append(",\"end\":");
-    point(s.end);
+    static_assert(std::tuple_size_v<decltype(last_end_text_)> >= 3 * kNumberMax + 4);
+    last_end_ = s.end;
+    last_end_size_ =
+        static_cast<std::size_t>(point_text(last_end_text_.data(), s.end) - last_end_text_.data());
+    sink_.append(std::string_view(last_end_text_.data(), last_end_size_));
     if (s.kind == SegmentKind::kArc) {
         sink_.append(",\"center\":");
         point(s.center);
@@ -129,7 +219,9 @@ bool JsonRunWriter::finish(std::span<const RunError> errors,
         if (i != 0) sink_.put(',');
         append_json_string(sink_, variables[i].first);
         sink_.put(':');
-        append_json_number(sink_, variables[i].second);
+        char text[kNumberMax];
+        sink_.append(std::string_view(
+            text, static_cast<std::size_t>(json_number(text, variables[i].second) - text)));
     }
     sink_.append("}}\n");
     return sink_.flush();

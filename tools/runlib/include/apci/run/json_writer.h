@@ -14,6 +14,7 @@
 // A block without an N number is "block": -1 with its source "line" added.
 #pragma once
 
+#include <array>
 #include <cstdio>
 #include <span>
 #include <string>
@@ -52,6 +53,11 @@ class JsonRunWriter {
     TextSink sink_;
     std::uint64_t count_ = 0;
     bool begun_ = false;
+    // The last segment's end and its text: the next segment's start is mostly the same point,
+    // written again from here rather than formatted anew.
+    Point last_end_ = Point::Zero();
+    std::array<char, 112> last_end_text_{};
+    std::size_t last_end_size_ = 0;
 };
 
 }  // namespace apci::run

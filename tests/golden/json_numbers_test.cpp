@@ -1,0 +1,213 @@
+// SPDX-License-Identifier: MIT
+// The numbers of `apcictl run --json` (JsonRunWriter) are the text of append_json_number
+// (std::to_chars, the shortest that reads back exactly; whole numbers as integers; null where
+// not finite), whichever faster way the writer takes to them: program-like values with a few
+// decimals, computed values with 17 digits, the notation boundaries (1e-3, 1e-4, 1e15), -0,
+// and a start written again from the end before it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "apci/run/json_writer.h"
+#include "apci/run/text_sink.h"
+
+namespace {
+
+using apci::run::JsonRunWriter;
+using apci::run::PathSegment;
+using apci::run::Point;
+
+// A FILE in memory; text() after the writer flushed.
+class MemoryFile {
+  public:
+    MemoryFile() : file_(open_memstream(&data_, &size_)) {}
+    ~MemoryFile() {
+        if (file_ != nullptr) std::fclose(file_);
+        std::free(data_);
+    }
+    MemoryFile(const MemoryFile&) = delete;
+    MemoryFile& operator=(const MemoryFile&) = delete;
+    std::FILE* get() const { return file_; }
+    std::string text() {
+        std::fflush(file_);
+        return std::string(data_, size_);
+    }
+
+  private:
+    char* data_ = nullptr;
+    std::size_t size_ = 0;
+    std::FILE* file_;
+};
+
+// The reference: append_json_number, the text before the writer had its own formatting.
+std::string reference(double v) {
+    MemoryFile f;
+    {
+        apci::run::TextSink sink(f.get());
+        apci::run::append_json_number(sink, v);
+    }
+    return f.text();
+}
+
+std::string reference_point(const Point& p) {
+    return "[" + reference(p.x()) + "," + reference(p.y()) + "," + reference(p.z()) + "]";
+}
+
+PathSegment arc(const Point& start, const Point& end, const Point& center) {
+    PathSegment s;
+    s.block.number = 10;
+    s.kind = apci::run::SegmentKind::kArc;
+    s.role = apci::run::Role::kContour;
+    s.start = start;
+    s.end = end;
+    s.center = center;
+    return s;
+}
+
+// The segments' lines of the writer's JSON, against the reference text of their points.
+void expect_same_text(const std::vector<PathSegment>& segments) {
+    MemoryFile f;
+    {
+        JsonRunWriter w(f.get());
+        for (const auto& s : segments) w.segment(s);
+        ASSERT_TRUE(w.finish({}, {}));
+    }
+    std::string expected = "{\"segments\":[";
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const PathSegment& s = segments[i];
+        expected += i == 0 ? "\n{" : ",\n{";
+        expected += "\"block\":10,\"kind\":\"arc\",\"role\":\"contour\",\"start\":" +
+                    reference_point(s.start) + ",\"end\":" + reference_point(s.end) +
+                    ",\"center\":" + reference_point(s.center) + ",\"ccw\":false,\"plane\":17}";
+    }
+    expected += "],\n";
+    const std::string got = f.text();
+    ASSERT_GE(got.size(), expected.size());
+    // Compare line by line: a difference names its segment.
+    std::size_t at = 0, line = 0;
+    while (at < expected.size()) {
+        const std::size_t end = expected.find('\n', at);
+        const std::size_t stop = end == std::string::npos ? expected.size() : end + 1;
+        ASSERT_EQ(got.substr(at, stop - at), expected.substr(at, stop - at)) << "line " << line;
+        at = stop;
+        ++line;
+    }
+}
+
+TEST(JsonNumbers, EdgeValuesAreWrittenAsStdToChars) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> values{0.0,
+                                     -0.0,
+                                     1.0,
+                                     -1.0,
+                                     0.5,
+                                     -0.5,
+                                     0.1,
+                                     0.2,
+                                     0.3,
+                                     1.0 / 3.0,
+                                     2.0 / 3.0,
+                                     92.373,
+                                     -61.5396,
+                                     86.65039999999999,
+                                     63.180600000000005,
+                                     1e-3,
+                                     -1e-3,
+                                     1.2e-3,
+                                     0.001,
+                                     0.0015,
+                                     0.00099999,
+                                     1e-4,
+                                     -1e-4,
+                                     2e-4,
+                                     0.0001234,
+                                     0.00012,
+                                     1.5e-5,
+                                     1e-7,
+                                     1.4210854715202004e-14,
+                                     5e-324,
+                                     2.2250738585072014e-308,
+                                     999999999.9999,
+                                     999999999.99999,
+                                     1e9 + 0.5,
+                                     123456789.1234,
+                                     1e15 - 0.5,
+                                     1e15 + 0.5,
+                                     1e15,
+                                     -1e15,
+                                     1e16,
+                                     9007199254740993.0,
+                                     1e21,
+                                     1e22,
+                                     1.7976931348623157e308,
+                                     -1.7976931348623157e308,
+                                     99999.99999999999,
+                                     100000.00000000001,
+                                     0.30000000000000004,
+                                     inf,
+                                     -inf,
+                                     nan};
+    std::vector<PathSegment> segments;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const double a = values[i], b = values[(i + 1) % values.size()];
+        const double c = values[(i + 7) % values.size()];
+        segments.push_back(arc({a, b, c}, {b, c, a}, {c, a, b}));
+    }
+    expect_same_text(segments);
+}
+
+TEST(JsonNumbers, RandomValuesOfEveryKindAreWrittenAsStdToChars) {
+    std::mt19937_64 rnd(20261126);
+    std::uniform_real_distribution<double> coordinate(-2000.0, 2000.0);
+    std::uniform_int_distribution<int> decimals(0, 6), kind(0, 3);
+    std::uniform_int_distribution<std::uint64_t> bits;
+    const auto value = [&]() -> double {
+        switch (kind(rnd)) {
+            case 0: {  // as programmed: a few decimals
+                const double scale = std::pow(10.0, decimals(rnd));
+                return std::round(coordinate(rnd) * scale) / scale;
+            }
+            case 1:  // computed: 15 to 17 digits
+                return coordinate(rnd) + 1.0 / 3.0;
+            case 2: {  // small, about the notation boundaries 1e-3 and 1e-4
+                const double scale = std::pow(10.0, decimals(rnd));
+                return std::round(coordinate(rnd) * scale) / scale * 1e-6;
+            }
+            default: {  // any bit pattern
+                double v = 0.0;
+                const std::uint64_t b = bits(rnd);
+                std::memcpy(&v, &b, sizeof v);
+                return v;
+            }
+        }
+    };
+    std::vector<PathSegment> segments;
+    for (int i = 0; i < 100000; ++i)
+        segments.push_back(arc({value(), value(), value()}, {value(), value(), value()},
+                               {value(), value(), value()}));
+    expect_same_text(segments);
+}
+
+// A start is written again from the end before only when it has the same bits: 0 after -0
+// (equal as numbers) is written "0", and a start elsewhere is written anew.
+TEST(JsonNumbers, AStartAfterAnEndWithOtherBitsIsWrittenAnew) {
+    std::vector<PathSegment> segments{
+        arc({1.5, 2.25, 0.0}, {-0.0, 3.125, 7.0}, {0.0, 0.0, 0.0}),
+        arc({0.0, 3.125, 7.0}, {4.0, 5.0, 6.0}, {1.0, 1.0, 1.0}),
+        arc({4.0, 5.0, 6.0}, {0.1, 0.2, 0.30000000000000004}, {1.0, 1.0, 1.0}),
+        arc({0.1, 0.2, 0.3}, {0.1, 0.2, 0.3}, {1.0, 1.0, 1.0}),
+        arc({0.1, 0.2, 0.3}, {-0.0, -0.0, -0.0}, {1.0, 1.0, 1.0}),
+        arc({-0.0, -0.0, -0.0}, {1.0, 1.0, 1.0}, {1.0, 1.0, 1.0})};
+    expect_same_text(segments);
+}
+
+}  // namespace
