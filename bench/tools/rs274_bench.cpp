@@ -9,7 +9,7 @@
 // rs274 is LinuxCNC's, unpacked by scripts/fetch_linuxcnc.sh into BUILD/linuxcnc (or the
 // directory in $APCI_LINUXCNC_ROOT); it runs as tests/compensation/linuxcnc.cpp runs it:
 // `rs274 -t TABLE -g PROGRAM`, LD_LIBRARY_PATH to its libraries, HOME a directory of its own
-// (its tool data goes to $HOME/.tool.mmap).
+// (its tool data goes to $HOME/.tool.mmap). $APCI_BENCH_APCICTL runs another apcictl binary.
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
 #include <sys/resource.h>
@@ -149,7 +149,11 @@ void BM_ApcictlVsRs274(benchmark::State& state) {
         state.SkipWithError("cannot write the programs");
         return;
     }
-    const std::vector<std::string> apcictl{APCICTL_PATH,
+    // Another apcictl (say a build of the commit before) for an A/B comparison on one machine.
+    const char* env_apcictl = std::getenv("APCI_BENCH_APCICTL");
+    const std::string apcictl_path =
+        env_apcictl != nullptr && *env_apcictl ? env_apcictl : APCICTL_PATH;
+    const std::vector<std::string> apcictl{apcictl_path,
                                            "run",
                                            scratch.path("contour.nc"),
                                            "--tools",
