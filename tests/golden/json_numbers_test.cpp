@@ -157,6 +157,7 @@ TEST(JsonNumbers, EdgeValuesAreWrittenAsStdToChars) {
                                      -inf,
                                      nan};
     std::vector<PathSegment> segments;
+    segments.reserve(values.size());
     for (std::size_t i = 0; i < values.size(); ++i) {
         const double a = values[i], b = values[(i + 1) % values.size()];
         const double c = values[(i + 7) % values.size()];
@@ -190,8 +191,10 @@ TEST(JsonNumbers, RandomValuesOfEveryKindAreWrittenAsStdToChars) {
             }
         }
     };
+    constexpr int kSegments = 100000;
     std::vector<PathSegment> segments;
-    for (int i = 0; i < 100000; ++i)
+    segments.reserve(kSegments);
+    for (int i = 0; i < kSegments; ++i)
         segments.push_back(arc({value(), value(), value()}, {value(), value(), value()},
                                {value(), value(), value()}));
     expect_same_text(segments);

@@ -4,9 +4,12 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
+#include <string_view>
 
 #include "apci/apci.h"
 
@@ -62,8 +65,8 @@ char* short_decimal(char* out, double v) {
 // fmt), std::to_chars itself. Writes at most kNumberMax characters.
 char* json_number(char* out, double v) {
     if (!std::isfinite(v)) {
-        std::memcpy(out, "null", 4);
-        return out + 4;
+        constexpr std::string_view kNull = "null";
+        return std::copy(kNull.begin(), kNull.end(), out);
     }
     constexpr double kExactInteger = 1e15;
     if (v == std::trunc(v) && std::abs(v) < kExactInteger && !(v == 0.0 && std::signbit(v)))
@@ -86,8 +89,11 @@ char* point_text(char* out, const Point& p) {
     return out;
 }
 
+// The same bits, not only equal values: -0 and 0 are written differently.
 bool same_bits(const Point& a, const Point& b) {
-    return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+    for (int i = 0; i < 3; ++i)
+        if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
+    return true;
 }
 
 }  // namespace
