@@ -1,13 +1,15 @@
 # SPDX-License-Identifier: MIT
-# The Debian package (docs/hardening.md, "Debian package"): everything the
-# install rules install (libapci with its headers, pkg-config file and CMake
-# package, apcictl, rwmos-emu, their man pages, the udev rule, the systemd
-# unit), built by `cpack -G DEB` in a build configured with
-# -DCMAKE_INSTALL_PREFIX=/usr (scripts/ci/package.sh).
+# One package of everything the install rules install (libapci with its
+# headers, pkg-config file and CMake package, apcictl, rwmos-emu, their man
+# pages, the udev rule, the systemd unit), built by `cpack` in a build
+# configured with -DCMAKE_INSTALL_PREFIX=/usr: for distributions other than
+# Debian. On Debian the packages are built from debian/ (docs/packaging.md),
+# and scripts/ci/package.sh checks those, not this one.
 set(CPACK_PACKAGE_NAME apci8001)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
-set(CPACK_PACKAGE_VENDOR "apci8001 project")
-set(CPACK_PACKAGE_CONTACT "apci8001 maintainers <apci8001@example.org>")
+set(CPACK_PACKAGE_VENDOR "The APCI-8001 driver developers")
+# The same placeholder address as debian/control (docs/packaging.md, "Maintainer").
+set(CPACK_PACKAGE_CONTACT "APCI-8001 driver developers <apci8001@maintainers.invalid>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
   "APCI-8001/8008 userspace driver (libapci), RWMOS emulator and tools")
 set(CPACK_PACKAGE_DESCRIPTION
@@ -15,6 +17,7 @@ set(CPACK_PACKAGE_DESCRIPTION
   "interface, over PCI, USB, or an emulator of the RWMOS.ELF firmware (embedded, or the\n"
   "rwmos-emu daemon). apcictl reads, writes and inspects board objects and runs scripts.")
 set(CPACK_RESOURCE_FILE_README ${PROJECT_SOURCE_DIR}/README.md)
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
 set(CPACK_PACKAGING_INSTALL_PREFIX ${CMAKE_INSTALL_PREFIX})
 set(CPACK_STRIP_FILES OFF)
 
