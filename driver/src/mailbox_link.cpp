@@ -80,7 +80,9 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
             return Status::kTransportError;
         }
         if (window_->load(mb::kOffGeneration) != generation_) {
-            lost_ = "the board restarted since the link was opened";
+            lost_ = window_->error() != Status::kOk
+                        ? window_->error_text()
+                        : "the board restarted since the link was opened";
             window_.reset();
             why = fmt::format("{}; apci_reconnect() reopens the link", lost_);
             return Status::kTransportError;
@@ -97,8 +99,11 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
         const bool stopped = window_->load(mb::kOffBoardState) !=
                              static_cast<std::uint32_t>(mb::BoardState::kServing);
         const bool restarted = window_->load(mb::kOffGeneration) != generation_;
-        if (stopped || restarted || window_->error() != Status::kOk) {
-            lost_ = restarted && !stopped ? "the board restarted" : why;
+        const bool failed = window_->error() != Status::kOk;  // e.g. a shrunk file
+        if (stopped || restarted || failed) {
+            lost_ = failed                  ? window_->error_text()
+                    : restarted && !stopped ? "the board restarted"
+                                            : why;
             window_.reset();
             why = fmt::format("{}; apci_reconnect() reopens the link", lost_);
             return Status::kTransportError;

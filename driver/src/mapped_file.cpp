@@ -9,22 +9,46 @@
 
 #include <cerrno>
 
+#include "objif/mapping_guard.h"
+
 namespace apci {
 namespace {
 
+// A whole mapping, unmapped when destroyed.
+struct Mapping {
+    void* map;
+    std::size_t size;
+    Mapping(void* m, std::size_t n) noexcept : map(m), size(n) {}
+    ~Mapping() { ::munmap(map, size); }
+    Mapping(const Mapping&) = delete;
+    Mapping& operator=(const Mapping&) = delete;
+};
+
+// The mapping is guarded (objif/mapping_guard.h): a file shrunk under it by
+// another process (truncate) becomes this window's error, not a SIGBUS.
 class MappedFile final : public objif::mailbox::MappedWindow {
   public:
-    MappedFile(void* map, std::size_t map_size, std::size_t skip, std::size_t size, bool can_sleep)
+    MappedFile(void* map, std::size_t map_size, std::size_t skip, std::size_t size, bool can_sleep,
+               std::string path)
         : MappedWindow(static_cast<std::uint8_t*>(map) + skip, size, can_sleep),
-          map_(map),
-          map_size_(map_size) {}
-    ~MappedFile() override { ::munmap(map_, map_size_); }
-    MappedFile(const MappedFile&) = delete;
-    MappedFile& operator=(const MappedFile&) = delete;
+          mapping_(map, map_size),
+          guard_(map, map_size),
+          path_(std::move(path)) {}
+
+    objif::Status error() const noexcept override {
+        return guard_.lost() ? objif::Status::kTransportError : objif::Status::kOk;
+    }
+    std::string error_text() const override {
+        if (!guard_.lost()) return {};
+        return fmt::format(
+            "{} was shrunk (truncated) by another process while mapped: the mailbox in it is gone",
+            path_);
+    }
 
   private:
-    void* map_;
-    std::size_t map_size_;
+    Mapping mapping_;
+    objif::MappingGuard guard_;  // after mapping_: unguarded before it is unmapped
+    std::string path_;
 };
 
 }  // namespace
@@ -64,7 +88,8 @@ int map_file(const MapRequest& request, std::unique_ptr<objif::mailbox::Window>&
         what = fmt::format("mmap {}", request.path);
         return err;
     }
-    out = std::make_unique<MappedFile>(map, length, skip, request.size, request.can_sleep);
+    out = std::make_unique<MappedFile>(map, length, skip, request.size, request.can_sleep,
+                                       request.path);
     return 0;
 }
 
