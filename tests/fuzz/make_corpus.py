@@ -6,6 +6,9 @@
 #   corpus/apcictl_script/  the scripts in tests/tools/apcictl_test.cpp
 #   corpus/frame/           wire frames (docs/wire-frame.md): object reads and writes of the
 #                           objects the tests use, replies, a two-frame stream, a bad CRC
+#   corpus/mailbox/         dual-port RAM windows (docs/dpram.md) as fuzz_mailbox.cpp reads
+#                           them: a served one with a reply, pending requests, bad lengths,
+#                           sequences out of step, another layout version, a held lock
 # Each seed is named by the SHA-1 of its content, so a rerun adds only new ones.
 # A maintainer's tool: the build and CI use the committed files.
 import hashlib
@@ -95,6 +98,36 @@ def frames():
 OP_SPOOL, OP_DIRECT, OP_SSF, OP_STEP, OP_RUN, OP_TRACE, OP_SETUP = 2, 3, 4, 5, 6, 7, 8
 
 
+# The window as fuzz_mailbox.cpp takes it: flags, the first 0x120 bytes, then the
+# window from the reply sequence (0x10200) on.
+DRPM, LAYOUT, WINDOW, RECORD = 0x4D505244, 2, 0x20220, 65556
+
+
+def window(answers=True, version=LAYOUT, state=1, lock=0, req_seq=0, req=b"", req_len=None,
+           rep_seq=0, rep=b"", rep_len=None):
+    head = struct.pack("<6I", DRPM, version, WINDOW, RECORD, state, 1).ljust(0x40, b"\0")
+    head += struct.pack("<I", lock).ljust(0xC0, b"\0")
+    head += struct.pack("<3I", req_seq, 0, len(req) if req_len is None else req_len) + req
+    head = head[:0x120].ljust(0x120, b"\0")
+    tail = struct.pack("<3I", rep_seq, 0, len(rep) if rep_len is None else rep_len) + rep
+    return bytes([1 if answers else 0]) + head + tail
+
+
+def mailboxes():
+    reply = frame(READ | REPLY, 1, struct.pack("<II", 0, 0x10001) + value(8))
+    request = frame(READ, 1, descriptor(1000, 0, 3, 0) + bytes([INT32]))
+    yield window(rep=reply)
+    yield window(answers=False)
+    yield window(req_seq=5, rep_seq=5, rep=reply)
+    yield window(rep=reply, rep_len=RECORD + 4)
+    yield window(req_seq=1, rep_seq=0, req=request)
+    yield window(req_seq=1, rep_seq=0, req=request, req_len=3)
+    yield window(req_seq=9, rep_seq=2)
+    yield window(version=1, rep=reply)
+    yield window(state=0)
+    yield window(lock=4242, rep=reply)
+
+
 def emu_line(x, y, kind=1):
     return bytes([OP_SPOOL, 0, kind, 0, 0, int(x * 2) & 0xFF, 0, int(y * 2) & 0xFF, 2])
 
@@ -131,6 +164,8 @@ def main():
         save("emulator", seq)
     for f in frames():
         save("frame", f)
+    for m in mailboxes():
+        save("mailbox", m)
     for p in sorted((ROOT / "examples").glob("**/*.nc")):
         save("nc", p.read_bytes())
     for p in sorted((ROOT / "tests" / "nc").glob("*.cpp")):
