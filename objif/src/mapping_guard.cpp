@@ -58,9 +58,10 @@ void on_sigbus(int sig, siginfo_t* info, void* context) {
             const std::uint8_t* end = r.end.load(std::memory_order_acquire);
             if (address >= reinterpret_cast<std::uintptr_t>(end)) continue;
             // Zeros in place of the pages the file no longer has; the access is retried on them.
-            void* zeros =
-                ::mmap(begin, static_cast<std::size_t>(end - begin), PROT_READ | PROT_WRITE,
-                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED, -1, 0);
+            const auto length = static_cast<std::size_t>(end - begin);
+            constexpr int kFlags = MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED;
+            // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
+            void* zeros = ::mmap(begin, length, PROT_READ | PROT_WRITE, kFlags, -1, 0);
             if (zeros == MAP_FAILED) break;
             r.lost.store(true, std::memory_order_release);
             errno = saved_errno;
