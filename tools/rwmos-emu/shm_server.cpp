@@ -90,18 +90,26 @@ ShmServer::~ShmServer() {
 bool ShmServer::open(const std::string& path, std::string& why) {
     // Created here, or else opened as it is: never through a symlink, never
     // truncated before it is known to be ours.
+    // (Twice: a file removed between the two opens is created on the second round.)
     bool created = true;
-    int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0660);
-    if (fd < 0 && errno == EEXIST) {
-        created = false;
-        fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NOCTTY | O_NONBLOCK);
+    int fd = -1;
+    for (int round = 0; round < 2 && fd < 0; ++round) {
+        created = true;
+        fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0660);
+        if (fd < 0 && errno == EEXIST) {
+            created = false;
+            fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NOCTTY | O_NONBLOCK);
+            if (fd < 0 && errno == ENOENT) continue;
+        }
+        break;
     }
     if (fd < 0) {
-        why = errno == ELOOP ? fmt::format(
-                                   "{} is a symbolic link: not followed, left as it is; "
-                                   "give another --shm path",
-                                   path)
-                             : fmt::format("{}: {}", path, std::strerror(errno));
+        const int err = errno;
+        why = err == ELOOP ? fmt::format(
+                                 "{} is a symbolic link: not followed, left as it is; "
+                                 "give another --shm path",
+                                 path)
+                           : fmt::format("{}: {}", path, std::strerror(err));
         return false;
     }
     struct stat st {};
