@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Installs what is missing, builds everything, runs every test.
+# APCI_WERROR=ON ./test.sh fails the build on any compiler warning, as CI does
+# (.ci/run sets it; docs/hardening.md, "Warnings").
 set -euo pipefail
 cd "$(dirname "$0")"
 source scripts/deps.sh

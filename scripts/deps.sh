@@ -2,12 +2,19 @@
 # SPDX-License-Identifier: MIT
 # Installs the Debian 12 packages the project needs, only those missing.
 # Idempotent and quiet; sourced by test.sh, run.sh and the CI stages.
-APCI_DEB_PACKAGES=(
+# What building the libraries and tools needs (./run.sh installs only these).
+APCI_RUN_DEB_PACKAGES=(
   cmake g++ make pkg-config
-  libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev zlib1g-dev
-  libusb-1.0-0-dev umockdev libumockdev-dev
+  libusb-1.0-0-dev
   ccache
+)
+# Everything ./test.sh needs: the above, the test and benchmark frameworks and
+# umockdev for the USB tests.
+APCI_DEB_PACKAGES=(
+  "${APCI_RUN_DEB_PACKAGES[@]}"
+  libgtest-dev libgmock-dev libbenchmark-dev
+  umockdev libumockdev-dev
 )
 # Only the CI stages after ./test.sh need these (scripts/ci/): clang and its
 # libFuzzer/sanitizer runtimes for the fuzzers, clang-tidy and cppcheck for
@@ -35,6 +42,7 @@ apci_install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+apci_install_run_deps() { apci_install_packages "${APCI_RUN_DEB_PACKAGES[@]}"; }
 apci_install_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}"; }
 apci_install_ci_deps() { apci_install_packages "${APCI_DEB_PACKAGES[@]}" "${APCI_CI_DEB_PACKAGES[@]}"; }
 
@@ -50,9 +58,32 @@ apci_launcher_args() {
   fi
 }
 
+# Warnings are errors only where we choose (docs/hardening.md, "Warnings"):
+# APCI_WERROR=ON in the environment (.ci/run sets it) makes ./test.sh's and
+# ./run.sh's build fail on any compiler warning; the stage scripts of
+# scripts/ci/ always build with -DAPCI_WERROR=ON.
+apci_werror() {
+  case "${APCI_WERROR:-OFF}" in
+    ON|on|1|yes|true) echo ON ;;
+    OFF|off|0|no|false|"") echo OFF ;;
+    *) echo "APCI_WERROR: ON or OFF, not '$APCI_WERROR'" >&2; return 2 ;;
+  esac
+}
+
+# apci_configure BUILD_DIR [cmake options]: configures BUILD_DIR as ./test.sh
+# does (RelWithDebInfo, ccache), quietly.
+apci_configure() {
+  local build_dir="$1" werror
+  shift
+  werror=$(apci_werror) || return
+  # shellcheck disable=SC2046
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo $(apci_launcher_args) \
+    -DAPCI_WERROR="$werror" "$@" >/dev/null
+}
+
+# apci_build [BUILD_DIR]: configures with the tests and benchmarks and builds everything.
 apci_build() {
   local build_dir="${1:-build}"
-  # shellcheck disable=SC2046
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo $(apci_launcher_args) >/dev/null
+  apci_configure "$build_dir" -DAPCI_BUILD_TESTS=ON -DAPCI_BUILD_BENCH=ON
   cmake --build "$build_dir" -j"$(nproc)"
 }

@@ -237,7 +237,7 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   fi
   echo "configuring $build"
   cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
-    -DAPCI_BUILD_BENCH=OFF > "$logs/configure.log" 2>&1 || die "configure failed: $logs/configure.log"
+    -DAPCI_BUILD_BENCH=OFF -DAPCI_WERROR=ON > "$logs/configure.log" 2>&1 || die "configure failed: $logs/configure.log"
 fi
 
 # ---- Running test programs

@@ -28,7 +28,7 @@ build=build-fuzz
 # shellcheck disable=SC2046
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-  -DAPCI_FUZZ=ON -DAPCI_BUILD_BENCH=OFF $(apci_launcher_args) >/dev/null
+  -DAPCI_FUZZ=ON -DAPCI_BUILD_BENCH=OFF -DAPCI_WERROR=ON $(apci_launcher_args) >/dev/null
 cmake --build "$build" -j"$(nproc)" --target fuzzers >/dev/null
 
 names=()

@@ -25,7 +25,7 @@ configure() {  # configure BUILD_DIR SANITIZERS
   cmake -S . -B "$1" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAPCI_SANITIZE="$2" \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-    -DAPCI_BUILD_BENCH=OFF $(apci_launcher_args) >/dev/null
+    -DAPCI_BUILD_BENCH=OFF -DAPCI_WERROR=ON $(apci_launcher_args) >/dev/null
 }
 
 run_asan() {

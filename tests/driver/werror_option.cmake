@@ -1,0 +1,43 @@
+# SPDX-License-Identifier: MIT
+# Warnings are errors only where we choose: a build configured without
+# APCI_WERROR compiles without -Werror (a newer compiler's new warning does not
+# break a user's or a package's build); -DAPCI_WERROR=ON, as CI configures,
+# compiles every file with it. Configures SOURCE_DIR twice (no build) and reads
+# the compile commands.
+#   cmake -DSOURCE_DIR=... -DWORK_DIR=... -P werror_option.cmake
+function(compile_commands out)
+  set(dir ${WORK_DIR}/${out})
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${dir} ${ARGN}
+      -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
+    RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "configure ${ARGN} failed (${rc}):\n${o}\n${e}")
+  endif()
+  file(READ ${dir}/compile_commands.json json)
+  string(JSON n LENGTH "${json}")
+  if(n LESS 50)
+    message(FATAL_ERROR "${out}: only ${n} compile commands")
+  endif()
+  set(with 0)
+  math(EXPR last "${n} - 1")
+  foreach(i RANGE ${last})
+    string(JSON command GET "${json}" ${i} command)
+    if(command MATCHES " -Werror( |$)")
+      math(EXPR with "${with} + 1")
+    endif()
+  endforeach()
+  set(${out}_total ${n} PARENT_SCOPE)
+  set(${out}_werror ${with} PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+compile_commands(default)
+if(NOT default_werror EQUAL 0)
+  message(FATAL_ERROR "without APCI_WERROR, ${default_werror} of ${default_total} files compile with -Werror")
+endif()
+compile_commands(ci -DAPCI_WERROR=ON)
+if(NOT ci_werror EQUAL ci_total)
+  message(FATAL_ERROR "with APCI_WERROR=ON, only ${ci_werror} of ${ci_total} files compile with -Werror")
+endif()
+file(REMOVE_RECURSE ${WORK_DIR})
+message(STATUS "-Werror: none of ${default_total} files by default, all ${ci_total} with APCI_WERROR=ON")
