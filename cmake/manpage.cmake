@@ -2,7 +2,9 @@
 # Writes a section-1 man page from a CLI11 program's own --help (and each
 # subcommand's --help), so the page says exactly what the program says.
 #   cmake -DPROGRAM=path -DNAME=apcictl -DOUTPUT=apcictl.1 -DVERSION=0.1.0
-#         [-DSEE_ALSO="rwmos-emu(1)"] [-DDOCS="docs/apcictl.md"] -P manpage.cmake
+#         [-DSEE_ALSO="rwmos-emu(1)"] [-DDOCS=/usr/share/doc/apci8001/apcictl.md]
+#         -P manpage.cmake
+# DOCS is the installed documentation page (cmake/manpages.cmake).
 # The help layout it reads: a first line "name - summary", "Usage: ...",
 # blocks headed "Options:", "Positionals:", "Subcommands:" whose items start
 # with two blanks (continuation lines with more), and free text (the footer).
@@ -138,7 +140,7 @@ if(body_subcommands)
 endif()
 if(DOCS)
   troff_text("${DOCS}" docs)
-  string(APPEND page ".SH DOCUMENTATION\nThe full description is in ${docs} of the source tree.\n")
+  string(APPEND page ".SH DOCUMENTATION\nThe full description is in ${docs}, installed with ${NAME}.\n")
 endif()
 if(SEE_ALSO)
   troff_text("${SEE_ALSO}" see_also)

@@ -52,15 +52,18 @@ install(TARGETS apci EXPORT apciTargets
 install(FILES include/apci/apci.h include/apci/apci.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/apci)
 install(EXPORT apciTargets NAMESPACE apci:: DESTINATION ${APCI_CMAKE_DIR})
+# The files to install are written to driver/install/, so that no file of the
+# build tree's top looks like a package that is not one.
+set(APCI_INSTALL_FILES ${CMAKE_CURRENT_BINARY_DIR}/install)
 configure_package_config_file(apciConfig.cmake.in
-  ${CMAKE_CURRENT_BINARY_DIR}/apciConfig.cmake
+  ${APCI_INSTALL_FILES}/apciConfig.cmake
   INSTALL_DESTINATION ${APCI_CMAKE_DIR})
 # 0.x: a minor version may break the API, so only the same minor is compatible.
-write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/apciConfigVersion.cmake
+write_basic_package_version_file(${APCI_INSTALL_FILES}/apciConfigVersion.cmake
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES
-  ${CMAKE_CURRENT_BINARY_DIR}/apciConfig.cmake
-  ${CMAKE_CURRENT_BINARY_DIR}/apciConfigVersion.cmake
+  ${APCI_INSTALL_FILES}/apciConfig.cmake
+  ${APCI_INSTALL_FILES}/apciConfigVersion.cmake
   DESTINATION ${APCI_CMAKE_DIR})
 # apci.pc finds its prefix relative to its own directory (pkg-config's
 # ${pcfiledir}), so the installed tree can be moved (cmake --install --prefix).
@@ -70,5 +73,19 @@ else()
   file(RELATIVE_PATH APCI_PC_UP "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
   set(APCI_PC_PREFIX "\${pcfiledir}/${APCI_PC_UP}")
 endif()
-configure_file(apci.pc.in ${CMAKE_CURRENT_BINARY_DIR}/apci.pc @ONLY)
-install(FILES ${CMAKE_CURRENT_BINARY_DIR}/apci.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+configure_file(apci.pc.in ${APCI_INSTALL_FILES}/apci.pc @ONLY)
+install(FILES ${APCI_INSTALL_FILES}/apci.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# ---- the build tree as a package, for consumers that build against it uninstalled:
+#   cmake -Dapci_DIR=BUILD ...            (find_package(apci): BUILD/apciConfig.cmake)
+#   PKG_CONFIG_PATH=BUILD pkg-config apci (BUILD/apci-uninstalled.pc, which pkg-config
+#                                          prefers to apci.pc, its convention)
+# Headers from the source tree, the library from the build tree.
+export(EXPORT apciTargets NAMESPACE apci:: FILE ${CMAKE_BINARY_DIR}/apciTargets.cmake)
+configure_package_config_file(apciConfig.cmake.in ${CMAKE_BINARY_DIR}/apciConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_BINARY_DIR} INSTALL_PREFIX ${CMAKE_BINARY_DIR})
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/apciConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+configure_file(apci-uninstalled.pc.in ${CMAKE_CURRENT_BINARY_DIR}/apci-uninstalled.pc.genex @ONLY)
+file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/apci-uninstalled.pc
+  INPUT ${CMAKE_CURRENT_BINARY_DIR}/apci-uninstalled.pc.genex)
