@@ -58,10 +58,11 @@ apci_launcher_args() {
   fi
 }
 
-# Warnings are errors only where we choose (docs/hardening.md, "Warnings"):
-# APCI_WERROR=ON in the environment (.ci/run sets it) makes ./test.sh's and
-# ./run.sh's build fail on any compiler warning; the stage scripts of
-# scripts/ci/ always build with -DAPCI_WERROR=ON.
+# Warnings are errors only where we choose (docs/hardening.md, "Warnings and
+# the Release build"): APCI_WERROR=ON in the environment (.ci/run sets it)
+# makes ./test.sh's and ./run.sh's build fail on any compiler warning (it is
+# also the option's default for any other configure); the release, fuzz and
+# sanitizer stages always build with -DAPCI_WERROR=ON.
 apci_werror() {
   case "${APCI_WERROR:-OFF}" in
     ON|on|1|yes|true) echo ON ;;

@@ -31,13 +31,23 @@ function(compile_commands out)
 endfunction()
 
 file(REMOVE_RECURSE ${WORK_DIR})
+# The default, also where this test runs under CI (which exports APCI_WERROR=ON).
+unset(ENV{APCI_WERROR})
 compile_commands(default)
 if(NOT default_werror EQUAL 0)
   message(FATAL_ERROR "without APCI_WERROR, ${default_werror} of ${default_total} files compile with -Werror")
 endif()
 compile_commands(ci -DAPCI_WERROR=ON)
 if(NOT ci_werror EQUAL ci_total)
-  message(FATAL_ERROR "with APCI_WERROR=ON, only ${ci_werror} of ${ci_total} files compile with -Werror")
+  message(FATAL_ERROR "with -DAPCI_WERROR=ON, only ${ci_werror} of ${ci_total} files compile with -Werror")
+endif()
+# The environment variable gives the default (.ci/run: every stage, the package stage too).
+set(ENV{APCI_WERROR} ON)
+compile_commands(env)
+if(NOT env_werror EQUAL env_total)
+  message(FATAL_ERROR "with APCI_WERROR=ON in the environment, only ${env_werror} of ${env_total} "
+                      "files compile with -Werror")
 endif()
 file(REMOVE_RECURSE ${WORK_DIR})
-message(STATUS "-Werror: none of ${default_total} files by default, all ${ci_total} with APCI_WERROR=ON")
+message(STATUS "-Werror: none of ${default_total} files by default, all ${ci_total} with "
+               "-DAPCI_WERROR=ON, all ${env_total} with APCI_WERROR=ON in the environment")
