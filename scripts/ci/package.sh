@@ -115,9 +115,21 @@ test -f "$rule" && echo "udev rule: $rule"
 unit=$(dpkg -L apci-tools | grep '/systemd/user/rwmos-emu\.service$') || {
   echo "the systemd user unit is not packaged" >&2; exit 1; }
 echo "systemd user unit: $unit"
-unit_doc=$(sed -n 's|^Documentation=file://||p' "$unit")
-test -f "$unit_doc" || { echo "the unit's Documentation= $unit_doc is not installed" >&2; exit 1; }
-echo "its documentation: $unit_doc"
+# Every entry of Documentation= names something installed: a file:// page, or a
+# man: page of the package.
+for ref in $(sed -n 's|^Documentation=||p' "$unit"); do
+  case "$ref" in
+    file://*)
+      test -f "${ref#file://}" || {
+        echo "the unit's Documentation= $ref is not installed" >&2; exit 1; } ;;
+    man:*)
+      page="${ref#man:}" name="${page%%(*}" section="${page#*(}" section="${section%)}"
+      dpkg -L apci-tools | grep -q "/man/man$section/$name\.$section\(\.gz\)\?$" || {
+        echo "the unit's Documentation= $ref is not installed" >&2; exit 1; } ;;
+    *) echo "the unit's Documentation= $ref is neither file:// nor man:" >&2; exit 1 ;;
+  esac
+  echo "its documentation: $ref"
+done
 if [ -e /etc/systemd/user/default.target.wants/rwmos-emu.service ]; then
   echo "installing apci-tools enabled rwmos-emu for every user; it must stay disabled" >&2; exit 1
 fi
