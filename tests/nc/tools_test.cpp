@@ -45,8 +45,12 @@ TEST(ToolTable, SeedToolDataRawAndConverted) {
 
 TEST(ToolTable, AToolBeyondTheBoardsSizesIsRefusedByName) {
     EXPECT_EQ(error("wz[1].mass_einheit 1\nwz[1].radius 99999999999\n"),
-              "t.tools: wz[1].radius is 1e+11 mm: beyond the board's tool sizes of +-100000 mm "
-              "(check mass_einheit: 0 is 0.1 um, 1 is mm)");
+              "t.tools:2:7: wz[1].radius is 1e+11 mm: beyond the board's tool sizes of "
+              "+-100000 mm (check mass_einheit: 0 is 0.1 um, 1 is mm)");
+    // Named on the line that set the size, even when mass_einheit comes after it.
+    EXPECT_EQ(error("wz[1].radius 99999999999\nwz[1].mass_einheit 1\n"),
+              "t.tools:1:7: wz[1].radius is 1e+11 mm: beyond the board's tool sizes of "
+              "+-100000 mm (check mass_einheit: 0 is 0.1 um, 1 is mm)");
     // 0.1 um: 1e9 units are 100000 mm, within; one more unit is not.
     EXPECT_EQ(table("wz[2].laenge -1000000000\n").find(2)->length_mm(), -100000.0);
     EXPECT_NE(error("wz[2].laenge -1000000001\n"), "");

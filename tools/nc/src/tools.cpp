@@ -147,6 +147,7 @@ class ToolLineParser {
         // A field given twice would silently depend on line order; refuse it.
         const auto key = std::make_tuple(tool, static_cast<int>(field - kFields), axis);
         const auto [it, fresh] = seen_.emplace(key, line_);
+        if (fresh) columns_.emplace(key, field_col);
         if (!fresh) {
             return fail(ErrorKind::kConflict, field_col,
                         fmt::format("{} set twice (first on line {})", label, it->second));
@@ -160,6 +161,18 @@ class ToolLineParser {
             t.ax_ersatz[axis] = value;
         }
         return true;
+    }
+
+    // Where wz[tool].NAME (an unindexed field) was set: its line and the column of its name;
+    // {0, 0} when it was not.
+    std::pair<std::uint64_t, std::uint32_t> where(int tool, std::string_view name) const {
+        const FieldSpec* field = find_field(name);
+        if (field == nullptr) return {0, 0};
+        const auto key = std::make_tuple(tool, static_cast<int>(field - kFields), std::uint64_t{0});
+        const auto line = seen_.find(key);
+        const auto column = columns_.find(key);
+        if (line == seen_.end() || column == columns_.end()) return {0, 0};
+        return {line->second, column->second};
     }
 
   private:
@@ -233,22 +246,29 @@ class ToolLineParser {
     Diagnostic* err_ = nullptr;
     std::uint32_t index_col_ = 0;
     std::map<std::tuple<int, int, std::uint64_t>, std::uint64_t> seen_;
+    std::map<std::tuple<int, int, std::uint64_t>, std::uint32_t> columns_;
 };
 
 // The board's TC module takes a tool radius and length within its coordinate limit
 // (docs/object-map.md): a tool beyond is refused with its name here, once mass_einheit is known,
 // rather than by the object write at its D.
 
-bool check_sizes(const ToolTable& table, const std::string& file, Diagnostic& err) {
+bool check_sizes(const ToolTable& table, const ToolLineParser& parser, const std::string& file,
+                 Diagnostic& err) {
     for (const ToolData& t : table.tools()) {
         const std::pair<std::string_view, double> sizes[] = {{"radius", t.radius_mm()},
-                                                               {"laenge", t.length_mm()}};
+                                                             {"laenge", t.length_mm()}};
         for (const auto& [field, mm] : sizes) {
             if (std::abs(mm) <= kBoardCoordinateLimit) continue;
-            err = Diagnostic{ErrorKind::kValue, file, 0, 0, kNoBlockNumber, false,
-                             fmt::format("wz[{}].{} is {:g} mm: beyond the board's tool sizes of "
-                                         "+-{:g} mm (check mass_einheit: 0 is 0.1 um, 1 is mm)",
-                                         t.index, field, mm, kBoardCoordinateLimit)};
+            // Named where the size was set (a size beyond the limit was set: an unset one is 0).
+            err = Diagnostic{};
+            err.kind = ErrorKind::kValue;
+            err.file = file;
+            std::tie(err.line, err.column) = parser.where(t.index, field);
+            err.message = fmt::format(
+                "wz[{}].{} is {:g} mm: beyond the board's tool sizes of +-{:g} mm (check "
+                "mass_einheit: 0 is 0.1 um, 1 is mm)",
+                t.index, field, mm, kBoardCoordinateLimit);
             return false;
         }
     }
@@ -263,7 +283,7 @@ Result<ToolTable> parse_lines(LineSource& source) {
     for (;;) {
         switch (source.next(text, err)) {
             case LineSource::Read::kEnd:
-                if (!check_sizes(table, source.name(), err)) return err;
+                if (!check_sizes(table, parser, source.name(), err)) return err;
                 return table;
             case LineSource::Read::kError:
                 return err;
