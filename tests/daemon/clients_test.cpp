@@ -513,8 +513,10 @@ TEST(DaemonList, ListenerThatIsNotADaemonIsListedAsNotOne) {
     // And a real daemon next to it.
     auto d = Daemon::start();
     ASSERT_NE(d, nullptr);
-    std::filesystem::copy_file(d->dir().file("rwmos-emu." + std::to_string(d->pid())),
-                               dir.file("rwmos-emu." + std::to_string(d->pid())));
+    // The daemon registers itself once it serves (after its socket appears): wait for the entry.
+    const std::string entry = d->dir().file("rwmos-emu." + std::to_string(d->pid()));
+    ASSERT_TRUE(apci_test::eventually([&] { return std::filesystem::exists(entry); }));
+    std::filesystem::copy_file(entry, dir.file("rwmos-emu." + std::to_string(d->pid())));
     const auto r =
         test_support::run_process({APCICTL_PATH, "list"}, {}, {{"APCI_RUNTIME_DIR", dir.path()}});
     EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -374,9 +374,10 @@ TEST_F(ApcictlOutputs, OutputThatCannotBeMadeIsRefusedBeforeTheRun) {
 
 // ---- OutputFile in the process
 
-// The write(2) calls this process has made (/proc/self/io), -1 when the kernel does not count.
+// The write(2) calls this thread has made (/proc/thread-self/io: a sanitizer's or the test
+// framework's other threads do not count), -1 when the kernel does not count.
 long write_calls() {
-    std::ifstream io("/proc/self/io");
+    std::ifstream io("/proc/thread-self/io");
     std::string key;
     long value = -1;
     while (io >> key >> value)
@@ -404,7 +405,14 @@ TEST_F(ApcictlOutputs, OutputFileWritesInLargePiecesAndPublishesByRename) {
     const long calls = write_calls() - before;
     struct stat st {};
     ASSERT_EQ(::stat(out.temporary().c_str(), &st), 0);
-    if (before >= 0) {
+    // AddressSanitizer makes write(2) calls of its own on this thread (16 bytes to a pipe, its
+    // check that memory is readable), so the count means something only without it.
+#if defined(__SANITIZE_ADDRESS__)
+    constexpr bool kCounted = false;
+#else
+    constexpr bool kCounted = true;
+#endif
+    if (kCounted && before >= 0) {
         EXPECT_LE(calls, st.st_size / 65536 + 4)
             << st.st_size << " bytes in " << calls << " writes";
     }
