@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "memory_file.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/text_sink.h"
 
@@ -25,27 +26,7 @@ using apci::run::JsonRunWriter;
 using apci::run::PathSegment;
 using apci::run::Point;
 
-// A FILE in memory; text() after the writer flushed.
-class MemoryFile {
-  public:
-    MemoryFile() : file_(open_memstream(&data_, &size_)) {}
-    ~MemoryFile() {
-        if (file_ != nullptr) std::fclose(file_);
-        std::free(data_);
-    }
-    MemoryFile(const MemoryFile&) = delete;
-    MemoryFile& operator=(const MemoryFile&) = delete;
-    std::FILE* get() const { return file_; }
-    std::string text() {
-        std::fflush(file_);
-        return std::string(data_, size_);
-    }
-
-  private:
-    char* data_ = nullptr;
-    std::size_t size_ = 0;
-    std::FILE* file_;
-};
+using apci_test::MemoryFile;
 
 // The reference: append_json_number, the text before the writer had its own formatting.
 std::string reference(double v) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "memory_file.h"
 #include "apci/run/csv_writer.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/path.h"
@@ -23,25 +24,7 @@ namespace {
 
 using nlohmann::json;
 
-// A memory-backed FILE for a writer; text() gives what was written.
-class MemoryFile {
-  public:
-    MemoryFile() : file_(open_memstream(&data_, &size_)) {}
-    ~MemoryFile() {
-        if (file_ != nullptr) std::fclose(file_);
-        std::free(data_);
-    }
-    std::FILE* get() const { return file_; }
-    std::string text() {
-        std::fflush(file_);
-        return std::string(data_, size_);
-    }
-
-  private:
-    char* data_ = nullptr;
-    std::size_t size_ = 0;
-    std::FILE* file_;
-};
+using apci_test::MemoryFile;
 
 PathSegment line(const Point& a, const Point& b, Role role = Role::kContour, std::int64_t n = 10) {
     PathSegment s;
