@@ -6,15 +6,17 @@
 APCI_RUN_DEB_PACKAGES=(
   cmake g++ make pkg-config
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev zlib1g-dev
-  libusb-1.0-0-dev
+  libusb-1.0-0-dev libedit-dev
   ccache
 )
-# Everything ./test.sh needs: the above, the test and benchmark frameworks and
-# umockdev for the USB tests.
+# Everything ./test.sh needs: the above, the test and benchmark frameworks,
+# umockdev for the USB tests, and pybind11, NumPy, pytest and matplotlib for the
+# Python package `apci` and its tests.
 APCI_DEB_PACKAGES=(
   "${APCI_RUN_DEB_PACKAGES[@]}"
   libgtest-dev libgmock-dev libbenchmark-dev
   umockdev libumockdev-dev
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
 )
 # Only the CI stages after ./test.sh need these (scripts/ci/): clang and its
 # libFuzzer/sanitizer runtimes for the fuzzers, clang-tidy and cppcheck for
