@@ -7,6 +7,8 @@
 
 #include <array>
 
+#include "objif/map/objects.h"
+
 #include "rwmos/board_state.h"
 #include "rwmos/comp3d/vectors.h"
 
@@ -15,6 +17,7 @@ namespace rwmos {
 using objif::Access;
 using objif::Address;
 using objif::Entry;
+using objif::Hooks;
 using objif::ObjectInfo;
 using objif::Status;
 using objif::Value;
@@ -22,47 +25,6 @@ using objif::ValueType;
 
 namespace {
 
-constexpr double kIntMin = objif::kInt32Min;
-constexpr double kIntMax = objif::kInt32Max;
-constexpr double kMax = comp3d::kMaxValue;
-constexpr double kLastAxis = kAxisCount - 1;
-constexpr double kLastTool = comp3d::kToolCount - 1;
-constexpr double kLastRow = comp3d::kCorrectionRows - 1;
-constexpr auto kInt = ValueType::kInt32;
-constexpr auto kDouble = ValueType::kDouble;
-
-constexpr ObjectInfo setting(std::int32_t index, std::int32_t sub, std::string_view name,
-                             ValueType type, Access access, double min, double max, Value def,
-                             std::string_view rule) {
-    return {comp3d::kDevSettings, index, index, sub, name, type, access, min, max, def, rule};
-}
-constexpr ObjectInfo tool_row(std::int32_t sub, std::string_view name, double min,
-                              std::string_view rule) {
-    return {comp3d::kDevTools,
-            0,
-            comp3d::kToolCount - 1,
-            sub,
-            name,
-            kDouble,
-            Access::kReadWrite,
-            min,
-            kMax,
-            Value::of_double(0.0),
-            rule};
-}
-constexpr ObjectInfo correction_row(std::int32_t sub, std::string_view name) {
-    return {comp3d::kDevCorrections,
-            0,
-            comp3d::kCorrectionRows - 1,
-            sub,
-            name,
-            kDouble,
-            Access::kReadWrite,
-            -kMax,
-            kMax,
-            Value::of_double(0.0),
-            "[TNC-3D]: delta from the correction table, summed with tool table and TOOL CALL"};
-}
 
 double& delta_of(comp3d::Deltas& d, std::int32_t k) noexcept {
     return k == 0 ? d.dl : k == 1 ? d.dr : d.dr2;
@@ -82,116 +44,46 @@ Comp3dState& Comp3dModule::s() noexcept {
 
 std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
     using M = Comp3dModule;
-    constexpr auto kR = Access::kRead;
-    constexpr auto kRW = Access::kReadWrite;
-    static constexpr std::string_view kCall =
-        "[TNC-3D]: delta of the TOOL CALL; taken by the next Tool write";
-    static constexpr std::string_view kVectorN =
-        "[TNC-3D] LN: surface normal of the next LN profile (armed with Arm)";
-    static constexpr std::string_view kVectorT =
-        "[TNC-3D] LN: tool vector of the next LN profile (armed with Arm)";
-    static constexpr std::string_view kSum = "[TNC-3D]: tool table + TOOL CALL + correction table";
-    static constexpr std::string_view kTip = "design: the last compensated tool tip (TCP)";
-    static constexpr std::array<Entry<M>, 34> kTable{{
+    static constexpr std::array<Hooks<M>, 34> kHooks{{
         // ---- DeviceNumber 0.
-        {setting(comp3d::kIdxTool, 0, "Tool", kInt, kRW, 0, kLastTool, Value::of_int(0),
-                 "[TNC-3D] TOOL CALL: loads the tool with CallDeltas; refused with a positive "
-                 "oversize unless AllowOversize (M107)"),
-         &M::read_tool, &M::write_tool},
-        {setting(comp3d::kIdxCallDeltas, 0, "CallDL", kDouble, kRW, -kMax, kMax,
-                 Value::of_double(0.0), kCall),
-         &M::read_call, &M::write_call},
-        {setting(comp3d::kIdxCallDeltas, 1, "CallDR", kDouble, kRW, -kMax, kMax,
-                 Value::of_double(0.0), kCall),
-         &M::read_call, &M::write_call},
-        {setting(comp3d::kIdxCallDeltas, 2, "CallDR2", kDouble, kRW, -kMax, kMax,
-                 Value::of_double(0.0), kCall),
-         &M::read_call, &M::write_call},
-        {setting(comp3d::kIdxCorrectionRow, 0, "CorrectionRow", kInt, kRW, 0, kLastRow,
-                 Value::of_int(0), "[TNC-3D]: the correction table row in force"),
-         &M::read_correction_row, &M::write_correction_row},
-        {setting(comp3d::kIdxProgPath, 0, "ProgPath", kInt, kRW, 0, 1, Value::of_int(0),
-                 "[TNC-3D] FUNCTION PROG PATH: 0 OFF (deltas only), 1 IS CONTOUR (full radii)"),
-         &M::read_mode, &M::write_mode},
-        {setting(comp3d::kIdxReference, 0, "Reference", kInt, kRW, 0, 1, Value::of_int(0),
-                 "[TNC-3D] TCPM REFPNT: 0 tip, 1 centre"),
-         &M::read_mode, &M::write_mode},
-        {setting(comp3d::kIdxTcpm, 0, "Tcpm", kInt, kRW, 0, 1, Value::of_int(0),
-                 "[TNC-3D] M128 / FUNCTION TCPM: 1 the LN's T (or N) orients the tool"),
-         &M::read_mode, &M::write_mode},
-        {setting(comp3d::kIdxAllowOversize, 0, "AllowOversize", kInt, kRW, 0, 1, Value::of_int(0),
-                 "[TNC-3D] M107 (1) / M108 (0): 0 refused while the loaded tool is oversized"),
-         &M::read_mode, &M::write_allow_oversize},
-        {setting(comp3d::kIdxSide, 0, "Side", kInt, kRW, tc::kSideNone, tc::kSideRight,
-                 Value::of_int(tc::kSideNone),
-                 "[TNC-3D] peripheral milling: 40 R0, 41 RL, 42 RR (LN without N)"),
-         &M::read_mode, &M::write_mode},
-        {setting(comp3d::kIdxHeadAxisB, 0, "HeadAxisB", kInt, kRW, 0, kLastAxis, Value::of_int(4),
-                 "design: board axis of the head's B (degrees), kinematics.h"),
-         &M::read_mode, &M::write_mode},
-        {setting(comp3d::kIdxHeadAxisC, 0, "HeadAxisC", kInt, kRW, comp3d::kNoHeadAxis, kLastAxis,
-                 Value::of_int(comp3d::kNoHeadAxis),
-                 "design: board axis of the head's C (degrees), -1 none"),
-         &M::read_mode, &M::write_mode},
-        {setting(comp3d::kIdxSurfaceNormal, 0, "NX", kDouble, kRW, -kMax, kMax,
-                 Value::of_double(0.0), kVectorN),
-         &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxSurfaceNormal, 1, "NY", kDouble, kRW, -kMax, kMax,
-                 Value::of_double(0.0), kVectorN),
-         &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxSurfaceNormal, 2, "NZ", kDouble, kRW, -kMax, kMax,
-                 Value::of_double(0.0), kVectorN),
-         &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxToolVector, 0, "TX", kDouble, kRW, -kMax, kMax, Value::of_double(0.0),
-                 kVectorT),
-         &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxToolVector, 1, "TY", kDouble, kRW, -kMax, kMax, Value::of_double(0.0),
-                 kVectorT),
-         &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxToolVector, 2, "TZ", kDouble, kRW, -kMax, kMax, Value::of_double(0.0),
-                 kVectorT),
-         &M::read_vector, &M::write_vector},
-        {setting(comp3d::kIdxArm, 0, "Arm", kInt, kRW, 0, 7, Value::of_int(0),
-                 "[TNC-3D] LN: bit 0 N, bit 1 T, bit 2 a line without vectors (L with RL/RR) "
-                 "for the next profile; refused when a vector is not normalised"),
-         &M::read_arm, &M::write_arm},
-        {setting(comp3d::kIdxLastError, 0, "LastError", kInt, kRW, kIntMin, kIntMax,
-                 Value::of_int(0), "design: the Refusal code of the last refusal; a write clears"),
-         &M::read_last_error, &M::write_last_error},
-        {setting(comp3d::kIdxDeltas, 0, "DL", kDouble, kR, -kMax, kMax, Value::of_double(0.0),
-                 kSum),
-         &M::read_deltas, nullptr},
-        {setting(comp3d::kIdxDeltas, 1, "DR", kDouble, kR, -kMax, kMax, Value::of_double(0.0),
-                 kSum),
-         &M::read_deltas, nullptr},
-        {setting(comp3d::kIdxDeltas, 2, "DR2", kDouble, kR, -kMax, kMax, Value::of_double(0.0),
-                 kSum),
-         &M::read_deltas, nullptr},
-        {setting(comp3d::kIdxLastTip, 0, "LastTipX", kDouble, kR, -kMax, kMax,
-                 Value::of_double(0.0), kTip),
-         &M::read_last_tip, nullptr},
-        {setting(comp3d::kIdxLastTip, 1, "LastTipY", kDouble, kR, -kMax, kMax,
-                 Value::of_double(0.0), kTip),
-         &M::read_last_tip, nullptr},
-        {setting(comp3d::kIdxLastTip, 2, "LastTipZ", kDouble, kR, -kMax, kMax,
-                 Value::of_double(0.0), kTip),
-         &M::read_last_tip, nullptr},
+        {"Tool", &M::read_tool, &M::write_tool},
+        {"CallDL", &M::read_call, &M::write_call},
+        {"CallDR", &M::read_call, &M::write_call},
+        {"CallDR2", &M::read_call, &M::write_call},
+        {"CorrectionRow", &M::read_correction_row, &M::write_correction_row},
+        {"ProgPath", &M::read_mode, &M::write_mode},
+        {"Reference", &M::read_mode, &M::write_mode},
+        {"Tcpm", &M::read_mode, &M::write_mode},
+        {"AllowOversize", &M::read_mode, &M::write_allow_oversize},
+        {"Side", &M::read_mode, &M::write_mode},
+        {"HeadAxisB", &M::read_mode, &M::write_mode},
+        {"HeadAxisC", &M::read_mode, &M::write_mode},
+        {"NX", &M::read_vector, &M::write_vector},
+        {"NY", &M::read_vector, &M::write_vector},
+        {"NZ", &M::read_vector, &M::write_vector},
+        {"TX", &M::read_vector, &M::write_vector},
+        {"TY", &M::read_vector, &M::write_vector},
+        {"TZ", &M::read_vector, &M::write_vector},
+        {"Arm", &M::read_arm, &M::write_arm},
+        {"LastError", &M::read_last_error, &M::write_last_error},
+        {"DL", &M::read_deltas, nullptr},
+        {"DR", &M::read_deltas, nullptr},
+        {"DR2", &M::read_deltas, nullptr},
+        {"LastTipX", &M::read_last_tip, nullptr},
+        {"LastTipY", &M::read_last_tip, nullptr},
+        {"LastTipZ", &M::read_last_tip, nullptr},
         // ---- DeviceNumber 1: tool table ([TNC-3D] "Werkzeugtabelle tool.t": R, R2, DL, DR, DR2).
-        {tool_row(comp3d::kSubR, "R", 0.0, "[TNC-3D]: tool radius R"), &M::read_tool_row,
-         &M::write_tool_row},
-        {tool_row(comp3d::kSubR2, "R2", 0.0, "[TNC-3D]: corner radius R2 (0 end mill, R ball)"),
-         &M::read_tool_row, &M::write_tool_row},
-        {tool_row(comp3d::kSubDl, "DL", -kMax, "[TNC-3D]: delta of the tool table on L"),
-         &M::read_tool_row, &M::write_tool_row},
-        {tool_row(comp3d::kSubDr, "DR", -kMax, "[TNC-3D]: delta of the tool table on R"),
-         &M::read_tool_row, &M::write_tool_row},
-        {tool_row(comp3d::kSubDr2, "DR2", -kMax, "[TNC-3D]: delta of the tool table on R2"),
-         &M::read_tool_row, &M::write_tool_row},
+        {"R", &M::read_tool_row, &M::write_tool_row},
+        {"R2", &M::read_tool_row, &M::write_tool_row},
+        {"DL", &M::read_tool_row, &M::write_tool_row},
+        {"DR", &M::read_tool_row, &M::write_tool_row},
+        {"DR2", &M::read_tool_row, &M::write_tool_row},
         // ---- DeviceNumber 2: correction table.
-        {correction_row(comp3d::kSubCorrDl, "CorrDL"), &M::read_correction, &M::write_correction},
-        {correction_row(comp3d::kSubCorrDr, "CorrDR"), &M::read_correction, &M::write_correction},
-        {correction_row(comp3d::kSubCorrDr2, "CorrDR2"), &M::read_correction, &M::write_correction},
+        {"CorrDL", &M::read_correction, &M::write_correction},
+        {"CorrDR", &M::read_correction, &M::write_correction},
+        {"CorrDR2", &M::read_correction, &M::write_correction},
     }};
+    static constexpr auto kTable = objif::attach(objif::map::comp3d::kObjects, kHooks);
     return kTable;
 }
 

@@ -7,6 +7,8 @@
 #include "rwmos/otc_module.h"
 
 #include <array>
+
+#include "objif/map/objects.h"
 #include <cmath>
 #include <limits>
 
@@ -18,32 +20,21 @@ namespace rwmos {
 using objif::Access;
 using objif::Address;
 using objif::Entry;
+using objif::Hooks;
 using objif::ObjectInfo;
 using objif::Status;
 using objif::Value;
 using objif::ValueType;
 
 namespace {
-constexpr double kIntMin = objif::kInt32Min;
-constexpr double kIntMax = objif::kInt32Max;
-constexpr double kDoubleMax = std::numeric_limits<double>::max();
-constexpr double kLastAxis = kOtcAxisCount - 1;
-// The ramp's limits (design): above 0, at most 1e6 mm/s (or /s^2) like the TC tool sizes.
-constexpr double kMinRamp = 1e-9;
-constexpr double kMaxRamp = 1.0e6;
-// P-TOOL-00138 in 0.0001 degree: [-45, 45] degrees.
-constexpr double kMaxTiltUnits = otc::kMaxTiltDegrees / otc::kTiltUnitInDegrees;
-
-constexpr ObjectInfo obj(std::int32_t dev, std::int32_t index, std::int32_t sub,
-                         std::string_view name, ValueType type, Access access, double min,
-                         double max, Value def, std::string_view rule) {
-    return {dev, index, index, sub, name, type, access, min, max, def, rule};
-}
-constexpr ObjectInfo axis_unit_obj(std::int32_t sub, std::string_view name, ValueType type,
-                                   Access access, double min, double max, std::string_view rule) {
-    return {otc::kDevAxisUnits, 0,   kOtcAxisCount - 1, sub, name, type, access, min, max,
-            Value::of_int(0),   rule};
-}
+// The map's declarations (objif/map/object_map.h) are the engine's limits too.
+static_assert(otc::kBHeadKinematics == geom::kBHeadKinematicsId);
+static_assert(otc::kAxisCount == kOtcAxisCount);
+static_assert(otc::kMinAccWeight == objif::map::otc::kMinAccWeight);
+static_assert(otc::kMaxAccWeight == objif::map::otc::kMaxAccWeight);
+static_assert(otc::kDefaultAccWeight == objif::map::otc::kDefaultAccWeight);
+static_assert(otc::kTiltUnitInDegrees == objif::map::otc::kTiltUnitInDegrees);
+static_assert(otc::kMaxTiltDegrees == objif::map::otc::kMaxTiltDegrees);
 }  // namespace
 
 std::int32_t OtcModule::bus() const noexcept {
@@ -55,160 +46,48 @@ bool OtcModule::present() const noexcept {
 
 std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
     using M = OtcModule;
-    constexpr auto kInt = ValueType::kInt32;
-    constexpr auto kDouble = ValueType::kDouble;
-    constexpr auto kR = Access::kRead;
-    constexpr auto kRW = Access::kReadWrite;
-    constexpr auto kCh = otc::kDevChannel;
-    constexpr auto kTool = otc::kDevTool;
-    constexpr auto kUnit = otc::kIdxRadiusOffsetUnit;
-    static constexpr std::array<Entry<M>, 36> kTable{{
+    static constexpr std::array<Hooks<M>, 36> kHooks{{
         // ---- DeviceNumber 0: #OTC ([ISG-OTC] section 2.1), ramp, kinematics, channel unit.
-        {obj(kCh, otc::kIdxActive, 0, "Active", kInt, kRW, 0, 1, Value::of_int(0),
-             "[ISG-OTC] 2.1/2.8: V.G.OTC_ACTIVE; 1 = #OTC ON (tool type 2, else P-ERR-21391), "
-             "0 = #OTC OFF (G40 first in RADIUS; folds the wear); Busy while moves are queued"),
-         &M::read_active, &M::write_active},
-        {obj(kCh, otc::kIdxProcessingType, 0, "ProcessingType", kInt, kRW, 0, 3, Value::of_int(1),
-             "[ISG-OTC] 2.1: 0 RADIUS, 1 LENGTH (default), 2 TOOL_DIR, 3 SURF_NORM_DIR; not while "
-             "on"),
-         &M::read_type, &M::write_type},
-        {obj(kCh, otc::kIdxMode, 0, "Mode", kInt, kRW, 0, 2, Value::of_int(2),
-             "[ISG-OTC] 2.1: 0 CONT, 1 DISC, 2 AUTO (default); not while on"),
-         &M::read_mode, &M::write_mode},
-        {obj(kCh, otc::kIdxWearConst, 0, "WearConst", kDouble, kRW, 0.0, kDoubleMax,
-             Value::of_double(0.0),
-             "[ISG-OTC] 2.1 WEAR_CONST=..: 0.1 um/m, modal; a write also selects it "
-             "(WearConstSource 1)"),
-         &M::read_wear_const, &M::write_wear_const},
-        {obj(kCh, otc::kIdxWearConstSource, 0, "WearConstSource", kInt, kRW, 0, 1, Value::of_int(0),
-             "[ISG-OTC] 2.1: 0 WEAR_CONST_TOOL (default), 1 the programmed WEAR_CONST"),
-         &M::read_wear_const_source, &M::write_wear_const_source},
-        {obj(kCh, otc::kIdxAccWeight, 0, "AccWeight", kInt, kRW, otc::kMinAccWeight,
-             otc::kMaxAccWeight, Value::of_int(otc::kDefaultAccWeight),
-             "[ISG-OTC] 2.1 ACC_WEIGHT: percent [1;100] of the ramp acceleration; not while on"),
-         &M::read_acc_weight, &M::write_acc_weight},
-        {obj(kCh, otc::kIdxLastError, 0, "LastError", kInt, kRW, kIntMin, kIntMax, Value::of_int(0),
-             "design: number of the last refused rule (21391 = P-ERR-21391); a write clears it"),
-         &M::read_last_error, &M::write_last_error},
-        {obj(kCh, otc::kIdxEffectiveWearConst, 0, "EffectiveWearConst", kDouble, kR, 0.0,
-             kDoubleMax, Value::of_double(0.0), "design: the wear constant in force, 0.1 um/m"),
-         &M::read_effective_wear_const, nullptr},
-        {obj(kCh, otc::kIdxRampVelocity, 0, "RampVelocity", kDouble, kRW, kMinRamp, kMaxRamp,
-             Value::of_double(kDefaultRampVelocity),
-             "design: largest speed of a discrete offset, mm/s ([ISG-OTC]: over several cycles)"),
-         &M::read_ramp_velocity, &M::write_ramp_velocity},
-        {obj(kCh, otc::kIdxRampAcceleration, 0, "RampAcceleration", kDouble, kRW, kMinRamp,
-             kMaxRamp, Value::of_double(kDefaultRampAcceleration),
-             "design: largest acceleration of a discrete offset at ACC_WEIGHT 100, mm/s^2"),
-         &M::read_ramp_acceleration, &M::write_ramp_acceleration},
-        {obj(kCh, otc::kIdxKinematics, 0, "Kinematics", kInt, kRW, 0, geom::kBHeadKinematicsId,
-             Value::of_int(0),
-             "design: #KIN ID; 0 none, 4 the B head (docs/design.md section 8); not while on"),
-         &M::read_kinematics, &M::write_kinematics},
-        {obj(kCh, otc::kIdxTrafo, 0, "Trafo", kInt, kRW, 0, 1, Value::of_int(0),
-             "design: #TRAFO ON/OFF; with the B head on, TOOL_DIR/SURF_NORM_DIR follow B; not "
-             "while on"),
-         &M::read_trafo, &M::write_trafo},
-        {obj(kCh, otc::kIdxToolAxisB, 0, "ToolAxisB", kInt, kRW, 0, kLastAxis,
-             Value::of_int(kDefaultToolAxisB),
-             "design: board axis of the B head's B; not while on"),
-         &M::read_tool_axis_b, &M::write_tool_axis_b},
-        {obj(kCh, kUnit, otc::kSubCommand, "otc_radius_offset.command_w", kInt, kRW, kIntMin,
-             kIntMax, Value::of_int(0),
-             "[ISG-OTC] 2.7.1: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS or TOOL_DIR, "
-             "DISC/AUTO"),
-         &M::read_unit_command, &M::write_unit_command},
-        {obj(kCh, kUnit, otc::kSubEnable, "otc_radius_offset.enable_w", kInt, kRW, 0, 1,
-             Value::of_int(0), "[ISG-OTC] 2.7.1: the PLC enables the unit"),
-         &M::read_unit_enable, &M::write_unit_enable},
-        {obj(kCh, kUnit, otc::kSubRequest, "otc_radius_offset.request_r", kInt, kR, kIntMin,
-             kIntMax, Value::of_int(0),
-             "design reading of 2.7.1: the offset the ramp heads for, 0.1 um"),
-         &M::read_unit_request, nullptr},
-        {obj(kCh, kUnit, otc::kSubState, "otc_radius_offset.state_r", kInt, kR, kIntMin, kIntMax,
-             Value::of_int(0), "design reading of 2.7.1: the offset reached, 0.1 um"),
-         &M::read_unit_state, nullptr},
-
+        {"Active", &M::read_active, &M::write_active},
+        {"ProcessingType", &M::read_type, &M::write_type},
+        {"Mode", &M::read_mode, &M::write_mode},
+        {"WearConst", &M::read_wear_const, &M::write_wear_const},
+        {"WearConstSource", &M::read_wear_const_source, &M::write_wear_const_source},
+        {"AccWeight", &M::read_acc_weight, &M::write_acc_weight},
+        {"LastError", &M::read_last_error, &M::write_last_error},
+        {"EffectiveWearConst", &M::read_effective_wear_const, nullptr},
+        {"RampVelocity", &M::read_ramp_velocity, &M::write_ramp_velocity},
+        {"RampAcceleration", &M::read_ramp_acceleration, &M::write_ramp_acceleration},
+        {"Kinematics", &M::read_kinematics, &M::write_kinematics},
+        {"Trafo", &M::read_trafo, &M::write_trafo},
+        {"ToolAxisB", &M::read_tool_axis_b, &M::write_tool_axis_b},
+        {"otc_radius_offset.command_w", &M::read_unit_command, &M::write_unit_command},
+        {"otc_radius_offset.enable_w", &M::read_unit_enable, &M::write_unit_enable},
+        {"otc_radius_offset.request_r", &M::read_unit_request, nullptr},
+        {"otc_radius_offset.state_r", &M::read_unit_state, nullptr},
         // ---- DeviceNumber 1: otc_offset of every board axis ([ISG-OTC] section 2.7.2).
-        {axis_unit_obj(
-             otc::kSubCommand, "otc_offset.command_w", kInt, kRW, kIntMin, kIntMax,
-             "[ISG-OTC] 2.7.2: 0.1 um within [-P-TOOL-00031, P-TOOL-00031]; RADIUS, LENGTH; "
-             "third axis along the direction in TOOL_DIR/SURF_NORM_DIR"),
-         &M::read_unit_command, &M::write_unit_command},
-        {axis_unit_obj(otc::kSubEnable, "otc_offset.enable_w", kInt, kRW, 0, 1,
-                       "[ISG-OTC] 2.7.2: the PLC enables the unit"),
-         &M::read_unit_enable, &M::write_unit_enable},
-        {axis_unit_obj(otc::kSubRequest, "otc_offset.request_r", kInt, kR, kIntMin, kIntMax,
-                       "design reading of 2.7.2: the offset the ramp heads for, 0.1 um"),
-         &M::read_unit_request, nullptr},
-        {axis_unit_obj(otc::kSubState, "otc_offset.state_r", kInt, kR, kIntMin, kIntMax,
-                       "design reading of 2.7.2: the offset reached, 0.1 um"),
-         &M::read_unit_state, nullptr},
-
+        {"otc_offset.command_w", &M::read_unit_command, &M::write_unit_command},
+        {"otc_offset.enable_w", &M::read_unit_enable, &M::write_unit_enable},
+        {"otc_offset.request_r", &M::read_unit_request, nullptr},
+        {"otc_offset.state_r", &M::read_unit_state, nullptr},
         // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; [ISG-OTC] sections 2.6, 2.8, 3.2).
-        {obj(kTool, otc::kIdxToolNumber, 0, "ToolNumber", kInt, kRW, 0, tc::kToolCount - 1,
-             Value::of_int(0),
-             "design: the tool (D n, TC WKZINDEX) the wear folds into; a change starts its wear "
-             "from 0 ([ISG-OTC] section 2.9); not while on"),
-         &M::read_tool_number, &M::write_tool_number},
-        {obj(kTool, otc::kIdxToolType, 0, "typ", kInt, kRW, 0, 3, Value::of_int(0),
-             "[ISG-OTC] 3.2 P-TOOL-00001: 0 milling, 1 turning, 2 grinding, 3 wire; not while on"),
-         &M::read_tool_type, &M::write_tool_type},
-        {obj(kTool, otc::kIdxToolWearConst, 0, "grinding_wear_const", kDouble, kRW, 0.0, kDoubleMax,
-             Value::of_double(0.0),
-             "[ISG-OTC] 3.2 P-TOOL-00030, 0.1 um/m; V.G.WZ_AKT.WEAR_CONST (2.8: read and write)"),
-         &M::read_tool_wear_const, &M::write_tool_wear_const},
-        {obj(kTool, otc::kIdxToolMaxInfeed, 0, "grinding_max_infeed", kDouble, kRW, kIntMin,
-             kIntMax, Value::of_double(0.0),
-             "[ISG-OTC] 3.2 P-TOOL-00031: 0.1 um, SGN32 range; 0: no discrete offset; "
-             "not while on"),
-         &M::read_tool_max_infeed, &M::write_tool_max_infeed},
-        {obj(kTool, otc::kIdxToolTiltAngle, 0, "grinding_disc_tilt_angle", kDouble, kRW,
-             -kMaxTiltUnits, kMaxTiltUnits, Value::of_double(0.0),
-             "[ISG-OTC] 3.2 P-TOOL-00138: 0.0001 degree within [-45, 45] degrees; not while on"),
-         &M::read_tool_tilt, &M::write_tool_tilt},
-        {obj(kTool, otc::kIdxWearRadius, 0, "V.G.WZ_AKT.WEAR_RADIUS", kDouble, kR, -kDoubleMax,
-             kDoubleMax, Value::of_double(0.0),
-             "[ISG-OTC] 2.8: radius wear, discrete + continuous, mm; updated at #OTC OFF"),
-         &M::read_wear_radius, nullptr},
-        {obj(kTool, otc::kIdxWearRadiusCont, 0, "V.G.WZ_AKT.WEAR_RADIUS_CONT", kDouble, kR,
-             -kDoubleMax, kDoubleMax, Value::of_double(0.0),
-             "[ISG-OTC] 2.8: continuous radius wear, mm; updated at #OTC OFF"),
-         &M::read_wear_radius_cont, nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 0, "V.G.WZ_AKT.WEAR[0]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0),
-          "[ISG-OTC] 2.8: wear on axis 0, mm; updated at #OTC OFF"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 1, "V.G.WZ_AKT.WEAR[1]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 1"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 2, "V.G.WZ_AKT.WEAR[2]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 2"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 3, "V.G.WZ_AKT.WEAR[3]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 3"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 4, "V.G.WZ_AKT.WEAR[4]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 4"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 5, "V.G.WZ_AKT.WEAR[5]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 5"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 6, "V.G.WZ_AKT.WEAR[6]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 6"},
-         &M::read_wear,
-         nullptr},
-        {{kTool, otc::kIdxWear, otc::kIdxWear, 7, "V.G.WZ_AKT.WEAR[7]", kDouble, kR, -kDoubleMax,
-          kDoubleMax, Value::of_double(0.0), "[ISG-OTC] 2.8: wear on axis 7"},
-         &M::read_wear,
-         nullptr},
+        {"ToolNumber", &M::read_tool_number, &M::write_tool_number},
+        {"typ", &M::read_tool_type, &M::write_tool_type},
+        {"grinding_wear_const", &M::read_tool_wear_const, &M::write_tool_wear_const},
+        {"grinding_max_infeed", &M::read_tool_max_infeed, &M::write_tool_max_infeed},
+        {"grinding_disc_tilt_angle", &M::read_tool_tilt, &M::write_tool_tilt},
+        {"V.G.WZ_AKT.WEAR_RADIUS", &M::read_wear_radius, nullptr},
+        {"V.G.WZ_AKT.WEAR_RADIUS_CONT", &M::read_wear_radius_cont, nullptr},
+        {"V.G.WZ_AKT.WEAR[0]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[1]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[2]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[3]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[4]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[5]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[6]", &M::read_wear, nullptr},
+        {"V.G.WZ_AKT.WEAR[7]", &M::read_wear, nullptr},
     }};
+    static constexpr auto kTable = objif::attach(objif::map::otc::kObjects, kHooks);
     return kTable;
 }
 

@@ -8,6 +8,8 @@
 #include "rwmos/tc_module.h"
 
 #include <array>
+
+#include "objif/map/objects.h"
 #include <limits>
 
 #include "rwmos/board_state.h"
@@ -17,34 +19,13 @@ namespace rwmos {
 using objif::Access;
 using objif::Address;
 using objif::Entry;
+using objif::Hooks;
 using objif::ObjectInfo;
 using objif::Status;
 using objif::Value;
 using objif::ValueType;
 
 namespace {
-constexpr double kIntMin = objif::kInt32Min;
-constexpr double kIntMax = objif::kInt32Max;
-constexpr double kDoubleMin = std::numeric_limits<double>::lowest();
-constexpr double kDoubleMax = std::numeric_limits<double>::max();
-constexpr double kLastAxis = kAxisCount - 1;
-// Tool radius and length limits in PU units (design): a radius is a size,
-// so not negative; a length correction may be negative.
-constexpr double kMaxRadius = 1.0e6;
-constexpr double kMaxLength = 1.0e6;
-
-constexpr ObjectInfo init_object(std::int32_t index, std::int32_t sub, std::string_view name,
-                                 ValueType type, Access access, double min, double max,
-                                 Value def, std::string_view rule) {
-    return {tc::kDevInit, index, index, sub, name, type, access, min, max, def, rule};
-}
-constexpr ObjectInfo group_object(std::int32_t sub, std::string_view name, ValueType type,
-                                  Access access, double min, double max, Value def,
-                                  std::string_view rule) {
-    return {tc::kDevGroups, tc::kActiveGroupIndex, tc::kGroupCount, sub, name, type, access,
-            min, max, def, rule};
-}
-
 // Run and ProfMarked cleared, stored offsets gone: the group no longer compensates.
 void end_compensation(TcGroup& g) noexcept {
     g.status = 0;
@@ -73,104 +54,36 @@ TcState& TcModule::tc() noexcept { return state_.tc; }
 
 std::span<const Entry<TcModule>> TcModule::table() const noexcept {
     using M = TcModule;
-    constexpr auto kInt = ValueType::kInt32;
-    constexpr auto kDouble = ValueType::kDouble;
-    constexpr auto kR = Access::kRead;
-    constexpr auto kW = Access::kWrite;
-    constexpr auto kRW = Access::kReadWrite;
-    static constexpr std::array<Entry<M>, 25> kTable{{
+    static constexpr std::array<Hooks<M>, 25> kHooks{{
         // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
-        {init_object(tc::kIdxClean, 0, "Clean", kInt, kW, 1, 1, Value::of_int(1),
-                     "[APCI-TC] Table 2 Clean: parameter 1; drops all TC objects, handles stale"),
-         nullptr, &M::write_clean},
-        {init_object(tc::kIdxAxisNr, tc::kSubX, "X-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(0),
-                     "[APCI-TC] Table 2: board axis used as X"),
-         &M::read_axis_nr, &M::write_axis_nr},
-        {init_object(tc::kIdxAxisNr, tc::kSubY, "Y-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(1),
-                     "[APCI-TC] Table 2: board axis used as Y"),
-         &M::read_axis_nr, &M::write_axis_nr},
-        {init_object(tc::kIdxAxisNr, tc::kSubZ, "Z-Axis-Nr", kInt, kRW, 0, kLastAxis, Value::of_int(2),
-                     "[APCI-TC] Table 2: board axis used as Z"),
-         &M::read_axis_nr, &M::write_axis_nr},
-        {init_object(tc::kIdxTcPlane, 0, "TcPlane", kInt, kRW, tc::kPlaneXY, tc::kPlaneYZ,
-                     Value::of_int(tc::kPlaneXY), "[APCI-TC] Table 2: 17 X-Y, 18 Z-X, 19 Y-Z"),
-         &M::read_tc_plane, &M::write_tc_plane},
-        {init_object(tc::kIdxReInit, 0, "ReInit", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                     "[APCI-TC] Table 2 ReInit (index: design): clear stored offsets; tools stay; "
-                     "refused while a profile is held (not emulated)"),
-         nullptr, &M::write_reinit},
-        {init_object(tc::kIdxReset, 0, "Reset", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                     "[APCI-TC] Table 2 Reset (index: design): stop corrections, clear offsets and "
-                     "held profiles; tools stay"),
-         nullptr, &M::write_reset},
-        {init_object(tc::kIdxRotAngle, 0, "RotAngle", kDouble, kRW, kDoubleMin, kDoubleMax,
-                     Value::of_double(0.0), "[APCI-TC] Table 2 / 2.1.1: degrees; zeroed by rs()"),
-         &M::read_rot_angle, &M::write_rot_angle},
-        {init_object(tc::kIdxRotCenterX, 0, "RotCenterX", kDouble, kRW, kDoubleMin, kDoubleMax,
-                     Value::of_double(0.0), "[APCI-TC] Table 2: first plane axis; zeroed by rs()"),
-         &M::read_rot_center_x, &M::write_rot_center_x},
-        {init_object(tc::kIdxRotCenterY, 0, "RotCenterY", kDouble, kRW, kDoubleMin, kDoubleMax,
-                     Value::of_double(0.0), "[APCI-TC] Table 2: second plane axis; zeroed by rs()"),
-         &M::read_rot_center_y, &M::write_rot_center_y},
-
+        {"Clean", nullptr, &M::write_clean},
+        {"X-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
+        {"Y-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
+        {"Z-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
+        {"TcPlane", &M::read_tc_plane, &M::write_tc_plane},
+        {"ReInit", nullptr, &M::write_reinit},
+        {"Reset", nullptr, &M::write_reset},
+        {"RotAngle", &M::read_rot_angle, &M::write_rot_angle},
+        {"RotCenterX", &M::read_rot_center_x, &M::write_rot_center_x},
+        {"RotCenterY", &M::read_rot_center_y, &M::write_rot_center_y},
         // ---- DeviceNumber 1: compensation groups ([APCI-TC] Table 3), Index 0..3.
-        {group_object(tc::kSubError, "ERROR", kInt, kRW, kIntMin, kIntMax, Value::of_int(0),
-                      "[APCI-TC] Table 3/4: error bits; a write clears them"),
-         &M::read_error, &M::write_error},
-        {group_object(tc::kSubReset, "RESET", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                      "[APCI-TC] Table 3: ends compensation, discards programmed values; "
-                      "Index and value meaningless"),
-         nullptr, &M::write_group_reset},
-        {group_object(tc::kSubStatus, "STATUS", kInt, kRW, 0, 1, Value::of_int(0),
-                      "[APCI-TC] Table 3/5: 1 activates (InitError if uninitialised), 0 deactivates"),
-         &M::read_status, &M::write_status},
-        {group_object(tc::kSubXAxis, "XAxis", kInt, kRW, 0, kLastAxis, Value::of_int(0),
-                      "[APCI-TC] Table 3: only while inactive, else InitError"),
-         &M::read_x_axis, &M::write_x_axis},
-        {group_object(tc::kSubYAxis, "YAxis", kInt, kRW, 0, kLastAxis, Value::of_int(1),
-                      "[APCI-TC] Table 3: only while inactive, else InitError"),
-         &M::read_y_axis, &M::write_y_axis},
-        {group_object(tc::kSubRadius, "RADIUS", kDouble, kRW, 0.0, kMaxRadius, Value::of_double(0.0),
-                      "[APCI-TC] Table 3: radius of the current WKZINDEX's tool, PU units"),
-         &M::read_radius, &M::write_radius},
-        {group_object(tc::kSubWkzIndex, "WKZINDEX", kInt, kRW, 0, tc::kToolCount - 1, Value::of_int(0),
-                      "[APCI-TC] Table 3: tool index 0..1023, only while inactive"),
-         &M::read_wkz_index, &M::write_wkz_index},
-        {group_object(tc::kSubLeft, "Left", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                      "[APCI-TC] Table 3: select left (G41); only while inactive; value unused"),
-         nullptr, &M::write_left},
-        {group_object(tc::kSubRight, "Right", kInt, kW, kIntMin, kIntMax, Value::of_int(0),
-                      "[APCI-TC] Table 3: select right (G42); only while inactive; value unused"),
-         nullptr, &M::write_right},
-        {group_object(tc::kSubZAxis, "ZAxis", kInt, kRW, 0, kLastAxis, Value::of_int(2),
-                      "[APCI-TC] Table 3: only while inactive, else InitError"),
-         &M::read_z_axis, &M::write_z_axis},
-        {group_object(tc::kSubWkzLen, "WkzLen", kDouble, kRW, -kMaxLength, kMaxLength,
-                      Value::of_double(0.0),
-                      "[APCI-TC] Table 3: length of the current WKZINDEX's tool, PU units"),
-         &M::read_wkz_len, &M::write_wkz_len},
-        {group_object(tc::kSubCornerMode, "CornerMode", kInt, kRW, tc::kCornerLinear,
-                      tc::kCornerCircular, Value::of_int(tc::kCornerCircular),
-                      "design: corners 26 circular (default) / 25 linear (docs/design.md section 3)"),
-         &M::read_group_mode<&TcGroup::corner_mode>,
-         &M::write_group_mode<&TcGroup::corner_mode>},
-        {group_object(tc::kSubSide, "Side", kInt, kR, tc::kSideNone, tc::kSideRight,
-                      Value::of_int(tc::kSideNone),
-                      "design: reads back the Left/Right selection: 40 none, 41 left, 42 right"),
-         &M::read_group_mode<&TcGroup::side>, nullptr},
-        {group_object(tc::kSubSelectionMode, "SelectionMode", kInt, kRW, tc::kSelectionIndirect,
-                      tc::kSelectionPerpendicular, Value::of_int(tc::kSelectionPerpendicular),
-                      "design: approach and departure, 237 perpendicular (default) / 139 indirect "
-                      "(docs/compensation.md)"),
-         &M::read_group_mode<&TcGroup::selection_mode>,
-         &M::write_group_mode<&TcGroup::selection_mode>},
-        {group_object(tc::kSubLengthMode, "LengthMode", kInt, kRW, tc::kLengthWhileCompensating,
-                      tc::kLengthAlways, Value::of_int(tc::kLengthWhileCompensating),
-                      "design: WkzLen on ZAxis 0 while compensating (default) / 1 on every profile "
-                      "(docs/compensation.md)"),
-         &M::read_group_mode<&TcGroup::length_mode>,
-         &M::write_group_mode<&TcGroup::length_mode>},
+        {"ERROR", &M::read_error, &M::write_error},
+        {"RESET", nullptr, &M::write_group_reset},
+        {"STATUS", &M::read_status, &M::write_status},
+        {"XAxis", &M::read_x_axis, &M::write_x_axis},
+        {"YAxis", &M::read_y_axis, &M::write_y_axis},
+        {"RADIUS", &M::read_radius, &M::write_radius},
+        {"WKZINDEX", &M::read_wkz_index, &M::write_wkz_index},
+        {"Left", nullptr, &M::write_left},
+        {"Right", nullptr, &M::write_right},
+        {"ZAxis", &M::read_z_axis, &M::write_z_axis},
+        {"WkzLen", &M::read_wkz_len, &M::write_wkz_len},
+        {"CornerMode", &M::read_group_mode<&TcGroup::corner_mode>, &M::write_group_mode<&TcGroup::corner_mode>},
+        {"Side", &M::read_group_mode<&TcGroup::side>, nullptr},
+        {"SelectionMode", &M::read_group_mode<&TcGroup::selection_mode>, &M::write_group_mode<&TcGroup::selection_mode>},
+        {"LengthMode", &M::read_group_mode<&TcGroup::length_mode>, &M::write_group_mode<&TcGroup::length_mode>},
     }};
+    static constexpr auto kTable = objif::attach(objif::map::tc::kObjects, kHooks);
     return kTable;
 }
 

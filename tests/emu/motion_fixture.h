@@ -12,7 +12,7 @@
 #include "rwmos/board.h"
 #include "rwmos/board_state.h"
 #include "rwmos/object_map.h"
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
 namespace motion_test {
 

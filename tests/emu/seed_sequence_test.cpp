@@ -7,7 +7,7 @@
 #include "emu_test_util.h"
 #include "objif/frame.h"
 #include "rwmos/frame_server.h"
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
 using namespace emu_test;
 namespace tc = rwmos::tc;

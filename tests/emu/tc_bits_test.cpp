@@ -2,9 +2,9 @@
 // ERROR and STATUS bit constants ([APCI-TC] Tables 4 and 5) and their name lookups.
 #include <gtest/gtest.h>
 
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
-namespace tc = rwmos::tc;
+namespace tc = objif::map::tc;
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "emu_test_util.h"
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
 using namespace emu_test;
 namespace tc = rwmos::tc;

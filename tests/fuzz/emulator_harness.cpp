@@ -7,7 +7,7 @@
 
 #include "objif/dictionary.h"
 #include "rwmos/object_map.h"
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
 namespace fuzz {
 

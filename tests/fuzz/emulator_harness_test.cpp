@@ -13,7 +13,7 @@
 #include "emulator_harness.h"
 #include "rwmos/board_state.h"
 #include "rwmos/object_map.h"
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
 namespace {
 

@@ -53,17 +53,17 @@ private:
     Status write_clean(const ObjectInfo&, const Address&, const Value&) { discard_handles(); return Status::kOk; }
 
     static constexpr std::array<Entry<TestModule>, 6> kTable{{
-        {{0, 1, 1, 0, "Level", ValueType::kInt32, Access::kReadWrite, 0, 10, Value::of_int(3), "test"},
+        {{0, 1, 1, 0, "Level", ValueType::kInt32, Access::kReadWrite, 0, 10, Value::of_int(3), "test", {}, {}},
          &TestModule::read_level, &TestModule::write_level},
-        {{0, 2, 2, 0, "Gain", ValueType::kDouble, Access::kReadWrite, -1.0, 1.0, Value::of_double(0.5), "test"},
+        {{0, 2, 2, 0, "Gain", ValueType::kDouble, Access::kReadWrite, -1.0, 1.0, Value::of_double(0.5), "test", {}, {}},
          &TestModule::read_gain, &TestModule::write_gain},
-        {{0, 3, 3, 0, "Version", ValueType::kInt32, Access::kRead, objif::kInt32Min, objif::kInt32Max, Value::of_int(7), "test"},
+        {{0, 3, 3, 0, "Version", ValueType::kInt32, Access::kRead, objif::kInt32Min, objif::kInt32Max, Value::of_int(7), "test", {}, {}},
          &TestModule::read_version, nullptr},
-        {{0, 4, 4, 0, "Command", ValueType::kInt32, Access::kWrite, objif::kInt32Min, objif::kInt32Max, Value::of_int(0), "test"},
+        {{0, 4, 4, 0, "Command", ValueType::kInt32, Access::kWrite, objif::kInt32Min, objif::kInt32Max, Value::of_int(0), "test", {}, {}},
          nullptr, &TestModule::write_command},
-        {{1, 0, 3, 5, "Slot", ValueType::kInt32, Access::kReadWrite, objif::kInt32Min, objif::kInt32Max, Value::of_int(0), "test"},
+        {{1, 0, 3, 5, "Slot", ValueType::kInt32, Access::kReadWrite, objif::kInt32Min, objif::kInt32Max, Value::of_int(0), "test", {}, {}},
          &TestModule::read_slot, &TestModule::write_slot},
-        {{0, 9, 9, 0, "Clean", ValueType::kInt32, Access::kWrite, 1, 1, Value::of_int(1), "test"},
+        {{0, 9, 9, 0, "Clean", ValueType::kInt32, Access::kWrite, 1, 1, Value::of_int(1), "test", {}, {}},
          nullptr, &TestModule::write_clean},
     }};
 };

@@ -9,7 +9,7 @@
 
 #include "arguments.h"
 #include "command.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 #include "value_text.h"
 
 namespace apcictl {
@@ -167,7 +167,7 @@ private:
     // for STATUS = 1 on a group not initialised, and for the axes, WKZINDEX, Left or Right
     // while it runs): the refusal says so, and what to change.
     std::string tc_consequence(apci::Status s) const {
-        namespace tc = rwmos::tc;
+        namespace tc = objif::map::tc;
         if (object_.bus == tc::kBus && object_.device == tc::kDevInit &&
             object_.index == tc::kIdxReInit && s == APCI_WRONG_DEVICE_STATE)
             return "; ReInit while a contour is under way (a profile held, STATUS bit "

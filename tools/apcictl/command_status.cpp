@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "command.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apcictl {
 namespace {
@@ -89,7 +89,7 @@ public:
 private:
     // "board (bus 1000): spooler 0 of 256 profiles" (board module, design numbers).
     static Outcome show_spooler(apci::Board& board) {
-        namespace b = rwmos::board;
+        namespace b = objif::map::board;
         auto fill_object = apci::object(b::kBus, b::kDevice, b::kIdxSpoolerFill, 0);
         auto capacity_object = apci::object(b::kBus, b::kDevice, b::kIdxSpoolerCapacity, 0);
         const auto fill = board.read_int(fill_object);

@@ -7,6 +7,7 @@
 // "state" is the hook's job: the rules live next to the object they guard.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -15,39 +16,11 @@
 #include <vector>
 
 #include "objif/descriptor.h"
+#include "objif/object_info.h"
 #include "objif/status.h"
 #include "objif/value.h"
 
 namespace objif {
-
-enum class Access : std::uint8_t { kRead = 1, kWrite = 2, kReadWrite = 3 };
-constexpr bool can_read(Access a) noexcept { return (static_cast<int>(a) & 1) != 0; }
-constexpr bool can_write(Access a) noexcept { return (static_cast<int>(a) & 2) != 0; }
-std::string_view access_name(Access a) noexcept;  // "r", "w", "r/w"
-
-inline constexpr double kInt32Min = -2147483648.0;
-inline constexpr double kInt32Max = 2147483647.0;
-
-// The static description of one object (or of a row of objects over an index
-// range, e.g. compensation groups 0..3).
-struct ObjectInfo {
-    std::int32_t device = 0;
-    std::int32_t index_first = 0;
-    std::int32_t index_last = 0;
-    std::int32_t subindex = 0;
-    std::string_view name;
-    ValueType type = ValueType::kInt32;
-    Access access = Access::kReadWrite;
-    double min = kInt32Min;  // inclusive range checked on write
-    double max = kInt32Max;
-    Value default_value;
-    std::string_view rule;  // where the rule comes from ("[APCI-TC] Table 2", "design: ...")
-
-    constexpr bool covers(const Address& a) const noexcept {
-        return a.device == device && a.index >= index_first && a.index <= index_last &&
-               a.subindex == subindex;
-    }
-};
 
 // A module serves one bus. Most modules derive from TableModule below.
 class Module {
@@ -89,6 +62,36 @@ struct Entry {
     Status (M::*read)(const ObjectInfo&, const Address&, Value&) = nullptr;
     Status (M::*write)(const ObjectInfo&, const Address&, const Value&) = nullptr;
 };
+
+// The rules a module attaches to one row of the object map (objif/map/objects.h): its read
+// and write hooks, in the map's order. `name` repeats the row's name, so a table out of step
+// with the map does not compile.
+template <class M>
+struct Hooks {
+    std::string_view name;
+    Status (M::*read)(const ObjectInfo&, const Address&, Value&) = nullptr;
+    Status (M::*write)(const ObjectInfo&, const Address&, const Value&) = nullptr;
+};
+
+// A module's table: each row of the map with its hooks. Checked at compile time: the hooks
+// follow the map row by row, a readable object has a read hook and only a readable one, a
+// writable object a write hook and only a writable one.
+template <class M, std::size_t N>
+consteval std::array<Entry<M>, N> attach(const std::array<ObjectInfo, N>& objects,
+                                         const std::array<Hooks<M>, N>& hooks) {
+    std::array<Entry<M>, N> table{};
+    for (std::size_t i = 0; i < N; ++i) {
+        const ObjectInfo& o = objects[i];
+        const Hooks<M>& h = hooks[i];
+        if (o.name != h.name) throw "hooks out of step with the object map (names differ)";
+        if (can_read(o.access) != (h.read != nullptr))
+            throw "a read hook must be given exactly for a readable object";
+        if (can_write(o.access) != (h.write != nullptr))
+            throw "a write hook must be given exactly for a writable object";
+        table[i] = Entry<M>{o, h.read, h.write};
+    }
+    return table;
+}
 
 template <class M>
 class TableModule : public Module {

@@ -24,14 +24,13 @@
 
 namespace rwmos {
 
-inline constexpr std::int32_t kAxisCount = 8;
-inline constexpr std::int32_t kSpoolerCapacity = 256;  // profiles (design)
-// The default interpolation cycle, 1 ms (docs/design.md section 4).
-inline constexpr std::int32_t kDefaultInterpolationCycleUs = 1000;
-inline constexpr std::int32_t kMinInterpolationCycleUs = 250;
-inline constexpr std::int32_t kMaxInterpolationCycleUs = 10000;
-// Firmware version the emulator reports: (major << 16) | (minor << 8) | patch.
-inline constexpr std::int32_t kFirmwareVersion = (1 << 16) | (0 << 8) | 0;
+// The board's sizes and limits, as the object map declares them (objif/map/object_map.h).
+inline constexpr std::int32_t kAxisCount = board::kAxisCount;
+inline constexpr std::int32_t kSpoolerCapacity = board::kSpoolerCapacity;
+inline constexpr std::int32_t kDefaultInterpolationCycleUs = board::kDefaultInterpolationCycleUs;
+inline constexpr std::int32_t kMinInterpolationCycleUs = board::kMinInterpolationCycleUs;
+inline constexpr std::int32_t kMaxInterpolationCycleUs = board::kMaxInterpolationCycleUs;
+inline constexpr std::int32_t kFirmwareVersion = board::kFirmwareVersion;
 
 struct AxisState {
     double position = 0.0;  // interpolation units (mm)

@@ -8,13 +8,14 @@
 #include <array>
 #include <cstdint>
 
+#include "rwmos/object_map.h"
 #include "rwmos/otc/errors.h"
 #include "rwmos/otc/ramp.h"
 #include "rwmos/otc/types.h"
 
 namespace rwmos {
 
-inline constexpr std::int32_t kOtcAxisCount = 8;
+inline constexpr std::int32_t kOtcAxisCount = otc::kAxisCount;  // objif/map/object_map.h
 
 // A PLC control unit of type MC_CONTROL_SGN32_UNIT ([ISG-OTC] section 2.7): the PLC writes
 // command_w and enable_w; request_r and state_r are the engine's (OtcEngine).
@@ -42,9 +43,10 @@ struct OtcWear {
 
 // Design defaults of the offset ramp (docs/otc.md "The ramp"): a discrete offset of 2 mm takes
 // about 4.5 s, slow enough for the lag [ISG-OTC] describes at wr_quad_disc.nc's G26 corner.
-inline constexpr double kDefaultRampVelocity = 0.5;      // PU per second
-inline constexpr double kDefaultRampAcceleration = 1.0;  // PU per second squared
-inline constexpr std::int32_t kDefaultToolAxisB = 4;     // A, B, C after X, Y, Z: B is axis 4
+// The ramp's defaults and the B head's axis, as the object map declares them.
+inline constexpr double kDefaultRampVelocity = otc::kDefaultRampVelocity;          // PU per second
+inline constexpr double kDefaultRampAcceleration = otc::kDefaultRampAcceleration;  // PU per second squared
+inline constexpr std::int32_t kDefaultToolAxisB = otc::kDefaultToolAxisB;
 
 struct OtcState {
     bool active = false;  // V.G.OTC_ACTIVE

@@ -12,7 +12,7 @@
 
 #include "objif/status.h"
 #include "rwmos/object_map.h"
-#include "rwmos/tc_bits.h"
+#include "objif/map/tc_bits.h"
 
 namespace rwmos {
 

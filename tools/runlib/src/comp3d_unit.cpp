@@ -8,18 +8,19 @@
 
 #include "execution.h"
 #include "rwmos/comp3d/refusal.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run::exec {
 
 namespace {
 
-namespace tc = rwmos::tc;
-namespace c3 = rwmos::comp3d;
+namespace tc = objif::map::tc;
+namespace c3 = objif::map::comp3d;
+namespace c3r = rwmos::comp3d;  // LastError codes
 
 // The correction table's rows and values fit the 3D module's table (DeviceNumber 2).
-static_assert(nc::kMaxCorrectionRow == rwmos::comp3d::kCorrectionRows - 1);
-static_assert(nc::kCorrectionLimit == rwmos::comp3d::kMaxValue);
+static_assert(nc::kMaxCorrectionRow == objif::map::comp3d::kCorrectionRows - 1);
+static_assert(nc::kCorrectionLimit == objif::map::comp3d::kMaxValue);
 
 ObjectDescriptor c3_object(std::int32_t index, std::int32_t sub = 0) noexcept {
     return apci::object(c3::kBus, c3::kDevSettings, index, sub);
@@ -79,9 +80,9 @@ bool Comp3dUnit::setup(const BlockRef& at) {
     // A Klartext program's tool length is this module's (TOOL CALL, the tip along the tool):
     // the TC groups apply theirs only under RL/RR, the board's own way (LengthMode 0).
     if (run_.out.tc_present)
-        for (std::int32_t g = 1; g <= rwmos::tc::kGroupCount; ++g) {
-            auto o = group_object(g, rwmos::tc::kSubLengthMode);
-            if (!write(o, rwmos::tc::kLengthWhileCompensating, at, "LengthMode")) return false;
+        for (std::int32_t g = 1; g <= objif::map::tc::kGroupCount; ++g) {
+            auto o = group_object(g, objif::map::tc::kSubLengthMode);
+            if (!write(o, objif::map::tc::kLengthWhileCompensating, at, "LengthMode")) return false;
         }
     run_.length_always = false;
     return true;
@@ -231,7 +232,7 @@ bool Comp3dUnit::write(ObjectDescriptor o, T value, const BlockRef& at, std::str
     return failure(at, r.status, what);
 }
 
-// The module's LastError names a refusal (rwmos::comp3d::Refusal); it is cleared for the
+// The module's LastError names a refusal (objif::map::comp3d::Refusal); it is cleared for the
 // next one.
 bool Comp3dUnit::failure(const BlockRef& at, apci::Status status, std::string_view what) {
     const std::string text = fmt::format("{}: {}", what, run_.board().last_error());
@@ -240,9 +241,9 @@ bool Comp3dUnit::failure(const BlockRef& at, apci::Status status, std::string_vi
     if (code && code.value != 0) {
         auto clear = c3_object(c3::kIdxLastError);
         (void)run_.board().write(clear, std::int32_t{0});
-        return run_.record(at, std::string(c3::refusal_name(static_cast<c3::Refusal>(code.value))),
+        return run_.record(at, std::string(c3r::refusal_name(static_cast<c3r::Refusal>(code.value))),
                            fmt::format("{} ({})", text,
-                                       c3::refusal_message(static_cast<c3::Refusal>(code.value))));
+                                       c3r::refusal_message(static_cast<c3r::Refusal>(code.value))));
     }
     return run_.record(at, std::string(apci::status_name(status)), text);
 }

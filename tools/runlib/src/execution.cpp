@@ -18,9 +18,9 @@ namespace apci::run::exec {
 
 namespace {
 
-namespace tc = rwmos::tc;
-namespace c3 = rwmos::comp3d;
-namespace otc = rwmos::otc;
+namespace tc = objif::map::tc;
+namespace c3 = objif::map::comp3d;
+namespace otc = objif::map::otc;
 
 // Clock calls without a trace run until idle in one go.
 constexpr std::uint64_t kRunForever = std::uint64_t{1} << 62;

@@ -13,7 +13,7 @@
 #include "apci/run/csv_writer.h"
 #include "apci/run/self_approach.h"
 #include "execution.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run {
 
@@ -39,10 +39,10 @@ namespace exec {
 
 namespace {
 
-namespace tc = rwmos::tc;
-namespace bm = rwmos::board;
-namespace c3 = rwmos::comp3d;
-namespace otc = rwmos::otc;
+namespace tc = objif::map::tc;
+namespace bm = objif::map::board;
+namespace c3 = objif::map::comp3d;
+namespace otc = objif::map::otc;
 
 BlockRef block_of(const nc::BlockOrigin& o) noexcept {
     return BlockRef{o.block == nc::kNoBlockNumber ? kNoBlock : o.block, o.line};
@@ -275,8 +275,8 @@ bool Execution::end_of_program(const BlockRef& at) {
 }  // namespace exec
 
 double ProgramExecutor::cycle_seconds() {
-    auto cycle = apci::object(rwmos::board::kBus, rwmos::board::kDevice,
-                              rwmos::board::kIdxInterpolationCycle, 0);
+    auto cycle = apci::object(objif::map::board::kBus, objif::map::board::kDevice,
+                              objif::map::board::kIdxInterpolationCycle, 0);
     const auto us = board_.read_int(cycle);
     if (!us || us.value <= 0) return nc::kDefaultCycleSeconds;
     return static_cast<double>(us.value) * 1e-6;
@@ -285,7 +285,7 @@ double ProgramExecutor::cycle_seconds() {
 Point ProgramExecutor::position() {
     std::array<int, 3> axes{0, 1, 2};
     for (int i = 0; i < 3; ++i) {
-        auto o = exec::init_object(rwmos::tc::kIdxAxisNr, i);
+        auto o = exec::init_object(objif::map::tc::kIdxAxisNr, i);
         const auto r = board_.read_int(o);
         if (!r) {
             axes = {0, 1, 2};

@@ -10,7 +10,7 @@
 #include <cstdint>
 
 #include "apci/apci.hpp"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run::exec {
 
@@ -19,17 +19,17 @@ class Execution;
 // The objects more than one unit reaches: the TC module's groups and init data, the OTC
 // module's and the temperature compensation's.
 inline ObjectDescriptor group_object(std::int32_t group, std::int32_t sub) noexcept {
-    return apci::object(rwmos::tc::kBus, rwmos::tc::kDevGroups, group, sub);
+    return apci::object(objif::map::tc::kBus, objif::map::tc::kDevGroups, group, sub);
 }
 inline ObjectDescriptor init_object(std::int32_t index, std::int32_t sub = 0) noexcept {
-    return apci::object(rwmos::tc::kBus, rwmos::tc::kDevInit, index, sub);
+    return apci::object(objif::map::tc::kBus, objif::map::tc::kDevInit, index, sub);
 }
 inline ObjectDescriptor otc_object(std::int32_t dev, std::int32_t index,
                                    std::int32_t sub = 0) noexcept {
-    return apci::object(rwmos::otc::kBus, dev, index, sub);
+    return apci::object(objif::map::otc::kBus, dev, index, sub);
 }
 inline ObjectDescriptor temp_object(std::int32_t index, std::int32_t sub = 0) noexcept {
-    return apci::object(rwmos::tempcomp::kBus, rwmos::tempcomp::kDevice, index, sub);
+    return apci::object(objif::map::tempcomp::kBus, objif::map::tempcomp::kDevice, index, sub);
 }
 
 class ModuleUnit {

@@ -14,8 +14,9 @@ namespace apci::run::exec {
 
 namespace {
 
-namespace tc = rwmos::tc;
-namespace otc = rwmos::otc;
+namespace tc = objif::map::tc;
+namespace otc = objif::map::otc;
+namespace otce = rwmos::otc;  // LastError codes
 
 }  // namespace
 
@@ -97,9 +98,9 @@ bool OtcUnit::write(ObjectDescriptor o, T value, const BlockRef& at, std::string
         const auto code = run_.board().read_int(last);
         if (code && code.value != 0) {
             (void)run_.board().write(last, std::int32_t{0});
-            const auto e = static_cast<otc::Error>(code.value);
-            return run_.record(at, std::string(otc::error_name(e)),
-                               fmt::format("{} ({})", text, otc::error_message(e)));
+            const auto e = static_cast<otce::Error>(code.value);
+            return run_.record(at, std::string(otce::error_name(e)),
+                               fmt::format("{} ({})", text, otce::error_message(e)));
         }
         return run_.record(at, std::string(apci::status_name(r.status)), text);
     }

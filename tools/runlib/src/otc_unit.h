@@ -10,7 +10,7 @@
 #include "apci/nc/events.h"
 #include "apci/run/executor.h"
 #include "module_unit.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run::exec {
 

@@ -14,7 +14,7 @@
 
 #include "apci/nc/block.h"
 #include "apci/nc/lexer.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run {
 
@@ -186,11 +186,11 @@ class LineParser {
         switch (w.unit) {
             case PlcWrite::Unit::kToolTempComp:
                 // The object's range (bus 1320 Index 1, docs/object-map.md section 7).
-                if (!(std::fabs(d) <= rwmos::tempcomp::kMaxValue))
+                if (!(std::fabs(d) <= objif::map::tempcomp::kMaxValue))
                     return fail(col, fmt::format("tool_temp_comp[{}] (SD 42960, mm) takes "
                                                  "-{:g}..{:g}",
-                                                 w.index, rwmos::tempcomp::kMaxValue,
-                                                 rwmos::tempcomp::kMaxValue));
+                                                 w.index, objif::map::tempcomp::kMaxValue,
+                                                 objif::map::tempcomp::kMaxValue));
                 w.value = d;
                 return true;
             case PlcWrite::Unit::kToolTempCompOn:
@@ -208,7 +208,7 @@ class LineParser {
             case PlcWrite::Unit::kToolHolderAxisC: {
                 // The objects' ranges (bus 1320 Index 5, 6): B on a board axis, C also none.
                 const bool b = w.unit == PlcWrite::Unit::kToolHolderAxisB;
-                const double lowest = b ? 0.0 : static_cast<double>(rwmos::tempcomp::kNoHeadAxis);
+                const double lowest = b ? 0.0 : static_cast<double>(objif::map::tempcomp::kNoHeadAxis);
                 if (d != std::floor(d) || d < lowest || d > 7.0)
                     return fail(col, b ? "tool_holder_axis_b takes a board axis 0..7"
                                        : "tool_holder_axis_c takes a board axis 0..7, or -1 "
@@ -217,11 +217,11 @@ class LineParser {
                 return true;
             }
             case PlcWrite::Unit::kTempRampVelocity:
-                if (!(d >= rwmos::tempcomp::kMinRampVelocity &&
-                      d <= rwmos::tempcomp::kMaxRampVelocity))
+                if (!(d >= objif::map::tempcomp::kMinRampVelocity &&
+                      d <= objif::map::tempcomp::kMaxRampVelocity))
                     return fail(col, fmt::format("temp_ramp_velocity (mm/s) takes {:g}..{:g}",
-                                                 rwmos::tempcomp::kMinRampVelocity,
-                                                 rwmos::tempcomp::kMaxRampVelocity));
+                                                 objif::map::tempcomp::kMinRampVelocity,
+                                                 objif::map::tempcomp::kMaxRampVelocity));
                 w.value = d;
                 return true;
             case PlcWrite::Unit::kTempCompType:

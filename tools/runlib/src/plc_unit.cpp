@@ -13,8 +13,8 @@ namespace apci::run::exec {
 
 namespace {
 
-namespace otc = rwmos::otc;
-namespace tcomp = rwmos::tempcomp;
+namespace otc = objif::map::otc;
+namespace tcomp = objif::map::tempcomp;
 
 }  // namespace
 

@@ -9,7 +9,7 @@ namespace apci::run::exec {
 
 namespace {
 
-namespace tc = rwmos::tc;
+namespace tc = objif::map::tc;
 
 // The plane each group compensates in (group g serves plane kGroupPlane[g - 1]).
 constexpr std::array<int, kGroups> kGroupPlane{17, 18, 19};

@@ -11,11 +11,11 @@
 #include "apci/nc/events.h"
 #include "apci/run/executor.h"
 #include "module_unit.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run::exec {
 
-inline constexpr std::int32_t kGroups = rwmos::tc::kGroupCount;
+inline constexpr std::int32_t kGroups = objif::map::tc::kGroupCount;
 
 class TcUnit final : public ModuleUnit {
   public:

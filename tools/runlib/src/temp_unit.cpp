@@ -7,7 +7,7 @@ namespace apci::run::exec {
 
 namespace {
 
-namespace tcomp = rwmos::tempcomp;
+namespace tcomp = objif::map::tempcomp;
 
 // The front end checks $SC_TOOL_TEMP_COMP[i] against the range of the board's object.
 static_assert(nc::kToolTempCompLimit == tcomp::kMaxValue);

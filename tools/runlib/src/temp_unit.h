@@ -9,7 +9,7 @@
 #include "apci/apci.hpp"
 #include "apci/run/executor.h"
 #include "module_unit.h"
-#include "rwmos/object_map.h"
+#include "objif/map/object_map.h"
 
 namespace apci::run::exec {
 

@@ -13,8 +13,8 @@ namespace apci::run::exec {
 
 namespace {
 
-namespace otc = rwmos::otc;
-namespace tcomp = rwmos::tempcomp;
+namespace otc = objif::map::otc;
+namespace tcomp = objif::map::tempcomp;
 
 // A read's value, or why the board could not give it.
 template <typename T>

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace rwmos::tc {
+namespace objif::map::tc {
 
 // Names and meanings are string literals, so .data() is NUL-terminated (the C API relies on it).
 struct BitName {
@@ -111,4 +111,4 @@ inline std::string describe_status(std::int32_t word) {
     return detail::describe(kStatusBits, word, kStatusMask);
 }
 
-}  // namespace rwmos::tc
+}  // namespace objif::map::tc
