@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "emu_test_util.h"
+#include "objif/names.h"
 
 using namespace emu_test;
 using objif::Access;
@@ -338,6 +339,58 @@ TEST(ObjectMapCoverage, EveryDeclaredObjectIsCovered) {
         }
     }
     EXPECT_EQ(declared, rows.size());
+}
+
+}  // namespace
+
+namespace {
+
+// The board serves the shared map (objif/map/objects.h) row for row: what a host names by the
+// map is what the emulator answers.
+TEST(ObjectMapCoverage, TheBoardServesExactlyTheSharedMap) {
+    rwmos::Board board;
+    std::size_t modules_seen = 0;
+    for (auto* module : board.dictionary().modules()) {
+        const objif::map::ModuleMap* map = nullptr;
+        for (const auto& m : objif::map::kModules)
+            if (m.bus == module->bus()) map = &m;
+        ASSERT_NE(map, nullptr) << "bus " << module->bus() << " is not in the shared map";
+        ++modules_seen;
+        ASSERT_EQ(module->object_count(), map->objects.size()) << map->key;
+        for (std::size_t i = 0; i < map->objects.size(); ++i) {
+            const auto& served = module->object_at(i);
+            const auto& declared = map->objects[i];
+            EXPECT_EQ(served.name, declared.name);
+            EXPECT_EQ(served.device, declared.device) << declared.name;
+            EXPECT_EQ(served.index_first, declared.index_first) << declared.name;
+            EXPECT_EQ(served.index_last, declared.index_last) << declared.name;
+            EXPECT_EQ(served.subindex, declared.subindex) << declared.name;
+            EXPECT_EQ(served.type, declared.type) << declared.name;
+            EXPECT_EQ(served.access, declared.access) << declared.name;
+            EXPECT_EQ(served.min, declared.min) << declared.name;
+            EXPECT_EQ(served.max, declared.max) << declared.name;
+            EXPECT_EQ(served.key, declared.key) << declared.name;
+            EXPECT_EQ(served.unit, declared.unit) << declared.name;
+        }
+    }
+    EXPECT_EQ(modules_seen, objif::map::kModules.size());
+}
+
+// Every name of the map reaches an object on a fresh board: a readable one reads with its
+// declared type, a write-only one answers kWriteOnly to a read (never an address error).
+TEST(ObjectMapCoverage, EveryNameReachesItsObjectOnAFreshBoard) {
+    rwmos::Board board;
+    for (const auto& named : objif::named_objects()) {
+        objif::Descriptor d{named.address, objif::kNoHandle};
+        Value out;
+        const Status st = board.read(d, named.info->type, out);
+        if (objif::can_read(named.info->access)) {
+            EXPECT_EQ(st, Status::kOk) << named.name;
+            EXPECT_EQ(out.type(), named.info->type) << named.name;
+        } else {
+            EXPECT_EQ(st, Status::kWriteOnly) << named.name;
+        }
+    }
 }
 
 }  // namespace

@@ -10,11 +10,13 @@
 #include <string>
 #include <string_view>
 
+#include "objif/names.h"
+
 namespace apcictl {
 
-// The Damerau-Levenshtein distance (optimal string alignment: insertions, deletions,
-// substitutions and swaps of two neighbours, each 1), ignoring ASCII case.
-std::size_t edit_distance(std::string_view a, std::string_view b);
+// The Damerau-Levenshtein distance, ignoring ASCII case (objif/names.h, which suggests object
+// names with it).
+using objif::edit_distance;
 
 // The candidate closest to `typed`, or empty when none is close enough: a distance of at most
 // 2, and at most (n - 1) / 2 where n is the longer of the two names without their leading

@@ -14,8 +14,12 @@
 namespace objif {
 
 enum class Access : std::uint8_t { kRead = 1, kWrite = 2, kReadWrite = 3 };
-constexpr bool can_read(Access a) noexcept { return (static_cast<int>(a) & 1) != 0; }
-constexpr bool can_write(Access a) noexcept { return (static_cast<int>(a) & 2) != 0; }
+constexpr bool can_read(Access a) noexcept {
+    return (static_cast<int>(a) & 1) != 0;
+}
+constexpr bool can_write(Access a) noexcept {
+    return (static_cast<int>(a) & 2) != 0;
+}
 std::string_view access_name(Access a) noexcept;  // "r", "w", "r/w"
 
 inline constexpr double kInt32Min = -2147483648.0;
