@@ -11,9 +11,9 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 
 #include "rwmos/motion/cycle_offsets.h"
+#include "rwmos/motion/fifo.h"
 #include "rwmos/motion/interpolator.h"
 #include "rwmos/motion/ring.h"
 #include "rwmos/motion/types.h"
@@ -99,7 +99,7 @@ class Executor {
     // nominal_ moved to cycle k of n of `m` (nullptr: standing): position_ follows.
     void place(const Move* m, std::uint64_t k, std::uint64_t n, double cycle_seconds, bool stepped);
 
-    std::deque<Move> moves_;
+    Fifo<Move> moves_;
     bool started_ = false;  // the front move is under way
     std::uint64_t k_ = 0;   // cycles of the front move done
     std::uint64_t n_ = 0;   // cycles the front move takes

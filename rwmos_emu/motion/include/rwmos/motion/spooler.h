@@ -14,12 +14,12 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <string_view>
 
 #include "objif/status.h"
 #include "rwmos/geometry/compensator.h"
 #include "rwmos/motion/executor.h"
+#include "rwmos/motion/fifo.h"
 #include "rwmos/motion/types.h"
 
 namespace rwmos::motion {
@@ -163,7 +163,7 @@ class Spooler {
 
     Compensation comp_;
     Batch batch_;
-    std::deque<Pending> pending_;
+    Fifo<Pending> pending_;
     std::uint32_t next_index_ = 1;
     AxisVector program_{};     // programmed position, program coordinates
     AxisVector path_{};        // programmed position after rotation (start of the next element)
