@@ -16,8 +16,7 @@ add_library(rwmos_emu STATIC
   ${CMAKE_CURRENT_LIST_DIR}/src/otc_module.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/tempcomp_engine.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/tempcomp_module.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/frame_stream.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/registry.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/src/frame_stream.cpp)
 add_library(apci::rwmos_emu ALIAS rwmos_emu)
 target_include_directories(rwmos_emu PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}/include>

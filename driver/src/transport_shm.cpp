@@ -12,7 +12,7 @@
 
 #include "mailbox_link.h"
 #include "mapped_file.h"
-#include "rwmos/registry.h"
+#include "objif/registry.h"
 
 namespace apci {
 namespace {
@@ -72,8 +72,8 @@ Status open_shm(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
 
 Status list_shm(std::vector<FoundDevice>& out, std::string& why) noexcept {
     try {
-        std::vector<rwmos::RegisteredDaemon> daemons;
-        if (!rwmos::registered_daemons(daemons, why)) return Status::kTransportError;
+        std::vector<objif::RegisteredDaemon> daemons;
+        if (!objif::registered_daemons(daemons, why)) return Status::kTransportError;
         for (const auto& d : daemons) {
             if (!d.shm.empty())
                 out.push_back(

@@ -19,7 +19,7 @@
 
 #include "frame_transport.h"
 #include "objif/adaptive_spin.h"
-#include "rwmos/registry.h"
+#include "objif/registry.h"
 
 namespace apci {
 namespace {
@@ -371,8 +371,8 @@ Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::str
 
 Status list_unix(std::vector<FoundDevice>& out, std::string& why) noexcept {
     try {
-        std::vector<rwmos::RegisteredDaemon> daemons;
-        if (!rwmos::registered_daemons(daemons, why)) return Status::kTransportError;
+        std::vector<objif::RegisteredDaemon> daemons;
+        if (!objif::registered_daemons(daemons, why)) return Status::kTransportError;
         // Only a socket that greets as rwmos-emu is listed as a daemon; one
         // that accepts but answers otherwise (another program listening
         // there now) is listed as not one, one nobody listens on is left out.

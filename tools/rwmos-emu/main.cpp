@@ -23,7 +23,7 @@
 #include "board_host.h"
 #include "log.h"
 #include "objif/adaptive_spin.h"
-#include "rwmos/registry.h"
+#include "objif/registry.h"
 #include "shm_server.h"
 #include "socket_server.h"
 
@@ -174,8 +174,8 @@ int serve(const Options& o) {
         host.pace(std::chrono::steady_clock::now());
     }
 
-    rwmos::RegisteredDaemon self{::getpid(), o.socket, o.shm};
-    if (!rwmos::register_daemon(self, why))
+    objif::RegisteredDaemon self{::getpid(), o.socket, o.shm};
+    if (!objif::register_daemon(self, why))
         log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
     log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}",
         o.no_option_tc ? "off" : "on", o.realtime ? "wall" : "virtual",
@@ -236,7 +236,7 @@ int serve(const Options& o) {
 
     sockets.close_all(stop_reason);
     shm.stop();
-    rwmos::unregister_daemon(self.pid);
+    objif::unregister_daemon(self.pid);
     const ServedCounts counts = host.counts();
     log(Level::kInfo, "stopped: served {} request frames ({} answered with Error)", counts.frames,
         counts.rejected);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "rwmos/registry.h"
+#include "objif/registry.h"
 
 #include <dirent.h>
 #include <fmt/format.h>
@@ -14,7 +14,7 @@
 #include <fstream>
 #include <memory>
 
-namespace rwmos {
+namespace objif {
 namespace {
 
 constexpr std::string_view kPrefix = "rwmos-emu.";
@@ -94,4 +94,4 @@ bool registered_daemons(std::vector<RegisteredDaemon>& out, std::string& why) {
     return true;
 }
 
-}  // namespace rwmos
+}  // namespace objif

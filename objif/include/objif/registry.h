@@ -7,6 +7,10 @@
 //
 // Registry directory: $APCI_RUNTIME_DIR, else $XDG_RUNTIME_DIR/apci, else
 // /tmp/apci-UID. docs/rwmos-emu.md describes it.
+//
+// Both sides use it: the daemon writes its entry, the host (libapci's unix:
+// and shm: transports) reads them. So it lives in objif, which a host tool
+// builds without the emulator (docs/design.md section 2, "Shared declarations").
 #pragma once
 
 #include <sys/types.h>
@@ -14,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace rwmos {
+namespace objif {
 
 struct RegisteredDaemon {
     pid_t pid = 0;
@@ -32,4 +36,4 @@ void unregister_daemon(pid_t pid);
 // Entries of live daemons. A missing directory is an empty list, not an error.
 bool registered_daemons(std::vector<RegisteredDaemon>& out, std::string& why);
 
-}  // namespace rwmos
+}  // namespace objif
