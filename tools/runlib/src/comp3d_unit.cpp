@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "execution.h"
-#include "rwmos/comp3d/refusal.h"
+#include "objif/map/comp3d_refusal.h"
 #include "objif/map/object_map.h"
 
 namespace apci::run::exec {
@@ -16,7 +16,6 @@ namespace {
 
 namespace tc = objif::map::tc;
 namespace c3 = objif::map::comp3d;
-namespace c3r = rwmos::comp3d;  // LastError codes
 
 // The correction table's rows and values fit the 3D module's table (DeviceNumber 2).
 static_assert(nc::kMaxCorrectionRow == objif::map::comp3d::kCorrectionRows - 1);
@@ -241,9 +240,9 @@ bool Comp3dUnit::failure(const BlockRef& at, apci::Status status, std::string_vi
     if (code && code.value != 0) {
         auto clear = c3_object(c3::kIdxLastError);
         (void)run_.board().write(clear, std::int32_t{0});
-        return run_.record(at, std::string(c3r::refusal_name(static_cast<c3r::Refusal>(code.value))),
-                           fmt::format("{} ({})", text,
-                                       c3r::refusal_message(static_cast<c3r::Refusal>(code.value))));
+        const auto refusal = static_cast<c3::Refusal>(code.value);
+        return run_.record(at, std::string(c3::refusal_name(refusal)),
+                           fmt::format("{} ({})", text, c3::refusal_message(refusal)));
     }
     return run_.record(at, std::string(apci::status_name(status)), text);
 }

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "execution.h"
-#include "rwmos/otc/errors.h"
+#include "objif/map/otc_errors.h"
 #include "tc_unit.h"
 
 namespace apci::run::exec {
@@ -16,7 +16,6 @@ namespace {
 
 namespace tc = objif::map::tc;
 namespace otc = objif::map::otc;
-namespace otce = rwmos::otc;  // LastError codes
 
 }  // namespace
 
@@ -71,7 +70,7 @@ bool OtcUnit::needed(const BlockRef& at, std::string_view what) {
     return run_.no_module(at, what, "the OTC module (bus 1330)");
 }
 
-// A refused OTC write is named by the module's LastError (rwmos/otc/errors.h), else by
+// A refused OTC write is named by the module's LastError (objif/map/otc_errors.h), else by
 // the status; LastError is cleared for the next one. Busy (moves queued under #OTC ON/OFF)
 // runs the clock and writes again.
 template <typename T>
@@ -98,9 +97,9 @@ bool OtcUnit::write(ObjectDescriptor o, T value, const BlockRef& at, std::string
         const auto code = run_.board().read_int(last);
         if (code && code.value != 0) {
             (void)run_.board().write(last, std::int32_t{0});
-            const auto e = static_cast<otce::Error>(code.value);
-            return run_.record(at, std::string(otce::error_name(e)),
-                               fmt::format("{} ({})", text, otce::error_message(e)));
+            const auto e = static_cast<otc::Error>(code.value);
+            return run_.record(at, std::string(otc::error_name(e)),
+                               fmt::format("{} ({})", text, otc::error_message(e)));
         }
         return run_.record(at, std::string(apci::status_name(r.status)), text);
     }
