@@ -11,6 +11,10 @@
 #include "apci/nc/parser.h"
 #include "apci/nc/tools.h"
 #include "nc_test_util.h"
+#ifdef APCI_HAVE_GEOMETRY
+#include "rwmos/geometry/offset.h"
+#include "rwmos/geometry/tolerances.h"
+#endif
 
 namespace apci::nc {
 namespace {
@@ -228,6 +232,23 @@ TEST(Interpreter, CenterArcEndOffCircleIsError) {
     EXPECT_EQ(error_of("G2 X10.0029 I5 F1\nM30"), "");
     EXPECT_NE(error_of("G2 X10.0031 I5 F1\nM30"), "");
 }
+
+#ifdef APCI_HAVE_GEOMETRY
+// The front end refuses the arcs the board's TC module would refuse with CenterError, no more:
+// the same tolerance, and on either side of it both answer alike.
+TEST(Interpreter, ArcToleranceIsTheBoardsCenterErrorTolerance) {
+    EXPECT_EQ(kArcRadiusTolerance, rwmos::geom::kCenterRadiusTolerance);
+    for (const double part : {0.5, 0.99, 1.01, 2.0}) {
+        const double d = part * kArcRadiusTolerance;
+        const bool front_end_runs =
+            check_arc_center(V(5, 0, 0), V(0, 5 + d, 0), V(0, 0, 0), Plane::kXY).empty();
+        const rwmos::geom::Reason board =
+            rwmos::geom::check_element(rwmos::geom::make_arc({5, 0}, {0, 5 + d}, {0, 0}, true));
+        EXPECT_EQ(front_end_runs, part < 1.0) << "radii differ by " << d;
+        EXPECT_EQ(board == rwmos::geom::Reason::kNone, part < 1.0) << "radii differ by " << d;
+    }
+}
+#endif
 
 TEST(Interpreter, CenterOnStartIsError) {
     EXPECT_EQ(error_of("G2 X0 I0 J0 F1\nM30"),

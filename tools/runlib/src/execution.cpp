@@ -12,7 +12,6 @@
 
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
-#include "rwmos/geometry/tolerances.h"
 
 namespace apci::run::exec {
 
@@ -24,9 +23,6 @@ namespace otc = objif::map::otc;
 
 // Clock calls without a trace run until idle in one go.
 constexpr std::uint64_t kRunForever = std::uint64_t{1} << 62;
-
-// The front end refuses the arcs the board's TC module would refuse with CenterError, no more.
-static_assert(nc::kArcRadiusTolerance == rwmos::geom::kCenterRadiusTolerance);
 
 Role role_of(std::uint8_t role) noexcept {
     switch (role) {
