@@ -5,8 +5,7 @@
 # fails, listing file:line, where a file under driver/ or tools/ includes an emulator header
 # (rwmos/...). Allowed: the in-process transport (driver/src/transport_inproc.cpp), the daemon
 # (tools/rwmos-emu/) and the figure generators (tools/figures/), which are the emulator's own
-# users. The object map (rwmos/object_map.h) and the TC bit names (rwmos/tc_bits.h) are still
-# read from the emulator until they move to objif/map/; they leave this list when they do.
+# users.
 set -u
 src="${1:-}"
 if [ -z "$src" ] || [ ! -d "$src/driver" ] || [ ! -d "$src/tools" ]; then
@@ -15,8 +14,7 @@ if [ -z "$src" ] || [ ! -d "$src/driver" ] || [ ! -d "$src/tools" ]; then
 fi
 cd "$src" || exit 2
 hits="$(grep -rnE '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]rwmos/' driver tools |
-  grep -vE '^driver/src/transport_inproc[.]cpp:|^tools/rwmos-emu/|^tools/figures/' |
-  grep -vE '[<"]rwmos/(object_map|tc_bits)[.]h[>"]')"
+  grep -vE '^driver/src/transport_inproc[.]cpp:|^tools/rwmos-emu/|^tools/figures/')"
 if [ -n "$hits" ]; then
   printf '%s\n' "$hits"
   echo "host code includes emulator headers (above): include the shared declaration from" \
