@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // `run PROGRAM.nc [--tools F] [--svg F] [--json F] [--csv F]`: executes an NC program on the
-// board (docs/design.md section 7): validation pass first (nothing runs from a program that does not
-// parse), then the events drive the board through libapci (apci_run's ProgramExecutor), the
-// executed path streams into the outputs, and a summary goes to standard output.
+// board (docs/design.md section 7): validation pass first (nothing runs from a program that does
+// not parse), then the events drive the board through libapci (apci_run's ProgramExecutor), the
+// executed path streams into the outputs, and a summary goes to standard output. On the embedded
+// emulator, whose board nobody else sees, the two passes are one (nc::SinglePass): the outputs
+// are published only once the whole program proved valid.
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -40,8 +43,9 @@ using apci::run::OutputFile;
 using apci::run::PathSegment;
 using apci::run::RunError;
 
-// A program read from standard input, held in memory (it is read twice: validation, then
-// execution) up to apci::run::kStdinProgramLimit. Empty on success, else why not.
+// A program read from standard input, held in memory (on a board other than the embedded
+// emulator it is read twice: validation, then execution) up to apci::run::kStdinProgramLimit.
+// Empty on success, else why not.
 std::string read_standard_input(std::string& text) {
     int error = 0;
     switch (apci::run::read_bounded(STDIN_FILENO, apci::run::kStdinProgramLimit, text, error)) {
@@ -59,6 +63,22 @@ std::string read_standard_input(std::string& text) {
     return fmt::format("cannot read standard input: {}", std::strerror(error));
 }
 
+// The embedded emulator ("emu:", "emu:?no-option-tc", or no device given): a board inside this
+// process, which nothing else sees and which ends with it (apci.h, apci_open).
+bool embedded_board(std::string_view uri) {
+    return uri.empty() || uri.starts_with("emu:");
+}
+
+// An output (or none) that is held back in a temporary file until the run is published
+// (run_files.h): not standard output, nor an existing file that is written where it stands (a
+// FIFO, a device). A target that cannot be opened fails at its open.
+bool held_back(const std::string& target) {
+    if (target.empty()) return true;
+    if (target == "-") return false;
+    struct stat st {};
+    return ::stat(target.c_str(), &st) != 0 || S_ISREG(st.st_mode) || S_ISDIR(st.st_mode);
+}
+
 // Where the run's output goes: the writers the user asked for, the plot, a progress bar.
 class Outputs final : public apci::run::RunSink {
   public:
@@ -67,6 +87,10 @@ class Outputs final : public apci::run::RunSink {
     std::FILE* csv_file = nullptr;
     std::unique_ptr<apci::run::TraceCsvWriter> csv;
     std::uint64_t total_blocks = 0;
+    // One pass: the total is known only at its end; how far the pass has come is the byte
+    // position in the program (of program_bytes).
+    const apci::nc::EventStream* stream = nullptr;
+    std::uint64_t program_bytes = 0;
     bool progress_bar = false;
 
     void programmed(const PathSegment& s) override {
@@ -97,18 +121,22 @@ class Outputs final : public apci::run::RunSink {
         if (svg) svg->error_marker(w.block, where, w.code);
     }
     void progress(std::uint64_t blocks) override {
-        if (!progress_bar || total_blocks == 0) return;
+        const bool by_bytes = total_blocks == 0 && stream != nullptr && program_bytes != 0;
+        if (!progress_bar || (total_blocks == 0 && !by_bytes)) return;
         const auto now = std::chrono::steady_clock::now();
         if (now - last_draw_ < std::chrono::milliseconds(100)) return;
         last_draw_ = now;
-        constexpr int kWidth = 30;
-        const double done =
-            std::min(1.0, static_cast<double>(blocks) / static_cast<double>(total_blocks));
-        const int filled = static_cast<int>(done * kWidth);
-        fmt::print(stderr, "\r[{:=<{}}{: <{}}] {:3.0f}% {} of {} blocks", "", filled, "",
-                   kWidth - filled, 100.0 * done, blocks, total_blocks);
-        std::fflush(stderr);
-        drawn_ = true;
+        if (by_bytes) {
+            draw(static_cast<double>(stream->offset()) / static_cast<double>(program_bytes),
+                 fmt::format("{} blocks", blocks));
+        } else {
+            draw(static_cast<double>(blocks) / static_cast<double>(total_blocks),
+                 fmt::format("{} of {} blocks", blocks, total_blocks));
+        }
+    }
+    // The one pass ended with the program valid: a bar on the screen shows the total.
+    void completed(std::uint64_t blocks) {
+        if (drawn_) draw(1.0, fmt::format("{} of {} blocks", blocks, blocks));
     }
     void clear_progress() {
         if (drawn_) fmt::print(stderr, "\r\x1b[K");
@@ -116,6 +144,16 @@ class Outputs final : public apci::run::RunSink {
     }
 
   private:
+    void draw(double fraction, const std::string& count) {
+        constexpr int kWidth = 30;
+        const double done = std::min(1.0, fraction);
+        const int filled = static_cast<int>(done * kWidth);
+        fmt::print(stderr, "\r[{:=<{}}{: <{}}] {:3.0f}% {}", "", filled, "", kWidth - filled,
+                   100.0 * done, count);
+        std::fflush(stderr);
+        drawn_ = true;
+    }
+
     std::array<int, 3> xyz_{0, 1, 2};
     std::chrono::steady_clock::time_point last_draw_{};
     bool drawn_ = false;
@@ -159,7 +197,8 @@ class RunCommand final : public Command {
                        "change, [ISG-OTC] section 2.9; - for standard output)");
         app.footer(
             "Validates the whole program first: a program that does not parse runs nothing and "
-            "its error names file:line:column. Then every block drives the board (spooled "
+            "its error names file:line:column (on the embedded emulator while it runs, "
+            "publishing no output unless it is valid). Then every block drives the board (spooled "
             "profiles tagged with the block number, TC objects for D, G17-G19, G25/G26, "
             "G40-G42) and a summary is printed: blocks, path length, time, errors by name. "
             "Coordinates in the outputs are the tool centre point in mm. Exit 0 ok, 1 board or "
@@ -203,9 +242,8 @@ class RunCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             plc = std::move(loaded.value());
         }
-        std::string stdin_text;
         if (program_ == "-") {
-            if (std::string why = read_standard_input(stdin_text); !why.empty())
+            if (std::string why = read_standard_input(stdin_text_); !why.empty())
                 return Outcome::usage_error("run: " + why);
         }
 
@@ -232,43 +270,81 @@ class RunCommand final : public Command {
         options.cycle_seconds = executor.cycle_seconds();
         options.tools = &tools;
         options.corrections = &corrections;
-        auto program = program_ == "-"
-                           ? apci::nc::Program::from_text(stdin_text, "<stdin>", options)
-                           : apci::nc::Program::load(program_, options);
-        if (!program) {
-            apci::nc::Diagnostic d = program.error();
-            if (tools_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
-                d.message.find("tool list does not define") != std::string::npos)
-                d.message += " (no --tools file given)";
-            if (corr_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
-                d.message.find("correction table does not define") != std::string::npos)
-                d.message += " (no --corr file given)";
-            return nc_failure(d);
+
+        // The embedded emulator's board is this process's alone and every output is held back
+        // in a temporary file until the end: there the program is validated while it runs (one
+        // pass), and an invalid one gives the error it gives below and publishes nothing.
+        // Elsewhere (a daemon's board, a real one) nothing moves before the program is valid.
+        bool one_pass = embedded_board(session.uri());
+        for (auto [out, name] : files) one_pass = one_pass && held_back(*name);
+        std::optional<apci::nc::Program> program;
+        std::optional<apci::nc::EventStream> stream;
+        std::optional<apci::nc::SinglePass> pass;
+        if (one_pass) {
+            if (program_ == "-") {
+                pass.emplace(apci::nc::SinglePass::from_text(stdin_text_, "<stdin>", options));
+            } else {
+                auto opened = apci::nc::SinglePass::open_file(program_, options);
+                if (!opened) return program_failure(opened.error());
+                pass.emplace(std::move(opened).value());
+            }
+        } else if (Outcome o = validate_first(options, program, stream); !o.ok()) {
+            return o;
         }
-        auto stream = program.value().events();
-        if (!stream) return nc_failure(stream.error());
 
         for (auto [out, name] : files) {
             if (name->empty()) continue;
-            if (std::string why = out->open(*name); !why.empty())
+            if (std::string why = out->open(*name); !why.empty()) {
+                // A program that does not validate says so first, as when it is validated
+                // before the outputs are opened.
+                if (pass)
+                    if (Outcome o = validate_first(options, program, stream); !o.ok()) return o;
                 return Outcome::usage_error(fmt::format("run: cannot write {}: {}", *name, why));
+            }
+            // Written in place after all (it became a FIFO meanwhile): validated first.
+            if (pass && !out->is_stdout() && out->temporary().empty()) {
+                pass.reset();
+                if (Outcome o = validate_first(options, program, stream); !o.ok()) return o;
+            }
         }
         if (json_file.file() != nullptr)
             outputs.json = std::make_unique<apci::run::JsonRunWriter>(json_file.file());
         if (svg_file.file() != nullptr) {
             outputs.svg = std::make_unique<apci::run::SvgPlotWriter>();
-            if (!outputs.svg->ok())
+            if (!outputs.svg->ok()) {
+                if (pass)
+                    if (Outcome o = validate_first(options, program, stream); !o.ok()) return o;
                 return Outcome::board_error("run: cannot make a temporary file for the plot");
+            }
         }
         outputs.csv_file = csv_file.file();
         outputs.svg_cycles = svg_cycles_;
-        outputs.total_blocks = program.value().summary().blocks;
+        if (pass) {
+            outputs.stream = &pass->events();
+            outputs.program_bytes = pass->size();
+        } else {
+            outputs.total_blocks = program->summary().blocks;
+        }
         outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
 
-        apci::run::RunOutcome result = executor.run(stream.value());
+        apci::run::RunOutcome result = executor.run(pass ? pass->events() : *stream);
+        std::uint64_t total_blocks = 0;
+        if (pass) {
+            // The rest of the program (after an error stopped the run) is validated too; an
+            // invalid program publishes nothing: the outputs are removed on return.
+            auto valid = pass->finish();
+            if (!valid) {
+                outputs.clear_progress();
+                return program_failure(valid.error());
+            }
+            total_blocks = valid.value().blocks;
+            outputs.completed(total_blocks);
+        } else {
+            total_blocks = program->summary().blocks;
+        }
         outputs.clear_progress();
         result.totals.file = program_ == "-" ? "<stdin>" : program_;
-        result.totals.blocks = program.value().summary().blocks;
+        result.totals.blocks = total_blocks;
 
         // The writers finish; every output is closed (its last bytes written, synced), and only
         // when all of them are complete are they renamed over their targets, together.
@@ -334,6 +410,34 @@ class RunCommand final : public Command {
     }
 
   private:
+    // The validation pass before anything runs: `program` validated and `stream` its execution
+    // pass, or the failure.
+    Outcome validate_first(const apci::nc::InterpreterOptions& options,
+                           std::optional<apci::nc::Program>& program,
+                           std::optional<apci::nc::EventStream>& stream) const {
+        auto loaded = program_ == "-"
+                          ? apci::nc::Program::from_text(stdin_text_, "<stdin>", options)
+                          : apci::nc::Program::load(program_, options);
+        if (!loaded) return program_failure(loaded.error());
+        program.emplace(std::move(loaded).value());
+        auto events = program->events();
+        if (!events) return nc_failure(events.error());
+        stream.emplace(std::move(events).value());
+        return Outcome::success();
+    }
+
+    // A program that does not validate; the error names what was not given where that is
+    // the cause.
+    Outcome program_failure(apci::nc::Diagnostic d) const {
+        if (tools_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
+            d.message.find("tool list does not define") != std::string::npos)
+            d.message += " (no --tools file given)";
+        if (corr_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
+            d.message.find("correction table does not define") != std::string::npos)
+            d.message += " (no --corr file given)";
+        return nc_failure(d);
+    }
+
     // An output that is an input (the program, --tools, --plc, --corr) or another output would
     // overwrite it or mix two outputs in one file: refused before anything runs. The same file:
     // the same path once absolute and normalised, or (when both exist) the same device and
@@ -410,6 +514,7 @@ class RunCommand final : public Command {
     bool svg_cycles_ = false;
     std::string plane_text_;
     int plane_ = 0;
+    std::string stdin_text_;  // the program of "-"
 };
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <utility>
+#include <variant>
 
 #include "apci/nc/lexer.h"
 
@@ -163,6 +165,11 @@ EventStream::Next EventStream::next(Event& out) {
         if (!read_batch()) return failed_ ? Next::kError : Next::kEnd;
     }
     out = batch_[batch_pos_++];
+    ++events_;
+    if (std::holds_alternative<RapidMove>(out.data) || std::holds_alternative<LineMove>(out.data) ||
+        std::holds_alternative<ArcMove>(out.data) ||
+        std::holds_alternative<VectorLineMove>(out.data))
+        ++moves_;
     return Next::kEvent;
 }
 
@@ -182,7 +189,10 @@ bool EventStream::parameter(int n, double& out) const {
 }
 
 bool EventStream::variable(const VariableRef& v, double& out, std::string& why) const {
-    if (variables_ != nullptr) return variables_->read(v, out, why);
+    if (variables_ != nullptr) {
+        read_variable_source_ = true;
+        return variables_->read(v, out, why);
+    }
     out = interpreter_.model_variable(v);
     return true;
 }
@@ -289,30 +299,30 @@ bool EventStream::count_loop_block() {
     return fail(std::move(d));
 }
 
-Result<ProgramSummary> validate(EventStream& stream) {
-    ProgramSummary s;
-    s.file = stream.file();
+Result<ProgramSummary> drain(EventStream& stream) {
     Event ev;
     for (;;) {
         switch (stream.next(ev)) {
             case EventStream::Next::kEvent:
-                ++s.events;
-                if (std::holds_alternative<RapidMove>(ev.data) ||
-                    std::holds_alternative<LineMove>(ev.data) ||
-                    std::holds_alternative<ArcMove>(ev.data) ||
-                    std::holds_alternative<VectorLineMove>(ev.data)) {
-                    ++s.moves;
-                }
                 break;
-            case EventStream::Next::kEnd:
+            case EventStream::Next::kEnd: {
+                ProgramSummary s;
+                s.file = stream.file();
                 s.name = stream.program_name();
                 s.lines = stream.lines_read();
                 s.blocks = stream.blocks_read();
+                s.events = stream.events_read();
+                s.moves = stream.moves_read();
                 return s;
+            }
             case EventStream::Next::kError:
                 return stream.error();
         }
     }
+}
+
+Result<ProgramSummary> validate(EventStream& stream) {
+    return drain(stream);
 }
 
 namespace {
@@ -320,6 +330,7 @@ namespace {
 struct FileStamp {
     std::uint64_t size = 0;
     std::int64_t mtime_ns = 0;
+    bool regular = false;  // a regular file (not a pipe or a device): it can be read again
 };
 
 bool stamp_file(const std::string& path, FileStamp& out, Diagnostic& err) {
@@ -335,6 +346,7 @@ bool stamp_file(const std::string& path, FileStamp& out, Diagnostic& err) {
     out.size = static_cast<std::uint64_t>(st.st_size);
     out.mtime_ns = static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1'000'000'000 +
                    static_cast<std::int64_t>(st.st_mtim.tv_nsec);
+    out.regular = S_ISREG(st.st_mode);
     return true;
 }
 
@@ -381,6 +393,68 @@ Result<EventStream> Program::events() const {
         return err;
     }
     return EventStream::open_file(summary_.file, options_);
+}
+
+// ---- One pass: execution and validation together
+
+Result<SinglePass> SinglePass::open_file(const std::string& path,
+                                         const InterpreterOptions& options) {
+    // The same checks, in the same order, as Program::load: the same error for a file that
+    // cannot be had.
+    Diagnostic err;
+    FileStamp stamp;
+    if (!stamp_file(path, stamp, err)) return err;
+    Result<EventStream> stream = EventStream::open_file(path, options);
+    if (!stream) return stream.error();
+    SinglePass p(std::move(stream).value(), options);
+    p.from_file_ = true;
+    p.regular_file_ = stamp.regular;
+    p.size_ = stamp.regular ? stamp.size : 0;
+    p.file_mtime_ns_ = stamp.mtime_ns;
+    return p;
+}
+
+SinglePass SinglePass::from_text(std::string_view text, std::string name,
+                                 const InterpreterOptions& options) {
+    SinglePass p(EventStream::from_text(text, std::move(name), options), options);
+    p.text_ = text;
+    p.size_ = text.size();
+    return p;
+}
+
+Result<ProgramSummary> SinglePass::finish() {
+    // The caller's source (the executor's board) may be gone; the rest is read as the
+    // validation pass reads it.
+    stream_.set_variable_source(nullptr);
+    Result<ProgramSummary> summary = drain(stream_);
+    if (!stream_.read_variable_source()) return summary;
+    return validate_again();
+}
+
+Result<ProgramSummary> SinglePass::validate_again() const {
+    if (!from_file_) {
+        Result<Program> p = Program::from_text(text_, stream_.file(), options_);
+        if (!p) return p.error();
+        return p.value().summary();
+    }
+    Diagnostic err;
+    err.kind = ErrorKind::kIo;
+    err.file = stream_.file();
+    if (!regular_file_) {
+        err.message =
+            "the program reads variables of the board and is not a regular file (a pipe?), so "
+            "it cannot be read a second time to validate it; save it to a file and run that";
+        return err;
+    }
+    FileStamp now;
+    if (!stamp_file(stream_.file(), now, err)) return err;
+    if (now.size != size_ || now.mtime_ns != file_mtime_ns_) {
+        err.message = "the file changed while it ran; run it again";
+        return err;
+    }
+    Result<Program> p = Program::load(stream_.file(), options_);
+    if (!p) return p.error();
+    return p.value().summary();
 }
 
 }  // namespace apci::nc

@@ -93,6 +93,9 @@ RunOutcome Execution::run(nc::EventStream& events) {
         }
     }
     finish();
+    // The variables unit ends with this run; a caller that reads on (nc::SinglePass::finish)
+    // reads with the front end's own view.
+    events.set_variable_source(nullptr);
     return std::move(out);
 }
 

@@ -6,6 +6,11 @@
 // input (docs/design.md section 8): Program::load() reads the whole program once, parsing and
 // interpreting every block but keeping no event (the validation pass); only a program that
 // passed gives an EventStream for the execution pass, which reads it again.
+//
+// Where what runs is seen by no one until the whole program proved valid (apcictl run on the
+// embedded emulator, whose outputs are published only at the end), SinglePass folds the two
+// into one: the execution reads the stream and SinglePass::finish() reads the rest, giving
+// the answer Program::load would have given.
 #pragma once
 
 #include <array>
@@ -63,6 +68,14 @@ class EventStream : private ExpressionContext {
     const std::string& program_name() const noexcept { return program_name_; }
     std::uint64_t lines_read() const noexcept { return source_.line_number(); }
     std::uint64_t blocks_read() const noexcept { return blocks_; }
+    // Events, and move events among them (rapid, line, arc, vector line), handed out so far.
+    std::uint64_t events_read() const noexcept { return events_; }
+    std::uint64_t moves_read() const noexcept { return moves_; }
+    // Bytes of the program read so far (where the next line starts; $FOR loops go back).
+    std::uint64_t offset() const noexcept { return source_.tell().offset; }
+    // True once a variable was read from the VariableSource (not the interpreter's view): the
+    // events from then on may differ from those of a validation pass.
+    bool read_variable_source() const noexcept { return read_variable_source_; }
     // The board's variables for the rest of the pass (not owned; null: the interpreter's view).
     void set_variable_source(VariableSource* source) noexcept { variables_ = source; }
     // P parameter n, if set.
@@ -107,6 +120,9 @@ class EventStream : private ExpressionContext {
     bool at_end_ = false;
     bool failed_ = false;
     std::uint64_t blocks_ = 0;
+    std::uint64_t events_ = 0;
+    std::uint64_t moves_ = 0;
+    mutable bool read_variable_source_ = false;  // set in variable(), a const override
     std::string program_name_;
     Diagnostic error_;
     VariableSource* variables_ = nullptr;
@@ -128,6 +144,9 @@ struct ProgramSummary {
 
 // Runs the whole stream, keeping nothing but counts: the validation pass.
 Result<ProgramSummary> validate(EventStream& stream);
+// Reads what is left of the stream, keeping nothing: the summary of the whole stream (counts
+// from its start) or its first error. validate() is this on a fresh stream.
+Result<ProgramSummary> drain(EventStream& stream);
 
 // A program that passed validation and can be executed (streamed again) any number of times.
 class Program {
@@ -150,6 +169,43 @@ class Program {
     bool from_file_ = false;
     std::string_view text_;
     std::uint64_t file_size_ = 0;
+    std::int64_t file_mtime_ns_ = 0;
+};
+
+// One pass that is both the execution and the validation, for a run whose effects nobody sees
+// before the whole program proved valid (the caller keeps its outputs back until finish()
+// said so). The caller executes events() (to its end, or until it stops), then finish() reads
+// the rest of the program and gives what Program::load would have: the program's first error
+// or its summary. A stream that read variables from a VariableSource may have taken another
+// way than the validation pass (which sees the interpreter's own values), so finish() then
+// validates the program once more on its own, as Program::load does.
+class SinglePass {
+  public:
+    static Result<SinglePass> open_file(const std::string& path,
+                                        const InterpreterOptions& options = {});
+    // The text must outlive the pass; nothing is copied.
+    static SinglePass from_text(std::string_view text, std::string name,
+                                const InterpreterOptions& options = {});
+
+    EventStream& events() noexcept { return stream_; }
+    const EventStream& events() const noexcept { return stream_; }
+    // The program's size in bytes (of the file when it was opened; 0 for a pipe): with
+    // events().offset(), how far the pass has come.
+    std::uint64_t size() const noexcept { return size_; }
+    // Reads the rest of the stream (without a VariableSource) and answers as Program::load.
+    Result<ProgramSummary> finish();
+
+  private:
+    SinglePass(EventStream stream, const InterpreterOptions& options)
+        : stream_(std::move(stream)), options_(options) {}
+    Result<ProgramSummary> validate_again() const;
+
+    EventStream stream_;
+    InterpreterOptions options_;
+    bool from_file_ = false;
+    bool regular_file_ = false;
+    std::string_view text_;
+    std::uint64_t size_ = 0;
     std::int64_t file_mtime_ns_ = 0;
 };
 
