@@ -56,6 +56,49 @@ TEST(MoveLimit, CyclesAreTheBoardsCount) {
     EXPECT_NEAR(move_length(flat), 20.0, 1e-9);
 }
 
+// The bound that spares the exact length (surely_within_move_cycles) never passes a move the
+// exact count refuses, and passes the moves of real programs.
+TEST(MoveLimit, TheBoundWithoutRootsPassesOnlyMovesTheExactCountTakes) {
+    std::uint64_t state = 12345;
+    auto uniform = [&state](double lo, double hi) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
+    };
+    int surely = 0, refused = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const double feed = std::pow(10.0, uniform(-7.0, 5.0));
+        const double cycle = i % 3 == 0 ? 0.01 : 0.001;
+        const double scale = std::pow(10.0, uniform(-3.0, 5.0));
+        const Eigen::Vector3d a(uniform(-scale, scale), uniform(-scale, scale), uniform(-1, 1));
+        const Eigen::Vector3d b(uniform(-scale, scale), uniform(-scale, scale), uniform(-1, 1));
+        if (surely_within_move_cycles(a, b, feed, cycle)) {
+            ++surely;
+            EXPECT_TRUE(check_move_cycles(move_length(a, b), feed, cycle).empty()) << i;
+        }
+        ArcMove arc;
+        arc.start = a;
+        arc.center = Eigen::Vector3d(uniform(-scale, scale), uniform(-scale, scale), a.z());
+        const double r = std::hypot(a.x() - arc.center.x(), a.y() - arc.center.y());
+        const double t = uniform(0.0, 2.0 * std::numbers::pi);
+        arc.end = arc.center + Eigen::Vector3d(r * std::cos(t), r * std::sin(t), b.z() - a.z());
+        arc.ccw = i % 2 == 0;
+        arc.plane = Plane::kXY;
+        arc.feed = feed;
+        const bool exact_ok = check_move_cycles(move_length(arc), feed, cycle).empty();
+        if (!exact_ok) ++refused;
+        if (surely_within_move_cycles(arc, cycle)) {
+            ++surely;
+            EXPECT_TRUE(exact_ok) << i;
+        }
+    }
+    EXPECT_GT(surely, 100000);  // most of them: the exact length is rarely needed
+    EXPECT_GT(refused, 1000);   // and the limit was reached often
+    // A move of the benchmark contour (docs/performance.md) at F3000, 1 ms cycles.
+    EXPECT_TRUE(surely_within_move_cycles({0, 0, 0}, {40, 0, 0}, 3000.0, 0.001));
+    EXPECT_FALSE(surely_within_move_cycles({0, 0, 0}, {1, 0, 0}, 0.0, 0.001));
+    EXPECT_FALSE(surely_within_move_cycles({0, 0, 0}, {1, 0, 0}, 1e308, 1.0));  // no finite bound
+}
+
 TEST(MoveLimit, AFeedTooLowForOneMoveIsAnErrorNamingTheBlockBeforeAnythingRuns) {
     // F0.000001 over 1 mm: 6e10 cycles of 1 ms. The validation pass refuses the program, so
     // nothing of it reaches a board (it ran for minutes, capped at 2^52 cycles, exit 0).

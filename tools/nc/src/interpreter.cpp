@@ -276,7 +276,12 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                 if (!arc_move(c, s, m, state_.position, end, move)) return false;
                 break;
         }
-        if (m != Motion::kRapid) {
+        const bool surely_within =
+            m == Motion::kRapid ||
+            (m == Motion::kLine
+                 ? surely_within_move_cycles(state_.position, end, s.feed, options_.cycle_seconds)
+                 : surely_within_move_cycles(std::get<ArcMove>(move), options_.cycle_seconds));
+        if (!surely_within) {
             const double length = m == Motion::kLine ? move_length(state_.position, end)
                                                      : move_length(std::get<ArcMove>(move));
             std::string why = check_move_cycles(length, s.feed, options_.cycle_seconds);

@@ -33,6 +33,16 @@ double move_length(const ArcMove& arc) noexcept;
 // beyond any integer (F0.000...1); infinity for a feed of 0.
 double move_cycles(double length, double feed, double cycle_seconds) noexcept;
 
+// True when the move certainly takes at most kMaxMoveCycles cycles at `feed` (the arc's own
+// feed), told from a bound on its length that needs no root or angle: a line's squared length;
+// for an arc, a whole turn of its larger radius plus its travel along the normal axis. The bound
+// must lie within half the limit, so rounding cannot matter. False decides nothing: then
+// check_move_cycles() with move_length() does. Every move of a real program is far inside the
+// limit, so the exact length (three hypot and an atan2 for an arc) is only computed near it.
+bool surely_within_move_cycles(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                               double feed, double cycle_seconds) noexcept;
+bool surely_within_move_cycles(const ArcMove& arc, double cycle_seconds) noexcept;
+
 // Empty when a move of `length` mm at `feed` mm/min takes at most kMaxMoveCycles cycles of
 // `cycle_seconds`; else the message that says how long it would take and what is allowed.
 std::string check_move_cycles(double length, double feed, double cycle_seconds);
