@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "apci/nc/correction_table.h"
 #include "apci/nc/lexer.h"
@@ -201,6 +203,34 @@ TEST(NumbersAsWritten, WholeAtMostNeverWrapsOrClamps) {
     EXPECT_FALSE(whole_at_most("1024", 1023));
     EXPECT_FALSE(whole_at_most("9", 7));
     EXPECT_EQ(whole_at_most("", 7), 0u);
+}
+
+// The fast path (bounds below 2^64 / 10, one comparison a digit) answers as the digit-by-digit
+// check of v * 10 + d > max does, around every bound and for every length.
+TEST(NumbersAsWritten, WholeAtMostAnswersAsTheCarefulCheckForEveryBound) {
+    auto careful = [](std::string_view digits, std::uint64_t max) -> std::optional<std::uint64_t> {
+        std::uint64_t v = 0;
+        for (const char c : digits) {
+            const auto d = static_cast<std::uint64_t>(c - '0');
+            if (d > max || v > (max - d) / 10) return std::nullopt;
+            v = v * 10 + d;
+        }
+        return v;
+    };
+    constexpr std::uint64_t kTop = std::numeric_limits<std::uint64_t>::max();
+    const std::uint64_t no_wrap = (kTop - 9) / 10;
+    for (const std::uint64_t max : {std::uint64_t{0}, std::uint64_t{7}, std::uint64_t{9},
+                                    std::uint64_t{10}, std::uint64_t{1023}, kMaxWordNumber,
+                                    no_wrap - 1, no_wrap, no_wrap + 1, kTop / 10, kTop - 1, kTop}) {
+        std::vector<std::string> texts{"", "0", "00000000000000000000000000000", kForty};
+        for (const std::uint64_t near : {max - 1, max, max + 1, max / 10, max * 10 + 9}) {
+            texts.push_back(std::to_string(near));
+            texts.push_back("000" + std::to_string(near));
+            texts.push_back(std::to_string(near) + "0");
+        }
+        for (const std::string& t : texts)
+            EXPECT_EQ(whole_at_most(t, max), careful(t, max)) << t << " <= " << max;
+    }
 }
 
 TEST(NumbersAsWritten, AFortyDigitToolNumberIsShownAsWritten) {

@@ -112,6 +112,16 @@ std::string_view LineCursor::scan_digits() noexcept {
 
 std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept {
     std::uint64_t v = 0;
+    // Every bound of the front end is far below 2^64 / 10: while v <= max, v * 10 + 9 cannot
+    // wrap, so one comparison a digit does (no division a digit).
+    constexpr std::uint64_t kNoWrap = (~std::uint64_t{0} - 9) / 10;
+    if (max <= kNoWrap) {
+        for (const char c : digits) {
+            v = v * 10 + static_cast<std::uint64_t>(c - '0');
+            if (v > max) return std::nullopt;
+        }
+        return v;
+    }
     for (const char c : digits) {
         const auto d = static_cast<std::uint64_t>(c - '0');
         if (d > max || v > (max - d) / 10) return std::nullopt;  // v * 10 + d > max
