@@ -29,6 +29,7 @@
 #include "apci/run/csv_writer.h"
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
+#include "apci/run/pipeline.h"
 #include "apci/run/plc_script.h"
 #include "apci/run/run_files.h"
 #include "apci/run/summary.h"
@@ -260,7 +261,10 @@ class RunCommand final : public Command {
              {&csv_file, &csv_},
              {&tools_file, &tools_out_}}};
         Outputs outputs;
-        apci::run::ProgramExecutor executor(*board, outputs, &tools, plc_.empty() ? nullptr : &plc,
+        // The writers run on a thread of their own, fed in order through a bounded ring
+        // (pipeline.h); declared after `outputs`, so the thread ends before they go.
+        apci::run::PipelinedSink pipeline(outputs);
+        apci::run::ProgramExecutor executor(*board, pipeline, &tools, plc_.empty() ? nullptr : &plc,
                                             &corrections);
         executor.set_self_approach(self_approach_ == "error" ? apci::run::SelfApproachMode::kError
                                    : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
@@ -328,6 +332,7 @@ class RunCommand final : public Command {
         outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
 
         apci::run::RunOutcome result = executor.run(pass ? pass->events() : *stream);
+        pipeline.finish();  // every event written; the writer thread has ended
         std::uint64_t total_blocks = 0;
         if (pass) {
             // The rest of the program (after an error stopped the run) is validated too; an

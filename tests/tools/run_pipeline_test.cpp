@@ -1,0 +1,369 @@
+// SPDX-License-Identifier: MIT
+// The output pipeline of `apcictl run` (pipeline.h) and its ring (spsc_ring.h): order, the
+// bound, either end ending the stream, a writer's failure reaching the caller, no thread left
+// behind, and a run through the pipeline writing the same bytes as one without it.
+#include <dirent.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apci/apci.hpp"
+#include "apci/nc/program.h"
+#include "apci/run/executor.h"
+#include "apci/run/json_writer.h"
+#include "apci/run/pipeline.h"
+#include "apci/run/spsc_ring.h"
+#include "apci/run/svg_writer.h"
+#include "memory_file.h"
+
+namespace apci::run {
+namespace {
+
+using namespace std::chrono_literals;
+
+// ---- the ring
+
+TEST(SpscRing, EverySlotArrivesOnceInOrderAcrossThreads) {
+    SpscRing<std::uint64_t> ring(4);
+    constexpr std::uint64_t kCount = 200000;
+    std::thread producer([&] {
+        for (std::uint64_t i = 0; i < kCount; ++i) {
+            std::uint64_t* slot = ring.acquire();
+            ASSERT_NE(slot, nullptr);
+            *slot = i;
+            ring.commit();
+        }
+        ring.close();
+    });
+    std::uint64_t expected = 0;
+    while (const std::uint64_t* v = ring.front()) {
+        ASSERT_EQ(*v, expected);
+        ++expected;
+        ring.pop();
+    }
+    producer.join();
+    EXPECT_EQ(expected, kCount);
+}
+
+// The producer fills every slot and then waits: it never gets a slot the consumer holds.
+TEST(SpscRing, AFullRingHoldsTheProducerUntilASlotIsPopped) {
+    SpscRing<int> ring(3);
+    std::atomic<int> committed{0};
+    std::thread producer([&] {
+        for (int i = 0; i < 5; ++i) {
+            int* slot = ring.acquire();
+            ASSERT_NE(slot, nullptr);
+            *slot = i;
+            ring.commit();
+            committed.fetch_add(1);
+        }
+        ring.close();
+    });
+    while (committed.load() < 3) std::this_thread::sleep_for(1ms);
+    std::this_thread::sleep_for(50ms);
+    EXPECT_EQ(committed.load(), 3);  // bounded: the fourth waits for a free slot
+    ASSERT_NE(ring.front(), nullptr);
+    EXPECT_EQ(*ring.front(), 0);
+    ring.pop();
+    std::vector<int> rest;
+    while (const int* v = ring.front()) {
+        rest.push_back(*v);
+        ring.pop();
+    }
+    producer.join();
+    EXPECT_EQ(rest, (std::vector<int>{1, 2, 3, 4}));
+    EXPECT_GE(ring.sleeps(), 1u);  // the producer slept on the full ring
+}
+
+TEST(SpscRing, CloseLetsTheConsumerDrainThenEnds) {
+    SpscRing<int> ring(4);
+    for (int i = 0; i < 2; ++i) {
+        *ring.acquire() = i;
+        ring.commit();
+    }
+    ring.close();
+    ASSERT_NE(ring.front(), nullptr);
+    EXPECT_EQ(*ring.front(), 0);
+    ring.pop();
+    ASSERT_NE(ring.front(), nullptr);
+    EXPECT_EQ(*ring.front(), 1);
+    ring.pop();
+    EXPECT_EQ(ring.front(), nullptr);
+    EXPECT_EQ(ring.front(), nullptr);  // and stays ended
+}
+
+// A consumer waiting on an empty ring wakes when the producer closes it.
+TEST(SpscRing, CloseWakesAWaitingConsumer) {
+    SpscRing<int> ring(2);
+    std::thread consumer([&] { EXPECT_EQ(ring.front(), nullptr); });
+    std::this_thread::sleep_for(20ms);
+    ring.close();
+    consumer.join();
+}
+
+// The consumer gives up (it failed): a producer waiting on the full ring is released, and every
+// later acquire() says so at once.
+TEST(SpscRing, CancelReleasesAWaitingProducer) {
+    SpscRing<int> ring(2);
+    std::atomic<bool> released{false};
+    std::thread producer([&] {
+        for (;;) {
+            int* slot = ring.acquire();
+            if (slot == nullptr) break;
+            ring.commit();
+        }
+        released = true;
+    });
+    std::this_thread::sleep_for(30ms);
+    EXPECT_FALSE(released.load());  // waiting on the full ring
+    ring.cancel();
+    producer.join();
+    EXPECT_TRUE(released.load());
+    EXPECT_TRUE(ring.cancelled());
+    EXPECT_EQ(ring.acquire(), nullptr);
+}
+
+// ---- the pipeline
+
+// The threads of this process (/proc/self/task).
+int thread_count() {
+    DIR* d = ::opendir("/proc/self/task");
+    if (d == nullptr) return -1;
+    int n = 0;
+    while (const dirent* e = ::readdir(d))
+        if (e->d_name[0] != '.') ++n;
+    ::closedir(d);
+    return n;
+}
+
+PathSegment segment(std::int64_t n) {
+    PathSegment s;
+    s.block.number = n;
+    s.start = Point(static_cast<double>(n), 0.0, 0.0);
+    s.end = Point(static_cast<double>(n) + 1.0, 0.5, -0.25);
+    return s;
+}
+
+// Writes down every call it gets, and on which thread; throws at the `fail_at`-th executed
+// segment when asked to.
+class Recorder final : public RunSink {
+  public:
+    std::vector<std::string> calls;
+    std::thread::id thread;
+    std::uint64_t fail_at = 0;
+    std::uint64_t executed_count = 0;
+    bool want_programmed = true;
+    bool want_samples = true;
+
+    void programmed(const PathSegment& s) override { note("p" + std::to_string(s.block.number)); }
+    bool wants_programmed() const override { return want_programmed; }
+    void executed(const PathSegment& s) override {
+        if (++executed_count == fail_at) throw std::runtime_error("writer failed");
+        note("e" + std::to_string(s.block.number) + "," + std::to_string(s.end.x()) + "," +
+             std::to_string(s.end.z()));
+    }
+    void axes(std::span<const std::string> names) override {
+        std::string t = "axes";
+        for (const auto& n : names) t += " " + n;
+        note(t);
+    }
+    void axis_numbers(const std::array<int, 3>& xyz) override {
+        note("xyz " + std::to_string(xyz[0]) + std::to_string(xyz[1]) + std::to_string(xyz[2]));
+    }
+    bool wants_samples() const override { return want_samples; }
+    void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override {
+        std::string t = "s" + std::to_string(cycle) + "@" + std::to_string(time_s);
+        for (const double a : axes) t += " " + std::to_string(a);
+        note(t);
+    }
+    void error(const RunError& e, const Point& where) override {
+        note("error " + e.code + " " + e.message + " " + std::to_string(where.y()));
+    }
+    void warning(const RunError& w, const Point& where) override {
+        note("warning " + w.code + " " + std::to_string(where.x()));
+    }
+
+  private:
+    void note(std::string text) {
+        thread = std::this_thread::get_id();
+        calls.push_back(std::move(text));
+    }
+};
+
+// Many batches of every kind of event: what the inner sink gets, in order.
+void feed(RunSink& sink, int moves) {
+    const std::vector<std::string> names{"X", "Y", "Z", "U", "V", "W", "A", "B"};
+    sink.axes(names);
+    sink.axis_numbers({1, 0, 2});
+    for (int i = 0; i < moves; ++i) {
+        sink.programmed(segment(i));
+        sink.executed(segment(i));
+        const double axes[APCI_AXIS_COUNT] = {1.0 * i, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.5};
+        sink.sample(static_cast<std::uint64_t>(i), 0.001 * i, axes);
+        if (i % 997 == 0)
+            sink.warning(RunError{BlockRef{i, 0}, "SelfApproach", "close"},
+                         Point(static_cast<double>(i), 1.0, 2.0));
+    }
+    sink.error(RunError{BlockRef{moves, 3}, "KorrError", "the board's words"}, Point(0, 7.5, 0));
+}
+
+TEST(RunPipeline, TheInnerSinkGetsEveryCallInOrderOnTheWriterThread) {
+    Recorder direct;
+    feed(direct, 5000);
+    Recorder inner;
+    {
+        PipelinedSink pipeline(inner);
+        feed(pipeline, 5000);
+        pipeline.finish();
+    }
+    EXPECT_EQ(inner.calls, direct.calls);
+    EXPECT_EQ(inner.calls.size(), 3u * 5000 + 2 + 6 + 1);
+    EXPECT_NE(inner.thread, std::this_thread::get_id());
+}
+
+TEST(RunPipeline, WantsAndProgressAreAskedOfTheInnerSinkAtOnce) {
+    Recorder inner;
+    PipelinedSink pipeline(inner);
+    EXPECT_TRUE(pipeline.wants_programmed());
+    EXPECT_TRUE(pipeline.wants_samples());
+    inner.want_programmed = false;
+    inner.want_samples = false;
+    EXPECT_FALSE(pipeline.wants_programmed());
+    EXPECT_FALSE(pipeline.wants_samples());
+    pipeline.finish();
+    EXPECT_TRUE(inner.calls.empty());
+}
+
+// The writer throws mid-run: the producer is not held (it would wait on the full ring for
+// ever), the rest is dropped, finish() rethrows, and the thread is gone.
+TEST(RunPipeline, AWriterFailureReachesTheCallerAndHoldsNothing) {
+    const int threads = thread_count();
+    Recorder inner;
+    inner.fail_at = 1000;
+    PipelinedSink pipeline(inner);
+    for (int i = 0; i < 200000; ++i) pipeline.executed(segment(i));
+    try {
+        pipeline.finish();
+        ADD_FAILURE() << "finish() did not rethrow the writer's failure";
+    } catch (const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "writer failed");
+    }
+    EXPECT_EQ(inner.calls.size(), 999u);
+    EXPECT_EQ(thread_count(), threads);
+    pipeline.finish();  // once is enough: nothing more to rethrow or join
+}
+
+TEST(RunPipeline, NoThreadOutlivesItOnAnyPath) {
+    const int threads = thread_count();
+    ASSERT_GT(threads, 0);
+    {
+        Recorder inner;
+        PipelinedSink pipeline(inner);
+        pipeline.finish();  // no event: no thread was started
+        EXPECT_EQ(thread_count(), threads);
+    }
+    {
+        Recorder inner;
+        PipelinedSink pipeline(inner);
+        feed(pipeline, 3000);
+        EXPECT_EQ(thread_count(), threads + 1);
+        pipeline.finish();
+        EXPECT_EQ(thread_count(), threads);
+    }
+    {
+        // Left without finish() (an exception on the caller's side): the destructor ends it.
+        Recorder inner;
+        try {
+            PipelinedSink pipeline(inner);
+            feed(pipeline, 3000);
+            throw std::runtime_error("caller failed");
+        } catch (const std::runtime_error&) {
+        }
+        EXPECT_EQ(thread_count(), threads);
+    }
+}
+
+// ---- a run through the pipeline: the same bytes
+
+std::string program_text(int turns) {
+    static const char* kTurn[] = {"G1 X40 Y0", "G3 X50 Y10 I0 J10",
+                                  "G1 Y30",    "G3 X40 Y40 I-10 J0",
+                                  "G1 X30",    "G1 Y30",
+                                  "G1 X20",    "G1 Y40",
+                                  "G1 X10",    "G3 X0 Y30 I0 J-10",
+                                  "G1 Y10",    "G3 X10 Y0 I10 J0"};
+    std::string text = "N1 G17 G90 G26 F3000 D1\nN2 G0 X10 Y0 Z0\nN3 G41\n";
+    int n = 4;
+    for (int k = 0; k < turns; ++k)
+        for (const char* b : kTurn) text += "N" + std::to_string(n++) + " " + b + "\n";
+    return text + "N" + std::to_string(n) + " G40\nM30\n";
+}
+
+class JsonAndSvg final : public RunSink {
+  public:
+    JsonAndSvg(std::FILE* json, std::FILE* svg) : json_(json), svg_file_(svg) {}
+    void programmed(const PathSegment& s) override { svg_.programmed(s); }
+    bool wants_programmed() const override { return true; }
+    void executed(const PathSegment& s) override {
+        json_.segment(s);
+        svg_.executed(s);
+    }
+    void error(const RunError& e, const Point& where) override {
+        svg_.error_marker(e.block, where, e.code);
+    }
+    bool finish(const RunOutcome& out) {
+        return json_.finish(out.errors, out.registers, out.variables, out.notices, out.warnings) &&
+               svg_.finish(svg_file_, out.plot_plane, "p.nc");
+    }
+
+  private:
+    JsonRunWriter json_;
+    SvgPlotWriter svg_;
+    std::FILE* svg_file_;
+};
+
+struct Written {
+    std::string json, svg, summary;
+};
+
+Written run_program(const std::string& text, bool pipelined) {
+    auto tools =
+        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 1\n", "t.tools");
+    EXPECT_TRUE(tools);
+    apci::Board board("emu:");
+    nc::InterpreterOptions options;
+    options.tools = &tools.value();
+    auto program = nc::Program::from_text(text, "p.nc", options);
+    EXPECT_TRUE(program);
+    auto stream = program.value().events();
+    apci_test::MemoryFile json, svg;
+    JsonAndSvg writers(json.get(), svg.get());
+    PipelinedSink pipeline(writers);
+    RunSink& sink = pipelined ? static_cast<RunSink&>(pipeline) : writers;
+    ProgramExecutor executor(board, sink, &tools.value());
+    RunOutcome out = executor.run(stream.value());
+    pipeline.finish();
+    EXPECT_TRUE(writers.finish(out));
+    Written w{json.text(), svg.text(), {}};
+    w.summary = std::to_string(out.totals.segments) + " " + std::to_string(out.totals.path_length);
+    return w;
+}
+
+TEST(RunPipeline, ARunWritesTheSameBytesThroughThePipeline) {
+    const std::string text = program_text(400);  // about 5,600 segments: many batches
+    const Written direct = run_program(text, false);
+    const Written piped = run_program(text, true);
+    EXPECT_GT(direct.json.size(), 500000u);
+    EXPECT_EQ(piped.json, direct.json);
+    EXPECT_EQ(piped.svg, direct.svg);
+    EXPECT_EQ(piped.summary, direct.summary);
+}
+
+}  // namespace
+}  // namespace apci::run

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// The output pipeline of `apcictl run`: a RunSink that hands what the executor produces (the
+// programmed moves, the executed segments, the samples, the errors and warnings with their
+// places, the axis names and numbers) in batches through a bounded ring (spsc_ring.h) to one
+// writer thread, which calls another RunSink with them in the order they came. The NC front
+// end, the executor and the board run on the caller's thread, the writers (JSON, CSV, SVG) on
+// the writer thread: two cores share a run.
+//
+//   - bounded: kBatches batches of at most kBatchEvents events; a producer that finds every
+//     batch taken waits for the writer (memory stays flat however long the program);
+//   - in order: the inner sink sees exactly the calls, in the order, it would have seen
+//     without the pipeline, so every output is byte for byte the same;
+//   - progress() goes to the inner sink at once, on the caller's thread, and wants_programmed()
+//     and wants_samples() are asked of it there too: the inner sink must keep what these read
+//     unchanged while the run goes;
+//   - errors: an exception of the inner sink on the writer thread stops the writer (the
+//     producer drops what follows instead of waiting) and is rethrown by finish(). Write
+//     errors the writers remember (TextSink) are theirs to report after finish(), as before;
+//   - no thread outlives it: finish() (or the destructor, on any path out) ends the writer
+//     thread and joins it. The writer thread blocks the signals sent to the process (SIGTERM,
+//     SIGINT, SIGHUP, ...), so they reach the caller's thread, whose DeferSignals (run_files.h)
+//     holds them; the signals a write raises for its own thread (SIGPIPE, SIGXFSZ) stay
+//     unblocked and end the process as they did.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <exception>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apci/apci.h"
+#include "apci/run/executor.h"
+#include "apci/run/spsc_ring.h"
+
+namespace apci::run {
+
+class PipelinedSink final : public RunSink {
+  public:
+    static constexpr std::size_t kBatchEvents = 512;
+    static constexpr std::size_t kBatches = 8;
+
+    // `inner` must outlive this. The writer thread starts with the first event.
+    explicit PipelinedSink(RunSink& inner);
+    ~PipelinedSink() override;
+    PipelinedSink(const PipelinedSink&) = delete;
+    PipelinedSink& operator=(const PipelinedSink&) = delete;
+
+    void programmed(const PathSegment& s) override;
+    bool wants_programmed() const override { return inner_.wants_programmed(); }
+    void executed(const PathSegment& s) override;
+    void axes(std::span<const std::string> names) override;
+    void axis_numbers(const std::array<int, 3>& xyz) override;
+    bool wants_samples() const override { return inner_.wants_samples(); }
+    void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override;
+    void error(const RunError& e, const Point& where) override;
+    void warning(const RunError& w, const Point& where) override;
+    void progress(std::uint64_t blocks) override { inner_.progress(blocks); }
+
+    // Hands over the last batch, waits until the inner sink has had every event, and ends the
+    // writer thread. Rethrows the exception that stopped the writer, if one did. Idempotent.
+    void finish();
+    // Batches the producer waited for (the writer was behind) and the writer waited for (the
+    // producer was behind), together: for measurements.
+    std::uint64_t waits() const noexcept { return ring_.sleeps(); }
+
+  private:
+    enum class Kind : std::uint8_t {
+        kProgrammed,
+        kExecuted,
+        kSample,
+        kError,
+        kWarning,
+        kAxes,
+        kAxisNumbers
+    };
+    struct Sample {
+        std::uint64_t cycle = 0;
+        double time_s = 0.0;
+        std::uint32_t count = 0;
+        std::array<double, APCI_AXIS_COUNT> axes{};
+    };
+    struct Note {  // an error or warning, and where
+        RunError what;
+        Point where = Point::Zero();
+    };
+    // One batch: the order of its events, each an index into the array of its kind. The
+    // arrays keep their capacity from batch to batch.
+    struct Batch {
+        std::vector<std::pair<Kind, std::uint32_t>> order;
+        std::vector<PathSegment> segments;
+        std::vector<Sample> samples;
+        std::vector<Note> notes;
+        std::vector<std::string> names;
+        std::array<int, 3> xyz{0, 1, 2};
+        void clear() noexcept;
+    };
+
+    // The batch being filled (nullptr when the writer stopped); committed when full.
+    Batch* open_batch();
+    void add(Kind kind, std::uint32_t index);
+    void commit();
+    void start();
+    void write_loop() noexcept;
+    void deliver(const Batch& b);
+    void stop() noexcept;
+
+    RunSink& inner_;
+    SpscRing<Batch> ring_{kBatches};
+    Batch* filling_ = nullptr;
+    bool started_ = false;
+    bool finished_ = false;
+    std::thread writer_;
+    std::exception_ptr failure_;  // written by the writer thread before it ends
+};
+
+}  // namespace apci::run
