@@ -143,6 +143,19 @@ apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::
     if (max > 0 && !have(board, out, op, "out", st)) return st;
     try {
         std::size_t got = 0;
+        if constexpr (std::is_same_v<Out, apci_segment>) {
+            // Straight into `out` where the transport can (inproc); else through read_trace.
+            std::size_t n = 0;
+            const Status s = board->transport->read_segments(out, max, n);
+            if (s != Status::kNotSupported) {
+                *count = n;
+                if (objif::ok(s)) return done(board);
+                return fail(board, s, [&] {
+                    return fmt::format("{}: {}", op,
+                                       reason(s, {}, board->transport->failure_detail()));
+                });
+            }
+        }
         while (got < max) {
             const std::size_t want = std::min<std::size_t>(max - got, 0xFFFFFFFFu);
             objif::TraceReply rep;

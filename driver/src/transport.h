@@ -23,11 +23,13 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "apci/apci.h"
 #include "objif/descriptor.h"
 #include "objif/frame.h"
 #include "objif/status.h"
@@ -87,6 +89,17 @@ public:
     virtual objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept {
         (void)req;
         (void)rep;
+        return objif::Status::kNotSupported;
+    }
+    // Executed segments, oldest first, straight into the caller's records (apci_read_segments):
+    // up to `max`, `got` of them. A backend that holds the board in this process copies each
+    // segment once; the default, kNotSupported, has the caller read them through read_trace
+    // (wire records, then converted).
+    virtual objif::Status read_segments(apci_segment* out, std::size_t max,
+                                        std::size_t& got) noexcept {
+        (void)out;
+        (void)max;
+        got = 0;
         return objif::Status::kNotSupported;
     }
 

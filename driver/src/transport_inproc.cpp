@@ -3,7 +3,10 @@
 // it directly, without frames. Blocking: never (virtual time; every call
 // returns as soon as the board has served it). Threading: as the Board, one
 // thread at a time, which the C API's contract already guarantees.
+#include <algorithm>
 #include <new>
+#include <span>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -54,6 +57,24 @@ public:
     objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept override {
         return guarded([&] { rep = rwmos::serve_trace(board_, req); return rep.status; });
     }
+    // From the emulator's segment log into the caller's records: no reply to build and copy
+    // (read_trace makes two vectors a call), each segment copied once more than the log holds.
+    objif::Status read_segments(apci_segment* out, std::size_t max,
+                                std::size_t& got) noexcept override {
+        got = 0;
+        return guarded([&] {
+            if (scratch_.empty()) scratch_.resize(kScratchSegments);
+            while (got < max) {
+                const std::size_t want = std::min(max - got, scratch_.size());
+                const std::size_t n =
+                    board_.read_segments(std::span<rwmos::motion::Segment>(scratch_.data(), want));
+                for (std::size_t i = 0; i < n; ++i) to_c(scratch_[i], out[got + i]);
+                got += n;
+                if (n < want) break;
+            }
+            return objif::Status::kOk;
+        });
+    }
 
 private:
     template <class F>
@@ -67,7 +88,29 @@ private:
         }
     }
 
+    static void to_c(const rwmos::motion::Segment& m, apci_segment& s) noexcept {
+        s = apci_segment{};
+        s.tag = m.tag;
+        s.kind = static_cast<std::uint8_t>(m.kind);
+        s.role = static_cast<std::uint8_t>(m.role);
+        s.ccw = m.ccw ? 1 : 0;
+        s.interrupted = m.interrupted ? 1 : 0;
+        s.plane_axes[0] = m.plane_axes[0];
+        s.plane_axes[1] = m.plane_axes[1];
+        s.plane = m.plane;
+        std::copy(m.start.begin(), m.start.end(), s.start);
+        std::copy(m.end.begin(), m.end.end(), s.end);
+        std::copy(m.center.begin(), m.center.end(), s.center);
+        s.feed = m.feed;
+        s.start_cycle = m.start_cycle;
+        s.end_cycle = m.end_cycle;
+    }
+
+    // Segments taken from the log per step: the executor's read batch.
+    static constexpr std::size_t kScratchSegments = 256;
+
     rwmos::Board board_;
+    std::vector<rwmos::motion::Segment> scratch_;
 };
 
 // "emu:?no-option-tc&option-tc": the last word on an option wins.

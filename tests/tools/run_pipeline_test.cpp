@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,7 @@
 #include "apci/run/json_writer.h"
 #include "apci/run/pipeline.h"
 #include "apci/run/spsc_ring.h"
+#include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
 #include "memory_file.h"
 
@@ -363,6 +365,105 @@ TEST(RunPipeline, ARunWritesTheSameBytesThroughThePipeline) {
     EXPECT_EQ(piped.json, direct.json);
     EXPECT_EQ(piped.svg, direct.svg);
     EXPECT_EQ(piped.summary, direct.summary);
+}
+
+// ---- segments read back once, measured once
+
+// More segments than the in-process transport takes from the log per step (256), read in one
+// call: every one, in order, as the board logged them.
+TEST(SegmentReadBack, OneReadTakesEverySegmentInOrder) {
+    apci::Board board("emu:");
+    ASSERT_TRUE(board.is_open());
+    constexpr std::uint32_t kMoves = 600;
+    for (std::uint32_t i = 1; i <= kMoves; ++i) {
+        apci_profile p{};
+        p.kind = APCI_PROFILE_LINE;
+        p.tag = i;
+        p.feed = 6000.0;
+        p.axes = 1u;
+        p.target[0] = 0.1 * i;
+        for (;;) {
+            const auto r = board.spool(p);
+            if (r.status != APCI_BUSY) {
+                ASSERT_TRUE(r.ok()) << apci::status_name(r.status);
+                break;
+            }
+            ASSERT_TRUE(board.run_until_idle(std::uint64_t{1} << 40));
+        }
+    }
+    ASSERT_TRUE(board.run_until_idle(std::uint64_t{1} << 40));
+    std::vector<apci_segment> out(1000);
+    const auto r = board.read_segments(out.data(), out.size());
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r.value, kMoves);
+    for (std::uint32_t i = 0; i < kMoves; ++i) {
+        EXPECT_EQ(out[i].tag, i + 1);
+        EXPECT_EQ(out[i].end[0], 0.1 * (i + 1));
+        EXPECT_EQ(out[i].start[0], i == 0 ? 0.0 : 0.1 * i);
+    }
+    const auto again = board.read_segments(out.data(), out.size());
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again.value, 0u);  // taken: read once
+}
+
+TEST(SegmentReadBack, MeasureGivesTheSweepAndLengthOfThePathFunctions) {
+    PathSegment arc;
+    arc.kind = SegmentKind::kArc;
+    arc.start = Point(10, 0, 0);
+    arc.end = Point(0, 10, 2);
+    arc.center = Point(0, 0, 0);
+    arc.ccw = true;
+    PathSegment programmed = arc;
+    EXPECT_TRUE(std::isnan(programmed.length));  // not measured: computed where needed
+    measure(arc);
+    EXPECT_EQ(arc.sweep, arc_sweep(arc));
+    EXPECT_EQ(arc.length, segment_length(arc));
+    EXPECT_EQ(measured_length(programmed), segment_length(programmed));
+    PathSegment line = segment(3);
+    measure(line);
+    EXPECT_EQ(line.sweep, 0.0);
+    EXPECT_EQ(line.length, segment_length(line));
+}
+
+// The totals take the length the segment carries: it is not computed again.
+TEST(SegmentReadBack, CountSegmentUsesTheMeasuredLength) {
+    PathSegment s = segment(1);
+    s.length = 42.0;  // not this line's length: only a carried value gives it
+    RunTotals t;
+    count_segment(t, s);
+    EXPECT_EQ(t.path_length, 42.0);
+    PathSegment unmeasured = segment(1);
+    count_segment(t, unmeasured);
+    EXPECT_EQ(t.path_length, 42.0 + segment_length(unmeasured));
+}
+
+// Every executed segment the executor hands on is measured, with the path functions' values.
+TEST(SegmentReadBack, TheExecutorMeasuresEveryExecutedSegment) {
+    class Check final : public RunSink {
+      public:
+        std::uint64_t executed_count = 0, wrong = 0;
+        void executed(const PathSegment& s) override {
+            ++executed_count;
+            if (s.length != segment_length(s) ||
+                (s.kind == SegmentKind::kArc && s.sweep != arc_sweep(s)))
+                ++wrong;
+        }
+    } check;
+    auto tools =
+        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 1\n", "t.tools");
+    ASSERT_TRUE(tools);
+    apci::Board board("emu:");
+    nc::InterpreterOptions options;
+    options.tools = &tools.value();
+    const std::string text = program_text(5);  // the program reads it as it goes
+    auto program = nc::Program::from_text(text, "p.nc", options);
+    ASSERT_TRUE(program);
+    auto stream = program.value().events();
+    ProgramExecutor executor(board, check, &tools.value());
+    const RunOutcome out = executor.run(stream.value());
+    EXPECT_TRUE(out.errors.empty()) << (out.errors.empty() ? "" : out.errors.front().message);
+    EXPECT_GT(check.executed_count, 60u);
+    EXPECT_EQ(check.wrong, 0u);
 }
 
 }  // namespace

@@ -458,6 +458,7 @@ PathSegment Execution::convert(const apci_segment& b) {
     // not act on it, as the offsets above say).
     if (s.role == Role::kUncompensated && b.role != APCI_ROLE_RAPID && c3_.read_back(b.tag))
         s.role = Role::kContour;
+    measure(s);  // sweep and length once, for the totals and the writers
     return s;
 }
 

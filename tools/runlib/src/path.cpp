@@ -98,11 +98,32 @@ Point point_along(const PathSegment& s, double t) noexcept {
     return p;
 }
 
-double segment_length(const PathSegment& s) noexcept {
+namespace {
+
+double length_with_sweep(const PathSegment& s, double sweep) noexcept {
     if (s.kind != SegmentKind::kArc) return (s.end - s.start).norm();
     const PlaneAxes a = plane_axes(s.plane);
-    const double planar = std::abs(arc_sweep(s)) * 0.5 * (arc_radius(s) + arc_end_radius(s));
+    const double planar = std::abs(sweep) * 0.5 * (arc_radius(s) + arc_end_radius(s));
     return std::hypot(planar, s.end[a.third] - s.start[a.third]);
+}
+
+}  // namespace
+
+double segment_length(const PathSegment& s) noexcept {
+    return length_with_sweep(s, s.kind == SegmentKind::kArc ? arc_sweep(s) : 0.0);
+}
+
+void measure(PathSegment& s) noexcept {
+    s.sweep = s.kind == SegmentKind::kArc ? arc_sweep(s) : 0.0;
+    s.length = length_with_sweep(s, s.sweep);
+}
+
+double measured_sweep(const PathSegment& s) noexcept {
+    return std::isnan(s.sweep) ? arc_sweep(s) : s.sweep;
+}
+
+double measured_length(const PathSegment& s) noexcept {
+    return std::isnan(s.length) ? segment_length(s) : s.length;
 }
 
 }  // namespace apci::run

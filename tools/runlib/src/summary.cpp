@@ -9,7 +9,7 @@
 namespace apci::run {
 
 void count_segment(RunTotals& totals, const PathSegment& s) noexcept {
-    const double length = segment_length(s);
+    const double length = measured_length(s);  // measured once where the segment was made
     totals.path_length += length;
     if (s.kind == SegmentKind::kRapid) totals.rapid_length += length;
     ++totals.segments;

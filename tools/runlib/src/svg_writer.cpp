@@ -92,7 +92,7 @@ void Bounds::add(const PathSegment& s) noexcept {
     // The circle's extreme points on the plane's axes that the arc passes.
     const PlaneAxes a = plane_axes(s.plane);
     const double r = arc_radius(s);
-    const double sweep = arc_sweep(s);
+    const double sweep = measured_sweep(s);
     const double from =
         std::atan2(s.start[a.second] - s.center[a.second], s.start[a.first] - s.center[a.first]);
     for (int quarter = 0; quarter < 4; ++quarter) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -72,6 +73,12 @@ struct PathSegment {
     // 0, 0 for programmed moves.
     std::uint64_t start_cycle = 0;
     std::uint64_t end_cycle = 0;
+    // Executed segments: an arc's sweep (arc_sweep; 0 for a line) and the length
+    // (segment_length), computed once where the executor makes the segment (measure()), so
+    // the totals and the plot do not compute them again; NaN where not measured (programmed
+    // moves): computed where needed.
+    double sweep = std::numeric_limits<double>::quiet_NaN();
+    double length = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Two points this close in the plane are one point (an arc between them is a full circle).
@@ -88,6 +95,11 @@ double arc_end_radius(const PathSegment& arc) noexcept;
 Point point_along(const PathSegment& s, double t) noexcept;
 // Length in space: chord of a line or rapid, helix length of an arc.
 double segment_length(const PathSegment& s) noexcept;
+// Sets s.sweep and s.length (the same values as arc_sweep and segment_length).
+void measure(PathSegment& s) noexcept;
+// s.sweep when measured, else arc_sweep(s); s.length when measured, else segment_length(s).
+double measured_sweep(const PathSegment& s) noexcept;
+double measured_length(const PathSegment& s) noexcept;
 
 // One error of a run: from the board (code = the Table 4 bit name, e.g. "KorrError", or a
 // status name such as "InvalidValue") or from the program's execution pass (code = the
