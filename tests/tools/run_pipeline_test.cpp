@@ -4,11 +4,14 @@
 // behind, and a run through the pipeline writing the same bytes as one without it.
 #include <dirent.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -19,9 +22,11 @@
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/pipeline.h"
+#include "apci/run/run_files.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
+#include "apci/run/text_sink.h"
 #include "memory_file.h"
 
 namespace apci::run {
@@ -464,6 +469,40 @@ TEST(SegmentReadBack, TheExecutorMeasuresEveryExecutedSegment) {
     EXPECT_TRUE(out.errors.empty()) << (out.errors.empty() ? "" : out.errors.front().message);
     EXPECT_GT(check.executed_count, 60u);
     EXPECT_EQ(check.wrong, 0u);
+}
+
+// ---- output files: large writes, write-back started while the run goes
+
+// 12 MiB through an OutputFile (three steps of early write-back and a tail): published whole,
+// byte for byte, after the fsync at close().
+TEST(OutputWriteBack, ALargeOutputIsPublishedWhole) {
+    char dir_template[] = "/tmp/apci-writeback-XXXXXX";
+    ASSERT_NE(::mkdtemp(dir_template), nullptr);
+    const std::string dir = dir_template;
+    const std::string target = dir + "/big.json";
+    std::string expected;
+    {
+        OutputFile out;
+        ASSERT_EQ(out.open(target), "");
+        TextSink sink(out.file());
+        std::string line;
+        for (std::uint64_t i = 0; expected.size() < (std::size_t{12} << 20) + 12345; ++i) {
+            line = "{\"n\":" + std::to_string(i * 7919) + "}\n";
+            sink.append(line);
+            expected += line;
+        }
+        ASSERT_TRUE(sink.flush());
+        ASSERT_EQ(out.close(), "");
+        ASSERT_EQ(out.publish(), "");
+    }
+    std::FILE* f = std::fopen(target.c_str(), "rb");
+    ASSERT_NE(f, nullptr);
+    std::string got(expected.size() + 1, '\0');
+    got.resize(std::fread(got.data(), 1, got.size(), f));
+    std::fclose(f);
+    EXPECT_TRUE(got == expected) << got.size() << " bytes, expected " << expected.size();
+    std::remove(target.c_str());
+    ::rmdir(dir.c_str());
 }
 
 }  // namespace

@@ -74,6 +74,7 @@ class OutputFile {
   private:
     static ssize_t cookie_write(void* cookie, const char* data, std::size_t size);
     static int cookie_close(void* cookie);
+    void start_writeback(std::size_t bytes) noexcept;
     std::string open_temporary(const std::string& final_path);
     std::string open_in_place(const std::string& path);
     std::string attach(int fd, bool owns_fd);
@@ -86,6 +87,11 @@ class OutputFile {
     std::FILE* file_ = nullptr;
     int write_error_ = 0;  // errno of the first failed write
     int slot_ = -1;        // in the signal handler's list of temporary files
+    // Write-back started early (start_writeback): bytes written, and where the next range
+    // to start begins; started every kWritebackStep bytes.
+    static constexpr off_t kWritebackStep = off_t{4} << 20;
+    off_t written_ = 0;
+    off_t writeback_from_ = 0;
 };
 
 namespace detail {
