@@ -136,6 +136,37 @@ TEST(SpscRing, CancelReleasesAWaitingProducer) {
     EXPECT_EQ(ring.acquire(), nullptr);
 }
 
+// A sleeping consumer is woken once `wake_after` slots are ready, not for each one; closing
+// wakes it whatever is ready.
+TEST(SpscRing, ASleepingSideWakesForSeveralSlots) {
+    SpscRing<int> ring(8, 4);
+    std::atomic<int> taken{0};
+    std::thread consumer([&] {
+        while (const int* v = ring.front()) {
+            (void)v;
+            ring.pop();
+            taken.fetch_add(1);
+        }
+    });
+    std::this_thread::sleep_for(30ms);  // the consumer is asleep on the empty ring
+    for (int i = 0; i < 3; ++i) {
+        *ring.acquire() = i;
+        ring.commit();
+    }
+    std::this_thread::sleep_for(50ms);
+    EXPECT_EQ(taken.load(), 0);  // three ready: not yet woken
+    *ring.acquire() = 3;
+    ring.commit();
+    for (int i = 0; i < 1000 && taken.load() < 4; ++i) std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(taken.load(), 4);
+    std::this_thread::sleep_for(30ms);  // asleep again
+    *ring.acquire() = 4;
+    ring.commit();
+    ring.close();  // one ready, and the end: woken
+    consumer.join();
+    EXPECT_EQ(taken.load(), 5);
+}
+
 // ---- the pipeline
 
 // The threads of this process (/proc/self/task).

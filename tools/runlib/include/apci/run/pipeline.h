@@ -108,7 +108,7 @@ class PipelinedSink final : public RunSink {
     void stop() noexcept;
 
     RunSink& inner_;
-    SpscRing<Batch> ring_{kBatches};
+    SpscRing<Batch> ring_{kBatches, kBatches / 2};  // a sleeping side wakes for half the ring
     Batch* filling_ = nullptr;
     bool started_ = false;
     bool finished_ = false;

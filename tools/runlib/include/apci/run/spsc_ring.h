@@ -6,8 +6,9 @@
 //
 // The two indices are lock-free atomics (one writer each); a side that finds the ring full
 // (producer) or empty (consumer) spins briefly, then sleeps on a condition variable until the
-// other side moves. The other side takes the mutex only when someone sleeps, so a stream that
-// never waits makes no system call. Either end can end the stream:
+// other side has made `wake_after` slots ready for it. The other side takes the mutex only to
+// wake a sleeper, so a stream that never waits makes no system call. Either end can end the
+// stream:
 //
 //   close()   the producer has no more: front() returns what is left, then nullptr;
 //   cancel()  the consumer takes no more (it failed): acquire() returns nullptr from then on,
@@ -16,6 +17,7 @@
 // Used by PipelinedSink (pipeline.h) to hand batches of a run's events to its writer thread.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -28,8 +30,12 @@ namespace apci::run {
 template <typename T>
 class SpscRing {
   public:
-    // `slots` default-constructed slots (at least 1).
-    explicit SpscRing(std::size_t slots) : slots_(slots < 1 ? 1 : slots) {}
+    // `slots` default-constructed slots (at least 1). A side that went to sleep is woken when
+    // `wake_after` slots are ready for it (at most half the slots; at least 1), or the stream
+    // ends: one wakeup per several slots, not one per slot.
+    explicit SpscRing(std::size_t slots, std::size_t wake_after = 1)
+        : slots_(slots < 1 ? 1 : slots),
+          wake_after_(std::max<std::size_t>(1, std::min(wake_after, slots_.size() / 2))) {}
     SpscRing(const SpscRing&) = delete;
     SpscRing& operator=(const SpscRing&) = delete;
 
@@ -42,20 +48,23 @@ class SpscRing {
     // acquire().
     T* acquire() {
         const std::uint64_t head = head_.load(std::memory_order_relaxed);
-        const auto room = [&] { return cancelled_.load() || head - tail_.load() < slots_.size(); };
-        wait_for(room);
+        const auto room = [&](std::size_t want) {
+            return cancelled_.load() || slots_.size() - (head - tail_.load()) >= want;
+        };
+        wait_for(room, producer_sleeps_);
         if (cancelled_.load(std::memory_order_acquire)) return nullptr;
         return &slots_[head % slots_.size()];
     }
     // Hands the slot acquire() gave over to the consumer.
     void commit() {
-        head_.store(head_.load(std::memory_order_relaxed) + 1, std::memory_order_seq_cst);
-        wake();
+        const std::uint64_t head = head_.load(std::memory_order_relaxed) + 1;
+        head_.store(head, std::memory_order_seq_cst);
+        if (consumer_sleeps_.load() && head - tail_.load() >= wake_after_) wake();
     }
     // No more slots will come (after the last commit()).
     void close() {
         closed_.store(true, std::memory_order_seq_cst);
-        wake();
+        if (consumer_sleeps_.load()) wake();
     }
 
     // ---- consumer
@@ -64,20 +73,23 @@ class SpscRing {
     // and every committed slot was popped.
     T* front() {
         const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
-        const auto ready = [&] { return head_.load() != tail || closed_.load(); };
-        wait_for(ready);
+        const auto ready = [&](std::size_t want) {
+            return head_.load() - tail >= want || closed_.load();
+        };
+        wait_for(ready, consumer_sleeps_);
         if (head_.load(std::memory_order_acquire) == tail) return nullptr;  // closed, drained
         return &slots_[tail % slots_.size()];
     }
     // Gives the slot front() returned back to the producer.
     void pop() {
-        tail_.store(tail_.load(std::memory_order_relaxed) + 1, std::memory_order_seq_cst);
-        wake();
+        const std::uint64_t tail = tail_.load(std::memory_order_relaxed) + 1;
+        tail_.store(tail, std::memory_order_seq_cst);
+        if (producer_sleeps_.load() && slots_.size() - (head_.load() - tail) >= wake_after_) wake();
     }
     // The consumer takes no more: a waiting or later acquire() returns nullptr.
     void cancel() {
         cancelled_.store(true, std::memory_order_seq_cst);
-        wake();
+        if (producer_sleeps_.load()) wake();
     }
     bool cancelled() const noexcept { return cancelled_.load(std::memory_order_acquire); }
 
@@ -87,34 +99,35 @@ class SpscRing {
   private:
     static constexpr int kSpins = 64;
 
-    // `ready` reads the other side's state with seq_cst loads: with the seq_cst count of
-    // sleepers below and the seq_cst stores in commit(), pop(), close() and cancel(), no wakeup
-    // is lost.
+    // Spins while ready(1) is false, then sleeps until ready(wake_after_). `ready` reads the
+    // other side's index with seq_cst loads: with the seq_cst store of `sleeping` here and the
+    // seq_cst index stores and `sleeping` loads of commit(), pop(), close() and cancel(), the
+    // other side either sees the sleeper (and wakes it, under the mutex, once enough is
+    // ready) or moved before this side's last look: no wakeup is lost.
     template <typename Ready>
-    void wait_for(const Ready& ready) {
+    void wait_for(const Ready& ready, std::atomic<bool>& sleeping) {
         for (int i = 0; i < kSpins; ++i)
-            if (ready()) return;
+            if (ready(1)) return;
         std::unique_lock<std::mutex> lock(mutex_);
-        // Announced before the last look: the other side either sees a sleeper (and wakes it
-        // under the mutex) or made its move before that look (seq_cst orders the two).
-        sleepers_.fetch_add(1, std::memory_order_seq_cst);
+        sleeping.store(true, std::memory_order_seq_cst);
         sleeps_.fetch_add(1, std::memory_order_relaxed);
-        wakeup_.wait(lock, ready);
-        sleepers_.fetch_sub(1, std::memory_order_relaxed);
+        wakeup_.wait(lock, [&] { return ready(wake_after_); });
+        sleeping.store(false, std::memory_order_relaxed);
     }
     void wake() {
-        if (sleepers_.load(std::memory_order_seq_cst) == 0) return;
         { const std::lock_guard<std::mutex> lock(mutex_); }
         wakeup_.notify_all();
     }
 
     std::vector<T> slots_;
+    std::size_t wake_after_;
     // Producer and consumer counts on lines of their own.
     alignas(64) std::atomic<std::uint64_t> head_{0};  // slots committed
     alignas(64) std::atomic<std::uint64_t> tail_{0};  // slots popped
     alignas(64) std::atomic<bool> closed_{false};
     std::atomic<bool> cancelled_{false};
-    std::atomic<int> sleepers_{0};
+    std::atomic<bool> producer_sleeps_{false};
+    std::atomic<bool> consumer_sleeps_{false};
     std::atomic<std::uint64_t> sleeps_{0};
     std::mutex mutex_;
     std::condition_variable wakeup_;
