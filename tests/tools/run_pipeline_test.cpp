@@ -4,11 +4,13 @@
 // behind, and a run through the pipeline writing the same bytes as one without it.
 #include <dirent.h>
 #include <gtest/gtest.h>
+#include <pthread.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -325,6 +327,29 @@ TEST(RunPipeline, NoThreadOutlivesItOnAnyPath) {
         }
         EXPECT_EQ(thread_count(), threads);
     }
+}
+
+// The writer thread leaves the process's signals to the caller's thread (whose DeferSignals
+// holds them while a temporary file is made or published) and keeps those a write raises in
+// its own thread (SIGPIPE, SIGXFSZ), which end the process as before.
+TEST(RunPipeline, TheWriterThreadLeavesProcessSignalsToTheCaller) {
+    class MaskProbe final : public RunSink {
+      public:
+        sigset_t mask{};
+        void executed(const PathSegment&) override { ::pthread_sigmask(SIG_BLOCK, nullptr, &mask); }
+    } probe;
+    {
+        PipelinedSink pipeline(probe);
+        pipeline.executed(segment(1));
+        pipeline.finish();
+    }
+    for (const int sig : {SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGUSR1, SIGALRM})
+        EXPECT_EQ(sigismember(&probe.mask, sig), 1) << sig;
+    for (const int sig : {SIGPIPE, SIGXFSZ, SIGSEGV})
+        EXPECT_EQ(sigismember(&probe.mask, sig), 0) << sig;
+    sigset_t mine;
+    ::pthread_sigmask(SIG_BLOCK, nullptr, &mine);
+    EXPECT_EQ(sigismember(&mine, SIGTERM), 0);  // the caller's mask is as it was
 }
 
 // ---- a run through the pipeline: the same bytes
