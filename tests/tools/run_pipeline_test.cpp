@@ -408,8 +408,9 @@ Written run_program(const std::string& text, bool pipelined) {
     apci_test::MemoryFile json, svg;
     JsonAndSvg writers(json.get(), svg.get());
     PipelinedSink pipeline(writers);
-    RunSink& sink = pipelined ? static_cast<RunSink&>(pipeline) : writers;
-    ProgramExecutor executor(board, sink, &tools.value());
+    RunSink* sink = &writers;
+    if (pipelined) sink = &pipeline;
+    ProgramExecutor executor(board, *sink, &tools.value());
     RunOutcome out = executor.run(stream.value());
     pipeline.finish();
     EXPECT_TRUE(writers.finish(out));
