@@ -119,15 +119,16 @@ class SpscRing {
         wakeup_.notify_all();
     }
 
+    // The producer's line: what commit() writes, and what both only read.
+    alignas(64) std::atomic<std::uint64_t> head_{0};  // slots committed
+    std::atomic<bool> producer_sleeps_{false};
     std::vector<T> slots_;
     std::size_t wake_after_;
-    // Producer and consumer counts on lines of their own.
-    alignas(64) std::atomic<std::uint64_t> head_{0};  // slots committed
+    // The consumer's line: what pop() writes, and what is written once or on a sleep.
     alignas(64) std::atomic<std::uint64_t> tail_{0};  // slots popped
-    alignas(64) std::atomic<bool> closed_{false};
-    std::atomic<bool> cancelled_{false};
-    std::atomic<bool> producer_sleeps_{false};
     std::atomic<bool> consumer_sleeps_{false};
+    std::atomic<bool> closed_{false};
+    std::atomic<bool> cancelled_{false};
     std::atomic<std::uint64_t> sleeps_{0};
     std::mutex mutex_;
     std::condition_variable wakeup_;
