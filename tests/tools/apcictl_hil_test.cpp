@@ -3,6 +3,7 @@
 // against the emulator daemon, a fake sysfs PCI board and the embedded board.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 #include <vector>
@@ -128,6 +129,57 @@ TEST_F(ApcictlDiff, ScriptReportsTheFirstDifferingLineWithBothResults) {
     EXPECT_TRUE(contains(r.out, "first difference at line 3: read 1300 1 1 7")) << r.out;
     EXPECT_TRUE(std::regex_search(r.out, std::regex("unix:[^ ]+ +4\\.5\n  emu: +0\n"))) << r.out;
     EXPECT_TRUE(contains(r.err, "differ at line 3")) << r.err;
+}
+
+// A line that reads or writes one object names it, by its dotted name and its numbers, however
+// the line names it.
+TEST_F(ApcictlDiff, ScriptDifferenceNamesTheObject) {
+    ASSERT_EQ(
+        apcictl({"--device", daemon_->unix_uri(), "write", "tc.group[1].radius", "4.5"}).exit_code,
+        0);
+    auto r = diff({"--against", "emu:", script_file(dir_, "read tc.group[1].radius\n")});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.out,
+                         "first difference at line 1: read tc.group[1].radius, object "
+                         "tc.group[1].radius (1300/1/1/7)\n"))
+        << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("unix:[^ ]+ +4\\.5\n  emu: +0\n"))) << r.out;
+    r = diff({"--against", "emu:", script_file(dir_, "read 1300 1 1 7\n", "numbers.script")});
+    EXPECT_TRUE(contains(r.out,
+                         "first difference at line 1: read 1300 1 1 7, object "
+                         "tc.group[1].radius (1300/1/1/7)\n"))
+        << r.out;
+    // A line of another command, or an address the map does not name, is shown as typed.
+    r = diff(
+        {"--against", "emu:?no-option-tc", script_file(dir_, "read 1300 1 9 3\nstatus\n", "s2")});
+    EXPECT_TRUE(contains(r.out, "first difference at line 1: read 1300 1 9 3\n")) << r.out;
+}
+
+// dump through the daemon's socket: one session, every readable object, the daemon's values.
+TEST(ApcictlDumpOnADaemon, ListsEveryReadableObjectWithTheDaemonsValues) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    ASSERT_EQ(apcictl({"--device", d->unix_uri(), "write", "tc.group[1].radius", "4.5"}).exit_code,
+              0);
+    const auto group = apcictl({"--device", d->unix_uri(), "dump", "tc.group[1]"});
+    EXPECT_EQ(group.exit_code, 0) << group.err;
+    EXPECT_TRUE(std::regex_search(
+        group.out,
+        std::regex("\ntc\\.group\\[1\\]\\.radius +1300/1/1/7 +double +r/w +4\\.5 +PU\n")))
+        << group.out;
+    const auto all = apcictl({"--device", d->unix_uri(), "dump", "--json"});
+    EXPECT_EQ(all.exit_code, 0) << all.err;
+    const auto here = nlohmann::json::parse(all.out);
+    const auto there = nlohmann::json::parse(apcictl({"dump", "--json"}).out);
+    EXPECT_GT(here.size(), 8000u);
+    ASSERT_EQ(here.size(), there.size()) << "the same objects as on the embedded board";
+    for (std::size_t i = 0; i < here.size(); ++i) {
+        EXPECT_EQ(here[i]["name"], there[i]["name"]);
+        if (here[i]["name"] == "tc.group[1].radius") {
+            EXPECT_EQ(here[i]["value"], 4.5);
+        }
+    }
+    EXPECT_FALSE(contains(all.out, "\"status\"")) << "every object read";
 }
 
 TEST_F(ApcictlDiff, ScriptFailureOnOneBoardOnlyIsADifference) {

@@ -7,15 +7,16 @@
 // ssf, step) are new rows in commands.cpp.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "apci/apci.hpp"
+#include "objif/descriptor.h"
 
 namespace apcictl {
 
@@ -62,6 +63,9 @@ public:
     virtual Outcome prepare() { return Outcome::success(); }
     // Runs against the session's board and prints its result on stdout.
     virtual Outcome run(Session& session) = 0;
+    // The one object the command reads or writes (after prepare), for reports that name it
+    // (diff); none for the others.
+    virtual std::optional<objif::Address> object() const { return std::nullopt; }
 };
 
 struct CommandSpec {
@@ -98,6 +102,7 @@ std::unique_ptr<Command> make_step_command();
 std::unique_ptr<Command> make_run_command();
 std::unique_ptr<Command> make_list_command();
 std::unique_ptr<Command> make_diff_command();
+std::unique_ptr<Command> make_dump_command();
 
 // "WrongDeviceState (not possible in the present device state)".
 std::string describe_status(apci::Status status);

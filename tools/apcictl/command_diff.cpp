@@ -36,6 +36,8 @@
 #include "apci/run/plc_script.h"
 #include "arguments.h"
 #include "command.h"
+#include "object_name.h"
+#include "objif/map/object_map.h"
 
 namespace apcictl {
 namespace {
@@ -99,6 +101,14 @@ std::string line_result(Command& command, Session& session) {
     return printed.empty() ? "failed: " + outcome.error : printed + "\nfailed: " + outcome.error;
 }
 
+// A script line as typed; with the object it reads or writes named, where the map names it:
+// "read 1300 1 1 7, object tc.group[1].radius (1300/1/1/7)".
+std::string line_what(const ScriptLine& line) {
+    const std::optional<objif::Address> a = line.command->object();
+    if (!a || objif::find_object(*a) == nullptr) return line.text;
+    return fmt::format("{}, object {}", line.text, object_label(*a));
+}
+
 Outcome diff_script(const std::string& file, Session& here, Session& there,
                     std::optional<Difference>& first, std::size_t& compared) {
     std::vector<ScriptLine> lines;
@@ -108,7 +118,7 @@ Outcome diff_script(const std::string& file, Session& here, Session& there,
         std::string a = line_result(*line.command, here);
         std::string b = line_result(*line.command, there);
         if (a != b) {
-            first = Difference{fmt::format("line {}", line.number), line.text, std::move(a),
+            first = Difference{fmt::format("line {}", line.number), line_what(line), std::move(a),
                                std::move(b)};
             return Outcome::success();
         }
@@ -407,9 +417,16 @@ std::optional<Difference> compare_registers(const Recording& a, const Recording&
         if (x[i].readable == y[i].readable && x[i].error == y[i].error &&
             x[i].status == y[i].status)
             continue;
-        return Difference{"end of the run", fmt::format("registers of TC group {}", x[i].group),
-                          x[i].readable ? registers_text(x[i].error, x[i].status) : "unreadable",
-                          y[i].readable ? registers_text(y[i].error, y[i].status) : "unreadable"};
+        // The register that differs, by name: tc.group[1].error (1300/1/1/1).
+        const bool error_differs = x[i].readable != y[i].readable || x[i].error != y[i].error;
+        const objif::Address reg{
+            objif::map::tc::kBus, objif::map::tc::kDevGroups, x[i].group,
+            error_differs ? objif::map::tc::kSubError : objif::map::tc::kSubStatus};
+        return Difference{
+            "end of the run",
+            fmt::format("registers of TC group {}: {}", x[i].group, object_label(reg)),
+            x[i].readable ? registers_text(x[i].error, x[i].status) : "unreadable",
+            y[i].readable ? registers_text(y[i].error, y[i].status) : "unreadable"};
     }
     return std::nullopt;
 }

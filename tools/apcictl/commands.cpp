@@ -10,9 +10,14 @@ namespace {
 
 // The command table, in help order.
 constexpr std::array kCommands{
-    CommandSpec{"read", "Read one object (type follows the object)", true, make_read_command},
-    CommandSpec{"write", "Write one object (the value's type follows the object)", true,
+    CommandSpec{"read", "Read one object, by name or numbers (type follows the object)", true,
+                make_read_command},
+    CommandSpec{"write", "Write one object, by name or numbers (the value's type follows it)", true,
                 make_write_command},
+    CommandSpec{"dump",
+                "List the readable objects by name (or under a name prefix) with their values; "
+                "--json",
+                false, make_dump_command},
     CommandSpec{"script", "Run commands from a file (or - for stdin) against one board session",
                 false, make_script_command},
     CommandSpec{"status", "Show the spooler fill and the TC registers ERROR and STATUS per group, by bit name",
