@@ -3,11 +3,13 @@
 // against the emulator daemon, a fake sysfs PCI board and the embedded board.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "command.h"
 #include "daemon.h"
 #include "fake_sysfs.h"
 #include "process.h"
@@ -180,6 +182,32 @@ TEST(ApcictlDumpOnADaemon, ListsEveryReadableObjectWithTheDaemonsValues) {
         }
     }
     EXPECT_FALSE(contains(all.out, "\"status\"")) << "every object read";
+}
+
+// A link that fails ends the dump at its first read (every read after would wait for the same
+// link), naming the object; nothing is printed. In process: the session opened, then the daemon
+// went away.
+TEST(ApcictlDumpOnADaemon, ALinkThatFailsEndsTheDumpAtOnce) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apcictl::Session session(d->unix_uri());
+    apcictl::Outcome opened;
+    ASSERT_NE(session.board(opened), nullptr) << opened.error;
+    d->stop();
+    auto dump = apcictl::make_dump_command();
+    CLI::App parser("dump", "dump");
+    dump->declare(parser);
+    parser.parse(std::vector<std::string>{"tc"});
+    ASSERT_TRUE(dump->prepare().ok());
+    testing::internal::CaptureStdout();
+    const auto start = std::chrono::steady_clock::now();
+    const apcictl::Outcome r = dump->run(session);
+    const auto took = std::chrono::steady_clock::now() - start;
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+    EXPECT_EQ(r.exit, apcictl::Exit::kBoard);
+    EXPECT_TRUE(r.error.starts_with("dump: read tc.init.x_axis_nr (1300/0/11/0): TransportError"))
+        << r.error;
+    EXPECT_LT(std::chrono::duration<double>(took).count(), 5.0);
 }
 
 TEST_F(ApcictlDiff, ScriptFailureOnOneBoardOnlyIsADifference) {
