@@ -14,8 +14,14 @@
 namespace apcictl {
 namespace {
 
+std::string joined(const std::vector<std::string>& words) {
+    return fmt::format("{}", fmt::join(words, " "));
+}
+
+}  // namespace
+
 // Whitespace-separated words of a line, without its `#` comment.
-std::vector<std::string> words_of(std::string_view line) {
+std::vector<std::string> script_words(std::string_view line) {
     line = line.substr(0, line.find('#'));
     std::vector<std::string> words;
     std::size_t i = 0;
@@ -28,12 +34,8 @@ std::vector<std::string> words_of(std::string_view line) {
     return words;
 }
 
-std::string joined(const std::vector<std::string>& words) {
-    return fmt::format("{}", fmt::join(words, " "));
-}
-
 // Parses one non-empty line into a ready command, or a usage error.
-Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
+Outcome parse_script_line(const std::vector<std::string>& words, ScriptLine& line) {
     const CommandSpec* spec = find_command(words.front());
     if (spec == nullptr || !spec->in_scripts) {
         std::vector<std::string> names;
@@ -66,11 +68,10 @@ Outcome parse_line(const std::vector<std::string>& words, ScriptLine& line) {
     }
     Outcome prepared = command->prepare();
     if (!prepared.ok()) return prepared;
+    line.text = joined(words);
     line.command = std::move(command);
     return Outcome::success();
 }
-
-}  // namespace
 
 std::string script_command_names() {
     std::string names;
@@ -86,10 +87,10 @@ ParsedScript parse_script(std::istream& in) {
     ParsedScript script;
     std::string text;
     for (int number = 1; std::getline(in, text); ++number) {
-        const auto words = words_of(text);
+        const auto words = script_words(text);
         if (words.empty()) continue;
-        ScriptLine line{number, joined(words), nullptr};
-        Outcome parsed = parse_line(words, line);
+        ScriptLine line{number, {}, nullptr};
+        Outcome parsed = parse_script_line(words, line);
         if (parsed.ok())
             script.lines.push_back(std::move(line));
         else

@@ -6,6 +6,7 @@
 #include <istream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "command.h"
@@ -30,5 +31,14 @@ std::string script_command_names();
 // Reads every line of `in` (one command a line, '#' comments, blank lines
 // skipped) and parses each with the command table's declarations.
 ParsedScript parse_script(std::istream& in);
+
+// Whitespace-separated words of one line, without its '#' comment (none: a
+// blank or comment line).
+std::vector<std::string> script_words(std::string_view text);
+
+// Parses the words of one non-empty line, as a script line, into `line`
+// (its command and text; the number is the caller's): success, or the usage
+// error naming what is wrong. `apcictl script` and `apcictl shell` share it.
+Outcome parse_script_line(const std::vector<std::string>& words, ScriptLine& line);
 
 }  // namespace apcictl
