@@ -86,7 +86,7 @@ TEST(ApcictlCli, UnknownCommandWithNothingCloseListsTheCommands) {
     const auto r = apcictl_run({"frobnicate"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err,
-              "apcictl: unknown command 'frobnicate' (commands: read, write, dump, script, status, "
+              "apcictl: unknown command 'frobnicate' (commands: read, write, dump, script, shell, status, "
               "spool, direct, ssf, step, run, list, diff)\n");
 }
 

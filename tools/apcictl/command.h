@@ -94,6 +94,7 @@ const CommandSpec* find_command(std::string_view name) noexcept;
 std::unique_ptr<Command> make_read_command();
 std::unique_ptr<Command> make_write_command();
 std::unique_ptr<Command> make_script_command();
+std::unique_ptr<Command> make_shell_command();
 std::unique_ptr<Command> make_status_command();
 std::unique_ptr<Command> make_spool_command();
 std::unique_ptr<Command> make_direct_command();

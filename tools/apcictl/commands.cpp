@@ -20,6 +20,10 @@ constexpr std::array kCommands{
                 false, make_dump_command},
     CommandSpec{"script", "Run commands from a file (or - for stdin) against one board session",
                 false, make_script_command},
+    CommandSpec{"shell",
+                "Type commands at a prompt against one board session: editing, history, "
+                "completion",
+                false, make_shell_command},
     CommandSpec{"status", "Show the spooler fill and the TC registers ERROR and STATUS per group, by bit name",
                 true, make_status_command},
     CommandSpec{"spool", "Spool one profile: G00..G03 with N, F, axis and centre words", true,
