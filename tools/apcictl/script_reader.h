@@ -34,7 +34,7 @@ ParsedScript parse_script(std::istream& in);
 
 // Whitespace-separated words of one line, without its '#' comment (none: a
 // blank or comment line).
-std::vector<std::string> script_words(std::string_view text);
+std::vector<std::string> script_words(std::string_view line);
 
 // Parses the words of one non-empty line, as a script line, into `line`
 // (its command and text; the number is the caller's): success, or the usage
