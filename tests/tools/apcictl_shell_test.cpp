@@ -283,6 +283,16 @@ TEST_F(ApcictlShell, TerminalListsSeveralCandidatesAndRecallsTheFileHistory) {
     ASSERT_TRUE(terminal.wait_for_prompt()) << terminal.output();
     terminal.type("read 1300 1 1 8\r");
     ASSERT_TRUE(terminal.wait_for("\n5\r\n")) << terminal.output();
+    ASSERT_TRUE(terminal.wait_for_prompt()) << terminal.output();
+
+    // Object names of the map complete one part at a time; Ctrl-U then clears the line.
+    terminal.type("read tc.gr\t");
+    ASSERT_TRUE(terminal.wait_for_line("apcictl> read tc.group[")) << terminal.output();
+    terminal.type("1].rad\t");
+    ASSERT_TRUE(terminal.wait_for_line("apcictl> read tc.group[1].radius ")) << terminal.output();
+    terminal.type("\x15");
+    ASSERT_TRUE(terminal.wait_for_line("apcictl> ")) << terminal.output();
+
     terminal.type("quit\r");
     EXPECT_EQ(terminal.wait_exit(), 0) << terminal.output();
     EXPECT_EQ(read_file(history()),

@@ -40,12 +40,18 @@ TEST(ShellComplete, FirstWordCompletesCommandNames) {
     EXPECT_EQ(complete("read", kCommands, kObjects), Strings{"read"});  // whole: the blank next
 }
 
-TEST(ShellComplete, LaterWordsCompleteObjectNames) {
-    EXPECT_EQ(complete("read tc.g", kCommands, kObjects),
-              (Strings{"tc.group[1].radius", "tc.group[1].wkzindex", "tc.group[2].radius"}));
+TEST(ShellComplete, LaterWordsCompleteObjectNamesOnePartAtATime) {
+    EXPECT_EQ(complete("read ", kCommands, kObjects), (Strings{"tc.", "board."}));
+    EXPECT_EQ(complete("read t", kCommands, kObjects), Strings{"tc."});
+    EXPECT_EQ(complete("read tc.", kCommands, kObjects), (Strings{"tc.group[", "tc.init."}));
+    EXPECT_EQ(complete("read tc.g", kCommands, kObjects), Strings{"tc.group["});
+    EXPECT_EQ(complete("read tc.group[", kCommands, kObjects),
+              (Strings{"tc.group[1].", "tc.group[2]."}));
+    EXPECT_EQ(complete("read tc.group[1].", kCommands, kObjects),
+              (Strings{"tc.group[1].radius", "tc.group[1].wkzindex"}));
     EXPECT_EQ(complete("read tc.group[1].r", kCommands, kObjects), Strings{"tc.group[1].radius"});
-    EXPECT_EQ(complete("write  --double b", kCommands, kObjects), Strings{"board.axis_count"});
-    EXPECT_EQ(complete("read ", kCommands, kObjects), kObjects);  // a new word: every name
+    EXPECT_EQ(complete("write  --double b", kCommands, kObjects), Strings{"board."});
+    EXPECT_EQ(complete("read board.axis_count", kCommands, kObjects), Strings{"board.axis_count"});
     EXPECT_EQ(complete("read x", kCommands, kObjects), Strings{});
     // Object names, never command names, after a command.
     EXPECT_EQ(complete("read wri", kCommands, kObjects), Strings{});
@@ -92,12 +98,15 @@ TEST(ShellComplete, TabInsertsTheOneCandidateWithABlank) {
     EXPECT_EQ(apcictl::tab_action("read ", Strings{"board.axis_count"}).insert,
               "board.axis_count ");
     EXPECT_EQ(apcictl::tab_action("read", Strings{"read"}).insert, " ");
+    // A name's part: the name goes on, no blank.
+    EXPECT_EQ(apcictl::tab_action("read t", Strings{"tc."}).insert, "c.");
+    EXPECT_EQ(apcictl::tab_action("read tc.g", Strings{"tc.group["}).insert, "roup[");
 }
 
 TEST(ShellComplete, TabExtendsToTheCommonPrefixThenLists) {
     const Strings groups{"tc.group[1].radius", "tc.group[2].radius"};
-    const auto extend = apcictl::tab_action("read tc.g", groups);
-    EXPECT_EQ(extend.insert, "roup[");
+    const auto extend = apcictl::tab_action("read tc.gr", groups);
+    EXPECT_EQ(extend.insert, "oup[");
     EXPECT_TRUE(extend.listed.empty());
     const auto list = apcictl::tab_action("read tc.group[", groups);
     EXPECT_EQ(list.insert, "");

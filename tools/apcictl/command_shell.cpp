@@ -17,6 +17,7 @@
 
 #include "command.h"
 #include "line_editor.h"
+#include "objif/names.h"
 #include "script_reader.h"
 #include "shell_complete.h"
 #include "shell_history.h"
@@ -41,9 +42,11 @@ std::vector<std::string> shell_command_names() {
     return names;
 }
 
-// The object names TAB completes after a command (the dotted names of the object map).
+// The object names TAB completes after a command: the dotted names of the object map.
 std::vector<std::string> object_names() {
-    return {};
+    std::vector<std::string> names;
+    for (const auto& object : objif::named_objects()) names.push_back(object.name);
+    return names;
 }
 
 class Shell {

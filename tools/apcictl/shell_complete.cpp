@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <unordered_set>
 
 namespace apcictl {
 namespace {
@@ -45,6 +46,25 @@ void add_matches(std::span<const std::string> names, std::string_view partial,
     }
 }
 
+// The object names that start with `partial`, each cut after the first part it does not yet
+// reach (after the next '.' or '['): "tc.", "tc.group[", "tc.group[1].", "tc.group[1].radius".
+void add_name_parts(std::span<const std::string> names, std::string_view partial,
+                    std::vector<std::string>& out) {
+    std::unordered_set<std::string_view> seen;
+    for (const auto& name : names) {
+        if (!name.starts_with(partial)) continue;
+        std::string_view part = name;
+        const std::size_t cut = part.find_first_of(".[", partial.size());
+        if (cut != std::string_view::npos) part = part.substr(0, cut + 1);
+        if (seen.insert(part).second) out.emplace_back(part);
+    }
+}
+
+// A name cut after a part ("tc.", "tc.group["): more of it is to come, so no blank after it.
+bool is_name_part(std::string_view candidate) {
+    return candidate.ends_with('.') || candidate.ends_with('[');
+}
+
 }  // namespace
 
 std::vector<std::string> complete(std::string_view line_before_cursor,
@@ -69,7 +89,7 @@ std::vector<std::string> complete(std::string_view line_before_cursor,
         }
         return out;
     }
-    add_matches(objects, line.partial, out);
+    add_name_parts(objects, line.partial, out);
     return out;
 }
 
@@ -89,9 +109,9 @@ TabAction tab_action(std::string_view line_before_cursor,
     if (candidates.empty()) return action;
     const std::string_view partial = split(line_before_cursor).partial;
     if (candidates.size() == 1) {
-        action.insert =
-            candidates.front().substr(std::min(partial.size(), candidates.front().size()));
-        action.insert += ' ';
+        const std::string& only = candidates.front();
+        action.insert = only.substr(std::min(partial.size(), only.size()));
+        if (!is_name_part(only)) action.insert += ' ';
         return action;
     }
     const std::string prefix = common_prefix(candidates);

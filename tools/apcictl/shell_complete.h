@@ -16,7 +16,9 @@ namespace apcictl {
 // - the first word of the line: the `commands` that start with it (the shell's own words
 //   help, quit, exit among them);
 // - the second word after `help`: the `commands`; after `status`: "on" and "off";
-// - any later word of another command: the `objects` (object names) that start with it;
+// - any later word of another command: the `objects` (dotted object names) that start with it,
+//   one part at a time: each is cut after the first '.' or '[' past the typed text ("t" gives
+//   "tc." and "tempcomp.", "tc.group[1].r" gives "tc.group[1].radius");
 // - nothing inside a '#' comment, after quit/exit, or past help's and status's one argument.
 // In the order of the lists, each word once.
 std::vector<std::string> complete(std::string_view line_before_cursor,
@@ -27,8 +29,9 @@ std::vector<std::string> complete(std::string_view line_before_cursor,
 std::string common_prefix(std::span<const std::string> candidates);
 
 // What a TAB does with the candidates of complete(): one candidate is inserted whole with a
-// blank after it; several are extended to their common prefix, or, when that adds nothing,
-// listed; none does nothing (the editor rings the bell).
+// blank after it (none after a name's part ending in '.' or '[': the name goes on); several are
+// extended to their common prefix, or, when that adds nothing, listed; none does nothing (the
+// editor rings the bell).
 struct TabAction {
     std::string insert;               // the text to insert at the cursor ("" for none)
     std::vector<std::string> listed;  // the candidates to show below the line
