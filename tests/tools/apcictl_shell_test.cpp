@@ -379,6 +379,9 @@ TEST_F(ApcictlShell, HelpListsTheCommandsAndTheShellWords) {
         EXPECT_NE(r.out.find(word), std::string::npos) << word << "\n" << r.out;
     EXPECT_EQ(r.out.find("  run "), std::string::npos) << r.out;  // not a shell command
     EXPECT_NE(r.out.find("VALUE"), std::string::npos) << r.out;   // write's arguments
+    const auto words = piped("help quit\n");
+    EXPECT_EQ(words.exit_code, 0) << words.err;
+    EXPECT_EQ(words.out.rfind("Shell:\n", 0), 0u) << words.out;
     const auto unknown = piped("help frobnicate\n");
     EXPECT_EQ(unknown.exit_code, 1);
     EXPECT_EQ(

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <clocale>
 #include <cstdio>
@@ -121,13 +122,13 @@ class Shell {
             return Outcome::usage_error("help: give one command at most ('help read')");
         if (words.size() == 2) {
             const CommandSpec* spec = find_command(words[1]);
+            if (std::find(kShellWords.begin(), kShellWords.end(), words[1]) != kShellWords.end()) {
+                print_shell_words();
+                return Outcome::success();
+            }
             if (spec == nullptr || !spec->in_scripts) {
                 Outcome unknown = known_command(words[1]);
-                if (words[1] == "help" || words[1] == "quit" || words[1] == "exit" || unknown.ok())
-                    unknown = Outcome::usage_error(
-                        fmt::format("help {}: a word of the shell; 'help' lists them", words[1]));
-                else
-                    unknown.error = "help " + words[1] + ": " + unknown.error;
+                unknown.error = "help " + words[1] + ": " + unknown.error;
                 return unknown;
             }
             auto command = spec->make();
@@ -139,12 +140,16 @@ class Shell {
         fmt::print("Commands (as in scripts; 'help COMMAND' shows its arguments):\n");
         for (const auto& row : command_table())
             if (row.in_scripts) fmt::print("  {:<16}{}\n", row.name, row.summary);
+        print_shell_words();
+        return Outcome::success();
+    }
+
+    void print_shell_words() const {
         fmt::print("Shell:\n");
         fmt::print("  {:<16}{}\n", "help [COMMAND]", "This list, or the arguments of COMMAND");
         fmt::print("  {:<16}Show the status after each line (now {})\n", "status on|off",
                    status_after_ ? "on" : "off");
         fmt::print("  {:<16}{}\n", "quit, exit", "End the shell (Ctrl-D too)");
-        return Outcome::success();
     }
 
     Outcome switch_status(const std::vector<std::string>& words) {
