@@ -1,0 +1,429 @@
+// SPDX-License-Identifier: MIT
+// apci._apci: the extension module under the Python package apci (docs/python.md). A thin layer
+// over libapci's public API (apci.hpp) and the executor of `apcictl run` (apci_run): it answers
+// status codes and plain values; the package's Python code turns them into exceptions, enums and
+// NumPy record arrays. Nothing here raises for a board's refusal.
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "apci/apci.hpp"
+#include "apci/nc/correction_table.h"
+#include "apci/nc/diagnostic.h"
+#include "apci/nc/program.h"
+#include "apci/nc/tools.h"
+#include "apci/run/executor.h"
+#include "apci/run/path.h"
+#include "apci/run/plc_script.h"
+#include "apci/run/summary.h"
+
+namespace py = pybind11;
+
+namespace {
+
+// ---- Boards
+
+// An open board for Python: apci::Board plus close(). Used from one thread at a time (the GIL
+// is held for every call but run_program's, which holds a reference to the board).
+class PyBoard {
+  public:
+    explicit PyBoard(const std::string& uri) : board_(uri), uri_(uri) {}
+
+    bool is_open() const noexcept { return board_.is_open(); }
+    apci::Status open_status() const noexcept { return board_.open_status(); }
+    std::string last_error() const { return std::string(board_.last_error()); }
+    const std::string& uri() const noexcept { return uri_; }
+    void close() noexcept { board_ = apci::Board(); }
+    apci::Board& board() noexcept { return board_; }
+
+    std::tuple<apci::Status, std::int32_t> read_int(std::int32_t bus, std::int32_t device,
+                                                    std::int32_t index, std::int32_t subindex) {
+        auto o = apci::object(bus, device, index, subindex);
+        const auto r = board_.read_int(o);
+        return {r.status, r.ok() ? r.value : 0};
+    }
+    std::tuple<apci::Status, double> read_double(std::int32_t bus, std::int32_t device,
+                                                 std::int32_t index, std::int32_t subindex) {
+        auto o = apci::object(bus, device, index, subindex);
+        const auto r = board_.read_double(o);
+        return {r.status, r.ok() ? r.value : 0.0};
+    }
+    apci::Status write_int(std::int32_t bus, std::int32_t device, std::int32_t index,
+                           std::int32_t subindex, std::int32_t value) {
+        auto o = apci::object(bus, device, index, subindex);
+        return board_.write_int(o, value).status;
+    }
+    apci::Status write_double(std::int32_t bus, std::int32_t device, std::int32_t index,
+                              std::int32_t subindex, double value) {
+        auto o = apci::object(bus, device, index, subindex);
+        return board_.write_double(o, value).status;
+    }
+
+  private:
+    apci::Board board_;
+    std::string uri_;
+};
+
+// Every status code apci.h lists, by the name apci_status_name() gives it.
+std::vector<std::pair<std::string, apci::Status>> status_codes() {
+    static constexpr std::array<apci_status, APCI_STATUS_COUNT> kCodes{APCI_OK,
+                                                                       APCI_NO_SUCH_DEVICE,
+                                                                       APCI_OBJECT_MISSING,
+                                                                       APCI_SUB_MISSING,
+                                                                       APCI_STALE_HANDLE,
+                                                                       APCI_HANDLE_MISMATCH,
+                                                                       APCI_READ_ONLY,
+                                                                       APCI_WRITE_ONLY,
+                                                                       APCI_TYPE_MISMATCH,
+                                                                       APCI_VALUE_TOO_HIGH,
+                                                                       APCI_VALUE_TOO_LOW,
+                                                                       APCI_INVALID_VALUE,
+                                                                       APCI_WRONG_DEVICE_STATE,
+                                                                       APCI_BUSY,
+                                                                       APCI_GENERAL_ERROR,
+                                                                       APCI_BAD_FRAME,
+                                                                       APCI_UNKNOWN_OPCODE,
+                                                                       APCI_TRANSPORT_ERROR,
+                                                                       APCI_TIMEOUT,
+                                                                       APCI_NOT_SUPPORTED,
+                                                                       APCI_INVALID_ARGUMENT,
+                                                                       APCI_NO_MEMORY};
+    std::vector<std::pair<std::string, apci::Status>> out;
+    out.reserve(kCodes.size());
+    for (const apci_status code : kCodes) out.emplace_back(apci_status_name(code), code);
+    return out;
+}
+
+// The [APCI-TC] names of the ERROR (Table 4) or STATUS (Table 5) bits: (name, mask) pairs.
+std::vector<std::pair<std::string, std::uint32_t>> tc_bits(const char* (*name_of)(int)) {
+    std::vector<std::pair<std::string, std::uint32_t>> out;
+    for (int bit = 0; bit < 32; ++bit) {
+        if (const char* name = name_of(bit)) out.emplace_back(name, std::uint32_t{1} << bit);
+    }
+    return out;
+}
+
+// ---- Runs
+
+// Collects what the executor reports: the executed segments and, if asked, the sampled axes.
+class Collector final : public apci::run::RunSink {
+  public:
+    explicit Collector(bool samples) : samples_(samples) {}
+
+    void programmed(const apci::run::PathSegment& s) override { program.push_back(s); }
+    // The whole contour, also after an error stopped the run (a plot shows where it stopped).
+    bool wants_programmed() const override { return true; }
+    void executed(const apci::run::PathSegment& s) override { segments.push_back(s); }
+    bool wants_samples() const override { return samples_; }
+    void axes(std::span<const std::string> names) override {
+        axis_names.assign(names.begin(), names.end());
+    }
+    void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override {
+        cycles.push_back(cycle);
+        times.push_back(time_s);
+        for (std::size_t i = 0; i < APCI_AXIS_COUNT; ++i)
+            positions.push_back(i < axes.size() ? axes[i]
+                                                : std::numeric_limits<double>::quiet_NaN());
+    }
+
+    std::vector<apci::run::PathSegment> segments;
+    std::vector<apci::run::PathSegment> program;
+    std::vector<std::string> axis_names;
+    std::vector<std::uint64_t> cycles;
+    std::vector<double> times;
+    std::vector<double> positions;  // APCI_AXIS_COUNT per sample
+
+  private:
+    bool samples_;
+};
+
+py::dict diagnostic_dict(const apci::nc::Diagnostic& d) {
+    py::dict out;
+    out["kind"] = std::string(apci::nc::error_kind_name(d.kind));
+    out["file"] = d.file;
+    out["line"] = d.line;
+    out["column"] = d.column;
+    out["block"] = d.block;
+    out["message"] = d.message;
+    out["text"] = d.to_string();
+    return out;
+}
+
+py::dict failure(const apci::nc::Diagnostic& d) {
+    py::dict out;
+    out["diagnostic"] = diagnostic_dict(d);
+    return out;
+}
+
+py::list error_list(const std::vector<apci::run::RunError>& errors) {
+    py::list out;
+    for (const auto& e : errors) {
+        py::dict d;
+        d["block"] = e.block.number;
+        d["line"] = e.block.line;
+        d["code"] = e.code;
+        d["message"] = e.message;
+        d["where"] = apci::run::block_text(e.block);
+        out.append(std::move(d));
+    }
+    return out;
+}
+
+// A (n, 3) array of one point field of every segment.
+template <class Field>
+py::array_t<double> points(const std::vector<apci::run::PathSegment>& segments, Field field) {
+    py::array_t<double> out({static_cast<py::ssize_t>(segments.size()), py::ssize_t{3}});
+    auto view = out.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const apci::run::Point& p = field(segments[i]);
+        for (py::ssize_t k = 0; k < 3; ++k)
+            view(static_cast<py::ssize_t>(i), k) = p[static_cast<Eigen::Index>(k)];
+    }
+    return out;
+}
+
+// One column of every segment.
+template <class T, class Field>
+py::array_t<T> column(const std::vector<apci::run::PathSegment>& segments, Field field) {
+    py::array_t<T> out(static_cast<py::ssize_t>(segments.size()));
+    auto view = out.template mutable_unchecked<1>();
+    for (std::size_t i = 0; i < segments.size(); ++i)
+        view(static_cast<py::ssize_t>(i)) = static_cast<T>(field(segments[i]));
+    return out;
+}
+
+py::dict segment_columns(const std::vector<apci::run::PathSegment>& s) {
+    using apci::run::PathSegment;
+    py::dict out;
+    out["block"] = column<std::int64_t>(s, [](const PathSegment& x) { return x.block.number; });
+    out["line"] = column<std::uint64_t>(s, [](const PathSegment& x) { return x.block.line; });
+    out["kind"] = column<std::uint8_t>(s, [](const PathSegment& x) { return x.kind; });
+    out["role"] = column<std::uint8_t>(s, [](const PathSegment& x) { return x.role; });
+    out["start"] =
+        points(s, [](const PathSegment& x) -> const apci::run::Point& { return x.start; });
+    out["end"] = points(s, [](const PathSegment& x) -> const apci::run::Point& { return x.end; });
+    out["center"] =
+        points(s, [](const PathSegment& x) -> const apci::run::Point& { return x.center; });
+    out["ccw"] = column<bool>(s, [](const PathSegment& x) { return x.ccw; });
+    out["plane"] = column<std::int32_t>(s, [](const PathSegment& x) { return x.plane; });
+    out["start_cycle"] =
+        column<std::uint64_t>(s, [](const PathSegment& x) { return x.start_cycle; });
+    out["end_cycle"] = column<std::uint64_t>(s, [](const PathSegment& x) { return x.end_cycle; });
+    return out;
+}
+
+py::dict sample_arrays(const Collector& c) {
+    py::dict out;
+    const auto n = static_cast<py::ssize_t>(c.cycles.size());
+    py::array_t<std::uint64_t> cycles(n);
+    py::array_t<double> times(n);
+    py::array_t<double> axes({n, py::ssize_t{APCI_AXIS_COUNT}});
+    std::copy(c.cycles.begin(), c.cycles.end(), cycles.mutable_data());
+    std::copy(c.times.begin(), c.times.end(), times.mutable_data());
+    std::copy(c.positions.begin(), c.positions.end(), axes.mutable_data());
+    out["cycle"] = std::move(cycles);
+    out["time"] = std::move(times);
+    out["axes"] = std::move(axes);
+    return out;
+}
+
+// The summary `apcictl run` prints (summary.h) with its warning and notice lines, as text.
+std::string summary_text(const apci::run::RunOutcome& result) {
+    char* buffer = nullptr;
+    std::size_t size = 0;
+    std::FILE* out = open_memstream(&buffer, &size);
+    if (out == nullptr) return {};
+    apci::run::print_summary(out, result.totals, result.errors);
+    for (const auto& w : result.warnings)
+        fmt::print(out, "warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code, w.message);
+    for (const auto& n : result.notices)
+        fmt::print(out, "notice: {}: {}\n", apci::run::block_text(n.block), n.message);
+    std::fclose(out);
+    std::string text(buffer != nullptr ? buffer : "", size);
+    std::free(buffer);  // open_memstream's buffer
+    return text;
+}
+
+apci::run::SelfApproachMode self_approach_mode(const std::string& mode) {
+    if (mode == "error") return apci::run::SelfApproachMode::kError;
+    if (mode == "off") return apci::run::SelfApproachMode::kOff;
+    return apci::run::SelfApproachMode::kWarn;
+}
+
+// Runs an NC program on `board` as `apcictl run` does (tools/apcictl/command_run.cpp): tool
+// list, correction table and PLC script first, then the validation pass (nothing runs from a
+// program that does not parse), then the executor. `program` is the text (program_is_text) or
+// a path; `tools` likewise. A file or program that cannot be used: {"diagnostic": {...}};
+// otherwise the segments, samples, totals, errors, warnings, notices, registers and variables.
+py::dict run_program(PyBoard& py_board, const std::string& program, bool program_is_text,
+                     const std::string& name, const std::optional<std::string>& tools_source,
+                     bool tools_is_text, const std::optional<std::string>& corr_path,
+                     const std::optional<std::string>& plc_path, const std::string& self_approach,
+                     bool samples) {
+    apci::nc::ToolTable tools;
+    if (tools_source) {
+        auto loaded = tools_is_text ? apci::nc::parse_tool_table(*tools_source, "<tools>")
+                                    : apci::nc::load_tool_table(*tools_source);
+        if (!loaded) return failure(loaded.error());
+        tools = std::move(loaded.value());
+    }
+    apci::nc::CorrectionTable corrections;
+    if (corr_path) {
+        auto loaded = apci::nc::load_correction_table(*corr_path);
+        if (!loaded) return failure(loaded.error());
+        corrections = std::move(loaded.value());
+    }
+    apci::run::PlcScript plc;
+    if (plc_path) {
+        auto loaded = apci::run::load_plc_script(*plc_path);
+        if (!loaded) return failure(loaded.error());
+        plc = std::move(loaded.value());
+    }
+
+    Collector collector(samples);
+    apci::run::RunOutcome result;
+    std::optional<apci::nc::Diagnostic> refused;
+    {
+        py::gil_scoped_release unlocked;
+        apci::run::ProgramExecutor executor(py_board.board(), collector, &tools,
+                                            plc_path ? &plc : nullptr, &corrections);
+        executor.set_self_approach(self_approach_mode(self_approach));
+        apci::nc::InterpreterOptions options;
+        options.start_position = executor.position();
+        options.cycle_seconds = executor.cycle_seconds();
+        options.tools = &tools;
+        options.corrections = &corrections;
+        auto loaded = program_is_text ? apci::nc::Program::from_text(program, name, options)
+                                      : apci::nc::Program::load(program, options);
+        if (!loaded) {
+            apci::nc::Diagnostic d = loaded.error();
+            if (!tools_source && d.kind == apci::nc::ErrorKind::kProgramRule &&
+                d.message.find("tool list does not define") != std::string::npos)
+                d.message += " (no tools given)";
+            refused = std::move(d);
+        } else if (auto stream = loaded.value().events(); !stream) {
+            refused = stream.error();
+        } else {
+            result = executor.run(stream.value());
+            result.totals.file = program_is_text ? name : program;
+            result.totals.blocks = loaded.value().summary().blocks;
+        }
+    }
+    if (refused) return failure(*refused);
+
+    py::dict out;
+    out["file"] = result.totals.file;
+    out["blocks"] = result.totals.blocks;
+    out["blocks_executed"] = result.totals.blocks_executed;
+    out["segment_count"] = result.totals.segments;
+    out["path_length"] = result.totals.path_length;
+    out["rapid_length"] = result.totals.rapid_length;
+    out["cycles"] = result.totals.cycles;
+    out["cycle_seconds"] = result.totals.cycle_seconds;
+    out["segments"] = segment_columns(collector.segments);
+    out["programmed"] = segment_columns(collector.program);
+    out["samples"] = sample_arrays(collector);
+    out["axis_names"] =
+        collector.axis_names.empty()
+            ? std::vector<std::string>(result.axis_names.begin(), result.axis_names.end())
+            : collector.axis_names;
+    out["axis_numbers"] = std::vector<int>(result.axis_numbers.begin(), result.axis_numbers.end());
+    out["plot_plane"] = result.plot_plane;
+    out["tc_present"] = result.tc_present;
+    out["errors"] = error_list(result.errors);
+    out["warnings"] = error_list(result.warnings);
+    out["notices"] = error_list(result.notices);
+    py::list registers;
+    for (const auto& r : result.registers) {
+        py::dict d;
+        d["group"] = r.group;
+        d["readable"] = r.readable;
+        d["error"] = r.error;
+        d["status"] = r.status;
+        registers.append(std::move(d));
+    }
+    out["registers"] = std::move(registers);
+    out["variables"] = result.variables;
+    out["summary"] = summary_text(result);
+    return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_apci, m) {
+    m.doc() = "libapci for Python: boards, objects, NC runs (the package apci wraps this module)";
+    m.attr("AXIS_COUNT") = APCI_AXIS_COUNT;
+    m.attr("TC_BUS") = APCI_TC_BUS;
+    m.def(
+        "version", [] { return std::string(apci_version()); },
+        "The version of the libapci loaded.");
+    m.def("status_name", [](apci::Status s) { return std::string(apci_status_name(s)); });
+    m.def("status_message", [](apci::Status s) { return std::string(apci_status_message(s)); });
+    m.def("status_codes", &status_codes, "(name, code) of every status code apci.h lists.");
+    m.def(
+        "last_open_error", [] { return std::string(apci_last_error(nullptr)); },
+        "apci_last_error(NULL): why the last open on this thread failed.");
+    m.def(
+        "tc_error_bits", [] { return tc_bits(&apci_tc_error_bit_name); },
+        "(name, mask) of every TC ERROR bit of [APCI-TC] Table 4.");
+    m.def(
+        "tc_status_bits", [] { return tc_bits(&apci_tc_status_bit_name); },
+        "(name, mask) of every TC STATUS bit of [APCI-TC] Table 5.");
+    m.def("segment_role_name", [](int role) -> std::optional<std::string> {
+        const char* n = apci_segment_role_name(role);
+        return n != nullptr ? std::optional<std::string>(n) : std::nullopt;
+    });
+    m.def(
+        "run_kind_names",
+        [] {
+            using apci::run::SegmentKind;
+            std::vector<std::string> out;
+            for (auto k : {SegmentKind::kRapid, SegmentKind::kLine, SegmentKind::kArc})
+                out.emplace_back(apci::run::kind_name(k));
+            return out;
+        },
+        "The JSON names of the run's segment kinds, by their numbers.");
+    m.def(
+        "run_role_names",
+        [] {
+            using apci::run::Role;
+            std::vector<std::string> out;
+            for (auto r : {Role::kContour, Role::kTransition, Role::kApproach, Role::kDeparture,
+                           Role::kUncompensated})
+                out.emplace_back(apci::run::role_name(r));
+            return out;
+        },
+        "The JSON names of the run's segment roles, by their numbers.");
+
+    py::class_<PyBoard>(m, "Board")
+        .def(py::init<const std::string&>(), py::arg("uri"))
+        .def_property_readonly("is_open", &PyBoard::is_open)
+        .def_property_readonly("open_status", &PyBoard::open_status)
+        .def_property_readonly("uri", &PyBoard::uri)
+        .def("last_error", &PyBoard::last_error)
+        .def("close", &PyBoard::close)
+        .def("read_int", &PyBoard::read_int)
+        .def("read_double", &PyBoard::read_double)
+        .def("write_int", &PyBoard::write_int)
+        .def("write_double", &PyBoard::write_double);
+
+    m.def("run_program", &run_program, py::arg("board"), py::arg("program"),
+          py::arg("program_is_text"), py::arg("name"), py::arg("tools"), py::arg("tools_is_text"),
+          py::arg("corr"), py::arg("plc"), py::arg("self_approach"), py::arg("samples"),
+          "Runs an NC program on an open board as `apcictl run` does.");
+}
