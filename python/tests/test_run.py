@@ -1,0 +1,187 @@
+# SPDX-License-Identifier: MIT
+"""apci.run(): the same path as `apcictl run --json`/`--csv`, errors with their line."""
+
+import json
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import apci
+
+KORR_PROGRAM = ("N10 F1000 D1\nN40 G41 G1 X0 Y0\nN50 X60\nN60 Y2\nN70 X0\n"
+                "N100 G40 G1 X0 Y-20\nN110 M30\n")
+TOOL_R5 = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\nwz[1].laenge 0\n"
+
+
+def apcictl_run(apcictl, tmp_path, program, tools):
+    """`apcictl run PROGRAM --tools TOOLS --json --csv`: (json, csv array, summary, rc)."""
+    out_json, out_csv = tmp_path / "run.json", tmp_path / "run.csv"
+    done = subprocess.run([str(apcictl), "run", str(program), "--tools", str(tools),
+                           "--json", str(out_json), "--csv", str(out_csv)],
+                          capture_output=True, text=True, timeout=300, check=False)
+    doc = json.loads(out_json.read_text())
+    csv = np.loadtxt(out_csv, delimiter=",", skiprows=1, ndmin=2)
+    return doc, csv, done.stdout, done.returncode
+
+
+def test_run_matches_apcictl_json_and_csv(source_dir, apcictl, tmp_path):
+    program = source_dir / "examples" / "wr_quad_disc.nc"
+    tools = source_dir / "examples" / "tools" / "wr_quad_disc.tools"
+    doc, csv, summary, rc = apcictl_run(apcictl, tmp_path, program, tools)
+    assert rc == 0, summary
+
+    result = apci.run(program, tools=tools)
+    assert result.ok and result.errors == [] and doc["errors"] == []
+
+    # Segments: the same blocks, kinds, roles and points as the JSON, number for number (the
+    # JSON writes the shortest text that reads back exactly).
+    want = doc["segments"]
+    got = result.segments
+    assert got.dtype == apci.SEGMENT_DTYPE
+    assert len(got) == len(want) > 0
+    assert list(got["block"]) == [s["block"] for s in want]
+    assert result.kind_names() == [s["kind"] for s in want]
+    assert result.role_names() == [s["role"] for s in want]
+    np.testing.assert_array_equal(got["start"], np.array([s["start"] for s in want]))
+    np.testing.assert_array_equal(got["end"], np.array([s["end"] for s in want]))
+    arcs = [i for i, s in enumerate(want) if s["kind"] == "arc"]
+    assert arcs, "the example has arcs (its corner transitions)"
+    np.testing.assert_array_equal(got["center"][arcs], np.array([want[i]["center"] for i in arcs]))
+    assert list(got["ccw"][arcs]) == [want[i]["ccw"] for i in arcs]
+    assert list(got["plane"][arcs]) == [want[i]["plane"] for i in arcs]
+    # Segments follow one another, and their cycles too.
+    np.testing.assert_array_equal(got["start"][1:], got["end"][:-1])
+    assert np.all(got["end_cycle"] > got["start_cycle"])
+    assert got["end_cycle"][-1] == result.cycles
+
+    # Sampled axes: the CSV's rows (cycle, time, 8 axes), every cycle of the run; the CSV
+    # writes the shortest text that reads back exactly, so the numbers are equal.
+    assert result.axes.shape == (result.cycles, 8) == (csv.shape[0], csv.shape[1] - 2)
+    np.testing.assert_array_equal(result.cycle, csv[:, 0].astype(np.uint64))
+    np.testing.assert_array_equal(result.time, csv[:, 1])
+    np.testing.assert_array_equal(result.axes, csv[:, 2:])
+    # The axes are where the board's axes stand: the last segment's end in the plane, and in Z
+    # shifted by the tool length (D1: 50 mm), which the segments' tool centre point is not.
+    np.testing.assert_allclose(result.xyz[-1], got["end"][-1] + [0, 0, 50], rtol=0, atol=1e-9)
+    assert result.axis_names[:3] == ["X", "Y", "Z"]
+
+    # The summary: apcictl's text, and the counts in it.
+    assert result.summary() == summary
+    assert summary.startswith(f"{program}: 11 blocks, 11 executed, {len(want)} segments\n")
+    assert result.blocks == 11 and result.blocks_executed == 11
+    assert f"path {result.path_length:.3f} mm" in summary
+    assert f"({result.cycles} cycles of 1 ms)" in summary
+    assert sorted(result.registers) == [1, 2, 3]
+    for group, status in result.registers.items():
+        assert int(status.error) == doc["registers"][str(group)]["ERROR"]
+        assert int(status.status) == doc["registers"][str(group)]["STATUS"]
+
+
+def test_a_program_as_text_with_tools_as_text():
+    result = apci.run("N10 G1 X3 Y4 F600\nM30\n", name="line.nc")
+    assert result.file == "line.nc"
+    assert len(result.segments) == 1
+    s = result.segments[0]
+    assert (s["block"], apci.SEGMENT_KINDS[s["kind"]], apci.SEGMENT_ROLES[s["role"]]) == \
+        (10, "line", "uncompensated")
+    np.testing.assert_array_equal(s["end"], [3.0, 4.0, 0.0])
+    # The programmed move is the same line (no compensation here).
+    assert len(result.programmed) == 1
+    p = result.programmed[0]
+    assert p["block"] == 10 and apci.SEGMENT_KINDS[p["kind"]] == "line"
+    np.testing.assert_array_equal(p["end"], [3.0, 4.0, 0.0])
+    assert result.path_length == pytest.approx(5.0)
+    assert result.cycles == 500  # 5 mm at 600 mm/min
+    assert result.axes.shape == (500, 8)
+
+    compensated = apci.run("N10 F1000 D1\nN20 G41 G1 X10\nN30 X20\nN40 G40 X30\nM30\n",
+                           tools=TOOL_R5, samples=False)
+    assert compensated.axes.shape == (0, 8)
+    assert "contour" in compensated.role_names()
+    # The programmed contour lies on Y = 0; the compensated path (G41: left of it) at Y = 5.
+    contour = compensated.segments[compensated.segments["block"] == 30]
+    assert len(contour) == 1
+    np.testing.assert_allclose(contour["end"][0], [20.0, 5.0, 0.0], atol=1e-9)
+    programmed = compensated.programmed[compensated.programmed["block"] == 30]
+    np.testing.assert_array_equal(programmed["end"][0], [20.0, 0.0, 0.0])
+
+
+def test_a_program_that_does_not_parse_raises_with_its_line_and_runs_nothing(tmp_path):
+    with pytest.raises(apci.ProgramError) as caught:
+        apci.run("N10 G1 X1 F100\nN20 G1 X\nM30\n", name="bad.nc")
+    e = caught.value
+    assert isinstance(e, apci.Error)
+    assert (e.file, e.line, e.block, e.kind) == ("bad.nc", 2, 20, "Syntax")
+    assert e.column > 0
+    assert str(e).startswith("bad.nc:2:")
+
+    path = tmp_path / "bad.nc"
+    path.write_text("N10 G1 X1 F100\nN20 G1 X\nM30\n")
+    with pytest.raises(apci.ProgramError) as caught:
+        apci.run(path)
+    assert caught.value.line == 2 and caught.value.file == str(path)
+
+    with pytest.raises(apci.ProgramError) as caught:
+        apci.run(tmp_path / "missing.nc")
+    assert caught.value.kind == "Io" and caught.value.line == 0
+
+    with pytest.raises(apci.ProgramError, match="no tools given"):
+        apci.run("N10 D1\nM30\n")
+    with pytest.raises(apci.ProgramError) as caught:
+        apci.run("N10 D1\nM30\n", tools="wz[1].radius 5\nwz[1].typ 9\n")
+    assert caught.value.file == "<tools>" and caught.value.line == 2
+
+
+def test_a_board_error_raises_with_the_line_and_the_partial_result():
+    with pytest.raises(apci.RunError) as caught:
+        apci.run(KORR_PROGRAM, tools=TOOL_R5, name="korr.nc")
+    e = caught.value
+    assert (e.line, e.block, e.code) == (4, 60, "KorrError")
+    assert e.error_bits == apci.TcError.KorrError
+    assert "stopped at line 4 (N60): KorrError: element is too short for the corner" in str(e)
+    # The board holds: nothing spooled after the error ran.
+    assert np.all(e.result.segments["block"] < 70)
+    assert "errors: 1 (KorrError 1)\n  line 4 (N60): KorrError: " in e.result.summary()
+    # The programmed contour goes on to its end (for a plot of where the run stopped).
+    assert list(e.result.programmed["block"]) == [40, 50, 60, 70, 100]
+    assert e.result.registers[1].KorrError
+
+    result = apci.run(KORR_PROGRAM, tools=TOOL_R5, check=False)
+    assert not result.ok
+    assert [(i.line, i.block, i.code) for i in result.errors] == [(4, 60, "KorrError")]
+
+
+def test_a_run_on_an_open_board_keeps_its_state(board):
+    result = apci.run("N10 G1 X3 Y4 F600\nM30\n", device=board)
+    assert result.ok
+    assert not board.closed
+    assert board.read(1000, 0, 10, 0) == 3.0  # axis 0 position: where the program left it
+    again = apci.run("N10 G1 X5 F600\nM30\n", device=board)
+    np.testing.assert_array_equal(again.segments["start"][0], [3.0, 4.0, 0.0])
+
+
+def test_bad_arguments_are_named():
+    with pytest.raises(ValueError, match="self_approach"):
+        apci.run("M30\n", self_approach="maybe")
+    with pytest.raises(TypeError, match="device must be"):
+        apci.run("M30\n", device=3)
+    with pytest.raises(TypeError, match="program must be"):
+        apci.run(b"M30\n")
+    with pytest.raises(apci.TransportError):
+        apci.run("M30\n", device="unix:/nonexistent/apci-test.sock")
+
+
+def test_a_closed_board_is_refused(board):
+    board.close()
+    with pytest.raises(ValueError, match="closed"):
+        apci.run("M30\n", device=board)
+
+
+def test_the_path_type_does_not_matter(source_dir):
+    program = source_dir / "examples" / "wr_quad_disc.nc"
+    tools = source_dir / "examples" / "tools" / "wr_quad_disc.tools"
+    a = apci.run(str(program), tools=str(tools), samples=False)
+    b = apci.run(pathlib.Path(program), tools=tools, samples=False)
+    np.testing.assert_array_equal(a.segments, b.segments)
