@@ -4,15 +4,15 @@
 # builds the Debian packages of debian/ with dpkg-buildpackage in a copy of
 # the checkout (build-deb/apci8001-VERSION; the packages land in build-deb/,
 # nothing is written outside the checkout), checks them with lintian, installs
-# libapci0, libapci-dev and apci-tools on this machine, and runs the
-# installed tools and the installed example against the installed files
-# only. The packages are removed again at the end unless APCI_KEEP_PACKAGE=1.
+# libapci0, libapci-dev, apci-tools and python3-apci on this machine, and
+# runs the installed tools, the installed example and the installed Python
+# package against the installed files only. The packages are removed again at the end unless APCI_KEEP_PACKAGE=1.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/deps.sh
 apci_install_ci_deps
 # Only this stage needs them: dh and its helpers, and the package checker.
-apci_install_packages debhelper lintian
+apci_install_packages debhelper lintian dh-python
 
 version=$(dpkg-parsechangelog -S Version)
 project_version=$(sed -n 's/^project(apci8001 VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
@@ -22,7 +22,7 @@ if [ "$version" != "$project_version" ]; then
   exit 1
 fi
 arch=$(dpkg-architecture -qDEB_HOST_ARCH)
-packages=(libapci0 libapci-dev apci-tools)
+packages=(libapci0 libapci-dev apci-tools python3-apci)
 
 # The source tree: the files git knows (tracked, and new ones not ignored),
 # as they are in the working tree; no build directories.
@@ -48,7 +48,7 @@ if ! (cd "$src" && APCI_COMPILER_LAUNCHER="$launcher" DPKG_GENSYMBOLS_CHECK_LEVE
   exit 1
 fi
 echo "built in $((SECONDS - start)) s:"
-for p in "${packages[@]}" libapci0-dbgsym apci-tools-dbgsym; do
+for p in "${packages[@]}" libapci0-dbgsym apci-tools-dbgsym python3-apci-dbgsym; do
   deb="$out/${p}_${version}_${arch}.deb"
   test -f "$deb" || { echo "package: $deb was not built" >&2; exit 1; }
   printf '  %-40s %8s bytes\n' "$(basename "$deb")" "$(stat -c %s "$deb")"
@@ -179,4 +179,21 @@ echo "== apcictl run: the installed NC example with its path plot, by the instal
 apcictl run "$doc/examples/wr_quad_disc.nc" --tools "$doc/examples/tools/wr_quad_disc.tools" \
   --svg run.svg --json run.json
 test -s run.svg && test -s run.json
+echo "== the installed Python package: import apci (Debian's python3), a run with NumPy arrays"
+/usr/bin/python3 -c "
+import json, pathlib, apci, numpy
+where = pathlib.Path(apci.__file__).resolve()
+assert str(where).startswith('/usr/lib/python3/dist-packages/apci/'), where
+with apci.open() as b:
+    b.write(1300, 1, 1, 7, 2.5)
+    assert b.read(1300, 1, 1, 7) == 2.5 and b.status(1).ok
+r = apci.run('$doc/examples/wr_quad_disc.nc', tools='$doc/examples/tools/wr_quad_disc.tools')
+assert r.ok and r.axes.shape == (r.cycles, 8), r.summary()
+# The same path as the installed apcictl's run.json above.
+want = json.load(open('run.json'))['segments']
+assert len(r.segments) == len(want) > 0, (len(r.segments), len(want))
+assert (r.segments['end'] == numpy.array([s['end'] for s in want])).all()
+print('apci', apci.__version__, 'from', where.parent, '-', r.summary().splitlines()[0])
+"
+test -f /usr/share/doc/python3-apci/examples/python/test_hil.py
 echo "package: built, lint-clean, installed; tools and examples ran from the installed files"
