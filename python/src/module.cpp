@@ -14,8 +14,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -38,8 +40,10 @@ namespace {
 
 // ---- Boards
 
-// An open board for Python: apci::Board plus close(). Used from one thread at a time (the GIL
-// is held for every call but run_program's, which holds a reference to the board).
+// An open board for Python: apci::Board plus close(). A board is used from one thread at a time
+// (apci.h): every call holds the board's lock, and a call from another thread while one runs
+// (a program in apci.run, whose thread lets the GIL go) is refused with RuntimeError instead of
+// racing it.
 class PyBoard {
   public:
     explicit PyBoard(const std::string& uri) : board_(uri), uri_(uri) {}
@@ -48,61 +52,70 @@ class PyBoard {
     apci::Status open_status() const noexcept { return board_.open_status(); }
     std::string last_error() const { return std::string(board_.last_error()); }
     const std::string& uri() const noexcept { return uri_; }
-    void close() noexcept { board_ = apci::Board(); }
-    apci::Board& board() noexcept { return board_; }
+    void close() {
+        const Use use(*this);
+        board_ = apci::Board();
+    }
 
     std::tuple<apci::Status, std::int32_t> read_int(std::int32_t bus, std::int32_t device,
                                                     std::int32_t index, std::int32_t subindex) {
+        const Use use(*this);
         auto o = apci::object(bus, device, index, subindex);
         const auto r = board_.read_int(o);
         return {r.status, r.ok() ? r.value : 0};
     }
     std::tuple<apci::Status, double> read_double(std::int32_t bus, std::int32_t device,
                                                  std::int32_t index, std::int32_t subindex) {
+        const Use use(*this);
         auto o = apci::object(bus, device, index, subindex);
         const auto r = board_.read_double(o);
         return {r.status, r.ok() ? r.value : 0.0};
     }
     apci::Status write_int(std::int32_t bus, std::int32_t device, std::int32_t index,
                            std::int32_t subindex, std::int32_t value) {
+        const Use use(*this);
         auto o = apci::object(bus, device, index, subindex);
         return board_.write_int(o, value).status;
     }
     apci::Status write_double(std::int32_t bus, std::int32_t device, std::int32_t index,
                               std::int32_t subindex, double value) {
+        const Use use(*this);
         auto o = apci::object(bus, device, index, subindex);
         return board_.write_double(o, value).status;
     }
 
+    // Holds the board for one call, or throws RuntimeError when another thread holds it.
+    class Use {
+      public:
+        explicit Use(PyBoard& b) : lock_(b.mutex_, std::try_to_lock) {
+            if (!lock_.owns_lock())
+                throw std::runtime_error("board '" + b.uri_ +
+                                         "' is in use by another thread (apci.run); a board "
+                                         "serves one thread at a time");
+        }
+
+      private:
+        std::unique_lock<std::mutex> lock_;
+    };
+    // The board itself, for a caller that holds a Use.
+    apci::Board& board(const Use& /*held*/) noexcept { return board_; }
+
   private:
     apci::Board board_;
     std::string uri_;
+    std::mutex mutex_;
 };
 
 // Every status code apci.h lists, by the name apci_status_name() gives it.
 std::vector<std::pair<std::string, apci::Status>> status_codes() {
-    static constexpr std::array<apci_status, APCI_STATUS_COUNT> kCodes{APCI_OK,
-                                                                       APCI_NO_SUCH_DEVICE,
-                                                                       APCI_OBJECT_MISSING,
-                                                                       APCI_SUB_MISSING,
-                                                                       APCI_STALE_HANDLE,
-                                                                       APCI_HANDLE_MISMATCH,
-                                                                       APCI_READ_ONLY,
-                                                                       APCI_WRITE_ONLY,
-                                                                       APCI_TYPE_MISMATCH,
-                                                                       APCI_VALUE_TOO_HIGH,
-                                                                       APCI_VALUE_TOO_LOW,
-                                                                       APCI_INVALID_VALUE,
-                                                                       APCI_WRONG_DEVICE_STATE,
-                                                                       APCI_BUSY,
-                                                                       APCI_GENERAL_ERROR,
-                                                                       APCI_BAD_FRAME,
-                                                                       APCI_UNKNOWN_OPCODE,
-                                                                       APCI_TRANSPORT_ERROR,
-                                                                       APCI_TIMEOUT,
-                                                                       APCI_NOT_SUPPORTED,
-                                                                       APCI_INVALID_ARGUMENT,
-                                                                       APCI_NO_MEMORY};
+    // clang-format off
+    static constexpr std::array<apci_status, APCI_STATUS_COUNT> kCodes{
+        APCI_OK, APCI_NO_SUCH_DEVICE, APCI_OBJECT_MISSING, APCI_SUB_MISSING, APCI_STALE_HANDLE,
+        APCI_HANDLE_MISMATCH, APCI_READ_ONLY, APCI_WRITE_ONLY, APCI_TYPE_MISMATCH,
+        APCI_VALUE_TOO_HIGH, APCI_VALUE_TOO_LOW, APCI_INVALID_VALUE, APCI_WRONG_DEVICE_STATE,
+        APCI_BUSY, APCI_GENERAL_ERROR, APCI_BAD_FRAME, APCI_UNKNOWN_OPCODE, APCI_TRANSPORT_ERROR,
+        APCI_TIMEOUT, APCI_NOT_SUPPORTED, APCI_INVALID_ARGUMENT, APCI_NO_MEMORY};
+    // clang-format on
     std::vector<std::pair<std::string, apci::Status>> out;
     out.reserve(kCodes.size());
     for (const apci_status code : kCodes) out.emplace_back(apci_status_name(code), code);
@@ -295,12 +308,13 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
         plc = std::move(loaded.value());
     }
 
+    const PyBoard::Use use(py_board);
     Collector collector(samples);
     apci::run::RunOutcome result;
     std::optional<apci::nc::Diagnostic> refused;
     {
         py::gil_scoped_release unlocked;
-        apci::run::ProgramExecutor executor(py_board.board(), collector, &tools,
+        apci::run::ProgramExecutor executor(py_board.board(use), collector, &tools,
                                             plc_path ? &plc : nullptr, &corrections);
         executor.set_self_approach(self_approach_mode(self_approach));
         apci::nc::InterpreterOptions options;

@@ -4,6 +4,7 @@
 import json
 import pathlib
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -185,3 +186,30 @@ def test_the_path_type_does_not_matter(source_dir):
     a = apci.run(str(program), tools=str(tools), samples=False)
     b = apci.run(pathlib.Path(program), tools=tools, samples=False)
     np.testing.assert_array_equal(a.segments, b.segments)
+
+
+def test_a_board_running_a_program_refuses_other_threads(board):
+    # 30 s of moves at one sample a cycle: long enough to be caught running.
+    done = threading.Event()
+    outcome = {}
+
+    def run():
+        try:
+            outcome["result"] = apci.run("N10 G1 X300 F600\nM30\n", device=board)
+        finally:
+            done.set()
+
+    worker = threading.Thread(target=run)
+    worker.start()
+    refused = None
+    while not done.is_set() and refused is None:
+        try:
+            board.read(1300, 1, 1, 7)
+        except RuntimeError as e:
+            refused = e
+    worker.join()
+    assert refused is not None, "the run ended before another thread was seen refused"
+    assert "in use by another thread" in str(refused)
+    # The run itself was not disturbed, and the board serves again after it.
+    assert outcome["result"].ok and outcome["result"].cycles == 30000
+    assert board.read(1000, 0, 10, 0) == 300.0
