@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Runs an NC program on a board and plots the tool centre path with matplotlib.
 
