@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import warnings
 
 import numpy as np
 
@@ -35,6 +36,10 @@ SEGMENT_DTYPE = np.dtype([
 
 _SELF_APPROACH = ("warn", "error", "off")
 
+# The most interpolation cycles a run samples by default: 2 million cycles (33 minutes at 1 ms)
+# of 8 axes hold 160 MB. A move may take up to 10^9 cycles (docs/nc-programs.md, "Limits").
+DEFAULT_MAX_SAMPLES = 2_000_000
+
 
 @dataclasses.dataclass(frozen=True)
 class RunIssue:
@@ -61,6 +66,7 @@ class RunResult:
     axes          (M, 8) float64: every axis of the board after each interpolation cycle
                   (empty with samples=False); ``xyz`` the X, Y, Z columns of it
     cycle, time   (M,): the clock value after each sampled cycle, and its time in s
+    samples_dropped  cycles beyond max_samples that were run but not kept (0: every cycle)
     """
 
     file: str
@@ -84,6 +90,7 @@ class RunResult:
     notices: list[RunIssue]
     registers: dict[int, GroupStatus]
     variables: dict[str, float]
+    samples_dropped: int = 0
     summary_text: str = dataclasses.field(repr=False, default="")
 
     @property
@@ -159,11 +166,13 @@ def _result(raw: dict) -> RunResult:
         notices=_issues(raw["notices"]),
         registers={r["group"]: decode_status(r["error"], r["status"], r["group"])
                    for r in raw["registers"] if r["readable"]},
-        variables=dict(raw["variables"]), summary_text=raw["summary"])
+        variables=dict(raw["variables"]), samples_dropped=raw["samples_dropped"],
+        summary_text=raw["summary"])
 
 
 def run(program, tools=None, device="emu:", *, name: str | None = None, corr=None, plc=None,
-        self_approach: str = "warn", samples: bool = True, check: bool = True) -> RunResult:
+        self_approach: str = "warn", samples: bool = True,
+        max_samples: int = DEFAULT_MAX_SAMPLES, check: bool = True) -> RunResult:
     """Runs an NC program on a board as ``apcictl run`` does and returns a RunResult.
 
     program        the program's text (a str with line breaks) or its path (str or PathLike)
@@ -176,6 +185,9 @@ def run(program, tools=None, device="emu:", *, name: str | None = None, corr=Non
     self_approach  "warn" (default), "error" or "off", as --self-approach
     samples        record the axes of every interpolation cycle (RunResult.axes); False saves
                    8 floats per cycle on long runs
+    max_samples    keep at most this many cycles (the first ones; default 2 million, 160 MB);
+                   beyond it the run goes on, the rest is counted in samples_dropped and a
+                   RuntimeWarning says so
     check          raise RunError when the board stopped the run with an error (the partial
                    result is its .result); False: return the result with .errors
 
@@ -188,21 +200,28 @@ def run(program, tools=None, device="emu:", *, name: str | None = None, corr=Non
         raise ValueError(f"self_approach must be one of {', '.join(_SELF_APPROACH)}, not "
                          f"{self_approach!r}")
     label = name if name is not None else "<text>"
+    if isinstance(max_samples, bool) or not isinstance(max_samples, int) or max_samples < 0:
+        raise ValueError(f"max_samples must be an int >= 0, not {max_samples!r}")
     if isinstance(device, Board):
         raw = _apci.run_program(device._board(), text, is_text, label, tools_text, tools_is_text,
                                 _path(corr, "corr"), _path(plc, "plc"), self_approach,
-                                bool(samples))
+                                bool(samples), max_samples)
     elif isinstance(device, str):
         with Board(device) as board:
             raw = _apci.run_program(board._board(), text, is_text, label, tools_text,
                                     tools_is_text, _path(corr, "corr"), _path(plc, "plc"),
-                                    self_approach, bool(samples))
+                                    self_approach, bool(samples), max_samples)
     else:
         raise TypeError(f"device must be a URI (str) or an apci.Board, not "
                         f"{type(device).__name__}")
     if "diagnostic" in raw:
         raise ProgramError(raw["diagnostic"])
     result = _result(raw)
+    if result.samples_dropped:
+        warnings.warn(f"run {result.file}: kept the first {len(result.axes)} cycles of "
+                      f"{len(result.axes) + result.samples_dropped} (max_samples="
+                      f"{max_samples}); pass a larger max_samples, or samples=False",
+                      RuntimeWarning, stacklevel=2)
     if check and result.errors:
         first = result.errors[0]
         bits = int(TcError[first.code]) if first.code in TcError.__members__ else 0

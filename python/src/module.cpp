@@ -133,10 +133,12 @@ std::vector<std::pair<std::string, std::uint32_t>> tc_bits(const char* (*name_of
 
 // ---- Runs
 
-// Collects what the executor reports: the executed segments and, if asked, the sampled axes.
+// Collects what the executor reports: the executed and programmed segments and, if asked, the
+// sampled axes, at most `max_samples` of them (the first ones; the rest are counted).
 class Collector final : public apci::run::RunSink {
   public:
-    explicit Collector(bool samples) : samples_(samples) {}
+    Collector(bool samples, std::uint64_t max_samples)
+        : samples_(samples), max_samples_(max_samples) {}
 
     void programmed(const apci::run::PathSegment& s) override { program.push_back(s); }
     // The whole contour, also after an error stopped the run (a plot shows where it stopped).
@@ -147,6 +149,10 @@ class Collector final : public apci::run::RunSink {
         axis_names.assign(names.begin(), names.end());
     }
     void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override {
+        if (cycles.size() >= max_samples_) {
+            ++samples_dropped;
+            return;
+        }
         cycles.push_back(cycle);
         times.push_back(time_s);
         for (std::size_t i = 0; i < APCI_AXIS_COUNT; ++i)
@@ -160,9 +166,11 @@ class Collector final : public apci::run::RunSink {
     std::vector<std::uint64_t> cycles;
     std::vector<double> times;
     std::vector<double> positions;  // APCI_AXIS_COUNT per sample
+    std::uint64_t samples_dropped = 0;
 
   private:
     bool samples_;
+    std::uint64_t max_samples_;
 };
 
 py::dict diagnostic_dict(const apci::nc::Diagnostic& d) {
@@ -287,7 +295,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
                      const std::string& name, const std::optional<std::string>& tools_source,
                      bool tools_is_text, const std::optional<std::string>& corr_path,
                      const std::optional<std::string>& plc_path, const std::string& self_approach,
-                     bool samples) {
+                     bool samples, std::uint64_t max_samples) {
     apci::nc::ToolTable tools;
     if (tools_source) {
         auto loaded = tools_is_text ? apci::nc::parse_tool_table(*tools_source, "<tools>")
@@ -309,7 +317,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     }
 
     const PyBoard::Use use(py_board);
-    Collector collector(samples);
+    Collector collector(samples, max_samples);
     apci::run::RunOutcome result;
     std::optional<apci::nc::Diagnostic> refused;
     {
@@ -352,6 +360,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     out["segments"] = segment_columns(collector.segments);
     out["programmed"] = segment_columns(collector.program);
     out["samples"] = sample_arrays(collector);
+    out["samples_dropped"] = collector.samples_dropped;
     out["axis_names"] =
         collector.axis_names.empty()
             ? std::vector<std::string>(result.axis_names.begin(), result.axis_names.end())
@@ -439,5 +448,5 @@ PYBIND11_MODULE(_apci, m) {
     m.def("run_program", &run_program, py::arg("board"), py::arg("program"),
           py::arg("program_is_text"), py::arg("name"), py::arg("tools"), py::arg("tools_is_text"),
           py::arg("corr"), py::arg("plc"), py::arg("self_approach"), py::arg("samples"),
-          "Runs an NC program on an open board as `apcictl run` does.");
+          py::arg("max_samples"), "Runs an NC program on an open board as `apcictl run` does.");
 }

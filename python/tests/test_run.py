@@ -213,3 +213,14 @@ def test_a_board_running_a_program_refuses_other_threads(board):
     # The run itself was not disturbed, and the board serves again after it.
     assert outcome["result"].ok and outcome["result"].cycles == 30000
     assert board.read(1000, 0, 10, 0) == 300.0
+
+
+def test_samples_beyond_max_samples_are_counted_not_kept():
+    with pytest.warns(RuntimeWarning, match=r"kept the first 100 cycles of 500 \(max_samples=100\)"):
+        result = apci.run("N10 G1 X3 Y4 F600\nM30\n", max_samples=100)
+    assert result.ok and result.cycles == 500
+    assert result.axes.shape == (100, 8) and result.samples_dropped == 400
+    assert list(result.cycle[[0, -1]]) == [1, 100]
+    np.testing.assert_array_equal(result.segments["end"][0], [3.0, 4.0, 0.0])
+    with pytest.raises(ValueError, match="max_samples must be an int >= 0"):
+        apci.run("M30\n", max_samples=-1)
