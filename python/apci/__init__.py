@@ -6,6 +6,7 @@
         board.write(1300, 1, 1, 8, 5)         # group 1 WKZINDEX (int object)
         board.write(1300, 1, 1, 7, 2.5)       # group 1 RADIUS (double object)
         board.read(1300, 1, 1, 7)             # 2.5
+        board.read("tc.group[1].radius")      # the same object by its name: 2.5
         board.status(1)                       # ERROR and STATUS decoded: .KorrError, .Run, ...
     result = apci.run("examples/wr_quad_disc.nc", tools="examples/tools/wr_quad_disc.tools")
     result.segments["end"]                    # (N, 3) end points of the executed segments
@@ -16,7 +17,7 @@ docs/python.md documents the package; it is a layer over libapci (apci.h) and th
 """
 
 from ._apci import version as _library_version
-from ._board import Board, open
+from ._board import Board, ObjectInfo, UnknownNameError, object_info, object_names, open
 from ._errors import Error, ObjectError, ProgramError, RunError, TransportError
 from ._run import SEGMENT_DTYPE, SEGMENT_KINDS, SEGMENT_ROLES, RunIssue, RunResult, run
 from ._status import (GroupStatus, Status, TcError, TcStatus, decode_status, status_message,
@@ -25,7 +26,7 @@ from ._status import (GroupStatus, Status, TcError, TcStatus, decode_status, sta
 __version__ = _library_version()
 
 __all__ = [
-    "Board", "open", "run",
+    "Board", "open", "run", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
     "Error", "ObjectError", "TransportError", "ProgramError", "RunError",
     "Status", "TcError", "TcStatus", "GroupStatus", "decode_status", "status_name",
     "status_message",

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 
@@ -33,6 +34,82 @@ def _int32(name: str, value) -> int:
 
 def _address_text(address) -> str:
     return "/".join(str(part) for part in address)
+
+
+def _as_int32(label: str, value) -> int:
+    """The value for an int32 object: an int, or a float that is one; TypeError / ValueError."""
+    if not isinstance(value, numbers.Integral):
+        value = float(value)
+        if not (math.isfinite(value) and value.is_integer()):
+            raise TypeError(f"write {label}: object holds an int32, and {value!r} is not "
+                            f"integral; give an int")
+    if not _INT32_MIN <= value <= _INT32_MAX:
+        raise ValueError(f"write {label}: object holds an int32, and {value!r} is outside int32 "
+                         f"({_INT32_MIN} .. {_INT32_MAX})")
+    return int(value)
+
+
+@dataclasses.dataclass(frozen=True)
+class ObjectInfo:
+    """One object of the board's object map (objif/map/objects.h) by its dotted name."""
+
+    name: str        # "tc.group[1].radius"
+    bus: int
+    device: int
+    index: int
+    subindex: int
+    type: str        # "int" (int32) or "double"
+    access: str      # "r", "w" or "r/w"
+    readable: bool
+    writable: bool
+    min: float       # the range a write must lie in (inclusive)
+    max: float
+    unit: str        # "mm", "deg", "us", "PU", ... or ""
+    rule: str        # where its rule comes from ("[APCI-TC] Table 3", ...)
+    title: str       # the name its document gives it ("RADIUS")
+
+    @property
+    def address(self) -> tuple[int, int, int, int]:
+        return (self.bus, self.device, self.index, self.subindex)
+
+
+class UnknownNameError(ObjectError, LookupError):
+    """No object of the map has this name. ``suggestions`` lists the nearest names."""
+
+    def __init__(self, name: str, suggestions: list[str]):
+        hint = f"; did you mean {' or '.join(suggestions)}?" if suggestions else \
+            "; apci.object_names() lists every name"
+        super().__init__(f"no object is named {name!r}{hint}", Status.ObjectMissing)
+        self.name = name
+        self.suggestions = suggestions
+
+
+def object_info(*args) -> ObjectInfo | None:
+    """The object map's entry for a dotted name, or for bus, device, index, subindex.
+
+    An unknown name raises UnknownNameError with suggestions; an address the map does not
+    name answers None.
+    """
+    if len(args) == 1 and isinstance(args[0], str):
+        found = _apci.find_object(args[0])
+        if found is None:
+            raise UnknownNameError(args[0], _apci.nearest_names(args[0], 3))
+        return ObjectInfo(**found)
+    if len(args) == 4:
+        return _object_at(tuple(_int32(n, v) for n, v in
+                                zip(("bus", "device", "index", "subindex"), args)))
+    raise TypeError(f"object_info() takes a name (str) or bus, device, index, subindex; got "
+                    f"{args!r}")
+
+
+def _object_at(address) -> ObjectInfo | None:
+    found = _apci.find_object_at(*address)
+    return ObjectInfo(**found) if found is not None else None
+
+
+def object_names() -> list[str]:
+    """Every dotted name of the object map, in map order (docs/object-map.md, "Names")."""
+    return _apci.object_names()
 
 
 class Board:
@@ -82,18 +159,24 @@ class Board:
 
     # ---- objects
 
-    def _address(self, args, verb: str):
-        """(bus, device, index, subindex) from the arguments of read/write."""
+    def _target(self, args, verb: str):
+        """(address, ObjectInfo or None) from a dotted name or bus, device, index, subindex."""
+        if len(args) == 1 and isinstance(args[0], str):
+            info = object_info(args[0])
+            return info.address, info
         if len(args) == 4:
-            return tuple(_int32(n, v) for n, v in zip(("bus", "device", "index", "subindex"),
-                                                      args))
-        raise TypeError(f"{verb}() takes bus, device, index, subindex (4 ints); got "
-                        f"{len(args)} argument(s): {args!r}")
+            address = tuple(_int32(n, v) for n, v in zip(("bus", "device", "index", "subindex"),
+                                                         args))
+            return address, _object_at(address)
+        raise TypeError(f"{verb}() takes an object name (str) or bus, device, index, subindex "
+                        f"(4 ints); got {len(args)} argument(s): {args!r}")
 
-    def _raise(self, verb: str, address, status: int, extra: str = ""):
+    def _raise(self, verb: str, address, info, status: int):
         """Raises the Error for a refused access, with the TC ERROR bits it set (if a group)."""
         message = self._native.last_error() or \
             f"{verb} {_address_text(address)}: {_apci.status_name(status)}"
+        if info is not None:
+            message = f"{info.name}: {message}"
         bits = 0
         bus, device, index, _ = address
         if bus == _TC_BUS and device == _TC_GROUPS and status != Status.TransportError:
@@ -102,65 +185,74 @@ class Board:
                 bits = value
                 if value:
                     message += f" (group ERROR now: {', '.join(decode_status(value).error_names)})"
-        raise error_class(status)(message + extra, status, bits)
+        raise error_class(status)(message, status, bits)
 
     def read(self, *args):
-        """read(bus, device, index, subindex) -> int or float, as the object's type is.
+        """read(name) or read(bus, device, index, subindex) -> int or float, as the object's
+        type is (the object map's, objif/names.h; the board's for an address it does not name).
 
-        Raises ObjectError (no such object, write-only, ...) or TransportError.
+        Raises ObjectError (no such object or name, write-only, ...) or TransportError.
         """
-        address = self._address(args, "read")
+        address, info = self._target(args, "read")
         board = self._board()
-        status, value = board.read_int(*address)
-        if status == Status.TypeMismatch:  # a double object: nothing was read or changed
-            status, value = board.read_double(*address)
+        if info is not None:
+            read = board.read_double if info.type == "double" else board.read_int
+            status, value = read(*address)
+        else:
+            status, value = board.read_int(*address)
+            if status == Status.TypeMismatch:  # a double object: nothing was read or changed
+                status, value = board.read_double(*address)
         if status != 0:
-            self._raise("read", address, status)
+            self._raise("read", address, info, status)
         return value
 
     def write(self, *args) -> None:
-        """write(bus, device, index, subindex, value).
+        """write(name, value) or write(bus, device, index, subindex, value).
 
         The value's type follows the object: an int written to a double object is written as
         that float; a float written to an int object must be integral (2.0), else TypeError.
         bool and non-numbers are a TypeError. A refused write changes nothing on the board.
         """
-        if len(args) < 1:
-            raise TypeError("write() takes bus, device, index, subindex and a value")
-        address = self._address(args[:-1], "write")
+        if len(args) < 2:
+            raise TypeError("write() takes an object name or bus, device, index, subindex, and "
+                            "a value")
+        address, info = self._target(args[:-1], "write")
         value = args[-1]
+        label = _address_text(address) if info is None else \
+            f"{info.name} ({_address_text(address)})"
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
-            raise TypeError(f"write {_address_text(address)}: the value must be an int or a "
-                            f"float, not {type(value).__name__} ({value!r})")
+            raise TypeError(f"write {label}: the value must be an int or a float, not "
+                            f"{type(value).__name__} ({value!r})")
         board = self._board()
+        if info is not None and info.type == "double":
+            status = board.write_double(*address, float(value))
+        elif info is not None:
+            status = board.write_int(*address, _as_int32(label, value))
+        else:
+            status = self._write_probing(board, label, address, value)
+        if status != 0:
+            self._raise("write", address, info, status)
+
+    @staticmethod
+    def _write_probing(board, label: str, address, value) -> int:
+        """Writes to an object the map does not name: the accessor the value suggests, and on
+        the board's TypeMismatch (which changes nothing) the other one, as apcictl write."""
         if isinstance(value, numbers.Integral):
             value = int(value)
             if _INT32_MIN <= value <= _INT32_MAX:
                 status = board.write_int(*address, value)
                 if status != Status.TypeMismatch:
-                    return self._check("write", address, status)
+                    return status
             # A double object (or an int beyond int32, which only a double object can take).
             status = board.write_double(*address, float(value))
             if status == Status.TypeMismatch:
-                raise ValueError(f"write {_address_text(address)}: object holds an int32, and "
-                                 f"{value} is outside int32 ({_INT32_MIN} .. {_INT32_MAX})")
-            return self._check("write", address, status)
+                _as_int32(label, value)  # raises: beyond int32
+            return status
         value = float(value)
         status = board.write_double(*address, value)
         if status != Status.TypeMismatch:
-            return self._check("write", address, status)
-        # An int32 object: only an integral float is the same value as an int.
-        if not (math.isfinite(value) and value.is_integer()):
-            raise TypeError(f"write {_address_text(address)}: object holds an int32, and "
-                            f"{value!r} is not integral; give an int")
-        if not _INT32_MIN <= value <= _INT32_MAX:
-            raise ValueError(f"write {_address_text(address)}: object holds an int32, and "
-                             f"{value!r} is outside int32 ({_INT32_MIN} .. {_INT32_MAX})")
-        return self._check("write", address, board.write_int(*address, int(value)))
-
-    def _check(self, verb: str, address, status: int) -> None:
-        if status != 0:
-            self._raise(verb, address, status)
+            return status
+        return board.write_int(*address, _as_int32(label, value))
 
     # ---- TC status
 
@@ -182,4 +274,5 @@ def open(uri: str = "emu:") -> Board:  # noqa: A001 - the package's verb, as apc
     return Board(uri)
 
 
-__all__ = ["Board", "open", "Error", "ObjectError", "TransportError", "TcError"]
+__all__ = ["Board", "open", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
+           "Error", "ObjectError", "TransportError", "TcError"]

@@ -33,6 +33,10 @@
 #include "apci/run/path.h"
 #include "apci/run/plc_script.h"
 #include "apci/run/summary.h"
+#include "objif/descriptor.h"
+#include "objif/names.h"
+#include "objif/object_info.h"
+#include "objif/value.h"
 
 namespace py = pybind11;
 
@@ -128,6 +132,53 @@ std::vector<std::pair<std::string, std::uint32_t>> tc_bits(const char* (*name_of
     for (int bit = 0; bit < 32; ++bit) {
         if (const char* name = name_of(bit)) out.emplace_back(name, std::uint32_t{1} << bit);
     }
+    return out;
+}
+
+// ---- Object names (objif/names.h): the board's object map by dotted name, shared by the host
+// and the emulator, so the type and range the package uses are those the board checks.
+
+// One object of the map as a dict: its name, address and what the map says of it.
+py::dict object_dict(const objif::NamedObject& o) {
+    py::dict out;
+    out["name"] = o.name;
+    out["bus"] = o.address.bus;
+    out["device"] = o.address.device;
+    out["index"] = o.address.index;
+    out["subindex"] = o.address.subindex;
+    const objif::ObjectInfo& info = *o.info;
+    out["type"] = std::string(objif::value_type_name(info.type));
+    out["access"] = std::string(objif::access_name(info.access));
+    out["readable"] = objif::can_read(info.access);
+    out["writable"] = objif::can_write(info.access);
+    out["min"] = info.min;
+    out["max"] = info.max;
+    out["unit"] = std::string(info.unit);
+    out["rule"] = std::string(info.rule);
+    out["title"] = std::string(info.name);
+    return out;
+}
+
+std::optional<py::dict> find_by_name(const std::string& name) {
+    const objif::NamedObject* o = objif::find_object(std::string_view(name));
+    return o != nullptr ? std::optional<py::dict>(object_dict(*o)) : std::nullopt;
+}
+
+std::optional<py::dict> find_by_address(std::int32_t bus, std::int32_t device, std::int32_t index,
+                                        std::int32_t subindex) {
+    const objif::NamedObject* o = objif::find_object(objif::Address{bus, device, index, subindex});
+    return o != nullptr ? std::optional<py::dict>(object_dict(*o)) : std::nullopt;
+}
+
+std::vector<std::string> nearest(const std::string& name, std::size_t max) {
+    std::vector<std::string> out;
+    for (std::string_view n : objif::nearest_names(name, max)) out.emplace_back(n);
+    return out;
+}
+
+std::vector<std::string> object_names() {
+    std::vector<std::string> out;
+    for (const objif::NamedObject& o : objif::named_objects()) out.push_back(o.name);
     return out;
 }
 
@@ -432,6 +483,15 @@ PYBIND11_MODULE(_apci, m) {
             return out;
         },
         "The JSON names of the run's segment roles, by their numbers.");
+
+    m.def("find_object", &find_by_name, py::arg("name"),
+          "The map's object of a dotted name (objif/names.h) as a dict, or None.");
+    m.def("find_object_at", &find_by_address, py::arg("bus"), py::arg("device"), py::arg("index"),
+          py::arg("subindex"),
+          "The map's object at an address as a dict, or None when the map has none there.");
+    m.def("nearest_names", &nearest, py::arg("name"), py::arg("max") = 3,
+          "Up to `max` names close to `name`, nearest first.");
+    m.def("object_names", &object_names, "Every dotted name of the map, in map order.");
 
     py::class_<PyBoard>(m, "Board")
         .def(py::init<const std::string&>(), py::arg("uri"))

@@ -60,7 +60,7 @@ def test_an_integral_float_for_an_int_object_is_written_as_that_int(board):
 
 def test_a_fractional_float_for_an_int_object_is_a_type_error_and_changes_nothing(board):
     board.write(*WKZINDEX, 4)
-    with pytest.raises(TypeError, match=r"1300/1/1/8: object holds an int32, and 2\.5 is not "
+    with pytest.raises(TypeError, match=r"1300/1/1/8\): object holds an int32, and 2\.5 is not "
                                         r"integral"):
         board.write(*WKZINDEX, 2.5)
     with pytest.raises(TypeError, match="not integral"):
