@@ -5,7 +5,7 @@
 # libraries, tools and examples (with every header of ours they include). Any
 # finding fails the stage. Only configures (build-analysis/
 # compile_commands.json); builds nothing.
-#   APCI_TIDY_SCOPE   "code" (default, CI): objif, rwmos_emu, driver, tools,
+#   APCI_TIDY_SCOPE   "code" (default, CI): objif, rwmos_emu, driver, tools, python,
 #                     examples; "all": also tests and benchmarks (twice the
 #                     time: run it before a release and after touching them)
 #   APCI_TIDY_FILES   a regex limiting clang-tidy to some files (overrides the scope)
@@ -21,8 +21,8 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 
 root="$(pwd)"
 case "${APCI_TIDY_SCOPE:-code}" in
-  code) scope="^$root/(objif|rwmos_emu|driver|tools|examples)/" ;;
-  all) scope="^$root/(objif|rwmos_emu|driver|tools|tests|examples|bench)/" ;;
+  code) scope="^$root/(objif|rwmos_emu|driver|tools|python|examples)/" ;;
+  all) scope="^$root/(objif|rwmos_emu|driver|tools|python|tests|examples|bench)/" ;;
   *) echo "APCI_TIDY_SCOPE: code or all, not '$APCI_TIDY_SCOPE'" >&2; exit 2 ;;
 esac
 files="${APCI_TIDY_FILES:-$scope}"

@@ -184,6 +184,31 @@ TEST(ApcictlDumpOnADaemon, ListsEveryReadableObjectWithTheDaemonsValues) {
     EXPECT_FALSE(contains(all.out, "\"status\"")) << "every object read";
 }
 
+// The same names over the daemon's shared-memory file and over that file seen as a PCI board's
+// memory BAR (the PCI path): a write and a read by name, and `dump tc` lists the same objects as
+// on the embedded board.
+TEST(ApcictlDumpOnADaemon, NamesWorkOverTheSharedMemoryAndPciTransports) {
+    DaemonOptions o;
+    o.shm = true;
+    auto d = Daemon::start(o);
+    ASSERT_NE(d, nullptr);
+    FakePciSysfs sysfs(d->shm_path(), FakePciSysfs::BarKind::kMemory);
+    const auto there = nlohmann::json::parse(apcictl({"dump", "tc", "--json"}).out);
+    for (const std::string& uri : {d->shm_uri(), std::string("pci:0000:01:00.0")}) {
+        SCOPED_TRACE(uri);
+        const auto wrote = apcictl({"--device", uri, "write", "tc.group[2].radius", "1.25"});
+        ASSERT_EQ(wrote.exit_code, 0) << wrote.err;
+        const auto read = apcictl({"--device", uri, "read", "tc.group[2].radius"});
+        EXPECT_EQ(read.exit_code, 0) << read.err;
+        EXPECT_EQ(read.out, "1.25\n");
+        const auto dump = apcictl({"--device", uri, "dump", "tc", "--json"});
+        ASSERT_EQ(dump.exit_code, 0) << dump.err;
+        const auto here = nlohmann::json::parse(dump.out);
+        ASSERT_EQ(here.size(), there.size());
+        for (std::size_t i = 0; i < here.size(); ++i) EXPECT_EQ(here[i]["name"], there[i]["name"]);
+    }
+}
+
 // A link that fails ends the dump at its first read (every read after would wait for the same
 // link), naming the object; nothing is printed. In process: the session opened, then the daemon
 // went away.

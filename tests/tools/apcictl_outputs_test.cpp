@@ -386,7 +386,7 @@ long write_calls() {
 }
 
 // Published whole, in large writes: 100,000 CSV lines (about 4 MB) reach the file in pieces of
-// 64 KiB, not one write a line; until publish() the target keeps its old content, and
+// 1 MiB (the bound below allows one write per 64 KiB), not one write a line; until publish() the target keeps its old content, and
 // discard() leaves it so.
 TEST_F(ApcictlOutputs, OutputFileWritesInLargePiecesAndPublishesByRename) {
     write("trace.csv", "old\n");
