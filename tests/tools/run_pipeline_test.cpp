@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "plate_program.h"
 #include "apci/apci.hpp"
 #include "apci/nc/program.h"
 #include "apci/run/executor.h"
@@ -354,19 +355,7 @@ TEST(RunPipeline, TheWriterThreadLeavesProcessSignalsToTheCaller) {
 
 // ---- a run through the pipeline: the same bytes
 
-std::string program_text(int turns) {
-    static const char* kTurn[] = {"G1 X40 Y0", "G3 X50 Y10 I0 J10",
-                                  "G1 Y30",    "G3 X40 Y40 I-10 J0",
-                                  "G1 X30",    "G1 Y30",
-                                  "G1 X20",    "G1 Y40",
-                                  "G1 X10",    "G3 X0 Y30 I0 J-10",
-                                  "G1 Y10",    "G3 X10 Y0 I10 J0"};
-    std::string text = "N1 G17 G90 G26 F3000 D1\nN2 G0 X10 Y0 Z0\nN3 G41\n";
-    int n = 4;
-    for (int k = 0; k < turns; ++k)
-        for (const char* b : kTurn) text += "N" + std::to_string(n++) + " " + b + "\n";
-    return text + "N" + std::to_string(n) + " G40\nM30\n";
-}
+std::string program_text(int turns) { return apci::test::plate_program(turns); }
 
 class JsonAndSvg final : public RunSink {
   public:
