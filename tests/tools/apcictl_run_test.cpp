@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "plate_program.h"
 #include "apci/run/path.h"
 #include "apci/run/self_approach.h"
 #include "process.h"
@@ -55,6 +56,20 @@ std::string read_text(const std::string& path) {
 bool exists(const std::string& path) {
     struct stat st;
     return ::stat(path.c_str(), &st) == 0;
+}
+
+// Starts the emulator daemon serving a socket at `socket` (its standard error to /dev/null) and
+// waits up to 5 s for the socket; the child's pid, or -1.
+pid_t start_daemon(const std::string& socket) {
+    const pid_t daemon = ::fork();
+    if (daemon == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 2);
+        ::execl(RWMOS_EMU_PATH, RWMOS_EMU_PATH, "--socket", socket.c_str(), nullptr);
+        ::_exit(127);
+    }
+    for (int i = 0; daemon > 0 && i < 500 && !exists(socket); ++i) ::usleep(10'000);
+    return daemon;
 }
 
 class ApcictlRun : public ::testing::Test {
@@ -446,17 +461,7 @@ TEST_F(ApcictlRun, ClosedContourUnderG237KeepsTheRadiusWithPerpendicularApproach
 // More profiles than the spooler holds: Busy makes the executor run the clock and spool again;
 // every block runs, in order, and the path stays r from the contour throughout.
 TEST_F(ApcictlRun, ProgramLongerThanTheSpoolerRunsWhole) {
-    const char* turn[] = {"G1 X40 Y0", "G3 X50 Y10 I0 J10",
-                          "G1 Y30",    "G3 X40 Y40 I-10 J0",
-                          "G1 X30",    "G1 Y30",
-                          "G1 X20",    "G1 Y40",
-                          "G1 X10",    "G3 X0 Y30 I0 J-10",
-                          "G1 Y10",    "G3 X10 Y0 I10 J0"};
-    std::string text = "N1 G17 G90 G26 F3000 D1\nN2 G0 X10 Y0 Z0\nN3 G41\n";
-    int n = 4;
-    for (int k = 0; k < 100; ++k)
-        for (const char* b : turn) text += "N" + std::to_string(n++) + " " + b + "\n";
-    text += "N" + std::to_string(n) + " G40\nM30\n";
+    const std::string text = apci::test::plate_program(100);
     const json doc = run_json(write("long.nc", text), {"--tools", tools(1.0)});
     EXPECT_TRUE(contains(last_.out, ": 1205 blocks, 1205 executed, ")) << last_.out;
     expect_continuous(doc);
@@ -562,15 +567,8 @@ TEST_F(ApcictlRun, CompensationFiguresAreCurrent) {
 // as on the embedded board: the same JSON, byte for byte.
 TEST_F(ApcictlRun, SamePathThroughTheDaemonSocketAsOnTheEmbeddedBoard) {
     const std::string socket = path("emu.sock");
-    const pid_t daemon = ::fork();
-    if (daemon == 0) {
-        const int null = ::open("/dev/null", O_WRONLY);
-        ::dup2(null, 2);
-        ::execl(RWMOS_EMU_PATH, RWMOS_EMU_PATH, "--socket", socket.c_str(), nullptr);
-        ::_exit(127);
-    }
+    const pid_t daemon = start_daemon(socket);
     ASSERT_GT(daemon, 0);
-    for (int i = 0; i < 500 && !exists(socket); ++i) ::usleep(10'000);
     ASSERT_TRUE(exists(socket));
     const std::vector<std::string> args{"run", kExamples + "/wr_quad_disc.nc", "--tools",
                                         kExamples + "/tools/wr_quad_disc.tools", "--json"};
@@ -1628,15 +1626,8 @@ TEST_F(ApcictlRun, AnErrorAtTheLastLineLeavesTheExistingOutputsUntouched) {
 // before anything moves, so its board sees no profile of an invalid program.
 TEST_F(ApcictlRun, ADaemonsBoardSeesNoMoveOfAnInvalidProgram) {
     const std::string socket = path("emu.sock");
-    const pid_t daemon = ::fork();
-    if (daemon == 0) {
-        const int null = ::open("/dev/null", O_WRONLY);
-        ::dup2(null, 2);
-        ::execl(RWMOS_EMU_PATH, RWMOS_EMU_PATH, "--socket", socket.c_str(), nullptr);
-        ::_exit(127);
-    }
+    const pid_t daemon = start_daemon(socket);
     ASSERT_GT(daemon, 0);
-    for (int i = 0; i < 500 && !exists(socket); ++i) ::usleep(10'000);
     ASSERT_TRUE(exists(socket));
     const std::string bad = write("bad.nc", moves_then(3000, "N3003 G1 X7\nN3004 G1 X\nM30\n"));
     const std::string good = write("good.nc", "N1 G1 Y1 F1000\nM30\n");
