@@ -73,6 +73,14 @@ struct Hooks {
     Status (M::*write)(const ObjectInfo&, const Address&, const Value&) = nullptr;
 };
 
+namespace detail {
+// Not constexpr: attach() reaching one of these does not compile, and the compiler's message
+// names it.
+inline void hooks_out_of_step_with_the_object_map() noexcept {}
+inline void a_read_hook_is_given_exactly_for_a_readable_object() noexcept {}
+inline void a_write_hook_is_given_exactly_for_a_writable_object() noexcept {}
+}  // namespace detail
+
 // A module's table: each row of the map with its hooks. Checked at compile time: the hooks
 // follow the map row by row, a readable object has a read hook and only a readable one, a
 // writable object a write hook and only a writable one.
@@ -83,11 +91,11 @@ consteval std::array<Entry<M>, N> attach(const std::array<ObjectInfo, N>& object
     for (std::size_t i = 0; i < N; ++i) {
         const ObjectInfo& o = objects[i];
         const Hooks<M>& h = hooks[i];
-        if (o.name != h.name) throw "hooks out of step with the object map (names differ)";
+        if (o.name != h.name) detail::hooks_out_of_step_with_the_object_map();
         if (can_read(o.access) != (h.read != nullptr))
-            throw "a read hook must be given exactly for a readable object";
+            detail::a_read_hook_is_given_exactly_for_a_readable_object();
         if (can_write(o.access) != (h.write != nullptr))
-            throw "a write hook must be given exactly for a writable object";
+            detail::a_write_hook_is_given_exactly_for_a_writable_object();
         table[i] = Entry<M>{o, h.read, h.write};
     }
     return table;
