@@ -91,6 +91,10 @@ TEST(ObjectNames, SuggestionsFindWhatWasMeant) {
     EXPECT_EQ(objif::nearest_names("otc.tool.wearconst").front(), "otc.tool.wear_const");
     EXPECT_LE(objif::nearest_names("board.axis_cnt", 2).size(), 2u);
     EXPECT_TRUE(objif::nearest_names("something entirely different").empty());
+    // A row over a range of indices is offered at the typed index, brought into its range.
+    EXPECT_EQ(objif::nearest_names("comp3d.tool[17].dr3").front(), "comp3d.tool[17].dr");
+    EXPECT_EQ(objif::nearest_names("tc.group[4].radius").front(), "tc.group[3].radius");
+    EXPECT_EQ(objif::nearest_names("tc.groupxx.radius").front(), "tc.group[0].radius");
 }
 
 // The name list of docs/object-map.md, made from the tables: a row of objects over an index
