@@ -43,7 +43,7 @@ Module* Dictionary::module(std::int32_t bus) const noexcept {
 // cheap to check: one vector index and one compare. Issuing finds an
 // address's slot by hash, so resolving every object of the map once costs
 // time linear in the number of objects.
-std::size_t Dictionary::AddressHash::operator()(const Address& a) const noexcept {
+std::size_t AddressHash::operator()(const Address& a) const noexcept {
     std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a style, a field at a time
     for (const std::int32_t field : {a.bus, a.device, a.index, a.subindex}) {
         h ^= static_cast<std::uint32_t>(field);

@@ -13,16 +13,6 @@
 namespace objif {
 namespace {
 
-struct AddressHash {
-    std::size_t operator()(const Address& a) const noexcept {
-        std::size_t h = static_cast<std::uint32_t>(a.bus);
-        h = h * 1000003u ^ static_cast<std::uint32_t>(a.device);
-        h = h * 1000003u ^ static_cast<std::uint32_t>(a.index);
-        h = h * 1000003u ^ static_cast<std::uint32_t>(a.subindex);
-        return h;
-    }
-};
-
 std::string_view device_key(const map::ModuleMap& m, std::int32_t device) {
     for (const map::DeviceMap& d : m.devices)
         if (d.device == device) return d.key;
@@ -50,17 +40,16 @@ Index build() {
     for (const map::ModuleMap& m : map::kModules) {
         for (const ObjectInfo& o : m.objects) {
             if (o.key.empty()) continue;
+            // MODULE[.DEVICE], then [INDEX] for a range of indices, then .KEY.
             const std::string_view dev = device_key(m, o.device);
-            std::string shape(m.key);
-            if (!dev.empty()) shape += fmt::format(".{}", dev);
-            if (o.index_first != o.index_last) shape += "[]";
-            shape += fmt::format(".{}", o.key);
-            ix.shapes.push_back({std::move(shape), &o, ix.objects.size()});
+            const std::string prefix =
+                dev.empty() ? std::string(m.key) : fmt::format("{}.{}", m.key, dev);
+            const bool ranged = o.index_first != o.index_last;
+            ix.shapes.push_back({fmt::format("{}{}.{}", prefix, ranged ? "[]" : "", o.key), &o,
+                                 ix.objects.size()});
             for (std::int32_t i = o.index_first; i <= o.index_last; ++i) {
-                std::string name(m.key);
-                if (!dev.empty()) name += fmt::format(".{}", dev);
-                if (o.index_first != o.index_last) name += fmt::format("[{}]", i);
-                name += fmt::format(".{}", o.key);
+                std::string name = ranged ? fmt::format("{}[{}].{}", prefix, i, o.key)
+                                          : fmt::format("{}.{}", prefix, o.key);
                 ix.objects.push_back({std::move(name), {m.bus, o.device, i, o.subindex}, &o, &m});
             }
         }

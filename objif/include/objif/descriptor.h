@@ -6,6 +6,7 @@
 // their handles).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -18,6 +19,11 @@ struct Address {
     std::int32_t subindex = 0;
     friend constexpr bool operator==(const Address&, const Address&) = default;
     std::string to_string() const;  // "1300/1/1/8"
+};
+
+// A hash of an address, for maps keyed by it (the dictionary's handle slots, the names).
+struct AddressHash {
+    std::size_t operator()(const Address& a) const noexcept;
 };
 
 using Handle = std::uint32_t;  // 0 = not yet resolved

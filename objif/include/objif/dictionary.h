@@ -174,9 +174,6 @@ private:
     static constexpr unsigned kSlotBits = 16;
     Status issue(const Address& a, Module* m, const ObjectInfo* info, Handle& out);
 
-    struct AddressHash {
-        std::size_t operator()(const Address& a) const noexcept;
-    };
 
     std::vector<Module*> modules_;
     std::vector<Slot> slots_;  // slot i <-> handle low bits i+1
