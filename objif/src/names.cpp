@@ -45,8 +45,8 @@ Index build() {
             const std::string prefix =
                 dev.empty() ? std::string(m.key) : fmt::format("{}.{}", m.key, dev);
             const bool ranged = o.index_first != o.index_last;
-            ix.shapes.push_back({fmt::format("{}{}.{}", prefix, ranged ? "[]" : "", o.key), &o,
-                                 ix.objects.size()});
+            ix.shapes.push_back(
+                {fmt::format("{}{}.{}", prefix, ranged ? "[]" : "", o.key), &o, ix.objects.size()});
             for (std::int32_t i = o.index_first; i <= o.index_last; ++i) {
                 std::string name = ranged ? fmt::format("{}[{}].{}", prefix, i, o.key)
                                           : fmt::format("{}.{}", prefix, o.key);
