@@ -311,6 +311,10 @@ TEST_F(ApcictlShell, TerminalWithAHistoryLinkWarnsAndLeavesItAlone) {
     ASSERT_TRUE(terminal.wait_for_prompt()) << terminal.output();
     terminal.type("read 1300 1 1 7\r");
     ASSERT_TRUE(terminal.wait_for("\n0\r\n")) << terminal.output();
+    // Ctrl-D typed ahead, while the terminal is still in cooked mode, would reach the line
+    // editor as a NUL byte (the line discipline turns a pending EOF into one when the mode
+    // changes): wait until the editor holds the terminal again.
+    ASSERT_TRUE(terminal.wait_for_prompt()) << terminal.output();
     terminal.type("\x04");
     EXPECT_EQ(terminal.wait_exit(), 0) << terminal.output();
     EXPECT_EQ(read_file(target), "not a history\n");
