@@ -130,7 +130,11 @@ const NamedObject* find_object(const Address& a) noexcept {
     return it == ix.by_address.end() ? nullptr : &ix.objects[it->second];
 }
 
-std::vector<std::string_view> nearest_names(std::string_view typed, std::size_t max) {
+namespace {
+
+// The names within reach of `typed` with their edit distances, nearest first (ties in map
+// order).
+std::vector<std::pair<std::size_t, std::string_view>> matches(std::string_view typed) {
     // The typed text with its first bracketed number taken out ("tc.group[7].radus" ->
     // "tc.group[].radus", index 7), to meet the rows over a range of indices.
     std::string typed_shape(typed);
@@ -165,9 +169,27 @@ std::vector<std::string_view> nearest_names(std::string_view typed, std::size_t 
     }
     std::stable_sort(close.begin(), close.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    return close;
+}
+
+}  // namespace
+
+std::vector<std::string_view> nearest_names(std::string_view typed, std::size_t max) {
     std::vector<std::string_view> out;
-    for (std::size_t k = 0; k < close.size() && out.size() < max; ++k)
-        out.push_back(close[k].second);
+    for (const auto& [distance, name] : matches(typed)) {
+        if (out.size() == max) break;
+        out.push_back(name);
+    }
+    return out;
+}
+
+std::vector<std::string_view> closest_names(std::string_view typed, std::size_t max) {
+    const auto close = matches(typed);
+    std::vector<std::string_view> out;
+    for (const auto& [distance, name] : close) {
+        if (out.size() == max || distance != close.front().first) break;
+        out.push_back(name);
+    }
     return out;
 }
 

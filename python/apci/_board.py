@@ -93,7 +93,7 @@ def object_info(*args) -> ObjectInfo | None:
     if len(args) == 1 and isinstance(args[0], str):
         found = _apci.find_object(args[0])
         if found is None:
-            raise UnknownNameError(args[0], _apci.nearest_names(args[0], 3))
+            raise UnknownNameError(args[0], _apci.closest_names(args[0], 3))
         return ObjectInfo(**found)
     if len(args) == 4:
         return _object_at(tuple(_int32(n, v) for n, v in

@@ -176,6 +176,12 @@ std::vector<std::string> nearest(const std::string& name, std::size_t max) {
     return out;
 }
 
+std::vector<std::string> closest(const std::string& name, std::size_t max) {
+    std::vector<std::string> out;
+    for (std::string_view n : objif::closest_names(name, max)) out.emplace_back(n);
+    return out;
+}
+
 std::vector<std::string> object_names() {
     std::vector<std::string> out;
     for (const objif::NamedObject& o : objif::named_objects()) out.push_back(o.name);
@@ -491,6 +497,8 @@ PYBIND11_MODULE(_apci, m) {
           "The map's object at an address as a dict, or None when the map has none there.");
     m.def("nearest_names", &nearest, py::arg("name"), py::arg("max") = 3,
           "Up to `max` names close to `name`, nearest first.");
+    m.def("closest_names", &closest, py::arg("name"), py::arg("max") = 3,
+          "Of nearest_names, only those as close as the closest (what an error suggests).");
     m.def("object_names", &object_names, "Every dotted name of the map, in map order.");
 
     py::class_<PyBoard>(m, "Board")

@@ -38,7 +38,8 @@ def test_an_unknown_name_is_an_object_error_with_suggestions(board):
     e = caught.value
     assert isinstance(e, apci.ObjectError) and isinstance(e, LookupError)
     assert e.status == apci.Status.ObjectMissing
-    assert "tc.group[1].radius" in e.suggestions
+    # Only the closest: not the other groups' radius nor names one step further.
+    assert e.suggestions == ["tc.group[1].radius"]
     assert "no object is named 'tc.group[1].radus'; did you mean" in str(e)
     with pytest.raises(apci.UnknownNameError):
         board.write("no.such.thing", 1)

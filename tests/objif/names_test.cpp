@@ -97,6 +97,21 @@ TEST(ObjectNames, SuggestionsFindWhatWasMeant) {
     EXPECT_EQ(objif::nearest_names("tc.groupxx.radius").front(), "tc.group[0].radius");
 }
 
+TEST(ObjectNames, AnErrorSuggestsOnlyTheClosestNames) {
+    // One step from group 1's radius; the nearest list goes on to names further away.
+    const auto nearest = objif::nearest_names("tc.group[1].radus", 3);
+    ASSERT_GT(nearest.size(), 1u);
+    EXPECT_EQ(objif::closest_names("tc.group[1].radus"),
+              std::vector<std::string_view>{"tc.group[1].radius"});
+    // Ties stay, in map order, up to max.
+    const auto tied = objif::closest_names("tc.group[1].x", 10);
+    ASSERT_FALSE(tied.empty());
+    const std::size_t d = objif::edit_distance("tc.group[1].x", tied.front());
+    for (std::string_view n : tied) EXPECT_EQ(objif::edit_distance("tc.group[1].x", n), d) << n;
+    EXPECT_LE(objif::closest_names("tc.group[1].x", 1).size(), 1u);
+    EXPECT_TRUE(objif::closest_names("something entirely different").empty());
+}
+
 // The name list of docs/object-map.md, made from the tables: a row of objects over an index
 // range is one line with the range in brackets.
 std::string names_section() {

@@ -28,12 +28,7 @@ const objif::NamedObject* resolve_object_name(std::string_view name, std::string
     if (const objif::NamedObject* o = objif::find_object(name)) return o;
     // The closest names only: tc.group[1].radus means tc.group[1].radius, not group 2's too.
     std::vector<std::string> meant;
-    std::size_t best = 0;
-    for (std::string_view n : objif::nearest_names(name, 3)) {
-        const std::size_t d = objif::edit_distance(name, n);
-        if (meant.empty()) best = d;
-        if (d == best) meant.emplace_back(n);
-    }
+    for (std::string_view n : objif::closest_names(name, 3)) meant.emplace_back(n);
     if (meant.empty())
         error = fmt::format(
             "unknown object '{}' (names: docs/object-map.md section 8, or 'apcictl dump')", name);

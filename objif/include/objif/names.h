@@ -48,6 +48,9 @@ const NamedObject* find_object(const Address& a) noexcept;
 // Up to `max` names closest to `typed` (edit distance, ties in map order), for "did you
 // mean": only names within a distance of a third of the longer name's length.
 std::vector<std::string_view> nearest_names(std::string_view typed, std::size_t max = 3);
+// Of those, only the names as close as the closest (up to `max`), for an error message:
+// tc.group[1].radus means tc.group[1].radius, not also group 2's radius one step further.
+std::vector<std::string_view> closest_names(std::string_view typed, std::size_t max = 3);
 
 // The Damerau-Levenshtein distance (optimal string alignment: insertions, deletions,
 // substitutions and swaps of two neighbours, each 1), ignoring ASCII case.
