@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/json_writer.h"
 
-#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string_view>
 
 #include "apci/apci.h"
@@ -19,17 +19,64 @@ namespace {
 
 constexpr std::size_t kNumberMax = 32;  // the longest JSON number below: 24 characters
 
+// "00" to "99": two decimal digits a step.
+constexpr char kDigitPairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+// How many decimal digits v has (1 for 0).
+int digit_count(std::uint64_t v) noexcept {
+    int n = 1;
+    for (; v >= 100; v /= 100) n += 2;
+    return v >= 10 ? n + 1 : n;
+}
+
+// The `count` last decimal digits of v, leading zeros included; returns their end.
+char* exact_digits(char* out, std::uint64_t v, int count) noexcept {
+    char* const end = out + count;
+    char* p = end;
+    for (; count >= 2; count -= 2, v /= 100) {
+        p -= 2;
+        std::memcpy(p, kDigitPairs + 2 * (v % 100), 2);
+    }
+    if (count == 1) *--p = static_cast<char>('0' + v % 10);
+    return end;
+}
+
 // The decimal digits of `v`, at least `width` of them (leading zeros); returns their end.
-char* digits(char* out, std::uint64_t v, int width) {
-    char tmp[20];
-    int n = 0;
-    do {
-        tmp[n++] = static_cast<char>('0' + v % 10);
-        v /= 10;
-    } while (v != 0);
-    while (n < width) tmp[n++] = '0';
-    while (n > 0) *out++ = tmp[--n];
-    return out;
+char* digits(char* out, std::uint64_t v, int width) noexcept {
+    return exact_digits(out, v, std::max(width, digit_count(v)));
+}
+
+// significand * 10^exponent in fixed notation: the digits with the decimal point among or
+// before them ("0.00123"), or followed by zeros (exponent >= 0).
+char* fixed_notation(char* out, bool negative, std::uint64_t significand, int exponent) noexcept {
+    if (negative) *out++ = '-';
+    const int n = digit_count(significand);
+    if (exponent >= 0) {
+        out = exact_digits(out, significand, n);
+        return std::fill_n(out, exponent, '0');
+    }
+    const int whole = n + exponent;  // digits before the point
+    if (whole <= 0) {
+        *out++ = '0';
+        *out++ = '.';
+        out = std::fill_n(out, -whole, '0');
+        return exact_digits(out, significand, n);
+    }
+    char text[20];
+    exact_digits(text, significand, n);
+    out = std::copy_n(text, whole, out);
+    *out++ = '.';
+    return std::copy_n(text + whole, n - whole, out);
+}
+
+// The shortest text that reads back as v (Dragonbox, the algorithm of fmt and std::to_chars),
+// in fixed notation: the text of both for 1e-3 <= |v| < 1e15, where both choose it.
+char* shortest_fixed(char* out, double v) noexcept {
+    const auto d = fmt::detail::dragonbox::to_decimal(v);
+    return fixed_notation(out, std::signbit(v), d.significand, d.exponent);
 }
 
 // A value with at most 4 decimals (program coordinates, arc centres), 1e-3 <= |v| < 1e9, as
@@ -59,9 +106,9 @@ char* short_decimal(char* out, double v) {
 
 // A JSON number: the same text as append_json_number (std::to_chars, the shortest text that
 // reads back exactly; whole numbers as integers; null for NaN and infinities), made faster:
-// values with few decimals by short_decimal, the rest by fmt's shortest round-trip (Dragonbox),
-// which writes the same text as std::to_chars where both choose fixed or scientific notation
-// alike: 1e-3 <= |v| < 1e15. Outside that (0.0001: "1e-04" for std::to_chars, "0.0001" for
+// values with few decimals by short_decimal, the rest by the shortest round-trip digits of
+// fmt's Dragonbox written in fixed notation, the same text as std::to_chars where that chooses
+// fixed notation too: 1e-3 <= |v| < 1e15. Outside that (0.0001: "1e-04" for std::to_chars, "0.0001" for
 // fmt), std::to_chars itself. Writes at most kNumberMax characters.
 char* json_number(char* out, double v) {
     if (!std::isfinite(v)) {
@@ -73,7 +120,7 @@ char* json_number(char* out, double v) {
         return std::to_chars(out, out + kNumberMax, static_cast<std::int64_t>(v)).ptr;
     if (char* end = short_decimal(out, v)) return end;
     const double a = std::fabs(v);
-    if (a >= 1e-3 && a < kExactInteger) return fmt::format_to(out, FMT_COMPILE("{}"), v);
+    if (a >= 1e-3 && a < kExactInteger) return shortest_fixed(out, v);
     return std::to_chars(out, out + kNumberMax, v).ptr;
 }
 
