@@ -108,8 +108,8 @@ char* short_decimal(char* out, double v) {
 // reads back exactly; whole numbers as integers; null for NaN and infinities), made faster:
 // values with few decimals by short_decimal, the rest by the shortest round-trip digits of
 // fmt's Dragonbox written in fixed notation, the same text as std::to_chars where that chooses
-// fixed notation too: 1e-3 <= |v| < 1e15. Outside that (0.0001: "1e-04" for std::to_chars, "0.0001" for
-// fmt), std::to_chars itself. Writes at most kNumberMax characters.
+// fixed notation too: 1e-3 <= |v| < 1e15. Outside that (0.0001 is "1e-04" for std::to_chars),
+// std::to_chars itself. Writes at most kNumberMax characters.
 char* json_number(char* out, double v) {
     if (!std::isfinite(v)) {
         constexpr std::string_view kNull = "null";
