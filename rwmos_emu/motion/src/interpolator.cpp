@@ -74,6 +74,33 @@ bool within_move_limit(const Move& m, double cycle_seconds) noexcept {
     return cycles_for(path_length(m), m.feed, cycle_seconds) <= kMaxMoveCycles;
 }
 
+double path_length_bound(const AxisVector& start, const AxisVector& end,
+                         const std::array<std::uint8_t, 2>* plane_axes, double cx,
+                         double cy) noexcept {
+    // Every axis's change (an arc's plane axes too: more than needed, still a bound).
+    double bound = 0.0;
+    for (int a = 0; a < kAxisCount; ++a) bound += std::fabs(end[a] - start[a]);
+    if (plane_axes == nullptr) return 2.0 * bound;
+    // |sweep| <= 2 pi and each radius at most the sum of its two components: the arc is at
+    // most pi times the sum of the four; 4 leaves room for every rounding.
+    const std::size_t u = (*plane_axes)[0], v = (*plane_axes)[1];
+    const double radii = std::fabs(start[u] - cx) + std::fabs(start[v] - cy) +
+                         std::fabs(end[u] - cx) + std::fabs(end[v] - cy);
+    return 2.0 * (bound + 4.0 * radii);
+}
+
+bool surely_within_move_limit(const AxisVector& start, const AxisVector& end,
+                              const std::array<std::uint8_t, 2>* plane_axes, double cx, double cy,
+                              double feed, double cycle_seconds) noexcept {
+    // cycles_for(bound) <= kMaxMoveCycles without its division and ceil: bound <= per_cycle *
+    // kMaxMoveCycles puts ceil(bound / per_cycle) within a rounding of kMaxMoveCycles, and the
+    // bound's margin of 2 puts the move's own count at about half of it.
+    const double bound = path_length_bound(start, end, plane_axes, cx, cy);
+    const double per_cycle = feed / 60.0 * cycle_seconds;
+    return std::isfinite(bound) && per_cycle > 0.0 &&
+           bound <= per_cycle * static_cast<double>(kMaxMoveCycles);
+}
+
 void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept {
     if (k >= n) {
         out = m.end;

@@ -261,7 +261,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
                       "the spooler holds after a TC error: write ERROR to clear it");
     Resolved res;
     if (MotionResult r = resolve(p, tc, res); !r.ok()) return r;
-    if (!within_move_limit(programmed_move(p, res, exec), cycle_seconds))
+    if (!programmed_move_fits(p, res, exec, cycle_seconds))
         return refuse(Status::kValueTooLow, kTooLong);
 
     Compensation trial = comp_;
@@ -376,6 +376,19 @@ Move Spooler::programmed_move(const Profile& p, const Resolved& res, const Execu
         return arc_move(path_, res.path, res.arc_axes, res.cx, res.cy, res.ccw, feed,
                         SegmentRole::kUncompensated, p.tag);
     return line_move(path_, res.path, feed, SegmentRole::kUncompensated, p.tag);
+}
+
+bool Spooler::programmed_move_fits(const Profile& p, const Resolved& res, const Executor& exec,
+                                   double cycle_seconds) const {
+    // Almost every move is far within the limit: a bound of its length says so without the
+    // move's roots and angles.
+    const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
+    const bool rapid = p.kind == ProfileKind::kRapid;
+    if (surely_within_move_limit(rapid ? exec.planned_end() : path_, rapid ? res.program : res.path,
+                                 is_arc(p.kind) ? &res.arc_axes : nullptr, res.cx, res.cy, feed,
+                                 cycle_seconds))
+        return true;
+    return within_move_limit(programmed_move(p, res, exec), cycle_seconds);
 }
 
 MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSettings& tc,

@@ -77,6 +77,22 @@ std::uint64_t cycles_for(double length, double feed, double cycle_seconds) noexc
 // The move fits the board's limit: at most kMaxMoveCycles cycles of `cycle_seconds`.
 bool within_move_limit(const Move& m, double cycle_seconds) noexcept;
 
+// An upper bound of path_length() of line_move(start, end, ...) (plane_axes nullptr) or of
+// arc_move(start, end, *plane_axes, cx, cy, ...) (either sense), without roots or angles: the
+// sum of every axis's change, for an arc plus 4 (more than pi) times the sum of the start's and
+// the end's distances from the centre along each plane axis. At least twice the
+// computed length when that is not 0, so the rounding of both cannot reverse a comparison
+// with a margin of 2.
+double path_length_bound(const AxisVector& start, const AxisVector& end,
+                         const std::array<std::uint8_t, 2>* plane_axes, double cx,
+                         double cy) noexcept;
+// Whether the move from start to end (as path_length_bound) at `feed` surely fits the board's
+// limit: the bound takes at most half of kMaxMoveCycles. False says nothing: the move may fit
+// all the same (within_move_limit of the move itself decides).
+bool surely_within_move_limit(const AxisVector& start, const AxisVector& end,
+                              const std::array<std::uint8_t, 2>* plane_axes, double cx, double cy,
+                              double feed, double cycle_seconds) noexcept;
+
 // Axis positions after cycle k of n (0 <= k <= n, n > 0); k == n is exactly `end`.
 void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;
 

@@ -150,6 +150,9 @@ class Spooler {
 
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
     Move programmed_move(const Profile& p, const Resolved& res, const Executor& exec) const;
+    // The programmed move fits the board's limit (within_move_limit).
+    bool programmed_move_fits(const Profile& p, const Resolved& res, const Executor& exec,
+                              double cycle_seconds) const;
     // The compensator's segments as board-axis moves, appended to `batch`.
     // Departures are dropped unless `keep_departure`.
     void append_segments(const Compensation& c, const geom::SegmentBatch& segs, bool keep_departure,
