@@ -91,6 +91,8 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     const double r = config_.tool_radius;
     const OffsetResult offset = offset_element(programmed, r, config_.side);
     if (offset.reason != Reason::kNone) return fail(offset.reason, index, out);
+    // The offset arc keeps the programmed sweep (offset_element): measured once.
+    const double programmed_length = length_with_sweep(programmed, offset.element.sweep);
 
     if (state_ == State::kStarted && config_.approach == ApproachMode::kIndirect) {
         // Any length: [ISG-OTC-EN]'s wr_quad_disc.nc selects with a 2 mm block and a 30 mm disc
@@ -121,7 +123,7 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     } else {
         const CornerJoin join = join_corner(
             held_, offset.element, held_corner_, held_end_tangent_, start_tangent(programmed),
-            config_.side, r, config_.transition, std::min(held_length_, length(programmed)));
+            config_.side, r, config_.transition, std::min(held_length_, programmed_length));
         if (join.reason != Reason::kNone)
             return fail(join.reason,
                         join.reason == Reason::kHeldElementTooShort ? held_index_ : index, out);
@@ -134,7 +136,7 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     }
     held_corner_ = programmed.end;
     held_end_tangent_ = end_tangent(programmed);
-    held_length_ = length(programmed);
+    held_length_ = programmed_length;
     held_index_ = index;
     plane_free_count_ = 0;
     state_ = State::kHolding;

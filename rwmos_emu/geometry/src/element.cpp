@@ -76,9 +76,13 @@ double sweep(const Element& e) noexcept {
 }
 
 double length(const Element& e) noexcept {
+    return length_with_sweep(e, sweep(e));
+}
+
+double length_with_sweep(const Element& e, double sweep) noexcept {
     // An arc's radius changes linearly with the angle: its length is the sweep times the
     // mean radius (exact for the spiral up to (dR / R)^2, far below the path tolerance).
-    return is_arc(e) ? std::abs(sweep(e)) * 0.5 * (radius(e) + end_radius(e))
+    return is_arc(e) ? std::abs(sweep) * 0.5 * (radius(e) + end_radius(e))
                      : (e.end - e.start).norm();
 }
 

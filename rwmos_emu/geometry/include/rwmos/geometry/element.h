@@ -53,6 +53,8 @@ bool is_full_circle(const Element& e) noexcept;  // an arc with end == start
 // 0 for lines.
 double sweep(const Element& e) noexcept;
 double length(const Element& e) noexcept;
+// length(e) for the element whose sweep(e) the caller has already: the same value.
+double length_with_sweep(const Element& e, double sweep) noexcept;
 // A line shorter than kPointTolerance: a move with no motion in the plane.
 bool is_plane_free(const Element& e) noexcept;
 // All coordinates finite and within kMaxCoordinate.
