@@ -247,6 +247,28 @@ bool back_is_before_end(double reading, double wrapped, double len) noexcept {
     return !(wrapped <= 0.0 && -wrapped < reading - len);
 }
 
+// The sense of the turn from t1 to t2 (+1 counter-clockwise, -1 clockwise) when the corner is
+// surely neither tangent nor a reversal for tool radius r, whatever the rounding of the angle
+// classify_corner computes; 0 when it may be either (classify_corner then reads the angle).
+// With c = cross(t1, t2) = h sin(turn), d = t1.t2 = h cos(turn), h = |t1| |t2|:
+// - apart (offset_gap > kPathTolerance): 2 r |sin(turn / 2)| >= r |sin(turn)| = r |c| / h, and
+//   >= sqrt(2) r for |turn| >= pi / 2 (d <= 0); a margin of 2 (of sqrt(2)) covers every rounding;
+// - no reversal: d >= -0.999 h puts |turn| at most acos(-0.999) = pi - 2.56 degrees, so the wedge
+//   is wider than kMaxReversalWedgeAngle;
+// - the sense: atan2(c, d) has the sign of c != 0, and being apart keeps |turn| >= 2e-9 (for r up
+//   to kMaxCoordinate; larger r, NaN or infinite, are left to the angle), far from an underflow.
+int clear_turn(const Vec2& t1, const Vec2& t2, double r) noexcept {
+    static_assert(kMaxReversalWedgeAngle <= std::numbers::pi / 180);
+    const double c = cross(t1, t2);
+    const double d = t1.dot(t2);
+    if (!(c != 0.0) || !(r <= kMaxCoordinate)) return 0;
+    const double h = std::sqrt(c * c + d * d);
+    const bool apart =
+        r * std::abs(c) >= 2 * kPathTolerance * h || (d <= 0.0 && r >= kPathTolerance);
+    if (!apart || !(d >= -0.999 * h)) return 0;
+    return c > 0.0 ? 1 : -1;
+}
+
 }  // namespace
 
 double turn_angle(const Vec2& t1, const Vec2& t2) noexcept {
@@ -259,6 +281,9 @@ double offset_gap(double turn, double r) noexcept {
 
 CornerKind classify_corner(const Vec2& end_tangent, const Vec2& start_tangent, Side side,
                            double r, double shorter_length) noexcept {
+    // Most corners are far from every threshold: their kind is the sense of the turn alone.
+    if (const int sense = clear_turn(end_tangent, start_tangent, r); sense != 0)
+        return (sense > 0) != (side == Side::kLeft) ? CornerKind::kOutside : CornerKind::kInside;
     const double turn = turn_angle(end_tangent, start_tangent);
     if (offset_gap(turn, r) <= kPathTolerance) return CornerKind::kTangent;
     const bool turns_left = turn > 0.0;
