@@ -3,6 +3,7 @@
 // (path_length_bound, surely_within_move_limit): at least twice the move's computed length, and
 // never "surely within" for a move beyond the limit. Random lines and arcs over all axes,
 // coordinates rounded to 3 to 6 decimals, full circles, tiny moves, feeds around the limit.
+// And arc_move's full-circle test without its root where the chord is clearly apart.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -149,4 +150,39 @@ TEST(SurelyWithinMoveLimit, HoldsForOrdinaryMovesAndNotForAZeroFeed) {
     // 10 mm at 1e-6 mm/min takes 6e11 cycles of 1 ms: beyond.
     EXPECT_FALSE(surely_within_move_limit(s, e, nullptr, 0.0, 0.0, 1e-6, 0.001));
     EXPECT_FALSE(within_move_limit(line_move(s, e, 1e-6, SegmentRole::kUncompensated, 1), 0.001));
+}
+
+TEST(ArcMove, AFullCircleIsTheChordWithinTheToleranceAsByItsLength) {
+    // arc_move reads a chord with a component over twice kFullCircleTolerance as apart without
+    // its hypot: the sweep is the one the chord's length gives, near the tolerance too.
+    Rng rng(0xc1'4c1e);
+    int full = 0, apart = 0;
+    for (int i = 0; i < 100000; ++i) {
+        AxisVector s{}, e{};
+        const double cx = rng.uniform(-1e5, 1e5), cy = rng.uniform(-1e5, 1e5);
+        const double r = rng.log_uniform(1e-6, 1e3);
+        const double a = rng.uniform(-std::numbers::pi, std::numbers::pi);
+        s[0] = cx + r * std::cos(a);
+        s[1] = cy + r * std::sin(a);
+        const double chord = rng.log_uniform(1e-11, 1e-7);
+        const double b = rng.uniform(-std::numbers::pi, std::numbers::pi);
+        e[0] = s[0] + chord * std::cos(b);
+        e[1] = s[1] + chord * std::sin(b);
+        const bool ccw = rng.chance(0.5);
+        const Move m = arc_move(s, e, {0, 1}, cx, cy, ccw, 100.0, SegmentRole::kContour, 1);
+        const double sx = s[0] - cx, sy = s[1] - cy, ex = e[0] - cx, ey = e[1] - cy;
+        double sweep = 0.0;
+        if (std::hypot(ex - sx, ey - sy) > kFullCircleTolerance) {
+            sweep = std::atan2(ey, ex) - std::atan2(sy, sx);
+            if (ccw && sweep <= 0.0) sweep += 2.0 * std::numbers::pi;
+            if (!ccw && sweep >= 0.0) sweep -= 2.0 * std::numbers::pi;
+            ++apart;
+        } else {
+            sweep = ccw ? 2.0 * std::numbers::pi : -2.0 * std::numbers::pi;
+            ++full;
+        }
+        ASSERT_EQ(m.sweep, sweep) << i;
+    }
+    EXPECT_GT(full, 10000);
+    EXPECT_GT(apart, 10000);
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/motion/interpolator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -33,7 +34,11 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
     m.start_angle = std::atan2(sy, sx);
     constexpr double kTwoPi = 2.0 * std::numbers::pi;
     double sweep = 0.0;
-    if (std::hypot(ex - sx, ey - sy) > kFullCircleTolerance) {
+    // The chord's length is at least its larger component (hypot within a rounding of it):
+    // a component over twice the tolerance needs no root.
+    const double dx = ex - sx, dy = ey - sy;
+    if (std::max(std::fabs(dx), std::fabs(dy)) > 2.0 * kFullCircleTolerance ||
+        std::hypot(dx, dy) > kFullCircleTolerance) {
         sweep = std::atan2(ey, ex) - m.start_angle;  // in (-2pi, 2pi)
         if (ccw && sweep <= 0.0) sweep += kTwoPi;
         if (!ccw && sweep >= 0.0) sweep -= kTwoPi;
