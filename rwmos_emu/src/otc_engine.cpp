@@ -534,6 +534,14 @@ void OtcEngine::step(const Move* m, std::uint64_t k, std::uint64_t n, double dt,
 
 void OtcEngine::at(const Move* m, std::uint64_t k, std::uint64_t n,
                    AxisVector& pos) const noexcept {
+    if (!state_.otc.active) {
+        // add_offsets with no direction and no wear: -0.0 * 0.0 is -0.0, the identity of +.
+        last_dir_ = AxisVector{};
+        for (std::size_t a = 0; a < pos.size(); ++a)
+            pos[a] +=
+                ramp_channel_[a].position + ramp_direction_[a].position + ramp_axes_[a].position;
+        return;
+    }
     const AxisVector dir = state_.otc.active ? direction(m, k, n, pos) : AxisVector{};
     last_dir_ = dir;
     add_offsets(dir, state_.otc.active ? wear_at(m, k, n) : 0.0, pos);

@@ -61,16 +61,22 @@ bool TempCompEngine::ramping() const noexcept {
     return false;
 }
 
+bool TempCompEngine::off() const noexcept {
+    return !state_.config.option_temp_comp || state_.temp_comp.on == 0;
+}
+
+void TempCompEngine::rest(motion::AxisVector& pos) const noexcept {
+    // Every axis gets 0 at once (apply's else branch with targets of 0), without evaluating
+    // the vector and the targets: no ramp, nothing applied, pos + 0.0.
+    ramping_.fill(false);
+    applied_.fill(0.0);
+    for (std::size_t i = 0; i < applied_.size(); ++i) pos[i] += 0.0;
+}
+
 void TempCompEngine::apply(const motion::AxisVector& nominal, double max_step,
                            motion::AxisVector& pos) const noexcept {
-    if (!state_.config.option_temp_comp || state_.temp_comp.on == 0) {
-        // Off: every axis gets 0 at once (the else branch below with targets of 0),
-        // without evaluating the vector and the targets each cycle.
-        for (std::size_t i = 0; i < applied_.size(); ++i) {
-            ramping_[i] = false;
-            applied_[i] = 0.0;
-            pos[i] += applied_[i];
-        }
+    if (off()) {
+        rest(pos);
         return;
     }
     const tempcomp::Settings s = settings();
@@ -104,6 +110,10 @@ void TempCompEngine::step(const motion::Move*, std::uint64_t, std::uint64_t, dou
 void TempCompEngine::at(const motion::Move*, std::uint64_t, std::uint64_t,
                         motion::AxisVector& pos) const noexcept {
     follow_assignment();
+    if (off()) {  // apply() off, without the copy of pos it does not read
+        rest(pos);
+        return;
+    }
     const motion::AxisVector nominal = pos;
     // Only while nothing ramps (per_cycle false): a ramp does not advance here.
     apply(nominal, 0.0, pos);

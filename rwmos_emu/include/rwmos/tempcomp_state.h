@@ -57,6 +57,9 @@ class TempCompEngine final : public motion::CycleOffsets {
     void follow_assignment() const noexcept;
     void apply(const motion::AxisVector& nominal, double max_step,
                motion::AxisVector& pos) const noexcept;
+    // Compensation off (no option, or switched off): apply() sets every axis to 0 at once.
+    bool off() const noexcept;
+    void rest(motion::AxisVector& pos) const noexcept;
 
     Board::State& state_;
     // The engine's evaluation state: the last applied values, which axes ramp, and the
