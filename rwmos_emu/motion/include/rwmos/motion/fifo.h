@@ -18,11 +18,11 @@ class Fifo {
     std::size_t size() const noexcept { return size_; }
     bool empty() const noexcept { return size_ == 0; }
     // The elements it holds without allocating.
-    std::size_t capacity() const noexcept { return buf_.size(); }
+    std::size_t capacity() const noexcept { return buf_.empty() ? 0 : mask_ + 1; }
     void clear() noexcept { head_ = size_ = 0; }
 
     void push_back(const T& v) {
-        if (size_ == buf_.size()) grow();
+        if (size_ == capacity()) grow();
         buf_[slot(size_)] = v;
         ++size_;
     }
@@ -59,15 +59,18 @@ class Fifo {
 
   private:
     // The storage index of the i-th element from the front (the capacity is a power of two).
-    std::size_t slot(std::size_t i) const noexcept { return (head_ + i) & (buf_.size() - 1); }
+    // (mask_, not buf_.size() - 1: the size of a vector of large elements is a division.)
+    std::size_t slot(std::size_t i) const noexcept { return (head_ + i) & mask_; }
     void grow() {
         std::vector<T> bigger(buf_.empty() ? 16 : buf_.size() * 2);
         for (std::size_t i = 0; i < size_; ++i) bigger[i] = std::move(buf_[slot(i)]);
         buf_.swap(bigger);
         head_ = 0;
+        mask_ = buf_.size() - 1;
     }
 
     std::vector<T> buf_;  // size: 0 or a power of two
+    std::size_t mask_ = 0;  // buf_.size() - 1 once it has storage
     std::size_t head_ = 0;
     std::size_t size_ = 0;
 };

@@ -23,6 +23,7 @@ class Ring {
     // Changes the capacity; drops the content (and resets the lost count).
     void set_capacity(std::size_t capacity) {
         std::vector<T>().swap(buf_);
+        stored_ = 0;
         capacity_ = capacity;
         head_ = size_ = 0;
         lost_ = 0;
@@ -36,17 +37,18 @@ class Ring {
         }
         if (size_ == capacity_) {  // full (so buf_ has its whole capacity): the oldest goes
             buf_[head_] = v;
-            head_ = head_ + 1 == buf_.size() ? 0 : head_ + 1;
+            head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
             ++lost_;
             return;
         }
         // While buf_ is shorter than the capacity the content has never
         // wrapped: it lies at [head_, head_ + size_) with head_ + size_ <= buf_.size().
         std::size_t slot = head_ + size_;
-        if (slot == buf_.size() && buf_.size() < capacity_) {
+        if (slot == stored_ && stored_ < capacity_) {
             buf_.push_back(v);
+            ++stored_;
         } else {
-            if (slot >= buf_.size()) slot -= buf_.size();
+            if (slot >= stored_) slot -= stored_;
             buf_[slot] = v;
         }
         ++size_;
@@ -57,7 +59,7 @@ class Ring {
         const std::size_t n = out.size() < size_ ? out.size() : size_;
         for (std::size_t i = 0; i < n; ++i) {
             out[i] = buf_[head_];
-            head_ = head_ + 1 == buf_.size() ? 0 : head_ + 1;
+            head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
         }
         size_ -= n;
         return n;
@@ -65,7 +67,7 @@ class Ring {
     // The i-th oldest entry (i < size()), without removing it.
     const T& at(std::size_t i) const noexcept {
         std::size_t slot = head_ + i;
-        if (slot >= buf_.size()) slot -= buf_.size();
+        if (slot >= stored_) slot -= stored_;
         return buf_[slot];
     }
 
@@ -77,6 +79,8 @@ class Ring {
 
   private:
     std::vector<T> buf_;  // grows to capacity_, then wraps
+    // buf_.size(), kept: the size of a vector of large elements is a division.
+    std::size_t stored_ = 0;
     std::size_t capacity_ = 0;
     std::size_t head_ = 0;
     std::size_t size_ = 0;
