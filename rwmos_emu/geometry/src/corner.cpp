@@ -2,7 +2,9 @@
 #include "rwmos/geometry/corner.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -117,17 +119,64 @@ int meet(const Carrier& h, const Carrier& n, const Vec2& p1, const Vec2& p2, con
     return r.count;
 }
 
+// What the trim reads of an offset arc again and again, measured once: its radius at its start
+// and its end, and their mean (lengths along it are angles times the mean). Zero for lines.
+struct Radii {
+    double start = 0.0;
+    double end = 0.0;
+    double mean = 0.0;
+};
+
+Radii radii_of(const OffsetElement& o) noexcept {
+    Radii r;
+    if (!is_arc(o.path)) return r;
+    r.start = radius(o.path);
+    r.end = end_radius(o.path);
+    r.mean = 0.5 * (r.start + r.end);
+    return r;
+}
+
+bool same_bits(const Vec2& a, const Vec2& b) noexcept {
+    return std::bit_cast<std::uint64_t>(a.x()) == std::bit_cast<std::uint64_t>(b.x()) &&
+           std::bit_cast<std::uint64_t>(a.y()) == std::bit_cast<std::uint64_t>(b.y());
+}
+
+// The angle along the held arc back from its end P1 to P1 + y: angle_between(u + y, u) with
+// u = P1 - centre. The meeting's readings (back_from_end) and its spiral correction
+// (on_spirals) read it at the same meetings: the one of the last y is kept.
+class BackAngle {
+  public:
+    BackAngle(const OffsetElement& held, const Vec2& p1) noexcept
+        : u_(p1 - held.path.centre), ccw_(held.path.ccw) {}
+    double at(const Vec2& y) noexcept {
+        if (!valid_ || !same_bits(y, y_)) {
+            angle_ = angle_between(u_ + y, u_, ccw_);
+            y_ = y;
+            valid_ = true;
+        }
+        return angle_;
+    }
+
+  private:
+    Vec2 u_;
+    bool ccw_;
+    bool valid_ = false;
+    Vec2 y_ = Vec2::Zero();
+    double angle_ = 0.0;
+};
+
 // The radius of an offset arc (a spiral from the radius at its start to the one at its end)
-// at the point c + x, less its radius at the held end (from_end) or next start.
-double spiral_offset(const OffsetElement& o, const Vec2& x, bool from_end) noexcept {
+// at the point c + x, less its radius at the held end (from_end) or next start. The angle from
+// the corner end to x along the arc (held: back from its end; next: on from its start) is
+// from_corner(), read only for an arc that turns.
+template <class Angle>
+double spiral_offset(const OffsetElement& o, const Radii& radii, bool from_end,
+                     Angle&& from_corner_angle) noexcept {
     const double turn = std::abs(o.sweep);
     if (!is_arc(o.path) || turn == 0.0) return 0.0;
-    const double r0 = radius(o.path), r1 = end_radius(o.path);
-    // The angle from the corner end to x, along the arc (held: back from its end; next: on
-    // from its start). Beyond the corner end (nearer it that way round) counts as at it.
-    const double from_corner = from_end
-                                   ? angle_between(x, o.path.end - o.path.centre, o.path.ccw)
-                                   : angle_between(o.path.start - o.path.centre, x, o.path.ccw);
+    const double r0 = radii.start, r1 = radii.end;
+    // Beyond the corner end (nearer it that way round) counts as at it.
+    const double from_corner = from_corner_angle();
     const double beyond = from_corner > std::numbers::pi + 0.5 * turn ? 0.0 : from_corner;
     const double t = std::clamp(from_end ? 1.0 - beyond / turn : beyond / turn, 0.0, 1.0);
     return r0 + t * (r1 - r0) - (from_end ? r1 : r0);
@@ -135,13 +184,23 @@ double spiral_offset(const OffsetElement& o, const Vec2& x, bool from_end) noexc
 
 // Moves a meeting of the circles through the corner ends onto the spirals the arcs really
 // are: a few rounds of taking each arc's radius where the meeting lies.
-Vec2 on_spirals(const OffsetElement& held, const OffsetElement& next, const Carrier& h,
-                const Carrier& n, const Vec2& p1, const Vec2& p2, const Vec2& gap,
-                Vec2 y) noexcept {
+Vec2 on_spirals(const OffsetElement& held, const OffsetElement& next, const Radii& held_radii,
+                const Radii& next_radii, BackAngle& back, const Carrier& h, const Carrier& n,
+                const Vec2& p1, const Vec2& p2, const Vec2& gap, Vec2 y) noexcept {
     if (!h.arc && !n.arc) return y;
     for (int round = 0; round < 4; ++round) {
-        const double dh = h.arc ? spiral_offset(held, p1 - h.centre + y, true) : 0.0;
-        const double dn = n.arc ? spiral_offset(next, p1 - n.centre + y, false) : 0.0;
+        // The held arc's angle back from its end to p1 + y: (p1 - centre) + y against
+        // p1 - centre (p1 is its end), as back_from_end reads it.
+        const double dh =
+            h.arc ? spiral_offset(held, held_radii, true, [&] { return back.at(y); }) : 0.0;
+        const double dn =
+            n.arc ? spiral_offset(next, next_radii, false,
+                                  [&] {
+                                      const Vec2 x = p1 - n.centre + y;
+                                      return angle_between(next.path.start - next.path.centre, x,
+                                                           next.path.ccw);
+                                  })
+                  : 0.0;
         // Near the corner ends the spirals have the circles' radii: a meeting that close needs
         // no correction (and where the carriers nearly touch, a correction of a few nm would
         // slide it along them far more than it moves it across).
@@ -163,30 +222,28 @@ Vec2 on_spirals(const OffsetElement& held, const OffsetElement& next, const Carr
 // arcs: the angle turned from there to the end times the mean radius). Arcs give the
 // readings within a turn; `wrapped` the one a circumference earlier (a point just past the
 // end reads as almost a full turn back, and as slightly negative).
-double back_from_end(const OffsetElement& o, const Vec2& p1, const Vec2& y, double& wrapped) noexcept {
+double back_from_end(const OffsetElement& o, const Radii& radii, BackAngle& back, const Vec2& y,
+                     double& wrapped) noexcept {
     if (!is_arc(o.path)) {
         wrapped = std::numeric_limits<double>::quiet_NaN();
         return -y.dot(o.direction);
     }
-    const Vec2 u = p1 - o.path.centre;
-    const double angle = angle_between(u + y, u, o.path.ccw);
-    const double mean = 0.5 * (radius(o.path) + end_radius(o.path));
-    wrapped = (angle - kTwoPi) * mean;
-    return angle * mean;
+    const double angle = back.at(y);
+    wrapped = (angle - kTwoPi) * radii.mean;
+    return angle * radii.mean;
 }
 
 // How far beyond the next element's start the point P1 + y lies, along the element.
-double past_start(const OffsetElement& o, const Vec2& p2, const Vec2& gap, const Vec2& y,
-                  double& wrapped) noexcept {
+double past_start(const OffsetElement& o, const Radii& radii, const Vec2& p2, const Vec2& gap,
+                  const Vec2& y, double& wrapped) noexcept {
     if (!is_arc(o.path)) {
         wrapped = std::numeric_limits<double>::quiet_NaN();
         return (y - gap).dot(o.direction);
     }
     const Vec2 v = p2 - o.path.centre;
     const double angle = angle_between(v, v - gap + y, o.path.ccw);
-    const double mean = 0.5 * (radius(o.path) + end_radius(o.path));
-    wrapped = (angle - kTwoPi) * mean;
-    return angle * mean;
+    wrapped = (angle - kTwoPi) * radii.mean;
+    return angle * radii.mean;
 }
 
 // Picks the reading within [-kTrimTolerance, len + kTrimTolerance] nearest 0 (the corner),
@@ -311,6 +368,8 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
     }
     const double held_len = offset_length(held);
     const double next_len = offset_length(next);
+    const Radii held_radii = radii_of(held), next_radii = radii_of(next);
+    BackAngle back_angle(held, p1);
     bool found = false;
     double best_back = 0.0, best_past = 0.0;
     Vec2 best_y = Vec2::Zero();
@@ -322,8 +381,8 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
         // spiral's slight change of radius would move the meeting along far more than across.
         const Vec2& y = meetings[i].y;
         double held_wrapped = 0.0, next_wrapped = 0.0;
-        const double held_reading = back_from_end(held, p1, y, held_wrapped);
-        const double next_reading = past_start(next, p2, gap, y, next_wrapped);
+        const double held_reading = back_from_end(held, held_radii, back_angle, y, held_wrapped);
+        const double next_reading = past_start(next, next_radii, p2, gap, y, next_wrapped);
         double back = 0.0, past = 0.0;
         const bool on_held = on_element(held_reading, held_wrapped, held_len, back);
         const bool on_next = on_element(next_reading, next_wrapped, next_len, past);
@@ -350,11 +409,12 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
     }
     // Then the meeting moves onto the spirals the arcs are (a trim deep into an arc whose
     // radii differ by rounding), and both elements end and start there.
-    const Vec2 y = on_spirals(held, next, hc, nc, p1, p2, gap, best_y);
+    const Vec2 y =
+        on_spirals(held, next, held_radii, next_radii, back_angle, hc, nc, p1, p2, gap, best_y);
     const Vec2 x = p1 + y;
     double held_wrapped = 0.0, next_wrapped = 0.0;
-    const double back = back_from_end(held, p1, y, held_wrapped);
-    const double past = past_start(next, p2, gap, y, next_wrapped);
+    const double back = back_from_end(held, held_radii, back_angle, y, held_wrapped);
+    const double past = past_start(next, next_radii, p2, gap, y, next_wrapped);
     out.held = back_is_before_end(back, held_wrapped, held_len)
                    ? trim_end(held, x, held_len - std::clamp(back, 0.0, held_len))
                    : with_end(held, x);
