@@ -65,7 +65,7 @@ TEST(CarriedValues, LengthWithTheElementsOwnSweepIsItsLength) {
     EXPECT_GT(arcs, 10000);
 }
 
-TEST(CarriedValues, AnOffsetArcCarriesTheProgrammedSweepSoItsLengthIsTheProgrammedOne) {
+TEST(CarriedValues, AnOffsetElementCarriesTheProgrammedSweepAndTangent) {
     // PathCompensator::push measures the programmed length from the offset element's sweep.
     Rng rng(0x5eed'0002);
     int offset_arcs = 0;
@@ -81,6 +81,13 @@ TEST(CarriedValues, AnOffsetArcCarriesTheProgrammedSweepSoItsLengthIsTheProgramm
         if (is_arc(e)) {
             ++offset_arcs;
             ASSERT_TRUE(same_bits(o.element.sweep, sweep(e))) << i;
+        } else {
+            // An offset line carries the programmed tangent, the same at both ends.
+            ASSERT_TRUE(same_bits(o.element.direction.x(), start_tangent(e).x()) &&
+                        same_bits(o.element.direction.y(), start_tangent(e).y()) &&
+                        same_bits(o.element.direction.x(), end_tangent(e).x()) &&
+                        same_bits(o.element.direction.y(), end_tangent(e).y()))
+                << i;
         }
         ASSERT_TRUE(same_bits(length_with_sweep(e, o.element.sweep), length(e))) << i;
     }

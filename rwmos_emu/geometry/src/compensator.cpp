@@ -91,8 +91,10 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     const double r = config_.tool_radius;
     const OffsetResult offset = offset_element(programmed, r, config_.side);
     if (offset.reason != Reason::kNone) return fail(offset.reason, index, out);
-    // The offset arc keeps the programmed sweep (offset_element): measured once.
+    // The offset arc keeps the programmed sweep (offset_element): measured once. An offset
+    // line keeps the programmed line's direction, its tangent at both ends.
     const double programmed_length = length_with_sweep(programmed, offset.element.sweep);
+    const bool arc = is_arc(programmed);
 
     if (state_ == State::kStarted && config_.approach == ApproachMode::kIndirect) {
         // Any length: [ISG-OTC-EN]'s wr_quad_disc.nc selects with a 2 mm block and a 30 mm disc
@@ -121,9 +123,10 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
         held_ = offset.element;
         held_role_ = SegmentRole::kContour;
     } else {
-        const CornerJoin join = join_corner(
-            held_, offset.element, held_corner_, held_end_tangent_, start_tangent(programmed),
-            config_.side, r, config_.transition, std::min(held_length_, programmed_length));
+        const CornerJoin join =
+            join_corner(held_, offset.element, held_corner_, held_end_tangent_,
+                        arc ? start_tangent(programmed) : offset.element.direction, config_.side, r,
+                        config_.transition, std::min(held_length_, programmed_length));
         if (join.reason != Reason::kNone)
             return fail(join.reason,
                         join.reason == Reason::kHeldElementTooShort ? held_index_ : index, out);
@@ -135,7 +138,7 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
         held_role_ = SegmentRole::kContour;
     }
     held_corner_ = programmed.end;
-    held_end_tangent_ = end_tangent(programmed);
+    held_end_tangent_ = arc ? end_tangent(programmed) : offset.element.direction;
     held_length_ = programmed_length;
     held_index_ = index;
     plane_free_count_ = 0;

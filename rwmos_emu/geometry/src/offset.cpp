@@ -27,9 +27,13 @@ Vec2 offset_point(const Vec2& p, const Vec2& tangent, double r, Side side) noexc
 }
 
 double offset_radius(const Element& arc, double r, Side side) noexcept {
+    return offset_radius(radius(arc), arc.ccw, r, side);
+}
+
+double offset_radius(double arc_radius, bool ccw, double r, Side side) noexcept {
     // The left normal of a counter-clockwise arc points at its centre.
-    const double towards_centre = arc.ccw ? 1.0 : -1.0;
-    return radius(arc) - side_sign(side) * towards_centre * r;
+    const double towards_centre = ccw ? 1.0 : -1.0;
+    return arc_radius - side_sign(side) * towards_centre * r;
 }
 
 OffsetResult offset_element(const Element& e, double r, Side side) noexcept {
@@ -45,17 +49,19 @@ OffsetResult offset_element(const Element& e, double r, Side side) noexcept {
     }
     // The offset of the arc (a spiral when its radii differ) keeps its centre, sweep and
     // direction; each radius moves by r: rho = R - r on the concave side.
-    const double shift = radius(e) - offset_radius(e, r, side);
-    const double rho_start = radius(e) - shift;
-    const double rho_end = end_radius(e) - shift;
+    const double r_start = radius(e);
+    const double r_end = end_radius(e);
+    const double shift = r_start - offset_radius(r_start, e.ccw, r, side);
+    const double rho_start = r_start - shift;
+    const double rho_end = r_end - shift;
     // [APCI-TC] "Tabelle 4": CalcError, the radius of the arc is smaller than the tool
     // radius. A tool that fits it (within the path tolerance) keeps its centre there.
     if (std::min(rho_start, rho_end) < -kOffsetRadiusTolerance) {
         out.reason = Reason::kOffsetRadiusNotPositive;
         return out;
     }
-    const Vec2 u_start = (e.start - e.centre) / radius(e);
-    const Vec2 u_end = (e.end - e.centre) / end_radius(e);
+    const Vec2 u_start = (e.start - e.centre) / r_start;
+    const Vec2 u_end = (e.end - e.centre) / r_end;
     o.sweep = sweep(e);
     o.path.start = e.centre + std::max(rho_start, kMinOffsetRadius) * u_start;
     o.path.end =

@@ -34,6 +34,8 @@ Reason check_element(const Element& e) noexcept;
 Vec2 offset_point(const Vec2& p, const Vec2& tangent, double r, Side side) noexcept;
 // An arc's offset radius: its radius minus r on the concave side, plus r on the convex.
 double offset_radius(const Element& arc, double r, Side side) noexcept;
+// The same for an arc of radius arc_radius (radius(arc)) turning counter-clockwise when ccw.
+double offset_radius(double arc_radius, bool ccw, double r, Side side) noexcept;
 
 struct OffsetResult {
     Reason reason = Reason::kNone;  // kOffsetRadiusNotPositive (CalcError) or kNone
