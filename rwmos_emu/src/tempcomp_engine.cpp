@@ -46,15 +46,18 @@ void TempCompEngine::follow_assignment() const noexcept {
             was = was || assignment_[static_cast<std::size_t>(k)] == a;
             is = is || now[static_cast<std::size_t>(k)] == a;
         }
-        if (is)
+        if (is) {
             ramping_[i] = false;
-        else if (was && applied_[i] != 0.0)
+        } else if (was && applied_[i] != 0.0) {
             ramping_[i] = true;
+            may_ramp_ = true;
+        }
     }
     assignment_ = now;
 }
 
 bool TempCompEngine::ramping() const noexcept {
+    if (!may_ramp_) return false;
     for (std::size_t i = 0; i < ramping_.size(); ++i) {
         if (ramping_[i] && applied_[i] != 0.0) return true;
     }
@@ -69,6 +72,7 @@ void TempCompEngine::rest(motion::AxisVector& pos) const noexcept {
     // Every axis gets 0 at once (apply's else branch with targets of 0), without evaluating
     // the vector and the targets: no ramp, nothing applied, pos + 0.0.
     ramping_.fill(false);
+    may_ramp_ = false;
     applied_.fill(0.0);
     for (std::size_t i = 0; i < applied_.size(); ++i) pos[i] += 0.0;
 }

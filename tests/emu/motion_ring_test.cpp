@@ -2,7 +2,7 @@
 // The bounded FIFO behind the trace and the executed-segment log: it keeps
 // the newest entries, counts the dropped ones, and grows its storage with the
 // content. Checked against a reference model (std::deque) on random sequences
-// of pushes and takes, at every capacity from 0 to 9.
+// of pushes (by value and written in place) and takes, at every capacity from 0 to 9.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -35,7 +35,11 @@ TEST(MotionRing, MatchesAFifoThatKeepsTheNewestOnRandomPushesAndTakes) {
         int next = 0;
         for (int step = 0; step < 2000; ++step) {
             if (rng() % 3 != 0) {
-                ring.push(next);
+                // push_with (the entry written in place) is push.
+                if (rng() % 2 == 0)
+                    ring.push(next);
+                else
+                    ring.push_with([&](int& slot) { slot = next; });
                 model.push_back(next++);
                 if (model.size() > capacity) {
                     model.pop_front();

@@ -67,6 +67,8 @@ class TempCompEngine final : public motion::CycleOffsets {
     // "where the axes are" (the analytic path evaluates with at()).
     mutable tempcomp::AxisValues applied_{};
     mutable std::array<bool, tempcomp::kAxisCount> ramping_{};
+    // False while no ramping_ is set (only follow_assignment sets one): ramping() is false.
+    mutable bool may_ramp_ = false;
     mutable std::array<int, 3> assignment_{0, 1, 2};
 };
 

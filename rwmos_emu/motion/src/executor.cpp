@@ -23,12 +23,13 @@ void Executor::start_front(double cycle_seconds) {
 }
 
 void Executor::finish_front(bool interrupted) {
-    Segment s = segment_of(moves_.front());
-    s.end = nominal_;
-    s.start_cycle = front_start_cycle_;
-    s.end_cycle = now_;
-    s.interrupted = interrupted;
-    segments_.push(s);
+    segments_.push_with([&](Segment& s) {
+        segment_into(moves_.front(), s);
+        s.end = nominal_;
+        s.start_cycle = front_start_cycle_;
+        s.end_cycle = now_;
+        s.interrupted = interrupted;
+    });
     if (offsets_ != nullptr) offsets_->move_finished(moves_.front(), k_, n_);
     moves_.pop_front();
     started_ = false;

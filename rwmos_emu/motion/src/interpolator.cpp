@@ -55,13 +55,20 @@ double arc_plane_length(const Move& m) noexcept {
 }
 
 double path_length(const Move& m) noexcept {
+    // The squares of the axes' changes summed in axis order, an arc's plane axes left out.
     double other = 0.0;
+    if (m.kind == SegmentKind::kLine) {
+        for (int a = 0; a < kAxisCount; ++a) {
+            const double d = m.end[a] - m.start[a];
+            other += d * d;
+        }
+        return std::sqrt(other);
+    }
     for (int a = 0; a < kAxisCount; ++a) {
-        if (m.kind == SegmentKind::kArc && (a == m.plane_axes[0] || a == m.plane_axes[1])) continue;
+        if (a == m.plane_axes[0] || a == m.plane_axes[1]) continue;
         const double d = m.end[a] - m.start[a];
         other += d * d;
     }
-    if (m.kind == SegmentKind::kLine) return std::sqrt(other);
     const double arc = arc_plane_length(m);
     return std::sqrt(arc * arc + other);
 }
@@ -135,6 +142,12 @@ void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out
 
 Segment segment_of(const Move& m) {
     Segment s;
+    segment_into(m, s);
+    return s;
+}
+
+void segment_into(const Move& m, Segment& s) noexcept {
+    s = Segment{};
     s.tag = m.tag;
     s.kind = m.kind;
     s.role = m.role;
@@ -149,7 +162,6 @@ Segment segment_of(const Move& m) {
         s.ccw = m.sweep > 0.0;
         s.plane = m.plane;
     }
-    return s;
 }
 
 }  // namespace rwmos::motion

@@ -103,5 +103,7 @@ void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out
 
 // The Segment record of a move (start/end cycle and interruption filled by the caller).
 Segment segment_of(const Move& m);
+// The same written into s, every member set (the caller's own storage: no copy).
+void segment_into(const Move& m, Segment& s) noexcept;
 
 }  // namespace rwmos::motion

@@ -54,6 +54,32 @@ class Ring {
         ++size_;
     }
 
+    // As push(v) of the entry fill(T&) writes, in its place (no copy of a large entry); fill
+    // must set every member. Not called when the capacity is 0 (the entry is lost).
+    template <class Fill>
+    void push_with(Fill&& fill) {
+        if (capacity_ == 0) {
+            ++lost_;
+            return;
+        }
+        if (size_ == capacity_) {
+            fill(buf_[head_]);
+            head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
+            ++lost_;
+            return;
+        }
+        std::size_t slot = head_ + size_;
+        if (slot == stored_ && stored_ < capacity_) {
+            buf_.emplace_back();
+            ++stored_;
+            fill(buf_.back());
+        } else {
+            if (slot >= stored_) slot -= stored_;
+            fill(buf_[slot]);
+        }
+        ++size_;
+    }
+
     // Moves up to out.size() entries, oldest first, into `out`; returns how many.
     std::size_t take(std::span<T> out) {
         const std::size_t n = out.size() < size_ ? out.size() : size_;
