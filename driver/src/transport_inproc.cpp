@@ -3,12 +3,10 @@
 // it directly, without frames. Blocking: never (virtual time; every call
 // returns as soon as the board has served it). Threading: as the Board, one
 // thread at a time, which the C API's contract already guarantees.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <new>
-#include <span>
-#include <vector>
-
-#include <fmt/format.h>
 
 #include "rwmos/board.h"
 #include "rwmos/motion_wire.h"
@@ -57,21 +55,21 @@ public:
     objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept override {
         return guarded([&] { rep = rwmos::serve_trace(board_, req); return rep.status; });
     }
-    // From the emulator's segment log into the caller's records: no reply to build and copy
-    // (read_trace makes two vectors a call), each segment copied once more than the log holds.
+    // From the emulator's segment log straight into the caller's records: no reply to build
+    // and copy (read_trace makes two vectors a call), each segment converted where the log
+    // holds it.
     objif::Status read_segments(apci_segment* out, std::size_t max,
                                 std::size_t& got) noexcept override {
         got = 0;
         return guarded([&] {
-            if (scratch_.empty()) scratch_.resize(kScratchSegments);
-            while (got < max) {
-                const std::size_t want = std::min(max - got, scratch_.size());
-                const std::size_t n =
-                    board_.read_segments(std::span<rwmos::motion::Segment>(scratch_.data(), want));
-                for (std::size_t i = 0; i < n; ++i) to_c(scratch_[i], out[got + i]);
-                got += n;
-                if (n < want) break;
-            }
+            apci_segment* next = out;
+            got = board_.take_segments(
+                max,
+                [](const rwmos::motion::Segment& s, void* context) {
+                    apci_segment*& at = *static_cast<apci_segment**>(context);
+                    to_c(s, *at++);
+                },
+                &next);
             return objif::Status::kOk;
         });
     }
@@ -106,11 +104,7 @@ private:
         s.end_cycle = m.end_cycle;
     }
 
-    // Segments taken from the log per step: the executor's read batch.
-    static constexpr std::size_t kScratchSegments = 256;
-
     rwmos::Board board_;
-    std::vector<rwmos::motion::Segment> scratch_;
 };
 
 // "emu:?no-option-tc&option-tc": the last word on an option wins.

@@ -75,4 +75,9 @@ std::size_t Board::read_segments(std::span<motion::Segment> out) {
     return state_->motion.executor().segments().take(out);
 }
 
+std::size_t Board::take_segments(std::size_t max, SegmentVisitor visit, void* context) {
+    return state_->motion.executor().segments().take_with(
+        max, [visit, context](const motion::Segment& s) { visit(s, context); });
+}
+
 }  // namespace rwmos

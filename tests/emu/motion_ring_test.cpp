@@ -2,7 +2,8 @@
 // The bounded FIFO behind the trace and the executed-segment log: it keeps
 // the newest entries, counts the dropped ones, and grows its storage with the
 // content. Checked against a reference model (std::deque) on random sequences
-// of pushes (by value and written in place) and takes, at every capacity from 0 to 9.
+// of pushes (by value and written in place) and takes (copied out and visited in place), at
+// every capacity from 0 to 9.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,7 +48,15 @@ TEST(MotionRing, MatchesAFifoThatKeepsTheNewestOnRandomPushesAndTakes) {
                 }
             } else {
                 std::vector<int> out(rng() % 5);
-                const std::size_t n = ring.take(out);
+                // take_with (each entry handed over where it lies) is take.
+                std::size_t n = 0;
+                if (rng() % 2 == 0) {
+                    n = ring.take(out);
+                } else {
+                    std::size_t visited = 0;
+                    n = ring.take_with(out.size(), [&](const int& v) { out[visited++] = v; });
+                    EXPECT_EQ(visited, n);
+                }
                 const std::size_t expected = std::min(out.size(), model.size());
                 ASSERT_EQ(n, expected);
                 for (std::size_t i = 0; i < n; ++i) {

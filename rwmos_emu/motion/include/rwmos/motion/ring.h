@@ -90,6 +90,19 @@ class Ring {
         size_ -= n;
         return n;
     }
+    // As take() of up to `max` entries, each handed to visit(const T&) where it lies instead of
+    // copied out; returns how many.
+    template <class Visit>
+    std::size_t take_with(std::size_t max, Visit&& visit) {
+        const std::size_t n = max < size_ ? max : size_;
+        for (std::size_t i = 0; i < n; ++i) {
+            visit(static_cast<const T&>(buf_[head_]));
+            head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
+        }
+        size_ -= n;
+        return n;
+    }
+
     // The i-th oldest entry (i < size()), without removing it.
     const T& at(std::size_t i) const noexcept {
         std::size_t slot = head_ + i;
