@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <numbers>
 
-#include "contours.h"
 #include "rwmos/geometry/compensator.h"
 #include "rwmos/geometry/corner.h"
 #include "rwmos/geometry/offset.h"
@@ -21,9 +20,55 @@
 namespace rwmos::geom {
 namespace {
 
-using apci::test::arc_from;
-using apci::test::Rng;
-using apci::test::round_to;
+constexpr double kPi = std::numbers::pi;
+
+// Deterministic random numbers (splitmix64): every run is the same.
+class Rng {
+  public:
+    explicit Rng(std::uint64_t seed) : state_(seed) {}
+    std::uint64_t next() {
+        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    double log_uniform(double lo, double hi) {
+        return std::exp(uniform(std::log(lo), std::log(hi)));
+    }
+    bool chance(double p) { return uniform() < p; }
+    int integer(int lo, int hi) { return lo + static_cast<int>(next() % (hi - lo + 1)); }
+    double sign() { return chance(0.5) ? 1.0 : -1.0; }
+
+  private:
+    std::uint64_t state_;
+};
+
+Vec2 dir(double angle) {
+    return {std::cos(angle), std::sin(angle)};
+}
+Vec2 turned(const Vec2& v, double a) {
+    return {std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y()};
+}
+
+// The arc starting at `start` along `start_heading`, of `radius`, turning by `turn` radians
+// (> 0 counter-clockwise).
+Element arc_from(const Vec2& start, double start_heading, double radius, double turn) {
+    const bool ccw = turn > 0;
+    const Vec2 left(-std::sin(start_heading), std::cos(start_heading));
+    const Vec2 centre = start + radius * (ccw ? left : Vec2(-left));
+    return make_arc(start, centre + turned(start - centre, turn), centre, ccw);
+}
+
+// Rounds to `decimals` places as an NC program writes a coordinate (half away from zero).
+double round_to(double v, int decimals) {
+    const double scale = std::pow(10.0, decimals);
+    return std::round(v * scale) / scale;
+}
+Vec2 round_to(const Vec2& v, int decimals) {
+    return {round_to(v.x(), decimals), round_to(v.y(), decimals)};
+}
 
 bool same_bits(double a, double b) {
     return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
@@ -35,10 +80,9 @@ Element random_element(Rng& rng, const Vec2& start, double heading, int decimals
     const double size = rng.log_uniform(1e-6, 100.0);
     Element e;
     if (rng.chance(0.3)) {
-        e = make_line(start, start + size * apci::test::dir(heading));
+        e = make_line(start, start + size * dir(heading));
     } else {
-        const double turn = rng.sign() * (rng.chance(0.1) ? 2 * apci::test::kPi
-                                                          : rng.uniform(1e-6, 2 * apci::test::kPi));
+        const double turn = rng.sign() * (rng.chance(0.1) ? 2 * kPi : rng.uniform(1e-6, 2 * kPi));
         e = arc_from(start, heading, size, turn);
         if (rng.chance(0.1)) e.end = e.start;  // a full circle
     }
@@ -56,8 +100,7 @@ TEST(CarriedValues, LengthWithTheElementsOwnSweepIsItsLength) {
     for (int i = 0; i < 20000; ++i) {
         const int decimals = rng.integer(2, 6);
         const Element e = random_element(rng, {rng.uniform(-500, 500), rng.uniform(-500, 500)},
-                                         rng.uniform(-apci::test::kPi, apci::test::kPi),
-                                         decimals == 2 ? 0 : decimals);
+                                         rng.uniform(-kPi, kPi), decimals == 2 ? 0 : decimals);
         if (check_element(e) != Reason::kNone) continue;
         arcs += is_arc(e) ? 1 : 0;
         ASSERT_TRUE(same_bits(length_with_sweep(e, sweep(e)), length(e))) << i;
@@ -72,8 +115,7 @@ TEST(CarriedValues, AnOffsetElementCarriesTheProgrammedSweepAndTangent) {
     for (int i = 0; i < 20000; ++i) {
         const int decimals = rng.integer(2, 6);
         const Element e = random_element(rng, {rng.uniform(-500, 500), rng.uniform(-500, 500)},
-                                         rng.uniform(-apci::test::kPi, apci::test::kPi),
-                                         decimals == 2 ? 0 : decimals);
+                                         rng.uniform(-kPi, kPi), decimals == 2 ? 0 : decimals);
         if (check_element(e) != Reason::kNone || is_plane_free(e)) continue;
         const double r = rng.chance(0.2) ? 0.0 : rng.log_uniform(1e-3, 50.0);
         const OffsetResult o = offset_element(e, r, rng.chance(0.5) ? Side::kLeft : Side::kRight);
@@ -118,7 +160,7 @@ Vec2 tangent_of(Rng& rng, double angle) {
     const int decimals = rng.integer(2, 6);
     const double size = rng.log_uniform(1e-5, 100.0);
     Vec2 a(rng.uniform(-500, 500), rng.uniform(-500, 500));
-    Vec2 b = a + size * apci::test::dir(angle);
+    Vec2 b = a + size * dir(angle);
     if (decimals > 2) {
         a = round_to(a, decimals);
         b = round_to(b, decimals);
@@ -131,7 +173,7 @@ TEST(CarriedValues, CornersAreClassifiedAsByTheirAngleAlone) {
     Rng rng(0x5eed'0003);
     int kinds[3] = {0, 0, 0};
     for (int i = 0; i < 200000; ++i) {
-        const double heading = rng.uniform(-apci::test::kPi, apci::test::kPi);
+        const double heading = rng.uniform(-kPi, kPi);
         // Turns near every threshold: tangent (tiny turns), reversals (near pi), right angles
         // (d = 0), exact axes (components of +-0), and any turn.
         double turn = 0.0;
@@ -140,16 +182,16 @@ TEST(CarriedValues, CornersAreClassifiedAsByTheirAngleAlone) {
                 turn = rng.sign() * rng.log_uniform(1e-13, 1e-2);
                 break;
             case 1:
-                turn = rng.sign() * (apci::test::kPi - rng.log_uniform(1e-12, 0.1));
+                turn = rng.sign() * (kPi - rng.log_uniform(1e-12, 0.1));
                 break;
             case 2:
-                turn = rng.sign() * (0.5 * apci::test::kPi + rng.uniform(-1e-9, 1e-9));
+                turn = rng.sign() * (0.5 * kPi + rng.uniform(-1e-9, 1e-9));
                 break;
             case 3:
-                turn = rng.integer(-2, 2) * 0.5 * apci::test::kPi;
+                turn = rng.integer(-2, 2) * 0.5 * kPi;
                 break;
             default:
-                turn = rng.uniform(-apci::test::kPi, apci::test::kPi);
+                turn = rng.uniform(-kPi, kPi);
         }
         const bool exact = rng.chance(0.1);
         const Vec2 t1 = exact ? Vec2(1.0, 0.0) : tangent_of(rng, heading);
@@ -177,12 +219,12 @@ TEST(CarriedValues, ClassificationOfNearThresholdCornersIsTheAngles) {
     for (int i = 0; i < 100000; ++i) {
         const double r = rng.log_uniform(1e-4, 1e5);
         const double tangent_turn = 2 * std::asin(std::min(1.0, kPathTolerance / (2 * r)));
-        const double turn = rng.chance(0.5) ? tangent_turn * (1 + rng.uniform(-1e-6, 1e-6))
-                                            : apci::test::kPi - kMaxReversalWedgeAngle *
-                                                                    (1 + rng.uniform(-1e-6, 1e-6));
+        const double turn = rng.chance(0.5)
+                                ? tangent_turn * (1 + rng.uniform(-1e-6, 1e-6))
+                                : kPi - kMaxReversalWedgeAngle * (1 + rng.uniform(-1e-6, 1e-6));
         const double s = rng.sign() * turn;
-        const Vec2 t1 = apci::test::dir(rng.uniform(-apci::test::kPi, apci::test::kPi));
-        const Vec2 t2 = apci::test::turned(t1, s);
+        const Vec2 t1 = dir(rng.uniform(-kPi, kPi));
+        const Vec2 t2 = turned(t1, s);
         const double shorter = rng.chance(0.5)
                                    ? rng.log_uniform(1e-3, 1e3)
                                    : kReversalWedgeWidth / std::sin(kMaxReversalWedgeAngle) *
