@@ -493,6 +493,12 @@ bool OtcEngine::per_cycle(const Move* m, std::uint64_t k, std::uint64_t n) const
     return state_.otc.active && direction_turns(m);
 }
 
+bool OtcEngine::inert() const noexcept {
+    // move_started / move_finished return at once while off; per_cycle is false while off and
+    // quiet; at() then adds the resting ramp positions (step() alone moves them).
+    return !state_.otc.active && ramps_quiet_;
+}
+
 void OtcEngine::add_offsets(const AxisVector& dir, double wear, AxisVector& pos) const noexcept {
     for (std::size_t a = 0; a < pos.size(); ++a)
         pos[a] += -wear * dir[a] + ramp_channel_[a].position + ramp_direction_[a].position +

@@ -99,6 +99,15 @@ void TempCompEngine::apply(const motion::AxisVector& nominal, double max_step,
     }
 }
 
+bool TempCompEngine::inert() const noexcept {
+    // Off, every applied value 0: follow_assignment starts no ramp (it ramps only an axis with
+    // a value), per_cycle is false, and at() rests every axis at 0 (pos + 0.0).
+    if (!off()) return false;
+    for (const double v : applied_)
+        if (v != 0.0) return false;
+    return true;
+}
+
 bool TempCompEngine::per_cycle(const motion::Move*, std::uint64_t, std::uint64_t) const noexcept {
     follow_assignment();
     return ramping();

@@ -3,8 +3,11 @@
 // segment log, discard by direct commands, halt on TC errors.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <vector>
 
+#include "rwmos/motion/cycle_offsets.h"
 #include "rwmos/motion/executor.h"
 
 using namespace rwmos::motion;
@@ -165,4 +168,105 @@ TEST(Executor, PlannedEndIsTheLastQueuedMovesEnd) {
     e.push(line(at(0, 0), at(1, 0)));
     e.push(line(at(1, 0), at(1, 5)));
     EXPECT_EQ(e.planned_end(), at(1, 5));
+}
+
+namespace {
+// Offsets that add a fixed vector and count what the executor asks of them; inert() as told.
+class FixedOffsets final : public CycleOffsets {
+  public:
+    explicit FixedOffsets(bool inert) : inert_(inert) {}
+    void move_started(const Move&, const Move*) noexcept override { ++told; }
+    void move_finished(const Move&, std::uint64_t, std::uint64_t) noexcept override { ++told; }
+    bool per_cycle(const Move*, std::uint64_t, std::uint64_t) const noexcept override {
+        return false;
+    }
+    void step(const Move*, std::uint64_t, std::uint64_t, double,
+              AxisVector& pos) noexcept override {
+        ++stepped;
+        add(pos);
+    }
+    void at(const Move*, std::uint64_t, std::uint64_t, AxisVector& pos) const noexcept override {
+        ++evaluated;
+        add(pos);
+    }
+    bool inert() const noexcept override { return inert_; }
+
+    int told = 0;
+    int stepped = 0;
+    mutable int evaluated = 0;
+
+  private:
+    static void add(AxisVector& pos) noexcept {
+        pos[0] += 0.125;
+        pos[1] += -0.0;
+        pos[2] += 1e-7;
+    }
+    bool inert_;
+};
+
+// Lines, arcs and zero-length moves, fed to an executor whose offsets are or are not inert.
+void queue_moves(Executor& e) {
+    AxisVector from = at(0.0, 0.0);
+    for (int i = 0; i < 40; ++i) {
+        const AxisVector to = at(0.37 * (i % 7), -0.21 * (i % 5), 0.013 * i);
+        if (i % 9 == 0) {
+            e.push(line(from, from, 100 + i));  // zero length
+        } else if (i % 3 == 0) {
+            e.push(arc_move(from, to, {0, 1}, 0.5 * (from[0] + to[0]) + 0.3,
+                            0.5 * (from[1] + to[1]) - 0.2, i % 2 == 0, 600.0, SegmentRole::kContour,
+                            100 + i));
+        } else {
+            e.push(line(from, to, 100 + i));
+        }
+        from = to;
+    }
+}
+}  // namespace
+
+TEST(Executor, InertOffsetsAreEvaluatedOnceAStretchWithTheSameBitsAsAfterEveryMove) {
+    FixedOffsets every(/*inert=*/false), once(/*inert=*/true);
+    Executor a, b;
+    a.set_offsets(&every);
+    b.set_offsets(&once);
+    queue_moves(a);
+    queue_moves(b);
+    // Stretches that end inside moves, between them, and at the end of the queue.
+    int stretches = 0;
+    for (std::uint64_t budget : {37u, 1u, 250u, 0u, 999u, 5000u, 100000u}) {
+        a.advance(budget, kCycle);
+        b.advance(budget, kCycle);
+        ++stretches;
+        for (std::size_t i = 0; i < a.position().size(); ++i)
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(a.position()[i]),
+                      std::bit_cast<std::uint64_t>(b.position()[i]))
+                << "budget " << budget << " axis " << i;
+        ASSERT_EQ(a.nominal_position(), b.nominal_position());
+        ASSERT_EQ(a.fill(), b.fill());
+    }
+    const std::vector<Segment> sa = drain_segments(a), sb = drain_segments(b);
+    ASSERT_EQ(sa.size(), 40u);
+    ASSERT_EQ(sb.size(), sa.size());
+    for (std::size_t i = 0; i < sa.size(); ++i) {
+        EXPECT_EQ(sa[i].tag, sb[i].tag);
+        EXPECT_EQ(sa[i].end, sb[i].end);
+        EXPECT_EQ(sa[i].start_cycle, sb[i].start_cycle);
+        EXPECT_EQ(sa[i].end_cycle, sb[i].end_cycle);
+    }
+    EXPECT_EQ(every.told, 80);  // started and finished, each move
+    EXPECT_EQ(once.told, 0);
+    EXPECT_GE(every.evaluated, 40);
+    EXPECT_LE(once.evaluated, stretches);
+    EXPECT_GT(once.evaluated, 0);
+}
+
+TEST(Executor, InertOffsetsAreStillSteppedEveryCycleWhileTracing) {
+    FixedOffsets once(/*inert=*/true);
+    Executor e;
+    e.set_offsets(&once);
+    e.set_trace(true, 16);
+    e.push(line(at(0, 0), at(0.1, 0)));  // 10 cycles
+    e.advance(10, kCycle);
+    EXPECT_EQ(once.stepped, 10);
+    EXPECT_EQ(once.told, 2);
+    EXPECT_EQ(e.position()[0], 0.1 + 0.125);
 }

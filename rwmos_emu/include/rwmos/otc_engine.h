@@ -63,6 +63,8 @@ class OtcEngine final : public motion::CycleOffsets {
               motion::AxisVector& pos) noexcept override;
     void at(const motion::Move* m, std::uint64_t k, std::uint64_t n,
             motion::AxisVector& pos) const noexcept override;
+    // Off with every ramp at rest: at() adds the ramps' resting positions, nothing else acts.
+    bool inert() const noexcept override;
 
   private:
     using AxisVector = motion::AxisVector;

@@ -47,6 +47,8 @@ class TempCompEngine final : public motion::CycleOffsets {
               motion::AxisVector& pos) noexcept override;
     void at(const motion::Move* m, std::uint64_t k, std::uint64_t n,
             motion::AxisVector& pos) const noexcept override;
+    // Off with nothing applied: at() adds 0.0 to every axis, nothing ramps.
+    bool inert() const noexcept override;
 
   private:
     tempcomp::Settings settings() const noexcept;

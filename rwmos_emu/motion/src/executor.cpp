@@ -13,16 +13,17 @@ bool Executor::idle() const noexcept {
     return !can_start_front();
 }
 
-void Executor::start_front(double cycle_seconds) {
+void Executor::start_front(double cycle_seconds, bool inert) {
     const Move& m = moves_.front();
     n_ = cycles_for(path_length(m), m.feed, cycle_seconds);
     k_ = 0;
     started_ = true;
     front_start_cycle_ = now_;
-    if (offsets_ != nullptr) offsets_->move_started(m, moves_.size() > 1 ? &moves_[1] : nullptr);
+    if (offsets_ != nullptr && !inert)
+        offsets_->move_started(m, moves_.size() > 1 ? &moves_[1] : nullptr);
 }
 
-void Executor::finish_front(bool interrupted) {
+void Executor::finish_front(bool interrupted, bool inert) {
     segments_.push_with([&](Segment& s) {
         segment_into(moves_.front(), s);
         s.end = nominal_;
@@ -30,7 +31,7 @@ void Executor::finish_front(bool interrupted) {
         s.end_cycle = now_;
         s.interrupted = interrupted;
     });
-    if (offsets_ != nullptr) offsets_->move_finished(moves_.front(), k_, n_);
+    if (offsets_ != nullptr && !inert) offsets_->move_finished(moves_.front(), k_, n_);
     moves_.pop_front();
     started_ = false;
     k_ = n_ = 0;
@@ -67,20 +68,27 @@ void Executor::idle_cycles(std::uint64_t cycles, double cycle_seconds) {
 
 std::uint64_t Executor::run_moves(std::uint64_t budget, double cycle_seconds) {
     std::uint64_t used = 0;
+    // Inert offsets (CycleOffsets::inert) act the same after every move: evaluated once, after
+    // the last one of this stretch. Nothing else acts on the modules meanwhile.
+    const bool inert = offsets_ != nullptr && !per_cycle() && offsets_->inert();
+    bool placed_late = false;
     while (can_start_front()) {
         if (!started_) {
             if (used == budget) break;  // the next move starts with the next cycle
-            start_front(cycle_seconds);
+            start_front(cycle_seconds, inert);
         }
         const Move& m = moves_.front();
         if (n_ == 0) {  // a zero-length move takes no cycle
             nominal_ = m.end;
-            place(&m, 1, 1, cycle_seconds, /*stepped=*/false);
-            finish_front(/*interrupted=*/false);
+            if (inert)
+                placed_late = true;
+            else
+                place(&m, 1, 1, cycle_seconds, /*stepped=*/false);
+            finish_front(/*interrupted=*/false, inert);
             continue;
         }
         while (k_ < n_ && used < budget) {
-            if (per_cycle(&m, k_, n_)) {
+            if (!inert && per_cycle(&m, k_, n_)) {
                 ++k_;
                 ++now_;
                 ++used;
@@ -93,12 +101,17 @@ std::uint64_t Executor::run_moves(std::uint64_t budget, double cycle_seconds) {
                 now_ += take;
                 used += take;
                 position_at(m, k_, n_, nominal_);
-                place(&m, k_, n_, cycle_seconds, /*stepped=*/false);
+                if (inert)
+                    placed_late = true;
+                else
+                    place(&m, k_, n_, cycle_seconds, /*stepped=*/false);
             }
         }
         if (k_ < n_) break;  // budget spent inside this move
-        finish_front(/*interrupted=*/false);
+        finish_front(/*interrupted=*/false, inert);
     }
+    // The inert offsets' at() does not depend on the move or the cycle.
+    if (placed_late) place(nullptr, 0, 0, cycle_seconds, /*stepped=*/false);
     return used;
 }
 

@@ -38,6 +38,12 @@ class CycleOffsets {
     // The offsets at cycle k of n of `m` without stepping (valid while !per_cycle), added to `pos`.
     virtual void at(const Move* m, std::uint64_t k, std::uint64_t n,
                     AxisVector& pos) const noexcept = 0;
+
+    // True while the module, until its settings change, does nothing per move: move_started and
+    // move_finished change nothing, per_cycle is false, and at() adds the same offsets for every
+    // move and cycle and leaves the same state however often it is called. The executor then
+    // evaluates at() once, after the last move of a stretch, instead of after every move.
+    virtual bool inert() const noexcept { return false; }
 };
 
 // Several modules' offsets (OTC wear, temperature), added in order: each module sees the
@@ -71,6 +77,11 @@ class CycleOffsetsChain final : public CycleOffsets {
     void at(const Move* m, std::uint64_t k, std::uint64_t n,
             AxisVector& pos) const noexcept override {
         for (std::size_t i = 0; i < count_; ++i) modules_[i]->at(m, k, n, pos);
+    }
+    bool inert() const noexcept override {
+        for (std::size_t i = 0; i < count_; ++i)
+            if (!modules_[i]->inert()) return false;
+        return true;
     }
 
   private:

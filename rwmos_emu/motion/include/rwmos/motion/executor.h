@@ -86,8 +86,9 @@ class Executor {
 
   private:
     bool can_start_front() const noexcept;
-    void start_front(double cycle_seconds);
-    void finish_front(bool interrupted);
+    // inert: the offsets are inert (CycleOffsets::inert) and are not told of the move.
+    void start_front(double cycle_seconds, bool inert);
+    void finish_front(bool interrupted, bool inert = false);
     // Runs moves for at most `budget` cycles; returns the cycles used. Stops
     // early only when idle.
     std::uint64_t run_moves(std::uint64_t budget, double cycle_seconds);
