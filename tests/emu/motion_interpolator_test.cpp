@@ -127,3 +127,64 @@ TEST(Interpolator, SegmentOfAnArcCarriesCentreSenseAndPlane) {
     EXPECT_DOUBLE_EQ(s.center[1], 0.0);
     EXPECT_DOUBLE_EQ(s.center[2], 1.0);
 }
+
+TEST(Interpolator, SegmentIntoSetsEveryMemberAsSegmentOf) {
+    // Written over a segment with every member set otherwise: the same as a fresh segment_of.
+    AxisVector s{}, e{};
+    for (std::size_t a = 0; a < s.size(); ++a) {
+        s[a] = 0.5 * static_cast<double>(a);
+        e[a] = -1.25 * static_cast<double>(a) + 3.0;
+    }
+    const Move moves[] = {
+        line_move(s, e, 600.0, SegmentRole::kRapid, 7),
+        arc_move(s, e, {2, 5}, 1.0, -2.0, true, 300.0, SegmentRole::kContour, 8),
+        arc_move(s, e, {1, 0}, 0.5, 0.25, false, 30.0, SegmentRole::kApproach, 9)};
+    for (const Move& m : moves) {
+        Segment dirty;
+        dirty.tag = 99;
+        dirty.kind = SegmentKind::kArc;
+        dirty.role = SegmentRole::kDeparture;
+        dirty.start.fill(7.0);
+        dirty.end.fill(8.0);
+        dirty.plane_axes = {6, 7};
+        dirty.center.fill(9.0);
+        dirty.ccw = true;
+        dirty.plane = 19;
+        dirty.feed = 1.0;
+        dirty.start_cycle = 11;
+        dirty.end_cycle = 12;
+        dirty.interrupted = true;
+        segment_into(m, dirty);
+        const Segment fresh = segment_of(m);
+        Segment reference;  // segment_of as it was: a default Segment, then the move's members
+        reference.tag = m.tag;
+        reference.kind = m.kind;
+        reference.role = m.role;
+        reference.start = m.start;
+        reference.end = m.end;
+        reference.feed = m.feed;
+        if (m.kind == SegmentKind::kArc) {
+            reference.plane_axes = m.plane_axes;
+            reference.center = m.start;
+            reference.center[m.plane_axes[0]] = m.cx;
+            reference.center[m.plane_axes[1]] = m.cy;
+            reference.ccw = m.sweep > 0.0;
+            reference.plane = m.plane;
+        }
+        for (const Segment* got : {static_cast<const Segment*>(&dirty), &fresh}) {
+            EXPECT_EQ(got->tag, reference.tag);
+            EXPECT_EQ(got->kind, reference.kind);
+            EXPECT_EQ(got->role, reference.role);
+            EXPECT_EQ(got->start, reference.start);
+            EXPECT_EQ(got->end, reference.end);
+            EXPECT_EQ(got->plane_axes, reference.plane_axes);
+            EXPECT_EQ(got->center, reference.center);
+            EXPECT_EQ(got->ccw, reference.ccw);
+            EXPECT_EQ(got->plane, reference.plane);
+            EXPECT_EQ(got->feed, reference.feed);
+            EXPECT_EQ(got->start_cycle, 0u);
+            EXPECT_EQ(got->end_cycle, 0u);
+            EXPECT_FALSE(got->interrupted);
+        }
+    }
+}

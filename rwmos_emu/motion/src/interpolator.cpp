@@ -147,13 +147,16 @@ Segment segment_of(const Move& m) {
 }
 
 void segment_into(const Move& m, Segment& s) noexcept {
-    s = Segment{};
+    // Every member, as Segment{} and then the move's (no zero-fill written over again).
     s.tag = m.tag;
     s.kind = m.kind;
     s.role = m.role;
     s.start = m.start;
     s.end = m.end;
     s.feed = m.feed;
+    s.start_cycle = 0;
+    s.end_cycle = 0;
+    s.interrupted = false;
     if (m.kind == SegmentKind::kArc) {
         s.plane_axes = m.plane_axes;
         s.center = m.start;
@@ -161,6 +164,11 @@ void segment_into(const Move& m, Segment& s) noexcept {
         s.center[m.plane_axes[1]] = m.cy;
         s.ccw = m.sweep > 0.0;
         s.plane = m.plane;
+    } else {
+        s.plane_axes = {0, 1};
+        s.center = AxisVector{};
+        s.ccw = false;
+        s.plane = 0;
     }
 }
 
