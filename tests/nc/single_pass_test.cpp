@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <variant>
 
 #include "apci/nc/program.h"
 
@@ -132,6 +133,34 @@ TEST(SinglePass, AProgramThatReadsTheBoardsVariablesIsValidatedAsProgramLoadDoes
     Result<ProgramSummary> t = q.finish();
     ASSERT_TRUE(t) << t.error().to_string();
     expect_same_summary(t.value(), Program::from_text(text, "prog.nc").value().summary());
+}
+
+// A source that lost its board (a run that stopped while the front end read ahead of it,
+// apci::run::ReadAhead) withdraws: the stream reads with its own view, as if the source had
+// been taken away before, and the pass is not marked as having read the board.
+TEST(SinglePass, AWithdrawnSourceLeavesTheStreamItsOwnView) {
+    struct Gone : VariableSource {
+        int reads = 0;
+        bool read(const VariableRef&, double& out, std::string& why) override {
+            ++reads;
+            out = 99.0;
+            why = "the run stopped";
+            return false;
+        }
+        bool withdrawn() const noexcept override { return true; }
+    } gone;
+    const std::string text = "P1 = V.G.WZ_AKT.WEAR.Z\nG0 X[P1 + 1]\nM30\n";
+    SinglePass pass = SinglePass::from_text(text, "prog.nc");
+    pass.events().set_variable_source(&gone);
+    Event ev;
+    ASSERT_EQ(pass.events().next(ev), EventStream::Next::kEvent);
+    EXPECT_EQ(gone.reads, 1);
+    ASSERT_TRUE(std::holds_alternative<RapidMove>(ev.data));
+    EXPECT_EQ(std::get<RapidMove>(ev.data).end.x(), 1.0);  // the front end's WEAR.Z: 0
+    EXPECT_FALSE(pass.events().read_variable_source());
+    Result<ProgramSummary> s = pass.finish();
+    ASSERT_TRUE(s) << s.error().to_string();
+    expect_same_summary(s.value(), Program::from_text(text, "prog.nc").value().summary());
 }
 
 // A program from a pipe is read once: it runs in one pass (Program::load could not read it

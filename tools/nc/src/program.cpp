@@ -190,8 +190,12 @@ bool EventStream::parameter(int n, double& out) const {
 
 bool EventStream::variable(const VariableRef& v, double& out, std::string& why) const {
     if (variables_ != nullptr) {
-        read_variable_source_ = true;
-        return variables_->read(v, out, why);
+        const bool ok = variables_->read(v, out, why);
+        if (!variables_->withdrawn()) {
+            read_variable_source_ = true;
+            return ok;
+        }
+        why.clear();
     }
     out = interpreter_.model_variable(v);
     return true;

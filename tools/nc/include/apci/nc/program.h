@@ -37,6 +37,12 @@ class VariableSource {
     virtual ~VariableSource() = default;
     // False with `why` when the value cannot be read.
     virtual bool read(const VariableRef& v, double& out, std::string& why) = 0;
+    // True (asked after read()) when the source has no board behind it any more: the run it
+    // served stopped while the stream read ahead of it (apci::run::ReadAhead). The stream then
+    // reads this variable, and those after it, with its own view, as if the source had been
+    // taken away (set_variable_source(nullptr)) before: read() answered nothing, and
+    // read_variable_source() stays as it was.
+    virtual bool withdrawn() const noexcept { return false; }
 };
 
 // $FOR loops nest at most this deep (the replay keeps one position per level: flat memory).
