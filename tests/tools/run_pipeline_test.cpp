@@ -170,6 +170,30 @@ TEST(SpscRing, ASleepingSideWakesForSeveralSlots) {
     EXPECT_EQ(taken.load(), 5);
 }
 
+// flush() wakes a consumer asleep for several slots for the one committed (a producer that
+// waits on the consumer's answer to it).
+TEST(SpscRing, FlushWakesASleepingConsumerForWhatIsThere) {
+    SpscRing<int> ring(8, 4);
+    std::atomic<int> taken{0};
+    std::thread consumer([&] {
+        while (const int* v = ring.front()) {
+            (void)v;
+            ring.pop();
+            taken.fetch_add(1);
+        }
+    });
+    std::this_thread::sleep_for(30ms);  // the consumer is asleep on the empty ring
+    *ring.acquire() = 1;
+    ring.commit();
+    std::this_thread::sleep_for(50ms);
+    EXPECT_EQ(taken.load(), 0);  // one ready: not yet woken
+    ring.flush();
+    for (int i = 0; i < 5000 && taken.load() < 1; ++i) std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(taken.load(), 1);
+    ring.close();
+    consumer.join();
+}
+
 // ---- the pipeline
 
 // The threads of this process (/proc/self/task).
@@ -330,6 +354,72 @@ TEST(RunPipeline, NoThreadOutlivesItOnAnyPath) {
     }
 }
 
+// The executor hands the pipeline its executed segments unmeasured: the writer thread measures
+// each before the inner sink has it and sums the lengths in their order, the same bits as
+// count_segment() on the caller's thread.
+TEST(RunPipeline, TheWriterMeasuresTheExecutedSegmentsAndSumsTheirLengthsInOrder) {
+    class Lengths final : public RunSink {
+      public:
+        std::vector<double> lengths, sweeps;
+        void executed(const PathSegment& s) override {
+            lengths.push_back(s.length);
+            sweeps.push_back(s.sweep);
+        }
+    } inner;
+    std::vector<PathSegment> segments;
+    for (int i = 0; i < 3000; ++i) {
+        PathSegment s = segment(i);
+        if (i % 3 == 1) {
+            s.kind = SegmentKind::kArc;
+            s.start = Point(10.0 + 0.001 * i, 0.0, 0.0);
+            s.end = Point(0.0, 10.0, 0.01 * i);
+            s.center = Point(0.0, 0.0, 0.0);
+            s.ccw = (i % 2) == 0;
+        } else if (i % 7 == 0) {
+            s.kind = SegmentKind::kRapid;
+        }
+        segments.push_back(s);
+    }
+    RunTotals expected;
+    for (PathSegment s : segments) {
+        measure(s);
+        count_segment(expected, s);
+    }
+    PipelinedSink pipeline(inner);
+    EXPECT_TRUE(pipeline.measures_executed());
+    double path = -1.0, rapid = -1.0;
+    pipeline.measured_lengths(path, rapid);  // nothing handed over yet
+    EXPECT_EQ(path, 0.0);
+    EXPECT_EQ(rapid, 0.0);
+    for (const PathSegment& s : segments) pipeline.executed(s);
+    pipeline.measured_lengths(path, rapid);  // waits for the writer
+    EXPECT_EQ(path, expected.path_length);    // bit for bit
+    EXPECT_EQ(rapid, expected.rapid_length);
+    EXPECT_GT(rapid, 0.0);
+    ASSERT_EQ(inner.lengths.size(), segments.size());  // every one had before the answer
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        EXPECT_EQ(inner.lengths[i], segment_length(segments[i])) << i;
+        if (segments[i].kind == SegmentKind::kArc) {
+            EXPECT_EQ(inner.sweeps[i], arc_sweep(segments[i])) << i;
+        }
+    }
+    pipeline.finish();
+    pipeline.measured_lengths(path, rapid);  // after the end: the same sums
+    EXPECT_EQ(path, expected.path_length);
+}
+
+// A writer that failed does not hold measured_lengths().
+TEST(RunPipeline, MeasuredLengthsDoesNotWaitForAWriterThatFailed) {
+    Recorder inner;
+    inner.fail_at = 10;
+    PipelinedSink pipeline(inner);
+    for (int i = 0; i < 100000; ++i) pipeline.executed(segment(i));
+    double path = 0.0, rapid = 0.0;
+    pipeline.measured_lengths(path, rapid);
+    EXPECT_GT(path, 0.0);  // what the writer summed before it failed
+    EXPECT_THROW(pipeline.finish(), std::runtime_error);
+}
+
 // The writer thread leaves the process's signals to the caller's thread (whose DeferSignals
 // holds them while a temporary file is made or published) and keeps those a write raises in
 // its own thread (SIGPIPE, SIGXFSZ), which end the process as before.
@@ -382,6 +472,7 @@ class JsonAndSvg final : public RunSink {
 
 struct Written {
     std::string json, svg, summary;
+    RunTotals totals;
 };
 
 Written run_program(const std::string& text, bool pipelined) {
@@ -403,8 +494,9 @@ Written run_program(const std::string& text, bool pipelined) {
     RunOutcome out = executor.run(stream.value());
     pipeline.finish();
     EXPECT_TRUE(writers.finish(out));
-    Written w{json.text(), svg.text(), {}};
+    Written w{json.text(), svg.text(), {}, {}};
     w.summary = std::to_string(out.totals.segments) + " " + std::to_string(out.totals.path_length);
+    w.totals = out.totals;
     return w;
 }
 
@@ -416,6 +508,18 @@ TEST(RunPipeline, ARunWritesTheSameBytesThroughThePipeline) {
     EXPECT_EQ(piped.json, direct.json);
     EXPECT_EQ(piped.svg, direct.svg);
     EXPECT_EQ(piped.summary, direct.summary);
+}
+
+// The lengths measured and summed on the writer thread are those the executor sums itself.
+TEST(RunPipeline, ARunThroughThePipelineHasTheSameTotalsBitForBit) {
+    const std::string text = program_text(200);
+    const Written direct = run_program(text, false);
+    const Written piped = run_program(text, true);
+    EXPECT_GT(direct.totals.path_length, 10000.0);
+    EXPECT_EQ(piped.totals.path_length, direct.totals.path_length);
+    EXPECT_EQ(piped.totals.rapid_length, direct.totals.rapid_length);
+    EXPECT_EQ(piped.totals.segments, direct.totals.segments);
+    EXPECT_EQ(piped.json, direct.json);
 }
 
 // ---- segments read back once, measured once
@@ -515,6 +619,45 @@ TEST(SegmentReadBack, TheExecutorMeasuresEveryExecutedSegment) {
     EXPECT_TRUE(out.errors.empty()) << (out.errors.empty() ? "" : out.errors.front().message);
     EXPECT_GT(check.executed_count, 60u);
     EXPECT_EQ(check.wrong, 0u);
+}
+
+// A sink that measures the executed segments itself gets them unmeasured (the executor's
+// thread does not compute their sweep and length), and the run's lengths are its sums.
+TEST(SegmentReadBack, ASinkThatMeasuresGetsTheSegmentsUnmeasuredAndGivesTheLengths) {
+    class Measures final : public RunSink {
+      public:
+        std::uint64_t executed_count = 0, measured = 0, asked = 0;
+        RunTotals sums;
+        void executed(const PathSegment& s) override {
+            ++executed_count;
+            if (!std::isnan(s.length) || !std::isnan(s.sweep)) ++measured;
+            count_segment(sums, s);
+        }
+        bool measures_executed() const override { return true; }
+        void measured_lengths(double& path, double& rapid) override {
+            ++asked;
+            path = sums.path_length;
+            rapid = sums.rapid_length;
+        }
+    } sink;
+    auto tools =
+        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 1\n", "t.tools");
+    ASSERT_TRUE(tools);
+    const std::string text = program_text(5);
+    auto program = nc::Program::from_text(text, "p.nc");
+    ASSERT_TRUE(program);
+    auto stream = program.value().events();
+    apci::Board board("emu:");
+    ProgramExecutor executor(board, sink, &tools.value());
+    const RunOutcome out = executor.run(stream.value());
+    EXPECT_TRUE(out.errors.empty()) << (out.errors.empty() ? "" : out.errors.front().message);
+    EXPECT_GT(sink.executed_count, 60u);
+    EXPECT_EQ(sink.measured, 0u);
+    EXPECT_EQ(sink.asked, 1u);
+    EXPECT_EQ(out.totals.segments, sink.executed_count);
+    EXPECT_EQ(out.totals.path_length, sink.sums.path_length);
+    EXPECT_EQ(out.totals.rapid_length, sink.sums.rapid_length);
+    EXPECT_GT(out.totals.path_length, 100.0);
 }
 
 // ---- output files: large writes, write-back started while the run goes

@@ -89,8 +89,8 @@ class Outputs final : public apci::run::RunSink {
     std::unique_ptr<apci::run::TraceCsvWriter> csv;
     std::uint64_t total_blocks = 0;
     // One pass: the total is known only at its end; how far the pass has come is the byte
-    // position in the program (of program_bytes).
-    const apci::nc::EventStream* stream = nullptr;
+    // position in the program (of program_bytes; 0 when unknown, a pipe).
+    bool one_pass = false;
     std::uint64_t program_bytes = 0;
     bool progress_bar = false;
 
@@ -121,14 +121,14 @@ class Outputs final : public apci::run::RunSink {
     void warning(const RunError& w, const apci::run::Point& where) override {
         if (svg) svg->error_marker(w.block, where, w.code);
     }
-    void progress(std::uint64_t blocks) override {
-        const bool by_bytes = total_blocks == 0 && stream != nullptr && program_bytes != 0;
+    void progress(std::uint64_t blocks, std::uint64_t offset) override {
+        const bool by_bytes = total_blocks == 0 && one_pass && program_bytes != 0;
         if (!progress_bar || (total_blocks == 0 && !by_bytes)) return;
         const auto now = std::chrono::steady_clock::now();
         if (now - last_draw_ < std::chrono::milliseconds(100)) return;
         last_draw_ = now;
         if (by_bytes) {
-            draw(static_cast<double>(stream->offset()) / static_cast<double>(program_bytes),
+            draw(static_cast<double>(offset) / static_cast<double>(program_bytes),
                  fmt::format("{} blocks", blocks));
         } else {
             draw(static_cast<double>(blocks) / static_cast<double>(total_blocks),
@@ -266,6 +266,9 @@ class RunCommand final : public Command {
         apci::run::PipelinedSink pipeline(outputs);
         apci::run::ProgramExecutor executor(*board, pipeline, &tools, plc_.empty() ? nullptr : &plc,
                                             &corrections);
+        // The NC front end reads ahead on a thread of its own (read_ahead.h): the same events,
+        // errors and variable reads, the program parsed while the board runs.
+        executor.set_read_ahead(true);
         executor.set_self_approach(self_approach_ == "error" ? apci::run::SelfApproachMode::kError
                                    : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
                                                              : apci::run::SelfApproachMode::kWarn);
@@ -324,7 +327,7 @@ class RunCommand final : public Command {
         outputs.csv_file = csv_file.file();
         outputs.svg_cycles = svg_cycles_;
         if (pass) {
-            outputs.stream = &pass->events();
+            outputs.one_pass = true;
             outputs.program_bytes = pass->size();
         } else {
             outputs.total_blocks = program->summary().blocks;

@@ -377,7 +377,11 @@ bool Execution::drain_segments(std::uint64_t pending) {
         if (!r) return board_failure({}, r.status, "read segments");
         for (std::size_t i = 0; i < r.value; ++i) {
             const PathSegment s = convert(segments_[i]);
-            count_segment(out.totals, s);
+            if (sink_measures_) {
+                ++out.totals.segments;  // the lengths are the sink's to measure and sum
+            } else {
+                count_segment(out.totals, s);
+            }
             sink_.executed(s);
             if (self_approach_mode_ != SelfApproachMode::kOff) {
                 self_approach_.executed(s, findings_);
@@ -458,7 +462,9 @@ PathSegment Execution::convert(const apci_segment& b) {
     // not act on it, as the offsets above say).
     if (s.role == Role::kUncompensated && b.role != APCI_ROLE_RAPID && c3_.read_back(b.tag))
         s.role = Role::kContour;
-    measure(s);  // sweep and length once, for the totals and the writers
+    // Sweep and length once, for the totals and the writers: here, or by a sink that measures
+    // them off this thread (RunSink::measures_executed).
+    if (!sink_measures_) measure(s);
     return s;
 }
 

@@ -78,7 +78,8 @@ class Execution {
     Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
               const nc::CorrectionTable* corrections, SelfApproachMode self_approach);
 
-    RunOutcome run(nc::EventStream& events);
+    // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
+    RunOutcome run(nc::EventStream& events, bool read_ahead);
 
     // ---- what the units reach through the context
 
@@ -131,7 +132,11 @@ class Execution {
     HeadState head;
 
   private:
-    void draw_rest(nc::EventStream& events);
+    // The run, reading `events`: an nc::EventStream or a ReadAhead over one.
+    template <typename Events>
+    RunOutcome run_events(Events& events);
+    template <typename Events>
+    void draw_rest(Events& events);
     bool setup();
     bool read_axis_numbers();
     void finish();
@@ -168,6 +173,7 @@ class Execution {
     bool set_up_ = false;   // setup() succeeded: the board was configured for the run
     bool clock_ok_ = true;  // no clock call failed
     bool klartext_ = false;
+    bool sink_measures_ = false;  // the sink measures the executed segments (measures_executed)
     // Whether last_board_end_ holds a segment's end.
     bool have_last_board_end_ = false;
     std::uint64_t start_cycle_ = 0;

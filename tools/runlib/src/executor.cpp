@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "apci/run/csv_writer.h"
+#include "apci/run/read_ahead.h"
 #include "apci/run/self_approach.h"
 #include "execution.h"
 #include "objif/map/object_map.h"
@@ -68,9 +69,26 @@ Execution::Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* too
     if (tools_ != nullptr) tools_mut = *tools_;
 }
 
-RunOutcome Execution::run(nc::EventStream& events) {
+namespace {
+
+// The reader of a ReadAhead ends before the run finishes; a stream read directly has nothing
+// to end.
+void stop_reading(ReadAhead& events) noexcept { events.stop(); }
+void stop_reading(nc::EventStream& events) noexcept { (void)events; }
+
+}  // namespace
+
+RunOutcome Execution::run(nc::EventStream& events, bool read_ahead) {
+    if (!read_ahead) return run_events(events);
+    ReadAhead ahead(events);  // stopped and joined on every path out
+    return run_events(ahead);
+}
+
+template <typename Events>
+RunOutcome Execution::run_events(Events& events) {
     // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
     events.set_variable_source(&variables_);
+    sink_measures_ = sink_.measures_executed();
     set_up_ = setup();
     if (set_up_) {
         nc::Event ev;
@@ -89,19 +107,22 @@ RunOutcome Execution::run(nc::EventStream& events) {
                 break;
             }
             if (++count % ProgramExecutor::kProgressEvery == 0)
-                sink_.progress(events.blocks_read());
+                sink_.progress(events.blocks_read(), events.offset());
         }
     }
+    stop_reading(events);
     finish();
     // The variables unit ends with this run; a caller that reads on (nc::SinglePass::finish)
     // reads with the front end's own view.
     events.set_variable_source(nullptr);
+    if (sink_measures_) sink_.measured_lengths(out.totals.path_length, out.totals.rapid_length);
     return std::move(out);
 }
 
 // After an error the rest of the program still goes to a plot, so the place of the error
 // is seen in its contour; nothing more goes to the board.
-void Execution::draw_rest(nc::EventStream& events) {
+template <typename Events>
+void Execution::draw_rest(Events& events) {
     if (!sink_.wants_programmed()) return;
     nc::Event ev;
     while (events.next(ev) == nc::EventStream::Next::kEvent) {
@@ -306,7 +327,7 @@ Point ProgramExecutor::position() {
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto execution = std::make_unique<exec::Execution>(board_, sink_, tools_, plc_, corrections_,
                                                        self_approach_);
-    return execution->run(events);
+    return execution->run(events, read_ahead_);
 }
 
 }  // namespace apci::run

@@ -1,26 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/pipeline.h"
 
-#include <pthread.h>
-
 #include <algorithm>
-#include <csignal>
+
+#include "quiet_thread.h"
 
 namespace apci::run {
-
-namespace {
-
-// The signals the writer thread leaves to the caller's thread: every one that ends the process
-// and can be sent to it, less those a thread's own write or fault raises in that thread.
-sigset_t process_signals() noexcept {
-    sigset_t set;
-    sigfillset(&set);
-    for (const int sig : {SIGPIPE, SIGXFSZ, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS})
-        sigdelset(&set, sig);
-    return set;
-}
-
-}  // namespace
 
 void PipelinedSink::Batch::clear() noexcept {
     order.clear();
@@ -38,17 +23,7 @@ PipelinedSink::~PipelinedSink() {
 
 void PipelinedSink::start() {
     started_ = true;
-    // The thread inherits the mask in force when it is made: the process's signals blocked.
-    const sigset_t block = process_signals();
-    sigset_t saved;
-    ::pthread_sigmask(SIG_BLOCK, &block, &saved);
-    try {
-        writer_ = std::thread([this] { write_loop(); });
-    } catch (...) {
-        ::pthread_sigmask(SIG_SETMASK, &saved, nullptr);
-        throw;
-    }
-    ::pthread_sigmask(SIG_SETMASK, &saved, nullptr);
+    writer_ = exec::quiet_thread([this] { write_loop(); });
 }
 
 PipelinedSink::Batch* PipelinedSink::open_batch() {
@@ -130,15 +105,19 @@ void PipelinedSink::warning(const RunError& w, const Point& where) {
     add(Kind::kWarning, static_cast<std::uint32_t>(b->notes.size() - 1));
 }
 
-void PipelinedSink::deliver(const Batch& b) {
+void PipelinedSink::deliver(Batch& b) {
     for (const auto& [kind, i] : b.order) {
         switch (kind) {
             case Kind::kProgrammed:
                 inner_.programmed(b.segments[i]);
                 break;
-            case Kind::kExecuted:
-                inner_.executed(b.segments[i]);
+            case Kind::kExecuted: {
+                PathSegment& s = b.segments[i];
+                measure(s);
+                count_segment(measured_, s);
+                inner_.executed(s);
                 break;
+            }
             case Kind::kSample: {
                 const Sample& s = b.samples[i];
                 inner_.sample(s.cycle, s.time_s, std::span<const double>(s.axes.data(), s.count));
@@ -160,13 +139,16 @@ void PipelinedSink::deliver(const Batch& b) {
             case Kind::kAxisNumbers:
                 inner_.axis_numbers(b.xyz);
                 break;
+            case Kind::kBarrier:
+                writer_reached(true);
+                break;
         }
     }
 }
 
 void PipelinedSink::write_loop() noexcept {
     try {
-        while (const Batch* b = ring_.front()) {
+        while (Batch* b = ring_.front()) {
             if (ring_.cancelled()) break;  // the caller left without finish()
             deliver(*b);
             ring_.pop();
@@ -175,6 +157,34 @@ void PipelinedSink::write_loop() noexcept {
         failure_ = std::current_exception();
         ring_.cancel();  // the producer waits no more; what it sends is dropped
     }
+    writer_reached(false);
+}
+
+void PipelinedSink::writer_reached(bool barrier) noexcept {
+    {
+        const std::lock_guard<std::mutex> lock(sync_mutex_);
+        if (barrier) {
+            ++barriers_passed_;
+        } else {
+            writer_ended_ = true;
+        }
+    }
+    synced_.notify_all();
+}
+
+void PipelinedSink::measured_lengths(double& path, double& rapid) {
+    if (started_) {
+        const std::uint64_t barrier = ++barriers_sent_;
+        if (open_batch() != nullptr) {
+            add(Kind::kBarrier, 0);
+            commit();
+            ring_.flush();  // the writer may sleep until half the ring is ready
+        }
+        std::unique_lock<std::mutex> lock(sync_mutex_);
+        synced_.wait(lock, [&] { return barriers_passed_ >= barrier || writer_ended_; });
+    }
+    path = measured_.path_length;
+    rapid = measured_.rapid_length;
 }
 
 void PipelinedSink::finish() {

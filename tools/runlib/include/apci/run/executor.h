@@ -57,8 +57,21 @@ class RunSink {
     // True to get the rest of the program's moves through programmed() after an error stopped
     // the run (a plot shows the whole contour).
     virtual bool wants_programmed() const { return false; }
-    // A segment the board executed, in program coordinates (tool centre point).
+    // A segment the board executed, in program coordinates (tool centre point), measured
+    // (PathSegment::sweep and length) unless measures_executed().
     virtual void executed(const PathSegment& s) { (void)s; }
+    // True when the sink measures the executed segments itself (measure(), off the executor's
+    // thread) and sums their lengths as count_segment() does: the executor then hands them on
+    // unmeasured and takes the sums from measured_lengths() at the end of the run. Asked once,
+    // at the start of the run.
+    virtual bool measures_executed() const { return false; }
+    // The path and rapid lengths of every executed segment handed on so far, summed in their
+    // order from 0 as count_segment() sums them (the same bits); waits until the sink has had
+    // every one. Asked only when measures_executed().
+    virtual void measured_lengths(double& path, double& rapid) {
+        (void)path;
+        (void)rapid;
+    }
     // Before the first sample: the column names of the board's axes ("X", ..., "a7").
     virtual void axes(std::span<const std::string> names) { (void)names; }
     // Before the first sample: the board axes of X, Y and Z.
@@ -81,8 +94,13 @@ class RunSink {
         (void)w;
         (void)where;
     }
-    // Blocks read so far by the execution pass (called every few thousand blocks).
-    virtual void progress(std::uint64_t blocks) { (void)blocks; }
+    // Blocks read so far by the execution pass, and bytes of the program (the stream's
+    // offset()), as the stream said them with the last event executed (called every few
+    // thousand events).
+    virtual void progress(std::uint64_t blocks, std::uint64_t offset) {
+        (void)blocks;
+        (void)offset;
+    }
 };
 
 // The board's block tag: the N number, or (no N, or N beyond 2^31 - 1) the source line with
@@ -145,6 +163,10 @@ class ProgramExecutor {
     // Executes the stream to its end or to the first error.
     RunOutcome run(nc::EventStream& events);
     void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
+    // With read-ahead, run() reads the stream through a ReadAhead (read_ahead.h): the NC front
+    // end on a thread of its own, the same events, errors and variable reads at the same
+    // places. The stream is the caller's again when run() returns.
+    void set_read_ahead(bool on) noexcept { read_ahead_ = on; }
 
   private:
     apci::Board& board_;
@@ -153,6 +175,7 @@ class ProgramExecutor {
     const PlcScript* plc_;
     const nc::CorrectionTable* corrections_;
     SelfApproachMode self_approach_ = SelfApproachMode::kWarn;
+    bool read_ahead_ = false;
 };
 
 }  // namespace apci::run

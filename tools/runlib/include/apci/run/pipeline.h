@@ -13,6 +13,11 @@
 //   - progress() goes to the inner sink at once, on the caller's thread, and wants_programmed()
 //     and wants_samples() are asked of it there too: the inner sink must keep what these read
 //     unchanged while the run goes;
+//   - measured on the writer thread: the executed segments come unmeasured
+//     (measures_executed()); the writer thread measures each (measure()) before the inner sink
+//     has it, and sums the lengths in their order as count_segment() does, which
+//     measured_lengths() hands back once the writer has had every segment: the inner sink and
+//     the totals see the same values, bit for bit, as when the executor measured them;
 //   - errors: an exception of the inner sink on the writer thread stops the writer (the
 //     producer drops what follows instead of waiting) and is rethrown by finish(). Write
 //     errors the writers remember (TextSink) are theirs to report after finish(), as before;
@@ -24,8 +29,10 @@
 #pragma once
 
 #include <array>
+#include <condition_variable>
 #include <cstdint>
 #include <exception>
+#include <mutex>
 #include <span>
 #include <string>
 #include <thread>
@@ -34,6 +41,7 @@
 #include "apci/apci.h"
 #include "apci/run/executor.h"
 #include "apci/run/spsc_ring.h"
+#include "apci/run/summary.h"
 
 namespace apci::run {
 
@@ -57,7 +65,12 @@ class PipelinedSink final : public RunSink {
     void sample(std::uint64_t cycle, double time_s, std::span<const double> axes) override;
     void error(const RunError& e, const Point& where) override;
     void warning(const RunError& w, const Point& where) override;
-    void progress(std::uint64_t blocks) override { inner_.progress(blocks); }
+    void progress(std::uint64_t blocks, std::uint64_t offset) override {
+        inner_.progress(blocks, offset);
+    }
+    bool measures_executed() const override { return true; }
+    // Waits until the writer thread has had every event handed over (or stopped).
+    void measured_lengths(double& path, double& rapid) override;
 
     // Hands over the last batch, waits until the inner sink has had every event, and ends the
     // writer thread. Rethrows the exception that stopped the writer, if one did. Idempotent.
@@ -74,7 +87,8 @@ class PipelinedSink final : public RunSink {
         kError,
         kWarning,
         kAxes,
-        kAxisNumbers
+        kAxisNumbers,
+        kBarrier  // measured_lengths(): the writer has had every event before it
     };
     struct Sample {
         std::uint64_t cycle = 0;
@@ -104,7 +118,8 @@ class PipelinedSink final : public RunSink {
     void commit();
     void start();
     void write_loop() noexcept;
-    void deliver(const Batch& b);
+    void deliver(Batch& b);
+    void writer_reached(bool barrier) noexcept;
     void stop() noexcept;
 
     RunSink& inner_;
@@ -114,6 +129,14 @@ class PipelinedSink final : public RunSink {
     bool finished_ = false;
     std::thread writer_;
     std::exception_ptr failure_;  // written by the writer thread before it ends
+    // The writer thread's sums of the executed segments' lengths (count_segment()).
+    RunTotals measured_;
+    // Barriers handed over, and those the writer passed; the writer ended.
+    std::uint64_t barriers_sent_ = 0;
+    std::mutex sync_mutex_;
+    std::condition_variable synced_;
+    std::uint64_t barriers_passed_ = 0;
+    bool writer_ended_ = false;
 };
 
 }  // namespace apci::run

@@ -14,7 +14,11 @@
 //   cancel()  the consumer takes no more (it failed): acquire() returns nullptr from then on,
 //             and what was committed and not taken is never read.
 //
-// Used by PipelinedSink (pipeline.h) to hand batches of a run's events to its writer thread.
+// flush() wakes a sleeping consumer for what is committed, however little (a producer that
+// waits on the consumer's answer to its last slot).
+//
+// Used by PipelinedSink (pipeline.h) to hand batches of a run's events to its writer thread,
+// and by ReadAhead (read_ahead.h) to hand the NC front end's events to the executor.
 #pragma once
 
 #include <algorithm>
@@ -61,6 +65,13 @@ class SpscRing {
         head_.store(head, std::memory_order_seq_cst);
         if (consumer_sleeps_.load() && head - tail_.load() >= wake_after_) wake();
     }
+    // Wakes a consumer asleep on the ring for what is committed now, however little: for a
+    // producer that waits on an answer to its last slot (a wakeup for `wake_after` slots would
+    // never come).
+    void flush() {
+        flushed_.store(head_.load(std::memory_order_relaxed), std::memory_order_seq_cst);
+        if (consumer_sleeps_.load()) wake();
+    }
     // No more slots will come (after the last commit()).
     void close() {
         closed_.store(true, std::memory_order_seq_cst);
@@ -74,7 +85,7 @@ class SpscRing {
     T* front() {
         const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
         const auto ready = [&](std::size_t want) {
-            return head_.load() - tail >= want || closed_.load();
+            return head_.load() - tail >= want || closed_.load() || flushed_.load() > tail;
         };
         wait_for(ready, consumer_sleeps_);
         if (head_.load(std::memory_order_acquire) == tail) return nullptr;  // closed, drained
@@ -122,6 +133,7 @@ class SpscRing {
     // The producer's line: what commit() writes, and what both only read.
     alignas(64) std::atomic<std::uint64_t> head_{0};  // slots committed
     std::atomic<bool> producer_sleeps_{false};
+    std::atomic<std::uint64_t> flushed_{0};  // flush(): the consumer wakes for slots below
     std::vector<T> slots_;
     std::size_t wake_after_;
     // The consumer's line: what pop() writes, and what is written once or on a sleep.

@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/read_ahead.h"
+
+#include <utility>
+
+#include "quiet_thread.h"
+
+namespace apci::run {
+
+using Next = nc::EventStream::Next;
+
+ReadAhead::ReadAhead(nc::EventStream& stream) : stream_(stream) {}
+
+ReadAhead::~ReadAhead() {
+    stop();
+}
+
+void ReadAhead::set_variable_source(nc::VariableSource* source) noexcept {
+    source_ = source;
+    // While the reader may run, its reads come to the caller through `requests_`.
+    stream_.set_variable_source(source != nullptr && !ended_ ? &requests_ : source);
+}
+
+void ReadAhead::start() {
+    started_ = true;
+    reader_ = exec::quiet_thread([this] { read_loop(); });
+}
+
+// ---- the reader thread
+
+ReadAhead::Batch* ReadAhead::open_batch() {
+    if (filling_ != nullptr) return filling_;
+    filling_ = ring_.acquire();  // nullptr: stopped
+    if (filling_ != nullptr) {
+        filling_->size = 0;
+        filling_->tail = Tail::kMore;
+    }
+    return filling_;
+}
+
+void ReadAhead::commit() {
+    if (filling_ == nullptr) return;
+    filling_ = nullptr;
+    ring_.commit();
+}
+
+void ReadAhead::read_loop() noexcept {
+    try {
+        nc::Event ev;
+        for (;;) {
+            if (stopping_.load(std::memory_order_relaxed)) break;
+            // A variable read inside next() hands over the batch being filled: the event goes
+            // into the batch open after it.
+            const Next n = stream_.next(ev);
+            Batch* b = open_batch();
+            if (b == nullptr || stopping_.load(std::memory_order_relaxed)) break;
+            if (n == Next::kEvent) {
+                Item& item = b->items[b->size++];
+                item.event = ev;
+                item.blocks = stream_.blocks_read();
+                item.offset = stream_.offset();
+                item.dialect = stream_.dialect();
+                if (b->size == kBatchEvents) commit();
+                continue;
+            }
+            b->tail = n == Next::kEnd ? Tail::kEnd : Tail::kError;
+            commit();
+            break;
+        }
+    } catch (...) {
+        failure_ = std::current_exception();
+        commit();  // the events before it; then the ring ends without an end: next() rethrows
+    }
+    ring_.close();
+}
+
+bool ReadAhead::Requests::read(const nc::VariableRef& v, double& out, std::string& why) {
+    ReadAhead& o = owner_;
+    Batch* b = withdrawn_ ? nullptr : o.open_batch();
+    if (b == nullptr) {
+        withdrawn_ = true;
+        return false;
+    }
+    b->tail = Tail::kRequest;
+    b->request = v;
+    o.commit();
+    o.ring_.flush();  // the caller may sleep until half the ring is ready: it must see this now
+    std::unique_lock<std::mutex> lock(o.answer_mutex_);
+    o.answered_cv_.wait(lock, [&] { return o.answered_ || o.stopping_.load(); });
+    if (!o.answered_) {
+        withdrawn_ = true;
+        return false;
+    }
+    o.answered_ = false;
+    out = o.answer_;
+    why = o.answer_why_;
+    return o.answer_ok_;
+}
+
+// ---- the caller's thread
+
+Next ReadAhead::next(nc::Event& out) {
+    for (;;) {
+        if (reading_ != nullptr) {
+            if (pos_ < reading_->size) {
+                const Item& item = reading_->items[pos_++];
+                out = item.event;
+                blocks_ = item.blocks;
+                offset_ = item.offset;
+                dialect_ = item.dialect;
+                return Next::kEvent;
+            }
+            const Tail tail = reading_->tail;
+            const nc::VariableRef request = reading_->request;
+            reading_ = nullptr;
+            ring_.pop();
+            if (tail == Tail::kRequest) {
+                // Every event before the read was taken and executed: the board is as the
+                // program expects to see it.
+                serve(request);
+            } else if (tail != Tail::kMore) {
+                join();  // the reader ends after its last batch
+                last_ = tail == Tail::kEnd ? Next::kEnd : Next::kError;
+                return last_;
+            }
+        }
+        if (ended_) return last_;
+        if (!started_) start();
+        reading_ = ring_.front();
+        pos_ = 0;
+        if (reading_ == nullptr) {  // the reader ended without an end: it failed
+            join();
+            if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+            return last_;
+        }
+    }
+}
+
+void ReadAhead::serve(const nc::VariableRef& v) {
+    double value = 0.0;
+    std::string why = "no variable source";
+    bool ok = false;
+    if (source_ != nullptr) {
+        why.clear();
+        ok = source_->read(v, value, why);
+    }
+    {
+        const std::lock_guard<std::mutex> lock(answer_mutex_);
+        answered_ = true;
+        answer_ok_ = ok;
+        answer_ = value;
+        answer_why_ = std::move(why);
+    }
+    answered_cv_.notify_one();
+}
+
+void ReadAhead::join() noexcept {
+    if (reader_.joinable()) reader_.join();
+    ended_ = true;
+}
+
+void ReadAhead::stop() noexcept {
+    if (ended_) return;
+    if (started_) {
+        {
+            const std::lock_guard<std::mutex> lock(answer_mutex_);
+            stopping_.store(true);
+        }
+        answered_cv_.notify_all();
+        ring_.cancel();  // a reader waiting for room is released
+    }
+    join();
+    reading_ = nullptr;
+    last_ = Next::kEnd;
+}
+
+}  // namespace apci::run
