@@ -21,6 +21,7 @@
 
 #include "plate_program.h"
 #include "apci/apci.hpp"
+#include "apci/nc/move_time.h"
 #include "apci/nc/program.h"
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
@@ -658,6 +659,45 @@ TEST(SegmentReadBack, ASinkThatMeasuresGetsTheSegmentsUnmeasuredAndGivesTheLengt
     EXPECT_EQ(out.totals.path_length, sink.sums.path_length);
     EXPECT_EQ(out.totals.rapid_length, sink.sums.rapid_length);
     EXPECT_GT(out.totals.path_length, 100.0);
+}
+
+// The executor's cycle check tells most moves from a bound without roots or angles; wherever the
+// bound says "surely within", the exact check agrees, and a move beyond the limit is never
+// passed by the bound.
+TEST(SegmentReadBack, TheCycleBoundNeverPassesAMoveTheExactCheckRefuses) {
+    std::uint64_t passed = 0, undecided = 0;
+    std::uint32_t seed = 12345;
+    const auto next = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return static_cast<double>(seed >> 8) / static_cast<double>(1u << 24);
+    };
+    for (int i = 0; i < 20000; ++i) {
+        PathSegment s;
+        s.kind = (i % 2) == 0 ? SegmentKind::kArc : SegmentKind::kLine;
+        s.plane = 17 + (i % 3);
+        const double scale = std::pow(10.0, 8.0 * next() - 2.0);  // 0.01 mm .. 1e6 mm
+        s.start = Point(next(), next(), next()) * scale;
+        s.end = Point(next(), next(), next()) * scale;
+        s.center = Point(next(), next(), next()) * scale;
+        s.ccw = next() < 0.5;
+        const double feed = std::pow(10.0, 6.0 * next() - 5.0);  // 1e-5 .. 10 mm/min
+        const double cycle = (i % 5) == 0 ? 0.00025 : 0.001;
+        const bool exact_ok = nc::check_move_cycles(segment_length(s), feed, cycle).empty();
+        if (surely_within_move_cycles(s, feed, cycle)) {
+            ++passed;
+            EXPECT_TRUE(exact_ok) << i;
+        } else {
+            ++undecided;
+        }
+    }
+    EXPECT_GT(passed, 1000u);
+    EXPECT_GT(undecided, 1000u);
+    // A plain move: decided by the bound.
+    PathSegment line = segment(1);
+    EXPECT_TRUE(surely_within_move_cycles(line, 1000.0, 0.001));
+    // Zero feed or cycle: never "surely".
+    EXPECT_FALSE(surely_within_move_cycles(line, 0.0, 0.001));
+    EXPECT_FALSE(surely_within_move_cycles(line, 1000.0, 0.0));
 }
 
 // ---- output files: large writes, write-back started while the run goes

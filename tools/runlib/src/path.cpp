@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "apci/nc/move_time.h"
+
 namespace apci::run {
 
 std::string_view kind_name(SegmentKind k) noexcept {
@@ -124,6 +126,22 @@ double measured_sweep(const PathSegment& s) noexcept {
 
 double measured_length(const PathSegment& s) noexcept {
     return std::isnan(s.length) ? segment_length(s) : s.length;
+}
+
+// A bound on segment_length(s) (for an arc: its sweep, at most a turn, times its mean radius,
+// with the travel along the normal) is what nc::surely_within_move_cycles bounds for the front
+// end's moves: a line's chord, an arc's whole turn of its larger radius plus that travel.
+bool surely_within_move_cycles(const PathSegment& s, double feed, double cycle_seconds) noexcept {
+    if (s.kind != SegmentKind::kArc)
+        return nc::surely_within_move_cycles(s.start, s.end, feed, cycle_seconds);
+    nc::ArcMove a;
+    a.start = s.start;
+    a.end = s.end;
+    a.center = s.center;
+    a.ccw = s.ccw;
+    a.plane = s.plane == 18 ? nc::Plane::kZX : s.plane == 19 ? nc::Plane::kYZ : nc::Plane::kXY;
+    a.feed = feed;
+    return nc::surely_within_move_cycles(a, cycle_seconds);
 }
 
 }  // namespace apci::run

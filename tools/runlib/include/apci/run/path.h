@@ -100,6 +100,10 @@ void measure(PathSegment& s) noexcept;
 // s.sweep when measured, else arc_sweep(s); s.length when measured, else segment_length(s).
 double measured_sweep(const PathSegment& s) noexcept;
 double measured_length(const PathSegment& s) noexcept;
+// True when a programmed move certainly takes at most nc::kMaxMoveCycles interpolation cycles
+// of `cycle_seconds` at `feed` mm/min, told as nc::surely_within_move_cycles tells it (no root
+// or angle); false decides nothing: nc::check_move_cycles of segment_length() then does.
+bool surely_within_move_cycles(const PathSegment& s, double feed, double cycle_seconds) noexcept;
 
 // One error of a run: from the board (code = the Table 4 bit name, e.g. "KorrError", or a
 // status name such as "InvalidValue") or from the program's execution pass (code = the
