@@ -107,29 +107,29 @@ class ReadAhead {
     void serve(const nc::VariableRef& v);  // caller: a variable read, answered
     void join() noexcept;
 
+    // (In the order that packs them.)
+    SpscRing<Batch> ring_{kBatches, kBatches / 2};
     nc::EventStream& stream_;
     nc::VariableSource* source_ = nullptr;  // the caller's
-    Requests requests_{*this};
-    SpscRing<Batch> ring_{kBatches, kBatches / 2};
-    Batch* filling_ = nullptr;  // the reader's
-    Batch* reading_ = nullptr;  // the caller's
+    Batch* filling_ = nullptr;              // the reader's
+    Batch* reading_ = nullptr;              // the caller's
     std::size_t pos_ = 0;
-    bool started_ = false;
-    bool ended_ = false;  // the reader ended and was joined: next() returns `last_`
-    nc::EventStream::Next last_ = nc::EventStream::Next::kEnd;
     std::uint64_t blocks_ = 0;
     std::uint64_t offset_ = 0;
-    nc::Dialect dialect_ = nc::Dialect::kUndecided;
     std::thread reader_;
     std::exception_ptr failure_;  // written by the reader before it ends
-
     // A variable read handed to the caller, and its answer.
+    double answer_ = 0.0;
+    Requests requests_{*this};
+    std::string answer_why_;
     std::mutex answer_mutex_;
     std::condition_variable answered_cv_;
+    nc::EventStream::Next last_ = nc::EventStream::Next::kEnd;
+    bool started_ = false;
+    bool ended_ = false;  // the reader ended and was joined: next() returns `last_`
+    nc::Dialect dialect_ = nc::Dialect::kUndecided;
     bool answered_ = false;
     bool answer_ok_ = false;
-    double answer_ = 0.0;
-    std::string answer_why_;
     std::atomic<bool> stopping_{false};
 };
 
