@@ -401,7 +401,7 @@ TEST(RunPipeline, TheWriterMeasuresTheExecutedSegmentsAndSumsTheirLengthsInOrder
     EXPECT_EQ(rapid, 0.0);
     for (const PathSegment& s : segments) pipeline.executed(s);
     pipeline.measured_lengths(path, rapid);  // waits for the writer
-    EXPECT_EQ(path, expected.path_length);    // bit for bit
+    EXPECT_EQ(path, expected.path_length);   // bit for bit
     EXPECT_EQ(rapid, expected.rapid_length);
     EXPECT_GT(rapid, 0.0);
     ASSERT_EQ(inner.lengths.size(), segments.size());  // every one had before the answer

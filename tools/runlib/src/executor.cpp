@@ -73,8 +73,12 @@ namespace {
 
 // The reader of a ReadAhead ends before the run finishes; a stream read directly has nothing
 // to end.
-void stop_reading(ReadAhead& events) noexcept { events.stop(); }
-void stop_reading(nc::EventStream& events) noexcept { (void)events; }
+void stop_reading(ReadAhead& events) noexcept {
+    events.stop();
+}
+void stop_reading(nc::EventStream& events) noexcept {
+    (void)events;
+}
 
 }  // namespace
 
