@@ -673,10 +673,10 @@ TEST(SegmentReadBack, ASinkThatMeasuresGetsTheSegmentsUnmeasuredAndGivesTheLengt
 // passed by the bound.
 TEST(SegmentReadBack, TheCycleBoundNeverPassesAMoveTheExactCheckRefuses) {
     std::uint64_t passed = 0, undecided = 0;
-    std::uint32_t seed = 12345;
+    std::uint32_t lcg = 12345;  // a fixed sequence of pseudo-random numbers in [0, 1)
     const auto next = [&] {
-        seed = seed * 1664525u + 1013904223u;
-        return static_cast<double>(seed >> 8) / static_cast<double>(1u << 24);
+        lcg = lcg * 1664525u + 1013904223u;
+        return static_cast<double>(lcg >> 8) / static_cast<double>(1u << 24);
     };
     for (int i = 0; i < 20000; ++i) {
         PathSegment s;

@@ -2,9 +2,9 @@
 // The output pipeline of `apcictl run`: a RunSink that hands what the executor produces (the
 // programmed moves, the executed segments, the samples, the errors and warnings with their
 // places, the axis names and numbers) in batches through a bounded ring (spsc_ring.h) to one
-// writer thread, which calls another RunSink with them in the order they came. The NC front
-// end, the executor and the board run on the caller's thread, the writers (JSON, CSV, SVG) on
-// the writer thread: two cores share a run.
+// writer thread, which calls another RunSink with them in the order they came. The executor
+// and the board run on the caller's thread, the writers (JSON, CSV, SVG) on the writer thread
+// (and with ProgramExecutor::set_read_ahead the NC front end on a third, read_ahead.h).
 //
 //   - bounded: kBatches batches of at most kBatchEvents events; a producer that finds every
 //     batch taken waits for the writer (memory stays flat however long the program);
