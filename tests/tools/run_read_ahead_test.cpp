@@ -196,6 +196,34 @@ TEST(ReadAhead, AVariableIsReadAfterEveryEarlierEventWasTaken) {
     EXPECT_TRUE(stream.read_variable_source());
 }
 
+// A variable the board cannot give: the same error at the same line as without the read-ahead,
+// after the events before it.
+TEST(ReadAhead, AVariableTheBoardCannotGiveIsTheSameError) {
+    struct Refusing final : nc::VariableSource {
+        bool read(const nc::VariableRef&, double&, std::string& why) override {
+            why = "not on this board";
+            return false;
+        }
+    };
+    std::string text = many_blocks(700);
+    text.insert(text.rfind("M30"), "P1 = V.G.WZ_AKT.WEAR_RADIUS\nG0 X[P1]\n");
+    Refusing direct_board, board;
+    nc::EventStream direct = nc::EventStream::from_text(text, "r.nc");
+    direct.set_variable_source(&direct_board);
+    Next direct_last{};
+    const std::vector<std::string> expected = read_all(direct, direct_last);
+    ASSERT_EQ(direct_last, Next::kError);
+    EXPECT_NE(expected.back().find("V.G.WZ_AKT.WEAR_RADIUS cannot be read: not on this board"),
+              std::string::npos)
+        << expected.back();
+    nc::EventStream stream = nc::EventStream::from_text(text, "r.nc");
+    ReadAhead ahead(stream);
+    ahead.set_variable_source(&board);
+    Next last{};
+    EXPECT_EQ(read_all(ahead, last), expected);
+    EXPECT_EQ(last, Next::kError);
+}
+
 // ---- through the executor
 
 nc::ToolTable plate_tools(double radius) {
