@@ -530,6 +530,116 @@ TEST(RunPipeline, ARunThroughThePipelineHasTheSameTotalsBitForBit) {
     EXPECT_EQ(piped.json, direct.json);
 }
 
+// ---- the self-approach check on the writer thread
+
+// A spike: N60 is 1.1 mm long and its neighbours come back within the tool's 5 mm of each
+// other (three SelfApproach warnings with tool radius 5).
+const char* const kSpike =
+    "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+    "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+    "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n";
+
+struct CheckedRun {
+    std::vector<std::string> calls;  // what the sink got, in order
+    std::vector<std::string> warnings, errors;
+};
+
+CheckedRun run_spike(bool pipelined, SelfApproachMode mode) {
+    auto tools =
+        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n", "t.tools");
+    EXPECT_TRUE(tools);
+    apci::Board board("emu:");
+    nc::InterpreterOptions options;
+    options.tools = &tools.value();
+    auto program = nc::Program::from_text(kSpike, "spike.nc", options);
+    EXPECT_TRUE(program);
+    auto stream = program.value().events();
+    Recorder recorder;
+    recorder.want_samples = false;
+    PipelinedSink pipeline(recorder);
+    RunSink* sink = &recorder;
+    if (pipelined) sink = &pipeline;
+    ProgramExecutor executor(board, *sink, &tools.value());
+    executor.set_self_approach(mode);
+    const RunOutcome out = executor.run(stream.value());
+    pipeline.finish();
+    CheckedRun r;
+    r.calls = recorder.calls;
+    for (const RunError& w : out.warnings)
+        r.warnings.push_back(block_text(w.block) + " " + w.code + " " + w.message);
+    for (const RunError& e : out.errors)
+        r.errors.push_back(block_text(e.block) + " " + e.code + " " + e.message);
+    return r;
+}
+
+// Where the check only warns, the writer thread runs it: the same warnings, given to the writers
+// at the same places among the moves and segments, and the same in the run's outcome.
+TEST(RunPipeline, TheWriterThreadRunsTheSelfApproachCheckWithTheSameWarnings) {
+    const CheckedRun direct = run_spike(false, SelfApproachMode::kWarn);
+    const CheckedRun piped = run_spike(true, SelfApproachMode::kWarn);
+    EXPECT_EQ(direct.warnings.size(), 3u);
+    EXPECT_TRUE(direct.errors.empty());
+    EXPECT_EQ(piped.warnings, direct.warnings);
+    EXPECT_EQ(piped.calls, direct.calls);
+    EXPECT_EQ(piped.errors, direct.errors);
+}
+
+// Where a finding stops the run (--self-approach=error), the executor checks on its own thread:
+// the same error, at the same place.
+TEST(RunPipeline, ASelfApproachErrorStopsTheRunAsWithoutThePipeline) {
+    const CheckedRun direct = run_spike(false, SelfApproachMode::kError);
+    const CheckedRun piped = run_spike(true, SelfApproachMode::kError);
+    ASSERT_EQ(direct.errors.size(), 1u);
+    EXPECT_NE(direct.errors[0].find("SelfApproach"), std::string::npos) << direct.errors[0];
+    EXPECT_EQ(piped.errors, direct.errors);
+    EXPECT_EQ(piped.calls, direct.calls);
+    EXPECT_TRUE(piped.warnings.empty());
+}
+
+// A sink that takes the check over gets its calls, and the executor checks nothing itself: the
+// run's warnings are the sink's (none here, though the program comes near itself).
+TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
+    class Takes final : public RunSink {
+      public:
+        std::vector<std::string> calls;
+        bool takes_self_approach() override { return true; }
+        void programmed(const PathSegment& s) override {
+            calls.push_back("p" + std::to_string(s.block.number));
+        }
+        void self_approach_begin(double radius, int plane) override {
+            calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane));
+        }
+        void self_approach_programmed() override { calls.emplace_back("check"); }
+        void self_approach_end() override { calls.emplace_back("end"); }
+        void self_approach_results(std::vector<RunError>& warnings, bool& truncated) override {
+            calls.emplace_back("results");
+            warnings.push_back(RunError{BlockRef{42, 0}, "SelfApproach", "from the sink"});
+            truncated = false;
+        }
+    } sink;
+    auto tools =
+        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n", "t.tools");
+    ASSERT_TRUE(tools);
+    apci::Board board("emu:");
+    nc::InterpreterOptions options;
+    options.tools = &tools.value();
+    auto program = nc::Program::from_text(kSpike, "spike.nc", options);
+    ASSERT_TRUE(program);
+    auto stream = program.value().events();
+    ProgramExecutor executor(board, sink, &tools.value());
+    const RunOutcome out = executor.run(stream.value());
+    ASSERT_EQ(out.warnings.size(), 1u);
+    EXPECT_EQ(out.warnings[0].message, "from the sink");
+    // G40 comes before its block's move (N90): the stretch ends, then N90 departs.
+    std::vector<std::string> expected{"p20", "begin 5.000000 17"};
+    for (const char* block : {"p30", "p50", "p60", "p70", "p80"}) {
+        expected.emplace_back(block);
+        expected.emplace_back("check");
+    }
+    expected.insert(expected.end(), {"end", "p90", "results"});
+    EXPECT_EQ(sink.calls, expected);
+}
+
 // ---- segments read back once, measured once
 
 // More segments than the in-process transport takes from the log per step (256), read in one

@@ -180,9 +180,14 @@ bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
         if (p.kind == APCI_PROFILE_RAPID) {
             if (!end_self_approach()) return false;
         } else {
-            if (!self_approach_.active()) begin_self_approach();
-            self_approach_.programmed(programmed_move, findings_);
-            if (!take_findings()) return false;
+            if (!(sink_checks_ ? sink_check_active_ : self_approach_.active()))
+                begin_self_approach();
+            if (sink_checks_) {
+                sink_.self_approach_programmed();  // of the move given to programmed() above
+            } else {
+                self_approach_.programmed(programmed_move, findings_);
+                if (!take_findings()) return false;
+            }
         }
     }
     apci::Result<apci_motion_result> r;
@@ -209,9 +214,21 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
     }
 }
 
-void Execution::begin_self_approach() { self_approach_.begin(radius, comp_plane); }
+void Execution::begin_self_approach() {
+    if (sink_checks_) {
+        sink_check_active_ = true;
+        sink_.self_approach_begin(radius, comp_plane);
+        return;
+    }
+    self_approach_.begin(radius, comp_plane);
+}
 
 bool Execution::end_self_approach() {
+    if (sink_checks_) {
+        sink_check_active_ = false;
+        sink_.self_approach_end();
+        return true;  // warnings only: the run goes on
+    }
     self_approach_.end(findings_);
     return take_findings();
 }
@@ -384,7 +401,7 @@ bool Execution::drain_segments(std::uint64_t pending) {
                 count_segment(out.totals, s);
             }
             sink_.executed(s);
-            if (self_approach_mode_ != SelfApproachMode::kOff) {
+            if (self_approach_mode_ != SelfApproachMode::kOff && !sink_checks_) {
                 self_approach_.executed(s, findings_);
                 if (!take_findings()) return false;
             }

@@ -174,6 +174,10 @@ class Execution {
     bool clock_ok_ = true;  // no clock call failed
     bool klartext_ = false;
     bool sink_measures_ = false;  // the sink measures the executed segments (measures_executed)
+    // The sink runs the self-approach check (RunSink::takes_self_approach); whether a stretch
+    // of it is open.
+    bool sink_checks_ = false;
+    bool sink_check_active_ = false;
     // Whether last_board_end_ holds a segment's end.
     bool have_last_board_end_ = false;
     std::uint64_t start_cycle_ = 0;

@@ -93,6 +93,8 @@ RunOutcome Execution::run_events(Events& events) {
     // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
     events.set_variable_source(&variables_);
     sink_measures_ = sink_.measures_executed();
+    // Warnings only: the sink may run the check where it has the segments anyway.
+    sink_checks_ = self_approach_mode_ == SelfApproachMode::kWarn && sink_.takes_self_approach();
     set_up_ = setup();
     if (set_up_) {
         nc::Event ev;
@@ -207,7 +209,9 @@ void Execution::finish() {
     if (set_up_ && out.otc_present) otc_.check_out_tool();
     if (set_up_) variables_.read_all();
     out.tools_after = tools_mut;
-    if (self_approach_.truncated())
+    bool truncated = self_approach_.truncated();
+    if (sink_checks_) sink_.self_approach_results(out.warnings, truncated);
+    if (truncated)
         out.notices.push_back(RunError{
             {},
             "SelfApproachTruncated",

@@ -13,6 +13,7 @@ void PipelinedSink::Batch::clear() noexcept {
     samples.clear();
     notes.clear();
     names.clear();
+    begins.clear();
 }
 
 PipelinedSink::PipelinedSink(RunSink& inner) : inner_(inner) {}
@@ -110,12 +111,17 @@ void PipelinedSink::deliver(Batch& b) {
         switch (kind) {
             case Kind::kProgrammed:
                 inner_.programmed(b.segments[i]);
+                if (check_) last_programmed_ = b.segments[i];
                 break;
             case Kind::kExecuted: {
                 PathSegment& s = b.segments[i];
                 measure(s);
                 count_segment(measured_, s);
                 inner_.executed(s);
+                if (check_) {
+                    check_->executed(s, findings_);
+                    warn_findings();
+                }
                 break;
             }
             case Kind::kSample: {
@@ -141,6 +147,20 @@ void PipelinedSink::deliver(Batch& b) {
                 break;
             case Kind::kBarrier:
                 writer_reached(true);
+                break;
+            case Kind::kCheckStart:
+                check_ = std::make_unique<SelfApproachCheck>();
+                break;
+            case Kind::kCheckBegin:
+                if (check_) check_->begin(b.begins[i].first, b.begins[i].second);
+                break;
+            case Kind::kCheckProgrammed:
+                if (check_) check_->programmed(last_programmed_, findings_);
+                warn_findings();
+                break;
+            case Kind::kCheckEnd:
+                if (check_) check_->end(findings_);
+                warn_findings();
                 break;
         }
     }
@@ -172,19 +192,63 @@ void PipelinedSink::writer_reached(bool barrier) noexcept {
     synced_.notify_all();
 }
 
-void PipelinedSink::measured_lengths(double& path, double& rapid) {
-    if (started_) {
-        const std::uint64_t barrier = ++barriers_sent_;
-        if (open_batch() != nullptr) {
-            add(Kind::kBarrier, 0);
-            commit();
-            ring_.flush();  // the writer may sleep until half the ring is ready
-        }
-        std::unique_lock<std::mutex> lock(sync_mutex_);
-        synced_.wait(lock, [&] { return barriers_passed_ >= barrier || writer_ended_; });
+void PipelinedSink::sync() {
+    if (!started_) return;
+    const std::uint64_t barrier = ++barriers_sent_;
+    if (open_batch() != nullptr) {
+        add(Kind::kBarrier, 0);
+        commit();
+        ring_.flush();  // the writer may sleep until half the ring is ready
     }
+    std::unique_lock<std::mutex> lock(sync_mutex_);
+    synced_.wait(lock, [&] { return barriers_passed_ >= barrier || writer_ended_; });
+}
+
+void PipelinedSink::measured_lengths(double& path, double& rapid) {
+    sync();
     path = measured_.path_length;
     rapid = measured_.rapid_length;
+}
+
+// ---- the self-approach check on the writer thread (the executor's calls, in order)
+
+void PipelinedSink::add_only(Kind kind, std::uint32_t index) {
+    if (open_batch() != nullptr) add(kind, index);
+}
+
+bool PipelinedSink::takes_self_approach() {
+    add_only(Kind::kCheckStart);
+    return true;
+}
+
+void PipelinedSink::self_approach_begin(double radius, int plane) {
+    Batch* b = open_batch();
+    if (b == nullptr) return;
+    b->begins.emplace_back(radius, plane);
+    add(Kind::kCheckBegin, static_cast<std::uint32_t>(b->begins.size() - 1));
+}
+
+void PipelinedSink::self_approach_programmed() {
+    add_only(Kind::kCheckProgrammed);
+}
+
+void PipelinedSink::self_approach_end() {
+    add_only(Kind::kCheckEnd);
+}
+
+// As the executor gives them (Execution::take_findings): a warning each, to the inner sink.
+void PipelinedSink::warn_findings() {
+    for (const SelfApproachFinding& f : findings_) {
+        check_warnings_.push_back(RunError{f.path_block, "SelfApproach", describe(f)});
+        inner_.warning(check_warnings_.back(), f.where);
+    }
+    findings_.clear();
+}
+
+void PipelinedSink::self_approach_results(std::vector<RunError>& warnings, bool& truncated) {
+    sync();
+    warnings.insert(warnings.end(), check_warnings_.begin(), check_warnings_.end());
+    truncated = truncated || (check_ && check_->truncated());
 }
 
 void PipelinedSink::finish() {

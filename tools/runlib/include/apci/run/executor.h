@@ -94,6 +94,25 @@ class RunSink {
         (void)w;
         (void)where;
     }
+    // ---- The self-approach check (self_approach.h) off the executor's thread, where it only
+    // warns (SelfApproachMode::kWarn). True when the sink takes it over: it then runs a
+    // SelfApproachCheck itself on the executor's calls in their order (executed() on every
+    // executed segment, the three below) and gives each warning to warning() where the
+    // executor would have. Asked once, at the start of the run.
+    virtual bool takes_self_approach() { return false; }
+    // SelfApproachCheck::begin; programmed() of the move just given to programmed(); end().
+    virtual void self_approach_begin(double radius, int plane) {
+        (void)radius;
+        (void)plane;
+    }
+    virtual void self_approach_programmed() {}
+    virtual void self_approach_end() {}
+    // Appends the warnings so far, in order, and says whether the check was truncated; waits
+    // until the sink has had every call.
+    virtual void self_approach_results(std::vector<RunError>& warnings, bool& truncated) {
+        (void)warnings;
+        (void)truncated;
+    }
     // Blocks read so far by the execution pass, and bytes of the program (the stream's
     // offset()), as the stream said them with the last event executed (called every few
     // thousand events).

@@ -18,6 +18,9 @@
 //     has it, and sums the lengths in their order as count_segment() does, which
 //     measured_lengths() hands back once the writer has had every segment: the inner sink and
 //     the totals see the same values, bit for bit, as when the executor measured them;
+//   - the self-approach check where it only warns (takes_self_approach()): the writer thread
+//     runs it on the same calls in the same order and gives the inner sink each warning where
+//     the executor would have; self_approach_results() hands the warnings back;
 //   - errors: an exception of the inner sink on the writer thread stops the writer (the
 //     producer drops what follows instead of waiting) and is rethrown by finish(). Write
 //     errors the writers remember (TextSink) are theirs to report after finish(), as before;
@@ -32,6 +35,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <string>
@@ -40,6 +44,7 @@
 
 #include "apci/apci.h"
 #include "apci/run/executor.h"
+#include "apci/run/self_approach.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 
@@ -71,6 +76,12 @@ class PipelinedSink final : public RunSink {
     bool measures_executed() const override { return true; }
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
+    bool takes_self_approach() override;
+    void self_approach_begin(double radius, int plane) override;
+    void self_approach_programmed() override;
+    void self_approach_end() override;
+    // Waits until the writer thread has had every event handed over (or stopped).
+    void self_approach_results(std::vector<RunError>& warnings, bool& truncated) override;
 
     // Hands over the last batch, waits until the inner sink has had every event, and ends the
     // writer thread. Rethrows the exception that stopped the writer, if one did. Idempotent.
@@ -88,7 +99,11 @@ class PipelinedSink final : public RunSink {
         kWarning,
         kAxes,
         kAxisNumbers,
-        kBarrier  // measured_lengths(): the writer has had every event before it
+        kBarrier,     // measured_lengths(): the writer has had every event before it
+        kCheckStart,  // the self-approach check: the writer runs it from here on
+        kCheckBegin,
+        kCheckProgrammed,
+        kCheckEnd
     };
     struct Sample {
         std::uint64_t cycle = 0;
@@ -108,6 +123,7 @@ class PipelinedSink final : public RunSink {
         std::vector<Sample> samples;
         std::vector<Note> notes;
         std::vector<std::string> names;
+        std::vector<std::pair<double, int>> begins;  // self_approach_begin: radius, plane
         std::array<int, 3> xyz{0, 1, 2};
         void clear() noexcept;
     };
@@ -120,6 +136,9 @@ class PipelinedSink final : public RunSink {
     void write_loop() noexcept;
     void deliver(Batch& b);
     void writer_reached(bool barrier) noexcept;
+    void sync();  // waits until the writer has had every event so far (or ended)
+    void add_only(Kind kind, std::uint32_t index = 0);  // an event with nothing but its kind
+    void warn_findings();                               // writer: the check's findings out
     void stop() noexcept;
 
     RunSink& inner_;
@@ -137,6 +156,12 @@ class PipelinedSink final : public RunSink {
     std::condition_variable synced_;
     std::uint64_t barriers_passed_ = 0;
     bool writer_ended_ = false;
+    // The writer thread's self-approach check (from kCheckStart), its findings, its warnings,
+    // and the last programmed move (the one kCheckProgrammed checks).
+    std::unique_ptr<SelfApproachCheck> check_;
+    std::vector<SelfApproachFinding> findings_;
+    std::vector<RunError> check_warnings_;
+    PathSegment last_programmed_;
 };
 
 }  // namespace apci::run
