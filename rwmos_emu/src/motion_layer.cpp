@@ -82,16 +82,23 @@ void MotionLayer::record(const MotionResult& r) noexcept {
 }
 
 void MotionLayer::sync() noexcept {
+    sync(error_pending());
+}
+
+void MotionLayer::sync(bool errors) noexcept {
     const std::int32_t comp = spooler_.compensating_group();
+    // Read once: the group writes below cannot change the spooler.
+    const std::int32_t marked = spooler_.holds_profile() ? comp : 0;
+    // The compensating group, or, with none, the group whose contour ended
+    // last: its shift stays until a profile, a direct command or ReInit removes it.
+    const std::int32_t shifted = comp != 0 ? comp : spooler_.last_group();
     for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
         TcGroup& g = state_.tc.group(n);
-        if (n == comp && spooler_.holds_profile())
+        if (n == marked)
             g.status |= tc::kProfMarked;
         else
             g.status &= ~tc::kProfMarked;
-        // The compensating group, or, with none, the group whose contour ended
-        // last: its shift stays until a profile, a direct command or ReInit removes it.
-        if (n == comp || (comp == 0 && n == spooler_.last_group())) {
+        if (n == shifted) {
             // The stored displacement of the correction axes: where the queue
             // ends against where the programmed path ends.
             const auto& end = exec_.planned_end();
@@ -104,17 +111,19 @@ void MotionLayer::sync() noexcept {
     }
     // [APCI-TC] Table 4 via docs/design.md section 3: on any TC error the spooler
     // holds until ERROR is written.
-    exec_.set_halted(error_pending());
+    exec_.set_halted(errors);
     state_.spooler.fill = static_cast<std::int32_t>(exec_.fill());
     for (std::size_t a = 0; a < state_.axes.size(); ++a)
         state_.axes[a].position = exec_.position()[a];
 }
 
 MotionResult MotionLayer::spool(const motion::Profile& p) {
+    const TcSettings s = settings();
     const MotionResult r = spooler_.spool(
-        p, settings(), exec_, static_cast<std::size_t>(state_.spooler.capacity), cycle_seconds());
+        p, s, exec_, static_cast<std::size_t>(state_.spooler.capacity), cycle_seconds());
     record(r);
-    sync();
+    // A call without TC errors leaves every group's ERROR as settings() read it.
+    sync(r.errors == 0 ? s.error_pending : error_pending());
     return r;
 }
 

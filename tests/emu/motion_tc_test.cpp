@@ -380,6 +380,23 @@ TEST_F(TcRules, WritingErrorLetsTheSpoolerGoOnAndStatus0ReleasesTheHeldProfile) 
     EXPECT_EQ(position(), xyz(10, 0));
 }
 
+// The spool call mirrors the ERROR bits into the executor itself: it holds from the call that
+// sets one, before any clock, and the first call after ERROR was written reads it anew.
+TEST_F(TcRules, SpoolCallsHoldTheExecutorFromTheErrorOnAndReadErrorWrittenBetweenThem) {
+    setup_group(5.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    const rwmos::motion::Executor& exec = board.state().motion.executor();
+    EXPECT_FALSE(exec.halted());
+    ASSERT_EQ(board.spool(arc(2, true, 10, 4, 10, 2)).status, Status::kWrongDeviceState);
+    EXPECT_TRUE(exec.halted()) << "held by the call that set ERROR";
+    EXPECT_EQ(board.spool(line(3, 20, 0)).status, Status::kWrongDeviceState);
+    EXPECT_TRUE(exec.halted());
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubError, 0), Status::kOk);
+    spool_ok(line(3, 20, 0));
+    EXPECT_FALSE(exec.halted()) << "the call after ERROR was written no longer holds";
+}
+
 TEST_F(TcRules, ArcWithWrongCentreOnAnActiveTcBoardSetsCenterErrorEvenUncompensated) {
     setup_group(1.0);  // TC accessed, group 1 active (not running)
     const MotionResult r = board.spool(arc(1, true, 20, 0, 14, 0));

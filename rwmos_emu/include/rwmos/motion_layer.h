@@ -54,6 +54,8 @@ class MotionLayer final : public TcMotion {
     // Mirrors the motion state into the objects: ProfMarked, offsets, spooler
     // fill level, axis positions; and holds the executor while an error is set.
     void sync() noexcept;
+    // sync() with error_pending() already known.
+    void sync(bool errors) noexcept;
 
     Board::State& state_;
     motion::Executor exec_;
