@@ -8,6 +8,12 @@ namespace rwmos {
 // The 3D compensation module (bus 1310) acts on a profile before the spooler sees it: an armed
 // LN profile gets its compensated end point (docs/object-map.md section 6).
 motion::MotionResult Board::spool(const motion::Profile& p) {
+    if (state_->comp3d.armed == 0) {
+        // Nothing armed: plan_profile would leave the profile as it is and plan nothing.
+        const motion::MotionResult r = state_->motion.spool(p);
+        if (r.ok()) commit_profile(state_->comp3d, Comp3dPlan{});
+        return r;
+    }
     motion::Profile q = p;
     const Comp3dPlan plan =
         plan_profile(state_->comp3d, state_->tc, state_->motion.spooler().program_position(), q);

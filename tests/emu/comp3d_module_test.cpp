@@ -242,6 +242,22 @@ TEST_F(Comp3dBoard, ArmedVectorsAreUsedByOneProfileOnly) {
     EXPECT_EQ(V(segs[1].end[0], segs[1].end[1], segs[1].end[2]), V(4, 5, 6));  // plain line
 }
 
+TEST_F(Comp3dBoard, ArmingWrittenBetweenProfilesActsOnTheNextOne) {
+    tool(1, 3, 3, 0, -0.1, -0.1);
+    ASSERT_EQ(set(c3::kIdxTool, 1), Status::kOk);
+    spool_ok(to(V(1, 2, 3), 1));  // nothing armed: as programmed
+    ASSERT_EQ(arm(&kN, nullptr), Status::kOk);
+    spool_ok(to(V(4, 5, 6), 2));
+    spool_ok(to(V(7, 8, 9), 3));
+    run();
+    const std::vector<Segment> segs = segments();
+    ASSERT_EQ(segs.size(), 3U);
+    EXPECT_EQ(V(segs[0].end[0], segs[0].end[1], segs[0].end[2]), V(1, 2, 3));
+    EXPECT_NE(V(segs[1].end[0], segs[1].end[1], segs[1].end[2]), V(4, 5, 6));  // compensated
+    EXPECT_EQ(V(segs[2].end[0], segs[2].end[1], segs[2].end[2]), V(7, 8, 9));
+    EXPECT_EQ(get(c3::kIdxArm), 0);
+}
+
 TEST_F(Comp3dBoard, RapidWithArmedVectorsIsNotCompensatedAndUsesThemUp) {
     tool(1, 3, 3, 0, -0.1, -0.1);
     ASSERT_EQ(set(c3::kIdxTool, 1), Status::kOk);
