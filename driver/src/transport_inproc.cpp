@@ -41,7 +41,10 @@ public:
     }
 
     objif::Status spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept override {
-        return guarded([&] { rep = rwmos::serve_spool(board_, req); return rep.status; });
+        return guarded([&] {
+            rwmos::serve_spool(board_, req, rep);
+            return rep.status;
+        });
     }
     objif::Status direct(const objif::DirectRequest& req, objif::MotionReply& rep) noexcept override {
         return guarded([&] { rep = rwmos::serve_direct(board_, req); return rep.status; });

@@ -60,6 +60,15 @@ objif::MotionReply serve_spool(Board& board, const objif::SpoolRequest& req) {
     return motion_reply(board.spool(profile_of(req)));
 }
 
+void serve_spool(Board& board, const objif::SpoolRequest& req, objif::MotionReply& rep) {
+    const motion::MotionResult r = board.spool(profile_of(req));
+    rep.status = r.status;
+    rep.group = r.group;
+    rep.errors = r.errors;
+    rep.tag = r.tag;
+    rep.message.assign(r.message);
+}
+
 objif::MotionReply serve_direct(Board& board, const objif::DirectRequest& req) {
     return motion_reply(board.direct(direct_of(req)));
 }

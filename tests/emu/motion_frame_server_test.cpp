@@ -11,6 +11,7 @@
 #include "motion_fixture.h"
 #include "objif/frame.h"
 #include "rwmos/frame_server.h"
+#include "rwmos/motion_wire.h"
 
 using namespace motion_test;
 using objif::FrameError;
@@ -109,6 +110,32 @@ TEST_F(MotionFrames, SpoolProfileReplyNamesTheTcErrorGroupBitsAndBlock) {
     EXPECT_EQ(r.errors, tc::kCalcError);
     EXPECT_EQ(r.tag, 2u);
     EXPECT_FALSE(r.message.empty());
+}
+
+// The in-process transport's form: the reply written into one the caller keeps, every field of
+// the call before overwritten.
+TEST_F(MotionFrames, SpoolIntoAKeptReplyOverwritesEveryFieldOfTheLastOne) {
+    setup_group(5.0);
+    activate();
+    objif::MotionReply rep;
+    rwmos::serve_spool(board, wire_line(1, 10, 0), rep);
+    ASSERT_EQ(rep.status, Status::kOk);
+    objif::SpoolRequest bad_arc = wire_line(2, 10, 4);
+    bad_arc.kind = 3;
+    bad_arc.center = {10, 2};
+    rwmos::serve_spool(board, bad_arc, rep);
+    EXPECT_EQ(rep.status, Status::kWrongDeviceState);
+    EXPECT_EQ(rep.group, 1);
+    EXPECT_EQ(rep.errors, tc::kCalcError);
+    EXPECT_EQ(rep.tag, 2u);
+    EXPECT_FALSE(rep.message.empty());
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubError, 0), Status::kOk);
+    rwmos::serve_spool(board, wire_line(3, 20, 0), rep);
+    EXPECT_EQ(rep.status, Status::kOk);
+    EXPECT_EQ(rep.group, 0);
+    EXPECT_EQ(rep.errors, 0);
+    EXPECT_EQ(rep.tag, 0u);
+    EXPECT_TRUE(rep.message.empty()) << rep.message;
 }
 
 TEST_F(MotionFrames, BadProfileTravelsAsReplyStatus) {

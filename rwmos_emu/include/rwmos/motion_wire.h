@@ -11,6 +11,8 @@
 namespace rwmos {
 
 objif::MotionReply serve_spool(Board& board, const objif::SpoolRequest& req);
+// The same reply written into `rep` (the in-process transport: none built and moved per call).
+void serve_spool(Board& board, const objif::SpoolRequest& req, objif::MotionReply& rep);
 objif::MotionReply serve_direct(Board& board, const objif::DirectRequest& req);
 objif::MotionReply serve_ssf(Board& board, const objif::SsfRequest& req);
 objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req);
