@@ -92,22 +92,18 @@ void MotionLayer::sync(bool errors) noexcept {
     // The compensating group, or, with none, the group whose contour ended
     // last: its shift stays until a profile, a direct command or ReInit removes it.
     const std::int32_t shifted = comp != 0 ? comp : spooler_.last_group();
-    for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
-        TcGroup& g = state_.tc.group(n);
-        if (n == marked)
-            g.status |= tc::kProfMarked;
-        else
-            g.status &= ~tc::kProfMarked;
-        if (n == shifted) {
-            // The stored displacement of the correction axes: where the queue
-            // ends against where the programmed path ends.
-            const auto& end = exec_.planned_end();
-            const auto& path = spooler_.path_position();
-            const std::array<std::int32_t, 3> axes{g.x_axis, g.y_axis, g.z_axis};
-            for (std::size_t i = 0; i < 3; ++i)
-                g.offset[i] = end[static_cast<std::size_t>(axes[i])] -
-                              path[static_cast<std::size_t>(axes[i])];
-        }
+    for (TcGroup& g : state_.tc.groups) g.status &= ~tc::kProfMarked;
+    if (marked >= 1 && marked <= tc::kGroupCount) state_.tc.group(marked).status |= tc::kProfMarked;
+    if (shifted >= 1 && shifted <= tc::kGroupCount) {
+        // The stored displacement of the correction axes: where the queue
+        // ends against where the programmed path ends.
+        TcGroup& g = state_.tc.group(shifted);
+        const auto& end = exec_.planned_end();
+        const auto& path = spooler_.path_position();
+        const std::array<std::int32_t, 3> axes{g.x_axis, g.y_axis, g.z_axis};
+        for (std::size_t i = 0; i < 3; ++i)
+            g.offset[i] =
+                end[static_cast<std::size_t>(axes[i])] - path[static_cast<std::size_t>(axes[i])];
     }
     // [APCI-TC] Table 4 via docs/design.md section 3: on any TC error the spooler
     // holds until ERROR is written.
