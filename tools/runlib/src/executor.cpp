@@ -88,6 +88,21 @@ RunOutcome Execution::run(nc::EventStream& events, bool read_ahead) {
     return run_events(ahead);
 }
 
+namespace {
+
+// The next event: read into `storage`, or (read ahead) where it waits in the ring.
+nc::EventStream::Next next_event(nc::EventStream& events, nc::Event& storage,
+                                 const nc::Event*& event) {
+    event = &storage;
+    return events.next(storage);
+}
+nc::EventStream::Next next_event(ReadAhead& events, nc::Event& /*storage*/,
+                                 const nc::Event*& event) {
+    return events.next(event);
+}
+
+}  // namespace
+
 template <typename Events>
 RunOutcome Execution::run_events(Events& events) {
     // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
@@ -97,10 +112,11 @@ RunOutcome Execution::run_events(Events& events) {
     sink_checks_ = self_approach_mode_ == SelfApproachMode::kWarn && sink_.takes_self_approach();
     set_up_ = setup();
     if (set_up_) {
-        nc::Event ev;
+        nc::Event storage;
         std::uint64_t count = 0;
         for (;;) {
-            const auto next = events.next(ev);
+            const nc::Event* event = nullptr;
+            const auto next = next_event(events, storage, event);
             if (next == nc::EventStream::Next::kEnd) break;
             if (next == nc::EventStream::Next::kError) {
                 program_error(events.error());
@@ -108,7 +124,7 @@ RunOutcome Execution::run_events(Events& events) {
             }
             out.totals.blocks_executed = events.blocks_read();
             klartext_ = events.dialect() == nc::Dialect::kKlartext;
-            if (!dispatch(ev)) {
+            if (!dispatch(*event)) {
                 draw_rest(events);
                 break;
             }

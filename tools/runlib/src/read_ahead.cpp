@@ -100,11 +100,18 @@ bool ReadAhead::Requests::read(const nc::VariableRef& v, double& out, std::strin
 // ---- the caller's thread
 
 Next ReadAhead::next(nc::Event& out) {
+    const nc::Event* event = nullptr;
+    const Next n = next(event);
+    if (n == Next::kEvent) out = *event;
+    return n;
+}
+
+Next ReadAhead::next(const nc::Event*& out) {
     for (;;) {
         if (reading_ != nullptr) {
             if (pos_ < reading_->size) {
                 const Item& item = reading_->items[pos_++];
-                out = item.event;
+                out = &item.event;
                 blocks_ = item.blocks;
                 offset_ = item.offset;
                 dialect_ = item.dialect;
