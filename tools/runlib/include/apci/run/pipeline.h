@@ -53,7 +53,7 @@ namespace apci::run {
 class PipelinedSink final : public RunSink {
   public:
     static constexpr std::size_t kBatchEvents = 512;
-    static constexpr std::size_t kBatches = 8;
+    static constexpr std::size_t kBatches = 32;
 
     // `inner` must outlive this. The writer thread starts with the first event.
     explicit PipelinedSink(RunSink& inner);
@@ -142,7 +142,12 @@ class PipelinedSink final : public RunSink {
     void stop() noexcept;
 
     RunSink& inner_;
-    SpscRing<Batch> ring_{kBatches, kBatches / 2};  // a sleeping side wakes for half the ring
+    // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
+    // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
+    // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),
+    // 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A sleeping side wakes
+    // for 8 batches, so the executor never waits long for room.
+    SpscRing<Batch> ring_{kBatches, 8};
     Batch* filling_ = nullptr;
     bool started_ = false;
     bool finished_ = false;

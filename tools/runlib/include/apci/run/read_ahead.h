@@ -45,7 +45,7 @@ namespace apci::run {
 class ReadAhead {
   public:
     static constexpr std::size_t kBatchEvents = 128;
-    static constexpr std::size_t kBatches = 8;
+    static constexpr std::size_t kBatches = 16;
 
     // `stream` must outlive this; the reader thread starts with the first next().
     explicit ReadAhead(nc::EventStream& stream);
@@ -60,6 +60,9 @@ class ReadAhead {
     // As EventStream::next. Serves the variable reads of the front end that are due. Rethrows
     // an exception that ended the reader.
     nc::EventStream::Next next(nc::Event& out);
+    // The same without a copy: `out` points at the event in the ring, valid until the next
+    // call of next() or stop().
+    nc::EventStream::Next next(const nc::Event*& out);
     // The stream's error, after next() returned kError.
     const nc::Diagnostic& error() const noexcept { return stream_.error(); }
     // The stream's counts when it handed out the last event next() returned.
@@ -108,7 +111,10 @@ class ReadAhead {
     void join() noexcept;
 
     // (In the order that packs them.)
-    SpscRing<Batch> ring_{kBatches, kBatches / 2};
+    // 16 batches (2,048 events, about 2 ms of the executor's work): the reader shares a core with
+    // the writer thread, and the executor must not run dry while it waits for its turn; a
+    // sleeping side wakes for 4 batches.
+    SpscRing<Batch> ring_{kBatches, 4};
     nc::EventStream& stream_;
     nc::VariableSource* source_ = nullptr;  // the caller's
     Batch* filling_ = nullptr;              // the reader's
