@@ -102,7 +102,7 @@ bool ReadAhead::Requests::read(const nc::VariableRef& v, double& out, std::strin
 Next ReadAhead::next(nc::Event& out) {
     const nc::Event* event = nullptr;
     const Next n = next(event);
-    if (n == Next::kEvent) out = *event;
+    if (n == Next::kEvent && event != nullptr) out = *event;  // kEvent always sets it
     return n;
 }
 
