@@ -66,11 +66,24 @@ struct Entry {
 // The rules a module attaches to one row of the object map (objif/map/objects.h): its read
 // and write hooks, in the map's order. `name` repeats the row's name, so a table out of step
 // with the map does not compile.
+// One hook: a member function, or none (nullptr). Whether one is given is kept beside it, so
+// attach() checks it without comparing member pointers, which gcc does not accept in a
+// constant expression where -fsanitize=undefined instruments them.
+template <class F>
+struct Hook {
+    F function = nullptr;
+    bool given = false;
+    constexpr Hook() = default;
+    // Implicit: tables write a member function or nullptr.
+    constexpr Hook(std::nullptr_t) noexcept {}
+    constexpr Hook(F f) noexcept : function(f), given(true) {}
+};
+
 template <class M>
 struct Hooks {
     std::string_view name;
-    Status (M::*read)(const ObjectInfo&, const Address&, Value&) = nullptr;
-    Status (M::*write)(const ObjectInfo&, const Address&, const Value&) = nullptr;
+    Hook<Status (M::*)(const ObjectInfo&, const Address&, Value&)> read;
+    Hook<Status (M::*)(const ObjectInfo&, const Address&, const Value&)> write;
 };
 
 namespace detail {
@@ -92,11 +105,11 @@ consteval std::array<Entry<M>, N> attach(const std::array<ObjectInfo, N>& object
         const ObjectInfo& o = objects[i];
         const Hooks<M>& h = hooks[i];
         if (o.name != h.name) detail::hooks_out_of_step_with_the_object_map();
-        if (can_read(o.access) != (h.read != nullptr))
+        if (can_read(o.access) != h.read.given)
             detail::a_read_hook_is_given_exactly_for_a_readable_object();
-        if (can_write(o.access) != (h.write != nullptr))
+        if (can_write(o.access) != h.write.given)
             detail::a_write_hook_is_given_exactly_for_a_writable_object();
-        table[i] = Entry<M>{o, h.read, h.write};
+        table[i] = Entry<M>{o, h.read.function, h.write.function};
     }
     return table;
 }
