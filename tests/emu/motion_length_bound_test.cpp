@@ -10,33 +10,14 @@
 #include <cstdint>
 #include <numbers>
 
+#include "rng.h"
 #include "rwmos/motion/interpolator.h"
 
 using namespace rwmos::motion;
 
 namespace {
 
-// Deterministic random numbers (splitmix64).
-class Rng {
-  public:
-    explicit Rng(std::uint64_t seed) : state_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-    double uniform(double lo, double hi) {
-        return lo + (hi - lo) * (static_cast<double>(next() >> 11) * 0x1.0p-53);
-    }
-    double log_uniform(double lo, double hi) {
-        return std::exp(uniform(std::log(lo), std::log(hi)));
-    }
-    bool chance(double p) { return uniform(0.0, 1.0) < p; }
-
-  private:
-    std::uint64_t state_;
-};
+using apci::test::Rng;
 
 double rounded(double v, int decimals) {
     if (decimals == 0) return v;

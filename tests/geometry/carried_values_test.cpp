@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "rng.h"
 #include "rwmos/geometry/compensator.h"
 #include "rwmos/geometry/corner.h"
 #include "rwmos/geometry/offset.h"
@@ -21,29 +22,7 @@ namespace rwmos::geom {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// Deterministic random numbers (splitmix64): every run is the same.
-class Rng {
-  public:
-    explicit Rng(std::uint64_t seed) : state_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-    double log_uniform(double lo, double hi) {
-        return std::exp(uniform(std::log(lo), std::log(hi)));
-    }
-    bool chance(double p) { return uniform() < p; }
-    int integer(int lo, int hi) { return lo + static_cast<int>(next() % (hi - lo + 1)); }
-    double sign() { return chance(0.5) ? 1.0 : -1.0; }
-
-  private:
-    std::uint64_t state_;
-};
+using apci::test::Rng;
 
 Vec2 dir(double angle) {
     return {std::cos(angle), std::sin(angle)};
