@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 
+#include "rng.h"
 #include "rwmos/comp3d/compensation.h"
 #include "rwmos/comp3d/vectors.h"
 #include "touch_check.h"
@@ -29,19 +30,10 @@ using V = Eigen::Vector3d;
 constexpr double kPropertyTolerance = 1e-9;
 constexpr int kLinesPerCase = 1000;
 
-// splitmix64
-class Rng {
+// The shared splitmix64 numbers, and directions.
+class Rng : public apci::test::Rng {
   public:
-    explicit Rng(std::uint64_t seed) : state_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-    bool chance(double p) { return uniform() < p; }
+    using apci::test::Rng::Rng;
     // Uniform on the unit sphere (rejection from the cube).
     V unit() {
         for (;;) {
@@ -50,9 +42,6 @@ class Rng {
             if (n > 0.1 && n <= 1.0) return v / n;
         }
     }
-
-  private:
-    std::uint64_t state_;
 };
 
 struct Line {
