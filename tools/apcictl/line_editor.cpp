@@ -47,8 +47,10 @@ LineEditor::LineEditor(const char* program, std::string prompt, Completer comple
     el_set(el_, EL_SIGNAL, 1);  // the terminal is restored if a signal ends the program
     el_set(el_, EL_PROMPT, &LineEditor::prompt_of);
     el_set(el_, EL_HIST, ::history, history_);
-    el_set(el_, EL_ADDFN, "apcictl-complete", "Complete a command or object name",
-           &LineEditor::on_tab);
+    // The wide form: libedit keeps these (static) strings as they are, where the narrow
+    // el_set(EL_ADDFN) makes wide copies it never frees.
+    el_wset(el_, EL_ADDFN, L"apcictl-complete", L"Complete a command or object name",
+            &LineEditor::on_tab);
     el_set(el_, EL_BIND, "^I", "apcictl-complete", nullptr);
     el_source(el_, nullptr);  // the user's ~/.editrc, if any
 }
