@@ -63,9 +63,6 @@ struct Entry {
     Status (M::*write)(const ObjectInfo&, const Address&, const Value&) = nullptr;
 };
 
-// The rules a module attaches to one row of the object map (objif/map/objects.h): its read
-// and write hooks, in the map's order. `name` repeats the row's name, so a table out of step
-// with the map does not compile.
 // One hook: a member function, or none (nullptr). Whether one is given is kept beside it, so
 // attach() checks it without comparing member pointers, which gcc does not accept in a
 // constant expression where -fsanitize=undefined instruments them.
@@ -79,6 +76,9 @@ struct Hook {
     constexpr Hook(F f) noexcept : function(f), given(true) {}
 };
 
+// The rules a module attaches to one row of the object map (objif/map/objects.h): its read
+// and write hooks, in the map's order. `name` repeats the row's name, so a table out of step
+// with the map does not compile.
 template <class M>
 struct Hooks {
     std::string_view name;
