@@ -73,7 +73,9 @@ char* fixed_notation(char* out, bool negative, std::uint64_t significand, int ex
 }
 
 // The shortest text that reads back as v (Dragonbox, the algorithm of fmt and std::to_chars),
-// in fixed notation: the text of both for 1e-3 <= |v| < 1e15, where both choose it.
+// in fixed notation: the text of both for 1e-3 <= |v| < 1e15, where both choose it. The digits
+// come from fmt's own Dragonbox (fmt::detail, exported by libfmt 9); the JsonNumbers tests
+// compare the text with std::to_chars over edge and random values, so a change there shows.
 char* shortest_fixed(char* out, double v) noexcept {
     const auto d = fmt::detail::dragonbox::to_decimal(v);
     return fixed_notation(out, std::signbit(v), d.significand, d.exponent);
