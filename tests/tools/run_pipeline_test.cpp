@@ -2,7 +2,6 @@
 // The output pipeline of `apcictl run` (pipeline.h) and its ring (spsc_ring.h): order, the
 // bound, either end ending the stream, a writer's failure reaching the caller, no thread left
 // behind, and a run through the pipeline writing the same bytes as one without it.
-#include <dirent.h>
 #include <gtest/gtest.h>
 #include <pthread.h>
 #include <unistd.h>
@@ -19,7 +18,6 @@
 #include <thread>
 #include <vector>
 
-#include "plate_program.h"
 #include "apci/apci.hpp"
 #include "apci/nc/move_time.h"
 #include "apci/nc/program.h"
@@ -32,6 +30,8 @@
 #include "apci/run/svg_writer.h"
 #include "apci/run/text_sink.h"
 #include "memory_file.h"
+#include "plate_program.h"
+#include "thread_count.h"
 
 namespace apci::run {
 namespace {
@@ -197,23 +197,8 @@ TEST(SpscRing, FlushWakesASleepingConsumerForWhatIsThere) {
 
 // ---- the pipeline
 
-// The threads of this process (/proc/self/task).
-int thread_count() {
-    DIR* d = ::opendir("/proc/self/task");
-    if (d == nullptr) return -1;
-    int n = 0;
-    while (const dirent* e = ::readdir(d))
-        if (e->d_name[0] != '.') ++n;
-    ::closedir(d);
-    return n;
-}
-
-// The threads before a test's own: a thread is started and joined first, so a helper thread a
-// sanitizer starts with the process's first thread (ThreadSanitizer's) is among them.
-int baseline_thread_count() {
-    std::thread([] {}).join();
-    return thread_count();
-}
+using apci::test::baseline_thread_count;
+using apci::test::thread_count;
 
 PathSegment segment(std::int64_t n) {
     PathSegment s;
@@ -453,7 +438,9 @@ TEST(RunPipeline, TheWriterThreadLeavesProcessSignalsToTheCaller) {
 
 // ---- a run through the pipeline: the same bytes
 
-std::string program_text(int turns) { return apci::test::plate_program(turns); }
+std::string program_text(int turns) {
+    return apci::test::plate_program(turns);
+}
 
 class JsonAndSvg final : public RunSink {
   public:

@@ -3,7 +3,6 @@
 // with the same counts, the same end or error at the same place, the board's variables as they
 // are after every earlier event, through a bounded ring; an early stop ends the reader (joined,
 // no hang) and leaves the stream to nc::SinglePass::finish as it was.
-#include <dirent.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -21,6 +20,7 @@
 #include "apci/run/read_ahead.h"
 #include "memory_file.h"
 #include "plate_program.h"
+#include "thread_count.h"
 
 namespace apci::run {
 namespace {
@@ -28,22 +28,8 @@ namespace {
 using namespace std::chrono_literals;
 using Next = nc::EventStream::Next;
 
-int thread_count() {
-    DIR* d = ::opendir("/proc/self/task");
-    if (d == nullptr) return -1;
-    int n = 0;
-    while (const dirent* e = ::readdir(d))
-        if (e->d_name[0] != '.') ++n;
-    ::closedir(d);
-    return n;
-}
-
-// The threads before a test's own: a thread is started and joined first, so a helper thread a
-// sanitizer starts with the process's first thread (ThreadSanitizer's) is among them.
-int baseline_thread_count() {
-    std::thread([] {}).join();
-    return thread_count();
-}
+using apci::test::baseline_thread_count;
+using apci::test::thread_count;
 
 // One event as text: its kind, block, line and end point (moves).
 std::string describe(const nc::Event& ev) {
