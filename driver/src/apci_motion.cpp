@@ -116,24 +116,6 @@ apci_status clock_call(apci_board* board, objif::ClockRequest req, apci_motion_s
     }
 }
 
-void to_c(const objif::WireSegment& w, apci_segment& s) noexcept {
-    s = apci_segment{};
-    s.tag = w.tag;
-    s.kind = w.kind;
-    s.role = w.role;
-    s.ccw = w.ccw ? 1 : 0;
-    s.interrupted = w.interrupted ? 1 : 0;
-    s.plane_axes[0] = w.plane_axes[0];
-    s.plane_axes[1] = w.plane_axes[1];
-    s.plane = w.plane;
-    std::copy(w.start.begin(), w.start.end(), s.start);
-    std::copy(w.end.begin(), w.end.end(), s.end);
-    std::copy(w.center.begin(), w.center.end(), s.center);
-    s.feed = w.feed;
-    s.start_cycle = w.start_cycle;
-    s.end_cycle = w.end_cycle;
-}
-
 // Reads up to `max` items of `what` in as many requests as it takes.
 template <class Out>
 apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::size_t max,
@@ -178,7 +160,8 @@ apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::
                 }
             } else {
                 n = std::min(rep.segments.size(), max - got);
-                for (std::size_t i = 0; i < n; ++i) to_c(rep.segments[i], out[got + i]);
+                for (std::size_t i = 0; i < n; ++i)
+                    apci::segment_to_c(rep.segments[i], out[got + i]);
             }
             got += n;
             if (n == 0) break;

@@ -22,8 +22,10 @@
 //    kTimeout and the caller cannot know whether the board acted).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -131,6 +133,28 @@ public:
 private:
     std::chrono::milliseconds timeout_{2000};
 };
+
+// An executed segment as the C API hands it out, from the wire's record (objif::WireSegment)
+// or, in the in-process transport, straight from the emulator's log: both name their members
+// as apci_segment does.
+template <class Segment>
+void segment_to_c(const Segment& m, apci_segment& s) noexcept {
+    s = apci_segment{};
+    s.tag = m.tag;
+    s.kind = static_cast<std::uint8_t>(m.kind);
+    s.role = static_cast<std::uint8_t>(m.role);
+    s.ccw = m.ccw ? 1 : 0;
+    s.interrupted = m.interrupted ? 1 : 0;
+    s.plane_axes[0] = m.plane_axes[0];
+    s.plane_axes[1] = m.plane_axes[1];
+    s.plane = m.plane;
+    std::copy(m.start.begin(), m.start.end(), s.start);
+    std::copy(m.end.begin(), m.end.end(), s.end);
+    std::copy(m.center.begin(), m.center.end(), s.center);
+    s.feed = m.feed;
+    s.start_cycle = m.start_cycle;
+    s.end_cycle = m.end_cycle;
+}
 
 // A board found by list_devices(): its URI and one line about it.
 struct FoundDevice {

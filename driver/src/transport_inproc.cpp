@@ -70,7 +70,7 @@ public:
                 max,
                 [](const rwmos::motion::Segment& s, void* context) {
                     apci_segment*& at = *static_cast<apci_segment**>(context);
-                    to_c(s, *at++);
+                    segment_to_c(s, *at++);
                 },
                 &next);
             return objif::Status::kOk;
@@ -87,24 +87,6 @@ private:
         } catch (...) {
             return objif::Status::kGeneralError;
         }
-    }
-
-    static void to_c(const rwmos::motion::Segment& m, apci_segment& s) noexcept {
-        s = apci_segment{};
-        s.tag = m.tag;
-        s.kind = static_cast<std::uint8_t>(m.kind);
-        s.role = static_cast<std::uint8_t>(m.role);
-        s.ccw = m.ccw ? 1 : 0;
-        s.interrupted = m.interrupted ? 1 : 0;
-        s.plane_axes[0] = m.plane_axes[0];
-        s.plane_axes[1] = m.plane_axes[1];
-        s.plane = m.plane;
-        std::copy(m.start.begin(), m.start.end(), s.start);
-        std::copy(m.end.begin(), m.end.end(), s.end);
-        std::copy(m.center.begin(), m.center.end(), s.center);
-        s.feed = m.feed;
-        s.start_cycle = m.start_cycle;
-        s.end_cycle = m.end_cycle;
     }
 
     rwmos::Board board_;
