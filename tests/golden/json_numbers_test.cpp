@@ -14,6 +14,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "memory_file.h"
@@ -192,6 +193,70 @@ TEST(JsonNumbers, AStartAfterAnEndWithOtherBitsIsWrittenAnew) {
         arc({0.1, 0.2, 0.3}, {-0.0, -0.0, -0.0}, {1.0, 1.0, 1.0}),
         arc({-0.0, -0.0, -0.0}, {1.0, 1.0, 1.0}, {1.0, 1.0, 1.0})};
     expect_same_text(segments);
+}
+
+// Every shape of record, with block and line numbers and whole coordinates at each digit-count
+// boundary (10^k - 1, 10^k, 10^k + 1) and at the ends of the 64-bit range: the text of
+// std::to_chars for the integers, the record as the writer wrote it piece by piece before it
+// wrote records in place.
+TEST(JsonNumbers, IntegersAtEveryDigitCountAndEveryRecordShapeAreWrittenAsBefore) {
+    std::vector<std::int64_t> integers{0,
+                                       1,
+                                       -1,
+                                       std::numeric_limits<std::int64_t>::max(),
+                                       std::numeric_limits<std::int64_t>::min(),
+                                       std::numeric_limits<std::int64_t>::min() + 1};
+    for (std::int64_t p = 10; p <= std::numeric_limits<std::int64_t>::max() / 10; p *= 10)
+        for (const std::int64_t v : {p - 1, p, p + 1, -(p - 1), -p, -(p + 1)})
+            integers.push_back(v);
+    const auto text = [](std::int64_t v) { return std::to_string(v); };
+    const apci::run::SegmentKind kinds[] = {apci::run::SegmentKind::kRapid,
+                                            apci::run::SegmentKind::kLine,
+                                            apci::run::SegmentKind::kArc};
+    const apci::run::Role roles[] = {apci::run::Role::kContour, apci::run::Role::kTransition,
+                                     apci::run::Role::kApproach, apci::run::Role::kDeparture,
+                                     apci::run::Role::kUncompensated};
+    MemoryFile f;
+    std::string expected = "{\"segments\":[";
+    {
+        JsonRunWriter w(f.get());
+        for (std::size_t i = 0; i < integers.size(); ++i) {
+            PathSegment s;
+            const std::int64_t n = integers[i];
+            // A block without a number (-1) names its line: here the integer's magnitude.
+            const bool numbered = i % 3 != 0;
+            s.block.number = numbered ? n : apci::run::kNoBlock;
+            s.block.line = static_cast<std::uint64_t>(n < 0 ? -(n + 1) : n) + 1;
+            s.kind = kinds[i % 3];
+            s.role = roles[i % 5];
+            // Whole coordinates below 1e15 are written as integers.
+            const double whole = static_cast<double>(n % 1000000000000000);
+            s.start = {whole, -whole, 0.0};
+            s.end = {whole / 2 == std::trunc(whole / 2) ? whole / 2 : whole, 1.0, -7.0};
+            s.center = {3.0, whole, 0.5};
+            s.ccw = i % 2 == 0;
+            s.plane = 17 + static_cast<int>(i % 3);
+            w.segment(s);
+            expected += i == 0 ? "\n{" : ",\n{";
+            expected += "\"block\":" + text(s.block.number);
+            if (s.block.number == apci::run::kNoBlock)
+                expected += ",\"line\":" + text(static_cast<std::int64_t>(s.block.line));
+            expected += ",\"kind\":\"" + std::string(apci::run::kind_name(s.kind)) +
+                        "\",\"role\":\"" + std::string(apci::run::role_name(s.role)) +
+                        "\",\"start\":" + reference_point(s.start) +
+                        ",\"end\":" + reference_point(s.end);
+            if (s.kind == apci::run::SegmentKind::kArc)
+                expected += ",\"center\":" + reference_point(s.center) +
+                            (s.ccw ? ",\"ccw\":true" : ",\"ccw\":false") +
+                            ",\"plane\":" + text(s.plane);
+            expected += "}";
+        }
+        ASSERT_TRUE(w.finish({}, {}));
+    }
+    expected += "],\n";
+    const std::string got = f.text();
+    ASSERT_GE(got.size(), expected.size());
+    EXPECT_EQ(got.substr(0, expected.size()), expected);
 }
 
 }  // namespace

@@ -17,36 +17,109 @@ namespace apci::run {
 
 namespace {
 
-constexpr std::size_t kNumberMax = 32;  // the longest JSON number below: 24 characters
+constexpr std::size_t kNumberMax = 32;   // the longest JSON number below: 24 characters
+constexpr std::size_t kIntegerMax = 20;  // the longest 64-bit integer: "-9223372036854775808"
 
-// "00" to "99": two decimal digits a step.
-constexpr char kDigitPairs[] =
-    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-    "8081828384858687888990919293949596979899";
-
-// How many decimal digits v has (1 for 0).
+// How many decimal digits v has (1 for 0): log10 from the bit width (1233 / 4096 is just
+// above log10(2)), corrected by one comparison.
 int digit_count(std::uint64_t v) noexcept {
-    int n = 1;
-    for (; v >= 100; v /= 100) n += 2;
-    return v >= 10 ? n + 1 : n;
+    static constexpr std::uint64_t kPowers[] = {1ULL,
+                                                10ULL,
+                                                100ULL,
+                                                1000ULL,
+                                                10000ULL,
+                                                100000ULL,
+                                                1000000ULL,
+                                                10000000ULL,
+                                                100000000ULL,
+                                                1000000000ULL,
+                                                10000000000ULL,
+                                                100000000000ULL,
+                                                1000000000000ULL,
+                                                10000000000000ULL,
+                                                100000000000000ULL,
+                                                1000000000000000ULL,
+                                                10000000000000000ULL,
+                                                100000000000000000ULL,
+                                                1000000000000000000ULL,
+                                                10000000000000000000ULL};
+    const int log2_up = std::bit_width(v | 1);  // floor(log2 v) + 1
+    const int t = (log2_up * 1233) >> 12;       // floor(log10 v) or one more
+    return t + ((v | 1) >= kPowers[t] ? 1 : 0);
 }
 
-// The `count` last decimal digits of v, leading zeros included; returns their end.
+// The 8 decimal digits of n < 10^8, leading zeros included, as the bytes of a word (the first
+// digit in the lowest byte): the four pairs of digits computed side by side in the lanes of one
+// 64-bit word (divisions by 100 and 10 as multiplications that are exact for these ranges:
+// x * 10486 >> 20 is x / 100 for x < 10^4, x * 103 >> 10 is x / 10 for x < 100), then made
+// ASCII in one addition.
+inline std::uint64_t eight_digits(std::uint32_t n) noexcept {
+    static_assert(std::endian::native == std::endian::little, "the text is laid out little-endian");
+    const std::uint64_t x = n / 10000 | static_cast<std::uint64_t>(n % 10000) << 32;
+    const std::uint64_t hundreds = ((x * 10486) >> 20) & 0x0000007F0000007FULL;
+    const std::uint64_t pairs = hundreds | (x - hundreds * 100) << 16;  // four 16-bit lanes < 100
+    const std::uint64_t tens = ((pairs * 103) >> 10) & 0x000F000F000F000FULL;
+    return (tens | (pairs - tens * 10) << 8) + 0x3030303030303030ULL;
+}
+
+// The same for the 4 digits of n < 10^4 in a 32-bit word.
+inline std::uint32_t four_digits(std::uint32_t n) noexcept {
+    const std::uint32_t hundreds = (n * 10486) >> 20;
+    const std::uint32_t pairs = hundreds | (n - hundreds * 100) << 16;  // two 16-bit lanes < 100
+    const std::uint32_t tens = ((pairs * 103) >> 10) & 0x000F000FU;
+    return (tens | (pairs - tens * 10) << 8) + 0x30303030U;
+}
+
+template <typename Word>
+inline void store(char* out, Word word) noexcept {
+    std::memcpy(out, &word, sizeof word);
+}
+
+// Writers of digits below store whole words: they may write up to this many bytes past the end
+// they return (garbage their caller overwrites or leaves out); every buffer leaves that room.
+constexpr std::size_t kScribble = 7;
+static_assert(kNumberMax >= 24 + kScribble, "a number's text and what its last store may add");
+
+// The `count` last decimal digits of v (1 <= count <= 20), leading zeros included; returns
+// their end. The first 8-digit word is shifted so that only its last digits land.
 char* exact_digits(char* out, std::uint64_t v, int count) noexcept {
-    char* const end = out + count;
-    char* p = end;
-    for (; count >= 2; count -= 2, v /= 100) {
-        p -= 2;
-        std::memcpy(p, kDigitPairs + 2 * (v % 100), 2);
+    if (count <= 4) {  // most integer parts, and the decimals of programmed values
+        store(out, four_digits(static_cast<std::uint32_t>(v % 10000)) >> (8 * (4 - count)));
+        return out + count;
     }
-    if (count == 1) *--p = static_cast<char>('0' + v % 10);
-    return end;
+    const auto low = static_cast<std::uint32_t>(v % 100000000);
+    if (count <= 8) {
+        store(out, eight_digits(low) >> (8 * (8 - count)));
+        return out + count;
+    }
+    const std::uint64_t above = v / 100000000;
+    const auto middle = static_cast<std::uint32_t>(above % 100000000);
+    if (count <= 16) {
+        const int first = count - 8;
+        store(out, eight_digits(middle) >> (8 * (8 - first)));
+        store(out + first, eight_digits(low));
+        return out + count;
+    }
+    const int first = count - 16;
+    store(out, eight_digits(static_cast<std::uint32_t>(above / 100000000)) >> (8 * (8 - first)));
+    store(out + first, eight_digits(middle));
+    store(out + first + 8, eight_digits(low));
+    return out + count;
 }
 
 // The decimal digits of `v`, at least `width` of them (leading zeros); returns their end.
 char* digits(char* out, std::uint64_t v, int width) noexcept {
     return exact_digits(out, v, std::max(width, digit_count(v)));
+}
+
+// A whole number in decimal (the text of std::to_chars); returns its end.
+char* integer_text(char* out, std::int64_t v) noexcept {
+    auto magnitude = static_cast<std::uint64_t>(v);
+    if (v < 0) {
+        *out++ = '-';
+        magnitude = 0 - magnitude;
+    }
+    return digits(out, magnitude, 1);
 }
 
 // significand * 10^exponent in fixed notation: the digits with the decimal point among or
@@ -65,7 +138,7 @@ char* fixed_notation(char* out, bool negative, std::uint64_t significand, int ex
         out = std::fill_n(out, -whole, '0');
         return exact_digits(out, significand, n);
     }
-    char text[20];
+    char text[20 + kScribble];
     exact_digits(text, significand, n);
     out = std::copy_n(text, whole, out);
     *out++ = '.';
@@ -118,8 +191,11 @@ char* json_number(char* out, double v) {
         return std::copy(kNull.begin(), kNull.end(), out);
     }
     constexpr double kExactInteger = 1e15;
-    if (v == std::trunc(v) && std::abs(v) < kExactInteger && !(v == 0.0 && std::signbit(v)))
-        return std::to_chars(out, out + kNumberMax, static_cast<std::int64_t>(v)).ptr;
+    // Whole below 1e15: the conversion to an integer and back keeps it (a cheaper test than
+    // std::trunc, which is a library call where the CPU baseline has no rounding instruction).
+    if (std::abs(v) < kExactInteger && v == static_cast<double>(static_cast<std::int64_t>(v)) &&
+        !(v == 0.0 && std::signbit(v)))
+        return integer_text(out, static_cast<std::int64_t>(v));
     if (char* end = short_decimal(out, v)) return end;
     const double a = std::fabs(v);
     if (a >= 1e-3 && a < kExactInteger) return shortest_fixed(out, v);
@@ -153,48 +229,68 @@ void JsonRunWriter::begin_segments() {
     sink_.append("{\"segments\":[");
 }
 
-void JsonRunWriter::point(const Point& p) {
-    char text[3 * kNumberMax + 4];
-    sink_.append(std::string_view(text, static_cast<std::size_t>(point_text(text, p) - text)));
+namespace {
+
+// The longest text of a segment: its separator, block and line, kind, role, three points and
+// the arc's sense and plane, with room to spare.
+constexpr std::size_t kSegmentMax = 160 + 3 * (3 * kNumberMax + 4) + 3 * kIntegerMax;
+
+// `text` at out; returns its end.
+char* put(char* out, std::string_view text) noexcept {
+    std::memcpy(out, text.data(), text.size());
+    return out + text.size();
 }
+
+// "block":N, and "line":L for a block without a number; returns its end.
+char* block_text(char* out, const BlockRef& b) noexcept {
+    out = put(out, "\"block\":");
+    out = integer_text(out, b.number);
+    if (b.number == kNoBlock && b.line != 0) {
+        out = put(out, ",\"line\":");
+        out = integer_text(out, static_cast<std::int64_t>(b.line));
+    }
+    return out;
+}
+
+}  // namespace
 
 void JsonRunWriter::block(const BlockRef& b) {
-    sink_.append("\"block\":");
-    append_integer(sink_, b.number);
-    if (b.number == kNoBlock && b.line != 0) {
-        sink_.append(",\"line\":");
-        append_integer(sink_, static_cast<std::int64_t>(b.line));
-    }
+    char text[2 * kIntegerMax + 20 + kScribble];
+    sink_.append(std::string_view(text, static_cast<std::size_t>(block_text(text, b) - text)));
 }
 
-// Plain appends rather than format strings: this runs once per executed segment.
+// Plain copies into the sink's buffer rather than format strings: this runs once per executed
+// segment, and the whole record is written in place.
 void JsonRunWriter::segment(const PathSegment& s) {
     begin_segments();
-    sink_.append(count_ == 0 ? "\n{" : ",\n{");
-    block(s.block);
-    sink_.append(",\"kind\":\"");
-    sink_.append(kind_name(s.kind));
-    sink_.append("\",\"role\":\"");
-    sink_.append(role_name(s.role));
-    sink_.append("\",\"start\":");
+    char* const first = sink_.reserve(kSegmentMax);
+    char* out = put(first, count_ == 0 ? "\n{" : ",\n{");
+    out = block_text(out, s.block);
+    out = put(out, ",\"kind\":\"");
+    out = put(out, kind_name(s.kind));
+    out = put(out, "\",\"role\":\"");
+    out = put(out, role_name(s.role));
+    out = put(out, "\",\"start\":");
     // Mostly where the segment before ended (the same bits: the same text).
     if (last_end_size_ != 0 && same_bits(s.start, last_end_))
-        sink_.append(std::string_view(last_end_text_.data(), last_end_size_));
+        out = put(out, std::string_view(last_end_text_.data(), last_end_size_));
     else
-        point(s.start);
-    sink_.append(",\"end\":");
+        out = point_text(out, s.start);
+    out = put(out, ",\"end\":");
     static_assert(std::tuple_size_v<decltype(last_end_text_)> >= 3 * kNumberMax + 4);
+    char* const end_text = out;
+    out = point_text(out, s.end);
     last_end_ = s.end;
-    last_end_size_ =
-        static_cast<std::size_t>(point_text(last_end_text_.data(), s.end) - last_end_text_.data());
-    sink_.append(std::string_view(last_end_text_.data(), last_end_size_));
+    last_end_size_ = static_cast<std::size_t>(out - end_text);
+    std::memcpy(last_end_text_.data(), end_text, last_end_size_);
     if (s.kind == SegmentKind::kArc) {
-        sink_.append(",\"center\":");
-        point(s.center);
-        sink_.append(s.ccw ? ",\"ccw\":true,\"plane\":" : ",\"ccw\":false,\"plane\":");
-        append_integer(sink_, s.plane);
+        out = put(out, ",\"center\":");
+        out = point_text(out, s.center);
+        out = put(out, s.ccw ? ",\"ccw\":true,\"plane\":" : ",\"ccw\":false,\"plane\":");
+        out = integer_text(out, s.plane);
     }
-    sink_.put('}');
+    *out++ = '}';
+    sink_.commit(out);
     ++count_;
 }
 

@@ -46,7 +46,6 @@ class JsonRunWriter {
 
   private:
     void begin_segments();
-    void point(const Point& p);
     void block(const BlockRef& b);
     void error_list(std::span<const RunError> errors);
 

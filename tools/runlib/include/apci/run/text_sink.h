@@ -47,6 +47,14 @@ class TextSink {
         if (used_ == kCapacity) write_out();
         buffer_[used_++] = c;
     }
+    // Room for up to `size` characters (at most kCapacity) at the end of the text: the caller
+    // writes them in place and hands back their end with commit(). One bounds check for a
+    // whole record instead of one per piece.
+    char* reserve(std::size_t size) {
+        if (size > kCapacity - used_) write_out();
+        return buffer_.get() + used_;
+    }
+    void commit(const char* end) noexcept { used_ = static_cast<std::size_t>(end - buffer_.get()); }
     // Writes the buffer out and flushes the FILE; false if any write failed so far.
     bool flush() noexcept;
     bool failed() const noexcept { return failed_; }
