@@ -261,14 +261,20 @@ class RunCommand final : public Command {
              {&csv_file, &csv_},
              {&tools_file, &tools_out_}}};
         Outputs outputs;
+        // On the embedded emulator, where the process may use two CPUs, this thread (executor
+        // and board) keeps one and the two helper threads below share the other
+        // (cpu_placement.h); declared first, so the helpers end before it goes.
+        std::optional<apci::run::CpuPlacement> placement;
+        if (embedded_board(session.uri())) placement.emplace();
+        const apci::run::CpuPlacement* const cpus = placement ? &*placement : nullptr;
         // The writers run on a thread of their own, fed in order through a bounded ring
         // (pipeline.h); declared after `outputs`, so the thread ends before they go.
-        apci::run::PipelinedSink pipeline(outputs);
+        apci::run::PipelinedSink pipeline(outputs, cpus);
         apci::run::ProgramExecutor executor(*board, pipeline, &tools, plc_.empty() ? nullptr : &plc,
                                             &corrections);
         // The NC front end reads ahead on a thread of its own (read_ahead.h): the same events,
         // errors and variable reads, the program parsed while the board runs.
-        executor.set_read_ahead(true);
+        executor.set_read_ahead(true, cpus);
         executor.set_self_approach(self_approach_ == "error" ? apci::run::SelfApproachMode::kError
                                    : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
                                                              : apci::run::SelfApproachMode::kWarn);

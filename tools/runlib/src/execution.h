@@ -79,7 +79,7 @@ class Execution {
               const nc::CorrectionTable* corrections, SelfApproachMode self_approach);
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
-    RunOutcome run(nc::EventStream& events, bool read_ahead);
+    RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr);
 
     // ---- what the units reach through the context
 

@@ -82,9 +82,9 @@ void stop_reading(nc::EventStream& events) noexcept {
 
 }  // namespace
 
-RunOutcome Execution::run(nc::EventStream& events, bool read_ahead) {
+RunOutcome Execution::run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus) {
     if (!read_ahead) return run_events(events);
-    ReadAhead ahead(events);  // stopped and joined on every path out
+    ReadAhead ahead(events, cpus);  // stopped and joined on every path out
     return run_events(ahead);
 }
 
@@ -351,7 +351,7 @@ Point ProgramExecutor::position() {
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto execution = std::make_unique<exec::Execution>(board_, sink_, tools_, plc_, corrections_,
                                                        self_approach_);
-    return execution->run(events, read_ahead_);
+    return execution->run(events, read_ahead_, read_ahead_cpus_);
 }
 
 }  // namespace apci::run

@@ -16,7 +16,8 @@ void PipelinedSink::Batch::clear() noexcept {
     begins.clear();
 }
 
-PipelinedSink::PipelinedSink(RunSink& inner) : inner_(inner) {}
+PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus)
+    : inner_(inner), cpus_(cpus) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();
@@ -167,6 +168,7 @@ void PipelinedSink::deliver(Batch& b) {
 }
 
 void PipelinedSink::write_loop() noexcept {
+    if (cpus_ != nullptr) cpus_->place_helper();
     try {
         while (Batch* b = ring_.front()) {
             if (ring_.cancelled()) break;  // the caller left without finish()

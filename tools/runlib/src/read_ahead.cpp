@@ -9,7 +9,8 @@ namespace apci::run {
 
 using Next = nc::EventStream::Next;
 
-ReadAhead::ReadAhead(nc::EventStream& stream) : stream_(stream) {}
+ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus)
+    : stream_(stream), cpus_(cpus) {}
 
 ReadAhead::~ReadAhead() {
     stop();
@@ -45,6 +46,7 @@ void ReadAhead::commit() {
 }
 
 void ReadAhead::read_loop() noexcept {
+    if (cpus_ != nullptr) cpus_->place_helper();
     try {
         nc::Event ev;
         for (;;) {

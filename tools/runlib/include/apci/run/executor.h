@@ -44,6 +44,7 @@
 #include "apci/nc/tools.h"
 #include "apci/run/path.h"
 #include "apci/run/plc_script.h"
+#include "apci/run/cpu_placement.h"
 #include "apci/run/summary.h"
 
 namespace apci::run {
@@ -184,8 +185,12 @@ class ProgramExecutor {
     void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
     // With read-ahead, run() reads the stream through a ReadAhead (read_ahead.h): the NC front
     // end on a thread of its own, the same events, errors and variable reads at the same
-    // places. The stream is the caller's again when run() returns.
-    void set_read_ahead(bool on) noexcept { read_ahead_ = on; }
+    // places. The stream is the caller's again when run() returns. With `cpus` (which must
+    // outlive run()), the reader runs where that places helpers (cpu_placement.h).
+    void set_read_ahead(bool on, const CpuPlacement* cpus = nullptr) noexcept {
+        read_ahead_ = on;
+        read_ahead_cpus_ = cpus;
+    }
 
   private:
     apci::Board& board_;
@@ -195,6 +200,7 @@ class ProgramExecutor {
     const nc::CorrectionTable* corrections_;
     SelfApproachMode self_approach_ = SelfApproachMode::kWarn;
     bool read_ahead_ = false;
+    const CpuPlacement* read_ahead_cpus_ = nullptr;
 };
 
 }  // namespace apci::run

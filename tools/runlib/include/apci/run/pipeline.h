@@ -45,6 +45,7 @@
 #include "apci/apci.h"
 #include "apci/run/executor.h"
 #include "apci/run/self_approach.h"
+#include "apci/run/cpu_placement.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 
@@ -55,8 +56,9 @@ class PipelinedSink final : public RunSink {
     static constexpr std::size_t kBatchEvents = 512;
     static constexpr std::size_t kBatches = 32;
 
-    // `inner` must outlive this. The writer thread starts with the first event.
-    explicit PipelinedSink(RunSink& inner);
+    // `inner` must outlive this. The writer thread starts with the first event. With `cpus`
+    // (which must outlive this too), it runs where that places helpers (cpu_placement.h).
+    explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr);
     ~PipelinedSink() override;
     PipelinedSink(const PipelinedSink&) = delete;
     PipelinedSink& operator=(const PipelinedSink&) = delete;
@@ -142,6 +144,7 @@ class PipelinedSink final : public RunSink {
     void stop() noexcept;
 
     RunSink& inner_;
+    const CpuPlacement* cpus_;
     // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
     // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
     // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),

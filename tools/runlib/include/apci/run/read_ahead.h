@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "apci/nc/program.h"
+#include "apci/run/cpu_placement.h"
 #include "apci/run/spsc_ring.h"
 
 namespace apci::run {
@@ -47,8 +48,9 @@ class ReadAhead {
     static constexpr std::size_t kBatchEvents = 128;
     static constexpr std::size_t kBatches = 16;
 
-    // `stream` must outlive this; the reader thread starts with the first next().
-    explicit ReadAhead(nc::EventStream& stream);
+    // `stream` must outlive this; the reader thread starts with the first next(). With `cpus`
+    // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h).
+    explicit ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus = nullptr);
     ~ReadAhead();
     ReadAhead(const ReadAhead&) = delete;
     ReadAhead& operator=(const ReadAhead&) = delete;
@@ -116,6 +118,7 @@ class ReadAhead {
     // sleeping side wakes for 4 batches.
     SpscRing<Batch> ring_{kBatches, 4};
     nc::EventStream& stream_;
+    const CpuPlacement* cpus_;
     nc::VariableSource* source_ = nullptr;  // the caller's
     Batch* filling_ = nullptr;              // the reader's
     Batch* reading_ = nullptr;              // the caller's

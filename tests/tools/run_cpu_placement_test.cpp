@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+// Where the threads of `apcictl run` run (cpu_placement.h): with exactly two CPUs the executor's
+// thread keeps the one it runs on and the helper threads (the writer, the NC front end's
+// reader) the other; with one CPU, or more than two, nothing is placed; the executor's thread
+// gets its CPUs back at the end. Each test restricts its own thread to the CPUs it needs and
+// skips where the machine has fewer.
+#include <dirent.h>
+#include <gtest/gtest.h>
+#include <sched.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apci/nc/program.h"
+#include "apci/run/cpu_placement.h"
+#include "apci/run/pipeline.h"
+#include "apci/run/read_ahead.h"
+
+namespace apci::run {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::vector<int> cpus_of(const cpu_set_t& set) {
+    std::vector<int> cpus;
+    for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+        if (CPU_ISSET(cpu, &set)) cpus.push_back(cpu);
+    return cpus;
+}
+
+// The CPUs a thread (0: the calling one) may run on.
+std::vector<int> cpus_of_thread(pid_t tid = 0) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (::sched_getaffinity(tid, sizeof set, &set) != 0) return {};
+    return cpus_of(set);
+}
+
+// The calling thread on the first `n` CPUs it may use, for the scope; its CPUs as they were
+// after. ok() is false where it has fewer.
+class Restricted {
+  public:
+    explicit Restricted(std::size_t n) {
+        ::sched_getaffinity(0, sizeof original_, &original_);
+        const std::vector<int> cpus = cpus_of(original_);
+        if (cpus.size() < n) return;
+        cpu_set_t some;
+        CPU_ZERO(&some);
+        for (std::size_t i = 0; i < n; ++i) CPU_SET(cpus[i], &some);
+        ok_ = ::sched_setaffinity(0, sizeof some, &some) == 0;
+        chosen_.assign(cpus.begin(), cpus.begin() + static_cast<std::ptrdiff_t>(n));
+    }
+    ~Restricted() { ::sched_setaffinity(0, sizeof original_, &original_); }
+    Restricted(const Restricted&) = delete;
+    Restricted& operator=(const Restricted&) = delete;
+    bool ok() const { return ok_; }
+    const std::vector<int>& cpus() const { return chosen_; }
+
+  private:
+    cpu_set_t original_{};
+    std::vector<int> chosen_;
+    bool ok_ = false;
+};
+
+// The CPUs of every other thread of this process (/proc/self/task), one list a thread.
+std::vector<std::vector<int>> other_threads_cpus() {
+    std::vector<std::vector<int>> all;
+    DIR* d = ::opendir("/proc/self/task");
+    if (d == nullptr) return all;
+    const pid_t self = static_cast<pid_t>(::gettid());
+    while (const dirent* e = ::readdir(d)) {
+        if (e->d_name[0] == '.') continue;
+        const auto tid = static_cast<pid_t>(std::atoi(e->d_name));
+        if (tid != self) all.push_back(cpus_of_thread(tid));
+    }
+    ::closedir(d);
+    return all;
+}
+
+TEST(CpuPlacement, OnTwoCpusTheExecutorKeepsOneAndTheHelpersTheOther) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    {
+        const CpuPlacement placement;
+        ASSERT_TRUE(placement.active());
+        EXPECT_NE(placement.executor_cpu(), placement.helper_cpu());
+        EXPECT_EQ(cpus_of_thread(), std::vector<int>{placement.executor_cpu()});
+        // The executor keeps the CPU it ran on when the placement began.
+        EXPECT_TRUE(placement.executor_cpu() == two.cpus()[0] ||
+                    placement.executor_cpu() == two.cpus()[1]);
+        std::vector<int> helper;
+        std::thread([&] {
+            placement.place_helper();
+            helper = cpus_of_thread();
+        }).join();
+        EXPECT_EQ(helper, std::vector<int>{placement.helper_cpu()});
+    }
+    EXPECT_EQ(cpus_of_thread(), two.cpus());  // both again, once it ended
+}
+
+TEST(CpuPlacement, WithOneCpuOrMoreThanTwoNothingIsPlaced) {
+    for (const std::size_t n : {std::size_t{1}, std::size_t{3}}) {
+        const Restricted some(n);
+        if (!some.ok()) continue;  // the machine has fewer
+        const CpuPlacement placement;
+        EXPECT_FALSE(placement.active()) << n << " CPUs";
+        EXPECT_EQ(placement.executor_cpu(), -1);
+        EXPECT_EQ(cpus_of_thread(), some.cpus()) << n << " CPUs";
+        std::vector<int> helper;
+        std::thread([&] {
+            placement.place_helper();
+            helper = cpus_of_thread();
+        }).join();
+        EXPECT_EQ(helper, some.cpus()) << n << " CPUs";
+    }
+}
+
+// A sink that notes where the writer thread may run when it writes.
+struct WhereWritten final : RunSink {
+    std::vector<int> cpus;
+    void executed(const PathSegment&) override { cpus = cpus_of_thread(); }
+};
+
+TEST(CpuPlacement, TheWriterThreadRunsOnTheHelpersCpu) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    WhereWritten inner;
+    {
+        PipelinedSink pipeline(inner, &placement);
+        pipeline.executed(PathSegment{});
+        pipeline.finish();
+    }
+    EXPECT_EQ(inner.cpus, std::vector<int>{placement.helper_cpu()});
+}
+
+TEST(CpuPlacement, TheReaderThreadRunsOnTheHelpersCpu) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    std::string text = "%many\nN1 G17 G90 F3000\n";
+    for (int i = 0; i < 20000; ++i)
+        text += "N" + std::to_string(i + 2) + " G1 X" + std::to_string(i % 97) + "\n";
+    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    ReadAhead ahead(stream, &placement);
+    nc::Event ev;
+    ASSERT_EQ(ahead.next(ev), nc::EventStream::Next::kEvent);
+    std::this_thread::sleep_for(100ms);  // the reader fills the ring and waits
+    // The reader is the one thread on the helpers' CPU alone (a sanitizer's own thread, if
+    // any, may run anywhere).
+    int on_helper_cpu = 0;
+    for (const auto& cpus : other_threads_cpus())
+        if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper_cpu;
+    EXPECT_EQ(on_helper_cpu, 1);
+    ahead.stop();
+}
+
+}  // namespace
+}  // namespace apci::run
