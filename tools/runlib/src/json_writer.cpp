@@ -44,7 +44,7 @@ int digit_count(std::uint64_t v) noexcept {
                                                 1000000000000000000ULL,
                                                 10000000000000000000ULL};
     const auto log2_up = static_cast<int>(std::bit_width(v | 1));  // floor(log2 v) + 1
-    const int t = (log2_up * 1233) >> 12;  // floor(log10 v) or one more
+    const int t = (log2_up * 1233) >> 12;                          // floor(log10 v) or one more
     return t + ((v | 1) >= kPowers[t] ? 1 : 0);
 }
 
