@@ -495,15 +495,13 @@ void Execution::arc_plane(const apci_segment& b, PathSegment& s) const noexcept 
     }
     s.ccw = b.ccw != 0;
     s.plane = 17;
-    for (const int code : {17, 18, 19}) {
-        const PlaneAxes p = plane_axes(code);
-        if (p.first == first && p.second == second) {
-            s.plane = code;
-        } else if (p.first == second && p.second == first) {
-            s.plane = code;  // named the other way round: seen from the other side
-            s.ccw = !s.ccw;
-        }
-    }
+    if (first < 0 || second < 0 || first == second) return;
+    // The plane is the one whose normal is the third axis (17 Z, 18 Y, 19 X); its first axis
+    // follows the third (plane_axes: X-Y, Z-X, Y-Z). Named the other way round, the arc is seen
+    // from the other side.
+    const int third = 3 - first - second;
+    s.plane = third == 2 ? 17 : third == 1 ? 18 : 19;
+    if (first != (third + 1) % 3) s.ccw = !s.ccw;
 }
 
 }  // namespace apci::run::exec
