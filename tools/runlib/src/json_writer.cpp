@@ -287,7 +287,12 @@ void JsonRunWriter::segment(const PathSegment& s) {
         out = put(out, ",\"center\":");
         out = point_text(out, s.center);
         out = put(out, s.ccw ? ",\"ccw\":true,\"plane\":" : ",\"ccw\":false,\"plane\":");
-        out = integer_text(out, s.plane);
+        if (s.plane >= 17 && s.plane <= 19) {  // the planes there are: two digits known
+            *out++ = '1';
+            *out++ = static_cast<char>('0' + s.plane - 10);
+        } else {
+            out = integer_text(out, s.plane);
+        }
     }
     *out++ = '}';
     sink_.commit(out);

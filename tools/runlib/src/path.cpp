@@ -66,7 +66,10 @@ double arc_sweep(const PathSegment& arc) noexcept {
     const PlaneAxes a = plane_axes(arc.plane);
     const double du = arc.end[a.first] - arc.start[a.first];
     const double dv = arc.end[a.second] - arc.start[a.second];
-    if (std::hypot(du, dv) <= kSamePointTolerance) return arc.ccw ? kTwoPi : -kTwoPi;
+    // A chord with a component over twice the tolerance is longer than it: no hypot needed.
+    const bool long_chord =
+        std::abs(du) > 2.0 * kSamePointTolerance || std::abs(dv) > 2.0 * kSamePointTolerance;
+    if (!long_chord && std::hypot(du, dv) <= kSamePointTolerance) return arc.ccw ? kTwoPi : -kTwoPi;
     double sweep = angle_about(arc.end, arc.center, a) - angle_about(arc.start, arc.center, a);
     if (arc.ccw) {
         while (sweep <= 0.0) sweep += kTwoPi;
@@ -106,7 +109,9 @@ double length_with_sweep(const PathSegment& s, double sweep) noexcept {
     if (s.kind != SegmentKind::kArc) return (s.end - s.start).norm();
     const PlaneAxes a = plane_axes(s.plane);
     const double planar = std::abs(sweep) * 0.5 * (arc_radius(s) + arc_end_radius(s));
-    return std::hypot(planar, s.end[a.third] - s.start[a.third]);
+    const double normal = s.end[a.third] - s.start[a.third];
+    // hypot(planar, 0) is |planar| exactly (planar >= 0): a flat arc needs no root.
+    return normal == 0.0 ? planar : std::hypot(planar, normal);
 }
 
 }  // namespace
