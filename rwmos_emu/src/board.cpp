@@ -30,11 +30,31 @@ Board::State::State(const BoardConfig& cfg)
 Board::Board(const BoardConfig& config) : state_(std::make_unique<State>(config)) {}
 Board::~Board() = default;
 
+namespace {
+// An object access may change what the motion layer's TC settings are read from (a TC write,
+// PU, rs, OTC's OFF folding wear into the tool table, a TC read marking the objects accessed):
+// they are read again at the next motion call, also when the access ends in an exception.
+class SettingsMayChange {
+public:
+    explicit SettingsMayChange(MotionLayer& motion) noexcept : motion_(motion) {
+        motion_.settings_changed();
+    }
+    ~SettingsMayChange() { motion_.settings_changed(); }
+    SettingsMayChange(const SettingsMayChange&) = delete;
+    SettingsMayChange& operator=(const SettingsMayChange&) = delete;
+
+private:
+    MotionLayer& motion_;
+};
+}  // namespace
+
 objif::Status Board::read(objif::Descriptor& d, objif::ValueType want, objif::Value& out) {
+    const SettingsMayChange access(state_->motion);
     return state_->dictionary.read(d, want, out);
 }
 
 objif::Status Board::write(objif::Descriptor& d, const objif::Value& v) {
+    const SettingsMayChange access(state_->motion);
     return state_->dictionary.write(d, v);
 }
 

@@ -81,6 +81,7 @@ Status BoardModule::read_pu(const ObjectInfo&, const Address&, Value& out) {
 
 Status BoardModule::write_pu(const ObjectInfo&, const Address&, const Value& v) {
     state_.pu = v.as_int();
+    state_.motion.settings_changed();  // the unit of the TC tool values
     return Status::kOk;
 }
 
@@ -105,6 +106,7 @@ Status BoardModule::write_rs(const ObjectInfo&, const Address&, const Value&) {
     state_.tc.rot_angle = 0.0;
     state_.tc.rot_center_x = 0.0;
     state_.tc.rot_center_y = 0.0;
+    state_.motion.settings_changed();
     return Status::kOk;
 }
 

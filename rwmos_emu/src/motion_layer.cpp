@@ -28,7 +28,22 @@ bool MotionLayer::error_pending() const noexcept {
     return false;
 }
 
-motion::TcSettings MotionLayer::settings() const noexcept {
+const motion::TcSettings& MotionLayer::settings() const noexcept {
+    if (!settings_valid_) {
+        settings_ = read_settings();
+        settings_valid_ = true;
+        return settings_;
+    }
+    // What the board itself changes between object accesses: ERROR (record(), a spooler
+    // error) and Run (cleared with it).
+    TcSettings& s = settings_;
+    if (!s.present) return s;
+    s.error_pending = error_pending();
+    if (s.active_group != 0) s.run = state_.tc.group(s.active_group).running();
+    return s;
+}
+
+motion::TcSettings MotionLayer::read_settings() const noexcept {
     motion::TcSettings s;
     const TcState& tc = state_.tc;
     s.present = state_.config.option_tc;
@@ -67,7 +82,8 @@ motion::TcSettings MotionLayer::settings() const noexcept {
 }
 
 int MotionLayer::length_axis_of(std::int32_t tool) const noexcept {
-    const TcSettings s = settings();
+    // Asked by OTC's OFF, inside an object write.
+    const TcSettings s = read_settings();
     if (!s.present || s.active_group == 0) return -1;
     const TcGroup& g = state_.tc.group(s.active_group);
     if (g.tool_index != tool || !(s.length_always || g.running())) return -1;
@@ -114,7 +130,7 @@ void MotionLayer::sync(bool errors) noexcept {
 }
 
 MotionResult MotionLayer::spool(const motion::Profile& p) {
-    const TcSettings s = settings();
+    const TcSettings& s = settings();
     const MotionResult r = spooler_.spool(
         p, s, exec_, static_cast<std::size_t>(state_.spooler.capacity), cycle_seconds());
     record(r);
@@ -152,7 +168,7 @@ std::uint64_t MotionLayer::run_until_idle(std::uint64_t max_cycles) {
 
 objif::Status MotionLayer::release_held_profile(std::int32_t group) {
     // The departure follows the mode of the group that ends (docs/compensation.md).
-    TcSettings s = settings();
+    TcSettings s = read_settings();
     s.approach = approach_mode(state_.tc.group(group));
     const MotionResult r = spooler_.release_for_deactivation(
         group, s, exec_, static_cast<std::size_t>(state_.spooler.capacity));
@@ -171,7 +187,7 @@ void MotionLayer::compensation_started(std::int32_t) {
 }
 
 void MotionLayer::clear_shift() {
-    spooler_.clear_shift(settings(), exec_);
+    spooler_.clear_shift(read_settings(), exec_);
     sync();
 }
 

@@ -361,6 +361,7 @@ void OtcEngine::end_session() noexcept {
         t.radius = std::max(0.0, t.radius - board::millimetres_to_pu(fold_radius, state_.pu));
         t.length -= board::millimetres_to_pu(folded_length, state_.pu);
     }
+    state_.motion.settings_changed();  // the tool table the TC settings read
 
     // The offsets now on the axes ramp out from where they are: never a jump.
     for (std::size_t a = 0; a < ramp_axes_.size(); ++a) {

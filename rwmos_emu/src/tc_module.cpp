@@ -101,6 +101,7 @@ const ObjectInfo* TcModule::find(const Address& a, Status& why) const noexcept {
 Status TcModule::read(const ObjectInfo& info, const Address& a, Value& out) {
     const Status st = TableModule<TcModule>::read(info, a, out);
     if (objif::ok(st)) tc().objects_accessed = true;
+    state_.motion.settings_changed();
     return st;
 }
 
@@ -109,6 +110,7 @@ Status TcModule::write(const ObjectInfo& info, const Address& a, const Value& v)
     // Clean discards the objects, so it leaves them un-accessed.
     const bool clean = a.device == tc::kDevInit && a.index == tc::kIdxClean;
     if (objif::ok(st) && !clean) tc().objects_accessed = true;
+    state_.motion.settings_changed();
     return st;
 }
 

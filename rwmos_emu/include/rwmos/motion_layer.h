@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The board's motion layer: the spooler and the executor (rwmos_motion) bound
 // to the Board's state. It reads the TC module's state into a TcSettings
-// snapshot for every call, writes back what the TC module shows (ERROR bits,
+// snapshot for every call (the parts only object accesses change kept until the
+// next one, settings_changed()), writes back what the TC module shows (ERROR bits,
 // Run, ProfMarked, stored offsets) and what the board module shows (spooler
 // fill level, axis positions), and serves the TC hooks' seam (TcMotion).
 // Lives in Board::State (all device state in one struct). docs/motion.md.
@@ -43,12 +44,24 @@ class MotionLayer final : public TcMotion {
     void compensation_started(std::int32_t group) override;
     void clear_shift() override;
 
+    // The objects the TC settings are read from (TC module, PU) or their tool table (OTC's fold)
+    // may have changed: the next call reads them again. Every object access through the board
+    // calls it (Board::read/write), and so do the modules that change them (TcModule,
+    // BoardModule's PU and rs, OtcEngine's fold into the tool table). ERROR and Run are read
+    // at every call.
+    void settings_changed() noexcept { settings_valid_ = false; }
+
     // The board axis on which the active group's WkzLen of `tool` acts now (LengthMode 1, or
     // the group compensating), or -1.
     int length_axis_of(std::int32_t tool) const noexcept;
 
   private:
-    motion::TcSettings settings() const noexcept;
+    // The TcSettings for a call: what only object accesses change as last read (read again
+    // after settings_changed()), ERROR (error_pending) and the active group's Run read now.
+    const motion::TcSettings& settings() const noexcept;
+    // The whole snapshot read from the objects now. The TcMotion hooks use it: they run inside
+    // an object write, between its changes.
+    motion::TcSettings read_settings() const noexcept;
     // Records a call's TC errors: ERROR bits set, Run cleared ([APCI-TC] Table 4/5).
     void record(const motion::MotionResult& r) noexcept;
     // Mirrors the motion state into the objects: ProfMarked, offsets, spooler
@@ -58,6 +71,8 @@ class MotionLayer final : public TcMotion {
     void sync(bool errors) noexcept;
 
     Board::State& state_;
+    mutable motion::TcSettings settings_;
+    mutable bool settings_valid_ = false;
     motion::Executor exec_;
     motion::Spooler spooler_;
 };
