@@ -23,9 +23,9 @@ double MotionLayer::cycle_seconds() const noexcept {
 
 bool MotionLayer::error_pending() const noexcept {
     if (!state_.config.option_tc) return false;
-    for (const TcGroup& g : state_.tc.groups)
-        if (g.error != 0) return true;
-    return false;
+    std::int32_t any = 0;  // every group's bits or'ed: no branch per group
+    for (const TcGroup& g : state_.tc.groups) any |= g.error;
+    return any != 0;
 }
 
 const motion::TcSettings& MotionLayer::settings() const noexcept {
