@@ -116,17 +116,18 @@ void MotionLayer::sync(bool errors) noexcept {
         TcGroup& g = state_.tc.group(shifted);
         const auto& end = exec_.planned_end();
         const auto& path = spooler_.path_position();
-        const std::array<std::int32_t, 3> axes{g.x_axis, g.y_axis, g.z_axis};
-        for (std::size_t i = 0; i < 3; ++i)
-            g.offset[i] =
-                end[static_cast<std::size_t>(axes[i])] - path[static_cast<std::size_t>(axes[i])];
+        const auto x = static_cast<std::size_t>(g.x_axis);
+        const auto y = static_cast<std::size_t>(g.y_axis);
+        const auto z = static_cast<std::size_t>(g.z_axis);
+        // All three computed before the store: g.offset could alias end or path (all doubles).
+        g.offset = {end[x] - path[x], end[y] - path[y], end[z] - path[z]};
     }
     // [APCI-TC] Table 4 via docs/design.md section 3: on any TC error the spooler
     // holds until ERROR is written.
     exec_.set_halted(errors);
     state_.spooler.fill = static_cast<std::int32_t>(exec_.fill());
-    for (std::size_t a = 0; a < state_.axes.size(); ++a)
-        state_.axes[a].position = exec_.position()[a];
+    const motion::AxisVector position = exec_.position();  // once: the stores could alias it
+    for (std::size_t a = 0; a < state_.axes.size(); ++a) state_.axes[a].position = position[a];
 }
 
 MotionResult MotionLayer::spool(const motion::Profile& p) {
