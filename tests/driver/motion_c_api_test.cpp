@@ -82,6 +82,33 @@ TEST_F(Motion, SpoolRunAndReadTheExecutedSegment) {
     EXPECT_EQ(seg[0].end_cycle, 1000u);
 }
 
+// A record read into a buffer full of other bytes: every byte is the board's, the padding
+// after plane_axes zero, as if the record had been cleared first (the same bytes whoever
+// reads or hashes them).
+TEST_F(Motion, ReadSegmentsLeavesNoByteOfTheRecordAsItWas) {
+    apci_profile p = line(10, 10, 0);
+    ASSERT_EQ(apci_spool_profile(board_, &p, nullptr), APCI_OK) << last_error();
+    ASSERT_EQ(apci_run_until_idle(board_, 1'000'000, nullptr), APCI_OK) << last_error();
+    apci_segment seg;
+    std::memset(&seg, 0xA5, sizeof seg);
+    size_t n = 0;
+    ASSERT_EQ(apci_read_segments(board_, &seg, 1, &n), APCI_OK) << last_error();
+    ASSERT_EQ(n, 1u);
+    apci_segment want{};  // zero everywhere, padding included
+    want.tag = 10;
+    want.kind = APCI_SEGMENT_LINE;
+    want.role = APCI_ROLE_UNCOMPENSATED;
+    want.ccw = seg.ccw;
+    want.interrupted = seg.interrupted;
+    want.plane_axes[0] = seg.plane_axes[0];
+    want.plane_axes[1] = seg.plane_axes[1];
+    want.plane = seg.plane;
+    want.end[0] = 10.0;
+    want.feed = 600.0;
+    want.end_cycle = 1000;
+    EXPECT_EQ(std::memcmp(&seg, &want, sizeof seg), 0);
+}
+
 TEST_F(Motion, StepAdvancesExactlyTheCyclesAsked) {
     apci_profile p = line(1, 10, 0);
     ASSERT_EQ(apci_spool_profile(board_, &p, nullptr), APCI_OK);
