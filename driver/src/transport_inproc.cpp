@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <new>
+#include <span>
 
 #include "rwmos/board.h"
 #include "rwmos/motion_wire.h"
@@ -68,9 +69,9 @@ public:
             apci_segment* next = out;
             got = board_.take_segments(
                 max,
-                [](const rwmos::motion::Segment& s, void* context) {
+                [](std::span<const rwmos::motion::Segment> run, void* context) {
                     apci_segment*& at = *static_cast<apci_segment**>(context);
-                    segment_to_c(s, *at++);
+                    for (const rwmos::motion::Segment& s : run) segment_to_c(s, *at++);
                 },
                 &next);
             return objif::Status::kOk;

@@ -82,8 +82,8 @@ std::size_t Board::read_segments(std::span<motion::Segment> out) {
 }
 
 std::size_t Board::take_segments(std::size_t max, SegmentVisitor visit, void* context) {
-    return state_->motion.executor().segments().take_with(
-        max, [visit, context](const motion::Segment& s) { visit(s, context); });
+    return state_->motion.executor().segments().take_runs(
+        max, [visit, context](std::span<const motion::Segment> run) { visit(run, context); });
 }
 
 }  // namespace rwmos

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "rwmos/motion/ring.h"
@@ -48,14 +49,20 @@ TEST(MotionRing, MatchesAFifoThatKeepsTheNewestOnRandomPushesAndTakes) {
                 }
             } else {
                 std::vector<int> out(rng() % 5);
-                // take_with (each entry handed over where it lies) is take.
+                // take_runs (the entries handed over where they lie, run by run) is take.
                 std::size_t n = 0;
                 if (rng() % 2 == 0) {
                     n = ring.take(out);
                 } else {
                     std::size_t visited = 0;
-                    n = ring.take_with(out.size(), [&](const int& v) { out[visited++] = v; });
+                    int runs = 0;
+                    n = ring.take_runs(out.size(), [&](std::span<const int> run) {
+                        EXPECT_FALSE(run.empty());
+                        ++runs;
+                        for (const int v : run) out[visited++] = v;
+                    });
                     EXPECT_EQ(visited, n);
+                    EXPECT_LE(runs, 2) << "at most where the storage wraps";
                 }
                 const std::size_t expected = std::min(out.size(), model.size());
                 ASSERT_EQ(n, expected);

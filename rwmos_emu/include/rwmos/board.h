@@ -65,9 +65,10 @@ public:
     // `out` and returns how many; read ones are gone.
     std::size_t read_trace(std::span<motion::TraceSample> out);
     std::size_t read_segments(std::span<motion::Segment> out);
-    // The same, each segment handed to visit(segment, context) where the log holds it (no copy),
-    // oldest first, at most `max`; returns how many. visit must not call the board.
-    using SegmentVisitor = void (*)(const motion::Segment& segment, void* context);
+    // The same, the segments handed to visit(run, context) where the log holds them (no copy),
+    // oldest first, at most `max`, in at most two runs of consecutive segments; returns how
+    // many. visit must not call the board.
+    using SegmentVisitor = void (*)(std::span<const motion::Segment> run, void* context);
     std::size_t take_segments(std::size_t max, SegmentVisitor visit, void* context);
 
     const BoardConfig& config() const noexcept;

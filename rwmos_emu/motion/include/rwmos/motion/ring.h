@@ -90,14 +90,19 @@ class Ring {
         size_ -= n;
         return n;
     }
-    // As take() of up to `max` entries, each handed to visit(const T&) where it lies instead of
-    // copied out; returns how many.
+    // As take() of up to `max` entries, handed to visit(std::span<const T>) where they lie
+    // instead of copied out: oldest first, in at most two runs of consecutive slots (the second
+    // when the content wraps). Returns how many.
     template <class Visit>
-    std::size_t take_with(std::size_t max, Visit&& visit) {
+    std::size_t take_runs(std::size_t max, Visit&& visit) {
         const std::size_t n = max < size_ ? max : size_;
-        for (std::size_t i = 0; i < n; ++i) {
-            visit(static_cast<const T&>(buf_[head_]));
-            head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
+        for (std::size_t left = n; left > 0;) {
+            // head_ < stored_ while entries wait: the run ends at the storage's end at most.
+            const std::size_t run = left < stored_ - head_ ? left : stored_ - head_;
+            visit(std::span<const T>(buf_.data() + head_, run));
+            head_ += run;
+            if (head_ == stored_) head_ = 0;
+            left -= run;
         }
         size_ -= n;
         return n;
