@@ -66,7 +66,11 @@ void serve_spool(Board& board, const objif::SpoolRequest& req, objif::MotionRepl
     rep.group = r.group;
     rep.errors = r.errors;
     rep.tag = r.tag;
-    rep.message.assign(r.message);
+    // A call that went well has no message: clear() is two stores, assign() of nothing a call.
+    if (r.message.empty())
+        rep.message.clear();
+    else
+        rep.message.assign(r.message);
 }
 
 objif::MotionReply serve_direct(Board& board, const objif::DirectRequest& req) {
