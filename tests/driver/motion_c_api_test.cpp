@@ -4,6 +4,7 @@
 // the last-error text, Busy, direct and SSF commands, bad arguments.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -106,7 +107,11 @@ TEST_F(Motion, ReadSegmentsLeavesNoByteOfTheRecordAsItWas) {
     want.end[0] = 10.0;
     want.feed = 600.0;
     want.end_cycle = 1000;
-    EXPECT_EQ(std::memcmp(&seg, &want, sizeof seg), 0);
+    // Byte by byte, the padding included.
+    std::array<unsigned char, sizeof(apci_segment)> got{}, expected{};
+    std::memcpy(got.data(), &seg, sizeof seg);
+    std::memcpy(expected.data(), &want, sizeof want);
+    EXPECT_EQ(got, expected);
 }
 
 TEST_F(Motion, StepAdvancesExactlyTheCyclesAsked) {
