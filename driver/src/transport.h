@@ -147,6 +147,7 @@ template <class Segment>
 void segment_to_c(const Segment& m, apci_segment& s) noexcept {
     // Every member is written below; only the padding after plane_axes is not. Zeroing the
     // head up to `start` leaves no byte undefined without clearing the whole record first.
+    // cppcheck-suppress memsetClassFloat ; only the integer head is cleared, no double
     std::memset(&s, 0, offsetof(apci_segment, start));
     s.tag = m.tag;
     s.kind = static_cast<std::uint8_t>(m.kind);

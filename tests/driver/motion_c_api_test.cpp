@@ -91,7 +91,9 @@ TEST_F(Motion, ReadSegmentsLeavesNoByteOfTheRecordAsItWas) {
     ASSERT_EQ(apci_spool_profile(board_, &p, nullptr), APCI_OK) << last_error();
     ASSERT_EQ(apci_run_until_idle(board_, 1'000'000, nullptr), APCI_OK) << last_error();
     apci_segment seg;
-    std::memset(&seg, 0xA5, sizeof seg);
+    std::array<unsigned char, sizeof(apci_segment)> dirt{};
+    dirt.fill(0xA5);
+    std::memcpy(&seg, dirt.data(), sizeof seg);
     size_t n = 0;
     ASSERT_EQ(apci_read_segments(board_, &seg, 1, &n), APCI_OK) << last_error();
     ASSERT_EQ(n, 1u);
