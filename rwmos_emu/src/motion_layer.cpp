@@ -15,6 +15,14 @@ geom::ApproachMode approach_mode(const TcGroup& g) noexcept {
     return g.selection_mode == tc::kSelectionIndirect ? geom::ApproachMode::kIndirect
                                                       : geom::ApproachMode::kPerpendicular;
 }
+
+// Some group's ERROR is set: every group's bits or'ed, no branch per group. Inlined into the
+// calls made at every spool call.
+inline bool any_group_error(const TcState& tc) noexcept {
+    std::int32_t any = 0;
+    for (const TcGroup& g : tc.groups) any |= g.error;
+    return any != 0;
+}
 }  // namespace
 
 double MotionLayer::cycle_seconds() const noexcept {
@@ -22,10 +30,7 @@ double MotionLayer::cycle_seconds() const noexcept {
 }
 
 bool MotionLayer::error_pending() const noexcept {
-    if (!state_.config.option_tc) return false;
-    std::int32_t any = 0;  // every group's bits or'ed: no branch per group
-    for (const TcGroup& g : state_.tc.groups) any |= g.error;
-    return any != 0;
+    return state_.config.option_tc && any_group_error(state_.tc);
 }
 
 const motion::TcSettings& MotionLayer::settings() const noexcept {
@@ -38,7 +43,7 @@ const motion::TcSettings& MotionLayer::settings() const noexcept {
     // error) and Run (cleared with it).
     TcSettings& s = settings_;
     if (!s.present) return s;
-    s.error_pending = error_pending();
+    s.error_pending = any_group_error(state_.tc);  // present: the option is there
     if (s.active_group != 0) s.run = state_.tc.group(s.active_group).running();
     return s;
 }
