@@ -135,14 +135,15 @@ private:
     std::chrono::milliseconds timeout_{2000};
 };
 
+// From `start` on an apci_segment is doubles and 64-bit counters with no gap or tail: only its
+// head has padding (segment_to_c zeroes the head).
+static_assert(sizeof(apci_segment) == offsetof(apci_segment, start) +
+                                          3 * sizeof(double[APCI_AXIS_COUNT]) + sizeof(double) +
+                                          2 * sizeof(std::uint64_t));
+
 // An executed segment as the C API hands it out, from the wire's record (objif::WireSegment)
 // or, in the in-process transport, straight from the emulator's log: both name their members
 // as apci_segment does.
-// From `start` on the record is doubles and 64-bit counters with no gap or tail: only its head
-// has padding (segment_to_c zeroes the head).
-static_assert(sizeof(apci_segment) ==
-              offsetof(apci_segment, start) + 3 * sizeof(double[APCI_AXIS_COUNT]) +
-                  sizeof(double) + 2 * sizeof(std::uint64_t));
 template <class Segment>
 void segment_to_c(const Segment& m, apci_segment& s) noexcept {
     // Every member is written below; only the padding after plane_axes is not. Zeroing the

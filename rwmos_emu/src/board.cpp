@@ -35,7 +35,7 @@ namespace {
 // PU, rs, OTC's OFF folding wear into the tool table, a TC read marking the objects accessed):
 // they are read again at the next motion call, also when the access ends in an exception.
 class SettingsMayChange {
-public:
+  public:
     explicit SettingsMayChange(MotionLayer& motion) noexcept : motion_(motion) {
         motion_.settings_changed();
     }
@@ -43,7 +43,7 @@ public:
     SettingsMayChange(const SettingsMayChange&) = delete;
     SettingsMayChange& operator=(const SettingsMayChange&) = delete;
 
-private:
+  private:
     MotionLayer& motion_;
 };
 }  // namespace
