@@ -38,9 +38,56 @@ constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1
                                            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 constexpr std::uint64_t kExactMantissa = std::uint64_t{1} << 53;
 
+constexpr std::uint64_t digit_value(char c) noexcept {
+    return static_cast<std::uint64_t>(c - '0');
+}
+
 }  // namespace
 
 NumberScan LineCursor::scan_number(double& value) noexcept {
+    const char* const first = line_.data();
+    const char* const end = first + line_.size();
+    const char* p = first + pos_;
+    bool negative = false;
+    if (p != end && (*p == '+' || *p == '-')) {
+        negative = *p == '-';
+        ++p;
+    }
+    // One test a digit: the mantissa takes every digit and wraps only beyond kExactWholeDigits
+    // digits, where the digit-by-digit scan decides instead.
+    const char* const digits_begin = p;
+    std::uint64_t mantissa = 0;
+    for (; p != end && is_digit(*p); ++p) mantissa = mantissa * 10 + digit_value(*p);
+    const auto int_digits = static_cast<std::size_t>(p - digits_begin);
+    std::size_t frac_digits = 0;
+    if (p != end && *p == '.') {
+        const char* const frac_begin = ++p;
+        for (; p != end && is_digit(*p); ++p) mantissa = mantissa * 10 + digit_value(*p);
+        frac_digits = static_cast<std::size_t>(p - frac_begin);
+    }
+    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", ".", "-."
+    if (int_digits + frac_digits > kExactWholeDigits) return scan_number_digit_by_digit(value);
+    pos_ = static_cast<std::size_t>(p - first);
+    // With at most 19 digits the mantissa is exact, and it is at most 2^53 exactly when the
+    // digit-by-digit scan took every digit and found it at most 2^53: the same test below.
+    if (mantissa <= kExactMantissa && frac_digits < kPow10.size()) {
+        // Both operands are exact doubles, so one correctly rounded division gives the same
+        // double as a full decimal conversion.
+        const double v = static_cast<double>(mantissa) / kPow10[frac_digits];
+        value = negative ? -v : v;
+        return NumberScan::kOk;
+    }
+    double v = 0.0;
+    const auto res = std::from_chars(digits_begin, p, v, std::chars_format::fixed);
+    if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;
+    value = negative ? -v : v;
+    return NumberScan::kOk;
+}
+
+// The scan before the one-test-a-digit loops of scan_number, kept for numbers of more than
+// kExactWholeDigits digits (tests/nc/lexer_test.cpp compares scan_number with a copy of it
+// on every length and shape).
+NumberScan LineCursor::scan_number_digit_by_digit(double& value) noexcept {
     std::size_t p = pos_;
     const std::size_t n = line_.size();
     bool negative = false;
@@ -108,6 +155,18 @@ std::string_view LineCursor::scan_digits() noexcept {
     const std::size_t begin = pos_;
     while (pos_ < line_.size() && is_digit(line_[pos_])) ++pos_;
     return line_.substr(begin, pos_ - begin);
+}
+
+std::string_view LineCursor::scan_digits(std::uint64_t& value) noexcept {
+    const char* const first = line_.data();
+    const char* const end = first + line_.size();
+    const char* p = first + pos_;
+    std::uint64_t v = 0;
+    for (; p != end && is_digit(*p); ++p) v = v * 10 + digit_value(*p);
+    const std::string_view digits(first + pos_, static_cast<std::size_t>(p - (first + pos_)));
+    pos_ = static_cast<std::size_t>(p - first);
+    value = v;
+    return digits;
 }
 
 std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept {

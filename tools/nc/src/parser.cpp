@@ -51,8 +51,7 @@ bool is_program_name_char(char c) {
 
 // Skips blanks and "( ... )" comments; stops at the end, at ';' (rest is a comment) or at the
 // next word. False with err on an unclosed comment.
-bool skip_blanks_and_comments(LineCursor& c, std::string_view file, std::uint64_t line,
-                              Diagnostic& err) {
+bool skip_comments(LineCursor& c, std::string_view file, std::uint64_t line, Diagnostic& err) {
     for (;;) {
         c.skip_blanks();
         if (c.peek() == '(') {
@@ -66,6 +65,15 @@ bool skip_blanks_and_comments(LineCursor& c, std::string_view file, std::uint64_
         if (c.peek() == ';') c.advance(c.rest().size());
         return true;
     }
+}
+
+// The same; the blanks between words (the usual case) are skipped here, inline.
+inline bool skip_blanks_and_comments(LineCursor& c, std::string_view file, std::uint64_t line,
+                                     Diagnostic& err) {
+    c.skip_blanks();
+    const char ch = c.peek();
+    if (ch != '(' && ch != ';') return true;
+    return skip_comments(c, file, line, err);
 }
 
 class BlockParser {
@@ -153,6 +161,7 @@ class BlockParser {
 
     bool is_assignment_start() const {
         const char ch = to_upper(c_.peek());
+        if (ch != 'V' && ch != 'P' && ch != '$') return false;  // the usual word, at once
         if (ch == 'V' && c_.peek_at(1) == '.') return true;
         if (at_setting_data(c_)) return true;
         if (ch != 'P' || !is_digit(c_.peek_at(1))) return false;
@@ -618,13 +627,14 @@ class BlockParser {
             return fail_here(ErrorKind::kSyntax, num_col,
                              fmt::format("expected a number after '{}'", letter));
         }
-        const std::string_view digits = c_.scan_digits();
+        std::uint64_t value_if_short = 0;
+        const std::string_view digits = c_.scan_digits(value_if_short);
         if (c_.peek() == '.') {
             return fail_here(
                 ErrorKind::kValue, c_.column(),
                 fmt::format("'{}' takes a whole number without decimal point", letter));
         }
-        const std::optional<std::uint64_t> v = whole_at_most(digits, max);
+        const std::optional<std::uint64_t> v = whole_at_most(digits, value_if_short, max);
         if (!v) {
             return fail_here(ErrorKind::kValue, num_col,
                              fmt::format("{} {}{} out of range 0..{}", what, letter, digits, max));

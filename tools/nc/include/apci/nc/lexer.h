@@ -54,12 +54,16 @@ class LineCursor {
     // (N, G, M, D, indexes, PLC cycles) are scanned as text first, so that one out of range is
     // named as written (whole_at_most), never clamped or wrapped.
     std::string_view scan_digits() noexcept;
+    // The same, with `value` the digits' value when there are at most kExactWholeDigits of them
+    // (unspecified beyond): whole_at_most(digits, value, max) then needs no second pass.
+    std::string_view scan_digits(std::uint64_t& value) noexcept;
     // At '(': skips to behind the matching ')' and returns true; false (cursor unchanged) when
     // the line ends first.
     bool skip_paren_comment() noexcept;
 
   private:
     static bool is_ascii(std::string_view s) noexcept;
+    NumberScan scan_number_digit_by_digit(double& value) noexcept;
 
     std::string_view line_;
     bool ascii_;
@@ -69,6 +73,18 @@ class LineCursor {
 // The value of `digits` (decimal digits only, as scan_digits() gives them) when it is at most
 // `max`; nullopt when it is above, however many digits it has (leading zeros count for nothing).
 std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept;
+
+// Up to this many decimal digits every value fits in 64 bits (10^19 - 1 < 2^64).
+inline constexpr std::size_t kExactWholeDigits = 19;
+
+// whole_at_most(digits, max) for digits and value as scan_digits(value) gave them: the value
+// already taken when it is exact, the digits read again only when there are more.
+inline std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t value,
+                                                  std::uint64_t max) noexcept {
+    if (digits.size() > kExactWholeDigits) return whole_at_most(digits, max);
+    if (value > max) return std::nullopt;
+    return value;
+}
 
 constexpr bool is_digit(char c) noexcept {
     return c >= '0' && c <= '9';
