@@ -38,8 +38,29 @@ constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1
                                            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 constexpr std::uint64_t kExactMantissa = std::uint64_t{1} << 53;
 
-constexpr std::uint64_t digit_value(char c) noexcept {
-    return static_cast<std::uint64_t>(c - '0');
+// Takes the run of digits at p (before end) into `value` (value times ten to the number of
+// digits, plus the digits) and returns the end of the run. `value` wraps beyond 19 digits
+// (the callers count the digits and decide otherwise there).
+inline const char* take_digits(const char* p, const char* end, std::uint64_t& value) noexcept {
+    std::uint64_t v = value;
+    for (; p != end; ++p) {
+        const unsigned d = static_cast<unsigned char>(*p) - unsigned{'0'};  // a digit: 0..9
+        if (d > 9) break;
+        v = v * 10 + d;
+    }
+    value = v;
+    return p;
+}
+
+// The fixed-notation conversion of [first, last) (digits with an optional point) for what
+// one division cannot give exactly, out of the way of the usual numbers.
+[[gnu::noinline]] NumberScan convert_long(const char* first, const char* last, bool negative,
+                                          double& value) noexcept {
+    double v = 0.0;
+    const auto res = std::from_chars(first, last, v, std::chars_format::fixed);
+    if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;
+    value = negative ? -v : v;
+    return NumberScan::kOk;
 }
 
 }  // namespace
@@ -57,12 +78,12 @@ NumberScan LineCursor::scan_number(double& value) noexcept {
     // digits, where the digit-by-digit scan decides instead.
     const char* const digits_begin = p;
     std::uint64_t mantissa = 0;
-    for (; p != end && is_digit(*p); ++p) mantissa = mantissa * 10 + digit_value(*p);
+    p = take_digits(p, end, mantissa);
     const auto int_digits = static_cast<std::size_t>(p - digits_begin);
     std::size_t frac_digits = 0;
     if (p != end && *p == '.') {
         const char* const frac_begin = ++p;
-        for (; p != end && is_digit(*p); ++p) mantissa = mantissa * 10 + digit_value(*p);
+        p = take_digits(p, end, mantissa);
         frac_digits = static_cast<std::size_t>(p - frac_begin);
     }
     if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", ".", "-."
@@ -77,11 +98,7 @@ NumberScan LineCursor::scan_number(double& value) noexcept {
         value = negative ? -v : v;
         return NumberScan::kOk;
     }
-    double v = 0.0;
-    const auto res = std::from_chars(digits_begin, p, v, std::chars_format::fixed);
-    if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;
-    value = negative ? -v : v;
-    return NumberScan::kOk;
+    return convert_long(digits_begin, p, negative, value);
 }
 
 // The scan before the one-test-a-digit loops of scan_number, kept for numbers of more than
@@ -160,9 +177,8 @@ std::string_view LineCursor::scan_digits() noexcept {
 std::string_view LineCursor::scan_digits(std::uint64_t& value) noexcept {
     const char* const first = line_.data();
     const char* const end = first + line_.size();
-    const char* p = first + pos_;
     std::uint64_t v = 0;
-    for (; p != end && is_digit(*p); ++p) v = v * 10 + digit_value(*p);
+    const char* const p = take_digits(first + pos_, end, v);
     const std::string_view digits(first + pos_, static_cast<std::size_t>(p - (first + pos_)));
     pos_ = static_cast<std::size_t>(p - first);
     value = v;

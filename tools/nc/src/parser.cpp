@@ -97,7 +97,7 @@ class BlockParser {
             }
             if (c_.at_end()) break;
             const char ch = c_.peek();
-            if (ch == '#' || ch == '$' || is_assignment_start()) {
+            if (may_start_command(ch) && (ch == '#' || ch == '$' || is_assignment_start())) {
                 if (!first && !(b_.number.present() && only_number_so_far_)) {
                     return fail_here(ErrorKind::kSyntax, c_.column(),
                                      "ISG commands and assignments stand in a block of their own "
@@ -159,9 +159,15 @@ class BlockParser {
 
     // ---- ISG commands ([ISG-OTC] section 2.1 #OTC; docs/design.md section 8 $FOR, #KIN, #TRAFO, #HSC)
 
+    // The first character of an ISG command or an assignment (is_assignment_start() then
+    // tells); any other word, the usual case, is told from this one test.
+    static bool may_start_command(char ch) {
+        const char up = to_upper(ch);
+        return ch == '#' || ch == '$' || up == 'V' || up == 'P';
+    }
+
     bool is_assignment_start() const {
         const char ch = to_upper(c_.peek());
-        if (ch != 'V' && ch != 'P' && ch != '$') return false;  // the usual word, at once
         if (ch == 'V' && c_.peek_at(1) == '.') return true;
         if (at_setting_data(c_)) return true;
         if (ch != 'P' || !is_digit(c_.peek_at(1))) return false;
