@@ -113,7 +113,7 @@ std::uint32_t first_motion_column(const Block& b) {
 }
 
 bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eigen::Vector3d& start,
-              const Eigen::Vector3d& end, EventData& out) {
+              const Eigen::Vector3d& end, ArcMove& out) {
     const Block& b = c.b;
     const PlaneAxes axes = plane_axes(s.plane);
     const auto n = static_cast<std::size_t>(axes.normal);
@@ -206,7 +206,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (moves) s.departure_pending = false;
     if (!moves && state_.compensation != Compensation::kOff && s.compensation == Compensation::kOff)
         s.departure_pending = s.selection == SelectionMode::kIndirect;
-    EventData move;
+    ArcMove arc;  // a G2/G3 block's move, made before the checks that need it
     if (moves) {
         if (!s.motion) {
             return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
@@ -264,26 +264,15 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                                       kAxisLetter[k], end[static_cast<Eigen::Index>(k)],
                                       kBoardCoordinateLimit));
         }
-        switch (m) {
-            case Motion::kRapid:
-                move = RapidMove{state_.position, end};
-                break;
-            case Motion::kLine:
-                move = LineMove{state_.position, end, s.feed};
-                break;
-            case Motion::kArcCw:
-            case Motion::kArcCcw:
-                if (!arc_move(c, s, m, state_.position, end, move)) return false;
-                break;
-        }
+        if (is_arc(m) && !arc_move(c, s, m, state_.position, end, arc)) return false;
         const bool surely_within =
             m == Motion::kRapid ||
             (m == Motion::kLine
                  ? surely_within_move_cycles(state_.position, end, s.feed, options_.cycle_seconds)
-                 : surely_within_move_cycles(std::get<ArcMove>(move), options_.cycle_seconds));
+                 : surely_within_move_cycles(arc, options_.cycle_seconds));
         if (!surely_within) {
-            const double length = m == Motion::kLine ? move_length(state_.position, end)
-                                                     : move_length(std::get<ArcMove>(move));
+            const double length =
+                m == Motion::kLine ? move_length(state_.position, end) : move_length(arc);
             std::string why = check_move_cycles(length, s.feed, options_.cycle_seconds);
             if (!why.empty())
                 return c.fail(ErrorKind::kValue,
@@ -304,7 +293,21 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (s.selection != state_.selection) out.push(origin, SelectionModeChange{s.selection});
     if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
     if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
-    if (moves) out.push(origin, move);
+    if (moves) {
+        // Each move built in its place in the batch (no copy through a variant).
+        switch (*s.motion) {
+            case Motion::kRapid:
+                out.push(origin, RapidMove{state_.position, s.position});
+                break;
+            case Motion::kLine:
+                out.push(origin, LineMove{state_.position, s.position, s.feed});
+                break;
+            case Motion::kArcCw:
+            case Motion::kArcCcw:
+                out.push(origin, arc);
+                break;
+        }
+    }
     // G25/G26 act on the transitions after the block's move ([ISG-PROG]: the transition at
     // the end of the block; [ISG-OTC-EN]'s wr_quad_disc.nc: N80 G26 Y100 leaves the corner
     // before N80 linear), so the change comes after it.

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <variant>
 
 #include "apci/nc/block.h"
@@ -218,9 +219,12 @@ class EventBatch {
     const Event* begin() const noexcept { return events_; }
     const Event* end() const noexcept { return events_ + size_; }
     // The interpreter never adds more than kCapacity (one per kind above).
-    void push(const BlockOrigin& origin, const EventData& data) noexcept {
+    // `data` is an EventData or one of its alternatives (assigned as that alternative: no
+    // variant made and copied on the way).
+    template <typename Data>
+    void push(const BlockOrigin& origin, Data&& data) noexcept {
         events_[size_].origin = origin;
-        events_[size_].data = data;
+        events_[size_].data = std::forward<Data>(data);
         ++size_;
     }
 
