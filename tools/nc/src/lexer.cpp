@@ -31,31 +31,8 @@ bool LineCursor::is_ascii(std::string_view s) noexcept {
     return (any & 0x8080808080808080ULL) == 0;
 }
 
-namespace {
-
-constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                           1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                           1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-constexpr std::uint64_t kExactMantissa = std::uint64_t{1} << 53;
-
-// Takes the run of digits at p (before end) into `value` (value times ten to the number of
-// digits, plus the digits) and returns the end of the run. `value` wraps beyond 19 digits
-// (the callers count the digits and decide otherwise there).
-inline const char* take_digits(const char* p, const char* end, std::uint64_t& value) noexcept {
-    std::uint64_t v = value;
-    for (; p != end; ++p) {
-        const unsigned d = static_cast<unsigned char>(*p) - unsigned{'0'};  // a digit: 0..9
-        if (d > 9) break;
-        v = v * 10 + d;
-    }
-    value = v;
-    return p;
-}
-
-// The fixed-notation conversion of [first, last) (digits with an optional point) for what
-// one division cannot give exactly, out of the way of the usual numbers.
-[[gnu::noinline]] NumberScan convert_long(const char* first, const char* last, bool negative,
-                                          double& value) noexcept {
+NumberScan LineCursor::convert_long(const char* first, const char* last, bool negative,
+                                    double& value) noexcept {
     double v = 0.0;
     const auto res = std::from_chars(first, last, v, std::chars_format::fixed);
     if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;
@@ -63,48 +40,12 @@ inline const char* take_digits(const char* p, const char* end, std::uint64_t& va
     return NumberScan::kOk;
 }
 
-}  // namespace
-
-NumberScan LineCursor::scan_number(double& value) noexcept {
-    const char* const first = line_.data();
-    const char* const end = first + line_.size();
-    const char* p = first + pos_;
-    bool negative = false;
-    if (p != end && (*p == '+' || *p == '-')) {
-        negative = *p == '-';
-        ++p;
-    }
-    // One test a digit: the mantissa takes every digit and wraps only beyond kExactWholeDigits
-    // digits, where the digit-by-digit scan decides instead.
-    const char* const digits_begin = p;
-    std::uint64_t mantissa = 0;
-    p = take_digits(p, end, mantissa);
-    const auto int_digits = static_cast<std::size_t>(p - digits_begin);
-    std::size_t frac_digits = 0;
-    if (p != end && *p == '.') {
-        const char* const frac_begin = ++p;
-        p = take_digits(p, end, mantissa);
-        frac_digits = static_cast<std::size_t>(p - frac_begin);
-    }
-    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", ".", "-."
-    if (int_digits + frac_digits > kExactWholeDigits) return scan_number_digit_by_digit(value);
-    pos_ = static_cast<std::size_t>(p - first);
-    // With at most 19 digits the mantissa is exact, and it is at most 2^53 exactly when the
-    // digit-by-digit scan took every digit and found it at most 2^53: the same test below.
-    if (mantissa <= kExactMantissa && frac_digits < kPow10.size()) {
-        // Both operands are exact doubles, so one correctly rounded division gives the same
-        // double as a full decimal conversion.
-        const double v = static_cast<double>(mantissa) / kPow10[frac_digits];
-        value = negative ? -v : v;
-        return NumberScan::kOk;
-    }
-    return convert_long(digits_begin, p, negative, value);
-}
-
 // The scan before the one-test-a-digit loops of scan_number, kept for numbers of more than
 // kExactWholeDigits digits (tests/nc/lexer_test.cpp compares scan_number with a copy of it
 // on every length and shape).
 NumberScan LineCursor::scan_number_digit_by_digit(double& value) noexcept {
+    using lexer_detail::kExactMantissa;
+    using lexer_detail::kPow10;
     std::size_t p = pos_;
     const std::size_t n = line_.size();
     bool negative = false;
@@ -172,17 +113,6 @@ std::string_view LineCursor::scan_digits() noexcept {
     const std::size_t begin = pos_;
     while (pos_ < line_.size() && is_digit(line_[pos_])) ++pos_;
     return line_.substr(begin, pos_ - begin);
-}
-
-std::string_view LineCursor::scan_digits(std::uint64_t& value) noexcept {
-    const char* const first = line_.data();
-    const char* const end = first + line_.size();
-    std::uint64_t v = 0;
-    const char* const p = take_digits(first + pos_, end, v);
-    const std::string_view digits(first + pos_, static_cast<std::size_t>(p - (first + pos_)));
-    pos_ = static_cast<std::size_t>(p - first);
-    value = v;
-    return digits;
 }
 
 std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept {

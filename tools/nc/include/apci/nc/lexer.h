@@ -4,6 +4,7 @@
 // blanks, numbers, identifiers and comments. Nothing allocates.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -20,6 +21,32 @@ enum class NumberScan : std::uint8_t {
     kOk,          // value set, cursor behind the number
     kOutOfRange,  // well-formed but not a finite double (cursor behind the number)
 };
+
+// Up to this many decimal digits every value fits in 64 bits (10^19 - 1 < 2^64).
+inline constexpr std::size_t kExactWholeDigits = 19;
+
+namespace lexer_detail {
+
+inline constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                                  1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                                  1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+inline constexpr std::uint64_t kExactMantissa = std::uint64_t{1} << 53;
+
+// Takes the run of digits at p (before end) into `value` (value times ten to the number of
+// digits, plus the digits) and returns the end of the run. `value` wraps beyond 19 digits
+// (the callers count the digits and decide otherwise there).
+inline const char* take_digits(const char* p, const char* end, std::uint64_t& value) noexcept {
+    std::uint64_t v = value;
+    for (; p != end; ++p) {
+        const unsigned d = static_cast<unsigned char>(*p) - unsigned{'0'};  // a digit: 0..9
+        if (d > 9) break;
+        v = v * 10 + d;
+    }
+    value = v;
+    return p;
+}
+
+}  // namespace lexer_detail
 
 class LineCursor {
   public:
@@ -47,7 +74,43 @@ class LineCursor {
 
     // Number syntax of NC programs and tool files: [+-] then digits with an optional decimal
     // point and fraction, or a leading point ("X.5", "X-.5", "X1.", "X+2"). No exponent.
-    NumberScan scan_number(double& value) noexcept;
+    // Inline: the usual number (at most 19 digits) costs no call.
+    NumberScan scan_number(double& value) noexcept {
+        using lexer_detail::take_digits;
+        const char* const first = line_.data();
+        const char* const end = first + line_.size();
+        const char* p = first + pos_;
+        bool negative = false;
+        if (p != end && (*p == '+' || *p == '-')) {
+            negative = *p == '-';
+            ++p;
+        }
+        // One test a digit: the mantissa takes every digit and wraps only beyond
+        // kExactWholeDigits digits, where the digit-by-digit scan decides instead.
+        const char* const digits_begin = p;
+        std::uint64_t mantissa = 0;
+        p = take_digits(p, end, mantissa);
+        const auto int_digits = static_cast<std::size_t>(p - digits_begin);
+        std::size_t frac_digits = 0;
+        if (p != end && *p == '.') {
+            const char* const frac_begin = ++p;
+            p = take_digits(p, end, mantissa);
+            frac_digits = static_cast<std::size_t>(p - frac_begin);
+        }
+        if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", "-."
+        if (int_digits + frac_digits > kExactWholeDigits) return scan_number_digit_by_digit(value);
+        pos_ = static_cast<std::size_t>(p - first);
+        // With at most 19 digits the mantissa is exact, and it is at most 2^53 exactly when the
+        // digit-by-digit scan took every digit and found it at most 2^53: the same test below.
+        if (mantissa <= lexer_detail::kExactMantissa && frac_digits < lexer_detail::kPow10.size()) {
+            // Both operands are exact doubles, so one correctly rounded division gives the
+            // same double as a full decimal conversion.
+            const double v = static_cast<double>(mantissa) / lexer_detail::kPow10[frac_digits];
+            value = negative ? -v : v;
+            return NumberScan::kOk;
+        }
+        return convert_long(digits_begin, p, negative, value);
+    }
     // Letters, digits and '_' starting with a letter or '_'; empty when none at the cursor.
     std::string_view scan_identifier() noexcept;
     // The run of decimal digits at the cursor, cursor behind it; empty when none. Whole numbers
@@ -56,7 +119,14 @@ class LineCursor {
     std::string_view scan_digits() noexcept;
     // The same, with `value` the digits' value when there are at most kExactWholeDigits of them
     // (unspecified beyond): whole_at_most(digits, value, max) then needs no second pass.
-    std::string_view scan_digits(std::uint64_t& value) noexcept;
+    std::string_view scan_digits(std::uint64_t& value) noexcept {
+        const char* const begin = line_.data() + pos_;
+        std::uint64_t v = 0;
+        const char* const p = lexer_detail::take_digits(begin, line_.data() + line_.size(), v);
+        pos_ += static_cast<std::size_t>(p - begin);
+        value = v;
+        return {begin, static_cast<std::size_t>(p - begin)};
+    }
     // At '(': skips to behind the matching ')' and returns true; false (cursor unchanged) when
     // the line ends first.
     bool skip_paren_comment() noexcept;
@@ -64,6 +134,10 @@ class LineCursor {
   private:
     static bool is_ascii(std::string_view s) noexcept;
     NumberScan scan_number_digit_by_digit(double& value) noexcept;
+    // The fixed-notation conversion of [first, last) (digits with an optional point) for what
+    // one division cannot give exactly, out of the way of the usual numbers.
+    static NumberScan convert_long(const char* first, const char* last, bool negative,
+                                   double& value) noexcept;
 
     std::string_view line_;
     bool ascii_;
@@ -73,9 +147,6 @@ class LineCursor {
 // The value of `digits` (decimal digits only, as scan_digits() gives them) when it is at most
 // `max`; nullopt when it is above, however many digits it has (leading zeros count for nothing).
 std::optional<std::uint64_t> whole_at_most(std::string_view digits, std::uint64_t max) noexcept;
-
-// Up to this many decimal digits every value fits in 64 bits (10^19 - 1 < 2^64).
-inline constexpr std::size_t kExactWholeDigits = 19;
 
 // whole_at_most(digits, max) for digits and value as scan_digits(value) gave them: the value
 // already taken when it is exact, the digits read again only when there are more.
