@@ -199,6 +199,21 @@ TEST(Parser, NumberOutOfRange) {
               "prog.nc:12:2: block number N99999999999999999999 out of range 0..9999999999999");
 }
 
+// The column of a number's error is the number's own, counted in characters, also where the
+// cursor has gone on behind it (out of range) and a comment with an umlaut stands before it.
+TEST(Parser, NumberErrorsNameTheNumbersColumnAfterNonAsciiComments) {
+    const std::string huge(400, '9');
+    EXPECT_EQ(error("N10 (\xC3\x9C""bergang) X" + huge),
+              "prog.nc:12:17: N10: the number after 'X' is out of range");
+    EXPECT_EQ(error("(\xC3\x9C) N99999999999999999999"),
+              "prog.nc:12:6: block number N99999999999999999999 out of range 0..9999999999999");
+    EXPECT_EQ(error("(\xC3\x9C) G-1"),
+              "prog.nc:12:6: 'G' takes a whole number without sign or decimal point");
+    EXPECT_EQ(error("(\xC3\x9C) G1 X-"), "prog.nc:12:9: expected a number after 'X'");
+    EXPECT_EQ(error("(\xC3\x9C) G1 X" + huge + "Y1"),
+              "prog.nc:12:9: the number after 'X' is out of range");
+}
+
 TEST(Parser, WholeNumberWords) {
     EXPECT_EQ(error("G1.5"), "prog.nc:12:3: 'G' takes a whole number without decimal point");
     EXPECT_EQ(error("G-1"), "prog.nc:12:2: 'G' takes a whole number without sign or decimal point");

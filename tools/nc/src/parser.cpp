@@ -118,7 +118,7 @@ class BlockParser {
                                  fmt::format("unexpected character {}: expected a word ({})",
                                              describe_char(ch), kKnownWords));
             }
-            if (!word(first)) return false;
+            if (!word(first, ch)) return false;
             only_number_so_far_ = first && b_.number.present();
             first = false;
         }
@@ -534,9 +534,9 @@ class BlockParser {
         return end_of_command("$FOR Pn = start, end, step");
     }
 
-    bool word(bool first) {
+    // `raw`: the letter at the cursor.
+    bool word(bool first, char raw) {
         const std::uint32_t col = c_.column();
-        const char raw = c_.peek();
         const char letter = to_upper(raw);
         c_.advance();
         switch (letter) {
@@ -587,7 +587,7 @@ class BlockParser {
     bool real(Word<double>& w, char letter, std::uint32_t col) {
         if (w.present()) return twice(letter, col);
         double v = 0.0;
-        const std::uint32_t num_col = c_.column();
+        const std::size_t num_at = c_.offset();  // its column only for an error
         if (c_.peek() == '[') {  // X[P1*2]: an expression
             const std::uint32_t open = c_.column();
             c_.advance();
@@ -604,10 +604,10 @@ class BlockParser {
         }
         switch (c_.scan_number(v)) {
             case NumberScan::kNone:
-                return fail_here(ErrorKind::kSyntax, num_col,
+                return fail_here(ErrorKind::kSyntax, c_.column_of(num_at),
                                  fmt::format("expected a number after '{}'", letter));
             case NumberScan::kOutOfRange:
-                return fail_here(ErrorKind::kValue, num_col,
+                return fail_here(ErrorKind::kValue, c_.column_of(num_at),
                                  fmt::format("the number after '{}' is out of range", letter));
             case NumberScan::kOk:
                 break;
@@ -622,15 +622,15 @@ class BlockParser {
     // range ("tool number D<40 digits> out of range 0..1023"), never clamped or wrapped.
     bool whole(char letter, std::uint64_t& value, std::string_view what,
                std::uint64_t max = kMaxWordNumber) {
-        const std::uint32_t num_col = c_.column();
+        const std::size_t num_at = c_.offset();  // its column only for an error
         const char ch = c_.peek();
         if (!is_digit(ch)) {
             if (ch == '+' || ch == '-' || ch == '.') {
                 return fail_here(
-                    ErrorKind::kValue, num_col,
+                    ErrorKind::kValue, c_.column_of(num_at),
                     fmt::format("'{}' takes a whole number without sign or decimal point", letter));
             }
-            return fail_here(ErrorKind::kSyntax, num_col,
+            return fail_here(ErrorKind::kSyntax, c_.column_of(num_at),
                              fmt::format("expected a number after '{}'", letter));
         }
         std::uint64_t value_if_short = 0;
@@ -642,7 +642,7 @@ class BlockParser {
         }
         const std::optional<std::uint64_t> v = whole_at_most(digits, value_if_short, max);
         if (!v) {
-            return fail_here(ErrorKind::kValue, num_col,
+            return fail_here(ErrorKind::kValue, c_.column_of(num_at),
                              fmt::format("{} {}{} out of range 0..{}", what, letter, digits, max));
         }
         value = *v;

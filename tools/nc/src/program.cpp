@@ -50,7 +50,7 @@ bool EventStream::line(std::string_view text) {
     if (!parse_din_line(text, n, source_.name(), parsed_, error_, this)) return fail(error_);
     const bool is_block = parsed_.kind == LineKind::kIsg || parsed_.kind == LineKind::kAssignment ||
                           parsed_.kind == LineKind::kBlock;
-    if (is_block && !count_loop_block()) return false;
+    if (is_block && !loops_.empty() && !count_loop_block()) return false;
     switch (parsed_.kind) {
         case LineKind::kIsg:
             seen_block_ = true;
@@ -285,7 +285,7 @@ bool EventStream::loop_end(const IsgLine& isg) {
 // The loop named is the open one that repeated most since its $FOR: the one that does not end
 // (an inner loop that ends and starts again inside an endless outer one repeats less).
 bool EventStream::count_loop_block() {
-    if (loops_.empty() || ++loop_blocks_ <= max_loop_blocks_) return true;
+    if (++loop_blocks_ <= max_loop_blocks_) return true;
     const LoopFrame* worst = &loops_.back();
     for (const LoopFrame& f : loops_)
         if (f.repetitions > worst->repetitions) worst = &f;

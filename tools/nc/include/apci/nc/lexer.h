@@ -55,8 +55,10 @@ class LineCursor {
     std::string_view line() const noexcept { return line_; }
     std::size_t offset() const noexcept { return pos_; }
     // Columns are needed for every word; a pure ASCII line (the usual case) needs no counting.
-    std::uint32_t column() const noexcept {
-        return ascii_ ? static_cast<std::uint32_t>(pos_ + 1) : column_at(line_, pos_);
+    std::uint32_t column() const noexcept { return column_of(pos_); }
+    // The column of an earlier offset (kept where the column is needed only for an error).
+    std::uint32_t column_of(std::size_t offset) const noexcept {
+        return ascii_ ? static_cast<std::uint32_t>(offset + 1) : column_at(line_, offset);
     }
     bool at_end() const noexcept { return pos_ >= line_.size(); }
     // The character at the cursor, '\0' at the end.

@@ -103,7 +103,8 @@ class EventStream : private ExpressionContext {
     bool loop_end(const IsgLine& isg);
     bool skip_loop(const IsgLine& isg);
     bool loop_continues(const LoopFrame& f) const noexcept;
-    // Counts a block run inside a $FOR loop; false (error) beyond max_loop_blocks.
+    // Counts a block run inside a $FOR loop (asked only while one is open); false (error)
+    // beyond max_loop_blocks.
     bool count_loop_block();
     Diagnostic here(ErrorKind kind, std::uint32_t column, std::string message) const;
 
