@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/parser.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -203,7 +204,8 @@ TEST(Parser, NumberOutOfRange) {
 // cursor has gone on behind it (out of range) and a comment with an umlaut stands before it.
 TEST(Parser, NumberErrorsNameTheNumbersColumnAfterNonAsciiComments) {
     const std::string huge(400, '9');
-    EXPECT_EQ(error("N10 (\xC3\x9C""bergang) X" + huge),
+    const std::string umlaut = "\xC3\x9C";
+    EXPECT_EQ(error("N10 (" + umlaut + "bergang) X" + huge),
               "prog.nc:12:17: N10: the number after 'X' is out of range");
     EXPECT_EQ(error("(\xC3\x9C) N99999999999999999999"),
               "prog.nc:12:6: block number N99999999999999999999 out of range 0..9999999999999");
@@ -212,6 +214,53 @@ TEST(Parser, NumberErrorsNameTheNumbersColumnAfterNonAsciiComments) {
     EXPECT_EQ(error("(\xC3\x9C) G1 X-"), "prog.nc:12:9: expected a number after 'X'");
     EXPECT_EQ(error("(\xC3\x9C) G1 X" + huge + "Y1"),
               "prog.nc:12:9: the number after 'X' is out of range");
+}
+
+// The block loop tells a word's first byte from one table: every byte that is no address
+// letter, blank, comment or command start is named as unexpected, every letter is read as a
+// word, and '#', '$', V and P go to the ISG command and assignment checks, as one test each.
+TEST(Parser, EveryByteStartingAWordIsToldAsBefore) {
+    const std::string known = "(N G X Y Z B I J K R F D M)";
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        const std::string line = std::string("X1 ") + ch + "1";
+        const Parsed p = parse(line);
+        const std::string what = p.ok ? std::string() : p.err.to_string();
+        if (is_letter(ch)) {
+            EXPECT_EQ(what.find("unexpected character"), std::string::npos) << c << ": " << what;
+            if (to_upper(ch) == 'V' || to_upper(ch) == 'P' || to_upper(ch) == 'E') {
+                EXPECT_EQ(what, fmt::format("prog.nc:12:4: unknown word '{}' (known words: N G X "
+                                            "Y Z B I J K R F D M)",
+                                            ch))
+                    << c;
+            }
+        } else if (ch == '#' || ch == '$') {
+            EXPECT_EQ(what,
+                      "prog.nc:12:4: ISG commands and assignments stand in a block of their own "
+                      "(after an optional N number)")
+                << c;
+        } else if (ch == ' ' || ch == '\t') {  // skipped: the digit behind is unexpected
+            EXPECT_EQ(what, "prog.nc:12:5: unexpected character '1': expected a word " + known)
+                << c;
+        } else if (ch == ';') {
+            EXPECT_TRUE(p.ok) << c << ": " << what;
+        } else if (ch == '(') {
+            EXPECT_EQ(what,
+                      "prog.nc:12:4: comment not closed: expected ')' before the end of the line")
+                << c;
+        } else {
+            const auto u = static_cast<unsigned char>(ch);
+            const std::string shown =
+                u >= 0x21 && u < 0x7F ? fmt::format("'{}'", ch) : fmt::format("byte 0x{:02X}", u);
+            EXPECT_EQ(what, fmt::format("prog.nc:12:4: unexpected character {}: expected a word {}",
+                                        shown, known))
+                << c;
+        }
+    }
+    // V. and P<digits> = start an assignment, '$' setting data too, also in lower case.
+    EXPECT_EQ(error_kind("v.G.WZ_AKT.WEAR_CONST = 1 X1"), ErrorKind::kSyntax);
+    EXPECT_TRUE(parse("p12 = 3").ok);
+    EXPECT_EQ(parse("p12 = 3").line.kind, LineKind::kAssignment);
 }
 
 TEST(Parser, WholeNumberWords) {

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <optional>
@@ -76,6 +77,22 @@ inline bool skip_blanks_and_comments(LineCursor& c, std::string_view file, std::
     return skip_comments(c, file, line, err);
 }
 
+// What a character at the start of a word may begin, for the block loop to tell the usual
+// word from one lookup: an address letter (is_letter), and the first character of an ISG
+// command or an assignment ('#', '$', V, P; is_assignment_start() then tells).
+constexpr std::uint8_t kWordLetter = 1;
+constexpr std::uint8_t kCommandStart = 2;
+constexpr std::array<std::uint8_t, 256> kStarts = [] {
+    std::array<std::uint8_t, 256> t{};
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        if (is_letter(ch)) t[static_cast<std::size_t>(c)] |= kWordLetter;
+        if (ch == '#' || ch == '$' || to_upper(ch) == 'V' || to_upper(ch) == 'P')
+            t[static_cast<std::size_t>(c)] |= kCommandStart;
+    }
+    return t;
+}();
+
 class BlockParser {
   public:
     BlockParser(std::string_view line, std::uint64_t line_number, std::string_view file,
@@ -97,7 +114,9 @@ class BlockParser {
             }
             if (c_.at_end()) break;
             const char ch = c_.peek();
-            if (may_start_command(ch) && (ch == '#' || ch == '$' || is_assignment_start())) {
+            const std::uint8_t starts = kStarts[static_cast<unsigned char>(ch)];
+            if ((starts & kCommandStart) != 0 &&
+                (ch == '#' || ch == '$' || is_assignment_start())) {
                 if (!first && !(b_.number.present() && only_number_so_far_)) {
                     return fail_here(ErrorKind::kSyntax, c_.column(),
                                      "ISG commands and assignments stand in a block of their own "
@@ -106,7 +125,7 @@ class BlockParser {
                 return (ch == '#' || ch == '$') && !at_setting_data(c_) ? isg_command()
                                                                           : assignment();
             }
-            if (!is_letter(ch)) {
+            if ((starts & kWordLetter) == 0) {  // not is_letter(ch)
                 if (first && is_digit(ch)) {
                     return fail_here(ErrorKind::kSyntax, c_.column(),
                                      fmt::format("expected a word (an address letter: {}), found a "
@@ -158,13 +177,6 @@ class BlockParser {
     }
 
     // ---- ISG commands ([ISG-OTC] section 2.1 #OTC; docs/design.md section 8 $FOR, #KIN, #TRAFO, #HSC)
-
-    // The first character of an ISG command or an assignment (is_assignment_start() then
-    // tells); any other word, the usual case, is told from this one test.
-    static bool may_start_command(char ch) {
-        const char up = to_upper(ch);
-        return ch == '#' || ch == '$' || up == 'V' || up == 'P';
-    }
 
     bool is_assignment_start() const {
         const char ch = to_upper(c_.peek());
