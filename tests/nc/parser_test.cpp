@@ -263,6 +263,23 @@ TEST(Parser, EveryByteStartingAWordIsToldAsBefore) {
     EXPECT_EQ(parse("p12 = 3").line.kind, LineKind::kAssignment);
 }
 
+// A line is looked at eight bytes at a time, its tail in one load of its last eight bytes, and a
+// line shorter than eight byte by byte: a non-ASCII byte in any of these places makes the
+// columns behind it count characters.
+TEST(Parser, ColumnsCountCharactersWhereverTheNonAsciiByteLies) {
+    const std::string umlaut = "\xC3\x9C";
+    EXPECT_EQ(
+        error("(" + umlaut + ")@"),
+        "prog.nc:12:4: unexpected character '@': expected a word (N G X Y Z B I J K R F D M)");
+    for (std::size_t k = 0; k <= 17; ++k) {
+        const std::string line = "X1" + std::string(k, ' ') + "(" + umlaut + ") @";
+        EXPECT_EQ(error(line), fmt::format("prog.nc:12:{}: unexpected character '@': expected a "
+                                           "word (N G X Y Z B I J K R F D M)",
+                                           k + 7))
+            << k;
+    }
+}
+
 TEST(Parser, WholeNumberWords) {
     EXPECT_EQ(error("G1.5"), "prog.nc:12:3: 'G' takes a whole number without decimal point");
     EXPECT_EQ(error("G-1"), "prog.nc:12:2: 'G' takes a whole number without sign or decimal point");

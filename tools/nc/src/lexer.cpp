@@ -27,6 +27,13 @@ bool LineCursor::is_ascii(std::string_view s) noexcept {
         std::memcpy(&w, s.data() + i, 8);
         any |= w;
     }
+    if (i < s.size() && s.size() >= 8) {
+        // The last eight bytes, overlapping those already seen: the tail in one load.
+        std::uint64_t w = 0;
+        std::memcpy(&w, s.data() + s.size() - 8, 8);
+        any |= w;
+        i = s.size();
+    }
     for (; i < s.size(); ++i) any |= static_cast<unsigned char>(s[i]);
     return (any & 0x8080808080808080ULL) == 0;
 }

@@ -675,18 +675,21 @@ class BlockParser {
 
     template <typename E>
     bool set_group(Word<E>& w, E value, std::uint32_t col, std::string_view group) {
-        if (w.present()) {
-            if (w.value == value) {
-                return fail_here(ErrorKind::kConflict, col,
-                                 fmt::format("G{} appears twice in one block", g_number(value)));
-            }
-            return fail_here(ErrorKind::kConflict, col,
-                             fmt::format("G{} and G{} in one block: both set the {}",
-                                         g_number(w.value), g_number(value), group));
-        }
+        if (w.present()) return group_conflict(g_number(w.value), g_number(value), col, group);
         w.value = value;
         w.column = col;
         return true;
+    }
+
+    // Out of set_group's way (a G code of a group the block already has is rare).
+    [[gnu::noinline]] bool group_conflict(int had, int g, std::uint32_t col,
+                                          std::string_view group) {
+        if (had == g) {
+            return fail_here(ErrorKind::kConflict, col,
+                             fmt::format("G{} appears twice in one block", g));
+        }
+        return fail_here(ErrorKind::kConflict, col,
+                         fmt::format("G{} and G{} in one block: both set the {}", had, g, group));
     }
 
     bool g_code(std::uint32_t col) {
