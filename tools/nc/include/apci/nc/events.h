@@ -8,7 +8,6 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <variant>
 
 #include "apci/nc/block.h"
@@ -220,11 +219,12 @@ class EventBatch {
     const Event* end() const noexcept { return events_ + size_; }
     // The interpreter never adds more than kCapacity (one per kind above).
     // `data` is an EventData or one of its alternatives (assigned as that alternative: no
-    // variant made and copied on the way).
+    // variant made and copied on the way). Not noexcept: std::variant does not declare its
+    // converting assignment so, although none of these alternatives throws.
     template <typename Data>
-    void push(const BlockOrigin& origin, Data&& data) noexcept {
+    void push(const BlockOrigin& origin, const Data& data) {
         events_[size_].origin = origin;
-        events_[size_].data = std::forward<Data>(data);
+        events_[size_].data = data;
         ++size_;
     }
 
