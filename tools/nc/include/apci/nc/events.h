@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <variant>
 
 #include "apci/nc/block.h"
@@ -222,9 +223,9 @@ class EventBatch {
     // variant made and copied on the way). Not noexcept: std::variant does not declare its
     // converting assignment so, although none of these alternatives throws.
     template <typename Data>
-    void push(const BlockOrigin& origin, const Data& data) {
+    void push(const BlockOrigin& origin, Data&& data) {
         events_[size_].origin = origin;
-        events_[size_].data = data;
+        events_[size_].data = std::forward<Data>(data);
         ++size_;
     }
 
