@@ -3,7 +3,10 @@
 // bound, either end ending the stream, a writer's failure reaching the caller, no thread left
 // behind, and a run through the pipeline writing the same bytes as one without it.
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <pthread.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -834,6 +837,96 @@ TEST(OutputWriteBack, ALargeOutputIsPublishedWhole) {
     got.resize(std::fread(got.data(), 1, got.size(), f));
     std::fclose(f);
     EXPECT_TRUE(got == expected) << got.size() << " bytes, expected " << expected.size();
+    std::remove(target.c_str());
+    ::rmdir(dir.c_str());
+}
+
+// How many of a file's pages are in the page cache (mincore over a fresh mapping); -1 if it
+// cannot be told.
+long cached_pages(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return -1;
+    struct stat st {};
+    long cached = -1;
+    if (::fstat(fd, &st) == 0 && st.st_size > 0) {
+        const auto size = static_cast<std::size_t>(st.st_size);
+        void* map = ::mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0);
+        if (map != MAP_FAILED) {
+            const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+            std::vector<unsigned char> in((size + page - 1) / page);
+            if (::mincore(map, size, in.data()) == 0) {
+                cached = 0;
+                for (const unsigned char c : in) cached += c & 1;
+            }
+            ::munmap(map, size);
+        }
+    }
+    ::close(fd);
+    return cached;
+}
+
+// A file of `size` bytes of `fill`, written, synced (its pages clean) and read (cached).
+void write_cached(const std::string& path, std::size_t size, char fill) {
+    const std::string text(size, fill);
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(std::fwrite(text.data(), 1, text.size(), f), text.size());
+    ASSERT_EQ(std::fflush(f), 0);
+    ASSERT_EQ(::fsync(::fileno(f)), 0);
+    std::fclose(f);
+    std::string back(size, '\0');
+    f = std::fopen(path.c_str(), "rb");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(std::fread(back.data(), 1, back.size(), f), size);
+    std::fclose(f);
+}
+
+std::string read_whole(const std::string& path) {
+    std::string text;
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) return text;
+    char buf[65536];
+    std::size_t n = 0;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+    std::fclose(f);
+    return text;
+}
+
+// The first write drops the cached pages of the file the output will replace (the rename at
+// the end has less to free); its contents stay: a run that fails leaves it as it was. Skipped
+// where the file system keeps pages it was told it may drop (tmpfs: the pages are the file).
+TEST(OutputWriteBack, TheFirstWriteDropsTheCachedPagesOfTheFileItWillReplace) {
+    char dir_template[] = "/tmp/apci-replace-XXXXXX";
+    ASSERT_NE(::mkdtemp(dir_template), nullptr);
+    const std::string dir = dir_template;
+    const std::string probe = dir + "/probe", target = dir + "/old.json";
+    constexpr std::size_t kSize = std::size_t{4} << 20;
+    write_cached(probe, kSize, 'p');
+    {
+        const int fd = ::open(probe.c_str(), O_RDONLY | O_CLOEXEC);
+        ASSERT_GE(fd, 0);
+        ::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
+        ::close(fd);
+    }
+    const bool drops = cached_pages(probe) == 0;
+    std::remove(probe.c_str());
+    if (!drops) {
+        ::rmdir(dir.c_str());
+        GTEST_SKIP() << "the file system under " << dir << " keeps the pages";
+    }
+    write_cached(target, kSize, 'o');
+    ASSERT_GT(cached_pages(target), 0);
+    {
+        OutputFile out;
+        ASSERT_EQ(out.open(target), "");
+        EXPECT_GT(cached_pages(target), 0);  // opening alone drops nothing
+        TextSink sink(out.file());
+        sink.append("{\"new\":1}\n");
+        ASSERT_TRUE(sink.flush());
+        EXPECT_EQ(cached_pages(target), 0);
+        out.discard();  // the run failed: nothing published
+    }
+    EXPECT_TRUE(read_whole(target) == std::string(kSize, 'o'));
     std::remove(target.c_str());
     ::rmdir(dir.c_str());
 }

@@ -222,6 +222,10 @@ std::string OutputFile::attach(int fd, bool owns_fd) {
 
 ssize_t OutputFile::cookie_write(void* cookie, const char* data, std::size_t size) {
     auto* self = static_cast<OutputFile*>(cookie);
+    if (!self->replaced_dropped_) {
+        self->replaced_dropped_ = true;
+        self->drop_replaced_pages();
+    }
     std::size_t done = 0;
     while (done < size) {
         const ssize_t n = ::write(self->fd_, data + done, size - done);
@@ -236,6 +240,21 @@ ssize_t OutputFile::cookie_write(void* cookie, const char* data, std::size_t siz
     }
     self->start_writeback(done);
     return static_cast<ssize_t>(done);
+}
+
+// The file publish() will replace is read no more: its cached pages are dropped now, on the
+// thread that writes (the writer thread of `apcictl run`), rather than freed by the rename at
+// the end, which then has less to do (docs/performance.md). Its contents stay as they are, on
+// the disk; only a regular file is touched, opened for reading without following a link.
+void OutputFile::drop_replaced_pages() const noexcept {
+    if (temp_.empty()) return;
+    const int fd =
+        ::open(final_.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) return;  // none yet, or not ours to open
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode))
+        (void)::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
+    ::close(fd);
 }
 
 // A temporary file's pages go to the disk while the run goes on (SYNC_FILE_RANGE_WRITE starts

@@ -8,7 +8,9 @@
 //    output; an existing target that is not a regular file (/dev/null, a FIFO) is written in
 //    place. A signal that ends the process (SIGTERM, SIGINT, SIGHUP, SIGPIPE, SIGXFSZ, ...)
 //    removes the temporary files first, then ends it as the signal would have (SIGKILL cannot
-//    be caught: its temporary files stay behind);
+//    be caught: its temporary files stay behind). At the first write, the cached pages of the
+//    target the temporary file will replace are dropped (its contents stay as they are): the
+//    rename at the end then has less to free;
 //  - a program read from standard input is held in memory, at most kStdinProgramLimit bytes.
 #pragma once
 
@@ -75,6 +77,7 @@ class OutputFile {
     static ssize_t cookie_write(void* cookie, const char* data, std::size_t size);
     static int cookie_close(void* cookie);
     void start_writeback(std::size_t bytes) noexcept;
+    void drop_replaced_pages() const noexcept;
     std::string open_temporary(const std::string& final_path);
     std::string open_in_place(const std::string& path);
     std::string attach(int fd, bool owns_fd);
@@ -92,6 +95,8 @@ class OutputFile {
     static constexpr off_t kWritebackStep = off_t{4} << 20;
     off_t written_ = 0;
     off_t writeback_from_ = 0;
+    // The first write dropped the cached pages of the file publish() replaces.
+    bool replaced_dropped_ = false;
 };
 
 namespace detail {
