@@ -159,6 +159,14 @@ void PipelinedSink::deliver(Batch& b) {
                 if (check_) check_->programmed(last_programmed_, findings_);
                 warn_findings();
                 break;
+            case Kind::kProgrammedChecked:
+                inner_.programmed(b.segments[i]);
+                if (check_) {
+                    last_programmed_ = b.segments[i];
+                    check_->programmed(last_programmed_, findings_);
+                }
+                warn_findings();
+                break;
             case Kind::kCheckEnd:
                 if (check_) check_->end(findings_);
                 warn_findings();
@@ -231,6 +239,12 @@ void PipelinedSink::self_approach_begin(double radius, int plane) {
 }
 
 void PipelinedSink::self_approach_programmed() {
+    // Mostly it follows the programmed move it checks in the same batch: that event does both.
+    if (filling_ != nullptr && !filling_->order.empty() &&
+        filling_->order.back().first == Kind::kProgrammed) {
+        filling_->order.back().first = Kind::kProgrammedChecked;
+        return;
+    }
     add_only(Kind::kCheckProgrammed);
 }
 

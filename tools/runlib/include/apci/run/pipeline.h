@@ -105,6 +105,7 @@ class PipelinedSink final : public RunSink {
         kCheckStart,  // the self-approach check: the writer runs it from here on
         kCheckBegin,
         kCheckProgrammed,
+        kProgrammedChecked,  // kProgrammed followed by kCheckProgrammed, as one event
         kCheckEnd
     };
     struct Sample {
