@@ -809,6 +809,18 @@ TEST(SegmentReadBack, TheCycleBoundNeverPassesAMoveTheExactCheckRefuses) {
 
 // ---- output files: large writes, write-back started while the run goes
 
+// A file's bytes (empty if it cannot be read).
+std::string read_whole(const std::string& path) {
+    std::string text;
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) return text;
+    char buf[65536];
+    std::size_t n = 0;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+    std::fclose(f);
+    return text;
+}
+
 // 12 MiB through an OutputFile (three steps of early write-back and a tail): published whole,
 // byte for byte, after the fsync at close().
 TEST(OutputWriteBack, ALargeOutputIsPublishedWhole) {
@@ -831,11 +843,7 @@ TEST(OutputWriteBack, ALargeOutputIsPublishedWhole) {
         ASSERT_EQ(out.close(), "");
         ASSERT_EQ(out.publish(), "");
     }
-    std::FILE* f = std::fopen(target.c_str(), "rb");
-    ASSERT_NE(f, nullptr);
-    std::string got(expected.size() + 1, '\0');
-    got.resize(std::fread(got.data(), 1, got.size(), f));
-    std::fclose(f);
+    const std::string got = read_whole(target);
     EXPECT_TRUE(got == expected) << got.size() << " bytes, expected " << expected.size();
     std::remove(target.c_str());
     ::rmdir(dir.c_str());
@@ -879,17 +887,6 @@ void write_cached(const std::string& path, std::size_t size, char fill) {
     ASSERT_NE(f, nullptr);
     ASSERT_EQ(std::fread(back.data(), 1, back.size(), f), size);
     std::fclose(f);
-}
-
-std::string read_whole(const std::string& path) {
-    std::string text;
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (f == nullptr) return text;
-    char buf[65536];
-    std::size_t n = 0;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-    std::fclose(f);
-    return text;
 }
 
 // The first write drops the cached pages of the file the output will replace (the rename at
