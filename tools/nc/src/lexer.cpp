@@ -47,63 +47,6 @@ NumberScan LineCursor::convert_long(const char* first, const char* last, bool ne
     return NumberScan::kOk;
 }
 
-// The scan before the one-test-a-digit loops of scan_number, kept for numbers of more than
-// kExactWholeDigits digits (tests/nc/lexer_test.cpp compares scan_number with a copy of it
-// on every length and shape).
-NumberScan LineCursor::scan_number_digit_by_digit(double& value) noexcept {
-    using lexer_detail::kExactMantissa;
-    using lexer_detail::kPow10;
-    std::size_t p = pos_;
-    const std::size_t n = line_.size();
-    bool negative = false;
-    if (p < n && (line_[p] == '+' || line_[p] == '-')) {
-        negative = line_[p] == '-';
-        ++p;
-    }
-    const std::size_t digits_begin = p;
-    std::uint64_t mantissa = 0;
-    bool exact = true;  // mantissa still below 2^53 (every digit taken)
-    std::size_t int_digits = 0;
-    while (p < n && is_digit(line_[p])) {
-        if (mantissa < kExactMantissa) {
-            mantissa = mantissa * 10 + static_cast<std::uint64_t>(line_[p] - '0');
-        } else {
-            exact = false;
-        }
-        ++p;
-        ++int_digits;
-    }
-    std::size_t frac_digits = 0;
-    if (p < n && line_[p] == '.') {
-        ++p;
-        while (p < n && is_digit(line_[p])) {
-            if (mantissa < kExactMantissa) {
-                mantissa = mantissa * 10 + static_cast<std::uint64_t>(line_[p] - '0');
-            } else {
-                exact = false;
-            }
-            ++p;
-            ++frac_digits;
-        }
-    }
-    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", ".", "-."
-    pos_ = p;
-    if (exact && mantissa <= kExactMantissa && frac_digits < kPow10.size()) {
-        // Both operands are exact doubles, so one correctly rounded division gives the same
-        // double as a full decimal conversion.
-        const double v = static_cast<double>(mantissa) / kPow10[frac_digits];
-        value = negative ? -v : v;
-        return NumberScan::kOk;
-    }
-    double v = 0.0;
-    const char* first = line_.data() + digits_begin;
-    const char* last = line_.data() + p;
-    const auto res = std::from_chars(first, last, v, std::chars_format::fixed);
-    if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;
-    value = negative ? -v : v;
-    return NumberScan::kOk;
-}
-
 std::string_view LineCursor::scan_identifier() noexcept {
     const std::size_t begin = pos_;
     if (pos_ < line_.size() && (is_letter(line_[pos_]) || line_[pos_] == '_')) {

@@ -88,7 +88,7 @@ class LineCursor {
             ++p;
         }
         // One test a digit: the mantissa takes every digit and wraps only beyond
-        // kExactWholeDigits digits, where the digit-by-digit scan decides instead.
+        // kExactWholeDigits digits, where the full conversion decides instead.
         const char* const digits_begin = p;
         std::uint64_t mantissa = 0;
         p = take_digits(p, end, mantissa);
@@ -100,11 +100,12 @@ class LineCursor {
             frac_digits = static_cast<std::size_t>(p - frac_begin);
         }
         if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", "-."
-        if (int_digits + frac_digits > kExactWholeDigits) return scan_number_digit_by_digit(value);
         pos_ = static_cast<std::size_t>(p - first);
-        // With at most 19 digits the mantissa is exact, and it is at most 2^53 exactly when the
-        // digit-by-digit scan took every digit and found it at most 2^53: the same test below.
-        if (mantissa <= lexer_detail::kExactMantissa && frac_digits < lexer_detail::kPow10.size()) {
+        // With at most 19 digits the mantissa is exact. Beyond, it may have wrapped: the full
+        // conversion, which gives the same double where the division below would (both are
+        // the correctly rounded value of the decimal).
+        if (int_digits + frac_digits <= kExactWholeDigits &&
+            mantissa <= lexer_detail::kExactMantissa && frac_digits < lexer_detail::kPow10.size()) {
             // Both operands are exact doubles, so one correctly rounded division gives the
             // same double as a full decimal conversion.
             const double v = static_cast<double>(mantissa) / lexer_detail::kPow10[frac_digits];
@@ -135,7 +136,6 @@ class LineCursor {
 
   private:
     static bool is_ascii(std::string_view s) noexcept;
-    NumberScan scan_number_digit_by_digit(double& value) noexcept;
     // The fixed-notation conversion of [first, last) (digits with an optional point) for what
     // one division cannot give exactly, out of the way of the usual numbers.
     static NumberScan convert_long(const char* first, const char* last, bool negative,
