@@ -111,8 +111,14 @@ void PipelinedSink::deliver(Batch& b) {
     for (const auto& [kind, i] : b.order) {
         switch (kind) {
             case Kind::kProgrammed:
+            case Kind::kProgrammedChecked:
                 inner_.programmed(b.segments[i]);
                 if (check_) last_programmed_ = b.segments[i];
+                if (kind == Kind::kProgrammed) break;
+                [[fallthrough]];  // the check of that move
+            case Kind::kCheckProgrammed:
+                if (check_) check_->programmed(last_programmed_, findings_);
+                warn_findings();
                 break;
             case Kind::kExecuted: {
                 PathSegment& s = b.segments[i];
@@ -154,18 +160,6 @@ void PipelinedSink::deliver(Batch& b) {
                 break;
             case Kind::kCheckBegin:
                 if (check_) check_->begin(b.begins[i].first, b.begins[i].second);
-                break;
-            case Kind::kCheckProgrammed:
-                if (check_) check_->programmed(last_programmed_, findings_);
-                warn_findings();
-                break;
-            case Kind::kProgrammedChecked:
-                inner_.programmed(b.segments[i]);
-                if (check_) {
-                    last_programmed_ = b.segments[i];
-                    check_->programmed(last_programmed_, findings_);
-                }
-                warn_findings();
                 break;
             case Kind::kCheckEnd:
                 if (check_) check_->end(findings_);
