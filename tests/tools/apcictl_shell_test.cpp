@@ -321,6 +321,31 @@ TEST_F(ApcictlShell, TerminalWithAHistoryLinkWarnsAndLeavesItAlone) {
     EXPECT_TRUE(std::filesystem::is_symlink(history()));
 }
 
+// The line editor is loaded only by the shell on a terminal; where it cannot be (here a
+// libedit.so.2 that is no library, found first through LD_LIBRARY_PATH) the shell says so and
+// reads plain lines.
+TEST_F(ApcictlShell, TerminalWithoutALoadableLineEditorWarnsAndReadsPlainLines) {
+    const std::string lib = dir_ + "/lib";
+    ASSERT_TRUE(std::filesystem::create_directory(lib));
+    std::ofstream(lib + "/libedit.so.2") << "not a library\n";
+    Env env = env_;
+    env.emplace_back("LD_LIBRARY_PATH", lib);
+    Terminal terminal({"shell"}, env);
+    ASSERT_TRUE(terminal.started());
+    ASSERT_TRUE(terminal.wait_for("apcictl: warning: the line editor could not be loaded (" + lib +
+                                  "/libedit.so.2"))
+        << terminal.output();
+    ASSERT_TRUE(
+        terminal.wait_for("); lines are read as typed, without editing, history or "
+                          "completion"))
+        << terminal.output();
+    terminal.type("write 1300 1 1 7 2.5\rread 1300 1 1 7\r");
+    ASSERT_TRUE(terminal.wait_for("\n2.5\r\n")) << terminal.output();
+    terminal.type("\x04");  // the terminal's own end of input: no editor holds it
+    EXPECT_EQ(terminal.wait_exit(), 0) << terminal.output();
+    EXPECT_FALSE(std::filesystem::exists(history()));  // no history without the editor
+}
+
 // ---- from a pipe
 
 TEST_F(ApcictlShell, PipedLinesShareOneSessionAndErrorsDoNotEndIt) {

@@ -173,8 +173,17 @@ void warn(const std::string& text) {
     fmt::print(stderr, "apcictl: warning: {}\n", text);
 }
 
-// A terminal: prompt, line editing, history (kept in its file), TAB completion.
+void run_plain(Shell& shell);
+
+// A terminal: prompt, line editing, history (kept in its file), TAB completion; plain lines
+// where the line editor cannot be loaded.
 void run_on_terminal(Shell& shell) {
+    if (const std::string why = LineEditor::unavailable(); !why.empty()) {
+        warn("the line editor could not be loaded (" + why +
+             "); lines are read as typed, without editing, history or completion");
+        run_plain(shell);
+        return;
+    }
     std::setlocale(LC_CTYPE, "");  // the terminal's characters, for the line editor
     const std::string path = history_path(std::getenv("APCI_HISTORY"),
                                           std::getenv("XDG_STATE_HOME"), std::getenv("HOME"));

@@ -1,17 +1,75 @@
 // SPDX-License-Identifier: MIT
 #include "line_editor.h"
 
+#include <dlfcn.h>
 #include <histedit.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "shell_complete.h"
 
 namespace apcictl {
 namespace {
+
+// libedit's functions, loaded when the first editor starts: every other command (and the shell
+// on a pipe) starts without loading the line editor and the libraries it brings
+// (docs/apcictl.md, "shell"). Each has the type its declaration in histedit.h gives it.
+struct EditLib {
+    decltype(&::el_init) init = nullptr;
+    decltype(&::el_end) end = nullptr;
+    decltype(&::el_set) set = nullptr;
+    decltype(&::el_wset) wset = nullptr;
+    decltype(&::el_get) get = nullptr;
+    decltype(&::el_gets) gets = nullptr;
+    decltype(&::el_source) source = nullptr;
+    decltype(&::el_line) line = nullptr;
+    decltype(&::el_insertstr) insertstr = nullptr;
+    decltype(&::history_init) history_init = nullptr;
+    decltype(&::history_end) history_end = nullptr;
+    decltype(&::history) history = nullptr;
+    std::string error;  // why it could not be loaded; empty when every function is there
+};
+
+// The soname of Debian's libedit2 (the library libedit-dev builds against).
+constexpr const char* kLibEdit = "libedit.so.2";
+
+template <typename F>
+void bind(void* handle, const char* name, F& f, std::string& error) {
+    f = reinterpret_cast<F>(::dlsym(handle, name));
+    if (f == nullptr && error.empty()) error = std::string(kLibEdit) + " has no " + name;
+}
+
+EditLib load_edit_lib() {
+    EditLib lib;
+    void* handle = ::dlopen(kLibEdit, RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) {
+        const char* why = ::dlerror();
+        lib.error = why != nullptr ? why : std::string(kLibEdit) + " could not be loaded";
+        return lib;
+    }
+    bind(handle, "el_init", lib.init, lib.error);
+    bind(handle, "el_end", lib.end, lib.error);
+    bind(handle, "el_set", lib.set, lib.error);
+    bind(handle, "el_wset", lib.wset, lib.error);
+    bind(handle, "el_get", lib.get, lib.error);
+    bind(handle, "el_gets", lib.gets, lib.error);
+    bind(handle, "el_source", lib.source, lib.error);
+    bind(handle, "el_line", lib.line, lib.error);
+    bind(handle, "el_insertstr", lib.insertstr, lib.error);
+    bind(handle, "history_init", lib.history_init, lib.error);
+    bind(handle, "history_end", lib.history_end, lib.error);
+    bind(handle, "history", lib.history, lib.error);
+    return lib;  // the library stays loaded for the rest of the process
+}
+
+const EditLib& edit_lib() {
+    static const EditLib lib = load_edit_lib();
+    return lib;
+}
 
 // The terminal's width in characters (80 when it does not say).
 std::size_t terminal_width() {
@@ -22,48 +80,56 @@ std::size_t terminal_width() {
 
 LineEditor* editor_of(EditLine* el) {
     void* data = nullptr;
-    el_get(el, EL_CLIENTDATA, &data);
+    edit_lib().get(el, EL_CLIENTDATA, &data);
     return static_cast<LineEditor*>(data);
 }
 
 }  // namespace
 
+std::string LineEditor::unavailable() {
+    return edit_lib().error;
+}
+
 LineEditor::LineEditor(const char* program, std::string prompt, Completer completer,
                        std::span<const std::string> history)
     : prompt_(std::move(prompt)), completer_(std::move(completer)) {
-    el_ = el_init(program, stdin, stdout, stderr);
-    history_ = history_init();
+    const EditLib& lib = edit_lib();
+    if (!lib.error.empty())
+        throw std::runtime_error("the terminal line editor (libedit) could not be loaded: " +
+                                 lib.error);
+    el_ = lib.init(program, stdin, stdout, stderr);
+    history_ = lib.history_init();
     if (el_ == nullptr || history_ == nullptr) {
-        if (el_ != nullptr) el_end(el_);
-        if (history_ != nullptr) history_end(history_);
+        if (el_ != nullptr) lib.end(el_);
+        if (history_ != nullptr) lib.history_end(history_);
         throw std::runtime_error("the terminal line editor (libedit) could not be started");
     }
     HistEvent event{};
-    ::history(history_, &event, H_SETSIZE, static_cast<int>(history.size() + 1000));
-    for (const auto& line : history) ::history(history_, &event, H_ENTER, line.c_str());
+    lib.history(history_, &event, H_SETSIZE, static_cast<int>(history.size() + 1000));
+    for (const auto& line : history) lib.history(history_, &event, H_ENTER, line.c_str());
 
-    el_set(el_, EL_CLIENTDATA, static_cast<void*>(this));
-    el_set(el_, EL_EDITOR, "emacs");
-    el_set(el_, EL_SIGNAL, 1);  // the terminal is restored if a signal ends the program
-    el_set(el_, EL_PROMPT, &LineEditor::prompt_of);
-    el_set(el_, EL_HIST, ::history, history_);
+    lib.set(el_, EL_CLIENTDATA, static_cast<void*>(this));
+    lib.set(el_, EL_EDITOR, "emacs");
+    lib.set(el_, EL_SIGNAL, 1);  // the terminal is restored if a signal ends the program
+    lib.set(el_, EL_PROMPT, &LineEditor::prompt_of);
+    lib.set(el_, EL_HIST, lib.history, history_);
     // The wide form: libedit keeps these (static) strings as they are, where the narrow
     // el_set(EL_ADDFN) makes wide copies it never frees.
-    el_wset(el_, EL_ADDFN, L"apcictl-complete", L"Complete a command or object name",
-            &LineEditor::on_tab);
-    el_set(el_, EL_BIND, "^I", "apcictl-complete", nullptr);
-    el_source(el_, nullptr);  // the user's ~/.editrc, if any
+    lib.wset(el_, EL_ADDFN, L"apcictl-complete", L"Complete a command or object name",
+             &LineEditor::on_tab);
+    lib.set(el_, EL_BIND, "^I", "apcictl-complete", nullptr);
+    lib.source(el_, nullptr);  // the user's ~/.editrc, if any
 }
 
 LineEditor::~LineEditor() {
-    el_end(el_);
-    history_end(history_);
+    edit_lib().end(el_);
+    edit_lib().history_end(history_);
 }
 
 std::optional<std::string> LineEditor::read_line() {
     std::fflush(stdout);
     int count = 0;
-    const char* text = el_gets(el_, &count);
+    const char* text = edit_lib().gets(el_, &count);
     if (text == nullptr || count <= 0) return std::nullopt;
     std::string line(text, static_cast<std::size_t>(count));
     while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
@@ -72,7 +138,7 @@ std::optional<std::string> LineEditor::read_line() {
 
 void LineEditor::add_history(const std::string& line) {
     HistEvent event{};
-    ::history(history_, &event, H_ENTER, line.c_str());
+    edit_lib().history(history_, &event, H_ENTER, line.c_str());
 }
 
 char* LineEditor::prompt_of(EditLine* el) {
@@ -82,13 +148,14 @@ char* LineEditor::prompt_of(EditLine* el) {
 
 unsigned char LineEditor::on_tab(EditLine* el, int /*key*/) {
     LineEditor* editor = editor_of(el);
-    const LineInfo* info = el_line(el);
+    const EditLib& lib = edit_lib();
+    const LineInfo* info = lib.line(el);
     if (editor == nullptr || info == nullptr || !editor->completer_) return CC_REFRESH_BEEP;
     const std::string before(info->buffer, static_cast<std::size_t>(info->cursor - info->buffer));
     const auto candidates = editor->completer_(before);
     const TabAction action = tab_action(before, candidates);
     if (!action.insert.empty()) {
-        if (el_insertstr(el, action.insert.c_str()) != 0) return CC_REFRESH_BEEP;
+        if (lib.insertstr(el, action.insert.c_str()) != 0) return CC_REFRESH_BEEP;
         return CC_REFRESH;
     }
     if (action.listed.empty()) return CC_REFRESH_BEEP;

@@ -25,6 +25,10 @@ class LineEditor {
   public:
     using Completer = std::function<std::vector<std::string>(std::string_view)>;
 
+    // Why no editor can be made (libedit is loaded when first asked: dlopen of libedit.so.2);
+    // empty when it can.
+    static std::string unavailable();
+
     LineEditor(const char* program, std::string prompt, Completer completer,
                std::span<const std::string> history);
     ~LineEditor();
