@@ -158,9 +158,13 @@ void segment_to_c(const Segment& m, apci_segment& s) noexcept {
     s.plane_axes[0] = m.plane_axes[0];
     s.plane_axes[1] = m.plane_axes[1];
     s.plane = m.plane;
-    std::copy(m.start.begin(), m.start.end(), s.start);
-    std::copy(m.end.begin(), m.end.end(), s.end);
-    std::copy(m.center.begin(), m.center.end(), s.center);
+    // Fixed-size copies the compiler does in place (std::copy of the arrays was a memmove call
+    // each, three a segment).
+    static_assert(sizeof m.start == sizeof s.start && sizeof m.end == sizeof s.end &&
+                  sizeof m.center == sizeof s.center);
+    std::memcpy(s.start, m.start.data(), sizeof s.start);
+    std::memcpy(s.end, m.end.data(), sizeof s.end);
+    std::memcpy(s.center, m.center.data(), sizeof s.center);
     s.feed = m.feed;
     s.start_cycle = m.start_cycle;
     s.end_cycle = m.end_cycle;
