@@ -182,12 +182,33 @@ double spiral_offset(const OffsetElement& o, const Radii& radii, bool from_end,
     return r0 + t * (r1 - r0) - (from_end ? r1 : r0);
 }
 
+// The meetings of the carriers with the corrections dh and dn (meet()), kept for the next
+// round of on_spirals.
+struct MetAt {
+    Meeting again[2];
+    int count = 0;
+    bool valid = false;
+    std::uint64_t dh_bits = 0;
+    std::uint64_t dn_bits = 0;
+    bool holds(double dh, double dn) const noexcept {
+        return valid && std::bit_cast<std::uint64_t>(dh) == dh_bits &&
+               std::bit_cast<std::uint64_t>(dn) == dn_bits;
+    }
+    void update(int met, double dh, double dn) noexcept {
+        count = met;
+        dh_bits = std::bit_cast<std::uint64_t>(dh);
+        dn_bits = std::bit_cast<std::uint64_t>(dn);
+        valid = true;
+    }
+};
+
 // Moves a meeting of the circles through the corner ends onto the spirals the arcs really
 // are: a few rounds of taking each arc's radius where the meeting lies.
 Vec2 on_spirals(const OffsetElement& held, const OffsetElement& next, const Radii& held_radii,
                 const Radii& next_radii, BackAngle& back, const Carrier& h, const Carrier& n,
                 const Vec2& p1, const Vec2& p2, const Vec2& gap, Vec2 y) noexcept {
     if (!h.arc && !n.arc) return y;
+    MetAt met;
     for (int round = 0; round < 4; ++round) {
         // The held arc's angle back from its end to p1 + y: (p1 - centre) + y against
         // p1 - centre (p1 is its end), as back_from_end reads it.
@@ -205,8 +226,12 @@ Vec2 on_spirals(const OffsetElement& held, const OffsetElement& next, const Radi
         // no correction (and where the carriers nearly touch, a correction of a few nm would
         // slide it along them far more than it moves it across).
         if (std::abs(dh) <= kSpiralCorrection && std::abs(dn) <= kSpiralCorrection) return y;
-        Meeting again[2];
-        const int count = meet(h, n, p1, p2, gap, dh, dn, again);
+        // The carriers' meetings depend on the corrections alone (the rest is fixed): a round
+        // whose corrections have the bits of the last one's meets where that one did (the
+        // round that confirms the meeting has settled).
+        if (!met.holds(dh, dn)) met.update(meet(h, n, p1, p2, gap, dh, dn, met.again), dh, dn);
+        const int count = met.count;
+        const Meeting* again = met.again;
         if (count == 0) return y;
         Vec2 best = again[0].y;
         for (int i = 1; i < count; ++i)
@@ -382,10 +407,14 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
         const Vec2& y = meetings[i].y;
         double held_wrapped = 0.0, next_wrapped = 0.0;
         const double held_reading = back_from_end(held, held_radii, back_angle, y, held_wrapped);
-        const double next_reading = past_start(next, next_radii, p2, gap, y, next_wrapped);
         double back = 0.0, past = 0.0;
         const bool on_held = on_element(held_reading, held_wrapped, held_len, back);
-        const bool on_next = on_element(next_reading, next_wrapped, next_len, past);
+        // Off the held element the meeting fails whatever the next one reads there.
+        bool on_next = false;
+        if (on_held) {
+            const double next_reading = past_start(next, next_radii, p2, gap, y, next_wrapped);
+            on_next = on_element(next_reading, next_wrapped, next_len, past);
+        }
         if (!on_held || !on_next) {
             const double to_corner = (p1 - corner + y).norm();
             if (to_corner < nearest) {

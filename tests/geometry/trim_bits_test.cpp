@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: MIT
+// The corner trim keeps what it has computed instead of computing it again: the carriers'
+// meetings of a round of the spiral correction whose corrections have the bits of the round
+// before, and no reading of the next element at a meeting that is off the held element. The
+// path must stay the same bit for bit: a kept meeting or reading that belongs to other
+// corrections or another meeting would move the trim by a few ulp. The digests below were taken
+// with the trim that computed everything at every use, over contours whose arcs are spirals
+// (coordinates rounded to three decimals, so each arc's start and end radius differ): the
+// benchmark contour of bench_contour_gen (docs/performance.md) at several tool radii, both
+// sides and both transitions, and random contours of rounded lines and arcs meeting at inside
+// and outside corners.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "rng.h"
+#include "rwmos/geometry/compensator.h"
+
+namespace rwmos::geom {
+namespace {
+
+using apci::test::Rng;
+
+// FNV-1a over 64-bit words.
+struct Digest {
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    int contour_arcs = 0;  // contour segments that are arcs (trimmed spirals among them)
+    void word(std::uint64_t w) {
+        for (int i = 0; i < 8; ++i) {
+            h ^= (w >> (8 * i)) & 0xFF;
+            h *= 0x100000001b3ULL;
+        }
+    }
+    void number(double v) { word(std::bit_cast<std::uint64_t>(v)); }
+    void point(const Vec2& p) {
+        number(p.x());
+        number(p.y());
+    }
+    void step(const StepResult& r, const SegmentBatch& out) {
+        word(static_cast<std::uint64_t>(r.reason));
+        word(r.index);
+        for (const Segment& s : out) {
+            word(static_cast<std::uint64_t>(s.role) << 8 | static_cast<std::uint64_t>(s.path.kind));
+            word(s.index);
+            point(s.path.start);
+            point(s.path.end);
+            if (is_arc(s.path)) {
+                point(s.path.centre);
+                word(s.path.ccw ? 1 : 0);
+                if (s.role == SegmentRole::kContour) ++contour_arcs;
+            }
+        }
+    }
+};
+
+// Runs the elements through a compensator (restarted after a refusal) into the digest.
+void compensate(const std::vector<Element>& elements, const CompensatorConfig& config, Digest& d) {
+    PathCompensator comp;
+    SegmentBatch out;
+    ASSERT_TRUE(comp.begin(config, elements.front().start).ok());
+    std::uint32_t index = 1;
+    for (const Element& e : elements) {
+        const StepResult r = comp.push(e, index++, out);
+        d.step(r, out);
+        if (!r.ok()) {
+            comp.discard();
+            ASSERT_TRUE(comp.begin(config, e.end).ok());
+        }
+    }
+    d.step(comp.finish(out), out);
+}
+
+// One lap of the benchmark contour (bench_contour_gen): lines and arcs written with three
+// decimals, arcs by their start-relative centre (I, J).
+std::vector<Element> benchmark_lap() {
+    struct Block {
+        int g;
+        double x, y, i, j;
+    };
+    const Block blocks[] = {
+        {1, 93.267, 61.261, 0, 0},
+        {3, 83.562, 69.339, -6.6166, 1.9196},
+        {1, 76.596, 79.049, 0, 0},
+        {2, 71.615, 87.782, 39.3567, 28.2347},
+        {2, 60.728, 90.775, -2.9082, 10.7185},
+        {1, 51.495, 93.112, 0, 0},
+        {3, 41.63, 83.089, -1.9992, -7.8985},
+        {2, 31.14, 85.777, -2.3344, 12.7025},
+        {3, 21.119, 80.436, -1.8161, -8.6639},
+        {2, 12.099, 73.592, -12.6329, 7.2835},
+        {2, 14.537, 58.163, -3.4459, -8.4516},
+        {1, 14.071, 50.901, 0, 0},
+        {3, 12.578, 37.981, 12.0391, -7.9375},
+        {1, 15.02, 29.982, 0, 0},
+        {2, 19.51, 18.063, -2.823, -7.8687},
+        {1, 28.561, 15.655, 0, 0},
+        {1, 41.608, 16.414, 0, 0},
+        {1, 48.829, 13.78, 0, 0},
+        {3, 60.908, 12.947, 7.4829, 20.5141},
+        {1, 68.063, 16.046, 0, 0},
+        {1, 73.035, 24.45, 0, 0},
+        {3, 84.888, 31.483, 0.3745, 12.8735},
+        {3, 86.234, 41.071, -7.38, 5.9245},
+        {3, 90, 50, -5.2013, 7.4525},
+    };
+    std::vector<Element> out;
+    Vec2 at(90, 50);
+    for (const Block& b : blocks) {
+        const Vec2 end(b.x, b.y);
+        out.push_back(b.g == 1 ? make_line(at, end)
+                               : make_arc(at, end, at + Vec2(b.i, b.j), b.g == 3));
+        at = end;
+    }
+    return out;
+}
+
+double rounded(double v) {
+    return std::round(v * 1000) / 1000;
+}
+Vec2 rounded(const Vec2& p) {
+    return {rounded(p.x()), rounded(p.y())};
+}
+
+// A closed-free chain of rounded lines and arcs turning by up to 150 degrees at each join.
+std::vector<Element> random_chain(std::uint64_t seed, int count) {
+    Rng rng(seed);
+    std::vector<Element> out;
+    Vec2 at(rounded(rng.uniform(-50, 50)), rounded(rng.uniform(-50, 50)));
+    double heading = rng.uniform(0, 2 * std::numbers::pi);
+    for (int k = 0; k < count; ++k) {
+        heading += rng.sign() * rng.uniform(0.05, 2.6);
+        const Vec2 t(std::cos(heading), std::sin(heading));
+        if (rng.chance(0.4)) {
+            const Vec2 end = rounded(at + rng.uniform(2, 20) * t);
+            out.push_back(make_line(at, end));
+            at = end;
+            continue;
+        }
+        const double radius = rng.uniform(3, 30);
+        const double turn = rng.sign() * rng.uniform(0.2, 2.5);
+        const bool ccw = turn > 0;
+        const Vec2 left(-t.y(), t.x());
+        const Vec2 centre = rounded(at + radius * (ccw ? left : Vec2(-left)));
+        const Vec2 r0 = at - centre;
+        const Vec2 r1(std::cos(turn) * r0.x() - std::sin(turn) * r0.y(),
+                      std::sin(turn) * r0.x() + std::cos(turn) * r0.y());
+        const Vec2 end = rounded(centre + r1);
+        out.push_back(make_arc(at, end, centre, ccw));
+        heading += turn;
+        at = end;
+    }
+    return out;
+}
+
+TEST(TrimBits, BenchmarkContourGivesTheBitsOfTheTrimWithoutKeptValues) {
+    const std::vector<Element> lap = benchmark_lap();
+    Digest d;
+    for (const double r : {0.5, 1.0, 1.5, 2.0})
+        for (const Side side : {Side::kLeft, Side::kRight})
+            for (const TransitionMode mode : {TransitionMode::kCircular, TransitionMode::kLinear})
+                compensate(lap, CompensatorConfig{side, r, mode, ApproachMode::kPerpendicular}, d);
+    EXPECT_GT(d.contour_arcs, 100);
+    EXPECT_EQ(d.h, 0x7a289d8c1a417c89ULL);
+}
+
+TEST(TrimBits, RandomRoundedContoursGiveTheBitsOfTheTrimWithoutKeptValues) {
+    Digest d;
+    for (std::uint64_t seed = 1; seed <= 200; ++seed)
+        for (const Side side : {Side::kLeft, Side::kRight})
+            compensate(random_chain(seed, 40),
+                       CompensatorConfig{side, 1.0 + 0.25 * static_cast<double>(seed % 5),
+                                         TransitionMode::kCircular, ApproachMode::kPerpendicular},
+                       d);
+    EXPECT_GT(d.contour_arcs, 5000);
+    EXPECT_EQ(d.h, 0x82705dacef715355ULL);
+}
+
+}  // namespace
+}  // namespace rwmos::geom
