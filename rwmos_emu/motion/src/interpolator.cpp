@@ -10,20 +10,48 @@ namespace rwmos::motion {
 Move line_move(const AxisVector& start, const AxisVector& end, double feed, SegmentRole role,
                std::uint32_t tag) {
     Move m;
-    m.kind = SegmentKind::kLine;
-    m.role = role;
-    m.tag = tag;
-    m.start = start;
-    m.end = end;
-    m.feed = feed;
+    line_move_into(m, start, end, feed, role, tag);
     return m;
 }
 
 Move arc_move(const AxisVector& start, const AxisVector& end,
               std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw, double feed,
               SegmentRole role, std::uint32_t tag) {
-    Move m = line_move(start, end, feed, role, tag);
+    Move m;
+    arc_move_into(m, start, end, plane_axes, cx, cy, ccw, feed, role, tag);
+    return m;
+}
+
+void line_move_into(Move& m, const AxisVector& start, const AxisVector& end, double feed,
+                    SegmentRole role, std::uint32_t tag) noexcept {
+    // Every member, as Move{} and then the line's.
+    m.kind = SegmentKind::kLine;
+    m.role = role;
+    m.tag = tag;
+    m.direct = false;
+    m.side = 0;
+    m.plane = 0;
+    m.start = start;
+    m.end = end;
+    m.feed = feed;
+    m.plane_axes = {0, 1};
+    m.cx = m.cy = 0.0;
+    m.radius = m.end_radius = 0.0;
+    m.start_angle = m.sweep = 0.0;
+}
+
+void arc_move_into(Move& m, const AxisVector& start, const AxisVector& end,
+                   std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw,
+                   double feed, SegmentRole role, std::uint32_t tag) noexcept {
     m.kind = SegmentKind::kArc;
+    m.role = role;
+    m.tag = tag;
+    m.direct = false;
+    m.side = 0;
+    m.plane = 0;
+    m.start = start;
+    m.end = end;
+    m.feed = feed;
     m.plane_axes = plane_axes;
     m.cx = cx;
     m.cy = cy;
@@ -47,7 +75,6 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
         if (!ccw) sweep = -sweep;
     }
     m.sweep = sweep;
-    return m;
 }
 
 double arc_plane_length(const Move& m) noexcept {

@@ -228,13 +228,17 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         start[c.plane_axes[1]] = seg.path.start.y();
         end[c.plane_axes[0]] = seg.path.end.x();
         end[c.plane_axes[1]] = seg.path.end.y();
-        Move m = geom::is_arc(seg.path)
-                     ? arc_move(start, end, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(),
-                                seg.path.ccw, pd->feed, role_of(seg.role), pd->tag)
-                     : line_move(start, end, pd->feed, role_of(seg.role), pd->tag);
-        if (m.kind == SegmentKind::kArc) m.plane = c.plane;
+        // Written where the batch keeps it (no Move built and copied there).
+        Move& m = batch.moves[batch.count];
+        if (geom::is_arc(seg.path)) {
+            arc_move_into(m, start, end, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(),
+                          seg.path.ccw, pd->feed, role_of(seg.role), pd->tag);
+            m.plane = c.plane;
+        } else {
+            line_move_into(m, start, end, pd->feed, role_of(seg.role), pd->tag);
+        }
         m.side = c.side;
-        batch.add(m);
+        batch.add_last();
     }
 }
 

@@ -146,6 +146,8 @@ class Spooler {
             moves[count++] = m;
             end = m.end;
         }
+        // Takes moves[count], written in place, as the next move.
+        void add_last() noexcept { end = moves[count++].end; }
     };
 
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
