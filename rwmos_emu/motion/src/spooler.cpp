@@ -228,8 +228,8 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         start[c.plane_axes[1]] = seg.path.start.y();
         end[c.plane_axes[0]] = seg.path.end.x();
         end[c.plane_axes[1]] = seg.path.end.y();
-        // Written where the batch keeps it (no Move built and copied there).
-        Move& m = batch.moves[batch.count];
+        // Written where it will run (no Move built and copied there).
+        Move& m = batch.next();
         if (geom::is_arc(seg.path)) {
             arc_move_into(m, start, end, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(),
                           seg.path.ccw, pd->feed, role_of(seg.role), pd->tag);
@@ -238,7 +238,7 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
             line_move_into(m, start, end, pd->feed, role_of(seg.role), pd->tag);
         }
         m.side = c.side;
-        batch.add_last();
+        batch.end = m.end;
     }
 }
 
@@ -248,10 +248,11 @@ void Spooler::end_contour(Compensation& c, bool keep_departure, Batch& batch) {
     append_segments(c, segs_, keep_departure, batch);
 }
 
-MotionResult Spooler::commit(const Batch& batch, Executor& exec, std::size_t capacity) {
-    if (exec.fill() + batch.count > capacity)
+MotionResult Spooler::commit(Batch& batch, const Executor& exec, std::size_t capacity) {
+    // The batch's moves are in the queue already.
+    if (exec.fill() > capacity)
         return refuse(Status::kBusy, "spooler full: nothing taken; run the clock and try again");
-    for (std::size_t i = 0; i < batch.count; ++i) exec.push(batch.moves[i]);
+    batch.keep();
     return {};
 }
 
@@ -269,8 +270,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         return refuse(Status::kValueTooLow, kTooLong);
 
     Compensation trial = comp_;
-    Batch& batch = batch_;
-    batch.reset(exec.planned_end());
+    Batch batch(exec);
     // [APCI-TC] section 1: only G01/G02/G03 are compensated, by the active
     // group while it runs. Anything else ends the contour under way ([APCI-TC]
     // section 2.4: a JOG/G00 makes the compensation ineffective; the next
@@ -401,8 +401,7 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     // [APCI-TC] section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
     // auch das letzte zwischengespeicherte Verfahrprofil gespoolt."
     Compensation trial = comp_;
-    Batch& batch = batch_;
-    batch.reset(exec.planned_end());
+    Batch batch(exec);
     // Perpendicular (G237): a departure at right angles back to the programmed end. Indirect
     // (G139): none; the tool stays at the last offset end and the next profile departs from
     // there (docs/compensation.md "Approach and departure").
@@ -425,8 +424,7 @@ MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&
     // [APCI-TC] section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
     // die entsprechenden Achsen gesendet werden": the held profile is spooled.
     Compensation trial = comp_;
-    Batch& batch = batch_;
-    batch.reset(exec.planned_end());
+    Batch batch(exec);
     end_contour(trial, /*keep_departure=*/false, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;

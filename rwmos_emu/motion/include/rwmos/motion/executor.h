@@ -31,6 +31,13 @@ class Executor {
     // Moves not yet finished (the one under way included).
     std::size_t fill() const noexcept { return moves_.size(); }
     void push(const Move& m) { moves_.push_back(m); }
+    // A new move at the back of the queue, for the caller to write (every member), and the last
+    // `count` moves dropped again: the spooler builds a call's moves where they will run and
+    // drops them when they do not all fit.
+    Move& push_slot() { return moves_.push_back_slot(); }
+    void drop_back(std::size_t count) noexcept {
+        for (; count > 0; --count) moves_.pop_back();
+    }
     // Where the axes are now (the nominal path plus the cycle offsets).
     const AxisVector& position() const noexcept { return position_; }
     // Where the nominal path stands now (the queued moves' geometry, without offsets).

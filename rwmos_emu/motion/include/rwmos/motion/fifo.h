@@ -26,6 +26,11 @@ class Fifo {
         buf_[slot(size_)] = v;
         ++size_;
     }
+    // A new element at the back, left as it was for the caller to write (no copy of a T).
+    T& push_back_slot() {
+        if (size_ == capacity()) grow();
+        return buf_[slot(size_++)];
+    }
     void pop_front() noexcept {
         head_ = slot(1);
         --size_;

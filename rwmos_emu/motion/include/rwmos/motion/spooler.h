@@ -132,22 +132,32 @@ class Spooler {
         bool ccw = false;
         std::int32_t plane = 0;  // G code of the arc's plane, 0 if not a TC plane
     };
-    // Moves one call adds; built first, pushed only if they all fit.
-    // The moves of one call; the spooler keeps one and reuses it (no 5 KB to clear per call).
-    struct Batch {
-        AxisVector end{};  // where the last move ends (the queue's end before the first)
-        std::size_t count = 0;
-        std::array<Move, 2 * geom::kMaxSegmentsPerStep + 1> moves;
-        void reset(const AxisVector& from) noexcept {
-            end = from;
-            count = 0;
+    // The moves of one call, written in place at the back of the executor's queue as they are
+    // built (no move copied into the queue). commit() keeps them when they all fit; a call that
+    // returns without keeping them (refused, busy) drops them again with its Batch, so the
+    // queue is as before the call.
+    class Batch {
+        Executor& exec_;
+        std::size_t count_ = 0;
+
+      public:
+        explicit Batch(Executor& exec) : exec_(exec), end(exec.planned_end()) {}
+        ~Batch() { exec_.drop_back(count_); }
+        Batch(const Batch&) = delete;
+        Batch& operator=(const Batch&) = delete;
+        // A new move at the back of the queue for the caller to write (every member); then
+        // end = its end.
+        Move& next() {
+            ++count_;
+            return exec_.push_slot();
         }
-        void add(const Move& m) noexcept {
-            moves[count++] = m;
+        void add(const Move& m) {
+            next() = m;
             end = m.end;
         }
-        // Takes moves[count], written in place, as the next move.
-        void add_last() noexcept { end = moves[count++].end; }
+        std::size_t count() const noexcept { return count_; }
+        void keep() noexcept { count_ = 0; }
+        AxisVector end;  // where the last move ends (the queue's end before the first)
     };
 
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
@@ -163,11 +173,10 @@ class Spooler {
     void end_contour(Compensation& c, bool keep_departure, Batch& batch);
     const Pending* pending(std::uint32_t index) const noexcept;
     void forget_finished();
-    // kBusy if the batch does not fit the queue, else pushes it.
-    static MotionResult commit(const Batch& batch, Executor& exec, std::size_t capacity);
+    // kBusy if the batch's moves do not fit the queue (they are dropped with it), else keeps them.
+    static MotionResult commit(Batch& batch, const Executor& exec, std::size_t capacity);
 
     Compensation comp_;
-    Batch batch_;
     Fifo<Pending> pending_;
     std::uint32_t next_index_ = 1;
     AxisVector program_{};     // programmed position, program coordinates
