@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// line_move_into / arc_move_into write a move into storage that held another one (the spooler's
-// batch, reused call after call): every member is the new move's, nothing of the old is left.
+// line_move_into / arc_move_into write a move into storage that held another one (the back of
+// the executor's queue, reused as the queue slides along), whose start and end the caller has
+// set: every other member is the new move's, nothing of the old is left.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -69,7 +70,9 @@ TEST(MoveInto, LineOverAnOldMoveIsANewLine) {
     expected.end = filled(2.0);
     expected.feed = 600.0;
     Move m = stale();
-    line_move_into(m, filled(1.0), filled(2.0), 600.0, SegmentRole::kContour, 5);
+    m.start = filled(1.0);
+    m.end = filled(2.0);
+    line_move_into(m, 600.0, SegmentRole::kContour, 5);
     expect_same(m, expected);
 }
 
@@ -95,13 +98,16 @@ TEST(MoveInto, ArcOverAnOldMoveIsANewArc) {
     expected.start_angle = 0.0;
     expected.sweep = std::numbers::pi / 2;
     Move m = stale();
-    arc_move_into(m, start, end, {3, 4}, 1.0, 2.0, true, 1200.0, SegmentRole::kTransition, 9);
+    m.start = start;
+    m.end = end;
+    arc_move_into(m, {3, 4}, 1.0, 2.0, true, 1200.0, SegmentRole::kTransition, 9);
     expect_same(m, expected);
     // The same as the move arc_move returns, and a full circle's sweep when it closes.
     expect_same(m,
                 arc_move(start, end, {3, 4}, 1.0, 2.0, true, 1200.0, SegmentRole::kTransition, 9));
     Move full = stale();
-    arc_move_into(full, start, start, {3, 4}, 1.0, 2.0, false, 1200.0, SegmentRole::kContour, 1);
+    full.start = full.end = start;
+    arc_move_into(full, {3, 4}, 1.0, 2.0, false, 1200.0, SegmentRole::kContour, 1);
     EXPECT_EQ(full.sweep, -2 * std::numbers::pi);
     EXPECT_EQ(full.plane, 0);
     EXPECT_EQ(full.side, 0);

@@ -10,7 +10,9 @@ namespace rwmos::motion {
 Move line_move(const AxisVector& start, const AxisVector& end, double feed, SegmentRole role,
                std::uint32_t tag) {
     Move m;
-    line_move_into(m, start, end, feed, role, tag);
+    m.start = start;
+    m.end = end;
+    line_move_into(m, feed, role, tag);
     return m;
 }
 
@@ -18,21 +20,20 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
               std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw, double feed,
               SegmentRole role, std::uint32_t tag) {
     Move m;
-    arc_move_into(m, start, end, plane_axes, cx, cy, ccw, feed, role, tag);
+    m.start = start;
+    m.end = end;
+    arc_move_into(m, plane_axes, cx, cy, ccw, feed, role, tag);
     return m;
 }
 
-void line_move_into(Move& m, const AxisVector& start, const AxisVector& end, double feed,
-                    SegmentRole role, std::uint32_t tag) noexcept {
-    // Every member, as Move{} and then the line's.
+void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) noexcept {
+    // Every member but start and end, as Move{} and then the line's.
     m.kind = SegmentKind::kLine;
     m.role = role;
     m.tag = tag;
     m.direct = false;
     m.side = 0;
     m.plane = 0;
-    m.start = start;
-    m.end = end;
     m.feed = feed;
     m.plane_axes = {0, 1};
     m.cx = m.cy = 0.0;
@@ -40,21 +41,20 @@ void line_move_into(Move& m, const AxisVector& start, const AxisVector& end, dou
     m.start_angle = m.sweep = 0.0;
 }
 
-void arc_move_into(Move& m, const AxisVector& start, const AxisVector& end,
-                   std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw,
-                   double feed, SegmentRole role, std::uint32_t tag) noexcept {
+void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy,
+                   bool ccw, double feed, SegmentRole role, std::uint32_t tag) noexcept {
     m.kind = SegmentKind::kArc;
     m.role = role;
     m.tag = tag;
     m.direct = false;
     m.side = 0;
     m.plane = 0;
-    m.start = start;
-    m.end = end;
     m.feed = feed;
     m.plane_axes = plane_axes;
     m.cx = cx;
     m.cy = cy;
+    const AxisVector& start = m.start;
+    const AxisVector& end = m.end;
     const double sx = start[plane_axes[0]] - cx, sy = start[plane_axes[1]] - cy;
     const double ex = end[plane_axes[0]] - cx, ey = end[plane_axes[1]] - cy;
     m.radius = std::hypot(sx, sy);

@@ -197,9 +197,11 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         if (seg.role == geom::SegmentRole::kDeparture && !keep_departure) continue;
         const Pending* pd = pending(seg.index);
         if (pd == nullptr) continue;  // cannot happen: every index pushed is pending
+        // Written where it will run (no Move built and copied there).
+        Move& m = batch.next();
         // The axes outside the plane: the third axis runs linearly along the
         // plane element (with WkzLen added while compensating), the others too.
-        AxisVector end = batch.end;
+        AxisVector& end = m.end;
         switch (seg.role) {
             case geom::SegmentRole::kContour:
                 end = pd->end;
@@ -215,7 +217,8 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
                 end[z] += c.length;
                 break;
             case geom::SegmentRole::kTransition:
-                break;  // at the corner: only the plane axes move
+                end = batch.end;  // at the corner: only the plane axes move
+                break;
             case geom::SegmentRole::kDeparture:
                 // Back to the programmed end, length compensation removed (LengthMode 0) or
                 // kept (LengthMode 1).
@@ -223,19 +226,17 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
                 if (c.length_always) end[z] += c.length;
                 break;
         }
-        AxisVector start = batch.end;
-        start[c.plane_axes[0]] = seg.path.start.x();
-        start[c.plane_axes[1]] = seg.path.start.y();
+        m.start = batch.end;
+        m.start[c.plane_axes[0]] = seg.path.start.x();
+        m.start[c.plane_axes[1]] = seg.path.start.y();
         end[c.plane_axes[0]] = seg.path.end.x();
         end[c.plane_axes[1]] = seg.path.end.y();
-        // Written where it will run (no Move built and copied there).
-        Move& m = batch.next();
         if (geom::is_arc(seg.path)) {
-            arc_move_into(m, start, end, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(),
-                          seg.path.ccw, pd->feed, role_of(seg.role), pd->tag);
+            arc_move_into(m, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(), seg.path.ccw,
+                          pd->feed, role_of(seg.role), pd->tag);
             m.plane = c.plane;
         } else {
-            line_move_into(m, start, end, pd->feed, role_of(seg.role), pd->tag);
+            line_move_into(m, pd->feed, role_of(seg.role), pd->tag);
         }
         m.side = c.side;
         batch.end = m.end;
