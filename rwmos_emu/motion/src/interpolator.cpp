@@ -41,8 +41,8 @@ void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) n
     m.start_angle = m.sweep = 0.0;
 }
 
-void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy,
-                   bool ccw, double feed, SegmentRole role, std::uint32_t tag) noexcept {
+void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw,
+                   double feed, SegmentRole role, std::uint32_t tag) noexcept {
     m.kind = SegmentKind::kArc;
     m.role = role;
     m.tag = tag;

@@ -59,8 +59,8 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
 // The same written into m whose start and end the caller has set: every other member is set
 // (the caller's own storage: no Move built and copied there).
 void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) noexcept;
-void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy,
-                   bool ccw, double feed, SegmentRole role, std::uint32_t tag) noexcept;
+void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw,
+                   double feed, SegmentRole role, std::uint32_t tag) noexcept;
 
 // Length of an arc in its plane: |sweep| times the mean of start and end radius.
 double arc_plane_length(const Move& m) noexcept;
