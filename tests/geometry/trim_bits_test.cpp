@@ -8,9 +8,12 @@
 // (coordinates rounded to three decimals, so each arc's start and end radius differ): the
 // benchmark contour of bench_contour_gen (docs/performance.md) at several tool radii, both
 // sides and both transitions, and random contours of rounded lines and arcs meeting at inside
-// and outside corners.
+// and outside corners. The compensator joins its corners in place (join_corner_in_place, the
+// trims in place): the same elements as join_corner's copies, and a refused corner changes
+// nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +22,8 @@
 
 #include "rng.h"
 #include "rwmos/geometry/compensator.h"
+#include "rwmos/geometry/corner.h"
+#include "rwmos/geometry/offset.h"
 
 namespace rwmos::geom {
 namespace {
@@ -177,6 +182,88 @@ TEST(TrimBits, RandomRoundedContoursGiveTheBitsOfTheTrimWithoutKeptValues) {
                        d);
     EXPECT_GT(d.contour_arcs, 5000);
     EXPECT_EQ(d.h, 0x82705dacef715355ULL);
+}
+
+bool same(const OffsetElement& a, const OffsetElement& b) {
+    const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+    const auto same_point = [&](const Vec2& p, const Vec2& q) {
+        return bits(p.x()) == bits(q.x()) && bits(p.y()) == bits(q.y());
+    };
+    return a.path.kind == b.path.kind && a.path.ccw == b.path.ccw &&
+           same_point(a.path.start, b.path.start) && same_point(a.path.end, b.path.end) &&
+           same_point(a.path.centre, b.path.centre) && bits(a.sweep) == bits(b.sweep) &&
+           same_point(a.direction, b.direction);
+}
+
+TEST(JoinInPlace, ARefusedInsideCornerLeavesBothElementsAndTheTransitionAsTheyWere) {
+    // A 90 degree inside corner with r = 1 needs 1 of the next line; it has 0.5.
+    const OffsetElement a = offset_element(make_line({-10, 0}, {0, 0}), 1, Side::kLeft).element;
+    const OffsetElement b = offset_element(make_line({0, 0}, {0, 0.5}), 1, Side::kLeft).element;
+    OffsetElement held = a, next = b;
+    Transition transition;
+    transition.count = 7;  // marks it: a refused or inside corner leaves it alone
+    const JoinKind j = join_corner_in_place(held, next, transition, {0, 0}, {1, 0}, {0, 1},
+                                            Side::kLeft, 1, TransitionMode::kCircular, 0.5);
+    EXPECT_EQ(j.kind, CornerKind::kInside);
+    EXPECT_EQ(j.reason, Reason::kNextElementTooShort);
+    EXPECT_TRUE(same(held, a));
+    EXPECT_TRUE(same(next, b));
+    EXPECT_EQ(transition.count, 7u);
+}
+
+TEST(JoinInPlace, EveryCornerOfTheBenchmarkContourJoinsAsJoinCornerJoinsIt) {
+    // The in-place join against join_corner's copies, corner by corner: the same elements, the
+    // same transition, bit for bit.
+    const std::vector<Element> lap = benchmark_lap();
+    int inside = 0;
+    for (const double r : {0.5, 1.0, 2.0})
+        for (const Side side : {Side::kLeft, Side::kRight})
+            for (std::size_t k = 0; k < lap.size(); ++k) {
+                const Element& e1 = lap[k];
+                const Element& e2 = lap[(k + 1) % lap.size()];
+                const OffsetResult o1 = offset_element(e1, r, side);
+                const OffsetResult o2 = offset_element(e2, r, side);
+                if (o1.reason != Reason::kNone || o2.reason != Reason::kNone) continue;
+                const double shorter = std::min(length(e1), length(e2));
+                const CornerJoin copied =
+                    join_corner(o1.element, o2.element, e1.end, end_tangent(e1), start_tangent(e2),
+                                side, r, TransitionMode::kLinear, shorter);
+                OffsetElement held = o1.element, next = o2.element;
+                Transition transition;
+                const JoinKind j = join_corner_in_place(held, next, transition, e1.end,
+                                                        end_tangent(e1), start_tangent(e2), side, r,
+                                                        TransitionMode::kLinear, shorter);
+                ASSERT_EQ(j.kind, copied.kind) << k;
+                ASSERT_EQ(j.reason, copied.reason) << k;
+                EXPECT_TRUE(same(held, copied.held)) << k;
+                EXPECT_TRUE(same(next, copied.next)) << k;
+                ASSERT_EQ(transition.count, copied.transition.count) << k;
+                for (std::size_t i = 0; i < transition.count; ++i) {
+                    EXPECT_EQ(transition.elements[i].start, copied.transition.elements[i].start);
+                    EXPECT_EQ(transition.elements[i].end, copied.transition.elements[i].end);
+                }
+                inside += j.kind == CornerKind::kInside && j.reason == Reason::kNone;
+            }
+    EXPECT_GT(inside, 20);
+}
+
+TEST(TrimInPlace, AnArcTrimmedInPlaceTurnsByTheAlongOverTheMeanRadiusItHadBefore) {
+    // A quarter circle whose radius grows from 10 to 10.002 (a spiral): trimmed to end 3 along
+    // from its start, it turns by 3 / 10.001 whatever its new end does to its radii.
+    OffsetElement o;
+    o.path = make_arc({10, 0}, {0, 10.002}, {0, 0}, true);
+    o.sweep = std::numbers::pi / 2;
+    const Vec2 x(7, 7);
+    OffsetElement in_place = o;
+    trim_end_in_place(in_place, x, 3.0);
+    EXPECT_EQ(in_place.sweep, std::clamp(3.0 / (0.5 * (10.0 + 10.002)), 0.0, o.sweep));
+    EXPECT_EQ(in_place.path.end, x);
+    EXPECT_TRUE(same(in_place, trim_end(o, x, 3.0)));
+    OffsetElement started = o;
+    trim_start_in_place(started, x, 3.0);
+    EXPECT_EQ(started.sweep, o.sweep - 3.0 / (0.5 * (10.0 + 10.002)));
+    EXPECT_EQ(started.path.start, x);
+    EXPECT_TRUE(same(started, trim_start(o, x, 3.0)));
 }
 
 }  // namespace

@@ -89,7 +89,7 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     }
 
     const double r = config_.tool_radius;
-    const OffsetResult offset = offset_element(programmed, r, config_.side);
+    OffsetResult offset = offset_element(programmed, r, config_.side);
     if (offset.reason != Reason::kNone) return fail(offset.reason, index, out);
     // The offset arc keeps the programmed sweep (offset_element): measured once. An offset
     // line keeps the programmed line's direction, its tangent at both ends.
@@ -123,18 +123,22 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
         held_ = offset.element;
         held_role_ = SegmentRole::kContour;
     } else {
-        const CornerJoin join =
-            join_corner(held_, offset.element, held_corner_, held_end_tangent_,
-                        arc ? start_tangent(programmed) : offset.element.direction, config_.side, r,
-                        config_.transition, std::min(held_length_, programmed_length));
+        // Joined in place: the held element (a copy: on a failure the compensator stays as it
+        // was) and the new one, which becomes the held one.
+        OffsetElement held = held_;
+        Transition transition;
+        const Vec2 start_tangent_now = arc ? start_tangent(programmed) : offset.element.direction;
+        const JoinKind join = join_corner_in_place(
+            held, offset.element, transition, held_corner_, held_end_tangent_, start_tangent_now,
+            config_.side, r, config_.transition, std::min(held_length_, programmed_length));
         if (join.reason != Reason::kNone)
             return fail(join.reason,
                         join.reason == Reason::kHeldElementTooShort ? held_index_ : index, out);
-        out.add(held_path(join.held), held_role_, held_index_);
-        emit_plane_free(join.held.path.end, out);
-        for (std::size_t i = 0; i < join.transition.count; ++i)
-            out.add(join.transition.elements[i], SegmentRole::kTransition, held_index_);
-        held_ = join.next;
+        out.add(held_path(held), held_role_, held_index_);
+        emit_plane_free(held.path.end, out);
+        for (std::size_t i = 0; i < transition.count; ++i)
+            out.add(transition.elements[i], SegmentRole::kTransition, held_index_);
+        held_ = offset.element;
         held_role_ = SegmentRole::kContour;
     }
     held_corner_ = programmed.end;

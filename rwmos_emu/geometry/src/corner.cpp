@@ -288,36 +288,35 @@ Element line(const Vec2& a, const Vec2& b) noexcept {
     return make_line(a, b);
 }
 
-// The offset element starting at x instead of its start (x within kPathTolerance of it):
+// The offset element made to start at x instead of its start (x within kPathTolerance of it):
 // an arc keeps its centre and turns by as much less as x lies ahead of the old start.
-OffsetElement with_start(const OffsetElement& o, const Vec2& x) noexcept {
-    OffsetElement out = o;
-    out.path.start = x;
+void start_at(OffsetElement& o, const Vec2& x) noexcept {
+    const Vec2 at = x;
     // A full circle still closes where it starts: a whole turn from x.
     if (is_arc(o.path) && std::abs(o.sweep) >= kTwoPi) {
-        out.path.end = x;
-        return out;
+        o.path.start = at;
+        o.path.end = at;
+        return;
     }
     if (is_arc(o.path)) {
         const Vec2 before = o.path.start - o.path.centre;
-        const Vec2 after = x - o.path.centre;
+        const Vec2 after = at - o.path.centre;
         const double moved = std::atan2(cross(before, after), before.dot(after));
-        out.sweep = o.sweep - moved;
+        o.sweep = o.sweep - moved;
     }
-    return out;
+    o.path.start = at;
 }
 
-// The offset element ending at x instead of its end (x just past it): an arc turns by as much
-// more.
-OffsetElement with_end(const OffsetElement& o, const Vec2& x) noexcept {
-    OffsetElement out = o;
-    out.path.end = x;
+// The offset element made to end at x instead of its end (x just past it): an arc turns by as
+// much more.
+void end_at(OffsetElement& o, const Vec2& x) noexcept {
+    const Vec2 at = x;
     if (is_arc(o.path)) {
         const Vec2 before = o.path.end - o.path.centre;
-        const Vec2 after = x - o.path.centre;
-        out.sweep = o.sweep + std::atan2(cross(before, after), before.dot(after));
+        const Vec2 after = at - o.path.centre;
+        o.sweep = o.sweep + std::atan2(cross(before, after), before.dot(after));
     }
-    return out;
+    o.path.end = at;
 }
 
 // A reading from the corner end (back from the held end, or on from the next start) that lies
@@ -381,16 +380,22 @@ CornerKind classify_corner(const Vec2& end_tangent, const Vec2& start_tangent, S
 InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& next,
                               const Vec2& corner) noexcept {
     InsideTrim out;
+    out.held = held;
+    out.next = next;
+    out.reason = trim_inside_corner_in_place(out.held, out.next, corner);
+    if (out.reason != Reason::kNone) out.held = out.next = OffsetElement{};
+    return out;
+}
+
+Reason trim_inside_corner_in_place(OffsetElement& held, OffsetElement& next,
+                                   const Vec2& corner) noexcept {
     const Vec2 p1 = held.path.end;
     const Vec2 p2 = next.path.start;
     const Vec2 gap = p2 - p1;
     Meeting meetings[2];
     const Carrier hc = carrier_of(held), nc = carrier_of(next);
     const int count = meet(hc, nc, p1, p2, gap, 0.0, 0.0, meetings);
-    if (count == 0) {
-        out.reason = Reason::kNoCornerSolution;
-        return out;
-    }
+    if (count == 0) return Reason::kNoCornerSolution;
     const double held_len = offset_length(held);
     const double next_len = offset_length(next);
     const Radii held_radii = radii_of(held), next_radii = radii_of(next);
@@ -432,10 +437,7 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
         }
         found = true;
     }
-    if (!found) {
-        out.reason = nearest_failure;
-        return out;
-    }
+    if (!found) return nearest_failure;
     // Then the meeting moves onto the spirals the arcs are (a trim deep into an arc whose
     // radii differ by rounding), and both elements end and start there.
     const Vec2 y =
@@ -444,13 +446,15 @@ InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& ne
     double held_wrapped = 0.0, next_wrapped = 0.0;
     const double back = back_from_end(held, held_radii, back_angle, y, held_wrapped);
     const double past = past_start(next, next_radii, p2, gap, y, next_wrapped);
-    out.held = back_is_before_end(back, held_wrapped, held_len)
-                   ? trim_end(held, x, held_len - std::clamp(back, 0.0, held_len))
-                   : with_end(held, x);
-    out.next = back_is_before_end(past, next_wrapped, next_len)
-                   ? trim_start(next, x, std::clamp(past, 0.0, next_len))
-                   : with_start(next, x);
-    return out;
+    if (back_is_before_end(back, held_wrapped, held_len))
+        trim_end_in_place(held, x, held_len - std::clamp(back, 0.0, held_len));
+    else
+        end_at(held, x);
+    if (back_is_before_end(past, next_wrapped, next_len))
+        trim_start_in_place(next, x, std::clamp(past, 0.0, next_len));
+    else
+        start_at(next, x);
+    return Reason::kNone;
 }
 
 Transition outside_transition(const Vec2& corner, const Vec2& held_end, const Vec2& end_tangent,
@@ -495,27 +499,34 @@ CornerJoin join_corner(const OffsetElement& held, const OffsetElement& next, con
                        const Vec2& end_tangent, const Vec2& start_tangent, Side side, double r,
                        TransitionMode mode, double shorter_length) noexcept {
     CornerJoin out;
-    out.kind = classify_corner(end_tangent, start_tangent, side, r, shorter_length);
     out.held = held;
     out.next = next;
+    const JoinKind joined =
+        join_corner_in_place(out.held, out.next, out.transition, corner, end_tangent, start_tangent,
+                             side, r, mode, shorter_length);
+    out.reason = joined.reason;
+    out.kind = joined.kind;
+    return out;
+}
+
+JoinKind join_corner_in_place(OffsetElement& held, OffsetElement& next, Transition& transition,
+                              const Vec2& corner, const Vec2& end_tangent,
+                              const Vec2& start_tangent, Side side, double r, TransitionMode mode,
+                              double shorter_length) noexcept {
+    JoinKind out;
+    out.kind = classify_corner(end_tangent, start_tangent, side, r, shorter_length);
     switch (out.kind) {
         case CornerKind::kTangent:
             // The offset ends lie at most kPathTolerance apart: the next starts where the
             // held one ends, so the path is continuous.
-            out.next = with_start(next, held.path.end);
+            start_at(next, held.path.end);
             return out;
-        case CornerKind::kInside: {
-            const InsideTrim trim = trim_inside_corner(held, next, corner);
-            out.reason = trim.reason;
-            if (trim.reason == Reason::kNone) {
-                out.held = trim.held;
-                out.next = trim.next;
-            }
+        case CornerKind::kInside:
+            out.reason = trim_inside_corner_in_place(held, next, corner);
             return out;
-        }
         case CornerKind::kOutside:
-            out.transition = outside_transition(corner, held.path.end, end_tangent, next.path.start,
-                                                start_tangent, side, r, mode);
+            transition = outside_transition(corner, held.path.end, end_tangent, next.path.start,
+                                            start_tangent, side, r, mode);
             return out;
     }
     return out;

@@ -93,22 +93,31 @@ double distance_along(const OffsetElement& o, const Vec2& x) noexcept {
 
 OffsetElement trim_end(const OffsetElement& o, const Vec2& x, double along) noexcept {
     OffsetElement out = o;
-    out.path.end = x;
-    if (is_arc(o.path)) {
-        const double turned = std::clamp(along / mean_radius(o), 0.0, std::abs(o.sweep));
-        out.sweep = std::copysign(turned, o.sweep);
-    }
+    trim_end_in_place(out, x, along);
     return out;
 }
 
 OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) noexcept {
     OffsetElement out = o;
-    out.path.start = x;
+    trim_start_in_place(out, x, along);
+    return out;
+}
+
+void trim_end_in_place(OffsetElement& o, const Vec2& x, double along) noexcept {
+    // The turn from the element as it was (its mean radius), then its new end.
     if (is_arc(o.path)) {
         const double turned = std::clamp(along / mean_radius(o), 0.0, std::abs(o.sweep));
-        out.sweep = std::copysign(std::abs(o.sweep) - turned, o.sweep);
+        o.sweep = std::copysign(turned, o.sweep);
     }
-    return out;
+    o.path.end = x;
+}
+
+void trim_start_in_place(OffsetElement& o, const Vec2& x, double along) noexcept {
+    if (is_arc(o.path)) {
+        const double turned = std::clamp(along / mean_radius(o), 0.0, std::abs(o.sweep));
+        o.sweep = std::copysign(std::abs(o.sweep) - turned, o.sweep);
+    }
+    o.path.start = x;
 }
 
 Element emitted_path(const OffsetElement& o) noexcept {

@@ -56,6 +56,10 @@ struct InsideTrim {
 // the next element, kNoCornerSolution when the carriers do not meet.
 InsideTrim trim_inside_corner(const OffsetElement& held, const OffsetElement& next,
                               const Vec2& corner) noexcept;
+// The same trim made on held and next themselves (no copies): the reason, and on a failure
+// both are left as they were.
+Reason trim_inside_corner_in_place(OffsetElement& held, OffsetElement& next,
+                                   const Vec2& corner) noexcept;
 
 // At most three elements bridge an outside corner.
 struct Transition {
@@ -82,6 +86,19 @@ struct CornerJoin {
     OffsetElement next;     // the next offset element, its start final
     Transition transition;  // outside corners only
 };
+// The corner's kind and its failure (KorrError reasons, or kNone).
+struct JoinKind {
+    Reason reason = Reason::kNone;
+    CornerKind kind = CornerKind::kTangent;
+};
+// join_corner made on held and next themselves (no copies; the compensator's): held's end and
+// next's start made final, `transition` set for an outside corner (left as it was otherwise).
+// On a failure held and next are left as they were.
+JoinKind join_corner_in_place(OffsetElement& held, OffsetElement& next, Transition& transition,
+                              const Vec2& corner, const Vec2& end_tangent,
+                              const Vec2& start_tangent, Side side, double r, TransitionMode mode,
+                              double shorter_length) noexcept;
+
 // The whole corner: classify, then join (tangent), trim (inside) or bridge (outside).
 // end_tangent / start_tangent are the programmed unit tangents at the corner;
 // shorter_length the length of the shorter programmed element (classify_corner).

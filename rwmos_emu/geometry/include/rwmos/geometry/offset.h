@@ -61,6 +61,9 @@ double distance_along(const OffsetElement& o, const Vec2& x) noexcept;
 OffsetElement trim_end(const OffsetElement& o, const Vec2& x, double along) noexcept;
 // The element starting at x, where x lies `along` from its start (0 <= along <= length).
 OffsetElement trim_start(const OffsetElement& o, const Vec2& x, double along) noexcept;
+// The same, changing o itself (no copy of the element).
+void trim_end_in_place(OffsetElement& o, const Vec2& x, double along) noexcept;
+void trim_start_in_place(OffsetElement& o, const Vec2& x, double along) noexcept;
 
 // What the spooler receives: arcs turning less than half a circle with a chord of at
 // most kMinArcChord become lines (so no emitted arc reads as a full circle), a full
