@@ -2,8 +2,11 @@
 // The spooler writes a call's moves where they will run, at the back of the executor's queue,
 // and drops them again when the call does not keep them: a call refused after it had already
 // ended the contour under way (its held profile's moves built), and a call that finds the
-// queue full, leave the queue and the held profile exactly as before.
+// queue full, leave the queue and the held profile exactly as before. And a profile's targets
+// are checked as they always were.
 #include <gtest/gtest.h>
+
+#include <limits>
 
 #include "rwmos/motion/executor.h"
 #include "rwmos/motion/spooler.h"
@@ -84,4 +87,37 @@ TEST(SpoolerBatch, AFullQueueTakesNothingAndDropsTheMovesBuilt) {
     EXPECT_TRUE(s.holds_profile());
     ASSERT_TRUE(s.spool(line_to(10, -10), tc, exec, 64, kCycle).ok());
     EXPECT_EQ(exec.fill(), before.fill + 2);  // the held line and the outside transition
+}
+
+TEST(SpoolerTargets, AtTheLimitTakenBeyondItOrNotFiniteRefusedWithTheirStatus) {
+    // The check of a profile's targets takes every coordinate within +-100000 at one test an
+    // axis; one that is not gets its own status, whichever axis it is on.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    struct Case {
+        int axis;
+        double v;
+        Status want;
+    };
+    const Case cases[] = {
+        {0, kMaxCoordinate, Status::kOk},
+        {7, -kMaxCoordinate, Status::kOk},
+        {1, nan, Status::kInvalidValue},
+        {6, inf, Status::kInvalidValue},
+        {2, -inf, Status::kInvalidValue},
+        {3, 1.0000000001e5, Status::kValueTooHigh},
+        {5, -1.0000000001e5, Status::kValueTooLow},
+    };
+    for (const Case& c : cases) {
+        Spooler s;
+        Executor exec;
+        Profile p;
+        p.kind = ProfileKind::kRapid;
+        p.axes = static_cast<AxisMask>(1u << c.axis);
+        p.target[c.axis] = c.v;
+        p.target[(c.axis + 1) % kAxisCount] = nan;  // not named: not checked
+        const MotionResult r = s.spool(p, TcSettings{}, exec, 64, kCycle);
+        EXPECT_EQ(r.status, c.want) << c.axis << " " << c.v;
+        EXPECT_EQ(exec.fill(), c.want == Status::kOk ? 1u : 0u) << c.axis << " " << c.v;
+    }
 }

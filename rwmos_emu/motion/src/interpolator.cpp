@@ -83,14 +83,17 @@ double arc_plane_length(const Move& m) noexcept {
 
 double path_length(const Move& m) noexcept {
     // The squares of the axes' changes summed in axis order, an arc's plane axes left out.
+    // (Unrolled: a move's length is taken once per move on the executor's path.)
     double other = 0.0;
     if (m.kind == SegmentKind::kLine) {
+#pragma GCC unroll 8
         for (int a = 0; a < kAxisCount; ++a) {
             const double d = m.end[a] - m.start[a];
             other += d * d;
         }
         return std::sqrt(other);
     }
+#pragma GCC unroll 8
     for (int a = 0; a < kAxisCount; ++a) {
         if (a == m.plane_axes[0] || a == m.plane_axes[1]) continue;
         const double d = m.end[a] - m.start[a];

@@ -55,6 +55,12 @@ MotionResult check_feed(double feed, bool rapid) {
 }
 
 MotionResult check_targets(AxisMask axes, const AxisVector& target) {
+    // Almost always every named coordinate lies within the limit (NaN does not): one test an
+    // axis without a branch, the reason only for a coordinate that is not.
+    bool within = true;
+    for (int a = 0; a < kAxisCount; ++a)
+        within &= (axes & (1u << a)) == 0 || std::fabs(target[a]) <= kMaxCoordinate;
+    if (within) return {};
     for (int a = 0; a < kAxisCount; ++a) {
         if ((axes & (1u << a)) == 0) continue;
         const Status s = check_coordinate(target[a]);
