@@ -121,6 +121,7 @@ double path_length_bound(const AxisVector& start, const AxisVector& end,
                          double cy) noexcept {
     // Every axis's change (an arc's plane axes too: more than needed, still a bound).
     double bound = 0.0;
+#pragma GCC unroll 8
     for (int a = 0; a < kAxisCount; ++a) bound += std::fabs(end[a] - start[a]);
     if (plane_axes == nullptr) return 2.0 * bound;
     // |sweep| <= 2 pi and each radius at most the sum of its two components: the arc is at

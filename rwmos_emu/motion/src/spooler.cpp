@@ -58,6 +58,7 @@ MotionResult check_targets(AxisMask axes, const AxisVector& target) {
     // Almost always every named coordinate lies within the limit (NaN does not): one test an
     // axis without a branch, the reason only for a coordinate that is not.
     bool within = true;
+#pragma GCC unroll 8
     for (int a = 0; a < kAxisCount; ++a)
         within &= (axes & (1u << a)) == 0 || std::fabs(target[a]) <= kMaxCoordinate;
     if (within) return {};
@@ -129,6 +130,7 @@ std::int32_t plane_code_of(std::array<std::uint8_t, 2> axes,
 
 MotionResult Spooler::resolve(const Profile& p, const TcSettings& tc, Resolved& out) const {
     out.program = program_;
+#pragma GCC unroll 8
     for (int a = 0; a < kAxisCount; ++a)
         if ((p.axes & (1u << a)) != 0) out.program[a] = p.target[a];
     out.path = out.program;
