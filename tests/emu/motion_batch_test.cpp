@@ -95,18 +95,18 @@ TEST(SpoolerTargets, AtTheLimitTakenBeyondItOrNotFiniteRefusedWithTheirStatus) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
     struct Case {
-        int axis;
         double v;
+        int axis;
         Status want;
     };
     const Case cases[] = {
-        {0, kMaxCoordinate, Status::kOk},
-        {7, -kMaxCoordinate, Status::kOk},
-        {1, nan, Status::kInvalidValue},
-        {6, inf, Status::kInvalidValue},
-        {2, -inf, Status::kInvalidValue},
-        {3, 1.0000000001e5, Status::kValueTooHigh},
-        {5, -1.0000000001e5, Status::kValueTooLow},
+        {kMaxCoordinate, 0, Status::kOk},
+        {-kMaxCoordinate, 7, Status::kOk},
+        {nan, 1, Status::kInvalidValue},
+        {inf, 6, Status::kInvalidValue},
+        {-inf, 2, Status::kInvalidValue},
+        {1.0000000001e5, 3, Status::kValueTooHigh},
+        {-1.0000000001e5, 5, Status::kValueTooLow},
     };
     for (const Case& c : cases) {
         Spooler s;

@@ -290,33 +290,32 @@ Element line(const Vec2& a, const Vec2& b) noexcept {
 
 // The offset element made to start at x instead of its start (x within kPathTolerance of it):
 // an arc keeps its centre and turns by as much less as x lies ahead of the old start.
+// (Everything read from o is read before o changes.)
 void start_at(OffsetElement& o, const Vec2& x) noexcept {
-    const Vec2 at = x;
     // A full circle still closes where it starts: a whole turn from x.
     if (is_arc(o.path) && std::abs(o.sweep) >= kTwoPi) {
-        o.path.start = at;
-        o.path.end = at;
+        o.path.start = x;
+        o.path.end = x;
         return;
     }
     if (is_arc(o.path)) {
         const Vec2 before = o.path.start - o.path.centre;
-        const Vec2 after = at - o.path.centre;
+        const Vec2 after = x - o.path.centre;
         const double moved = std::atan2(cross(before, after), before.dot(after));
         o.sweep = o.sweep - moved;
     }
-    o.path.start = at;
+    o.path.start = x;
 }
 
 // The offset element made to end at x instead of its end (x just past it): an arc turns by as
 // much more.
 void end_at(OffsetElement& o, const Vec2& x) noexcept {
-    const Vec2 at = x;
     if (is_arc(o.path)) {
         const Vec2 before = o.path.end - o.path.centre;
-        const Vec2 after = at - o.path.centre;
+        const Vec2 after = x - o.path.centre;
         o.sweep = o.sweep + std::atan2(cross(before, after), before.dot(after));
     }
-    o.path.end = at;
+    o.path.end = x;
 }
 
 // A reading from the corner end (back from the held end, or on from the next start) that lies
