@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <iterator>
 #include <string>
 
 #include "apci/nc/interpreter.h"
@@ -460,6 +462,201 @@ TEST(Parser, RandomLinesGiveErrorsWithinTheLineNeverACrash) {
         }
     }
     EXPECT_GT(parsed, 100);  // the generator also makes valid lines
+}
+
+// ---- The plain-block path of parse_din_line against the general parser
+
+// The same outcome, bit for bit: success, line kind, every word's column and value (the double's
+// bits), or the same error with the same column, block and message.
+void expect_same_as_general(std::string_view text) {
+    ParsedLine fast;
+    Diagnostic fast_err;
+    ParsedLine general;
+    Diagnostic general_err;
+    const bool fast_ok = parse_din_line(text, 7, "prog.nc", fast, fast_err);
+    const bool general_ok =
+        parser_detail::parse_din_line_general(text, 7, "prog.nc", general, general_err);
+    ASSERT_EQ(fast_ok, general_ok) << "'" << text << "'";
+    if (!fast_ok) {
+        EXPECT_EQ(fast_err.to_string(), general_err.to_string()) << "'" << text << "'";
+        EXPECT_EQ(fast_err.kind, general_err.kind) << "'" << text << "'";
+        EXPECT_EQ(fast_err.block, general_err.block) << "'" << text << "'";
+        return;
+    }
+    ASSERT_EQ(fast.kind, general.kind) << "'" << text << "'";
+    if (fast.kind != LineKind::kBlock) return;
+    const Block& a = fast.block;
+    const Block& b = general.block;
+    EXPECT_EQ(a.line, b.line);
+    auto same_real = [&text](const Word<double>& x, const Word<double>& y, char letter) {
+        EXPECT_EQ(x.column, y.column) << letter << " in '" << text << "'";
+        if (x.present() && y.present()) {
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(x.value), std::bit_cast<std::uint64_t>(y.value))
+                << letter << " in '" << text << "'";
+        }
+    };
+    for (std::size_t k = 0; k < 3; ++k) {
+        same_real(a.axis[k], b.axis[k], "XYZ"[k]);
+        same_real(a.center[k], b.center[k], "IJK"[k]);
+    }
+    same_real(a.feed, b.feed, 'F');
+    same_real(a.radius, b.radius, 'R');
+    same_real(a.b_axis, b.b_axis, 'B');
+    EXPECT_EQ(a.number.column, b.number.column) << "'" << text << "'";
+    if (a.number.present()) {
+        EXPECT_EQ(a.number.value, b.number.value) << "'" << text << "'";
+    }
+    EXPECT_EQ(a.motion.column, b.motion.column) << "'" << text << "'";
+    if (a.motion.present()) {
+        EXPECT_EQ(a.motion.value, b.motion.value) << "'" << text << "'";
+    }
+    EXPECT_EQ(a.plane.column, b.plane.column);
+    EXPECT_EQ(a.distance.column, b.distance.column);
+    EXPECT_EQ(a.compensation.column, b.compensation.column);
+    EXPECT_EQ(a.corner.column, b.corner.column);
+    EXPECT_EQ(a.selection.column, b.selection.column);
+    EXPECT_EQ(a.units.column, b.units.column);
+    EXPECT_EQ(a.tool.column, b.tool.column);
+    EXPECT_EQ(a.end_of_program.column, b.end_of_program.column);
+}
+
+// The edges of the plain-block path: every line either takes it and gives the general parser's
+// block, or leaves it and gets the general parser's result or error.
+TEST(Parser, PlainBlocksParseAsTheGeneralParserAtEveryEdge) {
+    const std::string_view lines[] = {
+        "N7 G2 X71.615 Y87.782 I39.3567 J28.2347",
+        "n7 g2 x71.615 y87.782 i39.3567 j28.2347 f100",
+        "N1X1Y2Z3I4J5K6F7",
+        "\tN1\t G1 \tX-.5 Y+2 Z1. F.5  ",
+        "G1 X1 ; the rest is a comment with \xC3\x9C",
+        "G1 X1;",
+        "; only a comment",
+        "   ",
+        "",
+        "N1",
+        "G0",
+        "G3",
+        "G4 X1",
+        "G01 X1",
+        "G0000000000000000001 X1",       // 19 digits: G1
+        "G00000000000000000001 X1",      // 20 digits
+        "N9999999999999 G1 X1",          // kMaxWordNumber
+        "N10000000000000 G1 X1",         // one beyond
+        "N123456789012345678901234 G1",  // far beyond
+        "G1 N5 X1",                      // N not first
+        "N5 N6",
+        "G1 G2 X1",
+        "G1 G1 X1",
+        "X1 X2",
+        "F1 F2",
+        "I1 I2",
+        "G1 X1.5.3",
+        "G1 X-",
+        "G1 X+",
+        "G1 X.",
+        "G1 X",
+        "G1 X ",
+        "G1 X 5",
+        "G1 X[1+2]",
+        "G1 F0",
+        "G1 F-5",
+        "G1 F-0",
+        "G1 F 100",
+        "G1 FZ 1",
+        "G1 F AUTO",
+        "G1 FU",
+        "G1 Fa",
+        "N1.5 G1",
+        "N+1 G1",
+        "G-1",
+        "G.5",
+        "G1.0 X1",
+        "G",
+        "N",
+        "G1 X12345678901234567890.5",  // beyond 19 digits: the long conversion
+        "G1 X0.12345678901234567890123",
+        "G1 X9007199254740993",  // beyond 2^53
+        "G1 X123456789012345678901234567890123456789012345678901234567890e",
+        "G1 X1e5",
+        "G1 X1 (comment) Y2",
+        "G1 X1 (unclosed",
+        "G1 X1 R5",
+        "G2 X1 Y1 R5",
+        "G1 X1 B5",
+        "G1 X1 D1",
+        "G1 X1 M30",
+        "M30",
+        "G17 G90 G1 X1",
+        "G1 X1 \xC3\x9C",
+        "\xC3\x9C G1 X1",
+        "G1 X1\r",
+        "%prog",
+        "P1 = 5",
+        "N1 P1 = 5",
+        "V.G.WZ_AKT.WEAR_CONST = 1",
+        "#OTC ON",
+        "N2 $FOR P1 = 1, 2, 1",
+        "1 G1",
+        "G1 X1 Q2",
+        "G1 X1 E2",
+        "G1 X1 ,",
+        "X1 N2",
+    };
+    for (const std::string_view line : lines) expect_same_as_general(line);
+}
+
+// Random lines of words (a letter, a number, a separator) and of what lies just outside plain
+// blocks: the plain-block path and the general parser agree on every one.
+TEST(Parser, RandomLinesParseAsTheGeneralParser) {
+    const std::string_view letters[] = {
+        "N", "G", "X", "Y", "Z", "I", "J", "K", "F", "x", "g", "n", "f", "X",        "Y", "G",
+        "I", "J", "R", "B", "D", "M", "P", "V", "%", "#", "$", "(", "[", "\xC3\x9C", "1"};
+    const std::string_view numbers[] = {"0",
+                                        "1",
+                                        "2",
+                                        "3",
+                                        "17",
+                                        "12.5",
+                                        "-.5",
+                                        "+2",
+                                        "3.",
+                                        "0.001",
+                                        "-7.25",
+                                        "",
+                                        ".",
+                                        "-",
+                                        "1.2.",
+                                        "99999999999999999999",
+                                        "0.000000000000000000001",
+                                        "9999999999999",
+                                        "10000000000000",
+                                        "1234567.891"};
+    const std::string_view separators[] = {" ", " ", " ", "", "\t", "  ", " ;", ")", "=", ","};
+    std::uint64_t seed = 0xD1B54A32D192ED03ULL;
+    auto next = [&seed]() {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        return seed;
+    };
+    auto pick = [&next](const auto& from) { return from[next() % std::size(from)]; };
+    int blocks = 0;
+    for (int i = 0; i < 40000; ++i) {
+        std::string line;
+        const std::size_t words = next() % 7;
+        // Mostly the usual letters and numbers, so that many lines are blocks.
+        for (std::size_t k = 0; k < words; ++k) {
+            line += next() % 4 != 0 ? letters[next() % 13] : pick(letters);
+            line += next() % 4 != 0 ? numbers[next() % 10] : pick(numbers);
+            line += next() % 4 != 0 ? separators[next() % 3] : pick(separators);
+        }
+        expect_same_as_general(line);
+        if (HasFatalFailure()) return;
+        ParsedLine out;
+        Diagnostic err;
+        if (parse_din_line(line, 7, "prog.nc", out, err) && out.kind == LineKind::kBlock) ++blocks;
+    }
+    EXPECT_GT(blocks, 2000);  // the generator makes many blocks, not only errors
 }
 
 }  // namespace

@@ -38,8 +38,8 @@ bool LineCursor::is_ascii(std::string_view s) noexcept {
     return (any & 0x8080808080808080ULL) == 0;
 }
 
-NumberScan LineCursor::convert_long(const char* first, const char* last, bool negative,
-                                    double& value) noexcept {
+NumberScan lexer_detail::convert_long(const char* first, const char* last, bool negative,
+                                      double& value) noexcept {
     double v = 0.0;
     const auto res = std::from_chars(first, last, v, std::chars_format::fixed);
     if (res.ec != std::errc() || !std::isfinite(v)) return NumberScan::kOutOfRange;

@@ -46,6 +46,48 @@ inline const char* take_digits(const char* p, const char* end, std::uint64_t& va
     return p;
 }
 
+// The fixed-notation conversion of [first, last) (digits with an optional point) for what
+// one division cannot give exactly, out of the way of the usual numbers.
+NumberScan convert_long(const char* first, const char* last, bool negative, double& value) noexcept;
+
+// LineCursor::scan_number on a pointer: the number at p (before end) into `value`, p behind
+// it (unchanged when kNone). Shared with the parser's plain-block path, so that both give the
+// same double for the same text.
+inline NumberScan scan_number(const char*& pos, const char* end, double& value) noexcept {
+    const char* p = pos;
+    bool negative = false;
+    if (p != end && (*p == '+' || *p == '-')) {
+        negative = *p == '-';
+        ++p;
+    }
+    // One test a digit: the mantissa takes every digit and wraps only beyond
+    // kExactWholeDigits digits, where the full conversion decides instead.
+    const char* const digits_begin = p;
+    std::uint64_t mantissa = 0;
+    p = take_digits(p, end, mantissa);
+    const auto int_digits = static_cast<std::size_t>(p - digits_begin);
+    std::size_t frac_digits = 0;
+    if (p != end && *p == '.') {
+        const char* const frac_begin = ++p;
+        p = take_digits(p, end, mantissa);
+        frac_digits = static_cast<std::size_t>(p - frac_begin);
+    }
+    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", "-."
+    pos = p;
+    // With at most 19 digits the mantissa is exact. Beyond, it may have wrapped: the full
+    // conversion, which gives the same double where the division below would (both are
+    // the correctly rounded value of the decimal).
+    if (int_digits + frac_digits <= kExactWholeDigits && mantissa <= kExactMantissa &&
+        frac_digits < kPow10.size()) {
+        // Both operands are exact doubles, so one correctly rounded division gives the
+        // same double as a full decimal conversion.
+        const double v = static_cast<double>(mantissa) / kPow10[frac_digits];
+        value = negative ? -v : v;
+        return NumberScan::kOk;
+    }
+    return convert_long(digits_begin, p, negative, value);
+}
+
 }  // namespace lexer_detail
 
 class LineCursor {
@@ -78,41 +120,10 @@ class LineCursor {
     // point and fraction, or a leading point ("X.5", "X-.5", "X1.", "X+2"). No exponent.
     // Inline: the usual number (at most 19 digits) costs no call.
     NumberScan scan_number(double& value) noexcept {
-        using lexer_detail::take_digits;
-        const char* const first = line_.data();
-        const char* const end = first + line_.size();
-        const char* p = first + pos_;
-        bool negative = false;
-        if (p != end && (*p == '+' || *p == '-')) {
-            negative = *p == '-';
-            ++p;
-        }
-        // One test a digit: the mantissa takes every digit and wraps only beyond
-        // kExactWholeDigits digits, where the full conversion decides instead.
-        const char* const digits_begin = p;
-        std::uint64_t mantissa = 0;
-        p = take_digits(p, end, mantissa);
-        const auto int_digits = static_cast<std::size_t>(p - digits_begin);
-        std::size_t frac_digits = 0;
-        if (p != end && *p == '.') {
-            const char* const frac_begin = ++p;
-            p = take_digits(p, end, mantissa);
-            frac_digits = static_cast<std::size_t>(p - frac_begin);
-        }
-        if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", "-."
-        pos_ = static_cast<std::size_t>(p - first);
-        // With at most 19 digits the mantissa is exact. Beyond, it may have wrapped: the full
-        // conversion, which gives the same double where the division below would (both are
-        // the correctly rounded value of the decimal).
-        if (int_digits + frac_digits <= kExactWholeDigits &&
-            mantissa <= lexer_detail::kExactMantissa && frac_digits < lexer_detail::kPow10.size()) {
-            // Both operands are exact doubles, so one correctly rounded division gives the
-            // same double as a full decimal conversion.
-            const double v = static_cast<double>(mantissa) / lexer_detail::kPow10[frac_digits];
-            value = negative ? -v : v;
-            return NumberScan::kOk;
-        }
-        return convert_long(digits_begin, p, negative, value);
+        const char* p = line_.data() + pos_;
+        const NumberScan r = lexer_detail::scan_number(p, line_.data() + line_.size(), value);
+        pos_ = static_cast<std::size_t>(p - line_.data());
+        return r;
     }
     // Letters, digits and '_' starting with a letter or '_'; empty when none at the cursor.
     std::string_view scan_identifier() noexcept;
@@ -136,10 +147,6 @@ class LineCursor {
 
   private:
     static bool is_ascii(std::string_view s) noexcept;
-    // The fixed-notation conversion of [first, last) (digits with an optional point) for what
-    // one division cannot give exactly, out of the way of the usual numbers.
-    static NumberScan convert_long(const char* first, const char* last, bool negative,
-                                   double& value) noexcept;
 
     std::string_view line_;
     bool ascii_;

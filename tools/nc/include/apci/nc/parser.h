@@ -93,6 +93,14 @@ struct ParsedLine {
 bool parse_din_line(std::string_view line, std::uint64_t line_number, std::string_view file,
                     ParsedLine& out, Diagnostic& err, const ExpressionContext* ctx = nullptr);
 
+namespace parser_detail {
+// parse_din_line without its path for plain blocks: the general parser alone, which gives
+// every error (tests compare the two).
+bool parse_din_line_general(std::string_view line, std::uint64_t line_number, std::string_view file,
+                            ParsedLine& out, Diagnostic& err,
+                            const ExpressionContext* ctx = nullptr);
+}  // namespace parser_detail
+
 // True when the line is "$FOR ..." or "$ENDFOR" (after an optional N number): how a loop whose
 // condition fails at once is skipped to its $ENDFOR without evaluating the body.
 enum class LoopMarker : std::uint8_t { kNone, kFor, kEndFor };
