@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "apci/nc/interpreter.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <bit>
 #include <cmath>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "apci/nc/arc.h"
 #include "apci/nc/parser.h"
@@ -474,6 +478,177 @@ TEST(ArcGeometry, PlaneAxesAreRightHanded) {
         const V e1 = V::Unit(a.first), e2 = V::Unit(a.second), n = V::Unit(a.normal);
         expect_near(e1.cross(e2), n);
     }
+}
+
+// ---- The plain-move path of Interpreter::apply against the general rule checks
+
+std::uint64_t bits(double v) {
+    return std::bit_cast<std::uint64_t>(v);
+}
+
+void expect_same_vector(const V& a, const V& b, const std::string& what) {
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(a[k]), bits(b[k])) << what << " [" << k << "]";
+}
+
+// The same event, every field bit for bit.
+void expect_same_event(const Event& a, const Event& b, const std::string& what) {
+    EXPECT_EQ(a.origin.block, b.origin.block) << what;
+    EXPECT_EQ(a.origin.line, b.origin.line) << what;
+    ASSERT_EQ(a.data.index(), b.data.index()) << what;
+    std::visit(
+        [&](const auto& x) {
+            using T = std::decay_t<decltype(x)>;
+            const T& y = std::get<T>(b.data);
+            if constexpr (std::is_same_v<T, RapidMove>) {
+                expect_same_vector(x.start, y.start, what + " start");
+                expect_same_vector(x.end, y.end, what + " end");
+            } else if constexpr (std::is_same_v<T, LineMove>) {
+                expect_same_vector(x.start, y.start, what + " start");
+                expect_same_vector(x.end, y.end, what + " end");
+                EXPECT_EQ(bits(x.feed), bits(y.feed)) << what;
+            } else if constexpr (std::is_same_v<T, ArcMove>) {
+                expect_same_vector(x.start, y.start, what + " start");
+                expect_same_vector(x.end, y.end, what + " end");
+                expect_same_vector(x.center, y.center, what + " center");
+                EXPECT_EQ(x.ccw, y.ccw) << what;
+                EXPECT_EQ(x.plane, y.plane) << what;
+                EXPECT_EQ(bits(x.feed), bits(y.feed)) << what;
+            } else if constexpr (std::is_same_v<T, ToolSelect>) {
+                EXPECT_EQ(x.tool, y.tool) << what;
+            } else if constexpr (std::is_same_v<T, CompensationChange>) {
+                EXPECT_EQ(x.side, y.side) << what;
+            } else if constexpr (std::is_same_v<T, CornerModeChange> ||
+                                 std::is_same_v<T, SelectionModeChange>) {
+                EXPECT_EQ(x.mode, y.mode) << what;
+            } else if constexpr (std::is_same_v<T, PlaneChange>) {
+                EXPECT_EQ(x.plane, y.plane) << what;
+            } else if constexpr (std::is_same_v<T, HeadOrientation>) {
+                EXPECT_EQ(bits(x.b), bits(y.b)) << what;
+                EXPECT_EQ(bits(x.c), bits(y.c)) << what;
+            } else if constexpr (!std::is_same_v<T, ProgramEnd>) {
+                ADD_FAILURE() << what << ": a DIN block gave a " << event_name(a.data) << " event";
+            }
+        },
+        a.data);
+}
+
+void expect_same_state(const ModalState& a, const ModalState& b, const std::string& what) {
+    EXPECT_EQ(a.motion, b.motion) << what;
+    EXPECT_EQ(a.plane, b.plane) << what;
+    EXPECT_EQ(a.distance, b.distance) << what;
+    EXPECT_EQ(a.compensation, b.compensation) << what;
+    EXPECT_EQ(a.corner, b.corner) << what;
+    EXPECT_EQ(a.selection, b.selection) << what;
+    EXPECT_EQ(a.units, b.units) << what;
+    EXPECT_EQ(bits(a.feed), bits(b.feed)) << what;
+    EXPECT_EQ(a.tool, b.tool) << what;
+    expect_same_vector(a.position, b.position, what + " position");
+    EXPECT_EQ(bits(a.b), bits(b.b)) << what;
+    EXPECT_EQ(a.ended, b.ended) << what;
+    EXPECT_EQ(a.departure_pending, b.departure_pending) << what;
+    EXPECT_EQ(a.tool_wear_const, b.tool_wear_const) << what;
+}
+
+// Random blocks, plain moves among every other kind of block (modal words, tools, R arcs, B,
+// M30, coordinates beyond the board's range, arcs whose end is off the circle, feeds too slow
+// for the move's cycles): apply() and apply_general() give the same result, error, events and
+// state after every block.
+TEST(Interpreter, RandomBlocksApplyAsTheGeneralRuleChecks) {
+    std::uint64_t seed = 0x2545F4914F6CDD1DULL;
+    auto next = [&seed]() {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        return seed;
+    };
+    auto chance = [&next](unsigned percent) { return next() % 100 < percent; };
+    auto real = [&next](double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(next() % 1000001) / 1e6;
+    };
+    int moves = 0;  // blocks whose only event is their move: the plain path's blocks among them
+    int errors = 0;
+    for (int program = 0; program < 300; ++program) {
+        Interpreter fast;
+        Interpreter general;
+        EventBatch fast_out;
+        EventBatch general_out;
+        for (std::uint64_t line = 1; line <= 40; ++line) {
+            Block b;
+            b.clear(line);
+            std::uint32_t col = 1;
+            auto put = [&col](auto& word, auto value) {
+                word.value = value;
+                word.column = col;
+                col += 4;
+            };
+            if (chance(30)) put(b.number, static_cast<std::int64_t>(line * 10));
+            if (chance(40)) put(b.motion, static_cast<Motion>(next() % 4));
+            const ModalState& st = general.state();
+            const bool moving = chance(80);  // else a block of modal words only
+            if (moving && chance(30)) {
+                // An arc in the XY plane whose end lies on its circle, however the state reads.
+                if (!b.motion.present())
+                    put(b.motion, chance(50) ? Motion::kArcCw : Motion::kArcCcw);
+                const double i = real(-5, 5), j = real(-5, 5), turn = real(0.1, 3);
+                const double cx = st.position.x() + i, cy = st.position.y() + j;
+                const double ex = cx + std::cos(turn) * -i - std::sin(turn) * -j;
+                const double ey = cy + std::sin(turn) * -i + std::cos(turn) * -j;
+                const bool incremental = st.distance == DistanceMode::kIncremental;
+                put(b.axis[0], incremental ? ex - st.position.x() : ex);
+                put(b.axis[1], incremental ? ey - st.position.y() : ey);
+                put(b.center[0], i);
+                put(b.center[1], j);
+            } else if (moving) {
+                for (std::size_t k = 0; k < 3; ++k) {
+                    if (chance(45)) put(b.axis[k], chance(2) ? 2e5 : real(-50, 50));
+                }
+                for (std::size_t k = 0; k < 3; ++k) {
+                    if (chance(8)) put(b.center[k], real(-5, 5));
+                }
+            }
+            if (chance(20)) put(b.feed, chance(3) ? 1e-9 : real(1, 5000));
+            // Every other word, now and then.
+            if (chance(3)) put(b.plane, static_cast<Plane>(17 + next() % 3));
+            if (chance(3))
+                put(b.distance, chance(50) ? DistanceMode::kAbsolute : DistanceMode::kIncremental);
+            if (chance(moving ? 4 : 30)) {
+                put(b.compensation, static_cast<Compensation>(40 + next() % 3));
+            }
+            if (chance(3)) put(b.corner, chance(50) ? CornerMode::kLinear : CornerMode::kCircular);
+            if (chance(3)) {
+                put(b.selection,
+                    chance(50) ? SelectionMode::kIndirect : SelectionMode::kPerpendicular);
+            }
+            if (chance(2)) put(b.units, chance(50) ? Units::kInch : Units::kMetric);
+            if (chance(3)) put(b.tool, static_cast<int>(next() % 3));
+            if (chance(3)) put(b.radius, real(-20, 20));
+            if (chance(3)) put(b.b_axis, real(-30, 30));
+            if (chance(1)) put(b.end_of_program, true);
+
+            const std::string what = fmt::format("program {} line {}", program, line);
+            Diagnostic fast_err;
+            Diagnostic general_err;
+            const bool fast_ok = fast.apply(b, "prog.nc", fast_out, fast_err);
+            const bool general_ok = general.apply_general(b, "prog.nc", general_out, general_err);
+            ASSERT_EQ(fast_ok, general_ok) << what << ": " << general_err.to_string();
+            if (!fast_ok) {
+                ++errors;
+                EXPECT_EQ(fast_err.to_string(), general_err.to_string()) << what;
+                EXPECT_EQ(fast_err.kind, general_err.kind) << what;
+            } else {
+                ASSERT_EQ(fast_out.size(), general_out.size()) << what;
+                for (std::size_t e = 0; e < fast_out.size(); ++e)
+                    expect_same_event(fast_out[e], general_out[e], what);
+                if (fast_out.size() == 1 && !std::holds_alternative<ProgramEnd>(fast_out[0].data))
+                    ++moves;
+            }
+            expect_same_state(fast.state(), general.state(), what);
+            if (HasFatalFailure()) return;
+        }
+    }
+    // Both kinds occur many times: moves that may take the plain path, and errors.
+    EXPECT_GT(moves, 2000);
+    EXPECT_GT(errors, 1000);
 }
 
 }  // namespace

@@ -112,25 +112,25 @@ std::uint32_t first_motion_column(const Block& b) {
     return col;
 }
 
-bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eigen::Vector3d& start,
-              const Eigen::Vector3d& end, ArcMove& out) {
+bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
+              const Eigen::Vector3d& start, const Eigen::Vector3d& end, ArcMove& out) {
     const Block& b = c.b;
-    const PlaneAxes axes = plane_axes(s.plane);
+    const PlaneAxes axes = plane_axes(plane);
     const auto n = static_cast<std::size_t>(axes.normal);
     if (b.center[n].present()) {
         return c.fail(ErrorKind::kConflict, b.center[n].column,
                       fmt::format("{} is not a centre word in the G{} plane (use {} and {})",
-                                  kCenterLetter[n], g_number(s.plane), kCenterLetter[axes.first],
+                                  kCenterLetter[n], g_number(plane), kCenterLetter[axes.first],
                                   kCenterLetter[axes.second]));
     }
     ArcMove arc;
     arc.start = start;
     arc.end = end;
     arc.ccw = motion == Motion::kArcCcw;
-    arc.plane = s.plane;
-    arc.feed = s.feed;
+    arc.plane = plane;
+    arc.feed = feed;
     if (b.radius.present()) {
-        ArcCenterResult r = arc_center_from_radius(start, end, b.radius.value, arc.ccw, s.plane);
+        ArcCenterResult r = arc_center_from_radius(start, end, b.radius.value, arc.ccw, plane);
         if (!r.ok) return c.fail(ErrorKind::kGeometry, b.radius.column, std::move(r.message));
         arc.center = r.center;
     } else if (b.has_center_word()) {
@@ -139,7 +139,7 @@ bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eig
         for (std::size_t k = 0; k < 3; ++k) {
             if (b.center[k].present()) arc.center[static_cast<int>(k)] += b.center[k].value;
         }
-        std::string why = check_arc_center(start, end, arc.center, s.plane);
+        std::string why = check_arc_center(start, end, arc.center, plane);
         if (!why.empty()) {
             return c.fail(ErrorKind::kGeometry,
                           b.motion.present() ? b.motion.column : first_motion_column(b),
@@ -155,6 +155,40 @@ bool arc_move(const BlockCheck& c, const ModalState& s, Motion motion, const Eig
     return true;
 }
 
+// The end point of a move block and, for G2/G3, its arc, with the checks that need them: the
+// board's coordinate range, the arc's centre, the move's interpolation cycles. Shared by
+// apply_mm and the plain-move path, so that both give the same move or the same error.
+bool move_geometry(const BlockCheck& c, Motion m, Plane plane, DistanceMode distance, double feed,
+                   const Eigen::Vector3d& from, double cycle_seconds, Eigen::Vector3d& end,
+                   ArcMove& arc) {
+    const Block& b = c.b;
+    end = end_point(b, from, distance);
+    // The board takes coordinates within +-1e5 (docs/motion.md): a point beyond is refused
+    // here, with its word, rather than by the board at the spool.
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (std::abs(end[static_cast<Eigen::Index>(k)]) <= kBoardCoordinateLimit) continue;
+        return c.fail(
+            ErrorKind::kValue, b.axis[k].present() ? b.axis[k].column : first_motion_column(b),
+            fmt::format("{} {:g} mm is beyond the board's coordinate range of "
+                        "+-{:g} mm",
+                        kAxisLetter[k], end[static_cast<Eigen::Index>(k)], kBoardCoordinateLimit));
+    }
+    if (is_arc(m) && !arc_move(c, plane, feed, m, from, end, arc)) return false;
+    const bool surely_within =
+        m == Motion::kRapid ||
+        (m == Motion::kLine ? surely_within_move_cycles(from, end, feed, cycle_seconds)
+                            : surely_within_move_cycles(arc, cycle_seconds));
+    if (!surely_within) {
+        const double length = m == Motion::kLine ? move_length(from, end) : move_length(arc);
+        std::string why = check_move_cycles(length, feed, cycle_seconds);
+        if (!why.empty())
+            return c.fail(ErrorKind::kValue,
+                          b.feed.present() ? b.feed.column : first_motion_column(b),
+                          std::move(why));
+    }
+    return true;
+}
+
 }  // namespace
 
 Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) {
@@ -162,6 +196,15 @@ Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) 
 }
 
 bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, Diagnostic& err) {
+    if (!b.units.present() && state_.units == Units::kMetric) {
+        const PlainMove plain = apply_plain_move(b, file, out, err);
+        if (plain != PlainMove::kNotPlain) return plain == PlainMove::kApplied;
+    }
+    return apply_general(b, file, out, err);
+}
+
+bool Interpreter::apply_general(const Block& b, std::string_view file, EventBatch& out,
+                                Diagnostic& err) {
     const Units units = b.units.present() ? b.units.value : state_.units;
     if (units == Units::kMetric) return apply_mm(b, units, file, out, err);
     // G70: every length word and the feed in inches; the events are in mm.
@@ -171,6 +214,52 @@ bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, 
     mm.radius.value *= kMillimetresPerInch;
     mm.feed.value *= kMillimetresPerInch;
     return apply_mm(mm, units, file, out, err);
+}
+
+Interpreter::PlainMove Interpreter::apply_plain_move(const Block& b, std::string_view file,
+                                                     EventBatch& out, Diagnostic& err) {
+    // Only N, G0..G3, X Y Z, I J K and F: no word that changes another modal group, selects a
+    // tool, tilts the head or ends the program.
+    if (state_.ended || b.plane.present() || b.distance.present() || b.compensation.present() ||
+        b.corner.present() || b.selection.present() || b.units.present() || b.tool.present() ||
+        b.end_of_program.present() || b.b_axis.present() || b.radius.present())
+        return PlainMove::kNotPlain;
+    const bool center = b.has_center_word();
+    if (!center && !b.has_axis_word()) return PlainMove::kNotPlain;
+    if (!b.motion.present() && !state_.motion) return PlainMove::kNotPlain;
+    const Motion m = b.motion.present() ? b.motion.value : *state_.motion;
+    const double feed = b.feed.present() ? b.feed.value : state_.feed;
+    // apply_mm's rules before the move, each holding here (else apply_mm names the broken one):
+    // centre words only in arcs, a feed for G1..G3, no arc right after a lone G40 under G139.
+    if (is_arc(m) ? state_.departure_pending : center) return PlainMove::kNotPlain;
+    if (m != Motion::kRapid && !(feed > 0.0)) return PlainMove::kNotPlain;
+    out.clear();
+    const BlockCheck c{b, file, err};
+    Eigen::Vector3d end;
+    ArcMove arc;
+    if (!move_geometry(c, m, state_.plane, state_.distance, feed, state_.position,
+                       options_.cycle_seconds, end, arc))
+        return PlainMove::kFailed;
+    // apply_mm's commit for such a block: the motion, the feed, the position; the move is its
+    // only event.
+    const BlockOrigin origin{b.block_number(), b.line};
+    switch (m) {
+        case Motion::kRapid:
+            out.push(origin, RapidMove{state_.position, end});
+            break;
+        case Motion::kLine:
+            out.push(origin, LineMove{state_.position, end, feed});
+            break;
+        case Motion::kArcCw:
+        case Motion::kArcCcw:
+            out.push(origin, arc);
+            break;
+    }
+    state_.motion = m;
+    state_.feed = feed;
+    state_.position = end;
+    state_.departure_pending = false;
+    return PlainMove::kApplied;
 }
 
 bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, EventBatch& out,
@@ -252,33 +341,10 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
             return c.fail(ErrorKind::kProgramRule, b.b_axis.column,
                           "B in an arc block: tilt the head in a G0 or G1 block");
         }
-        const Eigen::Vector3d end = end_point(b, state_.position, s.distance);
-        // The board takes coordinates within +-1e5 (docs/motion.md): a point beyond is refused
-        // here, with its word, rather than by the board at the spool.
-        for (std::size_t k = 0; k < 3; ++k) {
-            if (std::abs(end[static_cast<Eigen::Index>(k)]) <= kBoardCoordinateLimit) continue;
-            return c.fail(ErrorKind::kValue,
-                          b.axis[k].present() ? b.axis[k].column : first_motion_column(b),
-                          fmt::format("{} {:g} mm is beyond the board's coordinate range of "
-                                      "+-{:g} mm",
-                                      kAxisLetter[k], end[static_cast<Eigen::Index>(k)],
-                                      kBoardCoordinateLimit));
-        }
-        if (is_arc(m) && !arc_move(c, s, m, state_.position, end, arc)) return false;
-        const bool surely_within =
-            m == Motion::kRapid ||
-            (m == Motion::kLine
-                 ? surely_within_move_cycles(state_.position, end, s.feed, options_.cycle_seconds)
-                 : surely_within_move_cycles(arc, options_.cycle_seconds));
-        if (!surely_within) {
-            const double length =
-                m == Motion::kLine ? move_length(state_.position, end) : move_length(arc);
-            std::string why = check_move_cycles(length, s.feed, options_.cycle_seconds);
-            if (!why.empty())
-                return c.fail(ErrorKind::kValue,
-                              b.feed.present() ? b.feed.column : first_motion_column(b),
-                              std::move(why));
-        }
+        Eigen::Vector3d end;
+        if (!move_geometry(c, m, s.plane, s.distance, s.feed, state_.position,
+                           options_.cycle_seconds, end, arc))
+            return false;
         s.position = end;
         if (b.b_axis.present())
             s.b = s.distance == DistanceMode::kIncremental ? state_.b + b.b_axis.value : b.b_axis.value;
