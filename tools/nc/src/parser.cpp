@@ -848,8 +848,16 @@ DialectProbe detect_dialect(std::string_view line) noexcept {
 
 namespace {
 
-// The words of a plain block (plain_block below), by their letter in either case.
-enum PlainWord : std::uint8_t { kNotPlain, kPlainN, kPlainG, kPlainReal };
+// What a byte is to a plain block (plain_block below): a blank, the ';' of the comment that
+// ends it, a word's letter (either case), or anything else.
+enum PlainWord : std::uint8_t {
+    kNotPlain,
+    kPlainBlank,
+    kPlainComment,
+    kPlainN,
+    kPlainG,
+    kPlainReal
+};
 struct PlainSlot {
     PlainWord word = kNotPlain;
     std::uint8_t real = 0;  // kPlainReal: X Y Z I J K F as 0..6
@@ -857,6 +865,9 @@ struct PlainSlot {
 constexpr std::array<PlainSlot, 256> kPlainSlots = [] {
     std::array<PlainSlot, 256> t{};
     constexpr std::string_view kReals = "XYZIJKF";
+    t[' '].word = kPlainBlank;
+    t['\t'].word = kPlainBlank;
+    t[';'].word = kPlainComment;
     for (int c = 0; c < 256; ++c) {
         const char up = to_upper(static_cast<char>(c));
         if (!is_letter(static_cast<char>(c))) continue;
@@ -888,10 +899,12 @@ bool plain_block(std::string_view line, std::uint64_t line_number, ParsedLine& o
     Word<double>* const reals[] = {&b.axis[0],   &b.axis[1],   &b.axis[2], &b.center[0],
                                    &b.center[1], &b.center[2], &b.feed};
     bool any = false;
-    for (;; any = true) {
-        while (p != end && (*p == ' ' || *p == '\t')) ++p;
-        if (p == end || *p == ';') break;
+    while (p != end) {
         const PlainSlot slot = kPlainSlots[static_cast<unsigned char>(*p)];
+        if (slot.word == kPlainBlank) {
+            ++p;
+            continue;
+        }
         const auto col = static_cast<std::uint32_t>(p - begin + 1);
         ++p;
         if (slot.word == kPlainReal) {
@@ -902,8 +915,10 @@ bool plain_block(std::string_view line, std::uint64_t line_number, ParsedLine& o
             if (slot.real == kPlainFeed && !(v > 0.0)) return false;
             w.value = v;
             w.column = col;
+            any = true;
             continue;
         }
+        if (slot.word == kPlainComment) break;  // the rest of the line is a comment
         if (slot.word == kNotPlain) return false;
         // N and G: digits only, at most kMaxWordNumber (whole()); a point after them is no
         // word's start, so the next round leaves this path.
@@ -922,6 +937,7 @@ bool plain_block(std::string_view line, std::uint64_t line_number, ParsedLine& o
             b.motion.value = static_cast<Motion>(v);
             b.motion.column = col;
         }
+        any = true;
     }
     if (!any) return false;
     out.kind = LineKind::kBlock;
