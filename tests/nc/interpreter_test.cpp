@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <bit>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -649,6 +651,51 @@ TEST(Interpreter, RandomBlocksApplyAsTheGeneralRuleChecks) {
     // Both kinds occur many times: moves that may take the plain path, and errors.
     EXPECT_GT(moves, 2000);
     EXPECT_GT(errors, 1000);
+}
+
+// arc_center_ok is check_arc_center's test without the message: the same answer for centres on
+// and off the circle, at the start point, within and just beyond the tolerance, in every plane,
+// and for values that are not finite.
+TEST(Interpreter, ArcCenterOkAnswersAsCheckArcCenter) {
+    std::uint64_t seed = 0x94D049BB133111EBULL;
+    auto next = [&seed]() {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        return seed;
+    };
+    auto real = [&next]() { return static_cast<double>(next() % 2001) / 100.0 - 10.0; };
+    const double odd[] = {0.0,
+                          kArcRadiusTolerance,
+                          -kArcRadiusTolerance,
+                          1e-12,
+                          1e300,
+                          std::numeric_limits<double>::infinity(),
+                          std::numeric_limits<double>::quiet_NaN()};
+    int fine = 0;
+    int refused = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Plane plane = static_cast<Plane>(17 + next() % 3);
+        const V start(real(), real(), real());
+        V center = start + V(real(), real(), real());
+        if (next() % 10 == 0) center = start;  // the centre on the start point
+        // The end on the circle through the start, or off it by a little or a lot.
+        const PlaneAxes a = plane_axes(plane);
+        const double r =
+            std::hypot(start[a.first] - center[a.first], start[a.second] - center[a.second]);
+        const double turn = real();
+        const double off = next() % 3 == 0 ? odd[next() % std::size(odd)] : 0.0;
+        V end = center;
+        end[a.first] += (r + off) * std::cos(turn);
+        end[a.second] += (r + off) * std::sin(turn);
+        end[a.normal] = real();
+        const bool ok = arc_center_ok(start, end, center, plane);
+        EXPECT_EQ(ok, check_arc_center(start, end, center, plane).empty())
+            << start.transpose() << " / " << end.transpose() << " / " << center.transpose();
+        ++(ok ? fine : refused);
+    }
+    EXPECT_GT(fine, 1000);
+    EXPECT_GT(refused, 1000);
 }
 
 }  // namespace

@@ -60,6 +60,16 @@ ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen
     return out;
 }
 
+bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                   const Eigen::Vector3d& center, Plane p) noexcept {
+    // The same radii and tests as check_arc_center, which gives the message.
+    const PlaneAxes a = plane_axes(p);
+    const Eigen::Vector2d c = in_plane(center, a);
+    const double rs = (in_plane(start, a) - c).norm();
+    const double re = (in_plane(end, a) - c).norm();
+    return !(rs < kMinArcRadius) && !(std::fabs(rs - re) > kArcRadiusTolerance);
+}
+
 std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                              const Eigen::Vector3d& center, Plane p) {
     const PlaneAxes a = plane_axes(p);

@@ -123,7 +123,8 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
                                   kCenterLetter[n], g_number(plane), kCenterLetter[axes.first],
                                   kCenterLetter[axes.second]));
     }
-    ArcMove arc;
+    // Built in place: on an error the caller drops `out`.
+    ArcMove& arc = out;
     arc.start = start;
     arc.end = end;
     arc.ccw = motion == Motion::kArcCcw;
@@ -139,11 +140,10 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
         for (std::size_t k = 0; k < 3; ++k) {
             if (b.center[k].present()) arc.center[static_cast<int>(k)] += b.center[k].value;
         }
-        std::string why = check_arc_center(start, end, arc.center, plane);
-        if (!why.empty()) {
+        if (!arc_center_ok(start, end, arc.center, plane)) {
             return c.fail(ErrorKind::kGeometry,
                           b.motion.present() ? b.motion.column : first_motion_column(b),
-                          std::move(why));
+                          check_arc_center(start, end, arc.center, plane));
         }
     } else {
         return c.fail(
@@ -151,7 +151,6 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
             fmt::format("G{} arc needs its centre ({} {}) or its radius (R)", g_number(motion),
                         kCenterLetter[axes.first], kCenterLetter[axes.second]));
     }
-    out = arc;
     return true;
 }
 

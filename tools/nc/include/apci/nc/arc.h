@@ -55,5 +55,9 @@ ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen
 // circle through the start (radii equal within kArcRadiusTolerance). Empty string when fine.
 std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                              const Eigen::Vector3d& center, Plane p);
+// check_arc_center(...).empty() without making the string: the test of every arc, the message
+// only for the arc that fails it.
+bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                   const Eigen::Vector3d& center, Plane p) noexcept;
 
 }  // namespace apci::nc
