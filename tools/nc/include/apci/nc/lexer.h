@@ -50,30 +50,12 @@ inline const char* take_digits(const char* p, const char* end, std::uint64_t& va
 // one division cannot give exactly, out of the way of the usual numbers.
 NumberScan convert_long(const char* first, const char* last, bool negative, double& value) noexcept;
 
-// LineCursor::scan_number on a pointer: the number at p (before end) into `value`, p behind
-// it (unchanged when kNone). Shared with the parser's plain-block path, so that both give the
-// same double for the same text.
-inline NumberScan scan_number(const char*& pos, const char* end, double& value) noexcept {
-    const char* p = pos;
-    bool negative = false;
-    if (p != end && (*p == '+' || *p == '-')) {
-        negative = *p == '-';
-        ++p;
-    }
-    // One test a digit: the mantissa takes every digit and wraps only beyond
-    // kExactWholeDigits digits, where the full conversion decides instead.
-    const char* const digits_begin = p;
-    std::uint64_t mantissa = 0;
-    p = take_digits(p, end, mantissa);
-    const auto int_digits = static_cast<std::size_t>(p - digits_begin);
-    std::size_t frac_digits = 0;
-    if (p != end && *p == '.') {
-        const char* const frac_begin = ++p;
-        p = take_digits(p, end, mantissa);
-        frac_digits = static_cast<std::size_t>(p - frac_begin);
-    }
-    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", "-."
-    pos = p;
+// The value of a scanned number: its digits [digits_begin, last) (with the point), their
+// value as one whole number `mantissa` (wrapped beyond kExactWholeDigits digits), how many
+// before and after the point, and the sign.
+inline NumberScan number_value(std::uint64_t mantissa, std::size_t int_digits,
+                               std::size_t frac_digits, bool negative, const char* digits_begin,
+                               const char* last, double& value) noexcept {
     // With at most 19 digits the mantissa is exact. Beyond, it may have wrapped: the full
     // conversion, which gives the same double where the division below would (both are
     // the correctly rounded value of the decimal).
@@ -85,7 +67,40 @@ inline NumberScan scan_number(const char*& pos, const char* end, double& value) 
         value = negative ? -v : v;
         return NumberScan::kOk;
     }
-    return convert_long(digits_begin, p, negative, value);
+    return convert_long(digits_begin, last, negative, value);
+}
+
+// LineCursor::scan_number on a pointer: the number at p (before end) into `value`, p behind
+// it (unchanged when kNone). Shared with the parser's plain-block path, so that both give the
+// same double for the same text.
+inline NumberScan scan_number(const char*& pos, const char* end, double& value) noexcept {
+    const char* p = pos;
+    bool negative = false;
+    if (p != end && (*p == '+' || *p == '-')) {
+        negative = *p == '-';
+        ++p;
+    }
+    // One test a digit, in one loop over the digits and the first point: the mantissa takes
+    // every digit and wraps only beyond kExactWholeDigits digits, where the full conversion
+    // decides instead.
+    const char* const digits_begin = p;
+    const char* point = nullptr;
+    std::uint64_t mantissa = 0;
+    for (; p != end; ++p) {
+        const unsigned d = static_cast<unsigned char>(*p) - unsigned{'0'};  // a digit: 0..9
+        if (d <= 9) {
+            mantissa = mantissa * 10 + d;
+        } else if (*p == '.' && point == nullptr) {
+            point = p;
+        } else {
+            break;
+        }
+    }
+    const auto int_digits = static_cast<std::size_t>((point != nullptr ? point : p) - digits_begin);
+    const std::size_t frac_digits = point != nullptr ? static_cast<std::size_t>(p - point - 1) : 0;
+    if (int_digits == 0 && frac_digits == 0) return NumberScan::kNone;  // "", "+", "-."
+    pos = p;
+    return number_value(mantissa, int_digits, frac_digits, negative, digits_begin, p, value);
 }
 
 }  // namespace lexer_detail
