@@ -182,6 +182,52 @@ TEST(JsonNumbers, RandomValuesOfEveryKindAreWrittenAsStdToChars) {
     expect_same_text(segments);
 }
 
+// Fixed notation with the point among the digits, at every place it can be: whole parts of 1
+// to 15 digits with fractions of 1 to 17 - whole digits (every digit count of the shortest
+// text), both signs; 17-digit values of every magnitude there; the last values below and the
+// first above each power of ten; and the texts with no whole part (0.00123, down to 1e-3) and
+// beyond 1e15.
+TEST(JsonNumbers, EveryPlaceOfThePointAndEveryDigitCountIsWrittenAsStdToChars) {
+    std::mt19937_64 rnd(20261127);
+    std::uniform_int_distribution<int> digit(0, 9), nonzero(1, 9);
+    std::vector<double> values{-0.0, 0.0};
+    for (int whole = 1; whole <= 15; ++whole) {
+        for (int fraction = 1; whole + fraction <= 17; ++fraction)
+            for (int k = 0; k < 40; ++k) {
+                std::string text = k % 2 == 0 ? "-" : "";
+                for (int i = 0; i < whole + fraction; ++i) {
+                    if (i == whole) text += '.';
+                    const bool edge = i == 0 || i == whole + fraction - 1;
+                    text += static_cast<char>('0' + (edge ? nonzero(rnd) : digit(rnd)));
+                }
+                values.push_back(std::strtod(text.c_str(), nullptr));
+            }
+        const double low = std::pow(10.0, whole - 1), high = std::pow(10.0, whole);
+        std::uniform_real_distribution<double> within(low, high);
+        for (int k = 0; k < 200; ++k) values.push_back(k % 2 == 0 ? within(rnd) : -within(rnd));
+        for (const double p : {low, high}) {
+            double below = p, above = p;
+            for (int k = 0; k < 4; ++k) {
+                below = std::nextafter(below, 0.0);
+                above = std::nextafter(above, INFINITY);
+                values.insert(values.end(), {below, above, -below, -above});
+            }
+        }
+    }
+    std::uniform_real_distribution<double> small(1e-3, 1.0), tiny(1e-300, 1e-3), huge(1e15, 1e300);
+    for (int k = 0; k < 2000; ++k)
+        values.insert(values.end(),
+                      {small(rnd), -small(rnd), tiny(rnd), -tiny(rnd), huge(rnd), -huge(rnd)});
+    std::vector<PathSegment> segments;
+    segments.reserve(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const double a = values[i], b = values[(i + 1) % values.size()];
+        const double c = values[(i + 5) % values.size()];
+        segments.push_back(arc({a, b, c}, {b, c, a}, {c, a, b}));
+    }
+    expect_same_text(segments);
+}
+
 // A start is written again from the end before only when it has the same bits: 0 after -0
 // (equal as numbers) is written "0", and a start elsewhere is written anew.
 TEST(JsonNumbers, AStartAfterAnEndWithOtherBitsIsWrittenAnew) {

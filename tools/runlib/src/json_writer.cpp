@@ -138,11 +138,22 @@ char* fixed_notation(char* out, bool negative, std::uint64_t significand, int ex
         out = std::fill_n(out, -whole, '0');
         return exact_digits(out, significand, n);
     }
-    char text[20 + kScribble];
-    exact_digits(text, significand, n);
-    out = std::copy_n(text, whole, out);
-    *out++ = '.';
-    return std::copy_n(text + whole, n - whole, out);
+    // The digits in place, then the fraction (n - whole <= 16 digits: n <= 17, whole >= 1) moved
+    // on by one for the point: one word when it has at most 8 digits (whole <= 15 then), else
+    // two (whole <= 8). The words moved may take garbage past the digits' end along (kScribble:
+    // at most 1 + 15 + 1 + 8 or 1 + 8 + 1 + 16 bytes from the number's start are written).
+    char* const end = exact_digits(out, significand, n);
+    char* const point = out + whole;
+    std::uint64_t first_word = 0;
+    std::memcpy(&first_word, point, sizeof first_word);
+    if (n - whole > 8) {
+        std::uint64_t second_word = 0;
+        std::memcpy(&second_word, point + 8, sizeof second_word);
+        store(point + 9, second_word);
+    }
+    store(point + 1, first_word);
+    *point = '.';
+    return end + 1;
 }
 
 // The shortest text that reads back as v (Dragonbox, the algorithm of fmt and std::to_chars),
