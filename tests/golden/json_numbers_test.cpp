@@ -241,6 +241,26 @@ TEST(JsonNumbers, AStartAfterAnEndWithOtherBitsIsWrittenAnew) {
     expect_same_text(segments);
 }
 
+// The third coordinate is written from the last one's text only when it has the same bits: 0
+// (the first, from the writer's start) and -0 alternating, equal values of other bits, NaN and
+// infinities, repeated and not, in starts, ends and centres.
+TEST(JsonNumbers, AThirdCoordinateIsCopiedFromTheLastOnlyWithTheSameBits) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> zs{
+        0.0,  -0.0,  -0.0,  0.0,    0.0,     nan,  nan,
+        -nan, inf,   -inf,  -inf,   -0.7,    -0.7, std::nextafter(-0.7, 0.0),
+        -0.7, 1e300, 1e300, 5e-324, -5e-324, 1e-4, 1e-4,
+        12.5, 12.5,  3.0,   3.0,    -3.0,    0.0,  -0.0};
+    std::vector<PathSegment> segments;
+    for (std::size_t i = 0; i + 2 < zs.size(); ++i) {
+        // Starts where the segment before ended (its text again) and elsewhere.
+        const double start_z = i % 3 == 0 ? zs[i + 1] : zs[i];
+        segments.push_back(arc({1.5, 2.0, start_z}, {2.5, 1.0, zs[i + 1]}, {1.0, 1.0, zs[i + 2]}));
+    }
+    expect_same_text(segments);
+}
+
 // Every shape of record, with block and line numbers and whole coordinates at each digit-count
 // boundary (10^k - 1, 10^k, 10^k + 1) and at the ends of the 64-bit range: the text of
 // std::to_chars for the integers, the record as the writer wrote it piece by piece before it

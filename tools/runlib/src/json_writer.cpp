@@ -213,18 +213,6 @@ char* json_number(char* out, double v) {
     return std::to_chars(out, out + kNumberMax, v).ptr;
 }
 
-// "[x,y,z]"; returns its end.
-char* point_text(char* out, const Point& p) {
-    *out++ = '[';
-    out = json_number(out, p.x());
-    *out++ = ',';
-    out = json_number(out, p.y());
-    *out++ = ',';
-    out = json_number(out, p.z());
-    *out++ = ']';
-    return out;
-}
-
 // The same bits, not only equal values: -0 and 0 are written differently.
 bool same_bits(const Point& a, const Point& b) {
     for (int i = 0; i < 3; ++i)
@@ -232,7 +220,32 @@ bool same_bits(const Point& a, const Point& b) {
     return true;
 }
 
+// The text of v at out from `last` when v has its bits, else formatted there and kept in `last`;
+// returns its end. Writes kNumberMax characters either way (the text, then garbage).
+template <typename AxisText>
+char* axis_number(char* out, double v, AxisText& last) {
+    static_assert(std::tuple_size_v<decltype(last.text)> == kNumberMax);
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    if (bits != last.bits) {
+        last.size = static_cast<std::size_t>(json_number(last.text.data(), v) - last.text.data());
+        last.bits = bits;
+    }
+    std::memcpy(out, last.text.data(), kNumberMax);
+    return out + last.size;
+}
+
 }  // namespace
+
+char* JsonRunWriter::point_text(char* out, const Point& p) {
+    *out++ = '[';
+    out = json_number(out, p.x());
+    *out++ = ',';
+    out = json_number(out, p.y());
+    *out++ = ',';
+    out = axis_number(out, p.z(), last_z_);
+    *out++ = ']';
+    return out;
+}
 
 void JsonRunWriter::begin_segments() {
     if (begun_) return;

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <span>
 #include <string>
@@ -57,6 +58,18 @@ class JsonRunWriter {
     Point last_end_ = Point::Zero();
     std::array<char, 112> last_end_text_{};
     std::size_t last_end_size_ = 0;
+    // "[x,y,z]" of p; returns its end.
+    char* point_text(char* out, const Point& p);
+    // The last third coordinate written and its text (kept by its bits: -0 and 0 differ): it
+    // mostly stays (a pass at one depth, an arc's centre at the depth of its end), and its text
+    // is copied rather than formatted anew. (The other axes change from point to point: a
+    // check there costs more than it saves.)
+    struct AxisText {
+        std::uint64_t bits = 0;  // +0, written "0"
+        std::array<char, 32> text{'0'};
+        std::size_t size = 1;
+    };
+    AxisText last_z_;
 };
 
 }  // namespace apci::run
