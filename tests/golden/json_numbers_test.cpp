@@ -326,3 +326,38 @@ TEST(JsonNumbers, IntegersAtEveryDigitCountAndEveryRecordShapeAreWrittenAsBefore
 }
 
 }  // namespace
+
+namespace {
+
+// A kind or role that is no enumerator (a corrupt value) is written with the names kind_name
+// and role_name give it, as every other record: not from the table of the enumerators' texts.
+TEST(JsonNumbers, AKindOrRoleOutsideTheEnumeratorsIsWrittenWithItsNames) {
+    const std::pair<int, int> pairs[] = {{3, 0}, {0, 5}, {255, 255}, {1, 4}, {7, 1}};
+    MemoryFile f;
+    std::string expected = "{\"segments\":[";
+    {
+        JsonRunWriter w(f.get());
+        bool first = true;
+        for (const auto& [kind, role] : pairs) {
+            PathSegment s;
+            s.block.number = 5;
+            s.kind = static_cast<apci::run::SegmentKind>(kind);
+            s.role = static_cast<apci::run::Role>(role);
+            s.start = {1.0, 2.0, 3.0};
+            s.end = {4.0, 5.0, 6.0};
+            w.segment(s);
+            expected += first ? "\n{" : ",\n{";
+            first = false;
+            expected += "\"block\":5,\"kind\":\"" + std::string(apci::run::kind_name(s.kind)) +
+                        "\",\"role\":\"" + std::string(apci::run::role_name(s.role)) +
+                        "\",\"start\":[1,2,3],\"end\":[4,5,6]}";
+        }
+        ASSERT_TRUE(w.finish({}, {}));
+    }
+    expected += "],\n";
+    const std::string got = f.text();
+    ASSERT_GE(got.size(), expected.size());
+    EXPECT_EQ(got.substr(0, expected.size()), expected);
+}
+
+}  // namespace

@@ -247,6 +247,17 @@ char* JsonRunWriter::point_text(char* out, const Point& p) {
     return out;
 }
 
+JsonRunWriter::JsonRunWriter(std::FILE* out) : sink_(out) {
+    for (int k = 0; k < kKinds; ++k)
+        for (int r = 0; r < kRoles; ++r) {
+            KindRoleText& t = kind_role_texts_[static_cast<std::size_t>(k * kRoles + r)];
+            const auto end = fmt::format_to_n(
+                t.text.begin(), t.text.size(), ",\"kind\":\"{}\",\"role\":\"{}\",\"start\":",
+                kind_name(static_cast<SegmentKind>(k)), role_name(static_cast<Role>(r)));
+            t.size = std::min(end.size, t.text.size());
+        }
+}
+
 void JsonRunWriter::begin_segments() {
     if (begun_) return;
     begun_ = true;
@@ -290,23 +301,35 @@ void JsonRunWriter::segment(const PathSegment& s) {
     char* const first = sink_.reserve(kSegmentMax);
     char* out = put(first, count_ == 0 ? "\n{" : ",\n{");
     out = block_text(out, s.block);
-    out = put(out, ",\"kind\":\"");
-    out = put(out, kind_name(s.kind));
-    out = put(out, "\",\"role\":\"");
-    out = put(out, role_name(s.role));
-    out = put(out, "\",\"start\":");
-    // Mostly where the segment before ended (the same bits: the same text).
-    if (last_end_size_ != 0 && same_bits(s.start, last_end_))
-        out = put(out, std::string_view(last_end_text_.data(), last_end_size_));
-    else
+    const auto kind = static_cast<int>(s.kind), role = static_cast<int>(s.role);
+    if (kind < kKinds && role < kRoles) {
+        const KindRoleText& t = kind_role_texts_[static_cast<std::size_t>(kind * kRoles + role)];
+        std::memcpy(out, t.text.data(), t.text.size());
+        out += t.size;
+    } else {  // not an enumerator: the names kind_name and role_name give it
+        out = put(out, ",\"kind\":\"");
+        out = put(out, kind_name(s.kind));
+        out = put(out, "\",\"role\":\"");
+        out = put(out, role_name(s.role));
+        out = put(out, "\",\"start\":");
+    }
+    // Mostly where the segment before ended (the same bits: the same text). The point's text
+    // is copied in one piece of fixed size, kPointMax (what point_text may write, garbage after
+    // the text included), as json_number writes kNumberMax for each number.
+    constexpr std::size_t kPointMax = 3 * kNumberMax + 4;
+    static_assert(std::tuple_size_v<decltype(last_end_text_)> >= kPointMax);
+    if (last_end_size_ != 0 && same_bits(s.start, last_end_)) {
+        std::memcpy(out, last_end_text_.data(), kPointMax);
+        out += last_end_size_;
+    } else {
         out = point_text(out, s.start);
+    }
     out = put(out, ",\"end\":");
-    static_assert(std::tuple_size_v<decltype(last_end_text_)> >= 3 * kNumberMax + 4);
     char* const end_text = out;
     out = point_text(out, s.end);
     last_end_ = s.end;
     last_end_size_ = static_cast<std::size_t>(out - end_text);
-    std::memcpy(last_end_text_.data(), end_text, last_end_size_);
+    std::memcpy(last_end_text_.data(), end_text, kPointMax);
     if (s.kind == SegmentKind::kArc) {
         out = put(out, ",\"center\":");
         out = point_text(out, s.center);

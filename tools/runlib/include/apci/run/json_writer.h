@@ -29,7 +29,7 @@ namespace apci::run {
 class JsonRunWriter {
   public:
     // Writes to `out` (not owned; open until finish() returned).
-    explicit JsonRunWriter(std::FILE* out) : sink_(out) {}
+    explicit JsonRunWriter(std::FILE* out);
 
     // Appends one executed segment.
     void segment(const PathSegment& s);
@@ -70,6 +70,14 @@ class JsonRunWriter {
         std::size_t size = 1;
     };
     AxisText last_z_;
+    // ,"kind":"arc","role":"contour","start": for every kind and role (by their values), each
+    // padded to the same size: one copy of fixed size writes them.
+    struct KindRoleText {
+        std::array<char, 64> text{};
+        std::size_t size = 0;
+    };
+    static constexpr int kKinds = 3, kRoles = 5;
+    std::array<KindRoleText, kKinds * kRoles> kind_role_texts_{};
 };
 
 }  // namespace apci::run
