@@ -118,7 +118,7 @@ void PipelinedSink::deliver(Batch& b) {
                 [[fallthrough]];  // the check of that move
             case Kind::kCheckProgrammed:
                 if (check_) check_->programmed(last_programmed_, findings_);
-                warn_findings();
+                if (!findings_.empty()) warn_findings();
                 break;
             case Kind::kExecuted: {
                 PathSegment& s = b.segments[i];
@@ -127,7 +127,7 @@ void PipelinedSink::deliver(Batch& b) {
                 inner_.executed(s);
                 if (check_) {
                     check_->executed(s, findings_);
-                    warn_findings();
+                    if (!findings_.empty()) warn_findings();
                 }
                 break;
             }
@@ -163,7 +163,7 @@ void PipelinedSink::deliver(Batch& b) {
                 break;
             case Kind::kCheckEnd:
                 if (check_) check_->end(findings_);
-                warn_findings();
+                if (!findings_.empty()) warn_findings();
                 break;
         }
     }

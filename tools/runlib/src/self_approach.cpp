@@ -175,9 +175,10 @@ Nearest least_distance(const Shape& path, const Shape& contour, double threshold
 }
 
 std::uint64_t bits_of(double v) {
+    const double same = v + 0.0;  // -0 + 0 is +0 (rounding to nearest); any other v stays v
     std::uint64_t u = 0;
-    std::memcpy(&u, &v, sizeof u);
-    return v == 0.0 ? 0 : u;  // -0 and +0 alike
+    std::memcpy(&u, &same, sizeof u);
+    return u;  // -0 and +0 alike
 }
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
