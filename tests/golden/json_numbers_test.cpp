@@ -361,3 +361,53 @@ TEST(JsonNumbers, AKindOrRoleOutsideTheEnumeratorsIsWrittenWithItsNames) {
 }
 
 }  // namespace
+
+namespace {
+
+// Block numbers as a program's segments bring them: the same again (a transition of its
+// block), one more (counted up in the last text, across every digit count: 9, 99, ... and up
+// to the largest), jumps up and down, 0, and blocks without a number (-1, with their line) or
+// a negative one between them.
+TEST(JsonNumbers, BlockNumbersAgainOneMoreOrAnyAreWrittenAsStdToChars) {
+    std::vector<std::int64_t> numbers;
+    for (std::int64_t n = 0; n <= 1200; ++n) numbers.insert(numbers.end(), {n, n});
+    for (std::int64_t p = 10; p <= std::numeric_limits<std::int64_t>::max() / 10; p *= 10)
+        numbers.insert(numbers.end(), {p - 2, p - 1, p - 1, p, p + 1, 7, p + 1, apci::run::kNoBlock,
+                                       p + 2, -p, p + 3, p + 2, 0, 1});
+    const std::int64_t max = std::numeric_limits<std::int64_t>::max();
+    numbers.insert(numbers.end(), {max - 2, max - 1, max, max, 5, max - 1, max});
+    MemoryFile f;
+    std::string expected = "{\"segments\":[";
+    {
+        JsonRunWriter w(f.get());
+        for (std::size_t i = 0; i < numbers.size(); ++i) {
+            PathSegment s;
+            s.block.number = numbers[i];
+            s.block.line = i + 1;
+            s.kind = apci::run::SegmentKind::kLine;
+            s.role = apci::run::Role::kContour;
+            s.start = {1.0, 2.0, 3.0};
+            s.end = {4.0, 5.0, 6.0};
+            w.segment(s);
+            expected += i == 0 ? "\n{" : ",\n{";
+            expected += "\"block\":" + std::to_string(s.block.number);
+            if (s.block.number == apci::run::kNoBlock)
+                expected += ",\"line\":" + std::to_string(s.block.line);
+            expected +=
+                ",\"kind\":\"line\",\"role\":\"contour\",\"start\":[1,2,3],\"end\":[4,5,6]}";
+        }
+        ASSERT_TRUE(w.finish({}, {}));
+    }
+    expected += "],\n";
+    const std::string got = f.text();
+    ASSERT_GE(got.size(), expected.size());
+    std::size_t at = 0, line = 0;  // line by line: a difference names its segment
+    while (at < expected.size()) {
+        const std::size_t stop = std::min(expected.find('\n', at), expected.size() - 1) + 1;
+        ASSERT_EQ(got.substr(at, stop - at), expected.substr(at, stop - at)) << "line " << line;
+        at = stop;
+        ++line;
+    }
+}
+
+}  // namespace

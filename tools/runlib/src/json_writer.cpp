@@ -289,6 +289,38 @@ char* block_text(char* out, const BlockRef& b) noexcept {
 
 }  // namespace
 
+namespace {
+
+// The decimal text of a number one more, in place; false when every digit is 9 (one more
+// digit: the text is left with zeros).
+bool count_up(char* text, std::size_t size) noexcept {
+    for (std::size_t i = size; i-- > 0;) {
+        if (text[i] != '9') {
+            ++text[i];
+            return true;
+        }
+        text[i] = '0';
+    }
+    return false;
+}
+
+}  // namespace
+
+char* JsonRunWriter::segment_block_text(char* out, std::int64_t number) {
+    out = put(out, "\"block\":");
+    if (last_block_size_ == 0 || number != last_block_) {
+        char* const text = last_block_text_.data();
+        const bool next =
+            last_block_size_ != 0 && last_block_ < number && number - last_block_ == 1;
+        if (!next || !count_up(text, last_block_size_))
+            last_block_size_ = static_cast<std::size_t>(integer_text(text, number) - text);
+        last_block_ = number;
+    }
+    static_assert(std::tuple_size_v<decltype(last_block_text_)> >= kIntegerMax + kScribble);
+    std::memcpy(out, last_block_text_.data(), last_block_text_.size());
+    return out + last_block_size_;
+}
+
 void JsonRunWriter::block(const BlockRef& b) {
     char text[2 * kIntegerMax + 20 + kScribble];
     sink_.append(std::string_view(text, static_cast<std::size_t>(block_text(text, b) - text)));
@@ -300,7 +332,8 @@ void JsonRunWriter::segment(const PathSegment& s) {
     begin_segments();
     char* const first = sink_.reserve(kSegmentMax);
     char* out = put(first, count_ == 0 ? "\n{" : ",\n{");
-    out = block_text(out, s.block);
+    // A block's N number comes mostly again or one more; one without (-1) names its line.
+    out = s.block.number >= 0 ? segment_block_text(out, s.block.number) : block_text(out, s.block);
     const auto kind = static_cast<int>(s.kind), role = static_cast<int>(s.role);
     if (kind < kKinds && role < kRoles) {
         const KindRoleText& t = kind_role_texts_[static_cast<std::size_t>(kind * kRoles + role)];

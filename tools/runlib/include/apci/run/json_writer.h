@@ -70,6 +70,13 @@ class JsonRunWriter {
         std::size_t size = 1;
     };
     AxisText last_z_;
+    // The last segment's N number (>= 0) and its text: the next segment's is mostly the same
+    // (a transition of its block) or one more (counted up in the text); size 0: none yet.
+    std::int64_t last_block_ = 0;
+    std::array<char, 32> last_block_text_{};
+    std::size_t last_block_size_ = 0;
+    // "block":N of a segment (N >= 0) at out, from last_block_text_; returns its end.
+    char* segment_block_text(char* out, std::int64_t number);
     // ,"kind":"arc","role":"contour","start": for every kind and role (by their values), each
     // padded to the same size: one copy of fixed size writes them.
     struct KindRoleText {
