@@ -136,6 +136,12 @@ Radii radii_of(const OffsetElement& o) noexcept {
     return r;
 }
 
+// offset_length(o) with the mean radius of its radii (the same value, the radii measured once).
+double length_of(const OffsetElement& o, const Radii& radii) noexcept {
+    if (!is_arc(o.path)) return (o.path.end - o.path.start).norm();
+    return std::abs(o.sweep) * radii.mean;
+}
+
 bool same_bits(const Vec2& a, const Vec2& b) noexcept {
     return std::bit_cast<std::uint64_t>(a.x()) == std::bit_cast<std::uint64_t>(b.x()) &&
            std::bit_cast<std::uint64_t>(a.y()) == std::bit_cast<std::uint64_t>(b.y());
@@ -395,9 +401,9 @@ Reason trim_inside_corner_in_place(OffsetElement& held, OffsetElement& next,
     const Carrier hc = carrier_of(held), nc = carrier_of(next);
     const int count = meet(hc, nc, p1, p2, gap, 0.0, 0.0, meetings);
     if (count == 0) return Reason::kNoCornerSolution;
-    const double held_len = offset_length(held);
-    const double next_len = offset_length(next);
     const Radii held_radii = radii_of(held), next_radii = radii_of(next);
+    const double held_len = length_of(held, held_radii);
+    const double next_len = length_of(next, next_radii);
     BackAngle back_angle(held, p1);
     bool found = false;
     double best_back = 0.0, best_past = 0.0;
