@@ -131,8 +131,8 @@ Vec2 rounded(const Vec2& p) {
 }
 
 // A closed-free chain of rounded lines and arcs turning by up to 150 degrees at each join.
-std::vector<Element> random_chain(std::uint64_t seed, int count) {
-    Rng rng(seed);
+std::vector<Element> random_chain(std::uint64_t draw, int count) {
+    Rng rng(draw);
     std::vector<Element> out;
     Vec2 at(rounded(rng.uniform(-50, 50)), rounded(rng.uniform(-50, 50)));
     double heading = rng.uniform(0, 2 * std::numbers::pi);
@@ -174,10 +174,10 @@ TEST(TrimBits, BenchmarkContourGivesTheBitsOfTheTrimWithoutKeptValues) {
 
 TEST(TrimBits, RandomRoundedContoursGiveTheBitsOfTheTrimWithoutKeptValues) {
     Digest d;
-    for (std::uint64_t seed = 1; seed <= 200; ++seed)
+    for (std::uint64_t draw = 1; draw <= 200; ++draw)
         for (const Side side : {Side::kLeft, Side::kRight})
-            compensate(random_chain(seed, 40),
-                       CompensatorConfig{side, 1.0 + 0.25 * static_cast<double>(seed % 5),
+            compensate(random_chain(draw, 40),
+                       CompensatorConfig{side, 1.0 + 0.25 * static_cast<double>(draw % 5),
                                          TransitionMode::kCircular, ApproachMode::kPerpendicular},
                        d);
     EXPECT_GT(d.contour_arcs, 5000);
