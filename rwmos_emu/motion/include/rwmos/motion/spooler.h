@@ -123,10 +123,11 @@ class Spooler {
         AxisVector end{};    // programmed end (rotated), without length compensation
         bool plane_free = false;
     };
-    // A profile resolved to board axes.
+    // A profile resolved to board axes. resolve() sets program and path first thing (not
+    // zero-filled before: a spool call's Resolved is written whole).
     struct Resolved {
-        AxisVector program{};  // named axes applied, program coordinates
-        AxisVector path{};     // after rotation: what the axes should follow
+        AxisVector program;  // named axes applied, program coordinates
+        AxisVector path;     // after rotation: what the axes should follow
         std::array<std::uint8_t, 2> arc_axes{0, 1};
         double cx = 0.0, cy = 0.0;  // arc centre on arc_axes, after rotation
         bool ccw = false;
