@@ -157,9 +157,10 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
 // The end point of a move block and, for G2/G3, its arc, with the checks that need them: the
 // board's coordinate range, the arc's centre, the move's interpolation cycles. Shared by
 // apply_mm and the plain-move path, so that both give the same move or the same error.
-bool move_geometry(const BlockCheck& c, Motion m, Plane plane, DistanceMode distance, double feed,
-                   const Eigen::Vector3d& from, double cycle_seconds, Eigen::Vector3d& end,
-                   ArcMove& arc) {
+[[gnu::always_inline]] inline bool move_geometry(const BlockCheck& c, Motion m, Plane plane,
+                                                 DistanceMode distance, double feed,
+                                                 const Eigen::Vector3d& from, double cycle_seconds,
+                                                 Eigen::Vector3d& end, ArcMove& arc) {
     const Block& b = c.b;
     end = end_point(b, from, distance);
     // The board takes coordinates within +-1e5 (docs/motion.md): a point beyond is refused
@@ -188,6 +189,59 @@ bool move_geometry(const BlockCheck& c, Motion m, Plane plane, DistanceMode dist
     return true;
 }
 
+// The usual block, a move with only N, G0..G3, X Y Z, I J K and F words, whose rules before
+// the move all hold: applied as apply_mm would, without copying the modal state (kApplied;
+// kFailed with err as apply_mm gives it). kNotPlain, nothing changed: apply_mm. Inline in
+// apply(), the one caller.
+enum class PlainMove : std::uint8_t { kNotPlain, kApplied, kFailed };
+[[gnu::always_inline]] inline PlainMove apply_plain_move(ModalState& state,
+                                                         const InterpreterOptions& options,
+                                                         const Block& b, std::string_view file,
+                                                         EventBatch& out, Diagnostic& err) {
+    // Only N, G0..G3, X Y Z, I J K and F: no word that changes another modal group, selects a
+    // tool, tilts the head or ends the program.
+    if (state.ended || b.plane.present() || b.distance.present() || b.compensation.present() ||
+        b.corner.present() || b.selection.present() || b.units.present() || b.tool.present() ||
+        b.end_of_program.present() || b.b_axis.present() || b.radius.present())
+        return PlainMove::kNotPlain;
+    const bool center = b.has_center_word();
+    if (!center && !b.has_axis_word()) return PlainMove::kNotPlain;
+    if (!b.motion.present() && !state.motion) return PlainMove::kNotPlain;
+    const Motion m = b.motion.present() ? b.motion.value : *state.motion;
+    const double feed = b.feed.present() ? b.feed.value : state.feed;
+    // apply_mm's rules before the move, each holding here (else apply_mm names the broken one):
+    // centre words only in arcs, a feed for G1..G3, no arc right after a lone G40 under G139.
+    if (is_arc(m) ? state.departure_pending : center) return PlainMove::kNotPlain;
+    if (m != Motion::kRapid && !(feed > 0.0)) return PlainMove::kNotPlain;
+    out.clear();
+    const BlockCheck c{b, file, err};
+    Eigen::Vector3d end;
+    ArcMove arc;
+    if (!move_geometry(c, m, state.plane, state.distance, feed, state.position,
+                       options.cycle_seconds, end, arc))
+        return PlainMove::kFailed;
+    // apply_mm's commit for such a block: the motion, the feed, the position; the move is its
+    // only event.
+    const BlockOrigin origin{b.block_number(), b.line};
+    switch (m) {
+        case Motion::kRapid:
+            out.push(origin, RapidMove{state.position, end});
+            break;
+        case Motion::kLine:
+            out.push(origin, LineMove{state.position, end, feed});
+            break;
+        case Motion::kArcCw:
+        case Motion::kArcCcw:
+            out.push(origin, arc);
+            break;
+    }
+    state.motion = m;
+    state.feed = feed;
+    state.position = end;
+    state.departure_pending = false;
+    return PlainMove::kApplied;
+}
+
 }  // namespace
 
 Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) {
@@ -196,7 +250,7 @@ Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) 
 
 bool Interpreter::apply(const Block& b, std::string_view file, EventBatch& out, Diagnostic& err) {
     if (!b.units.present() && state_.units == Units::kMetric) {
-        const PlainMove plain = apply_plain_move(b, file, out, err);
+        const PlainMove plain = apply_plain_move(state_, options_, b, file, out, err);
         if (plain != PlainMove::kNotPlain) return plain == PlainMove::kApplied;
     }
     return apply_general(b, file, out, err);
@@ -213,52 +267,6 @@ bool Interpreter::apply_general(const Block& b, std::string_view file, EventBatc
     mm.radius.value *= kMillimetresPerInch;
     mm.feed.value *= kMillimetresPerInch;
     return apply_mm(mm, units, file, out, err);
-}
-
-Interpreter::PlainMove Interpreter::apply_plain_move(const Block& b, std::string_view file,
-                                                     EventBatch& out, Diagnostic& err) {
-    // Only N, G0..G3, X Y Z, I J K and F: no word that changes another modal group, selects a
-    // tool, tilts the head or ends the program.
-    if (state_.ended || b.plane.present() || b.distance.present() || b.compensation.present() ||
-        b.corner.present() || b.selection.present() || b.units.present() || b.tool.present() ||
-        b.end_of_program.present() || b.b_axis.present() || b.radius.present())
-        return PlainMove::kNotPlain;
-    const bool center = b.has_center_word();
-    if (!center && !b.has_axis_word()) return PlainMove::kNotPlain;
-    if (!b.motion.present() && !state_.motion) return PlainMove::kNotPlain;
-    const Motion m = b.motion.present() ? b.motion.value : *state_.motion;
-    const double feed = b.feed.present() ? b.feed.value : state_.feed;
-    // apply_mm's rules before the move, each holding here (else apply_mm names the broken one):
-    // centre words only in arcs, a feed for G1..G3, no arc right after a lone G40 under G139.
-    if (is_arc(m) ? state_.departure_pending : center) return PlainMove::kNotPlain;
-    if (m != Motion::kRapid && !(feed > 0.0)) return PlainMove::kNotPlain;
-    out.clear();
-    const BlockCheck c{b, file, err};
-    Eigen::Vector3d end;
-    ArcMove arc;
-    if (!move_geometry(c, m, state_.plane, state_.distance, feed, state_.position,
-                       options_.cycle_seconds, end, arc))
-        return PlainMove::kFailed;
-    // apply_mm's commit for such a block: the motion, the feed, the position; the move is its
-    // only event.
-    const BlockOrigin origin{b.block_number(), b.line};
-    switch (m) {
-        case Motion::kRapid:
-            out.push(origin, RapidMove{state_.position, end});
-            break;
-        case Motion::kLine:
-            out.push(origin, LineMove{state_.position, end, feed});
-            break;
-        case Motion::kArcCw:
-        case Motion::kArcCcw:
-            out.push(origin, arc);
-            break;
-    }
-    state_.motion = m;
-    state_.feed = feed;
-    state_.position = end;
-    state_.departure_pending = false;
-    return PlainMove::kApplied;
 }
 
 bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, EventBatch& out,

@@ -112,12 +112,6 @@ class Interpreter {
     bool apply_general(const Block& block, std::string_view file, EventBatch& out, Diagnostic& err);
 
   private:
-    enum class PlainMove : std::uint8_t { kNotPlain, kApplied, kFailed };
-    // The usual block, a move with only N, G0..G3, X Y Z, I J K and F words, whose rules before
-    // the move all hold: applied as apply_mm would, without copying the modal state
-    // (kApplied; kFailed with err as apply_mm gives it). kNotPlain, nothing changed: apply_mm.
-    PlainMove apply_plain_move(const Block& block, std::string_view file, EventBatch& out,
-                               Diagnostic& err);
     // apply() of a block whose lengths are in mm, `units` the block's input units.
     bool apply_mm(const Block& block, Units units, std::string_view file, EventBatch& out,
                   Diagnostic& err);
