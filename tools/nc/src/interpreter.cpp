@@ -90,7 +90,8 @@ bool check_plane(const BlockCheck& c, const ModalState& before, Compensation com
 }
 
 // Resolves the end point of a move from the axis words and the distance mode.
-Eigen::Vector3d end_point(const Block& b, const Eigen::Vector3d& from, DistanceMode mode) {
+[[gnu::always_inline]] inline Eigen::Vector3d end_point(const Block& b, const Eigen::Vector3d& from,
+                                                         DistanceMode mode) {
     Eigen::Vector3d end = from;
     for (int k = 0; k < 3; ++k) {
         const Word<double>& w = b.axis[static_cast<std::size_t>(k)];
