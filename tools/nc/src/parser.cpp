@@ -896,8 +896,8 @@ bool plain_block(std::string_view line, std::uint64_t line_number, ParsedLine& o
     const char* p = begin;
     Block& b = out.block;
     b.clear(line_number);
-    Word<double>* const reals[] = {&b.axis[0],   &b.axis[1],   &b.axis[2], &b.center[0],
-                                   &b.center[1], &b.center[2], &b.feed};
+    Word<double>* const reals[] = {b.axis.data(), &b.axis[1],   &b.axis[2], b.center.data(),
+                                   &b.center[1],  &b.center[2], &b.feed};
     bool any = false;
     while (p != end) {
         const PlainSlot slot = kPlainSlots[static_cast<unsigned char>(*p)];
