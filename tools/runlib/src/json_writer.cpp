@@ -248,9 +248,9 @@ char* JsonRunWriter::point_text(char* out, const Point& p) {
 }
 
 JsonRunWriter::JsonRunWriter(std::FILE* out) : sink_(out) {
-    for (int k = 0; k < kKinds; ++k)
-        for (int r = 0; r < kRoles; ++r) {
-            KindRoleText& t = kind_role_texts_[static_cast<std::size_t>(k * kRoles + r)];
+    for (std::size_t k = 0; k < kKinds; ++k)
+        for (std::size_t r = 0; r < kRoles; ++r) {
+            KindRoleText& t = kind_role_texts_[k * kRoles + r];
             const auto end = fmt::format_to_n(
                 t.text.begin(), t.text.size(), ",\"kind\":\"{}\",\"role\":\"{}\",\"start\":",
                 kind_name(static_cast<SegmentKind>(k)), role_name(static_cast<Role>(r)));
@@ -334,9 +334,9 @@ void JsonRunWriter::segment(const PathSegment& s) {
     char* out = put(first, count_ == 0 ? "\n{" : ",\n{");
     // A block's N number comes mostly again or one more; one without (-1) names its line.
     out = s.block.number >= 0 ? segment_block_text(out, s.block.number) : block_text(out, s.block);
-    const auto kind = static_cast<int>(s.kind), role = static_cast<int>(s.role);
+    const auto kind = static_cast<std::size_t>(s.kind), role = static_cast<std::size_t>(s.role);
     if (kind < kKinds && role < kRoles) {
-        const KindRoleText& t = kind_role_texts_[static_cast<std::size_t>(kind * kRoles + role)];
+        const KindRoleText& t = kind_role_texts_[kind * kRoles + role];
         std::memcpy(out, t.text.data(), t.text.size());
         out += t.size;
     } else {  // not an enumerator: the names kind_name and role_name give it

@@ -83,7 +83,7 @@ class JsonRunWriter {
         std::array<char, 64> text{};
         std::size_t size = 0;
     };
-    static constexpr int kKinds = 3, kRoles = 5;
+    static constexpr std::size_t kKinds = 3, kRoles = 5;
     std::array<KindRoleText, kKinds * kRoles> kind_role_texts_{};
 };
 
