@@ -61,22 +61,54 @@ double angle_about(const Point& p, const Point& c, const PlaneAxes& a) noexcept 
 
 }  // namespace
 
-double arc_sweep(const PathSegment& arc) noexcept {
+namespace {
+
+// arc_sweep in the plane of axes First, Second (constants: no index looked up per coordinate).
+template <int First, int Second>
+double sweep_in(const PathSegment& arc) noexcept {
     constexpr double kTwoPi = 2.0 * std::numbers::pi;
-    const PlaneAxes a = plane_axes(arc.plane);
-    const double du = arc.end[a.first] - arc.start[a.first];
-    const double dv = arc.end[a.second] - arc.start[a.second];
+    const double du = arc.end[First] - arc.start[First];
+    const double dv = arc.end[Second] - arc.start[Second];
     // A chord with a component over twice the tolerance is longer than it: no hypot needed.
     const bool long_chord =
         std::abs(du) > 2.0 * kSamePointTolerance || std::abs(dv) > 2.0 * kSamePointTolerance;
     if (!long_chord && std::hypot(du, dv) <= kSamePointTolerance) return arc.ccw ? kTwoPi : -kTwoPi;
-    double sweep = angle_about(arc.end, arc.center, a) - angle_about(arc.start, arc.center, a);
+    double sweep =
+        std::atan2(arc.end[Second] - arc.center[Second], arc.end[First] - arc.center[First]) -
+        std::atan2(arc.start[Second] - arc.center[Second], arc.start[First] - arc.center[First]);
     if (arc.ccw) {
         while (sweep <= 0.0) sweep += kTwoPi;
     } else {
         while (sweep >= 0.0) sweep -= kTwoPi;
     }
     return sweep;
+}
+
+// measure() of an arc in the plane of axes First, Second with Third its normal: the formulas of
+// arc_sweep, arc_radius, arc_end_radius and segment_length, with the axes as constants.
+template <int First, int Second, int Third>
+void measure_arc(PathSegment& s) noexcept {
+    s.sweep = sweep_in<First, Second>(s);
+    const double r0 =
+        std::hypot(s.start[First] - s.center[First], s.start[Second] - s.center[Second]);
+    const double r1 = std::hypot(s.end[First] - s.center[First], s.end[Second] - s.center[Second]);
+    const double planar = std::abs(s.sweep) * 0.5 * (r0 + r1);
+    const double normal = s.end[Third] - s.start[Third];
+    // hypot(planar, 0) is |planar| exactly (planar >= 0): a flat arc needs no root.
+    s.length = normal == 0.0 ? planar : std::hypot(planar, normal);
+}
+
+}  // namespace
+
+double arc_sweep(const PathSegment& arc) noexcept {
+    switch (arc.plane) {
+        case 18:
+            return sweep_in<2, 0>(arc);
+        case 19:
+            return sweep_in<1, 2>(arc);
+        default:
+            return sweep_in<0, 1>(arc);
+    }
 }
 
 double arc_radius(const PathSegment& arc) noexcept {
@@ -121,8 +153,22 @@ double segment_length(const PathSegment& s) noexcept {
 }
 
 void measure(PathSegment& s) noexcept {
-    s.sweep = s.kind == SegmentKind::kArc ? arc_sweep(s) : 0.0;
-    s.length = length_with_sweep(s, s.sweep);
+    if (s.kind != SegmentKind::kArc) {
+        s.sweep = 0.0;
+        s.length = (s.end - s.start).norm();
+        return;
+    }
+    switch (s.plane) {  // the axes of plane_axes
+        case 18:
+            measure_arc<2, 0, 1>(s);
+            break;
+        case 19:
+            measure_arc<1, 2, 0>(s);
+            break;
+        default:
+            measure_arc<0, 1, 2>(s);
+            break;
+    }
 }
 
 double measured_sweep(const PathSegment& s) noexcept {

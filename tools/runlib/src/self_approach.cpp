@@ -185,23 +185,36 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
     return (h ^ x) * 0x9E3779B97F4A7C15ULL;
 }
 
-// The geometry of a segment in the plane and the tool radius, as one 64-bit hash of their exact
-// values: the same geometry is checked once (a program that repeats a contour repeats its
-// numbers; a hash collision, about one in 2^64 per pair, would skip one check).
-std::uint64_t key_of(const PathSegment& s, int plane, double r) {
-    const PlaneAxes a = plane_axes(plane);
+// The geometry of a segment in the plane (axes First, Second) and the tool radius, as one
+// 64-bit hash of their exact values: the same geometry is checked once (a program that repeats
+// a contour repeats its numbers; a hash collision, about one in 2^64 per pair, would skip one
+// check). The plane's axes are constants here: no index looked up per coordinate.
+template <int First, int Second>
+std::uint64_t key_in(const PathSegment& s, double r) {
     const bool arc = s.kind == SegmentKind::kArc;
     std::uint64_t h = arc ? (s.ccw ? 3 : 2) : 1;
-    h = mix(h, bits_of(s.start[a.first]));
-    h = mix(h, bits_of(s.start[a.second]));
-    h = mix(h, bits_of(s.end[a.first]));
-    h = mix(h, bits_of(s.end[a.second]));
+    h = mix(h, bits_of(s.start[First]));
+    h = mix(h, bits_of(s.start[Second]));
+    h = mix(h, bits_of(s.end[First]));
+    h = mix(h, bits_of(s.end[Second]));
     if (arc) {
-        h = mix(h, bits_of(s.center[a.first]));
-        h = mix(h, bits_of(s.center[a.second]));
+        h = mix(h, bits_of(s.center[First]));
+        h = mix(h, bits_of(s.center[Second]));
     }
     h = mix(h, bits_of(r));
     return h ^ (h >> 29);
+}
+
+// key_in in the axes of `plane` (plane_axes: 17's for anything but 18 and 19).
+std::uint64_t key_of(const PathSegment& s, int plane, double r) {
+    switch (plane) {
+        case 18:
+            return key_in<2, 0>(s, r);
+        case 19:
+            return key_in<1, 2>(s, r);
+        default:
+            return key_in<0, 1>(s, r);
+    }
 }
 
 // A set of 64-bit keys: open addressing, linear probing, at most half full.
@@ -210,33 +223,36 @@ class KeySet {
     // True when the key was not in the set (it is now).
     bool insert(std::uint64_t key) {
         if (key == 0) key = 1;  // 0 marks an empty slot
-        if (2 * (count_ + 1) > slots_.size()) grow();
-        if (place(slots_, key)) {
-            ++count_;
-            return true;
-        }
-        return false;
-    }
-
-  private:
-    static bool place(std::vector<std::uint64_t>& slots, std::uint64_t key) {
-        const std::size_t mask = slots.size() - 1;
+        if (count_ >= limit_) grow();
+        const std::size_t mask = slots_.size() - 1;
         for (std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;; i = (i + 1) & mask) {
-            if (slots[i] == key) return false;
-            if (slots[i] == 0) {
-                slots[i] = key;
+            if (slots_[i] == key) return false;
+            if (slots_[i] == 0) {
+                slots_[i] = key;
+                ++count_;
                 return true;
             }
         }
     }
-    void grow() {
+
+  private:
+    static void place(std::vector<std::uint64_t>& slots, std::uint64_t key) {
+        const std::size_t mask = slots.size() - 1;
+        std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;
+        while (slots[i] != 0) i = (i + 1) & mask;
+        slots[i] = key;
+    }
+    // Twice the slots (1024 at first), so that one more key leaves it at most half full.
+    [[gnu::noinline]] void grow() {
         std::vector<std::uint64_t> bigger(slots_.empty() ? 1024 : 2 * slots_.size(), 0);
         for (const std::uint64_t k : slots_)
             if (k != 0) place(bigger, k);
         slots_.swap(bigger);
+        limit_ = slots_.size() / 2;
     }
     std::vector<std::uint64_t> slots_;
     std::size_t count_ = 0;
+    std::size_t limit_ = 0;  // grow before the key that would make count_ exceed half the slots
 };
 
 // The same block: by N number when both have one (executed segments carry only the N number
@@ -382,10 +398,20 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
 SelfApproachCheck::SelfApproachCheck() = default;
 SelfApproachCheck::~SelfApproachCheck() = default;
 
+namespace {
+
+// A plane's grid at its first use: out of line, so that grid() is a load and a test.
+template <typename G>
+[[gnu::noinline]] G& create(std::unique_ptr<G>& grid) {
+    grid = std::make_unique<G>();
+    return *grid;
+}
+
+}  // namespace
+
 SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
-    const int i = plane == 18 ? 1 : plane == 19 ? 2 : 0;
-    if (!grids_[i]) grids_[i] = std::make_unique<Grid>();
-    return *grids_[i];
+    std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
+    return g ? *g : create(g);
 }
 
 bool SelfApproachCheck::truncated() const noexcept {
@@ -550,7 +576,7 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
 void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
     // A segment of another block: the findings of the one before are final.
     if (!seen_ || !same_block(current_, s.block)) {
-        flush(out);
+        if (!open_.empty()) flush(out);
         current_ = s.block;
         seen_ = true;
     }
