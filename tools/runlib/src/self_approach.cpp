@@ -31,6 +31,9 @@ struct detail::Shape {
     Vec2 start = Vec2::Zero(), end = Vec2::Zero(), centre = Vec2::Zero();
     double sweep = 0.0;  // arcs: signed, magnitude in (0, 2 pi]
     double length = 0.0;
+    // Arcs: the radius at the start and at the end and the start's angle about the centre,
+    // computed once for the shape (set_arc_terms) rather than at every point of a search.
+    double r0 = 0.0, r1 = 0.0, phi0 = 0.0;
 };
 
 namespace {
@@ -41,6 +44,14 @@ double angle_ccw(const Vec2& a, const Vec2& b) {
     double t = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
     if (t < 0) t += kTwoPi;
     return t >= kTwoPi ? 0.0 : t;
+}
+
+// The arc terms of e from its start, end and centre.
+void set_arc_terms(Shape& e) {
+    const Vec2 u0 = e.start - e.centre;
+    e.r0 = u0.norm();
+    e.r1 = (e.end - e.centre).norm();
+    e.phi0 = std::atan2(u0.y(), u0.x());
 }
 
 Shape shape_of(const PathSegment& s, int plane) {
@@ -61,17 +72,16 @@ Shape shape_of(const PathSegment& s, int plane) {
                       : (s.ccw ? angle_ccw(u0, u1) : angle_ccw(u1, u0));
     if (turn == 0.0) turn = kTwoPi;
     out.sweep = s.ccw ? turn : -turn;
-    out.length = turn * 0.5 * (u0.norm() + u1.norm());
+    set_arc_terms(out);
+    out.length = turn * 0.5 * (out.r0 + out.r1);  // u0.norm() + u1.norm()
     return out;
 }
 
 Vec2 point_at(const Shape& e, double t) {
     if (!e.arc) return e.start + t * (e.end - e.start);
     if (t >= 1.0) return e.end;
-    const Vec2 u0 = e.start - e.centre;
-    const double r0 = u0.norm(), r1 = (e.end - e.centre).norm();
-    const double phi = std::atan2(u0.y(), u0.x()) + t * e.sweep;
-    const double r = r0 + t * (r1 - r0);
+    const double phi = e.phi0 + t * e.sweep;
+    const double r = e.r0 + t * (e.r1 - e.r0);
     return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
 }
 
@@ -87,8 +97,7 @@ double distance_to(const Shape& e, const Vec2& p) {
     const double turn = std::abs(e.sweep);
     const double along = e.ccw ? angle_ccw(u0, v) : angle_ccw(v, u0);
     if (v.norm() > 0.0 && along <= turn) {
-        const double r0 = u0.norm(), r1 = (e.end - e.centre).norm();
-        return std::abs(v.norm() - (r0 + (along / turn) * (r1 - r0)));
+        return std::abs(v.norm() - (e.r0 + (along / turn) * (e.r1 - e.r0)));
     }
     return std::min((p - e.start).norm(), (p - e.end).norm());
 }
@@ -153,7 +162,11 @@ Nearest least_distance(const Shape& path, const Shape& contour, double threshold
     };
     if (best.distance < threshold)
         improve(best, best.t == 0.0 ? 0.0 : 0.5, best.t == 0.0 ? 0.5 : 1.0);  // at an end
-    std::vector<Span> heap{span(0.0, 1.0, d_start, d_end)};
+    // The spans' memory is kept by the thread from one search to the next (a search starts
+    // with it empty: only the allocation is saved).
+    thread_local std::vector<Span> heap;
+    heap.clear();
+    heap.push_back(span(0.0, 1.0, d_start, d_end));
     while (!heap.empty()) {
         const double limit = best.distance < threshold ? best.distance - kExact : threshold;
         if (evaluations >= (best.distance < threshold ? kMaxRefinement : kMaxEvaluations)) break;
@@ -390,6 +403,7 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
     out.end = point_at(c, t1);
     out.sweep = c.sweep * (t1 - t0);
     out.length = c.length * (t1 - t0);
+    set_arc_terms(out);
     return true;
 }
 
