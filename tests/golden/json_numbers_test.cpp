@@ -228,6 +228,34 @@ TEST(JsonNumbers, EveryPlaceOfThePointAndEveryDigitCountIsWrittenAsStdToChars) {
     expect_same_text(segments);
 }
 
+// The long numbers' digits (9 to 17 of them, the last 16 made in one piece): every digit at
+// every place of the digits, with the point after the first, the middle or the last but one,
+// both signs.
+TEST(JsonNumbers, EveryDigitAtEveryPlaceOfALongNumberIsWrittenAsStdToChars) {
+    std::mt19937_64 rnd(20261126);
+    std::uniform_int_distribution<int> digit(0, 9), nonzero(1, 9);
+    std::vector<double> values;
+    for (int count = 9; count <= 17; ++count)
+        for (int place = 0; place < count; ++place)
+            for (int d = 0; d <= 9; ++d)
+                for (const int whole : {1, count / 2, count - 1}) {
+                    std::string text = (place + d) % 2 == 0 ? "-" : "";
+                    for (int i = 0; i < count; ++i) {
+                        if (i == whole) text += '.';
+                        const bool edge = i == 0 || i == count - 1;
+                        const int v = i == place ? d : edge ? nonzero(rnd) : digit(rnd);
+                        text += static_cast<char>('0' + (edge && v == 0 ? 1 : v));
+                    }
+                    values.push_back(std::strtod(text.c_str(), nullptr));
+                }
+    std::vector<PathSegment> segments;
+    for (std::size_t i = 0; i + 2 < values.size(); i += 3)
+        segments.push_back(arc({values[i], values[i + 1], values[i + 2]},
+                               {values[i + 2], values[i], values[i + 1]},
+                               {values[i + 1], values[i + 2], values[i]}));
+    expect_same_text(segments);
+}
+
 // A start is written again from the end before only when it has the same bits: 0 after -0
 // (equal as numbers) is written "0", and a start elsewhere is written anew.
 TEST(JsonNumbers, AStartAfterAnEndWithOtherBitsIsWrittenAnew) {

@@ -11,6 +11,10 @@
 #include <cstring>
 #include <string_view>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "apci/apci.h"
 
 namespace apci::run {
@@ -75,6 +79,45 @@ inline void store(char* out, Word word) noexcept {
     std::memcpy(out, &word, sizeof word);
 }
 
+#if defined(__SSE2__)
+// The 8 decimal digits of n < 10^8, leading zeros included, in the eight 16-bit lanes of the
+// result (the first digit in the lowest): n / 10^4 and n % 10^4 (a multiplication by
+// ceil(2^45 / 10^4) and a shift, exact below 10^8), each spread over four lanes and divided by
+// 1000, 100, 10 and 1 at once (multiplications keeping the high half, exact for 4 digits),
+// then each lane less ten times the lane before it.
+inline __m128i eight_digit_lanes(std::uint32_t n) noexcept {
+    const __m128i value = _mm_cvtsi32_si128(static_cast<int>(n));
+    const __m128i high = _mm_srli_epi64(_mm_mul_epu32(value, _mm_set1_epi32(-776530087)), 45);
+    const __m128i low = _mm_sub_epi32(value, _mm_mul_epu32(high, _mm_set1_epi32(10000)));
+    const __m128i quad = _mm_slli_epi64(_mm_unpacklo_epi16(high, low), 2);  // 4 n/10^4, 4 n%10^4
+    const __m128i pairs = _mm_unpacklo_epi16(quad, quad);
+    const __m128i spread = _mm_unpacklo_epi32(pairs, pairs);  // each four times, four lanes each
+    const __m128i divided = _mm_mulhi_epu16(
+        _mm_mulhi_epu16(spread,
+                        _mm_setr_epi16(8389, 5243, 13108, -32768, 8389, 5243, 13108, -32768)),
+        _mm_setr_epi16(128, 2048, 8192, -32768, 128, 2048, 8192, -32768));  // a, ab, abc, abcd
+    return _mm_sub_epi16(divided, _mm_slli_epi64(_mm_mullo_epi16(divided, _mm_set1_epi16(10)), 16));
+}
+
+// The `count` last of the 16 decimal digits of v < 10^16 (leading zeros included) at out,
+// 9 <= count <= 16: the two halves' digits packed into bytes and made ASCII in one addition,
+// stored in one piece (with 16 - count bytes of garbage after them when count < 16).
+inline void last_of_sixteen_digits(char* out, std::uint64_t v, int count) noexcept {
+    const auto high = static_cast<std::uint32_t>(v / 100000000);
+    const auto low = static_cast<std::uint32_t>(v % 100000000);
+    const __m128i text = _mm_add_epi8(
+        _mm_packus_epi16(eight_digit_lanes(high), eight_digit_lanes(low)), _mm_set1_epi8('0'));
+    if (count == 16) {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out), text);
+        return;
+    }
+    alignas(16) char digits[32];
+    _mm_store_si128(reinterpret_cast<__m128i*>(digits), text);
+    _mm_store_si128(reinterpret_cast<__m128i*>(digits + 16), _mm_setzero_si128());
+    std::memcpy(out, digits + 16 - count, 16);
+}
+#endif
+
 // Writers of digits below store whole words: they may write up to this many bytes past the end
 // they return (garbage their caller overwrites or leaves out); every buffer leaves that room.
 constexpr std::size_t kScribble = 7;
@@ -92,6 +135,18 @@ char* exact_digits(char* out, std::uint64_t v, int count) noexcept {
         store(out, eight_digits(low) >> (8 * (8 - count)));
         return out + count;
     }
+#if defined(__SSE2__)
+    // The shortest digits of a double have at most 17: the last 16 in one piece.
+    if (count <= 16) {
+        last_of_sixteen_digits(out, v, count);
+        return out + count;
+    }
+    constexpr std::uint64_t kTen16 = 10000000000000000ULL;
+    const int top = count - 16;  // 1 to 4 digits
+    store(out, four_digits(static_cast<std::uint32_t>(v / kTen16)) >> (8 * (4 - top)));
+    last_of_sixteen_digits(out + top, v % kTen16, 16);
+    return out + count;
+#else
     const std::uint64_t above = v / 100000000;
     const auto middle = static_cast<std::uint32_t>(above % 100000000);
     if (count <= 16) {
@@ -105,6 +160,7 @@ char* exact_digits(char* out, std::uint64_t v, int count) noexcept {
     store(out + first, eight_digits(middle));
     store(out + first + 8, eight_digits(low));
     return out + count;
+#endif
 }
 
 // The decimal digits of `v`, at least `width` of them (leading zeros); returns their end.
@@ -174,7 +230,12 @@ char* short_decimal(char* out, double v) {
     const double a = std::fabs(v);
     if (!(a >= 1e-3 && a < 1e9)) return nullptr;
     constexpr double kScale = 1e4;
-    const double m = std::nearbyint(a * kScale);
+    // nearbyint(a * kScale) without a library call: below 2^52, adding 2^52 leaves no fraction
+    // bits, so the sum is rounded to a whole number as nearbyint rounds (the current mode,
+    // ties to even), and taking 2^52 off again is exact.
+    constexpr double kTwo52 = 4503599627370496.0;
+    static_assert(1e9 * kScale < kTwo52);
+    const double m = (a * kScale + kTwo52) - kTwo52;
     if (m / kScale != a) return nullptr;
     auto whole = static_cast<std::uint64_t>(m);
     const std::uint64_t integer = whole / 10000;
