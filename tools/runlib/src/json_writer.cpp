@@ -130,9 +130,8 @@ char* exact_digits(char* out, std::uint64_t v, int count) noexcept {
         store(out, four_digits(static_cast<std::uint32_t>(v % 10000)) >> (8 * (4 - count)));
         return out + count;
     }
-    const auto low = static_cast<std::uint32_t>(v % 100000000);
     if (count <= 8) {
-        store(out, eight_digits(low) >> (8 * (8 - count)));
+        store(out, eight_digits(static_cast<std::uint32_t>(v % 100000000)) >> (8 * (8 - count)));
         return out + count;
     }
 #if defined(__SSE2__)
@@ -142,11 +141,16 @@ char* exact_digits(char* out, std::uint64_t v, int count) noexcept {
         return out + count;
     }
     constexpr std::uint64_t kTen16 = 10000000000000000ULL;
-    const int top = count - 16;  // 1 to 4 digits
-    store(out, four_digits(static_cast<std::uint32_t>(v / kTen16)) >> (8 * (4 - top)));
+    const int top = count - 16;  // 1 to 4 digits: 1 for a double's 17
+    const auto first = static_cast<std::uint32_t>(v / kTen16);
+    if (top == 1)
+        *out = static_cast<char>('0' + first);
+    else
+        store(out, four_digits(first) >> (8 * (4 - top)));
     last_of_sixteen_digits(out + top, v % kTen16, 16);
     return out + count;
 #else
+    const auto low = static_cast<std::uint32_t>(v % 100000000);
     const std::uint64_t above = v / 100000000;
     const auto middle = static_cast<std::uint32_t>(above % 100000000);
     if (count <= 16) {
