@@ -426,7 +426,8 @@ template <typename G>
 // Inline where it is called (once or twice a segment): a load and a test.
 [[gnu::always_inline]] inline SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
-    return g ? *g : create(g);
+    if (!g) return create(g);
+    return *g;
 }
 
 bool SelfApproachCheck::truncated() const noexcept {
