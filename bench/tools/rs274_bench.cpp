@@ -2,7 +2,8 @@
 // `apcictl run --json FILE` against LinuxCNC's interpreter `rs274` writing its canonical output
 // to a file, side by side on the same 100,000-block G41 contour of lines and arcs
 // (contour_program.h), whole processes, ten runs of each (alternating, so a change of the
-// machine's load falls on both), in one benchmark run. Counters: the medians of wall and user
+// machine's load falls on both; each after a sync, so neither pays for the other's writeback),
+// in one benchmark run. Counters: the medians of wall and user
 // CPU time (wait4 rusage) of each, the ratio rs274 / apcictl of each (how many times faster
 // apcictl is), and apcictl's peak RSS. Target (docs/performance.md): ratio >= 10, RSS < 50 MB.
 //
@@ -169,8 +170,15 @@ void BM_ApcictlVsRs274(benchmark::State& state) {
     long rss_kb = 0;
     for ([[maybe_unused]] auto _ : state) {
         for (int i = 0; i < kRuns; ++i) {
+            // Each timed run starts with nothing of the other's left to write back: rs274 leaves
+            // its output dirty in the page cache, and the kernel writing it out while apcictl
+            // runs would be rs274's cost paid in apcictl's time (apcictl writes its own output
+            // back itself, fsync included). Outside the timed region, like hyperfine's
+            // `--prepare sync`.
+            ::sync();
             const ChildRun a =
                 run_child(apcictl, scratch.path("summary.out"), scratch.path("apcictl.err"));
+            ::sync();
             const ChildRun b =
                 run_child(interp, scratch.path("rs274.out"), scratch.path("rs274.err"), interp_env);
             if (a.exit_code != 0) {
