@@ -31,7 +31,8 @@ struct EditLib {
     decltype(&::history_init) history_init = nullptr;
     decltype(&::history_end) history_end = nullptr;
     decltype(&::history) history = nullptr;
-    std::string error;  // why it could not be loaded; empty when every function is there
+    void* handle = nullptr;  // the library, loaded for the rest of the process
+    std::string error;       // why it could not be loaded; empty when every function is there
 };
 
 // The soname of Debian's libedit2 (the library libedit-dev builds against).
@@ -45,7 +46,8 @@ void bind(void* handle, const char* name, F& f, std::string& error) {
 
 EditLib load_edit_lib() {
     EditLib lib;
-    void* handle = ::dlopen(kLibEdit, RTLD_NOW | RTLD_LOCAL);
+    lib.handle = ::dlopen(kLibEdit, RTLD_NOW | RTLD_LOCAL);
+    void* const handle = lib.handle;
     if (handle == nullptr) {
         const char* why = ::dlerror();
         lib.error = why != nullptr ? why : std::string(kLibEdit) + " could not be loaded";
@@ -63,7 +65,7 @@ EditLib load_edit_lib() {
     bind(handle, "history_init", lib.history_init, lib.error);
     bind(handle, "history_end", lib.history_end, lib.error);
     bind(handle, "history", lib.history, lib.error);
-    return lib;  // the library stays loaded for the rest of the process
+    return lib;
 }
 
 const EditLib& edit_lib() {
