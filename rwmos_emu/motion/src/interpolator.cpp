@@ -26,15 +26,25 @@ Move arc_move(const AxisVector& start, const AxisVector& end,
     return m;
 }
 
-void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) noexcept {
-    // Every member but start and end, as Move{} and then the line's.
-    m.kind = SegmentKind::kLine;
+namespace {
+
+// The members a line and an arc set alike, as Move{} and then the move's.
+void set_move_head(Move& m, SegmentKind kind, double feed, SegmentRole role,
+                   std::uint32_t tag) noexcept {
+    m.kind = kind;
     m.role = role;
     m.tag = tag;
     m.direct = false;
     m.side = 0;
     m.plane = 0;
     m.feed = feed;
+}
+
+}  // namespace
+
+void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) noexcept {
+    // Every member but start and end, as Move{} and then the line's.
+    set_move_head(m, SegmentKind::kLine, feed, role, tag);
     m.plane_axes = {0, 1};
     m.cx = m.cy = 0.0;
     m.radius = m.end_radius = 0.0;
@@ -43,13 +53,7 @@ void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) n
 
 void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw,
                    double feed, SegmentRole role, std::uint32_t tag) noexcept {
-    m.kind = SegmentKind::kArc;
-    m.role = role;
-    m.tag = tag;
-    m.direct = false;
-    m.side = 0;
-    m.plane = 0;
-    m.feed = feed;
+    set_move_head(m, SegmentKind::kArc, feed, role, tag);
     m.plane_axes = plane_axes;
     m.cx = cx;
     m.cy = cy;
