@@ -101,14 +101,9 @@ void measure_arc(PathSegment& s) noexcept {
 }  // namespace
 
 double arc_sweep(const PathSegment& arc) noexcept {
-    switch (arc.plane) {
-        case 18:
-            return sweep_in<2, 0>(arc);
-        case 19:
-            return sweep_in<1, 2>(arc);
-        default:
-            return sweep_in<0, 1>(arc);
-    }
+    return with_plane_axes(arc.plane, [&](auto first, auto second, auto) {
+        return sweep_in<decltype(first)::value, decltype(second)::value>(arc);
+    });
 }
 
 double arc_radius(const PathSegment& arc) noexcept {
@@ -158,17 +153,9 @@ void measure(PathSegment& s) noexcept {
         s.length = (s.end - s.start).norm();
         return;
     }
-    switch (s.plane) {  // the axes of plane_axes
-        case 18:
-            measure_arc<2, 0, 1>(s);
-            break;
-        case 19:
-            measure_arc<1, 2, 0>(s);
-            break;
-        default:
-            measure_arc<0, 1, 2>(s);
-            break;
-    }
+    with_plane_axes(s.plane, [&](auto first, auto second, auto third) {
+        measure_arc<decltype(first)::value, decltype(second)::value, decltype(third)::value>(s);
+    });
 }
 
 double measured_sweep(const PathSegment& s) noexcept {

@@ -218,16 +218,11 @@ std::uint64_t key_in(const PathSegment& s, double r) {
     return h ^ (h >> 29);
 }
 
-// key_in in the axes of `plane` (plane_axes: 17's for anything but 18 and 19).
+// key_in in the axes of `plane`.
 std::uint64_t key_of(const PathSegment& s, int plane, double r) {
-    switch (plane) {
-        case 18:
-            return key_in<2, 0>(s, r);
-        case 19:
-            return key_in<1, 2>(s, r);
-        default:
-            return key_in<0, 1>(s, r);
-    }
+    return with_plane_axes(plane, [&](auto first, auto second, auto) {
+        return key_in<decltype(first)::value, decltype(second)::value>(s, r);
+    });
 }
 
 // A set of 64-bit keys: open addressing, linear probing, at most half full.

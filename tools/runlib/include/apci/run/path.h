@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace apci::run {
 
@@ -42,16 +43,29 @@ struct PlaneAxes {
     int second;
     int third;
 };
-// {0,1,2} for 17, {2,0,1} for 18, {1,2,0} for 19; 17's for anything else.
-constexpr PlaneAxes plane_axes(int plane) noexcept {
+// f(first, second, third) with the axes of a plane, each a std::integral_constant (an index
+// into X, Y, Z known when the code is compiled): {0,1,2} for 17, {2,0,1} for 18, {1,2,0} for 19;
+// 17's for anything else.
+template <class F>
+[[gnu::always_inline]] constexpr decltype(auto) with_plane_axes(int plane, F&& f) {
+    using std::integral_constant;
     switch (plane) {
         case 18:
-            return {2, 0, 1};
+            return f(integral_constant<int, 2>{}, integral_constant<int, 0>{},
+                     integral_constant<int, 1>{});
         case 19:
-            return {1, 2, 0};
+            return f(integral_constant<int, 1>{}, integral_constant<int, 2>{},
+                     integral_constant<int, 0>{});
         default:
-            return {0, 1, 2};
+            return f(integral_constant<int, 0>{}, integral_constant<int, 1>{},
+                     integral_constant<int, 2>{});
     }
+}
+// The same axes as values.
+constexpr PlaneAxes plane_axes(int plane) noexcept {
+    return with_plane_axes(plane, [](int first, int second, int third) {
+        return PlaneAxes{first, second, third};
+    });
 }
 // "X-Y", "Z-X", "Y-Z".
 std::string_view plane_name(int plane) noexcept;
