@@ -375,8 +375,8 @@ char* JsonRunWriter::segment_block_text(char* out, std::int64_t number) {
     out = put(out, "\"block\":");
     if (last_block_size_ == 0 || number != last_block_) {
         char* const text = last_block_text_.data();
-        const bool next =
-            last_block_size_ != 0 && last_block_ < number && number - last_block_ == 1;
+        // Both are >= 0: their difference cannot overflow.
+        const bool next = last_block_size_ != 0 && number - last_block_ == 1;
         if (!next || !count_up(text, last_block_size_))
             last_block_size_ = static_cast<std::size_t>(integer_text(text, number) - text);
         last_block_ = number;

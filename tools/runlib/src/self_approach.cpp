@@ -233,7 +233,7 @@ class KeySet {
         if (key == 0) key = 1;  // 0 marks an empty slot
         if (count_ >= limit_) grow();
         const std::size_t mask = slots_.size() - 1;
-        for (std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;; i = (i + 1) & mask) {
+        for (std::size_t i = home(key, mask);; i = (i + 1) & mask) {
             if (slots_[i] == key) return false;
             if (slots_[i] == 0) {
                 slots_[i] = key;
@@ -244,9 +244,13 @@ class KeySet {
     }
 
   private:
+    // Where the search for a key starts in slots of size mask + 1.
+    static std::size_t home(std::uint64_t key, std::size_t mask) noexcept {
+        return (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;
+    }
     static void place(std::vector<std::uint64_t>& slots, std::uint64_t key) {
         const std::size_t mask = slots.size() - 1;
-        std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;
+        std::size_t i = home(key, mask);
         while (slots[i] != 0) i = (i + 1) & mask;
         slots[i] = key;
     }
