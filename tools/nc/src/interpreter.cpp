@@ -190,6 +190,26 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
     return true;
 }
 
+// A block's move as its event, built in its place in the batch (no copy through a variant):
+// from `from` to `end`, `arc` for G2/G3.
+[[gnu::always_inline]] inline void push_move(EventBatch& out, const BlockOrigin& origin, Motion m,
+                                             const Eigen::Vector3d& from,
+                                             const Eigen::Vector3d& end, double feed,
+                                             const ArcMove& arc) {
+    switch (m) {
+        case Motion::kRapid:
+            out.push(origin, RapidMove{from, end});
+            break;
+        case Motion::kLine:
+            out.push(origin, LineMove{from, end, feed});
+            break;
+        case Motion::kArcCw:
+        case Motion::kArcCcw:
+            out.push(origin, arc);
+            break;
+    }
+}
+
 // The usual block, a move with only N, G0..G3, X Y Z, I J K and F words, whose rules before
 // the move all hold: applied as apply_mm would, without copying the modal state (kApplied;
 // kFailed with err as apply_mm gives it). kNotPlain, nothing changed: apply_mm. Inline in
@@ -223,19 +243,7 @@ enum class PlainMove : std::uint8_t { kNotPlain, kApplied, kFailed };
         return PlainMove::kFailed;
     // apply_mm's commit for such a block: the motion, the feed, the position; the move is its
     // only event.
-    const BlockOrigin origin{b.block_number(), b.line};
-    switch (m) {
-        case Motion::kRapid:
-            out.push(origin, RapidMove{state.position, end});
-            break;
-        case Motion::kLine:
-            out.push(origin, LineMove{state.position, end, feed});
-            break;
-        case Motion::kArcCw:
-        case Motion::kArcCcw:
-            out.push(origin, arc);
-            break;
-    }
+    push_move(out, BlockOrigin{b.block_number(), b.line}, m, state.position, end, feed, arc);
     state.motion = m;
     state.feed = feed;
     state.position = end;
@@ -367,21 +375,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (s.selection != state_.selection) out.push(origin, SelectionModeChange{s.selection});
     if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
     if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
-    if (moves) {
-        // Each move built in its place in the batch (no copy through a variant).
-        switch (*s.motion) {
-            case Motion::kRapid:
-                out.push(origin, RapidMove{state_.position, s.position});
-                break;
-            case Motion::kLine:
-                out.push(origin, LineMove{state_.position, s.position, s.feed});
-                break;
-            case Motion::kArcCw:
-            case Motion::kArcCcw:
-                out.push(origin, arc);
-                break;
-        }
-    }
+    if (moves) push_move(out, origin, *s.motion, state_.position, s.position, s.feed, arc);
     // G25/G26 act on the transitions after the block's move ([ISG-PROG]: the transition at
     // the end of the block; [ISG-OTC-EN]'s wr_quad_disc.nc: N80 G26 Y100 leaves the corner
     // before N80 linear), so the change comes after it.
