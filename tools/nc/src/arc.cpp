@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 
 namespace apci::nc {
 
@@ -60,28 +61,51 @@ ArcCenterResult arc_center_from_radius(const Eigen::Vector3d& start, const Eigen
     return out;
 }
 
-bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
-                   const Eigen::Vector3d& center, Plane p) noexcept {
-    // The same radii and tests as check_arc_center, which gives the message.
+namespace {
+
+// What is wrong with an arc's centre, if anything, and its radii at the start and the end.
+enum class CenterFault : std::uint8_t { kNone, kZeroRadius, kOffCircle };
+struct CenterCheck {
+    CenterFault fault = CenterFault::kNone;
+    double rs = 0.0, re = 0.0;
+};
+
+[[gnu::always_inline]] inline CenterCheck check_center(const Eigen::Vector3d& start,
+                                                       const Eigen::Vector3d& end,
+                                                       const Eigen::Vector3d& center,
+                                                       Plane p) noexcept {
     const PlaneAxes a = plane_axes(p);
     const Eigen::Vector2d c = in_plane(center, a);
-    const double rs = (in_plane(start, a) - c).norm();
-    const double re = (in_plane(end, a) - c).norm();
-    return !(rs < kMinArcRadius) && !(std::fabs(rs - re) > kArcRadiusTolerance);
+    CenterCheck out;
+    out.rs = (in_plane(start, a) - c).norm();
+    out.re = (in_plane(end, a) - c).norm();
+    if (out.rs < kMinArcRadius)
+        out.fault = CenterFault::kZeroRadius;
+    else if (std::fabs(out.rs - out.re) > kArcRadiusTolerance)
+        out.fault = CenterFault::kOffCircle;
+    return out;
+}
+
+}  // namespace
+
+bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                   const Eigen::Vector3d& center, Plane p) noexcept {
+    return check_center(start, end, center, p).fault == CenterFault::kNone;
 }
 
 std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                              const Eigen::Vector3d& center, Plane p) {
-    const PlaneAxes a = plane_axes(p);
-    const Eigen::Vector2d c = in_plane(center, a);
-    const double rs = (in_plane(start, a) - c).norm();
-    const double re = (in_plane(end, a) - c).norm();
-    if (rs < kMinArcRadius) return "arc radius is 0: the centre (I/J/K) is the start point";
-    if (std::fabs(rs - re) > kArcRadiusTolerance) {
-        return fmt::format(
-            "arc end point is not on the circle: radius {:.4f} mm at the start, {:.4f} mm at the "
-            "end (tolerance {} mm)",
-            rs, re, kArcRadiusTolerance);
+    const CenterCheck c = check_center(start, end, center, p);
+    switch (c.fault) {
+        case CenterFault::kZeroRadius:
+            return "arc radius is 0: the centre (I/J/K) is the start point";
+        case CenterFault::kOffCircle:
+            return fmt::format(
+                "arc end point is not on the circle: radius {:.4f} mm at the start, {:.4f} mm at "
+                "the end (tolerance {} mm)",
+                c.rs, c.re, kArcRadiusTolerance);
+        case CenterFault::kNone:
+            break;
     }
     return {};
 }
