@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: MIT
+// The exact line and arc distances of the self-approach check (apci/run/plane_distance.h),
+// against an independent brute force: both curves sampled densely, the least distance of all
+// sample pairs. That is at least the true least distance, and at most it plus half of each
+// curve's sample spacing; the exact distance must lie in between. Random inputs as programs
+// have them: coordinates rounded to 3 or 4 decimals, arcs whose start and end radii differ by
+// that rounding, elements that touch, are tangent, cross or are tiny.
+#include "apci/run/plane_distance.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+namespace {
+
+using apci::run::plane::Arc;
+using apci::run::plane::Element;
+using apci::run::plane::Vec2;
+namespace pd = apci::run::plane;
+constexpr double kPi = std::numbers::pi;
+
+// n + 1 points of an element (line or spiral arc) at even steps of its parameter.
+std::vector<Vec2> sample(const Element& e, int n) {
+    std::vector<Vec2> out;
+    for (int i = 0; i <= n; ++i) {
+        const double t = static_cast<double>(i) / n;
+        if (!e.arc) {
+            out.push_back(e.start + t * (e.end - e.start));
+        } else {
+            const double phi = e.phi0 + t * e.sweep, r = e.r0 + t * (e.r1 - e.r0);
+            out.push_back(e.centre + r * Vec2(std::cos(phi), std::sin(phi)));
+        }
+    }
+    return out;
+}
+
+double brute(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    double best = INFINITY;
+    for (const Vec2& p : a)
+        for (const Vec2& q : b) best = std::min(best, (p - q).squaredNorm());
+    return std::sqrt(best);
+}
+
+// The largest distance between two neighbouring samples.
+double spacing(const std::vector<Vec2>& s) {
+    double m = 0.0;
+    for (std::size_t i = 1; i < s.size(); ++i) m = std::max(m, (s[i] - s[i - 1]).norm());
+    return m;
+}
+
+Element line(Vec2 a, Vec2 b) {
+    Element e;
+    e.start = a;
+    e.end = b;
+    return e;
+}
+
+Element circular(Vec2 c, double r, double phi0, double sweep) {
+    Element e;
+    e.arc = true;
+    e.centre = c;
+    e.r0 = e.r1 = r;
+    e.phi0 = phi0;
+    e.sweep = sweep;
+    e.start = c + r * Vec2(std::cos(phi0), std::sin(phi0));
+    e.end = c + r * Vec2(std::cos(phi0 + sweep), std::sin(phi0 + sweep));
+    return e;
+}
+
+Arc arc_of(const Element& e) {
+    return Arc{e.centre, e.r0, e.phi0, e.sweep};
+}
+
+double exact(const Element& a, const Element& b) {
+    if (!a.arc && !b.arc) return pd::segment_segment(a.start, a.end, b.start, b.end);
+    if (!a.arc) return pd::segment_arc(a.start, a.end, arc_of(b));
+    if (!b.arc) return pd::segment_arc(b.start, b.end, arc_of(a));
+    return pd::arc_arc(arc_of(a), arc_of(b));
+}
+
+double round_to(double v, int decimals) {
+    const double s = std::pow(10.0, decimals);
+    return std::round(v * s) / s;
+}
+
+// A random line or circular arc near the origin, its points rounded as a program writes them;
+// now and then tiny, or starting where `from` ends (a join), or tangent to it.
+Element random_element(std::mt19937_64& rng, int decimals, const Element* from) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const auto rp = [&](double scale) {
+        return Vec2(round_to(scale * u(rng), decimals), round_to(scale * u(rng), decimals));
+    };
+    const double size = (rng() % 8 == 0) ? 0.01 : 5.0;  // tiny elements too
+    Vec2 start = rp(5.0);
+    if (from != nullptr && rng() % 2 == 0) start = from->end;
+    if (rng() % 2 == 0) return line(start, start + rp(size));
+    const double r = std::max(round_to(std::abs(size * u(rng)), decimals), 0.002);
+    const double phi0 = kPi * u(rng);
+    const Vec2 centre(round_to(start.x() - r * std::cos(phi0), decimals),
+                      round_to(start.y() - r * std::sin(phi0), decimals));
+    const double sweep = 2.0 * kPi * u(rng);
+    return circular(centre, r, phi0, sweep);
+}
+
+TEST(PlaneDistance, ExactDistancesLieBetweenTheSampledOnesAndThemLessTheSpacing) {
+    std::mt19937_64 rng(20261126);
+    int crossing = 0, apart = 0;
+    for (int k = 0; k < 400; ++k) {
+        const int decimals = 3 + static_cast<int>(rng() % 2);
+        const Element a = random_element(rng, decimals, nullptr);
+        const Element b = random_element(rng, decimals, &a);
+        const auto sa = sample(a, 700), sb = sample(b, 700);
+        const double sampled = brute(sa, sb);
+        const double d = exact(a, b);
+        SCOPED_TRACE(k);
+        // The exact distance is that of two points of the curves, at most the sampled one...
+        EXPECT_LE(d, sampled + 1e-12);
+        // ...and no less than the sampled one less half of each spacing.
+        EXPECT_GE(d, sampled - 0.5 * (spacing(sa) + spacing(sb)) - 1e-12);
+        (d == 0.0 ? crossing : apart) += 1;
+    }
+    EXPECT_GT(crossing, 40);  // the inputs have both kinds
+    EXPECT_GT(apart, 40);
+}
+
+TEST(PlaneDistance, KnownConfigurations) {
+    // Tangent from outside and inside, concentric, a line tangent to an arc, crossing, and
+    // pairs whose nearest points are ends.
+    const Element c1 = circular({0, 0}, 2.0, 0.0, 2 * kPi);
+    EXPECT_NEAR(exact(c1, circular({5, 0}, 3.0, kPi / 2, kPi)), 0.0, 1e-12);     // touching
+    EXPECT_NEAR(exact(c1, circular({6, 0}, 3.0, kPi / 2, kPi)), 1.0, 1e-12);     // 1 apart
+    EXPECT_NEAR(exact(c1, circular({0, 0}, 3.5, 1.0, 0.5)), 1.5, 1e-12);         // concentric
+    EXPECT_NEAR(exact(c1, circular({0.5, 0}, 1.0, -kPi / 2, kPi)), 0.5, 1e-12);  // inside
+    // Half circle, upper half; a line below it: the nearest points are the arc's ends.
+    const Element upper = circular({0, 0}, 2.0, 0.0, kPi);
+    EXPECT_NEAR(exact(upper, line({-3, -1}, {3, -1})), 1.0, 1e-12);
+    EXPECT_NEAR(exact(upper, line({-1, 3}, {1, 3})), 1.0, 1e-12);  // tangent side, 1 above
+    EXPECT_NEAR(exact(upper, line({-1, 1}, {1, 1})), 2.0 - std::sqrt(2.0), 1e-12);  // inside
+    EXPECT_NEAR(exact(upper, line({-3, 1}, {3, 1})), 0.0, 1e-12);                   // crosses
+    EXPECT_NEAR(exact(line({0, 0}, {1, 0}), line({2, 1}, {3, 5})), std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(exact(line({0, 0}, {4, 0}), line({2, 1}, {2, 5})), 1.0, 1e-12);
+    EXPECT_EQ(exact(line({0, 0}, {4, 4}), line({0, 4}, {4, 0})), 0.0);
+    // Clockwise turn: the lower half from (2, 0) to (-2, 0); a point above is nearest an end.
+    const Arc lower{{0, 0}, 2.0, 0.0, -kPi};
+    EXPECT_NEAR(pd::point_arc({0, 3}, lower), std::sqrt(13.0), 1e-12);
+    EXPECT_NEAR(pd::point_arc({0, -3}, lower), 1.0, 1e-12);
+}
+
+// Random pairs of spiral arcs (start and end radius differing by up to 2e-3, as rounded
+// centres make them) and lines, and a limit near their least distance.
+TEST(PlaneDistance, ApartIsNeverClaimedForElementsThatComeWithinTheLimit) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int proved = 0, refused = 0;
+    for (int k = 0; k < 400; ++k) {
+        Element a = random_element(rng, 3, nullptr);
+        Element b = random_element(rng, 4, &a);
+        for (Element* e : {&a, &b})
+            if (e->arc) {  // a spiral: its end where the radius has changed
+                e->r1 = std::max(1e-3, e->r0 + 2e-3 * u(rng));
+                const double phi1 = e->phi0 + e->sweep;
+                e->end = e->centre + e->r1 * Vec2(std::cos(phi1), std::sin(phi1));
+            }
+        const auto sa = sample(a, 700), sb = sample(b, 700);
+        const double sampled = brute(sa, sb);
+        const double slack = 0.5 * (spacing(sa) + spacing(sb));
+        // Limits around the least distance: below it by 1e-4 (should be proved) and above.
+        for (const double limit : {sampled - slack - 1e-4, sampled + 1e-9, sampled + 0.1}) {
+            if (limit <= 0.0) continue;
+            const bool is_apart = pd::apart(a, b, limit);
+            SCOPED_TRACE(::testing::Message() << k << " limit " << limit);
+            if (limit > sampled) {
+                // Two points closer than the limit exist: never proved apart.
+                EXPECT_FALSE(is_apart);
+                refused += 1;
+            } else {
+                // 1e-4 below any sample pair's distance: the proof gets there.
+                EXPECT_TRUE(is_apart) << "sampled " << sampled;
+                proved += is_apart;
+            }
+        }
+    }
+    EXPECT_GT(proved, 100);
+    EXPECT_GT(refused, 100);
+}
+
+// What the check asks most: the path of an arc (its offset, tool radius 1 inside a
+// counter-clockwise arc under G41) against the next element, a line leaving the arc's end at a
+// convex corner. The path's end is 1 from the corner, nothing is nearer: proved apart at the
+// radius less twice the path tolerance, though the arcs are spirals (rounded centres).
+TEST(PlaneDistance, ApartProvesTheNextElementAtAConvexCornerKeepsTheRadius) {
+    for (const double radius : {1.6, 10.0, 250.0})
+        for (const double dr : {-2e-3, -3e-4, 0.0, 5e-4, 2e-3})
+            for (const double turn_deg : {5.0, 30.0, 90.0, 170.0})
+                for (const double sweep : {0.3, 2.0, 5.5}) {
+                    SCOPED_TRACE(::testing::Message()
+                                 << radius << " " << dr << " " << turn_deg << " " << sweep);
+                    Element contour = circular({3.25, -1.5}, radius, 0.4, sweep);
+                    contour.r1 = radius + dr;
+                    contour.end = contour.centre +
+                                  contour.r1 * Vec2(std::cos(0.4 + sweep), std::sin(0.4 + sweep));
+                    Element path = contour;
+                    path.r0 -= 1.0;
+                    path.r1 -= 1.0;
+                    path.start = path.centre + path.r0 * Vec2(std::cos(0.4), std::sin(0.4));
+                    path.end =
+                        path.centre + path.r1 * Vec2(std::cos(0.4 + sweep), std::sin(0.4 + sweep));
+                    // The tangent at the end, turned right (away from the tool) by the turn.
+                    const double phi = 0.4 + sweep + kPi / 2 - turn_deg * kPi / 180.0;
+                    const Element next =
+                        line(contour.end, contour.end + 7.0 * Vec2(std::cos(phi), std::sin(phi)));
+                    EXPECT_TRUE(pd::apart(path, next, 1.0 - 2e-4 + 1e-7));
+                    EXPECT_FALSE(pd::apart(path, next, 1.0 + 1e-9));  // the end is 1 away
+                }
+}
+
+}  // namespace

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// Exact least distances between lines and circular arcs in a plane, and a proof that two
+// elements (a line, or an arc whose radius changes linearly with the angle, as the board runs
+// arcs whose start and end radii differ) keep at least a given distance from each other.
+// The self-approach check (self_approach.h) asks the proof first: where it holds, no point of
+// the one comes within the limit of the other, so the check's search along the path cannot find
+// one either and is skipped; where it does not hold, the search runs as before. The findings are
+// the same; only their cost changes (docs/compensation.md, "Self-approach").
+#pragma once
+
+#include <Eigen/Core>
+
+namespace apci::run::plane {
+
+using Vec2 = Eigen::Vector2d;
+
+// A circular arc: about `centre`, radius `radius`, from the angle `phi0` (radians, from the
+// first axis) turning by `sweep` (signed: positive counter-clockwise; |sweep| >= 2 pi is the
+// whole circle).
+struct Arc {
+    Vec2 centre = Vec2::Zero();
+    double radius = 0.0;
+    double phi0 = 0.0;
+    double sweep = 0.0;
+};
+Vec2 arc_start(const Arc& a) noexcept;
+Vec2 arc_end(const Arc& a) noexcept;
+// True when the direction v (from the centre) lies within the arc's turn.
+bool within_turn(const Arc& a, const Vec2& v) noexcept;
+
+// The least distance between ...
+double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept;
+double point_arc(const Vec2& p, const Arc& a) noexcept;
+double segment_segment(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) noexcept;
+double segment_arc(const Vec2& a0, const Vec2& a1, const Arc& b) noexcept;
+double arc_arc(const Arc& a, const Arc& b) noexcept;
+
+// A line from start to end, or an arc about centre from start to end: at the fraction t of it,
+// the angle phi0 + t * sweep and the radius r0 + t * (r1 - r0).
+struct Element {
+    bool arc = false;
+    Vec2 start = Vec2::Zero(), end = Vec2::Zero(), centre = Vec2::Zero();
+    double r0 = 0.0, r1 = 0.0, phi0 = 0.0, sweep = 0.0;
+};
+
+// True when every point of `a` is at least `limit` from every point of `b`, proved: an arc is
+// taken as circular arcs of its middle radius, each within |r1 - r0| / 2 of it, halved where the
+// proof needs it (at most kMaxApartSteps distances). False when it is not so or not proved.
+inline constexpr int kMaxApartSteps = 64;
+bool apart(const Element& a, const Element& b, double limit) noexcept;
+
+}  // namespace apci::run::plane

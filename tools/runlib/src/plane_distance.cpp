@@ -1,0 +1,259 @@
+// SPDX-License-Identifier: MIT
+// The least distance of two compact curves is reached either where one of them ends (the
+// distance of that end point to the other curve) or at a pair of inner points where the segment
+// joining them is normal to both curves, or where they cross (distance 0). For lines and
+// circular arcs the normal pairs are few and known in closed form: a line and a circle, on the
+// line through the centre normal to the line; two circles, on the line through both centres.
+#include "apci/run/plane_distance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace apci::run::plane {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+double cross(const Vec2& a, const Vec2& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+bool on_segment(double t) {
+    return t >= 0.0 && t <= 1.0;
+}
+
+// An arc with what the distances ask of it computed once: its ends, the unit directions of its
+// ends from the centre, the sense of its turn, and whether it turns by more than half a circle.
+struct Circle {
+    Vec2 centre, start, end;
+    Vec2 from, to;  // unit directions of start and end from the centre
+    double radius = 0.0;
+    double sense = 1.0;  // +1 counter-clockwise, -1 clockwise
+    bool whole = false;  // the whole circle
+    bool major = false;  // more than half a turn
+};
+
+Circle circle_of(const Arc& a, const Vec2& from, const Vec2& to) {
+    Circle c;
+    c.centre = a.centre;
+    c.radius = a.radius;
+    c.from = from;
+    c.to = to;
+    c.start = a.centre + a.radius * from;
+    c.end = a.centre + a.radius * to;
+    c.sense = a.sweep < 0.0 ? -1.0 : 1.0;
+    c.whole = std::abs(a.sweep) >= kTwoPi;
+    c.major = std::abs(a.sweep) > std::numbers::pi;
+    return c;
+}
+
+Circle circle_of(const Arc& a) {
+    const double phi1 = a.phi0 + a.sweep;
+    return circle_of(a, Vec2(std::cos(a.phi0), std::sin(a.phi0)),
+                     Vec2(std::cos(phi1), std::sin(phi1)));
+}
+
+// The direction v (from the centre) within the turn: on the turning side of the start and not
+// past the end; for more than half a turn, not within the rest of the circle. Decided by signs:
+// a direction within rounding of an end may go either way, where the end itself is a candidate
+// of every distance below.
+bool within(const Circle& c, const Vec2& v) {
+    if (c.whole) return true;
+    const double a = c.sense * cross(c.from, v), b = c.sense * cross(v, c.to);
+    if (c.major) return a >= 0.0 || b >= 0.0;
+    return a >= 0.0 && b >= 0.0;
+}
+
+double point_circle(const Vec2& p, const Circle& c) {
+    const Vec2 v = p - c.centre;
+    const double n = v.norm();
+    if (n == 0.0) return c.radius;
+    if (within(c, v)) return std::abs(n - c.radius);
+    return std::min((p - c.start).norm(), (p - c.end).norm());
+}
+
+double segment_circle(const Vec2& a0, const Vec2& a1, const Circle& b) {
+    double best = std::min({point_circle(a0, b), point_circle(a1, b),
+                            point_segment(b.start, a0, a1), point_segment(b.end, a0, a1)});
+    const Vec2 d = a1 - a0;
+    const double len = d.norm();
+    if (len == 0.0) return best;
+    const Vec2 u = d / len;
+    const Vec2 n(-u.y(), u.x());
+    // The foot of the centre on the line, and the centre's signed distance from it.
+    const double along = (b.centre - a0).dot(u);
+    const double h = (b.centre - a0).dot(n);
+    // Where the line crosses the circle.
+    if (std::abs(h) <= b.radius) {
+        const double w = std::sqrt(b.radius * b.radius - h * h);
+        for (const double s : {along - w, along + w})
+            if (on_segment(s / len) && within(b, a0 + s * u - b.centre)) return 0.0;
+    }
+    // The normal pairs: the points of the circle on the normal through the centre.
+    if (on_segment(along / len)) {
+        for (const double side : {1.0, -1.0})
+            if (within(b, side * n)) best = std::min(best, std::abs(h + side * b.radius));
+    }
+    return best;
+}
+
+double circle_circle(const Circle& a, const Circle& b) {
+    double best = std::min({point_circle(a.start, b), point_circle(a.end, b),
+                            point_circle(b.start, a), point_circle(b.end, a)});
+    const Vec2 d = b.centre - a.centre;
+    const double dist = d.norm();
+    if (dist == 0.0) {
+        // Concentric: |ra - rb| wherever the turns share a direction.
+        if (within(a, b.from) || within(b, a.from))
+            best = std::min(best, std::abs(a.radius - b.radius));
+        return best;
+    }
+    const Vec2 u = d / dist;
+    const Vec2 n(-u.y(), u.x());
+    // Where the circles cross.
+    if (dist <= a.radius + b.radius && dist >= std::abs(a.radius - b.radius)) {
+        const double along =
+            (a.radius * a.radius - b.radius * b.radius + dist * dist) / (2.0 * dist);
+        const double w = std::sqrt(std::max(0.0, a.radius * a.radius - along * along));
+        for (const double side : {1.0, -1.0}) {
+            const Vec2 x = a.centre + along * u + side * w * n;
+            if (within(a, x - a.centre) && within(b, x - b.centre)) return 0.0;
+        }
+    }
+    // The normal pairs: the points of both circles on the line through the centres.
+    for (const double sa : {1.0, -1.0}) {
+        if (!within(a, sa * u)) continue;
+        const Vec2 p = a.centre + sa * a.radius * u;
+        for (const double sb : {1.0, -1.0})
+            if (within(b, sb * u))
+                best = std::min(best, (p - (b.centre + sb * b.radius * u)).norm());
+    }
+    return best;
+}
+
+}  // namespace
+
+Vec2 arc_start(const Arc& a) noexcept {
+    return a.centre + a.radius * Vec2(std::cos(a.phi0), std::sin(a.phi0));
+}
+Vec2 arc_end(const Arc& a) noexcept {
+    const double phi1 = a.phi0 + a.sweep;
+    return a.centre + a.radius * Vec2(std::cos(phi1), std::sin(phi1));
+}
+
+bool within_turn(const Arc& a, const Vec2& v) noexcept {
+    return within(circle_of(a), v);
+}
+
+double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {
+    const Vec2 d = b - a;
+    const double n2 = d.squaredNorm();
+    const double t = n2 == 0.0 ? 0.0 : std::clamp((p - a).dot(d) / n2, 0.0, 1.0);
+    return (p - (a + t * d)).norm();
+}
+
+double point_arc(const Vec2& p, const Arc& a) noexcept {
+    return point_circle(p, circle_of(a));
+}
+
+double segment_segment(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) noexcept {
+    // Crossing: each segment's ends strictly on opposite sides of the other's line (touching
+    // is an end point's distance, 0, below).
+    const Vec2 da = a1 - a0, db = b1 - b0;
+    const double s0 = cross(da, b0 - a0), s1 = cross(da, b1 - a0);
+    const double s2 = cross(db, a0 - b0), s3 = cross(db, a1 - b0);
+    if (((s0 < 0.0 && s1 > 0.0) || (s0 > 0.0 && s1 < 0.0)) &&
+        ((s2 < 0.0 && s3 > 0.0) || (s2 > 0.0 && s3 < 0.0)))
+        return 0.0;
+    return std::min({point_segment(a0, b0, b1), point_segment(a1, b0, b1),
+                     point_segment(b0, a0, a1), point_segment(b1, a0, a1)});
+}
+
+double segment_arc(const Vec2& a0, const Vec2& a1, const Arc& b) noexcept {
+    return segment_circle(a0, a1, circle_of(b));
+}
+
+double arc_arc(const Arc& a, const Arc& b) noexcept {
+    return circle_circle(circle_of(a), circle_of(b));
+}
+
+namespace {
+
+// The part [t0, t1] of an element: a segment, or a circular arc of the radius at its middle and
+// how far the element's own points may lie from it (`off`).
+struct Piece {
+    bool arc = false;
+    Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // a line's ends
+    Circle circle;
+    double off = 0.0;
+};
+
+// The unit direction of the element's angle at t: at its ends, from its end points (as its
+// angles were computed from them); within, from the angle.
+Vec2 direction_at(const Element& e, double t) {
+    if (t == 0.0 && e.r0 > 0.0) return (e.start - e.centre) / e.r0;
+    if (t == 1.0 && e.r1 > 0.0) return (e.end - e.centre) / e.r1;
+    const double phi = e.phi0 + t * e.sweep;
+    return {std::cos(phi), std::sin(phi)};
+}
+
+Piece piece_of(const Element& e, double t0, double t1) {
+    Piece p;
+    if (!e.arc) {
+        const Vec2 d = e.end - e.start;
+        p.a = t0 == 0.0 ? e.start : e.start + t0 * d;
+        p.b = t1 == 1.0 ? e.end : e.start + t1 * d;
+        return p;
+    }
+    p.arc = true;
+    const double dr = e.r1 - e.r0;
+    const Arc arc{e.centre, e.r0 + 0.5 * (t0 + t1) * dr, e.phi0 + t0 * e.sweep,
+                  (t1 - t0) * e.sweep};
+    p.circle = circle_of(arc, direction_at(e, t0), direction_at(e, t1));
+    p.off = 0.5 * (t1 - t0) * std::abs(dr);
+    return p;
+}
+
+double between(const Piece& p, const Piece& q) {
+    if (!p.arc && !q.arc) return segment_segment(p.a, p.b, q.a, q.b);
+    if (!p.arc) return segment_circle(p.a, p.b, q.circle);
+    if (!q.arc) return segment_circle(q.a, q.b, p.circle);
+    return circle_circle(p.circle, q.circle);
+}
+
+}  // namespace
+
+bool apart(const Element& a, const Element& b, double limit) noexcept {
+    struct Job {
+        double a0, a1, b0, b1;
+    };
+    // Each step takes one job and leaves at most two: the stack never holds more than the
+    // steps allowed, plus one.
+    std::array<Job, kMaxApartSteps + 1> stack{};
+    std::size_t size = 0;
+    stack[size++] = Job{0.0, 1.0, 0.0, 1.0};
+    for (int step = 0; size > 0; ++step) {
+        if (step >= kMaxApartSteps) return false;
+        const Job j = stack[--size];
+        const Piece p = piece_of(a, j.a0, j.a1), q = piece_of(b, j.b0, j.b1);
+        const double d = between(p, q);
+        const double off = p.off + q.off;
+        if (d - off >= limit) continue;  // this part is apart
+        // A pair of points of the elements within the limit, or no room left to prove it.
+        if (d + off < limit || off < 1e-12) return false;
+        if (p.off >= q.off) {
+            const double m = 0.5 * (j.a0 + j.a1);
+            stack[size++] = Job{j.a0, m, j.b0, j.b1};
+            stack[size++] = Job{m, j.a1, j.b0, j.b1};
+        } else {
+            const double m = 0.5 * (j.b0 + j.b1);
+            stack[size++] = Job{j.a0, j.a1, j.b0, m};
+            stack[size++] = Job{j.a0, j.a1, m, j.b1};
+        }
+    }
+    return true;
+}
+
+}  // namespace apci::run::plane
