@@ -1217,6 +1217,13 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
 }
 
+// "G1 X<x> Y<y>" and a newline, y to 3 decimals.
+std::string fmt_xy(int x, double y) {
+    char text[64];
+    std::snprintf(text, sizeof text, "G1 X%d Y%.3f\n", x, y);
+    return text;
+}
+
 // The run's SelfApproach message for N40's path at distance d from the contour at N<n>, r 5.
 std::string fmt_message(int n, double d) {
     char text[400];
@@ -1324,6 +1331,116 @@ TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCir
                 << "N" << n << ": " << found[i].where.transpose();
         }
     }
+}
+
+TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
+    // N30 runs along y = 0; the contour goes up, back along y = 50 in 14 steps, down at x = 30
+    // and along y = 1.5 (N...: X20): its path (r 1, G41) is 0.5 from N30, and N30's path 0.5
+    // from it. The check finds both with its window (16,384 elements); with a window of 4 it
+    // has let N30 go by then, says so (truncated) and keeps no more than 4 * 4 items.
+    std::string prog =
+        "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\nN30 G1 X100 Y0\nN40 G1 X100 Y50\n";
+    std::vector<apci::run::PathSegment> programmed;
+    const auto line = [&](int n, double x0, double y0, double x1, double y1) {
+        apci::run::PathSegment s;
+        s.block.number = n;
+        s.start = {x0, y0, 0};
+        s.end = {x1, y1, 0};
+        programmed.push_back(s);
+    };
+    line(25, -10, 0, 0, 0);
+    line(30, 0, 0, 100, 0);
+    line(40, 100, 0, 100, 50);
+    int n = 50;
+    for (int x = 95; x >= 30; x -= 5, n += 10) {
+        prog += "N" + std::to_string(n) + " G1 X" + std::to_string(x) + " Y50\n";
+        line(n, x + 5, 50, x, 50);
+    }
+    const int down = n, back = n + 10;
+    prog +=
+        "N" + std::to_string(down) + " G1 X30 Y1.5\nN" + std::to_string(back) + " G1 X20 Y1.5\n";
+    line(down, 30, 50, 30, 1.5);
+    line(back, 30, 1.5, 20, 1.5);
+    prog += "N" + std::to_string(back + 10) + " G40 G1 X20 Y20\nN" + std::to_string(back + 20) +
+            " M30\n";
+    const json doc = run_json(write("window.nc", prog), {"--tools", tools(1.0)});
+    EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+    const std::string near_n30 = "of the contour at N30 ";
+    const std::string n30_near = "the tool path of N30 comes within 0.5000 mm of the contour at N" +
+                                 std::to_string(back) + " ";
+    bool found_near_n30 = false, found_n30_near = false;
+    for (const auto& w : doc.value("warnings", json::array())) {
+        const std::string m = w.at("message");
+        found_near_n30 |=
+            w.at("block") == back && contains(m, near_n30) && contains(m, "0.5000 mm");
+        found_n30_near |= contains(m, n30_near);
+    }
+    EXPECT_TRUE(found_near_n30 && found_n30_near) << doc.dump();
+    EXPECT_FALSE(doc.contains("notices")) << doc.at("notices").dump();
+    // The check itself, fed as the run feeds it: each element, then the segments of the
+    // element before it (one element of lookahead).
+    const auto check_with = [&](std::size_t window, bool& truncated, std::size_t& most_kept) {
+        apci::run::SelfApproachCheck check(window);
+        std::vector<apci::run::SelfApproachFinding> found;
+        check.begin(1.0, 17);
+        std::size_t next = 0;
+        const json& segments = doc.at("segments");
+        const auto execute_to = [&](std::int64_t block) {
+            for (;
+                 next < segments.size() && segments[next].at("block").get<std::int64_t>() <= block;
+                 ++next)
+                check.executed(executed_segment(segments[next]), found);
+        };
+        most_kept = 0;
+        for (std::size_t k = 0; k < programmed.size(); ++k) {
+            check.programmed(programmed[k], found);
+            if (k > 0) execute_to(programmed[k - 1].block.number);
+            most_kept = std::max(most_kept, check.kept());
+        }
+        check.end(found);
+        execute_to(back + 20);
+        truncated = check.truncated();
+        return found;
+    };
+    bool truncated = true;
+    std::size_t most_kept = 0;
+    auto found = check_with(apci::run::SelfApproachCheck::kWindow, truncated, most_kept);
+    EXPECT_FALSE(truncated);
+    const auto involves_n30 = [](const apci::run::SelfApproachFinding& f) {
+        return f.path_block.number == 30 || f.contour_block.number == 30;
+    };
+    // N30's path near the elements coming down and back, and their paths (the one coming
+    // down with its transition round (30, 1.5)) near N30: 0.5 mm each.
+    std::set<std::pair<std::int64_t, std::int64_t>> pairs;
+    for (const auto& f : found) {
+        if (!involves_n30(f)) continue;
+        pairs.emplace(f.path_block.number, f.contour_block.number);
+        EXPECT_NEAR(f.distance, 0.5, 1e-9);
+    }
+    const std::set<std::pair<std::int64_t, std::int64_t>> expected{
+        {30, down}, {30, back}, {down, 30}, {back, 30}};
+    EXPECT_EQ(pairs, expected);
+    found = check_with(4, truncated, most_kept);
+    EXPECT_TRUE(truncated);
+    EXPECT_EQ(std::count_if(found.begin(), found.end(), involves_n30), 0);
+    EXPECT_LE(most_kept, 16u);
+}
+
+TEST_F(ApcictlRun, AProgramLongerThanTheSelfApproachWindowGetsANotice) {
+    // 33,000 distinct elements under G41: a zigzag along X. More than twice the window: the
+    // check lets the oldest go (its memory stays bounded) and the run says so.
+    std::string prog = "N10 D1 F3000\nN20 G0 X0 Y0\nN30 G41 G1 X1 Y0\n";
+    for (int k = 0; k < 33000; ++k) prog += fmt_xy(2 + k, (k % 2) * 0.5 + (k % 7) * 0.001);
+    prog += "G40 G1 X40000 Y10\nM30\n";
+    const json doc = run_json(write("long.nc", prog), {"--tools", tools(1.0)});
+    EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+    ASSERT_TRUE(doc.contains("notices"));
+    ASSERT_EQ(doc.at("notices").size(), 1u) << doc.at("notices").dump();
+    EXPECT_EQ(doc.at("notices")[0].at("code"), "SelfApproachTruncated");
+    EXPECT_TRUE(contains(doc.at("notices")[0].at("message").get<std::string>(),
+                         "compared each with the 16384 distinct elements before it"))
+        << doc.at("notices")[0].dump();
 }
 
 TEST_F(ApcictlRun, RapidMovesAreRapidAndUncompensated) {

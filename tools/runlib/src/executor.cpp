@@ -228,12 +228,13 @@ void Execution::finish() {
     bool truncated = self_approach_.truncated();
     if (sink_checks_) sink_.self_approach_results(out.warnings, truncated);
     if (truncated)
-        out.notices.push_back(RunError{
-            {},
-            "SelfApproachTruncated",
-            fmt::format("the self-approach check kept {} distinct elements per plane and did "
-                        "not check those beyond",
-                        SelfApproachCheck::kMaxElements)});
+        out.notices.push_back(
+            RunError{{},
+                     "SelfApproachTruncated",
+                     fmt::format("the program has more compensated elements in a plane than the "
+                                 "self-approach check keeps: it compared each with the {} distinct "
+                                 "elements before it (fewer where they are long), not with all",
+                                 SelfApproachCheck::kWindow)});
     if (out.tc_present) tc_.read_registers();
     out.totals.cycles = cycles_seen_ - start_cycle_;
     if (!comp_plane_seen) out.plot_plane = plane;

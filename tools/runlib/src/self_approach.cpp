@@ -8,8 +8,9 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <unordered_map>
 #include <utility>
+
+#include "apci/run/plane_distance.h"
 
 namespace apci::run {
 namespace {
@@ -20,6 +21,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kFullCircle = kSamePointTolerance;
 // The most distance evaluations one pair may take (the refinement stops there).
 constexpr int kMaxEvaluations = 4096;
+// How much farther than the threshold a pair must be proved apart for the search to be skipped:
+// far more than the rounding of a distance computed in either way.
+constexpr double kApartMargin = 1e-7;
 
 }  // namespace
 
@@ -83,6 +87,10 @@ Vec2 point_at(const Shape& e, double t) {
     const double phi = e.phi0 + t * e.sweep;
     const double r = e.r0 + t * (e.r1 - e.r0);
     return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
+}
+
+plane::Element element_of(const Shape& e) {
+    return plane::Element{e.arc, e.start, e.end, e.centre, e.r0, e.r1, e.phi0, e.sweep};
 }
 
 double distance_to(const Shape& e, const Vec2& p) {
@@ -243,6 +251,12 @@ class KeySet {
         }
     }
 
+    // Empty, keeping the memory.
+    void clear() {
+        std::fill(slots_.begin(), slots_.end(), 0);
+        count_ = 0;
+    }
+
   private:
     // Where the search for a key starts in slots of size mask + 1.
     static std::size_t home(std::uint64_t key, std::size_t mask) noexcept {
@@ -290,12 +304,80 @@ std::string describe(const SelfApproachFinding& f) {
         f.radius - f.distance);
 }
 
+namespace {
+
+// The items of a uniform grid's cells: per cell (a 64-bit key) a list of item positions, the
+// latest first. Open addressing over the cells (at most half full), the lists' nodes in one
+// array: no allocation per cell or per item once the arrays have grown.
+class CellIndex {
+  public:
+    // Adds the item to the cell, unless it is the cell's latest already.
+    void add(std::uint64_t cell, std::uint32_t item) {
+        if (2 * (cells_ + 1) > slots_.size()) grow();
+        Slot& s = slots_[find(slots_, cell)];
+        if (s.head == kEmpty) {
+            s.key = cell;
+            ++cells_;
+        } else if (nodes_[s.head].item == item) {
+            return;
+        }
+        nodes_.push_back(Node{item, s.head});
+        s.head = static_cast<std::uint32_t>(nodes_.size() - 1);
+    }
+    // Appends the items of the cell to `out`.
+    void append(std::uint64_t cell, std::vector<std::uint32_t>& out) const {
+        if (slots_.empty()) return;
+        const Slot& s = slots_[find(slots_, cell)];
+        for (std::uint32_t n = s.head; n != kEmpty; n = nodes_[n].next)
+            out.push_back(nodes_[n].item);
+    }
+    // Empty, keeping the memory.
+    void clear() {
+        std::fill(slots_.begin(), slots_.end(), Slot{});
+        nodes_.clear();
+        cells_ = 0;
+    }
+
+  private:
+    static constexpr std::uint32_t kEmpty = ~std::uint32_t{0};
+    struct Slot {
+        std::uint64_t key = 0;
+        std::uint32_t head = kEmpty;
+    };
+    struct Node {
+        std::uint32_t item;
+        std::uint32_t next;
+    };
+    // The cell's slot, or the empty one where it would go.
+    static std::size_t find(const std::vector<Slot>& slots, std::uint64_t cell) {
+        const std::size_t mask = slots.size() - 1;
+        // Cells' keys are structured (row and column in the high and low half): mixed so that
+        // both reach the low bits.
+        std::uint64_t h = (cell ^ (cell >> 31)) * 0x9E3779B97F4A7C15ULL;
+        std::size_t i = (h ^ (h >> 32)) & mask;
+        while (slots[i].head != kEmpty && slots[i].key != cell) i = (i + 1) & mask;
+        return i;
+    }
+    [[gnu::noinline]] void grow() {
+        std::vector<Slot> bigger(slots_.empty() ? 1024 : 2 * slots_.size());
+        for (const Slot& s : slots_)
+            if (s.head != kEmpty) bigger[find(bigger, s.key)] = s;
+        slots_.swap(bigger);
+    }
+    std::vector<Slot> slots_;
+    std::vector<Node> nodes_;
+    std::size_t cells_ = 0;
+};
+
+}  // namespace
+
 struct SelfApproachCheck::Grid {
     struct Item {
         Shape shape;
         BlockRef block;
         std::uint64_t index = 0;
         std::uint64_t stretch = 0;
+        std::uint64_t key = 0;  // of its geometry (contour_keys, path_keys)
         double r = 0.0;
         bool transition = false;
         // Contour elements: the path must keep r from it. Not the first and the last element
@@ -304,13 +386,29 @@ struct SelfApproachCheck::Grid {
         // Paths: the approach. It starts where the tool stands, often within r of its own
         // contour, so it is checked against the other stretches' contours only.
         bool approach = false;
+        std::uint32_t samples = 0;  // of it in the grid (set by add)
+    };
+    // Items kept in order, the oldest first: `first` is the number (counted over the plane's
+    // whole run) of items[0].
+    struct List {
+        std::vector<Item> items;
+        std::uint64_t first = 0;
+        CellIndex cells;
+        KeySet keys;
+        std::size_t samples = 0;  // of its items
+        std::uint64_t next() const { return first + items.size(); }
+        // The item numbered `id`, or null where it was let go.
+        Item* at(std::uint64_t id) {
+            return id >= first && id < next() ? &items[static_cast<std::size_t>(id - first)]
+                                              : nullptr;
+        }
     };
     double cell = 0.0;   // fixed by the first stretch in this plane
     double max_r = 0.0;  // the largest tool radius of its paths
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> contour_cells, path_cells;
-    std::vector<Item> contour, path;
-    KeySet contour_keys, path_keys;
-    bool truncated = false;
+    std::size_t window = kWindow;
+    std::size_t sample_budget = kSampleBudget;
+    List contour, path;
+    bool truncated = false;  // items were let go
 
     static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
         return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
@@ -323,32 +421,74 @@ struct SelfApproachCheck::Grid {
         for (int i = 0; i <= n; ++i) f(point_at(e, static_cast<double>(i) / n));
     }
 
-    void insert(std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>& cells,
-                const Shape& e, std::uint32_t id) const {
-        for_samples(e, [&](const Vec2& p) {
-            auto& list = cells[cell_key(index_of(p.x()), index_of(p.y()))];
-            if (list.empty() || list.back() != id) list.push_back(id);
+    void index(List& list, std::size_t at) const {
+        const auto item = static_cast<std::uint32_t>(at);
+        std::uint32_t n = 0;
+        for_samples(list.items[at].shape, [&](const Vec2& p) {
+            list.cells.add(cell_key(index_of(p.x()), index_of(p.y())), item);
+            ++n;
         });
+        list.items[at].samples = n;
+        list.samples += n;
     }
 
-    // Ids of the items in `cells` with a sample within r + cell / 2 of a sample of e: every item
-    // that has a point closer than r to a point of e.
-    std::vector<std::uint32_t> near(
-        const std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>& cells,
-        const Shape& e, double r) const {
-        std::vector<std::uint32_t> out;
-        const double reach = r + 0.5 * cell;
-        for_samples(e, [&](const Vec2& p) {
-            for (std::int64_t i = index_of(p.x() - reach); i <= index_of(p.x() + reach); ++i)
-                for (std::int64_t j = index_of(p.y() - reach); j <= index_of(p.y() + reach); ++j) {
-                    const auto it = cells.find(cell_key(i, j));
-                    if (it != cells.end()) out.insert(out.end(), it->second.begin(), it->second.end());
-                }
-        });
-        std::sort(out.begin(), out.end());
-        out.erase(std::unique(out.begin(), out.end()), out.end());
-        return out;
+    // Adds an item (its geometry's key is in list.keys already). At 2 * window items or
+    // 2 * sample_budget samples in either list, the items of the oldest elements are let go
+    // from both, so that at most `window` items and `sample_budget` samples remain in this one
+    // (at least its latest item). An element's contour and its paths go together: a repeat of
+    // geometry let go is checked afresh against what remains.
+    void add(List& list, const Item& item) {
+        list.items.push_back(item);
+        index(list, list.items.size() - 1);
+        if (list.items.size() < 2 * window && list.samples < 2 * sample_budget) return;
+        std::size_t at = list.items.size() - 1;
+        std::size_t samples = list.items[at].samples;
+        while (at > 0 && list.items.size() - at < window &&
+               samples + list.items[at - 1].samples <= sample_budget)
+            samples += list.items[--at].samples;
+        keep_from(list.items[at].index);
     }
+
+    void keep_from(std::uint64_t element) {
+        truncated = true;
+        for (List* l : {&contour, &path}) {
+            const auto kept = std::find_if(l->items.begin(), l->items.end(),
+                                           [&](const Item& i) { return i.index >= element; });
+            l->first += static_cast<std::uint64_t>(kept - l->items.begin());
+            l->items.erase(l->items.begin(), kept);
+            l->cells.clear();
+            l->keys.clear();
+            l->samples = 0;
+            for (std::size_t at = 0; at < l->items.size(); ++at) {
+                index(*l, at);
+                l->keys.insert(l->items[at].key);
+            }
+        }
+    }
+
+    // Positions of the items of `list` with a sample within r + cell / 2 of a sample of e:
+    // every item that has a point closer than r to a point of e. Ascending; valid until the
+    // next call.
+    const std::vector<std::uint32_t>& near(const List& list, const Shape& e, double r) {
+        found.clear();
+        const double reach = r + 0.5 * cell;
+        // The cells within reach of each sample, less those of the sample before (a path
+        // moves on by half a cell per sample: most of its cells were looked at already).
+        std::int64_t pi0 = 1, pi1 = 0, pj0 = 1, pj1 = 0;  // none
+        for_samples(e, [&](const Vec2& p) {
+            const std::int64_t i0 = index_of(p.x() - reach), i1 = index_of(p.x() + reach);
+            const std::int64_t j0 = index_of(p.y() - reach), j1 = index_of(p.y() + reach);
+            for (std::int64_t i = i0; i <= i1; ++i)
+                for (std::int64_t j = j0; j <= j1; ++j)
+                    if (i < pi0 || i > pi1 || j < pj0 || j > pj1)
+                        list.cells.append(cell_key(i, j), found);
+            pi0 = i0, pi1 = i1, pj0 = j0, pj1 = j1;
+        });
+        std::sort(found.begin(), found.end());
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        return found;
+    }
+    std::vector<std::uint32_t> found;  // near()'s answer
 };
 
 namespace {
@@ -408,15 +548,18 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
 
 }  // namespace
 
-SelfApproachCheck::SelfApproachCheck() = default;
+SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t sample_budget)
+    : window_(std::max<std::size_t>(window, 1)), sample_budget_(sample_budget) {}
 SelfApproachCheck::~SelfApproachCheck() = default;
 
 namespace {
 
 // A plane's grid at its first use: out of line, so that grid() is a load and a test.
 template <typename G>
-[[gnu::noinline]] G& create(std::unique_ptr<G>& grid) {
+[[gnu::noinline]] G& create(std::unique_ptr<G>& grid, std::size_t window, std::size_t budget) {
     grid = std::make_unique<G>();
+    grid->window = window;
+    grid->sample_budget = budget;
     return *grid;
 }
 
@@ -425,7 +568,7 @@ template <typename G>
 // Inline where it is called (once or twice a segment): a load and a test.
 [[gnu::always_inline]] inline SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
-    if (!g) return create(g);
+    if (!g) return create(g, window_, sample_budget_);
     return *g;
 }
 
@@ -433,6 +576,13 @@ bool SelfApproachCheck::truncated() const noexcept {
     for (const auto& g : grids_)
         if (g && g->truncated) return true;
     return false;
+}
+
+std::size_t SelfApproachCheck::kept() const noexcept {
+    std::size_t n = 0;
+    for (const auto& g : grids_)
+        if (g) n += g->contour.items.size() + g->path.items.size();
+    return n;
 }
 
 void SelfApproachCheck::begin(double r, int plane) {
@@ -478,14 +628,14 @@ void SelfApproachCheck::leave(const PathSegment& s, std::vector<SelfApproachFind
     if (departs) {
         for (const SelfApproachFinding& f : u.held) take(f, false, out);
     } else {
-        grid(u.plane).contour[u.id].protect = false;
+        if (Grid::Item* c = grid(u.plane).contour.at(u.id)) c->protect = false;
     }
     undecided_.erase(undecided_.begin());
 }
 
-SelfApproachCheck::Undecided* SelfApproachCheck::undecided_of(std::uint32_t id) {
+SelfApproachCheck::Undecided* SelfApproachCheck::undecided_of(int plane, std::uint64_t id) {
     for (Undecided& u : undecided_)
-        if (u.id == id) return &u;
+        if (u.id == id && u.plane == plane) return &u;
     return nullptr;
 }
 
@@ -552,23 +702,18 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     for (const SelfApproachFinding& f : held_) take(f, seen_ && same_block(f.path_block, current_), out);
     held_.clear();
     latest_ = kNone;
-    if (!g.contour_keys.insert(key_of(s, plane_, 0.0))) return;  // programmed before
+    const std::uint64_t key = key_of(s, plane_, 0.0);
+    if (!g.contour.keys.insert(key)) return;  // programmed before
     const Shape e = shape_of(s, plane_);
     if (e.length <= kFullCircle) return;
-    if (g.contour.size() >= kMaxElements) {
-        g.truncated = true;
-        return;
-    }
-    const auto id = static_cast<std::uint32_t>(g.contour.size());
-    g.contour.push_back(Grid::Item{e, s.block, index, stretch_, r_, false, !first});
-    g.insert(g.contour_cells, e, id);
-    latest_ = id;
+    latest_ = g.contour.next();
+    g.add(g.contour, Grid::Item{e, s.block, index, stretch_, key, r_, false, !first});
     if (first) return;
     // Paths executed before it that come near it (the contour comes back later): the least
     // distance over all the segments of each path block.
     std::vector<SelfApproachFinding> found;
-    for (const std::uint32_t pid : g.near(g.path_cells, e, g.max_r)) {
-        const Grid::Item& p = g.path[pid];
+    for (const std::uint32_t pid : g.near(g.path, e, g.max_r)) {
+        const Grid::Item& p = g.path.items[pid];
         if (p.approach && p.stretch == stretch_) continue;
         const Relation rel = relation(index, stretch_, p.index, p.stretch, p.transition);
         Shape part;
@@ -637,12 +782,14 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         return;
     const bool approach = s.role == Role::kApproach;
     Grid& g = grid(p.plane);
-    if (!g.path_keys.insert(key_of(s, p.plane, p.r))) return;  // the same path checked before
+    const std::uint64_t key = key_of(s, p.plane, p.r);
+    if (!g.path.keys.insert(key)) return;  // the same path checked before
     const Shape e = shape_of(s, p.plane);
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
-    for (const std::uint32_t id : g.near(g.contour_cells, e, p.r)) {
-        const Grid::Item& c = g.contour[id];
+    for (const std::uint32_t at : g.near(g.contour, e, p.r)) {
+        const Grid::Item& c = g.contour.items[at];
+        const std::uint64_t id = g.contour.first + at;
         if (approach && c.stretch == p.stretch) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
         Shape part;
@@ -651,27 +798,25 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         if (!report(e, s.block, p.r, p.plane, part, c.block, threshold_for(rel, p.r), f))
             continue;
         // Against a stretch's last element, perhaps its departure: held.
-        if (active_ && id == latest_)
+        if (active_ && p.plane == plane_ && id == latest_)
             hold(held_, f);
-        else if (Undecided* u = undecided_of(id))
+        else if (Undecided* u = undecided_of(p.plane, id))
             hold(u->held, f);
         else
             take(f, running, out);
     }
     if (!running) flush(out);
-    if (g.path.size() < kMaxElements) {
-        const auto id = static_cast<std::uint32_t>(g.path.size());
-        g.path.push_back(Grid::Item{e, s.block, p.index, p.stretch, p.r, transition, true, approach});
-        g.insert(g.path_cells, e, id);
-    } else {
-        g.truncated = true;
-    }
+    g.add(g.path, Grid::Item{e, s.block, p.index, p.stretch, key, p.r, transition, true, approach});
 }
 
 bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, double r, int plane,
                                const Shape& contour, const BlockRef& contour_block,
                                double threshold, SelfApproachFinding& f) {
     if (closed(pair_of(path_block, contour_block))) return false;
+    // Proved apart: no point of the path is as near as the threshold, so the search below
+    // would find none (every distance it computes is that of a point of the path to a point of
+    // the element, at least the least distance).
+    if (plane::apart(element_of(path), element_of(contour), threshold + kApartMargin)) return false;
     const Nearest n = least_distance(path, contour, threshold);
     if (n.distance >= threshold) return false;
     f = SelfApproachFinding{};

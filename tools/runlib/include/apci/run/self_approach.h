@@ -19,7 +19,11 @@
 //
 // Cost: a uniform grid of the programmed elements and of the executed segments, each kept once
 // (an element programmed again with the same geometry, as depth passes repeat a contour, is
-// checked once); at most kMaxElements of each per plane (beyond them the check says so).
+// checked once). A pair that is proved apart by exact line and arc distances is not searched.
+// Memory is bounded: per plane, each executed segment is compared with at least the last
+// `window` distinct programmed elements and each element with the paths of at least as many,
+// fewer where they are long (at most kSampleBudget grid samples); at most twice as many are kept,
+// and where some were let go the check says so.
 #pragma once
 
 #include <array>
@@ -50,13 +54,18 @@ std::string describe(const SelfApproachFinding& f);
 
 class SelfApproachCheck {
   public:
-    static constexpr std::size_t kMaxElements = std::size_t{1} << 18;
+    // The elements each is compared with, at least (distinct geometry, per plane), where they
+    // take no more than kSampleBudget samples of the grid (one per half cell: the tool radius of
+    // the plane's first stretch, at least 0.25 mm, of length).
+    static constexpr std::size_t kWindow = std::size_t{1} << 14;
+    static constexpr std::size_t kSampleBudget = std::size_t{1} << 17;
     // Each pair of blocks is reported once; at most this many pairs.
     static constexpr std::size_t kMaxFindings = 1000;
     // How much closer than the tool radius a path may come: the compensation's path tolerance.
     static constexpr double kTolerance = 1e-4;
 
-    SelfApproachCheck();
+    explicit SelfApproachCheck(std::size_t window = kWindow,
+                               std::size_t sample_budget = kSampleBudget);
     ~SelfApproachCheck();
     SelfApproachCheck(const SelfApproachCheck&) = delete;
     SelfApproachCheck& operator=(const SelfApproachCheck&) = delete;
@@ -73,8 +82,11 @@ class SelfApproachCheck {
     void programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out);
     // A segment the board executed (every one, in order); findings are appended to `out`.
     void executed(const PathSegment& s, std::vector<SelfApproachFinding>& out);
-    // True when more elements than kMaxElements came: the rest were not checked.
+    // True when elements were let go (more than 2 * window came in a plane): an element is not
+    // compared with those more than `window` distinct elements before it.
     bool truncated() const noexcept;
+    // The elements and paths kept, over all planes: at most 4 * window per plane.
+    std::size_t kept() const noexcept;
 
   private:
     struct Grid;
@@ -115,20 +127,23 @@ class SelfApproachCheck {
     std::vector<SelfApproachFinding> open_;
     BlockRef current_{};  // the block of the last executed segment
     bool seen_ = false;   // a segment was executed
-    static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+    static constexpr std::uint64_t kNone = ~std::uint64_t{0};
+    std::size_t window_ = kWindow;
+    std::size_t sample_budget_ = kSampleBudget;
     std::vector<SelfApproachFinding> held_;  // against latest_, until it is known not the departure
-    std::uint32_t latest_ = kNone;  // grid id of the stretch's latest element (new geometry)
+    std::uint64_t latest_ = kNone;  // grid id (Grid::List numbering) of the stretch's latest
+                                    // element of new geometry, in plane_
     // Stretches that ended, oldest first, whose last element (grid id, in `plane`) may be their
     // departure: known from the first segment after that element's (leave()).
     struct Undecided {
-        std::uint32_t id = 0;
+        std::uint64_t id = 0;
         std::uint64_t last_index = 0;  // of the stretch's last element
         int plane = 17;
         bool reached = false;  // a segment of the last element was executed
         std::vector<SelfApproachFinding> held;  // against it
     };
     std::vector<Undecided> undecided_;
-    Undecided* undecided_of(std::uint32_t id);
+    Undecided* undecided_of(int plane, std::uint64_t id);
     bool first_in_stretch_ = false;
     bool active_ = false;
     double r_ = 0.0;
