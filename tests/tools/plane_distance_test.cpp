@@ -28,10 +28,10 @@ std::vector<Vec2> sample(const Element& e, int n) {
     for (int i = 0; i <= n; ++i) {
         const double t = static_cast<double>(i) / n;
         if (!e.arc) {
-            out.push_back(e.start + t * (e.end - e.start));
+            out.emplace_back(e.start + t * (e.end - e.start));
         } else {
             const double phi = e.phi0 + t * e.sweep, r = e.r0 + t * (e.r1 - e.r0);
-            out.push_back(e.centre + r * Vec2(std::cos(phi), std::sin(phi)));
+            out.emplace_back(e.centre + r * Vec2(std::cos(phi), std::sin(phi)));
         }
     }
     return out;
@@ -51,14 +51,14 @@ double spacing(const std::vector<Vec2>& s) {
     return m;
 }
 
-Element line(Vec2 a, Vec2 b) {
+Element line(const Vec2& a, const Vec2& b) {
     Element e;
     e.start = a;
     e.end = b;
     return e;
 }
 
-Element circular(Vec2 c, double r, double phi0, double sweep) {
+Element circular(const Vec2& c, double r, double phi0, double sweep) {
     Element e;
     e.arc = true;
     e.centre = c;
