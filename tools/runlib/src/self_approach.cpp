@@ -38,6 +38,8 @@ struct detail::Shape {
     // Arcs: the radius at the start and at the end and the start's angle about the centre,
     // computed once for the shape (set_arc_terms) rather than at every point of a search.
     double r0 = 0.0, r1 = 0.0, phi0 = 0.0;
+    // A box holding every point of it (corners lo, hi).
+    Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
 };
 
 namespace {
@@ -58,12 +60,47 @@ void set_arc_terms(Shape& e) {
     e.phi0 = std::atan2(u0.y(), u0.x());
 }
 
+// Widens e's box (its ends) to the arc: where the turn passes an axis direction, out to the
+// larger radius there. Elsewhere a coordinate is largest at an end; an arc whose radius changes
+// by d over the turn lies within d of the circle through that end, so the box grows by d (and a
+// rounding's width).
+void add_arc_to_box(Shape& e) {
+    const double rmax = std::max(e.r0, e.r1);
+    const double turn = std::abs(e.sweep);
+    for (int k = 0; k < 4; ++k) {
+        const double axis = k * 0.5 * std::numbers::pi;  // +x, +y, -x, -y
+        double along = e.sweep >= 0 ? axis - e.phi0 : e.phi0 - axis;
+        along = std::fmod(along, kTwoPi);
+        if (along < 0) along += kTwoPi;
+        if (along > turn) continue;
+        const Vec2 p = e.centre + rmax * Vec2(k == 0   ? 1
+                                              : k == 2 ? -1
+                                                       : 0,
+                                              k == 1   ? 1
+                                              : k == 3 ? -1
+                                                       : 0);
+        e.lo = e.lo.cwiseMin(p);
+        e.hi = e.hi.cwiseMax(p);
+    }
+    const double pad = std::abs(e.r1 - e.r0) + 1e-9 * (1.0 + e.centre.cwiseAbs().maxCoeff() + rmax);
+    e.lo.array() -= pad;
+    e.hi.array() += pad;
+}
+
+// The least distance between the boxes of a and b: at most that of any of their points.
+double box_distance(const Shape& a, const Shape& b) {
+    const Vec2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
+    return gap.norm();
+}
+
 Shape shape_of(const PathSegment& s, int plane) {
     const PlaneAxes a = plane_axes(plane);
     Shape out;
     out.start = {s.start[a.first], s.start[a.second]};
     out.end = {s.end[a.first], s.end[a.second]};
     out.arc = s.kind == SegmentKind::kArc && s.plane == plane;
+    out.lo = out.start.cwiseMin(out.end);
+    out.hi = out.start.cwiseMax(out.end);
     if (!out.arc) {
         out.length = (out.end - out.start).norm();
         return out;
@@ -78,6 +115,7 @@ Shape shape_of(const PathSegment& s, int plane) {
     out.sweep = s.ccw ? turn : -turn;
     set_arc_terms(out);
     out.length = turn * 0.5 * (out.r0 + out.r1);  // u0.norm() + u1.norm()
+    add_arc_to_box(out);
     return out;
 }
 
@@ -424,10 +462,22 @@ struct SelfApproachCheck::Grid {
     void index(List& list, std::size_t at) const {
         const auto item = static_cast<std::uint32_t>(at);
         std::uint32_t n = 0;
-        for_samples(list.items[at].shape, [&](const Vec2& p) {
-            list.cells.add(cell_key(index_of(p.x()), index_of(p.y())), item);
-            ++n;
-        });
+        // A short element: every cell of its box (its samples lie in it), no more than four.
+        const Shape& e = list.items[at].shape;
+        const std::int64_t i0 = index_of(e.lo.x()), i1 = index_of(e.hi.x());
+        const std::int64_t j0 = index_of(e.lo.y()), j1 = index_of(e.hi.y());
+        if ((i1 - i0 + 1) * (j1 - j0 + 1) <= 4) {
+            for (std::int64_t i = i0; i <= i1; ++i)
+                for (std::int64_t j = j0; j <= j1; ++j, ++n) list.cells.add(cell_key(i, j), item);
+        } else {
+            std::uint64_t last = 0;
+            for_samples(e, [&](const Vec2& p) {
+                const std::uint64_t key = cell_key(index_of(p.x()), index_of(p.y()));
+                if (n == 0 || key != last) list.cells.add(key, item);
+                last = key;
+                ++n;
+            });
+        }
         list.items[at].samples = n;
         list.samples += n;
     }
@@ -472,18 +522,27 @@ struct SelfApproachCheck::Grid {
     const std::vector<std::uint32_t>& near(const List& list, const Shape& e, double r) {
         found.clear();
         const double reach = r + 0.5 * cell;
-        // The cells within reach of each sample, less those of the sample before (a path
-        // moves on by half a cell per sample: most of its cells were looked at already).
-        std::int64_t pi0 = 1, pi1 = 0, pj0 = 1, pj1 = 0;  // none
-        for_samples(e, [&](const Vec2& p) {
-            const std::int64_t i0 = index_of(p.x() - reach), i1 = index_of(p.x() + reach);
-            const std::int64_t j0 = index_of(p.y() - reach), j1 = index_of(p.y() + reach);
-            for (std::int64_t i = i0; i <= i1; ++i)
-                for (std::int64_t j = j0; j <= j1; ++j)
-                    if (i < pi0 || i > pi1 || j < pj0 || j > pj1)
-                        list.cells.append(cell_key(i, j), found);
-            pi0 = i0, pi1 = i1, pj0 = j0, pj1 = j1;
-        });
+        // A short element: the cells of its box widened by the reach (a superset of those
+        // within reach of its samples; its samples lie in its box). A long one: the cells
+        // within reach of each sample, less those of the sample before (a path moves on by
+        // half a cell per sample: most of its cells were looked at already).
+        const std::int64_t bi0 = index_of(e.lo.x() - reach), bi1 = index_of(e.hi.x() + reach);
+        const std::int64_t bj0 = index_of(e.lo.y() - reach), bj1 = index_of(e.hi.y() + reach);
+        if ((bi1 - bi0 + 1) * (bj1 - bj0 + 1) <= 16) {
+            for (std::int64_t i = bi0; i <= bi1; ++i)
+                for (std::int64_t j = bj0; j <= bj1; ++j) list.cells.append(cell_key(i, j), found);
+        } else {
+            std::int64_t pi0 = 1, pi1 = 0, pj0 = 1, pj1 = 0;  // none
+            for_samples(e, [&](const Vec2& p) {
+                const std::int64_t i0 = index_of(p.x() - reach), i1 = index_of(p.x() + reach);
+                const std::int64_t j0 = index_of(p.y() - reach), j1 = index_of(p.y() + reach);
+                for (std::int64_t i = i0; i <= i1; ++i)
+                    for (std::int64_t j = j0; j <= j1; ++j)
+                        if (i < pi0 || i > pi1 || j < pj0 || j > pj1)
+                            list.cells.append(cell_key(i, j), found);
+                pi0 = i0, pi1 = i1, pj0 = j0, pj1 = j1;
+            });
+        }
         std::sort(found.begin(), found.end());
         found.erase(std::unique(found.begin(), found.end()), found.end());
         return found;
@@ -812,6 +871,7 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
 bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, double r, int plane,
                                const Shape& contour, const BlockRef& contour_block,
                                double threshold, SelfApproachFinding& f) {
+    if (box_distance(path, contour) >= threshold + kApartMargin) return false;
     if (closed(pair_of(path_block, contour_block))) return false;
     // Proved apart: no point of the path is as near as the threshold, so the search below
     // would find none (every distance it computes is that of a point of the path to a point of
