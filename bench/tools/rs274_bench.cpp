@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // `apcictl run --json FILE` against LinuxCNC's interpreter `rs274` writing its canonical output
-// to a file, side by side on the same 100,000-block G41 contour of lines and arcs
-// (contour_program.h), whole processes, ten runs of each (alternating, so a change of the
-// machine's load falls on both; each after a sync, so neither pays for the other's writeback),
-// in one benchmark run. Counters: the medians of wall and user
+// to a file, side by side on the same 100,000-block G41 program of lines and arcs, whole
+// processes, ten runs of each (alternating, so a change of the machine's load falls on both;
+// each after a sync, so neither pays for the other's writeback), in one benchmark run. Two
+// programs, one benchmark each: BM_ApcictlVsRs274, the contour that repeats one star
+// (contour_program.h), and BM_ApcictlVsRs274Walk, the walk that never repeats itself
+// (walk_program.h). Counters: the medians of wall and user
 // CPU time (wait4 rusage) of each, the ratio rs274 / apcictl of each (how many times faster
 // apcictl is), and apcictl's peak RSS. Target (docs/performance.md): ratio >= 10, RSS < 50 MB.
 //
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "contour_program.h"
+#include "walk_program.h"
 
 namespace {
 
@@ -125,7 +128,9 @@ struct Scratch {
     std::string path(const char* name) const { return dir + "/" + name; }
 };
 
-void BM_ApcictlVsRs274(benchmark::State& state) {
+// Times `apcictl run` on `ours` against `rs274` on `theirs` (the same path in its dialect).
+void compare(benchmark::State& state, const apci::bench::ContourProgram& ours,
+             const apci::bench::ContourProgram& theirs) {
     const char* env_root = std::getenv("APCI_LINUXCNC_ROOT");
     const std::string root = env_root != nullptr && *env_root ? env_root : APCI_LINUXCNC_ROOT;
     const std::string rs274 = root + "/usr/bin/rs274";
@@ -140,9 +145,6 @@ void BM_ApcictlVsRs274(benchmark::State& state) {
         state.SkipWithError("cannot make a scratch directory under $TMPDIR");
         return;
     }
-    using apci::bench::Dialect;
-    const auto ours = apci::bench::contour_program(kBlocks, Dialect::kApcictl);
-    const auto theirs = apci::bench::contour_program(kBlocks, Dialect::kLinuxCnc);
     if (!write_file(scratch.path("contour.nc"), ours.text) ||
         !write_file(scratch.path("contour.tools"), apci::bench::contour_tools()) ||
         !write_file(scratch.path("contour.ngc"), theirs.text) ||
@@ -213,7 +215,22 @@ void BM_ApcictlVsRs274(benchmark::State& state) {
     state.counters["apcictl_peak_rss_MB"] = static_cast<double>(rss_kb) / 1024.0;
 }
 
+// The contour that repeats one star of 24 elements, turn after turn.
+void BM_ApcictlVsRs274(benchmark::State& state) {
+    using apci::bench::Dialect;
+    compare(state, apci::bench::contour_program(kBlocks, Dialect::kApcictl),
+            apci::bench::contour_program(kBlocks, Dialect::kLinuxCnc));
+}
+
+// The walk along +X that never repeats itself (every element new to the self-approach check).
+void BM_ApcictlVsRs274Walk(benchmark::State& state) {
+    using apci::bench::Dialect;
+    compare(state, apci::bench::walk_program(kBlocks, Dialect::kApcictl),
+            apci::bench::walk_program(kBlocks, Dialect::kLinuxCnc));
+}
+
 BENCHMARK(BM_ApcictlVsRs274)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ApcictlVsRs274Walk)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 
