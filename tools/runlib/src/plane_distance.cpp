@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace apci::run::plane {
 namespace {
@@ -185,22 +186,17 @@ namespace {
 // how far the element's own points may lie from it (`off`).
 struct Piece {
     bool arc = false;
+    double t0 = 0.0, t1 = 1.0;
     Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // a line's ends
     Circle circle;
     double off = 0.0;
 };
 
-// The unit direction of the element's angle at t: at its ends, from its end points (as its
-// angles were computed from them); within, from the angle.
-Vec2 direction_at(const Element& e, double t) {
-    if (t == 0.0 && e.r0 > 0.0) return (e.start - e.centre) / e.r0;
-    if (t == 1.0 && e.r1 > 0.0) return (e.end - e.centre) / e.r1;
-    const double phi = e.phi0 + t * e.sweep;
-    return {std::cos(phi), std::sin(phi)};
-}
-
-Piece piece_of(const Element& e, double t0, double t1) {
+// The part [t0, t1] of e; for an arc with the unit directions of its angle at t0 and t1.
+Piece piece_of(const Element& e, double t0, double t1, const Vec2& from, const Vec2& to) {
     Piece p;
+    p.t0 = t0;
+    p.t1 = t1;
     if (!e.arc) {
         const Vec2 d = e.end - e.start;
         p.a = t0 == 0.0 ? e.start : e.start + t0 * d;
@@ -211,9 +207,30 @@ Piece piece_of(const Element& e, double t0, double t1) {
     const double dr = e.r1 - e.r0;
     const Arc arc{e.centre, e.r0 + 0.5 * (t0 + t1) * dr, e.phi0 + t0 * e.sweep,
                   (t1 - t0) * e.sweep};
-    p.circle = circle_of(arc, direction_at(e, t0), direction_at(e, t1));
+    p.circle = circle_of(arc, from, to);
     p.off = 0.5 * (t1 - t0) * std::abs(dr);
     return p;
+}
+
+// All of e: an arc's end directions from its end points (as its angles were computed from them).
+Piece whole(const Element& e) {
+    if (!e.arc || e.r0 <= 0.0 || e.r1 <= 0.0) {
+        const double phi1 = e.phi0 + e.sweep;
+        return piece_of(e, 0.0, 1.0, Vec2(std::cos(e.phi0), std::sin(e.phi0)),
+                        Vec2(std::cos(phi1), std::sin(phi1)));
+    }
+    return piece_of(e, 0.0, 1.0, (e.start - e.centre) / e.r0, (e.end - e.centre) / e.r1);
+}
+
+// The two halves of a part of e.
+std::array<Piece, 2> halves(const Element& e, const Piece& p) {
+    const double m = 0.5 * (p.t0 + p.t1);
+    Vec2 at = Vec2::Zero();
+    if (e.arc) {
+        const double phi = e.phi0 + m * e.sweep;
+        at = {std::cos(phi), std::sin(phi)};
+    }
+    return {piece_of(e, p.t0, m, p.circle.from, at), piece_of(e, m, p.t1, at, p.circle.to)};
 }
 
 double between(const Piece& p, const Piece& q) {
@@ -227,30 +244,30 @@ double between(const Piece& p, const Piece& q) {
 
 bool apart(const Element& a, const Element& b, double limit) noexcept {
     struct Job {
-        double a0, a1, b0, b1;
+        Piece p, q;
     };
     // Each step takes one job and leaves at most two: the stack never holds more than the
-    // steps allowed, plus one.
-    std::array<Job, kMaxApartSteps + 1> stack{};
-    std::size_t size = 0;
-    stack[size++] = Job{0.0, 1.0, 0.0, 1.0};
-    for (int step = 0; size > 0; ++step) {
+    // steps allowed, plus one. Its memory is kept by the thread from one call to the next.
+    thread_local std::vector<Job> stack;
+    stack.clear();
+    stack.push_back(Job{whole(a), whole(b)});
+    for (int step = 0; !stack.empty(); ++step) {
         if (step >= kMaxApartSteps) return false;
-        const Job j = stack[--size];
-        const Piece p = piece_of(a, j.a0, j.a1), q = piece_of(b, j.b0, j.b1);
-        const double d = between(p, q);
-        const double off = p.off + q.off;
+        const Job j = stack.back();
+        stack.pop_back();
+        const double d = between(j.p, j.q);
+        const double off = j.p.off + j.q.off;
         if (d - off >= limit) continue;  // this part is apart
         // A pair of points of the elements within the limit, or no room left to prove it.
         if (d + off < limit || off < 1e-12) return false;
-        if (p.off >= q.off) {
-            const double m = 0.5 * (j.a0 + j.a1);
-            stack[size++] = Job{j.a0, m, j.b0, j.b1};
-            stack[size++] = Job{m, j.a1, j.b0, j.b1};
+        if (j.p.off >= j.q.off) {
+            const auto [first, second] = halves(a, j.p);
+            stack.push_back(Job{first, j.q});
+            stack.push_back(Job{second, j.q});
         } else {
-            const double m = 0.5 * (j.b0 + j.b1);
-            stack[size++] = Job{j.a0, j.a1, j.b0, m};
-            stack[size++] = Job{j.a0, j.a1, m, j.b1};
+            const auto [first, second] = halves(b, j.q);
+            stack.push_back(Job{j.p, first});
+            stack.push_back(Job{j.p, second});
         }
     }
     return true;
