@@ -67,18 +67,14 @@ void set_arc_terms(Shape& e) {
 void add_arc_to_box(Shape& e) {
     const double rmax = std::max(e.r0, e.r1);
     const double turn = std::abs(e.sweep);
+    static constexpr double kAxes[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
     for (int k = 0; k < 4; ++k) {
         const double axis = k * 0.5 * std::numbers::pi;  // +x, +y, -x, -y
         double along = e.sweep >= 0 ? axis - e.phi0 : e.phi0 - axis;
         along = std::fmod(along, kTwoPi);
         if (along < 0) along += kTwoPi;
         if (along > turn) continue;
-        const Vec2 p = e.centre + rmax * Vec2(k == 0   ? 1
-                                              : k == 2 ? -1
-                                                       : 0,
-                                              k == 1   ? 1
-                                              : k == 3 ? -1
-                                                       : 0);
+        const Vec2 p = e.centre + rmax * Vec2(kAxes[k][0], kAxes[k][1]);
         e.lo = e.lo.cwiseMin(p);
         e.hi = e.hi.cwiseMax(p);
     }
@@ -424,7 +420,7 @@ struct SelfApproachCheck::Grid {
         // Paths: the approach. It starts where the tool stands, often within r of its own
         // contour, so it is checked against the other stretches' contours only.
         bool approach = false;
-        std::uint32_t samples = 0;  // of it in the grid (set by add)
+        std::uint32_t entries = 0;  // cells it is listed in (set by index)
     };
     // Items kept in order, the oldest first: `first` is the number (counted over the plane's
     // whole run) of items[0].
@@ -433,7 +429,7 @@ struct SelfApproachCheck::Grid {
         std::uint64_t first = 0;
         CellIndex cells;
         KeySet keys;
-        std::size_t samples = 0;  // of its items
+        std::size_t entries = 0;  // of its items
         std::uint64_t next() const { return first + items.size(); }
         // The item numbered `id`, or null where it was let go.
         Item* at(std::uint64_t id) {
@@ -444,7 +440,7 @@ struct SelfApproachCheck::Grid {
     double cell = 0.0;   // fixed by the first stretch in this plane
     double max_r = 0.0;  // the largest tool radius of its paths
     std::size_t window = kWindow;
-    std::size_t sample_budget = kSampleBudget;
+    std::size_t entry_budget = kEntryBudget;
     List contour, path;
     bool truncated = false;  // items were let go
 
@@ -478,24 +474,24 @@ struct SelfApproachCheck::Grid {
                 ++n;
             });
         }
-        list.items[at].samples = n;
-        list.samples += n;
+        list.items[at].entries = n;
+        list.entries += n;
     }
 
     // Adds an item (its geometry's key is in list.keys already). At 2 * window items or
-    // 2 * sample_budget samples in either list, the items of the oldest elements are let go
-    // from both, so that at most `window` items and `sample_budget` samples remain in this one
+    // 2 * entry_budget entries in either list, the items of the oldest elements are let go
+    // from both, so that at most `window` items and `entry_budget` entries remain in this one
     // (at least its latest item). An element's contour and its paths go together: a repeat of
     // geometry let go is checked afresh against what remains.
     void add(List& list, const Item& item) {
         list.items.push_back(item);
         index(list, list.items.size() - 1);
-        if (list.items.size() < 2 * window && list.samples < 2 * sample_budget) return;
+        if (list.items.size() < 2 * window && list.entries < 2 * entry_budget) return;
         std::size_t at = list.items.size() - 1;
-        std::size_t samples = list.items[at].samples;
+        std::size_t entries = list.items[at].entries;
         while (at > 0 && list.items.size() - at < window &&
-               samples + list.items[at - 1].samples <= sample_budget)
-            samples += list.items[--at].samples;
+               entries + list.items[at - 1].entries <= entry_budget)
+            entries += list.items[--at].entries;
         keep_from(list.items[at].index);
     }
 
@@ -508,7 +504,7 @@ struct SelfApproachCheck::Grid {
             l->items.erase(l->items.begin(), kept);
             l->cells.clear();
             l->keys.clear();
-            l->samples = 0;
+            l->entries = 0;
             for (std::size_t at = 0; at < l->items.size(); ++at) {
                 index(*l, at);
                 l->keys.insert(l->items[at].key);
@@ -516,9 +512,10 @@ struct SelfApproachCheck::Grid {
         }
     }
 
-    // Positions of the items of `list` with a sample within r + cell / 2 of a sample of e:
-    // every item that has a point closer than r to a point of e. Ascending; valid until the
-    // next call.
+    // Positions of the items of `list` in a cell within r + cell / 2 of a sample of e (or of
+    // its box): every item that has a point closer than r to a point of e (an item is listed
+    // in every cell of its box, or of a sample of it, and its samples are half a cell apart),
+    // and others. Ascending; valid until the next call.
     const std::vector<std::uint32_t>& near(const List& list, const Shape& e, double r) {
         found.clear();
         const double reach = r + 0.5 * cell;
@@ -607,8 +604,8 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
 
 }  // namespace
 
-SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t sample_budget)
-    : window_(std::max<std::size_t>(window, 1)), sample_budget_(sample_budget) {}
+SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budget)
+    : window_(std::max<std::size_t>(window, 1)), entry_budget_(entry_budget) {}
 SelfApproachCheck::~SelfApproachCheck() = default;
 
 namespace {
@@ -618,7 +615,7 @@ template <typename G>
 [[gnu::noinline]] G& create(std::unique_ptr<G>& grid, std::size_t window, std::size_t budget) {
     grid = std::make_unique<G>();
     grid->window = window;
-    grid->sample_budget = budget;
+    grid->entry_budget = budget;
     return *grid;
 }
 
@@ -627,7 +624,7 @@ template <typename G>
 // Inline where it is called (once or twice a segment): a load and a test.
 [[gnu::always_inline]] inline SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
-    if (!g) return create(g, window_, sample_budget_);
+    if (!g) return create(g, window_, entry_budget_);
     return *g;
 }
 

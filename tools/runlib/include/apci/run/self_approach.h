@@ -22,7 +22,7 @@
 // checked once). A pair that is proved apart by exact line and arc distances is not searched.
 // Memory is bounded: per plane, each executed segment is compared with at least the last
 // `window` distinct programmed elements and each element with the paths of at least as many,
-// fewer where they are long (at most kSampleBudget grid samples); at most twice as many are kept,
+// fewer where they are long (at most kEntryBudget grid entries); at most twice as many are kept,
 // and where some were let go the check says so.
 #pragma once
 
@@ -55,17 +55,18 @@ std::string describe(const SelfApproachFinding& f);
 class SelfApproachCheck {
   public:
     // The elements each is compared with, at least (distinct geometry, per plane), where they
-    // take no more than kSampleBudget samples of the grid (one per half cell: the tool radius of
-    // the plane's first stretch, at least 0.25 mm, of length).
+    // take no more than kEntryBudget entries of the grid (an element is listed in each cell of
+    // its box, at most four, or of a sample of it every half cell: the tool radius of the
+    // plane's first stretch, at least 0.25 mm, of length).
     static constexpr std::size_t kWindow = std::size_t{1} << 14;
-    static constexpr std::size_t kSampleBudget = std::size_t{1} << 17;
+    static constexpr std::size_t kEntryBudget = std::size_t{1} << 17;
     // Each pair of blocks is reported once; at most this many pairs.
     static constexpr std::size_t kMaxFindings = 1000;
     // How much closer than the tool radius a path may come: the compensation's path tolerance.
     static constexpr double kTolerance = 1e-4;
 
     explicit SelfApproachCheck(std::size_t window = kWindow,
-                               std::size_t sample_budget = kSampleBudget);
+                               std::size_t entry_budget = kEntryBudget);
     ~SelfApproachCheck();
     SelfApproachCheck(const SelfApproachCheck&) = delete;
     SelfApproachCheck& operator=(const SelfApproachCheck&) = delete;
@@ -129,7 +130,7 @@ class SelfApproachCheck {
     bool seen_ = false;   // a segment was executed
     static constexpr std::uint64_t kNone = ~std::uint64_t{0};
     std::size_t window_ = kWindow;
-    std::size_t sample_budget_ = kSampleBudget;
+    std::size_t entry_budget_ = kEntryBudget;
     std::vector<SelfApproachFinding> held_;  // against latest_, until it is known not the departure
     std::uint64_t latest_ = kNone;  // grid id (Grid::List numbering) of the stretch's latest
                                     // element of new geometry, in plane_
