@@ -2,6 +2,7 @@
 // `apcictl run` as a process on the embedded emulator: [ISG-OTC-EN]'s wr_quad_disc.nc, one program per corner
 // type (docs/figures/), errors with block and name, parse errors, exit codes, the outputs.
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <pty.h>
 #include <stdlib.h>
@@ -16,15 +17,16 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include "plate_program.h"
 #include "apci/run/path.h"
 #include "apci/run/self_approach.h"
+#include "plate_program.h"
 #include "process.h"
 #include "rwmos/comp3d/compensation.h"
 #include "rwmos/geometry/element.h"
@@ -1424,6 +1426,118 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     EXPECT_TRUE(truncated);
     EXPECT_EQ(std::count_if(found.begin(), found.end(), involves_n30), 0);
     EXPECT_LE(most_kept, 16u);
+}
+
+TEST_F(ApcictlRun, SelfApproachGridFindsWhatComparingEveryPairFinds) {
+    // Random G41 contours as CAM writes them (3 decimals; lines and arcs from 0.6 to 26 mm, so
+    // that both short elements, listed by their box, and long ones, listed by samples, come;
+    // crossing themselves, and running back alongside after sharp turns) run through apcictl
+    // (tool radius 0.5 mm); their programmed elements and executed segments fed to the check
+    // with its grid, and to the check that compares every pair. The findings must be the same,
+    // to the bit, and the run's warnings as many. (With the grid's reach halved, this fails.)
+    std::mt19937_64 rng(424242);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto r3 = [](double v) { return std::round(v * 1000.0) / 1000.0; };
+    int with_findings = 0, total_findings = 0;
+    for (int program = 0; program < 40; ++program) {
+        std::string text = "N10 D1 F2000\nN20 G0 X0 Y0\n";
+        std::vector<apci::run::PathSegment> programmed;
+        double x = 0, y = 0, heading = 0;
+        bool long_line = false;  // the element before is a line of 6 mm or more
+        int n = 30;
+        for (int k = 0; k < 60; ++k, n += 10) {
+            // Now and then a sharp turn between two long lines, after which the contour runs
+            // back alongside itself.
+            const bool sharp = long_line && u(rng) < 0.3;
+            const double pick = u(rng);
+            const double len = sharp        ? 6 + 8 * u(rng)
+                               : pick < 0.3 ? 0.6 + 0.6 * u(rng)
+                               : pick < 0.7 ? 1.2 + 5 * u(rng)
+                                            : 6 + 20 * u(rng);
+            heading +=
+                sharp ? (u(rng) < 0.5 ? -1 : 1) * (2.6 + 0.3 * u(rng)) : 1.8 * (u(rng) - 0.5);
+            long_line = false;
+            apci::run::PathSegment s;
+            s.block.number = n;
+            s.start = {x, y, 0};
+            const char* head = k == 0 ? "G41 " : "";
+            if (k == 0 || sharp || u(rng) < 0.5) {
+                const double nx = r3(x + len * std::cos(heading)),
+                             ny = r3(y + len * std::sin(heading));
+                if (std::hypot(nx - x, ny - y) < 0.005) continue;
+                text += fmt::format("N{} {}G1 X{:.3f} Y{:.3f}\n", n, head, nx, ny);
+                long_line = len >= 6;
+                s.end = {nx, ny, 0};
+                x = nx, y = ny;
+            } else {
+                // An arc of radius len / turn about a centre to the left or right.
+                const double turn = std::min(0.2 + 2.5 * u(rng), len / 1.5);
+                const double radius = len / turn;
+                const bool ccw = u(rng) < 0.5;
+                const double side = ccw ? 1.0 : -1.0;
+                const double cx = r3(x - side * radius * std::sin(heading));
+                const double cy = r3(y + side * radius * std::cos(heading));
+                const double a0 = std::atan2(y - cy, x - cx) + side * turn;
+                const double rr = std::hypot(x - cx, y - cy);
+                const double nx = r3(cx + rr * std::cos(a0)), ny = r3(cy + rr * std::sin(a0));
+                if (std::hypot(nx - x, ny - y) < 0.005) continue;
+                text += fmt::format("N{} {} X{:.3f} Y{:.3f} I{:.3f} J{:.3f}\n", n,
+                                    ccw ? "G3" : "G2", nx, ny, r3(cx - x), r3(cy - y));
+                s.kind = apci::run::SegmentKind::kArc;
+                s.ccw = ccw;
+                s.center = {cx, cy, 0};
+                s.end = {nx, ny, 0};
+                heading += side * turn;
+                x = nx, y = ny;
+            }
+            programmed.push_back(s);
+        }
+        text +=
+            fmt::format("N{} G40 G1 X{:.3f} Y{:.3f}\nN{} M30\n", n, r3(x + 5), r3(y + 5), n + 10);
+        const std::string prog = write("random.nc", text);
+        std::remove(path("out.json").c_str());
+        last_ = apcictl({"run", prog, "--json", path("out.json"), "--tools", tools(0.5)});
+        if (!exists(path("out.json"))) continue;
+        const json doc = json::parse(read_text(path("out.json")));
+        const json& segments = doc.at("segments");
+        const auto check_with = [&](apci::run::SelfApproachCheck::Candidates candidates) {
+            apci::run::SelfApproachCheck check(apci::run::SelfApproachCheck::kWindow,
+                                               apci::run::SelfApproachCheck::kEntryBudget,
+                                               candidates);
+            std::vector<apci::run::SelfApproachFinding> found;
+            std::size_t next = 0;
+            const auto execute_to = [&](std::int64_t block) {
+                for (; next < segments.size() &&
+                       segments[next].at("block").get<std::int64_t>() <= block;
+                     ++next)
+                    check.executed(executed_segment(segments[next]), found);
+            };
+            check.begin(0.5, 17);
+            for (std::size_t k = 0; k < programmed.size(); ++k) {
+                check.programmed(programmed[k], found);
+                if (k > 0) execute_to(programmed[k - 1].block.number);
+            }
+            check.end(found);
+            execute_to(n + 10);
+            return found;
+        };
+        const auto grid = check_with(apci::run::SelfApproachCheck::Candidates::kGrid);
+        EXPECT_EQ(grid.size(), doc.value("warnings", json::array()).size());
+        const auto all = check_with(apci::run::SelfApproachCheck::Candidates::kAll);
+        SCOPED_TRACE(text);
+        ASSERT_EQ(grid.size(), all.size());
+        for (std::size_t i = 0; i < grid.size(); ++i) {
+            EXPECT_EQ(grid[i].path_block.number, all[i].path_block.number);
+            EXPECT_EQ(grid[i].contour_block.number, all[i].contour_block.number);
+            EXPECT_EQ(grid[i].distance, all[i].distance);
+            EXPECT_EQ(grid[i].where, all[i].where);
+        }
+        with_findings += !grid.empty();
+        total_findings += static_cast<int>(grid.size());
+    }
+    // The programs run and come near themselves: the comparison is not of empty lists only.
+    EXPECT_GE(with_findings, 20);
+    EXPECT_GE(total_findings, 200);
 }
 
 TEST_F(ApcictlRun, AProgramLongerThanTheSelfApproachWindowGetsANotice) {

@@ -430,6 +430,7 @@ struct SelfApproachCheck::Grid {
         CellIndex cells;
         KeySet keys;
         std::size_t entries = 0;  // of its items
+        std::size_t sampled = 0;  // items listed by samples (the others by their box)
         std::uint64_t next() const { return first + items.size(); }
         // The item numbered `id`, or null where it was let go.
         Item* at(std::uint64_t id) {
@@ -441,6 +442,7 @@ struct SelfApproachCheck::Grid {
     double max_r = 0.0;  // the largest tool radius of its paths
     std::size_t window = kWindow;
     std::size_t entry_budget = kEntryBudget;
+    bool all = false;  // near() answers every item (Candidates::kAll)
     List contour, path;
     bool truncated = false;  // items were let go
 
@@ -466,6 +468,7 @@ struct SelfApproachCheck::Grid {
             for (std::int64_t i = i0; i <= i1; ++i)
                 for (std::int64_t j = j0; j <= j1; ++j, ++n) list.cells.add(cell_key(i, j), item);
         } else {
+            ++list.sampled;
             std::uint64_t last = 0;
             for_samples(e, [&](const Vec2& p) {
                 const std::uint64_t key = cell_key(index_of(p.x()), index_of(p.y()));
@@ -505,6 +508,7 @@ struct SelfApproachCheck::Grid {
             l->cells.clear();
             l->keys.clear();
             l->entries = 0;
+            l->sampled = 0;
             for (std::size_t at = 0; at < l->items.size(); ++at) {
                 index(*l, at);
                 l->keys.insert(l->items[at].key);
@@ -512,19 +516,27 @@ struct SelfApproachCheck::Grid {
         }
     }
 
-    // Positions of the items of `list` in a cell within r + cell / 2 of a sample of e (or of
-    // its box): every item that has a point closer than r to a point of e (an item is listed
-    // in every cell of its box, or of a sample of it, and its samples are half a cell apart),
-    // and others. Ascending; valid until the next call.
+    // Positions of the items of `list` that may have a point closer than r to a point of e:
+    // every one that has, and others. Ascending; valid until the next call. An item listed by
+    // its box is listed in every cell holding a point of it; one listed by its samples (half a
+    // cell apart along it) has each point within a quarter cell of a listed one.
     const std::vector<std::uint32_t>& near(const List& list, const Shape& e, double r) {
         found.clear();
-        const double reach = r + 0.5 * cell;
-        // A short element: the cells of its box widened by the reach (a superset of those
-        // within reach of its samples; its samples lie in its box). A long one: the cells
-        // within reach of each sample, less those of the sample before (a path moves on by
-        // half a cell per sample: most of its cells were looked at already).
-        const std::int64_t bi0 = index_of(e.lo.x() - reach), bi1 = index_of(e.hi.x() + reach);
-        const std::int64_t bj0 = index_of(e.lo.y() - reach), bj1 = index_of(e.hi.y() + reach);
+        if (all) {
+            for (std::size_t i = 0; i < list.items.size(); ++i)
+                found.push_back(static_cast<std::uint32_t>(i));
+            return found;
+        }
+        const double box_reach = r + (list.sampled > 0 ? 0.25 * cell : 0.0);
+        // A short element: the cells within reach of its box. A long one: the cells within
+        // reach of each sample, a quarter cell more (its points are that near a sample), less
+        // those of the sample before (a path moves on by half a cell per sample: most of its
+        // cells were looked at already).
+        const std::int64_t bi0 = index_of(e.lo.x() - box_reach);
+        const std::int64_t bi1 = index_of(e.hi.x() + box_reach);
+        const std::int64_t bj0 = index_of(e.lo.y() - box_reach);
+        const std::int64_t bj1 = index_of(e.hi.y() + box_reach);
+        const double reach = box_reach + 0.25 * cell;
         if ((bi1 - bi0 + 1) * (bj1 - bj0 + 1) <= 16) {
             for (std::int64_t i = bi0; i <= bi1; ++i)
                 for (std::int64_t j = bj0; j <= bj1; ++j) list.cells.append(cell_key(i, j), found);
@@ -604,18 +616,23 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
 
 }  // namespace
 
-SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budget)
-    : window_(std::max<std::size_t>(window, 1)), entry_budget_(entry_budget) {}
+SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budget,
+                                     Candidates candidates)
+    : window_(std::max<std::size_t>(window, 1)),
+      entry_budget_(entry_budget),
+      candidates_(candidates) {}
 SelfApproachCheck::~SelfApproachCheck() = default;
 
 namespace {
 
 // A plane's grid at its first use: out of line, so that grid() is a load and a test.
 template <typename G>
-[[gnu::noinline]] G& create(std::unique_ptr<G>& grid, std::size_t window, std::size_t budget) {
+[[gnu::noinline]] G& create(std::unique_ptr<G>& grid, std::size_t window, std::size_t budget,
+                            bool all) {
     grid = std::make_unique<G>();
     grid->window = window;
     grid->entry_budget = budget;
+    grid->all = all;
     return *grid;
 }
 
@@ -624,7 +641,7 @@ template <typename G>
 // Inline where it is called (once or twice a segment): a load and a test.
 [[gnu::always_inline]] inline SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
-    if (!g) return create(g, window_, entry_budget_);
+    if (!g) return create(g, window_, entry_budget_, candidates_ == Candidates::kAll);
     return *g;
 }
 

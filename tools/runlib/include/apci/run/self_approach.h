@@ -65,8 +65,12 @@ class SelfApproachCheck {
     // How much closer than the tool radius a path may come: the compensation's path tolerance.
     static constexpr double kTolerance = 1e-4;
 
+    // Where a path's candidates come from: the grid, or (a reference for tests, quadratic)
+    // every element kept, and the same for an element's.
+    enum class Candidates { kGrid, kAll };
     explicit SelfApproachCheck(std::size_t window = kWindow,
-                               std::size_t entry_budget = kEntryBudget);
+                               std::size_t entry_budget = kEntryBudget,
+                               Candidates candidates = Candidates::kGrid);
     ~SelfApproachCheck();
     SelfApproachCheck(const SelfApproachCheck&) = delete;
     SelfApproachCheck& operator=(const SelfApproachCheck&) = delete;
@@ -131,6 +135,7 @@ class SelfApproachCheck {
     static constexpr std::uint64_t kNone = ~std::uint64_t{0};
     std::size_t window_ = kWindow;
     std::size_t entry_budget_ = kEntryBudget;
+    Candidates candidates_ = Candidates::kGrid;
     std::vector<SelfApproachFinding> held_;  // against latest_, until it is known not the departure
     std::uint64_t latest_ = kNone;  // grid id (Grid::List numbering) of the stretch's latest
                                     // element of new geometry, in plane_
