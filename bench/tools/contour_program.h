@@ -74,6 +74,45 @@ inline void append_number(std::string& out, double v) {
     out += s;
 }
 
+// A program's text block by block: N numbers in our dialect (rs274's blocks are counted, not
+// numbered), the set-up up to G41 and the end.
+struct ProgramText {
+    ContourProgram& program;
+    bool ours;
+    std::size_t n = 0;  // blocks written
+    // The next block's text, its N number written.
+    std::string& begin() {
+        ++n;
+        if (ours) {
+            program.text += 'N';
+            program.text += std::to_string(n);
+            program.text += ' ';
+        }
+        return program.text;
+    }
+    // "%name.nc" and the set-up block (ours) or rs274's set-up lines, the rapid to the start
+    // (`rapid`, a block's text) and G41.
+    void header(const char* name, const std::string& rapid) {
+        if (ours) {
+            program.text += '%';
+            program.text += name;
+            program.text += ".nc\n";
+            begin() += "G17 G90 G26 F3000 D1\n";
+        } else {
+            program.text += "G21 G17 G90 G40 G49 G64\nT1 M6\nF3000\n";
+            n += 3;
+        }
+        begin() += rapid + '\n';
+        begin() += "G41\n";
+    }
+    // G40 and the program's end.
+    void footer() {
+        begin() += "G40\n";
+        begin() += ours ? "M30\n" : "M2\n";
+        program.blocks = n;
+    }
+};
+
 }  // namespace detail
 
 // One turn: the 24 elements from (90, 50) round to (90, 50), the first a line (its Z added by
@@ -160,34 +199,13 @@ inline ContourProgram contour_program(std::size_t blocks, Dialect dialect,
                                       std::uint64_t seed = kContourSeed) {
     const std::vector<std::string> turn = contour_turn(seed);
     ContourProgram p;
-    std::string& s = p.text;
-    s.reserve(blocks * 32);
-    const bool ours = dialect == Dialect::kApcictl;
-    std::size_t n = 0;  // blocks written
-    const auto begin_block = [&] {
-        ++n;
-        if (ours) {
-            s += 'N';
-            s += std::to_string(n);
-            s += ' ';
-        }
-    };
-    if (ours) {
-        s += "%contour.nc\n";
-        begin_block();
-        s += "G17 G90 G26 F3000 D1\n";
-    } else {
-        s += "G21 G17 G90 G40 G49 G64\nT1 M6\nF3000\n";
-        n += 3;
-    }
-    begin_block();
-    s += "G0 X90 Y50 Z0\n";
-    begin_block();
-    s += "G41\n";
+    p.text.reserve(blocks * 32);
+    detail::ProgramText w{p, dialect == Dialect::kApcictl};
+    w.header("contour", "G0 X90 Y50 Z0");
     constexpr std::size_t kFooter = 2;
-    for (std::size_t t = 0; n + turn.size() + kFooter <= blocks; ++t) {
+    for (std::size_t t = 0; w.n + turn.size() + kFooter <= blocks; ++t) {
         for (std::size_t k = 0; k < turn.size(); ++k) {
-            begin_block();
+            std::string& s = w.begin();
             s += turn[k];
             if (k == 0) {
                 s += " Z";
@@ -196,11 +214,7 @@ inline ContourProgram contour_program(std::size_t blocks, Dialect dialect,
             s += '\n';
         }
     }
-    begin_block();
-    s += "G40\n";
-    begin_block();
-    s += ours ? "M30\n" : "M2\n";
-    p.blocks = n;
+    w.footer();
     return p;
 }
 

@@ -202,42 +202,18 @@ inline ContourProgram walk_program(std::size_t blocks, Dialect dialect,
     ContourProgram p;
     if (blocks <= kWalkFrameBlocks || blocks > kWalkMaxBlocks) return p;
     const std::vector<std::string> elements = walk_elements(blocks - kWalkFrameBlocks, seed);
-    std::string& s = p.text;
-    s.reserve(blocks * 36);
-    const bool ours = dialect == Dialect::kApcictl;
-    std::size_t n = 0;  // blocks written
-    const auto begin_block = [&] {
-        ++n;
-        if (ours) {
-            s += 'N';
-            s += std::to_string(n);
-            s += ' ';
-        }
-    };
-    if (ours) {
-        s += "%walk.nc\n";
-        begin_block();
-        s += "G17 G90 G26 F3000 D1\n";
-    } else {
-        s += "G21 G17 G90 G40 G49 G64\nT1 M6\nF3000\n";
-        n += 3;
-    }
-    begin_block();
-    s += "G0 X";
-    detail::append_number(s, detail::kWalkStartX);
-    s += " Y0 Z0\n";
-    begin_block();
-    s += "G41\n";
+    p.text.reserve(blocks * 36);
+    detail::ProgramText w{p, dialect == Dialect::kApcictl};
+    std::string rapid = "G0 X";
+    detail::append_number(rapid, detail::kWalkStartX);
+    rapid += " Y0 Z0";
+    w.header("walk", rapid);
     for (const std::string& e : elements) {
-        begin_block();
+        std::string& s = w.begin();
         s += e;
         s += '\n';
     }
-    begin_block();
-    s += "G40\n";
-    begin_block();
-    s += ours ? "M30\n" : "M2\n";
-    p.blocks = n;
+    w.footer();
     return p;
 }
 
