@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "process.h"
+#include "scratch_dir.h"
 
 namespace {
 
@@ -212,24 +213,9 @@ TEST(WalkProgram, KeepsItsRules) {
     EXPECT_NEAR(corners / elements, 0.65, 0.08);
 }
 
-// A scratch directory, removed with what the test left in it.
-struct Scratch {
-    std::string dir;
-    Scratch() {
-        const char* tmp = std::getenv("TMPDIR");
-        std::string templ =
-            std::string(tmp != nullptr && *tmp ? tmp : "/tmp") + "/apci-walk-test-XXXXXX";
-        if (::mkdtemp(templ.data()) != nullptr) dir = templ;
-    }
-    ~Scratch() {
-        if (dir.empty()) return;
-        std::remove((dir + "/walk.tools").c_str());
-        ::rmdir(dir.c_str());
-    }
-};
 
 TEST(WalkProgram, FirstBlocksRunInApcictl) {
-    Scratch scratch;
+    test_support::ScratchDir scratch("apci-walk-test-");
     ASSERT_FALSE(scratch.dir.empty());
     const std::string tools = scratch.dir + "/walk.tools";
     std::FILE* f = std::fopen(tools.c_str(), "w");

@@ -14,6 +14,7 @@
 
 #include "linuxcnc.h"
 #include "process.h"
+#include "scratch_dir.h"
 #include "walk_program.h"
 
 namespace {
@@ -52,23 +53,9 @@ std::string slight_corner(double i, double j, const char* arc_end, const char* l
     return s;
 }
 
-struct Scratch {
-    std::string dir;
-    Scratch() {
-        const char* tmp = std::getenv("TMPDIR");
-        std::string templ =
-            std::string(tmp != nullptr && *tmp ? tmp : "/tmp") + "/apci-walk-rs274-XXXXXX";
-        if (::mkdtemp(templ.data()) != nullptr) dir = templ;
-    }
-    ~Scratch() {
-        if (dir.empty()) return;
-        std::remove((dir + "/walk.tools").c_str());
-        ::rmdir(dir.c_str());
-    }
-};
 
 test_support::ProcessResult run_ours(const std::string& program) {
-    Scratch scratch;
+    test_support::ScratchDir scratch("apci-walk-rs274-");
     if (scratch.dir.empty()) return {};
     const std::string tools = scratch.dir + "/walk.tools";
     std::FILE* f = std::fopen(tools.c_str(), "w");
