@@ -1339,7 +1339,8 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     // N30 runs along y = 0; the contour goes up, back along y = 50 in 14 steps, down at x = 30
     // and along y = 1.5 (N...: X20): its path (r 1, G41) is 0.5 from N30, and N30's path 0.5
     // from it. The check finds both with its window (16,384 elements); with a window of 4 it
-    // has let N30 go by then, says so (truncated) and keeps no more than 4 * 4 items.
+    // has let N30 go by then, says so (truncated) and keeps no more than 2 * 4 elements and 8 * 4
+    // paths.
     std::string prog =
         "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\nN30 G1 X100 Y0\nN40 G1 X100 Y50\n";
     std::vector<apci::run::PathSegment> programmed;
@@ -1425,7 +1426,7 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     found = check_with(4, truncated, most_kept);
     EXPECT_TRUE(truncated);
     EXPECT_EQ(std::count_if(found.begin(), found.end(), involves_n30), 0);
-    EXPECT_LE(most_kept, 16u);
+    EXPECT_LE(most_kept, 10u * 4u);
 }
 
 TEST_F(ApcictlRun, SelfApproachGridFindsWhatComparingEveryPairFinds) {
@@ -1553,8 +1554,71 @@ TEST_F(ApcictlRun, AProgramLongerThanTheSelfApproachWindowGetsANotice) {
     ASSERT_EQ(doc.at("notices").size(), 1u) << doc.at("notices").dump();
     EXPECT_EQ(doc.at("notices")[0].at("code"), "SelfApproachTruncated");
     EXPECT_TRUE(contains(doc.at("notices")[0].at("message").get<std::string>(),
-                         "compared each with the 16384 distinct elements before it"))
+                         "from here on the self-approach check compared each compensated element "
+                         "in G17 only with the 16384 distinct elements before it"))
         << doc.at("notices")[0].dump();
+    // Where: the block that let the first go, at twice the window (the program's 32,768th
+    // element, on line 32,770: the G41 block's move on line 3 is the first).
+    EXPECT_EQ(doc.at("notices")[0].at("line"), 32770) << doc.at("notices")[0].dump();
+    EXPECT_TRUE(contains(last_.out, "notice: line 32770: from here on the self-approach check"))
+        << last_.out;
+}
+
+TEST_F(ApcictlRun, SelfApproachTakesTheFirstMoveInThePlaneForTheApproach) {
+    // A rectangle whose last side runs back over the lead-in N50 (which the check exempts, as
+    // the board runs N50 as the approach). A plunge in Z after G41, or G41 G1 to the point where
+    // the tool stands, does not move in the plane: N50 stays the approach, with no warning. (The
+    // plunge used to be taken for the approach, and N80 warned against N50.)
+    const std::string tail =
+        "N50 G1 X60 Y0 F1000\nN60 G1 X60 Y40\nN70 G1 X0 Y40\nN80 G1 X0 Y0\n"
+        "N90 G40 G1 X-10 Y-10\nN100 M30\n";
+    for (const std::string& start :
+         {std::string("N30 G41\n"), std::string("N30 G41\nN40 G1 Z-1 F300\n"),
+          std::string("N30 G41 G1 X0 Y0 F1000\n")}) {
+        SCOPED_TRACE(start);
+        const json doc =
+            run_json(write("ap.nc", "N10 G17 G90 D1\nN20 G0 X0 Y0 Z0\n" + start + tail),
+                     {"--tools", tools(5.0)});
+        EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+        EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+        bool n50_approach = false;
+        for (const auto& seg : doc.at("segments"))
+            n50_approach |= seg.at("block") == 50 && seg.at("role") == "approach";
+        EXPECT_TRUE(n50_approach);
+    }
+}
+
+TEST_F(ApcictlRun, MoreThanAThousandPairsComingNearAreCappedWithANotice) {
+    // 100 circles (four quarter arcs each, its own G42 stretch, tool radius 5) whose radii grow
+    // by 0.001 mm: each circle's path comes within 5 - 0.001 k of the k circles before it.
+    // The first 1,000 pairs are warned; the run says there were more, and stops looking (the
+    // run stays quick however many circles follow).
+    std::string prog = "N10 G17 G90 D1\nN20 G0 X30 Y-30 Z0\n";
+    int n = 30;
+    for (int k = 0; k < 100; ++k) {
+        const double r = 10.0 + 0.001 * k;
+        prog += fmt::format("N{} G42 G1 X{:.3f} Y0 F6000\n", n, r), n += 10;
+        const double pts[4][2] = {{0, r}, {-r, 0}, {0, -r}, {r, 0}};
+        double sx = r, sy = 0;
+        for (const auto& p : pts) {
+            prog +=
+                fmt::format("N{} G3 X{:.3f} Y{:.3f} I{:.3f} J{:.3f}\n", n, p[0], p[1], -sx, -sy);
+            n += 10, sx = p[0], sy = p[1];
+        }
+        prog += fmt::format("N{} G40 G1 X30 Y-30\n", n), n += 10;
+    }
+    prog += fmt::format("N{} M30\n", n);
+    const json doc = run_json(write("circles.nc", prog), {"--tools", tools(5.0)});
+    EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+    EXPECT_EQ(doc.at("warnings").size(), apci::run::SelfApproachCheck::kMaxFindings);
+    ASSERT_TRUE(doc.contains("notices"));
+    bool capped = false;
+    for (const auto& notice : doc.at("notices"))
+        capped |= notice.at("code") == "SelfApproachCapped" &&
+                  contains(notice.at("message").get<std::string>(),
+                           "more than 1000 pairs of blocks come near each other: the first 1000 "
+                           "are reported");
+    EXPECT_TRUE(capped) << doc.at("notices").dump();
 }
 
 TEST_F(ApcictlRun, RapidMovesAreRapidAndUncompensated) {

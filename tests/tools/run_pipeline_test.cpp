@@ -601,10 +601,11 @@ TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
         }
         void self_approach_programmed() override { calls.emplace_back("check"); }
         void self_approach_end() override { calls.emplace_back("end"); }
-        void self_approach_results(std::vector<RunError>& warnings, bool& truncated) override {
+        void self_approach_results(std::vector<RunError>& warnings,
+                                   apci::run::SelfApproachLimits& limits) override {
             calls.emplace_back("results");
             warnings.push_back(RunError{BlockRef{42, 0}, "SelfApproach", "from the sink"});
-            truncated = false;
+            limits = {};
         }
     } sink;
     auto tools =

@@ -225,16 +225,23 @@ void Execution::finish() {
     if (set_up_ && out.otc_present) otc_.check_out_tool();
     if (set_up_) variables_.read_all();
     out.tools_after = tools_mut;
-    bool truncated = self_approach_.truncated();
-    if (sink_checks_) sink_.self_approach_results(out.warnings, truncated);
-    if (truncated)
-        out.notices.push_back(
-            RunError{{},
-                     "SelfApproachTruncated",
-                     fmt::format("the program has more compensated elements in a plane than the "
-                                 "self-approach check keeps: it compared each with the {} distinct "
-                                 "elements before it (fewer where they are long), not with all",
-                                 SelfApproachCheck::kWindow)});
+    SelfApproachLimits limits = self_approach_.limits();
+    if (sink_checks_) sink_.self_approach_results(out.warnings, limits);
+    if (limits.truncated)
+        out.notices.push_back(RunError{
+            limits.truncated_at, "SelfApproachTruncated",
+            fmt::format("from here on the self-approach check compared each compensated element "
+                        "in G{} only with the {} distinct elements before it (fewer where they "
+                        "are long): where the path comes back near the contour further back than "
+                        "that, it was not checked",
+                        limits.truncated_plane, SelfApproachCheck::kWindow)});
+    if (limits.capped)
+        out.notices.push_back(RunError{
+            {},
+            "SelfApproachCapped",
+            fmt::format("more than {0} pairs of blocks come near each other: the first {0} are "
+                        "reported, and the self-approach check stopped looking there",
+                        SelfApproachCheck::kMaxFindings)});
     if (out.tc_present) tc_.read_registers();
     out.totals.cycles = cycles_seen_ - start_cycle_;
     if (!comp_plane_seen) out.plot_plane = plane;

@@ -255,10 +255,11 @@ void PipelinedSink::warn_findings() {
     findings_.clear();
 }
 
-void PipelinedSink::self_approach_results(std::vector<RunError>& warnings, bool& truncated) {
+void PipelinedSink::self_approach_results(std::vector<RunError>& warnings,
+                                          SelfApproachLimits& limits) {
     sync();
     warnings.insert(warnings.end(), check_warnings_.begin(), check_warnings_.end());
-    truncated = truncated || (check_ && check_->truncated());
+    if (check_) limits = check_->limits();
 }
 
 void PipelinedSink::finish() {

@@ -445,6 +445,8 @@ struct SelfApproachCheck::Grid {
     bool all = false;  // near() answers every item (Candidates::kAll)
     List contour, path;
     bool truncated = false;  // items were let go
+    BlockRef truncated_at{};  // the block whose element or path let the first go
+    int plane = 17;
 
     static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
         return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
@@ -481,21 +483,35 @@ struct SelfApproachCheck::Grid {
         list.entries += n;
     }
 
-    // Adds an item (its geometry's key is in list.keys already). At 2 * window items or
-    // 2 * entry_budget entries in either list, the items of the oldest elements are let go
-    // from both, so that at most `window` items and `entry_budget` entries remain in this one
-    // (at least its latest item). An element's contour and its paths go together: a repeat of
-    // geometry let go is checked afresh against what remains.
+    // The most items `list` keeps: `window` elements; their paths (an element's offset and the
+    // transitions at its corners, a few) at most kPathsPerElement times as many.
+    static constexpr std::size_t kPathsPerElement = 4;
+    std::size_t most(const List& list) const {
+        return &list == &contour ? window : kPathsPerElement * window;
+    }
+    // The element from which on `list` holds at most most(list) items and entry_budget entries
+    // (at least its latest item).
+    std::uint64_t first_kept(const List& list) const {
+        if (list.items.empty()) return 0;
+        std::size_t at = list.items.size() - 1;
+        std::size_t entries = list.items[at].entries;
+        while (at > 0 && list.items.size() - at < most(list) &&
+               entries + list.items[at - 1].entries <= entry_budget)
+            entries += list.items[--at].entries;
+        return list.items[at].index;
+    }
+
+    // Adds an item (its geometry's key is in list.keys already). At twice most(list) items or
+    // twice entry_budget entries in either list, the items of the oldest elements are let go
+    // from both, so that each holds at most most() items and entry_budget entries. An element's
+    // contour and its paths go together: a repeat of geometry let go is checked afresh against
+    // what remains.
     void add(List& list, const Item& item) {
         list.items.push_back(item);
         index(list, list.items.size() - 1);
-        if (list.items.size() < 2 * window && list.entries < 2 * entry_budget) return;
-        std::size_t at = list.items.size() - 1;
-        std::size_t entries = list.items[at].entries;
-        while (at > 0 && list.items.size() - at < window &&
-               entries + list.items[at - 1].entries <= entry_budget)
-            entries += list.items[--at].entries;
-        keep_from(list.items[at].index);
+        if (list.items.size() < 2 * most(list) && list.entries < 2 * entry_budget) return;
+        if (!truncated) truncated_at = item.block;
+        keep_from(std::max(first_kept(contour), first_kept(path)));
     }
 
     void keep_from(std::uint64_t element) {
@@ -627,9 +643,10 @@ namespace {
 
 // A plane's grid at its first use: out of line, so that grid() is a load and a test.
 template <typename G>
-[[gnu::noinline]] G& create(std::unique_ptr<G>& grid, std::size_t window, std::size_t budget,
-                            bool all) {
+[[gnu::noinline]] G& create(std::unique_ptr<G>& grid, int plane, std::size_t window,
+                            std::size_t budget, bool all) {
     grid = std::make_unique<G>();
+    grid->plane = plane;
     grid->window = window;
     grid->entry_budget = budget;
     grid->all = all;
@@ -641,7 +658,7 @@ template <typename G>
 // Inline where it is called (once or twice a segment): a load and a test.
 [[gnu::always_inline]] inline SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
-    if (!g) return create(g, window_, entry_budget_, candidates_ == Candidates::kAll);
+    if (!g) return create(g, plane, window_, entry_budget_, candidates_ == Candidates::kAll);
     return *g;
 }
 
@@ -649,6 +666,18 @@ bool SelfApproachCheck::truncated() const noexcept {
     for (const auto& g : grids_)
         if (g && g->truncated) return true;
     return false;
+}
+
+SelfApproachLimits SelfApproachCheck::limits() const {
+    SelfApproachLimits l;
+    for (const auto& g : grids_)
+        if (g && g->truncated && !l.truncated) {
+            l.truncated = true;
+            l.truncated_at = g->truncated_at;
+            l.truncated_plane = g->plane;
+        }
+    l.capped = capped_;
+    return l;
 }
 
 std::size_t SelfApproachCheck::kept() const noexcept {
@@ -759,7 +788,7 @@ void SelfApproachCheck::flush(std::vector<SelfApproachFinding>& out) {
 }
 
 void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
-    if (!active_ || r_ <= 0.0) return;
+    if (!active_ || r_ <= 0.0 || done()) return;
     if (s.kind != SegmentKind::kLine && s.kind != SegmentKind::kArc) return;
     const std::uint64_t index = next_index_++;
     pending_.push_back(Pending{s.block, index, stretch_, r_, plane_});
@@ -769,8 +798,15 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
         pending_head_ = 0;
     }
     Grid& g = grid(plane_);
-    const bool first = first_in_stretch_;
-    first_in_stretch_ = false;
+    // A move that stays where it is in the plane (a plunge in Z under G17, G41 G1 to the point
+    // the tool stands on) is no element of the contour; the stretch's first element, its
+    // approach, is the first that moves in the plane (as the board runs it).
+    const PlaneAxes axes = plane_axes(plane_);
+    const bool moves = (s.kind == SegmentKind::kArc && s.plane == plane_) ||
+                       std::hypot(s.end[axes.first] - s.start[axes.first],
+                                  s.end[axes.second] - s.start[axes.second]) > kFullCircle;
+    const bool first = first_in_stretch_ && moves;
+    if (moves) first_in_stretch_ = false;
     // The element before is not the last: what came near it counts.
     for (const SelfApproachFinding& f : held_) take(f, seen_ && same_block(f.path_block, current_), out);
     held_.clear();
@@ -813,6 +849,7 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         current_ = s.block;
         seen_ = true;
     }
+    if (done()) return;
     // The programmed element it belongs to: the first pending one of its block (executed
     // segments come in program order; transitions and the departure belong to the element
     // before, the approach to the first).
@@ -886,13 +923,21 @@ bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, do
                                const Shape& contour, const BlockRef& contour_block,
                                double threshold, SelfApproachFinding& f) {
     if (box_distance(path, contour) >= threshold + kApartMargin) return false;
-    if (closed(pair_of(path_block, contour_block))) return false;
+    const Pair pair = pair_of(path_block, contour_block);
+    // At kMaxFindings pairs given out, a new pair is only looked at until one is found.
+    const bool beyond = reported_.size() >= kMaxFindings && open_finding(pair) == nullptr &&
+                        std::find(reported_.begin(), reported_.end(), pair) == reported_.end();
+    if (closed(pair) && !(beyond && !capped_)) return false;
     // Proved apart: no point of the path is as near as the threshold, so the search below
     // would find none (every distance it computes is that of a point of the path to a point of
     // the element, at least the least distance).
     if (plane::apart(element_of(path), element_of(contour), threshold + kApartMargin)) return false;
     const Nearest n = least_distance(path, contour, threshold);
     if (n.distance >= threshold) return false;
+    if (beyond) {
+        capped_ = true;
+        return false;
+    }
     f = SelfApproachFinding{};
     f.path_block = path_block;
     f.contour_block = contour_block;

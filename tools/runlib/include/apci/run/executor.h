@@ -42,9 +42,10 @@
 #include "apci/nc/correction_table.h"
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
+#include "apci/run/cpu_placement.h"
 #include "apci/run/path.h"
 #include "apci/run/plc_script.h"
-#include "apci/run/cpu_placement.h"
+#include "apci/run/self_approach.h"
 #include "apci/run/summary.h"
 
 namespace apci::run {
@@ -108,11 +109,12 @@ class RunSink {
     }
     virtual void self_approach_programmed() {}
     virtual void self_approach_end() {}
-    // Appends the warnings so far, in order, and says whether the check was truncated; waits
+    // Appends the warnings so far, in order, and says what the check left out; waits
     // until the sink has had every call.
-    virtual void self_approach_results(std::vector<RunError>& warnings, bool& truncated) {
+    virtual void self_approach_results(std::vector<RunError>& warnings,
+                                       SelfApproachLimits& limits) {
         (void)warnings;
-        (void)truncated;
+        (void)limits;
     }
     // Blocks read so far by the execution pass, and bytes of the program (the stream's
     // offset()), as the stream said them with the last event executed (called every few

@@ -83,7 +83,8 @@ class PipelinedSink final : public RunSink {
     void self_approach_programmed() override;
     void self_approach_end() override;
     // Waits until the writer thread has had every event handed over (or stopped).
-    void self_approach_results(std::vector<RunError>& warnings, bool& truncated) override;
+    void self_approach_results(std::vector<RunError>& warnings,
+                               SelfApproachLimits& limits) override;
 
     // Hands over the last batch, waits until the inner sink has had every event, and ends the
     // writer thread. Rethrows the exception that stopped the writer, if one did. Idempotent.

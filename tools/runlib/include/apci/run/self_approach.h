@@ -52,6 +52,15 @@ struct SelfApproachFinding {
 // ...". The message of the run's warning (or error).
 std::string describe(const SelfApproachFinding& f);
 
+// What a check left out: elements let go (from `truncated_at`, in plane `truncated_plane`, each
+// element compared only with the window before it), and findings beyond kMaxFindings.
+struct SelfApproachLimits {
+    bool truncated = false;
+    BlockRef truncated_at{};
+    int truncated_plane = 17;
+    bool capped = false;  // more pairs came near than are reported
+};
+
 class SelfApproachCheck {
   public:
     // The elements each is compared with, at least (distinct geometry, per plane), where they
@@ -90,7 +99,11 @@ class SelfApproachCheck {
     // True when elements were let go (more than 2 * window came in a plane): an element is not
     // compared with those more than `window` distinct elements before it.
     bool truncated() const noexcept;
-    // The elements and paths kept, over all planes: at most 4 * window per plane.
+    // That, where it began, and whether more pairs than kMaxFindings came near (the check then
+    // stopped looking).
+    SelfApproachLimits limits() const;
+    // The elements and paths kept, over all planes: per plane at most 2 * window elements and
+    // 8 * window paths.
     std::size_t kept() const noexcept;
 
   private:
@@ -112,6 +125,10 @@ class SelfApproachCheck {
                 SelfApproachFinding& f);
     static Pair pair_of(const BlockRef& path, const BlockRef& contour);
     SelfApproachFinding* open_finding(const Pair& pair);
+    // kMaxFindings pairs were given out, one more came near, and none is open: no later call
+    // can change what the check gives out, and it does nothing more.
+    bool done() const noexcept { return capped_ && open_.empty(); }
+    bool capped_ = false;
     // The pair was given out (or kMaxFindings were): nothing more of it is looked at.
     bool closed(const Pair& pair);
     // A finding: the least distance of its pair while the pair is open; opened when its path
