@@ -435,7 +435,7 @@ std::vector<Example> examples() {
         e.stretches.push_back({radius_of(0.55), false});
         e.stretches.push_back({radius_of(0.5), false, true});  // "continue past edge"
         e.min_compared_mm = 5500;
-        e.warnings = 42;
+        e.warnings = 20;
         out.push_back(e);
     }
     {

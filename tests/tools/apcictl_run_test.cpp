@@ -1588,6 +1588,37 @@ TEST_F(ApcictlRun, SelfApproachTakesTheFirstMoveInThePlaneForTheApproach) {
     }
 }
 
+TEST_F(ApcictlRun, SelfApproachLeavesContoursBelowTheToolTipOut) {
+    // Two levels of a round boss milled from the top down (tool radius 5, G41 outside a
+    // clockwise circle): Z0 radius 20, then Z-1 radius 20.05 (a draft) or 19.95 (an undercut). The
+    // upper level's path comes within 4.95 mm of the lower contour, but the tool's tip at Z0 never
+    // reaches Z-1: no warning. The lower level's path comes within 4.95 mm of the upper contour
+    // with the undercut, and its flank cuts it: warnings. (Both levels warned before, the draft
+    // too.)
+    for (const double lower : {20.05, 19.95}) {
+        SCOPED_TRACE(lower);
+        std::string prog = "N10 G17 G90 D1 F1000\nN20 G0 X40 Y0 Z0\n";
+        prog += "N30 G41 G1 X20 Y0\nN40 G2 X20 Y0 I-20 J0\nN50 G40 G1 X40 Y0\n";
+        prog += fmt::format(
+            "N60 G1 Z-1\nN70 G41 G1 X{0:.2f} Y0\nN80 G2 X{0:.2f} Y0 I{1:.2f} J0\n"
+            "N90 G40 G1 X40 Y0\nN100 M30\n",
+            lower, -lower);
+        const json doc = run_json(write("levels.nc", prog), {"--tools", tools(5.0)});
+        EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+        const json warnings = doc.value("warnings", json::array());
+        if (lower > 20.0) {
+            EXPECT_TRUE(warnings.empty()) << warnings.dump();
+        } else {
+            // The lower level's approach (N70, to the circle's offset start) and its circle.
+            ASSERT_EQ(warnings.size(), 2u) << warnings.dump();
+            EXPECT_EQ(warnings[0].at("message").get<std::string>().substr(0, 69),
+                      "the tool path of N70 comes within 4.9500 mm of the contour at N40 (to");
+            EXPECT_EQ(warnings[1].at("message").get<std::string>().substr(0, 69),
+                      "the tool path of N80 comes within 4.9500 mm of the contour at N40 (to");
+        }
+    }
+}
+
 TEST_F(ApcictlRun, MoreThanAThousandPairsComingNearAreCappedWithANotice) {
     // 100 circles (four quarter arcs each, its own G42 stretch, tool radius 5) whose radii grow
     // by 0.001 mm: each circle's path comes within 5 - 0.001 k of the k circles before it.

@@ -40,6 +40,8 @@ struct detail::Shape {
     double r0 = 0.0, r1 = 0.0, phi0 = 0.0;
     // A box holding every point of it (corners lo, hi).
     Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
+    // Its lowest and highest coordinate on the plane's third axis (the tool's: Z under G17).
+    double low = 0.0, high = 0.0;
 };
 
 namespace {
@@ -97,6 +99,8 @@ Shape shape_of(const PathSegment& s, int plane) {
     out.arc = s.kind == SegmentKind::kArc && s.plane == plane;
     out.lo = out.start.cwiseMin(out.end);
     out.hi = out.start.cwiseMax(out.end);
+    out.low = std::min(s.start[a.third], s.end[a.third]);
+    out.high = std::max(s.start[a.third], s.end[a.third]);
     if (!out.arc) {
         out.length = (out.end - out.start).norm();
         return out;
@@ -922,6 +926,9 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
 bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, double r, int plane,
                                const Shape& contour, const BlockRef& contour_block,
                                double threshold, SelfApproachFinding& f) {
+    // The contour wholly below the tool's tip on all of the path: the tool does not reach down
+    // to it (it stands on the plane's positive side, its axis the third).
+    if (contour.high < path.low - kTolerance) return false;
     if (box_distance(path, contour) >= threshold + kApartMargin) return false;
     const Pair pair = pair_of(path_block, contour_block);
     // At kMaxFindings pairs given out, a new pair is only looked at until one is found.
