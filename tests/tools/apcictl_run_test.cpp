@@ -1339,7 +1339,7 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     // N30 runs along y = 0; the contour goes up, back along y = 50 in 14 steps, down at x = 30
     // and along y = 1.5 (N...: X20): its path (r 1, G41) is 0.5 from N30, and N30's path 0.5
     // from it. The check finds both with its window (16,384 elements); with a window of 4 it
-    // has let N30 go by then, says so (truncated) and keeps no more than 2 * 4 elements and 8 * 4
+    // has let N30 go by then, says so (truncated) and keeps no more than 2 * 4 elements and 6 * 4
     // paths.
     std::string prog =
         "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\nN30 G1 X100 Y0\nN40 G1 X100 Y50\n";
@@ -1426,7 +1426,7 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     found = check_with(4, truncated, most_kept);
     EXPECT_TRUE(truncated);
     EXPECT_EQ(std::count_if(found.begin(), found.end(), involves_n30), 0);
-    EXPECT_LE(most_kept, 10u * 4u);
+    EXPECT_LE(most_kept, 8u * 4u);
 }
 
 TEST_F(ApcictlRun, SelfApproachGridFindsWhatComparingEveryPairFinds) {
@@ -1585,6 +1585,76 @@ TEST_F(ApcictlRun, SelfApproachTakesTheFirstMoveInThePlaneForTheApproach) {
         for (const auto& seg : doc.at("segments"))
             n50_approach |= seg.at("block") == 50 && seg.at("role") == "approach";
         EXPECT_TRUE(n50_approach);
+    }
+}
+
+TEST_F(ApcictlRun, SelfApproachFindsTheSameAfterALargerToolMakesTheGridCoarser) {
+    // A first stretch with a 0.1 mm tool sets the grid's cells to 0.5 mm; the second, with a
+    // 5 mm tool, makes them 10 mm (every item listed again). Its path passes 3 mm from the first
+    // stretch's contour (N14), and its contour comes back alongside itself 6 mm away: what the
+    // run warns is what comparing every pair finds.
+    const std::string tools2 = write("t2.tools",
+                                     "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n"
+                                     "wz[2].gueltig 1\nwz[2].mass_einheit 1\nwz[2].radius 0.1\n");
+    const std::string prog =
+        "N10 G17 G90 F1000\nN11 D2\nN12 G0 X55 Y4 Z0\nN13 G41 G1 X60 Y8\nN14 G1 X70 Y8\n"
+        "N15 G1 X70 Y18\nN16 G40 G1 X75 Y20\nN17 D1\nN20 G0 X-10 Y10\nN30 G41 G1 X0 Y0\n"
+        "N40 G1 X100 Y0\nN50 G1 X120\nN60 G1 Y-30\nN70 G1 X-20\nN80 G1 Y-6\nN90 G1 X50\n"
+        "N100 G1 Y-50\nN110 G40 G1 X60 Y-60\nN120 M30\n";
+    const json doc = run_json(write("coarser.nc", prog), {"--tools", tools2});
+    EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+    const json warnings = doc.value("warnings", json::array());
+    ASSERT_FALSE(warnings.empty());
+    const auto line = [](int n, double x0, double y0, double x1, double y1) {
+        apci::run::PathSegment s;
+        s.block.number = n;
+        s.start = {x0, y0, 0};
+        s.end = {x1, y1, 0};
+        return s;
+    };
+    const std::vector<std::pair<double, std::vector<apci::run::PathSegment>>> stretches{
+        {0.1, {line(13, 55, 4, 60, 8), line(14, 60, 8, 70, 8), line(15, 70, 8, 70, 18)}},
+        {5.0,
+         {line(30, -10, 10, 0, 0), line(40, 0, 0, 100, 0), line(50, 100, 0, 120, 0),
+          line(60, 120, 0, 120, -30), line(70, 120, -30, -20, -30), line(80, -20, -30, -20, -6),
+          line(90, -20, -6, 50, -6), line(100, 50, -6, 50, -50)}}};
+    const json& segments = doc.at("segments");
+    const auto check_with = [&](apci::run::SelfApproachCheck::Candidates candidates) {
+        apci::run::SelfApproachCheck check(apci::run::SelfApproachCheck::kWindow,
+                                           apci::run::SelfApproachCheck::kEntryBudget, candidates);
+        std::vector<apci::run::SelfApproachFinding> found;
+        std::size_t next = 0;
+        const auto execute_to = [&](std::int64_t block) {
+            for (;
+                 next < segments.size() && segments[next].at("block").get<std::int64_t>() <= block;
+                 ++next)
+                check.executed(executed_segment(segments[next]), found);
+        };
+        for (const auto& [r, elements] : stretches) {
+            check.begin(r, 17);
+            for (std::size_t k = 0; k < elements.size(); ++k) {
+                check.programmed(elements[k], found);
+                if (k > 0) execute_to(elements[k - 1].block.number);
+            }
+            check.end(found);
+            execute_to(elements.back().block.number + 9);
+        }
+        execute_to(120);
+        return found;
+    };
+    const auto grid = check_with(apci::run::SelfApproachCheck::Candidates::kGrid);
+    const auto all = check_with(apci::run::SelfApproachCheck::Candidates::kAll);
+    ASSERT_EQ(grid.size(), warnings.size());
+    bool n40_near_n14 = false;
+    for (const auto& f : grid)
+        n40_near_n14 |= f.path_block.number == 40 && f.contour_block.number == 14;
+    EXPECT_TRUE(n40_near_n14);
+    ASSERT_EQ(all.size(), grid.size());
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+        EXPECT_EQ(grid[i].path_block.number, all[i].path_block.number);
+        EXPECT_EQ(grid[i].contour_block.number, all[i].contour_block.number);
+        EXPECT_EQ(grid[i].distance, all[i].distance);
+        EXPECT_EQ(grid[i].path_block.number, warnings[i].at("block").get<std::int64_t>());
     }
 }
 

@@ -489,7 +489,7 @@ struct SelfApproachCheck::Grid {
 
     // The most items `list` keeps: `window` elements; their paths (an element's offset and the
     // transitions at its corners, a few) at most kPathsPerElement times as many.
-    static constexpr std::size_t kPathsPerElement = 4;
+    static constexpr std::size_t kPathsPerElement = 3;
     std::size_t most(const List& list) const {
         return &list == &contour ? window : kPathsPerElement * window;
     }
@@ -525,14 +525,20 @@ struct SelfApproachCheck::Grid {
                                            [&](const Item& i) { return i.index >= element; });
             l->first += static_cast<std::uint64_t>(kept - l->items.begin());
             l->items.erase(l->items.begin(), kept);
-            l->cells.clear();
             l->keys.clear();
+            for (const Item& i : l->items) l->keys.insert(i.key);
+        }
+        reindex();
+    }
+
+    // The cells listed again, of every item kept (after some were let go, or for another cell
+    // size).
+    void reindex() {
+        for (List* l : {&contour, &path}) {
+            l->cells.clear();
             l->entries = 0;
             l->sampled = 0;
-            for (std::size_t at = 0; at < l->items.size(); ++at) {
-                index(*l, at);
-                l->keys.insert(l->items[at].key);
-            }
+            for (std::size_t at = 0; at < l->items.size(); ++at) index(*l, at);
         }
     }
 
@@ -654,6 +660,10 @@ template <typename G>
     grid->window = window;
     grid->entry_budget = budget;
     grid->all = all;
+    // The most each list holds, at once: memory a list does not fill is never touched (not
+    // resident), and none is copied as it grows.
+    grid->contour.items.reserve(2 * grid->most(grid->contour));
+    grid->path.items.reserve(2 * grid->most(grid->path));
     return *grid;
 }
 
@@ -699,7 +709,14 @@ void SelfApproachCheck::begin(double r, int plane) {
     plane_ = plane;
     ++stretch_;
     Grid& g = grid(plane);
-    if (g.cell == 0.0) g.cell = std::max(2.0 * r_, 0.5);
+    // Cells of twice the first stretch's tool radius; a tool more than twice as large as that
+    // makes them twice its radius, so that a lookup stays within a few cells.
+    if (g.cell == 0.0) {
+        g.cell = std::max(2.0 * r_, 0.5);
+    } else if (r_ > 2.0 * g.cell) {
+        g.cell = 2.0 * r_;
+        g.reindex();
+    }
     g.max_r = std::max(g.max_r, r_);
 }
 

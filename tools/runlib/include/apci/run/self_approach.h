@@ -103,7 +103,7 @@ class SelfApproachCheck {
     // stopped looking).
     SelfApproachLimits limits() const;
     // The elements and paths kept, over all planes: per plane at most 2 * window elements and
-    // 8 * window paths.
+    // 6 * window paths.
     std::size_t kept() const noexcept;
 
   private:
