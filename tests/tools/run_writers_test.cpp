@@ -399,6 +399,29 @@ TEST(RunSvg, ErrorMarkerNamesBlockAndError) {
     EXPECT_TRUE(contains(svg, ">line 12 CalcError</text>")) << svg;
 }
 
+TEST(RunSvg, WarningMarkersAreOrangeWithAnEntryOfTheirOwnInTheLegend) {
+    // A warning alone: an orange marker and "warning" in the legend, no "error".
+    SvgPlotWriter w;
+    w.programmed(line({0, 0, 0}, {10, 0, 0}));
+    w.warning_marker({70, 0}, {5, 0, 0}, "SelfApproach");
+    std::string svg = write_svg(w);
+    EXPECT_TRUE(contains(svg, "<circle class=\"warning\" cx=\"5\" cy=\"0\"")) << svg;
+    EXPECT_TRUE(contains(svg, "<text class=\"warning\"")) << svg;
+    EXPECT_TRUE(contains(svg, ">N70 SelfApproach</text>")) << svg;
+    EXPECT_TRUE(contains(svg, ">warning</text>")) << svg;
+    EXPECT_FALSE(contains(svg, ">error</text>")) << svg;
+    EXPECT_FALSE(contains(svg, "class=\"error\" cx")) << svg;
+    // With an error too: both entries, each with its sample.
+    SvgPlotWriter both;
+    both.programmed(line({0, 0, 0}, {10, 0, 0}));
+    both.warning_marker({70, 0}, {5, 0, 0}, "SelfApproach");
+    both.error_marker({80, 0}, {10, 0, 0}, "KorrError");
+    svg = write_svg(both);
+    EXPECT_TRUE(contains(svg, ">warning</text>")) << svg;
+    EXPECT_TRUE(contains(svg, ">error</text>")) << svg;
+    EXPECT_TRUE(contains(svg, "<circle class=\"error\" cx=\"10\" cy=\"0\"")) << svg;
+}
+
 TEST(RunSvg, ScaleBarAxesAndTitleOfThePlane) {
     SvgPlotWriter w;
     // G18: Z right, X up.

@@ -119,7 +119,7 @@ class Outputs final : public apci::run::RunSink {
         if (svg) svg->error_marker(e.block, where, e.code);
     }
     void warning(const RunError& w, const apci::run::Point& where) override {
-        if (svg) svg->error_marker(w.block, where, w.code);
+        if (svg) svg->warning_marker(w.block, where, w.code);
     }
     void progress(std::uint64_t blocks, std::uint64_t offset) override {
         const bool by_bytes = total_blocks == 0 && one_pass && program_bytes != 0;

@@ -456,11 +456,21 @@ void SvgPlotWriter::cycle(const Point& p) {
 }
 
 void SvgPlotWriter::error_marker(const BlockRef& block, const Point& where, std::string_view code) {
+    add_marker(block, where, code, false);
+}
+
+void SvgPlotWriter::warning_marker(const BlockRef& block, const Point& where,
+                                   std::string_view code) {
+    add_marker(block, where, code, true);
+}
+
+void SvgPlotWriter::add_marker(const BlockRef& block, const Point& where, std::string_view code,
+                               bool warning) {
     if (markers_.size() >= kMaxErrorMarkers) {
         ++markers_dropped_;
         return;
     }
-    markers_.push_back(Marker{block, where, std::string(code)});
+    markers_.push_back(Marker{block, where, std::string(code), warning});
     bounds_.add(where);
 }
 
@@ -498,14 +508,20 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     const std::string ranges =
         fmt::format("{} {} .. {}, {} {} .. {} mm", first, frame.text(frame.u0()),
                     frame.text(frame.u1()), second, frame.text(frame.v0()), frame.text(frame.v1()));
-    std::vector<std::string> legend;  // the layers drawn, then the error marker
+    std::vector<std::string> legend;  // the layers drawn, then the markers drawn
     for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer)
         if (counts_[layer] != 0) legend.emplace_back(layer_label(static_cast<PlotLayer>(layer)));
-    if (!markers_.empty() || markers_dropped_ != 0) {
-        legend.emplace_back(markers_dropped_ == 0
-                                ? std::string("error")
-                                : fmt::format("error ({} more not drawn)", markers_dropped_));
-    }
+    // The markers' kinds in the legend ("error", "warning"), the last with those not drawn.
+    std::vector<const char*> marker_kinds;
+    if (std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return !m.warning; }))
+        marker_kinds.push_back("error");
+    if (std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return m.warning; }))
+        marker_kinds.push_back("warning");
+    for (std::size_t k = 0; k < marker_kinds.size(); ++k)
+        legend.emplace_back(
+            k + 1 < marker_kinds.size() || markers_dropped_ == 0
+                ? std::string(marker_kinds[k])
+                : fmt::format("{} ({} more not drawn)", marker_kinds[k], markers_dropped_));
     double entry = 0.0;  // a legend entry: its sample (2 em), then its label
     for (const std::string& label : legend) entry = std::max(entry, 2.5 * font + width_of(label));
 
@@ -571,8 +587,10 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         ".transition {{ stroke: #e4572e; stroke-width: {2}; }}\n"
         "{8}"
         ".error {{ fill: none; stroke: #d00000; stroke-width: {1}; }}\n"
+        ".warning {{ fill: none; stroke: #e07b00; stroke-width: {1}; }}\n"
         "text {{ font-family: 'DejaVu Sans', sans-serif; font-size: {6}px; fill: #222222; }}\n"
         "text.error {{ fill: #d00000; stroke: none; }}\n"
+        "text.warning {{ fill: #b35f00; stroke: none; }}\n"
         ".frame {{ fill: none; stroke: #cccccc; stroke-width: {7}; }}\n"
         ".axis {{ fill: none; stroke: #222222; stroke-width: {0}; }}\n"
         "</style>\n",
@@ -607,15 +625,17 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         if (std::ferror(records_)) read_ok = false;
     }
 
-    // Error markers: a circle and "N80 KorrError".
+    // Error and warning markers: a circle and "N80 KorrError".
     for (const Marker& m : markers_) {
-        sink.append("<circle class=\"error\" cx=\"");
+        sink.append(m.warning ? "<circle class=\"warning\" cx=\""
+                              : "<circle class=\"error\" cx=\"");
         frame.number(sink, m.where[axes.first]);
         sink.append("\" cy=\"");
         frame.number(sink, -m.where[axes.second]);
         sink.print("\" r=\"{:.6g}\"/>\n", 0.9 * font);
         put_text(m.where[axes.first] + 1.2 * font, -m.where[axes.second] - 1.0 * font,
-                 " class=\"error\"", marker_label(m.block, m.code));
+                 m.warning ? " class=\"warning\"" : " class=\"error\"",
+                 marker_label(m.block, m.code));
     }
 
     // Footer: the scale bar and its length, the coordinate ranges below, the plane's axes at
@@ -639,7 +659,7 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         at(ax + 0.25 * font));
     put_text(ax + len + 0.3 * font, ay + 0.35 * font, "", std::string(1, first));
     put_text(ax - 0.35 * font, ay - len - 0.4 * font, "", std::string(1, second));
-    // Legend: a short sample of each layer drawn, then the error marker.
+    // Legend: a short sample of each layer drawn, then each kind of marker drawn.
     std::size_t slot = 0;
     for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
         if (counts_[layer] == 0) continue;
@@ -651,12 +671,13 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         put_text(lx + 2.5 * font, ly + 0.35 * font, "", legend[slot]);
         ++slot;
     }
-    if (slot < legend.size()) {
+    for (const char* kind : marker_kinds) {
         const double lx = bx + static_cast<double>(slot % per_row) * (entry + gap);
         const double ly = row_y(slot / per_row);
-        sink.print("<circle class=\"error\" cx=\"{}\" cy=\"{}\" r=\"{:.6g}\"/>\n", at(lx + font),
+        sink.print("<circle class=\"{}\" cx=\"{}\" cy=\"{}\" r=\"{:.6g}\"/>\n", kind, at(lx + font),
                    at(ly), 0.5 * font);
         put_text(lx + 2.5 * font, ly + 0.35 * font, "", legend[slot]);
+        ++slot;
     }
     sink.append("</svg>\n");
     return sink.flush() && read_ok;

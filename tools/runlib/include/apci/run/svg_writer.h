@@ -70,6 +70,9 @@ class SvgPlotWriter {
     void cycle(const Point& p);
     // A red marker at `where` labelled "N80 KorrError".
     void error_marker(const BlockRef& block, const Point& where, std::string_view code);
+    // An orange one, for a warning ("N70 SelfApproach"). Errors and warnings have each their
+    // entry in the legend; at most kMaxErrorMarkers of both are drawn.
+    void warning_marker(const BlockRef& block, const Point& where, std::string_view code);
 
     // Writes the document, drawn in `plane` (17, 18, 19), titled `title`. True when written.
     bool finish(std::FILE* out, int plane, std::string_view title);
@@ -82,7 +85,9 @@ class SvgPlotWriter {
         BlockRef block;
         Point where;
         std::string code;
+        bool warning = false;
     };
+    void add_marker(const BlockRef& block, const Point& where, std::string_view code, bool warning);
     void record(PlotLayer layer, const PathSegment& s);
 
     std::FILE* records_ = nullptr;
