@@ -513,10 +513,11 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         if (counts_[layer] != 0) legend.emplace_back(layer_label(static_cast<PlotLayer>(layer)));
     // The markers' kinds in the legend ("error", "warning"), the last with those not drawn.
     std::vector<const char*> marker_kinds;
+    const bool warnings =
+        std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return m.warning; });
     if (std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return !m.warning; }))
         marker_kinds.push_back("error");
-    if (std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return m.warning; }))
-        marker_kinds.push_back("warning");
+    if (warnings) marker_kinds.push_back("warning");
     for (std::size_t k = 0; k < marker_kinds.size(); ++k)
         legend.emplace_back(
             k + 1 < marker_kinds.size() || markers_dropped_ == 0
@@ -587,17 +588,22 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
         ".transition {{ stroke: #e4572e; stroke-width: {2}; }}\n"
         "{8}"
         ".error {{ fill: none; stroke: #d00000; stroke-width: {1}; }}\n"
-        ".warning {{ fill: none; stroke: #e07b00; stroke-width: {1}; }}\n"
+        "{9}"
         "text {{ font-family: 'DejaVu Sans', sans-serif; font-size: {6}px; fill: #222222; }}\n"
         "text.error {{ fill: #d00000; stroke: none; }}\n"
-        "text.warning {{ fill: #b35f00; stroke: none; }}\n"
+        "{10}"
         ".frame {{ fill: none; stroke: #cccccc; stroke-width: {7}; }}\n"
         ".axis {{ fill: none; stroke: #222222; stroke-width: {0}; }}\n"
         "</style>\n",
         w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), kTextUnits, w(0.5),
         counts_[static_cast<std::size_t>(PlotLayer::kCycles)] == 0
             ? std::string()
-            : fmt::format(".cycles {{ stroke: #c2185b; stroke-width: {}; }}\n", w(1.0)));
+            : fmt::format(".cycles {{ stroke: #c2185b; stroke-width: {}; }}\n", w(1.0)),
+        // The warnings' style only where there are some (plots without stay as they were).
+        warnings
+            ? fmt::format(".warning {{ fill: none; stroke: #e07b00; stroke-width: {}; }}\n", w(1.6))
+            : std::string(),
+        warnings ? std::string("text.warning { fill: #b35f00; stroke: none; }\n") : std::string());
     sink.print("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"white\"/>\n", at(box_x),
                at(box_y), at(box_width), at(box_height));
     // Text in its own units (kTextUnits to the font size), placed and scaled into the drawing's,
