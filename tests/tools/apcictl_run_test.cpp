@@ -15,6 +15,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <random>
@@ -1237,6 +1238,15 @@ std::string fmt_message(int n, double d) {
     return text;
 }
 
+// A programmed line of block N<n> in the X-Y plane, as the check takes it.
+apci::run::PathSegment programmed_line(int n, double x0, double y0, double x1, double y1) {
+    apci::run::PathSegment s;
+    s.block.number = n;
+    s.start = {x0, y0, 0};
+    s.end = {x1, y1, 0};
+    return s;
+}
+
 // An executed segment of the JSON as the run's check takes it: block, role and rapids too.
 apci::run::PathSegment executed_segment(const json& s) {
     using apci::run::Role;
@@ -1279,13 +1289,7 @@ TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCir
         std::vector<apci::run::PathSegment> programmed;  // N25 .. (the check's elements)
         std::vector<std::tuple<int, double, Eigen::Vector2d>> expected;  // N, distance, where
     };
-    const auto line = [](int n, double x0, double y0, double x1, double y1) {
-        apci::run::PathSegment s;
-        s.block.number = n;
-        s.start = {x0, y0, 0};
-        s.end = {x1, y1, 0};
-        return s;
-    };
+    const auto line = programmed_line;
     apci::run::PathSegment circle = line(40, 20, 0, 20, 0);
     circle.kind = apci::run::SegmentKind::kArc;
     circle.center = {20, -10, 0};
@@ -1429,6 +1433,49 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     EXPECT_LE(most_kept, 8u * 4u);
 }
 
+// A compensated stretch as the check takes it: the tool radius and its programmed elements.
+using CheckStretch = std::pair<double, std::vector<apci::run::PathSegment>>;
+
+// The findings of a check fed as the run feeds it, in G17 (each element, then the executed
+// segments of the element before: one element of lookahead; a stretch's rest when it ends;
+// then every segment left), its candidates from the grid or every pair.
+std::vector<apci::run::SelfApproachFinding> feed_check(
+    const json& segments, const std::vector<CheckStretch>& stretches,
+    apci::run::SelfApproachCheck::Candidates candidates) {
+    apci::run::SelfApproachCheck check(apci::run::SelfApproachCheck::kWindow,
+                                       apci::run::SelfApproachCheck::kEntryBudget, candidates);
+    std::vector<apci::run::SelfApproachFinding> found;
+    std::size_t next = 0;
+    const auto execute_to = [&](std::int64_t block) {
+        for (; next < segments.size() && segments[next].at("block").get<std::int64_t>() <= block;
+             ++next)
+            check.executed(executed_segment(segments[next]), found);
+    };
+    for (const auto& [r, elements] : stretches) {
+        check.begin(r, 17);
+        for (std::size_t k = 0; k < elements.size(); ++k) {
+            check.programmed(elements[k], found);
+            if (k > 0) execute_to(elements[k - 1].block.number);
+        }
+        check.end(found);
+        if (!elements.empty()) execute_to(elements.back().block.number + 9);
+    }
+    execute_to(std::numeric_limits<std::int64_t>::max());
+    return found;
+}
+
+// The same findings in the same order, to the bit.
+void expect_same_findings(const std::vector<apci::run::SelfApproachFinding>& a,
+                          const std::vector<apci::run::SelfApproachFinding>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].path_block.number, b[i].path_block.number);
+        EXPECT_EQ(a[i].contour_block.number, b[i].contour_block.number);
+        EXPECT_EQ(a[i].distance, b[i].distance);
+        EXPECT_EQ(a[i].where, b[i].where);
+    }
+}
+
 TEST_F(ApcictlRun, SelfApproachGridFindsWhatComparingEveryPairFinds) {
     // Random G41 contours as CAM writes them (3 decimals; lines and arcs from 0.6 to 26 mm, so
     // that both short elements, listed by their box, and long ones, listed by samples, come;
@@ -1500,39 +1547,13 @@ TEST_F(ApcictlRun, SelfApproachGridFindsWhatComparingEveryPairFinds) {
         last_ = apcictl({"run", prog, "--json", path("out.json"), "--tools", tools(0.5)});
         if (!exists(path("out.json"))) continue;
         const json doc = json::parse(read_text(path("out.json")));
-        const json& segments = doc.at("segments");
-        const auto check_with = [&](apci::run::SelfApproachCheck::Candidates candidates) {
-            apci::run::SelfApproachCheck check(apci::run::SelfApproachCheck::kWindow,
-                                               apci::run::SelfApproachCheck::kEntryBudget,
-                                               candidates);
-            std::vector<apci::run::SelfApproachFinding> found;
-            std::size_t next = 0;
-            const auto execute_to = [&](std::int64_t block) {
-                for (; next < segments.size() &&
-                       segments[next].at("block").get<std::int64_t>() <= block;
-                     ++next)
-                    check.executed(executed_segment(segments[next]), found);
-            };
-            check.begin(0.5, 17);
-            for (std::size_t k = 0; k < programmed.size(); ++k) {
-                check.programmed(programmed[k], found);
-                if (k > 0) execute_to(programmed[k - 1].block.number);
-            }
-            check.end(found);
-            execute_to(n + 10);
-            return found;
-        };
-        const auto grid = check_with(apci::run::SelfApproachCheck::Candidates::kGrid);
+        const std::vector<CheckStretch> stretches{{0.5, programmed}};
+        const auto grid = feed_check(doc.at("segments"), stretches,
+                                     apci::run::SelfApproachCheck::Candidates::kGrid);
         EXPECT_EQ(grid.size(), doc.value("warnings", json::array()).size());
-        const auto all = check_with(apci::run::SelfApproachCheck::Candidates::kAll);
         SCOPED_TRACE(text);
-        ASSERT_EQ(grid.size(), all.size());
-        for (std::size_t i = 0; i < grid.size(); ++i) {
-            EXPECT_EQ(grid[i].path_block.number, all[i].path_block.number);
-            EXPECT_EQ(grid[i].contour_block.number, all[i].contour_block.number);
-            EXPECT_EQ(grid[i].distance, all[i].distance);
-            EXPECT_EQ(grid[i].where, all[i].where);
-        }
+        expect_same_findings(grid, feed_check(doc.at("segments"), stretches,
+                                              apci::run::SelfApproachCheck::Candidates::kAll));
         with_findings += !grid.empty();
         total_findings += static_cast<int>(grid.size());
     }
@@ -1605,57 +1626,24 @@ TEST_F(ApcictlRun, SelfApproachFindsTheSameAfterALargerToolMakesTheGridCoarser) 
     EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
     const json warnings = doc.value("warnings", json::array());
     ASSERT_FALSE(warnings.empty());
-    const auto line = [](int n, double x0, double y0, double x1, double y1) {
-        apci::run::PathSegment s;
-        s.block.number = n;
-        s.start = {x0, y0, 0};
-        s.end = {x1, y1, 0};
-        return s;
-    };
-    const std::vector<std::pair<double, std::vector<apci::run::PathSegment>>> stretches{
+    const auto line = programmed_line;
+    const std::vector<CheckStretch> stretches{
         {0.1, {line(13, 55, 4, 60, 8), line(14, 60, 8, 70, 8), line(15, 70, 8, 70, 18)}},
         {5.0,
          {line(30, -10, 10, 0, 0), line(40, 0, 0, 100, 0), line(50, 100, 0, 120, 0),
           line(60, 120, 0, 120, -30), line(70, 120, -30, -20, -30), line(80, -20, -30, -20, -6),
           line(90, -20, -6, 50, -6), line(100, 50, -6, 50, -50)}}};
-    const json& segments = doc.at("segments");
-    const auto check_with = [&](apci::run::SelfApproachCheck::Candidates candidates) {
-        apci::run::SelfApproachCheck check(apci::run::SelfApproachCheck::kWindow,
-                                           apci::run::SelfApproachCheck::kEntryBudget, candidates);
-        std::vector<apci::run::SelfApproachFinding> found;
-        std::size_t next = 0;
-        const auto execute_to = [&](std::int64_t block) {
-            for (;
-                 next < segments.size() && segments[next].at("block").get<std::int64_t>() <= block;
-                 ++next)
-                check.executed(executed_segment(segments[next]), found);
-        };
-        for (const auto& [r, elements] : stretches) {
-            check.begin(r, 17);
-            for (std::size_t k = 0; k < elements.size(); ++k) {
-                check.programmed(elements[k], found);
-                if (k > 0) execute_to(elements[k - 1].block.number);
-            }
-            check.end(found);
-            execute_to(elements.back().block.number + 9);
-        }
-        execute_to(120);
-        return found;
-    };
-    const auto grid = check_with(apci::run::SelfApproachCheck::Candidates::kGrid);
-    const auto all = check_with(apci::run::SelfApproachCheck::Candidates::kAll);
+    const auto grid =
+        feed_check(doc.at("segments"), stretches, apci::run::SelfApproachCheck::Candidates::kGrid);
     ASSERT_EQ(grid.size(), warnings.size());
     bool n40_near_n14 = false;
-    for (const auto& f : grid)
-        n40_near_n14 |= f.path_block.number == 40 && f.contour_block.number == 14;
-    EXPECT_TRUE(n40_near_n14);
-    ASSERT_EQ(all.size(), grid.size());
     for (std::size_t i = 0; i < grid.size(); ++i) {
-        EXPECT_EQ(grid[i].path_block.number, all[i].path_block.number);
-        EXPECT_EQ(grid[i].contour_block.number, all[i].contour_block.number);
-        EXPECT_EQ(grid[i].distance, all[i].distance);
+        n40_near_n14 |= grid[i].path_block.number == 40 && grid[i].contour_block.number == 14;
         EXPECT_EQ(grid[i].path_block.number, warnings[i].at("block").get<std::int64_t>());
     }
+    EXPECT_TRUE(n40_near_n14);
+    expect_same_findings(grid, feed_check(doc.at("segments"), stretches,
+                                          apci::run::SelfApproachCheck::Candidates::kAll));
 }
 
 TEST_F(ApcictlRun, SelfApproachLeavesContoursBelowTheToolTipOut) {
