@@ -246,29 +246,43 @@ bool apart(const Element& a, const Element& b, double limit) noexcept {
     struct Job {
         Piece p, q;
     };
+    // Apart, near, or to be halved: the part p of a against the part q of b.
+    enum class Verdict { kApart, kNear, kHalve };
+    const auto judge = [limit](const Piece& p, const Piece& q) {
+        const double d = between(p, q);
+        const double off = p.off + q.off;
+        if (d - off >= limit) return Verdict::kApart;
+        // A pair of points of the elements within the limit, or no room left to prove it.
+        if (d + off < limit || off < 1e-12) return Verdict::kNear;
+        return Verdict::kHalve;
+    };
+    // The whole elements first: most pairs are decided there, with no stack.
+    const Job whole_pair{whole(a), whole(b)};
+    const Verdict v = judge(whole_pair.p, whole_pair.q);
+    if (v != Verdict::kHalve) return v == Verdict::kApart;
     // Each step takes one job and leaves at most two: the stack never holds more than the
     // steps allowed, plus one. Its memory is kept by the thread from one call to the next.
     thread_local std::vector<Job> stack;
     stack.clear();
-    stack.push_back(Job{whole(a), whole(b)});
-    for (int step = 0; !stack.empty(); ++step) {
+    const auto halve = [&](const Job& j) {  // the part with more room, in two
+        if (j.p.off >= j.q.off) {
+            const auto [lower, upper] = halves(a, j.p);
+            stack.push_back(Job{lower, j.q});
+            stack.push_back(Job{upper, j.q});
+        } else {
+            const auto [lower, upper] = halves(b, j.q);
+            stack.push_back(Job{j.p, lower});
+            stack.push_back(Job{j.p, upper});
+        }
+    };
+    halve(whole_pair);
+    for (int step = 1; !stack.empty(); ++step) {
         if (step >= kMaxApartSteps) return false;
         const Job j = stack.back();
         stack.pop_back();
-        const double d = between(j.p, j.q);
-        const double off = j.p.off + j.q.off;
-        if (d - off >= limit) continue;  // this part is apart
-        // A pair of points of the elements within the limit, or no room left to prove it.
-        if (d + off < limit || off < 1e-12) return false;
-        if (j.p.off >= j.q.off) {
-            const auto [first, second] = halves(a, j.p);
-            stack.push_back(Job{first, j.q});
-            stack.push_back(Job{second, j.q});
-        } else {
-            const auto [first, second] = halves(b, j.q);
-            stack.push_back(Job{j.p, first});
-            stack.push_back(Job{j.p, second});
-        }
+        const Verdict w = judge(j.p, j.q);
+        if (w == Verdict::kNear) return false;
+        if (w == Verdict::kHalve) halve(j);
     }
     return true;
 }
