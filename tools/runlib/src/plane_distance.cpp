@@ -25,15 +25,13 @@ bool on_segment(double t) {
     return t >= 0.0 && t <= 1.0;
 }
 
-// An arc with what the distances ask of it computed once: its ends, the unit directions of its
-// ends from the centre, the sense of its turn, and whether it turns by more than half a circle.
+// An arc with what the distances ask of it computed once: its ends and the unit directions of
+// its ends from the centre.
 struct Circle {
     Vec2 centre, start, end;
     Vec2 from, to;  // unit directions of start and end from the centre
     double radius = 0.0;
-    double sense = 1.0;  // +1 counter-clockwise, -1 clockwise
-    bool whole = false;  // the whole circle
-    bool major = false;  // more than half a turn
+    double sweep = 0.0;
 };
 
 Circle circle_of(const Arc& a, const Vec2& from, const Vec2& to) {
@@ -44,9 +42,7 @@ Circle circle_of(const Arc& a, const Vec2& from, const Vec2& to) {
     c.to = to;
     c.start = a.centre + a.radius * from;
     c.end = a.centre + a.radius * to;
-    c.sense = a.sweep < 0.0 ? -1.0 : 1.0;
-    c.whole = std::abs(a.sweep) >= kTwoPi;
-    c.major = std::abs(a.sweep) > std::numbers::pi;
+    c.sweep = a.sweep;
     return c;
 }
 
@@ -56,15 +52,8 @@ Circle circle_of(const Arc& a) {
                      Vec2(std::cos(phi1), std::sin(phi1)));
 }
 
-// The direction v (from the centre) within the turn: on the turning side of the start and not
-// past the end; for more than half a turn, not within the rest of the circle. Decided by signs:
-// a direction within rounding of an end may go either way, where the end itself is a candidate
-// of every distance below.
 bool within(const Circle& c, const Vec2& v) {
-    if (c.whole) return true;
-    const double a = c.sense * cross(c.from, v), b = c.sense * cross(v, c.to);
-    if (c.major) return a >= 0.0 || b >= 0.0;
-    return a >= 0.0 && b >= 0.0;
+    return within_turn(c.from, c.to, c.sweep, v);
 }
 
 double point_circle(const Vec2& p, const Circle& c) {
@@ -136,16 +125,12 @@ double circle_circle(const Circle& a, const Circle& b) {
 
 }  // namespace
 
-Vec2 arc_start(const Arc& a) noexcept {
-    return a.centre + a.radius * Vec2(std::cos(a.phi0), std::sin(a.phi0));
-}
-Vec2 arc_end(const Arc& a) noexcept {
-    const double phi1 = a.phi0 + a.sweep;
-    return a.centre + a.radius * Vec2(std::cos(phi1), std::sin(phi1));
-}
-
-bool within_turn(const Arc& a, const Vec2& v) noexcept {
-    return within(circle_of(a), v);
+bool within_turn(const Vec2& from, const Vec2& to, double sweep, const Vec2& v) noexcept {
+    if (std::abs(sweep) >= kTwoPi) return true;
+    const double sense = sweep < 0.0 ? -1.0 : 1.0;
+    const double a = sense * cross(from, v), b = sense * cross(v, to);
+    if (std::abs(sweep) > std::numbers::pi) return a >= 0.0 || b >= 0.0;
+    return a >= 0.0 && b >= 0.0;
 }
 
 double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {

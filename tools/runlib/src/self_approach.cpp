@@ -63,20 +63,18 @@ void set_arc_terms(Shape& e) {
 }
 
 // Widens e's box (its ends) to the arc: where the turn passes an axis direction, out to the
-// larger radius there. Elsewhere a coordinate is largest at an end; an arc whose radius changes
-// by d over the turn lies within d of the circle through that end, so the box grows by d (and a
-// rounding's width).
+// larger radius there (at every one, for an arc with an end at its centre). Elsewhere a
+// coordinate is largest at an end; an arc whose radius changes by d over the turn lies within d
+// of the circle through that end, so the box grows by d (and a rounding's width, which also
+// covers an axis direction within rounding of an end).
 void add_arc_to_box(Shape& e) {
     const double rmax = std::max(e.r0, e.r1);
-    const double turn = std::abs(e.sweep);
-    static constexpr double kAxes[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-    for (int k = 0; k < 4; ++k) {
-        const double axis = k * 0.5 * std::numbers::pi;  // +x, +y, -x, -y
-        double along = e.sweep >= 0 ? axis - e.phi0 : e.phi0 - axis;
-        along = std::fmod(along, kTwoPi);
-        if (along < 0) along += kTwoPi;
-        if (along > turn) continue;
-        const Vec2 p = e.centre + rmax * Vec2(kAxes[k][0], kAxes[k][1]);
+    const bool ends = e.r0 > 0.0 && e.r1 > 0.0;
+    const Vec2 from = ends ? Vec2((e.start - e.centre) / e.r0) : Vec2::Zero();
+    const Vec2 to = ends ? Vec2((e.end - e.centre) / e.r1) : Vec2::Zero();
+    for (const Vec2& axis : {Vec2(1, 0), Vec2(0, 1), Vec2(-1, 0), Vec2(0, -1)}) {
+        if (ends && !plane::within_turn(from, to, e.sweep, axis)) continue;
+        const Vec2 p = e.centre + rmax * axis;
         e.lo = e.lo.cwiseMin(p);
         e.hi = e.hi.cwiseMax(p);
     }

@@ -23,10 +23,11 @@ struct Arc {
     double phi0 = 0.0;
     double sweep = 0.0;
 };
-Vec2 arc_start(const Arc& a) noexcept;
-Vec2 arc_end(const Arc& a) noexcept;
-// True when the direction v (from the centre) lies within the arc's turn.
-bool within_turn(const Arc& a, const Vec2& v) noexcept;
+// True when the direction v lies within a turn by `sweep` (signed radians; |sweep| >= 2 pi is
+// every direction) that starts in the direction `from` and ends in `to`: on the turning side of
+// `from` and not past `to`; for more than half a turn, not within the rest of the circle.
+// Decided by signs: a direction within rounding of an end may go either way.
+bool within_turn(const Vec2& from, const Vec2& to, double sweep, const Vec2& v) noexcept;
 
 // The least distance between ...
 double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept;
