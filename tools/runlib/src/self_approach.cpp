@@ -27,17 +27,13 @@ constexpr double kApartMargin = 1e-7;
 
 }  // namespace
 
-// A line or arc in the plane's coordinates (first, second). An arc runs from start to end about
-// centre, its radius changing linearly with the angle (as the board runs it).
-struct detail::Shape {
-    bool arc = false;
-    bool ccw = false;
-    Vec2 start = Vec2::Zero(), end = Vec2::Zero(), centre = Vec2::Zero();
-    double sweep = 0.0;  // arcs: signed, magnitude in (0, 2 pi]
+// A line or arc in the plane's coordinates (first, second): the element the distances take
+// (an arc runs from start to end about centre, its radius changing linearly with the angle, as
+// the board runs it; its sweep signed, magnitude in (0, 2 pi]; its radii and start angle
+// computed once for the shape, set_arc_terms, rather than at every point of a search), with what
+// the check asks of it besides.
+struct detail::Shape : plane::Element {
     double length = 0.0;
-    // Arcs: the radius at the start and at the end and the start's angle about the centre,
-    // computed once for the shape (set_arc_terms) rather than at every point of a search.
-    double r0 = 0.0, r1 = 0.0, phi0 = 0.0;
     // A box holding every point of it (corners lo, hi).
     Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
     // Its lowest and highest coordinate on the plane's third axis (the tool's: Z under G17).
@@ -103,7 +99,6 @@ Shape shape_of(const PathSegment& s, int plane) {
         out.length = (out.end - out.start).norm();
         return out;
     }
-    out.ccw = s.ccw;
     out.centre = {s.center[a.first], s.center[a.second]};
     const Vec2 u0 = out.start - out.centre, u1 = out.end - out.centre;
     double turn = (out.end - out.start).norm() <= kFullCircle
@@ -125,10 +120,6 @@ Vec2 point_at(const Shape& e, double t) {
     return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
 }
 
-plane::Element element_of(const Shape& e) {
-    return plane::Element{e.arc, e.start, e.end, e.centre, e.r0, e.r1, e.phi0, e.sweep};
-}
-
 double distance_to(const Shape& e, const Vec2& p) {
     if (!e.arc) {
         const Vec2 d = e.end - e.start;
@@ -139,7 +130,7 @@ double distance_to(const Shape& e, const Vec2& p) {
     const Vec2 v = p - e.centre;
     const Vec2 u0 = e.start - e.centre;
     const double turn = std::abs(e.sweep);
-    const double along = e.ccw ? angle_ccw(u0, v) : angle_ccw(v, u0);
+    const double along = e.sweep > 0.0 ? angle_ccw(u0, v) : angle_ccw(v, u0);
     if (v.norm() > 0.0 && along <= turn) {
         return std::abs(v.norm() - (e.r0 + (along / turn) * (e.r1 - e.r0)));
     }
@@ -953,7 +944,7 @@ bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, do
     // Proved apart: no point of the path is as near as the threshold, so the search below
     // would find none (every distance it computes is that of a point of the path to a point of
     // the element, at least the least distance).
-    if (plane::apart(element_of(path), element_of(contour), threshold + kApartMargin)) return false;
+    if (plane::apart(path, contour, threshold + kApartMargin)) return false;
     const Nearest n = least_distance(path, contour, threshold);
     if (n.distance >= threshold) return false;
     if (beyond) {
