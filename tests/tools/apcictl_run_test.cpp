@@ -1406,7 +1406,7 @@ TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
         }
         check.end(found);
         execute_to(back + 20);
-        truncated = check.truncated();
+        truncated = check.limits().truncated;
         return found;
     };
     bool truncated = true;

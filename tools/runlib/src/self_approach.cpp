@@ -431,7 +431,7 @@ struct SelfApproachCheck::Grid {
                                               : nullptr;
         }
     };
-    double cell = 0.0;   // fixed by the first stretch in this plane
+    double cell = 0.0;   // set by the plane's first stretch, made larger by a larger tool (begin)
     double max_r = 0.0;  // the largest tool radius of its paths
     std::size_t window = kWindow;
     std::size_t entry_budget = kEntryBudget;
@@ -452,16 +452,26 @@ struct SelfApproachCheck::Grid {
         for (int i = 0; i <= n; ++i) f(point_at(e, static_cast<double>(i) / n));
     }
 
+    // The cells a box widened by `reach` touches: columns i0..i1, rows j0..j1.
+    struct CellRange {
+        std::int64_t i0, i1, j0, j1;
+        std::int64_t count() const { return (i1 - i0 + 1) * (j1 - j0 + 1); }
+    };
+    CellRange cells_of(const Shape& e, double reach) const {
+        return {index_of(e.lo.x() - reach), index_of(e.hi.x() + reach), index_of(e.lo.y() - reach),
+                index_of(e.hi.y() + reach)};
+    }
+
     void index(List& list, std::size_t at) const {
         const auto item = static_cast<std::uint32_t>(at);
         std::uint32_t n = 0;
         // A short element: every cell of its box (its samples lie in it), no more than four.
         const Shape& e = list.items[at].shape;
-        const std::int64_t i0 = index_of(e.lo.x()), i1 = index_of(e.hi.x());
-        const std::int64_t j0 = index_of(e.lo.y()), j1 = index_of(e.hi.y());
-        if ((i1 - i0 + 1) * (j1 - j0 + 1) <= 4) {
-            for (std::int64_t i = i0; i <= i1; ++i)
-                for (std::int64_t j = j0; j <= j1; ++j, ++n) list.cells.add(cell_key(i, j), item);
+        const CellRange box = cells_of(e, 0.0);
+        if (box.count() <= 4) {
+            for (std::int64_t i = box.i0; i <= box.i1; ++i)
+                for (std::int64_t j = box.j0; j <= box.j1; ++j, ++n)
+                    list.cells.add(cell_key(i, j), item);
         } else {
             ++list.sampled;
             std::uint64_t last = 0;
@@ -547,14 +557,12 @@ struct SelfApproachCheck::Grid {
         // reach of each sample, a quarter cell more (its points are that near a sample), less
         // those of the sample before (a path moves on by half a cell per sample: most of its
         // cells were looked at already).
-        const std::int64_t bi0 = index_of(e.lo.x() - box_reach);
-        const std::int64_t bi1 = index_of(e.hi.x() + box_reach);
-        const std::int64_t bj0 = index_of(e.lo.y() - box_reach);
-        const std::int64_t bj1 = index_of(e.hi.y() + box_reach);
+        const CellRange box = cells_of(e, box_reach);
         const double reach = box_reach + 0.25 * cell;
-        if ((bi1 - bi0 + 1) * (bj1 - bj0 + 1) <= 16) {
-            for (std::int64_t i = bi0; i <= bi1; ++i)
-                for (std::int64_t j = bj0; j <= bj1; ++j) list.cells.append(cell_key(i, j), found);
+        if (box.count() <= 16) {
+            for (std::int64_t i = box.i0; i <= box.i1; ++i)
+                for (std::int64_t j = box.j0; j <= box.j1; ++j)
+                    list.cells.append(cell_key(i, j), found);
         } else {
             std::int64_t pi0 = 1, pi1 = 0, pj0 = 1, pj1 = 0;  // none
             for_samples(e, [&](const Vec2& p) {
@@ -663,12 +671,6 @@ template <typename G>
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
     if (!g) return create(g, plane, window_, entry_budget_, candidates_ == Candidates::kAll);
     return *g;
-}
-
-bool SelfApproachCheck::truncated() const noexcept {
-    for (const auto& g : grids_)
-        if (g && g->truncated) return true;
-    return false;
 }
 
 SelfApproachLimits SelfApproachCheck::limits() const {

@@ -65,8 +65,8 @@ class SelfApproachCheck {
   public:
     // The elements each is compared with, at least (distinct geometry, per plane), where they
     // take no more than kEntryBudget entries of the grid (an element is listed in each cell of
-    // its box, at most four, or of a sample of it every half cell: the tool radius of the
-    // plane's first stretch, at least 0.25 mm, of length).
+    // its box, at most four, or of a sample of it every half cell: a tool radius, at least
+    // 0.25 mm, of length).
     static constexpr std::size_t kWindow = std::size_t{1} << 14;
     static constexpr std::size_t kEntryBudget = std::size_t{1} << 17;
     // Each pair of blocks is reported once; at most this many pairs.
@@ -96,11 +96,9 @@ class SelfApproachCheck {
     void programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out);
     // A segment the board executed (every one, in order); findings are appended to `out`.
     void executed(const PathSegment& s, std::vector<SelfApproachFinding>& out);
-    // True when elements were let go (more than 2 * window came in a plane): an element is not
-    // compared with those more than `window` distinct elements before it.
-    bool truncated() const noexcept;
-    // That, where it began, and whether more pairs than kMaxFindings came near (the check then
-    // stopped looking).
+    // Whether elements were let go (more than 2 * window came in a plane: an element is not
+    // compared with those more than `window` distinct elements before it) and where it began,
+    // and whether more pairs than kMaxFindings came near (the check then stopped looking).
     SelfApproachLimits limits() const;
     // The elements and paths kept, over all planes: per plane at most 2 * window elements and
     // 6 * window paths.
