@@ -17,6 +17,7 @@
 #include "apci/nc/parser.h"
 #include "apci/nc/tools.h"
 #include "nc_test_util.h"
+#include "rng.h"
 #ifdef APCI_HAVE_GEOMETRY
 #include "rwmos/geometry/offset.h"
 #include "rwmos/geometry/tolerances.h"
@@ -556,13 +557,8 @@ void expect_same_state(const ModalState& a, const ModalState& b, const std::stri
 // for the move's cycles): apply() and apply_general() give the same result, error, events and
 // state after every block.
 TEST(Interpreter, RandomBlocksApplyAsTheGeneralRuleChecks) {
-    std::uint64_t seed = 0x2545F4914F6CDD1DULL;
-    auto next = [&seed]() {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        return seed;
-    };
+    apci::test::Rng rng(0x2545F4914F6CDD1DULL);
+    auto next = [&rng]() { return rng.next(); };
     auto chance = [&next](unsigned percent) { return next() % 100 < percent; };
     auto real = [&next](double lo, double hi) {
         return lo + (hi - lo) * static_cast<double>(next() % 1000001) / 1e6;
@@ -657,13 +653,8 @@ TEST(Interpreter, RandomBlocksApplyAsTheGeneralRuleChecks) {
 // and off the circle, at the start point, within and just beyond the tolerance, in every plane,
 // and for values that are not finite.
 TEST(Interpreter, ArcCenterOkAnswersAsCheckArcCenter) {
-    std::uint64_t seed = 0x94D049BB133111EBULL;
-    auto next = [&seed]() {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        return seed;
-    };
+    apci::test::Rng rng(0x94D049BB133111EBULL);
+    auto next = [&rng]() { return rng.next(); };
     auto real = [&next]() { return static_cast<double>(next() % 2001) / 100.0 - 10.0; };
     const double odd[] = {0.0,
                           kArcRadiusTolerance,

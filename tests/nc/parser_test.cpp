@@ -10,6 +10,7 @@
 
 #include "apci/nc/interpreter.h"
 #include "apci/nc/lexer.h"
+#include "rng.h"
 
 namespace apci::nc {
 namespace {
@@ -431,13 +432,8 @@ namespace {
 // lines over the characters NC programs are made of, parsed and then interpreted.
 TEST(Parser, RandomLinesGiveErrorsWithinTheLineNeverACrash) {
     const std::string_view alphabet = "NGXYZIJKRFDMEQ%#$0123456789+-.() ;\t\xC3\x9C";
-    std::uint64_t seed = 0x9E3779B97F4A7C15ULL;
-    auto next = [&seed]() {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        return seed;
-    };
+    apci::test::Rng rng(0x9E3779B97F4A7C15ULL);
+    auto next = [&rng]() { return rng.next(); };
     Interpreter interpreter;
     EventBatch batch;
     int parsed = 0;
@@ -632,13 +628,8 @@ TEST(Parser, RandomLinesParseAsTheGeneralParser) {
                                         "10000000000000",
                                         "1234567.891"};
     const std::string_view separators[] = {" ", " ", " ", "", "\t", "  ", " ;", ")", "=", ","};
-    std::uint64_t seed = 0xD1B54A32D192ED03ULL;
-    auto next = [&seed]() {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        return seed;
-    };
+    apci::test::Rng rng(0xD1B54A32D192ED03ULL);
+    auto next = [&rng]() { return rng.next(); };
     auto pick = [&next](const auto& from) { return from[next() % std::size(from)]; };
     int blocks = 0;
     for (int i = 0; i < 40000; ++i) {
