@@ -260,52 +260,70 @@ std::uint64_t key_of(const PathSegment& s, int plane, double r) {
     });
 }
 
-// A set of 64-bit keys: open addressing, linear probing, at most half full.
-class KeySet {
+// A table over 64-bit keys, each with a value: open addressing, linear probing, at most half
+// full, the slots doubling from 1024. No allocation per key once the slots have grown.
+template <class Value>
+class ProbeTable {
   public:
-    // True when the key was not in the set (it is now).
-    bool insert(std::uint64_t key) {
-        if (key == 0) key = 1;  // 0 marks an empty slot
-        if (count_ >= limit_) grow();
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t i = home(key, mask);; i = (i + 1) & mask) {
-            if (slots_[i] == key) return false;
-            if (slots_[i] == 0) {
-                slots_[i] = key;
-                ++count_;
-                return true;
-            }
-        }
+    struct Slot {
+        std::uint64_t key = 0;
+        bool taken = false;
+        Value value{};
+    };
+    // The key's slot, and whether it is new (its value then the default, for the caller to set).
+    std::pair<Slot&, bool> emplace(std::uint64_t key) {
+        if (2 * (count_ + 1) > slots_.size()) grow();
+        Slot& s = slots_[find(slots_, key)];
+        if (s.taken) return {s, false};
+        s.key = key;
+        s.taken = true;
+        ++count_;
+        return {s, true};
     }
-
+    // The key's slot, or null.
+    const Slot* get(std::uint64_t key) const {
+        if (slots_.empty()) return nullptr;
+        const Slot& s = slots_[find(slots_, key)];
+        return s.taken ? &s : nullptr;
+    }
     // Empty, keeping the memory.
     void clear() {
-        std::fill(slots_.begin(), slots_.end(), 0);
+        std::fill(slots_.begin(), slots_.end(), Slot{});
         count_ = 0;
     }
 
   private:
-    // Where the search for a key starts in slots of size mask + 1.
-    static std::size_t home(std::uint64_t key, std::size_t mask) noexcept {
-        return (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask;
-    }
-    static void place(std::vector<std::uint64_t>& slots, std::uint64_t key) {
+    // The key's slot, or the empty one where it would go.
+    static std::size_t find(const std::vector<Slot>& slots, std::uint64_t key) {
         const std::size_t mask = slots.size() - 1;
-        std::size_t i = home(key, mask);
-        while (slots[i] != 0) i = (i + 1) & mask;
-        slots[i] = key;
+        // Mixed so that the high half reaches the low bits (a grid cell's key is its row and
+        // column in the high and low half).
+        const std::uint64_t h = (key ^ (key >> 31)) * 0x9E3779B97F4A7C15ULL;
+        std::size_t i = (h ^ (h >> 32)) & mask;
+        while (slots[i].taken && slots[i].key != key) i = (i + 1) & mask;
+        return i;
     }
-    // Twice the slots (1024 at first), so that one more key leaves it at most half full.
     [[gnu::noinline]] void grow() {
-        std::vector<std::uint64_t> bigger(slots_.empty() ? 1024 : 2 * slots_.size(), 0);
-        for (const std::uint64_t k : slots_)
-            if (k != 0) place(bigger, k);
+        std::vector<Slot> bigger(slots_.empty() ? 1024 : 2 * slots_.size());
+        for (const Slot& s : slots_)
+            if (s.taken) bigger[find(bigger, s.key)] = s;
         slots_.swap(bigger);
-        limit_ = slots_.size() / 2;
     }
-    std::vector<std::uint64_t> slots_;
+    std::vector<Slot> slots_;
     std::size_t count_ = 0;
-    std::size_t limit_ = 0;  // grow before the key that would make count_ exceed half the slots
+};
+
+// A set of 64-bit keys.
+class KeySet {
+  public:
+    // True when the key was not in the set (it is now).
+    bool insert(std::uint64_t key) { return table_.emplace(key).second; }
+    // Empty, keeping the memory.
+    void clear() { table_.clear(); }
+
+  private:
+    struct Nothing {};
+    ProbeTable<Nothing> table_;
 };
 
 // The same block: by N number when both have one (executed segments carry only the N number
@@ -333,67 +351,42 @@ std::string describe(const SelfApproachFinding& f) {
 
 namespace {
 
-// The items of a uniform grid's cells: per cell (a 64-bit key) a list of item positions, the
-// latest first. Open addressing over the cells (at most half full), the lists' nodes in one
-// array: no allocation per cell or per item once the arrays have grown.
+// The items of a uniform grid's cells: per cell (a 64-bit key, in a ProbeTable) a list of item
+// positions, the latest first, the lists' nodes in one array: no allocation per cell or per
+// item once the arrays have grown.
 class CellIndex {
   public:
     // Adds the item to the cell, unless it is the cell's latest already.
     void add(std::uint64_t cell, std::uint32_t item) {
-        if (2 * (cells_ + 1) > slots_.size()) grow();
-        Slot& s = slots_[find(slots_, cell)];
-        if (s.head == kEmpty) {
-            s.key = cell;
-            ++cells_;
-        } else if (nodes_[s.head].item == item) {
-            return;
-        }
-        nodes_.push_back(Node{item, s.head});
-        s.head = static_cast<std::uint32_t>(nodes_.size() - 1);
+        auto [slot, fresh] = heads_.emplace(cell);
+        if (!fresh && nodes_[slot.value.node].item == item) return;
+        nodes_.push_back(Node{item, fresh ? kEnd : slot.value.node});
+        slot.value.node = static_cast<std::uint32_t>(nodes_.size() - 1);
     }
     // Appends the items of the cell to `out`.
     void append(std::uint64_t cell, std::vector<std::uint32_t>& out) const {
-        if (slots_.empty()) return;
-        const Slot& s = slots_[find(slots_, cell)];
-        for (std::uint32_t n = s.head; n != kEmpty; n = nodes_[n].next)
+        const auto* slot = heads_.get(cell);
+        if (slot == nullptr) return;
+        for (std::uint32_t n = slot->value.node; n != kEnd; n = nodes_[n].next)
             out.push_back(nodes_[n].item);
     }
     // Empty, keeping the memory.
     void clear() {
-        std::fill(slots_.begin(), slots_.end(), Slot{});
+        heads_.clear();
         nodes_.clear();
-        cells_ = 0;
     }
 
   private:
-    static constexpr std::uint32_t kEmpty = ~std::uint32_t{0};
-    struct Slot {
-        std::uint64_t key = 0;
-        std::uint32_t head = kEmpty;
+    static constexpr std::uint32_t kEnd = ~std::uint32_t{0};
+    struct Head {
+        std::uint32_t node = kEnd;  // the cell's latest node
     };
     struct Node {
         std::uint32_t item;
         std::uint32_t next;
     };
-    // The cell's slot, or the empty one where it would go.
-    static std::size_t find(const std::vector<Slot>& slots, std::uint64_t cell) {
-        const std::size_t mask = slots.size() - 1;
-        // Cells' keys are structured (row and column in the high and low half): mixed so that
-        // both reach the low bits.
-        std::uint64_t h = (cell ^ (cell >> 31)) * 0x9E3779B97F4A7C15ULL;
-        std::size_t i = (h ^ (h >> 32)) & mask;
-        while (slots[i].head != kEmpty && slots[i].key != cell) i = (i + 1) & mask;
-        return i;
-    }
-    [[gnu::noinline]] void grow() {
-        std::vector<Slot> bigger(slots_.empty() ? 1024 : 2 * slots_.size());
-        for (const Slot& s : slots_)
-            if (s.head != kEmpty) bigger[find(bigger, s.key)] = s;
-        slots_.swap(bigger);
-    }
-    std::vector<Slot> slots_;
+    ProbeTable<Head> heads_;
     std::vector<Node> nodes_;
-    std::size_t cells_ = 0;
 };
 
 }  // namespace
