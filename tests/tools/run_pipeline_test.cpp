@@ -602,7 +602,9 @@ TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
         void self_approach_programmed() override { calls.emplace_back("check"); }
         void self_approach_end() override { calls.emplace_back("end"); }
         void self_approach_results(std::vector<RunError>& warnings,
+                                   std::vector<apci::run::SelfApproachFinding>& findings,
                                    apci::run::SelfApproachLimits& limits) override {
+            (void)findings;
             calls.emplace_back("results");
             warnings.push_back(RunError{BlockRef{42, 0}, "SelfApproach", "from the sink"});
             limits = {};

@@ -294,6 +294,7 @@ void Execution::program_error(const nc::Diagnostic& d) {
 // first one is the run's error (the run stops).
 bool Execution::take_findings() {
     for (const SelfApproachFinding& f : findings_) {
+        out.self_approach.push_back(f);
         if (self_approach_mode_ == SelfApproachMode::kError) {
             findings_.clear();
             return record(f.path_block, "SelfApproach", describe(f));

@@ -226,7 +226,7 @@ void Execution::finish() {
     if (set_up_) variables_.read_all();
     out.tools_after = tools_mut;
     SelfApproachLimits limits = self_approach_.limits();
-    if (sink_checks_) sink_.self_approach_results(out.warnings, limits);
+    if (sink_checks_) sink_.self_approach_results(out.warnings, out.self_approach, limits);
     if (limits.truncated)
         out.notices.push_back(RunError{
             limits.truncated_at, "SelfApproachTruncated",

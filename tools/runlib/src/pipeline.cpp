@@ -250,15 +250,18 @@ void PipelinedSink::self_approach_end() {
 void PipelinedSink::warn_findings() {
     for (const SelfApproachFinding& f : findings_) {
         check_warnings_.push_back(RunError{f.path_block, "SelfApproach", describe(f)});
+        check_findings_.push_back(f);
         inner_.warning(check_warnings_.back(), f.where);
     }
     findings_.clear();
 }
 
 void PipelinedSink::self_approach_results(std::vector<RunError>& warnings,
+                                          std::vector<SelfApproachFinding>& findings,
                                           SelfApproachLimits& limits) {
     sync();
     warnings.insert(warnings.end(), check_warnings_.begin(), check_warnings_.end());
+    findings.insert(findings.end(), check_findings_.begin(), check_findings_.end());
     if (check_) limits = check_->limits();
 }
 

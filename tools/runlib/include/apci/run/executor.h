@@ -109,11 +109,14 @@ class RunSink {
     }
     virtual void self_approach_programmed() {}
     virtual void self_approach_end() {}
-    // Appends the warnings so far, in order, and says what the check left out; waits
+    // Appends the warnings so far and their findings, in order, and says what the check left
+    // out; waits
     // until the sink has had every call.
     virtual void self_approach_results(std::vector<RunError>& warnings,
+                                       std::vector<SelfApproachFinding>& findings,
                                        SelfApproachLimits& limits) {
         (void)warnings;
+        (void)findings;
         (void)limits;
     }
     // Blocks read so far by the execution pass, and bytes of the program (the stream's
@@ -137,6 +140,9 @@ struct RunOutcome {
     // than the tool radius to the contour where it comes back near itself ("SelfApproach",
     // self_approach.h).
     std::vector<RunError> warnings;
+    // The self-approach check's findings behind those warnings (or the error), in the same
+    // order: both blocks, the least distance, where.
+    std::vector<SelfApproachFinding> self_approach;
     std::vector<GroupRegisters> registers;  // groups 1..3 at the end; empty without optionTC
     int plot_plane = 17;  // the plane of the first compensation, else the last plane in force
     std::array<int, 3> axis_numbers{0, 1, 2};             // board axes of X, Y, Z

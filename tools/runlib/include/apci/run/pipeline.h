@@ -84,6 +84,7 @@ class PipelinedSink final : public RunSink {
     void self_approach_end() override;
     // Waits until the writer thread has had every event handed over (or stopped).
     void self_approach_results(std::vector<RunError>& warnings,
+                               std::vector<SelfApproachFinding>& findings,
                                SelfApproachLimits& limits) override;
 
     // Hands over the last batch, waits until the inner sink has had every event, and ends the
@@ -171,6 +172,7 @@ class PipelinedSink final : public RunSink {
     std::unique_ptr<SelfApproachCheck> check_;
     std::vector<SelfApproachFinding> findings_;
     std::vector<RunError> check_warnings_;
+    std::vector<SelfApproachFinding> check_findings_;  // behind check_warnings_
     PathSegment last_programmed_;
 };
 
