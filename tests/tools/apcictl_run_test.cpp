@@ -1272,18 +1272,23 @@ apci::run::PathSegment executed_segment(const json& s) {
 }
 
 TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCircleCrosses) {
-    // A user's report: N30 a line to (20, 0), N40 a full circle G2 about (20, -10) back to
-    // (20, 0), N45 a line on to (40, 0), r = 5 (G41: the circle's path is its offset outside,
-    // radius 15 about (20, -10)). That path crosses y = 0 at x = 20 -+ sqrt(15^2 - 10^2), on N30
-    // at (8.8197, 0) and on N45 at (31.1803, 0): the least distance to both is 0. The check used
-    // to stop at the first point it found closer than r (0.6066 mm, t = 7/8 of the circle) and
-    // took N45, the stretch's last element, for its departure although the G40 block departs.
+    // A user's report: a line along y = 0 to (20, 0), a full circle G2 about (20, -10) back to
+    // (20, 0), a line on along y = 0 to (40, 0), r = 5 (G41: the circle's path is its offset
+    // outside, radius 15 about (20, -10)). That path crosses y = 0 at x = 20 -+ sqrt(15^2 - 10^2),
+    // at (8.8197, 0) and at (31.1803, 0): the least distance to the line there is 0. The check
+    // used to stop at the first point it found closer than r (0.6066 mm, t = 7/8 of the circle)
+    // and took the stretch's last element for its departure although the G40 block departs.
+    // The circle is a loop; the two elements before it and the two after it are its lead-in
+    // and lead-out, no walls (wall_model.h): here the line is cut at x = 5, 10, 15 before the
+    // circle and 25, 30 after it, so that the circle's path crosses N27 (5..10) and N47
+    // (30..40), which are walls, and comes within 3.0278 mm of N26 (0..5), and passes over the
+    // leads N28, N30, N45, N46 unreported.
     // N60 (the variant below) comes back under the circle: the least distance is
     // 27 - 10 - 15 = 2 mm at (20, -25).
     const double root = std::sqrt(125.0);
     const std::string head =
-        "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\nN30 G1 X20 Y0\n"
-        "N40 G2 X20 Y0 I0 J-10\nN45 G1 X40 Y0\n";
+        "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\nN26 G1 X5\nN27 G1 X10\nN28 G1 X15\n"
+        "N30 G1 X20 Y0\nN40 G2 X20 Y0 I0 J-10\nN45 G1 X25 Y0\nN46 G1 X30\nN47 G1 X40\n";
     struct Case {
         std::string tail;
         std::vector<apci::run::PathSegment> programmed;  // N25 .. (the check's elements)
@@ -1293,12 +1298,17 @@ TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCir
     apci::run::PathSegment circle = line(40, 20, 0, 20, 0);
     circle.kind = apci::run::SegmentKind::kArc;
     circle.center = {20, -10, 0};
-    const std::vector<apci::run::PathSegment> common{line(25, -10, 0, 0, 0), line(30, 0, 0, 20, 0),
-                                                     circle, line(45, 20, 0, 40, 0)};
+    const std::vector<apci::run::PathSegment> common{
+        line(25, -10, 0, 0, 0), line(26, 0, 0, 5, 0),   line(27, 5, 0, 10, 0),
+        line(28, 10, 0, 15, 0), line(30, 15, 0, 20, 0), circle,
+        line(45, 20, 0, 25, 0), line(46, 25, 0, 30, 0), line(47, 30, 0, 40, 0)};
     std::vector<Case> cases(2);
     cases[0].tail = "N50 G40 G1 X50 Y0\nN60 M30\n";
     cases[0].programmed = common;
-    cases[0].expected = {{30, 0.0, {20 - root, 0}}, {45, 0.0, {20 + root, 0}}};
+    // N26 (0..5) is a wall too: its end (5, 0) is sqrt(15^2 + 10^2) from the centre.
+    const double far = std::sqrt(325.0);
+    const Eigen::Vector2d near26 = Eigen::Vector2d(20, -10) + 15.0 / far * Eigen::Vector2d(-15, 10);
+    cases[0].expected = {{26, far - 15.0, near26}, {27, 0.0, {20 - root, 0}}, {47, 0.0, {20 + root, 0}}};
     cases[1].tail = "N50 G1 X40 Y-27\nN60 G1 X0 Y-27\nN70 G1 X0 Y-40\nN80 G40 G1 X-10 Y-50\nN90 M30\n";
     cases[1].programmed = common;
     for (const auto& s : {line(50, 40, 0, 40, -27), line(60, 40, -27, 0, -27), line(70, 0, -27, 0, -40)})
@@ -1310,7 +1320,7 @@ TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCir
         SCOPED_TRACE(c.tail);
         const json doc = run_json(write("q4.nc", head + c.tail), {"--tools", tools(5.0)});
         EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
-        // The run: one warning per element the circle's path comes near, with its distance.
+        // The run: one warning per wall the circle's path comes near, with its distance.
         ASSERT_EQ(doc.at("warnings").size(), c.expected.size()) << doc.at("warnings").dump();
         for (std::size_t i = 0; i < c.expected.size(); ++i) {
             const auto& [n, d, where] = c.expected[i];
@@ -1678,20 +1688,21 @@ TEST_F(ApcictlRun, SelfApproachLeavesContoursBelowTheToolTipOut) {
 }
 
 TEST_F(ApcictlRun, MoreThanAThousandPairsComingNearAreCappedWithANotice) {
-    // 100 circles (four quarter arcs each, its own G42 stretch, tool radius 5) whose radii grow
-    // by 0.001 mm: each circle's path comes within 5 - 0.001 k of the k circles before it.
-    // The first 1,000 pairs are warned; the run says there were more, and stops looking (the
-    // run stays quick however many circles follow).
+    // 100 bosses of radius 10 (four quarter arcs each, its own G42 stretch, tool radius 5)
+    // whose centres lie 0.01 mm apart along X: each boss's path comes within 5 - 0.01 |k - j|
+    // of every other boss j, and none encloses another (wall_model.h: they overlap), so every
+    // one is a wall. The first 1,000 pairs are warned; the run says there were more, and stops
+    // looking (the run stays quick however many bosses follow).
     std::string prog = "N10 G17 G90 D1\nN20 G0 X30 Y-30 Z0\n";
     int n = 30;
     for (int k = 0; k < 100; ++k) {
-        const double r = 10.0 + 0.001 * k;
-        prog += fmt::format("N{} G42 G1 X{:.3f} Y0 F6000\n", n, r), n += 10;
+        const double cx = 0.01 * k, r = 10.0;
+        prog += fmt::format("N{} G42 G1 X{:.3f} Y0 F6000\n", n, cx + r), n += 10;
         const double pts[4][2] = {{0, r}, {-r, 0}, {0, -r}, {r, 0}};
         double sx = r, sy = 0;
         for (const auto& p : pts) {
-            prog +=
-                fmt::format("N{} G3 X{:.3f} Y{:.3f} I{:.3f} J{:.3f}\n", n, p[0], p[1], -sx, -sy);
+            prog += fmt::format("N{} G3 X{:.3f} Y{:.3f} I{:.3f} J{:.3f}\n", n, cx + p[0], p[1],
+                                -sx, -sy);
             n += 10, sx = p[0], sy = p[1];
         }
         prog += fmt::format("N{} G40 G1 X30 Y-30\n", n), n += 10;

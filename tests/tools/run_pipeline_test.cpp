@@ -596,7 +596,8 @@ TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
         void programmed(const PathSegment& s) override {
             calls.push_back("p" + std::to_string(s.block.number));
         }
-        void self_approach_begin(double radius, int plane) override {
+        void self_approach_begin(double radius, int plane, int side) override {
+            (void)side;
             calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane));
         }
         void self_approach_programmed() override { calls.emplace_back("check"); }

@@ -217,10 +217,10 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
 void Execution::begin_self_approach() {
     if (sink_checks_) {
         sink_check_active_ = true;
-        sink_.self_approach_begin(radius, comp_plane);
+        sink_.self_approach_begin(radius, comp_plane, comp_side);
         return;
     }
-    self_approach_.begin(radius, comp_plane);
+    self_approach_.begin(radius, comp_plane, comp_side);
 }
 
 bool Execution::end_self_approach() {

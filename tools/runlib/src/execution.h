@@ -122,6 +122,7 @@ class Execution {
     std::array<int, 3> axes{0, 1, 2};
     int plane = 17;
     int comp_plane = 17;  // the plane of the compensation under way or last run
+    int comp_side = 1;    // its side: +1 left (G41), -1 right (G42)
     int current_tool = 0;
     bool comp_on = false;
     bool comp_plane_seen = false;

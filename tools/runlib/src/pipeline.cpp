@@ -159,7 +159,7 @@ void PipelinedSink::deliver(Batch& b) {
                 check_ = std::make_unique<SelfApproachCheck>();
                 break;
             case Kind::kCheckBegin:
-                if (check_) check_->begin(b.begins[i].first, b.begins[i].second);
+                if (check_) check_->begin(b.begins[i].radius, b.begins[i].plane, b.begins[i].side);
                 break;
             case Kind::kCheckEnd:
                 if (check_) check_->end(findings_);
@@ -225,10 +225,10 @@ bool PipelinedSink::takes_self_approach() {
     return true;
 }
 
-void PipelinedSink::self_approach_begin(double radius, int plane) {
+void PipelinedSink::self_approach_begin(double radius, int plane, int side) {
     Batch* b = open_batch();
     if (b == nullptr) return;
-    b->begins.emplace_back(radius, plane);
+    b->begins.push_back(Batch::Begin{radius, plane, side});
     add(Kind::kCheckBegin, static_cast<std::uint32_t>(b->begins.size() - 1));
 }
 

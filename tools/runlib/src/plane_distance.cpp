@@ -123,7 +123,56 @@ double circle_circle(const Circle& a, const Circle& b) {
     return best;
 }
 
+// The angle from a to b counter-clockwise, in [0, 2 pi).
+double angle_ccw(const Vec2& a, const Vec2& b) {
+    double t = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    if (t < 0) t += kTwoPi;
+    return t >= kTwoPi ? 0.0 : t;
+}
+
 }  // namespace
+
+Element line_element(const Vec2& start, const Vec2& end) noexcept {
+    Element e;
+    e.start = start;
+    e.end = end;
+    return e;
+}
+
+Element arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
+    Element e;
+    e.arc = true;
+    e.start = start;
+    e.end = end;
+    e.centre = centre;
+    const Vec2 u0 = start - centre, u1 = end - centre;
+    double turn = (end - start).norm() <= 1e-9 ? kTwoPi : (ccw ? angle_ccw(u0, u1) : angle_ccw(u1, u0));
+    if (turn == 0.0) turn = kTwoPi;
+    e.sweep = ccw ? turn : -turn;
+    e.r0 = u0.norm();
+    e.r1 = u1.norm();
+    e.phi0 = std::atan2(u0.y(), u0.x());
+    return e;
+}
+
+Vec2 point_at(const Element& e, double t) noexcept {
+    if (!e.arc) return e.start + t * (e.end - e.start);
+    if (t >= 1.0) return e.end;
+    const double phi = e.phi0 + t * e.sweep;
+    const double r = e.r0 + t * (e.r1 - e.r0);
+    return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
+}
+
+double distance_to(const Element& e, const Vec2& p) noexcept {
+    if (!e.arc) return point_segment(p, e.start, e.end);
+    const Vec2 v = p - e.centre;
+    const Vec2 u0 = e.start - e.centre;
+    const double turn = std::abs(e.sweep);
+    const double along = e.sweep > 0.0 ? angle_ccw(u0, v) : angle_ccw(v, u0);
+    if (v.norm() > 0.0 && along <= turn)
+        return std::abs(v.norm() - (e.r0 + (along / turn) * (e.r1 - e.r0)));
+    return std::min((p - e.start).norm(), (p - e.end).norm());
+}
 
 bool within_turn(const Vec2& from, const Vec2& to, double sweep, const Vec2& v) noexcept {
     if (std::abs(sweep) >= kTwoPi) return true;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "apci/run/plane_distance.h"
+#include "wall_model.h"
 
 namespace apci::run {
 namespace {
@@ -44,13 +45,7 @@ namespace {
 
 using detail::Shape;
 
-double angle_ccw(const Vec2& a, const Vec2& b) {
-    double t = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
-    if (t < 0) t += kTwoPi;
-    return t >= kTwoPi ? 0.0 : t;
-}
-
-// The arc terms of e from its start, end and centre.
+// The arc terms of e (radii, start angle) from its start, end and centre.
 void set_arc_terms(Shape& e) {
     const Vec2 u0 = e.start - e.centre;
     e.r0 = u0.norm();
@@ -99,44 +94,15 @@ Shape shape_of(const PathSegment& s, int plane) {
         out.length = (out.end - out.start).norm();
         return out;
     }
-    out.centre = {s.center[a.first], s.center[a.second]};
-    const Vec2 u0 = out.start - out.centre, u1 = out.end - out.centre;
-    double turn = (out.end - out.start).norm() <= kFullCircle
-                      ? kTwoPi
-                      : (s.ccw ? angle_ccw(u0, u1) : angle_ccw(u1, u0));
-    if (turn == 0.0) turn = kTwoPi;
-    out.sweep = s.ccw ? turn : -turn;
-    set_arc_terms(out);
-    out.length = turn * 0.5 * (out.r0 + out.r1);  // u0.norm() + u1.norm()
+    const Vec2 centre(s.center[a.first], s.center[a.second]);
+    static_cast<plane::Element&>(out) = plane::arc_element(out.start, out.end, centre, s.ccw);
+    out.length = std::abs(out.sweep) * 0.5 * (out.r0 + out.r1);
     add_arc_to_box(out);
     return out;
 }
 
-Vec2 point_at(const Shape& e, double t) {
-    if (!e.arc) return e.start + t * (e.end - e.start);
-    if (t >= 1.0) return e.end;
-    const double phi = e.phi0 + t * e.sweep;
-    const double r = e.r0 + t * (e.r1 - e.r0);
-    return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
-}
-
-double distance_to(const Shape& e, const Vec2& p) {
-    if (!e.arc) {
-        const Vec2 d = e.end - e.start;
-        const double n2 = d.squaredNorm();
-        const double t = n2 == 0.0 ? 0.0 : std::clamp((p - e.start).dot(d) / n2, 0.0, 1.0);
-        return (p - (e.start + t * d)).norm();
-    }
-    const Vec2 v = p - e.centre;
-    const Vec2 u0 = e.start - e.centre;
-    const double turn = std::abs(e.sweep);
-    const double along = e.sweep > 0.0 ? angle_ccw(u0, v) : angle_ccw(v, u0);
-    if (v.norm() > 0.0 && along <= turn) {
-        return std::abs(v.norm() - (e.r0 + (along / turn) * (e.r1 - e.r0)));
-    }
-    return std::min((p - e.start).norm(), (p - e.end).norm());
-}
-
+using plane::distance_to;
+using plane::point_at;
 
 // The least distance from `path` to `contour`, and the fraction of `path` where it is.
 struct Nearest {
@@ -403,9 +369,10 @@ struct SelfApproachCheck::Grid {
         // Contour elements: the path must keep r from it. Not the first and the last element
         // of a stretch: they are its approach and departure in the program's own terms.
         bool protect = true;
-        // Paths: the approach. It starts where the tool stands, often within r of its own
-        // contour, so it is checked against the other stretches' contours only.
+        // Paths: the approach (from where the tool stands onto the compensated path), and the
+        // entry point it leads to (its element's programmed end).
         bool approach = false;
+        Vec2 entry = Vec2::Zero();
         std::uint32_t entries = 0;  // cells it is listed in (set by index)
     };
     // Items kept in order, the oldest first: `first` is the number (counted over the plane's
@@ -431,6 +398,7 @@ struct SelfApproachCheck::Grid {
     bool all = false;  // near() answers every item (Candidates::kAll)
     List contour, path;
     bool truncated = false;  // items were let go
+    std::uint64_t kept_from = 0;  // the elements numbered below it were let go
     BlockRef truncated_at{};  // the block whose element or path let the first go
     int plane = 17;
 
@@ -512,6 +480,7 @@ struct SelfApproachCheck::Grid {
 
     void keep_from(std::uint64_t element) {
         truncated = true;
+        kept_from = element;
         for (List* l : {&contour, &path}) {
             const auto kept = std::find_if(l->items.begin(), l->items.end(),
                                            [&](const Item& i) { return i.index >= element; });
@@ -600,6 +569,25 @@ Relation relation(std::uint64_t contour_index, std::uint64_t contour_stretch,
     return Relation::kOther;
 }
 
+// An approach starts where the tool stands when the compensation begins; where that is already
+// closer to an element than the threshold, the move that brought the tool there (uncompensated,
+// not checked) put it there, and the approach is not held to the element.
+bool stands_near(const Shape& approach, const Shape& element, double threshold) {
+    return plane::distance_to(element, approach.start) < threshold;
+}
+
+// The elements that meet at an approach's entry point (the one it leads onto, and one that
+// closes a contour there): a straight approach onto an outside corner passes the entry point at
+// L r / sqrt(L^2 + r^2) < r (L its length), the entry move every control makes (LinuxCNC's
+// too); it is held to them only where its centre crosses one (a lead-in through the part).
+bool at_entry(const Shape& element, const Vec2& entry) {
+    return (element.start - entry).norm() <= SelfApproachCheck::kTolerance ||
+           (element.end - entry).norm() <= SelfApproachCheck::kTolerance;
+}
+bool crosses(const SelfApproachFinding& f) {
+    return f.distance <= SelfApproachCheck::kTolerance;
+}
+
 // How much closer than r a path may come: the path tolerance; to a neighbour twice that (a
 // tangent join may move the next element's start by up to the path tolerance).
 double threshold_for(Relation rel, double r) {
@@ -632,11 +620,24 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
 
 }  // namespace
 
+struct SelfApproachCheck::Candidate {
+    Shape path;
+    BlockRef path_block;
+    double r = 0.0;
+    int plane = 17;
+    Shape contour;
+    BlockRef contour_block;
+    double threshold = 0.0;
+    std::uint64_t contour_index = 0, path_index = 0, contour_id = 0;
+    bool need_cross = false;
+};
+
 SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budget,
                                      Candidates candidates)
     : window_(std::max<std::size_t>(window, 1)),
       entry_budget_(entry_budget),
-      candidates_(candidates) {}
+      candidates_(candidates),
+      walls_(std::make_unique<detail::WallModel>()) {}
 SelfApproachCheck::~SelfApproachCheck() = default;
 
 namespace {
@@ -685,8 +686,9 @@ std::size_t SelfApproachCheck::kept() const noexcept {
     return n;
 }
 
-void SelfApproachCheck::begin(double r, int plane) {
+void SelfApproachCheck::begin(double r, int plane, int side) {
     active_ = true;
+    walls_->begin(plane, side);
     latest_ = kNone;
     first_in_stretch_ = true;
     r_ = std::max(0.0, r);
@@ -711,7 +713,7 @@ void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
     // after its own (leave()); until then what came near it stays held.
     if (latest_ != kNone && next_index_ > 0) {
         if (undecided_.size() >= 64) {  // never executed: taken as departed
-            for (const SelfApproachFinding& f : undecided_.front().held) take(f, false, out);
+            for (const Found& f : undecided_.front().held) give(f, false, out);
             undecided_.erase(undecided_.begin());
         }
         undecided_.push_back(Undecided{latest_, next_index_ - 1, plane_, false, {}});
@@ -719,6 +721,8 @@ void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
     }
     held_.clear();
     latest_ = kNone;
+    walls_->end();
+    review(out);
 }
 
 // The first segment after a stretch whose last element is held: a move in the plane (the G40
@@ -732,8 +736,11 @@ void SelfApproachCheck::leave(const PathSegment& s, std::vector<SelfApproachFind
     const Vec2 d(s.end[a.first] - s.start[a.first], s.end[a.second] - s.start[a.second]);
     const bool departs =
         d.norm() > kSamePointTolerance || (s.kind == SegmentKind::kArc && s.plane == u.plane);
-    if (departs) {
-        for (const SelfApproachFinding& f : u.held) take(f, false, out);
+    // A loop's last element is the loop's, whatever follows it (wall_model.h).
+    const Grid::Item* last = grid(u.plane).contour.at(u.id);
+    const bool looped = last != nullptr && walls_->looped(last->index);
+    if (departs || looped) {
+        for (const Found& f : u.held) give(f, false, out);
     } else {
         if (Grid::Item* c = grid(u.plane).contour.at(u.id)) c->protect = false;
     }
@@ -746,13 +753,73 @@ SelfApproachCheck::Undecided* SelfApproachCheck::undecided_of(int plane, std::ui
     return nullptr;
 }
 
-void SelfApproachCheck::hold(std::vector<SelfApproachFinding>& held, const SelfApproachFinding& f) {
-    for (SelfApproachFinding& h : held)
-        if (same_block(h.path_block, f.path_block) && same_block(h.contour_block, f.contour_block)) {
-            if (f.distance < h.distance) h = f;
+void SelfApproachCheck::hold(std::vector<Found>& held, const Found& f) {
+    for (Found& h : held)
+        if (same_block(h.f.path_block, f.f.path_block) &&
+            same_block(h.f.contour_block, f.f.contour_block) && h.contour == f.contour &&
+            h.path == f.path) {
+            if (f.f.distance < h.f.distance) h = f;
             return;
         }
     held.push_back(f);
+}
+
+void SelfApproachCheck::forget_let_go() {
+    std::uint64_t below = kNone;
+    for (const auto& g : grids_)
+        if (g) below = std::min(below, g->kept_from);
+    if (below != kNone && below > forgotten_) {
+        forgotten_ = below;
+        walls_->forget_before(below);
+    }
+}
+
+bool SelfApproachCheck::exempt(std::uint64_t contour, std::uint64_t path) {
+    if (!walls_->placed(contour) || !walls_->placed(path)) return false;
+    return walls_->role(contour) != detail::WallRole::kWall;
+}
+
+void SelfApproachCheck::give(const Found& f, bool running, std::vector<SelfApproachFinding>& out) {
+    if (walls_->placed(f.contour) && walls_->placed(f.path)) {
+        if (walls_->role(f.contour) == detail::WallRole::kWall) take(f.f, running, out);
+        return;
+    }
+    if (deferred_.size() >= kMaxDeferred) {  // the oldest decided as things stand
+        const Found oldest = deferred_.front();
+        deferred_.erase(deferred_.begin());
+        const detail::WallRole role = walls_->role(oldest.contour);
+        if (role == detail::WallRole::kWall || role == detail::WallRole::kUndecided)
+            take(oldest.f, false, out);
+    }
+    hold(deferred_, f);
+}
+
+void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
+    if (walls_->generation() == reviewed_ || (deferred_.empty() && waiting_.empty())) {
+        reviewed_ = walls_->generation();
+        return;
+    }
+    reviewed_ = walls_->generation();
+    std::vector<Candidate> candidates;
+    candidates.swap(waiting_);
+    for (const Candidate& k : candidates) {
+        if (!walls_->placed(k.contour_index) || !walls_->placed(k.path_index)) {
+            waiting_.push_back(k);
+            continue;
+        }
+        if (walls_->role(k.contour_index) == detail::WallRole::kWall)
+            settle(k, seen_ && same_block(k.path_block, current_), out);
+    }
+    std::vector<Found> waiting;
+    for (const Found& f : deferred_) {
+        if (!walls_->placed(f.contour) || !walls_->placed(f.path)) {
+            waiting.push_back(f);
+            continue;
+        }
+        if (walls_->role(f.contour) == detail::WallRole::kWall)
+            take(f.f, seen_ && same_block(f.f.path_block, current_), out);
+    }
+    deferred_.swap(waiting);
 }
 
 SelfApproachCheck::Pair SelfApproachCheck::pair_of(const BlockRef& path, const BlockRef& contour) {
@@ -796,7 +863,9 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     if (!active_ || r_ <= 0.0 || done()) return;
     if (s.kind != SegmentKind::kLine && s.kind != SegmentKind::kArc) return;
     const std::uint64_t index = next_index_++;
-    pending_.push_back(Pending{s.block, index, stretch_, r_, plane_});
+    const PlaneAxes axes = plane_axes(plane_);
+    pending_.push_back(Pending{s.block, index, stretch_, r_, plane_,
+                               Vec2(s.end[axes.first], s.end[axes.second])});
     if (pending_.size() - pending_head_ > 4096) ++pending_head_;  // never executed: not checked
     if (pending_head_ > 1024 && 2 * pending_head_ > pending_.size()) {
         pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
@@ -806,45 +875,42 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     // A move that stays where it is in the plane (a plunge in Z under G17, G41 G1 to the point
     // the tool stands on) is no element of the contour; the stretch's first element, its
     // approach, is the first that moves in the plane (as the board runs it).
-    const PlaneAxes axes = plane_axes(plane_);
     const bool moves = (s.kind == SegmentKind::kArc && s.plane == plane_) ||
                        std::hypot(s.end[axes.first] - s.start[axes.first],
                                   s.end[axes.second] - s.start[axes.second]) > kFullCircle;
     const bool first = first_in_stretch_ && moves;
     if (moves) first_in_stretch_ = false;
     // The element before is not the last: what came near it counts.
-    for (const SelfApproachFinding& f : held_) take(f, seen_ && same_block(f.path_block, current_), out);
+    for (const Found& f : held_) give(f, seen_ && same_block(f.f.path_block, current_), out);
     held_.clear();
     latest_ = kNone;
     const std::uint64_t key = key_of(s, plane_, 0.0);
-    if (!g.contour.keys.insert(key)) return;  // programmed before
     const Shape e = shape_of(s, plane_);
+    // Every element that moves in the plane, repeats too: the loops are the program's.
+    if (moves) {
+        walls_->element(index, e, e.low, e.high, key, walls_on_);
+        review(out);
+    }
+    if (!g.contour.keys.insert(key)) return;  // programmed before
     if (e.length <= kFullCircle) return;
     latest_ = g.contour.next();
     g.add(g.contour, Grid::Item{e, s.block, index, stretch_, key, r_, false, !first});
+    forget_let_go();
     if (first) return;
-    // Paths executed before it that come near it (the contour comes back later): the least
-    // distance over all the segments of each path block.
-    std::vector<SelfApproachFinding> found;
+    // Paths executed before it that come near it (the contour comes back later).
     for (const std::uint32_t pid : g.near(g.path, e, g.max_r)) {
         const Grid::Item& p = g.path.items[pid];
-        if (p.approach && p.stretch == stretch_) continue;
+        if (exempt(index, p.index)) continue;
         const Relation rel = relation(index, stretch_, p.index, p.stretch, p.transition);
         Shape part;
         if (!checked_part(e, rel, part)) continue;
-        SelfApproachFinding f;
-        if (!report(p.shape, p.block, p.r, plane_, part, s.block, threshold_for(rel, p.r), f))
-            continue;
-        const auto same = std::find_if(found.begin(), found.end(), [&](const auto& o) {
-            return same_block(o.path_block, f.path_block);
-        });
-        if (same == found.end())
-            found.push_back(f);
-        else if (f.distance < same->distance)
-            *same = f;
+        const double threshold = threshold_for(rel, p.r);
+        if (p.approach && stands_near(p.shape, part, threshold)) continue;
+        const bool cross = p.approach && p.stretch == stretch_ && at_entry(e, p.entry);
+        consider(Candidate{p.shape, p.block, p.r, plane_, part, s.block, threshold, index, p.index,
+                           latest_, cross},
+                 false, out);
     }
-    // Held until the element is known not to be the stretch's departure (leave()).
-    for (const SelfApproachFinding& f : found) hold(held_, f);
 }
 
 void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
@@ -895,66 +961,98 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     // The approach cuts as the contour does (under G139 it is the first element's whole move).
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
         return;
-    const bool approach = s.role == Role::kApproach;
     Grid& g = grid(p.plane);
     const std::uint64_t key = key_of(s, p.plane, p.r);
     if (!g.path.keys.insert(key)) return;  // the same path checked before
     const Shape e = shape_of(s, p.plane);
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
+    const bool approach = s.role == Role::kApproach;
     for (const std::uint32_t at : g.near(g.contour, e, p.r)) {
         const Grid::Item& c = g.contour.items[at];
-        const std::uint64_t id = g.contour.first + at;
-        if (approach && c.stretch == p.stretch) continue;
+        if (exempt(c.index, p.index)) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
         Shape part;
         if (!c.protect || !checked_part(c.shape, rel, part)) continue;
-        SelfApproachFinding f;
-        if (!report(e, s.block, p.r, p.plane, part, c.block, threshold_for(rel, p.r), f))
-            continue;
-        // Against a stretch's last element, perhaps its departure: held.
-        if (active_ && p.plane == plane_ && id == latest_)
-            hold(held_, f);
-        else if (Undecided* u = undecided_of(p.plane, id))
-            hold(u->held, f);
-        else
-            take(f, running, out);
+        const double threshold = threshold_for(rel, p.r);
+        if (approach && stands_near(e, part, threshold)) continue;
+        const bool cross = approach && c.stretch == p.stretch && at_entry(c.shape, p.end);
+        consider(Candidate{e, s.block, p.r, p.plane, part, c.block, threshold, c.index, p.index,
+                           g.contour.first + at, cross},
+                 running, out);
     }
     if (!running) flush(out);
-    g.add(g.path, Grid::Item{e, s.block, p.index, p.stretch, key, p.r, transition, true, approach});
+    g.add(g.path,
+          Grid::Item{e, s.block, p.index, p.stretch, key, p.r, transition, true, approach, p.end});
+    forget_let_go();
 }
 
-bool SelfApproachCheck::report(const Shape& path, const BlockRef& path_block, double r, int plane,
-                               const Shape& contour, const BlockRef& contour_block,
-                               double threshold, SelfApproachFinding& f) {
+void SelfApproachCheck::consider(const Candidate& k, bool running,
+                                 std::vector<SelfApproachFinding>& out) {
+    if (!near_enough(k)) return;
+    if (!walls_->placed(k.contour_index) || !walls_->placed(k.path_index)) {
+        if (waiting_.size() >= kMaxDeferred) {  // the oldest measured as things stand
+            const Candidate oldest = waiting_.front();
+            waiting_.erase(waiting_.begin());
+            settle(oldest, false, out);
+        }
+        waiting_.push_back(k);
+        return;
+    }
+    if (walls_->role(k.contour_index) != detail::WallRole::kWall) return;
+    settle(k, running, out);
+}
+
+void SelfApproachCheck::settle(const Candidate& k, bool running,
+                               std::vector<SelfApproachFinding>& out) {
+    Found f{{}, k.contour_index, k.path_index};
+    if (!measure(k, f.f)) return;
+    if (k.need_cross && !crosses(f.f)) return;
+    // Against a stretch's last element, perhaps its departure: held.
+    if (active_ && k.plane == plane_ && k.contour_id == latest_)
+        hold(held_, f);
+    else if (Undecided* u = undecided_of(k.plane, k.contour_id))
+        hold(u->held, f);
+    else
+        give(f, running, out);
+}
+
+bool SelfApproachCheck::near_enough(const Candidate& k) {
     // The contour wholly below the tool's tip on all of the path: the tool does not reach down
     // to it (it stands on the plane's positive side, its axis the third).
-    if (contour.high < path.low - kTolerance) return false;
-    if (box_distance(path, contour) >= threshold + kApartMargin) return false;
-    const Pair pair = pair_of(path_block, contour_block);
+    if (k.contour.high < k.path.low - kTolerance) return false;
+    if (box_distance(k.path, k.contour) >= k.threshold + kApartMargin) return false;
+    const Pair pair = pair_of(k.path_block, k.contour_block);
     // At kMaxFindings pairs given out, a new pair is only looked at until one is found.
     const bool beyond = reported_.size() >= kMaxFindings && open_finding(pair) == nullptr &&
                         std::find(reported_.begin(), reported_.end(), pair) == reported_.end();
     if (closed(pair) && !(beyond && !capped_)) return false;
-    // Proved apart: no point of the path is as near as the threshold, so the search below
-    // would find none (every distance it computes is that of a point of the path to a point of
-    // the element, at least the least distance).
-    if (plane::apart(path, contour, threshold + kApartMargin)) return false;
-    const Nearest n = least_distance(path, contour, threshold);
-    if (n.distance >= threshold) return false;
+    // Proved apart: no point of the path is as near as the threshold, so the search would find
+    // none (every distance it computes is that of a point of the path to a point of the
+    // element, at least the least distance).
+    return !plane::apart(k.path, k.contour, k.threshold + kApartMargin);
+}
+
+bool SelfApproachCheck::measure(const Candidate& k, SelfApproachFinding& f) {
+    const Pair pair = pair_of(k.path_block, k.contour_block);
+    const bool beyond = reported_.size() >= kMaxFindings && open_finding(pair) == nullptr &&
+                        std::find(reported_.begin(), reported_.end(), pair) == reported_.end();
+    if (closed(pair) && !(beyond && !capped_)) return false;
+    const Nearest n = least_distance(k.path, k.contour, k.threshold);
+    if (n.distance >= k.threshold) return false;
     if (beyond) {
         capped_ = true;
         return false;
     }
     f = SelfApproachFinding{};
-    f.path_block = path_block;
-    f.contour_block = contour_block;
+    f.path_block = k.path_block;
+    f.contour_block = k.contour_block;
     f.distance = n.distance;
-    f.radius = r;
+    f.radius = k.r;
     // The point of the path nearest the element, for the plot's marker (the third axis at
     // the plane's origin: the plot shows the plane).
-    const Vec2 q = point_at(path, n.t);
-    const PlaneAxes a = plane_axes(plane);
+    const Vec2 q = point_at(k.path, n.t);
+    const PlaneAxes a = plane_axes(k.plane);
     f.where = Point::Zero();
     f.where[a.first] = q.x();
     f.where[a.second] = q.y();

@@ -136,6 +136,7 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
         return false;
     run_.comp_on = true;
     run_.comp_plane = run_.plane;
+    run_.comp_side = side == nc::Compensation::kLeft ? 1 : -1;
     run_.begin_self_approach();
     if (!run_.comp_plane_seen) {
         run_.comp_plane_seen = true;

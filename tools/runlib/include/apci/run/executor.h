@@ -102,10 +102,12 @@ class RunSink {
     // executed segment, the three below) and gives each warning to warning() where the
     // executor would have. Asked once, at the start of the run.
     virtual bool takes_self_approach() { return false; }
-    // SelfApproachCheck::begin; programmed() of the move just given to programmed(); end().
-    virtual void self_approach_begin(double radius, int plane) {
+    // SelfApproachCheck::begin (the tool radius, the plane, the tool's side: +1 left, -1
+    // right); programmed() of the move just given to programmed(); end().
+    virtual void self_approach_begin(double radius, int plane, int side) {
         (void)radius;
         (void)plane;
+        (void)side;
     }
     virtual void self_approach_programmed() {}
     virtual void self_approach_end() {}

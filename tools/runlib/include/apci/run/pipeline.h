@@ -79,7 +79,7 @@ class PipelinedSink final : public RunSink {
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
     bool takes_self_approach() override;
-    void self_approach_begin(double radius, int plane) override;
+    void self_approach_begin(double radius, int plane, int side) override;
     void self_approach_programmed() override;
     void self_approach_end() override;
     // Waits until the writer thread has had every event handed over (or stopped).
@@ -128,7 +128,11 @@ class PipelinedSink final : public RunSink {
         std::vector<Sample> samples;
         std::vector<Note> notes;
         std::vector<std::string> names;
-        std::vector<std::pair<double, int>> begins;  // self_approach_begin: radius, plane
+        struct Begin {
+            double radius;
+            int plane, side;
+        };
+        std::vector<Begin> begins;  // self_approach_begin's
         std::array<int, 3> xyz{0, 1, 2};
         void clear() noexcept;
     };

@@ -44,6 +44,17 @@ struct Element {
     double r0 = 0.0, r1 = 0.0, phi0 = 0.0, sweep = 0.0;
 };
 
+// An element from its ends (and an arc's centre and sense): its radii, start angle and sweep
+// (magnitude in (0, 2 pi]; ends closer than 1e-9 make a full circle).
+Element line_element(const Vec2& start, const Vec2& end) noexcept;
+Element arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept;
+// The point at the fraction t (0..1) of e: an arc by its angle, the radius linear in it.
+Vec2 point_at(const Element& e, double t) noexcept;
+// The distance from p to e: to a line's nearest point; to an arc along the radius where p's
+// direction from the centre lies within its turn (to the arc's radius at that angle), else to
+// the nearer end.
+double distance_to(const Element& e, const Vec2& p) noexcept;
+
 // True when every point of `a` is at least `limit` from every point of `b`, proved: an arc is
 // taken as circular arcs of its middle radius, each within |r1 - r0| / 2 of it, halved where the
 // proof needs it (at most kMaxApartSteps distances). False when it is not so or not proved.

@@ -39,6 +39,7 @@ namespace apci::run {
 
 namespace detail {
 struct Shape;
+class WallModel;
 }
 
 struct SelfApproachFinding {
@@ -85,8 +86,12 @@ class SelfApproachCheck {
     SelfApproachCheck& operator=(const SelfApproachCheck&) = delete;
 
     // A compensated stretch begins (G41/G42, or the first move after a rapid under G41/G42):
-    // tool radius r (mm) in plane 17, 18 or 19.
-    void begin(double r, int plane);
+    // tool radius r (mm) in plane 17, 18 or 19, the tool on `side` of the contour (+1 left,
+    // G41; -1 right, G42).
+    void begin(double r, int plane, int side = 1);
+    // Whether the elements programmed from now on may be walls (CDON, the default) or not
+    // (CDOF: the program says they are not what it leaves standing; paths are still checked).
+    void set_walls(bool on) noexcept { walls_on_ = on; }
     // It ends (G40, a rapid move, the end of the program). Findings against its last element
     // come with the first executed segment after that element's (its departure, or not).
     void end(std::vector<SelfApproachFinding>& out);
@@ -107,20 +112,39 @@ class SelfApproachCheck {
   private:
     struct Grid;
     using Shape = detail::Shape;
+    // A finding with the numbers of its contour element and of its path's element: whether it
+    // is reported depends on what the wall model makes of the element (wall_model.h).
+    struct Found {
+        SelfApproachFinding f;
+        std::uint64_t contour = 0;
+        std::uint64_t path = 0;
+    };
     struct Pending {
         BlockRef block;
         std::uint64_t index = 0;    // of the element, counted over the whole program
         std::uint64_t stretch = 0;  // of its stretch
         double r = 0.0;
         int plane = 17;
+        Eigen::Vector2d end = Eigen::Vector2d::Zero();  // its programmed end, in the plane
     };
     using Pair = std::array<std::uint64_t, 4>;  // (path, contour) blocks: number, line each
     Grid& grid(int plane);
-    // True with `f` filled when path comes closer than threshold to contour (the least
-    // distance, and where); false at once for a pair already given out.
-    bool report(const Shape& path, const BlockRef& path_block, double r, int plane,
-                const Shape& contour, const BlockRef& contour_block, double threshold,
-                SelfApproachFinding& f);
+    // A path and the part of an element it is held to: the tool radius, the threshold, the
+    // element's and the path element's numbers and the element's grid id, and whether only
+    // its crossing counts (an approach and an element at its entry point).
+    struct Candidate;  // self_approach.cpp
+    // A pair the grid brought together: dropped where it cannot come near (or its element is
+    // no wall), held (waiting_) while the wall model has not placed both elements, else settled.
+    void consider(const Candidate& k, bool running, std::vector<SelfApproachFinding>& out);
+    // Measured, and a finding routed as the stretch rules say (held_, an undecided stretch's
+    // held, or given).
+    void settle(const Candidate& k, bool running, std::vector<SelfApproachFinding>& out);
+    // False where the pair cannot come closer than the threshold (the depth rule, the boxes, an
+    // exact proof) or is given out already.
+    bool near_enough(const Candidate& k);
+    // True with `f` filled when the path comes closer than the threshold to the element (the
+    // least distance, and where); false at once for a pair already given out.
+    bool measure(const Candidate& k, SelfApproachFinding& f);
     static Pair pair_of(const BlockRef& path, const BlockRef& contour);
     SelfApproachFinding* open_finding(const Pair& pair);
     // kMaxFindings pairs were given out, one more came near, and none is open: no later call
@@ -134,7 +158,21 @@ class SelfApproachCheck {
     void take(const SelfApproachFinding& f, bool running, std::vector<SelfApproachFinding>& out);
     void flush(std::vector<SelfApproachFinding>& out);  // the open findings go out
     // Findings against the stretch's latest element (its departure, perhaps): merged per pair.
-    static void hold(std::vector<SelfApproachFinding>& held, const SelfApproachFinding& f);
+    static void hold(std::vector<Found>& held, const Found& f);
+    // A finding the stretch rules let through: reported (take) where the wall model places its
+    // element as a wall, dropped where not, held (deferred_) until both elements are placed.
+    void give(const Found& f, bool running, std::vector<SelfApproachFinding>& out);
+    // The held findings whose elements are placed now.
+    void review(std::vector<SelfApproachFinding>& out);
+    // True when the pair cannot be reported: both elements are placed and the contour's is
+    // no wall.
+    bool exempt(std::uint64_t contour, std::uint64_t path);
+    // The wall model lets go of the elements every grid let go of.
+    void forget_let_go();
+    std::uint64_t forgotten_ = 0;
+    // Findings held for the wall model at most; beyond, the oldest is decided as things stand
+    // (an element not yet placed counts as a wall).
+    static constexpr std::size_t kMaxDeferred = 4096;
     // The first segment after a stretch: decides whether its last element was its departure.
     void leave(const PathSegment& s, std::vector<SelfApproachFinding>& out);
 
@@ -151,7 +189,12 @@ class SelfApproachCheck {
     std::size_t window_ = kWindow;
     std::size_t entry_budget_ = kEntryBudget;
     Candidates candidates_ = Candidates::kGrid;
-    std::vector<SelfApproachFinding> held_;  // against latest_, until it is known not the departure
+    std::vector<Found> held_;  // against latest_, until it is known not the departure
+    std::unique_ptr<detail::WallModel> walls_;
+    bool walls_on_ = true;
+    std::vector<Found> deferred_;  // given, waiting for the wall model
+    std::vector<Candidate> waiting_;  // unmeasured, waiting for the wall model
+    std::uint64_t reviewed_ = 0;   // the wall model's generation at the last review
     std::uint64_t latest_ = kNone;  // grid id (Grid::List numbering) of the stretch's latest
                                     // element of new geometry, in plane_
     // Stretches that ended, oldest first, whose last element (grid id, in `plane`) may be their
@@ -161,7 +204,7 @@ class SelfApproachCheck {
         std::uint64_t last_index = 0;  // of the stretch's last element
         int plane = 17;
         bool reached = false;  // a segment of the last element was executed
-        std::vector<SelfApproachFinding> held;  // against it
+        std::vector<Found> held;  // against it
     };
     std::vector<Undecided> undecided_;
     Undecided* undecided_of(int plane, std::uint64_t id);

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+#include "contour_loop.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace apci::run::plane {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+double cross(const Vec2& a, const Vec2& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+// The angle from a to b as seen from p, signed, in (-pi, pi].
+double seen_angle(const Vec2& p, const Vec2& a, const Vec2& b) {
+    const Vec2 u = a - p, v = b - p;
+    return std::atan2(cross(u, v), u.dot(v));
+}
+
+// True when p lies in the region an arc and its chord enclose: within the circle of its
+// middle radius and on the arc's side of the chord (counter-clockwise arcs bulge to the right
+// of start -> end); for a full circle the whole disc.
+bool in_arc_region(const Element& e, const Vec2& p) {
+    const double r = 0.5 * (e.r0 + e.r1);
+    if ((p - e.centre).squaredNorm() >= r * r) return false;
+    if (std::abs(e.sweep) >= kTwoPi) return true;
+    const double side = cross(e.end - e.start, p - e.start);
+    return e.sweep > 0.0 ? side < 0.0 : side > 0.0;
+}
+
+struct Box {
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+    Vec2 hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
+};
+
+// A box holding every point of the run (arcs by samples and their bulge between them).
+Box box_of(std::span<const Element> loop) {
+    Box b;
+    for (const Element& e : loop) {
+        const int n = e.arc ? 16 : 1;
+        double grow = 0.0;
+        if (e.arc)
+            grow = std::max(e.r0, e.r1) * (1.0 - std::cos(std::abs(e.sweep) / (2.0 * n))) +
+                   std::abs(e.r1 - e.r0);
+        for (int i = 0; i <= n; ++i) {
+            const Vec2 p = point_at(e, static_cast<double>(i) / n);
+            b.lo = b.lo.cwiseMin(p - Vec2::Constant(grow));
+            b.hi = b.hi.cwiseMax(p + Vec2::Constant(grow));
+        }
+    }
+    return b;
+}
+
+}  // namespace
+
+double signed_area(std::span<const Element> loop) noexcept {
+    double area = 0.0;
+    for (const Element& e : loop) {
+        area += 0.5 * cross(e.start, e.end);
+        if (e.arc) {
+            const double r = 0.5 * (e.r0 + e.r1);
+            area += 0.5 * r * r * (e.sweep - std::sin(e.sweep));
+        }
+    }
+    return area;
+}
+
+int winding_number(std::span<const Element> loop, const Vec2& p) noexcept {
+    double turned = 0.0;
+    for (const Element& e : loop) {
+        const bool full = e.arc && std::abs(e.sweep) >= kTwoPi;
+        if (!full) turned += seen_angle(p, e.start, e.end);
+        if (e.arc && in_arc_region(e, p)) turned += e.sweep > 0.0 ? kTwoPi : -kTwoPi;
+    }
+    return static_cast<int>(std::lround(turned / kTwoPi));
+}
+
+double distance_to(std::span<const Element> loop, const Vec2& p) noexcept {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Element& e : loop) best = std::min(best, distance_to(e, p));
+    return best;
+}
+
+Within within(std::span<const Element> outer, std::span<const Element> inner, double tolerance,
+              long budget) noexcept {
+    if (outer.empty() || inner.empty()) return Within::kNot;
+    const Box bo = box_of(outer), bi = box_of(inner);
+    if ((bi.lo.array() < bo.lo.array() - tolerance).any() ||
+        (bi.hi.array() > bo.hi.array() + tolerance).any())
+        return Within::kNot;
+    const long pairs = static_cast<long>(outer.size()) * static_cast<long>(inner.size());
+    if (pairs > budget) return Within::kUnknown;
+    bool apart_everywhere = true;
+    for (const Element& a : inner) {
+        for (const Element& b : outer)
+            if (!apart(a, b, tolerance)) {
+                apart_everywhere = false;
+                break;
+            }
+        if (!apart_everywhere) break;
+    }
+    if (apart_everywhere)
+        return winding_number(outer, inner.front().start) != 0 ? Within::kWithin : Within::kNot;
+    // They come near: every point sampled must lie inside or on outer, and one inside.
+    bool some_inside = false;
+    constexpr int kSamples = 16;
+    for (const Element& e : inner)
+        for (int i = 0; i <= kSamples; ++i) {
+            const Vec2 p = point_at(e, static_cast<double>(i) / kSamples);
+            if (distance_to(outer, p) <= tolerance) continue;
+            if (winding_number(outer, p) == 0) return Within::kNot;
+            some_inside = true;
+        }
+    return some_inside ? Within::kWithin : Within::kNot;
+}
+
+}  // namespace apci::run::plane

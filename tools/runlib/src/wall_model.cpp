@@ -1,0 +1,277 @@
+// SPDX-License-Identifier: MIT
+#include "wall_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contour_loop.h"
+
+namespace apci::run::detail {
+namespace {
+
+std::uint64_t mix(std::uint64_t x) {
+    x ^= x >> 31;
+    x *= 0x9E3779B97F4A7C15ULL;
+    return x ^ (x >> 29);
+}
+
+// The cell of 1e-4 mm (WallModel::kTolerance) a point lies in, as one key.
+std::int64_t cell_of(double v) {
+    return static_cast<std::int64_t>(std::floor(v / WallModel::kTolerance));
+}
+std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
+    return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
+}
+
+}  // namespace
+
+void WallModel::begin(int plane, int side) {
+    if (open_) end();
+    open_ = true;
+    plane_ = plane;
+    side_ = side < 0 ? -1 : 1;
+    stretch_loops_ = 0;
+    clear_pending();
+}
+
+void WallModel::clear_pending() {
+    pending_.clear();
+    starts_.clear();
+    pending_first_ = 0;
+}
+
+void WallModel::element(std::uint64_t index, const plane::Element& e, double low, double high,
+                        std::uint64_t key, bool walls) {
+    if (!open_) return;
+    const bool repeat = !keys_.insert(key).second;
+    records_.push_back(Record{index, 0, key, Place::kUndecided, walls, repeat});
+    // The oldest pending element can no longer begin a loop: an open contour's.
+    if (pending_.size() >= kMaxPending) {
+        place_pending(1, Place::kOpen, 0);
+        pending_.erase(pending_.begin());
+        ++pending_first_;
+    }
+    pending_.push_back(Pending{index, e, low, high, key});
+    const std::uint64_t number = pending_first_ + pending_.size() - 1;
+    const bool hashed = pending_.size() > kScanned;
+    if (hashed) {
+        if (starts_.empty())  // the pending elements so far
+            for (std::size_t i = 0; i < pending_.size(); ++i)
+                starts_.emplace(cell_key(cell_of(pending_[i].element.start.x()),
+                                         cell_of(pending_[i].element.start.y())),
+                                pending_first_ + i);
+        else
+            starts_.emplace(cell_key(cell_of(e.start.x()), cell_of(e.start.y())), number);
+    }
+    // Does it end where an element since the last loop started? The earliest such one.
+    std::size_t from = pending_.size();
+    const auto consider = [&](std::size_t at) {
+        if (at < from && (pending_[at].element.start - e.end).norm() <= kTolerance) from = at;
+    };
+    if (!hashed) {
+        for (std::size_t i = 0; i < pending_.size() && from == pending_.size(); ++i) consider(i);
+    } else {
+        const std::int64_t ci = cell_of(e.end.x()), cj = cell_of(e.end.y());
+        for (std::int64_t i = ci - 1; i <= ci + 1; ++i)
+            for (std::int64_t j = cj - 1; j <= cj + 1; ++j) {
+                const auto it = starts_.find(cell_key(i, j));
+                if (it != starts_.end() && it->second >= pending_first_)
+                    consider(static_cast<std::size_t>(it->second - pending_first_));
+            }
+    }
+    if (from < pending_.size()) close_loop(from);
+}
+
+void WallModel::close_loop(std::size_t from) {
+    Loop loop;
+    loop.plane = plane_;
+    loop.low = pending_[from].low;
+    loop.high = pending_[from].high;
+    std::uint64_t key = 0x5851F42D4C957F2DULL + static_cast<std::uint64_t>(plane_);
+    for (std::size_t i = from; i < pending_.size(); ++i) {
+        const Pending& p = pending_[i];
+        loop.elements.push_back(p.element);
+        loop.low = std::min(loop.low, p.low);
+        loop.high = std::max(loop.high, p.high);
+        key += mix(p.key);  // the same elements in any order: the same loop
+    }
+    loop.last = pending_.back().index;
+    loop.key = key;
+    // The same contour run again (at another depth, from another corner): one loop, its levels
+    // joined.
+    std::uint64_t number = 0;
+    const auto same = loop_by_key_.find(key);
+    if (same != loop_by_key_.end() && same->second >= loops_first_ &&
+        !loops_[static_cast<std::size_t>(same->second - loops_first_)].dropped) {
+        number = same->second;
+        Loop& l = loops_[static_cast<std::size_t>(number - loops_first_)];
+        l.low = std::min(l.low, loop.low);
+        l.high = std::max(l.high, loop.high);
+        l.last = std::max(l.last, loop.last);
+    } else {
+        const double area = plane::signed_area(loop.elements);
+        // A loop with no area to speak of (out and back along itself) has no inside.
+        const double scale = std::max(1.0, std::abs(area));
+        if (std::abs(area) > 1e-9 * scale && std::abs(area) > 1e-12)
+            loop.sense = (area > 0.0 ? 1 : -1) * side_;
+        number = loops_first_ + loops_.size();
+        loops_.push_back(std::move(loop));
+        loop_by_key_[key] = number;
+    }
+    place_run(from, stretch_loops_ > 0, true);
+    const std::size_t members = pending_.size() - from;
+    pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(from));
+    place_pending(members, Place::kLoop, number);
+    clear_pending();
+    ++stretch_loops_;
+}
+
+// The first `count` pending elements, a run outside the loops: up to kLeadElements of it next
+// to a loop before it (`after_loop`) and next to one after it (`before_loop`) are leads, the
+// rest an open contour's elements.
+void WallModel::place_run(std::size_t count, bool after_loop, bool before_loop) {
+    const std::size_t tail = count > 0 ? tail_of(pending_[0].index) : records_.size();
+    for (std::size_t i = 0; i < count; ++i) {
+        const bool lead = (after_loop && i < kLeadElements) ||
+                          (before_loop && count - i <= kLeadElements);
+        Record* r = record(pending_[i].index);
+        if (r == nullptr) continue;
+        r->place = lead ? Place::kLead : Place::kOpen;
+    }
+    if (count > 0) ++generation_;
+    prune(tail);
+}
+
+// The first `count` pending elements are placed (their records are the latest undecided ones,
+// in the same order).
+void WallModel::place_pending(std::size_t count, Place place, std::uint64_t loop) {
+    const std::size_t tail = count > 0 ? tail_of(pending_[0].index) : records_.size();
+    for (std::size_t i = 0; i < count; ++i) {
+        Record* r = record(pending_[i].index);
+        if (r == nullptr) continue;
+        r->place = place;
+        r->loop = loop;
+    }
+    if (count > 0) ++generation_;
+    prune(tail);
+}
+
+std::size_t WallModel::tail_of(std::uint64_t index) const {
+    const auto begin = records_.begin() + static_cast<std::ptrdiff_t>(records_head_);
+    return static_cast<std::size_t>(
+        std::lower_bound(begin, records_.end(), index,
+                         [](const Record& r, std::uint64_t i) { return r.index < i; }) -
+        records_.begin());
+}
+
+void WallModel::prune(std::size_t from) {
+    const auto gone = [this](const Record& r) {
+        if (r.place == Place::kUndecided) return false;
+        const bool plain = r.place == Place::kOpen && r.walls;
+        if (!(plain || r.repeat)) return false;
+        if (!r.repeat) keys_.erase(r.key);
+        return true;
+    };
+    const auto begin = records_.begin() + static_cast<std::ptrdiff_t>(from);
+    records_.erase(std::remove_if(begin, records_.end(), gone), records_.end());
+}
+
+void WallModel::end() {
+    if (!open_) return;
+    place_run(pending_.size(), stretch_loops_ > 0, false);
+    clear_pending();
+    open_ = false;
+}
+
+WallModel::Record* WallModel::record(std::uint64_t index) {
+    return const_cast<Record*>(static_cast<const WallModel*>(this)->record(index));
+}
+
+const WallModel::Record* WallModel::record(std::uint64_t index) const {
+    const auto begin = records_.begin() + static_cast<std::ptrdiff_t>(records_head_);
+    const auto it = std::lower_bound(begin, records_.end(), index,
+                                     [](const Record& r, std::uint64_t i) { return r.index < i; });
+    return it != records_.end() && it->index == index ? &*it : nullptr;
+}
+
+bool WallModel::placed(std::uint64_t index) const {
+    const Record* r = record(index);
+    return r == nullptr || r->place != Place::kUndecided;
+}
+
+bool WallModel::looped(std::uint64_t index) const {
+    const Record* r = record(index);
+    return r != nullptr && r->place == Place::kLoop;
+}
+
+bool WallModel::clears(const Loop& pass, const Loop& loop) const {
+    if (pass.dropped || pass.plane != loop.plane || pass.sense != loop.sense || loop.sense == 0)
+        return false;
+    if (pass.low > loop.high + kTolerance || pass.high < loop.low - kTolerance) return false;
+    // A pocket pass clears the pockets it encloses; a boss pass clears the bosses round it.
+    const auto& outer = loop.sense > 0 ? pass.elements : loop.elements;
+    const auto& inner = loop.sense > 0 ? loop.elements : pass.elements;
+    return plane::within(outer, inner, kTolerance, kPairBudget) == plane::Within::kWithin;
+}
+
+void WallModel::decide(Loop& loop, std::uint64_t number) {
+    const std::size_t known = loops_.size();
+    for (std::size_t i = loop.compared; i < known && !loop.cleared; ++i) {
+        if (loops_first_ + i == number) continue;
+        if (clears(loops_[i], loop)) loop.cleared = true;
+    }
+    loop.compared = known;
+}
+
+WallRole WallModel::role(std::uint64_t index) {
+    const Record* r = record(index);
+    if (r == nullptr) return WallRole::kWall;
+    if (r->place == Place::kUndecided) return WallRole::kUndecided;
+    if (!r->walls) return WallRole::kOff;
+    switch (r->place) {
+        case Place::kLead:
+            return WallRole::kLead;
+        case Place::kOpen:
+            return WallRole::kWall;
+        case Place::kLoop: {
+            if (r->loop < loops_first_) return WallRole::kWall;
+            Loop& loop = loops_[static_cast<std::size_t>(r->loop - loops_first_)];
+            if (loop.dropped) return WallRole::kWall;
+            decide(loop, r->loop);
+            return loop.cleared ? WallRole::kCleared : WallRole::kWall;
+        }
+        case Place::kUndecided:
+            break;
+    }
+    return WallRole::kUndecided;
+}
+
+void WallModel::forget_before(std::uint64_t index) {
+    while (records_head_ < records_.size() && records_[records_head_].index < index &&
+           records_[records_head_].place != Place::kUndecided) {
+        if (!records_[records_head_].repeat) keys_.erase(records_[records_head_].key);
+        ++records_head_;
+    }
+    if (records_head_ > 1024 && 2 * records_head_ > records_.size()) {
+        records_.erase(records_.begin(), records_.begin() + static_cast<std::ptrdiff_t>(records_head_));
+        records_head_ = 0;
+    }
+    for (Loop& l : loops_)
+        if (!l.dropped && l.last < index) {
+            l.dropped = true;
+            l.elements = {};
+            loop_by_key_.erase(l.key);
+            ++loops_dropped_;
+        }
+    // Loops let go at the front are forgotten (numbers stay as they were).
+    std::size_t gone = 0;
+    while (gone < loops_.size() && loops_[gone].dropped) ++gone;
+    if (gone > 1024 && 2 * gone > loops_.size()) {
+        loops_.erase(loops_.begin(), loops_.begin() + static_cast<std::ptrdiff_t>(gone));
+        loops_first_ += gone;
+        loops_dropped_ -= gone;
+        for (Loop& l : loops_) l.compared = l.compared > gone ? l.compared - gone : 0;
+    }
+}
+
+}  // namespace apci::run::detail

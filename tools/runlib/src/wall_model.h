@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+// Which programmed elements are walls: the part of the contour a program leaves standing, which
+// the tool must keep its radius from (docs/compensation.md, "What is a wall"). The self-approach
+// check (self_approach.h) asks this model before it reports a path coming near an element.
+//
+// A compensated stretch (G41/G42 to G40) is read as a CAM system writes it: leads onto and off
+// the contour, and the contour as closed loops. A loop closes where an element ends at the start
+// of an earlier element of the stretch (after the last loop); the (up to two) elements before a
+// stretch's first loop (the lead-in), after a loop (the lead-out, or the way to the next pass)
+// and before the next loop are leads: they lie where the tool only passes, and are no walls.
+// Other elements outside the loops, and every element of a stretch without a loop, are an open
+// contour's: walls (the check leaves out a stretch's approach and departure by its own rules). A loop the tool runs inside (a
+// pocket's pass) is cleared, no wall, where a larger pocket pass of the same plane and level
+// encloses it: the material beyond it is taken away by that pass (a pocket widened in passes,
+// a pocket cleared in stepovers from the inside out or from the outside in); a loop the tool runs
+// outside of (a boss) is cleared where it encloses a smaller boss pass of the same plane and
+// level (the roughing passes round a part). Islands and pockets, or bosses side by side, never
+// clear each other. Elements programmed under CDOF are no walls either (the program says that
+// what follows is not what it leaves standing).
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "apci/run/plane_distance.h"
+
+namespace apci::run::detail {
+
+enum class WallRole : std::uint8_t {
+    kUndecided,  // its stretch runs and no loop closed through it yet
+    kWall,       // part of what the program leaves standing
+    kLead,       // a lead-in, a lead-out or a connection between loops
+    kCleared,    // in a loop that another pass clears
+    kOff,        // programmed under CDOF
+};
+
+class WallModel {
+  public:
+    // Two loops' elements closer than this touch (a pass widened on some sides only), and
+    // an end this close to an earlier start closes a loop; levels overlap within it.
+    static constexpr double kTolerance = 1e-4;
+    // Element pairs one test of enclosure may take: larger loops are not compared (each stays
+    // a wall).
+    static constexpr long kPairBudget = 1L << 20;
+    // A lead is at most this many elements next to its loop: a line and an arc, as CAM systems
+    // write leads onto and off a contour (a straight line, a tangent arc, or both).
+    static constexpr std::size_t kLeadElements = 2;
+    // Elements of a stretch that may still begin a loop: an older one is an open contour's
+    // (a loop of more elements is not seen as one).
+    static constexpr std::size_t kMaxPending = std::size_t{1} << 14;
+
+    // A stretch begins in `plane` (17, 18, 19) with the tool on `side` (+1 left, G41; -1 right).
+    void begin(int plane, int side);
+    // The stretch's next element that moves in the plane, in program order: the check's number
+    // for it (increasing over the program), its geometry in the plane, its extent on the
+    // plane's third axis, the key of its geometry (the same for the same numbers), and whether
+    // walls are on (CDON) where it is programmed.
+    void element(std::uint64_t index, const plane::Element& e, double low, double high,
+                 std::uint64_t key, bool walls);
+    // The stretch ends: what came after its last loop is its lead-out; without a loop it is an
+    // open contour.
+    void end();
+    // True once the element's place is known: a loop closed through it or after it, or its
+    // stretch ended. Elements the model does not hold (never given, or forgotten) are placed.
+    bool placed(std::uint64_t index) const;
+    // True when the element is one of a loop's.
+    bool looped(std::uint64_t index) const;
+    // Its role as known now: a loop's element is a wall unless a loop known now clears it.
+    WallRole role(std::uint64_t index);
+    // Lets go of the elements numbered below `index`, and of the loops all of whose
+    // occurrences lie below it.
+    void forget_before(std::uint64_t index);
+    // Grows whenever elements are placed.
+    std::uint64_t generation() const noexcept { return generation_; }
+    // The loops held (for tests and the memory bound).
+    std::size_t loops() const noexcept { return loops_.size() - loops_dropped_; }
+
+  private:
+    enum class Place : std::uint8_t { kUndecided, kLead, kLoop, kOpen };
+    // What the model keeps of an element until it is placed, and after that only what differs
+    // from an element it does not hold (placed, a wall): a loop's, a lead's or one under CDOF
+    // of geometry not seen before (the check asks about the first element of each geometry).
+    struct Record {
+        std::uint64_t index = 0;
+        std::uint64_t loop = 0;  // kLoop: its loop's number
+        std::uint64_t key = 0;
+        Place place = Place::kUndecided;
+        bool walls = true;
+        bool repeat = false;  // its geometry came before (a record with its key is held)
+    };
+    struct Pending {
+        std::uint64_t index;
+        plane::Element element;
+        double low, high;
+        std::uint64_t key;
+    };
+    struct Loop {
+        int plane = 17;
+        int sense = 0;  // +1 the tool inside it (a pocket), -1 outside (a boss), 0 no area
+        double low = 0.0, high = 0.0;
+        std::uint64_t last = 0;  // the highest element number of any of its occurrences
+        std::uint64_t key = 0;   // of its elements' geometry, in any order
+        std::vector<plane::Element> elements;
+        bool cleared = false;
+        std::size_t compared = 0;  // loops (by number) it was compared with so far
+        bool dropped = false;
+    };
+    Record* record(std::uint64_t index);
+    const Record* record(std::uint64_t index) const;
+    void place_pending(std::size_t count, Place place, std::uint64_t loop);
+    void place_run(std::size_t count, bool after_loop, bool before_loop);
+    // The position in records_ of the first record numbered `index` or later.
+    std::size_t tail_of(std::uint64_t index) const;
+    void clear_pending();
+    // Up to this many pending elements are searched one by one for a start; beyond, by cells.
+    static constexpr std::size_t kScanned = 64;
+    void close_loop(std::size_t from);
+    bool clears(const Loop& outer_pass, const Loop& loop) const;
+    void decide(Loop& loop, std::uint64_t number);
+
+    // Drops the records placed since `from` (an index into records_) that say nothing more.
+    void prune(std::size_t from);
+    std::vector<Record> records_;  // by element number, ascending
+    std::unordered_set<std::uint64_t> keys_;  // of the records held
+    std::size_t records_head_ = 0;  // records before it were forgotten
+    std::vector<Loop> loops_;       // numbered from loops_first_
+    std::uint64_t loops_first_ = 0;
+    std::size_t loops_dropped_ = 0;
+    std::unordered_map<std::uint64_t, std::uint64_t> loop_by_key_;
+    // The stretch under way.
+    int plane_ = 17;
+    int side_ = 1;
+    bool open_ = false;
+    int stretch_loops_ = 0;
+    std::vector<Pending> pending_;  // since the last loop closed
+    // Where there are many pending elements: the first pending element (its number in the
+    // stretch since the last loop, pending_first_ + position) starting in each cell of
+    // kTolerance (key of the quantised point).
+    std::unordered_map<std::uint64_t, std::uint64_t> starts_;
+    std::uint64_t pending_first_ = 0;  // the stretch's count of elements before pending_[0]
+    std::uint64_t generation_ = 0;
+};
+
+}  // namespace apci::run::detail
