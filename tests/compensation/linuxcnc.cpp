@@ -11,7 +11,9 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 namespace apci::test {
 namespace {
@@ -71,8 +73,9 @@ struct Home {
 // Starts rs274 on one program, its standard output and error to files. rs274 keeps its tool
 // data in $HOME/.tool.mmap (truncated at start): every run gets a home of its own, so runs in
 // parallel do not share it and nobody's real home is touched.
-pid_t start(const Rs274& rs, const std::string& table, const std::string& program,
-            const std::string& out, const std::string& err, const std::string& home) {
+pid_t start(const Rs274& rs, const std::string& table, const std::string& ini,
+            const std::string& program, const std::string& out, const std::string& err,
+            const std::string& home) {
     const pid_t pid = ::fork();
     if (pid != 0) return pid;
     const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
@@ -84,8 +87,13 @@ pid_t start(const Rs274& rs, const std::string& table, const std::string& progra
     ::dup2(e, 2);
     ::setenv("LD_LIBRARY_PATH", rs.library_path.c_str(), 1);
     ::setenv("HOME", home.c_str(), 1);
-    const char* argv[] = {rs.binary.c_str(), "-t", table.c_str(), "-g", program.c_str(), nullptr};
-    ::execv(argv[0], const_cast<char* const*>(argv));
+    std::vector<const char*> argv{rs.binary.c_str(), "-t", table.c_str()};
+    if (!ini.empty()) {
+        argv.push_back("-i");
+        argv.push_back(ini.c_str());
+    }
+    argv.insert(argv.end(), {"-g", program.c_str(), nullptr});
+    ::execv(argv[0], const_cast<char* const*>(argv.data()));
     ::_exit(127);
 }
 
@@ -197,12 +205,26 @@ Rs274 find_rs274(const std::string& root) {
 }
 
 std::vector<Rs274Result> run_rs274(const Rs274& rs, const std::vector<std::string>& programs,
-                                   const std::string& tool_table, int plane, int parallel) {
+                                   const std::string& tool_table, int plane, int parallel,
+                                   const Rs274Subroutines& subroutines) {
     std::vector<Rs274Result> results(programs.size());
     Scratch scratch;
     if (!scratch.ok()) return results;
     const std::string table = scratch.file("tools.tbl");
     write_file(table, tool_table);
+    // The subroutines: the given files in a directory of their own, searched first.
+    std::string ini;
+    std::optional<Scratch> sub_dir;
+    if (!subroutines.empty()) {
+        sub_dir.emplace();
+        if (!sub_dir->ok()) return results;
+        std::string path = sub_dir->path("");
+        path.pop_back();  // the directory itself, without the '/'
+        for (const auto& [name, text] : subroutines.files) write_file(sub_dir->file(name), text);
+        for (const std::string& d : subroutines.directories) path += ":" + d;
+        ini = scratch.file("rs274.ini");
+        write_file(ini, "[RS274NGC]\nSUBROUTINE_PATH = " + path + "\n");
+    }
     struct Job {
         std::size_t index;
         std::string program, out, err;
@@ -233,7 +255,7 @@ std::vector<Rs274Result> run_rs274(const Rs274& rs, const std::vector<std::strin
                     scratch.file(stem + ".err"), Home{scratch.path(stem + ".home")}};
             write_file(job.program, programs[next]);
             if (::mkdir(job.home.dir.c_str(), 0700) != 0) break;
-            const pid_t pid = start(rs, table, job.program, job.out, job.err, job.home.dir);
+            const pid_t pid = start(rs, table, ini, job.program, job.out, job.err, job.home.dir);
             if (pid < 0) {
                 job.home.remove();
                 break;

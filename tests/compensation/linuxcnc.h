@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rwmos/geometry/element.h"
@@ -46,10 +47,21 @@ struct Rs274Result {
     std::vector<CanonMove> moves;
 };
 
+// Where rs274 finds the subroutines a program calls (`o<name> call` opens name.ngc): none by
+// default. `files` (name, NGC text) are written to a scratch directory searched first, then
+// `directories` in order; rs274 gets them as [RS274NGC]SUBROUTINE_PATH of an INI file (-i).
+struct Rs274Subroutines {
+    std::vector<std::pair<std::string, std::string>> files;
+    std::vector<std::string> directories;
+    bool empty() const { return files.empty() && directories.empty(); }
+};
+
 // Runs rs274 -t tool_table -g on every program (NGC text), at most `parallel` at a time; the
-// moves are read in `plane` (17 or 18). Results in the order of the programs.
+// moves are read in `plane` (17 or 18). Results in the order of the programs. Block delete is
+// off (rs274's default): lines beginning with "/" run.
 std::vector<Rs274Result> run_rs274(const Rs274& rs, const std::vector<std::string>& programs,
-                                   const std::string& tool_table, int plane, int parallel);
+                                   const std::string& tool_table, int plane, int parallel,
+                                   const Rs274Subroutines& subroutines = {});
 
 // A tool table for rs274 (standalone rs274 reads it in inches: D is the diameter) with tool
 // 1 of radius r mm.
