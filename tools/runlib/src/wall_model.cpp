@@ -31,6 +31,7 @@ void WallModel::begin(int plane, int side) {
     plane_ = plane;
     side_ = side < 0 ? -1 : 1;
     stretch_loops_ = 0;
+    started_ = false;
     clear_pending();
 }
 
@@ -43,6 +44,10 @@ void WallModel::clear_pending() {
 void WallModel::element(std::uint64_t index, const plane::Element& e, double low, double high,
                         std::uint64_t key, bool walls) {
     if (!open_) return;
+    if (pending_.empty() && stretch_loops_ == 0 && !started_) {
+        stretch_first_ = index;
+        started_ = true;
+    }
     const bool repeat = !keys_.insert(key).second;
     records_.push_back(Record{index, 0, key, Place::kUndecided, walls, repeat});
     // The oldest pending element can no longer begin a loop: an open contour's.
@@ -181,6 +186,7 @@ void WallModel::end() {
     place_run(pending_.size(), stretch_loops_ > 0, false);
     clear_pending();
     open_ = false;
+    ++generation_;  // the stretch's elements are placed now
 }
 
 WallModel::Record* WallModel::record(std::uint64_t index) {
@@ -196,7 +202,9 @@ const WallModel::Record* WallModel::record(std::uint64_t index) const {
 
 bool WallModel::placed(std::uint64_t index) const {
     const Record* r = record(index);
-    return r == nullptr || r->place != Place::kUndecided;
+    if (r == nullptr) return true;
+    if (r->place == Place::kUndecided) return false;
+    return !(open_ && index >= stretch_first_) || r->place == Place::kOpen;
 }
 
 bool WallModel::looped(std::uint64_t index) const {

@@ -62,8 +62,10 @@ class WallModel {
     // The stretch ends: what came after its last loop is its lead-out; without a loop it is an
     // open contour.
     void end();
-    // True once the element's place is known: a loop closed through it or after it, or its
-    // stretch ended. Elements the model does not hold (never given, or forgotten) are placed.
+    // True once what the element is can be decided: its stretch ended (every loop of it is
+    // known: a pocket's later, larger passes in the same stretch clear its earlier ones). An
+    // element an open contour's long stretch let go of (kMaxPending) is placed too, and so are
+    // elements the model does not hold (never given, or forgotten).
     bool placed(std::uint64_t index) const;
     // True when the element is one of a loop's.
     bool looped(std::uint64_t index) const;
@@ -134,6 +136,8 @@ class WallModel {
     int side_ = 1;
     bool open_ = false;
     int stretch_loops_ = 0;
+    std::uint64_t stretch_first_ = 0;  // the number of the open stretch's first element
+    bool started_ = false;             // it has one
     std::vector<Pending> pending_;  // since the last loop closed
     // Where there are many pending elements: the first pending element (its number in the
     // stretch since the last loop, pending_first_ + position) starting in each cell of
