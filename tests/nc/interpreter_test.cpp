@@ -315,6 +315,23 @@ TEST(Interpreter, CornerModeDefaultsToLinearAndEventsOnChange) {
     EXPECT_EQ(corner[1].mode, CornerMode::kLinear);
 }
 
+TEST(Interpreter, CdonIsTheStartAndCdofCdonAreEventsOnChangeBeforeTheMove) {
+    // CDON is the start state: a CDON first is no change; the change comes before the block's
+    // move (it holds for that move).
+    const auto ev = events_of("CDON\nG0 X1 CDOF\nCDOF\nCDON\nM30");
+    const auto walls = only<CollisionDetectionChange>(ev);
+    ASSERT_EQ(walls.size(), 2U);
+    EXPECT_FALSE(walls[0].on);
+    EXPECT_TRUE(walls[1].on);
+    std::size_t change = ev.size(), move = ev.size();
+    for (std::size_t i = 0; i < ev.size(); ++i) {
+        if (std::holds_alternative<CollisionDetectionChange>(ev[i].data) && change == ev.size())
+            change = i;
+        if (std::holds_alternative<RapidMove>(ev[i].data) && move == ev.size()) move = i;
+    }
+    EXPECT_LT(change, move);
+}
+
 TEST(Interpreter, G70TakesLengthsAndFeedInInchesUntilG71) {
     // [ISG-PROG]: G70 inch input, G71 metric (the initial state). Events are in mm.
     const auto ev = events_of(
@@ -525,6 +542,8 @@ void expect_same_event(const Event& a, const Event& b, const std::string& what) 
                 EXPECT_EQ(x.mode, y.mode) << what;
             } else if constexpr (std::is_same_v<T, PlaneChange>) {
                 EXPECT_EQ(x.plane, y.plane) << what;
+            } else if constexpr (std::is_same_v<T, CollisionDetectionChange>) {
+                EXPECT_EQ(x.on, y.on) << what;
             } else if constexpr (std::is_same_v<T, HeadOrientation>) {
                 EXPECT_EQ(bits(x.b), bits(y.b)) << what;
                 EXPECT_EQ(bits(x.c), bits(y.c)) << what;

@@ -295,10 +295,30 @@ TEST(Parser, WholeNumberWords) {
 
 TEST(Parser, UnknownWordsAreErrors) {
     EXPECT_EQ(error("N10 E5"),
-              "prog.nc:12:5: N10: unknown word 'E' (known words: N G X Y Z B I J K R F D M)");
+              "prog.nc:12:5: N10: unknown word 'E' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
     EXPECT_EQ(error("G1 U45"),
-              "prog.nc:12:4: unknown word 'U' (known words: N G X Y Z B I J K R F D M)");
+              "prog.nc:12:4: unknown word 'U' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
     EXPECT_EQ(error_kind("S1000"), ErrorKind::kUnknownWord);
+}
+
+TEST(Parser, CdonAndCdofAreWordsOfTheirOwn) {
+    // SINUMERIK's bottleneck detection on/off: here whether the compensated elements from the
+    // block on are walls for apcictl run's gouge check (docs/compensation.md).
+    const Block on = block("N10 CDON G41 G1 X5");
+    EXPECT_TRUE(on.collision.present());
+    EXPECT_TRUE(on.collision.value);
+    EXPECT_EQ(on.collision.column, 5U);
+    const Block off = block("cdof");
+    EXPECT_TRUE(off.collision.present());
+    EXPECT_FALSE(off.collision.value);
+    EXPECT_FALSE(block("G1 X5").collision.present());
+    // Anything else after C is an unknown word, named as written; twice is a conflict.
+    EXPECT_EQ(error("CDX"),
+              "prog.nc:12:1: unknown word 'C' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
+    EXPECT_EQ(error("G1 CD"),
+              "prog.nc:12:4: unknown word 'C' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
+    EXPECT_EQ(error("CDON CDOF"), "prog.nc:12:6: CDON or CDOF appears twice in one block");
+    EXPECT_EQ(error_kind("CDON CDON"), ErrorKind::kConflict);
 }
 
 TEST(Parser, UnknownGCode) {
@@ -407,7 +427,7 @@ TEST(Parser, UnknownIsgCommandsAreUnsupportedByName) {
 
 TEST(Parser, ErrorColumnsCountCharactersNotBytes) {
     EXPECT_EQ(error("N22 (Übergang) Q1"),
-              "prog.nc:12:16: N22: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
+              "prog.nc:12:16: N22: unknown word 'Q' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
 }
 
 TEST(Parser, DialectDetection) {

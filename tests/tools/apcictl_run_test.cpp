@@ -1349,6 +1349,35 @@ TEST_F(ApcictlRun, SelfApproachReportsTheLeastDistanceToEveryElementTheOffsetCir
     }
 }
 
+TEST_F(ApcictlRun, CdofMakesTheElementsAfterItNoWallsWhileTheirPathsAreStillChecked) {
+    // The circle's path of the test above crosses N27 and N47 and comes within 3.0278 mm of
+    // N26. Under CDOF, N26 and N27 are no walls (the program says they are not what it leaves
+    // standing): only N47 is warned. A circle programmed under CDOF is no wall, but its path
+    // is still held to the walls programmed under CDON: the three warnings stay.
+    const std::string head = "N10 D1 F1000\nN20 G0 X-10 Y0\nN25 G41 G1 X0 Y0\n";
+    const std::string tail = "N45 G1 X25 Y0\nN46 G1 X30\nN47 G1 X40\nN50 G40 G1 X50\nN60 M30\n";
+    const auto warned = [&](const std::string& middle) {
+        const json doc =
+            run_json(write("cdof.nc", head + middle + tail), {"--tools", tools(5.0)});
+        EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+        std::vector<int> blocks;
+        if (doc.contains("warnings"))
+            for (const auto& w : doc.at("warnings")) {
+                EXPECT_EQ(w.at("block"), 40) << w.dump();
+                const std::string m = w.at("message");
+                const auto at = m.find("contour at N");
+                if (at != std::string::npos) blocks.push_back(std::stoi(m.substr(at + 12)));
+            }
+        return blocks;
+    };
+    EXPECT_EQ(warned("N26 CDOF G1 X5\nN27 G1 X10\nN28 CDON G1 X15\nN30 G1 X20\n"
+                     "N40 G2 X20 Y0 I0 J-10\n"),
+              (std::vector<int>{47}));
+    EXPECT_EQ(warned("N26 G1 X5\nN27 G1 X10\nN28 G1 X15\nN30 G1 X20\n"
+                     "N40 CDOF G2 X20 Y0 I0 J-10\nN42 CDON\n"),
+              (std::vector<int>{26, 27, 47}));
+}
+
 TEST_F(ApcictlRun, SelfApproachComparesEachElementWithAWindowOfThoseBeforeIt) {
     // N30 runs along y = 0; the contour goes up, back along y = 50 in 14 steps, down at x = 30
     // and along y = 1.5 (N...: X20): its path (r 1, G41) is 0.5 from N30, and N30's path 0.5

@@ -42,7 +42,7 @@ std::string_view event_name(const EventData& data) noexcept {
         "rapid", "line",      "arc",  "tool",      "compensation", "corner", "plane",
         "end",   "tool_call", "tcpm", "prog_path", "oversize",     "head",   "vector_line",
         "otc",   "kinematics", "trafo", "not_emulated", "variable_write",
-        "correction_row", "selection"};
+        "correction_row", "selection", "collision"};
     static_assert(std::size(kNames) == std::variant_size_v<EventData>);
     return kNames[data.index()];
 }

@@ -223,7 +223,8 @@ enum class PlainMove : std::uint8_t { kNotPlain, kApplied, kFailed };
     // tool, tilts the head or ends the program.
     if (state.ended || b.plane.present() || b.distance.present() || b.compensation.present() ||
         b.corner.present() || b.selection.present() || b.units.present() || b.tool.present() ||
-        b.end_of_program.present() || b.b_axis.present() || b.radius.present())
+        b.end_of_program.present() || b.b_axis.present() || b.radius.present() ||
+        b.collision.present())
         return PlainMove::kNotPlain;
     const bool center = b.has_center_word();
     if (!center && !b.has_axis_word()) return PlainMove::kNotPlain;
@@ -291,6 +292,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (b.distance.present()) s.distance = b.distance.value;
     if (b.feed.present()) s.feed = b.feed.value;
     if (b.corner.present()) s.corner = b.corner.value;
+    if (b.collision.present()) s.collision = b.collision.value;
     if (b.selection.present()) s.selection = b.selection.value;
     if (b.compensation.present()) s.compensation = b.compensation.value;
     if (state_.trafo && s.compensation != Compensation::kOff &&
@@ -375,6 +377,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (s.selection != state_.selection) out.push(origin, SelectionModeChange{s.selection});
     if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
     if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
+    if (s.collision != state_.collision) out.push(origin, CollisionDetectionChange{s.collision});
     if (moves) push_move(out, origin, *s.motion, state_.position, s.position, s.feed, arc);
     // G25/G26 act on the transitions after the block's move ([ISG-PROG]: the transition at
     // the end of the block; [ISG-OTC-EN]'s wr_quad_disc.nc: N80 G26 Y100 leaves the corner

@@ -16,7 +16,7 @@ namespace apci::nc {
 
 namespace {
 
-constexpr std::string_view kKnownWords = "N G X Y Z B I J K R F D M";
+constexpr std::string_view kKnownWords = "N G X Y Z B I J K R F D M, CDON CDOF";
 constexpr std::string_view kKnownIsg = "#OTC, #KIN, #TRAFO, #HSC, $FOR, $ENDFOR";
 
 bool keyword_is(std::string_view id, std::string_view upper) {
@@ -578,11 +578,31 @@ class BlockParser {
                 return arc_radius(col);
             case 'F':
                 return feed(col);
+            case 'C':
+                return collision_detection(col);
             default:
                 return fail_here(
                     ErrorKind::kUnknownWord, col,
                     fmt::format("unknown word '{}' (known words: {})", raw, kKnownWords));
         }
+    }
+
+    // CDON / CDOF (the C is read): the gouge check's walls on or off from this block on.
+    bool collision_detection(std::uint32_t col) {
+        const auto upper_at = [&](std::size_t k) { return to_upper(c_.peek_at(k)); };
+        const bool on = upper_at(0) == 'D' && upper_at(1) == 'O' && upper_at(2) == 'N';
+        const bool off = upper_at(0) == 'D' && upper_at(1) == 'O' && upper_at(2) == 'F';
+        if (!on && !off) {
+            return fail_here(ErrorKind::kUnknownWord, col,
+                             fmt::format("unknown word 'C' (known words: {})", kKnownWords));
+        }
+        if (b_.collision.present()) {
+            return fail_here(ErrorKind::kConflict, col, "CDON or CDOF appears twice in one block");
+        }
+        for (int i = 0; i < 3; ++i) c_.advance();
+        b_.collision.value = on;
+        b_.collision.column = col;
+        return true;
     }
 
     bool center(std::size_t k, char letter, std::uint32_t col) {

@@ -223,6 +223,15 @@ void Execution::begin_self_approach() {
     self_approach_.begin(radius, comp_plane, comp_side);
 }
 
+void Execution::walls_on(bool on) {
+    if (self_approach_mode_ == SelfApproachMode::kOff) return;
+    if (sink_checks_) {
+        sink_.self_approach_walls(on);
+        return;
+    }
+    self_approach_.set_walls(on);
+}
+
 bool Execution::end_self_approach() {
     if (sink_checks_) {
         sink_check_active_ = false;

@@ -116,6 +116,8 @@ class Execution {
     bool spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r);
     void begin_self_approach();
     bool end_self_approach();
+    // CDON / CDOF: whether the moves programmed from now on are walls for the check.
+    void walls_on(bool on);
 
     // ---- state the units share
     RunOutcome out;

@@ -273,6 +273,9 @@ bool Execution::dispatch(const nc::Event& ev) {
                 return klartext_ ? c3_.compensation(at, e.side) : tc_.compensation(at, e.side);
             } else if constexpr (std::is_same_v<E, nc::CornerModeChange>) {
                 return tc_.corner(at, e.mode);
+            } else if constexpr (std::is_same_v<E, nc::CollisionDetectionChange>) {
+                walls_on(e.on);
+                return true;
             } else if constexpr (std::is_same_v<E, nc::SelectionModeChange>) {
                 return tc_.selection(at, e.mode);
             } else if constexpr (std::is_same_v<E, nc::PlaneChange>) {

@@ -165,6 +165,9 @@ void PipelinedSink::deliver(Batch& b) {
                 if (check_) check_->end(findings_);
                 if (!findings_.empty()) warn_findings();
                 break;
+            case Kind::kCheckWalls:
+                if (check_) check_->set_walls(i != 0);
+                break;
         }
     }
 }
@@ -244,6 +247,10 @@ void PipelinedSink::self_approach_programmed() {
 
 void PipelinedSink::self_approach_end() {
     add_only(Kind::kCheckEnd);
+}
+
+void PipelinedSink::self_approach_walls(bool on) {
+    add_only(Kind::kCheckWalls, on ? 1 : 0);
 }
 
 // As the executor gives them (Execution::take_findings): a warning each, to the inner sink.

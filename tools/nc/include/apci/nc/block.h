@@ -91,6 +91,9 @@ struct Block {
     Word<double> feed;                   // F, mm/min (inch/min under G70), > 0
     Word<int> tool;                      // D, 0..kMaxToolNumber (0: no tool)
     Word<bool> end_of_program;           // M30
+    // CDON (true) / CDOF (false): whether the compensated elements from this block on are walls
+    // of the part for `apcictl run`'s gouge check (docs/compensation.md, "What is a wall").
+    Word<bool> collision;
 
     // Forgets every word (cheaper than assigning Block{}: only the columns say what is present).
     void clear(std::uint64_t line_number) noexcept {
@@ -98,7 +101,7 @@ struct Block {
         number.column = motion.column = plane.column = distance.column = 0;
         compensation.column = corner.column = units.column = radius.column = feed.column = 0;
         selection.column = 0;
-        tool.column = end_of_program.column = b_axis.column = 0;
+        tool.column = end_of_program.column = b_axis.column = collision.column = 0;
         for (auto& w : axis) w.column = 0;
         for (auto& w : center) w.column = 0;
     }

@@ -71,6 +71,14 @@ struct SelectionModeChange {
     SelectionMode mode = SelectionMode::kIndirect;
 };
 
+// CDON / CDOF, sent when it changes, before the block's move (it holds for the move of its own
+// block): whether the compensated elements programmed from here on are walls of the part for
+// the gouge check of `apcictl run` (docs/compensation.md, "What is a wall"), the bottleneck
+// detection of the controls that have it (SINUMERIK's CDON / CDOF).
+struct CollisionDetectionChange {
+    bool on = true;
+};
+
 // G17 / G18 / G19, sent when the plane changes.
 struct PlaneChange {
     Plane plane = Plane::kXY;
@@ -190,7 +198,8 @@ using EventData =
     std::variant<RapidMove, LineMove, ArcMove, ToolSelect, CompensationChange, CornerModeChange,
                  PlaneChange, ProgramEnd, ToolCallDeltas, TcpmChange, ProgPathChange,
                  OversizeChange, HeadOrientation, VectorLineMove, OtcChange, KinematicsSelect,
-                 TrafoChange, NotEmulated, VariableWrite, CorrectionSelect, SelectionModeChange>;
+                 TrafoChange, NotEmulated, VariableWrite, CorrectionSelect, SelectionModeChange,
+                 CollisionDetectionChange>;
 
 struct Event {
     BlockOrigin origin;

@@ -42,6 +42,7 @@ struct ModalState {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // absolute, mm
     double b = 0.0;                                      // B head tilt, degrees
     bool ended = false;                                  // M30 seen
+    bool collision = true;                               // CDON (the start), CDOF
     // ISG OTC ([ISG-OTC] section 2.1) as programmed: on/off and the parameters in force.
     bool otc_active = false;
     // G40 under G139 in a block without a move: the departure is still to come ([ISG-OTC]

@@ -111,6 +111,8 @@ class RunSink {
     }
     virtual void self_approach_programmed() {}
     virtual void self_approach_end() {}
+    // SelfApproachCheck::set_walls: CDON (true) or CDOF from the next programmed move on.
+    virtual void self_approach_walls(bool on) { (void)on; }
     // Appends the warnings so far and their findings, in order, and says what the check left
     // out; waits
     // until the sink has had every call.

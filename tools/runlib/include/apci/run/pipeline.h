@@ -82,6 +82,7 @@ class PipelinedSink final : public RunSink {
     void self_approach_begin(double radius, int plane, int side) override;
     void self_approach_programmed() override;
     void self_approach_end() override;
+    void self_approach_walls(bool on) override;
     // Waits until the writer thread has had every event handed over (or stopped).
     void self_approach_results(std::vector<RunError>& warnings,
                                std::vector<SelfApproachFinding>& findings,
@@ -108,7 +109,8 @@ class PipelinedSink final : public RunSink {
         kCheckBegin,
         kCheckProgrammed,
         kProgrammedChecked,  // kProgrammed followed by kCheckProgrammed, as one event
-        kCheckEnd
+        kCheckEnd,
+        kCheckWalls  // the index is 1 for CDON, 0 for CDOF
     };
     struct Sample {
         std::uint64_t cycle = 0;
