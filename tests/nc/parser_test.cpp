@@ -223,7 +223,7 @@ TEST(Parser, NumberErrorsNameTheNumbersColumnAfterNonAsciiComments) {
 // letter, blank, comment or command start is named as unexpected, every letter is read as a
 // word, and '#', '$', V and P go to the ISG command and assignment checks, as one test each.
 TEST(Parser, EveryByteStartingAWordIsToldAsBefore) {
-    const std::string known = "(N G X Y Z B I J K R F D M)";
+    const std::string known = "(N G X Y Z B I J K R F D M, CDON CDOF)";
     for (int c = 0; c < 256; ++c) {
         const char ch = static_cast<char>(c);
         const std::string line = std::string("X1 ") + ch + "1";
@@ -233,7 +233,7 @@ TEST(Parser, EveryByteStartingAWordIsToldAsBefore) {
             EXPECT_EQ(what.find("unexpected character"), std::string::npos) << c << ": " << what;
             if (to_upper(ch) == 'V' || to_upper(ch) == 'P' || to_upper(ch) == 'E') {
                 EXPECT_EQ(what, fmt::format("prog.nc:12:4: unknown word '{}' (known words: N G X "
-                                            "Y Z B I J K R F D M)",
+                                            "Y Z B I J K R F D M, CDON CDOF)",
                                             ch))
                     << c;
             }
@@ -273,11 +273,11 @@ TEST(Parser, ColumnsCountCharactersWhereverTheNonAsciiByteLies) {
     const std::string umlaut = "\xC3\x9C";
     EXPECT_EQ(
         error("(" + umlaut + ")@"),
-        "prog.nc:12:4: unexpected character '@': expected a word (N G X Y Z B I J K R F D M)");
+        "prog.nc:12:4: unexpected character '@': expected a word (N G X Y Z B I J K R F D M, CDON CDOF)");
     for (std::size_t k = 0; k <= 17; ++k) {
         const std::string line = "X1" + std::string(k, ' ') + "(" + umlaut + ") @";
         EXPECT_EQ(error(line), fmt::format("prog.nc:12:{}: unexpected character '@': expected a "
-                                           "word (N G X Y Z B I J K R F D M)",
+                                           "word (N G X Y Z B I J K R F D M, CDON CDOF)",
                                            k + 7))
             << k;
     }
@@ -347,17 +347,17 @@ TEST(Parser, UnknownMCode) {
 
 TEST(Parser, UnexpectedCharacter) {
     EXPECT_EQ(error("G1 X1 @"),
-              "prog.nc:12:7: unexpected character '@': expected a word (N G X Y Z B I J K R F D M)");
+              "prog.nc:12:7: unexpected character '@': expected a word (N G X Y Z B I J K R F D M, CDON CDOF)");
     EXPECT_EQ(error("G1 X1\x01"),
               "prog.nc:12:6: unexpected character byte 0x01: expected a word "
-              "(N G X Y Z B I J K R F D M)");
+              "(N G X Y Z B I J K R F D M, CDON CDOF)");
     EXPECT_EQ(error("G1 X1.2.3"),
-              "prog.nc:12:8: unexpected character '.': expected a word (N G X Y Z B I J K R F D M)");
+              "prog.nc:12:8: unexpected character '.': expected a word (N G X Y Z B I J K R F D M, CDON CDOF)");
 }
 
 TEST(Parser, LeadingNumberHintsAtKlartext) {
     EXPECT_EQ(error("11 L X+36.0084 Y+6.177 R0"),
-              "prog.nc:12:1: expected a word (an address letter: N G X Y Z B I J K R F D M), found "
+              "prog.nc:12:1: expected a word (an address letter: N G X Y Z B I J K R F D M, CDON CDOF), found "
               "a number; Klartext programs must begin with 'BEGIN PGM'");
 }
 

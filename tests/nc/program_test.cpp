@@ -95,14 +95,14 @@ TEST(Program, NothingIsExecutedFromAProgramThatDoesNotParse) {
     while (raw.next(ev) == EventStream::Next::kEvent) ++executed;
     EXPECT_EQ(executed, 3);
     EXPECT_EQ(raw.error().to_string(),
-              "bad.nc:4:4: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
+              "bad.nc:4:4: unknown word 'Q' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
     EXPECT_EQ(raw.next(ev), EventStream::Next::kError);  // stays in error
 
     const std::string path = temp_file("bad.nc", text);
     Result<Program> p = Program::load(path);
     ASSERT_FALSE(p);
     EXPECT_EQ(p.error().to_string(),
-              path + ":4:4: unknown word 'Q' (known words: N G X Y Z B I J K R F D M)");
+              path + ":4:4: unknown word 'Q' (known words: N G X Y Z B I J K R F D M, CDON CDOF)");
 }
 
 TEST(Program, ExecutionPassRepeatsTheValidatedEvents) {

@@ -81,7 +81,7 @@ TEST(SinglePass, AnInvalidProgramGivesTheErrorOfProgramLoadEvenAtItsLastLine) {
     ASSERT_FALSE(s);
     EXPECT_EQ(s.error().to_string(),
               "<stdin>:2:4: unknown word 'Q' (known words: N G X Y Z B I J "
-              "K R F D M)");
+              "K R F D M, CDON CDOF)");
 }
 
 TEST(SinglePass, AFileThatCannotBeOpenedIsTheErrorOfProgramLoad) {

@@ -32,30 +32,34 @@ bool in_arc_region(const Element& e, const Vec2& p) {
     return e.sweep > 0.0 ? side < 0.0 : side > 0.0;
 }
 
-struct Box {
-    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
-    Vec2 hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
-};
+}  // namespace
 
-// A box holding every point of the run (arcs by samples and their bulge between them).
-Box box_of(std::span<const Element> loop) {
-    Box b;
+// A line by its ends; an arc by its ends and, where its turn passes an axis direction, its
+// larger radius there (the radius changes by |r1 - r0| at most along it: that much more).
+Bounds bounds(std::span<const Element> loop) noexcept {
+    Bounds b;
+    b.lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+    b.hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
     for (const Element& e : loop) {
-        const int n = e.arc ? 16 : 1;
-        double grow = 0.0;
-        if (e.arc)
-            grow = std::max(e.r0, e.r1) * (1.0 - std::cos(std::abs(e.sweep) / (2.0 * n))) +
-                   std::abs(e.r1 - e.r0);
-        for (int i = 0; i <= n; ++i) {
-            const Vec2 p = point_at(e, static_cast<double>(i) / n);
-            b.lo = b.lo.cwiseMin(p - Vec2::Constant(grow));
-            b.hi = b.hi.cwiseMax(p + Vec2::Constant(grow));
+        b.lo = b.lo.cwiseMin(e.start.cwiseMin(e.end));
+        b.hi = b.hi.cwiseMax(e.start.cwiseMax(e.end));
+        if (!e.arc) continue;
+        const double rmax = std::max(e.r0, e.r1);
+        const double pad = std::abs(e.r1 - e.r0);
+        const bool ends = e.r0 > 0.0 && e.r1 > 0.0;
+        const Vec2 from = ends ? Vec2((e.start - e.centre) / e.r0) : Vec2(1, 0);
+        const Vec2 to = ends ? Vec2((e.end - e.centre) / e.r1) : Vec2(1, 0);
+        for (const Vec2& axis : {Vec2(1, 0), Vec2(0, 1), Vec2(-1, 0), Vec2(0, -1)}) {
+            if (ends && !within_turn(from, to, e.sweep, axis)) continue;
+            const Vec2 p = e.centre + rmax * axis;
+            b.lo = b.lo.cwiseMin(p);
+            b.hi = b.hi.cwiseMax(p);
         }
+        b.lo.array() -= pad;
+        b.hi.array() += pad;
     }
     return b;
 }
-
-}  // namespace
 
 double signed_area(std::span<const Element> loop) noexcept {
     double area = 0.0;
@@ -88,7 +92,12 @@ double distance_to(std::span<const Element> loop, const Vec2& p) noexcept {
 Within within(std::span<const Element> outer, std::span<const Element> inner, double tolerance,
               long budget) noexcept {
     if (outer.empty() || inner.empty()) return Within::kNot;
-    const Box bo = box_of(outer), bi = box_of(inner);
+    return within(outer, bounds(outer), inner, bounds(inner), tolerance, budget);
+}
+
+Within within(std::span<const Element> outer, const Bounds& bo, std::span<const Element> inner,
+              const Bounds& bi, double tolerance, long budget) noexcept {
+    if (outer.empty() || inner.empty()) return Within::kNot;
     if ((bi.lo.array() < bo.lo.array() - tolerance).any() ||
         (bi.hi.array() > bo.hi.array() + tolerance).any())
         return Within::kNot;

@@ -23,6 +23,12 @@ int winding_number(std::span<const Element> loop, const Vec2& p) noexcept;
 // The least distance from p to the run.
 double distance_to(std::span<const Element> loop, const Vec2& p) noexcept;
 
+// A box holding every point of the run (corners lo, hi).
+struct Bounds {
+    Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
+};
+Bounds bounds(std::span<const Element> loop) noexcept;
+
 // Where `inner` lies with respect to `outer`:
 //   kWithin: every point of inner is inside outer or within `tolerance` of it, and some point
 //            of it farther than that inside (not the same contour run again);
@@ -33,7 +39,11 @@ double distance_to(std::span<const Element> loop, const Vec2& p) noexcept;
 // inner decides. Where they come that near (a shared or touching stretch), every element of
 // inner is sampled at its ends and 15 points between.
 enum class Within { kWithin, kNot, kUnknown };
+// The boxes (bounds()) may be given, where the caller keeps them.
 Within within(std::span<const Element> outer, std::span<const Element> inner, double tolerance,
+              long budget) noexcept;
+Within within(std::span<const Element> outer, const Bounds& outer_box,
+              std::span<const Element> inner, const Bounds& inner_box, double tolerance,
               long budget) noexcept;
 
 }  // namespace apci::run::plane

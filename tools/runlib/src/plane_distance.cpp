@@ -321,4 +321,92 @@ bool apart(const Element& a, const Element& b, double limit) noexcept {
     return true;
 }
 
+namespace {
+
+// Bounds on f(q) = q . n over the points of e (n a unit direction): exact for a line and a
+// circular arc. An arc's point is centre + rho u with rho within [rmin, rmax] and u a direction
+// within its turn, so u . n lies within [least, most] of the turn (1 and -1 where n and -n lie
+// within it, else the ends' values), and rho u . n within the products of those.
+void extent_along(const Element& e, const Vec2& n, double& lo, double& hi) {
+    lo = std::min(e.start.dot(n), e.end.dot(n));
+    hi = std::max(e.start.dot(n), e.end.dot(n));
+    if (!e.arc) return;
+    const double rmin = std::min(e.r0, e.r1), rmax = std::max(e.r0, e.r1);
+    if (e.r0 <= 0.0 || e.r1 <= 0.0) {
+        hi = std::max(hi, e.centre.dot(n) + rmax);
+        lo = std::min(lo, e.centre.dot(n) - rmax);
+        return;
+    }
+    const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
+    const double most = within_turn(from, to, e.sweep, n) ? 1.0 : std::max(from.dot(n), to.dot(n));
+    const double least =
+        within_turn(from, to, e.sweep, -n) ? -1.0 : std::min(from.dot(n), to.dot(n));
+    hi = std::max(hi, e.centre.dot(n) + (most >= 0.0 ? rmax : rmin) * most);
+    lo = std::min(lo, e.centre.dot(n) + (least <= 0.0 ? rmax : rmin) * least);
+}
+
+// The least and largest distance of the points of e from c.
+void distances_from(const Element& e, const Vec2& c, double& lo, double& hi) {
+    if (!e.arc) {
+        lo = point_segment(c, e.start, e.end);
+        hi = std::max((e.start - c).norm(), (e.end - c).norm());
+        return;
+    }
+    lo = std::min((e.start - c).norm(), (e.end - c).norm());
+    hi = std::max((e.start - c).norm(), (e.end - c).norm());
+    const Vec2 d = c - e.centre;
+    const double dist = d.norm();
+    const double rmin = std::min(e.r0, e.r1), rmax = std::max(e.r0, e.r1);
+    if (dist == 0.0 || e.r0 <= 0.0 || e.r1 <= 0.0) {  // every point rmin..rmax away
+        lo = std::min(lo, dist > rmax ? dist - rmax : (dist < rmin ? rmin - dist : 0.0));
+        hi = std::max(hi, dist + rmax);
+        return;
+    }
+    const Vec2 u = d / dist;
+    const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
+    // Nearest: towards c; farthest: away from it (the radius anywhere between rmin and rmax).
+    if (within_turn(from, to, e.sweep, u))
+        lo = std::min(lo, dist >= rmax ? dist - rmax : (dist <= rmin ? rmin - dist : 0.0));
+    if (within_turn(from, to, e.sweep, -u)) hi = std::max(hi, dist + rmax);
+}
+
+}  // namespace
+
+bool apart_by_side(const Element& a, const Element& b, double limit) noexcept {
+    // b a line and a wholly behind one of its ends E (against the direction t from E into b,
+    // to within eps): for p of a and q = E + s t of b, |p - q|^2 = |p - E|^2 - 2 s (p - E) . t
+    // + s^2 >= |p - E|^2 - eps^2. The distance of E from a (a lower bound: for an arc whose
+    // radii differ, its radial distance less that difference) then decides.
+    if (!b.arc) {
+        const Vec2 d = b.end - b.start;
+        const double len = d.norm();
+        if (len > 0.0) {
+            for (const bool at_start : {true, false}) {
+                const Vec2 e = at_start ? b.start : b.end;
+                const Vec2 t = (at_start ? d : Vec2(-d)) / len;
+                double lo = 0.0, hi = 0.0;
+                extent_along(a, t, lo, hi);
+                const double eps = std::max(0.0, hi - e.dot(t));
+                if (eps > 0.5 * limit) continue;
+                const double de = distance_to(a, e) - std::abs(a.r1 - a.r0);
+                if (de > 0.0 && de * de - eps * eps >= limit * limit) return true;
+            }
+        }
+    }
+    if (!a.arc) {
+        const Vec2 d = a.end - a.start;
+        const double len = d.norm();
+        if (len == 0.0) return false;
+        const Vec2 n(-d.y() / len, d.x() / len);
+        double lo = 0.0, hi = 0.0;
+        extent_along(b, n, lo, hi);
+        const double base = a.start.dot(n);
+        return hi - base <= -limit || lo - base >= limit;
+    }
+    double lo = 0.0, hi = 0.0;
+    distances_from(b, a.centre, lo, hi);
+    const double rmin = std::min(a.r0, a.r1), rmax = std::max(a.r0, a.r1);
+    return lo >= rmax + limit || hi <= rmin - limit;
+}
+
 }  // namespace apci::run::plane

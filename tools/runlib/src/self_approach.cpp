@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "apci/run/plane_distance.h"
+#include "probe_table.h"
 #include "wall_model.h"
 
 namespace apci::run {
@@ -226,72 +227,6 @@ std::uint64_t key_of(const PathSegment& s, int plane, double r) {
     });
 }
 
-// A table over 64-bit keys, each with a value: open addressing, linear probing, at most half
-// full, the slots doubling from 1024. No allocation per key once the slots have grown.
-template <class Value>
-class ProbeTable {
-  public:
-    struct Slot {
-        std::uint64_t key = 0;
-        bool taken = false;
-        Value value{};
-    };
-    // The key's slot, and whether it is new (its value then the default, for the caller to set).
-    std::pair<Slot&, bool> emplace(std::uint64_t key) {
-        if (2 * (count_ + 1) > slots_.size()) grow();
-        Slot& s = slots_[find(slots_, key)];
-        if (s.taken) return {s, false};
-        s.key = key;
-        s.taken = true;
-        ++count_;
-        return {s, true};
-    }
-    // The key's slot, or null.
-    const Slot* get(std::uint64_t key) const {
-        if (slots_.empty()) return nullptr;
-        const Slot& s = slots_[find(slots_, key)];
-        return s.taken ? &s : nullptr;
-    }
-    // Empty, keeping the memory.
-    void clear() {
-        std::fill(slots_.begin(), slots_.end(), Slot{});
-        count_ = 0;
-    }
-
-  private:
-    // The key's slot, or the empty one where it would go.
-    static std::size_t find(const std::vector<Slot>& slots, std::uint64_t key) {
-        const std::size_t mask = slots.size() - 1;
-        // Mixed so that the high half reaches the low bits (a grid cell's key is its row and
-        // column in the high and low half).
-        const std::uint64_t h = (key ^ (key >> 31)) * 0x9E3779B97F4A7C15ULL;
-        std::size_t i = (h ^ (h >> 32)) & mask;
-        while (slots[i].taken && slots[i].key != key) i = (i + 1) & mask;
-        return i;
-    }
-    [[gnu::noinline]] void grow() {
-        std::vector<Slot> bigger(slots_.empty() ? 1024 : 2 * slots_.size());
-        for (const Slot& s : slots_)
-            if (s.taken) bigger[find(bigger, s.key)] = s;
-        slots_.swap(bigger);
-    }
-    std::vector<Slot> slots_;
-    std::size_t count_ = 0;
-};
-
-// A set of 64-bit keys.
-class KeySet {
-  public:
-    // True when the key was not in the set (it is now).
-    bool insert(std::uint64_t key) { return table_.emplace(key).second; }
-    // Empty, keeping the memory.
-    void clear() { table_.clear(); }
-
-  private:
-    struct Nothing {};
-    ProbeTable<Nothing> table_;
-};
-
 // The same block: by N number when both have one (executed segments carry only the N number
 // of a block that has one), else by source line.
 bool same_block(const BlockRef& a, const BlockRef& b) {
@@ -315,73 +250,38 @@ std::string describe(const SelfApproachFinding& f) {
         f.radius - f.distance);
 }
 
-namespace {
 
-// The items of a uniform grid's cells: per cell (a 64-bit key, in a ProbeTable) a list of item
-// positions, the latest first, the lists' nodes in one array: no allocation per cell or per
-// item once the arrays have grown.
-class CellIndex {
-  public:
-    // Adds the item to the cell, unless it is the cell's latest already.
-    void add(std::uint64_t cell, std::uint32_t item) {
-        auto [slot, fresh] = heads_.emplace(cell);
-        if (!fresh && nodes_[slot.value.node].item == item) return;
-        nodes_.push_back(Node{item, fresh ? kEnd : slot.value.node});
-        slot.value.node = static_cast<std::uint32_t>(nodes_.size() - 1);
-    }
-    // Appends the items of the cell to `out`.
-    void append(std::uint64_t cell, std::vector<std::uint32_t>& out) const {
-        const auto* slot = heads_.get(cell);
-        if (slot == nullptr) return;
-        for (std::uint32_t n = slot->value.node; n != kEnd; n = nodes_[n].next)
-            out.push_back(nodes_[n].item);
-    }
-    // Empty, keeping the memory.
-    void clear() {
-        heads_.clear();
-        nodes_.clear();
-    }
-
-  private:
-    static constexpr std::uint32_t kEnd = ~std::uint32_t{0};
-    struct Head {
-        std::uint32_t node = kEnd;  // the cell's latest node
-    };
-    struct Node {
-        std::uint32_t item;
-        std::uint32_t next;
-    };
-    ProbeTable<Head> heads_;
-    std::vector<Node> nodes_;
+struct SelfApproachCheck::GridItem {
+    Shape shape;
+    BlockRef block;
+    std::uint64_t index = 0;
+    std::uint64_t stretch = 0;
+    std::uint64_t key = 0;  // of its geometry (contour_keys, path_keys)
+    double r = 0.0;
+    bool transition = false;
+    // Contour elements: the path must keep r from it. Not the first and the last element
+    // of a stretch: they are its approach and departure in the program's own terms.
+    bool protect = true;
+    // Paths: the approach (from where the tool stands onto the compensated path), and the
+    // entry point it leads to (its element's programmed end).
+    bool approach = false;
+    Vec2 entry = Vec2::Zero();
+    // What the wall model said of its element once it was placed (kUndecided until then),
+    // and the element's loop (WallModel::kNoLoop for none): role_of(), placed_of().
+    detail::WallRole role = detail::WallRole::kUndecided;
+    std::uint64_t loop = detail::WallModel::kNoLoop;
+    std::uint32_t entries = 0;  // cells it is listed in (set by index)
 };
 
-}  // namespace
-
 struct SelfApproachCheck::Grid {
-    struct Item {
-        Shape shape;
-        BlockRef block;
-        std::uint64_t index = 0;
-        std::uint64_t stretch = 0;
-        std::uint64_t key = 0;  // of its geometry (contour_keys, path_keys)
-        double r = 0.0;
-        bool transition = false;
-        // Contour elements: the path must keep r from it. Not the first and the last element
-        // of a stretch: they are its approach and departure in the program's own terms.
-        bool protect = true;
-        // Paths: the approach (from where the tool stands onto the compensated path), and the
-        // entry point it leads to (its element's programmed end).
-        bool approach = false;
-        Vec2 entry = Vec2::Zero();
-        std::uint32_t entries = 0;  // cells it is listed in (set by index)
-    };
+    using Item = GridItem;
     // Items kept in order, the oldest first: `first` is the number (counted over the plane's
     // whole run) of items[0].
     struct List {
         std::vector<Item> items;
         std::uint64_t first = 0;
-        CellIndex cells;
-        KeySet keys;
+        detail::CellIndex cells;
+        detail::KeySet keys;
         std::size_t entries = 0;  // of its items
         std::size_t sampled = 0;  // items listed by samples (the others by their box)
         std::uint64_t next() const { return first + items.size(); }
@@ -392,6 +292,29 @@ struct SelfApproachCheck::Grid {
         }
     };
     double cell = 0.0;   // set by the plane's first stretch, made larger by a larger tool (begin)
+    // The lengths of the plane's first kSizing elements: where most are longer than the cells,
+    // the cells are made twice the median (size_by()).
+    static constexpr std::size_t kSizing = 256;
+    std::vector<double> first_lengths;
+    bool sized = false;
+    // Once the first kSizing elements are in: cells at least twice their median length, so
+    // that most elements are listed in the few cells of their box rather than by samples
+    // (a program of long elements, parts of several centimetres milled with a small tool,
+    // would list each element in dozens of cells and look each path up in as many).
+    void size_by(double length) {
+        if (sized) return;
+        first_lengths.push_back(length);
+        if (first_lengths.size() < kSizing) return;
+        sized = true;
+        auto mid = first_lengths.begin() + static_cast<std::ptrdiff_t>(kSizing / 2);
+        std::nth_element(first_lengths.begin(), mid, first_lengths.end());
+        const double median = *mid;
+        first_lengths = {};
+        if (median > cell) {
+            cell = 2.0 * median;
+            reindex();
+        }
+    }
     double max_r = 0.0;  // the largest tool radius of its paths
     std::size_t window = kWindow;
     std::size_t entry_budget = kEntryBudget;
@@ -595,16 +518,14 @@ double threshold_for(Relation rel, double r) {
     return r - (neighbour ? 2.0 : 1.0) * SelfApproachCheck::kTolerance;
 }
 
-// The part of `c` a path of relation `rel` is checked against: all of it, or for a transition
-// at its own corner the part of an arc more than half a turn from that corner (false: none).
-bool checked_part(const Shape& c, Relation rel, Shape& out) {
-    if (rel == Relation::kOther || rel == Relation::kBefore || rel == Relation::kAfter) {
-        out = c;
-        return true;
-    }
-    if (rel == Relation::kOwn || !c.arc) return false;
+// The part of `c` a path of relation `rel` is checked against: all of it (c itself), or for a
+// transition at its own corner the part of an arc more than half a turn from that corner
+// (made in `out`); null: none.
+const Shape* checked_part(const Shape& c, Relation rel, Shape& out) {
+    if (rel == Relation::kOther || rel == Relation::kBefore || rel == Relation::kAfter) return &c;
+    if (rel == Relation::kOwn || !c.arc) return nullptr;
     const double turn = std::abs(c.sweep);
-    if (turn <= std::numbers::pi) return false;
+    if (turn <= std::numbers::pi) return nullptr;
     const double cut = rel == Relation::kHeld ? (turn - std::numbers::pi) / turn
                                               : std::numbers::pi / turn;
     const double t0 = rel == Relation::kHeld ? 0.0 : cut;
@@ -615,11 +536,26 @@ bool checked_part(const Shape& c, Relation rel, Shape& out) {
     out.sweep = c.sweep * (t1 - t0);
     out.length = c.length * (t1 - t0);
     set_arc_terms(out);
-    return true;
+    return &out;
 }
 
 }  // namespace
 
+// A pair as the grid brings it, its shapes where they are (the grid's items, or a part made for
+// it): nothing is copied unless the pair must wait (Candidate).
+struct SelfApproachCheck::PairView {
+    const Shape& path;
+    const BlockRef& path_block;
+    double r;
+    int plane;
+    const Shape& contour;
+    const BlockRef& contour_block;
+    double threshold;
+    std::uint64_t contour_index, path_index, contour_id;
+    bool need_cross;
+};
+
+// A pair that waits for the wall model, its shapes copied.
 struct SelfApproachCheck::Candidate {
     Shape path;
     BlockRef path_block;
@@ -630,6 +566,14 @@ struct SelfApproachCheck::Candidate {
     double threshold = 0.0;
     std::uint64_t contour_index = 0, path_index = 0, contour_id = 0;
     bool need_cross = false;
+    explicit Candidate(const PairView& v)
+        : path(v.path), path_block(v.path_block), r(v.r), plane(v.plane), contour(v.contour),
+          contour_block(v.contour_block), threshold(v.threshold), contour_index(v.contour_index),
+          path_index(v.path_index), contour_id(v.contour_id), need_cross(v.need_cross) {}
+    PairView view() const {
+        return {path,      path_block,    r,          plane,      contour,   contour_block,
+                threshold, contour_index, path_index, contour_id, need_cross};
+    }
 };
 
 SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budget,
@@ -774,9 +718,21 @@ void SelfApproachCheck::forget_let_go() {
     }
 }
 
-bool SelfApproachCheck::exempt(std::uint64_t contour, std::uint64_t path) {
-    if (!walls_->placed(contour) || !walls_->placed(path)) return false;
-    return walls_->role(contour) != detail::WallRole::kWall;
+// The wall model's answer for an item, kept in it once its element is placed (one lookup per
+// item, not per pair): its role, a loop's clearing asked each time (it changes once at most).
+detail::WallRole SelfApproachCheck::role_of(GridItem& item) {
+    if (item.role == detail::WallRole::kUndecided)
+        item.role = walls_->placement(item.index, item.loop);
+    if (item.role == detail::WallRole::kWall && item.loop != detail::WallModel::kNoLoop &&
+        walls_->cleared(item.loop))
+        return detail::WallRole::kCleared;
+    return item.role;
+}
+
+bool SelfApproachCheck::placed_of(GridItem& item) {
+    if (item.role == detail::WallRole::kUndecided)
+        item.role = walls_->placement(item.index, item.loop);
+    return item.role != detail::WallRole::kUndecided;
 }
 
 void SelfApproachCheck::give(const Found& f, bool running, std::vector<SelfApproachFinding>& out) {
@@ -808,7 +764,7 @@ void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
             continue;
         }
         if (walls_->role(k.contour_index) == detail::WallRole::kWall)
-            settle(k, seen_ && same_block(k.path_block, current_), out);
+            settle(k.view(), seen_ && same_block(k.path_block, current_), out);
     }
     std::vector<Found> waiting;
     for (const Found& f : deferred_) {
@@ -886,30 +842,36 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     latest_ = kNone;
     const std::uint64_t key = key_of(s, plane_, 0.0);
     const Shape e = shape_of(s, plane_);
+    const bool fresh = g.contour.keys.insert(key);
     // Every element that moves in the plane, repeats too: the loops are the program's.
     if (moves) {
-        walls_->element(index, e, e.low, e.high, key, walls_on_);
+        walls_->element(index, e, e.low, e.high, key, walls_on_, !fresh);
         review(out);
     }
-    if (!g.contour.keys.insert(key)) return;  // programmed before
+    if (!fresh) return;  // programmed before
     if (e.length <= kFullCircle) return;
     latest_ = g.contour.next();
+    g.size_by(e.length);
     g.add(g.contour, Grid::Item{e, s.block, index, stretch_, key, r_, false, !first});
     forget_let_go();
     if (first) return;
     // Paths executed before it that come near it (the contour comes back later).
+    Grid::Item& self = g.contour.items.back();
+    Shape scratch;
     for (const std::uint32_t pid : g.near(g.path, e, g.max_r)) {
-        const Grid::Item& p = g.path.items[pid];
-        if (exempt(index, p.index)) continue;
+        Grid::Item& p = g.path.items[pid];
         const Relation rel = relation(index, stretch_, p.index, p.stretch, p.transition);
-        Shape part;
-        if (!checked_part(e, rel, part)) continue;
+        const Shape* part = checked_part(e, rel, scratch);
+        if (part == nullptr) continue;
         const double threshold = threshold_for(rel, p.r);
-        if (p.approach && stands_near(p.shape, part, threshold)) continue;
+        if (!near_enough(p.shape, *part, threshold)) continue;
+        const bool placed = placed_of(p) && role_of(self) != detail::WallRole::kUndecided;
+        if (placed && role_of(self) != detail::WallRole::kWall) continue;
+        if (p.approach && stands_near(p.shape, *part, threshold)) continue;
         const bool cross = p.approach && p.stretch == stretch_ && at_entry(e, p.entry);
-        consider(Candidate{p.shape, p.block, p.r, plane_, part, s.block, threshold, index, p.index,
-                           latest_, cross},
-                 false, out);
+        consider(PairView{p.shape, p.block, p.r, plane_, *part, s.block, threshold, index, p.index,
+                          latest_, cross},
+                 placed, false, out);
     }
 }
 
@@ -968,42 +930,54 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
     const bool approach = s.role == Role::kApproach;
+    Grid::Item self{e, s.block, p.index, p.stretch, key, p.r, transition, true, approach, p.end};
+    // Its element is placed once its stretch ended (or, an open contour's, at once).
+    const bool self_placed = !(active_ && p.stretch == stretch_) || placed_of(self);
+    Shape scratch;
     for (const std::uint32_t at : g.near(g.contour, e, p.r)) {
-        const Grid::Item& c = g.contour.items[at];
-        if (exempt(c.index, p.index)) continue;
+        Grid::Item& c = g.contour.items[at];
+        if (!c.protect) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
-        Shape part;
-        if (!c.protect || !checked_part(c.shape, rel, part)) continue;
+        const Shape* part = checked_part(c.shape, rel, scratch);
+        if (part == nullptr) continue;
         const double threshold = threshold_for(rel, p.r);
-        if (approach && stands_near(e, part, threshold)) continue;
+        if (!near_enough(e, *part, threshold)) continue;
+        const detail::WallRole role = role_of(c);
+        const bool placed = self_placed && role != detail::WallRole::kUndecided;
+        if (placed && role != detail::WallRole::kWall) continue;
+        if (approach && stands_near(e, *part, threshold)) continue;
         const bool cross = approach && c.stretch == p.stretch && at_entry(c.shape, p.end);
-        consider(Candidate{e, s.block, p.r, p.plane, part, c.block, threshold, c.index, p.index,
-                           g.contour.first + at, cross},
-                 running, out);
+        consider(PairView{e, s.block, p.r, p.plane, *part, c.block, threshold, c.index, p.index,
+                          g.contour.first + at, cross},
+                 placed, running, out);
     }
     if (!running) flush(out);
-    g.add(g.path,
-          Grid::Item{e, s.block, p.index, p.stretch, key, p.r, transition, true, approach, p.end});
+    g.add(g.path, self);
     forget_let_go();
 }
 
-void SelfApproachCheck::consider(const Candidate& k, bool running,
+void SelfApproachCheck::consider(const PairView& k, bool placed, bool running,
                                  std::vector<SelfApproachFinding>& out) {
-    if (!near_enough(k)) return;
-    if (!walls_->placed(k.contour_index) || !walls_->placed(k.path_index)) {
+    if (!unreported(k.path_block, k.contour_block)) return;
+    // Proved apart: no point of the path is as near as the threshold, so the search would find
+    // none (every distance it computes is that of a point of the path to a point of the
+    // element, at least the least distance).
+    if (plane::apart_by_side(k.path, k.contour, k.threshold + kApartMargin) ||
+        plane::apart(k.path, k.contour, k.threshold + kApartMargin))
+        return;
+    if (!placed) {
         if (waiting_.size() >= kMaxDeferred) {  // the oldest measured as things stand
             const Candidate oldest = waiting_.front();
             waiting_.erase(waiting_.begin());
-            settle(oldest, false, out);
+            settle(oldest.view(), false, out);
         }
-        waiting_.push_back(k);
+        waiting_.emplace_back(k);
         return;
     }
-    if (walls_->role(k.contour_index) != detail::WallRole::kWall) return;
     settle(k, running, out);
 }
 
-void SelfApproachCheck::settle(const Candidate& k, bool running,
+void SelfApproachCheck::settle(const PairView& k, bool running,
                                std::vector<SelfApproachFinding>& out) {
     Found f{{}, k.contour_index, k.path_index};
     if (!measure(k, f.f)) return;
@@ -1017,23 +991,24 @@ void SelfApproachCheck::settle(const Candidate& k, bool running,
         give(f, running, out);
 }
 
-bool SelfApproachCheck::near_enough(const Candidate& k) {
-    // The contour wholly below the tool's tip on all of the path: the tool does not reach down
-    // to it (it stands on the plane's positive side, its axis the third).
-    if (k.contour.high < k.path.low - kTolerance) return false;
-    if (box_distance(k.path, k.contour) >= k.threshold + kApartMargin) return false;
-    const Pair pair = pair_of(k.path_block, k.contour_block);
-    // At kMaxFindings pairs given out, a new pair is only looked at until one is found.
-    const bool beyond = reported_.size() >= kMaxFindings && open_finding(pair) == nullptr &&
-                        std::find(reported_.begin(), reported_.end(), pair) == reported_.end();
-    if (closed(pair) && !(beyond && !capped_)) return false;
-    // Proved apart: no point of the path is as near as the threshold, so the search would find
-    // none (every distance it computes is that of a point of the path to a point of the
-    // element, at least the least distance).
-    return !plane::apart(k.path, k.contour, k.threshold + kApartMargin);
+// The cheap tests first: the depth rule (the contour wholly below the tool's tip on all of the
+// path: the tool does not reach down to it, it stands on the plane's positive side, its axis
+// the third) and the boxes.
+bool SelfApproachCheck::near_enough(const Shape& path, const Shape& contour, double threshold) {
+    if (contour.high < path.low - kTolerance) return false;
+    return box_distance(path, contour) < threshold + kApartMargin;
 }
 
-bool SelfApproachCheck::measure(const Candidate& k, SelfApproachFinding& f) {
+// False for a pair given out already (or, at kMaxFindings pairs given out, a new pair once one
+// more was found: the check then stops).
+bool SelfApproachCheck::unreported(const BlockRef& path_block, const BlockRef& contour_block) {
+    const Pair pair = pair_of(path_block, contour_block);
+    const bool beyond = reported_.size() >= kMaxFindings && open_finding(pair) == nullptr &&
+                        std::find(reported_.begin(), reported_.end(), pair) == reported_.end();
+    return !closed(pair) || (beyond && !capped_);
+}
+
+bool SelfApproachCheck::measure(const PairView& k, SelfApproachFinding& f) {
     const Pair pair = pair_of(k.path_block, k.contour_block);
     const bool beyond = reported_.size() >= kMaxFindings && open_finding(pair) == nullptr &&
                         std::find(reported_.begin(), reported_.end(), pair) == reported_.end();

@@ -32,6 +32,7 @@ void WallModel::begin(int plane, int side) {
     side_ = side < 0 ? -1 : 1;
     stretch_loops_ = 0;
     started_ = false;
+    opened_early_ = false;
     clear_pending();
 }
 
@@ -42,13 +43,12 @@ void WallModel::clear_pending() {
 }
 
 void WallModel::element(std::uint64_t index, const plane::Element& e, double low, double high,
-                        std::uint64_t key, bool walls) {
+                        std::uint64_t key, bool walls, bool repeat) {
     if (!open_) return;
     if (pending_.empty() && stretch_loops_ == 0 && !started_) {
         stretch_first_ = index;
         started_ = true;
     }
-    const bool repeat = !keys_.insert(key).second;
     records_.push_back(Record{index, 0, key, Place::kUndecided, walls, repeat});
     // The oldest pending element can no longer begin a loop: an open contour's.
     if (pending_.size() >= kMaxPending) {
@@ -71,7 +71,8 @@ void WallModel::element(std::uint64_t index, const plane::Element& e, double low
     // Does it end where an element since the last loop started? The earliest such one.
     std::size_t from = pending_.size();
     const auto consider = [&](std::size_t at) {
-        if (at < from && (pending_[at].element.start - e.end).norm() <= kTolerance) from = at;
+        if (at < from && (pending_[at].element.start - e.end).squaredNorm() <= kTolerance * kTolerance)
+            from = at;
     };
     if (!hashed) {
         for (std::size_t i = 0; i < pending_.size() && from == pending_.size(); ++i) consider(i);
@@ -105,10 +106,10 @@ void WallModel::close_loop(std::size_t from) {
     // The same contour run again (at another depth, from another corner): one loop, its levels
     // joined.
     std::uint64_t number = 0;
-    const auto same = loop_by_key_.find(key);
-    if (same != loop_by_key_.end() && same->second >= loops_first_ &&
-        !loops_[static_cast<std::size_t>(same->second - loops_first_)].dropped) {
-        number = same->second;
+    const auto* same = loop_by_key_.get(key);
+    if (same != nullptr && same->value >= loops_first_ &&
+        !loops_[static_cast<std::size_t>(same->value - loops_first_)].dropped) {
+        number = same->value;
         Loop& l = loops_[static_cast<std::size_t>(number - loops_first_)];
         l.low = std::min(l.low, loop.low);
         l.high = std::max(l.high, loop.high);
@@ -120,8 +121,10 @@ void WallModel::close_loop(std::size_t from) {
         if (std::abs(area) > 1e-9 * scale && std::abs(area) > 1e-12)
             loop.sense = (area > 0.0 ? 1 : -1) * side_;
         number = loops_first_ + loops_.size();
+        loop.box = plane::bounds(loop.elements);
         loops_.push_back(std::move(loop));
-        loop_by_key_[key] = number;
+        loop_by_key_.emplace(key).first.value = number;
+        index_loop(number);
     }
     place_run(from, stretch_loops_ > 0, true);
     const std::size_t members = pending_.size() - from;
@@ -136,14 +139,19 @@ void WallModel::close_loop(std::size_t from) {
 // rest an open contour's elements.
 void WallModel::place_run(std::size_t count, bool after_loop, bool before_loop) {
     const std::size_t tail = count > 0 ? tail_of(pending_[0].index) : records_.size();
+    bool opened = false;
     for (std::size_t i = 0; i < count; ++i) {
         const bool lead = (after_loop && i < kLeadElements) ||
                           (before_loop && count - i <= kLeadElements);
         Record* r = record(pending_[i].index);
         if (r == nullptr) continue;
         r->place = lead ? Place::kLead : Place::kOpen;
+        if (!lead) opened = true;
     }
-    if (count > 0) ++generation_;
+    if (opened) {
+        ++generation_;
+        opened_early_ |= open_;
+    }  // an open contour's element is placed at once
     prune(tail);
 }
 
@@ -157,7 +165,10 @@ void WallModel::place_pending(std::size_t count, Place place, std::uint64_t loop
         r->place = place;
         r->loop = loop;
     }
-    if (count > 0) ++generation_;
+    if (count > 0 && place == Place::kOpen) {  // placed at once
+        ++generation_;
+        opened_early_ |= open_;
+    }
     prune(tail);
 }
 
@@ -170,12 +181,9 @@ std::size_t WallModel::tail_of(std::uint64_t index) const {
 }
 
 void WallModel::prune(std::size_t from) {
-    const auto gone = [this](const Record& r) {
+    const auto gone = [](const Record& r) {
         if (r.place == Place::kUndecided) return false;
-        const bool plain = r.place == Place::kOpen && r.walls;
-        if (!(plain || r.repeat)) return false;
-        if (!r.repeat) keys_.erase(r.key);
-        return true;
+        return r.repeat || (r.place == Place::kOpen && r.walls);
     };
     const auto begin = records_.begin() + static_cast<std::ptrdiff_t>(from);
     records_.erase(std::remove_if(begin, records_.end(), gone), records_.end());
@@ -201,6 +209,8 @@ const WallModel::Record* WallModel::record(std::uint64_t index) const {
 }
 
 bool WallModel::placed(std::uint64_t index) const {
+    // The open stretch's elements wait for its end, but for an open contour's placed at once.
+    if (open_ && started_ && index >= stretch_first_ && !opened_early_) return false;
     const Record* r = record(index);
     if (r == nullptr) return true;
     if (r->place == Place::kUndecided) return false;
@@ -217,18 +227,95 @@ bool WallModel::clears(const Loop& pass, const Loop& loop) const {
         return false;
     if (pass.low > loop.high + kTolerance || pass.high < loop.low - kTolerance) return false;
     // A pocket pass clears the pockets it encloses; a boss pass clears the bosses round it.
-    const auto& outer = loop.sense > 0 ? pass.elements : loop.elements;
-    const auto& inner = loop.sense > 0 ? loop.elements : pass.elements;
-    return plane::within(outer, inner, kTolerance, kPairBudget) == plane::Within::kWithin;
+    const Loop& outer = loop.sense > 0 ? pass : loop;
+    const Loop& inner = loop.sense > 0 ? loop : pass;
+    return plane::within(outer.elements, outer.box, inner.elements, inner.box, kTolerance,
+                         kPairBudget) == plane::Within::kWithin;
 }
 
 void WallModel::decide(Loop& loop, std::uint64_t number) {
-    const std::size_t known = loops_.size();
-    for (std::size_t i = loop.compared; i < known && !loop.cleared; ++i) {
-        if (loops_first_ + i == number) continue;
-        if (clears(loops_[i], loop)) loop.cleared = true;
+    if (loop.cleared || loop.known == loops_.size() + loops_first_) return;
+    loop.known = loops_.size() + loops_first_;
+    candidates(loop, found_);
+    for (const std::uint64_t other : found_) {
+        if (other == number || other < loops_first_) continue;
+        if (clears(loops_[static_cast<std::size_t>(other - loops_first_)], loop)) {
+            loop.cleared = true;
+            return;
+        }
     }
-    loop.compared = known;
+}
+
+namespace {
+std::int64_t loop_cell(double v) {
+    return static_cast<std::int64_t>(std::floor(v / WallModel::kLoopCell));
+}
+}  // namespace
+
+void WallModel::index_loop(std::uint64_t number) {
+    const Loop& l = loops_[static_cast<std::size_t>(number - loops_first_)];
+    const std::int64_t i0 = loop_cell(l.box.lo.x()), i1 = loop_cell(l.box.hi.x());
+    const std::int64_t j0 = loop_cell(l.box.lo.y()), j1 = loop_cell(l.box.hi.y());
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > kLoopCells) {
+        wide_loops_.push_back(number);
+        return;
+    }
+    const auto item = static_cast<std::uint32_t>(number - loops_first_);
+    for (std::int64_t i = i0; i <= i1; ++i)
+        for (std::int64_t j = j0; j <= j1; ++j) loop_cells_.add(cell_key(i, j), item);
+}
+
+void WallModel::reindex_loops() {
+    loop_cells_.clear();
+    wide_loops_.clear();
+    loop_by_key_.clear();
+    for (std::size_t k = 0; k < loops_.size(); ++k) {
+        if (loops_[k].dropped) continue;
+        index_loop(loops_first_ + k);
+        loop_by_key_.emplace(loops_[k].key).first.value = loops_first_ + k;
+    }
+}
+
+void WallModel::candidates(const Loop& loop, std::vector<std::uint64_t>& out) {
+    out.assign(wide_loops_.begin(), wide_loops_.end());
+    const plane::Vec2 centre = 0.5 * (loop.box.lo + loop.box.hi);
+    const std::int64_t i0 = loop_cell(loop.box.lo.x()), i1 = loop_cell(loop.box.hi.x());
+    const std::int64_t j0 = loop_cell(loop.box.lo.y()), j1 = loop_cell(loop.box.hi.y());
+    const auto add_cell = [&](std::int64_t i, std::int64_t j) {
+        cell_found_.clear();
+        loop_cells_.append(cell_key(i, j), cell_found_);
+        for (const std::uint32_t item : cell_found_) out.push_back(loops_first_ + item);
+    };
+    if (loop.sense > 0) {
+        add_cell(loop_cell(centre.x()), loop_cell(centre.y()));
+    } else if ((i1 - i0 + 1) * (j1 - j0 + 1) > kLoopCells) {
+        out.clear();
+        for (std::size_t k = 0; k < loops_.size(); ++k) out.push_back(loops_first_ + k);
+    } else {
+        for (std::int64_t i = i0; i <= i1; ++i)
+            for (std::int64_t j = j0; j <= j1; ++j) add_cell(i, j);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+WallRole WallModel::placement(std::uint64_t index, std::uint64_t& loop) const {
+    loop = kNoLoop;
+    if (!placed(index)) return WallRole::kUndecided;
+    const Record* r = record(index);
+    if (r == nullptr) return WallRole::kWall;
+    if (!r->walls) return WallRole::kOff;
+    if (r->place == Place::kLead) return WallRole::kLead;
+    if (r->place == Place::kLoop) loop = r->loop;
+    return WallRole::kWall;
+}
+
+bool WallModel::cleared(std::uint64_t number) {
+    if (number < loops_first_ || number - loops_first_ >= loops_.size()) return false;
+    Loop& loop = loops_[static_cast<std::size_t>(number - loops_first_)];
+    if (loop.dropped) return false;
+    decide(loop, number);
+    return loop.cleared;
 }
 
 WallRole WallModel::role(std::uint64_t index) {
@@ -256,19 +343,18 @@ WallRole WallModel::role(std::uint64_t index) {
 
 void WallModel::forget_before(std::uint64_t index) {
     while (records_head_ < records_.size() && records_[records_head_].index < index &&
-           records_[records_head_].place != Place::kUndecided) {
-        if (!records_[records_head_].repeat) keys_.erase(records_[records_head_].key);
+           records_[records_head_].place != Place::kUndecided)
         ++records_head_;
-    }
     if (records_head_ > 1024 && 2 * records_head_ > records_.size()) {
         records_.erase(records_.begin(), records_.begin() + static_cast<std::ptrdiff_t>(records_head_));
         records_head_ = 0;
     }
+    bool dropped_any = false;
     for (Loop& l : loops_)
         if (!l.dropped && l.last < index) {
             l.dropped = true;
             l.elements = {};
-            loop_by_key_.erase(l.key);
+            dropped_any = true;
             ++loops_dropped_;
         }
     // Loops let go at the front are forgotten (numbers stay as they were).
@@ -278,8 +364,10 @@ void WallModel::forget_before(std::uint64_t index) {
         loops_.erase(loops_.begin(), loops_.begin() + static_cast<std::ptrdiff_t>(gone));
         loops_first_ += gone;
         loops_dropped_ -= gone;
-        for (Loop& l : loops_) l.compared = l.compared > gone ? l.compared - gone : 0;
+        dropped_any = true;  // the index's numbers changed
+
     }
+    if (dropped_any) reindex_loops();
 }
 
 }  // namespace apci::run::detail

@@ -21,10 +21,11 @@
 
 #include <cstdint>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "apci/run/plane_distance.h"
+#include "contour_loop.h"
+#include "probe_table.h"
 
 namespace apci::run::detail {
 
@@ -47,6 +48,10 @@ class WallModel {
     // A lead is at most this many elements next to its loop: a line and an arc, as CAM systems
     // write leads onto and off a contour (a straight line, a tangent arc, or both).
     static constexpr std::size_t kLeadElements = 2;
+    // The loops are listed in the cells (of kLoopCell mm) their box covers, or, where that
+    // is more than kLoopCells, in a list of wide loops that every search looks at.
+    static constexpr double kLoopCell = 16.0;
+    static constexpr std::int64_t kLoopCells = 256;
     // Elements of a stretch that may still begin a loop: an older one is an open contour's
     // (a loop of more elements is not seen as one).
     static constexpr std::size_t kMaxPending = std::size_t{1} << 14;
@@ -57,8 +62,10 @@ class WallModel {
     // for it (increasing over the program), its geometry in the plane, its extent on the
     // plane's third axis, the key of its geometry (the same for the same numbers), and whether
     // walls are on (CDON) where it is programmed.
+    // `repeat`: its geometry came before (the check asks only about the first element of each
+    // geometry: the model keeps no record of a repeat once it is placed).
     void element(std::uint64_t index, const plane::Element& e, double low, double high,
-                 std::uint64_t key, bool walls);
+                 std::uint64_t key, bool walls, bool repeat);
     // The stretch ends: what came after its last loop is its lead-out; without a loop it is an
     // open contour.
     void end();
@@ -69,12 +76,19 @@ class WallModel {
     bool placed(std::uint64_t index) const;
     // True when the element is one of a loop's.
     bool looped(std::uint64_t index) const;
+    // What is known of a placed element without deciding its loop: kUndecided (not placed),
+    // kLead, kOff, or kWall with `loop` its loop's number (or kNoLoop for an open contour's).
+    // A caller that keeps the answer asks cleared(loop) for the rest.
+    static constexpr std::uint64_t kNoLoop = ~std::uint64_t{0};
+    WallRole placement(std::uint64_t index, std::uint64_t& loop) const;
+    // Whether the loop is cleared by a loop known now (decided once, then kept).
+    bool cleared(std::uint64_t loop);
     // Its role as known now: a loop's element is a wall unless a loop known now clears it.
     WallRole role(std::uint64_t index);
     // Lets go of the elements numbered below `index`, and of the loops all of whose
     // occurrences lie below it.
     void forget_before(std::uint64_t index);
-    // Grows whenever elements are placed.
+    // Grows whenever elements are placed: their stretch ended, or an open contour's element.
     std::uint64_t generation() const noexcept { return generation_; }
     // The loops held (for tests and the memory bound).
     std::size_t loops() const noexcept { return loops_.size() - loops_dropped_; }
@@ -90,7 +104,7 @@ class WallModel {
         std::uint64_t key = 0;
         Place place = Place::kUndecided;
         bool walls = true;
-        bool repeat = false;  // its geometry came before (a record with its key is held)
+        bool repeat = false;  // its geometry came before
     };
     struct Pending {
         std::uint64_t index;
@@ -105,10 +119,21 @@ class WallModel {
         std::uint64_t last = 0;  // the highest element number of any of its occurrences
         std::uint64_t key = 0;   // of its elements' geometry, in any order
         std::vector<plane::Element> elements;
+        plane::Bounds box;
         bool cleared = false;
-        std::size_t compared = 0;  // loops (by number) it was compared with so far
+        std::size_t known = 0;  // loops there were when it was last decided
         bool dropped = false;
     };
+    void index_loop(std::uint64_t number);
+    // The loops that may clear `loop`: those whose box holds its box's centre (a pocket pass
+    // enclosing it), or whose box's centre its box holds (a boss pass it encloses).
+    void candidates(const Loop& loop, std::vector<std::uint64_t>& out);
+    // Relists the loops kept (after some were let go).
+    void reindex_loops();
+    CellIndex loop_cells_;  // loop numbers less loops_first_
+    std::vector<std::uint64_t> wide_loops_;
+    std::vector<std::uint32_t> cell_found_;
+    std::vector<std::uint64_t> found_;  // candidates()' answer
     Record* record(std::uint64_t index);
     const Record* record(std::uint64_t index) const;
     void place_pending(std::size_t count, Place place, std::uint64_t loop);
@@ -125,12 +150,12 @@ class WallModel {
     // Drops the records placed since `from` (an index into records_) that say nothing more.
     void prune(std::size_t from);
     std::vector<Record> records_;  // by element number, ascending
-    std::unordered_set<std::uint64_t> keys_;  // of the records held
     std::size_t records_head_ = 0;  // records before it were forgotten
     std::vector<Loop> loops_;       // numbered from loops_first_
     std::uint64_t loops_first_ = 0;
     std::size_t loops_dropped_ = 0;
-    std::unordered_map<std::uint64_t, std::uint64_t> loop_by_key_;
+    // The loop of each geometry key (its number; a key of a loop let go finds it dropped).
+    ProbeTable<std::uint64_t> loop_by_key_;
     // The stretch under way.
     int plane_ = 17;
     int side_ = 1;
@@ -138,6 +163,7 @@ class WallModel {
     int stretch_loops_ = 0;
     std::uint64_t stretch_first_ = 0;  // the number of the open stretch's first element
     bool started_ = false;             // it has one
+    bool opened_early_ = false;        // an element of it was placed as an open contour's
     std::vector<Pending> pending_;  // since the last loop closed
     // Where there are many pending elements: the first pending element (its number in the
     // stretch since the last loop, pending_first_ + position) starting in each cell of

@@ -40,6 +40,7 @@ namespace apci::run {
 namespace detail {
 struct Shape;
 class WallModel;
+enum class WallRole : std::uint8_t;
 }
 
 struct SelfApproachFinding {
@@ -133,18 +134,22 @@ class SelfApproachCheck {
     // element's and the path element's numbers and the element's grid id, and whether only
     // its crossing counts (an approach and an element at its entry point).
     struct Candidate;  // self_approach.cpp
-    // A pair the grid brought together: dropped where it cannot come near (or its element is
-    // no wall), held (waiting_) while the wall model has not placed both elements, else settled.
-    void consider(const Candidate& k, bool running, std::vector<SelfApproachFinding>& out);
+    struct PairView;  // self_approach.cpp
+    // A pair the grid brought together that is near enough (near_enough) and whose element
+    // may be a wall: dropped where it is given out already or proved apart, held (waiting_)
+    // unless the wall model has `placed` both elements, else settled.
+    void consider(const PairView& k, bool placed, bool running,
+                  std::vector<SelfApproachFinding>& out);
     // Measured, and a finding routed as the stretch rules say (held_, an undecided stretch's
     // held, or given).
-    void settle(const Candidate& k, bool running, std::vector<SelfApproachFinding>& out);
-    // False where the pair cannot come closer than the threshold (the depth rule, the boxes, an
-    // exact proof) or is given out already.
-    bool near_enough(const Candidate& k);
+    void settle(const PairView& k, bool running, std::vector<SelfApproachFinding>& out);
+    // False where the pair cannot come closer than the threshold (the depth rule, the boxes).
+    static bool near_enough(const Shape& path, const Shape& contour, double threshold);
+    // False for a pair given out already.
+    bool unreported(const BlockRef& path_block, const BlockRef& contour_block);
     // True with `f` filled when the path comes closer than the threshold to the element (the
     // least distance, and where); false at once for a pair already given out.
-    bool measure(const Candidate& k, SelfApproachFinding& f);
+    bool measure(const PairView& k, SelfApproachFinding& f);
     static Pair pair_of(const BlockRef& path, const BlockRef& contour);
     SelfApproachFinding* open_finding(const Pair& pair);
     // kMaxFindings pairs were given out, one more came near, and none is open: no later call
@@ -166,7 +171,11 @@ class SelfApproachCheck {
     void review(std::vector<SelfApproachFinding>& out);
     // True when the pair cannot be reported: both elements are placed and the contour's is
     // no wall.
-    bool exempt(std::uint64_t contour, std::uint64_t path);
+    // A programmed element or an executed path as the grid keeps it (self_approach.cpp).
+    struct GridItem;
+    detail::WallRole role_of(GridItem& item);
+    bool placed_of(GridItem& item);
+
     // The wall model lets go of the elements every grid let go of.
     void forget_let_go();
     std::uint64_t forgotten_ = 0;
