@@ -563,7 +563,7 @@ TEST_F(ApcictlRun, CompensationFiguresAreCurrent) {
         ++figures;
     }
     std::filesystem::current_path(cwd);
-    EXPECT_EQ(figures, 5);
+    EXPECT_EQ(figures, 8);
 }
 
 // The executor uses libapci only, so the run is the same through the emulator daemon's socket

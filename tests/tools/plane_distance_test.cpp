@@ -217,4 +217,52 @@ TEST(PlaneDistance, ApartProvesTheNextElementAtAConvexCornerKeepsTheRadius) {
                 }
 }
 
+// The cheaper proof by one side (apart_by_side) never claims what is not so: on random lines and
+// spirals, joined, tangent and apart, a claim at a limit means no pair of sampled points comes
+// closer than it (less the sampling's slack). And it proves the pairs it is there for: a line's
+// path against an arc rounding the corner after it, an arc's path against the line leaving it.
+TEST(PlaneDistance, ApartBySideIsNeverClaimedForElementsThatComeWithinTheLimit) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int claimed = 0;
+    for (int k = 0; k < 3000; ++k) {
+        Element a = random_element(rng, 3, nullptr);
+        Element b = random_element(rng, 4, &a);
+        for (Element* e : {&a, &b})
+            if (e->arc && rng() % 2 == 0) {  // a spiral
+                e->r1 = std::max(1e-3, e->r0 + 2e-3 * u(rng));
+                const double phi1 = e->phi0 + e->sweep;
+                e->end = e->centre + e->r1 * Vec2(std::cos(phi1), std::sin(phi1));
+            }
+        const auto sa = sample(a, 400), sb = sample(b, 400);
+        const double sampled = brute(sa, sb);
+        const double slack = 0.5 * (spacing(sa) + spacing(sb));
+        for (const double limit : {0.05, 0.5, 1.0, 2.0, 5.0}) {
+            if (!pd::apart_by_side(a, b, limit)) continue;
+            ++claimed;
+            EXPECT_GE(sampled + slack, limit) << k << " limit " << limit;
+        }
+    }
+    EXPECT_GT(claimed, 1000);
+}
+
+TEST(PlaneDistance, ApartBySideProvesTheRoundedCornerNeighboursOfAPath) {
+    // A line along +X to the origin under G41 (tool above, radius 1): its path at y = 1. The
+    // corner rounded by an arc of radius 3 turning right (down) away from the tool: every point
+    // of it lies at least 1 below the path.
+    const Element path = line({-10, 1}, {0, 1});
+    const Element fillet = circular({0, -3}, 3.0, kPi / 2, -kPi / 2);
+    EXPECT_TRUE(pd::apart_by_side(path, fillet, 1.0 - 2e-4));
+    EXPECT_FALSE(pd::apart_by_side(path, fillet, 1.0 + 1e-9));
+    // The fillet's path (radius 4 about (0, -3)) against the line leaving its end (3, -3)
+    // straight down: the path lies wholly behind that line's start, whose distance decides.
+    const Element fillet_path = circular({0, -3}, 4.0, kPi / 2, -kPi / 2);
+    const Element leaving = line({3, -3}, {3, -20});
+    EXPECT_TRUE(pd::apart_by_side(fillet_path, leaving, 1.0 - 2e-4));
+    EXPECT_FALSE(pd::apart_by_side(fillet_path, leaving, 1.0 + 1e-9));
+    // A line that comes back under the path is not proved apart by its side.
+    const Element back = line({0, -0.5}, {-5, 0.2});
+    EXPECT_FALSE(pd::apart_by_side(path, back, 1.0 - 2e-4));
+}
+
 }  // namespace

@@ -841,14 +841,22 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     held_.clear();
     latest_ = kNone;
     const std::uint64_t key = key_of(s, plane_, 0.0);
-    const Shape e = shape_of(s, plane_);
     const bool fresh = g.contour.keys.insert(key);
     // Every element that moves in the plane, repeats too: the loops are the program's.
     if (moves) {
-        walls_->element(index, e, e.low, e.high, key, walls_on_, !fresh);
+        detail::PlaneMove m;
+        m.start = {s.start[axes.first], s.start[axes.second]};
+        m.end = {s.end[axes.first], s.end[axes.second]};
+        m.arc = s.kind == SegmentKind::kArc && s.plane == plane_;
+        m.ccw = s.ccw;
+        m.centre = {s.center[axes.first], s.center[axes.second]};
+        m.low = std::min(s.start[axes.third], s.end[axes.third]);
+        m.high = std::max(s.start[axes.third], s.end[axes.third]);
+        walls_->element(index, m, key, walls_on_, !fresh);
         review(out);
     }
     if (!fresh) return;  // programmed before
+    const Shape e = shape_of(s, plane_);
     if (e.length <= kFullCircle) return;
     latest_ = g.contour.next();
     g.size_by(e.length);
@@ -959,6 +967,9 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
 void SelfApproachCheck::consider(const PairView& k, bool placed, bool running,
                                  std::vector<SelfApproachFinding>& out) {
     if (!unreported(k.path_block, k.contour_block)) return;
+    // Only a crossing counts (an approach and an element at its entry point): proved not to
+    // cross, nothing to measure.
+    if (k.need_cross && plane::apart(k.path, k.contour, kTolerance + kApartMargin)) return;
     // Proved apart: no point of the path is as near as the threshold, so the search would find
     // none (every distance it computes is that of a point of the path to a point of the
     // element, at least the least distance).

@@ -42,8 +42,8 @@ void WallModel::clear_pending() {
     pending_first_ = 0;
 }
 
-void WallModel::element(std::uint64_t index, const plane::Element& e, double low, double high,
-                        std::uint64_t key, bool walls, bool repeat) {
+void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t key, bool walls,
+                        bool repeat) {
     if (!open_) return;
     if (pending_.empty() && stretch_loops_ == 0 && !started_) {
         stretch_first_ = index;
@@ -56,14 +56,14 @@ void WallModel::element(std::uint64_t index, const plane::Element& e, double low
         pending_.erase(pending_.begin());
         ++pending_first_;
     }
-    pending_.push_back(Pending{index, e, low, high, key});
+    pending_.push_back(Pending{index, e, key});
     const std::uint64_t number = pending_first_ + pending_.size() - 1;
     const bool hashed = pending_.size() > kScanned;
     if (hashed) {
         if (starts_.empty())  // the pending elements so far
             for (std::size_t i = 0; i < pending_.size(); ++i)
-                starts_.emplace(cell_key(cell_of(pending_[i].element.start.x()),
-                                         cell_of(pending_[i].element.start.y())),
+                starts_.emplace(cell_key(cell_of(pending_[i].move.start.x()),
+                                         cell_of(pending_[i].move.start.y())),
                                 pending_first_ + i);
         else
             starts_.emplace(cell_key(cell_of(e.start.x()), cell_of(e.start.y())), number);
@@ -71,7 +71,7 @@ void WallModel::element(std::uint64_t index, const plane::Element& e, double low
     // Does it end where an element since the last loop started? The earliest such one.
     std::size_t from = pending_.size();
     const auto consider = [&](std::size_t at) {
-        if (at < from && (pending_[at].element.start - e.end).squaredNorm() <= kTolerance * kTolerance)
+        if (at < from && (pending_[at].move.start - e.end).squaredNorm() <= kTolerance * kTolerance)
             from = at;
     };
     if (!hashed) {
@@ -91,14 +91,13 @@ void WallModel::element(std::uint64_t index, const plane::Element& e, double low
 void WallModel::close_loop(std::size_t from) {
     Loop loop;
     loop.plane = plane_;
-    loop.low = pending_[from].low;
-    loop.high = pending_[from].high;
+    loop.low = pending_[from].move.low;
+    loop.high = pending_[from].move.high;
     std::uint64_t key = 0x5851F42D4C957F2DULL + static_cast<std::uint64_t>(plane_);
     for (std::size_t i = from; i < pending_.size(); ++i) {
         const Pending& p = pending_[i];
-        loop.elements.push_back(p.element);
-        loop.low = std::min(loop.low, p.low);
-        loop.high = std::max(loop.high, p.high);
+        loop.low = std::min(loop.low, p.move.low);
+        loop.high = std::max(loop.high, p.move.high);
         key += mix(p.key);  // the same elements in any order: the same loop
     }
     loop.last = pending_.back().index;
@@ -115,6 +114,11 @@ void WallModel::close_loop(std::size_t from) {
         l.high = std::max(l.high, loop.high);
         l.last = std::max(l.last, loop.last);
     } else {
+        for (std::size_t i = from; i < pending_.size(); ++i) {
+            const PlaneMove& m = pending_[i].move;
+            loop.elements.push_back(m.arc ? plane::arc_element(m.start, m.end, m.centre, m.ccw)
+                                          : plane::line_element(m.start, m.end));
+        }
         const double area = plane::signed_area(loop.elements);
         // A loop with no area to speak of (out and back along itself) has no inside.
         const double scale = std::max(1.0, std::abs(area));
@@ -319,9 +323,9 @@ bool WallModel::cleared(std::uint64_t number) {
 }
 
 WallRole WallModel::role(std::uint64_t index) {
+    if (!placed(index)) return WallRole::kUndecided;
     const Record* r = record(index);
     if (r == nullptr) return WallRole::kWall;
-    if (r->place == Place::kUndecided) return WallRole::kUndecided;
     if (!r->walls) return WallRole::kOff;
     switch (r->place) {
         case Place::kLead:

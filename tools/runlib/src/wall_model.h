@@ -37,6 +37,17 @@ enum class WallRole : std::uint8_t {
     kOff,        // programmed under CDOF
 };
 
+// A programmed move in the plane as the model takes it: its ends, and an arc's centre and sense
+// (its radii and angles are worked out only for a loop the model has not seen before), and its
+// extent on the plane's third axis.
+struct PlaneMove {
+    plane::Vec2 start = plane::Vec2::Zero(), end = plane::Vec2::Zero();
+    plane::Vec2 centre = plane::Vec2::Zero();
+    bool arc = false;
+    bool ccw = false;
+    double low = 0.0, high = 0.0;
+};
+
 class WallModel {
   public:
     // Two loops' elements closer than this touch (a pass widened on some sides only), and
@@ -64,8 +75,8 @@ class WallModel {
     // walls are on (CDON) where it is programmed.
     // `repeat`: its geometry came before (the check asks only about the first element of each
     // geometry: the model keeps no record of a repeat once it is placed).
-    void element(std::uint64_t index, const plane::Element& e, double low, double high,
-                 std::uint64_t key, bool walls, bool repeat);
+    void element(std::uint64_t index, const PlaneMove& m, std::uint64_t key, bool walls,
+                 bool repeat);
     // The stretch ends: what came after its last loop is its lead-out; without a loop it is an
     // open contour.
     void end();
@@ -108,8 +119,7 @@ class WallModel {
     };
     struct Pending {
         std::uint64_t index;
-        plane::Element element;
-        double low, high;
+        PlaneMove move;
         std::uint64_t key;
     };
     struct Loop {

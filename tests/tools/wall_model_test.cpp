@@ -1,0 +1,391 @@
+// SPDX-License-Identifier: MIT
+// The gouge check's model of what a program leaves standing (tools/runlib/src/wall_model.h,
+// docs/compensation.md "What is a wall") and the closed-contour geometry under it
+// (contour_loop.h): areas, winding, enclosure; loops, leads and the runs beside them, passes
+// that clear each other and those that do not, levels, CDOF, each rule at its edge.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "apci/run/plane_distance.h"
+#include "contour_loop.h"
+#include "wall_model.h"
+
+namespace {
+
+namespace plane = apci::run::plane;
+using apci::run::detail::WallModel;
+using apci::run::detail::WallRole;
+using plane::Element;
+using plane::Vec2;
+
+constexpr double kPi = std::numbers::pi;
+
+Element line(double x0, double y0, double x1, double y1) {
+    return plane::line_element({x0, y0}, {x1, y1});
+}
+Element arc(double x0, double y0, double x1, double y1, double cx, double cy, bool ccw) {
+    return plane::arc_element({x0, y0}, {x1, y1}, {cx, cy}, ccw);
+}
+
+// A rectangle from (x0, y0) to (x1, y1), counter-clockwise (or clockwise) from (x0, y0).
+std::vector<Element> rectangle(double x0, double y0, double x1, double y1, bool ccw = true) {
+    std::vector<Element> r{line(x0, y0, x1, y0), line(x1, y0, x1, y1), line(x1, y1, x0, y1),
+                           line(x0, y1, x0, y0)};
+    if (!ccw) {
+        std::vector<Element> back;
+        for (auto it = r.rbegin(); it != r.rend(); ++it) back.push_back(line(it->end.x(), it->end.y(), it->start.x(), it->start.y()));
+        return back;
+    }
+    return r;
+}
+
+// A circle about (cx, cy) of radius r as one full arc from its right.
+std::vector<Element> circle(double cx, double cy, double r, bool ccw = true) {
+    return {arc(cx + r, cy, cx + r, cy, cx, cy, ccw)};
+}
+
+// ---- contour_loop.h
+
+TEST(ContourLoop, SignedAreaIsPositiveCounterClockwiseAndCountsArcSegments) {
+    EXPECT_NEAR(plane::signed_area(rectangle(0, 0, 2, 3)), 6.0, 1e-12);
+    EXPECT_NEAR(plane::signed_area(rectangle(0, 0, 2, 3, false)), -6.0, 1e-12);
+    EXPECT_NEAR(plane::signed_area(circle(5, 5, 2)), 4 * kPi, 1e-12);
+    EXPECT_NEAR(plane::signed_area(circle(5, 5, 2, false)), -4 * kPi, 1e-12);
+    // A half disc: the arc over the top and the diameter back.
+    const std::vector<Element> half{arc(1, 0, -1, 0, 0, 0, true), line(-1, 0, 1, 0)};
+    EXPECT_NEAR(plane::signed_area(half), kPi / 2, 1e-12);
+    // A 4 x 2 rectangle with corners rounded to 0.5: 8 - (4 - pi) 0.25.
+    const double f = 0.5;
+    const std::vector<Element> rounded{
+        line(f, 0, 4 - f, 0),         arc(4 - f, 0, 4, f, 4 - f, f, true),
+        line(4, f, 4, 2 - f),         arc(4, 2 - f, 4 - f, 2, 4 - f, 2 - f, true),
+        line(4 - f, 2, f, 2),         arc(f, 2, 0, 2 - f, f, 2 - f, true),
+        line(0, 2 - f, 0, f),         arc(0, f, f, 0, f, f, true)};
+    EXPECT_NEAR(plane::signed_area(rounded), 8 - (4 - kPi) * f * f, 1e-12);
+}
+
+TEST(ContourLoop, WindingNumberInsideOutsideAndInAnArcsBulge) {
+    const auto r = rectangle(0, 0, 4, 4);
+    EXPECT_EQ(plane::winding_number(r, {2, 2}), 1);
+    EXPECT_EQ(plane::winding_number(r, {5, 2}), 0);
+    EXPECT_EQ(plane::winding_number(rectangle(0, 0, 4, 4, false), {2, 2}), -1);
+    EXPECT_EQ(plane::winding_number(circle(0, 0, 3), {2.9, 0.1}), 1);
+    EXPECT_EQ(plane::winding_number(circle(0, 0, 3), {3.1, 0}), 0);
+    // A D shape: the diameter along y = 0 and the arc over the top. Points between the chord
+    // and the arc, and just beyond the arc, and just below the chord.
+    const std::vector<Element> d{line(-2, 0, 2, 0), arc(2, 0, -2, 0, 0, 0, true)};
+    EXPECT_EQ(plane::winding_number(d, {0, 1.99}), 1);
+    EXPECT_EQ(plane::winding_number(d, {1.4, 1.4}), 1);   // 1.98 from the centre
+    EXPECT_EQ(plane::winding_number(d, {1.42, 1.42}), 0);  // 2.008 from it
+    EXPECT_EQ(plane::winding_number(d, {0, -0.01}), 0);
+    // The same D the other way round, the arc below: the region is on the arc's other side.
+    const std::vector<Element> down{line(2, 0, -2, 0), arc(-2, 0, 2, 0, 0, 0, true)};
+    EXPECT_EQ(plane::winding_number(down, {0, -1.99}), 1);
+    EXPECT_EQ(plane::winding_number(down, {0, 0.01}), 0);
+}
+
+TEST(ContourLoop, BoundsHoldEveryPointOfArcsThatPassAnAxisDirection) {
+    const plane::Bounds b = plane::bounds(circle(1, 2, 3));
+    EXPECT_NEAR(b.lo.x(), -2, 1e-12);
+    EXPECT_NEAR(b.hi.x(), 4, 1e-12);
+    EXPECT_NEAR(b.lo.y(), -1, 1e-12);
+    EXPECT_NEAR(b.hi.y(), 5, 1e-12);
+    // A quarter arc from (1, 0) to (0, 1) about the origin: its box is the unit square.
+    const Element q = arc(1, 0, 0, 1, 0, 0, true);
+    const plane::Bounds qb = plane::bounds(std::vector<Element>{q});
+    EXPECT_NEAR(qb.lo.x(), 0, 1e-12);
+    EXPECT_NEAR(qb.lo.y(), 0, 1e-12);
+    EXPECT_NEAR(qb.hi.x(), 1, 1e-12);
+    EXPECT_NEAR(qb.hi.y(), 1, 1e-12);
+    for (int i = 0; i <= 100; ++i) {
+        const Vec2 p = plane::point_at(q, i / 100.0);
+        EXPECT_GE(p.x(), qb.lo.x() - 1e-12);
+        EXPECT_LE(p.x(), qb.hi.x() + 1e-12);
+        EXPECT_GE(p.y(), qb.lo.y() - 1e-12);
+        EXPECT_LE(p.y(), qb.hi.y() + 1e-12);
+    }
+}
+
+TEST(ContourLoop, WithinTellsNestedTouchingSameCrossingAndTheBudget) {
+    const auto outer = rectangle(0, 0, 10, 10);
+    constexpr double tol = 1e-4;
+    EXPECT_EQ(plane::within(outer, rectangle(2, 2, 8, 8), tol, 1 << 20), plane::Within::kWithin);
+    EXPECT_EQ(plane::within(rectangle(2, 2, 8, 8), outer, tol, 1 << 20), plane::Within::kNot);
+    // The same contour is not within itself.
+    EXPECT_EQ(plane::within(outer, rectangle(0, 0, 10, 10), tol, 1 << 20), plane::Within::kNot);
+    // Touching along a side (a pass widened on three sides only): within.
+    EXPECT_EQ(plane::within(outer, rectangle(0, 2, 8, 8), tol, 1 << 20), plane::Within::kWithin);
+    // A side just outside by more than the tolerance: not; by less: within.
+    EXPECT_EQ(plane::within(outer, rectangle(2, 2, 10 + 2 * tol, 8), tol, 1 << 20),
+              plane::Within::kNot);
+    EXPECT_EQ(plane::within(outer, rectangle(2, 2, 10 + 0.5 * tol, 8), tol, 1 << 20),
+              plane::Within::kWithin);
+    // Crossing: not.
+    EXPECT_EQ(plane::within(outer, rectangle(5, 5, 15, 8), tol, 1 << 20), plane::Within::kNot);
+    // A C shape (a U opening to the right) whose box holds a square in its gap: not within.
+    const std::vector<Element> c{line(0, 0, 10, 0),  line(10, 0, 10, 3), line(10, 3, 3, 3),
+                                 line(3, 3, 3, 7),   line(3, 7, 10, 7),  line(10, 7, 10, 10),
+                                 line(10, 10, 0, 10), line(0, 10, 0, 0)};
+    EXPECT_EQ(plane::within(c, rectangle(5, 4, 8, 6), tol, 1 << 20), plane::Within::kNot);
+    EXPECT_EQ(plane::within(c, rectangle(0.5, 0.5, 2, 2), tol, 1 << 20), plane::Within::kWithin);
+    // The budget: 4 x 4 element pairs, at the budget decided, one below it unknown.
+    EXPECT_EQ(plane::within(outer, rectangle(2, 2, 8, 8), tol, 16), plane::Within::kWithin);
+    EXPECT_EQ(plane::within(outer, rectangle(2, 2, 8, 8), tol, 15), plane::Within::kUnknown);
+}
+
+// ---- wall_model.h
+
+// An element as the model takes it (PlaneMove), at the level z.
+apci::run::detail::PlaneMove move_of(const Element& e, double z) {
+    apci::run::detail::PlaneMove m;
+    m.start = e.start;
+    m.end = e.end;
+    m.arc = e.arc;
+    m.ccw = e.sweep > 0.0;
+    m.centre = e.centre;
+    m.low = m.high = z;
+    return m;
+}
+
+// Feeds the elements of one stretch (tool on `side`, at Z `z`), numbering them from `first`.
+std::uint64_t feed(WallModel& m, std::uint64_t first, const std::vector<Element>& elements,
+                   int side = 1, double z = 0.0, bool walls = true, int plane = 17) {
+    m.begin(plane, side);
+    std::uint64_t n = first;
+    for (const Element& e : elements) {
+        m.element(n, move_of(e, z), (n + 1) * 0x9E3779B97F4A7C15ULL, walls, false);
+        ++n;
+    }
+    m.end();
+    return n;
+}
+
+// A closed square of side 2a about (cx, cy), from the middle of its top, clockwise (tool
+// outside for G41) or counter-clockwise; with `lead` lead-in and lead-out elements (a line
+// from above and a line away).
+std::vector<Element> square_stretch(double cx, double cy, double a, bool clockwise, int lead_in,
+                                    int lead_out) {
+    std::vector<Element> s;
+    const double top = cy + a;
+    for (int i = lead_in; i > 0; --i)
+        s.push_back(line(cx - i, top + 5, cx - (i - 1), i == 1 ? top : top + 5));
+    if (clockwise) {
+        s.push_back(line(cx, top, cx + a, top));
+        s.push_back(line(cx + a, top, cx + a, cy - a));
+        s.push_back(line(cx + a, cy - a, cx - a, cy - a));
+        s.push_back(line(cx - a, cy - a, cx - a, top));
+        s.push_back(line(cx - a, top, cx, top));
+    } else {
+        s.push_back(line(cx, top, cx - a, top));
+        s.push_back(line(cx - a, top, cx - a, cy - a));
+        s.push_back(line(cx - a, cy - a, cx + a, cy - a));
+        s.push_back(line(cx + a, cy - a, cx + a, top));
+        s.push_back(line(cx + a, top, cx, top));
+    }
+    for (int i = 0; i < lead_out; ++i) s.push_back(line(cx + i, top + i, cx + i + 1, top + i + 1));
+    return s;
+}
+
+std::vector<WallRole> roles(WallModel& m, std::uint64_t first, std::uint64_t end) {
+    std::vector<WallRole> out;
+    for (std::uint64_t i = first; i < end; ++i) out.push_back(m.role(i));
+    return out;
+}
+
+constexpr WallRole W = WallRole::kWall, L = WallRole::kLead, C = WallRole::kCleared,
+                   O = WallRole::kOff;
+
+TEST(WallModel, LeadsBesideALoopAreNoWallsAndTheLoopIs) {
+    WallModel m;
+    const auto s = square_stretch(0, 0, 10, true, 2, 2);
+    const std::uint64_t end = feed(m, 0, s);
+    EXPECT_EQ(roles(m, 0, end), (std::vector<WallRole>{L, L, W, W, W, W, W, L, L}));
+    EXPECT_EQ(m.loops(), 1U);
+    EXPECT_TRUE(m.looped(2));
+    EXPECT_FALSE(m.looped(1));
+}
+
+TEST(WallModel, AtMostTwoElementsBesideALoopAreLeads) {
+    // Three before the loop: the first is an open contour's (a wall); three after: the last.
+    WallModel m;
+    const std::uint64_t end = feed(m, 0, square_stretch(0, 0, 10, true, 3, 3));
+    EXPECT_EQ(roles(m, 0, end), (std::vector<WallRole>{W, L, L, W, W, W, W, W, L, L, W}));
+}
+
+TEST(WallModel, ARunBetweenTwoLoopsHasLeadsAtBothEndsAndWallsBetween) {
+    // Loop, five elements, loop: two leads after the first, one wall, two leads before the
+    // second. With four between them every one is a lead.
+    for (const int between : {4, 5}) {
+        std::vector<Element> s = rectangle(0, 0, 10, 10);
+        double x = 0, y = 0;
+        for (int i = 0; i < between; ++i) {
+            s.push_back(line(x, y, x + 5, y - 5));
+            x += 5, y -= 5;
+        }
+        for (const Element& e : rectangle(x, y, x + 3, y + 3)) s.push_back(e);
+        WallModel m;
+        const std::uint64_t end = feed(m, 0, s);
+        std::vector<WallRole> want(4, W);
+        for (int i = 0; i < between; ++i)
+            want.push_back(between == 5 && i == 2 ? W : L);
+        for (int i = 0; i < 4; ++i) want.push_back(W);
+        EXPECT_EQ(roles(m, 0, end), want) << between << " between";
+        EXPECT_EQ(m.loops(), 2U);
+    }
+}
+
+TEST(WallModel, AStretchWithoutALoopIsAnOpenContourOfWalls) {
+    WallModel m;
+    const std::uint64_t end =
+        feed(m, 0, {line(0, 0, 10, 0), line(10, 0, 10, 10), line(10, 10, 0, 10.001)});
+    EXPECT_EQ(roles(m, 0, end), (std::vector<WallRole>{W, W, W}));
+    EXPECT_EQ(m.loops(), 0U);
+}
+
+TEST(WallModel, AnEndWithinTheToleranceOfAnEarlierStartClosesALoopAndBeyondItDoesNot) {
+    for (const double gap : {0.5 * WallModel::kTolerance, 2 * WallModel::kTolerance}) {
+        WallModel m;
+        feed(m, 0, {line(0, 0, 10, 0), line(10, 0, 10, 10), line(10, 10, 0, gap)});
+        EXPECT_EQ(m.loops(), gap < WallModel::kTolerance ? 1U : 0U) << gap;
+    }
+}
+
+TEST(WallModel, ElementsArePlacedWhenTheirStretchEnds) {
+    WallModel m;
+    m.begin(17, 1);
+    const auto s = rectangle(0, 0, 10, 10);
+    for (std::uint64_t i = 0; i < s.size(); ++i) m.element(i, move_of(s[i], 0), i + 1, true, false);
+    // The loop closed, but the stretch runs: a later, larger pass may clear it.
+    EXPECT_FALSE(m.placed(0));
+    EXPECT_EQ(m.role(0), WallRole::kUndecided);
+    const std::uint64_t before = m.generation();
+    m.end();
+    EXPECT_GT(m.generation(), before);
+    EXPECT_TRUE(m.placed(0));
+    EXPECT_EQ(m.role(0), W);
+}
+
+TEST(WallModel, PocketPassesEnclosedByALargerOneAreClearedAndItIsAWall) {
+    // G41 counter-clockwise: the tool inside (pockets). Inside-out and outside-in, one stretch
+    // per pass, and all passes in one stretch.
+    const auto pass = [](double a) { return square_stretch(0, 0, a, false, 2, 1); };
+    {
+        WallModel m;
+        const std::uint64_t a = feed(m, 0, pass(5));
+        const std::uint64_t b = feed(m, a, pass(8));
+        EXPECT_EQ(m.role(2), C);  // the small pass's first loop element
+        EXPECT_EQ(m.role(a + 2), W);
+        (void)b;
+    }
+    {
+        WallModel m;
+        const std::uint64_t a = feed(m, 0, pass(8));
+        feed(m, a, pass(5));
+        EXPECT_EQ(m.role(2), W);
+        EXPECT_EQ(m.role(a + 2), C);
+    }
+    {
+        std::vector<Element> both = pass(5);
+        for (const Element& e : pass(8)) both.push_back(e);
+        WallModel m;
+        feed(m, 0, both);
+        EXPECT_EQ(m.role(2), C);
+        EXPECT_EQ(m.role(pass(5).size() + 2), W);
+    }
+}
+
+TEST(WallModel, BossPassesEnclosingASmallerOneAreClearedAndTheSmallestIsAWall) {
+    // G41 clockwise: the tool outside (bosses); roughing passes round the finished part.
+    WallModel m;
+    const std::uint64_t a = feed(m, 0, square_stretch(0, 0, 12, true, 2, 1));
+    feed(m, a, square_stretch(0, 0, 10, true, 2, 1));
+    EXPECT_EQ(m.role(2), C);
+    EXPECT_EQ(m.role(a + 2), W);
+}
+
+TEST(WallModel, AnIslandAndItsPocketAndSideBySidePartsClearNothing) {
+    WallModel m;
+    // A pocket (tool inside) with an island (tool outside) in it.
+    const std::uint64_t a = feed(m, 0, square_stretch(0, 0, 20, false, 2, 1));
+    const std::uint64_t b = feed(m, a, square_stretch(0, 0, 5, true, 2, 1));
+    EXPECT_EQ(m.role(2), W);
+    EXPECT_EQ(m.role(a + 2), W);
+    // Two bosses side by side, two pockets side by side, overlapping bosses.
+    const std::uint64_t c = feed(m, b, square_stretch(100, 0, 5, true, 2, 1));
+    const std::uint64_t d = feed(m, c, square_stretch(112, 0, 5, true, 2, 1));
+    const std::uint64_t e = feed(m, d, square_stretch(200, 0, 5, false, 2, 1));
+    const std::uint64_t f = feed(m, e, square_stretch(212, 0, 5, false, 2, 1));
+    const std::uint64_t g = feed(m, f, square_stretch(300, 0, 5, true, 2, 1));
+    feed(m, g, square_stretch(303, 0, 5, true, 2, 1));
+    for (const std::uint64_t at : {b, c, d, e, f, g}) EXPECT_EQ(m.role(at + 2), W) << at;
+}
+
+TEST(WallModel, APassClearsOnlyAtItsOwnLevel) {
+    // The smaller pocket pass at Z -1, the larger at a level apart by just more than the
+    // tolerance (a wider pocket below: an undercut) or just within it.
+    for (const double dz : {2 * WallModel::kTolerance, 0.5 * WallModel::kTolerance}) {
+        WallModel m;
+        const std::uint64_t a = feed(m, 0, square_stretch(0, 0, 5, false, 2, 1), 1, -1.0);
+        feed(m, a, square_stretch(0, 0, 8, false, 2, 1), 1, -1.0 - dz);
+        EXPECT_EQ(m.role(2), dz > WallModel::kTolerance ? W : C) << dz;
+    }
+}
+
+TEST(WallModel, TheSameContourAgainFromAnotherCornerIsOneLoop) {
+    // A depth pass runs the rectangle again from its opposite corner: the same keys (the
+    // geometry of each element), in another order: one loop. Other keys: another loop.
+    const auto r = rectangle(0, 0, 10, 10);
+    for (const bool same : {true, false}) {
+        WallModel m;
+        m.begin(17, 1);
+        for (std::uint64_t i = 0; i < 4; ++i) m.element(i, move_of(r[i], -1), 100 + i, true, false);
+        m.end();
+        m.begin(17, 1);
+        for (std::uint64_t i = 0; i < 4; ++i) {
+            const std::uint64_t k = (i + 2) % 4;
+            m.element(4 + i, move_of(r[k], -2), (same ? 100 : 200) + k, true, same);
+        }
+        m.end();
+        EXPECT_EQ(m.loops(), same ? 1U : 2U);
+    }
+}
+
+TEST(WallModel, ElementsUnderCdofAreNoWalls) {
+    WallModel m;
+    const std::uint64_t end = feed(m, 0, square_stretch(0, 0, 10, true, 2, 2), 1, 0.0, false);
+    for (std::uint64_t i = 0; i < end; ++i) EXPECT_EQ(m.role(i), O) << i;
+}
+
+TEST(WallModel, AnOpenStretchLongerThanThePendingBoundPlacesItsOldestAtOnce) {
+    WallModel m;
+    m.begin(17, 1);
+    const std::uint64_t n = WallModel::kMaxPending + 1;
+    for (std::uint64_t i = 0; i < n; ++i)
+        m.element(i, move_of(line(static_cast<double>(i), 0, static_cast<double>(i) + 1,
+                                  0.001 * (i % 2)),
+                             0),
+                  i + 1, true, false);
+    EXPECT_TRUE(m.placed(0));            // one past the bound: the oldest is an open contour's
+    EXPECT_FALSE(m.placed(1));           // at the bound: still pending
+    EXPECT_EQ(m.role(0), W);
+    m.end();
+    EXPECT_TRUE(m.placed(1));
+}
+
+TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
+    WallModel m;
+    const std::uint64_t a = feed(m, 0, square_stretch(0, 0, 5, false, 2, 1));
+    const std::uint64_t b = feed(m, a, square_stretch(100, 0, 5, false, 2, 1));
+    EXPECT_EQ(m.loops(), 2U);
+    m.forget_before(a);
+    EXPECT_EQ(m.loops(), 1U);
+    EXPECT_EQ(m.role(a + 2), W);
+    // A larger pass about the second one still clears it.
+    feed(m, b, square_stretch(100, 0, 8, false, 2, 1));
+    EXPECT_EQ(m.role(a + 2), C);
+}
+
+}  // namespace
