@@ -15,8 +15,9 @@
 ;   G0 Z30 under G41, G40 alone after it.
 ; - G26 added: LinuxCNC's outside corners are arcs; our programs start in G25 (the ISG default).
 ;
-; Our run warns SelfApproach twice: the arcs in and out of the first circle (tool 3) cross the
-; second, smaller circle (tool 1), which the run checks as contour of the same program.
+; Our run warns nothing: the arcs in and out of the first circle (tool 3) are its leads, and the
+; first circle, a pocket's pass, clears the second, smaller one inside it (tool 1) at the same
+; depth (docs/compensation.md, "What is a wall").
 
 ; set the basic settings, this should be
 ; on every program the beginning

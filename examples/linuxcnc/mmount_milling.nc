@@ -27,10 +27,10 @@
 ;
 ; The whole tool path agrees with LinuxCNC's, approach and departure included
 ; (docs/linuxcnc-examples.md): a G0 under G41 is compensated (each "G0 Z.." lift stays at the
-; compensated point) and the move after G40 departs from there. The run
-; warns SelfApproach 42 times, where the program cuts into its own contour by design: each
-; hole's finishing pass 0.254 mm beyond its roughing circle, holes milled again larger at the
-; same centre, the curved slots' lead-in lines (above the part) near their end arcs.
+; compensated point) and the move after G40 departs from there. The run warns nothing: each
+; hole's roughing circle (0.254 mm under size) is cleared by its finishing pass, the half
+; circles in and out are leads, and the curved slots' lead-in lines (above the part) meet their
+; end arcs at the entry point (docs/compensation.md, "What is a wall").
 G17 G90 G40 G26
 
 (MILL 0.250: original lines 76-152)

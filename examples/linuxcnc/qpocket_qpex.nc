@@ -41,7 +41,8 @@
 ;
 ; The whole tool path agrees with LinuxCNC's (docs/linuxcnc-examples.md). The outlines of a
 ; pocket, its depth passes and the two kites in one place pass over what was cut before, by
-; design; the run warns SelfApproach there (docs/linuxcnc-examples.md, "Warnings").
+; design: each pocket's outlines inside its last are cleared by it, the moves between them are
+; leads, and the run warns nothing (docs/compensation.md, "What is a wall").
 G17 G40 G90 G26 ; in_std.ngc: g17 g20 g40 g49 g90 g94 g54 g64
 
 (qpex.ngc line 42: o<qpocket> call, the square at X50.8 Y0, turned 0 degrees)
