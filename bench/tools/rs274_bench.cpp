@@ -2,10 +2,11 @@
 // `apcictl run --json FILE` against LinuxCNC's interpreter `rs274` writing its canonical output
 // to a file, side by side on the same 100,000-block G41 program of lines and arcs, whole
 // processes, ten runs of each (alternating, so a change of the machine's load falls on both;
-// each after a sync, so neither pays for the other's writeback), in one benchmark run. Two
+// each after a sync, so neither pays for the other's writeback), in one benchmark run. Three
 // programs, one benchmark each: BM_ApcictlVsRs274, the contour that repeats one star
-// (contour_program.h), and BM_ApcictlVsRs274Walk, the walk that never repeats itself
-// (walk_program.h). Counters: the medians of wall and user
+// (contour_program.h), BM_ApcictlVsRs274Walk, the walk that never repeats itself
+// (walk_program.h), and BM_ApcictlVsRs274Cam, 6,000 profiles as CAM writes them (cam_program.h).
+// Counters: the medians of wall and user
 // CPU time (wait4 rusage) of each, the ratio rs274 / apcictl of each (how many times faster
 // apcictl is), and apcictl's peak RSS. Target (docs/performance.md): ratio >= 10, RSS < 50 MB.
 //
@@ -27,12 +28,14 @@
 #include <string>
 #include <vector>
 
+#include "cam_program.h"
 #include "contour_program.h"
 #include "walk_program.h"
 
 namespace {
 
 constexpr std::size_t kBlocks = 100'000;
+constexpr std::size_t kCamProfiles = 6'000;
 constexpr int kRuns = 10;
 
 struct ChildRun {
@@ -229,7 +232,17 @@ void BM_ApcictlVsRs274Walk(benchmark::State& state) {
             apci::bench::walk_program(kBlocks, Dialect::kLinuxCnc));
 }
 
+// The program shaped as CAM writes it: 6,000 profiles with leads, placed apart, nothing
+// repeated (about 86,000 blocks), where the self-approach check has every element to place and
+// no warning to give.
+void BM_ApcictlVsRs274Cam(benchmark::State& state) {
+    using apci::bench::Dialect;
+    compare(state, apci::bench::cam_program(kCamProfiles, Dialect::kApcictl),
+            apci::bench::cam_program(kCamProfiles, Dialect::kLinuxCnc));
+}
+
 BENCHMARK(BM_ApcictlVsRs274)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ApcictlVsRs274Cam)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ApcictlVsRs274Walk)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
