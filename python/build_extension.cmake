@@ -3,8 +3,8 @@
 # build, pyproject.toml) and copies it, with the libapci.so.0 it loads, to OUTPUT_DIR:
 #   cmake -DSOURCE_DIR=checkout -DBUILD_DIR=dir -DOUTPUT_DIR=dir -DPYTHON=python
 #         -DEXTENSION=_apci.cpython-311-x86_64-linux-gnu.so -P build_extension.cmake
-# Configured as a release (optimised, no debug information), ccache when installed, warnings as errors
-# when $APCI_WERROR says so), without tests, benchmarks or programs, for the interpreter that
+# Configured as a release (optimised, no debug information; ccache when installed; warnings
+# as errors when $APCI_WERROR says so), without tests and benchmarks, for the interpreter that
 # runs pip, with the extension's RPATH $ORIGIN (APCI_PYTHON_BUNDLE_LIBAPCI).
 foreach(var SOURCE_DIR BUILD_DIR OUTPUT_DIR PYTHON EXTENSION)
   if(NOT DEFINED ${var})
