@@ -7,6 +7,7 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -15,6 +16,8 @@
 
 #include "arguments.h"
 #include "command.h"
+#include "completion.h"
+#include "objif/names.h"
 #include "suggest.h"
 
 namespace {
@@ -84,6 +87,17 @@ int run(int argc, char** argv) {
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "Show the help of apcictl or of one command");
     help->add_option("COMMAND", help_topic, "The command whose help to show");
+
+    // `apcictl __complete WORDS...` (only as the first word): the candidates for the last word,
+    // for the bash and zsh scripts of completions/ (completion.h); no command, no help line.
+    if (argc >= 2 && std::string_view(argv[1]) == "__complete") {
+        const std::vector<std::string> words(argv + 2, argv + argc);
+        std::vector<std::string> objects;
+        for (const auto& object : objif::named_objects()) objects.push_back(object.name);
+        fmt::print("{}", apcictl::completion_output(
+                             apcictl::complete_command_line(app, words, objects)));
+        return std::fflush(stdout) != 0 ? output_failed(0) : 0;
+    }
 
     // A negative number (-.5, -inf) is a value, not an option: CLI11 wants the
     // arguments reversed, without the program's name.
