@@ -4,8 +4,13 @@
 // could not be written, and object-name suggestions that keep the index typed without brackets.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <regex>
 
 #include "objif/names.h"
 #include "process.h"
@@ -117,6 +122,47 @@ TEST(ApcictlOutput, OutputThatFitsStillExitsZero) {
     const auto r = apcictl_with_stdout("read 1300 1 1 7", ">/dev/null");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.err, "");
+}
+
+// ---- status --json
+
+// The same registers as the text: each group's ERROR and STATUS values, the plane, the spooler.
+TEST(ApcictlStatusJson, SaysWhatTheTextSays) {
+    // A refused STATUS = 1 sets group 1's InitError first (docs/apcictl.md, "status").
+    const std::string script = "write 1300 1 1 3 1\n";
+    const auto text = apcictl_run({"script", "--keep-going", "-"}, script + "status\n");
+    const auto json = apcictl_run({"script", "--keep-going", "-"}, script + "status --json\n");
+    ASSERT_EQ(text.exit_code, 1) << text.err;
+    ASSERT_EQ(json.exit_code, 1) << json.err;
+    const auto j = nlohmann::json::parse(json.out);
+    EXPECT_EQ(j["tc"]["groups"][0]["error"]["value"], 1);
+    EXPECT_EQ(j["tc"]["groups"][0]["error"]["set"], nlohmann::json::array({"InitError"}));
+    EXPECT_EQ(j["spooler"]["fill"], 0);
+    EXPECT_EQ(j["spooler"]["capacity"], 256);
+    EXPECT_NE(text.out.find("spooler 0 of 256 profiles"), std::string::npos) << text.out;
+    EXPECT_EQ(j["tc"]["plane"], 17);
+    EXPECT_EQ(j["tc"]["plane_name"], "X-Y");
+    ASSERT_EQ(j["tc"]["groups"].size(), 4u);
+    const std::regex line(R"re((group \d|active group): ERROR 0x([0-9A-F]+) [^;]*; STATUS 0x([0-9A-F]+))re");
+    std::size_t k = 0;
+    for (std::sregex_iterator it(text.out.begin(), text.out.end(), line), end; it != end; ++it, ++k) {
+        ASSERT_LT(k, 4u);
+        const auto& g = j["tc"]["groups"][k];
+        EXPECT_EQ(g["group"], k < 3 ? static_cast<int>(k + 1) : 0);
+        EXPECT_EQ(g["active"], k == 3);
+        EXPECT_EQ(g["error"]["value"], std::stoi((*it)[2].str(), nullptr, 16)) << (*it)[0];
+        EXPECT_EQ(g["status"]["value"], std::stoi((*it)[3].str(), nullptr, 16)) << (*it)[0];
+        for (const char* reg : {"error", "status"})
+            EXPECT_EQ(g[reg]["set"].size(),
+                      static_cast<std::size_t>(std::popcount(g[reg]["value"].get<unsigned>())));
+    }
+    EXPECT_EQ(k, 4u);
+}
+
+TEST(ApcictlStatusJson, WithoutOptionTcTheTcIsNull) {
+    const auto r = apcictl_run({"--device", "emu:?no-option-tc", "status", "--json"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "{\"spooler\":{\"capacity\":256,\"fill\":0},\"tc\":null}\n");
 }
 
 // ---- object names typed without brackets
