@@ -3,9 +3,12 @@
 # build, pyproject.toml) and copies it, with the libapci.so.0 it loads, to OUTPUT_DIR:
 #   cmake -DSOURCE_DIR=checkout -DBUILD_DIR=dir -DOUTPUT_DIR=dir -DPYTHON=python
 #         -DEXTENSION=_apci.cpython-311-x86_64-linux-gnu.so -P build_extension.cmake
-# Configured as a release (optimised, no debug information; ccache when installed; warnings
-# as errors when $APCI_WERROR says so), without tests and benchmarks, for the interpreter that
-# runs pip, with the extension's RPATH $ORIGIN (APCI_PYTHON_BUNDLE_LIBAPCI).
+# Configured as ./test.sh configures (RelWithDebInfo; ccache when installed; warnings as errors
+# when $APCI_WERROR says so), without tests and benchmarks, for the interpreter that runs pip,
+# with the extension's RPATH $ORIGIN (APCI_PYTHON_BUNDLE_LIBAPCI). BUILD_DIR is build-pip/ in
+# the checkout, beside ./test.sh's build/: the same sources compiled with the same flags from
+# the same depth hit ./test.sh's compiler cache (ccache, relative to the checkout), and a second
+# pip install rebuilds only what changed. The copies are stripped of their debug information.
 foreach(var SOURCE_DIR BUILD_DIR OUTPUT_DIR PYTHON EXTENSION)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "build_extension.cmake: ${var} is required")
@@ -22,7 +25,7 @@ if(CCACHE)
 endif()
 execute_process(
   COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR}
-          -DCMAKE_BUILD_TYPE=Release ${launcher}
+          -DCMAKE_BUILD_TYPE=RelWithDebInfo ${launcher}
           -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF -DAPCI_BUILD_PYTHON=ON
           -DAPCI_PYTHON_BUNDLE_LIBAPCI=ON -DPython3_EXECUTABLE=${PYTHON}
   OUTPUT_QUIET
@@ -39,3 +42,8 @@ file(COPY_FILE ${BUILD_DIR}/python/apci/${EXTENSION} ${OUTPUT_DIR}/${EXTENSION})
 # The library itself under its SONAME (not the symlink).
 file(REAL_PATH ${BUILD_DIR}/lib/libapci.so.0 library)
 file(COPY_FILE ${library} ${OUTPUT_DIR}/libapci.so.0)
+find_program(STRIP strip)
+if(STRIP)
+  execute_process(COMMAND ${STRIP} --strip-debug ${OUTPUT_DIR}/${EXTENSION} ${OUTPUT_DIR}/libapci.so.0
+    COMMAND_ERROR_IS_FATAL ANY)
+endif()
