@@ -27,15 +27,18 @@ fi
 arch=$(dpkg-architecture -qDEB_HOST_ARCH)
 packages=(libapci0 libapci-dev apci-tools python3-apci)
 
-# The source tree: the files git knows (tracked, and new ones not ignored),
-# as they are in the working tree; no build directories.
+# copy_tree DIR: the source tree into DIR: the files git knows (tracked, and new
+# ones not ignored), as they are in the working tree; no build directories.
+copy_tree() {
+  mkdir -p "$1"
+  git ls-files -z --cached --others --exclude-standard |
+    while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
+    tar --null -T - -cf - | tar -xf - -C "$1"
+}
 out=build-deb
 src="$out/apci8001-$version"
 rm -rf "$out"
-mkdir -p "$src"
-git ls-files -z --cached --others --exclude-standard |
-  while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
-  tar --null -T - -cf - | tar -xf - -C "$src"
+copy_tree "$src"
 
 echo "== dpkg-buildpackage -us -uc in $src (log: $out/build.log)"
 # ccache as the compiler launcher (debian/rules, APCI_COMPILER_LAUNCHER);
@@ -121,10 +124,7 @@ echo "== pip install --no-build-isolation into a venv (pyproject.toml, meson-pyt
 apci_install_packages python3-mesonpy python3-venv python3-pip
 pip_src="$out/pip-src"
 rm -rf "$pip_src"
-mkdir -p "$pip_src"
-git ls-files -z --cached --others --exclude-standard |
-  while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
-  tar --null -T - -cf - | tar -xf - -C "$pip_src"
+copy_tree "$pip_src"
 /usr/bin/python3 -m venv --system-site-packages "$work/venv"
 start=$SECONDS
 if ! (cd "$pip_src" && "$work/venv/bin/pip" install --no-build-isolation --no-index .) \
