@@ -126,13 +126,7 @@ int run(int argc, char** argv) {
         apcictl::Outcome outcome = command->prepare();
         if (outcome.ok()) {
             apcictl::Session session(device);
-            try {
-                outcome = command->run(session);
-            } catch (const std::system_error& e) {
-                // fmt::print throws when standard output cannot take the text.
-                if (!std::ferror(stdout)) throw;
-                return output_failed(e.code().value());
-            }
+            outcome = command->run(session);
         }
         if (!outcome.error.empty()) fmt::print(stderr, "apcictl: {}\n", outcome.error);
         // What is still buffered is written now, so a failed write is seen before exit.
@@ -147,6 +141,11 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
     try {
         return run(argc, argv);
+    } catch (const std::system_error& e) {
+        // fmt::print throws when standard output cannot take the text (a command's result,
+        // help, completion candidates): that is the output failing, not apcictl.
+        if (std::ferror(stdout)) return output_failed(e.code().value());
+        std::fprintf(stderr, "apcictl: internal error: %s\n", e.what());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "apcictl: internal error: %s\n", e.what());
     } catch (...) {
