@@ -33,6 +33,14 @@ std::string read_file(const std::string& path) {
     return s.str();
 }
 
+// A descriptor closed when the test ends, however it ends.
+struct OwnedFd {
+    int fd = -1;
+    ~OwnedFd() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
 // A listening Unix stream socket bound at `path`, as a .socket unit makes it.
 int listening_socket(const std::string& path) {
     const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
@@ -94,7 +102,8 @@ Child spawn(const std::vector<std::string>& args, const TempDir& dir, const std:
 TEST(RwmosEmuSystemd, ServesTheSocketSystemdPassedAndLeavesItInPlace) {
     TempDir dir;
     const std::string path = dir.file("activated.sock");
-    const int fd = listening_socket(path);
+    const OwnedFd socket{listening_socket(path)};
+    const int fd = socket.fd;
     ASSERT_GE(fd, 0) << std::strerror(errno);
     Child daemon = spawn({"--log-level", "info"}, dir, dir.file("log"), fd);
     // The socket listens before the daemon runs: a client may connect at once, as under systemd.
@@ -114,12 +123,12 @@ TEST(RwmosEmuSystemd, ServesTheSocketSystemdPassedAndLeavesItInPlace) {
     struct stat st {};
     ASSERT_EQ(::lstat(path.c_str(), &st), 0) << "the daemon removed systemd's socket";
     EXPECT_TRUE(S_ISSOCK(st.st_mode));
-    ::close(fd);
 }
 
 TEST(RwmosEmuSystemd, SocketOptionMustNameThePassedSocket) {
     TempDir dir;
-    const int fd = listening_socket(dir.file("activated.sock"));
+    const OwnedFd socket{listening_socket(dir.file("activated.sock"))};
+    const int fd = socket.fd;
     ASSERT_GE(fd, 0);
     // --socket naming the same path: served (the unit's ExecStart works with and without the
     // .socket unit).
@@ -140,18 +149,17 @@ TEST(RwmosEmuSystemd, SocketOptionMustNameThePassedSocket) {
     struct stat st {};
     EXPECT_NE(::lstat(dir.file("other.sock").c_str(), &st), 0);
     EXPECT_EQ(::lstat(dir.file("activated.sock").c_str(), &st), 0);
-    ::close(fd);
 }
 
 TEST(RwmosEmuSystemd, PassedFdThatIsNotAListeningSocketIsRefused) {
     TempDir dir;
-    const int fd = ::open(dir.file("plain").c_str(), O_RDWR | O_CREAT, 0600);
+    const OwnedFd plain{::open(dir.file("plain").c_str(), O_RDWR | O_CREAT, 0600)};
+    const int fd = plain.fd;
     ASSERT_GE(fd, 0);
     Child daemon = spawn({}, dir, dir.file("log"), fd);
     EXPECT_EQ(daemon.wait(), 1);
     EXPECT_NE(read_file(dir.file("log")).find("systemd (fd 3)"), std::string::npos)
         << read_file(dir.file("log"));
-    ::close(fd);
 }
 
 // The journal's stream is stderr when $JOURNAL_STREAM names its device and inode.
