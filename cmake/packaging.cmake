@@ -12,7 +12,8 @@ set(CPACK_PACKAGE_VENDOR "The APCI-8001 driver developers")
 set(CPACK_PACKAGE_CONTACT "APCI-8001 driver developers <apci8001@maintainers.invalid>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
   "APCI-8001/8008 userspace driver (libapci), RWMOS emulator and tools")
-set(CPACK_PACKAGE_DESCRIPTION
+# One string: set() with several would join them with ';', which would start the lines.
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
   "libapci drives ADDI-DATA APCI-8001/8008 motion-control boards through the universal object\n"
   "interface, over PCI, USB, or an emulator of the RWMOS.ELF firmware (embedded, or the\n"
   "rwmos-emu daemon). apcictl reads, writes and inspects board objects and runs scripts.")

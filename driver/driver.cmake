@@ -23,6 +23,10 @@ set_target_properties(apci PROPERTIES
   VISIBILITY_INLINES_HIDDEN ON
   LINK_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/apci.map)
 target_compile_definitions(apci PRIVATE APCI_BUILDING_LIBRARY)
+# apci/apci.hpp needs C++17 (std::string_view, if constexpr): a C++ consumer of apci::apci gets
+# at least that standard, found by find_package or from the build tree. (A C consumer is not
+# affected: the requirement applies to C++ sources only.)
+target_compile_features(apci INTERFACE cxx_std_17)
 target_include_directories(apci
   PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
@@ -65,16 +69,35 @@ install(FILES
   ${APCI_INSTALL_FILES}/apciConfig.cmake
   ${APCI_INSTALL_FILES}/apciConfigVersion.cmake
   DESTINATION ${APCI_CMAKE_DIR})
-# apci.pc finds its prefix relative to its own directory (pkg-config's
-# ${pcfiledir}), so the installed tree can be moved (cmake --install --prefix).
-if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}" OR IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDEDIR}")
-  set(APCI_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+# apci.pc names the prefix it is installed to literally (prefix=/usr), as Debian's own .pc
+# files do: pkg-config then recognises its system directories and leaves out -I/usr/include
+# and -L/usr/lib/<triplet>, so `pkg-config --cflags --libs apci` is `-lapci` there, and no
+# early -L can shadow a user's own. The prefix is the one of `cmake --install [--prefix DIR]`,
+# filled in when installing (install(CODE) below), so a tree installed elsewhere names its own.
+foreach(dir LIBDIR INCLUDEDIR)
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_${dir}}")
+    set(APCI_PC_${dir} "${CMAKE_INSTALL_${dir}}")
+  else()
+    set(APCI_PC_${dir} "\${prefix}/${CMAKE_INSTALL_${dir}}")
+  endif()
+endforeach()
+set(APCI_PC_PREFIX "@APCI_PC_INSTALLED_PREFIX@")
+configure_file(apci.pc.in ${APCI_INSTALL_FILES}/apci.pc.in @ONLY)
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(APCI_PC_DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 else()
-  file(RELATIVE_PATH APCI_PC_UP "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
-  set(APCI_PC_PREFIX "\${pcfiledir}/${APCI_PC_UP}")
+  set(APCI_PC_DESTINATION "\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 endif()
-configure_file(apci.pc.in ${APCI_INSTALL_FILES}/apci.pc @ONLY)
-install(FILES ${APCI_INSTALL_FILES}/apci.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+# Written straight to its destination (under DESTDIR) and listed in install_manifest.txt, as
+# install(FILES) does; the build tree is only read (an install may run as another user).
+install(CODE "
+  set(APCI_PC_INSTALLED_PREFIX \"\${CMAKE_INSTALL_PREFIX}\")
+  file(READ \"${APCI_INSTALL_FILES}/apci.pc.in\" apci_pc)
+  string(CONFIGURE \"\${apci_pc}\" apci_pc @ONLY)
+  set(apci_pc_file \"\$ENV{DESTDIR}${APCI_PC_DESTINATION}/apci.pc\")
+  message(STATUS \"Installing: \${apci_pc_file}\")
+  file(WRITE \"\${apci_pc_file}\" \"\${apci_pc}\")
+  list(APPEND CMAKE_INSTALL_MANIFEST_FILES \"\${apci_pc_file}\")")
 
 # ---- the build tree as a package, for consumers that build against it uninstalled:
 #   cmake -Dapci_DIR=BUILD ...            (find_package(apci): BUILD/apciConfig.cmake)

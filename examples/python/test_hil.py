@@ -9,8 +9,13 @@ agree. Run it with
     PYTHONPATH=build/python python3 -m pytest -q examples/python/test_hil.py
 
 with the daemon found as $APCI_RWMOS_EMU, build/bin/rwmos-emu ($APCI_BUILD_DIR/bin) or on
-PATH; APCI_HIL_DEVICE=URI tests that device instead of starting a daemon. docs/python.md,
-"The HIL pattern".
+PATH; APCI_HIL_DEVICE=URI tests that device instead of starting a daemon. The NC program and its
+tool list come from examples/ of the source tree, or, installed from the Debian packages, from
+apci-tools' /usr/share/doc/apci-tools/examples (this file is in python3-apci's documentation):
+
+    pytest /usr/share/doc/python3-apci/examples/python/test_hil.py
+
+docs/python.md, "The HIL pattern".
 """
 
 import os
@@ -28,8 +33,30 @@ import apci
 HERE = pathlib.Path(__file__).resolve().parent
 SOURCE_DIR = pathlib.Path(os.environ.get("APCI_SOURCE_DIR", HERE.parents[1]))
 BUILD_DIR = pathlib.Path(os.environ.get("APCI_BUILD_DIR", SOURCE_DIR / "build"))
-PROGRAM = SOURCE_DIR / "examples" / "wr_quad_disc.nc"
-TOOLS = SOURCE_DIR / "examples" / "tools" / "wr_quad_disc.tools"
+# Where the example NC programs are: the source tree's examples/ (this file is in
+# examples/python/), else the ones apci-tools installs.
+INSTALLED_EXAMPLES = pathlib.Path("/usr/share/doc/apci-tools/examples")
+
+
+def find_example(*parts: str) -> pathlib.Path:
+    for examples in (SOURCE_DIR / "examples", HERE.parent, INSTALLED_EXAMPLES):
+        candidate = examples.joinpath(*parts)
+        if candidate.is_file():
+            return candidate
+    pytest.fail(f"{pathlib.Path(*parts)} not found in {SOURCE_DIR / 'examples'}, {HERE.parent} "
+                f"or {INSTALLED_EXAMPLES}: set APCI_SOURCE_DIR to a checkout, or install "
+                "apci-tools (the Debian package with the example programs)")
+
+
+PROGRAM = None
+TOOLS = None
+
+
+@pytest.fixture(scope="module")
+def example_program():
+    global PROGRAM, TOOLS
+    PROGRAM = find_example("wr_quad_disc.nc")
+    TOOLS = find_example("tools", "wr_quad_disc.tools")
 
 
 def find_daemon() -> str:
@@ -75,7 +102,7 @@ def device(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def reference():
+def reference(example_program):
     return apci.run(PROGRAM, tools=TOOLS, device="emu:")
 
 

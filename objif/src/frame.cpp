@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "objif/frame.h"
 
+#include "objif/byte_order.h"
+
 #include <zlib.h>
 
 #include <algorithm>
@@ -9,9 +11,6 @@
 #include <cstring>
 
 namespace objif {
-
-static_assert(std::endian::native == std::endian::little,
-              "the codec copies little-endian integers directly");
 
 bool opcode_known(std::uint16_t op) noexcept {
     return op >= static_cast<std::uint16_t>(Opcode::kObjectRead) &&
@@ -65,11 +64,10 @@ namespace {
 std::uint32_t crc32_of(const std::uint8_t* p, std::size_t n) {
     return static_cast<std::uint32_t>(::crc32(0L, p, static_cast<uInt>(n)));
 }
+// The wire is little-endian (docs/wire-frame.md) on every host.
 template <class T>
 T load(const std::uint8_t* p) {
-    T v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
+    return load_little<T>(p);
 }
 }  // namespace
 
@@ -97,7 +95,7 @@ FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::si
     if (n > 0 && n < 4) {
         // A prefix of the magic is still a valid prefix (an empty one too).
         std::uint8_t magic[4];
-        std::memcpy(magic, &kFrameMagic, 4);
+        store_little(magic, kFrameMagic);
         if (std::memcmp(p, magic, n) != 0) return FrameError::kBadMagic;
     }
     if (n >= 6 && load<std::uint16_t>(p + 4) != kFrameVersion) return FrameError::kBadVersion;
@@ -128,18 +126,18 @@ FrameError decode_frame(std::span<const std::uint8_t> bytes, Frame& out, std::si
 
 // ---- ByteWriter / ByteReader
 
-void ByteWriter::u16(std::uint16_t v) {
-    const auto* b = reinterpret_cast<const std::uint8_t*>(&v);
-    out_.insert(out_.end(), b, b + sizeof v);
+namespace {
+template <class T>
+void put_little(std::vector<std::uint8_t>& out, T v) {
+    std::uint8_t bytes[sizeof v];
+    store_little(bytes, v);
+    out.insert(out.end(), bytes, bytes + sizeof v);
 }
-void ByteWriter::u32(std::uint32_t v) {
-    const auto* b = reinterpret_cast<const std::uint8_t*>(&v);
-    out_.insert(out_.end(), b, b + sizeof v);
-}
-void ByteWriter::u64(std::uint64_t v) {
-    const auto* b = reinterpret_cast<const std::uint8_t*>(&v);
-    out_.insert(out_.end(), b, b + sizeof v);
-}
+}  // namespace
+
+void ByteWriter::u16(std::uint16_t v) { put_little(out_, v); }
+void ByteWriter::u32(std::uint32_t v) { put_little(out_, v); }
+void ByteWriter::u64(std::uint64_t v) { put_little(out_, v); }
 void ByteWriter::f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
 void ByteWriter::value(const Value& v) {
     u8(static_cast<std::uint8_t>(v.type()));
@@ -162,14 +160,19 @@ void ByteWriter::descriptor(const Descriptor& d) {
 template <class T>
 static bool take(std::span<const std::uint8_t> in, std::size_t& pos, T& v) {
     if (in.size() - pos < sizeof(T)) return false;
-    std::memcpy(&v, in.data() + pos, sizeof(T));
+    v = load_little<T>(in.data() + pos);
     pos += sizeof(T);
     return true;
 }
 bool ByteReader::u8(std::uint8_t& v) { return take(in_, pos_, v); }
 bool ByteReader::u16(std::uint16_t& v) { return take(in_, pos_, v); }
 bool ByteReader::u32(std::uint32_t& v) { return take(in_, pos_, v); }
-bool ByteReader::i32(std::int32_t& v) { return take(in_, pos_, v); }
+bool ByteReader::i32(std::int32_t& v) {
+    std::uint32_t bits = 0;
+    if (!take(in_, pos_, bits)) return false;
+    v = static_cast<std::int32_t>(bits);
+    return true;
+}
 bool ByteReader::u64(std::uint64_t& v) { return take(in_, pos_, v); }
 bool ByteReader::f64(double& v) {
     std::uint64_t bits;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "objif/mailbox.h"
 
+#include "objif/byte_order.h"
+
 #include <fmt/format.h>
 #include <linux/futex.h>
 #include <sys/syscall.h>
@@ -70,26 +72,29 @@ void Window::wait(std::size_t, std::uint32_t, std::chrono::nanoseconds timeout) 
         std::min<std::chrono::nanoseconds>(timeout, std::chrono::microseconds(20)));
 }
 
+// The window's words are little-endian (docs/dpram.md) on every host, as a PCI BAR is: each
+// access converts (objif/byte_order.h; nothing to do on a little-endian host).
 std::uint32_t MappedWindow::load(std::size_t offset) noexcept {
-    return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
-        .load(std::memory_order_acquire);
+    return from_little(std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+                           .load(std::memory_order_acquire));
 }
 void MappedWindow::store(std::size_t offset, std::uint32_t value) noexcept {
     std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
-        .store(value, std::memory_order_release);
+        .store(to_little(value), std::memory_order_release);
 }
 void MappedWindow::store_fence(std::size_t offset, std::uint32_t value) noexcept {
     std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
-        .store(value, std::memory_order_seq_cst);
+        .store(to_little(value), std::memory_order_seq_cst);
 }
 std::uint32_t MappedWindow::load_fence(std::size_t offset) noexcept {
-    return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
-        .load(std::memory_order_seq_cst);
+    return from_little(std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
+                           .load(std::memory_order_seq_cst));
 }
 bool MappedWindow::compare_exchange(std::size_t offset, std::uint32_t expected,
                                     std::uint32_t desired) noexcept {
+    std::uint32_t stored = to_little(expected);
     return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(base_ + offset))
-        .compare_exchange_strong(expected, desired, std::memory_order_acq_rel);
+        .compare_exchange_strong(stored, to_little(desired), std::memory_order_acq_rel);
 }
 void MappedWindow::read(std::size_t offset, std::uint8_t* out, std::size_t size) noexcept {
     std::memcpy(out, base_ + offset, size);
@@ -105,8 +110,9 @@ void MappedWindow::wait(std::size_t offset, std::uint32_t expected,
     timespec ts{static_cast<time_t>(secs.count()), static_cast<long>((timeout - secs).count())};
     // A shared (not FUTEX_PRIVATE) futex: the other side is another process.
     // EAGAIN (value already changed), EINTR and ETIMEDOUT all mean "look again".
-    ::syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(base_ + offset), FUTEX_WAIT, expected,
-              &ts, nullptr, 0);
+    // The kernel compares the word as stored: little-endian.
+    ::syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(base_ + offset), FUTEX_WAIT,
+              to_little(expected), &ts, nullptr, 0);
 }
 
 void MappedWindow::wake(std::size_t offset) noexcept {

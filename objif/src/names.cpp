@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <utility>
@@ -132,34 +134,75 @@ const NamedObject* find_object(const Address& a) noexcept {
 
 namespace {
 
+// The typed text read as a name with an index: the number taken out and "[]" in its place, to
+// meet the rows over a range of indices ("comp3d.tool[].r").
+struct IndexedShape {
+    std::string text;
+    std::int64_t index;
+};
+
+// Every such reading of `typed`: its first bracketed number ("tc.group[7].radus" ->
+// "tc.group[].radus", 7), or, without one, each number written straight after a letter and
+// before a dot, a bracket or the end, as one would type an index without its brackets
+// ("tc.group2.radius" -> "tc.group[].radius", 2; "comp3d.tool5.r" reads both the 3 and the 5,
+// and the row nearest to a reading decides). Numbers of up to 9 digits.
+std::vector<IndexedShape> indexed_shapes(std::string_view typed) {
+    const auto digits_at = [&](std::size_t from, std::size_t to) {
+        if (to <= from || to - from > 9) return false;
+        return std::all_of(typed.begin() + static_cast<std::ptrdiff_t>(from),
+                           typed.begin() + static_cast<std::ptrdiff_t>(to),
+                           [](char c) { return c >= '0' && c <= '9'; });
+    };
+    const auto reading = [&](std::size_t from, std::size_t to, std::string_view open,
+                             std::string_view close) {
+        return IndexedShape{std::string(typed.substr(0, from)) + std::string(open) +
+                                std::string(close) + std::string(typed.substr(to)),
+                            std::stoll(std::string(typed.substr(from, to - from)))};
+    };
+    std::vector<IndexedShape> out;
+    if (const auto open = typed.find('['); open != std::string_view::npos) {
+        const auto close = typed.find(']', open);
+        if (close != std::string_view::npos && digits_at(open + 1, close))
+            out.push_back(reading(open + 1, close, "", ""));
+        return out;
+    }
+    const auto is_letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+    for (std::size_t i = 1; i < typed.size(); ++i) {
+        if (!is_letter(typed[i - 1]) || typed[i] < '0' || typed[i] > '9') continue;
+        std::size_t end = i;
+        while (end < typed.size() && typed[end] >= '0' && typed[end] <= '9') ++end;
+        if ((end == typed.size() || typed[end] == '.') && digits_at(i, end))
+            out.push_back(reading(i, end, "[", "]"));
+        i = end;
+    }
+    return out;
+}
+
 // The names within reach of `typed` with their edit distances, nearest first (ties in map
 // order).
 std::vector<std::pair<std::size_t, std::string_view>> matches(std::string_view typed) {
-    // The typed text with its first bracketed number taken out ("tc.group[7].radus" ->
-    // "tc.group[].radus", index 7), to meet the rows over a range of indices.
-    std::string typed_shape(typed);
-    std::optional<std::int64_t> typed_index;
-    if (const auto open = typed.find('['); open != std::string_view::npos) {
-        const auto close = typed.find(']', open);
-        const std::string_view digits = close == std::string_view::npos
-                                            ? std::string_view{}
-                                            : typed.substr(open + 1, close - open - 1);
-        if (!digits.empty() && digits.size() <= 9 &&
-            std::all_of(digits.begin(), digits.end(),
-                        [](char c) { return c >= '0' && c <= '9'; })) {
-            typed_index = std::stoll(std::string(digits));
-            typed_shape = std::string(typed.substr(0, open + 1)) + std::string(typed.substr(close));
-        }
-    }
+    const std::vector<IndexedShape> typed_shapes = indexed_shapes(typed);
     const Index& ix = index();
     std::vector<std::pair<std::size_t, std::string_view>> close;
     for (const Shape& shape : ix.shapes) {
         const ObjectInfo& o = *shape.info;
         const bool ranged = o.index_first != o.index_last;
-        const std::string_view compared = ranged ? std::string_view(typed_shape) : typed;
-        const std::size_t bound = std::max(compared.size(), shape.text.size()) / 3;
-        const std::size_t d = bounded_edit_distance(compared, shape.text, bound);
-        if (d > bound) continue;
+        // A row over a range meets each reading of the typed text with an index taken out,
+        // and the nearest one counts (with its index); any other row meets the text as typed.
+        std::size_t d = std::numeric_limits<std::size_t>::max();
+        std::optional<std::int64_t> typed_index;
+        const auto meet = [&](std::string_view compared, std::optional<std::int64_t> index) {
+            const std::size_t bound = std::max(compared.size(), shape.text.size()) / 3;
+            const std::size_t e = bounded_edit_distance(compared, shape.text, bound);
+            if (e <= bound && e < d) {
+                d = e;
+                typed_index = index;
+            }
+        };
+        meet(typed, std::nullopt);
+        if (ranged)
+            for (const IndexedShape& t : typed_shapes) meet(t.text, t.index);
+        if (d == std::numeric_limits<std::size_t>::max()) continue;
         // A row over a range is offered at the typed index, brought into the range.
         std::int64_t i = o.index_first;
         if (ranged && typed_index)

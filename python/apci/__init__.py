@@ -25,8 +25,10 @@ from ._status import (GroupStatus, Status, TcError, TcStatus, decode_status, sta
 
 __version__ = _library_version()
 
+# `from apci import *` brings everything but open(), which would shadow the built-in open() of
+# the importing module: call it apci.open().
 __all__ = [
-    "Board", "open", "run", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
+    "Board", "run", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
     "Error", "ObjectError", "TransportError", "ProgramError", "RunError",
     "Status", "TcError", "TcStatus", "GroupStatus", "decode_status", "status_name",
     "status_message",

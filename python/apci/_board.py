@@ -274,5 +274,5 @@ def open(uri: str = "emu:") -> Board:  # noqa: A001 - the package's verb, as apc
     return Board(uri)
 
 
-__all__ = ["Board", "open", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
+__all__ = ["Board", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
            "Error", "ObjectError", "TransportError", "TcError"]

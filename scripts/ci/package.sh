@@ -3,16 +3,19 @@
 # The packaging stage (docs/packaging.md, docs/hardening.md "Debian package"):
 # builds the Debian packages of debian/ with dpkg-buildpackage in a copy of
 # the checkout (build-deb/apci8001-VERSION; the packages land in build-deb/,
-# nothing is written outside the checkout), checks them with lintian, installs
-# libapci0, libapci-dev, apci-tools and python3-apci on this machine, and
-# runs the installed tools, the installed example and the installed Python
-# package against the installed files only. The packages are removed again at the end unless APCI_KEEP_PACKAGE=1.
+# nothing is written outside the checkout; the package build runs the tests of
+# debian/rules), checks them with lintian, runs the autopkgtest of debian/tests
+# (which installs libapci0, libapci-dev, apci-tools and python3-apci on this
+# machine and runs the installed tools, the C consumer, the Python package and
+# its HIL example against the installed files only), and builds the Python
+# module with pip into a venv from pyproject.toml. The packages are removed
+# again at the end unless APCI_KEEP_PACKAGE=1.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/deps.sh
 apci_install_ci_deps
 # Only this stage needs them: dh and its helpers, and the package checker.
-apci_install_packages debhelper lintian dh-python
+apci_install_packages debhelper lintian dh-python pandoc
 
 version=$(dpkg-parsechangelog -S Version)
 project_version=$(sed -n 's/^project(apci8001 VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
@@ -24,15 +27,18 @@ fi
 arch=$(dpkg-architecture -qDEB_HOST_ARCH)
 packages=(libapci0 libapci-dev apci-tools python3-apci)
 
-# The source tree: the files git knows (tracked, and new ones not ignored),
-# as they are in the working tree; no build directories.
+# copy_tree DIR: the source tree into DIR: the files git knows (tracked, and new
+# ones not ignored), as they are in the working tree; no build directories.
+copy_tree() {
+  mkdir -p "$1"
+  git ls-files -z --cached --others --exclude-standard |
+    while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
+    tar --null -T - -cf - | tar -xf - -C "$1"
+}
 out=build-deb
 src="$out/apci8001-$version"
 rm -rf "$out"
-mkdir -p "$src"
-git ls-files -z --cached --others --exclude-standard |
-  while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
-  tar --null -T - -cf - | tar -xf - -C "$src"
+copy_tree "$src"
 
 echo "== dpkg-buildpackage -us -uc in $src (log: $out/build.log)"
 # ccache as the compiler launcher (debian/rules, APCI_COMPILER_LAUNCHER);
@@ -77,123 +83,67 @@ cleanup() {
 }
 trap cleanup EXIT
 
-echo "== installing ${packages[*]}"
 # The single package the CPack path (cmake/packaging.cmake) builds holds the
 # same files: a leftover one is removed first.
 if dpkg-query -W -f='${Status}' apci8001 2>/dev/null | grep -q "install ok installed"; then
   DEBIAN_FRONTEND=noninteractive apt-get remove -y -qq apci8001 >/dev/null
 fi
+
+echo "== autopkgtest (debian/tests: tools, c-consumer, python) on this machine, with the built packages"
+# autopkgtest installs the .debs given and each test's Depends, then runs the tests from the
+# source package against the installed files only (-B: the source is not built again; the null
+# runner: this machine is the testbed, as in CI's fresh container).
+apci_install_packages autopkgtest
 debs=()
 for p in "${packages[@]}"; do debs+=("$(realpath "$out/${p}_${version}_${arch}.deb")"); done
-DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${debs[@]}" >/dev/null
+start=$SECONDS
+rc=0
+autopkgtest -B --output-dir "$out/autopkgtest" "${debs[@]}" "$(realpath "$out/apci8001_${version}.dsc")" -- null \
+  >"$out/autopkgtest.log" 2>&1 || rc=$?
+sed -n '/^[a-z-]* *\(PASS\|FAIL\|SKIP\)/p' "$out/autopkgtest.log"
+if [ "$rc" != 0 ]; then
+  tail -n 60 "$out/autopkgtest.log" >&2
+  echo "package: autopkgtest failed ($rc); the whole log is $out/autopkgtest.log" >&2
+  exit 1
+fi
+echo "autopkgtest: passed in $((SECONDS - start)) s"
 
-# From here on only installed files: run from an empty directory with a PATH
-# that does not reach the build tree.
-cd "$work"
-export PATH=/usr/sbin:/usr/bin:/sbin:/bin
-unset APCI_DEVICE LD_LIBRARY_PATH
-doc=/usr/share/doc/apci-tools
-devdoc=/usr/share/doc/libapci-dev
-
-echo "== installed tools"
-test "$(command -v apcictl)" = /usr/bin/apcictl
-apcictl --help >/dev/null
-apcictl --version
-test "$(command -v rwmos-emu)" = /usr/bin/rwmos-emu
-rwmos-emu --help >/dev/null
-echo "rwmos-emu --help: ok"
-pages=$(dpkg -L apci-tools | grep '/man1/.*\.1\.gz$')
-[ "$(echo "$pages" | wc -l)" = 2 ] || { echo "expected the man pages of apcictl and rwmos-emu, got: $pages" >&2; exit 1; }
-for page in $pages; do
-  man -l "$page" >/dev/null 2>&1 || { echo "man page $page does not render" >&2; exit 1; }
-  echo "man page: $page"
-done
-
-echo "== udev rule, systemd unit, documentation, copyright"
-rule=$(dpkg -L apci-tools | grep '/udev/rules.d/60-apci8001\.rules$')
-test -f "$rule" && echo "udev rule: $rule"
-unit=$(dpkg -L apci-tools | grep '/systemd/user/rwmos-emu\.service$') || {
-  echo "the systemd user unit is not packaged" >&2; exit 1; }
-echo "systemd user unit: $unit"
-# Every entry of Documentation= names something installed: a file:// page, or a
-# man: page of the package.
-for ref in $(sed -n 's|^Documentation=||p' "$unit"); do
-  case "$ref" in
-    file://*)
-      test -f "${ref#file://}" || {
-        echo "the unit's Documentation= $ref is not installed" >&2; exit 1; } ;;
-    man:*)
-      page="${ref#man:}" name="${page%%(*}" section="${page#*(}" section="${section%)}"
-      dpkg -L apci-tools | grep -q "/man/man$section/$name\.$section\(\.gz\)\?$" || {
-        echo "the unit's Documentation= $ref is not installed" >&2; exit 1; } ;;
-    *) echo "the unit's Documentation= $ref is neither file:// nor man:" >&2; exit 1 ;;
-  esac
-  echo "its documentation: $ref"
-done
-if [ -e /etc/systemd/user/default.target.wants/rwmos-emu.service ]; then
+# Still installed: nothing in /etc enabled for every user, the copyright files.
+if [ -e /etc/systemd/user/default.target.wants/rwmos-emu.service ] ||
+   [ -e /etc/systemd/user/sockets.target.wants/rwmos-emu.socket ]; then
   echo "installing apci-tools enabled rwmos-emu for every user; it must stay disabled" >&2; exit 1
 fi
-echo "rwmos-emu.service: installed, not enabled"
-for f in "$doc/README.md" "$doc/apcictl.md" "$doc/c-api.md" "$doc/examples/wr_quad_disc.nc" \
-  "$devdoc/examples/pcap_tc_init.c"; do
-  test -f "$f" || { echo "$f is not installed" >&2; exit 1; }
-done
 for p in "${packages[@]}"; do
   grep -q '^License: MIT' "/usr/share/doc/$p/copyright" ||
     { echo "/usr/share/doc/$p/copyright is missing or names no license" >&2; exit 1; }
 done
-echo "documentation, examples and copyright files: installed"
 
-echo "== the installed example against the installed package: pcap_tc_init (pkg-config apci $(pkg-config --modversion apci))"
-# shellcheck disable=SC2046
-cc -std=c11 -Wall -Wextra -Werror -o pcap_tc_init "$devdoc/examples/pcap_tc_init.c" $(pkg-config --cflags --libs apci)
-# The loader finds the installed library in the multiarch directory, reached
-# as /usr/lib/... or, on a merged-/usr system, /lib/... (the same file).
-used=$(ldd ./pcap_tc_init | sed -n 's/^\s*libapci\.so\.0 => \(\S*\).*/\1/p')
-installed=$(dpkg -L libapci0 | grep '/libapci\.so\.0$')
-[ -n "$used" ] && [ "$(realpath "$used")" = "$(realpath "$installed")" ] || {
-  echo "pcap_tc_init uses '${used:-no libapci}', not the installed $installed" >&2; exit 1; }
-./pcap_tc_init
-echo "== the same example through the installed daemon (unix:$work/emu.sock)"
-rwmos-emu --socket "$work/emu.sock" --log-level warn &
-daemon=$!
-for _ in $(seq 100); do [ -S "$work/emu.sock" ] && break; sleep 0.1; done
-./pcap_tc_init "unix:$work/emu.sock"
-apcictl --device "unix:$work/emu.sock" status
-kill "$daemon" && wait "$daemon"
-
-echo "== CMake package: find_package(apci)"
-mkdir consumer && cat > consumer/CMakeLists.txt <<'CMAKE'
-cmake_minimum_required(VERSION 3.25)
-project(consumer C)
-find_package(apci 0.1 REQUIRED)
-add_executable(consumer main.c)
-target_link_libraries(consumer PRIVATE apci::apci)
-CMAKE
-printf '#include <stdio.h>\n#include "apci/apci.h"\nint main(void) { printf("libapci %%s\\n", apci_version()); return 0; }\n' > consumer/main.c
-cmake -S consumer -B consumer/build >/dev/null && cmake --build consumer/build >/dev/null && ./consumer/build/consumer
-
-echo "== apcictl script against the embedded emulator"
-printf 'write 1300 1 1 8 5\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\nstatus\n' | apcictl script -
-echo "== apcictl run: the installed NC example with its path plot, by the installed apcictl"
-apcictl run "$doc/examples/wr_quad_disc.nc" --tools "$doc/examples/tools/wr_quad_disc.tools" \
-  --svg run.svg --json run.json
-test -s run.svg && test -s run.json
-echo "== the installed Python package: import apci (Debian's python3), a run with NumPy arrays"
-/usr/bin/python3 -c "
-import json, pathlib, apci, numpy
+echo "== pip install --no-build-isolation into a venv (pyproject.toml, meson-python)"
+# As a pip user without a package index: Debian's build backend and pybind11 through the
+# system site packages, the module built from a fresh copy of the source tree.
+apci_install_packages python3-mesonpy python3-venv python3-pip
+pip_src="$out/pip-src"
+rm -rf "$pip_src"
+copy_tree "$pip_src"
+/usr/bin/python3 -m venv --system-site-packages "$work/venv"
+start=$SECONDS
+if ! (cd "$pip_src" && "$work/venv/bin/pip" install --no-build-isolation --no-index .) \
+    >"$out/pip.log" 2>&1; then
+  tail -n 40 "$out/pip.log" >&2
+  echo "package: pip install failed; the whole log is $out/pip.log" >&2
+  exit 1
+fi
+(cd "$work" && "$work/venv/bin/python" - "$work/venv" <<'PY'
+import importlib.metadata, pathlib, sys, apci
+venv = pathlib.Path(sys.argv[1]).resolve()
 where = pathlib.Path(apci.__file__).resolve()
-assert str(where).startswith('/usr/lib/python3/dist-packages/apci/'), where
-with apci.open() as b:
-    b.write(1300, 1, 1, 7, 2.5)
-    assert b.read(1300, 1, 1, 7) == 2.5 and b.status(1).ok
-r = apci.run('$doc/examples/wr_quad_disc.nc', tools='$doc/examples/tools/wr_quad_disc.tools')
-assert r.ok and r.axes.shape == (r.cycles, 8), r.summary()
-# The same path as the installed apcictl's run.json above.
-want = json.load(open('run.json'))['segments']
-assert len(r.segments) == len(want) > 0, (len(r.segments), len(want))
-assert (r.segments['end'] == numpy.array([s['end'] for s in want])).all()
-print('apci', apci.__version__, 'from', where.parent, '-', r.summary().splitlines()[0])
-"
-test -f /usr/share/doc/python3-apci/examples/python/test_hil.py
-echo "package: built, lint-clean, installed; tools and examples ran from the installed files"
+assert venv in where.parents, f"apci from {where}, not from the venv {venv}"
+assert importlib.metadata.version("apci") == apci.__version__
+with apci.open() as board:
+    board.write(1300, 1, 1, 7, 2.5)
+    assert board.read("tc.group[1].radius") == 2.5
+print("pip: apci", apci.__version__, "from", where.parent)
+PY
+)
+echo "pip install: built and imported in $((SECONDS - start)) s"
+echo "package: built, lint-clean, installed; autopkgtest and the pip build passed"

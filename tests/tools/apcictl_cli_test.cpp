@@ -87,7 +87,7 @@ TEST(ApcictlCli, UnknownCommandWithNothingCloseListsTheCommands) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err,
               "apcictl: unknown command 'frobnicate' (commands: read, write, dump, script, shell, status, "
-              "spool, direct, ssf, step, run, list, diff)\n");
+              "spool, direct, ssf, step, run, list, diff, help)\n");
 }
 
 TEST(ApcictlCli, NoCommandSaysSoAndListsThem) {

@@ -1,17 +1,26 @@
 # SPDX-License-Identifier: MIT
-# Checks a generated man page (cmake/manpage.cmake) against its program:
-# NAME and SYNOPSIS present, a COMMANDS entry for every subcommand the
-# program's --help lists, and groff renders it without a single warning.
-#   cmake -DPROGRAM=... -DPAGE=... -P manpage_check.cmake
+# Checks a man page written from its page of docs/ (cmake/manpages.cmake) against its program:
+# the sections man-pages(7) asks for, in its order (NAME, SYNOPSIS, DESCRIPTION, ..., EXIT
+# STATUS, ENVIRONMENT, FILES, EXAMPLES, SEE ALSO), an entry for every subcommand the
+# program's --help lists, each environment variable in ENV named, no path relative to docs/
+# (the installed pages instead), and groff renders it without a single warning.
+#   cmake -DPROGRAM=... -DPAGE=... -DDOCDIR=... [-DENV="A;B"] -P manpage_check.cmake
+cmake_minimum_required(VERSION 3.25)
 if(NOT EXISTS "${PAGE}")
   message(FATAL_ERROR "man page ${PAGE} was not generated")
 endif()
 file(READ "${PAGE}" page)
-foreach(section ".SH NAME" ".SH SYNOPSIS" ".SH OPTIONS")
-  string(FIND "${page}" "${section}\n" at)
+set(last -1)
+foreach(section "NAME" "SYNOPSIS" "DESCRIPTION" "EXIT STATUS" "ENVIRONMENT" "FILES" "EXAMPLES"
+                "SEE ALSO")
+  string(FIND "${page}" ".SH ${section}\n" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "${PAGE}: no '${section}' section")
   endif()
+  if(at LESS last)
+    message(FATAL_ERROR "${PAGE}: '${section}' is not in man-pages(7)'s order")
+  endif()
+  set(last ${at})
 endforeach()
 
 execute_process(COMMAND ${PROGRAM} --help OUTPUT_VARIABLE help RESULT_VARIABLE rc)
@@ -24,17 +33,38 @@ if(NOT at EQUAL -1)
   string(REGEX MATCHALL "\n  [a-z][a-z0-9-]*" names "${block}")
   foreach(name IN LISTS names)
     string(STRIP "${name}" name)
+    if(name STREQUAL "help")
+      continue()  # `help COMMAND` is described with --help, not as a command of its own
+    endif()
     string(REPLACE "-" "\\-" troff_name "${name}")
-    string(FIND "${page}" ".SS ${troff_name}\n" at)
-    if(at EQUAL -1)
-      message(FATAL_ERROR "${PAGE}: no COMMANDS entry for '${name}'")
+    # "### read" or "### spool, direct, ssf, step (motion)": a subsection naming the command.
+    if(NOT page MATCHES "\n\\.SS [^\n]*${troff_name}")
+      message(FATAL_ERROR "${PAGE}: no entry for the command '${name}'")
     endif()
   endforeach()
 endif()
 
+foreach(variable IN LISTS ENV)
+  string(REPLACE "_" "\\_" troff_variable "${variable}")
+  string(FIND "${page}" "${variable}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${PAGE}: the environment variable ${variable} is not named")
+  endif()
+endforeach()
+if(page MATCHES "[^/a-z]docs/[a-z0-9-]+\\.md")
+  message(FATAL_ERROR "${PAGE} names a page relative to docs/ ('${CMAKE_MATCH_0}'); "
+                      "the installed one is ${DOCDIR}/...")
+endif()
+string(REPLACE "-" "\\-" troff_docdir "${DOCDIR}")
+string(FIND "${page}" "${troff_docdir}/" at)
+string(FIND "${page}" "${DOCDIR}/" plain_at)
+if(at EQUAL -1 AND plain_at EQUAL -1)
+  message(FATAL_ERROR "${PAGE} does not point at the installed documentation ${DOCDIR}")
+endif()
+
 find_program(GROFF groff)
 if(GROFF)
-  execute_process(COMMAND ${GROFF} -man -ww -z -Tutf8 "${PAGE}"
+  execute_process(COMMAND ${GROFF} -man -t -ww -z -Tutf8 "${PAGE}"
     ERROR_VARIABLE warnings RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0 OR NOT warnings STREQUAL "")
     message(FATAL_ERROR "groff: ${PAGE} does not render cleanly:\n${warnings}")

@@ -259,18 +259,106 @@ TEST(SvgLayout, EmptyPlotAndASinglePoint) {
 }
 
 TEST(SvgLayout, LongTitleIsWrappedOnThePage) {
-    const std::string title = "/a/very/long/directory/name/" + std::string(250, 'W') + ".nc";
-    const std::string svg = rectangle_svg(0, 0, 10, 200, false, title);
+    const std::string name = "a very long program name " + std::string(250, 'W') + ".nc";
+    const std::string svg = rectangle_svg(0, 0, 10, 200, false, "/a/directory/" + name);
     check_layout(svg, "long title");
     const Layout l = parse(svg);
     ASSERT_GT(l.title.size(), 2u);
     std::string joined;
     for (const std::string& line : l.title) joined += line;
-    EXPECT_EQ(joined, title + " \xe2\x80\x94 G17 plane X-Y, seen from +Z");
-    EXPECT_EQ(l.title.front(), "/a/very/long/directory/name/");  // cut after a slash
+    // Cut at the space before the long word (the space ends the line, not drawn).
+    EXPECT_EQ(joined, "a very long program name" + std::string(250, 'W') +
+                          ".nc \xe2\x80\x94 G17 plane X-Y, seen from +Z");
+    EXPECT_EQ(l.title.front(), "a very long program name");
     // Every text at one size, the page not many times the drawing's width.
     for (const double size : l.sizes) EXPECT_DOUBLE_EQ(size, l.sizes.front());
     EXPECT_LT(l.vw, 45.0 * l.sizes.front());
+}
+
+// The plot names the program by its file name: the directories of the machine it was drawn on
+// stay there. The document's <title> says what the heading says.
+TEST(SvgTitle, NamesTheProgramsFileNameNotItsDirectories) {
+    const std::string svg = rectangle_svg(0, 0, 10, 20, false, "/home/someone/secret/part.nc");
+    EXPECT_EQ(svg.find("/home/someone"), std::string::npos) << svg;
+    EXPECT_EQ(svg.find("secret"), std::string::npos);
+    const auto open = svg.find("<title>");
+    ASSERT_NE(open, std::string::npos);
+    EXPECT_LT(open, svg.find("<style>"));  // the first child of <svg>
+    EXPECT_EQ(svg.substr(open, svg.find("</title>") - open),
+              "<title>part.nc \xe2\x80\x94 G17 plane X-Y, seen from +Z");
+    const Layout l = parse(svg);
+    ASSERT_EQ(l.title.size(), 1u);
+    EXPECT_EQ(l.title.front(), "part.nc \xe2\x80\x94 G17 plane X-Y, seen from +Z");
+    // Characters XML reserves, escaped in both.
+    const std::string amp = rectangle_svg(0, 0, 10, 20, false, "a&b<c>.nc");
+    EXPECT_NE(amp.find("<title>a&amp;b&lt;c&gt;.nc"), std::string::npos) << amp;
+}
+
+// The vertices of a layer's paths ("M.. L.. L.."), as numbers in pairs; the layer's last path,
+// its sample in the legend, left out.
+std::vector<std::pair<double, double>> path_vertices(const std::string& svg, std::string_view css) {
+    std::vector<std::pair<double, double>> out;
+    const std::regex path("<path class=\"" + std::string(css) + "\" d=\"([^\"]*)\"");
+    const std::regex pair(R"re([ML](-?[0-9.]+) (-?[0-9.]+))re");
+    std::vector<std::string> paths;
+    for (std::sregex_iterator p(svg.begin(), svg.end(), path), end; p != end; ++p)
+        paths.push_back((*p)[1]);
+    if (!paths.empty()) paths.pop_back();
+    const std::sregex_iterator end;
+    for (const std::string& d : paths) {
+        for (std::sregex_iterator v(d.begin(), d.end(), pair); v != end; ++v)
+            out.emplace_back(number((*v)[1]), number((*v)[2]));
+    }
+    return out;
+}
+
+// A program of many segments far below a pixel (a spiral of 300,000 steps of 0.2 um on a
+// 1000-pixel page 100 mm wide: 1/500 pixel each) is drawn with vertices at least half a pixel
+// apart, and ends where the path ends; segments longer than a pixel keep every vertex.
+TEST(SvgSimplification, VerticesBelowHalfAPixelAreLeftOut) {
+    SvgPlotWriter plot;
+    const Point corner0(0, 0, 0), corner1(100, 100, 0);
+    plot.programmed(line(corner0, corner1, Role::kContour));  // spans the drawing: 100 x 100 mm
+    constexpr int kSteps = 300'000;
+    Point last(50, 50, 0);
+    for (int i = 1; i <= kSteps; ++i) {
+        const double t = 0.06 * i / kSteps * 2 * 3.141592653589793 * 10;  // ~2 turns
+        const double r = 10.0 + 20.0 * i / kSteps;
+        const Point p(50 + r * std::cos(t), 50 + r * std::sin(t), 0);
+        plot.executed(line(last, p, Role::kContour));
+        last = p;
+    }
+    const std::string svg = write_svg(plot, 17, "spiral.nc");
+    EXPECT_LT(svg.size(), 200'000u) << "the plot of 300,000 sub-pixel segments is "
+                                    << svg.size() << " bytes";
+    const auto v = path_vertices(svg, "contour");
+    ASSERT_GT(v.size(), 100u);
+    // The page's pixel in the drawing's units: the view box's width over 1000 pixels.
+    const std::smatch box = [&] {
+        std::smatch m;
+        std::regex_search(svg, m, std::regex(R"re(viewBox="(\S+) (\S+) (\S+) (\S+)")re"));
+        return m;
+    }();
+    const double pixel = number(box[3]) / 1000.0;
+    // Coordinates are written to 0.01 at this size: two of those below half a pixel at most.
+    const double written = 0.01;
+    for (std::size_t i = 1; i + 1 < v.size(); ++i)
+        EXPECT_GE(std::hypot(v[i].first - v[i - 1].first, v[i].second - v[i - 1].second),
+                  0.5 * pixel - 2 * written)
+            << "vertex " << i;
+    // The last vertex is the path's end (y drawn upwards: negated).
+    EXPECT_NEAR(v.back().first, last.x(), written);
+    EXPECT_NEAR(v.back().second, -last.y(), written);
+
+    // Long segments: every vertex stays.
+    SvgPlotWriter coarse;
+    Point from(0, 0, 0);
+    for (int i = 1; i <= 100; ++i) {
+        const Point to(i, (i % 2) * 10.0, 0);
+        coarse.executed(line(from, to, Role::kContour));
+        from = to;
+    }
+    EXPECT_EQ(path_vertices(write_svg(coarse, 17, "zigzag.nc"), "contour").size(), 101u);
 }
 
 TEST(SvgLayout, WrapCutsAfterASpaceOrSlashElseBetweenCharacters) {

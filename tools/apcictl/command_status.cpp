@@ -7,6 +7,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "objif/map/object_map.h"
@@ -53,14 +54,36 @@ std::string decode_status(std::int32_t value) {
     return fmt::format("0x{:02X} ({})", bits, flags);
 }
 
+// The bits of a register as names: [APCI-TC]'s where it has one, "bitN" else; set bits only.
+nlohmann::json bit_names(std::int32_t value, const char* (*name_of)(int)) {
+    nlohmann::json names = nlohmann::json::array();
+    for (int bit = 0; bit < 32; ++bit) {
+        if ((static_cast<std::uint32_t>(value) & (1u << bit)) == 0) continue;
+        const char* name = name_of(bit);
+        names.push_back(name != nullptr ? std::string(name) : fmt::format("bit{}", bit));
+    }
+    return names;
+}
+
+// A register read for --json: {"value": 1, "set": ["Run"]}, or {"unreadable": "StatusName"}.
+nlohmann::json register_json(const apci::Result<std::int32_t>& r, const char* (*name_of)(int)) {
+    if (!r) return {{"unreadable", std::string(apci::status_name(r.status))}};
+    return {{"value", r.value}, {"set", bit_names(r.value, name_of)}};
+}
+
 class StatusCommand final : public Command {
 public:
     void declare(CLI::App& app) override {
+        app.add_flag("--json", json_,
+                     "Print one JSON object instead (docs/apcictl.md, \"status --json\")");
         app.footer(
             "Reads the spooler fill level (bus 1000), TcPlane, then ERROR (SubIndex 1) and STATUS (SubIndex 3) of compensation "
             "groups 1..3 and of the active group (Index 0) on bus 1300, DeviceNumber 1, and "
             "names the set bits. Says so when the firmware has no optionTC. Exit 1 if a "
-            "register could not be read.");
+            "register could not be read. --json prints the same as one JSON object: spooler "
+            "{fill, capacity}, tc {bus, plane, plane_name, groups [{group, active, error "
+            "{value, set}, status {value, set}}]} (tc null without optionTC; an unreadable "
+            "register {unreadable: STATUS}).");
     }
 
     Outcome run(Session& session) override {
@@ -68,6 +91,7 @@ public:
         apci::Board* board = session.board(failure);
         if (board == nullptr) return failure;
 
+        if (json_) return run_json(*board);
         Outcome outcome = show_spooler(*board);
 
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
@@ -87,6 +111,58 @@ public:
     }
 
 private:
+    bool json_ = false;
+
+    // The same registers as one JSON object on one line; the same exit status.
+    static Outcome run_json(apci::Board& board) {
+        namespace b = objif::map::board;
+        Outcome outcome;
+        nlohmann::json out;
+        auto fill_object = apci::object(b::kBus, b::kDevice, b::kIdxSpoolerFill, 0);
+        auto capacity_object = apci::object(b::kBus, b::kDevice, b::kIdxSpoolerCapacity, 0);
+        const auto fill = board.read_int(fill_object);
+        const auto capacity = board.read_int(capacity_object);
+        if (fill && capacity) {
+            out["spooler"] = {{"fill", fill.value}, {"capacity", capacity.value}};
+        } else {
+            const apci::Status s = fill ? capacity.status : fill.status;
+            out["spooler"] = {{"unreadable", std::string(apci::status_name(s))}};
+            outcome = failed("spooler", s);
+        }
+        auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
+        const auto plane = board.read_int(plane_object);
+        if (plane.status == APCI_NO_SUCH_DEVICE) {
+            out["tc"] = nullptr;  // no optionTC
+        } else if (!plane) {
+            out["tc"] = {{"unreadable", std::string(apci::status_name(plane.status))}};
+            if (outcome.ok()) outcome = failed("TcPlane", plane.status);
+        } else {
+            nlohmann::json groups = nlohmann::json::array();
+            // Groups 1..3, then the active group (Index 0).
+            for (std::int32_t group : {1, 2, 3, 0}) {
+                auto error_object =
+                    apci::object(APCI_TC_BUS, APCI_TC_DEVICE_GROUP, group, APCI_TC_ERROR);
+                auto status_object =
+                    apci::object(APCI_TC_BUS, APCI_TC_DEVICE_GROUP, group, APCI_TC_STATUS);
+                const auto error = board.read_int(error_object);
+                const auto status = board.read_int(status_object);
+                groups.push_back({{"group", group},
+                                  {"active", group == 0},
+                                  {"error", register_json(error, apci_tc_error_bit_name)},
+                                  {"status", register_json(status, apci_tc_status_bit_name)}});
+                const std::string label = group == 0 ? "active group" : fmt::format("group {}", group);
+                if (outcome.ok() && !error) outcome = failed(label + " ERROR", error.status);
+                if (outcome.ok() && !status) outcome = failed(label + " STATUS", status.status);
+            }
+            out["tc"] = {{"bus", APCI_TC_BUS},
+                         {"plane", plane.value},
+                         {"plane_name", std::string(plane_name(plane.value))},
+                         {"groups", groups}};
+        }
+        fmt::print("{}\n", out.dump());
+        return outcome;
+    }
+
     // "board (bus 1000): spooler 0 of 256 profiles" (board module, design numbers).
     static Outcome show_spooler(apci::Board& board) {
         namespace b = objif::map::board;

@@ -2,9 +2,13 @@
 // apcictl: inspect and drive an APCI-8001/8008 board, or the emulator,
 // through libapci's public API only. docs/design.md section 7; docs/apcictl.md.
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -12,6 +16,8 @@
 
 #include "arguments.h"
 #include "command.h"
+#include "completion.h"
+#include "objif/names.h"
 #include "suggest.h"
 
 namespace {
@@ -20,7 +26,38 @@ constexpr const char* kFooter =
     "Device URIs: emu: (embedded emulator, the default; each run starts a fresh board, "
     "so use 'script' to keep state), emu:?no-option-tc (without optionTC), unix:PATH, "
     "shm:PATH, pci:DOMAIN:BUS:DEV.FN, usb:[BUS:ADDR].\n"
-    "Exit codes: 0 ok, 1 board or program error, 2 usage.";
+    "Exit codes: 0 ok, 1 board or program error (also: the output could not be written), "
+    "2 usage.";
+
+// Standard output could not be written (a full disk, a closed descriptor): said once, exit 1,
+// as the board errors are, so a script that keeps the output notices. `code` is the error the
+// write reported (0: the one in errno).
+int output_failed(int code) {
+    fmt::print(stderr, "apcictl: cannot write standard output: {}\n",
+               std::strerror(code != 0 ? code : errno));
+    return static_cast<int>(apcictl::Exit::kBoard);
+}
+
+// `apcictl help [COMMAND]`: the help of apcictl or of one command, on standard output.
+int print_help(const CLI::App& app, const std::string& command) {
+    if (command.empty()) {
+        // The formatter itself: app.help() would show the selected subcommand, `help`.
+        fmt::print("{}", app.get_formatter()->make_help(&app, app.get_name(),
+                                                       CLI::AppFormatMode::Normal));
+        return 0;
+    }
+    std::vector<std::string> names;
+    for (const auto& spec : apcictl::command_table()) names.emplace_back(spec.name);
+    if (std::find(names.begin(), names.end(), command) == names.end()) {
+        const std::string meant = apcictl::closest_name(command, names);
+        fmt::print(stderr, "apcictl: help: unknown command '{}'{}\n", command,
+                   meant.empty() ? fmt::format(" (commands: {})", fmt::join(names, ", "))
+                                 : fmt::format("; did you mean '{}'?", meant));
+        return static_cast<int>(apcictl::Exit::kUsage);
+    }
+    fmt::print("{}", app.get_subcommand(command)->help(app.get_name()));
+    return 0;
+}
 
 int run(int argc, char** argv) {
     using apcictl::Exit;
@@ -28,7 +65,10 @@ int run(int argc, char** argv) {
     std::string device = "emu:";
     app.add_option("-d,--device", device, "Device URI (default emu:, or $APCI_DEVICE)")
         ->envname("APCI_DEVICE");
-    app.set_version_flag("--version", std::string(apci_version()));
+    // "apcictl (apci8001) 0.1.0" (program, package, version, as GNU tools print it), then the
+    // version of the libapci it runs with, which a newer library may change.
+    app.set_version_flag("--version", fmt::format("apcictl (apci8001) {}\nlibapci {}",
+                                                  APCI8001_VERSION, apci_version()));
     app.require_subcommand(1);
     app.fallthrough();  // --device may also follow the command
     app.footer(kFooter);
@@ -43,6 +83,22 @@ int run(int argc, char** argv) {
         commands.emplace_back(sub, std::move(command));
     }
 
+    // `help [COMMAND]`: not a row of the command table (no board, no script line).
+    std::string help_topic;
+    CLI::App* help = app.add_subcommand("help", "Show the help of apcictl or of one command");
+    help->add_option("COMMAND", help_topic, "The command whose help to show");
+
+    // `apcictl __complete WORDS...` (only as the first word): the candidates for the last word,
+    // for the bash and zsh scripts of completions/ (completion.h); no command, no help line.
+    if (argc >= 2 && std::string_view(argv[1]) == "__complete") {
+        const std::vector<std::string> words(argv + 2, argv + argc);
+        std::vector<std::string> objects;
+        for (const auto& object : objif::named_objects()) objects.push_back(object.name);
+        fmt::print("{}", apcictl::completion_output(
+                             apcictl::complete_command_line(app, words, objects)));
+        return std::fflush(stdout) != 0 ? output_failed(0) : 0;
+    }
+
     // A negative number (-.5, -inf) is a value, not an option: CLI11 wants the
     // arguments reversed, without the program's name.
     std::vector<std::string> args;
@@ -52,12 +108,19 @@ int run(int argc, char** argv) {
     try {
         app.parse(args);
     } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        if (e.get_exit_code() == 0) {  // --help, --version
+            const int code = app.exit(e);
+            return std::fflush(stdout) != 0 || std::ferror(stdout) ? output_failed(0) : code;
+        }
         // One line naming what is wrong: an unknown command or option with the one meant.
         fmt::print(stderr, "apcictl: {}\n", apcictl::explain_parse_error(app, e));
         return static_cast<int>(Exit::kUsage);
     }
 
+    if (help->parsed()) {
+        const int code = print_help(app, help_topic);
+        return std::fflush(stdout) != 0 ? output_failed(0) : code;
+    }
     for (auto& [sub, command] : commands) {
         if (!sub->parsed()) continue;
         apcictl::Outcome outcome = command->prepare();
@@ -66,6 +129,8 @@ int run(int argc, char** argv) {
             outcome = command->run(session);
         }
         if (!outcome.error.empty()) fmt::print(stderr, "apcictl: {}\n", outcome.error);
+        // What is still buffered is written now, so a failed write is seen before exit.
+        if (std::fflush(stdout) != 0 || std::ferror(stdout)) return output_failed(0);
         return static_cast<int>(outcome.exit);
     }
     return static_cast<int>(Exit::kUsage);  // unreachable: require_subcommand(1)
@@ -76,6 +141,11 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
     try {
         return run(argc, argv);
+    } catch (const std::system_error& e) {
+        // fmt::print throws when standard output cannot take the text (a command's result,
+        // help, completion candidates): that is the output failing, not apcictl.
+        if (std::ferror(stdout)) return output_failed(e.code().value());
+        std::fprintf(stderr, "apcictl: internal error: %s\n", e.what());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "apcictl: internal error: %s\n", e.what());
     } catch (...) {

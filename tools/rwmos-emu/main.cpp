@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -52,6 +53,7 @@ struct Options {
     std::string log_level = "info";
     std::string group;  // --group: owner group of the socket and the shm file
     gid_t gid = static_cast<gid_t>(-1);  // resolved from `group`; -1 leaves the daemon's own
+    int activated_socket = -1;  // a listening socket from systemd (LISTEN_FDS), or -1
 };
 
 // The gid of a group name or number; false if there is no such group.
@@ -131,6 +133,27 @@ int exit_code_for(int sig) {
     return sig == SIGTERM || sig == SIGINT ? kExitOk : 128 + sig;
 }
 
+// The listening socket systemd passed (socket activation, sd_listen_fds(3)): fd 3 when
+// LISTEN_PID is this process and LISTEN_FDS is 1; -1 when none was passed. The variables
+// are removed, so no child would take them for its own. More than one socket: -2 with `why`.
+int systemd_socket(std::string& why) {
+    const char* pid = std::getenv("LISTEN_PID");
+    const char* count = std::getenv("LISTEN_FDS");
+    const bool ours = pid != nullptr && count != nullptr &&
+                      std::strtoll(pid, nullptr, 10) == static_cast<long long>(::getpid());
+    const long long n = ours ? std::strtoll(count, nullptr, 10) : 0;
+    ::unsetenv("LISTEN_PID");
+    ::unsetenv("LISTEN_FDS");
+    ::unsetenv("LISTEN_FDNAMES");
+    if (n <= 0) return -1;
+    if (n > 1) {
+        why = fmt::format("systemd passed {} sockets; rwmos-emu serves one (one ListenStream= "
+                          "in rwmos-emu.socket)", n);
+        return -2;
+    }
+    return 3;  // SD_LISTEN_FDS_START
+}
+
 int serve(const Options& o) {
     Level level{};
     parse_level(o.log_level, level);
@@ -151,10 +174,16 @@ int serve(const Options& o) {
                          ClientLimits{o.max_clients, std::chrono::seconds(o.idle_timeout_s)});
     ShmServer shm(host);
     std::string why;
-    if (!o.socket.empty() && !sockets.open(o.socket, o.gid, why)) {
+    if (o.activated_socket >= 0) {
+        if (!sockets.adopt(o.activated_socket, o.socket, why)) {
+            log(Level::kError, "{}", why);
+            return kExitFailure;
+        }
+    } else if (!o.socket.empty() && !sockets.open(o.socket, o.gid, why)) {
         log(Level::kError, "{}", why);
         return kExitFailure;
     }
+    const std::string& socket_path = sockets.path();
     if (!o.shm.empty() && !shm.open(o.shm, why)) {
         log(Level::kError, "{}", why);
         return kExitFailure;
@@ -174,12 +203,13 @@ int serve(const Options& o) {
         host.pace(std::chrono::steady_clock::now());
     }
 
-    objif::RegisteredDaemon self{::getpid(), o.socket, o.shm};
+    objif::RegisteredDaemon self{::getpid(), socket_path, o.shm};
     if (!objif::register_daemon(self, why))
         log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
     log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}",
         o.no_option_tc ? "off" : "on", o.realtime ? "wall" : "virtual",
-        o.socket.empty() ? "" : " on socket ", o.socket,
+        socket_path.empty() ? "" : (o.activated_socket >= 0 ? " on socket (from systemd) " : " on socket "),
+        socket_path,
         o.shm.empty() ? "" : " and dual-port RAM file ", o.shm);
 
     int exit_code = kExitOk;
@@ -274,12 +304,15 @@ int run(int argc, char** argv) {
                    "(default: the daemon's own group)");
     app.add_option("--log-level", o.log_level, "error, warn, info (default) or debug")
         ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
+    app.set_version_flag("--version", fmt::format("rwmos-emu (apci8001) {}", APCI8001_VERSION));
     app.footer(
         "Clients open the board with the device URI unix:PATH or shm:PATH (libapci, "
         "apcictl --device). SIGTERM or SIGINT stops the daemon and removes its socket, its "
         "file and its registry entry; so does every other signal that would end it (SIGHUP, "
         "SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ, SIGPOLL, "
-        "SIGPWR, SIGSTKFLT, real-time signals); SIGPIPE is ignored. Logs go to stderr.\n"
+        "SIGPWR, SIGSTKFLT, real-time signals); SIGPIPE is ignored. Logs go to stderr (with "
+        "their syslog priority when stderr is the journal). A listening socket passed by "
+        "systemd (socket activation, LISTEN_FDS) is served in place of --socket's own.\n"
         "Exit codes: 0 ok (stopped by SIGTERM or SIGINT), 1 could not serve, 2 usage, "
         "128+N stopped by signal N.");
     try {
@@ -292,7 +325,13 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "rwmos-emu: --group %s: no such group\n", o.group.c_str());
         return kExitUsage;
     }
-    if (o.socket.empty() && o.shm.empty()) {
+    std::string why;
+    o.activated_socket = systemd_socket(why);
+    if (o.activated_socket == -2) {
+        std::fprintf(stderr, "rwmos-emu: %s\n", why.c_str());
+        return kExitUsage;
+    }
+    if (o.socket.empty() && o.shm.empty() && o.activated_socket < 0) {
         std::fprintf(stderr, "rwmos-emu: give --socket PATH, --shm PATH or both (see --help)\n");
         return kExitUsage;
     }

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
 #include <cstring>
 #include <thread>
 
@@ -227,21 +228,81 @@ bool SocketServer::open(const std::string& path, gid_t group, std::string& why) 
     if (group != static_cast<gid_t>(-1) && st.st_gid != group &&
         ::lchown(path.c_str(), static_cast<uid_t>(-1), group) != 0)
         return fail(fmt::format("{}: cannot give it group {}", path, group), errno);
-    epoll_event ev{};
-    ev.events = EPOLLIN;
-    ev.data.fd = fd;
-    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) return fail("epoll_ctl", errno);
-    if (limits_.idle_timeout.count() > 0) {
-        idle_timer_fd_ = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
-        ev.data.fd = idle_timer_fd_;
-        if (idle_timer_fd_ < 0 || ::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, idle_timer_fd_, &ev) != 0)
-            return fail("--idle-timeout timer", errno);
+    std::string failure;
+    if (!listen_on(fd, failure)) {
+        ::close(fd);
+        ::unlink(path.c_str());
+        why = failure;
+        return false;
     }
-    listen_fd_ = fd;
     path_ = path;
     dev_ = st.st_dev;
     ino_ = st.st_ino;
+    owns_path_ = true;
+    return true;
+}
+
+bool SocketServer::listen_on(int fd, std::string& why) {
+    epoll_event ev{};
+    ev.events = EPOLLIN;
+    ev.data.fd = fd;
+    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, fd, &ev) != 0) {
+        why = fmt::format("epoll_ctl: {}", std::strerror(errno));
+        return false;
+    }
+    if (limits_.idle_timeout.count() > 0) {
+        idle_timer_fd_ = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
+        ev.data.fd = idle_timer_fd_;
+        if (idle_timer_fd_ < 0 || ::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, idle_timer_fd_, &ev) != 0) {
+            why = fmt::format("--idle-timeout timer: {}", std::strerror(errno));
+            ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
+            return false;
+        }
+    }
+    listen_fd_ = fd;
     read_buffer_.resize(kReadChunk);
+    return true;
+}
+
+bool SocketServer::adopt(int fd, const std::string& expected_path, std::string& why) {
+    int type = 0;
+    int listening = 0;
+    socklen_t size = sizeof type;
+    sockaddr_un addr{};
+    socklen_t addr_size = sizeof addr;
+    if (::getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &size) != 0 ||
+        ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &addr_size) != 0) {
+        why = fmt::format("the socket passed by systemd (fd {}): {}", fd, std::strerror(errno));
+        return false;
+    }
+    size = sizeof listening;
+    if (addr.sun_family != AF_UNIX || type != SOCK_STREAM ||
+        ::getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &size) != 0 || listening == 0) {
+        why = fmt::format("the socket passed by systemd (fd {}) is not a listening Unix stream "
+                          "socket (ListenStream=PATH in the .socket unit)", fd);
+        return false;
+    }
+    const auto path_size = addr_size - offsetof(sockaddr_un, sun_path);
+    const std::string path = addr_size > offsetof(sockaddr_un, sun_path) && addr.sun_path[0] != '\0'
+                                 ? std::string(addr.sun_path, ::strnlen(addr.sun_path, path_size))
+                                 : std::string();
+    if (path.empty()) {
+        why = fmt::format("the socket passed by systemd (fd {}) has no path", fd);
+        return false;
+    }
+    if (!expected_path.empty() && path != expected_path) {
+        why = fmt::format("the socket passed by systemd is {}, not --socket {}", path,
+                          expected_path);
+        return false;
+    }
+    const int flags = ::fcntl(fd, F_GETFL);
+    if (flags < 0 || ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0 ||
+        ::fcntl(fd, F_SETFD, FD_CLOEXEC) != 0 || !listen_on(fd, why)) {
+        if (why.empty()) why = fmt::format("fd {}: {}", fd, std::strerror(errno));
+        return false;
+    }
+    path_ = path;
+    owns_path_ = false;
     return true;
 }
 
@@ -441,9 +502,11 @@ void SocketServer::close_all(std::string_view reason) {
         ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, listen_fd_, nullptr);
         ::close(listen_fd_);
         listen_fd_ = -1;
-        // Remove the socket only if it is still ours (not replaced meanwhile).
+        // Remove the socket only if it is still ours (not replaced meanwhile); one systemd
+        // passed stays, for the next activation.
         struct stat st {};
-        if (::lstat(path_.c_str(), &st) == 0 && st.st_dev == dev_ && st.st_ino == ino_)
+        if (owns_path_ && ::lstat(path_.c_str(), &st) == 0 && st.st_dev == dev_ &&
+            st.st_ino == ino_)
             ::unlink(path_.c_str());
     }
 }

@@ -51,6 +51,13 @@ class SocketServer {
     // so one never removes the socket of another that is about to listen.
     // False with `why`.
     bool open(const std::string& path, gid_t group, std::string& why);
+    // Serves `fd`, a listening Unix stream socket handed over by systemd
+    // (socket activation: the .socket unit made and owns the file, so it is
+    // never removed here). `expected_path`, when not empty, is the path the
+    // socket must be bound at. False with `why` (the fd is then left open).
+    bool adopt(int fd, const std::string& expected_path, std::string& why);
+    // The path clients connect to (after open or adopt).
+    const std::string& path() const noexcept { return path_; }
 
     int listen_fd() const noexcept { return listen_fd_; }
     // The idle-timeout timer (-1 without --idle-timeout); readable when a
@@ -93,7 +100,9 @@ class SocketServer {
     BoardHost& host_;
     int epoll_fd_;
     ClientLimits limits_;
+    bool listen_on(int fd, std::string& why);  // epoll and idle timer for a listening fd
     int listen_fd_ = -1;
+    bool owns_path_ = false;  // open() made the socket file; adopt() did not
     int idle_timer_fd_ = -1;
     bool idle_timer_armed_ = false;
     std::string path_;

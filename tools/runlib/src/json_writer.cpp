@@ -16,6 +16,7 @@
 #endif
 
 #include "apci/apci.h"
+#include "objif/byte_order.h"
 
 namespace apci::run {
 
@@ -58,7 +59,6 @@ int digit_count(std::uint64_t v) noexcept {
 // x * 10486 >> 20 is x / 100 for x < 10^4, x * 103 >> 10 is x / 10 for x < 100), then made
 // ASCII in one addition.
 inline std::uint64_t eight_digits(std::uint32_t n) noexcept {
-    static_assert(std::endian::native == std::endian::little, "the text is laid out little-endian");
     const std::uint64_t x = n / 10000 | static_cast<std::uint64_t>(n % 10000) << 32;
     const std::uint64_t hundreds = ((x * 10486) >> 20) & 0x0000007F0000007FULL;
     const std::uint64_t pairs = hundreds | (x - hundreds * 100) << 16;  // four 16-bit lanes < 100
@@ -74,9 +74,10 @@ inline std::uint32_t four_digits(std::uint32_t n) noexcept {
     return (tens | (pairs - tens * 10) << 8) + 0x30303030U;
 }
 
+// The digits are laid out from the word's lowest byte: stored little-endian on every host.
 template <typename Word>
 inline void store(char* out, Word word) noexcept {
-    std::memcpy(out, &word, sizeof word);
+    objif::store_little(out, word);
 }
 
 #if defined(__SSE2__)
@@ -209,9 +210,9 @@ char* fixed_notation(char* out, bool negative, std::uint64_t significand, int ex
     if (n - whole > 8) {
         std::uint64_t second_word = 0;
         std::memcpy(&second_word, point + 8, sizeof second_word);
-        store(point + 9, second_word);
+        std::memcpy(point + 9, &second_word, sizeof second_word);  // bytes moved as they are
     }
-    store(point + 1, first_word);
+    std::memcpy(point + 1, &first_word, sizeof first_word);
     *point = '.';
     return end + 1;
 }

@@ -6,6 +6,7 @@
 #include <limits.h>
 #include <sys/random.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <array>
@@ -33,12 +34,32 @@ static_assert(std::atomic<int>::is_always_lock_free);
 std::array<TemporarySlot, detail::kTemporarySlots> g_temporaries;
 bool g_handlers_installed = false;
 
-// Only async-signal-safe calls: unlink(2) and raise(3). SA_RESETHAND has put back the default
-// action, so the signal raised again ends the process as it would have without the handler,
-// once the handler returns (the signal is blocked while it runs).
+// The first signal's handler removes the files; one that comes meanwhile (the same signal
+// again, as `timeout` sends it to the process and then to its group, or another) waits for it.
+std::atomic<int> g_cleanup_started{0};
+std::atomic<int> g_cleanup_done{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+
+// Only async-signal-safe calls: unlink(2), sigaction(2), nanosleep(2), raise(3). The handler
+// stays installed until the files are gone: the run's other threads do not block the signals,
+// so a second one delivered to another thread while the first is handled would, with the
+// default action already back (SA_RESETHAND), end the process before the files are removed.
+// Once they are, the default action is put back and the signal raised again; it is blocked in
+// the handler (sa_mask), so it ends the process as it would have without the handler as soon
+// as the handler returns.
 extern "C" void remove_temporaries_and_reraise(int sig) {
-    for (TemporarySlot& slot : g_temporaries)
-        if (slot.used.load(std::memory_order_acquire) != 0) ::unlink(slot.path.data());
+    if (g_cleanup_started.exchange(1) == 0) {
+        for (TemporarySlot& slot : g_temporaries)
+            if (slot.used.load(std::memory_order_acquire) != 0) ::unlink(slot.path.data());
+        g_cleanup_done.store(1);
+    } else {
+        const timespec pause{0, 100'000};
+        while (g_cleanup_done.load() == 0) ::nanosleep(&pause, nullptr);
+    }
+    struct sigaction default_action {};
+    default_action.sa_handler = SIG_DFL;
+    sigemptyset(&default_action.sa_mask);
+    ::sigaction(sig, &default_action, nullptr);
     ::raise(sig);
 }
 
@@ -69,7 +90,7 @@ void install_handlers() {
     struct sigaction action {};
     action.sa_handler = remove_temporaries_and_reraise;
     sigfillset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
+    action.sa_flags = 0;  // not SA_RESETHAND: the handler puts the default back itself
     for_each_terminating_signal([&](int sig) {
         struct sigaction old {};
         if (::sigaction(sig, nullptr, &old) != 0) return;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -215,8 +216,12 @@ class PathEmitter {
   public:
     static constexpr std::size_t kCommandsPerPath = 2000;
 
-    PathEmitter(TextSink& sink, const Frame& frame, std::string_view css_class)
-        : sink_(sink), frame_(frame), class_(css_class) {}
+    // `min_step`: vertices of lines closer than this (in the drawing's units, in the plotted
+    // plane) to the last one written are left out, the last of a run written as it ends: a
+    // detail below half a pixel cannot be seen, and a program of millions of tiny segments
+    // would otherwise write every one (a 3-million-segment program made an 82 MB SVG).
+    PathEmitter(TextSink& sink, const Frame& frame, std::string_view css_class, double min_step)
+        : sink_(sink), frame_(frame), class_(css_class), min_step_(min_step) {}
     ~PathEmitter() { close(); }
 
     void add(const PathSegment& s) {
@@ -229,10 +234,14 @@ class PathEmitter {
             sink_.print("<path class=\"{}\" d=\"", class_);
             open_ = true;
             commands_ = 0;
+            written_any_ = false;
         }
-        if (!joined || commands_ == 0) {
-            sink_.append(commands_ == 0 ? "M" : " M");
+        if (!joined || !written_any_) {
+            flush_pending();
+            sink_.append(written_any_ ? " M" : "M");
             frame_.xy(sink_, s.start);
+            written_any_ = true;
+            written_ = s.start;
         }
         if (s.kind == SegmentKind::kArc) {
             arc(s);
@@ -244,15 +253,35 @@ class PathEmitter {
 
     void close() {
         if (!open_) return;
+        flush_pending();
         sink_.append("\"/>\n");
         open_ = false;
     }
 
   private:
+    // A line to p, unless p is within min_step_ of the last vertex written: then it waits, and
+    // is written when the next vertex, an arc, a gap or the end of the path comes.
     void line_to(const Point& p) {
+        const PlaneAxes& a = frame_.axes();
+        if (std::hypot(p[a.first] - written_[a.first], p[a.second] - written_[a.second]) <
+            min_step_) {
+            pending_ = p;
+            has_pending_ = true;
+            return;
+        }
+        write_line(p);
+    }
+
+    void write_line(const Point& p) {
         sink_.append(" L");
         frame_.xy(sink_, p);
         ++commands_;
+        written_ = p;
+        has_pending_ = false;
+    }
+
+    void flush_pending() {
+        if (has_pending_) write_line(pending_);
     }
 
     void arc(const PathSegment& s) {
@@ -269,11 +298,13 @@ class PathEmitter {
         // is SVG's negative sweep direction. Arcs beyond a half turn go in two halves, so the
         // large-arc flag is never needed and a full circle draws.
         const double r = arc_radius(s);
+        flush_pending();
         if (std::abs(sweep) > std::numbers::pi) arc_to(r, s.ccw, point_along(s, 0.5));
         arc_to(r, s.ccw, s.end);
     }
 
     void arc_to(double r, bool ccw, const Point& p) {
+        written_ = p;
         sink_.append(" A");
         frame_.number(sink_, r);
         sink_.put(' ');
@@ -286,9 +317,14 @@ class PathEmitter {
     TextSink& sink_;
     const Frame& frame_;
     std::string_view class_;
+    double min_step_ = 0.0;
     bool open_ = false;
+    bool written_any_ = false;  // the open path has its first "M"
     std::size_t commands_ = 0;
-    Point last_ = Point::Zero();
+    Point last_ = Point::Zero();     // where the last segment added ends
+    Point written_ = Point::Zero();  // the last vertex written
+    Point pending_ = Point::Zero();  // a vertex left out so far (has_pending_)
+    bool has_pending_ = false;
 };
 
 // DejaVu Sans advance widths in units of 1/2048 em, for ' ' (32) .. '~' (126).
@@ -474,7 +510,10 @@ void SvgPlotWriter::add_marker(const BlockRef& block, const Point& where, std::s
     bounds_.add(where);
 }
 
-bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
+bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view program) {
+    // The program's file name, not where it lies: a plot shared or published does not carry
+    // the directories of the machine it was made on.
+    const std::string title = std::filesystem::path(program).filename().string();
     if (cycle_pending_) {
         cycle_vertex(cycle_last_);
         cycle_pending_ = false;
@@ -575,6 +614,10 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     sink.print("{} {} {} {}", at(box_x), at(box_y), at(box_width), at(box_height));
     sink.print("\" width=\"{:.0f}\" height=\"{:.0f}\">\n", pixels,
                std::ceil(pixels * box_height / box_width));
+    // The document's title (what a viewer shows as its name, and a screen reader reads).
+    sink.append("<title>");
+    append_xml_text(sink, heading);
+    sink.append("</title>\n");
     const auto w = [&](double factor) { return fmt::format("{:.6g}", stroke * factor); };
     sink.print(
         "<style>\n"
@@ -624,7 +667,8 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view title) {
     for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
         if (counts_[layer] == 0) continue;
         std::rewind(records_);
-        PathEmitter emit(sink, frame, layer_class(static_cast<PlotLayer>(layer)));
+        PathEmitter emit(sink, frame, layer_class(static_cast<PlotLayer>(layer)),
+                         0.5 * box_width / pixels);
         Record r;
         while (std::fread(&r, sizeof r, 1, records_) == 1)
             if (r.layer == layer) emit.add(segment_of(r));

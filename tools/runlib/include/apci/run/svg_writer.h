@@ -74,8 +74,11 @@ class SvgPlotWriter {
     // entry in the legend; at most kMaxErrorMarkers of both are drawn.
     void warning_marker(const BlockRef& block, const Point& where, std::string_view code);
 
-    // Writes the document, drawn in `plane` (17, 18, 19), titled `title`. True when written.
-    bool finish(std::FILE* out, int plane, std::string_view title);
+    // Writes the document, drawn in `plane` (17, 18, 19), titled with the file name of
+    // `program` (its directories left out) in the heading and the <title>. Vertices closer
+    // than half a pixel of the 1000-pixel-wide page to the last one drawn are left out (the
+    // run's last point of each stretch always drawn). True when written.
+    bool finish(std::FILE* out, int plane, std::string_view program);
 
     const Bounds& bounds() const noexcept { return bounds_; }
     std::uint64_t count(PlotLayer l) const noexcept { return counts_[static_cast<std::size_t>(l)]; }
