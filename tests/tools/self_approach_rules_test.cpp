@@ -1,0 +1,320 @@
+// SPDX-License-Identifier: MIT
+// The self-approach check's rules at their edges (tools/runlib/self_approach.h,
+// docs/compensation.md "What counts, pair by pair"): the depth rule on contours and paths that
+// ramp (helices), not only flat levels; the grid's reach on long elements listed by samples
+// whose nearest point falls between samples and across cell boundaries; every tolerance with a
+// path between its two thresholds. The check is fed directly, as the run feeds it (elements,
+// then their executed paths), with the paths placed where each rule is to be tried: the rule,
+// not the compensation, is under test.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "apci/run/path.h"
+#include "apci/run/self_approach.h"
+
+namespace {
+
+using apci::run::PathSegment;
+using apci::run::Role;
+using apci::run::SegmentKind;
+using apci::run::SelfApproachCheck;
+using apci::run::SelfApproachFinding;
+using Point = apci::run::Point;
+
+constexpr double kTol = SelfApproachCheck::kTolerance;
+
+PathSegment line(int n, const Point& a, const Point& b, Role role = Role::kUncompensated) {
+    PathSegment s;
+    s.block.number = n;
+    s.kind = SegmentKind::kLine;
+    s.role = role;
+    s.start = a;
+    s.end = b;
+    return s;
+}
+
+PathSegment arc(int n, const Point& a, const Point& b, const Point& centre, bool ccw,
+                Role role = Role::kUncompensated) {
+    PathSegment s = line(n, a, b, role);
+    s.kind = SegmentKind::kArc;
+    s.center = centre;
+    s.ccw = ccw;
+    s.plane = 17;
+    return s;
+}
+
+// One compensated stretch as the run feeds it: each element, and after it the executed path
+// of the element before (one element of lookahead); at the end the last one's path. `paths[k]`
+// are element k's executed segments (their blocks set to the element's).
+struct Stretch {
+    double r = 1.0;
+    std::vector<PathSegment> elements;
+    std::vector<std::vector<PathSegment>> paths;
+};
+
+std::vector<SelfApproachFinding> run(const std::vector<Stretch>& stretches,
+                                     SelfApproachCheck::Candidates candidates =
+                                         SelfApproachCheck::Candidates::kGrid) {
+    SelfApproachCheck check(SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
+                            candidates);
+    std::vector<SelfApproachFinding> found;
+    for (const Stretch& s : stretches) {
+        check.begin(s.r, 17, 1);
+        for (std::size_t k = 0; k < s.elements.size(); ++k) {
+            check.programmed(s.elements[k], found);
+            if (k > 0)
+                for (PathSegment p : s.paths[k - 1]) {
+                    p.block = s.elements[k - 1].block;
+                    check.executed(p, found);
+                }
+        }
+        check.end(found);
+        for (PathSegment p : s.paths.back()) {
+            p.block = s.elements.back().block;
+            check.executed(p, found);
+        }
+    }
+    // A last segment of another block gives the last path block's findings out.
+    check.executed(line(999999, Point(1e4, 1e4, 0), Point(1e4 + 1, 1e4, 0)), found);
+    return found;
+}
+
+std::set<std::pair<std::int64_t, std::int64_t>> pairs(const std::vector<SelfApproachFinding>& f) {
+    std::set<std::pair<std::int64_t, std::int64_t>> out;
+    for (const auto& x : f) out.emplace(x.path_block.number, x.contour_block.number);
+    return out;
+}
+
+// An open contour of three elements along the X axis at height y (blocks n, n+1, n+2): the
+// middle one, from x0 to x1, is a wall (the first is the stretch's approach, the last ends the
+// program's way). Its paths are its own offsets, r above (G41 along +X).
+Stretch wall_line(int n, double x0, double x1, double y, double z0, double z1, double r = 1.0) {
+    Stretch s;
+    s.r = r;
+    s.elements = {line(n, {x0 - 5, y, z0}, {x0, y, z0}), line(n + 1, {x0, y, z0}, {x1, y, z1}),
+                  line(n + 2, {x1, y, z1}, {x1 + 5, y, z1})};
+    s.paths = {{line(n, {x0 - 5, y + r, z0}, {x0, y + r, z0}, Role::kApproach)},
+               {line(n + 1, {x0, y + r, z0}, {x1, y + r, z1}, Role::kContour)},
+               {line(n + 2, {x1, y + r, z1}, {x1 + 5, y + r, z1}, Role::kContour)}};
+    return s;
+}
+
+// Another stretch whose middle element's path is the given segment (its element a line
+// elsewhere, far from everything but where the path is put).
+Stretch probe(int n, const PathSegment& path, double r = 1.0) {
+    Stretch s;
+    s.r = r;
+    const Point far(-500, -500, 0);
+    s.elements = {line(n, far, far + Point(1, 0, 0)), line(n + 1, path.start, path.end),
+                  line(n + 2, path.end, path.end + Point(0, -50, 0))};
+    PathSegment p = path;
+    p.role = Role::kContour;
+    s.paths = {{line(n, far, far + Point(1, 0, 0), Role::kApproach)}, {p},
+               {line(n + 2, path.end + Point(50, 0, 0), path.end + Point(50, -50, 0),
+                     Role::kContour)}};
+    return s;
+}
+
+TEST(SelfApproachRules, TheDepthRuleLeavesOutOnlyAContourWhollyBelowThePathsLowestPoint) {
+    // The wall N11 is half a turn of a helix about (10, 0), radius 10, counter-clockwise from
+    // (20, 0) at Z 0 over the top down to (0, 0) at Z -10: its highest point 0, its lowest -10.
+    // A probe's path 0.5 beyond its top (r = 1), flat at the height z, or ramping.
+    Stretch wall;
+    wall.elements = {line(10, {25, 0, 0}, {20, 0, 0}),
+                     arc(11, {20, 0, 0}, {0, 0, -10}, {10, 0, 0}, true),
+                     line(12, {0, 0, -10}, {0, -5, -10})};
+    wall.paths = {{line(10, {25, 1, 0}, {19, 0, 0}, Role::kApproach)},
+                  {arc(11, {19, 0, 0}, {1, 0, -10}, {10, 0, 0}, true, Role::kContour)},
+                  {line(12, {1, 0, -10}, {1, -5, -10}, Role::kContour)}};
+    const auto warned = [&](double z_from, double z_to) {
+        const Stretch p = probe(20, line(0, {8, 10.5, z_from}, {12, 10.5, z_to}));
+        return pairs(run({wall, p})).count({21, 11}) == 1;
+    };
+    // Below the wall's highest point, even below its lowest: the tool's flank reaches it.
+    EXPECT_TRUE(warned(-5, -5));
+    EXPECT_TRUE(warned(-20, -20));
+    // At its highest point plus the tolerance, less a hair: checked; plus a hair: not.
+    EXPECT_TRUE(warned(kTol - 1e-6, kTol - 1e-6));
+    EXPECT_FALSE(warned(kTol + 1e-6, kTol + 1e-6));
+    EXPECT_FALSE(warned(5, 5));
+    // A path that ramps from above down to Z -1: its lowest point decides, not its highest.
+    EXPECT_TRUE(warned(5, -1));
+    EXPECT_FALSE(warned(5, 1));
+    // Below the helix's end but above where it passes under the path (Z -5 at the top): its
+    // highest point decides, not the height of its part nearest the path.
+    EXPECT_TRUE(warned(-1, -1));
+}
+
+TEST(SelfApproachRules, ThresholdsOfOtherElementsAndNeighboursLieOneToleranceApart) {
+    const double r = 1.0;
+    // Another stretch's wall: r less the tolerance. A probe between that and twice it is warned;
+    // just outside the first, not.
+    const Stretch wall = wall_line(10, 0, 20, 0, 0, 0, r);
+    const auto other = [&](double d) {
+        return pairs(run({wall, probe(20, line(0, {5, d, 0}, {15, d, 0}), r)})).count({21, 11});
+    };
+    EXPECT_EQ(other(r - 1.5 * kTol), 1U);
+    EXPECT_EQ(other(r - 0.5 * kTol), 0U);
+    EXPECT_EQ(other(r - kTol + 1e-6), 0U);
+    EXPECT_EQ(other(r - kTol - 1e-6), 1U);
+    // The element after the path's own (same stretch): r less twice the tolerance. A path of
+    // N11 placed beside N12 at the same distances: between the thresholds not warned.
+    const auto neighbour = [&](double d) {
+        Stretch s = wall_line(10, 0, 20, 0, 0, 0, r);
+        // N12 runs from (20, 0) to (25, 0); N11's path is put above its middle.
+        s.paths[1] = {line(11, {21, d, 0}, {24, d, 0}, Role::kContour)};
+        return pairs(run({s})).count({11, 12});
+    };
+    EXPECT_EQ(neighbour(r - 1.5 * kTol), 0U);
+    EXPECT_EQ(neighbour(r - 2.0 * kTol + 1e-6), 0U);
+    EXPECT_EQ(neighbour(r - 2.0 * kTol - 1e-6), 1U);
+    EXPECT_EQ(neighbour(r - 2.5 * kTol), 1U);
+}
+
+TEST(SelfApproachRules, TheDistanceReportedIsTheLeastToTheBillionthOfAMillimetre) {
+    // A probe's path at 0.6 above the wall, from x 5 to 15, and slanting down to 0.4 at x 15.
+    const Stretch wall = wall_line(10, 0, 20, 0, 0, 0);
+    const auto found = run({wall, probe(20, line(0, {5, 0.6, 0}, {15, 0.4, 0}))});
+    ASSERT_EQ(pairs(found).count({21, 11}), 1U);
+    for (const auto& f : found)
+        if (f.path_block.number == 21 && f.contour_block.number == 11) {
+            EXPECT_NEAR(f.distance, 0.4, 1e-9);
+            EXPECT_NEAR(f.where.x(), 15, 1e-6);
+            EXPECT_EQ(f.radius, 1.0);
+        }
+}
+
+TEST(SelfApproachRules, AnApproachIsHeldToItsOwnStretchButNotWhereItStandsNorAtItsEntry) {
+    const double r = 1.0;
+    // A closed square loop, tool outside (G41 clockwise), entered from the left middle; the
+    // approach N10 from (-8, 5) to (0, 5) runs straight into the loop's start.
+    const auto square = [&](const Point& from) {
+        Stretch s;
+        s.r = r;
+        s.elements = {line(10, from, {0, 5, 0}),       line(11, {0, 5, 0}, {0, 10, 0}),
+                      line(12, {0, 10, 0}, {10, 10, 0}), line(13, {10, 10, 0}, {10, 0, 0}),
+                      line(14, {10, 0, 0}, {0, 0, 0}),   line(15, {0, 0, 0}, {0, 5, 0})};
+        s.paths = {{line(10, from, {-r, 5, 0}, Role::kApproach)},
+                   {line(11, {-r, 5, 0}, {-r, 10, 0}, Role::kContour)},
+                   {line(12, {0, 10 + r, 0}, {10, 10 + r, 0}, Role::kContour)},
+                   {line(13, {10 + r, 10, 0}, {10 + r, 0, 0}, Role::kContour)},
+                   {line(14, {10, -r, 0}, {0, -r, 0}, Role::kContour)},
+                   {line(15, {-r, 0, 0}, {-r, 5, 0}, Role::kContour)}};
+        return s;
+    };
+    // From outside the part: nothing near.
+    EXPECT_TRUE(pairs(run({square({-8, 5, 0})})).empty());
+    // From the other side, across the part: the approach's centre crosses N13, and passes
+    // through the entry point itself, where N11 and N15 meet (the elements at its entry, where
+    // only a crossing counts: this is one).
+    const auto across = pairs(run({square({12, 5, 0})}));
+    EXPECT_EQ(across.count({10, 13}), 1U);
+    EXPECT_EQ(across.count({10, 11}), 1U);
+    EXPECT_EQ(across.count({10, 15}), 1U);
+    // From above the entry point, beside N11's end: it passes N11 within r without crossing
+    // it (the entry move's corner cut), not warned.
+    const auto beside = pairs(run({square({-0.6, 12, 0})}));
+    EXPECT_EQ(beside.count({10, 11}), 0U);
+    EXPECT_EQ(beside.count({10, 12}), 1U);  // but it passes N12's start 0.6 away, on its way
+    // Standing within r of N13 already (the uncompensated move that brought the tool there put
+    // it there): N13 is not held against it, at the threshold's edge.
+    EXPECT_EQ(pairs(run({square({10 + r - kTol - 1e-6, 5, 0})})).count({10, 13}), 0U);
+    EXPECT_EQ(pairs(run({square({10 + 3 * r, 3, 0})})).count({10, 13}), 1U);
+}
+
+TEST(SelfApproachRules, TheGridFindsAPathJustInsideTheRadiusOfALongElementWhereverItLies) {
+    // Long walls (listed in the grid by samples half a cell apart) at random places and
+    // headings, each with a probe's short path r - 3 tolerances from a random point of it, in
+    // the wall's plane of the same stretch pattern: the grid must find exactly what comparing
+    // every pair finds, and every probe. The probes' nearest points fall between samples and
+    // across cell boundaries (the cells are 2 r = 2 mm; the walls 40 mm long).
+    std::mt19937_64 rng(20261128);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double r = 1.0;
+    std::vector<Stretch> stretches;
+    int n = 10;
+    for (int k = 0; k < 60; ++k) {
+        const double a = 2.0 * 3.141592653589793 * u(rng);
+        const Point dir(std::cos(a), std::sin(a), 0), left(-std::sin(a), std::cos(a), 0);
+        const Point base(200.0 * k + 10.0 * u(rng), 7.3 * u(rng), 0);
+        Stretch w;
+        w.r = r;
+        const Point p0 = base, p1 = base + 40.0 * dir;
+        w.elements = {line(n, p0 - 5.0 * dir, p0), line(n + 1, p0, p1),
+                      line(n + 2, p1, p1 + 5.0 * dir)};
+        w.paths = {{line(n, p0 - 5.0 * dir + r * left, p0 + r * left, Role::kApproach)},
+                   {line(n + 1, p0 + r * left, p1 + r * left, Role::kContour)},
+                   {line(n + 2, p1 + r * left, p1 + 5.0 * dir + r * left, Role::kContour)}};
+        stretches.push_back(w);
+        // The probe: a path 0.3 long across the wall's normal, its nearest point r - 3 tol
+        // to the wall's right (the side away from the wall's own path).
+        const Point at = p0 + (2.0 + 36.0 * u(rng)) * dir - (r - 3 * kTol) * left;
+        stretches.push_back(probe(n + 3, line(0, at, at - 0.3 * left), r));
+        n += 10;
+    }
+    const auto grid = pairs(run(stretches));
+    const auto all = pairs(run(stretches, SelfApproachCheck::Candidates::kAll));
+    EXPECT_EQ(grid, all);
+    for (int k = 0; k < 60; ++k) EXPECT_EQ(grid.count({10 * k + 14, 10 * k + 11}), 1U) << k;
+}
+
+// The unit normal to the left of a direction in the X-Y plane (G41's side).
+Point left_of(const Point& d) {
+    return Point(-d.y(), d.x(), 0);
+}
+
+// The grid's reach at its edge, in the two ways the grid looks: cells of 2 mm (r = 1, set by the
+// first stretch), an element listed by samples 1 mm apart along it (half a cell). Each point of
+// it is within a quarter cell of a sample, so a lookup reaches r and a quarter cell beyond the
+// box of what it looks up. Built so that a reach of r alone misses: the element's nearest point
+// to the path lies midway between two samples, and both lie in cells beyond r of the path.
+TEST(SelfApproachRules, AShortPathFindsALongWallWhoseSamplesLieBeyondRadiusOfIt) {
+    const Point dir = Point(1, -1, 0).normalized();
+    const Point q(3.7, 3.7, 0);          // the wall's point nearest the path
+    const Point a(2.999, 2.999, 0);      // the path: 0.9913 from the wall's line x + y = 7.4
+    Stretch wall;
+    const Point s0 = q - 10.5 * dir, s1 = q + 10.5 * dir;  // 21 long: samples 1 apart
+    wall.elements = {line(10, s0 - Point(0.5, 0, 0), s0), line(11, s0, s1),
+                     line(12, s1, s1 + Point(0.5, 0, 0))};
+    wall.paths = {{line(10, s0 - Point(0.5, 0, 0), s0, Role::kApproach)},
+                  {line(11, s0 + left_of(dir), s1 + left_of(dir), Role::kContour)},
+                  {line(12, s1 + Point(0, 1, 0), s1 + Point(0.5, 1, 0), Role::kContour)}};
+    const auto found = pairs(run({wall, probe(20, line(0, a, a - Point(1e-3, 1e-3, 0)))}));
+    EXPECT_EQ(found.count({21, 11}), 1U);
+}
+
+TEST(SelfApproachRules, ALongPathFindsAShortWallBeyondRadiusOfItsSamples) {
+    // The mirror: the path is long (looked up sample by sample, 1 apart), the wall short (listed
+    // in the one cell of its box, (0, 0)); the wall's point 0.9913 from the path's line, the
+    // path's samples either side of its nearest point 1.06 from the wall in each axis. No
+    // element is long but the path, so nothing is listed by samples.
+    const Point dir = Point(1, -1, 0).normalized();
+    const Point q(2.7, 2.7, 0), a(1.999, 1.999, 0);
+    // The wall runs towards the path's line and ends at a, all of it (and its neighbours) in
+    // the cell (0, 0).
+    const Point b = a - 0.3 * Point(1, 1, 0).normalized();
+    Stretch wall;
+    wall.elements = {line(10, b + Point(-0.3, 0.1, 0), b), line(11, b, a),
+                     line(12, a, a + Point(0, -0.5, 0))};
+    wall.paths = {{line(10, b + Point(-0.3, 0.1, 0), b, Role::kApproach)},
+                  {line(11, b + Point(-0.5, 0.5, 0), a + Point(-0.5, 0.5, 0), Role::kContour)},
+                  {line(12, a + Point(-1, 0, 0), a + Point(-1, -0.5, 0), Role::kContour)}};
+    // The probe's element is short and far; its executed path is the long line through q.
+    Stretch p;
+    const Point far(-50, -50, 0);
+    p.elements = {line(20, far, far + Point(0.5, 0, 0)), line(21, far + Point(0.5, 0, 0),
+                                                             far + Point(1, 0, 0)),
+                  line(22, far + Point(1, 0, 0), far + Point(1.5, 0, 0))};
+    p.paths = {{line(20, far, far + Point(0.5, 0, 0), Role::kApproach)},
+               {line(21, q - 10.5 * dir, q + 10.5 * dir, Role::kContour)},
+               {line(22, far + Point(1, 0, 0), far + Point(1.5, 0, 0), Role::kContour)}};
+    EXPECT_EQ(pairs(run({wall, p})).count({21, 11}), 1U);
+}
+
+}  // namespace
