@@ -986,6 +986,14 @@ TEST_F(ApcictlRun, BadToolListNamesFileAndLine) {
 TEST_F(ApcictlRun, UsageErrorsExitTwo) {
     EXPECT_EQ(apcictl({"run"}).exit_code, 2);
     EXPECT_EQ(apcictl({"run", "x.nc", "--bogus"}).exit_code, 2);
+    // --avoid-bottlenecks: 0 (off) or 2..64 moves back.
+    const std::string wr = kExamples + "/wr_quad_disc.nc", wr_tools = kExamples + "/tools/wr_quad_disc.tools";
+    for (const char* bad : {"1", "65", "-1", "x"})
+        EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", bad}).exit_code, 2)
+            << bad;
+    for (const char* good : {"0", "2", "64"})
+        EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", good}).exit_code, 0)
+            << good;
     const auto missing = apcictl({"run", path("missing.nc")});
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_TRUE(contains(missing.err, "missing.nc: cannot open")) << missing.err;

@@ -193,6 +193,12 @@ class RunCommand final : public Command {
                        "contour away from its corners (the contour comes back near itself): "
                        "warn (default), error (the run fails there) or off")
             ->check(CLI::IsMember({"warn", "error", "off"}));
+        app.add_option("--avoid-bottlenecks", bottleneck_blocks_,
+                       "Leave out the moves between two compensated moves whose tool paths "
+                       "cross, looking this many moves back (2..64, as SINUMERIK's CDON with MD "
+                       "20240), and warn 'Bottleneck'; 0 (the default): never")
+            ->check(CLI::Range(0, apci::run::ProgramExecutor::kMaxBottleneckBlocks) &
+                    !CLI::IsMember({1}));
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
                        "change, [ISG-OTC] section 2.9; - for standard output)");
@@ -278,6 +284,7 @@ class RunCommand final : public Command {
         executor.set_self_approach(self_approach_ == "error" ? apci::run::SelfApproachMode::kError
                                    : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
                                                              : apci::run::SelfApproachMode::kWarn);
+        executor.set_avoid_bottlenecks(bottleneck_blocks_);
         apci::nc::InterpreterOptions options;
         options.start_position = executor.position();
         options.cycle_seconds = executor.cycle_seconds();
@@ -525,6 +532,7 @@ class RunCommand final : public Command {
     std::string plc_;
     std::string tools_out_;
     std::string self_approach_ = "warn";
+    int bottleneck_blocks_ = 0;
     bool svg_cycles_ = false;
     std::string plane_text_;
     int plane_ = 0;

@@ -20,6 +20,7 @@
 #include "apci/nc/events.h"
 #include "apci/run/executor.h"
 #include "apci/run/self_approach.h"
+#include "bottleneck.h"
 #include "comp3d_unit.h"
 #include "otc_unit.h"
 #include "plc_unit.h"
@@ -76,7 +77,8 @@ struct HeadState {
 class Execution {
   public:
     Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
-              const nc::CorrectionTable* corrections, SelfApproachMode self_approach);
+              const nc::CorrectionTable* corrections, SelfApproachMode self_approach,
+              int bottleneck_blocks = 0);
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
     RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr);
@@ -158,6 +160,7 @@ class Execution {
     bool tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text);
     void program_error(const nc::Diagnostic& d);
     bool take_findings();
+    void report_bottleneck(const detail::Bottleneck& b);
     Point where(const BlockRef& at);
     bool make_room();
     bool run_clock_until_idle();
@@ -171,6 +174,7 @@ class Execution {
     RunSink& sink_;
     const nc::ToolTable* tools_;
     SelfApproachMode self_approach_mode_;
+    int bottleneck_blocks_ = 0;  // 0: no bottleneck avoidance (bottleneck.h)
     std::int32_t cycle_us_ = 1000;
     bool tracing_ = false;
     bool set_up_ = false;   // setup() succeeded: the board was configured for the run

@@ -13,6 +13,7 @@
 #include "apci/run/csv_writer.h"
 #include "apci/run/read_ahead.h"
 #include "apci/run/self_approach.h"
+#include "bottleneck.h"
 #include "execution.h"
 #include "objif/map/object_map.h"
 
@@ -53,11 +54,12 @@ BlockRef block_of(const nc::BlockOrigin& o) noexcept {
 
 Execution::Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
                      const PlcScript* plc, const nc::CorrectionTable* corrections,
-                     SelfApproachMode self_approach)
+                     SelfApproachMode self_approach, int bottleneck_blocks)
     : board_(board),
       sink_(sink),
       tools_(tools),
       self_approach_mode_(self_approach),
+      bottleneck_blocks_(bottleneck_blocks),
       tc_(*this),
       otc_(*this),
       c3_(*this, corrections),
@@ -114,17 +116,49 @@ RunOutcome Execution::run_events(Events& events) {
     if (set_up_) {
         nc::Event storage;
         std::uint64_t count = 0;
+        // Bottleneck avoidance (bottleneck.h) between the program and the units: the events as
+        // it gives them on, after it held those of the moves it compares.
+        std::optional<detail::BottleneckAvoider> avoider;
+        if (bottleneck_blocks_ > 0) avoider.emplace(bottleneck_blocks_);
+        std::vector<nc::Event> given;
+        std::vector<detail::Bottleneck> avoided;
+        bool stopped = false;
+        const auto dispatch_given = [&]() {
+            for (const detail::Bottleneck& b : avoided) report_bottleneck(b);
+            avoided.clear();
+            for (const nc::Event& e : given)
+                if (!stopped && !dispatch(e)) stopped = true;
+            given.clear();
+            return !stopped;
+        };
         for (;;) {
             const nc::Event* event = nullptr;
             const auto next = next_event(events, storage, event);
-            if (next == nc::EventStream::Next::kEnd) break;
+            if (next == nc::EventStream::Next::kEnd) {
+                if (avoider) {
+                    avoider->flush(given);
+                    (void)dispatch_given();
+                }
+                break;
+            }
             if (next == nc::EventStream::Next::kError) {
+                if (avoider) {
+                    avoider->flush(given);
+                    (void)dispatch_given();
+                }
                 program_error(events.error());
                 break;
             }
             out.totals.blocks_executed = events.blocks_read();
             klartext_ = events.dialect() == nc::Dialect::kKlartext;
-            if (!dispatch(*event)) {
+            bool ok = true;
+            if (avoider) {
+                avoider->take(*event, radius, plane, given, avoided);
+                ok = dispatch_given();
+            } else {
+                ok = dispatch(*event);
+            }
+            if (!ok) {
                 draw_rest(events);
                 break;
             }
@@ -139,6 +173,24 @@ RunOutcome Execution::run_events(Events& events) {
     events.set_variable_source(nullptr);
     if (sink_measures_) sink_.measured_lengths(out.totals.path_length, out.totals.rapid_length);
     return std::move(out);
+}
+
+// A bottleneck avoided: a warning naming the blocks left out and where the paths cross.
+void Execution::report_bottleneck(const detail::Bottleneck& b) {
+    const auto name = [](const nc::BlockOrigin& o) {
+        return o.block >= 0 ? fmt::format("N{}", o.block) : fmt::format("line {}", o.line);
+    };
+    const PlaneAxes a = plane_axes(comp_plane);
+    const std::string left_out =
+        b.first.line == b.last.line ? name(b.first) : name(b.first) + " to " + name(b.last);
+    RunError w{block_of(b.first), "Bottleneck",
+               fmt::format("{} left out: the tool paths of {} and {} cross at ({:.4f}, {:.4f}) "
+                           "in the {} plane, and the tool goes from the one to the other there "
+                           "(--avoid-bottlenecks {}, as SINUMERIK's CDON)",
+                           left_out, name(b.before), name(b.after), b.where[a.first],
+                           b.where[a.second], plane_name(comp_plane), bottleneck_blocks_)};
+    out.warnings.push_back(w);
+    sink_.warning(out.warnings.back(), b.where);
 }
 
 // After an error the rest of the program still goes to a plot, so the place of the error
@@ -361,7 +413,7 @@ Point ProgramExecutor::position() {
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto execution = std::make_unique<exec::Execution>(board_, sink_, tools_, plc_, corrections_,
-                                                       self_approach_);
+                                                       self_approach_, bottleneck_blocks_);
     return execution->run(events, read_ahead_, read_ahead_cpus_);
 }
 

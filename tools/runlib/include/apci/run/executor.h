@@ -195,6 +195,13 @@ class ProgramExecutor {
     // Executes the stream to its end or to the first error.
     RunOutcome run(nc::EventStream& events);
     void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
+    // Bottleneck avoidance as SINUMERIK's CDON does it (docs/compensation.md, "Avoidance"):
+    // 0 off (the default), else how many moves back the path of each compensated move is
+    // compared with (kMinBottleneckBlocks..kMaxBottleneckBlocks): where two paths cross, the
+    // moves between are left out in the plane, with a warning "Bottleneck".
+    static constexpr int kMinBottleneckBlocks = 2;
+    static constexpr int kMaxBottleneckBlocks = 64;
+    void set_avoid_bottlenecks(int blocks) noexcept { bottleneck_blocks_ = blocks; }
     // With read-ahead, run() reads the stream through a ReadAhead (read_ahead.h): the NC front
     // end on a thread of its own, the same events, errors and variable reads at the same
     // places. The stream is the caller's again when run() returns. With `cpus` (which must
@@ -211,6 +218,7 @@ class ProgramExecutor {
     const PlcScript* plc_;
     const nc::CorrectionTable* corrections_;
     SelfApproachMode self_approach_ = SelfApproachMode::kWarn;
+    int bottleneck_blocks_ = 0;
     bool read_ahead_ = false;
     const CpuPlacement* read_ahead_cpus_ = nullptr;
 };
