@@ -1,25 +1,28 @@
 // SPDX-License-Identifier: MIT
-// Where a radius-compensated path comes near the contour away from its corners. A control with
+// Where a radius-compensated path cuts into what the program leaves standing. A control with
 // one element of lookahead (the TC module, LinuxCNC) computes each corner from the two elements
 // that meet there; where the contour crosses or comes back near itself, the tool path of one
 // element can come closer than the tool radius to another element that is not its neighbour,
 // and no corner rule sees it. `apcictl run` sees the whole program: this check compares every
-// executed compensated segment with every programmed compensated element that is not its
-// neighbour, in the plane of compensation, and reports each place where they come closer than
-// the tool radius less the path tolerance (docs/compensation.md, "Self-approach"); the element
-// before and the one after count too (at their common corner the corner rule keeps the path r
-// from them; away from it an arc curling round, or a contour coming back alongside after a
-// reversal, can come closer), with twice the tolerance (a tangent join may move a start by it).
-// The first element of each compensated stretch is its approach: paths may come near it. The
-// last is its departure only where no move in the plane departs from it (the stretch is left
-// by a lift under G41/G42, or the program ends): a lead-out as LinuxCNC's examples write it;
-// where the G40 block's move (or the next move in the plane) departs, it is contour.
-// The distance reported is the least distance between the path block's segments and the
+// executed compensated segment with the programmed compensated elements that are walls of the
+// part (wall_model.h: the closed contours, not their leads, nor the passes a larger pass clears,
+// nor what the program marks with CDOF), in the plane of compensation, and reports each place
+// where they come closer than the tool radius less the path tolerance (docs/compensation.md,
+// "Self-approach"); the element before and the one after count too (at their common corner the
+// corner rule keeps the path r from them; away from it an arc curling round, or a contour
+// coming back alongside after a reversal, can come closer), with twice the tolerance (a tangent
+// join may move a start by it). An approach is held to its own stretch's walls but those its
+// start already stands near and those at its entry point, where only a crossing counts. Of an
+// open contour the first element is its approach, and the last is its departure only where no
+// move in the plane departs from it (the stretch is left by a lift under G41/G42, or the program
+// ends). A pair waits until the stretches of both its elements ended (the wall model decides
+// then); the distance reported is the least distance between the path block's segments and the
 // element (within 1e-9 mm), not the first point found closer than the threshold.
 //
 // Cost: a uniform grid of the programmed elements and of the executed segments, each kept once
 // (an element programmed again with the same geometry, as depth passes repeat a contour, is
-// checked once). A pair that is proved apart by exact line and arc distances is not searched.
+// checked once). A pair that is proved apart by one side of the path or by exact line and arc
+// distances is not searched, nor one whose element the wall model already places as no wall.
 // Memory is bounded: per plane, each executed segment is compared with at least the last
 // `window` distinct programmed elements and each element with the paths of at least as many,
 // fewer where they are long (at most kEntryBudget grid entries); at most twice as many are kept,
@@ -169,9 +172,8 @@ class SelfApproachCheck {
     void give(const Found& f, bool running, std::vector<SelfApproachFinding>& out);
     // The held findings whose elements are placed now.
     void review(std::vector<SelfApproachFinding>& out);
-    // True when the pair cannot be reported: both elements are placed and the contour's is
-    // no wall.
-    // A programmed element or an executed path as the grid keeps it (self_approach.cpp).
+    // A programmed element or an executed path as the grid keeps it (self_approach.cpp), and
+    // what the wall model says of its element, kept in it once placed.
     struct GridItem;
     detail::WallRole role_of(GridItem& item);
     bool placed_of(GridItem& item);
