@@ -338,11 +338,49 @@ void extent_along(const Element& e, const Vec2& n, double& lo, double& hi) {
         return;
     }
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
-    const double most = within_turn(from, to, e.sweep, n) ? 1.0 : std::max(from.dot(n), to.dot(n));
-    const double least =
-        within_turn(from, to, e.sweep, -n) ? -1.0 : std::min(from.dot(n), to.dot(n));
-    hi = std::max(hi, e.centre.dot(n) + (most >= 0.0 ? rmax : rmin) * most);
-    lo = std::min(lo, e.centre.dot(n) + (least <= 0.0 ? rmax : rmin) * least);
+    // Where a direction lies within a turn of at most half a circle, at the angle delta from
+    // it the point is rho cos(delta) along it, rho = rho_n + k delta the radius there: with
+    // cos(delta) <= 1 - 2 delta^2 / pi^2 that is at most rho_n + k delta - 2 rmin delta^2 / pi^2,
+    // at most rho_n + pi^2 k^2 / (8 rmin): the radius at that direction, a hair more.
+    const double turn = std::abs(e.sweep);
+    const double k = (e.r1 - e.r0) / turn;
+    const auto at_direction = [&](const Vec2& v) {
+        double along = std::atan2(e.sweep > 0.0 ? cross(from, v) : cross(v, from), from.dot(v));
+        if (along < 0.0) along += kTwoPi;
+        return e.r0 + k * along + std::numbers::pi * std::numbers::pi * k * k / (8.0 * rmin);
+    };
+    const bool half = turn <= std::numbers::pi;
+    if (within_turn(from, to, e.sweep, n))
+        hi = std::max(hi, e.centre.dot(n) + (half ? at_direction(n) : rmax));
+    else
+        hi = std::max(hi, e.centre.dot(n) + std::max(from.dot(n), to.dot(n)) *
+                                                 (std::max(from.dot(n), to.dot(n)) >= 0.0 ? rmax : rmin));
+    if (within_turn(from, to, e.sweep, -n))
+        lo = std::min(lo, e.centre.dot(n) - (half ? at_direction(-n) : rmax));
+    else
+        lo = std::min(lo, e.centre.dot(n) + std::min(from.dot(n), to.dot(n)) *
+                                                 (std::min(from.dot(n), to.dot(n)) <= 0.0 ? rmax : rmin));
+}
+
+// A lower bound on the distance from p to e. For an arc of at most half a turn whose turn holds
+// p's direction: with R the distance of p from the centre, d the radial distance at that
+// direction and k the radius's change per radian, the point delta from it is at
+// (rho - R)^2 + 2 rho R (1 - cos delta) >= max(0, d - |k| delta)^2 + c delta^2, c = 4 rmin R /
+// pi^2, which is at least d^2 c / (k^2 + c): d a hair less. Elsewhere the radial distance less
+// the radius's whole change.
+double distance_at_least(const Element& e, const Vec2& p) {
+    if (!e.arc) return point_segment(p, e.start, e.end);
+    const double loose = distance_to(e, p) - std::abs(e.r1 - e.r0);
+    const double turn = std::abs(e.sweep);
+    if (turn > std::numbers::pi || e.r0 <= 0.0 || e.r1 <= 0.0) return loose;
+    const Vec2 v = p - e.centre;
+    const double big_r = v.norm();
+    const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
+    if (big_r == 0.0 || !within_turn(from, to, e.sweep, v)) return loose;
+    const double k = (e.r1 - e.r0) / turn;
+    const double c = 4.0 * std::min(e.r0, e.r1) * big_r / (std::numbers::pi * std::numbers::pi);
+    const double d = distance_to(e, p);
+    return d * std::sqrt(c / (k * k + c));
 }
 
 // The least and largest distance of the points of e from c.
@@ -388,7 +426,7 @@ bool apart_by_side(const Element& a, const Element& b, double limit) noexcept {
                 extent_along(a, t, lo, hi);
                 const double eps = std::max(0.0, hi - e.dot(t));
                 if (eps > 0.5 * limit) continue;
-                const double de = distance_to(a, e) - std::abs(a.r1 - a.r0);
+                const double de = distance_at_least(a, e);
                 if (de > 0.0 && de * de - eps * eps >= limit * limit) return true;
             }
         }
