@@ -350,16 +350,31 @@ void extent_along(const Element& e, const Vec2& n, double& lo, double& hi) {
         return e.r0 + k * along + std::numbers::pi * std::numbers::pi * k * k / (8.0 * rmin);
     };
     const bool half = turn <= std::numbers::pi;
+    // A direction v beyond the turn, delta0 from its nearer end (radius rho there, the end's
+    // value rho cos(delta0) exact): going along by x, cos(delta0 + x) <= cos(delta0) (1 - 2 x^2 /
+    // pi^2) while delta0 + turn <= pi and cos(delta0) > 0, so the value is at most
+    // rho cos(delta0) + |k| x - 2 rho cos(delta0) x^2 / pi^2 <= the end's value + pi^2 k^2 /
+    // (8 rho cos(delta0)). Else the whole radius's range.
+    const auto beyond = [&](const Vec2& v) {
+        const double cs = from.dot(v), ce = to.dot(v);
+        const bool start_nearer = cs >= ce;
+        const double cos0 = start_nearer ? cs : ce;
+        const double rho = start_nearer ? e.r0 : e.r1;
+        const double delta0 = std::acos(std::clamp(cos0, -1.0, 1.0));
+        if (half && cos0 > 0.1 && delta0 + turn <= std::numbers::pi)
+            return rho * cos0 +
+                   std::numbers::pi * std::numbers::pi * k * k / (8.0 * rho * cos0);
+        const double most = std::max(cs, ce);
+        return most * (most >= 0.0 ? rmax : rmin);
+    };
     if (within_turn(from, to, e.sweep, n))
         hi = std::max(hi, e.centre.dot(n) + (half ? at_direction(n) : rmax));
     else
-        hi = std::max(hi, e.centre.dot(n) + std::max(from.dot(n), to.dot(n)) *
-                                                 (std::max(from.dot(n), to.dot(n)) >= 0.0 ? rmax : rmin));
+        hi = std::max(hi, e.centre.dot(n) + beyond(n));
     if (within_turn(from, to, e.sweep, -n))
         lo = std::min(lo, e.centre.dot(n) - (half ? at_direction(-n) : rmax));
     else
-        lo = std::min(lo, e.centre.dot(n) + std::min(from.dot(n), to.dot(n)) *
-                                                 (std::min(from.dot(n), to.dot(n)) <= 0.0 ? rmax : rmin));
+        lo = std::min(lo, e.centre.dot(n) - beyond(-n));
 }
 
 // A lower bound on the distance from p to e. For an arc of at most half a turn whose turn holds
@@ -375,12 +390,24 @@ double distance_at_least(const Element& e, const Vec2& p) {
     if (turn > std::numbers::pi || e.r0 <= 0.0 || e.r1 <= 0.0) return loose;
     const Vec2 v = p - e.centre;
     const double big_r = v.norm();
+    if (big_r == 0.0) return loose;
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
-    if (big_r == 0.0 || !within_turn(from, to, e.sweep, v)) return loose;
     const double k = (e.r1 - e.r0) / turn;
     const double c = 4.0 * std::min(e.r0, e.r1) * big_r / (std::numbers::pi * std::numbers::pi);
-    const double d = distance_to(e, p);
-    return d * std::sqrt(c / (k * k + c));
+    if (within_turn(from, to, e.sweep, v)) {
+        const double d = distance_to(e, p);
+        return d * std::sqrt(c / (k * k + c));
+    }
+    // p's direction beyond the turn, delta0 from its nearer end (radius rho0 there): going
+    // along the arc by x from that end, delta = delta0 + x while delta0 + turn <= pi, and
+    // (rho - R)^2 + c delta^2 >= max(0, A - |k| x)^2 + c x^2 + c delta0^2, A = |rho0 - R|.
+    const Vec2 u = v / big_r;
+    const double to_start = std::acos(std::clamp(u.dot(from), -1.0, 1.0));
+    const double to_end = std::acos(std::clamp(u.dot(to), -1.0, 1.0));
+    const double delta0 = std::min(to_start, to_end);
+    if (delta0 + turn > std::numbers::pi) return loose;
+    const double a = std::abs((to_start <= to_end ? e.r0 : e.r1) - big_r);
+    return std::sqrt(a * a * c / (k * k + c) + c * delta0 * delta0);
 }
 
 // The least and largest distance of the points of e from c.
