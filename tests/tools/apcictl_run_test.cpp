@@ -1229,9 +1229,9 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
 }
 
 // "G1 X<x> Y<y>" and a newline, y to 3 decimals.
-std::string fmt_xy(int x, double y) {
+std::string fmt_xy(double x, double y) {
     char text[64];
-    std::snprintf(text, sizeof text, "G1 X%d Y%.3f\n", x, y);
+    std::snprintf(text, sizeof text, "G1 X%.1f Y%.4f\n", x, y);
     return text;
 }
 
@@ -1610,12 +1610,15 @@ TEST_F(ApcictlRun, SelfApproachGridFindsWhatComparingEveryPairFinds) {
 }
 
 TEST_F(ApcictlRun, AProgramLongerThanTheSelfApproachWindowGetsANotice) {
-    // 33,000 distinct elements under G41: a zigzag along X. More than twice the window: the
-    // check lets the oldest go (its memory stays bounded) and the run says so.
-    std::string prog = "N10 D1 F3000\nN20 G0 X0 Y0\nN30 G41 G1 X1 Y0\n";
-    for (int k = 0; k < 33000; ++k) prog += fmt_xy(2 + k, (k % 2) * 0.5 + (k % 7) * 0.001);
-    prog += "G40 G1 X40000 Y10\nM30\n";
-    const json doc = run_json(write("long.nc", prog), {"--tools", tools(1.0)});
+    // 2 * kWindow + 232 distinct elements under G41: a zigzag along X. More than twice the
+    // window: the check lets the oldest go (its memory stays bounded) and the run says so.
+    // Teeth of 0.5 mm along X (the board's range is +-100,000 mm) with a tool of 0.5 mm.
+    constexpr int kWindow = static_cast<int>(apci::run::SelfApproachCheck::kWindow);
+    std::string prog = "N10 D1 F3000\nN20 G0 X0 Y0\nN30 G41 G1 X0.5 Y0\n";
+    for (int k = 0; k < 2 * kWindow + 232; ++k)
+        prog += fmt_xy(1.0 + 0.5 * k, ((k % 2) * 0.5 + (k % 7) * 0.001) / 2.0);
+    prog += "G40 G1 X" + std::to_string(kWindow + 2000) + " Y10\nM30\n";
+    const json doc = run_json(write("long.nc", prog), {"--tools", tools(0.5)});
     EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
     ASSERT_TRUE(doc.contains("notices"));
@@ -1623,12 +1626,15 @@ TEST_F(ApcictlRun, AProgramLongerThanTheSelfApproachWindowGetsANotice) {
     EXPECT_EQ(doc.at("notices")[0].at("code"), "SelfApproachTruncated");
     EXPECT_TRUE(contains(doc.at("notices")[0].at("message").get<std::string>(),
                          "from here on the self-approach check compared each compensated element "
-                         "in G17 only with the 16384 distinct elements before it"))
+                         "in G17 only with the " + std::to_string(kWindow) +
+                             " distinct elements before it"))
         << doc.at("notices")[0].dump();
-    // Where: the block that let the first go, at twice the window (the program's 32,768th
-    // element, on line 32,770: the G41 block's move on line 3 is the first).
-    EXPECT_EQ(doc.at("notices")[0].at("line"), 32770) << doc.at("notices")[0].dump();
-    EXPECT_TRUE(contains(last_.out, "notice: line 32770: from here on the self-approach check"))
+    // Where: the block that let the first go, at twice the window (the program's
+    // (2 * kWindow)th element, on line 2 * kWindow + 2: the G41 block's move on line 3 is the
+    // first).
+    EXPECT_EQ(doc.at("notices")[0].at("line"), 2 * kWindow + 2) << doc.at("notices")[0].dump();
+    EXPECT_TRUE(contains(last_.out, "notice: line " + std::to_string(2 * kWindow + 2) +
+                                        ": from here on the self-approach check"))
         << last_.out;
 }
 

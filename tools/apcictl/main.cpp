@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include "arguments.h"
 #include "command.h"
@@ -139,6 +140,10 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Blocks of 1 MiB and more straight from the system and back to it when freed: glibc would
+    // otherwise raise this bound to the largest block freed so far and keep the tables a long
+    // run outgrows (the self-approach check's, doubling) as holes in its heap.
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
     try {
         return run(argc, argv);
     } catch (const std::system_error& e) {

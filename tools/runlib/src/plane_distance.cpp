@@ -323,58 +323,46 @@ bool apart(const Element& a, const Element& b, double limit) noexcept {
 
 namespace {
 
-// Bounds on f(q) = q . n over the points of e (n a unit direction): exact for a line and a
-// circular arc. An arc's point is centre + rho u with rho within [rmin, rmax] and u a direction
-// within its turn, so u . n lies within [least, most] of the turn (1 and -1 where n and -n lie
-// within it, else the ends' values), and rho u . n within the products of those.
-void extent_along(const Element& e, const Vec2& n, double& lo, double& hi) {
-    lo = std::min(e.start.dot(n), e.end.dot(n));
-    hi = std::max(e.start.dot(n), e.end.dot(n));
-    if (!e.arc) return;
+// An upper bound on f(q) = q . n over the points of e (n a unit direction): exact for a line
+// and a circular arc. An arc's point is centre + rho u with rho within [rmin, rmax] and u a
+// direction within its turn, so u . n is 1 where n lies within the turn, else at most the ends'
+// larger value, and rho u . n within the products of those. The lower bound is -most_along(e,
+// -n).
+double most_along(const Element& e, const Vec2& n) {
+    const double ends = std::max(e.start.dot(n), e.end.dot(n));
+    if (!e.arc) return ends;
     const double rmin = std::min(e.r0, e.r1), rmax = std::max(e.r0, e.r1);
-    if (e.r0 <= 0.0 || e.r1 <= 0.0) {
-        hi = std::max(hi, e.centre.dot(n) + rmax);
-        lo = std::min(lo, e.centre.dot(n) - rmax);
-        return;
-    }
+    if (e.r0 <= 0.0 || e.r1 <= 0.0) return std::max(ends, e.centre.dot(n) + rmax);
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
-    // Where a direction lies within a turn of at most half a circle, at the angle delta from
-    // it the point is rho cos(delta) along it, rho = rho_n + k delta the radius there: with
-    // cos(delta) <= 1 - 2 delta^2 / pi^2 that is at most rho_n + k delta - 2 rmin delta^2 / pi^2,
-    // at most rho_n + pi^2 k^2 / (8 rmin): the radius at that direction, a hair more.
     const double turn = std::abs(e.sweep);
     const double k = (e.r1 - e.r0) / turn;
-    const auto at_direction = [&](const Vec2& v) {
-        double along = std::atan2(e.sweep > 0.0 ? cross(from, v) : cross(v, from), from.dot(v));
-        if (along < 0.0) along += kTwoPi;
-        return e.r0 + k * along + std::numbers::pi * std::numbers::pi * k * k / (8.0 * rmin);
-    };
     const bool half = turn <= std::numbers::pi;
-    // A direction v beyond the turn, delta0 from its nearer end (radius rho there, the end's
-    // value rho cos(delta0) exact): going along by x, cos(delta0 + x) <= cos(delta0) (1 - 2 x^2 /
-    // pi^2) while delta0 + turn <= pi and cos(delta0) > 0, so the value is at most
-    // rho cos(delta0) + |k| x - 2 rho cos(delta0) x^2 / pi^2 <= the end's value + pi^2 k^2 /
-    // (8 rho cos(delta0)). Else the whole radius's range.
-    const auto beyond = [&](const Vec2& v) {
-        const double cs = from.dot(v), ce = to.dot(v);
-        const bool start_nearer = cs >= ce;
-        const double cos0 = start_nearer ? cs : ce;
-        const double rho = start_nearer ? e.r0 : e.r1;
-        const double delta0 = std::acos(std::clamp(cos0, -1.0, 1.0));
-        if (half && cos0 > 0.1 && delta0 + turn <= std::numbers::pi)
-            return rho * cos0 +
-                   std::numbers::pi * std::numbers::pi * k * k / (8.0 * rho * cos0);
-        const double most = std::max(cs, ce);
-        return most * (most >= 0.0 ? rmax : rmin);
-    };
-    if (within_turn(from, to, e.sweep, n))
-        hi = std::max(hi, e.centre.dot(n) + (half ? at_direction(n) : rmax));
-    else
-        hi = std::max(hi, e.centre.dot(n) + beyond(n));
-    if (within_turn(from, to, e.sweep, -n))
-        lo = std::min(lo, e.centre.dot(n) - (half ? at_direction(-n) : rmax));
-    else
-        lo = std::min(lo, e.centre.dot(n) - beyond(-n));
+    if (within_turn(from, to, e.sweep, n)) {
+        if (!half) return std::max(ends, e.centre.dot(n) + rmax);
+        // At the angle delta from n the point is rho cos(delta) along it, rho = rho_n + k delta
+        // the radius there: with cos(delta) <= 1 - 2 delta^2 / pi^2 that is at most rho_n +
+        // k delta - 2 rmin delta^2 / pi^2, at most rho_n + pi^2 k^2 / (8 rmin): the radius at
+        // that direction, a hair more.
+        double along = std::atan2(e.sweep > 0.0 ? cross(from, n) : cross(n, from), from.dot(n));
+        if (along < 0.0) along += kTwoPi;
+        return std::max(ends, e.centre.dot(n) + e.r0 + k * along +
+                                  std::numbers::pi * std::numbers::pi * k * k / (8.0 * rmin));
+    }
+    // n beyond the turn, delta0 from its nearer end (radius rho there, the end's value rho
+    // cos(delta0) exact): going along by x, cos(delta0 + x) <= cos(delta0) (1 - 2 x^2 / pi^2)
+    // while delta0 + turn <= pi and cos(delta0) > 0, so the value is at most rho cos(delta0) +
+    // |k| x - 2 rho cos(delta0) x^2 / pi^2 <= the end's value + pi^2 k^2 / (8 rho cos(delta0)).
+    // delta0 + turn <= pi is cos(delta0) >= cos(pi - turn) = -cos(turn), both angles in
+    // [0, pi]. Else the whole radius's range.
+    const double cs = from.dot(n), ce = to.dot(n);
+    const bool start_nearer = cs >= ce;
+    const double cos0 = start_nearer ? cs : ce;
+    const double rho = start_nearer ? e.r0 : e.r1;
+    if (half && cos0 > 0.1 && cos0 >= -from.dot(to))
+        return std::max(ends, e.centre.dot(n) + rho * cos0 +
+                                  std::numbers::pi * std::numbers::pi * k * k / (8.0 * rho * cos0));
+    const double most = std::max(cs, ce);
+    return std::max(ends, e.centre.dot(n) + most * (most >= 0.0 ? rmax : rmin));
 }
 
 // A lower bound on the distance from p to e. For an arc of at most half a turn whose turn holds
@@ -401,13 +389,15 @@ double distance_at_least(const Element& e, const Vec2& p) {
     // p's direction beyond the turn, delta0 from its nearer end (radius rho0 there): going
     // along the arc by x from that end, delta = delta0 + x while delta0 + turn <= pi, and
     // (rho - R)^2 + c delta^2 >= max(0, A - |k| x)^2 + c x^2 + c delta0^2, A = |rho0 - R|.
+    // delta0 + turn <= pi is cos(delta0) >= -cos(turn) (both angles in [0, pi]); delta0 is at
+    // least the chord |u - w| of the unit directions u and w (= 2 sin(delta0 / 2)).
     const Vec2 u = v / big_r;
-    const double to_start = std::acos(std::clamp(u.dot(from), -1.0, 1.0));
-    const double to_end = std::acos(std::clamp(u.dot(to), -1.0, 1.0));
-    const double delta0 = std::min(to_start, to_end);
-    if (delta0 + turn > std::numbers::pi) return loose;
-    const double a = std::abs((to_start <= to_end ? e.r0 : e.r1) - big_r);
-    return std::sqrt(a * a * c / (k * k + c) + c * delta0 * delta0);
+    const double cs = u.dot(from), ce = u.dot(to);
+    const bool start_nearer = cs >= ce;
+    if (std::max(cs, ce) < -from.dot(to)) return loose;
+    const double chord = (u - (start_nearer ? from : to)).norm();
+    const double a = std::abs((start_nearer ? e.r0 : e.r1) - big_r);
+    return std::sqrt(a * a * c / (k * k + c) + c * chord * chord);
 }
 
 // The least and largest distance of the points of e from c.
@@ -449,9 +439,7 @@ bool apart_by_side(const Element& a, const Element& b, double limit) noexcept {
             for (const bool at_start : {true, false}) {
                 const Vec2 e = at_start ? b.start : b.end;
                 const Vec2 t = (at_start ? d : Vec2(-d)) / len;
-                double lo = 0.0, hi = 0.0;
-                extent_along(a, t, lo, hi);
-                const double eps = std::max(0.0, hi - e.dot(t));
+                const double eps = std::max(0.0, most_along(a, t) - e.dot(t));
                 if (eps > 0.5 * limit) continue;
                 const double de = distance_at_least(a, e);
                 if (de > 0.0 && de * de - eps * eps >= limit * limit) return true;
@@ -463,10 +451,10 @@ bool apart_by_side(const Element& a, const Element& b, double limit) noexcept {
         const double len = d.norm();
         if (len == 0.0) return false;
         const Vec2 n(-d.y() / len, d.x() / len);
-        double lo = 0.0, hi = 0.0;
-        extent_along(b, n, lo, hi);
         const double base = a.start.dot(n);
-        return hi - base <= -limit || lo - base >= limit;
+        // The side b's start lies on first: the other is seldom the one that proves it.
+        if (b.start.dot(n) < base) return most_along(b, n) - base <= -limit;
+        return -most_along(b, -n) - base >= limit;
     }
     double lo = 0.0, hi = 0.0;
     distances_from(b, a.centre, lo, hi);

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -75,12 +76,6 @@ void add_arc_to_box(Shape& e) {
     e.hi.array() += pad;
 }
 
-// The least distance between the boxes of a and b: at most that of any of their points.
-double box_distance(const Shape& a, const Shape& b) {
-    const Vec2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
-    return gap.norm();
-}
-
 Shape shape_of(const PathSegment& s, int plane) {
     const PlaneAxes a = plane_axes(plane);
     Shape out;
@@ -102,6 +97,89 @@ Shape shape_of(const PathSegment& s, int plane) {
     return out;
 }
 
+// A float no larger (down) or no smaller (up) than v: a box rounded outward still holds every
+// point it held (beyond float's range: infinite).
+// The float next to f towards minus infinity, f finite and not 0 (a step of its bits: down
+// from a positive one, up from a negative one); from 0 the least negative float.
+float float_below(float f) {
+    if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f > 0.0f ? bits - 1 : bits + 1;
+    std::memcpy(&f, &bits, sizeof bits);
+    return f;
+}
+float down(double v) {
+    if (!(std::abs(v) < 1e38)) return v > 0.0 ? 1e38f : -INFINITY;
+    const auto f = static_cast<float>(v);
+    return static_cast<double>(f) > v ? float_below(f) : f;
+}
+float up(double v) { return -down(-v); }
+
+// What the cheap tests take of a shape: its box, and its range on the plane's third axis.
+struct Extent {
+    Vec2 lo, hi;
+    double low, high;
+};
+Extent extent_of(const Shape& e) { return {e.lo, e.hi, e.low, e.high}; }
+
+// The least distance between the boxes of a and b: at most that of any of their points.
+double box_distance(const Extent& a, const Extent& b) {
+    const Vec2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
+    return gap.norm();
+}
+
+// False where a path cannot come closer to an element than the threshold, by the cheap tests:
+// the depth rule (the element wholly below the tool's tip on all of the path: the tool does not
+// reach down to it, it stands on the plane's positive side, its axis the third) and the boxes.
+bool near_enough(const Extent& path, const Extent& contour, double threshold) {
+    if (contour.high < path.low - SelfApproachCheck::kTolerance) return false;
+    return box_distance(path, contour) < threshold + kApartMargin;
+}
+
+}  // namespace
+
+// A shape as the grid keeps it, by the hundred thousand: its numbers packed (plane::Element's
+// vectors are aligned to 16 bytes), its box, range and length in floats rounded outward (the
+// box and range are filters, the length counts samples: rounded up, never fewer). shape() gives
+// the element back exactly, the box and range no smaller.
+namespace detail {
+struct StoredShape {
+    double start[2], end[2], centre[2];
+    double r0, r1, phi0, sweep;
+    float lo[2], hi[2], low, high, length;
+    bool arc;
+
+    explicit StoredShape(const Shape& e)
+        : start{e.start.x(), e.start.y()},
+          end{e.end.x(), e.end.y()},
+          centre{e.centre.x(), e.centre.y()},
+          r0(e.r0), r1(e.r1), phi0(e.phi0), sweep(e.sweep),
+          lo{down(e.lo.x()), down(e.lo.y())},
+          hi{up(e.hi.x()), up(e.hi.y())},
+          low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(e.arc) {}
+    Extent extent() const {
+        return {Vec2(lo[0], lo[1]), Vec2(hi[0], hi[1]), static_cast<double>(low),
+                static_cast<double>(high)};
+    }
+    Shape shape() const {
+        Shape e;
+        e.arc = arc;
+        e.start = {start[0], start[1]};
+        e.end = {end[0], end[1]};
+        e.centre = {centre[0], centre[1]};
+        e.r0 = r0, e.r1 = r1, e.phi0 = phi0, e.sweep = sweep;
+        const Extent x = extent();
+        e.lo = x.lo, e.hi = x.hi, e.low = x.low, e.high = x.high;
+        e.length = static_cast<double>(length);
+        return e;
+    }
+};
+}  // namespace detail
+
+namespace {
+
+using detail::StoredShape;
 using plane::distance_to;
 using plane::point_at;
 
@@ -196,8 +274,14 @@ std::uint64_t bits_of(double v) {
     return u;  // -0 and +0 alike
 }
 
+// h and x mixed through SplitMix64's finaliser: every bit of the result depends on every bit of
+// both (a bare multiply after the xor let coordinates 0.5 mm apart in a zigzag collide, one
+// pair in 30,000).
 std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
-    return (h ^ x) * 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = h ^ x;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
 }
 
 // The geometry of a segment in the plane (axes First, Second) and the tool radius, as one
@@ -216,8 +300,7 @@ std::uint64_t key_in(const PathSegment& s, double r) {
         h = mix(h, bits_of(s.center[First]));
         h = mix(h, bits_of(s.center[Second]));
     }
-    h = mix(h, bits_of(r));
-    return h ^ (h >> 29);
+    return mix(h, bits_of(r));
 }
 
 // key_in in the axes of `plane`.
@@ -252,25 +335,28 @@ std::string describe(const SelfApproachFinding& f) {
 
 
 struct SelfApproachCheck::GridItem {
-    Shape shape;
+    GridItem(const Shape& e, const BlockRef& b, std::uint64_t i, std::uint64_t s, std::uint64_t k,
+             double radius)
+        : shape(e), block(b), index(i), stretch(s), key(k), r(radius) {}
+    StoredShape shape;
     BlockRef block;
     std::uint64_t index = 0;
     std::uint64_t stretch = 0;
     std::uint64_t key = 0;  // of its geometry (contour_keys, path_keys)
     double r = 0.0;
+    // The element's loop (WallModel::kNoLoop for none), once its role is known: role_of().
+    std::uint64_t loop = detail::WallModel::kNoLoop;
+    std::uint32_t entries = 0;  // cells it is listed in (set by index)
     bool transition = false;
     // Contour elements: the path must keep r from it. Not the first and the last element
     // of a stretch: they are its approach and departure in the program's own terms.
     bool protect = true;
-    // Paths: the approach (from where the tool stands onto the compensated path), and the
-    // entry point it leads to (its element's programmed end).
+    // Paths: the approach (from where the tool stands onto the compensated path; the entry
+    // point it leads to is approach_entry_).
     bool approach = false;
-    Vec2 entry = Vec2::Zero();
-    // What the wall model said of its element once it was placed (kUndecided until then),
-    // and the element's loop (WallModel::kNoLoop for none): role_of(), placed_of().
+    // What the wall model said of its element once it was placed (kUndecided until then):
+    // role_of(), placed_of().
     detail::WallRole role = detail::WallRole::kUndecided;
-    std::uint64_t loop = detail::WallModel::kNoLoop;
-    std::uint32_t entries = 0;  // cells it is listed in (set by index)
 };
 
 struct SelfApproachCheck::Grid {
@@ -278,9 +364,10 @@ struct SelfApproachCheck::Grid {
     // Items kept in order, the oldest first: `first` is the number (counted over the plane's
     // whole run) of items[0].
     struct List {
+        explicit List(std::size_t i) : id(i) {}
+        std::size_t id;  // its list in `cells`
         std::vector<Item> items;
         std::uint64_t first = 0;
-        detail::CellIndex cells;
         detail::KeySet keys;
         std::size_t entries = 0;  // of its items
         std::size_t sampled = 0;  // items listed by samples (the others by their box)
@@ -319,7 +406,10 @@ struct SelfApproachCheck::Grid {
     std::size_t window = kWindow;
     std::size_t entry_budget = kEntryBudget;
     bool all = false;  // near() answers every item (Candidates::kAll)
-    List contour, path;
+    List contour{0}, path{1};
+    // The cells of both lists: a cell is looked up once for a path's candidates and its own
+    // entry (near_adding).
+    detail::CellIndex<2> cells;
     bool truncated = false;  // items were let go
     std::uint64_t kept_from = 0;  // the elements numbered below it were let go
     BlockRef truncated_at{};  // the block whose element or path let the first go
@@ -346,22 +436,28 @@ struct SelfApproachCheck::Grid {
                 index_of(e.hi.y() + reach)};
     }
 
-    void index(List& list, std::size_t at) const {
+    // The cells of an item's box (its stored, outward box).
+    CellRange cells_of(const Item& item) const {
+        const Extent x = item.shape.extent();
+        return {index_of(x.lo.x()), index_of(x.hi.x()), index_of(x.lo.y()), index_of(x.hi.y())};
+    }
+    // A short element is listed in every cell of its box (its samples lie in it), no more
+    // than kBoxCells; a longer one in the cells of its samples.
+    static constexpr std::int64_t kBoxCells = 4;
+    void index(List& list, std::size_t at) {
         const auto item = static_cast<std::uint32_t>(at);
         std::uint32_t n = 0;
-        // A short element: every cell of its box (its samples lie in it), no more than four.
-        const Shape& e = list.items[at].shape;
-        const CellRange box = cells_of(e, 0.0);
-        if (box.count() <= 4) {
+        const CellRange box = cells_of(list.items[at]);
+        if (box.count() <= kBoxCells) {
             for (std::int64_t i = box.i0; i <= box.i1; ++i)
                 for (std::int64_t j = box.j0; j <= box.j1; ++j, ++n)
-                    list.cells.add(cell_key(i, j), item);
+                    cells.add(list.id, cell_key(i, j), item);
         } else {
             ++list.sampled;
             std::uint64_t last = 0;
-            for_samples(e, [&](const Vec2& p) {
+            for_samples(list.items[at].shape.shape(), [&](const Vec2& p) {
                 const std::uint64_t key = cell_key(index_of(p.x()), index_of(p.y()));
-                if (n == 0 || key != last) list.cells.add(key, item);
+                if (n == 0 || key != last) cells.add(list.id, key, item);
                 last = key;
                 ++n;
             });
@@ -396,8 +492,12 @@ struct SelfApproachCheck::Grid {
     void add(List& list, const Item& item) {
         list.items.push_back(item);
         index(list, list.items.size() - 1);
+        bound(list);
+    }
+    // After an item was added to `list`: the oldest let go where it holds too many.
+    void bound(List& list) {
         if (list.items.size() < 2 * most(list) && list.entries < 2 * entry_budget) return;
-        if (!truncated) truncated_at = item.block;
+        if (!truncated) truncated_at = list.items.back().block;
         keep_from(std::max(first_kept(contour), first_kept(path)));
     }
 
@@ -418,8 +518,8 @@ struct SelfApproachCheck::Grid {
     // The cells listed again, of every item kept (after some were let go, or for another cell
     // size).
     void reindex() {
+        cells.clear();
         for (List* l : {&contour, &path}) {
-            l->cells.clear();
             l->entries = 0;
             l->sampled = 0;
             for (std::size_t at = 0; at < l->items.size(); ++at) index(*l, at);
@@ -447,7 +547,7 @@ struct SelfApproachCheck::Grid {
         if (box.count() <= 16) {
             for (std::int64_t i = box.i0; i <= box.i1; ++i)
                 for (std::int64_t j = box.j0; j <= box.j1; ++j)
-                    list.cells.append(cell_key(i, j), found);
+                    cells.append(list.id, cell_key(i, j), found);
         } else {
             std::int64_t pi0 = 1, pi1 = 0, pj0 = 1, pj1 = 0;  // none
             for_samples(e, [&](const Vec2& p) {
@@ -456,10 +556,43 @@ struct SelfApproachCheck::Grid {
                 for (std::int64_t i = i0; i <= i1; ++i)
                     for (std::int64_t j = j0; j <= j1; ++j)
                         if (i < pi0 || i > pi1 || j < pj0 || j > pj1)
-                            list.cells.append(cell_key(i, j), found);
+                            cells.append(list.id, cell_key(i, j), found);
                 pi0 = i0, pi1 = i1, pj0 = j0, pj1 = j1;
             });
         }
+        std::sort(found.begin(), found.end());
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        return found;
+    }
+    // near(list, e, r), and `item` added to `to` (not bound(): the caller does that once it
+    // is done with the answer): where both are short, each cell is looked up once for both.
+    const std::vector<std::uint32_t>& near_adding(const List& list, const Shape& e, double r,
+                                                  List& to, const Item& item) {
+        to.items.push_back(item);
+        const std::size_t at = to.items.size() - 1;
+        const CellRange own = cells_of(to.items[at]);
+        const CellRange box = cells_of(e, r + (list.sampled > 0 ? 0.25 * cell : 0.0));
+        const bool within = box.i0 <= own.i0 && own.i1 <= box.i1 && box.j0 <= own.j0 &&
+                            own.j1 <= box.j1;
+        if (all || own.count() > kBoxCells || box.count() > 16 || !within) {
+            index(to, at);
+            return near(list, e, r);
+        }
+        found.clear();
+        const auto id = static_cast<std::uint32_t>(at);
+        std::uint32_t n = 0;
+        for (std::int64_t i = box.i0; i <= box.i1; ++i)
+            for (std::int64_t j = box.j0; j <= box.j1; ++j) {
+                const bool mine = i >= own.i0 && i <= own.i1 && j >= own.j0 && j <= own.j1;
+                if (mine) {
+                    cells.append_and_add(list.id, to.id, cell_key(i, j), id, found);
+                    ++n;
+                } else {
+                    cells.append(list.id, cell_key(i, j), found);
+                }
+            }
+        to.items[at].entries = n;
+        to.entries += n;
         std::sort(found.begin(), found.end());
         found.erase(std::unique(found.begin(), found.end()), found.end());
         return found;
@@ -860,27 +993,35 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     if (e.length <= kFullCircle) return;
     latest_ = g.contour.next();
     g.size_by(e.length);
-    g.add(g.contour, Grid::Item{e, s.block, index, stretch_, key, r_, false, !first});
-    forget_let_go();
-    if (first) return;
+    Grid::Item item(e, s.block, index, stretch_, key, r_);
+    item.protect = !first;
+    if (first) {
+        g.add(g.contour, item);
+        forget_let_go();
+        return;
+    }
     // Paths executed before it that come near it (the contour comes back later).
+    const std::vector<std::uint32_t>& near = g.near_adding(g.path, e, g.max_r, g.contour, item);
     Grid::Item& self = g.contour.items.back();
     Shape scratch;
-    for (const std::uint32_t pid : g.near(g.path, e, g.max_r)) {
+    for (const std::uint32_t pid : near) {
         Grid::Item& p = g.path.items[pid];
         const Relation rel = relation(index, stretch_, p.index, p.stretch, p.transition);
         const Shape* part = checked_part(e, rel, scratch);
         if (part == nullptr) continue;
         const double threshold = threshold_for(rel, p.r);
-        if (!near_enough(p.shape, *part, threshold)) continue;
+        if (!near_enough(p.shape.extent(), extent_of(*part), threshold)) continue;
         const bool placed = placed_of(p) && role_of(self) != detail::WallRole::kUndecided;
         if (placed && role_of(self) != detail::WallRole::kWall) continue;
-        if (p.approach && stands_near(p.shape, *part, threshold)) continue;
-        const bool cross = p.approach && p.stretch == stretch_ && at_entry(e, p.entry);
-        consider(PairView{p.shape, p.block, p.r, plane_, *part, s.block, threshold, index, p.index,
+        const Shape path = p.shape.shape();
+        if (p.approach && stands_near(path, *part, threshold)) continue;
+        const bool cross = p.approach && p.stretch == stretch_ && at_entry(e, approach_entry_);
+        consider(PairView{path, p.block, p.r, plane_, *part, s.block, threshold, index, p.index,
                           latest_, cross},
                  placed, false, out);
     }
+    g.bound(g.contour);
+    forget_let_go();
 }
 
 void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
@@ -893,10 +1034,13 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     if (done()) return;
     // The programmed element it belongs to: the first pending one of its block (executed
     // segments come in program order; transitions and the departure belong to the element
-    // before, the approach to the first).
+    // before, the approach to the first). A rapid or an uncompensated move has none (the
+    // programmed elements are compensated ones): only the first is looked at, not the
+    // elements the run has programmed ahead.
     const std::size_t waiting = pending_.size() - pending_head_;
+    const std::size_t looked = s.role == Role::kUncompensated ? 1 : 64;
     std::size_t at = waiting;
-    for (std::size_t i = 0; i < waiting && i < 64; ++i)
+    for (std::size_t i = 0; i < waiting && i < looked; ++i)
         if (same_block(pending_[pending_head_ + i].block, s.block)) {
             at = i;
             break;
@@ -932,50 +1076,58 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
         return;
     Grid& g = grid(p.plane);
+    if (s.role == Role::kApproach) approach_entry_ = p.end;
     const std::uint64_t key = key_of(s, p.plane, p.r);
     if (!g.path.keys.insert(key)) return;  // the same path checked before
     const Shape e = shape_of(s, p.plane);
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
     const bool approach = s.role == Role::kApproach;
-    Grid::Item self{e, s.block, p.index, p.stretch, key, p.r, transition, true, approach, p.end};
+    Grid::Item self(e, s.block, p.index, p.stretch, key, p.r);
+    self.transition = transition;
+    self.approach = approach;
     // Its element is placed once its stretch ended (or, an open contour's, at once).
     const bool self_placed = !(active_ && p.stretch == stretch_) || placed_of(self);
+    const Extent extent = extent_of(e);
     Shape scratch;
-    for (const std::uint32_t at : g.near(g.contour, e, p.r)) {
+    for (const std::uint32_t at : g.near_adding(g.contour, e, p.r, g.path, self)) {
         Grid::Item& c = g.contour.items[at];
         if (!c.protect) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
-        const Shape* part = checked_part(c.shape, rel, scratch);
-        if (part == nullptr) continue;
         const double threshold = threshold_for(rel, p.r);
-        if (!near_enough(e, *part, threshold)) continue;
+        // The box of the whole element first: a part of it lies within it.
+        if (!near_enough(extent, c.shape.extent(), threshold)) continue;
+        const Shape contour = c.shape.shape();
+        const Shape* part = checked_part(contour, rel, scratch);
+        if (part == nullptr) continue;
+        if (part != &contour && !near_enough(extent, extent_of(*part), threshold)) continue;
         const detail::WallRole role = role_of(c);
         const bool placed = self_placed && role != detail::WallRole::kUndecided;
         if (placed && role != detail::WallRole::kWall) continue;
         if (approach && stands_near(e, *part, threshold)) continue;
-        const bool cross = approach && c.stretch == p.stretch && at_entry(c.shape, p.end);
+        const bool cross = approach && c.stretch == p.stretch && at_entry(contour, p.end);
         consider(PairView{e, s.block, p.r, p.plane, *part, c.block, threshold, c.index, p.index,
                           g.contour.first + at, cross},
                  placed, running, out);
     }
     if (!running) flush(out);
-    g.add(g.path, self);
+    g.bound(g.path);
     forget_let_go();
 }
 
 void SelfApproachCheck::consider(const PairView& k, bool placed, bool running,
                                  std::vector<SelfApproachFinding>& out) {
-    if (!unreported(k.path_block, k.contour_block)) return;
     // Only a crossing counts (an approach and an element at its entry point): proved not to
     // cross, nothing to measure.
     if (k.need_cross && plane::apart(k.path, k.contour, kTolerance + kApartMargin)) return;
     // Proved apart: no point of the path is as near as the threshold, so the search would find
     // none (every distance it computes is that of a point of the path to a point of the
-    // element, at least the least distance).
+    // element, at least the least distance). Most pairs end here (an element's neighbours),
+    // before the findings are looked at.
     if (plane::apart_by_side(k.path, k.contour, k.threshold + kApartMargin) ||
         plane::apart(k.path, k.contour, k.threshold + kApartMargin))
         return;
+    if (!unreported(k.path_block, k.contour_block)) return;
     if (!placed) {
         if (waiting_.size() >= kMaxDeferred) {  // the oldest measured as things stand
             const Candidate oldest = waiting_.front();
@@ -1002,13 +1154,6 @@ void SelfApproachCheck::settle(const PairView& k, bool running,
         give(f, running, out);
 }
 
-// The cheap tests first: the depth rule (the contour wholly below the tool's tip on all of the
-// path: the tool does not reach down to it, it stands on the plane's positive side, its axis
-// the third) and the boxes.
-bool SelfApproachCheck::near_enough(const Shape& path, const Shape& contour, double threshold) {
-    if (contour.high < path.low - kTolerance) return false;
-    return box_distance(path, contour) < threshold + kApartMargin;
-}
 
 // False for a pair given out already (or, at kMaxFindings pairs given out, a new pair once one
 // more was found: the check then stops).

@@ -105,10 +105,10 @@ void WallModel::close_loop(std::size_t from) {
     // The same contour run again (at another depth, from another corner): one loop, its levels
     // joined.
     std::uint64_t number = 0;
-    const auto* same = loop_by_key_.get(key);
-    if (same != nullptr && same->value >= loops_first_ &&
-        !loops_[static_cast<std::size_t>(same->value - loops_first_)].dropped) {
-        number = same->value;
+    const std::uint64_t* same = loop_by_key_.get(key);
+    if (same != nullptr && *same >= loops_first_ &&
+        !loops_[static_cast<std::size_t>(*same - loops_first_)].dropped) {
+        number = *same;
         Loop& l = loops_[static_cast<std::size_t>(number - loops_first_)];
         l.low = std::min(l.low, loop.low);
         l.high = std::max(l.high, loop.high);
@@ -127,7 +127,7 @@ void WallModel::close_loop(std::size_t from) {
         number = loops_first_ + loops_.size();
         loop.box = plane::bounds(loop.elements);
         loops_.push_back(std::move(loop));
-        loop_by_key_.emplace(key).first.value = number;
+        loop_by_key_.emplace(key).first = number;
         index_loop(number);
     }
     place_run(from, stretch_loops_ > 0, true);
@@ -206,16 +206,25 @@ WallModel::Record* WallModel::record(std::uint64_t index) {
 }
 
 const WallModel::Record* WallModel::record(std::uint64_t index) const {
+    for (std::size_t at = hint_; at < hint_ + 2 && at < records_.size(); ++at)
+        if (at >= records_head_ && records_[at].index == index) {
+            hint_ = at;
+            return &records_[at];
+        }
     const auto begin = records_.begin() + static_cast<std::ptrdiff_t>(records_head_);
     const auto it = std::lower_bound(begin, records_.end(), index,
                                      [](const Record& r, std::uint64_t i) { return r.index < i; });
-    return it != records_.end() && it->index == index ? &*it : nullptr;
+    if (it == records_.end() || it->index != index) return nullptr;
+    hint_ = static_cast<std::size_t>(it - records_.begin());
+    return &*it;
 }
 
 bool WallModel::placed(std::uint64_t index) const {
-    // The open stretch's elements wait for its end, but for an open contour's placed at once.
-    if (open_ && started_ && index >= stretch_first_ && !opened_early_) return false;
-    const Record* r = record(index);
+    if (waits(index)) return false;
+    return placed(index, record(index));
+}
+
+bool WallModel::placed(std::uint64_t index, const Record* r) const {
     if (r == nullptr) return true;
     if (r->place == Place::kUndecided) return false;
     return !(open_ && index >= stretch_first_) || r->place == Place::kOpen;
@@ -266,7 +275,7 @@ void WallModel::index_loop(std::uint64_t number) {
     }
     const auto item = static_cast<std::uint32_t>(number - loops_first_);
     for (std::int64_t i = i0; i <= i1; ++i)
-        for (std::int64_t j = j0; j <= j1; ++j) loop_cells_.add(cell_key(i, j), item);
+        for (std::int64_t j = j0; j <= j1; ++j) loop_cells_.add(0, cell_key(i, j), item);
 }
 
 void WallModel::reindex_loops() {
@@ -276,7 +285,7 @@ void WallModel::reindex_loops() {
     for (std::size_t k = 0; k < loops_.size(); ++k) {
         if (loops_[k].dropped) continue;
         index_loop(loops_first_ + k);
-        loop_by_key_.emplace(loops_[k].key).first.value = loops_first_ + k;
+        loop_by_key_.emplace(loops_[k].key).first = loops_first_ + k;
     }
 }
 
@@ -287,7 +296,7 @@ void WallModel::candidates(const Loop& loop, std::vector<std::uint64_t>& out) {
     const std::int64_t j0 = loop_cell(loop.box.lo.y()), j1 = loop_cell(loop.box.hi.y());
     const auto add_cell = [&](std::int64_t i, std::int64_t j) {
         cell_found_.clear();
-        loop_cells_.append(cell_key(i, j), cell_found_);
+        loop_cells_.append(0, cell_key(i, j), cell_found_);
         for (const std::uint32_t item : cell_found_) out.push_back(loops_first_ + item);
     };
     if (loop.sense > 0) {
@@ -305,8 +314,9 @@ void WallModel::candidates(const Loop& loop, std::vector<std::uint64_t>& out) {
 
 WallRole WallModel::placement(std::uint64_t index, std::uint64_t& loop) const {
     loop = kNoLoop;
-    if (!placed(index)) return WallRole::kUndecided;
+    if (waits(index)) return WallRole::kUndecided;
     const Record* r = record(index);
+    if (!placed(index, r)) return WallRole::kUndecided;
     if (r == nullptr) return WallRole::kWall;
     if (!r->walls) return WallRole::kOff;
     if (r->place == Place::kLead) return WallRole::kLead;
@@ -323,8 +333,9 @@ bool WallModel::cleared(std::uint64_t number) {
 }
 
 WallRole WallModel::role(std::uint64_t index) {
-    if (!placed(index)) return WallRole::kUndecided;
+    if (waits(index)) return WallRole::kUndecided;
     const Record* r = record(index);
+    if (!placed(index, r)) return WallRole::kUndecided;
     if (r == nullptr) return WallRole::kWall;
     if (!r->walls) return WallRole::kOff;
     switch (r->place) {

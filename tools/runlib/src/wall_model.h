@@ -140,12 +140,21 @@ class WallModel {
     void candidates(const Loop& loop, std::vector<std::uint64_t>& out);
     // Relists the loops kept (after some were let go).
     void reindex_loops();
-    CellIndex loop_cells_;  // loop numbers less loops_first_
+    CellIndex<1> loop_cells_;  // loop numbers less loops_first_
     std::vector<std::uint64_t> wide_loops_;
     std::vector<std::uint32_t> cell_found_;
     std::vector<std::uint64_t> found_;  // candidates()' answer
     Record* record(std::uint64_t index);
     const Record* record(std::uint64_t index) const;
+    // Where the last lookup found its record: the next lookups are mostly of it or the one
+    // after (elements placed in order, grid items asked in order), found without a search.
+    mutable std::size_t hint_ = 0;
+    // The open stretch's elements wait for its end, but for an open contour's placed at once.
+    bool waits(std::uint64_t index) const {
+        return open_ && started_ && index >= stretch_first_ && !opened_early_;
+    }
+    // placed() with the element's record looked up (null: not held).
+    bool placed(std::uint64_t index, const Record* r) const;
     void place_pending(std::size_t count, Place place, std::uint64_t loop);
     void place_run(std::size_t count, bool after_loop, bool before_loop);
     // The position in records_ of the first record numbered `index` or later.

@@ -42,6 +42,7 @@ namespace apci::run {
 
 namespace detail {
 struct Shape;
+struct StoredShape;
 class WallModel;
 enum class WallRole : std::uint8_t;
 }
@@ -72,8 +73,8 @@ class SelfApproachCheck {
     // take no more than kEntryBudget entries of the grid (an element is listed in each cell of
     // its box, at most four, or of a sample of it every half cell: a tool radius, at least
     // 0.25 mm, of length).
-    static constexpr std::size_t kWindow = std::size_t{1} << 14;
-    static constexpr std::size_t kEntryBudget = std::size_t{1} << 17;
+    static constexpr std::size_t kWindow = std::size_t{1} << 16;
+    static constexpr std::size_t kEntryBudget = std::size_t{1} << 19;
     // Each pair of blocks is reported once; at most this many pairs.
     static constexpr std::size_t kMaxFindings = 1000;
     // How much closer than the tool radius a path may come: the compensation's path tolerance.
@@ -146,8 +147,6 @@ class SelfApproachCheck {
     // Measured, and a finding routed as the stretch rules say (held_, an undecided stretch's
     // held, or given).
     void settle(const PairView& k, bool running, std::vector<SelfApproachFinding>& out);
-    // False where the pair cannot come closer than the threshold (the depth rule, the boxes).
-    static bool near_enough(const Shape& path, const Shape& contour, double threshold);
     // False for a pair given out already.
     bool unreported(const BlockRef& path_block, const BlockRef& contour_block);
     // True with `f` filled when the path comes closer than the threshold to the element (the
@@ -206,6 +205,9 @@ class SelfApproachCheck {
     std::vector<Found> deferred_;  // given, waiting for the wall model
     std::vector<Candidate> waiting_;  // unmeasured, waiting for the wall model
     std::uint64_t reviewed_ = 0;   // the wall model's generation at the last review
+    // The entry point of the latest approach executed (its element's programmed end, in the
+    // plane): the approach of the stretch under way, where one was executed.
+    Eigen::Vector2d approach_entry_ = Eigen::Vector2d::Zero();
     std::uint64_t latest_ = kNone;  // grid id (Grid::List numbering) of the stretch's latest
                                     // element of new geometry, in plane_
     // Stretches that ended, oldest first, whose last element (grid id, in `plane`) may be their
