@@ -501,7 +501,7 @@ OracleReport StockOracle::run(std::span<const run::PathSegment> path,
     for (std::size_t i = 0; i < path.size(); ++i) {
         const run::PathSegment& s = path[i];
         const double low = std::min(s.start[axes.third], s.end[axes.third]);
-        if (low > impl_->top + kSamePoint) continue;  // wholly above the part
+        if (low >= impl_->top - kSamePoint) continue;  // at or above the part's top
         if (!(radius[i] >= 0.0) || !std::isfinite(radius[i]))
             throw std::invalid_argument("StockOracle::run: a tool radius that is not a length");
         auto it = std::find_if(blocks.begin(), blocks.end(), [&](const PathBlock& b) {

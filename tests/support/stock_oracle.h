@@ -91,7 +91,7 @@ struct OracleBuried {
     double radius = 0.0;
 };
 
-// One executed block that can cut (not wholly above the part's top), with one tool radius.
+// One executed block that can cut (it reaches below the part's top), with one tool radius.
 struct OracleBlock {
     run::BlockRef path_block;
     double radius = 0.0;
@@ -139,7 +139,9 @@ class StockOracle {
     StockOracle& operator=(StockOracle&&) noexcept;
 
     // The gouges of an executed path. `radius[i]` is the tool radius of `path[i]` (sizes must
-    // agree, else std::invalid_argument). Segments wholly above the part's top do not cut
+    // agree, else std::invalid_argument). Segments that do not reach below the part's top (by
+    // more than 1e-9 mm) cut nothing: rapids at a safe height, the rise from the top where a
+    // program starts
     // (rapids at a safe height). Segments are grouped by their block (N number, else source
     // line): a block's area is swept by all of its segments.
     OracleReport run(std::span<const run::PathSegment> path, std::span<const double> radius,

@@ -217,7 +217,7 @@ TEST(StockOracle, DepthBeyondThePathToleranceIsAGougeAndWithinItIsNot) {
     }
 }
 
-TEST(StockOracle, PlungeIntoThePartIsBuriedAndMovesAboveTheTopCutNothing) {
+TEST(StockOracle, PlungeIntoThePartIsBuriedAndMovesAtOrAboveTheTopCutNothing) {
     DesignPart part = part_of({square(0, 0, 10, 1)});
     part.top = 0.0;
     PathSegment plunge = seg_line({5, 5}, {5, 5}, 40, 0.0);
@@ -225,15 +225,17 @@ TEST(StockOracle, PlungeIntoThePartIsBuriedAndMovesAboveTheTopCutNothing) {
     plunge.end.z() = -1.0;
     PathSegment above = seg_line({-5, 5}, {15, 5}, 41, 5.0);
     above.kind = SegmentKind::kRapid;
-    PathSegment just_above = seg_line({-5, 6}, {15, 6}, 42, 1e-6);
-    const auto rep = run_oracle(part, {plunge, above, just_above}, 2.0);
+    PathSegment at_top = seg_line({-5, 6}, {15, 6}, 42, 0.0);  // touches the top, takes nothing
+    PathSegment rise = seg_line({5, 5}, {5, 5}, 43, 0.0);       // from the top up
+    rise.end.z() = 5.0;
+    const auto rep = run_oracle(part, {plunge, above, at_top, rise}, 2.0);
     EXPECT_TRUE(rep.gouges.empty()) << describe(rep);
     ASSERT_EQ(rep.buried.size(), 1U) << describe(rep);
     EXPECT_TRUE(same_block(rep.buried[0].path_block, line_ref(40)));
     EXPECT_NEAR(rep.buried[0].area, kPi * 4, 1e-3);
-    ASSERT_EQ(rep.blocks.size(), 1U);  // the two above the top are not cutting blocks
-    // At the top itself it cuts.
-    const auto rep2 = run_oracle(part, {seg_line({-5, 6}, {15, 6}, 42, 0.0)}, 2.0);
+    ASSERT_EQ(rep.blocks.size(), 1U);  // those at or above the top are not cutting blocks
+    // Just below the top it cuts.
+    const auto rep2 = run_oracle(part, {seg_line({-5, 6}, {15, 6}, 42, -2e-9)}, 2.0);
     EXPECT_EQ(rep2.gouges.size(), 2U) << describe(rep2);  // crosses the left and right edges
 }
 
