@@ -81,12 +81,14 @@ V end_tangent(const Elem& e) {
 }
 Loop reversed(const Loop& l) {
     Loop out;
-    for (auto it = l.rbegin(); it != l.rend(); ++it) out.push_back({it->arc, it->b, it->a, it->c, !it->ccw});
+    for (auto it = l.rbegin(); it != l.rend(); ++it)
+        out.push_back({it->arc, it->b, it->a, it->c, !it->ccw});
     return out;
 }
 // Turned about the origin by `angle`, then moved by `by`.
 Elem placed(const Elem& e, double angle, const V& by) {
-    return {e.arc, rotated(e.a, angle) + by, rotated(e.b, angle) + by, rotated(e.c, angle) + by, e.ccw};
+    return {e.arc, rotated(e.a, angle) + by, rotated(e.b, angle) + by, rotated(e.c, angle) + by,
+            e.ccw};
 }
 Loop placed(const Loop& l, double angle, const V& by) {
     Loop out;
@@ -195,7 +197,10 @@ std::vector<double> vertex_turns(const std::vector<V>& v) {
 class NcWriter {
   public:
     NcWriter(int decimals, bool numbered, bool modal)
-        : decimals_(decimals), numbered_(numbered), modal_(modal), scale_(std::pow(10.0, decimals)) {}
+        : decimals_(decimals),
+          numbered_(numbered),
+          modal_(modal),
+          scale_(std::pow(10.0, decimals)) {}
 
     double round(double v) const { return std::round(v * scale_) / scale_; }
     V round(const V& p) const { return {round(p.x()), round(p.y())}; }
@@ -301,7 +306,6 @@ class NcWriter {
     double z_ = 0.0;
 };
 
-
 // ---- Plans: what a program will do, checked before it is written.
 
 enum class Side { kLeft, kRight };  // G41, G42
@@ -318,9 +322,9 @@ const char* lead_name(LeadKind k) {
 
 struct Lead {
     LeadKind kind = LeadKind::kLineArc;
-    double rl = 0;         // arc radius
+    double rl = 0;           // arc radius
     double sweep = kPi / 2;  // arc angle
-    double len = 0;        // line length
+    double len = 0;          // line length
     double beta = kPi / 2;   // line only: its angle to the contour
 };
 
@@ -331,16 +335,18 @@ struct Contour {
     Loop loop;
     bool tool_inside = true;  // a pocket's wall (the tool inside the loop) or a boss's
     Side side = Side::kLeft;
-    bool wall = true;         // its elements are walls of the design part
-    bool flipped = false;     // written in the other sense than it was built
+    bool wall = true;      // its elements are walls of the design part
+    bool flipped = false;  // written in the other sense than it was built
     // The element of the built (counter-clockwise) loop's element i.
     std::size_t index_of(std::size_t i) const { return flipped ? loop.size() - 1 - i : i; }
 };
 
 // Orients a counter-clockwise loop for the tool's side.
-Contour make_contour(std::string what, const Loop& ccw_loop, bool tool_inside, Side side, bool wall = true) {
+Contour make_contour(std::string what, const Loop& ccw_loop, bool tool_inside, Side side,
+                     bool wall = true) {
     const bool want_ccw = tool_inside == (side == Side::kLeft);
-    return {std::move(what), want_ccw ? ccw_loop : reversed(ccw_loop), tool_inside, side, wall, !want_ccw};
+    return {std::move(what), want_ccw ? ccw_loop : reversed(ccw_loop), tool_inside, side, wall,
+            !want_ccw};
 }
 
 // A planned piece of tool-centre path and the clearance it needs: `need` from every wall but
@@ -402,18 +408,18 @@ struct ElemRef {
 };
 
 struct Plan {
-    std::vector<PlanWall> walls;   // every exact wall (and what else the leads must clear)
+    std::vector<PlanWall> walls;  // every exact wall (and what else the leads must clear)
     std::vector<Check> checks;
     std::vector<Contour> contours;  // by id
     std::vector<std::function<void(Emit&)>> steps;
     std::vector<std::pair<ElemRef, ElemRef>> designed;  // (path element, wall element)
     std::vector<double> designed_depth;
     std::vector<ElemRef> refusals;  // elements whose line a refusal may name
-    bool plate = false;  // pockets: the design part is a plate around them
+    bool plate = false;             // pockets: the design part is a plate around them
     bool feasible = true;  // false: a planned element cannot hold what it must (drawn again)
 
     std::vector<std::size_t> first_wall;  // by contour id: its first element in `walls`
-    std::vector<Tool> tools;             // every tool used, once
+    std::vector<Tool> tools;              // every tool used, once
 
     int add_contour(const Contour& c) {
         contours.push_back(c);
@@ -462,10 +468,10 @@ std::optional<std::string> failed_check(const Plan& plan) {
 // The lead's geometry about the contour's start.
 struct LeadGeom {
     Lead in, out;
-    V c0, t, n;          // start, its direction, the normal to the tool's side
-    double sense = 1;    // +1: lead arcs counter-clockwise (G41)
-    V p0, s, cl;         // lead-in: start, arc start, arc centre
-    V e, p3, cl_out;     // lead-out: arc end, line end, arc centre
+    V c0, t, n;        // start, its direction, the normal to the tool's side
+    double sense = 1;  // +1: lead arcs counter-clockwise (G41)
+    V p0, s, cl;       // lead-in: start, arc start, arc centre
+    V e, p3, cl_out;   // lead-out: arc end, line end, arc centre
 };
 
 V side_normal(const V& dir, Side side) {
@@ -475,8 +481,8 @@ V side_normal(const V& dir, Side side) {
 // Plans the leads of a contour whose first element starts at a smooth point, and the checks
 // that keep their tool-centre path clear of every wall (the walls at the start touched only
 // where the path joins the contour).
-LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const Lead& out,
-                    double r, std::size_t first_wall, std::size_t wall_count) {
+LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const Lead& out, double r,
+                    std::size_t first_wall, std::size_t wall_count) {
     LeadGeom g;
     g.in = in;
     g.out = out;
@@ -489,7 +495,8 @@ LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const 
     const bool ccw = g.sense > 0;
     const std::vector<std::size_t> at_start{first_wall, first_wall + wall_count - 1};
     auto clear = [&](std::vector<V> path, double need, double need_at_start, std::string what) {
-        plan.checks.push_back({std::move(path), need, at_start, need_at_start, std::move(what), id});
+        plan.checks.push_back(
+            {std::move(path), need, at_start, need_at_start, std::move(what), id});
     };
     // The arc of radius rl tangent to the contour at C0 on the tool's side: its centre, and
     // the disc of radius rl about it, which holds every tool position along the arc.
@@ -507,7 +514,8 @@ LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const 
             if (in.kind == LeadKind::kLineArc) {
                 g.p0 = g.s - in.len * ds;
                 // The approach: from the tool's position to the lead line's compensated end.
-                clear({g.p0, V(g.s + r * side_normal(ds, c.side))}, r + kMargin, r + kMargin, "lead-in line");
+                clear({g.p0, V(g.s + r * side_normal(ds, c.side))}, r + kMargin, r + kMargin,
+                      "lead-in line");
             } else {
                 g.p0 = g.s;
                 // LinuxCNC's entry arc: about the point on the line from the arc's
@@ -516,7 +524,8 @@ LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const 
                 const V u = (g.cl - end).normalized();
                 const V d = g.s - end;
                 const double q = d.squaredNorm() / (2 * d.dot(u));
-                clear(arc_points(g.s, end, V(end + q * u), ccw), r + kMargin, r - kTouch, "entry arc");
+                clear(arc_points(g.s, end, V(end + q * u), ccw), r + kMargin, r - kTouch,
+                      "entry arc");
                 clear({g.s}, r + kMargin, r + kMargin, "arc lead start");
             }
             break;
@@ -536,7 +545,8 @@ LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const 
             clear({g.p0, trim}, r + kMargin, r - kTouch, "lead-in line");
             // The first element keeps its trim and its own end's.
             const Elem& first = c.loop.front();
-            if (first.arc || u < 0 || (first.b - first.a).norm() < u + r + 0.2) plan.feasible = false;
+            if (first.arc || u < 0 || (first.b - first.a).norm() < u + r + 0.2)
+                plan.feasible = false;
             break;
         }
     }
@@ -627,7 +637,8 @@ int plan_feature(Plan& plan, const Contour& c, const Lead& in, const Lead& out, 
                  std::vector<double> levels) {
     const int id = plan.add_contour(c);
     plan.use(tool);
-    const LeadGeom g = plan_leads(plan, id, c, in, out, tool.r, plan.first_wall.back(), c.loop.size());
+    const LeadGeom g =
+        plan_leads(plan, id, c, in, out, tool.r, plan.first_wall.back(), c.loop.size());
     std::string what = c.what + ", " + side_word(c.side) + ", leads " + lead_name(in.kind) + "/" +
                        lead_name(out.kind);
     plan.steps.push_back([=](Emit& e) {
@@ -639,13 +650,12 @@ int plan_feature(Plan& plan, const Contour& c, const Lead& in, const Lead& out, 
     return id;
 }
 
-
 // ---- Shapes: counter-clockwise loops about the origin, starting at a smooth point.
 
 struct Shape {
     std::string what;
     Loop loop;
-    bool straight_start = true;  // loop[0] is a line (straight leads can trim into it)
+    bool straight_start = true;     // loop[0] is a line (straight leads can trim into it)
     std::vector<std::size_t> edge;  // filleted polygons: the element of each edge
 };
 
@@ -675,7 +685,8 @@ void corners_for(Rng& rng, const std::vector<V>& v, double r, bool pocket, doubl
     }
 }
 
-std::optional<Shape> from_polygon(std::string what, const std::vector<V>& v, const std::vector<double>& rho,
+std::optional<Shape> from_polygon(std::string what, const std::vector<V>& v,
+                                  const std::vector<double>& rho,
                                   const std::vector<double>& reserve) {
     auto p = filleted_polygon(v, rho, reserve, 0.2);
     if (!p) return std::nullopt;
@@ -704,16 +715,23 @@ std::optional<Shape> slot(Rng& rng, double r, bool pocket) {
     const double rad = pocket ? rng.uniform(r + 0.5, r + 12) : rng.uniform(0.5, 15);
     Shape s{"slot " + mm(2 * (half + rad)) + " x " + mm(2 * rad), {}, true, {}};
     s.loop = {seg({0, -rad}, {half, -rad}), arc_elem({half, -rad}, {half, rad}, {half, 0}, true),
-              seg({half, rad}, {-half, rad}), arc_elem({-half, rad}, {-half, -rad}, {-half, 0}, true),
+              seg({half, rad}, {-half, rad}),
+              arc_elem({-half, rad}, {-half, -rad}, {-half, 0}, true),
               seg({-half, -rad}, {0, -rad})};
     return s;
 }
 
 std::optional<Shape> circle(Rng& rng, double r, bool pocket, double radius = 0) {
-    const double R = radius > 0 ? radius : pocket ? rng.uniform(r + 1.0, r + 30) : rng.uniform(0.5, 30);
+    const double R = radius > 0 ? radius
+                     : pocket   ? rng.uniform(r + 1.0, r + 30)
+                                : rng.uniform(0.5, 30);
     const int pieces = rng.chance(0.4) ? 1 : rng.chance(0.5) ? 2 : 4;
     const double a0 = rng.uniform(0, 2 * kPi);
-    Shape s{"circle " + mm(2 * R) + " in " + std::to_string(pieces) + (pieces == 1 ? " arc" : " arcs"), {}, false, {}};
+    Shape s{
+        "circle " + mm(2 * R) + " in " + std::to_string(pieces) + (pieces == 1 ? " arc" : " arcs"),
+        {},
+        false,
+        {}};
     for (int k = 0; k < pieces; ++k) {
         const V p = R * unit_at(a0 + 2 * kPi * k / pieces);
         const V q = R * unit_at(a0 + 2 * kPi * (k + 1) / pieces);
@@ -733,8 +751,9 @@ std::optional<Shape> polygon(Rng& rng, double r, bool pocket) {
     }
     std::vector<double> rho, reserve;
     corners_for(rng, v, r, pocket, std::min(ax, ay) / 2, rho, reserve);
-    return from_polygon(std::to_string(n) + "-gon " + mm(2 * ax) + " x " + mm(2 * ay) + " with fillets", v, rho,
-                        reserve);
+    return from_polygon(
+        std::to_string(n) + "-gon " + mm(2 * ax) + " x " + mm(2 * ay) + " with fillets", v, rho,
+        reserve);
 }
 
 // A pocket of two rooms joined by a passage of width w (along x): room 1 [0, a] x [-h1, h1],
@@ -746,14 +765,14 @@ std::optional<Shape> rooms(Rng& rng, double r, double w, bool sharp_junctions) {
     const double c = b + rng.uniform(2 * r + 0.5, 2 * r + 25);
     const double h1 = w / 2 + rng.uniform(r + 2, r + 20);
     const double h2 = w / 2 + rng.uniform(r + 0.5, r + 20);
-    const std::vector<V> v{{0, -h1},     {a, -h1}, {a, -w / 2}, {b, -w / 2}, {b, -h2}, {c, -h2},
-                           {c, h2},      {b, h2},  {b, w / 2},  {a, w / 2},  {a, h1},  {0, h1}};
+    const std::vector<V> v{{0, -h1}, {a, -h1}, {a, -w / 2}, {b, -w / 2}, {b, -h2}, {c, -h2},
+                           {c, h2},  {b, h2},  {b, w / 2},  {a, w / 2},  {a, h1},  {0, h1}};
     std::vector<double> rho, reserve;
     corners_for(rng, v, r, true, std::min(h1, h2) / 2, rho, reserve);
     if (sharp_junctions)
         for (const int i : {2, 3, 8, 9}) rho[static_cast<std::size_t>(i)] = 0;
-    return from_polygon("two rooms joined by a passage " + mm(w) + " wide, " + mm(b - a) + " long", v, rho,
-                        reserve);
+    return from_polygon("two rooms joined by a passage " + mm(w) + " wide, " + mm(b - a) + " long",
+                        v, rho, reserve);
 }
 
 // A boss [-a, a] x [-bh, bh] with a keyhole from its top: a channel of width w down to a round
@@ -771,7 +790,7 @@ std::optional<Keyhole> keyhole(Rng& rng, double r, double w) {
     const double a = rc + rng.uniform(1.5, 15);
     const double below = rng.uniform(1.0, 10);  // material under the chamber
     const double bh = (depth + std::sqrt(rc * rc - w * w / 4) + rc + below) / 2;
-    const double yj = bh - depth;                          // where the channel meets the chamber
+    const double yj = bh - depth;                           // where the channel meets the chamber
     const double yc = yj - std::sqrt(rc * rc - w * w / 4);  // the chamber's centre
     std::array<double, 4> rho{};  // bottom left, bottom right, top right, top left
     for (double& x : rho) x = outside_fillet(rng, std::min({bh, a - w / 2 - 0.5, a}) * 0.8);
@@ -796,8 +815,8 @@ std::optional<Keyhole> keyhole(Rng& rng, double r, double w) {
     l.push_back(seg({-a, bh - rho[3]}, {-a, -bh + rho[0]}));
     corner({-a, -bh + rho[0]}, {-a + rho[0], -bh}, {-a + rho[0], -bh + rho[0]});
     l.push_back(seg({-a + rho[0], -bh}, {0, -bh}));
-    k.shape.what = "boss " + mm(2 * a) + " x " + mm(2 * bh) + " with a keyhole: channel " + mm(w) + " wide, " +
-                   mm(depth) + " deep, chamber " + mm(2 * rc);
+    k.shape.what = "boss " + mm(2 * a) + " x " + mm(2 * bh) + " with a keyhole: channel " + mm(w) +
+                   " wide, " + mm(depth) + " deep, chamber " + mm(2 * rc);
     return k;
 }
 
@@ -809,7 +828,7 @@ std::optional<Shape> tongue(Rng& rng, double r, double g, bool sharp_tip) {
     const double a = std::max(r + 2, (g + r + 1) / 2) + rng.uniform(0.0, 30);
     const double tip = a - g;
     if (tip + a < r + 0.5) return std::nullopt;
-    const std::vector<V> v{{-a, -bh},   {a, -bh},    {a, bh},       {-a, bh},
+    const std::vector<V> v{{-a, -bh},   {a, -bh},     {a, bh},       {-a, bh},
                            {-a, h / 2}, {tip, h / 2}, {tip, -h / 2}, {-a, -h / 2}};
     std::vector<double> rho, reserve;
     corners_for(rng, v, r, true, std::min(h / 2, bh - h / 2) * 0.8, rho, reserve);
@@ -843,8 +862,9 @@ std::optional<UShape> u_shape(Rng& rng, double r, double w, int first_vertex) {
     std::rotate(rho.begin(), rho.begin() + first_vertex, rho.end());
     std::rotate(reserve.begin(), reserve.begin() + first_vertex, reserve.end());
     u.v = v;
-    auto s = from_polygon("boss " + mm(2 * u.a) + " x " + mm(2 * u.bh) + " with a slot " + mm(w) + " wide", v,
-                          rho, reserve);
+    auto s = from_polygon(
+        "boss " + mm(2 * u.a) + " x " + mm(2 * u.bh) + " with a slot " + mm(w) + " wide", v, rho,
+        reserve);
     if (!s) return std::nullopt;
     u.shape = std::move(*s);
     return u;
@@ -916,26 +936,28 @@ bool single_contour(Rng& rng, Plan& plan, int shape_kind, bool pocket, std::opti
     return true;
 }
 
-
 // The least distance between two loops (exact geometry).
 double loop_distance(const Loop& a, const Loop& b) {
     double d = INFINITY;
     for (const Elem& x : a)
-        for (const Elem& y : b) d = std::min(d, least_distance(points_of(x), points_of(y)).distance);
+        for (const Elem& y : b)
+            d = std::min(d, least_distance(points_of(x), points_of(y)).distance);
     return d;
 }
 
 // A designed gouge between elements of planned contours (index: of the built loop).
-void design_gouge(Plan& plan, int path_contour, std::size_t path_elem, int wall_contour, std::size_t wall_elem,
-                  double depth) {
+void design_gouge(Plan& plan, int path_contour, std::size_t path_elem, int wall_contour,
+                  std::size_t wall_elem, double depth) {
     const Contour& pc = plan.contours[static_cast<std::size_t>(path_contour)];
     const Contour& wc = plan.contours[static_cast<std::size_t>(wall_contour)];
-    plan.designed.push_back({{path_contour, pc.index_of(path_elem)}, {wall_contour, wc.index_of(wall_elem)}});
+    plan.designed.push_back(
+        {{path_contour, pc.index_of(path_elem)}, {wall_contour, wc.index_of(wall_elem)}});
     plan.designed_depth.push_back(depth);
 }
 // Its path is the contour's lead-in.
 constexpr std::size_t kLeadIn = static_cast<std::size_t>(-1);
-void design_lead_gouge(Plan& plan, int path_contour, int wall_contour, std::size_t wall_elem, double depth) {
+void design_lead_gouge(Plan& plan, int path_contour, int wall_contour, std::size_t wall_elem,
+                       double depth) {
     const Contour& wc = plan.contours[static_cast<std::size_t>(wall_contour)];
     plan.designed.push_back({{path_contour, kLeadIn}, {wall_contour, wc.index_of(wall_elem)}});
     plan.designed_depth.push_back(depth);
@@ -948,7 +970,6 @@ double draw_gap(Rng& rng, double r, bool gouge) {
     if (!gouge) return 2 * r + rng.uniform(0.05, 0.05 + 2 * r);
     return rng.uniform(std::max(1.05 * r, r + 0.02), 2 * r - kGougeDepthMin);
 }
-
 
 // The wall index (in plan.walls) of a built loop's element of contour `id`.
 std::size_t wall_index(const Plan& plan, int id, std::size_t built_index) {
@@ -987,10 +1008,12 @@ bool island(Rng& rng, Plan& plan, bool gouge) {
         const double b = bi + 2 * r + 1 + std::max(rho_p[1], rho_p[2]) + rng.uniform(0, 15);
         // Both start on their left side (edge 0), the right side is edge 2.
         auto p = filleted_polygon(rectangle(-a, -b, a, b, 3), rho_p, reserve_p, 0.2);
-        auto i = filleted_polygon(rectangle(a - g - 2 * ai, -bi, a - g, bi, 3), rho_i, reserve, 0.2);
+        auto i =
+            filleted_polygon(rectangle(a - g - 2 * ai, -bi, a - g, bi, 3), rho_i, reserve, 0.2);
         if (!p || !i) return false;
         pocket = {"pocket " + mm(2 * a) + " x " + mm(2 * b), p->loop, true, p->edge};
-        isle = {"island " + mm(2 * ai) + " x " + mm(2 * bi) + " " + mm(g) + " from the wall", i->loop, true, i->edge};
+        isle = {"island " + mm(2 * ai) + " x " + mm(2 * bi) + " " + mm(g) + " from the wall",
+                i->loop, true, i->edge};
         pocket_right = p->edge[2];
         isle_right = i->edge[2];
     } else {
@@ -1002,12 +1025,14 @@ bool island(Rng& rng, Plan& plan, bool gouge) {
         pocket = {"pocket " + mm(2 * a) + " x " + mm(2 * b), p->loop, true, p->edge};
         auto inner = draw_shape(rng, r, false, rng.integer(0, 2));
         if (!inner) return false;
-        isle = placed(*inner, draw_turn(rng), V(rng.uniform(-a, a) * 0.5, rng.uniform(-b, b) * 0.5));
+        isle =
+            placed(*inner, draw_turn(rng), V(rng.uniform(-a, a) * 0.5, rng.uniform(-b, b) * 0.5));
         isle.what = "island: " + isle.what;
         // Inside the pocket's box less the tool's diameter, and clear of its (rounded) walls.
         for (const Elem& e : isle.loop)
             for (const Pt& q : points_of(e))
-                if (std::abs(q.x) > a - 2 * r - 0.1 || std::abs(q.y) > b - 2 * r - 0.1) return false;
+                if (std::abs(q.x) > a - 2 * r - 0.1 || std::abs(q.y) > b - 2 * r - 0.1)
+                    return false;
         if (loop_distance(pocket.loop, isle.loop) < 2 * r + 0.1) return false;
     }
     pocket = placed(pocket, turn, at);
@@ -1015,12 +1040,14 @@ bool island(Rng& rng, Plan& plan, bool gouge) {
     plan.plate = true;
     const Tool tool{1, r};
     const double level = draw_level(rng);
-    const int pid = plan_feature(plan, make_contour(pocket.what, pocket.loop, true, draw_side(rng)),
-                                 draw_lead(rng, draw_lead_kind(rng, pocket.straight_start), r),
-                                 draw_lead(rng, draw_lead_kind(rng, pocket.straight_start), r), tool, {level});
-    const int iid = plan_feature(plan, make_contour(isle.what, isle.loop, false, draw_side(rng)),
-                                 draw_lead(rng, draw_lead_kind(rng, isle.straight_start), r),
-                                 draw_lead(rng, draw_lead_kind(rng, isle.straight_start), r), tool, {level});
+    const int pid =
+        plan_feature(plan, make_contour(pocket.what, pocket.loop, true, draw_side(rng)),
+                     draw_lead(rng, draw_lead_kind(rng, pocket.straight_start), r),
+                     draw_lead(rng, draw_lead_kind(rng, pocket.straight_start), r), tool, {level});
+    const int iid =
+        plan_feature(plan, make_contour(isle.what, isle.loop, false, draw_side(rng)),
+                     draw_lead(rng, draw_lead_kind(rng, isle.straight_start), r),
+                     draw_lead(rng, draw_lead_kind(rng, isle.straight_start), r), tool, {level});
     if (gouge) {
         design_gouge(plan, pid, pocket_right, iid, isle_right, 2 * r - g);
         design_gouge(plan, iid, isle_right, pid, pocket_right, 2 * r - g);
@@ -1040,25 +1067,28 @@ bool bosses_close(Rng& rng, Plan& plan) {
     std::vector<double> rho_b(4);
     for (double& x : rho_b) x = outside_fillet(rng, 3);
     const double b2 = b1 + 2 * r + 0.5 + std::max(rho_b[2], rho_b[3]) + rng.uniform(0, 10);
-    const double shift = rng.uniform(-1, 1) * (b2 - b1 - 2 * r - 0.5 - std::max(rho_b[2], rho_b[3]));
+    const double shift =
+        rng.uniform(-1, 1) * (b2 - b1 - 2 * r - 0.5 - std::max(rho_b[2], rho_b[3]));
     auto pa = filleted_polygon(rectangle(-a1, -b1, a1, b1, 3), rho_a, none, 0.2);  // edge 2: right
-    auto pb = filleted_polygon(rectangle(a1 + g, shift - b2, a1 + g + 2 * a2, shift + b2, 1), rho_b, none,
-                               0.2);  // edge 2: left
+    auto pb =
+        filleted_polygon(rectangle(a1 + g, shift - b2, a1 + g + 2 * a2, shift + b2, 1), rho_b, none,
+                         0.2);  // edge 2: left
     if (!pa || !pb) return false;
     const double turn = draw_turn(rng);
     const V at = draw_place(rng);
     const Tool tool{1, r};
     const double level = draw_level(rng);
     const int ia = plan_feature(plan,
-                                make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1), placed(pa->loop, turn, at),
-                                             false, draw_side(rng)),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), draw_lead(rng, draw_lead_kind(rng, true), r),
-                                tool, {level});
-    const int ib = plan_feature(plan,
-                                make_contour("boss B " + mm(2 * a2) + " x " + mm(2 * b2) + ", " + mm(g) + " from A",
-                                             placed(pb->loop, turn, at), false, draw_side(rng)),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), draw_lead(rng, draw_lead_kind(rng, true), r),
-                                tool, {level});
+                                make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1),
+                                             placed(pa->loop, turn, at), false, draw_side(rng)),
+                                draw_lead(rng, draw_lead_kind(rng, true), r),
+                                draw_lead(rng, draw_lead_kind(rng, true), r), tool, {level});
+    const int ib = plan_feature(
+        plan,
+        make_contour("boss B " + mm(2 * a2) + " x " + mm(2 * b2) + ", " + mm(g) + " from A",
+                     placed(pb->loop, turn, at), false, draw_side(rng)),
+        draw_lead(rng, draw_lead_kind(rng, true), r), draw_lead(rng, draw_lead_kind(rng, true), r),
+        tool, {level});
     design_gouge(plan, ia, pa->edge[2], ib, pb->edge[2], 2 * r - g);
     design_gouge(plan, ib, pb->edge[2], ia, pa->edge[2], 2 * r - g);
     return true;
@@ -1077,7 +1107,8 @@ bool lead_across_own_part(Rng& rng, Plan& plan) {
     const double r = draw_radius(rng);
     Lead in = crossing_lead(rng, r);
     const double w = std::max(2 * r + 0.1, 2 * in.rl + 0.2) + rng.uniform(0, 6);
-    const auto u = u_shape(rng, r, w, 3);  // edge 0: the slot's right wall; 2: its left; 4: outer left
+    const auto u =
+        u_shape(rng, r, w, 3);  // edge 0: the slot's right wall; 2: its left; 4: outer left
     if (!u) return false;
     const Side side = draw_side(rng);
     // In the shape's own frame: the lead arc's start S and the length that takes the line from
@@ -1098,7 +1129,8 @@ bool lead_across_own_part(Rng& rng, Plan& plan) {
     const int id = plan_feature(plan, c, in, out, {1, r}, {draw_level(rng)});
     Check* check = plan.lead_in_check(id);
     if (!check) return false;
-    check->exempt = {wall_index(plan, id, u->shape.edge[2]), wall_index(plan, id, u->shape.edge[4])};
+    check->exempt = {wall_index(plan, id, u->shape.edge[2]),
+                     wall_index(plan, id, u->shape.edge[4])};
     check->need_exempt = 0;
     design_lead_gouge(plan, id, id, u->shape.edge[2], r);
     design_lead_gouge(plan, id, id, u->shape.edge[4], r);
@@ -1111,7 +1143,8 @@ bool lead_across_feature(Rng& rng, Plan& plan) {
     const double a1 = rng.uniform(1.0, 12), b1 = rng.uniform(2 * r + 1.5, 2 * r + 15);
     std::vector<double> rho_a(4), none(4, 0.0);
     for (double& x : rho_a) x = outside_fillet(rng, std::min(a1, b1) * 0.5);
-    auto pa = filleted_polygon(rectangle(-a1, -b1, a1, b1, 0), rho_a, none, 0.2);  // 1 right, 3 left
+    auto pa =
+        filleted_polygon(rectangle(-a1, -b1, a1, b1, 0), rho_a, none, 0.2);  // 1 right, 3 left
     if (!pa) return false;
     Lead in = crossing_lead(rng, r);
     const double gap = 2 * r + in.rl + rng.uniform(2.0, 15);
@@ -1119,7 +1152,8 @@ bool lead_across_feature(Rng& rng, Plan& plan) {
     std::vector<double> rho_b(4);
     for (double& x : rho_b) x = outside_fillet(rng, 0.5 * std::min(a2, b2));
     auto built_b = [&](double shift) {
-        return filleted_polygon(rectangle(a1 + gap, shift - b2, a1 + gap + 2 * a2, shift + b2, 3), rho_b, none, 0.2);
+        return filleted_polygon(rectangle(a1 + gap, shift - b2, a1 + gap + 2 * a2, shift + b2, 3),
+                                rho_b, none, 0.2);
     };
     auto pb = built_b(0);  // edge 0: the left edge, facing A
     if (!pb) return false;
@@ -1142,15 +1176,16 @@ bool lead_across_feature(Rng& rng, Plan& plan) {
     const Tool tool{1, r};
     const double level = draw_level(rng);
     const int ia = plan_feature(plan,
-                                make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1), placed(pa->loop, turn, at),
-                                             false, draw_side(rng)),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), draw_lead(rng, draw_lead_kind(rng, true), r),
-                                tool, {level});
-    const int ib = plan_feature(plan,
-                                make_contour("boss B " + mm(2 * a2) + " x " + mm(2 * b2) + ", its lead-in across A",
-                                             placed(pb->loop, turn, at), false, side_b),
-                                in, draw_lead(rng, rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc, r), tool,
-                                {level});
+                                make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1),
+                                             placed(pa->loop, turn, at), false, draw_side(rng)),
+                                draw_lead(rng, draw_lead_kind(rng, true), r),
+                                draw_lead(rng, draw_lead_kind(rng, true), r), tool, {level});
+    const int ib = plan_feature(
+        plan,
+        make_contour("boss B " + mm(2 * a2) + " x " + mm(2 * b2) + ", its lead-in across A",
+                     placed(pb->loop, turn, at), false, side_b),
+        in, draw_lead(rng, rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc, r), tool,
+        {level});
     Check* check = plan.lead_in_check(ib);
     if (!check) return false;
     check->exempt = {wall_index(plan, ia, pa->edge[1]), wall_index(plan, ia, pa->edge[3])};
@@ -1184,8 +1219,8 @@ bool stepover_one_stretch(Rng& rng, Plan& plan) {
     const double r = draw_radius(rng);
     const double step = rng.uniform(1.15 * r + 0.05, 1.8 * r + 0.1);
     const int n = rng.integer(2, 5);
-    const std::vector<Loop> built = stepover_loops(rng, r, n, step, rng.uniform(2 * r + 0.3, 2 * r + 6),
-                                                   rng.uniform(r + 0.3, r + 6));
+    const std::vector<Loop> built = stepover_loops(
+        rng, r, n, step, rng.uniform(2 * r + 0.3, 2 * r + 6), rng.uniform(r + 0.3, r + 6));
     if (built.empty()) return false;
     const double turn = draw_turn(rng);
     const V at = draw_place(rng);
@@ -1193,8 +1228,8 @@ bool stepover_one_stretch(Rng& rng, Plan& plan) {
     std::vector<Contour> loops;
     std::vector<int> ids;
     for (int k = 0; k < n; ++k) {
-        loops.push_back(make_contour("loop", placed(built[static_cast<std::size_t>(k)], turn, at), true, side,
-                                     k == n - 1));
+        loops.push_back(make_contour("loop", placed(built[static_cast<std::size_t>(k)], turn, at),
+                                     true, side, k == n - 1));
         ids.push_back(plan.add_contour(loops.back()));
     }
     const Tool tool{1, r};
@@ -1205,14 +1240,20 @@ bool stepover_one_stretch(Rng& rng, Plan& plan) {
     const V c1 = loops.front().loop.front().a;
     const V t1 = start_tangent(loops.front().loop.front());
     const V n1 = side_normal(t1, side);
-    plan.checks.push_back({{centre, V(c1 + r * (n1 + t1))}, r - kTouch, {}, 0, "approach", ids.front()});
+    plan.checks.push_back(
+        {{centre, V(c1 + r * (n1 + t1))}, r - kTouch, {}, 0, "approach", ids.front()});
     const Contour& last = loops.back();
     const V cn = last.loop.front().a;
-    plan.checks.push_back({{V(cn + r * side_normal(start_tangent(last.loop.front()), side)), centre}, r - kTouch, {}, 0,
-                           "departure", ids.back()});
+    plan.checks.push_back(
+        {{V(cn + r * side_normal(start_tangent(last.loop.front()), side)), centre},
+         r - kTouch,
+         {},
+         0,
+         "departure",
+         ids.back()});
     const double level = draw_level(rng);
-    const std::string what = "pocket cleared in " + std::to_string(n) + " loops " + mm(step) + " apart, one " +
-                             side_word(side) + " stretch (qpocket)";
+    const std::string what = "pocket cleared in " + std::to_string(n) + " loops " + mm(step) +
+                             " apart, one " + side_word(side) + " stretch (qpocket)";
     plan.steps.push_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
@@ -1225,10 +1266,14 @@ bool stepover_one_stretch(Rng& rng, Plan& plan) {
             const Contour& c = loops[static_cast<std::size_t>(k)];
             std::vector<WallElement> elements(c.loop.size());
             for (std::size_t i = 0; i < c.loop.size(); ++i) nc.move(c.loop[i], "", &elements[i]);
-            WrittenContour& w = e.contours[static_cast<std::size_t>(ids[static_cast<std::size_t>(k)])];
+            WrittenContour& w =
+                e.contours[static_cast<std::size_t>(ids[static_cast<std::size_t>(k)])];
             w.elements = std::move(elements);
             w.written = true;
-            if (k + 1 < n) nc.move(seg(c.loop.front().a, loops[static_cast<std::size_t>(k + 1)].loop.front().a), "", nullptr);
+            if (k + 1 < n)
+                nc.move(
+                    seg(c.loop.front().a, loops[static_cast<std::size_t>(k + 1)].loop.front().a),
+                    "", nullptr);
         }
         nc.move(seg(loops.back().loop.front().a, centre), "G40", nullptr);
         nc.rapid_z(kSafe);
@@ -1253,8 +1298,9 @@ bool stepover_per_loop(Rng& rng, Plan& plan) {
     const LeadKind in = draw_lead_kind(rng, true), out = draw_lead_kind(rng, true);
     plan.plate = true;
     for (int k = 0; k < n; ++k) {
-        const Contour c = make_contour("stepover loop " + std::to_string(k + 1) + " of " + std::to_string(n),
-                                       placed(built[static_cast<std::size_t>(k)], turn, at), true, side, k == n - 1);
+        const Contour c = make_contour(
+            "stepover loop " + std::to_string(k + 1) + " of " + std::to_string(n),
+            placed(built[static_cast<std::size_t>(k)], turn, at), true, side, k == n - 1);
         plan_feature(plan, c, draw_lead(rng, in, r), draw_lead(rng, out, r), tool, {level});
     }
     return true;
@@ -1310,20 +1356,25 @@ bool zigzag(Rng& rng, Plan& plan) {
     plan.plate = true;
     plan.checks.push_back({rows, r + allowance / 2, {}, 0, "zig-zag", -1});
     const double level = draw_level(rng);
-    const std::string what = "zig-zag rows " + mm(step) + " apart, " + mm(allowance) + " left for the finish";
+    const std::string what =
+        "zig-zag rows " + mm(step) + " apart, " + mm(allowance) + " left for the finish";
     plan.steps.push_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
         e.nc.rapid_z(kSafe);
         e.nc.rapid(rows.front());
         e.nc.feed_z(level);
-        for (std::size_t i = 1; i < rows.size(); ++i) e.nc.move(seg(rows[i - 1], rows[i]), "", nullptr);
+        for (std::size_t i = 1; i < rows.size(); ++i)
+            e.nc.move(seg(rows[i - 1], rows[i]), "", nullptr);
         e.nc.rapid_z(kSafe);
         e.end_feature();
     });
-    const LeadKind in = round ? (rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc) : draw_lead_kind(rng, true);
-    const LeadKind out = round ? (rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc) : draw_lead_kind(rng, true);
-    plan_feature(plan, make_contour("pocket: " + s.what + " (finish)", s.loop, true, draw_side(rng)),
+    const LeadKind in =
+        round ? (rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc) : draw_lead_kind(rng, true);
+    const LeadKind out =
+        round ? (rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc) : draw_lead_kind(rng, true);
+    plan_feature(plan,
+                 make_contour("pocket: " + s.what + " (finish)", s.loop, true, draw_side(rng)),
                  draw_lead(rng, in, r), draw_lead(rng, out, r), tool, {level});
     return true;
 }
@@ -1334,7 +1385,8 @@ bool circular(Rng& rng, Plan& plan, bool inside_out) {
     const double r = draw_radius(rng);
     const bool one_stretch = inside_out && rng.chance(0.4);
     const int n = rng.integer(2, 5);
-    const double step = one_stretch ? rng.uniform(1.2 * r + 0.1, 1.8 * r + 0.1) : rng.uniform(0.4 * r, 1.8 * r);
+    const double step =
+        one_stretch ? rng.uniform(1.2 * r + 0.1, 1.8 * r + 0.1) : rng.uniform(0.4 * r, 1.8 * r);
     const double rn = rng.uniform(r + 3, r + 30);
     const double r1 = rn - (n - 1) * step;
     if (r1 < (one_stretch ? 2 * r + 0.5 : r + 1)) return false;
@@ -1350,17 +1402,19 @@ bool circular(Rng& rng, Plan& plan, bool inside_out) {
         const double R = r1 + k * step;
         Loop l;
         for (int i = 0; i < pieces; ++i) {
-            const V p = R * unit_at(a0 + 2 * kPi * i / pieces), q = R * unit_at(a0 + 2 * kPi * (i + 1) / pieces);
+            const V p = R * unit_at(a0 + 2 * kPi * i / pieces),
+                    q = R * unit_at(a0 + 2 * kPi * (i + 1) / pieces);
             l.push_back(arc_elem(p, pieces == 1 ? p : q, V::Zero(), true));
         }
-        passes.push_back(make_contour("circular pass " + mm(2 * R), placed(l, 0, at), true, side, k == n - 1));
+        passes.push_back(
+            make_contour("circular pass " + mm(2 * R), placed(l, 0, at), true, side, k == n - 1));
     }
     if (!one_stretch) {
         for (int j = 0; j < n; ++j) {
             const int k = inside_out ? j : n - 1 - j;
             const auto kind = [&] { return rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc; };
-            plan_feature(plan, passes[static_cast<std::size_t>(k)], draw_lead(rng, kind(), r), draw_lead(rng, kind(), r),
-                         tool, {level});
+            plan_feature(plan, passes[static_cast<std::size_t>(k)], draw_lead(rng, kind(), r),
+                         draw_lead(rng, kind(), r), tool, {level});
         }
         return true;
     }
@@ -1385,10 +1439,14 @@ bool circular(Rng& rng, Plan& plan, bool inside_out) {
             const Contour& c = passes[static_cast<std::size_t>(k)];
             std::vector<WallElement> elements(c.loop.size());
             for (std::size_t i = 0; i < c.loop.size(); ++i) nc.move(c.loop[i], "", &elements[i]);
-            WrittenContour& w = e.contours[static_cast<std::size_t>(ids[static_cast<std::size_t>(k)])];
+            WrittenContour& w =
+                e.contours[static_cast<std::size_t>(ids[static_cast<std::size_t>(k)])];
             w.elements = std::move(elements);
             w.written = true;
-            if (k + 1 < n) nc.move(seg(c.loop.front().a, passes[static_cast<std::size_t>(k + 1)].loop.front().a), "", nullptr);
+            if (k + 1 < n)
+                nc.move(
+                    seg(c.loop.front().a, passes[static_cast<std::size_t>(k + 1)].loop.front().a),
+                    "", nullptr);
         }
         nc.move(seg(passes.back().loop.front().a, at), "G40", nullptr);
         nc.rapid_z(kSafe);
@@ -1417,9 +1475,11 @@ bool several_features(Rng& rng, Plan& plan) {
         const Shape s = placed(*shape, draw_turn(rng), V(x, rng.uniform(-10, 10)));
         x += extent;
         reach_before = reach;
-        const Contour c = make_contour((pockets ? "pocket: " : "boss: ") + s.what, s.loop, pockets, draw_side(rng));
+        const Contour c = make_contour((pockets ? "pocket: " : "boss: ") + s.what, s.loop, pockets,
+                                       draw_side(rng));
         plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, s.straight_start), r),
-                     draw_lead(rng, draw_lead_kind(rng, s.straight_start), r), tool, {draw_level(rng)});
+                     draw_lead(rng, draw_lead_kind(rng, s.straight_start), r), tool,
+                     {draw_level(rng)});
     }
     plan.plate = pockets;
     return true;
@@ -1430,7 +1490,7 @@ bool refused_pocket_fillet(Rng& rng, Plan& plan) {
     const double r = draw_radius(rng);
     const double a = rng.uniform(2 * r + 2, 2 * r + 25), b = rng.uniform(r + 2, r + 20);
     const Side side = draw_side(rng);
-    const bool ccw = side == Side::kLeft;  // a pocket: G41 runs counter-clockwise
+    const bool ccw = side == Side::kLeft;   // a pocket: G41 runs counter-clockwise
     const std::size_t small = ccw ? 1 : 0;  // the corner reached first from the bottom's middle
     std::vector<double> rho(4), reserve(4, r);
     for (double& x : rho) x = inside_fillet(rng, r, std::min(a, b) - 0.3);
@@ -1438,14 +1498,15 @@ bool refused_pocket_fillet(Rng& rng, Plan& plan) {
     rho[small] = rs;
     auto p = filleted_polygon(rectangle(-a, -b, a, b, 0), rho, reserve, 0.2);
     if (!p) return false;
-    const Shape s = placed(Shape{"pocket " + mm(2 * a) + " x " + mm(2 * b) + ", a corner rounded " + mm(rs) +
-                                     " (tool " + mm(r) + ")",
+    const Shape s = placed(Shape{"pocket " + mm(2 * a) + " x " + mm(2 * b) + ", a corner rounded " +
+                                     mm(rs) + " (tool " + mm(r) + ")",
                                  p->loop, true, p->edge},
                            draw_turn(rng), draw_place(rng));
     plan.plate = true;
-    const int id = plan_feature(plan, make_contour(s.what, s.loop, true, side),
-                                draw_lead(rng, draw_lead_kind(rng, true), r),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+    const int id =
+        plan_feature(plan, make_contour(s.what, s.loop, true, side),
+                     draw_lead(rng, draw_lead_kind(rng, true), r),
+                     draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
     const std::size_t last = s.loop.size() - 1;
     design_gouge(plan, id, ccw ? 0 : last, id, ccw ? 1 : last - 1, r - rs);
     plan.refusals.push_back(plan.designed.back().second);
@@ -1492,13 +1553,17 @@ bool refused_boss_scallop(Rng& rng, Plan& plan) {
         l.push_back(scallop);
         l.push_back(seg(s1, {0, -b}));
     }
-    const Shape s = placed(Shape{"boss " + mm(2 * a) + " x " + mm(2 * b) + " with a scallop of radius " + mm(rs) +
-                                     " (tool " + mm(r) + ")",
-                                 l, true, {}},
-                           draw_turn(rng), draw_place(rng));
-    const int id = plan_feature(plan, make_contour(s.what, s.loop, false, side),
-                                draw_lead(rng, draw_lead_kind(rng, true), r),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+    const Shape s =
+        placed(Shape{"boss " + mm(2 * a) + " x " + mm(2 * b) + " with a scallop of radius " +
+                         mm(rs) + " (tool " + mm(r) + ")",
+                     l,
+                     true,
+                     {}},
+               draw_turn(rng), draw_place(rng));
+    const int id =
+        plan_feature(plan, make_contour(s.what, s.loop, false, side),
+                     draw_lead(rng, draw_lead_kind(rng, true), r),
+                     draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
     const std::size_t last = l.size() - 1;
     design_gouge(plan, id, ccw ? 0 : last, id, ccw ? 1 : last - 1, r - rs);
     plan.refusals.push_back(plan.designed.back().second);
@@ -1540,14 +1605,18 @@ bool refused_notch(Rng& rng, Plan& plan) {
     l.push_back(seg({-a, bh - rho[3]}, {-a, -bh + rho[0]}));
     corner({-a, -bh + rho[0]}, {-a + rho[0], -bh}, {-a + rho[0], -bh + rho[0]});
     l.push_back(seg({-a + rho[0], -bh}, {0, -bh}));
-    const Shape s = placed(Shape{"boss " + mm(2 * a) + " x " + mm(2 * bh) + " with a notch " + mm(w) + " wide, " +
-                                     (round ? "round" : "flat") + " bottom (tool " + mm(r) + ")",
-                                 l, true, {}},
-                           draw_turn(rng), draw_place(rng));
+    const Shape s =
+        placed(Shape{"boss " + mm(2 * a) + " x " + mm(2 * bh) + " with a notch " + mm(w) +
+                         " wide, " + (round ? "round" : "flat") + " bottom (tool " + mm(r) + ")",
+                     l,
+                     true,
+                     {}},
+               draw_turn(rng), draw_place(rng));
     const Side side = draw_side(rng);
     const Contour c = make_contour(s.what, s.loop, false, side);
-    const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+    const int id =
+        plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
+                     draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
     // The wall reached first gouges the other one (a boss runs counter-clockwise under G42).
     const bool ccw = side == Side::kRight;
     const std::size_t first = ccw ? right_wall : left_wall, other = ccw ? left_wall : right_wall;
@@ -1562,20 +1631,23 @@ bool refused_slot(Rng& rng, Plan& plan) {
     const double r = draw_radius(rng);
     const double rad = rng.uniform(std::max(0.05, 0.3 * r), r - kGougeDepthMin);
     const double half = rng.uniform(rad + 0.5, 25);
-    const Loop built{seg({0, -rad}, {half, -rad}), arc_elem({half, -rad}, {half, rad}, {half, 0}, true),
-                     seg({half, rad}, {-half, rad}), arc_elem({-half, rad}, {-half, -rad}, {-half, 0}, true),
-                     seg({-half, -rad}, {0, -rad})};
+    const Loop built{
+        seg({0, -rad}, {half, -rad}), arc_elem({half, -rad}, {half, rad}, {half, 0}, true),
+        seg({half, rad}, {-half, rad}), arc_elem({-half, rad}, {-half, -rad}, {-half, 0}, true),
+        seg({-half, -rad}, {0, -rad})};
     const double turn = draw_turn(rng);
     const V at = draw_place(rng);
     const Side side = draw_side(rng);
-    const Contour c = make_contour("slot " + mm(2 * (half + rad)) + " x " + mm(2 * rad) + " (tool " + mm(r) + ")",
-                                   placed(built, turn, at), true, side);
+    const Contour c =
+        make_contour("slot " + mm(2 * (half + rad)) + " x " + mm(2 * rad) + " (tool " + mm(r) + ")",
+                     placed(built, turn, at), true, side);
     const int id = plan.add_contour(c);
     const Tool tool{1, r};
     plan.use(tool);
     plan.plate = true;
     const double level = draw_level(rng);
-    const std::string what = "pocket: " + c.what + ", plunged at its centre, " + side_word(side) + ", a straight lead";
+    const std::string what =
+        "pocket: " + c.what + ", plunged at its centre, " + side_word(side) + ", a straight lead";
     plan.steps.push_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
@@ -1628,7 +1700,8 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
                              : family == CamFamily::kCircle         ? 2
                                                                     : 3;
             opt.linear = rng.chance(0.25);
-            return single_contour(rng, plan, kind, rng.chance(0.5), std::nullopt, {draw_level(rng)});
+            return single_contour(rng, plan, kind, rng.chance(0.5), std::nullopt,
+                                  {draw_level(rng)});
         }
         case CamFamily::kIsland:
             return island(rng, plan, false);
@@ -1645,7 +1718,8 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
             plan.plate = true;
             const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r},
+                                        {draw_level(rng)});
             if (gouge) {
                 design_gouge(plan, id, s.edge[2], id, s.edge[8], 2 * r - w);
                 design_gouge(plan, id, s.edge[8], id, s.edge[2], 2 * r - w);
@@ -1662,7 +1736,8 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const Shape s = placed(k->shape, draw_turn(rng), draw_place(rng));
             const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
             const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r},
+                                        {draw_level(rng)});
             if (gouge) {
                 design_gouge(plan, id, k->right_wall, id, k->left_wall, 2 * r - w);
                 design_gouge(plan, id, k->left_wall, id, k->right_wall, 2 * r - w);
@@ -1680,7 +1755,8 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const Contour c = make_contour(s.what, s.loop, true, draw_side(rng));
             plan.plate = true;
             const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r},
+                                        {draw_level(rng)});
             if (gouge) {
                 design_gouge(plan, id, s.edge[1], id, s.edge[5], 2 * r - g);
                 design_gouge(plan, id, s.edge[5], id, s.edge[1], 2 * r - g);
@@ -1721,7 +1797,8 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const int n = rng.integer(2, 4);
             const double dz = rng.uniform(0.3, 2.0);
             for (int i = 1; i <= n; ++i) levels.push_back(-std::round(i * dz * 1000) / 1000);
-            return single_contour(rng, plan, rng.integer(0, 3), rng.chance(0.5), std::nullopt, levels);
+            return single_contour(rng, plan, rng.integer(0, 3), rng.chance(0.5), std::nullopt,
+                                  levels);
         }
         case CamFamily::kRefusedPocketFillet:
             return refused_pocket_fillet(rng, plan);
@@ -1734,7 +1811,6 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
     }
     return false;
 }
-
 
 constexpr CamFamilyInfo kFamilies[] = {
     {CamFamily::kLeadLineArcPocket, "lead.line+arc.pocket", false, false},
@@ -1804,7 +1880,8 @@ std::string program_name(const CamFamilyInfo& info, std::uint64_t seed) {
     return name + "_" + std::to_string(seed);
 }
 
-CamProgram write_program(const CamFamilyInfo& info, std::uint64_t seed, const Plan& plan, const Options& opt) {
+CamProgram write_program(const CamFamilyInfo& info, std::uint64_t seed, const Plan& plan,
+                         const Options& opt) {
     Emit e(NcWriter(opt.decimals, opt.numbered, opt.modal));
     e.feed = opt.feed;
     e.contours.resize(plan.contours.size());
@@ -1853,10 +1930,12 @@ CamProgram write_program(const CamFamilyInfo& info, std::uint64_t seed, const Pl
         const WrittenContour& pc = e.contours[static_cast<std::size_t>(path.contour)];
         const WrittenContour& wc = e.contours[static_cast<std::size_t>(wall.contour)];
         const run::BlockRef pb = path.index == kLeadIn ? pc.lead_in : pc.elements[path.index].block;
-        out.designed.push_back({pb.line, wc.elements[wall.index].block.line, plan.designed_depth[i]});
+        out.designed.push_back(
+            {pb.line, wc.elements[wall.index].block.line, plan.designed_depth[i]});
     }
     for (const ElemRef& r : plan.refusals)
-        out.refused_at.push_back(e.contours[static_cast<std::size_t>(r.contour)].elements[r.index].block.line);
+        out.refused_at.push_back(
+            e.contours[static_cast<std::size_t>(r.contour)].elements[r.index].block.line);
     return out;
 }
 
@@ -1894,7 +1973,8 @@ std::string CamProgram::summary() const {
 
 CamProgram generate_cam_program(CamFamily family, std::uint64_t seed) {
     const CamFamilyInfo& info = family_info(family);
-    Rng rng(seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(family) * 0xD1B54A32D192ED03ULL + 1);
+    Rng rng(seed * 0x9E3779B97F4A7C15ULL +
+            static_cast<std::uint64_t>(family) * 0xD1B54A32D192ED03ULL + 1);
     std::string last = "no shape fitted";
     for (int attempt = 0; attempt < 5000; ++attempt) {
         Plan plan;
@@ -1911,8 +1991,9 @@ CamProgram generate_cam_program(CamFamily family, std::uint64_t seed) {
         }
         return write_program(info, seed, plan, opt);
     }
-    throw std::runtime_error("cam_programs: no program of " + std::string(info.name) + " could be drawn from seed " +
-                             std::to_string(seed) + " in 5000 draws (the last: " + last + ")");
+    throw std::runtime_error("cam_programs: no program of " + std::string(info.name) +
+                             " could be drawn from seed " + std::to_string(seed) +
+                             " in 5000 draws (the last: " + last + ")");
 }
 
 }  // namespace apci::test

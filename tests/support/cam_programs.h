@@ -39,13 +39,13 @@ namespace apci::test {
 
 enum class CamFamily {
     // Correct programs.
-    kLeadLineArcPocket,   // straight + tangent arc leads, G41/G42, inside a pocket
-    kLeadLineArcBoss,     // ... outside a boss
-    kLeadLinePocket,      // straight leads only (onto a straight edge: the corner trims them)
+    kLeadLineArcPocket,  // straight + tangent arc leads, G41/G42, inside a pocket
+    kLeadLineArcBoss,    // ... outside a boss
+    kLeadLinePocket,     // straight leads only (onto a straight edge: the corner trims them)
     kLeadLineBoss,
-    kLeadArcPocket,       // arc leads only (G41 alone, the arc the first element; lifted out)
+    kLeadArcPocket,  // arc leads only (G41 alone, the arc the first element; lifted out)
     kLeadArcBoss,
-    kRoundedRectangle,    // closed contours, pocket or boss, any lead
+    kRoundedRectangle,  // closed contours, pocket or boss, any lead
     kSlot,
     kCircle,              // as one full circle, two halves or four quarters
     kFilletedPolygon,     // convex polygons with fillets (sharp where the tool trims)
@@ -62,11 +62,11 @@ enum class CamFamily {
     kSeveralFeatures,     // 2 to 4 pockets in a plate or bosses, G40 and tools between them
     kDepthPasses,         // one contour at 2 to 4 Z levels
     // True gouges the compensation runs (the run must warn them).
-    kGougeNeck,           // rooms joined by a passage narrower than 2r
-    kGougeKeyhole,        // a keyhole whose channel is narrower than 2r
-    kGougeTongue,         // a tongue whose tip comes within 2r of the opposite wall
-    kGougeBossesClose,    // two bosses closer than 2r
-    kGougeIslandClose,    // an island closer than 2r to its pocket's wall
+    kGougeNeck,                // rooms joined by a passage narrower than 2r
+    kGougeKeyhole,             // a keyhole whose channel is narrower than 2r
+    kGougeTongue,              // a tongue whose tip comes within 2r of the opposite wall
+    kGougeBossesClose,         // two bosses closer than 2r
+    kGougeIslandClose,         // an island closer than 2r to its pocket's wall
     kGougeLeadCrossesPart,     // a lead-in across a prong of its own part
     kGougeLeadCrossesFeature,  // a lead-in across a boss milled before
     // True gouges the compensation refuses (a concave arc smaller than the tool, an element too
@@ -91,8 +91,8 @@ const CamFamilyInfo& family_info(CamFamily family);
 struct CamFeature {
     std::string what;  // "pocket: rounded rectangle 40.0 x 25.0, corners 4.0, G41"
     std::uint64_t first_line = 0, last_line = 0;
-    int tool = 0;        // D number
-    double radius = 0;   // its radius
+    int tool = 0;       // D number
+    double radius = 0;  // its radius
 };
 
 // A gouge the generator built in: the path of `path_line`'s block comes within the tool radius
@@ -110,7 +110,7 @@ struct CamProgram {
     std::string text;       // the NC program
     std::string tool_list;  // its tool list (wz[n].gueltig 1, .typ 0, .mass_einheit 1, ...)
     std::vector<CamFeature> features;
-    DesignPart part;        // what it must leave standing
+    DesignPart part;  // what it must leave standing
     bool gouge = false;
     bool may_refuse = false;
     std::vector<DesignedGouge> designed;  // gouge programs: at least one

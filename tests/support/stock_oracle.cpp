@@ -119,7 +119,8 @@ void segment_distance(const Pt& p, const Pt& q, const Pt& r, const Pt& s, Polyli
     auto project = [](const Pt& a, const Pt& b, const Pt& x) {
         const double dx = b.x - a.x, dy = b.y - a.y;
         const double n2 = dx * dx + dy * dy;
-        const double t = n2 == 0.0 ? 0.0 : std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / n2, 0.0, 1.0);
+        const double t =
+            n2 == 0.0 ? 0.0 : std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / n2, 0.0, 1.0);
         return Pt{a.x + t * dx, a.y + t * dy};
     };
     consider(p, project(r, s, p));
@@ -178,19 +179,20 @@ class ChordTree {
             return;
         }
         // Split the larger one; look at the nearer half first.
-        const bool split_a =
-            !na.leaf() && (nb.leaf() || na.last - na.first >= nb.last - nb.first);
+        const bool split_a = !na.leaf() && (nb.leaf() || na.last - na.first >= nb.last - nb.first);
         std::size_t c1, c2;
         if (split_a) {
             c1 = na.left;
             c2 = na.right;
-            if (nodes_[c2].box.distance(nb.box) < nodes_[c1].box.distance(nb.box)) std::swap(c1, c2);
+            if (nodes_[c2].box.distance(nb.box) < nodes_[c1].box.distance(nb.box))
+                std::swap(c1, c2);
             search(c1, t, b, best);
             search(c2, t, b, best);
         } else {
             c1 = nb.left;
             c2 = nb.right;
-            if (na.box.distance(t.nodes_[c2].box) < na.box.distance(t.nodes_[c1].box)) std::swap(c1, c2);
+            if (na.box.distance(t.nodes_[c2].box) < na.box.distance(t.nodes_[c1].box))
+                std::swap(c1, c2);
             search(a, t, c1, best);
             search(a, t, c2, best);
         }
@@ -270,7 +272,8 @@ void add_circle_points(Ring& ring, const Pt& c, double r, double a0, double turn
     const double step = 2 * kPi / static_cast<double>(points_per_circle(r));
     const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(std::abs(turn) / step)));
     for (std::size_t k = 0; k <= n; ++k)
-        ring.push_back(on_circle(c, r, a0 + turn * static_cast<double>(k) / static_cast<double>(n)));
+        ring.push_back(
+            on_circle(c, r, a0 + turn * static_cast<double>(k) / static_cast<double>(n)));
 }
 
 BPolygon polygon_of_ring(const Ring& ring) {
@@ -322,8 +325,10 @@ void sweep_pieces(const PlaneSegment& s, double r, std::vector<BPolygon>& out) {
         const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(turn * (f1 - f0) / step)));
         auto edge = [&](double offset, bool backwards, Ring& ring) {
             for (std::size_t i = 0; i <= n; ++i) {
-                const double f = static_cast<double>(backwards ? n - i : i) / static_cast<double>(n);
-                ring.push_back(on_circle(s.centre, q0 + (q1 - q0) * f + offset, b0 + (b1 - b0) * f));
+                const double f =
+                    static_cast<double>(backwards ? n - i : i) / static_cast<double>(n);
+                ring.push_back(
+                    on_circle(s.centre, q0 + (q1 - q0) * f + offset, b0 + (b1 - b0) * f));
             }
         };
         if (std::min(q0, q1) > r) {
@@ -443,8 +448,7 @@ StockOracle::StockOracle(const DesignPart& part) : impl_(std::make_unique<Impl>(
         }
         ring.back() = ring.front();  // closed exactly
         const double area = signed_area(ring);
-        if (std::abs(area) <= kSamePoint)
-            throw std::invalid_argument(where + " encloses no area");
+        if (std::abs(area) <= kSamePoint) throw std::invalid_argument(where + " encloses no area");
         const bool ccw = area > 0;
         const bool left = loop.elements.front().material == MaterialSide::kLeft;
         BPolygon polygon = polygon_of(ring);
@@ -559,7 +563,8 @@ OracleReport StockOracle::run(std::span<const run::PathSegment> path,
             auto same = std::find_if(cut.begin(), cut.end(), [&](const OracleGouge& g) {
                 return same_block(g.wall_block, w.element.block);
             });
-            const OracleGouge g{b.block, w.element.block, depth, best.distance, b.radius, best.a, best.b};
+            const OracleGouge g{b.block,  w.element.block, depth, best.distance,
+                                b.radius, best.a,          best.b};
             if (same == cut.end())
                 cut.push_back(g);
             else if (depth > same->depth)
@@ -587,8 +592,8 @@ OracleReport StockOracle::run(std::span<const run::PathSegment> path,
             ob.measured = true;
             if (!(ob.swept_area >= 0.99 * kPi * b.radius * b.radius))
                 throw std::logic_error("StockOracle: the swept area of " + block_name(b.block) +
-                                       " is smaller than the tool (" + std::to_string(ob.swept_area) +
-                                       " mm^2)");
+                                       " is smaller than the tool (" +
+                                       std::to_string(ob.swept_area) + " mm^2)");
             if (!cut.empty() && !(ob.taken_area > 0.0))
                 throw std::logic_error("StockOracle: " + block_name(b.block) +
                                        " comes deeper than the tolerance into a wall but its swept "

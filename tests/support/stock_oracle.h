@@ -69,18 +69,18 @@ struct DesignLoop {
 // the pocket, the island). A loop with the material outside and nothing around it is an error:
 // give the stock's outline.
 struct DesignPart {
-    int plane = 17;     // the plane the loops lie in (17, 18, 19)
-    double top = 0.0;   // the part's top on the plane's third axis (Z under G17)
+    int plane = 17;    // the plane the loops lie in (17, 18, 19)
+    double top = 0.0;  // the part's top on the plane's third axis (Z under G17)
     std::vector<DesignLoop> loops;
 };
 
 // One wall the oracle found cut.
 struct OracleGouge {
-    run::BlockRef path_block;  // the executed block whose swept area cuts it
-    run::BlockRef wall_block;  // the block that programmed the wall element
-    double depth = 0.0;        // radius - distance
-    double distance = 0.0;     // least distance between the block's centre path and the wall
-    double radius = 0.0;       // the block's tool radius
+    run::BlockRef path_block;   // the executed block whose swept area cuts it
+    run::BlockRef wall_block;   // the block that programmed the wall element
+    double depth = 0.0;         // radius - distance
+    double distance = 0.0;      // least distance between the block's centre path and the wall
+    double radius = 0.0;        // the block's tool radius
     Pt path_point, wall_point;  // where that distance is
 };
 

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <ostream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -103,8 +104,8 @@ std::string describe(const std::vector<Pair>& pairs) {
     char buf[160];
     for (const Pair& p : pairs) {
         std::snprintf(buf, sizeof buf, "    path line %llu, wall line %llu: depth %.6f\n",
-                      static_cast<unsigned long long>(p.path), static_cast<unsigned long long>(p.wall),
-                      p.depth);
+                      static_cast<unsigned long long>(p.path),
+                      static_cast<unsigned long long>(p.wall), p.depth);
         s += buf;
     }
     return s.empty() ? "    (none)\n" : s;
@@ -120,13 +121,14 @@ const Pair* find(const std::vector<Pair>& pairs, std::uint64_t path, std::uint64
 struct Verdict {
     std::string outcome;  // "ok", "warned", "refused", or what failed
     bool ok = false;
-    std::string detail;   // for a failure: the program, the oracle's and the check's pairs
-    std::size_t check_pairs = 0;    // the check's findings
+    std::string detail;           // for a failure: the program, the oracle's and the check's pairs
+    std::size_t check_pairs = 0;  // the check's findings
     // Of those the oracle does not name: against an element of the design part's boundary, or
     // against one that is none (a lead, a connecting move, an inner stepover loop).
     std::size_t false_on_walls = 0, false_on_non_walls = 0;
-    std::size_t missed = 0;         // the oracle's pairs the check does not name
-    double deepest_intact = -1e9;   // the oracle's deepest pair within the tolerance
+    std::size_t missed = 0;        // the oracle's pairs the check does not name
+    double depth_difference = 0;   // the largest between the check's and the oracle's depth
+    double deepest_intact = -1e9;  // the oracle's deepest pair within the tolerance
 };
 
 Verdict judge(const CamProgram& p) {
@@ -145,7 +147,8 @@ Verdict judge(const CamProgram& p) {
         radius.push_back(p.radius_at(s.block));
         // Every move below the top has the radius of a tool: the oracle is not blind anywhere.
         if (std::min(s.start.z(), s.end.z()) < p.part.top && !(radius.back() > 0))
-            return fail("no tool radius", "a segment of line " + std::to_string(p.line_of(s.block)) +
+            return fail("no tool radius", "a segment of line " +
+                                              std::to_string(p.line_of(s.block)) +
                                               " cuts with no tool radius known");
     }
     OracleReport oracle;
@@ -160,7 +163,8 @@ Verdict judge(const CamProgram& p) {
     for (const OracleGouge& g : oracle.gouges)
         theirs.push_back({p.line_of(g.path_block), p.line_of(g.wall_block), g.depth});
     for (const run::SelfApproachFinding& f : run.outcome.self_approach)
-        ours.push_back({p.line_of(f.path_block), p.line_of(f.contour_block), f.radius - f.distance});
+        ours.push_back(
+            {p.line_of(f.path_block), p.line_of(f.contour_block), f.radius - f.distance});
     std::vector<std::uint64_t> wall_lines;
     for (const DesignLoop& l : p.part.loops)
         for (const WallElement& e : l.elements) wall_lines.push_back(p.line_of(e.block));
@@ -171,27 +175,41 @@ Verdict judge(const CamProgram& p) {
             else
                 ++v.false_on_non_walls;
         }
-    for (const Pair& t : theirs) v.missed += find(ours, t.path, t.wall) ? 0 : 1;
+    for (const Pair& t : theirs) {
+        const Pair* o = find(ours, t.path, t.wall);
+        if (!o)
+            ++v.missed;
+        else
+            v.depth_difference = std::max(v.depth_difference, std::abs(o->depth - t.depth));
+    }
     std::string errors;
     for (const run::RunError& e : run.outcome.errors)
-        errors += "    line " + std::to_string(p.line_of(e.block)) + ": " + e.code + ": " + e.message + "\n";
-    v.detail = "  features:\n" + p.summary() + "  run errors:\n" + (errors.empty() ? "    (none)\n" : errors) +
-               "  the oracle's gouges (executed path against the design part):\n" + describe(theirs) +
-               (oracle.buried.empty() ? "" : "  the oracle's buried blocks:\n" + apci::test::describe(oracle)) +
-               "  the check's findings:\n" + describe(ours) + "  program:\n" + p.text + "  tool list:\n" +
-               p.tool_list;
+        errors += "    line " + std::to_string(p.line_of(e.block)) + ": " + e.code + ": " +
+                  e.message + "\n";
+    v.detail =
+        "  features:\n" + p.summary() + "  run errors:\n" +
+        (errors.empty() ? "    (none)\n" : errors) +
+        "  the oracle's gouges (executed path against the design part):\n" + describe(theirs) +
+        (oracle.buried.empty() ? ""
+                               : "  the oracle's buried blocks:\n" + apci::test::describe(oracle)) +
+        "  the check's findings:\n" + describe(ours) + "  program:\n" + p.text + "  tool list:\n" +
+        p.tool_list;
 
     if (!p.gouge) {
-        if (!run.outcome.errors.empty()) return fail("run error", "a correct program stopped with an error");
-        if (oracle.gouged()) return fail("oracle gouge", "the oracle finds the part cut by a correct program");
-        if (!ours.empty()) return fail("false alarm", "the check warns a program that leaves the part intact");
+        if (!run.outcome.errors.empty())
+            return fail("run error", "a correct program stopped with an error");
+        if (oracle.gouged())
+            return fail("oracle gouge", "the oracle finds the part cut by a correct program");
+        if (!ours.empty())
+            return fail("false alarm", "the check warns a program that leaves the part intact");
         v.outcome = "ok";
         v.ok = true;
         return v;
     }
     const bool refused = !run.outcome.errors.empty();
     if (refused) {
-        if (!p.may_refuse) return fail("run error", "the compensation refused a shape it should run");
+        if (!p.may_refuse)
+            return fail("run error", "the compensation refused a shape it should run");
         // Refused for the shape built in: at the element the tool does not fit.
         const std::uint64_t at = p.line_of(run.outcome.errors.front().block);
         if (std::find(p.refused_at.begin(), p.refused_at.end(), at) == p.refused_at.end())
@@ -208,42 +226,50 @@ Verdict judge(const CamProgram& p) {
         for (const DesignedGouge& d : p.designed) {
             const Pair* found = find(theirs, d.path_line, d.wall_line);
             if (!found)
-                return fail("oracle misses the design", "the oracle does not find the designed gouge of line " +
-                                                            std::to_string(d.path_line) + " into line " +
-                                                            std::to_string(d.wall_line));
+                return fail("oracle misses the design",
+                            "the oracle does not find the designed gouge of line " +
+                                std::to_string(d.path_line) + " into line " +
+                                std::to_string(d.wall_line));
             if (std::abs(found->depth - d.depth) > kDesignAgreement)
-                return fail("oracle misses the design", "the oracle's depth " + std::to_string(found->depth) +
-                                                            " is not the designed " + std::to_string(d.depth));
+                return fail("oracle misses the design",
+                            "the oracle's depth " + std::to_string(found->depth) +
+                                " is not the designed " + std::to_string(d.depth));
         }
     }
-    if (!oracle.buried.empty()) return fail("buried", "a gouge program buries a block (not designed)");
+    if (!oracle.buried.empty())
+        return fail("buried", "a gouge program buries a block (not designed)");
     for (const Pair& t : theirs)
         if (t.depth < StockOracle::kPathTolerance + kBand)
-            return fail("too close to call", "an oracle depth lies within 2e-3 mm of the path tolerance");
+            return fail("too close to call",
+                        "an oracle depth lies within 2e-3 mm of the path tolerance");
     bool agree = true;
     std::string why;
     for (const Pair& t : theirs) {
         const Pair* o = find(ours, t.path, t.wall);
         if (!o) {
             agree = false;
-            why += "not warned: path line " + std::to_string(t.path) + ", wall line " + std::to_string(t.wall) + "\n";
+            why += "not warned: path line " + std::to_string(t.path) + ", wall line " +
+                   std::to_string(t.wall) + "\n";
         } else if (std::abs(o->depth - t.depth) > kDepthAgreement) {
             agree = false;
-            why += "depth differs: path line " + std::to_string(t.path) + ", wall line " + std::to_string(t.wall) +
-                   "\n";
+            why += "depth differs: path line " + std::to_string(t.path) + ", wall line " +
+                   std::to_string(t.wall) + "\n";
         }
     }
     for (const Pair& o : ours)
         if (!find(theirs, o.path, o.wall)) {
             agree = false;
-            why += "warned, not cut: path line " + std::to_string(o.path) + ", wall line " + std::to_string(o.wall) +
-                   "\n";
+            why += "warned, not cut: path line " + std::to_string(o.path) + ", wall line " +
+                   std::to_string(o.wall) + "\n";
         }
     if (!agree) {
         const bool missed = why.find("not warned") != std::string::npos;
         const bool extra = why.find("warned, not cut") != std::string::npos;
         return fail(std::string(refused ? "cut before the refusal, " : "") +
-                        (missed && extra ? "missed and false pairs" : missed ? "missed pairs" : extra ? "false pairs" : "depth"),
+                        (missed && extra ? "missed and false pairs"
+                         : missed        ? "missed pairs"
+                         : extra         ? "false pairs"
+                                         : "depth"),
                     why);
     }
     v.outcome = refused ? "warned, then refused" : "warned";
@@ -252,6 +278,15 @@ Verdict judge(const CamProgram& p) {
 }
 
 class GougeAgreement : public testing::TestWithParam<CamFamilyInfo> {};
+
+}  // namespace
+
+// The family by its name in test listings.
+void PrintTo(const CamFamilyInfo& f, std::ostream* os) {
+    *os << f.name;
+}
+
+namespace {
 
 TEST_P(GougeAgreement, CheckAgreesWithTheOracle) {
     const CamFamilyInfo& family = GetParam();
@@ -268,29 +303,34 @@ TEST_P(GougeAgreement, CheckAgreesWithTheOracle) {
     std::vector<std::pair<std::string, int>> outcomes;
     int failures = 0, shown = 0;
     std::size_t check_pairs = 0, false_on_walls = 0, false_on_non_walls = 0, missed = 0;
-    double deepest_intact = -1e9;
+    double deepest_intact = -1e9, depth_difference = 0;
     // GOUGE_DUMP=DIR writes every program and its tool list there (to run with apcictl).
     const char* dump = std::getenv("GOUGE_DUMP");
     for (int i = 0; i < n; ++i) {
         const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
         const CamProgram program = generate_cam_program(family.family, seed);
         if (dump) {
-            const std::string base = std::string(dump) + "/" + program.text.substr(1, program.text.find('\n') - 1);
+            const std::string base =
+                std::string(dump) + "/" + program.text.substr(1, program.text.find('\n') - 1);
             std::ofstream(base + ".nc") << program.text;
             std::ofstream(base + ".tools") << program.tool_list;
-            std::ofstream part(base + ".part");  // one wall element a line: arc x0 y0 x1 y1 cx cy ccw line
+            std::ofstream part(base +
+                               ".part");  // one wall element a line: arc x0 y0 x1 y1 cx cy ccw line
             for (const DesignLoop& l : program.part.loops)
                 for (const WallElement& e : l.elements)
-                    part << e.arc << ' ' << e.start.x << ' ' << e.start.y << ' ' << e.end.x << ' ' << e.end.y << ' '
-                         << e.centre.x << ' ' << e.centre.y << ' ' << e.ccw << ' ' << program.line_of(e.block) << '\n';
+                    part << e.arc << ' ' << e.start.x << ' ' << e.start.y << ' ' << e.end.x << ' '
+                         << e.end.y << ' ' << e.centre.x << ' ' << e.centre.y << ' ' << e.ccw << ' '
+                         << program.line_of(e.block) << '\n';
         }
         const Verdict v = judge(program);
         check_pairs += v.check_pairs;
         false_on_walls += v.false_on_walls;
         false_on_non_walls += v.false_on_non_walls;
         missed += v.missed;
+        depth_difference = std::max(depth_difference, v.depth_difference);
         deepest_intact = std::max(deepest_intact, v.deepest_intact);
-        auto it = std::find_if(outcomes.begin(), outcomes.end(), [&](const auto& o) { return o.first == v.outcome; });
+        auto it = std::find_if(outcomes.begin(), outcomes.end(),
+                               [&](const auto& o) { return o.first == v.outcome; });
         if (it == outcomes.end())
             outcomes.push_back({v.outcome, 1});
         else
@@ -303,14 +343,17 @@ TEST_P(GougeAgreement, CheckAgreesWithTheOracle) {
             ADD_FAILURE() << program.name << ": " << v.outcome;
     }
     std::string summary;
-    for (const auto& [what, count] : outcomes) summary += " " + what + " " + std::to_string(count) + ",";
+    for (const auto& [what, count] : outcomes)
+        summary += " " + what + " " + std::to_string(count) + ",";
     summary.pop_back();
     char deepest[32] = "none";
     if (deepest_intact > -1.0) std::snprintf(deepest, sizeof deepest, "%.1e mm", deepest_intact);
-    std::printf("[ gouge    ] %s: %d programs:%s; the check's pairs %zu (not cut: %zu against walls, %zu "
-                "against leads or passes; cut but not warned: %zu); deepest intact pair %s\n",
-                std::string(family.name).c_str(), n, summary.c_str(), check_pairs, false_on_walls, false_on_non_walls,
-                missed, deepest);
+    std::printf(
+        "[ gouge    ] %s: %d programs:%s; the check's pairs %zu (not cut: %zu against walls, %zu "
+        "against leads or passes; cut but not warned: %zu; depths differ by %.1e mm at most); "
+        "deepest intact pair %s\n",
+        std::string(family.name).c_str(), n, summary.c_str(), check_pairs, false_on_walls,
+        false_on_non_walls, missed, depth_difference, deepest);
     EXPECT_EQ(failures, 0) << family.name;
 }
 
@@ -320,7 +363,8 @@ std::string family_test_name(const testing::TestParamInfo<CamFamilyInfo>& info) 
     return s;
 }
 
-INSTANTIATE_TEST_SUITE_P(Families, GougeAgreement, testing::ValuesIn(cam_families().begin(), cam_families().end()),
+INSTANTIATE_TEST_SUITE_P(Families, GougeAgreement,
+                         testing::ValuesIn(cam_families().begin(), cam_families().end()),
                          family_test_name);
 
 // The generators: the same seed draws the same program; its design part is exactly the
@@ -343,10 +387,12 @@ TEST(CamPrograms, DesignPartIsTheGeometryTheProgramWrites) {
             std::uint64_t lines = 0;
             for (nc::Event e;;) {
                 const auto next = stream.next(e);
-                ASSERT_NE(next, nc::EventStream::Next::kError) << p.name << ": " << stream.error().to_string();
+                ASSERT_NE(next, nc::EventStream::Next::kError)
+                    << p.name << ": " << stream.error().to_string();
                 if (next == nc::EventStream::Next::kEnd) break;
                 lines = std::max(lines, e.origin.line);
-                if (std::holds_alternative<nc::LineMove>(e.data) || std::holds_alternative<nc::ArcMove>(e.data))
+                if (std::holds_alternative<nc::LineMove>(e.data) ||
+                    std::holds_alternative<nc::ArcMove>(e.data))
                     moves.push_back(e);
             }
             EXPECT_EQ(p.radius_by_line.size(), lines + 1) << p.name;
@@ -360,7 +406,9 @@ TEST(CamPrograms, DesignPartIsTheGeometryTheProgramWrites) {
                 for (const WallElement& w : l.elements) {
                     const std::uint64_t line = p.line_of(w.block);
                     if (line == 0) continue;  // the plate around pockets
-                    auto it = std::find_if(moves.begin(), moves.end(), [&](const nc::Event& e) { return e.origin.line == line; });
+                    auto it = std::find_if(moves.begin(), moves.end(), [&](const nc::Event& e) {
+                        return e.origin.line == line;
+                    });
                     ASSERT_NE(it, moves.end()) << p.name << ": no move at line " << line;
                     EXPECT_EQ(it->origin.block, w.block.number) << p.name;
                     if (const auto* a = std::get_if<nc::ArcMove>(&it->data)) {

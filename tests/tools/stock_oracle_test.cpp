@@ -4,6 +4,8 @@
 // exactly r away, the path tolerance at its edge, a plunge into the part, segments above the
 // top), the design part's rules, and agreement with brute-force point sampling on random parts
 // and paths.
+#include "stock_oracle.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include <vector>
 
 #include "rng.h"
-#include "stock_oracle.h"
 
 namespace apci::test {
 namespace {
@@ -106,7 +107,8 @@ DesignPart part_of(std::vector<DesignLoop> loops) {
 TEST(StockOracle, LinePassingASquareAtAKnownDistanceCutsTheEdgeAndBothCorners) {
     // Square [0,10]^2; the tool (r = 3) runs along y = 12 from x = 2 to 8: 2 from the top edge
     // (depth 1), sqrt(8) from the corners (0, 10) and (10, 10) that end the side edges.
-    const auto rep = run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({2, 12}, {8, 12}, 20)}, 3.0);
+    const auto rep =
+        run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({2, 12}, {8, 12}, 20)}, 3.0);
     ASSERT_EQ(rep.gouges.size(), 3U) << describe(rep);
     ASSERT_NE(find_pair(rep, 20, 3), nullptr);
     EXPECT_NEAR(find_pair(rep, 20, 3)->depth, 1.0, 1e-9);
@@ -119,7 +121,8 @@ TEST(StockOracle, LinePassingASquareAtAKnownDistanceCutsTheEdgeAndBothCorners) {
     EXPECT_TRUE(rep.buried.empty());
     // The area it takes from x = 3 to 7 (farther than r from the corners): the band of depth 1
     // between and the two halves of the disc's segment beyond the edge (2 from its centre).
-    const auto band = run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({3, 12}, {7, 12}, 20)}, 3.0);
+    const auto band =
+        run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({3, 12}, {7, 12}, 20)}, 3.0);
     ASSERT_EQ(band.gouges.size(), 1U) << describe(band);
     ASSERT_EQ(band.blocks.size(), 1U);
     const double cap = 9 * std::acos(2.0 / 3.0) - 2 * std::sqrt(5.0);
@@ -137,7 +140,8 @@ TEST(StockOracle, ArcPassingACircleAtAKnownDistance) {
     const auto at = [](double r, double deg) {
         return Pt{r * std::cos(deg * kPi / 180), r * std::sin(deg * kPi / 180)};
     };
-    const auto rep = run_oracle(part_of({disc}), {seg_arc(at(12.5, 30), at(12.5, 120), {0, 0}, true, 7)}, 3.0);
+    const auto rep =
+        run_oracle(part_of({disc}), {seg_arc(at(12.5, 30), at(12.5, 120), {0, 0}, true, 7)}, 3.0);
     ASSERT_EQ(rep.gouges.size(), 1U) << describe(rep);
     ASSERT_NE(find_pair(rep, 7, 1), nullptr);
     EXPECT_NEAR(find_pair(rep, 7, 1)->depth, 0.5, 2 * StockOracle::kChordError);
@@ -145,7 +149,8 @@ TEST(StockOracle, ArcPassingACircleAtAKnownDistance) {
 
     // The same arc run clockwise the long way round (30 -> 120 through 0 and 270): it passes
     // both halves and both of their ends.
-    const auto rep2 = run_oracle(part_of({disc}), {seg_arc(at(12.5, 30), at(12.5, 120), {0, 0}, false, 7)}, 3.0);
+    const auto rep2 =
+        run_oracle(part_of({disc}), {seg_arc(at(12.5, 30), at(12.5, 120), {0, 0}, false, 7)}, 3.0);
     ASSERT_EQ(rep2.gouges.size(), 2U) << describe(rep2);
     EXPECT_NEAR(find_pair(rep2, 7, 2)->depth, 0.5, 2 * StockOracle::kChordError);
 }
@@ -155,7 +160,8 @@ TEST(StockOracle, ArcWhoseRadiiDifferRunsAsASpiral) {
     // in the angle: nearest the disc of radius 10 at its end, 2.4 away.
     DesignLoop disc;
     disc.elements = {wall_arc({10, 0}, {10, 0}, {0, 0}, true, 1)};  // a full circle
-    const auto rep = run_oracle(part_of({disc}), {seg_arc({12.5, 0}, {0, 12.4}, {0, 0}, true, 5)}, 3.0);
+    const auto rep =
+        run_oracle(part_of({disc}), {seg_arc({12.5, 0}, {0, 12.4}, {0, 0}, true, 5)}, 3.0);
     ASSERT_EQ(rep.gouges.size(), 1U) << describe(rep);
     EXPECT_NEAR(rep.gouges[0].depth, 0.6, 2 * StockOracle::kChordError);
     EXPECT_NEAR(rep.gouges[0].path_point.y, 12.4, 1e-6);
@@ -164,7 +170,8 @@ TEST(StockOracle, ArcWhoseRadiiDifferRunsAsASpiral) {
 TEST(StockOracle, LeadCrossingThePartCutsEveryEdgeItCrossesByTheWholeRadius) {
     // A lead-in from above the square straight down through it to below: both horizontal edges
     // crossed (distance 0, depth r); the side edges 5 away.
-    const auto rep = run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({5, 20}, {5, -8}, 30)}, 2.0);
+    const auto rep =
+        run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({5, 20}, {5, -8}, 30)}, 2.0);
     ASSERT_EQ(rep.gouges.size(), 2U) << describe(rep);
     EXPECT_NEAR(find_pair(rep, 30, 1)->depth, 2.0, 1e-12);
     EXPECT_NEAR(find_pair(rep, 30, 3)->depth, 2.0, 1e-12);
@@ -175,11 +182,14 @@ TEST(StockOracle, PathExactlyTheRadiusAwayLeavesThePartIntact) {
     // Around the square at exactly r: the four sides' offsets and an arc of radius r about each
     // corner (the tool path of a boss milled with circular transitions).
     const double r = 2.5;
-    std::vector<PathSegment> path = {
-        seg_line({0, -r}, {10, -r}, 11), seg_arc({10, -r}, {10 + r, 0}, {10, 0}, true, 11),
-        seg_line({10 + r, 0}, {10 + r, 10}, 12), seg_arc({10 + r, 10}, {10, 10 + r}, {10, 10}, true, 12),
-        seg_line({10, 10 + r}, {0, 10 + r}, 13), seg_arc({0, 10 + r}, {-r, 10}, {0, 10}, true, 13),
-        seg_line({-r, 10}, {-r, 0}, 14), seg_arc({-r, 0}, {0, -r}, {0, 0}, true, 14)};
+    std::vector<PathSegment> path = {seg_line({0, -r}, {10, -r}, 11),
+                                     seg_arc({10, -r}, {10 + r, 0}, {10, 0}, true, 11),
+                                     seg_line({10 + r, 0}, {10 + r, 10}, 12),
+                                     seg_arc({10 + r, 10}, {10, 10 + r}, {10, 10}, true, 12),
+                                     seg_line({10, 10 + r}, {0, 10 + r}, 13),
+                                     seg_arc({0, 10 + r}, {-r, 10}, {0, 10}, true, 13),
+                                     seg_line({-r, 10}, {-r, 0}, 14),
+                                     seg_arc({-r, 0}, {0, -r}, {0, 0}, true, 14)};
     const auto rep = run_oracle(part_of({square(0, 0, 10, 1)}), path, r);
     EXPECT_TRUE(rep.gouges.empty()) << describe(rep);
     EXPECT_TRUE(rep.buried.empty()) << describe(rep);
@@ -190,13 +200,15 @@ TEST(StockOracle, PathExactlyTheRadiusAwayLeavesThePartIntact) {
     DesignLoop plate = square(-20, -20, 50, 100);
     for (WallElement& e : plate.elements) e.block = {};
     const DesignLoop pocket = hole(square(0, 0, 10, 1));  // material outside
-    std::vector<PathSegment> inside = {seg_line({r, r}, {10 - r, r}, 21), seg_line({10 - r, r}, {10 - r, 10 - r}, 22),
-                                       seg_line({10 - r, 10 - r}, {r, 10 - r}, 23), seg_line({r, 10 - r}, {r, r}, 24)};
+    std::vector<PathSegment> inside = {
+        seg_line({r, r}, {10 - r, r}, 21), seg_line({10 - r, r}, {10 - r, 10 - r}, 22),
+        seg_line({10 - r, 10 - r}, {r, 10 - r}, 23), seg_line({r, 10 - r}, {r, r}, 24)};
     const auto rep2 = run_oracle(part_of({plate, pocket}), inside, r);
     EXPECT_TRUE(rep2.gouges.empty()) << describe(rep2);
     EXPECT_TRUE(rep2.buried.empty()) << describe(rep2);
     // 0.01 further out it cuts the pocket's bottom wall by 0.01.
-    const auto rep3 = run_oracle(part_of({plate, pocket}), {seg_line({r, r - 0.01}, {10 - r, r - 0.01}, 21)}, r);
+    const auto rep3 =
+        run_oracle(part_of({plate, pocket}), {seg_line({r, r - 0.01}, {10 - r, r - 0.01}, 21)}, r);
     ASSERT_EQ(rep3.gouges.size(), 1U) << describe(rep3);
     EXPECT_NEAR(find_pair(rep3, 21, 1)->depth, 0.01, 1e-12);
 }
@@ -204,8 +216,10 @@ TEST(StockOracle, PathExactlyTheRadiusAwayLeavesThePartIntact) {
 TEST(StockOracle, DepthBeyondThePathToleranceIsAGougeAndWithinItIsNot) {
     const double r = 1.0;
     const DesignPart part = part_of({square(0, 0, 10, 1)});
-    for (const double depth : {StockOracle::kPathTolerance + 3e-5, StockOracle::kPathTolerance - 3e-5}) {
-        const auto rep = run_oracle(part, {seg_line({3, 10 + r - depth}, {7, 10 + r - depth}, 9)}, r);
+    for (const double depth :
+         {StockOracle::kPathTolerance + 3e-5, StockOracle::kPathTolerance - 3e-5}) {
+        const auto rep =
+            run_oracle(part, {seg_line({3, 10 + r - depth}, {7, 10 + r - depth}, 9)}, r);
         if (depth > StockOracle::kPathTolerance) {
             ASSERT_EQ(rep.gouges.size(), 1U) << describe(rep);
             EXPECT_NEAR(rep.gouges[0].depth, depth, 1e-12);
@@ -226,7 +240,7 @@ TEST(StockOracle, PlungeIntoThePartIsBuriedAndMovesAtOrAboveTheTopCutNothing) {
     PathSegment above = seg_line({-5, 5}, {15, 5}, 41, 5.0);
     above.kind = SegmentKind::kRapid;
     PathSegment at_top = seg_line({-5, 6}, {15, 6}, 42, 0.0);  // touches the top, takes nothing
-    PathSegment rise = seg_line({5, 5}, {5, 5}, 43, 0.0);       // from the top up
+    PathSegment rise = seg_line({5, 5}, {5, 5}, 43, 0.0);      // from the top up
     rise.end.z() = 5.0;
     const auto rep = run_oracle(part, {plunge, above, at_top, rise}, 2.0);
     EXPECT_TRUE(rep.gouges.empty()) << describe(rep);
@@ -243,7 +257,8 @@ TEST(StockOracle, ToolOnTheWrongSideOfItsWallIsBuried) {
     // The tool runs r inside the square (a boss milled as if it were a pocket): it touches no
     // wall closer than r, and takes material all along.
     const double r = 2.0;
-    const auto rep = run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({r, r}, {10 - r, r}, 50)}, r);
+    const auto rep =
+        run_oracle(part_of({square(0, 0, 10, 1)}), {seg_line({r, r}, {10 - r, r}, 50)}, r);
     EXPECT_TRUE(rep.gouges.empty()) << describe(rep);
     ASSERT_EQ(rep.buried.size(), 1U) << describe(rep);
 }
@@ -330,7 +345,8 @@ double exact_distance(const Pt& p, const WallElement& e) {
     if (!e.arc) {
         const double dx = e.end.x - e.start.x, dy = e.end.y - e.start.y;
         const double n2 = dx * dx + dy * dy;
-        const double t = std::clamp(((p.x - e.start.x) * dx + (p.y - e.start.y) * dy) / n2, 0.0, 1.0);
+        const double t =
+            std::clamp(((p.x - e.start.x) * dx + (p.y - e.start.y) * dy) / n2, 0.0, 1.0);
         return std::hypot(p.x - e.start.x - t * dx, p.y - e.start.y - t * dy);
     }
     const double R = std::hypot(e.start.x - e.centre.x, e.start.y - e.centre.y);
@@ -347,7 +363,8 @@ double exact_distance(const Pt& p, const WallElement& e) {
     const double along = e.ccw ? ccw_from(a0, ap) : ccw_from(ap, a0);
     const double dc = std::hypot(p.x - e.centre.x, p.y - e.centre.y);
     if (along <= sweep) return std::abs(dc - R);
-    return std::min(std::hypot(p.x - e.start.x, p.y - e.start.y), std::hypot(p.x - e.end.x, p.y - e.end.y));
+    return std::min(std::hypot(p.x - e.start.x, p.y - e.start.y),
+                    std::hypot(p.x - e.end.x, p.y - e.end.y));
 }
 
 // Points along a path element every `spacing` (exact points of the curve).
@@ -358,7 +375,8 @@ std::vector<Pt> samples(const WallElement& e, double spacing) {
         const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
         for (int i = 0; i <= n; ++i) {
             const double t = double(i) / n;
-            out.push_back({e.start.x + t * (e.end.x - e.start.x), e.start.y + t * (e.end.y - e.start.y)});
+            out.push_back(
+                {e.start.x + t * (e.end.x - e.start.x), e.start.y + t * (e.end.y - e.start.y)});
         }
         return out;
     }
@@ -433,7 +451,8 @@ std::optional<Interval> capsule_row(const Pt& p, const Pt& q, double r, double y
     return std::nullopt;
 }
 
-double taken_by_scanlines(const std::vector<Pt>& path, double r, const std::vector<Pt>& ring, double h) {
+double taken_by_scanlines(const std::vector<Pt>& path, double r, const std::vector<Pt>& ring,
+                          double h) {
     double ly = INFINITY, hy = -INFINITY;
     for (const Pt& p : path) {
         ly = std::min(ly, p.y - r);
@@ -443,14 +462,17 @@ double taken_by_scanlines(const std::vector<Pt>& path, double r, const std::vect
     const double bin = 0.5;
     const auto bins = static_cast<std::size_t>((hy - ly) / bin) + 1;
     std::vector<std::vector<std::size_t>> chords(bins), edges(bins);
-    auto list = [&](std::vector<std::vector<std::size_t>>& into, std::size_t i, double y0, double y1) {
+    auto list = [&](std::vector<std::vector<std::size_t>>& into, std::size_t i, double y0,
+                    double y1) {
         const double lo = std::max(std::min(y0, y1), ly), hi = std::min(std::max(y0, y1), hy);
         if (lo > hi) return;
-        for (auto k = static_cast<std::size_t>((lo - ly) / bin); k <= static_cast<std::size_t>((hi - ly) / bin) && k < bins; ++k)
+        for (auto k = static_cast<std::size_t>((lo - ly) / bin);
+             k <= static_cast<std::size_t>((hi - ly) / bin) && k < bins; ++k)
             into[k].push_back(i);
     };
     for (std::size_t i = 0; i + 1 < path.size(); ++i)
-        list(chords, i, std::min(path[i].y, path[i + 1].y) - r, std::max(path[i].y, path[i + 1].y) + r);
+        list(chords, i, std::min(path[i].y, path[i + 1].y) - r,
+             std::max(path[i].y, path[i + 1].y) + r);
     for (std::size_t i = 0; i + 1 < ring.size(); ++i) list(edges, i, ring[i].y, ring[i + 1].y);
     double area = 0;
     for (double y = ly + h / 2; y < hy; y += h) {
@@ -470,7 +492,8 @@ double taken_by_scanlines(const std::vector<Pt>& path, double r, const std::vect
         std::sort(xs.begin(), xs.end());
         for (std::size_t j = 0; j + 1 < xs.size(); j += 2)
             for (const Interval& iv : swept)
-                area += h * std::max(0.0, std::min(xs[j + 1], iv.second) - std::max(xs[j], iv.first));
+                area +=
+                    h * std::max(0.0, std::min(xs[j + 1], iv.second) - std::max(xs[j], iv.first));
     }
     return area;
 }
@@ -488,7 +511,8 @@ double sampled_distance(const WallElement& path, const WallElement& wall) {
         if (i + 1 >= pts.size()) continue;
         for (int k = 0; k <= 200; ++k) {
             const double t = k / 200.0;
-            const Pt q{pts[i].x + t * (pts[i + 1].x - pts[i].x), pts[i].y + t * (pts[i + 1].y - pts[i].y)};
+            const Pt q{pts[i].x + t * (pts[i + 1].x - pts[i].x),
+                       pts[i].y + t * (pts[i + 1].y - pts[i].y)};
             least = std::min(least, exact_distance(q, wall));
         }
     }
@@ -580,8 +604,11 @@ TEST(StockOracle, AgreesWithBruteForceSamplingOnRandomPartsAndPaths) {
         ++cases;
         std::vector<Pt> ring;
         for (const WallElement& e : loop.elements) {
-            const std::vector<Pt> pts =
-                samples(e, e.arc ? std::sqrt(8 * std::hypot(e.start.x - e.centre.x, e.start.y - e.centre.y) * 2e-6) : INFINITY);
+            const std::vector<Pt> pts = samples(
+                e, e.arc
+                       ? std::sqrt(8 * std::hypot(e.start.x - e.centre.x, e.start.y - e.centre.y) *
+                                   2e-6)
+                       : INFINITY);
             ring.insert(ring.end(), pts.begin() + (ring.empty() ? 0 : 1), pts.end());
         }
         for (int b = 0; b < blocks; ++b) {
@@ -590,16 +617,19 @@ TEST(StockOracle, AgreesWithBruteForceSamplingOnRandomPartsAndPaths) {
             for (const WallElement& wall : loop.elements) {
                 const double depth = r - sampled_distance(as_walls[b], wall);
                 const OracleGouge* g = find_pair(rep, 100 + b, wall.block.line);
-                if (std::abs(depth - StockOracle::kPathTolerance) < 5e-5) continue;  // too close to call
+                if (std::abs(depth - StockOracle::kPathTolerance) < 5e-5)
+                    continue;  // too close to call
                 if (depth > StockOracle::kPathTolerance) {
                     any_gouge = true;
-                    ASSERT_NE(g, nullptr) << "case " << c << " block " << b << " wall " << wall.block.line
-                                          << " sampled depth " << depth << "\n" << describe(rep);
+                    ASSERT_NE(g, nullptr) << "case " << c << " block " << b << " wall "
+                                          << wall.block.line << " sampled depth " << depth << "\n"
+                                          << describe(rep);
                     EXPECT_NEAR(g->depth, depth, 3e-5) << "case " << c;
                     ++pairs;
                 } else {
-                    EXPECT_EQ(g, nullptr) << "case " << c << " block " << b << " wall " << wall.block.line
-                                          << " sampled depth " << depth << "\n" << describe(rep);
+                    EXPECT_EQ(g, nullptr) << "case " << c << " block " << b << " wall "
+                                          << wall.block.line << " sampled depth " << depth << "\n"
+                                          << describe(rep);
                 }
             }
             // The part's area the block takes.
@@ -610,13 +640,17 @@ TEST(StockOracle, AgreesWithBruteForceSamplingOnRandomPartsAndPaths) {
             // Lines need their ends; arcs chords of sagitta 2e-6 (spacing sqrt(8 R 2e-6)).
             const WallElement& pe = as_walls[b];
             const double spacing =
-                pe.arc ? std::sqrt(8 * std::hypot(pe.start.x - pe.centre.x, pe.start.y - pe.centre.y) * 2e-6) : INFINITY;
+                pe.arc
+                    ? std::sqrt(8 * std::hypot(pe.start.x - pe.centre.x, pe.start.y - pe.centre.y) *
+                                2e-6)
+                    : INFINITY;
             const double taken = taken_by_scanlines(samples(pe, spacing), r, ring, 0.005);
             EXPECT_NEAR(ob->taken_area, taken, 2e-3 + 1e-4 * taken) << "case " << c;
             ++compared_areas;
             // A block that takes material is named: a wall it cuts, or buried.
             const bool named =
-                any_gouge || std::any_of(rep.buried.begin(), rep.buried.end(), [&](const OracleBuried& x) {
+                any_gouge ||
+                std::any_of(rep.buried.begin(), rep.buried.end(), [&](const OracleBuried& x) {
                     return same_block(x.path_block, line_ref(100 + b));
                 });
             if (taken > 1e-2) {
