@@ -25,8 +25,8 @@ constexpr double kSafe = 5.0;  // rapids run at this height
 // walls it must not touch (far beyond rounding to 3 decimals, 7.1e-4 mm).
 constexpr double kMargin = 0.02;
 // A designed gouge is at least this deep (the path tolerance 1e-4 plus 2e-3, plus what
-// rounding to 3 decimals can move a depth by), and an intact pair of the gouge families at least
-// this much shallower than 0.
+// rounding to 3 decimals can move a depth by); a pair whose depth the draw decides (a fillet
+// beside a gap) is at least this far from 0 either way.
 constexpr double kGougeDepthMin = 0.006;
 // Where a planned path touches a wall by design (a lead's tool at r from the contour where it
 // joins it): the checks measure densified walls, whose chords lie up to twice the oracle's chord
@@ -236,12 +236,10 @@ class NcWriter {
     // Moves. The current point is kept as written (rounded).
     run::BlockRef rapid(const V& p) { return motion("G0", "", p, std::nullopt, nullptr); }
     run::BlockRef rapid_z(double z) {
-        z_ = round(z);
         motion_ = "G0";
         return block("G0 Z" + num(z));
     }
     run::BlockRef feed_z(double z) {
-        z_ = round(z);
         std::string w = (modal_ && motion_ == "G1") ? "" : "G1 ";
         motion_ = "G1";
         return block(w + "Z" + num(z));
@@ -252,13 +250,10 @@ class NcWriter {
         if (!e.arc) return motion("G1", prefix, e.b, std::nullopt, written);
         return motion(e.ccw ? "G3" : "G2", prefix, e.b, e.c, written);
     }
-    V pos() const { return pos_; }
-
     std::string text() const { return text_; }
     std::uint64_t line() const { return line_; }
     std::vector<double> radius_by_line() const { return radius_by_line_; }
     std::vector<std::pair<std::int64_t, std::uint64_t>> numbers() const { return numbers_; }
-    int decimals() const { return decimals_; }
 
   private:
     run::BlockRef motion(const std::string& g, const std::string& prefix, const V& to,
@@ -303,7 +298,6 @@ class NcWriter {
     std::string motion_;
     V pos_ = V::Zero();
     bool have_pos_ = false;
-    double z_ = 0.0;
 };
 
 // ---- Plans: what a program will do, checked before it is written.
@@ -387,16 +381,14 @@ struct Emit {
     std::vector<WrittenContour> contours;
     std::vector<CamFeature> features;
     int tool = -1;
-    double feed = 3000;
     void use_tool(const Tool& t) {
         if (t.number == tool) return;
         nc.set_radius(t.r);
         nc.block("D" + std::to_string(t.number));
         tool = t.number;
     }
-    CamFeature& begin_feature(std::string what, const Tool& t) {
+    void begin_feature(std::string what, const Tool& t) {
         features.push_back({std::move(what), nc.line() + 1, 0, t.number, t.r});
-        return features.back();
     }
     void end_feature() { features.back().last_line = nc.line(); }
 };
@@ -442,12 +434,10 @@ struct Plan {
             if (c.owner == id && c.what == "lead-in line") return &c;
         return nullptr;
     }
-    // Adds a contour's elements to the walls the checks measure against; returns their first
-    // index.
 };
 
-// The least distance from a polyline to each wall: nothing when every check holds, else which
-// one failed.
+// Every check against every wall it is measured against: nothing when all hold, else the first
+// that does not.
 std::optional<std::string> failed_check(const Plan& plan) {
     if (!plan.feasible) return "an element too short for its corners";
     std::vector<std::vector<Pt>> walls;
@@ -673,6 +663,11 @@ double outside_fillet(Rng& rng, double most) {
 
 // A polygon's fillets and the trims its inside corners need: inside corners are those turning
 // towards the tool (left turns of a counter-clockwise loop for a pocket, right turns for a boss).
+// An inside corner turning less than 45 degrees stays sharp: its fillet would be a short concave
+// arc, and rounding makes a short arc a spiral (its radius changing by up to 2e-3 mm over a
+// small angle) whose compensated path, r less than its radius, comes nearer than r to the arc
+// by about r k^2 / (2 R (R - r)) (k the change of radius per radian): beyond the path
+// tolerance where the tool nearly fills the arc.
 void corners_for(Rng& rng, const std::vector<V>& v, double r, bool pocket, double most,
                  std::vector<double>& rho, std::vector<double>& reserve) {
     const std::vector<double> turn = vertex_turns(v);
@@ -680,7 +675,9 @@ void corners_for(Rng& rng, const std::vector<V>& v, double r, bool pocket, doubl
     reserve.assign(v.size(), 0.0);
     for (std::size_t i = 0; i < v.size(); ++i) {
         const bool inside = (turn[i] > 0) == pocket;
-        rho[i] = inside ? inside_fillet(rng, r, most) : outside_fillet(rng, most);
+        rho[i] = !inside                        ? outside_fillet(rng, most)
+                 : std::abs(turn[i]) >= kPi / 4 ? inside_fillet(rng, r, most)
+                                                : 0.0;
         if (inside) reserve[i] = r * std::tan(std::abs(turn[i]) / 2);
     }
 }
@@ -900,9 +897,33 @@ LeadKind draw_lead_kind(Rng& rng, bool straight_start) {
     return k == 0 ? LeadKind::kLineArc : k == 1 ? LeadKind::kArc : LeadKind::kLine;
 }
 
+// Every draw from the generator's random numbers is a statement of its own (or one argument of
+// a call that draws nothing else), so that a seed draws the same program whatever order a
+// compiler evaluates a call's arguments in.
+
+// A lead-in, then a lead-out, of drawn kinds.
+std::pair<Lead, Lead> draw_leads(Rng& rng, double r, bool straight_start) {
+    const Lead in = draw_lead(rng, draw_lead_kind(rng, straight_start), r);
+    const Lead out = draw_lead(rng, draw_lead_kind(rng, straight_start), r);
+    return {in, out};
+}
+// A contour with drawn leads at one level.
+int plan_with_leads(Rng& rng, Plan& plan, const Contour& c, bool straight_start, const Tool& tool,
+                    double level) {
+    const auto [in, out] = draw_leads(rng, tool.r, straight_start);
+    return plan_feature(plan, c, in, out, tool, {level});
+}
+
 Shape placed(Shape s, double turn, const V& by) {
     s.loop = placed(s.loop, turn, by);
     return s;
+}
+
+// A shape turned and moved to a drawn place.
+Shape placed_at_random(Rng& rng, const Shape& shape) {
+    const double turn = draw_turn(rng);
+    const V at = draw_place(rng);
+    return placed(shape, turn, at);
 }
 
 // A closed shape of the contour families, drawn for a tool of radius r.
@@ -926,13 +947,15 @@ bool single_contour(Rng& rng, Plan& plan, int shape_kind, bool pocket, std::opti
     const auto shape = draw_shape(rng, r, pocket, shape_kind);
     if (!shape) return false;
     if (kind == LeadKind::kLine && !shape->straight_start) return false;
-    const Shape s = placed(*shape, draw_turn(rng), draw_place(rng));
+    const Shape s = placed_at_random(rng, *shape);
     const Side side = draw_side(rng);
     const Contour c = make_contour((pocket ? "pocket: " : "boss: ") + s.what, s.loop, pocket, side);
     const LeadKind in = kind ? *kind : draw_lead_kind(rng, s.straight_start);
     const LeadKind out = kind ? *kind : draw_lead_kind(rng, s.straight_start);
     plan.plate = pocket;
-    plan_feature(plan, c, draw_lead(rng, in, r), draw_lead(rng, out, r), {1, r}, std::move(levels));
+    const Lead lead_in = draw_lead(rng, in, r);
+    const Lead lead_out = draw_lead(rng, out, r);
+    plan_feature(plan, c, lead_in, lead_out, {1, r}, std::move(levels));
     return true;
 }
 
@@ -1023,10 +1046,12 @@ bool island(Rng& rng, Plan& plan, bool gouge) {
         auto p = filleted_polygon(rectangle(-a, -b, a, b, 0), rho_p, reserve_p, 0.2);
         if (!p) return false;
         pocket = {"pocket " + mm(2 * a) + " x " + mm(2 * b), p->loop, true, p->edge};
-        auto inner = draw_shape(rng, r, false, rng.integer(0, 2));
+        const int kind = rng.integer(0, 2);
+        auto inner = draw_shape(rng, r, false, kind);
         if (!inner) return false;
-        isle =
-            placed(*inner, draw_turn(rng), V(rng.uniform(-a, a) * 0.5, rng.uniform(-b, b) * 0.5));
+        const double turn_inner = draw_turn(rng);
+        const V at_inner{rng.uniform(-a, a) * 0.5, rng.uniform(-b, b) * 0.5};
+        isle = placed(*inner, turn_inner, at_inner);
         isle.what = "island: " + isle.what;
         // Inside the pocket's box less the tool's diameter, and clear of its (rounded) walls.
         for (const Elem& e : isle.loop)
@@ -1040,14 +1065,13 @@ bool island(Rng& rng, Plan& plan, bool gouge) {
     plan.plate = true;
     const Tool tool{1, r};
     const double level = draw_level(rng);
+    const Side pocket_side = draw_side(rng);
     const int pid =
-        plan_feature(plan, make_contour(pocket.what, pocket.loop, true, draw_side(rng)),
-                     draw_lead(rng, draw_lead_kind(rng, pocket.straight_start), r),
-                     draw_lead(rng, draw_lead_kind(rng, pocket.straight_start), r), tool, {level});
-    const int iid =
-        plan_feature(plan, make_contour(isle.what, isle.loop, false, draw_side(rng)),
-                     draw_lead(rng, draw_lead_kind(rng, isle.straight_start), r),
-                     draw_lead(rng, draw_lead_kind(rng, isle.straight_start), r), tool, {level});
+        plan_with_leads(rng, plan, make_contour(pocket.what, pocket.loop, true, pocket_side),
+                        pocket.straight_start, tool, level);
+    const Side isle_side = draw_side(rng);
+    const int iid = plan_with_leads(rng, plan, make_contour(isle.what, isle.loop, false, isle_side),
+                                    isle.straight_start, tool, level);
     if (gouge) {
         design_gouge(plan, pid, pocket_right, iid, isle_right, 2 * r - g);
         design_gouge(plan, iid, isle_right, pid, pocket_right, 2 * r - g);
@@ -1078,24 +1102,24 @@ bool bosses_close(Rng& rng, Plan& plan) {
     const V at = draw_place(rng);
     const Tool tool{1, r};
     const double level = draw_level(rng);
-    const int ia = plan_feature(plan,
-                                make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1),
-                                             placed(pa->loop, turn, at), false, draw_side(rng)),
-                                draw_lead(rng, draw_lead_kind(rng, true), r),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), tool, {level});
-    const int ib = plan_feature(
-        plan,
+    const Side side_a = draw_side(rng);
+    const int ia = plan_with_leads(rng, plan,
+                                   make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1),
+                                                placed(pa->loop, turn, at), false, side_a),
+                                   true, tool, level);
+    const Side side_b = draw_side(rng);
+    const int ib = plan_with_leads(
+        rng, plan,
         make_contour("boss B " + mm(2 * a2) + " x " + mm(2 * b2) + ", " + mm(g) + " from A",
-                     placed(pb->loop, turn, at), false, draw_side(rng)),
-        draw_lead(rng, draw_lead_kind(rng, true), r), draw_lead(rng, draw_lead_kind(rng, true), r),
-        tool, {level});
+                     placed(pb->loop, turn, at), false, side_b),
+        true, tool, level);
     design_gouge(plan, ia, pa->edge[2], ib, pb->edge[2], 2 * r - g);
     design_gouge(plan, ib, pb->edge[2], ia, pa->edge[2], 2 * r - g);
     return true;
 }
 
-// The line+arc lead of a contour starting on a straight wall, its line long enough to start
-// `beyond` past the point x_from along its own direction (across whatever lies between).
+// The line+arc lead of a lead-in across a part: a quarter arc, so that its line runs straight at
+// the wall the contour starts on (its length is the caller's: from beyond what it crosses).
 Lead crossing_lead(Rng& rng, double r) {
     Lead l = draw_lead(rng, LeadKind::kLineArc, r);
     l.sweep = kPi / 2;
@@ -1175,17 +1199,18 @@ bool lead_across_feature(Rng& rng, Plan& plan) {
     const V at = draw_place(rng);
     const Tool tool{1, r};
     const double level = draw_level(rng);
-    const int ia = plan_feature(plan,
-                                make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1),
-                                             placed(pa->loop, turn, at), false, draw_side(rng)),
-                                draw_lead(rng, draw_lead_kind(rng, true), r),
-                                draw_lead(rng, draw_lead_kind(rng, true), r), tool, {level});
+    const Side side_a = draw_side(rng);
+    const int ia = plan_with_leads(rng, plan,
+                                   make_contour("boss A " + mm(2 * a1) + " x " + mm(2 * b1),
+                                                placed(pa->loop, turn, at), false, side_a),
+                                   true, tool, level);
+    const LeadKind out_kind = rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc;
+    const Lead out = draw_lead(rng, out_kind, r);
     const int ib = plan_feature(
         plan,
         make_contour("boss B " + mm(2 * a2) + " x " + mm(2 * b2) + ", its lead-in across A",
                      placed(pb->loop, turn, at), false, side_b),
-        in, draw_lead(rng, rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc, r), tool,
-        {level});
+        in, out, tool, {level});
     Check* check = plan.lead_in_check(ib);
     if (!check) return false;
     check->exempt = {wall_index(plan, ia, pa->edge[1]), wall_index(plan, ia, pa->edge[3])};
@@ -1213,47 +1238,41 @@ std::vector<Loop> stepover_loops(Rng& rng, double r, int n, double step, double 
     return loops;
 }
 
-// LinuxCNC's qpocket: one compensated stretch from the centre through loops of growing size,
-// each joined to the next by a line straight out to its start.
-bool stepover_one_stretch(Rng& rng, Plan& plan) {
-    const double r = draw_radius(rng);
-    const double step = rng.uniform(1.15 * r + 0.05, 1.8 * r + 0.1);
-    const int n = rng.integer(2, 5);
-    const std::vector<Loop> built = stepover_loops(
-        rng, r, n, step, rng.uniform(2 * r + 0.3, 2 * r + 6), rng.uniform(r + 0.3, r + 6));
-    if (built.empty()) return false;
-    const double turn = draw_turn(rng);
-    const V at = draw_place(rng);
-    const Side side = draw_side(rng);
-    std::vector<Contour> loops;
+// One compensated stretch from the centre through growing loops, as LinuxCNC's qpocket writes
+// it: a line out to the first loop's start (the approach), each loop, a line out to the next
+// loop's start, and G40 with the line back to the centre (the departure). The loops are the
+// pocket's (the last its wall).
+void plan_one_stretch(Plan& plan, const std::vector<Contour>& loops, const V& centre, Side side,
+                      const Tool& tool, double level, const std::string& what) {
     std::vector<int> ids;
-    for (int k = 0; k < n; ++k) {
-        loops.push_back(make_contour("loop", placed(built[static_cast<std::size_t>(k)], turn, at),
-                                     true, side, k == n - 1));
-        ids.push_back(plan.add_contour(loops.back()));
-    }
-    const Tool tool{1, r};
+    for (const Contour& c : loops) ids.push_back(plan.add_contour(c));
     plan.use(tool);
     plan.plate = true;
-    // The approach from the centre ends where its offset meets the first loop's.
-    const V centre = at;
-    const V c1 = loops.front().loop.front().a;
-    const V t1 = start_tangent(loops.front().loop.front());
-    const V n1 = side_normal(t1, side);
-    plan.checks.push_back(
-        {{centre, V(c1 + r * (n1 + t1))}, r - kTouch, {}, 0, "approach", ids.front()});
+    // The approach runs from the centre to where the line's offset meets the first loop's
+    // first element's (an inside corner: the offset line, or the offset circle of a pocket's
+    // arc); the departure from r beside the last loop's start back to the centre.
+    const double r = tool.r;
+    const Elem& first = loops.front().loop.front();
+    const V d = (first.a - centre).normalized();
+    const V on_lead = first.a + r * side_normal(d, side);  // the lead's offset line: + s d
+    V trim;
+    if (!first.arc) {
+        const V t = start_tangent(first);
+        const V on_first = first.a + r * side_normal(t, side);  // + u t
+        const V rhs = on_first - on_lead;
+        const double det = d.x() * (-t.y()) + d.y() * t.x();
+        trim = on_lead + ((rhs.x() * (-t.y()) + rhs.y() * t.x()) / det) * d;
+    } else {
+        const double q = (first.a - first.c).norm() - r;  // the tool inside the arc
+        const V f = on_lead - first.c;
+        const double b = f.dot(d), disc = b * b - (f.squaredNorm() - q * q);
+        if (q <= 0 || disc < 0) plan.feasible = false;
+        trim = on_lead + (-b + std::sqrt(std::max(disc, 0.0))) * d;  // the root nearer C0
+    }
+    plan.checks.push_back({{centre, trim}, r - kTouch, {}, 0, "approach", ids.front()});
     const Contour& last = loops.back();
-    const V cn = last.loop.front().a;
-    plan.checks.push_back(
-        {{V(cn + r * side_normal(start_tangent(last.loop.front()), side)), centre},
-         r - kTouch,
-         {},
-         0,
-         "departure",
-         ids.back()});
-    const double level = draw_level(rng);
-    const std::string what = "pocket cleared in " + std::to_string(n) + " loops " + mm(step) +
-                             " apart, one " + side_word(side) + " stretch (qpocket)";
+    const V beside = last.loop.front().a + r * side_normal(start_tangent(last.loop.front()), side);
+    plan.checks.push_back({{beside, centre}, r - kTouch, {}, 0, "departure", ids.back()});
     plan.steps.push_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
@@ -1262,23 +1281,42 @@ bool stepover_one_stretch(Rng& rng, Plan& plan) {
         nc.rapid(centre);
         nc.feed_z(level);
         nc.move(seg(centre, loops.front().loop.front().a), side_word(side), nullptr);
-        for (int k = 0; k < n; ++k) {
-            const Contour& c = loops[static_cast<std::size_t>(k)];
-            std::vector<WallElement> elements(c.loop.size());
-            for (std::size_t i = 0; i < c.loop.size(); ++i) nc.move(c.loop[i], "", &elements[i]);
-            WrittenContour& w =
-                e.contours[static_cast<std::size_t>(ids[static_cast<std::size_t>(k)])];
-            w.elements = std::move(elements);
+        for (std::size_t k = 0; k < loops.size(); ++k) {
+            const Contour& c = loops[k];
+            WrittenContour& w = e.contours[static_cast<std::size_t>(ids[k])];
+            w.elements.resize(c.loop.size());
+            for (std::size_t i = 0; i < c.loop.size(); ++i) nc.move(c.loop[i], "", &w.elements[i]);
             w.written = true;
-            if (k + 1 < n)
-                nc.move(
-                    seg(c.loop.front().a, loops[static_cast<std::size_t>(k + 1)].loop.front().a),
-                    "", nullptr);
+            if (k + 1 < loops.size())
+                nc.move(seg(c.loop.front().a, loops[k + 1].loop.front().a), "", nullptr);
         }
         nc.move(seg(loops.back().loop.front().a, centre), "G40", nullptr);
         nc.rapid_z(kSafe);
         e.end_feature();
     });
+}
+
+// LinuxCNC's qpocket: one compensated stretch from the centre through loops of growing size,
+// each joined to the next by a line straight out to its start.
+bool stepover_one_stretch(Rng& rng, Plan& plan) {
+    const double r = draw_radius(rng);
+    const double step = rng.uniform(1.15 * r + 0.05, 1.8 * r + 0.1);
+    const int n = rng.integer(2, 5);
+    const double a1 = rng.uniform(2 * r + 0.3, 2 * r + 6);
+    const double b1 = rng.uniform(r + 0.3, r + 6);
+    const std::vector<Loop> built = stepover_loops(rng, r, n, step, a1, b1);
+    if (built.empty()) return false;
+    const double turn = draw_turn(rng);
+    const V at = draw_place(rng);
+    const Side side = draw_side(rng);
+    std::vector<Contour> loops;
+    for (int k = 0; k < n; ++k)
+        loops.push_back(make_contour("loop", placed(built[static_cast<std::size_t>(k)], turn, at),
+                                     true, side, k == n - 1));
+    const double level = draw_level(rng);
+    plan_one_stretch(plan, loops, at, side, {1, r}, level,
+                     "pocket cleared in " + std::to_string(n) + " loops " + mm(step) +
+                         " apart, one " + side_word(side) + " stretch (qpocket)");
     return true;
 }
 
@@ -1287,8 +1325,9 @@ bool stepover_per_loop(Rng& rng, Plan& plan) {
     const double r = draw_radius(rng);
     const double step = rng.uniform(0.4 * r, 1.8 * r);
     const int n = rng.integer(2, 5);
-    const std::vector<Loop> built =
-        stepover_loops(rng, r, n, step, rng.uniform(r + 2, r + 8), rng.uniform(r + 2, r + 8));
+    const double a1 = rng.uniform(r + 2, r + 8);
+    const double b1 = rng.uniform(r + 2, r + 8);
+    const std::vector<Loop> built = stepover_loops(rng, r, n, step, a1, b1);
     if (built.empty()) return false;
     const double turn = draw_turn(rng);
     const V at = draw_place(rng);
@@ -1301,7 +1340,9 @@ bool stepover_per_loop(Rng& rng, Plan& plan) {
         const Contour c = make_contour(
             "stepover loop " + std::to_string(k + 1) + " of " + std::to_string(n),
             placed(built[static_cast<std::size_t>(k)], turn, at), true, side, k == n - 1);
-        plan_feature(plan, c, draw_lead(rng, in, r), draw_lead(rng, out, r), tool, {level});
+        const Lead lead_in = draw_lead(rng, in, r);
+        const Lead lead_out = draw_lead(rng, out, r);
+        plan_feature(plan, c, lead_in, lead_out, tool, {level});
     }
     return true;
 }
@@ -1373,9 +1414,11 @@ bool zigzag(Rng& rng, Plan& plan) {
         round ? (rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc) : draw_lead_kind(rng, true);
     const LeadKind out =
         round ? (rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc) : draw_lead_kind(rng, true);
-    plan_feature(plan,
-                 make_contour("pocket: " + s.what + " (finish)", s.loop, true, draw_side(rng)),
-                 draw_lead(rng, in, r), draw_lead(rng, out, r), tool, {level});
+    const Side side = draw_side(rng);
+    const Lead lead_in = draw_lead(rng, in, r);
+    const Lead lead_out = draw_lead(rng, out, r);
+    plan_feature(plan, make_contour("pocket: " + s.what + " (finish)", s.loop, true, side), lead_in,
+                 lead_out, tool, {level});
     return true;
 }
 
@@ -1413,8 +1456,10 @@ bool circular(Rng& rng, Plan& plan, bool inside_out) {
         for (int j = 0; j < n; ++j) {
             const int k = inside_out ? j : n - 1 - j;
             const auto kind = [&] { return rng.chance(0.5) ? LeadKind::kArc : LeadKind::kLineArc; };
-            plan_feature(plan, passes[static_cast<std::size_t>(k)], draw_lead(rng, kind(), r),
-                         draw_lead(rng, kind(), r), tool, {level});
+            const Lead lead_in = draw_lead(rng, kind(), r);
+            const Lead lead_out = draw_lead(rng, kind(), r);
+            plan_feature(plan, passes[static_cast<std::size_t>(k)], lead_in, lead_out, tool,
+                         {level});
         }
         return true;
     }
@@ -1422,36 +1467,9 @@ bool circular(Rng& rng, Plan& plan, bool inside_out) {
         const double rk = r1 + k * step, rnext = rk + step;
         if (std::sqrt((rnext - r) * (rnext - r) - r * r) < rk + 0.05) return false;
     }
-    std::vector<int> ids;
-    for (const Contour& c : passes) ids.push_back(plan.add_contour(c));
-    plan.use(tool);
-    const std::string what = "circular pocket in " + std::to_string(n) + " passes " + mm(step) +
-                             " apart, one " + side_word(side) + " stretch";
-    plan.steps.push_back([=](Emit& e) {
-        e.use_tool(tool);
-        e.begin_feature(what, tool);
-        NcWriter& nc = e.nc;
-        nc.rapid_z(kSafe);
-        nc.rapid(at);
-        nc.feed_z(level);
-        nc.move(seg(at, passes.front().loop.front().a), side_word(side), nullptr);
-        for (int k = 0; k < n; ++k) {
-            const Contour& c = passes[static_cast<std::size_t>(k)];
-            std::vector<WallElement> elements(c.loop.size());
-            for (std::size_t i = 0; i < c.loop.size(); ++i) nc.move(c.loop[i], "", &elements[i]);
-            WrittenContour& w =
-                e.contours[static_cast<std::size_t>(ids[static_cast<std::size_t>(k)])];
-            w.elements = std::move(elements);
-            w.written = true;
-            if (k + 1 < n)
-                nc.move(
-                    seg(c.loop.front().a, passes[static_cast<std::size_t>(k + 1)].loop.front().a),
-                    "", nullptr);
-        }
-        nc.move(seg(passes.back().loop.front().a, at), "G40", nullptr);
-        nc.rapid_z(kSafe);
-        e.end_feature();
-    });
+    plan_one_stretch(plan, passes, at, side, tool, level,
+                     "circular pocket in " + std::to_string(n) + " passes " + mm(step) +
+                         " apart, one " + side_word(side) + " stretch");
     return true;
 }
 
@@ -1472,14 +1490,16 @@ bool several_features(Rng& rng, Plan& plan) {
         // Leads of bosses reach out; pockets keep theirs inside.
         const double reach = pockets ? 1.0 : 4 * r + 12;
         x += reach_before + extent + reach + rng.uniform(0.5, 10);
-        const Shape s = placed(*shape, draw_turn(rng), V(x, rng.uniform(-10, 10)));
+        const double turn = draw_turn(rng);
+        const V at{x, rng.uniform(-10, 10)};
+        const Shape s = placed(*shape, turn, at);
         x += extent;
         reach_before = reach;
-        const Contour c = make_contour((pockets ? "pocket: " : "boss: ") + s.what, s.loop, pockets,
-                                       draw_side(rng));
-        plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, s.straight_start), r),
-                     draw_lead(rng, draw_lead_kind(rng, s.straight_start), r), tool,
-                     {draw_level(rng)});
+        const Side side = draw_side(rng);
+        const Contour c =
+            make_contour((pockets ? "pocket: " : "boss: ") + s.what, s.loop, pockets, side);
+        const auto [in, out] = draw_leads(rng, r, s.straight_start);
+        plan_feature(plan, c, in, out, tool, {draw_level(rng)});
     }
     plan.plate = pockets;
     return true;
@@ -1498,15 +1518,14 @@ bool refused_pocket_fillet(Rng& rng, Plan& plan) {
     rho[small] = rs;
     auto p = filleted_polygon(rectangle(-a, -b, a, b, 0), rho, reserve, 0.2);
     if (!p) return false;
-    const Shape s = placed(Shape{"pocket " + mm(2 * a) + " x " + mm(2 * b) + ", a corner rounded " +
-                                     mm(rs) + " (tool " + mm(r) + ")",
-                                 p->loop, true, p->edge},
-                           draw_turn(rng), draw_place(rng));
+    const Shape s =
+        placed_at_random(rng, Shape{"pocket " + mm(2 * a) + " x " + mm(2 * b) +
+                                        ", a corner rounded " + mm(rs) + " (tool " + mm(r) + ")",
+                                    p->loop, true, p->edge});
     plan.plate = true;
+    const double level = draw_level(rng);
     const int id =
-        plan_feature(plan, make_contour(s.what, s.loop, true, side),
-                     draw_lead(rng, draw_lead_kind(rng, true), r),
-                     draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+        plan_with_leads(rng, plan, make_contour(s.what, s.loop, true, side), true, {1, r}, level);
     const std::size_t last = s.loop.size() - 1;
     design_gouge(plan, id, ccw ? 0 : last, id, ccw ? 1 : last - 1, r - rs);
     plan.refusals.push_back(plan.designed.back().second);
@@ -1553,17 +1572,15 @@ bool refused_boss_scallop(Rng& rng, Plan& plan) {
         l.push_back(scallop);
         l.push_back(seg(s1, {0, -b}));
     }
-    const Shape s =
-        placed(Shape{"boss " + mm(2 * a) + " x " + mm(2 * b) + " with a scallop of radius " +
-                         mm(rs) + " (tool " + mm(r) + ")",
-                     l,
-                     true,
-                     {}},
-               draw_turn(rng), draw_place(rng));
+    const Shape s = placed_at_random(
+        rng, Shape{"boss " + mm(2 * a) + " x " + mm(2 * b) + " with a scallop of radius " + mm(rs) +
+                       " (tool " + mm(r) + ")",
+                   l,
+                   true,
+                   {}});
+    const double level = draw_level(rng);
     const int id =
-        plan_feature(plan, make_contour(s.what, s.loop, false, side),
-                     draw_lead(rng, draw_lead_kind(rng, true), r),
-                     draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+        plan_with_leads(rng, plan, make_contour(s.what, s.loop, false, side), true, {1, r}, level);
     const std::size_t last = l.size() - 1;
     design_gouge(plan, id, ccw ? 0 : last, id, ccw ? 1 : last - 1, r - rs);
     plan.refusals.push_back(plan.designed.back().second);
@@ -1605,18 +1622,16 @@ bool refused_notch(Rng& rng, Plan& plan) {
     l.push_back(seg({-a, bh - rho[3]}, {-a, -bh + rho[0]}));
     corner({-a, -bh + rho[0]}, {-a + rho[0], -bh}, {-a + rho[0], -bh + rho[0]});
     l.push_back(seg({-a + rho[0], -bh}, {0, -bh}));
-    const Shape s =
-        placed(Shape{"boss " + mm(2 * a) + " x " + mm(2 * bh) + " with a notch " + mm(w) +
-                         " wide, " + (round ? "round" : "flat") + " bottom (tool " + mm(r) + ")",
-                     l,
-                     true,
-                     {}},
-               draw_turn(rng), draw_place(rng));
+    const Shape s = placed_at_random(
+        rng, Shape{"boss " + mm(2 * a) + " x " + mm(2 * bh) + " with a notch " + mm(w) + " wide, " +
+                       (round ? "round" : "flat") + " bottom (tool " + mm(r) + ")",
+                   l,
+                   true,
+                   {}});
     const Side side = draw_side(rng);
     const Contour c = make_contour(s.what, s.loop, false, side);
-    const int id =
-        plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                     draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+    const double level = draw_level(rng);
+    const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
     // The wall reached first gouges the other one (a boss runs counter-clockwise under G42).
     const bool ccw = side == Side::kRight;
     const std::size_t first = ccw ? right_wall : left_wall, other = ccw ? left_wall : right_wall;
@@ -1700,8 +1715,9 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
                              : family == CamFamily::kCircle         ? 2
                                                                     : 3;
             opt.linear = rng.chance(0.25);
-            return single_contour(rng, plan, kind, rng.chance(0.5), std::nullopt,
-                                  {draw_level(rng)});
+            const bool pocket = rng.chance(0.5);
+            const double level = draw_level(rng);
+            return single_contour(rng, plan, kind, pocket, std::nullopt, {level});
         }
         case CamFamily::kIsland:
             return island(rng, plan, false);
@@ -1714,12 +1730,11 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const double w = draw_gap(rng, r, gouge);
             const auto sh = rooms(rng, r, w, gouge);
             if (!sh) return false;
-            const Shape s = placed(*sh, draw_turn(rng), draw_place(rng));
+            const Shape s = placed_at_random(rng, *sh);
             const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
             plan.plate = true;
-            const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r},
-                                        {draw_level(rng)});
+            const double level = draw_level(rng);
+            const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
             if (gouge) {
                 design_gouge(plan, id, s.edge[2], id, s.edge[8], 2 * r - w);
                 design_gouge(plan, id, s.edge[8], id, s.edge[2], 2 * r - w);
@@ -1733,11 +1748,10 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const double w = draw_gap(rng, r, gouge);
             const auto k = keyhole(rng, r, w);
             if (!k) return false;
-            const Shape s = placed(k->shape, draw_turn(rng), draw_place(rng));
+            const Shape s = placed_at_random(rng, k->shape);
             const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
-            const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r},
-                                        {draw_level(rng)});
+            const double level = draw_level(rng);
+            const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
             if (gouge) {
                 design_gouge(plan, id, k->right_wall, id, k->left_wall, 2 * r - w);
                 design_gouge(plan, id, k->left_wall, id, k->right_wall, 2 * r - w);
@@ -1751,12 +1765,11 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const double g = draw_gap(rng, r, gouge);
             const auto sh = tongue(rng, r, g, gouge);
             if (!sh) return false;
-            const Shape s = placed(*sh, draw_turn(rng), draw_place(rng));
+            const Shape s = placed_at_random(rng, *sh);
             const Contour c = make_contour(s.what, s.loop, true, draw_side(rng));
             plan.plate = true;
-            const int id = plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                                        draw_lead(rng, draw_lead_kind(rng, true), r), {1, r},
-                                        {draw_level(rng)});
+            const double level = draw_level(rng);
+            const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
             if (gouge) {
                 design_gouge(plan, id, s.edge[1], id, s.edge[5], 2 * r - g);
                 design_gouge(plan, id, s.edge[5], id, s.edge[1], 2 * r - g);
@@ -1767,11 +1780,11 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const double r = draw_radius(rng);
             const auto u = u_shape(rng, r, draw_gap(rng, r, false), 0);
             if (!u) return false;
-            const Shape s = placed(u->shape, draw_turn(rng), draw_place(rng));
+            const Shape s = placed_at_random(rng, u->shape);
             const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
             opt.linear = rng.chance(0.25);
-            plan_feature(plan, c, draw_lead(rng, draw_lead_kind(rng, true), r),
-                         draw_lead(rng, draw_lead_kind(rng, true), r), {1, r}, {draw_level(rng)});
+            const double level = draw_level(rng);
+            plan_with_leads(rng, plan, c, true, {1, r}, level);
             return true;
         }
         case CamFamily::kGougeLeadCrossesPart:
@@ -1797,8 +1810,9 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             const int n = rng.integer(2, 4);
             const double dz = rng.uniform(0.3, 2.0);
             for (int i = 1; i <= n; ++i) levels.push_back(-std::round(i * dz * 1000) / 1000);
-            return single_contour(rng, plan, rng.integer(0, 3), rng.chance(0.5), std::nullopt,
-                                  levels);
+            const int kind = rng.integer(0, 3);
+            const bool pocket = rng.chance(0.5);
+            return single_contour(rng, plan, kind, pocket, std::nullopt, levels);
         }
         case CamFamily::kRefusedPocketFillet:
             return refused_pocket_fillet(rng, plan);
@@ -1883,7 +1897,6 @@ std::string program_name(const CamFamilyInfo& info, std::uint64_t seed) {
 CamProgram write_program(const CamFamilyInfo& info, std::uint64_t seed, const Plan& plan,
                          const Options& opt) {
     Emit e(NcWriter(opt.decimals, opt.numbered, opt.modal));
-    e.feed = opt.feed;
     e.contours.resize(plan.contours.size());
     NcWriter& nc = e.nc;
     nc.text_line("%" + program_name(info, seed));

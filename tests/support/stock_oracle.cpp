@@ -557,7 +557,11 @@ OracleReport StockOracle::run(std::span<const run::PathSegment> path,
             if (best.distance >= b.radius) continue;
             const double depth = b.radius - best.distance;
             if (depth <= kPathTolerance) {
-                report.deepest_intact = std::max(report.deepest_intact, depth);
+                if (depth > report.deepest_intact) {
+                    report.deepest_intact = depth;
+                    report.deepest_intact_pair = {b.block,  w.element.block, depth, best.distance,
+                                                  b.radius, best.a,          best.b};
+                }
                 continue;
             }
             auto same = std::find_if(cut.begin(), cut.end(), [&](const OracleGouge& g) {

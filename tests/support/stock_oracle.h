@@ -115,6 +115,7 @@ struct OracleReport {
     // The deepest pair that is not a gouge (depth <= the path tolerance): how close an intact
     // program comes to the threshold; -infinity when no block comes within its radius of a wall.
     double deepest_intact = -1.0 / 0.0;
+    OracleGouge deepest_intact_pair;  // that pair (its blocks, distance, where)
     bool gouged() const { return !gouges.empty() || !buried.empty(); }
 };
 
