@@ -1986,8 +1986,10 @@ std::string CamProgram::summary() const {
 
 CamProgram generate_cam_program(CamFamily family, std::uint64_t seed) {
     const CamFamilyInfo& info = family_info(family);
-    Rng rng(seed * 0x9E3779B97F4A7C15ULL +
-            static_cast<std::uint64_t>(family) * 0xD1B54A32D192ED03ULL + 1);
+    // The family's own sequence of draws for each number.
+    const std::uint64_t start = seed * 0x9E3779B97F4A7C15ULL +
+                                static_cast<std::uint64_t>(family) * 0xD1B54A32D192ED03ULL + 1;
+    Rng rng(start);
     std::string last = "no shape fitted";
     for (int attempt = 0; attempt < 5000; ++attempt) {
         Plan plan;

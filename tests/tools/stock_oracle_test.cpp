@@ -130,6 +130,37 @@ TEST(StockOracle, LinePassingASquareAtAKnownDistanceCutsTheEdgeAndBothCorners) {
     EXPECT_NEAR(band.blocks[0].swept_area, 6 * 4 + kPi * 9, 1e-3);
 }
 
+TEST(StockOracle, OtherPlanesTakeTheirOwnAxesAndTopOnTheThirdAxis) {
+    // The square in the Y-Z plane (G19: first axis Y, second Z, third X, the top on X): the
+    // line of the first test, at X = -1 (below the top, cuts) and at X = +1 (above it).
+    DesignPart part = part_of({square(0, 0, 10, 1)});
+    part.plane = 19;
+    PathSegment below = seg_line({0, 0}, {0, 0}, 20);
+    below.start = {-1, 2, 12};
+    below.end = {-1, 8, 12};
+    PathSegment above = below;
+    above.block = line_ref(21);
+    above.start.x() = above.end.x() = 1;
+    const auto rep = run_oracle(part, {below, above}, 3.0);
+    ASSERT_EQ(rep.gouges.size(), 3U) << describe(rep);
+    EXPECT_NEAR(find_pair(rep, 20, 3)->depth, 1.0, 1e-9);
+    EXPECT_EQ(rep.blocks.size(), 1U);
+    // An arc of G18 (first Z, second X): centre and sense in that plane.
+    DesignPart zx = part_of({square(0, 0, 10, 1)});
+    zx.plane = 18;
+    PathSegment arc;
+    arc.kind = SegmentKind::kArc;
+    arc.block = line_ref(30);
+    arc.start = {12, -1, 5};  // X = second, Z = first: (z 5, x 12)
+    arc.end = {12, -1, 5};    // a full circle about (z 5, x 14.5): 2 from the edge at x = 10
+    arc.center = {14.5, -1, 5};
+    arc.ccw = true;
+    const auto rep2 = run_oracle(zx, {arc}, 3.0);
+    ASSERT_EQ(rep2.gouges.size(), 1U) << describe(rep2);
+    EXPECT_NEAR(rep2.gouges[0].depth, 1.0, 2 * StockOracle::kChordError);
+    EXPECT_TRUE(same_block(rep2.gouges[0].wall_block, line_ref(3)));  // second axis 10: X = 10
+}
+
 TEST(StockOracle, ArcPassingACircleAtAKnownDistance) {
     // A disc of radius 10 as two half circles (lines 1 and 2); the tool (r = 3) on an arc of
     // radius 12.5 from 30 to 120 degrees: 2.5 from the first half, farther than 3 from the
