@@ -187,15 +187,28 @@ TEST(StockOracle, ArcPassingACircleAtAKnownDistance) {
 }
 
 TEST(StockOracle, ArcWhoseRadiiDifferRunsAsASpiral) {
-    // Radius 12.5 at its start (0 degrees) and 12.4 at its end (90 degrees), the radius linear
-    // in the angle: nearest the disc of radius 10 at its end, 2.4 away.
+    // Radius 12.5 at its start (0 degrees) and 12.3 at its end (180 degrees), the radius linear
+    // in the angle: 12.4 at its middle (0, 12.4), about 2.6 below the square [-5, 5] x [15, 25]
+    // (the highest point of the spiral lies a little before the middle, 12.40016 high).
+    double highest = 0;
+    for (int i = 0; i <= 1000000; ++i) {
+        const double a = kPi * i / 1000000;
+        highest = std::max(highest, (12.5 - 0.2 * a / kPi) * std::sin(a));
+    }
+    const auto rep = run_oracle(part_of({square(-5, 15, 10, 1)}),
+                                {seg_arc({12.5, 0}, {-12.3, 0}, {0, 0}, true, 5)}, 3.0);
+    ASSERT_EQ(rep.gouges.size(), 1U) << describe(rep);
+    EXPECT_TRUE(same_block(rep.gouges[0].wall_block, line_ref(1)));
+    EXPECT_NEAR(rep.gouges[0].depth, 3.0 - (15 - highest), 2 * StockOracle::kChordError);
+    EXPECT_NEAR(rep.gouges[0].path_point.y, highest, 2 * StockOracle::kChordError);
+    // Nearest its end: radius 12.5 at 0 degrees, 12.4 at 90 degrees, 2.4 from the disc of
+    // radius 10.
     DesignLoop disc;
     disc.elements = {wall_arc({10, 0}, {10, 0}, {0, 0}, true, 1)};  // a full circle
-    const auto rep =
+    const auto rep2 =
         run_oracle(part_of({disc}), {seg_arc({12.5, 0}, {0, 12.4}, {0, 0}, true, 5)}, 3.0);
-    ASSERT_EQ(rep.gouges.size(), 1U) << describe(rep);
-    EXPECT_NEAR(rep.gouges[0].depth, 0.6, 2 * StockOracle::kChordError);
-    EXPECT_NEAR(rep.gouges[0].path_point.y, 12.4, 1e-6);
+    ASSERT_EQ(rep2.gouges.size(), 1U) << describe(rep2);
+    EXPECT_NEAR(rep2.gouges[0].depth, 0.6, 2 * StockOracle::kChordError);
 }
 
 TEST(StockOracle, LeadCrossingThePartCutsEveryEdgeItCrossesByTheWholeRadius) {
@@ -585,6 +598,41 @@ DesignLoop random_loop(Rng& rng) {
         loop.elements.push_back(e);
     }
     return loop;
+}
+
+// The area a tool sweeps along an arc of any radius against it (an annular sector with round
+// ends; a sector and two discs where the arc is no larger than the tool, as every circular
+// transition is), against the scanline measure, inside a large part.
+TEST(StockOracle, SweptAreaOfArcsOfEveryRadiusAgainstTheTool) {
+    const double r = 2.0;
+    const DesignLoop big = square(-50, -50, 100, 1);
+    const StockOracle oracle(part_of({big}));
+    std::vector<Pt> ring;
+    for (const WallElement& e : big.elements) {
+        const std::vector<Pt> pts = samples(e, INFINITY);
+        ring.insert(ring.end(), pts.begin() + (ring.empty() ? 0 : 1), pts.end());
+    }
+    int measured = 0;
+    for (const double radius : {0.3 * r, r, 1.7 * r}) {
+        for (const double degrees : {60.0, 200.0, 360.0}) {
+            const double a = degrees * kPi / 180;
+            const Pt start{radius, 0};
+            const Pt end =
+                degrees == 360.0 ? start : Pt{radius * std::cos(a), radius * std::sin(a)};
+            const std::vector<PathSegment> path = {seg_arc(start, end, {0, 0}, true, 9)};
+            const OracleReport rep = oracle.run(path, std::vector<double>{r});
+            ASSERT_EQ(rep.blocks.size(), 1U);
+            ASSERT_TRUE(rep.blocks[0].measured);  // inside the part: buried
+            const WallElement as_wall = wall_arc(start, end, {0, 0}, true, 0);
+            const double expected =
+                taken_by_scanlines(samples(as_wall, std::sqrt(8 * radius * 2e-6)), r, ring, 0.002);
+            EXPECT_NEAR(rep.blocks[0].swept_area, expected, 1e-3)
+                << "arc radius " << radius << ", " << degrees << " degrees";
+            EXPECT_NEAR(rep.blocks[0].taken_area, rep.blocks[0].swept_area, 1e-6);
+            ++measured;
+        }
+    }
+    EXPECT_EQ(measured, 9);
 }
 
 TEST(StockOracle, AgreesWithBruteForceSamplingOnRandomPartsAndPaths) {
