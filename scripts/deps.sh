@@ -10,12 +10,13 @@ APCI_RUN_DEB_PACKAGES=(
   ccache
 )
 # Everything ./test.sh needs: the above, the test and benchmark frameworks,
+# Boost (Boost.Geometry, headers only, for the gouge tests' stock-removal oracle),
 # umockdev for the USB tests, pybind11, NumPy, pytest and matplotlib for the
 # Python package `apci` and its tests, zsh and bash-completion for the tests
 # of the shell completion, and pandoc, which writes the man pages from docs/.
 APCI_DEB_PACKAGES=(
   "${APCI_RUN_DEB_PACKAGES[@]}"
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
   umockdev libumockdev-dev
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
   zsh bash-completion pandoc
