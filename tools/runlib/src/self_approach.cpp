@@ -139,36 +139,35 @@ bool near_enough(const Extent& path, const Extent& contour, double threshold) {
 
 }  // namespace
 
-// A shape as the grid keeps it, by the hundred thousand: its numbers packed (plane::Element's
-// vectors are aligned to 16 bytes), its box, range and length in floats rounded outward (the
-// box and range are filters, the length counts samples: rounded up, never fewer). shape() gives
-// the element back exactly, the box and range no smaller.
+// A shape as the grid keeps it, by the hundred thousand: its ends and an arc's centre and
+// sense packed (plane::Element's vectors are aligned to 16 bytes), its box, range and length in
+// floats rounded outward (the box and range are filters, the length counts samples: rounded
+// up, never fewer). shape() gives the element back exactly (an arc's radii and angles worked
+// out again, as shape_of() did), the box and range no smaller.
 namespace detail {
 struct StoredShape {
     double start[2], end[2], centre[2];
-    double r0, r1, phi0, sweep;
     float lo[2], hi[2], low, high, length;
-    bool arc;
+    bool arc, ccw;
 
     explicit StoredShape(const Shape& e)
         : start{e.start.x(), e.start.y()},
           end{e.end.x(), e.end.y()},
           centre{e.centre.x(), e.centre.y()},
-          r0(e.r0), r1(e.r1), phi0(e.phi0), sweep(e.sweep),
           lo{down(e.lo.x()), down(e.lo.y())},
           hi{up(e.hi.x()), up(e.hi.y())},
-          low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(e.arc) {}
+          low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(e.arc),
+          ccw(e.sweep > 0.0) {}
     Extent extent() const {
         return {Vec2(lo[0], lo[1]), Vec2(hi[0], hi[1]), static_cast<double>(low),
                 static_cast<double>(high)};
     }
     Shape shape() const {
         Shape e;
-        e.arc = arc;
-        e.start = {start[0], start[1]};
-        e.end = {end[0], end[1]};
-        e.centre = {centre[0], centre[1]};
-        e.r0 = r0, e.r1 = r1, e.phi0 = phi0, e.sweep = sweep;
+        const Vec2 a(start[0], start[1]), b(end[0], end[1]);
+        static_cast<plane::Element&>(e) =
+            arc ? plane::arc_element(a, b, Vec2(centre[0], centre[1]), ccw)
+                : plane::line_element(a, b);
         const Extent x = extent();
         e.lo = x.lo, e.hi = x.hi, e.low = x.low, e.high = x.high;
         e.length = static_cast<double>(length);
@@ -284,30 +283,35 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
     return z ^ (z >> 31);
 }
 
-// The geometry of a segment in the plane (axes First, Second) and the tool radius, as one
-// 64-bit hash of their exact values: the same geometry is checked once (a program that repeats
-// a contour repeats its numbers; a hash collision, about one in 2^64 per pair, would skip one
-// check). The plane's axes are constants here: no index looked up per coordinate.
-template <int First, int Second>
-std::uint64_t key_in(const PathSegment& s, double r) {
-    const bool arc = s.kind == SegmentKind::kArc;
-    std::uint64_t h = arc ? (s.ccw ? 3 : 2) : 1;
-    h = mix(h, bits_of(s.start[First]));
-    h = mix(h, bits_of(s.start[Second]));
-    h = mix(h, bits_of(s.end[First]));
-    h = mix(h, bits_of(s.end[Second]));
+// The geometry of an element in the plane (its ends, an arc's centre and sense) and the tool
+// radius, as one 64-bit hash of their exact values: the same geometry is checked once (a
+// program that repeats a contour repeats its numbers; a hash collision, about one in 2^64 per
+// pair, would skip one check).
+std::uint64_t key_from(bool arc, bool ccw, const double (&start)[2], const double (&end)[2],
+                       const double (&centre)[2], double r) {
+    std::uint64_t h = arc ? (ccw ? 3 : 2) : 1;
+    h = mix(h, bits_of(start[0]));
+    h = mix(h, bits_of(start[1]));
+    h = mix(h, bits_of(end[0]));
+    h = mix(h, bits_of(end[1]));
     if (arc) {
-        h = mix(h, bits_of(s.center[First]));
-        h = mix(h, bits_of(s.center[Second]));
+        h = mix(h, bits_of(centre[0]));
+        h = mix(h, bits_of(centre[1]));
     }
     return mix(h, bits_of(r));
 }
 
-// key_in in the axes of `plane`.
+// key_from of a segment in the axes of `plane` (an arc in another plane is a line in this one,
+// as shape_of() takes it), and of an item as the grid keeps it: the same for the same geometry.
 std::uint64_t key_of(const PathSegment& s, int plane, double r) {
-    return with_plane_axes(plane, [&](auto first, auto second, auto) {
-        return key_in<decltype(first)::value, decltype(second)::value>(s, r);
-    });
+    const PlaneAxes a = plane_axes(plane);
+    const double start[2] = {s.start[a.first], s.start[a.second]};
+    const double end[2] = {s.end[a.first], s.end[a.second]};
+    const double centre[2] = {s.center[a.first], s.center[a.second]};
+    return key_from(s.kind == SegmentKind::kArc && s.plane == plane, s.ccw, start, end, centre, r);
+}
+std::uint64_t key_of(const StoredShape& e, double r) {
+    return key_from(e.arc, e.ccw, e.start, e.end, e.centre, r);
 }
 
 // The same block: by N number when both have one (executed segments carry only the N number
@@ -335,15 +339,14 @@ std::string describe(const SelfApproachFinding& f) {
 
 
 struct SelfApproachCheck::GridItem {
-    GridItem(const Shape& e, const BlockRef& b, std::uint64_t i, std::uint64_t s, std::uint64_t k,
-             double radius)
-        : shape(e), block(b), index(i), stretch(s), key(k), r(radius) {}
+    GridItem(const Shape& e, const BlockRef& b, std::uint64_t i, std::uint64_t s, double radius)
+        : shape(e), block(b), index(i), stretch(s), r(radius) {}
     StoredShape shape;
     BlockRef block;
     std::uint64_t index = 0;
     std::uint64_t stretch = 0;
-    std::uint64_t key = 0;  // of its geometry (contour_keys, path_keys)
-    double r = 0.0;
+    double r = 0.0;  // the tool's, of a path (the key of its geometry is key_of(shape, r)); 0
+                     // for an element
     // The element's loop (WallModel::kNoLoop for none), once its role is known: role_of().
     std::uint64_t loop = detail::WallModel::kNoLoop;
     std::uint32_t entries = 0;  // cells it is listed in (set by index)
@@ -510,7 +513,7 @@ struct SelfApproachCheck::Grid {
             l->first += static_cast<std::uint64_t>(kept - l->items.begin());
             l->items.erase(l->items.begin(), kept);
             l->keys.clear();
-            for (const Item& i : l->items) l->keys.insert(i.key);
+            for (const Item& i : l->items) l->keys.insert(key_of(i.shape, i.r));
         }
         reindex();
     }
@@ -993,7 +996,7 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     if (e.length <= kFullCircle) return;
     latest_ = g.contour.next();
     g.size_by(e.length);
-    Grid::Item item(e, s.block, index, stretch_, key, r_);
+    Grid::Item item(e, s.block, index, stretch_, 0.0);
     item.protect = !first;
     if (first) {
         g.add(g.contour, item);
@@ -1083,7 +1086,7 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
     const bool approach = s.role == Role::kApproach;
-    Grid::Item self(e, s.block, p.index, p.stretch, key, p.r);
+    Grid::Item self(e, s.block, p.index, p.stretch, p.r);
     self.transition = transition;
     self.approach = approach;
     // Its element is placed once its stretch ended (or, an open contour's, at once).

@@ -49,7 +49,7 @@ void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t k
         stretch_first_ = index;
         started_ = true;
     }
-    records_.push_back(Record{index, 0, key, Place::kUndecided, walls, repeat});
+    records_.push_back(Record{index, 0, Place::kUndecided, walls, repeat});
     // The oldest pending element can no longer begin a loop: an open contour's.
     if (pending_.size() >= kMaxPending) {
         place_pending(1, Place::kOpen, 0);
@@ -116,16 +116,21 @@ void WallModel::close_loop(std::size_t from) {
     } else {
         for (std::size_t i = from; i < pending_.size(); ++i) {
             const PlaneMove& m = pending_[i].move;
-            loop.elements.push_back(m.arc ? plane::arc_element(m.start, m.end, m.centre, m.ccw)
-                                          : plane::line_element(m.start, m.end));
+            loop.elements.push_back(Loop::Kept{{m.start.x(), m.start.y()},
+                                               {m.end.x(), m.end.y()},
+                                               {m.centre.x(), m.centre.y()},
+                                               m.arc,
+                                               m.ccw});
         }
-        const double area = plane::signed_area(loop.elements);
+        std::vector<plane::Element>& elements = elements_;
+        elements_of(loop, elements);
+        const double area = plane::signed_area(elements);
         // A loop with no area to speak of (out and back along itself) has no inside.
         const double scale = std::max(1.0, std::abs(area));
         if (std::abs(area) > 1e-9 * scale && std::abs(area) > 1e-12)
             loop.sense = (area > 0.0 ? 1 : -1) * side_;
         number = loops_first_ + loops_.size();
-        loop.box = plane::bounds(loop.elements);
+        loop.box = plane::bounds(elements);
         loops_.push_back(std::move(loop));
         loop_by_key_.emplace(key).first = number;
         index_loop(number);
@@ -242,8 +247,23 @@ bool WallModel::clears(const Loop& pass, const Loop& loop) const {
     // A pocket pass clears the pockets it encloses; a boss pass clears the bosses round it.
     const Loop& outer = loop.sense > 0 ? pass : loop;
     const Loop& inner = loop.sense > 0 ? loop : pass;
-    return plane::within(outer.elements, outer.box, inner.elements, inner.box, kTolerance,
+    // The boxes first (within() tests them too): the elements are made only where they hold.
+    if ((inner.box.lo.array() < outer.box.lo.array() - kTolerance).any() ||
+        (inner.box.hi.array() > outer.box.hi.array() + kTolerance).any())
+        return false;
+    elements_of(outer, elements_);
+    elements_of(inner, inner_elements_);
+    return plane::within(elements_, outer.box, inner_elements_, inner.box, kTolerance,
                          kPairBudget) == plane::Within::kWithin;
+}
+
+void WallModel::elements_of(const Loop& loop, std::vector<plane::Element>& out) {
+    out.clear();
+    for (const Loop::Kept& k : loop.elements) {
+        const plane::Vec2 start(k.start[0], k.start[1]), end(k.end[0], k.end[1]);
+        out.push_back(k.arc ? plane::arc_element(start, end, {k.centre[0], k.centre[1]}, k.ccw)
+                            : plane::line_element(start, end));
+    }
 }
 
 void WallModel::decide(Loop& loop, std::uint64_t number) {

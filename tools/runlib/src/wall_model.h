@@ -112,7 +112,6 @@ class WallModel {
     struct Record {
         std::uint64_t index = 0;
         std::uint64_t loop = 0;  // kLoop: its loop's number
-        std::uint64_t key = 0;
         Place place = Place::kUndecided;
         bool walls = true;
         bool repeat = false;  // its geometry came before
@@ -128,7 +127,13 @@ class WallModel {
         double low = 0.0, high = 0.0;
         std::uint64_t last = 0;  // the highest element number of any of its occurrences
         std::uint64_t key = 0;   // of its elements' geometry, in any order
-        std::vector<plane::Element> elements;
+        // Its elements, kept packed (a program's loops hold as many elements as the program):
+        // made plane::Elements again where an enclosure is tested (clears()).
+        struct Kept {
+            double start[2], end[2], centre[2];
+            bool arc, ccw;
+        };
+        std::vector<Kept> elements;
         plane::Bounds box;
         bool cleared = false;
         std::size_t known = 0;  // loops there were when it was last decided
@@ -164,6 +169,8 @@ class WallModel {
     static constexpr std::size_t kScanned = 64;
     void close_loop(std::size_t from);
     bool clears(const Loop& outer_pass, const Loop& loop) const;
+    // A loop's elements as plane::Elements, in `out`.
+    static void elements_of(const Loop& loop, std::vector<plane::Element>& out);
     void decide(Loop& loop, std::uint64_t number);
 
     // Drops the records placed since `from` (an index into records_) that say nothing more.
@@ -190,6 +197,8 @@ class WallModel {
     std::unordered_map<std::uint64_t, std::uint64_t> starts_;
     std::uint64_t pending_first_ = 0;  // the stretch's count of elements before pending_[0]
     std::uint64_t generation_ = 0;
+    // Scratch for the elements of the loops an enclosure test compares (memory kept).
+    mutable std::vector<plane::Element> elements_, inner_elements_;
 };
 
 }  // namespace apci::run::detail
