@@ -533,4 +533,34 @@ TEST(DaemonList, ListenerThatIsNotADaemonIsListedAsNotOne) {
         << r.out;
 }
 
+
+// A daemon started with relative paths registers them absolute: `apcictl list` run from
+// another directory prints URIs that open the board (it printed "unix:emu.sock").
+TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
+    TempDir dir;
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 2);
+        if (::chdir(dir.path().c_str()) != 0) ::_exit(126);
+        ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
+        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket", "emu.sock",
+                "--shm", "./emu.dpram", nullptr);
+        ::_exit(127);
+    }
+    const std::string entry = dir.file("rwmos-emu." + std::to_string(pid));
+    EXPECT_TRUE(apci_test::eventually([&] { return std::filesystem::exists(entry); }));
+    const auto r =
+        test_support::run_process({APCICTL_PATH, "list"}, {}, {{"APCI_RUNTIME_DIR", dir.path()}});
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "unix:" + dir.file("emu.sock") + "  rwmos-emu daemon, pid " +
+                                    std::to_string(pid)))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, "shm:" + dir.file("emu.dpram") + " ")) << r.out;
+}
+
 }  // namespace

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,6 +73,15 @@ bool give_group(const std::string& path, gid_t gid) {
     if (::lchown(path.c_str(), static_cast<uid_t>(-1), gid) == 0) return true;
     log(Level::kError, "{}: cannot give it group {}: {}", path, gid, std::strerror(errno));
     return false;
+}
+
+// `path` made absolute against the working directory (lexically, links kept), for the
+// registry: a reader in another directory must find the same file. "" stays "".
+std::string absolute(const std::string& path) {
+    if (path.empty()) return path;
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::absolute(path, ec);
+    return ec ? path : p.lexically_normal().string();
 }
 
 // Owns the epoll and signal descriptors.
@@ -174,7 +184,7 @@ int serve(const Options& o) {
         host.pace(std::chrono::steady_clock::now());
     }
 
-    objif::RegisteredDaemon self{::getpid(), o.socket, o.shm};
+    objif::RegisteredDaemon self{::getpid(), absolute(o.socket), absolute(o.shm)};
     if (!objif::register_daemon(self, why))
         log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
     log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}",
