@@ -19,15 +19,16 @@
 
 #include "log.h"
 #include "objif/frame.h"
+#include "objif/registry.h"
 
 namespace rwmos_emu {
 namespace {
 
 constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
 // How long a starting daemon waits for another one starting in the same
-// directory (a neighbour holding the lock longer makes it give up).
-constexpr std::chrono::seconds kDirectoryLockWait{2};
-constexpr std::chrono::milliseconds kDirectoryLockPoll{5};
+// directory (a neighbour holding the turn longer makes it give up).
+constexpr std::chrono::seconds kStartTurnWait{2};
+constexpr std::chrono::milliseconds kStartTurnPoll{5};
 // Reads of a hung-up client served before it is released (its requests
 // still reach the board, as they would have on the next turn of the loop).
 constexpr int kReapReads = 8;
@@ -92,50 +93,68 @@ std::string directory_of(const std::string& path) {
     return path.substr(0, slash);
 }
 
-// An exclusive flock on a directory, taken by every daemon while it clears,
-// binds and starts listening on a socket there: a daemon that finds a socket
-// nobody listens on yet knows it is stale, not another daemon's between bind
-// and listen. Released when it goes out of scope.
-class DirectoryLock {
+// The turn of a daemon starting in a socket directory: an exclusive flock taken by every
+// daemon of this user while it clears, binds and starts listening on a socket there, so that a
+// daemon that finds a socket nobody listens on yet knows it is stale, not another daemon's
+// between bind and listen. The lock is a file in the user's private registry directory
+// (objif/registry.h) named after the socket directory's device and inode, not the socket
+// directory itself: any user may hold flock on a shared directory (/tmp, /dev/shm), and did
+// stop every daemon from starting there. Released when it goes out of scope.
+class StartTurn {
   public:
-    DirectoryLock() = default;
-    ~DirectoryLock() {
+    StartTurn() = default;
+    ~StartTurn() {
         if (fd_ >= 0) ::close(fd_);
     }
-    DirectoryLock(const DirectoryLock&) = delete;
-    DirectoryLock& operator=(const DirectoryLock&) = delete;
+    StartTurn(const StartTurn&) = delete;
+    StartTurn& operator=(const StartTurn&) = delete;
 
     bool take(const std::string& dir, std::string& why) {
-        fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-        if (fd_ < 0 && (errno == ENOENT || errno == ENOTDIR)) {
-            why = fmt::format("socket directory {}: {}", dir, std::strerror(errno));
+        struct stat st {};
+        const int err = ::stat(dir.c_str(), &st) != 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+        if (err != 0) {
+            why = fmt::format("socket directory {}: {}", dir, std::strerror(err));
             return false;
         }
-        if (fd_ < 0) {
-            // A directory we may write in but not read (mode 0300): no lock to take.
-            log(Level::kWarn, "cannot open socket directory {} to lock it ({}); starting unlocked",
-                dir, std::strerror(errno));
+        std::string registry_why;
+        const int registry = objif::open_registry_dir(true, registry_why);
+        if (registry < 0) {
+            log(Level::kWarn,
+                "cannot take turns with other daemons starting in {} ({}); starting unlocked", dir,
+                registry_why);
             return true;
         }
-        const auto until = SteadyClock::now() + kDirectoryLockWait;
+        const std::string name = start_lock_name(st.st_dev, st.st_ino);
+        fd_ = ::openat(registry, name.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC,
+                       0600);
+        const int open_errno = errno;
+        ::close(registry);
+        struct stat lock {};
+        if (fd_ < 0 || ::fstat(fd_, &lock) != 0 || !S_ISREG(lock.st_mode) ||
+            lock.st_uid != ::geteuid()) {
+            log(Level::kWarn, "cannot open the start lock {} in the registry directory ({}); "
+                "starting unlocked", name, fd_ < 0 ? std::strerror(open_errno) : "not a file of ours");
+            return true;
+        }
+        const auto until = SteadyClock::now() + kStartTurnWait;
         for (;;) {
             if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return true;
             if (errno != EWOULDBLOCK && errno != EINTR) {
                 // A file system without flock (ENOLCK, EOPNOTSUPP): start
                 // without taking turns rather than not at all.
-                log(Level::kWarn, "cannot lock socket directory {} ({}); starting unlocked", dir,
+                log(Level::kWarn, "cannot lock {} ({}); starting unlocked", name,
                     std::strerror(errno));
                 return true;
             }
             if (SteadyClock::now() >= until) {
                 why = fmt::format(
-                    "socket directory {} stayed locked for {} s (another rwmos-emu starting "
-                    "there, or a process holding flock on it); try again or choose another "
-                    "--socket directory",
-                    dir, kDirectoryLockWait.count());
+                    "another rwmos-emu of this user starting in socket directory {} held its "
+                    "turn for {} s (the lock {} in {}); try again or choose another --socket "
+                    "directory",
+                    dir, kStartTurnWait.count(), name, objif::registry_dir());
                 return false;
             }
-            std::this_thread::sleep_for(kDirectoryLockPoll);
+            std::this_thread::sleep_for(kStartTurnPoll);
         }
     }
 
@@ -164,6 +183,11 @@ int bind_socket(int fd, const sockaddr_un& addr, gid_t group) {
 
 }  // namespace
 
+std::string start_lock_name(dev_t dev, ino_t ino) {
+    return fmt::format("socket-dir.{:x}.{:x}.lock", static_cast<std::uint64_t>(dev),
+                       static_cast<std::uint64_t>(ino));
+}
+
 bool send_notice(int fd, objif::Status status, std::string_view text) {
     try {
         std::vector<std::uint8_t> payload;
@@ -186,15 +210,15 @@ SocketServer::~SocketServer() {
 }
 
 // Bound at PATH itself (so ss, lsof and /proc/net/unix name the socket by
-// its path), under the directory lock: clear_path() (lstat, never through a
+// its path), in its start turn (StartTurn): clear_path() (lstat, never through a
 // symlink; a stale socket removed, anything else refused), bind with mode
 // 0660 and the group from the start, listen at once; bind never replaces a
 // file, so a socket or file that appeared meanwhile is never displaced.
 bool SocketServer::open(const std::string& path, gid_t group, std::string& why) {
     sockaddr_un addr{};
     if (!make_address(path, addr, why)) return false;
-    DirectoryLock lock;
-    if (!lock.take(directory_of(path), why)) return false;
+    StartTurn turn;
+    if (!turn.take(directory_of(path), why)) return false;
     if (!clear_path(path, addr, why)) return false;
     const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     if (fd < 0) {

@@ -46,8 +46,8 @@ class SocketServer {
 
     // Listens on `path` (mode 0660, owned by `group` unless it is -1), bound
     // at that very name. A stale socket (nobody listening) is removed first;
-    // a live one, or a path that is not a socket, is refused. Daemons
-    // starting in the same directory take turns (a lock on the directory),
+    // a live one, or a path that is not a socket, is refused. Daemons of
+    // this user starting in the same directory take turns (start_lock_name),
     // so one never removes the socket of another that is about to listen.
     // False with `why`.
     bool open(const std::string& path, gid_t group, std::string& why);
@@ -106,6 +106,11 @@ class SocketServer {
 
 // Replies a client may leave unread before the daemon stops reading from it.
 inline constexpr std::size_t kMaxQueuedReplies = 1 << 20;
+
+// The name of the file in the registry directory (objif/registry.h) whose
+// flock is a daemon's turn to start in the socket directory of that device
+// and inode.
+std::string start_lock_name(dev_t dev, ino_t ino);
 
 // Sends `notice` (a Notice frame, objif/frame.h) on `fd` without blocking;
 // false when it could not be sent whole.
