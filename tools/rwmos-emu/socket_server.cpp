@@ -5,6 +5,7 @@
 #include <poll.h>
 #include <sys/epoll.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/timerfd.h>
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <new>
 #include <thread>
 
 #include "log.h"
@@ -207,6 +209,7 @@ bool send_notice(int fd, objif::Status status, std::string_view text) {
 SocketServer::~SocketServer() {
     close_all();
     if (idle_timer_fd_ >= 0) ::close(idle_timer_fd_);
+    if (spare_fd_ >= 0) ::close(spare_fd_);
 }
 
 // Bound at PATH itself (so ss, lsof and /proc/net/unix name the socket by
@@ -261,6 +264,7 @@ bool SocketServer::open(const std::string& path, gid_t group, std::string& why) 
         if (idle_timer_fd_ < 0 || ::epoll_ctl(epoll_fd_, EPOLL_CTL_ADD, idle_timer_fd_, &ev) != 0)
             return fail("--idle-timeout timer", errno);
     }
+    spare_fd_ = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
     listen_fd_ = fd;
     path_ = path;
     dev_ = st.st_dev;
@@ -270,20 +274,113 @@ bool SocketServer::open(const std::string& path, gid_t group, std::string& why) 
 }
 
 void SocketServer::on_listen_ready() {
+    if (listen_paused_) return;
     for (;;) {
         const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
         if (fd < 0) {
             if (errno == EAGAIN || errno == EINTR) return;
+            if (errno == ECONNABORTED) continue;
             if (errno == EMFILE || errno == ENFILE) {
-                log(Level::kWarn, "accept: {} (clients wait in the backlog)", std::strerror(errno));
+                if (refuse_for_descriptors(errno)) continue;
                 return;
             }
-            if (errno == ECONNABORTED) continue;
-            log(Level::kError, "accept: {}", std::strerror(errno));
+            // Anything else (ENOMEM, ENOBUFS): the listener stays ready, so it is left alone
+            // for a moment rather than asked again at once.
+            log(Level::kError, "accept: {}; not accepting for {} ms", std::strerror(errno),
+                kListenPause.count());
+            pause_listening();
             return;
         }
         accept_one(fd);
     }
+}
+
+// Out of descriptors, the listening socket stays ready with the newcomer in its backlog: asked
+// again and again, the loop spun (and logged a line each time), and the newcomer waited for a
+// greeting that never came. The spare descriptor makes room to take it off the backlog, tell
+// it why and close it.
+bool SocketServer::refuse_for_descriptors(int err) {
+    if (spare_fd_ < 0) {
+        log(Level::kError, "accept: {}; no spare descriptor to tell a newcomer why; not accepting "
+            "for {} ms", std::strerror(err), kListenPause.count());
+        pause_listening();
+        return false;
+    }
+    ::close(spare_fd_);
+    const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    const int accept_errno = errno;
+    if (fd >= 0) {
+        rlimit limit{};
+        ::getrlimit(RLIMIT_NOFILE, &limit);
+        send_notice(fd, objif::Status::kTransportError,
+                    err == EMFILE
+                        ? fmt::format("out of file descriptors ({} clients connected, limit {} "
+                                      "open files); try again later",
+                                      clients_.size(), limit.rlim_cur)
+                        : std::string("the system is out of file descriptors; try again later"));
+        ::close(fd);
+        ++refused_for_descriptors_;
+    }
+    spare_fd_ = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    // One line at the first refusal, then at most one a second with the count.
+    const auto now = SteadyClock::now();
+    if (refused_for_descriptors_ != 0 && now - refusal_logged_ >= std::chrono::seconds(1)) {
+        log(Level::kWarn, "refused {} client(s): {} (--max-clients {}; raise the open-files limit, "
+            "ulimit -n)", refused_for_descriptors_, std::strerror(err), limits_.max_clients);
+        refused_for_descriptors_ = 0;
+        refusal_logged_ = now;
+    }
+    if (spare_fd_ < 0) {
+        pause_listening();
+        return false;
+    }
+    // Taken: there may be more. Nobody (EAGAIN), or still none (ENFILE: the system's limit
+    // and no descriptor came free): done for now.
+    if (fd < 0 && accept_errno != EAGAIN && accept_errno != EINTR) pause_listening();
+    return fd >= 0;
+}
+
+void SocketServer::pause_listening() {
+    if (listen_paused_ || listen_fd_ < 0) return;
+    epoll_event ev{};
+    ev.events = 0;
+    ev.data.fd = listen_fd_;
+    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_MOD, listen_fd_, &ev) != 0) return;
+    listen_paused_ = true;
+    listen_resume_ = SteadyClock::now() + kListenPause;
+}
+
+int SocketServer::wait_ms() const {
+    if (!left_over_.empty()) return 0;
+    if (!listen_paused_) return -1;
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(listen_resume_ -
+                                                                   SteadyClock::now());
+    return static_cast<int>(std::max<std::chrono::milliseconds::rep>(0, left.count()));
+}
+
+void SocketServer::after_events() {
+    if (listen_paused_ && SteadyClock::now() >= listen_resume_ && listen_fd_ >= 0) {
+        epoll_event ev{};
+        ev.events = EPOLLIN;
+        ev.data.fd = listen_fd_;
+        if (::epoll_ctl(epoll_fd_, EPOLL_CTL_MOD, listen_fd_, &ev) == 0) listen_paused_ = false;
+    }
+    // Every client with requests left over gets one more turn, in the order they were left,
+    // unless it was served this round already.
+    const std::vector<int> waiting = std::move(left_over_);
+    left_over_.clear();
+    for (const int fd : waiting) {
+        auto it = clients_.find(fd);
+        if (it == clients_.end()) continue;
+        Client& c = it->second;
+        if (c.round == round_) {
+            left_over_.push_back(fd);
+            continue;
+        }
+        c.awaits_turn = false;
+        if (serve_turn(fd, c)) rearm(fd, c);
+    }
+    ++round_;
 }
 
 void SocketServer::accept_one(int fd) {
@@ -378,6 +475,16 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
     if ((events & EPOLLOUT) != 0 && !flush(fd, c)) return;
     if (!c.reading && (events & (EPOLLHUP | EPOLLERR)) != 0)
         return drop(fd, "hung up with replies unread");
+    // A client with requests left over is not read from: its turn comes in after_events(),
+    // once it has read enough of its replies.
+    if (c.backlog) {
+        if (!c.awaits_turn && c.out.size() - c.out_pos < kMaxQueuedReplies) {
+            c.awaits_turn = true;
+            left_over_.push_back(fd);
+        }
+        rearm(fd, c);
+        return;
+    }
     if ((events & (EPOLLIN | EPOLLRDHUP | EPOLLHUP | EPOLLERR)) == 0 || !c.reading) {
         rearm(fd, c);
         return;
@@ -397,18 +504,46 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
     }
     if (n < 0) return;
     c.last_active = SteadyClock::now();
-    const auto result =
-        host_.serve_stream(c.stream, {read_buffer_.data(), static_cast<std::size_t>(n)}, c.out);
+    c.stream.append({read_buffer_.data(), static_cast<std::size_t>(n)});
+    if (serve_turn(fd, c)) rearm(fd, c);
+}
+
+bool SocketServer::serve_turn(int fd, Client& c) {
+    c.round = round_;
+    const std::size_t queued = c.out.size() - c.out_pos;
+    rwmos::FrameStream::Result result;
+    if (queued < kMaxQueuedReplies) {
+        try {
+            result = host_.serve_turn(
+                c.stream, c.out,
+                rwmos::FrameStream::Turn{SteadyClock::now() + kTurnTime,
+                                         kMaxQueuedReplies - queued});
+        } catch (const std::bad_alloc&) {
+            // Not even the NoMemory reply could be made: this client goes, the others stay.
+            drop(fd, "could not be served: the daemon is out of memory");
+            return false;
+        }
+    } else {
+        result.more = true;  // its replies wait to be read first
+    }
     if (result.rejected != 0)
         log(Level::kDebug, "client {}: {} malformed frame(s) answered with Error", c.id,
             result.rejected);
-    if (!flush(fd, c)) return;
+    if (!flush(fd, c)) return false;
     if (!result.keep) {
         log(Level::kWarn, "client {} sent garbage ({}): connection dropped", c.id,
             objif::frame_error_name(result.garbage));
-        return drop(fd, {});
+        drop(fd, {});
+        return false;
     }
-    rearm(fd, c);
+    // Requests left over wait for the next round, unless the client's unread replies hold it
+    // back: then it is served again once it has read them (EPOLLOUT, on_client_ready).
+    c.backlog = result.more;
+    if (c.backlog && !c.awaits_turn && c.out.size() - c.out_pos < kMaxQueuedReplies) {
+        c.awaits_turn = true;
+        left_over_.push_back(fd);
+    }
+    return true;
 }
 
 bool SocketServer::flush(int fd, Client& c) {
@@ -434,8 +569,9 @@ bool SocketServer::flush(int fd, Client& c) {
 
 void SocketServer::rearm(int fd, Client& c) const {
     const std::size_t queued = c.out.size() - c.out_pos;
-    // Backpressure: a client that does not read its replies is not read from.
-    c.reading = queued < kMaxQueuedReplies;
+    // Backpressure: a client that does not read its replies is not read from,
+    // nor one whose requests wait for their next turn.
+    c.reading = queued < kMaxQueuedReplies && !c.backlog;
     const std::uint32_t events =
         (c.reading ? EPOLLIN | EPOLLRDHUP : 0u) | (queued != 0 ? EPOLLOUT : 0u);
     if (events == c.armed) return;
@@ -449,6 +585,7 @@ void SocketServer::drop(int fd, std::string_view why) {
     auto it = clients_.find(fd);
     if (it == clients_.end()) return;
     if (!why.empty()) log(Level::kInfo, "client {} {}: connection closed", it->second.id, why);
+    if (it->second.awaits_turn) std::erase(left_over_, fd);
     ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
     ::close(fd);
     clients_.erase(it);

@@ -425,6 +425,8 @@ APCI_API apci_status apci_spooler_fill(apci_board* board, uint32_t* fill,
  * Per-cycle samples: capacity > 0 turns them on with a ring of `capacity`
  * samples (at most 2^24; the oldest unread ones are dropped and counted when
  * it is full); 0 turns them off. Either drops the samples not yet read.
+ * A daemon gives the trace at most its --trace-memory (64 MiB, 932067
+ * samples, unless set): a larger ring is refused with APCI_NO_MEMORY.
  * With samples off the emulator runs through a move at no cost per cycle.
  */
 APCI_API apci_status apci_trace_enable(apci_board* board, uint32_t capacity) APCI_NOEXCEPT;
