@@ -8,6 +8,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -77,7 +78,7 @@ struct CommandSpec {
 
 // One parsed line of a script: its number, its words as typed, the command.
 struct ScriptLine {
-    int number = 0;
+    std::uint64_t number = 0;
     std::string text;
     std::unique_ptr<Command> command;
 };
