@@ -74,6 +74,13 @@ class Shell {
         Outcome outcome = known_command(first);
         ScriptLine line{number, {}, nullptr};
         if (outcome.ok()) outcome = parse_script_line(words, line);
+        // A link the daemon closed while the shell waited for this line (its idle timeout) is
+        // opened again first, and the user told: every later line failed before.
+        if (outcome.ok())
+            if (const std::string note = session_.reconnect_if_lost(); !note.empty()) {
+                std::fflush(stdout);
+                fmt::print(stderr, "apcictl: note: {}\n", note);
+            }
         if (outcome.ok()) outcome = line.command->run(session_);
         report(outcome, number);
         if (status_after_ && first != "status")
@@ -234,6 +241,9 @@ void run_plain(Shell& shell) {
             continue;
         }
         if (!shell.handle(line.text, number)) return;
+        // Each line's answer leaves at once: a program that feeds the shell a line at a time
+        // (a coprocess) reads it before it sends the next.
+        std::fflush(stdout);
     }
 }
 

@@ -76,7 +76,7 @@ public:
             fmt::print("TC module (bus {}): absent, the firmware has no optionTC\n", APCI_TC_BUS);
             return outcome;
         }
-        if (!plane) return failed("TcPlane", plane.status);
+        if (!plane) return failed(*board, "TcPlane", plane.status);
         fmt::print("TC module (bus {}): TcPlane {} ({})\n", APCI_TC_BUS, plane.value,
                    plane_name(plane.value));
 
@@ -101,7 +101,7 @@ private:
         }
         const apci::Status s = fill ? capacity.status : fill.status;
         fmt::print("board (bus {}): spooler unreadable, {}\n", b::kBus, describe_status(s));
-        return failed("spooler", s);
+        return failed(board, "spooler", s);
     }
 
     // Prints one line; the first unreadable register becomes the outcome.
@@ -117,12 +117,13 @@ private:
             status ? decode_status(status.value) : fmt::format("unreadable, {}", describe_status(status.status));
         fmt::print("{}: ERROR {}; STATUS {}\n", label, error_text, status_text);
         if (!outcome.ok()) return;
-        if (!error) outcome = failed(label + " ERROR", error.status);
-        else if (!status) outcome = failed(label + " STATUS", status.status);
+        if (!error) outcome = failed(board, label + " ERROR", error.status);
+        else if (!status) outcome = failed(board, label + " STATUS", status.status);
     }
 
-    static Outcome failed(const std::string& what, apci::Status s) {
-        return Outcome::board_error(fmt::format("status: {}: {}", what, describe_status(s)));
+    static Outcome failed(const apci::Board& board, const std::string& what, apci::Status s) {
+        return Outcome::board_error(
+            fmt::format("status: {}: {}", what, describe_failure(board, s)));
     }
 };
 

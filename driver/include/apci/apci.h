@@ -179,7 +179,9 @@ APCI_API apci_status apci_get_timeout(const apci_board* board, uint32_t* millise
 /*
  * 1 while the link to the board works, 0 once it is known to be lost (the
  * daemon closed the socket or stopped, the dual-port RAM's board stopped or
- * restarted, the USB board was unplugged; or board is NULL). A lost link is
+ * restarted, the USB board was unplugged; or board is NULL). A daemon that
+ * closed its socket (its idle timeout, a shutdown) is seen without a request;
+ * the next request still fails, with the daemon's words. A lost link is
  * not reopened behind the caller's back: every call answers
  * APCI_TRANSPORT_ERROR, apci_last_error() saying what happened, until
  * apci_reconnect() succeeds. Non-blocking.
