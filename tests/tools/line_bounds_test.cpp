@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "apci/nc/source.h"
@@ -30,6 +31,12 @@ constexpr std::size_t kMax = 65'536;
 static_assert(apcictl::kMaxLineLength == kMax);
 static_assert(apci::run::kMaxPlcLineLength == kMax);
 static_assert(apci::nc::LineSource::kMaxLineLength == kMax);
+
+// Line numbers count every line read, also in the shell, whose input has no end: 64 bits (an
+// int overflowed past 2^31 lines, undefined behaviour). A script line's and a bad line's number
+// are the reader's type.
+static_assert(std::is_same_v<decltype(apcictl::ScriptLine::number), std::uint64_t>);
+static_assert(std::is_same_v<decltype(apcictl::ScriptLineError::number), std::uint64_t>);
 
 bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
