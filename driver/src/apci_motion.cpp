@@ -120,9 +120,9 @@ apci_status clock_call(apci_board* board, objif::ClockRequest req, apci_motion_s
         const Status s = board->transport->clock(req, rep);
         if (!objif::ok(s)) {
             return fail(board, s, [&] {
-                return fmt::format("{}: {}", op,
-                                   reason(s, clock_refusal(req, s),
-                                          board->transport->failure_detail()));
+                return fmt::format(
+                    "{}: {}", op,
+                    reason(s, clock_refusal(req, s), board->transport->failure_detail()));
             });
         }
         fill_status(rep, status);

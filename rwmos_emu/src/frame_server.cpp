@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/frame_server.h"
 
-#include "rwmos/motion_wire.h"
-
 #include <new>
+
+#include "rwmos/motion_wire.h"
 
 namespace rwmos {
 
@@ -49,7 +49,8 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
     }
 }
 
-FrameError FrameServer::serve_decoded(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
+FrameError FrameServer::serve_decoded(const objif::Frame& request,
+                                      std::vector<std::uint8_t>& reply) {
     payload_.clear();
     switch (static_cast<Opcode>(request.opcode)) {
         case Opcode::kObjectRead: {

@@ -19,9 +19,8 @@ FrameStream::Result FrameStream::serve(FrameServer& server, std::vector<std::uin
     const std::size_t replies_before = replies.size();
     const bool timed = turn.until != std::chrono::steady_clock::time_point::max();
     while (start_ < buffer_.size()) {
-        if (result.frames != 0 &&
-            ((timed && std::chrono::steady_clock::now() >= turn.until) ||
-             replies.size() - replies_before >= turn.reply_bytes)) {
+        if (result.frames != 0 && ((timed && std::chrono::steady_clock::now() >= turn.until) ||
+                                   replies.size() - replies_before >= turn.reply_bytes)) {
             result.more = true;  // the turn is over; the rest waits for the next
             break;
         }

@@ -170,9 +170,8 @@ TEST(ApcictlLink, EveryCommandSaysWhyTheLinkFailed) {
     ASSERT_TRUE(shell.output_has("8\n")) << shell.out();
     ASSERT_EQ(d->stop(), 0);
     const std::vector<std::string> lines = {
-        "read 1000 0 3 0",         "write 1300 0 20 0 1.5", "status",
-        "step 5",                  "spool G01 X1 F100",     "direct JA X1 F100",
-        "ssf X 2001",
+        "read 1000 0 3 0",   "write 1300 0 20 0 1.5", "status",     "step 5",
+        "spool G01 X1 F100", "direct JA X1 F100",     "ssf X 2001",
     };
     for (const auto& line : lines) ASSERT_TRUE(shell.send(line + "\n"));
     EXPECT_EQ(shell.finish(), 1);
@@ -181,8 +180,7 @@ TEST(ApcictlLink, EveryCommandSaysWhyTheLinkFailed) {
         const auto at = shell.err().find(head);
         ASSERT_NE(at, std::string::npos) << lines[i] << "\n" << shell.err();
         const std::string said = shell.err().substr(at, shell.err().find('\n', at) - at);
-        EXPECT_TRUE(contains(said, "TransportError (transport to the board failed): "))
-            << said;
+        EXPECT_TRUE(contains(said, "TransportError (transport to the board failed): ")) << said;
         EXPECT_TRUE(contains(said, "closed the connection: shutting down (SIGTERM)")) << said;
     }
 }
@@ -210,15 +208,15 @@ TEST(ApcictlRunOnADaemon, ADaemonKilledMidRunPublishesNoOutput) {
     std::ofstream(dir.file("long.nc")) << "N10 G1 X1000 F60\nM30\n";  // a million cycles
     std::ofstream(dir.file("out.json")) << "old json\n";
     std::ofstream(dir.file("out.csv")) << "old csv\n";
-    Apcictl run({"--device", d->unix_uri(), "run", "long.nc", "--json", "out.json", "--csv",
-                 "out.csv"},
-                dir.path());
+    Apcictl run(
+        {"--device", d->unix_uri(), "run", "long.nc", "--json", "out.json", "--csv", "out.csv"},
+        dir.path());
     bool under_way = false;
     for (int i = 0; i < 3000 && !under_way; ++i) {
         for (const std::string& name : names_in(dir.path())) {
             struct stat st {};
-            if (name.starts_with(".out.csv.apcictl-") &&
-                ::stat(dir.file(name).c_str(), &st) == 0 && st.st_size > (1 << 20))
+            if (name.starts_with(".out.csv.apcictl-") && ::stat(dir.file(name).c_str(), &st) == 0 &&
+                st.st_size > (1 << 20))
                 under_way = true;
         }
         if (!under_way) std::this_thread::sleep_for(10ms);
@@ -226,8 +224,9 @@ TEST(ApcictlRunOnADaemon, ADaemonKilledMidRunPublishesNoOutput) {
     ASSERT_TRUE(under_way);
     ASSERT_EQ(::kill(d->pid(), SIGKILL), 0);
     EXPECT_EQ(run.finish(), 1) << run.err();
-    EXPECT_TRUE(contains(run.err(), "apcictl: run long.nc: no output written (any old ones are "
-                                    "kept): the run did not finish, "))
+    EXPECT_TRUE(contains(run.err(),
+                         "apcictl: run long.nc: no output written (any old ones are "
+                         "kept): the run did not finish, "))
         << run.err();
     EXPECT_TRUE(contains(run.err(), "TransportError")) << run.err();
     EXPECT_EQ(read_text(dir.file("out.json")), "old json\n");

@@ -591,7 +591,6 @@ TEST(DaemonList, ListenerThatIsNotADaemonIsListedAsNotOne) {
         << r.out;
 }
 
-
 // A daemon started with relative paths registers them absolute: `apcictl list` run from
 // another directory prints URIs that open the board (it printed "unix:emu.sock").
 TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
@@ -615,8 +614,8 @@ TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
     int status = 0;
     ::waitpid(pid, &status, 0);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(contains(r.out, "unix:" + dir.file("emu.sock") + "  rwmos-emu daemon, pid " +
-                                    std::to_string(pid)))
+    EXPECT_TRUE(contains(
+        r.out, "unix:" + dir.file("emu.sock") + "  rwmos-emu daemon, pid " + std::to_string(pid)))
         << r.out;
     EXPECT_TRUE(contains(r.out, "shm:" + dir.file("emu.dpram") + " ")) << r.out;
 }

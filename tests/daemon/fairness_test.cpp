@@ -99,7 +99,7 @@ TEST(DaemonFairness, PipelinedStepsOfOneClientLetEveryOtherClientInBetween) {
         const auto f = clock_frame(2 + i, objif::ClockMode::kStep, objif::kMaxClockCycles);
         steps.insert(steps.end(), f.begin(), f.end());
     }
-    ASSERT_TRUE(stepper.send(steps));  // one write
+    ASSERT_TRUE(stepper.send(steps));           // one write
     ASSERT_TRUE(stepper.receive(frame, 120s));  // the first step has run
     ASSERT_EQ(frame.sequence, 2u);
     constexpr std::uint64_t kAll = std::uint64_t{kSteps} * objif::kMaxClockCycles;
@@ -141,7 +141,8 @@ TEST(DaemonMemory, ATraceLargerThanTheTraceMemoryIsRefusedWithAReason) {
         ASSERT_EQ(apci_step(b, 10, nullptr), APCI_OK) << apci_last_error(b);
         EXPECT_EQ(apci_trace_enable(b, fits + 1), APCI_NO_MEMORY) << fits;
         const std::string why = apci_last_error(b);
-        EXPECT_TRUE(contains(why, "a trace ring of " + std::to_string(fits + 1) + " samples")) << why;
+        EXPECT_TRUE(contains(why, "a trace ring of " + std::to_string(fits + 1) + " samples"))
+            << why;
         EXPECT_TRUE(contains(why, "rwmos-emu --trace-memory")) << why;
         apci_motion_status st{};
         ASSERT_EQ(apci_motion_status_get(b, &st), APCI_OK);
@@ -289,7 +290,8 @@ TEST(DaemonDescriptors, OutOfFileDescriptorsANewcomerIsToldWhyAndTheDaemonDoesNo
     EXPECT_GT(refused, 4u);
     apci_board* b = nullptr;
     EXPECT_EQ(apci_open(d->unix_uri().c_str(), &b), APCI_TRANSPORT_ERROR);
-    EXPECT_TRUE(contains(apci_last_error(nullptr), "refused the connection: out of file descriptors"))
+    EXPECT_TRUE(
+        contains(apci_last_error(nullptr), "refused the connection: out of file descriptors"))
         << apci_last_error(nullptr);
 
     // Nothing is left waiting: the daemon sleeps (its CPU time hardly moves) and logs a line
@@ -339,7 +341,8 @@ TEST(DaemonDescriptors, AnOpenFilesLimitBelowMaxClientsIsRaisedOrNamed) {
         const pid_t pid = ::fork();
         if (pid == 0) {
             const rlimit limit{soft, hard};
-            const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+            const int out =
+                ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
             if (::setrlimit(RLIMIT_NOFILE, &limit) != 0 || out < 0 || ::dup2(out, 2) < 0)
                 ::_exit(126);
             ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
@@ -368,14 +371,14 @@ TEST(DaemonDescriptors, AnOpenFilesLimitBelowMaxClientsIsRaisedOrNamed) {
     std::string line;
     std::string soft, hard;
     while (std::getline(proc_limits, line))
-        if (line.starts_with("Max open files"))
-            std::istringstream(line.substr(14)) >> soft >> hard;
+        if (line.starts_with("Max open files")) std::istringstream(line.substr(14)) >> soft >> hard;
     EXPECT_EQ(soft, "256") << "the soft limit was not raised to the hard one";
     EXPECT_EQ(hard, "256");
     EXPECT_EQ(stop(pid), 0);
-    EXPECT_TRUE(contains(read_log(), "--max-clients 4096 needs about 4112 open files, the limit "
-                                     "is 256 (ulimit -n): clients beyond about 240 are told the "
-                                     "daemon is out of file descriptors"))
+    EXPECT_TRUE(contains(read_log(),
+                         "--max-clients 4096 needs about 4112 open files, the limit "
+                         "is 256 (ulimit -n): clients beyond about 240 are told the "
+                         "daemon is out of file descriptors"))
         << read_log();
     // A hard limit that suffices: raised, no warning.
     std::filesystem::remove(log_path);

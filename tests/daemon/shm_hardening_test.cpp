@@ -354,15 +354,13 @@ TEST(ShmHardening, FilePutInPlaceOfTheServedOneIsNotRemovedAtExit) {
         << d->log();
 }
 
-
 // ---- Whose file, as another user (the suite runs as root, where every file is its own)
 
 // A stale mailbox file of another user's (left by nobody's daemon in a shared directory) is
 // not taken over by root's daemon: refused, byte for byte and mode as it was. Root's stale
 // file is not taken over by nobody's daemon either; nobody's own is.
 TEST(ShmHardening, AStaleMailboxFileOfAnotherUserIsNotTakenOver) {
-    if (!test_support::can_act_as_other_user())
-        GTEST_SKIP() << "needs root to act as another user";
+    if (!test_support::can_act_as_other_user()) GTEST_SKIP() << "needs root to act as another user";
     TempDir shared;
     ASSERT_EQ(::chmod(shared.path().c_str(), 01777), 0);
     const std::string theirs = shared.file("nobody.dpram");
@@ -370,7 +368,8 @@ TEST(ShmHardening, AStaleMailboxFileOfAnotherUserIsNotTakenOver) {
     ASSERT_TRUE(test_support::as_other_user([&] {
         const int fd = ::open(theirs.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd < 0 || ::fchmod(fd, 0666) != 0) return false;
-        const bool ok = ::write(fd, stale.data(), stale.size()) == static_cast<ssize_t>(stale.size());
+        const bool ok =
+            ::write(fd, stale.data(), stale.size()) == static_cast<ssize_t>(stale.size());
         return ::close(fd) == 0 && ok;
     }));
     std::string out;
@@ -433,7 +432,8 @@ TEST(ShmHardening, AStaleMailboxFileOfAnotherUserIsNotTakenOver) {
         << log;
     EXPECT_TRUE(bytes_of(roots) == stale) << "the file was changed";
     EXPECT_TRUE(as_nobody(theirs, log)) << log;
-    EXPECT_TRUE(contains(log, "taking over the dual-port RAM file of a daemon that is gone")) << log;
+    EXPECT_TRUE(contains(log, "taking over the dual-port RAM file of a daemon that is gone"))
+        << log;
 }
 
 // ---- The host lock's token (the pid of the host holding it)
@@ -457,7 +457,9 @@ class HostLock {
     void set(std::uint32_t token) {
         mb::MappedWindow(map_, mb::kWindowSize, true).store(mb::kOffHostLock, token);
     }
-    std::uint32_t get() { return mb::MappedWindow(map_, mb::kWindowSize, true).load(mb::kOffHostLock); }
+    std::uint32_t get() {
+        return mb::MappedWindow(map_, mb::kWindowSize, true).load(mb::kOffHostLock);
+    }
 
   private:
     int fd_ = -1;

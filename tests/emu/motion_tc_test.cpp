@@ -481,7 +481,8 @@ TEST_F(TcRules, TraceSamplesEveryCycleOnce) {
 TEST(TraceMemory, ARingOneSampleLargerThanTheTraceMemoryIsRefusedAndChangesNothing) {
     rwmos::BoardConfig config;
     constexpr std::size_t kFit = 1000;
-    config.trace_memory = kFit * sizeof(rwmos::motion::TraceSample) + sizeof(rwmos::motion::TraceSample) - 1;
+    config.trace_memory =
+        kFit * sizeof(rwmos::motion::TraceSample) + sizeof(rwmos::motion::TraceSample) - 1;
     rwmos::Board board(config);
     ASSERT_EQ(board.set_trace(true, kFit), Status::kOk);
     board.step(5);

@@ -206,7 +206,8 @@ TEST(Interpreter, RadiusArcOverHalfCircleChordIsMidpoint) {
 // refused: its centre lies beyond the board's coordinate range.
 TEST(Interpreter, RadiusTooLargeToSquareStillGivesItsFiniteCentre) {
     const double r = 1e200;
-    const ArcCenterResult arc = arc_center_from_radius(V(0, 0, 0), V(20, 0, 0), r, false, Plane::kXY);
+    const ArcCenterResult arc =
+        arc_center_from_radius(V(0, 0, 0), V(20, 0, 0), r, false, Plane::kXY);
     ASSERT_TRUE(arc.ok) << arc.message;
     const Eigen::Vector3d c = arc.center;
     ASSERT_TRUE(c.allFinite()) << c.transpose();

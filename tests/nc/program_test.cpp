@@ -175,7 +175,8 @@ TEST(Program, ALineOfExactlyTheLimitIsReadAndOneMoreIsRefused) {
         const std::string good_path = temp_file("edge_ok.nc", good);
         Result<Program> ok = Program::load(good_path);
         EXPECT_TRUE(ok) << ok.error().to_string();
-        const std::string bad = "G0 X2" + end + line(LineSource::kMaxLineLength + 1) + end + "M30" + end;
+        const std::string bad =
+            "G0 X2" + end + line(LineSource::kMaxLineLength + 1) + end + "M30" + end;
         EXPECT_EQ(error_of(bad), "prog.nc:2:65537: line longer than 65536 characters");
         const std::string bad_path = temp_file("edge_bad.nc", bad);
         Result<Program> refused = Program::load(bad_path);

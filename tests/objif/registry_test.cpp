@@ -174,7 +174,6 @@ TEST_F(Registry, ADirectoryThatCannotBeMadeIsNamed) {
     EXPECT_TRUE(found.empty());
 }
 
-
 // The file names of entries that name no process: pid 0 (kill(0, 0) asks this process's group,
 // which always answers), negative pids (kill(-N, 0) asks a process group, kill(-1, 0) every
 // process), and names that are not the plain decimal form the daemon writes. None is listed,
@@ -183,9 +182,9 @@ TEST_F(Registry, EntriesOfPidZeroOrANegativePidAreNeverListed) {
     const std::string own = std::to_string(::getpid());
     const std::string group = std::to_string(::getpgrp());
     for (const std::string& pid :
-         {std::string("0"), std::string("-0"), std::string("-1"), "-" + own, "-" + group,
-          "0" + own, "+" + own, " " + own, own + " ", std::string("2147483648"),
-          std::string("-2147483648"), std::string("4294967295")})
+         {std::string("0"), std::string("-0"), std::string("-1"), "-" + own, "-" + group, "0" + own,
+          "+" + own, " " + own, own + " ", std::string("2147483648"), std::string("-2147483648"),
+          std::string("4294967295")})
         write_entry("rwmos-emu." + pid, "socket /run/pid" + pid + ".sock\n");
     write_entry("rwmos-emu." + own, "socket /run/live.sock\n");
 
@@ -298,8 +297,7 @@ TEST_F(Registry, ADirectoryOpenToOthersOrASymlinkIsRefused) {
 // the linked file keeps its contents, nothing is created there, and the planted entry is not
 // listed. The directory's owner is someone else for real (made by user nobody).
 TEST_F(Registry, ARegistryDirectoryMadeByAnotherUserIsRefusedAndNothingWrittenThroughIt) {
-    if (!test_support::can_act_as_other_user())
-        GTEST_SKIP() << "needs root to act as another user";
+    if (!test_support::can_act_as_other_user()) GTEST_SKIP() << "needs root to act as another user";
     ASSERT_EQ(::chmod(root_.c_str(), 01777), 0);  // a shared directory like /tmp
     const fs::path victim = root_ / "victim.txt";
     std::ofstream(victim) << "the user's own file";
@@ -313,8 +311,8 @@ TEST_F(Registry, ARegistryDirectoryMadeByAnotherUserIsRefusedAndNothingWrittenTh
                               O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd < 0) return false;
         const std::string planted = "socket /tmp/attacker.sock\n";
-        const bool ok = ::write(fd, planted.data(), planted.size()) ==
-                        static_cast<ssize_t>(planted.size());
+        const bool ok =
+            ::write(fd, planted.data(), planted.size()) == static_cast<ssize_t>(planted.size());
         return ::close(fd) == 0 && ok;
     }));
     struct stat st {};
@@ -342,8 +340,7 @@ TEST_F(Registry, ARegistryDirectoryMadeByAnotherUserIsRefusedAndNothingWrittenTh
 // The other side: user nobody, whose registry directory root made first, refuses it too; and an
 // entry file of another user's inside one's own directory is not read.
 TEST_F(Registry, ADaemonOfAnotherUserRefusesADirectoryThatIsNotItsOwn) {
-    if (!test_support::can_act_as_other_user())
-        GTEST_SKIP() << "needs root to act as another user";
+    if (!test_support::can_act_as_other_user()) GTEST_SKIP() << "needs root to act as another user";
     ASSERT_EQ(::chmod(root_.c_str(), 0755), 0);
     ASSERT_EQ(::mkdir(dir_.c_str(), 0700), 0);
     EXPECT_TRUE(test_support::as_other_user([&] {
@@ -370,8 +367,8 @@ TEST_F(Registry, ADaemonOfAnotherUserRefusesADirectoryThatIsNotItsOwn) {
         std::string why;
         std::vector<RegisteredDaemon> found;
         if (!register_daemon({::getpid(), "/run/x.sock", ""}, why)) return false;
-        const bool listed = registered_daemons(found, why) && found.size() == 1 &&
-                            found[0].socket == "/run/x.sock";
+        const bool listed =
+            registered_daemons(found, why) && found.size() == 1 && found[0].socket == "/run/x.sock";
         unregister_daemon(::getpid());
         return listed;
     }));

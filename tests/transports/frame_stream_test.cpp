@@ -115,7 +115,6 @@ TEST_F(FrameStreamTest, OversizedLengthIsGarbageBeforeThePayloadArrives) {
     EXPECT_EQ(r.garbage, FrameError::kBadLength);
 }
 
-
 // Served in turns (the daemon's fairness): a turn ends once its replies reach the bound, with
 // at least one frame served and the rest left buffered (Result::more) for the next turn, in
 // order; a turn whose time is over serves one frame.

@@ -45,24 +45,31 @@ using apci::run::OutputFile;
 using apci::run::PathSegment;
 using apci::run::RunError;
 
-// A program read from standard input, held in memory (on a board other than the embedded
-// emulator it is read twice: validation, then execution) up to apci::run::kStdinProgramLimit.
-// Empty on success, else why not.
-std::string read_standard_input(std::string& text) {
+// A program held in memory, at most apci::run::kStdinProgramLimit: one read from standard input
+// (`fd` 0, "-"), or from a file that is not regular (a pipe: /dev/stdin, a shell's <(...), a
+// FIFO, a device), which cannot be read twice as a file is (on a board other than the embedded
+// emulator it is read twice: validation, then execution; a second read of a pipe found it
+// empty: "the program ends without M30"). Empty on success, else why not.
+std::string read_whole_program(int fd, const std::string& name, std::string& text) {
     int error = 0;
-    switch (apci::run::read_bounded(STDIN_FILENO, apci::run::kStdinProgramLimit, text, error)) {
+    switch (apci::run::read_bounded(fd, apci::run::kStdinProgramLimit, text, error)) {
         case apci::run::BoundedRead::kOk:
             return {};
         case apci::run::BoundedRead::kTooLarge:
             text.clear();
-            return fmt::format(
-                "standard input is larger than {} MiB; save the program to a file and give its "
-                "path instead of -",
-                apci::run::kStdinProgramLimit >> 20);
+            return name == "-" ? fmt::format(
+                                     "standard input is larger than {} MiB; save the "
+                                     "program to a file and give its path instead of -",
+                                     apci::run::kStdinProgramLimit >> 20)
+                               : fmt::format(
+                                     "{} is not a regular file and is larger than {} "
+                                     "MiB; save the program to a file and give its path",
+                                     name, apci::run::kStdinProgramLimit >> 20);
         case apci::run::BoundedRead::kError:
             break;
     }
-    return fmt::format("cannot read standard input: {}", std::strerror(error));
+    return fmt::format("cannot read {}: {}", name == "-" ? "standard input" : name,
+                       std::strerror(error));
 }
 
 // Whether `path` can be read twice (a regular file); false for a pipe, a FIFO, a device, and
@@ -72,33 +79,11 @@ bool seekable(const std::string& path) {
     return ::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode);
 }
 
-// A program that is not a regular file, read once into `text`, bounded as standard input.
-// Empty on success, else why not.
-std::string read_program(const std::string& path, std::string& text) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return fmt::format("cannot read {}: {}", path, std::strerror(errno));
-    int error = 0;
-    const auto read = apci::run::read_bounded(fd, apci::run::kStdinProgramLimit, text, error);
-    ::close(fd);
-    switch (read) {
-        case apci::run::BoundedRead::kOk:
-            return {};
-        case apci::run::BoundedRead::kTooLarge:
-            text.clear();
-            return fmt::format(
-                "{} is not a regular file and is larger than {} MiB; save the program to a file "
-                "and give its path",
-                path, apci::run::kStdinProgramLimit >> 20);
-        case apci::run::BoundedRead::kError:
-            break;
-    }
-    return fmt::format("cannot read {}: {}", path, std::strerror(error));
-}
-
 // Whether `target` is where standard output goes (the same open file: /dev/stdout, a
 // /proc/self/fd link to it), so that the summary is not mixed into that output.
 bool names_standard_output(const std::string& target) {
-    struct stat out {}, st {};
+    struct stat out {};
+    struct stat st {};
     return !target.empty() && target != "-" && ::fstat(STDOUT_FILENO, &out) == 0 &&
            ::stat(target.c_str(), &st) == 0 && st.st_dev == out.st_dev && st.st_ino == out.st_ino;
 }
@@ -294,16 +279,15 @@ class RunCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             plc = std::move(loaded.value());
         }
-        if (program_ == "-") {
-            if (std::string why = read_standard_input(stdin_text_); !why.empty())
-                return Outcome::usage_error("run: " + why);
-            program_in_memory_ = true;
-        } else if (!seekable(program_)) {
-            // A pipe (/dev/stdin, a shell's <(...)), a FIFO, a device: read once, into memory,
-            // as standard input is; the validation pass and the run then read the same text (a
-            // second read found the pipe empty: "the program ends without M30").
-            if (std::string why = read_program(program_, stdin_text_); !why.empty())
-                return Outcome::usage_error("run: " + why);
+        if (program_ == "-" || !seekable(program_)) {
+            const int fd =
+                program_ == "-" ? STDIN_FILENO : ::open(program_.c_str(), O_RDONLY | O_CLOEXEC);
+            if (fd < 0)
+                return Outcome::usage_error(
+                    fmt::format("run: cannot read {}: {}", program_, std::strerror(errno)));
+            const std::string why = read_whole_program(fd, program_, stdin_text_);
+            if (fd != STDIN_FILENO) ::close(fd);
+            if (!why.empty()) return Outcome::usage_error("run: " + why);
             program_in_memory_ = true;
         }
 

@@ -5,14 +5,14 @@
 // a script with a malformed line runs nothing, and one longer than its bounds
 // (script_reader.h) is refused whole. Then the lines run in order
 // and the first failing one stops the script, unless --keep-going.
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.h"
 #include "script_reader.h"
@@ -76,8 +76,8 @@ Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines) {
     ParsedScript parsed =
         parse_script([in](std::uint64_t max) { return read_plain_line(in, kMaxLineLength, max); });
     if (!parsed.too_large.empty())
-        return Outcome::usage_error(fmt::format("script: '{}' is {}; nothing was run", file,
-                                                parsed.too_large));
+        return Outcome::usage_error(
+            fmt::format("script: '{}' is {}; nothing was run", file, parsed.too_large));
     Outcome outcome;
     for (const auto& error : parsed.errors) {
         fmt::print(stderr, "apcictl: line {}: {}\n", error.number, error.outcome.error);

@@ -117,8 +117,10 @@ private:
             status ? decode_status(status.value) : fmt::format("unreadable, {}", describe_status(status.status));
         fmt::print("{}: ERROR {}; STATUS {}\n", label, error_text, status_text);
         if (!outcome.ok()) return;
-        if (!error) outcome = failed(board, label + " ERROR", error.status);
-        else if (!status) outcome = failed(board, label + " STATUS", status.status);
+        if (!error)
+            outcome = failed(board, label + " ERROR", error.status);
+        else if (!status)
+            outcome = failed(board, label + " STATUS", status.status);
     }
 
     static Outcome failed(const apci::Board& board, const std::string& what, apci::Status s) {

@@ -107,9 +107,9 @@ ParsedScript parse_script(const std::function<PlainLine(std::uint64_t max_consum
         }
         if (text.kind == PlainLine::Kind::kTooLong) {
             script.errors.push_back(
-                {number, Outcome::usage_error(fmt::format(
-                             "longer than {} characters; not run (it starts '{}')",
-                             kMaxLineLength, text.text.substr(0, 20)))});
+                {number, Outcome::usage_error(
+                             fmt::format("longer than {} characters; not run (it starts '{}')",
+                                         kMaxLineLength, text.text.substr(0, 20)))});
             continue;
         }
         const auto words = script_words(text.text);
@@ -125,8 +125,8 @@ ParsedScript parse_script(const std::function<PlainLine(std::uint64_t max_consum
 }
 
 ParsedScript parse_script(std::istream& in) {
-    ParsedScript script = parse_script(
-        [&in](std::uint64_t max) { return read_plain_line(in, kMaxLineLength, max); });
+    ParsedScript script =
+        parse_script([&in](std::uint64_t max) { return read_plain_line(in, kMaxLineLength, max); });
     script.read_failed = script.read_failed || in.bad();
     return script;
 }

@@ -255,7 +255,8 @@ int serve(const Options& o) {
                 const int fd = events[i].data.fd;
                 if (fd == fds.signal) {
                     signalfd_siginfo info{};
-                    if (::read(fds.signal, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
+                    if (::read(fds.signal, &info, sizeof info) ==
+                        static_cast<ssize_t>(sizeof info)) {
                         const int sig = static_cast<int>(info.ssi_signo);
                         stop_reason = fmt::format("shutting down ({})", signal_name(sig));
                         log(Level::kInfo, "{}: shutting down", signal_name(sig));

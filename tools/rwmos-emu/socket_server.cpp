@@ -134,8 +134,10 @@ class StartTurn {
         struct stat lock {};
         if (fd_ < 0 || ::fstat(fd_, &lock) != 0 || !S_ISREG(lock.st_mode) ||
             lock.st_uid != ::geteuid()) {
-            log(Level::kWarn, "cannot open the start lock {} in the registry directory ({}); "
-                "starting unlocked", name, fd_ < 0 ? std::strerror(open_errno) : "not a file of ours");
+            log(Level::kWarn,
+                "cannot open the start lock {} in the registry directory ({}); "
+                "starting unlocked",
+                name, fd_ < 0 ? std::strerror(open_errno) : "not a file of ours");
             return true;
         }
         const auto until = SteadyClock::now() + kStartTurnWait;
@@ -301,8 +303,10 @@ void SocketServer::on_listen_ready() {
 // it why and close it.
 bool SocketServer::refuse_for_descriptors(int err) {
     if (spare_fd_ < 0) {
-        log(Level::kError, "accept: {}; no spare descriptor to tell a newcomer why; not accepting "
-            "for {} ms", std::strerror(err), kListenPause.count());
+        log(Level::kError,
+            "accept: {}; no spare descriptor to tell a newcomer why; not accepting "
+            "for {} ms",
+            std::strerror(err), kListenPause.count());
         pause_listening();
         return false;
     }
@@ -325,8 +329,10 @@ bool SocketServer::refuse_for_descriptors(int err) {
     // One line at the first refusal, then at most one a second with the count.
     const auto now = SteadyClock::now();
     if (refused_for_descriptors_ != 0 && now - refusal_logged_ >= std::chrono::seconds(1)) {
-        log(Level::kWarn, "refused {} client(s): {} (--max-clients {}; raise the open-files limit, "
-            "ulimit -n)", refused_for_descriptors_, std::strerror(err), limits_.max_clients);
+        log(Level::kWarn,
+            "refused {} client(s): {} (--max-clients {}; raise the open-files limit, "
+            "ulimit -n)",
+            refused_for_descriptors_, std::strerror(err), limits_.max_clients);
         refused_for_descriptors_ = 0;
         refusal_logged_ = now;
     }
@@ -353,8 +359,8 @@ void SocketServer::pause_listening() {
 int SocketServer::wait_ms() const {
     if (!left_over_.empty()) return 0;
     if (!listen_paused_) return -1;
-    const auto left = std::chrono::ceil<std::chrono::milliseconds>(listen_resume_ -
-                                                                   SteadyClock::now());
+    const auto left =
+        std::chrono::ceil<std::chrono::milliseconds>(listen_resume_ - SteadyClock::now());
     return static_cast<int>(std::max<std::chrono::milliseconds::rep>(0, left.count()));
 }
 
@@ -514,10 +520,9 @@ bool SocketServer::serve_turn(int fd, Client& c) {
     rwmos::FrameStream::Result result;
     if (queued < kMaxQueuedReplies) {
         try {
-            result = host_.serve_turn(
-                c.stream, c.out,
-                rwmos::FrameStream::Turn{SteadyClock::now() + kTurnTime,
-                                         kMaxQueuedReplies - queued});
+            result = host_.serve_turn(c.stream, c.out,
+                                      rwmos::FrameStream::Turn{SteadyClock::now() + kTurnTime,
+                                                               kMaxQueuedReplies - queued});
         } catch (const std::bad_alloc&) {
             // Not even the NoMemory reply could be made: this client goes, the others stay.
             drop(fd, "could not be served: the daemon is out of memory");

@@ -28,7 +28,7 @@ class FrameStream {
         objif::FrameError garbage = objif::FrameError::kNone;  // why, when !keep
         std::size_t frames = 0;    // frames answered (Error replies included)
         std::size_t rejected = 0;  // of those, answered with an Error reply
-        bool more = false;  // the turn ended with bytes of whole frames still buffered
+        bool more = false;         // the turn ended with bytes of whole frames still buffered
     };
 
     // How much one client's turn may serve (the daemon serves its clients in

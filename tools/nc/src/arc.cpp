@@ -140,7 +140,8 @@ std::string check_arc_range(const ArcMove& arc, double limit) {
     double sweep = kTwoPi;
     if ((e - s).norm() > 1e-9 && s.norm() > 0.0 && e.norm() > 0.0) {
         const double turn = std::atan2(s.x() * e.y() - s.y() * e.x(), s.dot(e));
-        sweep = arc.ccw ? (turn <= 0.0 ? turn + kTwoPi : turn) : (turn >= 0.0 ? kTwoPi - turn : -turn);
+        sweep =
+            arc.ccw ? (turn <= 0.0 ? turn + kTwoPi : turn) : (turn >= 0.0 ? kTwoPi - turn : -turn);
     }
     // Direction k (0: +first, 1: +second, 2: -first, 3: -second) lies at angle k * 90 degrees.
     for (int k = 0; k < 4; ++k) {

@@ -325,9 +325,10 @@ nc::Result<PlcScript> load_plc_script(const std::string& path) {
     const BoundedRead read = read_bounded(fd, kMaxPlcScriptBytes, text, error);
     ::close(fd);
     if (read == BoundedRead::kTooLarge)
-        return io_error(fmt::format("larger than {} MiB: a PLC script is read whole before the "
-                                    "run (one write a line)",
-                                    kMaxPlcScriptBytes >> 20));
+        return io_error(
+            fmt::format("larger than {} MiB: a PLC script is read whole before the "
+                        "run (one write a line)",
+                        kMaxPlcScriptBytes >> 20));
     if (read == BoundedRead::kError)
         return io_error(fmt::format("read error: {}", std::strerror(error)));
     return parse_plc_script(text, path);
