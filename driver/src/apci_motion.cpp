@@ -96,6 +96,21 @@ void fill_status(const objif::ClockReply& rep, apci_motion_status* out) noexcept
     *out = s;
 }
 
+// Why the board refused a trace ring, in words: the wire's Clock reply carries a status only.
+std::string clock_refusal(const objif::ClockRequest& req, Status s) {
+    if (req.mode != objif::ClockMode::kTraceOn) return {};
+    constexpr double kSampleBytes = 8.0 * (1 + APCI_AXIS_COUNT);  // a cycle and the axes
+    if (s == Status::kNoMemory)
+        return fmt::format(
+            "a trace ring of {} samples ({:.1f} MiB) is more memory than the board gives its "
+            "trace (a daemon's rwmos-emu --trace-memory, 64 MiB unless set); ask for fewer "
+            "samples and read them more often",
+            req.cycles, static_cast<double>(req.cycles) * kSampleBytes / (1 << 20));
+    if (s == Status::kValueTooHigh)
+        return fmt::format("a trace ring of {} samples; at most 2^24 (16777216)", req.cycles);
+    return {};
+}
+
 apci_status clock_call(apci_board* board, objif::ClockRequest req, apci_motion_status* status,
                        const char* op, objif::ClockReply* reply_out = nullptr) noexcept {
     apci_status st = APCI_OK;
@@ -105,7 +120,9 @@ apci_status clock_call(apci_board* board, objif::ClockRequest req, apci_motion_s
         const Status s = board->transport->clock(req, rep);
         if (!objif::ok(s)) {
             return fail(board, s, [&] {
-                return fmt::format("{}: {}", op, reason(s, {}, board->transport->failure_detail()));
+                return fmt::format(
+                    "{}: {}", op,
+                    reason(s, clock_refusal(req, s), board->transport->failure_detail()));
             });
         }
         fill_status(rep, status);

@@ -166,10 +166,13 @@ Status FrameTransport::call(objif::Opcode op, std::span<const std::uint8_t> payl
             objif::ErrorReply error;
             e = objif::decode(frame_.payload, error);
             if (e != FrameError::kNone) return bad_reply(e, "(Error) has a bad payload");
+            // No frame error: the board could not serve a well-formed request (NoMemory).
             return fail(error.status,
                         fmt::format("{}: the board refused the {} frame: {}", name_,
                                     objif::opcode_name(static_cast<std::uint16_t>(op)),
-                                    objif::frame_error_name(error.reason)));
+                                    error.reason == FrameError::kNone
+                                        ? objif::status_message(error.status)
+                                        : objif::frame_error_name(error.reason)));
         }
         if (frame_.opcode != reply_opcode(op))
             return fail(Status::kBadFrame,

@@ -8,6 +8,9 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <new>
 
 namespace apci {
@@ -17,10 +20,53 @@ using objif::Status;
 
 namespace {
 
-// A host lock whose token is the pid of a process that no longer exists
-// belongs to a host that died mid-exchange.
-bool holder_process_gone(std::uint32_t token) {
-    return ::kill(static_cast<pid_t>(token), 0) != 0 && errno == ESRCH;
+// The largest pid Linux hands out (PID_MAX_LIMIT on 64-bit kernels): a larger token is no
+// process's, and kill(2) takes 0xFFFFFFFF (-1) for every process it may signal.
+constexpr std::uint32_t kPidMaxLimit = std::uint32_t{1} << 22;
+// A live process that has held the host lock this long is asked whether it maps the mailbox.
+constexpr std::chrono::milliseconds kHolderCheckAfter{50};
+
+// The (device, inode) of the mapping of /proc/PID/maps that contains `address` (any when
+// null) and that matches `want` (any when its inode is 0); found or not, or unreadable.
+enum class MapsAnswer { kFound, kNotFound, kUnreadable };
+MapsAnswer find_mapping(pid_t pid, const void* address, const MailboxLink::MappedFileId& want,
+                        MailboxLink::MappedFileId* found) {
+    std::FILE* maps = std::fopen(fmt::format("/proc/{}/maps", pid).c_str(), "re");
+    if (maps == nullptr) return MapsAnswer::kUnreadable;
+    MapsAnswer answer = MapsAnswer::kNotFound;
+    char line[512];
+    while (std::fgets(line, sizeof line, maps) != nullptr) {
+        unsigned long start = 0, end = 0, offset = 0;
+        char perms[8] = {}, device[32] = {};
+        unsigned long long inode = 0;
+        if (std::sscanf(line, "%lx-%lx %7s %lx %31s %llu", &start, &end, perms, &offset, device,
+                        &inode) != 6 ||
+            inode == 0)
+            continue;
+        const auto at = reinterpret_cast<std::uintptr_t>(address);
+        if (address != nullptr && (at < start || at >= end)) continue;
+        if (want.inode != 0 && (inode != want.inode || want.device != device)) continue;
+        if (found != nullptr) *found = {device, inode};
+        answer = MapsAnswer::kFound;
+        break;
+    }
+    // A line longer than the buffer is read on in pieces that do not parse: skipped.
+    std::fclose(maps);
+    return answer;
+}
+
+// A host lock whose token is the pid of a process that no longer exists belongs to a host that
+// died mid-exchange; so does a token that is no pid at all. A live process of that pid that has
+// held the lock a while and does not map this mailbox is another program that got the pid
+// later: gone too. One this process may not look into (another user's) counts as the holder.
+bool holder_process_gone(std::uint32_t token, std::chrono::nanoseconds held_for,
+                         const void* context) {
+    if (token > kPidMaxLimit) return true;
+    const auto pid = static_cast<pid_t>(token);
+    if (::kill(pid, 0) != 0 && errno == ESRCH) return true;
+    const auto* mapped = static_cast<const MailboxLink::MappedFileId*>(context);
+    if (held_for < kHolderCheckAfter || mapped == nullptr || mapped->inode == 0) return false;
+    return find_mapping(pid, nullptr, *mapped, nullptr) == MapsAnswer::kNotFound;
 }
 
 // The host lock's token: this process's pid. getpid() is a system call on
@@ -61,6 +107,9 @@ Status MailboxLink::open(std::string& why) noexcept {
             return Status::kTransportError;
         }
         generation_ = window->load(mb::kOffGeneration);
+        mapped_ = {};
+        if (const auto* mapping = dynamic_cast<const mb::MappedWindow*>(window.get()))
+            find_mapping(::getpid(), mapping->base(), {}, &mapped_);
         window_ = std::move(window);
         lost_.clear();
         return Status::kOk;
@@ -92,6 +141,7 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
         options.timeout = timeout;
         options.adaptive = &spin_;
         options.lock_holder_gone = holder_process_gone;
+        options.holder_context = &mapped_;
         const Status s = mb::exchange(*window_, options, request, reply, why);
         if (s == Status::kOk) return s;
         // A board that stopped, or restarted (another generation), has lost

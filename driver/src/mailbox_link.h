@@ -7,6 +7,7 @@
 // reply, at most the timeout. Threading: one caller at a time.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -35,8 +36,16 @@ class MailboxLink final : public FrameLink {
     objif::Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return window_ != nullptr; }
 
+    // The file a window maps, as /proc/PID/maps names it: to tell whether the process whose
+    // pid holds the host lock is a host of this mailbox or another that got the pid later.
+    struct MappedFileId {
+        std::string device;  // "MAJOR:MINOR", hex
+        std::uint64_t inode = 0;
+    };
+
   private:
     OpenWindow open_;
+    MappedFileId mapped_;  // inode 0: unknown (not a mapping)
     std::string name_;
     std::unique_ptr<objif::mailbox::Window> window_;
     std::uint32_t generation_ = 0;  // the board's generation when opened

@@ -136,8 +136,32 @@ class UnixLink final : public FrameLink {
         return s;
     }
 
-    Status reconnect(std::string& why) noexcept override { return open(why); }
-    bool connected() const noexcept override { return fd_ >= 0; }
+    // A link the daemon closed without a request (connected() false) has its parting words in
+    // the socket still: they are kept as why the link was lost, should the new one fail too
+    // (a later request said "link lost ()").
+    Status reconnect(std::string& why) noexcept override {
+        try {
+            std::string reason = lost_at_first_.empty() ? lost_ : lost_at_first_;
+            if (fd_ >= 0)
+                if (std::string words = parting_words(); !words.empty())
+                    reason = fmt::format("daemon {} closed the connection: {}", path_, words);
+            const Status s = open(why);
+            lost_at_first_ = s == Status::kOk ? std::string() : reason;
+            if (s != Status::kOk)
+                lost_ = reason.empty() ? why : fmt::format("{}; opening it again: {}", reason, why);
+            return s;
+        } catch (...) {
+            return open(why);
+        }
+    }
+    // Open, and not hung up by the daemon: one that closed the link (its idle timeout, a
+    // shutdown) is seen here at once, without a request (poll, no waiting); its parting words
+    // are read by the next request, which fails with them.
+    bool connected() const noexcept override {
+        if (fd_ < 0) return false;
+        pollfd p{fd_, POLLRDHUP, 0};
+        return ::poll(&p, 1, 0) <= 0 || (p.revents & (POLLRDHUP | POLLHUP | POLLERR)) == 0;
+    }
     // After open() was refused, or found a peer that is not a daemon: what
     // the peer did instead of greeting.
     const std::string& answer() const noexcept { return answer_; }
@@ -335,6 +359,7 @@ class UnixLink final : public FrameLink {
     objif::AdaptiveSpin spin_{kShortestSpin, kLongestSpin};
     std::vector<std::uint8_t> pending_;  // received bytes not yet a whole frame
     std::string lost_;                   // why the link was lost
+    std::string lost_at_first_;          // before reconnecting failed (lost_ says both)
 };
 
 // How long apci_list_devices waits for a registered socket's greeting.

@@ -232,12 +232,19 @@ struct Exchange {
     }
 
     Status lock() {
+        std::uint32_t seen = 0;  // the holder this exchange has seen, and since when
+        Clock::time_point seen_since{};
         for (;;) {
             if (w.compare_exchange(kOffHostLock, 0, options.token)) return Status::kOk;
             if (w.error() != Status::kOk) return window_failed();
             const std::uint32_t holder = w.load(kOffHostLock);
+            const Clock::time_point now = Clock::now();
+            if (holder != seen) {
+                seen = holder;
+                seen_since = now;
+            }
             if (holder != 0 && options.lock_holder_gone != nullptr &&
-                options.lock_holder_gone(holder) &&
+                options.lock_holder_gone(holder, now - seen_since, options.holder_context) &&
                 w.compare_exchange(kOffHostLock, holder, options.token))
                 return Status::kOk;  // taken over from a host that died holding it
             if (left().count() == 0) {

@@ -122,6 +122,10 @@ class Board:
         if not isinstance(uri, str):
             raise TypeError(f"uri must be a str such as 'emu:' or 'unix:/path', not "
                             f"{type(uri).__name__}")
+        if "\0" in uri:
+            # The C library would read the URI only up to it: another socket or file.
+            raise ValueError(f"uri {uri!r} holds a NUL byte (embedded null byte); a device URI "
+                             f"cannot")
         self._native = _apci.Board(uri)
         if not self._native.is_open:
             # Whatever the cause (no such socket, malformed URI: InvalidArgument, transport

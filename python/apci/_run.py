@@ -119,6 +119,15 @@ class RunResult:
         return self.summary_text
 
 
+def _checked_path(path, what: str):
+    """A path as the C library takes it: one holding a NUL byte would end there (a different
+    file), so it is refused, as os.open refuses it."""
+    if ("\0" if isinstance(path, str) else b"\0") in path:
+        raise ValueError(f"{what} path {path!r} holds a NUL byte (embedded null byte); a path "
+                         f"cannot")
+    return path
+
+
 def _source(value, what: str):
     """(text_or_path, is_text) for a program or tool list given as text, str path or PathLike.
 
@@ -126,9 +135,11 @@ def _source(value, what: str):
     a file.
     """
     if isinstance(value, os.PathLike):
-        return os.fspath(value), False
+        return _checked_path(os.fspath(value), what), False
     if isinstance(value, str):
-        return value, ("\n" in value or "\r" in value)
+        if "\n" in value or "\r" in value:
+            return value, True
+        return _checked_path(value, what), False
     raise TypeError(f"{what} must be a str (text with line breaks, or a path) or a path-like "
                     f"object, not {type(value).__name__}")
 
@@ -137,7 +148,7 @@ def _path(value, what: str):
     if value is None:
         return None
     if isinstance(value, (str, os.PathLike)):
-        return os.fspath(value)
+        return _checked_path(os.fspath(value), what)
     raise TypeError(f"{what} must be a path, not {type(value).__name__}")
 
 

@@ -174,6 +174,25 @@ def test_bad_arguments_are_named():
         apci.run("M30\n", device="unix:/nonexistent/apci-test.sock")
 
 
+def test_a_path_with_a_nul_byte_is_refused_not_cut_short(source_dir, tmp_path):
+    # The C library reads a path up to its first NUL byte: "p.nc\0.bak" would run p.nc.
+    program = source_dir / "examples" / "wr_quad_disc.nc"
+    for bad in (str(program) + "\0.bak", pathlib.Path(str(program) + "\0.bak")):
+        with pytest.raises(ValueError, match="NUL byte"):
+            apci.run(bad, samples=False)
+    tools = source_dir / "examples" / "tools" / "wr_quad_disc.tools"
+    for argument in ("tools", "corr", "plc"):
+        with pytest.raises(ValueError, match=f"{argument} path .* holds a NUL byte"):
+            apci.run(program, **{argument: str(tools) + "\0x"}, samples=False)
+    with pytest.raises(ValueError, match="NUL byte"):
+        apci.run("M30\n", device="unix:" + str(tmp_path / "a.sock") + "\0b")
+    with pytest.raises(ValueError, match="NUL byte"):
+        apci.open("emu:\0")
+    # A program's text may hold one (it is text, not a path): the program's own error.
+    with pytest.raises(apci.ProgramError):
+        apci.run("G1 X1\0 F100\nM30\n")
+
+
 def test_a_closed_board_is_refused(board):
     board.close()
     with pytest.raises(ValueError, match="closed"):

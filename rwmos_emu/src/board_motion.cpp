@@ -69,6 +69,8 @@ motion::MotionStatus Board::motion_status() const noexcept {
 objif::Status Board::set_trace(bool on, std::size_t capacity) {
     if (on && capacity == 0) return objif::Status::kValueTooLow;
     if (on && capacity > kMaxTraceCapacity) return objif::Status::kValueTooHigh;
+    if (on && capacity > config().trace_memory / sizeof(motion::TraceSample))
+        return objif::Status::kNoMemory;
     state_->motion.executor().set_trace(on, capacity);
     return objif::Status::kOk;
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/frame_server.h"
 
+#include <new>
+
 #include "rwmos/motion_wire.h"
 
 namespace rwmos {
@@ -34,6 +36,21 @@ FrameError FrameServer::serve(std::span<const std::uint8_t> request, std::vector
 }
 
 FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
+    const std::size_t before = reply.size();
+    try {
+        return serve_decoded(request, reply);
+    } catch (const std::bad_alloc&) {
+        reply.resize(before);
+        ++out_of_memory_;
+        std::vector<std::uint8_t> payload;
+        objif::encode(objif::ErrorReply{objif::Status::kNoMemory, FrameError::kNone}, payload);
+        objif::encode_frame(reply_opcode(Opcode::kError), request.sequence, payload, reply);
+        return FrameError::kNone;
+    }
+}
+
+FrameError FrameServer::serve_decoded(const objif::Frame& request,
+                                      std::vector<std::uint8_t>& reply) {
     payload_.clear();
     switch (static_cast<Opcode>(request.opcode)) {
         case Opcode::kObjectRead: {

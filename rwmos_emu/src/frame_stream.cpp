@@ -5,9 +5,25 @@ namespace rwmos {
 
 FrameStream::Result FrameStream::feed(std::span<const std::uint8_t> bytes, FrameServer& server,
                                       std::vector<std::uint8_t>& replies) {
-    Result result;
+    append(bytes);
+    return serve(server, replies, Turn{});
+}
+
+void FrameStream::append(std::span<const std::uint8_t> bytes) {
     buffer_.insert(buffer_.end(), bytes.begin(), bytes.end());
+}
+
+FrameStream::Result FrameStream::serve(FrameServer& server, std::vector<std::uint8_t>& replies,
+                                       const Turn& turn) {
+    Result result;
+    const std::size_t replies_before = replies.size();
+    const bool timed = turn.until != std::chrono::steady_clock::time_point::max();
     while (start_ < buffer_.size()) {
+        if (result.frames != 0 && ((timed && std::chrono::steady_clock::now() >= turn.until) ||
+                                   replies.size() - replies_before >= turn.reply_bytes)) {
+            result.more = true;  // the turn is over; the rest waits for the next
+            break;
+        }
         const std::span<const std::uint8_t> rest(buffer_.data() + start_, buffer_.size() - start_);
         std::size_t consumed = 0;
         bool need_more = false;
@@ -21,6 +37,7 @@ FrameStream::Result FrameStream::feed(std::span<const std::uint8_t> bytes, Frame
         } else if (consumed == 0) {
             result.keep = false;
             result.garbage = e;
+            result.more = false;
             clear();
             return result;
         } else {

@@ -7,10 +7,12 @@
 // socket is bound at its own path; apci_list_devices tells a daemon from
 // anything else listening on a registered socket.
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -33,6 +35,7 @@
 #include "daemon.h"
 #include "objif/frame.h"
 #include "objif/mailbox.h"
+#include "other_user.h"
 #include "process.h"
 #include "raw_client.h"
 
@@ -430,7 +433,7 @@ TEST(DaemonSocketName, ListeningSocketIsBoundAtItsPath) {
 // serves, the other is refused ("live socket of another daemon" or "appeared
 // while this daemon was starting"); the socket file is the one that serves.
 // (Binding at PATH leaves a moment between bind and listen in which the
-// socket refuses connections: the directory lock keeps the second daemon
+// socket refuses connections: the start turn keeps the second daemon
 // from taking it for a stale one then.)
 TEST(DaemonSocketName, TwoDaemonsStartingTogetherOnOnePathOneServes) {
     for (int round = 0; round < 10; ++round) {
@@ -469,12 +472,18 @@ TEST(DaemonSocketName, TwoDaemonsStartingTogetherOnOnePathOneServes) {
     }
 }
 
-// A process that holds the directory lock (flock) does not make a daemon
-// wait for ever: it waits at most 2 s, then says what blocks it (exit 1);
-// a lock released within that time is waited for.
-TEST(DaemonSocketName, DirectoryLockHeldByAnotherProcessIsWaitedForAtMostTwoSeconds) {
+// Daemons of one user starting in one directory take turns through a lock file in the user's
+// registry directory, named after the directory's device and inode. One that holds its turn
+// does not make another wait for ever: at most 2 s, then it says what blocks it (exit 1); a
+// turn given back within that time is waited for.
+TEST(DaemonSocketName, StartTurnHeldByAnotherDaemonIsWaitedForAtMostTwoSeconds) {
     TempDir dir;
-    const Descriptor held(::open(dir.path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    struct stat st {};
+    ASSERT_EQ(::stat(dir.path().c_str(), &st), 0);
+    const std::string lock_file =
+        dir.file(fmt::format("socket-dir.{:x}.{:x}.lock", static_cast<std::uint64_t>(st.st_dev),
+                             static_cast<std::uint64_t>(st.st_ino)));
+    const Descriptor held(::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600));
     ASSERT_EQ(::flock(held.fd, LOCK_EX), 0);
     std::string out;
     const auto t0 = std::chrono::steady_clock::now();
@@ -482,7 +491,9 @@ TEST(DaemonSocketName, DirectoryLockHeldByAnotherProcessIsWaitedForAtMostTwoSeco
     const auto took = std::chrono::steady_clock::now() - t0;
     EXPECT_GE(took, std::chrono::milliseconds(1900));
     EXPECT_LT(took, std::chrono::seconds(6));
-    EXPECT_TRUE(contains(out, "socket directory " + dir.path() + " stayed locked for 2 s")) << out;
+    EXPECT_TRUE(contains(out, "another rwmos-emu of this user starting in socket directory " +
+                                  dir.path() + " held its turn for 2 s"))
+        << out;
     EXPECT_FALSE(std::filesystem::exists(dir.file("emu.sock")));
 
     std::thread release([&] {
@@ -494,6 +505,53 @@ TEST(DaemonSocketName, DirectoryLockHeldByAnotherProcessIsWaitedForAtMostTwoSeco
     auto d = Daemon::start(o);
     release.join();
     ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->stop(), 0);
+}
+
+// Anyone may hold flock on a shared directory (/tmp, /dev/shm): that stopped every daemon from
+// starting there. The socket directory's own lock means nothing to the daemon now; here it is
+// held by another user (nobody) on a shared directory while the daemon starts there.
+TEST(DaemonSocketName, AFlockOnTheSocketDirectoryByAnotherUserDoesNotStopTheDaemon) {
+    TempDir dir;
+    TempDir shared;
+    ASSERT_EQ(::chmod(shared.path().c_str(), 01777), 0);
+    // Close-on-exec: the daemon started below must not keep `done` open for the holder.
+    int ready[2], done[2];
+    ASSERT_EQ(::pipe2(ready, O_CLOEXEC), 0);
+    ASSERT_EQ(::pipe2(done, O_CLOEXEC), 0);
+    const pid_t holder = ::fork();
+    ASSERT_GE(holder, 0);
+    if (holder == 0) {
+        ::close(ready[0]);
+        ::close(done[1]);
+        if (test_support::can_act_as_other_user() &&
+            (::setgroups(0, nullptr) != 0 ||
+             ::setresgid(test_support::kOtherGid, test_support::kOtherGid,
+                         test_support::kOtherGid) != 0 ||
+             ::setresuid(test_support::kOtherUid, test_support::kOtherUid,
+                         test_support::kOtherUid) != 0))
+            ::_exit(3);
+        const int fd = ::open(shared.path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        const char ok = fd >= 0 && ::flock(fd, LOCK_EX) == 0 ? 'y' : 'n';
+        (void)!::write(ready[1], &ok, 1);
+        char c = 0;
+        (void)!::read(done[0], &c, 1);  // hold it until the test is done
+        ::_exit(0);
+    }
+    ::close(ready[1]);
+    ::close(done[0]);
+    char ok = 0;
+    ASSERT_EQ(::read(ready[0], &ok, 1), 1);
+    EXPECT_EQ(ok, 'y');
+    DaemonOptions o;
+    o.socket_path = shared.file("emu.sock");
+    auto d = Daemon::start(o);
+    ::close(done[1]);
+    ::close(ready[0]);
+    int status = 0;
+    ::waitpid(holder, &status, 0);
+    ASSERT_NE(d, nullptr);
+    EXPECT_FALSE(contains(d->log(), "held its turn")) << d->log();
     EXPECT_EQ(d->stop(), 0);
 }
 
@@ -531,6 +589,35 @@ TEST(DaemonList, ListenerThatIsNotADaemonIsListedAsNotOne) {
     EXPECT_TRUE(other_line.ends_with("  not an rwmos-emu daemon (registered by pid " +
                                      std::to_string(::getpid()) + "; no greeting within 500 ms)"))
         << r.out;
+}
+
+// A daemon started with relative paths registers them absolute: `apcictl list` run from
+// another directory prints URIs that open the board (it printed "unix:emu.sock").
+TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
+    TempDir dir;
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 2);
+        if (::chdir(dir.path().c_str()) != 0) ::_exit(126);
+        ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
+        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket", "emu.sock",
+                "--shm", "./emu.dpram", nullptr);
+        ::_exit(127);
+    }
+    const std::string entry = dir.file("rwmos-emu." + std::to_string(pid));
+    EXPECT_TRUE(apci_test::eventually([&] { return std::filesystem::exists(entry); }));
+    const auto r =
+        test_support::run_process({APCICTL_PATH, "list"}, {}, {{"APCI_RUNTIME_DIR", dir.path()}});
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(
+        r.out, "unix:" + dir.file("emu.sock") + "  rwmos-emu daemon, pid " + std::to_string(pid)))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, "shm:" + dir.file("emu.dpram") + " ")) << r.out;
 }
 
 }  // namespace

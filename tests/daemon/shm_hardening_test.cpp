@@ -25,6 +25,7 @@
 #include "daemon.h"
 #include "objif/mailbox.h"
 #include "objif/mapping_guard.h"
+#include "other_user.h"
 
 namespace {
 
@@ -351,6 +352,188 @@ TEST(ShmHardening, FilePutInPlaceOfTheServedOneIsNotRemovedAtExit) {
     EXPECT_EQ(bytes_of(d->shm_path()), "someone else's file\n") << "kept, untouched";
     EXPECT_TRUE(contains(d->log(), "is no longer the file this daemon served: left in place"))
         << d->log();
+}
+
+// ---- Whose file, as another user (the suite runs as root, where every file is its own)
+
+// A stale mailbox file of another user's (left by nobody's daemon in a shared directory) is
+// not taken over by root's daemon: refused, byte for byte and mode as it was. Root's stale
+// file is not taken over by nobody's daemon either; nobody's own is.
+TEST(ShmHardening, AStaleMailboxFileOfAnotherUserIsNotTakenOver) {
+    if (!test_support::can_act_as_other_user()) GTEST_SKIP() << "needs root to act as another user";
+    TempDir shared;
+    ASSERT_EQ(::chmod(shared.path().c_str(), 01777), 0);
+    const std::string theirs = shared.file("nobody.dpram");
+    const std::string stale = mailbox_file(mb::BoardState::kServing);
+    ASSERT_TRUE(test_support::as_other_user([&] {
+        const int fd = ::open(theirs.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0 || ::fchmod(fd, 0666) != 0) return false;
+        const bool ok =
+            ::write(fd, stale.data(), stale.size()) == static_cast<ssize_t>(stale.size());
+        return ::close(fd) == 0 && ok;
+    }));
+    std::string out;
+    EXPECT_EQ(apci_test::run_daemon({"--shm", theirs}, out, shared.path()), 1) << out;
+    EXPECT_TRUE(contains(out, theirs + " belongs to uid 65534, not to this daemon's user (uid 0)"))
+        << out;
+    EXPECT_TRUE(bytes_of(theirs) == stale) << "the file was changed";
+    EXPECT_EQ(mode_of(theirs), 0666u);
+
+    // The other way round: nobody's daemon and root's stale file, then nobody's own.
+    const std::string roots = shared.file("root.dpram");
+    write_bytes(roots, stale);
+    ASSERT_EQ(::chmod(roots.c_str(), 0666), 0);
+    const auto as_nobody = [&](const std::string& path, std::string& log) {
+        const std::string log_path = shared.file("nobody.log");
+        ::unlink(log_path.c_str());
+        const bool served = test_support::as_other_user([&] {
+            const std::string runtime = shared.file("nobody-run");
+            ::mkdir(runtime.c_str(), 0700);
+            ::setenv("APCI_RUNTIME_DIR", runtime.c_str(), 1);
+            const pid_t daemon = ::fork();
+            if (daemon == 0) {
+                const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+                ::dup2(fd, 2);
+                ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--shm",
+                        path.c_str(), nullptr);
+                ::_exit(127);
+            }
+            // Refused (it exits), or serving (its log says so; the stale file said so
+            // before): then the board answers through the file, and the daemon is stopped.
+            const auto serving = [&] {
+                std::ifstream in(log_path);
+                const std::string text((std::istreambuf_iterator<char>(in)),
+                                       std::istreambuf_iterator<char>());
+                return text.find("serving one board") != std::string::npos;
+            };
+            for (int i = 0; i < 1000 && !serving(); ++i) {
+                if (::waitpid(daemon, nullptr, WNOHANG) == daemon) return false;  // refused
+                ::usleep(10'000);
+            }
+            bool ok = false;
+            apci_board* b = nullptr;
+            if (serving() && apci_open(("shm:" + path).c_str(), &b) == APCI_OK) {
+                auto obj = axis_count();
+                std::int32_t v = 0;
+                ok = apci_read_int(b, &obj, &v) == APCI_OK && v == 8;
+                apci_close(b);
+            }
+            ::kill(daemon, SIGTERM);
+            ::waitpid(daemon, nullptr, 0);
+            return ok;
+        });
+        std::ifstream in(log_path);
+        log.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        return served;
+    };
+    std::string log;
+    EXPECT_FALSE(as_nobody(roots, log)) << log;
+    EXPECT_TRUE(contains(log, roots + " belongs to uid 0, not to this daemon's user (uid 65534)"))
+        << log;
+    EXPECT_TRUE(bytes_of(roots) == stale) << "the file was changed";
+    EXPECT_TRUE(as_nobody(theirs, log)) << log;
+    EXPECT_TRUE(contains(log, "taking over the dual-port RAM file of a daemon that is gone"))
+        << log;
+}
+
+// ---- The host lock's token (the pid of the host holding it)
+
+namespace {
+// The host lock word of a served file, for the test to set.
+class HostLock {
+  public:
+    explicit HostLock(const std::string& path) {
+        fd_ = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+        if (fd_ >= 0)
+            map_ = ::mmap(nullptr, mb::kWindowSize, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
+    }
+    ~HostLock() {
+        if (map_ != MAP_FAILED) ::munmap(map_, mb::kWindowSize);
+        if (fd_ >= 0) ::close(fd_);
+    }
+    HostLock(const HostLock&) = delete;
+    HostLock& operator=(const HostLock&) = delete;
+    bool ok() const noexcept { return map_ != MAP_FAILED; }
+    void set(std::uint32_t token) {
+        mb::MappedWindow(map_, mb::kWindowSize, true).store(mb::kOffHostLock, token);
+    }
+    std::uint32_t get() {
+        return mb::MappedWindow(map_, mb::kWindowSize, true).load(mb::kOffHostLock);
+    }
+
+  private:
+    int fd_ = -1;
+    void* map_ = MAP_FAILED;
+};
+
+// A process that is not a host of any mailbox: /bin/sleep, started with nothing mapped.
+pid_t start_sleeper() {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::execl("/bin/sleep", "sleep", "30", nullptr);
+        ::_exit(127);
+    }
+    return pid;
+}
+}  // namespace
+
+// A lock left with a token no process can have (0xFFFFFFFF: kill(-1, 0) asks every process and
+// always answers), or with the pid of a process that got it after the holder died (alive, but
+// mapping no mailbox), is taken over: every host timed out on it for ever. A lock of a live
+// host that maps the mailbox is waited for, as before.
+TEST(ShmHardening, AHostLockOfNoProcessOrOfAReusedPidIsTakenOver) {
+    DaemonOptions o;
+    o.socket = false;
+    o.shm = true;
+    auto d = Daemon::start(o);
+    ASSERT_NE(d, nullptr);
+    HostLock lock(d->shm_path());
+    ASSERT_TRUE(lock.ok());
+    apci_board* b = nullptr;
+    ASSERT_EQ(apci_open((d->shm_uri() + "?timeout=2000").c_str(), &b), APCI_OK)
+        << apci_last_error(nullptr);
+    auto obj = axis_count();
+    std::int32_t v = 0;
+    for (const std::uint32_t token : {0xFFFFFFFFu, 0x80000000u, (1u << 22) + 1}) {
+        lock.set(token);
+        EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_OK) << token << ": " << apci_last_error(b);
+        EXPECT_EQ(lock.get(), 0u);
+    }
+    const pid_t sleeper = start_sleeper();
+    ASSERT_GT(sleeper, 0);
+    lock.set(static_cast<std::uint32_t>(sleeper));
+    EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_OK) << apci_last_error(b);
+    EXPECT_EQ(lock.get(), 0u);
+    ::kill(sleeper, SIGKILL);
+    ::waitpid(sleeper, nullptr, 0);
+
+    // A live host: this process's child, which maps the file (inherited) and holds the lock.
+    int ready[2];
+    ASSERT_EQ(::pipe2(ready, O_CLOEXEC), 0);
+    const pid_t host = ::fork();
+    if (host == 0) {
+        ::close(ready[0]);
+        const char c = 'y';
+        (void)!::write(ready[1], &c, 1);
+        ::pause();
+        ::_exit(0);
+    }
+    ::close(ready[1]);
+    char c = 0;
+    ASSERT_EQ(::read(ready[0], &c, 1), 1);
+    ::close(ready[0]);
+    lock.set(static_cast<std::uint32_t>(host));
+    ASSERT_EQ(apci_set_timeout(b, 300), APCI_OK);
+    EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_TIMEOUT);
+    EXPECT_TRUE(contains(apci_last_error(b), "held by another host (token " + std::to_string(host)))
+        << apci_last_error(b);
+    EXPECT_EQ(lock.get(), static_cast<std::uint32_t>(host));
+    ::kill(host, SIGKILL);
+    ::waitpid(host, nullptr, 0);
+    ASSERT_EQ(apci_set_timeout(b, 2000), APCI_OK);
+    EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_OK) << apci_last_error(b);  // gone: taken over
+    apci_close(b);
+    EXPECT_EQ(d->stop(), 0);
 }
 
 }  // namespace

@@ -96,4 +96,21 @@ TEST(MotionRing, ZeroCapacityKeepsNothingAndCountsEveryPush) {
     expect_same(ring, {}, 2);
 }
 
+// The storage grows with the content and never beyond the capacity (a vector doubling on its
+// own reserved up to twice the capacity: the trace's memory limit would not have held).
+TEST(MotionRing, StorageNeverExceedsTheCapacity) {
+    for (const std::size_t capacity :
+         {std::size_t{1}, std::size_t{3}, std::size_t{100}, std::size_t{1000}, std::size_t{1025}}) {
+        rwmos::motion::Ring<int> ring(capacity);
+        for (std::size_t i = 0; i < 3 * capacity; ++i) {
+            ring.push(static_cast<int>(i));
+            ASSERT_LE(ring.reserved(), capacity) << capacity << " after " << i + 1;
+        }
+        EXPECT_EQ(ring.reserved(), capacity);
+        int v = 0;
+        ring.push_with([&](int& slot) { slot = ++v; });
+        EXPECT_EQ(ring.reserved(), capacity);
+    }
+}
+
 }  // namespace

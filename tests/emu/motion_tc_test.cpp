@@ -475,6 +475,26 @@ TEST_F(TcRules, TraceSamplesEveryCycleOnce) {
     EXPECT_EQ(board.set_trace(true, rwmos::Board::kMaxTraceCapacity + 1), Status::kValueTooHigh);
 }
 
+// BoardConfig::trace_memory bounds the ring (a daemon's --trace-memory): a ring of exactly as
+// many samples as fit is taken, one more is NoMemory and changes nothing (the trace stays on
+// with its samples).
+TEST(TraceMemory, ARingOneSampleLargerThanTheTraceMemoryIsRefusedAndChangesNothing) {
+    rwmos::BoardConfig config;
+    constexpr std::size_t kFit = 1000;
+    config.trace_memory =
+        kFit * sizeof(rwmos::motion::TraceSample) + sizeof(rwmos::motion::TraceSample) - 1;
+    rwmos::Board board(config);
+    ASSERT_EQ(board.set_trace(true, kFit), Status::kOk);
+    board.step(5);
+    EXPECT_EQ(board.set_trace(true, kFit + 1), Status::kNoMemory);
+    EXPECT_TRUE(board.motion_status().tracing);
+    EXPECT_EQ(board.motion_status().trace_pending, 5u);
+    EXPECT_EQ(board.set_trace(false, 0), Status::kOk);  // off needs no memory
+    // Without a limit the board's own bound applies.
+    rwmos::Board unbounded;
+    EXPECT_EQ(unbounded.set_trace(true, rwmos::Board::kMaxTraceCapacity), Status::kOk);
+}
+
 // ---- Without optionTC there is no rotation and no compensation
 
 TEST(MotionWithoutOptionTc, ProfilesRunAsProgrammed) {

@@ -15,13 +15,14 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
-    const auto lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+    const auto lines = static_cast<std::uint64_t>(std::count(text.begin(), text.end(), '\n')) + 1;
     std::istringstream in(text);
 
     const apcictl::ParsedScript script = apcictl::parse_script(in);
     FUZZ_CHECK(!script.read_failed, "a string stream never fails to read");
+    FUZZ_CHECK(script.too_large.empty(), "an input of the fuzzer's length is within the bounds");
 
-    int last = 0;
+    std::uint64_t last = 0;
     for (const auto& line : script.lines) {
         FUZZ_CHECK(line.number > last && line.number <= lines, "parsed lines ascend within the input");
         FUZZ_CHECK(line.command != nullptr, "a parsed line holds a command");

@@ -202,15 +202,22 @@ TEST(Interpreter, RadiusArcOverHalfCircleChordIsMidpoint) {
 }
 
 // R beyond 1e154 squares to infinity; the centre must still be the finite point
-// R away from both ends (fuzzer nc, tests/fuzz/crashes/nc/).
+// R away from both ends (fuzzer nc, tests/fuzz/crashes/nc/). A program with such an arc is
+// refused: its centre lies beyond the board's coordinate range.
 TEST(Interpreter, RadiusTooLargeToSquareStillGivesItsFiniteCentre) {
     const double r = 1e200;
-    const std::string program = "G2 X20 R1" + std::string(200, '0') + " F1\nM30";
-    const Eigen::Vector3d c = single_arc(program).center;
+    const ArcCenterResult arc =
+        arc_center_from_radius(V(0, 0, 0), V(20, 0, 0), r, false, Plane::kXY);
+    ASSERT_TRUE(arc.ok) << arc.message;
+    const Eigen::Vector3d c = arc.center;
     ASSERT_TRUE(c.allFinite()) << c.transpose();
     EXPECT_NEAR(c.x(), 10.0, 1e-9);
     EXPECT_NEAR(-c.y() / r, 1.0, 1e-12);  // G2, the shorter arc: centre right of the chord
     EXPECT_EQ(c.z(), 0.0);
+    const std::string program = "G2 X20 R1" + std::string(200, '0') + " F1\nM30";
+    EXPECT_EQ(error_of(program),
+              "prog.nc:1:8: arc centre X 10.0000 Y -1e+200 mm is beyond the board's coordinate "
+              "range of +-100000 mm");
 }
 
 TEST(Interpreter, RadiusArcImpossibleForChordIsError) {
@@ -435,6 +442,46 @@ TEST(Interpreter, ACoordinateBeyondTheBoardsRangeIsRefusedWithItsWord) {
     EXPECT_EQ(error_of("G91\nG0 Z60000\nG0 Z60000\nM30"),
               "prog.nc:3:4: Z 120000 mm is beyond the board's coordinate range of +-100000 mm");
     EXPECT_EQ(error_of("G0 X100000 Y-100000\nM30"), "");
+}
+
+// An arc's centre beyond the board's range passed validation, and the board refused the arc
+// after the blocks before it had run; now it is refused with its I/J/K or R word before
+// anything moves, as an end point is. At the limit it is taken.
+TEST(Interpreter, AnArcCentreBeyondTheBoardsRangeIsRefusedWithItsWord) {
+    // Centre (100000, 10), radius 14.1: the arc turns on the side away from the limit.
+    EXPECT_EQ(error_of("G0 X99990 Y0\nG2 X99990 Y20 I10 J10 F100\nM30"), "");
+    EXPECT_EQ(error_of("G0 X99990 Y0\nG2 X99990 Y20 I10.001 J10 F100\nM30"),
+              "prog.nc:2:15: arc centre X 100000.0010 Y 10.0000 mm is beyond the board's "
+              "coordinate range of +-100000 mm");
+    EXPECT_EQ(error_of("G18\nG0 X0 Z-99990\nG3 X20 Z-99990 K-10.001 I10 F100\nM30"),
+              "prog.nc:3:16: arc centre Z -100000.0010 X 10.0000 mm is beyond the board's "
+              "coordinate range of +-100000 mm");
+    // R: a centre 100000.99 mm off the chord.
+    EXPECT_EQ(error_of("G2 X10 R100001 F100\nM30"),
+              "prog.nc:1:8: arc centre X 5.0000 Y -100000.9999 mm is beyond the board's "
+              "coordinate range of +-100000 mm");
+    EXPECT_EQ(error_of("G2 X10 R99999 F100\nM30"), "");
+}
+
+// Its path too (start, end and centre within, the circle between them beyond): refused where
+// it turns through an axis direction beyond the range, in either direction; at the limit taken.
+TEST(Interpreter, AnArcWhosePathLeavesTheBoardsRangeIsRefused) {
+    EXPECT_EQ(error_of("G2 I50000 F100\nM30"), "");  // a whole turn reaching X 100000
+    EXPECT_EQ(error_of("G2 I50001 F100\nM30"),
+              "prog.nc:1:4: the arc reaches X 100002.0000 mm (centre X 50001.0000 Y 0.0000, "
+              "radius 50001.0000 mm), beyond the board's coordinate range of +-100000 mm");
+    // Counter-clockwise from below the centre to above it turns through +X; clockwise, -X.
+    EXPECT_EQ(error_of("G0 X99990 Y-10\nG3 X99990 Y10 J10 F100\nM30"), "");
+    EXPECT_EQ(error_of("G0 X99991 Y-10\nG3 X99991 Y10 J10 F100\nM30"),
+              "prog.nc:2:15: the arc reaches X 100001.0000 mm (centre X 99991.0000 Y 0.0000, "
+              "radius 10.0000 mm), beyond the board's coordinate range of +-100000 mm");
+    EXPECT_EQ(error_of("G0 X99991 Y-10\nG2 X99991 Y10 J10 F100\nM30"), "");
+    EXPECT_EQ(error_of("G0 X-99991 Y-10\nG2 X-99991 Y10 J10 F100\nM30"),
+              "prog.nc:2:16: the arc reaches X -100001.0000 mm (centre X -99991.0000 Y 0.0000, "
+              "radius 10.0000 mm), beyond the board's coordinate range of +-100000 mm");
+    EXPECT_EQ(error_of("G0 Y99991 X10\nG3 X-10 Y99991 I-10 F100\nM30"),
+              "prog.nc:2:16: the arc reaches Y 100001.0000 mm (centre X 0.0000 Y 99991.0000, "
+              "radius 10.0000 mm), beyond the board's coordinate range of +-100000 mm");
 }
 
 TEST(Interpreter, ProgramEndEvent) {

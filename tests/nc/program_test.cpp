@@ -160,6 +160,32 @@ TEST(Program, OverlongLineIsError) {
     EXPECT_EQ(p.error().to_string(), path + ":1:65537: line longer than 65536 characters");
 }
 
+// The bound at its edge: a line of exactly 65,536 characters (its line end, "\n" or "\r\n",
+// not counted) is read, one more is refused naming the line and the column past the bound; in
+// a file (read through the buffer) and in text alike.
+TEST(Program, ALineOfExactlyTheLimitIsReadAndOneMoreIsRefused) {
+    const auto line = [](std::size_t length) {
+        std::string l = "G0 X1 ;";
+        l.append(length - l.size(), 'x');
+        return l;
+    };
+    for (const std::string end : {"\n", "\r\n"}) {
+        const std::string good = line(LineSource::kMaxLineLength) + end + "M30" + end;
+        EXPECT_EQ(error_of(good), "") << "text, line end " << end.size();
+        const std::string good_path = temp_file("edge_ok.nc", good);
+        Result<Program> ok = Program::load(good_path);
+        EXPECT_TRUE(ok) << ok.error().to_string();
+        const std::string bad =
+            "G0 X2" + end + line(LineSource::kMaxLineLength + 1) + end + "M30" + end;
+        EXPECT_EQ(error_of(bad), "prog.nc:2:65537: line longer than 65536 characters");
+        const std::string bad_path = temp_file("edge_bad.nc", bad);
+        Result<Program> refused = Program::load(bad_path);
+        ASSERT_FALSE(refused);
+        EXPECT_EQ(refused.error().to_string(),
+                  bad_path + ":2:65537: line longer than 65536 characters");
+    }
+}
+
 TEST(Program, LinesAcrossTheReadBufferKeepTheirText) {
     // Enough lines of varying length that many straddle the file reader's buffer boundary.
     std::string text = "G1 F100\n";

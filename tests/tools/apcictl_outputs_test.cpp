@@ -456,6 +456,51 @@ TEST_F(ApcictlOutputs, DashWritesTheOutputToStandardOutputAndTheSummaryToStandar
     EXPECT_EQ(names_in(dir()), (std::set<std::string>{"p.nc", "out.csv"}));  // no file "-"
 }
 
+// Outputs named by a link to a pipe: /dev/stdout and /dev/stderr when they are pipes, and
+// /dev/fd/N (what a shell's >(...) gives). The link names the pipe as "pipe:[N]", which is no
+// path: resolving it said "cannot write /dev/stdout: No such file or directory". Written in
+// place through the link; the summary goes to standard error when the output is standard
+// output under another name.
+TEST_F(ApcictlOutputs, AnOutputThatIsALinkToAPipeIsWrittenThroughIt) {
+    const std::string program = write("p.nc", kShort);
+    auto r = test_support::run_process({APCICTL_PATH, "run", program, "--json", "/dev/stdout"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out).at("segments").size(), 1u);  // the summary is not in it
+    EXPECT_TRUE(contains(r.err, "p.nc: 2 blocks, 2 executed, 1 segments")) << r.err;
+    r = test_support::run_process({APCICTL_PATH, "run", program, "--svg", "/dev/stderr"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "</svg>\n")) << r.err.substr(0, 200);
+    EXPECT_TRUE(contains(r.out, "p.nc: 2 blocks")) << r.out;
+    // /dev/fd/3, a pipe (the test's own standard output pipe, as 3>&1), as >(...) would be.
+    r = test_support::run_process({"/bin/sh", "-c",
+                                   "exec \"$0\" run \"$1\" --csv /dev/fd/3 3>&1 1>/dev/null",
+                                   APCICTL_PATH, program});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.out.starts_with("cycle,time_s,X,Y,Z")) << r.out.substr(0, 100);
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1001);
+    EXPECT_EQ(names_in(dir()), (std::set<std::string>{"p.nc"}));
+}
+
+// A program that is not a regular file (a pipe: /dev/stdin, a shell's <(...)) is read once:
+// where the program is validated before it runs (an output on standard output, any board but
+// the embedded one) it was read twice, and the second pass found the pipe empty: "the
+// program ends without M30".
+TEST_F(ApcictlOutputs, AProgramFromAPipeIsReadOnce) {
+    auto r = test_support::run_process({APCICTL_PATH, "run", "/dev/stdin", "--json", "-"}, kShort);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out).at("segments").size(), 1u);
+    EXPECT_TRUE(contains(r.err, "/dev/stdin: 2 blocks, 2 executed, 1 segments")) << r.err;
+    r = test_support::run_process({APCICTL_PATH, "run", "/dev/stdin", "--csv", "-"}, kShort);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1001);
+    // An error names the pipe's line as it would a file's.
+    r = test_support::run_process({APCICTL_PATH, "run", "/dev/stdin", "--json", "-"},
+                                  "N10 G1 X10 F600\nN20 G7\nM30\n");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "/dev/stdin:2:")) << r.err;
+    EXPECT_FALSE(contains(r.err, "without M30")) << r.err;
+}
+
 TEST_F(ApcictlOutputs, TwoOutputsOnStandardOutputAreAUsageError) {
     write("p.nc", kShort);
     const auto r = run({"run", "p.nc", "--json", "-", "--svg", "-"});

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "objif/frame.h"
@@ -111,6 +113,56 @@ TEST_F(FrameStreamTest, OversizedLengthIsGarbageBeforeThePayloadArrives) {
     const auto r = stream.feed(std::span(f).first(16), server, replies);
     EXPECT_FALSE(r.keep);
     EXPECT_EQ(r.garbage, FrameError::kBadLength);
+}
+
+// Served in turns (the daemon's fairness): a turn ends once its replies reach the bound, with
+// at least one frame served and the rest left buffered (Result::more) for the next turn, in
+// order; a turn whose time is over serves one frame.
+TEST_F(FrameStreamTest, ATurnEndsAtItsReplyBoundAndLeavesTheRestInOrder) {
+    std::vector<std::uint8_t> bytes;
+    for (std::uint32_t s = 1; s <= 10; ++s) {
+        const auto f = read_frame(s);
+        bytes.insert(bytes.end(), f.begin(), f.end());
+    }
+    stream.append(bytes);
+    const std::size_t one_reply = [&] {
+        rwmos::FrameStream probe;
+        std::vector<std::uint8_t> r;
+        probe.feed(read_frame(99), server, r);
+        return r.size();
+    }();
+    rwmos::FrameStream::Turn turn;
+    turn.reply_bytes = 3 * one_reply;  // three replies reach it: the turn ends there
+    auto r = stream.serve(server, replies, turn);
+    EXPECT_EQ(r.frames, 3u);
+    EXPECT_TRUE(r.more);
+    turn.reply_bytes = 3 * one_reply - 1;  // the third reaches it
+    r = stream.serve(server, replies, turn);
+    EXPECT_EQ(r.frames, 3u);
+    EXPECT_TRUE(r.more);
+    turn.reply_bytes = 0;  // at least one frame a turn
+    r = stream.serve(server, replies, turn);
+    EXPECT_EQ(r.frames, 1u);
+    EXPECT_TRUE(r.more);
+    turn.reply_bytes = std::numeric_limits<std::size_t>::max();
+    turn.until = std::chrono::steady_clock::now();  // over at once: one frame
+    r = stream.serve(server, replies, turn);
+    EXPECT_EQ(r.frames, 1u);
+    EXPECT_TRUE(r.more);
+    r = stream.serve(server, replies, rwmos::FrameStream::Turn{});
+    EXPECT_EQ(r.frames, 2u);
+    EXPECT_FALSE(r.more);
+    EXPECT_EQ(stream.pending(), 0u);
+    const auto out = frames_in(replies);
+    ASSERT_EQ(out.size(), 10u);
+    for (std::uint32_t s = 1; s <= 10; ++s) EXPECT_EQ(out[s - 1].sequence, s);
+    // Nothing whole left (half a frame): no more.
+    const auto half = read_frame(11);
+    stream.append(std::span(half).first(half.size() / 2));
+    r = stream.serve(server, replies, turn);
+    EXPECT_EQ(r.frames, 0u);
+    EXPECT_FALSE(r.more);
+    EXPECT_EQ(stream.pending(), half.size() / 2);
 }
 
 }  // namespace

@@ -167,7 +167,7 @@ TEST_F(Mailbox, LockHeldByALiveHostIsATimeout) {
     start_board();
     window_.store(mb::kOffHostLock, 99);
     auto o = host(milliseconds(50));
-    o.lock_holder_gone = [](std::uint32_t) { return false; };
+    o.lock_holder_gone = [](std::uint32_t, std::chrono::nanoseconds, const void*) { return false; };
     std::vector<std::uint8_t> reply;
     std::string why;
     EXPECT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kTimeout);
@@ -179,7 +179,9 @@ TEST_F(Mailbox, LockLeftByADeadHostIsTakenOver) {
     start_board();
     window_.store(mb::kOffHostLock, 99);
     auto o = host();
-    o.lock_holder_gone = [](std::uint32_t token) { return token == 99; };
+    o.lock_holder_gone = [](std::uint32_t token, std::chrono::nanoseconds, const void*) {
+        return token == 99;
+    };
     std::vector<std::uint8_t> reply;
     std::string why;
     EXPECT_EQ(mb::exchange(window_, o, bytes(20), reply, why), Status::kOk) << why;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -45,6 +46,10 @@ public:
     // open one); nullptr with `failure` set if it cannot be opened.
     apci::Board* board(Outcome& failure);
     const std::string& uri() const noexcept { return uri_; }
+    // When the board was opened and its link is known to be lost (the daemon closed it: its
+    // idle timeout, a restart), opens it again; returns what happened, for the user ("" when
+    // nothing was to be done). `apcictl shell` asks before each line.
+    std::string reconnect_if_lost();
 
 private:
     std::string uri_;
@@ -77,7 +82,7 @@ struct CommandSpec {
 
 // One parsed line of a script: its number, its words as typed, the command.
 struct ScriptLine {
-    int number = 0;
+    std::uint64_t number = 0;
     std::string text;
     std::unique_ptr<Command> command;
 };
@@ -107,5 +112,10 @@ std::unique_ptr<Command> make_dump_command();
 
 // "WrongDeviceState (not possible in the present device state)".
 std::string describe_status(apci::Status status);
+// The same for the last call on `board` that answered `status`, with what libapci knows
+// beyond the status (apci_last_error: "TransportError (transport to the board failed): daemon
+// PATH closed the connection: idle for 300 s (--idle-timeout 300); ..."), which the status
+// name alone drops.
+std::string describe_failure(const apci::Board& board, apci::Status status);
 
 }  // namespace apcictl

@@ -167,7 +167,7 @@ class DumpCommand final : public Command {
             if (link_failed(row.status))
                 return Outcome::board_error(fmt::format("dump: read {} ({}): {}", o->name,
                                                         address_text(o->address),
-                                                        describe_status(row.status)));
+                                                        describe_failure(*board, row.status)));
             if (row.status != APCI_OK && row.status != APCI_NO_SUCH_DEVICE)
                 ++refused[apci::status_name(row.status)];
             rows.push_back(row);

@@ -149,10 +149,10 @@ public:
                 return Outcome::success();
             }
             if (type_.force_int || object_.named != nullptr || r.status != APCI_TYPE_MISMATCH)
-                return failed(r.status);
+                return failed(*board, r.status);
         }
         const auto r = board->read_double(o);
-        if (!r) return failed(r.status);
+        if (!r) return failed(*board, r.status);
         fmt::print("{}\n", r.value);
         return Outcome::success();
     }
@@ -163,8 +163,9 @@ public:
     std::string command_text() const {
         return fmt::format("read{} {}", type_.text(), fmt::join(typed_, " "));
     }
-    Outcome failed(apci::Status s) const {
-        return Outcome::board_error(fmt::format("{}: {}", command_text(), describe_status(s)));
+    Outcome failed(const apci::Board& board, apci::Status s) const {
+        return Outcome::board_error(
+            fmt::format("{}: {}", command_text(), describe_failure(board, s)));
     }
 
     ObjectArgs object_;
@@ -226,7 +227,7 @@ public:
         if (r.status == APCI_TYPE_MISMATCH) {
             return Outcome::board_error(fmt::format(
                 "{}: {}: object {} holds an int32, and {} is not an int32 value", command_text(),
-                describe_status(r.status), object_.label(), value_text_));
+                describe_failure(*board, r.status), object_.label(), value_text_));
         }
         return result(r.status);
     }
@@ -242,8 +243,10 @@ public:
     }
     Outcome result(apci::Status s) const {
         if (s == APCI_OK) return Outcome::success();
+        // Described before tc_consequence reads the group's ERROR (a call of its own).
+        const std::string failure = describe_failure(*board_, s);
         return Outcome::board_error(
-            fmt::format("{}: {}{}", command_text(), describe_status(s), tc_consequence(s)));
+            fmt::format("{}: {}{}", command_text(), failure, tc_consequence(s)));
     }
 
     // A refused write to a TC group may have set the group's ERROR ([APCI-TC] Table 3: InitError

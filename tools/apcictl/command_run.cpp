@@ -5,6 +5,7 @@
 // executed path streams into the outputs, and a summary goes to standard output. On the embedded
 // emulator, whose board nobody else sees, the two passes are one (nc::SinglePass): the outputs
 // are published only once the whole program proved valid.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -44,24 +45,59 @@ using apci::run::OutputFile;
 using apci::run::PathSegment;
 using apci::run::RunError;
 
-// A program read from standard input, held in memory (on a board other than the embedded
-// emulator it is read twice: validation, then execution) up to apci::run::kStdinProgramLimit.
-// Empty on success, else why not.
-std::string read_standard_input(std::string& text) {
+// A program held in memory, at most apci::run::kStdinProgramLimit: one read from standard input
+// (`fd` 0, "-"), or from a file that is not regular (a pipe: /dev/stdin, a shell's <(...), a
+// FIFO, a device), which cannot be read twice as a file is (on a board other than the embedded
+// emulator it is read twice: validation, then execution; a second read of a pipe found it
+// empty: "the program ends without M30"). Empty on success, else why not.
+std::string read_whole_program(int fd, const std::string& name, std::string& text) {
     int error = 0;
-    switch (apci::run::read_bounded(STDIN_FILENO, apci::run::kStdinProgramLimit, text, error)) {
+    switch (apci::run::read_bounded(fd, apci::run::kStdinProgramLimit, text, error)) {
         case apci::run::BoundedRead::kOk:
             return {};
         case apci::run::BoundedRead::kTooLarge:
             text.clear();
-            return fmt::format(
-                "standard input is larger than {} MiB; save the program to a file and give its "
-                "path instead of -",
-                apci::run::kStdinProgramLimit >> 20);
+            return name == "-" ? fmt::format(
+                                     "standard input is larger than {} MiB; save the "
+                                     "program to a file and give its path instead of -",
+                                     apci::run::kStdinProgramLimit >> 20)
+                               : fmt::format(
+                                     "{} is not a regular file and is larger than {} "
+                                     "MiB; save the program to a file and give its path",
+                                     name, apci::run::kStdinProgramLimit >> 20);
         case apci::run::BoundedRead::kError:
             break;
     }
-    return fmt::format("cannot read standard input: {}", std::strerror(error));
+    return fmt::format("cannot read {}: {}", name == "-" ? "standard input" : name,
+                       std::strerror(error));
+}
+
+// Whether `path` can be read twice (a regular file); false for a pipe, a FIFO, a device, and
+// for a path that cannot be examined (its open fails later, with its reason).
+bool seekable(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode);
+}
+
+// Whether `target` is where standard output goes (the same open file: /dev/stdout, a
+// /proc/self/fd link to it), so that the summary is not mixed into that output.
+bool names_standard_output(const std::string& target) {
+    struct stat out {};
+    struct stat st {};
+    return !target.empty() && target != "-" && ::fstat(STDOUT_FILENO, &out) == 0 &&
+           ::stat(target.c_str(), &st) == 0 && st.st_dev == out.st_dev && st.st_ino == out.st_ino;
+}
+
+// The first error that says the run could not go on for want of its board or its host (the
+// link failed or timed out, a reply was garbled, memory ran out), not that the board refused a
+// move; null when there is none.
+const RunError* link_failure(const std::vector<RunError>& errors) {
+    constexpr std::array kLost{APCI_TRANSPORT_ERROR, APCI_TIMEOUT, APCI_BAD_FRAME,
+                               APCI_UNKNOWN_OPCODE, APCI_NO_MEMORY};
+    for (const RunError& e : errors)
+        for (const apci_status s : kLost)
+            if (e.code == apci::status_name(s)) return &e;
+    return nullptr;
 }
 
 // The embedded emulator ("emu:", "emu:?no-option-tc", or no device given): a board inside this
@@ -249,9 +285,16 @@ class RunCommand final : public Command {
             if (!loaded) return nc_failure(loaded.error());
             plc = std::move(loaded.value());
         }
-        if (program_ == "-") {
-            if (std::string why = read_standard_input(stdin_text_); !why.empty())
-                return Outcome::usage_error("run: " + why);
+        if (program_ == "-" || !seekable(program_)) {
+            const int fd =
+                program_ == "-" ? STDIN_FILENO : ::open(program_.c_str(), O_RDONLY | O_CLOEXEC);
+            if (fd < 0)
+                return Outcome::usage_error(
+                    fmt::format("run: cannot read {}: {}", program_, std::strerror(errno)));
+            const std::string why = read_whole_program(fd, program_, stdin_text_);
+            if (fd != STDIN_FILENO) ::close(fd);
+            if (!why.empty()) return Outcome::usage_error("run: " + why);
+            program_in_memory_ = true;
         }
 
         Outcome failure;
@@ -301,8 +344,8 @@ class RunCommand final : public Command {
         std::optional<apci::nc::EventStream> stream;
         std::optional<apci::nc::SinglePass> pass;
         if (one_pass) {
-            if (program_ == "-") {
-                pass.emplace(apci::nc::SinglePass::from_text(stdin_text_, "<stdin>", options));
+            if (program_in_memory_) {
+                pass.emplace(apci::nc::SinglePass::from_text(stdin_text_, program_name(), options));
             } else {
                 auto opened = apci::nc::SinglePass::open_file(program_, options);
                 if (!opened) return program_failure(opened.error());
@@ -364,7 +407,7 @@ class RunCommand final : public Command {
             total_blocks = program->summary().blocks;
         }
         outputs.clear_progress();
-        result.totals.file = program_ == "-" ? "<stdin>" : program_;
+        result.totals.file = program_name();
         result.totals.blocks = total_blocks;
 
         // The writers finish; every output is closed (its last bytes written, synced), and only
@@ -385,7 +428,16 @@ class RunCommand final : public Command {
         if (outputs.csv) failed[kCsv] = !outputs.csv->finish();
         outputs.json.reset();
         outputs.csv.reset();
+        // A run the board stopped with an error is finished: its outputs say so and are
+        // published. One that lost its board (the link failed: the daemon was killed, the
+        // board unplugged) or its host's memory did not finish: nothing of it is published
+        // over the old outputs (docs/apcictl.md, "Outputs").
         std::string written_error;
+        if (const RunError* lost = link_failure(result.errors))
+            written_error = fmt::format(
+                "run {}: no output written (any old ones are kept): the run did not finish, "
+                "{}: {}",
+                result.totals.file, apci::run::block_text(lost->block), lost->message);
         for (std::size_t i = 0; i < files.size(); ++i) {
             // The output's own record of its first failed write names the cause; the plot
             // can fail reading back its temporary records too.
@@ -407,10 +459,11 @@ class RunCommand final : public Command {
         }
         for (auto [out, name] : files) out->discard();  // an output not published is removed
 
-        // The summary goes to standard error when an output is standard output.
+        // The summary goes to standard error when an output is standard output ("-", or a
+        // name of it: /dev/stdout, /dev/fd/1).
         std::FILE* report = stdout;
         for (auto [out, name] : files)
-            if (out->is_stdout()) report = stderr;
+            if (out->is_stdout() || names_standard_output(*name)) report = stderr;
         apci::run::print_summary(report, result.totals, result.errors);
         for (const RunError& w : result.warnings)
             fmt::print(report, "warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code,
@@ -436,8 +489,8 @@ class RunCommand final : public Command {
     Outcome validate_first(const apci::nc::InterpreterOptions& options,
                            std::optional<apci::nc::Program>& program,
                            std::optional<apci::nc::EventStream>& stream) const {
-        auto loaded = program_ == "-"
-                          ? apci::nc::Program::from_text(stdin_text_, "<stdin>", options)
+        auto loaded = program_in_memory_
+                          ? apci::nc::Program::from_text(stdin_text_, program_name(), options)
                           : apci::nc::Program::load(program_, options);
         if (!loaded) return program_failure(loaded.error());
         program.emplace(std::move(loaded).value());
@@ -536,7 +589,11 @@ class RunCommand final : public Command {
     bool svg_cycles_ = false;
     std::string plane_text_;
     int plane_ = 0;
-    std::string stdin_text_;  // the program of "-"
+    // The name the program goes by in messages and outputs.
+    std::string program_name() const { return program_ == "-" ? "<stdin>" : program_; }
+
+    std::string stdin_text_;  // the program of "-", or of a file that is not seekable
+    bool program_in_memory_ = false;
 };
 
 }  // namespace

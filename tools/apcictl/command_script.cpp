@@ -2,17 +2,17 @@
 // `script FILE|-`: one command a line, all against one board session, so
 // state carries from line to line (each `apcictl` run on emu: starts a fresh
 // embedded board; a script keeps one). Every line is parsed before any runs:
-// a script with a malformed line runs nothing. Then the lines run in order
+// a script with a malformed line runs nothing, and one longer than its bounds
+// (script_reader.h) is refused whole. Then the lines run in order
 // and the first failing one stops the script, unless --keep-going.
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.h"
 #include "script_reader.h"
@@ -63,17 +63,21 @@ private:
 // Reads and parses every line of `file` ("-": standard input) with
 // parse_script (script_reader.h). Errors are printed here, one per bad line.
 Outcome read_script(const std::string& file, std::vector<ScriptLine>& lines) {
-    std::ifstream stream;
-    std::istream* in = &std::cin;
+    std::FILE* in = stdin;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> opened(nullptr, std::fclose);
     if (file != "-") {
-        stream.open(file);
-        if (!stream) {
+        opened.reset(std::fopen(file.c_str(), "r"));
+        if (!opened) {
             return Outcome::usage_error(
                 fmt::format("script: cannot open '{}': {}", file, std::strerror(errno)));
         }
-        in = &stream;
+        in = opened.get();
     }
-    ParsedScript parsed = parse_script(*in);
+    ParsedScript parsed =
+        parse_script([in](std::uint64_t max) { return read_plain_line(in, kMaxLineLength, max); });
+    if (!parsed.too_large.empty())
+        return Outcome::usage_error(
+            fmt::format("script: '{}' is {}; nothing was run", file, parsed.too_large));
     Outcome outcome;
     for (const auto& error : parsed.errors) {
         fmt::print(stderr, "apcictl: line {}: {}\n", error.number, error.outcome.error);

@@ -28,8 +28,6 @@ namespace apcictl {
 namespace {
 
 constexpr std::string_view kPrompt = "apcictl> ";
-// A line read from a pipe longer than this is an error, not a command.
-constexpr std::size_t kLineLimit = 65536;
 
 // The shell's words that are no command of the table.
 constexpr std::array<std::string_view, 3> kShellWords{"help", "quit", "exit"};
@@ -56,7 +54,7 @@ class Shell {
         : session_(session), status_after_(status_after), numbered_(numbered) {}
 
     // Runs one line (`number`: its line number in the input); false when it ends the shell.
-    bool handle(const std::string& text, int number) {
+    bool handle(const std::string& text, std::uint64_t number) {
         const std::vector<std::string> words = script_words(text);
         if (words.empty()) return true;
         const std::string& first = words.front();
@@ -76,6 +74,13 @@ class Shell {
         Outcome outcome = known_command(first);
         ScriptLine line{number, {}, nullptr};
         if (outcome.ok()) outcome = parse_script_line(words, line);
+        // A link the daemon closed while the shell waited for this line (its idle timeout) is
+        // opened again first, and the user told: every later line failed before.
+        if (outcome.ok())
+            if (const std::string note = session_.reconnect_if_lost(); !note.empty()) {
+                std::fflush(stdout);
+                fmt::print(stderr, "apcictl: note: {}\n", note);
+            }
         if (outcome.ok()) outcome = line.command->run(session_);
         report(outcome, number);
         if (status_after_ && first != "status")
@@ -86,7 +91,7 @@ class Shell {
     bool failed() const noexcept { return failed_; }
 
     // Prints a failed outcome's error (named by its line number when reading a pipe).
-    void report(const Outcome& outcome, int number) {
+    void report(const Outcome& outcome, std::uint64_t number) {
         if (outcome.ok()) return;
         failed_ = true;
         std::fflush(stdout);  // the error after what the line printed
@@ -221,8 +226,8 @@ void run_on_terminal(Shell& shell) {
 
 // A pipe or a file: plain lines, no prompt, no history; errors are named by line number.
 void run_plain(Shell& shell) {
-    for (int number = 1;; ++number) {
-        const PlainLine line = read_plain_line(stdin, kLineLimit);
+    for (std::uint64_t number = 1;; ++number) {
+        const PlainLine line = read_plain_line(stdin, kMaxLineLength);
         if (line.kind == PlainLine::Kind::kEnd) return;
         if (line.kind == PlainLine::Kind::kError) {
             warn("reading standard input failed; the shell ends");
@@ -231,11 +236,14 @@ void run_plain(Shell& shell) {
         if (line.kind == PlainLine::Kind::kTooLong) {
             shell.report(Outcome::usage_error(
                              fmt::format("longer than {} characters; not run (it starts '{}')",
-                                         kLineLimit, line.text.substr(0, 20))),
+                                         kMaxLineLength, line.text.substr(0, 20))),
                          number);
             continue;
         }
         if (!shell.handle(line.text, number)) return;
+        // Each line's answer leaves at once: a program that feeds the shell a line at a time
+        // (a coprocess) reads it before it sends the next.
+        std::fflush(stdout);
     }
 }
 

@@ -100,7 +100,7 @@ public:
             fmt::print("TC module (bus {}): absent, the firmware has no optionTC\n", APCI_TC_BUS);
             return outcome;
         }
-        if (!plane) return failed("TcPlane", plane.status);
+        if (!plane) return failed(*board, "TcPlane", plane.status);
         fmt::print("TC module (bus {}): TcPlane {} ({})\n", APCI_TC_BUS, plane.value,
                    plane_name(plane.value));
 
@@ -127,7 +127,7 @@ private:
         } else {
             const apci::Status s = fill ? capacity.status : fill.status;
             out["spooler"] = {{"unreadable", std::string(apci::status_name(s))}};
-            outcome = failed("spooler", s);
+            outcome = failed(board, "spooler", s);
         }
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
         const auto plane = board.read_int(plane_object);
@@ -135,7 +135,7 @@ private:
             out["tc"] = nullptr;  // no optionTC
         } else if (!plane) {
             out["tc"] = {{"unreadable", std::string(apci::status_name(plane.status))}};
-            if (outcome.ok()) outcome = failed("TcPlane", plane.status);
+            if (outcome.ok()) outcome = failed(board, "TcPlane", plane.status);
         } else {
             nlohmann::json groups = nlohmann::json::array();
             // Groups 1..3, then the active group (Index 0).
@@ -151,8 +151,8 @@ private:
                                   {"error", register_json(error, apci_tc_error_bit_name)},
                                   {"status", register_json(status, apci_tc_status_bit_name)}});
                 const std::string label = group == 0 ? "active group" : fmt::format("group {}", group);
-                if (outcome.ok() && !error) outcome = failed(label + " ERROR", error.status);
-                if (outcome.ok() && !status) outcome = failed(label + " STATUS", status.status);
+                if (outcome.ok() && !error) outcome = failed(board, label + " ERROR", error.status);
+                if (outcome.ok() && !status) outcome = failed(board, label + " STATUS", status.status);
             }
             out["tc"] = {{"bus", APCI_TC_BUS},
                          {"plane", plane.value},
@@ -177,7 +177,7 @@ private:
         }
         const apci::Status s = fill ? capacity.status : fill.status;
         fmt::print("board (bus {}): spooler unreadable, {}\n", b::kBus, describe_status(s));
-        return failed("spooler", s);
+        return failed(board, "spooler", s);
     }
 
     // Prints one line; the first unreadable register becomes the outcome.
@@ -193,12 +193,15 @@ private:
             status ? decode_status(status.value) : fmt::format("unreadable, {}", describe_status(status.status));
         fmt::print("{}: ERROR {}; STATUS {}\n", label, error_text, status_text);
         if (!outcome.ok()) return;
-        if (!error) outcome = failed(label + " ERROR", error.status);
-        else if (!status) outcome = failed(label + " STATUS", status.status);
+        if (!error)
+            outcome = failed(board, label + " ERROR", error.status);
+        else if (!status)
+            outcome = failed(board, label + " STATUS", status.status);
     }
 
-    static Outcome failed(const std::string& what, apci::Status s) {
-        return Outcome::board_error(fmt::format("status: {}: {}", what, describe_status(s)));
+    static Outcome failed(const apci::Board& board, const std::string& what, apci::Status s) {
+        return Outcome::board_error(
+            fmt::format("status: {}: {}", what, describe_failure(board, s)));
     }
 };
 

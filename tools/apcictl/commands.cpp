@@ -56,6 +56,30 @@ std::string describe_status(apci::Status status) {
     return fmt::format("{} ({})", apci::status_name(status), apci::status_message(status));
 }
 
+std::string describe_failure(const apci::Board& board, apci::Status status) {
+    std::string text = describe_status(status);
+    // libapci's words are "CALL OBJECT: Name (message)[: detail]": the detail follows the
+    // status's own words.
+    const std::string_view said = board.last_error();
+    const auto at = said.find(text);
+    if (at != std::string_view::npos) {
+        const std::string_view detail = said.substr(at + text.size());
+        if (detail.starts_with(": ")) text += detail;
+    }
+    return text;
+}
+
+std::string Session::reconnect_if_lost() {
+    if (!opened_ || !board_ || board_.connected()) return {};
+    if (const auto r = board_.reconnect(); !r)
+        return fmt::format("the link to {} was closed and cannot be opened again: {}", uri_,
+                           board_.last_error());
+    return fmt::format(
+        "the link to {} had been closed (a daemon closes a link idle for its --idle-timeout); "
+        "opened again",
+        uri_);
+}
+
 apci::Board* Session::board(Outcome& failure) {
     if (!opened_) {
         opened_ = true;

@@ -167,29 +167,54 @@ unsigned char LineEditor::on_tab(EditLine* el, int /*key*/) {
     return CC_REDISPLAY;
 }
 
-PlainLine read_plain_line(std::FILE* in, std::size_t max_length) {
+namespace {
+
+// A line of at most `max_length` characters without its line end; `next` gives the next
+// character or EOF. One character more than the bound is kept until the line ends, so that a
+// line of exactly `max_length` characters ended by "\r\n" is not taken for a longer one.
+template <class Next>
+PlainLine read_line_with(Next&& next, std::size_t max_length, std::uint64_t max_consumed) {
     PlainLine line;
     bool any = false;
     bool too_long = false;
-    for (int c = std::getc(in); c != EOF; c = std::getc(in)) {
+    while (line.consumed < max_consumed) {
+        const int c = next();
+        if (c == EOF) break;
         any = true;
+        ++line.consumed;
         if (c == '\n') break;
-        if (line.text.size() < max_length)
+        if (line.consumed == max_consumed) too_long = true;  // not ended within the bound
+        if (line.text.size() <= max_length)
             line.text.push_back(static_cast<char>(c));
         else
             too_long = true;
-    }
-    if (std::ferror(in) != 0) {
-        line.kind = PlainLine::Kind::kError;
-        return line;
     }
     if (!any) {
         line.kind = PlainLine::Kind::kEnd;
         return line;
     }
     if (!too_long && !line.text.empty() && line.text.back() == '\r') line.text.pop_back();
+    if (line.text.size() > max_length) {
+        too_long = true;
+        line.text.resize(max_length);
+    }
     line.kind = too_long ? PlainLine::Kind::kTooLong : PlainLine::Kind::kLine;
     return line;
+}
+
+}  // namespace
+
+PlainLine read_plain_line(std::FILE* in, std::size_t max_length, std::uint64_t max_consumed) {
+    PlainLine line = read_line_with([in] { return std::getc(in); }, max_length, max_consumed);
+    if (std::ferror(in) != 0) line = PlainLine{PlainLine::Kind::kError, {}, line.consumed};
+    return line;
+}
+
+PlainLine read_plain_line(std::istream& in, std::size_t max_length, std::uint64_t max_consumed) {
+    std::streambuf* buffer = in.rdbuf();
+    if (buffer == nullptr) return PlainLine{PlainLine::Kind::kError, {}, 0};
+    // sbumpc gives a character as 0..255 or EOF (char_traits<char>::eof()).
+    return read_line_with([buffer] { return buffer->sbumpc(); }, max_length, max_consumed);
 }
 
 }  // namespace apcictl

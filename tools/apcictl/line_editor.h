@@ -5,8 +5,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <istream>
 #include <optional>
 #include <span>
 #include <string>
@@ -56,11 +58,18 @@ struct PlainLine {
     enum class Kind { kLine, kTooLong, kEnd, kError };
     Kind kind = Kind::kEnd;
     std::string text;  // kLine: the line; kTooLong: its first `max_length` characters
+    std::uint64_t consumed = 0;  // bytes read for it, its line end included
 };
 
 // Reads up to the next newline (or the end of the input; a '\r' before the newline is dropped).
-// A line longer than `max_length` is read to its end but only its first `max_length`
-// characters are kept (kTooLong): the input is never held whole. kError: the stream failed.
-PlainLine read_plain_line(std::FILE* in, std::size_t max_length);
+// A line longer than `max_length` (its line end, "\n" or "\r\n", not counted) is read to its
+// end but only its first `max_length` characters are kept (kTooLong): the input is never held
+// whole. kError: the stream failed. `apcictl shell` reads a pipe this way, `apcictl script`
+// its file.
+// At most `max_consumed` bytes are read: a line not ended by then is kTooLong.
+PlainLine read_plain_line(std::FILE* in, std::size_t max_length,
+                          std::uint64_t max_consumed = UINT64_MAX);
+PlainLine read_plain_line(std::istream& in, std::size_t max_length,
+                          std::uint64_t max_consumed = UINT64_MAX);
 
 }  // namespace apcictl

@@ -83,11 +83,36 @@ std::string script_command_names() {
     return names;
 }
 
-ParsedScript parse_script(std::istream& in) {
+ParsedScript parse_script(const std::function<PlainLine(std::uint64_t max_consumed)>& next) {
     ParsedScript script;
-    std::string text;
-    for (int number = 1; std::getline(in, text); ++number) {
-        const auto words = script_words(text);
+    std::uint64_t bytes = 0;
+    for (std::uint64_t number = 1;; ++number) {
+        // One byte past the bound is enough to refuse (a line without end is not read on).
+        const PlainLine text = next(kMaxScriptBytes + 1 - bytes);
+        if (text.kind == PlainLine::Kind::kEnd) break;
+        if (text.kind == PlainLine::Kind::kError) {
+            script.read_failed = true;
+            break;
+        }
+        bytes += text.consumed;
+        if (number > kMaxScriptLines || bytes > kMaxScriptBytes) {
+            script.too_large = fmt::format(
+                "longer than {} at line {}: a script is checked whole before it runs, so it may "
+                "hold at most {} lines and {} MiB; split it, or pipe it into 'apcictl shell', "
+                "which runs each line as it reads it",
+                number > kMaxScriptLines ? fmt::format("{} lines", kMaxScriptLines)
+                                         : fmt::format("{} MiB", kMaxScriptBytes >> 20),
+                number, kMaxScriptLines, kMaxScriptBytes >> 20);
+            break;
+        }
+        if (text.kind == PlainLine::Kind::kTooLong) {
+            script.errors.push_back(
+                {number, Outcome::usage_error(
+                             fmt::format("longer than {} characters; not run (it starts '{}')",
+                                         kMaxLineLength, text.text.substr(0, 20)))});
+            continue;
+        }
+        const auto words = script_words(text.text);
         if (words.empty()) continue;
         ScriptLine line{number, {}, nullptr};
         Outcome parsed = parse_script_line(words, line);
@@ -96,7 +121,13 @@ ParsedScript parse_script(std::istream& in) {
         else
             script.errors.push_back({number, std::move(parsed)});
     }
-    script.read_failed = in.bad();
+    return script;
+}
+
+ParsedScript parse_script(std::istream& in) {
+    ParsedScript script =
+        parse_script([&in](std::uint64_t max) { return read_plain_line(in, kMaxLineLength, max); });
+    script.read_failed = script.read_failed || in.bad();
     return script;
 }
 

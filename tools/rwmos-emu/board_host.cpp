@@ -8,26 +8,43 @@
 
 namespace rwmos_emu {
 
-rwmos::FrameStream::Result BoardHost::serve_stream(rwmos::FrameStream& stream,
-                                                   std::span<const std::uint8_t> bytes,
-                                                   std::vector<std::uint8_t>& replies) {
-    const std::lock_guard lock(mutex_);
-    const auto result = stream.feed(bytes, server_, replies);
+void BoardTurns::lock() {
+    std::unique_lock lock(mutex_);
+    const std::uint64_t ticket = next_++;
+    turn_.wait(lock, [&] { return serving_ == ticket; });
+}
+
+void BoardTurns::unlock() {
+    {
+        const std::lock_guard lock(mutex_);
+        ++serving_;
+    }
+    turn_.notify_all();
+}
+
+rwmos::FrameStream::Result BoardHost::serve_turn(rwmos::FrameStream& stream,
+                                                 std::vector<std::uint8_t>& replies,
+                                                 const rwmos::FrameStream::Turn& turn) {
+    const std::lock_guard lock(turns_);
+    const std::uint64_t out_of_memory = server_.out_of_memory();
+    const auto result = stream.serve(server_, replies, turn);
     counts_.frames += result.frames;
-    counts_.rejected += result.rejected;
+    counts_.rejected += result.rejected + (server_.out_of_memory() - out_of_memory);
     return result;
 }
 
 void BoardHost::serve_frame(std::span<const std::uint8_t> request,
                             std::vector<std::uint8_t>& reply) {
-    const std::lock_guard lock(mutex_);
+    const std::lock_guard lock(turns_);
+    const std::uint64_t out_of_memory = server_.out_of_memory();
     const objif::FrameError e = server_.serve(request, reply);
     ++counts_.frames;
-    if (e != objif::FrameError::kNone) ++counts_.rejected;
+    if (e != objif::FrameError::kNone || server_.out_of_memory() != out_of_memory)
+        ++counts_.rejected;
 }
 
 std::uint64_t BoardHost::pace(std::chrono::steady_clock::time_point now) {
-    const std::lock_guard lock(mutex_);
+    const std::lock_guard lock(turns_);
     const std::int32_t cycle_us = board_.state().interpolation_cycle_us;
     const std::uint64_t board_now =
         rwmos::serve_clock(board_, objif::ClockRequest{objif::ClockMode::kQuery, 0}).now;
@@ -50,8 +67,13 @@ std::uint64_t BoardHost::pace(std::chrono::steady_clock::time_point now) {
 }
 
 ServedCounts BoardHost::counts() const {
-    const std::lock_guard lock(mutex_);
+    const std::lock_guard lock(turns_);
     return counts_;
+}
+
+std::uint64_t BoardHost::out_of_memory() const {
+    const std::lock_guard lock(turns_);
+    return server_.out_of_memory();
 }
 
 }  // namespace rwmos_emu

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The one emulated board every client of the daemon shares. The Board is not
 // thread-safe; every request from every transport (socket clients, the
-// dual-port RAM thread) goes through here and is served under one mutex, so
-// requests are serialised on one board state.
+// dual-port RAM thread) goes through here and is served under one lock, so
+// requests are serialised on one board state. The lock is handed over in the
+// order it was asked for (BoardTurns): the socket thread, serving turn after
+// turn, cannot take it back before the dual-port RAM thread that waits.
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <mutex>
 #include <span>
@@ -22,18 +25,37 @@ struct ServedCounts {
     std::uint64_t rejected = 0;  // of those, answered with an Error reply
 };
 
+// A lock granted first come, first served (a ticket lock): a thread that
+// releases it and asks again at once queues behind every thread already
+// waiting. std::mutex promises no order, and a thread serving back to back
+// may take it again before a waiter wakes.
+class BoardTurns {
+  public:
+    void lock();
+    void unlock();
+
+  private:
+    std::mutex mutex_;
+    std::condition_variable turn_;
+    std::uint64_t next_ = 0;     // the next ticket handed out
+    std::uint64_t serving_ = 0;  // the ticket whose turn it is
+};
+
 class BoardHost {
   public:
     explicit BoardHost(const rwmos::BoardConfig& config) : board_(config), server_(board_) {}
 
-    // Serves a chunk of a client's byte stream (see rwmos::FrameStream).
-    rwmos::FrameStream::Result serve_stream(rwmos::FrameStream& stream,
-                                            std::span<const std::uint8_t> bytes,
-                                            std::vector<std::uint8_t>& replies);
+    // Serves one turn of a client's buffered byte stream (see
+    // rwmos::FrameStream::serve).
+    rwmos::FrameStream::Result serve_turn(rwmos::FrameStream& stream,
+                                          std::vector<std::uint8_t>& replies,
+                                          const rwmos::FrameStream::Turn& turn);
     // Serves one whole request frame (the dual-port RAM mailbox).
     void serve_frame(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply);
 
     ServedCounts counts() const;
+    // Requests answered NoMemory (the daemon ran out of memory serving them).
+    std::uint64_t out_of_memory() const;
 
     // --realtime: advances the interpolation clock so that the board has
     // run at least one cycle per interpolation cycle of wall time since
@@ -43,7 +65,7 @@ class BoardHost {
     std::uint64_t pace(std::chrono::steady_clock::time_point now);
 
   private:
-    mutable std::mutex mutex_;
+    mutable BoardTurns turns_;
     rwmos::Board board_;
     rwmos::FrameServer server_;
     ServedCounts counts_;

@@ -6,6 +6,7 @@
 #include <grp.h>
 #include <signal.h>
 #include <sys/epoll.h>
+#include <sys/resource.h>
 #include <sys/signalfd.h>
 #include <sys/timerfd.h>
 #include <unistd.h>
@@ -17,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +52,8 @@ struct Options {
     // --idle-timeout: seconds a socket client may send and read nothing
     // before the daemon closes it (0: never). docs/rwmos-emu.md says why 300.
     std::int64_t idle_timeout_s = 300;
+    // --trace-memory: the most memory the per-cycle trace may take (BoardConfig::trace_memory).
+    std::size_t trace_memory_mib = 64;
     std::string log_level = "info";
     std::string group;  // --group: owner group of the socket and the shm file
     gid_t gid = static_cast<gid_t>(-1);  // resolved from `group`; -1 leaves the daemon's own
@@ -74,6 +78,40 @@ bool give_group(const std::string& path, gid_t gid) {
     if (::lchown(path.c_str(), static_cast<uid_t>(-1), gid) == 0) return true;
     log(Level::kError, "{}: cannot give it group {}: {}", path, gid, std::strerror(errno));
     return false;
+}
+
+// The descriptors the daemon needs besides its clients' (standard streams, epoll, signalfd,
+// timers, listener, spare, shm file, the libraries'): a margin.
+constexpr rlim_t kOwnDescriptors = 16;
+
+// Each client is a descriptor: the soft limit on open files (often 1024) is raised to the hard
+// limit, as a program that does not use select() may (the default --max-clients of up to 4096
+// met a soft limit of 1024). Where even that is too small for --max-clients, a warning says what
+// happens: newcomers beyond it are told the daemon is out of descriptors.
+void raise_open_files_limit(std::size_t max_clients) {
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_NOFILE, &limit) != 0) return;
+    if (limit.rlim_cur < limit.rlim_max) {
+        rlimit raised = limit;
+        raised.rlim_cur = limit.rlim_max;
+        if (::setrlimit(RLIMIT_NOFILE, &raised) == 0) limit = raised;
+    }
+    const rlim_t needed = static_cast<rlim_t>(max_clients) + kOwnDescriptors;
+    if (limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur < needed)
+        log(Level::kWarn,
+            "--max-clients {} needs about {} open files, the limit is {} (ulimit -n): clients "
+            "beyond about {} are told the daemon is out of file descriptors",
+            max_clients, needed, limit.rlim_cur,
+            limit.rlim_cur > kOwnDescriptors ? limit.rlim_cur - kOwnDescriptors : 0);
+}
+
+// `path` made absolute against the working directory (lexically, links kept), for the
+// registry: a reader in another directory must find the same file. "" stays "".
+std::string absolute(const std::string& path) {
+    if (path.empty()) return path;
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::absolute(path, ec);
+    return ec ? path : p.lexically_normal().string();
 }
 
 // Owns the epoll and signal descriptors.
@@ -167,8 +205,10 @@ int serve(const Options& o) {
         return kExitFailure;
     }
 
+    raise_open_files_limit(o.max_clients);
     rwmos::BoardConfig config;
     config.option_tc = !o.no_option_tc;
+    config.trace_memory = o.trace_memory_mib << 20;
     BoardHost host(config);
     SocketServer sockets(host, fds.epoll,
                          ClientLimits{o.max_clients, std::chrono::seconds(o.idle_timeout_s)});
@@ -203,7 +243,7 @@ int serve(const Options& o) {
         host.pace(std::chrono::steady_clock::now());
     }
 
-    objif::RegisteredDaemon self{::getpid(), socket_path, o.shm};
+    objif::RegisteredDaemon self{::getpid(), absolute(socket_path), absolute(o.shm)};
     if (!objif::register_daemon(self, why))
         log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
     log(Level::kInfo, "serving one board (optionTC {}, {} time){}{}{}{}",
@@ -219,49 +259,60 @@ int serve(const Options& o) {
     // budget before it sleeps in epoll_wait (docs/performance.md, "Transports").
     objif::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
     bool served_client = false;
-    while (running) {
-        epoll_event events[64];
-        int n = 0;
-        const auto start = std::chrono::steady_clock::now();
-        if (served_client) {
-            const auto until = start + spin.budget();
-            do {
-                n = ::epoll_wait(fds.epoll, events, 64, 0);
-            } while (n == 0 && std::chrono::steady_clock::now() < until);
-        }
-        if (n == 0) n = ::epoll_wait(fds.epoll, events, 64, -1);
-        if (served_client) spin.learn(std::chrono::steady_clock::now() - start);
-        served_client = false;
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            log(Level::kError, "epoll_wait: {}", std::strerror(errno));
-            exit_code = kExitFailure;
-            break;
-        }
-        for (int i = 0; i < n; ++i) {
-            const int fd = events[i].data.fd;
-            if (fd == fds.signal) {
-                signalfd_siginfo info{};
-                if (::read(fds.signal, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
-                    const int sig = static_cast<int>(info.ssi_signo);
-                    stop_reason = fmt::format("shutting down ({})", signal_name(sig));
-                    log(Level::kInfo, "{}: shutting down", signal_name(sig));
-                    exit_code = exit_code_for(sig);
-                    running = false;
-                }
-            } else if (fd == fds.timer) {
-                std::uint64_t expirations = 0;
-                if (::read(fds.timer, &expirations, sizeof expirations) > 0)
-                    host.pace(std::chrono::steady_clock::now());
-            } else if (fd == sockets.listen_fd()) {
-                sockets.on_listen_ready();
-            } else if (fd == sockets.idle_timer_fd()) {
-                sockets.on_idle_timer();
-            } else {
-                sockets.on_client_ready(fd, events[i].events);
-                served_client = true;
+    // Out of memory, or any other failure in the loop, ends the daemon the way a signal does
+    // (clients told, socket, file and registry entry removed), never with them left behind.
+    try {
+        while (running) {
+            epoll_event events[64];
+            int n = 0;
+            const auto start = std::chrono::steady_clock::now();
+            if (served_client) {
+                const auto until = start + spin.budget();
+                do {
+                    n = ::epoll_wait(fds.epoll, events, 64, 0);
+                } while (n == 0 && std::chrono::steady_clock::now() < until);
             }
+            if (n == 0) n = ::epoll_wait(fds.epoll, events, 64, sockets.wait_ms());
+            if (served_client) spin.learn(std::chrono::steady_clock::now() - start);
+            served_client = false;
+            if (n < 0) {
+                if (errno == EINTR) continue;
+                log(Level::kError, "epoll_wait: {}", std::strerror(errno));
+                exit_code = kExitFailure;
+                break;
+            }
+            for (int i = 0; i < n; ++i) {
+                const int fd = events[i].data.fd;
+                if (fd == fds.signal) {
+                    signalfd_siginfo info{};
+                    if (::read(fds.signal, &info, sizeof info) ==
+                        static_cast<ssize_t>(sizeof info)) {
+                        const int sig = static_cast<int>(info.ssi_signo);
+                        stop_reason = fmt::format("shutting down ({})", signal_name(sig));
+                        log(Level::kInfo, "{}: shutting down", signal_name(sig));
+                        exit_code = exit_code_for(sig);
+                        running = false;
+                    }
+                } else if (fd == fds.timer) {
+                    std::uint64_t expirations = 0;
+                    if (::read(fds.timer, &expirations, sizeof expirations) > 0)
+                        host.pace(std::chrono::steady_clock::now());
+                } else if (fd == sockets.listen_fd()) {
+                    sockets.on_listen_ready();
+                } else if (fd == sockets.idle_timer_fd()) {
+                    sockets.on_idle_timer();
+                } else {
+                    sockets.on_client_ready(fd, events[i].events);
+                    served_client = true;
+                }
+            }
+            // Clients whose requests outlasted their turn are served after every other.
+            if (running) sockets.after_events();
         }
+    } catch (const std::exception& e) {
+        log(Level::kError, "internal error: {}; shutting down", e.what());
+        stop_reason = "shutting down (internal error)";
+        exit_code = kExitFailure;
     }
 
     sockets.close_all(stop_reason);
@@ -299,6 +350,11 @@ int run(int argc, char** argv) {
                    "why (default 300; 0 = never; at most 86400)")
         ->type_name("SECONDS")
         ->check(CLI::Range(0, 86400));
+    app.add_option("--trace-memory", o.trace_memory_mib,
+                   "Most memory the per-cycle trace may take, in MiB (default 64, 1..1152): a "
+                   "client asking for a larger trace ring is refused with NoMemory")
+        ->type_name("MIB")
+        ->check(CLI::Range(1, 1152));
     app.add_option("--group", o.group,
                    "Group of the socket and the dual-port RAM file, so its members may connect "
                    "(default: the daemon's own group)");

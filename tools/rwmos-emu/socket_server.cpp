@@ -5,6 +5,7 @@
 #include <poll.h>
 #include <sys/epoll.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/timerfd.h>
@@ -16,19 +17,21 @@
 #include <cerrno>
 #include <cstddef>
 #include <cstring>
+#include <new>
 #include <thread>
 
 #include "log.h"
 #include "objif/frame.h"
+#include "objif/registry.h"
 
 namespace rwmos_emu {
 namespace {
 
 constexpr std::size_t kReadChunk = std::size_t{64} * 1024;
 // How long a starting daemon waits for another one starting in the same
-// directory (a neighbour holding the lock longer makes it give up).
-constexpr std::chrono::seconds kDirectoryLockWait{2};
-constexpr std::chrono::milliseconds kDirectoryLockPoll{5};
+// directory (a neighbour holding the turn longer makes it give up).
+constexpr std::chrono::seconds kStartTurnWait{2};
+constexpr std::chrono::milliseconds kStartTurnPoll{5};
 // Reads of a hung-up client served before it is released (its requests
 // still reach the board, as they would have on the next turn of the loop).
 constexpr int kReapReads = 8;
@@ -93,50 +96,70 @@ std::string directory_of(const std::string& path) {
     return path.substr(0, slash);
 }
 
-// An exclusive flock on a directory, taken by every daemon while it clears,
-// binds and starts listening on a socket there: a daemon that finds a socket
-// nobody listens on yet knows it is stale, not another daemon's between bind
-// and listen. Released when it goes out of scope.
-class DirectoryLock {
+// The turn of a daemon starting in a socket directory: an exclusive flock taken by every
+// daemon of this user while it clears, binds and starts listening on a socket there, so that a
+// daemon that finds a socket nobody listens on yet knows it is stale, not another daemon's
+// between bind and listen. The lock is a file in the user's private registry directory
+// (objif/registry.h) named after the socket directory's device and inode, not the socket
+// directory itself: any user may hold flock on a shared directory (/tmp, /dev/shm), and did
+// stop every daemon from starting there. Released when it goes out of scope.
+class StartTurn {
   public:
-    DirectoryLock() = default;
-    ~DirectoryLock() {
+    StartTurn() = default;
+    ~StartTurn() {
         if (fd_ >= 0) ::close(fd_);
     }
-    DirectoryLock(const DirectoryLock&) = delete;
-    DirectoryLock& operator=(const DirectoryLock&) = delete;
+    StartTurn(const StartTurn&) = delete;
+    StartTurn& operator=(const StartTurn&) = delete;
 
     bool take(const std::string& dir, std::string& why) {
-        fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-        if (fd_ < 0 && (errno == ENOENT || errno == ENOTDIR)) {
-            why = fmt::format("socket directory {}: {}", dir, std::strerror(errno));
+        struct stat st {};
+        const int err = ::stat(dir.c_str(), &st) != 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+        if (err != 0) {
+            why = fmt::format("socket directory {}: {}", dir, std::strerror(err));
             return false;
         }
-        if (fd_ < 0) {
-            // A directory we may write in but not read (mode 0300): no lock to take.
-            log(Level::kWarn, "cannot open socket directory {} to lock it ({}); starting unlocked",
-                dir, std::strerror(errno));
+        std::string registry_why;
+        const int registry = objif::open_registry_dir(true, registry_why);
+        if (registry < 0) {
+            log(Level::kWarn,
+                "cannot take turns with other daemons starting in {} ({}); starting unlocked", dir,
+                registry_why);
             return true;
         }
-        const auto until = SteadyClock::now() + kDirectoryLockWait;
+        const std::string name = start_lock_name(st.st_dev, st.st_ino);
+        fd_ = ::openat(registry, name.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC,
+                       0600);
+        const int open_errno = errno;
+        ::close(registry);
+        struct stat lock {};
+        if (fd_ < 0 || ::fstat(fd_, &lock) != 0 || !S_ISREG(lock.st_mode) ||
+            lock.st_uid != ::geteuid()) {
+            log(Level::kWarn,
+                "cannot open the start lock {} in the registry directory ({}); "
+                "starting unlocked",
+                name, fd_ < 0 ? std::strerror(open_errno) : "not a file of ours");
+            return true;
+        }
+        const auto until = SteadyClock::now() + kStartTurnWait;
         for (;;) {
             if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return true;
             if (errno != EWOULDBLOCK && errno != EINTR) {
                 // A file system without flock (ENOLCK, EOPNOTSUPP): start
                 // without taking turns rather than not at all.
-                log(Level::kWarn, "cannot lock socket directory {} ({}); starting unlocked", dir,
+                log(Level::kWarn, "cannot lock {} ({}); starting unlocked", name,
                     std::strerror(errno));
                 return true;
             }
             if (SteadyClock::now() >= until) {
                 why = fmt::format(
-                    "socket directory {} stayed locked for {} s (another rwmos-emu starting "
-                    "there, or a process holding flock on it); try again or choose another "
-                    "--socket directory",
-                    dir, kDirectoryLockWait.count());
+                    "another rwmos-emu of this user starting in socket directory {} held its "
+                    "turn for {} s (the lock {} in {}); try again or choose another --socket "
+                    "directory",
+                    dir, kStartTurnWait.count(), name, objif::registry_dir());
                 return false;
             }
-            std::this_thread::sleep_for(kDirectoryLockPoll);
+            std::this_thread::sleep_for(kStartTurnPoll);
         }
     }
 
@@ -165,6 +188,11 @@ int bind_socket(int fd, const sockaddr_un& addr, gid_t group) {
 
 }  // namespace
 
+std::string start_lock_name(dev_t dev, ino_t ino) {
+    return fmt::format("socket-dir.{:x}.{:x}.lock", static_cast<std::uint64_t>(dev),
+                       static_cast<std::uint64_t>(ino));
+}
+
 bool send_notice(int fd, objif::Status status, std::string_view text) {
     try {
         std::vector<std::uint8_t> payload;
@@ -184,18 +212,19 @@ bool send_notice(int fd, objif::Status status, std::string_view text) {
 SocketServer::~SocketServer() {
     close_all();
     if (idle_timer_fd_ >= 0) ::close(idle_timer_fd_);
+    if (spare_fd_ >= 0) ::close(spare_fd_);
 }
 
 // Bound at PATH itself (so ss, lsof and /proc/net/unix name the socket by
-// its path), under the directory lock: clear_path() (lstat, never through a
+// its path), in its start turn (StartTurn): clear_path() (lstat, never through a
 // symlink; a stale socket removed, anything else refused), bind with mode
 // 0660 and the group from the start, listen at once; bind never replaces a
 // file, so a socket or file that appeared meanwhile is never displaced.
 bool SocketServer::open(const std::string& path, gid_t group, std::string& why) {
     sockaddr_un addr{};
     if (!make_address(path, addr, why)) return false;
-    DirectoryLock lock;
-    if (!lock.take(directory_of(path), why)) return false;
+    StartTurn turn;
+    if (!turn.take(directory_of(path), why)) return false;
     if (!clear_path(path, addr, why)) return false;
     const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     if (fd < 0) {
@@ -259,6 +288,9 @@ bool SocketServer::listen_on(int fd, std::string& why) {
             return false;
         }
     }
+    // A descriptor kept in reserve: when accept fails for want of descriptors, it is given up
+    // for a moment to take the newcomer, tell it why and close it (on_listen_ready()).
+    if (spare_fd_ < 0) spare_fd_ = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
     listen_fd_ = fd;
     read_buffer_.resize(kReadChunk);
     return true;
@@ -307,20 +339,117 @@ bool SocketServer::adopt(int fd, const std::string& expected_path, std::string& 
 }
 
 void SocketServer::on_listen_ready() {
+    if (listen_paused_) return;
     for (;;) {
         const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
         if (fd < 0) {
             if (errno == EAGAIN || errno == EINTR) return;
+            if (errno == ECONNABORTED) continue;
             if (errno == EMFILE || errno == ENFILE) {
-                log(Level::kWarn, "accept: {} (clients wait in the backlog)", std::strerror(errno));
+                if (refuse_for_descriptors(errno)) continue;
                 return;
             }
-            if (errno == ECONNABORTED) continue;
-            log(Level::kError, "accept: {}", std::strerror(errno));
+            // Anything else (ENOMEM, ENOBUFS): the listener stays ready, so it is left alone
+            // for a moment rather than asked again at once.
+            log(Level::kError, "accept: {}; not accepting for {} ms", std::strerror(errno),
+                kListenPause.count());
+            pause_listening();
             return;
         }
         accept_one(fd);
     }
+}
+
+// Out of descriptors, the listening socket stays ready with the newcomer in its backlog: asked
+// again and again, the loop spun (and logged a line each time), and the newcomer waited for a
+// greeting that never came. The spare descriptor makes room to take it off the backlog, tell
+// it why and close it.
+bool SocketServer::refuse_for_descriptors(int err) {
+    if (spare_fd_ < 0) {
+        log(Level::kError,
+            "accept: {}; no spare descriptor to tell a newcomer why; not accepting "
+            "for {} ms",
+            std::strerror(err), kListenPause.count());
+        pause_listening();
+        return false;
+    }
+    ::close(spare_fd_);
+    const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    const int accept_errno = errno;
+    if (fd >= 0) {
+        rlimit limit{};
+        ::getrlimit(RLIMIT_NOFILE, &limit);
+        send_notice(fd, objif::Status::kTransportError,
+                    err == EMFILE
+                        ? fmt::format("out of file descriptors ({} clients connected, limit {} "
+                                      "open files); try again later",
+                                      clients_.size(), limit.rlim_cur)
+                        : std::string("the system is out of file descriptors; try again later"));
+        ::close(fd);
+        ++refused_for_descriptors_;
+    }
+    spare_fd_ = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    // One line at the first refusal, then at most one a second with the count.
+    const auto now = SteadyClock::now();
+    if (refused_for_descriptors_ != 0 && now - refusal_logged_ >= std::chrono::seconds(1)) {
+        log(Level::kWarn,
+            "refused {} client(s): {} (--max-clients {}; raise the open-files limit, "
+            "ulimit -n)",
+            refused_for_descriptors_, std::strerror(err), limits_.max_clients);
+        refused_for_descriptors_ = 0;
+        refusal_logged_ = now;
+    }
+    if (spare_fd_ < 0) {
+        pause_listening();
+        return false;
+    }
+    // Taken: there may be more. Nobody (EAGAIN), or still none (ENFILE: the system's limit
+    // and no descriptor came free): done for now.
+    if (fd < 0 && accept_errno != EAGAIN && accept_errno != EINTR) pause_listening();
+    return fd >= 0;
+}
+
+void SocketServer::pause_listening() {
+    if (listen_paused_ || listen_fd_ < 0) return;
+    epoll_event ev{};
+    ev.events = 0;
+    ev.data.fd = listen_fd_;
+    if (::epoll_ctl(epoll_fd_, EPOLL_CTL_MOD, listen_fd_, &ev) != 0) return;
+    listen_paused_ = true;
+    listen_resume_ = SteadyClock::now() + kListenPause;
+}
+
+int SocketServer::wait_ms() const {
+    if (!left_over_.empty()) return 0;
+    if (!listen_paused_) return -1;
+    const auto left =
+        std::chrono::ceil<std::chrono::milliseconds>(listen_resume_ - SteadyClock::now());
+    return static_cast<int>(std::max<std::chrono::milliseconds::rep>(0, left.count()));
+}
+
+void SocketServer::after_events() {
+    if (listen_paused_ && SteadyClock::now() >= listen_resume_ && listen_fd_ >= 0) {
+        epoll_event ev{};
+        ev.events = EPOLLIN;
+        ev.data.fd = listen_fd_;
+        if (::epoll_ctl(epoll_fd_, EPOLL_CTL_MOD, listen_fd_, &ev) == 0) listen_paused_ = false;
+    }
+    // Every client with requests left over gets one more turn, in the order they were left,
+    // unless it was served this round already.
+    const std::vector<int> waiting = std::move(left_over_);
+    left_over_.clear();
+    for (const int fd : waiting) {
+        auto it = clients_.find(fd);
+        if (it == clients_.end()) continue;
+        Client& c = it->second;
+        if (c.round == round_) {
+            left_over_.push_back(fd);
+            continue;
+        }
+        c.awaits_turn = false;
+        if (serve_turn(fd, c)) rearm(fd, c);
+    }
+    ++round_;
 }
 
 void SocketServer::accept_one(int fd) {
@@ -415,6 +544,16 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
     if ((events & EPOLLOUT) != 0 && !flush(fd, c)) return;
     if (!c.reading && (events & (EPOLLHUP | EPOLLERR)) != 0)
         return drop(fd, "hung up with replies unread");
+    // A client with requests left over is not read from: its turn comes in after_events(),
+    // once it has read enough of its replies.
+    if (c.backlog) {
+        if (!c.awaits_turn && c.out.size() - c.out_pos < kMaxQueuedReplies) {
+            c.awaits_turn = true;
+            left_over_.push_back(fd);
+        }
+        rearm(fd, c);
+        return;
+    }
     if ((events & (EPOLLIN | EPOLLRDHUP | EPOLLHUP | EPOLLERR)) == 0 || !c.reading) {
         rearm(fd, c);
         return;
@@ -434,18 +573,45 @@ void SocketServer::on_client_ready(int fd, std::uint32_t events) {
     }
     if (n < 0) return;
     c.last_active = SteadyClock::now();
-    const auto result =
-        host_.serve_stream(c.stream, {read_buffer_.data(), static_cast<std::size_t>(n)}, c.out);
+    c.stream.append({read_buffer_.data(), static_cast<std::size_t>(n)});
+    if (serve_turn(fd, c)) rearm(fd, c);
+}
+
+bool SocketServer::serve_turn(int fd, Client& c) {
+    c.round = round_;
+    const std::size_t queued = c.out.size() - c.out_pos;
+    rwmos::FrameStream::Result result;
+    if (queued < kMaxQueuedReplies) {
+        try {
+            result = host_.serve_turn(c.stream, c.out,
+                                      rwmos::FrameStream::Turn{SteadyClock::now() + kTurnTime,
+                                                               kMaxQueuedReplies - queued});
+        } catch (const std::bad_alloc&) {
+            // Not even the NoMemory reply could be made: this client goes, the others stay.
+            drop(fd, "could not be served: the daemon is out of memory");
+            return false;
+        }
+    } else {
+        result.more = true;  // its replies wait to be read first
+    }
     if (result.rejected != 0)
         log(Level::kDebug, "client {}: {} malformed frame(s) answered with Error", c.id,
             result.rejected);
-    if (!flush(fd, c)) return;
+    if (!flush(fd, c)) return false;
     if (!result.keep) {
         log(Level::kWarn, "client {} sent garbage ({}): connection dropped", c.id,
             objif::frame_error_name(result.garbage));
-        return drop(fd, {});
+        drop(fd, {});
+        return false;
     }
-    rearm(fd, c);
+    // Requests left over wait for the next round, unless the client's unread replies hold it
+    // back: then it is served again once it has read them (EPOLLOUT, on_client_ready).
+    c.backlog = result.more;
+    if (c.backlog && !c.awaits_turn && c.out.size() - c.out_pos < kMaxQueuedReplies) {
+        c.awaits_turn = true;
+        left_over_.push_back(fd);
+    }
+    return true;
 }
 
 bool SocketServer::flush(int fd, Client& c) {
@@ -471,8 +637,9 @@ bool SocketServer::flush(int fd, Client& c) {
 
 void SocketServer::rearm(int fd, Client& c) const {
     const std::size_t queued = c.out.size() - c.out_pos;
-    // Backpressure: a client that does not read its replies is not read from.
-    c.reading = queued < kMaxQueuedReplies;
+    // Backpressure: a client that does not read its replies is not read from,
+    // nor one whose requests wait for their next turn.
+    c.reading = queued < kMaxQueuedReplies && !c.backlog;
     const std::uint32_t events =
         (c.reading ? EPOLLIN | EPOLLRDHUP : 0u) | (queued != 0 ? EPOLLOUT : 0u);
     if (events == c.armed) return;
@@ -486,6 +653,7 @@ void SocketServer::drop(int fd, std::string_view why) {
     auto it = clients_.find(fd);
     if (it == clients_.end()) return;
     if (!why.empty()) log(Level::kInfo, "client {} {}: connection closed", it->second.id, why);
+    if (it->second.awaits_turn) std::erase(left_over_, fd);
     ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
     ::close(fd);
     clients_.erase(it);

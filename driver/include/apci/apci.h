@@ -179,7 +179,9 @@ APCI_API apci_status apci_get_timeout(const apci_board* board, uint32_t* millise
 /*
  * 1 while the link to the board works, 0 once it is known to be lost (the
  * daemon closed the socket or stopped, the dual-port RAM's board stopped or
- * restarted, the USB board was unplugged; or board is NULL). A lost link is
+ * restarted, the USB board was unplugged; or board is NULL). A daemon that
+ * closed its socket (its idle timeout, a shutdown) is seen without a request;
+ * the next request still fails, with the daemon's words. A lost link is
  * not reopened behind the caller's back: every call answers
  * APCI_TRANSPORT_ERROR, apci_last_error() saying what happened, until
  * apci_reconnect() succeeds. Non-blocking.
@@ -425,6 +427,8 @@ APCI_API apci_status apci_spooler_fill(apci_board* board, uint32_t* fill,
  * Per-cycle samples: capacity > 0 turns them on with a ring of `capacity`
  * samples (at most 2^24; the oldest unread ones are dropped and counted when
  * it is full); 0 turns them off. Either drops the samples not yet read.
+ * A daemon gives the trace at most its --trace-memory (64 MiB, 932067
+ * samples, unless set): a larger ring is refused with APCI_NO_MEMORY.
  * With samples off the emulator runs through a move at no cost per cycle.
  */
 APCI_API apci_status apci_trace_enable(apci_board* board, uint32_t capacity) APCI_NOEXCEPT;

@@ -188,8 +188,12 @@ struct HostOptions {
     AdaptiveSpin* adaptive = nullptr;       // if set: its budget instead of `spin`, and it learns
     std::chrono::milliseconds timeout{5'000};  // whole exchange
     // Whether a lock held by `token` belongs to a host that is gone (e.g. a
-    // dead process); such a lock is taken over. Null: never.
-    bool (*lock_holder_gone)(std::uint32_t token) = nullptr;
+    // dead process); such a lock is taken over. Asked while the lock is not
+    // free, with how long this exchange has seen that token hold it, and
+    // `holder_context`. Null: never.
+    bool (*lock_holder_gone)(std::uint32_t token, std::chrono::nanoseconds held_for,
+                             const void* context) = nullptr;
+    const void* holder_context = nullptr;
 };
 
 // One request/reply exchange: takes the host lock, writes the request, rings

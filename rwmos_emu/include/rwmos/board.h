@@ -28,6 +28,11 @@ struct BoardConfig {
     // Temperature compensation in tool direction (bus 1320; [SIN-TEMP]: "eine Option, die vorher
     // freigeschaltet werden muß"). Options bit 0x04.
     bool option_temp_comp = true;
+    // The most memory the per-cycle trace's ring may take, in bytes (the emulator's own limit,
+    // not the firmware's: a daemon shares its memory among its clients). A trace asked for with
+    // more samples than fit is refused with NoMemory and changes nothing. Default: no limit
+    // beyond kMaxTraceCapacity.
+    std::size_t trace_memory = SIZE_MAX;
 };
 
 class Board {
@@ -57,8 +62,10 @@ public:
     // Advances until nothing can move or `max_cycles` ran; returns the cycles run.
     std::uint64_t run_until_idle(std::uint64_t max_cycles);
     motion::MotionStatus motion_status() const noexcept;
-    // Per-cycle samples on (ring of `capacity` samples, 1..kMaxTraceCapacity)
-    // or off. Turning it on or off drops the samples not yet read.
+    // Per-cycle samples on (ring of `capacity` samples, 1..kMaxTraceCapacity,
+    // and at most trace_memory / sizeof(TraceSample) of them: NoMemory) or
+    // off. Turning it on or off drops the samples not yet read; a refusal
+    // changes nothing.
     objif::Status set_trace(bool on, std::size_t capacity);
     static constexpr std::size_t kMaxTraceCapacity = std::size_t{1} << 24;
     // Moves the oldest samples / executed segments (up to out.size()) into

@@ -27,14 +27,23 @@ public:
 
     // An already decoded request. Appends exactly one reply frame. Returns
     // the payload's decode error (or kUnknownOpcode), kNone when it was served.
+    // A request that runs out of memory (std::bad_alloc: the daemon under a
+    // memory limit) is answered with an Error reply of status NoMemory, what
+    // was written of its reply taken back, and counted (out_of_memory()).
     objif::FrameError handle(const objif::Frame& request, std::vector<std::uint8_t>& reply);
+
+    // Requests answered NoMemory so far.
+    std::uint64_t out_of_memory() const noexcept { return out_of_memory_; }
 
     // The Error reply for a frame that could not be decoded; `sequence` is
     // echoed when the header was readable, else 0.
     static void reject(std::uint32_t sequence, objif::FrameError why, std::vector<std::uint8_t>& reply);
 
 private:
+    objif::FrameError serve_decoded(const objif::Frame& request, std::vector<std::uint8_t>& reply);
+
     Board& board_;
+    std::uint64_t out_of_memory_ = 0;
     std::vector<std::uint8_t> payload_;  // scratch, reused between requests
 };
 

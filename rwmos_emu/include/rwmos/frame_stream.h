@@ -5,11 +5,14 @@
 // boundary is known (bad CRC, unknown opcode, bad payload) gets an Error
 // reply and the stream goes on; garbage (bad magic, version or length) means
 // the framing is lost and the caller drops the connection. The buffer never
-// holds more than one frame plus the bytes of one feed() call.
+// holds more than one frame plus the bytes of one feed() or append() call
+// (a caller that serves in turns appends only once a turn left nothing).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -25,6 +28,17 @@ class FrameStream {
         objif::FrameError garbage = objif::FrameError::kNone;  // why, when !keep
         std::size_t frames = 0;    // frames answered (Error replies included)
         std::size_t rejected = 0;  // of those, answered with an Error reply
+        bool more = false;         // the turn ended with bytes of whole frames still buffered
+    };
+
+    // How much one client's turn may serve (the daemon serves its clients in
+    // turns, so that one client's pipelined requests do not keep the others
+    // waiting): frames in order until none is left whole, or until a frame
+    // ends at or past `until`, or until `replies` has grown by `reply_bytes`;
+    // at least one frame.
+    struct Turn {
+        std::chrono::steady_clock::time_point until = std::chrono::steady_clock::time_point::max();
+        std::size_t reply_bytes = std::numeric_limits<std::size_t>::max();
     };
 
     // Appends `bytes` and serves every complete frame now buffered, appending
@@ -32,7 +46,14 @@ class FrameStream {
     Result feed(std::span<const std::uint8_t> bytes, FrameServer& server,
                 std::vector<std::uint8_t>& replies);
 
-    // Bytes of an incomplete frame waiting for the rest.
+    // Appends `bytes` without serving them.
+    void append(std::span<const std::uint8_t> bytes);
+    // Serves buffered frames for one turn; Result::more when whole frames
+    // (or garbage) are left for the next.
+    Result serve(FrameServer& server, std::vector<std::uint8_t>& replies, const Turn& turn);
+
+    // Bytes buffered and not yet served: an incomplete frame waiting for the
+    // rest, or what a turn left.
     std::size_t pending() const noexcept { return buffer_.size() - start_; }
     void clear() noexcept {
         buffer_.clear();

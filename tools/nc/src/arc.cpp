@@ -3,8 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace apci::nc {
 
@@ -106,6 +108,56 @@ std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d
                 c.rs, c.re, kArcRadiusTolerance);
         case CenterFault::kNone:
             break;
+    }
+    return {};
+}
+
+namespace {
+// A coordinate in a message: to 0.1 um, or as a power of ten where that many digits say nothing.
+std::string coordinate_text(double v) {
+    return std::fabs(v) < 1e9 ? fmt::format("{:.4f}", v) : fmt::format("{:g}", v);
+}
+}  // namespace
+
+std::string check_arc_range(const ArcMove& arc, double limit) {
+    constexpr char kLetter[3] = {'X', 'Y', 'Z'};
+    const PlaneAxes a = plane_axes(arc.plane);
+    const Eigen::Vector2d c = in_plane(arc.center, a);
+    if (!(std::fabs(c.x()) <= limit && std::fabs(c.y()) <= limit))
+        return fmt::format(
+            "arc centre {} {} {} {} mm is beyond the board's coordinate range of +-{:g} mm",
+            kLetter[a.first], coordinate_text(c.x()), kLetter[a.second], coordinate_text(c.y()),
+            limit);
+    const Eigen::Vector2d s = in_plane(arc.start, a) - c;
+    const Eigen::Vector2d e = in_plane(arc.end, a) - c;
+    const double r = std::sqrt(std::max(s.squaredNorm(), e.squaredNorm()));
+    // Within whatever way it turns: the usual arc, told without an angle.
+    if (std::fabs(c.x()) + r <= limit && std::fabs(c.y()) + r <= limit) return {};
+    // The angles the arc sweeps, from its start, in its direction (a whole turn when it ends
+    // where it starts), as move_length() counts them.
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    const double start_angle = std::atan2(s.y(), s.x());
+    double sweep = kTwoPi;
+    if ((e - s).norm() > 1e-9 && s.norm() > 0.0 && e.norm() > 0.0) {
+        const double turn = std::atan2(s.x() * e.y() - s.y() * e.x(), s.dot(e));
+        sweep =
+            arc.ccw ? (turn <= 0.0 ? turn + kTwoPi : turn) : (turn >= 0.0 ? kTwoPi - turn : -turn);
+    }
+    // Direction k (0: +first, 1: +second, 2: -first, 3: -second) lies at angle k * 90 degrees.
+    for (int k = 0; k < 4; ++k) {
+        const double direction = k * (kTwoPi / 4.0);
+        double from_start = arc.ccw ? direction - start_angle : start_angle - direction;
+        from_start = std::fmod(std::fmod(from_start, kTwoPi) + kTwoPi, kTwoPi);
+        if (from_start > sweep) continue;
+        const bool first = k % 2 == 0;
+        const double reach = (first ? c.x() : c.y()) + (k < 2 ? r : -r);
+        if (std::fabs(reach) > limit)
+            return fmt::format(
+                "the arc reaches {} {} mm (centre {} {} {} {}, radius {} mm), beyond the board's "
+                "coordinate range of +-{:g} mm",
+                kLetter[first ? a.first : a.second], coordinate_text(reach), kLetter[a.first],
+                coordinate_text(c.x()), kLetter[a.second], coordinate_text(c.y()),
+                coordinate_text(r), limit);
     }
     return {};
 }

@@ -152,6 +152,16 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
             fmt::format("G{} arc needs its centre ({} {}) or its radius (R)", g_number(motion),
                         kCenterLetter[axes.first], kCenterLetter[axes.second]));
     }
+    // Its centre and its path within the board's range, named by the word that placed them.
+    if (std::string beyond = check_arc_range(arc, kBoardCoordinateLimit); !beyond.empty()) {
+        const std::size_t first = static_cast<std::size_t>(axes.first);
+        const std::size_t second = static_cast<std::size_t>(axes.second);
+        const std::uint32_t column = b.radius.present()           ? b.radius.column
+                                     : b.center[first].present()  ? b.center[first].column
+                                     : b.center[second].present() ? b.center[second].column
+                                                                  : first_motion_column(b);
+        return c.fail(ErrorKind::kValue, column, std::move(beyond));
+    }
     return true;
 }
 

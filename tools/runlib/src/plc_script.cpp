@@ -1,19 +1,20 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/plc_script.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <optional>
-#include <sstream>
 
 #include "apci/nc/block.h"
 #include "apci/nc/lexer.h"
+#include "apci/run/run_files.h"
 #include "objif/map/object_map.h"
 
 namespace apci::run {
@@ -287,6 +288,15 @@ nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view f
             text.substr(pos, nl == std::string_view::npos ? text.size() - pos : nl - pos);
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         ++n;
+        if (line.size() > kMaxPlcLineLength) {
+            Diagnostic err;
+            err.kind = ErrorKind::kValue;
+            err.file = std::string(file);
+            err.line = n;
+            err.column = static_cast<std::uint32_t>(kMaxPlcLineLength + 1);
+            err.message = fmt::format("line longer than {} characters", kMaxPlcLineLength);
+            return err;
+        }
         Diagnostic err;
         PlcWrite w;
         bool empty = false;
@@ -301,17 +311,27 @@ nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view f
 }
 
 nc::Result<PlcScript> load_plc_script(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) {
+    const auto io_error = [&](std::string message) {
         Diagnostic d;
         d.kind = ErrorKind::kIo;
         d.file = path;
-        d.message = fmt::format("cannot open: {}", std::strerror(errno));
+        d.message = std::move(message);
         return d;
-    }
-    std::ostringstream buf;
-    buf << f.rdbuf();
-    return parse_plc_script(buf.str(), path);
+    };
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return io_error(fmt::format("cannot open: {}", std::strerror(errno)));
+    std::string text;
+    int error = 0;
+    const BoundedRead read = read_bounded(fd, kMaxPlcScriptBytes, text, error);
+    ::close(fd);
+    if (read == BoundedRead::kTooLarge)
+        return io_error(
+            fmt::format("larger than {} MiB: a PLC script is read whole before the "
+                        "run (one write a line)",
+                        kMaxPlcScriptBytes >> 20));
+    if (read == BoundedRead::kError)
+        return io_error(fmt::format("read error: {}", std::strerror(error)));
+    return parse_plc_script(text, path);
 }
 
 }  // namespace apci::run

@@ -163,10 +163,16 @@ std::string OutputFile::open(const std::string& target) {
     target_ = target;
     if (target == "-") return attach(STDOUT_FILENO, false);
     namespace fs = std::filesystem;
-    // A symbolic link stays a link: the file it names is replaced.
+    // A symbolic link stays a link: the file it names is replaced. A link to something that is
+    // not a regular file is written in place through the link, which the kernel follows: the
+    // links of /proc (/dev/stdout, /dev/fd/N, a shell's >(...)) name a pipe or a terminal by a
+    // text such as "pipe:[1234]" that is no path (resolving it said "No such file or
+    // directory").
     std::string final_path = target;
     struct stat st {};
     if (::lstat(target.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+        if (::stat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+            return open_in_place(target);
         std::error_code ec;
         const fs::path resolved = fs::weakly_canonical(target, ec);
         if (ec) return ec.message();

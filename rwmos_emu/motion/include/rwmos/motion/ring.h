@@ -5,7 +5,9 @@
 // The storage grows with the content, up to the capacity: a board that never
 // logs many segments never pays for the whole log (a fresh board is built per
 // request in the frame fuzzer and per test), and a large trace capacity costs
-// memory only once that many samples wait unread.
+// memory only once that many samples wait unread. It never reserves more than
+// the capacity (a vector doubling on its own could take twice the capacity's
+// memory, and then some while it moves).
 #pragma once
 
 #include <cstddef>
@@ -45,6 +47,7 @@ class Ring {
         // wrapped: it lies at [head_, head_ + size_) with head_ + size_ <= buf_.size().
         std::size_t slot = head_ + size_;
         if (slot == stored_ && stored_ < capacity_) {
+            grow();
             buf_.push_back(v);
             ++stored_;
         } else {
@@ -70,6 +73,7 @@ class Ring {
         }
         std::size_t slot = head_ + size_;
         if (slot == stored_ && stored_ < capacity_) {
+            grow();
             buf_.emplace_back();
             ++stored_;
             fill(buf_.back());
@@ -117,11 +121,21 @@ class Ring {
 
     std::size_t size() const noexcept { return size_; }
     std::size_t capacity() const noexcept { return capacity_; }
+    // Entries the storage has room for now (never more than capacity()).
+    std::size_t reserved() const noexcept { return buf_.capacity(); }
     bool empty() const noexcept { return size_ == 0; }
     // Entries dropped because the ring was full since the last set_capacity().
     std::uint64_t lost() const noexcept { return lost_; }
 
   private:
+    // Room for one more entry, reserved by doubling as a vector would, but never beyond the
+    // capacity.
+    void grow() {
+        if (buf_.size() < buf_.capacity()) return;
+        const std::size_t doubled = buf_.empty() ? 1 : 2 * buf_.size();
+        buf_.reserve(doubled < capacity_ ? doubled : capacity_);
+    }
+
     std::vector<T> buf_;  // grows to capacity_, then wraps
     // buf_.size(), kept: the size of a vector of large elements is a division.
     std::size_t stored_ = 0;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apci/nc/block.h"
+#include "apci/nc/events.h"
 
 namespace apci::nc {
 
@@ -59,5 +60,12 @@ std::string check_arc_center(const Eigen::Vector3d& start, const Eigen::Vector3d
 // only for the arc that fails it.
 bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                    const Eigen::Vector3d& center, Plane p) noexcept;
+
+// The board takes coordinates within +-`limit` (kBoardCoordinateLimit): an arc's centre, and
+// every point the arc passes, whose extent along the plane's axes is where it turns through an
+// axis direction (at its larger radius; its end points are the caller's to check). Empty when
+// within, else what lies beyond, in words naming the axes. An arc whose centre the board
+// refuses ran its earlier blocks first; one whose path leaves the range was not checked at all.
+std::string check_arc_range(const ArcMove& arc, double limit);
 
 }  // namespace apci::nc

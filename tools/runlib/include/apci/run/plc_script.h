@@ -27,12 +27,14 @@
 // ("run --plc") is the spec.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "apci/nc/diagnostic.h"
+#include "apci/nc/source.h"
 
 namespace apci::run {
 
@@ -40,6 +42,13 @@ namespace apci::run {
 // program the clock runs on to the last entry; a larger N would keep a run going for hours (10^18
 // ran on without end). The bound of `apcictl step`, for the same reason.
 inline constexpr std::uint64_t kMaxPlcCycle = 1'000'000'000;
+
+// What `--plc FILE` may hold: it is read whole before the run, at most kMaxPlcScriptBytes
+// (16 MiB: at most about 760,000 writes, 22 bytes each at the shortest), each line at most
+// kMaxPlcLineLength characters without its line end (as an NC program's line,
+// apci::nc::LineSource). /dev/zero was read to 1.2 GB, then std::bad_alloc.
+inline constexpr std::size_t kMaxPlcScriptBytes = std::size_t{16} << 20;
+inline constexpr std::size_t kMaxPlcLineLength = nc::LineSource::kMaxLineLength;
 
 struct PlcWrite {
     enum class When : std::uint8_t { kCycle, kBlock };
