@@ -215,7 +215,9 @@ TEST(Kinematics, TrafoOnNeedsAKinematics) {
 }
 
 // docs/design.md section 8: with the transformation the program gives the tool tip; at the switch
-// the position in force is re-expressed (tip = pivot - length t(B)).
+// the position in force is re-expressed, the pivot staying where it is: outside the
+// transformation the length acts on the plane's tool axis (pivot = point + length e_z), under it
+// along the tool (pivot = tip + length t(B)).
 TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
     const ToolTable tools = seed_tools();  // D1: laenge 50 mm
     InterpreterOptions o;
@@ -229,11 +231,23 @@ TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
     EXPECT_EQ(t[0].tool_length, 50.0);
     const auto rapids = only<RapidMove>(ev);
     ASSERT_EQ(rapids.size(), 3u);
-    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 0, 250));  // the tip under the pivot at Z300
-    EXPECT_EQ(rapids[1].end, Eigen::Vector3d(0, 0, 250));    // B45: the tip stays
-    // After #TRAFO OFF the pivot again: tip (100, 0, 50) + 50 (sin 45, 0, cos 45).
+    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 0, 300));  // B0: the tip where it was
+    EXPECT_EQ(rapids[1].end, Eigen::Vector3d(0, 0, 300));    // B45: the tip stays
+    // After #TRAFO OFF the pivot, tip (100, 0, 50) + 50 (sin 45, 0, cos 45), less the length on Z.
     EXPECT_NEAR(rapids[2].start.x(), 100 + 50 * std::sqrt(0.5), 1e-12);
-    EXPECT_NEAR(rapids[2].start.z(), 50 + 50 * std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(rapids[2].start.z(), 50 + 50 * std::sqrt(0.5) - 50, 1e-12);
+}
+
+// In the Z-X plane the length acts on Y outside the transformation: at B0 the tip is the pivot
+// one length below it along Z, the programmed point one length beside it along Y.
+TEST(Kinematics, TrafoTakesTheLengthOffThePlanesToolAxis) {
+    const ToolTable tools = seed_tools();
+    InterpreterOptions o;
+    o.tools = &tools;
+    const auto ev = events_of("D1\nG18\nG0 X0 Y0 Z300\n#KIN ID[4]\n#TRAFO ON\nG0 X1\nM30\n", o);
+    const auto rapids = only<RapidMove>(ev);
+    ASSERT_EQ(rapids.size(), 2u);
+    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 50, 250));
 }
 
 TEST(Kinematics, NoToolChangeOrRadiusCompensationUnderTrafo) {

@@ -392,6 +392,65 @@ TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     EXPECT_EQ(last[6], 45.0);  // B on board axis 4
 }
 
+// A B word tilts the B head; it does not switch the tool length off. D1 (length 50 mm) puts
+// its length on Z with N40: machine Z 350 for Z300, and it stays there through N45 (with B) and
+// N46 (without), as in the same program without the B word. The reported path is the same
+// with and without it.
+TEST_F(OtcRun, ABWordKeepsTheToolLengthOnTheAxis) {
+    const char* with_b = "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN45 G1 X10 B0\nN46 G1 X20\nM30\n";
+    const char* without_b = "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN45 G1 X10\nN46 G1 X20\nM30\n";
+    const json doc = run_json({write("b.nc", with_b), "--tools", seed_tools(), "--csv",
+                               path("b.csv")});
+    const auto rows = read_csv(path("b.csv"));
+    ASSERT_FALSE(rows.empty());
+    bool reached = false;
+    for (const auto& r : rows) {
+        if (r[4] == 350.0) reached = true;
+        if (reached) {
+            EXPECT_EQ(r[4], 350.0) << "cycle " << r[0];  // never down towards the work
+        }
+        EXPECT_LE(r[4], 350.0) << "cycle " << r[0];
+    }
+    EXPECT_TRUE(reached);
+    EXPECT_EQ(rows.back()[2], 20.0);
+    const json plain = run_json({write("nob.nc", without_b), "--tools", seed_tools()});
+    ASSERT_EQ(doc.at("segments").size(), plain.at("segments").size());
+    for (std::size_t i = 0; i < plain.at("segments").size(); ++i) {
+        EXPECT_EQ(doc.at("segments")[i].at("start"), plain.at("segments")[i].at("start")) << i;
+        EXPECT_EQ(doc.at("segments")[i].at("end"), plain.at("segments")[i].at("end")) << i;
+    }
+    EXPECT_EQ(doc.at("segments")[0].at("end"), json::array({0, 0, 300}));
+}
+
+// [ISG-OTC] sections 2.4 and 2.5 program N40 G00 X0 Y0 Z300 B0 with the 50 mm disc before
+// #TRAFO ON: the machine's Z stands at 350 (the tip at 300) until the transformation takes the
+// length over, and the tip stays at Z300 across #TRAFO ON and N60's B (the pivot moves).
+TEST_F(OtcRun, TheIsgToolDirAndSurfNormDirExamplesStandAtMachineZ350ForZ300) {
+    for (const char* name : {"tool_dir", "surf_norm_dir"}) {
+        const json doc =
+            run_json({kExamples + "/otc/" + name + ".nc", "--tools", seed_tools(), "--plc",
+                      kExamples + "/otc/plc/" + name + ".plc", "--csv", path("e.csv")});
+        const auto rows = read_csv(path("e.csv"));
+        ASSERT_FALSE(rows.empty()) << name;
+        // Until X or B (board axis 4, the head's) moves (N60, N70), Z rises to 350 and holds
+        // there.
+        double z_before = 0.0;
+        for (const auto& r : rows) {
+            if (r[2] != 0.0 || r[6] != 0.0) break;
+            EXPECT_LE(r[4], 350.0) << name << " cycle " << r[0];
+            z_before = r[4];
+        }
+        EXPECT_EQ(z_before, 350.0) << name;
+        const auto& segments = doc.at("segments");
+        ASSERT_GE(segments.size(), 3u) << name;
+        EXPECT_EQ(segments[0].at("block"), 40) << name;
+        EXPECT_EQ(segments[0].at("end"), json::array({0, 0, 300})) << name;
+        EXPECT_EQ(segments[1].at("block"), 60) << name;
+        EXPECT_EQ(segments[1].at("start"), json::array({0, 0, 300})) << name;
+        EXPECT_EQ(segments[1].at("end"), json::array({0, 0, 300})) << name;
+    }
+}
+
 // docs/design.md section 8: #HSC is accepted and reported as not emulated.
 TEST_F(OtcRun, HscIsReportedAsNotEmulated) {
     const std::string prog =

@@ -495,13 +495,18 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
             if (isg.on != s.trafo) {
                 // The B head's transformation (docs/design.md section 8, rwmos/geometry/kinematics.h):
                 // with it the program gives the tool tip, the pivot one tool length behind it
-                // along t(B) = (sin B, 0, cos B). The position in force changes its meaning.
+                // along t(B) = (sin B, 0, cos B). Without it the length acts on the tool axis of
+                // the plane (docs/compensation.md "Tool length"): the pivot one length behind the
+                // programmed point along that axis. The pivot stays; the position in force
+                // changes its meaning (at B0 in G17 it stays the same).
                 const double length = tool_length_mm(s.tool);
                 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-                const Eigen::Vector3d along =
+                const Eigen::Vector3d along_tool =
                     length * Eigen::Vector3d(std::sin(s.b * kDeg), 0.0, std::cos(s.b * kDeg));
-                s.position = isg.on ? Eigen::Vector3d(s.position - along)
-                                    : Eigen::Vector3d(s.position + along);
+                Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
+                along_axis[plane_axes(s.plane).normal] = length;
+                s.position = isg.on ? Eigen::Vector3d(s.position + along_axis - along_tool)
+                                    : Eigen::Vector3d(s.position + along_tool - along_axis);
                 s.trafo_length = length;
             }
             s.trafo = isg.on;

@@ -59,7 +59,9 @@ Eigen::Vector3d Execution::pivot_of(const Eigen::Vector3d& tip, double b_deg) co
     return tip + head.trafo_length * tool_axis(b_deg);
 }
 
-// The axes stop first, so the segments read back before belong to the old state.
+// The axes stop first, so the segments read back before belong to the old state. Under the
+// transformation the tool length is its own (the pivot one length behind the tip along t(B)),
+// so the TC groups stop applying theirs on the tool axis (LengthMode 0) until #TRAFO OFF.
 bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     if (e.on && head.b_axis < 0)
         return record(at, "Unsupported", "no free board axis for the head's B");
@@ -67,9 +69,41 @@ bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     if (out.otc_present &&
         !otc_.setting(at, otc::kIdxTrafo, e.on ? 1 : 0, e.on ? "#TRAFO ON" : "#TRAFO OFF"))
         return false;
+    if (!tc_.length_mode(at, !e.on)) return false;
     head.trafo = e.on;
     head.trafo_length = e.tool_length;
+    // The next segment starts where the last one ended; under the transformation its start is
+    // turned back into the tip by the transformation alone, after it by the length on the axis.
+    // (The tip is another frame than the pivot: no fold's jump is read across the switch.)
+    start_offset_ = Eigen::Vector3d::Zero();
+    if (!e.on && length_always) start_offset_[plane_axes(plane).third] = length;
+    have_last_board_end_ = false;
     return true;
+}
+
+bool Execution::head_turn(const BlockRef& at, const nc::HeadOrientation& e) {
+    if (head.b_axis < 0 || (klartext_ && head.c_axis < 0))
+        return record(at, "Unsupported",
+                      klartext_ ? "no free board axes for the head's B and C"
+                                : "no free board axis for the head's B");
+    head.pending = true;
+    head.at = at;
+    head.b = e.b;
+    head.c = e.c;
+    return true;
+}
+
+// A block that only turns the head: the rotary axes move at the rapid feed.
+bool Execution::head_only_move(const BlockRef& at) {
+    apci_profile p{};
+    p.kind = APCI_PROFILE_RAPID;
+    p.tag = encode_block_tag(at);
+    add_head(p);
+    head.pending = false;
+    apci::Result<apci_motion_result> r;
+    if (!spool_profile(p, r)) return false;
+    if (r.ok()) return true;
+    return record(at, std::string(apci::status_name(r.status)), std::string(board_.last_error()));
 }
 
 PathSegment Execution::line_segment(const BlockRef& at, SegmentKind kind,
@@ -152,10 +186,14 @@ apci_profile Execution::profile(const BlockRef& at, std::uint8_t kind, const Eig
     return p;
 }
 
+// The head's axes join the profile: B, and in Klartext C (DIN programs have no C).
 void Execution::add_head(apci_profile& p) noexcept {
-    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.b_axis) | (1u << head.c_axis));
+    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.b_axis));
     p.target[head.b_axis] = head.b;
-    p.target[head.c_axis] = head.c;
+    if (klartext_) {
+        p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.c_axis));
+        p.target[head.c_axis] = head.c;
+    }
     head.b_now = head.b;
 }
 
