@@ -76,7 +76,7 @@ OtcEngine::Vec3 OtcEngine::surface_normal_at(const Move* m, std::uint64_t k, std
                                              const AxisVector& nominal) const noexcept {
     // [ISG-OTC] section 2.5: from the tool direction and the path tangent. Rapid moves grind
     // nothing: the last normal stays (design).
-    if (m == nullptr || m->direct || m->role == SegmentRole::kRapid)
+    if (m == nullptr || m->direct || m->traverse || m->role == SegmentRole::kRapid)
         return ctx_.last_surface_normal;
     AxisVector t{};
     motion::tangent_at(*m, k, n, t);
@@ -417,9 +417,10 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
 void OtcEngine::move_started(const Move& m, const Move* next) noexcept {
     if (!state_.otc.active) return;
     ctx_.wear_start = wear_;
-    // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2: the approach after
-    // G41/G42 and the move after G40 are wear-free; RADIUS wears only with radius compensation.
-    const bool wears = otc::mode_has_continuous(session_.mode) && !m.direct &&
+    // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!" (G00, JA jogs, and a G00 on the
+    // compensated path, a traverse); section 2.2: the approach after G41/G42 and the move after
+    // G40 are wear-free; RADIUS wears only with radius compensation.
+    const bool wears = otc::mode_has_continuous(session_.mode) && !m.direct && !m.traverse &&
                        m.role != SegmentRole::kRapid && m.role != SegmentRole::kApproach &&
                        m.role != SegmentRole::kDeparture &&
                        (session_.type != otc::ProcessingType::kRadius || is_contour(m));

@@ -260,6 +260,64 @@ TEST_F(Spooler, RapidMakesCompensationIneffectiveAndTheNextProfileReApproaches) 
     expect_at(segs[3].end, 20, 21);
 }
 
+// Design (docs/motion.md section 4): a traverse (a G00 under G41/G42 in NC programs) is
+// compensated as a G01 at the rapid feed, the contour goes on through it, and every segment of
+// its element is marked as a traverse; the G01 before and after it are not.
+TEST_F(Spooler, TraverseIsCompensatedAsALineAtTheRapidFeedAndMarked) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    Profile t = line(2, 10, 20, 0.0);
+    t.kind = ProfileKind::kTraverse;
+    spool_ok(t);
+    EXPECT_TRUE(prof_marked()) << "the traverse is held as a G01 is";
+    spool_ok(line(3, 30, 20));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 6u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);  // N1, (0,1) to (9,1): an inside corner
+    expect_at(segs[1].end, 9, 1);
+    EXPECT_FALSE(segs[1].traverse);
+    EXPECT_EQ(segs[2].tag, 2u);
+    EXPECT_EQ(segs[2].role, SegmentRole::kContour);  // N2 on its offset, x = 10 - 1
+    expect_at(segs[2].start, 9, 1);
+    expect_at(segs[2].end, 9, 20);
+    EXPECT_EQ(segs[2].feed, rwmos::motion::kDefaultRapidFeed);
+    EXPECT_TRUE(segs[2].traverse);
+    EXPECT_EQ(segs[3].tag, 2u);  // the outside corner's transition belongs to the traverse
+    EXPECT_EQ(segs[3].role, SegmentRole::kTransition);
+    EXPECT_TRUE(segs[3].traverse);
+    EXPECT_EQ(segs[4].tag, 3u);
+    EXPECT_EQ(segs[4].role, SegmentRole::kContour);
+    EXPECT_FALSE(segs[4].traverse);
+    expect_at(segs[4].end, 30, 21);
+}
+
+// A traverse without compensation runs straight to its end at the rapid feed, still marked.
+TEST_F(Spooler, TraverseWithoutCompensationIsAStraightRapidMove) {
+    Profile t = line(5, 10, 20, 0.0);
+    t.kind = ProfileKind::kTraverse;
+    spool_ok(t);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
+    EXPECT_EQ(segs[0].end, xyz(10, 20));
+    EXPECT_EQ(segs[0].feed, rwmos::motion::kDefaultRapidFeed);
+    EXPECT_TRUE(segs[0].traverse);
+}
+
+// Kinds beyond the traverse (4) are refused; the traverse alone may go without a feed.
+TEST_F(Spooler, ProfileKindAboveTheTraverseIsRefused) {
+    Profile p = line(1, 10, 0, 600.0);
+    p.kind = static_cast<ProfileKind>(5);
+    EXPECT_EQ(board.spool(p).status, Status::kInvalidValue);
+    Profile g1 = line(1, 10, 0, 0.0);
+    EXPECT_EQ(board.spool(g1).status, Status::kValueTooLow);
+}
+
 // Design (docs/motion.md section 4): a profile while another group is active does not continue
 // the contour under way. The held profile is spooled to its offset end without departure, and
 // the new active group's first profile approaches its own compensated path.
@@ -478,7 +536,8 @@ TEST_F(Spooler, BadProfilesAreRefusedAndChangeNothing) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
     const Case cases[] = {
-        {"unknown kind", with([](Profile& p) { p.kind = static_cast<ProfileKind>(4); }),
+        {"unknown kind (above the traverse, 4)",
+         with([](Profile& p) { p.kind = static_cast<ProfileKind>(5); }),
          Status::kInvalidValue},
         {"feed NaN", with([&](Profile& p) { p.feed = nan; }), Status::kInvalidValue},
         {"feed negative", with([](Profile& p) { p.feed = -1; }), Status::kValueTooLow},

@@ -149,6 +149,56 @@ TEST_F(OtcBoard, RapidMovesAreWearFree) {
     EXPECT_EQ(wear(2), 0.0);
 }
 
+// [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!", also a G00 on the compensated path
+// (a traverse): under G41, RADIUS CONT, the G01 contour N50 (100 mm) wears 1 mm, the traverse
+// N40 (450 mm) and its transition nothing.
+TEST_F(OtcBoard, ATraverseUnderRadiusCompensationIsWearFree) {
+    setup_group(kSeedRadius, /*left=*/true);
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubSelectionMode,
+                        139),
+              Status::kOk);  // G139, as NC programs run: the first profile is the approach
+    grinding_tool();
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);
+    spool_ok(line(30, 50.0, 0.0, 10000.0));  // the approach
+    Profile g0 = line(40, 500.0, 0.0, 0.0);
+    g0.kind = ProfileKind::kTraverse;
+    spool_ok(g0);
+    spool_ok(line(50, 600.0, 0.0, 10000.0));
+    ASSERT_EQ(deactivate(1), Status::kOk);
+    spool_ok(line(60, 650.0, 0.0, 10000.0));  // the departure
+    run_and_off();
+    EXPECT_NEAR(wear_radius(), 100.0 * kSeedWearConst * 1e-7, kEps);
+    EXPECT_NEAR(wear_radius_cont(), 1.0, kEps);
+}
+
+// The same for every processing type (the board's G237: the first G01 is a contour element):
+// only the two G01, 50 and 100 mm, wear.
+TEST(OtcWearByRole, ATraverseIsWearFreeForEveryType) {
+    for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
+                      otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        OtcRig r;
+        r.setup_group(5.0, /*left=*/true);
+        r.grinding_tool();
+        ASSERT_EQ(r.set_type(type), Status::kOk);
+        ASSERT_EQ(r.set_mode(otc::Mode::kCont), Status::kOk);
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        r.activate(1);
+        r.spool_ok(line(1, 50.0, 0.0, 10000.0));
+        Profile g0 = line(2, 500.0, 0.0, 0.0);
+        g0.kind = ProfileKind::kTraverse;
+        r.spool_ok(g0);
+        r.spool_ok(line(3, 600.0, 0.0, 10000.0));
+        ASSERT_EQ(r.deactivate(1), Status::kOk);
+        r.run();
+        EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), 150.0 * kSeedWearConst * 1e-7,
+                    kEps)
+            << otc::processing_type_name(type);
+    }
+}
+
 // [ISG-OTC] section 2.2 "Hinweis": the approach after G41/G42 and the move after G40 are
 // wear-free; only the compensated contour (with its transitions) wears the radius.
 TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {

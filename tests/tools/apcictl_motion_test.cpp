@@ -100,7 +100,7 @@ TEST_P(ApcictlMotionUsage, IsAUsageErrorAndNothingRuns) {
 
 INSTANTIATE_TEST_SUITE_P(
     Lines, ApcictlMotionUsage,
-    ::testing::Values(BadLine{"spool G04 X1", "is not G00, G01, G02 or G03"},
+    ::testing::Values(BadLine{"spool G04 X1", "is not G00, G01, G02, G03 or TRAVERSE"},
                       BadLine{"spool G02 X1 Y1 F10", "an arc needs its centre"},
                       BadLine{"spool G01 X1 X2 F10", "'X' is given twice"},
                       BadLine{"spool G01 Xten F10", "is not a number"},

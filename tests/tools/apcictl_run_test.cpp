@@ -1794,6 +1794,41 @@ TEST_F(ApcictlRun, AG0UnderG41IsCompensatedSoALiftStaysBesideTheContour) {
     expect_continuous(doc);
 }
 
+// [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!" A G0 under G41 runs on the
+// compensated path and is still a rapid: kind rapid (role contour) in the JSON, counted as rapid
+// in the summary, and wear-free: only N50's 100 mm of contour wear (1 mm). The same through the
+// daemon's socket, where the segments travel as frames.
+TEST_F(ApcictlRun, AG0UnderG41IsARapidOnTheCompensatedPathAndWearsNothing) {
+    const std::string prog =
+        write("g0.nc", "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F1000\nN40 G0 X500\n"
+                       "N50 G1 X600\nN60 G40 X650\nN70 #OTC OFF\nN80 M30\n");
+    const std::string socket = path("emu.sock");
+    const pid_t daemon = start_daemon(socket);
+    ASSERT_GT(daemon, 0);
+    const json via_socket = run_json(prog, {"--tools", kExamples + "/tools/wr_quad_disc.tools",
+                                            "--device", "unix:" + socket});
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+    const json doc = run_json(prog, {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
+    EXPECT_EQ(via_socket, doc);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 1.0, 1e-9);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS_CONT").get<double>(), 1.0, 1e-9);
+    bool seen = false;
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("block") != 40) {
+            EXPECT_NE(s.at("kind"), "rapid") << s.dump();
+            continue;
+        }
+        seen = true;
+        EXPECT_EQ(s.at("kind"), "rapid") << s.dump();
+        EXPECT_EQ(s.at("role"), "contour") << s.dump();
+        EXPECT_EQ(point(s.at("start")), apci::run::Point(50, 30, 0));
+        EXPECT_EQ(point(s.at("end")), apci::run::Point(500, 30, 0));
+    }
+    EXPECT_TRUE(seen) << roles(doc);
+    EXPECT_TRUE(contains(last_.out, "(rapid 450.000 mm)")) << last_.out;
+}
+
 TEST_F(ApcictlRun, TheToolLengthHoldsFromTheToolsSelectionNotOnlyUnderG42) {
     // wr_quad_disc.nc: D1 (length 50 mm) at N22, G42 at N55, G40 at N100. The Z axis takes the
     // length with N40, the first move after D1, and keeps it through the approach, the contour

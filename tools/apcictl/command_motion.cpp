@@ -118,7 +118,10 @@ bool axes_of(std::string_view letters, std::uint8_t& mask) {
 class SpoolCommand final : public Command {
   public:
     void declare(CLI::App& app) override {
-        app.add_option("KIND", kind_text_, "G00, G01, G02 or G03 (G0..G3)")->required();
+        app.add_option("KIND", kind_text_,
+                       "G00, G01, G02 or G03 (G0..G3), or TRAVERSE (a G00 the TC module "
+                       "compensates)")
+            ->required();
         app.add_option("WORDS", words_text_,
                        "N<block> F<feed, units/min> axis targets X Y Z U V W A B (axes 0..7); "
                        "arcs: I J = centre on the arc's first and second axis (absolute)");
@@ -141,10 +144,14 @@ class SpoolCommand final : public Command {
             profile_.kind = APCI_PROFILE_ARC_CW;
         } else if (k == "G3" || k == "G03") {
             profile_.kind = APCI_PROFILE_ARC_CCW;
+        } else if (k == "TRAVERSE") {
+            profile_.kind = APCI_PROFILE_TRAVERSE;
         } else {
-            return usage(fmt::format("KIND '{}' is not G00, G01, G02 or G03", kind_text_));
+            return usage(
+                fmt::format("KIND '{}' is not G00, G01, G02, G03 or TRAVERSE", kind_text_));
         }
-        const bool arc = profile_.kind >= APCI_PROFILE_ARC_CW;
+        const bool arc =
+            profile_.kind == APCI_PROFILE_ARC_CW || profile_.kind == APCI_PROFILE_ARC_CCW;
         Words w;
         if (std::string why = w.parse(words_text_, arc ? "NFIJ" : "NF"); !why.empty())
             return usage(why);

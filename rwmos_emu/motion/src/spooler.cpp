@@ -73,9 +73,10 @@ MotionResult check_targets(AxisMask axes, const AxisVector& target) {
 }
 
 MotionResult check_profile(const Profile& p) {
-    if (static_cast<std::uint8_t>(p.kind) > static_cast<std::uint8_t>(ProfileKind::kArcCcw))
-        return refuse(Status::kInvalidValue, "profile kind is not G00, G01, G02 or G03");
-    if (MotionResult r = check_feed(p.feed, p.kind == ProfileKind::kRapid); !r.ok()) return r;
+    if (static_cast<std::uint8_t>(p.kind) > static_cast<std::uint8_t>(ProfileKind::kTraverse))
+        return refuse(Status::kInvalidValue,
+                      "profile kind is not G00, G01, G02, G03 or a traverse (4)");
+    if (MotionResult r = check_feed(p.feed, is_rapid(p.kind)); !r.ok()) return r;
     if (MotionResult r = check_targets(p.axes, p.target); !r.ok()) return r;
     if (is_arc(p.kind)) {
         if (p.arc_axes[0] >= kAxisCount || p.arc_axes[1] >= kAxisCount)
@@ -247,6 +248,9 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
             line_move_into(m, pd->feed, role_of(seg.role), pd->tag);
         }
         m.side = c.side;
+        // Every segment of a traverse's element (its offset, the transition at its end) is a
+        // rapid move on the compensated path.
+        m.traverse = pd->traverse;
         batch.end = m.end;
     }
 }
@@ -323,8 +327,10 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             m.plane = res.plane;
             batch.add(m);
         } else {
-            batch.add(line_move(batch.end, lengthened(res.path), feed, SegmentRole::kUncompensated,
-                                p.tag));
+            Move m = line_move(batch.end, lengthened(res.path), feed, SegmentRole::kUncompensated,
+                               p.tag);
+            m.traverse = p.kind == ProfileKind::kTraverse;
+            batch.add(m);
         }
     } else {
         const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
@@ -355,8 +361,8 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             is_arc(p.kind) ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
                                             {res.cx, res.cy}, res.ccw)
                            : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
-        pending_.push_back(
-            Pending{next_index_, p.tag, feed, path_, res.path, geom::is_plane_free(e)});
+        pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path,
+                                   geom::is_plane_free(e), p.kind == ProfileKind::kTraverse});
         pushed = true;
         const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
         if (!step.ok()) {

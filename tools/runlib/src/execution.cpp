@@ -144,12 +144,10 @@ bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eig
     }
     // A G0 under G41/G42 is compensated like a G01 ([ISG-PROG] compensates every move in the
     // plane; LinuxCNC's interpreter likewise): the board compensates only interpolation
-    // profiles, so it goes as a G01 at the rapid feed (no surprise motion: a Z lift stays beside
-    // the contour instead of crossing onto it).
-    if (kind == APCI_PROFILE_RAPID && comp_on) {
-        kind = APCI_PROFILE_LINE;
-        feed = kRapidFeed;
-    }
+    // profiles, so it goes as a traverse, compensated as a G01 at the board's rapid feed (no
+    // surprise motion: a Z lift stays beside the contour instead of crossing onto it) and still
+    // a rapid ([ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!").
+    if (kind == APCI_PROFILE_RAPID && comp_on) kind = APCI_PROFILE_TRAVERSE;
     const bool ok = spool(at, s, profile(at, kind, end, feed));
     head.pending = false;
     return ok;
@@ -476,9 +474,11 @@ PathSegment Execution::convert(const apci_segment& b) {
     s.role = role_of(b.role);
     s.start_cycle = b.start_cycle;
     s.end_cycle = b.end_cycle;
-    s.kind = b.role == APCI_ROLE_RAPID    ? SegmentKind::kRapid
-             : b.kind == APCI_SEGMENT_ARC ? SegmentKind::kArc
-                                          : SegmentKind::kLine;
+    // A traverse's straight segments are rapid moves on the compensated path: kind rapid,
+    // their role the compensation's (a circular transition at its end stays an arc).
+    s.kind = b.kind == APCI_SEGMENT_ARC ? SegmentKind::kArc
+             : b.role == APCI_ROLE_RAPID || b.traverse != 0 ? SegmentKind::kRapid
+                                                            : SegmentKind::kLine;
     for (int i = 0; i < 3; ++i) {
         const std::int32_t a = axis(i);
         s.start[i] = b.start[a];

@@ -122,6 +122,7 @@ class Spooler {
         AxisVector start{};  // programmed start (rotated), without length compensation
         AxisVector end{};    // programmed end (rotated), without length compensation
         bool plane_free = false;
+        bool traverse = false;  // a traverse profile (ProfileKind::kTraverse)
     };
     // A profile resolved to board axes. resolve() sets program and path first thing (not
     // zero-filled before: a spool call's Resolved is written whole).
