@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/motion_layer.h"
 
+#include <algorithm>
+
 #include "rwmos/board_state.h"
 
 namespace rwmos {
@@ -84,6 +86,21 @@ motion::TcSettings MotionLayer::read_settings() const noexcept {
         s.length_always = g.length_mode == tc::kLengthAlways;
     }
     return s;
+}
+
+std::uint64_t MotionLayer::oldest_profile_in_flight() const noexcept {
+    std::uint64_t oldest = next_profile();
+    // The queue runs in the order profiles were taken (a direct command's move, number 0, only
+    // after the queue was discarded): its first numbered move is its oldest.
+    for (std::size_t i = 0; i < exec_.fill(); ++i) {
+        const std::uint64_t n = exec_.queued(i).profile;
+        if (n == 0) continue;
+        oldest = std::min(oldest, n);
+        break;
+    }
+    if (const std::uint64_t held = spooler_.oldest_pending_profile(); held != 0)
+        oldest = std::min(oldest, held);
+    return oldest;
 }
 
 int MotionLayer::length_axis_of(std::int32_t tool) const noexcept {

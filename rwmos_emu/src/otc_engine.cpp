@@ -382,6 +382,37 @@ void OtcEngine::end_session() noexcept {
     last_dir_ = {};
 }
 
+void OtcEngine::wear_const_changed(double before) noexcept {
+    const MotionLayer& motion = state_.motion;
+    if (wear_const_changes_.empty()) wear_const_before_ = before;
+    // Changes whose profile every move still to run has reached hold for all of them.
+    const std::uint64_t oldest = motion.oldest_profile_in_flight();
+    std::size_t done = 0;
+    while (done < wear_const_changes_.size() && wear_const_changes_[done].from <= oldest)
+        wear_const_before_ = wear_const_changes_[done++].value;
+    wear_const_changes_.erase(wear_const_changes_.begin(),
+                              wear_const_changes_.begin() + static_cast<std::ptrdiff_t>(done));
+    const WearConstChange now{motion.next_profile(), state_.otc.effective_wear_const()};
+    if (now.from <= oldest) {
+        // Nothing in flight: it holds for every move from here on.
+        wear_const_changes_.clear();
+        wear_const_before_ = now.value;
+    } else if (!wear_const_changes_.empty() && wear_const_changes_.back().from == now.from) {
+        wear_const_changes_.back().value = now.value;  // several writes between two profiles
+    } else {
+        wear_const_changes_.push_back(now);
+    }
+}
+
+double OtcEngine::wear_const_for(std::uint64_t profile) noexcept {
+    std::size_t done = 0;
+    while (done < wear_const_changes_.size() && wear_const_changes_[done].from <= profile)
+        wear_const_before_ = wear_const_changes_[done++].value;
+    wear_const_changes_.erase(wear_const_changes_.begin(),
+                              wear_const_changes_.begin() + static_cast<std::ptrdiff_t>(done));
+    return wear_const_changes_.empty() ? state_.otc.effective_wear_const() : wear_const_before_;
+}
+
 void OtcEngine::tool_changed() noexcept {
     state_.otc.wear = OtcWear{};
     // The tool that goes out takes its standing offsets with it (the ramps run them off).
@@ -425,7 +456,7 @@ void OtcEngine::move_started(const Move& m, const Move* next) noexcept {
                        m.role != SegmentRole::kDeparture &&
                        (session_.type != otc::ProcessingType::kRadius || is_contour(m));
     ctx_.wear_per_fraction = wears ? otc::continuous_wear(main_axes_length(m, session_.xyz),
-                                                          state_.otc.effective_wear_const())
+                                                          wear_const_for(m.profile))
                                    : 0.0;
     if (session_.type == otc::ProcessingType::kRadius) {
         const double carried = have_last_ ? ctx_.end_weight : 0.0;

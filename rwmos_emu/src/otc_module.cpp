@@ -177,10 +177,13 @@ Status OtcModule::read_wear_const(const Info&, const Address&, Value& out) {
 }
 
 // [ISG-OTC] section 2.1 WEAR_CONST=..: "wirkt modal"; it may change while OTC is on and acts
-// from the next move (design: a move's wear is linear along it).
+// from the next profile spooled on: the profiles spooled before it, queued or held, keep the
+// constant they were programmed under (OtcEngine::wear_const_changed).
 Status OtcModule::write_wear_const(const Info&, const Address&, const Value& v) {
+    const double before = state_.otc.effective_wear_const();
     state_.otc.programmed_wear_const = v.as_double();
     state_.otc.use_programmed_wear_const = true;
+    state_.otc_engine.wear_const_changed(before);
     return Status::kOk;
 }
 
@@ -192,7 +195,9 @@ Status OtcModule::read_wear_const_source(const Info&, const Address&, Value& out
 // [ISG-OTC] section 2.1 WEAR_CONST_TOOL: "Umschalten auf die in den aktuellen Werkzeugdaten
 // festgelegte Standardverschleißkonstante; wirkt modal".
 Status OtcModule::write_wear_const_source(const Info&, const Address&, const Value& v) {
+    const double before = state_.otc.effective_wear_const();
     state_.otc.use_programmed_wear_const = v.as_int() == 1;
+    state_.otc_engine.wear_const_changed(before);
     return Status::kOk;
 }
 
@@ -358,9 +363,11 @@ Status OtcModule::read_tool_wear_const(const Info&, const Address&, Value& out) 
 }
 
 // [ISG-OTC] section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
-// ... geschrieben bzw. gelesen werden": writable while OTC is on, from the next move.
+// ... geschrieben bzw. gelesen werden": writable while OTC is on, from the next profile spooled.
 Status OtcModule::write_tool_wear_const(const Info&, const Address&, const Value& v) {
+    const double before = state_.otc.effective_wear_const();
     state_.otc.tool.wear_const = v.as_double();
+    state_.otc_engine.wear_const_changed(before);
     return Status::kOk;
 }
 

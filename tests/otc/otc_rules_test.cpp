@@ -338,6 +338,94 @@ TEST_F(OtcBoard, ToolWearConstIsWritableWhileOnAndActsFromTheNextMove) {
     EXPECT_NEAR(wear(2), 5.0, kEps);
 }
 
+// [ISG-OTC] section 2.1, WEAR_CONST "wirkt modal": a change acts from the next profile spooled,
+// not on the moves spooled before it that have not run yet. X0..X100 at the tool's 100000 and
+// X100..X200 at 200000 (0.1 um/m): 1 + 2 mm, whichever object changes the constant; Z stands 1
+// mm down at X100.
+TEST(OtcWearConst, AChangeActsFromTheNextProfileNotOnTheQueuedOnes) {
+    struct Change {
+        const char* what;
+        std::int32_t dev, index;
+        bool programmed;  // WearConst (WEAR_CONST=..) rather than the tool's constant
+    };
+    const Change changes[] = {{"WEAR_CONST=", otc::kDevChannel, otc::kIdxWearConst, true},
+                              {"V.G.WZ_AKT.WEAR_CONST", otc::kDevTool, otc::kIdxToolWearConst,
+                               false}};
+    for (const Change& c : changes) {
+        OtcRig r;
+        r.grinding_tool();
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        r.spool_ok(line(1, 100.0, 0.0, 10000.0));
+        ASSERT_EQ(r.otc_double(c.dev, c.index, 0, 200000.0), Status::kOk);  // N1 not run yet
+        r.spool_ok(line(2, 200.0, 0.0, 10000.0));
+        bool at_100 = false;
+        while (r.board.state().motion.executor().fill() > 0) {
+            r.board.step(1);
+            if (r.nominal()[0] == 100.0 && !at_100) {
+                at_100 = true;
+                EXPECT_NEAR(r.offset()[2], -1.0, kEps) << c.what;
+            }
+        }
+        EXPECT_TRUE(at_100) << c.what;
+        ASSERT_EQ(r.otc_off(), Status::kOk);
+        EXPECT_NEAR(r.wear(2), 3.0, kEps) << c.what;
+    }
+}
+
+// WEAR_CONST_TOOL (WearConstSource 0) waits for its place as well: N1 at the programmed 300000,
+// N2 at the tool's 100000.
+TEST_F(OtcBoard, WearConstToolActsFromTheNextProfile) {
+    grinding_tool();
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 300000.0), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxWearConstSource, 0, 0), Status::kOk);
+    spool_ok(line(2, 200.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_NEAR(wear(2), 3.0 + 1.0, kEps);
+}
+
+// Under G41 the spooler holds the contour element back: a change written while N2 (50 mm) is
+// held acts from N3 (100 mm) on. RADIUS CONT, G139: 0.5 + 2 mm.
+TEST_F(OtcBoard, AWearConstChangeSparesTheHeldProfile) {
+    setup_group(kSeedRadius, /*left=*/true);
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubSelectionMode,
+                        139),
+              Status::kOk);
+    grinding_tool();
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);
+    spool_ok(line(1, 50.0, 0.0, 10000.0));  // the approach
+    spool_ok(line(2, 100.0, 0.0, 10000.0));
+    run();
+    ASSERT_TRUE(prof_marked(1));  // N2 held
+    ASSERT_EQ(otc_double(otc::kDevTool, otc::kIdxToolWearConst, 0, 200000.0), Status::kOk);
+    spool_ok(line(3, 200.0, 0.0, 10000.0));
+    ASSERT_EQ(deactivate(1), Status::kOk);
+    spool_ok(line(4, 250.0, 0.0, 10000.0));  // the departure
+    run_and_off();
+    EXPECT_NEAR(wear_radius(), 0.5 + 2.0, kEps);
+}
+
+// With nothing queued or held the change acts at once, and many changes between two profiles
+// keep one entry: the last one counts.
+TEST_F(OtcBoard, WearConstChangesBetweenTwoProfilesTheLastCounts) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    for (int i = 1; i <= 1000; ++i)
+        ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 1000.0 * i), Status::kOk);
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 400000.0), Status::kOk);
+    spool_ok(line(2, 200.0, 0.0, 10000.0));
+    run();
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 0.0), Status::kOk);
+    spool_ok(line(3, 300.0, 0.0, 10000.0));  // nothing in flight: 0 from here
+    run_and_off();
+    EXPECT_NEAR(wear(2), 1.0 + 4.0, kEps);
+}
+
 // [ISG-OTC] section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
 // Versatz abhängig vom Weg nicht ermittelt werden."
 TEST_F(OtcBoard, WithoutWearConstNoContinuousWearAccrues) {

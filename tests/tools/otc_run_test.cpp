@@ -392,6 +392,36 @@ TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     EXPECT_EQ(last[6], 45.0);  // B on board axis 4
 }
 
+// [ISG-OTC] section 2.1, WEAR_CONST "wirkt modal", and 2.8 (V.G.WZ_AKT.WEAR_CONST written in
+// the program): the new constant acts from its block on. X0..X100 at 100000, X100..X200 at
+// 200000 (0.1 um/m): 1 + 2 mm, Z 1 mm down at X100; under G41 the held element N40 keeps the
+// old constant too (0.5 + 2 mm).
+TEST_F(OtcRun, AWearConstantChangeActsFromItsBlock) {
+    for (const char* change : {"V.G.WZ_AKT.WEAR_CONST = 200000", "#OTC [WEAR_CONST=200000]"}) {
+        const std::string prog = write(
+            "wc.nc", std::string("N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH CONT]\n"
+                                 "N40 G1 X100 F10000\nN50 ") +
+                         change + "\nN60 G1 X200\nN70 #OTC OFF\nN80 M30\n");
+        const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("wc.csv")});
+        EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 3.0, kEps)
+            << change;
+        bool at_100 = false;
+        for (const auto& r : read_csv(path("wc.csv"))) {
+            if (r[2] != 100.0) continue;
+            at_100 = true;
+            EXPECT_NEAR(r[4], 50.0 - 1.0, kEps) << change;
+            break;
+        }
+        EXPECT_TRUE(at_100) << change;
+    }
+    const json doc = run_json({write("held.nc",
+                                     "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F10000\n"
+                                     "N40 G1 X100\nN50 V.G.WZ_AKT.WEAR_CONST = 200000\n"
+                                     "N60 G1 X200\nN70 G40 G1 X250\nN80 #OTC OFF\nN90 M30\n"),
+                               "--tools", seed_tools()});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 2.5, kEps);
+}
+
 // A B word tilts the B head; it does not switch the tool length off. D1 (length 50 mm) puts
 // its length on Z with N40: machine Z 350 for Z300, and it stays there through N45 (with B) and
 // N46 (without), as in the same program without the B word. The reported path is the same

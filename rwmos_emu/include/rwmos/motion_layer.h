@@ -55,6 +55,13 @@ class MotionLayer final : public TcMotion {
     // the group compensating), or -1.
     int length_axis_of(std::int32_t tool) const noexcept;
 
+    // The number the next profile taken will carry (Move::profile), and the oldest number
+    // whose moves have not all ended yet (queued, under way, or held back by the spooler; the
+    // next profile's when there are none): a setting that acts from the next profile on still
+    // concerns the profiles from this one up to the next's.
+    std::uint64_t next_profile() const noexcept { return spooler_.profiles_taken() + 1; }
+    std::uint64_t oldest_profile_in_flight() const noexcept;
+
   private:
     // The TcSettings for a call: what only object accesses change as last read (read again
     // after settings_changed()), ERROR (error_pending) and the active group's Run read now.

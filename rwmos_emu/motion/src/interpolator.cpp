@@ -36,6 +36,7 @@ void set_move_head(Move& m, SegmentKind kind, double feed, SegmentRole role,
     m.tag = tag;
     m.direct = false;
     m.traverse = false;
+    m.profile = 0;
     m.side = 0;
     m.plane = 0;
     m.feed = feed;

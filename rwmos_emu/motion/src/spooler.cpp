@@ -251,6 +251,7 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         // Every segment of a traverse's element (its offset, the transition at its end) is a
         // rapid move on the compensated path.
         m.traverse = pd->traverse;
+        m.profile = pd->profile;
         batch.end = m.end;
     }
 }
@@ -295,6 +296,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         end_contour(trial, /*keep_departure=*/false, batch);
 
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
+    const std::uint64_t number = profiles_ + 1;  // this profile's, once taken
     bool pushed = false;
     // LengthMode 1: the tool length acts on every profile, compensated or not (design,
     // docs/compensation.md "Tool length"); compensated ones get it below as always.
@@ -306,7 +308,9 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     };
     if (p.kind == ProfileKind::kRapid) {
         // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
-        batch.add(line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag));
+        Move m = line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag);
+        m.profile = number;
+        batch.add(m);
     } else if (!compensate) {
         if (is_arc(p.kind)) {
             const geom::Element e =
@@ -325,11 +329,13 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
                 arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path), res.arc_axes,
                          res.cx, res.cy, res.ccw, feed, SegmentRole::kUncompensated, p.tag);
             m.plane = res.plane;
+            m.profile = number;
             batch.add(m);
         } else {
             Move m = line_move(batch.end, lengthened(res.path), feed, SegmentRole::kUncompensated,
                                p.tag);
             m.traverse = p.kind == ProfileKind::kTraverse;
+            m.profile = number;
             batch.add(m);
         }
     } else {
@@ -362,7 +368,8 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
                                             {res.cx, res.cy}, res.ccw)
                            : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
         pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path,
-                                   geom::is_plane_free(e), p.kind == ProfileKind::kTraverse});
+                                   geom::is_plane_free(e), p.kind == ProfileKind::kTraverse,
+                                   number});
         pushed = true;
         const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
         if (!step.ok()) {
@@ -380,6 +387,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     comp_ = trial;
     program_ = res.program;
     path_ = p.kind == ProfileKind::kRapid ? res.program : res.path;
+    profiles_ = number;
     if (pushed) ++next_index_;
     forget_finished();
     return {};

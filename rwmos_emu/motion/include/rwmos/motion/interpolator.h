@@ -28,6 +28,8 @@ struct Move {
     std::uint32_t tag = 0;
     bool direct = false;     // started by a direct command (JA), not spooled
     bool traverse = false;   // from a traverse profile: a rapid move on the compensated path
+    // The number of the profile it came from (Spooler::profiles_taken; 0: a direct command's).
+    std::uint64_t profile = 0;
     // Radius compensation the move was computed for: +1 left (G41), -1 right (G42), 0 none
     // (uncompensated moves, rapids). Contour, transition, approach and departure moves carry
     // their group's side (OTC RADIUS wear acts towards it, docs/otc.md).

@@ -100,6 +100,15 @@ class Spooler {
     const AxisVector& program_position() const noexcept { return program_; }
     // The same after rotation: where the programmed path is (no compensation).
     const AxisVector& path_position() const noexcept { return path_; }
+    // How many profiles were taken so far: the moves of the n-th carry Move::profile n, so a
+    // setting that acts from the next profile on (OTC's wear constant) acts from number
+    // profiles_taken() + 1.
+    std::uint64_t profiles_taken() const noexcept { return profiles_; }
+    // The number of the oldest profile held back or waiting with it, whose moves are still to
+    // be queued (0: none).
+    std::uint64_t oldest_pending_profile() const noexcept {
+        return pending_.empty() ? 0 : pending_.front().profile;
+    }
 
   private:
     // The compensator and where it works (fixed when it begins). Calls work
@@ -123,6 +132,7 @@ class Spooler {
         AxisVector end{};    // programmed end (rotated), without length compensation
         bool plane_free = false;
         bool traverse = false;  // a traverse profile (ProfileKind::kTraverse)
+        std::uint64_t profile = 0;  // its number (profiles_taken)
     };
     // A profile resolved to board axes. resolve() sets program and path first thing (not
     // zero-filled before: a spool call's Resolved is written whole).
@@ -181,6 +191,7 @@ class Spooler {
     Compensation comp_;
     Fifo<Pending> pending_;
     std::uint32_t next_index_ = 1;
+    std::uint64_t profiles_ = 0;  // profiles taken (profiles_taken)
     AxisVector program_{};     // programmed position, program coordinates
     AxisVector path_{};        // programmed position after rotation (start of the next element)
     geom::SegmentBatch segs_;  // scratch
