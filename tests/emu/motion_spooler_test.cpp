@@ -89,6 +89,59 @@ TEST_F(Spooler, DeactivationReleasesTheLastProfileWithItsDeparture) {
     expect_at(position(), 10, -10);
 }
 
+// SelectionMode 139 (docs/compensation.md "Approach and departure"): STATUS = 0 ends the
+// contour at its offset end, and the next profile, uncompensated, is the departure: from there
+// to its own end, with the contour's side. The one after it is an ordinary move again, and so
+// is a profile after a rapid.
+TEST_F(Spooler, UnderG139TheProfileAfterDeactivationIsTheDeparture) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode, 139), Status::kOk);
+    activate();
+    spool_ok(line(1, 10, 0));  // the approach
+    spool_ok(line(2, 20, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line(3, 30, -5));
+    spool_ok(line(4, 40, -5));
+    run();
+    auto segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[2].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[2].tag, 3u);
+    expect_at(segs[2].start, 20, 1);
+    expect_at(segs[2].end, 30, -5);
+    EXPECT_EQ(segs[3].role, SegmentRole::kUncompensated);
+    // Another stretch, ended by STATUS = 0 and then a rapid: no departure after it.
+    activate();
+    spool_ok(line(5, 50, -5));
+    spool_ok(line(6, 60, -5));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(rapid(7, 70, 0));
+    spool_ok(line(8, 80, 0));
+    run();
+    segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[2].role, SegmentRole::kRapid);
+    EXPECT_EQ(segs[3].role, SegmentRole::kUncompensated);
+}
+
+// Under G237 the departure is the board's own, at right angles; the next profile is an ordinary
+// move.
+TEST_F(Spooler, UnderG237TheProfileAfterTheDepartureIsAnOrdinaryMove) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line(2, 20, -5));
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[2].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[2].tag, 1u);
+    EXPECT_EQ(segs[3].role, SegmentRole::kUncompensated);
+}
+
 TEST_F(Spooler, Ssf2001ReleasesTheHeldProfileAndCompensationGoesOn) {
     setup_group(1.0);
     activate();

@@ -241,6 +241,37 @@ TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
     EXPECT_EQ(wear_radius(), 0.0);
 }
 
+// [ISG-OTC] section 2.2 "Hinweis" under G139, the NC programs' selection method: the approach
+// (the G41 block's move) and the departure (the G40 block's move, the profile after STATUS = 0)
+// are wear-free in every processing type; the contour and, where the type wears without radius
+// compensation, the move after the departure wear. G41 G1 X100 (104.4 mm), G1 X200 (100 mm),
+// G40 G1 X300 (104.4 mm), G1 X400 (100 mm).
+TEST(OtcWearByRole, UnderG139TheG41AndG40BlocksMovesAreWearFree) {
+    constexpr double kRatio = kSeedWearConst * 1e-7;
+    for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
+                      otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        OtcRig r;
+        r.setup_group(kSeedRadius, /*left=*/true);
+        ASSERT_EQ(r.write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1,
+                              rwmos::tc::kSubSelectionMode, 139),
+                  Status::kOk);
+        r.grinding_tool();
+        ASSERT_EQ(r.set_type(type), Status::kOk);
+        ASSERT_EQ(r.set_mode(otc::Mode::kCont), Status::kOk);
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        r.activate(1);
+        r.spool_ok(line(30, 100.0, 0.0, 10000.0));
+        r.spool_ok(line(40, 200.0, 0.0, 10000.0));
+        ASSERT_EQ(r.deactivate(1), Status::kOk);
+        r.spool_ok(line(50, 300.0, 0.0, 10000.0));
+        r.spool_ok(line(60, 400.0, 0.0, 10000.0));
+        r.run();
+        const double expected = type == otc::ProcessingType::kRadius ? 100.0 : 200.0;
+        EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), expected * kRatio, kEps)
+            << otc::processing_type_name(type);
+    }
+}
+
 // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2 "Hinweis": the approach
 // after G41/G42 and the move after G40 are wear-free, and RADIUS wears only with radius
 // compensation (docs/otc.md, "Wear-free moves"). One move of every role, in every processing

@@ -213,11 +213,11 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     // As the program's text says: N22 G25 makes the corner after N70 linear (two lines along
     // the tangents, a 90-degree turn), N80 G26 the corners after N80 and N90 circular. The
     // program runs in G139 (indirect): N60, the first move after N55 G42, is the approach (no
-    // contour of its own), and G40 spools N95 to its offset end without a departure; the G40
-    // block's move N100 then runs uncompensated from there.
+    // contour of its own), and G40 spools N95 to its offset end; the G40 block's move N100 is
+    // the departure, from there to its programmed end.
     EXPECT_EQ(roles(doc),
               "uncompensated/40 approach/60 contour/70 transition/70 transition/70 "
-              "contour/80 transition/80 contour/90 transition/90 contour/95 uncompensated/100");
+              "contour/80 transition/80 contour/90 transition/90 contour/95 departure/100");
     expect_continuous(doc);
     // The approach runs straight from where the tool stands, (0, 0), to N60's compensated end:
     // 30 mm right of its programmed end (2, 0) (G42, N60 along +X), where N70's offset starts
@@ -228,11 +228,11 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(0, 0, 0));
     EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(2, -30, 0));
     // N100 (G40 G1 X0) starts at N95's offset end, 30 mm right of (2, 0) going -Y: (-28, 0).
-    const auto off = with_role(doc, "uncompensated");
-    ASSERT_EQ(off.size(), 2u);
-    EXPECT_EQ(off[1].at("block"), 100);
-    EXPECT_EQ(point(off[1].at("start")), apci::run::Point(-28, 0, 0));
-    EXPECT_EQ(point(off[1].at("end")), apci::run::Point(0, 0, 0));
+    const auto off = with_role(doc, "departure");
+    ASSERT_EQ(off.size(), 1u);
+    EXPECT_EQ(off[0].at("block"), 100);
+    EXPECT_EQ(point(off[0].at("start")), apci::run::Point(-28, 0, 0));
+    EXPECT_EQ(point(off[0].at("end")), apci::run::Point(0, 0, 0));
     const auto linear = with_role(doc, "transition");
     ASSERT_EQ(linear.size(), 4u);
     EXPECT_EQ(linear[0].at("kind"), "line");
@@ -260,11 +260,9 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_CONST"), 100000);
     EXPECT_EQ(doc.at("errors"), json::array());
     const std::string svg = read_text(path("p.svg"));
-    for (const char* cls : {"programmed", "contour", "transition", "approach", "uncompensated"})
+    for (const char* cls :
+         {"programmed", "contour", "transition", "approach", "departure", "uncompensated"})
         EXPECT_TRUE(contains(svg, std::string("<path class=\"") + cls + "\"")) << cls;
-    // No departure under G139 (the G237 departure is drawn in
-    // ClosedContourUnderG237KeepsTheRadiusWithPerpendicularApproachAndDeparture).
-    EXPECT_FALSE(contains(svg, "<path class=\"departure\"")) << svg;
 }
 
 // A figure program (docs/figures) with G237 in its first block N10: the board's own
@@ -507,7 +505,7 @@ TEST_F(ApcictlRun, SwitchingSidesApproachesTheOtherSideFromTheLastOffsetEnd) {
                                    "N10 F1000 D1\nN20 G41 G1 X10\nN30 X20\nN40 G42 X30\nN50 X40\n"
                                    "N60 G40 X50\nM30\n");
     const json doc = run_json(prog, {"--tools", tools(2.0)});
-    EXPECT_EQ(roles(doc), "approach/20 contour/30 approach/40 contour/50 uncompensated/60")
+    EXPECT_EQ(roles(doc), "approach/20 contour/30 approach/40 contour/50 departure/60")
         << doc.dump();
     expect_continuous(doc);
     const auto approach = with_role(doc, "approach");
@@ -1179,7 +1177,7 @@ TEST_F(ApcictlRun, LineTangentArcLineWrittenWithThreeDecimalsCompensatesOnBothSi
             apci::run::Point(32.321, 11.34, 0) + (left ? 5.0 : -5.0) * normal;
         const json& off = doc.at("segments").back();
         EXPECT_EQ(off.at("block"), 70);
-        EXPECT_EQ(off.at("role"), "uncompensated");
+        EXPECT_EQ(off.at("role"), "departure");
         EXPECT_LT((point(off.at("start")) - n60_end).norm(), 1e-9) << side;
         EXPECT_EQ(point(off.at("end")), apci::run::Point(40, 20, 0));
     }
@@ -1732,7 +1730,7 @@ TEST_F(ApcictlRun, TheSelectionBlockIsTheApproachStraightToTheOffsetPointAtItsEn
                                    "N10 D1 F1000 G26\nN20 G0 X-10 Y-10\nN30 G41 G1 X0 Y0\n"
                                    "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
     const json doc = run_json(prog, {"--tools", tools(0.5)});
-    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 transition/30 contour/40 uncompensated/50");
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 transition/30 contour/40 departure/50");
     const json approach = with_role(doc, "approach").at(0);
     const double h = 0.5 / std::sqrt(2.0);
     EXPECT_LT((xy(approach.at("start")) - Eigen::Vector2d(-10, -10)).norm(), 1e-9);
@@ -1744,16 +1742,16 @@ TEST_F(ApcictlRun, TheSelectionBlockIsTheApproachStraightToTheOffsetPointAtItsEn
 }
 
 TEST_F(ApcictlRun, TheG40BlockIsTheDepartureFromTheLastOffsetPoint) {
-    // G1 X20 Y0, then G40 G1 X30 Y-10: the G40 block itself runs from (20, 0.5) to (30, -10);
-    // no move back onto the programmed point first.
+    // G1 X20 Y0, then G40 G1 X30 Y-10: the G40 block itself is the departure, from (20, 0.5) to
+    // (30, -10); no move back onto the programmed point first.
     const std::string prog = write("out.nc",
                                    "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\n"
                                    "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
     const json doc = run_json(prog, {"--tools", tools(0.5)});
-    EXPECT_TRUE(with_role(doc, "departure").empty()) << roles(doc);
+    EXPECT_EQ(with_role(doc, "departure").size(), 1u) << roles(doc);
     const json& last = doc.at("segments").back();
     EXPECT_EQ(last.at("block"), 50);
-    EXPECT_EQ(last.at("role"), "uncompensated");
+    EXPECT_EQ(last.at("role"), "departure");
     EXPECT_LT((xy(last.at("start")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9);
     EXPECT_LT((xy(last.at("end")) - Eigen::Vector2d(30, -10)).norm(), 1e-9);
     expect_continuous(doc);
@@ -1903,7 +1901,7 @@ TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     const json doc = run_json(kExamples + "/otc/general.nc",
                               {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 9.5, 1e-9);
-    EXPECT_EQ(roles(doc), "uncompensated/30 approach/60 contour/70 uncompensated/80 uncompensated/100");
+    EXPECT_EQ(roles(doc), "uncompensated/30 approach/60 contour/70 departure/80 uncompensated/100");
 }
 
 // Zero-length moves take no cycle, however many: a spooler full of them empties while the clock

@@ -422,6 +422,26 @@ TEST_F(OtcRun, AWearConstantChangeActsFromItsBlock) {
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 2.5, kEps);
 }
 
+// [ISG-OTC] section 2.2 "Hinweis": the approach after G41 and the move after G40 are wear-free,
+// for LENGTH too. Under G139 (the start state) those are the G41 and the G40 block's moves:
+// N40 and N60 wear, 1 + 1 mm. Under G237 (the board's perpendicular approach and departure,
+// docs/otc.md) the G41 block's move is on the offset path and the G40 block's move runs after
+// the departure: N30, N40, N50, N60 wear, 4 mm.
+TEST_F(OtcRun, LengthSparesTheApproachAndTheDeparture) {
+    const std::string body =
+        "N20 #OTC ON [LENGTH CONT]\nN30 G41 G1 X100 F10000\nN40 G1 X200\nN50 G40 G1 X300\n"
+        "N60 G1 X400\nN70 #OTC OFF\nN80 M30\n";
+    const json g139 = run_json({write("a.nc", "N10 D1\n" + body), "--tools", seed_tools()});
+    EXPECT_NEAR(g139.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 2.0, kEps);
+    std::string roles;
+    for (const auto& s : g139.at("segments"))
+        roles += s.at("role").get<std::string>() + "/" + std::to_string(s.at("block").get<int>()) +
+                 " ";
+    EXPECT_EQ(roles, "approach/30 contour/40 departure/50 uncompensated/60 ");
+    const json g237 = run_json({write("b.nc", "N10 D1 G237\n" + body), "--tools", seed_tools()});
+    EXPECT_NEAR(g237.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 4.0, kEps);
+}
+
 // A B word tilts the B head; it does not switch the tool length off. D1 (length 50 mm) puts
 // its length on Z with N40: machine Z 350 for Z300, and it stays there through N45 (with B) and
 // N46 (without), as in the same program without the B word. The reported path is the same

@@ -297,6 +297,11 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
 
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
     const std::uint64_t number = profiles_ + 1;  // this profile's, once taken
+    // SelectionMode 139: the profile after STATUS = 0 is the departure when it runs
+    // uncompensated from the last offset end (docs/compensation.md "Approach and departure").
+    const bool departs = departure_next_ != 0 && !compensate && p.kind != ProfileKind::kRapid;
+    const SegmentRole uncompensated = departs ? SegmentRole::kDeparture : SegmentRole::kUncompensated;
+    const std::int8_t uncompensated_side = departs ? departure_next_ : std::int8_t{0};
     bool pushed = false;
     // LengthMode 1: the tool length acts on every profile, compensated or not (design,
     // docs/compensation.md "Tool length"); compensated ones get it below as always.
@@ -327,15 +332,16 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
                 tc.length_axis == res.arc_axes[0] || tc.length_axis == res.arc_axes[1];
             Move m =
                 arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path), res.arc_axes,
-                         res.cx, res.cy, res.ccw, feed, SegmentRole::kUncompensated, p.tag);
+                         res.cx, res.cy, res.ccw, feed, uncompensated, p.tag);
             m.plane = res.plane;
             m.profile = number;
+            m.side = uncompensated_side;
             batch.add(m);
         } else {
-            Move m = line_move(batch.end, lengthened(res.path), feed, SegmentRole::kUncompensated,
-                               p.tag);
+            Move m = line_move(batch.end, lengthened(res.path), feed, uncompensated, p.tag);
             m.traverse = p.kind == ProfileKind::kTraverse;
             m.profile = number;
+            m.side = uncompensated_side;
             batch.add(m);
         }
     } else {
@@ -388,6 +394,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     program_ = res.program;
     path_ = p.kind == ProfileKind::kRapid ? res.program : res.path;
     profiles_ = number;
+    departure_next_ = 0;
     if (pushed) ++next_index_;
     forget_finished();
     return {};
@@ -428,10 +435,12 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     // Perpendicular (G237): a departure at right angles back to the programmed end. Indirect
     // (G139): none; the tool stays at the last offset end and the next profile departs from
     // there (docs/compensation.md "Approach and departure").
-    end_contour(trial, /*keep_departure=*/tc.approach == geom::ApproachMode::kPerpendicular, batch);
+    const bool perpendicular = tc.approach == geom::ApproachMode::kPerpendicular;
+    end_contour(trial, /*keep_departure=*/perpendicular, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
     forget_finished();
+    departure_next_ = perpendicular ? std::int8_t{0} : comp_.side;
     return {};
 }
 
@@ -479,6 +488,7 @@ MotionResult Spooler::direct(const DirectCommand& c, Executor& exec, double cycl
     // Verfahrprofil verworfen."
     comp_.comp.discard();
     pending_.clear();
+    departure_next_ = 0;
     exec.discard();
     if (c.code == DirectCode::kJA) {
         jog.direct = true;
@@ -493,6 +503,7 @@ void Spooler::discard_held(std::int32_t group) {
     if (comp_.group != group || !comp_.comp.running()) return;
     comp_.comp.discard();
     pending_.clear();
+    departure_next_ = 0;
 }
 
 void Spooler::clear_shift(const TcSettings& tc, const Executor& exec) {

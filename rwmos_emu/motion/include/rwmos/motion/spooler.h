@@ -192,6 +192,9 @@ class Spooler {
     Fifo<Pending> pending_;
     std::uint32_t next_index_ = 1;
     std::uint64_t profiles_ = 0;  // profiles taken (profiles_taken)
+    // SelectionMode 139: STATUS = 0 ended the contour without a departure; the next profile,
+    // an uncompensated G01/G02/G03, departs from the last offset end (side: the contour's).
+    std::int8_t departure_next_ = 0;
     AxisVector program_{};     // programmed position, program coordinates
     AxisVector path_{};        // programmed position after rotation (start of the next element)
     geom::SegmentBatch segs_;  // scratch
