@@ -475,5 +475,48 @@ TEST(Variables, AVariableSourceSuppliesTheBoardsValues) {
               "prog.nc:1:6: V.G.WZ_AKT.WEAR_RADIUS cannot be read: not on this board");
 }
 
+// [ISG-OTC] section 2.8: the wear values are "in [mm] oder [Inch]": under G70 a program reads
+// them in inches (the board's 9.652 mm of radius wear is 0.38 in, and G0 X[P1] goes to 9.652
+// mm); under G71 in mm. The wear on A, B, C is an angle, the wear constant 0.1 um/m: as read.
+TEST(Variables, WearLengthsAreReadInTheProgramsUnit) {
+    struct Board : VariableSource {
+        bool read(const VariableRef& v, double& out, std::string&) override {
+            out = v.variable == NcVariable::kWearConst ? 1000.0 : 9.652;
+            return true;
+        }
+    } board;
+    struct Case {
+        const char* variable;
+        double inch_value;  // what P1 holds under G70
+    };
+    const Case cases[] = {{"V.G.WZ_AKT.WEAR_RADIUS", 0.38},
+                          {"V.G.WZ_AKT.WEAR_RADIUS_CONT", 0.38},
+                          {"V.G.WZ_AKT.WEAR[0]", 0.38},
+                          {"V.G.WZ_AKT.WEAR.Z", 0.38},
+                          {"V.G.WZ_AKT.WEAR[6]", 0.38},
+                          {"V.G.WZ_AKT.WEAR[4]", 9.652},  // B: degrees
+                          {"V.G.WZ_AKT.WEAR.A", 9.652},
+                          {"V.G.WZ_AKT.WEAR_CONST", 1000.0}};
+    for (const Case& c : cases) {
+        for (const char* units : {"G70", "G71"}) {
+            const bool inch = std::string(units) == "G70";
+            const std::string text =
+                std::string(units) + "\nP1 = " + c.variable + "\nG0 X[P1]\nM30\n";
+            Result<Program> p = Program::from_text(text, "prog.nc");  // keeps a view of text
+            ASSERT_TRUE(p) << p.error().to_string();
+            Result<EventStream> s = p.value().events();
+            ASSERT_TRUE(s);
+            s.value().set_variable_source(&board);
+            Event ev;
+            ASSERT_EQ(s.value().next(ev), EventStream::Next::kEvent)
+                << c.variable << " " << units << ": " << s.value().error().to_string();
+            const double p1 = inch ? c.inch_value : (c.inch_value == 0.38 ? 9.652 : c.inch_value);
+            EXPECT_NEAR(std::get<RapidMove>(ev.data).end.x(), inch ? p1 * kMillimetresPerInch : p1,
+                        1e-9)
+                << c.variable << " " << units;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace apci::nc

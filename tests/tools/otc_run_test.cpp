@@ -442,6 +442,21 @@ TEST_F(OtcRun, LengthSparesTheApproachAndTheDeparture) {
     EXPECT_NEAR(g237.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 4.0, kEps);
 }
 
+// [ISG-OTC] section 2.8: the wear variables are "in [mm] oder [Inch]": under G70 a program reads
+// the board's 9.652 mm of radius wear as 0.38 in, so G00 X[P1] goes to X 9.652 mm.
+TEST_F(OtcRun, WearVariablesAreReadInInchesUnderG70) {
+    const json doc = run_json(
+        {write("inch.nc",
+               "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F10000\nN40 G1 X1015.2\n"
+               "N50 G40 G1 X1100\nN60 #OTC OFF\nN70 G70\nN80 P1 = V.G.WZ_AKT.WEAR_RADIUS\n"
+               "N90 G00 X[P1]\nN100 M30\n"),
+         "--tools", seed_tools()});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 9.652, 1e-9);
+    const json& last = doc.at("segments").back();
+    EXPECT_EQ(last.at("block"), 90);
+    EXPECT_NEAR(last.at("end")[0].get<double>(), 9.652, 1e-9);
+}
+
 // A B word tilts the B head; it does not switch the tool length off. D1 (length 50 mm) puts
 // its length on Z with N40: machine Z 350 for Z300, and it stays there through N45 (with B) and
 // N46 (without), as in the same program without the B word. The reported path is the same
