@@ -347,7 +347,7 @@ void OtcEngine::end_session() noexcept {
             offset[a] =
                 -w * dir[a] + held.channel[a] + held.direction[a] + held.axes[a] - standing_[a];
         const double along = -offset[z];
-        if (unit_dir[z] > 1e-12 && state_.motion.executor().shift_nominal(length_axis, -along)) {
+        if (unit_dir[z] > 1e-12 && state_.motion.shift_length(length_axis, -along)) {
             stays[z] = -along;
             folded_length = along;
             for (std::size_t a = 0; a < offset.size(); ++a)
@@ -423,7 +423,8 @@ void OtcEngine::tool_changed() noexcept {
 // ---- motion::CycleOffsets
 
 namespace {
-// Path length on the main axes X, Y, Z only (a B move tilts, it does not grind).
+// Path length on the main axes X, Y, Z only (a B move tilts, it does not grind), on the
+// programmed path: a tool length coming in or going out moves the axes, it does not grind.
 double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
     double other = 0.0;
     double plane = 0.0;
@@ -437,8 +438,8 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
     }
     for (int axis : xyz) {
         if (arc_in_main && (axis == m.plane_axes[0] || axis == m.plane_axes[1])) continue;
-        const double d =
-            m.end[static_cast<std::size_t>(axis)] - m.start[static_cast<std::size_t>(axis)];
+        const auto a = static_cast<std::size_t>(axis);
+        const double d = m.end[a] - m.start[a] - m.length_change[a];
         other += d * d;
     }
     return std::sqrt(plane * plane + other);

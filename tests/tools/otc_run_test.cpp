@@ -457,6 +457,16 @@ TEST_F(OtcRun, WearVariablesAreReadInInchesUnderG70) {
     EXPECT_NEAR(last.at("end")[0].get<double>(), 9.652, 1e-9);
 }
 
+// [ISG-OTC] section 2.1: the wear is that of the path travelled, and the Z motion of the tool
+// length (D1's 50 mm coming onto Z along N30) is none: G1 X200 wears 2.000 mm.
+TEST_F(OtcRun, TheToolLengthsMotionIsNoGroundPath) {
+    const json doc =
+        run_json({write("len.nc", "N10 D1\nN20 #OTC ON [LENGTH CONT]\nN30 G1 X200 F10000\n"
+                                  "N40 #OTC OFF\nN50 M30\n"),
+                  "--tools", seed_tools()});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 2.0, kEps);
+}
+
 // A B word tilts the B head; it does not switch the tool length off. D1 (length 50 mm) puts
 // its length on Z with N40: machine Z 350 for Z300, and it stays there through N45 (with B) and
 // N46 (without), as in the same program without the B word. The reported path is the same

@@ -60,6 +60,15 @@ class MotionLayer final : public TcMotion {
     // next profile's when there are none): a setting that acts from the next profile on still
     // concerns the profiles from this one up to the next's.
     std::uint64_t next_profile() const noexcept { return spooler_.profiles_taken() + 1; }
+
+    // The tool length on `axis` changed by `delta` without a motion (OTC's fold at #OTC OFF):
+    // the nominal path takes it, the axes stay. False, and nothing changes, while moves are
+    // queued (Executor::shift_nominal).
+    bool shift_length(int axis, double delta) noexcept {
+        if (!exec_.shift_nominal(axis, delta)) return false;
+        spooler_.length_shifted(axis, delta);
+        return true;
+    }
     std::uint64_t oldest_profile_in_flight() const noexcept;
 
   private:

@@ -37,6 +37,7 @@ void set_move_head(Move& m, SegmentKind kind, double feed, SegmentRole role,
     m.direct = false;
     m.traverse = false;
     m.profile = 0;
+    m.length_change = {};
     m.side = 0;
     m.plane = 0;
     m.feed = feed;

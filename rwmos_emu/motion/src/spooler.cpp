@@ -252,6 +252,14 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         // rapid move on the compensated path.
         m.traverse = pd->traverse;
         m.profile = pd->profile;
+        // The length in its end: WkzLen on z, but for a transition (at the corner, as before)
+        // and a departure under LengthMode 0 (taken out).
+        AxisVector length = batch.length;
+        if (seg.role != geom::SegmentRole::kTransition) {
+            length = {};
+            if (seg.role != geom::SegmentRole::kDeparture || c.length_always) length[z] = c.length;
+        }
+        batch.length_at(m, length);
         batch.end = m.end;
     }
 }
@@ -284,7 +292,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         return refuse(Status::kValueTooLow, kTooLong);
 
     Compensation trial = comp_;
-    Batch batch(exec);
+    Batch batch(exec, length_at_end_);
     // [APCI-TC] section 1: only G01/G02/G03 are compensated, by the active
     // group while it runs. Anything else ends the contour under way ([APCI-TC]
     // section 2.4: a JOG/G00 makes the compensation ineffective; the next
@@ -315,6 +323,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
         Move m = line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag);
         m.profile = number;
+        batch.length_at(m, length);
         batch.add(m);
     } else if (!compensate) {
         if (is_arc(p.kind)) {
@@ -336,12 +345,14 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             m.plane = res.plane;
             m.profile = number;
             m.side = uncompensated_side;
+            batch.length_at(m, in_arc_plane ? AxisVector{} : length);
             batch.add(m);
         } else {
             Move m = line_move(batch.end, lengthened(res.path), feed, uncompensated, p.tag);
             m.traverse = p.kind == ProfileKind::kTraverse;
             m.profile = number;
             m.side = uncompensated_side;
+            batch.length_at(m, length);
             batch.add(m);
         }
     } else {
@@ -391,6 +402,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         return r;
     }
     comp_ = trial;
+    length_at_end_ = batch.length;
     program_ = res.program;
     path_ = p.kind == ProfileKind::kRapid ? res.program : res.path;
     profiles_ = number;
@@ -431,7 +443,7 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     // [APCI-TC] section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
     // auch das letzte zwischengespeicherte Verfahrprofil gespoolt."
     Compensation trial = comp_;
-    Batch batch(exec);
+    Batch batch(exec, length_at_end_);
     // Perpendicular (G237): a departure at right angles back to the programmed end. Indirect
     // (G139): none; the tool stays at the last offset end and the next profile departs from
     // there (docs/compensation.md "Approach and departure").
@@ -439,6 +451,7 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     end_contour(trial, /*keep_departure=*/perpendicular, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
+    length_at_end_ = batch.length;
     forget_finished();
     departure_next_ = perpendicular ? std::int8_t{0} : comp_.side;
     return {};
@@ -456,10 +469,11 @@ MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&
     // [APCI-TC] section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
     // die entsprechenden Achsen gesendet werden": the held profile is spooled.
     Compensation trial = comp_;
-    Batch batch(exec);
+    Batch batch(exec, length_at_end_);
     end_contour(trial, /*keep_departure=*/false, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
+    length_at_end_ = batch.length;
     forget_finished();
     return {};
 }
@@ -489,6 +503,7 @@ MotionResult Spooler::direct(const DirectCommand& c, Executor& exec, double cycl
     comp_.comp.discard();
     pending_.clear();
     departure_next_ = 0;
+    length_at_end_ = {};  // the programmed path is where the axes are (path_ below)
     exec.discard();
     if (c.code == DirectCode::kJA) {
         jog.direct = true;
@@ -526,6 +541,7 @@ void Spooler::clear_shift(const TcSettings& tc, const Executor& exec) {
     }
     for (int a = 0; a < kAxisCount; ++a) program_[a] += d[a];
     path_ = end;
+    length_at_end_ = {};  // the shift took it into the programmed path
 }
 
 }  // namespace rwmos::motion

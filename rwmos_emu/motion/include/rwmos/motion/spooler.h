@@ -104,6 +104,11 @@ class Spooler {
     // setting that acts from the next profile on (OTC's wear constant) acts from number
     // profiles_taken() + 1.
     std::uint64_t profiles_taken() const noexcept { return profiles_; }
+    // The queue's end moved by `delta` on `axis` as the tool length changed there without a
+    // motion (OTC's fold, Executor::shift_nominal): the length in the end changed with it.
+    void length_shifted(int axis, double delta) noexcept {
+        length_at_end_[static_cast<std::size_t>(axis)] += delta;
+    }
     // The number of the oldest profile held back or waiting with it, whose moves are still to
     // be queued (0: none).
     std::uint64_t oldest_pending_profile() const noexcept {
@@ -153,7 +158,8 @@ class Spooler {
         std::size_t count_ = 0;
 
       public:
-        explicit Batch(Executor& exec) : exec_(exec), end(exec.planned_end()) {}
+        Batch(Executor& exec, const AxisVector& length_at_end)
+            : exec_(exec), end(exec.planned_end()), length(length_at_end) {}
         ~Batch() { exec_.drop_back(count_); }
         Batch(const Batch&) = delete;
         Batch& operator=(const Batch&) = delete;
@@ -169,7 +175,13 @@ class Spooler {
         }
         std::size_t count() const noexcept { return count_; }
         void keep() noexcept { count_ = 0; }
+        // m ends with the tool length compensation `at_end` (per axis): its length_change.
+        void length_at(Move& m, const AxisVector& at_end) noexcept {
+            for (std::size_t a = 0; a < at_end.size(); ++a) m.length_change[a] = at_end[a] - length[a];
+            length = at_end;
+        }
         AxisVector end;  // where the last move ends (the queue's end before the first)
+        AxisVector length;  // the tool length compensation in `end`
     };
 
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
@@ -195,6 +207,7 @@ class Spooler {
     // SelectionMode 139: STATUS = 0 ended the contour without a departure; the next profile,
     // an uncompensated G01/G02/G03, departs from the last offset end (side: the contour's).
     std::int8_t departure_next_ = 0;
+    AxisVector length_at_end_{};  // the tool length compensation in the queue's end
     AxisVector program_{};     // programmed position, program coordinates
     AxisVector path_{};        // programmed position after rotation (start of the next element)
     geom::SegmentBatch segs_;  // scratch
