@@ -14,8 +14,14 @@ using motion::TcSettings;
 
 namespace {
 geom::ApproachMode approach_mode(const TcGroup& g) noexcept {
-    return g.selection_mode == tc::kSelectionIndirect ? geom::ApproachMode::kIndirect
-                                                      : geom::ApproachMode::kPerpendicular;
+    switch (g.selection_mode) {
+        case tc::kSelectionIndirect:
+            return geom::ApproachMode::kIndirect;
+        case tc::kSelectionDirect:
+            return geom::ApproachMode::kDirect;
+        default:
+            return geom::ApproachMode::kPerpendicular;
+    }
 }
 
 // Some group's ERROR is set: every group's bits or'ed, no branch per group. Inlined into the

@@ -428,7 +428,8 @@ Status TcModule::read_group_mode(const ObjectInfo&, const Address& a, Value& out
 template <std::int32_t TcGroup::*Field>
 Status TcModule::write_group_mode(const ObjectInfo&, const Address& a, const Value& v) {
     if constexpr (Field == &TcGroup::selection_mode) {
-        if (v.as_int() != tc::kSelectionIndirect && v.as_int() != tc::kSelectionPerpendicular)
+        if (v.as_int() != tc::kSelectionDirect && v.as_int() != tc::kSelectionIndirect &&
+            v.as_int() != tc::kSelectionPerpendicular)
             return Status::kInvalidValue;
     }
     TcGroup* g = nullptr;

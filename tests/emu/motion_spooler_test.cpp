@@ -89,6 +89,41 @@ TEST_F(Spooler, DeactivationReleasesTheLastProfileWithItsDeparture) {
     expect_at(position(), 10, -10);
 }
 
+// SelectionMode 138 (G138, [ISG-PROG]'s direct selection; docs/compensation.md): the first
+// profile runs from the tool straight to the second's offset start, no corner between; STATUS = 0
+// and the next profile depart as under 139.
+TEST_F(Spooler, SelectionMode138ApproachesTheSecondProfilesOffsetStartDirectly) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode, 138), Status::kOk);
+    EXPECT_EQ(read_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode), 138);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, 10));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line(3, 0, 10));
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 3u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[0].tag, 1u);
+    expect_at(segs[0].end, 9, 0);  // N2's offset start, left of (10, 0) going +Y
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 9, 10);
+    EXPECT_EQ(segs[2].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[2].tag, 3u);
+}
+
+// Under 138 an arc as the first profile is KorrError ([ISG-PROG]: approach blocks on lines only).
+TEST_F(Spooler, SelectionMode138RefusesAnArcAsTheFirstProfile) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode, 138), Status::kOk);
+    activate();
+    const MotionResult r = board.spool(arc(4, true, 10, 10, 0, 10));
+    EXPECT_EQ(r.status, Status::kWrongDeviceState);
+    EXPECT_EQ(r.errors, objif::map::tc::kKorrError);
+    EXPECT_EQ(r.tag, 4u);
+}
+
 // SelectionMode 139 (docs/compensation.md "Approach and departure"): STATUS = 0 ends the
 // contour at its offset end, and the next profile, uncompensated, is the departure: from there
 // to its own end, with the contour's side. The one after it is an ordinary move again, and so

@@ -412,6 +412,34 @@ TEST(Interpreter, AnArcRightAfterALoneG40IsRefusedUnderG139) {
     EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG40\nG2 X-10 I-5\nM30"), "");
 }
 
+// The selection word in the lone G40's own block decides ([ISG-PROG]: the method acts on the
+// G40 of its block): G237 G40 departs at G40 itself, so an arc may follow; G139 G40 and G138 G40
+// leave the departure to the next move, which must then be straight. Both ways round, from
+// either method in force.
+// G138, G139, G237 ([ISG-PROG]): modal, each a SelectionModeChange when it changes.
+TEST(Interpreter, SelectionMethodsAreModalEvents) {
+    const auto ev = events_of("G138\nG138 G0 X1\nG139\nG237\nM30");
+    std::vector<int> modes;
+    for (const Event& e : ev)
+        if (const auto* m = std::get_if<SelectionModeChange>(&e.data)) modes.push_back(g_number(m->mode));
+    EXPECT_EQ(modes, (std::vector<int>{138, 139, 237}));
+}
+
+TEST(Interpreter, ALoneG40TakesTheSelectionMethodOfItsOwnBlock) {
+    EXPECT_EQ(error_of("G0 X10\nG41 G1 X0 F1\nG237 G40\nG2 X-10 I-5\nM30"), "");
+    EXPECT_EQ(error_of("G138\nG0 X10\nG41 G1 X0 F1\nG237 G40\nG2 X-10 I-5\nM30"), "");
+    EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG139 G40\nG2 X-10 I-5\nM30"),
+              "prog.nc:5:1: G2 right after G40: under G139 this move departs from the compensated "
+              "point, r beside the contour, not from the arc's programmed start; program a G1 (or "
+              "G0) first, or G40 with G237");
+    EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG138 G40\nG2 X-10 I-5\nM30"),
+              "prog.nc:5:1: G2 right after G40: under G138 this move departs from the compensated "
+              "point, r beside the contour, not from the arc's programmed start; program a G1 (or "
+              "G0) first, or G40 with G237");
+    // A selection word after the lone G40 changes nothing of its departure.
+    EXPECT_NE(error_of("G0 X10\nG41 G1 X0 F1\nG40\nG237\nG2 X-10 I-5\nM30"), "");
+}
+
 TEST(Interpreter, ACoordinateBeyondTheBoardsRangeIsRefusedWithItsWord) {
     EXPECT_EQ(error_of("G1 X99999999999 F1\nM30"),
               "prog.nc:1:4: X 1e+11 mm is beyond the board's coordinate range of +-100000 mm");

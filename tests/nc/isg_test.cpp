@@ -166,6 +166,16 @@ TEST(OtcRules, UnderG139AMoveMustComeBetweenG40AndOtcOff) {
               "");
     EXPECT_EQ(
         error_of("F600\nD1\nG237\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\n#OTC OFF\nM30\n"), "");
+    // G138 as G139 ("Mit den WRK Modi G138/G139"); the G40 block's own word decides.
+    EXPECT_EQ(error_of("F600\nD1\nG138\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\n#OTC OFF\nM30\n"),
+              "prog.nc:8:1: 90050: #OTC OFF right after G40 without a move: under G138 the block "
+              "after G40 departs from the contour, so program a move (with the G40 or after it) "
+              "before #OTC OFF");
+    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG237 G40\n#OTC OFF\nM30\n"),
+              "");
+    EXPECT_NE(error_of("F600\nD1\nG237\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG139 G40\n#OTC OFF\n"
+                       "M30\n"),
+              "");
 }
 
 TEST(OtcRules, ParametersAreNotChangedWhileOtcIsOn) {

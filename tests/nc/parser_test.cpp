@@ -308,8 +308,9 @@ TEST(Parser, UnknownGCode) {
 }
 
 TEST(Parser, IsgSelectionMethodsAndSpindleFeedsAreRefusedAsNotEmulated) {
-    // G139 (indirect, the initial state) and G237 (perpendicular) are emulated; the others not.
-    for (const char* g : {"G138", "G236", "G238", "G239", "G05"}) {
+    // G139 (indirect, the initial state), G138 (direct) and G237 (perpendicular) are emulated;
+    // the others not.
+    for (const char* g : {"G236", "G238", "G239", "G05"}) {
         EXPECT_EQ(error_kind(g), ErrorKind::kUnsupported) << g;
         EXPECT_NE(error(g).find("is not emulated"), std::string::npos) << g;
     }

@@ -1757,6 +1757,43 @@ TEST_F(ApcictlRun, TheG40BlockIsTheDepartureFromTheLastOffsetPoint) {
     expect_continuous(doc);
 }
 
+// The selection word of a lone G40's own block decides how it leaves the contour: G237 G40
+// departs at right angles at once (the board's departure), so the arc after it runs from the
+// programmed point; G139 G40 leaves the departure to the next move, and an arc there is refused
+// before anything runs.
+TEST_F(ApcictlRun, ALoneG40DepartsByTheSelectionWordOfItsOwnBlock) {
+    const json doc = run_json(write("g237.nc", "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\n"
+                                               "N40 G1 X20 Y0\nN50 G237 G40\n"
+                                               "N60 G2 X30 Y-10 I0 J-10\nN70 M30\n"),
+                              {"--tools", tools(0.5)});
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 contour/40 departure/40 uncompensated/60");
+    const json& arc = doc.at("segments").back();
+    EXPECT_EQ(arc.at("kind"), "arc");
+    EXPECT_LT((xy(arc.at("start")) - Eigen::Vector2d(20, 0)).norm(), 1e-9);
+    EXPECT_LT((xy(arc.at("end")) - Eigen::Vector2d(30, -10)).norm(), 1e-9);
+    const std::string refused = write("g139.nc", "N10 D1 F1000 G237\nN20 G0 X-10 Y0\n"
+                                                 "N30 G41 G1 X0 Y0\nN40 G1 X20 Y0\nN50 G139 G40\n"
+                                                 "N60 G2 X30 Y-10 I0 J-10\nN70 M30\n");
+    const auto r = apcictl({"run", refused, "--tools", tools(0.5)});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "G2 right after G40: under G139")) << r.err;
+    EXPECT_TRUE(contains(r.err, "g139.nc:6:5: N60: ")) << r.err;
+}
+
+// G138 ([ISG-PROG]'s direct selection): the G41 block runs straight to the next element's offset
+// start, with no corner; the G40 block departs from the last offset end, as under G139.
+TEST_F(ApcictlRun, G138SelectsDirectlyOntoTheNextElementsOffsetStart) {
+    const json doc = run_json(write("g138.nc", "N10 D1 F1000 G138\nN20 G0 X-10 Y-10\n"
+                                               "N30 G41 G1 X0 Y0\nN40 G1 X20 Y0\n"
+                                               "N50 G40 G1 X30 Y-10\nN60 M30\n"),
+                              {"--tools", tools(0.5)});
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 contour/40 departure/50");
+    const json approach = with_role(doc, "approach").at(0);
+    EXPECT_LT((xy(approach.at("start")) - Eigen::Vector2d(-10, -10)).norm(), 1e-9);
+    EXPECT_LT((xy(approach.at("end")) - Eigen::Vector2d(0, 0.5)).norm(), 1e-9);
+    expect_continuous(doc);
+}
+
 TEST_F(ApcictlRun, G237KeepsTheBoardsPerpendicularApproachAndDeparture) {
     // The board's own way (SelectionMode 237): a right-angle approach onto the first element's
     // offset start, the element whole, and a right-angle departure back to the programmed end.

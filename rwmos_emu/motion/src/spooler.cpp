@@ -219,8 +219,8 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
             case geom::SegmentRole::kApproach:
                 // A plane-free element before the first plane element is
                 // consumed by its (zero-length) approach, so it goes to its end; the
-                // indirect approach is its element's whole move.
-                end = pd->plane_free || c.comp.config().approach == geom::ApproachMode::kIndirect
+                // indirect and the direct approach are their element's whole move.
+                end = pd->plane_free || c.comp.config().approach != geom::ApproachMode::kPerpendicular
                           ? pd->end
                           : pd->start;
                 end[z] += c.length;

@@ -309,8 +309,12 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     const bool moves =
         b.has_axis_word() || b.has_center_word() || b.radius.present() || b.b_axis.present();
     if (moves) s.departure_pending = false;
-    if (!moves && state_.compensation != Compensation::kOff && s.compensation == Compensation::kOff)
-        s.departure_pending = s.selection == SelectionMode::kIndirect;
+    if (!moves && state_.compensation != Compensation::kOff && s.compensation == Compensation::kOff) {
+        // The selection word of the G40's own block decides ([ISG-PROG]: the method acts on
+        // the G40 of its block).
+        s.departure_pending = s.selection != SelectionMode::kPerpendicular;
+        s.departing = s.selection;
+    }
     ArcMove arc;  // a G2/G3 block's move, made before the checks that need it
     if (moves) {
         if (!s.motion) {
@@ -334,18 +338,18 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                 ErrorKind::kProgramRule, first_motion_column(b),
                 fmt::format("no feed rate: program F before the first G{} move", g_number(m)));
         }
-        // Under G139 the move after a lone G40 departs from the last compensated point, r beside
-        // the contour: an arc from there would not start where it was programmed ([ISG-PROG]
-        // G239: "An arc programmed directly after G40 causes an error message"; LinuxCNC: "must
-        // be straight, not an arc").
+        // Under G139 (and G138) the move after a lone G40 departs from the last compensated
+        // point, r beside the contour: an arc from there would not start where it was programmed
+        // ([ISG-PROG] G239: "An arc programmed directly after G40 causes an error message";
+        // LinuxCNC: "must be straight, not an arc").
         if (is_arc(m) && state_.departure_pending) {
             return c.fail(ErrorKind::kProgramRule,
                           b.motion.present() ? b.motion.column : first_motion_column(b),
-                          fmt::format("G{} right after G40: under G139 this move departs from the "
+                          fmt::format("G{} right after G40: under G{} this move departs from the "
                                       "compensated point, r beside the contour, not from the arc's "
                                       "programmed start; program a G1 (or G0) first, or G40 with "
                                       "G237",
-                                      g_number(m)));
+                                      g_number(m), g_number(state_.departing)));
         }
         if (is_arc(m) && s.compensation != state_.compensation) {
             return c.fail(ErrorKind::kProgramRule, b.compensation.column,
@@ -447,9 +451,11 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                 }
                 if (s.otc_type == OtcType::kRadius && s.departure_pending) {
                     return c.fail(ErrorKind::kProgramRule, isg.column,
-                                  "90050: #OTC OFF right after G40 without a move: under G139 the "
-                                  "block after G40 departs from the contour, so program a move "
-                                  "(with the G40 or after it) before #OTC OFF");
+                                  fmt::format("90050: #OTC OFF right after G40 without a move: "
+                                              "under G{} the block after G40 departs from the "
+                                              "contour, so program a move (with the G40 or after "
+                                              "it) before #OTC OFF",
+                                              g_number(s.departing)));
                 }
                 s.otc_active = false;
             }

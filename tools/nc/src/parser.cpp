@@ -724,13 +724,14 @@ class BlockParser {
                 return set_group(b_.units, Units::kInch, col, "input units");
             case 71:
                 return set_group(b_.units, Units::kMetric, col, "input units");
+            case 138:
+                return set_group(b_.selection, SelectionMode::kDirect, col, "selection method");
             case 139:
                 return set_group(b_.selection, SelectionMode::kIndirect, col, "selection method");
             case 237:
                 return set_group(b_.selection, SelectionMode::kPerpendicular, col,
                                  "selection method");
             case 5:
-            case 138:
             case 236:
             case 238:
             case 239:
@@ -739,8 +740,9 @@ class BlockParser {
                                  fmt::format("G{} (a selection method of the radius compensation) "
                                              "is not emulated: G139 (indirect, the initial state: "
                                              "the G41/G42 block is the approach and the G40 block "
-                                             "the departure) and G237 (perpendicular approach and "
-                                             "departure) are (docs/compensation.md)",
+                                             "the departure), G138 (direct) and G237 "
+                                             "(perpendicular approach and departure) are "
+                                             "(docs/compensation.md)",
                                              g));
             case 90:
                 return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");

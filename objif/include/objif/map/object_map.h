@@ -93,7 +93,7 @@ inline constexpr std::int32_t kSubWkzLen = 12;
 // Extension objects (design).
 inline constexpr std::int32_t kSubCornerMode = 20;  // int r/w: 26 circular (default), 25 linear
 inline constexpr std::int32_t kSubSide = 21;        // int r: 40 none, 41 left, 42 right
-inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect
+inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect, 138 direct
 inline constexpr std::int32_t kSubLengthMode = 23;     // int r/w: 0 while compensating (default), 1 always
 
 inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 ([APCI-TC] Table 3)
@@ -107,6 +107,7 @@ inline constexpr std::int32_t kCornerLinear = 25;
 inline constexpr std::int32_t kCornerCircular = 26;
 // SelectionMode values: how the compensation reaches and leaves the contour, by the ISG G-codes
 // ([ISG-PROG]; docs/compensation.md "Approach and departure").
+inline constexpr std::int32_t kSelectionDirect = 138;         // the first block straight to the second's offset
 inline constexpr std::int32_t kSelectionIndirect = 139;       // the first / G40 block approach and depart
 inline constexpr std::int32_t kSelectionPerpendicular = 237;  // right-angle moves (the board's own)
 // LengthMode values: when WkzLen acts on the group's ZAxis (docs/compensation.md "Tool length").

@@ -289,10 +289,12 @@ inline constexpr std::array<ObjectInfo, 25> kObjects = [] {
                   "design: reads back the Left/Right selection: 40 none, 41 left, 42 right")),
         named("selection_mode", "",
               group_object(
-                  tc::kSubSelectionMode, "SelectionMode", kInt, kRW, tc::kSelectionIndirect,
-                  tc::kSelectionPerpendicular, Value::of_int(tc::kSelectionPerpendicular),
-                  "design: approach and departure, 237 perpendicular (default) / 139 indirect "
-                  "(docs/compensation.md)")),
+                  tc::kSubSelectionMode, "SelectionMode", kInt, kRW,
+                  std::numeric_limits<std::int32_t>::min(),
+                  std::numeric_limits<std::int32_t>::max(),
+                  Value::of_int(tc::kSelectionPerpendicular),
+                  "design: approach and departure, 237 perpendicular (default) / 139 indirect / "
+                  "138 direct; any other value InvalidValue (docs/compensation.md)")),
         named("length_mode", "",
               group_object(
                   tc::kSubLengthMode, "LengthMode", kInt, kRW, tc::kLengthWhileCompensating,
