@@ -162,6 +162,7 @@ MotionResult MotionLayer::spool(const motion::Profile& p) {
     const TcSettings& s = settings();
     const MotionResult r = spooler_.spool(
         p, s, exec_, static_cast<std::size_t>(state_.spooler.capacity), cycle_seconds());
+    if (r.ok()) manual_ = false;
     record(r);
     // A call without TC errors leaves every group's ERROR as settings() read it.
     sync(r.errors == 0 ? s.error_pending : error_pending());
@@ -169,9 +170,38 @@ MotionResult MotionLayer::spool(const motion::Profile& p) {
 }
 
 MotionResult MotionLayer::direct(const motion::DirectCommand& c) {
+    const motion::AxisVector before = exec_.nominal_position();
     const MotionResult r = spooler_.direct(c, exec_, cycle_seconds());
+    if (r.ok()) {
+        if (!manual_) manual_start_ = before;
+        manual_ = true;
+        moving_back_ = 0;
+    }
     sync();
     return r;
+}
+
+double MotionLayer::manual_offset(int axis) const noexcept {
+    if (!manual_ || axis < 0 || axis >= motion::kAxisCount) return 0.0;
+    const auto a = static_cast<std::size_t>(axis);
+    return exec_.nominal_position()[a] - manual_start_[a];
+}
+
+bool MotionLayer::move_back_to_manual_start(int axis) {
+    if (!manual_ || exec_.fill() != 0 || manual_offset(axis) == 0.0) return false;
+    motion::DirectCommand back;
+    back.code = motion::DirectCode::kJA;
+    back.axes = static_cast<motion::AxisMask>(1u << axis);
+    back.target[static_cast<std::size_t>(axis)] = manual_start_[static_cast<std::size_t>(axis)];
+    back.feed = 0.0;  // the rapid feed
+    if (!spooler_.direct(back, exec_, cycle_seconds()).ok()) return false;
+    moving_back_ = back.axes;
+    sync();
+    return true;
+}
+
+bool MotionLayer::moving_back(int axis) const noexcept {
+    return exec_.fill() != 0 && (moving_back_ & (1u << axis)) != 0;
 }
 
 MotionResult MotionLayer::ssf(motion::AxisMask axes, std::int32_t command) {

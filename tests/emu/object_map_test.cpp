@@ -174,6 +174,10 @@ std::vector<ObjectRow> object_rows() {
         {"OtcOffsetEnable", O1(2), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
         {"OtcOffsetRequest", O1(3), kI, r, I(0), {}, true, {}},
         {"OtcOffsetState", O1(4), kI, r, I(0), {}, true, {}},
+        {"BackToStartCommand", O1(5), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"BackToStartEnable", O1(6), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"BackToStartRequest", O1(7), kI, r, I(0), {}, true, {}},
+        {"BackToStartState", O1(8), kI, r, I(0), {}, true, {}},
         // ---- OTC DeviceNumber 2.
         {"OtcToolNumber", O2(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
         {"OtcToolType", O2(2), kI, rw, I(0), I(2), true, {low(I(-1)), high(I(4))}},

@@ -778,6 +778,89 @@ TEST_F(OtcBoard, FoldedRadiusStopsAtZero) {
     }
 }
 
+// [ISG-OTC] section 2.7.3, ManualMvBackToStart: "Ist der Handbetrieb im Kanal aktiv und bewegt
+// sich die beauftragte Achse nicht, wird die Achse durch dieses Kommando so bewegt, dass der
+// Handbetriebsoffset anschließend 0 ist. ... Eine steigende Flanke (FALSE -> TRUE) an X_Command
+// löst den Vorgang aus." Manual mode: after a direct command (JA), until the next profile.
+struct BackToStart : OtcRig {
+    Status back(int axis, std::int32_t sub, std::int32_t v) {
+        return otc_int(otc::kDevAxisUnits, axis, sub, v);
+    }
+    std::int32_t back_read(int axis, std::int32_t sub) {
+        return otc_read_int(otc::kDevAxisUnits, axis, sub);
+    }
+    void jog(int axis, double to) {
+        DirectCommand c;
+        c.code = rwmos::motion::DirectCode::kJA;
+        c.axes = static_cast<rwmos::motion::AxisMask>(1u << axis);
+        c.target[static_cast<std::size_t>(axis)] = to;
+        c.feed = 6000.0;
+        ASSERT_EQ(board.direct(c).status, Status::kOk);
+    }
+};
+
+TEST(OtcBackToStart, ARisingEdgeMovesTheAxisBackToWhereManualModeBegan) {
+    BackToStart r;
+    r.spool_ok(line(1, 10.0, 5.0, 6000.0));
+    r.run();
+    r.jog(0, 30.0);  // manual mode begins at X10
+    r.run();
+    r.jog(0, 40.0);
+    r.run();
+    ASSERT_EQ(r.position()[0], 40.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackEnable, 1), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackRequest), 1);
+    r.board.step(10);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 1);  // under way
+    EXPECT_GT(r.position()[0], 10.0);
+    EXPECT_LT(r.position()[0], 40.0);
+    r.run();
+    EXPECT_EQ(r.position()[0], 10.0);
+    EXPECT_EQ(r.position()[1], 5.0);  // the other axes stay
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 0);
+    // The edge has passed: holding the command moves nothing; a new edge with no offset left
+    // neither.
+    r.jog(1, 8.0);
+    r.run();
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[1], 8.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 0);  // X has no offset: ignored
+    ASSERT_EQ(r.back(1, otc::kSubBackEnable, 1), Status::kOk);
+    ASSERT_EQ(r.back(1, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[1], 5.0);
+}
+
+TEST(OtcBackToStart, TheCommandIsIgnoredWithoutManualModeEnableOrWhileAMoveRuns) {
+    BackToStart r;
+    r.jog(0, 20.0);
+    r.run();
+    // Not enabled: ignored.
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackRequest), 0);
+    r.run();
+    EXPECT_EQ(r.position()[0], 20.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackEnable, 1), Status::kOk);
+    // A jog still under way: ignored ("wenn noch eine Handbetriebsbewegung aktiv ist").
+    r.jog(0, 30.0);
+    r.board.step(5);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[0], 30.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    // A profile ends manual mode: no offset to take back.
+    r.spool_ok(line(2, 35.0, 0.0, 6000.0));
+    r.run();
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[0], 35.0);
+}
+
 TEST(OtcOption, WithoutTheOptionBus1330IsMissing) {
     rwmos::BoardConfig cfg;
     cfg.option_otc = false;

@@ -61,6 +61,19 @@ class MotionLayer final : public TcMotion {
     // concerns the profiles from this one up to the next's.
     std::uint64_t next_profile() const noexcept { return spooler_.profiles_taken() + 1; }
 
+    // Manual mode (design, for [ISG-OTC] section 2.7.3's ManualMvBackToStart): from a direct
+    // command (JA, JS; [APCI-TC] section 1's JOG moves) until the next profile is taken. Its
+    // start is where the axes stood at the first direct command; an axis's manual offset is how
+    // far it stands from there now (0 outside manual mode).
+    bool manual_mode() const noexcept { return manual_; }
+    double manual_offset(int axis) const noexcept;
+    // Moves `axis` back to the start of manual mode (a JA at the rapid feed), when the channel
+    // is in manual mode, no move is under way and the axis has an offset; false otherwise,
+    // and nothing moves.
+    bool move_back_to_manual_start(int axis);
+    // The axis is moving back (move_back_to_manual_start) and has not arrived.
+    bool moving_back(int axis) const noexcept;
+
     // The tool length on `axis` changed by `delta` without a motion (OTC's fold at #OTC OFF):
     // the nominal path takes it, the axes stay. False, and nothing changes, while moves are
     // queued (Executor::shift_nominal).
@@ -91,6 +104,9 @@ class MotionLayer final : public TcMotion {
     mutable bool settings_valid_ = false;
     motion::Executor exec_;
     motion::Spooler spooler_;
+    bool manual_ = false;
+    motion::AxisVector manual_start_{};
+    motion::AxisMask moving_back_ = 0;  // axes sent back; valid while the executor has moves
 };
 
 }  // namespace rwmos

@@ -197,6 +197,12 @@ inline constexpr std::int32_t kSubCommand = 1;  // command_w: int r/w
 inline constexpr std::int32_t kSubEnable = 2;   // enable_w: int r/w 0..1
 inline constexpr std::int32_t kSubRequest = 3;  // request_r: int r
 inline constexpr std::int32_t kSubState = 4;    // state_r: int r
+// The axis unit ManualMvBackToStart ([ISG-OTC] section 2.7.3), beside otc_offset on the same
+// Index (the board axis): X_Command, X_Enable, X_Request, X_State.
+inline constexpr std::int32_t kSubBackCommand = 5;  // int r/w 0..1: a rising edge moves back
+inline constexpr std::int32_t kSubBackEnable = 6;   // int r/w 0..1
+inline constexpr std::int32_t kSubBackRequest = 7;  // int r: the command the unit takes
+inline constexpr std::int32_t kSubBackState = 8;    // int r: 1 while the axis moves back
 
 // DeviceNumber 2 (Sub 0 unless noted).
 inline constexpr std::int32_t kIdxToolNumber = 1;      // int r/w 0..1023: a change is a tool change

@@ -578,9 +578,9 @@ constexpr ObjectInfo axis_unit_obj(std::int32_t sub, std::string_view name, Valu
 }
 }  // namespace detail
 
-inline constexpr std::array<ObjectInfo, 36> kObjects = [] {
+inline constexpr std::array<ObjectInfo, 40> kObjects = [] {
     using namespace detail;
-    return std::array<ObjectInfo, 36>{{
+    return std::array<ObjectInfo, 40>{{
         // ---- DeviceNumber 0: #OTC ([ISG-OTC] section 2.1), ramp, kinematics, channel unit.
         named(
             "active", "",
@@ -673,6 +673,22 @@ inline constexpr std::array<ObjectInfo, 36> kObjects = [] {
         named("state", "0.1 um",
               axis_unit_obj(otc::kSubState, "otc_offset.state_r", kInt, kR, kIntMin, kIntMax,
                             "design reading of 2.7.2: the offset reached, 0.1 um")),
+        // ManualMvBackToStart of every board axis ([ISG-OTC] section 2.7.3).
+        named("back_to_start.command", "",
+              axis_unit_obj(otc::kSubBackCommand, "ManualMvBackToStart.X_Command", kInt, kRW, 0,
+                            1,
+                            "[ISG-OTC] 2.7.3: a rising edge (0 to 1) with X_Enable moves the axis "
+                            "so that its manual offset is 0, in manual mode with the axis at rest "
+                            "and an offset; else ignored")),
+        named("back_to_start.enable", "",
+              axis_unit_obj(otc::kSubBackEnable, "ManualMvBackToStart.X_Enable", kInt, kRW, 0, 1,
+                            "[ISG-OTC] 2.7.3: the PLC enables the unit")),
+        named("back_to_start.request", "",
+              axis_unit_obj(otc::kSubBackRequest, "ManualMvBackToStart.X_Request", kInt, kR, 0, 1,
+                            "design reading of 2.7.3: X_Command while the unit is enabled")),
+        named("back_to_start.state", "",
+              axis_unit_obj(otc::kSubBackState, "ManualMvBackToStart.X_State", kInt, kR, 0, 1,
+                            "design reading of 2.7.3: 1 while the axis moves back")),
         // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; [ISG-OTC] sections 2.6, 2.8, 3.2).
         named(
             "number", "",
