@@ -14,7 +14,9 @@
 #include "arguments.h"
 #include "command.h"
 #include "object_name.h"
+#include "objif/map/comp3d_refusal.h"
 #include "objif/map/object_map.h"
+#include "objif/map/otc_errors.h"
 #include "value_text.h"
 
 namespace apcictl {
@@ -242,8 +244,38 @@ public:
     }
     Outcome result(apci::Status s) const {
         if (s == APCI_OK) return Outcome::success();
-        return Outcome::board_error(
-            fmt::format("{}: {}{}", command_text(), describe_status(s), tc_consequence(s)));
+        return Outcome::board_error(fmt::format("{}: {}{}{}", command_text(), describe_status(s),
+                                                tc_consequence(s), last_error(s)));
+    }
+
+    // A module that records why it refused a write in its LastError (the OTC module, bus 1330,
+    // objif/map/otc_errors.h; the 3D compensation, bus 1310, objif/map/comp3d_refusal.h): the
+    // refusal names it, as the executor does (the status alone says only how).
+    std::string last_error(apci::Status s) const {
+        namespace otc = objif::map::otc;
+        namespace c3 = objif::map::comp3d;
+        if (board_ == nullptr || s == APCI_NO_SUCH_DEVICE || s == APCI_OBJECT_MISSING ||
+            s == APCI_TYPE_MISMATCH)
+            return {};
+        if (object_.address.bus == otc::kBus) {
+            auto o = apci::object(otc::kBus, otc::kDevChannel, otc::kIdxLastError, 0);
+            const auto e = board_->read_int(o);
+            if (!e || e.value == 0) return {};
+            const auto error = static_cast<otc::Error>(e.value);
+            return fmt::format("; the OTC module's LastError ({} {} {} 0) reads {}: {} ({})",
+                               otc::kBus, otc::kDevChannel, otc::kIdxLastError, e.value,
+                               otc::error_name(error), otc::error_message(error));
+        }
+        if (object_.address.bus == c3::kBus) {
+            auto o = apci::object(c3::kBus, c3::kDevSettings, c3::kIdxLastError, 0);
+            const auto e = board_->read_int(o);
+            if (!e || e.value == 0) return {};
+            const auto refusal = static_cast<c3::Refusal>(e.value);
+            return fmt::format("; the 3D module's LastError ({} {} {} 0) reads {}: {} ({})",
+                               c3::kBus, c3::kDevSettings, c3::kIdxLastError, e.value,
+                               c3::refusal_name(refusal), c3::refusal_message(refusal));
+        }
+        return {};
     }
 
     // A refused write to a TC group may have set the group's ERROR ([APCI-TC] Table 3: InitError
