@@ -30,8 +30,8 @@ TEST(ApcictlMotion, SpoolAndStepMoveTheAxes) {
     const auto r = script("spool G01 N1 X10 F600\nstep 250\nstep --idle\n");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out,
-              "cycle 250 (+250) fill 1/256 moving X2.5 Y0 Z0 U0 V0 W0 A0 B0\n"
-              "cycle 1000 (+750) fill 0/256 idle X10 Y0 Z0 U0 V0 W0 A0 B0\n");
+              "cycle 250 (+250) fill 1/256 moving X2.5 Y0 Z0 A0 B0 C0 U0 V0\n"
+              "cycle 1000 (+750) fill 0/256 idle X10 Y0 Z0 A0 B0 C0 U0 V0\n");
 }
 
 TEST(ApcictlMotion, ArcWordsIAndJAreTheCentreOnTheArcAxes) {

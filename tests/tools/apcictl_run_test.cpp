@@ -623,7 +623,7 @@ TEST_F(ApcictlRun, ToolLengthIsTakenOffTheToolCentrePointButMovesTheAxis) {
     std::istringstream lines(csv);
     std::string line, header;
     std::getline(lines, header);
-    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,U,V,W,A,B");
+    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,A,B,C,U,V");
     int on_n30 = 0;
     while (std::getline(lines, line)) {
         std::vector<double> v;
@@ -1889,6 +1889,36 @@ TEST_F(ApcictlRun, TheToolLengthHoldsFromTheToolsSelectionNotOnlyUnderG42) {
     // N40 rises from 0 to 50 at its feed (F600: 10 mm/s, 5000 cycles); from then on Z is 50.
     EXPECT_EQ(at_length, rows - 4999) << "Z left the tool length somewhere";
     EXPECT_EQ(last_z, 50.0);
+}
+
+// The CSV's axes carry the tool length in Klartext programs too, from the TOOL CALL on, as a
+// TNC applies it (docs/compensation.md "Tool length"), with and without RL: Z = 10 + 25 along
+// N3 (R0) and N4 (RL). The JSON gives the tip, Z 10.
+TEST_F(ApcictlRun, KlartextAxesCarryTheToolLengthFromTheToolCall) {
+    const std::string prog =
+        write("len.h", "0 BEGIN PGM LEN MM\n1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+10 R0 F6000\n"
+                       "3 L X+10 R0\n4 L X+20 RL\n5 L X+30 R0\n6 M30\n7 END PGM LEN MM\n");
+    const json doc = run_json(prog, {"--tools", tools(1.0, 25.0), "--csv", path("k.csv")});
+    for (const auto& seg : doc.at("segments"))
+        EXPECT_NEAR(point(seg.at("end")).z(), 10.0, kTol) << seg.dump();
+    std::istringstream lines(read_text(path("k.csv")));
+    std::string line;
+    std::getline(lines, line);  // header
+    int rows = 0, at_length = 0;
+    double last_z = 0.0;
+    while (std::getline(lines, line)) {
+        std::vector<double> v;
+        std::stringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+        ++rows;
+        last_z = v[4];
+        if (v[2] > 0.0) {  // from N3 on: X moves, Z stays at the tip plus the length
+            EXPECT_NEAR(v[4], 35.0, kTol) << line;
+            ++at_length;
+        }
+    }
+    EXPECT_GT(at_length, 100);
+    EXPECT_NEAR(last_z, 35.0, kTol);
 }
 
 TEST_F(ApcictlRun, TheReportedPathIsTheToolTipWhicheverPlaneTheLengthActsIn) {

@@ -259,7 +259,7 @@ class Recorder final : public RunSink {
 
 // Many batches of every kind of event: what the inner sink gets, in order.
 void feed(RunSink& sink, int moves) {
-    const std::vector<std::string> names{"X", "Y", "Z", "U", "V", "W", "A", "B"};
+    const std::vector<std::string> names{"X", "Y", "Z", "A", "B", "C", "U", "V"};
     sink.axes(names);
     sink.axis_numbers({1, 0, 2});
     for (int i = 0; i < moves; ++i) {

@@ -6,7 +6,7 @@
 //   direct JA X5 Y5 [F1000]            jog absolute; `direct JS` stops every axis
 //   ssf XY 2001                        SSF command to axes X and Y
 //   step 1000 | step --idle            advance the interpolation clock
-// Axis letters name board axes: X Y Z U V W A B = 0..7.
+// Axis letters name board axes: X Y Z A B C U V = 0..7.
 #include <fmt/format.h>
 
 #include <array>
@@ -123,7 +123,7 @@ class SpoolCommand final : public Command {
                        "compensates)")
             ->required();
         app.add_option("WORDS", words_text_,
-                       "N<block> F<feed, units/min> axis targets X Y Z U V W A B (axes 0..7); "
+                       "N<block> F<feed, units/min> axis targets X Y Z A B C U V (axes 0..7); "
                        "arcs: I J = centre on the arc's first and second axis (absolute)");
         app.add_option("--arc-axes", arc_axes_text_,
                        "The two axes an arc is named in, first then second (default XY)");
@@ -203,7 +203,7 @@ class DirectCommand final : public Command {
     void declare(CLI::App& app) override {
         app.add_option("CODE", code_text_, "JA (jog absolute) or JS (jog stop)")->required();
         app.add_option("WORDS", words_text_,
-                       "JA: axis targets X Y Z U V W A B, F<feed> (0: rapid)");
+                       "JA: axis targets X Y Z A B C U V, F<feed> (0: rapid)");
         app.footer(
             "Discards the spooler and the held profile first ([APCI-TC] section 1), "
             "then JA moves the named axes, JS stops every axis. Prints nothing "
@@ -258,7 +258,7 @@ class DirectCommand final : public Command {
 class SsfCommand final : public Command {
   public:
     void declare(CLI::App& app) override {
-        app.add_option("AXES", axes_text_, "Axis letters, e.g. XY (X Y Z U V W A B = axes 0..7)")
+        app.add_option("AXES", axes_text_, "Axis letters, e.g. XY (X Y Z A B C U V = axes 0..7)")
             ->required();
         app.add_option("COMMAND", command_text_,
                        "SSF command number (2001: release the held profile)")
