@@ -369,6 +369,51 @@ TEST_F(OtcBoard, ToolWearConstIsWritableWhileOnAndActsFromTheNextMove) {
     EXPECT_NEAR(wear(2), 5.0, kEps);
 }
 
+// docs/otc.md section 6: where the folded length acts on its axis now, the fold passes into the
+// tool length without a motion. Under LengthMode 0 (the board's own) that is while the group
+// compensates: #OTC OFF with a contour element held back folds N1's 1 mm into WkzLen and the
+// nominal path at once, and Z never rises again (the held N2 and N3 run with the shorter tool;
+// the offset does not ramp back up). Only the departure then takes the length out.
+TEST_F(OtcBoard, LengthFoldWhileTheGroupCompensatesUnderLengthModeZeroNeverLiftsZ) {
+    setup_group(5.0, /*left=*/true);
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex, kTool),
+              Status::kOk);
+    ASSERT_EQ(read_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubLengthMode),
+              rwmos::tc::kLengthWhileCompensating);
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    spool_ok(line(2, 200.0, 0.0, 10000.0));
+    run();
+    ASSERT_TRUE(prof_marked(1));                       // N2 held: the group compensates
+    ASSERT_NEAR(position()[2], kSeedLength - 1.0, kEps);  // N1's 100 mm: 1 mm
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_NEAR(wear(2), 1.0, kEps);
+    for (const auto& g : board.state().tc.groups)
+        EXPECT_NEAR(g.tools[kTool].length, kSeedLength - 1.0, kEps);
+    spool_ok(line(3, 400.0, 0.0, 10000.0));
+    ASSERT_EQ(deactivate(1), Status::kOk);
+    double previous = position()[2];
+    int cycles = 0;
+    bool departing = false;
+    while (board.state().motion.executor().fill() > 0 ||
+           !board.state().otc_engine.ramps_settled()) {
+        board.step(1);
+        ++cycles;
+        const double z = position()[2];
+        if (position()[0] >= 400.0) departing = true;  // the departure: the length goes out
+        if (!departing) {
+            EXPECT_LE(z, previous + 1e-12) << "cycle " << cycles;
+            EXPECT_NEAR(z, kSeedLength - 1.0, kEps) << "cycle " << cycles;
+        }
+        previous = z;
+        ASSERT_LT(cycles, 1000000);
+    }
+    EXPECT_TRUE(departing);
+}
+
 // [ISG-OTC] section 2.1: the continuous wear is the wear constant times the path travelled; the
 // tool length coming onto the axis (the first move with LengthMode 1 carries WkzLen's 50 mm on
 // Z) is no path: G1 X200 wears 2 mm, not 2 x sqrt(200^2 + 50^2) / 200. After a LENGTH fold (the
