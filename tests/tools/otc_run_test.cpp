@@ -111,6 +111,44 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
     }
 }
 
+// The seed programs of examples/otc/ give the numbers the documents give (docs/otc.md section 10),
+// each with its documented command: [ISG-OTC] section 2.2's general example with the tool data of
+// section 2.6 (100000 x 0.1 um/m over N70's 950 mm: 9.5 mm of radius wear), section 2.3's G1
+// X1000 (10 mm on the third axis), section 2.3.1's split by the disc's tilt (30 degrees in
+// otc_tilt.tools: sin 30 x 10 on X, cos 30 x 10 on Z), and [ISG-OTC-EN]'s wr_quad_disc.nc with
+// the discrete offset of its figure ("der diskret beauftragte Versatz beträgt 2mm", ±2 mm).
+TEST_F(OtcRun, SeedProgramsGiveTheNumbersTheDocumentsGive) {
+    struct Seed {
+        const char* program;
+        const char* tools;
+        const char* plc;  // nullptr: none
+        const char* variable;
+        double value;
+    };
+    const Seed seeds[] = {
+        {"general", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR_RADIUS", 9.5},
+        {"general", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR_RADIUS_CONT", 9.5},
+        {"length", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR[2]", 10.0},
+        {"length", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR[0]", 0.0},
+        {"length_tilt", "otc_tilt", nullptr, "V.G.WZ_AKT.WEAR[0]", 5.0},
+        {"length_tilt", "otc_tilt", nullptr, "V.G.WZ_AKT.WEAR[2]", 10.0 * std::sqrt(3.0) / 2.0},
+        {"wr_quad_disc", "wr_quad_disc", "wr_quad_disc", "V.G.WZ_AKT.WEAR_RADIUS", 2.0},
+        {"wr_quad_disc", "wr_quad_disc", "wr_quad_disc_negative", "V.G.WZ_AKT.WEAR_RADIUS", -2.0},
+    };
+    for (const Seed& seed : seeds) {
+        std::vector<std::string> args{kExamples + "/otc/" + seed.program + ".nc", "--tools",
+                                      kExamples + "/tools/" + seed.tools + ".tools"};
+        if (seed.plc != nullptr) {
+            args.emplace_back("--plc");
+            args.push_back(kExamples + "/otc/plc/" + seed.plc + ".plc");
+        }
+        const json doc = run_json(args);
+        EXPECT_EQ(doc.at("errors"), json::array()) << seed.program;
+        EXPECT_NEAR(doc.at("variables").at(seed.variable).get<double>(), seed.value, kEps)
+            << seed.program << " " << (seed.plc ? seed.plc : "") << " " << seed.variable;
+    }
+}
+
 // [ISG-OTC] section 2.3 with the tool data of 2.6: 10.000 mm on Z within 1e-9, linear along the
 // path (5.000 mm at X500), folded into the tool's length (500000 - 100000 x 0.1 um).
 TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
