@@ -85,6 +85,7 @@ motion::TcSettings MotionLayer::read_settings() const noexcept {
         // Table 3); the board moves in mm.
         s.radius = board::pu_to_millimetres(g.tool().radius, state_.pu);
         s.length = board::pu_to_millimetres(g.tool().length, state_.pu);
+        s.cutting_edge = g.tool().cutting_edge;
         s.transition = g.corner_mode == tc::kCornerLinear ? geom::TransitionMode::kLinear
                                                           : geom::TransitionMode::kCircular;
         s.length_axis = static_cast<std::uint8_t>(g.z_axis);

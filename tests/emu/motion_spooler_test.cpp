@@ -89,6 +89,63 @@ TEST_F(Spooler, DeactivationReleasesTheLastProfileWithItsDeparture) {
     expect_at(position(), 10, -10);
 }
 
+// CuttingEdge (docs/compensation.md "Turning tools"): the board carries the nose centre's path
+// over to the imaginary tip, by the radius along LinuxCNC's table in the plane (its first axis
+// as Z, its second as X: position 2 is (-r, -r)). The approach runs from the tool to the carried
+// element, the departure from it back to the programmed end; the contour and its corners whole.
+TEST_F(Spooler, CuttingEdgeCarriesTheCompensatedPathOverToTheImaginaryTip) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge, 2), Status::kOk);
+    EXPECT_EQ(read_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge), 2);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, -10));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 5u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    expect_at(segs[0].start, 0, 0);  // from the tool
+    expect_at(segs[0].end, -1, 0);   // onto N1's offset start (0, 1), carried by (-1, -1)
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 9, 0);
+    EXPECT_EQ(segs[2].role, SegmentRole::kTransition);  // the arc about (10, 0), carried
+    EXPECT_EQ(segs[2].kind, SegmentKind::kArc);
+    expect_at(segs[2].center, 9, -1);
+    expect_at(segs[2].end, 10, -1);
+    EXPECT_EQ(segs[3].role, SegmentRole::kContour);
+    expect_at(segs[3].end, 10, -11);
+    EXPECT_EQ(segs[4].role, SegmentRole::kDeparture);  // back to the programmed end
+    expect_at(segs[4].end, 10, -10);
+}
+
+// 0 and 9 are the nose centre: nothing is carried over; a change of the position while the
+// group compensates ends the contour and the next profile approaches the carried path anew.
+TEST_F(Spooler, CuttingEdgeNineIsTheNoseCentreAndAChangeReApproaches) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge, 9), Status::kOk);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 20, 0));
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge, 8), Status::kOk);
+    spool_ok(line(3, 30, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_GE(segs.size(), 4u);
+    expect_at(segs[0].end, 0, 1);  // position 9: the nose centre's offset start
+    // N2 ends the contour at its offset end (20, 1); N3 approaches anew, carried by (0, +1).
+    bool reapproached = false;
+    for (const Segment& s : segs) {
+        if (s.tag == 3 && s.role == SegmentRole::kApproach) {
+            reapproached = true;
+            expect_at(s.start, 20, 1);
+        }
+        if (s.tag == 3 && s.role == SegmentRole::kContour) expect_at(s.end, 30, 2);
+    }
+    EXPECT_TRUE(reapproached);
+}
+
 // SelectionMode 138 (G138, [ISG-PROG]'s direct selection; docs/compensation.md): the first
 // profile runs from the tool straight to the second's offset start, no corner between; STATUS = 0
 // and the next profile depart as under 139.

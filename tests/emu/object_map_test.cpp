@@ -115,6 +115,7 @@ std::vector<ObjectRow> object_rows() {
           {I(std::numeric_limits<std::int32_t>::min()), Status::kInvalidValue},
           {I(std::numeric_limits<std::int32_t>::max()), Status::kInvalidValue}}},
         {"LengthMode", T1(23), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"CuttingEdge", T1(24), kI, rw, I(0), I(9), true, {low(I(-1)), high(I(10))}},
         // ---- 3D compensation, bus 1310, DeviceNumber 0.
         {"C3_Tool", C0(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
         {"C3_CallDL", C0(2, 0), kD, rw, D(0.0), D(-0.5), true, c3_range()},

@@ -488,6 +488,31 @@ TEST(Interpreter, FailedBlockChangesNoState) {
     EXPECT_EQ(after.position, before.position);
 }
 
+// A turning tool's cutting edge position (srk_lage 1..8, ISG P-TOOL-00002) is given in the
+// turning plane: G41/G42 with it only in G18, as LinuxCNC ("G41 with lathe tool, but plane is
+// not G18"); and only a turning tool (typ 1) has one. 0 and 9 (the nose centre) in any plane.
+TEST(Interpreter, ATurningToolsCuttingEdgeCompensatesInG18Only) {
+    Result<ToolTable> tools = parse_tool_table(
+        "wz[2].gueltig 1\nwz[2].typ 1\nwz[2].radius 5\nwz[2].srk_lage 2\n"
+        "wz[3].gueltig 1\nwz[3].typ 0\nwz[3].srk_lage 3\n"
+        "wz[9].gueltig 1\nwz[9].typ 1\nwz[9].srk_lage 9\n",
+        "t.tools");
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    InterpreterOptions o;
+    o.tools = &tools.value();
+    EXPECT_EQ(error_of("D2\nG18\nG42 G1 X1 F100\nG40 X2\nM30", o), "");
+    EXPECT_EQ(error_of("D2\nG42 G1 X1 F100\nM30", o),
+              "prog.nc:2:1: G42 with the turning tool D2 (cutting edge position 2) in G17: the "
+              "cutting edge position is given in the turning plane; program G18 (Z-X) before G42");
+    EXPECT_EQ(error_of("D2\nG19\nG41\nM30", o),
+              "prog.nc:3:1: G41 with the turning tool D2 (cutting edge position 2) in G19: the "
+              "cutting edge position is given in the turning plane; program G18 (Z-X) before G41");
+    EXPECT_EQ(error_of("D3\nG18\nG41\nM30", o),
+              "prog.nc:3:1: G41 with D3: its cutting edge position (srk_lage 3) is a turning "
+              "tool's, and D3 is type 0: set wz[3].typ 1 (P-TOOL-00001) or srk_lage 0");
+    EXPECT_EQ(error_of("D9\nG41 G1 X1 F100\nG40 X2\nM30", o), "");
+}
+
 TEST(Interpreter, ToolTableRequiresDefinedValidTool) {
     Result<ToolTable> tools = parse_tool_table("wz[1].gueltig 1\nwz[2].radius 5\n", "t.tools");
     ASSERT_TRUE(tools) << tools.error().to_string();

@@ -1921,6 +1921,48 @@ TEST_F(ApcictlRun, KlartextAxesCarryTheToolLengthFromTheToolCall) {
     EXPECT_NEAR(last_z, 35.0, kTol);
 }
 
+// A turning tool (docs/compensation.md "Turning tools"): with its cutting edge position the
+// reported path is the imaginary tip, the nose centre's path carried over by the position's
+// offset, approach and departure included: cutting edge 3 with a 2 mm nose radius in G18 moves
+// the compensated path by +2 on X and -2 on Z against the same run with the nose centre
+// (srk_lage 9); the uncompensated moves before and after stay.
+TEST_F(ApcictlRun, ATurningToolsPathIsItsImaginaryTip) {
+    const std::string prog = write("turn.nc", "N10 D5 G18 F500\nN20 G0 X10 Z5\nN30 G42 G1 X8\n"
+                                              "N40 G1 Z-20\nN50 G1 X12 Z-25\nN60 G40 G1 X15\n"
+                                              "N70 G0 Z5\nN80 M30\n");
+    const auto list = [&](int edge) {
+        return write("t" + std::to_string(edge) + ".tools",
+                     "wz[5].gueltig 1\nwz[5].typ 1\nwz[5].mass_einheit 1\nwz[5].radius 2\n"
+                     "wz[5].srk_lage " + std::to_string(edge) + "\n");
+    };
+    const json centre = run_json(prog, {"--tools", list(9)});
+    const json tip = run_json(prog, {"--tools", list(3)});
+    ASSERT_EQ(roles(tip), roles(centre));
+    const apci::run::Point carried(2, 0, -2);  // position 3: X +r, Z -r
+    const auto& a = centre.at("segments");
+    const auto& b = tip.at("segments");
+    ASSERT_EQ(a.size(), b.size());
+    int approach = 0, departure = 0, contour = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const std::string role = a[i].at("role");
+        const apci::run::Point ds = point(b[i].at("start")) - point(a[i].at("start"));
+        const apci::run::Point de = point(b[i].at("end")) - point(a[i].at("end"));
+        const bool start_carried = role == "contour" || role == "transition" || role == "departure";
+        const bool end_carried = role == "contour" || role == "transition" || role == "approach";
+        EXPECT_LT((ds - (start_carried ? carried : apci::run::Point::Zero())).norm(), 1e-9)
+            << role << " " << b[i].dump();
+        EXPECT_LT((de - (end_carried ? carried : apci::run::Point::Zero())).norm(), 1e-9)
+            << role << " " << b[i].dump();
+        approach += role == "approach";
+        departure += role == "departure";
+        contour += role == "contour";
+    }
+    EXPECT_EQ(approach, 1);
+    EXPECT_EQ(departure, 1);
+    EXPECT_GE(contour, 2);
+    expect_continuous(tip);
+}
+
 TEST_F(ApcictlRun, TheReportedPathIsTheToolTipWhicheverPlaneTheLengthActsIn) {
     // D2 (length 100) in G17, then G18 and G17 again: the length moves from Z to Y and back on
     // the axes; the JSON shows the programmed tip throughout.

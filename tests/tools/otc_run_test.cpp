@@ -111,7 +111,7 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
     }
 }
 
-// The seed programs of examples/otc/ give the numbers the documents give (docs/otc.md section 10),
+// The OTC example programs of examples/otc/ give the numbers the documents give (docs/otc.md section 10),
 // each with its documented command: [ISG-OTC] section 2.2's general example with the tool data of
 // section 2.6 (100000 x 0.1 um/m over N70's 950 mm: 9.5 mm of radius wear), section 2.3's G1
 // X1000 (10 mm on the third axis), section 2.3.1's split by the disc's tilt (30 degrees in

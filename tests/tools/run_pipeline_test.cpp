@@ -596,8 +596,9 @@ TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
         void programmed(const PathSegment& s) override {
             calls.push_back("p" + std::to_string(s.block.number));
         }
-        void self_approach_begin(double radius, int plane) override {
-            calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane));
+        void self_approach_begin(double radius, int plane, const Eigen::Vector2d& edge) override {
+            calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane) +
+                            (edge.isZero(0.0) ? "" : " edge"));
         }
         void self_approach_programmed() override { calls.emplace_back("check"); }
         void self_approach_end() override { calls.emplace_back("end"); }

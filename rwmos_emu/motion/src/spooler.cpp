@@ -3,6 +3,8 @@
 // listed in docs/motion.md; the comments here name the rule they implement.
 #include "rwmos/motion/spooler.h"
 
+#include "objif/map/cutting_edge.h"
+
 #include <cmath>
 
 #include "rwmos/geometry/element.h"
@@ -206,6 +208,34 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         if (seg.role == geom::SegmentRole::kDeparture && !keep_departure) continue;
         const Pending* pd = pending(seg.index);
         if (pd == nullptr) continue;  // cannot happen: every index pushed is pending
+        const bool arc = geom::is_arc(seg.path);
+        const bool edge = c.edge.x() != 0.0 || c.edge.y() != 0.0;
+        // A turning tool's first carried element where the compensator's approach was too short
+        // to emit (the tool stood on the nose centre's path): the approach is the offset alone.
+        const bool carried_start =
+            seg.role == geom::SegmentRole::kContour || seg.role == geom::SegmentRole::kTransition;
+        const bool unreached =
+            edge && carried_start &&
+            (geom::Vec2(batch.end[c.plane_axes[0]], batch.end[c.plane_axes[1]]) -
+             (seg.path.start + c.edge))
+                    .norm() > geom::kPointTolerance;
+        if ((seg.role == geom::SegmentRole::kApproach && arc && edge) || unreached) {
+            // An approach arc of a turning tool: the tool moves by the cutting edge's offset
+            // first, so that the arc, carried over whole, stays an arc (as LinuxCNC's lathe
+            // entry, interp_convert.cc); likewise onto a first element the approach missed.
+            Move& shift = batch.next();
+            shift.start = batch.end;
+            shift.end = batch.end;
+            const geom::Vec2 to = seg.path.start + c.edge;
+            shift.end[c.plane_axes[0]] = to.x();
+            shift.end[c.plane_axes[1]] = to.y();
+            line_move_into(shift, pd->feed, SegmentRole::kApproach, pd->tag);
+            shift.side = c.side;
+            shift.traverse = pd->traverse;
+            shift.profile = pd->profile;
+            batch.length_at(shift, batch.length);
+            batch.end = shift.end;
+        }
         // Written where it will run (no Move built and copied there).
         Move& m = batch.next();
         // The axes outside the plane: the third axis runs linearly along the
@@ -235,14 +265,23 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
                 if (c.length_always) end[z] += c.length;
                 break;
         }
+        // The nose centre's path carried over to the imaginary tip of a turning tool
+        // (CuttingEdge): the offset elements and their transitions whole, the approach from the
+        // tool's position to it, the departure from it back to the programmed end.
+        const geom::Vec2 to_start =
+            seg.role == geom::SegmentRole::kApproach && !arc ? geom::Vec2::Zero() : c.edge;
+        const geom::Vec2 to_end =
+            seg.role == geom::SegmentRole::kDeparture ? geom::Vec2::Zero() : c.edge;
         m.start = batch.end;
-        m.start[c.plane_axes[0]] = seg.path.start.x();
-        m.start[c.plane_axes[1]] = seg.path.start.y();
-        end[c.plane_axes[0]] = seg.path.end.x();
-        end[c.plane_axes[1]] = seg.path.end.y();
-        if (geom::is_arc(seg.path)) {
-            arc_move_into(m, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(), seg.path.ccw,
-                          pd->feed, role_of(seg.role), pd->tag);
+        m.start[c.plane_axes[0]] = seg.path.start.x() + to_start.x();
+        m.start[c.plane_axes[1]] = seg.path.start.y() + to_start.y();
+        end[c.plane_axes[0]] = seg.path.end.x() + to_end.x();
+        end[c.plane_axes[1]] = seg.path.end.y() + to_end.y();
+        if (arc) {
+            // Offset arcs, transitions and approach arcs: carried over whole, centre too.
+            arc_move_into(m, c.plane_axes, seg.path.centre.x() + c.edge.x(),
+                          seg.path.centre.y() + c.edge.y(), seg.path.ccw, pd->feed,
+                          role_of(seg.role), pd->tag);
             m.plane = c.plane;
         } else {
             line_move_into(m, pd->feed, role_of(seg.role), pd->tag);
@@ -359,7 +398,8 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
         if (trial.comp.running()) {
             const geom::CompensatorConfig& now = trial.comp.config();
-            if (now.tool_radius != tc.radius || now.side != tc.side) {
+            if (now.tool_radius != tc.radius || now.side != tc.side ||
+                trial.cutting_edge != tc.cutting_edge) {
                 // A new RADIUS applies from the next profile: the contour ends at
                 // the held profile's offset end and this one approaches the new path.
                 end_contour(trial, /*keep_departure=*/false, batch);
@@ -374,6 +414,9 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             trial.plane = tc.plane;
             trial.length_axis = tc.length_axis;
             trial.side = tc.side == geom::Side::kRight ? std::int8_t{-1} : std::int8_t{1};
+            trial.cutting_edge = tc.cutting_edge;
+            const auto edge = objif::map::tc::cutting_edge_offset(tc.cutting_edge, tc.radius);
+            trial.edge = geom::Vec2(edge[0], edge[1]);
             const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition, tc.approach};
             const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
             if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);

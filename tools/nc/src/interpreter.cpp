@@ -89,6 +89,32 @@ bool check_plane(const BlockCheck& c, const ModalState& before, Compensation com
     return true;
 }
 
+// A turning tool's cutting edge position (srk_lage 1..8, ISG P-TOOL-00002) is given in the
+// turning plane: its radius compensation runs in G18 (Z-X) only, as LinuxCNC's does ("G41 with
+// lathe tool, but plane is not G18"); and only a turning tool (typ 1, P-TOOL-00001) has one.
+bool check_cutting_edge(const BlockCheck& c, const ModalState& after, const ToolTable* tools) {
+    const ToolData* t = tools != nullptr && after.tool > 0 ? tools->find(after.tool) : nullptr;
+    if (t == nullptr || t->srk_lage < 1 || t->srk_lage > 8) return true;
+    const std::uint32_t col = c.b.compensation.column;
+    if (t->type() != ToolType::kTurning) {
+        return c.fail(ErrorKind::kProgramRule, col,
+                      fmt::format("G{} with D{}: its cutting edge position (srk_lage {}) is a "
+                                  "turning tool's, and D{} is type {}: set wz[{}].typ 1 "
+                                  "(P-TOOL-00001) or srk_lage 0",
+                                  g_number(after.compensation), after.tool, t->srk_lage,
+                                  after.tool, t->typ, after.tool));
+    }
+    if (after.plane != Plane::kZX) {
+        return c.fail(ErrorKind::kProgramRule, col,
+                      fmt::format("G{} with the turning tool D{} (cutting edge position {}) in "
+                                  "G{}: the cutting edge position is given in the turning plane; "
+                                  "program G18 (Z-X) before G{}",
+                                  g_number(after.compensation), after.tool, t->srk_lage,
+                                  g_number(after.plane), g_number(after.compensation)));
+    }
+    return true;
+}
+
 // Resolves the end point of a move from the axis words and the distance mode.
 [[gnu::always_inline]] inline Eigen::Vector3d end_point(const Block& b, const Eigen::Vector3d& from,
                                                          DistanceMode mode) {
@@ -305,6 +331,9 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (b.tool.present()) s.tool = b.tool.value;
     if (!check_plane(c, state_, s.compensation)) return false;
     if (b.plane.present()) s.plane = b.plane.value;
+    if (s.compensation != Compensation::kOff && s.compensation != state_.compensation &&
+        !check_cutting_edge(c, s, options_.tools))
+        return false;
 
     const bool moves =
         b.has_axis_word() || b.has_center_word() || b.radius.present() || b.b_axis.present();

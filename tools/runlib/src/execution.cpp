@@ -12,6 +12,7 @@
 
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
+#include "objif/map/cutting_edge.h"
 
 namespace apci::run::exec {
 
@@ -251,9 +252,12 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
 }
 
 void Execution::begin_self_approach() {
+    // A turning tool's path is its imaginary tip; the check measures the nose centre.
+    const auto edge = objif::map::tc::cutting_edge_offset(cutting_edge, radius);
+    check_edge_ = Eigen::Vector2d(edge[0], edge[1]);
     if (sink_checks_) {
         sink_check_active_ = true;
-        sink_.self_approach_begin(radius, comp_plane);
+        sink_.self_approach_begin(radius, comp_plane, check_edge_);
         return;
     }
     self_approach_.begin(radius, comp_plane);
@@ -438,7 +442,7 @@ bool Execution::drain_segments(std::uint64_t pending) {
             }
             sink_.executed(s);
             if (self_approach_mode_ != SelfApproachMode::kOff && !sink_checks_) {
-                self_approach_.executed(s, findings_);
+                self_approach_.executed(nose_centre_path(s, check_edge_, comp_plane), findings_);
                 if (!take_findings()) return false;
             }
         }

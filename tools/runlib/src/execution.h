@@ -132,6 +132,7 @@ class Execution {
     bool length_always = false;  // the TC groups' LengthMode 1: the length on every move
     double length = 0.0;         // WkzLen of the current tool
     double radius = 0.0;         // RADIUS of the current tool
+    std::int32_t cutting_edge = 0;  // CuttingEdge of the current tool (srk_lage)
     nc::ToolTable tools_mut;     // the tool list as the run changes it (wear at tool change)
     HeadState head;
 
@@ -198,6 +199,9 @@ class Execution {
     // path and not the axes.
     Eigen::Vector3d last_board_end_ = Eigen::Vector3d::Zero();
     RecentMoves recent_;
+    // A turning tool's cutting edge offset in the plane of the compensation under way: the
+    // self-approach check sees the nose centre (nose_centre_path).
+    Eigen::Vector2d check_edge_ = Eigen::Vector2d::Zero();
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;
     SelfApproachCheck self_approach_;

@@ -71,6 +71,9 @@ bool TcUnit::tool(const BlockRef& at, int index) {
         run_.tools() != nullptr && index > 0 ? run_.tools_mut.find(index) : nullptr;
     const double radius = t != nullptr ? t->radius_mm() : 0.0;
     const double length = t != nullptr ? t->length_mm() : 0.0;
+    // A turning tool's cutting edge position (srk_lage, ISG P-TOOL-00002): the board carries
+    // the compensated nose centre over to the imaginary tip (docs/compensation.md).
+    const std::int32_t edge = t != nullptr ? t->srk_lage : 0;
     // A tool change: the axes stop first, so every segment read back so far ran with the
     // old tool's length.
     if (!run_.run_clock()) return false;
@@ -78,13 +81,16 @@ bool TcUnit::tool(const BlockRef& at, int index) {
         auto index_object = group_object(g, tc::kSubWkzIndex);
         auto radius_object = group_object(g, tc::kSubRadius);
         auto length_object = group_object(g, tc::kSubWkzLen);
+        auto edge_object = group_object(g, tc::kSubCuttingEdge);
         if (!run_.write(index_object, std::int32_t{index}, at, "WKZINDEX") ||
             !run_.write(radius_object, radius, at, "RADIUS") ||
-            !run_.write(length_object, length, at, "WkzLen"))
+            !run_.write(length_object, length, at, "WkzLen") ||
+            !run_.write(edge_object, edge, at, "CuttingEdge"))
             return false;
     }
     run_.length = length;
     run_.radius = radius;
+    run_.cutting_edge = edge;
     return true;
 }
 

@@ -95,6 +95,7 @@ inline constexpr std::int32_t kSubCornerMode = 20;  // int r/w: 26 circular (def
 inline constexpr std::int32_t kSubSide = 21;        // int r: 40 none, 41 left, 42 right
 inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect, 138 direct
 inline constexpr std::int32_t kSubLengthMode = 23;     // int r/w: 0 while compensating (default), 1 always
+inline constexpr std::int32_t kSubCuttingEdge = 24;    // int r/w 0..9: the tool's cutting edge position
 
 inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 ([APCI-TC] Table 3)
 // Tool radius and length limits in PU units (design): a radius is a size, so not negative; a

@@ -17,6 +17,7 @@
 #include <span>
 #include <string_view>
 
+#include "objif/map/cutting_edge.h"
 #include "objif/map/object_map.h"
 #include "objif/object_info.h"
 
@@ -193,9 +194,9 @@ constexpr ObjectInfo group_object(std::int32_t sub, std::string_view name, Value
 }
 }  // namespace detail
 
-inline constexpr std::array<ObjectInfo, 25> kObjects = [] {
+inline constexpr std::array<ObjectInfo, 26> kObjects = [] {
     using namespace detail;
-    return std::array<ObjectInfo, 25>{{
+    return std::array<ObjectInfo, 26>{{
         // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
         named("clean", "",
               init_object(
@@ -301,6 +302,12 @@ inline constexpr std::array<ObjectInfo, 25> kObjects = [] {
                   tc::kLengthAlways, Value::of_int(tc::kLengthWhileCompensating),
                   "design: WkzLen on ZAxis 0 while compensating (default) / 1 on every profile "
                   "(docs/compensation.md)")),
+        named("cutting_edge", "",
+              group_object(
+                  tc::kSubCuttingEdge, "CuttingEdge", kInt, kRW, tc::kCuttingEdgeNone,
+                  tc::kMaxCuttingEdge, Value::of_int(tc::kCuttingEdgeNone),
+                  "design: the cutting edge position 1..9 of the tool WKZINDEX selects (ISG "
+                  "P-TOOL-00002, LinuxCNC's Q); 0 and 9 the nose centre (docs/compensation.md)")),
     }};
 }();
 inline constexpr std::array<DeviceMap, 2> kDevices{{{kDevInit, "init"}, {kDevGroups, "group"}}};

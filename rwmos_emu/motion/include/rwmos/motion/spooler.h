@@ -50,6 +50,7 @@ struct TcSettings {
     bool length_always = false;  // LengthMode 1: `length` on every profile, not only compensated
     std::uint8_t length_axis = 2;  // the group's ZAxis
     double length = 0.0;           // WkzLen of the group's current tool
+    std::int32_t cutting_edge = 0;  // CuttingEdge of the group's current tool (0..9)
 };
 
 class Spooler {
@@ -127,6 +128,11 @@ class Spooler {
         double length = 0.0;  // WkzLen at the last profile compensated
         bool length_always = false;  // LengthMode 1 when the contour began (the departure keeps it)
         std::int8_t side = 0;  // +1 left, -1 right (Move::side)
+        // The cutting edge position the contour began with, and the offset from the nose
+        // centre to the imaginary tip it carries the compensated path over by (plane
+        // coordinates; objif/map/cutting_edge.h).
+        std::int32_t cutting_edge = 0;
+        geom::Vec2 edge = geom::Vec2::Zero();
     };
     // A profile the compensator knows by index: held, or waiting with the held one.
     struct Pending {

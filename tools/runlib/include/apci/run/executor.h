@@ -103,9 +103,12 @@ class RunSink {
     // executor would have. Asked once, at the start of the run.
     virtual bool takes_self_approach() { return false; }
     // SelfApproachCheck::begin; programmed() of the move just given to programmed(); end().
-    virtual void self_approach_begin(double radius, int plane) {
+    // `edge`: a turning tool's cutting edge offset in the plane ({first, second}; zero for
+    // others): the check measures the nose centre, nose_centre_path() of every executed segment.
+    virtual void self_approach_begin(double radius, int plane, const Eigen::Vector2d& edge) {
         (void)radius;
         (void)plane;
+        (void)edge;
     }
     virtual void self_approach_programmed() {}
     virtual void self_approach_end() {}

@@ -79,7 +79,7 @@ class PipelinedSink final : public RunSink {
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
     bool takes_self_approach() override;
-    void self_approach_begin(double radius, int plane) override;
+    void self_approach_begin(double radius, int plane, const Eigen::Vector2d& edge) override;
     void self_approach_programmed() override;
     void self_approach_end() override;
     // Waits until the writer thread has had every event handed over (or stopped).
@@ -127,7 +127,12 @@ class PipelinedSink final : public RunSink {
         std::vector<Sample> samples;
         std::vector<Note> notes;
         std::vector<std::string> names;
-        std::vector<std::pair<double, int>> begins;  // self_approach_begin: radius, plane
+        struct Begin {
+            double radius;
+            int plane;
+            Eigen::Vector2d edge;
+        };
+        std::vector<Begin> begins;  // self_approach_begin
         std::array<int, 3> xyz{0, 1, 2};
         void clear() noexcept;
     };
@@ -169,6 +174,10 @@ class PipelinedSink final : public RunSink {
     // The writer thread's self-approach check (from kCheckStart), its findings, its warnings,
     // and the last programmed move (the one kCheckProgrammed checks).
     std::unique_ptr<SelfApproachCheck> check_;
+    // The stretch under check: its plane and a turning tool's cutting edge offset (the check
+    // sees the nose centre, nose_centre_path).
+    int check_plane_ = 17;
+    Eigen::Vector2d check_edge_ = Eigen::Vector2d::Zero();
     std::vector<SelfApproachFinding> findings_;
     std::vector<RunError> check_warnings_;
     PathSegment last_programmed_;
