@@ -414,20 +414,29 @@ TEST_F(OtcBoard, LengthFoldWhileTheGroupCompensatesUnderLengthModeZeroNeverLifts
     EXPECT_TRUE(departing);
 }
 
+// Group 1 with the grinding tool, its length on every profile (LengthMode 1, as NC programs
+// run), OTC on in LENGTH CONT.
+struct LengthAlwaysBoard : OtcBoard {
+    void length_always_on() {
+        setup_group(kSeedRadius, /*left=*/true);
+        ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex,
+                            kTool),
+                  Status::kOk);
+        ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubLengthMode,
+                            rwmos::tc::kLengthAlways),
+                  Status::kOk);
+        grinding_tool();
+        ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+        ASSERT_EQ(otc_on(), Status::kOk);
+    }
+};
+
 // [ISG-OTC] section 2.1: the continuous wear is the wear constant times the path travelled; the
 // tool length coming onto the axis (the first move with LengthMode 1 carries WkzLen's 50 mm on
 // Z) is no path: G1 X200 wears 2 mm, not 2 x sqrt(200^2 + 50^2) / 200. After a LENGTH fold (the
 // nominal path takes the shorter tool without a motion) the next G1 X400 wears its 200 mm too.
-TEST_F(OtcBoard, TheToolLengthComingOnIsNoGroundPath) {
-    setup_group(kSeedRadius, /*left=*/true);
-    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex, kTool),
-              Status::kOk);
-    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubLengthMode,
-                        rwmos::tc::kLengthAlways),
-              Status::kOk);
-    grinding_tool();
-    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
-    ASSERT_EQ(otc_on(), Status::kOk);
+TEST_F(LengthAlwaysBoard, TheToolLengthComingOnIsNoGroundPath) {
+    length_always_on();
     spool_ok(line(1, 200.0, 0.0, 10000.0));
     run();
     EXPECT_EQ(position()[2], kSeedLength - 2.0);  // the length on Z, worn by 2 mm
@@ -443,16 +452,8 @@ TEST_F(OtcBoard, TheToolLengthComingOnIsNoGroundPath) {
 // The same on an arc: a quarter circle of radius 100 (counter-clockwise from (0, 0) about
 // (0, 100)) that takes the length onto Z as it runs wears its arc length, 100 pi / 2 mm, not that
 // of the helix.
-TEST_F(OtcBoard, AnArcThatTakesTheToolLengthWearsItsArcLength) {
-    setup_group(kSeedRadius, /*left=*/true);
-    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex, kTool),
-              Status::kOk);
-    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubLengthMode,
-                        rwmos::tc::kLengthAlways),
-              Status::kOk);
-    grinding_tool();
-    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
-    ASSERT_EQ(otc_on(), Status::kOk);
+TEST_F(LengthAlwaysBoard, AnArcThatTakesTheToolLengthWearsItsArcLength) {
+    length_always_on();
     spool_ok(arc(1, true, 100.0, 100.0, 0.0, 100.0, 10000.0));
     run_and_off();
     EXPECT_NEAR(wear(2), 100.0 * std::numbers::pi / 2.0 * kSeedWearConst * 1e-7, kEps);

@@ -257,24 +257,26 @@ public:
         if (board_ == nullptr || s == APCI_NO_SUCH_DEVICE || s == APCI_OBJECT_MISSING ||
             s == APCI_TYPE_MISMATCH)
             return {};
-        if (object_.address.bus == otc::kBus) {
-            auto o = apci::object(otc::kBus, otc::kDevChannel, otc::kIdxLastError, 0);
+        // The module, where its LastError is, and the name and message of a value.
+        const auto named = [&](std::string_view module, std::int32_t bus, std::int32_t device,
+                               std::int32_t index, auto describe) -> std::string {
+            auto o = apci::object(bus, device, index, 0);
             const auto e = board_->read_int(o);
             if (!e || e.value == 0) return {};
-            const auto error = static_cast<otc::Error>(e.value);
-            return fmt::format("; the OTC module's LastError ({} {} {} 0) reads {}: {} ({})",
-                               otc::kBus, otc::kDevChannel, otc::kIdxLastError, e.value,
-                               otc::error_name(error), otc::error_message(error));
-        }
-        if (object_.address.bus == c3::kBus) {
-            auto o = apci::object(c3::kBus, c3::kDevSettings, c3::kIdxLastError, 0);
-            const auto e = board_->read_int(o);
-            if (!e || e.value == 0) return {};
-            const auto refusal = static_cast<c3::Refusal>(e.value);
-            return fmt::format("; the 3D module's LastError ({} {} {} 0) reads {}: {} ({})",
-                               c3::kBus, c3::kDevSettings, c3::kIdxLastError, e.value,
-                               c3::refusal_name(refusal), c3::refusal_message(refusal));
-        }
+            const auto [name, message] = describe(e.value);
+            return fmt::format("; the {} module's LastError ({} {} {} 0) reads {}: {} ({})", module,
+                               bus, device, index, e.value, name, message);
+        };
+        if (object_.address.bus == otc::kBus)
+            return named("OTC", otc::kBus, otc::kDevChannel, otc::kIdxLastError, [](int v) {
+                const auto e = static_cast<otc::Error>(v);
+                return std::pair{otc::error_name(e), otc::error_message(e)};
+            });
+        if (object_.address.bus == c3::kBus)
+            return named("3D", c3::kBus, c3::kDevSettings, c3::kIdxLastError, [](int v) {
+                const auto r = static_cast<c3::Refusal>(v);
+                return std::pair{c3::refusal_name(r), c3::refusal_message(r)};
+            });
         return {};
     }
 
