@@ -35,7 +35,8 @@ inline std::string sha256_hex(std::string_view data) {
         std::array<std::uint32_t, 64> w{};
         for (std::size_t i = 0; i < 16; ++i) {
             const auto byte = [&](std::size_t j) {
-                return static_cast<std::uint32_t>(static_cast<unsigned char>(msg[chunk + 4 * i + j]));
+                return static_cast<std::uint32_t>(
+                    static_cast<unsigned char>(msg[chunk + 4 * i + j]));
             };
             w[i] = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
         }
