@@ -155,6 +155,7 @@ void segment_to_c(const Segment& m, apci_segment& s) noexcept {
     s.role = static_cast<std::uint8_t>(m.role);
     s.ccw = m.ccw ? 1 : 0;
     s.interrupted = m.interrupted ? 1 : 0;
+    s.traverse = m.traverse ? 1 : 0;
     s.plane_axes[0] = m.plane_axes[0];
     s.plane_axes[1] = m.plane_axes[1];
     s.plane = m.plane;

@@ -485,12 +485,17 @@ FrameError decode(std::span<const std::uint8_t> p, TraceRequest& m) {
 }
 
 namespace {
+// The segment's flags byte (docs/motion.md section 9).
+constexpr std::uint8_t kSegmentInterrupted = 0x01;
+constexpr std::uint8_t kSegmentTraverse = 0x02;
+
 void put(ByteWriter& w, const WireSegment& s) {
     w.u32(s.tag);
     w.u8(s.kind);
     w.u8(s.role);
     w.u8(s.ccw ? 1 : 0);
-    w.u8(s.interrupted ? 1 : 0);
+    w.u8(static_cast<std::uint8_t>((s.interrupted ? kSegmentInterrupted : 0) |
+                                   (s.traverse ? kSegmentTraverse : 0)));
     w.u8(s.plane_axes[0]);
     w.u8(s.plane_axes[1]);
     w.i32(s.plane);
@@ -502,10 +507,13 @@ void put(ByteWriter& w, const WireSegment& s) {
     w.u64(s.end_cycle);
 }
 FrameError take(ByteReader& r, WireSegment& s) {
-    OBJIF_NEED(r.u32(s.tag) && r.u8(s.kind) && r.u8(s.role) && flag(r, s.ccw) &&
-               flag(r, s.interrupted) && r.u8(s.plane_axes[0]) && r.u8(s.plane_axes[1]) &&
-               r.i32(s.plane));
+    std::uint8_t flags = 0;
+    OBJIF_NEED(r.u32(s.tag) && r.u8(s.kind) && r.u8(s.role) && flag(r, s.ccw) && r.u8(flags) &&
+               r.u8(s.plane_axes[0]) && r.u8(s.plane_axes[1]) && r.i32(s.plane));
     OBJIF_NEED(s.kind <= 1 && s.role <= 5);
+    OBJIF_NEED((flags & ~(kSegmentInterrupted | kSegmentTraverse)) == 0);
+    s.interrupted = (flags & kSegmentInterrupted) != 0;
+    s.traverse = (flags & kSegmentTraverse) != 0;
     OBJIF_TRY(finite(r, s.start));
     OBJIF_TRY(finite(r, s.end));
     OBJIF_TRY(finite(r, s.center));

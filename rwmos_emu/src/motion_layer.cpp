@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/motion_layer.h"
 
+#include <algorithm>
+
 #include "rwmos/board_state.h"
 
 namespace rwmos {
@@ -12,8 +14,14 @@ using motion::TcSettings;
 
 namespace {
 geom::ApproachMode approach_mode(const TcGroup& g) noexcept {
-    return g.selection_mode == tc::kSelectionIndirect ? geom::ApproachMode::kIndirect
-                                                      : geom::ApproachMode::kPerpendicular;
+    switch (g.selection_mode) {
+        case tc::kSelectionIndirect:
+            return geom::ApproachMode::kIndirect;
+        case tc::kSelectionDirect:
+            return geom::ApproachMode::kDirect;
+        default:
+            return geom::ApproachMode::kPerpendicular;
+    }
 }
 
 // Some group's ERROR is set: every group's bits or'ed, no branch per group. Inlined into the
@@ -77,6 +85,7 @@ motion::TcSettings MotionLayer::read_settings() const noexcept {
         // Table 3); the board moves in mm.
         s.radius = board::pu_to_millimetres(g.tool().radius, state_.pu);
         s.length = board::pu_to_millimetres(g.tool().length, state_.pu);
+        s.cutting_edge = g.tool().cutting_edge;
         s.transition = g.corner_mode == tc::kCornerLinear ? geom::TransitionMode::kLinear
                                                           : geom::TransitionMode::kCircular;
         s.length_axis = static_cast<std::uint8_t>(g.z_axis);
@@ -84,6 +93,21 @@ motion::TcSettings MotionLayer::read_settings() const noexcept {
         s.length_always = g.length_mode == tc::kLengthAlways;
     }
     return s;
+}
+
+std::uint64_t MotionLayer::oldest_profile_in_flight() const noexcept {
+    std::uint64_t oldest = next_profile();
+    // The queue runs in the order profiles were taken (a direct command's move, number 0, only
+    // after the queue was discarded): its first numbered move is its oldest.
+    for (std::size_t i = 0; i < exec_.fill(); ++i) {
+        const std::uint64_t n = exec_.queued(i).profile;
+        if (n == 0) continue;
+        oldest = std::min(oldest, n);
+        break;
+    }
+    if (const std::uint64_t held = spooler_.oldest_pending_profile(); held != 0)
+        oldest = std::min(oldest, held);
+    return oldest;
 }
 
 int MotionLayer::length_axis_of(std::int32_t tool) const noexcept {
@@ -139,6 +163,7 @@ MotionResult MotionLayer::spool(const motion::Profile& p) {
     const TcSettings& s = settings();
     const MotionResult r = spooler_.spool(
         p, s, exec_, static_cast<std::size_t>(state_.spooler.capacity), cycle_seconds());
+    if (r.ok()) manual_ = false;
     record(r);
     // A call without TC errors leaves every group's ERROR as settings() read it.
     sync(r.errors == 0 ? s.error_pending : error_pending());
@@ -146,9 +171,38 @@ MotionResult MotionLayer::spool(const motion::Profile& p) {
 }
 
 MotionResult MotionLayer::direct(const motion::DirectCommand& c) {
+    const motion::AxisVector before = exec_.nominal_position();
     const MotionResult r = spooler_.direct(c, exec_, cycle_seconds());
+    if (r.ok()) {
+        if (!manual_) manual_start_ = before;
+        manual_ = true;
+        moving_back_ = 0;
+    }
     sync();
     return r;
+}
+
+double MotionLayer::manual_offset(int axis) const noexcept {
+    if (!manual_ || axis < 0 || axis >= motion::kAxisCount) return 0.0;
+    const auto a = static_cast<std::size_t>(axis);
+    return exec_.nominal_position()[a] - manual_start_[a];
+}
+
+bool MotionLayer::move_back_to_manual_start(int axis) {
+    if (!manual_ || exec_.fill() != 0 || manual_offset(axis) == 0.0) return false;
+    motion::DirectCommand back;
+    back.code = motion::DirectCode::kJA;
+    back.axes = static_cast<motion::AxisMask>(1u << axis);
+    back.target[static_cast<std::size_t>(axis)] = manual_start_[static_cast<std::size_t>(axis)];
+    back.feed = 0.0;  // the rapid feed
+    if (!spooler_.direct(back, exec_, cycle_seconds()).ok()) return false;
+    moving_back_ = back.axes;
+    sync();
+    return true;
+}
+
+bool MotionLayer::moving_back(int axis) const noexcept {
+    return exec_.fill() != 0 && (moving_back_ & (1u << axis)) != 0;
 }
 
 MotionResult MotionLayer::ssf(motion::AxisMask axes, std::int32_t command) {

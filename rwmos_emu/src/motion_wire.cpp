@@ -44,6 +44,7 @@ objif::WireSegment wire_segment(const motion::Segment& s) {
     w.role = static_cast<std::uint8_t>(s.role);
     w.ccw = s.ccw;
     w.interrupted = s.interrupted;
+    w.traverse = s.traverse;
     w.plane_axes = s.plane_axes;
     w.plane = s.plane;
     w.start = s.start;

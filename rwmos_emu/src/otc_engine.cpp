@@ -76,7 +76,7 @@ OtcEngine::Vec3 OtcEngine::surface_normal_at(const Move* m, std::uint64_t k, std
                                              const AxisVector& nominal) const noexcept {
     // [ISG-OTC] section 2.5: from the tool direction and the path tangent. Rapid moves grind
     // nothing: the last normal stays (design).
-    if (m == nullptr || m->direct || m->role == SegmentRole::kRapid)
+    if (m == nullptr || m->direct || m->traverse || m->role == SegmentRole::kRapid)
         return ctx_.last_surface_normal;
     AxisVector t{};
     motion::tangent_at(*m, k, n, t);
@@ -347,7 +347,7 @@ void OtcEngine::end_session() noexcept {
             offset[a] =
                 -w * dir[a] + held.channel[a] + held.direction[a] + held.axes[a] - standing_[a];
         const double along = -offset[z];
-        if (unit_dir[z] > 1e-12 && state_.motion.executor().shift_nominal(length_axis, -along)) {
+        if (unit_dir[z] > 1e-12 && state_.motion.shift_length(length_axis, -along)) {
             stays[z] = -along;
             folded_length = along;
             for (std::size_t a = 0; a < offset.size(); ++a)
@@ -382,6 +382,37 @@ void OtcEngine::end_session() noexcept {
     last_dir_ = {};
 }
 
+void OtcEngine::wear_const_changed(double before) noexcept {
+    const MotionLayer& motion = state_.motion;
+    if (wear_const_changes_.empty()) wear_const_before_ = before;
+    // Changes whose profile every move still to run has reached hold for all of them.
+    const std::uint64_t oldest = motion.oldest_profile_in_flight();
+    std::size_t done = 0;
+    while (done < wear_const_changes_.size() && wear_const_changes_[done].from <= oldest)
+        wear_const_before_ = wear_const_changes_[done++].value;
+    wear_const_changes_.erase(wear_const_changes_.begin(),
+                              wear_const_changes_.begin() + static_cast<std::ptrdiff_t>(done));
+    const WearConstChange now{motion.next_profile(), state_.otc.effective_wear_const()};
+    if (now.from <= oldest) {
+        // Nothing in flight: it holds for every move from here on.
+        wear_const_changes_.clear();
+        wear_const_before_ = now.value;
+    } else if (!wear_const_changes_.empty() && wear_const_changes_.back().from == now.from) {
+        wear_const_changes_.back().value = now.value;  // several writes between two profiles
+    } else {
+        wear_const_changes_.push_back(now);
+    }
+}
+
+double OtcEngine::wear_const_for(std::uint64_t profile) noexcept {
+    std::size_t done = 0;
+    while (done < wear_const_changes_.size() && wear_const_changes_[done].from <= profile)
+        wear_const_before_ = wear_const_changes_[done++].value;
+    wear_const_changes_.erase(wear_const_changes_.begin(),
+                              wear_const_changes_.begin() + static_cast<std::ptrdiff_t>(done));
+    return wear_const_changes_.empty() ? state_.otc.effective_wear_const() : wear_const_before_;
+}
+
 void OtcEngine::tool_changed() noexcept {
     state_.otc.wear = OtcWear{};
     // The tool that goes out takes its standing offsets with it (the ramps run them off).
@@ -392,7 +423,8 @@ void OtcEngine::tool_changed() noexcept {
 // ---- motion::CycleOffsets
 
 namespace {
-// Path length on the main axes X, Y, Z only (a B move tilts, it does not grind).
+// Path length on the main axes X, Y, Z only (a B move tilts, it does not grind), on the
+// programmed path: a tool length coming in or going out moves the axes, it does not grind.
 double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
     double other = 0.0;
     double plane = 0.0;
@@ -406,8 +438,8 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
     }
     for (int axis : xyz) {
         if (arc_in_main && (axis == m.plane_axes[0] || axis == m.plane_axes[1])) continue;
-        const double d =
-            m.end[static_cast<std::size_t>(axis)] - m.start[static_cast<std::size_t>(axis)];
+        const auto a = static_cast<std::size_t>(axis);
+        const double d = m.end[a] - m.start[a] - m.length_change[a];
         other += d * d;
     }
     return std::sqrt(plane * plane + other);
@@ -417,14 +449,15 @@ double main_axes_length(const Move& m, const std::array<int, 3>& xyz) noexcept {
 void OtcEngine::move_started(const Move& m, const Move* next) noexcept {
     if (!state_.otc.active) return;
     ctx_.wear_start = wear_;
-    // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2: the approach after
-    // G41/G42 and the move after G40 are wear-free; RADIUS wears only with radius compensation.
-    const bool wears = otc::mode_has_continuous(session_.mode) && !m.direct &&
+    // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!" (G00, JA jogs, and a G00 on the
+    // compensated path, a traverse); section 2.2: the approach after G41/G42 and the move after
+    // G40 are wear-free; RADIUS wears only with radius compensation.
+    const bool wears = otc::mode_has_continuous(session_.mode) && !m.direct && !m.traverse &&
                        m.role != SegmentRole::kRapid && m.role != SegmentRole::kApproach &&
                        m.role != SegmentRole::kDeparture &&
                        (session_.type != otc::ProcessingType::kRadius || is_contour(m));
     ctx_.wear_per_fraction = wears ? otc::continuous_wear(main_axes_length(m, session_.xyz),
-                                                          state_.otc.effective_wear_const())
+                                                          wear_const_for(m.profile))
                                    : 0.0;
     if (session_.type == otc::ProcessingType::kRadius) {
         const double carried = have_last_ ? ctx_.end_weight : 0.0;

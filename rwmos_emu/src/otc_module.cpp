@@ -46,7 +46,7 @@ bool OtcModule::present() const noexcept {
 
 std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
     using M = OtcModule;
-    static constexpr std::array<Hooks<M>, 36> kHooks{{
+    static constexpr std::array<Hooks<M>, 40> kHooks{{
         // ---- DeviceNumber 0: #OTC ([ISG-OTC] section 2.1), ramp, kinematics, channel unit.
         {"Active", &M::read_active, &M::write_active},
         {"ProcessingType", &M::read_type, &M::write_type},
@@ -70,6 +70,10 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
         {"otc_offset.enable_w", &M::read_unit_enable, &M::write_unit_enable},
         {"otc_offset.request_r", &M::read_unit_request, nullptr},
         {"otc_offset.state_r", &M::read_unit_state, nullptr},
+        {"ManualMvBackToStart.X_Command", &M::read_back_command, &M::write_back_command},
+        {"ManualMvBackToStart.X_Enable", &M::read_back_enable, &M::write_back_enable},
+        {"ManualMvBackToStart.X_Request", &M::read_back_request, nullptr},
+        {"ManualMvBackToStart.X_State", &M::read_back_state, nullptr},
         // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; [ISG-OTC] sections 2.6, 2.8, 3.2).
         {"ToolNumber", &M::read_tool_number, &M::write_tool_number},
         {"typ", &M::read_tool_type, &M::write_tool_type},
@@ -177,10 +181,13 @@ Status OtcModule::read_wear_const(const Info&, const Address&, Value& out) {
 }
 
 // [ISG-OTC] section 2.1 WEAR_CONST=..: "wirkt modal"; it may change while OTC is on and acts
-// from the next move (design: a move's wear is linear along it).
+// from the next profile spooled on: the profiles spooled before it, queued or held, keep the
+// constant they were programmed under (OtcEngine::wear_const_changed).
 Status OtcModule::write_wear_const(const Info&, const Address&, const Value& v) {
+    const double before = state_.otc.effective_wear_const();
     state_.otc.programmed_wear_const = v.as_double();
     state_.otc.use_programmed_wear_const = true;
+    state_.otc_engine.wear_const_changed(before);
     return Status::kOk;
 }
 
@@ -192,7 +199,9 @@ Status OtcModule::read_wear_const_source(const Info&, const Address&, Value& out
 // [ISG-OTC] section 2.1 WEAR_CONST_TOOL: "Umschalten auf die in den aktuellen Werkzeugdaten
 // festgelegte Standardverschleißkonstante; wirkt modal".
 Status OtcModule::write_wear_const_source(const Info&, const Address&, const Value& v) {
+    const double before = state_.otc.effective_wear_const();
     state_.otc.use_programmed_wear_const = v.as_int() == 1;
+    state_.otc_engine.wear_const_changed(before);
     return Status::kOk;
 }
 
@@ -325,6 +334,47 @@ Status OtcModule::read_unit_state(const Info&, const Address& a, Value& out) {
     return Status::kOk;
 }
 
+// ---- ManualMvBackToStart ([ISG-OTC] section 2.7.3, "Handbetriebsoffset zurück fahren")
+
+Status OtcModule::read_back_command(const Info&, const Address& a, Value& out) {
+    out = Value::of_int(state_.otc.back_to_start[static_cast<std::size_t>(a.index)].command ? 1 : 0);
+    return Status::kOk;
+}
+
+// "Ist der Handbetrieb im Kanal aktiv und bewegt sich die beauftragte Achse nicht, wird die
+// Achse durch dieses Kommando so bewegt, dass der Handbetriebsoffset anschließend 0 ist. ...
+// Eine steigende Flanke (FALSE -> TRUE) an X_Command löst den Vorgang aus. Das Signal wird
+// ignoriert, wenn noch eine Handbetriebsbewegung aktiv ist oder der Handbetriebsoffset bereits 0
+// ist." Manual mode and its offset are the motion layer's (MotionLayer::manual_offset).
+Status OtcModule::write_back_command(const Info&, const Address& a, const Value& v) {
+    OtcBoolUnit& u = state_.otc.back_to_start[static_cast<std::size_t>(a.index)];
+    const bool rising = !u.command && v.as_int() == 1;
+    u.command = v.as_int() == 1;
+    if (rising && u.enable) (void)state_.motion.move_back_to_manual_start(a.index);
+    return Status::kOk;
+}
+
+Status OtcModule::read_back_enable(const Info&, const Address& a, Value& out) {
+    out = Value::of_int(state_.otc.back_to_start[static_cast<std::size_t>(a.index)].enable ? 1 : 0);
+    return Status::kOk;
+}
+
+Status OtcModule::write_back_enable(const Info&, const Address& a, const Value& v) {
+    state_.otc.back_to_start[static_cast<std::size_t>(a.index)].enable = v.as_int() == 1;
+    return Status::kOk;
+}
+
+Status OtcModule::read_back_request(const Info&, const Address& a, Value& out) {
+    const OtcBoolUnit& u = state_.otc.back_to_start[static_cast<std::size_t>(a.index)];
+    out = Value::of_int(u.enable && u.command ? 1 : 0);
+    return Status::kOk;
+}
+
+Status OtcModule::read_back_state(const Info&, const Address& a, Value& out) {
+    out = Value::of_int(state_.motion.moving_back(a.index) ? 1 : 0);
+    return Status::kOk;
+}
+
 // ---- DeviceNumber 2
 
 Status OtcModule::read_tool_number(const Info&, const Address&, Value& out) {
@@ -358,9 +408,11 @@ Status OtcModule::read_tool_wear_const(const Info&, const Address&, Value& out) 
 }
 
 // [ISG-OTC] section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
-// ... geschrieben bzw. gelesen werden": writable while OTC is on, from the next move.
+// ... geschrieben bzw. gelesen werden": writable while OTC is on, from the next profile spooled.
 Status OtcModule::write_tool_wear_const(const Info&, const Address&, const Value& v) {
+    const double before = state_.otc.effective_wear_const();
     state_.otc.tool.wear_const = v.as_double();
+    state_.otc_engine.wear_const_changed(before);
     return Status::kOk;
 }
 

@@ -54,7 +54,7 @@ TcState& TcModule::tc() noexcept { return state_.tc; }
 
 std::span<const Entry<TcModule>> TcModule::table() const noexcept {
     using M = TcModule;
-    static constexpr std::array<Hooks<M>, 25> kHooks{{
+    static constexpr std::array<Hooks<M>, 26> kHooks{{
         // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
         {"Clean", nullptr, &M::write_clean},
         {"X-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
@@ -82,6 +82,7 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
         {"Side", &M::read_group_mode<&TcGroup::side>, nullptr},
         {"SelectionMode", &M::read_group_mode<&TcGroup::selection_mode>, &M::write_group_mode<&TcGroup::selection_mode>},
         {"LengthMode", &M::read_group_mode<&TcGroup::length_mode>, &M::write_group_mode<&TcGroup::length_mode>},
+        {"CuttingEdge", &M::read_cutting_edge, &M::write_cutting_edge},
     }};
     static constexpr auto kTable = objif::attach(objif::map::tc::kObjects, kHooks);
     return kTable;
@@ -412,6 +413,25 @@ Status TcModule::write_wkz_len(const ObjectInfo&, const Address& a, const Value&
     return Status::kOk;
 }
 
+// CuttingEdge (extension, docs/compensation.md "Turning tools"): the cutting edge position of
+// the current tool, like RADIUS and WkzLen; it acts from the next contour (a change while the
+// group compensates ends the contour under way and the next profile approaches anew, as a
+// RADIUS change does).
+Status TcModule::read_cutting_edge(const ObjectInfo&, const Address& a, Value& out) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    out = Value::of_int(g->tool().cutting_edge);
+    return Status::kOk;
+}
+Status TcModule::write_cutting_edge(const ObjectInfo&, const Address& a, const Value& v) {
+    TcGroup* g = nullptr;
+    const Status st = with_group(a, g);
+    if (!objif::ok(st)) return st;
+    g->tool().cutting_edge = v.as_int();
+    return Status::kOk;
+}
+
 // The extension objects that hold a group's mode as written (docs/design.md section 3):
 // CornerMode (like G25/G26, applies from the next transition computed), SelectionMode (like
 // G237/G139: the mode at activation shapes the approach, the mode at deactivation the
@@ -428,7 +448,8 @@ Status TcModule::read_group_mode(const ObjectInfo&, const Address& a, Value& out
 template <std::int32_t TcGroup::*Field>
 Status TcModule::write_group_mode(const ObjectInfo&, const Address& a, const Value& v) {
     if constexpr (Field == &TcGroup::selection_mode) {
-        if (v.as_int() != tc::kSelectionIndirect && v.as_int() != tc::kSelectionPerpendicular)
+        if (v.as_int() != tc::kSelectionDirect && v.as_int() != tc::kSelectionIndirect &&
+            v.as_int() != tc::kSelectionPerpendicular)
             return Status::kInvalidValue;
     }
     TcGroup* g = nullptr;

@@ -25,12 +25,24 @@ tempcomp::Settings TempCompEngine::settings() const noexcept {
 
 Eigen::Vector3d TempCompEngine::vector_at(const motion::AxisVector& pos) const noexcept {
     const TempCompState& t = state_.temp_comp;
-    if (t.tool_holder == 0) return t.comp;
-    // [SIN-TEMP]: the vector turns with every orientation change of the tool holder, at once.
+    Eigen::Vector3d v = t.comp;
+    // [SIN-TEMP]: the values act along the geometry axes "in Grundstellung bzw. bei
+    // ausgeschalteter Orientierungstransformation"; with the orientation transformation on (the
+    // OTC module's #TRAFO ON with the B head, #KIN ID[4]) they turn with the tool it orients,
+    // following every orientation change and the switch itself at once.
+    const OtcState& o = state_.otc;
+    if (state_.config.option_otc && o.trafo && o.kinematics == geom::kBHeadKinematicsId) {
+        const double b = pos[static_cast<std::size_t>(o.tool_axis_b)];
+        v = tempcomp::oriented(v, geom::bc_head_rotation(b, 0.0));
+    }
+    if (t.tool_holder == 0) return v;
+    // [SIN-TEMP]: the vector turns with every orientation change of the tool holder, at once,
+    // "unabhängig von einer eventuell aktiven Orientierungstransformation"; with both, it is
+    // "beiden Drehungen unterworfen".
     const double b = pos[static_cast<std::size_t>(t.head_axis_b)];
     const double c =
         t.head_axis_c == tempcomp::kNoHeadAxis ? 0.0 : pos[static_cast<std::size_t>(t.head_axis_c)];
-    return tempcomp::oriented(t.comp, geom::bc_head_rotation(b, c));
+    return tempcomp::oriented(v, geom::bc_head_rotation(b, c));
 }
 
 void TempCompEngine::follow_assignment() const noexcept {

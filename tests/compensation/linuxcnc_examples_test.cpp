@@ -52,6 +52,7 @@
 #include "diff_support.h"
 #include "linuxcnc.h"
 #include "rwmos/geometry/element.h"
+#include "sha256.h"
 
 namespace apci::test {
 namespace {
@@ -753,10 +754,12 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
                      " mm, our lines " + std::to_string(ours.executed[os.first].line) + ".." +
                      std::to_string(ours.executed[os.last].line) + ")");
 
-        // The programmed elements of the stretch: our executed segments name their blocks.
+        // The programmed elements of the stretch: our executed segments name their blocks (a
+        // departure under G139 is the G40 block's move, not an element of the contour).
         std::set<std::uint64_t> stretch_lines;
         for (std::size_t i = os.first; i <= os.last; ++i)
-            stretch_lines.insert(ours.executed[i].line);
+            if (ours.executed[i].role != static_cast<int>(apci::run::Role::kDeparture))
+                stretch_lines.insert(ours.executed[i].line);
         std::vector<Element> contour;
         std::vector<std::uint64_t> contour_lines;
         for (const Seg& s : ours.programmed) {
@@ -1053,6 +1056,150 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
 
 INSTANTIATE_TEST_SUITE_P(Examples, LinuxCncExamples, ::testing::ValuesIn(examples()),
                          [](const ::testing::TestParamInfo<Example>& info) {
+                             std::string n;
+                             for (char c : info.param.name)
+                                 n += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return n;
+                         });
+
+// ---- LinuxCNC's lathe programs: a turning tool's imaginary tip (docs/linuxcnc-examples.md)
+
+// One lathe program both ways: LinuxCNC's lathecomp.ngc (nc_files), and its regression test
+// tests/ccomp/lathe-comp/test.ngc, which is lathecomp.ngc with G41 and G42 swapped (not in the
+// package: made here, and checked against the file's SHA-256).
+struct LatheExample {
+    std::string name;
+    bool swap_sides = false;        // made from lathecomp.ngc by swapping G41 and G42
+    std::string sha256;             // of the original's text
+    std::string program;            // ours, under the source tree
+    std::size_t warnings = 0;       // SelfApproach warnings of our run
+};
+
+void PrintTo(const LatheExample& e, std::ostream* os) {
+    *os << e.name;
+}
+
+std::vector<LatheExample> lathe_examples() {
+    return {{"lathecomp", false,
+             "a30716e99d35e02e72009538bd69eb97454278ce8cbbd5abf14c227b666bde5c",
+             "examples/linuxcnc/lathecomp.nc", 1},
+            {"lathe-comp", true,
+             "d40314817adf2b47bfa3583c88eae224658a140988a43ed15542a1788d35742f",
+             "examples/linuxcnc/lathe_comp.nc", 1}};
+}
+
+// The lines "g41" and "g42" swapped.
+std::string swap_sides(const std::string& ngc) {
+    std::string out;
+    std::istringstream lines(ngc);
+    for (std::string line; std::getline(lines, line);)
+        out += (line == "g41" ? "g42" : line == "g42" ? "g41" : line) + "\n";
+    return out;
+}
+
+// Our executed path in the turning plane G18: (Z, X), the third axis Y.
+class LatheSink final : public apci::run::RunSink {
+  public:
+    void executed(const apci::run::PathSegment& s) override {
+        CanonMove m;
+        const Vec2 a(s.start.z(), s.start.x()), b(s.end.z(), s.end.x());
+        m.path = s.kind == apci::run::SegmentKind::kArc
+                     ? make_arc(a, b, {s.center.z(), s.center.x()}, s.ccw)
+                     : make_line(a, b);
+        m.rapid = s.kind == apci::run::SegmentKind::kRapid;
+        m.third = s.end.y();
+        moves.push_back(m);
+    }
+    std::vector<CanonMove> moves;
+};
+
+class LinuxCncLathe : public ::testing::TestWithParam<LatheExample> {};
+
+// The whole path, every move of it (rapid moves, the first pass without compensation, the
+// approach to each compensated pass, its contour, the move after G40), is LinuxCNC's within
+// 1e-3 mm: move for move, the same kind (rapid, line, arc and its sense), the end points and arc
+// centres within 1e-3 mm, and the Hausdorff distance of the two paths within 1e-3 mm. LinuxCNC
+// controls a turning tool's imaginary tip (tool orientation Q2, Q7); so does ours, with the
+// cutting edge position (srk_lage 2, 7).
+TEST_P(LinuxCncLathe, TheWholePathIsLinuxCncsWithinAThousandthOfAMillimetre) {
+    if (!rs274().why.empty()) GTEST_SKIP() << rs274().why;
+    const LatheExample& ex = GetParam();
+    std::string original = read_text(rs274().ncfiles + "/lathecomp.ngc");
+    ASSERT_FALSE(original.empty()) << "cannot read " << rs274().ncfiles << "/lathecomp.ngc";
+    if (ex.swap_sides) original = swap_sides(original);
+    ASSERT_EQ(test_support::sha256_hex(original), ex.sha256)
+        << ex.name << ": not the text of LinuxCNC's file";
+    // T2, T7 and T9 of the lathe tool tables (tests/ccomp/lathe-comp/test.tbl): 0.1 in nose
+    // diameter, orientation Q2 and Q7, no offsets (H9 is T9's).
+    const std::string table = "T2 P2 Z0.0 X0.0 D0.1 Q2 ;\nT7 P7 Z0.0 X0.0 D0.1 Q7 ;\n"
+                              "T9 P9 Z0.0 X0.0 D0.1 Q9 ;\n";
+    const std::vector<Rs274Result> runs =
+        run_rs274(rs274(), {original, inch_to_mm(original)}, table, 18, 2);
+    for (std::size_t i = 0; i < runs.size(); ++i)
+        ASSERT_TRUE(runs[i].ran && runs[i].exit_code == 0 && !runs[i].moves.empty())
+            << "rs274 on " << ex.name << (i == 1 ? " (in mm)" : "") << ": exit "
+            << runs[i].exit_code << " " << runs[i].error;
+    const std::vector<CanonMove>& lc = runs[1].moves;
+    {
+        // The mm version makes the original's moves (within the two printed roundings).
+        const std::vector<CanonMove>& in = runs[0].moves;
+        ASSERT_EQ(in.size(), lc.size());
+        for (std::size_t i = 0; i < lc.size(); ++i)
+            EXPECT_LE((kInch * in[i].path.end - lc[i].path.end).cwiseAbs().maxCoeff(),
+                      kPrintedRounding)
+                << "move " << i;
+    }
+
+    auto tools = apci::nc::load_tool_table(std::string(kSourceDir) + "/examples/linuxcnc/lathe.tools");
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    const std::string path = std::string(kSourceDir) + "/" + ex.program;
+    LatheSink sink;
+    const EmulatorRun run = run_on_emulator(read_text(path), path, tools.value(), sink);
+    ASSERT_TRUE(run.error.empty()) << run.error;
+    for (const apci::run::RunError& e : run.outcome.errors)
+        ADD_FAILURE() << ex.program << ": line " << e.block.line << ": " << e.code << ": "
+                      << e.message;
+    for (const apci::run::RunError& w : run.outcome.warnings)
+        EXPECT_EQ(w.code, "SelfApproach") << "line " << w.block.line << ": " << w.message;
+    EXPECT_EQ(run.outcome.warnings.size(), ex.warnings);
+
+    // Move for move (zero-length moves left out on both sides).
+    const auto moving = [](const std::vector<CanonMove>& all) {
+        std::vector<CanonMove> out;
+        for (const CanonMove& m : all)
+            if (length(m.path) > 1e-9) out.push_back(m);
+        return out;
+    };
+    const std::vector<CanonMove> theirs = moving(lc), ours = moving(sink.moves);
+    ASSERT_EQ(ours.size(), theirs.size()) << ex.name << ": moves";
+    double worst_point = 0.0;
+    std::vector<Element> their_path, our_path;
+    for (std::size_t i = 0; i < theirs.size(); ++i) {
+        const Element &a = ours[i].path, &b = theirs[i].path;
+        EXPECT_EQ(ours[i].rapid, theirs[i].rapid) << "move " << i << ": " << element_text(a);
+        EXPECT_EQ(is_arc(a), is_arc(b)) << "move " << i << ": " << element_text(a) << " vs "
+                                       << element_text(b);
+        if (is_arc(a) && is_arc(b)) {
+            EXPECT_EQ(a.ccw, b.ccw) << "move " << i;
+            worst_point = std::max(worst_point, (a.centre - b.centre).norm());
+        }
+        worst_point = std::max({worst_point, (a.start - b.start).norm(), (a.end - b.end).norm(),
+                                std::abs(ours[i].third - theirs[i].third)});
+        their_path.push_back(b);
+        our_path.push_back(a);
+    }
+    const double dev = hausdorff(our_path, their_path, kSpacing);
+    EXPECT_LE(worst_point, kMaxDeviation) << ex.name;
+    EXPECT_LE(dev, kMaxDeviation) << ex.name;
+    std::printf("%s: %zu moves alike, end points and centres within %.2e mm, whole path (%.3f mm) "
+                "within %.2e mm of LinuxCNC's (limit %.0e)\n",
+                ex.name.c_str(), ours.size(), worst_point, path_length(our_path), dev,
+                kMaxDeviation);
+    EXPECT_GT(path_length(our_path), 250.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, LinuxCncLathe, ::testing::ValuesIn(lathe_examples()),
+                         [](const ::testing::TestParamInfo<LatheExample>& info) {
                              std::string n;
                              for (char c : info.param.name)
                                  n += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';

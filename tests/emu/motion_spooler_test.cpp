@@ -89,6 +89,151 @@ TEST_F(Spooler, DeactivationReleasesTheLastProfileWithItsDeparture) {
     expect_at(position(), 10, -10);
 }
 
+// CuttingEdge (docs/compensation.md "Turning tools"): the board carries the nose centre's path
+// over to the imaginary tip, by the radius along LinuxCNC's table in the plane (its first axis
+// as Z, its second as X: position 2 is (-r, -r)). The approach runs from the tool to the carried
+// element, the departure from it back to the programmed end; the contour and its corners whole.
+TEST_F(Spooler, CuttingEdgeCarriesTheCompensatedPathOverToTheImaginaryTip) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge, 2), Status::kOk);
+    EXPECT_EQ(read_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge), 2);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, -10));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 5u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    expect_at(segs[0].start, 0, 0);  // from the tool
+    expect_at(segs[0].end, -1, 0);   // onto N1's offset start (0, 1), carried by (-1, -1)
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 9, 0);
+    EXPECT_EQ(segs[2].role, SegmentRole::kTransition);  // the arc about (10, 0), carried
+    EXPECT_EQ(segs[2].kind, SegmentKind::kArc);
+    expect_at(segs[2].center, 9, -1);
+    expect_at(segs[2].end, 10, -1);
+    EXPECT_EQ(segs[3].role, SegmentRole::kContour);
+    expect_at(segs[3].end, 10, -11);
+    EXPECT_EQ(segs[4].role, SegmentRole::kDeparture);  // back to the programmed end
+    expect_at(segs[4].end, 10, -10);
+}
+
+// 0 and 9 are the nose centre: nothing is carried over; a change of the position while the
+// group compensates ends the contour and the next profile approaches the carried path anew.
+TEST_F(Spooler, CuttingEdgeNineIsTheNoseCentreAndAChangeReApproaches) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge, 9), Status::kOk);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 20, 0));
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubCuttingEdge, 8), Status::kOk);
+    spool_ok(line(3, 30, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_GE(segs.size(), 4u);
+    expect_at(segs[0].end, 0, 1);  // position 9: the nose centre's offset start
+    // N2 ends the contour at its offset end (20, 1); N3 approaches anew, carried by (0, +1).
+    bool reapproached = false;
+    for (const Segment& s : segs) {
+        if (s.tag == 3 && s.role == SegmentRole::kApproach) {
+            reapproached = true;
+            expect_at(s.start, 20, 1);
+        }
+        if (s.tag == 3 && s.role == SegmentRole::kContour) expect_at(s.end, 30, 2);
+    }
+    EXPECT_TRUE(reapproached);
+}
+
+// SelectionMode 138 (G138, [ISG-PROG]'s direct selection; docs/compensation.md): the first
+// profile runs from the tool straight to the second's offset start, no corner between; STATUS = 0
+// and the next profile depart as under 139.
+TEST_F(Spooler, SelectionMode138ApproachesTheSecondProfilesOffsetStartDirectly) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode, 138), Status::kOk);
+    EXPECT_EQ(read_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode), 138);
+    activate();
+    spool_ok(line(1, 10, 0));
+    spool_ok(line(2, 10, 10));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line(3, 0, 10));
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 3u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[0].tag, 1u);
+    expect_at(segs[0].end, 9, 0);  // N2's offset start, left of (10, 0) going +Y
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    expect_at(segs[1].end, 9, 10);
+    EXPECT_EQ(segs[2].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[2].tag, 3u);
+}
+
+// Under 138 an arc as the first profile is KorrError ([ISG-PROG]: approach blocks on lines only).
+TEST_F(Spooler, SelectionMode138RefusesAnArcAsTheFirstProfile) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode, 138), Status::kOk);
+    activate();
+    const MotionResult r = board.spool(arc(4, true, 10, 10, 0, 10));
+    EXPECT_EQ(r.status, Status::kWrongDeviceState);
+    EXPECT_EQ(r.errors, objif::map::tc::kKorrError);
+    EXPECT_EQ(r.tag, 4u);
+}
+
+// SelectionMode 139 (docs/compensation.md "Approach and departure"): STATUS = 0 ends the
+// contour at its offset end, and the next profile, uncompensated, is the departure: from there
+// to its own end, with the contour's side. The one after it is an ordinary move again, and so
+// is a profile after a rapid.
+TEST_F(Spooler, UnderG139TheProfileAfterDeactivationIsTheDeparture) {
+    setup_group(1.0);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubSelectionMode, 139), Status::kOk);
+    activate();
+    spool_ok(line(1, 10, 0));  // the approach
+    spool_ok(line(2, 20, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line(3, 30, -5));
+    spool_ok(line(4, 40, -5));
+    run();
+    auto segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[2].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[2].tag, 3u);
+    expect_at(segs[2].start, 20, 1);
+    expect_at(segs[2].end, 30, -5);
+    EXPECT_EQ(segs[3].role, SegmentRole::kUncompensated);
+    // Another stretch, ended by STATUS = 0 and then a rapid: no departure after it.
+    activate();
+    spool_ok(line(5, 50, -5));
+    spool_ok(line(6, 60, -5));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(rapid(7, 70, 0));
+    spool_ok(line(8, 80, 0));
+    run();
+    segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[2].role, SegmentRole::kRapid);
+    EXPECT_EQ(segs[3].role, SegmentRole::kUncompensated);
+}
+
+// Under G237 the departure is the board's own, at right angles; the next profile is an ordinary
+// move.
+TEST_F(Spooler, UnderG237TheProfileAfterTheDepartureIsAnOrdinaryMove) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    spool_ok(line(2, 20, -5));
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 4u);
+    EXPECT_EQ(segs[2].role, SegmentRole::kDeparture);
+    EXPECT_EQ(segs[2].tag, 1u);
+    EXPECT_EQ(segs[3].role, SegmentRole::kUncompensated);
+}
+
 TEST_F(Spooler, Ssf2001ReleasesTheHeldProfileAndCompensationGoesOn) {
     setup_group(1.0);
     activate();
@@ -258,6 +403,64 @@ TEST_F(Spooler, RapidMakesCompensationIneffectiveAndTheNextProfileReApproaches) 
     EXPECT_EQ(segs[3].role, SegmentRole::kApproach);
     EXPECT_EQ(segs[3].tag, 3u);
     expect_at(segs[3].end, 20, 21);
+}
+
+// Design (docs/motion.md section 4): a traverse (a G00 under G41/G42 in NC programs) is
+// compensated as a G01 at the rapid feed, the contour goes on through it, and every segment of
+// its element is marked as a traverse; the G01 before and after it are not.
+TEST_F(Spooler, TraverseIsCompensatedAsALineAtTheRapidFeedAndMarked) {
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    Profile t = line(2, 10, 20, 0.0);
+    t.kind = ProfileKind::kTraverse;
+    spool_ok(t);
+    EXPECT_TRUE(prof_marked()) << "the traverse is held as a G01 is";
+    spool_ok(line(3, 30, 20));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 6u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);  // N1, (0,1) to (9,1): an inside corner
+    expect_at(segs[1].end, 9, 1);
+    EXPECT_FALSE(segs[1].traverse);
+    EXPECT_EQ(segs[2].tag, 2u);
+    EXPECT_EQ(segs[2].role, SegmentRole::kContour);  // N2 on its offset, x = 10 - 1
+    expect_at(segs[2].start, 9, 1);
+    expect_at(segs[2].end, 9, 20);
+    EXPECT_EQ(segs[2].feed, rwmos::motion::kDefaultRapidFeed);
+    EXPECT_TRUE(segs[2].traverse);
+    EXPECT_EQ(segs[3].tag, 2u);  // the outside corner's transition belongs to the traverse
+    EXPECT_EQ(segs[3].role, SegmentRole::kTransition);
+    EXPECT_TRUE(segs[3].traverse);
+    EXPECT_EQ(segs[4].tag, 3u);
+    EXPECT_EQ(segs[4].role, SegmentRole::kContour);
+    EXPECT_FALSE(segs[4].traverse);
+    expect_at(segs[4].end, 30, 21);
+}
+
+// A traverse without compensation runs straight to its end at the rapid feed, still marked.
+TEST_F(Spooler, TraverseWithoutCompensationIsAStraightRapidMove) {
+    Profile t = line(5, 10, 20, 0.0);
+    t.kind = ProfileKind::kTraverse;
+    spool_ok(t);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
+    EXPECT_EQ(segs[0].end, xyz(10, 20));
+    EXPECT_EQ(segs[0].feed, rwmos::motion::kDefaultRapidFeed);
+    EXPECT_TRUE(segs[0].traverse);
+}
+
+// Kinds beyond the traverse (4) are refused; the traverse alone may go without a feed.
+TEST_F(Spooler, ProfileKindAboveTheTraverseIsRefused) {
+    Profile p = line(1, 10, 0, 600.0);
+    p.kind = static_cast<ProfileKind>(5);
+    EXPECT_EQ(board.spool(p).status, Status::kInvalidValue);
+    Profile g1 = line(1, 10, 0, 0.0);
+    EXPECT_EQ(board.spool(g1).status, Status::kValueTooLow);
 }
 
 // Design (docs/motion.md section 4): a profile while another group is active does not continue
@@ -478,7 +681,8 @@ TEST_F(Spooler, BadProfilesAreRefusedAndChangeNothing) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
     const Case cases[] = {
-        {"unknown kind", with([](Profile& p) { p.kind = static_cast<ProfileKind>(4); }),
+        {"unknown kind (above the traverse, 4)",
+         with([](Profile& p) { p.kind = static_cast<ProfileKind>(5); }),
          Status::kInvalidValue},
         {"feed NaN", with([&](Profile& p) { p.feed = nan; }), Status::kInvalidValue},
         {"feed negative", with([](Profile& p) { p.feed = -1; }), Status::kValueTooLow},

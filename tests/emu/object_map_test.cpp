@@ -108,9 +108,14 @@ std::vector<ObjectRow> object_rows() {
          {low(D(-1.0e6 - 1.0)), high(D(1.0e6 + 1.0)), invalid(kNaN), invalid(-kInf)}},
         {"CornerMode", T1(20), kI, rw, I(26), I(25), true, {low(I(24)), high(I(27))}},
         {"Side", T1(21), kI, r, I(40), {}, true, {}},
+        // Every value but 138, 139, 237 is InvalidValue (docs/object-map.md), below and above too.
         {"SelectionMode", T1(22), kI, rw, I(237), I(139), true,
-         {low(I(138)), high(I(238)), {I(140), Status::kInvalidValue}, {I(236), Status::kInvalidValue}}},
+         {{I(137), Status::kInvalidValue}, {I(238), Status::kInvalidValue},
+          {I(140), Status::kInvalidValue}, {I(236), Status::kInvalidValue},
+          {I(std::numeric_limits<std::int32_t>::min()), Status::kInvalidValue},
+          {I(std::numeric_limits<std::int32_t>::max()), Status::kInvalidValue}}},
         {"LengthMode", T1(23), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"CuttingEdge", T1(24), kI, rw, I(0), I(9), true, {low(I(-1)), high(I(10))}},
         // ---- 3D compensation, bus 1310, DeviceNumber 0.
         {"C3_Tool", C0(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
         {"C3_CallDL", C0(2, 0), kD, rw, D(0.0), D(-0.5), true, c3_range()},
@@ -170,6 +175,10 @@ std::vector<ObjectRow> object_rows() {
         {"OtcOffsetEnable", O1(2), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
         {"OtcOffsetRequest", O1(3), kI, r, I(0), {}, true, {}},
         {"OtcOffsetState", O1(4), kI, r, I(0), {}, true, {}},
+        {"BackToStartCommand", O1(5), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"BackToStartEnable", O1(6), kI, rw, I(0), I(1), true, {low(I(-1)), high(I(2))}},
+        {"BackToStartRequest", O1(7), kI, r, I(0), {}, true, {}},
+        {"BackToStartState", O1(8), kI, r, I(0), {}, true, {}},
         // ---- OTC DeviceNumber 2.
         {"OtcToolNumber", O2(1), kI, rw, I(0), I(1023), true, {low(I(-1)), high(I(1024))}},
         {"OtcToolType", O2(2), kI, rw, I(0), I(2), true, {low(I(-1)), high(I(4))}},

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "motion_fixture.h"
+#include "objif/map/object_map.h"
 #include "rwmos/geometry/kinematics.h"
 
 namespace {
@@ -237,6 +238,39 @@ TEST_F(TempCompBoard, SwitchingTheToolHolderActsAtTheNextCycle) {
     ASSERT_EQ(set(tcomp::kIdxToolHolder, 0, 0), Status::kOk);
     step_both(1);
     EXPECT_EQ(displacement()[0], 0.0);
+    EXPECT_EQ(displacement()[2], 0.05);
+}
+
+// [SIN-TEMP]: the values act along the geometry axes "in Grundstellung bzw. bei ausgeschalteter
+// Orientierungstransformation"; with the orientation transformation on (#KIN ID[4], #TRAFO ON:
+// the OTC module's B head) they turn with the tool, at once, the switch included. B90 moves a +Z
+// value to +X without the tool holder.
+TEST_F(TempCompBoard, VectorTurnsWithTheOrientationTransformation) {
+    namespace otc = objif::map::otc;
+    enable({0, 1, 2});
+    comp(0.0, 0.0, 0.05);
+    spool_both(head(90.0));
+    board.run();
+    twin.run();
+    step_both(1);
+    EXPECT_EQ(displacement()[2], 0.05);  // transformation off: along Z
+    ASSERT_EQ(board.write_int(otc::kBus, otc::kDevChannel, otc::kIdxKinematics, 0, 4), Status::kOk);
+    step_both(1);
+    EXPECT_EQ(displacement()[2], 0.05);  // a kinematics alone turns nothing
+    ASSERT_EQ(board.write_int(otc::kBus, otc::kDevChannel, otc::kIdxTrafo, 0, 1), Status::kOk);
+    step_both(1);
+    EXPECT_NEAR(displacement()[0], 0.05, 1e-15);
+    EXPECT_NEAR(displacement()[2], 0.0, 1e-15);
+    // With the tool holder as well, the vector takes both turns ([SIN-TEMP]: "beiden Drehungen
+    // unterworfen"): B90 twice, +Z to -Z.
+    ASSERT_EQ(set(tcomp::kIdxToolHolder, 0, 1), Status::kOk);
+    step_both(1);
+    EXPECT_NEAR(displacement()[0], 0.0, 1e-15);
+    EXPECT_NEAR(displacement()[2], -0.05, 1e-15);
+    ASSERT_EQ(set(tcomp::kIdxToolHolder, 0, 0), Status::kOk);
+    ASSERT_EQ(board.write_int(otc::kBus, otc::kDevChannel, otc::kIdxTrafo, 0, 0), Status::kOk);
+    step_both(1);
+    EXPECT_EQ(displacement()[0], 0.0);  // the switch off acts at once
     EXPECT_EQ(displacement()[2], 0.05);
 }
 

@@ -553,5 +553,69 @@ TEST(Compensator, IndirectApproachConfigIsCheckedLikeTheOthers) {
     EXPECT_FALSE(c.running());
 }
 
+// ---- Direct approach (ApproachMode::kDirect, G138, [ISG-PROG]'s direct selection)
+
+CompensatorConfig direct(double r, Side side = Side::kLeft) {
+    CompensatorConfig c = config(r, side);
+    c.approach = ApproachMode::kDirect;
+    return c;
+}
+
+TEST(Compensator, DirectApproachRunsStraightToTheNextElementsOffsetStart) {
+    // From (-10, -10) over (0, 0) to (20, 0), r 0.5 left: the selection block runs straight to
+    // r left of (0, 0) at right angles to the next element, (0, 0.5), with no corner (a kink).
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(direct(0.5), {-10, -10}).ok());
+    ASSERT_TRUE(c.push(make_line({-10, -10}, {0, 0}), 1, out).ok());
+    EXPECT_TRUE(out.empty());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {20, 0}), 2, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_EQ(out[0].index, 1u);
+    EXPECT_TRUE(same(out[0].path, make_line({-10, -10}, {0, 0.5})));
+    ASSERT_TRUE(c.finish(out).ok());
+    ASSERT_GE(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kContour);
+    EXPECT_TRUE(same(out[0].path, make_line({0, 0.5}, {20, 0.5})));
+}
+
+TEST(Compensator, DirectApproachOntoAnArcEndsAtTheArcsOffsetStart) {
+    // Then a quarter arc about (0, 10) counter-clockwise, r 1 left (inside): its offset starts at
+    // (0, 1).
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(direct(1), {-5, -5}).ok());
+    ASSERT_TRUE(c.push(make_line({-5, -5}, {0, 0}), 1, out).ok());
+    ASSERT_TRUE(c.push(make_arc({0, 0}, {10, 10}, {0, 10}, true), 2, out).ok());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(same(out[0].path, make_line({-5, -5}, {0, 1})));
+}
+
+TEST(Compensator, DirectApproachOfASingleElementRunsToItsOffsetEnd) {
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(direct(2, Side::kRight), {0, 0}).ok());
+    ASSERT_TRUE(c.push(make_line({0, 0}, {2, 0}), 7, out).ok());
+    ASSERT_TRUE(c.finish(out).ok());
+    ASSERT_GE(out.size(), 1u);
+    EXPECT_EQ(out[0].role, SegmentRole::kApproach);
+    EXPECT_TRUE(same(out[0].path, make_line({0, 0}, {2, -2})));
+}
+
+TEST(Compensator, DirectSelectionOnAnArcIsKorrError) {
+    // [ISG-PROG]: approach blocks are built on lines only.
+    PathCompensator c;
+    SegmentBatch out;
+    ASSERT_TRUE(c.begin(direct(1), {0, 0}).ok());
+    const StepResult r = c.push(make_arc({0, 0}, {10, 10}, {0, 10}, true), 3, out);
+    EXPECT_EQ(r.reason, Reason::kDirectSelectionOnAnArc);
+    EXPECT_EQ(r.errors, bits(ErrorBit::kKorrError));
+    EXPECT_EQ(r.index, 3u);
+    EXPECT_TRUE(out.empty());
+    // Nothing changed: a line is taken after it.
+    ASSERT_TRUE(c.push(make_line({0, 0}, {10, 0}), 4, out).ok());
+}
+
 }  // namespace
 }  // namespace rwmos::geom

@@ -436,6 +436,34 @@ TEST(Interpreter, AnArcRightAfterALoneG40IsRefusedUnderG139) {
     EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG40\nG2 X-10 I-5\nM30"), "");
 }
 
+// The selection word in the lone G40's own block decides ([ISG-PROG]: the method acts on the
+// G40 of its block): G237 G40 departs at G40 itself, so an arc may follow; G139 G40 and G138 G40
+// leave the departure to the next move, which must then be straight. Both ways round, from
+// either method in force.
+// G138, G139, G237 ([ISG-PROG]): modal, each a SelectionModeChange when it changes.
+TEST(Interpreter, SelectionMethodsAreModalEvents) {
+    const auto ev = events_of("G138\nG138 G0 X1\nG139\nG237\nM30");
+    std::vector<int> modes;
+    for (const Event& e : ev)
+        if (const auto* m = std::get_if<SelectionModeChange>(&e.data)) modes.push_back(g_number(m->mode));
+    EXPECT_EQ(modes, (std::vector<int>{138, 139, 237}));
+}
+
+TEST(Interpreter, ALoneG40TakesTheSelectionMethodOfItsOwnBlock) {
+    EXPECT_EQ(error_of("G0 X10\nG41 G1 X0 F1\nG237 G40\nG2 X-10 I-5\nM30"), "");
+    EXPECT_EQ(error_of("G138\nG0 X10\nG41 G1 X0 F1\nG237 G40\nG2 X-10 I-5\nM30"), "");
+    EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG139 G40\nG2 X-10 I-5\nM30"),
+              "prog.nc:5:1: G2 right after G40: under G139 this move departs from the compensated "
+              "point, r beside the contour, not from the arc's programmed start; program a G1 (or "
+              "G0) first, or G40 with G237");
+    EXPECT_EQ(error_of("G237\nG0 X10\nG41 G1 X0 F1\nG138 G40\nG2 X-10 I-5\nM30"),
+              "prog.nc:5:1: G2 right after G40: under G138 this move departs from the compensated "
+              "point, r beside the contour, not from the arc's programmed start; program a G1 (or "
+              "G0) first, or G40 with G237");
+    // A selection word after the lone G40 changes nothing of its departure.
+    EXPECT_NE(error_of("G0 X10\nG41 G1 X0 F1\nG40\nG237\nG2 X-10 I-5\nM30"), "");
+}
+
 TEST(Interpreter, ACoordinateBeyondTheBoardsRangeIsRefusedWithItsWord) {
     EXPECT_EQ(error_of("G1 X99999999999 F1\nM30"),
               "prog.nc:1:4: X 1e+11 mm is beyond the board's coordinate range of +-100000 mm");
@@ -522,6 +550,31 @@ TEST(Interpreter, FailedBlockChangesNoState) {
     EXPECT_EQ(after.feed, before.feed);
     EXPECT_EQ(after.tool, before.tool);
     EXPECT_EQ(after.position, before.position);
+}
+
+// A turning tool's cutting edge position (srk_lage 1..8, ISG P-TOOL-00002) is given in the
+// turning plane: G41/G42 with it only in G18, as LinuxCNC ("G41 with lathe tool, but plane is
+// not G18"); and only a turning tool (typ 1) has one. 0 and 9 (the nose centre) in any plane.
+TEST(Interpreter, ATurningToolsCuttingEdgeCompensatesInG18Only) {
+    Result<ToolTable> tools = parse_tool_table(
+        "wz[2].gueltig 1\nwz[2].typ 1\nwz[2].radius 5\nwz[2].srk_lage 2\n"
+        "wz[3].gueltig 1\nwz[3].typ 0\nwz[3].srk_lage 3\n"
+        "wz[9].gueltig 1\nwz[9].typ 1\nwz[9].srk_lage 9\n",
+        "t.tools");
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    InterpreterOptions o;
+    o.tools = &tools.value();
+    EXPECT_EQ(error_of("D2\nG18\nG42 G1 X1 F100\nG40 X2\nM30", o), "");
+    EXPECT_EQ(error_of("D2\nG42 G1 X1 F100\nM30", o),
+              "prog.nc:2:1: G42 with the turning tool D2 (cutting edge position 2) in G17: the "
+              "cutting edge position is given in the turning plane; program G18 (Z-X) before G42");
+    EXPECT_EQ(error_of("D2\nG19\nG41\nM30", o),
+              "prog.nc:3:1: G41 with the turning tool D2 (cutting edge position 2) in G19: the "
+              "cutting edge position is given in the turning plane; program G18 (Z-X) before G41");
+    EXPECT_EQ(error_of("D3\nG18\nG41\nM30", o),
+              "prog.nc:3:1: G41 with D3: its cutting edge position (srk_lage 3) is a turning "
+              "tool's, and D3 is type 0: set wz[3].typ 1 (P-TOOL-00001) or srk_lage 0");
+    EXPECT_EQ(error_of("D9\nG41 G1 X1 F100\nG40 X2\nM30", o), "");
 }
 
 TEST(Interpreter, ToolTableRequiresDefinedValidTool) {

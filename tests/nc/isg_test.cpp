@@ -166,6 +166,16 @@ TEST(OtcRules, UnderG139AMoveMustComeBetweenG40AndOtcOff) {
               "");
     EXPECT_EQ(
         error_of("F600\nD1\nG237\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\n#OTC OFF\nM30\n"), "");
+    // G138 as G139 ("Mit den WRK Modi G138/G139"); the G40 block's own word decides.
+    EXPECT_EQ(error_of("F600\nD1\nG138\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG40\n#OTC OFF\nM30\n"),
+              "prog.nc:8:1: 90050: #OTC OFF right after G40 without a move: under G138 the block "
+              "after G40 departs from the contour, so program a move (with the G40 or after it) "
+              "before #OTC OFF");
+    EXPECT_EQ(error_of("F600\nD1\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG237 G40\n#OTC OFF\nM30\n"),
+              "");
+    EXPECT_NE(error_of("F600\nD1\nG237\n#OTC ON [RADIUS]\nG41 G1 X10\nX20\nG139 G40\n#OTC OFF\n"
+                       "M30\n"),
+              "");
 }
 
 TEST(OtcRules, ParametersAreNotChangedWhileOtcIsOn) {
@@ -215,7 +225,9 @@ TEST(Kinematics, TrafoOnNeedsAKinematics) {
 }
 
 // docs/design.md section 8: with the transformation the program gives the tool tip; at the switch
-// the position in force is re-expressed (tip = pivot - length t(B)).
+// the position in force is re-expressed, the pivot staying where it is: outside the
+// transformation the length acts on the plane's tool axis (pivot = point + length e_z), under it
+// along the tool (pivot = tip + length t(B)).
 TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
     const ToolTable tools = seed_tools();  // D1: laenge 50 mm
     InterpreterOptions o;
@@ -229,11 +241,23 @@ TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
     EXPECT_EQ(t[0].tool_length, 50.0);
     const auto rapids = only<RapidMove>(ev);
     ASSERT_EQ(rapids.size(), 3u);
-    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 0, 250));  // the tip under the pivot at Z300
-    EXPECT_EQ(rapids[1].end, Eigen::Vector3d(0, 0, 250));    // B45: the tip stays
-    // After #TRAFO OFF the pivot again: tip (100, 0, 50) + 50 (sin 45, 0, cos 45).
+    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 0, 300));  // B0: the tip where it was
+    EXPECT_EQ(rapids[1].end, Eigen::Vector3d(0, 0, 300));    // B45: the tip stays
+    // After #TRAFO OFF the pivot, tip (100, 0, 50) + 50 (sin 45, 0, cos 45), less the length on Z.
     EXPECT_NEAR(rapids[2].start.x(), 100 + 50 * std::sqrt(0.5), 1e-12);
-    EXPECT_NEAR(rapids[2].start.z(), 50 + 50 * std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(rapids[2].start.z(), 50 + 50 * std::sqrt(0.5) - 50, 1e-12);
+}
+
+// In the Z-X plane the length acts on Y outside the transformation: at B0 the tip is the pivot
+// one length below it along Z, the programmed point one length beside it along Y.
+TEST(Kinematics, TrafoTakesTheLengthOffThePlanesToolAxis) {
+    const ToolTable tools = seed_tools();
+    InterpreterOptions o;
+    o.tools = &tools;
+    const auto ev = events_of("D1\nG18\nG0 X0 Y0 Z300\n#KIN ID[4]\n#TRAFO ON\nG0 X1\nM30\n", o);
+    const auto rapids = only<RapidMove>(ev);
+    ASSERT_EQ(rapids.size(), 2u);
+    EXPECT_EQ(rapids[1].start, Eigen::Vector3d(0, 50, 250));
 }
 
 TEST(Kinematics, NoToolChangeOrRadiusCompensationUnderTrafo) {
@@ -459,6 +483,49 @@ TEST(Variables, AVariableSourceSuppliesTheBoardsValues) {
     EXPECT_EQ(t.value().next(ev), EventStream::Next::kError);
     EXPECT_EQ(t.value().error().to_string(),
               "prog.nc:1:6: V.G.WZ_AKT.WEAR_RADIUS cannot be read: not on this board");
+}
+
+// [ISG-OTC] section 2.8: the wear values are "in [mm] oder [Inch]": under G70 a program reads
+// them in inches (the board's 9.652 mm of radius wear is 0.38 in, and G0 X[P1] goes to 9.652
+// mm); under G71 in mm. The wear on A, B, C is an angle, the wear constant 0.1 um/m: as read.
+TEST(Variables, WearLengthsAreReadInTheProgramsUnit) {
+    struct Board : VariableSource {
+        bool read(const VariableRef& v, double& out, std::string&) override {
+            out = v.variable == NcVariable::kWearConst ? 1000.0 : 9.652;
+            return true;
+        }
+    } board;
+    struct Case {
+        const char* variable;
+        double inch_value;  // what P1 holds under G70
+    };
+    const Case cases[] = {{"V.G.WZ_AKT.WEAR_RADIUS", 0.38},
+                          {"V.G.WZ_AKT.WEAR_RADIUS_CONT", 0.38},
+                          {"V.G.WZ_AKT.WEAR[0]", 0.38},
+                          {"V.G.WZ_AKT.WEAR.Z", 0.38},
+                          {"V.G.WZ_AKT.WEAR[6]", 0.38},
+                          {"V.G.WZ_AKT.WEAR[4]", 9.652},  // B: degrees
+                          {"V.G.WZ_AKT.WEAR.A", 9.652},
+                          {"V.G.WZ_AKT.WEAR_CONST", 1000.0}};
+    for (const Case& c : cases) {
+        for (const char* units : {"G70", "G71"}) {
+            const bool inch = std::string(units) == "G70";
+            const std::string text =
+                std::string(units) + "\nP1 = " + c.variable + "\nG0 X[P1]\nM30\n";
+            Result<Program> p = Program::from_text(text, "prog.nc");  // keeps a view of text
+            ASSERT_TRUE(p) << p.error().to_string();
+            Result<EventStream> s = p.value().events();
+            ASSERT_TRUE(s);
+            s.value().set_variable_source(&board);
+            Event ev;
+            ASSERT_EQ(s.value().next(ev), EventStream::Next::kEvent)
+                << c.variable << " " << units << ": " << s.value().error().to_string();
+            const double p1 = inch ? c.inch_value : (c.inch_value == 0.38 ? 9.652 : c.inch_value);
+            EXPECT_NEAR(std::get<RapidMove>(ev.data).end.x(), inch ? p1 * kMillimetresPerInch : p1,
+                        1e-9)
+                << c.variable << " " << units;
+        }
+    }
 }
 
 }  // namespace

@@ -184,7 +184,7 @@ TEST(KlartextL, WordErrors) {
               "prog.nc:3:9: X and IX in one block: give the axis once");
     EXPECT_EQ(error_of(pgm("2 L X+1 NX+0\n")),
               "prog.nc:3:9: 'NX' is not a word of an L block (known: X Y Z IX IY IZ B C R0 RL RR F "
-              "FMAX M)");
+              "FMAX FZ FU F AUTO M)");
     EXPECT_EQ(error_of(pgm("2 L X+1Y+2\n")),
               "prog.nc:3:8: expected a blank after the value of 'X', found 'Y' (Klartext words are "
               "separated by blanks)");
@@ -193,7 +193,7 @@ TEST(KlartextL, WordErrors) {
     EXPECT_EQ(error_of(pgm("2 L X+1 R5\n")),
               "prog.nc:3:9: expected R0, RL or RR (radius compensation); 'R' takes no value here");
     EXPECT_EQ(error_of(pgm("2 L X+1 F100 FMAX\n")),
-              "prog.nc:3:14: F and FMAX in one block: give one feed");
+              "prog.nc:3:14: two feeds in one block (F, FMAX, FZ, FU, F AUTO): give one");
     EXPECT_EQ(error_of(pgm("2 L X+1 F0\n")), "prog.nc:3:10: feed rate F must be greater than 0");
     EXPECT_EQ(error_of(pgm("2 L X+1 M3\n")),
               "prog.nc:3:9: unknown M function M3 (known: M2, M30, M107, M108, M128, M129)");
@@ -495,7 +495,7 @@ TEST(KlartextToolCall, SyntaxAndRules) {
     EXPECT_EQ(error_of(pgm("2 TOOL CALL \"MILL\" Z\n")),
               "prog.nc:3:13: tools are called by number (TOOL CALL 5 Z), not by name");
     EXPECT_EQ(error_of(pgm("2 TOOL CALL 1 Z R+3\n")),
-              "prog.nc:3:17: unknown word 'R' in TOOL CALL (known: the tool axis Z, S, DL, DR, "
+              "prog.nc:3:17: unknown word 'R' in TOOL CALL (known: the tool axis Z, S, F, DL, DR, "
               "DR2)");
     EXPECT_EQ(error_of(pgm("2 L X+1 RL\n3 TOOL CALL 1 Z\n")),
               "prog.nc:4:3: TOOL CALL 1 while radius compensation RL is on: program R0 in an "
@@ -564,6 +564,61 @@ TEST(Klartext, TolerancesAreTheBoardsOwn) {
     EXPECT_EQ(kNormalAgainstToolTolerance, rwmos::comp3d::kNormalAgainstToolTolerance);
 }
 #endif
+
+// [TNC-3D], "Gerade LN": "F, FMAX, FZ, FU oder F AUTO". FZ is per tooth (x the tool's teeth,
+// the TNC tool table's CUT, wz[n].cut, x S), FU per revolution (x S), F AUTO the TOOL CALL's F;
+// each modal, turned into mm/min at every move with the S and the tool in force then.
+TEST(KlartextFeeds, FzFuAndFAutoBecomeFeedsInMillimetresPerMinute) {
+    const ToolTable t = tools("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n"
+                              "wz[1].cut 4\nwz[2].gueltig 1\nwz[2].cut 2\n");
+    InterpreterOptions o;
+    o.tools = &t;
+    const auto ev = events_of(
+        "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000 F300\n2 L X+10 Y+0 Z+0 R0 FZ0.05\n"
+        "3 L X+20 FU0.2\n4 L X+30 F AUTO\n5 L X+40 F600\n6 L X+50 FZ0.1\n"
+        "7 TOOL CALL 2 Z S500\n8 L X+60\n10 END PGM T MM\n",
+        o);
+    std::vector<double> feeds;
+    for (const auto& l : only<LineMove>(ev)) feeds.push_back(l.feed);
+    // 0.05 x 4 x 1000; 0.2 x 1000; F300 of the call; F600; 0.1 x 4 x 1000; the new tool's two
+    // teeth at S500: 0.1 x 2 x 500.
+    EXPECT_EQ(feeds, (std::vector<double>{200.0, 200.0, 300.0, 600.0, 400.0, 100.0}));
+}
+
+TEST(KlartextFeeds, WhatAFeedNeedsIsNamedWhereItIsMissing) {
+    const ToolTable t = tools("wz[1].gueltig 1\nwz[2].gueltig 1\nwz[2].cut 3\n");
+    InterpreterOptions o;
+    o.tools = &t;
+    const auto prog = [](std::string_view call, std::string_view move) {
+        return "0 BEGIN PGM T MM\n1 " + std::string(call) + "\n2 L X+1 Y+0 Z+0 R0 " +
+               std::string(move) + "\n3 END PGM T MM\n";
+    };
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z", "FZ0.1"), o),
+              "prog.nc:3:20: FZ0.1 needs the spindle speed: give S in the TOOL CALL (TOOL CALL 2 "
+              "Z S..)");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z", "FU0.1"), o),
+              "prog.nc:3:20: FU0.1 needs the spindle speed: give S in the TOOL CALL (TOOL CALL 2 "
+              "Z S..)");
+    EXPECT_EQ(error_of(prog("TOOL CALL 1 Z S100", "FZ0.1"), o),
+              "prog.nc:3:20: FZ0.1 needs the number of teeth of tool 1: the tool list does not "
+              "give it (wz[1].cut, the TNC tool table's CUT)");
+    EXPECT_EQ(error_of(prog("TOOL CALL 0 Z S100", "FZ0.1")),
+              "prog.nc:3:20: FZ0.1 needs the number of teeth of the tool in force, and no tool is "
+              "called: program TOOL CALL first");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100", "F AUTO"), o),
+              "prog.nc:3:20: F AUTO takes the feed of the TOOL CALL, and TOOL CALL 2 gives none: "
+              "program F in the TOOL CALL");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100", "FZ0.1"), o), "");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100 F50", "F AUTO"), o), "");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100 F0", "F AUTO"), o),
+              "prog.nc:2:22: feed rate F must be greater than 0");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100", "FZ0"), o),
+              "prog.nc:3:22: feed rate FZ must be greater than 0");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100", "FZ0.1 F AUTO"), o),
+              "prog.nc:3:26: two feeds in one block (F, FMAX, FZ, FU, F AUTO): give one");
+    EXPECT_EQ(error_of(prog("TOOL CALL 2 Z S100", "F AUTOX"), o),
+              "prog.nc:3:22: expected a number or AUTO after 'F'");
+}
 
 }  // namespace
 }  // namespace apci::nc

@@ -328,14 +328,15 @@ TEST(Parser, UnknownGCode) {
 }
 
 TEST(Parser, IsgSelectionMethodsAndSpindleFeedsAreRefusedAsNotEmulated) {
-    // G139 (indirect, the initial state) and G237 (perpendicular) are emulated; the others not.
-    for (const char* g : {"G138", "G236", "G238", "G239", "G05"}) {
+    // G139 (indirect, the initial state), G138 (direct) and G237 (perpendicular) are emulated;
+    // the others not.
+    for (const char* g : {"G236", "G238", "G239", "G05"}) {
         EXPECT_EQ(error_kind(g), ErrorKind::kUnsupported) << g;
         EXPECT_NE(error(g).find("is not emulated"), std::string::npos) << g;
     }
     EXPECT_EQ(error("G1 X1 FZ0.1"),
-              "prog.nc:12:7: FZ (feed per tooth) is not emulated: it needs a spindle, which the "
-              "board has not; program F in mm/min");
+              "prog.nc:12:7: FZ (feed per tooth) is a feed of Klartext programs (TOOL CALL with "
+              "S; docs/nc-programs.md): DIN 66025 programs give F in mm/min");
     EXPECT_EQ(error_kind("G1 X1 FU0.2"), ErrorKind::kUnsupported);
     EXPECT_EQ(error_kind("G1 X1 F AUTO"), ErrorKind::kUnsupported);
 }

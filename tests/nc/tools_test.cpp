@@ -139,7 +139,31 @@ TEST(ToolTable, UnknownFieldIsError) {
     EXPECT_EQ(error("wz[1].radiu 5"),
               "t.tools:1:7: unknown tool field 'radiu' (known: gueltig, typ, mass_einheit, laenge, "
               "radius, ax_ersatz[k], grinding_wear_const, grinding_max_infeed, "
-              "grinding_disc_tilt_angle, r2, dl, dr, dr2, wear_radius, wear_radius_cont)");
+              "grinding_disc_tilt_angle, r2, dl, dr, dr2, wear_radius, wear_radius_cont, cut, "
+              "srk_lage)");
+}
+
+// cut (the TNC tool table's CUT: the number of teeth, for FZ) and srk_lage (P-TOOL-00002: the
+// cutting edge position of a turning tool) are whole numbers in their ranges, written back by
+// format_tool_table when set.
+TEST(ToolTable, CutAndCuttingEdgePositionAreWholeNumbersInTheirRanges) {
+    Result<ToolTable> t = parse_tool_table(
+        "wz[1].gueltig 1\nwz[1].cut 4\nwz[2].gueltig 1\nwz[2].typ 1\nwz[2].srk_lage 9\n",
+        "t.tools");
+    ASSERT_TRUE(t) << t.error().to_string();
+    EXPECT_EQ(t.value().find(1)->cut, 4);
+    EXPECT_EQ(t.value().find(2)->srk_lage, 9);
+    const std::string text = format_tool_table(t.value());
+    EXPECT_NE(text.find("wz[1].cut"), std::string::npos) << text;
+    EXPECT_NE(text.find("wz[2].srk_lage"), std::string::npos) << text;
+    Result<ToolTable> again = parse_tool_table(text, "again.tools");
+    ASSERT_TRUE(again) << again.error().to_string();
+    EXPECT_EQ(again.value().find(1)->cut, 4);
+    EXPECT_EQ(again.value().find(2)->srk_lage, 9);
+    EXPECT_EQ(error("wz[1].cut 100"), "t.tools:1:11: wz[1].cut 100 out of range 0..99");
+    EXPECT_EQ(error("wz[1].cut 2.5"), "t.tools:1:11: wz[1].cut must be a whole number");
+    EXPECT_EQ(error("wz[1].srk_lage 10"), "t.tools:1:16: wz[1].srk_lage 10 out of range 0..9");
+    EXPECT_EQ(error("wz[1].srk_lage -1"), "t.tools:1:16: wz[1].srk_lage -1 out of range 0..9");
 }
 
 TEST(ToolTable, LineMustStartWithWz) {

@@ -294,8 +294,12 @@ TEST(MotionPayload, TraceReplyOfSegmentsRoundTrips) {
     m.segments = {sample_segment(), sample_segment()};
     m.segments[1].role = 5;
     m.segments[1].interrupted = true;
+    m.segments[1].traverse = true;
     const auto b = bytes_of(m);
     EXPECT_EQ(b.size(), objif::kTraceReplyHeader + 2 * objif::kWireSegmentSize);
+    // The flags byte (docs/motion.md section 9): 0x01 interrupted, 0x02 traverse.
+    EXPECT_EQ(b[objif::kTraceReplyHeader + 7], 0x00);
+    EXPECT_EQ(b[objif::kTraceReplyHeader + objif::kWireSegmentSize + 7], 0x03);
     objif::TraceReply d;
     ASSERT_EQ(objif::decode(b, d), FrameError::kNone);
     ASSERT_EQ(d.segments.size(), 2u);
@@ -305,6 +309,8 @@ TEST(MotionPayload, TraceReplyOfSegmentsRoundTrips) {
     EXPECT_EQ(d.segments[0].center, m.segments[0].center);
     EXPECT_EQ(d.segments[0].end_cycle, 99u);
     EXPECT_TRUE(d.segments[1].interrupted);
+    EXPECT_FALSE(d.segments[0].traverse);
+    EXPECT_TRUE(d.segments[1].traverse);
     expect_exact_size<objif::TraceReply>(b);
 }
 
@@ -337,7 +343,8 @@ TEST(MotionPayload, TraceReplyWithBadContentIsRefused) {
         {"segment kind 2", seg + 4, 2, FrameError::kBadPayload},
         {"segment role 6", seg + 5, 6, FrameError::kBadPayload},
         {"ccw neither 0 nor 1", seg + 6, 2, FrameError::kBadPayload},
-        {"interrupted neither 0 nor 1", seg + 7, 7, FrameError::kBadPayload},
+        {"a flag bit other than interrupted and traverse", seg + 7, 4, FrameError::kBadPayload},
+        {"flag bits beyond the two", seg + 7, 7, FrameError::kBadPayload},
     };
     for (const Case& c : cases) {
         auto b = good;

@@ -149,6 +149,56 @@ TEST_F(OtcBoard, RapidMovesAreWearFree) {
     EXPECT_EQ(wear(2), 0.0);
 }
 
+// [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!", also a G00 on the compensated path
+// (a traverse): under G41, RADIUS CONT, the G01 contour N50 (100 mm) wears 1 mm, the traverse
+// N40 (450 mm) and its transition nothing.
+TEST_F(OtcBoard, ATraverseUnderRadiusCompensationIsWearFree) {
+    setup_group(kSeedRadius, /*left=*/true);
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubSelectionMode,
+                        139),
+              Status::kOk);  // G139, as NC programs run: the first profile is the approach
+    grinding_tool();
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);
+    spool_ok(line(30, 50.0, 0.0, 10000.0));  // the approach
+    Profile g0 = line(40, 500.0, 0.0, 0.0);
+    g0.kind = ProfileKind::kTraverse;
+    spool_ok(g0);
+    spool_ok(line(50, 600.0, 0.0, 10000.0));
+    ASSERT_EQ(deactivate(1), Status::kOk);
+    spool_ok(line(60, 650.0, 0.0, 10000.0));  // the departure
+    run_and_off();
+    EXPECT_NEAR(wear_radius(), 100.0 * kSeedWearConst * 1e-7, kEps);
+    EXPECT_NEAR(wear_radius_cont(), 1.0, kEps);
+}
+
+// The same for every processing type (the board's G237: the first G01 is a contour element):
+// only the two G01, 50 and 100 mm, wear.
+TEST(OtcWearByRole, ATraverseIsWearFreeForEveryType) {
+    for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
+                      otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        OtcRig r;
+        r.setup_group(5.0, /*left=*/true);
+        r.grinding_tool();
+        ASSERT_EQ(r.set_type(type), Status::kOk);
+        ASSERT_EQ(r.set_mode(otc::Mode::kCont), Status::kOk);
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        r.activate(1);
+        r.spool_ok(line(1, 50.0, 0.0, 10000.0));
+        Profile g0 = line(2, 500.0, 0.0, 0.0);
+        g0.kind = ProfileKind::kTraverse;
+        r.spool_ok(g0);
+        r.spool_ok(line(3, 600.0, 0.0, 10000.0));
+        ASSERT_EQ(r.deactivate(1), Status::kOk);
+        r.run();
+        EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), 150.0 * kSeedWearConst * 1e-7,
+                    kEps)
+            << otc::processing_type_name(type);
+    }
+}
+
 // [ISG-OTC] section 2.2 "Hinweis": the approach after G41/G42 and the move after G40 are
 // wear-free; only the compensated contour (with its transitions) wears the radius.
 TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
@@ -189,6 +239,37 @@ TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
     EXPECT_EQ(norm(offset()), 0.0);
     run_and_off();
     EXPECT_EQ(wear_radius(), 0.0);
+}
+
+// [ISG-OTC] section 2.2 "Hinweis" under G139, the NC programs' selection method: the approach
+// (the G41 block's move) and the departure (the G40 block's move, the profile after STATUS = 0)
+// are wear-free in every processing type; the contour and, where the type wears without radius
+// compensation, the move after the departure wear. G41 G1 X100 (104.4 mm), G1 X200 (100 mm),
+// G40 G1 X300 (104.4 mm), G1 X400 (100 mm).
+TEST(OtcWearByRole, UnderG139TheG41AndG40BlocksMovesAreWearFree) {
+    constexpr double kRatio = kSeedWearConst * 1e-7;
+    for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
+                      otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
+        OtcRig r;
+        r.setup_group(kSeedRadius, /*left=*/true);
+        ASSERT_EQ(r.write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1,
+                              rwmos::tc::kSubSelectionMode, 139),
+                  Status::kOk);
+        r.grinding_tool();
+        ASSERT_EQ(r.set_type(type), Status::kOk);
+        ASSERT_EQ(r.set_mode(otc::Mode::kCont), Status::kOk);
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        r.activate(1);
+        r.spool_ok(line(30, 100.0, 0.0, 10000.0));
+        r.spool_ok(line(40, 200.0, 0.0, 10000.0));
+        ASSERT_EQ(r.deactivate(1), Status::kOk);
+        r.spool_ok(line(50, 300.0, 0.0, 10000.0));
+        r.spool_ok(line(60, 400.0, 0.0, 10000.0));
+        r.run();
+        const double expected = type == otc::ProcessingType::kRadius ? 100.0 : 200.0;
+        EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), expected * kRatio, kEps)
+            << otc::processing_type_name(type);
+    }
 }
 
 // [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!"; section 2.2 "Hinweis": the approach
@@ -286,6 +367,185 @@ TEST_F(OtcBoard, ToolWearConstIsWritableWhileOnAndActsFromTheNextMove) {
     spool_ok(line(2, 1000.0, 0.0, 10000.0));
     run_and_off();
     EXPECT_NEAR(wear(2), 5.0, kEps);
+}
+
+// docs/otc.md section 6: where the folded length acts on its axis now, the fold passes into the
+// tool length without a motion. Under LengthMode 0 (the board's own) that is while the group
+// compensates: #OTC OFF with a contour element held back folds N1's 1 mm into WkzLen and the
+// nominal path at once, and Z never rises again (the held N2 and N3 run with the shorter tool;
+// the offset does not ramp back up). Only the departure then takes the length out.
+TEST_F(OtcBoard, LengthFoldWhileTheGroupCompensatesUnderLengthModeZeroNeverLiftsZ) {
+    setup_group(5.0, /*left=*/true);
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex, kTool),
+              Status::kOk);
+    ASSERT_EQ(read_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubLengthMode),
+              rwmos::tc::kLengthWhileCompensating);
+    grinding_tool();
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    spool_ok(line(2, 200.0, 0.0, 10000.0));
+    run();
+    ASSERT_TRUE(prof_marked(1));                       // N2 held: the group compensates
+    ASSERT_NEAR(position()[2], kSeedLength - 1.0, kEps);  // N1's 100 mm: 1 mm
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_NEAR(wear(2), 1.0, kEps);
+    for (const auto& g : board.state().tc.groups)
+        EXPECT_NEAR(g.tools[kTool].length, kSeedLength - 1.0, kEps);
+    spool_ok(line(3, 400.0, 0.0, 10000.0));
+    ASSERT_EQ(deactivate(1), Status::kOk);
+    double previous = position()[2];
+    int cycles = 0;
+    bool departing = false;
+    while (board.state().motion.executor().fill() > 0 ||
+           !board.state().otc_engine.ramps_settled()) {
+        board.step(1);
+        ++cycles;
+        const double z = position()[2];
+        if (position()[0] >= 400.0) departing = true;  // the departure: the length goes out
+        if (!departing) {
+            EXPECT_LE(z, previous + 1e-12) << "cycle " << cycles;
+            EXPECT_NEAR(z, kSeedLength - 1.0, kEps) << "cycle " << cycles;
+        }
+        previous = z;
+        ASSERT_LT(cycles, 1000000);
+    }
+    EXPECT_TRUE(departing);
+}
+
+// Group 1 with the grinding tool, its length on every profile (LengthMode 1, as NC programs
+// run), OTC on in LENGTH CONT.
+struct LengthAlwaysBoard : OtcBoard {
+    void length_always_on() {
+        setup_group(kSeedRadius, /*left=*/true);
+        ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex,
+                            kTool),
+                  Status::kOk);
+        ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubLengthMode,
+                            rwmos::tc::kLengthAlways),
+                  Status::kOk);
+        grinding_tool();
+        ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+        ASSERT_EQ(otc_on(), Status::kOk);
+    }
+};
+
+// [ISG-OTC] section 2.1: the continuous wear is the wear constant times the path travelled; the
+// tool length coming onto the axis (the first move with LengthMode 1 carries WkzLen's 50 mm on
+// Z) is no path: G1 X200 wears 2 mm, not 2 x sqrt(200^2 + 50^2) / 200. After a LENGTH fold (the
+// nominal path takes the shorter tool without a motion) the next G1 X400 wears its 200 mm too.
+TEST_F(LengthAlwaysBoard, TheToolLengthComingOnIsNoGroundPath) {
+    length_always_on();
+    spool_ok(line(1, 200.0, 0.0, 10000.0));
+    run();
+    EXPECT_EQ(position()[2], kSeedLength - 2.0);  // the length on Z, worn by 2 mm
+    ASSERT_EQ(otc_off(), Status::kOk);
+    EXPECT_NEAR(wear(2), 2.0, kEps);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(2, 400.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_NEAR(wear(2), 4.0, kEps);
+    EXPECT_NEAR(position()[2], kSeedLength - 4.0, kEps);
+}
+
+// The same on an arc: a quarter circle of radius 100 (counter-clockwise from (0, 0) about
+// (0, 100)) that takes the length onto Z as it runs wears its arc length, 100 pi / 2 mm, not that
+// of the helix.
+TEST_F(LengthAlwaysBoard, AnArcThatTakesTheToolLengthWearsItsArcLength) {
+    length_always_on();
+    spool_ok(arc(1, true, 100.0, 100.0, 0.0, 100.0, 10000.0));
+    run_and_off();
+    EXPECT_NEAR(wear(2), 100.0 * std::numbers::pi / 2.0 * kSeedWearConst * 1e-7, kEps);
+    EXPECT_NEAR(position()[2], kSeedLength - 100.0 * std::numbers::pi / 2.0 * 1e-2, kEps);
+}
+
+// [ISG-OTC] section 2.1, WEAR_CONST "wirkt modal": a change acts from the next profile spooled,
+// not on the moves spooled before it that have not run yet. X0..X100 at the tool's 100000 and
+// X100..X200 at 200000 (0.1 um/m): 1 + 2 mm, whichever object changes the constant; Z stands 1
+// mm down at X100.
+TEST(OtcWearConst, AChangeActsFromTheNextProfileNotOnTheQueuedOnes) {
+    struct Change {
+        const char* what;
+        std::int32_t dev, index;
+        bool programmed;  // WearConst (WEAR_CONST=..) rather than the tool's constant
+    };
+    const Change changes[] = {{"WEAR_CONST=", otc::kDevChannel, otc::kIdxWearConst, true},
+                              {"V.G.WZ_AKT.WEAR_CONST", otc::kDevTool, otc::kIdxToolWearConst,
+                               false}};
+    for (const Change& c : changes) {
+        OtcRig r;
+        r.grinding_tool();
+        ASSERT_EQ(r.otc_on(), Status::kOk);
+        r.spool_ok(line(1, 100.0, 0.0, 10000.0));
+        ASSERT_EQ(r.otc_double(c.dev, c.index, 0, 200000.0), Status::kOk);  // N1 not run yet
+        r.spool_ok(line(2, 200.0, 0.0, 10000.0));
+        bool at_100 = false;
+        while (r.board.state().motion.executor().fill() > 0) {
+            r.board.step(1);
+            if (r.nominal()[0] == 100.0 && !at_100) {
+                at_100 = true;
+                EXPECT_NEAR(r.offset()[2], -1.0, kEps) << c.what;
+            }
+        }
+        EXPECT_TRUE(at_100) << c.what;
+        ASSERT_EQ(r.otc_off(), Status::kOk);
+        EXPECT_NEAR(r.wear(2), 3.0, kEps) << c.what;
+    }
+}
+
+// WEAR_CONST_TOOL (WearConstSource 0) waits for its place as well: N1 at the programmed 300000,
+// N2 at the tool's 100000.
+TEST_F(OtcBoard, WearConstToolActsFromTheNextProfile) {
+    grinding_tool();
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 300000.0), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxWearConstSource, 0, 0), Status::kOk);
+    spool_ok(line(2, 200.0, 0.0, 10000.0));
+    run_and_off();
+    EXPECT_NEAR(wear(2), 3.0 + 1.0, kEps);
+}
+
+// Under G41 the spooler holds the contour element back: a change written while N2 (50 mm) is
+// held acts from N3 (100 mm) on. RADIUS CONT, G139: 0.5 + 2 mm.
+TEST_F(OtcBoard, AWearConstChangeSparesTheHeldProfile) {
+    setup_group(kSeedRadius, /*left=*/true);
+    ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubSelectionMode,
+                        139),
+              Status::kOk);
+    grinding_tool();
+    ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
+    ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
+    ASSERT_EQ(otc_on(), Status::kOk);
+    activate(1);
+    spool_ok(line(1, 50.0, 0.0, 10000.0));  // the approach
+    spool_ok(line(2, 100.0, 0.0, 10000.0));
+    run();
+    ASSERT_TRUE(prof_marked(1));  // N2 held
+    ASSERT_EQ(otc_double(otc::kDevTool, otc::kIdxToolWearConst, 0, 200000.0), Status::kOk);
+    spool_ok(line(3, 200.0, 0.0, 10000.0));
+    ASSERT_EQ(deactivate(1), Status::kOk);
+    spool_ok(line(4, 250.0, 0.0, 10000.0));  // the departure
+    run_and_off();
+    EXPECT_NEAR(wear_radius(), 0.5 + 2.0, kEps);
+}
+
+// With nothing queued or held the change acts at once, and many changes between two profiles
+// keep one entry: the last one counts.
+TEST_F(OtcBoard, WearConstChangesBetweenTwoProfilesTheLastCounts) {
+    grinding_tool();
+    ASSERT_EQ(otc_on(), Status::kOk);
+    spool_ok(line(1, 100.0, 0.0, 10000.0));
+    for (int i = 1; i <= 1000; ++i)
+        ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 1000.0 * i), Status::kOk);
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 400000.0), Status::kOk);
+    spool_ok(line(2, 200.0, 0.0, 10000.0));
+    run();
+    ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxWearConst, 0, 0.0), Status::kOk);
+    spool_ok(line(3, 300.0, 0.0, 10000.0));  // nothing in flight: 0 from here
+    run_and_off();
+    EXPECT_NEAR(wear(2), 1.0 + 4.0, kEps);
 }
 
 // [ISG-OTC] section 2.6: "wird grinding_wear_const nicht gesetzt, kann der kontinuierliche
@@ -562,6 +822,89 @@ TEST_F(OtcBoard, FoldedRadiusStopsAtZero) {
         EXPECT_EQ(g.tools[kTool].radius, 0.0);
         EXPECT_EQ(g.tools[kTool].length, kSeedLength);
     }
+}
+
+// [ISG-OTC] section 2.7.3, ManualMvBackToStart: "Ist der Handbetrieb im Kanal aktiv und bewegt
+// sich die beauftragte Achse nicht, wird die Achse durch dieses Kommando so bewegt, dass der
+// Handbetriebsoffset anschließend 0 ist. ... Eine steigende Flanke (FALSE -> TRUE) an X_Command
+// löst den Vorgang aus." Manual mode: after a direct command (JA), until the next profile.
+struct BackToStart : OtcRig {
+    Status back(int axis, std::int32_t sub, std::int32_t v) {
+        return otc_int(otc::kDevAxisUnits, axis, sub, v);
+    }
+    std::int32_t back_read(int axis, std::int32_t sub) {
+        return otc_read_int(otc::kDevAxisUnits, axis, sub);
+    }
+    void jog(int axis, double to) {
+        DirectCommand c;
+        c.code = rwmos::motion::DirectCode::kJA;
+        c.axes = static_cast<rwmos::motion::AxisMask>(1u << axis);
+        c.target[static_cast<std::size_t>(axis)] = to;
+        c.feed = 6000.0;
+        ASSERT_EQ(board.direct(c).status, Status::kOk);
+    }
+};
+
+TEST(OtcBackToStart, ARisingEdgeMovesTheAxisBackToWhereManualModeBegan) {
+    BackToStart r;
+    r.spool_ok(line(1, 10.0, 5.0, 6000.0));
+    r.run();
+    r.jog(0, 30.0);  // manual mode begins at X10
+    r.run();
+    r.jog(0, 40.0);
+    r.run();
+    ASSERT_EQ(r.position()[0], 40.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackEnable, 1), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackRequest), 1);
+    r.board.step(10);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 1);  // under way
+    EXPECT_GT(r.position()[0], 10.0);
+    EXPECT_LT(r.position()[0], 40.0);
+    r.run();
+    EXPECT_EQ(r.position()[0], 10.0);
+    EXPECT_EQ(r.position()[1], 5.0);  // the other axes stay
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 0);
+    // The edge has passed: holding the command moves nothing; a new edge with no offset left
+    // neither.
+    r.jog(1, 8.0);
+    r.run();
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[1], 8.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 0);  // X has no offset: ignored
+    ASSERT_EQ(r.back(1, otc::kSubBackEnable, 1), Status::kOk);
+    ASSERT_EQ(r.back(1, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[1], 5.0);
+}
+
+TEST(OtcBackToStart, TheCommandIsIgnoredWithoutManualModeEnableOrWhileAMoveRuns) {
+    BackToStart r;
+    r.jog(0, 20.0);
+    r.run();
+    // Not enabled: ignored.
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackRequest), 0);
+    r.run();
+    EXPECT_EQ(r.position()[0], 20.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackEnable, 1), Status::kOk);
+    // A jog still under way: ignored ("wenn noch eine Handbetriebsbewegung aktiv ist").
+    r.jog(0, 30.0);
+    r.board.step(5);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[0], 30.0);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    // A profile ends manual mode: no offset to take back.
+    r.spool_ok(line(2, 35.0, 0.0, 6000.0));
+    r.run();
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[0], 35.0);
 }
 
 TEST(OtcOption, WithoutTheOptionBus1330IsMissing) {

@@ -220,7 +220,7 @@ TEST(ApcictlCli, CsvColumnsAreNamedAsTheCommandLineNamesTheAxes) {
     std::getline(in, header);
     std::filesystem::remove_all(dir);
 
-    // "cycle 1 (+1) fill 0/256 idle X0 Y0 Z0 U0 V0 W0 A0 B0": the letters before the numbers.
+    // "cycle 1 (+1) fill 0/256 idle X0 Y0 Z0 A0 B0 C0 U0 V0": the letters before the numbers.
     const auto step = apcictl_run({"step", "1"});
     ASSERT_EQ(step.exit_code, 0) << step.err;
     std::string letters;
@@ -229,7 +229,7 @@ TEST(ApcictlCli, CsvColumnsAreNamedAsTheCommandLineNamesTheAxes) {
         if (word.size() >= 2 && std::isupper(static_cast<unsigned char>(word[0])) != 0 &&
             (std::isdigit(static_cast<unsigned char>(word[1])) != 0 || word[1] == '-'))
             letters += std::string(",") + word[0];
-    EXPECT_EQ(letters, ",X,Y,Z,U,V,W,A,B") << step.out;
+    EXPECT_EQ(letters, ",X,Y,Z,A,B,C,U,V") << step.out;
     EXPECT_EQ(header, "cycle,time_s" + letters);
 }
 

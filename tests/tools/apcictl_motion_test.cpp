@@ -30,8 +30,8 @@ TEST(ApcictlMotion, SpoolAndStepMoveTheAxes) {
     const auto r = script("spool G01 N1 X10 F600\nstep 250\nstep --idle\n");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out,
-              "cycle 250 (+250) fill 1/256 moving X2.5 Y0 Z0 U0 V0 W0 A0 B0\n"
-              "cycle 1000 (+750) fill 0/256 idle X10 Y0 Z0 U0 V0 W0 A0 B0\n");
+              "cycle 250 (+250) fill 1/256 moving X2.5 Y0 Z0 A0 B0 C0 U0 V0\n"
+              "cycle 1000 (+750) fill 0/256 idle X10 Y0 Z0 A0 B0 C0 U0 V0\n");
 }
 
 TEST(ApcictlMotion, ArcWordsIAndJAreTheCentreOnTheArcAxes) {
@@ -100,7 +100,7 @@ TEST_P(ApcictlMotionUsage, IsAUsageErrorAndNothingRuns) {
 
 INSTANTIATE_TEST_SUITE_P(
     Lines, ApcictlMotionUsage,
-    ::testing::Values(BadLine{"spool G04 X1", "is not G00, G01, G02 or G03"},
+    ::testing::Values(BadLine{"spool G04 X1", "is not G00, G01, G02, G03 or TRAVERSE"},
                       BadLine{"spool G02 X1 Y1 F10", "an arc needs its centre"},
                       BadLine{"spool G01 X1 X2 F10", "'X' is given twice"},
                       BadLine{"spool G01 Xten F10", "is not a number"},

@@ -213,11 +213,11 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     // As the program's text says: N22 G25 makes the corner after N70 linear (two lines along
     // the tangents, a 90-degree turn), N80 G26 the corners after N80 and N90 circular. The
     // program runs in G139 (indirect): N60, the first move after N55 G42, is the approach (no
-    // contour of its own), and G40 spools N95 to its offset end without a departure; the G40
-    // block's move N100 then runs uncompensated from there.
+    // contour of its own), and G40 spools N95 to its offset end; the G40 block's move N100 is
+    // the departure, from there to its programmed end.
     EXPECT_EQ(roles(doc),
               "uncompensated/40 approach/60 contour/70 transition/70 transition/70 "
-              "contour/80 transition/80 contour/90 transition/90 contour/95 uncompensated/100");
+              "contour/80 transition/80 contour/90 transition/90 contour/95 departure/100");
     expect_continuous(doc);
     // The approach runs straight from where the tool stands, (0, 0), to N60's compensated end:
     // 30 mm right of its programmed end (2, 0) (G42, N60 along +X), where N70's offset starts
@@ -228,11 +228,11 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     EXPECT_EQ(point(approach[0].at("start")), apci::run::Point(0, 0, 0));
     EXPECT_EQ(point(approach[0].at("end")), apci::run::Point(2, -30, 0));
     // N100 (G40 G1 X0) starts at N95's offset end, 30 mm right of (2, 0) going -Y: (-28, 0).
-    const auto off = with_role(doc, "uncompensated");
-    ASSERT_EQ(off.size(), 2u);
-    EXPECT_EQ(off[1].at("block"), 100);
-    EXPECT_EQ(point(off[1].at("start")), apci::run::Point(-28, 0, 0));
-    EXPECT_EQ(point(off[1].at("end")), apci::run::Point(0, 0, 0));
+    const auto off = with_role(doc, "departure");
+    ASSERT_EQ(off.size(), 1u);
+    EXPECT_EQ(off[0].at("block"), 100);
+    EXPECT_EQ(point(off[0].at("start")), apci::run::Point(-28, 0, 0));
+    EXPECT_EQ(point(off[0].at("end")), apci::run::Point(0, 0, 0));
     const auto linear = with_role(doc, "transition");
     ASSERT_EQ(linear.size(), 4u);
     EXPECT_EQ(linear[0].at("kind"), "line");
@@ -260,11 +260,9 @@ TEST_F(ApcictlRun, MustShowSeedProgramSummaryJsonAndSvg) {
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR_CONST"), 100000);
     EXPECT_EQ(doc.at("errors"), json::array());
     const std::string svg = read_text(path("p.svg"));
-    for (const char* cls : {"programmed", "contour", "transition", "approach", "uncompensated"})
+    for (const char* cls :
+         {"programmed", "contour", "transition", "approach", "departure", "uncompensated"})
         EXPECT_TRUE(contains(svg, std::string("<path class=\"") + cls + "\"")) << cls;
-    // No departure under G139 (the G237 departure is drawn in
-    // ClosedContourUnderG237KeepsTheRadiusWithPerpendicularApproachAndDeparture).
-    EXPECT_FALSE(contains(svg, "<path class=\"departure\"")) << svg;
 }
 
 // A figure program (docs/figures) with G237 in its first block N10: the board's own
@@ -507,7 +505,7 @@ TEST_F(ApcictlRun, SwitchingSidesApproachesTheOtherSideFromTheLastOffsetEnd) {
                                    "N10 F1000 D1\nN20 G41 G1 X10\nN30 X20\nN40 G42 X30\nN50 X40\n"
                                    "N60 G40 X50\nM30\n");
     const json doc = run_json(prog, {"--tools", tools(2.0)});
-    EXPECT_EQ(roles(doc), "approach/20 contour/30 approach/40 contour/50 uncompensated/60")
+    EXPECT_EQ(roles(doc), "approach/20 contour/30 approach/40 contour/50 departure/60")
         << doc.dump();
     expect_continuous(doc);
     const auto approach = with_role(doc, "approach");
@@ -625,7 +623,7 @@ TEST_F(ApcictlRun, ToolLengthIsTakenOffTheToolCentrePointButMovesTheAxis) {
     std::istringstream lines(csv);
     std::string line, header;
     std::getline(lines, header);
-    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,U,V,W,A,B");
+    EXPECT_EQ(header, "cycle,time_s,X,Y,Z,A,B,C,U,V");
     int on_n30 = 0;
     while (std::getline(lines, line)) {
         std::vector<double> v;
@@ -1187,7 +1185,7 @@ TEST_F(ApcictlRun, LineTangentArcLineWrittenWithThreeDecimalsCompensatesOnBothSi
             apci::run::Point(32.321, 11.34, 0) + (left ? 5.0 : -5.0) * normal;
         const json& off = doc.at("segments").back();
         EXPECT_EQ(off.at("block"), 70);
-        EXPECT_EQ(off.at("role"), "uncompensated");
+        EXPECT_EQ(off.at("role"), "departure");
         EXPECT_LT((point(off.at("start")) - n60_end).norm(), 1e-9) << side;
         EXPECT_EQ(point(off.at("end")), apci::run::Point(40, 20, 0));
     }
@@ -1786,7 +1784,7 @@ TEST_F(ApcictlRun, TheSelectionBlockIsTheApproachStraightToTheOffsetPointAtItsEn
                                    "N10 D1 F1000 G26\nN20 G0 X-10 Y-10\nN30 G41 G1 X0 Y0\n"
                                    "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
     const json doc = run_json(prog, {"--tools", tools(0.5)});
-    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 transition/30 contour/40 uncompensated/50");
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 transition/30 contour/40 departure/50");
     const json approach = with_role(doc, "approach").at(0);
     const double h = 0.5 / std::sqrt(2.0);
     EXPECT_LT((xy(approach.at("start")) - Eigen::Vector2d(-10, -10)).norm(), 1e-9);
@@ -1798,18 +1796,55 @@ TEST_F(ApcictlRun, TheSelectionBlockIsTheApproachStraightToTheOffsetPointAtItsEn
 }
 
 TEST_F(ApcictlRun, TheG40BlockIsTheDepartureFromTheLastOffsetPoint) {
-    // G1 X20 Y0, then G40 G1 X30 Y-10: the G40 block itself runs from (20, 0.5) to (30, -10);
-    // no move back onto the programmed point first.
+    // G1 X20 Y0, then G40 G1 X30 Y-10: the G40 block itself is the departure, from (20, 0.5) to
+    // (30, -10); no move back onto the programmed point first.
     const std::string prog = write("out.nc",
                                    "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\n"
                                    "N40 G1 X20 Y0\nN50 G40 G1 X30 Y-10\nN60 M30\n");
     const json doc = run_json(prog, {"--tools", tools(0.5)});
-    EXPECT_TRUE(with_role(doc, "departure").empty()) << roles(doc);
+    EXPECT_EQ(with_role(doc, "departure").size(), 1u) << roles(doc);
     const json& last = doc.at("segments").back();
     EXPECT_EQ(last.at("block"), 50);
-    EXPECT_EQ(last.at("role"), "uncompensated");
+    EXPECT_EQ(last.at("role"), "departure");
     EXPECT_LT((xy(last.at("start")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9);
     EXPECT_LT((xy(last.at("end")) - Eigen::Vector2d(30, -10)).norm(), 1e-9);
+    expect_continuous(doc);
+}
+
+// The selection word of a lone G40's own block decides how it leaves the contour: G237 G40
+// departs at right angles at once (the board's departure), so the arc after it runs from the
+// programmed point; G139 G40 leaves the departure to the next move, and an arc there is refused
+// before anything runs.
+TEST_F(ApcictlRun, ALoneG40DepartsByTheSelectionWordOfItsOwnBlock) {
+    const json doc = run_json(write("g237.nc", "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G41 G1 X0 Y0\n"
+                                               "N40 G1 X20 Y0\nN50 G237 G40\n"
+                                               "N60 G2 X30 Y-10 I0 J-10\nN70 M30\n"),
+                              {"--tools", tools(0.5)});
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 contour/40 departure/40 uncompensated/60");
+    const json& arc = doc.at("segments").back();
+    EXPECT_EQ(arc.at("kind"), "arc");
+    EXPECT_LT((xy(arc.at("start")) - Eigen::Vector2d(20, 0)).norm(), 1e-9);
+    EXPECT_LT((xy(arc.at("end")) - Eigen::Vector2d(30, -10)).norm(), 1e-9);
+    const std::string refused = write("g139.nc", "N10 D1 F1000 G237\nN20 G0 X-10 Y0\n"
+                                                 "N30 G41 G1 X0 Y0\nN40 G1 X20 Y0\nN50 G139 G40\n"
+                                                 "N60 G2 X30 Y-10 I0 J-10\nN70 M30\n");
+    const auto r = apcictl({"run", refused, "--tools", tools(0.5)});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "G2 right after G40: under G139")) << r.err;
+    EXPECT_TRUE(contains(r.err, "g139.nc:6:5: N60: ")) << r.err;
+}
+
+// G138 ([ISG-PROG]'s direct selection): the G41 block runs straight to the next element's offset
+// start, with no corner; the G40 block departs from the last offset end, as under G139.
+TEST_F(ApcictlRun, G138SelectsDirectlyOntoTheNextElementsOffsetStart) {
+    const json doc = run_json(write("g138.nc", "N10 D1 F1000 G138\nN20 G0 X-10 Y-10\n"
+                                               "N30 G41 G1 X0 Y0\nN40 G1 X20 Y0\n"
+                                               "N50 G40 G1 X30 Y-10\nN60 M30\n"),
+                              {"--tools", tools(0.5)});
+    EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 contour/40 departure/50");
+    const json approach = with_role(doc, "approach").at(0);
+    EXPECT_LT((xy(approach.at("start")) - Eigen::Vector2d(-10, -10)).norm(), 1e-9);
+    EXPECT_LT((xy(approach.at("end")) - Eigen::Vector2d(0, 0.5)).norm(), 1e-9);
     expect_continuous(doc);
 }
 
@@ -1848,6 +1883,41 @@ TEST_F(ApcictlRun, AG0UnderG41IsCompensatedSoALiftStaysBesideTheContour) {
     expect_continuous(doc);
 }
 
+// [ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!" A G0 under G41 runs on the
+// compensated path and is still a rapid: kind rapid (role contour) in the JSON, counted as rapid
+// in the summary, and wear-free: only N50's 100 mm of contour wear (1 mm). The same through the
+// daemon's socket, where the segments travel as frames.
+TEST_F(ApcictlRun, AG0UnderG41IsARapidOnTheCompensatedPathAndWearsNothing) {
+    const std::string prog =
+        write("g0.nc", "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F1000\nN40 G0 X500\n"
+                       "N50 G1 X600\nN60 G40 X650\nN70 #OTC OFF\nN80 M30\n");
+    const std::string socket = path("emu.sock");
+    const pid_t daemon = start_daemon(socket);
+    ASSERT_GT(daemon, 0);
+    const json via_socket = run_json(prog, {"--tools", kExamples + "/tools/wr_quad_disc.tools",
+                                            "--device", "unix:" + socket});
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+    const json doc = run_json(prog, {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
+    EXPECT_EQ(via_socket, doc);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 1.0, 1e-9);
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS_CONT").get<double>(), 1.0, 1e-9);
+    bool seen = false;
+    for (const auto& s : doc.at("segments")) {
+        if (s.at("block") != 40) {
+            EXPECT_NE(s.at("kind"), "rapid") << s.dump();
+            continue;
+        }
+        seen = true;
+        EXPECT_EQ(s.at("kind"), "rapid") << s.dump();
+        EXPECT_EQ(s.at("role"), "contour") << s.dump();
+        EXPECT_EQ(point(s.at("start")), apci::run::Point(50, 30, 0));
+        EXPECT_EQ(point(s.at("end")), apci::run::Point(500, 30, 0));
+    }
+    EXPECT_TRUE(seen) << roles(doc);
+    EXPECT_TRUE(contains(last_.out, "(rapid 450.000 mm)")) << last_.out;
+}
+
 TEST_F(ApcictlRun, TheToolLengthHoldsFromTheToolsSelectionNotOnlyUnderG42) {
     // wr_quad_disc.nc: D1 (length 50 mm) at N22, G42 at N55, G40 at N100. The Z axis takes the
     // length with N40, the first move after D1, and keeps it through the approach, the contour
@@ -1873,6 +1943,78 @@ TEST_F(ApcictlRun, TheToolLengthHoldsFromTheToolsSelectionNotOnlyUnderG42) {
     // N40 rises from 0 to 50 at its feed (F600: 10 mm/s, 5000 cycles); from then on Z is 50.
     EXPECT_EQ(at_length, rows - 4999) << "Z left the tool length somewhere";
     EXPECT_EQ(last_z, 50.0);
+}
+
+// The CSV's axes carry the tool length in Klartext programs too, from the TOOL CALL on, as a
+// TNC applies it (docs/compensation.md "Tool length"), with and without RL: Z = 10 + 25 along
+// N3 (R0) and N4 (RL). The JSON gives the tip, Z 10.
+TEST_F(ApcictlRun, KlartextAxesCarryTheToolLengthFromTheToolCall) {
+    const std::string prog =
+        write("len.h", "0 BEGIN PGM LEN MM\n1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+10 R0 F6000\n"
+                       "3 L X+10 R0\n4 L X+20 RL\n5 L X+30 R0\n6 M30\n7 END PGM LEN MM\n");
+    const json doc = run_json(prog, {"--tools", tools(1.0, 25.0), "--csv", path("k.csv")});
+    for (const auto& seg : doc.at("segments"))
+        EXPECT_NEAR(point(seg.at("end")).z(), 10.0, kTol) << seg.dump();
+    std::istringstream lines(read_text(path("k.csv")));
+    std::string line;
+    std::getline(lines, line);  // header
+    int rows = 0, at_length = 0;
+    double last_z = 0.0;
+    while (std::getline(lines, line)) {
+        std::vector<double> v;
+        std::stringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+        ++rows;
+        last_z = v[4];
+        if (v[2] > 0.0) {  // from N3 on: X moves, Z stays at the tip plus the length
+            EXPECT_NEAR(v[4], 35.0, kTol) << line;
+            ++at_length;
+        }
+    }
+    EXPECT_GT(at_length, 100);
+    EXPECT_NEAR(last_z, 35.0, kTol);
+}
+
+// A turning tool (docs/compensation.md "Turning tools"): with its cutting edge position the
+// reported path is the imaginary tip, the nose centre's path carried over by the position's
+// offset, approach and departure included: cutting edge 3 with a 2 mm nose radius in G18 moves
+// the compensated path by +2 on X and -2 on Z against the same run with the nose centre
+// (srk_lage 9); the uncompensated moves before and after stay.
+TEST_F(ApcictlRun, ATurningToolsPathIsItsImaginaryTip) {
+    const std::string prog = write("turn.nc", "N10 D5 G18 F500\nN20 G0 X10 Z5\nN30 G42 G1 X8\n"
+                                              "N40 G1 Z-20\nN50 G1 X12 Z-25\nN60 G40 G1 X15\n"
+                                              "N70 G0 Z5\nN80 M30\n");
+    const auto list = [&](int edge) {
+        return write("t" + std::to_string(edge) + ".tools",
+                     "wz[5].gueltig 1\nwz[5].typ 1\nwz[5].mass_einheit 1\nwz[5].radius 2\n"
+                     "wz[5].srk_lage " + std::to_string(edge) + "\n");
+    };
+    const json centre = run_json(prog, {"--tools", list(9)});
+    const json tip = run_json(prog, {"--tools", list(3)});
+    ASSERT_EQ(roles(tip), roles(centre));
+    const apci::run::Point carried(2, 0, -2);  // position 3: X +r, Z -r
+    const auto& a = centre.at("segments");
+    const auto& b = tip.at("segments");
+    ASSERT_EQ(a.size(), b.size());
+    int approach = 0, departure = 0, contour = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const std::string role = a[i].at("role");
+        const apci::run::Point ds = point(b[i].at("start")) - point(a[i].at("start"));
+        const apci::run::Point de = point(b[i].at("end")) - point(a[i].at("end"));
+        const bool start_carried = role == "contour" || role == "transition" || role == "departure";
+        const bool end_carried = role == "contour" || role == "transition" || role == "approach";
+        EXPECT_LT((ds - (start_carried ? carried : apci::run::Point::Zero())).norm(), 1e-9)
+            << role << " " << b[i].dump();
+        EXPECT_LT((de - (end_carried ? carried : apci::run::Point::Zero())).norm(), 1e-9)
+            << role << " " << b[i].dump();
+        approach += role == "approach";
+        departure += role == "departure";
+        contour += role == "contour";
+    }
+    EXPECT_EQ(approach, 1);
+    EXPECT_EQ(departure, 1);
+    EXPECT_GE(contour, 2);
+    expect_continuous(tip);
 }
 
 TEST_F(ApcictlRun, TheReportedPathIsTheToolTipWhicheverPlaneTheLengthActsIn) {
@@ -1922,7 +2064,7 @@ TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     const json doc = run_json(kExamples + "/otc/general.nc",
                               {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 9.5, 1e-9);
-    EXPECT_EQ(roles(doc), "uncompensated/30 approach/60 contour/70 uncompensated/80 uncompensated/100");
+    EXPECT_EQ(roles(doc), "uncompensated/30 approach/60 contour/70 departure/80 uncompensated/100");
 }
 
 // Zero-length moves take no cycle, however many: a spooler full of them empties while the clock

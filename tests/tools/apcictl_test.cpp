@@ -200,6 +200,28 @@ TEST(ApcictlScript, StateRuleFailureStopsTheScriptAndNamesTheLine) {
               "1300 1 1 1 0)\n");
 }
 
+// A refusal of the OTC module names what its LastError records ([ISG-OTC] section 1: #OTC ON
+// with a tool that is not a grinding tool is P-ERR-21391), as `apcictl run` does; a refusal
+// without a LastError says nothing more.
+TEST(ApcictlWrite, AnOtcRefusalNamesTheModulesLastError) {
+    const auto r = apcictl({"write", "otc.channel.active", "1"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err,
+              "apcictl: write otc.channel.active 1: WrongDeviceState (not possible in the present "
+              "device state); the OTC module's LastError (1330 0 7 0) reads 21391: P-ERR-21391 "
+              "(OTC needs a grinding tool (tool type 2, P-TOOL-00001); OTC stays off)\n");
+    const auto s = script("write otc.axis[1].command 10\n");
+    EXPECT_EQ(s.err,
+              "apcictl: line 1: write otc.axis[1].command 10: ValueTooHigh (value above the "
+              "object's range); the OTC module's LastError (1330 0 7 0) reads 21904: "
+              "OTC_INFEED_BEYOND_LIMIT (discrete offset beyond grinding_max_infeed (P-TOOL-00031) "
+              "of the current tool)\n");
+    const auto range = apcictl({"write", "otc.channel.acc_weight", "101"});
+    EXPECT_EQ(range.err,
+              "apcictl: write otc.channel.acc_weight 101: ValueTooHigh (value above the object's "
+              "range)\n");
+}
+
 TEST(ApcictlWrite, StatusOneOnAGroupNotInitialisedSaysThatErrorNowReadsInitErrorAndWhatItNeeds) {
     const auto r = apcictl({"write", "1300", "1", "2", "3", "1"});
     EXPECT_EQ(r.exit_code, 1);

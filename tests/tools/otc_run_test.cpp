@@ -111,6 +111,44 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
     }
 }
 
+// The OTC example programs of examples/otc/ give the numbers the documents give (docs/otc.md section 10),
+// each with its documented command: [ISG-OTC] section 2.2's general example with the tool data of
+// section 2.6 (100000 x 0.1 um/m over N70's 950 mm: 9.5 mm of radius wear), section 2.3's G1
+// X1000 (10 mm on the third axis), section 2.3.1's split by the disc's tilt (30 degrees in
+// otc_tilt.tools: sin 30 x 10 on X, cos 30 x 10 on Z), and [ISG-OTC-EN]'s wr_quad_disc.nc with
+// the discrete offset of its figure ("der diskret beauftragte Versatz beträgt 2mm", ±2 mm).
+TEST_F(OtcRun, SeedProgramsGiveTheNumbersTheDocumentsGive) {
+    struct Seed {
+        const char* program;
+        const char* tools;
+        const char* plc;  // nullptr: none
+        const char* variable;
+        double value;
+    };
+    const Seed seeds[] = {
+        {"general", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR_RADIUS", 9.5},
+        {"general", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR_RADIUS_CONT", 9.5},
+        {"length", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR[2]", 10.0},
+        {"length", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR[0]", 0.0},
+        {"length_tilt", "otc_tilt", nullptr, "V.G.WZ_AKT.WEAR[0]", 5.0},
+        {"length_tilt", "otc_tilt", nullptr, "V.G.WZ_AKT.WEAR[2]", 10.0 * std::sqrt(3.0) / 2.0},
+        {"wr_quad_disc", "wr_quad_disc", "wr_quad_disc", "V.G.WZ_AKT.WEAR_RADIUS", 2.0},
+        {"wr_quad_disc", "wr_quad_disc", "wr_quad_disc_negative", "V.G.WZ_AKT.WEAR_RADIUS", -2.0},
+    };
+    for (const Seed& seed : seeds) {
+        std::vector<std::string> args{kExamples + "/otc/" + seed.program + ".nc", "--tools",
+                                      kExamples + "/tools/" + seed.tools + ".tools"};
+        if (seed.plc != nullptr) {
+            args.emplace_back("--plc");
+            args.push_back(kExamples + "/otc/plc/" + seed.plc + ".plc");
+        }
+        const json doc = run_json(args);
+        EXPECT_EQ(doc.at("errors"), json::array()) << seed.program;
+        EXPECT_NEAR(doc.at("variables").at(seed.variable).get<double>(), seed.value, kEps)
+            << seed.program << " " << (seed.plc ? seed.plc : "") << " " << seed.variable;
+    }
+}
+
 // [ISG-OTC] section 2.3 with the tool data of 2.6: 10.000 mm on Z within 1e-9, linear along the
 // path (5.000 mm at X500), folded into the tool's length (500000 - 100000 x 0.1 um).
 TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
@@ -390,6 +428,140 @@ TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     EXPECT_NEAR(last[2], 100.0 + 50.0 * std::sqrt(0.5), 1e-9);
     EXPECT_NEAR(last[4], 50.0 + 50.0 * std::sqrt(0.5), 1e-9);
     EXPECT_EQ(last[6], 45.0);  // B on board axis 4
+}
+
+// [ISG-OTC] section 2.1, WEAR_CONST "wirkt modal", and 2.8 (V.G.WZ_AKT.WEAR_CONST written in
+// the program): the new constant acts from its block on. X0..X100 at 100000, X100..X200 at
+// 200000 (0.1 um/m): 1 + 2 mm, Z 1 mm down at X100; under G41 the held element N40 keeps the
+// old constant too (0.5 + 2 mm).
+TEST_F(OtcRun, AWearConstantChangeActsFromItsBlock) {
+    for (const char* change : {"V.G.WZ_AKT.WEAR_CONST = 200000", "#OTC [WEAR_CONST=200000]"}) {
+        const std::string prog = write(
+            "wc.nc", std::string("N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH CONT]\n"
+                                 "N40 G1 X100 F10000\nN50 ") +
+                         change + "\nN60 G1 X200\nN70 #OTC OFF\nN80 M30\n");
+        const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("wc.csv")});
+        EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 3.0, kEps)
+            << change;
+        bool at_100 = false;
+        for (const auto& r : read_csv(path("wc.csv"))) {
+            if (r[2] != 100.0) continue;
+            at_100 = true;
+            EXPECT_NEAR(r[4], 50.0 - 1.0, kEps) << change;
+            break;
+        }
+        EXPECT_TRUE(at_100) << change;
+    }
+    const json doc = run_json({write("held.nc",
+                                     "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F10000\n"
+                                     "N40 G1 X100\nN50 V.G.WZ_AKT.WEAR_CONST = 200000\n"
+                                     "N60 G1 X200\nN70 G40 G1 X250\nN80 #OTC OFF\nN90 M30\n"),
+                               "--tools", seed_tools()});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 2.5, kEps);
+}
+
+// [ISG-OTC] section 2.2 "Hinweis": the approach after G41 and the move after G40 are wear-free,
+// for LENGTH too. Under G139 (the start state) those are the G41 and the G40 block's moves:
+// N40 and N60 wear, 1 + 1 mm. Under G237 (the board's perpendicular approach and departure,
+// docs/otc.md) the G41 block's move is on the offset path and the G40 block's move runs after
+// the departure: N30, N40, N50, N60 wear, 4 mm.
+TEST_F(OtcRun, LengthSparesTheApproachAndTheDeparture) {
+    const std::string body =
+        "N20 #OTC ON [LENGTH CONT]\nN30 G41 G1 X100 F10000\nN40 G1 X200\nN50 G40 G1 X300\n"
+        "N60 G1 X400\nN70 #OTC OFF\nN80 M30\n";
+    const json g139 = run_json({write("a.nc", "N10 D1\n" + body), "--tools", seed_tools()});
+    EXPECT_NEAR(g139.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 2.0, kEps);
+    std::string roles;
+    for (const auto& s : g139.at("segments"))
+        roles += s.at("role").get<std::string>() + "/" + std::to_string(s.at("block").get<int>()) +
+                 " ";
+    EXPECT_EQ(roles, "approach/30 contour/40 departure/50 uncompensated/60 ");
+    const json g237 = run_json({write("b.nc", "N10 D1 G237\n" + body), "--tools", seed_tools()});
+    EXPECT_NEAR(g237.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 4.0, kEps);
+}
+
+// [ISG-OTC] section 2.8: the wear variables are "in [mm] oder [Inch]": under G70 a program reads
+// the board's 9.652 mm of radius wear as 0.38 in, so G00 X[P1] goes to X 9.652 mm.
+TEST_F(OtcRun, WearVariablesAreReadInInchesUnderG70) {
+    const json doc = run_json(
+        {write("inch.nc",
+               "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F10000\nN40 G1 X1015.2\n"
+               "N50 G40 G1 X1100\nN60 #OTC OFF\nN70 G70\nN80 P1 = V.G.WZ_AKT.WEAR_RADIUS\n"
+               "N90 G00 X[P1]\nN100 M30\n"),
+         "--tools", seed_tools()});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 9.652, 1e-9);
+    const json& last = doc.at("segments").back();
+    EXPECT_EQ(last.at("block"), 90);
+    EXPECT_NEAR(last.at("end")[0].get<double>(), 9.652, 1e-9);
+}
+
+// [ISG-OTC] section 2.1: the wear is that of the path travelled, and the Z motion of the tool
+// length (D1's 50 mm coming onto Z along N30) is none: G1 X200 wears 2.000 mm.
+TEST_F(OtcRun, TheToolLengthsMotionIsNoGroundPath) {
+    const json doc =
+        run_json({write("len.nc", "N10 D1\nN20 #OTC ON [LENGTH CONT]\nN30 G1 X200 F10000\n"
+                                  "N40 #OTC OFF\nN50 M30\n"),
+                  "--tools", seed_tools()});
+    EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 2.0, kEps);
+}
+
+// A B word tilts the B head; it does not switch the tool length off. D1 (length 50 mm) puts
+// its length on Z with N40: machine Z 350 for Z300, and it stays there through N45 (with B) and
+// N46 (without), as in the same program without the B word. The reported path is the same
+// with and without it.
+TEST_F(OtcRun, ABWordKeepsTheToolLengthOnTheAxis) {
+    const char* with_b = "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN45 G1 X10 B0\nN46 G1 X20\nM30\n";
+    const char* without_b = "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN45 G1 X10\nN46 G1 X20\nM30\n";
+    const json doc = run_json({write("b.nc", with_b), "--tools", seed_tools(), "--csv",
+                               path("b.csv")});
+    const auto rows = read_csv(path("b.csv"));
+    ASSERT_FALSE(rows.empty());
+    bool reached = false;
+    for (const auto& r : rows) {
+        if (r[4] == 350.0) reached = true;
+        if (reached) {
+            EXPECT_EQ(r[4], 350.0) << "cycle " << r[0];  // never down towards the work
+        }
+        EXPECT_LE(r[4], 350.0) << "cycle " << r[0];
+    }
+    EXPECT_TRUE(reached);
+    EXPECT_EQ(rows.back()[2], 20.0);
+    const json plain = run_json({write("nob.nc", without_b), "--tools", seed_tools()});
+    ASSERT_EQ(doc.at("segments").size(), plain.at("segments").size());
+    for (std::size_t i = 0; i < plain.at("segments").size(); ++i) {
+        EXPECT_EQ(doc.at("segments")[i].at("start"), plain.at("segments")[i].at("start")) << i;
+        EXPECT_EQ(doc.at("segments")[i].at("end"), plain.at("segments")[i].at("end")) << i;
+    }
+    EXPECT_EQ(doc.at("segments")[0].at("end"), json::array({0, 0, 300}));
+}
+
+// [ISG-OTC] sections 2.4 and 2.5 program N40 G00 X0 Y0 Z300 B0 with the 50 mm disc before
+// #TRAFO ON: the machine's Z stands at 350 (the tip at 300) until the transformation takes the
+// length over, and the tip stays at Z300 across #TRAFO ON and N60's B (the pivot moves).
+TEST_F(OtcRun, TheIsgToolDirAndSurfNormDirExamplesStandAtMachineZ350ForZ300) {
+    for (const char* name : {"tool_dir", "surf_norm_dir"}) {
+        const json doc =
+            run_json({kExamples + "/otc/" + name + ".nc", "--tools", seed_tools(), "--plc",
+                      kExamples + "/otc/plc/" + name + ".plc", "--csv", path("e.csv")});
+        const auto rows = read_csv(path("e.csv"));
+        ASSERT_FALSE(rows.empty()) << name;
+        // Until X or B (board axis 4, the head's) moves (N60, N70), Z rises to 350 and holds
+        // there.
+        double z_before = 0.0;
+        for (const auto& r : rows) {
+            if (r[2] != 0.0 || r[6] != 0.0) break;
+            EXPECT_LE(r[4], 350.0) << name << " cycle " << r[0];
+            z_before = r[4];
+        }
+        EXPECT_EQ(z_before, 350.0) << name;
+        const auto& segments = doc.at("segments");
+        ASSERT_GE(segments.size(), 3u) << name;
+        EXPECT_EQ(segments[0].at("block"), 40) << name;
+        EXPECT_EQ(segments[0].at("end"), json::array({0, 0, 300})) << name;
+        EXPECT_EQ(segments[1].at("block"), 60) << name;
+        EXPECT_EQ(segments[1].at("start"), json::array({0, 0, 300})) << name;
+        EXPECT_EQ(segments[1].at("end"), json::array({0, 0, 300})) << name;
+    }
 }
 
 // docs/design.md section 8: #HSC is accepted and reported as not emulated.

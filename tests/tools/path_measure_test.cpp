@@ -62,4 +62,42 @@ TEST(PathMeasure, LinesAndRapidsHaveNoSweepAndTheirChord) {
 }
 
 }  // namespace
+// A turning tool's segments taken back to the nose centre (docs/compensation.md "Turning
+// tools"), as the board carried them over: contour and transition whole (an arc's centre too),
+// the approach's end (an approach arc whole), the departure's start; others as they are. In
+// G18 the plane's first axis is Z and its second X.
+TEST(NoseCentrePath, TakesTheCuttingEdgeOffsetOffWhatTheBoardCarriedOver) {
+    const Eigen::Vector2d edge(-1.0, 2.0);  // Z -1, X +2
+    const auto seg = [](Role role, SegmentKind kind) {
+        PathSegment s;
+        s.role = role;
+        s.kind = kind;
+        s.plane = 18;
+        s.start = Point(10, 0, 5);
+        s.end = Point(12, 0, 7);
+        s.center = Point(10, 0, 7);
+        return s;
+    };
+    const Point back(-2, 0, 1);  // minus the edge on X and Z
+    for (Role r : {Role::kContour, Role::kTransition}) {
+        const PathSegment a = nose_centre_path(seg(r, SegmentKind::kArc), edge, 18);
+        EXPECT_EQ(a.start, Point(10, 0, 5) + back);
+        EXPECT_EQ(a.end, Point(12, 0, 7) + back);
+        EXPECT_EQ(a.center, Point(10, 0, 7) + back);
+    }
+    const PathSegment in = nose_centre_path(seg(Role::kApproach, SegmentKind::kLine), edge, 18);
+    EXPECT_EQ(in.start, Point(10, 0, 5));
+    EXPECT_EQ(in.end, Point(12, 0, 7) + back);
+    const PathSegment in_arc = nose_centre_path(seg(Role::kApproach, SegmentKind::kArc), edge, 18);
+    EXPECT_EQ(in_arc.start, Point(10, 0, 5) + back);
+    const PathSegment out = nose_centre_path(seg(Role::kDeparture, SegmentKind::kLine), edge, 18);
+    EXPECT_EQ(out.start, Point(10, 0, 5) + back);
+    EXPECT_EQ(out.end, Point(12, 0, 7));
+    const PathSegment rapid = nose_centre_path(seg(Role::kUncompensated, SegmentKind::kRapid), edge, 18);
+    EXPECT_EQ(rapid.start, Point(10, 0, 5));
+    EXPECT_EQ(nose_centre_path(seg(Role::kContour, SegmentKind::kLine), Eigen::Vector2d::Zero(), 18)
+                  .end,
+              Point(12, 0, 7));
+}
+
 }  // namespace apci::run

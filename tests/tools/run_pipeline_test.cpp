@@ -259,7 +259,7 @@ class Recorder final : public RunSink {
 
 // Many batches of every kind of event: what the inner sink gets, in order.
 void feed(RunSink& sink, int moves) {
-    const std::vector<std::string> names{"X", "Y", "Z", "U", "V", "W", "A", "B"};
+    const std::vector<std::string> names{"X", "Y", "Z", "A", "B", "C", "U", "V"};
     sink.axes(names);
     sink.axis_numbers({1, 0, 2});
     for (int i = 0; i < moves; ++i) {
@@ -596,9 +596,11 @@ TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
         void programmed(const PathSegment& s) override {
             calls.push_back("p" + std::to_string(s.block.number));
         }
-        void self_approach_begin(double radius, int plane, int side) override {
+        void self_approach_begin(double radius, int plane, int side,
+                                 const Eigen::Vector2d& edge) override {
             (void)side;
-            calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane));
+            calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane) +
+                            (edge.isZero(0.0) ? "" : " edge"));
         }
         void self_approach_programmed() override { calls.emplace_back("check"); }
         void self_approach_end() override { calls.emplace_back("end"); }

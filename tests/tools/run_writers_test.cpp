@@ -249,16 +249,17 @@ TEST(RunCsv, HeaderNamesTheAxesAndOneLineACycle) {
     w.sample(2, 0.002, p2);
     ASSERT_TRUE(w.finish());
     EXPECT_EQ(f.text(),
-              "cycle,time_s,X,Y,Z,U,V,W,A,B\n"
+              "cycle,time_s,X,Y,Z,A,B,C,U,V\n"
               "1,0.001,0.01,0,0,0,0,0,0,0\n"
               "2,0.002,0.02,-1.5,3,0,0,0,0,7\n");
     EXPECT_EQ(w.samples_written(), 2u);
 }
 
 // A column is a board axis, named as the command line names it (docs/apcictl.md, "spool,
-// direct, ssf, step"): X Y Z U V W A B are board axes 0..7.
+// direct, ssf, step"): X Y Z A B C U V are board axes 0..7, DIN 66025's order, so the column B
+// is the axis a program's B word drives (board axis 4, the head's).
 TEST(RunCsv, AxisNamesAreTheBoardAxisLetters) {
-    const std::string letters = "XYZUVWAB";
+    const std::string letters = "XYZABCUV";
     for (int i = 0; i < 8; ++i)
         EXPECT_EQ(axis_column_name(i), std::string(1, letters[static_cast<std::size_t>(i)])) << i;
     EXPECT_EQ(axis_column_name(8), "a8");  // no such board axis: still a distinct name

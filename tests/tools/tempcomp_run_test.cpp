@@ -291,6 +291,39 @@ TEST_F(TempCompRun, PlcToolHolderTurnsTheVectorWithTheHead) {
     EXPECT_EQ(off.back()[kB], 90.0);
 }
 
+// [SIN-TEMP]: with the orientation transformation on (#KIN ID[4], #TRAFO ON) the vector turns
+// with the tool, without the tool holder: at B90 the 0.1 mm on Z of N60 acts on X along N70, and
+// on Z again after #TRAFO OFF (N90). No tool: the pivot is the tip.
+TEST_F(TempCompRun, TheVectorTurnsWithTheOrientationTransformation) {
+    const std::string program =
+        write("t.nc",
+              "N10 G0 X0 Y0 Z10 B0\nN30 #KIN ID[4]\nN40 #TRAFO ON\nN50 G0 B90\n"
+              "N60 $SC_TOOL_TEMP_COMP[2] = 0.1\nN70 G1 X10 F3000\nN80 #TRAFO OFF\n"
+              "N90 G1 X20\nN100 M30\n");
+    const std::string md =
+        "cycle 0 tool_temp_comp_on 1\ncycle 0 temp_comp_type[0] 4\n"
+        "cycle 0 temp_comp_type[2] 4\n";
+    const auto off = trace(program, "");
+    const auto on = trace(program, write("md.plc", md));
+    ASSERT_EQ(on.size(), off.size());
+    int along_x = 0, along_z = 0;
+    for (std::size_t i = 0; i < off.size(); ++i) {
+        const auto& n = off[i];
+        const double dx = on[i][kX] - n[kX], dz = on[i][kZ] - n[kZ];
+        if (n[kX] > 0.0 && n[kX] < 10.0) {  // N70, under the transformation at B90
+            EXPECT_NEAR(dx, 0.1, kEps) << "cycle " << n[kCycle];
+            EXPECT_NEAR(dz, 0.0, kEps) << "cycle " << n[kCycle];
+            ++along_x;
+        } else if (n[kX] > 10.0) {  // N90, after #TRAFO OFF
+            EXPECT_NEAR(dx, 0.0, kEps) << "cycle " << n[kCycle];
+            EXPECT_NEAR(dz, 0.1, kEps) << "cycle " << n[kCycle];
+            ++along_z;
+        }
+    }
+    EXPECT_GT(along_x, 100);
+    EXPECT_GT(along_z, 100);
+}
+
 // ---- refusals: named by file and line, and nothing runs (no output file is written)
 
 TEST_F(TempCompRun, BadProgramWriteIsRefusedBeforeAnythingRuns) {

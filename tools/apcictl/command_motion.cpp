@@ -6,7 +6,7 @@
 //   direct JA X5 Y5 [F1000]            jog absolute; `direct JS` stops every axis
 //   ssf XY 2001                        SSF command to axes X and Y
 //   step 1000 | step --idle            advance the interpolation clock
-// Axis letters name board axes: X Y Z U V W A B = 0..7.
+// Axis letters name board axes: X Y Z A B C U V = 0..7.
 #include <fmt/format.h>
 
 #include <array>
@@ -118,9 +118,12 @@ bool axes_of(std::string_view letters, std::uint8_t& mask) {
 class SpoolCommand final : public Command {
   public:
     void declare(CLI::App& app) override {
-        app.add_option("KIND", kind_text_, "G00, G01, G02 or G03 (G0..G3)")->required();
+        app.add_option("KIND", kind_text_,
+                       "G00, G01, G02 or G03 (G0..G3), or TRAVERSE (a G00 the TC module "
+                       "compensates)")
+            ->required();
         app.add_option("WORDS", words_text_,
-                       "N<block> F<feed, units/min> axis targets X Y Z U V W A B (axes 0..7); "
+                       "N<block> F<feed, units/min> axis targets X Y Z A B C U V (axes 0..7); "
                        "arcs: I J = centre on the arc's first and second axis (absolute)");
         app.add_option("--arc-axes", arc_axes_text_,
                        "The two axes an arc is named in, first then second (default XY)");
@@ -141,10 +144,14 @@ class SpoolCommand final : public Command {
             profile_.kind = APCI_PROFILE_ARC_CW;
         } else if (k == "G3" || k == "G03") {
             profile_.kind = APCI_PROFILE_ARC_CCW;
+        } else if (k == "TRAVERSE") {
+            profile_.kind = APCI_PROFILE_TRAVERSE;
         } else {
-            return usage(fmt::format("KIND '{}' is not G00, G01, G02 or G03", kind_text_));
+            return usage(
+                fmt::format("KIND '{}' is not G00, G01, G02, G03 or TRAVERSE", kind_text_));
         }
-        const bool arc = profile_.kind >= APCI_PROFILE_ARC_CW;
+        const bool arc =
+            profile_.kind == APCI_PROFILE_ARC_CW || profile_.kind == APCI_PROFILE_ARC_CCW;
         Words w;
         if (std::string why = w.parse(words_text_, arc ? "NFIJ" : "NF"); !why.empty())
             return usage(why);
@@ -196,7 +203,7 @@ class DirectCommand final : public Command {
     void declare(CLI::App& app) override {
         app.add_option("CODE", code_text_, "JA (jog absolute) or JS (jog stop)")->required();
         app.add_option("WORDS", words_text_,
-                       "JA: axis targets X Y Z U V W A B, F<feed> (0: rapid)");
+                       "JA: axis targets X Y Z A B C U V, F<feed> (0: rapid)");
         app.footer(
             "Discards the spooler and the held profile first ([APCI-TC] section 1), "
             "then JA moves the named axes, JS stops every axis. Prints nothing "
@@ -251,7 +258,7 @@ class DirectCommand final : public Command {
 class SsfCommand final : public Command {
   public:
     void declare(CLI::App& app) override {
-        app.add_option("AXES", axes_text_, "Axis letters, e.g. XY (X Y Z U V W A B = axes 0..7)")
+        app.add_option("AXES", axes_text_, "Axis letters, e.g. XY (X Y Z A B C U V = axes 0..7)")
             ->required();
         app.add_option("COMMAND", command_text_,
                        "SSF command number (2001: release the held profile)")

@@ -14,7 +14,9 @@
 #include "arguments.h"
 #include "command.h"
 #include "object_name.h"
+#include "objif/map/comp3d_refusal.h"
 #include "objif/map/object_map.h"
+#include "objif/map/otc_errors.h"
 #include "value_text.h"
 
 namespace apcictl {
@@ -245,8 +247,40 @@ public:
         if (s == APCI_OK) return Outcome::success();
         // Described before tc_consequence reads the group's ERROR (a call of its own).
         const std::string failure = describe_failure(*board_, s);
-        return Outcome::board_error(
-            fmt::format("{}: {}{}", command_text(), failure, tc_consequence(s)));
+        return Outcome::board_error(fmt::format("{}: {}{}{}", command_text(), failure,
+                                                tc_consequence(s), last_error(s)));
+    }
+
+    // A module that records why it refused a write in its LastError (the OTC module, bus 1330,
+    // objif/map/otc_errors.h; the 3D compensation, bus 1310, objif/map/comp3d_refusal.h): the
+    // refusal names it, as the executor does (the status alone says only how).
+    std::string last_error(apci::Status s) const {
+        namespace otc = objif::map::otc;
+        namespace c3 = objif::map::comp3d;
+        if (board_ == nullptr || s == APCI_NO_SUCH_DEVICE || s == APCI_OBJECT_MISSING ||
+            s == APCI_TYPE_MISMATCH)
+            return {};
+        // The module, where its LastError is, and the name and message of a value.
+        const auto named = [&](std::string_view module, std::int32_t bus, std::int32_t device,
+                               std::int32_t index, auto describe) -> std::string {
+            auto o = apci::object(bus, device, index, 0);
+            const auto e = board_->read_int(o);
+            if (!e || e.value == 0) return {};
+            const auto [name, message] = describe(e.value);
+            return fmt::format("; the {} module's LastError ({} {} {} 0) reads {}: {} ({})", module,
+                               bus, device, index, e.value, name, message);
+        };
+        if (object_.address.bus == otc::kBus)
+            return named("OTC", otc::kBus, otc::kDevChannel, otc::kIdxLastError, [](int v) {
+                const auto e = static_cast<otc::Error>(v);
+                return std::pair{otc::error_name(e), otc::error_message(e)};
+            });
+        if (object_.address.bus == c3::kBus)
+            return named("3D", c3::kBus, c3::kDevSettings, c3::kIdxLastError, [](int v) {
+                const auto r = static_cast<c3::Refusal>(v);
+                return std::pair{c3::refusal_name(r), c3::refusal_message(r)};
+            });
+        return {};
     }
 
     // A refused write to a TC group may have set the group's ERROR ([APCI-TC] Table 3: InitError

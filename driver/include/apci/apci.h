@@ -331,6 +331,9 @@ APCI_API const char* apci_tc_status_bit_name(int bit) APCI_NOEXCEPT;
 #define APCI_PROFILE_LINE 1    /* G01 */
 #define APCI_PROFILE_ARC_CW 2  /* G02 */
 #define APCI_PROFILE_ARC_CCW 3 /* G03 */
+#define APCI_PROFILE_TRAVERSE 4 /* G00 on the compensated path: compensated and rotated as a
+                                   G01 at `feed` (0 = the rapid feed); a rapid for everything
+                                   else (OTC wears nothing on it). An extension (docs/motion.md) */
 
 /* One motion profile (one NC block's move). Unnamed axes keep their position. */
 typedef struct apci_profile {
@@ -340,7 +343,7 @@ typedef struct apci_profile {
                             once a TC object was accessed the arc runs in the
                             active plane (TcPlane) and must be named in its axes */
     uint32_t tag;        /* the NC block number, carried into every executed segment */
-    double feed;         /* units per minute, > 0; G00: 0 = the board's rapid feed */
+    double feed;         /* units per minute, > 0; G00 and traverse: 0 = the board's rapid feed */
     double target[APCI_AXIS_COUNT]; /* absolute targets (program coordinates) */
     double center[2];    /* arcs: centre on arc_axes[0], arc_axes[1], absolute */
 } apci_profile;
@@ -460,6 +463,8 @@ typedef struct apci_segment {
     uint8_t ccw;         /* arcs: 1 counter-clockwise (G03 sense), 0 clockwise */
     uint8_t interrupted; /* 1: cut short by a direct command; end is where it stopped */
     uint8_t plane_axes[2]; /* arcs: the board axes of the arc's plane, first and second */
+    uint8_t traverse;    /* 1: from an APCI_PROFILE_TRAVERSE profile (a G00 on the compensated
+                            path: a rapid move) */
     int32_t plane;       /* arcs: 17, 18, 19 when those are a TC plane's axes, else 0 */
     double start[APCI_AXIS_COUNT];
     double end[APCI_AXIS_COUNT];

@@ -273,7 +273,8 @@ struct WireSegment {
     std::uint8_t kind = 0;  // 0 line, 1 arc
     std::uint8_t role = 0;  // 0 contour, 1 transition, 2 approach, 3 departure, 4 uncompensated, 5 rapid
     bool ccw = false;
-    bool interrupted = false;
+    bool interrupted = false;  // flags bit 0x01 on the wire
+    bool traverse = false;     // flags bit 0x02: from a traverse profile (a compensated G00)
     std::array<std::uint8_t, 2> plane_axes{0, 1};
     std::int32_t plane = 0;
     WireAxes start{};

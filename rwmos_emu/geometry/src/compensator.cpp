@@ -30,7 +30,7 @@ Reason check_config(const CompensatorConfig& config) noexcept {
         config.transition != TransitionMode::kLinear)
         return Reason::kInvalidSetting;
     if (config.approach != ApproachMode::kPerpendicular &&
-        config.approach != ApproachMode::kIndirect)
+        config.approach != ApproachMode::kIndirect && config.approach != ApproachMode::kDirect)
         return Reason::kInvalidSetting;
     return Reason::kNone;
 }
@@ -96,7 +96,15 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     const double programmed_length = length_with_sweep(programmed, offset.element.sweep);
     const bool arc = is_arc(programmed);
 
-    if (state_ == State::kStarted && config_.approach == ApproachMode::kIndirect) {
+    if (state_ == State::kStarted && config_.approach == ApproachMode::kDirect) {
+        // [ISG-PROG], direct selection: the selection block (a line) runs from the tool straight
+        // to the offset start of the element after it, known when that one arrives; held until
+        // then.
+        if (arc) return fail(Reason::kDirectSelectionOnAnArc, index, out);
+        first_programmed_ = programmed;
+        held_ = offset.element;
+        held_role_ = SegmentRole::kApproach;
+    } else if (state_ == State::kStarted && config_.approach == ApproachMode::kIndirect) {
         // Any length: [ISG-OTC-EN]'s wr_quad_disc.nc selects with a 2 mm block and a 30 mm disc
         // (LinuxCNC asks for more than r). [ISG-PROG] builds approach blocks only on lines; an
         // arc is taken as LinuxCNC takes it, rather than refusing a program that has no gouge
@@ -120,6 +128,14 @@ StepResult PathCompensator::push(const Element& programmed, std::uint32_t index,
     } else if (state_ == State::kStarted) {
         const Element approach = approach_move(position_, offset.element);
         if (worth_moving(approach)) out.add(approach, SegmentRole::kApproach, index);
+        held_ = offset.element;
+        held_role_ = SegmentRole::kContour;
+    } else if (held_role_ == SegmentRole::kApproach &&
+               config_.approach == ApproachMode::kDirect) {
+        // The direct approach ends where the new element's offset starts; no corner.
+        const Element approach = make_line(position_, offset.element.path.start);
+        if (worth_moving(approach)) out.add(approach, SegmentRole::kApproach, held_index_);
+        emit_plane_free(offset.element.path.start, out);
         held_ = offset.element;
         held_role_ = SegmentRole::kContour;
     } else {

@@ -62,6 +62,9 @@ constexpr std::array kReasonTable{
     ReasonRow{Reason::kApproachArcNoSolution, kKorr, "ApproachArcNoSolution",
               "the approach (the first move of the compensation) is an arc, and no arc leads from "
               "the tool to its compensated end (start the approach elsewhere, or with a G01)"},
+    ReasonRow{Reason::kDirectSelectionOnAnArc, kKorr, "DirectSelectionOnAnArc",
+              "direct selection (G138): the selection block is an arc, and approach blocks are "
+              "built on lines only (select with a G01, or with G139)"},
 };
 static_assert(kReasonTable.size() == kReasonCount, "reason table and enum out of step");
 

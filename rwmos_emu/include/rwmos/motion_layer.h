@@ -55,6 +55,35 @@ class MotionLayer final : public TcMotion {
     // the group compensating), or -1.
     int length_axis_of(std::int32_t tool) const noexcept;
 
+    // The number the next profile taken will carry (Move::profile), and the oldest number
+    // whose moves have not all ended yet (queued, under way, or held back by the spooler; the
+    // next profile's when there are none): a setting that acts from the next profile on still
+    // concerns the profiles from this one up to the next's.
+    std::uint64_t next_profile() const noexcept { return spooler_.profiles_taken() + 1; }
+
+    // Manual mode (design, for [ISG-OTC] section 2.7.3's ManualMvBackToStart): from a direct
+    // command (JA, JS; [APCI-TC] section 1's JOG moves) until the next profile is taken. Its
+    // start is where the axes stood at the first direct command; an axis's manual offset is how
+    // far it stands from there now (0 outside manual mode).
+    bool manual_mode() const noexcept { return manual_; }
+    double manual_offset(int axis) const noexcept;
+    // Moves `axis` back to the start of manual mode (a JA at the rapid feed), when the channel
+    // is in manual mode, no move is under way and the axis has an offset; false otherwise,
+    // and nothing moves.
+    bool move_back_to_manual_start(int axis);
+    // The axis is moving back (move_back_to_manual_start) and has not arrived.
+    bool moving_back(int axis) const noexcept;
+
+    // The tool length on `axis` changed by `delta` without a motion (OTC's fold at #OTC OFF):
+    // the nominal path takes it, the axes stay. False, and nothing changes, while moves are
+    // queued (Executor::shift_nominal).
+    bool shift_length(int axis, double delta) noexcept {
+        if (!exec_.shift_nominal(axis, delta)) return false;
+        spooler_.length_shifted(axis, delta);
+        return true;
+    }
+    std::uint64_t oldest_profile_in_flight() const noexcept;
+
   private:
     // The TcSettings for a call: what only object accesses change as last read (read again
     // after settings_changed()), ERROR (error_pending) and the active group's Run read now.
@@ -75,6 +104,9 @@ class MotionLayer final : public TcMotion {
     mutable bool settings_valid_ = false;
     motion::Executor exec_;
     motion::Spooler spooler_;
+    bool manual_ = false;
+    motion::AxisVector manual_start_{};
+    motion::AxisMask moving_back_ = 0;  // axes sent back; valid while the executor has moves
 };
 
 }  // namespace rwmos

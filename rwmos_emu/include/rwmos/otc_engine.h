@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "objif/status.h"
 #include "rwmos/board.h"
@@ -42,6 +43,11 @@ class OtcEngine final : public motion::CycleOffsets {
     void end_session() noexcept;
     // The current tool changed: its wear starts from zero ([ISG-OTC] section 2.9).
     void tool_changed() noexcept;
+    // The effective wear constant changed (WearConst, WearConstSource, the tool's
+    // grinding_wear_const); `before` was in force. It acts from the next profile taken on: the
+    // moves of profiles taken before keep `before` ([ISG-OTC] section 2.1, WEAR_CONST "wirkt
+    // modal": from its block on).
+    void wear_const_changed(double before) noexcept;
 
     // The control units' request_r and state_r (0.1 um): the target the unit's ramp heads for
     // (0 when the unit does not act) and the offset it has reached along its direction.
@@ -139,6 +145,18 @@ class OtcEngine final : public motion::CycleOffsets {
     motion::Move last_move_{};
     bool have_last_ = false;
     double wear_ = 0.0;  // continuous wear of the session so far (mm), at the last move's end
+    // The wear constant (0.1 um/m) of each profile: a change acts from the profile number
+    // `from` on (the oldest first); before the first, `before` holds. Entries whose profiles
+    // have all ended are folded into `before` at every change, so there are at most as many as
+    // profiles in flight.
+    struct WearConstChange {
+        std::uint64_t from = 0;
+        double value = 0.0;
+    };
+    std::vector<WearConstChange> wear_const_changes_;
+    double wear_const_before_ = 0.0;
+    // The wear constant of the moves of profile `profile` (and drops the changes before it).
+    double wear_const_for(std::uint64_t profile) noexcept;
     std::array<otc::RampState, kOtcAxisCount> ramp_channel_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_direction_{};
     std::array<otc::RampState, kOtcAxisCount> ramp_axes_{};

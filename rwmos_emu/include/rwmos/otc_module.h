@@ -66,6 +66,13 @@ class OtcModule : public objif::TableModule<OtcModule> {
     Status write_unit_command(const Info&, const Address& a, const Value& v);
     Status read_unit_enable(const Info&, const Address& a, Value& out);
     Status write_unit_enable(const Info&, const Address& a, const Value& v);
+    // ManualMvBackToStart: DeviceNumber 1 Index 0..7, SubIndex 5..8.
+    Status read_back_command(const Info&, const Address& a, Value& out);
+    Status write_back_command(const Info&, const Address& a, const Value& v);
+    Status read_back_enable(const Info&, const Address& a, Value& out);
+    Status write_back_enable(const Info&, const Address& a, const Value& v);
+    Status read_back_request(const Info&, const Address& a, Value& out);
+    Status read_back_state(const Info&, const Address& a, Value& out);
     Status read_unit_request(const Info&, const Address& a, Value& out);
     Status read_unit_state(const Info&, const Address& a, Value& out);
     // DeviceNumber 2.

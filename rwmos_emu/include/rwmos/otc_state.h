@@ -24,6 +24,12 @@ struct OtcControlUnit {
     bool enable = false;
 };
 
+// MC_CONTROL_BOOL_UNIT ManualMvBackToStart of one axis ([ISG-OTC] section 2.7.3).
+struct OtcBoolUnit {
+    bool command = false;  // X_Command
+    bool enable = false;   // X_Enable
+};
+
 // The current tool's data ([ISG-OTC] section 2.6 / 3.2, the host writes them at a tool change).
 struct OtcTool {
     std::int32_t number = 0;  // the tool (D n, TC WKZINDEX) the wear is folded into
@@ -64,6 +70,7 @@ struct OtcState {
 
     OtcControlUnit radius_offset_unit;                       // otc_radius_offset (channel)
     std::array<OtcControlUnit, kOtcAxisCount> axis_units{};  // otc_offset per board axis
+    std::array<OtcBoolUnit, kOtcAxisCount> back_to_start{};  // ManualMvBackToStart per axis
     OtcTool tool;
     OtcWear wear;
 

@@ -79,6 +79,8 @@ private:
     Status write_right(const Info&, const Address& a, const Value& v);
     Status read_wkz_len(const Info&, const Address& a, Value& out);
     Status write_wkz_len(const Info&, const Address& a, const Value& v);
+    Status read_cutting_edge(const Info&, const Address& a, Value& out);
+    Status write_cutting_edge(const Info&, const Address& a, const Value& v);
     // The int modes of a group (CornerMode, Side, SelectionMode, LengthMode).
     template <std::int32_t TcGroup::*Field>
     Status read_group_mode(const Info&, const Address& a, Value& out);

@@ -20,6 +20,7 @@ namespace rwmos {
 struct TcTool {
     double radius = 0.0;
     double length = 0.0;
+    std::int32_t cutting_edge = 0;  // CuttingEdge (extension): a turning tool's position 1..9
 };
 
 // One compensation group (DeviceNumber 1, Index 1..3).

@@ -35,6 +35,9 @@ void set_move_head(Move& m, SegmentKind kind, double feed, SegmentRole role,
     m.role = role;
     m.tag = tag;
     m.direct = false;
+    m.traverse = false;
+    m.profile = 0;
+    m.length_change = {};
     m.side = 0;
     m.plane = 0;
     m.feed = feed;
@@ -192,6 +195,7 @@ void segment_into(const Move& m, Segment& s) noexcept {
     s.start_cycle = 0;
     s.end_cycle = 0;
     s.interrupted = false;
+    s.traverse = m.traverse;
     if (m.kind == SegmentKind::kArc) {
         s.plane_axes = m.plane_axes;
         s.center = m.start;

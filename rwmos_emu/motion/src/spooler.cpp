@@ -3,6 +3,8 @@
 // listed in docs/motion.md; the comments here name the rule they implement.
 #include "rwmos/motion/spooler.h"
 
+#include "objif/map/cutting_edge.h"
+
 #include <cmath>
 
 #include "rwmos/geometry/element.h"
@@ -73,9 +75,10 @@ MotionResult check_targets(AxisMask axes, const AxisVector& target) {
 }
 
 MotionResult check_profile(const Profile& p) {
-    if (static_cast<std::uint8_t>(p.kind) > static_cast<std::uint8_t>(ProfileKind::kArcCcw))
-        return refuse(Status::kInvalidValue, "profile kind is not G00, G01, G02 or G03");
-    if (MotionResult r = check_feed(p.feed, p.kind == ProfileKind::kRapid); !r.ok()) return r;
+    if (static_cast<std::uint8_t>(p.kind) > static_cast<std::uint8_t>(ProfileKind::kTraverse))
+        return refuse(Status::kInvalidValue,
+                      "profile kind is not G00, G01, G02, G03 or a traverse (4)");
+    if (MotionResult r = check_feed(p.feed, is_rapid(p.kind)); !r.ok()) return r;
     if (MotionResult r = check_targets(p.axes, p.target); !r.ok()) return r;
     if (is_arc(p.kind)) {
         if (p.arc_axes[0] >= kAxisCount || p.arc_axes[1] >= kAxisCount)
@@ -205,6 +208,34 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
         if (seg.role == geom::SegmentRole::kDeparture && !keep_departure) continue;
         const Pending* pd = pending(seg.index);
         if (pd == nullptr) continue;  // cannot happen: every index pushed is pending
+        const bool arc = geom::is_arc(seg.path);
+        const bool edge = c.edge.x() != 0.0 || c.edge.y() != 0.0;
+        // A turning tool's first carried element where the compensator's approach was too short
+        // to emit (the tool stood on the nose centre's path): the approach is the offset alone.
+        const bool carried_start =
+            seg.role == geom::SegmentRole::kContour || seg.role == geom::SegmentRole::kTransition;
+        const bool unreached =
+            edge && carried_start &&
+            (geom::Vec2(batch.end[c.plane_axes[0]], batch.end[c.plane_axes[1]]) -
+             (seg.path.start + c.edge))
+                    .norm() > geom::kPointTolerance;
+        if ((seg.role == geom::SegmentRole::kApproach && arc && edge) || unreached) {
+            // An approach arc of a turning tool: the tool moves by the cutting edge's offset
+            // first, so that the arc, carried over whole, stays an arc (as LinuxCNC's lathe
+            // entry, interp_convert.cc); likewise onto a first element the approach missed.
+            Move& shift = batch.next();
+            shift.start = batch.end;
+            shift.end = batch.end;
+            const geom::Vec2 to = seg.path.start + c.edge;
+            shift.end[c.plane_axes[0]] = to.x();
+            shift.end[c.plane_axes[1]] = to.y();
+            line_move_into(shift, pd->feed, SegmentRole::kApproach, pd->tag);
+            shift.side = c.side;
+            shift.traverse = pd->traverse;
+            shift.profile = pd->profile;
+            batch.length_at(shift, batch.length);
+            batch.end = shift.end;
+        }
         // Written where it will run (no Move built and copied there).
         Move& m = batch.next();
         // The axes outside the plane: the third axis runs linearly along the
@@ -218,8 +249,8 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
             case geom::SegmentRole::kApproach:
                 // A plane-free element before the first plane element is
                 // consumed by its (zero-length) approach, so it goes to its end; the
-                // indirect approach is its element's whole move.
-                end = pd->plane_free || c.comp.config().approach == geom::ApproachMode::kIndirect
+                // indirect and the direct approach are their element's whole move.
+                end = pd->plane_free || c.comp.config().approach != geom::ApproachMode::kPerpendicular
                           ? pd->end
                           : pd->start;
                 end[z] += c.length;
@@ -234,19 +265,40 @@ void Spooler::append_segments(const Compensation& c, const geom::SegmentBatch& s
                 if (c.length_always) end[z] += c.length;
                 break;
         }
+        // The nose centre's path carried over to the imaginary tip of a turning tool
+        // (CuttingEdge): the offset elements and their transitions whole, the approach from the
+        // tool's position to it, the departure from it back to the programmed end.
+        const geom::Vec2 to_start =
+            seg.role == geom::SegmentRole::kApproach && !arc ? geom::Vec2::Zero() : c.edge;
+        const geom::Vec2 to_end =
+            seg.role == geom::SegmentRole::kDeparture ? geom::Vec2::Zero() : c.edge;
         m.start = batch.end;
-        m.start[c.plane_axes[0]] = seg.path.start.x();
-        m.start[c.plane_axes[1]] = seg.path.start.y();
-        end[c.plane_axes[0]] = seg.path.end.x();
-        end[c.plane_axes[1]] = seg.path.end.y();
-        if (geom::is_arc(seg.path)) {
-            arc_move_into(m, c.plane_axes, seg.path.centre.x(), seg.path.centre.y(), seg.path.ccw,
-                          pd->feed, role_of(seg.role), pd->tag);
+        m.start[c.plane_axes[0]] = seg.path.start.x() + to_start.x();
+        m.start[c.plane_axes[1]] = seg.path.start.y() + to_start.y();
+        end[c.plane_axes[0]] = seg.path.end.x() + to_end.x();
+        end[c.plane_axes[1]] = seg.path.end.y() + to_end.y();
+        if (arc) {
+            // Offset arcs, transitions and approach arcs: carried over whole, centre too.
+            arc_move_into(m, c.plane_axes, seg.path.centre.x() + c.edge.x(),
+                          seg.path.centre.y() + c.edge.y(), seg.path.ccw, pd->feed,
+                          role_of(seg.role), pd->tag);
             m.plane = c.plane;
         } else {
             line_move_into(m, pd->feed, role_of(seg.role), pd->tag);
         }
         m.side = c.side;
+        // Every segment of a traverse's element (its offset, the transition at its end) is a
+        // rapid move on the compensated path.
+        m.traverse = pd->traverse;
+        m.profile = pd->profile;
+        // The length in its end: WkzLen on z, but for a transition (at the corner, as before)
+        // and a departure under LengthMode 0 (taken out).
+        AxisVector length = batch.length;
+        if (seg.role != geom::SegmentRole::kTransition) {
+            length = {};
+            if (seg.role != geom::SegmentRole::kDeparture || c.length_always) length[z] = c.length;
+        }
+        batch.length_at(m, length);
         batch.end = m.end;
     }
 }
@@ -279,7 +331,7 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         return refuse(Status::kValueTooLow, kTooLong);
 
     Compensation trial = comp_;
-    Batch batch(exec);
+    Batch batch(exec, length_at_end_);
     // [APCI-TC] section 1: only G01/G02/G03 are compensated, by the active
     // group while it runs. Anything else ends the contour under way ([APCI-TC]
     // section 2.4: a JOG/G00 makes the compensation ineffective; the next
@@ -291,6 +343,12 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         end_contour(trial, /*keep_departure=*/false, batch);
 
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
+    const std::uint64_t number = profiles_ + 1;  // this profile's, once taken
+    // SelectionMode 139: the profile after STATUS = 0 is the departure when it runs
+    // uncompensated from the last offset end (docs/compensation.md "Approach and departure").
+    const bool departs = departure_next_ != 0 && !compensate && p.kind != ProfileKind::kRapid;
+    const SegmentRole uncompensated = departs ? SegmentRole::kDeparture : SegmentRole::kUncompensated;
+    const std::int8_t uncompensated_side = departs ? departure_next_ : std::int8_t{0};
     bool pushed = false;
     // LengthMode 1: the tool length acts on every profile, compensated or not (design,
     // docs/compensation.md "Tool length"); compensated ones get it below as always.
@@ -302,7 +360,10 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     };
     if (p.kind == ProfileKind::kRapid) {
         // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
-        batch.add(line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag));
+        Move m = line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag);
+        m.profile = number;
+        batch.length_at(m, length);
+        batch.add(m);
     } else if (!compensate) {
         if (is_arc(p.kind)) {
             const geom::Element e =
@@ -319,18 +380,26 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
                 tc.length_axis == res.arc_axes[0] || tc.length_axis == res.arc_axes[1];
             Move m =
                 arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path), res.arc_axes,
-                         res.cx, res.cy, res.ccw, feed, SegmentRole::kUncompensated, p.tag);
+                         res.cx, res.cy, res.ccw, feed, uncompensated, p.tag);
             m.plane = res.plane;
+            m.profile = number;
+            m.side = uncompensated_side;
+            batch.length_at(m, in_arc_plane ? AxisVector{} : length);
             batch.add(m);
         } else {
-            batch.add(line_move(batch.end, lengthened(res.path), feed, SegmentRole::kUncompensated,
-                                p.tag));
+            Move m = line_move(batch.end, lengthened(res.path), feed, uncompensated, p.tag);
+            m.traverse = p.kind == ProfileKind::kTraverse;
+            m.profile = number;
+            m.side = uncompensated_side;
+            batch.length_at(m, length);
+            batch.add(m);
         }
     } else {
         const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
         if (trial.comp.running()) {
             const geom::CompensatorConfig& now = trial.comp.config();
-            if (now.tool_radius != tc.radius || now.side != tc.side) {
+            if (now.tool_radius != tc.radius || now.side != tc.side ||
+                trial.cutting_edge != tc.cutting_edge) {
                 // A new RADIUS applies from the next profile: the contour ends at
                 // the held profile's offset end and this one approaches the new path.
                 end_contour(trial, /*keep_departure=*/false, batch);
@@ -345,6 +414,9 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             trial.plane = tc.plane;
             trial.length_axis = tc.length_axis;
             trial.side = tc.side == geom::Side::kRight ? std::int8_t{-1} : std::int8_t{1};
+            trial.cutting_edge = tc.cutting_edge;
+            const auto edge = objif::map::tc::cutting_edge_offset(tc.cutting_edge, tc.radius);
+            trial.edge = geom::Vec2(edge[0], edge[1]);
             const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition, tc.approach};
             const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
             if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
@@ -355,8 +427,9 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
             is_arc(p.kind) ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
                                             {res.cx, res.cy}, res.ccw)
                            : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
-        pending_.push_back(
-            Pending{next_index_, p.tag, feed, path_, res.path, geom::is_plane_free(e)});
+        pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path,
+                                   geom::is_plane_free(e), p.kind == ProfileKind::kTraverse,
+                                   number});
         pushed = true;
         const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
         if (!step.ok()) {
@@ -372,8 +445,11 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
         return r;
     }
     comp_ = trial;
+    length_at_end_ = batch.length;
     program_ = res.program;
     path_ = p.kind == ProfileKind::kRapid ? res.program : res.path;
+    profiles_ = number;
+    departure_next_ = 0;
     if (pushed) ++next_index_;
     forget_finished();
     return {};
@@ -410,14 +486,17 @@ MotionResult Spooler::release_for_deactivation(std::int32_t group, const TcSetti
     // [APCI-TC] section 1: "Beim Deaktivieren der Werkzeugradius-Korrektur wird
     // auch das letzte zwischengespeicherte Verfahrprofil gespoolt."
     Compensation trial = comp_;
-    Batch batch(exec);
+    Batch batch(exec, length_at_end_);
     // Perpendicular (G237): a departure at right angles back to the programmed end. Indirect
     // (G139): none; the tool stays at the last offset end and the next profile departs from
     // there (docs/compensation.md "Approach and departure").
-    end_contour(trial, /*keep_departure=*/tc.approach == geom::ApproachMode::kPerpendicular, batch);
+    const bool perpendicular = tc.approach == geom::ApproachMode::kPerpendicular;
+    end_contour(trial, /*keep_departure=*/perpendicular, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
+    length_at_end_ = batch.length;
     forget_finished();
+    departure_next_ = perpendicular ? std::int8_t{0} : comp_.side;
     return {};
 }
 
@@ -433,10 +512,11 @@ MotionResult Spooler::ssf(AxisMask axes, std::int32_t command, const TcSettings&
     // [APCI-TC] section 1: "Alternativ dazu kann auch das SSF-Kommando 2001 an
     // die entsprechenden Achsen gesendet werden": the held profile is spooled.
     Compensation trial = comp_;
-    Batch batch(exec);
+    Batch batch(exec, length_at_end_);
     end_contour(trial, /*keep_departure=*/false, batch);
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) return r;
     comp_ = trial;
+    length_at_end_ = batch.length;
     forget_finished();
     return {};
 }
@@ -465,6 +545,8 @@ MotionResult Spooler::direct(const DirectCommand& c, Executor& exec, double cycl
     // Verfahrprofil verworfen."
     comp_.comp.discard();
     pending_.clear();
+    departure_next_ = 0;
+    length_at_end_ = {};  // the programmed path is where the axes are (path_ below)
     exec.discard();
     if (c.code == DirectCode::kJA) {
         jog.direct = true;
@@ -479,6 +561,7 @@ void Spooler::discard_held(std::int32_t group) {
     if (comp_.group != group || !comp_.comp.running()) return;
     comp_.comp.discard();
     pending_.clear();
+    departure_next_ = 0;
 }
 
 void Spooler::clear_shift(const TcSettings& tc, const Executor& exec) {
@@ -501,6 +584,7 @@ void Spooler::clear_shift(const TcSettings& tc, const Executor& exec) {
     }
     for (int a = 0; a < kAxisCount; ++a) program_[a] += d[a];
     path_ = end;
+    length_at_end_ = {};  // the shift took it into the programmed path
 }
 
 }  // namespace rwmos::motion

@@ -13,6 +13,8 @@ std::string_view profile_kind_name(ProfileKind k) noexcept {
             return "G02";
         case ProfileKind::kArcCcw:
             return "G03";
+        case ProfileKind::kTraverse:
+            return "G00 (traverse)";
     }
     return "unknown";
 }

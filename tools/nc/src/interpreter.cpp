@@ -89,6 +89,32 @@ bool check_plane(const BlockCheck& c, const ModalState& before, Compensation com
     return true;
 }
 
+// A turning tool's cutting edge position (srk_lage 1..8, ISG P-TOOL-00002) is given in the
+// turning plane: its radius compensation runs in G18 (Z-X) only, as LinuxCNC's does ("G41 with
+// lathe tool, but plane is not G18"); and only a turning tool (typ 1, P-TOOL-00001) has one.
+bool check_cutting_edge(const BlockCheck& c, const ModalState& after, const ToolTable* tools) {
+    const ToolData* t = tools != nullptr && after.tool > 0 ? tools->find(after.tool) : nullptr;
+    if (t == nullptr || t->srk_lage < 1 || t->srk_lage > 8) return true;
+    const std::uint32_t col = c.b.compensation.column;
+    if (t->type() != ToolType::kTurning) {
+        return c.fail(ErrorKind::kProgramRule, col,
+                      fmt::format("G{} with D{}: its cutting edge position (srk_lage {}) is a "
+                                  "turning tool's, and D{} is type {}: set wz[{}].typ 1 "
+                                  "(P-TOOL-00001) or srk_lage 0",
+                                  g_number(after.compensation), after.tool, t->srk_lage,
+                                  after.tool, t->typ, after.tool));
+    }
+    if (after.plane != Plane::kZX) {
+        return c.fail(ErrorKind::kProgramRule, col,
+                      fmt::format("G{} with the turning tool D{} (cutting edge position {}) in "
+                                  "G{}: the cutting edge position is given in the turning plane; "
+                                  "program G18 (Z-X) before G{}",
+                                  g_number(after.compensation), after.tool, t->srk_lage,
+                                  g_number(after.plane), g_number(after.compensation)));
+    }
+    return true;
+}
+
 // Resolves the end point of a move from the axis words and the distance mode.
 [[gnu::always_inline]] inline Eigen::Vector3d end_point(const Block& b, const Eigen::Vector3d& from,
                                                          DistanceMode mode) {
@@ -317,12 +343,19 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     if (b.tool.present()) s.tool = b.tool.value;
     if (!check_plane(c, state_, s.compensation)) return false;
     if (b.plane.present()) s.plane = b.plane.value;
+    if (s.compensation != Compensation::kOff && s.compensation != state_.compensation &&
+        !check_cutting_edge(c, s, options_.tools))
+        return false;
 
     const bool moves =
         b.has_axis_word() || b.has_center_word() || b.radius.present() || b.b_axis.present();
     if (moves) s.departure_pending = false;
-    if (!moves && state_.compensation != Compensation::kOff && s.compensation == Compensation::kOff)
-        s.departure_pending = s.selection == SelectionMode::kIndirect;
+    if (!moves && state_.compensation != Compensation::kOff && s.compensation == Compensation::kOff) {
+        // The selection word of the G40's own block decides ([ISG-PROG]: the method acts on
+        // the G40 of its block).
+        s.departure_pending = s.selection != SelectionMode::kPerpendicular;
+        s.departing = s.selection;
+    }
     ArcMove arc;  // a G2/G3 block's move, made before the checks that need it
     if (moves) {
         if (!s.motion) {
@@ -346,18 +379,18 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                 ErrorKind::kProgramRule, first_motion_column(b),
                 fmt::format("no feed rate: program F before the first G{} move", g_number(m)));
         }
-        // Under G139 the move after a lone G40 departs from the last compensated point, r beside
-        // the contour: an arc from there would not start where it was programmed ([ISG-PROG]
-        // G239: "An arc programmed directly after G40 causes an error message"; LinuxCNC: "must
-        // be straight, not an arc").
+        // Under G139 (and G138) the move after a lone G40 departs from the last compensated
+        // point, r beside the contour: an arc from there would not start where it was programmed
+        // ([ISG-PROG] G239: "An arc programmed directly after G40 causes an error message";
+        // LinuxCNC: "must be straight, not an arc").
         if (is_arc(m) && state_.departure_pending) {
             return c.fail(ErrorKind::kProgramRule,
                           b.motion.present() ? b.motion.column : first_motion_column(b),
-                          fmt::format("G{} right after G40: under G139 this move departs from the "
+                          fmt::format("G{} right after G40: under G{} this move departs from the "
                                       "compensated point, r beside the contour, not from the arc's "
                                       "programmed start; program a G1 (or G0) first, or G40 with "
                                       "G237",
-                                      g_number(m)));
+                                      g_number(m), g_number(state_.departing)));
         }
         if (is_arc(m) && s.compensation != state_.compensation) {
             return c.fail(ErrorKind::kProgramRule, b.compensation.column,
@@ -460,9 +493,11 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                 }
                 if (s.otc_type == OtcType::kRadius && s.departure_pending) {
                     return c.fail(ErrorKind::kProgramRule, isg.column,
-                                  "90050: #OTC OFF right after G40 without a move: under G139 the "
-                                  "block after G40 departs from the contour, so program a move "
-                                  "(with the G40 or after it) before #OTC OFF");
+                                  fmt::format("90050: #OTC OFF right after G40 without a move: "
+                                              "under G{} the block after G40 departs from the "
+                                              "contour, so program a move (with the G40 or after "
+                                              "it) before #OTC OFF",
+                                              g_number(s.departing)));
                 }
                 s.otc_active = false;
             }
@@ -508,13 +543,18 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
             if (isg.on != s.trafo) {
                 // The B head's transformation (docs/design.md section 8, rwmos/geometry/kinematics.h):
                 // with it the program gives the tool tip, the pivot one tool length behind it
-                // along t(B) = (sin B, 0, cos B). The position in force changes its meaning.
+                // along t(B) = (sin B, 0, cos B). Without it the length acts on the tool axis of
+                // the plane (docs/compensation.md "Tool length"): the pivot one length behind the
+                // programmed point along that axis. The pivot stays; the position in force
+                // changes its meaning (at B0 in G17 it stays the same).
                 const double length = tool_length_mm(s.tool);
                 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-                const Eigen::Vector3d along =
+                const Eigen::Vector3d along_tool =
                     length * Eigen::Vector3d(std::sin(s.b * kDeg), 0.0, std::cos(s.b * kDeg));
-                s.position = isg.on ? Eigen::Vector3d(s.position - along)
-                                    : Eigen::Vector3d(s.position + along);
+                Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
+                along_axis[plane_axes(s.plane).normal] = length;
+                s.position = isg.on ? Eigen::Vector3d(s.position + along_axis - along_tool)
+                                    : Eigen::Vector3d(s.position + along_tool - along_axis);
                 s.trafo_length = length;
             }
             s.trafo = isg.on;

@@ -276,6 +276,72 @@ std::uint32_t first_axis_column(const KlartextBlock& b) {
 
 }  // namespace
 
+namespace {
+
+// The column of the block's feed word, else of its first axis word.
+std::uint32_t feed_column(const KlartextBlock& b) noexcept {
+    for (const auto* w : {&b.feed, &b.feed_per_tooth, &b.feed_per_rev})
+        if (w->present()) return w->column;
+    if (b.feed_auto.present()) return b.feed_auto.column;
+    return first_axis_column(b);
+}
+
+// [TNC-3D], "Gerade LN": "F, FMAX, FZ, FU oder F AUTO". FZ is per tooth: F = FZ x the tool's
+// teeth (the TNC tool table's CUT, the tool list's wz[n].cut) x S; FU per revolution: F = FU x
+// S; F AUTO the F of the TOOL CALL. S is the spindle speed the TOOL CALLs gave. Sets s.feed (mm/
+// min) for the move; what is missing is named.
+bool feed_of_move(const BlockCheck& c, const KlartextBlock& b, const KlartextOptions& options,
+                  KlartextState& s) {
+    const std::uint32_t col = feed_column(b);
+    const auto need_speed = [&](std::string_view what) {
+        return c.fail(ErrorKind::kProgramRule, col,
+                      fmt::format("{} needs the spindle speed: give S in the TOOL CALL (TOOL CALL "
+                                  "{} Z S..)",
+                                  what, s.tool));
+    };
+    switch (s.feed_mode) {
+        case KlartextFeed::kPerMinute:
+            return true;
+        case KlartextFeed::kPerRevolution:
+            if (!(s.spindle_speed > 0.0)) return need_speed(fmt::format("FU{}", s.feed_per_rev));
+            s.feed = s.feed_per_rev * s.spindle_speed;
+            return true;
+        case KlartextFeed::kPerTooth: {
+            const std::string what = fmt::format("FZ{}", s.feed_per_tooth);
+            if (!(s.spindle_speed > 0.0)) return need_speed(what);
+            const ToolData* t =
+                options.tools != nullptr && s.tool > 0 ? options.tools->find(s.tool) : nullptr;
+            if (s.tool == 0)
+                return c.fail(ErrorKind::kProgramRule, col,
+                              fmt::format("{} needs the number of teeth of the tool in force, and "
+                                          "no tool is called: program TOOL CALL first",
+                                          what));
+            if (t == nullptr || t->cut <= 0)
+                return c.fail(
+                    ErrorKind::kProgramRule, col,
+                    fmt::format("{} needs the number of teeth of tool {}: {} (wz[{}].cut, the TNC "
+                                "tool table's CUT)",
+                                what, s.tool,
+                                options.tools == nullptr ? "no tool list was given"
+                                                          : "the tool list does not give it",
+                                s.tool));
+            s.feed = s.feed_per_tooth * t->cut * s.spindle_speed;
+            return true;
+        }
+        case KlartextFeed::kAuto:
+            if (!(s.call_feed > 0.0))
+                return c.fail(ErrorKind::kProgramRule, col,
+                              fmt::format("F AUTO takes the feed of the TOOL CALL, and TOOL CALL "
+                                          "{} gives none: program F in the TOOL CALL",
+                                          s.tool));
+            s.feed = s.call_feed;
+            return true;
+    }
+    return true;
+}
+
+}  // namespace
+
 KlartextInterpreter::KlartextInterpreter(const KlartextOptions& options) : options_(options) {
     state_.position = options_.start_position;
 }
@@ -336,6 +402,9 @@ bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, E
             CalledTool called;
             if (!check_tool_call(c, state_, options_, called)) return false;
             s.tool = b.tool.value;
+            // S stays in force until a TOOL CALL gives another; F belongs to its call (F AUTO).
+            if (b.spindle_speed.present()) s.spindle_speed = b.spindle_speed.value;
+            s.call_feed = b.call_feed.present() ? b.call_feed.value : 0.0;
             s.call_dl = b.dl.present() ? b.dl.value : 0.0;
             s.call_dr = b.dr.present() ? b.dr.value : 0.0;
             s.call_dr2 = b.dr2.present() ? b.dr2.value : 0.0;
@@ -398,9 +467,26 @@ bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, E
         s.reference = ToolReference::kTip;
     }
     if (b.radius_comp.present()) s.radius_comp = b.radius_comp.value;
-    if (b.feed.present()) s.feed = b.feed.value;
+    if (b.feed.present()) {
+        s.feed_mode = KlartextFeed::kPerMinute;
+        s.feed = b.feed.value;
+    } else if (b.feed_per_tooth.present()) {
+        s.feed_mode = KlartextFeed::kPerTooth;
+        s.feed_per_tooth = b.feed_per_tooth.value;
+    } else if (b.feed_per_rev.present()) {
+        s.feed_mode = KlartextFeed::kPerRevolution;
+        s.feed_per_rev = b.feed_per_rev.value;
+    } else if (b.feed_auto.present()) {
+        s.feed_mode = KlartextFeed::kAuto;
+    }
     if (b.b.present()) s.b = b.b.value;
     if (b.c.present()) s.c = b.c.value;
+
+    // The feed of a move in mm/min (FZ, FU, F AUTO turned into it here): 0 with the error
+    // named when what it needs is missing.
+    const bool will_move =
+        b.kind == KlartextKind::kVectorLine || (b.kind == KlartextKind::kLine && b.has_axis_word());
+    if (will_move && !b.fmax.present() && !feed_of_move(c, b, options_, s)) return false;
 
     EventData move;
     bool moves = false;

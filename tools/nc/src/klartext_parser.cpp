@@ -16,9 +16,10 @@ constexpr std::string_view kKnownBlocks =
     "BEGIN PGM, END PGM, TOOL CALL, L, LN, FUNCTION PROG PATH, FUNCTION TCPM, FUNCTION RESET "
     "TCPM, FUNCTION CORRDATA, M functions";
 constexpr std::string_view kKnownMFunctions = "M2, M30, M107, M108, M128, M129";
-constexpr std::string_view kLineWords = "X Y Z IX IY IZ B C R0 RL RR F FMAX M";
-constexpr std::string_view kVectorLineWords = "X Y Z NX NY NZ TX TY TZ R0 RL RR F FMAX M";
-constexpr std::string_view kToolCallWords = "the tool axis Z, S, DL, DR, DR2";
+constexpr std::string_view kLineWords = "X Y Z IX IY IZ B C R0 RL RR F FMAX FZ FU F AUTO M";
+constexpr std::string_view kVectorLineWords =
+    "X Y Z NX NY NZ TX TY TZ R0 RL RR F FMAX FZ FU F AUTO M";
+constexpr std::string_view kToolCallWords = "the tool axis Z, S, F, DL, DR, DR2";
 
 constexpr bool is_upper(char c) noexcept {
     return c >= 'A' && c <= 'Z';
@@ -215,7 +216,7 @@ class KlartextParser {
         return true;
     }
 
-    // TOOL CALL n [X|Y|Z] [S..] [DL..] [DR..] [DR2..]
+    // TOOL CALL n [X|Y|Z] [S..] [F..] [DL..] [DR..] [DR2..]
     bool tool_call() {
         b_.kind = KlartextKind::kToolCall;
         if (!expect_keyword("CALL", "TOOL")) return false;
@@ -256,6 +257,7 @@ class KlartextParser {
                 continue;
             }
             Word<double>* w = word == "S"    ? &b_.spindle_speed
+                              : word == "F"  ? &b_.call_feed
                               : word == "DL" ? &b_.dl
                               : word == "DR" ? &b_.dr
                                              : nullptr;
@@ -268,6 +270,9 @@ class KlartextParser {
             if (!number(*w, word, col)) return false;
             if (w == &b_.spindle_speed && b_.spindle_speed.value < 0.0) {
                 return fail(ErrorKind::kValue, col, "spindle speed S must not be negative");
+            }
+            if (w == &b_.call_feed && !(b_.call_feed.value > 0.0)) {
+                return fail(ErrorKind::kValue, col, "feed rate F must be greater than 0");
             }
         }
     }
@@ -505,33 +510,58 @@ class KlartextParser {
             return radius_comp(word == "RL" ? Compensation::kLeft : Compensation::kRight, word,
                                col);
         }
+        // [TNC-3D], "Gerade LN": "F, FMAX, FZ, FU oder F AUTO": one feed a block.
         if (word == "FMAX") {
             if (!is_word_end(c_.peek())) return not_here(word, kind, col);
             if (b_.fmax.present()) return twice(word, col);
-            if (b_.feed.present()) return feed_conflict(col);
+            if (has_feed()) return feed_conflict(col);
             b_.fmax.value = true;
             b_.fmax.column = col;
             return true;
         }
         if (word == "F") {
-            if (b_.fmax.present()) return feed_conflict(col);
-            const std::uint32_t num_col = c_.column();
-            if (!number(b_.feed, word, col)) return false;
-            if (!(b_.feed.value > 0.0)) {
-                return fail(ErrorKind::kValue, num_col, "feed rate F must be greater than 0");
+            if (b_.feed.present() || b_.feed_auto.present()) return twice(word, col);
+            if (has_feed()) return feed_conflict(col);
+            // F AUTO: the word AUTO after blanks.
+            LineCursor look = c_;
+            look.skip_blanks();
+            if (look.peek() == 'A') {
+                const std::uint32_t auto_col = look.column();
+                c_ = look;
+                if (letters() != "AUTO" || !is_word_end(c_.peek()))
+                    return fail(ErrorKind::kSyntax, auto_col,
+                                "expected a number or AUTO after 'F'");
+                b_.feed_auto.value = true;
+                b_.feed_auto.column = col;
+                return true;
             }
-            return true;
+            return positive_feed(b_.feed, "F", col);
         }
-        if (word == "FZ" || word == "FU" || word == "FAUTO") {
-            return fail(
-                ErrorKind::kUnsupported, col,
-                fmt::format("feed '{}' is not supported: program F in mm/min or FMAX", word));
+        if (word == "FZ" || word == "FU") {
+            if (has_feed()) return feed_conflict(col);
+            return positive_feed(word == "FZ" ? b_.feed_per_tooth : b_.feed_per_rev, word, col);
         }
         return not_here(word, kind, col);
     }
 
+    bool has_feed() const noexcept {
+        return b_.feed.present() || b_.fmax.present() || b_.feed_per_tooth.present() ||
+               b_.feed_per_rev.present() || b_.feed_auto.present();
+    }
+
+    bool positive_feed(Word<double>& w, std::string_view word, std::uint32_t col) {
+        const std::uint32_t num_col = c_.column();
+        if (!number(w, word, col)) return false;
+        if (!(w.value > 0.0)) {
+            return fail(ErrorKind::kValue, num_col,
+                        fmt::format("feed rate {} must be greater than 0", word));
+        }
+        return true;
+    }
+
     bool feed_conflict(std::uint32_t col) {
-        return fail(ErrorKind::kConflict, col, "F and FMAX in one block: give one feed");
+        return fail(ErrorKind::kConflict, col,
+                    "two feeds in one block (F, FMAX, FZ, FU, F AUTO): give one");
     }
 
     bool axis_word(std::size_t k, bool incremental, std::string_view word, std::uint32_t col) {

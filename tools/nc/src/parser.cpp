@@ -744,13 +744,14 @@ class BlockParser {
                 return set_group(b_.units, Units::kInch, col, "input units");
             case 71:
                 return set_group(b_.units, Units::kMetric, col, "input units");
+            case 138:
+                return set_group(b_.selection, SelectionMode::kDirect, col, "selection method");
             case 139:
                 return set_group(b_.selection, SelectionMode::kIndirect, col, "selection method");
             case 237:
                 return set_group(b_.selection, SelectionMode::kPerpendicular, col,
                                  "selection method");
             case 5:
-            case 138:
             case 236:
             case 238:
             case 239:
@@ -759,8 +760,9 @@ class BlockParser {
                                  fmt::format("G{} (a selection method of the radius compensation) "
                                              "is not emulated: G139 (indirect, the initial state: "
                                              "the G41/G42 block is the approach and the G40 block "
-                                             "the departure) and G237 (perpendicular approach and "
-                                             "departure) are (docs/compensation.md)",
+                                             "the departure), G138 (direct) and G237 "
+                                             "(perpendicular approach and departure) are "
+                                             "(docs/compensation.md)",
                                              g));
             case 90:
                 return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
@@ -798,16 +800,20 @@ class BlockParser {
 
     bool feed(std::uint32_t col) {
         const std::uint32_t num_col = c_.column();
-        // The ISG kernel's other feed words ([ISG-PROG]): per tooth, per revolution, automatic.
-        // They depend on a spindle, which the emulated board does not have.
+        // FZ, FU and F AUTO are the feeds of Klartext programs ([TNC-3D], "Gerade LN"), with the
+        // TOOL CALL's S and the tool's teeth; DIN 66025 programs here have no S word and take F
+        // in mm/min.
         const char next = static_cast<char>(std::toupper(static_cast<unsigned char>(c_.peek())));
-        if (next == 'Z' || next == 'U' || next == 'A' || (next == ' ' && std::toupper(static_cast<unsigned char>(c_.peek_at(1))) == 'A')) {
+        const bool auto_after_blank =
+            next == ' ' && std::toupper(static_cast<unsigned char>(c_.peek_at(1))) == 'A';
+        if (next == 'Z' || next == 'U' || next == 'A' || auto_after_blank) {
             const std::string_view word = next == 'Z' ? "FZ (feed per tooth)"
                                           : next == 'U' ? "FU (feed per revolution)"
-                                                        : "F AUTO (automatic feed)";
+                                                        : "F AUTO (the feed of the tool call)";
             return fail_here(ErrorKind::kUnsupported, col,
-                             fmt::format("{} is not emulated: it needs a spindle, which the "
-                                         "board has not; program F in mm/min",
+                             fmt::format("{} is a feed of Klartext programs (TOOL CALL with S; "
+                                         "docs/nc-programs.md): DIN 66025 programs give F in "
+                                         "mm/min",
                                          word));
         }
         if (!real(b_.feed, 'F', col)) return false;

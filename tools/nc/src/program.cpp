@@ -188,17 +188,42 @@ bool EventStream::parameter(int n, double& out) const {
     return true;
 }
 
+namespace {
+
+// [ISG-OTC] section 2.8: the wear values are "in [mm] oder [Inch]": a length in the program's
+// input unit (G70 inch, G71 mm). The wear on A, B, C (axes 3..5, rotary by DIN 66025's names)
+// is an angle; the wear constant is 0.1 um/m and OTC_ACTIVE a flag in either unit.
+bool is_wear_length(const VariableRef& v) noexcept {
+    switch (v.variable) {
+        case NcVariable::kWearRadius:
+        case NcVariable::kWearRadiusCont:
+            return true;
+        case NcVariable::kWear:
+            return v.index < 3 || v.index > 5;
+        default:
+            return false;
+    }
+}
+
+}  // namespace
+
 bool EventStream::variable(const VariableRef& v, double& out, std::string& why) const {
+    bool ok = true;
     if (variables_ != nullptr) {
-        const bool ok = variables_->read(v, out, why);
+        ok = variables_->read(v, out, why);
         if (!variables_->withdrawn()) {
             read_variable_source_ = true;
-            return ok;
+        } else {
+            why.clear();
+            ok = true;
+            out = interpreter_.model_variable(v);
         }
-        why.clear();
+    } else {
+        out = interpreter_.model_variable(v);
     }
-    out = interpreter_.model_variable(v);
-    return true;
+    if (ok && is_wear_length(v) && interpreter_.state().units == Units::kInch)
+        out /= kMillimetresPerInch;
+    return ok;
 }
 
 Diagnostic EventStream::here(ErrorKind kind, std::uint32_t column, std::string message) const {

@@ -70,12 +70,14 @@ constexpr FieldSpec kFields[] = {
     {"dr2", false, false, -kInf, kInf, "", nullptr, &ToolData::dr2},
     {"wear_radius", false, false, -kInf, kInf, "", nullptr, &ToolData::wear_radius},
     {"wear_radius_cont", false, false, -kInf, kInf, "", nullptr, &ToolData::wear_radius_cont},
+    {"cut", false, true, 0, 99, "0..99", &ToolData::cut, nullptr},
+    {"srk_lage", false, true, 0, 9, "0..9", &ToolData::srk_lage, nullptr},
 };
 
 constexpr std::string_view kFieldList =
     "gueltig, typ, mass_einheit, laenge, radius, ax_ersatz[k], grinding_wear_const, "
     "grinding_max_infeed, grinding_disc_tilt_angle, r2, dl, dr, dr2, wear_radius, "
-    "wear_radius_cont";
+    "wear_radius_cont, cut, srk_lage";
 
 const FieldSpec* find_field(std::string_view name) {
     for (const FieldSpec& f : kFields) {
@@ -321,9 +323,12 @@ std::string format_tool_table(const ToolTable& table) {
         line("typ", std::to_string(t.typ));
         line("mass_einheit", std::to_string(t.mass_einheit));
         for (const FieldSpec& f : kFields) {
-            if (f.real == nullptr) continue;
-            const double v = t.*f.real;
-            if (v != 0.0) line(f.name, format_value(v));
+            if (f.real != nullptr && t.*f.real != 0.0) line(f.name, format_value(t.*f.real));
+            // The whole fields after the three above, when set.
+            if (f.integer != nullptr && f.integer != &ToolData::gueltig &&
+                f.integer != &ToolData::typ && f.integer != &ToolData::mass_einheit &&
+                t.*f.integer != 0)
+                line(f.name, std::to_string(t.*f.integer));
         }
         for (std::size_t k = 0; k < kAxisOffsetCount; ++k)
             if (t.ax_ersatz[k] != 0.0)

@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <array>
 #include <utility>
 
 #include "execution.h"
@@ -31,18 +30,9 @@ ObjectDescriptor c3_object(std::int32_t index, std::int32_t sub = 0) noexcept {
 
 // The first Klartext 3D event puts the module in the program's start state: no tool, no
 // deltas, PROG PATH OFF, TCPM off (tip), M108, R0, nothing armed; the head's B and C on the
-// first two board axes that are not X, Y or Z.
+// board axes the run placed them on (Execution::setup).
 bool Comp3dUnit::setup(const BlockRef& at) {
     if (ready_) return true;
-    std::array<bool, APCI_AXIS_COUNT> used{};
-    for (const int a : run_.axes) used[static_cast<std::size_t>(a)] = true;
-    std::array<std::int32_t, 2> head{-1, -1};
-    std::size_t found = 0;
-    for (std::int32_t a : {4, 5, 6, 7, 3}) {
-        if (found < head.size() && !used[static_cast<std::size_t>(a)]) head[found++] = a;
-    }
-    run_.head.b_axis = head[0];
-    run_.head.c_axis = head[1];
     auto probe = c3_object(c3::kIdxTool);
     if (run_.board().read_int(probe).status == APCI_NO_SUCH_DEVICE) {
         return run_.record(at, "NoSuchDevice",
@@ -76,14 +66,6 @@ bool Comp3dUnit::setup(const BlockRef& at) {
     if (corrections_ != nullptr)
         for (const nc::CorrectionRow& r : corrections_->rows())
             if (!correction_row(at, r)) return false;
-    // A Klartext program's tool length is this module's (TOOL CALL, the tip along the tool):
-    // the TC groups apply theirs only under RL/RR, the board's own way (LengthMode 0).
-    if (run_.out.tc_present)
-        for (std::int32_t g = 1; g <= objif::map::tc::kGroupCount; ++g) {
-            auto o = group_object(g, objif::map::tc::kSubLengthMode);
-            if (!write(o, objif::map::tc::kLengthWhileCompensating, at, "LengthMode")) return false;
-        }
-    run_.length_always = false;
     return true;
 }
 
@@ -149,29 +131,9 @@ bool Comp3dUnit::compensation(const BlockRef& at, nc::Compensation side) {
     return run_.tc_unit().compensation(at, side);
 }
 
+// L .. B.. C..: the head's axes, which the module reads for the tool direction.
 bool Comp3dUnit::head(const BlockRef& at, const nc::HeadOrientation& e) {
-    if (!setup(at)) return false;
-    if (run_.head.b_axis < 0 || run_.head.c_axis < 0)
-        return run_.record(at, "Unsupported", "no free board axes for the head's B and C");
-    run_.head.pending = true;
-    run_.head.at = at;
-    run_.head.b = e.b;
-    run_.head.c = e.c;
-    return true;
-}
-
-// A block that only turns the head: the rotary axes move at the rapid feed.
-bool Comp3dUnit::head_only_move(const BlockRef& at) {
-    apci_profile p{};
-    p.kind = APCI_PROFILE_RAPID;
-    p.tag = encode_block_tag(at);
-    run_.add_head(p);
-    run_.head.pending = false;
-    apci::Result<apci_motion_result> r;
-    if (!run_.spool_profile(p, r)) return false;
-    if (r.ok()) return true;
-    return run_.record(at, std::string(apci::status_name(r.status)),
-                       std::string(run_.board().last_error()));
+    return setup(at) && run_.head_turn(at, e);
 }
 
 // LN: N and T into the module, armed, then the line as a G01 profile; the board puts the

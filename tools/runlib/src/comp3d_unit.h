@@ -27,7 +27,6 @@ class Comp3dUnit final : public ModuleUnit {
     bool tcpm(const BlockRef& at, const nc::TcpmChange& e);
     bool compensation(const BlockRef& at, nc::Compensation side);
     bool head(const BlockRef& at, const nc::HeadOrientation& e);
-    bool head_only_move(const BlockRef& at);
     bool vector_line(const BlockRef& at, const nc::VectorLineMove& e);
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p);
     // An L line with RL/RR under TCPM: the module's (peripheral milling).

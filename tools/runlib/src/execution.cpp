@@ -12,6 +12,7 @@
 
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
+#include "objif/map/cutting_edge.h"
 
 namespace apci::run::exec {
 
@@ -59,7 +60,9 @@ Eigen::Vector3d Execution::pivot_of(const Eigen::Vector3d& tip, double b_deg) co
     return tip + head.trafo_length * tool_axis(b_deg);
 }
 
-// The axes stop first, so the segments read back before belong to the old state.
+// The axes stop first, so the segments read back before belong to the old state. Under the
+// transformation the tool length is its own (the pivot one length behind the tip along t(B)),
+// so the TC groups stop applying theirs on the tool axis (LengthMode 0) until #TRAFO OFF.
 bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     if (e.on && head.b_axis < 0)
         return record(at, "Unsupported", "no free board axis for the head's B");
@@ -67,9 +70,41 @@ bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     if (out.otc_present &&
         !otc_.setting(at, otc::kIdxTrafo, e.on ? 1 : 0, e.on ? "#TRAFO ON" : "#TRAFO OFF"))
         return false;
+    if (!tc_.length_mode(at, !e.on)) return false;
     head.trafo = e.on;
     head.trafo_length = e.tool_length;
+    // The next segment starts where the last one ended; under the transformation its start is
+    // turned back into the tip by the transformation alone, after it by the length on the axis.
+    // (The tip is another frame than the pivot: no fold's jump is read across the switch.)
+    start_offset_ = Eigen::Vector3d::Zero();
+    if (!e.on && length_always) start_offset_[plane_axes(plane).third] = length;
+    have_last_board_end_ = false;
     return true;
+}
+
+bool Execution::head_turn(const BlockRef& at, const nc::HeadOrientation& e) {
+    if (head.b_axis < 0 || (klartext_ && head.c_axis < 0))
+        return record(at, "Unsupported",
+                      klartext_ ? "no free board axes for the head's B and C"
+                                : "no free board axis for the head's B");
+    head.pending = true;
+    head.at = at;
+    head.b = e.b;
+    head.c = e.c;
+    return true;
+}
+
+// A block that only turns the head: the rotary axes move at the rapid feed.
+bool Execution::head_only_move(const BlockRef& at) {
+    apci_profile p{};
+    p.kind = APCI_PROFILE_RAPID;
+    p.tag = encode_block_tag(at);
+    add_head(p);
+    head.pending = false;
+    apci::Result<apci_motion_result> r;
+    if (!spool_profile(p, r)) return false;
+    if (r.ok()) return true;
+    return record(at, std::string(apci::status_name(r.status)), std::string(board_.last_error()));
 }
 
 PathSegment Execution::line_segment(const BlockRef& at, SegmentKind kind,
@@ -110,12 +145,10 @@ bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eig
     }
     // A G0 under G41/G42 is compensated like a G01 ([ISG-PROG] compensates every move in the
     // plane; LinuxCNC's interpreter likewise): the board compensates only interpolation
-    // profiles, so it goes as a G01 at the rapid feed (no surprise motion: a Z lift stays beside
-    // the contour instead of crossing onto it).
-    if (kind == APCI_PROFILE_RAPID && comp_on) {
-        kind = APCI_PROFILE_LINE;
-        feed = kRapidFeed;
-    }
+    // profiles, so it goes as a traverse, compensated as a G01 at the board's rapid feed (no
+    // surprise motion: a Z lift stays beside the contour instead of crossing onto it) and still
+    // a rapid ([ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!").
+    if (kind == APCI_PROFILE_RAPID && comp_on) kind = APCI_PROFILE_TRAVERSE;
     const bool ok = spool(at, s, profile(at, kind, end, feed));
     head.pending = false;
     return ok;
@@ -152,10 +185,14 @@ apci_profile Execution::profile(const BlockRef& at, std::uint8_t kind, const Eig
     return p;
 }
 
+// The head's axes join the profile: B, and in Klartext C (DIN programs have no C).
 void Execution::add_head(apci_profile& p) noexcept {
-    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.b_axis) | (1u << head.c_axis));
+    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.b_axis));
     p.target[head.b_axis] = head.b;
-    p.target[head.c_axis] = head.c;
+    if (klartext_) {
+        p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.c_axis));
+        p.target[head.c_axis] = head.c;
+    }
     head.b_now = head.b;
 }
 
@@ -215,9 +252,12 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
 }
 
 void Execution::begin_self_approach() {
+    // A turning tool's path is its imaginary tip; the check measures the nose centre.
+    const auto edge = objif::map::tc::cutting_edge_offset(cutting_edge, radius);
+    check_edge_ = Eigen::Vector2d(edge[0], edge[1]);
     if (sink_checks_) {
         sink_check_active_ = true;
-        sink_.self_approach_begin(radius, comp_plane, comp_side);
+        sink_.self_approach_begin(radius, comp_plane, comp_side, check_edge_);
         return;
     }
     self_approach_.begin(radius, comp_plane, comp_side);
@@ -412,7 +452,7 @@ bool Execution::drain_segments(std::uint64_t pending) {
             }
             sink_.executed(s);
             if (self_approach_mode_ != SelfApproachMode::kOff && !sink_checks_) {
-                self_approach_.executed(s, findings_);
+                self_approach_.executed(nose_centre_path(s, check_edge_, comp_plane), findings_);
                 if (!take_findings()) return false;
             }
         }
@@ -448,9 +488,11 @@ PathSegment Execution::convert(const apci_segment& b) {
     s.role = role_of(b.role);
     s.start_cycle = b.start_cycle;
     s.end_cycle = b.end_cycle;
-    s.kind = b.role == APCI_ROLE_RAPID    ? SegmentKind::kRapid
-             : b.kind == APCI_SEGMENT_ARC ? SegmentKind::kArc
-                                          : SegmentKind::kLine;
+    // A traverse's straight segments are rapid moves on the compensated path: kind rapid,
+    // their role the compensation's (a circular transition at its end stays an arc).
+    s.kind = b.kind == APCI_SEGMENT_ARC ? SegmentKind::kArc
+             : b.role == APCI_ROLE_RAPID || b.traverse != 0 ? SegmentKind::kRapid
+                                                            : SegmentKind::kLine;
     for (int i = 0; i < 3; ++i) {
         const std::int32_t a = axis(i);
         s.start[i] = b.start[a];

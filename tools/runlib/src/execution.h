@@ -60,14 +60,16 @@ class RecentMoves {
     std::size_t next_ = 0;
 };
 
-// The head: the B (and C) axes the 3D module turns, and #TRAFO's tool-tip transformation of
-// the B head (docs/design.md section 8; docs/otc.md).
+// The head: its B (and, in Klartext, C) axis, and #TRAFO's tool-tip transformation of the B
+// head (docs/design.md section 8; docs/otc.md). The axes are placed once, at setup, on the
+// first two board axes that are not X, Y or Z (-1: none free); the OTC module's B (#KIN) and
+// the 3D module's B and C are these.
 struct HeadState {
     bool trafo = false;         // #TRAFO ON: programs give the tool tip
     double trafo_length = 0.0;  // the tool length it uses (mm)
     double b_now = 0.0;         // the B the spooled moves end at
-    std::int32_t b_axis = 4;
-    std::int32_t c_axis = 5;
+    std::int32_t b_axis = -1;
+    std::int32_t c_axis = -1;
     bool pending = false;  // a B/C programmed and not yet spooled with a move
     BlockRef at{};
     double b = 0.0;
@@ -113,6 +115,8 @@ class Execution {
     apci_profile profile(const BlockRef& at, std::uint8_t kind, const Eigen::Vector3d& end,
                          double feed) noexcept;
     void add_head(apci_profile& p) noexcept;
+    // A B (C) word: the head turns with the block's move (DIN: a B word; Klartext: L .. B C).
+    bool head_turn(const BlockRef& at, const nc::HeadOrientation& e);
     // A programmed move on its way to the board: to the sink, and to the recent moves.
     void programmed(const PathSegment& s, std::uint32_t tag);
     bool spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r);
@@ -133,6 +137,7 @@ class Execution {
     bool length_always = false;  // the TC groups' LengthMode 1: the length on every move
     double length = 0.0;         // WkzLen of the current tool
     double radius = 0.0;         // RADIUS of the current tool
+    std::int32_t cutting_edge = 0;  // CuttingEdge of the current tool (srk_lage)
     nc::ToolTable tools_mut;     // the tool list as the run changes it (wear at tool change)
     HeadState head;
 
@@ -147,6 +152,8 @@ class Execution {
     void finish();
     bool dispatch(const nc::Event& ev);
     bool end_of_program(const BlockRef& at);
+    void place_head() noexcept;
+    bool head_only_move(const BlockRef& at);
     bool trafo(const BlockRef& at, const nc::TrafoChange& e);
 
     static PathSegment arc_segment(const BlockRef& at, const nc::ArcMove& a);
@@ -199,6 +206,9 @@ class Execution {
     // path and not the axes.
     Eigen::Vector3d last_board_end_ = Eigen::Vector3d::Zero();
     RecentMoves recent_;
+    // A turning tool's cutting edge offset in the plane of the compensation under way: the
+    // self-approach check sees the nose centre (nose_centre_path).
+    Eigen::Vector2d check_edge_ = Eigen::Vector2d::Zero();
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;
     SelfApproachCheck self_approach_;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <type_traits>
 #include <variant>
@@ -235,6 +236,7 @@ bool Execution::setup() {
     if (!write(pu, std::int32_t{bm::kPuMillimetre}, {}, "PU")) return false;
 
     if (!read_axis_numbers()) return false;
+    place_head();
     for (std::size_t i = 0; i < out.axis_names.size(); ++i)
         out.axis_names[i] = axis_column_name(static_cast<int>(i));
     if (out.tc_present && !tc_.setup()) return false;
@@ -266,6 +268,18 @@ bool Execution::read_axis_numbers() {
     }
     out.axis_numbers = axes;
     return true;
+}
+
+// The head's B and C on the first two board axes that are not X, Y or Z (4 and 5 by default).
+void Execution::place_head() noexcept {
+    std::array<bool, APCI_AXIS_COUNT> used{};
+    for (const int a : axes) used[static_cast<std::size_t>(a)] = true;
+    std::array<std::int32_t, 2> found{-1, -1};
+    std::size_t n = 0;
+    for (std::int32_t a : {4, 5, 6, 7, 3})
+        if (n < found.size() && !used[static_cast<std::size_t>(a)]) found[n++] = a;
+    head.b_axis = found[0];
+    head.c_axis = found[1];
 }
 
 void Execution::finish() {
@@ -308,7 +322,7 @@ bool Execution::dispatch(const nc::Event& ev) {
     const bool is_move = std::holds_alternative<nc::RapidMove>(ev.data) ||
                          std::holds_alternative<nc::LineMove>(ev.data) ||
                          std::holds_alternative<nc::VectorLineMove>(ev.data);
-    if (head.pending && !is_move && !c3_.head_only_move(head.at)) return false;
+    if (head.pending && !is_move && !head_only_move(head.at)) return false;
     if (!plc_.block(ev.origin)) return false;
     return std::visit(
         [&](const auto& e) -> bool {
@@ -344,7 +358,9 @@ bool Execution::dispatch(const nc::Event& ev) {
                 return c3_.setting(at, c3::kIdxAllowOversize, e.allowed ? 1 : 0,
                                    "AllowOversize");
             } else if constexpr (std::is_same_v<E, nc::HeadOrientation>) {
-                return c3_.head(at, e);
+                // DIN's B is the B head's (#KIN, docs/design.md section 8); Klartext's B and C
+                // are the 3D module's head.
+                return klartext_ ? c3_.head(at, e) : head_turn(at, e);
             } else if constexpr (std::is_same_v<E, nc::OtcChange>) {
                 return otc_.command(at, e.command);
             } else if constexpr (std::is_same_v<E, nc::KinematicsSelect>) {

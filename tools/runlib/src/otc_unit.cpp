@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <array>
 #include <utility>
 
 #include "execution.h"
@@ -23,8 +22,8 @@ namespace otc = objif::map::otc;
 // the V.G. variables (docs/apcictl.md "run", docs/otc.md)
 
 // The program's start state: OTC off, LENGTH, AUTO, the tool's wear constant, ACC_WEIGHT
-// 100, no kinematics, the control units off; the B head's B on the first free board axis
-// (as the 3D module's). Without the module (NoSuchDevice) OTC events are refused by name.
+// 100, no kinematics, the control units off; the B head's B on the head's axis (as the 3D
+// module's, Execution::place_head). Without the module (NoSuchDevice) OTC events are refused by name.
 bool OtcUnit::setup() {
     auto active = otc_object(otc::kDevChannel, otc::kIdxActive);
     const auto r = run_.board().read_int(active);
@@ -35,15 +34,9 @@ bool OtcUnit::setup() {
     if (!r) return run_.board_failure({}, r.status, "read OTC Active");
     run_.out.otc_present = true;
     if (r.value != 0 && !write(active, std::int32_t{0}, {}, "#OTC OFF (start)")) return false;
-    std::array<bool, APCI_AXIS_COUNT> used{};
-    for (const int a : run_.axes) used[static_cast<std::size_t>(a)] = true;
-    std::int32_t b_axis = 4;
-    for (std::int32_t a : {4, 5, 6, 7, 3}) {
-        if (!used[static_cast<std::size_t>(a)]) {
-            b_axis = a;
-            break;
-        }
-    }
+    // Without a free axis the B head cannot turn (#TRAFO ON is refused); ToolAxisB keeps its
+    // default then.
+    const std::int32_t b_axis = run_.head.b_axis >= 0 ? run_.head.b_axis : 4;
     const std::pair<std::int32_t, std::int32_t> settings[] = {
         {otc::kIdxTrafo, 0},
         {otc::kIdxKinematics, 0},

@@ -182,4 +182,37 @@ bool surely_within_move_cycles(const PathSegment& s, double feed, double cycle_s
     return nc::surely_within_move_cycles(a, cycle_seconds);
 }
 
+PathSegment nose_centre_path(const PathSegment& s, const Eigen::Vector2d& edge, int plane) noexcept {
+    if (edge.isZero(0.0)) return s;
+    const PlaneAxes a = plane_axes(plane);
+    const auto back = [&](Point& p) {
+        p[a.first] -= edge.x();
+        p[a.second] -= edge.y();
+    };
+    PathSegment out = s;
+    const bool arc = s.kind == SegmentKind::kArc;
+    switch (s.role) {
+        case Role::kContour:
+        case Role::kTransition:
+            back(out.start);
+            back(out.end);
+            if (arc) back(out.center);
+            break;
+        case Role::kApproach:
+            back(out.end);
+            if (arc) {
+                back(out.start);
+                back(out.center);
+            }
+            break;
+        case Role::kDeparture:
+            back(out.start);
+            break;
+        default:
+            break;
+    }
+    if (!std::isnan(out.length)) measure(out);
+    return out;
+}
+
 }  // namespace apci::run

@@ -126,7 +126,7 @@ void PipelinedSink::deliver(Batch& b) {
                 count_segment(measured_, s);
                 inner_.executed(s);
                 if (check_) {
-                    check_->executed(s, findings_);
+                    check_->executed(nose_centre_path(s, check_edge_, check_plane_), findings_);
                     if (!findings_.empty()) warn_findings();
                 }
                 break;
@@ -160,6 +160,8 @@ void PipelinedSink::deliver(Batch& b) {
                 break;
             case Kind::kCheckBegin:
                 if (check_) check_->begin(b.begins[i].radius, b.begins[i].plane, b.begins[i].side);
+                check_plane_ = b.begins[i].plane;
+                check_edge_ = b.begins[i].edge;
                 break;
             case Kind::kCheckEnd:
                 if (check_) check_->end(findings_);
@@ -228,10 +230,11 @@ bool PipelinedSink::takes_self_approach() {
     return true;
 }
 
-void PipelinedSink::self_approach_begin(double radius, int plane, int side) {
+void PipelinedSink::self_approach_begin(double radius, int plane, int side,
+                                        const Eigen::Vector2d& edge) {
     Batch* b = open_batch();
     if (b == nullptr) return;
-    b->begins.push_back(Batch::Begin{radius, plane, side});
+    b->begins.push_back(Batch::Begin{radius, plane, side, edge});
     add(Kind::kCheckBegin, static_cast<std::uint32_t>(b->begins.size() - 1));
 }
 

@@ -19,8 +19,9 @@ constexpr std::array<int, kGroups> kGroupPlane{17, 18, 19};
 // RESET (every group to power-on), then group g in the plane kGroupPlane[g - 1], and the
 // program's start state: G17, the NC start corner mode (G25; the board's own default is
 // circular) and selection method (G139; the board's own is perpendicular, G237), and the tool
-// length on every move from the tool's selection on, as NC controls apply it (LengthMode 1; the
-// board's own applies it while compensating).
+// length on every move from the tool's selection on, as NC controls apply it, DIN and Klartext
+// alike (LengthMode 1; the board's own applies it while compensating). Only #TRAFO changes that
+// (length_mode).
 bool TcUnit::setup() {
     auto reset = group_object(1, tc::kSubReset);
     if (!run_.write(reset, std::int32_t{1}, {}, "RESET")) return false;
@@ -70,6 +71,9 @@ bool TcUnit::tool(const BlockRef& at, int index) {
         run_.tools() != nullptr && index > 0 ? run_.tools_mut.find(index) : nullptr;
     const double radius = t != nullptr ? t->radius_mm() : 0.0;
     const double length = t != nullptr ? t->length_mm() : 0.0;
+    // A turning tool's cutting edge position (srk_lage, ISG P-TOOL-00002): the board carries
+    // the compensated nose centre over to the imaginary tip (docs/compensation.md).
+    const std::int32_t edge = t != nullptr ? t->srk_lage : 0;
     // A tool change: the axes stop first, so every segment read back so far ran with the
     // old tool's length.
     if (!run_.run_clock()) return false;
@@ -77,13 +81,16 @@ bool TcUnit::tool(const BlockRef& at, int index) {
         auto index_object = group_object(g, tc::kSubWkzIndex);
         auto radius_object = group_object(g, tc::kSubRadius);
         auto length_object = group_object(g, tc::kSubWkzLen);
+        auto edge_object = group_object(g, tc::kSubCuttingEdge);
         if (!run_.write(index_object, std::int32_t{index}, at, "WKZINDEX") ||
             !run_.write(radius_object, radius, at, "RADIUS") ||
-            !run_.write(length_object, length, at, "WkzLen"))
+            !run_.write(length_object, length, at, "WkzLen") ||
+            !run_.write(edge_object, edge, at, "CuttingEdge"))
             return false;
     }
     run_.length = length;
     run_.radius = radius;
+    run_.cutting_edge = edge;
     return true;
 }
 
@@ -106,6 +113,16 @@ bool TcUnit::corner(const BlockRef& at, nc::CornerMode m) {
 
 bool TcUnit::selection(const BlockRef& at, nc::SelectionMode m) {
     return every_group(at, tc::kSubSelectionMode, nc::g_number(m), "SelectionMode");
+}
+
+bool TcUnit::length_mode(const BlockRef& at, bool always) {
+    if (!run_.out.tc_present || always == run_.length_always) return true;
+    if (!run_.run_clock()) return false;
+    if (!every_group(at, tc::kSubLengthMode, always ? tc::kLengthAlways : tc::kLengthWhileCompensating,
+                     "LengthMode"))
+        return false;
+    run_.length_always = always;
+    return true;
 }
 
 bool TcUnit::every_group(const BlockRef& at, std::int32_t sub, std::int32_t value,

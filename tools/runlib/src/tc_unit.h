@@ -28,6 +28,10 @@ class TcUnit final : public ModuleUnit {
     bool selection(const BlockRef& at, nc::SelectionMode m);
     bool compensation(const BlockRef& at, nc::Compensation side);
     bool compensation_off(const BlockRef& at);
+    // When WkzLen acts (LengthMode): on every move (`always`, as NC programs run, from setup on)
+    // or only while a group compensates (under #TRAFO, whose transformation carries the
+    // length). The axes stop first: the segments read back so far ran in the old mode.
+    bool length_mode(const BlockRef& at, bool always);
     void read_registers();
 
   private:

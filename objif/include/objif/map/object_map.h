@@ -93,8 +93,9 @@ inline constexpr std::int32_t kSubWkzLen = 12;
 // Extension objects (design).
 inline constexpr std::int32_t kSubCornerMode = 20;  // int r/w: 26 circular (default), 25 linear
 inline constexpr std::int32_t kSubSide = 21;        // int r: 40 none, 41 left, 42 right
-inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect
+inline constexpr std::int32_t kSubSelectionMode = 22;  // int r/w: 237 perpendicular (default), 139 indirect, 138 direct
 inline constexpr std::int32_t kSubLengthMode = 23;     // int r/w: 0 while compensating (default), 1 always
+inline constexpr std::int32_t kSubCuttingEdge = 24;    // int r/w 0..9: the tool's cutting edge position
 
 inline constexpr std::int32_t kToolCount = 1024;  // WKZINDEX 0..1023 ([APCI-TC] Table 3)
 // Tool radius and length limits in PU units (design): a radius is a size, so not negative; a
@@ -107,6 +108,7 @@ inline constexpr std::int32_t kCornerLinear = 25;
 inline constexpr std::int32_t kCornerCircular = 26;
 // SelectionMode values: how the compensation reaches and leaves the contour, by the ISG G-codes
 // ([ISG-PROG]; docs/compensation.md "Approach and departure").
+inline constexpr std::int32_t kSelectionDirect = 138;         // the first block straight to the second's offset
 inline constexpr std::int32_t kSelectionIndirect = 139;       // the first / G40 block approach and depart
 inline constexpr std::int32_t kSelectionPerpendicular = 237;  // right-angle moves (the board's own)
 // LengthMode values: when WkzLen acts on the group's ZAxis (docs/compensation.md "Tool length").
@@ -196,6 +198,12 @@ inline constexpr std::int32_t kSubCommand = 1;  // command_w: int r/w
 inline constexpr std::int32_t kSubEnable = 2;   // enable_w: int r/w 0..1
 inline constexpr std::int32_t kSubRequest = 3;  // request_r: int r
 inline constexpr std::int32_t kSubState = 4;    // state_r: int r
+// The axis unit ManualMvBackToStart ([ISG-OTC] section 2.7.3), beside otc_offset on the same
+// Index (the board axis): X_Command, X_Enable, X_Request, X_State.
+inline constexpr std::int32_t kSubBackCommand = 5;  // int r/w 0..1: a rising edge moves back
+inline constexpr std::int32_t kSubBackEnable = 6;   // int r/w 0..1
+inline constexpr std::int32_t kSubBackRequest = 7;  // int r: the command the unit takes
+inline constexpr std::int32_t kSubBackState = 8;    // int r: 1 while the axis moves back
 
 // DeviceNumber 2 (Sub 0 unless noted).
 inline constexpr std::int32_t kIdxToolNumber = 1;      // int r/w 0..1023: a change is a tool change

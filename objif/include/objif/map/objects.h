@@ -17,6 +17,7 @@
 #include <span>
 #include <string_view>
 
+#include "objif/map/cutting_edge.h"
 #include "objif/map/object_map.h"
 #include "objif/object_info.h"
 
@@ -193,9 +194,9 @@ constexpr ObjectInfo group_object(std::int32_t sub, std::string_view name, Value
 }
 }  // namespace detail
 
-inline constexpr std::array<ObjectInfo, 25> kObjects = [] {
+inline constexpr std::array<ObjectInfo, 26> kObjects = [] {
     using namespace detail;
-    return std::array<ObjectInfo, 25>{{
+    return std::array<ObjectInfo, 26>{{
         // ---- DeviceNumber 0: initialisation ([APCI-TC] Table 2).
         named("clean", "",
               init_object(
@@ -289,16 +290,24 @@ inline constexpr std::array<ObjectInfo, 25> kObjects = [] {
                   "design: reads back the Left/Right selection: 40 none, 41 left, 42 right")),
         named("selection_mode", "",
               group_object(
-                  tc::kSubSelectionMode, "SelectionMode", kInt, kRW, tc::kSelectionIndirect,
-                  tc::kSelectionPerpendicular, Value::of_int(tc::kSelectionPerpendicular),
-                  "design: approach and departure, 237 perpendicular (default) / 139 indirect "
-                  "(docs/compensation.md)")),
+                  tc::kSubSelectionMode, "SelectionMode", kInt, kRW,
+                  std::numeric_limits<std::int32_t>::min(),
+                  std::numeric_limits<std::int32_t>::max(),
+                  Value::of_int(tc::kSelectionPerpendicular),
+                  "design: approach and departure, 237 perpendicular (default) / 139 indirect / "
+                  "138 direct; any other value InvalidValue (docs/compensation.md)")),
         named("length_mode", "",
               group_object(
                   tc::kSubLengthMode, "LengthMode", kInt, kRW, tc::kLengthWhileCompensating,
                   tc::kLengthAlways, Value::of_int(tc::kLengthWhileCompensating),
                   "design: WkzLen on ZAxis 0 while compensating (default) / 1 on every profile "
                   "(docs/compensation.md)")),
+        named("cutting_edge", "",
+              group_object(
+                  tc::kSubCuttingEdge, "CuttingEdge", kInt, kRW, tc::kCuttingEdgeNone,
+                  tc::kMaxCuttingEdge, Value::of_int(tc::kCuttingEdgeNone),
+                  "design: the cutting edge position 1..9 of the tool WKZINDEX selects (ISG "
+                  "P-TOOL-00002, LinuxCNC's Q); 0 and 9 the nose centre (docs/compensation.md)")),
     }};
 }();
 inline constexpr std::array<DeviceMap, 2> kDevices{{{kDevInit, "init"}, {kDevGroups, "group"}}};
@@ -576,9 +585,9 @@ constexpr ObjectInfo axis_unit_obj(std::int32_t sub, std::string_view name, Valu
 }
 }  // namespace detail
 
-inline constexpr std::array<ObjectInfo, 36> kObjects = [] {
+inline constexpr std::array<ObjectInfo, 40> kObjects = [] {
     using namespace detail;
-    return std::array<ObjectInfo, 36>{{
+    return std::array<ObjectInfo, 40>{{
         // ---- DeviceNumber 0: #OTC ([ISG-OTC] section 2.1), ramp, kinematics, channel unit.
         named(
             "active", "",
@@ -671,6 +680,22 @@ inline constexpr std::array<ObjectInfo, 36> kObjects = [] {
         named("state", "0.1 um",
               axis_unit_obj(otc::kSubState, "otc_offset.state_r", kInt, kR, kIntMin, kIntMax,
                             "design reading of 2.7.2: the offset reached, 0.1 um")),
+        // ManualMvBackToStart of every board axis ([ISG-OTC] section 2.7.3).
+        named("back_to_start.command", "",
+              axis_unit_obj(otc::kSubBackCommand, "ManualMvBackToStart.X_Command", kInt, kRW, 0,
+                            1,
+                            "[ISG-OTC] 2.7.3: a rising edge (0 to 1) with X_Enable moves the axis "
+                            "so that its manual offset is 0, in manual mode with the axis at rest "
+                            "and an offset; else ignored")),
+        named("back_to_start.enable", "",
+              axis_unit_obj(otc::kSubBackEnable, "ManualMvBackToStart.X_Enable", kInt, kRW, 0, 1,
+                            "[ISG-OTC] 2.7.3: the PLC enables the unit")),
+        named("back_to_start.request", "",
+              axis_unit_obj(otc::kSubBackRequest, "ManualMvBackToStart.X_Request", kInt, kR, 0, 1,
+                            "design reading of 2.7.3: X_Command while the unit is enabled")),
+        named("back_to_start.state", "",
+              axis_unit_obj(otc::kSubBackState, "ManualMvBackToStart.X_State", kInt, kR, 0, 1,
+                            "design reading of 2.7.3: 1 while the axis moves back")),
         // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; [ISG-OTC] sections 2.6, 2.8, 3.2).
         named(
             "number", "",

@@ -75,14 +75,20 @@ class SegmentBatch {
 //   approach: one line from the tool position straight to its compensated end (the point at the
 //   radius beside its programmed end, at right angles to it), joined to the next element at the
 //   corner as its offset element would be; an arc approaches by LinuxCNC's entry arc (approach.h).
+// kDirect (G138, [ISG-PROG]'s direct selection): the first programmed element, a line, is the
+//   approach: one line from the tool position straight to the offset start of the element after
+//   it (the radius beside its programmed start, at right angles to it), with no corner between
+//   (a kink, as [ISG-PROG] says of direct selection); an arc as the first element is
+//   KorrError kDirectSelectionOnAnArc ([ISG-PROG] builds approach blocks on lines only). Ended
+//   before a second element arrives, it runs to its own offset end, as kIndirect's.
 // The departure is the spooler's (it keeps or drops the departure finish() emits).
-enum class ApproachMode : std::uint8_t { kPerpendicular, kIndirect };
+enum class ApproachMode : std::uint8_t { kPerpendicular, kIndirect, kDirect };
 
 struct CompensatorConfig {
     Side side = Side::kLeft;                                // G41 / G42
     double tool_radius = 0.0;                               // >= 0, interpolation units
     TransitionMode transition = TransitionMode::kCircular;  // G26 / G25
-    ApproachMode approach = ApproachMode::kPerpendicular;   // G237 / G139
+    ApproachMode approach = ApproachMode::kPerpendicular;   // G237 / G139 / G138
 };
 
 // The outcome of one step. On failure nothing was emitted and the compensator is exactly

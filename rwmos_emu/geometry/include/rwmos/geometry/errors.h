@@ -55,9 +55,10 @@ enum class Reason : std::uint8_t {
     kNoCornerSolution,          // the offset elements do not meet at an inside corner
     kTooManyPlaneFreeElements,  // more than kMaxPlaneFreeElements without plane motion
     kApproachArcNoSolution,     // indirect approach: no arc leads from the tool to the arc's offset
+    kDirectSelectionOnAnArc,    // direct selection (G138): the selection block is an arc
 };
 
-inline constexpr std::size_t kReasonCount = 16;
+inline constexpr std::size_t kReasonCount = 17;
 
 ErrorBits reason_bits(Reason r) noexcept;            // 0 for kNone
 std::string_view reason_name(Reason r) noexcept;     // "HeldElementTooShort"

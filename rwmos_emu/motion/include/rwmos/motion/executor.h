@@ -57,6 +57,7 @@ class Executor {
     // The i-th queued move (0: the one under way or next). For the modules that annotate
     // the moves a call just queued; i < fill().
     Move& queued(std::size_t i) noexcept { return moves_[i]; }
+    const Move& queued(std::size_t i) const noexcept { return moves_[i]; }
     // Drops every queued move; the one under way stops where it is and is
     // logged as interrupted. Used by direct commands.
     void discard();

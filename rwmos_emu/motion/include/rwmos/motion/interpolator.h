@@ -27,6 +27,13 @@ struct Move {
     SegmentRole role = SegmentRole::kUncompensated;
     std::uint32_t tag = 0;
     bool direct = false;     // started by a direct command (JA), not spooled
+    bool traverse = false;   // from a traverse profile: a rapid move on the compensated path
+    // The number of the profile it came from (Spooler::profiles_taken; 0: a direct command's).
+    std::uint64_t profile = 0;
+    // The part of end - start that is the tool length compensation coming in or going out
+    // (WkzLen added at the end and not at the start, or the reverse), not a programmed motion:
+    // OTC grinds nothing along it.
+    AxisVector length_change{};
     // Radius compensation the move was computed for: +1 left (G41), -1 right (G42), 0 none
     // (uncompensated moves, rapids). Contour, transition, approach and departure moves carry
     // their group's side (OTC RADIUS wear acts towards it, docs/otc.md).

@@ -50,6 +50,7 @@ struct TcSettings {
     bool length_always = false;  // LengthMode 1: `length` on every profile, not only compensated
     std::uint8_t length_axis = 2;  // the group's ZAxis
     double length = 0.0;           // WkzLen of the group's current tool
+    std::int32_t cutting_edge = 0;  // CuttingEdge of the group's current tool (0..9)
 };
 
 class Spooler {
@@ -100,6 +101,20 @@ class Spooler {
     const AxisVector& program_position() const noexcept { return program_; }
     // The same after rotation: where the programmed path is (no compensation).
     const AxisVector& path_position() const noexcept { return path_; }
+    // How many profiles were taken so far: the moves of the n-th carry Move::profile n, so a
+    // setting that acts from the next profile on (OTC's wear constant) acts from number
+    // profiles_taken() + 1.
+    std::uint64_t profiles_taken() const noexcept { return profiles_; }
+    // The queue's end moved by `delta` on `axis` as the tool length changed there without a
+    // motion (OTC's fold, Executor::shift_nominal): the length in the end changed with it.
+    void length_shifted(int axis, double delta) noexcept {
+        length_at_end_[static_cast<std::size_t>(axis)] += delta;
+    }
+    // The number of the oldest profile held back or waiting with it, whose moves are still to
+    // be queued (0: none).
+    std::uint64_t oldest_pending_profile() const noexcept {
+        return pending_.empty() ? 0 : pending_.front().profile;
+    }
 
   private:
     // The compensator and where it works (fixed when it begins). Calls work
@@ -113,6 +128,11 @@ class Spooler {
         double length = 0.0;  // WkzLen at the last profile compensated
         bool length_always = false;  // LengthMode 1 when the contour began (the departure keeps it)
         std::int8_t side = 0;  // +1 left, -1 right (Move::side)
+        // The cutting edge position the contour began with, and the offset from the nose
+        // centre to the imaginary tip it carries the compensated path over by (plane
+        // coordinates; objif/map/cutting_edge.h).
+        std::int32_t cutting_edge = 0;
+        geom::Vec2 edge = geom::Vec2::Zero();
     };
     // A profile the compensator knows by index: held, or waiting with the held one.
     struct Pending {
@@ -122,6 +142,8 @@ class Spooler {
         AxisVector start{};  // programmed start (rotated), without length compensation
         AxisVector end{};    // programmed end (rotated), without length compensation
         bool plane_free = false;
+        bool traverse = false;  // a traverse profile (ProfileKind::kTraverse)
+        std::uint64_t profile = 0;  // its number (profiles_taken)
     };
     // A profile resolved to board axes. resolve() sets program and path first thing (not
     // zero-filled before: a spool call's Resolved is written whole).
@@ -142,7 +164,8 @@ class Spooler {
         std::size_t count_ = 0;
 
       public:
-        explicit Batch(Executor& exec) : exec_(exec), end(exec.planned_end()) {}
+        Batch(Executor& exec, const AxisVector& length_at_end)
+            : exec_(exec), end(exec.planned_end()), length(length_at_end) {}
         ~Batch() { exec_.drop_back(count_); }
         Batch(const Batch&) = delete;
         Batch& operator=(const Batch&) = delete;
@@ -158,7 +181,13 @@ class Spooler {
         }
         std::size_t count() const noexcept { return count_; }
         void keep() noexcept { count_ = 0; }
+        // m ends with the tool length compensation `at_end` (per axis): its length_change.
+        void length_at(Move& m, const AxisVector& at_end) noexcept {
+            for (std::size_t a = 0; a < at_end.size(); ++a) m.length_change[a] = at_end[a] - length[a];
+            length = at_end;
+        }
         AxisVector end;  // where the last move ends (the queue's end before the first)
+        AxisVector length;  // the tool length compensation in `end`
     };
 
     MotionResult resolve(const Profile& p, const TcSettings& tc, Resolved& out) const;
@@ -180,6 +209,11 @@ class Spooler {
     Compensation comp_;
     Fifo<Pending> pending_;
     std::uint32_t next_index_ = 1;
+    std::uint64_t profiles_ = 0;  // profiles taken (profiles_taken)
+    // SelectionMode 139: STATUS = 0 ended the contour without a departure; the next profile,
+    // an uncompensated G01/G02/G03, departs from the last offset end (side: the contour's).
+    std::int8_t departure_next_ = 0;
+    AxisVector length_at_end_{};  // the tool length compensation in the queue's end
     AxisVector program_{};     // programmed position, program coordinates
     AxisVector path_{};        // programmed position after rotation (start of the next element)
     geom::SegmentBatch segs_;  // scratch

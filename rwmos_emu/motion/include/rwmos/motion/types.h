@@ -30,9 +30,17 @@ inline constexpr double kMaxFeed = 1.0e9;
 // (rwmos/geometry/tolerances.h), so every profile can be compensated.
 inline constexpr double kMaxCoordinate = geom::kMaxCoordinate;
 
-// G00 / G01 / G02 / G03. The numeric values travel on the wire.
-enum class ProfileKind : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 3 };
+// G00 / G01 / G02 / G03, and the traverse (design, an extension): a G00 that the TC module
+// treats as an interpolation profile, compensated and rotated as a G01 at the rapid feed (feed
+// 0: kDefaultRapidFeed), as NC controls compensate a G00 under G41/G42; its moves are rapid
+// ones for everything else (OTC wears nothing on them, [ISG-OTC] section 2: "Eilgangssätze
+// sind verschleißfrei!"). The numeric values travel on the wire.
+enum class ProfileKind : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 3, kTraverse = 4 };
 std::string_view profile_kind_name(ProfileKind k) noexcept;  // "G00" ...
+// Profiles whose feed may be 0 (the rapid feed) and whose moves are rapid traverses.
+constexpr bool is_rapid(ProfileKind k) noexcept {
+    return k == ProfileKind::kRapid || k == ProfileKind::kTraverse;
+}
 constexpr bool is_interpolation(ProfileKind k) noexcept {
     return k != ProfileKind::kRapid;
 }
@@ -111,6 +119,7 @@ struct Segment {
     std::uint64_t start_cycle = 0;  // clock value when it started
     std::uint64_t end_cycle = 0;    // clock value when it ended
     bool interrupted = false;       // cut short by a direct command or Reset
+    bool traverse = false;          // from a traverse profile (a compensated G00)
 };
 
 // One interpolation cycle's axis positions (machine coordinates), taken after

@@ -20,7 +20,7 @@ enum class CornerMode : std::uint8_t { kLinear = 25, kCircular = 26 };
 // How the radius compensation reaches and leaves the contour ([ISG-PROG], selection and
 // deselection methods): G139 indirect (the initial state: the selection block is the approach,
 // the G40 block the departure), G237 perpendicular (right-angle moves onto and off the contour).
-enum class SelectionMode : std::uint8_t { kIndirect = 139, kPerpendicular = 237 };
+enum class SelectionMode : std::uint8_t { kDirect = 138, kIndirect = 139, kPerpendicular = 237 };
 // Input units ([ISG-PROG]: G70 inch, G71 metric, the initial state): lengths and feeds of the
 // program's words. Events are in mm whatever the program's units.
 enum class Units : std::uint8_t { kInch = 70, kMetric = 71 };

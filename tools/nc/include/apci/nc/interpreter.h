@@ -45,9 +45,11 @@ struct ModalState {
     bool collision = true;                               // CDON (the start), CDOF
     // ISG OTC ([ISG-OTC] section 2.1) as programmed: on/off and the parameters in force.
     bool otc_active = false;
-    // G40 under G139 in a block without a move: the departure is still to come ([ISG-OTC]
-    // section 2.2 "Hinweis": a path motion between G40 and #OTC OFF, else error 90050).
+    // G40 under G138 or G139 in a block without a move: the departure is still to come
+    // ([ISG-OTC] section 2.2 "Hinweis": a path motion between G40 and #OTC OFF, else error
+    // 90050), in the selection method of that G40.
     bool departure_pending = false;
+    SelectionMode departing = SelectionMode::kIndirect;
     OtcType otc_type = OtcType::kLength;  // [ISG-OTC]: LENGTH "(Standard)"
     OtcMode otc_mode = OtcMode::kAuto;    // [ISG-OTC]: AUTO "(Standard)"
     int otc_acc_weight = 100;

@@ -64,6 +64,7 @@ struct KlartextBlock {
     Word<int> tool;
     Word<char> tool_axis;  // 'X', 'Y' or 'Z'
     Word<double> spindle_speed, dl, dr, dr2;
+    Word<double> call_feed;  // F: the feed F AUTO takes ([TNC-3D] "F, FMAX, FZ, FU oder F AUTO")
 
     // L and LN. axis_incremental[k]: IX/IY/IZ (L only).
     std::array<Word<double>, 3> axis;
@@ -74,6 +75,9 @@ struct KlartextBlock {
     Word<Compensation> radius_comp;           // R0 kOff, RL kLeft, RR kRight
     Word<double> feed;                        // F, mm/min
     Word<bool> fmax;                          // FMAX
+    Word<double> feed_per_tooth;              // FZ, mm per tooth
+    Word<double> feed_per_rev;                // FU, mm per revolution
+    Word<bool> feed_auto;                     // F AUTO: the TOOL CALL's F
 
     // M functions in the order written.
     std::array<Word<int>, kMaxMFunctions> m{};
@@ -108,13 +112,25 @@ struct KlartextBlock {
 bool parse_klartext_line(std::string_view line, std::uint64_t line_number, std::string_view file,
                          KlartextBlock& out, Diagnostic& err);
 
+// How the feed of L and LN blocks is given ([TNC-3D], "Gerade LN": "F, FMAX, FZ, FU oder
+// F AUTO").
+enum class KlartextFeed : std::uint8_t { kPerMinute, kPerTooth, kPerRevolution, kAuto };
+
 struct KlartextState {
     bool begun = false;  // BEGIN PGM seen
     bool inch = false;
     bool ended = false;                             // M2/M30 seen: only END PGM may follow
     bool closed = false;                            // END PGM seen
     Compensation radius_comp = Compensation::kOff;  // R0
-    double feed = 0.0;                              // mm/min, 0 until F is programmed
+    // The feed in force ([TNC-3D], "Gerade LN": F, FMAX, FZ, FU or F AUTO), modal: F in mm/min;
+    // FZ per tooth and FU per revolution, turned into mm/min at every move with the spindle
+    // speed and the tool in force then; F AUTO the F of the TOOL CALL in force.
+    KlartextFeed feed_mode = KlartextFeed::kPerMinute;
+    double feed = 0.0;            // mm/min (F), 0 until a feed is programmed
+    double feed_per_tooth = 0.0;  // FZ, mm
+    double feed_per_rev = 0.0;    // FU, mm
+    double spindle_speed = 0.0;   // S of the TOOL CALLs, 1/min; 0 until one gives it
+    double call_feed = 0.0;       // F of the TOOL CALL in force, mm/min; 0: none
     int tool = 0;                                   // no tool
     double call_dl = 0.0, call_dr = 0.0, call_dr2 = 0.0;
     int corr_row = 0;  // FUNCTION CORRDATA TCS #n in force; 0: none

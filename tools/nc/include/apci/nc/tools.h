@@ -44,6 +44,12 @@ struct ToolData {
     // the runs that changed the tool out. Already folded into radius and laenge.
     double wear_radius = 0.0;
     double wear_radius_cont = 0.0;
+    // The number of teeth (cutting edges) of a milling tool: the TNC tool table's CUT, for feeds
+    // per tooth (FZ, [TNC-3D] "Gerade LN"). 0: not given.
+    std::int32_t cut = 0;
+    // P-TOOL-00002 srk_lage: the cutting edge position 1..9 of a turning tool (typ 1) in the
+    // plane of its compensation; 0 (and 9): the nose centre is the controlled point.
+    std::int32_t srk_lage = 0;
 
     bool valid() const noexcept { return gueltig == 1; }
     ToolType type() const noexcept { return static_cast<ToolType>(typ); }

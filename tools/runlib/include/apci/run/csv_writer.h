@@ -3,7 +3,7 @@
 // streamed. Header: "cycle,time_s," then one column per board axis, board axes 0..7 in order,
 // named by the letters the command line names them by (`spool`, `direct`, `ssf`, `step`):
 //
-//   cycle,time_s,X,Y,Z,U,V,W,A,B
+//   cycle,time_s,X,Y,Z,A,B,C,U,V
 //   1,0.001,0.01,0,0,0,0,0,0,0
 //
 // `cycle` is the board's clock at the end of the cycle (1 for the first), time_s = cycle times
@@ -35,8 +35,10 @@ class TraceCsvWriter {
     std::uint64_t count_ = 0;
 };
 
-// The letters of board axes 0..7, as apcictl's command line and the CSV name them.
-inline constexpr std::array<char, 8> kBoardAxisLetters{'X', 'Y', 'Z', 'U', 'V', 'W', 'A', 'B'};
+// The letters of board axes 0..7, as apcictl's command line and the CSV name them: DIN 66025's
+// order, the linear X, Y, Z, the rotary A, B, C, then U, V; as NC programs name them (their B
+// word drives board axis 4, the head's B, and V.G.WZ_AKT.WEAR.<axis> counts 3 A, 4 B, 5 C).
+inline constexpr std::array<char, 8> kBoardAxisLetters{'X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V'};
 
 // The column name of board axis `axis`: its letter ("U" for axis 3); "a<i>" beyond the eighth.
 std::string axis_column_name(int axis);

@@ -104,10 +104,14 @@ class RunSink {
     virtual bool takes_self_approach() { return false; }
     // SelfApproachCheck::begin (the tool radius, the plane, the tool's side: +1 left, -1
     // right); programmed() of the move just given to programmed(); end().
-    virtual void self_approach_begin(double radius, int plane, int side) {
+    // `edge`: a turning tool's cutting edge offset in the plane ({first, second}; zero for
+    // others): the check measures the nose centre, nose_centre_path() of every executed segment.
+    virtual void self_approach_begin(double radius, int plane, int side,
+                                     const Eigen::Vector2d& edge) {
         (void)radius;
         (void)plane;
         (void)side;
+        (void)edge;
     }
     virtual void self_approach_programmed() {}
     virtual void self_approach_end() {}

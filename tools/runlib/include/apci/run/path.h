@@ -119,6 +119,13 @@ double measured_length(const PathSegment& s) noexcept;
 // or angle); false decides nothing: nc::check_move_cycles of segment_length() then does.
 bool surely_within_move_cycles(const PathSegment& s, double feed, double cycle_seconds) noexcept;
 
+// A turning tool's compensated segment (the board carries the nose centre's path over to the
+// imaginary tip, objif/map/cutting_edge.h) taken back to the nose centre: `edge` (the tip from the
+// centre, plane coordinates {first, second}) off what the board carried over, by the segment's
+// role as the board does it: a contour element and a transition whole, an approach its end (an
+// approach arc whole), a departure its start. Other roles and a zero edge: s unchanged.
+PathSegment nose_centre_path(const PathSegment& s, const Eigen::Vector2d& edge, int plane) noexcept;
+
 // One error of a run: from the board (code = the Table 4 bit name, e.g. "KorrError", or a
 // status name such as "InvalidValue") or from the program's execution pass (code = the
 // apci_nc error kind name).

@@ -79,7 +79,8 @@ class PipelinedSink final : public RunSink {
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
     bool takes_self_approach() override;
-    void self_approach_begin(double radius, int plane, int side) override;
+    void self_approach_begin(double radius, int plane, int side,
+                             const Eigen::Vector2d& edge) override;
     void self_approach_programmed() override;
     void self_approach_end() override;
     void self_approach_walls(bool on) override;
@@ -133,6 +134,7 @@ class PipelinedSink final : public RunSink {
         struct Begin {
             double radius;
             int plane, side;
+            Eigen::Vector2d edge;
         };
         std::vector<Begin> begins;  // self_approach_begin's
         std::array<int, 3> xyz{0, 1, 2};
@@ -176,6 +178,10 @@ class PipelinedSink final : public RunSink {
     // The writer thread's self-approach check (from kCheckStart), its findings, its warnings,
     // and the last programmed move (the one kCheckProgrammed checks).
     std::unique_ptr<SelfApproachCheck> check_;
+    // The stretch under check: its plane and a turning tool's cutting edge offset (the check
+    // sees the nose centre, nose_centre_path).
+    int check_plane_ = 17;
+    Eigen::Vector2d check_edge_ = Eigen::Vector2d::Zero();
     std::vector<SelfApproachFinding> findings_;
     std::vector<RunError> check_warnings_;
     std::vector<SelfApproachFinding> check_findings_;  // behind check_warnings_
