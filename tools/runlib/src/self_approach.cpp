@@ -355,7 +355,7 @@ struct SelfApproachCheck::GridItem {
     // of a stretch: they are its approach and departure in the program's own terms.
     bool protect = true;
     // Paths: the approach (from where the tool stands onto the compensated path; the entry
-    // point it leads to is approach_entry_).
+    // point it leads to is approach_entries_).
     bool approach = false;
     // What the wall model said of its element once it was placed (kUndecided until then):
     // role_of(), placed_of().
@@ -851,7 +851,17 @@ void SelfApproachCheck::forget_let_go() {
     if (below != kNone && below > forgotten_) {
         forgotten_ = below;
         walls_->forget_before(below);
+        while (!approach_entries_.empty() && approach_entries_.front().index < below)
+            approach_entries_.pop_front();
     }
+}
+
+// The entry point of the approach that is element `index`'s, where it was executed and kept.
+const Eigen::Vector2d* SelfApproachCheck::approach_entry(std::uint64_t index) const {
+    const auto at = std::lower_bound(
+        approach_entries_.begin(), approach_entries_.end(), index,
+        [](const Entry& e, std::uint64_t i) { return e.index < i; });
+    return at != approach_entries_.end() && at->index == index ? &at->point : nullptr;
 }
 
 // The wall model's answer for an item, kept in it once its element is placed (one lookup per
@@ -1018,7 +1028,8 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
         if (placed && role_of(self) != detail::WallRole::kWall) continue;
         const Shape path = p.shape.shape();
         if (p.approach && stands_near(path, *part, threshold)) continue;
-        const bool cross = p.approach && p.stretch == stretch_ && at_entry(e, approach_entry_);
+        const Eigen::Vector2d* entry = p.approach ? approach_entry(p.index) : nullptr;
+        const bool cross = entry != nullptr && at_entry(e, *entry);
         consider(PairView{path, p.block, p.r, plane_, *part, s.block, threshold, index, p.index,
                           latest_, cross},
                  placed, false, out);
@@ -1079,7 +1090,9 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
         return;
     Grid& g = grid(p.plane);
-    if (s.role == Role::kApproach) approach_entry_ = p.end;
+    if (s.role == Role::kApproach &&
+        (approach_entries_.empty() || approach_entries_.back().index != p.index))
+        approach_entries_.push_back(Entry{p.index, p.end});
     const std::uint64_t key = key_of(s, p.plane, p.r);
     if (!g.path.keys.insert(key)) return;  // the same path checked before
     const Shape e = shape_of(s, p.plane);
@@ -1108,7 +1121,7 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         const bool placed = self_placed && role != detail::WallRole::kUndecided;
         if (placed && role != detail::WallRole::kWall) continue;
         if (approach && stands_near(e, *part, threshold)) continue;
-        const bool cross = approach && c.stretch == p.stretch && at_entry(contour, p.end);
+        const bool cross = approach && at_entry(contour, p.end);
         consider(PairView{e, s.block, p.r, p.plane, *part, c.block, threshold, c.index, p.index,
                           g.contour.first + at, cross},
                  placed, running, out);

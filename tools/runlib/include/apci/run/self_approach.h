@@ -31,6 +31,7 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <utility>
@@ -205,9 +206,14 @@ class SelfApproachCheck {
     std::vector<Found> deferred_;  // given, waiting for the wall model
     std::vector<Candidate> waiting_;  // unmeasured, waiting for the wall model
     std::uint64_t reviewed_ = 0;   // the wall model's generation at the last review
-    // The entry point of the latest approach executed (its element's programmed end, in the
-    // plane): the approach of the stretch under way, where one was executed.
-    Eigen::Vector2d approach_entry_ = Eigen::Vector2d::Zero();
+    // The entry points of the approaches executed (each its element's programmed end, in the
+    // plane), by the element's number, oldest first; dropped with the elements let go.
+    struct Entry {
+        std::uint64_t index;
+        Eigen::Vector2d point;
+    };
+    std::deque<Entry> approach_entries_;
+    const Eigen::Vector2d* approach_entry(std::uint64_t index) const;
     std::uint64_t latest_ = kNone;  // grid id (Grid::List numbering) of the stretch's latest
                                     // element of new geometry, in plane_
     // Stretches that ended, oldest first, whose last element (grid id, in `plane`) may be their
