@@ -228,6 +228,33 @@ TEST(SelfApproachRules, AnApproachIsHeldToItsOwnStretchButNotWhereItStandsNorAtI
     EXPECT_EQ(pairs(run({square({10 + 3 * r, 3, 0})})).count({10, 13}), 1U);
 }
 
+TEST(SelfApproachRules, TheEntryCornerRuleHoldsForEveryStretchsElementAtTheEntryPoint) {
+    const double r = 1.0;
+    // The square of the test above, entered from above beside N11's end: the approach N10 from
+    // (-0.6, 12) onto (-1, 5) passes N11 within r without crossing it (the entry move's corner
+    // cut). Another stretch (a later pass over the same contour, as a lathe program runs it
+    // from both ends) has an element ending at the same entry point: the same corner cut, not
+    // warned, whichever stretch comes first. One ending 0.5 short of it is held to r.
+    Stretch square;
+    square.r = r;
+    const Point from(-0.6, 12, 0);
+    square.elements = {line(10, from, {0, 5, 0}),         line(11, {0, 5, 0}, {0, 10, 0}),
+                       line(12, {0, 10, 0}, {10, 10, 0}), line(13, {10, 10, 0}, {10, 0, 0}),
+                       line(14, {10, 0, 0}, {0, 0, 0}),   line(15, {0, 0, 0}, {0, 5, 0})};
+    square.paths = {{line(10, from, {-r, 5, 0}, Role::kApproach)},
+                    {line(11, {-r, 5, 0}, {-r, 10, 0}, Role::kContour)},
+                    {line(12, {0, 10 + r, 0}, {10, 10 + r, 0}, Role::kContour)},
+                    {line(13, {10 + r, 10, 0}, {10 + r, 0, 0}, Role::kContour)},
+                    {line(14, {10, -r, 0}, {0, -r, 0}, Role::kContour)},
+                    {line(15, {-r, 0, 0}, {-r, 5, 0}, Role::kContour)}};
+    const Stretch at_entry = probe(20, line(0, {0, 10, 0}, {0, 5, 0}));
+    const Stretch short_of = probe(20, line(0, {0, 10, 0}, {0, 5.5, 0}));
+    EXPECT_EQ(pairs(run({square, at_entry})).count({10, 21}), 0U);
+    EXPECT_EQ(pairs(run({at_entry, square})).count({10, 21}), 0U);
+    EXPECT_EQ(pairs(run({square, short_of})).count({10, 21}), 1U);
+    EXPECT_EQ(pairs(run({short_of, square})).count({10, 21}), 1U);
+}
+
 TEST(SelfApproachRules, TheGridFindsAPathJustInsideTheRadiusOfALongElementWhereverItLies) {
     // Long walls (listed in the grid by samples half a cell apart) at random places and
     // headings, each with a probe's short path r - 3 tolerances from a random point of it, in
