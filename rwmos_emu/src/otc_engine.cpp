@@ -387,11 +387,10 @@ void OtcEngine::wear_const_changed(double before) noexcept {
     if (wear_const_changes_.empty()) wear_const_before_ = before;
     // Changes whose profile every move still to run has reached hold for all of them.
     const std::uint64_t oldest = motion.oldest_profile_in_flight();
-    std::size_t done = 0;
-    while (done < wear_const_changes_.size() && wear_const_changes_[done].from <= oldest)
-        wear_const_before_ = wear_const_changes_[done++].value;
-    wear_const_changes_.erase(wear_const_changes_.begin(),
-                              wear_const_changes_.begin() + static_cast<std::ptrdiff_t>(done));
+    const auto held = std::find_if(wear_const_changes_.begin(), wear_const_changes_.end(),
+                                   [&](const WearConstChange& c) { return c.from > oldest; });
+    for (auto at = wear_const_changes_.begin(); at != held; ++at) wear_const_before_ = at->value;
+    wear_const_changes_.erase(wear_const_changes_.begin(), held);
     const WearConstChange now{motion.next_profile(), state_.otc.effective_wear_const()};
     if (now.from <= oldest) {
         // Nothing in flight: it holds for every move from here on.

@@ -88,13 +88,10 @@ pid_t start(const Rs274& rs, const std::string& table, const std::string& ini,
     ::setenv("LD_LIBRARY_PATH", rs.library_path.c_str(), 1);
     ::setenv("HOME", home.c_str(), 1);
     std::vector<const char*> argv{rs.binary.c_str(), "-t", table.c_str()};
-    if (!ini.empty()) {
-        argv.push_back("-i");
-        argv.push_back(ini.c_str());
-    }
+    if (!ini.empty()) argv.insert(argv.end(), {"-i", ini.c_str()});
     argv.insert(argv.end(), {"-g", program.c_str(), nullptr});
     ::execv(argv[0], const_cast<char* const*>(argv.data()));
-    ::_exit(127);
+    _exit(127);  // unqualified: cppcheck knows it does not return
 }
 
 // The numbers between the parentheses of "NAME(a, b, c)".

@@ -1082,10 +1082,10 @@ void PrintTo(const LatheExample& e, std::ostream* os) {
 std::vector<LatheExample> lathe_examples() {
     return {{"lathecomp", false,
              "a30716e99d35e02e72009538bd69eb97454278ce8cbbd5abf14c227b666bde5c",
-             "examples/linuxcnc/lathecomp.nc", 1},
+             "examples/linuxcnc/lathecomp.nc", 0},
             {"lathe-comp", true,
              "d40314817adf2b47bfa3583c88eae224658a140988a43ed15542a1788d35742f",
-             "examples/linuxcnc/lathe_comp.nc", 1}};
+             "examples/linuxcnc/lathe_comp.nc", 0}};
 }
 
 // The lines "g41" and "g42" swapped.

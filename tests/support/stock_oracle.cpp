@@ -446,6 +446,7 @@ StockOracle::StockOracle(const DesignPart& part) : impl_(std::make_unique<Impl>(
             ring.insert(ring.end(), pts.begin() + (ring.empty() ? 0 : 1), pts.end());
             impl_->walls.push_back({e, ChordTree(std::move(pts))});
         }
+        if (ring.size() < 4) throw std::invalid_argument(where + " has fewer than three corners");
         ring.back() = ring.front();  // closed exactly
         const double area = signed_area(ring);
         if (std::abs(area) <= kSamePoint) throw std::invalid_argument(where + " encloses no area");

@@ -170,7 +170,8 @@ TEST(BottleneckAvoidance, WithoutItTheBoardRefusesTheNotchWithItThePathTurnsAtTh
     ASSERT_FALSE(off.outcome.errors.empty());
     EXPECT_EQ(off.outcome.errors[0].code, "KorrError");
     const BoardRun on = run_on_board(kNotch, 3);
-    ASSERT_TRUE(on.outcome.errors.empty()) << on.outcome.errors[0].message;
+    for (const auto& e : on.outcome.errors) ADD_FAILURE() << e.message;
+    ASSERT_TRUE(on.outcome.errors.empty());
     ASSERT_EQ(on.outcome.warnings.size(), 1U);
     EXPECT_EQ(on.outcome.warnings[0].code, "Bottleneck");
     EXPECT_EQ(on.outcome.warnings[0].block.number, 20);

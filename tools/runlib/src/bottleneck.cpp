@@ -88,8 +88,8 @@ std::vector<Vec2> carrier_points(const M& p, const M& q) {
         const double w2 = c.rho * c.rho - h2;
         if (w2 <= 0.0) return out;  // apart, or touching: no crossing
         const double w = std::sqrt(w2);
-        out.push_back(foot - w * u);
-        out.push_back(foot + w * u);
+        out.emplace_back(foot - w * u);
+        out.emplace_back(foot + w * u);
         return out;
     }
     const Vec2 d = q.c - p.c;

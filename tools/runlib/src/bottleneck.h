@@ -65,7 +65,7 @@ class BottleneckAvoider {
         bool usable = true;  // a path to compare (a tool larger than a concave arc has none)
     };
     void hold(const nc::Event& ev, double radius, int plane, std::vector<Bottleneck>& found);
-    void release(std::size_t moves_left, std::vector<nc::Event>& out);
+    void release(std::size_t count, std::vector<nc::Event>& out);
     void avoid(double radius, int plane, std::vector<Bottleneck>& found);
 
     int blocks_;

@@ -95,11 +95,11 @@ Within within(std::span<const Element> outer, std::span<const Element> inner, do
     return within(outer, bounds(outer), inner, bounds(inner), tolerance, budget);
 }
 
-Within within(std::span<const Element> outer, const Bounds& bo, std::span<const Element> inner,
-              const Bounds& bi, double tolerance, long budget) noexcept {
+Within within(std::span<const Element> outer, const Bounds& outer_box, std::span<const Element> inner,
+              const Bounds& inner_box, double tolerance, long budget) noexcept {
     if (outer.empty() || inner.empty()) return Within::kNot;
-    if ((bi.lo.array() < bo.lo.array() - tolerance).any() ||
-        (bi.hi.array() > bo.hi.array() + tolerance).any())
+    if ((inner_box.lo.array() < outer_box.lo.array() - tolerance).any() ||
+        (inner_box.hi.array() > outer_box.hi.array() + tolerance).any())
         return Within::kNot;
     const long pairs = static_cast<long>(outer.size()) * static_cast<long>(inner.size());
     if (pairs > budget) return Within::kUnknown;

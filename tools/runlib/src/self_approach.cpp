@@ -635,8 +635,8 @@ bool stands_near(const Shape& approach, const Shape& element, double threshold) 
     return plane::distance_to(element, approach.start) < threshold;
 }
 
-// The elements that meet at an approach's entry point (the one it leads onto, and one that
-// closes a contour there): a straight approach onto an outside corner passes the entry point at
+// The elements that meet at an approach's entry point (the one it leads onto, one that closes
+// a contour there, those of any other stretch over the same point): a straight approach onto an outside corner passes the entry point at
 // L r / sqrt(L^2 + r^2) < r (L its length), the entry move every control makes (LinuxCNC's
 // too); it is held to them only where its centre crosses one (a lead-in through the part).
 bool at_entry(const Shape& element, const Vec2& entry) {
@@ -716,8 +716,8 @@ SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budge
                                      Candidates candidates)
     : window_(std::max<std::size_t>(window, 1)),
       entry_budget_(entry_budget),
-      candidates_(candidates),
-      walls_(std::make_unique<detail::WallModel>()) {}
+      walls_(std::make_unique<detail::WallModel>()),
+      candidates_(candidates) {}
 SelfApproachCheck::~SelfApproachCheck() = default;
 
 namespace {

@@ -75,7 +75,7 @@ class WallModel {
     // walls are on (CDON) where it is programmed.
     // `repeat`: its geometry came before (the check asks only about the first element of each
     // geometry: the model keeps no record of a repeat once it is placed).
-    void element(std::uint64_t index, const PlaneMove& m, std::uint64_t key, bool walls,
+    void element(std::uint64_t index, const PlaneMove& e, std::uint64_t key, bool walls,
                  bool repeat);
     // The stretch ends: what came after its last loop is its lead-out; without a loop it is an
     // open contour.
@@ -92,8 +92,8 @@ class WallModel {
     // A caller that keeps the answer asks cleared(loop) for the rest.
     static constexpr std::uint64_t kNoLoop = ~std::uint64_t{0};
     WallRole placement(std::uint64_t index, std::uint64_t& loop) const;
-    // Whether the loop is cleared by a loop known now (decided once, then kept).
-    bool cleared(std::uint64_t loop);
+    // Whether the loop numbered `number` is cleared by a loop known now (decided once, then kept).
+    bool cleared(std::uint64_t number);
     // Its role as known now: a loop's element is a wall unless a loop known now clears it.
     WallRole role(std::uint64_t index);
     // Lets go of the elements numbered below `index`, and of the loops all of whose

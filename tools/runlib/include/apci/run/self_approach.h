@@ -158,7 +158,6 @@ class SelfApproachCheck {
     // kMaxFindings pairs were given out, one more came near, and none is open: no later call
     // can change what the check gives out, and it does nothing more.
     bool done() const noexcept { return capped_ && open_.empty(); }
-    bool capped_ = false;
     // The pair was given out (or kMaxFindings were): nothing more of it is looked at.
     bool closed(const Pair& pair);
     // A finding: the least distance of its pair while the pair is open; opened when its path
@@ -195,14 +194,11 @@ class SelfApproachCheck {
     // contour block: given out with the first segment of another block.
     std::vector<SelfApproachFinding> open_;
     BlockRef current_{};  // the block of the last executed segment
-    bool seen_ = false;   // a segment was executed
     static constexpr std::uint64_t kNone = ~std::uint64_t{0};
     std::size_t window_ = kWindow;
     std::size_t entry_budget_ = kEntryBudget;
-    Candidates candidates_ = Candidates::kGrid;
     std::vector<Found> held_;  // against latest_, until it is known not the departure
     std::unique_ptr<detail::WallModel> walls_;
-    bool walls_on_ = true;
     std::vector<Found> deferred_;  // given, waiting for the wall model
     std::vector<Candidate> waiting_;  // unmeasured, waiting for the wall model
     std::uint64_t reviewed_ = 0;   // the wall model's generation at the last review
@@ -227,12 +223,17 @@ class SelfApproachCheck {
     };
     std::vector<Undecided> undecided_;
     Undecided* undecided_of(int plane, std::uint64_t id);
-    bool first_in_stretch_ = false;
-    bool active_ = false;
     double r_ = 0.0;
-    int plane_ = 17;
     std::uint64_t stretch_ = 0;
     std::uint64_t next_index_ = 0;
+    // The small fields together, after the large ones (no padding between those).
+    Candidates candidates_ = Candidates::kGrid;
+    int plane_ = 17;
+    bool capped_ = false;  // see done()
+    bool seen_ = false;    // a segment was executed
+    bool walls_on_ = true;
+    bool first_in_stretch_ = false;
+    bool active_ = false;
 };
 
 }  // namespace apci::run
