@@ -1110,16 +1110,30 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         Grid::Item& c = g.contour.items[at];
         if (!c.protect) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
+        // What checked_part() leaves out whatever the shape: the path's own element, and a
+        // line at the path's own corner.
+        if (rel == Relation::kOwn ||
+            ((rel == Relation::kHeld || rel == Relation::kNext) && !c.shape.arc))
+            continue;
         const double threshold = threshold_for(rel, p.r);
         // The box of the whole element first: a part of it lies within it.
         if (!near_enough(extent, c.shape.extent(), threshold)) continue;
+        // What the wall model says: where the whole element is checked, before its shape is
+        // made (asked for the same pairs, in the same order, as after).
+        bool placed = false;
+        const auto no_wall = [&] {
+            const detail::WallRole role = role_of(c);
+            placed = self_placed && role != detail::WallRole::kUndecided;
+            return placed && role != detail::WallRole::kWall;
+        };
+        const bool whole = rel == Relation::kOther || rel == Relation::kBefore ||
+                           rel == Relation::kAfter;
+        if (whole && no_wall()) continue;
         const Shape contour = c.shape.shape();
         const Shape* part = checked_part(contour, rel, scratch);
         if (part == nullptr) continue;
         if (part != &contour && !near_enough(extent, extent_of(*part), threshold)) continue;
-        const detail::WallRole role = role_of(c);
-        const bool placed = self_placed && role != detail::WallRole::kUndecided;
-        if (placed && role != detail::WallRole::kWall) continue;
+        if (!whole && no_wall()) continue;
         if (approach && stands_near(e, *part, threshold)) continue;
         const bool cross = approach && at_entry(contour, p.end);
         consider(PairView{e, s.block, p.r, p.plane, *part, c.block, threshold, c.index, p.index,
