@@ -19,6 +19,7 @@
 #include "apci/apci.hpp"
 #include "apci/nc/events.h"
 #include "apci/run/executor.h"
+#include "objif/map/limits.h"
 #include "apci/run/self_approach.h"
 #include "bottleneck.h"
 #include "comp3d_unit.h"
@@ -32,7 +33,7 @@ namespace apci::run::exec {
 
 // Feed of a rapid that must be compensated (a G0 under G41/G42, an LN with FMAX): spooled as a
 // G01 at the board's rapid feed (docs/motion.md: 60000 units/min).
-inline constexpr double kRapidFeed = 60000.0;
+inline constexpr double kRapidFeed = objif::map::kRapidFeed;
 
 // A small ring of the last programmed moves, to place an error reported by block tag.
 class RecentMoves {

@@ -4,6 +4,8 @@
 // lists them with the rules that use them.
 #pragma once
 
+#include "objif/map/limits.h"
+
 namespace rwmos::comp3d {
 
 // A programmed N or T vector whose length differs from 1 by more than this is refused
@@ -41,6 +43,6 @@ inline constexpr double kShapeTolerance = 1e-9;
 
 // Tool dimensions and coordinates beyond this are refused, as in the TC geometry
 // (rwmos/geometry/tolerances.h, kMaxCoordinate): it keeps rounding far below 1e-9.
-inline constexpr double kMaxCoordinate = 1e5;
+inline constexpr double kMaxCoordinate = objif::map::kMaxCoordinate;
 
 }  // namespace rwmos::comp3d

@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 
+#include "objif/map/limits.h"
 #include "rwmos/geometry/tolerances.h"
 #include "rwmos/motion/types.h"
 
@@ -78,7 +79,7 @@ double path_length(const Move& m) noexcept;
 // 1 ms. The spooler refuses a profile or jog with a move longer than that (ValueTooLow: a feed
 // too low for its length) instead of running it for weeks or cutting it short; 10^9 is also
 // the bound of `apcictl step` and `step --max`, so one command runs any move to its end.
-inline constexpr std::uint64_t kMaxMoveCycles = 1'000'000'000;
+inline constexpr std::uint64_t kMaxMoveCycles = objif::map::kMaxMoveCycles;
 // Where cycles_for() saturates: beyond 2^52 a double no longer counts cycles one by one. Only a
 // move the spooler would refuse gets there (a queued move runs longer than kMaxMoveCycles only
 // when InterpolationCycle is shortened after it was spooled: at most 40 times, 250 us for 10 ms).

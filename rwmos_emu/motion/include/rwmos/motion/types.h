@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "objif/map/limits.h"
 #include "objif/status.h"
 #include "rwmos/geometry/tolerances.h"
 
@@ -23,12 +24,14 @@ using AxisMask = std::uint8_t;  // bit i = board axis i
 inline constexpr AxisMask kAllAxes = 0xFF;
 
 // Feed of a rapid (G00) or JA move that names no feed (feed 0): design.
-inline constexpr double kDefaultRapidFeed = 60000.0;  // units/min = 1 unit per ms
+inline constexpr double kDefaultRapidFeed = objif::map::kRapidFeed;  // units/min = 1 unit per ms
 // Upper bound of any feed: keeps cycle counts and positions finite. Design.
 inline constexpr double kMaxFeed = 1.0e9;
 // Upper bound of any coordinate's magnitude: the compensation geometry's
 // (rwmos/geometry/tolerances.h), so every profile can be compensated.
 inline constexpr double kMaxCoordinate = geom::kMaxCoordinate;
+// The geometry library stands alone (Eigen only): its bound is the board's, declared in objif.
+static_assert(geom::kMaxCoordinate == objif::map::kMaxCoordinate);
 
 // G00 / G01 / G02 / G03, and the traverse (design, an extension): a G00 that the TC module
 // treats as an interpolation profile, compensated and rotated as a G01 at the rapid feed (feed

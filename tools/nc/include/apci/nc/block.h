@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "objif/map/limits.h"
+
 namespace apci::nc {
 
 // Modal groups of the DIN 66025 subset; the enumerator values are the G numbers.
@@ -25,9 +27,9 @@ enum class SelectionMode : std::uint8_t { kDirect = 138, kIndirect = 139, kPerpe
 // program's words. Events are in mm whatever the program's units.
 enum class Units : std::uint8_t { kInch = 70, kMetric = 71 };
 inline constexpr double kMillimetresPerInch = 25.4;
-// The board's coordinate limit (rwmos geometry kMaxCoordinate, docs/motion.md), in mm: end points
+// The board's coordinate limit (objif/map/limits.h, docs/motion.md), in mm: end points
 // beyond it, and tool sizes beyond it, are refused by the front end by name.
-inline constexpr double kBoardCoordinateLimit = 1e5;
+inline constexpr double kBoardCoordinateLimit = objif::map::kMaxCoordinate;
 
 constexpr int g_number(Motion m) noexcept {
     return static_cast<int>(m);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apci/nc/events.h"
+#include "objif/map/limits.h"
 
 namespace apci::nc {
 
@@ -18,7 +19,7 @@ namespace apci::nc {
 // cycle of 1 ms (InterpolationCycle 1000 us). The bound of `apcictl step` and `step --max`, so
 // any move the board takes can be run to its end by one command; a move longer than that is a
 // mistyped feed (F0.000001 for F0.1), not a machining step.
-inline constexpr std::uint64_t kMaxMoveCycles = 1'000'000'000;
+inline constexpr std::uint64_t kMaxMoveCycles = objif::map::kMaxMoveCycles;
 // The board's interpolation cycle when the caller does not know it (the InterpolationCycle
 // object's default, docs/object-map.md).
 inline constexpr double kDefaultCycleSeconds = 0.001;
