@@ -382,11 +382,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
         apci::run::ProgramExecutor executor(py_board.board(use), collector, &tools,
                                             plc_path ? &plc : nullptr, &corrections);
         executor.set_self_approach(self_approach_mode(self_approach));
-        apci::nc::InterpreterOptions options;
-        options.start_position = executor.position();
-        options.cycle_seconds = executor.cycle_seconds();
-        options.tools = &tools;
-        options.corrections = &corrections;
+        const apci::nc::InterpreterOptions options = executor.interpreter_options();
         auto loaded = program_is_text ? apci::nc::Program::from_text(program, name, options)
                                       : apci::nc::Program::load(program, options);
         if (!loaded) {

@@ -163,21 +163,36 @@ TEST(RunBounds, TheCycleLimitIsCountedInTheBoardsInterpolationCycleNamingTheBloc
 }
 
 TEST(RunBounds, TheValidationPassCountsInTheBoardsInterpolationCycle) {
-    // apcictl run gives the interpreter the board's cycle (ProgramExecutor::cycle_seconds), so
-    // the same F0.0002 move is refused before anything runs, not only when it is spooled.
+    // apcictl run and diff and the Python module give the interpreter the options of
+    // ProgramExecutor::interpreter_options: the board's cycle, so the same F0.0002 move is
+    // refused before anything runs, not only when it is spooled; where the axes stand; the
+    // executor's tool list and correction table.
     apci::Board board("emu:");
     ASSERT_TRUE(board.is_open());
     auto cycle = apci::object(rwmos::board::kBus, rwmos::board::kDevice,
                               rwmos::board::kIdxInterpolationCycle, 0);
     ASSERT_TRUE(board.write_int(cycle, 250));
+    apci_direct_command ja{};
+    ja.code = APCI_DIRECT_JA;
+    ja.axes = 0x1;
+    ja.target[0] = 3.5;
+    ASSERT_TRUE(board.direct(ja));
+    ASSERT_TRUE(board.run_until_idle(1'000'000));
     apci::run::RunSink sink;
-    apci::run::ProgramExecutor executor(board, sink, nullptr);
+    const apci::nc::ToolTable tools;
+    const apci::nc::CorrectionTable corrections;
+    apci::run::ProgramExecutor executor(board, sink, &tools, nullptr, &corrections);
     EXPECT_DOUBLE_EQ(executor.cycle_seconds(), 250e-6);
-    apci::nc::InterpreterOptions options;
-    options.cycle_seconds = executor.cycle_seconds();
+    const apci::nc::InterpreterOptions options = executor.interpreter_options();
+    EXPECT_DOUBLE_EQ(options.cycle_seconds, 250e-6);
+    EXPECT_DOUBLE_EQ(options.start_position.x(), 3.5);
+    EXPECT_EQ(options.tools, &tools);
+    EXPECT_EQ(options.corrections, &corrections);
     auto program = apci::nc::Program::from_text("N10 G1 X1 F0.0002\nN20 M30\n", "p.nc", options);
     ASSERT_FALSE(program);
-    EXPECT_NE(program.error().message.find("1200000000 interpolation cycles"), std::string::npos)
+    // From X3.5, where the axes stand: 2.5 mm.
+    EXPECT_NE(program.error().message.find("2.5 mm move take 3000000000 interpolation cycles"),
+              std::string::npos)
         << program.error().message;
 }
 

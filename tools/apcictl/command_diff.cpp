@@ -318,11 +318,8 @@ Outcome record_run(const std::string& path, const RunInputs& in, Session& sessio
     if (board == nullptr) return failure;
     apci::run::ProgramExecutor executor(*board, out, &in.tools, in.plc ? &*in.plc : nullptr,
                                         &in.corrections);
-    apci::nc::InterpreterOptions options;
-    out.start = executor.position();
-    options.start_position = out.start;
-    options.tools = &in.tools;
-    options.corrections = &in.corrections;
+    const apci::nc::InterpreterOptions options = executor.interpreter_options();
+    out.start = options.start_position;
     auto program = apci::nc::Program::load(path, options);
     if (!program) return nc_failure(program.error());
     auto stream = program.value().events();

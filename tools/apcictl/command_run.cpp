@@ -328,11 +328,7 @@ class RunCommand final : public Command {
                                    : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
                                                              : apci::run::SelfApproachMode::kWarn);
         executor.set_avoid_bottlenecks(bottleneck_blocks_);
-        apci::nc::InterpreterOptions options;
-        options.start_position = executor.position();
-        options.cycle_seconds = executor.cycle_seconds();
-        options.tools = &tools;
-        options.corrections = &corrections;
+        const apci::nc::InterpreterOptions options = executor.interpreter_options();
 
         // The embedded emulator's board is this process's alone and every output is held back
         // in a temporary file until the end: there the program is validated while it runs (one

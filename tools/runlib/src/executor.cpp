@@ -409,6 +409,15 @@ double ProgramExecutor::cycle_seconds() {
     return static_cast<double>(us.value) * 1e-6;
 }
 
+nc::InterpreterOptions ProgramExecutor::interpreter_options() {
+    nc::InterpreterOptions options;
+    options.start_position = position();
+    options.cycle_seconds = cycle_seconds();
+    options.tools = tools_;
+    options.corrections = corrections_;
+    return options;
+}
+
 Point ProgramExecutor::position() {
     std::array<int, 3> axes{0, 1, 2};
     for (int i = 0; i < 3; ++i) {

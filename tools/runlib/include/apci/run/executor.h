@@ -196,6 +196,12 @@ class ProgramExecutor {
     // The board's interpolation cycle in seconds: the interpreter counts a move's cycles in it.
     // The default 1 ms when the board cannot say (run() then reports why).
     double cycle_seconds();
+    // The NC front end's options for a program this executor runs: it starts where the board's
+    // axes stand (position()), counts a move's cycles in the board's interpolation cycle
+    // (cycle_seconds()), and checks D n and CORRDATA against the tool list and correction table
+    // the executor was given. Every caller (apcictl run and diff, the Python module) takes them
+    // from here, so their runs cannot drift apart.
+    nc::InterpreterOptions interpreter_options();
     // Executes the stream to its end or to the first error.
     RunOutcome run(nc::EventStream& events);
     void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
