@@ -387,8 +387,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
                                       : apci::nc::Program::load(program, options);
         if (!loaded) {
             apci::nc::Diagnostic d = loaded.error();
-            if (!tools_source && d.kind == apci::nc::ErrorKind::kProgramRule &&
-                d.message.find("tool list does not define") != std::string::npos)
+            if (!tools_source && d.undefined == apci::nc::Undefined::kTool)
                 d.message += " (no tools given)";
             refused = std::move(d);
         } else if (auto stream = loaded.value().events(); !stream) {

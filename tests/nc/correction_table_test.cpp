@@ -126,6 +126,9 @@ TEST(CorrData, RowMustBeInTheTable) {
     EXPECT_EQ(test::error_of(pgm("2 FUNCTION CORRDATA TCS #5\n"), r.options()),
               "prog.nc:3:26: FUNCTION CORRDATA TCS #5: the correction table does not define "
               "row 5");
+    EXPECT_EQ(test::undefined_of(pgm("2 FUNCTION CORRDATA TCS #5\n"), r.options()),
+              Undefined::kCorrectionRow);
+    EXPECT_EQ(test::undefined_of(pgm("2 TOOL CALL 9 Z\n"), r.options()), Undefined::kTool);
     // Without a table any row 1..1023 is taken (its deltas are the board's).
     EXPECT_EQ(test::error_of(pgm("2 FUNCTION CORRDATA TCS #5\n")), "");
 }

@@ -27,6 +27,7 @@ namespace apci::nc {
 namespace {
 
 using test::error_of;
+using test::undefined_of;
 using test::events_of;
 using test::only;
 
@@ -588,6 +589,11 @@ TEST(Interpreter, ToolTableRequiresDefinedValidTool) {
     EXPECT_EQ(error_of("D2\nM30", o),
               "prog.nc:1:1: D2 selects tool 2, which is not valid (wz[2].gueltig is 0, not 1; "
               "unset data is 0)");
+    // Callers add what to give by the kind (apcictl run: "no --tools file given"): a tool the
+    // list does not hold, not one it holds as not valid.
+    EXPECT_EQ(undefined_of("N7 D3\nM30", o), Undefined::kTool);
+    EXPECT_EQ(undefined_of("D2\nM30", o), Undefined::kNothing);
+    EXPECT_EQ(undefined_of("D1\nM30", o), Undefined::kNothing);
     // Without a table any D is accepted.
     EXPECT_EQ(error_of("D3\nM30"), "");
 }

@@ -18,6 +18,7 @@ namespace apci::nc {
 namespace {
 
 using test::error_of;
+using test::undefined_of;
 using test::events_of;
 using test::only;
 using V = Eigen::Vector3d;
@@ -481,6 +482,8 @@ TEST(KlartextToolCall, ToolShapeMustExist) {
               "data is 0)");
     EXPECT_EQ(error_of(pgm("2 TOOL CALL 9 Z\n"), opt),
               "prog.nc:3:13: TOOL CALL 9: the tool list does not define tool 9");
+    EXPECT_EQ(undefined_of(pgm("2 TOOL CALL 9 Z\n"), opt), Undefined::kTool);
+    EXPECT_EQ(undefined_of(pgm("2 TOOL CALL 3 Z\n"), opt), Undefined::kNothing);
 }
 
 TEST(KlartextToolCall, SyntaxAndRules) {

@@ -48,6 +48,12 @@ inline std::string error_of(std::string_view text, const InterpreterOptions& opt
     return r.error ? r.error->to_string() : std::string();
 }
 
+// What the program's error says an input does not define (kNothing without an error).
+inline Undefined undefined_of(std::string_view text, const InterpreterOptions& options = {}) {
+    RunResult r = run(text, options);
+    return r.error ? r.error->undefined : Undefined::kNothing;
+}
+
 // The events of a program that must run; moves only when moves_only.
 inline std::vector<Event> events_of(std::string_view text, const InterpreterOptions& options = {}) {
     RunResult r = run(text, options);

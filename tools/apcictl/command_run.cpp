@@ -499,11 +499,9 @@ class RunCommand final : public Command {
     // A program that does not validate; the error names what was not given where that is
     // the cause.
     Outcome program_failure(apci::nc::Diagnostic d) const {
-        if (tools_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
-            d.message.find("tool list does not define") != std::string::npos)
-            d.message += " (no --tools file given)";
-        if (corr_.empty() && d.kind == apci::nc::ErrorKind::kProgramRule &&
-            d.message.find("correction table does not define") != std::string::npos)
+        using apci::nc::Undefined;
+        if (tools_.empty() && d.undefined == Undefined::kTool) d.message += " (no --tools file given)";
+        if (corr_.empty() && d.undefined == Undefined::kCorrectionRow)
             d.message += " (no --corr file given)";
         return nc_failure(d);
     }

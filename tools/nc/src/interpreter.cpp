@@ -33,6 +33,7 @@ struct BlockCheck {
         err.column = column == 0 ? 1 : column;
         err.block = b.block_number();
         err.message = std::move(message);
+        err.undefined = Undefined::kNothing;
         return false;
     }
 };
@@ -64,9 +65,11 @@ bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* 
     if (tools == nullptr || d.value == 0) return true;
     const ToolData* t = tools->find(d.value);
     if (t == nullptr) {
-        return c.fail(ErrorKind::kProgramRule, d.column,
-                      fmt::format("D{} selects tool {}, which the tool list does not define",
-                                  d.value, d.value));
+        c.fail(ErrorKind::kProgramRule, d.column,
+               fmt::format("D{} selects tool {}, which the tool list does not define", d.value,
+                           d.value));
+        c.err.undefined = Undefined::kTool;
+        return false;
     }
     if (!t->valid()) {
         return c.fail(ErrorKind::kProgramRule, d.column,

@@ -31,6 +31,7 @@ struct BlockCheck {
         err.block = b.block_number();
         err.klartext = true;
         err.message = std::move(message);
+        err.undefined = Undefined::kNothing;
         return false;
     }
 };
@@ -97,8 +98,10 @@ bool called_tool(const BlockCheck& c, const ToolTable* tools, int n, std::uint32
     if (tools == nullptr || n <= 0) return true;
     const ToolData* t = tools->find(n);
     if (t == nullptr) {
-        return c.fail(ErrorKind::kProgramRule, column,
-                      fmt::format("TOOL CALL {}: the tool list does not define tool {}", n, n));
+        c.fail(ErrorKind::kProgramRule, column,
+               fmt::format("TOOL CALL {}: the tool list does not define tool {}", n, n));
+        c.err.undefined = Undefined::kTool;
+        return false;
     }
     if (!t->valid()) {
         return c.fail(ErrorKind::kProgramRule, column,
@@ -155,10 +158,11 @@ bool check_corrdata(const BlockCheck& c, const KlartextState& before,
     const KlartextBlock& b = c.b;
     const int row = b.corr_row.value;
     if (options.corrections != nullptr && row > 0 && options.corrections->find(row) == nullptr) {
-        return c.fail(ErrorKind::kProgramRule, b.corr_row.column,
-                      fmt::format("FUNCTION CORRDATA TCS #{}: the correction table does not "
-                                  "define row {}",
-                                  row, row));
+        c.fail(ErrorKind::kProgramRule, b.corr_row.column,
+               fmt::format("FUNCTION CORRDATA TCS #{}: the correction table does not define row {}",
+                           row, row));
+        c.err.undefined = Undefined::kCorrectionRow;
+        return false;
     }
     if (before.tool <= 0) return true;
     if (!called_tool(c, options.tools, before.tool, b.kind_column, before.call_dl, before.call_dr,

@@ -25,6 +25,14 @@ enum class ErrorKind : std::uint8_t {
 };
 std::string_view error_kind_name(ErrorKind k) noexcept;  // "Syntax", "Geometry", ...
 
+// What a program names that the run's inputs do not hold: callers add what to give (apcictl
+// run: "no --tools file given"), by this kind, not by the message's words.
+enum class Undefined : std::uint8_t {
+    kNothing,
+    kTool,           // D n / TOOL CALL n of a tool the tool list does not define
+    kCorrectionRow,  // FUNCTION CORRDATA TCS #n of a row the correction table does not define
+};
+
 // Block number value meaning "the block has no N word".
 inline constexpr std::int64_t kNoBlockNumber = -1;
 
@@ -36,6 +44,7 @@ struct Diagnostic {
     std::int64_t block = kNoBlockNumber;  // N number of the block, where known
     bool klartext = false;  // a Klartext block number (the line's leading number): not printed
     std::string message;                  // what was wrong / what was expected, no location prefix
+    Undefined undefined = Undefined::kNothing;  // kProgramRule: an input does not define it
 
     // "file:line:col: N50: message" ("file:line:col: message" for a block without N or a
     // Klartext block; "file: message" when line is 0).
