@@ -375,6 +375,36 @@ TEST(WallModel, AnOpenStretchLongerThanThePendingBoundPlacesItsOldestAtOnce) {
     EXPECT_TRUE(m.placed(1));
 }
 
+TEST(WallModel, ALoopClosesAtAStartWhoseCellAnElementLetGoStartedInFirst) {
+    // A long open stretch from P = (0, 0): its first element is let go (kMaxPending). A line
+    // back to P closes nothing (nothing pending starts there); then a triangle from P closes a
+    // loop where its last element ends: the start it ends at is P's, which the element let go
+    // held first.
+    WallModel m;
+    m.begin(17, 1);
+    const std::uint64_t n = WallModel::kMaxPending + 5;
+    std::uint64_t i = 0;
+    for (; i < n; ++i)
+        m.element(i, move_of(line(static_cast<double>(i), 0.001 * (i % 2), static_cast<double>(i) + 1,
+                                  0.001 * ((i + 1) % 2)),
+                             0),
+                  i + 1, true, false);
+    EXPECT_TRUE(m.placed(0));
+    const double y = 0.001 * (n % 2);
+    m.element(i, move_of(line(static_cast<double>(n), y, 0, 0), 0), i + 1, true, false);
+    ++i;
+    EXPECT_FALSE(m.looped(i - 1));
+    const std::uint64_t first = i;
+    for (const Element& e : {line(0, 0, 0, -5), line(0, -5, -5, -5), line(-5, -5, 0, 0)}) {
+        m.element(i, move_of(e, 0), i + 1, true, false);
+        ++i;
+    }
+    m.end();
+    EXPECT_TRUE(m.looped(first));
+    EXPECT_TRUE(m.looped(first + 2));
+    EXPECT_FALSE(m.looped(first - 1));
+}
+
 TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
     WallModel m;
     const std::uint64_t a = feed(m, 0, square_stretch(0, 0, 5, false, 2, 1));

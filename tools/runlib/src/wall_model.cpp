@@ -50,11 +50,32 @@ void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t k
         started_ = true;
     }
     records_.push_back(Record{index, 0, Place::kUndecided, walls, repeat});
-    // The oldest pending element can no longer begin a loop: an open contour's.
+    // The oldest pending element can no longer begin a loop: an open contour's, placed at once
+    // (as place_pending places it). Its record, which says nothing more, goes with the next
+    // prune of all such records.
     if (pending_.size() >= kMaxPending) {
-        place_pending(1, Place::kOpen, 0);
-        pending_.erase(pending_.begin());
+        const Pending& oldest = pending_.front();
+        if (Record* r = record(oldest.index)) {
+            r->place = Place::kOpen;
+            r->loop = 0;
+        }
+        ++generation_;
+        opened_early_ |= open_;
+        if (!starts_.empty()) {
+            const auto [lo, hi] = starts_.equal_range(
+                cell_key(cell_of(oldest.move.start.x()), cell_of(oldest.move.start.y())));
+            for (auto it = lo; it != hi; ++it)
+                if (it->second == pending_first_) {
+                    starts_.erase(it);
+                    break;
+                }
+        }
+        pending_.pop_front();
         ++pending_first_;
+        if (++stale_ >= kMaxPending) {
+            prune(records_head_);
+            stale_ = 0;
+        }
     }
     pending_.push_back(Pending{index, e, key});
     const std::uint64_t number = pending_first_ + pending_.size() - 1;
@@ -80,9 +101,10 @@ void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t k
         const std::int64_t ci = cell_of(e.end.x()), cj = cell_of(e.end.y());
         for (std::int64_t i = ci - 1; i <= ci + 1; ++i)
             for (std::int64_t j = cj - 1; j <= cj + 1; ++j) {
-                const auto it = starts_.find(cell_key(i, j));
-                if (it != starts_.end() && it->second >= pending_first_)
-                    consider(static_cast<std::size_t>(it->second - pending_first_));
+                const auto [lo, hi] = starts_.equal_range(cell_key(i, j));
+                for (auto it = lo; it != hi; ++it)
+                    if (it->second >= pending_first_)
+                        consider(static_cast<std::size_t>(it->second - pending_first_));
             }
     }
     if (from < pending_.size()) close_loop(from);

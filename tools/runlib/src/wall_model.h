@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <unordered_map>
 #include <vector>
 
@@ -190,11 +191,14 @@ class WallModel {
     std::uint64_t stretch_first_ = 0;  // the number of the open stretch's first element
     bool started_ = false;             // it has one
     bool opened_early_ = false;        // an element of it was placed as an open contour's
-    std::vector<Pending> pending_;  // since the last loop closed
-    // Where there are many pending elements: the first pending element (its number in the
+    std::deque<Pending> pending_;  // since the last loop closed (the oldest let go: kMaxPending)
+    // Where there are many pending elements: the pending elements (each its number in the
     // stretch since the last loop, pending_first_ + position) starting in each cell of
     // kTolerance (key of the quantised point).
-    std::unordered_map<std::uint64_t, std::uint64_t> starts_;
+    std::unordered_multimap<std::uint64_t, std::uint64_t> starts_;
+    // Records of elements let go from pending_ as an open contour's (kMaxPending) since the
+    // last prune: pruned together, not each (that would scan every pending element's record).
+    std::size_t stale_ = 0;
     std::uint64_t pending_first_ = 0;  // the stretch's count of elements before pending_[0]
     std::uint64_t generation_ = 0;
     // Scratch for the elements of the loops an enclosure test compares (memory kept).
