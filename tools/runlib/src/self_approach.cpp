@@ -833,7 +833,8 @@ SelfApproachCheck::Undecided* SelfApproachCheck::undecided_of(int plane, std::ui
     return nullptr;
 }
 
-void SelfApproachCheck::hold(std::vector<Found>& held, const Found& f) {
+template <typename Held>
+void SelfApproachCheck::hold(Held& held, const Found& f) {
     for (Found& h : held)
         if (same_block(h.f.path_block, f.f.path_block) &&
             same_block(h.f.contour_block, f.f.contour_block) && h.contour == f.contour &&
@@ -888,7 +889,7 @@ void SelfApproachCheck::give(const Found& f, bool running, std::vector<SelfAppro
     }
     if (deferred_.size() >= kMaxDeferred) {  // the oldest decided as things stand
         const Found oldest = deferred_.front();
-        deferred_.erase(deferred_.begin());
+        deferred_.pop_front();
         const detail::WallRole role = walls_->role(oldest.contour);
         if (role == detail::WallRole::kWall || role == detail::WallRole::kUndecided)
             take(oldest.f, false, out);
@@ -902,7 +903,7 @@ void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
         return;
     }
     reviewed_ = walls_->generation();
-    std::vector<Candidate> candidates;
+    std::deque<Candidate> candidates;
     candidates.swap(waiting_);
     for (const Candidate& k : candidates) {
         if (!walls_->placed(k.contour_index) || !walls_->placed(k.path_index)) {
@@ -912,7 +913,7 @@ void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
         if (walls_->role(k.contour_index) == detail::WallRole::kWall)
             settle(k.view(), seen_ && same_block(k.path_block, current_), out);
     }
-    std::vector<Found> waiting;
+    std::deque<Found> waiting;
     for (const Found& f : deferred_) {
         if (!walls_->placed(f.contour) || !walls_->placed(f.path)) {
             waiting.push_back(f);
@@ -1161,7 +1162,7 @@ void SelfApproachCheck::consider(const PairView& k, bool placed, bool running,
     if (!placed) {
         if (waiting_.size() >= kMaxDeferred) {  // the oldest measured as things stand
             const Candidate oldest = waiting_.front();
-            waiting_.erase(waiting_.begin());
+            waiting_.pop_front();
             settle(oldest.view(), false, out);
         }
         waiting_.emplace_back(k);

@@ -165,7 +165,8 @@ class SelfApproachCheck {
     void take(const SelfApproachFinding& f, bool running, std::vector<SelfApproachFinding>& out);
     void flush(std::vector<SelfApproachFinding>& out);  // the open findings go out
     // Findings against the stretch's latest element (its departure, perhaps): merged per pair.
-    static void hold(std::vector<Found>& held, const Found& f);
+    template <typename Held>
+    static void hold(Held& held, const Found& f);
     // A finding the stretch rules let through: reported (take) where the wall model places its
     // element as a wall, dropped where not, held (deferred_) until both elements are placed.
     void give(const Found& f, bool running, std::vector<SelfApproachFinding>& out);
@@ -199,8 +200,9 @@ class SelfApproachCheck {
     std::size_t entry_budget_ = kEntryBudget;
     std::vector<Found> held_;  // against latest_, until it is known not the departure
     std::unique_ptr<detail::WallModel> walls_;
-    std::vector<Found> deferred_;  // given, waiting for the wall model
-    std::vector<Candidate> waiting_;  // unmeasured, waiting for the wall model
+    // Both bounded by kMaxDeferred, the oldest let go first (a deque: not a copy of the rest).
+    std::deque<Found> deferred_;      // given, waiting for the wall model
+    std::deque<Candidate> waiting_;  // unmeasured, waiting for the wall model
     std::uint64_t reviewed_ = 0;   // the wall model's generation at the last review
     // The entry points of the approaches executed (each its element's programmed end, in the
     // plane), by the element's number, oldest first; dropped with the elements let go.
