@@ -190,24 +190,27 @@ TEST(SelfApproachRules, TheDistanceReportedIsTheLeastToTheBillionthOfAMillimetre
         }
 }
 
+// A closed square loop (0, 0)..(10, 10), tool outside (G41 clockwise), entered at the middle
+// of its left side (0, 5) by the approach N10 from `from`; N11..N15 its sides from there.
+Stretch entered_square(const Point& from, double r) {
+    Stretch s;
+    s.r = r;
+    s.elements = {line(10, from, {0, 5, 0}),         line(11, {0, 5, 0}, {0, 10, 0}),
+                  line(12, {0, 10, 0}, {10, 10, 0}), line(13, {10, 10, 0}, {10, 0, 0}),
+                  line(14, {10, 0, 0}, {0, 0, 0}),   line(15, {0, 0, 0}, {0, 5, 0})};
+    s.paths = {{line(10, from, {-r, 5, 0}, Role::kApproach)},
+               {line(11, {-r, 5, 0}, {-r, 10, 0}, Role::kContour)},
+               {line(12, {0, 10 + r, 0}, {10, 10 + r, 0}, Role::kContour)},
+               {line(13, {10 + r, 10, 0}, {10 + r, 0, 0}, Role::kContour)},
+               {line(14, {10, -r, 0}, {0, -r, 0}, Role::kContour)},
+               {line(15, {-r, 0, 0}, {-r, 5, 0}, Role::kContour)}};
+    return s;
+}
+
 TEST(SelfApproachRules, AnApproachIsHeldToItsOwnStretchButNotWhereItStandsNorAtItsEntry) {
     const double r = 1.0;
-    // A closed square loop, tool outside (G41 clockwise), entered from the left middle; the
-    // approach N10 from (-8, 5) to (0, 5) runs straight into the loop's start.
-    const auto square = [&](const Point& from) {
-        Stretch s;
-        s.r = r;
-        s.elements = {line(10, from, {0, 5, 0}),       line(11, {0, 5, 0}, {0, 10, 0}),
-                      line(12, {0, 10, 0}, {10, 10, 0}), line(13, {10, 10, 0}, {10, 0, 0}),
-                      line(14, {10, 0, 0}, {0, 0, 0}),   line(15, {0, 0, 0}, {0, 5, 0})};
-        s.paths = {{line(10, from, {-r, 5, 0}, Role::kApproach)},
-                   {line(11, {-r, 5, 0}, {-r, 10, 0}, Role::kContour)},
-                   {line(12, {0, 10 + r, 0}, {10, 10 + r, 0}, Role::kContour)},
-                   {line(13, {10 + r, 10, 0}, {10 + r, 0, 0}, Role::kContour)},
-                   {line(14, {10, -r, 0}, {0, -r, 0}, Role::kContour)},
-                   {line(15, {-r, 0, 0}, {-r, 5, 0}, Role::kContour)}};
-        return s;
-    };
+    // The approach N10 from (-8, 5) to (0, 5) runs straight into the loop's start.
+    const auto square = [&](const Point& from) { return entered_square(from, r); };
     // From outside the part: nothing near.
     EXPECT_TRUE(pairs(run({square({-8, 5, 0})})).empty());
     // From the other side, across the part: the approach's centre crosses N13, and passes
@@ -235,18 +238,7 @@ TEST(SelfApproachRules, TheEntryCornerRuleHoldsForEveryStretchsElementAtTheEntry
     // cut). Another stretch (a later pass over the same contour, as a lathe program runs it
     // from both ends) has an element ending at the same entry point: the same corner cut, not
     // warned, whichever stretch comes first. One ending 0.5 short of it is held to r.
-    Stretch square;
-    square.r = r;
-    const Point from(-0.6, 12, 0);
-    square.elements = {line(10, from, {0, 5, 0}),         line(11, {0, 5, 0}, {0, 10, 0}),
-                       line(12, {0, 10, 0}, {10, 10, 0}), line(13, {10, 10, 0}, {10, 0, 0}),
-                       line(14, {10, 0, 0}, {0, 0, 0}),   line(15, {0, 0, 0}, {0, 5, 0})};
-    square.paths = {{line(10, from, {-r, 5, 0}, Role::kApproach)},
-                    {line(11, {-r, 5, 0}, {-r, 10, 0}, Role::kContour)},
-                    {line(12, {0, 10 + r, 0}, {10, 10 + r, 0}, Role::kContour)},
-                    {line(13, {10 + r, 10, 0}, {10 + r, 0, 0}, Role::kContour)},
-                    {line(14, {10, -r, 0}, {0, -r, 0}, Role::kContour)},
-                    {line(15, {-r, 0, 0}, {-r, 5, 0}, Role::kContour)}};
+    const Stretch square = entered_square({-0.6, 12, 0}, r);
     const Stretch at_entry = probe(20, line(0, {0, 10, 0}, {0, 5, 0}));
     const Stretch short_of = probe(20, line(0, {0, 10, 0}, {0, 5.5, 0}));
     EXPECT_EQ(pairs(run({square, at_entry})).count({10, 21}), 0U);
