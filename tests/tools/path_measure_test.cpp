@@ -46,6 +46,26 @@ TEST(PathMeasure, ArcsInEveryPlaneHaveTheSweepAndLengthOfThePathFunctions) {
     EXPECT_EQ(arcs, 100000U);
 }
 
+TEST(PathMeasure, AnArcOfAHugeRadiusKeepsItsSmallSweep) {
+    // 20 mm of a circle of radius 1e18 about (0, 1e18): the two radii's directions differ by
+    // 2e-17 rad, below the rounding of an angle near pi / 2, so the difference of two atan2
+    // angles is 0 and became a full turn (2 pi, a length of 6.3e18 mm). The angle between the
+    // unit radii keeps it.
+    for (const bool ccw : {true, false}) {
+        PathSegment s;
+        s.kind = SegmentKind::kArc;
+        s.plane = 17;
+        s.ccw = ccw;
+        s.start = Point(0, 0, 0);
+        s.end = Point(ccw ? 20 : -20, 0, 0);
+        s.center = Point(0, 1e18, 0);
+        measure(s);
+        EXPECT_NEAR(s.sweep, ccw ? 2e-17 : -2e-17, 1e-30) << ccw;
+        EXPECT_NEAR(s.length, 20.0, 1e-9) << ccw;
+        EXPECT_EQ(arc_sweep(s), s.sweep);
+    }
+}
+
 TEST(PathMeasure, LinesAndRapidsHaveNoSweepAndTheirChord) {
     std::mt19937_64 rng(7);
     for (const SegmentKind kind : {SegmentKind::kLine, SegmentKind::kRapid}) {

@@ -162,4 +162,15 @@ std::string check_arc_range(const ArcMove& arc, double limit) {
     return {};
 }
 
+double arc_sweep(double sx, double sy, double ex, double ey, bool ccw, bool full) noexcept {
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    const double rs = std::hypot(sx, sy), re = std::hypot(ex, ey);
+    if (full || !(rs > 0.0) || !(re > 0.0)) return ccw ? kTwoPi : -kTwoPi;
+    const double ux = sx / rs, uy = sy / rs, vx = ex / re, vy = ey / re;
+    double sweep = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+    if (ccw && sweep <= 0.0) sweep += kTwoPi;
+    if (!ccw && sweep >= 0.0) sweep -= kTwoPi;
+    return sweep;
+}
+
 }  // namespace apci::nc

@@ -35,18 +35,10 @@ double move_length(const ArcMove& arc) noexcept {
     const double sy = arc.start[a.second] - arc.center[a.second];
     const double ex = arc.end[a.first] - arc.center[a.first];
     const double ey = arc.end[a.second] - arc.center[a.second];
-    constexpr double kTwoPi = 2.0 * std::numbers::pi;
     const double rs = std::hypot(sx, sy);
     const double re = std::hypot(ex, ey);
-    double sweep = kTwoPi;
-    if (std::hypot(ex - sx, ey - sy) > kSamePoint && rs > 0.0 && re > 0.0) {
-        // The angle between the unit radii: exact also for a radius far beyond the chord (R1e200
-        // over 20 mm), where the difference of two atan2 angles vanishes.
-        const double ux = sx / rs, uy = sy / rs, vx = ex / re, vy = ey / re;
-        sweep = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
-        if (arc.ccw && sweep <= 0.0) sweep += kTwoPi;
-        if (!arc.ccw && sweep >= 0.0) sweep -= kTwoPi;
-    }
+    const double sweep =
+        arc_sweep(sx, sy, ex, ey, arc.ccw, !(std::hypot(ex - sx, ey - sy) > kSamePoint));
     const double planar = 0.5 * (rs + re) * std::fabs(sweep);
     return std::hypot(planar, arc.end[a.normal] - arc.start[a.normal]);
 }

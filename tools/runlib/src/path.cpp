@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
 
 namespace apci::run {
@@ -66,22 +67,15 @@ namespace {
 // arc_sweep in the plane of axes First, Second (constants: no index looked up per coordinate).
 template <int First, int Second>
 double sweep_in(const PathSegment& arc) noexcept {
-    constexpr double kTwoPi = 2.0 * std::numbers::pi;
     const double du = arc.end[First] - arc.start[First];
     const double dv = arc.end[Second] - arc.start[Second];
     // A chord with a component over twice the tolerance is longer than it: no hypot needed.
     const bool long_chord =
         std::abs(du) > 2.0 * kSamePointTolerance || std::abs(dv) > 2.0 * kSamePointTolerance;
-    if (!long_chord && std::hypot(du, dv) <= kSamePointTolerance) return arc.ccw ? kTwoPi : -kTwoPi;
-    double sweep =
-        std::atan2(arc.end[Second] - arc.center[Second], arc.end[First] - arc.center[First]) -
-        std::atan2(arc.start[Second] - arc.center[Second], arc.start[First] - arc.center[First]);
-    if (arc.ccw) {
-        while (sweep <= 0.0) sweep += kTwoPi;
-    } else {
-        while (sweep >= 0.0) sweep -= kTwoPi;
-    }
-    return sweep;
+    const bool full = !long_chord && std::hypot(du, dv) <= kSamePointTolerance;
+    return nc::arc_sweep(arc.start[First] - arc.center[First], arc.start[Second] - arc.center[Second],
+                         arc.end[First] - arc.center[First], arc.end[Second] - arc.center[Second],
+                         arc.ccw, full);
 }
 
 // measure() of an arc in the plane of axes First, Second with Third its normal: the formulas of

@@ -68,4 +68,12 @@ bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
 // refuses ran its earlier blocks first; one whose path leaves the range was not checked at all.
 std::string check_arc_range(const ArcMove& arc, double limit);
 
+// The signed sweep of an arc about its centre, from the radius (sx, sy) at its start to (ex, ey)
+// at its end: the angle between the unit radii, so exact also for a radius far beyond the chord
+// (R1e200 over 20 mm), where the difference of two atan2 angles vanishes; in (0, 2 pi]
+// counter-clockwise, [-2 pi, 0) clockwise. A full turn where `full` (the caller found the ends
+// to meet, by its own tolerance) or a radius is 0. The host's one sweep: move_length and the
+// executor's path measures take it from here.
+double arc_sweep(double sx, double sy, double ex, double ey, bool ccw, bool full) noexcept;
+
 }  // namespace apci::nc
