@@ -35,7 +35,10 @@ configure() {  # configure BUILD_DIR SANITIZERS
 run_asan() {
   configure build-asan address,undefined
   cmake --build build-asan -j"$(nproc)" >/dev/null
-  ctest --test-dir build-asan --output-on-failure -j"$(nproc)" --timeout 900
+  # The gouge agreement (1,700 programs, 4 minutes of test time under ASan) is there for its
+  # statistics, which ./test.sh and the release stage give; here its code runs on the first 10
+  # programs of each family.
+  GOUGE_SEEDS=1000:10 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" --timeout 900
 }
 
 run_tsan() {
