@@ -336,6 +336,53 @@ TEST(SelfApproachRules, ALongPathFindsAShortWallBeyondRadiusOfItsSamples) {
     EXPECT_EQ(pairs(run({wall, p})).count({21, 11}), 1U);
 }
 
+TEST(SelfApproachRules, APairIsReportedWithTheLeastDistanceOfAllItsPathBlocksSegments) {
+    // The path of N13 in two segments (its contour part and the transition at its end), 0.6 and
+    // 0.4 above N11, in either order. Once N11 is the stretch's last element (its findings held
+    // until it is known not to be the departure); once an element in the middle (its findings
+    // wait for the wall model until the stretch ends, when N13's segments are all done).
+    const auto least = [](bool last, bool nearer_first) {
+        Stretch s;
+        const Point far(-50, -50, 0);
+        if (last) {
+            // N13 not the element before N11 (a transition is held to that one only where it
+            // is an arc of more than half a turn).
+            s.elements = {line(10, far, far + Point(1, 0, 0)),
+                          line(13, far + Point(1, 0, 0), far + Point(2, 0, 0)),
+                          line(12, far + Point(2, 0, 0), {0, 0, 0}),
+                          line(11, {0, 0, 0}, {20, 0, 0})};
+        } else {
+            s.elements = {
+                line(10, {-5, 0, 0}, {0, 0, 0}),      line(11, {0, 0, 0}, {20, 0, 0}),
+                line(12, {20, 0, 0}, {20, -10, 0}),   line(13, {20, -10, 0}, {30, -10, 0}),
+                line(14, {30, -10, 0}, {40, -10, 0}), line(15, {40, -10, 0}, {50, -10, 0})};
+        }
+        for (const PathSegment& e : s.elements) {
+            const Point d = (e.end - e.start).normalized();
+            s.paths.push_back({line(static_cast<int>(e.block.number), e.start + left_of(d),
+                                    e.end + left_of(d), Role::kContour)});
+        }
+        s.paths.front().front().role = Role::kApproach;
+        std::vector<PathSegment> n13 = {line(13, {5, 0.6, 0}, {10, 0.6, 0}, Role::kContour),
+                                        line(13, {10, 0.4, 0}, {15, 0.4, 0}, Role::kTransition)};
+        if (nearer_first) std::swap(n13[0], n13[1]);
+        for (std::size_t k = 0; k < s.elements.size(); ++k)
+            if (s.elements[k].block.number == 13) s.paths[k] = n13;
+        double distance = -1.0;
+        int count = 0;
+        for (const auto& f : run({s}))
+            if (f.path_block.number == 13 && f.contour_block.number == 11) {
+                distance = f.distance;
+                ++count;
+            }
+        EXPECT_EQ(count, 1) << last << nearer_first;
+        return distance;
+    };
+    for (const bool last : {true, false})
+        for (const bool nearer_first : {true, false})
+            EXPECT_NEAR(least(last, nearer_first), 0.4, 1e-9) << last << nearer_first;
+}
+
 }  // namespace
 
 namespace {

@@ -903,6 +903,9 @@ void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
         return;
     }
     reviewed_ = walls_->generation();
+    // A path block's segments (its contour part, a transition) come near an element each with
+    // its own distance: the findings are taken open, so that a pair keeps the least of them,
+    // and those of blocks whose segments are all done go out after the review.
     std::deque<Candidate> candidates;
     candidates.swap(waiting_);
     for (const Candidate& k : candidates) {
@@ -910,8 +913,7 @@ void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
             waiting_.push_back(k);
             continue;
         }
-        if (walls_->role(k.contour_index) == detail::WallRole::kWall)
-            settle(k.view(), seen_ && same_block(k.path_block, current_), out);
+        if (walls_->role(k.contour_index) == detail::WallRole::kWall) settle(k.view(), true, out);
     }
     std::deque<Found> waiting;
     for (const Found& f : deferred_) {
@@ -919,10 +921,15 @@ void SelfApproachCheck::review(std::vector<SelfApproachFinding>& out) {
             waiting.push_back(f);
             continue;
         }
-        if (walls_->role(f.contour) == detail::WallRole::kWall)
-            take(f.f, seen_ && same_block(f.f.path_block, current_), out);
+        if (walls_->role(f.contour) == detail::WallRole::kWall) take(f.f, true, out);
     }
     deferred_.swap(waiting);
+    // What stays open: the findings of the block whose segments are coming (current_).
+    const auto finished = std::stable_partition(
+        open_.begin(), open_.end(),
+        [&](const SelfApproachFinding& f) { return seen_ && same_block(f.path_block, current_); });
+    out.insert(out.end(), finished, open_.end());
+    open_.erase(finished, open_.end());
 }
 
 SelfApproachCheck::Pair SelfApproachCheck::pair_of(const BlockRef& path, const BlockRef& contour) {
