@@ -121,6 +121,44 @@ TEST(BottleneckAvoider, AClosedContoursLastAndFirstMovesAreNoBottleneck) {
     EXPECT_EQ(move_blocks(r.out), (std::vector<std::int64_t>{-1, 10, 20, 30, 40}));
 }
 
+TEST(BottleneckAvoider, PathsThatMeetAtAPathsStartDoNotCrossThoseJustPastItDo) {
+    // N20 along +X from (0, 0) (its path y = 5 from x 0), N30 back under it, N40 up x = 5 + e
+    // (its path x = e): at e = 0 the paths of N20 and N40 meet at N20's path's start (0, 5),
+    // which is no crossing; at e = 1e-3 they cross 1e-3 along it, and N30 is left out.
+    for (const double e : {0.0, 1e-3}) {
+        const std::string x = std::to_string(5.0 + e);
+        const std::string text = "G17 G90 G26 F1000 D1\nG0 X-10 Y-10 Z0\nG41 G1 X0 Y0\n"
+                                 "N20 G1 X20 Y0\nN30 G1 X" + x + " Y-10\nN40 G1 X" + x +
+                                 " Y20\nN50 G40 G1 X" + x + " Y30\nM30\n";
+        const Avoided r = avoid(text, 3);
+        if (e == 0.0) {
+            EXPECT_TRUE(r.found.empty());
+            EXPECT_EQ(move_blocks(r.out), (std::vector<std::int64_t>{-1, 20, 30, 40, 50}));
+        } else {
+            ASSERT_EQ(r.found.size(), 1U);
+            EXPECT_EQ(r.found[0].before.block, 20);
+            EXPECT_EQ(r.found[0].after.block, 40);
+            EXPECT_NEAR(r.found[0].where.x(), e, 1e-9);
+            EXPECT_NEAR(r.found[0].where.y(), 5.0, 1e-9);
+        }
+    }
+}
+
+TEST(BottleneckAvoider, OfTwoCrossingsTheOneNearestTheLaterMovesStartIsTaken) {
+    // N20 along +X (its path y = 5), N40 a counter-clockwise half circle about (0, 12) of
+    // radius 15 from its left (G41: the tool inside, its path of radius 10), whose path crosses
+    // y = 5 twice: first at x = -sqrt(51), then at x = sqrt(51).
+    const std::string text =
+        "G17 G90 G26 F1000 D1\nG0 X-20 Y-10 Z0\nG41 G1 X-20 Y0\nN20 G1 X20 Y0\n"
+        "N30 G1 X-15 Y12\nN40 G3 X15 Y12 I15 J0\nN50 G40 G1 X15 Y30\nM30\n";
+    const Avoided r = avoid(text, 3);
+    ASSERT_EQ(r.found.size(), 1U);
+    EXPECT_EQ(r.found[0].before.block, 20);
+    EXPECT_EQ(r.found[0].after.block, 40);
+    EXPECT_NEAR(r.found[0].where.x(), -std::sqrt(51.0), 1e-9);
+    EXPECT_NEAR(r.found[0].where.y(), 5.0, 1e-9);
+}
+
 TEST(BottleneckAvoider, GivesEveryEventOnInOrderWhereNothingCrosses) {
     const std::string plain =
         "G17 G90 G26 F1000 D1\nG0 X0 Y-10 Z0\nG41 G1 X0 Y0\nN10 G1 X20\nN20 G3 X30 Y10 I0 J10\n"

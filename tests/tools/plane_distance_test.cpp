@@ -246,6 +246,31 @@ TEST(PlaneDistance, ApartBySideIsNeverClaimedForElementsThatComeWithinTheLimit) 
     EXPECT_GT(claimed, 1000);
 }
 
+TEST(PlaneDistance, ApartBySideOfASpiralTakesItsLargerRadiusOutsideAndItsSmallerInside) {
+    // A spiral arc (rounded centres make its radii differ) about the origin, counter-clockwise
+    // a quarter turn from radius 5 at (5, 0) out to 5.002 at (0, 5.002); a short line on the
+    // radius through either end, outside or inside, 1e-3 nearer than the limit to that end,
+    // or 1e-6 farther than the limit from every radius of the spiral.
+    const double limit = 1.0;
+    Element a = circular({0, 0}, 5.0, 0.0, kPi / 2);
+    a.r1 = 5.002;
+    a.end = {0.0, 5.002};
+    const auto radial = [](double angle, double from, double to) {
+        const Vec2 u(std::cos(angle), std::sin(angle));
+        return line(from * u, to * u);
+    };
+    // Outside its end (radius 5.002): 0.999 away, not apart; outside 5.002 + limit: apart.
+    EXPECT_FALSE(pd::apart_by_side(a, radial(kPi / 2, 6.001, 6.1), limit));
+    EXPECT_TRUE(pd::apart_by_side(a, radial(kPi / 2, 6.002 + 1e-6, 6.1), limit));
+    // Inside its start (radius 5): 0.999 away, not apart; inside 5 - limit: apart.
+    EXPECT_FALSE(pd::apart_by_side(a, radial(0.0, 3.9, 4.001), limit));
+    EXPECT_TRUE(pd::apart_by_side(a, radial(0.0, 3.9, 4.0 - 1e-6), limit));
+    for (const Element& b : {radial(kPi / 2, 6.001, 6.1), radial(0.0, 3.9, 4.001)}) {
+        const double sampled = brute(sample(a, 2000), sample(b, 50));
+        EXPECT_LT(sampled, limit);  // what the claims above rest on
+    }
+}
+
 TEST(PlaneDistance, ApartBySideProvesTheRoundedCornerNeighboursOfAPath) {
     // A line along +X to the origin under G41 (tool above, radius 1): its path at y = 1. The
     // corner rounded by an arc of radius 3 turning right (down) away from the tool: every point

@@ -336,6 +336,34 @@ TEST(SelfApproachRules, ALongPathFindsAShortWallBeyondRadiusOfItsSamples) {
     EXPECT_EQ(pairs(run({wall, p})).count({21, 11}), 1U);
 }
 
+TEST(SelfApproachRules, TheElementBeforeThePathsIsANeighbourAndTheOneBeforeThatIsNot) {
+    // An open contour along y = 0: the approach N10, N11 from x 0 to 20, N12 and N13 going on
+    // to 25 and 30. The path of N12 (the element after N11: N11 is the element before its own)
+    // or of N13 (two after) is put above N11's middle, at d. The element before is held to r
+    // less twice the tolerance, the one before that to r less once.
+    const double r = 1.0;
+    const auto near_n11 = [&](int path_block, double d) {
+        Stretch s;
+        s.r = r;
+        s.elements = {line(10, {-5, 0, 0}, {0, 0, 0}), line(11, {0, 0, 0}, {20, 0, 0}),
+                      line(12, {20, 0, 0}, {25, 0, 0}), line(13, {25, 0, 0}, {30, 0, 0})};
+        s.paths = {{line(10, {-5, r, 0}, {0, r, 0}, Role::kApproach)},
+                   {line(11, {0, r, 0}, {20, r, 0}, Role::kContour)},
+                   {line(12, {20, r, 0}, {25, r, 0}, Role::kContour)},
+                   {line(13, {25, r, 0}, {30, r, 0}, Role::kContour)}};
+        s.paths[static_cast<std::size_t>(path_block - 10)] = {
+            line(path_block, {5, d, 0}, {15, d, 0}, Role::kContour)};
+        return pairs(run({s})).count({path_block, 11});
+    };
+    EXPECT_EQ(near_n11(12, r - 1.5 * kTol), 0U);
+    EXPECT_EQ(near_n11(12, r - 2.0 * kTol + 1e-6), 0U);
+    EXPECT_EQ(near_n11(12, r - 2.0 * kTol - 1e-6), 1U);
+    EXPECT_EQ(near_n11(13, r - 0.5 * kTol), 0U);
+    EXPECT_EQ(near_n11(13, r - kTol + 1e-6), 0U);
+    EXPECT_EQ(near_n11(13, r - kTol - 1e-6), 1U);
+    EXPECT_EQ(near_n11(13, r - 1.5 * kTol), 1U);
+}
+
 TEST(SelfApproachRules, APairIsReportedWithTheLeastDistanceOfAllItsPathBlocksSegments) {
     // The path of N13 in two segments (its contour part and the transition at its end), 0.6 and
     // 0.4 above N11, in either order. Once N11 is the stretch's last element (its findings held
@@ -381,6 +409,140 @@ TEST(SelfApproachRules, APairIsReportedWithTheLeastDistanceOfAllItsPathBlocksSeg
     for (const bool last : {true, false})
         for (const bool nearer_first : {true, false})
             EXPECT_NEAR(least(last, nearer_first), 0.4, 1e-9) << last << nearer_first;
+}
+
+TEST(SelfApproachRules, StoredBoxesRoundOutwardFarFromTheOrigin) {
+    // The grid keeps each element's box in floats rounded outward. 1000 mm from the origin a
+    // float's step is 6.1e-5 mm, over half the path tolerance: a box rounded the wrong way would
+    // keep a path 1.2 tolerances inside r of a wall from being measured. The wall runs along
+    // y = Y at a Y a float cannot hold: 1000.7 (its nearest float is above it: the box's low side
+    // must step down) with the probe below it, 1000.3 (the nearest float below: the high side
+    // must step up) with the probe above.
+    const double r = 1.0, d = r - 1.2 * kTol;
+    for (const double y : {1000.7, 1000.3}) {
+        const bool float_above = static_cast<double>(static_cast<float>(y)) > y;
+        ASSERT_EQ(float_above, y > 1000.5) << y;
+        const double py = float_above ? y - d : y + d;
+        const Stretch wall = wall_line(10, 1000, 1020, y, 0, 0, r);
+        const auto found = run({wall, probe(20, line(0, {1005, py, 0}, {1015, py, 0}), r)});
+        EXPECT_EQ(pairs(found).count({21, 11}), 1U) << y;
+    }
+}
+
+TEST(SelfApproachRules, TheGridReachesTheEndsOfLongElements) {
+    // Cells of 2 mm (r = 1); a long element is listed (or looked up) by samples 1 mm apart, its
+    // end the last of them. Each case is built so that the sample before the end lies in a
+    // column of cells beyond the reach of what is near the end.
+    const double r = 1.0, d = r - 3 * kTol;
+    {
+        // A long path along y = 0.3 (20 mm, from x -10.7 to 9.3) whose end comes d from a short
+        // wall N11 at x = 9.3 + d (the cell column from x 10), running down from y 0.5 to 0.1.
+        // The probe's elements are short and far, so that nothing is listed by samples.
+        const double x = 9.3 + d;
+        Stretch wall;
+        wall.elements = {line(10, {x, 5.5, 0}, {x, 0.5, 0}), line(11, {x, 0.5, 0}, {x, 0.1, 0}),
+                         line(12, {x, 0.1, 0}, {x, -5, 0})};
+        wall.paths = {{line(10, {x + r, 5.5, 0}, {x + r, 0.5, 0}, Role::kApproach)},
+                      {line(11, {x + r, 0.5, 0}, {x + r, 0.1, 0}, Role::kContour)},
+                      {line(12, {x + r, 0.1, 0}, {x + r, -5, 0}, Role::kContour)}};
+        Stretch p;
+        const Point far(-50, -50, 0);
+        p.elements = {line(20, far, far + Point(0.5, 0, 0)),
+                      line(21, far + Point(0.5, 0, 0), far + Point(1, 0, 0)),
+                      line(22, far + Point(1, 0, 0), far + Point(1.5, 0, 0))};
+        p.paths = {{line(20, far, far + Point(0.5, 0, 0), Role::kApproach)},
+                   {line(21, {-10.7, 0.3, 0}, {9.3, 0.3, 0}, Role::kContour)},
+                   {line(22, far + Point(1, 0, 0), far + Point(1.5, 0, 0), Role::kContour)}};
+        EXPECT_EQ(pairs(run({wall, p})).count({21, 11}), 1U);
+    }
+    {
+        // A long wall N11 along y = 0.3 (20 mm, to x 10.7), N12 turning down from its end; a
+        // probe's short path d beyond N11's end, across its line (the cell column from x 10).
+        const Stretch wall = [&] {
+            Stretch s;
+            s.elements = {line(10, {-14.3, 0.3, 0}, {-9.3, 0.3, 0}),
+                          line(11, {-9.3, 0.3, 0}, {10.7, 0.3, 0}),
+                          line(12, {10.7, 0.3, 0}, {10.7, -5, 0})};
+            s.paths = {{line(10, {-14.3, 1.3, 0}, {-9.3, 1.3, 0}, Role::kApproach)},
+                       {line(11, {-9.3, 1.3, 0}, {10.7, 1.3, 0}, Role::kContour)},
+                       {line(12, {11.7, 0.3, 0}, {11.7, -5, 0}, Role::kContour)}};
+            return s;
+        }();
+        const double x = 10.7 + d;
+        EXPECT_EQ(pairs(run({wall, probe(20, line(0, {x, 0.5, 0}, {x, 0.1, 0}))})).count({21, 11}),
+                  1U);
+    }
+}
+
+// A lookup by the box of what is looked up, where that is more than a few cells: the path
+// of AShortPathFindsALongWallWhoseSamplesLieBeyondRadiusOfIt made long, leading away from the
+// wall (its box nine cells, in reach of r sixteen).
+TEST(SelfApproachRules, ALongPathFindsALongWallWhoseSamplesLieBeyondRadiusOfItsEnd) {
+    const Point dir = Point(1, -1, 0).normalized();
+    const Point q(3.7, 3.7, 0);
+    const Point a(2.999, 2.999, 0);
+    Stretch wall;
+    const Point s0 = q - 10.5 * dir, s1 = q + 10.5 * dir;
+    wall.elements = {line(10, s0 - Point(0.5, 0, 0), s0), line(11, s0, s1),
+                     line(12, s1, s1 + Point(0.5, 0, 0))};
+    wall.paths = {{line(10, s0 - Point(0.5, 0, 0), s0, Role::kApproach)},
+                  {line(11, s0 + left_of(dir), s1 + left_of(dir), Role::kContour)},
+                  {line(12, s1 + Point(0, 1, 0), s1 + Point(0.5, 1, 0), Role::kContour)}};
+    const auto found = pairs(run({wall, probe(20, line(0, {-1.5, -1.5, 0}, a))}));
+    EXPECT_EQ(found.count({21, 11}), 1U);
+}
+
+// The window: with `window` W, the check keeps at least the W latest distinct elements. The run
+// programs an element before it executes the path of the one before (one element of
+// lookahead), so a path is compared with at least the W - 2 elements before its own, wherever
+// the letting go falls; much farther back, not.
+TEST(SelfApproachRules, APathIsComparedWithTheWindowOfElementsProgrammedBeforeIt) {
+    const auto found = [](std::size_t window, int before, int k) {
+        SelfApproachCheck check(window);
+        std::vector<SelfApproachFinding> out;
+        std::vector<PathSegment> elements, paths;
+        int n = 1;
+        double x = 0.0;
+        // Short lines 10 apart along y = 0, each with its offset for path.
+        const auto filler = [&] {
+            elements.push_back(line(n, {x, 0, 0}, {x + 1, 0, 0}));
+            paths.push_back(line(n, {x, 1, 0}, {x + 1, 1, 0}, Role::kContour));
+            ++n;
+            x += 10.0;
+        };
+        for (int i = 0; i < before; ++i) filler();
+        // A along y = 100; B, k elements later, far away but for its path, 0.5 below A.
+        const int a = n;
+        elements.push_back(line(n, {0, 100, 0}, {1, 100, 0}));
+        paths.push_back(line(n, {0, 101, 0}, {1, 101, 0}, Role::kContour));
+        ++n;
+        for (int i = 0; i < k - 1; ++i) filler();
+        const int b = n;
+        elements.push_back(line(n, {x, 0, 0}, {x + 1, 0, 0}));
+        paths.push_back(line(n, {0, 99.5, 0}, {1, 99.5, 0}, Role::kContour));
+        ++n;
+        x += 10.0;
+        for (int i = 0; i < 3; ++i) filler();
+        paths.front().role = Role::kApproach;
+        check.begin(1.0, 17, 1);
+        for (std::size_t i = 0; i < elements.size(); ++i) {
+            check.programmed(elements[i], out);
+            if (i > 0) check.executed(paths[i - 1], out);
+        }
+        check.end(out);
+        check.executed(paths.back(), out);
+        check.executed(line(999999, {1e4, 1e4, 0}, {1e4 + 1, 1e4, 0}), out);
+        return pairs(out).count({b, a}) == 1;
+    };
+    for (const std::size_t w : {4U, 5U, 8U}) {
+        const int k = static_cast<int>(w) - 2;
+        int missed_far = 0;
+        for (int before = 1; before < 4 * static_cast<int>(w); ++before) {
+            EXPECT_TRUE(found(w, before, k)) << "window " << w << ", " << before << " before";
+            missed_far += !found(w, before, static_cast<int>(w) + 1);
+        }
+        EXPECT_GT(missed_far, 0) << "window " << w;
+    }
 }
 
 }  // namespace

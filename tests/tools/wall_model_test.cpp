@@ -11,6 +11,7 @@
 
 #include "apci/run/plane_distance.h"
 #include "contour_loop.h"
+#include "probe_table.h"
 #include "wall_model.h"
 
 namespace {
@@ -131,6 +132,11 @@ TEST(ContourLoop, WithinTellsNestedTouchingSameCrossingAndTheBudget) {
                                  line(10, 10, 0, 10), line(0, 10, 0, 0)};
     EXPECT_EQ(plane::within(c, rectangle(5, 4, 8, 6), tol, 1 << 20), plane::Within::kNot);
     EXPECT_EQ(plane::within(c, rectangle(0.5, 0.5, 2, 2), tol, 1 << 20), plane::Within::kWithin);
+    // Within the C's box, near its sides and partly in its gap: touching its left side (a pass
+    // widened on some sides only, but into the gap), or crossing its lower arm: not within.
+    EXPECT_EQ(plane::within(c, rectangle(0, 4, 8, 6), tol, 1 << 20), plane::Within::kNot);
+    EXPECT_EQ(plane::within(c, rectangle(1, 2, 8, 6), tol, 1 << 20), plane::Within::kNot);
+    EXPECT_EQ(plane::within(c, rectangle(0, 4, 2, 6), tol, 1 << 20), plane::Within::kWithin);
     // The budget: 4 x 4 element pairs, at the budget decided, one below it unknown.
     EXPECT_EQ(plane::within(outer, rectangle(2, 2, 8, 8), tol, 16), plane::Within::kWithin);
     EXPECT_EQ(plane::within(outer, rectangle(2, 2, 8, 8), tol, 15), plane::Within::kUnknown);
@@ -334,6 +340,41 @@ TEST(WallModel, APassClearsOnlyAtItsOwnLevel) {
     }
 }
 
+TEST(WallModel, APassAboveClearsOnlyWithinTheToleranceOfItsLevel) {
+    // The larger pocket pass above the smaller one (a pocket narrower below: a step, whose lower
+    // walls stay), apart by just more than the tolerance or just within it.
+    for (const double dz : {2 * WallModel::kTolerance, 0.5 * WallModel::kTolerance}) {
+        WallModel m;
+        const std::uint64_t a = feed(m, 0, square_stretch(0, 0, 5, false, 2, 1), 1, -1.0);
+        feed(m, a, square_stretch(0, 0, 8, false, 2, 1), 1, -1.0 + dz);
+        EXPECT_EQ(m.role(2), dz > WallModel::kTolerance ? W : C) << dz;
+    }
+}
+
+TEST(WallModel, ALoopOfManyElementsClosesWithinTheToleranceAcrossCellBoundaries) {
+    // More than kScanned pending elements: a start is found by cells of the tolerance. A polygon
+    // of 100 sides from (10.00005, 5.00005) (the middle of its cell) whose last side ends 0.7
+    // tolerances beside that, in each direction: in the next cell over, or the next row.
+    const double step = 0.7 * WallModel::kTolerance;
+    for (const Vec2& off : {Vec2(-step, 0), Vec2(step, 0), Vec2(0, -step), Vec2(0, step)}) {
+        const Vec2 start(10.00005, 5.00005), centre(10.00005 - 20.0, 5.00005);
+        std::vector<Element> s;
+        Vec2 from = start;
+        for (int k = 1; k <= 100; ++k) {
+            const double a = 2.0 * kPi * k / 100.0;
+            const Vec2 to =
+                k == 100 ? Vec2(start + off) : Vec2(centre + 20.0 * Vec2(std::cos(a), std::sin(a)));
+            s.push_back(line(from.x(), from.y(), to.x(), to.y()));
+            from = to;
+        }
+        WallModel m;
+        feed(m, 0, s);
+        EXPECT_EQ(m.loops(), 1U) << off.transpose();
+        EXPECT_TRUE(m.looped(0)) << off.transpose();
+        EXPECT_TRUE(m.looped(99)) << off.transpose();
+    }
+}
+
 TEST(WallModel, TheSameContourAgainFromAnotherCornerIsOneLoop) {
     // A depth pass runs the rectangle again from its opposite corner: the same keys (the
     // geometry of each element), in another order: one loop. Other keys: another loop.
@@ -416,6 +457,59 @@ TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
     // A larger pass about the second one still clears it.
     feed(m, b, square_stretch(100, 0, 8, false, 2, 1));
     EXPECT_EQ(m.role(a + 2), C);
+}
+
+// ---- probe_table.h
+
+// After a clear (the grid lists its items again, reindex()), a key added again is new with no
+// value, and a cell's chains hold only what was added since: a stale chain would run into the
+// nodes cleared (and could run round them). The table is asserted first, so that the cells
+// are not walked where it keeps stale values.
+TEST(ProbeTable, AfterAClearAKeyIsNewWithNoValueAndACellHoldsOnlyItsNewItems) {
+    apci::run::detail::ProbeTable<std::uint64_t> t;
+    const std::uint64_t keys[] = {0, 7, ~std::uint64_t{0}};
+    for (const std::uint64_t key : keys) {
+        auto [value, fresh] = t.emplace(key);
+        ASSERT_TRUE(fresh) << key;
+        value = key + 100;
+        ASSERT_FALSE(t.emplace(key).second) << key;
+        ASSERT_NE(t.get(key), nullptr) << key;
+        ASSERT_EQ(*t.get(key), key + 100) << key;
+    }
+    ASSERT_EQ(t.get(8), nullptr);
+    t.clear();
+    for (const std::uint64_t key : keys) {
+        ASSERT_EQ(t.get(key), nullptr) << key;
+        const auto [value, fresh] = t.emplace(key);
+        ASSERT_TRUE(fresh) << key;
+        ASSERT_EQ(value, 0U) << key;
+    }
+    // The cells of a grid (the cell (0, 0) has the key 0).
+    apci::run::detail::CellIndex<2> cells;
+    for (const std::uint64_t cell : {std::uint64_t{0}, std::uint64_t{42}}) {
+        cells.add(0, cell, 1);
+        cells.add(0, cell, 2);
+        cells.add(1, cell, 3);
+    }
+    std::vector<std::uint32_t> found;
+    cells.append(0, 42, found);
+    EXPECT_EQ(found, (std::vector<std::uint32_t>{2, 1}));
+    cells.clear();
+    for (const std::uint64_t cell : {std::uint64_t{0}, std::uint64_t{42}}) {
+        found.clear();
+        cells.append(0, cell, found);
+        EXPECT_TRUE(found.empty()) << cell;
+        cells.add(0, cell, 5);
+        found.clear();
+        cells.append(0, cell, found);
+        EXPECT_EQ(found, (std::vector<std::uint32_t>{5})) << cell;
+        found.clear();
+        cells.append_and_add(1, 0, cell, 6, found);
+        EXPECT_TRUE(found.empty()) << cell;
+        found.clear();
+        cells.append(0, cell, found);
+        EXPECT_EQ(found, (std::vector<std::uint32_t>{6, 5})) << cell;
+    }
 }
 
 }  // namespace
