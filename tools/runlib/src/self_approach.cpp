@@ -19,7 +19,6 @@ namespace apci::run {
 namespace {
 
 using Vec2 = Eigen::Vector2d;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Start and end of an arc closer than this: a full circle (as in path.h).
 constexpr double kFullCircle = kSamePointTolerance;
 // The most distance evaluations one pair may take (the refinement stops there).
