@@ -62,13 +62,10 @@ motion::TcSettings MotionLayer::read_settings() const noexcept {
     s.present = state_.config.option_tc;
     if (!s.present) return s;
     s.objects_accessed = tc.objects_accessed;
-    const PlaneAxes plane = plane_axes(tc);
-    // The third axis of TcPlane's plane: 17 Z, 18 Y, 19 X (through X/Y/Z-Axis-Nr).
-    const std::int32_t third = tc.plane == tc::kPlaneZX   ? tc.axis_nr[1]
-                               : tc.plane == tc::kPlaneYZ ? tc.axis_nr[0]
-                                                          : tc.axis_nr[2];
+    // The board axes of TcPlane's plane, its third (17 Z, 18 Y, 19 X) included.
+    const geom::PlaneAxes plane = plane_axes(tc);
     s.plane_axes = {static_cast<std::uint8_t>(plane.first), static_cast<std::uint8_t>(plane.second),
-                    static_cast<std::uint8_t>(third)};
+                    static_cast<std::uint8_t>(plane.third)};
     s.plane = tc.plane;
     s.axis_nr = {static_cast<std::uint8_t>(tc.axis_nr[0]), static_cast<std::uint8_t>(tc.axis_nr[1]),
                  static_cast<std::uint8_t>(tc.axis_nr[2])};

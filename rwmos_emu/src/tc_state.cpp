@@ -3,17 +3,14 @@
 
 namespace rwmos {
 
-PlaneAxes plane_axes(const TcState& tc) noexcept {
+geom::PlaneAxes plane_axes(const TcState& tc) noexcept {
     const auto& nr = tc.axis_nr;
-    switch (tc.plane) {
-        case tc::kPlaneZX: return {nr[2], nr[0]};
-        case tc::kPlaneYZ: return {nr[1], nr[2]};
-        default: return {nr[0], nr[1]};
-    }
+    return geom::board_axes(geom::plane_from_code(tc.plane).value_or(geom::Plane::kXY),
+                            {nr[0], nr[1], nr[2]});
 }
 
 std::int32_t active_group(const TcState& tc) noexcept {
-    const PlaneAxes p = plane_axes(tc);
+    const geom::PlaneAxes p = plane_axes(tc);
     if (p.first == p.second) return 0;
     for (std::int32_t n = 1; n <= tc::kGroupCount; ++n) {
         const TcGroup& g = tc.group(n);

@@ -21,6 +21,7 @@ sources=(
   objif/src/frame.cpp objif/src/mailbox.cpp objif/src/status.cpp
   tools/runlib/src/json_writer.cpp tools/runlib/src/text_sink.cpp tools/runlib/src/path.cpp
   tools/nc/src/move_time.cpp driver/src/tc_names.cpp
+  geometry/src/element.cpp geometry/src/plane.cpp
 )
 werror=()
 [ "$(apci_werror)" = ON ] && werror=(-Werror)
@@ -29,7 +30,7 @@ echo "== s390x-linux-gnu-g++ $(s390x-linux-gnu-g++ -dumpversion): ${#sources[@]}
 # /usr/include, after the cross compiler's own (-idirafter).
 s390x-linux-gnu-g++ -std=c++20 -O2 -Wall -Wextra "${werror[@]}" -static \
   -DFMT_HEADER_ONLY -DAPCI_CHECK_OWN_CRC32 \
-  -Iobjif/include -Itools/runlib/include -Idriver/include -Itools/nc/include \
+  -Iobjif/include -Igeometry/include -Itools/runlib/include -Idriver/include -Itools/nc/include \
   -I/usr/include/eigen3 -idirafter /usr/include \
   "${sources[@]}" -o "$out/byte_order_check"
 file "$out/byte_order_check" | grep -q 'MSB.*S/390' || {

@@ -21,8 +21,8 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 
 root="$(pwd)"
 case "${APCI_TIDY_SCOPE:-code}" in
-  code) scope="^$root/(objif|rwmos_emu|driver|tools|python|examples)/" ;;
-  all) scope="^$root/(objif|rwmos_emu|driver|tools|python|tests|examples|bench)/" ;;
+  code) scope="^$root/(objif|geometry|rwmos_emu|driver|tools|python|examples)/" ;;
+  all) scope="^$root/(objif|geometry|rwmos_emu|driver|tools|python|tests|examples|bench)/" ;;
   *) echo "APCI_TIDY_SCOPE: code or all, not '$APCI_TIDY_SCOPE'" >&2; exit 2 ;;
 esac
 files="${APCI_TIDY_FILES:-$scope}"

@@ -12,7 +12,7 @@
 #include "apci/nc/tools.h"
 #include "apci/run/executor.h"
 #include "contours.h"
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 
 namespace apci::test {
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 
 namespace apci::test {
 

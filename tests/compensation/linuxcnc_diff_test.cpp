@@ -36,7 +36,7 @@
 #include "contours.h"
 #include "diff_support.h"
 #include "linuxcnc.h"
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 
 namespace apci::test {
 namespace {

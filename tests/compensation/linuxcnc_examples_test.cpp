@@ -51,7 +51,7 @@
 #include "apci/run/path.h"
 #include "diff_support.h"
 #include "linuxcnc.h"
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 #include "sha256.h"
 
 namespace apci::test {

@@ -152,17 +152,10 @@ TEST(ArcMove, AFullCircleIsTheChordWithinTheToleranceAsByItsLength) {
         const bool ccw = rng.chance(0.5);
         const Move m = arc_move(s, e, {0, 1}, cx, cy, ccw, 100.0, SegmentRole::kContour, 1);
         const double sx = s[0] - cx, sy = s[1] - cy, ex = e[0] - cx, ey = e[1] - cy;
-        double sweep = 0.0;
-        if (std::hypot(ex - sx, ey - sy) > kFullCircleTolerance) {
-            sweep = std::atan2(ey, ex) - std::atan2(sy, sx);
-            if (ccw && sweep <= 0.0) sweep += 2.0 * std::numbers::pi;
-            if (!ccw && sweep >= 0.0) sweep -= 2.0 * std::numbers::pi;
-            ++apart;
-        } else {
-            sweep = ccw ? 2.0 * std::numbers::pi : -2.0 * std::numbers::pi;
-            ++full;
-        }
-        ASSERT_EQ(m.sweep, sweep) << i;
+        // The chord's length decides (hypot), the one sweep (geom::arc_sweep) does the rest.
+        const bool whole = !(std::hypot(ex - sx, ey - sy) > kFullCircleTolerance);
+        ++(whole ? full : apart);
+        ASSERT_EQ(m.sweep, geom::arc_sweep({sx, sy}, {ex, ey}, ccw, whole)) << i;
     }
     EXPECT_GT(full, 10000);
     EXPECT_GT(apart, 10000);

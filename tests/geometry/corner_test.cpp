@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "rwmos/geometry/intersect.h"
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 namespace {

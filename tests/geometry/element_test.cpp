@@ -1,15 +1,16 @@
 // SPDX-License-Identifier: MIT
-// Elements: tangents, sweep, length, points and distances.
-#include "rwmos/geometry/element.h"
+// Elements of the shared geometry (geometry/element.h): tangents, sweep, length, points and
+// distances.
+#include "geometry/element.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "rwmos/geometry/tolerances.h"
+#include "geometry/tolerances.h"
 
-namespace rwmos::geom {
+namespace geom {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -99,6 +100,56 @@ TEST(Element, DistanceToClockwiseArcUsesItsOwnSweep) {
     EXPECT_NEAR(distance_to(e, {2, 2}), std::sqrt(5.0), kEps);
 }
 
+TEST(ArcSweep, IsTheAngleBetweenTheRadiiInTheArcsSense) {
+    EXPECT_NEAR(arc_sweep({1, 0}, {0, 1}, true, false), kPi / 2, kEps);
+    EXPECT_NEAR(arc_sweep({1, 0}, {0, 1}, false, false), -1.5 * kPi, kEps);
+    EXPECT_NEAR(arc_sweep({2, 0}, {0, -5}, false, false), -kPi / 2, kEps);  // radii differ
+    EXPECT_NEAR(arc_sweep({1, 0}, {-1, 0}, true, false), kPi, kEps);
+    EXPECT_NEAR(arc_sweep({1, 0}, {-1, 0}, false, false), -kPi, kEps);
+}
+
+TEST(ArcSweep, AWholeTurnWhereTheCallerSaysTheEndsMeetOrARadiusIsZero) {
+    EXPECT_EQ(arc_sweep({1, 0}, {0, 1}, true, true), 2 * kPi);
+    EXPECT_EQ(arc_sweep({1, 0}, {0, 1}, false, true), -2 * kPi);
+    EXPECT_EQ(arc_sweep({0, 0}, {0, 1}, true, false), 2 * kPi);
+    EXPECT_EQ(arc_sweep({1, 0}, {0, 0}, false, false), -2 * kPi);
+    // Ends on one ray yet apart (rounding): a whole turn in either sense, never 0.
+    EXPECT_EQ(arc_sweep({1, 0}, {2, 0}, true, false), 2 * kPi);
+    EXPECT_EQ(arc_sweep({1, 0}, {2, 0}, false, false), -2 * kPi);
+}
+
+TEST(ArcSweep, AHugeRadiusKeepsTheSmallSweepOfItsChord) {
+    // 20 mm of a circle of radius R turns by 20 / R: the difference of two atan2 angles loses it
+    // (both round to the same angle), the unit radii keep it; R = 1e200 squares past double.
+    for (const double r : {1e6, 1e12, 1e18, 1e200}) {
+        const Vec2 u0(r, -10.0), u1(r, 10.0);
+        EXPECT_NEAR(arc_sweep(u0, u1, true, false), 20.0 / r, 1e-9 * (20.0 / r)) << r;
+        EXPECT_NEAR(arc_sweep(u0, u1, false, false), -2 * kPi + 20.0 / r, 1e-12) << r;
+    }
+}
+
+TEST(ArcSweep, IsTheElementsSweep) {
+    const Element e = make_arc({3, 1}, {1, 3}, {1, 1}, true);
+    EXPECT_EQ(sweep(e), arc_sweep(e.start - e.centre, e.end - e.centre, true, false));
+    const Element full = make_arc({3, 1}, {3, 1 + 0.5 * kPointTolerance}, {1, 1}, false);
+    EXPECT_EQ(sweep(full), -2 * kPi);
+    // Ends just beyond the tolerance apart: the small turn counter-clockwise, nearly a whole
+    // one clockwise.
+    const Element nearly = make_arc({3, 1}, {3, 1 + 2 * kPointTolerance}, {1, 1}, true);
+    EXPECT_GT(sweep(nearly), 0.0);
+    EXPECT_LT(sweep(nearly), 1e-6);
+    const Element back = make_arc({3, 1}, {3, 1 + 2 * kPointTolerance}, {1, 1}, false);
+    EXPECT_GT(sweep(back), -2 * kPi);
+    EXPECT_LT(sweep(back), -2 * kPi + 1e-6);
+}
+
+TEST(Element, TurnAngleIsSignedAndCounterClockwisePositive) {
+    EXPECT_NEAR(turn_angle({1, 0}, {0, 3}), kPi / 2, kEps);
+    EXPECT_NEAR(turn_angle({1, 0}, {0, -3}), -kPi / 2, kEps);
+    EXPECT_NEAR(turn_angle({1, 0}, {-1, 0}), kPi, kEps);  // (-pi, pi]: a reversal is +pi
+    EXPECT_EQ(turn_angle({2, 2}, {1, 1}), 0.0);
+}
+
 TEST(Element, AngleBetweenCountsInTheGivenDirection) {
     EXPECT_NEAR(angle_between({1, 0}, {0, 1}, true), kPi / 2, kEps);
     EXPECT_NEAR(angle_between({1, 0}, {0, 1}, false), 3 * kPi / 2, kEps);
@@ -127,4 +178,4 @@ TEST(Element, RotationTurnsAllPointsAndKeepsDirection) {
 }
 
 }  // namespace
-}  // namespace rwmos::geom
+}  // namespace geom

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 namespace {

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Plane mapping (TcPlane 17/18/19, [APCI-TC] "Tabelle 2") and coordinate rotation
 // ([APCI-TC] "2.1.1 Koordinatendrehung").
-#include "rwmos/geometry/plane.h"
+#include "geometry/plane.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 
-namespace rwmos::geom {
+namespace geom {
 namespace {
 
 TEST(Plane, CodesSeventeenToNineteenAreThePlanes) {
@@ -100,4 +100,4 @@ TEST(Rotation, ThirtyDegreesKeepsTheDistanceToTheCentre) {
 }
 
 }  // namespace
-}  // namespace rwmos::geom
+}  // namespace geom

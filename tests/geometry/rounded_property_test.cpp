@@ -27,7 +27,7 @@
 
 #include "contours.h"
 #include "rwmos/geometry/compensator.h"
-#include "rwmos/geometry/plane.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 namespace {

@@ -20,7 +20,7 @@
 #include "rng.h"
 #ifdef APCI_HAVE_GEOMETRY
 #include "rwmos/geometry/offset.h"
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 #endif
 
 namespace apci::nc {
@@ -601,7 +601,7 @@ TEST(Interpreter, ToolTableRequiresDefinedValidTool) {
 TEST(ArcGeometry, PlaneAxesAreRightHanded) {
     for (Plane p : {Plane::kXY, Plane::kZX, Plane::kYZ}) {
         const PlaneAxes a = plane_axes(p);
-        const V e1 = V::Unit(a.first), e2 = V::Unit(a.second), n = V::Unit(a.normal);
+        const V e1 = V::Unit(a.first), e2 = V::Unit(a.second), n = V::Unit(a.third);
         expect_near(e1.cross(e2), n);
     }
 }
@@ -804,7 +804,7 @@ TEST(Interpreter, ArcCenterOkAnswersAsCheckArcCenter) {
         V end = center;
         end[a.first] += (r + off) * std::cos(turn);
         end[a.second] += (r + off) * std::sin(turn);
-        end[a.normal] = real();
+        end[a.third] = real();
         const bool ok = arc_center_ok(start, end, center, plane);
         EXPECT_EQ(ok, check_arc_center(start, end, center, plane).empty())
             << start.transpose() << " / " << end.transpose() << " / " << center.transpose();

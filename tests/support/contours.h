@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "rng.h"
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 
 namespace apci::test {
 

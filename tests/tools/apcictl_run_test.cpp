@@ -30,7 +30,7 @@
 #include "plate_program.h"
 #include "process.h"
 #include "rwmos/comp3d/compensation.h"
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 #include "rwmos/geometry/kinematics.h"
 
 namespace {

@@ -17,17 +17,17 @@
 namespace {
 
 using apci::run::plane::Arc;
-using apci::run::plane::Element;
+using apci::run::plane::Parametric;
 using apci::run::plane::Vec2;
 namespace pd = apci::run::plane;
 constexpr double kPi = std::numbers::pi;
 
 // n + 1 points of an element (line or spiral arc) at even steps of its parameter.
-std::vector<Vec2> sample(const Element& e, int n) {
+std::vector<Vec2> sample(const Parametric& e, int n) {
     std::vector<Vec2> out;
     for (int i = 0; i <= n; ++i) {
         const double t = static_cast<double>(i) / n;
-        if (!e.arc) {
+        if (!is_arc(e)) {
             out.emplace_back(e.start + t * (e.end - e.start));
         } else {
             const double phi = e.phi0 + t * e.sweep, r = e.r0 + t * (e.r1 - e.r0);
@@ -51,16 +51,17 @@ double spacing(const std::vector<Vec2>& s) {
     return m;
 }
 
-Element line(const Vec2& a, const Vec2& b) {
-    Element e;
+Parametric line(const Vec2& a, const Vec2& b) {
+    Parametric e;
     e.start = a;
     e.end = b;
     return e;
 }
 
-Element circular(const Vec2& c, double r, double phi0, double sweep) {
-    Element e;
-    e.arc = true;
+Parametric circular(const Vec2& c, double r, double phi0, double sweep) {
+    Parametric e;
+    e.kind = geom::ElementKind::kArc;
+    e.ccw = sweep > 0.0;
     e.centre = c;
     e.r0 = e.r1 = r;
     e.phi0 = phi0;
@@ -70,14 +71,14 @@ Element circular(const Vec2& c, double r, double phi0, double sweep) {
     return e;
 }
 
-Arc arc_of(const Element& e) {
+Arc arc_of(const Parametric& e) {
     return Arc{e.centre, e.r0, e.phi0, e.sweep};
 }
 
-double exact(const Element& a, const Element& b) {
-    if (!a.arc && !b.arc) return pd::segment_segment(a.start, a.end, b.start, b.end);
-    if (!a.arc) return pd::segment_arc(a.start, a.end, arc_of(b));
-    if (!b.arc) return pd::segment_arc(b.start, b.end, arc_of(a));
+double exact(const Parametric& a, const Parametric& b) {
+    if (!is_arc(a) && !is_arc(b)) return pd::segment_segment(a.start, a.end, b.start, b.end);
+    if (!is_arc(a)) return pd::segment_arc(a.start, a.end, arc_of(b));
+    if (!is_arc(b)) return pd::segment_arc(b.start, b.end, arc_of(a));
     return pd::arc_arc(arc_of(a), arc_of(b));
 }
 
@@ -88,7 +89,7 @@ double round_to(double v, int decimals) {
 
 // A random line or circular arc near the origin, its points rounded as a program writes them;
 // now and then tiny, or starting where `from` ends (a join), or tangent to it.
-Element random_element(std::mt19937_64& rng, int decimals, const Element* from) {
+Parametric random_element(std::mt19937_64& rng, int decimals, const Parametric* from) {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const auto rp = [&](double scale) {
         return Vec2(round_to(scale * u(rng), decimals), round_to(scale * u(rng), decimals));
@@ -110,8 +111,8 @@ TEST(PlaneDistance, ExactDistancesLieBetweenTheSampledOnesAndThemLessTheSpacing)
     int crossing = 0, apart = 0;
     for (int k = 0; k < 400; ++k) {
         const int decimals = 3 + static_cast<int>(rng() % 2);
-        const Element a = random_element(rng, decimals, nullptr);
-        const Element b = random_element(rng, decimals, &a);
+        const Parametric a = random_element(rng, decimals, nullptr);
+        const Parametric b = random_element(rng, decimals, &a);
         const auto sa = sample(a, 700), sb = sample(b, 700);
         const double sampled = brute(sa, sb);
         const double d = exact(a, b);
@@ -129,13 +130,13 @@ TEST(PlaneDistance, ExactDistancesLieBetweenTheSampledOnesAndThemLessTheSpacing)
 TEST(PlaneDistance, KnownConfigurations) {
     // Tangent from outside and inside, concentric, a line tangent to an arc, crossing, and
     // pairs whose nearest points are ends.
-    const Element c1 = circular({0, 0}, 2.0, 0.0, 2 * kPi);
+    const Parametric c1 = circular({0, 0}, 2.0, 0.0, 2 * kPi);
     EXPECT_NEAR(exact(c1, circular({5, 0}, 3.0, kPi / 2, kPi)), 0.0, 1e-12);     // touching
     EXPECT_NEAR(exact(c1, circular({6, 0}, 3.0, kPi / 2, kPi)), 1.0, 1e-12);     // 1 apart
     EXPECT_NEAR(exact(c1, circular({0, 0}, 3.5, 1.0, 0.5)), 1.5, 1e-12);         // concentric
     EXPECT_NEAR(exact(c1, circular({0.5, 0}, 1.0, -kPi / 2, kPi)), 0.5, 1e-12);  // inside
     // Half circle, upper half; a line below it: the nearest points are the arc's ends.
-    const Element upper = circular({0, 0}, 2.0, 0.0, kPi);
+    const Parametric upper = circular({0, 0}, 2.0, 0.0, kPi);
     EXPECT_NEAR(exact(upper, line({-3, -1}, {3, -1})), 1.0, 1e-12);
     EXPECT_NEAR(exact(upper, line({-1, 3}, {1, 3})), 1.0, 1e-12);  // tangent side, 1 above
     EXPECT_NEAR(exact(upper, line({-1, 1}, {1, 1})), 2.0 - std::sqrt(2.0), 1e-12);  // inside
@@ -156,10 +157,10 @@ TEST(PlaneDistance, ApartIsNeverClaimedForElementsThatComeWithinTheLimit) {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     int proved = 0, refused = 0;
     for (int k = 0; k < 400; ++k) {
-        Element a = random_element(rng, 3, nullptr);
-        Element b = random_element(rng, 4, &a);
-        for (Element* e : {&a, &b})
-            if (e->arc) {  // a spiral: its end where the radius has changed
+        Parametric a = random_element(rng, 3, nullptr);
+        Parametric b = random_element(rng, 4, &a);
+        for (Parametric* e : {&a, &b})
+            if (is_arc(*e)) {  // a spiral: its end where the radius has changed
                 e->r1 = std::max(1e-3, e->r0 + 2e-3 * u(rng));
                 const double phi1 = e->phi0 + e->sweep;
                 e->end = e->centre + e->r1 * Vec2(std::cos(phi1), std::sin(phi1));
@@ -198,11 +199,11 @@ TEST(PlaneDistance, ApartProvesTheNextElementAtAConvexCornerKeepsTheRadius) {
                 for (const double sweep : {0.3, 2.0, 5.5}) {
                     SCOPED_TRACE(::testing::Message()
                                  << radius << " " << dr << " " << turn_deg << " " << sweep);
-                    Element contour = circular({3.25, -1.5}, radius, 0.4, sweep);
+                    Parametric contour = circular({3.25, -1.5}, radius, 0.4, sweep);
                     contour.r1 = radius + dr;
                     contour.end = contour.centre +
                                   contour.r1 * Vec2(std::cos(0.4 + sweep), std::sin(0.4 + sweep));
-                    Element path = contour;
+                    Parametric path = contour;
                     path.r0 -= 1.0;
                     path.r1 -= 1.0;
                     path.start = path.centre + path.r0 * Vec2(std::cos(0.4), std::sin(0.4));
@@ -210,7 +211,7 @@ TEST(PlaneDistance, ApartProvesTheNextElementAtAConvexCornerKeepsTheRadius) {
                         path.centre + path.r1 * Vec2(std::cos(0.4 + sweep), std::sin(0.4 + sweep));
                     // The tangent at the end, turned right (away from the tool) by the turn.
                     const double phi = 0.4 + sweep + kPi / 2 - turn_deg * kPi / 180.0;
-                    const Element next =
+                    const Parametric next =
                         line(contour.end, contour.end + 7.0 * Vec2(std::cos(phi), std::sin(phi)));
                     EXPECT_TRUE(pd::apart(path, next, 1.0 - 2e-4 + 1e-7));
                     EXPECT_FALSE(pd::apart(path, next, 1.0 + 1e-9));  // the end is 1 away
@@ -226,10 +227,10 @@ TEST(PlaneDistance, ApartBySideIsNeverClaimedForElementsThatComeWithinTheLimit) 
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     int claimed = 0;
     for (int k = 0; k < 3000; ++k) {
-        Element a = random_element(rng, 3, nullptr);
-        Element b = random_element(rng, 4, &a);
-        for (Element* e : {&a, &b})
-            if (e->arc && rng() % 2 == 0) {  // a spiral
+        Parametric a = random_element(rng, 3, nullptr);
+        Parametric b = random_element(rng, 4, &a);
+        for (Parametric* e : {&a, &b})
+            if (is_arc(*e) && rng() % 2 == 0) {  // a spiral
                 e->r1 = std::max(1e-3, e->r0 + 2e-3 * u(rng));
                 const double phi1 = e->phi0 + e->sweep;
                 e->end = e->centre + e->r1 * Vec2(std::cos(phi1), std::sin(phi1));
@@ -252,7 +253,7 @@ TEST(PlaneDistance, ApartBySideOfASpiralTakesItsLargerRadiusOutsideAndItsSmaller
     // radius through either end, outside or inside, 1e-3 nearer than the limit to that end,
     // or 1e-6 farther than the limit from every radius of the spiral.
     const double limit = 1.0;
-    Element a = circular({0, 0}, 5.0, 0.0, kPi / 2);
+    Parametric a = circular({0, 0}, 5.0, 0.0, kPi / 2);
     a.r1 = 5.002;
     a.end = {0.0, 5.002};
     const auto radial = [](double angle, double from, double to) {
@@ -265,7 +266,7 @@ TEST(PlaneDistance, ApartBySideOfASpiralTakesItsLargerRadiusOutsideAndItsSmaller
     // Inside its start (radius 5): 0.999 away, not apart; inside 5 - limit: apart.
     EXPECT_FALSE(pd::apart_by_side(a, radial(0.0, 3.9, 4.001), limit));
     EXPECT_TRUE(pd::apart_by_side(a, radial(0.0, 3.9, 4.0 - 1e-6), limit));
-    for (const Element& b : {radial(kPi / 2, 6.001, 6.1), radial(0.0, 3.9, 4.001)}) {
+    for (const Parametric& b : {radial(kPi / 2, 6.001, 6.1), radial(0.0, 3.9, 4.001)}) {
         const double sampled = brute(sample(a, 2000), sample(b, 50));
         EXPECT_LT(sampled, limit);  // what the claims above rest on
     }
@@ -275,18 +276,18 @@ TEST(PlaneDistance, ApartBySideProvesTheRoundedCornerNeighboursOfAPath) {
     // A line along +X to the origin under G41 (tool above, radius 1): its path at y = 1. The
     // corner rounded by an arc of radius 3 turning right (down) away from the tool: every point
     // of it lies at least 1 below the path.
-    const Element path = line({-10, 1}, {0, 1});
-    const Element fillet = circular({0, -3}, 3.0, kPi / 2, -kPi / 2);
+    const Parametric path = line({-10, 1}, {0, 1});
+    const Parametric fillet = circular({0, -3}, 3.0, kPi / 2, -kPi / 2);
     EXPECT_TRUE(pd::apart_by_side(path, fillet, 1.0 - 2e-4));
     EXPECT_FALSE(pd::apart_by_side(path, fillet, 1.0 + 1e-9));
     // The fillet's path (radius 4 about (0, -3)) against the line leaving its end (3, -3)
     // straight down: the path lies wholly behind that line's start, whose distance decides.
-    const Element fillet_path = circular({0, -3}, 4.0, kPi / 2, -kPi / 2);
-    const Element leaving = line({3, -3}, {3, -20});
+    const Parametric fillet_path = circular({0, -3}, 4.0, kPi / 2, -kPi / 2);
+    const Parametric leaving = line({3, -3}, {3, -20});
     EXPECT_TRUE(pd::apart_by_side(fillet_path, leaving, 1.0 - 2e-4));
     EXPECT_FALSE(pd::apart_by_side(fillet_path, leaving, 1.0 + 1e-9));
     // A line that comes back under the path is not proved apart by its side.
-    const Element back = line({0, -0.5}, {-5, 0.2});
+    const Parametric back = line({0, -0.5}, {-5, 0.2});
     EXPECT_FALSE(pd::apart_by_side(path, back, 1.0 - 2e-4));
 }
 

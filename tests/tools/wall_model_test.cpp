@@ -19,24 +19,24 @@ namespace {
 namespace plane = apci::run::plane;
 using apci::run::detail::WallModel;
 using apci::run::detail::WallRole;
-using plane::Element;
+using plane::Parametric;
 using plane::Vec2;
 
 constexpr double kPi = std::numbers::pi;
 
-Element line(double x0, double y0, double x1, double y1) {
+Parametric line(double x0, double y0, double x1, double y1) {
     return plane::line_element({x0, y0}, {x1, y1});
 }
-Element arc(double x0, double y0, double x1, double y1, double cx, double cy, bool ccw) {
+Parametric arc(double x0, double y0, double x1, double y1, double cx, double cy, bool ccw) {
     return plane::arc_element({x0, y0}, {x1, y1}, {cx, cy}, ccw);
 }
 
 // A rectangle from (x0, y0) to (x1, y1), counter-clockwise (or clockwise) from (x0, y0).
-std::vector<Element> rectangle(double x0, double y0, double x1, double y1, bool ccw = true) {
-    std::vector<Element> r{line(x0, y0, x1, y0), line(x1, y0, x1, y1), line(x1, y1, x0, y1),
+std::vector<Parametric> rectangle(double x0, double y0, double x1, double y1, bool ccw = true) {
+    std::vector<Parametric> r{line(x0, y0, x1, y0), line(x1, y0, x1, y1), line(x1, y1, x0, y1),
                            line(x0, y1, x0, y0)};
     if (!ccw) {
-        std::vector<Element> back;
+        std::vector<Parametric> back;
         for (auto it = r.rbegin(); it != r.rend(); ++it) back.push_back(line(it->end.x(), it->end.y(), it->start.x(), it->start.y()));
         return back;
     }
@@ -44,7 +44,7 @@ std::vector<Element> rectangle(double x0, double y0, double x1, double y1, bool 
 }
 
 // A circle about (cx, cy) of radius r as one full arc from its right.
-std::vector<Element> circle(double cx, double cy, double r, bool ccw = true) {
+std::vector<Parametric> circle(double cx, double cy, double r, bool ccw = true) {
     return {arc(cx + r, cy, cx + r, cy, cx, cy, ccw)};
 }
 
@@ -56,11 +56,11 @@ TEST(ContourLoop, SignedAreaIsPositiveCounterClockwiseAndCountsArcSegments) {
     EXPECT_NEAR(plane::signed_area(circle(5, 5, 2)), 4 * kPi, 1e-12);
     EXPECT_NEAR(plane::signed_area(circle(5, 5, 2, false)), -4 * kPi, 1e-12);
     // A half disc: the arc over the top and the diameter back.
-    const std::vector<Element> half{arc(1, 0, -1, 0, 0, 0, true), line(-1, 0, 1, 0)};
+    const std::vector<Parametric> half{arc(1, 0, -1, 0, 0, 0, true), line(-1, 0, 1, 0)};
     EXPECT_NEAR(plane::signed_area(half), kPi / 2, 1e-12);
     // A 4 x 2 rectangle with corners rounded to 0.5: 8 - (4 - pi) 0.25.
     const double f = 0.5;
-    const std::vector<Element> rounded{
+    const std::vector<Parametric> rounded{
         line(f, 0, 4 - f, 0),         arc(4 - f, 0, 4, f, 4 - f, f, true),
         line(4, f, 4, 2 - f),         arc(4, 2 - f, 4 - f, 2, 4 - f, 2 - f, true),
         line(4 - f, 2, f, 2),         arc(f, 2, 0, 2 - f, f, 2 - f, true),
@@ -77,13 +77,13 @@ TEST(ContourLoop, WindingNumberInsideOutsideAndInAnArcsBulge) {
     EXPECT_EQ(plane::winding_number(circle(0, 0, 3), {3.1, 0}), 0);
     // A D shape: the diameter along y = 0 and the arc over the top. Points between the chord
     // and the arc, and just beyond the arc, and just below the chord.
-    const std::vector<Element> d{line(-2, 0, 2, 0), arc(2, 0, -2, 0, 0, 0, true)};
+    const std::vector<Parametric> d{line(-2, 0, 2, 0), arc(2, 0, -2, 0, 0, 0, true)};
     EXPECT_EQ(plane::winding_number(d, {0, 1.99}), 1);
     EXPECT_EQ(plane::winding_number(d, {1.4, 1.4}), 1);   // 1.98 from the centre
     EXPECT_EQ(plane::winding_number(d, {1.42, 1.42}), 0);  // 2.008 from it
     EXPECT_EQ(plane::winding_number(d, {0, -0.01}), 0);
     // The same D the other way round, the arc below: the region is on the arc's other side.
-    const std::vector<Element> down{line(2, 0, -2, 0), arc(-2, 0, 2, 0, 0, 0, true)};
+    const std::vector<Parametric> down{line(2, 0, -2, 0), arc(-2, 0, 2, 0, 0, 0, true)};
     EXPECT_EQ(plane::winding_number(down, {0, -1.99}), 1);
     EXPECT_EQ(plane::winding_number(down, {0, 0.01}), 0);
 }
@@ -95,8 +95,8 @@ TEST(ContourLoop, BoundsHoldEveryPointOfArcsThatPassAnAxisDirection) {
     EXPECT_NEAR(b.lo.y(), -1, 1e-12);
     EXPECT_NEAR(b.hi.y(), 5, 1e-12);
     // A quarter arc from (1, 0) to (0, 1) about the origin: its box is the unit square.
-    const Element q = arc(1, 0, 0, 1, 0, 0, true);
-    const plane::Bounds qb = plane::bounds(std::vector<Element>{q});
+    const Parametric q = arc(1, 0, 0, 1, 0, 0, true);
+    const plane::Bounds qb = plane::bounds(std::vector<Parametric>{q});
     EXPECT_NEAR(qb.lo.x(), 0, 1e-12);
     EXPECT_NEAR(qb.lo.y(), 0, 1e-12);
     EXPECT_NEAR(qb.hi.x(), 1, 1e-12);
@@ -127,7 +127,7 @@ TEST(ContourLoop, WithinTellsNestedTouchingSameCrossingAndTheBudget) {
     // Crossing: not.
     EXPECT_EQ(plane::within(outer, rectangle(5, 5, 15, 8), tol, 1 << 20), plane::Within::kNot);
     // A C shape (a U opening to the right) whose box holds a square in its gap: not within.
-    const std::vector<Element> c{line(0, 0, 10, 0),  line(10, 0, 10, 3), line(10, 3, 3, 3),
+    const std::vector<Parametric> c{line(0, 0, 10, 0),  line(10, 0, 10, 3), line(10, 3, 3, 3),
                                  line(3, 3, 3, 7),   line(3, 7, 10, 7),  line(10, 7, 10, 10),
                                  line(10, 10, 0, 10), line(0, 10, 0, 0)};
     EXPECT_EQ(plane::within(c, rectangle(5, 4, 8, 6), tol, 1 << 20), plane::Within::kNot);
@@ -145,11 +145,11 @@ TEST(ContourLoop, WithinTellsNestedTouchingSameCrossingAndTheBudget) {
 // ---- wall_model.h
 
 // An element as the model takes it (PlaneMove), at the level z.
-apci::run::detail::PlaneMove move_of(const Element& e, double z) {
+apci::run::detail::PlaneMove move_of(const Parametric& e, double z) {
     apci::run::detail::PlaneMove m;
     m.start = e.start;
     m.end = e.end;
-    m.arc = e.arc;
+    m.arc = is_arc(e);
     m.ccw = e.sweep > 0.0;
     m.centre = e.centre;
     m.low = m.high = z;
@@ -157,11 +157,11 @@ apci::run::detail::PlaneMove move_of(const Element& e, double z) {
 }
 
 // Feeds the elements of one stretch (tool on `side`, at Z `z`), numbering them from `first`.
-std::uint64_t feed(WallModel& m, std::uint64_t first, const std::vector<Element>& elements,
+std::uint64_t feed(WallModel& m, std::uint64_t first, const std::vector<Parametric>& elements,
                    int side = 1, double z = 0.0, bool walls = true, int plane = 17) {
     m.begin(plane, side);
     std::uint64_t n = first;
-    for (const Element& e : elements) {
+    for (const Parametric& e : elements) {
         m.element(n, move_of(e, z), (n + 1) * 0x9E3779B97F4A7C15ULL, walls, false);
         ++n;
     }
@@ -172,9 +172,9 @@ std::uint64_t feed(WallModel& m, std::uint64_t first, const std::vector<Element>
 // A closed square of side 2a about (cx, cy), from the middle of its top, clockwise (tool
 // outside for G41) or counter-clockwise; with `lead` lead-in and lead-out elements (a line
 // from above and a line away).
-std::vector<Element> square_stretch(double cx, double cy, double a, bool clockwise, int lead_in,
+std::vector<Parametric> square_stretch(double cx, double cy, double a, bool clockwise, int lead_in,
                                     int lead_out) {
-    std::vector<Element> s;
+    std::vector<Parametric> s;
     const double top = cy + a;
     for (int i = lead_in; i > 0; --i)
         s.push_back(line(cx - i, top + 5, cx - (i - 1), i == 1 ? top : top + 5));
@@ -225,13 +225,13 @@ TEST(WallModel, ARunBetweenTwoLoopsHasLeadsAtBothEndsAndWallsBetween) {
     // Loop, five elements, loop: two leads after the first, one wall, two leads before the
     // second. With four between them every one is a lead.
     for (const int between : {4, 5}) {
-        std::vector<Element> s = rectangle(0, 0, 10, 10);
+        std::vector<Parametric> s = rectangle(0, 0, 10, 10);
         double x = 0, y = 0;
         for (int i = 0; i < between; ++i) {
             s.push_back(line(x, y, x + 5, y - 5));
             x += 5, y -= 5;
         }
-        for (const Element& e : rectangle(x, y, x + 3, y + 3)) s.push_back(e);
+        for (const Parametric& e : rectangle(x, y, x + 3, y + 3)) s.push_back(e);
         WallModel m;
         const std::uint64_t end = feed(m, 0, s);
         std::vector<WallRole> want(4, W);
@@ -294,8 +294,8 @@ TEST(WallModel, PocketPassesEnclosedByALargerOneAreClearedAndItIsAWall) {
         EXPECT_EQ(m.role(a + 2), C);
     }
     {
-        std::vector<Element> both = pass(5);
-        for (const Element& e : pass(8)) both.push_back(e);
+        std::vector<Parametric> both = pass(5);
+        for (const Parametric& e : pass(8)) both.push_back(e);
         WallModel m;
         feed(m, 0, both);
         EXPECT_EQ(m.role(2), C);
@@ -358,7 +358,7 @@ TEST(WallModel, ALoopOfManyElementsClosesWithinTheToleranceAcrossCellBoundaries)
     const double step = 0.7 * WallModel::kTolerance;
     for (const Vec2& off : {Vec2(-step, 0), Vec2(step, 0), Vec2(0, -step), Vec2(0, step)}) {
         const Vec2 start(10.00005, 5.00005), centre(10.00005 - 20.0, 5.00005);
-        std::vector<Element> s;
+        std::vector<Parametric> s;
         Vec2 from = start;
         for (int k = 1; k <= 100; ++k) {
             const double a = 2.0 * kPi * k / 100.0;
@@ -436,7 +436,7 @@ TEST(WallModel, ALoopClosesAtAStartWhoseCellAnElementLetGoStartedInFirst) {
     ++i;
     EXPECT_FALSE(m.looped(i - 1));
     const std::uint64_t first = i;
-    for (const Element& e : {line(0, 0, 0, -5), line(0, -5, -5, -5), line(-5, -5, 0, 0)}) {
+    for (const Parametric& e : {line(0, 0, 0, -5), line(0, -5, -5, -5), line(-5, -5, 0, 0)}) {
         m.element(i, move_of(e, 0), i + 1, true, false);
         ++i;
     }

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 

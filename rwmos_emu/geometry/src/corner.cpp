@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "rwmos/geometry/intersect.h"
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 namespace {
@@ -307,8 +307,7 @@ void start_at(OffsetElement& o, const Vec2& x) noexcept {
     if (is_arc(o.path)) {
         const Vec2 before = o.path.start - o.path.centre;
         const Vec2 after = x - o.path.centre;
-        const double moved = std::atan2(cross(before, after), before.dot(after));
-        o.sweep = o.sweep - moved;
+        o.sweep = o.sweep - turn_angle(before, after);
     }
     o.path.start = x;
 }
@@ -319,7 +318,7 @@ void end_at(OffsetElement& o, const Vec2& x) noexcept {
     if (is_arc(o.path)) {
         const Vec2 before = o.path.end - o.path.centre;
         const Vec2 after = x - o.path.centre;
-        o.sweep = o.sweep + std::atan2(cross(before, after), before.dot(after));
+        o.sweep = o.sweep + turn_angle(before, after);
     }
     o.path.end = x;
 }
@@ -356,10 +355,6 @@ int clear_turn(const Vec2& t1, const Vec2& t2, double r) noexcept {
 }
 
 }  // namespace
-
-double turn_angle(const Vec2& t1, const Vec2& t2) noexcept {
-    return std::atan2(cross(t1, t2), t1.dot(t2));
-}
 
 double offset_gap(double turn, double r) noexcept {
     return 2 * r * std::abs(std::sin(0.5 * turn));

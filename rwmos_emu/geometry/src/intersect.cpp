@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 

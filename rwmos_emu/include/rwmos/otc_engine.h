@@ -19,7 +19,7 @@
 
 #include "objif/status.h"
 #include "rwmos/board.h"
-#include "rwmos/geometry/plane.h"
+#include "rwmos/geometry/shared.h"
 #include "rwmos/motion/cycle_offsets.h"
 #include "rwmos/otc/direction.h"
 #include "rwmos/otc/ramp.h"

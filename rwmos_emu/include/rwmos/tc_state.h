@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "geometry/plane.h"
 #include "objif/status.h"
 #include "rwmos/object_map.h"
 #include "objif/map/tc_bits.h"
@@ -69,12 +70,8 @@ struct TcState {
 };
 
 // The board axes of the plane TcPlane selects, in the plane's order:
-// 17 (X-Axis-Nr, Y-Axis-Nr), 18 (Z-Axis-Nr, X-Axis-Nr), 19 (Y-Axis-Nr, Z-Axis-Nr).
-struct PlaneAxes {
-    std::int32_t first = 0;
-    std::int32_t second = 1;
-};
-PlaneAxes plane_axes(const TcState& tc) noexcept;
+// 17 (X-Axis-Nr, Y-Axis-Nr, Z-Axis-Nr), 18 (Z-, X-, Y-Axis-Nr), 19 (Y-, Z-, X-Axis-Nr).
+geom::PlaneAxes plane_axes(const TcState& tc) noexcept;
 
 // The active group (Index 0): the lowest-numbered group whose {XAxis, YAxis}
 // are the two board axes of the plane TcPlane selects (in either order).

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace rwmos::motion {
 
@@ -67,21 +66,12 @@ void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, d
     m.radius = std::hypot(sx, sy);
     m.end_radius = std::hypot(ex, ey);
     m.start_angle = std::atan2(sy, sx);
-    constexpr double kTwoPi = 2.0 * std::numbers::pi;
-    double sweep = 0.0;
     // The chord's length is at least its larger component (hypot within a rounding of it):
     // a component over twice the tolerance needs no root.
     const double dx = ex - sx, dy = ey - sy;
-    if (std::max(std::fabs(dx), std::fabs(dy)) > 2.0 * kFullCircleTolerance ||
-        std::hypot(dx, dy) > kFullCircleTolerance) {
-        sweep = std::atan2(ey, ex) - m.start_angle;  // in (-2pi, 2pi)
-        if (ccw && sweep <= 0.0) sweep += kTwoPi;
-        if (!ccw && sweep >= 0.0) sweep -= kTwoPi;
-    } else {
-        sweep = kTwoPi;
-        if (!ccw) sweep = -sweep;
-    }
-    m.sweep = sweep;
+    const bool full = !(std::max(std::fabs(dx), std::fabs(dy)) > 2.0 * kFullCircleTolerance ||
+                        std::hypot(dx, dy) > kFullCircleTolerance);
+    m.sweep = geom::arc_sweep({sx, sy}, {ex, ey}, ccw, full);
 }
 
 double arc_plane_length(const Move& m) noexcept {

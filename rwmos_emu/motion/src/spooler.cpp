@@ -7,9 +7,8 @@
 
 #include <cmath>
 
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 #include "rwmos/geometry/errors.h"
-#include "rwmos/geometry/plane.h"
 
 namespace rwmos::motion {
 

@@ -137,12 +137,7 @@ std::string check_arc_range(const ArcMove& arc, double limit) {
     // where it starts), as move_length() counts them.
     constexpr double kTwoPi = 2.0 * std::numbers::pi;
     const double start_angle = std::atan2(s.y(), s.x());
-    double sweep = kTwoPi;
-    if ((e - s).norm() > 1e-9 && s.norm() > 0.0 && e.norm() > 0.0) {
-        const double turn = std::atan2(s.x() * e.y() - s.y() * e.x(), s.dot(e));
-        sweep =
-            arc.ccw ? (turn <= 0.0 ? turn + kTwoPi : turn) : (turn >= 0.0 ? kTwoPi - turn : -turn);
-    }
+    const double sweep = std::fabs(arc_sweep(s, e, arc.ccw, !((e - s).norm() > 1e-9)));
     // Direction k (0: +first, 1: +second, 2: -first, 3: -second) lies at angle k * 90 degrees.
     for (int k = 0; k < 4; ++k) {
         const double direction = k * (kTwoPi / 4.0);
@@ -160,17 +155,6 @@ std::string check_arc_range(const ArcMove& arc, double limit) {
                 coordinate_text(r), limit);
     }
     return {};
-}
-
-double arc_sweep(double sx, double sy, double ex, double ey, bool ccw, bool full) noexcept {
-    constexpr double kTwoPi = 2.0 * std::numbers::pi;
-    const double rs = std::hypot(sx, sy), re = std::hypot(ex, ey);
-    if (full || !(rs > 0.0) || !(re > 0.0)) return ccw ? kTwoPi : -kTwoPi;
-    const double ux = sx / rs, uy = sy / rs, vx = ex / re, vy = ey / re;
-    double sweep = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
-    if (ccw && sweep <= 0.0) sweep += kTwoPi;
-    if (!ccw && sweep >= 0.0) sweep -= kTwoPi;
-    return sweep;
 }
 
 }  // namespace apci::nc

@@ -146,7 +146,7 @@ bool arc_move(const BlockCheck& c, Plane plane, double feed, Motion motion,
               const Eigen::Vector3d& start, const Eigen::Vector3d& end, ArcMove& out) {
     const Block& b = c.b;
     const PlaneAxes axes = plane_axes(plane);
-    const auto n = static_cast<std::size_t>(axes.normal);
+    const auto n = static_cast<std::size_t>(axes.third);
     if (b.center[n].present()) {
         return c.fail(ErrorKind::kConflict, b.center[n].column,
                       fmt::format("{} is not a centre word in the G{} plane (use {} and {})",
@@ -555,7 +555,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                 const Eigen::Vector3d along_tool =
                     length * Eigen::Vector3d(std::sin(s.b * kDeg), 0.0, std::cos(s.b * kDeg));
                 Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
-                along_axis[plane_axes(s.plane).normal] = length;
+                along_axis[plane_axes(s.plane).third] = length;
                 s.position = isg.on ? Eigen::Vector3d(s.position + along_axis - along_tool)
                                     : Eigen::Vector3d(s.position + along_tool - along_axis);
                 s.trafo_length = length;

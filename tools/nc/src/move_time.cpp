@@ -38,9 +38,9 @@ double move_length(const ArcMove& arc) noexcept {
     const double rs = std::hypot(sx, sy);
     const double re = std::hypot(ex, ey);
     const double sweep =
-        arc_sweep(sx, sy, ex, ey, arc.ccw, !(std::hypot(ex - sx, ey - sy) > kSamePoint));
+        arc_sweep({sx, sy}, {ex, ey}, arc.ccw, !(std::hypot(ex - sx, ey - sy) > kSamePoint));
     const double planar = 0.5 * (rs + re) * std::fabs(sweep);
-    return std::hypot(planar, arc.end[a.normal] - arc.start[a.normal]);
+    return std::hypot(planar, arc.end[a.third] - arc.start[a.third]);
 }
 
 double move_cycles(double length, double feed, double cycle_seconds) noexcept {
@@ -74,7 +74,7 @@ bool surely_within_move_cycles(const ArcMove& arc, double cycle_seconds) noexcep
     const double sy = arc.start[a.second] - arc.center[a.second];
     const double ex = arc.end[a.first] - arc.center[a.first];
     const double ey = arc.end[a.second] - arc.center[a.second];
-    const double dz = arc.end[a.normal] - arc.start[a.normal];
+    const double dz = arc.end[a.third] - arc.start[a.third];
     // length = hypot(planar, dz) <= planar + |dz|, planar = 0.5 (rs + re) |sweep| <= 2 pi
     // max(rs, re): each part at most a quarter of the limit's path.
     const double quarter = 0.5 * half_limit_length(arc.feed, cycle_seconds);

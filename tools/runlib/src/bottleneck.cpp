@@ -3,41 +3,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <variant>
+
+#include "geometry/element.h"
 
 namespace apci::run::detail {
 namespace {
 
 using Vec2 = Eigen::Vector2d;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Closer than this to a path's end, a crossing is its end (a path meeting another there).
 constexpr double kEnd = 1e-6;
 
-double cross(const Vec2& a, const Vec2& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
-
-// The plane's axes: first, second, third (17: X Y Z, 18: Z X Y, 19: Y Z X).
-struct Axes {
-    int first, second, third;
-};
-Axes axes_of(int plane) {
-    const PlaneAxes a = plane_axes(plane);
-    return {a.first, a.second, a.third};
-}
-
-Vec2 in_plane(const Eigen::Vector3d& p, const Axes& ax) {
+using geom::cross;
+Vec2 in_plane(const Eigen::Vector3d& p, const PlaneAxes& ax) {
     return {p[ax.first], p[ax.second]};
 }
 
-// The angle turned from `from` to `to`, in the arc's sense, in [0, 2 pi) (full circle: 2 pi).
+// The angle turned from `from` to `to`, in the arc's sense, in [0, 2 pi).
 double turn(const Vec2& from, const Vec2& to, bool ccw) {
-    double t = std::atan2(cross(from, to), from.dot(to));
-    if (!ccw) t = -t;
-    if (t < 0.0) t += kTwoPi;
-    return t;
+    return geom::angle_between(from, to, ccw);
 }
 
 // A crossing of two paths: the point and how far along each (0..1) it lies.
@@ -109,7 +94,7 @@ namespace {
 
 // The path (offset) of a compensated move in the plane, r to the tool's side (+1 left).
 template <class M>
-M path_of(const nc::Event& ev, double r, int side, const Axes& ax, std::size_t index) {
+M path_of(const nc::Event& ev, double r, int side, const PlaneAxes& ax, std::size_t index) {
     M m;
     m.event = index;
     if (const auto* l = std::get_if<nc::LineMove>(&ev.data)) {
@@ -131,13 +116,11 @@ M path_of(const nc::Event& ev, double r, int side, const Axes& ax, std::size_t i
     m.rho = inside ? radius - r : radius + r;
     m.usable = m.rho > 0.0 && radius > 0.0;
     m.phi0 = std::atan2(s.y() - c.y(), s.x() - c.x());
-    double sweep = (e - s).norm() <= 1e-9 ? kTwoPi : turn(s - c, e - c, arc.ccw);
-    if (sweep == 0.0) sweep = kTwoPi;
-    m.sweep = arc.ccw ? sweep : -sweep;
+    m.sweep = geom::arc_sweep(s - c, e - c, arc.ccw, (e - s).norm() <= 1e-9);
     return m;
 }
 
-bool is_plane_move(const nc::Event& ev, const Axes& ax, int plane) {
+bool is_plane_move(const nc::Event& ev, const PlaneAxes& ax, int plane) {
     if (const auto* l = std::get_if<nc::LineMove>(&ev.data))
         return (in_plane(l->end, ax) - in_plane(l->start, ax)).norm() > 1e-9;
     if (const auto* a = std::get_if<nc::ArcMove>(&ev.data))
@@ -147,7 +130,7 @@ bool is_plane_move(const nc::Event& ev, const Axes& ax, int plane) {
 
 // The point of a move's contour whose offset (r to `side`) is x, on its path, with the
 // move's coordinate on the third axis there (linear along a line, with the angle on a helix).
-Eigen::Vector3d foot(const nc::Event& ev, const Vec2& x, double r, int side, const Axes& ax,
+Eigen::Vector3d foot(const nc::Event& ev, const Vec2& x, double r, int side, const PlaneAxes& ax,
                      double t) {
     Eigen::Vector3d out = Eigen::Vector3d::Zero();
     Vec2 p = Vec2::Zero();
@@ -201,7 +184,7 @@ void BottleneckAvoider::take(const nc::Event& ev, double radius, int plane,
         return;
     }
     if (const auto* w = std::get_if<nc::CollisionDetectionChange>(&ev.data)) walls_ = w->on;
-    const Axes ax = axes_of(plane);
+    const PlaneAxes ax = plane_axes(plane);
     if (side_ == 0 || radius <= 0.0 || std::holds_alternative<nc::RapidMove>(ev.data) ||
         std::holds_alternative<nc::ProgramEnd>(ev.data)) {
         flush(out);
@@ -245,7 +228,7 @@ void BottleneckAvoider::release(std::size_t count, std::vector<nc::Event>& out) 
 void BottleneckAvoider::avoid(double radius, int plane, std::vector<Bottleneck>& found) {
     const std::size_t j = moves_.size() - 1;
     if (j < 2 || !moves_[j].usable) return;
-    const Axes ax = axes_of(plane);
+    const PlaneAxes ax = plane_axes(plane);
     const Move& mj = moves_[j];
     const nc::Event& ej = held_[mj.event];
     // The farthest back first (SINUMERIK: the last intersection found is valid).

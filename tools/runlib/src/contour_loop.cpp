@@ -6,25 +6,24 @@
 #include <limits>
 #include <numbers>
 
+#include "geometry/element.h"
+
 namespace apci::run::plane {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-double cross(const Vec2& a, const Vec2& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
+using geom::cross;
 
 // The angle from a to b as seen from p, signed, in (-pi, pi].
 double seen_angle(const Vec2& p, const Vec2& a, const Vec2& b) {
-    const Vec2 u = a - p, v = b - p;
-    return std::atan2(cross(u, v), u.dot(v));
+    return geom::turn_angle(a - p, b - p);
 }
 
 // True when p lies in the region an arc and its chord enclose: within the circle of its
 // middle radius and on the arc's side of the chord (counter-clockwise arcs bulge to the right
 // of start -> end); for a full circle the whole disc.
-bool in_arc_region(const Element& e, const Vec2& p) {
+bool in_arc_region(const Parametric& e, const Vec2& p) {
     const double r = 0.5 * (e.r0 + e.r1);
     if ((p - e.centre).squaredNorm() >= r * r) return false;
     if (std::abs(e.sweep) >= kTwoPi) return true;
@@ -36,14 +35,14 @@ bool in_arc_region(const Element& e, const Vec2& p) {
 
 // A line by its ends; an arc by its ends and, where its turn passes an axis direction, its
 // larger radius there (the radius changes by |r1 - r0| at most along it: that much more).
-Bounds bounds(std::span<const Element> loop) noexcept {
+Bounds bounds(std::span<const Parametric> loop) noexcept {
     Bounds b;
     b.lo = Vec2::Constant(std::numeric_limits<double>::infinity());
     b.hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
-    for (const Element& e : loop) {
+    for (const Parametric& e : loop) {
         b.lo = b.lo.cwiseMin(e.start.cwiseMin(e.end));
         b.hi = b.hi.cwiseMax(e.start.cwiseMax(e.end));
-        if (!e.arc) continue;
+        if (!is_arc(e)) continue;
         const double rmax = std::max(e.r0, e.r1);
         const double pad = std::abs(e.r1 - e.r0);
         const bool ends = e.r0 > 0.0 && e.r1 > 0.0;
@@ -61,11 +60,11 @@ Bounds bounds(std::span<const Element> loop) noexcept {
     return b;
 }
 
-double signed_area(std::span<const Element> loop) noexcept {
+double signed_area(std::span<const Parametric> loop) noexcept {
     double area = 0.0;
-    for (const Element& e : loop) {
+    for (const Parametric& e : loop) {
         area += 0.5 * cross(e.start, e.end);
-        if (e.arc) {
+        if (is_arc(e)) {
             const double r = 0.5 * (e.r0 + e.r1);
             area += 0.5 * r * r * (e.sweep - std::sin(e.sweep));
         }
@@ -73,29 +72,29 @@ double signed_area(std::span<const Element> loop) noexcept {
     return area;
 }
 
-int winding_number(std::span<const Element> loop, const Vec2& p) noexcept {
+int winding_number(std::span<const Parametric> loop, const Vec2& p) noexcept {
     double turned = 0.0;
-    for (const Element& e : loop) {
-        const bool full = e.arc && std::abs(e.sweep) >= kTwoPi;
+    for (const Parametric& e : loop) {
+        const bool full = is_arc(e) && std::abs(e.sweep) >= kTwoPi;
         if (!full) turned += seen_angle(p, e.start, e.end);
-        if (e.arc && in_arc_region(e, p)) turned += e.sweep > 0.0 ? kTwoPi : -kTwoPi;
+        if (is_arc(e) && in_arc_region(e, p)) turned += e.sweep > 0.0 ? kTwoPi : -kTwoPi;
     }
     return static_cast<int>(std::lround(turned / kTwoPi));
 }
 
-double distance_to(std::span<const Element> loop, const Vec2& p) noexcept {
+double distance_to(std::span<const Parametric> loop, const Vec2& p) noexcept {
     double best = std::numeric_limits<double>::infinity();
-    for (const Element& e : loop) best = std::min(best, distance_to(e, p));
+    for (const Parametric& e : loop) best = std::min(best, distance_to(e, p));
     return best;
 }
 
-Within within(std::span<const Element> outer, std::span<const Element> inner, double tolerance,
+Within within(std::span<const Parametric> outer, std::span<const Parametric> inner, double tolerance,
               long budget) noexcept {
     if (outer.empty() || inner.empty()) return Within::kNot;
     return within(outer, bounds(outer), inner, bounds(inner), tolerance, budget);
 }
 
-Within within(std::span<const Element> outer, const Bounds& outer_box, std::span<const Element> inner,
+Within within(std::span<const Parametric> outer, const Bounds& outer_box, std::span<const Parametric> inner,
               const Bounds& inner_box, double tolerance, long budget) noexcept {
     if (outer.empty() || inner.empty()) return Within::kNot;
     if ((inner_box.lo.array() < outer_box.lo.array() - tolerance).any() ||
@@ -104,8 +103,8 @@ Within within(std::span<const Element> outer, const Bounds& outer_box, std::span
     const long pairs = static_cast<long>(outer.size()) * static_cast<long>(inner.size());
     if (pairs > budget) return Within::kUnknown;
     bool apart_everywhere = true;
-    for (const Element& a : inner) {
-        for (const Element& b : outer)
+    for (const Parametric& a : inner) {
+        for (const Parametric& b : outer)
             if (!apart(a, b, tolerance)) {
                 apart_everywhere = false;
                 break;
@@ -117,7 +116,7 @@ Within within(std::span<const Element> outer, const Bounds& outer_box, std::span
     // They come near: every point sampled must lie inside or on outer, and one inside.
     bool some_inside = false;
     constexpr int kSamples = 16;
-    for (const Element& e : inner)
+    for (const Parametric& e : inner)
         for (int i = 0; i <= kSamples; ++i) {
             const Vec2 p = point_at(e, static_cast<double>(i) / kSamples);
             if (distance_to(outer, p) <= tolerance) continue;

@@ -6,6 +6,7 @@
 
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
+#include "geometry/element.h"
 
 namespace apci::run {
 
@@ -73,9 +74,9 @@ double sweep_in(const PathSegment& arc) noexcept {
     const bool long_chord =
         std::abs(du) > 2.0 * kSamePointTolerance || std::abs(dv) > 2.0 * kSamePointTolerance;
     const bool full = !long_chord && std::hypot(du, dv) <= kSamePointTolerance;
-    return nc::arc_sweep(arc.start[First] - arc.center[First], arc.start[Second] - arc.center[Second],
-                         arc.end[First] - arc.center[First], arc.end[Second] - arc.center[Second],
-                         arc.ccw, full);
+    return geom::arc_sweep({arc.start[First] - arc.center[First], arc.start[Second] - arc.center[Second]},
+                           {arc.end[First] - arc.center[First], arc.end[Second] - arc.center[Second]},
+                           arc.ccw, full);
 }
 
 // measure() of an arc in the plane of axes First, Second with Third its normal: the formulas of

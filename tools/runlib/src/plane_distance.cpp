@@ -12,14 +12,14 @@
 #include <numbers>
 #include <vector>
 
+#include "geometry/element.h"
+
 namespace apci::run::plane {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-double cross(const Vec2& a, const Vec2& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
+using geom::cross;
 
 bool on_segment(double t) {
     return t >= 0.0 && t <= 1.0;
@@ -125,46 +125,43 @@ double circle_circle(const Circle& a, const Circle& b) {
 
 // The angle from a to b counter-clockwise, in [0, 2 pi).
 double angle_ccw(const Vec2& a, const Vec2& b) {
-    double t = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
-    if (t < 0) t += kTwoPi;
-    return t >= kTwoPi ? 0.0 : t;
+    return geom::angle_between(a, b, true);
 }
 
 }  // namespace
 
-Element line_element(const Vec2& start, const Vec2& end) noexcept {
-    Element e;
+Parametric line_element(const Vec2& start, const Vec2& end) noexcept {
+    Parametric e;
     e.start = start;
     e.end = end;
     return e;
 }
 
-Element arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
-    Element e;
-    e.arc = true;
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
+    Parametric e;
+    e.kind = geom::ElementKind::kArc;
+    e.ccw = ccw;
     e.start = start;
     e.end = end;
     e.centre = centre;
     const Vec2 u0 = start - centre, u1 = end - centre;
-    double turn = (end - start).norm() <= 1e-9 ? kTwoPi : (ccw ? angle_ccw(u0, u1) : angle_ccw(u1, u0));
-    if (turn == 0.0) turn = kTwoPi;
-    e.sweep = ccw ? turn : -turn;
+    e.sweep = geom::arc_sweep(u0, u1, ccw, (end - start).norm() <= 1e-9);
     e.r0 = u0.norm();
     e.r1 = u1.norm();
     e.phi0 = std::atan2(u0.y(), u0.x());
     return e;
 }
 
-Vec2 point_at(const Element& e, double t) noexcept {
-    if (!e.arc) return e.start + t * (e.end - e.start);
+Vec2 point_at(const Parametric& e, double t) noexcept {
+    if (!is_arc(e)) return e.start + t * (e.end - e.start);
     if (t >= 1.0) return e.end;
     const double phi = e.phi0 + t * e.sweep;
     const double r = e.r0 + t * (e.r1 - e.r0);
     return e.centre + r * Vec2(std::cos(phi), std::sin(phi));
 }
 
-double distance_to(const Element& e, const Vec2& p) noexcept {
-    if (!e.arc) return point_segment(p, e.start, e.end);
+double distance_to(const Parametric& e, const Vec2& p) noexcept {
+    if (!is_arc(e)) return point_segment(p, e.start, e.end);
     const Vec2 v = p - e.centre;
     const Vec2 u0 = e.start - e.centre;
     const double turn = std::abs(e.sweep);
@@ -227,11 +224,11 @@ struct Piece {
 };
 
 // The part [t0, t1] of e; for an arc with the unit directions of its angle at t0 and t1.
-Piece piece_of(const Element& e, double t0, double t1, const Vec2& from, const Vec2& to) {
+Piece piece_of(const Parametric& e, double t0, double t1, const Vec2& from, const Vec2& to) {
     Piece p;
     p.t0 = t0;
     p.t1 = t1;
-    if (!e.arc) {
+    if (!is_arc(e)) {
         const Vec2 d = e.end - e.start;
         p.a = t0 == 0.0 ? e.start : e.start + t0 * d;
         p.b = t1 == 1.0 ? e.end : e.start + t1 * d;
@@ -247,8 +244,8 @@ Piece piece_of(const Element& e, double t0, double t1, const Vec2& from, const V
 }
 
 // All of e: an arc's end directions from its end points (as its angles were computed from them).
-Piece whole(const Element& e) {
-    if (!e.arc || e.r0 <= 0.0 || e.r1 <= 0.0) {
+Piece whole(const Parametric& e) {
+    if (!is_arc(e) || e.r0 <= 0.0 || e.r1 <= 0.0) {
         const double phi1 = e.phi0 + e.sweep;
         return piece_of(e, 0.0, 1.0, Vec2(std::cos(e.phi0), std::sin(e.phi0)),
                         Vec2(std::cos(phi1), std::sin(phi1)));
@@ -257,10 +254,10 @@ Piece whole(const Element& e) {
 }
 
 // The two halves of a part of e.
-std::array<Piece, 2> halves(const Element& e, const Piece& p) {
+std::array<Piece, 2> halves(const Parametric& e, const Piece& p) {
     const double m = 0.5 * (p.t0 + p.t1);
     Vec2 at = Vec2::Zero();
-    if (e.arc) {
+    if (is_arc(e)) {
         const double phi = e.phi0 + m * e.sweep;
         at = {std::cos(phi), std::sin(phi)};
     }
@@ -276,7 +273,7 @@ double between(const Piece& p, const Piece& q) {
 
 }  // namespace
 
-bool apart(const Element& a, const Element& b, double limit) noexcept {
+bool apart(const Parametric& a, const Parametric& b, double limit) noexcept {
     struct Job {
         Piece p, q;
     };
@@ -328,9 +325,9 @@ namespace {
 // direction within its turn, so u . n is 1 where n lies within the turn, else at most the ends'
 // larger value, and rho u . n within the products of those. The lower bound is -most_along(e,
 // -n).
-double most_along(const Element& e, const Vec2& n) {
+double most_along(const Parametric& e, const Vec2& n) {
     const double ends = std::max(e.start.dot(n), e.end.dot(n));
-    if (!e.arc) return ends;
+    if (!is_arc(e)) return ends;
     const double rmin = std::min(e.r0, e.r1), rmax = std::max(e.r0, e.r1);
     if (e.r0 <= 0.0 || e.r1 <= 0.0) return std::max(ends, e.centre.dot(n) + rmax);
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
@@ -371,8 +368,8 @@ double most_along(const Element& e, const Vec2& n) {
 // (rho - R)^2 + 2 rho R (1 - cos delta) >= max(0, d - |k| delta)^2 + c delta^2, c = 4 rmin R /
 // pi^2, which is at least d^2 c / (k^2 + c): d a hair less. Elsewhere the radial distance less
 // the radius's whole change.
-double distance_at_least(const Element& e, const Vec2& p) {
-    if (!e.arc) return point_segment(p, e.start, e.end);
+double distance_at_least(const Parametric& e, const Vec2& p) {
+    if (!is_arc(e)) return point_segment(p, e.start, e.end);
     const double loose = distance_to(e, p) - std::abs(e.r1 - e.r0);
     const double turn = std::abs(e.sweep);
     if (turn > std::numbers::pi || e.r0 <= 0.0 || e.r1 <= 0.0) return loose;
@@ -401,8 +398,8 @@ double distance_at_least(const Element& e, const Vec2& p) {
 }
 
 // The least and largest distance of the points of e from c.
-void distances_from(const Element& e, const Vec2& c, double& lo, double& hi) {
-    if (!e.arc) {
+void distances_from(const Parametric& e, const Vec2& c, double& lo, double& hi) {
+    if (!is_arc(e)) {
         lo = point_segment(c, e.start, e.end);
         hi = std::max((e.start - c).norm(), (e.end - c).norm());
         return;
@@ -427,12 +424,12 @@ void distances_from(const Element& e, const Vec2& c, double& lo, double& hi) {
 
 }  // namespace
 
-bool apart_by_side(const Element& a, const Element& b, double limit) noexcept {
+bool apart_by_side(const Parametric& a, const Parametric& b, double limit) noexcept {
     // b a line and a wholly behind one of its ends E (against the direction t from E into b,
     // to within eps): for p of a and q = E + s t of b, |p - q|^2 = |p - E|^2 - 2 s (p - E) . t
     // + s^2 >= |p - E|^2 - eps^2. The distance of E from a (a lower bound: for an arc whose
     // radii differ, its radial distance less that difference) then decides.
-    if (!b.arc) {
+    if (!is_arc(b)) {
         const Vec2 d = b.end - b.start;
         const double len = d.norm();
         if (len > 0.0) {
@@ -446,7 +443,7 @@ bool apart_by_side(const Element& a, const Element& b, double limit) noexcept {
             }
         }
     }
-    if (!a.arc) {
+    if (!is_arc(a)) {
         const Vec2 d = a.end - a.start;
         const double len = d.norm();
         if (len == 0.0) return false;

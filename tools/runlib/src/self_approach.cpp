@@ -34,7 +34,7 @@ constexpr double kApartMargin = 1e-7;
 // the board runs it; its sweep signed, magnitude in (0, 2 pi]; its radii and start angle
 // computed once for the shape, set_arc_terms, rather than at every point of a search), with what
 // the check asks of it besides.
-struct detail::Shape : plane::Element {
+struct detail::Shape : plane::Parametric {
     double length = 0.0;
     // A box holding every point of it (corners lo, hi).
     Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
@@ -80,17 +80,17 @@ Shape shape_of(const PathSegment& s, int plane) {
     Shape out;
     out.start = {s.start[a.first], s.start[a.second]};
     out.end = {s.end[a.first], s.end[a.second]};
-    out.arc = s.kind == SegmentKind::kArc && s.plane == plane;
+    const bool arc = s.kind == SegmentKind::kArc && s.plane == plane;
     out.lo = out.start.cwiseMin(out.end);
     out.hi = out.start.cwiseMax(out.end);
     out.low = std::min(s.start[a.third], s.end[a.third]);
     out.high = std::max(s.start[a.third], s.end[a.third]);
-    if (!out.arc) {
+    if (!arc) {
         out.length = (out.end - out.start).norm();
         return out;
     }
     const Vec2 centre(s.center[a.first], s.center[a.second]);
-    static_cast<plane::Element&>(out) = plane::arc_element(out.start, out.end, centre, s.ccw);
+    static_cast<plane::Parametric&>(out) = plane::arc_element(out.start, out.end, centre, s.ccw);
     out.length = std::abs(out.sweep) * 0.5 * (out.r0 + out.r1);
     add_arc_to_box(out);
     return out;
@@ -139,7 +139,7 @@ bool near_enough(const Extent& path, const Extent& contour, double threshold) {
 }  // namespace
 
 // A shape as the grid keeps it, by the hundred thousand: its ends and an arc's centre and
-// sense packed (plane::Element's vectors are aligned to 16 bytes), its box, range and length in
+// sense packed (plane::Parametric's vectors are aligned to 16 bytes), its box, range and length in
 // floats rounded outward (the box and range are filters, the length counts samples: rounded
 // up, never fewer). shape() gives the element back exactly (an arc's radii and angles worked
 // out again, as shape_of() did), the box and range no smaller.
@@ -155,7 +155,7 @@ struct StoredShape {
           centre{e.centre.x(), e.centre.y()},
           lo{down(e.lo.x()), down(e.lo.y())},
           hi{up(e.hi.x()), up(e.hi.y())},
-          low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(e.arc),
+          low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(is_arc(e)),
           ccw(e.sweep > 0.0) {}
     Extent extent() const {
         return {Vec2(lo[0], lo[1]), Vec2(hi[0], hi[1]), static_cast<double>(low),
@@ -164,7 +164,7 @@ struct StoredShape {
     Shape shape() const {
         Shape e;
         const Vec2 a(start[0], start[1]), b(end[0], end[1]);
-        static_cast<plane::Element&>(e) =
+        static_cast<plane::Parametric&>(e) =
             arc ? plane::arc_element(a, b, Vec2(centre[0], centre[1]), ccw)
                 : plane::line_element(a, b);
         const Extent x = extent();
@@ -658,7 +658,7 @@ double threshold_for(Relation rel, double r) {
 // (made in `out`); null: none.
 const Shape* checked_part(const Shape& c, Relation rel, Shape& out) {
     if (rel == Relation::kOther || rel == Relation::kBefore || rel == Relation::kAfter) return &c;
-    if (rel == Relation::kOwn || !c.arc) return nullptr;
+    if (rel == Relation::kOwn || !is_arc(c)) return nullptr;
     const double turn = std::abs(c.sweep);
     if (turn <= std::numbers::pi) return nullptr;
     const double cut = rel == Relation::kHeld ? (turn - std::numbers::pi) / turn

@@ -144,7 +144,7 @@ void WallModel::close_loop(std::size_t from) {
                                                m.arc,
                                                m.ccw});
         }
-        std::vector<plane::Element>& elements = elements_;
+        std::vector<plane::Parametric>& elements = elements_;
         elements_of(loop, elements);
         const double area = plane::signed_area(elements);
         // A loop with no area to speak of (out and back along itself) has no inside.
@@ -279,7 +279,7 @@ bool WallModel::clears(const Loop& pass, const Loop& loop) const {
                          kPairBudget) == plane::Within::kWithin;
 }
 
-void WallModel::elements_of(const Loop& loop, std::vector<plane::Element>& out) {
+void WallModel::elements_of(const Loop& loop, std::vector<plane::Parametric>& out) {
     out.clear();
     for (const Loop::Kept& k : loop.elements) {
         const plane::Vec2 start(k.start[0], k.start[1]), end(k.end[0], k.end[1]);

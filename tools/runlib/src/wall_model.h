@@ -129,7 +129,7 @@ class WallModel {
         std::uint64_t last = 0;  // the highest element number of any of its occurrences
         std::uint64_t key = 0;   // of its elements' geometry, in any order
         // Its elements, kept packed (a program's loops hold as many elements as the program):
-        // made plane::Elements again where an enclosure is tested (clears()).
+        // made plane::Parametrics again where an enclosure is tested (clears()).
         struct Kept {
             double start[2], end[2], centre[2];
             bool arc, ccw;
@@ -170,8 +170,8 @@ class WallModel {
     static constexpr std::size_t kScanned = 64;
     void close_loop(std::size_t from);
     bool clears(const Loop& outer_pass, const Loop& loop) const;
-    // A loop's elements as plane::Elements, in `out`.
-    static void elements_of(const Loop& loop, std::vector<plane::Element>& out);
+    // A loop's elements as plane::Parametrics, in `out`.
+    static void elements_of(const Loop& loop, std::vector<plane::Parametric>& out);
     void decide(Loop& loop, std::uint64_t number);
 
     // Drops the records placed since `from` (an index into records_) that say nothing more.
@@ -202,7 +202,7 @@ class WallModel {
     std::uint64_t pending_first_ = 0;  // the stretch's count of elements before pending_[0]
     std::uint64_t generation_ = 0;
     // Scratch for the elements of the loops an enclosure test compares (memory kept).
-    mutable std::vector<plane::Element> elements_, inner_elements_;
+    mutable std::vector<plane::Parametric> elements_, inner_elements_;
 };
 
 }  // namespace apci::run::detail

@@ -27,7 +27,7 @@ inline constexpr double kNormalAgainstToolTolerance = 1e-3;
 inline constexpr double kParallelTolerance = 1e-12;
 
 // RL/RR give a side only to a motion: a line shorter than this has no direction (as in the TC
-// geometry, rwmos/geometry/tolerances.h, kPointTolerance) ...
+// geometry, geometry/tolerances.h, kPointTolerance) ...
 inline constexpr double kMinMotionLength = 1e-9;
 // ... and a motion within this angle (radians, as its sine) of the tool vector is a plunge:
 // the side across it would follow the rounding of the coordinates, not the program.
@@ -42,7 +42,7 @@ inline constexpr double kOversizeTolerance = 1e-9;
 inline constexpr double kShapeTolerance = 1e-9;
 
 // Tool dimensions and coordinates beyond this are refused, as in the TC geometry
-// (rwmos/geometry/tolerances.h, kMaxCoordinate): it keeps rounding far below 1e-9.
+// (geometry/tolerances.h, kMaxCoordinate): it keeps rounding far below 1e-9.
 inline constexpr double kMaxCoordinate = objif::map::kMaxCoordinate;
 
 }  // namespace rwmos::comp3d

@@ -19,7 +19,7 @@
 #include <string_view>
 
 #include "rwmos/geometry/corner.h"
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::geom {
 

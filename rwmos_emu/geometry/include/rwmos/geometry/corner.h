@@ -23,8 +23,6 @@ enum class TransitionMode : std::uint8_t { kCircular, kLinear };
 // kOutside: it turns away; they leave a gap that a transition bridges.
 enum class CornerKind : std::uint8_t { kTangent, kInside, kOutside };
 
-// Signed angle from direction t1 to t2, in (-pi, pi], counter-clockwise positive.
-double turn_angle(const Vec2& t1, const Vec2& t2) noexcept;
 
 // The distance between the two offset ends at a corner of tool radius r that turns by
 // `turn`: 2 r |sin(turn / 2)| (the chord of the circular transition).

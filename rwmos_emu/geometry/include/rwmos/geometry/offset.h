@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "rwmos/geometry/element.h"
+#include "rwmos/geometry/shared.h"
 #include "rwmos/geometry/errors.h"
 
 namespace rwmos::geom {

@@ -18,7 +18,7 @@
 #include <cstdint>
 
 #include "objif/map/limits.h"
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 #include "rwmos/motion/types.h"
 
 namespace rwmos::motion {

@@ -14,7 +14,7 @@
 
 #include "objif/map/limits.h"
 #include "objif/status.h"
-#include "rwmos/geometry/tolerances.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::motion {
 
@@ -28,7 +28,7 @@ inline constexpr double kDefaultRapidFeed = objif::map::kRapidFeed;  // units/mi
 // Upper bound of any feed: keeps cycle counts and positions finite. Design.
 inline constexpr double kMaxFeed = 1.0e9;
 // Upper bound of any coordinate's magnitude: the compensation geometry's
-// (rwmos/geometry/tolerances.h), so every profile can be compensated.
+// (geometry/tolerances.h), so every profile can be compensated.
 inline constexpr double kMaxCoordinate = geom::kMaxCoordinate;
 // The geometry library stands alone (Eigen only): its bound is the board's, declared in objif.
 static_assert(geom::kMaxCoordinate == objif::map::kMaxCoordinate);

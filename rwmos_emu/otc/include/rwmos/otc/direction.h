@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "rwmos/geometry/plane.h"
+#include "rwmos/geometry/shared.h"
 
 namespace rwmos::otc {
 

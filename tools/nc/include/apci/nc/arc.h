@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apci/nc/block.h"
+#include "geometry/element.h"
 #include "apci/nc/events.h"
 
 namespace apci::nc {
@@ -20,24 +21,9 @@ inline constexpr double kArcRadiusTolerance = 0.003;  // mm
 // An arc radius below this is zero (centre on the start point).
 inline constexpr double kMinArcRadius = 1e-6;  // mm
 
-// Indices (0 X, 1 Y, 2 Z) of the plane's first and second axis and of its normal, ordered so
-// that first x second = normal: G17 X,Y,Z; G18 Z,X,Y; G19 Y,Z,X.
-struct PlaneAxes {
-    int first;
-    int second;
-    int normal;
-};
-constexpr PlaneAxes plane_axes(Plane p) noexcept {
-    switch (p) {
-        case Plane::kZX:
-            return {2, 0, 1};
-        case Plane::kYZ:
-            return {1, 2, 0};
-        case Plane::kXY:
-            break;
-    }
-    return {0, 1, 2};
-}
+// The axes of a plane (geometry/plane.h): first x second = third, the plane's normal.
+using geom::PlaneAxes;
+using geom::plane_axes;
 
 struct ArcCenterResult {
     bool ok = false;
@@ -68,12 +54,7 @@ bool arc_center_ok(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
 // refuses ran its earlier blocks first; one whose path leaves the range was not checked at all.
 std::string check_arc_range(const ArcMove& arc, double limit);
 
-// The signed sweep of an arc about its centre, from the radius (sx, sy) at its start to (ex, ey)
-// at its end: the angle between the unit radii, so exact also for a radius far beyond the chord
-// (R1e200 over 20 mm), where the difference of two atan2 angles vanishes; in (0, 2 pi]
-// counter-clockwise, [-2 pi, 0) clockwise. A full turn where `full` (the caller found the ends
-// to meet, by its own tolerance) or a radius is 0. The host's one sweep: move_length and the
-// executor's path measures take it from here.
-double arc_sweep(double sx, double sy, double ex, double ey, bool ccw, bool full) noexcept;
+// The sweep of an arc: geom::arc_sweep (geometry/element.h), the one board and host share.
+using geom::arc_sweep;
 
 }  // namespace apci::nc

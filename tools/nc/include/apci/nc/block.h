@@ -7,13 +7,15 @@
 #include <cstdint>
 #include <string_view>
 
+#include "geometry/plane.h"
 #include "objif/map/limits.h"
 
 namespace apci::nc {
 
 // Modal groups of the DIN 66025 subset; the enumerator values are the G numbers.
 enum class Motion : std::uint8_t { kRapid = 0, kLine = 1, kArcCw = 2, kArcCcw = 3 };
-enum class Plane : std::uint8_t { kXY = 17, kZX = 18, kYZ = 19 };
+// The plane (G17 G18 G19) is the one board and host share: its values are the G numbers.
+using Plane = geom::Plane;
 enum class DistanceMode : std::uint8_t { kAbsolute = 90, kIncremental = 91 };
 enum class Compensation : std::uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
 // Outside corners under radius compensation ([ISG-OTC-EN], wr_quad_disc.nc: G25 "linearer

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <type_traits>
 
+#include "geometry/plane.h"
+
 namespace apci::run {
 
 using Point = Eigen::Vector3d;
@@ -37,12 +39,9 @@ struct BlockRef {
     std::uint64_t line = 0;
 };
 
-// Planes by their G codes (TcPlane values): 17 X-Y, 18 Z-X, 19 Y-Z.
-struct PlaneAxes {
-    int first;  // index into X, Y, Z
-    int second;
-    int third;
-};
+// Planes by their G codes (TcPlane values): 17 X-Y, 18 Z-X, 19 Y-Z; their axes as indices
+// into X, Y, Z (geometry/plane.h).
+using geom::PlaneAxes;
 // f(first, second, third) with the axes of a plane, each a std::integral_constant (an index
 // into X, Y, Z known when the code is compiled): {0,1,2} for 17, {2,0,1} for 18, {1,2,0} for 19;
 // 17's for anything else.
@@ -61,11 +60,11 @@ template <class F>
                      integral_constant<int, 2>{});
     }
 }
-// The same axes as values.
+// The same axes as values (17's for anything but 18 and 19).
 constexpr PlaneAxes plane_axes(int plane) noexcept {
-    return with_plane_axes(plane, [](int first, int second, int third) {
-        return PlaneAxes{first, second, third};
-    });
+    return geom::plane_axes(plane == 18 ? geom::Plane::kZX
+                            : plane == 19 ? geom::Plane::kYZ
+                                          : geom::Plane::kXY);
 }
 // "X-Y", "Z-X", "Y-Z".
 std::string_view plane_name(int plane) noexcept;

@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "geometry/element.h"
+
 namespace apci::run::plane {
 
 using Vec2 = Eigen::Vector2d;
@@ -36,35 +38,35 @@ double segment_segment(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec
 double segment_arc(const Vec2& a0, const Vec2& a1, const Arc& b) noexcept;
 double arc_arc(const Arc& a, const Arc& b) noexcept;
 
-// A line from start to end, or an arc about centre from start to end: at the fraction t of it,
-// the angle phi0 + t * sweep and the radius r0 + t * (r1 - r0).
-struct Element {
-    bool arc = false;
-    Vec2 start = Vec2::Zero(), end = Vec2::Zero(), centre = Vec2::Zero();
+// A line from start to end, or an arc about centre from start to end (geom::Element, the element
+// board and host share), with the terms the distances take computed once: at the fraction t of
+// it, the angle phi0 + t * sweep and the radius r0 + t * (r1 - r0).
+struct Parametric : geom::Element {
     double r0 = 0.0, r1 = 0.0, phi0 = 0.0, sweep = 0.0;
 };
+using geom::is_arc;
 
 // An element from its ends (and an arc's centre and sense): its radii, start angle and sweep
-// (magnitude in (0, 2 pi]; ends closer than 1e-9 make a full circle).
-Element line_element(const Vec2& start, const Vec2& end) noexcept;
-Element arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept;
+// (geom::arc_sweep: magnitude in (0, 2 pi]; ends closer than 1e-9 make a full circle).
+Parametric line_element(const Vec2& start, const Vec2& end) noexcept;
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept;
 // The point at the fraction t (0..1) of e: an arc by its angle, the radius linear in it.
-Vec2 point_at(const Element& e, double t) noexcept;
+Vec2 point_at(const Parametric& e, double t) noexcept;
 // The distance from p to e: to a line's nearest point; to an arc along the radius where p's
 // direction from the centre lies within its turn (to the arc's radius at that angle), else to
 // the nearer end.
-double distance_to(const Element& e, const Vec2& p) noexcept;
+double distance_to(const Parametric& e, const Vec2& p) noexcept;
 
 // True when every point of `a` is at least `limit` from every point of `b`, proved: an arc is
 // taken as circular arcs of its middle radius, each within |r1 - r0| / 2 of it, halved where the
 // proof needs it (at most kMaxApartSteps distances). False when it is not so or not proved.
 inline constexpr int kMaxApartSteps = 64;
-bool apart(const Element& a, const Element& b, double limit) noexcept;
+bool apart(const Parametric& a, const Parametric& b, double limit) noexcept;
 
 // A cheaper proof of the same, by one side of `a`: where `a` is a line, every point of `b` lies
 // at least `limit` to one side of a's line; where `a` is an arc, every point of `b` lies at
 // least `limit` inside or outside the circles a's radii span about its centre. True proves
 // apart(a, b, limit); false decides nothing.
-bool apart_by_side(const Element& a, const Element& b, double limit) noexcept;
+bool apart_by_side(const Parametric& a, const Parametric& b, double limit) noexcept;
 
 }  // namespace apci::run::plane

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The compensation works in the 2D coordinates of the active plane (TcPlane, [APCI-TC]
+// Board and host work in the 2D coordinates of the active plane (TcPlane, [APCI-TC]
 // "Tabelle 2": 17 X-Y, 18 Z-X, 19 Y-Z). These pure helpers map 3D points to the plane's
 // first and second axis and back, name the third (perpendicular) axis, map the plane to
 // board axis numbers (X/Y/Z-Axis-Nr), and rotate plane coordinates (RotAngle,
@@ -7,15 +7,16 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 
-namespace rwmos::geom {
+namespace geom {
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;  // (X, Y, Z)
 
 // The value is the G code and the TcPlane object value.
-enum class Plane : int { kXY = 17, kZX = 18, kYZ = 19 };
+enum class Plane : std::uint8_t { kXY = 17, kZX = 18, kYZ = 19 };
 
 // 17, 18, 19 -> the plane; anything else -> nullopt (the caller reports PlaneError or a
 // range error, as the object demands).
@@ -66,4 +67,4 @@ Vec3 from_plane(const Vec2& q, double third, Plane plane) noexcept;
 // the positive third axis, like G03).
 Vec2 rotate_about(const Vec2& p, const Vec2& centre, double degrees) noexcept;
 
-}  // namespace rwmos::geom
+}  // namespace geom

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
-#include "rwmos/geometry/element.h"
+#include "geometry/element.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "rwmos/geometry/tolerances.h"
+#include "geometry/tolerances.h"
 
-namespace rwmos::geom {
+namespace geom {
 namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
@@ -49,8 +49,12 @@ Element make_arc(const Vec2& start, const Vec2& end, const Vec2& centre, bool cc
     return e;
 }
 
+double turn_angle(const Vec2& t1, const Vec2& t2) noexcept {
+    return std::atan2(cross(t1, t2), t1.dot(t2));
+}
+
 double angle_between(const Vec2& a, const Vec2& b, bool ccw) noexcept {
-    double angle = std::atan2(cross(a, b), a.dot(b));  // (-pi, pi], ccw positive
+    double angle = turn_angle(a, b);
     if (!ccw) angle = -angle;
     if (angle < 0.0) angle += kTwoPi;
     return angle >= kTwoPi ? 0.0 : angle;
@@ -67,12 +71,21 @@ bool is_full_circle(const Element& e) noexcept {
     return is_arc(e) && (e.end - e.start).norm() <= kPointTolerance;
 }
 
+double arc_sweep(const Vec2& u0, const Vec2& u1, bool ccw, bool full) noexcept {
+    // hypot: no overflow of the squares for a radius beyond 1e154 (a program's R1e200).
+    const double r0 = std::hypot(u0.x(), u0.y()), r1 = std::hypot(u1.x(), u1.y());
+    if (full || !(r0 > 0.0) || !(r1 > 0.0)) return ccw ? kTwoPi : -kTwoPi;
+    const Vec2 a = u0 / r0, b = u1 / r1;
+    double sweep = turn_angle(a, b);  // between the unit radii
+    // An end on the start's ray yet apart from it (rounding): a whole turn.
+    if (ccw && sweep <= 0.0) sweep += kTwoPi;
+    if (!ccw && sweep >= 0.0) sweep -= kTwoPi;
+    return sweep;
+}
+
 double sweep(const Element& e) noexcept {
     if (!is_arc(e)) return 0.0;
-    if (is_full_circle(e)) return e.ccw ? kTwoPi : -kTwoPi;
-    double angle = angle_between(e.start - e.centre, e.end - e.centre, e.ccw);
-    if (angle == 0.0) angle = kTwoPi;  // end distinct from start yet on its ray: rounding
-    return e.ccw ? angle : -angle;
+    return arc_sweep(e.start - e.centre, e.end - e.centre, e.ccw, is_full_circle(e));
 }
 
 double length(const Element& e) noexcept {
@@ -158,4 +171,4 @@ Element rotate_about(const Element& e, const Vec2& centre, double degrees) noexc
     return out;
 }
 
-}  // namespace rwmos::geom
+}  // namespace geom

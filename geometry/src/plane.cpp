@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "rwmos/geometry/plane.h"
+#include "geometry/plane.h"
 
 #include <cmath>
 #include <numbers>
 
-namespace rwmos::geom {
+namespace geom {
 
 std::optional<Plane> plane_from_code(int code) noexcept {
     switch (code) {
@@ -51,4 +51,4 @@ Vec2 rotate_about(const Vec2& p, const Vec2& centre, double degrees) noexcept {
     return centre + Vec2{c * d.x() - s * d.y(), s * d.x() + c * d.y()};
 }
 
-}  // namespace rwmos::geom
+}  // namespace geom

@@ -6,9 +6,9 @@
 
 #include <cstdint>
 
-#include "rwmos/geometry/plane.h"
+#include "geometry/plane.h"
 
-namespace rwmos::geom {
+namespace geom {
 
 enum class ElementKind : std::uint8_t { kLine, kArc };
 
@@ -42,9 +42,20 @@ inline double cross(const Vec2& a, const Vec2& b) noexcept {
     return a.x() * b.y() - a.y() * b.x();
 }
 
+// Signed angle from direction t1 to t2, in (-pi, pi], counter-clockwise positive.
+double turn_angle(const Vec2& t1, const Vec2& t2) noexcept;
+
 // Angle in [0, 2 pi) from direction a to direction b, counted counter-clockwise when
 // ccw, clockwise otherwise. Neither needs to be unit length; both must be non-zero.
 double angle_between(const Vec2& a, const Vec2& b, bool ccw) noexcept;
+
+// The signed angle an arc turns about its centre, from the radius u0 (centre to start) to u1
+// (centre to end), in its sense: in (0, 2 pi] counter-clockwise, [-2 pi, 0) clockwise; a whole
+// turn where `full` (the caller found the ends to meet, by its own tolerance) or a radius is 0.
+// The angle between the unit radii: exact also for a radius far beyond the chord (a radius of
+// 1e18 over 20 mm), where the difference of two atan2 angles vanishes and the raw vectors'
+// products lose the turn. Board and host take every arc's sweep from here.
+double arc_sweep(const Vec2& u0, const Vec2& u1, bool ccw, bool full) noexcept;
 
 double radius(const Element& arc) noexcept;      // start radius
 double end_radius(const Element& arc) noexcept;  // |end - centre|
@@ -75,4 +86,4 @@ double distance_to(const Element& e, const Vec2& p) noexcept;
 // The element rotated about centre by degrees (coordinate rotation, plane.h).
 Element rotate_about(const Element& e, const Vec2& centre, double degrees) noexcept;
 
-}  // namespace rwmos::geom
+}  // namespace geom

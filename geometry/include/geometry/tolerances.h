@@ -15,7 +15,7 @@
 #include <cstddef>
 #include <numbers>
 
-namespace rwmos::geom {
+namespace geom {
 
 // Two points closer than this are one point: a line this short has no direction,
 // an arc whose end is this close to its start is a full circle. Far below any
@@ -93,4 +93,4 @@ inline constexpr double kLinearCornerMaxTurn = std::numbers::pi / 2;
 // small, fixed number of blocks without motion in the compensation plane.
 inline constexpr std::size_t kMaxPlaneFreeElements = 8;
 
-}  // namespace rwmos::geom
+}  // namespace geom
