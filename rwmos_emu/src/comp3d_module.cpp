@@ -11,17 +11,9 @@
 
 #include "rwmos/board_state.h"
 #include "rwmos/comp3d/vectors.h"
+#include "rwmos/module_table.h"
 
 namespace rwmos {
-
-using objif::Access;
-using objif::Address;
-using objif::Entry;
-using objif::Hooks;
-using objif::ObjectInfo;
-using objif::Status;
-using objif::Value;
-using objif::ValueType;
 
 namespace {
 

@@ -14,17 +14,9 @@
 
 #include "rwmos/board_state.h"
 #include "rwmos/geometry/kinematics.h"
+#include "rwmos/module_table.h"
 
 namespace rwmos {
-
-using objif::Access;
-using objif::Address;
-using objif::Entry;
-using objif::Hooks;
-using objif::ObjectInfo;
-using objif::Status;
-using objif::Value;
-using objif::ValueType;
 
 namespace {
 // The map's declarations (objif/map/object_map.h) are the engine's limits too.

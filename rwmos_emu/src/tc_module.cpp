@@ -13,17 +13,9 @@
 #include <limits>
 
 #include "rwmos/board_state.h"
+#include "rwmos/module_table.h"
 
 namespace rwmos {
-
-using objif::Access;
-using objif::Address;
-using objif::Entry;
-using objif::Hooks;
-using objif::ObjectInfo;
-using objif::Status;
-using objif::Value;
-using objif::ValueType;
 
 namespace {
 // Run and ProfMarked cleared, stored offsets gone: the group no longer compensates.

@@ -10,17 +10,9 @@
 #include "objif/map/objects.h"
 
 #include "rwmos/board_state.h"
+#include "rwmos/module_table.h"
 
 namespace rwmos {
-
-using objif::Access;
-using objif::Address;
-using objif::Entry;
-using objif::Hooks;
-using objif::ObjectInfo;
-using objif::Status;
-using objif::Value;
-using objif::ValueType;
 
 std::int32_t TempCompModule::bus() const noexcept {
     return tempcomp::kBus;
