@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "frame_transport.h"
+#include "guarded.h"
 
 #include <fmt/format.h>
 
@@ -130,17 +131,13 @@ Status FrameTransport::set_timeout(Millis timeout) noexcept {
 }
 
 Status FrameTransport::reconnect() noexcept {
-    try {
+    return guarded([&] {
         std::string why;
         const Status s = link_->reconnect(why);
         if (s != Status::kOk) return fail(s, fmt::format("{}: reconnect failed: {}", name_, why));
         detail_.clear();
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status FrameTransport::call(objif::Opcode op, std::span<const std::uint8_t> payload,
@@ -210,7 +207,7 @@ Status FrameTransport::read(objif::Descriptor& d, objif::ValueType want,
 }
 
 Status FrameTransport::write(objif::Descriptor& d, const objif::Value& v) noexcept {
-    try {
+    return guarded([&] {
         payload_.clear();
         objif::encode(objif::WriteRequest{d, v}, payload_);
         Status s = call(objif::Opcode::kObjectWrite, payload_, reply_payload_);
@@ -220,16 +217,12 @@ Status FrameTransport::write(objif::Descriptor& d, const objif::Value& v) noexce
         if (e != FrameError::kNone) return bad_reply(e, "(ObjectWriteReply) has a bad payload");
         d.handle = reply.handle;
         return reply.status;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 template <class Request, class Reply>
 Status FrameTransport::request(objif::Opcode op, const Request& req, Reply& rep) noexcept {
-    try {
+    return guarded([&] {
         payload_.clear();
         objif::encode(req, payload_);
         const Status s = call(op, payload_, reply_payload_);
@@ -243,11 +236,7 @@ Status FrameTransport::request(objif::Opcode op, const Request& req, Reply& rep)
                                              static_cast<std::uint16_t>(op) | objif::kReplyFlag))));
         rep = std::move(decoded);
         return rep.status;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status FrameTransport::spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept {

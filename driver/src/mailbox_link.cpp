@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "mailbox_link.h"
+#include "guarded.h"
 
 #include <fmt/format.h>
 #include <pthread.h>
@@ -92,7 +93,7 @@ std::uint32_t process_token() noexcept {
 }  // namespace
 
 Status MailboxLink::open(std::string& why) noexcept {
-    try {
+    return guarded([&] {
         window_.reset();
         std::unique_ptr<mb::Window> window;
         Status s = open_(window, why);
@@ -113,11 +114,7 @@ Status MailboxLink::open(std::string& why) noexcept {
         window_ = std::move(window);
         lost_.clear();
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_t,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Device URI parsing and the scheme table: one row per backend.
 #include "transport.h"
+#include "guarded.h"
 
 #include <array>
 #include <new>
@@ -55,7 +56,7 @@ std::string known_schemes() {
 }  // namespace
 
 objif::Status parse_device_uri(std::string_view text, DeviceUri& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         DeviceUri uri;
         if (text.empty()) text = "emu:";
         const auto colon = text.find(':');
@@ -91,11 +92,7 @@ objif::Status parse_device_uri(std::string_view text, DeviceUri& out, std::strin
         }
         out = std::move(uri);
         return objif::Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return objif::Status::kNoMemory;
-    } catch (...) {
-        return objif::Status::kGeneralError;
-    }
+    });
 }
 
 objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& out,
@@ -122,7 +119,7 @@ objif::Status open_transport(const DeviceUri& uri, std::unique_ptr<Transport>& o
 }
 
 objif::Status list_devices(std::vector<FoundDevice>& out, std::vector<std::string>& problems) noexcept {
-    try {
+    return guarded([&] {
         for (const auto& row : kSchemes) {
             if (row.list == nullptr) continue;
             std::string why;
@@ -132,11 +129,7 @@ objif::Status list_devices(std::vector<FoundDevice>& out, std::vector<std::strin
                                                objif::status_name(s)));
         }
         return objif::Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return objif::Status::kNoMemory;
-    } catch (...) {
-        return objif::Status::kGeneralError;
-    }
+    });
 }
 
 }  // namespace apci

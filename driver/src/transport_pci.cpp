@@ -31,6 +31,7 @@
 #include "mailbox_link.h"
 #include "mapped_file.h"
 #include "objif/usb_layout.h"
+#include "guarded.h"
 
 namespace apci {
 namespace {
@@ -315,7 +316,7 @@ Status open_window(const PciTarget& t, std::unique_ptr<mb::Window>& out, std::st
 }  // namespace
 
 Status open_pci(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         LinkOptions options;
         Status s = parse_link_options(uri, options, why);
         if (s != Status::kOk) return s;
@@ -339,15 +340,11 @@ Status open_pci(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
         if (s != Status::kOk) return s;
         out = std::make_unique<FrameTransport>(std::move(link), name, options.timeout);
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status list_pci(std::vector<FoundDevice>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         const std::string root = pci_devices_dir();
         std::unique_ptr<DIR, int (*)(DIR*)> d(::opendir(root.c_str()), ::closedir);
         if (!d) {
@@ -378,11 +375,7 @@ Status list_pci(std::vector<FoundDevice>& out, std::string& why) noexcept {
         std::sort(found.begin(), found.end(), [](auto& a, auto& b) { return a.uri < b.uri; });
         out.insert(out.end(), found.begin(), found.end());
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 }  // namespace apci

@@ -13,6 +13,7 @@
 #include "mailbox_link.h"
 #include "mapped_file.h"
 #include "objif/registry.h"
+#include "guarded.h"
 
 namespace apci {
 namespace {
@@ -34,7 +35,7 @@ Status status_of_errno(int err) noexcept {
 }  // namespace
 
 Status open_shm(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         LinkOptions options;
         Status s = parse_link_options(uri, options, why);
         if (s != Status::kOk) return s;
@@ -63,15 +64,11 @@ Status open_shm(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
         if (s != Status::kOk) return s;
         out = std::make_unique<FrameTransport>(std::move(link), "shm:" + path, options.timeout);
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status list_shm(std::vector<FoundDevice>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         std::vector<objif::RegisteredDaemon> daemons;
         if (!objif::registered_daemons(daemons, why)) return Status::kTransportError;
         for (const auto& d : daemons) {
@@ -80,11 +77,7 @@ Status list_shm(std::vector<FoundDevice>& out, std::string& why) noexcept {
                     {"shm:" + d.shm, fmt::format("rwmos-emu dual-port RAM file, pid {}", d.pid)});
         }
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 }  // namespace apci

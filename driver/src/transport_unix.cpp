@@ -20,6 +20,7 @@
 #include "frame_transport.h"
 #include "objif/adaptive_spin.h"
 #include "objif/registry.h"
+#include "guarded.h"
 
 namespace apci {
 namespace {
@@ -368,7 +369,7 @@ constexpr Millis kListGreetingTimeout{500};
 }  // namespace
 
 Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         LinkOptions options;
         Status s = parse_link_options(uri, options, why);
         if (s != Status::kOk) return s;
@@ -387,15 +388,11 @@ Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::str
         out = std::make_unique<FrameTransport>(std::move(link), "unix:" + uri.target,
                                                options.timeout);
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status list_unix(std::vector<FoundDevice>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         std::vector<objif::RegisteredDaemon> daemons;
         if (!objif::registered_daemons(daemons, why)) return Status::kTransportError;
         // Only a socket that greets as rwmos-emu is listed as a daemon; one
@@ -419,11 +416,7 @@ Status list_unix(std::vector<FoundDevice>& out, std::string& why) noexcept {
                                            d.pid, probe.answer())});
         }
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 }  // namespace apci

@@ -24,6 +24,7 @@
 
 #include "frame_transport.h"
 #include "objif/usb_layout.h"
+#include "guarded.h"
 
 namespace apci {
 namespace {
@@ -363,7 +364,7 @@ class UsbLink final : public FrameLink {
 }  // namespace
 
 Status open_usb(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         LinkOptions options;
         Status s = parse_link_options(uri, options, why);
         if (s != Status::kOk) return s;
@@ -376,15 +377,11 @@ Status open_usb(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
         out =
             std::make_unique<FrameTransport>(std::move(link), "usb:" + uri.target, options.timeout);
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 Status list_usb(std::vector<FoundDevice>& out, std::string& why) noexcept {
-    try {
+    return guarded([&] {
         UsbTarget any;
         if (Status s = parse_target(DeviceUri{}, {}, any, why); s != Status::kOk) return s;
         Context context{nullptr, libusb_exit};
@@ -406,11 +403,7 @@ Status list_usb(std::vector<FoundDevice>& out, std::string& why) noexcept {
         }
         libusb_free_device_list(list, 1);
         return Status::kOk;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
+    });
 }
 
 }  // namespace apci
