@@ -6,24 +6,19 @@
 
 #include <span>
 
-#include "objif/dictionary.h"
 #include "rwmos/board.h"
+#include "rwmos/module_table.h"
 
 namespace rwmos {
 
-class BoardModule : public objif::TableModule<BoardModule> {
+class BoardModule : public BoardTableModule<BoardModule> {
 public:
-    explicit BoardModule(Board::State& state) noexcept : state_(state) {}
+    using BoardTableModule::BoardTableModule;
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "Board"; }
     std::span<const objif::Entry<BoardModule>> table() const noexcept;
 
 private:
-    using Status = objif::Status;
-    using Info = objif::ObjectInfo;
-    using Address = objif::Address;
-    using Value = objif::Value;
-
     Status read_firmware_version(const Info&, const Address&, Value& out);
     Status read_options(const Info&, const Address&, Value& out);
     Status read_axis_count(const Info&, const Address&, Value& out);
@@ -35,8 +30,6 @@ private:
     Status read_spooler_fill(const Info&, const Address&, Value& out);
     Status read_axis_position(const Info&, const Address& a, Value& out);
     Status write_rs(const Info&, const Address&, const Value&);
-
-    Board::State& state_;
 };
 
 }  // namespace rwmos

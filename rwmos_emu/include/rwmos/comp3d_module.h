@@ -7,25 +7,20 @@
 
 #include <span>
 
-#include "objif/dictionary.h"
 #include "rwmos/board.h"
+#include "rwmos/module_table.h"
 #include "rwmos/comp3d_state.h"
 
 namespace rwmos {
 
-class Comp3dModule : public objif::TableModule<Comp3dModule> {
+class Comp3dModule : public BoardTableModule<Comp3dModule> {
   public:
-    explicit Comp3dModule(Board::State& state) noexcept : state_(state) {}
+    using BoardTableModule::BoardTableModule;
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "3D compensation"; }
     std::span<const objif::Entry<Comp3dModule>> table() const noexcept;
 
   private:
-    using Status = objif::Status;
-    using Info = objif::ObjectInfo;
-    using Address = objif::Address;
-    using Value = objif::Value;
-
     Comp3dState& s() noexcept;
     // A refusal: LastError records it, the request answers WrongDeviceState (or InvalidValue
     // for vectors), nothing else changes.
@@ -54,8 +49,6 @@ class Comp3dModule : public objif::TableModule<Comp3dModule> {
     Status write_correction(const Info&, const Address& a, const Value& v);
 
     std::int32_t* mode_field(std::int32_t index) noexcept;
-
-    Board::State& state_;
 };
 
 }  // namespace rwmos

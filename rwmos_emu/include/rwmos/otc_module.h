@@ -9,16 +9,16 @@
 
 #include <span>
 
-#include "objif/dictionary.h"
 #include "rwmos/board.h"
+#include "rwmos/module_table.h"
 #include "rwmos/otc/errors.h"
 #include "rwmos/otc_state.h"
 
 namespace rwmos {
 
-class OtcModule : public objif::TableModule<OtcModule> {
+class OtcModule : public BoardTableModule<OtcModule> {
   public:
-    explicit OtcModule(Board::State& state) noexcept : state_(state) {}
+    using BoardTableModule::BoardTableModule;
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "OTC"; }
     // Only with the firmware option (BoardConfig::option_otc; Options bit 0x02).
@@ -26,11 +26,6 @@ class OtcModule : public objif::TableModule<OtcModule> {
     std::span<const objif::Entry<OtcModule>> table() const noexcept;
 
   private:
-    using Status = objif::Status;
-    using Info = objif::ObjectInfo;
-    using Address = objif::Address;
-    using Value = objif::Value;
-
     // Records `e` in LastError and answers `s` (the refusal of a rule).
     Status refuse(otc::Error e, Status s) noexcept;
     bool queue_busy() const noexcept;
@@ -93,8 +88,6 @@ class OtcModule : public objif::TableModule<OtcModule> {
     // Settings fixed while OTC is on (type, mode, ACC_WEIGHT, kinematics) answer this then.
     Status refuse_while_active(otc::Error e) noexcept;
     OtcControlUnit* unit_at(const Address& a) noexcept;
-
-    Board::State& state_;
 };
 
 }  // namespace rwmos

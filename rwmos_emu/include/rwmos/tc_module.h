@@ -7,15 +7,15 @@
 
 #include <span>
 
-#include "objif/dictionary.h"
 #include "rwmos/board.h"
+#include "rwmos/module_table.h"
 #include "rwmos/tc_state.h"
 
 namespace rwmos {
 
-class TcModule : public objif::TableModule<TcModule> {
+class TcModule : public BoardTableModule<TcModule> {
 public:
-    explicit TcModule(Board::State& state) noexcept : state_(state) {}
+    using BoardTableModule::BoardTableModule;
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "TC"; }
     // [APCI-TC] section 1: only with the firmware option optionTC.
@@ -30,11 +30,6 @@ public:
     objif::Status write(const objif::ObjectInfo& info, const objif::Address& a, const objif::Value& v) override;
 
 private:
-    using Status = objif::Status;
-    using Info = objif::ObjectInfo;
-    using Address = objif::Address;
-    using Value = objif::Value;
-
     TcState& tc() noexcept;
     // Index 0 -> the active group, 1..3 -> that group; kWrongDeviceState when
     // Index 0 names no group.
@@ -90,8 +85,6 @@ private:
     // Shared by the "only while inactive" objects (XAxis, YAxis, ZAxis,
     // WKZINDEX, Left, Right): refuse and flag InitError while Run is set.
     Status write_while_inactive(const Address& a, std::int32_t TcGroup::*field, std::int32_t value);
-
-    Board::State& state_;
 };
 
 }  // namespace rwmos

@@ -6,15 +6,15 @@
 
 #include <span>
 
-#include "objif/dictionary.h"
 #include "rwmos/board.h"
+#include "rwmos/module_table.h"
 #include "rwmos/tempcomp_state.h"
 
 namespace rwmos {
 
-class TempCompModule : public objif::TableModule<TempCompModule> {
+class TempCompModule : public BoardTableModule<TempCompModule> {
   public:
-    explicit TempCompModule(Board::State& state) noexcept : state_(state) {}
+    using BoardTableModule::BoardTableModule;
     std::int32_t bus() const noexcept override;
     std::string_view name() const noexcept override { return "Temperature compensation"; }
     // [SIN-TEMP]: "eine Option, die vorher freigeschaltet werden muß"
@@ -23,11 +23,6 @@ class TempCompModule : public objif::TableModule<TempCompModule> {
     std::span<const objif::Entry<TempCompModule>> table() const noexcept;
 
   private:
-    using Status = objif::Status;
-    using Info = objif::ObjectInfo;
-    using Address = objif::Address;
-    using Value = objif::Value;
-
     Status read_comp(const Info&, const Address& a, Value& out);
     Status write_comp(const Info&, const Address& a, const Value& v);
     Status read_int(const Info&, const Address& a, Value& out);
@@ -37,8 +32,6 @@ class TempCompModule : public objif::TableModule<TempCompModule> {
     Status read_offset(const Info&, const Address& a, Value& out);
 
     std::int32_t& int_field(const Address& a) noexcept;
-
-    Board::State& state_;
 };
 
 }  // namespace rwmos
