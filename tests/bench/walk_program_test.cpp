@@ -216,8 +216,8 @@ TEST(WalkProgram, KeepsItsRules) {
 
 TEST(WalkProgram, FirstBlocksRunInApcictl) {
     test_support::ScratchDir scratch("apci-walk-test-");
-    ASSERT_FALSE(scratch.dir.empty());
-    const std::string tools = scratch.dir + "/walk.tools";
+    ASSERT_FALSE(scratch.path().empty());
+    const std::string tools = scratch.path() + "/walk.tools";
     std::FILE* f = std::fopen(tools.c_str(), "w");
     ASSERT_NE(f, nullptr);
     std::fputs(apci::bench::contour_tools(), f);
