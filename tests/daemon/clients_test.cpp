@@ -43,17 +43,12 @@
 namespace {
 
 using test_support::contains;
+using test_support::count_of;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::TempDir;
 using daemon_test::RawClient;
 using namespace std::chrono_literals;
-
-std::size_t count_of(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-    return n;
-}
 
 std::unique_ptr<Daemon> start_with(std::vector<std::string> args, bool shm = false) {
     DaemonOptions o;

@@ -29,16 +29,11 @@
 namespace {
 
 using test_support::contains;
+using test_support::count_of;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using daemon_test::RawClient;
 using namespace std::chrono_literals;
-
-std::size_t count_of(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-    return n;
-}
 
 std::vector<std::uint8_t> clock_frame(std::uint32_t sequence, objif::ClockMode mode,
                                       std::uint64_t cycles) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Small helpers on text and files for the tests: a substring test, a whole file as text, a file
-// written from text, the names in a directory.
+// Small helpers on text and files for the tests: a substring test and count, lines, a whole file
+// as text, a file written from text, a CSV file of numbers, the names in a directory.
 #pragma once
 
 #include <dirent.h>
@@ -11,12 +11,28 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace test_support {
 
 // Whether `part` occurs in `text`.
 inline bool contains(std::string_view text, std::string_view part) {
     return text.find(part) != std::string_view::npos;
+}
+
+// How often `part` occurs in `text` (overlapping occurrences counted).
+inline std::size_t count_of(std::string_view text, std::string_view part) {
+    std::size_t n = 0;
+    for (auto at = text.find(part); at != std::string_view::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+}
+
+// The lines of `text`, without their '\n' (a last line without one counts too).
+inline std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
 }
 
 // The whole file as text; empty when it cannot be read.
@@ -31,6 +47,21 @@ inline std::string read_text(const std::string& path) {
 inline std::string write_text(const std::string& path, std::string_view text) {
     std::ofstream(path, std::ios::binary) << text;
     return path;
+}
+
+// The rows of a CSV file of numbers after its header line (apcictl run --csv).
+inline std::vector<std::vector<double>> read_csv(const std::string& path) {
+    std::vector<std::vector<double>> rows;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);  // the header
+    while (std::getline(in, line)) {
+        std::vector<double> row;
+        std::stringstream s(line);
+        for (std::string cell; std::getline(s, cell, ',');) row.push_back(std::stod(cell));
+        rows.push_back(row);
+    }
+    return rows;
 }
 
 // Whether something (a file, a directory, a dangling link) is at `path`.

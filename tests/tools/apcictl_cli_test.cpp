@@ -14,19 +14,14 @@
 
 #include "apcictl.h"
 #include "suggest.h"
+#include "text.h"
 
 namespace {
 
 using apcictl::closest_name;
 using apcictl::edit_distance;
+using test_support::lines_of;
 using test_support::ProcessResult;
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-}
 
 // ---- the distance and the closest name (pure functions)
 

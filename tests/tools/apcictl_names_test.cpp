@@ -24,14 +24,8 @@ namespace {
 
 using test_support::contains;
 using test_support::apcictl;
+using test_support::lines_of;
 using test_support::ProcessResult;
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-}
 
 // A script run in this process through apcictl's commands library, against `session`.
 struct InProcess {

@@ -141,15 +141,8 @@ TEST_F(ApcictlRun, CorrectionTableRowActsAsTheToolTablesDeltas) {
     for (const int block : {12, 13, 14})
         EXPECT_EQ(end_of_block(doc, block), end_of_block(table, block)) << block;
     // The header's command.
-    const std::string text = read_text(program);
-    const std::string marker = "; ./build/bin/apcictl ";
-    const std::size_t at = text.find(marker);
-    ASSERT_NE(at, std::string::npos);
-    std::stringstream cmd(
-        text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
-    std::vector<std::string> args;
-    for (std::string word; cmd >> word;)
-        args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+    std::vector<std::string> args = test_support::documented_command(program, kSource);
+    ASSERT_FALSE(args.empty());
     EXPECT_EQ(apcictl(args).exit_code, 0);
 }
 

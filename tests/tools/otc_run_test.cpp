@@ -22,6 +22,7 @@
 namespace {
 
 using test_support::contains;
+using test_support::read_csv;
 using test_support::read_text;
 using nlohmann::json;
 using test_support::apcictl;
@@ -32,21 +33,6 @@ const std::string kExamples = kSource + "/examples";
 constexpr double kEps = 1e-9;
 
 // The CSV of --csv: cycle, time, then the 8 axes.
-std::vector<std::vector<double>> read_csv(const std::string& path) {
-    std::vector<std::vector<double>> rows;
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);  // header
-    while (std::getline(in, line)) {
-        std::vector<double> row;
-        std::stringstream s(line);
-        std::string cell;
-        while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
-        rows.push_back(row);
-    }
-    return rows;
-}
-
 class OtcRun : public test_support::ScratchTest {
   protected:
     OtcRun() : ScratchTest("otc_run_") {}
@@ -71,15 +57,8 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
                               "tool_dir", "surf_norm_dir", "wr_quad_disc"};
     for (const char* name : programs) {
         const std::string file = kExamples + "/otc/" + name + ".nc";
-        const std::string text = read_text(file);
-        const std::string marker = "; ./build/bin/apcictl ";
-        const std::size_t at = text.find(marker);
-        ASSERT_NE(at, std::string::npos) << file;
-        std::stringstream cmd(
-            text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
-        std::vector<std::string> args;
-        for (std::string word; cmd >> word;)
-            args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+        std::vector<std::string> args = test_support::documented_command(file, kSource);
+        ASSERT_FALSE(args.empty()) << file;
         args.emplace_back("--json");
         args.push_back(path("out.json"));
         const ProcessResult r = apcictl(args);

@@ -27,6 +27,7 @@
 
 namespace {
 
+using test_support::read_csv;
 using test_support::read_text;
 using nlohmann::json;
 using test_support::apcictl;
@@ -38,21 +39,6 @@ const std::string kMachineData = kExamples + "/temperature/plc/machine_data.plc"
 constexpr double kEps = 1e-9;
 // CSV columns: cycle, time, then board axes 0..7 (X, Y, Z on 0, 1, 2 by default).
 constexpr std::size_t kCycle = 0, kX = 2, kY = 3, kZ = 4;
-
-std::vector<std::vector<double>> read_csv(const std::string& path) {
-    std::vector<std::vector<double>> rows;
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);  // header
-    while (std::getline(in, line)) {
-        std::vector<double> row;
-        std::stringstream s(line);
-        std::string cell;
-        while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
-        rows.push_back(row);
-    }
-    return rows;
-}
 
 class TempCompRun : public test_support::ScratchTest {
   protected:
@@ -81,15 +67,8 @@ class TempCompRun : public test_support::ScratchTest {
 // The example runs with the command its header documents (paths from the source tree).
 TEST_F(TempCompRun, ExampleRunsWithItsDocumentedCommand) {
     const std::string file = kExamples + "/temperature/spindle_growth.nc";
-    const std::string text = read_text(file);
-    const std::string marker = "; ./build/bin/apcictl ";
-    const std::size_t at = text.find(marker);
-    ASSERT_NE(at, std::string::npos);
-    std::stringstream cmd(
-        text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
-    std::vector<std::string> args;
-    for (std::string word; cmd >> word;)
-        args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+    std::vector<std::string> args = test_support::documented_command(file, kSource);
+    ASSERT_FALSE(args.empty());
     args.emplace_back("--json");
     args.push_back(path("out.json"));
     const ProcessResult r = apcictl(args);
