@@ -25,7 +25,7 @@ apci_install_run_deps
 # Builds only what it runs: apcictl and the libraries it links (no tests,
 # benchmarks or fuzzers; ./test.sh builds those in the same build/).
 if [[ ! -x build/bin/apcictl ]]; then
-  echo "run.sh: first build of apcictl and libapci (about 90 files): about 2.5 minutes on 2 cores;"
+  echo "run.sh: first build of apcictl and libapci (about 110 files): about 2.5 minutes on 2 cores;"
   echo "        later runs rebuild only what changed and start in seconds"
 fi
 # A build/ of its own leaves the tests out (./test.sh turns them on); one that

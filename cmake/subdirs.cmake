@@ -1,10 +1,8 @@
 # SPDX-License-Identifier: MIT
-# add_optional_subdirectories(a b c): adds each child that has a CMakeLists.txt,
-# so areas can land one at a time without editing a shared list.
-function(add_optional_subdirectories)
+# apci_add_subdirectories(a b c): add_subdirectory() for each; a directory that is missing is a
+# configure error, so no component leaves the build without a word.
+function(apci_add_subdirectories)
   foreach(dir IN LISTS ARGN)
-    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/CMakeLists.txt)
-      add_subdirectory(${dir})
-    endif()
+    add_subdirectory(${dir})
   endforeach()
 endfunction()

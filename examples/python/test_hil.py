@@ -77,7 +77,7 @@ def device(tmp_path_factory):
         return
     run_dir = tmp_path_factory.mktemp("hil")
     socket = run_dir / "emu.sock"
-    # Its registry entry goes into the test's directory too (docs/rwmos-emu.md, "Registry").
+    # Its registry entry goes into the test's directory too (docs/rwmos-emu.md, "Finding running daemons").
     env = dict(os.environ, APCI_RUNTIME_DIR=str(run_dir))
     daemon = subprocess.Popen([find_daemon(), "--socket", str(socket), "--log-level", "warn"],
                               env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)

@@ -19,6 +19,7 @@
 
 #include "process.h"
 #include "scratch_dir.h"
+#include "text.h"
 
 namespace {
 
@@ -28,17 +29,7 @@ using apci::bench::walk_program;
 // The benchmark's walk: bench_rs274's kBlocks.
 constexpr std::size_t kBenchBlocks = 100'000;
 
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> out;
-    std::size_t begin = 0;
-    while (begin < text.size()) {
-        std::size_t end = text.find('\n', begin);
-        if (end == std::string::npos) end = text.size();
-        out.push_back(text.substr(begin, end - begin));
-        begin = end + 1;
-    }
-    return out;
-}
+using test_support::lines_of;
 
 // A block without its "N<number> ".
 std::string without_n(const std::string& line) {
@@ -216,8 +207,8 @@ TEST(WalkProgram, KeepsItsRules) {
 
 TEST(WalkProgram, FirstBlocksRunInApcictl) {
     test_support::ScratchDir scratch("apci-walk-test-");
-    ASSERT_FALSE(scratch.dir.empty());
-    const std::string tools = scratch.dir + "/walk.tools";
+    ASSERT_FALSE(scratch.path().empty());
+    const std::string tools = scratch.path() + "/walk.tools";
     std::FILE* f = std::fopen(tools.c_str(), "w");
     ASSERT_NE(f, nullptr);
     std::fputs(apci::bench::contour_tools(), f);

@@ -56,8 +56,8 @@ std::string slight_corner(double i, double j, const char* arc_end, const char* l
 
 test_support::ProcessResult run_ours(const std::string& program) {
     test_support::ScratchDir scratch("apci-walk-rs274-");
-    if (scratch.dir.empty()) return {};
-    const std::string tools = scratch.dir + "/walk.tools";
+    if (scratch.path().empty()) return {};
+    const std::string tools = scratch.path() + "/walk.tools";
     std::FILE* f = std::fopen(tools.c_str(), "w");
     if (f == nullptr) return {};
     std::fputs(apci::bench::contour_tools(), f);

@@ -21,7 +21,7 @@ TEST(Normalised, UnitVectorIsAccepted) {
     EXPECT_NEAR(u.v.norm(), 1.0, 1e-15);
 }
 
-TEST(Normalised, FourDecimalVectorsOfTheSeedAreAcceptedAndMadeUnit) {
+TEST(Normalised, FourDecimalVectorsOfTheTnc3dExampleAreAcceptedAndMadeUnit) {
     // [TNC-3D], peripheral milling, block 12: written with 4 decimals.
     for (const V& v : {V(0.0, 0.9397, 0.3420), V(-0.0807, -0.3409, 0.9366)}) {
         const UnitVector u = normalised(v);
@@ -117,7 +117,7 @@ TEST(PeripheralSide, IsPerpendicularToMotionAndToolVector) {
     EXPECT_NEAR(s.n.dot(t), 0.0, 1e-15);
 }
 
-TEST(PeripheralSide, SeedBlock11RlGivesTheNormalOfBlock12) {
+TEST(PeripheralSide, PeripheralExampleBlock11RlGivesTheNormalOfBlock12) {
     // [TNC-3D], peripheral milling: block 11 "L ... RL M128" runs to block 12, whose LN gives
     // N = (0, 0.9397, 0.3420) and T = (-0.0807, -0.3409, 0.9366): RL with that T and the
     // motion from block 11 to block 12 is the same side as N.

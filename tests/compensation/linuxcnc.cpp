@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "linuxcnc.h"
+#include "text.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -18,16 +19,11 @@
 namespace apci::test {
 namespace {
 
+using test_support::read_text;
+
 bool is_file(const std::string& path) {
     struct stat st {};
     return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 void write_file(const std::string& path, const std::string& text) {
@@ -237,8 +233,8 @@ std::vector<Rs274Result> run_rs274(const Rs274& rs, const std::vector<std::strin
         Rs274Result& r = results[it->second.index];
         r.ran = WIFEXITED(status);
         r.exit_code = r.ran ? WEXITSTATUS(status) : -1;
-        r.moves = parse_moves(read_file(it->second.out), plane);
-        if (r.exit_code != 0) r.error = last_line(read_file(it->second.err));
+        r.moves = parse_moves(read_text(it->second.out), plane);
+        if (r.exit_code != 0) r.error = last_line(read_text(it->second.err));
         ::unlink(it->second.program.c_str());
         ::unlink(it->second.out.c_str());
         ::unlink(it->second.err.c_str());

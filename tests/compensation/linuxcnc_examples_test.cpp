@@ -53,10 +53,12 @@
 #include "linuxcnc.h"
 #include "rwmos/geometry/shared.h"
 #include "sha256.h"
+#include "text.h"
 
 namespace apci::test {
 namespace {
 
+using test_support::read_text;
 using rwmos::geom::closest_point;
 using rwmos::geom::distance_to;
 using rwmos::geom::is_arc;
@@ -87,13 +89,6 @@ const char* kSourceDir = APCI_SOURCE_DIR;
 
 const Rs274& rs274() {
     return test_rs274();
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 // ---- The inch programs in mm

@@ -3,7 +3,6 @@
 // words, not only the status name), the shell opens a link the daemon closed while it waited
 // for a line again, `run` publishes no output of a run the daemon's death cut short, and a
 // program from a pipe is read once (docs/apcictl.md).
-#include <dirent.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -22,36 +21,17 @@
 
 #include "daemon.h"
 #include "process.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::names_in;
+using test_support::read_text;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::TempDir;
 using namespace std::chrono_literals;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::set<std::string> names_in(const std::string& dir) {
-    std::set<std::string> names;
-    DIR* d = ::opendir(dir.c_str());
-    if (d == nullptr) return names;
-    while (const dirent* e = ::readdir(d)) {
-        const std::string name = e->d_name;
-        if (name != "." && name != "..") names.insert(name);
-    }
-    ::closedir(d);
-    return names;
-}
 
 // apcictl with its standard input fed line by line and its output read as it comes.
 class Apcictl {

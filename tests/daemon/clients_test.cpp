@@ -38,24 +38,17 @@
 #include "other_user.h"
 #include "process.h"
 #include "raw_client.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::count_of;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::TempDir;
 using daemon_test::RawClient;
 using namespace std::chrono_literals;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-std::size_t count_of(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-    return n;
-}
 
 std::unique_ptr<Daemon> start_with(std::vector<std::string> args, bool shm = false) {
     DaemonOptions o;

@@ -32,9 +32,11 @@
 #include "apci/apci.h"
 #include "objif/frame.h"
 #include "raw_client.h"
+#include "text.h"
 
 namespace {
 
+using test_support::count_of;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::TempDir;
@@ -44,12 +46,6 @@ using objif::Opcode;
 using objif::Status;
 
 constexpr objif::Address kRotAngle{1300, 0, 20, 0};
-
-std::size_t count_of(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-    return n;
-}
 
 // Every readable object a PCAP program can see, as text: the board state.
 std::vector<std::string> board_state(const std::string& uri) {

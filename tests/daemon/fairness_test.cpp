@@ -24,23 +24,16 @@
 #include "daemon.h"
 #include "objif/frame.h"
 #include "raw_client.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::count_of;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using daemon_test::RawClient;
 using namespace std::chrono_literals;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-std::size_t count_of(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-    return n;
-}
 
 std::vector<std::uint8_t> clock_frame(std::uint32_t sequence, objif::ClockMode mode,
                                       std::uint64_t cycles) {

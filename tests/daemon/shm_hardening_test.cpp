@@ -26,17 +26,16 @@
 #include "objif/mailbox.h"
 #include "objif/mapping_guard.h"
 #include "other_user.h"
+#include "text.h"
 
 namespace {
+
+using test_support::contains;
 
 namespace mb = objif::mailbox;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::TempDir;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 std::string bytes_of(const std::string& path) {
     std::ifstream f(path, std::ios::binary);

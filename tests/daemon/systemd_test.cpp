@@ -19,19 +19,14 @@
 
 #include "apci/apci.hpp"
 #include "daemon.h"
+#include "text.h"
 
 namespace {
 
+using test_support::read_text;
 using apci_test::daemon_binary;
 using apci_test::eventually;
 using apci_test::TempDir;
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // A descriptor closed when the test ends, however it ends.
 struct OwnedFd {
@@ -117,7 +112,7 @@ TEST(RwmosEmuSystemd, ServesTheSocketSystemdPassedAndLeavesItInPlace) {
     board = apci::Board();
     ::kill(daemon.pid, SIGTERM);
     EXPECT_EQ(daemon.wait(), 0);
-    const std::string log = read_file(dir.file("log"));
+    const std::string log = read_text(dir.file("log"));
     EXPECT_NE(log.find("on socket (from systemd) " + path), std::string::npos) << log;
     // The .socket unit owns the file: still there, and still the socket systemd listens on.
     struct stat st {};
@@ -134,14 +129,14 @@ TEST(RwmosEmuSystemd, SocketOptionMustNameThePassedSocket) {
     // .socket unit).
     Child same = spawn({"--socket", dir.file("activated.sock")}, dir, dir.file("log1"), fd);
     ASSERT_TRUE(eventually([&] {
-        return read_file(dir.file("log1")).find("from systemd") != std::string::npos;
+        return read_text(dir.file("log1")).find("from systemd") != std::string::npos;
     }));
     ::kill(same.pid, SIGTERM);
     EXPECT_EQ(same.wait(), 0);
     // Another path: refused, naming both; neither file is touched.
     Child other = spawn({"--socket", dir.file("other.sock")}, dir, dir.file("log2"), fd);
     EXPECT_EQ(other.wait(), 1);
-    const std::string log = read_file(dir.file("log2"));
+    const std::string log = read_text(dir.file("log2"));
     EXPECT_NE(log.find("the socket passed by systemd is " + dir.file("activated.sock") +
                        ", not --socket " + dir.file("other.sock")),
               std::string::npos)
@@ -158,8 +153,8 @@ TEST(RwmosEmuSystemd, PassedFdThatIsNotAListeningSocketIsRefused) {
     ASSERT_GE(fd, 0);
     Child daemon = spawn({}, dir, dir.file("log"), fd);
     EXPECT_EQ(daemon.wait(), 1);
-    EXPECT_NE(read_file(dir.file("log")).find("systemd (fd 3)"), std::string::npos)
-        << read_file(dir.file("log"));
+    EXPECT_NE(read_text(dir.file("log")).find("systemd (fd 3)"), std::string::npos)
+        << read_text(dir.file("log"));
 }
 
 // The journal's stream is stderr when $JOURNAL_STREAM names its device and inode.
@@ -176,7 +171,7 @@ TEST(RwmosEmuSystemd, LogLinesCarryTheirPriorityOnlyWhenStderrIsTheJournal) {
         Child daemon = spawn({"--socket", dir.file("s.sock"), "--log-level", "debug"}, dir, log,
                              -1, journal ? stream : std::string("1:1"));
         ASSERT_TRUE(eventually([&] {
-            return read_file(log).find("serving one board") != std::string::npos;
+            return read_text(log).find("serving one board") != std::string::npos;
         }));
         // A client that sends garbage: a warning.
         const int c = ::socket(AF_UNIX, SOCK_STREAM, 0);
@@ -184,14 +179,14 @@ TEST(RwmosEmuSystemd, LogLinesCarryTheirPriorityOnlyWhenStderrIsTheJournal) {
         addr.sun_family = AF_UNIX;
         std::strncpy(addr.sun_path, dir.file("s.sock").c_str(), sizeof addr.sun_path - 1);
         ASSERT_EQ(::connect(c, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0)
-            << std::strerror(errno) << " journal " << journal << "\n" << read_file(log);
+            << std::strerror(errno) << " journal " << journal << "\n" << read_text(log);
         ASSERT_EQ(::write(c, "garbage!garbage!garbage!", 24), 24);
         ASSERT_TRUE(eventually(
-            [&] { return read_file(log).find("garbage") != std::string::npos; }));
+            [&] { return read_text(log).find("garbage") != std::string::npos; }));
         ::close(c);
         ::kill(daemon.pid, SIGTERM);
         EXPECT_EQ(daemon.wait(), 0);
-        const std::string text = read_file(log);
+        const std::string text = read_text(log);
         std::istringstream lines(text);
         int seen = 0;
         for (std::string line; std::getline(lines, line); ++seen) {

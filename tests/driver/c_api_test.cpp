@@ -138,7 +138,19 @@ TEST(Open, OpenErrorTextIsPerThread) {
     EXPECT_NE(std::string(apci_last_error(nullptr)).find("tcp"), std::string::npos);
 }
 
-TEST(Close, AcceptsNull) { apci_close(nullptr); }
+// NULL is accepted and ignored (apci.h): nothing is freed, and the thread's last error (here a
+// failed open's) stays as it was.
+TEST(Close, AcceptsNull) {
+    apci_board* board = nullptr;
+    ASSERT_EQ(apci_open("tcp:x", &board), APCI_INVALID_ARGUMENT);
+    const std::string before = apci_last_error(nullptr);
+    ASSERT_NE(before, "");
+    apci_close(nullptr);
+    EXPECT_EQ(apci_last_error(nullptr), before);
+    // The library is still usable: the next open and close work.
+    ASSERT_EQ(apci_open("emu:", &board), APCI_OK);
+    apci_close(board);
+}
 
 // ---- typed access
 
@@ -293,7 +305,7 @@ TEST(Version, MatchesTheHeader) {
                                                std::to_string(APCI_VERSION_PATCH));
 }
 
-TEST(TcBitNames, AreTheSeedNames) {
+TEST(TcBitNames, AreTheApciTcNames) {
     EXPECT_STREQ(apci_tc_error_bit_name(0), "InitError");
     EXPECT_STREQ(apci_tc_error_bit_name(1), "KorrError");
     EXPECT_STREQ(apci_tc_error_bit_name(2), "CalcError");

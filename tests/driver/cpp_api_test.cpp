@@ -78,10 +78,29 @@ TEST(CppBoard, MoveTransfersTheOpenBoard) {
     EXPECT_EQ(c.read_int(wkzindex).value, 9);
 }
 
+// apci::object() names the object and leaves the handle at 0, "not yet resolved" (apci.h): the
+// first access resolves it, whichever board it is used on; a descriptor with a handle the board
+// did not give is refused.
 TEST(CppBoard, ObjectHelperLeavesTheHandleUnresolved) {
-    constexpr auto o = apci::object(1300, 1, 2, 3);
-    static_assert(o.bus == 1300 && o.device == 1 && o.index == 2 && o.subindex == 3 && o.handle == 0);
-    SUCCEED();
+    constexpr auto fixed = apci::object(1300, 1, 2, 3);
+    static_assert(fixed.bus == 1300 && fixed.device == 1 && fixed.index == 2 &&
+                  fixed.subindex == 3 && fixed.handle == 0);
+    auto radius = apci::object(APCI_TC_BUS, 1, 1, APCI_TC_RADIUS);
+    EXPECT_EQ(radius.handle, 0u);
+    apci::Board board("emu:");
+    ASSERT_TRUE(board) << board.last_error();
+    const auto first = board.read_double(radius);
+    ASSERT_EQ(first.status, APCI_OK) << board.last_error();
+    EXPECT_NE(radius.handle, 0u) << "the first access fills in the handle";
+    // Used again with its handle, and fresh on another board: both resolve.
+    EXPECT_EQ(board.read_double(radius).status, APCI_OK) << board.last_error();
+    apci::Board other("emu:");
+    auto fresh = apci::object(APCI_TC_BUS, 1, 1, APCI_TC_RADIUS);
+    EXPECT_EQ(other.read_double(fresh).status, APCI_OK) << other.last_error();
+    // A handle the board never gave is not taken for resolved.
+    auto forged = apci::object(APCI_TC_BUS, 1, 1, APCI_TC_RADIUS);
+    forged.handle = 0x7fff'fff0u;
+    EXPECT_NE(board.read_double(forged).status, APCI_OK);
 }
 
 }  // namespace

@@ -8,7 +8,7 @@ namespace tc = objif::map::tc;
 
 namespace {
 
-TEST(TcBits, ErrorBitsHaveTheSeedValues) {
+TEST(TcBits, ErrorBitsHaveTheApciTcValues) {
     EXPECT_EQ(tc::kInitError, 0x01);
     EXPECT_EQ(tc::kKorrError, 0x02);
     EXPECT_EQ(tc::kCalcError, 0x04);
@@ -17,12 +17,12 @@ TEST(TcBits, ErrorBitsHaveTheSeedValues) {
     EXPECT_EQ(tc::kErrorMask, 0x1F);
 }
 
-TEST(TcBits, StatusBitsHaveTheSeedValues) {
+TEST(TcBits, StatusBitsHaveTheApciTcValues) {
     EXPECT_EQ(tc::kRun, 1 << 0);
     EXPECT_EQ(tc::kProfMarked, 1 << 1);
 }
 
-TEST(TcBits, ErrorBitNamesAreTheSeedNames) {
+TEST(TcBits, ErrorBitNamesAreTheApciTcNames) {
     EXPECT_EQ(tc::error_bit_name(tc::kInitError), "InitError");
     EXPECT_EQ(tc::error_bit_name(tc::kKorrError), "KorrError");
     EXPECT_EQ(tc::error_bit_name(tc::kCalcError), "CalcError");
@@ -32,7 +32,7 @@ TEST(TcBits, ErrorBitNamesAreTheSeedNames) {
     EXPECT_EQ(tc::error_bit_name(0x03), "") << "only single bits have a name";
 }
 
-TEST(TcBits, StatusBitNamesAreTheSeedNames) {
+TEST(TcBits, StatusBitNamesAreTheApciTcNames) {
     EXPECT_EQ(tc::status_bit_name(tc::kRun), "Run");
     EXPECT_EQ(tc::status_bit_name(tc::kProfMarked), "ProfMarked");
     EXPECT_EQ(tc::status_bit_name(0x04), "");

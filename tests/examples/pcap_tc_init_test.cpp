@@ -4,14 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "process.h"
+#include "text.h"
 
 namespace {
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using test_support::contains;
 
-TEST(PcapTcInit, SeedSequenceRunsAndPrintsTheRegistersDecoded) {
+TEST(PcapTcInit, ApciTcSection25SequenceRunsAndPrintsTheRegistersDecoded) {
     const auto r = test_support::run_process({PCAP_TC_INIT_PATH});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_EQ(r.err, "");

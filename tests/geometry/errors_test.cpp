@@ -19,7 +19,7 @@ TEST(ErrorBits, ValuesAreThoseOfTable4) {
     EXPECT_EQ(bits(ErrorBit::kCenterError), 0x10u);
 }
 
-TEST(ErrorBits, NamesAreTheSeedNames) {
+TEST(ErrorBits, NamesAreTheApciTcNames) {
     EXPECT_EQ(error_bit_name(ErrorBit::kInitError), "InitError");
     EXPECT_EQ(error_bit_name(ErrorBit::kKorrError), "KorrError");
     EXPECT_EQ(error_bit_name(ErrorBit::kCalcError), "CalcError");

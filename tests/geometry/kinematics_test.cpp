@@ -91,7 +91,7 @@ TEST(BcHeadKinematics, RotationTurnsPlusZIntoTheToolDirectionAndIsOrthonormal) {
     }
 }
 
-TEST(BcHeadKinematics, SeedPeripheralBlock11PointsNearBlock12sToolVector) {
+TEST(BcHeadKinematics, Tnc3dPeripheralBlock11PointsNearBlock12sToolVector) {
     // [TNC-3D], peripheral milling: block 11 turns the head to C-267.9784 B-20.0115; block 12
     // (a little further along the wall) gives T = (-0.0807, -0.3409, 0.9366).
     const Eigen::Vector3d t = bc_head_tool_direction(-20.0115, -267.9784);

@@ -32,7 +32,7 @@ CorrectionTable table(std::string_view text) {
     return t ? t.value() : CorrectionTable{};
 }
 
-ToolTable seed_tools() {
+ToolTable tnc3d_tools() {
     Result<ToolTable> t = load_tool_table(kExamples + "/tools/3d_tools.tools");
     EXPECT_TRUE(t) << t.error().to_string();
     return t ? t.value() : ToolTable{};
@@ -45,7 +45,7 @@ std::string pgm(std::string_view blocks) {
 }
 
 struct Tables {
-    ToolTable tools = seed_tools();
+    ToolTable tools = tnc3d_tools();
     CorrectionTable corr = table("corr[1].dr -0.1\ncorr[1].dr2 -0.1\ncorr[2].dr 0.2\n");
     InterpreterOptions options() const {
         InterpreterOptions o;
@@ -191,7 +191,7 @@ TEST(CorrData, RowDeltasJoinTheToolChecks) {
 // The example programs through the front end: the correction table example names rows of
 // its table.
 TEST(CorrData, TheExampleProgramValidates) {
-    const ToolTable tools = seed_tools();
+    const ToolTable tools = tnc3d_tools();
     Result<CorrectionTable> corr = load_correction_table(kExamples + "/tools/3d_corrections.corr");
     ASSERT_TRUE(corr);
     InterpreterOptions o;

@@ -18,10 +18,8 @@
 #include "apci/nc/tools.h"
 #include "nc_test_util.h"
 #include "rng.h"
-#ifdef APCI_HAVE_GEOMETRY
 #include "rwmos/geometry/offset.h"
 #include "rwmos/geometry/shared.h"
-#endif
 
 namespace apci::nc {
 namespace {
@@ -248,7 +246,6 @@ TEST(Interpreter, CenterArcEndOffCircleIsError) {
     EXPECT_NE(error_of("G2 X10.0031 I5 F1\nM30"), "");
 }
 
-#ifdef APCI_HAVE_GEOMETRY
 // The front end refuses the arcs the board's TC module would refuse with CenterError, no more:
 // the same tolerance, and on either side of it both answer alike.
 TEST(Interpreter, ArcToleranceIsTheBoardsCenterErrorTolerance) {
@@ -263,7 +260,6 @@ TEST(Interpreter, ArcToleranceIsTheBoardsCenterErrorTolerance) {
         EXPECT_EQ(board == rwmos::geom::Reason::kNone, part < 1.0) << "radii differ by " << d;
     }
 }
-#endif
 
 TEST(Interpreter, CenterOnStartIsError) {
     EXPECT_EQ(error_of("G2 X0 I0 J0 F1\nM30"),

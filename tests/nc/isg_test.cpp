@@ -21,12 +21,12 @@ using test::events_of;
 using test::only;
 
 // [ISG-OTC] section 2.6: D1 the grinding disc, D2 a milling cutter.
-ToolTable seed_tools() {
+ToolTable grinding_tools() {
     Result<ToolTable> t = parse_tool_table(
         "wz[1].gueltig 1\nwz[1].typ 2\nwz[1].radius 300000\nwz[1].laenge 500000\n"
         "wz[1].grinding_wear_const 100000\nwz[1].grinding_max_infeed 200000\n"
         "wz[2].gueltig 1\nwz[2].typ 0\nwz[2].radius 50000\n",
-        "seed.tools");
+        "grinding.tools");
     EXPECT_TRUE(t) << t.error().to_string();
     return std::move(t).value();
 }
@@ -49,7 +49,7 @@ std::string parse_error(std::string_view line) {
 
 // ---- #OTC syntax: every form [ISG-OTC] writes
 
-TEST(Otc, SeedFormsParse) {
+TEST(Otc, EveryIsgOtcFormParses) {
     const OtcCommand on = otc_of("N50 #OTC ON (OTC-Anwahl)");
     EXPECT_EQ(on.on, true);
     EXPECT_FALSE(on.type.has_value());
@@ -123,7 +123,7 @@ TEST(Otc, IsgCommandsStandInABlockOfTheirOwn) {
 // [ISG-OTC] section 1: "Wird ein anderer Werkzeugtyp verwendet, so wird die Fehlermeldung
 // P-ERR-21391 ausgegeben."
 TEST(OtcRules, OtcOnNeedsAGrindingToolPErr21391) {
-    const ToolTable tools = seed_tools();
+    const ToolTable tools = grinding_tools();
     InterpreterOptions o;
     o.tools = &tools;
     EXPECT_EQ(
@@ -229,7 +229,7 @@ TEST(Kinematics, TrafoOnNeedsAKinematics) {
 // transformation the length acts on the plane's tool axis (pivot = point + length e_z), under it
 // along the tool (pivot = tip + length t(B)).
 TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
-    const ToolTable tools = seed_tools();  // D1: laenge 50 mm
+    const ToolTable tools = grinding_tools();  // D1: laenge 50 mm
     InterpreterOptions o;
     o.tools = &tools;
     const auto ev = events_of(
@@ -251,7 +251,7 @@ TEST(Kinematics, TrafoReExpressesThePositionAsTheToolTip) {
 // In the Z-X plane the length acts on Y outside the transformation: at B0 the tip is the pivot
 // one length below it along Z, the programmed point one length beside it along Y.
 TEST(Kinematics, TrafoTakesTheLengthOffThePlanesToolAxis) {
-    const ToolTable tools = seed_tools();
+    const ToolTable tools = grinding_tools();
     InterpreterOptions o;
     o.tools = &tools;
     const auto ev = events_of("D1\nG18\nG0 X0 Y0 Z300\n#KIN ID[4]\n#TRAFO ON\nG0 X1\nM30\n", o);
@@ -301,7 +301,7 @@ TEST(BAxis, TiltsTheHeadBeforeTheBlocksMove) {
 
 // ---- $FOR .. $ENDFOR
 
-TEST(ForLoop, SeedToolDirLoopRunsTwentyOneTimes) {
+TEST(ForLoop, ToolDirExampleLoopRunsTwentyOneTimes) {
     // [ISG-OTC] section 2.4: $FOR P1=0, 20, 1 with two moves.
     const auto ev = events_of(
         "F1000\nN90 $FOR P1=0, 20, 1\nN100 G91 G01 X10 Z-10 F2000\nN110 X-10 Z10\nN120 "
@@ -419,7 +419,7 @@ TEST(Variables, OtcActiveReadsTheOtcState) {
 // [ISG-OTC] section 2.8: "Sie kann auch im NC-Programm über die Variable V.G.WZ_AKT.WEAR_CONST
 // ... geschrieben bzw. gelesen werden."
 TEST(Variables, WearConstIsReadFromTheToolAndWritable) {
-    const ToolTable tools = seed_tools();
+    const ToolTable tools = grinding_tools();
     InterpreterOptions o;
     o.tools = &tools;
     const auto ev = events_of(
@@ -442,7 +442,7 @@ TEST(Variables, WearVariablesAreReadOnly) {
     EXPECT_NE(error_of("V.G.WZ_AKT.WEAR_CONST = -1\nM30\n"), "");
 }
 
-TEST(Variables, AllSeedNamesAreKnown) {
+TEST(Variables, AllIsgOtcNamesAreKnown) {
     for (const char* name : {"V.G.WZ_AKT.WEAR_RADIUS", "V.G.WZ_AKT.WEAR_RADIUS_CONT",
                              "V.G.WZ_AKT.WEAR[0]", "V.G.WZ_AKT.WEAR[2]", "V.G.WZ_AKT.WEAR.X",
                              "V.G.WZ_AKT.WEAR.Z", "V.G.WZ_AKT.WEAR_CONST", "V.G.OTC_ACTIVE"}) {

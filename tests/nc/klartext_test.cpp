@@ -10,9 +10,7 @@
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "nc_test_util.h"
-#ifdef APCI_HAVE_COMP3D
 #include "rwmos/comp3d/tolerances.h"
-#endif
 
 namespace apci::nc {
 namespace {
@@ -208,7 +206,7 @@ TEST(KlartextL, WordErrors) {
 // ---- LN ([TNC-3D], "Gerade LN") ----
 
 // [TNC-3D]'s face-milling example (examples/3d_face_milling.h): the three variants.
-TEST(KlartextLn, SeedFaceMillingExample) {
+TEST(KlartextLn, Tnc3dFaceMillingExample) {
     const ToolTable table = example_tools();
     const auto ev = run_file(kExamples + "/3d_face_milling.h", &table);
     const auto ln = only<VectorLineMove>(ev);
@@ -249,7 +247,7 @@ TEST(KlartextLn, WithoutTcpmAProgrammedTIsIgnored) {
 }
 
 // [TNC-3D]'s peripheral-milling example (examples/3d_peripheral.h): the three variants.
-TEST(KlartextLn, SeedPeripheralMillingExample) {
+TEST(KlartextLn, Tnc3dPeripheralMillingExample) {
     const ToolTable table = example_tools();
     const auto ev = run_file(kExamples + "/3d_peripheral.h", &table);
     // 11: L with rotary axes, M128, RL.
@@ -275,7 +273,7 @@ TEST(KlartextLn, SeedPeripheralMillingExample) {
     EXPECT_EQ(ln[1].feed, 500.0);
 }
 
-TEST(KlartextLn, SeedSyntaxExampleIsRefusedBecauseItsVectorsAreNotNormalised) {
+TEST(KlartextLn, Tnc3dSyntaxExampleIsRefusedBecauseItsVectorsAreNotNormalised) {
     // [TNC-3D], "Gerade LN", Eingabe (decimal commas and the typeset dash written as in a
     // file): |N| = 0.9152961, |T| = 0.9139454.
     EXPECT_EQ(error_of(pgm("2 LN X+31.737 Y+21.954 Z+33.165 NX+0.2637581 NY+0.0078922 "
@@ -317,7 +315,7 @@ TEST(KlartextLn, EveryToolVectorComponentMustBePresent) {
               "missing");
 }
 
-TEST(KlartextLn, WordsComeInTheSeedsOrder) {
+TEST(KlartextLn, WordsComeInTheOrderOfTnc3d) {
     EXPECT_EQ(error_of(pgm("2 LN Y+2 X+1 Z+0 NX+0 NY+0 NZ+1\n")),
               "prog.nc:3:10: 'X' after 'Y': LN words must come in the order X Y Z NX NY NZ TX TY "
               "TZ");
@@ -507,7 +505,7 @@ TEST(KlartextToolCall, SyntaxAndRules) {
 
 // ---- [TNC-3D]'s allowance example as a whole program ----
 
-TEST(Klartext, SeedAllowanceExampleRunsWithM107AndCentreReference) {
+TEST(Klartext, Tnc3dAllowanceExampleRunsWithM107AndCentreReference) {
     const ToolTable table = example_tools();
     const auto ev = run_file(kExamples + "/3d_allowance.h", &table);
     const auto calls = only<ToolCallDeltas>(ev);
@@ -561,12 +559,10 @@ TEST(Klartext, AFailedBlockChangesNoState) {
     EXPECT_EQ(after.feed, before.feed);
 }
 
-#ifdef APCI_HAVE_COMP3D
 TEST(Klartext, TolerancesAreTheBoardsOwn) {
     EXPECT_EQ(kVectorLengthTolerance, rwmos::comp3d::kUnitVectorTolerance);
     EXPECT_EQ(kNormalAgainstToolTolerance, rwmos::comp3d::kNormalAgainstToolTolerance);
 }
-#endif
 
 // [TNC-3D], "Gerade LN": "F, FMAX, FZ, FU oder F AUTO". FZ is per tooth (x the tool's teeth,
 // the TNC tool table's CUT, wz[n].cut, x S), FU per revolution (x S), F AUTO the TOOL CALL's F;

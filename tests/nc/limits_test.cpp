@@ -18,19 +18,17 @@
 #include "apci/nc/move_time.h"
 #include "apci/nc/tools.h"
 #include "nc_test_util.h"
+#include "text.h"
 
 namespace apci::nc {
 namespace {
 
+using test_support::contains;
 using test::error_of;
 using test::events_of;
 using test::only;
 
 const std::string kForty = "1234567890123456789012345678901234567890";
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // ---- Cycles per move
 

@@ -10,10 +10,12 @@
 
 #include "apci/nc/tools.h"
 #include "nc_test_util.h"
+#include "text.h"
 
 namespace apci::nc {
 namespace {
 
+using test_support::read_text;
 using test::error_of;
 using test::events_of;
 using test::only;
@@ -25,11 +27,6 @@ std::string temp_file(const std::string& name, const std::string& text) {
     std::string path = ::testing::TempDir() + name;
     std::ofstream(path, std::ios::binary) << text;
     return path;
-}
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 std::vector<Event> execute(const Program& p) {
@@ -214,7 +211,7 @@ TEST(Program, LinesAcrossTheReadBufferKeepTheirText) {
 }
 
 // wr_quad_disc.nc of [ISG-OTC] section 2.2 without its #OTC lines.
-TEST(Program, SeedProgramWrQuadDiscParses) {
+TEST(Program, IsgOtcProgramWrQuadDiscParses) {
     Result<ToolTable> tools = load_tool_table(kExamples + "/tools/wr_quad_disc.tools");
     ASSERT_TRUE(tools) << tools.error().to_string();
     InterpreterOptions o;
@@ -245,7 +242,7 @@ TEST(Program, SeedProgramWrQuadDiscParses) {
     EXPECT_EQ(std::get<CornerModeChange>(ev[6].data).mode, CornerMode::kCircular);
 }
 
-TEST(Program, SeedGeneralOtcExampleParses) {
+TEST(Program, IsgOtcGeneralExampleParses) {
     Result<Program> p = Program::load(kExamples + "/otc_general.nc");
     ASSERT_TRUE(p) << p.error().to_string();
     const auto ev = execute(p.value());
@@ -255,8 +252,8 @@ TEST(Program, SeedGeneralOtcExampleParses) {
     EXPECT_EQ(lines[1].end, V(1000, 0, 0));
 }
 
-TEST(Program, SeedProgramWithOtcLinesGivesTheOtcEventInItsPlace) {
-    std::string text = read_file(kExamples + "/wr_quad_disc.nc");
+TEST(Program, IsgOtcProgramWithOtcLinesGivesTheOtcEventInItsPlace) {
+    std::string text = read_text(kExamples + "/wr_quad_disc.nc");
     const std::size_t at = text.find("N55");
     ASSERT_NE(at, std::string::npos);
     text.insert(at, "N50 #OTC ON[RADIUS DISC]\n");

@@ -10,51 +10,7 @@
 #include <string>
 
 #include "apci/nc/program.h"
-
-namespace {
-
-std::size_t g_allocations = 0;
-std::size_t g_live_bytes = 0;
-std::size_t g_peak_bytes = 0;
-
-void* counted_alloc(std::size_t n) {
-    // Room in front for the size, so delete can keep the live byte count.
-    auto* p = static_cast<std::size_t*>(std::malloc(n + sizeof(std::max_align_t)));
-    if (p == nullptr) throw std::bad_alloc();
-    *p = n;
-    ++g_allocations;
-    g_live_bytes += n;
-    if (g_live_bytes > g_peak_bytes) g_peak_bytes = g_live_bytes;
-    return reinterpret_cast<char*>(p) + sizeof(std::max_align_t);
-}
-
-void counted_free(void* q) noexcept {
-    if (q == nullptr) return;
-    auto* p = reinterpret_cast<std::size_t*>(static_cast<char*>(q) - sizeof(std::max_align_t));
-    g_live_bytes -= *p;
-    std::free(p);
-}
-
-}  // namespace
-
-void* operator new(std::size_t n) {
-    return counted_alloc(n);
-}
-void* operator new[](std::size_t n) {
-    return counted_alloc(n);
-}
-void operator delete(void* p) noexcept {
-    counted_free(p);
-}
-void operator delete[](void* p) noexcept {
-    counted_free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-    counted_free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-    counted_free(p);
-}
+#include "heap_counter.h"
 
 namespace apci::nc {
 namespace {
@@ -99,9 +55,9 @@ struct Footprint {
 // Both passes: validation (Program::load) and execution (every event pulled).
 Footprint run_both_passes(const std::string& path) {
     Footprint fp;
-    const std::size_t base_allocations = g_allocations;
-    const std::size_t base_live = g_live_bytes;
-    g_peak_bytes = g_live_bytes;
+    const std::size_t base_allocations = test_support::heap_allocations();
+    const std::size_t base_live = test_support::heap_live_bytes();
+    test_support::reset_heap_peak();
     {
         Result<Program> program = Program::load(path);
         EXPECT_TRUE(program) << program.error().to_string();
@@ -119,13 +75,13 @@ Footprint run_both_passes(const std::string& path) {
             }
             ++fp.events;
             if (ev.data.index() <= 2) ++fp.moves;
-            if (fp.events == 1000) at_warmup = g_allocations;
+            if (fp.events == 1000) at_warmup = test_support::heap_allocations();
         }
-        fp.allocations_after_warmup = g_allocations - at_warmup;
+        fp.allocations_after_warmup = test_support::heap_allocations() - at_warmup;
         EXPECT_EQ(fp.events, program.value().summary().events);
     }
-    fp.allocations = g_allocations - base_allocations;
-    fp.peak_bytes = g_peak_bytes - base_live;
+    fp.allocations = test_support::heap_allocations() - base_allocations;
+    fp.peak_bytes = test_support::heap_peak_bytes() - base_live;
     return fp;
 }
 
@@ -149,10 +105,10 @@ TEST(Streaming, MillionBlockProgramUsesFlatMemory) {
 
 TEST(Streaming, AllocationCounterSeesAllocations) {
     // Guards the test above: the counter must notice a container that grows.
-    const std::size_t before = g_allocations;
+    const std::size_t before = test_support::heap_allocations();
     std::string grows;
     for (int i = 0; i < 100; ++i) grows += "0123456789";
-    EXPECT_GT(g_allocations, before);
+    EXPECT_GT(test_support::heap_allocations(), before);
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ ToolTable table(std::string_view text) {
 }
 
 // [ISG-OTC] section 2.6: the tool data of the grinding disc, kept raw and converted.
-TEST(ToolTable, SeedToolDataRawAndConverted) {
+TEST(ToolTable, GrindingDiscToolDataRawAndConverted) {
     Result<ToolTable> t = load_tool_table(kExamples + "/tools/wr_quad_disc.tools");
     ASSERT_TRUE(t) << t.error().to_string();
     const ToolData* d1 = t.value().find(1);
@@ -208,7 +208,7 @@ TEST(ToolTable, WholeNumberFields) {
     EXPECT_EQ(table("wz[1].typ 2.0").find(1)->typ, 2);
 }
 
-TEST(ToolTable, RangesFromTheSeed) {
+TEST(ToolTable, RangesOfTheToolListFields) {
     EXPECT_EQ(error("wz[1].typ 4"), "t.tools:1:11: wz[1].typ 4 out of range 0..3");
     EXPECT_EQ(error("wz[1].gueltig 2"), "t.tools:1:15: wz[1].gueltig 2 out of range 0..1");
     EXPECT_EQ(error("wz[1].mass_einheit -1"),

@@ -18,10 +18,10 @@ namespace otc = rwmos::otc;
 
 // [ISG-OTC] section 2.6: typ 2, laenge 500000 and radius 300000 (0.1 um: 50 mm and 30 mm),
 // grinding_wear_const 100000 (0.1 um/m), grinding_max_infeed 200000 (0.1 um), tilt 0.
-inline constexpr double kSeedWearConst = 100000.0;
-inline constexpr double kSeedMaxInfeed = 200000.0;
-inline constexpr double kSeedRadius = 30.0;
-inline constexpr double kSeedLength = 50.0;
+inline constexpr double kGrindingWearConst = 100000.0;
+inline constexpr double kGrindingMaxInfeed = 200000.0;
+inline constexpr double kGrindingDiscRadius = 30.0;
+inline constexpr double kGrindingDiscLength = 50.0;
 inline constexpr std::int32_t kTool = 1;
 
 struct OtcRig : Rig {
@@ -41,7 +41,7 @@ struct OtcRig : Rig {
     // The tool data the host writes at a tool change: OTC's current tool and TC's tool table
     // (every group, WKZINDEX = the tool number).
     void grinding_tool(std::int32_t type = otc::kGrindingToolType,
-                       double wear_const = kSeedWearConst, double max_infeed = kSeedMaxInfeed,
+                       double wear_const = kGrindingWearConst, double max_infeed = kGrindingMaxInfeed,
                        double tilt_units = 0.0) {
         using namespace rwmos::otc;
         ASSERT_EQ(otc_int(kDevTool, kIdxToolNumber, 0, kTool), Status::kOk);
@@ -50,8 +50,8 @@ struct OtcRig : Rig {
         ASSERT_EQ(otc_double(kDevTool, kIdxToolMaxInfeed, 0, max_infeed), Status::kOk);
         ASSERT_EQ(otc_double(kDevTool, kIdxToolTiltAngle, 0, tilt_units), Status::kOk);
         for (auto& g : board.state().tc.groups) {
-            g.tools[kTool].radius = kSeedRadius;
-            g.tools[kTool].length = kSeedLength;
+            g.tools[kTool].radius = kGrindingDiscRadius;
+            g.tools[kTool].length = kGrindingDiscLength;
         }
     }
     Status set_type(otc::ProcessingType t) {

@@ -42,7 +42,7 @@ Profile line_to(std::uint32_t tag, const AxisVector& target, double feed,
 
 // N40 G00 X0 Y0 Z0 / N50 #OTC ON [LENGTH] / N60 G1 X1000 F10000 / N70 #OTC OFF, with the tool
 // data of section 2.6 (grinding_wear_const 100000 x 0.1 um/m).
-TEST_F(OtcBoard, SeedLengthExampleWearsTenMillimetresLinearlyOnTheThirdAxis) {
+TEST_F(OtcBoard, IsgOtcLengthExampleWearsTenMillimetresLinearlyOnTheThirdAxis) {
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);
     ASSERT_EQ(board.set_trace(true, 1 << 14), Status::kOk);
@@ -91,7 +91,7 @@ TEST_F(OtcBoard, UnderPuMicrometreTheWearIsMmAndFoldsIntoTheToolInMicrometres) {
 
 // [ISG-OTC] section 2.3.1: a tilted disc splits the wear over two main axes (G17: X and Z).
 TEST_F(OtcBoard, TiltedDiscSplitsTheWearIntoSinAndCosParts) {
-    grinding_tool(otc::kGrindingToolType, kSeedWearConst, kSeedMaxInfeed, 300000.0);  // 30 degrees
+    grinding_tool(otc::kGrindingToolType, kGrindingWearConst, kGrindingMaxInfeed, 300000.0);  // 30 degrees
     ASSERT_EQ(otc_on(), Status::kOk);
     spool_ok(line(60, 1000.0, 0.0, 10000.0));
     board.step(3000);  // half way
@@ -117,7 +117,7 @@ TEST_F(OtcBoard, TiltedDiscSplitsTheWearIntoSinAndCosParts) {
 // RADIUS wears only on the compensated contour, the tool-centre path: G41 on a CCW arc of
 // radius 20 with a tool of radius 5 runs on radius 15 (the approach and departure wear nothing).
 TEST(OtcWear, ArcsAndHelicesWearTheWearConstantTimesTheirLengthOnTheMainAxes) {
-    constexpr double kRatio = kSeedWearConst * 1e-7;  // wear per unit of path
+    constexpr double kRatio = kGrindingWearConst * 1e-7;  // wear per unit of path
     constexpr double kArcRadius = 20.0;
     constexpr double kToolRadius = 5.0;
     constexpr double kPi = std::numbers::pi;
@@ -173,9 +173,9 @@ TEST(OtcWear, ArcsAndHelicesWearTheWearConstantTimesTheirLengthOnTheMainAxes) {
                 // The fold: RADIUS and SURF_NORM_DIR shorten the radius, LENGTH and TOOL_DIR
                 // the length (docs/otc.md section 6).
                 const bool into_radius = radius || type == otc::ProcessingType::kSurfNormDir;
-                EXPECT_NEAR(tool.radius, kSeedRadius - (into_radius ? expected : 0.0), kEps)
+                EXPECT_NEAR(tool.radius, kGrindingDiscRadius - (into_radius ? expected : 0.0), kEps)
                     << label;
-                EXPECT_NEAR(tool.length, kSeedLength - (into_radius ? 0.0 : expected), kEps)
+                EXPECT_NEAR(tool.length, kGrindingDiscLength - (into_radius ? 0.0 : expected), kEps)
                     << label;
             }
         }
@@ -186,7 +186,7 @@ TEST(OtcWear, ArcsAndHelicesWearTheWearConstantTimesTheirLengthOnTheMainAxes) {
 TEST(OtcClock, UnobservedRunsGiveTheSameBitsAsTracedOnes) {
     auto run_rig = [](bool trace, std::uint64_t first_step) {
         OtcRig r;
-        r.grinding_tool(otc::kGrindingToolType, kSeedWearConst, kSeedMaxInfeed, 123456.0);
+        r.grinding_tool(otc::kGrindingToolType, kGrindingWearConst, kGrindingMaxInfeed, 123456.0);
         EXPECT_EQ(r.otc_on(), Status::kOk);
         if (trace) {
             EXPECT_EQ(r.board.set_trace(true, 1 << 16), Status::kOk);
@@ -238,7 +238,7 @@ class WrQuadDisc : public OtcBoard {
   protected:
     void SetUp() override {
         using namespace rwmos::tc;
-        setup_group(kSeedRadius, /*left=*/false);  // N55 G42
+        setup_group(kGrindingDiscRadius, /*left=*/false);  // N55 G42
         grinding_tool();
         ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubWkzIndex, kTool), Status::kOk);  // N22 D1
         ASSERT_EQ(write_int(kBus, kDevGroups, 1, kSubCornerMode, kCornerLinear),
@@ -340,7 +340,7 @@ TEST_F(WrQuadDisc, OffsetRampsOutAfterTheDepartureAndTheWearFoldsIntoTheRadius) 
 // contour move's normal is weighed in from 0 to 1. A fast ramp makes the offset follow its
 // target, so the channel unit's 1 mm shows the weight cycle by cycle.
 TEST_F(OtcBoard, RadiusNormalIsWeighedInAlongTheApproach) {
-    setup_group(kSeedRadius, /*left=*/true);  // the approach runs 30 mm
+    setup_group(kGrindingDiscRadius, /*left=*/true);  // the approach runs 30 mm
     grinding_tool();
     ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxRampVelocity, 0, 1000.0), Status::kOk);
     ASSERT_EQ(otc_double(otc::kDevChannel, otc::kIdxRampAcceleration, 0, 1.0e6), Status::kOk);
@@ -410,7 +410,7 @@ TEST_F(OtcBoard, ToolDirOffsetFollowsTheBHeadToolDirection) {
     ASSERT_EQ(otc_off(), Status::kOk);  // N120 #OTC OFF
     EXPECT_NEAR(wear(0), std::sqrt(0.5), kEps);
     EXPECT_NEAR(wear(2), std::sqrt(0.5), kEps);
-    EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kSeedLength - 1.0, kEps);
+    EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kGrindingDiscLength - 1.0, kEps);
 }
 
 // ---- SURF_NORM_DIR ([ISG-OTC] section 2.5)
@@ -452,7 +452,7 @@ TEST_F(OtcBoard, SurfNormDirOffsetIsAlongTheSurfaceNormal) {
     }
     EXPECT_GT(distinct, 6);
     ASSERT_EQ(otc_off(), Status::kOk);
-    EXPECT_NEAR(board.state().tc.group(1).tools[kTool].radius, kSeedRadius - 0.5, kEps);
+    EXPECT_NEAR(board.state().tc.group(1).tools[kTool].radius, kGrindingDiscRadius - 0.5, kEps);
 }
 
 }  // namespace

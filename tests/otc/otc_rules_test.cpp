@@ -109,7 +109,7 @@ TEST_F(OtcBoard, TrafoNeedsAKinematics) {
 // [ISG-OTC] section 2.2 "Hinweis": "Bei der Abwahl muss zwingend die Sequenz G40 vor #OTC OFF
 // eingehalten werden."
 TEST_F(OtcBoard, G40MustComeBeforeOtcOff) {
-    setup_group(kSeedRadius, /*left=*/true);
+    setup_group(kGrindingDiscRadius, /*left=*/true);
     grinding_tool();
     ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
     ASSERT_EQ(otc_on(), Status::kOk);
@@ -129,7 +129,7 @@ TEST_F(OtcBoard, G40MustComeBeforeOtcOff) {
 
 // The rule belongs to RADIUS ([ISG-OTC] section 2.2); other types may end with TRC on.
 TEST_F(OtcBoard, G40RuleBindsOnlyRadius) {
-    setup_group(kSeedRadius);
+    setup_group(kGrindingDiscRadius);
     grinding_tool();
     ASSERT_EQ(otc_on(), Status::kOk);  // LENGTH
     activate(1);
@@ -153,7 +153,7 @@ TEST_F(OtcBoard, RapidMovesAreWearFree) {
 // (a traverse): under G41, RADIUS CONT, the G01 contour N50 (100 mm) wears 1 mm, the traverse
 // N40 (450 mm) and its transition nothing.
 TEST_F(OtcBoard, ATraverseUnderRadiusCompensationIsWearFree) {
-    setup_group(kSeedRadius, /*left=*/true);
+    setup_group(kGrindingDiscRadius, /*left=*/true);
     ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubSelectionMode,
                         139),
               Status::kOk);  // G139, as NC programs run: the first profile is the approach
@@ -170,7 +170,7 @@ TEST_F(OtcBoard, ATraverseUnderRadiusCompensationIsWearFree) {
     ASSERT_EQ(deactivate(1), Status::kOk);
     spool_ok(line(60, 650.0, 0.0, 10000.0));  // the departure
     run_and_off();
-    EXPECT_NEAR(wear_radius(), 100.0 * kSeedWearConst * 1e-7, kEps);
+    EXPECT_NEAR(wear_radius(), 100.0 * kGrindingWearConst * 1e-7, kEps);
     EXPECT_NEAR(wear_radius_cont(), 1.0, kEps);
 }
 
@@ -193,7 +193,7 @@ TEST(OtcWearByRole, ATraverseIsWearFreeForEveryType) {
         r.spool_ok(line(3, 600.0, 0.0, 10000.0));
         ASSERT_EQ(r.deactivate(1), Status::kOk);
         r.run();
-        EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), 150.0 * kSeedWearConst * 1e-7,
+        EXPECT_NEAR(r.board.state().otc_engine.continuous_wear(), 150.0 * kGrindingWearConst * 1e-7,
                     kEps)
             << otc::processing_type_name(type);
     }
@@ -202,9 +202,9 @@ TEST(OtcWearByRole, ATraverseIsWearFreeForEveryType) {
 // [ISG-OTC] section 2.2 "Hinweis": the approach after G41/G42 and the move after G40 are
 // wear-free; only the compensated contour (with its transitions) wears the radius.
 TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
-    setup_group(kSeedRadius, /*left=*/true);
+    setup_group(kGrindingDiscRadius, /*left=*/true);
     grinding_tool();
-    ASSERT_EQ(board.state().tc.group(1).tool().radius, kSeedRadius);  // tool 0, by setup_group
+    ASSERT_EQ(board.state().tc.group(1).tool().radius, kGrindingDiscRadius);  // tool 0, by setup_group
     ASSERT_EQ(set_type(otc::ProcessingType::kRadius), Status::kOk);
     ASSERT_EQ(set_mode(otc::Mode::kCont), Status::kOk);
     ASSERT_EQ(otc_on(), Status::kOk);
@@ -224,7 +224,7 @@ TEST_F(OtcBoard, TrcApproachAndDepartureAreWearFree) {
     }
     EXPECT_GT(other, 900.0);  // the return run N80 and the approach/departure
     run_and_off();
-    EXPECT_NEAR(wear_radius_cont(), contour * kSeedWearConst * 1e-7, kEps);
+    EXPECT_NEAR(wear_radius_cont(), contour * kGrindingWearConst * 1e-7, kEps);
     EXPECT_NEAR(wear_radius(), wear_radius_cont(), kEps);
 }
 
@@ -247,11 +247,11 @@ TEST_F(OtcBoard, RadiusWearOnlyWithRadiusCompensation) {
 // compensation, the move after the departure wear. G41 G1 X100 (104.4 mm), G1 X200 (100 mm),
 // G40 G1 X300 (104.4 mm), G1 X400 (100 mm).
 TEST(OtcWearByRole, UnderG139TheG41AndG40BlocksMovesAreWearFree) {
-    constexpr double kRatio = kSeedWearConst * 1e-7;
+    constexpr double kRatio = kGrindingWearConst * 1e-7;
     for (auto type : {otc::ProcessingType::kRadius, otc::ProcessingType::kLength,
                       otc::ProcessingType::kToolDir, otc::ProcessingType::kSurfNormDir}) {
         OtcRig r;
-        r.setup_group(kSeedRadius, /*left=*/true);
+        r.setup_group(kGrindingDiscRadius, /*left=*/true);
         ASSERT_EQ(r.write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1,
                               rwmos::tc::kSubSelectionMode, 139),
                   Status::kOk);
@@ -278,7 +278,7 @@ TEST(OtcWearByRole, UnderG139TheG41AndG40BlocksMovesAreWearFree) {
 // type and in both modes with continuous wear; the wear each move adds, taken as it ends,
 // against its path length worked out by hand.
 TEST(OtcWearByRole, RapidApproachAndDepartureAreWearFreeAndRadiusWearsOnlyTheContour) {
-    constexpr double kRatio = kSeedWearConst * 1e-7;  // wear per unit of path
+    constexpr double kRatio = kGrindingWearConst * 1e-7;  // wear per unit of path
     // G00 X0 Y-20 / G01 Y0 / G41 (tool radius 5, G26) G01 X50 / X50 Y-50 / G40.
     struct Expected {
         SegmentRole role;
@@ -351,7 +351,7 @@ TEST_F(OtcBoard, WearConstOverridesTheToolsModallyAndWearConstToolSwitchesBack) 
     EXPECT_NEAR(offset()[2], -10.0, kEps);
     ASSERT_EQ(otc_int(otc::kDevChannel, otc::kIdxWearConstSource, 0, 0),
               Status::kOk);  // WEAR_CONST_TOOL
-    EXPECT_EQ(otc_read_double(otc::kDevChannel, otc::kIdxEffectiveWearConst), kSeedWearConst);
+    EXPECT_EQ(otc_read_double(otc::kDevChannel, otc::kIdxEffectiveWearConst), kGrindingWearConst);
     spool_ok(line(3, 1000.0, 0.0, 10000.0));
     run_and_off();
     EXPECT_NEAR(wear(2), 20.0, kEps);
@@ -388,11 +388,11 @@ TEST_F(OtcBoard, LengthFoldWhileTheGroupCompensatesUnderLengthModeZeroNeverLifts
     spool_ok(line(2, 200.0, 0.0, 10000.0));
     run();
     ASSERT_TRUE(prof_marked(1));                       // N2 held: the group compensates
-    ASSERT_NEAR(position()[2], kSeedLength - 1.0, kEps);  // N1's 100 mm: 1 mm
+    ASSERT_NEAR(position()[2], kGrindingDiscLength - 1.0, kEps);  // N1's 100 mm: 1 mm
     ASSERT_EQ(otc_off(), Status::kOk);
     EXPECT_NEAR(wear(2), 1.0, kEps);
     for (const auto& g : board.state().tc.groups)
-        EXPECT_NEAR(g.tools[kTool].length, kSeedLength - 1.0, kEps);
+        EXPECT_NEAR(g.tools[kTool].length, kGrindingDiscLength - 1.0, kEps);
     spool_ok(line(3, 400.0, 0.0, 10000.0));
     ASSERT_EQ(deactivate(1), Status::kOk);
     double previous = position()[2];
@@ -406,7 +406,7 @@ TEST_F(OtcBoard, LengthFoldWhileTheGroupCompensatesUnderLengthModeZeroNeverLifts
         if (position()[0] >= 400.0) departing = true;  // the departure: the length goes out
         if (!departing) {
             EXPECT_LE(z, previous + 1e-12) << "cycle " << cycles;
-            EXPECT_NEAR(z, kSeedLength - 1.0, kEps) << "cycle " << cycles;
+            EXPECT_NEAR(z, kGrindingDiscLength - 1.0, kEps) << "cycle " << cycles;
         }
         previous = z;
         ASSERT_LT(cycles, 1000000);
@@ -418,7 +418,7 @@ TEST_F(OtcBoard, LengthFoldWhileTheGroupCompensatesUnderLengthModeZeroNeverLifts
 // run), OTC on in LENGTH CONT.
 struct LengthAlwaysBoard : OtcBoard {
     void length_always_on() {
-        setup_group(kSeedRadius, /*left=*/true);
+        setup_group(kGrindingDiscRadius, /*left=*/true);
         ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex,
                             kTool),
                   Status::kOk);
@@ -439,14 +439,14 @@ TEST_F(LengthAlwaysBoard, TheToolLengthComingOnIsNoGroundPath) {
     length_always_on();
     spool_ok(line(1, 200.0, 0.0, 10000.0));
     run();
-    EXPECT_EQ(position()[2], kSeedLength - 2.0);  // the length on Z, worn by 2 mm
+    EXPECT_EQ(position()[2], kGrindingDiscLength - 2.0);  // the length on Z, worn by 2 mm
     ASSERT_EQ(otc_off(), Status::kOk);
     EXPECT_NEAR(wear(2), 2.0, kEps);
     ASSERT_EQ(otc_on(), Status::kOk);
     spool_ok(line(2, 400.0, 0.0, 10000.0));
     run_and_off();
     EXPECT_NEAR(wear(2), 4.0, kEps);
-    EXPECT_NEAR(position()[2], kSeedLength - 4.0, kEps);
+    EXPECT_NEAR(position()[2], kGrindingDiscLength - 4.0, kEps);
 }
 
 // The same on an arc: a quarter circle of radius 100 (counter-clockwise from (0, 0) about
@@ -456,8 +456,8 @@ TEST_F(LengthAlwaysBoard, AnArcThatTakesTheToolLengthWearsItsArcLength) {
     length_always_on();
     spool_ok(arc(1, true, 100.0, 100.0, 0.0, 100.0, 10000.0));
     run_and_off();
-    EXPECT_NEAR(wear(2), 100.0 * std::numbers::pi / 2.0 * kSeedWearConst * 1e-7, kEps);
-    EXPECT_NEAR(position()[2], kSeedLength - 100.0 * std::numbers::pi / 2.0 * 1e-2, kEps);
+    EXPECT_NEAR(wear(2), 100.0 * std::numbers::pi / 2.0 * kGrindingWearConst * 1e-7, kEps);
+    EXPECT_NEAR(position()[2], kGrindingDiscLength - 100.0 * std::numbers::pi / 2.0 * 1e-2, kEps);
 }
 
 // [ISG-OTC] section 2.1, WEAR_CONST "wirkt modal": a change acts from the next profile spooled,
@@ -510,7 +510,7 @@ TEST_F(OtcBoard, WearConstToolActsFromTheNextProfile) {
 // Under G41 the spooler holds the contour element back: a change written while N2 (50 mm) is
 // held acts from N3 (100 mm) on. RADIUS CONT, G139: 0.5 + 2 mm.
 TEST_F(OtcBoard, AWearConstChangeSparesTheHeldProfile) {
-    setup_group(kSeedRadius, /*left=*/true);
+    setup_group(kGrindingDiscRadius, /*left=*/true);
     ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubSelectionMode,
                         139),
               Status::kOk);
@@ -572,7 +572,7 @@ TEST_F(OtcBoard, DiscModeAccruesNoContinuousWear) {
 // [ISG-OTC] section 2.6: "Wenn grinding_max_infeed nicht gesetzt wird, kann kein diskreter
 // Versatz beauftragt werden."
 TEST_F(OtcBoard, WithoutMaxInfeedNoDiscreteOffsetCanBeCommanded) {
-    grinding_tool(otc::kGrindingToolType, kSeedWearConst, 0.0);
+    grinding_tool(otc::kGrindingToolType, kGrindingWearConst, 0.0);
     const auto before = emu_test::snapshot(board);
     EXPECT_EQ(otc_int(otc::kDevAxisUnits, 2, otc::kSubCommand, 1), Status::kValueTooHigh);
     EXPECT_EQ(otc_int(otc::kDevChannel, otc::kIdxRadiusOffsetUnit, otc::kSubCommand, -1),
@@ -715,13 +715,13 @@ TEST_F(OtcBoard, RepeatedOnOffAccumulatesTheWear) {
         spool_ok(line(1, i % 2 == 0 ? 500.0 : 0.0, 0.0, 10000.0));
         run_and_off();
         EXPECT_NEAR(wear(2), 5.0 * (i + 1), kEps) << i;
-        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kSeedLength - 5.0 * (i + 1),
+        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].length, kGrindingDiscLength - 5.0 * (i + 1),
                     kEps);
     }
 }
 
 TEST_F(OtcBoard, RadiusWearVariablesAfterOneAndSeveralCycles) {
-    setup_group(kSeedRadius, /*left=*/true);
+    setup_group(kGrindingDiscRadius, /*left=*/true);
     grinding_tool();
     ASSERT_EQ(write_int(rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubWkzIndex, kTool),
               Status::kOk);
@@ -737,7 +737,7 @@ TEST_F(OtcBoard, RadiusWearVariablesAfterOneAndSeveralCycles) {
         run_and_off();
         EXPECT_NEAR(wear_radius_cont(), 5.1 * i, kEps) << i;
         EXPECT_NEAR(wear_radius(), 5.2 * i, kEps) << i;
-        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].radius, kSeedRadius - 5.2 * i, kEps);
+        EXPECT_NEAR(board.state().tc.group(1).tools[kTool].radius, kGrindingDiscRadius - 5.2 * i, kEps);
         board.step(50000);  // let the discrete offset ramp out
     }
 }
@@ -790,7 +790,7 @@ TEST_F(OtcBoard, OtcOffConsumesTheDiscreteCommands) {
 // docs/otc.md section 6, LENGTH: length -= W + sum of D_i d_i: of the discrete offsets, only
 // their parts along the disc axis shorten the tool. A 30-degree disc: d = (sin 30, 0, cos 30).
 TEST_F(OtcBoard, LengthFoldTakesTheDiscreteOffsetsAlongTheDiscAxis) {
-    grinding_tool(otc::kGrindingToolType, kSeedWearConst, kSeedMaxInfeed, 300000.0);
+    grinding_tool(otc::kGrindingToolType, kGrindingWearConst, kGrindingMaxInfeed, 300000.0);
     ASSERT_EQ(set_mode(otc::Mode::kDisc), Status::kOk);
     ASSERT_EQ(otc_on(), Status::kOk);
     ASSERT_EQ(plc(0, 10000), Status::kOk);  // 1 mm on X
@@ -803,8 +803,8 @@ TEST_F(OtcBoard, LengthFoldTakesTheDiscreteOffsetsAlongTheDiscAxis) {
     EXPECT_NEAR(wear(2), 2.0, kEps);
     const double along = 1.0 * 0.5 + 2.0 * std::sqrt(3.0) / 2.0;
     for (const auto& g : board.state().tc.groups) {
-        EXPECT_NEAR(g.tools[kTool].length, kSeedLength - along, kEps);
-        EXPECT_EQ(g.tools[kTool].radius, kSeedRadius);
+        EXPECT_NEAR(g.tools[kTool].length, kGrindingDiscLength - along, kEps);
+        EXPECT_EQ(g.tools[kTool].radius, kGrindingDiscRadius);
     }
 }
 
@@ -820,7 +820,7 @@ TEST_F(OtcBoard, FoldedRadiusStopsAtZero) {
     EXPECT_NEAR(wear(2), 10.0, kEps);
     for (const auto& g : board.state().tc.groups) {
         EXPECT_EQ(g.tools[kTool].radius, 0.0);
-        EXPECT_EQ(g.tools[kTool].length, kSeedLength);
+        EXPECT_EQ(g.tools[kTool].length, kGrindingDiscLength);
     }
 }
 

@@ -9,7 +9,7 @@
 namespace rwmos::otc {
 namespace {
 
-TEST(OtcTypes, KeywordsAreTheSeedNames) {
+TEST(OtcTypes, KeywordsAreTheIsgOtcNames) {
     EXPECT_EQ(processing_type_name(ProcessingType::kRadius), "RADIUS");
     EXPECT_EQ(processing_type_name(ProcessingType::kLength), "LENGTH");
     EXPECT_EQ(processing_type_name(ProcessingType::kToolDir), "TOOL_DIR");
@@ -57,7 +57,7 @@ TEST(OtcTypes, ChannelUnitActsOnlyInRadiusOrToolDirWithDiscOrAuto) {
 // [ISG-OTC] section 2.7.2: RADIUS and LENGTH use every axis; in SURF_NORM_DIR (and TOOL_DIR,
 // section 2.7.1) the third axis carries the offset along the direction, the first two are ignored;
 // later axes act as usual; CONT uses no unit.
-TEST(OtcTypes, AxisUnitRolesFollowTheSeed) {
+TEST(OtcTypes, AxisUnitRolesFollowIsgOtcSection272) {
     for (int ax = 0; ax < 4; ++ax) {
         EXPECT_EQ(axis_unit_role(ProcessingType::kRadius, Mode::kDisc, ax), AxisUnitRole::kAxis);
         EXPECT_EQ(axis_unit_role(ProcessingType::kLength, Mode::kAuto, ax), AxisUnitRole::kAxis);
@@ -72,7 +72,7 @@ TEST(OtcTypes, AxisUnitRolesFollowTheSeed) {
     }
 }
 
-TEST(OtcErrors, SeedErrorKeepsItsNumberAndName) {
+TEST(OtcErrors, IsgOtcErrorKeepsItsNumberAndName) {
     EXPECT_EQ(static_cast<int>(Error::kToolNotGrinding), 21391);
     EXPECT_EQ(error_name(Error::kToolNotGrinding), "P-ERR-21391");
     EXPECT_EQ(error_name(Error::kOffBeforeG40), "OTC_OFF_BEFORE_G40");

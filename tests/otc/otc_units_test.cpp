@@ -10,7 +10,7 @@ namespace {
 
 // [ISG-OTC] section 2.6 tool data: grinding_wear_const 100000 (0.1 um/m); section 2.3 example
 // G1 X1000: 1000 mm of path.
-TEST(OtcUnits, SeedLengthExampleWearsTenMillimetresOverOneMetre) {
+TEST(OtcUnits, IsgOtcLengthExampleWearsTenMillimetresOverOneMetre) {
     EXPECT_NEAR(continuous_wear(1000.0, 100000.0), 10.0, 1e-12);
     EXPECT_NEAR(continuous_wear(500.0, 100000.0), 5.0, 1e-12);
 }

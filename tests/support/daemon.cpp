@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "objif/mailbox.h"
+#include "text.h"
 
 namespace apci_test {
 namespace {
@@ -60,13 +61,6 @@ pid_t spawn(const std::vector<std::string>& args, const std::string& output_file
     return rc == 0 ? pid : -1;
 }
 
-std::string read_file(const std::string& path) {
-    std::ifstream f(path);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
-
 bool socket_accepts(const std::string& path) {
     sockaddr_un addr{};
     addr.sun_family = AF_UNIX;
@@ -98,21 +92,12 @@ const char* daemon_binary() {
     return RWMOS_EMU_BINARY;
 }
 
-TempDir::TempDir() {
-    const char* tmp = std::getenv("TMPDIR");
-    std::string pattern =
-        std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/apci-test-XXXXXX";
-    if (::mkdtemp(pattern.data()) == nullptr) ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
-    path_ = pattern;
-}
-
-TempDir::~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-}
-
 std::unique_ptr<Daemon> Daemon::start(const DaemonOptions& options) {
     std::unique_ptr<Daemon> d(new Daemon);
+    if (d->dir_.path().empty()) {
+        ADD_FAILURE() << "could not make the daemon's temporary directory: " << std::strerror(errno);
+        return nullptr;
+    }
     d->socket_path_ =
         options.socket_path.empty() ? d->dir_.file("rwmos-emu.sock") : options.socket_path;
     d->shm_path_ = options.shm_path.empty() ? d->dir_.file("dpram") : options.shm_path;
@@ -164,7 +149,7 @@ int Daemon::stop(int signal, std::chrono::milliseconds grace) {
 }
 
 std::string Daemon::log() const {
-    return read_file(dir_.file("daemon.log"));
+    return test_support::read_text(dir_.file("daemon.log"));
 }
 
 int run_daemon(const std::vector<std::string>& args, std::string& output,
@@ -175,7 +160,7 @@ int run_daemon(const std::vector<std::string>& args, std::string& output,
     if (pid < 0) return -1;
     int status = 0;
     ::waitpid(pid, &status, 0);
-    output = read_file(file);
+    output = test_support::read_text(file);
     return exit_code_of(status);
 }
 

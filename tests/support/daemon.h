@@ -12,21 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "scratch_dir.h"
+
 namespace apci_test {
 
 // A directory under $TMPDIR (or /tmp), removed with its contents.
-class TempDir {
-  public:
-    TempDir();
-    ~TempDir();
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const std::string& path() const noexcept { return path_; }
-    std::string file(std::string_view name) const { return path_ + "/" + std::string(name); }
-
-  private:
-    std::string path_;
-};
+using TempDir = test_support::ScratchDir;
 
 struct DaemonOptions {
     bool socket = true;

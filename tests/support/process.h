@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Runs a program as a child process for tests: argv (no shell quoting
-// issues), optional stdin text, optional extra environment; captures stdout,
-// stderr and the exit code.
+// issues), optional stdin text, optional extra environment, optional working
+// directory; captures stdout, stderr and the exit code.
 #pragma once
 
 #include <fcntl.h>
@@ -27,7 +27,8 @@ struct ProcessResult {
 
 inline ProcessResult run_process(const std::vector<std::string>& argv,
                                  const std::string& stdin_text = {},
-                                 const std::vector<std::pair<std::string, std::string>>& env = {}) {
+                                 const std::vector<std::pair<std::string, std::string>>& env = {},
+                                 const std::string& cwd = {}) {
     std::signal(SIGPIPE, SIG_IGN);  // a child that exits early must not kill the test
     int in_pipe[2], out_pipe[2], err_pipe[2];
     if (pipe(in_pipe) != 0 || pipe(out_pipe) != 0 || pipe(err_pipe) != 0)
@@ -40,6 +41,7 @@ inline ProcessResult run_process(const std::vector<std::string>& argv,
         dup2(err_pipe[1], 2);
         for (int fd : {in_pipe[0], in_pipe[1], out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]})
             close(fd);
+        if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(126);
         for (const auto& [name, value] : env) setenv(name.c_str(), value.c_str(), 1);
         std::vector<char*> args;
         args.reserve(argv.size() + 1);

@@ -15,43 +15,29 @@
 #include "apci/nc/program.h"
 #include "apci/run/executor.h"
 #include "apci/run/plc_script.h"
-#include "process.h"
+#include "apcictl.h"
 #include "rwmos/object_map.h"
+#include "scratch_test.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
 using test_support::ProcessResult;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-class ApcictlBounds : public ::testing::Test {
+class ApcictlBounds : public test_support::ScratchTest {
   protected:
-    void SetUp() override {
-        std::string templ = ::testing::TempDir() + "apcictl_bounds_XXXXXX";
-        ASSERT_NE(::mkdtemp(templ.data()), nullptr);
-        dir_ = templ;
-    }
-    void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
+    ApcictlBounds() : ScratchTest("apcictl_bounds_") {}
 
-    std::string write(const std::string& name, const std::string& text) const {
-        std::string path = dir_ + "/" + name;
-        std::ofstream(path) << text;
-        return path;
-    }
     // Runs apcictl (cwd: the test's directory, so files are named as written); the seconds it
     // took go to `seconds_`.
-    ProcessResult apcictl(std::vector<std::string> args) {
-        args.insert(args.begin(),
-                    {"/bin/sh", "-c", "cd \"$0\" && exec \"$@\"", dir_, APCICTL_PATH});
+    ProcessResult apcictl(const std::vector<std::string>& args) {
         const auto t0 = std::chrono::steady_clock::now();
-        ProcessResult r = test_support::run_process(args);
+        ProcessResult r = test_support::apcictl(args, {}, {}, dir());
         seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return r;
     }
 
-    std::string dir_;
     double seconds_ = 0.0;
 };
 
@@ -66,7 +52,7 @@ TEST_F(ApcictlBounds, AFeedTooLowForOneMoveIsAnErrorNamingTheLineBeforeAnyMotion
               "apcictl: p.nc:2:11: N20: feed F1e-06 makes this 1 mm move take 60000000000 "
               "interpolation cycles; at most 1000000000 cycles (11.6 days at 1 ms) are allowed "
               "per move: raise F\n");
-    EXPECT_FALSE(std::ifstream(dir_ + "/out.json").good()) << "nothing ran, nothing written";
+    EXPECT_FALSE(std::ifstream(path("out.json")).good()) << "nothing ran, nothing written";
     EXPECT_LT(seconds_, 30.0);
 }
 

@@ -12,26 +12,16 @@
 #include <string>
 #include <vector>
 
-#include "process.h"
+#include "apcictl.h"
 #include "suggest.h"
+#include "text.h"
 
 namespace {
 
 using apcictl::closest_name;
 using apcictl::edit_distance;
+using test_support::lines_of;
 using test_support::ProcessResult;
-
-ProcessResult apcictl_run(std::vector<std::string> args, const std::string& input = {}) {
-    args.insert(args.begin(), APCICTL_PATH);
-    return test_support::run_process(args, input);
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-}
 
 // ---- the distance and the closest name (pure functions)
 
@@ -74,16 +64,16 @@ TEST(ApcictlSuggest, ClosestNameWithinTheBoundOrNone) {
 // ---- the command line
 
 TEST(ApcictlCli, MistypedCommandSaysWhatWasMeant) {
-    const auto r = apcictl_run({"raed", "1300", "0", "12", "0"});
+    const auto r = test_support::apcictl({"raed", "1300", "0", "12", "0"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err, "apcictl: unknown command 'raed'; did you mean 'read'?\n");
-    EXPECT_EQ(apcictl_run({"stat"}).err,
+    EXPECT_EQ(test_support::apcictl({"stat"}).err,
               "apcictl: unknown command 'stat'; did you mean 'status'?\n");
 }
 
 TEST(ApcictlCli, UnknownCommandWithNothingCloseListsTheCommands) {
-    const auto r = apcictl_run({"frobnicate"});
+    const auto r = test_support::apcictl({"frobnicate"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err,
               "apcictl: unknown command 'frobnicate' (commands: read, write, dump, script, shell, status, "
@@ -91,53 +81,53 @@ TEST(ApcictlCli, UnknownCommandWithNothingCloseListsTheCommands) {
 }
 
 TEST(ApcictlCli, NoCommandSaysSoAndListsThem) {
-    const auto r = apcictl_run({});
+    const auto r = test_support::apcictl({});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.err.starts_with("apcictl: no command given (commands: read, write,")) << r.err;
     EXPECT_TRUE(r.err.ends_with("see 'apcictl --help')\n")) << r.err;
 }
 
 TEST(ApcictlCli, AfterTheEndOfOptionsAMistypedCommandIsStillNamed) {
-    EXPECT_EQ(apcictl_run({"--", "raed"}).err,
+    EXPECT_EQ(test_support::apcictl({"--", "raed"}).err,
               "apcictl: unknown command 'raed'; did you mean 'read'?\n");
 }
 
 // An option without its value is that error, not "no command given".
 TEST(ApcictlCli, OptionWithoutItsValueSaysSo) {
-    const auto r = apcictl_run({"--device"});
+    const auto r = test_support::apcictl({"--device"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: --device: 1 required TEXT missing\n");
 }
 
 TEST(ApcictlCli, MistypedOptionSaysWhatWasMeant) {
-    auto r = apcictl_run({"run", "p.nc", "--tool", "t"});
+    auto r = test_support::apcictl({"run", "p.nc", "--tool", "t"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: unknown option '--tool'; did you mean '--tools'?\n");
-    r = apcictl_run({"run", "p.nc", "--tool=t"});
+    r = test_support::apcictl({"run", "p.nc", "--tool=t"});
     EXPECT_EQ(r.err, "apcictl: unknown option '--tool'; did you mean '--tools'?\n");
-    r = apcictl_run({"step", "--idel"});
+    r = test_support::apcictl({"step", "--idel"});
     EXPECT_EQ(r.err, "apcictl: unknown option '--idel'; did you mean '--idle'?\n");
     // The command line's own options count too: --device may follow the command.
-    r = apcictl_run({"status", "--devise", "emu:"});
+    r = test_support::apcictl({"status", "--devise", "emu:"});
     EXPECT_EQ(r.err, "apcictl: unknown option '--devise'; did you mean '--device'?\n");
 }
 
 TEST(ApcictlCli, UnknownOptionWithNothingCloseNamesTheHelp) {
-    const auto r = apcictl_run({"read", "--frobnicate", "1300", "0", "12", "0"});
+    const auto r = test_support::apcictl({"read", "--frobnicate", "1300", "0", "12", "0"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: unknown option '--frobnicate' (see 'apcictl read --help')\n");
-    EXPECT_EQ(apcictl_run({"-x"}).err, "apcictl: unknown option '-x' (see 'apcictl --help')\n");
+    EXPECT_EQ(test_support::apcictl({"-x"}).err, "apcictl: unknown option '-x' (see 'apcictl --help')\n");
 }
 
 TEST(ApcictlCli, LeftOverArgumentsAreNamedInTheOrderTyped) {
-    const auto r = apcictl_run({"read", "1300", "0", "12", "0", "5", "6"});
+    const auto r = test_support::apcictl({"read", "1300", "0", "12", "0", "5", "6"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: The following arguments were not expected: 5 6\n");
 }
 
 TEST(ApcictlCli, MistypedScriptLinesSayWhatWasMeantToo) {
     const auto r =
-        apcictl_run({"script", "-"}, "raed 1300 0 12 0\nstep --idel\nwrite --itn 1300 1 1 8 1\n");
+        test_support::apcictl({"script", "-"}, "raed 1300 0 12 0\nstep --idel\nwrite --itn 1300 1 1 8 1\n");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err,
@@ -193,7 +183,7 @@ TEST(ApcictlCli, EveryErrorLineStartsWithTheProgramName) {
         {{"diff", "--against", "emu:", (dir / "missing.script").string()}, {}},
     };
     for (const Case& c : cases) {
-        const auto r = apcictl_run(c.args, c.input);
+        const auto r = test_support::apcictl(c.args, c.input);
         std::string typed;
         for (const auto& a : c.args) typed += " " + a;
         EXPECT_NE(r.exit_code, 0) << typed;
@@ -213,7 +203,7 @@ TEST(ApcictlCli, CsvColumnsAreNamedAsTheCommandLineNamesTheAxes) {
     const std::string program = (dir / "p.nc").string();
     std::ofstream(program) << "N10 G01 X1 Y0 F600\nM30\n";
     const std::string csv = (dir / "p.csv").string();
-    const auto run = apcictl_run({"run", program, "--csv", csv});
+    const auto run = test_support::apcictl({"run", program, "--csv", csv});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     std::ifstream in(csv);
     std::string header;
@@ -221,7 +211,7 @@ TEST(ApcictlCli, CsvColumnsAreNamedAsTheCommandLineNamesTheAxes) {
     std::filesystem::remove_all(dir);
 
     // "cycle 1 (+1) fill 0/256 idle X0 Y0 Z0 A0 B0 C0 U0 V0": the letters before the numbers.
-    const auto step = apcictl_run({"step", "1"});
+    const auto step = test_support::apcictl({"step", "1"});
     ASSERT_EQ(step.exit_code, 0) << step.err;
     std::string letters;
     std::istringstream words(step.out);

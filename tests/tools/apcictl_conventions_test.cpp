@@ -12,17 +12,12 @@
 
 #include <regex>
 
+#include "apcictl.h"
 #include "objif/names.h"
-#include "process.h"
 
 namespace {
 
 using test_support::ProcessResult;
-
-ProcessResult apcictl_run(std::vector<std::string> args, const std::string& input = {}) {
-    args.insert(args.begin(), APCICTL_PATH);
-    return test_support::run_process(args, input);
-}
 
 // apcictl ARGS with its standard output sent to `redirect` (a shell redirection: ">/dev/full",
 // ">&-" closes it).
@@ -37,8 +32,8 @@ ProcessResult apcictl_with_stdout(const std::string& args, const std::string& re
 
 TEST(ApcictlHelp, HelpCommandShowsTheCommandsHelp) {
     for (const std::string command : {"read", "run", "script", "status"}) {
-        const auto help = apcictl_run({"help", command});
-        const auto flag = apcictl_run({command, "--help"});
+        const auto help = test_support::apcictl({"help", command});
+        const auto flag = test_support::apcictl({command, "--help"});
         EXPECT_EQ(help.exit_code, 0) << help.err;
         EXPECT_EQ(help.err, "");
         EXPECT_EQ(help.out, flag.out) << command;
@@ -47,21 +42,21 @@ TEST(ApcictlHelp, HelpCommandShowsTheCommandsHelp) {
 }
 
 TEST(ApcictlHelp, HelpAloneShowsTheProgramsHelp) {
-    const auto help = apcictl_run({"help"});
+    const auto help = test_support::apcictl({"help"});
     EXPECT_EQ(help.exit_code, 0) << help.err;
-    EXPECT_EQ(help.out, apcictl_run({"--help"}).out);
+    EXPECT_EQ(help.out, test_support::apcictl({"--help"}).out);
     EXPECT_NE(help.out.find("Usage: apcictl [OPTIONS] SUBCOMMAND"), std::string::npos);
     // Through --device too (the option before the command, as for every command).
-    EXPECT_EQ(apcictl_run({"--device", "emu:", "help", "read"}).out,
-              apcictl_run({"read", "--help"}).out);
+    EXPECT_EQ(test_support::apcictl({"--device", "emu:", "help", "read"}).out,
+              test_support::apcictl({"read", "--help"}).out);
 }
 
 TEST(ApcictlHelp, HelpOfAnUnknownCommandSaysWhatWasMeant) {
-    const auto r = apcictl_run({"help", "raed"});
+    const auto r = test_support::apcictl({"help", "raed"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err, "apcictl: help: unknown command 'raed'; did you mean 'read'?\n");
-    const auto far = apcictl_run({"help", "frobnicate"});
+    const auto far = test_support::apcictl({"help", "frobnicate"});
     EXPECT_EQ(far.exit_code, 2);
     EXPECT_EQ(far.err.rfind("apcictl: help: unknown command 'frobnicate' (commands: read, ", 0),
               0u)
@@ -69,19 +64,19 @@ TEST(ApcictlHelp, HelpOfAnUnknownCommandSaysWhatWasMeant) {
 }
 
 TEST(ApcictlHelp, MistypedHelpMeansHelpNotShell) {
-    const auto r = apcictl_run({"hlep"});
+    const auto r = test_support::apcictl({"hlep"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: unknown command 'hlep'; did you mean 'help'?\n");
 }
 
 TEST(ApcictlHelp, HelpIsNoScriptLine) {
-    const auto r = apcictl_run({"script", "-"}, "help read\n");
+    const auto r = test_support::apcictl({"script", "-"}, "help read\n");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("apcictl: line 1: "), std::string::npos) << r.err;
 }
 
 TEST(ApcictlVersion, VersionNamesProgramPackageVersionAndLibrary) {
-    const auto r = apcictl_run({"--version"});
+    const auto r = test_support::apcictl({"--version"});
     EXPECT_EQ(r.exit_code, 0);
     EXPECT_EQ(r.out, std::string("apcictl (apci8001) ") + APCI8001_VERSION + "\nlibapci " +
                          APCI8001_VERSION + "\n");
@@ -130,8 +125,8 @@ TEST(ApcictlOutput, OutputThatFitsStillExitsZero) {
 TEST(ApcictlStatusJson, SaysWhatTheTextSays) {
     // A refused STATUS = 1 sets group 1's InitError first (docs/apcictl.md, "status").
     const std::string script = "write 1300 1 1 3 1\n";
-    const auto text = apcictl_run({"script", "--keep-going", "-"}, script + "status\n");
-    const auto json = apcictl_run({"script", "--keep-going", "-"}, script + "status --json\n");
+    const auto text = test_support::apcictl({"script", "--keep-going", "-"}, script + "status\n");
+    const auto json = test_support::apcictl({"script", "--keep-going", "-"}, script + "status --json\n");
     ASSERT_EQ(text.exit_code, 1) << text.err;
     ASSERT_EQ(json.exit_code, 1) << json.err;
     const auto j = nlohmann::json::parse(json.out);
@@ -160,7 +155,7 @@ TEST(ApcictlStatusJson, SaysWhatTheTextSays) {
 }
 
 TEST(ApcictlStatusJson, WithoutOptionTcTheTcIsNull) {
-    const auto r = apcictl_run({"--device", "emu:?no-option-tc", "status", "--json"});
+    const auto r = test_support::apcictl({"--device", "emu:?no-option-tc", "status", "--json"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, "{\"spooler\":{\"capacity\":256,\"fill\":0},\"tc\":null}\n");
 }
@@ -186,7 +181,7 @@ TEST(ObjectNameSuggestion, IndexTypedWithoutBracketsIsKept) {
 }
 
 TEST(ObjectNameSuggestion, ApcictlSuggestsTheTypedGroup) {
-    const auto r = apcictl_run({"read", "tc.group2.radius"});
+    const auto r = test_support::apcictl({"read", "tc.group2.radius"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err,
               "apcictl: unknown object 'tc.group2.radius'; did you mean 'tc.group[2].radius'?\n");

@@ -11,29 +11,22 @@
 #include "command.h"
 #include "daemon.h"
 #include "fake_sysfs.h"
-#include "process.h"
+#include "apcictl.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::FakePciSysfs;
 using apci_test::TempDir;
+using test_support::apcictl;
 using test_support::ProcessResult;
 
 const std::string kTools = std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-figures.tools";
 const std::string kInsideCorners =
     std::string(APCI_SOURCE_DIR) + "/docs/figures/tc-inside-corners.nc";
-
-ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {},
-                      const std::vector<std::pair<std::string, std::string>>& env = {}) {
-    args.insert(args.begin(), APCICTL_PATH);
-    return test_support::run_process(args, input, env);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // A line of `apcictl list`: the URI, spaces, the description.
 bool has_line(const std::string& out, const std::string& uri, const std::string& description) {

@@ -7,17 +7,15 @@
 #include <vector>
 
 #include "process.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
 using test_support::ProcessResult;
 
 ProcessResult script(const std::string& text) {
     return test_support::run_process({APCICTL_PATH, "script", "-"}, text);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 // Group 1 (axes X Y Z), radius 1, left, active ([APCI-TC] section 2.5).

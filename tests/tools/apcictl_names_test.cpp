@@ -16,28 +16,16 @@
 #include "command.h"
 #include "object_name.h"
 #include "objif/names.h"
-#include "process.h"
+#include "apcictl.h"
 #include "script_reader.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::apcictl;
+using test_support::lines_of;
 using test_support::ProcessResult;
-
-ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {}) {
-    args.insert(args.begin(), APCICTL_PATH);
-    return test_support::run_process(args, input);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-}
 
 // A script run in this process through apcictl's commands library, against `session`.
 struct InProcess {

@@ -4,7 +4,6 @@
 // device, a signal leave the targets as they were and no temporary file behind); `-` is
 // standard output; a program on standard input is bounded; `diff` compares runs of any length
 // in the same memory.
-#include <dirent.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -29,39 +28,16 @@
 #include "apci/run/csv_writer.h"
 #include "apci/run/run_files.h"
 #include "process.h"
+#include "scratch_dir.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::names_in;
+using test_support::path_exists;
+using test_support::read_text;
 using nlohmann::json;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-bool exists(const std::string& path) {
-    struct stat st {};
-    return ::lstat(path.c_str(), &st) == 0;
-}
-
-// The names in a directory, without "." and "..".
-std::set<std::string> names_in(const std::string& dir) {
-    std::set<std::string> names;
-    DIR* d = ::opendir(dir.c_str());
-    if (d == nullptr) return names;
-    while (const dirent* e = ::readdir(d)) {
-        const std::string name = e->d_name;
-        if (name != "." && name != "..") names.insert(name);
-    }
-    ::closedir(d);
-    return names;
-}
 
 // How a child process is started.
 struct Start {
@@ -130,23 +106,19 @@ class Child {
 class ApcictlOutputs : public ::testing::Test {
   protected:
     void SetUp() override {
-        std::string templ = ::testing::TempDir() + "apcictl_outputs_XXXXXX";
-        ASSERT_NE(::mkdtemp(templ.data()), nullptr);
-        root_ = templ;
+        ASSERT_FALSE(root_.path().empty()) << "no scratch directory";
         ASSERT_EQ(::mkdir(dir().c_str(), 0755), 0);
         ASSERT_EQ(::mkdir(tmp().c_str(), 0755), 0);
         ASSERT_EQ(::mkdir(logs().c_str(), 0755), 0);
     }
-    void TearDown() override { std::system(("rm -rf '" + root_ + "'").c_str()); }
 
     // Where the outputs go, the child's TMPDIR, its standard output and error.
-    std::string dir() const { return root_ + "/out"; }
-    std::string tmp() const { return root_ + "/tmp"; }
-    std::string logs() const { return root_ + "/logs"; }
+    std::string dir() const { return root_.file("out"); }
+    std::string tmp() const { return root_.file("tmp"); }
+    std::string logs() const { return root_.file("logs"); }
     std::string path(const std::string& name) const { return dir() + "/" + name; }
     std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path(name)) << text;
-        return path(name);
+        return test_support::write_text(path(name), text);
     }
     Finished run(const std::vector<std::string>& args, Start how = {}) {
         if (how.cwd.empty()) how.cwd = dir();
@@ -155,7 +127,7 @@ class ApcictlOutputs : public ::testing::Test {
         return child.wait();
     }
 
-    std::string root_;
+    test_support::ScratchDir root_{"apcictl_outputs_"};
 };
 
 // A line of 10 mm at 600 mm/min: 1000 cycles.
@@ -211,7 +183,7 @@ TEST_F(ApcictlOutputs, StandardInputLargerThanTheLimitIsRefusedQuicklyAndNothing
                          "program to a file and give its path instead of -\n"))
         << r.err;
     EXPECT_LT(took, std::chrono::seconds(20));
-    EXPECT_FALSE(exists(path("big.json")));
+    EXPECT_FALSE(path_exists(path("big.json")));
     EXPECT_TRUE(names_in(tmp()).empty());  // no copy of standard input anywhere
     // At the limit it is read (and here parsed: a program without M30 at its end).
     input.resize(apci::run::kStdinProgramLimit - 1);
@@ -308,7 +280,7 @@ TEST_F(ApcictlOutputs, FullDeviceIsReportedWithItsCause) {
 // A full file system (a small tmpfs in a mount namespace of our own, where one can be made).
 TEST_F(ApcictlOutputs, FullFileSystemLeavesTheTargetAndNoTemporaryFile) {
     write("p.nc", "N10 G1 X100 F600\nM30\n");
-    const std::string fs = root_ + "/fs";
+    const std::string fs = root_.file("fs");
     ASSERT_EQ(::mkdir(fs.c_str(), 0755), 0);
     const std::string script = "mount -t tmpfs -o size=128k tmpfs '" + fs + "' || exit 77\n" +
                                "printf 'old csv\\n' > '" + fs + "/out.csv'\n'" + APCICTL_PATH +
@@ -438,7 +410,7 @@ TEST_F(ApcictlOutputs, DashWritesTheOutputToStandardOutputAndTheSummaryToStandar
     const json doc = json::parse(j.out);  // nothing else on standard output
     EXPECT_EQ(doc.at("segments").size(), 1u);
     EXPECT_TRUE(contains(j.err, "p.nc: 2 blocks, 2 executed, 1 segments")) << j.err;
-    EXPECT_TRUE(exists(path("out.csv")));
+    EXPECT_TRUE(path_exists(path("out.csv")));
     const auto c = run({"run", "p.nc", "--csv", "-"});
     ASSERT_EQ(c.exit_code, 0) << c.err;
     EXPECT_TRUE(c.out.rfind("cycle,time_s,X,Y,Z", 0) == 0) << c.out.substr(0, 100);

@@ -22,19 +22,14 @@
 #include <utility>
 #include <vector>
 
-#include "process.h"
+#include "apcictl.h"
+#include "text.h"
 
 namespace {
 
+using test_support::read_text;
 using Env = std::vector<std::pair<std::string, std::string>>;
 constexpr int kWaitMs = 20000;  // generous for a loaded machine; a pass takes milliseconds
-
-std::string read_file(const std::string& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 // apcictl on a pseudo-terminal: type into it, wait (bounded) for what it shows.
 class Terminal {
@@ -214,9 +209,8 @@ class ApcictlShell : public ::testing::Test {
     std::string history() const { return dir_ + "/history"; }
 
     test_support::ProcessResult piped(const std::string& input,
-                                      std::vector<std::string> args = {"shell"}) {
-        args.insert(args.begin(), APCICTL_PATH);
-        return test_support::run_process(args, input, env_);
+                                      const std::vector<std::string>& args = {"shell"}) {
+        return test_support::apcictl(args, input, env_);
     }
 
     std::string dir_;
@@ -257,7 +251,7 @@ TEST_F(ApcictlShell, TerminalCompletesSurvivesAFailureRecallsAndEndsOnCtrlD) {
     EXPECT_EQ(terminal.wait_exit(), 1) << terminal.output();
 
     // The history file holds the lines, the recalled one once.
-    EXPECT_EQ(read_file(history()), "read 1300 1 9 3\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\n");
+    EXPECT_EQ(read_text(history()), "read 1300 1 9 3\nwrite 1300 1 1 7 2.5\nread 1300 1 1 7\n");
     struct stat st {};
     ASSERT_EQ(::stat(history().c_str(), &st), 0);
     EXPECT_EQ(st.st_mode & 0777, 0600u);
@@ -295,7 +289,7 @@ TEST_F(ApcictlShell, TerminalListsSeveralCandidatesAndRecallsTheFileHistory) {
 
     terminal.type("quit\r");
     EXPECT_EQ(terminal.wait_exit(), 0) << terminal.output();
-    EXPECT_EQ(read_file(history()),
+    EXPECT_EQ(read_text(history()),
               "write 1300 1 1 8 5\nstep 1\nwrite 1300 1 1 8 5\nread 1300 1 1 8\nquit\n");
 }
 
@@ -317,7 +311,7 @@ TEST_F(ApcictlShell, TerminalWithAHistoryLinkWarnsAndLeavesItAlone) {
     ASSERT_TRUE(terminal.wait_for_prompt()) << terminal.output();
     terminal.type("\x04");
     EXPECT_EQ(terminal.wait_exit(), 0) << terminal.output();
-    EXPECT_EQ(read_file(target), "not a history\n");
+    EXPECT_EQ(read_text(target), "not a history\n");
     EXPECT_TRUE(std::filesystem::is_symlink(history()));
 }
 

@@ -6,26 +6,19 @@
 #include <string>
 #include <vector>
 
-#include "process.h"
+#include "apcictl.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::apcictl;
 using test_support::ProcessResult;
-
-ProcessResult apcictl(std::vector<std::string> args, const std::string& input = {},
-                      const std::vector<std::pair<std::string, std::string>>& env = {}) {
-    args.insert(args.begin(), APCICTL_PATH);
-    return test_support::run_process(args, input, env);
-}
 
 ProcessResult script(const std::string& text, std::vector<std::string> extra = {}) {
     std::vector<std::string> args{"script", "-"};
     args.insert(args.end(), extra.begin(), extra.end());
     return apcictl(args, text);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 // ---- the must-show lines

@@ -21,9 +21,11 @@
 #include "line_editor.h"
 #include "process.h"
 #include "script_reader.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
 using apcictl::PlainLine;
 using Kind = apcictl::PlainLine::Kind;
 
@@ -37,10 +39,6 @@ static_assert(apci::nc::LineSource::kMaxLineLength == kMax);
 // are the reader's type.
 static_assert(std::is_same_v<decltype(apcictl::ScriptLine::number), std::uint64_t>);
 static_assert(std::is_same_v<decltype(apcictl::ScriptLineError::number), std::uint64_t>);
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // A script line of exactly `length` characters that parses: a command, blanks, a comment.
 std::string line_of(std::size_t length, const std::string& command = "status") {

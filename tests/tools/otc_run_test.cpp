@@ -15,62 +15,28 @@
 
 #include "apci/nc/tools.h"
 #include "apci/run/plc_script.h"
-#include "process.h"
+#include "apcictl.h"
+#include "scratch_test.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
+using test_support::read_csv;
+using test_support::read_text;
 using nlohmann::json;
+using test_support::apcictl;
 using test_support::ProcessResult;
 
 const std::string kSource = APCI_SOURCE_DIR;
 const std::string kExamples = kSource + "/examples";
 constexpr double kEps = 1e-9;
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
 // The CSV of --csv: cycle, time, then the 8 axes.
-std::vector<std::vector<double>> read_csv(const std::string& path) {
-    std::vector<std::vector<double>> rows;
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);  // header
-    while (std::getline(in, line)) {
-        std::vector<double> row;
-        std::stringstream s(line);
-        std::string cell;
-        while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-class OtcRun : public ::testing::Test {
+class OtcRun : public test_support::ScratchTest {
   protected:
-    void SetUp() override {
-        std::string templ = ::testing::TempDir() + "otc_run_XXXXXX";
-        ASSERT_NE(::mkdtemp(templ.data()), nullptr);
-        dir_ = templ;
-    }
-    void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
+    OtcRun() : ScratchTest("otc_run_") {}
 
-    std::string path(const std::string& name) const { return dir_ + "/" + name; }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path(name)) << text;
-        return path(name);
-    }
-    static ProcessResult apcictl(std::vector<std::string> args) {
-        args.insert(args.begin(), APCICTL_PATH);
-        return test_support::run_process(args);
-    }
     json run_json(std::vector<std::string> args, int expected_exit = 0) {
         args.insert(args.begin(), "run");
         args.emplace_back("--json");
@@ -80,9 +46,8 @@ class OtcRun : public ::testing::Test {
         return json::parse(read_text(path("out.json")));
     }
     // The grinding disc D1 of [ISG-OTC] (section 2.6) and a milling cutter D2.
-    std::string seed_tools() const { return kExamples + "/tools/wr_quad_disc.tools"; }
+    std::string grinding_tools() const { return kExamples + "/tools/wr_quad_disc.tools"; }
 
-    std::string dir_;
     ProcessResult last_;
 };
 
@@ -92,15 +57,8 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
                               "tool_dir", "surf_norm_dir", "wr_quad_disc"};
     for (const char* name : programs) {
         const std::string file = kExamples + "/otc/" + name + ".nc";
-        const std::string text = read_text(file);
-        const std::string marker = "; ./build/bin/apcictl ";
-        const std::size_t at = text.find(marker);
-        ASSERT_NE(at, std::string::npos) << file;
-        std::stringstream cmd(
-            text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
-        std::vector<std::string> args;
-        for (std::string word; cmd >> word;)
-            args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+        std::vector<std::string> args = test_support::documented_command(file, kSource);
+        ASSERT_FALSE(args.empty()) << file;
         args.emplace_back("--json");
         args.push_back(path("out.json"));
         const ProcessResult r = apcictl(args);
@@ -117,15 +75,15 @@ TEST_F(OtcRun, EveryOtcExampleRunsWithItsDocumentedCommand) {
 // X1000 (10 mm on the third axis), section 2.3.1's split by the disc's tilt (30 degrees in
 // otc_tilt.tools: sin 30 x 10 on X, cos 30 x 10 on Z), and [ISG-OTC-EN]'s wr_quad_disc.nc with
 // the discrete offset of its figure ("der diskret beauftragte Versatz beträgt 2mm", ±2 mm).
-TEST_F(OtcRun, SeedProgramsGiveTheNumbersTheDocumentsGive) {
-    struct Seed {
+TEST_F(OtcRun, OtcExamplesGiveTheNumbersTheDocumentsGive) {
+    struct Example {
         const char* program;
         const char* tools;
         const char* plc;  // nullptr: none
         const char* variable;
         double value;
     };
-    const Seed seeds[] = {
+    const Example examples[] = {
         {"general", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR_RADIUS", 9.5},
         {"general", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR_RADIUS_CONT", 9.5},
         {"length", "wr_quad_disc", nullptr, "V.G.WZ_AKT.WEAR[2]", 10.0},
@@ -135,24 +93,24 @@ TEST_F(OtcRun, SeedProgramsGiveTheNumbersTheDocumentsGive) {
         {"wr_quad_disc", "wr_quad_disc", "wr_quad_disc", "V.G.WZ_AKT.WEAR_RADIUS", 2.0},
         {"wr_quad_disc", "wr_quad_disc", "wr_quad_disc_negative", "V.G.WZ_AKT.WEAR_RADIUS", -2.0},
     };
-    for (const Seed& seed : seeds) {
-        std::vector<std::string> args{kExamples + "/otc/" + seed.program + ".nc", "--tools",
-                                      kExamples + "/tools/" + seed.tools + ".tools"};
-        if (seed.plc != nullptr) {
+    for (const Example& example : examples) {
+        std::vector<std::string> args{kExamples + "/otc/" + example.program + ".nc", "--tools",
+                                      kExamples + "/tools/" + example.tools + ".tools"};
+        if (example.plc != nullptr) {
             args.emplace_back("--plc");
-            args.push_back(kExamples + "/otc/plc/" + seed.plc + ".plc");
+            args.push_back(kExamples + "/otc/plc/" + example.plc + ".plc");
         }
         const json doc = run_json(args);
-        EXPECT_EQ(doc.at("errors"), json::array()) << seed.program;
-        EXPECT_NEAR(doc.at("variables").at(seed.variable).get<double>(), seed.value, kEps)
-            << seed.program << " " << (seed.plc ? seed.plc : "") << " " << seed.variable;
+        EXPECT_EQ(doc.at("errors"), json::array()) << example.program;
+        EXPECT_NEAR(doc.at("variables").at(example.variable).get<double>(), example.value, kEps)
+            << example.program << " " << (example.plc ? example.plc : "") << " " << example.variable;
     }
 }
 
 // [ISG-OTC] section 2.3 with the tool data of 2.6: 10.000 mm on Z within 1e-9, linear along the
 // path (5.000 mm at X500), folded into the tool's length (500000 - 100000 x 0.1 um).
 TEST_F(OtcRun, LengthExampleWearsTenMillimetresAndTheToolListGetsIt) {
-    const json doc = run_json({kExamples + "/otc/length.nc", "--tools", seed_tools(), "--csv",
+    const json doc = run_json({kExamples + "/otc/length.nc", "--tools", grinding_tools(), "--csv",
                                path("out.csv"), "--tools-out", path("out.tools")});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 10.0, kEps);
     EXPECT_EQ(doc.at("variables").at("V.G.WZ_AKT.WEAR[0]").get<double>(), 0.0);
@@ -198,7 +156,7 @@ void expect_z_never_rises_after_the_length(const std::vector<std::vector<double>
 // unworn tool, and never moves back up between the passes.
 TEST_F(OtcRun, TwoLengthPassesAddUp) {
     const std::string prog = write("two.nc", kTwoLengthPasses);
-    const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("two.csv"),
+    const json doc = run_json({prog, "--tools", grinding_tools(), "--csv", path("two.csv"),
                                "--tools-out", path("two.tools")});
     const auto rows = read_csv(path("two.csv"));
     ASSERT_GT(rows.size(), 50u);
@@ -224,7 +182,7 @@ TEST_F(OtcRun, TwoLengthPassesAddUp) {
 // with the PLC's 2 mm the radius offset ramps off after G40 and #OTC OFF (the radius takes the
 // wear, and no compensation is left to apply it); the run goes on until it rests at N100's end.
 TEST_F(OtcRun, AProgramEndsWhenTheOtcRampsHaveSettled) {
-    run_json({kExamples + "/otc/wr_quad_disc.nc", "--tools", seed_tools(), "--plc",
+    run_json({kExamples + "/otc/wr_quad_disc.nc", "--tools", grinding_tools(), "--plc",
               kExamples + "/otc/plc/wr_quad_disc.plc", "--csv", path("q.csv")});
     const auto rows = read_csv(path("q.csv"));
     ASSERT_GT(rows.size(), 200u);
@@ -266,7 +224,7 @@ TEST_F(OtcRun, TiltedDiscSplitsTheWearOverXAndZ) {
 TEST_F(OtcRun, WrQuadDiscWithThePlcsTwoMillimetres) {
     // [ISG-OTC]'s tool with length 0, so that the approach is only the 30 mm to the offset path
     // (with 50 mm the TC's length compensation lowers Z on it, and the offset builds up there).
-    std::string tool_text = read_text(seed_tools());
+    std::string tool_text = read_text(grinding_tools());
     const std::size_t length_line = tool_text.find("wz[1].laenge");
     const std::size_t value = tool_text.find("500000", length_line);
     ASSERT_NE(value, std::string::npos);
@@ -323,7 +281,7 @@ TEST_F(OtcRun, PlcCycleWritesActAtTheirCycle) {
                                   "cycle 0 otc_offset[2].enable 1\n"
                                   "cycle 2000 otc_offset[2].command 1000\n");
     const json doc =
-        run_json({prog, "--tools", seed_tools(), "--plc", plc, "--csv", path("c.csv")});
+        run_json({prog, "--tools", grinding_tools(), "--plc", plc, "--csv", path("c.csv")});
     const auto rows = read_csv(path("c.csv"));
     ASSERT_GT(rows.size(), 5000u);
     for (const auto& r : rows) {
@@ -340,7 +298,7 @@ TEST_F(OtcRun, PlcCommandBeyondMaxInfeedIsNamed) {
                                    "N10 D1\nN20 #OTC ON [LENGTH DISC]\nN30 G1 X10 F1000\n"
                                    "N40 #OTC OFF\nM30\n");
     const std::string plc = write("p.plc", "block 30 otc_offset[2].command 200001\n");
-    const json doc = run_json({prog, "--tools", seed_tools(), "--plc", plc}, 1);
+    const json doc = run_json({prog, "--tools", grinding_tools(), "--plc", plc}, 1);
     ASSERT_EQ(doc.at("errors").size(), 1u);
     EXPECT_EQ(doc.at("errors")[0].at("code"), "OTC_INFEED_BEYOND_LIMIT");
     EXPECT_EQ(doc.at("errors")[0].at("block"), 30);
@@ -350,7 +308,7 @@ TEST_F(OtcRun, PlcScriptErrorsNameFileLineAndColumn) {
     const std::string plc =
         write("bad.plc", "cycle 0 otc_radius_offset.enable 1\nblock x1 foo 3\n");
     const ProcessResult r =
-        apcictl({"run", kExamples + "/otc/length.nc", "--tools", seed_tools(), "--plc", plc});
+        apcictl({"run", kExamples + "/otc/length.nc", "--tools", grinding_tools(), "--plc", plc});
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.err, plc + ":2:7: expected a whole number after 'block'")) << r.err;
 }
@@ -370,7 +328,7 @@ TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
         // N15 puts the tool length on Z first (a rapid, wear-free): N30 then wears X's 500 mm.
         "N10 D1\nN15 G0 Z0\nN20 #OTC ON\nN30 G1 X500 F10000\nN40 #OTC OFF\n"
         "N50 P1 = V.G.WZ_AKT.WEAR.Z\nN60 P2 = V.G.OTC_ACTIVE\nN70 G0 X[P1 * 10] Y[P2]\nM30\n");
-    const json doc = run_json({prog, "--tools", seed_tools()});
+    const json doc = run_json({prog, "--tools", grinding_tools()});
     const json& last = doc.at("segments").back();
     EXPECT_EQ(last.at("block"), 70);
     EXPECT_NEAR(last.at("end")[0].get<double>(), 50.0, 1e-9);
@@ -381,7 +339,7 @@ TEST_F(OtcRun, ProgramsReadTheBoardsWearVariables) {
 // the tool comes back folded (its second contour runs at the worn radius).
 TEST_F(OtcRun, WearReachesTheToolListAtToolChangeAndTheToolComesBackWorn) {
     const std::string tools = write(
-        "t.tools", read_text(seed_tools()) + "wz[2].gueltig 1\nwz[2].typ 2\nwz[2].radius 100000\n");
+        "t.tools", read_text(grinding_tools()) + "wz[2].gueltig 1\nwz[2].typ 2\nwz[2].radius 100000\n");
     const std::string prog =
         write("c.nc",
               "N10 F10000\nN20 D1\nN30 #OTC ON [RADIUS CONT]\nN40 G41 G1 X10\nN50 X510\n"
@@ -414,7 +372,7 @@ TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     const std::string prog = write("t.nc", "N30 D1\nN40 G00 X0 Y0 Z300 B0\nN50 #KIN ID[4]\n"
                                            "N55 #TRAFO ON\nN60 G00 B45\nN70 G01 X100 Z50 F1000\n"
                                            "N80 #TRAFO OFF\nM30\n");
-    const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("t.csv")});
+    const json doc = run_json({prog, "--tools", grinding_tools(), "--csv", path("t.csv")});
     bool seen = false;
     for (const auto& s : doc.at("segments")) {
         if (s.at("block") != 70) continue;
@@ -440,7 +398,7 @@ TEST_F(OtcRun, AWearConstantChangeActsFromItsBlock) {
             "wc.nc", std::string("N10 D1\nN20 G0 X0 Y0 Z0\nN30 #OTC ON [LENGTH CONT]\n"
                                  "N40 G1 X100 F10000\nN50 ") +
                          change + "\nN60 G1 X200\nN70 #OTC OFF\nN80 M30\n");
-        const json doc = run_json({prog, "--tools", seed_tools(), "--csv", path("wc.csv")});
+        const json doc = run_json({prog, "--tools", grinding_tools(), "--csv", path("wc.csv")});
         EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 3.0, kEps)
             << change;
         bool at_100 = false;
@@ -456,7 +414,7 @@ TEST_F(OtcRun, AWearConstantChangeActsFromItsBlock) {
                                      "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F10000\n"
                                      "N40 G1 X100\nN50 V.G.WZ_AKT.WEAR_CONST = 200000\n"
                                      "N60 G1 X200\nN70 G40 G1 X250\nN80 #OTC OFF\nN90 M30\n"),
-                               "--tools", seed_tools()});
+                               "--tools", grinding_tools()});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 2.5, kEps);
 }
 
@@ -469,14 +427,14 @@ TEST_F(OtcRun, LengthSparesTheApproachAndTheDeparture) {
     const std::string body =
         "N20 #OTC ON [LENGTH CONT]\nN30 G41 G1 X100 F10000\nN40 G1 X200\nN50 G40 G1 X300\n"
         "N60 G1 X400\nN70 #OTC OFF\nN80 M30\n";
-    const json g139 = run_json({write("a.nc", "N10 D1\n" + body), "--tools", seed_tools()});
+    const json g139 = run_json({write("a.nc", "N10 D1\n" + body), "--tools", grinding_tools()});
     EXPECT_NEAR(g139.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 2.0, kEps);
     std::string roles;
     for (const auto& s : g139.at("segments"))
         roles += s.at("role").get<std::string>() + "/" + std::to_string(s.at("block").get<int>()) +
                  " ";
     EXPECT_EQ(roles, "approach/30 contour/40 departure/50 uncompensated/60 ");
-    const json g237 = run_json({write("b.nc", "N10 D1 G237\n" + body), "--tools", seed_tools()});
+    const json g237 = run_json({write("b.nc", "N10 D1 G237\n" + body), "--tools", grinding_tools()});
     EXPECT_NEAR(g237.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 4.0, kEps);
 }
 
@@ -488,7 +446,7 @@ TEST_F(OtcRun, WearVariablesAreReadInInchesUnderG70) {
                "N10 D1\nN20 #OTC ON [RADIUS CONT]\nN30 G41 G1 X50 F10000\nN40 G1 X1015.2\n"
                "N50 G40 G1 X1100\nN60 #OTC OFF\nN70 G70\nN80 P1 = V.G.WZ_AKT.WEAR_RADIUS\n"
                "N90 G00 X[P1]\nN100 M30\n"),
-         "--tools", seed_tools()});
+         "--tools", grinding_tools()});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR_RADIUS").get<double>(), 9.652, 1e-9);
     const json& last = doc.at("segments").back();
     EXPECT_EQ(last.at("block"), 90);
@@ -501,7 +459,7 @@ TEST_F(OtcRun, TheToolLengthsMotionIsNoGroundPath) {
     const json doc =
         run_json({write("len.nc", "N10 D1\nN20 #OTC ON [LENGTH CONT]\nN30 G1 X200 F10000\n"
                                   "N40 #OTC OFF\nN50 M30\n"),
-                  "--tools", seed_tools()});
+                  "--tools", grinding_tools()});
     EXPECT_NEAR(doc.at("variables").at("V.G.WZ_AKT.WEAR[2]").get<double>(), 2.0, kEps);
 }
 
@@ -512,7 +470,7 @@ TEST_F(OtcRun, TheToolLengthsMotionIsNoGroundPath) {
 TEST_F(OtcRun, ABWordKeepsTheToolLengthOnTheAxis) {
     const char* with_b = "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN45 G1 X10 B0\nN46 G1 X20\nM30\n";
     const char* without_b = "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN45 G1 X10\nN46 G1 X20\nM30\n";
-    const json doc = run_json({write("b.nc", with_b), "--tools", seed_tools(), "--csv",
+    const json doc = run_json({write("b.nc", with_b), "--tools", grinding_tools(), "--csv",
                                path("b.csv")});
     const auto rows = read_csv(path("b.csv"));
     ASSERT_FALSE(rows.empty());
@@ -526,7 +484,7 @@ TEST_F(OtcRun, ABWordKeepsTheToolLengthOnTheAxis) {
     }
     EXPECT_TRUE(reached);
     EXPECT_EQ(rows.back()[2], 20.0);
-    const json plain = run_json({write("nob.nc", without_b), "--tools", seed_tools()});
+    const json plain = run_json({write("nob.nc", without_b), "--tools", grinding_tools()});
     ASSERT_EQ(doc.at("segments").size(), plain.at("segments").size());
     for (std::size_t i = 0; i < plain.at("segments").size(); ++i) {
         EXPECT_EQ(doc.at("segments")[i].at("start"), plain.at("segments")[i].at("start")) << i;
@@ -541,7 +499,7 @@ TEST_F(OtcRun, ABWordKeepsTheToolLengthOnTheAxis) {
 TEST_F(OtcRun, TheIsgToolDirAndSurfNormDirExamplesStandAtMachineZ350ForZ300) {
     for (const char* name : {"tool_dir", "surf_norm_dir"}) {
         const json doc =
-            run_json({kExamples + "/otc/" + name + ".nc", "--tools", seed_tools(), "--plc",
+            run_json({kExamples + "/otc/" + name + ".nc", "--tools", grinding_tools(), "--plc",
                       kExamples + "/otc/plc/" + name + ".plc", "--csv", path("e.csv")});
         const auto rows = read_csv(path("e.csv"));
         ASSERT_FALSE(rows.empty()) << name;

@@ -5,7 +5,6 @@
 // The run's other threads may take the second signal while the first is being handled: with
 // the default action put back at once (SA_RESETHAND) they ended the process mid-cleanup and
 // left hidden files (.out.json.apcictl-...) behind.
-#include <dirent.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -22,23 +21,17 @@
 #include <thread>
 #include <vector>
 
+#include "scratch_dir.h"
+#include "text.h"
+
 namespace {
 
-std::set<std::string> names_in(const std::string& dir) {
-    std::set<std::string> names;
-    DIR* d = ::opendir(dir.c_str());
-    if (d == nullptr) return names;
-    while (const dirent* e = ::readdir(d)) {
-        const std::string name = e->d_name;
-        if (name != "." && name != "..") names.insert(name);
-    }
-    ::closedir(d);
-    return names;
-}
+using test_support::names_in;
 
 TEST(RunDoubleSignal, SecondSignalWaitsForTheTemporaryFilesToBeRemoved) {
-    std::string root = ::testing::TempDir() + "run_double_signal_XXXXXX";
-    ASSERT_NE(::mkdtemp(root.data()), nullptr);
+    const test_support::ScratchDir scratch("run_double_signal_");
+    const std::string& root = scratch.path();
+    ASSERT_FALSE(root.empty());
     std::ofstream(root + "/long.nc") << "N10 G1 X1000 F60\nM30\n";  // a minute of cycles
     // Tries: the race is a matter of microseconds (it was lost in about 2 of 60 tries).
     constexpr int kTries = 60;
@@ -82,7 +75,6 @@ TEST(RunDoubleSignal, SecondSignalWaitsForTheTemporaryFilesToBeRemoved) {
         }
     }
     EXPECT_EQ(left_behind, 0) << "of " << kTries << " tries";
-    std::system(("rm -rf '" + root + "'").c_str());
 }
 
 }  // namespace

@@ -11,57 +11,13 @@
 #include <new>
 #include <string>
 
+#include "heap_counter.h"
 #include "plate_program.h"
 #include "apci/apci.hpp"
 #include "apci/nc/program.h"
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/svg_writer.h"
-
-namespace {
-
-// Atomic: with the front end reading ahead, its thread allocates too.
-std::atomic<std::size_t> g_live_bytes{0};
-std::atomic<std::size_t> g_peak_bytes{0};
-
-void* counted_alloc(std::size_t n) {
-    auto* p = static_cast<std::size_t*>(std::malloc(n + sizeof(std::max_align_t)));
-    if (p == nullptr) throw std::bad_alloc();
-    *p = n;
-    const std::size_t live = g_live_bytes.fetch_add(n) + n;
-    std::size_t peak = g_peak_bytes.load();
-    while (live > peak && !g_peak_bytes.compare_exchange_weak(peak, live)) {
-    }
-    return reinterpret_cast<char*>(p) + sizeof(std::max_align_t);
-}
-
-void counted_free(void* q) noexcept {
-    if (q == nullptr) return;
-    auto* p = reinterpret_cast<std::size_t*>(static_cast<char*>(q) - sizeof(std::max_align_t));
-    g_live_bytes.fetch_sub(*p);
-    std::free(p);
-}
-
-}  // namespace
-
-void* operator new(std::size_t n) {
-    return counted_alloc(n);
-}
-void* operator new[](std::size_t n) {
-    return counted_alloc(n);
-}
-void operator delete(void* p) noexcept {
-    counted_free(p);
-}
-void operator delete[](void* p) noexcept {
-    counted_free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-    counted_free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-    counted_free(p);
-}
 
 namespace apci::run {
 namespace {
@@ -94,8 +50,8 @@ Footprint run_program(const std::string& text, const nc::ToolTable& tools,
                       bool read_ahead = false) {
     Footprint fp;
     std::FILE* null = std::fopen("/dev/null", "w");
-    const std::size_t base = g_live_bytes.load();
-    g_peak_bytes = base;
+    const std::size_t base = test_support::heap_live_bytes();
+    test_support::reset_heap_peak();
     {
         apci::Board board("emu:");
         EXPECT_TRUE(board.is_open());
@@ -113,7 +69,7 @@ Footprint run_program(const std::string& text, const nc::ToolTable& tools,
         fp.segments = writers.segments;
         fp.ok = out.errors.empty();
     }
-    fp.peak_bytes = g_peak_bytes.load() - base;
+    fp.peak_bytes = test_support::heap_peak_bytes() - base;
     std::fclose(null);
     return fp;
 }

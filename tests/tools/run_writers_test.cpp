@@ -12,16 +12,18 @@
 #include <string>
 #include <vector>
 
-#include "memory_file.h"
 #include "apci/run/csv_writer.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/path.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
+#include "memory_file.h"
+#include "text.h"
 
 namespace apci::run {
 namespace {
 
+using test_support::contains;
 using nlohmann::json;
 
 using apci_test::MemoryFile;
@@ -44,10 +46,6 @@ PathSegment arc(const Point& a, const Point& b, const Point& c, bool ccw, int pl
     s.ccw = ccw;
     s.plane = plane;
     return s;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 // ---- path geometry

@@ -21,11 +21,16 @@
 #include <vector>
 
 #include "apci/run/plc_script.h"
-#include "process.h"
+#include "apcictl.h"
+#include "scratch_test.h"
+#include "text.h"
 
 namespace {
 
+using test_support::read_csv;
+using test_support::read_text;
 using nlohmann::json;
+using test_support::apcictl;
 using test_support::ProcessResult;
 
 const std::string kSource = APCI_SOURCE_DIR;
@@ -35,46 +40,10 @@ constexpr double kEps = 1e-9;
 // CSV columns: cycle, time, then board axes 0..7 (X, Y, Z on 0, 1, 2 by default).
 constexpr std::size_t kCycle = 0, kX = 2, kY = 3, kZ = 4;
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::vector<std::vector<double>> read_csv(const std::string& path) {
-    std::vector<std::vector<double>> rows;
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);  // header
-    while (std::getline(in, line)) {
-        std::vector<double> row;
-        std::stringstream s(line);
-        std::string cell;
-        while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-class TempCompRun : public ::testing::Test {
+class TempCompRun : public test_support::ScratchTest {
   protected:
-    void SetUp() override {
-        std::string templ = ::testing::TempDir() + "tempcomp_run_XXXXXX";
-        ASSERT_NE(::mkdtemp(templ.data()), nullptr);
-        dir_ = templ;
-    }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
+    TempCompRun() : ScratchTest("tempcomp_run_") {}
 
-    std::string path(const std::string& name) const { return dir_ + "/" + name; }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path(name)) << text;
-        return path(name);
-    }
-    static ProcessResult apcictl(std::vector<std::string> args) {
-        args.insert(args.begin(), APCICTL_PATH);
-        return test_support::run_process(args);
-    }
     // Runs the program with the PLC script (none: "") and returns the CSV trace; the JSON goes
     // to `json_name`.
     std::vector<std::vector<double>> trace(const std::string& program, const std::string& plc,
@@ -93,21 +62,13 @@ class TempCompRun : public ::testing::Test {
         return json::parse(read_text(path(json_name)));
     }
 
-    std::string dir_;
 };
 
 // The example runs with the command its header documents (paths from the source tree).
 TEST_F(TempCompRun, ExampleRunsWithItsDocumentedCommand) {
     const std::string file = kExamples + "/temperature/spindle_growth.nc";
-    const std::string text = read_text(file);
-    const std::string marker = "; ./build/bin/apcictl ";
-    const std::size_t at = text.find(marker);
-    ASSERT_NE(at, std::string::npos);
-    std::stringstream cmd(
-        text.substr(at + marker.size(), text.find('\n', at) - at - marker.size()));
-    std::vector<std::string> args;
-    for (std::string word; cmd >> word;)
-        args.push_back(word.rfind("examples/", 0) == 0 ? kSource + "/" + word : word);
+    std::vector<std::string> args = test_support::documented_command(file, kSource);
+    ASSERT_FALSE(args.empty());
     args.emplace_back("--json");
     args.push_back(path("out.json"));
     const ProcessResult r = apcictl(args);

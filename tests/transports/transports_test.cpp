@@ -26,9 +26,11 @@
 #include "fake_sysfs.h"
 #include "objif/frame.h"
 #include "objif/mailbox.h"
+#include "text.h"
 
 namespace {
 
+using test_support::contains;
 using apci_test::Daemon;
 using apci_test::DaemonOptions;
 using apci_test::FakePciSysfs;
@@ -46,10 +48,6 @@ std::string open_error(const std::string& uri, apci_status expected) {
     EXPECT_EQ(b, nullptr);
     apci_close(b);
     return apci_last_error(nullptr);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 // A file of `size` zero bytes.

@@ -9,16 +9,14 @@
 #include <vector>
 
 #include "apci/apci.h"
+#include "text.h"
 #include "usb_emulator.h"
 
 namespace {
 
+using test_support::contains;
 using apci_test::UsbBoard;
 using namespace std::chrono_literals;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 apci_object_descriptor axis_count() {
     return {1000, 0, 3, 0, 0};

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Wire frames (docs/design.md section 2, design): the same frames travel over every
-// transport (daemon socket, dual-port RAM mailbox, USB bulk endpoints).
+// transport that leaves the process (daemon socket, dual-port RAM mailbox, USB bulk
+// endpoints); the in-process emulator is called directly.
 //
 //   offset size field
 //   0      4    magic   0x49435041 ("APCI" in little-endian byte order)
@@ -181,7 +182,7 @@ FrameError decode(std::span<const std::uint8_t> p, ErrorReply& m);
 void encode(const Notice& m, std::vector<std::uint8_t>& out);
 FrameError decode(std::span<const std::uint8_t> p, Notice& m);
 
-// ---- Motion payloads (docs/motion.md "Wire payloads"). Plain wire structs:
+// ---- Motion payloads (docs/motion.md section 9, "Wire payloads"). Plain wire structs:
 // the board's motion types (rwmos/motion/types.h) map onto them one to one.
 // Every double must be finite (kNotFinite otherwise); enumerations the codec
 // knows (clock mode, trace kind, segment kind/role) are checked here, values

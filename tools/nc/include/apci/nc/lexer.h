@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Character-level scanning of one line, shared by the DIN 66025 block parser, the tool file
-// parser and (later) the ISG # command and Klartext parsers: a cursor with primitives for
-// blanks, numbers, identifiers and comments. Nothing allocates.
+// Character-level scanning of one line, shared by the DIN 66025 block parser and its ISG
+// commands (parser.cpp), the Klartext parser, the expressions (expression.h), the tool list, the
+// correction table and the PLC script (tools/runlib's plc_script.cpp): a cursor with primitives
+// for blanks, numbers, identifiers and comments. Nothing allocates.
 #pragma once
 
 #include <array>

@@ -78,7 +78,7 @@ void run_section_2_5(const WriteFn& write, const ReadFn& read) {
     EXPECT_EQ(w_int(g(tc::kSubLeft), 0), Status::kOk);
 }
 
-TEST(SeedSection2_5, SequenceRunsOnABoard) {
+TEST(ApciTcSection2_5, SequenceRunsOnABoard) {
     rwmos::Board board;
     run_section_2_5([&](Descriptor& d, const Value& v) { return board.write(d, v); },
                     [&](Descriptor& d, ValueType t, Value& v) { return board.read(d, t, v); });
@@ -128,14 +128,14 @@ private:
     std::uint32_t sequence_ = 0;
 };
 
-TEST(SeedSection2_5, SequenceRunsOverWireFrames) {
+TEST(ApciTcSection2_5, SequenceRunsOverWireFrames) {
     WireBoard wire;
     run_section_2_5([&](Descriptor& d, const Value& v) { return wire.write(d, v); },
                     [&](Descriptor& d, ValueType t, Value& v) { return wire.read(d, t, v); });
     EXPECT_EQ(wire.board.state().tc.group(2).tools[1023].radius, 0.75);
 }
 
-TEST(SeedSection2_5, StaleHandleAfterCleanTravelsOverTheWire) {
+TEST(ApciTcSection2_5, StaleHandleAfterCleanTravelsOverTheWire) {
     WireBoard wire;
     auto radius = tc_group(1, tc::kSubRadius);
     ASSERT_EQ(wire.write(radius, Value::of_double(1.0)), Status::kOk);

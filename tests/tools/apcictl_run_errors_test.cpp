@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: MIT
+// `apcictl run`'s errors and usage: the board's errors with block and name, program errors that
+// run nothing, exit codes, help, a program from standard input, the progress bar.
+#include <gtest/gtest.h>
+#include <pty.h>
+#include <sys/wait.h>
+
+#include "apcictl_run.h"
+
+namespace {
+
+using namespace apcictl_run_test;
+
+// ---- Errors from the board: block and Table 4 name
+
+TEST_F(ApcictlRun, KorrErrorIsReportedWithBlockAndNameAndTheRunStops) {
+    const std::string prog = write("korr.nc",
+                                   "N10 F1000 D1\nN40 G41 G1 X0 Y0\nN50 X60\nN60 Y2\nN70 X0\n"
+                                   "N100 G40 G1 X0 Y-20\nN110 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0), "--svg", path("k.svg")}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "KorrError");
+    // The board's own words and what to change; not the driver's call, status or tag.
+    EXPECT_EQ(doc.at("errors")[0].at("message"),
+              "element is too short for the corner: its offset would reverse (lengthen it, join it "
+              "into its neighbour, or use a smaller tool)");
+    EXPECT_EQ(doc.at("registers").at("1").at("ERROR_bits"), json::array({"KorrError"}));
+    EXPECT_TRUE(contains(last_.out, "errors: 1 (KorrError 1)\n  line 4 (N60): KorrError: ")) << last_.out;
+    EXPECT_TRUE(contains(last_.err, "apcictl: run " + prog + ": stopped at line 4 (N60): KorrError\n"))
+        << last_.err;
+    // The board holds: nothing spooled after the error ran.
+    for (const auto& s : doc.at("segments")) EXPECT_LT(s.at("block").get<int>(), 70);
+    const std::string svg = read_text(path("k.svg"));
+    EXPECT_TRUE(contains(svg, ">N60 KorrError</text>"));
+    // The rest of the program is still drawn, so the place of the error is seen.
+    EXPECT_TRUE(contains(svg, "L0 20") || contains(svg, "L0 2"));
+}
+
+TEST_F(ApcictlRun, AnErrorInABlockWithoutNumberNamesItsLineNeverAnInternalTag) {
+    // Blocks without N carry their line through the board's tag (2^31 + line): the message
+    // names the line, and neither the tag nor the spool call's status.
+    const std::string prog = write("korr_lines.nc",
+                                   "F1000 D1\nG41 G1 X0 Y0\nX60\nY2\nX0\nG40 G1 X0 Y-20\nM30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0)}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("line"), 4);
+    EXPECT_TRUE(contains(last_.out, "\n  line 4: KorrError: element is too short for the corner"))
+        << last_.out;
+    EXPECT_TRUE(contains(last_.err, "stopped at line 4: KorrError")) << last_.err;
+    for (const std::string& text : {last_.out, last_.err, doc.dump()}) {
+        EXPECT_FALSE(contains(text, "2147483")) << text;
+        EXPECT_FALSE(contains(text, "WrongDeviceState")) << text;
+    }
+}
+
+TEST_F(ApcictlRun, CalcErrorForAConcaveArcSmallerThanTheTool) {
+    const std::string prog = write("calc.nc",
+                                   "N10 F1000 D1\nN40 G41 G1 X0 Y0\nN50 X20\nN60 G3 X24 Y4 I0 J4\n"
+                                   "N70 G1 Y20\nN100 G40 G1 X40\nN110 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0)}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "CalcError");
+}
+
+TEST_F(ApcictlRun, CompensationWithoutTheTcOptionIsAnErrorNamingIt) {
+    const std::string prog = write("g41.nc", "N10 F1000\nN20 G1 X5\nN30 G41 X10\nM30\n");
+    const json doc = run_json(prog, {"--device", "emu:?no-option-tc"}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 30);
+    EXPECT_EQ(doc.at("errors")[0].at("code"), "NoSuchDevice");
+    EXPECT_TRUE(contains(doc.at("errors")[0].at("message").get<std::string>(), "optionTC"));
+    EXPECT_EQ(doc.at("registers"), json::object());
+}
+
+TEST_F(ApcictlRun, ProgramWithoutCompensationRunsWithoutTheTcOption) {
+    const std::string prog = write("plain.nc", "N10 G1 X5 F600\nN20 G2 X10 Y0 I2.5 J0\nM30\n");
+    const json doc = run_json(prog, {"--device", "emu:?no-option-tc"});
+    EXPECT_EQ(roles(doc), "uncompensated/10 uncompensated/20");
+    EXPECT_EQ(doc.at("segments")[1].at("kind"), "arc");
+    EXPECT_EQ(doc.at("segments")[1].at("ccw"), false);
+}
+
+
+// ---- Program errors: nothing runs
+
+TEST_F(ApcictlRun, ParseErrorNamesFileLineAndColumnAndRunsNothing) {
+    const std::string prog = write("bad.nc", "N10 G1 X1 F100\nN20 G1 X\nM30\n");
+    const auto r = apcictl({"run", prog, "--json", path("bad.json"), "--svg", path("bad.svg")});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "apcictl: " + prog + ":2:9: N20: expected a number after 'X'\n");
+    EXPECT_FALSE(exists(path("bad.json")));
+    EXPECT_FALSE(exists(path("bad.svg")));
+}
+
+TEST_F(ApcictlRun, ToolNotInTheToolListSaysThatNoneWasGiven) {
+    const std::string prog = write("d1.nc", "N10 D1\nM30\n");
+    const auto r = apcictl({"run", prog});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err,
+                         ":1:5: N10: D1 selects tool 1, which the tool list does not define "
+                         "(no --tools file given)"))
+        << r.err;
+}
+
+TEST_F(ApcictlRun, BadToolListNamesFileAndLine) {
+    const std::string t = write("bad.tools", "wz[1].radius 5\nwz[1].typ 9\n");
+    const auto r = apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools", t});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "bad.tools:2:")) << r.err;
+}
+
+// ---- Exit codes and usage
+
+TEST_F(ApcictlRun, UsageErrorsExitTwo) {
+    EXPECT_EQ(apcictl({"run"}).exit_code, 2);
+    EXPECT_EQ(apcictl({"run", "x.nc", "--bogus"}).exit_code, 2);
+    // --avoid-bottlenecks: 0 (off) or 2..64 moves back.
+    const std::string wr = kExamples + "/wr_quad_disc.nc", wr_tools = kExamples + "/tools/wr_quad_disc.tools";
+    for (const char* bad : {"1", "65", "-1", "x"})
+        EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", bad}).exit_code, 2)
+            << bad;
+    for (const char* good : {"0", "2", "64"})
+        EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", good}).exit_code, 0)
+            << good;
+    const auto missing = apcictl({"run", path("missing.nc")});
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_TRUE(contains(missing.err, "missing.nc: cannot open")) << missing.err;
+    const auto unwritable =
+        apcictl({"run", kExamples + "/wr_quad_disc.nc", "--tools",
+                 kExamples + "/tools/wr_quad_disc.tools", "--json", path("no/such/dir.json")});
+    EXPECT_EQ(unwritable.exit_code, 2);
+    EXPECT_EQ(unwritable.out, "");  // nothing ran
+    EXPECT_TRUE(contains(unwritable.err, "cannot write " + path("no/such/dir.json")))
+        << unwritable.err;
+}
+
+TEST_F(ApcictlRun, HelpNamesTheOptions) {
+    const auto r = apcictl({"run", "--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* opt : {"--tools", "--svg", "--json", "--csv"})
+        EXPECT_TRUE(contains(r.out, opt)) << opt;
+}
+
+TEST_F(ApcictlRun, ProgramFromStandardInput) {
+    const auto r = apcictl({"run", "-", "--json", path("in.json")}, "N10 G1 X3 Y4 F600\nM30\n");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "<stdin>: 2 blocks, 2 executed, 1 segments\npath 5.000 mm"))
+        << r.out;
+    const auto bad = apcictl({"run", "-"}, "N10 G1 X\n");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_TRUE(contains(bad.err, "<stdin>:1:9: N10: expected a number after 'X'")) << bad.err;
+}
+
+// Runs apcictl with standard error on a pseudo-terminal; returns what it wrote there.
+std::string stderr_on_a_terminal(const std::vector<std::string>& args, int& exit_code) {
+    int master = -1;
+    const pid_t pid = ::forkpty(&master, nullptr, nullptr, nullptr);
+    if (pid == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 1);  // only standard error stays on the terminal
+        std::vector<char*> argv{const_cast<char*>(APCICTL_PATH)};
+        for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    std::string text;
+    char buf[4096];
+    for (;;) {
+        const ssize_t n = ::read(master, buf, sizeof buf);
+        if (n <= 0) break;  // EIO once the child closed the terminal
+        text.append(buf, static_cast<std::size_t>(n));
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ::close(master);
+    exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return text;
+}
+
+TEST_F(ApcictlRun, ProgressBarOnlyOnATerminalAndClearedAtTheEnd) {
+    std::string text = "N1 G1 F60000\n";
+    for (int i = 0; i < 10000; ++i) text += (i % 2 == 0 ? "X1\n" : "X0\n");
+    text += "M30\n";
+    const std::string prog = write("long.nc", text);
+    int exit_code = -1;
+    const std::string terminal = stderr_on_a_terminal({"run", prog}, exit_code);
+    EXPECT_EQ(exit_code, 0) << terminal;
+    EXPECT_TRUE(contains(terminal, "\r[")) << terminal;
+    EXPECT_TRUE(contains(terminal, " of 10002 blocks")) << terminal;
+    EXPECT_TRUE(terminal.size() >= 4 && terminal.substr(terminal.size() - 4) == "\r\x1b[K")
+        << terminal;
+    const auto piped = apcictl({"run", prog});  // standard error is a pipe here
+    EXPECT_EQ(piped.exit_code, 0);
+    EXPECT_EQ(piped.err, "");
+}
+
+TEST_F(ApcictlRun, BlocksWithoutNumberCarryTheirLine) {
+    const std::string prog = write("nonum.nc", "F600\n\nG1 X1\nN7 X2\nM30\n");
+    const json doc = run_json(prog);
+    ASSERT_EQ(doc.at("segments").size(), 2u);
+    EXPECT_EQ(doc.at("segments")[0].at("block"), -1);
+    EXPECT_EQ(doc.at("segments")[0].at("line"), 3);
+    EXPECT_EQ(doc.at("segments")[1].at("block"), 7);
+    EXPECT_FALSE(doc.at("segments")[1].contains("line"));
+}
+
+}  // namespace
