@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: MIT
-// The general parser of one DIN 66025 line (parse_din_line_general, parser.h): BlockParser and
-// the helpers its two parts share. din_parser.cpp parses blocks and their words (N, G, M, D,
-// X Y Z B, I J K, R, F, CDON/CDOF) and the "%name" line; isg_commands.cpp parses the ISG
-// commands ([ISG-OTC] section 2.1 #OTC; docs/design.md section 8 $FOR, #KIN, #TRAFO, #HSC) and
-// assignments (Pn = .., V.G.WZ_AKT.WEAR_CONST = ..). plain_block.cpp holds the fast path tried
-// first; dialect.cpp tells DIN 66025 from Klartext.
+// The general parser of one DIN 66025 line (parse_din_line_general, parser.h), in two parts
+// that share what is declared here: din_parser.cpp parses blocks and their words (N, G, M, D,
+// X Y Z B, I J K, R, F, CDON/CDOF) and the "%name" line; isg_commands.cpp the ISG commands
+// ([ISG-OTC] section 2.1 #OTC; docs/design.md section 8 $FOR, #KIN, #TRAFO, #HSC) and the
+// assignments (Pn = .., V.G.WZ_AKT.WEAR_CONST = ..), which stand in a block of their own.
+// plain_block.cpp holds the fast path tried first; dialect.cpp tells DIN 66025 from Klartext.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 
+#include "apci/nc/expression.h"
 #include "apci/nc/lexer.h"
 #include "apci/nc/parser.h"
 
@@ -44,71 +46,44 @@ inline bool skip_blanks_and_comments(LineCursor& c, std::string_view file, std::
     return skip_comments(c, file, line, err);
 }
 
-// The fast path for the usual block (plain_block.cpp); false where the general parser must
-// parse the line.
-bool plain_block(std::string_view line, std::uint64_t line_number, ParsedLine& out) noexcept;
-
-class BlockParser {
+// One line under the general parser: the cursor, where the line is (file, line number), what
+// it fills, and the context its expressions are evaluated with. The parsers of both parts
+// derive from it; the block's parser hands it, cursor and all, to the ISG commands'.
+class LineParse {
   public:
-    BlockParser(std::string_view line, std::uint64_t line_number, std::string_view file,
-                ParsedLine& out, Diagnostic& err, const ExpressionContext* ctx)
-        : c_(line), line_(line_number), file_(file), out_(out), b_(out.block), err_(err), ctx_(ctx) {}
+    LineParse(std::string_view line, std::uint64_t line_number, std::string_view file,
+              ParsedLine& out, Diagnostic& err, const ExpressionContext* ctx)
+        : c_(line), line_(line_number), file_(file), out_(out), err_(err), ctx_(ctx) {}
 
-    // The line into `out`; false with `err` filled on an error.
-    bool parse();
-
-  private:
-    // ---- Blocks and their words (din_parser.cpp)
-    bool fail_here(ErrorKind kind, std::uint32_t column, std::string message);
-    bool parse_program_name();
-    bool expression(double& out);
-    bool word(bool first, char raw);
-    bool collision_detection(std::uint32_t col);
-    bool center(std::size_t k, char letter, std::uint32_t col);
-    bool twice(char letter, std::uint32_t col);
-    bool real(Word<double>& w, char letter, std::uint32_t col);
-    bool whole(char letter, std::uint64_t& value, std::string_view what,
-               std::uint64_t max = kMaxWordNumber);
-    bool block_number(std::uint32_t col, bool first);
-    [[gnu::noinline]] bool group_conflict(int had, int g, std::uint32_t col,
-                                          std::string_view group);
-    bool g_code(std::uint32_t col);
-    bool m_code(std::uint32_t col);
-    bool tool(std::uint32_t col);
-    bool feed(std::uint32_t col);
-    bool arc_radius(std::uint32_t col);
-    bool r_with_center(std::uint32_t col);
-    template <typename E>
-    bool set_group(Word<E>& w, E value, std::uint32_t col, std::string_view group) {
-        if (w.present()) return group_conflict(g_number(w.value), g_number(value), col, group);
-        w.value = value;
-        w.column = col;
-        return true;
+  protected:
+    // Parse errors carry the block number when the N word came before the error.
+    bool fail_here(ErrorKind kind, std::uint32_t column, std::string message) {
+        fail(err_, kind, file_, line_, column, std::move(message));
+        const Word<std::int64_t>& number = out_.block.number;
+        err_.block = number.present() ? number.value : kNoBlockNumber;
+        return false;
     }
 
-    // ---- ISG commands and assignments (isg_commands.cpp)
-    bool is_assignment_start() const;
-    bool end_of_command(std::string_view what);
-    bool assignment();
-    bool isg_command();
-    bool on_off(std::string_view command, bool& on, bool optional, bool* seen = nullptr);
-    bool otc(OtcCommand& cmd);
-    bool otc_parameters(OtcCommand& cmd, std::uint32_t open);
-    bool otc_conflict(std::uint32_t col, std::string_view a, std::string_view b);
-    bool otc_word(OtcCommand& cmd, std::string_view word, std::uint32_t col);
-    bool equals_value(std::string_view name, double& v);
-    bool kin(IsgLine& isg);
-    bool hsc(IsgLine& isg);
-    bool for_loop(ForLoop& loop);
+    // Evaluates an expression at the cursor into `out`; errors become parse errors.
+    bool expression(double& out) {
+        ExpressionError e;
+        if (evaluate_expression(c_, ctx_, out, e)) return true;
+        return fail_here(e.kind, e.column == 0 ? c_.column() : e.column, std::move(e.message));
+    }
 
     LineCursor c_;
     std::uint64_t line_;
     std::string_view file_;
     ParsedLine& out_;
-    Block& b_;
     Diagnostic& err_;
     const ExpressionContext* ctx_;
-    bool only_number_so_far_ = false;
 };
+
+// The ISG commands and assignments (isg_commands.cpp). Whether the cursor stands at an
+// assignment ("P1 =", "V.", a setting datum); an ISG command at '#' or '$', and an assignment,
+// parsed from `at` to the end of the line.
+bool is_assignment_start(const LineCursor& c);
+bool parse_isg_command(const LineParse& at);
+bool parse_assignment(const LineParse& at);
 
 }  // namespace apci::nc::parser_detail

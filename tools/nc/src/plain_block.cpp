@@ -8,7 +8,6 @@
 
 #include "apci/nc/lexer.h"
 #include "apci/nc/parser.h"
-#include "block_parser.h"
 
 namespace apci::nc {
 
@@ -50,16 +49,13 @@ constexpr std::array<PlainSlot, 256> kPlainSlots = [] {
 }();
 constexpr std::uint8_t kPlainFeed = 6;
 
-}  // namespace
-
 // The usual block in one pass over raw bytes: N (first), G0..G3, X Y Z I J K with plain
 // numbers, F above 0, blanks between, an optional ';' comment at the end. True with `out` as
 // BlockParser::parse would fill it; false at the first thing outside that (anything else, and
 // every error), with `out` unspecified: the general parser then parses the line from its start
 // and gives its block or its error. The accepted bytes are all ASCII: a word's column is its
 // offset plus one.
-bool parser_detail::plain_block(std::string_view line, std::uint64_t line_number,
-                                ParsedLine& out) noexcept {
+bool plain_block(std::string_view line, std::uint64_t line_number, ParsedLine& out) noexcept {
     const char* const begin = line.data();
     const char* const end = begin + line.size();
     const char* p = begin;
@@ -115,9 +111,11 @@ bool parser_detail::plain_block(std::string_view line, std::uint64_t line_number
     return true;
 }
 
+}  // namespace
+
 bool parse_din_line(std::string_view line, std::uint64_t line_number, std::string_view file,
                     ParsedLine& out, Diagnostic& err, const ExpressionContext* ctx) {
-    if (parser_detail::plain_block(line, line_number, out)) return true;
+    if (plain_block(line, line_number, out)) return true;
     return parser_detail::parse_din_line_general(line, line_number, file, out, err, ctx);
 }
 
