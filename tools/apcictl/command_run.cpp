@@ -264,26 +264,94 @@ class RunCommand final : public Command {
     }
 
     Outcome run(Session& session) override {
-        // Tool list: without one, D n (n > 0) is refused by the validation pass.
+        RunInputs inputs;
+        if (Outcome o = load_inputs(inputs); !o.ok()) return o;
+        Outcome failure;
+        apci::Board* board = session.board(failure);
+        if (board == nullptr) return failure;
+
+        // Outputs, declared before the writers (which go first).
+        RunOutputFiles files(json_, svg_, csv_, tools_out_);
+        Outputs outputs;
+        // On the embedded emulator, where the process may use two CPUs, this thread (executor
+        // and board) keeps one and the two helper threads below share the other
+        // (cpu_placement.h); declared first, so the helpers end before it goes.
+        std::optional<apci::run::CpuPlacement> placement;
+        if (embedded_board(session.uri())) placement.emplace();
+        const apci::run::CpuPlacement* const cpus = placement ? &*placement : nullptr;
+        // The writers run on a thread of their own, fed in order through a bounded ring
+        // (pipeline.h); declared after `outputs`, so the thread ends before they go.
+        apci::run::PipelinedSink pipeline(outputs, cpus);
+        apci::run::ProgramExecutor executor(*board, pipeline, &inputs.tools,
+                                            plc_.empty() ? nullptr : &inputs.plc,
+                                            &inputs.corrections);
+        configure(executor, cpus);
+        const apci::nc::InterpreterOptions options = executor.interpreter_options();
+
+        ProgramPasses passes;
+        if (Outcome o = open_program(embedded_board(session.uri()), files, options, passes);
+            !o.ok())
+            return o;
+        if (Outcome o = open_outputs(files, options, passes); !o.ok()) return o;
+        if (Outcome o = attach_writers(files, options, passes, outputs); !o.ok()) return o;
+
+        apci::run::RunOutcome result =
+            executor.run(passes.single ? passes.single->events() : *passes.stream);
+        pipeline.finish();  // every event written; the writer thread has ended
+        if (Outcome o = count_blocks(passes, outputs, result); !o.ok()) return o;
+        const std::string written_error = write_outputs(files, outputs, result);
+        return report(files, result, written_error);
+    }
+
+  private:
+    // What the run reads besides the program, loaded before the board is touched. Declared
+    // before the executor that points to them.
+    struct RunInputs {
         apci::nc::ToolTable tools;
+        apci::nc::CorrectionTable corrections;
+        apci::run::PlcScript plc;
+    };
+
+    // The program as it is run: validated first (`program`, then its execution pass
+    // `stream`), or in one pass that validates it while it runs (`single`).
+    struct ProgramPasses {
+        std::optional<apci::nc::Program> program;
+        std::optional<apci::nc::EventStream> stream;
+        std::optional<apci::nc::SinglePass> single;
+    };
+
+    // The outputs' files: temporary files beside their targets, renamed over them at the end
+    // only if every output was written (run_files.h).
+    struct RunOutputFiles {
+        enum : std::size_t { kJson, kSvg, kCsv, kToolsOut };
+        RunOutputFiles(const std::string& json_target, const std::string& svg_target,
+                       const std::string& csv_target, const std::string& tools_target)
+            : named{{{&json, &json_target},
+                     {&svg, &svg_target},
+                     {&csv, &csv_target},
+                     {&tools_out, &tools_target}}} {}
+        OutputFile json, svg, csv, tools_out;
+        const std::array<std::pair<OutputFile*, const std::string*>, 4> named;
+    };
+
+    // The tool list (without one, D n (n > 0) is refused by the validation pass), the
+    // correction table (without one, FUNCTION CORRDATA TCS #n is refused: the table defines
+    // no row), the PLC script, and a program that cannot be read twice, read into memory.
+    Outcome load_inputs(RunInputs& in) {
         if (!tools_.empty()) {
             auto loaded = apci::nc::load_tool_table(tools_);
             if (!loaded) return nc_failure(loaded.error());
-            tools = std::move(loaded.value());
+            in.tools = std::move(loaded.value());
         }
-        // Correction table: without one, FUNCTION CORRDATA TCS #n is refused by the validation
-        // pass (the table defines no row).
-        apci::nc::CorrectionTable corrections;
         if (!corr_.empty()) {
             auto loaded = apci::nc::load_correction_table(corr_);
             if (!loaded) return nc_failure(loaded.error());
-            corrections = std::move(loaded.value());
+            in.corrections = std::move(loaded.value());
         }
-        apci::run::PlcScript plc;
         if (!plc_.empty()) {
             auto loaded = apci::run::load_plc_script(plc_);
             if (!loaded) return nc_failure(loaded.error());
-            plc = std::move(loaded.value());
+            in.plc = std::move(loaded.value());
         }
         if (program_ == "-" || !seekable(program_)) {
             const int fd =
@@ -296,31 +364,12 @@ class RunCommand final : public Command {
             if (!why.empty()) return Outcome::usage_error("run: " + why);
             program_in_memory_ = true;
         }
+        return Outcome::success();
+    }
 
-        Outcome failure;
-        apci::Board* board = session.board(failure);
-        if (board == nullptr) return failure;
-
-        // Outputs, declared before the writers (which go first): temporary files beside their
-        // targets, renamed over them at the end only if every output was written (run_files.h).
-        OutputFile json_file, svg_file, csv_file, tools_file;
-        const std::array<std::pair<OutputFile*, const std::string*>, 4> files{
-            {{&json_file, &json_},
-             {&svg_file, &svg_},
-             {&csv_file, &csv_},
-             {&tools_file, &tools_out_}}};
-        Outputs outputs;
-        // On the embedded emulator, where the process may use two CPUs, this thread (executor
-        // and board) keeps one and the two helper threads below share the other
-        // (cpu_placement.h); declared first, so the helpers end before it goes.
-        std::optional<apci::run::CpuPlacement> placement;
-        if (embedded_board(session.uri())) placement.emplace();
-        const apci::run::CpuPlacement* const cpus = placement ? &*placement : nullptr;
-        // The writers run on a thread of their own, fed in order through a bounded ring
-        // (pipeline.h); declared after `outputs`, so the thread ends before they go.
-        apci::run::PipelinedSink pipeline(outputs, cpus);
-        apci::run::ProgramExecutor executor(*board, pipeline, &tools, plc_.empty() ? nullptr : &plc,
-                                            &corrections);
+    // The options of the command line that the executor takes.
+    void configure(apci::run::ProgramExecutor& executor,
+                   const apci::run::CpuPlacement* cpus) const {
         // The NC front end reads ahead on a thread of its own (read_ahead.h): the same events,
         // errors and variable reads, the program parsed while the board runs.
         executor.set_read_ahead(true, cpus);
@@ -328,71 +377,90 @@ class RunCommand final : public Command {
                                    : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
                                                              : apci::run::SelfApproachMode::kWarn);
         executor.set_avoid_bottlenecks(bottleneck_blocks_);
-        const apci::nc::InterpreterOptions options = executor.interpreter_options();
+    }
 
-        // The embedded emulator's board is this process's alone and every output is held back
-        // in a temporary file until the end: there the program is validated while it runs (one
-        // pass), and an invalid one gives the error it gives below and publishes nothing.
-        // Elsewhere (a daemon's board, a real one) nothing moves before the program is valid.
-        bool one_pass = embedded_board(session.uri());
-        for (auto [out, name] : files) one_pass = one_pass && held_back(*name);
-        std::optional<apci::nc::Program> program;
-        std::optional<apci::nc::EventStream> stream;
-        std::optional<apci::nc::SinglePass> pass;
-        if (one_pass) {
-            if (program_in_memory_) {
-                pass.emplace(apci::nc::SinglePass::from_text(stdin_text_, program_name(), options));
-            } else {
-                auto opened = apci::nc::SinglePass::open_file(program_, options);
-                if (!opened) return program_failure(opened.error());
-                pass.emplace(std::move(opened).value());
-            }
-        } else if (Outcome o = validate_first(options, program, stream); !o.ok()) {
-            return o;
+    // The embedded emulator's board is this process's alone and every output is held back
+    // in a temporary file until the end: there the program is validated while it runs (one
+    // pass), and an invalid one gives the error it gives below and publishes nothing.
+    // Elsewhere (a daemon's board, a real one) nothing moves before the program is valid.
+    Outcome open_program(bool embedded, const RunOutputFiles& files,
+                         const apci::nc::InterpreterOptions& options,
+                         ProgramPasses& passes) const {
+        bool one_pass = embedded;
+        for (auto [out, name] : files.named) one_pass = one_pass && held_back(*name);
+        if (!one_pass) return validate_first(options, passes.program, passes.stream);
+        if (program_in_memory_) {
+            passes.single.emplace(
+                apci::nc::SinglePass::from_text(stdin_text_, program_name(), options));
+            return Outcome::success();
         }
+        auto opened = apci::nc::SinglePass::open_file(program_, options);
+        if (!opened) return program_failure(opened.error());
+        passes.single.emplace(std::move(opened).value());
+        return Outcome::success();
+    }
 
-        for (auto [out, name] : files) {
+    // A failure to set up an output in the one pass: a program that does not validate says so
+    // first, as when it is validated before the outputs are opened.
+    Outcome validate_before(Outcome failure, const apci::nc::InterpreterOptions& options,
+                            ProgramPasses& passes) const {
+        if (passes.single)
+            if (Outcome o = validate_first(options, passes.program, passes.stream); !o.ok())
+                return o;
+        return failure;
+    }
+
+    Outcome open_outputs(RunOutputFiles& files, const apci::nc::InterpreterOptions& options,
+                         ProgramPasses& passes) const {
+        for (auto [out, name] : files.named) {
             if (name->empty()) continue;
-            if (std::string why = out->open(*name); !why.empty()) {
-                // A program that does not validate says so first, as when it is validated
-                // before the outputs are opened.
-                if (pass)
-                    if (Outcome o = validate_first(options, program, stream); !o.ok()) return o;
-                return Outcome::usage_error(fmt::format("run: cannot write {}: {}", *name, why));
-            }
+            if (std::string why = out->open(*name); !why.empty())
+                return validate_before(
+                    Outcome::usage_error(fmt::format("run: cannot write {}: {}", *name, why)),
+                    options, passes);
             // Written in place after all (it became a FIFO meanwhile): validated first.
-            if (pass && !out->is_stdout() && out->temporary().empty()) {
-                pass.reset();
-                if (Outcome o = validate_first(options, program, stream); !o.ok()) return o;
+            if (passes.single && !out->is_stdout() && out->temporary().empty()) {
+                passes.single.reset();
+                if (Outcome o = validate_first(options, passes.program, passes.stream); !o.ok())
+                    return o;
             }
         }
-        if (json_file.file() != nullptr)
-            outputs.json = std::make_unique<apci::run::JsonRunWriter>(json_file.file());
-        if (svg_file.file() != nullptr) {
+        return Outcome::success();
+    }
+
+    // The writers of the outputs opened, and what the progress bar counts.
+    Outcome attach_writers(const RunOutputFiles& files,
+                           const apci::nc::InterpreterOptions& options, ProgramPasses& passes,
+                           Outputs& outputs) const {
+        if (files.json.file() != nullptr)
+            outputs.json = std::make_unique<apci::run::JsonRunWriter>(files.json.file());
+        if (files.svg.file() != nullptr) {
             outputs.svg = std::make_unique<apci::run::SvgPlotWriter>();
-            if (!outputs.svg->ok()) {
-                if (pass)
-                    if (Outcome o = validate_first(options, program, stream); !o.ok()) return o;
-                return Outcome::board_error("run: cannot make a temporary file for the plot");
-            }
+            if (!outputs.svg->ok())
+                return validate_before(
+                    Outcome::board_error("run: cannot make a temporary file for the plot"),
+                    options, passes);
         }
-        outputs.csv_file = csv_file.file();
+        outputs.csv_file = files.csv.file();
         outputs.svg_cycles = svg_cycles_;
-        if (pass) {
+        if (passes.single) {
             outputs.one_pass = true;
-            outputs.program_bytes = pass->size();
+            outputs.program_bytes = passes.single->size();
         } else {
-            outputs.total_blocks = program->summary().blocks;
+            outputs.total_blocks = passes.program->summary().blocks;
         }
         outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
+        return Outcome::success();
+    }
 
-        apci::run::RunOutcome result = executor.run(pass ? pass->events() : *stream);
-        pipeline.finish();  // every event written; the writer thread has ended
+    // The program's block count and name in the totals. In one pass, the rest of the program
+    // (after an error stopped the run) is validated too; an invalid program publishes
+    // nothing: the outputs are removed on return.
+    Outcome count_blocks(ProgramPasses& passes, Outputs& outputs,
+                         apci::run::RunOutcome& result) const {
         std::uint64_t total_blocks = 0;
-        if (pass) {
-            // The rest of the program (after an error stopped the run) is validated too; an
-            // invalid program publishes nothing: the outputs are removed on return.
-            auto valid = pass->finish();
+        if (passes.single) {
+            auto valid = passes.single->finish();
             if (!valid) {
                 outputs.clear_progress();
                 return program_failure(valid.error());
@@ -400,30 +468,20 @@ class RunCommand final : public Command {
             total_blocks = valid.value().blocks;
             outputs.completed(total_blocks);
         } else {
-            total_blocks = program->summary().blocks;
+            total_blocks = passes.program->summary().blocks;
         }
         outputs.clear_progress();
         result.totals.file = program_name();
         result.totals.blocks = total_blocks;
+        return Outcome::success();
+    }
 
-        // The writers finish; every output is closed (its last bytes written, synced), and only
-        // when all of them are complete are they renamed over their targets, together.
-        enum : std::size_t { kJson, kSvg, kCsv, kToolsOut };
-        std::array<bool, 4> failed{};
-        if (outputs.json)
-            failed[kJson] = !outputs.json->finish(result.errors, result.registers, result.variables,
-                                                  result.notices, result.warnings);
-        if (tools_file.file() != nullptr) {
-            const std::string text = apci::nc::format_tool_table(result.tools_after);
-            failed[kToolsOut] =
-                std::fwrite(text.data(), 1, text.size(), tools_file.file()) != text.size();
-        }
-        if (outputs.svg)
-            failed[kSvg] = !outputs.svg->finish(
-                svg_file.file(), plane_ != 0 ? plane_ : result.plot_plane, result.totals.file);
-        if (outputs.csv) failed[kCsv] = !outputs.csv->finish();
-        outputs.json.reset();
-        outputs.csv.reset();
+    // The writers finish; every output is closed (its last bytes written, synced), and only
+    // when all of them are complete are they renamed over their targets, together. Empty
+    // when every output was published, else why not.
+    std::string write_outputs(RunOutputFiles& files, Outputs& outputs,
+                              const apci::run::RunOutcome& result) const {
+        const std::array<bool, 4> failed = finish_writers(files, outputs, result);
         // A run the board stopped with an error is finished: its outputs say so and are
         // published. One that lost its board (the link failed: the daemon was killed, the
         // board unplugged) or its host's memory did not finish: nothing of it is published
@@ -434,39 +492,66 @@ class RunCommand final : public Command {
                 "run {}: no output written (any old ones are kept): the run did not finish, "
                 "{}: {}",
                 result.totals.file, apci::run::block_text(lost->block), lost->message);
-        for (std::size_t i = 0; i < files.size(); ++i) {
+        for (std::size_t i = 0; i < files.named.size(); ++i) {
             // The output's own record of its first failed write names the cause; the plot
             // can fail reading back its temporary records too.
-            const std::string why = files[i].first->close();
+            const std::string why = files.named[i].first->close();
             if (!written_error.empty() || (!failed[i] && why.empty())) continue;
-            const char* other = i == kSvg ? "the plot's temporary records could not be read back"
-                                          : "the write failed";
-            written_error = fmt::format("run: cannot write {}: {}", *files[i].second,
+            const char* other = i == RunOutputFiles::kSvg
+                                    ? "the plot's temporary records could not be read back"
+                                    : "the write failed";
+            written_error = fmt::format("run: cannot write {}: {}", *files.named[i].second,
                                         why.empty() ? std::string(other) : why);
         }
         if (written_error.empty()) {
             const apci::run::DeferSignals together;
-            for (auto [out, name] : files) {
+            for (auto [out, name] : files.named) {
                 if (std::string why = out->publish(); !why.empty()) {
                     written_error = fmt::format("run: cannot write {}: {}", *name, why);
                     break;
                 }
             }
         }
-        for (auto [out, name] : files) out->discard();  // an output not published is removed
+        for (auto [out, name] : files.named) out->discard();  // an output not published is removed
+        return written_error;
+    }
 
-        // The summary goes to standard error when an output is standard output ("-", or a
-        // name of it: /dev/stdout, /dev/fd/1).
-        std::FILE* report = stdout;
-        for (auto [out, name] : files)
-            if (out->is_stdout() || names_standard_output(*name)) report = stderr;
-        apci::run::print_summary(report, result.totals, result.errors);
+    // Each writer's last bytes; true where one failed.
+    std::array<bool, 4> finish_writers(const RunOutputFiles& files, Outputs& outputs,
+                                       const apci::run::RunOutcome& result) const {
+        std::array<bool, 4> failed{};
+        if (outputs.json)
+            failed[RunOutputFiles::kJson] =
+                !outputs.json->finish(result.errors, result.registers, result.variables,
+                                      result.notices, result.warnings);
+        if (files.tools_out.file() != nullptr) {
+            const std::string text = apci::nc::format_tool_table(result.tools_after);
+            failed[RunOutputFiles::kToolsOut] =
+                std::fwrite(text.data(), 1, text.size(), files.tools_out.file()) != text.size();
+        }
+        if (outputs.svg)
+            failed[RunOutputFiles::kSvg] = !outputs.svg->finish(
+                files.svg.file(), plane_ != 0 ? plane_ : result.plot_plane, result.totals.file);
+        if (outputs.csv) failed[RunOutputFiles::kCsv] = !outputs.csv->finish();
+        outputs.json.reset();
+        outputs.csv.reset();
+        return failed;
+    }
+
+    // The summary, warnings and notices (on standard error when an output is standard
+    // output: "-", or a name of it, /dev/stdout, /dev/fd/1), and the command's outcome.
+    static Outcome report(const RunOutputFiles& files, const apci::run::RunOutcome& result,
+                          const std::string& written_error) {
+        std::FILE* summary_to = stdout;
+        for (auto [out, name] : files.named)
+            if (out->is_stdout() || names_standard_output(*name)) summary_to = stderr;
+        apci::run::print_summary(summary_to, result.totals, result.errors);
         for (const RunError& w : result.warnings)
-            fmt::print(report, "warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code,
+            fmt::print(summary_to, "warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code,
                        w.message);
         for (const RunError& n : result.notices)
-            fmt::print(report, "notice: {}: {}\n", apci::run::block_text(n.block), n.message);
-        std::fflush(report);
+            fmt::print(summary_to, "notice: {}: {}\n", apci::run::block_text(n.block), n.message);
+        std::fflush(summary_to);
         if (!result.errors.empty() && !written_error.empty())
             fmt::print(stderr, "apcictl: {}\n", written_error);
         if (!result.errors.empty()) {
@@ -478,8 +563,6 @@ class RunCommand final : public Command {
         if (!written_error.empty()) return Outcome::board_error(written_error);
         return Outcome::success();
     }
-
-  private:
     // The validation pass before anything runs: `program` validated and `stream` its execution
     // pass, or the failure.
     Outcome validate_first(const apci::nc::InterpreterOptions& options,

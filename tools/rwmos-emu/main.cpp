@@ -192,6 +192,121 @@ int systemd_socket(std::string& why) {
     return 3;  // SD_LISTEN_FDS_START
 }
 
+// The board's transports: the Unix socket (the one systemd passed, or one of our own) and the
+// dual-port RAM file. False, logged, when one cannot be set up.
+bool open_transports(const Options& o, SocketServer& sockets, ShmServer& shm) {
+    std::string why;
+    if (o.activated_socket >= 0) {
+        if (!sockets.adopt(o.activated_socket, o.socket, why)) {
+            log(Level::kError, "{}", why);
+            return false;
+        }
+    } else if (!o.socket.empty() && !sockets.open(o.socket, o.gid, why)) {
+        log(Level::kError, "{}", why);
+        return false;
+    }
+    if (!o.shm.empty() && !shm.open(o.shm, why)) {
+        log(Level::kError, "{}", why);
+        return false;
+    }
+    return give_group(o.shm, o.gid);
+}
+
+// --realtime: every millisecond the clock catches up with wall time (docs/design.md section
+// 5). False, logged, when the timer cannot be set up.
+bool start_pacing(Fds& fds, BoardHost& host) {
+    fds.timer = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
+    const itimerspec every_ms{{0, 1'000'000}, {0, 1'000'000}};
+    if (fds.timer < 0 || ::timerfd_settime(fds.timer, 0, &every_ms, nullptr) != 0 ||
+        !add_watch(fds.epoll, fds.timer)) {
+        log(Level::kError, "--realtime: cannot set up the pacing timer: {}",
+            std::strerror(errno));
+        return false;
+    }
+    host.pace(std::chrono::steady_clock::now());
+    return true;
+}
+
+// How the event loop ended: the daemon's exit code, and what the clients are told.
+struct LoopEnd {
+    int exit_code = kExitOk;
+    std::string stop_reason;
+    bool running = true;
+};
+
+// The events of one wait: a shutdown signal ends the loop (`end` says how), the pacing timer
+// moves the clock on, the sockets are served. True when a client was served.
+bool dispatch(const epoll_event* events, int n, const Fds& fds, BoardHost& host,
+              SocketServer& sockets, LoopEnd& end) {
+    bool served_client = false;
+    for (int i = 0; i < n; ++i) {
+        const int fd = events[i].data.fd;
+        if (fd == fds.signal) {
+            signalfd_siginfo info{};
+            if (::read(fds.signal, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
+                const int sig = static_cast<int>(info.ssi_signo);
+                end.stop_reason = fmt::format("shutting down ({})", signal_name(sig));
+                log(Level::kInfo, "{}: shutting down", signal_name(sig));
+                end.exit_code = exit_code_for(sig);
+                end.running = false;
+            }
+        } else if (fd == fds.timer) {
+            std::uint64_t expirations = 0;
+            if (::read(fds.timer, &expirations, sizeof expirations) > 0)
+                host.pace(std::chrono::steady_clock::now());
+        } else if (fd == sockets.listen_fd()) {
+            sockets.on_listen_ready();
+        } else if (fd == sockets.idle_timer_fd()) {
+            sockets.on_idle_timer();
+        } else {
+            sockets.on_client_ready(fd, events[i].events);
+            served_client = true;
+        }
+    }
+    return served_client;
+}
+
+// Serves until a shutdown signal. Out of memory, or any other failure in the loop, ends the
+// daemon the way a signal does (clients told, socket, file and registry entry removed),
+// never with them left behind.
+LoopEnd event_loop(const Fds& fds, BoardHost& host, SocketServer& sockets) {
+    LoopEnd end;
+    // After serving a client the loop polls for the next request for a learned
+    // budget before it sleeps in epoll_wait (docs/performance.md, "Transports").
+    objif::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
+    bool served_client = false;
+    try {
+        while (end.running) {
+            epoll_event events[64];
+            int n = 0;
+            const auto start = std::chrono::steady_clock::now();
+            if (served_client) {
+                const auto until = start + spin.budget();
+                do {
+                    n = ::epoll_wait(fds.epoll, events, 64, 0);
+                } while (n == 0 && std::chrono::steady_clock::now() < until);
+            }
+            if (n == 0) n = ::epoll_wait(fds.epoll, events, 64, sockets.wait_ms());
+            if (served_client) spin.learn(std::chrono::steady_clock::now() - start);
+            served_client = false;
+            if (n < 0) {
+                if (errno == EINTR) continue;
+                log(Level::kError, "epoll_wait: {}", std::strerror(errno));
+                end.exit_code = kExitFailure;
+                break;
+            }
+            served_client = dispatch(events, n, fds, host, sockets, end);
+            // Clients whose requests outlasted their turn are served after every other.
+            if (end.running) sockets.after_events();
+        }
+    } catch (const std::exception& e) {
+        log(Level::kError, "internal error: {}; shutting down", e.what());
+        end.stop_reason = "shutting down (internal error)";
+        end.exit_code = kExitFailure;
+    }
+    return end;
+}
+
 int serve(const Options& o) {
     Level level{};
     parse_level(o.log_level, level);
@@ -213,36 +328,12 @@ int serve(const Options& o) {
     SocketServer sockets(host, fds.epoll,
                          ClientLimits{o.max_clients, std::chrono::seconds(o.idle_timeout_s)});
     ShmServer shm(host);
-    std::string why;
-    if (o.activated_socket >= 0) {
-        if (!sockets.adopt(o.activated_socket, o.socket, why)) {
-            log(Level::kError, "{}", why);
-            return kExitFailure;
-        }
-    } else if (!o.socket.empty() && !sockets.open(o.socket, o.gid, why)) {
-        log(Level::kError, "{}", why);
-        return kExitFailure;
-    }
+    if (!open_transports(o, sockets, shm)) return kExitFailure;
     const std::string& socket_path = sockets.path();
-    if (!o.shm.empty() && !shm.open(o.shm, why)) {
-        log(Level::kError, "{}", why);
-        return kExitFailure;
-    }
-    if (!give_group(o.shm, o.gid)) return kExitFailure;
     shm.start();
-    if (o.realtime) {
-        // Every millisecond the clock catches up with wall time (docs/design.md section 5).
-        fds.timer = ::timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
-        const itimerspec every_ms{{0, 1'000'000}, {0, 1'000'000}};
-        if (fds.timer < 0 || ::timerfd_settime(fds.timer, 0, &every_ms, nullptr) != 0 ||
-            !add_watch(fds.epoll, fds.timer)) {
-            log(Level::kError, "--realtime: cannot set up the pacing timer: {}",
-                std::strerror(errno));
-            return kExitFailure;
-        }
-        host.pace(std::chrono::steady_clock::now());
-    }
+    if (o.realtime && !start_pacing(fds, host)) return kExitFailure;
 
+    std::string why;
     objif::RegisteredDaemon self{::getpid(), absolute(socket_path), absolute(o.shm)};
     if (!objif::register_daemon(self, why))
         log(Level::kWarn, "apcictl list will not see this daemon: {}", why);
@@ -252,76 +343,15 @@ int serve(const Options& o) {
         socket_path,
         o.shm.empty() ? "" : " and dual-port RAM file ", o.shm);
 
-    int exit_code = kExitOk;
-    std::string stop_reason;
-    bool running = true;
-    // After serving a client the loop polls for the next request for a learned
-    // budget before it sleeps in epoll_wait (docs/performance.md, "Transports").
-    objif::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
-    bool served_client = false;
-    // Out of memory, or any other failure in the loop, ends the daemon the way a signal does
-    // (clients told, socket, file and registry entry removed), never with them left behind.
-    try {
-        while (running) {
-            epoll_event events[64];
-            int n = 0;
-            const auto start = std::chrono::steady_clock::now();
-            if (served_client) {
-                const auto until = start + spin.budget();
-                do {
-                    n = ::epoll_wait(fds.epoll, events, 64, 0);
-                } while (n == 0 && std::chrono::steady_clock::now() < until);
-            }
-            if (n == 0) n = ::epoll_wait(fds.epoll, events, 64, sockets.wait_ms());
-            if (served_client) spin.learn(std::chrono::steady_clock::now() - start);
-            served_client = false;
-            if (n < 0) {
-                if (errno == EINTR) continue;
-                log(Level::kError, "epoll_wait: {}", std::strerror(errno));
-                exit_code = kExitFailure;
-                break;
-            }
-            for (int i = 0; i < n; ++i) {
-                const int fd = events[i].data.fd;
-                if (fd == fds.signal) {
-                    signalfd_siginfo info{};
-                    if (::read(fds.signal, &info, sizeof info) ==
-                        static_cast<ssize_t>(sizeof info)) {
-                        const int sig = static_cast<int>(info.ssi_signo);
-                        stop_reason = fmt::format("shutting down ({})", signal_name(sig));
-                        log(Level::kInfo, "{}: shutting down", signal_name(sig));
-                        exit_code = exit_code_for(sig);
-                        running = false;
-                    }
-                } else if (fd == fds.timer) {
-                    std::uint64_t expirations = 0;
-                    if (::read(fds.timer, &expirations, sizeof expirations) > 0)
-                        host.pace(std::chrono::steady_clock::now());
-                } else if (fd == sockets.listen_fd()) {
-                    sockets.on_listen_ready();
-                } else if (fd == sockets.idle_timer_fd()) {
-                    sockets.on_idle_timer();
-                } else {
-                    sockets.on_client_ready(fd, events[i].events);
-                    served_client = true;
-                }
-            }
-            // Clients whose requests outlasted their turn are served after every other.
-            if (running) sockets.after_events();
-        }
-    } catch (const std::exception& e) {
-        log(Level::kError, "internal error: {}; shutting down", e.what());
-        stop_reason = "shutting down (internal error)";
-        exit_code = kExitFailure;
-    }
+    const LoopEnd end = event_loop(fds, host, sockets);
 
-    sockets.close_all(stop_reason);
+    sockets.close_all(end.stop_reason);
     shm.stop();
     objif::unregister_daemon(self.pid);
     const ServedCounts counts = host.counts();
     log(Level::kInfo, "stopped: served {} request frames ({} answered with Error)", counts.frames,
         counts.rejected);
-    return exit_code;
+    return end.exit_code;
 }
 
 int run(int argc, char** argv) {

@@ -343,101 +343,14 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
 
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
     const std::uint64_t number = profiles_ + 1;  // this profile's, once taken
-    // SelectionMode 139: the profile after STATUS = 0 is the departure when it runs
-    // uncompensated from the last offset end (docs/compensation.md "Approach and departure").
-    const bool departs = departure_next_ != 0 && !compensate && p.kind != ProfileKind::kRapid;
-    const SegmentRole uncompensated = departs ? SegmentRole::kDeparture : SegmentRole::kUncompensated;
-    const std::int8_t uncompensated_side = departs ? departure_next_ : std::int8_t{0};
-    bool pushed = false;
-    // LengthMode 1: the tool length acts on every profile, compensated or not (design,
-    // docs/compensation.md "Tool length"); compensated ones get it below as always.
-    AxisVector length{};
-    if (tc.present && tc.active_group != 0 && tc.length_always) length[tc.length_axis] = tc.length;
-    const auto lengthened = [&length](AxisVector v) {
-        for (int a = 0; a < kAxisCount; ++a) v[a] += length[a];
-        return v;
-    };
-    if (p.kind == ProfileKind::kRapid) {
-        // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
-        Move m = line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag);
-        m.profile = number;
-        batch.length_at(m, length);
-        batch.add(m);
-    } else if (!compensate) {
-        if (is_arc(p.kind)) {
-            const geom::Element e =
-                geom::make_arc(on_plane(batch.end, res.arc_axes), on_plane(res.path, res.arc_axes),
-                               {res.cx, res.cy}, res.ccw);
-            if (const geom::Reason why = geom::check_element(e); why != geom::Reason::kNone) {
-                if (tc.present && tc.objects_accessed && tc.active_group != 0)
-                    return tc_error(tc.active_group, why, p.tag);
-                return refuse(Status::kInvalidValue, geom::reason_message(why));
-            }
-            // The length axis is the third of the TC plane, outside an arc of that plane; an arc
-            // in another plane that holds it keeps its end as programmed (its circle would move).
-            const bool in_arc_plane =
-                tc.length_axis == res.arc_axes[0] || tc.length_axis == res.arc_axes[1];
-            Move m =
-                arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path), res.arc_axes,
-                         res.cx, res.cy, res.ccw, feed, uncompensated, p.tag);
-            m.plane = res.plane;
-            m.profile = number;
-            m.side = uncompensated_side;
-            batch.length_at(m, in_arc_plane ? AxisVector{} : length);
-            batch.add(m);
-        } else {
-            Move m = line_move(batch.end, lengthened(res.path), feed, uncompensated, p.tag);
-            m.traverse = p.kind == ProfileKind::kTraverse;
-            m.profile = number;
-            m.side = uncompensated_side;
-            batch.length_at(m, length);
-            batch.add(m);
-        }
-    } else {
-        const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
-        if (trial.comp.running()) {
-            const geom::CompensatorConfig& now = trial.comp.config();
-            if (now.tool_radius != tc.radius || now.side != tc.side ||
-                trial.cutting_edge != tc.cutting_edge) {
-                // A new RADIUS applies from the next profile: the contour ends at
-                // the held profile's offset end and this one approaches the new path.
-                end_contour(trial, /*keep_departure=*/false, batch);
-            } else if (now.transition != tc.transition) {
-                // CornerMode (G25/G26) applies from the next corner; the contour goes on.
-                trial.comp.set_transition(tc.transition);
-            }
-        }
-        if (!trial.comp.running()) {
-            trial.group = tc.active_group;
-            trial.plane_axes = plane;
-            trial.plane = tc.plane;
-            trial.length_axis = tc.length_axis;
-            trial.side = tc.side == geom::Side::kRight ? std::int8_t{-1} : std::int8_t{1};
-            trial.cutting_edge = tc.cutting_edge;
-            const auto edge = objif::map::tc::cutting_edge_offset(tc.cutting_edge, tc.radius);
-            trial.edge = geom::Vec2(edge[0], edge[1]);
-            const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition, tc.approach};
-            const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
-            if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
-        }
-        trial.length = tc.length;
-        trial.length_always = tc.length_always;
-        const geom::Element e =
-            is_arc(p.kind) ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
-                                            {res.cx, res.cy}, res.ccw)
-                           : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
-        pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path,
-                                   geom::is_plane_free(e), p.kind == ProfileKind::kTraverse,
-                                   number});
-        pushed = true;
-        const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
-        if (!step.ok()) {
-            pending_.pop_back();
-            const Pending* at = pending(step.index);
-            return tc_error(tc.active_group, step.reason, at != nullptr ? at->tag : p.tag);
-        }
-        append_segments(trial, segs_, /*keep_departure=*/false, batch);
-    }
+    // Everything but a compensated G01/G02/G03 goes uncompensated.
+    const bool compensated = p.kind != ProfileKind::kRapid && compensate;
+    if (MotionResult r = compensated
+                             ? spool_compensated(p, tc, res, feed, number, trial, batch)
+                             : spool_uncompensated(p, tc, res, feed, number, batch);
+        !r.ok())
+        return r;
+    const bool pushed = compensated;  // a Pending entry, for this profile
 
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) {
         if (pushed) pending_.pop_back();
@@ -451,6 +364,116 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     departure_next_ = 0;
     if (pushed) ++next_index_;
     forget_finished();
+    return {};
+}
+
+// A profile spooled without compensation: a rapid (no rotation, [APCI-TC] section 2.1.1), a
+// traverse, or a G01/G02/G03 while no group runs, with the tool length of LengthMode 1.
+MotionResult Spooler::spool_uncompensated(const Profile& p, const TcSettings& tc,
+                                          const Resolved& res, double feed, std::uint64_t number,
+                                          Batch& batch) const {
+    // SelectionMode 139: the profile after STATUS = 0 is the departure when it runs
+    // uncompensated from the last offset end (docs/compensation.md "Approach and departure").
+    const bool departs = departure_next_ != 0 && p.kind != ProfileKind::kRapid;
+    const SegmentRole uncompensated = departs ? SegmentRole::kDeparture : SegmentRole::kUncompensated;
+    const std::int8_t uncompensated_side = departs ? departure_next_ : std::int8_t{0};
+    // LengthMode 1: the tool length acts on every profile, compensated or not (design,
+    // docs/compensation.md "Tool length"); compensated ones get it as always
+    // (append_segments).
+    AxisVector length{};
+    if (tc.present && tc.active_group != 0 && tc.length_always) length[tc.length_axis] = tc.length;
+    const auto lengthened = [&length](AxisVector v) {
+        for (int a = 0; a < kAxisCount; ++a) v[a] += length[a];
+        return v;
+    };
+    if (p.kind == ProfileKind::kRapid) {
+        // [APCI-TC] section 2.1.1: no rotation for JOG moves; no compensation.
+        Move m = line_move(batch.end, lengthened(res.program), feed, SegmentRole::kRapid, p.tag);
+        m.profile = number;
+        batch.length_at(m, length);
+        batch.add(m);
+        return {};
+    }
+    if (is_arc(p.kind)) {
+        const geom::Element e =
+            geom::make_arc(on_plane(batch.end, res.arc_axes), on_plane(res.path, res.arc_axes),
+                           {res.cx, res.cy}, res.ccw);
+        if (const geom::Reason why = geom::check_element(e); why != geom::Reason::kNone) {
+            if (tc.present && tc.objects_accessed && tc.active_group != 0)
+                return tc_error(tc.active_group, why, p.tag);
+            return refuse(Status::kInvalidValue, geom::reason_message(why));
+        }
+        // The length axis is the third of the TC plane, outside an arc of that plane; an arc
+        // in another plane that holds it keeps its end as programmed (its circle would move).
+        const bool in_arc_plane =
+            tc.length_axis == res.arc_axes[0] || tc.length_axis == res.arc_axes[1];
+        Move m =
+            arc_move(batch.end, in_arc_plane ? res.path : lengthened(res.path), res.arc_axes,
+                     res.cx, res.cy, res.ccw, feed, uncompensated, p.tag);
+        m.plane = res.plane;
+        m.profile = number;
+        m.side = uncompensated_side;
+        batch.length_at(m, in_arc_plane ? AxisVector{} : length);
+        batch.add(m);
+    } else {
+        Move m = line_move(batch.end, lengthened(res.path), feed, uncompensated, p.tag);
+        m.traverse = p.kind == ProfileKind::kTraverse;
+        m.profile = number;
+        m.side = uncompensated_side;
+        batch.length_at(m, length);
+        batch.add(m);
+    }
+    return {};
+}
+
+// A compensated G01/G02/G03: the contour of `trial` goes on with it (or begins, or ends and
+// begins anew where its settings changed); its Pending entry is pushed, and popped again when
+// the compensator refuses the element.
+MotionResult Spooler::spool_compensated(const Profile& p, const TcSettings& tc,
+                                        const Resolved& res, double feed, std::uint64_t number,
+                                        Compensation& trial, Batch& batch) {
+    const std::array<std::uint8_t, 2> plane{tc.plane_axes[0], tc.plane_axes[1]};
+    if (trial.comp.running()) {
+        const geom::CompensatorConfig& now = trial.comp.config();
+        if (now.tool_radius != tc.radius || now.side != tc.side ||
+            trial.cutting_edge != tc.cutting_edge) {
+            // A new RADIUS applies from the next profile: the contour ends at
+            // the held profile's offset end and this one approaches the new path.
+            end_contour(trial, /*keep_departure=*/false, batch);
+        } else if (now.transition != tc.transition) {
+            // CornerMode (G25/G26) applies from the next corner; the contour goes on.
+            trial.comp.set_transition(tc.transition);
+        }
+    }
+    if (!trial.comp.running()) {
+        trial.group = tc.active_group;
+        trial.plane_axes = plane;
+        trial.plane = tc.plane;
+        trial.length_axis = tc.length_axis;
+        trial.side = tc.side == geom::Side::kRight ? std::int8_t{-1} : std::int8_t{1};
+        trial.cutting_edge = tc.cutting_edge;
+        const auto edge = objif::map::tc::cutting_edge_offset(tc.cutting_edge, tc.radius);
+        trial.edge = geom::Vec2(edge[0], edge[1]);
+        const geom::CompensatorConfig config{tc.side, tc.radius, tc.transition, tc.approach};
+        const geom::StepResult begun = trial.comp.begin(config, on_plane(batch.end, plane));
+        if (!begun.ok()) return tc_error(tc.active_group, begun.reason, p.tag);
+    }
+    trial.length = tc.length;
+    trial.length_always = tc.length_always;
+    const geom::Element e =
+        is_arc(p.kind) ? geom::make_arc(on_plane(path_, plane), on_plane(res.path, plane),
+                                        {res.cx, res.cy}, res.ccw)
+                       : geom::make_line(on_plane(path_, plane), on_plane(res.path, plane));
+    pending_.push_back(Pending{next_index_, p.tag, feed, path_, res.path,
+                               geom::is_plane_free(e), p.kind == ProfileKind::kTraverse,
+                               number});
+    const geom::StepResult step = trial.comp.push(e, next_index_, segs_);
+    if (!step.ok()) {
+        pending_.pop_back();
+        const Pending* at = pending(step.index);
+        return tc_error(tc.active_group, step.reason, at != nullptr ? at->tag : p.tag);
+    }
+    append_segments(trial, segs_, /*keep_departure=*/false, batch);
     return {};
 }
 

@@ -291,6 +291,241 @@ enum class PlainMove : std::uint8_t { kNotPlain, kApplied, kFailed };
     return PlainMove::kApplied;
 }
 
+// The modal words of a block into `s`, with the checks on the tool, the plane and the
+// cutting edge they must pass.
+bool modal_words(const BlockCheck& c, const ModalState& before, const ToolTable* tools,
+                 ModalState& s) {
+    const Block& b = c.b;
+    if (b.motion.present()) s.motion = b.motion.value;
+    if (b.distance.present()) s.distance = b.distance.value;
+    if (b.feed.present()) s.feed = b.feed.value;
+    if (b.corner.present()) s.corner = b.corner.value;
+    if (b.collision.present()) s.collision = b.collision.value;
+    if (b.selection.present()) s.selection = b.selection.value;
+    if (b.compensation.present()) s.compensation = b.compensation.value;
+    if (before.trafo && s.compensation != Compensation::kOff &&
+        s.compensation != before.compensation) {
+        return c.fail(ErrorKind::kProgramRule, b.compensation.column,
+                      fmt::format("G{} while #TRAFO is on: radius compensation and the "
+                                  "transformation do not combine here; program #TRAFO OFF first",
+                                  g_number(s.compensation)));
+    }
+    if (!check_tool(c, before, tools)) return false;
+    if (b.tool.present() && b.tool.value != before.tool) s.tool_wear_const.reset();
+    if (b.tool.present()) s.tool = b.tool.value;
+    if (!check_plane(c, before, s.compensation)) return false;
+    if (b.plane.present()) s.plane = b.plane.value;
+    if (s.compensation != Compensation::kOff && s.compensation != before.compensation &&
+        !check_cutting_edge(c, s, tools))
+        return false;
+    return true;
+}
+
+// The move of a block with axis, centre, R or B words: its checks (motion mode, feed, words
+// of arcs only in arcs, no arc right after G40 or switching compensation, no B in an arc),
+// its geometry (`arc` for G2/G3) and its end in `s.position`.
+bool block_move(const BlockCheck& c, const ModalState& before, double cycle_seconds,
+                ModalState& s, ArcMove& arc) {
+    const Block& b = c.b;
+    if (!s.motion) {
+        return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
+                      "no motion mode: program G0, G1, G2 or G3 before the first move");
+    }
+    const Motion m = *s.motion;
+    if (!is_arc(m) && (b.has_center_word() || b.radius.present())) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (b.center[k].present()) {
+                return c.fail(ErrorKind::kConflict, b.center[k].column,
+                              fmt::format("{} belongs to arcs (G2/G3), not to G{}",
+                                          kCenterLetter[k], g_number(m)));
+            }
+        }
+        return c.fail(ErrorKind::kConflict, b.radius.column,
+                      fmt::format("R belongs to arcs (G2/G3), not to G{}", g_number(m)));
+    }
+    if (m != Motion::kRapid && !(s.feed > 0.0)) {
+        return c.fail(
+            ErrorKind::kProgramRule, first_motion_column(b),
+            fmt::format("no feed rate: program F before the first G{} move", g_number(m)));
+    }
+    // Under G139 (and G138) the move after a lone G40 departs from the last compensated
+    // point, r beside the contour: an arc from there would not start where it was programmed
+    // ([ISG-PROG] G239: "An arc programmed directly after G40 causes an error message";
+    // LinuxCNC: "must be straight, not an arc").
+    if (is_arc(m) && before.departure_pending) {
+        return c.fail(ErrorKind::kProgramRule,
+                      b.motion.present() ? b.motion.column : first_motion_column(b),
+                      fmt::format("G{} right after G40: under G{} this move departs from the "
+                                  "compensated point, r beside the contour, not from the arc's "
+                                  "programmed start; program a G1 (or G0) first, or G40 with "
+                                  "G237",
+                                  g_number(m), g_number(before.departing)));
+    }
+    if (is_arc(m) && s.compensation != before.compensation) {
+        return c.fail(ErrorKind::kProgramRule, b.compensation.column,
+                      fmt::format("G{} switched in an arc block: switch radius compensation "
+                                  "with G0/G1 or in a block without a move",
+                                  g_number(s.compensation)));
+    }
+    if (b.b_axis.present() && is_arc(m)) {
+        return c.fail(ErrorKind::kProgramRule, b.b_axis.column,
+                      "B in an arc block: tilt the head in a G0 or G1 block");
+    }
+    Eigen::Vector3d end;
+    if (!move_geometry(c, m, s.plane, s.distance, s.feed, before.position, cycle_seconds, end,
+                       arc))
+        return false;
+    s.position = end;
+    if (b.b_axis.present())
+        s.b = s.distance == DistanceMode::kIncremental ? before.b + b.b_axis.value : b.b_axis.value;
+    return true;
+}
+
+// The events of a block that passed every check, in the documented order.
+void push_block_events(const Block& b, const ModalState& before, const ModalState& s, bool moves,
+                       const ArcMove& arc, EventBatch& out) {
+    const BlockOrigin origin{b.block_number(), b.line};
+    if (b.tool.present()) out.push(origin, ToolSelect{b.tool.value});
+    if (s.plane != before.plane) out.push(origin, PlaneChange{s.plane});
+    // The selection method acts on the G41/G42 or G40 of its own block.
+    if (s.selection != before.selection) out.push(origin, SelectionModeChange{s.selection});
+    if (s.compensation != before.compensation) out.push(origin, CompensationChange{s.compensation});
+    if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
+    if (s.collision != before.collision) out.push(origin, CollisionDetectionChange{s.collision});
+    if (moves) push_move(out, origin, *s.motion, before.position, s.position, s.feed, arc);
+    // G25/G26 act on the transitions after the block's move ([ISG-PROG]: the transition at
+    // the end of the block; [ISG-OTC-EN]'s wr_quad_disc.nc: N80 G26 Y100 leaves the corner
+    // before N80 linear), so the change comes after it.
+    if (s.corner != before.corner) out.push(origin, CornerModeChange{s.corner});
+    if (s.ended) out.push(origin, ProgramEnd{});
+}
+
+// The kinematics the emulator knows (docs/design.md section 8; [ISG-OTC] sections 2.4, 2.5 "#KIN ID[4]").
+constexpr int kBHeadKinematics = 4;
+
+// #OTC: its settings (not while OTC is on) and OTC on or off.
+bool otc_command(const BlockCheck& c, const IsgLine& isg, const ToolTable* tools,
+                 const BlockOrigin& origin, ModalState& s, EventBatch& out) {
+    const OtcCommand& cmd = isg.otc;
+    // [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON
+    // erfolgen": not while OTC is on.
+    const bool changes = (cmd.type && *cmd.type != s.otc_type) ||
+                         (cmd.mode && *cmd.mode != s.otc_mode) ||
+                         (cmd.acc_weight && *cmd.acc_weight != s.otc_acc_weight);
+    if (s.otc_active && changes) {
+        return c.fail(ErrorKind::kProgramRule, isg.column,
+                      "OTC_CHANGE_WHILE_ACTIVE: processing type, mode and ACC_WEIGHT are "
+                      "set before or with #OTC ON, not while OTC is on");
+    }
+    if (cmd.type) s.otc_type = *cmd.type;
+    if (cmd.mode) s.otc_mode = *cmd.mode;
+    if (cmd.acc_weight) s.otc_acc_weight = *cmd.acc_weight;
+    if (cmd.wear_const == WearConstChoice::kProgrammed) {
+        s.otc_programmed_wear_const = true;
+        s.otc_wear_const = cmd.wear_const_value;
+    } else if (cmd.wear_const == WearConstChoice::kTool) {
+        s.otc_programmed_wear_const = false;
+    }
+    if (cmd.on && *cmd.on && !s.otc_active) {
+        // [ISG-OTC] section 1: only with tool type 2, else P-ERR-21391. The tool list
+        // tells the type; without one the board checks it.
+        if (tools != nullptr) {
+            const ToolData* t = s.tool > 0 ? tools->find(s.tool) : nullptr;
+            const int typ = t != nullptr ? t->typ : 0;
+            if (typ != 2) {
+                return c.fail(ErrorKind::kProgramRule, isg.column,
+                              fmt::format("P-ERR-21391: #OTC ON needs a grinding tool "
+                                          "(tool type 2, P-TOOL-00001); D{} is type {}",
+                                          s.tool, typ));
+            }
+        }
+        s.otc_active = true;
+    } else if (cmd.on && !*cmd.on && s.otc_active) {
+        // [ISG-OTC] section 2.2 "Hinweis": G40 before #OTC OFF.
+        if (s.otc_type == OtcType::kRadius && s.compensation != Compensation::kOff) {
+            return c.fail(ErrorKind::kProgramRule, isg.column,
+                          fmt::format("OTC_OFF_BEFORE_G40: #OTC OFF while radius "
+                                      "compensation G{} is on: program G40 before #OTC OFF",
+                                      g_number(s.compensation)));
+        }
+        if (s.otc_type == OtcType::kRadius && s.departure_pending) {
+            return c.fail(ErrorKind::kProgramRule, isg.column,
+                          fmt::format("90050: #OTC OFF right after G40 without a move: "
+                                      "under G{} the block after G40 departs from the "
+                                      "contour, so program a move (with the G40 or after "
+                                      "it) before #OTC OFF",
+                                      g_number(s.departing)));
+        }
+        s.otc_active = false;
+    }
+    out.push(origin, OtcChange{cmd});
+    return true;
+}
+
+// #KIN ID[n]: the kinematics (4, the B head, or 0: none).
+bool select_kinematics(const BlockCheck& c, const IsgLine& isg, const BlockOrigin& origin,
+                       ModalState& s, EventBatch& out) {
+    if (isg.kinematics != 0 && isg.kinematics != kBHeadKinematics) {
+        return c.fail(ErrorKind::kUnsupported, isg.column,
+                      fmt::format("#KIN ID[{}]: kinematics {} is not emulated (ID[4]: the "
+                                  "B head, docs/design.md section 8; ID[0]: none)",
+                                  isg.kinematics, isg.kinematics));
+    }
+    if (s.otc_active && isg.kinematics != s.kinematics) {
+        return c.fail(ErrorKind::kProgramRule, isg.column,
+                      "OTC_CHANGE_WHILE_ACTIVE: #KIN while OTC is on: select the "
+                      "kinematics before #OTC ON");
+    }
+    if (isg.kinematics == 0 && s.trafo) {
+        return c.fail(ErrorKind::kProgramRule, isg.column,
+                      "#KIN ID[0] while #TRAFO is on: program #TRAFO OFF first");
+    }
+    s.kinematics = isg.kinematics;
+    out.push(origin, KinematicsSelect{isg.kinematics});
+    return true;
+}
+
+// #TRAFO ON/OFF: the B head's transformation; `tool_length`, that of the tool in force.
+bool switch_trafo(const BlockCheck& c, const IsgLine& isg, double tool_length,
+                  const BlockOrigin& origin, ModalState& s, EventBatch& out) {
+    if (isg.on && s.kinematics == 0) {
+        return c.fail(ErrorKind::kProgramRule, isg.column,
+                      "#TRAFO ON needs a kinematics: program #KIN ID[4] first");
+    }
+    if (s.otc_active && isg.on != s.trafo) {
+        return c.fail(ErrorKind::kProgramRule, isg.column,
+                      "OTC_CHANGE_WHILE_ACTIVE: #TRAFO while OTC is on: switch the "
+                      "transformation before #OTC ON or after #OTC OFF");
+    }
+    if (isg.on && s.compensation != Compensation::kOff) {
+        return c.fail(ErrorKind::kProgramRule, isg.column,
+                      fmt::format("#TRAFO ON while radius compensation G{} is on: "
+                                  "program G40 first (the transformation and radius "
+                                  "compensation do not combine here)",
+                                  g_number(s.compensation)));
+    }
+    if (isg.on != s.trafo) {
+        // The B head's transformation (docs/design.md section 8, rwmos/geometry/kinematics.h):
+        // with it the program gives the tool tip, the pivot one tool length behind it
+        // along t(B) = (sin B, 0, cos B). Without it the length acts on the tool axis of
+        // the plane (docs/compensation.md "Tool length"): the pivot one length behind the
+        // programmed point along that axis. The pivot stays; the position in force
+        // changes its meaning (at B0 in G17 it stays the same).
+        const double length = tool_length;
+        constexpr double kDeg = 3.14159265358979323846 / 180.0;
+        const Eigen::Vector3d along_tool =
+            length * Eigen::Vector3d(std::sin(s.b * kDeg), 0.0, std::cos(s.b * kDeg));
+        Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
+        along_axis[plane_axes(s.plane).third] = length;
+        s.position = isg.on ? Eigen::Vector3d(s.position + along_axis - along_tool)
+                            : Eigen::Vector3d(s.position + along_tool - along_axis);
+        s.trafo_length = length;
+    }
+    s.trafo = isg.on;
+    out.push(origin, TrafoChange{isg.on, s.trafo_length});
+    return true;
+}
+
 }  // namespace
 
 Interpreter::Interpreter(const InterpreterOptions& options) : options_(options) {
@@ -327,28 +562,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
     }
     ModalState s = state_;  // committed only when every check has passed
     s.units = units;
-    if (b.motion.present()) s.motion = b.motion.value;
-    if (b.distance.present()) s.distance = b.distance.value;
-    if (b.feed.present()) s.feed = b.feed.value;
-    if (b.corner.present()) s.corner = b.corner.value;
-    if (b.collision.present()) s.collision = b.collision.value;
-    if (b.selection.present()) s.selection = b.selection.value;
-    if (b.compensation.present()) s.compensation = b.compensation.value;
-    if (state_.trafo && s.compensation != Compensation::kOff &&
-        s.compensation != state_.compensation) {
-        return c.fail(ErrorKind::kProgramRule, b.compensation.column,
-                      fmt::format("G{} while #TRAFO is on: radius compensation and the "
-                                  "transformation do not combine here; program #TRAFO OFF first",
-                                  g_number(s.compensation)));
-    }
-    if (!check_tool(c, state_, options_.tools)) return false;
-    if (b.tool.present() && b.tool.value != state_.tool) s.tool_wear_const.reset();
-    if (b.tool.present()) s.tool = b.tool.value;
-    if (!check_plane(c, state_, s.compensation)) return false;
-    if (b.plane.present()) s.plane = b.plane.value;
-    if (s.compensation != Compensation::kOff && s.compensation != state_.compensation &&
-        !check_cutting_edge(c, s, options_.tools))
-        return false;
+    if (!modal_words(c, state_, options_.tools, s)) return false;
 
     const bool moves =
         b.has_axis_word() || b.has_center_word() || b.radius.present() || b.b_axis.present();
@@ -360,86 +574,14 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
         s.departing = s.selection;
     }
     ArcMove arc;  // a G2/G3 block's move, made before the checks that need it
-    if (moves) {
-        if (!s.motion) {
-            return c.fail(ErrorKind::kProgramRule, first_motion_column(b),
-                          "no motion mode: program G0, G1, G2 or G3 before the first move");
-        }
-        const Motion m = *s.motion;
-        if (!is_arc(m) && (b.has_center_word() || b.radius.present())) {
-            for (std::size_t k = 0; k < 3; ++k) {
-                if (b.center[k].present()) {
-                    return c.fail(ErrorKind::kConflict, b.center[k].column,
-                                  fmt::format("{} belongs to arcs (G2/G3), not to G{}",
-                                              kCenterLetter[k], g_number(m)));
-                }
-            }
-            return c.fail(ErrorKind::kConflict, b.radius.column,
-                          fmt::format("R belongs to arcs (G2/G3), not to G{}", g_number(m)));
-        }
-        if (m != Motion::kRapid && !(s.feed > 0.0)) {
-            return c.fail(
-                ErrorKind::kProgramRule, first_motion_column(b),
-                fmt::format("no feed rate: program F before the first G{} move", g_number(m)));
-        }
-        // Under G139 (and G138) the move after a lone G40 departs from the last compensated
-        // point, r beside the contour: an arc from there would not start where it was programmed
-        // ([ISG-PROG] G239: "An arc programmed directly after G40 causes an error message";
-        // LinuxCNC: "must be straight, not an arc").
-        if (is_arc(m) && state_.departure_pending) {
-            return c.fail(ErrorKind::kProgramRule,
-                          b.motion.present() ? b.motion.column : first_motion_column(b),
-                          fmt::format("G{} right after G40: under G{} this move departs from the "
-                                      "compensated point, r beside the contour, not from the arc's "
-                                      "programmed start; program a G1 (or G0) first, or G40 with "
-                                      "G237",
-                                      g_number(m), g_number(state_.departing)));
-        }
-        if (is_arc(m) && s.compensation != state_.compensation) {
-            return c.fail(ErrorKind::kProgramRule, b.compensation.column,
-                          fmt::format("G{} switched in an arc block: switch radius compensation "
-                                      "with G0/G1 or in a block without a move",
-                                      g_number(s.compensation)));
-        }
-        if (b.b_axis.present() && is_arc(m)) {
-            return c.fail(ErrorKind::kProgramRule, b.b_axis.column,
-                          "B in an arc block: tilt the head in a G0 or G1 block");
-        }
-        Eigen::Vector3d end;
-        if (!move_geometry(c, m, s.plane, s.distance, s.feed, state_.position,
-                           options_.cycle_seconds, end, arc))
-            return false;
-        s.position = end;
-        if (b.b_axis.present())
-            s.b = s.distance == DistanceMode::kIncremental ? state_.b + b.b_axis.value : b.b_axis.value;
-    }
+    if (moves && !block_move(c, state_, options_.cycle_seconds, s, arc)) return false;
     if (b.end_of_program.present()) s.ended = true;
 
     // Every check passed: emit in the documented order and commit.
-    const BlockOrigin origin{b.block_number(), b.line};
-    if (b.tool.present()) out.push(origin, ToolSelect{b.tool.value});
-    if (s.plane != state_.plane) out.push(origin, PlaneChange{s.plane});
-    // The selection method acts on the G41/G42 or G40 of its own block.
-    if (s.selection != state_.selection) out.push(origin, SelectionModeChange{s.selection});
-    if (s.compensation != state_.compensation) out.push(origin, CompensationChange{s.compensation});
-    if (b.b_axis.present()) out.push(origin, HeadOrientation{s.b, 0.0});
-    if (s.collision != state_.collision) out.push(origin, CollisionDetectionChange{s.collision});
-    if (moves) push_move(out, origin, *s.motion, state_.position, s.position, s.feed, arc);
-    // G25/G26 act on the transitions after the block's move ([ISG-PROG]: the transition at
-    // the end of the block; [ISG-OTC-EN]'s wr_quad_disc.nc: N80 G26 Y100 leaves the corner
-    // before N80 linear), so the change comes after it.
-    if (s.corner != state_.corner) out.push(origin, CornerModeChange{s.corner});
-    if (s.ended) out.push(origin, ProgramEnd{});
+    push_block_events(b, state_, s, moves, arc, out);
     state_ = s;
     return true;
 }
-
-namespace {
-
-// The kinematics the emulator knows (docs/design.md section 8; [ISG-OTC] sections 2.4, 2.5 "#KIN ID[4]").
-constexpr int kBHeadKinematics = 4;
-
-}  // namespace
 
 bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view file,
                             EventBatch& out, Diagnostic& err) {
@@ -451,117 +593,14 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
     const BlockOrigin origin{b.block_number(), b.line};
     ModalState s = state_;
     switch (isg.kind) {
-        case IsgKind::kOtc: {
-            const OtcCommand& cmd = isg.otc;
-            // [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON
-            // erfolgen": not while OTC is on.
-            const bool changes = (cmd.type && *cmd.type != s.otc_type) ||
-                                 (cmd.mode && *cmd.mode != s.otc_mode) ||
-                                 (cmd.acc_weight && *cmd.acc_weight != s.otc_acc_weight);
-            if (s.otc_active && changes) {
-                return c.fail(ErrorKind::kProgramRule, isg.column,
-                              "OTC_CHANGE_WHILE_ACTIVE: processing type, mode and ACC_WEIGHT are "
-                              "set before or with #OTC ON, not while OTC is on");
-            }
-            if (cmd.type) s.otc_type = *cmd.type;
-            if (cmd.mode) s.otc_mode = *cmd.mode;
-            if (cmd.acc_weight) s.otc_acc_weight = *cmd.acc_weight;
-            if (cmd.wear_const == WearConstChoice::kProgrammed) {
-                s.otc_programmed_wear_const = true;
-                s.otc_wear_const = cmd.wear_const_value;
-            } else if (cmd.wear_const == WearConstChoice::kTool) {
-                s.otc_programmed_wear_const = false;
-            }
-            if (cmd.on && *cmd.on && !s.otc_active) {
-                // [ISG-OTC] section 1: only with tool type 2, else P-ERR-21391. The tool list
-                // tells the type; without one the board checks it.
-                if (options_.tools != nullptr) {
-                    const ToolData* t = s.tool > 0 ? options_.tools->find(s.tool) : nullptr;
-                    const int typ = t != nullptr ? t->typ : 0;
-                    if (typ != 2) {
-                        return c.fail(ErrorKind::kProgramRule, isg.column,
-                                      fmt::format("P-ERR-21391: #OTC ON needs a grinding tool "
-                                                  "(tool type 2, P-TOOL-00001); D{} is type {}",
-                                                  s.tool, typ));
-                    }
-                }
-                s.otc_active = true;
-            } else if (cmd.on && !*cmd.on && s.otc_active) {
-                // [ISG-OTC] section 2.2 "Hinweis": G40 before #OTC OFF.
-                if (s.otc_type == OtcType::kRadius && s.compensation != Compensation::kOff) {
-                    return c.fail(ErrorKind::kProgramRule, isg.column,
-                                  fmt::format("OTC_OFF_BEFORE_G40: #OTC OFF while radius "
-                                              "compensation G{} is on: program G40 before #OTC OFF",
-                                              g_number(s.compensation)));
-                }
-                if (s.otc_type == OtcType::kRadius && s.departure_pending) {
-                    return c.fail(ErrorKind::kProgramRule, isg.column,
-                                  fmt::format("90050: #OTC OFF right after G40 without a move: "
-                                              "under G{} the block after G40 departs from the "
-                                              "contour, so program a move (with the G40 or after "
-                                              "it) before #OTC OFF",
-                                              g_number(s.departing)));
-                }
-                s.otc_active = false;
-            }
-            out.push(origin, OtcChange{cmd});
+        case IsgKind::kOtc:
+            if (!otc_command(c, isg, options_.tools, origin, s, out)) return false;
             break;
-        }
         case IsgKind::kKin:
-            if (isg.kinematics != 0 && isg.kinematics != kBHeadKinematics) {
-                return c.fail(ErrorKind::kUnsupported, isg.column,
-                              fmt::format("#KIN ID[{}]: kinematics {} is not emulated (ID[4]: the "
-                                          "B head, docs/design.md section 8; ID[0]: none)",
-                                          isg.kinematics, isg.kinematics));
-            }
-            if (s.otc_active && isg.kinematics != s.kinematics) {
-                return c.fail(ErrorKind::kProgramRule, isg.column,
-                              "OTC_CHANGE_WHILE_ACTIVE: #KIN while OTC is on: select the "
-                              "kinematics before #OTC ON");
-            }
-            if (isg.kinematics == 0 && s.trafo) {
-                return c.fail(ErrorKind::kProgramRule, isg.column,
-                              "#KIN ID[0] while #TRAFO is on: program #TRAFO OFF first");
-            }
-            s.kinematics = isg.kinematics;
-            out.push(origin, KinematicsSelect{isg.kinematics});
+            if (!select_kinematics(c, isg, origin, s, out)) return false;
             break;
         case IsgKind::kTrafo:
-            if (isg.on && s.kinematics == 0) {
-                return c.fail(ErrorKind::kProgramRule, isg.column,
-                              "#TRAFO ON needs a kinematics: program #KIN ID[4] first");
-            }
-            if (s.otc_active && isg.on != s.trafo) {
-                return c.fail(ErrorKind::kProgramRule, isg.column,
-                              "OTC_CHANGE_WHILE_ACTIVE: #TRAFO while OTC is on: switch the "
-                              "transformation before #OTC ON or after #OTC OFF");
-            }
-            if (isg.on && s.compensation != Compensation::kOff) {
-                return c.fail(ErrorKind::kProgramRule, isg.column,
-                              fmt::format("#TRAFO ON while radius compensation G{} is on: "
-                                          "program G40 first (the transformation and radius "
-                                          "compensation do not combine here)",
-                                          g_number(s.compensation)));
-            }
-            if (isg.on != s.trafo) {
-                // The B head's transformation (docs/design.md section 8, rwmos/geometry/kinematics.h):
-                // with it the program gives the tool tip, the pivot one tool length behind it
-                // along t(B) = (sin B, 0, cos B). Without it the length acts on the tool axis of
-                // the plane (docs/compensation.md "Tool length"): the pivot one length behind the
-                // programmed point along that axis. The pivot stays; the position in force
-                // changes its meaning (at B0 in G17 it stays the same).
-                const double length = tool_length_mm(s.tool);
-                constexpr double kDeg = 3.14159265358979323846 / 180.0;
-                const Eigen::Vector3d along_tool =
-                    length * Eigen::Vector3d(std::sin(s.b * kDeg), 0.0, std::cos(s.b * kDeg));
-                Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
-                along_axis[plane_axes(s.plane).third] = length;
-                s.position = isg.on ? Eigen::Vector3d(s.position + along_axis - along_tool)
-                                    : Eigen::Vector3d(s.position + along_tool - along_axis);
-                s.trafo_length = length;
-            }
-            s.trafo = isg.on;
-            out.push(origin, TrafoChange{isg.on, s.trafo_length});
+            if (!switch_trafo(c, isg, tool_length_mm(s.tool), origin, s, out)) return false;
             break;
         case IsgKind::kHsc:
             out.push(origin, NotEmulated{"#HSC"});

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "apci/nc/correction_table.h"
 #include "apci/nc/klartext.h"
@@ -344,121 +345,122 @@ bool feed_of_move(const BlockCheck& c, const KlartextBlock& b, const KlartextOpt
     return true;
 }
 
-}  // namespace
-
-KlartextInterpreter::KlartextInterpreter(const KlartextOptions& options) : options_(options) {
-    state_.position = options_.start_position;
-}
-
-bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, EventBatch& out,
-                                Diagnostic& err) {
-    out.clear();
-    const BlockCheck c{b, file, err};
-    if (b.kind == KlartextKind::kEmpty) return true;
-    if (state_.closed) {
+// A block where the program's frame allows it: after BEGIN PGM (which comes first), before END
+// PGM, and after M2/M30 only END PGM.
+bool check_block_order(const BlockCheck& c, const KlartextState& before) {
+    const KlartextBlock& b = c.b;
+    if (before.closed) {
         return c.fail(ErrorKind::kProgramRule, b.kind_column,
                       "block after END PGM: the program has already ended");
     }
-    if (!state_.begun && b.kind != KlartextKind::kBeginPgm) {
+    if (!before.begun && b.kind != KlartextKind::kBeginPgm) {
         return c.fail(ErrorKind::kProgramRule, b.kind_column,
                       "a Klartext program begins with 'BEGIN PGM name MM'");
     }
-    if (state_.ended && b.kind != KlartextKind::kEndPgm) {
+    if (before.ended && b.kind != KlartextKind::kEndPgm) {
         return c.fail(ErrorKind::kProgramRule, b.kind_column,
                       "block after M2/M30: only END PGM may follow");
     }
-    KlartextState s = state_;  // committed only when every check has passed
-    const BlockOrigin origin{b.block_number(), b.line};
+    return true;
+}
 
-    switch (b.kind) {
-        case KlartextKind::kEmpty:
-            return true;
-        case KlartextKind::kBeginPgm:
-            if (state_.begun) {
-                return c.fail(ErrorKind::kProgramRule, b.kind_column,
-                              "BEGIN PGM appears twice: one program per file");
-            }
-            if (b.inch.value) {
-                return c.fail(ErrorKind::kUnsupported, b.inch.column,
-                              "INCH programs are not supported: the emulator works in mm (write "
-                              "the program in MM)");
-            }
-            s.begun = true;
-            s.inch = b.inch.value;
-            program_name_.assign(b.program_name);
-            state_ = s;
-            return true;
-        case KlartextKind::kEndPgm:
-            if (b.program_name != program_name_) {
-                return c.fail(ErrorKind::kProgramRule, b.program_name_column,
-                              fmt::format("END PGM {} does not match BEGIN PGM {}", b.program_name,
-                                          program_name_));
-            }
-            if (b.inch.value != state_.inch) {
-                return c.fail(ErrorKind::kProgramRule, b.inch.column,
-                              "END PGM gives another unit than BEGIN PGM");
-            }
-            if (!state_.ended) out.push(origin, ProgramEnd{});
-            s.closed = true;
-            state_ = s;
-            return true;
-        case KlartextKind::kToolCall: {
-            CalledTool called;
-            if (!check_tool_call(c, state_, options_, called)) return false;
-            s.tool = b.tool.value;
-            // S stays in force until a TOOL CALL gives another; F belongs to its call (F AUTO).
-            if (b.spindle_speed.present()) s.spindle_speed = b.spindle_speed.value;
-            s.call_feed = b.call_feed.present() ? b.call_feed.value : 0.0;
-            s.call_dl = b.dl.present() ? b.dl.value : 0.0;
-            s.call_dr = b.dr.present() ? b.dr.value : 0.0;
-            s.call_dr2 = b.dr2.present() ? b.dr2.value : 0.0;
-            s.tool_oversize = s.tool > 0 && has_oversize(called);
-            out.push(origin, ToolSelect{s.tool});
-            out.push(origin,
-                     ToolCallDeltas{s.tool, s.call_dl, s.call_dr, s.call_dr2,
-                                    b.spindle_speed.present() ? b.spindle_speed.value : 0.0});
-            state_ = s;
-            return true;
-        }
-        case KlartextKind::kCorrData: {
-            CalledTool called;
-            if (!check_corrdata(c, state_, options_, called)) return false;
-            s.corr_row = b.corr_row.value;
-            s.tool_oversize = s.tool > 0 && has_oversize(called);
-            out.push(origin, CorrectionSelect{s.corr_row});
-            state_ = s;
-            return true;
-        }
-        case KlartextKind::kProgPath:
-            s.prog_path_contour = b.prog_path_contour;
-            if (s.prog_path_contour != state_.prog_path_contour) {
-                out.push(origin, ProgPathChange{s.prog_path_contour});
-            }
-            state_ = s;
-            return true;
-        case KlartextKind::kTcpm:
-        case KlartextKind::kResetTcpm:
-            s.tcpm = b.kind == KlartextKind::kTcpm;
-            s.reference = s.tcpm ? b.reference : ToolReference::kTip;
-            if (s.tcpm != state_.tcpm || s.reference != state_.reference) {
-                out.push(origin, TcpmChange{s.tcpm, s.reference});
-            }
-            state_ = s;
-            return true;
-        case KlartextKind::kLine:
-        case KlartextKind::kVectorLine:
-        case KlartextKind::kMOnly:
-            break;
+// BEGIN PGM name MM: once per file, in mm.
+bool begin_program(const BlockCheck& c, const KlartextState& before, KlartextState& s) {
+    const KlartextBlock& b = c.b;
+    if (before.begun) {
+        return c.fail(ErrorKind::kProgramRule, b.kind_column,
+                      "BEGIN PGM appears twice: one program per file");
     }
+    if (b.inch.value) {
+        return c.fail(ErrorKind::kUnsupported, b.inch.column,
+                      "INCH programs are not supported: the emulator works in mm (write "
+                      "the program in MM)");
+    }
+    s.begun = true;
+    s.inch = b.inch.value;
+    return true;
+}
 
-    // L, LN and M blocks. M functions act at the start of the block, M2/M30 at its end.
+// END PGM with the name and unit of BEGIN PGM; the program ends here unless M2/M30 ended it.
+bool end_program(const BlockCheck& c, const KlartextState& before, std::string_view program_name,
+                 const BlockOrigin& origin, KlartextState& s, EventBatch& out) {
+    const KlartextBlock& b = c.b;
+    if (b.program_name != program_name) {
+        return c.fail(ErrorKind::kProgramRule, b.program_name_column,
+                      fmt::format("END PGM {} does not match BEGIN PGM {}", b.program_name,
+                                  program_name));
+    }
+    if (b.inch.value != before.inch) {
+        return c.fail(ErrorKind::kProgramRule, b.inch.column,
+                      "END PGM gives another unit than BEGIN PGM");
+    }
+    if (!before.ended) out.push(origin, ProgramEnd{});
+    s.closed = true;
+    return true;
+}
+
+// TOOL CALL n Z S.. F.. DL.. DR.. DR2..: the tool, its spindle speed, feed and deltas.
+bool tool_call(const BlockCheck& c, const KlartextState& before, const KlartextOptions& options,
+               const BlockOrigin& origin, KlartextState& s, EventBatch& out) {
+    const KlartextBlock& b = c.b;
+    CalledTool called;
+    if (!check_tool_call(c, before, options, called)) return false;
+    s.tool = b.tool.value;
+    // S stays in force until a TOOL CALL gives another; F belongs to its call (F AUTO).
+    if (b.spindle_speed.present()) s.spindle_speed = b.spindle_speed.value;
+    s.call_feed = b.call_feed.present() ? b.call_feed.value : 0.0;
+    s.call_dl = b.dl.present() ? b.dl.value : 0.0;
+    s.call_dr = b.dr.present() ? b.dr.value : 0.0;
+    s.call_dr2 = b.dr2.present() ? b.dr2.value : 0.0;
+    s.tool_oversize = s.tool > 0 && has_oversize(called);
+    out.push(origin, ToolSelect{s.tool});
+    out.push(origin, ToolCallDeltas{s.tool, s.call_dl, s.call_dr, s.call_dr2,
+                                    b.spindle_speed.present() ? b.spindle_speed.value : 0.0});
+    return true;
+}
+
+// FUNCTION CORRDATA TCS #n: the correction table's row for the tool in force.
+bool correction_data(const BlockCheck& c, const KlartextState& before,
+                     const KlartextOptions& options, const BlockOrigin& origin, KlartextState& s,
+                     EventBatch& out) {
+    CalledTool called;
+    if (!check_corrdata(c, before, options, called)) return false;
+    s.corr_row = c.b.corr_row.value;
+    s.tool_oversize = s.tool > 0 && has_oversize(called);
+    out.push(origin, CorrectionSelect{s.corr_row});
+    return true;
+}
+
+// FUNCTION PROG PATH IS CONTOUR / IS CENTER.
+void prog_path(const KlartextBlock& b, const KlartextState& before, const BlockOrigin& origin,
+               KlartextState& s, EventBatch& out) {
+    s.prog_path_contour = b.prog_path_contour;
+    if (s.prog_path_contour != before.prog_path_contour) {
+        out.push(origin, ProgPathChange{s.prog_path_contour});
+    }
+}
+
+// FUNCTION TCPM and FUNCTION RESET TCPM.
+void tcpm_function(const KlartextBlock& b, const KlartextState& before,
+                   const BlockOrigin& origin, KlartextState& s, EventBatch& out) {
+    s.tcpm = b.kind == KlartextKind::kTcpm;
+    s.reference = s.tcpm ? b.reference : ToolReference::kTip;
+    if (s.tcpm != before.tcpm || s.reference != before.reference) {
+        out.push(origin, TcpmChange{s.tcpm, s.reference});
+    }
+}
+
+// The M functions of an L, LN or M block (they act at the start of the block) and its modal
+// words: radius compensation, feed, head angles.
+bool modal_words(const BlockCheck& c, const KlartextState& before, KlartextState& s) {
+    const KlartextBlock& b = c.b;
     if (b.has_m(107)) s.m107 = true;
     if (b.has_m(108)) {
-        if (state_.tool_oversize) {
+        if (before.tool_oversize) {
             return c.fail(ErrorKind::kProgramRule, m_column(b, 108),
                           fmt::format("M108 while tool {} with a positive oversize is loaded: "
                                       "call a tool without oversize first",
-                                      state_.tool));
+                                      before.tool));
         }
         s.m107 = false;
     }
@@ -485,54 +487,113 @@ bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, E
     }
     if (b.b.present()) s.b = b.b.value;
     if (b.c.present()) s.c = b.c.value;
+    return true;
+}
 
-    // The feed of a move in mm/min (FZ, FU, F AUTO turned into it here): 0 with the error
-    // named when what it needs is missing.
+// The move of an L or LN block (none for an M block or an L without axis words) into `move`,
+// `s.position` its end; its feed in mm/min (FZ, FU, F AUTO turned into it here), and the
+// number of interpolation cycles it takes, checked.
+bool block_move(const BlockCheck& c, const KlartextState& before, const KlartextOptions& options,
+                KlartextState& s, std::optional<EventData>& move) {
+    const KlartextBlock& b = c.b;
     const bool will_move =
         b.kind == KlartextKind::kVectorLine || (b.kind == KlartextKind::kLine && b.has_axis_word());
-    if (will_move && !b.fmax.present() && !feed_of_move(c, b, options_, s)) return false;
-
-    EventData move;
-    bool moves = false;
+    if (!will_move) return true;
+    if (!b.fmax.present() && !feed_of_move(c, b, options, s)) return false;
     if (b.kind == KlartextKind::kVectorLine) {
         VectorLineMove ln;
-        if (!vector_line(c, s, state_.position, ln)) return false;
-        moves = true;
+        if (!vector_line(c, s, before.position, ln)) return false;
         move = ln;
         s.position = ln.end;
-    } else if (b.kind == KlartextKind::kLine && b.has_axis_word()) {
-        moves = true;
-        const Eigen::Vector3d end = line_end(b, state_.position);
+    } else {
+        const Eigen::Vector3d end = line_end(b, before.position);
         if (b.fmax.present()) {
-            move = RapidMove{state_.position, end};
+            move = RapidMove{before.position, end};
         } else {
-            move = LineMove{state_.position, end, s.feed};
+            move = LineMove{before.position, end, s.feed};
         }
         s.position = end;
     }
-    if (moves && !b.fmax.present() && !(s.feed > 0.0)) {
+    if (b.fmax.present()) return true;
+    if (!(s.feed > 0.0)) {
         return c.fail(ErrorKind::kProgramRule, first_axis_column(b),
                       fmt::format("no feed rate: program F (or FMAX) before the first {} move",
                                   b.kind == KlartextKind::kVectorLine ? "LN" : "L"));
     }
-    if (moves && !b.fmax.present()) {
-        std::string why = check_move_cycles(move_length(state_.position, s.position), s.feed,
-                                            options_.cycle_seconds);
-        if (!why.empty())
-            return c.fail(ErrorKind::kValue,
-                          b.feed.present() ? b.feed.column : first_axis_column(b), std::move(why));
-    }
+    std::string why = check_move_cycles(move_length(before.position, s.position), s.feed,
+                                        options.cycle_seconds);
+    if (!why.empty())
+        return c.fail(ErrorKind::kValue, b.feed.present() ? b.feed.column : first_axis_column(b),
+                      std::move(why));
+    return true;
+}
+
+// L, LN and M blocks. M functions act at the start of the block, M2/M30 at its end. Once
+// every check has passed, the events in the documented order.
+bool move_block(const BlockCheck& c, const KlartextState& before, const KlartextOptions& options,
+                const BlockOrigin& origin, KlartextState& s, EventBatch& out) {
+    const KlartextBlock& b = c.b;
+    if (!modal_words(c, before, s)) return false;
+    std::optional<EventData> move;
+    if (!block_move(c, before, options, s, move)) return false;
     if (b.has_m(2) || b.has_m(30)) s.ended = true;
 
-    // Every check passed: emit in the documented order and commit.
-    if (s.m107 != state_.m107) out.push(origin, OversizeChange{s.m107});
-    if (s.tcpm != state_.tcpm || s.reference != state_.reference) {
+    if (s.m107 != before.m107) out.push(origin, OversizeChange{s.m107});
+    if (s.tcpm != before.tcpm || s.reference != before.reference) {
         out.push(origin, TcpmChange{s.tcpm, s.reference});
     }
-    if (s.radius_comp != state_.radius_comp) out.push(origin, CompensationChange{s.radius_comp});
+    if (s.radius_comp != before.radius_comp) out.push(origin, CompensationChange{s.radius_comp});
     if (b.b.present() || b.c.present()) out.push(origin, HeadOrientation{s.b, s.c});
-    if (moves) out.push(origin, move);
+    if (move) out.push(origin, *move);
     if (s.ended) out.push(origin, ProgramEnd{});
+    return true;
+}
+
+}  // namespace
+
+KlartextInterpreter::KlartextInterpreter(const KlartextOptions& options) : options_(options) {
+    state_.position = options_.start_position;
+}
+
+bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, EventBatch& out,
+                                Diagnostic& err) {
+    out.clear();
+    const BlockCheck c{b, file, err};
+    if (b.kind == KlartextKind::kEmpty) return true;
+    if (!check_block_order(c, state_)) return false;
+    KlartextState s = state_;  // committed only when every check has passed
+    const BlockOrigin origin{b.block_number(), b.line};
+    bool ok = true;
+    switch (b.kind) {
+        case KlartextKind::kEmpty:
+            return true;
+        case KlartextKind::kBeginPgm:
+            ok = begin_program(c, state_, s);
+            if (ok) program_name_.assign(b.program_name);
+            break;
+        case KlartextKind::kEndPgm:
+            ok = end_program(c, state_, program_name_, origin, s, out);
+            break;
+        case KlartextKind::kToolCall:
+            ok = tool_call(c, state_, options_, origin, s, out);
+            break;
+        case KlartextKind::kCorrData:
+            ok = correction_data(c, state_, options_, origin, s, out);
+            break;
+        case KlartextKind::kProgPath:
+            prog_path(b, state_, origin, s, out);
+            break;
+        case KlartextKind::kTcpm:
+        case KlartextKind::kResetTcpm:
+            tcpm_function(b, state_, origin, s, out);
+            break;
+        case KlartextKind::kLine:
+        case KlartextKind::kVectorLine:
+        case KlartextKind::kMOnly:
+            ok = move_block(c, state_, options_, origin, s, out);
+            break;
+    }
+    if (!ok) return false;
     state_ = s;
     return true;
 }

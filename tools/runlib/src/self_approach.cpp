@@ -1053,31 +1053,9 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         seen_ = true;
     }
     if (done()) return;
-    // The programmed element it belongs to: the first pending one of its block (executed
-    // segments come in program order; transitions and the departure belong to the element
-    // before, the approach to the first). A rapid or an uncompensated move has none (the
-    // programmed elements are compensated ones): only the first is looked at, not the
-    // elements the run has programmed ahead.
     const std::size_t waiting = pending_.size() - pending_head_;
-    const std::size_t looked = s.role == Role::kUncompensated ? 1 : 64;
-    std::size_t at = waiting;
-    for (std::size_t i = 0; i < waiting && i < looked; ++i)
-        if (same_block(pending_[pending_head_ + i].block, s.block)) {
-            at = i;
-            break;
-        }
-    // The first segment after the last element of a stretch that ended undecided.
-    while (!undecided_.empty()) {
-        Undecided& u = undecided_.front();
-        const bool found = at != waiting;
-        const std::uint64_t index = found ? pending_[pending_head_ + at].index : 0;
-        if (found && index == u.last_index) {
-            u.reached = true;
-            break;
-        }
-        if (!(u.reached || (found && index > u.last_index))) break;
-        leave(s, out);
-    }
+    const std::size_t at = pending_of(s);
+    leave_undecided(s, at, out);
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach &&
         s.role != Role::kDeparture)
         return;
@@ -1096,6 +1074,45 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
     // The approach cuts as the contour does (under G139 it is the first element's whole move).
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
         return;
+    check_path(s, p, running, out);
+}
+
+// The programmed element an executed segment belongs to, as a position after pending_head_
+// (the number waiting where it has none): the first pending one of its block (executed segments
+// come in program order; transitions and the departure belong to the element before, the
+// approach to the first). A rapid or an uncompensated move has none (the programmed elements
+// are compensated ones): only the first is looked at, not the elements the run has programmed
+// ahead.
+std::size_t SelfApproachCheck::pending_of(const PathSegment& s) const {
+    const std::size_t waiting = pending_.size() - pending_head_;
+    const std::size_t looked = s.role == Role::kUncompensated ? 1 : 64;
+    for (std::size_t i = 0; i < waiting && i < looked; ++i)
+        if (same_block(pending_[pending_head_ + i].block, s.block)) return i;
+    return waiting;
+}
+
+// The stretches that ended undecided and whose last element the run has left: the first
+// segment after it (of a later element, or of none) gives their findings out.
+void SelfApproachCheck::leave_undecided(const PathSegment& s, std::size_t at,
+                                        std::vector<SelfApproachFinding>& out) {
+    const std::size_t waiting = pending_.size() - pending_head_;
+    while (!undecided_.empty()) {
+        Undecided& u = undecided_.front();
+        const bool found = at != waiting;
+        const std::uint64_t index = found ? pending_[pending_head_ + at].index : 0;
+        if (found && index == u.last_index) {
+            u.reached = true;
+            break;
+        }
+        if (!(u.reached || (found && index > u.last_index))) break;
+        leave(s, out);
+    }
+}
+
+// An executed segment of the programmed element `p` held to the elements the grid brings near
+// it (its own element's offset and its own corner's line left out).
+void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool running,
+                                   std::vector<SelfApproachFinding>& out) {
     Grid& g = grid(p.plane);
     if (s.role == Role::kApproach &&
         (approach_entries_.empty() || approach_entries_.back().index != p.index))

@@ -510,6 +510,319 @@ void SvgPlotWriter::add_marker(const BlockRef& block, const Point& where, std::s
     bounds_.add(where);
 }
 
+// The page around the drawing: its measures (from the drawing's bounds and the texts beside
+// it: title, coordinate ranges, legend, scale bar) and the writing of each of its parts.
+class SvgPlotWriter::Page {
+  public:
+    static constexpr double kPixels = 1000.0;  // the page's width in pixels
+
+    Page(const SvgPlotWriter& plot, int plane, std::string_view title)
+        : plot_(plot), plane_(plane), frame_(plane, plot.bounds_), axes_(frame_.axes()),
+          first_(axis_letter(axes_.first)), second_(axis_letter(axes_.second)),
+          margin_(0.06 * frame_.extent()), font_(0.028 * frame_.extent()),
+          stroke_(frame_.extent() / 500.0), gap_(1.5 * font_) {
+        measure_plot_band();
+        measure_texts(title);
+        measure_legend();
+        measure_width();
+        measure_heights();
+    }
+
+    // The document; false when it could not be written or the records not read back.
+    bool write(std::FILE* out) const {
+        TextSink sink(out);
+        write_head(sink);
+        write_style(sink);
+        write_title(sink);
+        const bool read_ok = write_layers(sink);
+        write_markers(sink);
+        write_scale_and_ranges(sink);
+        write_axis_cross(sink);
+        write_legend(sink);
+        sink.append("</svg>\n");
+        return sink.flush() && read_ok;
+    }
+
+  private:
+    double width_of(std::string_view text) const { return text_width(text, font_); }
+    std::string at(double v) const { return frame_.text(v); }
+    std::string stroke_width(double factor) const {
+        return fmt::format("{:.6g}", stroke_ * factor);
+    }
+    // A legend row's sample line.
+    double row_y(std::size_t row) const {
+        return fy_ + (3.4 + 1.5 * static_cast<double>(row)) * font_;
+    }
+
+    // Plot band: the drawing, and the error labels ("N80 KorrError") right of and above their
+    // markers.
+    void measure_plot_band() {
+        x0_ = frame_.u0() - margin_;
+        plot_right_ = frame_.u1() + margin_;
+        plot_top_ = frame_.v1() + margin_;
+        for (const Marker& m : plot_.markers_) {
+            plot_right_ = std::max(plot_right_, m.where[axes_.first] + 1.2 * font_ +
+                                                    width_of(marker_label(m.block, m.code)) + gap_);
+            plot_top_ = std::max(plot_top_, m.where[axes_.second] + 2.0 * font_);
+        }
+    }
+
+    // The texts, measured: title, coordinate ranges.
+    void measure_texts(std::string_view title) {
+        heading_ = fmt::format("{} \xe2\x80\x94 G{} plane {}, seen from +{}", title, plane_,
+                               plane_name(plane_), axis_letter(axes_.third));
+        ranges_ = fmt::format("{} {} .. {}, {} {} .. {} mm", first_, frame_.text(frame_.u0()),
+                              frame_.text(frame_.u1()), second_, frame_.text(frame_.v0()),
+                              frame_.text(frame_.v1()));
+    }
+
+    // The legend: the layers drawn, then the markers' kinds ("error", "warning"), the last
+    // with those not drawn; `entry_`, the widest entry (its sample of 2 em, then its label).
+    void measure_legend() {
+        for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer)
+            if (plot_.counts_[layer] != 0)
+                legend_.emplace_back(layer_label(static_cast<PlotLayer>(layer)));
+        const std::vector<Marker>& markers = plot_.markers_;
+        warnings_ =
+            std::any_of(markers.begin(), markers.end(), [](const Marker& m) { return m.warning; });
+        if (std::any_of(markers.begin(), markers.end(), [](const Marker& m) { return !m.warning; }))
+            marker_kinds_.push_back("error");
+        if (warnings_) marker_kinds_.push_back("warning");
+        for (std::size_t k = 0; k < marker_kinds_.size(); ++k)
+            legend_.emplace_back(k + 1 < marker_kinds_.size() || plot_.markers_dropped_ == 0
+                                     ? std::string(marker_kinds_[k])
+                                     : fmt::format("{} ({} more not drawn)", marker_kinds_[k],
+                                                   plot_.markers_dropped_));
+        for (const std::string& label : legend_)
+            entry_ = std::max(entry_, 2.5 * font_ + width_of(label));
+    }
+
+    // The page's width: the plot band, the ranges beside the axis cross, one legend entry, the
+    // title (wrapped rather than widen the page beyond kTitleEms), the scale bar and its label
+    // beside the cross. The bar follows the width (a 1-2-5 length near a quarter of it), and
+    // the width the bar: repeated until the bar fits (it is at most 0.4 of the width).
+    void measure_width() {
+        cross_ = 0.35 * font_ + 2.2 * font_ + 0.3 * font_ + width_of(std::string(1, first_));
+        width_ = std::max({plot_right_ - x0_, 2.0 * margin_ + width_of(ranges_) + gap_ + cross_,
+                           2.0 * margin_ + entry_});
+        width_ = std::max(width_, std::min(2.0 * margin_ + width_of(heading_),
+                                           std::max(width_, 2.0 * margin_ + kTitleEms * font_)));
+        title_lines_ = wrap_text(heading_, width_ - 2.0 * margin_, font_);
+        for (int pass = 0; pass < 64; ++pass) {
+            bar_ = scale_bar_length(width_);
+            bar_label_ = fmt::format("{} mm", bar_);
+            const double needs =
+                2.0 * margin_ + bar_ + 0.6 * font_ + width_of(bar_label_) + gap_ + cross_;
+            if (needs <= width_) break;
+            width_ = needs;
+        }
+    }
+
+    // Heights: title band, plot band, footer (scale bar, ranges, legend rows); then the view
+    // box, out to what the coordinates as written resolve.
+    void measure_heights() {
+        line_pitch_ = 1.25 * font_;
+        const double header =
+            2.2 * font_ + static_cast<double>(title_lines_.size() - 1) * line_pitch_;
+        y0_ = -plot_top_ - header;
+        fy_ = -frame_.v0() + margin_ + 1.2 * font_;
+        ranges_y_ = fy_ + 1.85 * font_;
+        per_row_ = static_cast<std::size_t>(
+            std::max(1.0, std::floor((width_ - 2.0 * margin_ - entry_) / (entry_ + gap_)) + 1.0));
+        const std::size_t rows = (legend_.size() + per_row_ - 1) / per_row_;
+        const double bottom = rows == 0 ? ranges_y_ + kTextDescent * font_
+                                        : row_y(rows - 1) + (0.35 + kTextDescent) * font_;
+        const double step = frame_.resolution();
+        box_x_ = std::floor(x0_ / step) * step;
+        box_y_ = std::floor(y0_ / step) * step;
+        box_width_ = std::ceil((x0_ + width_) / step) * step - box_x_;
+        box_height_ = std::ceil((bottom + 0.5 * margin_) / step) * step - box_y_;
+    }
+
+    // The XML declaration, the <svg> element with its view box, and the document's title
+    // (what a viewer shows as its name, and a screen reader reads).
+    void write_head(TextSink& sink) const {
+        sink.append("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+        sink.append("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"");
+        sink.print("{} {} {} {}", at(box_x_), at(box_y_), at(box_width_), at(box_height_));
+        sink.print("\" width=\"{:.0f}\" height=\"{:.0f}\">\n", kPixels,
+                   std::ceil(kPixels * box_height_ / box_width_));
+        sink.append("<title>");
+        append_xml_text(sink, heading_);
+        sink.append("</title>\n");
+    }
+
+    // The style sheet (the cycles' and the warnings' styles only where there are some: plots
+    // without stay as they were), then the page's white background.
+    void write_style(TextSink& sink) const {
+        const auto w = [&](double factor) { return stroke_width(factor); };
+        sink.print(
+            "<style>\n"
+            "path {{ fill: none; stroke-linecap: round; stroke-linejoin: round; }}\n"
+            ".programmed {{ stroke: #222222; stroke-width: {0}; }}\n"
+            ".rapid {{ stroke: #9a9a9a; stroke-width: {0}; stroke-dasharray: {3} {4}; }}\n"
+            ".uncompensated {{ stroke: #7b3fa0; stroke-width: {1}; }}\n"
+            ".approach {{ stroke: #2a9d3a; stroke-width: {1}; stroke-dasharray: {5} {4}; }}\n"
+            ".departure {{ stroke: #b8860b; stroke-width: {1}; stroke-dasharray: {5} {4}; }}\n"
+            ".contour {{ stroke: #1f5fbf; stroke-width: {1}; }}\n"
+            ".transition {{ stroke: #e4572e; stroke-width: {2}; }}\n"
+            "{8}"
+            ".error {{ fill: none; stroke: #d00000; stroke-width: {1}; }}\n"
+            "{9}"
+            "text {{ font-family: 'DejaVu Sans', sans-serif; font-size: {6}px; fill: #222222; }}\n"
+            "text.error {{ fill: #d00000; stroke: none; }}\n"
+            "{10}"
+            ".frame {{ fill: none; stroke: #cccccc; stroke-width: {7}; }}\n"
+            ".axis {{ fill: none; stroke: #222222; stroke-width: {0}; }}\n"
+            "</style>\n",
+            w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), kTextUnits, w(0.5),
+            plot_.counts_[static_cast<std::size_t>(PlotLayer::kCycles)] == 0
+                ? std::string()
+                : fmt::format(".cycles {{ stroke: #c2185b; stroke-width: {}; }}\n", w(1.0)),
+            warnings_ ? fmt::format(".warning {{ fill: none; stroke: #e07b00; stroke-width: {}; }}\n",
+                                    w(1.6))
+                      : std::string(),
+            warnings_ ? std::string("text.warning { fill: #b35f00; stroke: none; }\n")
+                      : std::string());
+        sink.print("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"white\"/>\n",
+                   at(box_x_), at(box_y_), at(box_width_), at(box_height_));
+    }
+
+    // Text in its own units (kTextUnits to the font size), placed and scaled into the drawing's,
+    // so that no renderer sees a font size of a tiny part's fraction of a millimetre.
+    void put_text(TextSink& sink, double x, double y, std::string_view attributes,
+                  std::string_view content) const {
+        sink.print("<text{} transform=\"translate({} {}) scale({:.6g})\">", attributes, at(x),
+                   at(y), font_ / kTextUnits);
+        append_xml_text(sink, content);
+        sink.append("</text>\n");
+    }
+
+    void write_title(TextSink& sink) const {
+        for (std::size_t i = 0; i < title_lines_.size(); ++i)
+            put_text(sink, frame_.u0(), y0_ + 1.4 * font_ + static_cast<double>(i) * line_pitch_,
+                     " class=\"title\"", title_lines_[i]);
+    }
+
+    // The layers, one pass over the records each, bottom to top. False when reading failed.
+    bool write_layers(TextSink& sink) const {
+        bool read_ok = true;
+        std::FILE* records = plot_.records_;
+        for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
+            if (plot_.counts_[layer] == 0) continue;
+            std::rewind(records);
+            PathEmitter emit(sink, frame_, layer_class(static_cast<PlotLayer>(layer)),
+                             0.5 * box_width_ / kPixels);
+            Record r;
+            while (std::fread(&r, sizeof r, 1, records) == 1)
+                if (r.layer == layer) emit.add(segment_of(r));
+            if (std::ferror(records)) read_ok = false;
+        }
+        return read_ok;
+    }
+
+    // Error and warning markers: a circle and "N80 KorrError".
+    void write_markers(TextSink& sink) const {
+        for (const Marker& m : plot_.markers_) {
+            sink.append(m.warning ? "<circle class=\"warning\" cx=\""
+                                  : "<circle class=\"error\" cx=\"");
+            frame_.number(sink, m.where[axes_.first]);
+            sink.append("\" cy=\"");
+            frame_.number(sink, -m.where[axes_.second]);
+            sink.print("\" r=\"{:.6g}\"/>\n", 0.9 * font_);
+            put_text(sink, m.where[axes_.first] + 1.2 * font_,
+                     -m.where[axes_.second] - 1.0 * font_,
+                     m.warning ? " class=\"warning\"" : " class=\"error\"",
+                     marker_label(m.block, m.code));
+        }
+    }
+
+    // Footer: the scale bar and its length, the coordinate ranges below.
+    void write_scale_and_ranges(TextSink& sink) const {
+        const double bx = frame_.u0();
+        sink.print(
+            "<path class=\"axis\" id=\"scale-bar\" d=\"M{0} {1} L{2} {1} M{0} {3} L{0} {4} M{2} "
+            "{3} L{2} {4}\"/>\n",
+            at(bx), at(fy_), at(bx + bar_), at(fy_ - 0.4 * font_), at(fy_ + 0.4 * font_));
+        put_text(sink, bx + bar_ + 0.6 * font_, fy_ + 0.35 * font_, " id=\"scale-label\"",
+                 bar_label_);
+        put_text(sink, bx, ranges_y_, "", ranges_);
+    }
+
+    // The plane's axes at the right of the footer: the first axis right, the second up.
+    void write_axis_cross(TextSink& sink) const {
+        const double ax = x0_ + width_ - margin_ - (cross_ - 0.35 * font_);
+        const double ay = fy_ + 1.5 * font_;
+        const double len = 2.2 * font_;
+        sink.print(
+            "<path class=\"axis\" d=\"M{0} {1} L{2} {1} M{0} {1} L{0} {3} M{4} {5} L{2} {1} L{4} "
+            "{6} M{7} {8} L{0} {3} L{9} {8}\"/>\n",
+            at(ax), at(ay), at(ax + len), at(ay - len), at(ax + len - 0.4 * font_),
+            at(ay - 0.25 * font_), at(ay + 0.25 * font_), at(ax - 0.25 * font_),
+            at(ay - len + 0.4 * font_), at(ax + 0.25 * font_));
+        put_text(sink, ax + len + 0.3 * font_, ay + 0.35 * font_, "", std::string(1, first_));
+        put_text(sink, ax - 0.35 * font_, ay - len - 0.4 * font_, "", std::string(1, second_));
+    }
+
+    // Legend: a short sample of each layer drawn, then each kind of marker drawn.
+    void write_legend(TextSink& sink) const {
+        const double bx = frame_.u0();
+        std::size_t slot = 0;
+        for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
+            if (plot_.counts_[layer] == 0) continue;
+            const auto l = static_cast<PlotLayer>(layer);
+            const double lx = bx + static_cast<double>(slot % per_row_) * (entry_ + gap_);
+            const double ly = row_y(slot / per_row_);
+            sink.print("<path class=\"{}\" d=\"M{} {} L{} {}\"/>\n", layer_class(l), at(lx),
+                       at(ly), at(lx + 2.0 * font_), at(ly));
+            put_text(sink, lx + 2.5 * font_, ly + 0.35 * font_, "", legend_[slot]);
+            ++slot;
+        }
+        for (const char* kind : marker_kinds_) {
+            const double lx = bx + static_cast<double>(slot % per_row_) * (entry_ + gap_);
+            const double ly = row_y(slot / per_row_);
+            sink.print("<circle class=\"{}\" cx=\"{}\" cy=\"{}\" r=\"{:.6g}\"/>\n", kind,
+                       at(lx + font_), at(ly), 0.5 * font_);
+            put_text(sink, lx + 2.5 * font_, ly + 0.35 * font_, "", legend_[slot]);
+            ++slot;
+        }
+    }
+
+    const SvgPlotWriter& plot_;
+    int plane_;
+    Frame frame_;
+    const PlaneAxes& axes_;
+    char first_;   // the plane's axes' letters
+    char second_;
+    double margin_;
+    double font_;
+    double stroke_;
+    double gap_;  // between texts side by side
+    double x0_ = 0.0;
+    double plot_right_ = 0.0;
+    double plot_top_ = 0.0;
+    std::string heading_;
+    std::string ranges_;
+    std::vector<std::string> legend_;       // the layers drawn, then the markers drawn
+    std::vector<const char*> marker_kinds_;  // "error", "warning"
+    bool warnings_ = false;
+    double entry_ = 0.0;  // a legend entry: its sample (2 em), then its label
+    double cross_ = 0.0;  // the axis cross's width
+    double width_ = 0.0;
+    std::vector<std::string> title_lines_;
+    double bar_ = 0.0;
+    std::string bar_label_;
+    double line_pitch_ = 0.0;
+    double y0_ = 0.0;
+    double fy_ = 0.0;        // the scale bar's line
+    double ranges_y_ = 0.0;  // the ranges' baseline
+    std::size_t per_row_ = 1;
+    double box_x_ = 0.0;
+    double box_y_ = 0.0;
+    double box_width_ = 0.0;
+    double box_height_ = 0.0;
+};
+
 bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view program) {
     // The program's file name, not where it lies: a plot shared or published does not carry
     // the directories of the machine it was made on.
@@ -519,218 +832,7 @@ bool SvgPlotWriter::finish(std::FILE* out, int plane, std::string_view program) 
         cycle_pending_ = false;
     }
     if (!ok() || std::fflush(records_) != 0) return false;
-    const Frame frame(plane, bounds_);
-    const PlaneAxes& axes = frame.axes();
-    const char first = axis_letter(axes.first);
-    const char second = axis_letter(axes.second);
-    const double e = frame.extent();
-    const double margin = 0.06 * e;
-    const double font = 0.028 * e;
-    const double stroke = e / 500.0;
-    const double gap = 1.5 * font;  // between texts side by side
-    const auto width_of = [&](std::string_view text) { return text_width(text, font); };
-
-    // Plot band: the drawing, and the error labels ("N80 KorrError") right of and above their
-    // markers.
-    const double x0 = frame.u0() - margin;
-    double plot_right = frame.u1() + margin;
-    double plot_top = frame.v1() + margin;
-    for (const Marker& m : markers_) {
-        plot_right = std::max(plot_right, m.where[axes.first] + 1.2 * font +
-                                              width_of(marker_label(m.block, m.code)) + gap);
-        plot_top = std::max(plot_top, m.where[axes.second] + 2.0 * font);
-    }
-
-    // The texts, measured: title, coordinate ranges, legend labels.
-    const std::string heading = fmt::format("{} \xe2\x80\x94 G{} plane {}, seen from +{}", title,
-                                            plane, plane_name(plane), axis_letter(axes.third));
-    const std::string ranges =
-        fmt::format("{} {} .. {}, {} {} .. {} mm", first, frame.text(frame.u0()),
-                    frame.text(frame.u1()), second, frame.text(frame.v0()), frame.text(frame.v1()));
-    std::vector<std::string> legend;  // the layers drawn, then the markers drawn
-    for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer)
-        if (counts_[layer] != 0) legend.emplace_back(layer_label(static_cast<PlotLayer>(layer)));
-    // The markers' kinds in the legend ("error", "warning"), the last with those not drawn.
-    std::vector<const char*> marker_kinds;
-    const bool warnings =
-        std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return m.warning; });
-    if (std::any_of(markers_.begin(), markers_.end(), [](const Marker& m) { return !m.warning; }))
-        marker_kinds.push_back("error");
-    if (warnings) marker_kinds.push_back("warning");
-    for (std::size_t k = 0; k < marker_kinds.size(); ++k)
-        legend.emplace_back(
-            k + 1 < marker_kinds.size() || markers_dropped_ == 0
-                ? std::string(marker_kinds[k])
-                : fmt::format("{} ({} more not drawn)", marker_kinds[k], markers_dropped_));
-    double entry = 0.0;  // a legend entry: its sample (2 em), then its label
-    for (const std::string& label : legend) entry = std::max(entry, 2.5 * font + width_of(label));
-
-    // The page's width: the plot band, the ranges beside the axis cross, one legend entry, the
-    // title (wrapped rather than widen the page beyond kTitleEms), the scale bar and its label
-    // beside the cross. The bar follows the width (a 1-2-5 length near a quarter of it), and
-    // the width the bar: repeated until the bar fits (it is at most 0.4 of the width).
-    const double cross = 0.35 * font + 2.2 * font + 0.3 * font + width_of(std::string(1, first));
-    double width = std::max(
-        {plot_right - x0, 2.0 * margin + width_of(ranges) + gap + cross, 2.0 * margin + entry});
-    width = std::max(width, std::min(2.0 * margin + width_of(heading),
-                                     std::max(width, 2.0 * margin + kTitleEms * font)));
-    const std::vector<std::string> title_lines = wrap_text(heading, width - 2.0 * margin, font);
-    double bar = 0.0;
-    std::string bar_label;
-    for (int pass = 0; pass < 64; ++pass) {
-        bar = scale_bar_length(width);
-        bar_label = fmt::format("{} mm", bar);
-        const double needs = 2.0 * margin + bar + 0.6 * font + width_of(bar_label) + gap + cross;
-        if (needs <= width) break;
-        width = needs;
-    }
-
-    // Heights: title band, plot band, footer (scale bar, ranges, legend rows).
-    const double line_pitch = 1.25 * font;
-    const double header = 2.2 * font + static_cast<double>(title_lines.size() - 1) * line_pitch;
-    const double y0 = -plot_top - header;
-    const double fy = -frame.v0() + margin + 1.2 * font;  // the scale bar's line
-    const double ranges_y = fy + 1.85 * font;             // the ranges' baseline
-    const auto per_row = static_cast<std::size_t>(
-        std::max(1.0, std::floor((width - 2.0 * margin - entry) / (entry + gap)) + 1.0));
-    const std::size_t rows = (legend.size() + per_row - 1) / per_row;
-    const auto row_y = [&](std::size_t row) {  // a legend row's sample line
-        return fy + (3.4 + 1.5 * static_cast<double>(row)) * font;
-    };
-    const double bottom =
-        rows == 0 ? ranges_y + kTextDescent * font : row_y(rows - 1) + (0.35 + kTextDescent) * font;
-    // The view box, out to what the coordinates as written resolve.
-    const double step = frame.resolution();
-    const double box_x = std::floor(x0 / step) * step;
-    const double box_y = std::floor(y0 / step) * step;
-    const double box_width = std::ceil((x0 + width) / step) * step - box_x;
-    const double box_height = std::ceil((bottom + 0.5 * margin) / step) * step - box_y;
-    const double pixels = 1000.0;
-
-    TextSink sink(out);
-    const auto at = [&](double v) { return frame.text(v); };
-    sink.append("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    sink.append("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"");
-    sink.print("{} {} {} {}", at(box_x), at(box_y), at(box_width), at(box_height));
-    sink.print("\" width=\"{:.0f}\" height=\"{:.0f}\">\n", pixels,
-               std::ceil(pixels * box_height / box_width));
-    // The document's title (what a viewer shows as its name, and a screen reader reads).
-    sink.append("<title>");
-    append_xml_text(sink, heading);
-    sink.append("</title>\n");
-    const auto w = [&](double factor) { return fmt::format("{:.6g}", stroke * factor); };
-    sink.print(
-        "<style>\n"
-        "path {{ fill: none; stroke-linecap: round; stroke-linejoin: round; }}\n"
-        ".programmed {{ stroke: #222222; stroke-width: {0}; }}\n"
-        ".rapid {{ stroke: #9a9a9a; stroke-width: {0}; stroke-dasharray: {3} {4}; }}\n"
-        ".uncompensated {{ stroke: #7b3fa0; stroke-width: {1}; }}\n"
-        ".approach {{ stroke: #2a9d3a; stroke-width: {1}; stroke-dasharray: {5} {4}; }}\n"
-        ".departure {{ stroke: #b8860b; stroke-width: {1}; stroke-dasharray: {5} {4}; }}\n"
-        ".contour {{ stroke: #1f5fbf; stroke-width: {1}; }}\n"
-        ".transition {{ stroke: #e4572e; stroke-width: {2}; }}\n"
-        "{8}"
-        ".error {{ fill: none; stroke: #d00000; stroke-width: {1}; }}\n"
-        "{9}"
-        "text {{ font-family: 'DejaVu Sans', sans-serif; font-size: {6}px; fill: #222222; }}\n"
-        "text.error {{ fill: #d00000; stroke: none; }}\n"
-        "{10}"
-        ".frame {{ fill: none; stroke: #cccccc; stroke-width: {7}; }}\n"
-        ".axis {{ fill: none; stroke: #222222; stroke-width: {0}; }}\n"
-        "</style>\n",
-        w(1.0), w(1.6), w(2.2), w(4.0), w(3.0), w(6.0), kTextUnits, w(0.5),
-        counts_[static_cast<std::size_t>(PlotLayer::kCycles)] == 0
-            ? std::string()
-            : fmt::format(".cycles {{ stroke: #c2185b; stroke-width: {}; }}\n", w(1.0)),
-        // The warnings' style only where there are some (plots without stay as they were).
-        warnings
-            ? fmt::format(".warning {{ fill: none; stroke: #e07b00; stroke-width: {}; }}\n", w(1.6))
-            : std::string(),
-        warnings ? std::string("text.warning { fill: #b35f00; stroke: none; }\n") : std::string());
-    sink.print("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"white\"/>\n", at(box_x),
-               at(box_y), at(box_width), at(box_height));
-    // Text in its own units (kTextUnits to the font size), placed and scaled into the drawing's,
-    // so that no renderer sees a font size of a tiny part's fraction of a millimetre.
-    const auto put_text = [&](double x, double y, std::string_view attributes,
-                              std::string_view content) {
-        sink.print("<text{} transform=\"translate({} {}) scale({:.6g})\">", attributes, at(x),
-                   at(y), font / kTextUnits);
-        append_xml_text(sink, content);
-        sink.append("</text>\n");
-    };
-    for (std::size_t i = 0; i < title_lines.size(); ++i)
-        put_text(frame.u0(), y0 + 1.4 * font + static_cast<double>(i) * line_pitch,
-                 " class=\"title\"", title_lines[i]);
-
-    // The layers, one pass over the records each, bottom to top.
-    bool read_ok = true;
-    for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
-        if (counts_[layer] == 0) continue;
-        std::rewind(records_);
-        PathEmitter emit(sink, frame, layer_class(static_cast<PlotLayer>(layer)),
-                         0.5 * box_width / pixels);
-        Record r;
-        while (std::fread(&r, sizeof r, 1, records_) == 1)
-            if (r.layer == layer) emit.add(segment_of(r));
-        if (std::ferror(records_)) read_ok = false;
-    }
-
-    // Error and warning markers: a circle and "N80 KorrError".
-    for (const Marker& m : markers_) {
-        sink.append(m.warning ? "<circle class=\"warning\" cx=\""
-                              : "<circle class=\"error\" cx=\"");
-        frame.number(sink, m.where[axes.first]);
-        sink.append("\" cy=\"");
-        frame.number(sink, -m.where[axes.second]);
-        sink.print("\" r=\"{:.6g}\"/>\n", 0.9 * font);
-        put_text(m.where[axes.first] + 1.2 * font, -m.where[axes.second] - 1.0 * font,
-                 m.warning ? " class=\"warning\"" : " class=\"error\"",
-                 marker_label(m.block, m.code));
-    }
-
-    // Footer: the scale bar and its length, the coordinate ranges below, the plane's axes at
-    // the right, the legend.
-    const double bx = frame.u0();
-    sink.print(
-        "<path class=\"axis\" id=\"scale-bar\" d=\"M{0} {1} L{2} {1} M{0} {3} L{0} {4} M{2} {3} "
-        "L{2} {4}\"/>\n",
-        at(bx), at(fy), at(bx + bar), at(fy - 0.4 * font), at(fy + 0.4 * font));
-    put_text(bx + bar + 0.6 * font, fy + 0.35 * font, " id=\"scale-label\"", bar_label);
-    put_text(bx, ranges_y, "", ranges);
-    // Axis cross: the first axis right, the second up.
-    const double ax = x0 + width - margin - (cross - 0.35 * font);
-    const double ay = fy + 1.5 * font;
-    const double len = 2.2 * font;
-    sink.print(
-        "<path class=\"axis\" d=\"M{0} {1} L{2} {1} M{0} {1} L{0} {3} M{4} {5} L{2} {1} L{4} {6} "
-        "M{7} {8} L{0} {3} L{9} {8}\"/>\n",
-        at(ax), at(ay), at(ax + len), at(ay - len), at(ax + len - 0.4 * font), at(ay - 0.25 * font),
-        at(ay + 0.25 * font), at(ax - 0.25 * font), at(ay - len + 0.4 * font),
-        at(ax + 0.25 * font));
-    put_text(ax + len + 0.3 * font, ay + 0.35 * font, "", std::string(1, first));
-    put_text(ax - 0.35 * font, ay - len - 0.4 * font, "", std::string(1, second));
-    // Legend: a short sample of each layer drawn, then each kind of marker drawn.
-    std::size_t slot = 0;
-    for (std::size_t layer = 0; layer < kPlotLayerCount; ++layer) {
-        if (counts_[layer] == 0) continue;
-        const auto l = static_cast<PlotLayer>(layer);
-        const double lx = bx + static_cast<double>(slot % per_row) * (entry + gap);
-        const double ly = row_y(slot / per_row);
-        sink.print("<path class=\"{}\" d=\"M{} {} L{} {}\"/>\n", layer_class(l), at(lx), at(ly),
-                   at(lx + 2.0 * font), at(ly));
-        put_text(lx + 2.5 * font, ly + 0.35 * font, "", legend[slot]);
-        ++slot;
-    }
-    for (const char* kind : marker_kinds) {
-        const double lx = bx + static_cast<double>(slot % per_row) * (entry + gap);
-        const double ly = row_y(slot / per_row);
-        sink.print("<circle class=\"{}\" cx=\"{}\" cy=\"{}\" r=\"{:.6g}\"/>\n", kind, at(lx + font),
-                   at(ly), 0.5 * font);
-        put_text(lx + 2.5 * font, ly + 0.35 * font, "", legend[slot]);
-        ++slot;
-    }
-    sink.append("</svg>\n");
-    return sink.flush() && read_ok;
+    return Page(*this, plane, title).write(out);
 }
 
 }  // namespace apci::run

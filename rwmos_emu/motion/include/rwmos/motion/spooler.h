@@ -199,6 +199,12 @@ class Spooler {
     // Departures are dropped unless `keep_departure`.
     void append_segments(const Compensation& c, const geom::SegmentBatch& segs, bool keep_departure,
                          Batch& batch) const;
+    // spool()'s moves of a profile: uncompensated, or on the compensated contour `trial`.
+    MotionResult spool_uncompensated(const Profile& p, const TcSettings& tc, const Resolved& res,
+                                     double feed, std::uint64_t number, Batch& batch) const;
+    MotionResult spool_compensated(const Profile& p, const TcSettings& tc, const Resolved& res,
+                                   double feed, std::uint64_t number, Compensation& trial,
+                                   Batch& batch);
     // Ends the contour under way into `batch`, with or without the departure.
     void end_contour(Compensation& c, bool keep_departure, Batch& batch);
     const Pending* pending(std::uint32_t index) const noexcept;

@@ -135,6 +135,12 @@ class SelfApproachCheck {
     };
     using Pair = std::array<std::uint64_t, 4>;  // (path, contour) blocks: number, line each
     Grid& grid(int plane);
+    // executed()'s steps (self_approach.cpp).
+    std::size_t pending_of(const PathSegment& s) const;
+    void leave_undecided(const PathSegment& s, std::size_t at,
+                         std::vector<SelfApproachFinding>& out);
+    void check_path(const PathSegment& s, const Pending& p, bool running,
+                    std::vector<SelfApproachFinding>& out);
     // A path and the part of an element it is held to: the tool radius, the threshold, the
     // element's and the path element's numbers and the element's grid id, and whether only
     // its crossing counts (an approach and an element at its entry point).

@@ -84,6 +84,7 @@ class SvgPlotWriter {
     std::uint64_t count(PlotLayer l) const noexcept { return counts_[static_cast<std::size_t>(l)]; }
 
   private:
+    class Page;  // the page around the drawing: measured, then written by finish()
     struct Marker {
         BlockRef block;
         Point where;
