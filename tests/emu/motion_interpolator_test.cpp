@@ -90,6 +90,34 @@ TEST(Interpolator, ArcWithEqualStartAndEndIsAFullCircle) {
     EXPECT_NEAR(path_length(m), 20.0 * std::numbers::pi, 1e-12);
 }
 
+// Ends at most kFullCircleTolerance apart are a full circle (the board runs the whole turn in
+// the arc's sense); one rounding step past it, the short turn the chord makes. The centre lies
+// below the start, so the end along +X is clockwise of it by chord / 5 rad; a chord of 0.6 of
+// the tolerance (below twice it, the shortcut's bound, yet over it) is a full circle too.
+TEST(Interpolator, AnArcIsAFullCircleWhereItsEndsLieWithinTheTolerance) {
+    const double at_tol = kFullCircleTolerance;
+    const double past = std::nextafter(kFullCircleTolerance, 1.0);
+    for (const bool ccw : {true, false}) {
+        const double whole = ccw ? 2 * std::numbers::pi : -2 * std::numbers::pi;
+        for (const double chord : {at_tol, 0.6 * at_tol, 0.0}) {
+            const Move m = arc_move(at(0, 0), at(chord, 0), {0, 1}, 0.0, -5.0, ccw, 1000.0,
+                                    SegmentRole::kUncompensated, 1);
+            EXPECT_EQ(m.sweep, whole) << ccw << " " << chord;
+            EXPECT_NEAR(path_length(m), 10.0 * std::numbers::pi, 1e-9) << ccw << " " << chord;
+        }
+        const Move m = arc_move(at(0, 0), at(past, 0), {0, 1}, 0.0, -5.0, ccw, 1000.0,
+                                SegmentRole::kUncompensated, 1);
+        EXPECT_NEAR(m.sweep, ccw ? whole - past / 5 : -past / 5, 1e-15) << ccw;
+    }
+    // The same chord along the second axis (the first's component 0).
+    const Move m = arc_move(at(0, 0), at(0, past), {0, 1}, 5.0, 0.0, true, 1000.0,
+                            SegmentRole::kUncompensated, 1);
+    EXPECT_NEAR(m.sweep, 2 * std::numbers::pi - past / 5, 1e-15);
+    const Move full = arc_move(at(0, 0), at(0, at_tol), {0, 1}, 5.0, 0.0, true, 1000.0,
+                               SegmentRole::kUncompensated, 1);
+    EXPECT_EQ(full.sweep, 2 * std::numbers::pi);
+}
+
 TEST(Interpolator, ArcMovesTheThirdAxisLinearlyAlongThePlaneElement) {
     const Move m = arc_move(at(10, 0, 0), at(-10, 0, 4), {0, 1}, 0.0, 0.0, true, 1000.0,
                             SegmentRole::kUncompensated, 1);

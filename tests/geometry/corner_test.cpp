@@ -457,6 +457,41 @@ TEST(TangentJoin, ArcStartMovedToTheHeldEndTurnsByAsMuchLess) {
     EXPECT_NEAR(offset_length(j.next), offset_length(ao), 2 * kPathTolerance);
 }
 
+// The mirror of the above at the held element's end: a concave arc (radius R a little over the
+// tool's r = 1, so its offset turns sharply) into a line turning inwards by a hair over the
+// tangent bound. Its offset meets the line's just past the arc's offset end (within the trim
+// tolerance), and the arc is made to end there: its sweep grows by as much as it turns on.
+TEST(InsideCorner, AHeldArcEndedJustPastItsEndTurnsByAsMuchMore) {
+    int past_end = 0;
+    for (const double radius : {1.05, 1.1, 1.2, 1.3, 1.4})
+        for (const double turn : {1.02e-4, 1.05e-4, 1.1e-4, 1.2e-4, 1.5e-4, 2e-4})
+            for (const bool mirrored : {false, true}) {
+                // Counter-clockwise about (0, R) into the corner at the origin along +x, the
+                // tool on the left (inside); mirrored in the x axis: clockwise, on the right.
+                const double m = mirrored ? -1.0 : 1.0;
+                const Element arc =
+                    make_arc({-radius, m * radius}, {0, 0}, {0, m * radius}, !mirrored);
+                const Element line =
+                    make_line({0, 0}, 5 * Vec2(std::cos(turn), m * std::sin(turn)));
+                const Side side = mirrored ? Side::kRight : Side::kLeft;
+                const OffsetElement held = offset_element(arc, 1, side).element;
+                const CornerJoin j =
+                    join_corner(held, offset_element(line, 1, side).element, {0, 0},
+                                end_tangent(arc), start_tangent(line), side, 1,
+                                TransitionMode::kCircular, 5);
+                ASSERT_EQ(j.reason, Reason::kNone) << radius << " " << turn << " " << m;
+                ASSERT_EQ(j.kind, CornerKind::kInside) << radius << " " << turn << " " << m;
+                const Vec2 u0 = j.held.path.start - j.held.path.centre;
+                const Vec2 u1 = j.held.path.end - j.held.path.centre;
+                const double told =
+                    mirrored ? -angle_between(u0, u1, false) : angle_between(u0, u1, true);
+                EXPECT_NEAR(j.held.sweep, told, 1e-12) << radius << " " << turn << " " << m;
+                expect_near(j.held.path.end, j.next.path.start, 1e-12);
+                if (std::abs(j.held.sweep) > std::abs(held.sweep)) ++past_end;
+            }
+    EXPECT_GT(past_end, 0);  // some meetings lie past the arc's end
+}
+
 TEST(NearlyTangentCorner, TrimsExactlyHoweverSmallTheTurn) {
     // Two lines meeting at turns from 1e-9 rad upwards, written as CAM output rounds them:
     // every one that is not tangent is trimmed at r tan(turn / 2) from the corner, both

@@ -156,6 +156,40 @@ TEST(Element, AngleBetweenCountsInTheGivenDirection) {
     EXPECT_EQ(angle_between({1, 0}, {2, 0}, true), 0.0);
 }
 
+// [0, 2 pi) at its top: b a hair clockwise of a is, counted counter-clockwise, 2 pi less the
+// hair. Where that rounds to 2 pi it is 0 (the same direction); a hair of one rounding step
+// more stays just below 2 pi; a small negative turn is always wrapped, never returned.
+TEST(Element, AngleBetweenJustShortOfAWholeTurnStaysBelowTwoPi) {
+    EXPECT_EQ(angle_between({1, 0}, {1, -1e-300}, true), 0.0);
+    EXPECT_EQ(angle_between({1, 0}, {1, 1e-300}, false), 0.0);
+    const double kept = angle_between({1, 0}, {1, -1e-15}, true);
+    EXPECT_LT(kept, 2 * kPi);
+    EXPECT_GT(kept, 2 * kPi - 2e-15);
+    EXPECT_NEAR(angle_between({1, 0}, {1, -1e-13}, true), 2 * kPi - 1e-13, 1e-15);
+    EXPECT_NEAR(angle_between({1, 0}, {1, 1e-13}, false), 2 * kPi - 1e-13, 1e-15);
+    for (const bool ccw : {true, false})
+        for (int i = 0; i < 360; ++i) {
+            const double a =
+                angle_between({1, 0}, {std::cos(i * kPi / 180), std::sin(i * kPi / 180)}, ccw);
+            EXPECT_GE(a, 0.0) << i;
+            EXPECT_LT(a, 2 * kPi) << i;
+        }
+}
+
+// A full circle is an arc whose ends lie at most kPointTolerance apart: at the tolerance a whole
+// turn in its sense, one rounding step past it the small turn its chord makes.
+TEST(ArcSweep, AFullCircleEndsAtMostThePointToleranceApart) {
+    // Centre below the start: the end 1e-9 along +X lies clockwise of the start by 2e-10 rad.
+    const Vec2 start(0, 0), centre(0, -5);
+    const Vec2 at(kPointTolerance, 0), past(std::nextafter(kPointTolerance, 1.0), 0);
+    EXPECT_TRUE(is_full_circle(make_arc(start, at, centre, false)));
+    EXPECT_FALSE(is_full_circle(make_arc(start, past, centre, false)));
+    EXPECT_EQ(sweep(make_arc(start, at, centre, false)), -2 * kPi);
+    EXPECT_EQ(sweep(make_arc(start, at, centre, true)), 2 * kPi);
+    EXPECT_NEAR(sweep(make_arc(start, past, centre, false)), -kPointTolerance / 5, 1e-20);
+    EXPECT_NEAR(sweep(make_arc(start, past, centre, true)), 2 * kPi - kPointTolerance / 5, 1e-15);
+}
+
 TEST(Element, CoordinatesBeyondLimitOrNotFiniteAreInvalid) {
     EXPECT_TRUE(has_valid_coordinates(make_line({0, 0}, {kMaxCoordinate, -kMaxCoordinate})));
     EXPECT_FALSE(has_valid_coordinates(make_line({0, 0}, {2 * kMaxCoordinate, 0})));

@@ -509,6 +509,31 @@ TEST(Interpreter, AnArcWhosePathLeavesTheBoardsRangeIsRefused) {
               "radius 10.0000 mm), beyond the board's coordinate range of +-100000 mm");
 }
 
+// The range check counts an arc whose ends lie at most 1e-9 apart as a whole turn (as the board
+// runs it): a circle about X 50001 reaches X 100002. One rounding step further apart, a
+// clockwise arc turns only the chord's 2e-14 rad about X 0 and stays within; counter-clockwise
+// it turns nearly the whole way and reaches +X.
+TEST(Interpreter, TheRangeCheckTakesEndsWithinTheToleranceAsAWholeTurn) {
+    for (const double gap : {1e-9, 0.5e-9, 0.0}) {
+        for (const bool ccw : {false, true}) {
+            ArcMove arc;
+            arc.start = V(0, 0, 0);
+            arc.end = V(0, gap, 0);
+            arc.center = V(50001, 0, 0);
+            arc.ccw = ccw;
+            EXPECT_NE(check_arc_range(arc, kBoardCoordinateLimit), "") << gap << " " << ccw;
+        }
+    }
+    ArcMove arc;
+    arc.start = V(0, 0, 0);
+    arc.end = V(0, std::nextafter(1e-9, 1.0), 0);
+    arc.center = V(50001, 0, 0);
+    arc.ccw = false;
+    EXPECT_EQ(check_arc_range(arc, kBoardCoordinateLimit), "");
+    arc.ccw = true;
+    EXPECT_NE(check_arc_range(arc, kBoardCoordinateLimit), "");
+}
+
 TEST(Interpreter, ProgramEndEvent) {
     const auto ev = events_of("G0 X1 M30");
     ASSERT_EQ(ev.size(), 2U);

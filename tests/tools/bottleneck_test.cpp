@@ -159,6 +159,28 @@ TEST(BottleneckAvoider, OfTwoCrossingsTheOneNearestTheLaterMovesStartIsTaken) {
     EXPECT_NEAR(r.found[0].where.y(), 5.0, 1e-9);
 }
 
+// N40 a clockwise circle about the origin (G41 outside it: its path of radius 20 crosses N20's,
+// y = 5, at x = +-sqrt(375)), its end 0 to 2e-9 left of its start. Ends at most 1e-9 apart are a
+// whole circle, as the board runs it: N30 between is left out as for the closed circle. Further
+// apart it is the sliver from its start to its end, whose path crosses nothing.
+TEST(BottleneckAvoider, AnArcWhoseEndsLieWithinTheToleranceIsAWholeCircle) {
+    for (const std::string end : {"0", "-0.0000000005", "-0.000000001", "-0.000000002"}) {
+        const std::string text = "G17 G90 G26 F1000 D1\nG0 X-20 Y-10 Z0\nG41 G1 X-20 Y0\n"
+                                 "N20 G1 X20 Y0\nN30 G1 X0 Y-15\nN40 G2 X" + end +
+                                 " Y-15 I0 J15\nN50 G40 G1 X0 Y-30\nM30\n";
+        const Avoided r = avoid(text, 3);
+        if (end == "-0.000000002") {
+            EXPECT_TRUE(r.found.empty()) << end;
+            continue;
+        }
+        ASSERT_EQ(r.found.size(), 1U) << end;
+        EXPECT_EQ(r.found[0].before.block, 20) << end;
+        EXPECT_EQ(r.found[0].after.block, 40) << end;
+        EXPECT_NEAR(std::abs(r.found[0].where.x()), std::sqrt(375.0), 1e-9) << end;
+        EXPECT_NEAR(r.found[0].where.y(), 5.0, 1e-9) << end;
+    }
+}
+
 TEST(BottleneckAvoider, GivesEveryEventOnInOrderWhereNothingCrosses) {
     const std::string plain =
         "G17 G90 G26 F1000 D1\nG0 X0 Y-10 Z0\nG41 G1 X0 Y0\nN10 G1 X20\nN20 G3 X30 Y10 I0 J10\n"

@@ -4,7 +4,9 @@
 // 19 and 17's axes for any other number), both senses, flat and helical, full circles too.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <random>
 
 #include "apci/run/path.h"
@@ -63,6 +65,35 @@ TEST(PathMeasure, AnArcOfAHugeRadiusKeepsItsSmallSweep) {
         EXPECT_NEAR(s.sweep, ccw ? 2e-17 : -2e-17, 1e-30) << ccw;
         EXPECT_NEAR(s.length, 20.0, 1e-9) << ccw;
         EXPECT_EQ(arc_sweep(s), s.sweep);
+    }
+}
+
+// Ends at most kSamePointTolerance apart in the plane are a full circle, a whole turn in the
+// arc's sense; one rounding step past it, the short turn of the chord (chord / 5 rad about a
+// centre 5 mm below the start), in every plane.
+TEST(PathMeasure, AnArcIsAFullCircleWhereItsEndsLieWithinTheTolerance) {
+    const double past = std::nextafter(kSamePointTolerance, 1.0);
+    constexpr double kTwoPi = 2 * std::numbers::pi;
+    for (const int plane : {17, 18, 19}) {
+        const PlaneAxes a = plane_axes(plane);
+        for (const bool ccw : {true, false}) {
+            PathSegment s;
+            s.kind = SegmentKind::kArc;
+            s.plane = plane;
+            s.ccw = ccw;
+            s.start = Point(0, 0, 0);
+            s.center = Point(0, 0, 0);
+            s.center[a.second] = -5.0;
+            s.end = s.start;
+            s.end[a.first] = kSamePointTolerance;
+            measure(s);
+            EXPECT_EQ(s.sweep, ccw ? kTwoPi : -kTwoPi) << plane << ccw;
+            EXPECT_NEAR(s.length, 10.0 * std::numbers::pi, 1e-9) << plane << ccw;
+            s.end[a.first] = past;
+            measure(s);
+            EXPECT_NEAR(s.sweep, ccw ? kTwoPi - past / 5 : -past / 5, 1e-15) << plane << ccw;
+            EXPECT_EQ(arc_sweep(s), s.sweep);
+        }
     }
 }
 

@@ -150,6 +150,26 @@ TEST(PlaneDistance, KnownConfigurations) {
     EXPECT_NEAR(pd::point_arc({0, -3}, lower), 1.0, 1e-12);
 }
 
+// An arc whose ends lie at most 1e-9 apart is a full circle: a whole turn in its sense, so the
+// point opposite its start lies on it. One rounding step further apart, a clockwise arc is the
+// chord's sliver (chord / 5 rad about a centre 5 below the start), 10 from that point.
+TEST(PlaneDistance, AnArcElementIsAFullCircleWhereItsEndsLieWithinTheTolerance) {
+    const Vec2 start(0, 0), centre(0, -5), opposite(0, -10);
+    for (const double gap : {1e-9, 0.5e-9, 0.0})
+        for (const bool ccw : {true, false}) {
+            const Parametric e = pd::arc_element(start, {gap, 0}, centre, ccw);
+            EXPECT_EQ(e.sweep, ccw ? 2 * kPi : -2 * kPi) << gap << " " << ccw;
+            EXPECT_NEAR(pd::distance_to(e, opposite), 0.0, 1e-9) << gap << " " << ccw;
+        }
+    const double past = std::nextafter(1e-9, 1.0);
+    const Parametric cw = pd::arc_element(start, {past, 0}, centre, false);
+    EXPECT_NEAR(cw.sweep, -past / 5, 1e-20);
+    EXPECT_NEAR(pd::distance_to(cw, opposite), 10.0, 1e-9);
+    const Parametric ccw = pd::arc_element(start, {past, 0}, centre, true);
+    EXPECT_NEAR(ccw.sweep, 2 * kPi - past / 5, 1e-15);
+    EXPECT_NEAR(pd::distance_to(ccw, opposite), 0.0, 1e-9);
+}
+
 // Random pairs of spiral arcs (start and end radius differing by up to 2e-3, as rounded
 // centres make them) and lines, and a limit near their least distance.
 TEST(PlaneDistance, ApartIsNeverClaimedForElementsThatComeWithinTheLimit) {
