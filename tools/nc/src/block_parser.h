@@ -7,6 +7,8 @@
 // plain_block.cpp holds the fast path tried first; dialect.cpp tells DIN 66025 from Klartext.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -69,6 +71,21 @@ class LineParse {
         ExpressionError e;
         if (evaluate_expression(c_, ctx_, out, e)) return true;
         return fail_here(e.kind, e.column == 0 ? c_.column() : e.column, std::move(e.message));
+    }
+
+    // The expression in brackets at the cursor (which stands at '['), evaluated into `out`, the
+    // cursor after the ']'; a missing ']' names the column of its '['.
+    bool bracketed(double& out) {
+        const std::uint32_t open = c_.column();
+        c_.advance();
+        if (!expression(out)) return false;
+        c_.skip_blanks();
+        if (c_.peek() != ']') {
+            return fail_here(ErrorKind::kSyntax, c_.column(),
+                             fmt::format("expected ']' to close the '[' in column {}", open));
+        }
+        c_.advance();
+        return true;
     }
 
     LineCursor c_;

@@ -231,15 +231,7 @@ class BlockParser : public LineParse {
         double v = 0.0;
         const std::size_t num_at = c_.offset();  // its column only for an error
         if (c_.peek() == '[') {  // X[P1*2]: an expression
-            const std::uint32_t open = c_.column();
-            c_.advance();
-            if (!expression(v)) return false;
-            c_.skip_blanks();
-            if (c_.peek() != ']') {
-                return fail_here(ErrorKind::kSyntax, c_.column(),
-                                 fmt::format("expected ']' to close the '[' in column {}", open));
-            }
-            c_.advance();
+            if (!bracketed(v)) return false;
             w.value = v;
             w.column = col;
             return true;

@@ -300,16 +300,8 @@ class IsgParser : public LineParse {
         }
         c_.skip_blanks();
         if (c_.peek() != '[') return fail_here(ErrorKind::kSyntax, c_.column(), "expected '[' after #KIN ID");
-        const std::uint32_t open = c_.column();
-        c_.advance();
         double v = 0.0;
-        if (!expression(v)) return false;
-        c_.skip_blanks();
-        if (c_.peek() != ']') {
-            return fail_here(ErrorKind::kSyntax, c_.column(),
-                             fmt::format("expected ']' to close the '[' in column {}", open));
-        }
-        c_.advance();
+        if (!bracketed(v)) return false;
         if (v != std::floor(v) || v < 0.0 || v > 1e6) {
             return fail_here(ErrorKind::kValue, col, fmt::format("#KIN ID[{}]: expected a whole number", v));
         }
