@@ -62,10 +62,9 @@ motion::TcSettings MotionLayer::read_settings() const noexcept {
     s.present = state_.config.option_tc;
     if (!s.present) return s;
     s.objects_accessed = tc.objects_accessed;
-    // The board axes of TcPlane's plane, its third (17 Z, 18 Y, 19 X) included.
+    // The board axes of TcPlane's plane.
     const geom::PlaneAxes plane = plane_axes(tc);
-    s.plane_axes = {static_cast<std::uint8_t>(plane.first), static_cast<std::uint8_t>(plane.second),
-                    static_cast<std::uint8_t>(plane.third)};
+    s.plane_axes = {static_cast<std::uint8_t>(plane.first), static_cast<std::uint8_t>(plane.second)};
     s.plane = tc.plane;
     s.axis_nr = {static_cast<std::uint8_t>(tc.axis_nr[0]), static_cast<std::uint8_t>(tc.axis_nr[1]),
                  static_cast<std::uint8_t>(tc.axis_nr[2])};

@@ -29,8 +29,8 @@ struct TcSettings {
     bool present = false;           // firmware option optionTC
     bool objects_accessed = false;  // a TC object was accessed: arcs run in the active plane
     // The active plane (TcPlane through X/Y/Z-Axis-Nr): board axes of its
-    // first, second and third axis, and its G code (17, 18, 19).
-    std::array<std::uint8_t, 3> plane_axes{0, 1, 2};
+    // first and second axis (its third is the tool's, length_axis), and its G code (17, 18, 19).
+    std::array<std::uint8_t, 2> plane_axes{0, 1};
     std::int32_t plane = 17;
     std::array<std::uint8_t, 3> axis_nr{0, 1, 2};  // X-, Y-, Z-Axis-Nr
     // Coordinate rotation in the active plane ([APCI-TC] section 2.1.1).
