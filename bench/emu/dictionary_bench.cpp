@@ -17,7 +17,7 @@
 
 namespace {
 
-std::vector<objif::Address> readable_addresses(rwmos::Board& board) {
+std::vector<objif::Address> readable_addresses(rwmos::EmulatedBoard& board) {
     std::vector<objif::Address> all;
     for (objif::Module* module : board.dictionary().modules()) {
         for (std::size_t i = 0; i < module->object_count(); ++i) {
@@ -33,13 +33,13 @@ std::vector<objif::Address> readable_addresses(rwmos::Board& board) {
 // Reads the first state.range(0) readable addresses of the map, each with a
 // fresh descriptor, on a fresh board: one handle issued per address.
 void BM_FirstReadOfEveryObject(benchmark::State& state) {
-    rwmos::Board probe;
+    rwmos::EmulatedBoard probe;
     std::vector<objif::Address> all = readable_addresses(probe);
     const auto n = std::min<std::size_t>(all.size(), static_cast<std::size_t>(state.range(0)));
     all.resize(n);
     for ([[maybe_unused]] auto _ : state) {
         state.PauseTiming();
-        auto board = std::make_unique<rwmos::Board>();
+        auto board = std::make_unique<rwmos::EmulatedBoard>();
         state.ResumeTiming();
         for (const objif::Address& a : all) {
             objif::Descriptor d{a, objif::kNoHandle};
@@ -63,7 +63,7 @@ BENCHMARK(BM_FirstReadOfEveryObject)->Arg(100)->Arg(1'000)->Arg(1'000'000);  // 
 // object state only.
 void BM_FreshBoard(benchmark::State& state) {
     for ([[maybe_unused]] auto _ : state) {
-        auto board = std::make_unique<rwmos::Board>();
+        auto board = std::make_unique<rwmos::EmulatedBoard>();
         benchmark::DoNotOptimize(board.get());
     }
 }

@@ -47,7 +47,7 @@ Profile long_helix() {
     return p;
 }
 
-void start_at(rwmos::Board& board, double x) {
+void start_at(rwmos::EmulatedBoard& board, double x) {
     rwmos::motion::DirectCommand ja;
     ja.code = rwmos::motion::DirectCode::kJA;
     ja.axes = 0x01;
@@ -59,7 +59,7 @@ void start_at(rwmos::Board& board, double x) {
 
 // Every cycle sampled into the board's trace ring (the ring keeps the newest).
 void sampled(benchmark::State& state, const Profile& p, double start_x) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     start_at(board, start_x);
     board.set_trace(true, 1 << 16);
     if (!board.spool(p).ok()) {
@@ -88,7 +88,7 @@ BENCHMARK(BM_SampledCyclesHelix8Axes);
 
 // Sampled and read out by a consumer after every chunk (what `apcictl run --csv` does).
 void BM_SampledCyclesLineDrained(benchmark::State& state) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     board.set_trace(true, kChunk);
     if (!board.spool(long_line()).ok()) {
         state.SkipWithError("spool failed");
@@ -110,7 +110,7 @@ BENCHMARK(BM_SampledCyclesLineDrained);
 // whole move of range(0) cycles; the time per move must not grow with it.
 void BM_UnobservedMove(benchmark::State& state) {
     const auto cycles = static_cast<std::uint64_t>(state.range(0));
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     // 100 units on each of the 8 axes, at the feed that makes it `cycles` cycles of 1 ms.
     const double feed = 2.8284271247461903 * 100.0 * 60000.0 / static_cast<double>(cycles);
     double x = 0.0;
@@ -141,7 +141,7 @@ BENCHMARK(BM_UnobservedMove)->Arg(1'000)->Arg(1'000'000)->Arg(1'000'000'000);
 // The spooler with compensation on: G01/G03 profiles through the one-profile
 // lookahead, the moves run analytically. One iteration is one profile.
 void BM_SpoolCompensatedProfiles(benchmark::State& state) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     auto write = [&](std::int32_t idx, std::int32_t sub, objif::Value v) {
         objif::Descriptor d{{1300, 1, idx, sub}, 0};
         return board.write(d, v);

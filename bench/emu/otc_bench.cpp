@@ -21,12 +21,12 @@ using rwmos::motion::ProfileKind;
 
 constexpr std::uint64_t kChunk = 10'000;
 
-void write(rwmos::Board& b, std::int32_t dev, std::int32_t idx, std::int32_t sub, objif::Value v) {
+void write(rwmos::EmulatedBoard& b, std::int32_t dev, std::int32_t idx, std::int32_t sub, objif::Value v) {
     objif::Descriptor d{{otc::kBus, dev, idx, sub}, 0};
     (void)b.write(d, v);
 }
 
-void grinding_tool_on(rwmos::Board& b, otc::ProcessingType type, otc::Mode mode) {
+void grinding_tool_on(rwmos::EmulatedBoard& b, otc::ProcessingType type, otc::Mode mode) {
     write(b, otc::kDevTool, otc::kIdxToolNumber, 0, objif::Value::of_int(1));
     write(b, otc::kDevTool, otc::kIdxToolType, 0, objif::Value::of_int(otc::kGrindingToolType));
     write(b, otc::kDevTool, otc::kIdxToolWearConst, 0, objif::Value::of_double(100000.0));
@@ -51,7 +51,7 @@ Profile line_to(double x, double feed) {
 
 // Ramps that never rest (a slow ramp towards 20 mm on three axes) on a line of 1e9 cycles.
 void BM_OtcRampingCycles(benchmark::State& state) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     grinding_tool_on(board, otc::ProcessingType::kLength, otc::Mode::kAuto);
     write(board, otc::kDevChannel, otc::kIdxRampVelocity, 0, objif::Value::of_double(1e-3));
     for (int axis : {0, 1, 2}) {
@@ -77,7 +77,7 @@ BENCHMARK(BM_OtcRampingCycles);
 // Continuous wear only: one iteration is a whole move of range(0) cycles, run analytically.
 void BM_OtcContinuousWearUnobservedMove(benchmark::State& state) {
     const auto cycles = static_cast<std::uint64_t>(state.range(0));
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     grinding_tool_on(board, otc::ProcessingType::kLength, otc::Mode::kCont);
     const double length = 100.0 * 1.118033988749895;  // X 100, Y 50
     const double feed = length * 60000.0 / static_cast<double>(cycles);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The in-process transport ("emu:"): owns an emulated rwmos::Board and calls
+// The in-process transport ("emu:"): owns an rwmos::EmulatedBoard and calls
 // it directly, without frames. Blocking: never (virtual time; every call
 // returns as soon as the board has served it). Threading: as the Board, one
 // thread at a time, which the C API's contract already guarantees.
@@ -90,7 +90,7 @@ private:
         }
     }
 
-    rwmos::Board board_;
+    rwmos::EmulatedBoard board_;
 };
 
 // "emu:?no-option-tc&option-tc": the last word on an option wins.

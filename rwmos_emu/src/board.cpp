@@ -5,7 +5,7 @@
 
 namespace rwmos {
 
-Board::State::State(const BoardConfig& cfg)
+EmulatedBoard::State::State(const BoardConfig& cfg)
     : config(cfg),
       motion(*this),
       otc_engine(*this),
@@ -27,8 +27,8 @@ Board::State::State(const BoardConfig& cfg)
     dictionary.add(&temp_comp_module);
 }
 
-Board::Board(const BoardConfig& config) : state_(std::make_unique<State>(config)) {}
-Board::~Board() = default;
+EmulatedBoard::EmulatedBoard(const BoardConfig& config) : state_(std::make_unique<State>(config)) {}
+EmulatedBoard::~EmulatedBoard() = default;
 
 namespace {
 // An object access may change what the motion layer's TC settings are read from (a TC write,
@@ -48,26 +48,26 @@ class SettingsMayChange {
 };
 }  // namespace
 
-objif::Status Board::read(objif::Descriptor& d, objif::ValueType want, objif::Value& out) {
+objif::Status EmulatedBoard::read(objif::Descriptor& d, objif::ValueType want, objif::Value& out) {
     const SettingsMayChange access(state_->motion);
     return state_->dictionary.read(d, want, out);
 }
 
-objif::Status Board::write(objif::Descriptor& d, const objif::Value& v) {
+objif::Status EmulatedBoard::write(objif::Descriptor& d, const objif::Value& v) {
     const SettingsMayChange access(state_->motion);
     return state_->dictionary.write(d, v);
 }
 
-const BoardConfig& Board::config() const noexcept {
+const BoardConfig& EmulatedBoard::config() const noexcept {
     return state_->config;
 }
-objif::Dictionary& Board::dictionary() noexcept {
+objif::Dictionary& EmulatedBoard::dictionary() noexcept {
     return state_->dictionary;
 }
-Board::State& Board::state() noexcept {
+EmulatedBoard::State& EmulatedBoard::state() noexcept {
     return *state_;
 }
-const Board::State& Board::state() const noexcept {
+const EmulatedBoard::State& EmulatedBoard::state() const noexcept {
     return *state_;
 }
 

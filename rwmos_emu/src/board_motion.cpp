@@ -7,7 +7,7 @@ namespace rwmos {
 
 // The 3D compensation module (bus 1310) acts on a profile before the spooler sees it: an armed
 // LN profile gets its compensated end point (docs/object-map.md section 6).
-motion::MotionResult Board::spool(const motion::Profile& p) {
+motion::MotionResult EmulatedBoard::spool(const motion::Profile& p) {
     if (state_->comp3d.armed == 0) {
         // Nothing armed: plan_profile would leave the profile as it is and plan nothing.
         const motion::MotionResult r = state_->motion.spool(p);
@@ -30,23 +30,23 @@ motion::MotionResult Board::spool(const motion::Profile& p) {
     return r;
 }
 
-motion::MotionResult Board::direct(const motion::DirectCommand& c) {
+motion::MotionResult EmulatedBoard::direct(const motion::DirectCommand& c) {
     return state_->motion.direct(c);
 }
 
-motion::MotionResult Board::ssf(motion::AxisMask axes, std::int32_t command) {
+motion::MotionResult EmulatedBoard::ssf(motion::AxisMask axes, std::int32_t command) {
     return state_->motion.ssf(axes, command);
 }
 
-void Board::step(std::uint64_t cycles) {
+void EmulatedBoard::step(std::uint64_t cycles) {
     state_->motion.step(cycles);
 }
 
-std::uint64_t Board::run_until_idle(std::uint64_t max_cycles) {
+std::uint64_t EmulatedBoard::run_until_idle(std::uint64_t max_cycles) {
     return state_->motion.run_until_idle(max_cycles);
 }
 
-motion::MotionStatus Board::motion_status() const noexcept {
+motion::MotionStatus EmulatedBoard::motion_status() const noexcept {
     const MotionLayer& m = state_->motion;
     const motion::Executor& e = m.executor();
     motion::MotionStatus s;
@@ -66,7 +66,7 @@ motion::MotionStatus Board::motion_status() const noexcept {
     return s;
 }
 
-objif::Status Board::set_trace(bool on, std::size_t capacity) {
+objif::Status EmulatedBoard::set_trace(bool on, std::size_t capacity) {
     if (on && capacity == 0) return objif::Status::kValueTooLow;
     if (on && capacity > kMaxTraceCapacity) return objif::Status::kValueTooHigh;
     if (on && capacity > config().trace_memory / sizeof(motion::TraceSample))
@@ -75,15 +75,15 @@ objif::Status Board::set_trace(bool on, std::size_t capacity) {
     return objif::Status::kOk;
 }
 
-std::size_t Board::read_trace(std::span<motion::TraceSample> out) {
+std::size_t EmulatedBoard::read_trace(std::span<motion::TraceSample> out) {
     return state_->motion.executor().trace().take(out);
 }
 
-std::size_t Board::read_segments(std::span<motion::Segment> out) {
+std::size_t EmulatedBoard::read_segments(std::span<motion::Segment> out) {
     return state_->motion.executor().segments().take(out);
 }
 
-std::size_t Board::take_segments(std::size_t max, SegmentVisitor visit, void* context) {
+std::size_t EmulatedBoard::take_segments(std::size_t max, SegmentVisitor visit, void* context) {
     return state_->motion.executor().segments().take_runs(
         max, [visit, context](std::span<const motion::Segment> run) { visit(run, context); });
 }

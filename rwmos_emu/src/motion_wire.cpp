@@ -57,11 +57,11 @@ objif::WireSegment wire_segment(const motion::Segment& s) {
 }
 }  // namespace
 
-objif::MotionReply serve_spool(Board& board, const objif::SpoolRequest& req) {
+objif::MotionReply serve_spool(EmulatedBoard& board, const objif::SpoolRequest& req) {
     return motion_reply(board.spool(profile_of(req)));
 }
 
-void serve_spool(Board& board, const objif::SpoolRequest& req, objif::MotionReply& rep) {
+void serve_spool(EmulatedBoard& board, const objif::SpoolRequest& req, objif::MotionReply& rep) {
     const motion::MotionResult r = board.spool(profile_of(req));
     rep.status = r.status;
     rep.group = r.group;
@@ -74,15 +74,15 @@ void serve_spool(Board& board, const objif::SpoolRequest& req, objif::MotionRepl
         rep.message.assign(r.message);
 }
 
-objif::MotionReply serve_direct(Board& board, const objif::DirectRequest& req) {
+objif::MotionReply serve_direct(EmulatedBoard& board, const objif::DirectRequest& req) {
     return motion_reply(board.direct(direct_of(req)));
 }
 
-objif::MotionReply serve_ssf(Board& board, const objif::SsfRequest& req) {
+objif::MotionReply serve_ssf(EmulatedBoard& board, const objif::SsfRequest& req) {
     return motion_reply(board.ssf(req.axes, req.command));
 }
 
-objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req) {
+objif::ClockReply serve_clock(EmulatedBoard& board, const objif::ClockRequest& req) {
     objif::ClockReply rep;
     switch (req.mode) {
         case objif::ClockMode::kStep:
@@ -103,7 +103,7 @@ objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req) {
         case objif::ClockMode::kQuery:
             break;
         case objif::ClockMode::kTraceOn:
-            rep.status = req.cycles > Board::kMaxTraceCapacity
+            rep.status = req.cycles > EmulatedBoard::kMaxTraceCapacity
                              ? objif::Status::kValueTooHigh
                              : board.set_trace(true, static_cast<std::size_t>(req.cycles));
             break;
@@ -127,7 +127,7 @@ objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req) {
     return rep;
 }
 
-objif::TraceReply serve_trace(Board& board, const objif::TraceRequest& req) {
+objif::TraceReply serve_trace(EmulatedBoard& board, const objif::TraceRequest& req) {
     objif::TraceReply rep;
     rep.what = req.what;
     if (req.what == objif::TraceKind::kSamples) {

@@ -89,7 +89,7 @@ TEST_F(BoardModule, AddressingErrorsAreNamedInCheckOrder) {
 }
 
 TEST_F(BoardModule, OptionsWithoutOptionTcClearTheBit) {
-    rwmos::Board bare(rwmos::BoardConfig{.option_tc = false});
+    rwmos::EmulatedBoard bare(rwmos::BoardConfig{.option_tc = false});
     auto d = board_obj(board::kIdxOptions);
     Value v;
     ASSERT_EQ(bare.read(d, ValueType::kInt32, v), Status::kOk);

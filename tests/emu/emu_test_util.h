@@ -41,7 +41,7 @@ struct Snapshot {
     rwmos::OtcState otc;
     rwmos::TempCompState temp_comp;
 };
-inline Snapshot snapshot(const rwmos::Board& board) {
+inline Snapshot snapshot(const rwmos::EmulatedBoard& board) {
     const auto& s = board.state();
     Snapshot snap{s.interpolation_cycle_us, s.pu, nullptr, nullptr, s.otc, s.temp_comp};
     snap.tc = std::make_unique<rwmos::TcState>(s.tc);
@@ -105,7 +105,7 @@ inline bool same_group(const rwmos::TcGroup& a, const rwmos::TcGroup& b) {
 }
 
 // True when nothing of the snapshot differs from the board's state now.
-inline ::testing::AssertionResult unchanged(const Snapshot& before, const rwmos::Board& board) {
+inline ::testing::AssertionResult unchanged(const Snapshot& before, const rwmos::EmulatedBoard& board) {
     const auto& s = board.state();
     const auto& t = *before.tc;
     if (s.interpolation_cycle_us != before.interpolation_cycle_us) return ::testing::AssertionFailure() << "interpolation cycle changed";
@@ -167,7 +167,7 @@ protected:
         ASSERT_EQ(write_int(tc_group(group, rwmos::tc::kSubStatus), 1), Status::kOk);
     }
 
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
 };
 
 }  // namespace emu_test

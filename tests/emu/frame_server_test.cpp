@@ -21,7 +21,7 @@ using objif::ValueType;
 namespace {
 
 // Every readable object of every present module, each index of its range.
-std::vector<std::pair<std::string, Value>> snapshot(rwmos::Board& board) {
+std::vector<std::pair<std::string, Value>> snapshot(rwmos::EmulatedBoard& board) {
     std::vector<std::pair<std::string, Value>> out;
     for (auto* m : board.dictionary().modules()) {
         if (!m->present()) continue;
@@ -91,7 +91,7 @@ protected:
         EXPECT_EQ(er.status, objif::frame_error_status(reason));
         EXPECT_EQ(snapshot(board), before) << "a malformed frame changed the board";
     }
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     std::vector<std::pair<std::string, Value>> before;
     const objif::Address radius{rwmos::tc::kBus, rwmos::tc::kDevGroups, 1, rwmos::tc::kSubRadius};
 };

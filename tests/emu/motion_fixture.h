@@ -73,7 +73,7 @@ inline Profile arc(std::uint32_t tag, bool ccw, double x, double y, double cx, d
 // A board and its helpers; usable on its own (several boards in one test)
 // and as a fixture (MotionBoard).
 struct Rig {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     explicit Rig(const rwmos::BoardConfig& config = {}) : board(config) {}
 
     Status write_int(std::int32_t bus, std::int32_t dev, std::int32_t idx, std::int32_t sub,

@@ -227,7 +227,7 @@ TEST_F(MotionFrames, ClockFrameTurnsTheTraceOnAndReadTraceFetchesTheSamples) {
     EXPECT_EQ(t.samples[0].cycle, 1u);
     EXPECT_DOUBLE_EQ(t.samples[2].position[0], 0.03);
     EXPECT_EQ(clock(objif::ClockMode::kQuery).trace_pending, 2u);
-    EXPECT_EQ(clock(objif::ClockMode::kTraceOn, rwmos::Board::kMaxTraceCapacity + 1).status,
+    EXPECT_EQ(clock(objif::ClockMode::kTraceOn, rwmos::EmulatedBoard::kMaxTraceCapacity + 1).status,
               Status::kValueTooHigh);
     EXPECT_EQ(clock(objif::ClockMode::kTraceOn, 0).status, Status::kValueTooLow);
     r = clock(objif::ClockMode::kTraceOff);

@@ -23,7 +23,7 @@ void expect_at(const AxisVector& p, double x, double y, double z = 0.0) {
 }
 
 // A write straight to the module on `bus`, past Board::write and the dictionary.
-Status module_write(rwmos::Board& board, const objif::Address& a, const Value& v) {
+Status module_write(rwmos::EmulatedBoard& board, const objif::Address& a, const Value& v) {
     objif::Module* module = board.dictionary().module(a.bus);
     EXPECT_NE(module, nullptr);
     if (module == nullptr) return Status::kNoSuchDevice;

@@ -472,7 +472,7 @@ TEST_F(TcRules, TraceSamplesEveryCycleOnce) {
     for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(s[i].cycle, i + 1);
     EXPECT_DOUBLE_EQ(s[24].position[0], 0.25);
     EXPECT_EQ(board.set_trace(true, 0), Status::kValueTooLow);
-    EXPECT_EQ(board.set_trace(true, rwmos::Board::kMaxTraceCapacity + 1), Status::kValueTooHigh);
+    EXPECT_EQ(board.set_trace(true, rwmos::EmulatedBoard::kMaxTraceCapacity + 1), Status::kValueTooHigh);
 }
 
 // BoardConfig::trace_memory bounds the ring (a daemon's --trace-memory): a ring of exactly as
@@ -483,7 +483,7 @@ TEST(TraceMemory, ARingOneSampleLargerThanTheTraceMemoryIsRefusedAndChangesNothi
     constexpr std::size_t kFit = 1000;
     config.trace_memory =
         kFit * sizeof(rwmos::motion::TraceSample) + sizeof(rwmos::motion::TraceSample) - 1;
-    rwmos::Board board(config);
+    rwmos::EmulatedBoard board(config);
     ASSERT_EQ(board.set_trace(true, kFit), Status::kOk);
     board.step(5);
     EXPECT_EQ(board.set_trace(true, kFit + 1), Status::kNoMemory);
@@ -491,8 +491,8 @@ TEST(TraceMemory, ARingOneSampleLargerThanTheTraceMemoryIsRefusedAndChangesNothi
     EXPECT_EQ(board.motion_status().trace_pending, 5u);
     EXPECT_EQ(board.set_trace(false, 0), Status::kOk);  // off needs no memory
     // Without a limit the board's own bound applies.
-    rwmos::Board unbounded;
-    EXPECT_EQ(unbounded.set_trace(true, rwmos::Board::kMaxTraceCapacity), Status::kOk);
+    rwmos::EmulatedBoard unbounded;
+    EXPECT_EQ(unbounded.set_trace(true, rwmos::EmulatedBoard::kMaxTraceCapacity), Status::kOk);
 }
 
 // ---- Without optionTC there is no rotation and no compensation

@@ -312,7 +312,7 @@ INSTANTIATE_TEST_SUITE_P(EveryOneWayObject, ObjectAccess,
 // Objects whose range is the whole int32 type cannot be written out of range;
 // the rows without out-of-range values are exactly those (and read-only ones).
 TEST(ObjectMapCoverage, RowsWithoutRangeValuesAreFullRangeOrReadOnly) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     for (const auto& row : object_rows()) {
         if (!row.out_of_range.empty() || !writable(row)) continue;
         objif::Status why;
@@ -325,7 +325,7 @@ TEST(ObjectMapCoverage, RowsWithoutRangeValuesAreFullRangeOrReadOnly) {
 
 // The rows above name every object both modules declare, with its type and access.
 TEST(ObjectMapCoverage, EveryDeclaredObjectIsCovered) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     const auto rows = object_rows();
     std::size_t declared = 0;
     for (auto* module : board.dictionary().modules()) {
@@ -357,7 +357,7 @@ namespace {
 // The board serves the shared map (objif/map/objects.h) row for row: what a host names by the
 // map is what the emulator answers.
 TEST(ObjectMapCoverage, TheBoardServesExactlyTheSharedMap) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     std::size_t modules_seen = 0;
     for (auto* module : board.dictionary().modules()) {
         const objif::map::ModuleMap* map = nullptr;
@@ -388,7 +388,7 @@ TEST(ObjectMapCoverage, TheBoardServesExactlyTheSharedMap) {
 // Every name of the map reaches an object on a fresh board: a readable one reads with its
 // declared type, a write-only one answers kWriteOnly to a read (never an address error).
 TEST(ObjectMapCoverage, EveryNameReachesItsObjectOnAFreshBoard) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     for (const auto& named : objif::named_objects()) {
         objif::Descriptor d{named.address, objif::kNoHandle};
         Value out;

@@ -79,7 +79,7 @@ void run_section_2_5(const WriteFn& write, const ReadFn& read) {
 }
 
 TEST(ApciTcSection2_5, SequenceRunsOnABoard) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     run_section_2_5([&](Descriptor& d, const Value& v) { return board.write(d, v); },
                     [&](Descriptor& d, ValueType t, Value& v) { return board.read(d, t, v); });
     EXPECT_EQ(board.state().tc.group(2).tools[2].radius, 4.0);
@@ -109,7 +109,7 @@ public:
         if (objif::ok(rep.status)) out = rep.value;
         return rep.status;
     }
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
 
 private:
     std::vector<std::uint8_t> round_trip(objif::Opcode op, const std::vector<std::uint8_t>& payload) {

@@ -29,7 +29,7 @@ struct ObservedObject {
     }
 };
 
-inline std::vector<ObservedObject> snapshot(rwmos::Board& board) {
+inline std::vector<ObservedObject> snapshot(rwmos::EmulatedBoard& board) {
     std::vector<ObservedObject> seen;
     for (objif::Module* module : board.dictionary().modules()) {
         for (std::size_t i = 0; i < module->object_count(); ++i) {
@@ -51,7 +51,7 @@ inline std::vector<ObservedObject> snapshot(rwmos::Board& board) {
 // should still be in) at every readable object's first and last index and
 // at index first + salt mod (number of indices). Returns the address of the
 // first difference, or nullptr.
-inline const objif::Address* first_difference(rwmos::Board& board,
+inline const objif::Address* first_difference(rwmos::EmulatedBoard& board,
                                                const std::vector<ObservedObject>& full,
                                                std::uint64_t salt) {
     std::size_t at = 0;  // full is in snapshot() order: module, object, index

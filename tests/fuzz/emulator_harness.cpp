@@ -65,7 +65,7 @@ bool finite(const motion::AxisVector& v) {
 }
 
 // Every writable (or readable) object row of the dictionary, as the fuzzer picks them.
-std::vector<std::pair<std::int32_t, const objif::ObjectInfo*>> rows(rwmos::Board& board, bool writable) {
+std::vector<std::pair<std::int32_t, const objif::ObjectInfo*>> rows(rwmos::EmulatedBoard& board, bool writable) {
     std::vector<std::pair<std::int32_t, const objif::ObjectInfo*>> out;
     for (objif::Module* m : board.dictionary().modules()) {
         for (std::size_t i = 0; i < m->object_count(); ++i) {
@@ -203,7 +203,7 @@ void EmulatorHarness::ssf(ByteSource& b) {
 }
 
 void EmulatorHarness::trace(ByteSource& b) {
-    rwmos::Board& board = port_.board();
+    rwmos::EmulatedBoard& board = port_.board();
     switch (b.pick(3)) {
         case 0: (void)board.set_trace(true, 1 + b.u8()); break;
         case 1: (void)board.set_trace(false, 0); break;
@@ -278,7 +278,7 @@ std::string EmulatorHarness::check() {
 }
 
 std::string EmulatorHarness::check_registers() {
-    rwmos::Board& board = port_.board();
+    rwmos::EmulatedBoard& board = port_.board();
     const motion::MotionStatus st = board.motion_status();
     for (std::int32_t g = 1; g <= kGroups; ++g) {
         objif::Descriptor error_d{{tc::kBus, tc::kDevGroups, g, tc::kSubError}, objif::kNoHandle};
@@ -297,7 +297,7 @@ std::string EmulatorHarness::check_registers() {
 }
 
 std::string EmulatorHarness::check_segments() {
-    rwmos::Board& board = port_.board();
+    rwmos::EmulatedBoard& board = port_.board();
     std::array<motion::Segment, 256> segments;
     for (std::size_t n; (n = board.read_segments(segments)) > 0;) {
         for (std::size_t i = 0; i < n; ++i) {
@@ -328,7 +328,7 @@ std::string EmulatorHarness::check_segments() {
 }
 
 std::string EmulatorHarness::check_motion_status() {
-    rwmos::Board& board = port_.board();
+    rwmos::EmulatedBoard& board = port_.board();
     const motion::MotionStatus st = board.motion_status();
     if (st.now < now_) return "the clock never runs backwards";
     now_ = st.now;

@@ -63,7 +63,7 @@ public:
     BoardPort(const BoardPort&) = delete;
     BoardPort& operator=(const BoardPort&) = delete;
 
-    rwmos::Board& board() noexcept { return board_; }
+    rwmos::EmulatedBoard& board() noexcept { return board_; }
 
     virtual objif::Status write(objif::Descriptor& d, const objif::Value& v) { return board_.write(d, v); }
     virtual rwmos::motion::MotionResult spool(const rwmos::motion::Profile& p) { return board_.spool(p); }
@@ -77,7 +77,7 @@ public:
     virtual std::uint64_t run_until_idle(std::uint64_t max_cycles) { return board_.run_until_idle(max_cycles); }
 
 private:
-    rwmos::Board board_;
+    rwmos::EmulatedBoard board_;
 };
 
 // The operations, one byte each, followed by their arguments.

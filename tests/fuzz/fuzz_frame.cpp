@@ -98,7 +98,7 @@ void decode_as_stream(Bytes bytes) {
 // What a fresh board shows: every board a request is served on starts so.
 const std::vector<fuzz::ObservedObject>& fresh_board() {
     static const std::vector<fuzz::ObservedObject> seen = [] {
-        rwmos::Board board;
+        rwmos::EmulatedBoard board;
         return fuzz::snapshot(board);
     }();
     return seen;
@@ -114,7 +114,7 @@ std::uint64_t hash_of(Bytes bytes) {
 }
 
 void serve_as_datagram(Bytes request) {
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     rwmos::FrameServer server(board);
     FUZZ_CHECK(fuzz::first_difference(board, fresh_board(), 0) == nullptr,
                "a fresh board shows what every fresh board shows");

@@ -910,7 +910,7 @@ TEST(OtcBackToStart, TheCommandIsIgnoredWithoutManualModeEnableOrWhileAMoveRuns)
 TEST(OtcOption, WithoutTheOptionBus1330IsMissing) {
     rwmos::BoardConfig cfg;
     cfg.option_otc = false;
-    rwmos::Board board(cfg);
+    rwmos::EmulatedBoard board(cfg);
     objif::Descriptor d{{otc::kBus, otc::kDevChannel, otc::kIdxActive, 0}, 0};
     objif::Value v;
     EXPECT_EQ(board.read(d, objif::ValueType::kInt32, v), Status::kNoSuchDevice);

@@ -55,7 +55,7 @@ struct UsbBoard::Impl {
     mutable std::mutex mutex;  // everything below: the handler runs on umockdev's thread
     int address = 5;
     bool plugged = false;
-    std::unique_ptr<rwmos::Board> board;
+    std::unique_ptr<rwmos::EmulatedBoard> board;
     std::unique_ptr<rwmos::FrameServer> server;
     rwmos::FrameStream stream;
     std::deque<std::uint8_t> replies;           // reply bytes not yet sent on bulk IN
@@ -70,7 +70,7 @@ struct UsbBoard::Impl {
     void fresh_board() {
         rwmos::BoardConfig config;
         config.option_tc = options.option_tc;
-        board = std::make_unique<rwmos::Board>(config);
+        board = std::make_unique<rwmos::EmulatedBoard>(config);
         server = std::make_unique<rwmos::FrameServer>(*board);
         stream.clear();
         replies.clear();

@@ -43,7 +43,7 @@ std::vector<objif::Frame> frames_in(const std::vector<std::uint8_t>& bytes) {
 
 class FrameStreamTest : public ::testing::Test {
   protected:
-    rwmos::Board board;
+    rwmos::EmulatedBoard board;
     rwmos::FrameServer server{board};
     rwmos::FrameStream stream;
     std::vector<std::uint8_t> replies;

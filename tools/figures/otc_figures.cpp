@@ -91,7 +91,7 @@ class Scene {
             std::exit(1);
         }
     }
-    rwmos::Board board_;
+    rwmos::EmulatedBoard board_;
 };
 
 AxisVector at(double x, double z, double b = 0.0) {

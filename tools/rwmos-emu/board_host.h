@@ -66,7 +66,7 @@ class BoardHost {
 
   private:
     mutable BoardTurns turns_;
-    rwmos::Board board_;
+    rwmos::EmulatedBoard board_;
     rwmos::FrameServer server_;
     ServedCounts counts_;
     // Pacing anchor: wall time and board cycle when pacing (re)started.

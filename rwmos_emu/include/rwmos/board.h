@@ -35,12 +35,12 @@ struct BoardConfig {
     std::size_t trace_memory = SIZE_MAX;
 };
 
-class Board {
+class EmulatedBoard {
 public:
-    explicit Board(const BoardConfig& config = {});
-    ~Board();
-    Board(const Board&) = delete;
-    Board& operator=(const Board&) = delete;
+    explicit EmulatedBoard(const BoardConfig& config = {});
+    ~EmulatedBoard();
+    EmulatedBoard(const EmulatedBoard&) = delete;
+    EmulatedBoard& operator=(const EmulatedBoard&) = delete;
 
     objif::Status read(objif::Descriptor& d, objif::ValueType want, objif::Value& out);
     objif::Status write(objif::Descriptor& d, const objif::Value& v);

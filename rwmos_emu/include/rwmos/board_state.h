@@ -42,7 +42,7 @@ struct SpoolerState {
     std::int32_t fill = 0;
 };
 
-struct Board::State {
+struct EmulatedBoard::State {
     explicit State(const BoardConfig& cfg);
     State(const State&) = delete;
     State& operator=(const State&) = delete;

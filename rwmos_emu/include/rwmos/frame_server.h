@@ -17,7 +17,7 @@ namespace rwmos {
 
 class FrameServer {
 public:
-    explicit FrameServer(Board& board) : board_(board) {}
+    explicit FrameServer(EmulatedBoard& board) : board_(board) {}
 
     // A whole request frame (datagram transports: mailbox, USB transfer).
     // Appends exactly one reply frame to `reply`. Returns the decode error,
@@ -42,7 +42,7 @@ public:
 private:
     objif::FrameError serve_decoded(const objif::Frame& request, std::vector<std::uint8_t>& reply);
 
-    Board& board_;
+    EmulatedBoard& board_;
     std::uint64_t out_of_memory_ = 0;
     std::vector<std::uint8_t> payload_;  // scratch, reused between requests
 };

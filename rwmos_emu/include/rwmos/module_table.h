@@ -22,7 +22,7 @@ using objif::ValueType;
 template <class Derived>
 class BoardTableModule : public objif::TableModule<Derived> {
   public:
-    explicit BoardTableModule(Board::State& state) noexcept : state_(state) {}
+    explicit BoardTableModule(EmulatedBoard::State& state) noexcept : state_(state) {}
 
   protected:
     using Status = objif::Status;
@@ -30,7 +30,7 @@ class BoardTableModule : public objif::TableModule<Derived> {
     using Address = objif::Address;
     using Value = objif::Value;
 
-    Board::State& state_;
+    EmulatedBoard::State& state_;
 };
 
 }  // namespace rwmos

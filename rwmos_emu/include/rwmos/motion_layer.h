@@ -20,7 +20,7 @@ namespace rwmos {
 
 class MotionLayer final : public TcMotion {
   public:
-    explicit MotionLayer(Board::State& state) noexcept : state_(state) {}
+    explicit MotionLayer(EmulatedBoard::State& state) noexcept : state_(state) {}
     MotionLayer(const MotionLayer&) = delete;
     MotionLayer& operator=(const MotionLayer&) = delete;
 
@@ -99,7 +99,7 @@ class MotionLayer final : public TcMotion {
     // sync() with error_pending() already known.
     void sync(bool errors) noexcept;
 
-    Board::State& state_;
+    EmulatedBoard::State& state_;
     mutable motion::TcSettings settings_;
     mutable bool settings_valid_ = false;
     motion::Executor exec_;

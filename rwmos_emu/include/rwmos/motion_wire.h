@@ -10,13 +10,13 @@
 
 namespace rwmos {
 
-objif::MotionReply serve_spool(Board& board, const objif::SpoolRequest& req);
+objif::MotionReply serve_spool(EmulatedBoard& board, const objif::SpoolRequest& req);
 // The same reply written into `rep` (the in-process transport: none built and moved per call).
-void serve_spool(Board& board, const objif::SpoolRequest& req, objif::MotionReply& rep);
-objif::MotionReply serve_direct(Board& board, const objif::DirectRequest& req);
-objif::MotionReply serve_ssf(Board& board, const objif::SsfRequest& req);
-objif::ClockReply serve_clock(Board& board, const objif::ClockRequest& req);
+void serve_spool(EmulatedBoard& board, const objif::SpoolRequest& req, objif::MotionReply& rep);
+objif::MotionReply serve_direct(EmulatedBoard& board, const objif::DirectRequest& req);
+objif::MotionReply serve_ssf(EmulatedBoard& board, const objif::SsfRequest& req);
+objif::ClockReply serve_clock(EmulatedBoard& board, const objif::ClockRequest& req);
 // Reads at most req.max items, and at most one reply frame's worth.
-objif::TraceReply serve_trace(Board& board, const objif::TraceRequest& req);
+objif::TraceReply serve_trace(EmulatedBoard& board, const objif::TraceRequest& req);
 
 }  // namespace rwmos

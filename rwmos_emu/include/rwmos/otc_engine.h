@@ -31,7 +31,7 @@ namespace rwmos {
 
 class OtcEngine final : public motion::CycleOffsets {
   public:
-    explicit OtcEngine(Board::State& state) noexcept : state_(state) {}
+    explicit OtcEngine(EmulatedBoard::State& state) noexcept : state_(state) {}
     OtcEngine(const OtcEngine&) = delete;
     OtcEngine& operator=(const OtcEngine&) = delete;
 
@@ -139,7 +139,7 @@ class OtcEngine final : public motion::CycleOffsets {
     Vec3 to_xyz(const AxisVector& v) const noexcept;
     void add_xyz(const Vec3& v, double scale, AxisVector& out) const noexcept;
 
-    Board::State& state_;
+    EmulatedBoard::State& state_;
     Session session_;
     Context ctx_;
     motion::Move last_move_{};

@@ -28,7 +28,7 @@ struct TempCompState {
 
 class TempCompEngine final : public motion::CycleOffsets {
   public:
-    explicit TempCompEngine(Board::State& state) noexcept : state_(state) {}
+    explicit TempCompEngine(EmulatedBoard::State& state) noexcept : state_(state) {}
     TempCompEngine(const TempCompEngine&) = delete;
     TempCompEngine& operator=(const TempCompEngine&) = delete;
 
@@ -63,7 +63,7 @@ class TempCompEngine final : public motion::CycleOffsets {
     bool off() const noexcept;
     void rest(motion::AxisVector& pos) const noexcept;
 
-    Board::State& state_;
+    EmulatedBoard::State& state_;
     // The engine's evaluation state: the last applied values, which axes ramp, and the
     // assignment they were applied under. Changed by the const evaluations too, as a cache of
     // "where the axes are" (the analytic path evaluates with at()).
