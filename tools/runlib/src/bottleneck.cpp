@@ -16,13 +16,9 @@ using Vec2 = Eigen::Vector2d;
 constexpr double kEnd = 1e-6;
 
 using geom::cross;
+
 Vec2 in_plane(const Eigen::Vector3d& p, const PlaneAxes& ax) {
     return {p[ax.first], p[ax.second]};
-}
-
-// The angle turned from `from` to `to`, in the arc's sense, in [0, 2 pi).
-double turn(const Vec2& from, const Vec2& to, bool ccw) {
-    return geom::angle_between(from, to, ccw);
 }
 
 // A crossing of two paths: the point and how far along each (0..1) it lies.
@@ -44,7 +40,7 @@ std::optional<double> along(const M& m, const Vec2& x) {
         return t;
     }
     const Vec2 u0(std::cos(m.phi0), std::sin(m.phi0));
-    const double t = turn(u0, x - m.c, m.sweep > 0.0) / std::abs(m.sweep);
+    const double t = geom::angle_between(u0, x - m.c, m.sweep > 0.0) / std::abs(m.sweep);
     if (t > 1.0) return std::nullopt;
     return t;
 }

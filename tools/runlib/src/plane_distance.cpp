@@ -123,11 +123,6 @@ double circle_circle(const Circle& a, const Circle& b) {
     return best;
 }
 
-// The angle from a to b counter-clockwise, in [0, 2 pi).
-double angle_ccw(const Vec2& a, const Vec2& b) {
-    return geom::angle_between(a, b, true);
-}
-
 }  // namespace
 
 Parametric line_element(const Vec2& start, const Vec2& end) noexcept {
@@ -165,7 +160,8 @@ double distance_to(const Parametric& e, const Vec2& p) noexcept {
     const Vec2 v = p - e.centre;
     const Vec2 u0 = e.start - e.centre;
     const double turn = std::abs(e.sweep);
-    const double along = e.sweep > 0.0 ? angle_ccw(u0, v) : angle_ccw(v, u0);
+    const double along = e.sweep > 0.0 ? geom::angle_between(u0, v, true)
+                                        : geom::angle_between(v, u0, true);
     if (v.norm() > 0.0 && along <= turn)
         return std::abs(v.norm() - (e.r0 + (along / turn) * (e.r1 - e.r0)));
     return std::min((p - e.start).norm(), (p - e.end).norm());

@@ -60,6 +60,17 @@ template <class F>
                      integral_constant<int, 2>{});
     }
 }
+// with_plane_axes hands out the shared geometry's axes (geometry/plane.h), as constants.
+static_assert([] {
+    for (const geom::Plane p : {geom::Plane::kXY, geom::Plane::kZX, geom::Plane::kYZ}) {
+        const geom::PlaneAxes a = geom::plane_axes(p);
+        if (!with_plane_axes(static_cast<int>(p), [&](int first, int second, int third) {
+                return first == a.first && second == a.second && third == a.third;
+            }))
+            return false;
+    }
+    return true;
+}());
 // The same axes as values (17's for anything but 18 and 19).
 constexpr PlaneAxes plane_axes(int plane) noexcept {
     return geom::plane_axes(plane == 18 ? geom::Plane::kZX
