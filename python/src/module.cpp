@@ -25,13 +25,10 @@
 #include <vector>
 
 #include "apci/apci.hpp"
-#include "apci/nc/correction_table.h"
 #include "apci/nc/diagnostic.h"
-#include "apci/nc/program.h"
-#include "apci/nc/tools.h"
 #include "apci/run/executor.h"
 #include "apci/run/path.h"
-#include "apci/run/plc_script.h"
+#include "apci/run/program_run.h"
 #include "apci/run/summary.h"
 #include "objif/descriptor.h"
 #include "objif/names.h"
@@ -337,12 +334,6 @@ std::string summary_text(const apci::run::RunOutcome& result) {
     return text;
 }
 
-apci::run::SelfApproachMode self_approach_mode(const std::string& mode) {
-    if (mode == "error") return apci::run::SelfApproachMode::kError;
-    if (mode == "off") return apci::run::SelfApproachMode::kOff;
-    return apci::run::SelfApproachMode::kWarn;
-}
-
 // Runs an NC program on `board` as `apcictl run` does (tools/apcictl/command_run.cpp): tool
 // list, correction table and PLC script first, then the validation pass (nothing runs from a
 // program that does not parse), then the executor. `program` is the text (program_is_text) or
@@ -353,52 +344,34 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
                      bool tools_is_text, const std::optional<std::string>& corr_path,
                      const std::optional<std::string>& plc_path, const std::string& self_approach,
                      bool samples, std::uint64_t max_samples) {
-    apci::nc::ToolTable tools;
-    if (tools_source) {
-        auto loaded = tools_is_text ? apci::nc::parse_tool_table(*tools_source, "<tools>")
-                                    : apci::nc::load_tool_table(*tools_source);
-        if (!loaded) return failure(loaded.error());
-        tools = std::move(loaded.value());
-    }
-    apci::nc::CorrectionTable corrections;
-    if (corr_path) {
-        auto loaded = apci::nc::load_correction_table(*corr_path);
-        if (!loaded) return failure(loaded.error());
-        corrections = std::move(loaded.value());
-    }
-    apci::run::PlcScript plc;
-    if (plc_path) {
-        auto loaded = apci::run::load_plc_script(*plc_path);
-        if (!loaded) return failure(loaded.error());
-        plc = std::move(loaded.value());
-    }
+    apci::run::RunInputFiles files;
+    files.tools = tools_source;
+    files.tools_is_text = tools_is_text;
+    files.corrections = corr_path;
+    files.plc = plc_path;
+    files.tools_name = "tools";
+    files.corrections_name = "corr";
+    auto inputs = apci::run::load_run_inputs(files);
+    if (!inputs) return failure(inputs.error());
 
     const PyBoard::Use use(py_board);
     Collector collector(samples, max_samples);
-    apci::run::RunOutcome result;
-    std::optional<apci::nc::Diagnostic> refused;
+    apci::run::RunSettings settings;
+    const auto mode = apci::run::self_approach_mode(self_approach);
+    if (!mode)
+        throw py::value_error("self_approach must be warn, error or off, not " + self_approach);
+    settings.self_approach = *mode;
+    const apci::run::ProgramSource source = program_is_text
+                                                ? apci::run::ProgramSource::in_memory(program, name)
+                                                : apci::run::ProgramSource::file(program);
+    std::optional<apci::nc::Result<apci::run::RunOutcome>> ran;
     {
         py::gil_scoped_release unlocked;
-        apci::run::ProgramExecutor executor(py_board.board(use), collector, &tools,
-                                            plc_path ? &plc : nullptr, &corrections);
-        executor.set_self_approach(self_approach_mode(self_approach));
-        const apci::nc::InterpreterOptions options = executor.interpreter_options();
-        auto loaded = program_is_text ? apci::nc::Program::from_text(program, name, options)
-                                      : apci::nc::Program::load(program, options);
-        if (!loaded) {
-            apci::nc::Diagnostic d = loaded.error();
-            if (!tools_source && d.undefined == apci::nc::Undefined::kTool)
-                d.message += " (no tools given)";
-            refused = std::move(d);
-        } else if (auto stream = loaded.value().events(); !stream) {
-            refused = stream.error();
-        } else {
-            result = executor.run(stream.value());
-            result.totals.file = program_is_text ? name : program;
-            result.totals.blocks = loaded.value().summary().blocks;
-        }
+        ran.emplace(apci::run::run_program(py_board.board(use), collector, inputs.value(), source,
+                                           settings));
     }
-    if (refused) return failure(*refused);
+    if (!*ran) return failure(ran->error());
+    const apci::run::RunOutcome& result = ran->value();
 
     py::dict out;
     out["file"] = result.totals.file;

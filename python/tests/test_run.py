@@ -80,6 +80,53 @@ def test_run_matches_apcictl_json_and_csv(source_dir, apcictl, tmp_path):
         assert int(status.status) == doc["registers"][str(group)]["STATUS"]
 
 
+# One program, run three ways: `apcictl run --json`, `apcictl diff --json` (the --device board's
+# run) and apci.run(). All three build the run in one place (apci::run::ProgramRun), so their
+# segments agree bit for bit: the two JSON files byte for byte, Python's arrays number for
+# number with the JSON (which writes the shortest text that reads back exactly).
+THREE_WAY_RUNS = [
+    ("wr_quad_disc.nc", "tools/wr_quad_disc.tools", None, None),
+    ("otc/wr_quad_disc.nc", "tools/wr_quad_disc.tools", None, "otc/plc/wr_quad_disc.plc"),
+    ("3d_correction_table.h", "tools/3d_tools.tools", "tools/3d_corrections.corr", None),
+    ("linuxcnc/qpocket_qpex.nc", "linuxcnc/qpocket.tools", None, None),
+]
+
+
+@pytest.mark.parametrize("program,tools,corr,plc", THREE_WAY_RUNS,
+                         ids=[r[0] for r in THREE_WAY_RUNS])
+def test_run_diff_and_python_give_the_same_segments_bit_for_bit(source_dir, apcictl, tmp_path,
+                                                                 program, tools, corr, plc):
+    examples = source_dir / "examples"
+    inputs = ["--tools", str(examples / tools)]
+    if corr:
+        inputs += ["--corr", str(examples / corr)]
+    if plc:
+        inputs += ["--plc", str(examples / plc)]
+    run_json, diff_json = tmp_path / "run.json", tmp_path / "diff.json"
+    for command, out in (["run"], run_json), (["diff", "--against", "emu:"], diff_json):
+        done = subprocess.run([str(apcictl), *command, str(examples / program), *inputs,
+                               "--json", str(out)],
+                              capture_output=True, text=True, timeout=300, check=False)
+        assert done.returncode == 0, done.stdout + done.stderr
+    assert run_json.read_bytes() == diff_json.read_bytes()
+
+    result = apci.run(examples / program, tools=examples / tools,
+                      corr=examples / corr if corr else None,
+                      plc=examples / plc if plc else None, samples=False)
+    want = json.loads(run_json.read_text())["segments"]
+    got = result.segments
+    assert len(got) == len(want) > 0
+    assert list(got["block"]) == [s["block"] for s in want]
+    assert result.kind_names() == [s["kind"] for s in want]
+    assert result.role_names() == [s["role"] for s in want]
+    for field in ("start", "end"):
+        assert [tuple(float(v).hex() for v in p) for p in got[field]] == \
+            [tuple(float(v).hex() for v in s[field]) for s in want]
+    arcs = [i for i, s in enumerate(want) if s["kind"] == "arc"]
+    assert [tuple(float(v).hex() for v in got["center"][i]) for i in arcs] == \
+        [tuple(float(v).hex() for v in want[i]["center"]) for i in arcs]
+
+
 def test_a_program_as_text_with_tools_as_text():
     result = apci.run("N10 G1 X3 Y4 F600\nM30\n", name="line.nc")
     assert result.file == "line.nc"

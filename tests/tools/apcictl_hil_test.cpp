@@ -3,15 +3,17 @@
 // against the emulator daemon, a fake sysfs PCI board and the embedded board.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "apcictl.h"
 #include "command.h"
 #include "daemon.h"
 #include "fake_sysfs.h"
-#include "apcictl.h"
 #include "text.h"
 
 namespace {
@@ -301,6 +303,83 @@ TEST_F(ApcictlDiff, DifferentStartPositionsAreReportedFirst) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.out, "first difference at the start of the run: axis X position"))
         << r.out;
+}
+
+// --json: the --device board's run as `run --json` writes it, byte for byte, whether or not the
+// boards differ (the second run does not touch it).
+TEST_F(ApcictlDiff, JsonIsTheDeviceBoardsRunAsRunWritesIt) {
+    const std::string run_json = dir_.file("run.json"), diff_json = dir_.file("diff.json");
+    const auto run = apcictl({"run", "--tools", kTools, kInsideCorners, "--json", run_json});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    auto r =
+        diff({"--against", "emu:", "--tools", kTools, kInsideCorners, "--json", diff_json}, "emu:");
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_EQ(test_support::read_text(diff_json), test_support::read_text(run_json));
+    // Against a board that differs (no TC module): the --device board's run all the same.
+    r = diff(
+        {"--against", "emu:?no-option-tc", "--tools", kTools, kInsideCorners, "--json", diff_json},
+        "emu:");
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_EQ(test_support::read_text(diff_json), test_support::read_text(run_json));
+    // The other way round: the run that stopped at its first error, as run writes that one.
+    const auto stopped = apcictl({"--device", "emu:?no-option-tc", "run", "--tools", kTools,
+                                  kInsideCorners, "--json", run_json});
+    ASSERT_EQ(stopped.exit_code, 1) << stopped.err;
+    r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners, "--json", diff_json},
+             "emu:?no-option-tc");
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_EQ(test_support::read_text(diff_json), test_support::read_text(run_json));
+    EXPECT_TRUE(contains(test_support::read_text(diff_json), "NoSuchDevice"));
+}
+
+// A program that does not validate writes nothing: an existing --json file stays as it was,
+// and no temporary file is left beside it.
+TEST_F(ApcictlDiff, JsonOfAProgramThatDoesNotValidateLeavesTheOldFile) {
+    const std::string json = dir_.file("old.json");
+    const std::string program =
+        script_file(dir_, "N10 G1 X10 F100\nN20 G1 Q5\nN30 M30\n", "bad.nc");
+    ASSERT_EQ(std::system(("printf 'kept' > " + json).c_str()), 0);
+    const auto r = diff({"--against", "emu:", program, "--json", json}, "emu:");
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, "bad.nc:2")) << r.err;
+    EXPECT_EQ(test_support::read_text(json), "kept");
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir_.path()))
+        ++entries;
+    EXPECT_EQ(entries, 2u) << "bad.nc and old.json only";
+}
+
+// --json is refused before anything runs: on a script, on standard output, over an input.
+TEST_F(ApcictlDiff, JsonRefusedForAScriptStandardOutputOrAnInput) {
+    const std::string script = script_file(dir_, "read 1300 1 1 7\n");
+    auto r = diff({"--against", "emu:", script, "--json", dir_.file("s.json")}, "emu:");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "is a script")) << r.err;
+    r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners, "--json", "-"}, "emu:");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "--json needs a file")) << r.err;
+    // The program and the tool list, also through a symbolic link.
+    const std::string program = dir_.file("p.nc"), tools = dir_.file("p.tools");
+    std::filesystem::copy_file(kInsideCorners, program);
+    std::filesystem::copy_file(kTools, tools);
+    std::filesystem::create_symlink(tools, dir_.file("link.json"));
+    for (const std::string& target : {program, dir_.file("link.json")}) {
+        r = diff({"--against", "emu:", "--tools", tools, program, "--json", target}, "emu:");
+        EXPECT_EQ(r.exit_code, 2) << target;
+        EXPECT_TRUE(contains(r.err, "is the same file as the input")) << r.err;
+    }
+    EXPECT_EQ(test_support::read_text(program), test_support::read_text(kInsideCorners));
+    EXPECT_EQ(test_support::read_text(tools), test_support::read_text(kTools));
+}
+
+// An output that cannot be opened is a usage error, and nothing runs.
+TEST_F(ApcictlDiff, JsonInADirectoryThatIsNotThereIsAUsageError) {
+    const auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners, "--json",
+                         dir_.file("no/such/dir.json")},
+                        "emu:");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_TRUE(contains(r.err, "cannot write")) << r.err;
+    EXPECT_TRUE(contains(r.err, "No such file or directory")) << r.err;
 }
 
 // A Klartext program (*.h) with its correction table (--corr, as for run) on both boards.

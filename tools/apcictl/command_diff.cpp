@@ -29,11 +29,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "apci/nc/correction_table.h"
-#include "apci/nc/program.h"
-#include "apci/nc/tools.h"
+#include "apci/nc/diagnostic.h"
 #include "apci/run/executor.h"
-#include "apci/run/plc_script.h"
+#include "apci/run/json_writer.h"
+#include "apci/run/program_run.h"
+#include "apci/run/run_files.h"
 #include "arguments.h"
 #include "command.h"
 #include "object_name.h"
@@ -43,6 +43,7 @@ namespace apcictl {
 namespace {
 
 using apci::run::BlockRef;
+using apci::run::OutputFile;
 using apci::run::PathSegment;
 using apci::run::RunError;
 
@@ -227,12 +228,17 @@ Sample sample_of(std::uint64_t cycle, std::span<const double> axes) {
 // a few each) in memory.
 struct Recording : apci::run::RunSink {
     Spool<SegmentRecord> segments;
+    // --json: the run as `run --json` writes it (the first run only).
+    apci::run::JsonRunWriter* json = nullptr;
     std::vector<std::string> axis_names;
     apci::run::Point start = apci::run::Point::Zero();  // X, Y, Z where the run began
     apci::run::RunOutcome outcome;
     std::uint64_t samples = 0;
 
-    void executed(const PathSegment& s) override { segments.push(segment_record(s)); }
+    void executed(const PathSegment& s) override {
+        segments.push(segment_record(s));
+        if (json != nullptr) json->segment(s);
+    }
     bool wants_samples() const override { return true; }
     void axes(std::span<const std::string> names) override {
         axis_names.assign(names.begin(), names.end());
@@ -305,26 +311,19 @@ Outcome nc_failure(const apci::nc::Diagnostic& d) {
                                               : Outcome::board_error(text);
 }
 
-// What an NC run takes besides the program, loaded once for both runs (as `run` takes them).
-struct RunInputs {
-    apci::nc::ToolTable tools;
-    apci::nc::CorrectionTable corrections;
-    std::optional<apci::run::PlcScript> plc;
-};
-
-Outcome record_run(const std::string& path, const RunInputs& in, Session& session, Recording& out) {
+// One run of the program on one board, validated first, as `run` runs it (program_run.h); the
+// inputs are loaded once for both runs.
+Outcome record_run(const std::string& path, const apci::run::RunInputs& in, Session& session,
+                   Recording& out) {
     Outcome failure;
     apci::Board* board = session.board(failure);
     if (board == nullptr) return failure;
-    apci::run::ProgramExecutor executor(*board, out, &in.tools, in.plc ? &*in.plc : nullptr,
-                                        &in.corrections);
-    const apci::nc::InterpreterOptions options = executor.interpreter_options();
-    out.start = options.start_position;
-    auto program = apci::nc::Program::load(path, options);
-    if (!program) return nc_failure(program.error());
-    auto stream = program.value().events();
-    if (!stream) return nc_failure(stream.error());
-    out.outcome = executor.run(stream.value());
+    apci::run::ProgramRun program(*board, out, in, apci::run::RunSettings{});
+    out.start = program.options().start_position;
+    if (auto refused = program.open_validated(apci::run::ProgramSource::file(path)))
+        return nc_failure(*refused);
+    out.outcome = program.run();
+    if (auto refused = program.finish(out.outcome)) return nc_failure(*refused);
     return Outcome::success();
 }
 
@@ -485,6 +484,9 @@ class DiffCommand final : public Command {
         app.add_option("--plc", plc_,
                        "A scripted PLC, written in both runs at the same cycles and blocks (as "
                        "for run)");
+        app.add_option("--json", json_,
+                       "NC programs: write the --device board's run as `run --json` writes it "
+                       "(replaced only once the run was written whole)");
         app.add_option("--tolerance", tolerance_text_,
                        "NC programs: positions closer than this are equal (program units, a "
                        "finite number >= 0; default 0: bit for bit)")
@@ -510,6 +512,18 @@ class DiffCommand final : public Command {
         }
         if (program_ == "-" && is_nc())
             return Outcome::usage_error("diff: an NC program must be a file (it runs twice)");
+        if (!json_.empty() && !is_nc())
+            return Outcome::usage_error("diff: --json writes an NC program's run; " + program_ +
+                                        " is a script");
+        if (json_ == "-")
+            return Outcome::usage_error(
+                "diff: --json needs a file (standard output has the comparison)");
+        for (const std::string* input : {&program_, &tools_, &corr_, &plc_})
+            if (!json_.empty() && !input->empty() && apci::run::same_file(json_, *input))
+                return Outcome::usage_error(fmt::format(
+                    "diff: --json '{}' is the same file as the input '{}' (the output would "
+                    "overwrite it)",
+                    json_, *input));
         return Outcome::success();
     }
 
@@ -553,28 +567,29 @@ class DiffCommand final : public Command {
 
     Outcome diff_nc(Session& here, Session& there, std::optional<Difference>& first,
                     std::size_t& compared) {
-        RunInputs in;
-        if (!tools_.empty()) {
-            auto loaded = apci::nc::load_tool_table(tools_);
-            if (!loaded) return nc_failure(loaded.error());
-            in.tools = std::move(loaded.value());
-        }
-        if (!corr_.empty()) {
-            auto loaded = apci::nc::load_correction_table(corr_);
-            if (!loaded) return nc_failure(loaded.error());
-            in.corrections = std::move(loaded.value());
-        }
-        if (!plc_.empty()) {
-            auto loaded = apci::run::load_plc_script(plc_);
-            if (!loaded) return nc_failure(loaded.error());
-            in.plc = std::move(loaded.value());
-        }
+        apci::run::RunInputFiles files;
+        if (!tools_.empty()) files.tools = tools_;
+        if (!corr_.empty()) files.corrections = corr_;
+        if (!plc_.empty()) files.plc = plc_;
+        files.tools_name = "--tools file";
+        files.corrections_name = "--corr file";
+        auto in = apci::run::load_run_inputs(files);
+        if (!in) return nc_failure(in.error());
         // The first run spools its positions; the second compares its own with them cycle
         // by cycle as it goes. Memory stays the same however long the runs.
         FirstRun a;
-        if (Outcome o = record_run(program_, in, here, a); !o.ok()) return o;
+        OutputFile json_file;
+        std::optional<apci::run::JsonRunWriter> json;
+        if (!json_.empty()) {
+            if (std::string why = json_file.open(json_); !why.empty())
+                return Outcome::usage_error(fmt::format("diff: cannot write {}: {}", json_, why));
+            a.json = &json.emplace(json_file.file());
+        }
+        if (Outcome o = record_run(program_, in.value(), here, a); !o.ok()) return o;
+        if (json)
+            if (Outcome o = publish_json(*json, json_file, a.outcome); !o.ok()) return o;
         SecondRun b(a.positions, tolerance_);
-        if (Outcome o = record_run(program_, in, there, b); !o.ok()) return o;
+        if (Outcome o = record_run(program_, in.value(), there, b); !o.ok()) return o;
         compared = std::min(a.samples, b.samples);
         first = compare_start(a, b, tolerance_);
         if (!first) first = compare_samples(a, b);
@@ -590,8 +605,21 @@ class DiffCommand final : public Command {
         return Outcome::success();
     }
 
+    // The first run's JSON finished, closed and renamed over its target.
+    Outcome publish_json(apci::run::JsonRunWriter& json, OutputFile& file,
+                         const apci::run::RunOutcome& run) const {
+        const bool written =
+            json.finish(run.errors, run.registers, run.variables, run.notices, run.warnings);
+        std::string why = file.close();
+        if (why.empty() && !written) why = "the write failed";
+        if (why.empty()) why = file.publish();
+        if (why.empty()) return Outcome::success();
+        return Outcome::board_error(fmt::format("diff: cannot write {}: {}", json_, why));
+    }
+
     std::string program_;
     std::string against_;
+    std::string json_;
     std::string tools_;
     std::string corr_;
     std::string plc_;

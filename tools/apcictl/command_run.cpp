@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // `run PROGRAM.nc [--tools F] [--svg F] [--json F] [--csv F]`: executes an NC program on the
 // board (docs/design.md section 7): validation pass first (nothing runs from a program that does
-// not parse), then the events drive the board through libapci (apci_run's ProgramExecutor), the
-// executed path streams into the outputs, and a summary goes to standard output. On the embedded
-// emulator, whose board nobody else sees, the two passes are one (nc::SinglePass): the outputs
-// are published only once the whole program proved valid.
+// not parse), then the events drive the board through libapci (apci_run's ProgramRun,
+// program_run.h), the executed path streams into the outputs, and a summary goes to standard
+// output. On the embedded emulator, whose board nobody else sees, the two passes are one
+// (nc::SinglePass): the outputs are published only once the whole program proved valid.
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -15,12 +15,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -32,6 +30,7 @@
 #include "apci/run/json_writer.h"
 #include "apci/run/pipeline.h"
 #include "apci/run/plc_script.h"
+#include "apci/run/program_run.h"
 #include "apci/run/run_files.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
@@ -264,7 +263,7 @@ class RunCommand final : public Command {
     }
 
     Outcome run(Session& session) override {
-        RunInputs inputs;
+        apci::run::RunInputs inputs;
         if (Outcome o = load_inputs(inputs); !o.ok()) return o;
         Outcome failure;
         apci::Board* board = session.board(failure);
@@ -282,44 +281,21 @@ class RunCommand final : public Command {
         // The writers run on a thread of their own, fed in order through a bounded ring
         // (pipeline.h); declared after `outputs`, so the thread ends before they go.
         apci::run::PipelinedSink pipeline(outputs, cpus);
-        apci::run::ProgramExecutor executor(*board, pipeline, &inputs.tools,
-                                            plc_.empty() ? nullptr : &inputs.plc,
-                                            &inputs.corrections);
-        configure(executor, cpus);
-        const apci::nc::InterpreterOptions options = executor.interpreter_options();
+        apci::run::ProgramRun program(*board, pipeline, inputs, settings(cpus));
 
-        ProgramPasses passes;
-        if (Outcome o = open_program(embedded_board(session.uri()), files, options, passes);
-            !o.ok())
+        if (Outcome o = open_program(embedded_board(session.uri()), files, program); !o.ok())
             return o;
-        if (Outcome o = open_outputs(files, options, passes); !o.ok()) return o;
-        if (Outcome o = attach_writers(files, options, passes, outputs); !o.ok()) return o;
+        if (Outcome o = open_outputs(files, program); !o.ok()) return o;
+        if (Outcome o = attach_writers(files, program, outputs); !o.ok()) return o;
 
-        apci::run::RunOutcome result =
-            executor.run(passes.single ? passes.single->events() : *passes.stream);
+        apci::run::RunOutcome result = program.run();
         pipeline.finish();  // every event written; the writer thread has ended
-        if (Outcome o = count_blocks(passes, outputs, result); !o.ok()) return o;
+        if (Outcome o = count_blocks(program, outputs, result); !o.ok()) return o;
         const std::string written_error = write_outputs(files, outputs, result);
         return report(files, result, written_error);
     }
 
   private:
-    // What the run reads besides the program, loaded before the board is touched. Declared
-    // before the executor that points to them.
-    struct RunInputs {
-        apci::nc::ToolTable tools;
-        apci::nc::CorrectionTable corrections;
-        apci::run::PlcScript plc;
-    };
-
-    // The program as it is run: validated first (`program`, then its execution pass
-    // `stream`), or in one pass that validates it while it runs (`single`).
-    struct ProgramPasses {
-        std::optional<apci::nc::Program> program;
-        std::optional<apci::nc::EventStream> stream;
-        std::optional<apci::nc::SinglePass> single;
-    };
-
     // The outputs' files: temporary files beside their targets, renamed over them at the end
     // only if every output was written (run_files.h).
     struct RunOutputFiles {
@@ -336,23 +312,17 @@ class RunCommand final : public Command {
 
     // The tool list (without one, D n (n > 0) is refused by the validation pass), the
     // correction table (without one, FUNCTION CORRDATA TCS #n is refused: the table defines
-    // no row), the PLC script, and a program that cannot be read twice, read into memory.
-    Outcome load_inputs(RunInputs& in) {
-        if (!tools_.empty()) {
-            auto loaded = apci::nc::load_tool_table(tools_);
-            if (!loaded) return nc_failure(loaded.error());
-            in.tools = std::move(loaded.value());
-        }
-        if (!corr_.empty()) {
-            auto loaded = apci::nc::load_correction_table(corr_);
-            if (!loaded) return nc_failure(loaded.error());
-            in.corrections = std::move(loaded.value());
-        }
-        if (!plc_.empty()) {
-            auto loaded = apci::run::load_plc_script(plc_);
-            if (!loaded) return nc_failure(loaded.error());
-            in.plc = std::move(loaded.value());
-        }
+    // no row), the PLC script; and a program that cannot be read twice, read into memory.
+    Outcome load_inputs(apci::run::RunInputs& in) {
+        apci::run::RunInputFiles files;
+        if (!tools_.empty()) files.tools = tools_;
+        if (!corr_.empty()) files.corrections = corr_;
+        if (!plc_.empty()) files.plc = plc_;
+        files.tools_name = "--tools file";
+        files.corrections_name = "--corr file";
+        auto loaded = apci::run::load_run_inputs(files);
+        if (!loaded) return nc_failure(loaded.error());
+        in = std::move(loaded.value());
         if (program_ == "-" || !seekable(program_)) {
             const int fd =
                 program_ == "-" ? STDIN_FILENO : ::open(program_.c_str(), O_RDONLY | O_CLOEXEC);
@@ -367,16 +337,23 @@ class RunCommand final : public Command {
         return Outcome::success();
     }
 
-    // The options of the command line that the executor takes.
-    void configure(apci::run::ProgramExecutor& executor,
-                   const apci::run::CpuPlacement* cpus) const {
-        // The NC front end reads ahead on a thread of its own (read_ahead.h): the same events,
-        // errors and variable reads, the program parsed while the board runs.
-        executor.set_read_ahead(true, cpus);
-        executor.set_self_approach(self_approach_ == "error" ? apci::run::SelfApproachMode::kError
-                                   : self_approach_ == "off" ? apci::run::SelfApproachMode::kOff
-                                                             : apci::run::SelfApproachMode::kWarn);
-        executor.set_avoid_bottlenecks(bottleneck_blocks_);
+    // The options of the command line that the run takes. The NC front end reads ahead on a
+    // thread of its own (read_ahead.h): the same events, errors and variable reads, the
+    // program parsed while the board runs.
+    apci::run::RunSettings settings(const apci::run::CpuPlacement* cpus) const {
+        apci::run::RunSettings s;
+        s.read_ahead = true;
+        s.cpus = cpus;
+        // CLI::IsMember let only the mode names through.
+        s.self_approach = apci::run::self_approach_mode(self_approach_)
+                              .value_or(apci::run::SelfApproachMode::kWarn);
+        s.bottleneck_blocks = bottleneck_blocks_;
+        return s;
+    }
+
+    apci::run::ProgramSource source() const {
+        return program_in_memory_ ? apci::run::ProgramSource::in_memory(stdin_text_, program_name())
+                                  : apci::run::ProgramSource::file(program_);
     }
 
     // The embedded emulator's board is this process's alone and every output is held back
@@ -384,53 +361,37 @@ class RunCommand final : public Command {
     // pass), and an invalid one gives the error it gives below and publishes nothing.
     // Elsewhere (a daemon's board, a real one) nothing moves before the program is valid.
     Outcome open_program(bool embedded, const RunOutputFiles& files,
-                         const apci::nc::InterpreterOptions& options,
-                         ProgramPasses& passes) const {
+                         apci::run::ProgramRun& program) const {
         bool one_pass = embedded;
         for (auto [out, name] : files.named) one_pass = one_pass && held_back(*name);
-        if (!one_pass) return validate_first(options, passes.program, passes.stream);
-        if (program_in_memory_) {
-            passes.single.emplace(
-                apci::nc::SinglePass::from_text(stdin_text_, program_name(), options));
-            return Outcome::success();
-        }
-        auto opened = apci::nc::SinglePass::open_file(program_, options);
-        if (!opened) return program_failure(opened.error());
-        passes.single.emplace(std::move(opened).value());
-        return Outcome::success();
+        const auto refused =
+            one_pass ? program.open_one_pass(source()) : program.open_validated(source());
+        return refused ? nc_failure(*refused) : Outcome::success();
     }
 
     // A failure to set up an output in the one pass: a program that does not validate says so
     // first, as when it is validated before the outputs are opened.
-    Outcome validate_before(Outcome failure, const apci::nc::InterpreterOptions& options,
-                            ProgramPasses& passes) const {
-        if (passes.single)
-            if (Outcome o = validate_first(options, passes.program, passes.stream); !o.ok())
-                return o;
+    static Outcome validate_before(Outcome failure, apci::run::ProgramRun& program) {
+        if (const auto refused = program.validate_first()) return nc_failure(*refused);
         return failure;
     }
 
-    Outcome open_outputs(RunOutputFiles& files, const apci::nc::InterpreterOptions& options,
-                         ProgramPasses& passes) const {
+    static Outcome open_outputs(RunOutputFiles& files, apci::run::ProgramRun& program) {
         for (auto [out, name] : files.named) {
             if (name->empty()) continue;
             if (std::string why = out->open(*name); !why.empty())
                 return validate_before(
                     Outcome::usage_error(fmt::format("run: cannot write {}: {}", *name, why)),
-                    options, passes);
+                    program);
             // Written in place after all (it became a FIFO meanwhile): validated first.
-            if (passes.single && !out->is_stdout() && out->temporary().empty()) {
-                passes.single.reset();
-                if (Outcome o = validate_first(options, passes.program, passes.stream); !o.ok())
-                    return o;
-            }
+            if (program.one_pass() && !out->is_stdout() && out->temporary().empty())
+                if (const auto refused = program.validate_first()) return nc_failure(*refused);
         }
         return Outcome::success();
     }
 
     // The writers of the outputs opened, and what the progress bar counts.
-    Outcome attach_writers(const RunOutputFiles& files,
-                           const apci::nc::InterpreterOptions& options, ProgramPasses& passes,
+    Outcome attach_writers(const RunOutputFiles& files, apci::run::ProgramRun& program,
                            Outputs& outputs) const {
         if (files.json.file() != nullptr)
             outputs.json = std::make_unique<apci::run::JsonRunWriter>(files.json.file());
@@ -439,16 +400,13 @@ class RunCommand final : public Command {
             if (!outputs.svg->ok())
                 return validate_before(
                     Outcome::board_error("run: cannot make a temporary file for the plot"),
-                    options, passes);
+                    program);
         }
         outputs.csv_file = files.csv.file();
         outputs.svg_cycles = svg_cycles_;
-        if (passes.single) {
-            outputs.one_pass = true;
-            outputs.program_bytes = passes.single->size();
-        } else {
-            outputs.total_blocks = passes.program->summary().blocks;
-        }
+        outputs.one_pass = program.one_pass();
+        outputs.program_bytes = program.program_bytes();
+        outputs.total_blocks = program.validated_blocks();
         outputs.progress_bar = ::isatty(STDERR_FILENO) == 1;
         return Outcome::success();
     }
@@ -456,23 +414,15 @@ class RunCommand final : public Command {
     // The program's block count and name in the totals. In one pass, the rest of the program
     // (after an error stopped the run) is validated too; an invalid program publishes
     // nothing: the outputs are removed on return.
-    Outcome count_blocks(ProgramPasses& passes, Outputs& outputs,
-                         apci::run::RunOutcome& result) const {
-        std::uint64_t total_blocks = 0;
-        if (passes.single) {
-            auto valid = passes.single->finish();
-            if (!valid) {
-                outputs.clear_progress();
-                return program_failure(valid.error());
-            }
-            total_blocks = valid.value().blocks;
-            outputs.completed(total_blocks);
-        } else {
-            total_blocks = passes.program->summary().blocks;
+    static Outcome count_blocks(apci::run::ProgramRun& program, Outputs& outputs,
+                                apci::run::RunOutcome& result) {
+        const bool one_pass = program.one_pass();
+        if (const auto refused = program.finish(result)) {
+            outputs.clear_progress();
+            return nc_failure(*refused);
         }
+        if (one_pass) outputs.completed(result.totals.blocks);
         outputs.clear_progress();
-        result.totals.file = program_name();
-        result.totals.blocks = total_blocks;
         return Outcome::success();
     }
 
@@ -563,32 +513,6 @@ class RunCommand final : public Command {
         if (!written_error.empty()) return Outcome::board_error(written_error);
         return Outcome::success();
     }
-    // The validation pass before anything runs: `program` validated and `stream` its execution
-    // pass, or the failure.
-    Outcome validate_first(const apci::nc::InterpreterOptions& options,
-                           std::optional<apci::nc::Program>& program,
-                           std::optional<apci::nc::EventStream>& stream) const {
-        auto loaded = program_in_memory_
-                          ? apci::nc::Program::from_text(stdin_text_, program_name(), options)
-                          : apci::nc::Program::load(program_, options);
-        if (!loaded) return program_failure(loaded.error());
-        program.emplace(std::move(loaded).value());
-        auto events = program->events();
-        if (!events) return nc_failure(events.error());
-        stream.emplace(std::move(events).value());
-        return Outcome::success();
-    }
-
-    // A program that does not validate; the error names what was not given where that is
-    // the cause.
-    Outcome program_failure(apci::nc::Diagnostic d) const {
-        using apci::nc::Undefined;
-        if (tools_.empty() && d.undefined == Undefined::kTool) d.message += " (no --tools file given)";
-        if (corr_.empty() && d.undefined == Undefined::kCorrectionRow)
-            d.message += " (no --corr file given)";
-        return nc_failure(d);
-    }
-
     // An output that is an input (the program, --tools, --plc, --corr) or another output would
     // overwrite it or mix two outputs in one file: refused before anything runs. The same file:
     // the same path once absolute and normalised, or (when both exist) the same device and
@@ -618,7 +542,7 @@ class RunCommand final : public Command {
             if (files[out].second->empty() || *files[out].second == "-") continue;
             for (std::size_t other = 0; other < out; ++other) {
                 if (files[other].second->empty()) continue;
-                if (!same_file(*files[out].second, *files[other].second)) continue;
+                if (!apci::run::same_file(*files[out].second, *files[other].second)) continue;
                 return Outcome::usage_error(
                     fmt::format("run: {} '{}' is the same file as {} '{}' ({})", files[out].first,
                                 *files[out].second, files[other].first, *files[other].second,
@@ -627,22 +551,6 @@ class RunCommand final : public Command {
             }
         }
         return Outcome::success();
-    }
-
-    static bool same_file(const std::string& a, const std::string& b) {
-        namespace fs = std::filesystem;
-        std::error_code ec;
-        const fs::path pa = fs::absolute(a, ec).lexically_normal();
-        const fs::path pb = fs::absolute(b, ec).lexically_normal();
-        if (pa == pb) return true;
-        // Symlinks along the way (a file not yet there in a linked directory).
-        const fs::path ca = fs::weakly_canonical(pa, ec);
-        const bool resolved_a = !ec;
-        const fs::path cb = fs::weakly_canonical(pb, ec);
-        if (resolved_a && !ec && ca == cb) return true;
-        // Hard links (and symlinks) to an existing file: the same device and inode.
-        const bool equivalent = fs::equivalent(pa, pb, ec);
-        return !ec && equivalent;
     }
 
     // A program or tool list that cannot be read is a usage error; one that does not parse is

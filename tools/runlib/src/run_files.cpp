@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <system_error>
 
 namespace apci::run {
 
@@ -338,6 +339,20 @@ void OutputFile::discard() noexcept {
         slot_ = -1;
         temp_.clear();
     }
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path pa = fs::absolute(a, ec).lexically_normal();
+    const fs::path pb = fs::absolute(b, ec).lexically_normal();
+    if (pa == pb) return true;
+    const fs::path ca = fs::weakly_canonical(pa, ec);
+    const bool resolved_a = !ec;
+    const fs::path cb = fs::weakly_canonical(pb, ec);
+    if (resolved_a && !ec && ca == cb) return true;
+    const bool equivalent = fs::equivalent(pa, pb, ec);
+    return !ec && equivalent;
 }
 
 }  // namespace apci::run

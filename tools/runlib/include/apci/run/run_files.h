@@ -34,6 +34,12 @@ enum class BoundedRead {
 // Reads `fd` to its end into `text`, refusing more than `limit` bytes.
 BoundedRead read_bounded(int fd, std::size_t limit, std::string& text, int& error);
 
+// Whether two paths name the same file, so that an output would overwrite an input or two
+// outputs mix: the same path once absolute and normalised, the same after symbolic links along
+// the way (a file not yet there in a linked directory), or (both existing) the same device and
+// inode, which catches a hard link too.
+bool same_file(const std::string& a, const std::string& b);
+
 // Blocks the signals that remove temporary files while it lives (a temporary file is created
 // and registered, or renamed and forgotten, as one step; a group of outputs is published
 // together). Signals arriving meanwhile are delivered when it ends.

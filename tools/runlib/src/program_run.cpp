@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: MIT
+#include "apci/run/program_run.h"
+
+#include <utility>
+
+namespace apci::run {
+
+nc::Result<RunInputs> load_run_inputs(const RunInputFiles& files) {
+    RunInputs in;
+    in.tools_name = files.tools_name;
+    in.corrections_name = files.corrections_name;
+    if (files.tools) {
+        auto loaded = files.tools_is_text ? nc::parse_tool_table(*files.tools, "<tools>")
+                                          : nc::load_tool_table(*files.tools);
+        if (!loaded) return loaded.error();
+        in.tools = std::move(loaded.value());
+        in.tools_given = true;
+    }
+    if (files.corrections) {
+        auto loaded = nc::load_correction_table(*files.corrections);
+        if (!loaded) return loaded.error();
+        in.corrections = std::move(loaded.value());
+        in.corrections_given = true;
+    }
+    if (files.plc) {
+        auto loaded = load_plc_script(*files.plc);
+        if (!loaded) return loaded.error();
+        in.plc = std::move(loaded.value());
+    }
+    return in;
+}
+
+nc::Diagnostic name_missing_input(nc::Diagnostic d, const RunInputs& inputs) {
+    if (!inputs.tools_given && d.undefined == nc::Undefined::kTool)
+        d.message += " (no " + inputs.tools_name + " given)";
+    if (!inputs.corrections_given && d.undefined == nc::Undefined::kCorrectionRow)
+        d.message += " (no " + inputs.corrections_name + " given)";
+    return d;
+}
+
+std::optional<SelfApproachMode> self_approach_mode(std::string_view name) noexcept {
+    if (name == "warn") return SelfApproachMode::kWarn;
+    if (name == "error") return SelfApproachMode::kError;
+    if (name == "off") return SelfApproachMode::kOff;
+    return std::nullopt;
+}
+
+ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& inputs,
+                       const RunSettings& settings)
+    : inputs_(inputs),
+      executor_(board, sink, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
+                &inputs.corrections) {
+    executor_.set_self_approach(settings.self_approach);
+    executor_.set_avoid_bottlenecks(settings.bottleneck_blocks);
+    executor_.set_read_ahead(settings.read_ahead, settings.cpus);
+    options_ = executor_.interpreter_options();
+}
+
+std::optional<nc::Diagnostic> ProgramRun::open_validated(const ProgramSource& source) {
+    source_ = source;
+    single_.reset();
+    stream_.reset();
+    program_.reset();
+    auto loaded = source.text ? nc::Program::from_text(*source.text, source.name, options_)
+                              : nc::Program::load(source.path, options_);
+    if (!loaded) return name_missing_input(loaded.error(), inputs_);
+    program_.emplace(std::move(loaded).value());
+    auto events = program_->events();
+    if (!events) return events.error();
+    stream_.emplace(std::move(events).value());
+    return std::nullopt;
+}
+
+std::optional<nc::Diagnostic> ProgramRun::open_one_pass(const ProgramSource& source) {
+    source_ = source;
+    single_.reset();
+    stream_.reset();
+    program_.reset();
+    if (source.text) {
+        single_.emplace(nc::SinglePass::from_text(*source.text, source.name, options_));
+        return std::nullopt;
+    }
+    auto opened = nc::SinglePass::open_file(source.path, options_);
+    if (!opened) return name_missing_input(opened.error(), inputs_);
+    single_.emplace(std::move(opened).value());
+    return std::nullopt;
+}
+
+std::optional<nc::Diagnostic> ProgramRun::validate_first() {
+    if (!single_) return std::nullopt;
+    return open_validated(ProgramSource(source_));
+}
+
+std::uint64_t ProgramRun::program_bytes() const noexcept {
+    return single_ ? single_->size() : 0;
+}
+
+std::uint64_t ProgramRun::validated_blocks() const noexcept {
+    return program_ ? program_->summary().blocks : 0;
+}
+
+nc::EventStream& ProgramRun::events() {
+    return single_ ? single_->events() : *stream_;
+}
+
+RunOutcome ProgramRun::run() {
+    return executor_.run(events());
+}
+
+std::optional<nc::Diagnostic> ProgramRun::finish(RunOutcome& outcome) {
+    std::uint64_t blocks = validated_blocks();
+    if (single_) {
+        auto valid = single_->finish();
+        if (!valid) return name_missing_input(valid.error(), inputs_);
+        blocks = valid.value().blocks;
+    }
+    outcome.totals.file = source_.name;
+    outcome.totals.blocks = blocks;
+    return std::nullopt;
+}
+
+nc::Result<RunOutcome> run_program(apci::Board& board, RunSink& sink, const RunInputs& inputs,
+                                   const ProgramSource& source, const RunSettings& settings) {
+    ProgramRun program(board, sink, inputs, settings);
+    if (auto refused = program.open_validated(source)) return std::move(*refused);
+    RunOutcome outcome = program.run();
+    if (auto refused = program.finish(outcome)) return std::move(*refused);
+    return outcome;
+}
+
+}  // namespace apci::run
