@@ -10,6 +10,7 @@
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "apci/run/executor.h"
+#include "apci/run/program_run.h"
 
 namespace apci::test {
 namespace {
@@ -170,21 +171,18 @@ EmulatorRun run_on_emulator(std::string_view text, const std::string& name,
         out.error = "cannot open the embedded emulator";
         return out;
     }
-    apci::run::ProgramExecutor executor(board, sink, &tools);
-    apci::nc::InterpreterOptions options;
-    options.start_position = executor.position();
-    options.tools = &tools;
-    auto program = apci::nc::Program::from_text(text, name, options);
-    if (!program) {
-        out.error = "program: " + program.error().to_string();
+    // As apcictl runs it (program_run.h), the check warning.
+    apci::run::RunInputs inputs;
+    inputs.tools = tools;
+    inputs.tools_given = true;
+    auto ran =
+        apci::run::run_program(board, sink, inputs, apci::run::ProgramSource::in_memory(text, name),
+                               apci::run::RunSettings{});
+    if (!ran) {
+        out.error = "program: " + ran.error().to_string();
         return out;
     }
-    auto stream = program.value().events();
-    if (!stream) {
-        out.error = "program: " + stream.error().to_string();
-        return out;
-    }
-    out.outcome = executor.run(stream.value());
+    out.outcome = std::move(ran.value());
     return out;
 }
 

@@ -181,3 +181,49 @@ TEST_F(ApcictlRun, AProgramFromAPipeRunsOnTheEmbeddedBoard) {
 }
 
 }  // namespace
+
+// --one-thread: the front end, the board, the check and the writers on the caller's thread; the
+// same outputs byte for byte and the same summary, for a milling program, an OTC program with
+// its PLC script, a program the check warns on and one where a finding is the run's error.
+TEST_F(ApcictlRun, OneThreadWritesTheSameOutputsByteForByte) {
+    const std::string spike =
+        write("spike.nc",
+              "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+              "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+              "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n");
+    const std::string spike_tools = tools(5.0);
+    struct Case {
+        std::vector<std::string> args;
+        int exit;
+    };
+    const std::vector<Case> cases{
+        {{kExamples + "/wr_quad_disc.nc", "--tools", kExamples + "/tools/wr_quad_disc.tools"}, 0},
+        {{kExamples + "/otc/wr_quad_disc.nc", "--tools", kExamples + "/tools/wr_quad_disc.tools",
+          "--plc", kExamples + "/otc/plc/wr_quad_disc.plc"},
+         0},
+        {{spike, "--tools", spike_tools}, 0},
+        {{spike, "--tools", spike_tools, "--self-approach", "error"}, 1},
+    };
+    for (const Case& c : cases) {
+        std::string outputs[2];
+        std::string summaries[2];
+        for (const int one : {0, 1}) {
+            std::vector<std::string> args{"run"};
+            args.insert(args.end(), c.args.begin(), c.args.end());
+            const std::string stem = path(one != 0 ? "one" : "threads");
+            args.insert(args.end(),
+                        {"--json", stem + ".json", "--svg", stem + ".svg", "--csv", stem + ".csv"});
+            if (one != 0) args.emplace_back("--one-thread");
+            const ProcessResult r = apcictl(args);
+            EXPECT_EQ(r.exit_code, c.exit) << c.args[0] << r.err;
+            outputs[one] =
+                read_text(stem + ".json") + read_text(stem + ".svg") + read_text(stem + ".csv");
+            summaries[one] = r.out;
+        }
+        EXPECT_GT(outputs[0].size(), 1000u) << c.args[0];
+        EXPECT_TRUE(outputs[0] == outputs[1]) << c.args[0];
+        EXPECT_EQ(summaries[0], summaries[1]) << c.args[0];
+    }
+    // The warnings and the error are there to compare.
+    EXPECT_TRUE(contains(read_text(path("threads.json")), "SelfApproach"));
+}

@@ -28,6 +28,7 @@
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
 #include "apci/run/executor.h"
+#include "apci/run/program_run.h"
 #include "cam_programs.h"
 #include "stock_oracle.h"
 
@@ -61,11 +62,15 @@ struct CaseRun {
     std::vector<run::PathSegment> path;
 };
 
-CaseRun run_program(const CamProgram& p) {
+// The program run as apcictl runs it (program_run.h), the check warning.
+CaseRun run_case(const CamProgram& p) {
     CaseRun out;
-    auto tools = nc::parse_tool_table(p.tool_list, "cam.tools");
-    if (!tools) {
-        out.setup_error = "tool list: " + tools.error().to_string();
+    run::RunInputFiles files;
+    files.tools = p.tool_list;
+    files.tools_is_text = true;
+    auto inputs = run::load_run_inputs(files);
+    if (!inputs) {
+        out.setup_error = "tool list: " + inputs.error().to_string();
         return out;
     }
     apci::Board board("emu:");
@@ -74,21 +79,14 @@ CaseRun run_program(const CamProgram& p) {
         return out;
     }
     Recorder sink;
-    run::ProgramExecutor executor(board, sink, &tools.value());
-    nc::InterpreterOptions options;
-    options.start_position = executor.position();
-    options.tools = &tools.value();
-    auto program = nc::Program::from_text(p.text, "cam.nc", options);
-    if (!program) {
-        out.setup_error = "program: " + program.error().to_string();
+    auto ran =
+        run::run_program(board, sink, inputs.value(),
+                         run::ProgramSource::in_memory(p.text, "cam.nc"), run::RunSettings{});
+    if (!ran) {
+        out.setup_error = "program: " + ran.error().to_string();
         return out;
     }
-    auto stream = program.value().events();
-    if (!stream) {
-        out.setup_error = "program: " + stream.error().to_string();
-        return out;
-    }
-    out.outcome = executor.run(stream.value());
+    out.outcome = std::move(ran.value());
     out.path = std::move(sink.path);
     return out;
 }
@@ -133,7 +131,7 @@ struct Verdict {
 
 Verdict judge(const CamProgram& p) {
     Verdict v;
-    const CaseRun run = run_program(p);
+    const CaseRun run = run_case(p);
     auto fail = [&](std::string outcome, const std::string& why) {
         v.outcome = std::move(outcome);
         v.ok = false;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "apci/apci.hpp"
@@ -302,14 +303,17 @@ TEST(RunProgram, TheSelfApproachModeReachesTheRun) {
     EXPECT_TRUE(sink.segments.empty());
 }
 
-// With read-ahead the NC front end runs on a thread of its own while the board runs; without
-// it, on the caller's thread alone. The program is longer than the reader may run ahead
-// (read_ahead.h), so the reader is still there when the first segment comes back.
-TEST(RunProgram, ReadAheadRunsTheFrontEndOnAThreadOfItsOwn) {
+// With threads the NC front end runs on a thread of its own and the caller's sink on another
+// while the board runs; without, everything on the caller's thread. The program is longer than
+// the reader may run ahead (read_ahead.h), so the reader is still there when the first segment
+// comes back.
+TEST(RunProgram, ThreadsRunTheFrontEndAndTheSinkOnThreadsOfTheirOwn) {
     struct Threads final : RunSink {
         int most = 0;
+        std::thread::id thread;
         void executed(const PathSegment&) override {
             most = std::max(most, apci::test::thread_count());
+            thread = std::this_thread::get_id();
         }
     };
     const int before = apci::test::baseline_thread_count();
@@ -318,15 +322,16 @@ TEST(RunProgram, ReadAheadRunsTheFrontEndOnAThreadOfItsOwn) {
     for (int i = 0; i < 20000; ++i)
         zigzag += "G1 X" + std::to_string(i % 2) + " Y" + std::to_string(i) + "\n";
     zigzag += "M30\n";
-    for (const bool ahead : {false, true}) {
+    for (const bool threads : {false, true}) {
         apci::Board board("emu:");
         Threads sink;
         RunSettings settings;
-        settings.read_ahead = ahead;
+        settings.threads = threads;
         auto out =
             run_program(board, sink, in, ProgramSource::in_memory(zigzag, "zigzag.nc"), settings);
         ASSERT_TRUE(out) << out.error().to_string();
-        EXPECT_EQ(sink.most, before + (ahead ? 1 : 0)) << "read-ahead " << ahead;
+        EXPECT_EQ(sink.most, before + (threads ? 2 : 0)) << "threads " << threads;
+        EXPECT_EQ(sink.thread == std::this_thread::get_id(), !threads);
     }
 }
 

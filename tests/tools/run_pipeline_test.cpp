@@ -2,8 +2,8 @@
 // The output pipeline of `apcictl run` (pipeline.h) and its ring (spsc_ring.h): order, the
 // bound, either end ending the stream, a writer's failure reaching the caller, no thread left
 // behind, and a run through the pipeline writing the same bytes as one without it.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <pthread.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -27,7 +27,9 @@
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/pipeline.h"
+#include "apci/run/program_run.h"
 #include "apci/run/run_files.h"
+#include "apci/run/self_approach_sink.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
@@ -473,7 +475,7 @@ struct Written {
     RunTotals totals;
 };
 
-Written run_program(const std::string& text, bool pipelined) {
+Written run_written(const std::string& text, bool pipelined) {
     auto tools =
         nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 1\n", "t.tools");
     EXPECT_TRUE(tools);
@@ -500,8 +502,8 @@ Written run_program(const std::string& text, bool pipelined) {
 
 TEST(RunPipeline, ARunWritesTheSameBytesThroughThePipeline) {
     const std::string text = program_text(400);  // about 5,600 segments: many batches
-    const Written direct = run_program(text, false);
-    const Written piped = run_program(text, true);
+    const Written direct = run_written(text, false);
+    const Written piped = run_written(text, true);
     EXPECT_GT(direct.json.size(), 500000u);
     EXPECT_EQ(piped.json, direct.json);
     EXPECT_EQ(piped.svg, direct.svg);
@@ -511,8 +513,8 @@ TEST(RunPipeline, ARunWritesTheSameBytesThroughThePipeline) {
 // The lengths measured and summed on the writer thread are those the executor sums itself.
 TEST(RunPipeline, ARunThroughThePipelineHasTheSameTotalsBitForBit) {
     const std::string text = program_text(200);
-    const Written direct = run_program(text, false);
-    const Written piped = run_program(text, true);
+    const Written direct = run_written(text, false);
+    const Written piped = run_written(text, true);
     EXPECT_GT(direct.totals.path_length, 10000.0);
     EXPECT_EQ(piped.totals.path_length, direct.totals.path_length);
     EXPECT_EQ(piped.totals.rapid_length, direct.totals.rapid_length);
@@ -534,30 +536,29 @@ struct CheckedRun {
     std::vector<std::string> warnings, errors;
 };
 
-CheckedRun run_spike(bool pipelined, SelfApproachMode mode) {
-    auto tools =
-        nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n", "t.tools");
-    EXPECT_TRUE(tools);
+// The spike run as a program is run (program_run.h): with threads (the check, where it only
+// warns, behind the pipeline on the writer thread; where it stops the run, before it) or all on
+// the caller's thread.
+CheckedRun run_spike(bool threads, SelfApproachMode mode) {
+    RunInputFiles files;
+    files.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n";
+    files.tools_is_text = true;
+    auto inputs = load_run_inputs(files);
+    EXPECT_TRUE(inputs);
     apci::Board board("emu:");
-    nc::InterpreterOptions options;
-    options.tools = &tools.value();
-    auto program = nc::Program::from_text(kSpike, "spike.nc", options);
-    EXPECT_TRUE(program);
-    auto stream = program.value().events();
     Recorder recorder;
     recorder.want_samples = false;
-    PipelinedSink pipeline(recorder);
-    RunSink* sink = &recorder;
-    if (pipelined) sink = &pipeline;
-    ProgramExecutor executor(board, *sink, &tools.value());
-    executor.set_self_approach(mode);
-    const RunOutcome out = executor.run(stream.value());
-    pipeline.finish();
+    RunSettings settings;
+    settings.threads = threads;
+    settings.self_approach = mode;
+    auto out = apci::run::run_program(board, recorder, inputs.value(),
+                                      ProgramSource::in_memory(kSpike, "spike.nc"), settings);
+    EXPECT_TRUE(out);
     CheckedRun r;
     r.calls = recorder.calls;
-    for (const RunError& w : out.warnings)
+    for (const RunError& w : out.value().warnings)
         r.warnings.push_back(block_text(w.block) + " " + w.code + " " + w.message);
-    for (const RunError& e : out.errors)
+    for (const RunError& e : out.value().errors)
         r.errors.push_back(block_text(e.block) + " " + e.code + " " + e.message);
     return r;
 }
@@ -574,8 +575,8 @@ TEST(RunPipeline, TheWriterThreadRunsTheSelfApproachCheckWithTheSameWarnings) {
     EXPECT_EQ(piped.errors, direct.errors);
 }
 
-// Where a finding stops the run (--self-approach=error), the executor checks on its own thread:
-// the same error, at the same place.
+// Where a finding stops the run (--self-approach=error), the check runs on the executor's
+// thread: the same error, at the same place.
 TEST(RunPipeline, ASelfApproachErrorStopsTheRunAsWithoutThePipeline) {
     const CheckedRun direct = run_spike(false, SelfApproachMode::kError);
     const CheckedRun piped = run_spike(true, SelfApproachMode::kError);
@@ -586,54 +587,108 @@ TEST(RunPipeline, ASelfApproachErrorStopsTheRunAsWithoutThePipeline) {
     EXPECT_TRUE(piped.warnings.empty());
 }
 
-// A sink that takes the check over gets its calls, and the executor checks nothing itself: the
-// run's warnings are the sink's (none here, though the program comes near itself).
-TEST(RunPipeline, ASinkThatTakesTheCheckGetsItsCallsAndGivesTheWarnings) {
-    class Takes final : public RunSink {
-      public:
-        std::vector<std::string> calls;
-        bool takes_self_approach() override { return true; }
-        void programmed(const PathSegment& s) override {
-            calls.push_back("p" + std::to_string(s.block.number));
-        }
-        void self_approach_begin(double radius, int plane, int side,
-                                 const Eigen::Vector2d& edge) override {
-            (void)side;
-            calls.push_back("begin " + std::to_string(radius) + " " + std::to_string(plane) +
-                            (edge.isZero(0.0) ? "" : " edge"));
-        }
-        void self_approach_programmed() override { calls.emplace_back("check"); }
-        void self_approach_end() override { calls.emplace_back("end"); }
-        void self_approach_results(std::vector<RunError>& warnings,
-                                   std::vector<apci::run::SelfApproachFinding>& findings,
-                                   apci::run::SelfApproachLimits& limits) override {
-            (void)findings;
-            calls.emplace_back("results");
-            warnings.push_back(RunError{BlockRef{42, 0}, "SelfApproach", "from the sink"});
-            limits = {};
-        }
-    } sink;
+// A sink of the executor's own: the compensated stretches in their place among the moves, and
+// nothing checked by the executor itself (the check is a sink, self_approach_sink.h): no
+// warning, though the program comes near itself. Through the pipeline, the same calls.
+class Stretches final : public RunSink {
+  public:
+    std::vector<std::string> calls;
+    std::int64_t stop_at = -1;  // take_stop() hands an error after this block's move
+    void programmed(const PathSegment& s) override {
+        calls.push_back("p" + std::to_string(s.block.number));
+        last_ = s.block.number;
+    }
+    void stretch_begin(const CompensatedStretch& s) override {
+        calls.push_back("begin " + std::to_string(s.radius) + " " + std::to_string(s.plane) + " " +
+                        std::to_string(s.side) + (s.edge.isZero(0.0) ? "" : " edge"));
+    }
+    void stretch_end() override { calls.emplace_back("end"); }
+    void walls(bool on) override { calls.push_back(on ? "CDON" : "CDOF"); }
+    void error(const RunError& e, const Point&) override { calls.push_back("error " + e.code); }
+    std::optional<RunError> take_stop() override {
+        if (last_ != stop_at) return std::nullopt;
+        last_ = -1;
+        return RunError{BlockRef{stop_at, 0}, "Stopped", "by the sink"};
+    }
+
+  private:
+    std::int64_t last_ = -1;
+};
+
+RunOutcome run_spike_into(RunSink& sink, const char* text = kSpike) {
     auto tools =
         nc::parse_tool_table("wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n", "t.tools");
-    ASSERT_TRUE(tools);
+    EXPECT_TRUE(tools);
     apci::Board board("emu:");
     nc::InterpreterOptions options;
     options.tools = &tools.value();
-    auto program = nc::Program::from_text(kSpike, "spike.nc", options);
-    ASSERT_TRUE(program);
+    auto program = nc::Program::from_text(text, "spike.nc", options);
+    EXPECT_TRUE(program) << program.error().to_string();
     auto stream = program.value().events();
     ProgramExecutor executor(board, sink, &tools.value());
-    const RunOutcome out = executor.run(stream.value());
-    ASSERT_EQ(out.warnings.size(), 1u);
-    EXPECT_EQ(out.warnings[0].message, "from the sink");
-    // G40 comes before its block's move (N90): the stretch ends, then N90 departs.
-    std::vector<std::string> expected{"p20", "begin 5.000000 17"};
-    for (const char* block : {"p30", "p50", "p60", "p70", "p80"}) {
-        expected.emplace_back(block);
-        expected.emplace_back("check");
+    return executor.run(stream.value());
+}
+
+TEST(RunPipeline, TheExecutorGivesTheStretchesInTheirPlaceAndChecksNothingItself) {
+    Stretches direct;
+    const RunOutcome out = run_spike_into(direct);
+    EXPECT_TRUE(out.warnings.empty());
+    EXPECT_TRUE(out.self_approach.empty());
+    EXPECT_TRUE(out.errors.empty());
+    // G42 begins the stretch before its block's move (N30); G40 ends it before N90 departs.
+    const std::vector<std::string> expected{
+        "p20", "begin 5.000000 17 -1", "p30", "p50", "p60", "p70", "p80", "end", "p90"};
+    EXPECT_EQ(direct.calls, expected);
+    Stretches inner;
+    {
+        PipelinedSink pipeline(inner);
+        (void)run_spike_into(pipeline);
+        pipeline.finish();
     }
-    expected.insert(expected.end(), {"end", "p90", "results"});
+    EXPECT_EQ(inner.calls, expected);
+}
+
+// The stretch runs from G41 to G40: a G0 between is compensated as a traverse and leaves it
+// open; CDOF and CDON go to the sink in their place.
+TEST(RunPipeline, TheStretchRunsFromG41ToG40AndCdofCdonGoInTheirPlace) {
+    Stretches sink;
+    const RunOutcome out = run_spike_into(
+        sink,
+        "N10 G17 G90 D1 F600\nN20 G41 G1 X0 Y0\nN30 X20\nN40 G0 X30\nN50 CDOF\nN60 G1 X40\n"
+        "N70 CDON\nN80 G0 X50\nN90 G0 X60\nN100 G40 G1 X70\nN110 M30\n");
+    for (const RunError& e : out.errors) ADD_FAILURE() << e.message;
+    const std::vector<std::string> expected{"begin 5.000000 17 1",
+                                            "p20",
+                                            "p30",
+                                            "p40",
+                                            "CDOF",
+                                            "p60",
+                                            "CDON",
+                                            "p80",
+                                            "p90",
+                                            "end",
+                                            "p100"};
     EXPECT_EQ(sink.calls, expected);
+}
+
+// A sink's take_stop() stops the run where it was asked: the error recorded with its block, the
+// sink told, nothing programmed after it.
+TEST(RunPipeline, ASinkThatHandsAStopEndsTheRunThere) {
+    Stretches sink;
+    sink.stop_at = 60;
+    const RunOutcome out = run_spike_into(sink);
+    ASSERT_EQ(out.errors.size(), 1u);
+    EXPECT_EQ(out.errors[0].code, "Stopped");
+    EXPECT_EQ(out.errors[0].block.number, 60);
+    EXPECT_EQ(out.errors[0].block.line, 5u);  // the line from the move programmed
+    const std::vector<std::string> expected{"p20", "begin 5.000000 17 -1", "p30", "p50",
+                                            "p60", "error Stopped"};
+    EXPECT_EQ(std::vector<std::string>(
+                  sink.calls.begin(),
+                  sink.calls.begin() +
+                      static_cast<std::ptrdiff_t>(std::min(sink.calls.size(), expected.size()))),
+              expected);
+    for (const std::string& c : sink.calls) EXPECT_NE(c, "p70");
 }
 
 // ---- segments read back once, measured once

@@ -28,7 +28,6 @@
 #include "apci/run/csv_writer.h"
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
-#include "apci/run/pipeline.h"
 #include "apci/run/plc_script.h"
 #include "apci/run/program_run.h"
 #include "apci/run/run_files.h"
@@ -234,6 +233,9 @@ class RunCommand final : public Command {
                        "20240), and warn 'Bottleneck'; 0 (the default): never")
             ->check(CLI::Range(0, apci::run::ProgramExecutor::kMaxBottleneckBlocks) &
                     !CLI::IsMember({1}));
+        app.add_flag("--one-thread", one_thread_,
+                     "Run the NC front end, the board and the writers on this one thread (for "
+                     "debugging: the same outputs, byte for byte)");
         app.add_option("--tools-out", tools_out_,
                        "Write the tool list as the run left it (the OTC wear folded in at tool "
                        "change, [ISG-OTC] section 2.9; - for standard output)");
@@ -276,20 +278,19 @@ class RunCommand final : public Command {
         // and board) keeps one and the two helper threads below share the other
         // (cpu_placement.h); declared first, so the helpers end before it goes.
         std::optional<apci::run::CpuPlacement> placement;
-        if (embedded_board(session.uri())) placement.emplace();
+        if (embedded_board(session.uri()) && !one_thread_) placement.emplace();
         const apci::run::CpuPlacement* const cpus = placement ? &*placement : nullptr;
-        // The writers run on a thread of their own, fed in order through a bounded ring
-        // (pipeline.h); declared after `outputs`, so the thread ends before they go.
-        apci::run::PipelinedSink pipeline(outputs, cpus);
-        apci::run::ProgramRun program(*board, pipeline, inputs, settings(cpus));
+        // The front end reads ahead on a thread of its own and the writers run on another, fed
+        // in order through a bounded ring (pipeline.h; not with --one-thread); declared after
+        // `outputs`, so the threads end before they go.
+        apci::run::ProgramRun program(*board, outputs, inputs, settings(cpus));
 
         if (Outcome o = open_program(embedded_board(session.uri()), files, program); !o.ok())
             return o;
         if (Outcome o = open_outputs(files, program); !o.ok()) return o;
         if (Outcome o = attach_writers(files, program, outputs); !o.ok()) return o;
 
-        apci::run::RunOutcome result = program.run();
-        pipeline.finish();  // every event written; the writer thread has ended
+        apci::run::RunOutcome result = program.run();  // every event written, threads ended
         if (Outcome o = count_blocks(program, outputs, result); !o.ok()) return o;
         const std::string written_error = write_outputs(files, outputs, result);
         return report(files, result, written_error);
@@ -338,11 +339,12 @@ class RunCommand final : public Command {
     }
 
     // The options of the command line that the run takes. The NC front end reads ahead on a
-    // thread of its own (read_ahead.h): the same events, errors and variable reads, the
-    // program parsed while the board runs.
+    // thread of its own (read_ahead.h) and the writers run on another (pipeline.h): the same
+    // events, errors and variable reads, the program parsed and the outputs written while the
+    // board runs; --one-thread keeps everything on this one.
     apci::run::RunSettings settings(const apci::run::CpuPlacement* cpus) const {
         apci::run::RunSettings s;
-        s.read_ahead = true;
+        s.threads = !one_thread_;
         s.cpus = cpus;
         // CLI::IsMember let only the mode names through.
         s.self_approach = apci::run::self_approach_mode(self_approach_)
@@ -572,6 +574,7 @@ class RunCommand final : public Command {
     std::string self_approach_ = "warn";
     int bottleneck_blocks_ = 0;
     bool svg_cycles_ = false;
+    bool one_thread_ = false;
     std::string plane_text_;
     int plane_ = 0;
     // The name the program goes by in messages and outputs.

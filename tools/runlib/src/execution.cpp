@@ -211,22 +211,10 @@ bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
         std::string why = nc::check_move_cycles(segment_length(programmed_move), p.feed, cycle_s);
         if (!why.empty()) return record(at, "Value", std::move(why));
     }
+    // The compensated stretch runs from G41/G42 to G40 (TcUnit): a G0 between goes as a
+    // compensated traverse (move()), and its programmed move is a rapid, no contour element.
     programmed(programmed_move, p.tag);
-    if (comp_on && self_approach_mode_ != SelfApproachMode::kOff) {
-        // A rapid ends the contour on the board; the next move approaches it anew.
-        if (p.kind == APCI_PROFILE_RAPID) {
-            if (!end_self_approach()) return false;
-        } else {
-            if (!(sink_checks_ ? sink_check_active_ : self_approach_.active()))
-                begin_self_approach();
-            if (sink_checks_) {
-                sink_.self_approach_programmed();  // of the move given to programmed() above
-            } else {
-                self_approach_.programmed(programmed_move, findings_);
-                if (!take_findings()) return false;
-            }
-        }
-    }
+    if (!sink_lets_go_on()) return false;
     apci::Result<apci_motion_result> r;
     if (!spool_profile(p, r)) return false;
     if (r.ok()) return true;
@@ -251,35 +239,25 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
     }
 }
 
-void Execution::begin_self_approach() {
+void Execution::begin_stretch() {
     // A turning tool's path is its imaginary tip; the check measures the nose centre.
     const auto edge = objif::map::tc::cutting_edge_offset(cutting_edge, radius);
-    check_edge_ = Eigen::Vector2d(edge[0], edge[1]);
-    if (sink_checks_) {
-        sink_check_active_ = true;
-        sink_.self_approach_begin(radius, comp_plane, comp_side, check_edge_);
-        return;
-    }
-    self_approach_.begin(radius, comp_plane, comp_side);
+    sink_.stretch_begin(
+        CompensatedStretch{radius, comp_plane, comp_side, Eigen::Vector2d(edge[0], edge[1])});
 }
 
 void Execution::walls_on(bool on) {
-    if (self_approach_mode_ == SelfApproachMode::kOff) return;
-    if (sink_checks_) {
-        sink_.self_approach_walls(on);
-        return;
-    }
-    self_approach_.set_walls(on);
+    sink_.walls(on);
 }
 
-bool Execution::end_self_approach() {
-    if (sink_checks_) {
-        sink_check_active_ = false;
-        sink_.self_approach_end();
-        return true;  // warnings only: the run goes on
-    }
-    self_approach_.end(findings_);
-    return take_findings();
+bool Execution::end_stretch() {
+    sink_.stretch_end();
+    return sink_lets_go_on();
+}
+
+bool Execution::sink_lets_go_on() {
+    std::optional<RunError> stop = sink_.take_stop();
+    return !stop || record(stop->block, std::move(stop->code), std::move(stop->message));
 }
 
 // ---- board access
@@ -337,22 +315,6 @@ bool Execution::tc_errors(const BlockRef& at, std::int32_t bits, const std::stri
 void Execution::program_error(const nc::Diagnostic& d) {
     record(BlockRef{d.block == nc::kNoBlockNumber ? kNoBlock : d.block, d.line},
            std::string(nc::error_kind_name(d.kind)), d.to_string());
-}
-
-// Self-approach findings (self_approach.h): warnings, or with --self-approach=error the
-// first one is the run's error (the run stops).
-bool Execution::take_findings() {
-    for (const SelfApproachFinding& f : findings_) {
-        out.self_approach.push_back(f);
-        if (self_approach_mode_ == SelfApproachMode::kError) {
-            findings_.clear();
-            return record(f.path_block, "SelfApproach", describe(f));
-        }
-        out.warnings.push_back(RunError{f.path_block, "SelfApproach", describe(f)});
-        sink_.warning(out.warnings.back(), f.where);
-    }
-    findings_.clear();
-    return true;
 }
 
 // Records an error; returns false (the run stops).
@@ -451,10 +413,7 @@ bool Execution::drain_segments(std::uint64_t pending) {
                 count_segment(out.totals, s);
             }
             sink_.executed(s);
-            if (self_approach_mode_ != SelfApproachMode::kOff && !sink_checks_) {
-                self_approach_.executed(nose_centre_path(s, check_edge_, comp_plane), findings_);
-                if (!take_findings()) return false;
-            }
+            if (!sink_lets_go_on()) return false;
         }
         if (r.value == 0) break;
         pending -= std::min<std::uint64_t>(pending, r.value);

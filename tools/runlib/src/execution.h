@@ -80,8 +80,7 @@ struct HeadState {
 class Execution {
   public:
     Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
-              const nc::CorrectionTable* corrections, SelfApproachMode self_approach,
-              int bottleneck_blocks = 0);
+              const nc::CorrectionTable* corrections, int bottleneck_blocks = 0);
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
     RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr);
@@ -121,8 +120,14 @@ class Execution {
     // A programmed move on its way to the board: to the sink, and to the recent moves.
     void programmed(const PathSegment& s, std::uint32_t tag);
     bool spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r);
-    void begin_self_approach();
-    bool end_self_approach();
+    // The compensated stretch (RunSink::stretch_begin, stretch_end), from G41/G42 (with the
+    // current tool, plane and side) to G40 (TcUnit). end_stretch: false when a sink stopped
+    // the run.
+    void begin_stretch();
+    bool end_stretch();
+    // The sink's error that stops the run (RunSink::take_stop), recorded; false when there
+    // was one.
+    bool sink_lets_go_on();
     // CDON / CDOF: whether the moves programmed from now on are walls for the check.
     void walls_on(bool on);
 
@@ -167,7 +172,6 @@ class Execution {
     bool write_failure(const BlockRef& at, apci::Status status, std::string_view what);
     bool tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text);
     void program_error(const nc::Diagnostic& d);
-    bool take_findings();
     void report_bottleneck(const detail::Bottleneck& b);
     Point where(const BlockRef& at);
     bool make_room();
@@ -181,7 +185,6 @@ class Execution {
     apci::Board& board_;
     RunSink& sink_;
     const nc::ToolTable* tools_;
-    SelfApproachMode self_approach_mode_;
     int bottleneck_blocks_ = 0;  // 0: no bottleneck avoidance (bottleneck.h)
     std::int32_t cycle_us_ = 1000;
     bool tracing_ = false;
@@ -189,10 +192,6 @@ class Execution {
     bool clock_ok_ = true;  // no clock call failed
     bool klartext_ = false;
     bool sink_measures_ = false;  // the sink measures the executed segments (measures_executed)
-    // The sink runs the self-approach check (RunSink::takes_self_approach); whether a stretch
-    // of it is open.
-    bool sink_checks_ = false;
-    bool sink_check_active_ = false;
     // Whether last_board_end_ holds a segment's end.
     bool have_last_board_end_ = false;
     std::uint64_t start_cycle_ = 0;
@@ -207,13 +206,8 @@ class Execution {
     // path and not the axes.
     Eigen::Vector3d last_board_end_ = Eigen::Vector3d::Zero();
     RecentMoves recent_;
-    // A turning tool's cutting edge offset in the plane of the compensation under way: the
-    // self-approach check sees the nose centre (nose_centre_path).
-    Eigen::Vector2d check_edge_ = Eigen::Vector2d::Zero();
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;
-    SelfApproachCheck self_approach_;
-    std::vector<SelfApproachFinding> findings_;
 
     // The units, one per module.
     TcUnit tc_;

@@ -55,11 +55,10 @@ BlockRef block_of(const nc::BlockOrigin& o) noexcept {
 
 Execution::Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
                      const PlcScript* plc, const nc::CorrectionTable* corrections,
-                     SelfApproachMode self_approach, int bottleneck_blocks)
+                     int bottleneck_blocks)
     : board_(board),
       sink_(sink),
       tools_(tools),
-      self_approach_mode_(self_approach),
       bottleneck_blocks_(bottleneck_blocks),
       tc_(*this),
       otc_(*this),
@@ -111,8 +110,6 @@ RunOutcome Execution::run_events(Events& events) {
     // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
     events.set_variable_source(&variables_);
     sink_measures_ = sink_.measures_executed();
-    // Warnings only: the sink may run the check where it has the segments anyway.
-    sink_checks_ = self_approach_mode_ == SelfApproachMode::kWarn && sink_.takes_self_approach();
     set_up_ = setup();
     if (set_up_) {
         nc::Event storage;
@@ -291,23 +288,6 @@ void Execution::finish() {
     if (set_up_ && out.otc_present) otc_.check_out_tool();
     if (set_up_) variables_.read_all();
     out.tools_after = tools_mut;
-    SelfApproachLimits limits = self_approach_.limits();
-    if (sink_checks_) sink_.self_approach_results(out.warnings, out.self_approach, limits);
-    if (limits.truncated)
-        out.notices.push_back(RunError{
-            limits.truncated_at, "SelfApproachTruncated",
-            fmt::format("from here on the self-approach check compared each compensated element "
-                        "in G{} only with the {} distinct elements before it (fewer where they "
-                        "are long): where the path comes back near the contour further back than "
-                        "that, it was not checked",
-                        limits.truncated_plane, SelfApproachCheck::kWindow)});
-    if (limits.capped)
-        out.notices.push_back(RunError{
-            {},
-            "SelfApproachCapped",
-            fmt::format("more than {0} pairs of blocks come near each other: the first {0} are "
-                        "reported, and the self-approach check stopped looking there",
-                        SelfApproachCheck::kMaxFindings)});
     if (out.tc_present) tc_.read_registers();
     out.totals.cycles = cycles_seen_ - start_cycle_;
     if (!comp_plane_seen) out.plot_plane = plane;
@@ -438,7 +418,7 @@ Point ProgramExecutor::position() {
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto execution = std::make_unique<exec::Execution>(board_, sink_, tools_, plc_, corrections_,
-                                                       self_approach_, bottleneck_blocks_);
+                                                       bottleneck_blocks_);
     return execution->run(events, read_ahead_, read_ahead_cpus_);
 }
 

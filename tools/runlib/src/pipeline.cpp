@@ -13,7 +13,7 @@ void PipelinedSink::Batch::clear() noexcept {
     samples.clear();
     notes.clear();
     names.clear();
-    begins.clear();
+    stretches.clear();
 }
 
 PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus)
@@ -111,24 +111,13 @@ void PipelinedSink::deliver(Batch& b) {
     for (const auto& [kind, i] : b.order) {
         switch (kind) {
             case Kind::kProgrammed:
-            case Kind::kProgrammedChecked:
                 inner_.programmed(b.segments[i]);
-                if (check_) last_programmed_ = b.segments[i];
-                if (kind == Kind::kProgrammed) break;
-                [[fallthrough]];  // the check of that move
-            case Kind::kCheckProgrammed:
-                if (check_) check_->programmed(last_programmed_, findings_);
-                if (!findings_.empty()) warn_findings();
                 break;
             case Kind::kExecuted: {
                 PathSegment& s = b.segments[i];
                 measure(s);
                 count_segment(measured_, s);
                 inner_.executed(s);
-                if (check_) {
-                    check_->executed(nose_centre_path(s, check_edge_, check_plane_), findings_);
-                    if (!findings_.empty()) warn_findings();
-                }
                 break;
             }
             case Kind::kSample: {
@@ -155,20 +144,14 @@ void PipelinedSink::deliver(Batch& b) {
             case Kind::kBarrier:
                 writer_reached(true);
                 break;
-            case Kind::kCheckStart:
-                check_ = std::make_unique<SelfApproachCheck>();
+            case Kind::kStretchBegin:
+                inner_.stretch_begin(b.stretches[i]);
                 break;
-            case Kind::kCheckBegin:
-                if (check_) check_->begin(b.begins[i].radius, b.begins[i].plane, b.begins[i].side);
-                check_plane_ = b.begins[i].plane;
-                check_edge_ = b.begins[i].edge;
+            case Kind::kStretchEnd:
+                inner_.stretch_end();
                 break;
-            case Kind::kCheckEnd:
-                if (check_) check_->end(findings_);
-                if (!findings_.empty()) warn_findings();
-                break;
-            case Kind::kCheckWalls:
-                if (check_) check_->set_walls(i != 0);
+            case Kind::kWalls:
+                inner_.walls(i != 0);
                 break;
         }
     }
@@ -219,60 +202,25 @@ void PipelinedSink::measured_lengths(double& path, double& rapid) {
     rapid = measured_.rapid_length;
 }
 
-// ---- the self-approach check on the writer thread (the executor's calls, in order)
+// ---- the compensated stretches, in their place among the calls
 
 void PipelinedSink::add_only(Kind kind, std::uint32_t index) {
     if (open_batch() != nullptr) add(kind, index);
 }
 
-bool PipelinedSink::takes_self_approach() {
-    add_only(Kind::kCheckStart);
-    return true;
-}
-
-void PipelinedSink::self_approach_begin(double radius, int plane, int side,
-                                        const Eigen::Vector2d& edge) {
+void PipelinedSink::stretch_begin(const CompensatedStretch& s) {
     Batch* b = open_batch();
     if (b == nullptr) return;
-    b->begins.push_back(Batch::Begin{radius, plane, side, edge});
-    add(Kind::kCheckBegin, static_cast<std::uint32_t>(b->begins.size() - 1));
+    b->stretches.push_back(s);
+    add(Kind::kStretchBegin, static_cast<std::uint32_t>(b->stretches.size() - 1));
 }
 
-void PipelinedSink::self_approach_programmed() {
-    // Mostly it follows the programmed move it checks in the same batch: that event does both.
-    if (filling_ != nullptr && !filling_->order.empty() &&
-        filling_->order.back().first == Kind::kProgrammed) {
-        filling_->order.back().first = Kind::kProgrammedChecked;
-        return;
-    }
-    add_only(Kind::kCheckProgrammed);
+void PipelinedSink::stretch_end() {
+    add_only(Kind::kStretchEnd);
 }
 
-void PipelinedSink::self_approach_end() {
-    add_only(Kind::kCheckEnd);
-}
-
-void PipelinedSink::self_approach_walls(bool on) {
-    add_only(Kind::kCheckWalls, on ? 1 : 0);
-}
-
-// As the executor gives them (Execution::take_findings): a warning each, to the inner sink.
-void PipelinedSink::warn_findings() {
-    for (const SelfApproachFinding& f : findings_) {
-        check_warnings_.push_back(RunError{f.path_block, "SelfApproach", describe(f)});
-        check_findings_.push_back(f);
-        inner_.warning(check_warnings_.back(), f.where);
-    }
-    findings_.clear();
-}
-
-void PipelinedSink::self_approach_results(std::vector<RunError>& warnings,
-                                          std::vector<SelfApproachFinding>& findings,
-                                          SelfApproachLimits& limits) {
-    sync();
-    warnings.insert(warnings.end(), check_warnings_.begin(), check_warnings_.end());
-    findings.insert(findings.end(), check_findings_.begin(), check_findings_.end());
-    if (check_) limits = check_->limits();
+void PipelinedSink::walls(bool on) {
+    add_only(Kind::kWalls, on ? 1 : 0);
 }
 
 void PipelinedSink::finish() {

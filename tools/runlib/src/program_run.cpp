@@ -48,12 +48,29 @@ std::optional<SelfApproachMode> self_approach_mode(std::string_view name) noexce
 ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& inputs,
                        const RunSettings& settings)
     : inputs_(inputs),
-      executor_(board, sink, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
+      head_(chain(sink, settings)),
+      executor_(board, head_, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
                 &inputs.corrections) {
-    executor_.set_self_approach(settings.self_approach);
     executor_.set_avoid_bottlenecks(settings.bottleneck_blocks);
-    executor_.set_read_ahead(settings.read_ahead, settings.cpus);
+    executor_.set_read_ahead(settings.threads, settings.cpus);
     options_ = executor_.interpreter_options();
+}
+
+RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
+    const SelfApproachMode mode = settings.self_approach;
+    if (!settings.threads) {
+        if (mode == SelfApproachMode::kOff) return sink;
+        return check_.emplace(sink, mode);
+    }
+    switch (mode) {
+        case SelfApproachMode::kOff:
+            return pipeline_.emplace(sink, settings.cpus);
+        case SelfApproachMode::kWarn:  // on the writer thread, behind the pipeline
+            return pipeline_.emplace(check_.emplace(sink, mode), settings.cpus);
+        case SelfApproachMode::kError:  // on the executor's thread, where it stops the run
+            break;
+    }
+    return check_.emplace(pipeline_.emplace(sink, settings.cpus), mode);
 }
 
 std::optional<nc::Diagnostic> ProgramRun::open_validated(const ProgramSource& source) {
@@ -104,7 +121,10 @@ nc::EventStream& ProgramRun::events() {
 }
 
 RunOutcome ProgramRun::run() {
-    return executor_.run(events());
+    RunOutcome out = executor_.run(events());
+    if (pipeline_) pipeline_->finish();
+    if (check_) check_->results(out);
+    return out;
 }
 
 std::optional<nc::Diagnostic> ProgramRun::finish(RunOutcome& outcome) {

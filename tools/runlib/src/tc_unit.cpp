@@ -154,7 +154,7 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
     run_.comp_on = true;
     run_.comp_plane = run_.plane;
     run_.comp_side = side == nc::Compensation::kLeft ? 1 : -1;
-    run_.begin_self_approach();
+    run_.begin_stretch();
     if (!run_.comp_plane_seen) {
         run_.comp_plane_seen = true;
         run_.out.plot_plane = run_.plane;
@@ -168,7 +168,7 @@ bool TcUnit::compensation_off(const BlockRef& at) {
     auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
     if (!run_.write(status, std::int32_t{0}, at, "STATUS = 0")) return false;
     run_.comp_on = false;
-    return run_.end_self_approach();
+    return run_.end_stretch();
 }
 
 }  // namespace apci::run::exec

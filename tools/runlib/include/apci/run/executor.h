@@ -32,8 +32,10 @@
 // status name), and the registers are read.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -49,6 +51,16 @@
 #include "apci/run/summary.h"
 
 namespace apci::run {
+
+// What the self-approach check needs of a compensated stretch: the tool radius, the plane (17,
+// 18, 19), the side (+1 left, -1 right) and a turning tool's cutting edge offset in the plane
+// ({first, second}; zero for others: the check measures the nose centre, nose_centre_path).
+struct CompensatedStretch {
+    double radius = 0.0;
+    int plane = 17;
+    int side = 1;
+    Eigen::Vector2d edge = Eigen::Vector2d::Zero();
+};
 
 // Where the executor's output goes; every method is optional.
 class RunSink {
@@ -96,37 +108,20 @@ class RunSink {
         (void)w;
         (void)where;
     }
-    // ---- The self-approach check (self_approach.h) off the executor's thread, where it only
-    // warns (SelfApproachMode::kWarn). True when the sink takes it over: it then runs a
-    // SelfApproachCheck itself on the executor's calls in their order (executed() on every
-    // executed segment, the three below) and gives each warning to warning() where the
-    // executor would have. Asked once, at the start of the run.
-    virtual bool takes_self_approach() { return false; }
-    // SelfApproachCheck::begin (the tool radius, the plane, the tool's side: +1 left, -1
-    // right); programmed() of the move just given to programmed(); end().
-    // `edge`: a turning tool's cutting edge offset in the plane ({first, second}; zero for
-    // others): the check measures the nose centre, nose_centre_path() of every executed segment.
-    virtual void self_approach_begin(double radius, int plane, int side,
-                                     const Eigen::Vector2d& edge) {
-        (void)radius;
-        (void)plane;
-        (void)side;
-        (void)edge;
-    }
-    virtual void self_approach_programmed() {}
-    virtual void self_approach_end() {}
-    // SelfApproachCheck::set_walls: CDON (true) or CDOF from the next programmed move on.
-    virtual void self_approach_walls(bool on) { (void)on; }
-    // Appends the warnings so far and their findings, in order, and says what the check left
-    // out; waits
-    // until the sink has had every call.
-    virtual void self_approach_results(std::vector<RunError>& warnings,
-                                       std::vector<SelfApproachFinding>& findings,
-                                       SelfApproachLimits& limits) {
-        (void)warnings;
-        (void)findings;
-        (void)limits;
-    }
+    // ---- The tool radius compensation as the run goes (the facts the self-approach check,
+    // self_approach_sink.h, works on; other sinks pass them on or ignore them).
+    // A compensated stretch begins: given before its first move to programmed(). The moves
+    // programmed while it is open, other than rapids, are its contour elements.
+    virtual void stretch_begin(const CompensatedStretch& s) { (void)s; }
+    // The stretch ends (G40, a rapid, a change of side).
+    virtual void stretch_end() {}
+    // CDON (true) or CDOF: whether the moves programmed from here on are walls.
+    virtual void walls(bool on) { (void)on; }
+    // A sink that must stop the run (the self-approach check where a finding is the run's
+    // error) hands the error here once; the executor asks after every programmed(),
+    // executed() and stretch_end(), records it and stops. Sinks behind the output pipeline
+    // (pipeline.h) are not asked: they cannot stop the run.
+    virtual std::optional<RunError> take_stop() { return std::nullopt; }
     // Blocks read so far by the execution pass, and bytes of the program (the stream's
     // offset()), as the stream said them with the last event executed (called every few
     // thousand events).
@@ -144,12 +139,13 @@ BlockRef decode_block_tag(std::uint32_t tag) noexcept;
 struct RunOutcome {
     RunTotals totals;                       // file and blocks are the caller's to fill
     std::vector<RunError> errors;           // empty: the program ran to its end
-    // What the run found questionable without stopping: the compensated path coming closer
-    // than the tool radius to the contour where it comes back near itself ("SelfApproach",
-    // self_approach.h).
+    // What the run found questionable without stopping: moves left out by bottleneck
+    // avoidance ("Bottleneck"), then, where a SelfApproachSink checked the run
+    // (self_approach_sink.h, results()), the compensated path coming closer than the tool
+    // radius to the contour where it comes back near itself ("SelfApproach").
     std::vector<RunError> warnings;
     // The self-approach check's findings behind those warnings (or the error), in the same
-    // order: both blocks, the least distance, where.
+    // order: both blocks, the least distance, where (filled by the SelfApproachSink).
     std::vector<SelfApproachFinding> self_approach;
     std::vector<GroupRegisters> registers;  // groups 1..3 at the end; empty without optionTC
     int plot_plane = 17;  // the plane of the first compensation, else the last plane in force
@@ -167,10 +163,6 @@ struct RunOutcome {
     // one, at the end) folded into its radius and length, its wear fields added up.
     nc::ToolTable tools_after;
 };
-
-// What the run does where the compensated path comes near the contour away from its corners
-// (self_approach.h): a warning (the default), the run's error, or nothing checked.
-enum class SelfApproachMode { kWarn, kError, kOff };
 
 class ProgramExecutor {
   public:
@@ -204,7 +196,6 @@ class ProgramExecutor {
     nc::InterpreterOptions interpreter_options();
     // Executes the stream to its end or to the first error.
     RunOutcome run(nc::EventStream& events);
-    void set_self_approach(SelfApproachMode mode) noexcept { self_approach_ = mode; }
     // Bottleneck avoidance as SINUMERIK's CDON does it (docs/compensation.md, "Avoidance"):
     // 0 off (the default), else how many moves back the path of each compensated move is
     // compared with (kMinBottleneckBlocks..kMaxBottleneckBlocks): where two paths cross, the
@@ -227,7 +218,6 @@ class ProgramExecutor {
     const nc::ToolTable* tools_;
     const PlcScript* plc_;
     const nc::CorrectionTable* corrections_;
-    SelfApproachMode self_approach_ = SelfApproachMode::kWarn;
     int bottleneck_blocks_ = 0;
     bool read_ahead_ = false;
     const CpuPlacement* read_ahead_cpus_ = nullptr;

@@ -18,9 +18,10 @@
 //     has it, and sums the lengths in their order as count_segment() does, which
 //     measured_lengths() hands back once the writer has had every segment: the inner sink and
 //     the totals see the same values, bit for bit, as when the executor measured them;
-//   - the self-approach check where it only warns (takes_self_approach()): the writer thread
-//     runs it on the same calls in the same order and gives the inner sink each warning where
-//     the executor would have; self_approach_results() hands the warnings back;
+//   - the compensated stretches (stretch_begin, stretch_end, walls) go to the inner sink in
+//     their place like every other call: a SelfApproachSink there (self_approach_sink.h) checks
+//     the run on the writer thread. The inner sink cannot stop the run (take_stop() is not
+//     passed on): a check whose finding stops the run stands before the pipeline;
 //   - errors: an exception of the inner sink on the writer thread stops the writer (the
 //     producer drops what follows instead of waiting) and is rethrown by finish(). Write
 //     errors the writers remember (TextSink) are theirs to report after finish(), as before;
@@ -43,9 +44,8 @@
 #include <vector>
 
 #include "apci/apci.h"
-#include "apci/run/executor.h"
-#include "apci/run/self_approach.h"
 #include "apci/run/cpu_placement.h"
+#include "apci/run/executor.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 
@@ -78,16 +78,9 @@ class PipelinedSink final : public RunSink {
     bool measures_executed() const override { return true; }
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
-    bool takes_self_approach() override;
-    void self_approach_begin(double radius, int plane, int side,
-                             const Eigen::Vector2d& edge) override;
-    void self_approach_programmed() override;
-    void self_approach_end() override;
-    void self_approach_walls(bool on) override;
-    // Waits until the writer thread has had every event handed over (or stopped).
-    void self_approach_results(std::vector<RunError>& warnings,
-                               std::vector<SelfApproachFinding>& findings,
-                               SelfApproachLimits& limits) override;
+    void stretch_begin(const CompensatedStretch& s) override;
+    void stretch_end() override;
+    void walls(bool on) override;
 
     // Hands over the last batch, waits until the inner sink has had every event, and ends the
     // writer thread. Rethrows the exception that stopped the writer, if one did. Idempotent.
@@ -105,13 +98,10 @@ class PipelinedSink final : public RunSink {
         kWarning,
         kAxes,
         kAxisNumbers,
-        kBarrier,     // measured_lengths(): the writer has had every event before it
-        kCheckStart,  // the self-approach check: the writer runs it from here on
-        kCheckBegin,
-        kCheckProgrammed,
-        kProgrammedChecked,  // kProgrammed followed by kCheckProgrammed, as one event
-        kCheckEnd,
-        kCheckWalls  // the index is 1 for CDON, 0 for CDOF
+        kBarrier,  // measured_lengths(): the writer has had every event before it
+        kStretchBegin,
+        kStretchEnd,
+        kWalls  // the index is 1 for CDON, 0 for CDOF
     };
     struct Sample {
         std::uint64_t cycle = 0;
@@ -131,12 +121,7 @@ class PipelinedSink final : public RunSink {
         std::vector<Sample> samples;
         std::vector<Note> notes;
         std::vector<std::string> names;
-        struct Begin {
-            double radius;
-            int plane, side;
-            Eigen::Vector2d edge;
-        };
-        std::vector<Begin> begins;  // self_approach_begin's
+        std::vector<CompensatedStretch> stretches;  // stretch_begin's
         std::array<int, 3> xyz{0, 1, 2};
         void clear() noexcept;
     };
@@ -151,7 +136,6 @@ class PipelinedSink final : public RunSink {
     void writer_reached(bool barrier) noexcept;
     void sync();  // waits until the writer has had every event so far (or ended)
     void add_only(Kind kind, std::uint32_t index = 0);  // an event with nothing but its kind
-    void warn_findings();                               // writer: the check's findings out
     void stop() noexcept;
 
     RunSink& inner_;
@@ -175,17 +159,6 @@ class PipelinedSink final : public RunSink {
     std::condition_variable synced_;
     std::uint64_t barriers_passed_ = 0;
     bool writer_ended_ = false;
-    // The writer thread's self-approach check (from kCheckStart), its findings, its warnings,
-    // and the last programmed move (the one kCheckProgrammed checks).
-    std::unique_ptr<SelfApproachCheck> check_;
-    // The stretch under check: its plane and a turning tool's cutting edge offset (the check
-    // sees the nose centre, nose_centre_path).
-    int check_plane_ = 17;
-    Eigen::Vector2d check_edge_ = Eigen::Vector2d::Zero();
-    std::vector<SelfApproachFinding> findings_;
-    std::vector<RunError> check_warnings_;
-    std::vector<SelfApproachFinding> check_findings_;  // behind check_warnings_
-    PathSegment last_programmed_;
 };
 
 }  // namespace apci::run

@@ -10,6 +10,11 @@
 //   program   validated whole before anything runs (open_validated), or, where nobody sees the
 //             run's effects before it is over (the embedded emulator, every output held back),
 //             validated while it runs (open_one_pass) and finished afterwards (finish);
+//   sinks     the chain the executor feeds (one place): the self-approach check
+//             (self_approach_sink.h) where the settings ask for it, and with threads the output
+//             pipeline (pipeline.h) with the caller's sink behind it: the check before the
+//             pipeline where a finding stops the run (it must stop there), after it (on the
+//             writer thread) where it only warns;
 //   refusals  a program that does not validate because it needs an input that was not given
 //             (D n without a tool list, FUNCTION CORRDATA without a correction table) says so
 //             in the caller's words for that input, decided by the diagnostic's kind
@@ -28,7 +33,9 @@
 #include "apci/nc/tools.h"
 #include "apci/run/cpu_placement.h"
 #include "apci/run/executor.h"
+#include "apci/run/pipeline.h"
 #include "apci/run/plc_script.h"
+#include "apci/run/self_approach_sink.h"
 
 namespace apci::run {
 
@@ -70,9 +77,11 @@ struct RunSettings {
     SelfApproachMode self_approach = SelfApproachMode::kWarn;
     // 0: no bottleneck avoidance, else ProgramExecutor::kMinBottleneckBlocks..kMax...
     int bottleneck_blocks = 0;
-    // The NC front end on a thread of its own (read_ahead.h); with `cpus` (which must outlive
-    // the run), placed as that says.
-    bool read_ahead = false;
+    // The NC front end on a thread of its own (read_ahead.h) and the caller's sink on another
+    // (pipeline.h); off, everything runs on the caller's thread (the same calls in the same
+    // order: for debugging). With `cpus` (which must outlive the run), the helper threads are
+    // placed as that says.
+    bool threads = false;
     const CpuPlacement* cpus = nullptr;
 };
 
@@ -126,7 +135,10 @@ class ProgramRun {
     // Validated: the program's blocks. In one pass: 0 (known after finish()).
     std::uint64_t validated_blocks() const noexcept;
 
-    // Executes the program opened, to its end or to the first error.
+    // Executes the program opened, to its end or to the first error; with threads, every call
+    // has reached the caller's sink when it returns (the writer thread has ended, and an
+    // exception the caller's sink threw there is thrown here). The outcome holds the
+    // self-approach check's findings.
     RunOutcome run();
     // After run(): in one pass, the rest of the program validated (its refusal, or nothing);
     // the outcome's totals get the program's name and block count.
@@ -134,8 +146,15 @@ class ProgramRun {
 
   private:
     nc::EventStream& events();
+    // The chain of sinks in front of `sink` the settings ask for; its head.
+    RunSink& chain(RunSink& sink, const RunSettings& settings);
 
     const RunInputs& inputs_;
+    // The chain's links (declared before the executor that feeds them; the pipeline ends
+    // before a check behind it goes).
+    std::optional<SelfApproachSink> check_;
+    std::optional<PipelinedSink> pipeline_;
+    RunSink& head_;
     ProgramExecutor executor_;
     nc::InterpreterOptions options_;
     ProgramSource source_;
