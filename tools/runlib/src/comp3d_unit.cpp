@@ -50,8 +50,8 @@ bool Comp3dUnit::setup(const BlockRef& at) {
         {c3::kIdxTcpm, 0},
         {c3::kIdxSide, 40},
         {c3::kIdxArm, 0},
-        {c3::kIdxHeadAxisB, run_.head.b_axis},
-        {c3::kIdxHeadAxisC, run_.head.c_axis}};
+        {c3::kIdxHeadAxisB, run_.head().b_axis},
+        {c3::kIdxHeadAxisC, run_.head().c_axis}};
     for (int k = 0; k < 3; ++k) {
         auto o = c3_object(c3::kIdxCallDeltas, k);
         if (!write(o, 0.0, at, "CallDeltas")) return false;
@@ -110,7 +110,7 @@ bool Comp3dUnit::tool_call(const BlockRef& at, const nc::ToolCallDeltas& e) {
 // M128 / FUNCTION TCPM / M129 / FUNCTION RESET TCPM. Lines with RL/RR under TCPM are the 3D
 // module's (peripheral milling), so a 2D radius compensation under way ends first.
 bool Comp3dUnit::tcpm(const BlockRef& at, const nc::TcpmChange& e) {
-    if (e.on && run_.comp_on && !run_.tc_unit().compensation_off(at)) return false;
+    if (e.on && run_.tc_unit().state().comp_on && !run_.tc_unit().compensation_off(at)) return false;
     if (!setting(at, c3::kIdxReference, e.reference == nc::ToolReference::kCentre ? 1 : 0,
                  "Reference") ||
         !setting(at, c3::kIdxTcpm, e.on ? 1 : 0, "Tcpm"))
@@ -169,7 +169,7 @@ bool Comp3dUnit::vector_line(const BlockRef& at, const nc::VectorLineMove& e) {
 bool Comp3dUnit::spool(const BlockRef& at, const PathSegment& programmed,
                        const apci_profile& p) {
     run_.programmed(programmed, p.tag);
-    run_.head.pending = false;
+    run_.head_spooled();
     apci::Result<apci_motion_result> r;
     if (!run_.spool_profile(p, r)) return false;
     if (r.ok()) {

@@ -12,7 +12,6 @@
 
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
-#include "objif/map/cutting_edge.h"
 
 namespace apci::run::exec {
 
@@ -57,40 +56,41 @@ Eigen::Vector3d tool_axis(double b_deg) noexcept {
 
 // The pivot (the machine's X, Y, Z) of a tool tip at tilt b: one tool length behind it.
 Eigen::Vector3d Execution::pivot_of(const Eigen::Vector3d& tip, double b_deg) const noexcept {
-    return tip + head.trafo_length * tool_axis(b_deg);
+    return tip + head_.trafo_length * tool_axis(b_deg);
 }
 
 // The axes stop first, so the segments read back before belong to the old state. Under the
 // transformation the tool length is its own (the pivot one length behind the tip along t(B)),
 // so the TC groups stop applying theirs on the tool axis (LengthMode 0) until #TRAFO OFF.
 bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
-    if (e.on && head.b_axis < 0)
+    if (e.on && head_.b_axis < 0)
         return record(at, "Unsupported", "no free board axis for the head's B");
     if (!run_clock()) return false;
-    if (out.otc_present &&
+    if (out_.otc_present &&
         !otc_.setting(at, otc::kIdxTrafo, e.on ? 1 : 0, e.on ? "#TRAFO ON" : "#TRAFO OFF"))
         return false;
     if (!tc_.length_mode(at, !e.on)) return false;
-    head.trafo = e.on;
-    head.trafo_length = e.tool_length;
+    head_.trafo = e.on;
+    head_.trafo_length = e.tool_length;
     // The next segment starts where the last one ended; under the transformation its start is
     // turned back into the tip by the transformation alone, after it by the length on the axis.
     // (The tip is another frame than the pivot: no fold's jump is read across the switch.)
     start_offset_ = Eigen::Vector3d::Zero();
-    if (!e.on && length_always) start_offset_[plane_axes(plane).third] = length;
+    const TcState& tc = tc_.state();
+    if (!e.on && tc.length_always) start_offset_[plane_axes(tc.plane).third] = tc.length;
     have_last_board_end_ = false;
     return true;
 }
 
 bool Execution::head_turn(const BlockRef& at, const nc::HeadOrientation& e) {
-    if (head.b_axis < 0 || (klartext_ && head.c_axis < 0))
+    if (head_.b_axis < 0 || (klartext_ && head_.c_axis < 0))
         return record(at, "Unsupported",
                       klartext_ ? "no free board axes for the head's B and C"
                                 : "no free board axis for the head's B");
-    head.pending = true;
-    head.at = at;
-    head.b = e.b;
-    head.c = e.c;
+    head_.pending = true;
+    head_.at = at;
+    head_.b = e.b;
+    head_.c = e.c;
     return true;
 }
 
@@ -100,7 +100,7 @@ bool Execution::head_only_move(const BlockRef& at) {
     p.kind = APCI_PROFILE_RAPID;
     p.tag = encode_block_tag(at);
     add_head(p);
-    head.pending = false;
+    head_.pending = false;
     apci::Result<apci_motion_result> r;
     if (!spool_profile(p, r)) return false;
     if (r.ok()) return true;
@@ -148,9 +148,9 @@ bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eig
     // profiles, so it goes as a traverse, compensated as a G01 at the board's rapid feed (no
     // surprise motion: a Z lift stays beside the contour instead of crossing onto it) and still
     // a rapid ([ISG-OTC] section 2: "Eilgangssätze sind verschleißfrei!").
-    if (kind == APCI_PROFILE_RAPID && comp_on) kind = APCI_PROFILE_TRAVERSE;
+    if (kind == APCI_PROFILE_RAPID && tc_.state().comp_on) kind = APCI_PROFILE_TRAVERSE;
     const bool ok = spool(at, s, profile(at, kind, end, feed));
-    head.pending = false;
+    head_.pending = false;
     return ok;
 }
 
@@ -162,7 +162,7 @@ bool Execution::arc(const BlockRef& at, const nc::ArcMove& a) {
     p.arc_axes[0] = static_cast<std::uint8_t>(axis(pa.first));
     p.arc_axes[1] = static_cast<std::uint8_t>(axis(pa.second));
     const Eigen::Vector3d centre =
-        head.trafo ? pivot_of(a.center, head.pending ? head.b : head.b_now) : a.center;
+        head_.trafo ? pivot_of(a.center, head_.pending ? head_.b : head_.b_now) : a.center;
     p.center[0] = centre[pa.first];
     p.center[1] = centre[pa.second];
     return spool(at, s, p);
@@ -175,25 +175,25 @@ apci_profile Execution::profile(const BlockRef& at, std::uint8_t kind, const Eig
     p.tag = encode_block_tag(at);
     p.feed = feed;
     const Eigen::Vector3d target =
-        head.trafo ? pivot_of(end, head.pending ? head.b : head.b_now) : end;
+        head_.trafo ? pivot_of(end, head_.pending ? head_.b : head_.b_now) : end;
     for (int i = 0; i < 3; ++i) {
         const std::int32_t a = axis(i);
         p.axes = static_cast<std::uint8_t>(p.axes | (1u << a));
         p.target[a] = target[i];
     }
-    if (head.pending) add_head(p);
+    if (head_.pending) add_head(p);
     return p;
 }
 
 // The head's axes join the profile: B, and in Klartext C (DIN programs have no C).
 void Execution::add_head(apci_profile& p) noexcept {
-    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.b_axis));
-    p.target[head.b_axis] = head.b;
+    p.axes = static_cast<std::uint8_t>(p.axes | (1u << head_.b_axis));
+    p.target[head_.b_axis] = head_.b;
     if (klartext_) {
-        p.axes = static_cast<std::uint8_t>(p.axes | (1u << head.c_axis));
-        p.target[head.c_axis] = head.c;
+        p.axes = static_cast<std::uint8_t>(p.axes | (1u << head_.c_axis));
+        p.target[head_.c_axis] = head_.c;
     }
-    head.b_now = head.b;
+    head_.b_now = head_.b;
 }
 
 void Execution::programmed(const PathSegment& s, std::uint32_t tag) {
@@ -239,11 +239,8 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
     }
 }
 
-void Execution::begin_stretch() {
-    // A turning tool's path is its imaginary tip; the check measures the nose centre.
-    const auto edge = objif::map::tc::cutting_edge_offset(cutting_edge, radius);
-    sink_.stretch_begin(
-        CompensatedStretch{radius, comp_plane, comp_side, Eigen::Vector2d(edge[0], edge[1])});
+void Execution::begin_stretch(const CompensatedStretch& s) {
+    sink_.stretch_begin(s);
 }
 
 void Execution::walls_on(bool on) {
@@ -283,7 +280,7 @@ template bool Execution::write(ObjectDescriptor, double, const BlockRef&, std::s
 // A refused write: a TC error bit it set (InitError) names it, else the status does.
 bool Execution::write_failure(const BlockRef& at, apci::Status status, std::string_view what) {
     const std::string text = fmt::format("{}: {}", what, board_.last_error());
-    if (out.tc_present && status != APCI_NO_SUCH_DEVICE) {
+    if (out_.tc_present && status != APCI_NO_SUCH_DEVICE) {
         auto e = group_object(tc::kActiveGroupIndex, tc::kSubError);
         const auto bits = board_.read_int(e);
         if (bits && bits.value != 0) return tc_errors(at, bits.value, text);
@@ -324,7 +321,7 @@ bool Execution::record(BlockRef at, std::string code, std::string message) {
         if (const PathSegment* s = recent_.find(encode_block_tag(at))) at.line = s->block.line;
     RunError e{at, std::move(code), std::move(message)};
     sink_.error(e, where(at));
-    out.errors.push_back(std::move(e));
+    out_.errors.push_back(std::move(e));
     return false;
 }
 
@@ -343,9 +340,9 @@ Point Execution::where(const BlockRef& at) {
 // of them empties with the clock standing still.
 bool Execution::make_room() {
     const std::uint64_t cycles_before = cycles_seen_;
-    const std::uint64_t segments_before = out.totals.segments;
+    const std::uint64_t segments_before = out_.totals.segments;
     if (!run_clock()) return false;
-    if (cycles_seen_ == cycles_before && out.totals.segments == segments_before)
+    if (cycles_seen_ == cycles_before && out_.totals.segments == segments_before)
         return record({}, "Busy", "the spooler is full and the clock does not move it");
     return true;
 }
@@ -408,9 +405,9 @@ bool Execution::drain_segments(std::uint64_t pending) {
         for (std::size_t i = 0; i < r.value; ++i) {
             const PathSegment s = convert(segments_[i]);
             if (sink_measures_) {
-                ++out.totals.segments;  // the lengths are the sink's to measure and sum
+                ++out_.totals.segments;  // the lengths are the sink's to measure and sum
             } else {
-                count_segment(out.totals, s);
+                count_segment(out_.totals, s);
             }
             sink_.executed(s);
             if (!sink_lets_go_on()) return false;
@@ -459,20 +456,21 @@ PathSegment Execution::convert(const apci_segment& b) {
         s.center[i] = b.center[a];
     }
     if (s.kind == SegmentKind::kArc) arc_plane(b, s);
-    if (head.trafo) {
+    if (head_.trafo) {
         // Back to the tool tip, at the B each end has (a B that turns along a line moves the
         // pivot linearly, so the tip is exact at the ends).
-        const double b0 = b.start[head.b_axis], b1 = b.end[head.b_axis];
-        s.start -= head.trafo_length * tool_axis(b0);
-        s.end -= head.trafo_length * tool_axis(b1);
-        s.center -= head.trafo_length * tool_axis(b0);
+        const double b0 = b.start[head_.b_axis], b1 = b.end[head_.b_axis];
+        s.start -= head_.trafo_length * tool_axis(b0);
+        s.end -= head_.trafo_length * tool_axis(b1);
+        s.center -= head_.trafo_length * tool_axis(b0);
     }
     // The length acts on the tool axis of the plane in force: the plane of the contour under
     // G41/G42 (LengthMode 0), the plane now (LengthMode 1; a plane change drains the segments
     // before it, so every segment read after it ran in it).
-    const int z = plane_axes(length_always ? plane : comp_plane).third;
+    const TcState& tc = tc_.state();
+    const int z = plane_axes(tc.length_always ? tc.plane : tc.comp_plane).third;
     Eigen::Vector3d end_offset = Eigen::Vector3d::Zero();
-    if (length_always || ends_length_compensated(s.role)) end_offset[z] = length;
+    if (tc.length_always || ends_length_compensated(s.role)) end_offset[z] = tc.length;
     if (have_last_board_end_ && segments_lost_ == 0) {
         // The nominal path moved by the fold on the tool axis alone: so did the length.
         const Eigen::Vector3d jump = s.start - last_board_end_;

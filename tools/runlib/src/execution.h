@@ -94,7 +94,7 @@ class Execution {
     TempUnit& temp_unit() noexcept { return temp_; }
 
     std::int32_t axis(int program_axis) const noexcept {
-        return axes[static_cast<std::size_t>(program_axis)];
+        return axes_[static_cast<std::size_t>(program_axis)];
     }
     // The board axis of channel axis i (0 X, 1 Y, 2 Z through Axis-Nr; the others as numbered).
     std::int32_t channel_axis(int i) const noexcept { return i < 3 ? axis(i) : i; }
@@ -120,10 +120,9 @@ class Execution {
     // A programmed move on its way to the board: to the sink, and to the recent moves.
     void programmed(const PathSegment& s, std::uint32_t tag);
     bool spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r);
-    // The compensated stretch (RunSink::stretch_begin, stretch_end), from G41/G42 (with the
-    // current tool, plane and side) to G40 (TcUnit). end_stretch: false when a sink stopped
-    // the run.
-    void begin_stretch();
+    // The compensated stretch (RunSink::stretch_begin, stretch_end), from G41/G42 to G40
+    // (TcUnit). end_stretch: false when a sink stopped the run.
+    void begin_stretch(const CompensatedStretch& s);
     bool end_stretch();
     // The sink's error that stops the run (RunSink::take_stop), recorded; false when there
     // was one.
@@ -131,21 +130,16 @@ class Execution {
     // CDON / CDOF: whether the moves programmed from now on are walls for the check.
     void walls_on(bool on);
 
-    // ---- state the units share
-    RunOutcome out;
-    std::array<int, 3> axes{0, 1, 2};
-    int plane = 17;
-    int comp_plane = 17;  // the plane of the compensation under way or last run
-    int comp_side = 1;    // its side: +1 left (G41), -1 right (G42)
-    int current_tool = 0;
-    bool comp_on = false;
-    bool comp_plane_seen = false;
-    bool length_always = false;  // the TC groups' LengthMode 1: the length on every move
-    double length = 0.0;         // WkzLen of the current tool
-    double radius = 0.0;         // RADIUS of the current tool
-    std::int32_t cutting_edge = 0;  // CuttingEdge of the current tool (srk_lage)
-    nc::ToolTable tools_mut;     // the tool list as the run changes it (wear at tool change)
-    HeadState head;
+    // ---- what the run keeps for all units (each module's own state is its unit's: TcUnit's
+    // TcState, ...)
+    // The run's record: errors, notices, registers, variables (every unit adds its own).
+    RunOutcome& outcome() noexcept { return out_; }
+    // The tool list as the run changes it (the OTC module folds the wear in at tool change).
+    nc::ToolTable& tool_list() noexcept { return tools_mut_; }
+    // The head's axes and #TRAFO (set by the executor at setup and by #TRAFO and B/C words).
+    const HeadState& head() const noexcept { return head_; }
+    // The programmed B/C went to the board with a move (the 3D module spooled it).
+    void head_spooled() noexcept { head_.pending = false; }
 
   private:
     // The run, reading `events`: an nc::EventStream or a ReadAhead over one.
@@ -182,6 +176,10 @@ class Execution {
     PathSegment convert(const apci_segment& b);
     void arc_plane(const apci_segment& b, PathSegment& s) const noexcept;
 
+    RunOutcome out_;
+    std::array<int, 3> axes_{0, 1, 2};
+    nc::ToolTable tools_mut_;
+    HeadState head_;
     apci::Board& board_;
     RunSink& sink_;
     const nc::ToolTable* tools_;

@@ -68,7 +68,7 @@ Execution::Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* too
       variables_(*this) {
     segments_.resize(ProgramExecutor::kReadBatch);
     samples_.resize(ProgramExecutor::kReadBatch);
-    if (tools_ != nullptr) tools_mut = *tools_;
+    if (tools_ != nullptr) tools_mut_ = *tools_;
 }
 
 namespace {
@@ -147,11 +147,11 @@ RunOutcome Execution::run_events(Events& events) {
                 program_error(events.error());
                 break;
             }
-            out.totals.blocks_executed = events.blocks_read();
+            out_.totals.blocks_executed = events.blocks_read();
             klartext_ = events.dialect() == nc::Dialect::kKlartext;
             bool ok = true;
             if (avoider) {
-                avoider->take(*event, radius, plane, given, avoided);
+                avoider->take(*event, tc_.state().radius, tc_.state().plane, given, avoided);
                 ok = dispatch_given();
             } else {
                 ok = dispatch(*event);
@@ -169,8 +169,8 @@ RunOutcome Execution::run_events(Events& events) {
     // The variables unit ends with this run; a caller that reads on (nc::SinglePass::finish)
     // reads with the front end's own view.
     events.set_variable_source(nullptr);
-    if (sink_measures_) sink_.measured_lengths(out.totals.path_length, out.totals.rapid_length);
-    return std::move(out);
+    if (sink_measures_) sink_.measured_lengths(out_.totals.path_length, out_.totals.rapid_length);
+    return std::move(out_);
 }
 
 // A bottleneck avoided: a warning naming the blocks left out and where the paths cross.
@@ -178,6 +178,7 @@ void Execution::report_bottleneck(const detail::Bottleneck& b) {
     const auto name = [](const nc::BlockOrigin& o) {
         return o.block >= 0 ? fmt::format("N{}", o.block) : fmt::format("line {}", o.line);
     };
+    const int comp_plane = tc_.state().comp_plane;
     const PlaneAxes a = plane_axes(comp_plane);
     const std::string left_out =
         b.first.line == b.last.line ? name(b.first) : name(b.first) + " to " + name(b.last);
@@ -187,8 +188,8 @@ void Execution::report_bottleneck(const detail::Bottleneck& b) {
                            "(--avoid-bottlenecks {}, as SINUMERIK's CDON)",
                            left_out, name(b.before), name(b.after), b.where[a.first],
                            b.where[a.second], plane_name(comp_plane), bottleneck_blocks_)};
-    out.warnings.push_back(w);
-    sink_.warning(out.warnings.back(), b.where);
+    out_.warnings.push_back(w);
+    sink_.warning(out_.warnings.back(), b.where);
 }
 
 // After an error the rest of the program still goes to a plot, so the place of the error
@@ -214,8 +215,8 @@ void Execution::draw_rest(Events& events) {
 // ---- setup and end
 
 bool Execution::setup() {
-    for (std::size_t i = 0; i < out.axis_names.size(); ++i)
-        out.axis_names[i] = "a" + std::to_string(i);
+    for (std::size_t i = 0; i < out_.axis_names.size(); ++i)
+        out_.axis_names[i] = "a" + std::to_string(i);
     const auto st = board_.motion_status();
     if (!st) return board_failure({}, st.status, "motion status");
     start_cycle_ = st.value.now;
@@ -227,21 +228,21 @@ bool Execution::setup() {
     const auto us = board_.read_int(cycle);
     if (!us) return board_failure({}, us.status, "read InterpolationCycle");
     cycle_us_ = us.value;
-    out.totals.cycle_seconds = static_cast<double>(cycle_us_) * 1e-6;
+    out_.totals.cycle_seconds = static_cast<double>(cycle_us_) * 1e-6;
     // Program units are mm; so is everything the board is told.
     auto pu = apci::object(bm::kBus, bm::kDevice, bm::kIdxPu, 0);
     if (!write(pu, std::int32_t{bm::kPuMillimetre}, {}, "PU")) return false;
 
     if (!read_axis_numbers()) return false;
     place_head();
-    for (std::size_t i = 0; i < out.axis_names.size(); ++i)
-        out.axis_names[i] = axis_column_name(static_cast<int>(i));
-    if (out.tc_present && !tc_.setup()) return false;
+    for (std::size_t i = 0; i < out_.axis_names.size(); ++i)
+        out_.axis_names[i] = axis_column_name(static_cast<int>(i));
+    if (out_.tc_present && !tc_.setup()) return false;
     if (!otc_.setup()) return false;
     if (!temp_.setup()) return false;
 
-    sink_.axes(out.axis_names);
-    sink_.axis_numbers(axes);
+    sink_.axes(out_.axis_names);
+    sink_.axis_numbers(axes_);
     if (sink_.wants_samples()) {
         const auto r = board_.trace_enable(2 * ProgramExecutor::kTraceChunk);
         if (!r) return board_failure({}, r.status, "trace on");
@@ -256,27 +257,27 @@ bool Execution::read_axis_numbers() {
         auto o = init_object(tc::kIdxAxisNr, i);
         const auto r = board_.read_int(o);
         if (r.status == APCI_NO_SUCH_DEVICE) {
-            out.tc_present = false;
-            axes = {0, 1, 2};
+            out_.tc_present = false;
+            axes_ = {0, 1, 2};
             break;
         }
         if (!r) return board_failure({}, r.status, "read Axis-Nr");
-        axes[static_cast<std::size_t>(i)] = r.value;
+        axes_[static_cast<std::size_t>(i)] = r.value;
     }
-    out.axis_numbers = axes;
+    out_.axis_numbers = axes_;
     return true;
 }
 
 // The head's B and C on the first two board axes that are not X, Y or Z (4 and 5 by default).
 void Execution::place_head() noexcept {
     std::array<bool, APCI_AXIS_COUNT> used{};
-    for (const int a : axes) used[static_cast<std::size_t>(a)] = true;
+    for (const int a : axes_) used[static_cast<std::size_t>(a)] = true;
     std::array<std::int32_t, 2> found{-1, -1};
     std::size_t n = 0;
     for (std::int32_t a : {4, 5, 6, 7, 3})
         if (n < found.size() && !used[static_cast<std::size_t>(a)]) found[n++] = a;
-    head.b_axis = found[0];
-    head.c_axis = found[1];
+    head_.b_axis = found[0];
+    head_.c_axis = found[1];
 }
 
 void Execution::finish() {
@@ -284,13 +285,13 @@ void Execution::finish() {
     // failed already is not asked again; its error is recorded.
     if (set_up_ && clock_ok_) (void)run_clock();
     // PLC writes due after the program's last move: the clock runs on to them.
-    if (set_up_ && clock_ok_ && out.errors.empty()) (void)plc_.after_end();
-    if (set_up_ && out.otc_present) otc_.check_out_tool();
+    if (set_up_ && clock_ok_ && out_.errors.empty()) (void)plc_.after_end();
+    if (set_up_ && out_.otc_present) otc_.check_out_tool();
     if (set_up_) variables_.read_all();
-    out.tools_after = tools_mut;
-    if (out.tc_present) tc_.read_registers();
-    out.totals.cycles = cycles_seen_ - start_cycle_;
-    if (!comp_plane_seen) out.plot_plane = plane;
+    out_.tools_after = tools_mut_;
+    if (out_.tc_present) tc_.read_registers();
+    out_.totals.cycles = cycles_seen_ - start_cycle_;
+    if (!tc_.state().comp_plane_seen) out_.plot_plane = tc_.state().plane;
 }
 
 // ---- events: the one table of which unit handles which event
@@ -302,7 +303,7 @@ bool Execution::dispatch(const nc::Event& ev) {
     const bool is_move = std::holds_alternative<nc::RapidMove>(ev.data) ||
                          std::holds_alternative<nc::LineMove>(ev.data) ||
                          std::holds_alternative<nc::VectorLineMove>(ev.data);
-    if (head.pending && !is_move && !head_only_move(head.at)) return false;
+    if (head_.pending && !is_move && !head_only_move(head_.at)) return false;
     if (!plc_.block(ev.origin)) return false;
     return std::visit(
         [&](const auto& e) -> bool {
@@ -339,7 +340,7 @@ bool Execution::dispatch(const nc::Event& ev) {
                                    "AllowOversize");
             } else if constexpr (std::is_same_v<E, nc::HeadOrientation>) {
                 // DIN's B is the B head's (#KIN, docs/design.md section 8); Klartext's B and C
-                // are the 3D module's head.
+                // are the 3D module's head_.
                 return klartext_ ? c3_.head(at, e) : head_turn(at, e);
             } else if constexpr (std::is_same_v<E, nc::OtcChange>) {
                 return otc_.command(at, e.command);
@@ -348,7 +349,7 @@ bool Execution::dispatch(const nc::Event& ev) {
             } else if constexpr (std::is_same_v<E, nc::TrafoChange>) {
                 return trafo(at, e);
             } else if constexpr (std::is_same_v<E, nc::NotEmulated>) {
-                out.notices.push_back(RunError{
+                out_.notices.push_back(RunError{
                     at, "NotEmulated",
                     fmt::format("{} is accepted and not emulated (docs/design.md section 8)",
                                 e.command)});
@@ -367,10 +368,10 @@ bool Execution::dispatch(const nc::Event& ev) {
 }
 
 bool Execution::end_of_program(const BlockRef& at) {
-    if (comp_on) {
+    if (tc_.state().comp_on) {
         // The board ends the compensation at M30 (STATUS = 0): under G139 the tool stays at the
         // last compensated point, under G237 it departs at right angles. Said, as controls do.
-        out.notices.push_back(RunError{
+        out_.notices.push_back(RunError{
             at, "CompensationOnAtEnd",
             "the program ends with radius compensation still on: M30 switches it off where the "
             "tool stands (program G40 with a move to leave the contour)"});

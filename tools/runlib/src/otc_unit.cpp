@@ -28,15 +28,15 @@ bool OtcUnit::setup() {
     auto active = otc_object(otc::kDevChannel, otc::kIdxActive);
     const auto r = run_.board().read_int(active);
     if (r.status == APCI_NO_SUCH_DEVICE) {
-        run_.out.otc_present = false;
+        run_.outcome().otc_present = false;
         return true;
     }
     if (!r) return run_.board_failure({}, r.status, "read OTC Active");
-    run_.out.otc_present = true;
+    run_.outcome().otc_present = true;
     if (r.value != 0 && !write(active, std::int32_t{0}, {}, "#OTC OFF (start)")) return false;
     // Without a free axis the B head cannot turn (#TRAFO ON is refused); ToolAxisB keeps its
     // default then.
-    const std::int32_t b_axis = run_.head.b_axis >= 0 ? run_.head.b_axis : 4;
+    const std::int32_t b_axis = run_.head().b_axis >= 0 ? run_.head().b_axis : 4;
     const std::pair<std::int32_t, std::int32_t> settings[] = {
         {otc::kIdxTrafo, 0},
         {otc::kIdxKinematics, 0},
@@ -59,7 +59,7 @@ bool OtcUnit::setup() {
 }
 
 bool OtcUnit::needed(const BlockRef& at, std::string_view what) {
-    if (run_.out.otc_present) return true;
+    if (run_.outcome().otc_present) return true;
     return run_.no_module(at, what, "the OTC module (bus 1330)");
 }
 
@@ -131,11 +131,7 @@ bool OtcUnit::command(const BlockRef& at, const nc::OtcCommand& c) {
         return false;
     // The wear folded into the tool's length: the segments read back from here on carry
     // the new length.
-    if (!*c.on && run_.out.tc_present) {
-        auto len = group_object(1, tc::kSubWkzLen);
-        const auto l = run_.board().read_double(len);
-        if (l) run_.length = l.value;
-    }
+    if (!*c.on && run_.outcome().tc_present) (void)run_.tc_unit().read_length();
     return true;
 }
 
@@ -143,14 +139,14 @@ bool OtcUnit::command(const BlockRef& at, const nc::OtcCommand& c) {
 bool OtcUnit::change_tool(const BlockRef& at, int index) {
     if (!run_.run_clock()) return false;
     check_out_tool();
-    if (index != run_.current_tool) reported_radius_wear_ = reported_cont_wear_ = 0.0;
+    if (index != run_.tc_unit().state().current_tool) reported_radius_wear_ = reported_cont_wear_ = 0.0;
     return take_tool(at, index);
 }
 
 // D n: the grinding data of wz[n] ([ISG-OTC] section 2.6) become the OTC module's current
 // tool. A new ToolNumber starts the tool's wear from 0 on the board (section 2.9).
 bool OtcUnit::take_tool(const BlockRef& at, int index) {
-    const nc::ToolData* t = index > 0 ? run_.tools_mut.find(index) : nullptr;
+    const nc::ToolData* t = index > 0 ? run_.tool_list().find(index) : nullptr;
     auto number = otc_object(otc::kDevTool, otc::kIdxToolNumber);
     auto typ = otc_object(otc::kDevTool, otc::kIdxToolType);
     auto wear = otc_object(otc::kDevTool, otc::kIdxToolWearConst);
@@ -172,8 +168,8 @@ bool OtcUnit::take_tool(const BlockRef& at, int index) {
 // folded it into its tool table at #OTC OFF: the tool list takes the board's radius and
 // length of the tool and adds the wear to its wear fields.
 void OtcUnit::check_out_tool() {
-    if (run_.current_tool <= 0) return;
-    nc::ToolData* t = run_.tools_mut.find_mutable(run_.current_tool);
+    if (run_.tc_unit().state().current_tool <= 0) return;
+    nc::ToolData* t = run_.tool_list().find_mutable(run_.tc_unit().state().current_tool);
     if (t == nullptr) return;
     auto wr = otc_object(otc::kDevTool, otc::kIdxWearRadius);
     auto wc = otc_object(otc::kDevTool, otc::kIdxWearRadiusCont);
@@ -186,7 +182,7 @@ void OtcUnit::check_out_tool() {
         reported_radius_wear_ = radius_wear.value;
         reported_cont_wear_ = cont_wear.value;
     }
-    if (run_.out.tc_present) {
+    if (run_.outcome().tc_present) {
         auto r = group_object(1, tc::kSubRadius);
         auto l = group_object(1, tc::kSubWkzLen);
         const auto radius = run_.board().read_double(r);

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "execution.h"
+#include "objif/map/cutting_edge.h"
 
 namespace apci::run::exec {
 
@@ -43,7 +44,7 @@ bool TcUnit::setup() {
             !run_.write(length, tc::kLengthAlways, {}, "LengthMode"))
             return false;
     }
-    run_.length_always = true;
+    state_.length_always = true;
     auto plane = init_object(tc::kIdxTcPlane);
     return run_.write(plane, std::int32_t{17}, {}, "TcPlane");
 }
@@ -59,16 +60,16 @@ void TcUnit::read_registers() {
         r.readable = error.ok() && status.ok();
         r.error = error.value_or(0);
         r.status = status.value_or(0);
-        run_.out.registers.push_back(r);
+        run_.outcome().registers.push_back(r);
     }
 }
 
 bool TcUnit::tool(const BlockRef& at, int index) {
-    if (run_.out.otc_present && !run_.otc_unit().change_tool(at, index)) return false;
-    run_.current_tool = index;
-    if (!run_.out.tc_present) return true;  // no TC module: nothing takes a tool
+    if (run_.outcome().otc_present && !run_.otc_unit().change_tool(at, index)) return false;
+    state_.current_tool = index;
+    if (!run_.outcome().tc_present) return true;  // no TC module: nothing takes a tool
     const nc::ToolData* t =
-        run_.tools() != nullptr && index > 0 ? run_.tools_mut.find(index) : nullptr;
+        run_.tools() != nullptr && index > 0 ? run_.tool_list().find(index) : nullptr;
     const double radius = t != nullptr ? t->radius_mm() : 0.0;
     const double length = t != nullptr ? t->length_mm() : 0.0;
     // A turning tool's cutting edge position (srk_lage, ISG P-TOOL-00002): the board carries
@@ -88,23 +89,23 @@ bool TcUnit::tool(const BlockRef& at, int index) {
             !run_.write(edge_object, edge, at, "CuttingEdge"))
             return false;
     }
-    run_.length = length;
-    run_.radius = radius;
-    run_.cutting_edge = edge;
+    state_.length = length;
+    state_.radius = radius;
+    state_.cutting_edge = edge;
     return true;
 }
 
 bool TcUnit::plane(const BlockRef& at, nc::Plane p) {
-    if (!run_.out.tc_present) {
-        run_.plane = nc::g_number(p);
+    if (!run_.outcome().tc_present) {
+        state_.plane = nc::g_number(p);
         return true;
     }
     // The length axis changes with the plane: the segments that ran in the old one are read
     // first, in the old one.
     if (!run_.run_clock()) return false;
-    run_.plane = nc::g_number(p);
+    state_.plane = nc::g_number(p);
     auto o = init_object(tc::kIdxTcPlane);
-    return run_.write(o, std::int32_t{run_.plane}, at, "TcPlane");
+    return run_.write(o, std::int32_t{state_.plane}, at, "TcPlane");
 }
 
 bool TcUnit::corner(const BlockRef& at, nc::CornerMode m) {
@@ -116,18 +117,25 @@ bool TcUnit::selection(const BlockRef& at, nc::SelectionMode m) {
 }
 
 bool TcUnit::length_mode(const BlockRef& at, bool always) {
-    if (!run_.out.tc_present || always == run_.length_always) return true;
+    if (!run_.outcome().tc_present || always == state_.length_always) return true;
     if (!run_.run_clock()) return false;
     if (!every_group(at, tc::kSubLengthMode, always ? tc::kLengthAlways : tc::kLengthWhileCompensating,
                      "LengthMode"))
         return false;
-    run_.length_always = always;
+    state_.length_always = always;
     return true;
+}
+
+bool TcUnit::read_length() {
+    auto len = group_object(1, tc::kSubWkzLen);
+    const auto l = run_.board().read_double(len);
+    if (l) state_.length = l.value;
+    return l.ok();
 }
 
 bool TcUnit::every_group(const BlockRef& at, std::int32_t sub, std::int32_t value,
                          std::string_view what) {
-    if (!run_.out.tc_present) return true;
+    if (!run_.outcome().tc_present) return true;
     for (std::int32_t g = 1; g <= kGroups; ++g) {
         auto o = group_object(g, sub);
         if (!run_.write(o, value, at, what)) return false;
@@ -136,13 +144,13 @@ bool TcUnit::every_group(const BlockRef& at, std::int32_t sub, std::int32_t valu
 }
 
 bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
-    if (!run_.out.tc_present) {
+    if (!run_.outcome().tc_present) {
         return run_.record(at, "NoSuchDevice",
                            fmt::format("G{} needs the TC module (bus 1300), and this board's "
                                        "firmware has no optionTC",
                                        nc::g_number(side)));
     }
-    if (run_.comp_on && !compensation_off(at)) return false;
+    if (state_.comp_on && !compensation_off(at)) return false;
     if (side == nc::Compensation::kOff) return true;
     auto select = group_object(tc::kActiveGroupIndex,
                                side == nc::Compensation::kLeft ? tc::kSubLeft : tc::kSubRight);
@@ -151,13 +159,16 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
                     side == nc::Compensation::kLeft ? "Left" : "Right") ||
         !run_.write(status, std::int32_t{1}, at, "STATUS = 1"))
         return false;
-    run_.comp_on = true;
-    run_.comp_plane = run_.plane;
-    run_.comp_side = side == nc::Compensation::kLeft ? 1 : -1;
-    run_.begin_stretch();
-    if (!run_.comp_plane_seen) {
-        run_.comp_plane_seen = true;
-        run_.out.plot_plane = run_.plane;
+    state_.comp_on = true;
+    state_.comp_plane = state_.plane;
+    state_.comp_side = side == nc::Compensation::kLeft ? 1 : -1;
+    // A turning tool's path is its imaginary tip; the check measures the nose centre.
+    const auto edge = tc::cutting_edge_offset(state_.cutting_edge, state_.radius);
+    run_.begin_stretch(CompensatedStretch{state_.radius, state_.comp_plane, state_.comp_side,
+                                          Eigen::Vector2d(edge[0], edge[1])});
+    if (!state_.comp_plane_seen) {
+        state_.comp_plane_seen = true;
+        run_.outcome().plot_plane = state_.plane;
     }
     return true;
 }
@@ -167,7 +178,7 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
 bool TcUnit::compensation_off(const BlockRef& at) {
     auto status = group_object(tc::kActiveGroupIndex, tc::kSubStatus);
     if (!run_.write(status, std::int32_t{0}, at, "STATUS = 0")) return false;
-    run_.comp_on = false;
+    state_.comp_on = false;
     return run_.end_stretch();
 }
 

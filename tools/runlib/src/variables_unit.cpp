@@ -45,7 +45,7 @@ bool VariablesUnit::write(const BlockRef& at, const nc::VariableWrite& e) {
     auto o = otc_object(otc::kDevTool, otc::kIdxToolWearConst);
     if (!otc_unit.write(o, e.value, at, "V.G.WZ_AKT.WEAR_CONST")) return false;
     if (nc::ToolData* t =
-            run_.current_tool > 0 ? run_.tools_mut.find_mutable(run_.current_tool) : nullptr)
+            run_.tc_unit().state().current_tool > 0 ? run_.tool_list().find_mutable(run_.tc_unit().state().current_tool) : nullptr)
         t->grinding_wear_const = e.value;
     return true;
 }
@@ -60,7 +60,7 @@ bool VariablesUnit::read(const nc::VariableRef& v, double& out, std::string& why
         auto o = temp_object(tcomp::kIdxToolTempComp, v.index);
         return value_of(board.read_double(o), board, out, why);
     }
-    if (!run_.out.otc_present) {
+    if (!run_.outcome().otc_present) {
         why = "the board has no OTC module (bus 1330)";
         return false;
     }
@@ -95,9 +95,9 @@ void VariablesUnit::read_all() {
     auto add = [&](std::string name, nc::VariableRef v) {
         double value = 0.0;
         std::string why;
-        if (read(v, value, why)) run_.out.variables.emplace_back(std::move(name), value);
+        if (read(v, value, why)) run_.outcome().variables.emplace_back(std::move(name), value);
     };
-    if (run_.out.otc_present) {
+    if (run_.outcome().otc_present) {
         add("V.G.OTC_ACTIVE", {nc::NcVariable::kOtcActive, 0});
         add("V.G.WZ_AKT.WEAR_CONST", {nc::NcVariable::kWearConst, 0});
         add("V.G.WZ_AKT.WEAR_RADIUS", {nc::NcVariable::kWearRadius, 0});
