@@ -76,7 +76,7 @@ bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     // turned back into the tip by the transformation alone, after it by the length on the axis.
     // (The tip is another frame than the pivot: no fold's jump is read across the switch.)
     start_offset_ = Eigen::Vector3d::Zero();
-    const TcState& tc = tc_.state();
+    const TcUnit::State& tc = tc_.state();
     if (!e.on && tc.length_always) start_offset_[plane_axes(tc.plane).third] = tc.length;
     have_last_board_end_ = false;
     return true;
@@ -467,7 +467,7 @@ PathSegment Execution::convert(const apci_segment& b) {
     // The length acts on the tool axis of the plane in force: the plane of the contour under
     // G41/G42 (LengthMode 0), the plane now (LengthMode 1; a plane change drains the segments
     // before it, so every segment read after it ran in it).
-    const TcState& tc = tc_.state();
+    const TcUnit::State& tc = tc_.state();
     const int z = plane_axes(tc.length_always ? tc.plane : tc.comp_plane).third;
     Eigen::Vector3d end_offset = Eigen::Vector3d::Zero();
     if (tc.length_always || ends_length_compensated(s.role)) end_offset[z] = tc.length;

@@ -131,7 +131,7 @@ class Execution {
     void walls_on(bool on);
 
     // ---- what the run keeps for all units (each module's own state is its unit's: TcUnit's
-    // TcState, ...)
+    // TcUnit::State, ...)
     // The run's record: errors, notices, registers, variables (every unit adds its own).
     RunOutcome& outcome() noexcept { return out_; }
     // The tool list as the run changes it (the OTC module folds the wear in at tool change).

@@ -17,26 +17,26 @@ namespace apci::run::exec {
 
 inline constexpr std::int32_t kGroups = objif::map::tc::kGroupCount;
 
-// The TC module's state as the run set it: written by TcUnit alone, read by the executor and
-// the other units through TcUnit::state().
-struct TcState {
-    int plane = 17;              // G17..G19 in force (TcPlane)
-    int comp_plane = 17;         // the plane of the compensation under way or last run
-    int comp_side = 1;           // its side: +1 left (G41), -1 right (G42)
-    bool comp_on = false;        // G41/G42 in force
-    bool comp_plane_seen = false;  // a compensation began (its plane is the plot's)
-    bool length_always = false;  // the groups' LengthMode 1: the length on every move
-    int current_tool = 0;        // D n in force
-    double length = 0.0;         // WkzLen of the current tool, as the board has it (mm)
-    double radius = 0.0;         // RADIUS of the current tool (mm)
-    std::int32_t cutting_edge = 0;  // CuttingEdge of the current tool (srk_lage)
-};
-
 class TcUnit final : public ModuleUnit {
   public:
     explicit TcUnit(Execution& run) noexcept : ModuleUnit(run) {}
 
-    const TcState& state() const noexcept { return state_; }
+    // The TC module's state as the run set it: written by TcUnit alone, read by the executor and
+    // the other units through state(). (Its name is the unit's: the board's own is rwmos::TcState.)
+    struct State {
+        int plane = 17;                 // G17..G19 in force (TcPlane)
+        int comp_plane = 17;            // the plane of the compensation under way or last run
+        int comp_side = 1;              // its side: +1 left (G41), -1 right (G42)
+        bool comp_on = false;           // G41/G42 in force
+        bool comp_plane_seen = false;   // a compensation began (its plane is the plot's)
+        bool length_always = false;     // the groups' LengthMode 1: the length on every move
+        int current_tool = 0;           // D n in force
+        double length = 0.0;            // WkzLen of the current tool, as the board has it (mm)
+        double radius = 0.0;            // RADIUS of the current tool (mm)
+        std::int32_t cutting_edge = 0;  // CuttingEdge of the current tool (srk_lage)
+    };
+
+    const State& state() const noexcept { return state_; }
 
     bool setup();
     bool tool(const BlockRef& at, int index);
@@ -60,7 +60,7 @@ class TcUnit final : public ModuleUnit {
     bool every_group(const BlockRef& at, std::int32_t sub, std::int32_t value,
                      std::string_view what);
 
-    TcState state_;
+    State state_;
 };
 
 }  // namespace apci::run::exec
