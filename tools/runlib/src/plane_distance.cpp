@@ -147,6 +147,22 @@ Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, b
     return e;
 }
 
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw,
+                       double sweep, double phi0) noexcept {
+    Parametric e;
+    e.kind = geom::ElementKind::kArc;
+    e.ccw = ccw;
+    e.start = start;
+    e.end = end;
+    e.centre = centre;
+    const Vec2 u0 = start - centre, u1 = end - centre;
+    e.sweep = sweep;
+    e.r0 = u0.norm();
+    e.r1 = u1.norm();
+    e.phi0 = phi0;
+    return e;
+}
+
 Vec2 point_at(const Parametric& e, double t) noexcept {
     if (!is_arc(e)) return e.start + t * (e.end - e.start);
     if (t >= 1.0) return e.end;
