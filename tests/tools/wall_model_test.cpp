@@ -498,6 +498,26 @@ TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
 
 // ---- probe_table.h
 
+// A grid cell's index: the floor of the coordinate over the cell size, as an integer, the same
+// as std::floor gives at every integer, one step of rounding either side of it, zero of both
+// signs, halves, and out to 2^62 (where every double is an integer) on both sides.
+TEST(FloorIndex, IsTheFloorAtEveryIntegerAndOneRoundingStepEitherSide) {
+    std::vector<double> at{0.0, -0.0, 0.5, -0.5, 1e-300, -1e-300, 0x1p52, -0x1p52, 0x1p53,
+                           -0x1p53, 0x1p62, -0x1p62};
+    for (const double k : {1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 1e6, -1e6, 1e15, -1e15, 0x1p52 - 1,
+                           -(0x1p52 - 1)}) {
+        at.push_back(k);
+        at.push_back(std::nextafter(k, -INFINITY));
+        at.push_back(std::nextafter(k, INFINITY));
+    }
+    for (const double q : at)
+        EXPECT_EQ(apci::run::detail::floor_index(q), static_cast<std::int64_t>(std::floor(q))) << q;
+    EXPECT_EQ(apci::run::detail::floor_index(std::nextafter(-1.0, 0.0)), -1);
+    EXPECT_EQ(apci::run::detail::floor_index(std::nextafter(-1.0, -2.0)), -2);
+    EXPECT_EQ(apci::run::detail::floor_index(std::nextafter(1.0, 0.0)), 0);
+    EXPECT_EQ(apci::run::detail::floor_index(-0.0), 0);
+}
+
 // After a clear (the grid lists its items again, reindex()), a key added again is new with no
 // value, and a cell's chains hold only what was added since: a stale chain would run into the
 // nodes cleared (and could run round them). The table is asserted first, so that the cells

@@ -424,7 +424,7 @@ struct SelfApproachCheck::Grid {
     static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
         return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
     }
-    std::int64_t index_of(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+    std::int64_t index_of(double v) const { return detail::floor_index(v / cell); }
 
     template <typename F>
     void for_samples(const Shape& e, F&& f) const {

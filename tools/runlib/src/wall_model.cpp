@@ -136,6 +136,7 @@ void WallModel::close_loop(std::size_t from) {
         l.high = std::max(l.high, loop.high);
         l.last = std::max(l.last, loop.last);
     } else {
+        loop.elements.reserve(pending_.size() - from);
         for (std::size_t i = from; i < pending_.size(); ++i) {
             const PlaneMove& m = pending_[i].move;
             loop.elements.push_back(Loop::Kept{{m.start.x(), m.start.y()},
