@@ -75,6 +75,21 @@ void add_arc_to_box(Shape& e) {
     e.hi.array() += pad;
 }
 
+// plane::arc_element(start, end, centre, s.ccw) of an arc segment s in the plane: with the
+// sweep measure() gave s where that is arc_element's (an executed segment whose chord exceeds
+// 2e-9 on an axis: neither then takes it for a full circle, and both compute geom::arc_sweep of
+// the same radii), else all of it made here.
+plane::Parametric measured_arc(const PathSegment& s, const Vec2& start, const Vec2& end,
+                               const Vec2& centre) {
+    const Vec2 chord = end - start;
+    const bool long_chord = std::abs(chord.x()) > 2.0 * kSamePointTolerance ||
+                            std::abs(chord.y()) > 2.0 * kSamePointTolerance;
+    if (std::isnan(s.sweep) || !long_chord)
+        return plane::arc_element(start, end, centre, s.ccw);
+    const Vec2 u0 = start - centre;
+    return plane::arc_element(start, end, centre, s.ccw, s.sweep, std::atan2(u0.y(), u0.x()));
+}
+
 Shape shape_of(const PathSegment& s, int plane) {
     const PlaneAxes a = plane_axes(plane);
     Shape out;
@@ -90,7 +105,7 @@ Shape shape_of(const PathSegment& s, int plane) {
         return out;
     }
     const Vec2 centre(s.center[a.first], s.center[a.second]);
-    static_cast<plane::Parametric&>(out) = plane::arc_element(out.start, out.end, centre, s.ccw);
+    static_cast<plane::Parametric&>(out) = measured_arc(s, out.start, out.end, centre);
     out.length = std::abs(out.sweep) * 0.5 * (out.r0 + out.r1);
     add_arc_to_box(out);
     return out;
