@@ -132,23 +132,12 @@ Parametric line_element(const Vec2& start, const Vec2& end) noexcept {
     return e;
 }
 
-Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
-    Parametric e;
-    e.kind = geom::ElementKind::kArc;
-    e.ccw = ccw;
-    e.start = start;
-    e.end = end;
-    e.centre = centre;
-    const Vec2 u0 = start - centre, u1 = end - centre;
-    e.sweep = geom::arc_sweep(u0, u1, ccw, (end - start).norm() <= 1e-9);
-    e.r0 = u0.norm();
-    e.r1 = u1.norm();
-    e.phi0 = std::atan2(u0.y(), u0.x());
-    return e;
-}
+namespace {
 
-Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw,
-                       double sweep, double phi0) noexcept {
+// The arc with its sweep and start angle given: both arc_element()s, inline in each.
+[[gnu::always_inline]] inline Parametric arc_with(const Vec2& start, const Vec2& end,
+                                                  const Vec2& centre, bool ccw, double sweep,
+                                                  double phi0) {
     Parametric e;
     e.kind = geom::ElementKind::kArc;
     e.ccw = ccw;
@@ -161,6 +150,20 @@ Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, b
     e.r1 = u1.norm();
     e.phi0 = phi0;
     return e;
+}
+
+}  // namespace
+
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
+    const Vec2 u0 = start - centre, u1 = end - centre;
+    return arc_with(start, end, centre, ccw,
+                    geom::arc_sweep(u0, u1, ccw, (end - start).norm() <= 1e-9),
+                    std::atan2(u0.y(), u0.x()));
+}
+
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw,
+                       double sweep, double phi0) noexcept {
+    return arc_with(start, end, centre, ccw, sweep, phi0);
 }
 
 Vec2 point_at(const Parametric& e, double t) noexcept {
