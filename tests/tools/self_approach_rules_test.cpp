@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <set>
 #include <utility>
@@ -245,6 +246,34 @@ TEST(SelfApproachRules, TheEntryCornerRuleHoldsForEveryStretchsElementAtTheEntry
     EXPECT_EQ(pairs(run({at_entry, square})).count({10, 21}), 0U);
     EXPECT_EQ(pairs(run({square, short_of})).count({10, 21}), 1U);
     EXPECT_EQ(pairs(run({short_of, square})).count({10, 21}), 1U);
+}
+
+// An executed arc's sweep as measure() gave it is taken for its shape (not computed again)
+// only where its chord exceeds 2e-9 on an axis: there the check's own sweep and measure()'s
+// agree (neither takes the arc for a full circle). A sweep that is not the arc's, which no
+// executor gives, shows which one the check took. The probe's path is a near-full circle
+// (counter-clockwise about (10, 0), radius 2.5, from (12.5, 0) to dy below it) whose bottom
+// passes 0.5 above the wall N11 at y = -3; taken as a sliver (sweep 1e-9) it stays 3 away.
+TEST(SelfApproachRules, AnExecutedArcsMeasuredSweepIsTakenOnlyWhereItsChordExceedsTwiceTheTolerance) {
+    const Stretch wall = wall_line(10, 0, 20, -3, 0, 0);
+    const auto warned = [&](double dy, double sweep) {
+        PathSegment path = arc(0, {12.5, 0, 0}, {12.5, -dy, 0}, {10, 0, 0}, true);
+        path.sweep = sweep;
+        return pairs(run({wall, probe(20, path)})).count({21, 11}) == 1;
+    };
+    const double edge = 2.0 * apci::run::kSamePointTolerance;
+    const double past = std::nextafter(edge, 1.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const double dy : {edge, past}) {
+        EXPECT_TRUE(warned(dy, nan)) << dy;  // not measured: made
+        // Measured as measure() does: the same either way.
+        PathSegment measured = arc(0, {12.5, 0, 0}, {12.5, -dy, 0}, {10, 0, 0}, true);
+        apci::run::measure(measured);
+        EXPECT_GT(measured.sweep, 6.28) << dy;
+        EXPECT_TRUE(warned(dy, measured.sweep)) << dy;
+    }
+    EXPECT_TRUE(warned(edge, 1e-9));   // at the edge the check makes its own
+    EXPECT_FALSE(warned(past, 1e-9));  // one step past it takes the measured one
 }
 
 TEST(SelfApproachRules, TheGridFindsAPathJustInsideTheRadiusOfALongElementWhereverItLies) {

@@ -303,6 +303,43 @@ TEST(WallModel, PocketPassesEnclosedByALargerOneAreClearedAndItIsAWall) {
     }
 }
 
+// An arc's terms given with its move (as the check gives those it made for its grid) are the
+// ones the loop takes: round pocket passes (full circles, tool inside) fed with their own terms
+// clear as those fed without; fed with the opposite sweep (terms that are not the arc's, which
+// no caller gives) the loops turn the other way: bosses, the larger one cleared (a roughing
+// pass round the smaller), the smaller a wall.
+TEST(WallModel, ALoopTakesTheArcTermsGivenWithItsMoves) {
+    const auto feed_circles = [](WallModel& m, int terms) {  // 0 none, 1 its own, -1 reversed
+        std::uint64_t n = 0;
+        m.begin(17, 1);
+        for (const double r : {3.0, 6.0}) {
+            const Parametric c = circle(0, 0, r).front();
+            apci::run::detail::PlaneMove mv = move_of(c, 0.0);
+            mv.terms = terms != 0;
+            mv.sweep = terms < 0 ? -c.sweep : c.sweep;
+            mv.phi0 = c.phi0;
+            m.element(n, mv, (n + 1) * 0x9E3779B97F4A7C15ULL, true, false);
+            ++n;
+            const Parametric join = line(r, 0, r + 3, 0);
+            if (r < 6.0) {
+                m.element(n, move_of(join, 0.0), (n + 1) * 0x51ULL, true, false);
+                ++n;
+            }
+        }
+        m.end();
+    };
+    for (const int terms : {0, 1}) {
+        WallModel m;
+        feed_circles(m, terms);
+        EXPECT_EQ(m.role(0), C) << terms;
+        EXPECT_EQ(m.role(2), W) << terms;
+    }
+    WallModel reversed;
+    feed_circles(reversed, -1);
+    EXPECT_EQ(reversed.role(0), W);
+    EXPECT_EQ(reversed.role(2), C);
+}
+
 TEST(WallModel, BossPassesEnclosingASmallerOneAreClearedAndTheSmallestIsAWall) {
     // G41 clockwise: the tool outside (bosses); roughing passes round the finished part.
     WallModel m;
@@ -460,6 +497,26 @@ TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
 }
 
 // ---- probe_table.h
+
+// A grid cell's index: the floor of the coordinate over the cell size, as an integer, the same
+// as std::floor gives at every integer, one step of rounding either side of it, zero of both
+// signs, halves, and out to 2^62 (where every double is an integer) on both sides.
+TEST(FloorIndex, IsTheFloorAtEveryIntegerAndOneRoundingStepEitherSide) {
+    std::vector<double> at{0.0, -0.0, 0.5, -0.5, 1e-300, -1e-300, 0x1p52, -0x1p52, 0x1p53,
+                           -0x1p53, 0x1p62, -0x1p62};
+    for (const double k : {1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 1e6, -1e6, 1e15, -1e15, 0x1p52 - 1,
+                           -(0x1p52 - 1)}) {
+        at.push_back(k);
+        at.push_back(std::nextafter(k, -INFINITY));
+        at.push_back(std::nextafter(k, INFINITY));
+    }
+    for (const double q : at)
+        EXPECT_EQ(apci::run::detail::floor_index(q), static_cast<std::int64_t>(std::floor(q))) << q;
+    EXPECT_EQ(apci::run::detail::floor_index(std::nextafter(-1.0, 0.0)), -1);
+    EXPECT_EQ(apci::run::detail::floor_index(std::nextafter(-1.0, -2.0)), -2);
+    EXPECT_EQ(apci::run::detail::floor_index(std::nextafter(1.0, 0.0)), 0);
+    EXPECT_EQ(apci::run::detail::floor_index(-0.0), 0);
+}
 
 // After a clear (the grid lists its items again, reindex()), a key added again is new with no
 // value, and a cell's chains hold only what was added since: a stale chain would run into the

@@ -132,7 +132,12 @@ Parametric line_element(const Vec2& start, const Vec2& end) noexcept {
     return e;
 }
 
-Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
+namespace {
+
+// The arc with its sweep and start angle given: both arc_element()s, inline in each.
+[[gnu::always_inline]] inline Parametric arc_with(const Vec2& start, const Vec2& end,
+                                                  const Vec2& centre, bool ccw, double sweep,
+                                                  double phi0) {
     Parametric e;
     e.kind = geom::ElementKind::kArc;
     e.ccw = ccw;
@@ -140,11 +145,25 @@ Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, b
     e.end = end;
     e.centre = centre;
     const Vec2 u0 = start - centre, u1 = end - centre;
-    e.sweep = geom::arc_sweep(u0, u1, ccw, (end - start).norm() <= 1e-9);
+    e.sweep = sweep;
     e.r0 = u0.norm();
     e.r1 = u1.norm();
-    e.phi0 = std::atan2(u0.y(), u0.x());
+    e.phi0 = phi0;
     return e;
+}
+
+}  // namespace
+
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept {
+    const Vec2 u0 = start - centre, u1 = end - centre;
+    return arc_with(start, end, centre, ccw,
+                    geom::arc_sweep(u0, u1, ccw, (end - start).norm() <= 1e-9),
+                    std::atan2(u0.y(), u0.x()));
+}
+
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw,
+                       double sweep, double phi0) noexcept {
+    return arc_with(start, end, centre, ccw, sweep, phi0);
 }
 
 Vec2 point_at(const Parametric& e, double t) noexcept {
@@ -366,7 +385,8 @@ double most_along(const Parametric& e, const Vec2& n) {
 // the radius's whole change.
 double distance_at_least(const Parametric& e, const Vec2& p) {
     if (!is_arc(e)) return point_segment(p, e.start, e.end);
-    const double loose = distance_to(e, p) - std::abs(e.r1 - e.r0);
+    const double radial = distance_to(e, p);
+    const double loose = radial - std::abs(e.r1 - e.r0);
     const double turn = std::abs(e.sweep);
     if (turn > std::numbers::pi || e.r0 <= 0.0 || e.r1 <= 0.0) return loose;
     const Vec2 v = p - e.centre;
@@ -375,10 +395,7 @@ double distance_at_least(const Parametric& e, const Vec2& p) {
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
     const double k = (e.r1 - e.r0) / turn;
     const double c = 4.0 * std::min(e.r0, e.r1) * big_r / (std::numbers::pi * std::numbers::pi);
-    if (within_turn(from, to, e.sweep, v)) {
-        const double d = distance_to(e, p);
-        return d * std::sqrt(c / (k * k + c));
-    }
+    if (within_turn(from, to, e.sweep, v)) return radial * std::sqrt(c / (k * k + c));
     // p's direction beyond the turn, delta0 from its nearer end (radius rho0 there): going
     // along the arc by x from that end, delta = delta0 + x while delta0 + turn <= pi, and
     // (rho - R)^2 + c delta^2 >= max(0, A - |k| x)^2 + c x^2 + c delta0^2, A = |rho0 - R|.

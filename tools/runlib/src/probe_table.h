@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Tables the self-approach check keeps without an allocation per entry: a table over 64-bit
 // keys with a value each (open addressing), a set of keys, and the items of a uniform grid's
-// cells in one or more lists. Shared by the check's grid (self_approach.cpp) and its wall
-// model's loops (wall_model.cpp).
+// cells in one or more lists; and the grid's arithmetic (a cell's index).
+// Shared by the check's grid (self_approach.cpp) and its wall model's loops (wall_model.cpp).
 #pragma once
 
 #include <algorithm>
@@ -159,5 +159,13 @@ class CellIndex {
     ProbeTable<Head> heads_;
     std::array<std::vector<Node>, Lists> nodes_;
 };
+
+// static_cast<std::int64_t>(std::floor(q)) for every q whose floor an int64 holds, without a
+// call into the library (x86-64 before SSE4.1 has no instruction for floor): truncated towards
+// zero, one less where that is above q.
+inline std::int64_t floor_index(double q) noexcept {
+    const auto i = static_cast<std::int64_t>(q);
+    return static_cast<double>(i) > q ? i - 1 : i;
+}
 
 }  // namespace apci::run::detail

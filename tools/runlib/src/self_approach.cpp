@@ -75,6 +75,21 @@ void add_arc_to_box(Shape& e) {
     e.hi.array() += pad;
 }
 
+// plane::arc_element(start, end, centre, s.ccw) of an arc segment s in the plane: with the
+// sweep measure() gave s where that is arc_element's (an executed segment whose chord exceeds
+// 2e-9 on an axis: neither then takes it for a full circle, and both compute geom::arc_sweep of
+// the same radii), else all of it made here.
+plane::Parametric measured_arc(const PathSegment& s, const Vec2& start, const Vec2& end,
+                               const Vec2& centre) {
+    const Vec2 chord = end - start;
+    const bool long_chord = std::abs(chord.x()) > 2.0 * kSamePointTolerance ||
+                            std::abs(chord.y()) > 2.0 * kSamePointTolerance;
+    if (std::isnan(s.sweep) || !long_chord)
+        return plane::arc_element(start, end, centre, s.ccw);
+    const Vec2 u0 = start - centre;
+    return plane::arc_element(start, end, centre, s.ccw, s.sweep, std::atan2(u0.y(), u0.x()));
+}
+
 Shape shape_of(const PathSegment& s, int plane) {
     const PlaneAxes a = plane_axes(plane);
     Shape out;
@@ -90,7 +105,7 @@ Shape shape_of(const PathSegment& s, int plane) {
         return out;
     }
     const Vec2 centre(s.center[a.first], s.center[a.second]);
-    static_cast<plane::Parametric&>(out) = plane::arc_element(out.start, out.end, centre, s.ccw);
+    static_cast<plane::Parametric&>(out) = measured_arc(s, out.start, out.end, centre);
     out.length = std::abs(out.sweep) * 0.5 * (out.r0 + out.r1);
     add_arc_to_box(out);
     return out;
@@ -139,13 +154,15 @@ bool near_enough(const Extent& path, const Extent& contour, double threshold) {
 }  // namespace
 
 // A shape as the grid keeps it, by the hundred thousand: its ends and an arc's centre and
-// sense packed (plane::Parametric's vectors are aligned to 16 bytes), its box, range and length in
-// floats rounded outward (the box and range are filters, the length counts samples: rounded
-// up, never fewer). shape() gives the element back exactly (an arc's radii and angles worked
-// out again, as shape_of() did), the box and range no smaller.
+// sense packed (plane::Parametric's vectors are aligned to 16 bytes), an arc's start angle and
+// sweep as shape_of() computed them (the two atan2 of plane::arc_element, not made again for
+// every pair), its box, range and length in floats rounded outward (the box and range are
+// filters, the length counts samples: rounded up, never fewer). shape() gives the element back
+// exactly, the box and range no smaller.
 namespace detail {
 struct StoredShape {
     double start[2], end[2], centre[2];
+    double phi0, sweep;  // an arc's (0 for a line)
     float lo[2], hi[2], low, high, length;
     bool arc, ccw;
 
@@ -153,6 +170,8 @@ struct StoredShape {
         : start{e.start.x(), e.start.y()},
           end{e.end.x(), e.end.y()},
           centre{e.centre.x(), e.centre.y()},
+          phi0(e.phi0),
+          sweep(e.sweep),
           lo{down(e.lo.x()), down(e.lo.y())},
           hi{up(e.hi.x()), up(e.hi.y())},
           low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(is_arc(e)),
@@ -165,7 +184,7 @@ struct StoredShape {
         Shape e;
         const Vec2 a(start[0], start[1]), b(end[0], end[1]);
         static_cast<plane::Parametric&>(e) =
-            arc ? plane::arc_element(a, b, Vec2(centre[0], centre[1]), ccw)
+            arc ? plane::arc_element(a, b, Vec2(centre[0], centre[1]), ccw, sweep, phi0)
                 : plane::line_element(a, b);
         const Extent x = extent();
         e.lo = x.lo, e.hi = x.hi, e.low = x.low, e.high = x.high;
@@ -420,7 +439,7 @@ struct SelfApproachCheck::Grid {
     static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
         return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
     }
-    std::int64_t index_of(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+    std::int64_t index_of(double v) const { return detail::floor_index(v / cell); }
 
     template <typename F>
     void for_samples(const Shape& e, F&& f) const {
@@ -995,6 +1014,8 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     latest_ = kNone;
     const std::uint64_t key = key_of(s, plane_, 0.0);
     const bool fresh = g.contour.keys.insert(key);
+    // Its shape, made once for the grid and the wall model (an arc's terms).
+    const Shape e = fresh ? shape_of(s, plane_) : Shape{};
     // Every element that moves in the plane, repeats too: the loops are the program's.
     if (moves) {
         detail::PlaneMove m;
@@ -1003,13 +1024,15 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
         m.arc = s.kind == SegmentKind::kArc && s.plane == plane_;
         m.ccw = s.ccw;
         m.centre = {s.center[axes.first], s.center[axes.second]};
+        m.terms = fresh;
+        m.sweep = e.sweep;
+        m.phi0 = e.phi0;
         m.low = std::min(s.start[axes.third], s.end[axes.third]);
         m.high = std::max(s.start[axes.third], s.end[axes.third]);
         walls_->element(index, m, key, walls_on_, !fresh);
         review(out);
     }
     if (!fresh) return;  // programmed before
-    const Shape e = shape_of(s, plane_);
     if (e.length <= kFullCircle) return;
     latest_ = g.contour.next();
     g.size_by(e.length);

@@ -136,6 +136,7 @@ void WallModel::close_loop(std::size_t from) {
         l.high = std::max(l.high, loop.high);
         l.last = std::max(l.last, loop.last);
     } else {
+        loop.elements.reserve(pending_.size() - from);
         for (std::size_t i = from; i < pending_.size(); ++i) {
             const PlaneMove& m = pending_[i].move;
             loop.elements.push_back(Loop::Kept{{m.start.x(), m.start.y()},
@@ -145,7 +146,9 @@ void WallModel::close_loop(std::size_t from) {
                                                m.ccw});
         }
         std::vector<plane::Parametric>& elements = elements_;
-        elements_of(loop, elements);
+        elements.clear();
+        for (std::size_t i = from; i < pending_.size(); ++i)
+            elements.push_back(parametric_of(pending_[i].move));
         const double area = plane::signed_area(elements);
         // A loop with no area to speak of (out and back along itself) has no inside.
         const double scale = std::max(1.0, std::abs(area));
@@ -286,6 +289,12 @@ void WallModel::elements_of(const Loop& loop, std::vector<plane::Parametric>& ou
         out.push_back(k.arc ? plane::arc_element(start, end, {k.centre[0], k.centre[1]}, k.ccw)
                             : plane::line_element(start, end));
     }
+}
+
+plane::Parametric WallModel::parametric_of(const PlaneMove& m) {
+    if (!m.arc) return plane::line_element(m.start, m.end);
+    if (!m.terms) return plane::arc_element(m.start, m.end, m.centre, m.ccw);
+    return plane::arc_element(m.start, m.end, m.centre, m.ccw, m.sweep, m.phi0);
 }
 
 void WallModel::decide(Loop& loop, std::uint64_t number) {

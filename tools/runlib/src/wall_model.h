@@ -39,13 +39,16 @@ enum class WallRole : std::uint8_t {
 };
 
 // A programmed move in the plane as the model takes it: its ends, and an arc's centre and sense
-// (its radii and angles are worked out only for a loop the model has not seen before), and its
-// extent on the plane's third axis.
+// (its radii and angles are worked out only for a loop the model has not seen before, unless
+// the caller has them: `terms`, an arc's sweep and start angle as plane::arc_element gives them
+// for the same numbers), and its extent on the plane's third axis.
 struct PlaneMove {
     plane::Vec2 start = plane::Vec2::Zero(), end = plane::Vec2::Zero();
     plane::Vec2 centre = plane::Vec2::Zero();
     bool arc = false;
     bool ccw = false;
+    bool terms = false;
+    double sweep = 0.0, phi0 = 0.0;
     double low = 0.0, high = 0.0;
 };
 
@@ -172,6 +175,9 @@ class WallModel {
     bool clears(const Loop& outer_pass, const Loop& loop) const;
     // A loop's elements as plane::Parametrics, in `out`.
     static void elements_of(const Loop& loop, std::vector<plane::Parametric>& out);
+    // A move as a plane::Parametric: the same numbers as plane::arc_element's (or line_element's)
+    // of its ends, centre and sense, its arc terms taken where it has them.
+    static plane::Parametric parametric_of(const PlaneMove& m);
     void decide(Loop& loop, std::uint64_t number);
 
     // Drops the records placed since `from` (an index into records_) that say nothing more.

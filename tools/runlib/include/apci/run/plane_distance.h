@@ -50,6 +50,10 @@ using geom::is_arc;
 // (geom::arc_sweep: magnitude in (0, 2 pi]; ends closer than 1e-9 make a full circle).
 Parametric line_element(const Vec2& start, const Vec2& end) noexcept;
 Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw) noexcept;
+// The same arc again from the sweep and start angle arc_element gave for these numbers (kept by
+// the caller): the same Parametric, bit for bit, without its atan2 and hypot.
+Parametric arc_element(const Vec2& start, const Vec2& end, const Vec2& centre, bool ccw,
+                       double sweep, double phi0) noexcept;
 // The point at the fraction t (0..1) of e: an arc by its angle, the radius linear in it.
 Vec2 point_at(const Parametric& e, double t) noexcept;
 // The distance from p to e: to a line's nearest point; to an arc along the radius where p's
