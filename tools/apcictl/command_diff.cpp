@@ -38,6 +38,7 @@
 #include "command.h"
 #include "object_name.h"
 #include "objif/map/object_map.h"
+#include "run_inputs.h"
 
 namespace apcictl {
 namespace {
@@ -305,12 +306,6 @@ struct SecondRun final : Recording {
     double tolerance_;
 };
 
-Outcome nc_failure(const apci::nc::Diagnostic& d) {
-    const std::string text = d.to_string();
-    return d.kind == apci::nc::ErrorKind::kIo ? Outcome::usage_error(text)
-                                              : Outcome::board_error(text);
-}
-
 // One run of the program on one board, validated first, as `run` runs it (program_run.h); the
 // inputs are loaded once for both runs.
 Outcome record_run(const std::string& path, const apci::run::RunInputs& in, Session& session,
@@ -477,13 +472,7 @@ class DiffCommand final : public Command {
             ->required();
         app.add_option("--against", against_, "The device URI to compare --device with (e.g. emu:)")
             ->required();
-        app.add_option("--tools", tools_, "Tool list file for an NC program's D words");
-        app.add_option("--corr", corr_,
-                       "Correction table file for a Klartext program's FUNCTION CORRDATA (as "
-                       "for run)");
-        app.add_option("--plc", plc_,
-                       "A scripted PLC, written in both runs at the same cycles and blocks (as "
-                       "for run)");
+        inputs_.declare(app);  // as run takes them; the PLC writes at the same cycles in both
         app.add_option("--json", json_,
                        "NC programs: write the --device board's run as `run --json` writes it "
                        "(replaced only once the run was written whole)");
@@ -518,7 +507,7 @@ class DiffCommand final : public Command {
         if (json_ == "-")
             return Outcome::usage_error(
                 "diff: --json needs a file (standard output has the comparison)");
-        for (const std::string* input : {&program_, &tools_, &corr_, &plc_})
+        for (const std::string* input : {&program_, &inputs_.tools, &inputs_.corr, &inputs_.plc})
             if (!json_.empty() && !input->empty() && apci::run::same_file(json_, *input))
                 return Outcome::usage_error(fmt::format(
                     "diff: --json '{}' is the same file as the input '{}' (the output would "
@@ -567,14 +556,8 @@ class DiffCommand final : public Command {
 
     Outcome diff_nc(Session& here, Session& there, std::optional<Difference>& first,
                     std::size_t& compared) {
-        apci::run::RunInputFiles files;
-        if (!tools_.empty()) files.tools = tools_;
-        if (!corr_.empty()) files.corrections = corr_;
-        if (!plc_.empty()) files.plc = plc_;
-        files.tools_name = "--tools file";
-        files.corrections_name = "--corr file";
-        auto in = apci::run::load_run_inputs(files);
-        if (!in) return nc_failure(in.error());
+        apci::run::RunInputs in;
+        if (Outcome o = inputs_.load(in); !o.ok()) return o;
         // The first run spools its positions; the second compares its own with them cycle
         // by cycle as it goes. Memory stays the same however long the runs.
         FirstRun a;
@@ -585,11 +568,11 @@ class DiffCommand final : public Command {
                 return Outcome::usage_error(fmt::format("diff: cannot write {}: {}", json_, why));
             a.json = &json.emplace(json_file.file());
         }
-        if (Outcome o = record_run(program_, in.value(), here, a); !o.ok()) return o;
+        if (Outcome o = record_run(program_, in, here, a); !o.ok()) return o;
         if (json)
             if (Outcome o = publish_json(*json, json_file, a.outcome); !o.ok()) return o;
         SecondRun b(a.positions, tolerance_);
-        if (Outcome o = record_run(program_, in.value(), there, b); !o.ok()) return o;
+        if (Outcome o = record_run(program_, in, there, b); !o.ok()) return o;
         compared = std::min(a.samples, b.samples);
         first = compare_start(a, b, tolerance_);
         if (!first) first = compare_samples(a, b);
@@ -620,9 +603,7 @@ class DiffCommand final : public Command {
     std::string program_;
     std::string against_;
     std::string json_;
-    std::string tools_;
-    std::string corr_;
-    std::string plc_;
+    RunInputOptions inputs_;
     std::string tolerance_text_;
     double tolerance_ = 0.0;
     bool force_nc_ = false;

@@ -35,6 +35,7 @@
 #include "apci/run/svg_writer.h"
 #include "arguments.h"
 #include "command.h"
+#include "run_inputs.h"
 
 namespace apcictl {
 namespace {
@@ -199,7 +200,7 @@ class RunCommand final : public Command {
     void declare(CLI::App& app) override {
         app.add_option("PROGRAM", program_, "NC program (DIN 66025), or - to read standard input")
             ->required();
-        app.add_option("--tools", tools_, "Tool list file (wz[i].field value), for D words");
+        inputs_.declare(app);
         app.add_option("--svg", svg_,
                        "Write a plot of the programmed contour and the tool path (- for standard "
                        "output)");
@@ -216,12 +217,6 @@ class RunCommand final : public Command {
                        "Draw the plot in this plane (17, 18, 19) instead of "
                        "the program's")
             ->type_name("INT");
-        app.add_option("--plc", plc_,
-                       "A scripted PLC: writes to the OTC control units and the temperature "
-                       "compensation's data at cycles or blocks (docs/apcictl.md)");
-        app.add_option("--corr", corr_,
-                       "Correction table file (corr[n].dl|dr|dr2 value, mm), for Klartext "
-                       "FUNCTION CORRDATA TCS #n");
         app.add_option("--self-approach", self_approach_,
                        "Where the compensated path comes closer than the tool radius to the "
                        "contour away from its corners (the contour comes back near itself): "
@@ -315,15 +310,7 @@ class RunCommand final : public Command {
     // correction table (without one, FUNCTION CORRDATA TCS #n is refused: the table defines
     // no row), the PLC script; and a program that cannot be read twice, read into memory.
     Outcome load_inputs(apci::run::RunInputs& in) {
-        apci::run::RunInputFiles files;
-        if (!tools_.empty()) files.tools = tools_;
-        if (!corr_.empty()) files.corrections = corr_;
-        if (!plc_.empty()) files.plc = plc_;
-        files.tools_name = "--tools file";
-        files.corrections_name = "--corr file";
-        auto loaded = apci::run::load_run_inputs(files);
-        if (!loaded) return nc_failure(loaded.error());
-        in = std::move(loaded.value());
+        if (Outcome o = inputs_.load(in); !o.ok()) return o;
         if (program_ == "-" || !seekable(program_)) {
             const int fd =
                 program_ == "-" ? STDIN_FILENO : ::open(program_.c_str(), O_RDONLY | O_CLOEXEC);
@@ -522,9 +509,9 @@ class RunCommand final : public Command {
     Outcome refuse_output_over_input() const {
         std::vector<std::pair<std::string_view, const std::string*>> files;
         if (program_ != "-") files.emplace_back("PROGRAM", &program_);
-        files.emplace_back("--tools", &tools_);
-        files.emplace_back("--plc", &plc_);
-        files.emplace_back("--corr", &corr_);
+        files.emplace_back("--tools", &inputs_.tools);
+        files.emplace_back("--plc", &inputs_.plc);
+        files.emplace_back("--corr", &inputs_.corr);
         const std::size_t inputs = files.size();
         files.emplace_back("--json", &json_);
         files.emplace_back("--svg", &svg_);
@@ -555,21 +542,11 @@ class RunCommand final : public Command {
         return Outcome::success();
     }
 
-    // A program or tool list that cannot be read is a usage error; one that does not parse is
-    // a program error. Either way nothing ran.
-    static Outcome nc_failure(const apci::nc::Diagnostic& d) {
-        const std::string text = d.to_string();
-        return d.kind == apci::nc::ErrorKind::kIo ? Outcome::usage_error(text)
-                                                  : Outcome::board_error(text);
-    }
-
     std::string program_;
-    std::string tools_;
-    std::string corr_;
+    RunInputOptions inputs_;
     std::string svg_;
     std::string json_;
     std::string csv_;
-    std::string plc_;
     std::string tools_out_;
     std::string self_approach_ = "warn";
     int bottleneck_blocks_ = 0;
