@@ -26,15 +26,7 @@ const std::string kTool5 = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 
 
 std::string write(const test_support::ScratchDir& dir, const std::string& name,
                   const std::string& text) {
-    const std::string path = dir.file(name);
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (f == nullptr) {
-        ADD_FAILURE() << "cannot create " << path;
-        return path;
-    }
-    std::fputs(text.c_str(), f);
-    std::fclose(f);
-    return path;
+    return test_support::write_text(dir.file(name), text);
 }
 
 // The executed segments and warnings of a run.
