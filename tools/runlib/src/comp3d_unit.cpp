@@ -5,7 +5,7 @@
 
 #include <utility>
 
-#include "execution.h"
+#include "run_context.h"
 #include "objif/map/comp3d_refusal.h"
 #include "objif/map/object_map.h"
 
@@ -30,7 +30,7 @@ ObjectDescriptor c3_object(std::int32_t index, std::int32_t sub = 0) noexcept {
 
 // The first Klartext 3D event puts the module in the program's start state: no tool, no
 // deltas, PROG PATH OFF, TCPM off (tip), M108, R0, nothing armed; the head's B and C on the
-// board axes the run placed them on (Execution::setup).
+// board axes the run placed them on (RunContext::setup).
 bool Comp3dUnit::setup(const BlockRef& at) {
     if (ready_) return true;
     auto probe = c3_object(c3::kIdxTool);
@@ -160,7 +160,7 @@ bool Comp3dUnit::vector_line(const BlockRef& at, const nc::VectorLineMove& e) {
     if (bits == 0) bits = c3::kArmLine;
     auto arm = c3_object(c3::kIdxArm);
     if (!write(arm, bits, at, "Arm")) return false;
-    const PathSegment s = Execution::line_segment(at, SegmentKind::kLine, e.start, e.end);
+    const PathSegment s = RunContext::line_segment(at, SegmentKind::kLine, e.start, e.end);
     return spool(at, s,
                  run_.profile(at, APCI_PROFILE_LINE, e.end, e.rapid ? kRapidFeed : e.feed));
 }

@@ -18,7 +18,7 @@ namespace apci::run::exec {
 
 class Comp3dUnit final : public ModuleUnit {
   public:
-    Comp3dUnit(Execution& run, const nc::CorrectionTable* corrections) noexcept
+    Comp3dUnit(RunContext& run, const nc::CorrectionTable* corrections) noexcept
         : ModuleUnit(run), corrections_(corrections) {}
 
     bool setting(const BlockRef& at, std::int32_t index, std::int32_t value,

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The executor (executor.h): one run of a program against a board, its setup and finish, and the
-// dispatch of each event to the unit of its module (execution.h, module_unit.h).
+// dispatch of each event to the unit of its module (run_context.h, module_unit.h).
 #include "apci/run/executor.h"
 
 #include <fmt/format.h>
@@ -15,8 +15,8 @@
 #include "apci/run/read_ahead.h"
 #include "apci/run/self_approach.h"
 #include "bottleneck.h"
-#include "execution.h"
 #include "objif/map/object_map.h"
+#include "run_context.h"
 
 namespace apci::run {
 
@@ -53,9 +53,9 @@ BlockRef block_of(const nc::BlockOrigin& o) noexcept {
 
 }  // namespace
 
-Execution::Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
-                     const PlcScript* plc, const nc::CorrectionTable* corrections,
-                     int bottleneck_blocks)
+RunContext::RunContext(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
+                       const PlcScript* plc, const nc::CorrectionTable* corrections,
+                       int bottleneck_blocks)
     : board_(board),
       sink_(sink),
       tools_(tools),
@@ -84,7 +84,7 @@ void stop_reading(nc::EventStream& events) noexcept {
 
 }  // namespace
 
-RunOutcome Execution::run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus) {
+RunOutcome RunContext::run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus) {
     if (!read_ahead) return run_events(events);
     ReadAhead ahead(events, cpus);  // stopped and joined on every path out
     return run_events(ahead);
@@ -106,7 +106,7 @@ nc::EventStream::Next next_event(ReadAhead& events, nc::Event& /*storage*/,
 }  // namespace
 
 template <typename Events>
-RunOutcome Execution::run_events(Events& events) {
+RunOutcome RunContext::run_events(Events& events) {
     // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
     events.set_variable_source(&variables_);
     sink_measures_ = sink_.measures_executed();
@@ -174,7 +174,7 @@ RunOutcome Execution::run_events(Events& events) {
 }
 
 // A bottleneck avoided: a warning naming the blocks left out and where the paths cross.
-void Execution::report_bottleneck(const detail::Bottleneck& b) {
+void RunContext::report_bottleneck(const detail::Bottleneck& b) {
     const auto name = [](const nc::BlockOrigin& o) {
         return o.block >= 0 ? fmt::format("N{}", o.block) : fmt::format("line {}", o.line);
     };
@@ -195,7 +195,7 @@ void Execution::report_bottleneck(const detail::Bottleneck& b) {
 // After an error the rest of the program still goes to a plot, so the place of the error
 // is seen in its contour; nothing more goes to the board.
 template <typename Events>
-void Execution::draw_rest(Events& events) {
+void RunContext::draw_rest(Events& events) {
     if (!sink_.wants_programmed()) return;
     nc::Event ev;
     while (events.next(ev) == nc::EventStream::Next::kEvent) {
@@ -214,7 +214,7 @@ void Execution::draw_rest(Events& events) {
 
 // ---- setup and end
 
-bool Execution::setup() {
+bool RunContext::setup() {
     for (std::size_t i = 0; i < out_.axis_names.size(); ++i)
         out_.axis_names[i] = "a" + std::to_string(i);
     const auto st = board_.motion_status();
@@ -252,7 +252,7 @@ bool Execution::setup() {
 }
 
 // X/Y/Z-Axis-Nr; their absence (NoSuchDevice) means the firmware has no optionTC.
-bool Execution::read_axis_numbers() {
+bool RunContext::read_axis_numbers() {
     for (int i = 0; i < 3; ++i) {
         auto o = init_object(tc::kIdxAxisNr, i);
         const auto r = board_.read_int(o);
@@ -269,7 +269,7 @@ bool Execution::read_axis_numbers() {
 }
 
 // The head's B and C on the first two board axes that are not X, Y or Z (4 and 5 by default).
-void Execution::place_head() noexcept {
+void RunContext::place_head() noexcept {
     std::array<bool, APCI_AXIS_COUNT> used{};
     for (const int a : axes_) used[static_cast<std::size_t>(a)] = true;
     std::array<std::int32_t, 2> found{-1, -1};
@@ -280,7 +280,7 @@ void Execution::place_head() noexcept {
     head_.c_axis = found[1];
 }
 
-void Execution::finish() {
+void RunContext::finish() {
     // The move under way ends (after a TC error the board holds the rest). A clock that
     // failed already is not asked again; its error is recorded.
     if (set_up_ && clock_ok_) (void)run_clock();
@@ -296,7 +296,7 @@ void Execution::finish() {
 
 // ---- events: the one table of which unit handles which event
 
-bool Execution::dispatch(const nc::Event& ev) {
+bool RunContext::dispatch(const nc::Event& ev) {
     const BlockRef at = block_of(ev.origin);
     // The head's rotary axes go with the block's move; a block that turns the head only
     // gets a move of its own.
@@ -336,8 +336,7 @@ bool Execution::dispatch(const nc::Event& ev) {
             } else if constexpr (std::is_same_v<E, nc::ProgPathChange>) {
                 return c3_.setting(at, c3::kIdxProgPath, e.contour ? 1 : 0, "ProgPath");
             } else if constexpr (std::is_same_v<E, nc::OversizeChange>) {
-                return c3_.setting(at, c3::kIdxAllowOversize, e.allowed ? 1 : 0,
-                                   "AllowOversize");
+                return c3_.setting(at, c3::kIdxAllowOversize, e.allowed ? 1 : 0, "AllowOversize");
             } else if constexpr (std::is_same_v<E, nc::HeadOrientation>) {
                 // DIN's B is the B head's (#KIN, docs/design.md section 8); Klartext's B and C
                 // are the 3D module's head_.
@@ -367,7 +366,7 @@ bool Execution::dispatch(const nc::Event& ev) {
         ev.data);
 }
 
-bool Execution::end_of_program(const BlockRef& at) {
+bool RunContext::end_of_program(const BlockRef& at) {
     if (tc_.state().comp_on) {
         // The board ends the compensation at M30 (STATUS = 0): under G139 the tool stays at the
         // last compensated point, under G237 it departs at right angles. Said, as controls do.
@@ -418,9 +417,9 @@ Point ProgramExecutor::position() {
 }
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
-    auto execution = std::make_unique<exec::Execution>(board_, sink_, tools_, plc_, corrections_,
-                                                       bottleneck_blocks_);
-    return execution->run(events, read_ahead_, read_ahead_cpus_);
+    auto context = std::make_unique<exec::RunContext>(board_, sink_, tools_, plc_, corrections_,
+                                                      bottleneck_blocks_);
+    return context->run(events, read_ahead_, read_ahead_cpus_);
 }
 
 }  // namespace apci::run

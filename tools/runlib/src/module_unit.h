@@ -3,8 +3,8 @@
 // whose events the program drives, as the emulator keeps one module each (tc_module.cpp,
 // otc_module.cpp, comp3d_module.cpp, tempcomp_engine.cpp). A unit keeps its module's state and
 // reaches the board, the clock, the spooler and the run's record through the shared context
-// (Execution, execution.h); which unit handles which event is decided in one place,
-// Execution::dispatch (executor.cpp).
+// (RunContext, run_context.h); which unit handles which event is decided in one place,
+// RunContext::dispatch (executor.cpp).
 #pragma once
 
 #include <cstdint>
@@ -14,7 +14,7 @@
 
 namespace apci::run::exec {
 
-class Execution;
+class RunContext;
 
 // The objects more than one unit reaches: the TC module's groups and init data, the OTC
 // module's and the temperature compensation's.
@@ -38,10 +38,10 @@ class ModuleUnit {
     ModuleUnit& operator=(const ModuleUnit&) = delete;
 
   protected:
-    explicit ModuleUnit(Execution& run) noexcept : run_(run) {}
+    explicit ModuleUnit(RunContext& run) noexcept : run_(run) {}
     ~ModuleUnit() = default;
 
-    Execution& run_;  // the shared context: board, clock, spooler, record, shared state
+    RunContext& run_;  // the shared context: board, clock, spooler, record, shared state
 };
 
 }  // namespace apci::run::exec

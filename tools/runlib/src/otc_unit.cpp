@@ -5,7 +5,7 @@
 
 #include <utility>
 
-#include "execution.h"
+#include "run_context.h"
 #include "objif/map/otc_errors.h"
 #include "tc_unit.h"
 
@@ -23,7 +23,7 @@ namespace otc = objif::map::otc;
 
 // The program's start state: OTC off, LENGTH, AUTO, the tool's wear constant, ACC_WEIGHT
 // 100, no kinematics, the control units off; the B head's B on the head's axis (as the 3D
-// module's, Execution::place_head). Without the module (NoSuchDevice) OTC events are refused by name.
+// module's, RunContext::place_head). Without the module (NoSuchDevice) OTC events are refused by name.
 bool OtcUnit::setup() {
     auto active = otc_object(otc::kDevChannel, otc::kIdxActive);
     const auto r = run_.board().read_int(active);

@@ -16,7 +16,7 @@ namespace apci::run::exec {
 
 class OtcUnit final : public ModuleUnit {
   public:
-    explicit OtcUnit(Execution& run) noexcept : ModuleUnit(run) {}
+    explicit OtcUnit(RunContext& run) noexcept : ModuleUnit(run) {}
 
     bool setup();
     // Refuses by name (NoSuchDevice) what needs the module when the board has none.

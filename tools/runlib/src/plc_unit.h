@@ -15,7 +15,7 @@ namespace apci::run::exec {
 
 class PlcUnit final : public ModuleUnit {
   public:
-    PlcUnit(Execution& run, const PlcScript* plc) noexcept : ModuleUnit(run), plc_(plc) {}
+    PlcUnit(RunContext& run, const PlcScript* plc) noexcept : ModuleUnit(run), plc_(plc) {}
 
     // The cycle (counted from the run's start) of the next cycle entry; null when none is left.
     const std::uint64_t* next_cycle() const noexcept;

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "execution.h"
+#include "run_context.h"
 #include "objif/map/cutting_edge.h"
 
 namespace apci::run::exec {

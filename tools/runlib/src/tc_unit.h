@@ -19,7 +19,7 @@ inline constexpr std::int32_t kGroups = objif::map::tc::kGroupCount;
 
 class TcUnit final : public ModuleUnit {
   public:
-    explicit TcUnit(Execution& run) noexcept : ModuleUnit(run) {}
+    explicit TcUnit(RunContext& run) noexcept : ModuleUnit(run) {}
 
     // The TC module's state as the run set it: written by TcUnit alone, read by the executor and
     // the other units through state(). (Its name is the unit's: the board's own is rwmos::TcState.)

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "temp_unit.h"
 
-#include "execution.h"
+#include "run_context.h"
 
 namespace apci::run::exec {
 

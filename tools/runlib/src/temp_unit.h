@@ -15,7 +15,7 @@ namespace apci::run::exec {
 
 class TempUnit final : public ModuleUnit {
   public:
-    explicit TempUnit(Execution& run) noexcept : ModuleUnit(run) {}
+    explicit TempUnit(RunContext& run) noexcept : ModuleUnit(run) {}
 
     bool setup();
     bool present() const noexcept { return present_; }

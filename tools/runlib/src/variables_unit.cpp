@@ -5,7 +5,7 @@
 
 #include <utility>
 
-#include "execution.h"
+#include "run_context.h"
 #include "otc_unit.h"
 #include "temp_unit.h"
 

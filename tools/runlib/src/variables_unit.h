@@ -15,7 +15,7 @@ namespace apci::run::exec {
 
 class VariablesUnit final : public ModuleUnit, public nc::VariableSource {
   public:
-    explicit VariablesUnit(Execution& run) noexcept : ModuleUnit(run) {}
+    explicit VariablesUnit(RunContext& run) noexcept : ModuleUnit(run) {}
 
     bool write(const BlockRef& at, const nc::VariableWrite& e);
     bool read(const nc::VariableRef& v, double& out, std::string& why) override;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The executor's core (execution.h): spooling moves and arcs, the board access helpers, the
+// The executor's core (run_context.h): spooling moves and arcs, the board access helpers, the
 // clock, the trace and the executed segments read back, the record of errors and findings.
-#include "execution.h"
+#include "run_context.h"
 
 #include <fmt/format.h>
 
@@ -55,14 +55,14 @@ Eigen::Vector3d tool_axis(double b_deg) noexcept {
 }  // namespace
 
 // The pivot (the machine's X, Y, Z) of a tool tip at tilt b: one tool length behind it.
-Eigen::Vector3d Execution::pivot_of(const Eigen::Vector3d& tip, double b_deg) const noexcept {
+Eigen::Vector3d RunContext::pivot_of(const Eigen::Vector3d& tip, double b_deg) const noexcept {
     return tip + head_.trafo_length * tool_axis(b_deg);
 }
 
 // The axes stop first, so the segments read back before belong to the old state. Under the
 // transformation the tool length is its own (the pivot one length behind the tip along t(B)),
 // so the TC groups stop applying theirs on the tool axis (LengthMode 0) until #TRAFO OFF.
-bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
+bool RunContext::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     if (e.on && head_.b_axis < 0)
         return record(at, "Unsupported", "no free board axis for the head's B");
     if (!run_clock()) return false;
@@ -82,7 +82,7 @@ bool Execution::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     return true;
 }
 
-bool Execution::head_turn(const BlockRef& at, const nc::HeadOrientation& e) {
+bool RunContext::head_turn(const BlockRef& at, const nc::HeadOrientation& e) {
     if (head_.b_axis < 0 || (klartext_ && head_.c_axis < 0))
         return record(at, "Unsupported",
                       klartext_ ? "no free board axes for the head's B and C"
@@ -95,7 +95,7 @@ bool Execution::head_turn(const BlockRef& at, const nc::HeadOrientation& e) {
 }
 
 // A block that only turns the head: the rotary axes move at the rapid feed.
-bool Execution::head_only_move(const BlockRef& at) {
+bool RunContext::head_only_move(const BlockRef& at) {
     apci_profile p{};
     p.kind = APCI_PROFILE_RAPID;
     p.tag = encode_block_tag(at);
@@ -107,7 +107,7 @@ bool Execution::head_only_move(const BlockRef& at) {
     return record(at, std::string(apci::status_name(r.status)), std::string(board_.last_error()));
 }
 
-PathSegment Execution::line_segment(const BlockRef& at, SegmentKind kind,
+PathSegment RunContext::line_segment(const BlockRef& at, SegmentKind kind,
                                     const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
     PathSegment s;
     s.block = at;
@@ -117,7 +117,7 @@ PathSegment Execution::line_segment(const BlockRef& at, SegmentKind kind,
     return s;
 }
 
-PathSegment Execution::arc_segment(const BlockRef& at, const nc::ArcMove& a) {
+PathSegment RunContext::arc_segment(const BlockRef& at, const nc::ArcMove& a) {
     PathSegment s;
     s.block = at;
     s.kind = SegmentKind::kArc;
@@ -132,7 +132,7 @@ PathSegment Execution::arc_segment(const BlockRef& at, const nc::ArcMove& a) {
     return s;
 }
 
-bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+bool RunContext::move(const BlockRef& at, const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                      std::uint8_t kind, double feed) {
     const PathSegment s = line_segment(
         at, kind == APCI_PROFILE_RAPID ? SegmentKind::kRapid : SegmentKind::kLine, start, end);
@@ -154,7 +154,7 @@ bool Execution::move(const BlockRef& at, const Eigen::Vector3d& start, const Eig
     return ok;
 }
 
-bool Execution::arc(const BlockRef& at, const nc::ArcMove& a) {
+bool RunContext::arc(const BlockRef& at, const nc::ArcMove& a) {
     const PathSegment s = arc_segment(at, a);
     apci_profile p =
         profile(at, a.ccw ? APCI_PROFILE_ARC_CCW : APCI_PROFILE_ARC_CW, a.end, a.feed);
@@ -168,7 +168,7 @@ bool Execution::arc(const BlockRef& at, const nc::ArcMove& a) {
     return spool(at, s, p);
 }
 
-apci_profile Execution::profile(const BlockRef& at, std::uint8_t kind, const Eigen::Vector3d& end,
+apci_profile RunContext::profile(const BlockRef& at, std::uint8_t kind, const Eigen::Vector3d& end,
                                 double feed) noexcept {
     apci_profile p{};
     p.kind = kind;
@@ -186,7 +186,7 @@ apci_profile Execution::profile(const BlockRef& at, std::uint8_t kind, const Eig
 }
 
 // The head's axes join the profile: B, and in Klartext C (DIN programs have no C).
-void Execution::add_head(apci_profile& p) noexcept {
+void RunContext::add_head(apci_profile& p) noexcept {
     p.axes = static_cast<std::uint8_t>(p.axes | (1u << head_.b_axis));
     p.target[head_.b_axis] = head_.b;
     if (klartext_) {
@@ -196,12 +196,12 @@ void Execution::add_head(apci_profile& p) noexcept {
     head_.b_now = head_.b;
 }
 
-void Execution::programmed(const PathSegment& s, std::uint32_t tag) {
+void RunContext::programmed(const PathSegment& s, std::uint32_t tag) {
     sink_.programmed(s);
     recent_.add(tag, s);
 }
 
-bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
+bool RunContext::spool(const BlockRef& at, const PathSegment& programmed_move,
                       const apci_profile& p) {
     // The board's limit on one move, in the board's own cycle (the front end counted in 1 ms
     // cycles): said in the program's words before the board refuses the profile with its own.
@@ -231,7 +231,7 @@ bool Execution::spool(const BlockRef& at, const PathSegment& programmed_move,
 
 // Spools p; Busy (the spooler is full) makes room and tries again. False when the clock could
 // not make room (recorded); else `r` is the board's answer, which is not Busy.
-bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r) {
+bool RunContext::spool_profile(const apci_profile& p, apci::Result<apci_motion_result>& r) {
     for (;;) {
         r = board_.spool(p);
         if (r.status != APCI_BUSY) return true;
@@ -239,20 +239,20 @@ bool Execution::spool_profile(const apci_profile& p, apci::Result<apci_motion_re
     }
 }
 
-void Execution::begin_stretch(const CompensatedStretch& s) {
+void RunContext::begin_stretch(const CompensatedStretch& s) {
     sink_.stretch_begin(s);
 }
 
-void Execution::walls_on(bool on) {
+void RunContext::walls_on(bool on) {
     sink_.walls(on);
 }
 
-bool Execution::end_stretch() {
+bool RunContext::end_stretch() {
     sink_.stretch_end();
     return sink_lets_go_on();
 }
 
-bool Execution::sink_lets_go_on() {
+bool RunContext::sink_lets_go_on() {
     std::optional<RunError> stop = sink_.take_stop();
     return !stop || record(stop->block, std::move(stop->code), std::move(stop->message));
 }
@@ -262,7 +262,7 @@ bool Execution::sink_lets_go_on() {
 // Writes an object; Busy (the spooler cannot take what the write releases) runs the clock
 // and tries again.
 template <typename T>
-bool Execution::write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
+bool RunContext::write(ObjectDescriptor o, T value, const BlockRef& at, std::string_view what) {
     for (;;) {
         const auto r = board_.write(o, value);
         if (r.ok()) return true;
@@ -274,11 +274,11 @@ bool Execution::write(ObjectDescriptor o, T value, const BlockRef& at, std::stri
     }
 }
 
-template bool Execution::write(ObjectDescriptor, std::int32_t, const BlockRef&, std::string_view);
-template bool Execution::write(ObjectDescriptor, double, const BlockRef&, std::string_view);
+template bool RunContext::write(ObjectDescriptor, std::int32_t, const BlockRef&, std::string_view);
+template bool RunContext::write(ObjectDescriptor, double, const BlockRef&, std::string_view);
 
 // A refused write: a TC error bit it set (InitError) names it, else the status does.
-bool Execution::write_failure(const BlockRef& at, apci::Status status, std::string_view what) {
+bool RunContext::write_failure(const BlockRef& at, apci::Status status, std::string_view what) {
     const std::string text = fmt::format("{}: {}", what, board_.last_error());
     if (out_.tc_present && status != APCI_NO_SUCH_DEVICE) {
         auto e = group_object(tc::kActiveGroupIndex, tc::kSubError);
@@ -289,18 +289,18 @@ bool Execution::write_failure(const BlockRef& at, apci::Status status, std::stri
 }
 
 // What needs a module the board does not have is refused by name.
-bool Execution::no_module(const BlockRef& at, std::string_view what, std::string_view module) {
+bool RunContext::no_module(const BlockRef& at, std::string_view what, std::string_view module) {
     return record(at, "NoSuchDevice",
                   fmt::format("{} needs {}, which this board does not have", what, module));
 }
 
-bool Execution::board_failure(const BlockRef& at, apci::Status status, std::string_view what) {
+bool RunContext::board_failure(const BlockRef& at, apci::Status status, std::string_view what) {
     return record(at, std::string(apci::status_name(status)),
                   fmt::format("{}: {}", what, board_.last_error()));
 }
 
 // One error per Table 4 bit set.
-bool Execution::tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text) {
+bool RunContext::tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text) {
     for (int bit = 0; bit < 32; ++bit) {
         if ((static_cast<std::uint32_t>(bits) & (1u << bit)) == 0) continue;
         const char* name = apci_tc_error_bit_name(bit);
@@ -309,13 +309,13 @@ bool Execution::tc_errors(const BlockRef& at, std::int32_t bits, const std::stri
     return false;
 }
 
-void Execution::program_error(const nc::Diagnostic& d) {
+void RunContext::program_error(const nc::Diagnostic& d) {
     record(BlockRef{d.block == nc::kNoBlockNumber ? kNoBlock : d.block, d.line},
            std::string(nc::error_kind_name(d.kind)), d.to_string());
 }
 
 // Records an error; returns false (the run stops).
-bool Execution::record(BlockRef at, std::string code, std::string message) {
+bool RunContext::record(BlockRef at, std::string code, std::string message) {
     // A board error names the block by its tag (its N); the line comes from the spooled move.
     if (at.line == 0 && at.number != kNoBlock)
         if (const PathSegment* s = recent_.find(encode_block_tag(at))) at.line = s->block.line;
@@ -326,7 +326,7 @@ bool Execution::record(BlockRef at, std::string code, std::string message) {
 }
 
 // Midway along the programmed move of the block, else where the axes stand.
-Point Execution::where(const BlockRef& at) {
+Point RunContext::where(const BlockRef& at) {
     if (const PathSegment* s = recent_.find(encode_block_tag(at))) return point_along(*s, 0.5);
     const auto st = board_.motion_status();
     Point p = Point::Zero();
@@ -338,7 +338,7 @@ Point Execution::where(const BlockRef& at) {
 // Busy: the spooler is full; running until idle empties it. Progress is a move consumed (each
 // logs one executed segment) or a cycle run: zero-length moves take no cycle, so a spooler full
 // of them empties with the clock standing still.
-bool Execution::make_room() {
+bool RunContext::make_room() {
     const std::uint64_t cycles_before = cycles_seen_;
     const std::uint64_t segments_before = out_.totals.segments;
     if (!run_clock()) return false;
@@ -349,13 +349,13 @@ bool Execution::make_room() {
 
 // Runs the clock until the axes stop (in chunks while samples are recorded), reading the
 // executed segments and samples as they come.
-bool Execution::run_clock() {
+bool RunContext::run_clock() {
     if (run_clock_until_idle()) return true;
     clock_ok_ = false;
     return false;
 }
 
-bool Execution::run_clock_until_idle() {
+bool RunContext::run_clock_until_idle() {
     for (;;) {
         if (!plc_.due()) return false;
         std::uint64_t chunk = tracing_ ? ProgramExecutor::kTraceChunk : kRunForever;
@@ -374,7 +374,7 @@ bool Execution::run_clock_until_idle() {
 }
 
 // Steps the clock by exactly `cycles` (idle cycles included), reading what it produced.
-bool Execution::step_clock(std::uint64_t cycles) {
+bool RunContext::step_clock(std::uint64_t cycles) {
     while (cycles > 0) {
         const std::uint64_t chunk =
             tracing_ ? std::min<std::uint64_t>(cycles, ProgramExecutor::kTraceChunk) : cycles;
@@ -387,7 +387,7 @@ bool Execution::step_clock(std::uint64_t cycles) {
 
 // What a clock call produced: the cycle it reached, and the executed segments and samples,
 // read.
-bool Execution::clocked(const apci::Result<apci_motion_status>& st, std::string_view what) {
+bool RunContext::clocked(const apci::Result<apci_motion_status>& st, std::string_view what) {
     if (!st) return board_failure({}, st.status, what);
     cycles_seen_ = st.value.now;
     return drain_segments(st.value.segments_pending) &&
@@ -396,7 +396,7 @@ bool Execution::clocked(const apci::Result<apci_motion_status>& st, std::string_
 
 // Reads the `pending` executed segments the clock call reported, in batches of at most
 // kReadBatch (asking for no more than are there keeps each read small).
-bool Execution::drain_segments(std::uint64_t pending) {
+bool RunContext::drain_segments(std::uint64_t pending) {
     while (pending > 0) {
         const std::size_t want =
             static_cast<std::size_t>(std::min<std::uint64_t>(pending, segments_.size()));
@@ -418,7 +418,7 @@ bool Execution::drain_segments(std::uint64_t pending) {
     return true;
 }
 
-bool Execution::drain_samples(std::uint64_t pending) {
+bool RunContext::drain_samples(std::uint64_t pending) {
     while (pending > 0) {
         const std::size_t want =
             static_cast<std::size_t>(std::min<std::uint64_t>(pending, samples_.size()));
@@ -438,7 +438,7 @@ bool Execution::drain_samples(std::uint64_t pending) {
 
 // A board segment in program coordinates: X, Y, Z from their board axes, the tool length
 // compensation taken off (the tool centre point, docs/design.md section 7).
-PathSegment Execution::convert(const apci_segment& b) {
+PathSegment RunContext::convert(const apci_segment& b) {
     PathSegment s;
     s.block = decode_block_tag(b.tag);
     s.role = role_of(b.role);
@@ -496,7 +496,7 @@ PathSegment Execution::convert(const apci_segment& b) {
 }
 
 // The arc's plane code and sense in program axes.
-void Execution::arc_plane(const apci_segment& b, PathSegment& s) const noexcept {
+void RunContext::arc_plane(const apci_segment& b, PathSegment& s) const noexcept {
     int first = -1, second = -1;
     for (int i = 0; i < 3; ++i) {
         if (axis(i) == b.plane_axes[0]) first = i;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The executor's shared context and core (executor.h; the units' interface is module_unit.h):
 // one run of a program against a board. The core sets the board up and finishes the run
-// (executor.cpp), dispatches each event to the unit of its module (Execution::dispatch, the one
+// (executor.cpp), dispatches each event to the unit of its module (RunContext::dispatch, the one
 // table), and spools moves and arcs, reaches the board, runs the clock, reads the trace and the
-// executed segments back and records errors and self-approach findings (execution.cpp). The
+// executed segments back, records errors and gives the compensated stretches to the sink
+// (run_context.cpp). (The name says what it is: the context of one run, apart from the host's
+// ProgramExecutor that makes it and the board's rwmos::motion::Executor.) The
 // units: TC (tc_unit.cpp), OTC (otc_unit.cpp), Klartext 3D (comp3d_unit.cpp), temperature
 // (temp_unit.cpp), the scripted PLC (plc_unit.cpp), the NC variables (variables_unit.cpp).
 #pragma once
@@ -77,9 +79,9 @@ struct HeadState {
     double c = 0.0;
 };
 
-class Execution {
+class RunContext {
   public:
-    Execution(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
+    RunContext(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
               const nc::CorrectionTable* corrections, int bottleneck_blocks = 0);
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
