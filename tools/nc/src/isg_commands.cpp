@@ -13,6 +13,7 @@
 #include "apci/nc/lexer.h"
 #include "apci/nc/parser.h"
 #include "block_parser.h"
+#include "objif/enum_names.h"
 
 namespace apci::nc {
 namespace parser_detail {
@@ -415,22 +416,15 @@ LoopMarker loop_marker(std::string_view line) noexcept {
 }
 
 std::string_view otc_type_name(OtcType t) noexcept {
-    switch (t) {
-        case OtcType::kRadius: return "RADIUS";
-        case OtcType::kLength: return "LENGTH";
-        case OtcType::kToolDir: return "TOOL_DIR";
-        case OtcType::kSurfNormDir: return "SURF_NORM_DIR";
-    }
-    return "?";
+    static constexpr auto kNames = objif::enum_names<OtcType::kRadius, OtcType::kSurfNormDir>(
+        {"RADIUS", "LENGTH", "TOOL_DIR", "SURF_NORM_DIR"}, "?");
+    return kNames(t);
 }
 
 std::string_view otc_mode_name(OtcMode m) noexcept {
-    switch (m) {
-        case OtcMode::kCont: return "CONT";
-        case OtcMode::kDisc: return "DISC";
-        case OtcMode::kAuto: return "AUTO";
-    }
-    return "?";
+    static constexpr auto kNames =
+        objif::enum_names<OtcMode::kCont, OtcMode::kAuto>({"CONT", "DISC", "AUTO"}, "?");
+    return kNames(m);
 }
 
 }  // namespace apci::nc
