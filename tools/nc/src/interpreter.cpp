@@ -8,6 +8,7 @@
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
 #include "apci/nc/tools.h"
+#include "block_context.h"
 
 namespace apci::nc {
 
@@ -21,22 +22,7 @@ bool is_arc(Motion m) {
 }
 
 // The context of one apply() call, so that the rule checks below stay short.
-struct BlockCheck {
-    const Block& b;
-    std::string_view file;
-    Diagnostic& err;
-
-    bool fail(ErrorKind kind, std::uint32_t column, std::string message) const {
-        err.kind = kind;
-        err.file = std::string(file);
-        err.line = b.line;
-        err.column = column == 0 ? 1 : column;
-        err.block = b.block_number();
-        err.message = std::move(message);
-        err.undefined = Undefined::kNothing;
-        return false;
-    }
-};
+using BlockCheck = BlockContext<Block>;
 
 bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* tools) {
     const Word<int>& d = c.b.tool;
