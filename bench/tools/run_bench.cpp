@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "exec_argv.h"
+
 namespace {
 
 // One turn of a plate contour (the tool on its inside, G41, r = 1): 8 lines and 4 arcs, tangent
@@ -84,12 +86,7 @@ ChildRun run_child(const std::vector<std::string>& argv) {
     if (pid == 0) {
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, 1);
-        std::vector<char*> args;
-        args.reserve(argv.size() + 1);
-        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        ::execv(args[0], args.data());
-        ::_exit(127);
+        exec_argv(argv);
     }
     int status = 0;
     rusage usage{};
