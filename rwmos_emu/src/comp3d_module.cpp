@@ -17,7 +17,6 @@ namespace rwmos {
 
 namespace {
 
-
 double& delta_of(comp3d::Deltas& d, std::int32_t k) noexcept {
     return k == 0 ? d.dl : k == 1 ? d.dr : d.dr2;
 }
@@ -38,11 +37,12 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
     using M = Comp3dModule;
     static constexpr std::array<Hooks<M>, 34> kHooks{{
         // ---- DeviceNumber 0.
-        {"Tool", &M::read_tool, &M::write_tool},
+        {"Tool", &M::read_field<&State::comp3d, &Comp3dState::tool>, &M::write_tool},
         {"CallDL", &M::read_call, &M::write_call},
         {"CallDR", &M::read_call, &M::write_call},
         {"CallDR2", &M::read_call, &M::write_call},
-        {"CorrectionRow", &M::read_correction_row, &M::write_correction_row},
+        {"CorrectionRow", &M::read_field<&State::comp3d, &Comp3dState::correction_row>,
+         &M::write_correction_row},
         {"ProgPath", &M::read_mode, &M::write_mode},
         {"Reference", &M::read_mode, &M::write_mode},
         {"Tcpm", &M::read_mode, &M::write_mode},
@@ -56,8 +56,9 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
         {"TX", &M::read_vector, &M::write_vector},
         {"TY", &M::read_vector, &M::write_vector},
         {"TZ", &M::read_vector, &M::write_vector},
-        {"Arm", &M::read_arm, &M::write_arm},
-        {"LastError", &M::read_last_error, &M::write_last_error},
+        {"Arm", &M::read_field<&State::comp3d, &Comp3dState::armed>, &M::write_arm},
+        {"LastError", &M::read_field<&State::comp3d, &Comp3dState::last_error>,
+         &M::write_last_error},
         {"DL", &M::read_deltas, nullptr},
         {"DR", &M::read_deltas, nullptr},
         {"DR2", &M::read_deltas, nullptr},
@@ -87,11 +88,6 @@ Status Comp3dModule::refuse(comp3d::Refusal r) noexcept {
 
 // ---- The tool in force.
 
-Status Comp3dModule::read_tool(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().tool);
-    return Status::kOk;
-}
-
 // [TNC-3D]: "Wenn Sie ein Werkzeug mit einem Übermaß (positive Deltawerte) einwechseln, gibt
 // die Steuerung eine Fehlermeldung aus" unless M107 allows it; the tool must also exist.
 Status Comp3dModule::write_tool(const ObjectInfo&, const Address&, const Value& v) {
@@ -111,11 +107,6 @@ Status Comp3dModule::read_call(const ObjectInfo&, const Address& a, Value& out) 
 
 Status Comp3dModule::write_call(const ObjectInfo&, const Address& a, const Value& v) {
     delta_of(s().pending_call, a.subindex) = v.as_double();
-    return Status::kOk;
-}
-
-Status Comp3dModule::read_correction_row(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().correction_row);
     return Status::kOk;
 }
 
@@ -184,11 +175,6 @@ Status Comp3dModule::write_vector(const ObjectInfo&, const Address& a, const Val
     return Status::kOk;
 }
 
-Status Comp3dModule::read_arm(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().armed);
-    return Status::kOk;
-}
-
 // [TNC-3D] "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten".
 Status Comp3dModule::write_arm(const ObjectInfo&, const Address&, const Value& v) {
     const std::int32_t bits = v.as_int();
@@ -205,11 +191,6 @@ Status Comp3dModule::write_arm(const ObjectInfo&, const Address&, const Value& v
     s().armed = bits;
     s().armed_normal = n.v;
     s().armed_tool_vector = t.v;
-    return Status::kOk;
-}
-
-Status Comp3dModule::read_last_error(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().last_error);
     return Status::kOk;
 }
 
