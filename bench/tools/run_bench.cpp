@@ -143,27 +143,15 @@ void BM_RunJsonAndSvg(benchmark::State& state) {
     run_program(state, {"--json", temp_path("out.json"), "--svg", temp_path("out.svg")});
 }
 
-BENCHMARK(BM_RunJson)
-    ->Arg(100'000)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-BENCHMARK(BM_RunJsonToDevNull)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-BENCHMARK(BM_RunSummaryOnly)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-BENCHMARK(BM_RunJsonAndSvg)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(1);
+// Each iteration one whole run of the child, timed by the wall clock (run_program), in ms.
+void whole_runs(benchmark::internal::Benchmark* b) {
+    b->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+}
+
+BENCHMARK(BM_RunJson)->Arg(100'000)->Arg(1'000'000)->Apply(whole_runs);
+BENCHMARK(BM_RunJsonToDevNull)->Arg(1'000'000)->Apply(whole_runs);
+BENCHMARK(BM_RunSummaryOnly)->Arg(1'000'000)->Apply(whole_runs);
+BENCHMARK(BM_RunJsonAndSvg)->Arg(1'000'000)->Apply(whole_runs)->Iterations(1);
 
 // Removes the generated programs at exit.
 struct Cleanup {
