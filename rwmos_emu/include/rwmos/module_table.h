@@ -5,6 +5,9 @@
 // it builds.
 #pragma once
 
+#include <cstdint>
+#include <type_traits>
+
 #include "objif/dictionary.h"
 #include "rwmos/board.h"
 
@@ -19,8 +22,8 @@ using objif::Status;
 using objif::Value;
 using objif::ValueType;
 
-// A value of the board's state as an object's value, and back: an std::int32_t is an int object,
-// a double a double object (a field of any other type has hooks of its own).
+// A value of the board's state as an object's value, and back: an std::int32_t or an enum is an
+// int object, a double a double object (a field of any other type has hooks of its own).
 inline Value value_of(std::int32_t v) noexcept {
     return Value::of_int(v);
 }
@@ -32,6 +35,16 @@ inline void assign(std::int32_t& field, const Value& v) noexcept {
 }
 inline void assign(double& field, const Value& v) noexcept {
     field = v.as_double();
+}
+template <class E>
+requires std::is_enum_v<E> Value value_of(E v)
+noexcept {
+    return Value::of_int(static_cast<std::int32_t>(v));
+}
+template <class E>
+requires std::is_enum_v<E>
+void assign(E& field, const Value& v) noexcept {
+    field = static_cast<E>(v.as_int());
 }
 
 template <class Derived>
