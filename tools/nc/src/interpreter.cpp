@@ -543,9 +543,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                            Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
-    if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
-    }
+    if (state_.ended) return c.fail(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd));
     ModalState s = state_;  // committed only when every check has passed
     s.units = units;
     if (!modal_words(c, state_, options_.tools, s)) return false;
@@ -573,9 +571,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                             EventBatch& out, Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
-    if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
-    }
+    if (state_.ended) return c.fail(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd));
     const BlockOrigin origin{b.block_number(), b.line};
     ModalState s = state_;
     switch (isg.kind) {
@@ -604,9 +600,7 @@ bool Interpreter::apply_variable_write(const Assignment& a, const Block& b, std:
                                        EventBatch& out, Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
-    if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
-    }
+    if (state_.ended) return c.fail(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd));
     if (!variable_writable(a.variable)) {
         return c.fail(ErrorKind::kProgramRule, a.column,
                       fmt::format("{} is read-only", variable_name(a.variable)));
