@@ -43,13 +43,20 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
         {"CallDR2", &M::read_call, &M::write_call},
         {"CorrectionRow", &M::read_field<&State::comp3d, &Comp3dState::correction_row>,
          &M::write_correction_row},
-        {"ProgPath", &M::read_mode, &M::write_mode},
-        {"Reference", &M::read_mode, &M::write_mode},
-        {"Tcpm", &M::read_mode, &M::write_mode},
-        {"AllowOversize", &M::read_mode, &M::write_allow_oversize},
-        {"Side", &M::read_mode, &M::write_mode},
-        {"HeadAxisB", &M::read_mode, &M::write_mode},
-        {"HeadAxisC", &M::read_mode, &M::write_mode},
+        {"ProgPath", &M::read_field<&State::comp3d, &Comp3dState::prog_path>,
+         &M::write_field<&State::comp3d, &Comp3dState::prog_path>},
+        {"Reference", &M::read_field<&State::comp3d, &Comp3dState::reference>,
+         &M::write_field<&State::comp3d, &Comp3dState::reference>},
+        {"Tcpm", &M::read_field<&State::comp3d, &Comp3dState::tcpm>,
+         &M::write_field<&State::comp3d, &Comp3dState::tcpm>},
+        {"AllowOversize", &M::read_field<&State::comp3d, &Comp3dState::allow_oversize>,
+         &M::write_allow_oversize},
+        {"Side", &M::read_field<&State::comp3d, &Comp3dState::side>,
+         &M::write_field<&State::comp3d, &Comp3dState::side>},
+        {"HeadAxisB", &M::read_field<&State::comp3d, &Comp3dState::head_axis_b>,
+         &M::write_field<&State::comp3d, &Comp3dState::head_axis_b>},
+        {"HeadAxisC", &M::read_field<&State::comp3d, &Comp3dState::head_axis_c>,
+         &M::write_field<&State::comp3d, &Comp3dState::head_axis_c>},
         {"NX", &M::read_vector, &M::write_vector},
         {"NY", &M::read_vector, &M::write_vector},
         {"NZ", &M::read_vector, &M::write_vector},
@@ -119,36 +126,8 @@ Status Comp3dModule::write_correction_row(const ObjectInfo&, const Address&, con
     return Status::kOk;
 }
 
-// ---- Modes (each range check is the whole rule).
-
-std::int32_t* Comp3dModule::mode_field(std::int32_t index) noexcept {
-    switch (index) {
-        case comp3d::kIdxProgPath:
-            return &s().prog_path;
-        case comp3d::kIdxReference:
-            return &s().reference;
-        case comp3d::kIdxTcpm:
-            return &s().tcpm;
-        case comp3d::kIdxAllowOversize:
-            return &s().allow_oversize;
-        case comp3d::kIdxSide:
-            return &s().side;
-        case comp3d::kIdxHeadAxisB:
-            return &s().head_axis_b;
-        default:
-            return &s().head_axis_c;
-    }
-}
-
-Status Comp3dModule::read_mode(const ObjectInfo&, const Address& a, Value& out) {
-    out = Value::of_int(*mode_field(a.index));
-    return Status::kOk;
-}
-
-Status Comp3dModule::write_mode(const ObjectInfo&, const Address& a, const Value& v) {
-    *mode_field(a.index) = v.as_int();
-    return Status::kOk;
-}
+// ---- Modes: the table's range check is the whole rule (read_field, write_field), but for
+// AllowOversize.
 
 // M108 while a tool with a positive oversize is loaded would leave that tool loaded against
 // the rule; it is refused (call a tool without oversize first).

@@ -30,8 +30,6 @@ class Comp3dModule : public BoardTableModule<Comp3dModule> {
     Status read_call(const Info&, const Address& a, Value& out);
     Status write_call(const Info&, const Address& a, const Value& v);
     Status write_correction_row(const Info&, const Address&, const Value& v);
-    Status read_mode(const Info&, const Address& a, Value& out);
-    Status write_mode(const Info&, const Address& a, const Value& v);
     Status write_allow_oversize(const Info&, const Address& a, const Value& v);
     Status read_vector(const Info&, const Address& a, Value& out);
     Status write_vector(const Info&, const Address& a, const Value& v);
@@ -43,8 +41,6 @@ class Comp3dModule : public BoardTableModule<Comp3dModule> {
     Status write_tool_row(const Info&, const Address& a, const Value& v);
     Status read_correction(const Info&, const Address& a, Value& out);
     Status write_correction(const Info&, const Address& a, const Value& v);
-
-    std::int32_t* mode_field(std::int32_t index) noexcept;
 };
 
 }  // namespace rwmos
