@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "board_bench.h"
 #include "rwmos/board.h"
 #include "rwmos/board_state.h"
 
@@ -71,9 +72,7 @@ void sampled(benchmark::State& state, const Profile& p, double start_x) {
         benchmark::DoNotOptimize(board.motion_status().position);
     }
     if (board.motion_status().idle) state.SkipWithError("the move ended during the run");
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kChunk));
-    state.counters["cycles/s"] = benchmark::Counter(
-        static_cast<double>(state.iterations() * kChunk), benchmark::Counter::kIsRate);
+    count_cycles(state, kChunk);
 }
 
 void BM_SampledCyclesLine8Axes(benchmark::State& state) {
@@ -100,9 +99,7 @@ void BM_SampledCyclesLineDrained(benchmark::State& state) {
         benchmark::DoNotOptimize(board.read_trace(out));
     }
     if (board.motion_status().idle) state.SkipWithError("the move ended during the run");
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kChunk));
-    state.counters["cycles/s"] = benchmark::Counter(
-        static_cast<double>(state.iterations() * kChunk), benchmark::Counter::kIsRate);
+    count_cycles(state, kChunk);
 }
 BENCHMARK(BM_SampledCyclesLineDrained);
 
@@ -113,28 +110,14 @@ void BM_UnobservedMove(benchmark::State& state) {
     rwmos::EmulatedBoard board;
     // 100 units on each of the 8 axes, at the feed that makes it `cycles` cycles of 1 ms.
     const double feed = 2.8284271247461903 * 100.0 * 60000.0 / static_cast<double>(cycles);
-    double x = 0.0;
-    std::uint64_t ran = 0;
-    for ([[maybe_unused]] auto _ : state) {
+    run_unobserved_moves(state, board, cycles, [feed](double x) {
         Profile p;
         p.kind = ProfileKind::kLine;
         p.feed = feed;
         p.axes = 0xFF;
-        x = x > 0.0 ? 0.0 : 100.0;
         for (double& t : p.target) t = x;
-        if (!board.spool(p).ok()) {
-            state.SkipWithError("spool failed");
-            break;
-        }
-        ran = board.run_until_idle(~std::uint64_t{0});
-        benchmark::DoNotOptimize(ran);
-    }
-    if (ran + 1 < cycles || ran > cycles + 1)
-        state.SkipWithError("the move did not take `cycles` cycles");
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
-    state.counters["virtual cycles/s"] =
-        benchmark::Counter(static_cast<double>(cycles) * static_cast<double>(state.iterations()),
-                           benchmark::Counter::kIsRate);
+        return p;
+    });
 }
 BENCHMARK(BM_UnobservedMove)->Arg(1'000)->Arg(1'000'000)->Arg(1'000'000'000);
 

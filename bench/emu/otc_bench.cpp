@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "board_bench.h"
 #include "objif/descriptor.h"
 #include "rwmos/board.h"
 #include "rwmos/board_state.h"
@@ -68,9 +69,7 @@ void BM_OtcRampingCycles(benchmark::State& state) {
     }
     if (board.state().otc_engine.ramps_settled())
         state.SkipWithError("the ramps rested: not measuring what was meant");
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kChunk));
-    state.counters["cycles/s"] = benchmark::Counter(
-        static_cast<double>(state.iterations() * kChunk), benchmark::Counter::kIsRate);
+    count_cycles(state, kChunk);
 }
 BENCHMARK(BM_OtcRampingCycles);
 
@@ -81,23 +80,7 @@ void BM_OtcContinuousWearUnobservedMove(benchmark::State& state) {
     grinding_tool_on(board, otc::ProcessingType::kLength, otc::Mode::kCont);
     const double length = 100.0 * 1.118033988749895;  // X 100, Y 50
     const double feed = length * 60000.0 / static_cast<double>(cycles);
-    double x = 0.0;
-    std::uint64_t ran = 0;
-    for ([[maybe_unused]] auto _ : state) {
-        x = x > 0.0 ? 0.0 : 100.0;
-        if (!board.spool(line_to(x, feed)).ok()) {
-            state.SkipWithError("spool failed");
-            break;
-        }
-        ran = board.run_until_idle(~std::uint64_t{0});
-        benchmark::DoNotOptimize(ran);
-    }
-    if (ran + 1 < cycles || ran > cycles + 1)
-        state.SkipWithError("the move did not take `cycles` cycles");
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
-    state.counters["virtual cycles/s"] =
-        benchmark::Counter(static_cast<double>(cycles) * static_cast<double>(state.iterations()),
-                           benchmark::Counter::kIsRate);
+    run_unobserved_moves(state, board, cycles, [feed](double x) { return line_to(x, feed); });
 }
 BENCHMARK(BM_OtcContinuousWearUnobservedMove)->Arg(1'000)->Arg(1'000'000)->Arg(1'000'000'000);
 

@@ -30,6 +30,7 @@
 
 #include "cam_program.h"
 #include "contour_program.h"
+#include "exec_argv.h"
 #include "walk_program.h"
 
 namespace {
@@ -64,12 +65,7 @@ ChildRun run_child(const std::vector<std::string>& argv, const std::string& out,
             const auto eq = kv.find('=');
             ::setenv(kv.substr(0, eq).c_str(), kv.substr(eq + 1).c_str(), 1);
         }
-        std::vector<char*> args;
-        args.reserve(argv.size() + 1);
-        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        ::execv(args[0], args.data());
-        ::_exit(127);
+        exec_argv(argv);
     }
     int status = 0;
     rusage usage{};

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "exec_argv.h"
+
 namespace {
 
 // One turn of a plate contour (the tool on its inside, G41, r = 1): 8 lines and 4 arcs, tangent
@@ -84,12 +86,7 @@ ChildRun run_child(const std::vector<std::string>& argv) {
     if (pid == 0) {
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, 1);
-        std::vector<char*> args;
-        args.reserve(argv.size() + 1);
-        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        ::execv(args[0], args.data());
-        ::_exit(127);
+        exec_argv(argv);
     }
     int status = 0;
     rusage usage{};
@@ -146,27 +143,15 @@ void BM_RunJsonAndSvg(benchmark::State& state) {
     run_program(state, {"--json", temp_path("out.json"), "--svg", temp_path("out.svg")});
 }
 
-BENCHMARK(BM_RunJson)
-    ->Arg(100'000)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-BENCHMARK(BM_RunJsonToDevNull)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-BENCHMARK(BM_RunSummaryOnly)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3);
-BENCHMARK(BM_RunJsonAndSvg)
-    ->Arg(1'000'000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(1);
+// Each iteration one whole run of the child, timed by the wall clock (run_program), in ms.
+void whole_runs(benchmark::internal::Benchmark* b) {
+    b->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+}
+
+BENCHMARK(BM_RunJson)->Arg(100'000)->Arg(1'000'000)->Apply(whole_runs);
+BENCHMARK(BM_RunJsonToDevNull)->Arg(1'000'000)->Apply(whole_runs);
+BENCHMARK(BM_RunSummaryOnly)->Arg(1'000'000)->Apply(whole_runs);
+BENCHMARK(BM_RunJsonAndSvg)->Arg(1'000'000)->Apply(whole_runs)->Iterations(1);
 
 // Removes the generated programs at exit.
 struct Cleanup {

@@ -59,6 +59,20 @@ Status parse_link_options(const DeviceUri& uri, LinkOptions& out, std::string& w
     return Status::kOk;
 }
 
+Status check_path_target(const DeviceUri& uri, const LinkOptions& options, std::string_view scheme,
+                         std::string_view needs, std::string& why) {
+    if (!options.rest.empty()) {
+        why = fmt::format("unknown {}: option '{}' (known: timeout=MS)", scheme,
+                          options.rest.front());
+        return Status::kInvalidArgument;
+    }
+    if (uri.target.empty()) {
+        why = fmt::format("{}: needs {}", scheme, needs);
+        return Status::kInvalidArgument;
+    }
+    return Status::kOk;
+}
+
 Status receive_reply(std::vector<std::uint8_t>& pending, std::uint32_t sequence,
                      std::vector<std::uint8_t>& reply,
                      std::chrono::steady_clock::time_point deadline, const ReadSome& read_some,
@@ -186,40 +200,6 @@ Status FrameTransport::call(objif::Opcode op, std::span<const std::uint8_t> payl
     }
 }
 
-Status FrameTransport::read(objif::Descriptor& d, objif::ValueType want,
-                            objif::Value& out) noexcept {
-    try {
-        payload_.clear();
-        objif::encode(objif::ReadRequest{d, want}, payload_);
-        Status s = call(objif::Opcode::kObjectRead, payload_, reply_payload_);
-        if (s != Status::kOk) return s;
-        objif::ReadReply reply;
-        const FrameError e = objif::decode(reply_payload_, reply);
-        if (e != FrameError::kNone) return bad_reply(e, "(ObjectReadReply) has a bad payload");
-        d.handle = reply.handle;
-        if (reply.status == Status::kOk) out = reply.value;
-        return reply.status;
-    } catch (const std::bad_alloc&) {
-        return Status::kNoMemory;
-    } catch (...) {
-        return Status::kGeneralError;
-    }
-}
-
-Status FrameTransport::write(objif::Descriptor& d, const objif::Value& v) noexcept {
-    return guarded([&] {
-        payload_.clear();
-        objif::encode(objif::WriteRequest{d, v}, payload_);
-        Status s = call(objif::Opcode::kObjectWrite, payload_, reply_payload_);
-        if (s != Status::kOk) return s;
-        objif::WriteReply reply;
-        const FrameError e = objif::decode(reply_payload_, reply);
-        if (e != FrameError::kNone) return bad_reply(e, "(ObjectWriteReply) has a bad payload");
-        d.handle = reply.handle;
-        return reply.status;
-    });
-}
-
 template <class Request, class Reply>
 Status FrameTransport::request(objif::Opcode op, const Request& req, Reply& rep) noexcept {
     return guarded([&] {
@@ -237,6 +217,24 @@ Status FrameTransport::request(objif::Opcode op, const Request& req, Reply& rep)
         rep = std::move(decoded);
         return rep.status;
     });
+}
+
+Status FrameTransport::read(objif::Descriptor& d, objif::ValueType want,
+                            objif::Value& out) noexcept {
+    objif::ReadReply reply;
+    reply.handle = d.handle;  // kept when no reply decodes
+    const Status s = request(objif::Opcode::kObjectRead, objif::ReadRequest{d, want}, reply);
+    d.handle = reply.handle;
+    if (s == Status::kOk) out = reply.value;
+    return s;
+}
+
+Status FrameTransport::write(objif::Descriptor& d, const objif::Value& v) noexcept {
+    objif::WriteReply reply;
+    reply.handle = d.handle;  // kept when no reply decodes
+    const Status s = request(objif::Opcode::kObjectWrite, objif::WriteRequest{d, v}, reply);
+    d.handle = reply.handle;
+    return s;
 }
 
 Status FrameTransport::spool(const objif::SpoolRequest& req, objif::MotionReply& rep) noexcept {

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "guarded.h"
 #include "objif/frame.h"
 #include "transport.h"
 
@@ -134,6 +135,34 @@ struct LinkOptions {
     std::vector<std::string> rest;
 };
 objif::Status parse_link_options(const DeviceUri& uri, LinkOptions& out, std::string& why);
+
+// For a scheme whose target is a path and whose only option is timeout=MS (shm:, unix:):
+// kInvalidArgument with `why` naming the first other option in `options.rest`, or, for an empty
+// path, saying what the path `needs` to be ("shm: needs " + needs).
+objif::Status check_path_target(const DeviceUri& uri, const LinkOptions& options,
+                                std::string_view scheme, std::string_view needs, std::string& why);
+
+// The frame of each remote scheme's open: under guarded(), the options after '?' parsed, then
+// `open(options)`, the scheme's own part, which returns a status.
+template <class Open>
+objif::Status open_with_options(const DeviceUri& uri, std::string& why, Open&& open) noexcept {
+    return guarded([&] {
+        LinkOptions options;
+        const objif::Status s = parse_link_options(uri, options, why);
+        return s != objif::Status::kOk ? s : open(options);
+    });
+}
+
+// The last step of each remote scheme's open: opens `link` (its open(why)) and, once it is open,
+// makes `out` the FrameTransport over it, named `name`.
+template <class Link>
+objif::Status open_framed(std::unique_ptr<Link> link, std::string name, Millis timeout,
+                          std::unique_ptr<Transport>& out, std::string& why) {
+    const objif::Status s = link->open(why);
+    if (s != objif::Status::kOk) return s;
+    out = std::make_unique<FrameTransport>(std::move(link), std::move(name), timeout);
+    return objif::Status::kOk;
+}
 
 // "0x15B8", "5560" -> value. False for anything else or out of range.
 bool parse_unsigned(std::string_view text, std::uint32_t max, std::uint32_t& out) noexcept;

@@ -93,4 +93,15 @@ int map_file(const MapRequest& request, std::unique_ptr<objif::mailbox::Window>&
     return 0;
 }
 
+objif::Status status_of_file_errno(int err) noexcept {
+    switch (err) {
+        case ENOMEM:
+            return objif::Status::kNoMemory;
+        case ENAMETOOLONG:
+            return objif::Status::kInvalidArgument;
+        default:
+            return objif::Status::kTransportError;
+    }
+}
+
 }  // namespace apci

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "objif/mailbox.h"
+#include "objif/status.h"
 
 namespace apci {
 
@@ -23,5 +24,10 @@ struct MapRequest {
 // EINVAL. Callers turn the errno into their status.
 int map_file(const MapRequest& request, std::unique_ptr<objif::mailbox::Window>& out,
              std::string& what);
+
+// The status of an errno from map_file() or another call on the files of a mapped board (shm:,
+// pci:): ENOMEM kNoMemory, ENAMETOOLONG kInvalidArgument, any other (ENODEV, ENXIO, EIO, ...)
+// kTransportError. The one place where those backends turn errno into a status.
+objif::Status status_of_file_errno(int err) noexcept;
 
 }  // namespace apci

@@ -9,6 +9,7 @@
 #include <new>
 #include <span>
 
+#include "guarded.h"
 #include "rwmos/board.h"
 #include "rwmos/motion_wire.h"
 #include "transport.h"
@@ -79,17 +80,6 @@ public:
     }
 
 private:
-    template <class F>
-    static objif::Status guarded(F&& serve) noexcept {
-        try {
-            return serve();
-        } catch (const std::bad_alloc&) {
-            return objif::Status::kNoMemory;
-        } catch (...) {
-            return objif::Status::kGeneralError;
-        }
-    }
-
     rwmos::EmulatedBoard board_;
 };
 

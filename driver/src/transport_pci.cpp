@@ -12,7 +12,8 @@
 // $APCI_DEV_ROOT replace /sys and /dev (tests use a fake tree).
 // Blocking: as MailboxLink; device memory cannot sleep on a futex, so a
 // waiting host polls every 20 us after its spin. Threading: one caller at a
-// time. errno becomes a status in status_of_errno() and nowhere else.
+// time. errno becomes a status in status_of_file_errno() (mapped_file.h) and
+// nowhere else.
 #include <dirent.h>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -38,21 +39,6 @@ namespace {
 
 namespace mb = objif::mailbox;
 using objif::Status;
-
-// The one place where this backend turns errno into a status.
-Status status_of_errno(int err) noexcept {
-    switch (err) {
-        case ENOMEM:
-            return Status::kNoMemory;
-        case ENAMETOOLONG:
-            return Status::kInvalidArgument;
-        case ENODEV:
-        case ENXIO:
-        case EIO:
-        default:
-            return Status::kTransportError;
-    }
-}
 
 // Flags of a sysfs `resource` line (include/linux/ioport.h).
 constexpr std::uint64_t kIoResourceIo = 0x100;
@@ -158,7 +144,7 @@ class IoPortWindow final : public mb::Window {
         }
     }
     Status error() const noexcept override {
-        return error_ == 0 ? Status::kOk : status_of_errno(error_);
+        return error_ == 0 ? Status::kOk : status_of_file_errno(error_);
     }
     std::string error_text() const override { return error_text_; }
 
@@ -287,7 +273,7 @@ Status open_window(const PciTarget& t, std::unique_ptr<mb::Window>& out, std::st
         request.check_size = false;
         const int err = map_file(request, out, what);
         if (err != 0) why = mapped_error(err, what);
-        return err == 0 ? Status::kOk : status_of_errno(err);
+        return err == 0 ? Status::kOk : status_of_file_errno(err);
     }
     const std::string resource = fmt::format("{}/resource{}", dir, t.bar);
     if ((bar.flags & kIoResourceIo) != 0) {
@@ -295,7 +281,7 @@ Status open_window(const PciTarget& t, std::unique_ptr<mb::Window>& out, std::st
         if (fd < 0) {
             const int err = errno;
             why = fmt::format("open {}: {}", resource, std::strerror(err));
-            return status_of_errno(err);
+            return status_of_file_errno(err);
         }
         out = std::make_unique<IoPortWindow>(fd, t.offset, resource);
         return Status::kOk;
@@ -310,16 +296,13 @@ Status open_window(const PciTarget& t, std::unique_ptr<mb::Window>& out, std::st
     request.offset = t.offset;
     const int err = map_file(request, out, what);
     if (err != 0) why = mapped_error(err, what);
-    return err == 0 ? Status::kOk : status_of_errno(err);
+    return err == 0 ? Status::kOk : status_of_file_errno(err);
 }
 
 }  // namespace
 
 Status open_pci(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    return guarded([&] {
-        LinkOptions options;
-        Status s = parse_link_options(uri, options, why);
-        if (s != Status::kOk) return s;
+    return open_with_options(uri, why, [&](const LinkOptions& options) {
         PciTarget target;
         target.address = uri.target;
         if (!valid_pci_address(target.address)) {
@@ -329,17 +312,13 @@ Status open_pci(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
                 uri.target);
             return Status::kInvalidArgument;
         }
-        s = parse_pci_options(options.rest, target, why);
-        if (s != Status::kOk) return s;
+        if (Status s = parse_pci_options(options.rest, target, why); s != Status::kOk) return s;
         const std::string name = "pci:" + target.address;
         OpenWindow open = [target](std::unique_ptr<mb::Window>& window, std::string& text) {
             return open_window(target, window, text);
         };
-        auto link = std::make_unique<MailboxLink>(std::move(open), name);
-        s = link->open(why);
-        if (s != Status::kOk) return s;
-        out = std::make_unique<FrameTransport>(std::move(link), name, options.timeout);
-        return Status::kOk;
+        return open_framed(std::make_unique<MailboxLink>(std::move(open), name), name,
+                           options.timeout, out, why);
     });
 }
 
@@ -351,7 +330,7 @@ Status list_pci(std::vector<FoundDevice>& out, std::string& why) noexcept {
             if (errno == ENOENT) return Status::kOk;  // no PCI bus here
             const int err = errno;
             why = fmt::format("{}: {}", root, std::strerror(err));
-            return status_of_errno(err);
+            return status_of_file_errno(err);
         }
         std::vector<FoundDevice> found;
         while (const dirent* e = ::readdir(d.get())) {

@@ -3,7 +3,7 @@
 // dual-port RAM (docs/dpram.md), served by rwmos-emu --shm PATH in another
 // process. The mailbox protocol is MailboxLink's; this file only maps the
 // file. Blocking and threading: as MailboxLink. errno becomes a status in
-// status_of_errno() and nowhere else.
+// status_of_file_errno() (mapped_file.h) and nowhere else.
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -16,37 +16,15 @@
 #include "guarded.h"
 
 namespace apci {
-namespace {
 
 using objif::Status;
 
-// The one place where this backend turns errno into a status.
-Status status_of_errno(int err) noexcept {
-    switch (err) {
-        case ENOMEM:
-            return Status::kNoMemory;
-        case ENAMETOOLONG:
-            return Status::kInvalidArgument;
-        default:
-            return Status::kTransportError;
-    }
-}
-
-}  // namespace
-
 Status open_shm(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    return guarded([&] {
-        LinkOptions options;
-        Status s = parse_link_options(uri, options, why);
+    return open_with_options(uri, why, [&](const LinkOptions& options) {
+        const Status s = check_path_target(
+            uri, options, "shm", "the path of the dual-port RAM file, e.g. shm:/dev/shm/rwmos-emu",
+            why);
         if (s != Status::kOk) return s;
-        if (!options.rest.empty()) {
-            why = fmt::format("unknown shm: option '{}' (known: timeout=MS)", options.rest.front());
-            return Status::kInvalidArgument;
-        }
-        if (uri.target.empty()) {
-            why = "shm: needs the path of the dual-port RAM file, e.g. shm:/dev/shm/rwmos-emu";
-            return Status::kInvalidArgument;
-        }
         const std::string path = uri.target;
         OpenWindow open_window = [path](std::unique_ptr<objif::mailbox::Window>& window,
                                         std::string& text) {
@@ -57,13 +35,10 @@ Status open_shm(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::stri
             const int err = map_file(request, window, what);
             if (err == 0) return Status::kOk;
             text = err == EINVAL ? what : fmt::format("{}: {}", what, std::strerror(err));
-            return status_of_errno(err);
+            return status_of_file_errno(err);
         };
-        auto link = std::make_unique<MailboxLink>(std::move(open_window), "shm:" + path);
-        s = link->open(why);
-        if (s != Status::kOk) return s;
-        out = std::make_unique<FrameTransport>(std::move(link), "shm:" + path, options.timeout);
-        return Status::kOk;
+        return open_framed(std::make_unique<MailboxLink>(std::move(open_window), "shm:" + path),
+                           "shm:" + path, options.timeout, out, why);
     });
 }
 

@@ -369,25 +369,13 @@ constexpr Millis kListGreetingTimeout{500};
 }  // namespace
 
 Status open_unix(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    return guarded([&] {
-        LinkOptions options;
-        Status s = parse_link_options(uri, options, why);
+    return open_with_options(uri, why, [&](const LinkOptions& options) {
+        const Status s = check_path_target(
+            uri, options, "unix",
+            "the daemon's socket path, e.g. unix:/run/user/1000/rwmos-emu.sock", why);
         if (s != Status::kOk) return s;
-        if (!options.rest.empty()) {
-            why =
-                fmt::format("unknown unix: option '{}' (known: timeout=MS)", options.rest.front());
-            return Status::kInvalidArgument;
-        }
-        if (uri.target.empty()) {
-            why = "unix: needs the daemon's socket path, e.g. unix:/run/user/1000/rwmos-emu.sock";
-            return Status::kInvalidArgument;
-        }
-        auto link = std::make_unique<UnixLink>(uri.target, options.timeout);
-        s = link->open(why);
-        if (s != Status::kOk) return s;
-        out = std::make_unique<FrameTransport>(std::move(link), "unix:" + uri.target,
-                                               options.timeout);
-        return Status::kOk;
+        return open_framed(std::make_unique<UnixLink>(uri.target, options.timeout),
+                           "unix:" + uri.target, options.timeout, out, why);
     });
 }
 

@@ -364,19 +364,11 @@ class UsbLink final : public FrameLink {
 }  // namespace
 
 Status open_usb(const DeviceUri& uri, std::unique_ptr<Transport>& out, std::string& why) noexcept {
-    return guarded([&] {
-        LinkOptions options;
-        Status s = parse_link_options(uri, options, why);
-        if (s != Status::kOk) return s;
+    return open_with_options(uri, why, [&](const LinkOptions& options) {
         UsbTarget target;
-        s = parse_target(uri, options.rest, target, why);
-        if (s != Status::kOk) return s;
-        auto link = std::make_unique<UsbLink>(std::move(target));
-        s = link->open(why);
-        if (s != Status::kOk) return s;
-        out =
-            std::make_unique<FrameTransport>(std::move(link), "usb:" + uri.target, options.timeout);
-        return Status::kOk;
+        if (Status s = parse_target(uri, options.rest, target, why); s != Status::kOk) return s;
+        return open_framed(std::make_unique<UsbLink>(std::move(target)), "usb:" + uri.target,
+                           options.timeout, out, why);
     });
 }
 

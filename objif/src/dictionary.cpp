@@ -3,15 +3,14 @@
 
 #include <cmath>
 
+#include "objif/enum_names.h"
+
 namespace objif {
 
 std::string_view access_name(Access a) noexcept {
-    switch (a) {
-        case Access::kRead: return "r";
-        case Access::kWrite: return "w";
-        case Access::kReadWrite: return "r/w";
-    }
-    return "?";
+    static constexpr auto kNames =
+        enum_names<Access::kRead, Access::kReadWrite>({"r", "w", "r/w"}, "?");
+    return kNames(a);
 }
 
 Status check_value(const ObjectInfo& info, const Value& v) noexcept {

@@ -2,6 +2,7 @@
 #include "objif/frame.h"
 
 #include "objif/byte_order.h"
+#include "objif/enum_names.h"
 
 #include <zlib.h>
 
@@ -35,19 +36,11 @@ std::string_view opcode_name(std::uint16_t op) noexcept {
 }
 
 std::string_view frame_error_name(FrameError e) noexcept {
-    switch (e) {
-        case FrameError::kNone: return "none";
-        case FrameError::kShort: return "short frame";
-        case FrameError::kBadMagic: return "bad magic";
-        case FrameError::kBadVersion: return "bad version";
-        case FrameError::kBadLength: return "bad payload length";
-        case FrameError::kBadCrc: return "bad CRC";
-        case FrameError::kUnknownOpcode: return "unknown opcode";
-        case FrameError::kBadPayload: return "bad payload for opcode";
-        case FrameError::kBadValueTag: return "bad value tag";
-        case FrameError::kNotFinite: return "value is NaN or infinite";
-    }
-    return "unknown frame error";
+    static constexpr auto kNames = enum_names<FrameError::kNone, FrameError::kNotFinite>(
+        {"none", "short frame", "bad magic", "bad version", "bad payload length", "bad CRC",
+         "unknown opcode", "bad payload for opcode", "bad value tag", "value is NaN or infinite"},
+        "unknown frame error");
+    return kNames(e);
 }
 
 Status frame_error_status(FrameError e) noexcept {

@@ -21,10 +21,11 @@ std::span<const Entry<BoardModule>> BoardModule::table() const noexcept {
         {"FirmwareVersion", &M::read_firmware_version, nullptr},
         {"Options", &M::read_options, nullptr},
         {"AxisCount", &M::read_axis_count, nullptr},
-        {"InterpolationCycle", &M::read_interpolation_cycle, &M::write_interpolation_cycle},
-        {"PU", &M::read_pu, &M::write_pu},
-        {"SpoolerCapacity", &M::read_spooler_capacity, nullptr},
-        {"SpoolerFill", &M::read_spooler_fill, nullptr},
+        {"InterpolationCycle", &M::read_field<&State::interpolation_cycle_us>,
+         &M::write_field<&State::interpolation_cycle_us>},
+        {"PU", &M::read_field<&State::pu>, &M::write_pu},
+        {"SpoolerCapacity", &M::read_field<&State::spooler, &SpoolerState::capacity>, nullptr},
+        {"SpoolerFill", &M::read_field<&State::spooler, &SpoolerState::fill>, nullptr},
         {"Position0", &M::read_axis_position, nullptr},
         {"Position1", &M::read_axis_position, nullptr},
         {"Position2", &M::read_axis_position, nullptr},
@@ -56,34 +57,9 @@ Status BoardModule::read_axis_count(const ObjectInfo&, const Address&, Value& ou
     return Status::kOk;
 }
 
-Status BoardModule::read_interpolation_cycle(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(state_.interpolation_cycle_us);
-    return Status::kOk;
-}
-
-Status BoardModule::write_interpolation_cycle(const ObjectInfo&, const Address&, const Value& v) {
-    state_.interpolation_cycle_us = v.as_int();
-    return Status::kOk;
-}
-
-Status BoardModule::read_pu(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(state_.pu);
-    return Status::kOk;
-}
-
 Status BoardModule::write_pu(const ObjectInfo&, const Address&, const Value& v) {
     state_.pu = v.as_int();
     state_.motion.settings_changed();  // the unit of the TC tool values
-    return Status::kOk;
-}
-
-Status BoardModule::read_spooler_capacity(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(state_.spooler.capacity);
-    return Status::kOk;
-}
-
-Status BoardModule::read_spooler_fill(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(state_.spooler.fill);
     return Status::kOk;
 }
 

@@ -17,7 +17,6 @@ namespace rwmos {
 
 namespace {
 
-
 double& delta_of(comp3d::Deltas& d, std::int32_t k) noexcept {
     return k == 0 ? d.dl : k == 1 ? d.dr : d.dr2;
 }
@@ -38,26 +37,35 @@ std::span<const Entry<Comp3dModule>> Comp3dModule::table() const noexcept {
     using M = Comp3dModule;
     static constexpr std::array<Hooks<M>, 34> kHooks{{
         // ---- DeviceNumber 0.
-        {"Tool", &M::read_tool, &M::write_tool},
+        {"Tool", &M::read_field<&State::comp3d, &Comp3dState::tool>, &M::write_tool},
         {"CallDL", &M::read_call, &M::write_call},
         {"CallDR", &M::read_call, &M::write_call},
         {"CallDR2", &M::read_call, &M::write_call},
-        {"CorrectionRow", &M::read_correction_row, &M::write_correction_row},
-        {"ProgPath", &M::read_mode, &M::write_mode},
-        {"Reference", &M::read_mode, &M::write_mode},
-        {"Tcpm", &M::read_mode, &M::write_mode},
-        {"AllowOversize", &M::read_mode, &M::write_allow_oversize},
-        {"Side", &M::read_mode, &M::write_mode},
-        {"HeadAxisB", &M::read_mode, &M::write_mode},
-        {"HeadAxisC", &M::read_mode, &M::write_mode},
+        {"CorrectionRow", &M::read_field<&State::comp3d, &Comp3dState::correction_row>,
+         &M::write_correction_row},
+        {"ProgPath", &M::read_field<&State::comp3d, &Comp3dState::prog_path>,
+         &M::write_field<&State::comp3d, &Comp3dState::prog_path>},
+        {"Reference", &M::read_field<&State::comp3d, &Comp3dState::reference>,
+         &M::write_field<&State::comp3d, &Comp3dState::reference>},
+        {"Tcpm", &M::read_field<&State::comp3d, &Comp3dState::tcpm>,
+         &M::write_field<&State::comp3d, &Comp3dState::tcpm>},
+        {"AllowOversize", &M::read_field<&State::comp3d, &Comp3dState::allow_oversize>,
+         &M::write_allow_oversize},
+        {"Side", &M::read_field<&State::comp3d, &Comp3dState::side>,
+         &M::write_field<&State::comp3d, &Comp3dState::side>},
+        {"HeadAxisB", &M::read_field<&State::comp3d, &Comp3dState::head_axis_b>,
+         &M::write_field<&State::comp3d, &Comp3dState::head_axis_b>},
+        {"HeadAxisC", &M::read_field<&State::comp3d, &Comp3dState::head_axis_c>,
+         &M::write_field<&State::comp3d, &Comp3dState::head_axis_c>},
         {"NX", &M::read_vector, &M::write_vector},
         {"NY", &M::read_vector, &M::write_vector},
         {"NZ", &M::read_vector, &M::write_vector},
         {"TX", &M::read_vector, &M::write_vector},
         {"TY", &M::read_vector, &M::write_vector},
         {"TZ", &M::read_vector, &M::write_vector},
-        {"Arm", &M::read_arm, &M::write_arm},
-        {"LastError", &M::read_last_error, &M::write_last_error},
+        {"Arm", &M::read_field<&State::comp3d, &Comp3dState::armed>, &M::write_arm},
+        {"LastError", &M::read_field<&State::comp3d, &Comp3dState::last_error>,
+         &M::write_last_error},
         {"DL", &M::read_deltas, nullptr},
         {"DR", &M::read_deltas, nullptr},
         {"DR2", &M::read_deltas, nullptr},
@@ -87,11 +95,6 @@ Status Comp3dModule::refuse(comp3d::Refusal r) noexcept {
 
 // ---- The tool in force.
 
-Status Comp3dModule::read_tool(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().tool);
-    return Status::kOk;
-}
-
 // [TNC-3D]: "Wenn Sie ein Werkzeug mit einem Übermaß (positive Deltawerte) einwechseln, gibt
 // die Steuerung eine Fehlermeldung aus" unless M107 allows it; the tool must also exist.
 Status Comp3dModule::write_tool(const ObjectInfo&, const Address&, const Value& v) {
@@ -114,11 +117,6 @@ Status Comp3dModule::write_call(const ObjectInfo&, const Address& a, const Value
     return Status::kOk;
 }
 
-Status Comp3dModule::read_correction_row(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().correction_row);
-    return Status::kOk;
-}
-
 // The row's deltas join the sum of the loaded tool, so the loading rules apply again.
 Status Comp3dModule::write_correction_row(const ObjectInfo&, const Address&, const Value& v) {
     const std::int32_t row = v.as_int();
@@ -128,36 +126,8 @@ Status Comp3dModule::write_correction_row(const ObjectInfo&, const Address&, con
     return Status::kOk;
 }
 
-// ---- Modes (each range check is the whole rule).
-
-std::int32_t* Comp3dModule::mode_field(std::int32_t index) noexcept {
-    switch (index) {
-        case comp3d::kIdxProgPath:
-            return &s().prog_path;
-        case comp3d::kIdxReference:
-            return &s().reference;
-        case comp3d::kIdxTcpm:
-            return &s().tcpm;
-        case comp3d::kIdxAllowOversize:
-            return &s().allow_oversize;
-        case comp3d::kIdxSide:
-            return &s().side;
-        case comp3d::kIdxHeadAxisB:
-            return &s().head_axis_b;
-        default:
-            return &s().head_axis_c;
-    }
-}
-
-Status Comp3dModule::read_mode(const ObjectInfo&, const Address& a, Value& out) {
-    out = Value::of_int(*mode_field(a.index));
-    return Status::kOk;
-}
-
-Status Comp3dModule::write_mode(const ObjectInfo&, const Address& a, const Value& v) {
-    *mode_field(a.index) = v.as_int();
-    return Status::kOk;
-}
+// ---- Modes: the table's range check is the whole rule (read_field, write_field), but for
+// AllowOversize.
 
 // M108 while a tool with a positive oversize is loaded would leave that tool loaded against
 // the rule; it is refused (call a tool without oversize first).
@@ -184,11 +154,6 @@ Status Comp3dModule::write_vector(const ObjectInfo&, const Address& a, const Val
     return Status::kOk;
 }
 
-Status Comp3dModule::read_arm(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().armed);
-    return Status::kOk;
-}
-
 // [TNC-3D] "Gerade LN": "Das CAM-generierte NC-Programm muss normierte Vektoren enthalten".
 Status Comp3dModule::write_arm(const ObjectInfo&, const Address&, const Value& v) {
     const std::int32_t bits = v.as_int();
@@ -205,11 +170,6 @@ Status Comp3dModule::write_arm(const ObjectInfo&, const Address&, const Value& v
     s().armed = bits;
     s().armed_normal = n.v;
     s().armed_tool_vector = t.v;
-    return Status::kOk;
-}
-
-Status Comp3dModule::read_last_error(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(s().last_error);
     return Status::kOk;
 }
 

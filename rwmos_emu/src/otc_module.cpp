@@ -38,21 +38,31 @@ bool OtcModule::present() const noexcept {
 
 std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
     using M = OtcModule;
+    // What a write while OTC is on answers (write_while_off).
+    constexpr otc::Error kFixed = otc::Error::kChangeWhileActive;
+    constexpr otc::Error kToolFixed = otc::Error::kToolChangeWhileActive;
     static constexpr std::array<Hooks<M>, 40> kHooks{{
         // ---- DeviceNumber 0: #OTC ([ISG-OTC] section 2.1), ramp, kinematics, channel unit.
         {"Active", &M::read_active, &M::write_active},
-        {"ProcessingType", &M::read_type, &M::write_type},
-        {"Mode", &M::read_mode, &M::write_mode},
-        {"WearConst", &M::read_wear_const, &M::write_wear_const},
+        {"ProcessingType", &M::read_field<&State::otc, &OtcState::type>,
+         &M::write_while_off<kFixed, &State::otc, &OtcState::type>},
+        {"Mode", &M::read_field<&State::otc, &OtcState::mode>,
+         &M::write_while_off<kFixed, &State::otc, &OtcState::mode>},
+        {"WearConst", &M::read_field<&State::otc, &OtcState::programmed_wear_const>,
+         &M::write_wear_const},
         {"WearConstSource", &M::read_wear_const_source, &M::write_wear_const_source},
-        {"AccWeight", &M::read_acc_weight, &M::write_acc_weight},
-        {"LastError", &M::read_last_error, &M::write_last_error},
+        {"AccWeight", &M::read_field<&State::otc, &OtcState::acc_weight>,
+         &M::write_while_off<kFixed, &State::otc, &OtcState::acc_weight>},
+        {"LastError", &M::read_field<&State::otc, &OtcState::last_error>, &M::write_last_error},
         {"EffectiveWearConst", &M::read_effective_wear_const, nullptr},
-        {"RampVelocity", &M::read_ramp_velocity, &M::write_ramp_velocity},
-        {"RampAcceleration", &M::read_ramp_acceleration, &M::write_ramp_acceleration},
-        {"Kinematics", &M::read_kinematics, &M::write_kinematics},
+        {"RampVelocity", &M::read_field<&State::otc, &OtcState::ramp_velocity>,
+         &M::write_field<&State::otc, &OtcState::ramp_velocity>},
+        {"RampAcceleration", &M::read_field<&State::otc, &OtcState::ramp_acceleration>,
+         &M::write_field<&State::otc, &OtcState::ramp_acceleration>},
+        {"Kinematics", &M::read_field<&State::otc, &OtcState::kinematics>, &M::write_kinematics},
         {"Trafo", &M::read_trafo, &M::write_trafo},
-        {"ToolAxisB", &M::read_tool_axis_b, &M::write_tool_axis_b},
+        {"ToolAxisB", &M::read_field<&State::otc, &OtcState::tool_axis_b>,
+         &M::write_while_off<kFixed, &State::otc, &OtcState::tool_axis_b>},
         {"otc_radius_offset.command_w", &M::read_unit_command, &M::write_unit_command},
         {"otc_radius_offset.enable_w", &M::read_unit_enable, &M::write_unit_enable},
         {"otc_radius_offset.request_r", &M::read_unit_request, nullptr},
@@ -67,13 +77,21 @@ std::span<const Entry<OtcModule>> OtcModule::table() const noexcept {
         {"ManualMvBackToStart.X_Request", &M::read_back_request, nullptr},
         {"ManualMvBackToStart.X_State", &M::read_back_state, nullptr},
         // ---- DeviceNumber 2: the current tool (V.G.WZ_AKT; [ISG-OTC] sections 2.6, 2.8, 3.2).
-        {"ToolNumber", &M::read_tool_number, &M::write_tool_number},
-        {"typ", &M::read_tool_type, &M::write_tool_type},
-        {"grinding_wear_const", &M::read_tool_wear_const, &M::write_tool_wear_const},
-        {"grinding_max_infeed", &M::read_tool_max_infeed, &M::write_tool_max_infeed},
-        {"grinding_disc_tilt_angle", &M::read_tool_tilt, &M::write_tool_tilt},
-        {"V.G.WZ_AKT.WEAR_RADIUS", &M::read_wear_radius, nullptr},
-        {"V.G.WZ_AKT.WEAR_RADIUS_CONT", &M::read_wear_radius_cont, nullptr},
+        {"ToolNumber", &M::read_field<&State::otc, &OtcState::tool, &OtcTool::number>,
+         &M::write_tool_number},
+        {"typ", &M::read_field<&State::otc, &OtcState::tool, &OtcTool::type>,
+         &M::write_while_off<kToolFixed, &State::otc, &OtcState::tool, &OtcTool::type>},
+        {"grinding_wear_const", &M::read_field<&State::otc, &OtcState::tool, &OtcTool::wear_const>,
+         &M::write_tool_wear_const},
+        {"grinding_max_infeed", &M::read_field<&State::otc, &OtcState::tool, &OtcTool::max_infeed>,
+         &M::write_while_off<kToolFixed, &State::otc, &OtcState::tool, &OtcTool::max_infeed>},
+        {"grinding_disc_tilt_angle",
+         &M::read_field<&State::otc, &OtcState::tool, &OtcTool::tilt_angle>,
+         &M::write_while_off<kToolFixed, &State::otc, &OtcState::tool, &OtcTool::tilt_angle>},
+        {"V.G.WZ_AKT.WEAR_RADIUS", &M::read_field<&State::otc, &OtcState::wear, &OtcWear::radius>,
+         nullptr},
+        {"V.G.WZ_AKT.WEAR_RADIUS_CONT",
+         &M::read_field<&State::otc, &OtcState::wear, &OtcWear::radius_cont>, nullptr},
         {"V.G.WZ_AKT.WEAR[0]", &M::read_wear, nullptr},
         {"V.G.WZ_AKT.WEAR[1]", &M::read_wear, nullptr},
         {"V.G.WZ_AKT.WEAR[2]", &M::read_wear, nullptr},
@@ -96,6 +114,20 @@ Status OtcModule::refuse(otc::Error e, Status s) noexcept {
 
 Status OtcModule::refuse_while_active(otc::Error e) noexcept {
     return refuse(e, Status::kWrongDeviceState);
+}
+
+// A setting OTC fixes while it is on ([ISG-OTC] section 2.1: "Die Parametrierung kann vorab
+// oder zusammen mit #OTC ON erfolgen"; the tool data likewise): writing the value it holds
+// changes nothing and is accepted any time; another value is refused with `E` while OTC is on.
+template <otc::Error E, auto... Path>
+Status OtcModule::write_while_off(const Info&, const Address&, const Value& v) {
+    auto& field = (state_ .* ... .* Path);
+    auto value = field;
+    assign(value, v);
+    if (value == field) return Status::kOk;
+    if (state_.otc.active) return refuse_while_active(E);
+    field = value;
+    return Status::kOk;
 }
 
 bool OtcModule::queue_busy() const noexcept {
@@ -140,38 +172,6 @@ Status OtcModule::write_active(const Info&, const Address&, const Value& v) {
     return Status::kOk;
 }
 
-Status OtcModule::read_type(const Info&, const Address&, Value& out) {
-    out = Value::of_int(static_cast<std::int32_t>(state_.otc.type));
-    return Status::kOk;
-}
-
-// [ISG-OTC] section 2.1: "Die Parametrierung kann vorab oder zusammen mit #OTC ON erfolgen."
-Status OtcModule::write_type(const Info&, const Address&, const Value& v) {
-    const auto t = static_cast<otc::ProcessingType>(v.as_int());
-    if (t == state_.otc.type) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kChangeWhileActive);
-    state_.otc.type = t;
-    return Status::kOk;
-}
-
-Status OtcModule::read_mode(const Info&, const Address&, Value& out) {
-    out = Value::of_int(static_cast<std::int32_t>(state_.otc.mode));
-    return Status::kOk;
-}
-
-Status OtcModule::write_mode(const Info&, const Address&, const Value& v) {
-    const auto m = static_cast<otc::Mode>(v.as_int());
-    if (m == state_.otc.mode) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kChangeWhileActive);
-    state_.otc.mode = m;
-    return Status::kOk;
-}
-
-Status OtcModule::read_wear_const(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.programmed_wear_const);
-    return Status::kOk;
-}
-
 // [ISG-OTC] section 2.1 WEAR_CONST=..: "wirkt modal"; it may change while OTC is on and acts
 // from the next profile spooled on: the profiles spooled before it, queued or held, keep the
 // constant they were programmed under (OtcEngine::wear_const_changed).
@@ -197,23 +197,6 @@ Status OtcModule::write_wear_const_source(const Info&, const Address&, const Val
     return Status::kOk;
 }
 
-Status OtcModule::read_acc_weight(const Info&, const Address&, Value& out) {
-    out = Value::of_int(state_.otc.acc_weight);
-    return Status::kOk;
-}
-
-Status OtcModule::write_acc_weight(const Info&, const Address&, const Value& v) {
-    if (v.as_int() == state_.otc.acc_weight) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kChangeWhileActive);
-    state_.otc.acc_weight = v.as_int();
-    return Status::kOk;
-}
-
-Status OtcModule::read_last_error(const Info&, const Address&, Value& out) {
-    out = Value::of_int(static_cast<std::int32_t>(state_.otc.last_error));
-    return Status::kOk;
-}
-
 Status OtcModule::write_last_error(const Info&, const Address&, const Value&) {
     state_.otc.last_error = otc::Error::kNone;
     return Status::kOk;
@@ -221,31 +204,6 @@ Status OtcModule::write_last_error(const Info&, const Address&, const Value&) {
 
 Status OtcModule::read_effective_wear_const(const Info&, const Address&, Value& out) {
     out = Value::of_double(state_.otc.effective_wear_const());
-    return Status::kOk;
-}
-
-Status OtcModule::read_ramp_velocity(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.ramp_velocity);
-    return Status::kOk;
-}
-
-Status OtcModule::write_ramp_velocity(const Info&, const Address&, const Value& v) {
-    state_.otc.ramp_velocity = v.as_double();
-    return Status::kOk;
-}
-
-Status OtcModule::read_ramp_acceleration(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.ramp_acceleration);
-    return Status::kOk;
-}
-
-Status OtcModule::write_ramp_acceleration(const Info&, const Address&, const Value& v) {
-    state_.otc.ramp_acceleration = v.as_double();
-    return Status::kOk;
-}
-
-Status OtcModule::read_kinematics(const Info&, const Address&, Value& out) {
-    out = Value::of_int(state_.otc.kinematics);
     return Status::kOk;
 }
 
@@ -271,18 +229,6 @@ Status OtcModule::write_trafo(const Info&, const Address&, const Value& v) {
     // A transformation needs a kinematics (#KIN ID[..] before #TRAFO ON).
     if (on && state_.otc.kinematics == otc::kNoKinematics) return Status::kWrongDeviceState;
     state_.otc.trafo = on;
-    return Status::kOk;
-}
-
-Status OtcModule::read_tool_axis_b(const Info&, const Address&, Value& out) {
-    out = Value::of_int(state_.otc.tool_axis_b);
-    return Status::kOk;
-}
-
-Status OtcModule::write_tool_axis_b(const Info&, const Address&, const Value& v) {
-    if (v.as_int() == state_.otc.tool_axis_b) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kChangeWhileActive);
-    state_.otc.tool_axis_b = v.as_int();
     return Status::kOk;
 }
 
@@ -369,33 +315,11 @@ Status OtcModule::read_back_state(const Info&, const Address& a, Value& out) {
 
 // ---- DeviceNumber 2
 
-Status OtcModule::read_tool_number(const Info&, const Address&, Value& out) {
-    out = Value::of_int(state_.otc.tool.number);
-    return Status::kOk;
-}
-
 Status OtcModule::write_tool_number(const Info&, const Address&, const Value& v) {
     if (v.as_int() == state_.otc.tool.number) return Status::kOk;
     if (state_.otc.active) return refuse_while_active(otc::Error::kToolChangeWhileActive);
     state_.otc.tool.number = v.as_int();
     state_.otc_engine.tool_changed();
-    return Status::kOk;
-}
-
-Status OtcModule::read_tool_type(const Info&, const Address&, Value& out) {
-    out = Value::of_int(state_.otc.tool.type);
-    return Status::kOk;
-}
-
-Status OtcModule::write_tool_type(const Info&, const Address&, const Value& v) {
-    if (v.as_int() == state_.otc.tool.type) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kToolChangeWhileActive);
-    state_.otc.tool.type = v.as_int();
-    return Status::kOk;
-}
-
-Status OtcModule::read_tool_wear_const(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.tool.wear_const);
     return Status::kOk;
 }
 
@@ -405,40 +329,6 @@ Status OtcModule::write_tool_wear_const(const Info&, const Address&, const Value
     const double before = state_.otc.effective_wear_const();
     state_.otc.tool.wear_const = v.as_double();
     state_.otc_engine.wear_const_changed(before);
-    return Status::kOk;
-}
-
-Status OtcModule::read_tool_max_infeed(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.tool.max_infeed);
-    return Status::kOk;
-}
-
-Status OtcModule::write_tool_max_infeed(const Info&, const Address&, const Value& v) {
-    if (v.as_double() == state_.otc.tool.max_infeed) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kToolChangeWhileActive);
-    state_.otc.tool.max_infeed = v.as_double();
-    return Status::kOk;
-}
-
-Status OtcModule::read_tool_tilt(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.tool.tilt_angle);
-    return Status::kOk;
-}
-
-Status OtcModule::write_tool_tilt(const Info&, const Address&, const Value& v) {
-    if (v.as_double() == state_.otc.tool.tilt_angle) return Status::kOk;
-    if (state_.otc.active) return refuse_while_active(otc::Error::kToolChangeWhileActive);
-    state_.otc.tool.tilt_angle = v.as_double();
-    return Status::kOk;
-}
-
-Status OtcModule::read_wear_radius(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.wear.radius);
-    return Status::kOk;
-}
-
-Status OtcModule::read_wear_radius_cont(const Info&, const Address&, Value& out) {
-    out = Value::of_double(state_.otc.wear.radius_cont);
     return Status::kOk;
 }
 

@@ -52,29 +52,42 @@ std::span<const Entry<TcModule>> TcModule::table() const noexcept {
         {"X-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
         {"Y-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
         {"Z-Axis-Nr", &M::read_axis_nr, &M::write_axis_nr},
-        {"TcPlane", &M::read_tc_plane, &M::write_tc_plane},
+        // The range 17..19 leaves 17, 18, 19: every value in range is a plane.
+        {"TcPlane", &M::read_field<&State::tc, &TcState::plane>,
+         &M::write_field<&State::tc, &TcState::plane>},
         {"ReInit", nullptr, &M::write_reinit},
         {"Reset", nullptr, &M::write_reset},
-        {"RotAngle", &M::read_rot_angle, &M::write_rot_angle},
-        {"RotCenterX", &M::read_rot_center_x, &M::write_rot_center_x},
-        {"RotCenterY", &M::read_rot_center_y, &M::write_rot_center_y},
+        {"RotAngle", &M::read_field<&State::tc, &TcState::rot_angle>,
+         &M::write_field<&State::tc, &TcState::rot_angle>},
+        {"RotCenterX", &M::read_field<&State::tc, &TcState::rot_center_x>,
+         &M::write_field<&State::tc, &TcState::rot_center_x>},
+        {"RotCenterY", &M::read_field<&State::tc, &TcState::rot_center_y>,
+         &M::write_field<&State::tc, &TcState::rot_center_y>},
         // ---- DeviceNumber 1: compensation groups ([APCI-TC] Table 3), Index 0..3.
-        {"ERROR", &M::read_error, &M::write_error},
+        {"ERROR", &M::read_group_field<&TcGroup::error>, &M::write_error},
         {"RESET", nullptr, &M::write_group_reset},
-        {"STATUS", &M::read_status, &M::write_status},
-        {"XAxis", &M::read_x_axis, &M::write_x_axis},
-        {"YAxis", &M::read_y_axis, &M::write_y_axis},
-        {"RADIUS", &M::read_radius, &M::write_radius},
-        {"WKZINDEX", &M::read_wkz_index, &M::write_wkz_index},
+        {"STATUS", &M::read_group_field<&TcGroup::status>, &M::write_status},
+        {"XAxis", &M::read_group_field<&TcGroup::x_axis>,
+         &M::write_group_while_inactive<&TcGroup::x_axis>},
+        {"YAxis", &M::read_group_field<&TcGroup::y_axis>,
+         &M::write_group_while_inactive<&TcGroup::y_axis>},
+        {"RADIUS", &M::read_tool_field<&TcTool::radius>, &M::write_tool_field<&TcTool::radius>},
+        {"WKZINDEX", &M::read_group_field<&TcGroup::tool_index>,
+         &M::write_group_while_inactive<&TcGroup::tool_index>},
         {"Left", nullptr, &M::write_left},
         {"Right", nullptr, &M::write_right},
-        {"ZAxis", &M::read_z_axis, &M::write_z_axis},
-        {"WkzLen", &M::read_wkz_len, &M::write_wkz_len},
-        {"CornerMode", &M::read_group_mode<&TcGroup::corner_mode>, &M::write_group_mode<&TcGroup::corner_mode>},
-        {"Side", &M::read_group_mode<&TcGroup::side>, nullptr},
-        {"SelectionMode", &M::read_group_mode<&TcGroup::selection_mode>, &M::write_group_mode<&TcGroup::selection_mode>},
-        {"LengthMode", &M::read_group_mode<&TcGroup::length_mode>, &M::write_group_mode<&TcGroup::length_mode>},
-        {"CuttingEdge", &M::read_cutting_edge, &M::write_cutting_edge},
+        {"ZAxis", &M::read_group_field<&TcGroup::z_axis>,
+         &M::write_group_while_inactive<&TcGroup::z_axis>},
+        {"WkzLen", &M::read_tool_field<&TcTool::length>, &M::write_tool_field<&TcTool::length>},
+        {"CornerMode", &M::read_group_field<&TcGroup::corner_mode>,
+         &M::write_group_mode<&TcGroup::corner_mode>},
+        {"Side", &M::read_group_field<&TcGroup::side>, nullptr},
+        {"SelectionMode", &M::read_group_field<&TcGroup::selection_mode>,
+         &M::write_group_mode<&TcGroup::selection_mode>},
+        {"LengthMode", &M::read_group_field<&TcGroup::length_mode>,
+         &M::write_group_mode<&TcGroup::length_mode>},
+        {"CuttingEdge", &M::read_tool_field<&TcTool::cutting_edge>,
+         &M::write_tool_field<&TcTool::cutting_edge>},
     }};
     static constexpr auto kTable = objif::attach(objif::map::tc::kObjects, kHooks);
     return kTable;
@@ -164,17 +177,6 @@ Status TcModule::write_axis_nr(const ObjectInfo&, const Address& a, const Value&
     return Status::kOk;
 }
 
-Status TcModule::read_tc_plane(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_int(tc().plane);
-    return Status::kOk;
-}
-
-// The range 17..19 leaves 17, 18, 19: every value in range is a plane.
-Status TcModule::write_tc_plane(const ObjectInfo&, const Address&, const Value& v) {
-    tc().plane = v.as_int();
-    return Status::kOk;
-}
-
 // [APCI-TC] Table 2 ReInit: "Intern gespeicherte Verschiebungswerte der
 // Korrekturachsen werden gelöscht. Dieses Kommando sollte vor einer
 // System-Reinitialisierung, z.B. erneute Referenzfahrt aufgerufen werden. Die
@@ -205,40 +207,7 @@ Status TcModule::write_reset(const ObjectInfo&, const Address&, const Value&) {
     return Status::kOk;
 }
 
-Status TcModule::read_rot_angle(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_double(tc().rot_angle);
-    return Status::kOk;
-}
-Status TcModule::write_rot_angle(const ObjectInfo&, const Address&, const Value& v) {
-    tc().rot_angle = v.as_double();
-    return Status::kOk;
-}
-Status TcModule::read_rot_center_x(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_double(tc().rot_center_x);
-    return Status::kOk;
-}
-Status TcModule::write_rot_center_x(const ObjectInfo&, const Address&, const Value& v) {
-    tc().rot_center_x = v.as_double();
-    return Status::kOk;
-}
-Status TcModule::read_rot_center_y(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_double(tc().rot_center_y);
-    return Status::kOk;
-}
-Status TcModule::write_rot_center_y(const ObjectInfo&, const Address&, const Value& v) {
-    tc().rot_center_y = v.as_double();
-    return Status::kOk;
-}
-
 // ---- DeviceNumber 1.
-
-Status TcModule::read_error(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->error);
-    return Status::kOk;
-}
 
 // [APCI-TC] Table 3 ERROR: "Fehlerstatus ... lesen / rücksetzen". Any written
 // value clears every bit ([APCI-TC] gives the value no meaning).
@@ -264,14 +233,6 @@ Status TcModule::write_group_reset(const ObjectInfo&, const Address&, const Valu
         discard_programming(tc().group(n));
     }
     clear_shift();
-    return Status::kOk;
-}
-
-Status TcModule::read_status(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->status);
     return Status::kOk;
 }
 
@@ -319,65 +280,9 @@ Status TcModule::write_while_inactive(const Address& a, std::int32_t TcGroup::*f
     g->*field = value;
     return Status::kOk;
 }
-
-Status TcModule::read_x_axis(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->x_axis);
-    return Status::kOk;
-}
-Status TcModule::write_x_axis(const ObjectInfo&, const Address& a, const Value& v) {
-    return write_while_inactive(a, &TcGroup::x_axis, v.as_int());
-}
-Status TcModule::read_y_axis(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->y_axis);
-    return Status::kOk;
-}
-Status TcModule::write_y_axis(const ObjectInfo&, const Address& a, const Value& v) {
-    return write_while_inactive(a, &TcGroup::y_axis, v.as_int());
-}
-Status TcModule::read_z_axis(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->z_axis);
-    return Status::kOk;
-}
-Status TcModule::write_z_axis(const ObjectInfo&, const Address& a, const Value& v) {
-    return write_while_inactive(a, &TcGroup::z_axis, v.as_int());
-}
-
-// [APCI-TC] Table 3 RADIUS: "Korrekturwert für den aktuellen Werkzeugindex".
-// Not restricted to an inactive group by [APCI-TC]: a new radius applies from
-// the next profile the motion layer compensates.
-Status TcModule::read_radius(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_double(g->tool().radius);
-    return Status::kOk;
-}
-Status TcModule::write_radius(const ObjectInfo&, const Address& a, const Value& v) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    g->tool().radius = v.as_double();
-    return Status::kOk;
-}
-
-Status TcModule::read_wkz_index(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->tool_index);
-    return Status::kOk;
-}
-Status TcModule::write_wkz_index(const ObjectInfo&, const Address& a, const Value& v) {
-    return write_while_inactive(a, &TcGroup::tool_index, v.as_int());
+template <std::int32_t TcGroup::*Field>
+Status TcModule::write_group_while_inactive(const ObjectInfo&, const Address& a, const Value& v) {
+    return write_while_inactive(a, Field, v.as_int());
 }
 
 // [APCI-TC] Table 3 Left/Right: "die Auswahl erfolgt nur durch den Aufruf, der
@@ -389,38 +294,40 @@ Status TcModule::write_right(const ObjectInfo&, const Address& a, const Value&) 
     return write_while_inactive(a, &TcGroup::side, tc::kSideRight);
 }
 
-// [APCI-TC] Table 3 WkzLen: the length of the current tool, like RADIUS.
-Status TcModule::read_wkz_len(const ObjectInfo&, const Address& a, Value& out) {
+// The current tool's values, any time:
+// - [APCI-TC] Table 3 RADIUS: "Korrekturwert für den aktuellen Werkzeugindex". Not restricted
+//   to an inactive group by [APCI-TC]: a new radius applies from the next profile the motion
+//   layer compensates.
+// - [APCI-TC] Table 3 WkzLen: the length of the current tool, like RADIUS.
+// - CuttingEdge (extension, docs/compensation.md "Turning tools"): the cutting edge position of
+//   the current tool, like RADIUS and WkzLen; it acts from the next contour (a change while the
+//   group compensates ends the contour under way and the next profile approaches anew, as a
+//   RADIUS change does).
+template <auto Field>
+Status TcModule::read_tool_field(const ObjectInfo&, const Address& a, Value& out) {
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
-    out = Value::of_double(g->tool().length);
+    out = value_of(g->tool().*Field);
     return Status::kOk;
 }
-Status TcModule::write_wkz_len(const ObjectInfo&, const Address& a, const Value& v) {
+template <auto Field>
+Status TcModule::write_tool_field(const ObjectInfo&, const Address& a, const Value& v) {
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
-    g->tool().length = v.as_double();
+    assign(g->tool().*Field, v);
     return Status::kOk;
 }
 
-// CuttingEdge (extension, docs/compensation.md "Turning tools"): the cutting edge position of
-// the current tool, like RADIUS and WkzLen; it acts from the next contour (a change while the
-// group compensates ends the contour under way and the next profile approaches anew, as a
-// RADIUS change does).
-Status TcModule::read_cutting_edge(const ObjectInfo&, const Address& a, Value& out) {
+// A group's int fields as they are: ERROR and STATUS (written by hooks of their own), XAxis,
+// YAxis, ZAxis, WKZINDEX, Side and the modes.
+template <std::int32_t TcGroup::*Field>
+Status TcModule::read_group_field(const ObjectInfo&, const Address& a, Value& out) {
     TcGroup* g = nullptr;
     const Status st = with_group(a, g);
     if (!objif::ok(st)) return st;
-    out = Value::of_int(g->tool().cutting_edge);
-    return Status::kOk;
-}
-Status TcModule::write_cutting_edge(const ObjectInfo&, const Address& a, const Value& v) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    g->tool().cutting_edge = v.as_int();
+    out = Value::of_int(g->*Field);
     return Status::kOk;
 }
 
@@ -429,14 +336,6 @@ Status TcModule::write_cutting_edge(const ObjectInfo&, const Address& a, const V
 // G237/G139: the mode at activation shapes the approach, the mode at deactivation the
 // departure), LengthMode (from the next profile) and Side (read only). All may change at any
 // time; the table's range checks them, SelectionMode's two values below.
-template <std::int32_t TcGroup::*Field>
-Status TcModule::read_group_mode(const ObjectInfo&, const Address& a, Value& out) {
-    TcGroup* g = nullptr;
-    const Status st = with_group(a, g);
-    if (!objif::ok(st)) return st;
-    out = Value::of_int(g->*Field);
-    return Status::kOk;
-}
 template <std::int32_t TcGroup::*Field>
 Status TcModule::write_group_mode(const ObjectInfo&, const Address& a, const Value& v) {
     if constexpr (Field == &TcGroup::selection_mode) {

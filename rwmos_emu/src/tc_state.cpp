@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/tc_state.h"
 
+#include "objif/enum_names.h"
+
 namespace rwmos {
 
 geom::PlaneAxes plane_axes(const TcState& tc) noexcept {
@@ -42,13 +44,12 @@ InitFault initialisation_fault(const TcState& tc, std::int32_t group) noexcept {
 }
 
 std::string_view init_fault_message(InitFault f) noexcept {
-    switch (f) {
-        case InitFault::kNone: return "initialised";
-        case InitFault::kAxesNotDistinct: return "XAxis, YAxis and ZAxis must name three different board axes";
-        case InitFault::kNoSide: return "no compensation side selected: write Left or Right first";
-        case InitFault::kAxisInUse: return "another running compensation group uses one of these axes";
-    }
-    return "unknown";
+    static constexpr auto kMessages = objif::enum_names<InitFault::kNone, InitFault::kAxisInUse>(
+        {"initialised", "XAxis, YAxis and ZAxis must name three different board axes",
+         "no compensation side selected: write Left or Right first",
+         "another running compensation group uses one of these axes"},
+        "unknown");
+    return kMessages(f);
 }
 
 }  // namespace rwmos

@@ -39,7 +39,8 @@ std::span<const Entry<TempCompModule>> TempCompModule::table() const noexcept {
         {"ToolHolder", &M::read_int, &M::write_int},
         {"HeadAxisB", &M::read_int, &M::write_int},
         {"HeadAxisC", &M::read_int, &M::write_int},
-        {"RampVelocity", &M::read_ramp, &M::write_ramp},
+        {"RampVelocity", &M::read_field<&State::temp_comp, &TempCompState::ramp_velocity>,
+         &M::write_field<&State::temp_comp, &TempCompState::ramp_velocity>},
         {"Offset0", &M::read_offset, nullptr},
         {"Offset1", &M::read_offset, nullptr},
         {"Offset2", &M::read_offset, nullptr},
@@ -86,16 +87,6 @@ Status TempCompModule::read_int(const ObjectInfo&, const Address& a, Value& out)
 
 Status TempCompModule::write_int(const ObjectInfo&, const Address& a, const Value& v) {
     int_field(a) = v.as_int();
-    return Status::kOk;
-}
-
-Status TempCompModule::read_ramp(const ObjectInfo&, const Address&, Value& out) {
-    out = Value::of_double(state_.temp_comp.ramp_velocity);
-    return Status::kOk;
-}
-
-Status TempCompModule::write_ramp(const ObjectInfo&, const Address&, const Value& v) {
-    state_.temp_comp.ramp_velocity = v.as_double();
     return Status::kOk;
 }
 

@@ -13,12 +13,12 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "figure_files.h"
 #include "rwmos/comp3d/compensation.h"
 #include "rwmos/comp3d/vectors.h"
 
@@ -248,41 +248,10 @@ std::vector<Figure> figures() {
     };
 }
 
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return {};
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool check = argc == 3 && std::string(argv[1]) == "--check";
-    if (argc != 2 && !check) {
-        std::fprintf(stderr, "usage: comp3d_figures [--check] DIR\n");
-        return 2;
-    }
-    const std::string dir = argv[argc - 1];
-    int status = 0;
-    for (const Figure& f : figures()) {
-        const std::string path = dir + "/" + f.name + ".svg";
-        const std::string svg = draw(f);
-        if (check) {
-            if (read_file(path) != svg) {
-                std::fprintf(stderr,
-                             "%s is not what tools/figures/comp3d_figures.cpp draws: "
-                             "run comp3d_figures %s\n",
-                             path.c_str(), dir.c_str());
-                status = 1;
-            }
-            continue;
-        }
-        std::ofstream out(path, std::ios::binary);
-        out << svg;
-        if (!out) {
-            std::fprintf(stderr, "%s: cannot write\n", path.c_str());
-            return 1;
-        }
-    }
-    return status;
+    std::vector<figure_files::FigureFile> files;
+    for (const Figure& f : figures()) files.push_back({f.name, [f] { return draw(f); }});
+    return figure_files::write_figures(argc, argv, "comp3d_figures", files);
 }

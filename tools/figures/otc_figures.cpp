@@ -10,12 +10,11 @@
 // TOOL_DIR with the B head (2.4), SURF_NORM_DIR on the profile of [ISG-OTC] (2.5).
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "figure_files.h"
 #include "objif/descriptor.h"
 #include "rwmos/board.h"
 #include "rwmos/board_state.h"
@@ -417,54 +416,12 @@ std::string surf_norm_dir() {
     return v.svg();
 }
 
-struct Figure {
-    std::string name;
-    std::function<std::string()> draw;
-};
-
-std::vector<Figure> figures() {
-    return {{"otc-modes", modes},
-            {"otc-tilt", tilt},
-            {"otc-tool-dir-side", tool_dir},
-            {"otc-surf-norm-dir-side", surf_norm_dir}};
-}
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool check = argc == 3 && std::string(argv[1]) == "--check";
-    if (argc != 2 && !check) {
-        std::fprintf(stderr, "usage: otc_figures [--check] DIR\n");
-        return 2;
-    }
-    const std::string dir = argv[argc - 1];
-    int status = 0;
-    for (const Figure& f : figures()) {
-        const std::string path = dir + "/" + f.name + ".svg";
-        const std::string svg = f.draw();
-        if (check) {
-            if (read_file(path) != svg) {
-                std::fprintf(
-                    stderr,
-                    "%s is not what tools/figures/otc_figures.cpp draws: run otc_figures %s\n",
-                    path.c_str(), dir.c_str());
-                status = 1;
-            }
-            continue;
-        }
-        std::ofstream out(path, std::ios::binary);
-        out << svg;
-        if (!out) {
-            std::fprintf(stderr, "%s: cannot write\n", path.c_str());
-            return 1;
-        }
-    }
-    return status;
+    return figure_files::write_figures(argc, argv, "otc_figures",
+                                       {{"otc-modes", modes},
+                                        {"otc-tilt", tilt},
+                                        {"otc-tool-dir-side", tool_dir},
+                                        {"otc-surf-norm-dir-side", surf_norm_dir}});
 }

@@ -4,22 +4,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "objif/enum_names.h"
 #include "rwmos/geometry/approach.h"
 
 namespace rwmos::geom {
 
 std::string_view role_name(SegmentRole role) noexcept {
-    switch (role) {
-        case SegmentRole::kContour:
-            return "contour";
-        case SegmentRole::kTransition:
-            return "transition";
-        case SegmentRole::kApproach:
-            return "approach";
-        case SegmentRole::kDeparture:
-            return "departure";
-    }
-    return "unknown";
+    static constexpr auto kNames =
+        objif::enum_names<SegmentRole::kContour, SegmentRole::kDeparture>(
+            {"contour", "transition", "approach", "departure"}, "unknown");
+    return kNames(role);
 }
 
 Reason check_config(const CompensatorConfig& config) noexcept {

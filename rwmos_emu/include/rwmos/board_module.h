@@ -22,12 +22,7 @@ private:
     Status read_firmware_version(const Info&, const Address&, Value& out);
     Status read_options(const Info&, const Address&, Value& out);
     Status read_axis_count(const Info&, const Address&, Value& out);
-    Status read_interpolation_cycle(const Info&, const Address&, Value& out);
-    Status write_interpolation_cycle(const Info&, const Address&, const Value& v);
-    Status read_pu(const Info&, const Address&, Value& out);
     Status write_pu(const Info&, const Address&, const Value& v);
-    Status read_spooler_capacity(const Info&, const Address&, Value& out);
-    Status read_spooler_fill(const Info&, const Address&, Value& out);
     Status read_axis_position(const Info&, const Address& a, Value& out);
     Status write_rs(const Info&, const Address&, const Value&);
 };

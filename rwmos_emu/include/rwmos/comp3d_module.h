@@ -26,20 +26,14 @@ class Comp3dModule : public BoardTableModule<Comp3dModule> {
     // for vectors), nothing else changes.
     Status refuse(comp3d::Refusal r) noexcept;
 
-    Status read_tool(const Info&, const Address&, Value& out);
     Status write_tool(const Info&, const Address&, const Value& v);
     Status read_call(const Info&, const Address& a, Value& out);
     Status write_call(const Info&, const Address& a, const Value& v);
-    Status read_correction_row(const Info&, const Address&, Value& out);
     Status write_correction_row(const Info&, const Address&, const Value& v);
-    Status read_mode(const Info&, const Address& a, Value& out);
-    Status write_mode(const Info&, const Address& a, const Value& v);
     Status write_allow_oversize(const Info&, const Address& a, const Value& v);
     Status read_vector(const Info&, const Address& a, Value& out);
     Status write_vector(const Info&, const Address& a, const Value& v);
-    Status read_arm(const Info&, const Address&, Value& out);
     Status write_arm(const Info&, const Address&, const Value& v);
-    Status read_last_error(const Info&, const Address&, Value& out);
     Status write_last_error(const Info&, const Address&, const Value& v);
     Status read_deltas(const Info&, const Address& a, Value& out);
     Status read_last_tip(const Info&, const Address& a, Value& out);
@@ -47,8 +41,6 @@ class Comp3dModule : public BoardTableModule<Comp3dModule> {
     Status write_tool_row(const Info&, const Address& a, const Value& v);
     Status read_correction(const Info&, const Address& a, Value& out);
     Status write_correction(const Info&, const Address& a, const Value& v);
-
-    std::int32_t* mode_field(std::int32_t index) noexcept;
 };
 
 }  // namespace rwmos

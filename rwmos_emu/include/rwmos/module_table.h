@@ -5,6 +5,9 @@
 // it builds.
 #pragma once
 
+#include <cstdint>
+#include <type_traits>
+
 #include "objif/dictionary.h"
 #include "rwmos/board.h"
 
@@ -19,6 +22,31 @@ using objif::Status;
 using objif::Value;
 using objif::ValueType;
 
+// A value of the board's state as an object's value, and back: an std::int32_t or an enum is an
+// int object, a double a double object (a field of any other type has hooks of its own).
+inline Value value_of(std::int32_t v) noexcept {
+    return Value::of_int(v);
+}
+inline Value value_of(double v) noexcept {
+    return Value::of_double(v);
+}
+inline void assign(std::int32_t& field, const Value& v) noexcept {
+    field = v.as_int();
+}
+inline void assign(double& field, const Value& v) noexcept {
+    field = v.as_double();
+}
+template <class E>
+requires std::is_enum_v<E> Value value_of(E v)
+noexcept {
+    return Value::of_int(static_cast<std::int32_t>(v));
+}
+template <class E>
+requires std::is_enum_v<E>
+void assign(E& field, const Value& v) noexcept {
+    field = static_cast<E>(v.as_int());
+}
+
 template <class Derived>
 class BoardTableModule : public objif::TableModule<Derived> {
   public:
@@ -29,6 +57,22 @@ class BoardTableModule : public objif::TableModule<Derived> {
     using Info = objif::ObjectInfo;
     using Address = objif::Address;
     using Value = objif::Value;
+    using State = EmulatedBoard::State;
+
+    // The hooks of an object that is one field of the board's state and follows no rule of its
+    // own: the field reached from the state through the member pointers Path (&State::pu;
+    // &State::tc, &TcState::rot_angle), read as it is and written as given (the table's type and
+    // range checks come first).
+    template <auto... Path>
+    Status read_field(const Info&, const Address&, Value& out) {
+        out = value_of((state_ .* ... .* Path));
+        return Status::kOk;
+    }
+    template <auto... Path>
+    Status write_field(const Info&, const Address&, const Value& v) {
+        assign((state_ .* ... .* Path), v);
+        return Status::kOk;
+    }
 
     EmulatedBoard::State& state_;
 };

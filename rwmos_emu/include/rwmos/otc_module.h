@@ -33,29 +33,14 @@ class OtcModule : public BoardTableModule<OtcModule> {
     // DeviceNumber 0.
     Status read_active(const Info&, const Address&, Value& out);
     Status write_active(const Info&, const Address&, const Value& v);
-    Status read_type(const Info&, const Address&, Value& out);
-    Status write_type(const Info&, const Address&, const Value& v);
-    Status read_mode(const Info&, const Address&, Value& out);
-    Status write_mode(const Info&, const Address&, const Value& v);
-    Status read_wear_const(const Info&, const Address&, Value& out);
     Status write_wear_const(const Info&, const Address&, const Value& v);
     Status read_wear_const_source(const Info&, const Address&, Value& out);
     Status write_wear_const_source(const Info&, const Address&, const Value& v);
-    Status read_acc_weight(const Info&, const Address&, Value& out);
-    Status write_acc_weight(const Info&, const Address&, const Value& v);
-    Status read_last_error(const Info&, const Address&, Value& out);
     Status write_last_error(const Info&, const Address&, const Value& v);
     Status read_effective_wear_const(const Info&, const Address&, Value& out);
-    Status read_ramp_velocity(const Info&, const Address&, Value& out);
-    Status write_ramp_velocity(const Info&, const Address&, const Value& v);
-    Status read_ramp_acceleration(const Info&, const Address&, Value& out);
-    Status write_ramp_acceleration(const Info&, const Address&, const Value& v);
-    Status read_kinematics(const Info&, const Address&, Value& out);
     Status write_kinematics(const Info&, const Address&, const Value& v);
     Status read_trafo(const Info&, const Address&, Value& out);
     Status write_trafo(const Info&, const Address&, const Value& v);
-    Status read_tool_axis_b(const Info&, const Address&, Value& out);
-    Status write_tool_axis_b(const Info&, const Address&, const Value& v);
     // Control units: DeviceNumber 0 Index 20 (channel) and DeviceNumber 1 Index 0..7 (axes).
     Status read_unit_command(const Info&, const Address& a, Value& out);
     Status write_unit_command(const Info&, const Address& a, const Value& v);
@@ -71,22 +56,16 @@ class OtcModule : public BoardTableModule<OtcModule> {
     Status read_unit_request(const Info&, const Address& a, Value& out);
     Status read_unit_state(const Info&, const Address& a, Value& out);
     // DeviceNumber 2.
-    Status read_tool_number(const Info&, const Address&, Value& out);
     Status write_tool_number(const Info&, const Address&, const Value& v);
-    Status read_tool_type(const Info&, const Address&, Value& out);
-    Status write_tool_type(const Info&, const Address&, const Value& v);
-    Status read_tool_wear_const(const Info&, const Address&, Value& out);
     Status write_tool_wear_const(const Info&, const Address&, const Value& v);
-    Status read_tool_max_infeed(const Info&, const Address&, Value& out);
-    Status write_tool_max_infeed(const Info&, const Address&, const Value& v);
-    Status read_tool_tilt(const Info&, const Address&, Value& out);
-    Status write_tool_tilt(const Info&, const Address&, const Value& v);
-    Status read_wear_radius(const Info&, const Address&, Value& out);
-    Status read_wear_radius_cont(const Info&, const Address&, Value& out);
     Status read_wear(const Info&, const Address& a, Value& out);
 
     // Settings fixed while OTC is on (type, mode, ACC_WEIGHT, kinematics) answer this then.
     Status refuse_while_active(otc::Error e) noexcept;
+    // A setting fixed while OTC is on (ProcessingType, Mode, AccWeight, ToolAxisB, the tool's
+    // typ, max infeed and tilt): the field Path leads to, refused with E while OTC is on.
+    template <otc::Error E, auto... Path>
+    Status write_while_off(const Info&, const Address&, const Value& v);
     OtcControlUnit* unit_at(const Address& a) noexcept;
 };
 

@@ -43,48 +43,32 @@ private:
     Status write_clean(const Info&, const Address&, const Value&);
     Status read_axis_nr(const Info&, const Address& a, Value& out);
     Status write_axis_nr(const Info&, const Address& a, const Value& v);
-    Status read_tc_plane(const Info&, const Address&, Value& out);
-    Status write_tc_plane(const Info&, const Address&, const Value& v);
     Status write_reinit(const Info&, const Address&, const Value&);
     Status write_reset(const Info&, const Address&, const Value&);
-    Status read_rot_angle(const Info&, const Address&, Value& out);
-    Status write_rot_angle(const Info&, const Address&, const Value& v);
-    Status read_rot_center_x(const Info&, const Address&, Value& out);
-    Status write_rot_center_x(const Info&, const Address&, const Value& v);
-    Status read_rot_center_y(const Info&, const Address&, Value& out);
-    Status write_rot_center_y(const Info&, const Address&, const Value& v);
 
     // DeviceNumber 1.
-    Status read_error(const Info&, const Address& a, Value& out);
     Status write_error(const Info&, const Address& a, const Value& v);
     Status write_group_reset(const Info&, const Address& a, const Value& v);
-    Status read_status(const Info&, const Address& a, Value& out);
     Status write_status(const Info&, const Address& a, const Value& v);
-    Status read_x_axis(const Info&, const Address& a, Value& out);
-    Status write_x_axis(const Info&, const Address& a, const Value& v);
-    Status read_y_axis(const Info&, const Address& a, Value& out);
-    Status write_y_axis(const Info&, const Address& a, const Value& v);
-    Status read_z_axis(const Info&, const Address& a, Value& out);
-    Status write_z_axis(const Info&, const Address& a, const Value& v);
-    Status read_radius(const Info&, const Address& a, Value& out);
-    Status write_radius(const Info&, const Address& a, const Value& v);
-    Status read_wkz_index(const Info&, const Address& a, Value& out);
-    Status write_wkz_index(const Info&, const Address& a, const Value& v);
     Status write_left(const Info&, const Address& a, const Value& v);
     Status write_right(const Info&, const Address& a, const Value& v);
-    Status read_wkz_len(const Info&, const Address& a, Value& out);
-    Status write_wkz_len(const Info&, const Address& a, const Value& v);
-    Status read_cutting_edge(const Info&, const Address& a, Value& out);
-    Status write_cutting_edge(const Info&, const Address& a, const Value& v);
-    // The int modes of a group (CornerMode, Side, SelectionMode, LengthMode).
+    // A group's int field as it is (ERROR, STATUS, the axes, WKZINDEX, Side, the modes).
     template <std::int32_t TcGroup::*Field>
-    Status read_group_mode(const Info&, const Address& a, Value& out);
+    Status read_group_field(const Info&, const Address& a, Value& out);
+    // The int modes of a group (CornerMode, SelectionMode, LengthMode).
     template <std::int32_t TcGroup::*Field>
     Status write_group_mode(const Info&, const Address& a, const Value& v);
+    // The current tool's values (RADIUS, WkzLen, CuttingEdge): Field a member pointer of TcTool.
+    template <auto Field>
+    Status read_tool_field(const Info&, const Address& a, Value& out);
+    template <auto Field>
+    Status write_tool_field(const Info&, const Address& a, const Value& v);
 
     // Shared by the "only while inactive" objects (XAxis, YAxis, ZAxis,
     // WKZINDEX, Left, Right): refuse and flag InitError while Run is set.
     Status write_while_inactive(const Address& a, std::int32_t TcGroup::*field, std::int32_t value);
+    template <std::int32_t TcGroup::*Field>
+    Status write_group_while_inactive(const Info&, const Address& a, const Value& v);
 };
 
 }  // namespace rwmos

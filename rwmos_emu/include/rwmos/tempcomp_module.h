@@ -27,8 +27,6 @@ class TempCompModule : public BoardTableModule<TempCompModule> {
     Status write_comp(const Info&, const Address& a, const Value& v);
     Status read_int(const Info&, const Address& a, Value& out);
     Status write_int(const Info&, const Address& a, const Value& v);
-    Status read_ramp(const Info&, const Address&, Value& out);
-    Status write_ramp(const Info&, const Address&, const Value& v);
     Status read_offset(const Info&, const Address& a, Value& out);
 
     std::int32_t& int_field(const Address& a) noexcept;

@@ -1,60 +1,36 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/motion/types.h"
 
+#include "objif/enum_names.h"
+
 namespace rwmos::motion {
+namespace {
+
+constexpr auto kProfileKindNames = objif::enum_names<ProfileKind::kRapid, ProfileKind::kTraverse>(
+    {"G00", "G01", "G02", "G03", "G00 (traverse)"}, "unknown");
+constexpr auto kDirectCodeNames =
+    objif::enum_names<DirectCode::kJA, DirectCode::kJS>({"JA", "JS"}, "unknown");
+constexpr auto kSegmentRoleNames = objif::enum_names<SegmentRole::kContour, SegmentRole::kRapid>(
+    {"contour", "transition", "approach", "departure", "uncompensated", "rapid"}, "unknown");
+constexpr auto kSegmentKindNames =
+    objif::enum_names<SegmentKind::kLine, SegmentKind::kArc>({"line", "arc"}, "unknown");
+
+}  // namespace
 
 std::string_view profile_kind_name(ProfileKind k) noexcept {
-    switch (k) {
-        case ProfileKind::kRapid:
-            return "G00";
-        case ProfileKind::kLine:
-            return "G01";
-        case ProfileKind::kArcCw:
-            return "G02";
-        case ProfileKind::kArcCcw:
-            return "G03";
-        case ProfileKind::kTraverse:
-            return "G00 (traverse)";
-    }
-    return "unknown";
+    return kProfileKindNames(k);
 }
 
 std::string_view direct_code_name(DirectCode c) noexcept {
-    switch (c) {
-        case DirectCode::kJA:
-            return "JA";
-        case DirectCode::kJS:
-            return "JS";
-    }
-    return "unknown";
+    return kDirectCodeNames(c);
 }
 
 std::string_view segment_role_name(SegmentRole r) noexcept {
-    switch (r) {
-        case SegmentRole::kContour:
-            return "contour";
-        case SegmentRole::kTransition:
-            return "transition";
-        case SegmentRole::kApproach:
-            return "approach";
-        case SegmentRole::kDeparture:
-            return "departure";
-        case SegmentRole::kUncompensated:
-            return "uncompensated";
-        case SegmentRole::kRapid:
-            return "rapid";
-    }
-    return "unknown";
+    return kSegmentRoleNames(r);
 }
 
 std::string_view segment_kind_name(SegmentKind k) noexcept {
-    switch (k) {
-        case SegmentKind::kLine:
-            return "line";
-        case SegmentKind::kArc:
-            return "arc";
-    }
-    return "unknown";
+    return kSegmentKindNames(k);
 }
 
 }  // namespace rwmos::motion

@@ -1,32 +1,25 @@
 // SPDX-License-Identifier: MIT
 #include "rwmos/otc/types.h"
 
+#include "objif/enum_names.h"
+
 namespace rwmos::otc {
+namespace {
+
+constexpr auto kProcessingTypeNames =
+    objif::enum_names<ProcessingType::kRadius, ProcessingType::kSurfNormDir>(
+        {"RADIUS", "LENGTH", "TOOL_DIR", "SURF_NORM_DIR"}, "?");
+constexpr auto kModeNames =
+    objif::enum_names<Mode::kCont, Mode::kAuto>({"CONT", "DISC", "AUTO"}, "?");
+
+}  // namespace
 
 std::string_view processing_type_name(ProcessingType t) noexcept {
-    switch (t) {
-        case ProcessingType::kRadius:
-            return "RADIUS";
-        case ProcessingType::kLength:
-            return "LENGTH";
-        case ProcessingType::kToolDir:
-            return "TOOL_DIR";
-        case ProcessingType::kSurfNormDir:
-            return "SURF_NORM_DIR";
-    }
-    return "?";
+    return kProcessingTypeNames(t);
 }
 
 std::string_view mode_name(Mode m) noexcept {
-    switch (m) {
-        case Mode::kCont:
-            return "CONT";
-        case Mode::kDisc:
-            return "DISC";
-        case Mode::kAuto:
-            return "AUTO";
-    }
-    return "?";
+    return kModeNames(m);
 }
 
 std::optional<ProcessingType> processing_type_from_int(std::int32_t v) noexcept {

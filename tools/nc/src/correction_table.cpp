@@ -13,6 +13,7 @@
 
 #include "apci/nc/lexer.h"
 #include "apci/nc/source.h"
+#include "table_line_parser.h"
 
 namespace apci::nc {
 
@@ -25,16 +26,15 @@ struct Field {
 constexpr std::array<Field, 3> kFields{
     {{"dl", &CorrectionRow::dl}, {"dr", &CorrectionRow::dr}, {"dr2", &CorrectionRow::dr2}}};
 
-class RowParser {
+class RowParser : TableLineParser {
   public:
-    explicit RowParser(std::string_view file) : file_(file) {}
+    explicit RowParser(std::string_view file) : TableLineParser(file) {}
 
     // One line: `row` 0 for a blank or comment line, else the row, field and value to set.
     bool line(std::string_view text, std::uint64_t n, int& row, std::size_t& field, double& value,
               Diagnostic& err) {
         LineCursor c(text);
-        line_ = n;
-        err_ = &err;
+        start_line(n, err);
         row = 0;
         c.skip_blanks();
         if (c.at_end() || c.peek() == '#') return true;
@@ -69,22 +69,8 @@ class RowParser {
             return fail(ErrorKind::kUnknownWord, field_col,
                         fmt::format("unknown correction field '{}' (known: dl, dr, dr2)", name));
         const std::string label = fmt::format("corr[{}].{}", r, name);
-        const std::size_t before = c.offset();
-        c.skip_blanks();
-        const std::uint32_t col = c.column();
-        if (c.offset() == before && !c.at_end())
-            return fail(ErrorKind::kSyntax, col,
-                        fmt::format("expected a blank and the value after '{}'", label));
-        switch (c.scan_number(value)) {
-            case NumberScan::kNone:
-                return fail(ErrorKind::kSyntax, col,
-                            fmt::format("expected a value after '{}'", label));
-            case NumberScan::kOutOfRange:
-                return fail(ErrorKind::kValue, col,
-                            fmt::format("the value of {} is out of range", label));
-            case NumberScan::kOk:
-                break;
-        }
+        std::uint32_t col = 0;
+        if (!field_number(c, label, value, col)) return false;
         c.skip_blanks();
         if (!c.at_end() && c.peek() != '#')
             return fail(ErrorKind::kSyntax, c.column(),
@@ -94,7 +80,7 @@ class RowParser {
                         fmt::format("{} {} out of range -{:g}..{:g} mm", label, value,
                                     kCorrectionLimit, kCorrectionLimit));
         field = static_cast<std::size_t>(f - kFields.begin());
-        const auto [it, fresh] = seen_.emplace(std::pair{r, field}, line_);
+        const auto [it, fresh] = seen_.emplace(std::pair{r, field}, current_line());
         if (!fresh)
             return fail(ErrorKind::kConflict, field_col,
                         fmt::format("{} set twice (first on line {})", label, it->second));
@@ -103,19 +89,6 @@ class RowParser {
     }
 
   private:
-    bool fail(ErrorKind kind, std::uint32_t column, std::string message) {
-        err_->kind = kind;
-        err_->file = std::string(file_);
-        err_->line = line_;
-        err_->column = column;
-        err_->block = kNoBlockNumber;
-        err_->message = std::move(message);
-        return false;
-    }
-
-    std::string_view file_;
-    std::uint64_t line_ = 0;
-    Diagnostic* err_ = nullptr;
     std::map<std::pair<int, std::size_t>, std::uint64_t> seen_;
 };
 

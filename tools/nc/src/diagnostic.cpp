@@ -4,29 +4,16 @@
 #include <fmt/format.h>
 
 #include "apci/nc/events.h"
+#include "objif/enum_names.h"
 
 namespace apci::nc {
 
 std::string_view error_kind_name(ErrorKind k) noexcept {
-    switch (k) {
-        case ErrorKind::kIo:
-            return "Io";
-        case ErrorKind::kSyntax:
-            return "Syntax";
-        case ErrorKind::kUnknownWord:
-            return "UnknownWord";
-        case ErrorKind::kConflict:
-            return "Conflict";
-        case ErrorKind::kValue:
-            return "Value";
-        case ErrorKind::kGeometry:
-            return "Geometry";
-        case ErrorKind::kProgramRule:
-            return "ProgramRule";
-        case ErrorKind::kUnsupported:
-            return "Unsupported";
-    }
-    return "Unknown";
+    static constexpr auto kNames = objif::enum_names<ErrorKind::kIo, ErrorKind::kUnsupported>(
+        {"Io", "Syntax", "UnknownWord", "Conflict", "Value", "Geometry", "ProgramRule",
+         "Unsupported"},
+        "Unknown");
+    return kNames(k);
 }
 
 std::string Diagnostic::to_string() const {

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 namespace apci::nc {
 
@@ -19,6 +20,15 @@ bool keyword_is(std::string_view id, std::string_view upper) {
     for (std::size_t i = 0; i < id.size(); ++i)
         if (to_upper(id[i]) != upper[i]) return false;
     return true;
+}
+
+// Fills `err`: false.
+bool expression_error(ExpressionError& err, ErrorKind kind, std::uint32_t column,
+                      std::string message) {
+    err.kind = kind;
+    err.column = column;
+    err.message = std::move(message);
+    return false;
 }
 
 class Evaluator {
@@ -42,10 +52,7 @@ class Evaluator {
 
   private:
     bool fail(ErrorKind kind, std::uint32_t column, std::string message) {
-        err_.kind = kind;
-        err_.column = column;
-        err_.message = std::move(message);
-        return false;
+        return expression_error(err_, kind, column, std::move(message));
     }
     bool finite(double v, std::string_view what) {
         if (std::isfinite(v)) return true;
@@ -235,15 +242,30 @@ bool at_setting_data(const LineCursor& c) noexcept {
 
 namespace {
 
+// After "[": blanks, a whole number below `count` into `n`, blanks and "]", which it passes;
+// false where one is missing or the number is `count` or more.
+bool scan_index(LineCursor& c, int count, int& n) {
+    c.skip_blanks();
+    n = 0;
+    bool any = false;
+    while (is_digit(c.peek())) {
+        n = n * 10 + (c.peek() - '0');
+        any = true;
+        c.advance();
+        if (n >= count) break;
+    }
+    c.skip_blanks();
+    if (!any || n >= count || c.peek() != ']') return false;
+    c.advance();
+    return true;
+}
+
 // At "$": the setting data of [SIN-TEMP] (SD 42960 TOOL_TEMP_COMP[i], a channel setting datum,
 // so $SC_); the machine data next to it are named, since programs do not write them.
 bool scan_setting_data(LineCursor& c, VariableRef& out, ExpressionError& err) {
     const std::uint32_t col = c.column();
     auto fail = [&](std::string message) {
-        err.kind = ErrorKind::kSyntax;
-        err.column = col;
-        err.message = std::move(message);
-        return false;
+        return expression_error(err, ErrorKind::kSyntax, col, std::move(message));
     };
     c.advance();  // '$'
     const std::string_view name = c.scan_identifier();
@@ -265,18 +287,8 @@ bool scan_setting_data(LineCursor& c, VariableRef& out, ExpressionError& err) {
     };
     if (c.peek() != '[') return bad_index();
     c.advance();
-    c.skip_blanks();
     int n = 0;
-    bool any = false;
-    while (is_digit(c.peek())) {
-        n = n * 10 + (c.peek() - '0');
-        any = true;
-        c.advance();
-        if (n >= kToolTempCompCount) break;
-    }
-    c.skip_blanks();
-    if (!any || n >= kToolTempCompCount || c.peek() != ']') return bad_index();
-    c.advance();
+    if (!scan_index(c, kToolTempCompCount, n)) return bad_index();
     out = {NcVariable::kToolTempComp, n};
     return true;
 }
@@ -287,10 +299,7 @@ bool scan_variable(LineCursor& c, VariableRef& out, ExpressionError& err) {
     if (c.peek() == '$') return scan_setting_data(c, out, err);
     const std::uint32_t col = c.column();
     auto fail = [&](std::string message) {
-        err.kind = ErrorKind::kSyntax;
-        err.column = col;
-        err.message = std::move(message);
-        return false;
+        return expression_error(err, ErrorKind::kSyntax, col, std::move(message));
     };
     constexpr std::string_view kKnown =
         "V.G.WZ_AKT.WEAR_RADIUS, V.G.WZ_AKT.WEAR_RADIUS_CONT, V.G.WZ_AKT.WEAR[i], "
@@ -311,36 +320,25 @@ bool scan_variable(LineCursor& c, VariableRef& out, ExpressionError& err) {
         return fail(fmt::format("unknown variable V.G.{} (known: {})", first, kKnown));
     c.advance();
     const std::string_view second = c.scan_identifier();
-    if (keyword_is(second, "WEAR_RADIUS")) {
-        out = {NcVariable::kWearRadius, 0};
-        return true;
-    }
-    if (keyword_is(second, "WEAR_RADIUS_CONT")) {
-        out = {NcVariable::kWearRadiusCont, 0};
-        return true;
-    }
-    if (keyword_is(second, "WEAR_CONST")) {
-        out = {NcVariable::kWearConst, 0};
-        return true;
+    // The tool's values that are one number each.
+    static constexpr std::pair<std::string_view, NcVariable> kScalars[] = {
+        {"WEAR_RADIUS", NcVariable::kWearRadius},
+        {"WEAR_RADIUS_CONT", NcVariable::kWearRadiusCont},
+        {"WEAR_CONST", NcVariable::kWearConst}};
+    for (const auto& [keyword, variable] : kScalars) {
+        if (keyword_is(second, keyword)) {
+            out = {variable, 0};
+            return true;
+        }
     }
     if (!keyword_is(second, "WEAR"))
         return fail(fmt::format("unknown variable V.G.WZ_AKT.{} (known: {})", second, kKnown));
     if (c.peek() == '[') {
         c.advance();
-        c.skip_blanks();
         int n = 0;
-        bool any = false;
-        while (is_digit(c.peek())) {
-            n = n * 10 + (c.peek() - '0');
-            any = true;
-            c.advance();
-            if (n >= kWearAxisCount) break;
-        }
-        c.skip_blanks();
-        if (!any || n >= kWearAxisCount || c.peek() != ']')
+        if (!scan_index(c, kWearAxisCount, n))
             return fail(
                 fmt::format("V.G.WZ_AKT.WEAR[i] takes an axis index 0..{}", kWearAxisCount - 1));
-        c.advance();
         out = {NcVariable::kWear, n};
         return true;
     }

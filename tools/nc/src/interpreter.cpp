@@ -8,6 +8,7 @@
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
 #include "apci/nc/tools.h"
+#include "block_context.h"
 
 namespace apci::nc {
 
@@ -21,22 +22,7 @@ bool is_arc(Motion m) {
 }
 
 // The context of one apply() call, so that the rule checks below stay short.
-struct BlockCheck {
-    const Block& b;
-    std::string_view file;
-    Diagnostic& err;
-
-    bool fail(ErrorKind kind, std::uint32_t column, std::string message) const {
-        err.kind = kind;
-        err.file = std::string(file);
-        err.line = b.line;
-        err.column = column == 0 ? 1 : column;
-        err.block = b.block_number();
-        err.message = std::move(message);
-        err.undefined = Undefined::kNothing;
-        return false;
-    }
-};
+using BlockCheck = BlockContext<Block>;
 
 bool check_tool(const BlockCheck& c, const ModalState& before, const ToolTable* tools) {
     const Word<int>& d = c.b.tool;
@@ -557,9 +543,7 @@ bool Interpreter::apply_mm(const Block& b, Units units, std::string_view file, E
                            Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
-    if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
-    }
+    if (state_.ended) return c.fail(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd));
     ModalState s = state_;  // committed only when every check has passed
     s.units = units;
     if (!modal_words(c, state_, options_.tools, s)) return false;
@@ -587,9 +571,7 @@ bool Interpreter::apply_isg(const IsgLine& isg, const Block& b, std::string_view
                             EventBatch& out, Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
-    if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
-    }
+    if (state_.ended) return c.fail(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd));
     const BlockOrigin origin{b.block_number(), b.line};
     ModalState s = state_;
     switch (isg.kind) {
@@ -618,9 +600,7 @@ bool Interpreter::apply_variable_write(const Assignment& a, const Block& b, std:
                                        EventBatch& out, Diagnostic& err) {
     out.clear();
     const BlockCheck c{b, file, err};
-    if (state_.ended) {
-        return c.fail(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended");
-    }
+    if (state_.ended) return c.fail(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd));
     if (!variable_writable(a.variable)) {
         return c.fail(ErrorKind::kProgramRule, a.column,
                       fmt::format("{} is read-only", variable_name(a.variable)));

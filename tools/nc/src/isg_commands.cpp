@@ -13,6 +13,7 @@
 #include "apci/nc/lexer.h"
 #include "apci/nc/parser.h"
 #include "block_parser.h"
+#include "objif/enum_names.h"
 
 namespace apci::nc {
 namespace parser_detail {
@@ -215,41 +216,37 @@ class IsgParser : public LineParse {
             {"SURF_NORM_DIR", OtcType::kSurfNormDir}};
         static constexpr std::pair<std::string_view, OtcMode> kModes[] = {
             {"CONT", OtcMode::kCont}, {"DISC", OtcMode::kDisc}, {"AUTO", OtcMode::kAuto}};
-        for (const auto& [name, type] : kTypes) {
-            if (!keyword_is(word, name)) continue;
-            if (cmd.type) {
-                return fail_here(ErrorKind::kConflict, col,
-                                 fmt::format("{} and {} in one #OTC: both set the processing type",
-                                             otc_type_name(*cmd.type), name));
+        // A keyword of `names` sets `slot`, once per #OTC (`what` it sets, for the conflict);
+        // nothing when `word` is none of them.
+        auto set_once = [&](const auto& names, auto& slot, std::string_view what,
+                            auto name_of) -> std::optional<bool> {
+            for (const auto& [name, value] : names) {
+                if (!keyword_is(word, name)) continue;
+                if (slot) {
+                    return fail_here(ErrorKind::kConflict, col,
+                                     fmt::format("{} and {} in one #OTC: both set the {}",
+                                                 name_of(*slot), name, what));
+                }
+                slot = value;
+                return true;
             }
-            cmd.type = type;
-            return true;
-        }
-        for (const auto& [name, mode] : kModes) {
-            if (!keyword_is(word, name)) continue;
-            if (cmd.mode) {
-                return fail_here(ErrorKind::kConflict, col,
-                                 fmt::format("{} and {} in one #OTC: both set the mode",
-                                             otc_mode_name(*cmd.mode), name));
-            }
-            cmd.mode = mode;
-            return true;
-        }
+            return std::nullopt;
+        };
+        std::optional<bool> set = set_once(kTypes, cmd.type, "processing type", otc_type_name);
+        if (!set) set = set_once(kModes, cmd.mode, "mode", otc_mode_name);
+        if (set) return *set;
+        // The wear constant chosen already, for a conflict.
+        const std::string_view chosen =
+            cmd.wear_const == WearConstChoice::kTool ? "WEAR_CONST_TOOL" : "WEAR_CONST";
         if (keyword_is(word, "WEAR_CONST_TOOL")) {
-            if (cmd.wear_const != WearConstChoice::kUnchanged) {
-                return otc_conflict(col, cmd.wear_const == WearConstChoice::kTool ? "WEAR_CONST_TOOL"
-                                                                                 : "WEAR_CONST",
-                                    "WEAR_CONST_TOOL");
-            }
+            if (cmd.wear_const != WearConstChoice::kUnchanged)
+                return otc_conflict(col, chosen, "WEAR_CONST_TOOL");
             cmd.wear_const = WearConstChoice::kTool;
             return true;
         }
         if (keyword_is(word, "WEAR_CONST")) {
-            if (cmd.wear_const != WearConstChoice::kUnchanged) {
-                return otc_conflict(col, cmd.wear_const == WearConstChoice::kTool ? "WEAR_CONST_TOOL"
-                                                                                 : "WEAR_CONST",
-                                    "WEAR_CONST");
-            }
+            if (cmd.wear_const != WearConstChoice::kUnchanged)
+                return otc_conflict(col, chosen, "WEAR_CONST");
             double v = 0.0;
             if (!equals_value("WEAR_CONST", v)) return false;
             // [ISG-OTC] section 3.2, P-TOOL-00030: 0 <= grinding_wear_const.
@@ -415,22 +412,15 @@ LoopMarker loop_marker(std::string_view line) noexcept {
 }
 
 std::string_view otc_type_name(OtcType t) noexcept {
-    switch (t) {
-        case OtcType::kRadius: return "RADIUS";
-        case OtcType::kLength: return "LENGTH";
-        case OtcType::kToolDir: return "TOOL_DIR";
-        case OtcType::kSurfNormDir: return "SURF_NORM_DIR";
-    }
-    return "?";
+    static constexpr auto kNames = objif::enum_names<OtcType::kRadius, OtcType::kSurfNormDir>(
+        {"RADIUS", "LENGTH", "TOOL_DIR", "SURF_NORM_DIR"}, "?");
+    return kNames(t);
 }
 
 std::string_view otc_mode_name(OtcMode m) noexcept {
-    switch (m) {
-        case OtcMode::kCont: return "CONT";
-        case OtcMode::kDisc: return "DISC";
-        case OtcMode::kAuto: return "AUTO";
-    }
-    return "?";
+    static constexpr auto kNames =
+        objif::enum_names<OtcMode::kCont, OtcMode::kAuto>({"CONT", "DISC", "AUTO"}, "?");
+    return kNames(m);
 }
 
 }  // namespace apci::nc

@@ -7,6 +7,7 @@
 #include "apci/nc/correction_table.h"
 #include "apci/nc/klartext.h"
 #include "apci/nc/tools.h"
+#include "block_context.h"
 
 namespace apci::nc {
 
@@ -19,23 +20,7 @@ constexpr double kShapeTolerance = 1e-9;
 
 constexpr char kAxisLetter[3] = {'X', 'Y', 'Z'};
 
-struct BlockCheck {
-    const KlartextBlock& b;
-    std::string_view file;
-    Diagnostic& err;
-
-    bool fail(ErrorKind kind, std::uint32_t column, std::string message) const {
-        err.kind = kind;
-        err.file = std::string(file);
-        err.line = b.line;
-        err.column = column == 0 ? 1 : column;
-        err.block = b.block_number();
-        err.klartext = true;
-        err.message = std::move(message);
-        err.undefined = Undefined::kNothing;
-        return false;
-    }
-};
+using BlockCheck = BlockContext<KlartextBlock>;
 
 std::uint32_t m_column(const KlartextBlock& b, int code) {
     for (std::size_t i = 0; i < b.m_count; ++i) {
@@ -558,7 +543,7 @@ KlartextInterpreter::KlartextInterpreter(const KlartextOptions& options) : optio
 bool KlartextInterpreter::apply(const KlartextBlock& b, std::string_view file, EventBatch& out,
                                 Diagnostic& err) {
     out.clear();
-    const BlockCheck c{b, file, err};
+    const BlockCheck c{b, file, err, true};
     if (b.kind == KlartextKind::kEmpty) return true;
     if (!check_block_order(c, state_)) return false;
     KlartextState s = state_;  // committed only when every check has passed

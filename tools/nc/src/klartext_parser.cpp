@@ -145,15 +145,19 @@ class KlartextParser {
         return true;
     }
 
+    // A blank or the end of the line after `what` ("the block number", "'RL'").
+    bool blank_after(std::string_view what) {
+        if (is_word_end(c_.peek())) return true;
+        return fail(ErrorKind::kSyntax, c_.column(),
+                    fmt::format("expected a blank after {}, found {}", what,
+                                describe_char(c_.peek())));
+    }
+
     bool block_number() {
         const std::uint32_t col = c_.column();
         std::uint64_t n = 0;
         if (!whole_number(n, "a block number", "block number")) return false;
-        if (!is_word_end(c_.peek())) {
-            return fail(ErrorKind::kSyntax, c_.column(),
-                        fmt::format("expected a blank after the block number, found {}",
-                                    describe_char(c_.peek())));
-        }
+        if (!blank_after("the block number")) return false;
         b_.number.value = static_cast<std::int64_t>(n);
         b_.number.column = col;
         return true;
@@ -230,11 +234,7 @@ class KlartextParser {
         if (!whole_number(n, "the tool number after 'TOOL CALL'", "tool number",
                           static_cast<std::uint64_t>(kMaxToolNumber)))
             return false;
-        if (!is_word_end(c_.peek())) {
-            return fail(ErrorKind::kSyntax, c_.column(),
-                        fmt::format("expected a blank after the tool number, found {}",
-                                    describe_char(c_.peek())));
-        }
+        if (!blank_after("the tool number")) return false;
         b_.tool.value = static_cast<int>(n);
         b_.tool.column = tool_col;
         for (;;) {
@@ -588,11 +588,7 @@ class KlartextParser {
     }
 
     bool radius_comp(Compensation side, std::string_view word, std::uint32_t col) {
-        if (!is_word_end(c_.peek())) {
-            return fail(ErrorKind::kSyntax, c_.column(),
-                        fmt::format("expected a blank after '{}', found {}", word,
-                                    describe_char(c_.peek())));
-        }
+        if (!blank_after(fmt::format("'{}'", word))) return false;
         if (b_.radius_comp.present()) {
             return fail(ErrorKind::kConflict, col,
                         "R0, RL and RR in one block: give the radius compensation once");
@@ -605,11 +601,7 @@ class KlartextParser {
     bool m_function(std::uint32_t col) {
         std::uint64_t m = 0;
         if (!whole_number(m, "a number after 'M'", "M function")) return false;
-        if (!is_word_end(c_.peek())) {
-            return fail(ErrorKind::kSyntax, c_.column(),
-                        fmt::format("expected a blank after the M function, found {}",
-                                    describe_char(c_.peek())));
-        }
+        if (!blank_after("the M function")) return false;
         if (m != 2 && m != 30 && m != 107 && m != 108 && m != 128 && m != 129) {
             return fail(ErrorKind::kUnknownWord, col,
                         fmt::format("unknown M function M{} (known: {})", m, kKnownMFunctions));

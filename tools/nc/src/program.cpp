@@ -64,8 +64,7 @@ bool EventStream::line(std::string_view text) {
             seen_block_ = true;
             ++blocks_;
             if (interpreter_.state().ended)
-                return fail(here(ErrorKind::kProgramRule, 1,
-                                 "block after M30: the program has already ended"));
+                return fail(here(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd)));
             if (parsed_.assignment.to_parameter) {
                 const auto i = static_cast<std::size_t>(parsed_.assignment.parameter);
                 params_[i] = parsed_.assignment.value;
@@ -245,7 +244,7 @@ bool EventStream::loop_continues(const LoopFrame& f) const noexcept {
 
 bool EventStream::loop_start(const IsgLine& isg) {
     if (interpreter_.state().ended)
-        return fail(here(ErrorKind::kProgramRule, 1, "block after M30: the program has already ended"));
+        return fail(here(ErrorKind::kProgramRule, 1, std::string(kBlockAfterEnd)));
     if (loops_.size() >= kMaxLoopDepth)
         return fail(here(ErrorKind::kProgramRule, isg.column,
                          fmt::format("$FOR nested deeper than {} loops", kMaxLoopDepth)));

@@ -14,6 +14,7 @@
 #include "apci/nc/block.h"
 #include "apci/nc/lexer.h"
 #include "apci/nc/source.h"
+#include "table_line_parser.h"
 
 namespace apci::nc {
 
@@ -86,14 +87,14 @@ const FieldSpec* find_field(std::string_view name) {
     return nullptr;
 }
 
-class ToolLineParser {
+class ToolLineParser : TableLineParser {
   public:
-    ToolLineParser(std::string_view file, ToolTable& table) : file_(file), table_(table) {}
+    ToolLineParser(std::string_view file, ToolTable& table)
+        : TableLineParser(file), table_(table) {}
 
     bool line(std::string_view text, std::uint64_t line_number, Diagnostic& err) {
         LineCursor c(text);
-        line_ = line_number;
-        err_ = &err;
+        start_line(line_number, err);
         c.skip_blanks();
         if (c.at_end() || c.peek() == '#') return true;
         const std::uint32_t start_col = c.column();
@@ -148,7 +149,7 @@ class ToolLineParser {
         if (!field_value(c, *field, label, value)) return false;
         // A field given twice would silently depend on line order; refuse it.
         const auto key = std::make_tuple(tool, static_cast<int>(field - kFields), axis);
-        const auto [it, fresh] = seen_.emplace(key, line_);
+        const auto [it, fresh] = seen_.emplace(key, current_line());
         if (fresh) columns_.emplace(key, field_col);
         if (!fresh) {
             return fail(ErrorKind::kConflict, field_col,
@@ -178,16 +179,6 @@ class ToolLineParser {
     }
 
   private:
-    bool fail(ErrorKind kind, std::uint32_t column, std::string message) {
-        err_->kind = kind;
-        err_->file = std::string(file_);
-        err_->line = line_;
-        err_->column = column;
-        err_->block = kNoBlockNumber;
-        err_->message = std::move(message);
-        return false;
-    }
-
     // "[digits]" at the cursor.
     // "[digits]": the digits as written (range checks name them so, never clamped).
     bool bracketed(LineCursor& c, std::string_view where, std::string_view what,
@@ -209,23 +200,8 @@ class ToolLineParser {
     }
 
     bool field_value(LineCursor& c, const FieldSpec& f, const std::string& label, double& value) {
-        const std::size_t before = c.offset();
-        c.skip_blanks();
-        const std::uint32_t col = c.column();
-        if (c.offset() == before && !c.at_end()) {
-            return fail(ErrorKind::kSyntax, col,
-                        fmt::format("expected a blank and the value after '{}'", label));
-        }
-        switch (c.scan_number(value)) {
-            case NumberScan::kNone:
-                return fail(ErrorKind::kSyntax, col,
-                            fmt::format("expected a value after '{}'", label));
-            case NumberScan::kOutOfRange:
-                return fail(ErrorKind::kValue, col,
-                            fmt::format("the value of {} is out of range", label));
-            case NumberScan::kOk:
-                break;
-        }
+        std::uint32_t col = 0;
+        if (!field_number(c, label, value, col)) return false;
         if (!c.at_end() && c.peek() != ' ' && c.peek() != '\t') {
             return fail(ErrorKind::kSyntax, c.column(),
                         fmt::format("expected a blank or the end of the line after the value of "
@@ -242,10 +218,7 @@ class ToolLineParser {
         return true;
     }
 
-    std::string_view file_;
     ToolTable& table_;
-    std::uint64_t line_ = 0;
-    Diagnostic* err_ = nullptr;
     std::uint32_t index_col_ = 0;
     std::map<std::tuple<int, int, std::uint64_t>, std::uint64_t> seen_;
     std::map<std::tuple<int, int, std::uint64_t>, std::uint32_t> columns_;

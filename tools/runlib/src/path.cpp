@@ -7,35 +7,20 @@
 #include "apci/nc/arc.h"
 #include "apci/nc/move_time.h"
 #include "geometry/element.h"
+#include "objif/enum_names.h"
 
 namespace apci::run {
 
 std::string_view kind_name(SegmentKind k) noexcept {
-    switch (k) {
-        case SegmentKind::kRapid:
-            return "rapid";
-        case SegmentKind::kLine:
-            return "line";
-        case SegmentKind::kArc:
-            return "arc";
-    }
-    return "line";
+    static constexpr auto kNames =
+        objif::enum_names<SegmentKind::kRapid, SegmentKind::kArc>({"rapid", "line", "arc"}, "line");
+    return kNames(k);
 }
 
 std::string_view role_name(Role r) noexcept {
-    switch (r) {
-        case Role::kContour:
-            return "contour";
-        case Role::kTransition:
-            return "transition";
-        case Role::kApproach:
-            return "approach";
-        case Role::kDeparture:
-            return "departure";
-        case Role::kUncompensated:
-            return "uncompensated";
-    }
-    return "uncompensated";
+    static constexpr auto kNames = objif::enum_names<Role::kContour, Role::kUncompensated>(
+        {"contour", "transition", "approach", "departure", "uncompensated"}, "uncompensated");
+    return kNames(r);
 }
 
 std::string_view plane_name(int plane) noexcept {

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -114,40 +115,36 @@ class LineParser {
         return true;
     }
     bool unit(PlcWrite& w) {
+        using Unit = PlcWrite::Unit;
+        // Each unit's name and the last index it takes in brackets (-1: none).
+        struct UnitName {
+            std::string_view name;
+            Unit unit;
+            int last_index;
+        };
+        static constexpr UnitName kUnits[] = {{"otc_radius_offset", Unit::kOtcRadiusOffset, -1},
+                                              {"otc_offset", Unit::kOtcOffset, 7},
+                                              {"tool_temp_comp", Unit::kToolTempComp, 2},
+                                              {"tool_temp_comp_on", Unit::kToolTempCompOn, -1},
+                                              {"temp_comp_type", Unit::kTempCompType, 7},
+                                              {"tool_holder", Unit::kToolHolder, -1},
+                                              {"tool_holder_axis_b", Unit::kToolHolderAxisB, -1},
+                                              {"tool_holder_axis_c", Unit::kToolHolderAxisC, -1},
+                                              {"temp_ramp_velocity", Unit::kTempRampVelocity, -1}};
         const std::uint32_t col = c_.column();
         const std::string_view name = c_.scan_identifier();
-        if (word_is(name, "otc_radius_offset")) {
-            w.unit = PlcWrite::Unit::kOtcRadiusOffset;
-        } else if (word_is(name, "otc_offset")) {
-            w.unit = PlcWrite::Unit::kOtcOffset;
-            if (!bracket_index(w.index, 7, "otc_offset", col)) return false;
-        } else if (word_is(name, "tool_temp_comp")) {
-            w.unit = PlcWrite::Unit::kToolTempComp;
-            return bracket_index(w.index, 2, "tool_temp_comp", col);
-        } else if (word_is(name, "tool_temp_comp_on")) {
-            w.unit = PlcWrite::Unit::kToolTempCompOn;
-            return true;
-        } else if (word_is(name, "temp_comp_type")) {
-            w.unit = PlcWrite::Unit::kTempCompType;
-            return bracket_index(w.index, 7, "temp_comp_type", col);
-        } else if (word_is(name, "tool_holder")) {
-            w.unit = PlcWrite::Unit::kToolHolder;
-            return true;
-        } else if (word_is(name, "tool_holder_axis_b")) {
-            w.unit = PlcWrite::Unit::kToolHolderAxisB;
-            return true;
-        } else if (word_is(name, "tool_holder_axis_c")) {
-            w.unit = PlcWrite::Unit::kToolHolderAxisC;
-            return true;
-        } else if (word_is(name, "temp_ramp_velocity")) {
-            w.unit = PlcWrite::Unit::kTempRampVelocity;
-            return true;
-        } else {
+        const auto* u = std::find_if(std::begin(kUnits), std::end(kUnits),
+                                     [&](const UnitName& x) { return word_is(name, x.name); });
+        if (u == std::end(kUnits)) {
             return fail(col,
                         "unknown unit (known: otc_radius_offset, otc_offset[i], "
                         "tool_temp_comp[i], tool_temp_comp_on, temp_comp_type[i], tool_holder, "
                         "tool_holder_axis_b, tool_holder_axis_c, temp_ramp_velocity)");
         }
+        w.unit = u->unit;
+        if (u->last_index >= 0 && !bracket_index(w.index, u->last_index, u->name, col))
+            return false;
+        if (!w.otc()) return true;  // the temperature units have no field
         if (c_.peek() != '.')
             return fail(c_.column(), "expected '.command' or '.enable' after the unit");
         c_.advance();

@@ -24,19 +24,15 @@ namespace otc = objif::map::otc;
 // Clock calls without a trace run until idle in one go.
 constexpr std::uint64_t kRunForever = std::uint64_t{1} << 62;
 
+// The board's role codes up to APCI_ROLE_UNCOMPENSATED are the Role values; a rapid (or any
+// other code) is uncompensated.
+static_assert(APCI_ROLE_CONTOUR == static_cast<int>(Role::kContour) &&
+              APCI_ROLE_TRANSITION == static_cast<int>(Role::kTransition) &&
+              APCI_ROLE_APPROACH == static_cast<int>(Role::kApproach) &&
+              APCI_ROLE_DEPARTURE == static_cast<int>(Role::kDeparture) &&
+              APCI_ROLE_UNCOMPENSATED == static_cast<int>(Role::kUncompensated));
 Role role_of(std::uint8_t role) noexcept {
-    switch (role) {
-        case APCI_ROLE_CONTOUR:
-            return Role::kContour;
-        case APCI_ROLE_TRANSITION:
-            return Role::kTransition;
-        case APCI_ROLE_APPROACH:
-            return Role::kApproach;
-        case APCI_ROLE_DEPARTURE:
-            return Role::kDeparture;
-        default:
-            return Role::kUncompensated;
-    }
+    return role <= APCI_ROLE_UNCOMPENSATED ? static_cast<Role>(role) : Role::kUncompensated;
 }
 
 // The roles whose end point carries the tool length compensation (rwmos spooler: the length is

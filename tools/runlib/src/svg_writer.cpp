@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -15,48 +16,35 @@
 
 namespace apci::run {
 
+namespace {
+
+// Each layer's CSS class and legend text, in the order of PlotLayer.
+struct LayerName {
+    std::string_view css_class;
+    std::string_view label;
+};
+constexpr std::array<LayerName, kPlotLayerCount> kLayerNames{{
+    {"programmed", "programmed contour"},
+    {"rapid", "rapid (G0)"},
+    {"uncompensated", "uncompensated"},
+    {"approach", "approach"},
+    {"departure", "departure"},
+    {"contour", "tool centre path"},
+    {"transition", "corner transition"},
+    {"cycles", "axes per cycle (with OTC offsets)"},
+}};
+static_assert(static_cast<std::size_t>(PlotLayer::kCycles) + 1 == kPlotLayerCount);
+
+}  // namespace
+
 std::string_view layer_class(PlotLayer l) noexcept {
-    switch (l) {
-        case PlotLayer::kProgrammed:
-            return "programmed";
-        case PlotLayer::kRapid:
-            return "rapid";
-        case PlotLayer::kUncompensated:
-            return "uncompensated";
-        case PlotLayer::kApproach:
-            return "approach";
-        case PlotLayer::kDeparture:
-            return "departure";
-        case PlotLayer::kContour:
-            return "contour";
-        case PlotLayer::kTransition:
-            return "transition";
-        case PlotLayer::kCycles:
-            return "cycles";
-    }
-    return "programmed";
+    const auto i = static_cast<std::size_t>(l);
+    return i < kLayerNames.size() ? kLayerNames[i].css_class : "programmed";
 }
 
 std::string_view layer_label(PlotLayer l) noexcept {
-    switch (l) {
-        case PlotLayer::kProgrammed:
-            return "programmed contour";
-        case PlotLayer::kRapid:
-            return "rapid (G0)";
-        case PlotLayer::kUncompensated:
-            return "uncompensated";
-        case PlotLayer::kApproach:
-            return "approach";
-        case PlotLayer::kDeparture:
-            return "departure";
-        case PlotLayer::kContour:
-            return "tool centre path";
-        case PlotLayer::kTransition:
-            return "corner transition";
-        case PlotLayer::kCycles:
-            return "axes per cycle (with OTC offsets)";
-    }
-    return "";
+    const auto i = static_cast<std::size_t>(l);
+    return i < kLayerNames.size() ? kLayerNames[i].label : "";
 }
 
 PlotLayer executed_layer(const PathSegment& s) noexcept {

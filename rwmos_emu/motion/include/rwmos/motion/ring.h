@@ -33,28 +33,7 @@ class Ring {
     void clear() noexcept { head_ = size_ = 0; }
 
     void push(const T& v) {
-        if (capacity_ == 0) {
-            ++lost_;
-            return;
-        }
-        if (size_ == capacity_) {  // full (so buf_ has its whole capacity): the oldest goes
-            buf_[head_] = v;
-            head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
-            ++lost_;
-            return;
-        }
-        // While buf_ is shorter than the capacity the content has never
-        // wrapped: it lies at [head_, head_ + size_) with head_ + size_ <= buf_.size().
-        std::size_t slot = head_ + size_;
-        if (slot == stored_ && stored_ < capacity_) {
-            grow();
-            buf_.push_back(v);
-            ++stored_;
-        } else {
-            if (slot >= stored_) slot -= stored_;
-            buf_[slot] = v;
-        }
-        ++size_;
+        push_with([&v](T& slot) { slot = v; });
     }
 
     // As push(v) of the entry fill(T&) writes, in its place (no copy of a large entry); fill
@@ -65,12 +44,14 @@ class Ring {
             ++lost_;
             return;
         }
-        if (size_ == capacity_) {
+        if (size_ == capacity_) {  // full (so buf_ has its whole capacity): the oldest goes
             fill(buf_[head_]);
             head_ = head_ + 1 == stored_ ? 0 : head_ + 1;
             ++lost_;
             return;
         }
+        // While buf_ is shorter than the capacity the content has never
+        // wrapped: it lies at [head_, head_ + size_) with head_ + size_ <= buf_.size().
         std::size_t slot = head_ + size_;
         if (slot == stored_ && stored_ < capacity_) {
             grow();

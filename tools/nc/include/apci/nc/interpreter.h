@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "apci/nc/parser.h"
 
@@ -86,6 +87,9 @@ struct InterpreterOptions {
     // $FOR loops run at most this many blocks in all, every repetition counted (program.h).
     std::uint64_t max_loop_blocks = kMaxLoopBlocks;
 };
+
+// The refusal of a block after M30 (the interpreter's and the program stream's).
+inline constexpr std::string_view kBlockAfterEnd = "block after M30: the program has already ended";
 
 class Interpreter {
   public:
