@@ -444,7 +444,7 @@ TEST(CamPrograms, DesignPartIsTheGeometryTheProgramWrites) {
             EXPECT_EQ(p.radius_by_line.size(), lines + 1) << p.name;
             for (const auto& [number, line] : p.line_of_number)
                 EXPECT_EQ(std::count_if(p.line_of_number.begin(), p.line_of_number.end(),
-                                        [&](const auto& x) { return x.first == number; }),
+                                        [n = number](const auto& x) { return x.first == n; }),
                           1)
                     << p.name << ": N" << number << " twice";
             ASSERT_NO_THROW(StockOracle{p.part}) << p.name;
