@@ -466,7 +466,8 @@ double radius_of(double diameter_inches) {
     return diameter_inches / 2 * kInch;
 }
 
-std::vector<Example> examples() {
+// LinuxCNC's example programs with cutter compensation (its ncfiles), run as they stand.
+std::vector<Example> ncfiles_examples() {
     std::vector<Example> out;
     {
         Example e;
@@ -523,6 +524,12 @@ std::vector<Example> examples() {
         e.min_compared_mm = 240;
         out.push_back(e);
     }
+    return out;
+}
+
+// ngcgui's subroutines, as ngcgui calls them.
+std::vector<Example> ngcgui_examples() {
+    std::vector<Example> out;
     {
         // ngcgui's qpocket.ngc as its example caller qpex.ngc calls it, with qpex's defaults,
         // in the ngcgui sample configuration that offers it (sim/axis/ngcgui: inches, preamble
@@ -568,6 +575,14 @@ std::vector<Example> examples() {
         e.min_compared_mm = 40;
         out.push_back(e);
     }
+    return out;
+}
+
+// Every example: the programs, then the subroutines.
+std::vector<Example> examples() {
+    std::vector<Example> out = ncfiles_examples();
+    const std::vector<Example> ngcgui = ngcgui_examples();
+    out.insert(out.end(), ngcgui.begin(), ngcgui.end());
     return out;
 }
 
@@ -649,12 +664,11 @@ std::string dump(const std::vector<Element>& path, const std::vector<std::uint64
 
 class LinuxCncExamples : public ::testing::TestWithParam<Example> {};
 
-TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
-    if (!rs274().why.empty()) GTEST_SKIP() << rs274().why;
-    const Example& ex = GetParam();
-    const auto t0 = std::chrono::steady_clock::now();
+// ---- The comparison, step by step
 
-    // LinuxCNC: the original (and, for inch programs, the original in mm).
+// LinuxCNC's runs of the example (`runs`): the original (an ngcgui subroutine as ngcgui runs it)
+// and, for an inch program, its mm version; fails where a file cannot be read or rs274 fails.
+void run_linuxcnc(const Example& ex, std::vector<Rs274Result>& runs) {
     const std::string ncfiles = rs274().ncfiles + "/";
     const std::string original = read_text(ncfiles + ex.original);
     ASSERT_FALSE(original.empty()) << "cannot read " << ncfiles << ex.original;
@@ -678,8 +692,7 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
     std::vector<std::string> programs{program};
     if (ex.inches)
         programs.push_back(ex.mm_from_rewrite ? rewrite_to_ngc(ours_text) : inch_to_mm(original));
-    const std::vector<Rs274Result> runs =
-        run_rs274(rs274(), programs, ex.tool_table, 17, 2, subroutines);
+    runs = run_rs274(rs274(), programs, ex.tool_table, 17, 2, subroutines);
     for (std::size_t i = 0; i < runs.size(); ++i) {
         ASSERT_TRUE(runs[i].ran && runs[i].exit_code == 0 && !runs[i].moves.empty())
             << "rs274 on " << ex.original
@@ -688,348 +701,430 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
                                      : " (in mm)")
             << ": exit " << runs[i].exit_code << " " << runs[i].error;
     }
-    // LinuxCNC's moves that move, in mm (the mm run) and as the original makes them.
-    const std::vector<CanonMove> lc = moving(runs.back().moves);
-    const std::vector<CanonMove> in = moving(runs[0].moves);
-    if (ex.inches) {
-        // The conversion keeps LinuxCNC's moves: the same moves, the same compensation, every
-        // coordinate within the two printed roundings.
-        ASSERT_EQ(in.size(), lc.size()) << "the original and its mm version differ in moves";
-        double worst = 0.0;
-        for (std::size_t i = 0; i < lc.size(); ++i) {
-            const Element &a = in[i].path, &b = lc[i].path;
-            ASSERT_TRUE(in[i].rapid == lc[i].rapid && in[i].compensation == lc[i].compensation &&
-                        a.kind == b.kind && a.ccw == b.ccw)
-                << "move " << i << ": " << element_text(a) << " (inches) vs " << element_text(b);
-            for (const auto& [p, q] : {std::pair{a.end, b.end}, std::pair{a.centre, b.centre}}) {
-                const Vec2 d = (kInch * p - q).cwiseAbs();
-                worst = std::max({worst, d.x(), d.y()});
-            }
-            worst = std::max(worst, std::abs(kInch * in[i].third - lc[i].third));
-        }
-        EXPECT_LE(worst, kPrintedRounding)
-            << "the mm version of " << ex.original << " moves differently from the original";
-        std::printf(
-            "%s: the original (inches) and its mm version: %zu moves alike (%zu and %zu that move "
-            "nowhere left out), coordinates within %.2e mm (rs274's printed rounding %.2e)\n",
-            ex.name.c_str(), lc.size(), runs[0].moves.size() - in.size(),
-            runs.back().moves.size() - lc.size(), worst, kPrintedRounding);
-    }
+}
 
-    // Ours.
-    const OurExampleRun ours = run_example(std::string(kSourceDir) + "/" + ex.program,
-                                           std::string(kSourceDir) + "/" + ex.tools);
+// The conversion of an inch program keeps LinuxCNC's moves: `in` (the original's moves that
+// move) and `lc` (its mm version's) are the same moves, with the same compensation, every
+// coordinate within the two printed roundings.
+void expect_mm_version_moves_alike(const Example& ex, const std::vector<Rs274Result>& runs,
+                                   const std::vector<CanonMove>& in,
+                                   const std::vector<CanonMove>& lc) {
+    ASSERT_EQ(in.size(), lc.size()) << "the original and its mm version differ in moves";
+    double worst = 0.0;
+    for (std::size_t i = 0; i < lc.size(); ++i) {
+        const Element &a = in[i].path, &b = lc[i].path;
+        ASSERT_TRUE(in[i].rapid == lc[i].rapid && in[i].compensation == lc[i].compensation &&
+                    a.kind == b.kind && a.ccw == b.ccw)
+            << "move " << i << ": " << element_text(a) << " (inches) vs " << element_text(b);
+        for (const auto& [p, q] : {std::pair{a.end, b.end}, std::pair{a.centre, b.centre}}) {
+            const Vec2 d = (kInch * p - q).cwiseAbs();
+            worst = std::max({worst, d.x(), d.y()});
+        }
+        worst = std::max(worst, std::abs(kInch * in[i].third - lc[i].third));
+    }
+    EXPECT_LE(worst, kPrintedRounding)
+        << "the mm version of " << ex.original << " moves differently from the original";
+    std::printf(
+        "%s: the original (inches) and its mm version: %zu moves alike (%zu and %zu that move "
+        "nowhere left out), coordinates within %.2e mm (rs274's printed rounding %.2e)\n",
+        ex.name.c_str(), lc.size(), runs[0].moves.size() - in.size(),
+        runs.back().moves.size() - lc.size(), worst, kPrintedRounding);
+}
+
+// Our run of the example (`ours`), which must have no errors and no warnings: each is a correct
+// program (its leads, its passes widening a pocket, its roughing circles are no walls:
+// docs/compensation.md, "What is a wall").
+void run_ours(const Example& ex, OurExampleRun& ours) {
+    ours = run_example(std::string(kSourceDir) + "/" + ex.program,
+                       std::string(kSourceDir) + "/" + ex.tools);
     ASSERT_TRUE(ours.error.empty()) << ours.error;
     ASSERT_TRUE(ours.planes_ok);
     for (const apci::run::RunError& e : ours.errors)
         ADD_FAILURE() << ex.program << ": line " << e.block.line << ": " << e.code << ": "
                       << e.message;
     ASSERT_TRUE(ours.errors.empty());
-    // No warning: each is a correct program (its leads, its passes widening a pocket, its
-    // roughing circles are no walls: docs/compensation.md, "What is a wall").
     for (const apci::run::RunError& w : ours.warnings)
         ADD_FAILURE() << ex.program << ": line " << w.block.line << ": " << w.code << ": "
                       << w.message;
     std::printf("%s: our run: %zu segments, no errors, no warnings\n", ex.name.c_str(),
                 ours.executed.size());
+}
 
-    const std::vector<Stretch> theirs_s = linuxcnc_stretches(lc);
-    const std::vector<Stretch> ours_s = our_stretches(ours.executed);
-    ASSERT_EQ(theirs_s.size(), ex.stretches.size()) << "LinuxCNC's compensated stretches";
-    ASSERT_EQ(ours_s.size(), ex.stretches.size()) << "our compensated stretches";
+// One compensated stretch of the example as both runs made it.
+struct StretchRun {
+    const Example& ex;
+    std::size_t k;  // its index (number k + 1 in the messages)
+    const StretchSpec& spec;
+    const std::vector<CanonMove>& lc;  // LinuxCNC's moves that move, in mm
+    const std::vector<CanonMove>& in;  // the same as the original makes them
+    const OurExampleRun& ours;
+    const Stretch& ts;  // LinuxCNC's moves of the stretch
+    const Stretch& os;  // our executed segments of the stretch
+    double r;           // the tool radius, mm
+    bool left;          // G41
+};
 
-    Figures f;
-    for (std::size_t k = 0; k < ex.stretches.size(); ++k) {
-        const StretchSpec& spec = ex.stretches[k];
-        const double r = spec.r;
-        const Stretch& ts = theirs_s[k];
-        const Stretch& os = ours_s[k];
-        const bool left = lc[ts.first].compensation == 41;
-        SCOPED_TRACE(ex.name + " stretch " + std::to_string(k + 1) + " (r " + std::to_string(r) +
-                     " mm, our lines " + std::to_string(ours.executed[os.first].line) + ".." +
-                     std::to_string(ours.executed[os.last].line) + ")");
+// The stretch's paths in the plane and the programmed contour they are compared along.
+struct StretchPaths {
+    std::vector<Element> contour;  // the contour proper's programmed elements
+    std::vector<std::uint64_t> contour_lines;
+    std::vector<Element> lc_path, our_path;  // LinuxCNC's feed moves, our segments
+    std::vector<std::uint64_t> our_lines;
+    std::string both;                      // both paths as text, for the failure messages
+    Vec2 from, to;                         // where the contour proper begins and ends on the paths
+    std::vector<Element> lc_win, our_win;  // the paths from `from` to `to`
+};
 
-        // The programmed elements of the stretch: our executed segments name their blocks (a
-        // departure under G139 is the G40 block's move, not an element of the contour).
-        std::set<std::uint64_t> stretch_lines;
-        for (std::size_t i = os.first; i <= os.last; ++i)
-            if (ours.executed[i].role != static_cast<int>(apci::run::Role::kDeparture))
-                stretch_lines.insert(ours.executed[i].line);
-        std::vector<Element> contour;
-        std::vector<std::uint64_t> contour_lines;
-        for (const Seg& s : ours.programmed) {
-            if (s.rapid || length(s.path) <= 1e-9 || !stretch_lines.count(s.line)) continue;
-            contour.push_back(s.path);
-            contour_lines.push_back(s.line);
-        }
-        // LinuxCNC's first move after G41 is its entry move: a feed move there is our first
-        // compensated element, reached by our approach. Not part of the contour proper.
-        const bool entry_is_feed = !lc[ts.first].rapid;
-        if (entry_is_feed && !contour.empty()) {
-            contour.erase(contour.begin());
-            contour_lines.erase(contour_lines.begin());
-        }
-        ASSERT_FALSE(contour.empty()) << "no contour proper";
-
-        // Both paths in the plane: LinuxCNC's feed moves of the stretch, our segments.
-        std::vector<Element> lc_path, our_path;
-        std::vector<std::uint64_t> our_lines;
-        for (std::size_t i = ts.first; i <= ts.last; ++i)
-            if (!lc[i].rapid) lc_path.push_back(lc[i].path);
-        for (std::size_t i = os.first; i <= os.last; ++i) {
-            our_path.push_back(ours.executed[i].path);
-            our_lines.push_back(ours.executed[i].line);
-        }
-        std::string both = "  LinuxCNC's path (stretch " + std::to_string(k + 1) + "):\n";
-        for (std::size_t i = ts.first; i <= ts.last; ++i)
-            both +=
-                std::string(lc[i].rapid ? "    rapid " : "    ") + element_text(lc[i].path) + "\n";
-        both += "  our path:\n" + dump(our_path, &our_lines);
-
-        // The contour proper: from the start of its first element's offset when both paths
-        // pass there on their way to its middle (the entry meets it at an outside or tangent
-        // corner on both), else from its middle (an inside corner trims it, each path at its
-        // own point); to the end of its last element's offset when both pass there after its
-        // middle (or pass there and not its middle: the corner before it trims more than its
-        // half), else to its middle.
-        const auto reaches_first = [&](const Vec2& p, const Vec2& mid) {
-            for (const auto& [path, tol] : {std::pair{&lc_path, kLinuxCncWindowTolerance},
-                                            std::pair{&our_path, kOurWindowTolerance}}) {
-                const std::size_t a = first_near(*path, p, tol), b = first_near(*path, mid, tol);
-                if (a == kNone || b == kNone || a > b) return false;
-            }
-            return true;
-        };
-        const auto leaves_last = [&](const Vec2& p, const Vec2& mid) {
-            for (const auto& [path, tol] : {std::pair{&lc_path, kLinuxCncWindowTolerance},
-                                            std::pair{&our_path, kOurWindowTolerance}}) {
-                // The middle is not on the path where the corner before a short element trims
-                // more than its half (qpocket's last move along a side, shorter than 2r).
-                const std::size_t a = last_near(*path, p, tol), b = last_near(*path, mid, tol);
-                if (a == kNone || (b != kNone && a < b)) return false;
-            }
-            return true;
-        };
-        const Vec2 first_mid = offset_at(contour.front(), 0.5, r, left);
-        const Vec2 last_mid = offset_at(contour.back(), 0.5, r, left);
-        Vec2 from = offset_at(contour.front(), 0.0, r, left);
-        if (!reaches_first(from, first_mid)) from = first_mid;
-        Vec2 to = offset_at(contour.back(), 1.0, r, left);
-        if (!leaves_last(to, last_mid)) to = last_mid;
-        const std::vector<Element> lc_win = window(lc_path, from, to, kLinuxCncWindowTolerance);
-        const std::vector<Element> our_win = window(our_path, from, to, kOurWindowTolerance);
-        ASSERT_FALSE(lc_win.empty()) << "the contour proper " << point_text(from) << " .. "
-                                     << point_text(to) << " is not on LinuxCNC's path\n"
-                                     << both;
-        ASSERT_FALSE(our_win.empty()) << "the contour proper " << point_text(from) << " .. "
-                                      << point_text(to) << " is not on our path\n"
-                                      << both;
-        const double dev = hausdorff(our_win, lc_win, kSpacing);
-        if (dev > kMaxDeviation) {
-            const Worst a = farthest(our_win, lc_win), b = farthest(lc_win, our_win);
-            ADD_FAILURE() << "the paths differ by " << dev << " mm on the contour proper: ours "
-                          << a.distance << " mm from LinuxCNC's at " << point_text(a.at) << " ("
-                          << element_text(our_win[a.element]) << "), LinuxCNC's " << b.distance
-                          << " mm from ours at " << point_text(b.at) << " ("
-                          << element_text(lc_win[b.element]) << ")\n"
-                          << "  programmed contour:\n"
-                          << dump(contour, &contour_lines) << both;
-        }
-        // The same length: the Hausdorff distance does not see a pass run twice or left out
-        // where passes lie on each other in the plane (the depth passes of qpocket and helix,
-        // the laps of mmount's holes). Each of LinuxCNC's elements may be off by its two end
-        // points' printed rounding, an arc also by its radius's for every radian; the window's
-        // ends by the tolerance they are found within.
-        double length_tolerance = 2 * kLinuxCncWindowTolerance;
-        for (const Element& e : lc_win)
-            length_tolerance += kPrintedPoint * (2 + (is_arc(e) ? std::abs(sweep(e)) : 0.0));
-        const double length_apart = std::abs(path_length(our_win) - path_length(lc_win));
-        f.max_length_apart = std::max(f.max_length_apart, length_apart / length_tolerance);
-        EXPECT_LE(length_apart, length_tolerance)
-            << "the contour proper is " << path_length(our_win) << " mm long on our path, "
-            << path_length(lc_win) << " mm on LinuxCNC's\n"
-            << both;
-
-        // Clearance, pass by pass. mmount's holes (o100) are roughed 0.020 in under size and
-        // then finished at size, by a half circle out to the hole, the full circle, and a half
-        // circle back: the finishing cuts 0.254 mm into the roughing contour, and the full
-        // circle's path into the half circles', by design. There the roughing path keeps r from
-        // the roughing circles (from the window's start to a quarter into the last), the
-        // finishing path (from the middle of the first half circle to the window's end) from
-        // the finished hole. qpocket clears its pocket in outlines, each from the next corner
-        // of a larger one, the last at full size, and ends along that one's next side: the
-        // part that stays is the full outline, and the whole contour proper keeps r from its
-        // four sides and the last move along the fifth. Elsewhere the whole contour proper
-        // keeps r from all of it but a last element that leads out past the part
-        // (StretchSpec::lead_out).
-        std::vector<Pass> passes;
-        if (spec.pocket) {
-            ASSERT_GE(contour.size(), 5u);
-            const std::vector<Element> outline(contour.end() - 5, contour.end());
-            // A closed quadrilateral: the four sides end where they began, and the move that
-            // ends the stretch starts at a corner and runs along the first side's line.
-            EXPECT_LE((outline[3].end - outline[0].start).norm(), 1e-9) << dump(outline, nullptr);
-            EXPECT_LE((outline[4].start - outline[3].end).norm(), 1e-9) << dump(outline, nullptr);
-            // (the program's numbers have 6 decimals)
-            const Vec2 along = outline[0].end - outline[0].start;
-            EXPECT_LE(
-                distance_to(make_line(outline[0].start - 1e3 * along, outline[0].end + 1e3 * along),
-                            outline[4].end),
-                1e-5)
-                << dump(outline, nullptr);
-            passes.push_back({"pocket", from, to, outline});
-        } else if (spec.o100) {
-            ASSERT_GE(contour.size(), 5u);
-            const std::size_t n = contour.size();
-            passes.push_back({"roughing", from, offset_at(contour[n - 4], 0.25, r, left),
-                              std::vector<Element>(contour.begin(), contour.end() - 3)});
-            passes.push_back({"finishing", offset_at(contour[n - 3], 0.5, r, left), to,
-                              std::vector<Element>{contour[n - 2]}});
-        } else {
-            std::vector<Element> walls = contour;
-            if (spec.lead_out && walls.size() > 1) walls.pop_back();
-            passes.push_back({"contour", from, to, walls});
-        }
-        for (const Pass& p : passes) {
-            for (const auto& [who, path, tol] :
-                 {std::tuple{"LinuxCNC's", &lc_path, kLinuxCncWindowTolerance},
-                  std::tuple{"our", &our_path, kOurWindowTolerance}}) {
-                const std::vector<Element> w = window(*path, p.from, p.to, tol);
-                ASSERT_FALSE(w.empty()) << p.name << " pass not on " << who << " path\n" << both;
-                const double c = clearance(w, p.walls, r, kSpacing);
-                f.min_clearance_margin = std::min(f.min_clearance_margin, c - r);
-                if (c < r - kClearanceTolerance) {
-                    const Nearest n = nearest(w, p.walls);
-                    ADD_FAILURE() << who << " path comes within " << c << " mm of the contour ("
-                                  << p.name << " pass, r " << r << ") at " << point_text(n.at)
-                                  << " on " << element_text(w[n.element]) << ", near "
-                                  << element_text(p.walls[n.wall]) << "\n  programmed contour:\n"
-                                  << dump(p.walls, nullptr) << both;
-                }
-            }
-        }
-
-        // rs274's output for the original itself (inches, 4 decimals): how far it lies from
-        // our path, its printed rounding included (not a verdict: that is the mm run's).
-        double dev_inch = NAN;
-        if (ex.inches) {
-            std::vector<Element> inch_path;
-            for (std::size_t i = ts.first; i <= ts.last; ++i) {
-                const Element& e = in[i].path;
-                if (in[i].rapid) continue;
-                inch_path.push_back(
-                    is_arc(e) ? make_arc(kInch * e.start, kInch * e.end, kInch * e.centre, e.ccw)
-                              : make_line(kInch * e.start, kInch * e.end));
-            }
-            const std::vector<Element> w =
-                window(inch_path, from, to, std::sqrt(2.0) * kPrintedRounding);
-            if (!w.empty()) dev_inch = hausdorff(our_win, w, kSpacing);
-            f.max_deviation_inch = std::max(f.max_deviation_inch, dev_inch);
-        }
-
-        // Approach and departure: compared as the contour proper is. The lead-in runs from
-        // where the tool stood before G41 (LinuxCNC's stretch begins there) to the contour
-        // proper; the lead-out from the contour proper to where LinuxCNC's first move after
-        // G40 that moves in the plane ends, and ours reaches the same point.
-        std::vector<Element> lc_all, our_before;
-        for (std::size_t i = ts.first; i <= ts.last; ++i) lc_all.push_back(lc[i].path);
-        const Vec2 start = lc[ts.first].path.start;
-        std::size_t first = os.first;
-        for (std::size_t back = 0; back <= 3 && back <= os.first; ++back) {
-            if ((ours.executed[os.first - back].path.start - start).norm() <=
-                kLinuxCncWindowTolerance) {
-                first = os.first - back;
-                break;
-            }
-        }
-        for (std::size_t i = first; i < os.first; ++i) our_before.push_back(ours.executed[i].path);
-        our_before.insert(our_before.end(), our_path.begin(), our_path.end());
-        const std::vector<Element> lc_in = up_to_first(lc_all, from, kLinuxCncWindowTolerance);
-        const std::vector<Element> our_in = up_to_first(our_before, from, kOurWindowTolerance);
-        std::vector<Element> lc_out = from_last(lc_all, to, kLinuxCncWindowTolerance);
-        std::vector<Element> our_out = from_last(our_path, to, kOurWindowTolerance);
-        Vec2 exit_point = lc_all.back().end;
-        for (std::size_t i = ts.last + 1; i < lc.size(); ++i) {
-            lc_out.push_back(lc[i].path);
-            exit_point = lc[i].path.end;
-            if (length(lc[i].path) > 1e-9) break;
-        }
-        // A program that ends under G41 leaves the tool where the stretch ends, on both.
-        bool ours_reaches =
-            !our_path.empty() && (our_path.back().end - exit_point).norm() <= kLinuxCncWindowTolerance;
-        for (std::size_t i = os.last + 1;
-             i < ours.executed.size() && i <= os.last + 4 && !ours_reaches; ++i) {
-            our_out.push_back(ours.executed[i].path);
-            ours_reaches =
-                (ours.executed[i].path.end - exit_point).norm() <= kLinuxCncWindowTolerance;
-        }
-        const auto apart = [](const std::vector<Element>& a, const std::vector<Element>& b) {
-            return a.empty() || b.empty() ? NAN : hausdorff(a, b, kSpacing);
-        };
-        const double d_in = apart(our_in, lc_in);
-        const double d_out = apart(our_out, lc_out);
-        f.max_approach = std::max(f.max_approach, d_in);
-        f.max_departure = std::max(f.max_departure, d_out);
-        EXPECT_LE(d_in, kMaxDeviation) << ex.name << " stretch " << k + 1 << ": the approaches differ";
-        EXPECT_LE(d_out, kMaxDeviation) << ex.name << " stretch " << k + 1 << ": the departures differ";
-        EXPECT_TRUE(ours_reaches) << ex.name << " stretch " << k + 1
-                                  << ": our departure does not reach " << point_text(exit_point);
-        // The move that leaves the contour proper (the first after it that moves in the
-        // plane), with the third axis (Z) at its start and end: where the tool goes sideways.
-        std::string leaves;
-        {
-            std::size_t i = ts.last + 1;
-            for (std::size_t k2 = ts.first; k2 <= ts.last; ++k2)
-                if (length(lc[k2].path) > 0 &&
-                    distance_to(lc[k2].path, to) <= kLinuxCncWindowTolerance)
-                    i = k2 + 1;
-            while (i < lc.size() && length(lc[i].path) <= 1e-9) ++i;
-            char buf[200];
-            if (i < lc.size())
-                std::snprintf(buf, sizeof buf, "LinuxCNC %s to %s, Z %.3f -> %.3f",
-                              lc[i].rapid ? "rapid" : "feed", point_text(lc[i].path.end).c_str(),
-                              lc[i - 1].third, lc[i].third);
-            else
-                std::snprintf(buf, sizeof buf, "LinuxCNC stays (the program ends under G41)");
-            leaves = buf;
-            std::size_t o = os.last + 1;
-            for (std::size_t k2 = os.first; k2 <= os.last; ++k2)
-                if (length(our_path[k2 - os.first]) > 0 &&
-                    distance_to(our_path[k2 - os.first], to) <= kOurWindowTolerance)
-                    o = k2 + 1;
-            while (o < ours.executed.size() && length(ours.executed[o].path) <= 1e-9) ++o;
-            if (o < ours.executed.size()) {
-                const Seg& g = ours.executed[o];
-                std::snprintf(
-                    buf, sizeof buf, "; ours %s to %s, Z %.3f -> %.3f",
-                    std::string(apci::run::role_name(static_cast<apci::run::Role>(g.role))).c_str(),
-                    point_text(g.path.end).c_str(), g.z0, g.z1);
-                leaves += buf;
-            }
-        }
-        char inch_text[64] = "";
-        if (ex.inches)
-            std::snprintf(inch_text, sizeof inch_text, " (from the inch output: %.2e mm)",
-                          dev_inch);
-        std::printf(
-            "%s stretch %zu (r %.4f mm, our lines %llu..%llu): contour proper %zu elements, "
-            "compared %.3f mm (ours) / %.3f mm (LinuxCNC), deviation %.2e mm%s\n"
-            "    approach: LinuxCNC %.3f mm, ours %.3f mm, apart by up to %.4f mm; departure to "
-            "%s: LinuxCNC %.3f mm, ours %.3f mm%s, apart by up to %.4f mm\n"
-            "    leaving the contour: %s\n",
-            ex.name.c_str(), k + 1, r,
-            static_cast<unsigned long long>(ours.executed[os.first].line),
-            static_cast<unsigned long long>(ours.executed[os.last].line), contour.size(),
-            path_length(our_win), path_length(lc_win), dev, inch_text, path_length(lc_in),
-            path_length(our_in), d_in, point_text(exit_point).c_str(), path_length(lc_out),
-            path_length(our_out), ours_reaches ? "" : " (not reaching it)", d_out, leaves.c_str());
-        ++f.stretches;
-        f.compared_ours += path_length(our_win);
-        f.compared_linuxcnc += path_length(lc_win);
-        f.max_deviation = std::max(f.max_deviation, dev);
+// The programmed elements of the stretch: our executed segments name their blocks (a
+// departure under G139 is the G40 block's move, not an element of the contour).
+void programmed_contour(const StretchRun& s, StretchPaths& p) {
+    std::set<std::uint64_t> stretch_lines;
+    for (std::size_t i = s.os.first; i <= s.os.last; ++i)
+        if (s.ours.executed[i].role != static_cast<int>(apci::run::Role::kDeparture))
+            stretch_lines.insert(s.ours.executed[i].line);
+    for (const Seg& g : s.ours.programmed) {
+        if (g.rapid || length(g.path) <= 1e-9 || !stretch_lines.count(g.line)) continue;
+        p.contour.push_back(g.path);
+        p.contour_lines.push_back(g.line);
     }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // LinuxCNC's first move after G41 is its entry move: a feed move there is our first
+    // compensated element, reached by our approach. Not part of the contour proper.
+    const bool entry_is_feed = !s.lc[s.ts.first].rapid;
+    if (entry_is_feed && !p.contour.empty()) {
+        p.contour.erase(p.contour.begin());
+        p.contour_lines.erase(p.contour_lines.begin());
+    }
+    ASSERT_FALSE(p.contour.empty()) << "no contour proper";
+}
+
+// Both paths in the plane: LinuxCNC's feed moves of the stretch, our segments.
+void both_paths(const StretchRun& s, StretchPaths& p) {
+    for (std::size_t i = s.ts.first; i <= s.ts.last; ++i)
+        if (!s.lc[i].rapid) p.lc_path.push_back(s.lc[i].path);
+    for (std::size_t i = s.os.first; i <= s.os.last; ++i) {
+        p.our_path.push_back(s.ours.executed[i].path);
+        p.our_lines.push_back(s.ours.executed[i].line);
+    }
+    p.both = "  LinuxCNC's path (stretch " + std::to_string(s.k + 1) + "):\n";
+    for (std::size_t i = s.ts.first; i <= s.ts.last; ++i)
+        p.both +=
+            std::string(s.lc[i].rapid ? "    rapid " : "    ") + element_text(s.lc[i].path) + "\n";
+    p.both += "  our path:\n" + dump(p.our_path, &p.our_lines);
+}
+
+// The contour proper: from the start of its first element's offset when both paths
+// pass there on their way to its middle (the entry meets it at an outside or tangent
+// corner on both), else from its middle (an inside corner trims it, each path at its
+// own point); to the end of its last element's offset when both pass there after its
+// middle (or pass there and not its middle: the corner before it trims more than its
+// half), else to its middle.
+void contour_proper_ends(const StretchRun& s, StretchPaths& p) {
+    const auto reaches_first = [&](const Vec2& at, const Vec2& mid) {
+        for (const auto& [path, tol] : {std::pair{&p.lc_path, kLinuxCncWindowTolerance},
+                                        std::pair{&p.our_path, kOurWindowTolerance}}) {
+            const std::size_t a = first_near(*path, at, tol), b = first_near(*path, mid, tol);
+            if (a == kNone || b == kNone || a > b) return false;
+        }
+        return true;
+    };
+    const auto leaves_last = [&](const Vec2& at, const Vec2& mid) {
+        for (const auto& [path, tol] : {std::pair{&p.lc_path, kLinuxCncWindowTolerance},
+                                        std::pair{&p.our_path, kOurWindowTolerance}}) {
+            // The middle is not on the path where the corner before a short element trims
+            // more than its half (qpocket's last move along a side, shorter than 2r).
+            const std::size_t a = last_near(*path, at, tol), b = last_near(*path, mid, tol);
+            if (a == kNone || (b != kNone && a < b)) return false;
+        }
+        return true;
+    };
+    const Vec2 first_mid = offset_at(p.contour.front(), 0.5, s.r, s.left);
+    const Vec2 last_mid = offset_at(p.contour.back(), 0.5, s.r, s.left);
+    p.from = offset_at(p.contour.front(), 0.0, s.r, s.left);
+    if (!reaches_first(p.from, first_mid)) p.from = first_mid;
+    p.to = offset_at(p.contour.back(), 1.0, s.r, s.left);
+    if (!leaves_last(p.to, last_mid)) p.to = last_mid;
+}
+
+// The two paths along the contour proper (`lc_win`, `our_win`); fails where either misses it.
+void contour_proper_windows(StretchPaths& p) {
+    p.lc_win = window(p.lc_path, p.from, p.to, kLinuxCncWindowTolerance);
+    p.our_win = window(p.our_path, p.from, p.to, kOurWindowTolerance);
+    ASSERT_FALSE(p.lc_win.empty()) << "the contour proper " << point_text(p.from) << " .. "
+                                   << point_text(p.to) << " is not on LinuxCNC's path\n"
+                                   << p.both;
+    ASSERT_FALSE(p.our_win.empty()) << "the contour proper " << point_text(p.from) << " .. "
+                                    << point_text(p.to) << " is not on our path\n"
+                                    << p.both;
+}
+
+// How far the two paths lie apart along the contour proper (Hausdorff distance); a failure,
+// with where, beyond kMaxDeviation.
+double contour_proper_deviation(const StretchPaths& p) {
+    const double dev = hausdorff(p.our_win, p.lc_win, kSpacing);
+    if (dev > kMaxDeviation) {
+        const Worst a = farthest(p.our_win, p.lc_win), b = farthest(p.lc_win, p.our_win);
+        ADD_FAILURE() << "the paths differ by " << dev << " mm on the contour proper: ours "
+                      << a.distance << " mm from LinuxCNC's at " << point_text(a.at) << " ("
+                      << element_text(p.our_win[a.element]) << "), LinuxCNC's " << b.distance
+                      << " mm from ours at " << point_text(b.at) << " ("
+                      << element_text(p.lc_win[b.element]) << ")\n"
+                      << "  programmed contour:\n"
+                      << dump(p.contour, &p.contour_lines) << p.both;
+    }
+    return dev;
+}
+
+// The same length: the Hausdorff distance does not see a pass run twice or left out
+// where passes lie on each other in the plane (the depth passes of qpocket and helix,
+// the laps of mmount's holes). Each of LinuxCNC's elements may be off by its two end
+// points' printed rounding, an arc also by its radius's for every radian; the window's
+// ends by the tolerance they are found within.
+void expect_same_length(const StretchPaths& p, Figures& f) {
+    double length_tolerance = 2 * kLinuxCncWindowTolerance;
+    for (const Element& e : p.lc_win)
+        length_tolerance += kPrintedPoint * (2 + (is_arc(e) ? std::abs(sweep(e)) : 0.0));
+    const double length_apart = std::abs(path_length(p.our_win) - path_length(p.lc_win));
+    f.max_length_apart = std::max(f.max_length_apart, length_apart / length_tolerance);
+    EXPECT_LE(length_apart, length_tolerance)
+        << "the contour proper is " << path_length(p.our_win) << " mm long on our path, "
+        << path_length(p.lc_win) << " mm on LinuxCNC's\n"
+        << p.both;
+}
+
+// The passes whose clearance is checked (`passes`). mmount's holes (o100) are roughed 0.020 in
+// under size and then finished at size, by a half circle out to the hole, the full circle, and a
+// half circle back: the finishing cuts 0.254 mm into the roughing contour, and the full circle's
+// path into the half circles', by design. There the roughing path keeps r from the roughing
+// circles (from the window's start to a quarter into the last), the finishing path (from the
+// middle of the first half circle to the window's end) from the finished hole. qpocket clears
+// its pocket in outlines, each from the next corner of a larger one, the last at full size, and
+// ends along that one's next side: the part that stays is the full outline, and the whole
+// contour proper keeps r from its four sides and the last move along the fifth. Elsewhere the
+// whole contour proper keeps r from all of it but a last element that leads out past the part
+// (StretchSpec::lead_out).
+void clearance_passes(const StretchRun& s, const StretchPaths& p, std::vector<Pass>& passes) {
+    const std::vector<Element>& contour = p.contour;
+    if (s.spec.pocket) {
+        ASSERT_GE(contour.size(), 5u);
+        const std::vector<Element> outline(contour.end() - 5, contour.end());
+        // A closed quadrilateral: the four sides end where they began, and the move that
+        // ends the stretch starts at a corner and runs along the first side's line.
+        EXPECT_LE((outline[3].end - outline[0].start).norm(), 1e-9) << dump(outline, nullptr);
+        EXPECT_LE((outline[4].start - outline[3].end).norm(), 1e-9) << dump(outline, nullptr);
+        // (the program's numbers have 6 decimals)
+        const Vec2 along = outline[0].end - outline[0].start;
+        EXPECT_LE(
+            distance_to(make_line(outline[0].start - 1e3 * along, outline[0].end + 1e3 * along),
+                        outline[4].end),
+            1e-5)
+            << dump(outline, nullptr);
+        passes.push_back({"pocket", p.from, p.to, outline});
+    } else if (s.spec.o100) {
+        ASSERT_GE(contour.size(), 5u);
+        const std::size_t n = contour.size();
+        passes.push_back({"roughing", p.from, offset_at(contour[n - 4], 0.25, s.r, s.left),
+                          std::vector<Element>(contour.begin(), contour.end() - 3)});
+        passes.push_back({"finishing", offset_at(contour[n - 3], 0.5, s.r, s.left), p.to,
+                          std::vector<Element>{contour[n - 2]}});
+    } else {
+        std::vector<Element> walls = contour;
+        if (s.spec.lead_out && walls.size() > 1) walls.pop_back();
+        passes.push_back({"contour", p.from, p.to, walls});
+    }
+}
+
+// Clearance, pass by pass: neither path comes closer to the pass's walls than r, within
+// kClearanceTolerance.
+void expect_clearance(const StretchRun& s, const StretchPaths& p, const std::vector<Pass>& passes,
+                      Figures& f) {
+    const double r = s.r;
+    for (const Pass& pass : passes) {
+        for (const auto& [who, path, tol] :
+             {std::tuple{"LinuxCNC's", &p.lc_path, kLinuxCncWindowTolerance},
+              std::tuple{"our", &p.our_path, kOurWindowTolerance}}) {
+            const std::vector<Element> w = window(*path, pass.from, pass.to, tol);
+            ASSERT_FALSE(w.empty()) << pass.name << " pass not on " << who << " path\n" << p.both;
+            const double c = clearance(w, pass.walls, r, kSpacing);
+            f.min_clearance_margin = std::min(f.min_clearance_margin, c - r);
+            if (c < r - kClearanceTolerance) {
+                const Nearest n = nearest(w, pass.walls);
+                ADD_FAILURE() << who << " path comes within " << c << " mm of the contour ("
+                              << pass.name << " pass, r " << r << ") at " << point_text(n.at)
+                              << " on " << element_text(w[n.element]) << ", near "
+                              << element_text(pass.walls[n.wall]) << "\n  programmed contour:\n"
+                              << dump(pass.walls, nullptr) << p.both;
+            }
+        }
+    }
+}
+
+// rs274's output for the original itself (inches, 4 decimals): how far it lies from
+// our path, its printed rounding included (not a verdict: that is the mm run's). NAN for a
+// program in mm.
+double inch_deviation(const StretchRun& s, const StretchPaths& p, Figures& f) {
+    double dev_inch = NAN;
+    if (s.ex.inches) {
+        std::vector<Element> inch_path;
+        for (std::size_t i = s.ts.first; i <= s.ts.last; ++i) {
+            const Element& e = s.in[i].path;
+            if (s.in[i].rapid) continue;
+            inch_path.push_back(
+                is_arc(e) ? make_arc(kInch * e.start, kInch * e.end, kInch * e.centre, e.ccw)
+                          : make_line(kInch * e.start, kInch * e.end));
+        }
+        const std::vector<Element> w =
+            window(inch_path, p.from, p.to, std::sqrt(2.0) * kPrintedRounding);
+        if (!w.empty()) dev_inch = hausdorff(p.our_win, w, kSpacing);
+        f.max_deviation_inch = std::max(f.max_deviation_inch, dev_inch);
+    }
+    return dev_inch;
+}
+
+// A stretch's approach and departure on both paths, and how far they lie apart.
+struct EntryAndExit {
+    std::vector<Element> lc_in, our_in, lc_out, our_out;
+    Vec2 exit_point;    // where LinuxCNC's first move after G40 that moves in the plane ends
+    bool ours_reaches;  // our departure reaches it
+    double d_in, d_out;
+};
+
+// Approach and departure: compared as the contour proper is. The lead-in runs from
+// where the tool stood before G41 (LinuxCNC's stretch begins there) to the contour
+// proper; the lead-out from the contour proper to where LinuxCNC's first move after
+// G40 that moves in the plane ends, and ours reaches the same point.
+EntryAndExit compare_approach_and_departure(const StretchRun& s, const StretchPaths& p,
+                                            Figures& f) {
+    const std::vector<CanonMove>& lc = s.lc;
+    const std::vector<Seg>& executed = s.ours.executed;
+    EntryAndExit e;
+    std::vector<Element> lc_all, our_before;
+    for (std::size_t i = s.ts.first; i <= s.ts.last; ++i) lc_all.push_back(lc[i].path);
+    const Vec2 start = lc[s.ts.first].path.start;
+    std::size_t first = s.os.first;
+    for (std::size_t back = 0; back <= 3 && back <= s.os.first; ++back) {
+        if ((executed[s.os.first - back].path.start - start).norm() <= kLinuxCncWindowTolerance) {
+            first = s.os.first - back;
+            break;
+        }
+    }
+    for (std::size_t i = first; i < s.os.first; ++i) our_before.push_back(executed[i].path);
+    our_before.insert(our_before.end(), p.our_path.begin(), p.our_path.end());
+    e.lc_in = up_to_first(lc_all, p.from, kLinuxCncWindowTolerance);
+    e.our_in = up_to_first(our_before, p.from, kOurWindowTolerance);
+    e.lc_out = from_last(lc_all, p.to, kLinuxCncWindowTolerance);
+    e.our_out = from_last(p.our_path, p.to, kOurWindowTolerance);
+    e.exit_point = lc_all.back().end;
+    for (std::size_t i = s.ts.last + 1; i < lc.size(); ++i) {
+        e.lc_out.push_back(lc[i].path);
+        e.exit_point = lc[i].path.end;
+        if (length(lc[i].path) > 1e-9) break;
+    }
+    // A program that ends under G41 leaves the tool where the stretch ends, on both.
+    e.ours_reaches = !p.our_path.empty() &&
+                     (p.our_path.back().end - e.exit_point).norm() <= kLinuxCncWindowTolerance;
+    for (std::size_t i = s.os.last + 1;
+         i < executed.size() && i <= s.os.last + 4 && !e.ours_reaches; ++i) {
+        e.our_out.push_back(executed[i].path);
+        e.ours_reaches = (executed[i].path.end - e.exit_point).norm() <= kLinuxCncWindowTolerance;
+    }
+    const auto apart = [](const std::vector<Element>& a, const std::vector<Element>& b) {
+        return a.empty() || b.empty() ? NAN : hausdorff(a, b, kSpacing);
+    };
+    e.d_in = apart(e.our_in, e.lc_in);
+    e.d_out = apart(e.our_out, e.lc_out);
+    f.max_approach = std::max(f.max_approach, e.d_in);
+    f.max_departure = std::max(f.max_departure, e.d_out);
+    const std::string& name = s.ex.name;
+    EXPECT_LE(e.d_in, kMaxDeviation) << name << " stretch " << s.k + 1 << ": the approaches differ";
+    EXPECT_LE(e.d_out, kMaxDeviation)
+        << name << " stretch " << s.k + 1 << ": the departures differ";
+    EXPECT_TRUE(e.ours_reaches) << name << " stretch " << s.k + 1
+                                << ": our departure does not reach " << point_text(e.exit_point);
+    return e;
+}
+
+// The move that leaves the contour proper (the first after it that moves in the
+// plane), with the third axis (Z) at its start and end: where the tool goes sideways.
+std::string leaving_the_contour(const StretchRun& s, const StretchPaths& p) {
+    const std::vector<CanonMove>& lc = s.lc;
+    const std::vector<Seg>& executed = s.ours.executed;
+    std::size_t i = s.ts.last + 1;
+    for (std::size_t k2 = s.ts.first; k2 <= s.ts.last; ++k2)
+        if (length(lc[k2].path) > 0 && distance_to(lc[k2].path, p.to) <= kLinuxCncWindowTolerance)
+            i = k2 + 1;
+    while (i < lc.size() && length(lc[i].path) <= 1e-9) ++i;
+    char buf[200];
+    if (i < lc.size())
+        std::snprintf(buf, sizeof buf, "LinuxCNC %s to %s, Z %.3f -> %.3f",
+                      lc[i].rapid ? "rapid" : "feed", point_text(lc[i].path.end).c_str(),
+                      lc[i - 1].third, lc[i].third);
+    else
+        std::snprintf(buf, sizeof buf, "LinuxCNC stays (the program ends under G41)");
+    std::string leaves = buf;
+    std::size_t o = s.os.last + 1;
+    for (std::size_t k2 = s.os.first; k2 <= s.os.last; ++k2)
+        if (length(p.our_path[k2 - s.os.first]) > 0 &&
+            distance_to(p.our_path[k2 - s.os.first], p.to) <= kOurWindowTolerance)
+            o = k2 + 1;
+    while (o < executed.size() && length(executed[o].path) <= 1e-9) ++o;
+    if (o < executed.size()) {
+        const Seg& g = executed[o];
+        std::snprintf(
+            buf, sizeof buf, "; ours %s to %s, Z %.3f -> %.3f",
+            std::string(apci::run::role_name(static_cast<apci::run::Role>(g.role))).c_str(),
+            point_text(g.path.end).c_str(), g.z0, g.z1);
+        leaves += buf;
+    }
+    return leaves;
+}
+
+// The stretch's figures, printed.
+void print_stretch(const StretchRun& s, const StretchPaths& p, double dev, double dev_inch,
+                   const EntryAndExit& e, const std::string& leaves) {
+    char inch_text[64] = "";
+    if (s.ex.inches)
+        std::snprintf(inch_text, sizeof inch_text, " (from the inch output: %.2e mm)", dev_inch);
+    std::printf(
+        "%s stretch %zu (r %.4f mm, our lines %llu..%llu): contour proper %zu elements, "
+        "compared %.3f mm (ours) / %.3f mm (LinuxCNC), deviation %.2e mm%s\n"
+        "    approach: LinuxCNC %.3f mm, ours %.3f mm, apart by up to %.4f mm; departure to "
+        "%s: LinuxCNC %.3f mm, ours %.3f mm%s, apart by up to %.4f mm\n"
+        "    leaving the contour: %s\n",
+        s.ex.name.c_str(), s.k + 1, s.r,
+        static_cast<unsigned long long>(s.ours.executed[s.os.first].line),
+        static_cast<unsigned long long>(s.ours.executed[s.os.last].line), p.contour.size(),
+        path_length(p.our_win), path_length(p.lc_win), dev, inch_text, path_length(e.lc_in),
+        path_length(e.our_in), e.d_in, point_text(e.exit_point).c_str(), path_length(e.lc_out),
+        path_length(e.our_out), e.ours_reaches ? "" : " (not reaching it)", e.d_out,
+        leaves.c_str());
+}
+
+// One stretch compared, step by step; its figures added to `f`.
+void compare_stretch(const StretchRun& s, Figures& f) {
+    SCOPED_TRACE(s.ex.name + " stretch " + std::to_string(s.k + 1) + " (r " + std::to_string(s.r) +
+                 " mm, our lines " + std::to_string(s.ours.executed[s.os.first].line) + ".." +
+                 std::to_string(s.ours.executed[s.os.last].line) + ")");
+    StretchPaths p;
+    ASSERT_NO_FATAL_FAILURE(programmed_contour(s, p));
+    both_paths(s, p);
+    contour_proper_ends(s, p);
+    ASSERT_NO_FATAL_FAILURE(contour_proper_windows(p));
+    const double dev = contour_proper_deviation(p);
+    expect_same_length(p, f);
+    std::vector<Pass> passes;
+    ASSERT_NO_FATAL_FAILURE(clearance_passes(s, p, passes));
+    ASSERT_NO_FATAL_FAILURE(expect_clearance(s, p, passes, f));
+    const double dev_inch = inch_deviation(s, p, f);
+    const EntryAndExit e = compare_approach_and_departure(s, p, f);
+    print_stretch(s, p, dev, dev_inch, e, leaving_the_contour(s, p));
+    ++f.stretches;
+    f.compared_ours += path_length(p.our_win);
+    f.compared_linuxcnc += path_length(p.lc_win);
+    f.max_deviation = std::max(f.max_deviation, dev);
+}
+
+// The example's figures, printed.
+void print_figures(const Example& ex, const Figures& f, double seconds) {
     std::printf(
         "%s: %d stretches; contour proper compared %.1f mm (ours) / %.1f mm (LinuxCNC); "
         "max deviation %.2e mm (limit %.0e); lengths apart by up to %.0f %% of their tolerance; "
@@ -1043,6 +1138,43 @@ TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
             "%s: our path from rs274's output for the inch original itself: up to %.2e mm "
             "(its 4 printed decimals in inches alone allow %.2e)\n",
             ex.name.c_str(), f.max_deviation_inch, std::sqrt(2.0) * 0.5e-4 * kInch);
+}
+
+TEST_P(LinuxCncExamples, CompensatedPathsAgreeWithRs274) {
+    if (!rs274().why.empty()) GTEST_SKIP() << rs274().why;
+    const Example& ex = GetParam();
+    const auto t0 = std::chrono::steady_clock::now();
+
+    // LinuxCNC: the original (and, for inch programs, the original in mm).
+    std::vector<Rs274Result> runs;
+    ASSERT_NO_FATAL_FAILURE(run_linuxcnc(ex, runs));
+    // LinuxCNC's moves that move, in mm (the mm run) and as the original makes them.
+    const std::vector<CanonMove> lc = moving(runs.back().moves);
+    const std::vector<CanonMove> in = moving(runs[0].moves);
+    if (ex.inches) {
+        ASSERT_NO_FATAL_FAILURE(expect_mm_version_moves_alike(ex, runs, in, lc));
+    }
+
+    // Ours.
+    OurExampleRun ours;
+    ASSERT_NO_FATAL_FAILURE(run_ours(ex, ours));
+
+    const std::vector<Stretch> theirs_s = linuxcnc_stretches(lc);
+    const std::vector<Stretch> ours_s = our_stretches(ours.executed);
+    ASSERT_EQ(theirs_s.size(), ex.stretches.size()) << "LinuxCNC's compensated stretches";
+    ASSERT_EQ(ours_s.size(), ex.stretches.size()) << "our compensated stretches";
+
+    Figures f;
+    for (std::size_t k = 0; k < ex.stretches.size(); ++k) {
+        const StretchSpec& spec = ex.stretches[k];
+        const Stretch& ts = theirs_s[k];
+        const StretchRun s{ex,   k,  spec,      lc,     in,
+                           ours, ts, ours_s[k], spec.r, lc[ts.first].compensation == 41};
+        ASSERT_NO_FATAL_FAILURE(compare_stretch(s, f));
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    print_figures(ex, f, seconds);
     // Enough was compared that an empty or shrunken window cannot pass.
     EXPECT_EQ(f.stretches, static_cast<int>(ex.stretches.size()));
     EXPECT_GE(f.compared_ours, ex.min_compared_mm);

@@ -1686,107 +1686,147 @@ bool refused_slot(Rng& rng, Plan& plan) {
     return true;
 }
 
+// A contour of a drawn shape with leads of `kind`, drawn straight (G25) now and then.
+bool plan_lead(Rng& rng, Plan& plan, Options& opt, LeadKind kind, bool pocket) {
+    const int kinds[] = {0, 1, 3, 2};  // a line lead needs a straight start: no circle
+    const int kind_index = rng.integer(0, kind == LeadKind::kLine ? 2 : 3);
+    opt.linear = rng.chance(0.25);
+    return single_contour(rng, plan, kinds[kind_index], pocket, kind, {draw_level(rng)});
+}
+
+// A contour of one shape (rounded rectangle, slot, circle, filleted polygon), pocket or boss,
+// with drawn leads, drawn straight (G25) now and then.
+bool plan_single_shape(Rng& rng, Plan& plan, Options& opt, CamFamily family) {
+    const int kind = family == CamFamily::kRoundedRectangle ? 0
+                     : family == CamFamily::kSlot           ? 1
+                     : family == CamFamily::kCircle         ? 2
+                                                            : 3;
+    opt.linear = rng.chance(0.25);
+    const bool pocket = rng.chance(0.5);
+    const double level = draw_level(rng);
+    return single_contour(rng, plan, kind, pocket, std::nullopt, {level});
+}
+
+// A pocket of two rooms joined by a passage (rooms()); with `gouge`, narrower than the tool,
+// each of its walls gouged by the path along the other.
+bool plan_rooms(Rng& rng, Plan& plan, bool gouge) {
+    const double r = draw_radius(rng);
+    const double w = draw_gap(rng, r, gouge);
+    const auto sh = rooms(rng, r, w, gouge);
+    if (!sh) return false;
+    const Shape s = placed_at_random(rng, *sh);
+    const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
+    plan.plate = true;
+    const double level = draw_level(rng);
+    const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
+    if (gouge) {
+        design_gouge(plan, id, s.edge[2], id, s.edge[8], 2 * r - w);
+        design_gouge(plan, id, s.edge[8], id, s.edge[2], 2 * r - w);
+    }
+    return true;
+}
+
+// A boss with a keyhole (keyhole()); with `gouge`, a channel narrower than the tool, each of
+// its walls gouged by the path along the other.
+bool plan_keyhole(Rng& rng, Plan& plan, bool gouge) {
+    const double r = draw_radius(rng);
+    const double w = draw_gap(rng, r, gouge);
+    const auto k = keyhole(rng, r, w);
+    if (!k) return false;
+    const Shape s = placed_at_random(rng, k->shape);
+    const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
+    const double level = draw_level(rng);
+    const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
+    if (gouge) {
+        design_gouge(plan, id, k->right_wall, id, k->left_wall, 2 * r - w);
+        design_gouge(plan, id, k->left_wall, id, k->right_wall, 2 * r - w);
+    }
+    return true;
+}
+
+// A pocket with a tongue of material (tongue()); with `gouge`, its tip nearer the wall than the
+// tool is wide, the two gouging each other.
+bool plan_tongue(Rng& rng, Plan& plan, bool gouge) {
+    const double r = draw_radius(rng);
+    const double g = draw_gap(rng, r, gouge);
+    const auto sh = tongue(rng, r, g, gouge);
+    if (!sh) return false;
+    const Shape s = placed_at_random(rng, *sh);
+    const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
+    plan.plate = true;
+    const double level = draw_level(rng);
+    const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
+    if (gouge) {
+        design_gouge(plan, id, s.edge[1], id, s.edge[5], 2 * r - g);
+        design_gouge(plan, id, s.edge[5], id, s.edge[1], 2 * r - g);
+    }
+    return true;
+}
+
+// A boss with a slot between two prongs (u_shape()), wide enough for the tool, drawn straight
+// (G25) now and then.
+bool plan_u_shape(Rng& rng, Plan& plan, Options& opt) {
+    const double r = draw_radius(rng);
+    const auto u = u_shape(rng, r, draw_gap(rng, r, false), 0);
+    if (!u) return false;
+    const Shape s = placed_at_random(rng, u->shape);
+    const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
+    opt.linear = rng.chance(0.25);
+    const double level = draw_level(rng);
+    plan_with_leads(rng, plan, c, true, {1, r}, level);
+    return true;
+}
+
+// One contour cut at two to four levels, each deeper by the same step.
+bool plan_depth_passes(Rng& rng, Plan& plan) {
+    std::vector<double> levels;
+    const int n = rng.integer(2, 4);
+    const double dz = rng.uniform(0.3, 2.0);
+    for (int i = 1; i <= n; ++i) levels.push_back(-std::round(i * dz * 1000) / 1000);
+    const int kind = rng.integer(0, 3);
+    const bool pocket = rng.chance(0.5);
+    return single_contour(rng, plan, kind, pocket, std::nullopt, levels);
+}
+
+// One program of the family planned; false where the draw found no room (the caller draws
+// again).
 bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
-    const auto lead_family = [&](LeadKind kind, bool pocket) {
-        const int kinds[] = {0, 1, 3, 2};  // a line lead needs a straight start: no circle
-        const int kind_index = rng.integer(0, kind == LeadKind::kLine ? 2 : 3);
-        opt.linear = rng.chance(0.25);
-        return single_contour(rng, plan, kinds[kind_index], pocket, kind, {draw_level(rng)});
-    };
     switch (family) {
         case CamFamily::kLeadLineArcPocket:
-            return lead_family(LeadKind::kLineArc, true);
+            return plan_lead(rng, plan, opt, LeadKind::kLineArc, true);
         case CamFamily::kLeadLineArcBoss:
-            return lead_family(LeadKind::kLineArc, false);
+            return plan_lead(rng, plan, opt, LeadKind::kLineArc, false);
         case CamFamily::kLeadLinePocket:
-            return lead_family(LeadKind::kLine, true);
+            return plan_lead(rng, plan, opt, LeadKind::kLine, true);
         case CamFamily::kLeadLineBoss:
-            return lead_family(LeadKind::kLine, false);
+            return plan_lead(rng, plan, opt, LeadKind::kLine, false);
         case CamFamily::kLeadArcPocket:
-            return lead_family(LeadKind::kArc, true);
+            return plan_lead(rng, plan, opt, LeadKind::kArc, true);
         case CamFamily::kLeadArcBoss:
-            return lead_family(LeadKind::kArc, false);
+            return plan_lead(rng, plan, opt, LeadKind::kArc, false);
         case CamFamily::kRoundedRectangle:
         case CamFamily::kSlot:
         case CamFamily::kCircle:
-        case CamFamily::kFilletedPolygon: {
-            const int kind = family == CamFamily::kRoundedRectangle ? 0
-                             : family == CamFamily::kSlot           ? 1
-                             : family == CamFamily::kCircle         ? 2
-                                                                    : 3;
-            opt.linear = rng.chance(0.25);
-            const bool pocket = rng.chance(0.5);
-            const double level = draw_level(rng);
-            return single_contour(rng, plan, kind, pocket, std::nullopt, {level});
-        }
+        case CamFamily::kFilletedPolygon:
+            return plan_single_shape(rng, plan, opt, family);
         case CamFamily::kIsland:
             return island(rng, plan, false);
         case CamFamily::kGougeIslandClose:
             return island(rng, plan, true);
         case CamFamily::kRooms:
-        case CamFamily::kGougeNeck: {
-            const bool gouge = family == CamFamily::kGougeNeck;
-            const double r = draw_radius(rng);
-            const double w = draw_gap(rng, r, gouge);
-            const auto sh = rooms(rng, r, w, gouge);
-            if (!sh) return false;
-            const Shape s = placed_at_random(rng, *sh);
-            const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
-            plan.plate = true;
-            const double level = draw_level(rng);
-            const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
-            if (gouge) {
-                design_gouge(plan, id, s.edge[2], id, s.edge[8], 2 * r - w);
-                design_gouge(plan, id, s.edge[8], id, s.edge[2], 2 * r - w);
-            }
-            return true;
-        }
+            return plan_rooms(rng, plan, false);
+        case CamFamily::kGougeNeck:
+            return plan_rooms(rng, plan, true);
         case CamFamily::kKeyhole:
-        case CamFamily::kGougeKeyhole: {
-            const bool gouge = family == CamFamily::kGougeKeyhole;
-            const double r = draw_radius(rng);
-            const double w = draw_gap(rng, r, gouge);
-            const auto k = keyhole(rng, r, w);
-            if (!k) return false;
-            const Shape s = placed_at_random(rng, k->shape);
-            const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
-            const double level = draw_level(rng);
-            const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
-            if (gouge) {
-                design_gouge(plan, id, k->right_wall, id, k->left_wall, 2 * r - w);
-                design_gouge(plan, id, k->left_wall, id, k->right_wall, 2 * r - w);
-            }
-            return true;
-        }
+            return plan_keyhole(rng, plan, false);
+        case CamFamily::kGougeKeyhole:
+            return plan_keyhole(rng, plan, true);
         case CamFamily::kTongue:
-        case CamFamily::kGougeTongue: {
-            const bool gouge = family == CamFamily::kGougeTongue;
-            const double r = draw_radius(rng);
-            const double g = draw_gap(rng, r, gouge);
-            const auto sh = tongue(rng, r, g, gouge);
-            if (!sh) return false;
-            const Shape s = placed_at_random(rng, *sh);
-            const Contour c = make_contour(s.what, s.loop, true, draw_side(rng));
-            plan.plate = true;
-            const double level = draw_level(rng);
-            const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
-            if (gouge) {
-                design_gouge(plan, id, s.edge[1], id, s.edge[5], 2 * r - g);
-                design_gouge(plan, id, s.edge[5], id, s.edge[1], 2 * r - g);
-            }
-            return true;
-        }
-        case CamFamily::kUShape: {
-            const double r = draw_radius(rng);
-            const auto u = u_shape(rng, r, draw_gap(rng, r, false), 0);
-            if (!u) return false;
-            const Shape s = placed_at_random(rng, u->shape);
-            const Contour c = make_contour(s.what, s.loop, false, draw_side(rng));
-            opt.linear = rng.chance(0.25);
-            const double level = draw_level(rng);
-            plan_with_leads(rng, plan, c, true, {1, r}, level);
-            return true;
-        }
+            return plan_tongue(rng, plan, false);
+        case CamFamily::kGougeTongue:
+            return plan_tongue(rng, plan, true);
+        case CamFamily::kUShape:
+            return plan_u_shape(rng, plan, opt);
         case CamFamily::kGougeLeadCrossesPart:
             return lead_across_own_part(rng, plan);
         case CamFamily::kGougeLeadCrossesFeature:
@@ -1805,15 +1845,8 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
             return circular(rng, plan, false);
         case CamFamily::kSeveralFeatures:
             return several_features(rng, plan);
-        case CamFamily::kDepthPasses: {
-            std::vector<double> levels;
-            const int n = rng.integer(2, 4);
-            const double dz = rng.uniform(0.3, 2.0);
-            for (int i = 1; i <= n; ++i) levels.push_back(-std::round(i * dz * 1000) / 1000);
-            const int kind = rng.integer(0, 3);
-            const bool pocket = rng.chance(0.5);
-            return single_contour(rng, plan, kind, pocket, std::nullopt, levels);
-        }
+        case CamFamily::kDepthPasses:
+            return plan_depth_passes(rng, plan);
         case CamFamily::kRefusedPocketFillet:
             return refused_pocket_fillet(rng, plan);
         case CamFamily::kRefusedBossScallop:

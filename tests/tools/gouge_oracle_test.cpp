@@ -129,150 +129,198 @@ struct Verdict {
     double deepest_intact = -1e9;  // the oracle's deepest pair within the tolerance
 };
 
-Verdict judge(const CamProgram& p) {
-    Verdict v;
-    const CaseRun run = run_case(p);
-    auto fail = [&](std::string outcome, const std::string& why) {
-        v.outcome = std::move(outcome);
-        v.ok = false;
-        v.detail += why + "\n";
-        return v;
-    };
-    if (!run.setup_error.empty()) return fail("front end refused it", run.setup_error);
+// v failed: what failed (its outcome), and why added to its detail.
+Verdict failed(Verdict v, std::string outcome, const std::string& why) {
+    v.outcome = std::move(outcome);
+    v.ok = false;
+    v.detail += why + "\n";
+    return v;
+}
 
-    std::vector<double> radius;
+// v passed, with this outcome.
+Verdict passed(Verdict v, std::string outcome) {
+    v.outcome = std::move(outcome);
+    v.ok = true;
+    return v;
+}
+
+// The tool radius of every executed segment (`radius`); why not, where a move below the top
+// has none (the oracle would be blind there), else empty.
+std::string tool_radii(const CamProgram& p, const CaseRun& run, std::vector<double>& radius) {
     for (const run::PathSegment& s : run.path) {
         radius.push_back(p.radius_at(s.block));
-        // Every move below the top has the radius of a tool: the oracle is not blind anywhere.
         if (std::min(s.start.z(), s.end.z()) < p.part.top && !(radius.back() > 0))
-            return fail("no tool radius", "a segment of line " +
-                                              std::to_string(p.line_of(s.block)) +
-                                              " cuts with no tool radius known");
+            return "a segment of line " + std::to_string(p.line_of(s.block)) +
+                   " cuts with no tool radius known";
     }
+    return {};
+}
+
+// What the oracle and the check found, by source lines.
+struct Findings {
     OracleReport oracle;
-    try {
-        oracle = StockOracle(p.part).run(run.path, radius);
-    } catch (const std::exception& e) {
-        return fail("oracle failed", e.what());
-    }
-    v.check_pairs = run.outcome.self_approach.size();
-    v.deepest_intact = oracle.deepest_intact;
-    std::vector<Pair> theirs, ours;
-    for (const OracleGouge& g : oracle.gouges)
-        theirs.push_back({p.line_of(g.path_block), p.line_of(g.wall_block), g.depth});
+    std::vector<Pair> theirs;  // the oracle's gouges
+    std::vector<Pair> ours;    // the check's findings
+};
+
+// The oracle's gouges and the check's findings as (path line, wall line) pairs.
+void pairs_by_line(const CamProgram& p, const CaseRun& run, Findings& found) {
+    for (const OracleGouge& g : found.oracle.gouges)
+        found.theirs.push_back({p.line_of(g.path_block), p.line_of(g.wall_block), g.depth});
     for (const run::SelfApproachFinding& f : run.outcome.self_approach)
-        ours.push_back(
+        found.ours.push_back(
             {p.line_of(f.path_block), p.line_of(f.contour_block), f.radius - f.distance});
+}
+
+// The check's findings the oracle does not name (on walls of the design part or not), the
+// oracle's the check misses, and the largest difference in depth of those both name.
+void count_disagreements(const CamProgram& p, const Findings& found, Verdict& v) {
     std::vector<std::uint64_t> wall_lines;
     for (const DesignLoop& l : p.part.loops)
         for (const WallElement& e : l.elements) wall_lines.push_back(p.line_of(e.block));
-    for (const Pair& o : ours)
-        if (!find(theirs, o.path, o.wall)) {
+    for (const Pair& o : found.ours)
+        if (!find(found.theirs, o.path, o.wall)) {
             if (std::find(wall_lines.begin(), wall_lines.end(), o.wall) != wall_lines.end())
                 ++v.false_on_walls;
             else
                 ++v.false_on_non_walls;
         }
-    for (const Pair& t : theirs) {
-        const Pair* o = find(ours, t.path, t.wall);
+    for (const Pair& t : found.theirs) {
+        const Pair* o = find(found.ours, t.path, t.wall);
         if (!o)
             ++v.missed;
         else
             v.depth_difference = std::max(v.depth_difference, std::abs(o->depth - t.depth));
     }
+}
+
+// The program, the run's errors, the oracle's and the check's pairs: a failure's detail.
+std::string case_detail(const CamProgram& p, const CaseRun& run, const Findings& found) {
     std::string errors;
     for (const run::RunError& e : run.outcome.errors)
         errors += "    line " + std::to_string(p.line_of(e.block)) + ": " + e.code + ": " +
                   e.message + "\n";
-    v.detail =
-        "  features:\n" + p.summary() + "  run errors:\n" +
-        (errors.empty() ? "    (none)\n" : errors) +
-        "  the oracle's gouges (executed path against the design part):\n" + describe(theirs) +
-        (oracle.buried.empty() ? ""
-                               : "  the oracle's buried blocks:\n" + apci::test::describe(oracle)) +
-        "  the check's findings:\n" + describe(ours) + "  program:\n" + p.text + "  tool list:\n" +
-        p.tool_list;
+    return "  features:\n" + p.summary() + "  run errors:\n" +
+           (errors.empty() ? "    (none)\n" : errors) +
+           "  the oracle's gouges (executed path against the design part):\n" +
+           describe(found.theirs) +
+           (found.oracle.buried.empty()
+                ? ""
+                : "  the oracle's buried blocks:\n" + apci::test::describe(found.oracle)) +
+           "  the check's findings:\n" + describe(found.ours) + "  program:\n" + p.text +
+           "  tool list:\n" + p.tool_list;
+}
 
-    if (!p.gouge) {
-        if (!run.outcome.errors.empty())
-            return fail("run error", "a correct program stopped with an error");
-        if (oracle.gouged())
-            return fail("oracle gouge", "the oracle finds the part cut by a correct program");
-        if (!ours.empty())
-            return fail("false alarm", "the check warns a program that leaves the part intact");
-        v.outcome = "ok";
-        v.ok = true;
-        return v;
+// A correct program: no run error, no gouge, no warning.
+Verdict judge_correct_program(const CaseRun& run, const Findings& found, const Verdict& v) {
+    if (!run.outcome.errors.empty())
+        return failed(v, "run error", "a correct program stopped with an error");
+    if (found.oracle.gouged())
+        return failed(v, "oracle gouge", "the oracle finds the part cut by a correct program");
+    if (!found.ours.empty())
+        return failed(v, "false alarm", "the check warns a program that leaves the part intact");
+    return passed(v, "ok");
+}
+
+// Why the oracle does not find the gouges built into a program that ran to its end (not at
+// all, or not at the designed depth), or empty.
+std::string design_missed(const CamProgram& p, const std::vector<Pair>& theirs) {
+    for (const DesignedGouge& d : p.designed) {
+        const Pair* found = find(theirs, d.path_line, d.wall_line);
+        if (!found)
+            return "the oracle does not find the designed gouge of line " +
+                   std::to_string(d.path_line) + " into line " + std::to_string(d.wall_line);
+        if (std::abs(found->depth - d.depth) > kDesignAgreement)
+            return "the oracle's depth " + std::to_string(found->depth) + " is not the designed " +
+                   std::to_string(d.depth);
     }
-    const bool refused = !run.outcome.errors.empty();
-    if (refused) {
-        if (!p.may_refuse)
-            return fail("run error", "the compensation refused a shape it should run");
-        // Refused for the shape built in: at the element the tool does not fit.
-        const std::uint64_t at = p.line_of(run.outcome.errors.front().block);
-        if (std::find(p.refused_at.begin(), p.refused_at.end(), at) == p.refused_at.end())
-            return fail("refused elsewhere", "the run stopped at line " + std::to_string(at) +
-                                                 ", not at the element smaller than the tool");
-        if (!oracle.gouged() && ours.empty()) {
-            v.outcome = "refused";
-            v.ok = true;
-            return v;
-        }
-        // It cut the part before it stopped: the run must have warned what it cut.
-    } else {
-        // Ran to its end: the oracle finds what was built in.
-        for (const DesignedGouge& d : p.designed) {
-            const Pair* found = find(theirs, d.path_line, d.wall_line);
-            if (!found)
-                return fail("oracle misses the design",
-                            "the oracle does not find the designed gouge of line " +
-                                std::to_string(d.path_line) + " into line " +
-                                std::to_string(d.wall_line));
-            if (std::abs(found->depth - d.depth) > kDesignAgreement)
-                return fail("oracle misses the design",
-                            "the oracle's depth " + std::to_string(found->depth) +
-                                " is not the designed " + std::to_string(d.depth));
-        }
-    }
-    if (!oracle.buried.empty())
-        return fail("buried", "a gouge program buries a block (not designed)");
-    for (const Pair& t : theirs)
-        if (t.depth < StockOracle::kPathTolerance + kBand)
-            return fail("too close to call",
-                        "an oracle depth lies within 2e-3 mm of the path tolerance");
-    bool agree = true;
+    return {};
+}
+
+// Where the check's pairs and the oracle's disagree (a pair not warned, one warned and not cut,
+// a depth that differs), one line each; empty when they agree.
+std::string pair_disagreement(const Findings& found) {
     std::string why;
-    for (const Pair& t : theirs) {
-        const Pair* o = find(ours, t.path, t.wall);
+    for (const Pair& t : found.theirs) {
+        const Pair* o = find(found.ours, t.path, t.wall);
         if (!o) {
-            agree = false;
             why += "not warned: path line " + std::to_string(t.path) + ", wall line " +
                    std::to_string(t.wall) + "\n";
         } else if (std::abs(o->depth - t.depth) > kDepthAgreement) {
-            agree = false;
             why += "depth differs: path line " + std::to_string(t.path) + ", wall line " +
                    std::to_string(t.wall) + "\n";
         }
     }
-    for (const Pair& o : ours)
-        if (!find(theirs, o.path, o.wall)) {
-            agree = false;
+    for (const Pair& o : found.ours)
+        if (!find(found.theirs, o.path, o.wall))
             why += "warned, not cut: path line " + std::to_string(o.path) + ", wall line " +
                    std::to_string(o.wall) + "\n";
-        }
-    if (!agree) {
+    return why;
+}
+
+// A gouge program: refused at the element the tool does not fit (for the shapes the
+// compensation refuses), or the oracle finds the designed gouge and the check warns exactly
+// the oracle's pairs at their depths (also what a refused run cut before it stopped).
+Verdict judge_gouge_program(const CamProgram& p, const CaseRun& run, const Findings& found,
+                            const Verdict& v) {
+    const bool refused = !run.outcome.errors.empty();
+    if (refused) {
+        if (!p.may_refuse)
+            return failed(v, "run error", "the compensation refused a shape it should run");
+        // Refused for the shape built in: at the element the tool does not fit.
+        const std::uint64_t at = p.line_of(run.outcome.errors.front().block);
+        if (std::find(p.refused_at.begin(), p.refused_at.end(), at) == p.refused_at.end())
+            return failed(v, "refused elsewhere",
+                          "the run stopped at line " + std::to_string(at) +
+                              ", not at the element smaller than the tool");
+        if (!found.oracle.gouged() && found.ours.empty()) return passed(v, "refused");
+        // It cut the part before it stopped: the run must have warned what it cut.
+    } else if (const std::string why = design_missed(p, found.theirs); !why.empty()) {
+        // Ran to its end: the oracle finds what was built in.
+        return failed(v, "oracle misses the design", why);
+    }
+    if (!found.oracle.buried.empty())
+        return failed(v, "buried", "a gouge program buries a block (not designed)");
+    for (const Pair& t : found.theirs)
+        if (t.depth < StockOracle::kPathTolerance + kBand)
+            return failed(v, "too close to call",
+                          "an oracle depth lies within 2e-3 mm of the path tolerance");
+    if (const std::string why = pair_disagreement(found); !why.empty()) {
         const bool missed = why.find("not warned") != std::string::npos;
         const bool extra = why.find("warned, not cut") != std::string::npos;
-        return fail(std::string(refused ? "cut before the refusal, " : "") +
-                        (missed && extra ? "missed and false pairs"
-                         : missed        ? "missed pairs"
-                         : extra         ? "false pairs"
-                                         : "depth"),
-                    why);
+        return failed(v,
+                      std::string(refused ? "cut before the refusal, " : "") +
+                          (missed && extra ? "missed and false pairs"
+                           : missed        ? "missed pairs"
+                           : extra         ? "false pairs"
+                                           : "depth"),
+                      why);
     }
-    v.outcome = refused ? "warned, then refused" : "warned";
-    v.ok = true;
-    return v;
+    return passed(v, refused ? "warned, then refused" : "warned");
+}
+
+// The program run, its path measured by the oracle, and the check's findings judged against
+// the oracle's.
+Verdict judge(const CamProgram& p) {
+    Verdict v;
+    const CaseRun run = run_case(p);
+    if (!run.setup_error.empty()) return failed(v, "front end refused it", run.setup_error);
+    // Every move below the top has the radius of a tool: the oracle is not blind anywhere.
+    std::vector<double> radius;
+    if (const std::string why = tool_radii(p, run, radius); !why.empty())
+        return failed(v, "no tool radius", why);
+    Findings found;
+    try {
+        found.oracle = StockOracle(p.part).run(run.path, radius);
+    } catch (const std::exception& e) {
+        return failed(v, "oracle failed", e.what());
+    }
+    v.check_pairs = run.outcome.self_approach.size();
+    v.deepest_intact = found.oracle.deepest_intact;
+    pairs_by_line(p, run, found);
+    count_disagreements(p, found, v);
+    v.detail = case_detail(p, run, found);
+    return p.gouge ? judge_gouge_program(p, run, found, v) : judge_correct_program(run, found, v);
 }
 
 class GougeAgreement : public testing::TestWithParam<CamFamilyInfo> {};
@@ -396,7 +444,7 @@ TEST(CamPrograms, DesignPartIsTheGeometryTheProgramWrites) {
             EXPECT_EQ(p.radius_by_line.size(), lines + 1) << p.name;
             for (const auto& [number, line] : p.line_of_number)
                 EXPECT_EQ(std::count_if(p.line_of_number.begin(), p.line_of_number.end(),
-                                        [&](const auto& x) { return x.first == number; }),
+                                        [n = number](const auto& x) { return x.first == n; }),
                           1)
                     << p.name << ": N" << number << " twice";
             ASSERT_NO_THROW(StockOracle{p.part}) << p.name;

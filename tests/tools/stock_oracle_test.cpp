@@ -635,109 +635,140 @@ TEST(StockOracle, SweptAreaOfArcsOfEveryRadiusAgainstTheTool) {
     EXPECT_EQ(measured, 9);
 }
 
+// A random part whose oracle can be made (`loop`, `made`): a loop that crosses itself is drawn
+// again.
+void draw_part(Rng& rng, DesignLoop& loop, std::optional<StockOracle>& made) {
+    loop = random_loop(rng);
+    while (!made) {
+        try {
+            made.emplace(part_of({loop}));
+        } catch (const std::invalid_argument&) {  // the loop crosses itself: draw again
+            loop = random_loop(rng);
+        }
+    }
+}
+
+// A path of 1..3 blocks (lines 100, 101, ...): lines and arcs near the part; `as_walls` the
+// same geometry, for the sampling.
+void random_path(Rng& rng, std::vector<PathSegment>& path, std::vector<WallElement>& as_walls) {
+    Pt at{rng.uniform(-14, 14), rng.uniform(-14, 14)};
+    const int blocks = rng.integer(1, 3);
+    for (int b = 0; b < blocks; ++b) {
+        const Pt to{rng.uniform(-14, 14), rng.uniform(-14, 14)};
+        WallElement w = wall_line(at, to, 100 + b);
+        if (rng.chance(0.5)) {
+            const double chord = std::hypot(to.x - at.x, to.y - at.y);
+            const Pt m{(at.x + to.x) / 2, (at.y + to.y) / 2};
+            const double off = rng.uniform(-1.0, 1.0) * chord;
+            w.arc = true;
+            w.centre = {m.x - off * (to.y - at.y) / chord, m.y + off * (to.x - at.x) / chord};
+            w.ccw = rng.chance(0.5);
+            // Make the end lie exactly on the start's circle.
+            const double R = std::hypot(at.x - w.centre.x, at.y - w.centre.y);
+            const double ae = std::atan2(to.y - w.centre.y, to.x - w.centre.x);
+            w.end = {w.centre.x + R * std::cos(ae), w.centre.y + R * std::sin(ae)};
+            path.push_back(seg_arc(w.start, w.end, w.centre, w.ccw, 100 + b));
+        } else {
+            path.push_back(seg_line(w.start, w.end, 100 + b));
+        }
+        as_walls.push_back(w);
+        at = w.end;
+    }
+}
+
+// The part's boundary as points for the scanline measure: lines by their ends, arcs in chords
+// of sagitta 2e-6.
+std::vector<Pt> sampled_ring(const DesignLoop& loop) {
+    std::vector<Pt> ring;
+    for (const WallElement& e : loop.elements) {
+        const std::vector<Pt> pts = samples(
+            e,
+            e.arc ? std::sqrt(8 * std::hypot(e.start.x - e.centre.x, e.start.y - e.centre.y) * 2e-6)
+                  : INFINITY);
+        ring.insert(ring.end(), pts.begin() + (ring.empty() ? 0 : 1), pts.end());
+    }
+    return ring;
+}
+
+// Block b (`block`, line 100 + b) of case c: its depth against each wall element, sampled,
+// is the oracle's pair (or there is none); `any_gouge` whether it cuts a wall, `pairs` counts
+// the pairs compared.
+void check_depths(int c, int b, const WallElement& block, double r, const DesignLoop& loop,
+                  const OracleReport& rep, bool& any_gouge, int& pairs) {
+    for (const WallElement& wall : loop.elements) {
+        const double depth = r - sampled_distance(block, wall);
+        const OracleGouge* g = find_pair(rep, 100 + b, wall.block.line);
+        if (std::abs(depth - StockOracle::kPathTolerance) < 5e-5) continue;  // too close to call
+        if (depth > StockOracle::kPathTolerance) {
+            any_gouge = true;
+            ASSERT_NE(g, nullptr) << "case " << c << " block " << b << " wall " << wall.block.line
+                                  << " sampled depth " << depth << "\n"
+                                  << describe(rep);
+            EXPECT_NEAR(g->depth, depth, 3e-5) << "case " << c;
+            ++pairs;
+        } else {
+            EXPECT_EQ(g, nullptr) << "case " << c << " block " << b << " wall " << wall.block.line
+                                  << " sampled depth " << depth << "\n"
+                                  << describe(rep);
+        }
+    }
+}
+
+// Block b (`block`, line 100 + b) of case c: the part's area it takes is the scanline
+// measure's, and a block that takes material is named (a wall it cuts, or buried);
+// `compared_areas` counts the areas compared.
+void check_taken_area(int c, int b, const WallElement& block, double r, const std::vector<Pt>& ring,
+                      const OracleReport& rep, bool any_gouge, int& compared_areas) {
+    const OracleBlock* ob = nullptr;
+    for (const OracleBlock& x : rep.blocks)
+        if (same_block(x.path_block, line_ref(100 + b))) ob = &x;
+    ASSERT_NE(ob, nullptr);
+    // Lines need their ends; arcs chords of sagitta 2e-6 (spacing sqrt(8 R 2e-6)).
+    const double spacing =
+        block.arc
+            ? std::sqrt(8 *
+                        std::hypot(block.start.x - block.centre.x, block.start.y - block.centre.y) *
+                        2e-6)
+            : INFINITY;
+    const double taken = taken_by_scanlines(samples(block, spacing), r, ring, 0.005);
+    EXPECT_NEAR(ob->taken_area, taken, 2e-3 + 1e-4 * taken) << "case " << c;
+    ++compared_areas;
+    const bool named =
+        any_gouge || std::any_of(rep.buried.begin(), rep.buried.end(), [&](const OracleBuried& x) {
+            return same_block(x.path_block, line_ref(100 + b));
+        });
+    if (taken > 1e-2) {
+        EXPECT_TRUE(named) << "case " << c << "\n" << describe(rep);
+    }
+    if (taken < 1e-6) {
+        EXPECT_FALSE(named) << "case " << c << "\n" << describe(rep);
+    }
+}
+
 TEST(StockOracle, AgreesWithBruteForceSamplingOnRandomPartsAndPaths) {
     Rng rng(20261127);
     int cases = 0, pairs = 0, compared_areas = 0;
     for (int c = 0; c < 40; ++c) {
-        DesignLoop loop = random_loop(rng);
+        DesignLoop loop;
         std::optional<StockOracle> made;
-        while (!made) {
-            try {
-                made.emplace(part_of({loop}));
-            } catch (const std::invalid_argument&) {  // the loop crosses itself: draw again
-                loop = random_loop(rng);
-            }
-        }
+        draw_part(rng, loop, made);
         const StockOracle& oracle = *made;
-        // A path of 1..3 blocks: lines and arcs near the part.
+        const double r = rng.log_uniform(0.3, 4.0);
         std::vector<PathSegment> path;
         std::vector<WallElement> as_walls;  // the same geometry, for the sampling
-        const double r = rng.log_uniform(0.3, 4.0);
-        Pt at{rng.uniform(-14, 14), rng.uniform(-14, 14)};
-        const int blocks = rng.integer(1, 3);
-        for (int b = 0; b < blocks; ++b) {
-            const Pt to{rng.uniform(-14, 14), rng.uniform(-14, 14)};
-            WallElement w = wall_line(at, to, 100 + b);
-            if (rng.chance(0.5)) {
-                const double chord = std::hypot(to.x - at.x, to.y - at.y);
-                const Pt m{(at.x + to.x) / 2, (at.y + to.y) / 2};
-                const double off = rng.uniform(-1.0, 1.0) * chord;
-                w.arc = true;
-                w.centre = {m.x - off * (to.y - at.y) / chord, m.y + off * (to.x - at.x) / chord};
-                w.ccw = rng.chance(0.5);
-                // Make the end lie exactly on the start's circle.
-                const double R = std::hypot(at.x - w.centre.x, at.y - w.centre.y);
-                const double ae = std::atan2(to.y - w.centre.y, to.x - w.centre.x);
-                w.end = {w.centre.x + R * std::cos(ae), w.centre.y + R * std::sin(ae)};
-                path.push_back(seg_arc(w.start, w.end, w.centre, w.ccw, 100 + b));
-            } else {
-                path.push_back(seg_line(w.start, w.end, 100 + b));
-            }
-            as_walls.push_back(w);
-            at = w.end;
-        }
+        random_path(rng, path, as_walls);
         const std::vector<double> radius(path.size(), r);
         OracleOptions every;
         every.measure_every_block = true;
         const OracleReport rep = oracle.run(path, radius, every);
         ++cases;
-        std::vector<Pt> ring;
-        for (const WallElement& e : loop.elements) {
-            const std::vector<Pt> pts = samples(
-                e, e.arc
-                       ? std::sqrt(8 * std::hypot(e.start.x - e.centre.x, e.start.y - e.centre.y) *
-                                   2e-6)
-                       : INFINITY);
-            ring.insert(ring.end(), pts.begin() + (ring.empty() ? 0 : 1), pts.end());
-        }
-        for (int b = 0; b < blocks; ++b) {
-            // Depth against each wall element.
+        const std::vector<Pt> ring = sampled_ring(loop);
+        for (int b = 0; b < static_cast<int>(as_walls.size()); ++b) {
             bool any_gouge = false;
-            for (const WallElement& wall : loop.elements) {
-                const double depth = r - sampled_distance(as_walls[b], wall);
-                const OracleGouge* g = find_pair(rep, 100 + b, wall.block.line);
-                if (std::abs(depth - StockOracle::kPathTolerance) < 5e-5)
-                    continue;  // too close to call
-                if (depth > StockOracle::kPathTolerance) {
-                    any_gouge = true;
-                    ASSERT_NE(g, nullptr) << "case " << c << " block " << b << " wall "
-                                          << wall.block.line << " sampled depth " << depth << "\n"
-                                          << describe(rep);
-                    EXPECT_NEAR(g->depth, depth, 3e-5) << "case " << c;
-                    ++pairs;
-                } else {
-                    EXPECT_EQ(g, nullptr) << "case " << c << " block " << b << " wall "
-                                          << wall.block.line << " sampled depth " << depth << "\n"
-                                          << describe(rep);
-                }
-            }
-            // The part's area the block takes.
-            const OracleBlock* ob = nullptr;
-            for (const OracleBlock& x : rep.blocks)
-                if (same_block(x.path_block, line_ref(100 + b))) ob = &x;
-            ASSERT_NE(ob, nullptr);
-            // Lines need their ends; arcs chords of sagitta 2e-6 (spacing sqrt(8 R 2e-6)).
-            const WallElement& pe = as_walls[b];
-            const double spacing =
-                pe.arc
-                    ? std::sqrt(8 * std::hypot(pe.start.x - pe.centre.x, pe.start.y - pe.centre.y) *
-                                2e-6)
-                    : INFINITY;
-            const double taken = taken_by_scanlines(samples(pe, spacing), r, ring, 0.005);
-            EXPECT_NEAR(ob->taken_area, taken, 2e-3 + 1e-4 * taken) << "case " << c;
-            ++compared_areas;
-            // A block that takes material is named: a wall it cuts, or buried.
-            const bool named =
-                any_gouge ||
-                std::any_of(rep.buried.begin(), rep.buried.end(), [&](const OracleBuried& x) {
-                    return same_block(x.path_block, line_ref(100 + b));
-                });
-            if (taken > 1e-2) {
-                EXPECT_TRUE(named) << "case " << c << "\n" << describe(rep);
-            }
-            if (taken < 1e-6) {
-                EXPECT_FALSE(named) << "case " << c << "\n" << describe(rep);
-            }
+            ASSERT_NO_FATAL_FAILURE(
+                check_depths(c, b, as_walls[b], r, loop, rep, any_gouge, pairs));
+            ASSERT_NO_FATAL_FAILURE(
+                check_taken_area(c, b, as_walls[b], r, ring, rep, any_gouge, compared_areas));
         }
     }
     EXPECT_EQ(cases, 40);
