@@ -685,6 +685,13 @@ TEST(RunPipeline, TheStretchRunsFromG41ToG40AndCdofCdonGoInTheirPlace) {
     EXPECT_EQ(sink.calls, expected);
 }
 
+// The first n calls a sink got (all of them where it got fewer).
+std::vector<std::string> first_calls(const Stretches& sink, std::size_t n) {
+    return std::vector<std::string>(
+        sink.calls.begin(),
+        sink.calls.begin() + static_cast<std::ptrdiff_t>(std::min(sink.calls.size(), n)));
+}
+
 // A sink's take_stop() stops the run where it was asked: the error recorded with its block, the
 // sink told, nothing programmed after it.
 TEST(RunPipeline, ASinkThatHandsAStopEndsTheRunThere) {
@@ -697,11 +704,7 @@ TEST(RunPipeline, ASinkThatHandsAStopEndsTheRunThere) {
     EXPECT_EQ(out.errors[0].block.line, 5u);  // the line from the move programmed
     const std::vector<std::string> expected{"p20", "begin 5.000000 17 -1", "p30", "p50",
                                             "p60", "error Stopped"};
-    EXPECT_EQ(std::vector<std::string>(
-                  sink.calls.begin(),
-                  sink.calls.begin() +
-                      static_cast<std::ptrdiff_t>(std::min(sink.calls.size(), expected.size()))),
-              expected);
+    EXPECT_EQ(first_calls(sink, expected.size()), expected);
     for (const std::string& c : sink.calls) EXPECT_NE(c, "p70");
     // N60's move is not spooled: what runs out after the stop is the moves before the one the
     // board holds (N50, the corner to N60 not known).
@@ -719,11 +722,7 @@ TEST(RunPipeline, ASinkThatHandsAStopAtAStretchsEndEndsTheRunThere) {
     EXPECT_EQ(out.errors[0].block.number, 80);
     const std::vector<std::string> expected{
         "p20", "begin 5.000000 17 -1", "p30", "p50", "p60", "p70", "p80", "end", "error Stopped"};
-    EXPECT_EQ(std::vector<std::string>(
-                  sink.calls.begin(),
-                  sink.calls.begin() +
-                      static_cast<std::ptrdiff_t>(std::min(sink.calls.size(), expected.size()))),
-              expected);
+    EXPECT_EQ(first_calls(sink, expected.size()), expected);
     for (const std::string& c : sink.calls) EXPECT_NE(c, "p90");
     EXPECT_EQ(sink.executed_blocks, (std::vector<std::int64_t>{20, 30, 50, 60, 70, 80}));
 }

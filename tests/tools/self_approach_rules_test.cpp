@@ -255,52 +255,37 @@ TEST(SelfApproachRules, TheEntryCornerRuleHoldsForEveryStretchsElementAtTheEntry
 // only where its chord exceeds 2e-9 on an axis: there the check's own sweep and measure()'s
 // agree (neither takes the arc for a full circle). A sweep that is not the arc's, which no
 // executor gives, shows which one the check took. The probe's path is a near-full circle
-// (counter-clockwise about (10, 0), radius 2.5, from (12.5, 0) to dy below it) whose bottom
-// passes 0.5 above the wall N11 at y = -3; taken as a sliver (sweep 1e-9) it stays 3 away.
+// whose bottom passes 0.5 above the wall N11 at y = -3: with the chord d on the plane's second
+// axis, counter-clockwise about (10, 0), radius 2.5, from (12.5, 0) to d below it (taken as a
+// sliver, sweep 1e-9, it stays 3 away); on its first axis, about the origin from its top
+// (0, 2.5) to d right of it (x = 0 makes d its chord exactly; a sliver stays 5.5 away).
 TEST(SelfApproachRules, AnExecutedArcsMeasuredSweepIsTakenOnlyWhereItsChordExceedsTwiceTheTolerance) {
-    const Stretch wall = wall_line(10, 0, 20, -3, 0, 0);
-    const auto warned = [&](double dy, double sweep) {
-        PathSegment path = arc(0, {12.5, 0, 0}, {12.5, -dy, 0}, {10, 0, 0}, true);
-        path.sweep = sweep;
-        return pairs(run({wall, probe(20, path)})).count({21, 11}) == 1;
-    };
     const double edge = 2.0 * apci::run::kSamePointTolerance;
     const double past = std::nextafter(edge, 1.0);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (const double dy : {edge, past}) {
-        EXPECT_TRUE(warned(dy, nan)) << dy;  // not measured: made
-        // Measured as measure() does: the same either way.
-        PathSegment measured = arc(0, {12.5, 0, 0}, {12.5, -dy, 0}, {10, 0, 0}, true);
-        apci::run::measure(measured);
-        EXPECT_GT(measured.sweep, 6.28) << dy;
-        EXPECT_TRUE(warned(dy, measured.sweep)) << dy;
+    for (const bool first_axis : {false, true}) {
+        const Stretch wall =
+            first_axis ? wall_line(10, -10, 10, -3, 0, 0) : wall_line(10, 0, 20, -3, 0, 0);
+        const auto shape = [&](double d) {
+            return first_axis ? arc(0, {0, 2.5, 0}, {d, 2.5, 0}, {0, 0, 0}, true)
+                              : arc(0, {12.5, 0, 0}, {12.5, -d, 0}, {10, 0, 0}, true);
+        };
+        const auto warned = [&](double d, double sweep) {
+            PathSegment path = shape(d);
+            path.sweep = sweep;
+            return pairs(run({wall, probe(20, path)})).count({21, 11}) == 1;
+        };
+        for (const double d : {edge, past}) {
+            EXPECT_TRUE(warned(d, nan)) << first_axis << " " << d;  // not measured: made
+            // Measured as measure() does: the same either way.
+            PathSegment measured = shape(d);
+            apci::run::measure(measured);
+            EXPECT_GT(measured.sweep, 6.28) << first_axis << " " << d;
+            EXPECT_TRUE(warned(d, measured.sweep)) << first_axis << " " << d;
+        }
+        EXPECT_TRUE(warned(edge, 1e-9)) << first_axis;   // at the edge the check makes its own
+        EXPECT_FALSE(warned(past, 1e-9)) << first_axis;  // one step past: the measured one
     }
-    EXPECT_TRUE(warned(edge, 1e-9));   // at the edge the check makes its own
-    EXPECT_FALSE(warned(past, 1e-9));  // one step past it takes the measured one
-}
-
-// The same bound on the plane's first axis: the arc from its top (0, 2.5) to dx right of it
-// (counter-clockwise about the origin, radius 2.5; x = 0 makes dx its chord exactly), whose
-// bottom passes 0.5 above the wall; taken as a sliver (sweep 1e-9) it stays at its top, 5.5 away.
-TEST(SelfApproachRules, AChordAlongTheFirstAxisTakesTheMeasuredSweepOnlyPastTwiceTheTolerance) {
-    const Stretch wall = wall_line(10, -10, 10, -3, 0, 0);
-    const auto warned = [&](double dx, double sweep) {
-        PathSegment path = arc(0, {0, 2.5, 0}, {dx, 2.5, 0}, {0, 0, 0}, true);
-        path.sweep = sweep;
-        return pairs(run({wall, probe(20, path)})).count({21, 11}) == 1;
-    };
-    const double edge = 2.0 * apci::run::kSamePointTolerance;
-    const double past = std::nextafter(edge, 1.0);
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (const double dx : {edge, past}) {
-        EXPECT_TRUE(warned(dx, nan)) << dx;
-        PathSegment measured = arc(0, {0, 2.5, 0}, {dx, 2.5, 0}, {0, 0, 0}, true);
-        apci::run::measure(measured);
-        EXPECT_GT(measured.sweep, 6.28) << dx;
-        EXPECT_TRUE(warned(dx, measured.sweep)) << dx;
-    }
-    EXPECT_TRUE(warned(edge, 1e-9));   // at the edge the check makes its own
-    EXPECT_FALSE(warned(past, 1e-9));  // one step past it takes the measured one
 }
 
 TEST(SelfApproachRules, TheGridFindsAPathJustInsideTheRadiusOfALongElementWhereverItLies) {
