@@ -358,18 +358,32 @@ TEST_F(ApcictlDiff, JsonRefusedForAScriptStandardOutputOrAnInput) {
     r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners, "--json", "-"}, "emu:");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.err, "--json needs a file")) << r.err;
-    // The program and the tool list, also through a symbolic link.
+    // Every input: the program, the tool list, the correction table and the PLC script, also
+    // through a symbolic link and under another name of the same file (a hard link).
     const std::string program = dir_.file("p.nc"), tools = dir_.file("p.tools");
+    const std::string corr = dir_.file("p.corr");
     std::filesystem::copy_file(kInsideCorners, program);
     std::filesystem::copy_file(kTools, tools);
+    std::filesystem::copy_file(std::string(APCI_SOURCE_DIR) + "/examples/tools/3d_corrections.corr",
+                               corr);
+    const std::string plc_text = "cycle 300 tool_temp_comp[2] 0.5\n";
+    const std::string plc = script_file(dir_, plc_text, "p.plc");
     std::filesystem::create_symlink(tools, dir_.file("link.json"));
-    for (const std::string& target : {program, dir_.file("link.json")}) {
-        r = diff({"--against", "emu:", "--tools", tools, program, "--json", target}, "emu:");
+    std::filesystem::create_hard_link(program, dir_.file("hard.json"));
+    for (const std::string& target :
+         {program, dir_.file("link.json"), dir_.file("hard.json"), corr, plc}) {
+        r = diff({"--against", "emu:", "--tools", tools, "--corr", corr, "--plc", plc, program,
+                  "--json", target},
+                 "emu:");
         EXPECT_EQ(r.exit_code, 2) << target;
-        EXPECT_TRUE(contains(r.err, "is the same file as the input")) << r.err;
+        EXPECT_TRUE(contains(r.err, "is the same file as the input")) << target << ": " << r.err;
     }
     EXPECT_EQ(test_support::read_text(program), test_support::read_text(kInsideCorners));
     EXPECT_EQ(test_support::read_text(tools), test_support::read_text(kTools));
+    EXPECT_EQ(test_support::read_text(corr),
+              test_support::read_text(std::string(APCI_SOURCE_DIR) +
+                                      "/examples/tools/3d_corrections.corr"));
+    EXPECT_EQ(test_support::read_text(plc), plc_text);
 }
 
 // An output that cannot be opened is a usage error, and nothing runs.

@@ -312,6 +312,21 @@ TEST(PlaneDistance, ApartBySideProvesTheRoundedCornerNeighboursOfAPath) {
     EXPECT_FALSE(pd::apart_by_side(path, back, 1.0 - 2e-4));
 }
 
+// A line leaving a spiral radially from a point within its turn: the spiral's lower bound there
+// is the radial distance a hair less (its slope k against c, the curvature's term), not that
+// distance less the radius's whole change. The quarter turn from radius 10 to 10.5 about the
+// origin; the line starts 1 outside it at 45 degrees and leaves straight out: apart by 0.99
+// (0.999 of the radial distance is proved), with the whole change (0.5) taken off it is not.
+TEST(PlaneDistance, ApartBySideTakesASpiralsRadialDistanceWithinItsTurn) {
+    const Parametric spiral = pd::arc_element({10, 0}, {0, 10.5}, {0, 0}, true);
+    const Vec2 u(std::sqrt(0.5), std::sqrt(0.5));
+    const Vec2 start = 11.25 * u;  // the spiral's radius at 45 degrees is 10.25
+    const Parametric leaving = line(start, start + 5.0 * u);
+    EXPECT_GT(brute(sample(spiral, 20000), sample(leaving, 50)), 0.99);  // what the claim rests on
+    EXPECT_TRUE(pd::apart_by_side(spiral, leaving, 0.99));
+    EXPECT_FALSE(pd::apart_by_side(spiral, leaving, 1.0 + 1e-9));
+}
+
 // An arc made again from the sweep and start angle arc_element gave (as the check keeps them
 // for its stored elements and the wall model for its loops) is the same element bit for bit:
 // spirals, near-full arcs, full circles, both senses, radii over six orders of magnitude.

@@ -244,12 +244,15 @@ TEST(ProgramRun, ARefusalNamesTheToolListNotGivenInBothWays) {
     EXPECT_TRUE(contains(refused->message, "(no --tools file given)")) << refused->message;
 }
 
-// A spike whose N70 cuts into N50 (tool radius 5): the mode the caller chose reaches the run.
+// A spike whose N70 cuts into N50 (tool radius 5).
+const std::string kSpike =
+    "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+    "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+    "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n";
+
+// The mode the caller chose reaches the run.
 TEST(RunProgram, TheSelfApproachModeReachesTheRun) {
-    const std::string spike =
-        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
-        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
-        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n";
+    const std::string& spike = kSpike;
     const RunInputs in = tool5();
     const auto source = ProgramSource::in_memory(spike, "spike.nc");
     for (const SelfApproachMode mode :
@@ -293,6 +296,78 @@ TEST(RunProgram, TheSelfApproachModeReachesTheRun) {
     ASSERT_FALSE(out);
     EXPECT_EQ(out.error().line, 1u);
     EXPECT_TRUE(sink.segments.empty());
+}
+
+// --self-approach error: the run's error is the first finding, at the block whose path came
+// near (not the contour's block), in the finding's words, and the only one; no warning. The
+// same with threads (the check before the pipeline) and without.
+TEST(RunProgram, ASelfApproachErrorIsTheFirstFindingAtItsPathsBlockAndTheLast) {
+    const RunInputs in = tool5();
+    for (const bool threads : {false, true}) {
+        apci::Board board("emu:");
+        Collect sink;
+        RunSettings settings;
+        settings.self_approach = SelfApproachMode::kError;
+        settings.threads = threads;
+        auto out =
+            run_program(board, sink, in, ProgramSource::in_memory(kSpike, "spike.nc"), settings);
+        ASSERT_TRUE(out) << out.error().to_string();
+        const RunOutcome& o = out.value();
+        ASSERT_EQ(o.errors.size(), 1u) << "threads " << threads;
+        ASSERT_EQ(o.self_approach.size(), 1u) << "threads " << threads;
+        const SelfApproachFinding& f = o.self_approach[0];
+        // The path of N50 comes within the radius of N70's contour (programmed ahead of it).
+        EXPECT_EQ(f.path_block.number, 50);
+        EXPECT_EQ(f.contour_block.number, 70);
+        EXPECT_EQ(o.errors[0].code, "SelfApproach");
+        EXPECT_EQ(o.errors[0].block.number, 50);
+        EXPECT_EQ(o.errors[0].block.line, 4u);
+        EXPECT_EQ(o.errors[0].message, describe(f));
+        EXPECT_TRUE(o.warnings.empty());
+        EXPECT_TRUE(sink.warnings.empty());
+    }
+}
+
+// A turning tool (docs/compensation.md "Turning tools"): the board reports the imaginary tip's
+// path, the check measures the nose centre's. The spike turned into G18 (Z-X, mirrored, so G41
+// for its G42) with cutting edge 3 (the tip carried by +r on X and -r on Z: unlike on the two
+// axes) has the findings of the same tool with the nose centre as its path (cutting edge 9), at
+// the same distances.
+TEST(RunProgram, TheCheckMeasuresATurningToolsNoseCentreNotItsTip) {
+    std::string turned = kSpike;
+    std::replace(turned.begin(), turned.end(), 'Y', 'Z');
+    turned.replace(turned.find("G17"), 3, "G18");
+    turned.replace(turned.find("G42"), 3, "G41");  // Z-X mirrors X-Y: the same side of it
+    const auto findings = [&](int edge) {
+        RunInputFiles f;
+        f.tools =
+            "wz[1].gueltig 1\nwz[1].typ 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n"
+            "wz[1].srk_lage " +
+            std::to_string(edge) + "\n";
+        f.tools_is_text = true;
+        auto in = load_run_inputs(f);
+        EXPECT_TRUE(in) << in.error().to_string();
+        if (!in) return std::vector<SelfApproachFinding>{};
+        apci::Board board("emu:");
+        Collect sink;
+        auto out = run_program(board, sink, in.value(),
+                               ProgramSource::in_memory(turned, "turned.nc"), RunSettings{});
+        EXPECT_TRUE(out) << out.error().to_string();
+        if (out) {
+            for (const RunError& e : out.value().errors) ADD_FAILURE() << e.message;
+        }
+        return out ? out.value().self_approach : std::vector<SelfApproachFinding>{};
+    };
+    const std::vector<SelfApproachFinding> centre = findings(9);
+    const std::vector<SelfApproachFinding> tip = findings(3);
+    ASSERT_FALSE(centre.empty());
+    ASSERT_EQ(tip.size(), centre.size());
+    for (std::size_t i = 0; i < tip.size(); ++i) {
+        EXPECT_EQ(tip[i].path_block.number, centre[i].path_block.number) << i;
+        EXPECT_EQ(tip[i].contour_block.number, centre[i].contour_block.number) << i;
+        EXPECT_NEAR(tip[i].distance, centre[i].distance, 1e-9) << i;
+        EXPECT_LT((tip[i].where - centre[i].where).norm(), 1e-9) << i;
+    }
 }
 
 // With threads the NC front end runs on a thread of its own and the caller's sink on another

@@ -594,18 +594,31 @@ class Stretches final : public RunSink {
   public:
     std::vector<std::string> calls;
     std::int64_t stop_at = -1;  // take_stop() hands an error after this block's move
+    bool stop_at_end = false;   // take_stop() hands an error after the first stretch's end
+    std::vector<std::int64_t> executed_blocks;  // the blocks of the executed segments, in order
     void programmed(const PathSegment& s) override {
         calls.push_back("p" + std::to_string(s.block.number));
         last_ = s.block.number;
+    }
+    void executed(const PathSegment& s) override {
+        if (executed_blocks.empty() || executed_blocks.back() != s.block.number)
+            executed_blocks.push_back(s.block.number);
     }
     void stretch_begin(const CompensatedStretch& s) override {
         calls.push_back("begin " + std::to_string(s.radius) + " " + std::to_string(s.plane) + " " +
                         std::to_string(s.side) + (s.edge.isZero(0.0) ? "" : " edge"));
     }
-    void stretch_end() override { calls.emplace_back("end"); }
+    void stretch_end() override {
+        calls.emplace_back("end");
+        ended_ = true;
+    }
     void walls(bool on) override { calls.push_back(on ? "CDON" : "CDOF"); }
     void error(const RunError& e, const Point&) override { calls.push_back("error " + e.code); }
     std::optional<RunError> take_stop() override {
+        if (stop_at_end && ended_) {
+            stop_at_end = false;
+            return RunError{BlockRef{last_, 0}, "Stopped", "at the end of the stretch"};
+        }
         if (last_ != stop_at) return std::nullopt;
         last_ = -1;
         return RunError{BlockRef{stop_at, 0}, "Stopped", "by the sink"};
@@ -613,6 +626,7 @@ class Stretches final : public RunSink {
 
   private:
     std::int64_t last_ = -1;
+    bool ended_ = false;
 };
 
 RunOutcome run_spike_into(RunSink& sink, const char* text = kSpike) {
@@ -671,6 +685,13 @@ TEST(RunPipeline, TheStretchRunsFromG41ToG40AndCdofCdonGoInTheirPlace) {
     EXPECT_EQ(sink.calls, expected);
 }
 
+// The first n calls a sink got (all of them where it got fewer).
+std::vector<std::string> first_calls(const Stretches& sink, std::size_t n) {
+    return std::vector<std::string>(
+        sink.calls.begin(),
+        sink.calls.begin() + static_cast<std::ptrdiff_t>(std::min(sink.calls.size(), n)));
+}
+
 // A sink's take_stop() stops the run where it was asked: the error recorded with its block, the
 // sink told, nothing programmed after it.
 TEST(RunPipeline, ASinkThatHandsAStopEndsTheRunThere) {
@@ -683,12 +704,27 @@ TEST(RunPipeline, ASinkThatHandsAStopEndsTheRunThere) {
     EXPECT_EQ(out.errors[0].block.line, 5u);  // the line from the move programmed
     const std::vector<std::string> expected{"p20", "begin 5.000000 17 -1", "p30", "p50",
                                             "p60", "error Stopped"};
-    EXPECT_EQ(std::vector<std::string>(
-                  sink.calls.begin(),
-                  sink.calls.begin() +
-                      static_cast<std::ptrdiff_t>(std::min(sink.calls.size(), expected.size()))),
-              expected);
+    EXPECT_EQ(first_calls(sink, expected.size()), expected);
     for (const std::string& c : sink.calls) EXPECT_NE(c, "p70");
+    // N60's move is not spooled: what runs out after the stop is the moves before the one the
+    // board holds (N50, the corner to N60 not known).
+    EXPECT_EQ(sink.executed_blocks, (std::vector<std::int64_t>{20, 30}));
+}
+
+// A stop handed at the end of a stretch (G40 ends it) ends the run there: the G40 block's move
+// is neither programmed nor run.
+TEST(RunPipeline, ASinkThatHandsAStopAtAStretchsEndEndsTheRunThere) {
+    Stretches sink;
+    sink.stop_at_end = true;
+    const RunOutcome out = run_spike_into(sink);
+    ASSERT_EQ(out.errors.size(), 1u);
+    EXPECT_EQ(out.errors[0].code, "Stopped");
+    EXPECT_EQ(out.errors[0].block.number, 80);
+    const std::vector<std::string> expected{
+        "p20", "begin 5.000000 17 -1", "p30", "p50", "p60", "p70", "p80", "end", "error Stopped"};
+    EXPECT_EQ(first_calls(sink, expected.size()), expected);
+    for (const std::string& c : sink.calls) EXPECT_NE(c, "p90");
+    EXPECT_EQ(sink.executed_blocks, (std::vector<std::int64_t>{20, 30, 50, 60, 70, 80}));
 }
 
 // ---- segments read back once, measured once

@@ -8,16 +8,19 @@
 // not the compensation, is under test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "apci/run/path.h"
 #include "apci/run/self_approach.h"
+#include "apci/run/self_approach_sink.h"
 
 namespace {
 
@@ -252,28 +255,37 @@ TEST(SelfApproachRules, TheEntryCornerRuleHoldsForEveryStretchsElementAtTheEntry
 // only where its chord exceeds 2e-9 on an axis: there the check's own sweep and measure()'s
 // agree (neither takes the arc for a full circle). A sweep that is not the arc's, which no
 // executor gives, shows which one the check took. The probe's path is a near-full circle
-// (counter-clockwise about (10, 0), radius 2.5, from (12.5, 0) to dy below it) whose bottom
-// passes 0.5 above the wall N11 at y = -3; taken as a sliver (sweep 1e-9) it stays 3 away.
+// whose bottom passes 0.5 above the wall N11 at y = -3: with the chord d on the plane's second
+// axis, counter-clockwise about (10, 0), radius 2.5, from (12.5, 0) to d below it (taken as a
+// sliver, sweep 1e-9, it stays 3 away); on its first axis, about the origin from its top
+// (0, 2.5) to d right of it (x = 0 makes d its chord exactly; a sliver stays 5.5 away).
 TEST(SelfApproachRules, AnExecutedArcsMeasuredSweepIsTakenOnlyWhereItsChordExceedsTwiceTheTolerance) {
-    const Stretch wall = wall_line(10, 0, 20, -3, 0, 0);
-    const auto warned = [&](double dy, double sweep) {
-        PathSegment path = arc(0, {12.5, 0, 0}, {12.5, -dy, 0}, {10, 0, 0}, true);
-        path.sweep = sweep;
-        return pairs(run({wall, probe(20, path)})).count({21, 11}) == 1;
-    };
     const double edge = 2.0 * apci::run::kSamePointTolerance;
     const double past = std::nextafter(edge, 1.0);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (const double dy : {edge, past}) {
-        EXPECT_TRUE(warned(dy, nan)) << dy;  // not measured: made
-        // Measured as measure() does: the same either way.
-        PathSegment measured = arc(0, {12.5, 0, 0}, {12.5, -dy, 0}, {10, 0, 0}, true);
-        apci::run::measure(measured);
-        EXPECT_GT(measured.sweep, 6.28) << dy;
-        EXPECT_TRUE(warned(dy, measured.sweep)) << dy;
+    for (const bool first_axis : {false, true}) {
+        const Stretch wall =
+            first_axis ? wall_line(10, -10, 10, -3, 0, 0) : wall_line(10, 0, 20, -3, 0, 0);
+        const auto shape = [&](double d) {
+            return first_axis ? arc(0, {0, 2.5, 0}, {d, 2.5, 0}, {0, 0, 0}, true)
+                              : arc(0, {12.5, 0, 0}, {12.5, -d, 0}, {10, 0, 0}, true);
+        };
+        const auto warned = [&](double d, double sweep) {
+            PathSegment path = shape(d);
+            path.sweep = sweep;
+            return pairs(run({wall, probe(20, path)})).count({21, 11}) == 1;
+        };
+        for (const double d : {edge, past}) {
+            EXPECT_TRUE(warned(d, nan)) << first_axis << " " << d;  // not measured: made
+            // Measured as measure() does: the same either way.
+            PathSegment measured = shape(d);
+            apci::run::measure(measured);
+            EXPECT_GT(measured.sweep, 6.28) << first_axis << " " << d;
+            EXPECT_TRUE(warned(d, measured.sweep)) << first_axis << " " << d;
+        }
+        EXPECT_TRUE(warned(edge, 1e-9)) << first_axis;   // at the edge the check makes its own
+        EXPECT_FALSE(warned(past, 1e-9)) << first_axis;  // one step past: the measured one
     }
-    EXPECT_TRUE(warned(edge, 1e-9));   // at the edge the check makes its own
-    EXPECT_FALSE(warned(past, 1e-9));  // one step past it takes the measured one
 }
 
 TEST(SelfApproachRules, TheGridFindsAPathJustInsideTheRadiusOfALongElementWhereverItLies) {
@@ -602,6 +614,105 @@ TEST(SelfApproachRules, DistinctElementsAreEachKept) {
                           Role::kContour),
                      found);
     EXPECT_EQ(check.kept(), static_cast<std::size_t>(kElements));
+}
+
+
+// A loop whose arc was programmed before (an element the grid has, its shape not made again)
+// is known by that arc's own terms: the pocket pass N11-N13 (the upper half circle of radius 5
+// and back under it by (0, 1), the tool inside) has the area of the half disc less the
+// triangle, a pocket's sense like the larger pass N31 round it (a full circle of radius 10),
+// which clears it: a path 0.5 from N13 is no finding. Without the larger pass N13 is a wall.
+// (Taken with no sweep, N11 would leave only the triangle under its chord, turning the other
+// way: a boss, which no pocket pass clears.)
+TEST(SelfApproachRules, ALoopThroughAnArcProgrammedBeforeTakesThatArcsTerms) {
+    const Point o(0, 0, 0);
+    const PathSegment half = arc(0, {5, 0, 0}, {-5, 0, 0}, o, true);
+    const auto with_block = [](PathSegment s, int n, Role role) {
+        s.block.number = n;
+        s.role = role;
+        return s;
+    };
+    Stretch first;  // the half circle alone, an open contour
+    first.elements = {with_block(half, 1, Role::kUncompensated)};
+    first.paths = {{arc(1, {4, 0, 0}, {-4, 0, 0}, o, true, Role::kContour)}};
+    Stretch inner;  // the pocket pass through it
+    inner.elements = {with_block(half, 11, Role::kUncompensated), line(12, {-5, 0, 0}, {0, 1, 0}),
+                      line(13, {0, 1, 0}, {5, 0, 0})};
+    inner.paths = {{arc(11, {4, 0.2, 0}, {-4, 0.2, 0}, o, true, Role::kContour)},
+                   {line(12, {-4, 0.2, 0}, {0, 1.98, 0}, Role::kContour)},
+                   {line(13, {0, 1.98, 0}, {4, 0.2, 0}, Role::kContour)}};
+    Stretch outer;  // the larger pocket pass
+    outer.elements = {arc(31, {10, 0, 0}, {10, 0, 0}, o, true)};
+    outer.paths = {{arc(31, {9, 0, 0}, {9, 0, 0}, o, true, Role::kContour)}};
+    // 0.5 under N13 (along its normal), from 1 to 4 on X.
+    const Point n = Point(-1, -5, 0).normalized();
+    const Stretch near =
+        probe(20, line(0, Point(1, 0.8, 0) + 0.5 * n, Point(4, 0.2, 0) + 0.5 * n));
+    EXPECT_EQ(pairs(run({first, inner, near})).count({21, 13}), 1u);  // a wall
+    EXPECT_EQ(pairs(run({first, inner, outer, near})).count({21, 13}), 0u);  // cleared
+}
+
+// The check as a sink (self_approach_sink.h), fed as the run feeds it: an open contour (no loop,
+// so its elements' roles are known only when its stretch ends) whose N13 comes back within the
+// tool's radius of N11. What the stretch's end gives out reaches the next sink there, before
+// anything after it, and the outcome; with kError the first finding is the stop, handed once.
+TEST(SelfApproachSink, WhatAStretchsEndGivesOutGoesOnThere) {
+    using apci::run::SelfApproachMode;
+    using apci::run::SelfApproachSink;
+    struct Calls final : apci::run::RunSink {
+        std::vector<std::string> calls;
+        void executed(const PathSegment& s) override {
+            calls.push_back("e" + std::to_string(s.block.number));
+        }
+        void stretch_end() override { calls.emplace_back("end"); }
+        void warning(const apci::run::RunError& w, const Point&) override {
+            calls.push_back("warning " + std::to_string(w.block.number));
+        }
+    };
+    // The elements and their paths, one element behind (r = 1, the tool on the left).
+    const std::vector<PathSegment> elements{
+        line(10, {-5, 0, 0}, {0, 0, 0}), line(11, {0, 0, 0}, {20, 0, 0}),
+        line(12, {20, 0, 0}, {20, 1.5, 0}), line(13, {20, 1.5, 0}, {0, 1.5, 0}),
+        line(14, {0, 1.5, 0}, {0, 30, 0})};
+    const std::vector<PathSegment> paths{
+        line(10, {-5, 1, 0}, {0, 1, 0}, Role::kApproach),
+        line(11, {0, 1, 0}, {19, 1, 0}, Role::kContour),
+        line(12, {19, 1, 0}, {19, 0.5, 0}, Role::kContour),
+        line(13, {19, 0.5, 0}, {-1, 0.5, 0}, Role::kContour),
+        line(14, {-1, 0.5, 0}, {-1, 30, 0}, Role::kContour)};
+    const auto feed = [&](SelfApproachSink& sink) {
+        sink.stretch_begin(apci::run::CompensatedStretch{1.0, 17, 1, Eigen::Vector2d::Zero()});
+        for (std::size_t k = 0; k < elements.size(); ++k) {
+            sink.programmed(elements[k]);
+            if (k > 0) sink.executed(paths[k - 1]);
+        }
+        sink.executed(paths.back());
+        sink.stretch_end();
+    };
+    const std::vector<std::string> before{"e10", "e11", "e12", "e13", "e14", "end"};
+    Calls next;
+    SelfApproachSink warn(next, SelfApproachMode::kWarn);
+    feed(warn);
+    ASSERT_GT(next.calls.size(), before.size());
+    const auto first = static_cast<std::ptrdiff_t>(before.size());
+    EXPECT_EQ(std::vector<std::string>(next.calls.begin(), next.calls.begin() + first), before);
+    for (std::size_t i = before.size(); i < next.calls.size(); ++i)
+        EXPECT_EQ(next.calls[i].rfind("warning ", 0), 0u) << next.calls[i];
+    EXPECT_NE(std::find(next.calls.begin(), next.calls.end(), "warning 13"), next.calls.end());
+    EXPECT_EQ(next.calls[before.size()], "warning 10");
+    apci::run::RunOutcome out;
+    warn.results(out);
+    EXPECT_EQ(out.warnings.size(), next.calls.size() - before.size());
+    EXPECT_EQ(out.self_approach.size(), out.warnings.size());
+    Calls quiet;
+    SelfApproachSink error(quiet, SelfApproachMode::kError);
+    feed(error);
+    EXPECT_EQ(quiet.calls, before);
+    const auto stop = error.take_stop();
+    ASSERT_TRUE(stop.has_value());
+    EXPECT_EQ(stop->code, "SelfApproach");
+    EXPECT_EQ(stop->block.number, 10);
+    EXPECT_FALSE(error.take_stop().has_value());
 }
 
 }  // namespace
