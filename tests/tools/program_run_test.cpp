@@ -328,6 +328,35 @@ TEST(RunProgram, ASelfApproachErrorIsTheFirstFindingAtItsPathsBlockAndTheLast) {
     }
 }
 
+// Where the run stops at a finding, the segments the board still runs of the move under way
+// (here the temperature compensation switched off at N80 keeps the clock going) are not
+// checked into a second error: the run has one error, its first finding.
+TEST(RunProgram, ASelfApproachErrorIsTheOnlyErrorWhileTheAxesFinishTheMove) {
+    test_support::ScratchDir dir;
+    RunInputFiles files;
+    files.tools = kTool5;
+    files.tools_is_text = true;
+    files.plc = test_support::write_text(dir.file("p.plc"), "block 80 tool_temp_comp_on 0\n");
+    auto in = load_run_inputs(files);
+    ASSERT_TRUE(in) << in.error().to_string();
+    for (const bool threads : {false, true}) {
+        apci::Board board("emu:");
+        Collect sink;
+        RunSettings settings;
+        settings.self_approach = SelfApproachMode::kError;
+        settings.threads = threads;
+        auto out = run_program(board, sink, in.value(), ProgramSource::in_memory(kSpike, "spike.nc"),
+                               settings);
+        ASSERT_TRUE(out) << out.error().to_string();
+        const RunOutcome& o = out.value();
+        ASSERT_EQ(o.errors.size(), 1u) << "threads " << threads;
+        EXPECT_EQ(o.errors[0].code, "SelfApproach");
+        EXPECT_EQ(o.errors[0].block.number, 50);
+        ASSERT_EQ(o.self_approach.size(), 1u) << "threads " << threads;
+        EXPECT_EQ(o.self_approach[0].contour_block.number, 70);
+    }
+}
+
 // A turning tool (docs/compensation.md "Turning tools"): the board reports the imaginary tip's
 // path, the check measures the nose centre's. The spike turned into G18 (Z-X, mirrored, so G41
 // for its G42) with cutting edge 3 (the tip carried by +r on X and -r on Z: unlike on the two

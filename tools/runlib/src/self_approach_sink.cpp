@@ -57,7 +57,13 @@ std::optional<RunError> SelfApproachSink::take_stop() {
 void SelfApproachSink::found() {
     if (new_.empty()) return;
     if (mode_ == SelfApproachMode::kError) {
-        // The first is the run's error; the run stops there and the rest are not looked at.
+        // The first is the run's error; the run stops there and the rest are not looked at,
+        // nor what the axes still run of the move under way once the run stopped (the run has
+        // its error: one).
+        if (stopped_) {
+            new_.clear();
+            return;
+        }
         const SelfApproachFinding& f = new_.front();
         findings_.push_back(f);
         stop_ = RunError{f.path_block, "SelfApproach", describe(f)};
