@@ -298,19 +298,23 @@ TEST(RunProgram, TheSelfApproachModeReachesTheRun) {
     EXPECT_TRUE(sink.segments.empty());
 }
 
+// The spike run on a fresh board where a finding is the run's error, with or without threads.
+nc::Result<RunOutcome> run_spike_stopping(const RunInputs& in, bool threads, Collect& sink) {
+    apci::Board board("emu:");
+    RunSettings settings;
+    settings.self_approach = SelfApproachMode::kError;
+    settings.threads = threads;
+    return run_program(board, sink, in, ProgramSource::in_memory(kSpike, "spike.nc"), settings);
+}
+
 // --self-approach error: the run's error is the first finding, at the block whose path came
 // near (not the contour's block), in the finding's words, and the only one; no warning. The
 // same with threads (the check before the pipeline) and without.
 TEST(RunProgram, ASelfApproachErrorIsTheFirstFindingAtItsPathsBlockAndTheLast) {
     const RunInputs in = tool5();
     for (const bool threads : {false, true}) {
-        apci::Board board("emu:");
         Collect sink;
-        RunSettings settings;
-        settings.self_approach = SelfApproachMode::kError;
-        settings.threads = threads;
-        auto out =
-            run_program(board, sink, in, ProgramSource::in_memory(kSpike, "spike.nc"), settings);
+        auto out = run_spike_stopping(in, threads, sink);
         ASSERT_TRUE(out) << out.error().to_string();
         const RunOutcome& o = out.value();
         ASSERT_EQ(o.errors.size(), 1u) << "threads " << threads;
@@ -340,13 +344,8 @@ TEST(RunProgram, ASelfApproachErrorIsTheOnlyErrorWhileTheAxesFinishTheMove) {
     auto in = load_run_inputs(files);
     ASSERT_TRUE(in) << in.error().to_string();
     for (const bool threads : {false, true}) {
-        apci::Board board("emu:");
         Collect sink;
-        RunSettings settings;
-        settings.self_approach = SelfApproachMode::kError;
-        settings.threads = threads;
-        auto out = run_program(board, sink, in.value(), ProgramSource::in_memory(kSpike, "spike.nc"),
-                               settings);
+        auto out = run_spike_stopping(in.value(), threads, sink);
         ASSERT_TRUE(out) << out.error().to_string();
         const RunOutcome& o = out.value();
         ASSERT_EQ(o.errors.size(), 1u) << "threads " << threads;
