@@ -494,19 +494,18 @@ bool StockOracle::contains(const Pt& p) const {
     return bg::covered_by(bp(p), impl_->part);
 }
 
-OracleReport StockOracle::run(std::span<const run::PathSegment> path,
-                              std::span<const double> radius, const OracleOptions& options) const {
-    if (path.size() != radius.size())
-        throw std::invalid_argument("StockOracle::run: one radius per segment");
-    const run::PlaneAxes axes = run::plane_axes(impl_->plane);
-    OracleReport report;
+namespace {
 
-    // Group the cutting segments by block and radius, in the order the blocks first ran.
+// The cutting segments (below the part's top) grouped by block and radius, in the order the
+// blocks first ran: their plane segments and their centre paths as connected runs of points.
+std::vector<PathBlock> cutting_blocks(std::span<const run::PathSegment> path,
+                                      std::span<const double> radius, int plane, double top) {
+    const run::PlaneAxes axes = run::plane_axes(plane);
     std::vector<PathBlock> blocks;
     for (std::size_t i = 0; i < path.size(); ++i) {
         const run::PathSegment& s = path[i];
         const double low = std::min(s.start[axes.third], s.end[axes.third]);
-        if (low >= impl_->top - kSamePoint) continue;  // at or above the part's top
+        if (low >= top - kSamePoint) continue;  // at or above the part's top
         if (!(radius[i] >= 0.0) || !std::isfinite(radius[i]))
             throw std::invalid_argument("StockOracle::run: a tool radius that is not a length");
         auto it = std::find_if(blocks.begin(), blocks.end(), [&](const PathBlock& b) {
@@ -523,91 +522,115 @@ OracleReport StockOracle::run(std::span<const run::PathSegment> path,
         ps.centre = {s.center[axes.first], s.center[axes.second]};
         ps.ccw = s.ccw;
         it->segments.push_back(ps);
-        std::vector<Pt> pts = densify(s, impl_->plane);
+        std::vector<Pt> pts = densify(s, plane);
         if (!it->runs.empty() && dist(it->runs.back().back(), pts.front()) <= kSamePoint)
             it->runs.back().insert(it->runs.back().end(), pts.begin() + 1, pts.end());
         else
             it->runs.push_back(std::move(pts));
     }
+    return blocks;
+}
 
-    for (const PathBlock& b : blocks) {
+// The walls block `b` comes within its radius of, and how deep (the least distance between its
+// centre path and each wall element near its box), one gouge per wall block, the deepest;
+// `least` gets the least distance to any wall, and the report the deepest touch within the
+// tolerance.
+std::vector<OracleGouge> walls_cut(const PathBlock& b, const std::vector<Wall>& walls,
+                                   double& least, OracleReport& report) {
+    Box2 reach;
+    std::vector<ChordTree> runs;
+    for (const std::vector<Pt>& run : b.runs) {
+        runs.emplace_back(run);
+        reach.add(runs.back().box());
+    }
+    reach.lx -= b.radius;
+    reach.ly -= b.radius;
+    reach.hx += b.radius;
+    reach.hy += b.radius;
+    least = kInf;
+    std::vector<OracleGouge> cut;
+    for (const Wall& w : walls) {
+        if (reach.distance(w.chords.box()) > 0.0) continue;
+        PolylineDistance best{b.radius, {}, {}};  // nothing beyond r matters
+        for (const ChordTree& t : runs) t.distance(w.chords, best);
+        least = std::min(least, best.distance);
+        if (best.distance >= b.radius) continue;
+        const double depth = b.radius - best.distance;
+        if (depth <= StockOracle::kPathTolerance) {
+            if (depth > report.deepest_intact) {
+                report.deepest_intact = depth;
+                report.deepest_intact_pair = {b.block,  w.element.block, depth, best.distance,
+                                              b.radius, best.a,          best.b};
+            }
+            continue;
+        }
+        auto same = std::find_if(cut.begin(), cut.end(), [&](const OracleGouge& g) {
+            return same_block(g.wall_block, w.element.block);
+        });
+        const OracleGouge g{b.block,  w.element.block, depth, best.distance,
+                            b.radius, best.a,          best.b};
+        if (same == cut.end())
+            cut.push_back(g);
+        else if (depth > same->depth)
+            *same = g;
+    }
+    return cut;
+}
+
+// The area block `b` sweeps and the part of it it takes from `part`, into `ob`; a block that
+// runs inside the material without cutting a wall goes to the report's buried blocks.
+void measure_taken(const PathBlock& b, const BMulti& part, bool cuts, OracleBlock& ob,
+                   OracleReport& report) {
+    std::vector<BPolygon> pieces;
+    for (const PlaneSegment& seg : b.segments) sweep_pieces(seg, b.radius, pieces);
+    BMulti swept;
+    for (const BPolygon& piece : pieces) {
+        BMulti next;
+        bg::union_(swept, piece, next);
+        swept = std::move(next);
+    }
+    BMulti taken;
+    bg::intersection(swept, part, taken);
+    ob.swept_area = bg::area(swept);
+    ob.taken_area = bg::area(taken);
+    ob.measured = true;
+    if (!(ob.swept_area >= 0.99 * kPi * b.radius * b.radius))
+        throw std::logic_error("StockOracle: the swept area of " + block_name(b.block) +
+                               " is smaller than the tool (" + std::to_string(ob.swept_area) +
+                               " mm^2)");
+    if (cuts && !(ob.taken_area > 0.0))
+        throw std::logic_error("StockOracle: " + block_name(b.block) +
+                               " comes deeper than the tolerance into a wall but its swept "
+                               "area takes nothing of the part");
+    // No wall cut, but the swept area holds more of the part than a touch within the
+    // tolerance all round its outline could: the block runs inside the material.
+    if (!cuts && ob.taken_area > bg::perimeter(swept) * 1.2 * StockOracle::kPathTolerance)
+        report.buried.push_back({b.block, ob.taken_area, b.radius});
+}
+
+}  // namespace
+
+OracleReport StockOracle::run(std::span<const run::PathSegment> path,
+                              std::span<const double> radius, const OracleOptions& options) const {
+    if (path.size() != radius.size())
+        throw std::invalid_argument("StockOracle::run: one radius per segment");
+    OracleReport report;
+    for (const PathBlock& b : cutting_blocks(path, radius, impl_->plane, impl_->top)) {
         OracleBlock ob{b.block, b.radius, 0.0, 0.0, false};
         if (b.radius <= 0.0) {  // a point tool sweeps no area
             report.blocks.push_back(ob);
             continue;
         }
-        // The walls it comes within r of, and how deep: the least distance between its centre
-        // path and each wall element near its box.
-        Box2 reach;
-        std::vector<ChordTree> runs;
-        for (const std::vector<Pt>& run : b.runs) {
-            runs.emplace_back(run);
-            reach.add(runs.back().box());
-        }
-        reach.lx -= b.radius;
-        reach.ly -= b.radius;
-        reach.hx += b.radius;
-        reach.hy += b.radius;
         double least = kInf;
-        std::vector<OracleGouge> cut;
-        for (const Wall& w : impl_->walls) {
-            if (reach.distance(w.chords.box()) > 0.0) continue;
-            PolylineDistance best{b.radius, {}, {}};  // nothing beyond r matters
-            for (const ChordTree& t : runs) t.distance(w.chords, best);
-            least = std::min(least, best.distance);
-            if (best.distance >= b.radius) continue;
-            const double depth = b.radius - best.distance;
-            if (depth <= kPathTolerance) {
-                if (depth > report.deepest_intact) {
-                    report.deepest_intact = depth;
-                    report.deepest_intact_pair = {b.block,  w.element.block, depth, best.distance,
-                                                  b.radius, best.a,          best.b};
-                }
-                continue;
-            }
-            auto same = std::find_if(cut.begin(), cut.end(), [&](const OracleGouge& g) {
-                return same_block(g.wall_block, w.element.block);
-            });
-            const OracleGouge g{b.block,  w.element.block, depth, best.distance,
-                                b.radius, best.a,          best.b};
-            if (same == cut.end())
-                cut.push_back(g);
-            else if (depth > same->depth)
-                *same = g;
-        }
+        const std::vector<OracleGouge> cut = walls_cut(b, impl_->walls, least, report);
         // The area it takes from the part. A block whose centre path keeps at least r less the
         // polygons' error from every wall, and starts outside the part, stays outside it (each
         // run is connected and crosses no wall): it takes nothing the polygons could tell from
         // their own error, and is not measured unless asked.
         bool inside = false;
         for (const std::vector<Pt>& run : b.runs) inside |= contains(run.front());
-        if (options.measure_every_block || inside || least < b.radius - 2 * kChordError) {
-            std::vector<BPolygon> pieces;
-            for (const PlaneSegment& seg : b.segments) sweep_pieces(seg, b.radius, pieces);
-            BMulti swept;
-            for (const BPolygon& piece : pieces) {
-                BMulti next;
-                bg::union_(swept, piece, next);
-                swept = std::move(next);
-            }
-            BMulti taken;
-            bg::intersection(swept, impl_->part, taken);
-            ob.swept_area = bg::area(swept);
-            ob.taken_area = bg::area(taken);
-            ob.measured = true;
-            if (!(ob.swept_area >= 0.99 * kPi * b.radius * b.radius))
-                throw std::logic_error("StockOracle: the swept area of " + block_name(b.block) +
-                                       " is smaller than the tool (" +
-                                       std::to_string(ob.swept_area) + " mm^2)");
-            if (!cut.empty() && !(ob.taken_area > 0.0))
-                throw std::logic_error("StockOracle: " + block_name(b.block) +
-                                       " comes deeper than the tolerance into a wall but its swept "
-                                       "area takes nothing of the part");
-            // No wall cut, but the swept area holds more of the part than a touch within the
-            // tolerance all round its outline could: the block runs inside the material.
-            if (cut.empty() && ob.taken_area > bg::perimeter(swept) * 1.2 * kPathTolerance)
-                report.buried.push_back({b.block, ob.taken_area, b.radius});
-        }
+        if (options.measure_every_block || inside || least < b.radius - 2 * kChordError)
+            measure_taken(b, impl_->part, !cut.empty(), ob, report);
         report.blocks.push_back(ob);
         report.gouges.insert(report.gouges.end(), cut.begin(), cut.end());
     }
