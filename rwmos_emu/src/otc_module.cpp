@@ -121,7 +121,7 @@ Status OtcModule::refuse_while_active(otc::Error e) noexcept {
 // changes nothing and is accepted any time; another value is refused with `E` while OTC is on.
 template <otc::Error E, auto... Path>
 Status OtcModule::write_while_off(const Info&, const Address&, const Value& v) {
-    auto& field = (state_ .* ... .* Path);
+    auto& field = field_of<Path...>(state_);
     auto value = field;
     assign(value, v);
     if (value == field) return Status::kOk;

@@ -65,13 +65,24 @@ class BoardTableModule : public objif::TableModule<Derived> {
     // range checks come first).
     template <auto... Path>
     Status read_field(const Info&, const Address&, Value& out) {
-        out = value_of((state_ .* ... .* Path));
+        out = value_of(field_of<Path...>(state_));
         return Status::kOk;
     }
     template <auto... Path>
     Status write_field(const Info&, const Address&, const Value& v) {
-        assign((state_ .* ... .* Path), v);
+        assign(field_of<Path...>(state_), v);
         return Status::kOk;
+    }
+
+    // The field the member pointers First, Rest... reach from `object`, one after the other.
+    // (Written as a recursion, not as a fold over .*, which cppcheck cannot parse.)
+    template <auto First, auto... Rest, class T>
+    static auto& field_of(T& object) noexcept {
+        if constexpr (sizeof...(Rest) == 0) {
+            return object.*First;
+        } else {
+            return field_of<Rest...>(object.*First);
+        }
     }
 
     EmulatedBoard::State& state_;
