@@ -113,7 +113,8 @@ class RunSink {
     // A compensated stretch begins: given before its first move to programmed(). The moves
     // programmed while it is open, other than rapids, are its contour elements.
     virtual void stretch_begin(const CompensatedStretch& s) { (void)s; }
-    // The stretch ends (G40, a rapid, a change of side).
+    // The stretch ends (G40, a change of side, M30 with compensation on; a G0 between goes as a
+    // compensated traverse and leaves it open).
     virtual void stretch_end() {}
     // CDON (true) or CDOF: whether the moves programmed from here on are walls.
     virtual void walls(bool on) { (void)on; }
