@@ -1707,12 +1707,15 @@ bool plan_single_shape(Rng& rng, Plan& plan, Options& opt, CamFamily family) {
     return single_contour(rng, plan, kind, pocket, std::nullopt, {level});
 }
 
-// A pocket of two rooms joined by a passage (rooms()); with `gouge`, narrower than the tool,
-// each of its walls gouged by the path along the other.
-bool plan_rooms(Rng& rng, Plan& plan, bool gouge) {
+// A pocket whose two walls at edges `a` and `b` of its shape (drawn by `shape` with the tool
+// radius, the gap and `gouge`) stand the gap apart; with `gouge`, nearer than the tool is wide,
+// each of them gouged by the path along the other.
+bool plan_two_wall_pocket(Rng& rng, Plan& plan, bool gouge,
+                          std::optional<Shape> (*shape)(Rng&, double, double, bool), std::size_t a,
+                          std::size_t b) {
     const double r = draw_radius(rng);
-    const double w = draw_gap(rng, r, gouge);
-    const auto sh = rooms(rng, r, w, gouge);
+    const double gap = draw_gap(rng, r, gouge);
+    const auto sh = shape(rng, r, gap, gouge);
     if (!sh) return false;
     const Shape s = placed_at_random(rng, *sh);
     const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
@@ -1720,10 +1723,15 @@ bool plan_rooms(Rng& rng, Plan& plan, bool gouge) {
     const double level = draw_level(rng);
     const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
     if (gouge) {
-        design_gouge(plan, id, s.edge[2], id, s.edge[8], 2 * r - w);
-        design_gouge(plan, id, s.edge[8], id, s.edge[2], 2 * r - w);
+        design_gouge(plan, id, s.edge[a], id, s.edge[b], 2 * r - gap);
+        design_gouge(plan, id, s.edge[b], id, s.edge[a], 2 * r - gap);
     }
     return true;
+}
+
+// A pocket of two rooms joined by a passage (rooms()); with `gouge`, narrower than the tool.
+bool plan_rooms(Rng& rng, Plan& plan, bool gouge) {
+    return plan_two_wall_pocket(rng, plan, gouge, rooms, 2, 8);
 }
 
 // A boss with a keyhole (keyhole()); with `gouge`, a channel narrower than the tool, each of
@@ -1745,22 +1753,9 @@ bool plan_keyhole(Rng& rng, Plan& plan, bool gouge) {
 }
 
 // A pocket with a tongue of material (tongue()); with `gouge`, its tip nearer the wall than the
-// tool is wide, the two gouging each other.
+// tool is wide.
 bool plan_tongue(Rng& rng, Plan& plan, bool gouge) {
-    const double r = draw_radius(rng);
-    const double g = draw_gap(rng, r, gouge);
-    const auto sh = tongue(rng, r, g, gouge);
-    if (!sh) return false;
-    const Shape s = placed_at_random(rng, *sh);
-    const Contour c = make_contour("pocket: " + s.what, s.loop, true, draw_side(rng));
-    plan.plate = true;
-    const double level = draw_level(rng);
-    const int id = plan_with_leads(rng, plan, c, true, {1, r}, level);
-    if (gouge) {
-        design_gouge(plan, id, s.edge[1], id, s.edge[5], 2 * r - g);
-        design_gouge(plan, id, s.edge[5], id, s.edge[1], 2 * r - g);
-    }
-    return true;
+    return plan_two_wall_pocket(rng, plan, gouge, tongue, 1, 5);
 }
 
 // A boss with a slot between two prongs (u_shape()), wide enough for the tool, drawn straight
