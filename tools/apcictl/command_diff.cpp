@@ -507,12 +507,14 @@ class DiffCommand final : public Command {
         if (json_ == "-")
             return Outcome::usage_error(
                 "diff: --json needs a file (standard output has the comparison)");
-        for (const std::string* input : {&program_, &inputs_.tools, &inputs_.corr, &inputs_.plc})
+        std::vector<std::pair<std::string_view, const std::string*>> inputs{{"PROGRAM", &program_}};
+        for (const auto& input : inputs_.named()) inputs.push_back(input);
+        for (const auto& [name, input] : inputs)
             if (!json_.empty() && !input->empty() && apci::run::same_file(json_, *input))
                 return Outcome::usage_error(fmt::format(
-                    "diff: --json '{}' is the same file as the input '{}' (the output would "
+                    "diff: --json '{}' is the same file as the input {} '{}' (the output would "
                     "overwrite it)",
-                    json_, *input));
+                    json_, name, *input));
         return Outcome::success();
     }
 

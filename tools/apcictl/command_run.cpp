@@ -509,9 +509,7 @@ class RunCommand final : public Command {
     Outcome refuse_output_over_input() const {
         std::vector<std::pair<std::string_view, const std::string*>> files;
         if (program_ != "-") files.emplace_back("PROGRAM", &program_);
-        files.emplace_back("--tools", &inputs_.tools);
-        files.emplace_back("--plc", &inputs_.plc);
-        files.emplace_back("--corr", &inputs_.corr);
+        for (const auto& input : inputs_.named()) files.push_back(input);
         const std::size_t inputs = files.size();
         files.emplace_back("--json", &json_);
         files.emplace_back("--svg", &svg_);

@@ -5,7 +5,10 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "apci/nc/diagnostic.h"
 #include "apci/run/program_run.h"
@@ -20,6 +23,10 @@ struct RunInputOptions {
 
     // Declares --tools, --corr and --plc on `app`.
     void declare(CLI::App& app);
+    // The options with their values, for the check that no output is an input.
+    std::array<std::pair<std::string_view, const std::string*>, 3> named() const {
+        return {{{"--tools", &tools}, {"--plc", &plc}, {"--corr", &corr}}};
+    }
     // The inputs given (an empty option: not given), named in a refusal as the options that
     // give them ("no --tools file given").
     apci::run::RunInputFiles files() const;
