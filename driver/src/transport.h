@@ -138,7 +138,7 @@ private:
 // From `start` on an apci_segment is doubles and 64-bit counters with no gap or tail: only its
 // head has padding (segment_to_c zeroes the head).
 static_assert(sizeof(apci_segment) == offsetof(apci_segment, start) +
-                                          3 * sizeof(double[APCI_AXIS_COUNT]) + sizeof(double) +
+                                          5 * sizeof(double[APCI_AXIS_COUNT]) + sizeof(double) +
                                           2 * sizeof(std::uint64_t));
 
 // An executed segment as the C API hands it out, from the wire's record (objif::WireSegment)
@@ -162,13 +162,17 @@ void segment_to_c(const Segment& m, apci_segment& s) noexcept {
     // Fixed-size copies the compiler does in place (std::copy of the arrays was a memmove call
     // each, three a segment).
     static_assert(sizeof m.start == sizeof s.start && sizeof m.end == sizeof s.end &&
-                  sizeof m.center == sizeof s.center);
+                  sizeof m.center == sizeof s.center &&
+                  sizeof m.length_start == sizeof s.length_start &&
+                  sizeof m.length_end == sizeof s.length_end);
     std::memcpy(s.start, m.start.data(), sizeof s.start);
     std::memcpy(s.end, m.end.data(), sizeof s.end);
     std::memcpy(s.center, m.center.data(), sizeof s.center);
     s.feed = m.feed;
     s.start_cycle = m.start_cycle;
     s.end_cycle = m.end_cycle;
+    std::memcpy(s.length_start, m.length_start.data(), sizeof s.length_start);
+    std::memcpy(s.length_end, m.length_end.data(), sizeof s.length_end);
 }
 
 // A board found by list_devices(): its URI and one line about it.

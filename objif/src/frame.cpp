@@ -498,6 +498,8 @@ void put(ByteWriter& w, const WireSegment& s) {
     w.f64(s.feed);
     w.u64(s.start_cycle);
     w.u64(s.end_cycle);
+    put(w, s.length_start);
+    put(w, s.length_end);
 }
 FrameError take(ByteReader& r, WireSegment& s) {
     std::uint8_t flags = 0;
@@ -512,6 +514,8 @@ FrameError take(ByteReader& r, WireSegment& s) {
     OBJIF_TRY(finite(r, s.center));
     OBJIF_TRY(finite(r, s.feed));
     OBJIF_NEED(r.u64(s.start_cycle) && r.u64(s.end_cycle));
+    OBJIF_TRY(finite(r, s.length_start));
+    OBJIF_TRY(finite(r, s.length_end));
     return FrameError::kNone;
 }
 }  // namespace

@@ -26,7 +26,10 @@ motion::MotionResult EmulatedBoard::spool(const motion::Profile& p) {
         return r;
     }
     const motion::MotionResult r = state_->motion.spool(q);
-    if (r.ok()) commit_profile(state_->comp3d, plan);
+    if (r.ok()) {
+        commit_profile(state_->comp3d, plan);
+        if (plan.compensated) state_->motion.mark_surface();
+    }
     return r;
 }
 

@@ -53,6 +53,8 @@ objif::WireSegment wire_segment(const motion::Segment& s) {
     w.feed = s.feed;
     w.start_cycle = s.start_cycle;
     w.end_cycle = s.end_cycle;
+    w.length_start = s.length_start;
+    w.length_end = s.length_end;
     return w;
 }
 }  // namespace

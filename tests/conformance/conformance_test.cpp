@@ -401,6 +401,49 @@ TEST_P(Conformance, CompensationHoldsAProfileUntilSsf2001) {
     EXPECT_NE(st.position[0], 0.0) << "the released profiles ran";
 }
 
+// A compensated contour with a tool length: its segments, read through this transport, are the
+// embedded board's byte for byte, the length the board added at each end included.
+std::vector<apci_segment> run_contour_with_length(apci_board* b) {
+    auto write_int = [b](apci_object_descriptor o, std::int32_t v) {
+        EXPECT_EQ(apci_write_int(b, &o, v), APCI_OK) << apci_last_error(b);
+    };
+    auto write_double = [b](apci_object_descriptor o, double v) {
+        EXPECT_EQ(apci_write_double(b, &o, v), APCI_OK) << apci_last_error(b);
+    };
+    write_int(tc_group(1, APCI_TC_XAXIS), 0);
+    write_int(tc_group(1, APCI_TC_YAXIS), 1);
+    write_int(tc_group(1, APCI_TC_ZAXIS), 2);
+    write_double(tc_group(1, APCI_TC_RADIUS), 2.0);
+    write_double(tc_group(1, APCI_TC_WKZLEN), 7.5);
+    write_int(tc_group(1, APCI_TC_RIGHT), 1);
+    write_int(tc_group(1, APCI_TC_STATUS), 1);
+    EXPECT_EQ(apci_spool_profile(b, ptr(line_to(10.0, 0.0, 1)), nullptr), APCI_OK);
+    EXPECT_EQ(apci_spool_profile(b, ptr(line_to(10.0, 10.0, 2)), nullptr), APCI_OK);
+    write_int(tc_group(1, APCI_TC_STATUS), 0);
+    EXPECT_EQ(apci_run_until_idle(b, 1000000, nullptr), APCI_OK);
+    std::vector<apci_segment> segments(16);
+    std::size_t n = 0;
+    EXPECT_EQ(apci_read_segments(b, segments.data(), segments.size(), &n), APCI_OK);
+    segments.resize(n);
+    return segments;
+}
+
+TEST_P(Conformance, SegmentsCarryTheToolLengthAsOnTheEmbeddedBoard) {
+    apci_board* reference = nullptr;
+    ASSERT_EQ(apci_open("emu:", &reference), APCI_OK);
+    const std::vector<apci_segment> expected = run_contour_with_length(reference);
+    apci_close(reference);
+    const std::vector<apci_segment> got = run_contour_with_length(board_);
+    ASSERT_EQ(got.size(), expected.size());
+    ASSERT_GE(got.size(), 3u);
+    EXPECT_EQ(got.front().length_start[2], 0.0) << "the approach brings the length in";
+    EXPECT_EQ(got.front().length_end[2], 7.5);
+    EXPECT_EQ(got.back().length_start[2], 7.5) << "the departure takes it out";
+    EXPECT_EQ(got.back().length_end[2], 0.0);
+    for (std::size_t i = 0; i < got.size(); ++i)
+        EXPECT_EQ(std::memcmp(&got[i], &expected[i], sizeof(apci_segment)), 0) << "segment " << i;
+}
+
 TEST_P(Conformance, DirectCommandDiscardsTheSpooler) {
     ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(50.0, 0.0, 1)), nullptr), APCI_OK);
     ASSERT_EQ(apci_spool_profile(board_, ptr(line_to(50.0, 50.0, 2)), nullptr), APCI_OK);

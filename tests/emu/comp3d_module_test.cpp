@@ -256,6 +256,11 @@ TEST_F(Comp3dBoard, ArmingWrittenBetweenProfilesActsOnTheNextOne) {
     EXPECT_NE(V(segs[1].end[0], segs[1].end[1], segs[1].end[2]), V(4, 5, 6));  // compensated
     EXPECT_EQ(V(segs[2].end[0], segs[2].end[1], segs[2].end[2]), V(7, 8, 9));
     EXPECT_EQ(get(c3::kIdxArm), 0);
+    // The segment says what the board did: the compensated line is a contour element, the
+    // lines as programmed are not.
+    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
+    EXPECT_EQ(segs[1].role, SegmentRole::kContour);
+    EXPECT_EQ(segs[2].role, SegmentRole::kUncompensated);
 }
 
 TEST_F(Comp3dBoard, RapidWithArmedVectorsIsNotCompensatedAndUsesThemUp) {
@@ -264,7 +269,10 @@ TEST_F(Comp3dBoard, RapidWithArmedVectorsIsNotCompensatedAndUsesThemUp) {
     ASSERT_EQ(arm(&kN, nullptr), Status::kOk);
     spool_ok(rapid(1, 5, 5));
     run();
-    EXPECT_EQ(end_of_last_segment(), V(5, 5, 0));
+    const std::vector<Segment> segs = segments();
+    ASSERT_EQ(segs.size(), 1U);
+    EXPECT_EQ(V(segs[0].end[0], segs[0].end[1], segs[0].end[2]), V(5, 5, 0));
+    EXPECT_EQ(segs[0].role, SegmentRole::kRapid) << "not compensated: not marked";
     EXPECT_EQ(get(c3::kIdxArm), 0);
 }
 

@@ -129,6 +129,72 @@ TEST(Executor, DiscardStopsTheMoveUnderWayWhereItIsAndDropsTheRest) {
     EXPECT_EQ(segs[0].end_cycle, 40u);
 }
 
+// A segment starts with the tool length its move began with (the last move's end, or what
+// shift_nominal folded into the standing point since) and ends with its move's.
+TEST(Executor, SegmentsCarryTheLengthFromMoveToMoveAndShiftsOfTheNominalPoint) {
+    Executor e;
+    Move in = line(at(0, 0, 0), at(1, 0, 5), 1);
+    in.length_end[2] = 5.0;
+    Move keep = line(at(1, 0, 5), at(2, 0, 5), 2);
+    keep.length_end[2] = 5.0;
+    e.push(in);
+    e.push(keep);
+    e.run_until_idle(1'000'000, kCycle);
+    EXPECT_EQ(e.nominal_length()[2], 5.0);
+    ASSERT_TRUE(e.shift_nominal(2, -0.25));  // a fold: the nominal point and its length move
+    EXPECT_EQ(e.nominal_length()[2], 4.75);
+    EXPECT_EQ(e.nominal_position()[2], 4.75);
+    e.push(line(at(2, 0, 4.75), at(3, 0, 0), 3));  // takes the length out
+    e.run_until_idle(1'000'000, kCycle);
+    const auto segs = drain_segments(e);
+    ASSERT_EQ(segs.size(), 3u);
+    EXPECT_EQ(segs[0].length_start[2], 0.0);
+    EXPECT_EQ(segs[0].length_end[2], 5.0);
+    EXPECT_EQ(segs[1].length_start[2], 5.0);
+    EXPECT_EQ(segs[1].length_end[2], 5.0);
+    EXPECT_EQ(segs[2].length_start[2], 4.75);
+    EXPECT_EQ(segs[2].length_end[2], 0.0);
+    EXPECT_EQ(e.nominal_length()[2], 0.0);
+}
+
+// A shift refused while moves are queued moves no length either.
+TEST(Executor, ARefusedShiftLeavesTheLengthAsItIs) {
+    Executor e;
+    e.push(line(at(0, 0), at(1, 0)));
+    EXPECT_FALSE(e.shift_nominal(2, 1.0));
+    EXPECT_FALSE(e.shift_nominal(-1, 1.0));
+    EXPECT_EQ(e.nominal_length(), AxisVector{});
+}
+
+// The length is followed even when the segment log keeps nothing (capacity 0).
+TEST(Executor, TheLengthIsFollowedWhenTheLogHasNoRoom) {
+    Executor e;
+    e.segments().set_capacity(0);
+    Move m = line(at(0, 0), at(1, 0, 3), 1);
+    m.length_end[2] = 3.0;
+    e.push(m);
+    e.run_until_idle(1'000'000, kCycle);
+    EXPECT_EQ(e.segments().lost(), 1u);
+    EXPECT_EQ(e.nominal_length()[2], 3.0);
+}
+
+// Interrupted at 200 of 500 cycles, the move from 1 of length to 5 ends with 2.6.
+TEST(Executor, AnInterruptedSegmentEndsWithThePartOfTheLengthItBroughtIn) {
+    Executor e;
+    ASSERT_TRUE(e.shift_nominal(2, 1.0));  // standing with 1 of length, at Z 1
+    Move m = line(at(0, 0, 1), at(0, 0, 6), 1);  // 500 cycles
+    m.length_end[2] = 5.0;
+    e.push(m);
+    e.advance(200, kCycle);
+    e.discard();
+    const auto segs = drain_segments(e);
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_TRUE(segs[0].interrupted);
+    EXPECT_DOUBLE_EQ(segs[0].length_start[2], 1.0);
+    EXPECT_DOUBLE_EQ(segs[0].length_end[2], 1.0 + 4.0 * 0.4);
+    EXPECT_DOUBLE_EQ(e.nominal_length()[2], 2.6);
+}
+
 TEST(Executor, HaltLetsTheMoveUnderWayEndButStartsNoSpooledMove) {
     Executor e;
     e.push(line(at(0, 0), at(1, 0), 1));

@@ -280,6 +280,80 @@ TEST_F(TcRules, LengthModeOneAddsWkzLenToEveryProfile) {
     EXPECT_NEAR(segs.back().end[2], 5.0, kEps);  // the departure keeps the length
     for (const auto& s : segs) EXPECT_NEAR(s.end[2], 5.0, kEps);
 }
+// The executed segments say how much tool length the board added in their start and end
+// (Segment::length_start, length_end): the approach brings WkzLen in, the contour and the
+// transition keep it, the departure takes it out; the programmed path is the position less it.
+TEST_F(TcRules, ExecutedSegmentsCarryTheLengthTheBoardAddedAtTheirEnds) {
+    setup_group(1.0);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
+    activate();
+    spool_ok(line3(1, 10, 0, 0));
+    spool_ok(line3(2, 10, -10, -2));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 5u);
+    const double starts[] = {0, 5, 5, 5, 5}, ends[] = {5, 5, 5, 5, 0};
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        EXPECT_EQ(segs[i].length_start[2], starts[i]) << i;
+        EXPECT_EQ(segs[i].length_end[2], ends[i]) << i;
+        for (std::size_t a : {0u, 1u, 3u, 7u}) {
+            EXPECT_EQ(segs[i].length_start[a], 0.0) << i << " axis " << a;
+            EXPECT_EQ(segs[i].length_end[a], 0.0) << i << " axis " << a;
+        }
+    }
+    EXPECT_NEAR(segs[3].end[2] - segs[3].length_end[2], -2.0, kEps) << "contour 2 at Z -2";
+}
+
+// LengthMode 1: every segment ends with WkzLen, the uncompensated first one included; it
+// starts with what the one before ended with.
+TEST_F(TcRules, UnderLengthModeOneEverySegmentEndsWithTheLength) {
+    setup_group(1.0);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
+    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, tc::kLengthAlways),
+              Status::kOk);
+    spool_ok(line3(1, 10, 0, 0));
+    activate();
+    spool_ok(line3(2, 20, 0, 0));
+    ASSERT_EQ(deactivate(), Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_GE(segs.size(), 3u);
+    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
+    EXPECT_EQ(segs[0].length_start[2], 0.0);
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        EXPECT_EQ(segs[i].length_end[2], 5.0) << i;
+        if (i > 0) {
+            EXPECT_EQ(segs[i].length_start[2], 5.0) << i;
+        }
+    }
+}
+
+// A jog stops the approach where it is: the interrupted segment ends with the part of the
+// length the axes carry there, the jog starts with it and ends without (the programmed path is
+// where the axes are after a direct command).
+TEST_F(TcRules, AnInterruptedSegmentEndsWithTheLengthWhereItStopped) {
+    setup_group(1.0);
+    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 8.0), Status::kOk);
+    activate();
+    spool_ok(line3(1, 0, 10, 0));
+    spool_ok(line3(2, 10, 10, 0));  // releases the approach to (-1, 10) and the first element
+    board.step(50);                 // into the approach
+    ASSERT_EQ(board.direct(jog_to(0, 0)).status, Status::kOk);
+    run();
+    const auto segs = segments();
+    ASSERT_EQ(segs.size(), 2u);
+    ASSERT_TRUE(segs[0].interrupted);
+    EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
+    const double z = segs[0].end[2];
+    EXPECT_GT(z, 0.0);
+    EXPECT_LT(z, 8.0);
+    EXPECT_EQ(segs[0].length_end[2], z) << "all of Z's motion so far is the length";
+    EXPECT_EQ(segs[1].length_start[2], z);
+    EXPECT_EQ(segs[1].length_end[2], 0.0);
+    EXPECT_EQ(segs[1].end[2], z) << "the jog names X and Y only";
+}
+
 TEST_F(TcRules, LengthModeTakesOnlyItsTwoValues) {
     EXPECT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, 2), Status::kValueTooHigh);
     EXPECT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, -1), Status::kValueTooLow);

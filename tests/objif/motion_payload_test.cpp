@@ -74,6 +74,9 @@ objif::WireSegment sample_segment() {
     s.feed = 600;
     s.start_cycle = 10;
     s.end_cycle = 99;
+    s.length_start[2] = 4.5;
+    s.length_end[2] = -0.125;
+    s.length_end[7] = 2;
     return s;
 }
 
@@ -308,6 +311,8 @@ TEST(MotionPayload, TraceReplyOfSegmentsRoundTrips) {
     EXPECT_EQ(d.segments[0].plane, 17);
     EXPECT_EQ(d.segments[0].center, m.segments[0].center);
     EXPECT_EQ(d.segments[0].end_cycle, 99u);
+    EXPECT_EQ(d.segments[0].length_start, m.segments[0].length_start);
+    EXPECT_EQ(d.segments[0].length_end, m.segments[0].length_end);
     EXPECT_TRUE(d.segments[1].interrupted);
     EXPECT_FALSE(d.segments[0].traverse);
     EXPECT_TRUE(d.segments[1].traverse);
@@ -354,6 +359,18 @@ TEST(MotionPayload, TraceReplyWithBadContentIsRefused) {
     auto b = good;
     put_f64(b, seg + 14, kNan);  // start[0]
     EXPECT_EQ(objif::decode(b, d), FrameError::kNotFinite);
+    // The lengths close the record: length_start[0] after the cycles, length_end[7] its last.
+    const std::size_t lengths = seg + 14 + 3 * 8 * objif::kWireAxisCount + 8 + 16;
+    b = good;
+    put_f64(b, lengths, kNan);
+    EXPECT_EQ(objif::decode(b, d), FrameError::kNotFinite) << "length_start[0]";
+    b = good;
+    put_f64(b, seg + objif::kWireSegmentSize - 8, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(objif::decode(b, d), FrameError::kNotFinite) << "length_end[7]";
+    b = good;
+    put_f64(b, seg + objif::kWireSegmentSize - 8, 0.5);
+    ASSERT_EQ(objif::decode(b, d), FrameError::kNone);
+    EXPECT_EQ(d.segments[0].length_end[7], 0.5) << "the last 8 bytes are length_end[7]";
     b = good;
     put_u32(b, 0, 0xFFFFFFFF);
     EXPECT_EQ(objif::decode(b, d), FrameError::kBadPayload) << "unknown status";

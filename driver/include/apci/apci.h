@@ -471,6 +471,11 @@ typedef struct apci_segment {
     double center[APCI_AXIS_COUNT]; /* arcs: centre on plane_axes, start on the others */
     double feed;                    /* units per minute */
     uint64_t start_cycle, end_cycle;
+    /* The tool length compensation the board added in start and in end, per axis (the tool
+       length on the length axis while it acts, 0 elsewhere; an interrupted segment's end: where
+       it stopped). The tool centre point is the position less these. */
+    double length_start[APCI_AXIS_COUNT];
+    double length_end[APCI_AXIS_COUNT];
 } apci_segment;
 
 /* Moves up to `max` of the oldest executed segments into `out`; *count says how many. */

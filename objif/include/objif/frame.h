@@ -284,9 +284,14 @@ struct WireSegment {
     double feed = 0.0;
     std::uint64_t start_cycle = 0;
     std::uint64_t end_cycle = 0;
+    // The tool length compensation in start and in end, per axis: the tool centre point is the
+    // position less these.
+    WireAxes length_start{};
+    WireAxes length_end{};
 };
 inline constexpr std::size_t kWireSampleSize = 8 + 8 * kWireAxisCount;
-inline constexpr std::size_t kWireSegmentSize = 4 + 4 + 2 + 4 + kWireAxisCount * 3 * 8 + 8 + 16;
+inline constexpr std::size_t kWireSegmentSize = 4 + 4 + 2 + 4 + kWireAxisCount * 3 * 8 + 8 + 16 +
+                                                kWireAxisCount * 2 * 8;
 inline constexpr std::size_t kTraceReplyHeader = 4 + 1 + 4;
 // The most items one ReadTrace reply carries (the payload limit).
 inline constexpr std::size_t kMaxSamplesPerReply = (kMaxPayload - kTraceReplyHeader) / kWireSampleSize;

@@ -83,6 +83,17 @@ class MotionLayer final : public TcMotion {
         return true;
     }
     std::uint64_t oldest_profile_in_flight() const noexcept;
+    // The profile just taken was compensated by the 3D module: its queued moves are marked
+    // (Move::surface), so their executed segments are contour elements. A profile the TC module
+    // holds back has none queued yet; its moves are the TC's contour elements anyway.
+    void mark_surface() noexcept {
+        const std::uint64_t taken = spooler_.profiles_taken();
+        for (std::size_t i = exec_.fill(); i-- > 0;) {
+            motion::Move& m = exec_.queued(i);
+            if (m.profile != taken) break;
+            m.surface = true;
+        }
+    }
 
   private:
     // The TcSettings for a call: what only object accesses change as last read (read again

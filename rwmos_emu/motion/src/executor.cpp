@@ -24,9 +24,15 @@ void Executor::start_front(double cycle_seconds, bool inert) {
 }
 
 void Executor::finish_front(bool interrupted, bool inert) {
+    // The length where the move began and where it ended (stopped): the segment's, and from
+    // here on the nominal path's. Kept even when the log has no room for the segment.
+    const AxisVector at_start = nominal_length_;
+    length_at(moves_.front(), at_start, k_, n_, nominal_length_);
     segments_.push_with([&](Segment& s) {
         segment_into(moves_.front(), s);
         s.end = nominal_;
+        s.length_start = at_start;
+        s.length_end = nominal_length_;
         s.start_cycle = front_start_cycle_;
         s.end_cycle = now_;
         s.interrupted = interrupted;

@@ -37,6 +37,8 @@ void set_move_head(Move& m, SegmentKind kind, double feed, SegmentRole role,
     m.traverse = false;
     m.profile = 0;
     m.length_change = {};
+    m.length_end = {};
+    m.surface = false;
     m.side = 0;
     m.plane = 0;
     m.feed = feed;
@@ -156,6 +158,16 @@ void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& ou
     }
 }
 
+void length_at(const Move& m, const AxisVector& at_start, std::uint64_t k, std::uint64_t n,
+               AxisVector& out) noexcept {
+    if (k >= n) {
+        out = m.length_end;
+        return;
+    }
+    const double t = static_cast<double>(k) / static_cast<double>(n);
+    for (int a = 0; a < kAxisCount; ++a) out[a] = at_start[a] + (m.length_end[a] - at_start[a]) * t;
+}
+
 void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept {
     for (int a = 0; a < kAxisCount; ++a) out[a] = m.end[a] - m.start[a];
     if (m.kind == SegmentKind::kArc) {
@@ -178,9 +190,13 @@ void segment_into(const Move& m, Segment& s) noexcept {
     // Every member, as Segment{} and then the move's (no zero-fill written over again).
     s.tag = m.tag;
     s.kind = m.kind;
-    s.role = m.role;
+    // A line the 3D module compensated is a contour element (the spooler, which knows only the
+    // TC module, ran it uncompensated).
+    s.role = m.surface && m.role == SegmentRole::kUncompensated ? SegmentRole::kContour : m.role;
     s.start = m.start;
     s.end = m.end;
+    s.length_start = AxisVector{};  // the executor's, where the move began
+    s.length_end = m.length_end;
     s.feed = m.feed;
     s.start_cycle = 0;
     s.end_cycle = 0;

@@ -172,18 +172,8 @@ bool Comp3dUnit::spool(const BlockRef& at, const PathSegment& programmed,
     run_.head_spooled();
     apci::Result<apci_motion_result> r;
     if (!run_.spool_profile(p, r)) return false;
-    if (r.ok()) {
-        ++pending_[p.tag];
-        return true;
-    }
+    if (r.ok()) return true;
     return failure(at, r.status, "LN");
-}
-
-bool Comp3dUnit::read_back(std::uint32_t tag) {
-    const auto it = pending_.find(tag);
-    if (it == pending_.end()) return false;
-    if (--it->second == 0) pending_.erase(it);
-    return true;
 }
 
 template <typename T>

@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <string_view>
-#include <unordered_map>
 
 #include "apci/apci.hpp"
 #include "apci/nc/correction_table.h"
@@ -31,9 +30,6 @@ class Comp3dUnit final : public ModuleUnit {
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p);
     // An L line with RL/RR under TCPM: the module's (peripheral milling).
     bool peripheral() const noexcept { return tcpm_ && side_ != nc::Compensation::kOff; }
-    // Whether the executed segment of this tag is one of the module's lines still to be read
-    // back (then it counts it as read).
-    bool read_back(std::uint32_t tag);
 
   private:
     bool setup(const BlockRef& at);
@@ -47,7 +43,6 @@ class Comp3dUnit final : public ModuleUnit {
     bool ready_ = false;
     bool tcpm_ = false;
     nc::Compensation side_ = nc::Compensation::kOff;
-    std::unordered_map<std::uint32_t, std::uint32_t> pending_;  // 3D lines not yet read back
 };
 
 }  // namespace apci::run::exec

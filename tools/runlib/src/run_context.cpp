@@ -35,12 +35,6 @@ Role role_of(std::uint8_t role) noexcept {
     return role <= APCI_ROLE_UNCOMPENSATED ? static_cast<Role>(role) : Role::kUncompensated;
 }
 
-// The roles whose end point carries the tool length compensation (rwmos spooler: the length is
-// added on the compensated path and taken off by the departure).
-bool ends_length_compensated(Role r) noexcept {
-    return r == Role::kContour || r == Role::kApproach || r == Role::kTransition;
-}
-
 // ---- #TRAFO: the B head's tool-tip transformation (docs/design.md section 8; docs/otc.md)
 
 Eigen::Vector3d tool_axis(double b_deg) noexcept {
@@ -70,11 +64,10 @@ bool RunContext::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     head_.trafo_length = e.tool_length;
     // The next segment starts where the last one ended; under the transformation its start is
     // turned back into the tip by the transformation alone, after it by the length on the axis.
-    // (The tip is another frame than the pivot: no fold's jump is read across the switch.)
-    start_offset_ = Eigen::Vector3d::Zero();
+    switch_start_length_ = Eigen::Vector3d::Zero();
     const TcUnit::State& tc = tc_.state();
-    if (!e.on && tc.length_always) start_offset_[plane_axes(tc.plane).third] = tc.length;
-    have_last_board_end_ = false;
+    if (!e.on && tc.length_always) switch_start_length_[plane_axes(tc.plane).third] = tc.length;
+    frame_switched_ = true;
     return true;
 }
 
@@ -433,7 +426,7 @@ bool RunContext::drain_samples(std::uint64_t pending) {
 }
 
 // A board segment in program coordinates: X, Y, Z from their board axes, the tool length
-// compensation taken off (the tool centre point, docs/design.md section 7).
+// compensation the board reports taken off (the tool centre point, docs/design.md section 7).
 PathSegment RunContext::convert(const apci_segment& b) {
     PathSegment s;
     s.block = decode_block_tag(b.tag);
@@ -460,31 +453,15 @@ PathSegment RunContext::convert(const apci_segment& b) {
         s.end -= head_.trafo_length * tool_axis(b1);
         s.center -= head_.trafo_length * tool_axis(b0);
     }
-    // The length acts on the tool axis of the plane in force: the plane of the contour under
-    // G41/G42 (LengthMode 0), the plane now (LengthMode 1; a plane change drains the segments
-    // before it, so every segment read after it ran in it).
-    const TcUnit::State& tc = tc_.state();
-    const int z = plane_axes(tc.length_always ? tc.plane : tc.comp_plane).third;
-    Eigen::Vector3d end_offset = Eigen::Vector3d::Zero();
-    if (tc.length_always || ends_length_compensated(s.role)) end_offset[z] = tc.length;
-    if (have_last_board_end_ && segments_lost_ == 0) {
-        // The nominal path moved by the fold on the tool axis alone: so did the length.
-        const Eigen::Vector3d jump = s.start - last_board_end_;
-        if (std::abs(jump[z]) > 1e-9 && std::abs(jump[(z + 1) % 3]) <= 1e-9 &&
-            std::abs(jump[(z + 2) % 3]) <= 1e-9)
-            start_offset_[z] += jump[z];
+    // The tool length compensation the board added, taken off where the board says it acted.
+    for (int i = 0; i < 3; ++i) {
+        const std::int32_t a = axis(i);
+        const double at_start = frame_switched_ ? switch_start_length_[i] : b.length_start[a];
+        s.start[i] -= at_start;
+        s.center[i] -= at_start;
+        s.end[i] -= b.length_end[a];
     }
-    last_board_end_ = s.end;
-    have_last_board_end_ = true;
-    s.start -= start_offset_;
-    s.center -= start_offset_;
-    s.end -= end_offset;
-    start_offset_ = end_offset;
-    // A line the 3D module compensated is a contour element (the board's spooler, which
-    // knows only the TC module, calls it uncompensated; the TC's length compensation did
-    // not act on it, as the offsets above say).
-    if (s.role == Role::kUncompensated && b.role != APCI_ROLE_RAPID && c3_.read_back(b.tag))
-        s.role = Role::kContour;
+    frame_switched_ = false;
     // Sweep and length once, for the totals and the writers: here, or by a sink that measures
     // them off this thread (RunSink::measures_executed).
     if (!sink_measures_) measure(s);

@@ -192,19 +192,16 @@ class RunContext {
     bool clock_ok_ = true;  // no clock call failed
     bool klartext_ = false;
     bool sink_measures_ = false;  // the sink measures the executed segments (measures_executed)
-    // Whether last_board_end_ holds a segment's end.
-    bool have_last_board_end_ = false;
     std::uint64_t start_cycle_ = 0;
     std::uint64_t cycles_seen_ = 0;
     std::uint64_t segments_lost_ = 0;
     std::uint64_t trace_lost_ = 0;
-    // Length compensation at the end of the last segment read, per program axis (the tool axis
-    // changes with the plane).
-    Eigen::Vector3d start_offset_ = Eigen::Vector3d::Zero();
-    // The board's end of the last segment read (program axes): a segment that starts elsewhere
-    // on the tool axis follows a fold of OTC wear into the tool length, which moved the nominal
-    // path and not the axes.
-    Eigen::Vector3d last_board_end_ = Eigen::Vector3d::Zero();
+    // #TRAFO switched the frame the host reads the axes in: the standing point's tool tip is
+    // read in the new one, so the first segment after the switch starts with this length on
+    // the program axes instead of the board's (ON: none, the transformation alone; OFF: the
+    // length LengthMode 1 adds from there on).
+    bool frame_switched_ = false;
+    Eigen::Vector3d switch_start_length_ = Eigen::Vector3d::Zero();
     RecentMoves recent_;
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;

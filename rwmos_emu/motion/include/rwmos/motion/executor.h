@@ -52,8 +52,13 @@ class Executor {
     bool shift_nominal(int axis, double delta) noexcept {
         if (!moves_.empty() || axis < 0 || axis >= kAxisCount) return false;
         nominal_[static_cast<std::size_t>(axis)] += delta;
+        nominal_length_[static_cast<std::size_t>(axis)] += delta;
         return true;
     }
+    // The tool length compensation in the nominal path's standing point (per axis): the last
+    // move's Move::length_end, with what shift_nominal() folded into it since. The next
+    // executed segment starts with it (Segment::length_start).
+    const AxisVector& nominal_length() const noexcept { return nominal_length_; }
     // The i-th queued move (0: the one under way or next). For the modules that annotate
     // the moves a call just queued; i < fill().
     Move& queued(std::size_t i) noexcept { return moves_[i]; }
@@ -116,6 +121,7 @@ class Executor {
     std::uint64_t now_ = 0;
     AxisVector position_{};
     AxisVector nominal_{};
+    AxisVector nominal_length_{};  // nominal_length()
     CycleOffsets* offsets_ = nullptr;
     bool halted_ = false;
     bool tracing_ = false;

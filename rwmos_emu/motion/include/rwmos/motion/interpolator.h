@@ -35,6 +35,13 @@ struct Move {
     // (WkzLen added at the end and not at the start, or the reverse), not a programmed motion:
     // OTC grinds nothing along it.
     AxisVector length_change{};
+    // The tool length compensation in its end, per axis (WkzLen on the length axis while it
+    // acts, zero elsewhere). The executed segment carries it, so the host takes the length off
+    // without inferring it.
+    AxisVector length_end{};
+    // From a profile the 3D module compensated (its end moved along the surface normal): the
+    // executed segment is a contour element though the spooler ran it uncompensated.
+    bool surface = false;
     // Radius compensation the move was computed for: +1 left (G41), -1 right (G42), 0 none
     // (uncompensated moves, rapids). Contour, transition, approach and departure moves carry
     // their group's side (OTC RADIUS wear acts towards it, docs/otc.md).
@@ -113,6 +120,12 @@ void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& ou
 // the fraction k/n of the move (not unit; a line's is end - start, an arc's plane part is
 // radius(k/n) * sweep along the circle's tangent plus the radius change along the radius).
 void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out) noexcept;
+
+// The tool length compensation in the axis positions after cycle k of n (0 <= k <= n) of a
+// move that started with `at_start`: it changes along the move as the position does (linearly
+// in k/n on the axes outside an arc's plane, where WkzLen acts); k == n is exactly length_end.
+void length_at(const Move& m, const AxisVector& at_start, std::uint64_t k, std::uint64_t n,
+               AxisVector& out) noexcept;
 
 // The Segment record of a move (start/end cycle and interruption filled by the caller).
 Segment segment_of(const Move& m);

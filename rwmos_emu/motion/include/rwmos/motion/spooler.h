@@ -181,9 +181,11 @@ class Spooler {
         }
         std::size_t count() const noexcept { return count_; }
         void keep() noexcept { count_ = 0; }
-        // m ends with the tool length compensation `at_end` (per axis): its length_change.
+        // m ends with the tool length compensation `at_end` (per axis): its length_end, and
+        // the change from the batch's its length_change.
         void length_at(Move& m, const AxisVector& at_end) noexcept {
             for (std::size_t a = 0; a < at_end.size(); ++a) m.length_change[a] = at_end[a] - length[a];
+            m.length_end = at_end;
             length = at_end;
         }
         AxisVector end;  // where the last move ends (the queue's end before the first)
