@@ -383,46 +383,51 @@ bool RunContext::clocked(const apci::Result<apci_motion_status>& st, std::string
            (!tracing_ || drain_samples(st.value.trace_pending));
 }
 
-// Reads the `pending` executed segments the clock call reported, in batches of at most
-// kReadBatch (asking for no more than are there keeps each read small).
-bool RunContext::drain_segments(std::uint64_t pending) {
+// Reads the `pending` items a clock call reported with `read` in batches of at most the
+// buffer's size (asking for no more than are there keeps each read small) and gives each to
+// `each`, which says whether to go on.
+template <class Item, class Read, class Each>
+bool RunContext::drain(std::uint64_t pending, std::vector<Item>& buffer, std::string_view what,
+                       Read read, Each each) {
     while (pending > 0) {
         const std::size_t want =
-            static_cast<std::size_t>(std::min<std::uint64_t>(pending, segments_.size()));
-        const auto r = board_.read_segments(segments_.data(), want);
-        if (!r) return board_failure({}, r.status, "read segments");
-        for (std::size_t i = 0; i < r.value; ++i) {
-            const PathSegment s = convert(segments_[i]);
-            if (sink_measures_) {
-                ++out_.totals.segments;  // the lengths are the sink's to measure and sum
-            } else {
-                count_segment(out_.totals, s);
-            }
-            sink_.executed(s);
-            if (!sink_lets_go_on()) return false;
-        }
+            static_cast<std::size_t>(std::min<std::uint64_t>(pending, buffer.size()));
+        const auto r = read(buffer.data(), want);
+        if (!r) return board_failure({}, r.status, what);
+        for (std::size_t i = 0; i < r.value; ++i)
+            if (!each(buffer[i])) return false;
         if (r.value == 0) break;
         pending -= std::min<std::uint64_t>(pending, r.value);
     }
     return true;
 }
 
+bool RunContext::drain_segments(std::uint64_t pending) {
+    return drain(
+        pending, segments_, "read segments",
+        [this](apci_segment* out, std::size_t n) { return board_.read_segments(out, n); },
+        [this](const apci_segment& b) {
+            const PathSegment s = convert(b);
+            if (sink_measures_) {
+                ++out_.totals.segments;  // the lengths are the sink's to measure and sum
+            } else {
+                count_segment(out_.totals, s);
+            }
+            sink_.executed(s);
+            return sink_lets_go_on();
+        });
+}
+
 bool RunContext::drain_samples(std::uint64_t pending) {
-    while (pending > 0) {
-        const std::size_t want =
-            static_cast<std::size_t>(std::min<std::uint64_t>(pending, samples_.size()));
-        const auto r = board_.read_trace(samples_.data(), want);
-        if (!r) return board_failure({}, r.status, "read trace");
-        for (std::size_t i = 0; i < r.value; ++i) {
-            const apci_trace_sample& t = samples_[i];
+    return drain(
+        pending, samples_, "read trace",
+        [this](apci_trace_sample* out, std::size_t n) { return board_.read_trace(out, n); },
+        [this](const apci_trace_sample& t) {
             const double time =
                 static_cast<double>(t.cycle * static_cast<std::uint64_t>(cycle_us_)) / 1e6;
             sink_.sample(t.cycle, time, std::span<const double>(t.position, APCI_AXIS_COUNT));
-        }
-        if (r.value == 0) break;
-        pending -= std::min<std::uint64_t>(pending, r.value);
-    }
-    return true;
+            return true;
+        });
 }
 
 // A board segment in program coordinates: X, Y, Z from their board axes, the tool length

@@ -175,6 +175,9 @@ class RunContext {
     bool clocked(const apci::Result<apci_motion_status>& st, std::string_view what);
     bool drain_segments(std::uint64_t pending);
     bool drain_samples(std::uint64_t pending);
+    template <class Item, class Read, class Each>
+    bool drain(std::uint64_t pending, std::vector<Item>& buffer, std::string_view what, Read read,
+               Each each);
     PathSegment convert(const apci_segment& b);
     void arc_plane(const apci_segment& b, PathSegment& s) const noexcept;
 
