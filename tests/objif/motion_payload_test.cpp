@@ -360,7 +360,7 @@ TEST(MotionPayload, TraceReplyWithBadContentIsRefused) {
     put_f64(b, seg + 14, kNan);  // start[0]
     EXPECT_EQ(objif::decode(b, d), FrameError::kNotFinite);
     // The lengths close the record: length_start[0] after the cycles, length_end[7] its last.
-    const std::size_t lengths = seg + 14 + 3 * 8 * objif::kWireAxisCount + 8 + 16;
+    const std::size_t lengths = seg + 14 + objif::kWireAxisCount * 3 * 8 + 8 + 16;
     b = good;
     put_f64(b, lengths, kNan);
     EXPECT_EQ(objif::decode(b, d), FrameError::kNotFinite) << "length_start[0]";
