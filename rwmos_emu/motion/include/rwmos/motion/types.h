@@ -123,9 +123,10 @@ struct Segment {
     std::uint64_t end_cycle = 0;    // clock value when it ended
     bool interrupted = false;       // cut short by a direct command or Reset
     bool traverse = false;          // from a traverse profile (a compensated G00)
-    // The tool length compensation in `start` and in `end`, per axis (Move::length_start,
-    // length_end; an interrupted segment's end: where it stopped): the tool centre point is the
-    // position less these.
+    // The tool length compensation in `start` and in `end`, per axis: what the axes carried
+    // where the move began (Executor::nominal_length) and its Move::length_end (an interrupted
+    // segment's: the part carried where it stopped). The tool centre point is the position
+    // less these.
     AxisVector length_start{};
     AxisVector length_end{};
 };
