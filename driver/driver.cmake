@@ -17,7 +17,7 @@ add_library(apci SHARED
 add_library(apci::apci ALIAS apci)
 set_target_properties(apci PROPERTIES
   VERSION ${PROJECT_VERSION}
-  SOVERSION 0
+  SOVERSION 1
   C_VISIBILITY_PRESET hidden
   CXX_VISIBILITY_PRESET hidden
   VISIBILITY_INLINES_HIDDEN ON
