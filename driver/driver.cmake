@@ -15,9 +15,14 @@ add_library(apci SHARED
   src/transport_shm.cpp
   src/transport_pci.cpp)
 add_library(apci::apci ALIAS apci)
+# The SONAME libapci.so.N, N raised with every change of the C ABI; the Debian package libapciN
+# (debian/), the pip build (meson.build) and the CI package stage read N here. The file itself
+# is libapci.so.N.VERSION (1.0.2.0: SONAME 1, version 0.2.0), so that its name begins with the
+# SONAME as ldconfig and packagers expect. docs/packaging.md, "New SONAME".
+set(APCI_SOVERSION 1)
 set_target_properties(apci PROPERTIES
-  VERSION ${PROJECT_VERSION}
-  SOVERSION 0
+  VERSION ${APCI_SOVERSION}.${PROJECT_VERSION}
+  SOVERSION ${APCI_SOVERSION}
   C_VISIBILITY_PRESET hidden
   CXX_VISIBILITY_PRESET hidden
   VISIBILITY_INLINES_HIDDEN ON

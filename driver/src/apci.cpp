@@ -144,9 +144,9 @@ apci_status write_value(apci_board* board, apci_object_descriptor* object,
 extern "C" {
 
 const char* apci_version(void) noexcept {
-    return "0.1.0";
+    return "0.2.0";
 }
-static_assert(APCI_VERSION_MAJOR == 0 && APCI_VERSION_MINOR == 1 && APCI_VERSION_PATCH == 0,
+static_assert(APCI_VERSION_MAJOR == 0 && APCI_VERSION_MINOR == 2 && APCI_VERSION_PATCH == 0,
               "apci_version() repeats the header's version");
 
 const char* apci_status_name(apci_status status) noexcept {

@@ -41,7 +41,7 @@ if(NOT rc EQUAL 0)
 endif()
 # The extension loads the installed libapci, not the build tree's.
 execute_process(COMMAND ldd ${extension} OUTPUT_VARIABLE deps)
-string(REGEX MATCH "libapci\\.so\\.0 => ([^ ]*)" _ "${deps}")
+string(REGEX MATCH "libapci\\.so\\.[0-9]+ => ([^ ]*)" _ "${deps}")
 if(NOT CMAKE_MATCH_1 MATCHES "^${prefix}/")
   message(FATAL_ERROR "the installed extension uses '${CMAKE_MATCH_1}', not the libapci "
                       "installed in ${prefix}:\n${deps}")

@@ -5,7 +5,7 @@
 # the checkout (build-deb/apci8001-VERSION; the packages land in build-deb/,
 # nothing is written outside the checkout; the package build runs the tests of
 # debian/rules), checks them with lintian, runs the autopkgtest of debian/tests
-# (which installs libapci0, libapci-dev, apci-tools and python3-apci on this
+# (which installs libapci1, libapci-dev, apci-tools and python3-apci on this
 # machine and runs the installed tools, the C consumer, the Python package and
 # its HIL example against the installed files only), and builds the Python
 # module with pip into a venv from pyproject.toml. The packages are removed
@@ -24,8 +24,18 @@ if [ "$version" != "$project_version" ]; then
     "add a debian/changelog entry for $project_version (docs/packaging.md, \"New version\")" >&2
   exit 1
 fi
+# The library's package is named after its SONAME, libapci.so.N (APCI_SOVERSION of
+# driver/driver.cmake).
+soversion=$(sed -n 's/^set(APCI_SOVERSION \([0-9]\+\))$/\1/p' driver/driver.cmake)
+library_package="libapci$soversion"
+if [ -z "$soversion" ] || ! grep -qx "Package: $library_package" debian/control; then
+  echo "package: driver/driver.cmake sets APCI_SOVERSION '$soversion' but debian/control" \
+    "has no package $library_package; rename the library's package" \
+    "(docs/packaging.md, \"New SONAME\")" >&2
+  exit 1
+fi
 arch=$(dpkg-architecture -qDEB_HOST_ARCH)
-packages=(libapci0 libapci-dev apci-tools python3-apci)
+packages=("$library_package" libapci-dev apci-tools python3-apci)
 
 # copy_tree DIR: the source tree into DIR: the files git knows (tracked, and new
 # ones not ignored), as they are in the working tree; no build directories.
@@ -42,7 +52,7 @@ copy_tree "$src"
 
 echo "== dpkg-buildpackage -us -uc in $src (log: $out/build.log)"
 # ccache as the compiler launcher (debian/rules, APCI_COMPILER_LAUNCHER);
-# every symbol libapci exports must be in debian/libapci0.symbols and the
+# every symbol libapci exports must be in debian/libapci1.symbols and the
 # other way round (check level 4: new or missing symbols fail the build).
 launcher=""
 command -v ccache >/dev/null 2>&1 && launcher=ccache
@@ -54,7 +64,7 @@ if ! (cd "$src" && APCI_COMPILER_LAUNCHER="$launcher" DPKG_GENSYMBOLS_CHECK_LEVE
   exit 1
 fi
 echo "built in $((SECONDS - start)) s:"
-for p in "${packages[@]}" libapci0-dbgsym apci-tools-dbgsym python3-apci-dbgsym; do
+for p in "${packages[@]}" "$library_package-dbgsym" apci-tools-dbgsym python3-apci-dbgsym; do
   deb="$out/${p}_${version}_${arch}.deb"
   test -f "$deb" || { echo "package: $deb was not built" >&2; exit 1; }
   printf '  %-40s %8s bytes\n' "$(basename "$deb")" "$(stat -c %s "$deb")"

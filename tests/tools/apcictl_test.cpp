@@ -382,7 +382,7 @@ TEST(ApcictlUsage, UnknownOptionIsUsage) {
 TEST(ApcictlUsage, VersionPrintsTheLibraryVersion) {
     const auto r = apcictl({"--version"});
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_EQ(r.out, "apcictl (apci8001) 0.1.0\nlibapci 0.1.0\n");
+    EXPECT_EQ(r.out, "apcictl (apci8001) 0.2.0\nlibapci 0.2.0\n");
 }
 
 class ApcictlHelp : public ::testing::TestWithParam<const char*> {};

@@ -66,7 +66,7 @@ int run(int argc, char** argv) {
     std::string device = "emu:";
     app.add_option("-d,--device", device, "Device URI (default emu:, or $APCI_DEVICE)")
         ->envname("APCI_DEVICE");
-    // "apcictl (apci8001) 0.1.0" (program, package, version, as GNU tools print it), then the
+    // "apcictl (apci8001) 0.2.0" (program, package, version, as GNU tools print it), then the
     // version of the libapci it runs with, which a newer library may change.
     app.set_version_flag("--version", fmt::format("apcictl (apci8001) {}\nlibapci {}",
                                                   APCI8001_VERSION, apci_version()));

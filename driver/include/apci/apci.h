@@ -54,10 +54,10 @@ extern "C" {
 /* ---- Version ---------------------------------------------------------- */
 
 #define APCI_VERSION_MAJOR 0
-#define APCI_VERSION_MINOR 1
+#define APCI_VERSION_MINOR 2
 #define APCI_VERSION_PATCH 0
 
-/* "0.1.0": the version of the library actually loaded. */
+/* "0.2.0": the version of the library actually loaded. */
 APCI_API const char* apci_version(void) APCI_NOEXCEPT;
 
 /* ---- Status codes ----------------------------------------------------- */
