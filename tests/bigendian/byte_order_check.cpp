@@ -67,13 +67,13 @@ void frames() {
           "payload bytes " + hex(payload));
     std::vector<std::uint8_t> frame;
     objif::encode_frame(2, 0x01020304, payload, frame);
-    const std::string want_header = "41504349" "0100" "0200" "04030201" "27000000";
+    const std::string want_header = "41504349" "0200" "0200" "04030201" "27000000";
     check(hex(frame).rfind(want_header, 0) == 0, "frame header " + hex(frame).substr(0, 40));
     // The CRC of the frame, little-endian, last.
     const auto crc = static_cast<std::uint32_t>(::crc32(0, frame.data(), static_cast<uInt>(frame.size() - 4)));
     check(objif::load_little<std::uint32_t>(frame.data() + frame.size() - 4) == crc, "frame CRC");
     // The CRC x86-64 computes with zlib for this frame (the check's own crc32 on s390x).
-    check(crc == 0x50c00e14u, "frame CRC is 0x50c00e14");
+    check(crc == 0xd5f21ce0u, "frame CRC is 0xd5f21ce0");
     objif::Frame decoded;
     std::size_t consumed = 0;
     bool need_more = false;

@@ -445,7 +445,7 @@ const MalformedClass kMalformed[] = {
     {"BadVersion",
      [](std::uint32_t s) {
          auto f = good_write(s);
-         put_u16(f, 4, 2);
+         put_u16(f, 4, objif::kFrameVersion - 1);  // 0.1.0's client
          return f;
      },
      true, Status::kOk},

@@ -54,7 +54,7 @@ TEST(WireFrame, HeaderIsLittleEndianWithMagicApci) {
     EXPECT_EQ(bytes[1], 'P');
     EXPECT_EQ(bytes[2], 'C');
     EXPECT_EQ(bytes[3], 'I');
-    EXPECT_EQ(bytes[4], 1);  // version
+    EXPECT_EQ(bytes[4], 2);  // version
     EXPECT_EQ(bytes[5], 0);
 }
 
@@ -83,10 +83,12 @@ TEST(WireFrame, BadMagicIsRefusedAtOnce) {
 
 TEST(WireFrame, BadVersionIsRefused) {
     auto bytes = write_frame(Value::of_int(1));
-    bytes[4] = 2;
-    objif::Frame f;
-    bool more;
-    EXPECT_EQ(decode(bytes, f, more), FrameError::kBadVersion);
+    for (std::uint8_t v : {1, 3}) {  // the version before (0.1.0's) and the one after
+        bytes[4] = v;
+        objif::Frame f;
+        bool more;
+        EXPECT_EQ(decode(bytes, f, more), FrameError::kBadVersion) << int{v};
+    }
 }
 
 TEST(WireFrame, OversizedLengthIsRefusedBeforeReadingThePayload) {

@@ -29,7 +29,10 @@
 namespace objif {
 
 inline constexpr std::uint32_t kFrameMagic = 0x49435041;
-inline constexpr std::uint16_t kFrameVersion = 1;
+// 2 since 0.2.0: the ReadTrace segment record carries the tool length at start and end (358
+// bytes, 230 in version 1). Each side refuses the other version at the first frame (a stream
+// drops the connection) rather than misreading a record later.
+inline constexpr std::uint16_t kFrameVersion = 2;
 inline constexpr std::size_t kFrameHeaderSize = 16;
 inline constexpr std::size_t kFrameCrcSize = 4;
 inline constexpr std::size_t kFrameOverhead = kFrameHeaderSize + kFrameCrcSize;
