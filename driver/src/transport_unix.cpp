@@ -19,6 +19,7 @@
 
 #include "frame_transport.h"
 #include "objif/adaptive_spin.h"
+#include "objif/byte_order.h"
 #include "objif/registry.h"
 #include "guarded.h"
 
@@ -201,6 +202,16 @@ class UnixLink final : public FrameLink {
                     return not_a_daemon(fmt::format("it greets as '{}'", notice.text));
                 greeting = Greeting::kWelcome;
                 return Status::kOk;
+            }
+            if (e == objif::FrameError::kBadVersion) {
+                // A daemon of another release: its greeting is a frame of its version.
+                greeting = Greeting::kRefused;
+                answer_ = fmt::format(
+                    "it speaks wire-frame version {}, this library {}: run the rwmos-emu of "
+                    "libapci's release",
+                    objif::load_little<std::uint16_t>(pending_.data() + 4), objif::kFrameVersion);
+                why = fmt::format("daemon {} {}", path_, answer_);
+                return Status::kTransportError;
             }
             if (!need_more)
                 return not_a_daemon(fmt::format("it sent bytes that are not a frame: {}",

@@ -4,6 +4,7 @@
 // board listing. What the transports have in common with the embedded
 // emulator is the conformance suite's (tests/conformance).
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -62,7 +63,9 @@ class ScriptedServer {
   public:
     using Answer = std::function<void(int fd, const objif::Frame& request, int index)>;
 
-    explicit ScriptedServer(Answer answer) : answer_(std::move(answer)) {
+    // `greeting_version`: the frame version its greeting says (another release's daemon).
+    explicit ScriptedServer(Answer answer, std::uint16_t greeting_version = objif::kFrameVersion)
+        : answer_(std::move(answer)), greeting_version_(greeting_version) {
         listen_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
         sockaddr_un addr{};
         addr.sun_family = AF_UNIX;
@@ -94,11 +97,16 @@ class ScriptedServer {
     }
 
     // What rwmos-emu sends first on every connection (docs/wire-frame.md "Notices").
-    static void greet(int fd) {
+    // A header of another version is refused before its CRC is looked at.
+    static void greet(int fd, std::uint16_t version = objif::kFrameVersion) {
         std::vector<std::uint8_t> payload;
         objif::encode(objif::Notice{objif::Status::kOk, std::string(objif::kDaemonGreeting)},
                       payload);
-        send_frame(fd, 0xFFFE, 0, payload);
+        std::vector<std::uint8_t> out;
+        objif::encode_frame(0xFFFE, 0, payload, out);
+        out[4] = static_cast<std::uint8_t>(version & 0xFF);
+        out[5] = static_cast<std::uint8_t>(version >> 8);
+        (void)!::send(fd, out.data(), out.size(), MSG_NOSIGNAL);
     }
 
   private:
@@ -106,7 +114,7 @@ class ScriptedServer {
         while (!stop_) {
             const int fd = ::accept(listen_, nullptr, nullptr);
             if (fd < 0) return;
-            greet(fd);
+            greet(fd, greeting_version_);
             std::vector<std::uint8_t> pending;
             int index = 0;
             for (;;) {
@@ -129,10 +137,25 @@ class ScriptedServer {
 
     TempDir dir_;
     Answer answer_;
+    std::uint16_t greeting_version_;
     int listen_ = -1;
     std::atomic<bool> stop_{false};
     std::thread thread_;
 };
+
+// A daemon of another release greets in its frame version: the open is refused naming both
+// versions, and listing the daemons would show the same words.
+TEST(UnixTransport, ADaemonOfAnotherFrameVersionIsRefusedNamingBothVersions) {
+    for (const std::uint16_t version : {std::uint16_t(objif::kFrameVersion - 1),
+                                        std::uint16_t(objif::kFrameVersion + 1)}) {
+        ScriptedServer server([](int, const objif::Frame&, int) {}, version);
+        const std::string error = open_error(server.uri(), APCI_TRANSPORT_ERROR);
+        EXPECT_TRUE(contains(error, fmt::format("speaks wire-frame version {}, this library {}",
+                                                version, objif::kFrameVersion)))
+            << error;
+        EXPECT_FALSE(contains(error, "not an rwmos-emu daemon")) << error;
+    }
+}
 
 // ---- Device URIs and options
 
