@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
     } else if (what == "walk-linuxcnc") {
         text = apci::bench::walk_program(blocks, Dialect::kLinuxCnc, seed).text;
     } else if (cam) {
-        text = apci::bench::cam_program(blocks, what == "cam" ? Dialect::kApcictl : Dialect::kLinuxCnc,
-                                        seed)
+        text = apci::bench::cam_program(
+                   blocks, what == "cam" ? Dialect::kApcictl : Dialect::kLinuxCnc, seed)
                    .text;
     } else if (what == "tools") {
         text = apci::bench::contour_tools();

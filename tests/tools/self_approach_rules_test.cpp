@@ -673,10 +673,10 @@ void expect_identical(const std::vector<SelfApproachFinding>& a,
 
 // A closed polygon of `k` corners round (cx, cy) (each corner at radius rad, jittered), as a
 // stretch: its sides (the first one's path the approach), each side's path a line beside it
-// outside (to the right), 1.1 r away, or one time in ten a random 0.3 r to 1.1 r (not a true offset: such a
-// path comes near the sides before and after, and other sides where the polygon is narrow).
-Stretch polygon(int& n, double cx, double cy, double rad, int k, double r,
-                std::mt19937_64& rng) {
+// outside (to the right), 1.1 r away, or one time in ten a random 0.3 r to 1.1 r (not a true
+// offset: such a path comes near the sides before and after, and other sides where the polygon is
+// narrow).
+Stretch polygon(int& n, double cx, double cy, double rad, int k, double r, std::mt19937_64& rng) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<Point> corner;
     for (int i = 0; i < k; ++i) {
@@ -718,18 +718,20 @@ TEST(SelfApproachRules, StretchesKeptOutOfTheCellsFindWhatEveryStretchInTheCells
         int n = 10;
         for (int k = 0; k < 240; ++k) {
             const double rad = u(rng) < 0.2 ? 10.0 + 30.0 * u(rng) : 1.5 + 6.0 * u(rng);
-            Point c(200.0 * (k % 16) + 40.0 * u(rng), 200.0 * (k / 16) + 40.0 * u(rng), 0);
+            const int column = k % 16, row = k / 16;
+            Point c(200.0 * column + 40.0 * u(rng), 200.0 * row + 40.0 * u(rng), 0);
             if (!centres.empty() && u(rng) < 0.3) {  // beside one before, within a few r
-                const auto at = static_cast<std::size_t>(u(rng) * static_cast<double>(centres.size()));
+                const auto at =
+                    static_cast<std::size_t>(u(rng) * static_cast<double>(centres.size()));
                 const double a = 6.283185307179586 * u(rng);
-                c = centres[at] + (1.3 * (radii[at] + rad) + 3.0 * u(rng)) *
-                                      Point(std::cos(a), std::sin(a), 0);
+                c = centres[at] +
+                    (1.3 * (radii[at] + rad) + 3.0 * u(rng)) * Point(std::cos(a), std::sin(a), 0);
             }
             const double r = k == 120 ? 2.0 : 1.0;
             centres.push_back(c);
             radii.push_back(rad);
-            stretches.push_back(polygon(n, c.x(), c.y(), rad, 3 + static_cast<int>(6 * u(rng)), r,
-                                        rng));
+            stretches.push_back(
+                polygon(n, c.x(), c.y(), rad, 3 + static_cast<int>(6 * u(rng)), r, rng));
             n += 10;
         }
         // Walls with another wall's path just below them, g under r away (the two stretches'
@@ -737,8 +739,7 @@ TEST(SelfApproachRules, StretchesKeptOutOfTheCellsFindWhatEveryStretchInTheCells
         for (int k = 0; k < 20; ++k) {
             const double x0 = 4000.0 + 200.0 * k, y = 100.0 * u(rng), g = 0.01 + 0.9 * u(rng);
             stretches.push_back(wall_line(n, x0, x0 + 20.0 + 30.0 * u(rng), y, 0, 0));
-            stretches.push_back(
-                wall_line(n + 10, x0 + 5.0 * u(rng), x0 + 30.0, y - 1.0 - g, 0, 0));
+            stretches.push_back(wall_line(n + 10, x0 + 5.0 * u(rng), x0 + 30.0, y - 1.0 - g, 0, 0));
             n += 20;
         }
         // The teeth (the first seed): 900 sides 0.4 apart along X, the paths 0.3 to 1.4 r

@@ -500,11 +500,15 @@ struct SelfApproachCheck::Grid {
         const std::int64_t box = cells_of(x).count();
         x.sampled = box > kBoxCells;
         if (x.sampled) ++list.sampled;
-        const std::uint32_t n = into_cells ? listed_cells(x, [&](std::int64_t i, std::int64_t j) {
-            cells.add(list.id, cell_key(i, j), item);
-        })
-                                : box <= kBoxCells ? static_cast<std::uint32_t>(box)
-                                                   : static_cast<std::uint32_t>(samples(x) + 1);
+        // Counted only: as many as the cells of its box, or its samples.
+        std::uint32_t n = x.sampled ? static_cast<std::uint32_t>(samples(x) + 1)
+                                    : static_cast<std::uint32_t>(box);
+        if (into_cells) {
+            const auto add = [&](std::int64_t i, std::int64_t j) {
+                cells.add(list.id, cell_key(i, j), item);
+            };
+            n = listed_cells(x, add);
+        }
         x.entries = n;
         list.entries += n;
     }
@@ -866,9 +870,8 @@ struct SelfApproachCheck::Grid {
             if (own.i1 < look.box.i0 || own.i0 > look.box.i1 || own.j1 < look.box.j0 ||
                 own.j0 > look.box.j1)
                 return false;
-            if (own.count() <= kBoxCells ||
-                (own.i0 >= look.box.i0 && own.i1 <= look.box.i1 && own.j0 >= look.box.j0 &&
-                 own.j1 <= look.box.j1))
+            if (own.count() <= kBoxCells || (own.i0 >= look.box.i0 && own.i1 <= look.box.i1 &&
+                                             own.j0 >= look.box.j0 && own.j1 <= look.box.j1))
                 return true;
             listed_cells(x, [&](std::int64_t i, std::int64_t j) { hit |= in(look.box, i, j); });
             return hit;
