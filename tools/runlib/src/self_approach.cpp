@@ -475,8 +475,12 @@ struct SelfApproachCheck::Grid {
     // samples in it), and returns how many entries it takes.
     template <typename Add>
     std::uint32_t listed_cells(const Item& x, Add&& add) const {
+        return listed_cells(x, cells_of(x), add);
+    }
+    // The same, the cells of x's box given.
+    template <typename Add>
+    std::uint32_t listed_cells(const Item& x, const CellRange& box, Add&& add) const {
         std::uint32_t n = 0;
-        const CellRange box = cells_of(x);
         if (box.count() <= kBoxCells) {
             for (std::int64_t i = box.i0; i <= box.i1; ++i)
                 for (std::int64_t j = box.j0; j <= box.j1; ++j, ++n) add(i, j);
@@ -492,25 +496,26 @@ struct SelfApproachCheck::Grid {
         });
         return n;
     }
+    // Counts the entries of x, which joins `list`, and whether it is listed by samples: as many
+    // as the cells of its box (`box`), or its samples.
+    void count(List& list, Item& x, const CellRange& box) {
+        x.sampled = box.count() > kBoxCells;
+        if (x.sampled) ++list.sampled;
+        x.entries = x.sampled ? static_cast<std::uint32_t>(samples(x) + 1)
+                              : static_cast<std::uint32_t>(box.count());
+        list.entries += x.entries;
+    }
     // Lists the item at `at` in its cells (where `into_cells`; an item of a stretch kept out
     // of them is only counted) and counts its entries.
     void index(List& list, std::size_t at, bool into_cells = true) {
         Item& x = list.items[at];
+        const CellRange box = cells_of(x);
+        count(list, x, box);
+        if (!into_cells) return;
         const auto item = static_cast<std::uint32_t>(at);
-        const std::int64_t box = cells_of(x).count();
-        x.sampled = box > kBoxCells;
-        if (x.sampled) ++list.sampled;
-        // Counted only: as many as the cells of its box, or its samples.
-        std::uint32_t n = x.sampled ? static_cast<std::uint32_t>(samples(x) + 1)
-                                    : static_cast<std::uint32_t>(box);
-        if (into_cells) {
-            const auto add = [&](std::int64_t i, std::int64_t j) {
-                cells.add(list.id, cell_key(i, j), item);
-            };
-            n = listed_cells(x, add);
-        }
-        x.entries = n;
-        list.entries += n;
+        listed_cells(x, box, [&](std::int64_t i, std::int64_t j) {
+            cells.add(list.id, cell_key(i, j), item);
+        });
     }
 
     // The most items `list` keeps: `window` elements; their paths (an element's offset and the
@@ -668,9 +673,12 @@ struct SelfApproachCheck::Grid {
             give_up();
             return;
         }
-        // Room to grow where there is room (fewer zones made again), none where there is not.
+        // Room to grow where there is room (fewer zones made again), none where there is not;
+        // for a stretch in the cells (one that is never scanned), as much again as it spans,
+        // so that a long one is made again a few times, not once every few items.
         Vec2 nlo, nhi;
-        for (const double slack : {2.0 * cell, 0.25 * cell, 0.0}) {
+        const double spans = a.indexed ? 0.5 * (uhi - ulo).maxCoeff() : 0.0;
+        for (const double slack : {std::max(cell, spans), 0.25 * cell, 0.0}) {
             nlo = ulo.array() - slack, nhi = uhi.array() + slack;
             const std::int64_t i0 = zone_index(nlo.x() - sep), i1 = zone_index(nhi.x() + sep);
             const std::int64_t j0 = zone_index(nlo.y() - sep), j1 = zone_index(nhi.y() + sep);
@@ -824,7 +832,7 @@ struct SelfApproachCheck::Grid {
                                                     List& to, const Item& item) {
         if (!lazy || enter(to, item)) return near_adding(list, e, r, to, item);
         to.items.push_back(item);
-        index(to, to.items.size() - 1, false);
+        count(to, to.items.back(), cells_of(to.items.back()));
         found.clear();
         const Area& a = *entered;
         const Lookup look = lookup_of(list, e, r);
