@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Writes the benchmark's programs to standard output: the repeating contour
-// (bench/tools/contour_program.h) or the walk that never repeats (bench/tools/walk_program.h),
-// in our dialect or rs274's, and their tool list and table:
+// (bench/tools/contour_program.h), the walk that never repeats (bench/tools/walk_program.h) or
+// the CAM-shaped program (bench/tools/cam_program.h), in our dialect or rs274's, and their tool
+// list and table:
 //   bench_contour_gen BLOCKS apcictl|linuxcnc|walk|walk-linuxcnc|tools|rs274-tools [SEED]
-// SEED: another turn or walk than the benchmark's (to look for a seed both sides accept).
+//   bench_contour_gen PROFILES cam|cam-linuxcnc [SEED]
+// SEED: another turn, walk or CAM program than the benchmark's (to look for a seed both sides
+// accept). The CAM program's length is its profile count (BM_ApcictlVsRs274Cam: 6000).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
+#include "cam_program.h"
 #include "contour_program.h"
 #include "walk_program.h"
 
@@ -22,13 +26,17 @@ int main(int argc, char** argv) {
         std::fputs(
             "usage: bench_contour_gen BLOCKS "
             "apcictl|linuxcnc|walk|walk-linuxcnc|tools|rs274-tools [SEED]\n"
-            "  BLOCKS: 8..100000000 (the walk: 8..120000)\n",
+            "       bench_contour_gen PROFILES cam|cam-linuxcnc [SEED]\n"
+            "  BLOCKS: 8..100000000 (the walk: 8..120000); PROFILES: 8..6400\n",
             stderr);
         return 2;
     }
     const std::string what = argv[2];
     const bool walk = what == "walk" || what == "walk-linuxcnc";
-    std::uint64_t seed = walk ? apci::bench::kWalkSeed : apci::bench::kContourSeed;
+    const bool cam = what == "cam" || what == "cam-linuxcnc";
+    std::uint64_t seed = walk  ? apci::bench::kWalkSeed
+                         : cam ? apci::bench::kCamSeed
+                               : apci::bench::kContourSeed;
     if (argc == 4) {
         char* seed_end = nullptr;
         seed = std::strtoull(argv[3], &seed_end, 10);
@@ -45,6 +53,15 @@ int main(int argc, char** argv) {
                      apci::bench::kWalkMaxBlocks, blocks);
         return 2;
     }
+    constexpr auto kCamMaxProfiles =
+        static_cast<unsigned long long>(apci::bench::kCamColumns) * apci::bench::kCamColumns;
+    if (cam && blocks > kCamMaxProfiles) {
+        std::fprintf(stderr,
+                     "bench_contour_gen: the CAM program places its profiles on a grid of %d x "
+                     "%d: at most %llu profiles, not %llu\n",
+                     apci::bench::kCamColumns, apci::bench::kCamColumns, kCamMaxProfiles, blocks);
+        return 2;
+    }
     std::string text;
     if (what == "apcictl") {
         text = apci::bench::contour_program(blocks, Dialect::kApcictl, seed).text;
@@ -54,6 +71,10 @@ int main(int argc, char** argv) {
         text = apci::bench::walk_program(blocks, Dialect::kApcictl, seed).text;
     } else if (what == "walk-linuxcnc") {
         text = apci::bench::walk_program(blocks, Dialect::kLinuxCnc, seed).text;
+    } else if (cam) {
+        text = apci::bench::cam_program(
+                   blocks, what == "cam" ? Dialect::kApcictl : Dialect::kLinuxCnc, seed)
+                   .text;
     } else if (what == "tools") {
         text = apci::bench::contour_tools();
     } else if (what == "rs274-tools") {
@@ -61,7 +82,7 @@ int main(int argc, char** argv) {
     } else {
         std::fprintf(stderr,
                      "bench_contour_gen: unknown output '%s' (apcictl, linuxcnc, walk, "
-                     "walk-linuxcnc, tools, rs274-tools)\n",
+                     "walk-linuxcnc, cam, cam-linuxcnc, tools, rs274-tools)\n",
                      argv[2]);
         return 2;
     }

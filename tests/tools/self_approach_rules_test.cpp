@@ -656,6 +656,115 @@ TEST(SelfApproachRules, ALoopThroughAnArcProgrammedBeforeTakesThatArcsTerms) {
 // so its elements' roles are known only when its stretch ends) whose N13 comes back within the
 // tool's radius of N11. What the stretch's end gives out reaches the next sink there, before
 // anything after it, and the outcome; with kError the first finding is the stop, handed once.
+// The findings of two runs, the same in every field and in the same order (distances and
+// places to the bit).
+void expect_identical(const std::vector<SelfApproachFinding>& a,
+                      const std::vector<SelfApproachFinding>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(a[i].path_block.number, b[i].path_block.number);
+        EXPECT_EQ(a[i].contour_block.number, b[i].contour_block.number);
+        EXPECT_EQ(a[i].distance, b[i].distance);
+        EXPECT_EQ(a[i].radius, b[i].radius);
+        EXPECT_EQ(a[i].where, b[i].where);
+    }
+}
+
+// A closed polygon of `k` corners round (cx, cy) (each corner at radius rad, jittered), as a
+// stretch: its sides (the first one's path the approach), each side's path a line beside it
+// outside (to the right), 1.1 r away, or one time in ten a random 0.3 r to 1.1 r (not a true
+// offset: such a path comes near the sides before and after, and other sides where the polygon is
+// narrow).
+Stretch polygon(int& n, double cx, double cy, double rad, int k, double r, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Point> corner;
+    for (int i = 0; i < k; ++i) {
+        const double a = 2.0 * 3.141592653589793 * (i + 0.4 * u(rng)) / k;
+        const double q = rad * (0.7 + 0.6 * u(rng));
+        corner.emplace_back(cx + q * std::cos(a), cy + q * std::sin(a), 0);
+    }
+    Stretch s;
+    s.r = r;
+    for (int i = 0; i < k; ++i) {
+        const Point a = corner[static_cast<std::size_t>(i)];
+        const Point b = corner[static_cast<std::size_t>((i + 1) % k)];
+        s.elements.push_back(line(n, a, b));
+        const double d = u(rng) < 0.1 ? 0.3 + 0.8 * u(rng) : 1.1;
+        const Point off = -d * r * left_of((b - a).normalized());
+        s.paths.push_back({line(n, a + off, b + off, i == 0 ? Role::kApproach : Role::kContour)});
+        ++n;
+    }
+    return s;
+}
+
+TEST(SelfApproachRules, StretchesKeptOutOfTheCellsFindWhatEveryStretchInTheCellsFinds) {
+    // The grid keeps a stretch out of its cells while no other stretch comes near it, and takes
+    // its own items in turn (self_approach.cpp, Grid::Area): what the check asks, in what order,
+    // and so what it finds, must be what it finds with every stretch in the cells. Polygons small
+    // and large (sides listed by samples), most placed apart, others beside one placed before (a
+    // stretch that was apart, its items taken into the cells then), a larger tool in between
+    // (every stretch so far into the cells), walls with another stretch's path just under r
+    // below them (found only if the wall is taken into the cells), and one long stretch of close
+    // teeth whose pairs wait for the wall model by the thousand (its bounded queue fills,
+    // kMaxDeferred).
+    for (const std::uint64_t seed : {1u, 2u}) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        std::vector<Stretch> stretches;
+        std::vector<Point> centres;
+        std::vector<double> radii;
+        int n = 10;
+        for (int k = 0; k < 240; ++k) {
+            const double rad = u(rng) < 0.2 ? 10.0 + 30.0 * u(rng) : 1.5 + 6.0 * u(rng);
+            const int column = k % 16, row = k / 16;
+            Point c(200.0 * column + 40.0 * u(rng), 200.0 * row + 40.0 * u(rng), 0);
+            if (!centres.empty() && u(rng) < 0.3) {  // beside one before, within a few r
+                const auto at =
+                    static_cast<std::size_t>(u(rng) * static_cast<double>(centres.size()));
+                const double a = 6.283185307179586 * u(rng);
+                c = centres[at] +
+                    (1.3 * (radii[at] + rad) + 3.0 * u(rng)) * Point(std::cos(a), std::sin(a), 0);
+            }
+            const double r = k == 120 ? 2.0 : 1.0;
+            centres.push_back(c);
+            radii.push_back(rad);
+            stretches.push_back(
+                polygon(n, c.x(), c.y(), rad, 3 + static_cast<int>(6 * u(rng)), r, rng));
+            n += 10;
+        }
+        // Walls with another wall's path just below them, g under r away (the two stretches'
+        // boxes g apart: the lower one comes near the upper one, which was apart until then).
+        for (int k = 0; k < 20; ++k) {
+            const double x0 = 4000.0 + 200.0 * k, y = 100.0 * u(rng), g = 0.01 + 0.9 * u(rng);
+            stretches.push_back(wall_line(n, x0, x0 + 20.0 + 30.0 * u(rng), y, 0, 0));
+            stretches.push_back(wall_line(n + 10, x0 + 5.0 * u(rng), x0 + 30.0, y - 1.0 - g, 0, 0));
+            n += 20;
+        }
+        // The teeth (the first seed): 900 sides 0.4 apart along X, the paths 0.3 to 1.4 r
+        // beside them, all in one open stretch (none placed until it ends): some 9,000 pairs
+        // come near while it is open, more than twice the queue's bound.
+        const int kTeeth = seed == 1 ? 900 : 1;
+        Stretch teeth;
+        teeth.r = 1.0;
+        for (int i = 0; i < kTeeth; ++i) {
+            const Point a(9000.0 + 0.4 * i, (i % 2) * 0.8, 0);
+            const Point b(9000.4 + 0.4 * i, ((i + 1) % 2) * 0.8, 0);
+            teeth.elements.push_back(line(n, a, b));
+            const Point off = (0.3 + 1.1 * u(rng)) * left_of((b - a).normalized());
+            teeth.paths.push_back(
+                {line(n, a + off, b + off, i == 0 ? Role::kApproach : Role::kContour)});
+            ++n;
+        }
+        stretches.push_back(teeth);
+        const auto kept_out = run(stretches);
+        const auto in_cells = run(stretches, SelfApproachCheck::Candidates::kIndexed);
+        EXPECT_GT(kept_out.size(), 100u);  // not a comparison of empty lists
+        expect_identical(kept_out, in_cells);
+    }
+}
+
 TEST(SelfApproachSink, WhatAStretchsEndGivesOutGoesOnThere) {
     using apci::run::SelfApproachMode;
     using apci::run::SelfApproachSink;

@@ -368,6 +368,7 @@ struct SelfApproachCheck::GridItem {
     // The element's loop (WallModel::kNoLoop for none), once its role is known: role_of().
     std::uint64_t loop = detail::WallModel::kNoLoop;
     std::uint32_t entries = 0;  // cells it is listed in (set by index)
+    bool sampled = false;       // listed by samples, not by its box (set by index)
     bool transition = false;
     // Contour elements: the path must keep r from it. Not the first and the last element
     // of a stretch: they are its approach and departure in the program's own terms.
@@ -441,9 +442,14 @@ struct SelfApproachCheck::Grid {
     }
     std::int64_t index_of(double v) const { return detail::floor_index(v / cell); }
 
+    // The samples of e are n + 1 points, from its start to its end.
+    int samples(double length) const {
+        return std::max(1, static_cast<int>(std::ceil(length / (0.5 * cell))));
+    }
+    int samples(const Item& x) const { return samples(static_cast<double>(x.shape.length)); }
     template <typename F>
     void for_samples(const Shape& e, F&& f) const {
-        const int n = std::max(1, static_cast<int>(std::ceil(e.length / (0.5 * cell))));
+        const int n = samples(e.length);
         for (int i = 0; i <= n; ++i) f(point_at(e, static_cast<double>(i) / n));
     }
 
@@ -465,26 +471,51 @@ struct SelfApproachCheck::Grid {
     // A short element is listed in every cell of its box (its samples lie in it), no more
     // than kBoxCells; a longer one in the cells of its samples.
     static constexpr std::int64_t kBoxCells = 4;
-    void index(List& list, std::size_t at) {
-        const auto item = static_cast<std::uint32_t>(at);
+    // Calls add(i, j) for each cell the item is listed in (a cell of samples once for a run of
+    // samples in it), and returns how many entries it takes.
+    template <typename Add>
+    std::uint32_t listed_cells(const Item& x, Add&& add) const {
+        return listed_cells(x, cells_of(x), add);
+    }
+    // The same, the cells of x's box given.
+    template <typename Add>
+    std::uint32_t listed_cells(const Item& x, const CellRange& box, Add&& add) const {
         std::uint32_t n = 0;
-        const CellRange box = cells_of(list.items[at]);
         if (box.count() <= kBoxCells) {
             for (std::int64_t i = box.i0; i <= box.i1; ++i)
-                for (std::int64_t j = box.j0; j <= box.j1; ++j, ++n)
-                    cells.add(list.id, cell_key(i, j), item);
-        } else {
-            ++list.sampled;
-            std::uint64_t last = 0;
-            for_samples(list.items[at].shape.shape(), [&](const Vec2& p) {
-                const std::uint64_t key = cell_key(index_of(p.x()), index_of(p.y()));
-                if (n == 0 || key != last) cells.add(list.id, key, item);
-                last = key;
-                ++n;
-            });
+                for (std::int64_t j = box.j0; j <= box.j1; ++j, ++n) add(i, j);
+            return n;
         }
-        list.items[at].entries = n;
-        list.entries += n;
+        std::uint64_t last = 0;
+        for_samples(x.shape.shape(), [&](const Vec2& p) {
+            const std::int64_t i = index_of(p.x()), j = index_of(p.y());
+            const std::uint64_t key = cell_key(i, j);
+            if (n == 0 || key != last) add(i, j);
+            last = key;
+            ++n;
+        });
+        return n;
+    }
+    // Counts the entries of x, which joins `list`, and whether it is listed by samples: as many
+    // as the cells of its box (`box`), or its samples.
+    void count(List& list, Item& x, const CellRange& box) {
+        x.sampled = box.count() > kBoxCells;
+        if (x.sampled) ++list.sampled;
+        x.entries = x.sampled ? static_cast<std::uint32_t>(samples(x) + 1)
+                              : static_cast<std::uint32_t>(box.count());
+        list.entries += x.entries;
+    }
+    // Lists the item at `at` in its cells (where `into_cells`; an item of a stretch kept out
+    // of them is only counted) and counts its entries.
+    void index(List& list, std::size_t at, bool into_cells = true) {
+        Item& x = list.items[at];
+        const CellRange box = cells_of(x);
+        count(list, x, box);
+        if (!into_cells) return;
+        const auto item = static_cast<std::uint32_t>(at);
+        listed_cells(x, box, [&](std::int64_t i, std::int64_t j) {
+            cells.add(list.id, cell_key(i, j), item);
+        });
     }
 
     // The most items `list` keeps: `window` elements; their paths (an element's offset and the
@@ -511,8 +542,9 @@ struct SelfApproachCheck::Grid {
     // contour and its paths go together: a repeat of geometry let go is checked afresh against
     // what remains.
     void add(List& list, const Item& item) {
+        const bool into_cells = !lazy || enter(list, item);
         list.items.push_back(item);
-        index(list, list.items.size() - 1);
+        index(list, list.items.size() - 1, into_cells);
         bound(list);
     }
     // After an item was added to `list`: the oldest let go where it holds too many.
@@ -533,6 +565,7 @@ struct SelfApproachCheck::Grid {
             l->keys.clear();
             for (const Item& i : l->items) l->keys.insert(key_of(i.shape, i.r));
         }
+        if (lazy) rebuild_areas();
         reindex();
     }
 
@@ -543,7 +576,181 @@ struct SelfApproachCheck::Grid {
         for (List* l : {&contour, &path}) {
             l->entries = 0;
             l->sampled = 0;
-            for (std::size_t at = 0; at < l->items.size(); ++at) index(*l, at);
+            for (std::size_t at = 0; at < l->items.size(); ++at)
+                index(*l, at, !lazy || area_for(l->items[at].stretch).indexed);
+        }
+    }
+
+    // Stretches kept out of the cells (Candidates::kGrid). A stretch's items are listed in the
+    // cells only once another stretch comes near it; until then its own lookups take its own
+    // items in turn, and nothing else would be near enough: its zone (a box holding every item
+    // of it) lies at least max_r + kSeparation from every other stretch's zone on one axis, so
+    // the box of any other item lies farther than any threshold from the box of its items
+    // (near_enough() is false for every such pair, whatever the cells held). Of its own items,
+    // a lookup takes exactly those the cells would give (listed_near()), in the same order:
+    // what the check asks, and of the wall model, is the same as with every item in the cells.
+    struct Area {
+        std::uint64_t stretch = 0;
+        Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);  // its zone
+        // The least box holding its items (the zone less its room to grow).
+        Vec2 tight_lo = Vec2::Constant(INFINITY), tight_hi = Vec2::Constant(-INFINITY);
+        bool indexed = false;  // its items are in the cells
+        // Its items in each list (List::id): numbers from, to (one past the last).
+        std::array<std::uint64_t, 2> from{kNoItem, kNoItem}, to{0, 0};
+    };
+    static constexpr std::uint64_t kNoItem = ~std::uint64_t{0};
+    // How much farther apart than max_r two zones must lie (on one axis): more than any
+    // rounding of the boxes' distance.
+    static constexpr double kSeparation = 1e-3;
+    // Zones are listed in the cells of kZoneCell mm they cover; one that would cover more than
+    // kZoneCells of them (a stretch spread over a wide area) puts every stretch in the cells.
+    static constexpr double kZoneCell = 64.0;
+    static constexpr std::int64_t kZoneCells = 256;
+    // A stretch with more items than this in a list is put in the cells (a lookup would take
+    // too many of its own).
+    static constexpr std::uint64_t kScanned = 48;
+    bool lazy = true;  // stretches are kept out of the cells while apart (Candidates::kGrid)
+    std::vector<Area> areas;
+    detail::ProbeTable<std::uint32_t> area_index;  // stretch -> position in areas + 1
+    detail::CellIndex<1> zones;                    // positions in areas, by kZoneCell cells
+    std::vector<std::uint32_t> zone_found;
+    std::uint32_t last_area = 0;  // positions looked up last (+ 1), tried first
+    Area* entered = nullptr;      // enter()'s
+    std::int64_t zone_index(double v) const { return detail::floor_index(v / kZoneCell); }
+
+    Area& area_for(std::uint64_t stretch) {
+        if (last_area > 0 && areas[last_area - 1].stretch == stretch) return areas[last_area - 1];
+        std::uint32_t& at = area_index.emplace(stretch).first;
+        if (at == 0) {
+            areas.push_back(Area{});
+            areas.back().stretch = stretch;
+            at = static_cast<std::uint32_t>(areas.size());
+        }
+        last_area = at;
+        return areas[at - 1];
+    }
+    // Its items listed in the cells (counted already).
+    void materialize(Area& a) {
+        if (a.indexed) return;
+        a.indexed = true;
+        for (List* l : {&contour, &path})
+            for (std::uint64_t n = std::max(a.from[l->id], l->first); n < a.to[l->id]; ++n) {
+                Item* x = l->at(n);
+                if (x == nullptr) continue;
+                const auto item = static_cast<std::uint32_t>(n - l->first);
+                listed_cells(*x, [&](std::int64_t i, std::int64_t j) {
+                    cells.add(l->id, cell_key(i, j), item);
+                });
+            }
+    }
+    // Every stretch in the cells from now on.
+    void give_up() {
+        for (Area& a : areas) materialize(a);
+        lazy = false;
+        areas = {};
+        area_index.clear();
+        zones.clear();
+        last_area = 0;
+    }
+    // The tool radius of a stretch: a larger one than before needs zones farther apart, which
+    // those of the stretches so far may not be: they go into the cells.
+    void set_max_r(double r) {
+        if (r <= max_r) return;
+        max_r = r;
+        if (lazy)
+            for (Area& a : areas) materialize(a);
+    }
+    // Its zone made to hold [lo, hi] (with room to grow), and every stretch that comes near
+    // it then, and it, put in the cells.
+    void cover(Area& a, const Vec2& lo, const Vec2& hi) {
+        a.tight_lo = a.tight_lo.cwiseMin(lo), a.tight_hi = a.tight_hi.cwiseMax(hi);
+        if ((lo.array() >= a.lo.array()).all() && (hi.array() <= a.hi.array()).all()) return;
+        const auto self = static_cast<std::uint32_t>(&a - areas.data());
+        const double sep = max_r + kSeparation;
+        const Vec2 ulo = a.lo.cwiseMin(lo), uhi = a.hi.cwiseMax(hi);
+        if (!(std::isfinite(ulo.x()) && std::isfinite(ulo.y()) && std::isfinite(uhi.x()) &&
+              std::isfinite(uhi.y()))) {
+            give_up();
+            return;
+        }
+        // Room to grow where there is room (fewer zones made again), none where there is not;
+        // for a stretch in the cells (one that is never scanned), as much again as it spans,
+        // so that a long one is made again a few times, not once every few items.
+        Vec2 nlo, nhi;
+        const double spans = a.indexed ? 0.5 * (uhi - ulo).maxCoeff() : 0.0;
+        for (const double slack : {std::max(cell, spans), 0.25 * cell, 0.0}) {
+            nlo = ulo.array() - slack, nhi = uhi.array() + slack;
+            const std::int64_t i0 = zone_index(nlo.x() - sep), i1 = zone_index(nhi.x() + sep);
+            const std::int64_t j0 = zone_index(nlo.y() - sep), j1 = zone_index(nhi.y() + sep);
+            if ((i1 - i0 + 1) * (j1 - j0 + 1) > kZoneCells) {
+                if (slack > 0.0) continue;
+                give_up();
+                return;
+            }
+            zone_found.clear();
+            for (std::int64_t i = i0; i <= i1; ++i)
+                for (std::int64_t j = j0; j <= j1; ++j) zones.append(0, cell_key(i, j), zone_found);
+            const auto apart = [&](const Vec2& blo, const Vec2& bhi) {
+                return blo.x() - nhi.x() >= sep || nlo.x() - bhi.x() >= sep ||
+                       blo.y() - nhi.y() >= sep || nlo.y() - bhi.y() >= sep;
+            };
+            // Near where even its least box is near (its zone shrunk to that otherwise: it
+            // still holds every item of it, and lies apart from every other zone).
+            const auto near = [&](std::uint32_t k) {
+                Area& b = areas[k];
+                if (k == self || apart(b.lo, b.hi)) return false;
+                if (!apart(b.tight_lo, b.tight_hi)) return true;
+                b.lo = b.tight_lo, b.hi = b.tight_hi;
+                return false;
+            };
+            zone_found.erase(std::remove_if(zone_found.begin(), zone_found.end(),
+                                            [&](std::uint32_t k) { return !near(k); }),
+                             zone_found.end());
+            if (zone_found.empty()) break;
+        }
+        for (const std::uint32_t k : zone_found) materialize(areas[k]);
+        if (!zone_found.empty()) materialize(a);
+        // Listed in the cells of the new zone it was not listed in.
+        const bool had = (a.lo.array() <= a.hi.array()).all();
+        const std::int64_t o0 = had ? zone_index(a.lo.x()) : 1, o1 = had ? zone_index(a.hi.x()) : 0;
+        const std::int64_t p0 = had ? zone_index(a.lo.y()) : 1, p1 = had ? zone_index(a.hi.y()) : 0;
+        a.lo = nlo, a.hi = nhi;
+        const std::int64_t k0 = zone_index(nlo.x()), k1 = zone_index(nhi.x());
+        const std::int64_t l0 = zone_index(nlo.y()), l1 = zone_index(nhi.y());
+        for (std::int64_t i = k0; i <= k1; ++i)
+            for (std::int64_t j = l0; j <= l1; ++j)
+                if (i < o0 || i > o1 || j < p0 || j > p1) zones.add(0, cell_key(i, j), self);
+    }
+    // An item about to join `list`: its stretch's zone made to hold it. True where it goes
+    // into the cells (its stretch is there, or is now).
+    bool enter(const List& list, const Item& item) {
+        Area& a = area_for(item.stretch);
+        const Extent x = item.shape.extent();
+        cover(a, x.lo, x.hi);
+        if (!lazy) return true;  // (a is gone)
+        entered = &a;
+        a.from[list.id] = std::min(a.from[list.id], list.next());
+        a.to[list.id] = list.next() + 1;
+        if (a.to[list.id] - std::max(a.from[list.id], list.first) > kScanned) materialize(a);
+        return a.indexed;
+    }
+    // After the oldest items were let go: the areas of the stretches with items left, their
+    // zones listed again.
+    void rebuild_areas() {
+        std::vector<Area> kept;
+        for (const Area& a : areas)
+            if (a.to[0] > contour.first || a.to[1] > path.first) kept.push_back(a);
+        areas.swap(kept);
+        area_index.clear();
+        zones.clear();
+        last_area = 0;
+        for (std::size_t k = 0; k < areas.size(); ++k) {
+            area_index.emplace(areas[k].stretch).first = static_cast<std::uint32_t>(k + 1);
+            const Area& a = areas[k];
+            if (!(a.lo.array() <= a.hi.array()).all()) continue;
+            for (std::int64_t i = zone_index(a.lo.x()); i <= zone_index(a.hi.x()); ++i)
+                for (std::int64_t j = zone_index(a.lo.y()); j <= zone_index(a.hi.y()); ++j)
+                    zones.add(0, cell_key(i, j), static_cast<std::uint32_t>(k));
         }
     }
 
@@ -617,6 +824,75 @@ struct SelfApproachCheck::Grid {
         std::sort(found.begin(), found.end());
         found.erase(std::unique(found.begin(), found.end()), found.end());
         return found;
+    }
+    // near_adding(), for a stretch kept out of the cells: `item` added to `to`, and of its
+    // stretch's own items in `list` those the cells would give (the items of other stretches
+    // the cells would give are all too far to be near enough: Area).
+    const std::vector<std::uint32_t>& lookup_adding(const List& list, const Shape& e, double r,
+                                                    List& to, const Item& item) {
+        if (!lazy || enter(to, item)) return near_adding(list, e, r, to, item);
+        to.items.push_back(item);
+        count(to, to.items.back(), cells_of(to.items.back()));
+        found.clear();
+        const Area& a = *entered;
+        const Lookup look = lookup_of(list, e, r);
+        const double lx = e.lo.x(), ly = e.lo.y(), hx = e.hi.x(), hy = e.hi.y();
+        for (std::uint64_t n = std::max(a.from[list.id], list.first); n < a.to[list.id]; ++n) {
+            const Item& x = list.items[static_cast<std::size_t>(n - list.first)];
+            const StoredShape& b = x.shape;
+            // At least r apart on an axis: not near enough (near_enough()) whatever the cells
+            // give.
+            if (static_cast<double>(b.lo[0]) - hx >= r || lx - static_cast<double>(b.hi[0]) >= r ||
+                static_cast<double>(b.lo[1]) - hy >= r || ly - static_cast<double>(b.hi[1]) >= r)
+                continue;
+            // Closer than r on both axes: the cells of its box meet those of e's box widened by
+            // r or more (the roundings of both go the same way), so an item listed by its box
+            // is given by a lookup of that box's cells.
+            if ((look.boxed && !x.sampled) || listed_near(x, e, look))
+                found.push_back(static_cast<std::uint32_t>(n - list.first));
+        }
+        return found;
+    }
+    // The cells near() looks up for e: a box's (`box`, where `boxed`), or those within `reach`
+    // of each sample of e.
+    struct Lookup {
+        CellRange box;
+        bool boxed;
+        double reach;
+    };
+    Lookup lookup_of(const List& list, const Shape& e, double r) const {
+        const double box_reach = r + (list.sampled > 0 ? 0.25 * cell : 0.0);
+        const CellRange box = cells_of(e, box_reach);
+        return {box, box.count() <= 16, box_reach + 0.25 * cell};
+    }
+    // Whether near() looking up `look` for e would give x: a cell x is listed in is one it
+    // looks up.
+    bool listed_near(const Item& x, const Shape& e, const Lookup& look) const {
+        const auto in = [](const CellRange& c, std::int64_t i, std::int64_t j) {
+            return i >= c.i0 && i <= c.i1 && j >= c.j0 && j <= c.j1;
+        };
+        bool hit = false;
+        if (look.boxed) {
+            // Every cell x is listed in lies in the cells of its box (its samples lie in it).
+            const CellRange own = cells_of(x);
+            if (own.i1 < look.box.i0 || own.i0 > look.box.i1 || own.j1 < look.box.j0 ||
+                own.j0 > look.box.j1)
+                return false;
+            if (own.count() <= kBoxCells || (own.i0 >= look.box.i0 && own.i1 <= look.box.i1 &&
+                                             own.j0 >= look.box.j0 && own.j1 <= look.box.j1))
+                return true;
+            listed_cells(x, [&](std::int64_t i, std::int64_t j) { hit |= in(look.box, i, j); });
+            return hit;
+        }
+        std::vector<CellRange> ranges;
+        for_samples(e, [&](const Vec2& p) {
+            ranges.push_back({index_of(p.x() - look.reach), index_of(p.x() + look.reach),
+                              index_of(p.y() - look.reach), index_of(p.y() + look.reach)});
+        });
+        listed_cells(x, [&](std::int64_t i, std::int64_t j) {
+            for (const CellRange& c : ranges) hit |= in(c, i, j);
+        });
+        return hit;
     }
     std::vector<std::uint32_t> found;  // near()'s answer
 };
@@ -743,12 +1019,13 @@ namespace {
 // A plane's grid at its first use: out of line, so that grid() is a load and a test.
 template <typename G>
 [[gnu::noinline]] G& create(std::unique_ptr<G>& grid, int plane, std::size_t window,
-                            std::size_t budget, bool all) {
+                            std::size_t budget, SelfApproachCheck::Candidates candidates) {
     grid = std::make_unique<G>();
     grid->plane = plane;
     grid->window = window;
     grid->entry_budget = budget;
-    grid->all = all;
+    grid->all = candidates == SelfApproachCheck::Candidates::kAll;
+    grid->lazy = candidates == SelfApproachCheck::Candidates::kGrid;
     // The most each list holds, at once: memory a list does not fill is never touched (not
     // resident), and none is copied as it grows.
     grid->contour.items.reserve(2 * grid->most(grid->contour));
@@ -761,7 +1038,7 @@ template <typename G>
 // Inline where it is called (once or twice a segment): a load and a test.
 [[gnu::always_inline]] inline SelfApproachCheck::Grid& SelfApproachCheck::grid(int plane) {
     std::unique_ptr<Grid>& g = grids_[plane == 18 ? 1 : plane == 19 ? 2 : 0];
-    if (!g) return create(g, plane, window_, entry_budget_, candidates_ == Candidates::kAll);
+    if (!g) return create(g, plane, window_, entry_budget_, candidates_);
     return *g;
 }
 
@@ -801,7 +1078,7 @@ void SelfApproachCheck::begin(double r, int plane, int side) {
         g.cell = 2.0 * r_;
         g.reindex();
     }
-    g.max_r = std::max(g.max_r, r_);
+    g.set_max_r(r_);
 }
 
 void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
@@ -1044,7 +1321,7 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
         return;
     }
     // Paths executed before it that come near it (the contour comes back later).
-    const std::vector<std::uint32_t>& near = g.near_adding(g.path, e, g.max_r, g.contour, item);
+    const std::vector<std::uint32_t>& near = g.lookup_adding(g.path, e, g.max_r, g.contour, item);
     Grid::Item& self = g.contour.items.back();
     Shape scratch;
     for (const std::uint32_t pid : near) {
@@ -1153,7 +1430,7 @@ void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool 
     const bool self_placed = !(active_ && p.stretch == stretch_) || placed_of(self);
     const Extent extent = extent_of(e);
     Shape scratch;
-    for (const std::uint32_t at : g.near_adding(g.contour, e, p.r, g.path, self)) {
+    for (const std::uint32_t at : g.lookup_adding(g.contour, e, p.r, g.path, self)) {
         Grid::Item& c = g.contour.items[at];
         if (!c.protect) continue;
         const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);

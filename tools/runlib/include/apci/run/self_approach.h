@@ -81,9 +81,11 @@ class SelfApproachCheck {
     // How much closer than the tool radius a path may come: the compensation's path tolerance.
     static constexpr double kTolerance = 1e-4;
 
-    // Where a path's candidates come from: the grid, or (a reference for tests, quadratic)
-    // every element kept, and the same for an element's.
-    enum class Candidates { kGrid, kAll };
+    // Where a path's candidates come from: the grid (a stretch that no other comes near kept
+    // out of its cells, its own items taken in turn), the grid with every stretch in its cells
+    // (a reference for tests: the same questions asked in the same order), or (a reference for
+    // tests, quadratic) every element kept, and the same for an element's.
+    enum class Candidates { kGrid, kIndexed, kAll };
     explicit SelfApproachCheck(std::size_t window = kWindow,
                                std::size_t entry_budget = kEntryBudget,
                                Candidates candidates = Candidates::kGrid);
