@@ -218,15 +218,21 @@ TEST_F(TcRules, RadiusWrittenDuringAContourAppliesFromTheNextProfile) {
 
 // ---- Tool length compensation ([APCI-TC] Table 3 ZAxis, WkzLen)
 
+// A contour of two lines, the second down to Z -2, with WkzLen 5: approach, contour,
+// transition, contour, departure.
+std::vector<Segment> two_lines_with_length(TcRules& t) {
+    t.setup_group(1.0);
+    EXPECT_EQ(t.write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
+    t.activate();
+    t.spool_ok(line3(1, 10, 0, 0));
+    t.spool_ok(line3(2, 10, -10, -2));
+    EXPECT_EQ(t.deactivate(), Status::kOk);
+    t.run();
+    return t.segments();
+}
+
 TEST_F(TcRules, ToolLengthCompensationAddsWkzLenAlongTheGroupsThirdAxis) {
-    setup_group(1.0);
-    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
-    activate();
-    spool_ok(line3(1, 10, 0, 0));
-    spool_ok(line3(2, 10, -10, -2));
-    ASSERT_EQ(deactivate(), Status::kOk);
-    run();
-    const auto segs = segments();
+    const auto segs = two_lines_with_length(*this);
     ASSERT_EQ(segs.size(), 5u);
     EXPECT_EQ(segs[0].role, SegmentRole::kApproach);
     EXPECT_NEAR(segs[0].end[2], 5.0, kEps);
@@ -279,19 +285,23 @@ TEST_F(TcRules, LengthModeOneAddsWkzLenToEveryProfile) {
     EXPECT_EQ(segs.back().role, SegmentRole::kDeparture);
     EXPECT_NEAR(segs.back().end[2], 5.0, kEps);  // the departure keeps the length
     for (const auto& s : segs) EXPECT_NEAR(s.end[2], 5.0, kEps);
+    // Every segment ends with WkzLen, the uncompensated first one included, and starts with
+    // what the one before ended with.
+    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
+    EXPECT_EQ(segs[0].length_start[2], 0.0);
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        EXPECT_EQ(segs[i].length_end[2], 5.0) << i;
+        if (i > 0) {
+            EXPECT_EQ(segs[i].length_start[2], 5.0) << i;
+        }
+    }
 }
+
 // The executed segments say how much tool length the board added in their start and end
 // (Segment::length_start, length_end): the approach brings WkzLen in, the contour and the
 // transition keep it, the departure takes it out; the programmed path is the position less it.
 TEST_F(TcRules, ExecutedSegmentsCarryTheLengthTheBoardAddedAtTheirEnds) {
-    setup_group(1.0);
-    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
-    activate();
-    spool_ok(line3(1, 10, 0, 0));
-    spool_ok(line3(2, 10, -10, -2));
-    ASSERT_EQ(deactivate(), Status::kOk);
-    run();
-    const auto segs = segments();
+    const auto segs = two_lines_with_length(*this);
     ASSERT_EQ(segs.size(), 5u);
     const double starts[] = {0, 5, 5, 5, 5}, ends[] = {5, 5, 5, 5, 0};
     for (std::size_t i = 0; i < segs.size(); ++i) {
@@ -303,30 +313,6 @@ TEST_F(TcRules, ExecutedSegmentsCarryTheLengthTheBoardAddedAtTheirEnds) {
         }
     }
     EXPECT_NEAR(segs[3].end[2] - segs[3].length_end[2], -2.0, kEps) << "contour 2 at Z -2";
-}
-
-// LengthMode 1: every segment ends with WkzLen, the uncompensated first one included; it
-// starts with what the one before ended with.
-TEST_F(TcRules, UnderLengthModeOneEverySegmentEndsWithTheLength) {
-    setup_group(1.0);
-    ASSERT_EQ(write_double(tc::kBus, tc::kDevGroups, 1, tc::kSubWkzLen, 5.0), Status::kOk);
-    ASSERT_EQ(write_int(tc::kBus, tc::kDevGroups, 1, tc::kSubLengthMode, tc::kLengthAlways),
-              Status::kOk);
-    spool_ok(line3(1, 10, 0, 0));
-    activate();
-    spool_ok(line3(2, 20, 0, 0));
-    ASSERT_EQ(deactivate(), Status::kOk);
-    run();
-    const auto segs = segments();
-    ASSERT_GE(segs.size(), 3u);
-    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated);
-    EXPECT_EQ(segs[0].length_start[2], 0.0);
-    for (std::size_t i = 0; i < segs.size(); ++i) {
-        EXPECT_EQ(segs[i].length_end[2], 5.0) << i;
-        if (i > 0) {
-            EXPECT_EQ(segs[i].length_start[2], 5.0) << i;
-        }
-    }
 }
 
 // A jog stops the approach where it is: the interrupted segment ends with the part of the
