@@ -158,7 +158,8 @@ inline ContourProgram cam_program(std::size_t profiles, Dialect dialect,
     const double lr = kCamLeadRadius, ll = kCamLeadLine;
     for (std::size_t k = 0; k < profiles; ++k) {
         const double x0 = static_cast<double>(k % kCamColumns) * kCamPitch;
-        const double y0 = static_cast<double>(k / kCamColumns) * kCamPitch;
+        const std::size_t row = k / kCamColumns;  // whole rows before it
+        const double y0 = static_cast<double>(row) * kCamPitch;
         double sx = 0.0, top = 0.0;  // the contour's start: the middle of its top
         const std::vector<detail::CamMove> contour = detail::cam_contour(rnd, x0, y0, sx, top);
         // The direction (dx, dy) of the contour at its start and the tool's side (nx, ny): the

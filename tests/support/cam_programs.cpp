@@ -81,8 +81,11 @@ V end_tangent(const Elem& e) {
 }
 Loop reversed(const Loop& l) {
     Loop out;
-    for (auto it = l.rbegin(); it != l.rend(); ++it)
-        out.push_back({it->arc, it->b, it->a, it->c, !it->ccw});
+    out.reserve(l.size());
+    for (std::size_t i = l.size(); i-- > 0;) {
+        const Elem& e = l[i];
+        out.push_back({e.arc, e.b, e.a, e.c, !e.ccw});
+    }
     return out;
 }
 // Turned about the origin by `angle`, then moved by `by`.
@@ -114,6 +117,7 @@ std::vector<Pt> points_of(const Elem& e) {
 }
 std::vector<Pt> points_of(const std::vector<V>& polyline) {
     std::vector<Pt> out;
+    out.reserve(polyline.size());
     for (const V& v : polyline) out.push_back(pt(v));
     return out;
 }
@@ -226,7 +230,7 @@ class NcWriter {
             next_n_ += 10;
             ref.number = next_n_;
             s = "N" + std::to_string(next_n_) + " ";
-            numbers_.push_back({next_n_, line_ + 1});
+            numbers_.emplace_back(next_n_, line_ + 1);
         }
         text_line(s + words);
         return ref;
@@ -491,7 +495,7 @@ LeadGeom plan_leads(Plan& plan, int id, const Contour& c, const Lead& in, const 
     // The arc of radius rl tangent to the contour at C0 on the tool's side: its centre, and
     // the disc of radius rl about it, which holds every tool position along the arc.
     auto lead_circle = [&](double rl) {
-        const V cl = g.c0 + rl * g.n;
+        V cl = g.c0 + rl * g.n;
         clear({cl}, rl + kMargin, rl - kTouch, "lead arc");
         return cl;
     };
@@ -624,14 +628,14 @@ Lead draw_lead(Rng& rng, LeadKind kind, double r) {
 
 // Plans a contour feature with leads at the given levels: its walls, its checks, its writing.
 int plan_feature(Plan& plan, const Contour& c, const Lead& in, const Lead& out, const Tool& tool,
-                 std::vector<double> levels) {
+                 const std::vector<double>& levels) {
     const int id = plan.add_contour(c);
     plan.use(tool);
     const LeadGeom g =
         plan_leads(plan, id, c, in, out, tool.r, plan.first_wall.back(), c.loop.size());
     std::string what = c.what + ", " + side_word(c.side) + ", leads " + lead_name(in.kind) + "/" +
                        lead_name(out.kind);
-    plan.steps.push_back([=](Emit& e) {
+    plan.steps.emplace_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
         for (const double z : levels) write_contour(e, id, c, g, z);
@@ -942,7 +946,7 @@ std::optional<Shape> draw_shape(Rng& rng, double r, bool pocket, int kind) {
 
 // One contour with leads of the given kinds (or drawn) at one level.
 bool single_contour(Rng& rng, Plan& plan, int shape_kind, bool pocket, std::optional<LeadKind> kind,
-                    std::vector<double> levels) {
+                    const std::vector<double>& levels) {
     const double r = draw_radius(rng);
     const auto shape = draw_shape(rng, r, pocket, shape_kind);
     if (!shape) return false;
@@ -955,7 +959,7 @@ bool single_contour(Rng& rng, Plan& plan, int shape_kind, bool pocket, std::opti
     plan.plate = pocket;
     const Lead lead_in = draw_lead(rng, in, r);
     const Lead lead_out = draw_lead(rng, out, r);
-    plan_feature(plan, c, lead_in, lead_out, {1, r}, std::move(levels));
+    plan_feature(plan, c, lead_in, lead_out, {1, r}, levels);
     return true;
 }
 
@@ -1245,6 +1249,7 @@ std::vector<Loop> stepover_loops(Rng& rng, double r, int n, double step, double 
 void plan_one_stretch(Plan& plan, const std::vector<Contour>& loops, const V& centre, Side side,
                       const Tool& tool, double level, const std::string& what) {
     std::vector<int> ids;
+    ids.reserve(loops.size());
     for (const Contour& c : loops) ids.push_back(plan.add_contour(c));
     plan.use(tool);
     plan.plate = true;
@@ -1273,7 +1278,7 @@ void plan_one_stretch(Plan& plan, const std::vector<Contour>& loops, const V& ce
     const Contour& last = loops.back();
     const V beside = last.loop.front().a + r * side_normal(start_tangent(last.loop.front()), side);
     plan.checks.push_back({{beside, centre}, r - kTouch, {}, 0, "departure", ids.back()});
-    plan.steps.push_back([=](Emit& e) {
+    plan.steps.emplace_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
         NcWriter& nc = e.nc;
@@ -1310,6 +1315,7 @@ bool stepover_one_stretch(Rng& rng, Plan& plan) {
     const V at = draw_place(rng);
     const Side side = draw_side(rng);
     std::vector<Contour> loops;
+    loops.reserve(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k)
         loops.push_back(make_contour("loop", placed(built[static_cast<std::size_t>(k)], turn, at),
                                      true, side, k == n - 1));
@@ -1379,8 +1385,14 @@ bool zigzag(Rng& rng, Plan& plan) {
     }
     if (top < 0.05) return false;
     std::vector<V> rows;
-    int row = 0;
-    for (double y = -top + 0.01; y < top; y += step, ++row) {
+    // The rows step by `step` as accumulated (the files written stay what they were); the
+    // count is bounded by the height over the step.
+    const int row_count = static_cast<int>(std::ceil((2.0 * top - 0.01) / step)) + 1;
+    double next = -top + 0.01;
+    for (int row = 0; row < row_count; ++row) {
+        const double y = next;
+        next += step;
+        if (!(y < top)) break;
         const double x = half_width(y);
         if (x < 0.01) continue;
         const V a(-x, y), b(x, y);
@@ -1399,7 +1411,7 @@ bool zigzag(Rng& rng, Plan& plan) {
     const double level = draw_level(rng);
     const std::string what =
         "zig-zag rows " + mm(step) + " apart, " + mm(allowance) + " left for the finish";
-    plan.steps.push_back([=](Emit& e) {
+    plan.steps.emplace_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
         e.nc.rapid_z(kSafe);
@@ -1663,7 +1675,7 @@ bool refused_slot(Rng& rng, Plan& plan) {
     const double level = draw_level(rng);
     const std::string what =
         "pocket: " + c.what + ", plunged at its centre, " + side_word(side) + ", a straight lead";
-    plan.steps.push_back([=](Emit& e) {
+    plan.steps.emplace_back([=](Emit& e) {
         e.use_tool(tool);
         e.begin_feature(what, tool);
         NcWriter& nc = e.nc;
@@ -1855,39 +1867,39 @@ bool plan_family(Rng& rng, CamFamily family, Plan& plan, Options& opt) {
 }
 
 constexpr CamFamilyInfo kFamilies[] = {
-    {CamFamily::kLeadLineArcPocket, "lead.line+arc.pocket", false, false},
-    {CamFamily::kLeadLineArcBoss, "lead.line+arc.boss", false, false},
-    {CamFamily::kLeadLinePocket, "lead.line.pocket", false, false},
-    {CamFamily::kLeadLineBoss, "lead.line.boss", false, false},
-    {CamFamily::kLeadArcPocket, "lead.arc.pocket", false, false},
-    {CamFamily::kLeadArcBoss, "lead.arc.boss", false, false},
-    {CamFamily::kRoundedRectangle, "contour.rounded_rectangle", false, false},
-    {CamFamily::kSlot, "contour.slot", false, false},
-    {CamFamily::kCircle, "contour.circle", false, false},
-    {CamFamily::kFilletedPolygon, "contour.filleted_polygon", false, false},
-    {CamFamily::kIsland, "contour.island", false, false},
-    {CamFamily::kRooms, "contour.rooms", false, false},
-    {CamFamily::kKeyhole, "contour.keyhole", false, false},
-    {CamFamily::kTongue, "contour.tongue", false, false},
-    {CamFamily::kUShape, "contour.u_shape", false, false},
-    {CamFamily::kStepoverOneStretch, "pocket.stepover_one_stretch", false, false},
-    {CamFamily::kStepoverPerLoop, "pocket.stepover_per_loop", false, false},
-    {CamFamily::kZigzag, "pocket.zigzag", false, false},
-    {CamFamily::kCircularInsideOut, "pocket.circular_inside_out", false, false},
-    {CamFamily::kCircularOutsideIn, "pocket.circular_outside_in", false, false},
-    {CamFamily::kSeveralFeatures, "program.several_features", false, false},
-    {CamFamily::kDepthPasses, "program.depth_passes", false, false},
-    {CamFamily::kGougeNeck, "gouge.neck", true, false},
-    {CamFamily::kGougeKeyhole, "gouge.keyhole", true, false},
-    {CamFamily::kGougeTongue, "gouge.tongue", true, false},
-    {CamFamily::kGougeBossesClose, "gouge.bosses_close", true, false},
-    {CamFamily::kGougeIslandClose, "gouge.island_close", true, false},
-    {CamFamily::kGougeLeadCrossesPart, "gouge.lead_across_own_part", true, false},
-    {CamFamily::kGougeLeadCrossesFeature, "gouge.lead_across_feature", true, false},
-    {CamFamily::kRefusedPocketFillet, "refused.pocket_fillet_under_tool", true, true},
-    {CamFamily::kRefusedBossScallop, "refused.boss_scallop_under_tool", true, true},
-    {CamFamily::kRefusedNotch, "refused.notch_under_tool", true, true},
-    {CamFamily::kRefusedSlot, "refused.slot_under_tool", true, true},
+    {CamFamily::kLeadLineArcPocket, false, false, "lead.line+arc.pocket"},
+    {CamFamily::kLeadLineArcBoss, false, false, "lead.line+arc.boss"},
+    {CamFamily::kLeadLinePocket, false, false, "lead.line.pocket"},
+    {CamFamily::kLeadLineBoss, false, false, "lead.line.boss"},
+    {CamFamily::kLeadArcPocket, false, false, "lead.arc.pocket"},
+    {CamFamily::kLeadArcBoss, false, false, "lead.arc.boss"},
+    {CamFamily::kRoundedRectangle, false, false, "contour.rounded_rectangle"},
+    {CamFamily::kSlot, false, false, "contour.slot"},
+    {CamFamily::kCircle, false, false, "contour.circle"},
+    {CamFamily::kFilletedPolygon, false, false, "contour.filleted_polygon"},
+    {CamFamily::kIsland, false, false, "contour.island"},
+    {CamFamily::kRooms, false, false, "contour.rooms"},
+    {CamFamily::kKeyhole, false, false, "contour.keyhole"},
+    {CamFamily::kTongue, false, false, "contour.tongue"},
+    {CamFamily::kUShape, false, false, "contour.u_shape"},
+    {CamFamily::kStepoverOneStretch, false, false, "pocket.stepover_one_stretch"},
+    {CamFamily::kStepoverPerLoop, false, false, "pocket.stepover_per_loop"},
+    {CamFamily::kZigzag, false, false, "pocket.zigzag"},
+    {CamFamily::kCircularInsideOut, false, false, "pocket.circular_inside_out"},
+    {CamFamily::kCircularOutsideIn, false, false, "pocket.circular_outside_in"},
+    {CamFamily::kSeveralFeatures, false, false, "program.several_features"},
+    {CamFamily::kDepthPasses, false, false, "program.depth_passes"},
+    {CamFamily::kGougeNeck, true, false, "gouge.neck"},
+    {CamFamily::kGougeKeyhole, true, false, "gouge.keyhole"},
+    {CamFamily::kGougeTongue, true, false, "gouge.tongue"},
+    {CamFamily::kGougeBossesClose, true, false, "gouge.bosses_close"},
+    {CamFamily::kGougeIslandClose, true, false, "gouge.island_close"},
+    {CamFamily::kGougeLeadCrossesPart, true, false, "gouge.lead_across_own_part"},
+    {CamFamily::kGougeLeadCrossesFeature, true, false, "gouge.lead_across_feature"},
+    {CamFamily::kRefusedPocketFillet, true, true, "refused.pocket_fillet_under_tool"},
+    {CamFamily::kRefusedBossScallop, true, true, "refused.boss_scallop_under_tool"},
+    {CamFamily::kRefusedNotch, true, true, "refused.notch_under_tool"},
+    {CamFamily::kRefusedSlot, true, true, "refused.slot_under_tool"},
 };
 
 // The plate around pockets: the box of every wall, 30 mm larger, no block.

@@ -79,9 +79,9 @@ enum class CamFamily {
 
 struct CamFamilyInfo {
     CamFamily family;
-    std::string_view name;  // "lead.line+arc.pocket", "gouge.neck", ...
     bool gouge;             // a true gouge by construction
     bool may_refuse;        // the compensation refuses it (before anything cuts)
+    std::string_view name;  // "lead.line+arc.pocket", "gouge.neck", ...
 };
 // Every family, the correct ones first.
 std::span<const CamFamilyInfo> cam_families();

@@ -378,7 +378,7 @@ TEST_P(GougeAgreement, CheckAgreesWithTheOracle) {
         auto it = std::find_if(outcomes.begin(), outcomes.end(),
                                [&](const auto& o) { return o.first == v.outcome; });
         if (it == outcomes.end())
-            outcomes.push_back({v.outcome, 1});
+            outcomes.emplace_back(v.outcome, 1);
         else
             ++it->second;
         if (v.ok) continue;

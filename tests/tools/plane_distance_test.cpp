@@ -10,7 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
+#include <bit>
+#include <cstdint>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -348,10 +349,13 @@ TEST(PlaneDistance, AnArcMadeAgainFromItsTermsIsTheSameBitForBit) {
             EXPECT_EQ(again.start, e.start);
             EXPECT_EQ(again.end, e.end);
             EXPECT_EQ(again.centre, e.centre);
-            EXPECT_EQ(std::memcmp(&again.r0, &e.r0, sizeof e.r0), 0) << i;
-            EXPECT_EQ(std::memcmp(&again.r1, &e.r1, sizeof e.r1), 0) << i;
-            EXPECT_EQ(std::memcmp(&again.phi0, &e.phi0, sizeof e.phi0), 0) << i;
-            EXPECT_EQ(std::memcmp(&again.sweep, &e.sweep, sizeof e.sweep), 0) << i;
+            // Bit for bit (a -0.0 or another NaN would differ).
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.r0), std::bit_cast<std::uint64_t>(e.r0)) << i;
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.r1), std::bit_cast<std::uint64_t>(e.r1)) << i;
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.phi0), std::bit_cast<std::uint64_t>(e.phi0))
+                << i;
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.sweep), std::bit_cast<std::uint64_t>(e.sweep))
+                << i;
         }
     }
 }

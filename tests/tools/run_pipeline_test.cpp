@@ -612,7 +612,7 @@ class Stretches final : public RunSink {
         calls.emplace_back("end");
         ended_ = true;
     }
-    void walls(bool on) override { calls.push_back(on ? "CDON" : "CDOF"); }
+    void walls(bool on) override { calls.emplace_back(on ? "CDON" : "CDOF"); }
     void error(const RunError& e, const Point&) override { calls.push_back("error " + e.code); }
     std::optional<RunError> take_stop() override {
         if (stop_at_end && ended_) {

@@ -305,7 +305,8 @@ TEST(SelfApproachRules, TheGridFindsAPathJustInsideTheRadiusOfALongElementWherev
         const Point base(200.0 * k + 10.0 * u(rng), 7.3 * u(rng), 0);
         Stretch w;
         w.r = r;
-        const Point p0 = base, p1 = base + 40.0 * dir;
+        const Point& p0 = base;
+        const Point p1 = base + 40.0 * dir;
         w.elements = {line(n, p0 - 5.0 * dir, p0), line(n + 1, p0, p1),
                       line(n + 2, p1, p1 + 5.0 * dir)};
         w.paths = {{line(n, p0 - 5.0 * dir + r * left, p0 + r * left, Role::kApproach)},

@@ -519,7 +519,14 @@ double taken_by_scanlines(const std::vector<Pt>& path, double r, const std::vect
              std::max(path[i].y, path[i + 1].y) + r);
     for (std::size_t i = 0; i + 1 < ring.size(); ++i) list(edges, i, ring[i].y, ring[i + 1].y);
     double area = 0;
-    for (double y = ly + h / 2; y < hy; y += h) {
+    // Rows at ly + h/2, stepped by h as accumulated, while below hy (at most the height over h,
+    // and one for the rounding).
+    const auto rows = static_cast<std::size_t>(std::ceil((hy - ly) / h)) + 1;
+    double next = ly + h / 2;
+    for (std::size_t row = 0; row < rows; ++row) {
+        const double y = next;
+        next += h;
+        if (!(y < hy)) break;
         const auto k = std::min(bins - 1, static_cast<std::size_t>((y - ly) / bin));
         std::vector<Interval> swept;
         for (const std::size_t i : chords[k])
@@ -577,7 +584,7 @@ DesignLoop random_loop(Rng& rng) {
     DesignLoop loop;
     for (int i = 0; i < n; ++i) {
         const Pt a = v[i], b = v[(i + 1) % n];
-        WallElement e = wall_line(a, b, static_cast<std::uint64_t>(i + 1));
+        WallElement e = wall_line(a, b, static_cast<std::uint64_t>(i) + 1);
         if (rng.chance(0.4)) {
             // An arc through a and b whose middle lies a sagitta s outwards (s > 0: right of
             // a -> b, outside the loop) or inwards; its centre on the other side (s > 0: the

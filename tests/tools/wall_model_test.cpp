@@ -37,7 +37,9 @@ std::vector<Parametric> rectangle(double x0, double y0, double x1, double y1, bo
                            line(x0, y1, x0, y0)};
     if (!ccw) {
         std::vector<Parametric> back;
-        for (auto it = r.rbegin(); it != r.rend(); ++it) back.push_back(line(it->end.x(), it->end.y(), it->start.x(), it->start.y()));
+        back.reserve(r.size());
+        for (std::size_t i = r.size(); i-- > 0;)
+            back.push_back(line(r[i].end.x(), r[i].end.y(), r[i].start.x(), r[i].start.y()));
         return back;
     }
     return r;
