@@ -276,6 +276,36 @@ TEST_F(Comp3dBoard, RapidWithArmedVectorsIsNotCompensatedAndUsesThemUp) {
     EXPECT_EQ(get(c3::kIdxArm), 0);
 }
 
+// An arc with armed vectors runs as programmed (only a G01 is compensated): its segment stays
+// uncompensated, as the role the spooler gave it says.
+TEST_F(Comp3dBoard, ArcWithArmedVectorsIsNotCompensatedAndStaysUncompensated) {
+    tool(1, 3, 3, 0, -0.1, -0.1);
+    ASSERT_EQ(set(c3::kIdxTool, 1), Status::kOk);
+    ASSERT_EQ(arm(&kN, nullptr), Status::kOk);
+    spool_ok(arc(1, true, 0, 10, 0, 5));  // a half circle from the origin
+    run();
+    const std::vector<Segment> segs = segments();
+    ASSERT_EQ(segs.size(), 1U);
+    EXPECT_EQ(segs[0].kind, SegmentKind::kArc);
+    EXPECT_EQ(V(segs[0].end[0], segs[0].end[1], segs[0].end[2]), V(0, 10, 0));
+    EXPECT_EQ(segs[0].role, SegmentRole::kUncompensated) << "not compensated: not marked";
+    EXPECT_EQ(get(c3::kIdxArm), 0);
+}
+
+// A compensated line spooled into an empty queue is its only move (the one under way next):
+// it is marked too, and its segment is a contour element.
+TEST_F(Comp3dBoard, ACompensatedLineAloneInTheQueueIsAContourElement) {
+    tool(1, 3, 3, 0, -0.1, -0.1);
+    ASSERT_EQ(set(c3::kIdxTool, 1), Status::kOk);
+    ASSERT_EQ(arm(&kN, nullptr), Status::kOk);
+    spool_ok(to(V(1, 2, 3), 1));
+    run();
+    const std::vector<Segment> segs = segments();
+    ASSERT_EQ(segs.size(), 1U);
+    EXPECT_NE(V(segs[0].end[0], segs[0].end[1], segs[0].end[2]), V(1, 2, 3));  // compensated
+    EXPECT_EQ(segs[0].role, SegmentRole::kContour);
+}
+
 // [TNC-3D], face milling: without M128 / FUNCTION TCPM the T vector is ignored, the machine's
 // tool axis (the head's B, here tilted by a G00 of axis 4) applies.
 TEST_F(Comp3dBoard, WithoutTcpmTheHeadsToolAxisAppliesAndTIsIgnored) {

@@ -216,3 +216,40 @@ TEST(Interpolator, SegmentIntoSetsEveryMemberAsSegmentOf) {
         }
     }
 }
+
+// A move the 3D module compensated (Move::surface) is a contour element where the spooler ran
+// it uncompensated; every other role is its own, marked or not.
+TEST(Interpolator, AMarkedMoveIsAContourElementOnlyWhereItRanUncompensated) {
+    for (const SegmentRole role :
+         {SegmentRole::kContour, SegmentRole::kTransition, SegmentRole::kApproach,
+          SegmentRole::kDeparture, SegmentRole::kUncompensated, SegmentRole::kRapid}) {
+        SCOPED_TRACE(static_cast<int>(role));
+        Move m = line_move(at(0, 0), at(1, 0), 600.0, role, 3);
+        EXPECT_EQ(segment_of(m).role, role) << "not marked";
+        m.surface = true;
+        EXPECT_EQ(segment_of(m).role,
+                  role == SegmentRole::kUncompensated ? SegmentRole::kContour : role);
+    }
+}
+
+// length_at: the tool length compensation changes linearly along a move, from the length it
+// started with to its length_end, which the last cycle gives exactly (and one cycle before the
+// last does not).
+TEST(Interpolator, LengthAtRunsLinearlyFromTheStartsLengthToExactlyTheEndsAtTheLastCycle) {
+    Move m = line_move(at(0, 0, 0), at(10, 0, 0), 600.0, SegmentRole::kContour, 1);
+    m.length_end = at(0, 0, 0.3);
+    const AxisVector from = at(0, 0, 10.1);
+    AxisVector out{};
+    length_at(m, from, 0, 7, out);
+    EXPECT_EQ(out, from);
+    length_at(m, from, 3, 7, out);
+    EXPECT_NEAR(out[2], 10.1 + (0.3 - 10.1) * 3.0 / 7.0, 1e-12);
+    EXPECT_EQ(out[0], 0.0);
+    length_at(m, from, 6, 7, out);
+    EXPECT_NEAR(out[2], 10.1 + (0.3 - 10.1) * 6.0 / 7.0, 1e-12);
+    EXPECT_GT(out[2], 0.3 + 1.0);  // a seventh of the change still to come
+    length_at(m, from, 7, 7, out);
+    EXPECT_EQ(out, m.length_end);
+    length_at(m, from, 0, 0, out);  // a move of no cycle: its end
+    EXPECT_EQ(out, m.length_end);
+}

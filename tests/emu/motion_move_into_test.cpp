@@ -28,6 +28,11 @@ Move stale() {
     m.role = SegmentRole::kRapid;
     m.tag = 77;
     m.direct = true;
+    m.traverse = true;
+    m.profile = 12;
+    m.length_change = filled(0.25);
+    m.length_end = filled(-10.5);
+    m.surface = true;
     m.side = -1;
     m.plane = 19;
     m.start = filled(-3.0);
@@ -46,6 +51,11 @@ void expect_same(const Move& a, const Move& b) {
     EXPECT_EQ(a.role, b.role);
     EXPECT_EQ(a.tag, b.tag);
     EXPECT_EQ(a.direct, b.direct);
+    EXPECT_EQ(a.traverse, b.traverse);
+    EXPECT_EQ(a.profile, b.profile);
+    EXPECT_EQ(a.length_change, b.length_change);
+    EXPECT_EQ(a.length_end, b.length_end);  // a batch sets it; a direct move has none
+    EXPECT_EQ(a.surface, b.surface);        // not the 3D module's unless it marks it
     EXPECT_EQ(a.side, b.side);
     EXPECT_EQ(a.plane, b.plane);
     EXPECT_EQ(a.start, b.start);

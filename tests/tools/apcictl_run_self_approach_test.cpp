@@ -166,6 +166,30 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
 }
 
+// As an error the self-approach check stops the run where it hands its finding: the spike's
+// stretch, and then a second one far from it, which runs when the check only warns and not at
+// all when it stops the run (no segment of its blocks is executed or reported).
+TEST_F(ApcictlRun, SelfApproachAsAnErrorStopsTheRunBeforeTheBlocksAfterIt) {
+    const std::string prog = write(
+        "spike2.nc",
+        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN200 G0 X200 Y200\n"
+        "N210 G41 G1 X210 Y210\nN220 G1 X260\nN230 G1 Y260\nN240 G40 G1 X300 Y300\nN250 M30\n");
+    const auto later_blocks = [](const json& doc) {
+        int n = 0;
+        for (const auto& s : doc.at("segments")) n += s.at("block").get<int>() >= 200;
+        return n;
+    };
+    const json warned = run_json(prog, {"--tools", tools(5.0)});
+    ASSERT_FALSE(warned.at("warnings").empty());
+    EXPECT_GT(later_blocks(warned), 3);
+    const json stopped = run_json(prog, {"--tools", tools(5.0), "--self-approach", "error"}, 1);
+    ASSERT_EQ(stopped.at("errors").size(), 1u);
+    EXPECT_EQ(stopped.at("errors")[0].at("code"), "SelfApproach");
+    EXPECT_EQ(later_blocks(stopped), 0) << stopped.at("segments").dump();
+}
+
 // "G1 X<x> Y<y>" and a newline, y to 3 decimals.
 std::string fmt_xy(double x, double y) {
     char text[64];

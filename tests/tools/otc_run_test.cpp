@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -388,6 +389,56 @@ TEST_F(OtcRun, TrafoMovesThePivotAndReportsTheTip) {
     EXPECT_EQ(last[6], 45.0);  // B on board axis 4
 }
 
+// After #TRAFO OFF the axes carry the pivot, which the length LengthMode 1 now adds makes the
+// tip: the first segment after the switch starts at the tip where the last one under the
+// transformation ended (the length taken off its start, though the board carried none there),
+// and the segments after it take off what the board reports, which D2 (30 mm) changes: the
+// path is continuous and stands at the tip throughout.
+TEST_F(OtcRun, AfterTrafoOffTheFirstSegmentStartsAtTheTipAndLaterOnesTakeTheBoardsLengthOff) {
+    const std::string tools =
+        write("two.tools", read_text(grinding_tools()) +
+                               "\nwz[2].gueltig 1\nwz[2].typ 2\nwz[2].mass_einheit 0\n"
+                               "wz[2].laenge 300000\nwz[2].radius 300000\n");
+    const std::string prog = write("off.nc",
+                                   "N30 D1\nN40 G00 X0 Y0 Z300 B0\nN50 #KIN ID[4]\nN55 #TRAFO ON\n"
+                                   "N70 G01 X100 Z50 F1000\nN80 #TRAFO OFF\nN90 G01 X150\nN100 D2\n"
+                                   "N110 G01 X160\nN120 G01 X170 Z60\nM30\n");
+    const json doc = run_json({prog, "--tools", tools});
+    const auto& segments = doc.at("segments");
+    ASSERT_GE(segments.size(), 4u);
+    const auto point = [](const json& p) {
+        return std::vector<double>{p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
+    };
+    const auto expect_at = [](const std::vector<double>& got, double x, double y, double z) {
+        ASSERT_EQ(got.size(), 3u);
+        EXPECT_NEAR(got[0], x, 1e-9);
+        EXPECT_NEAR(got[1], y, 1e-9);
+        EXPECT_NEAR(got[2], z, 1e-9);
+    };
+    std::set<int> seen;
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const json& s = segments[i];
+        SCOPED_TRACE("segment " + std::to_string(i) + " of block " + s.at("block").dump());
+        if (i > 0) {
+            const std::vector<double> from = point(s.at("start")),
+                                      to = point(segments[i - 1].at("end"));
+            for (std::size_t a = 0; a < 3; ++a) EXPECT_NEAR(from[a], to[a], 1e-9) << "axis " << a;
+        }
+        const int block = s.at("block").get<int>();
+        seen.insert(block);
+        if (block == 90) {
+            expect_at(point(s.at("start")), 100, 0, 50);
+            expect_at(point(s.at("end")), 150, 0, 50);
+        } else if (block == 110) {
+            expect_at(point(s.at("end")), 160, 0, 50);
+        } else if (block == 120) {
+            expect_at(point(s.at("start")), 160, 0, 50);
+            expect_at(point(s.at("end")), 170, 0, 60);
+        }
+    }
+    for (const int block : {70, 90, 110, 120}) EXPECT_EQ(seen.count(block), 1u) << block;
+}
+
 // [ISG-OTC] section 2.1, WEAR_CONST "wirkt modal", and 2.8 (V.G.WZ_AKT.WEAR_CONST written in
 // the program): the new constant acts from its block on. X0..X100 at 100000, X100..X200 at
 // 200000 (0.1 um/m): 1 + 2 mm, Z 1 mm down at X100; under G41 the held element N40 keeps the
@@ -491,6 +542,29 @@ TEST_F(OtcRun, ABWordKeepsTheToolLengthOnTheAxis) {
         EXPECT_EQ(doc.at("segments")[i].at("end"), plain.at("segments")[i].at("end")) << i;
     }
     EXPECT_EQ(doc.at("segments")[0].at("end"), json::array({0, 0, 300}));
+}
+
+// The tool length D1 puts on Z (50 mm) is taken off an arc's centre as off its start: the
+// reported centre of a G17 arc and of a helix stands at the tool tip's Z where the arc starts
+// (its centre on the other axes is its start's), not at the machine's.
+TEST_F(OtcRun, AnArcsCentreHasTheToolLengthTakenOffAsItsStart) {
+    const json doc = run_json({write("arc.nc",
+                                     "N30 D1 F1000\nN40 G1 X0 Y0 Z300\nN50 G2 X20 Y0 I10 J0\n"
+                                     "N60 G3 X40 Y0 Z310 I10 J0\nM30\n"),
+                               "--tools", grinding_tools()});
+    int arcs = 0;
+    for (const auto& s : doc.at("segments")) {
+        const int block = s.at("block").get<int>();
+        if (block != 50 && block != 60) continue;
+        ++arcs;
+        ASSERT_TRUE(s.contains("center")) << block;
+        EXPECT_NEAR(s.at("center")[0].get<double>(), block == 50 ? 10.0 : 30.0, 1e-9) << block;
+        EXPECT_NEAR(s.at("center")[1].get<double>(), 0.0, 1e-9) << block;
+        EXPECT_NEAR(s.at("start")[2].get<double>(), 300.0, 1e-9) << block;
+        EXPECT_NEAR(s.at("center")[2].get<double>(), 300.0, 1e-9) << block;
+        EXPECT_NEAR(s.at("end")[2].get<double>(), block == 50 ? 300.0 : 310.0, 1e-9) << block;
+    }
+    EXPECT_EQ(arcs, 2);
 }
 
 // [ISG-OTC] sections 2.4 and 2.5 program N40 G00 X0 Y0 Z300 B0 with the 50 mm disc before

@@ -62,26 +62,36 @@ struct Stretch {
     std::vector<std::vector<PathSegment>> paths;
 };
 
-std::vector<SelfApproachFinding> run(const std::vector<Stretch>& stretches,
-                                     SelfApproachCheck::Candidates candidates =
-                                         SelfApproachCheck::Candidates::kGrid) {
-    SelfApproachCheck check(SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
-                            candidates);
+// The findings of the stretches fed in turn. Where `kept` is given, it gets check.kept() after
+// every call (the window and the entry budget at work).
+std::vector<SelfApproachFinding> run(
+    const std::vector<Stretch>& stretches,
+    SelfApproachCheck::Candidates candidates = SelfApproachCheck::Candidates::kGrid,
+    std::size_t window = SelfApproachCheck::kWindow,
+    std::size_t budget = SelfApproachCheck::kEntryBudget,
+    std::vector<std::size_t>* kept = nullptr) {
+    SelfApproachCheck check(window, budget, candidates);
     std::vector<SelfApproachFinding> found;
+    const auto step = [&] {
+        if (kept != nullptr) kept->push_back(check.kept());
+    };
     for (const Stretch& s : stretches) {
         check.begin(s.r, 17, 1);
         for (std::size_t k = 0; k < s.elements.size(); ++k) {
             check.programmed(s.elements[k], found);
+            step();
             if (k > 0)
                 for (PathSegment p : s.paths[k - 1]) {
                     p.block = s.elements[k - 1].block;
                     check.executed(p, found);
+                    step();
                 }
         }
         check.end(found);
         for (PathSegment p : s.paths.back()) {
             p.block = s.elements.back().block;
             check.executed(p, found);
+            step();
         }
     }
     // A last segment of another block gives the last path block's findings out.
@@ -763,6 +773,93 @@ TEST(SelfApproachRules, StretchesKeptOutOfTheCellsFindWhatEveryStretchInTheCells
         const auto in_cells = run(stretches, SelfApproachCheck::Candidates::kIndexed);
         EXPECT_GT(kept_out.size(), 100u);  // not a comparison of empty lists
         expect_identical(kept_out, in_cells);
+    }
+}
+
+// A stretch that no other comes near takes its own items in turn (Grid::Area), and gives for a
+// long path of its own exactly what the cells would: the cells within a quarter cell more than
+// r of each of the path's samples. Where no element is listed by samples, the reach of r alone
+// misses: the geometry of ALongPathFindsAShortWallBeyondRadiusOfItsSamples, the wall and the
+// long path's element in one stretch (all its elements short, in the cell (0, 0)).
+TEST(SelfApproachRules, AStretchKeptOutFindsItsOwnShortWallBeyondRadiusOfItsLongPathsSamples) {
+    const Point dir = Point(1, -1, 0).normalized();
+    const Point q(2.7, 2.7, 0), a(1.999, 1.999, 0);  // a: 0.9913 from the path's line
+    const Point b = a - 0.3 * Point(1, 1, 0).normalized();
+    const Point c = a + Point(0, -0.5, 0), d = a + Point(-0.5, -0.5, 0);
+    const Point e = a + Point(-0.5, -1.0, 0), f = a + Point(-1.0, -1.0, 0);
+    const Point g = a + Point(-1.5, -1.0, 0);
+    const Point away(-0.7, -0.7, 0);  // the short paths, beside their elements away from it
+    Stretch s;
+    s.elements = {line(10, b + Point(-0.3, 0.1, 0), b),
+                  line(11, b, a),
+                  line(12, a, c),
+                  line(13, c, d),
+                  line(14, d, e),
+                  line(15, e, f),
+                  line(16, f, g)};
+    s.paths = {{line(10, b + Point(-0.3, 0.1, 0), b, Role::kApproach)},
+               {line(11, b + Point(-0.5, 0.5, 0), a + Point(-0.5, 0.5, 0), Role::kContour)},
+               {line(12, a + away, c + away, Role::kContour)},
+               {line(13, c + away, d + away, Role::kContour)},
+               {line(14, d + away, e + away, Role::kContour)},
+               {line(15, q - 10.5 * dir, q + 10.5 * dir, Role::kContour)},
+               {line(16, f + away, g + away, Role::kContour)}};
+    const auto kept_out = run({s});
+    const auto in_cells = run({s}, SelfApproachCheck::Candidates::kIndexed);
+    EXPECT_EQ(pairs(in_cells).count({15, 11}), 1U);
+    expect_identical(kept_out, in_cells);
+}
+
+// Teeth 0.4 r apart along X, 0.8 r high, every sixth element a run of 8 r (listed by samples),
+// as one stretch; the paths 0.3 r to 1.4 r beside them (they come near the elements two and
+// more before).
+Stretch teeth(int& n, double x0, double y0, int count, double r, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Stretch s;
+    s.r = r;
+    Point a(x0, y0, 0);
+    for (int i = 0; i < count; ++i) {
+        const Point b = i % 6 == 5 ? a + Point(8.0 * r, 0, 0)
+                                   : Point(a.x() + 0.4 * r, y0 + ((i + 1) % 2) * 0.8 * r, 0);
+        s.elements.push_back(line(n, a, b));
+        const Point off = (0.3 + 1.1 * u(rng)) * r * left_of((b - a).normalized());
+        s.paths.push_back({line(n, a + off, b + off, i == 0 ? Role::kApproach : Role::kContour)});
+        a = b;
+        ++n;
+    }
+    return s;
+}
+
+// The window and the entry budget let the oldest items go all the time (a window of 12
+// elements, and 48 entries, or 16, where the entries bind before the window): a stretch kept
+// out of the cells keeps what the grid with every stretch in its cells keeps, after every call,
+// and finds what it finds. Its items are counted though they are in no cell, its area outlives
+// a let-go that leaves it items in one list only (a stretch just begun has no path yet), and
+// each stretch's items stay its own.
+TEST(SelfApproachRules, StretchesKeptOutOfTheCellsKeepAndFindWhatTheCellsDoWhereTheBudgetBinds) {
+    for (const auto& [seed, budget] :
+         {std::pair<std::uint64_t, std::size_t>{1u, 48}, {2u, 48}, {3u, 16}, {4u, 16}}) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        std::vector<Stretch> stretches;
+        int n = 10;
+        for (int k = 0; k < 25; ++k) {
+            const double x0 = 300.0 * (k % 8) + 20.0 * u(rng), y0 = 300.0 * (k / 8) + 20.0 * u(rng);
+            stretches.push_back(teeth(n, x0, y0, 4 + static_cast<int>(30 * u(rng)), 1.0, rng));
+            n += 10;
+        }
+        std::vector<std::size_t> kept_out_kept, in_cells_kept;
+        const auto kept_out =
+            run(stretches, SelfApproachCheck::Candidates::kGrid, 12, budget, &kept_out_kept);
+        const auto in_cells =
+            run(stretches, SelfApproachCheck::Candidates::kIndexed, 12, budget, &in_cells_kept);
+        EXPECT_GT(kept_out.size(), 10u);  // not a comparison of empty lists
+        expect_identical(kept_out, in_cells);
+        EXPECT_EQ(kept_out_kept, in_cells_kept);
+        // The budget binds: far fewer items are kept than were fed.
+        ASSERT_FALSE(kept_out_kept.empty());
+        EXPECT_LT(*std::max_element(kept_out_kept.begin(), kept_out_kept.end()), 150u);
     }
 }
 
