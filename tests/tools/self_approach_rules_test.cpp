@@ -845,7 +845,8 @@ TEST(SelfApproachRules, StretchesKeptOutOfTheCellsKeepAndFindWhatTheCellsDoWhere
         std::vector<Stretch> stretches;
         int n = 10;
         for (int k = 0; k < 25; ++k) {
-            const double x0 = 300.0 * (k % 8) + 20.0 * u(rng), y0 = 300.0 * (k / 8) + 20.0 * u(rng);
+            const int column = k % 8, row = k / 8;  // 8 stretches a row
+            const double x0 = 300.0 * column + 20.0 * u(rng), y0 = 300.0 * row + 20.0 * u(rng);
             stretches.push_back(teeth(n, x0, y0, 4 + static_cast<int>(30 * u(rng)), 1.0, rng));
             n += 10;
         }

@@ -23,12 +23,23 @@
 
 namespace rwmos::motion {
 
+// (The members are ordered for no padding: the one-byte ones together, then the 4-byte ones.)
 struct Move {
     SegmentKind kind = SegmentKind::kLine;
     SegmentRole role = SegmentRole::kUncompensated;
+    // Arcs: plane axes (first, second); the centre, radii, start angle and sweep below.
+    std::array<std::uint8_t, 2> plane_axes{0, 1};
     std::uint32_t tag = 0;
     bool direct = false;     // started by a direct command (JA), not spooled
     bool traverse = false;   // from a traverse profile: a rapid move on the compensated path
+    // From a profile the 3D module compensated (its end moved along the surface normal): the
+    // executed segment is a contour element though the spooler ran it uncompensated.
+    bool surface = false;
+    // Radius compensation the move was computed for: +1 left (G41), -1 right (G42), 0 none
+    // (uncompensated moves, rapids). Contour, transition, approach and departure moves carry
+    // their group's side (OTC RADIUS wear acts towards it, docs/otc.md).
+    std::int8_t side = 0;
+    std::int32_t plane = 0;  // arcs: G code of their plane (17, 18, 19), 0 if not a TC plane
     // The number of the profile it came from (Spooler::profiles_taken; 0: a direct command's).
     std::uint64_t profile = 0;
     // The part of end - start that is the tool length compensation coming in or going out
@@ -39,20 +50,11 @@ struct Move {
     // acts, zero elsewhere). The executed segment carries it, so the host takes the length off
     // without inferring it.
     AxisVector length_end{};
-    // From a profile the 3D module compensated (its end moved along the surface normal): the
-    // executed segment is a contour element though the spooler ran it uncompensated.
-    bool surface = false;
-    // Radius compensation the move was computed for: +1 left (G41), -1 right (G42), 0 none
-    // (uncompensated moves, rapids). Contour, transition, approach and departure moves carry
-    // their group's side (OTC RADIUS wear acts towards it, docs/otc.md).
-    std::int8_t side = 0;
-    std::int32_t plane = 0;  // arcs: G code of their plane (17, 18, 19), 0 if not a TC plane
     AxisVector start{};
     AxisVector end{};
     double feed = 0.0;  // units/min, > 0
-    // Arcs: plane axes, centre, start and end radius, start angle and signed sweep
+    // Arcs: centre on plane_axes, start and end radius, start angle and signed sweep
     // (> 0 counter-clockwise from the first axis to the second).
-    std::array<std::uint8_t, 2> plane_axes{0, 1};
     double cx = 0.0, cy = 0.0;
     double radius = 0.0;
     double end_radius = 0.0;
