@@ -64,10 +64,10 @@ bool RunContext::trafo(const BlockRef& at, const nc::TrafoChange& e) {
     head_.trafo_length = e.tool_length;
     // The next segment starts where the last one ended; under the transformation its start is
     // turned back into the tip by the transformation alone, after it by the length on the axis.
-    switch_start_length_ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d at_start = Eigen::Vector3d::Zero();
     const TcUnit::State& tc = tc_.state();
-    if (!e.on && tc.length_always) switch_start_length_[plane_axes(tc.plane).third] = tc.length;
-    frame_switched_ = true;
+    if (!e.on && tc.length_always) at_start[plane_axes(tc.plane).third] = tc.length;
+    switch_start_length_ = at_start;
     return true;
 }
 
@@ -461,12 +461,12 @@ PathSegment RunContext::convert(const apci_segment& b) {
     // The tool length compensation the board added, taken off where the board says it acted.
     for (int i = 0; i < 3; ++i) {
         const std::int32_t a = axis(i);
-        const double at_start = frame_switched_ ? switch_start_length_[i] : b.length_start[a];
+        const double at_start = switch_start_length_ ? (*switch_start_length_)[i] : b.length_start[a];
         s.start[i] -= at_start;
         s.center[i] -= at_start;
         s.end[i] -= b.length_end[a];
     }
-    frame_switched_ = false;
+    switch_start_length_.reset();
     // Sweep and length once, for the totals and the writers: here, or by a sink that measures
     // them off this thread (RunSink::measures_executed).
     if (!sink_measures_) measure(s);

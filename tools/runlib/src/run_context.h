@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -202,9 +203,8 @@ class RunContext {
     // #TRAFO switched the frame the host reads the axes in: the standing point's tool tip is
     // read in the new one, so the first segment after the switch starts with this length on
     // the program axes instead of the board's (ON: none, the transformation alone; OFF: the
-    // length LengthMode 1 adds from there on).
-    bool frame_switched_ = false;
-    Eigen::Vector3d switch_start_length_ = Eigen::Vector3d::Zero();
+    // length LengthMode 1 adds from there on). Empty otherwise.
+    std::optional<Eigen::Vector3d> switch_start_length_;
     RecentMoves recent_;
     std::vector<apci_segment> segments_;
     std::vector<apci_trace_sample> samples_;
