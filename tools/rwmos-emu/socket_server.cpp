@@ -341,6 +341,10 @@ bool SocketServer::adopt(int fd, const std::string& expected_path, std::string& 
 void SocketServer::on_listen_ready() {
     if (listen_paused_) return;
     for (;;) {
+        // The spare first: a descriptor that came free since the spare was lost (another
+        // thread held the last one when it was opened again) goes to the reserve, not to a
+        // newcomer, so the next newcomer beyond the limit is still told why.
+        if (spare_fd_ < 0) spare_fd_ = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
         const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
         if (fd < 0) {
             if (errno == EAGAIN || errno == EINTR) return;
