@@ -9,8 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <random>
@@ -127,6 +128,120 @@ TEST(PlaneDistance, ExactDistancesLieBetweenTheSampledOnesAndThemLessTheSpacing)
     }
     EXPECT_GT(crossing, 40);  // the inputs have both kinds
     EXPECT_GT(apart, 40);
+}
+
+// The least distance of two segments written independently: 0 where they cross or touch (by
+// the signs of four orientations, collinear overlaps included), else the least of the four
+// distances from an end of one to the other.
+double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+    const Vec2 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 == 0.0 ? 0.0 : std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
+    return (p - (a + t * ab)).norm();
+}
+
+double segments_apart(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+    const auto orient = [](const Vec2& p, const Vec2& q, const Vec2& r) {
+        const double v = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+        return (v > 0.0) - (v < 0.0);
+    };
+    const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+              o4 = orient(c, d, b);
+    if (o1 * o2 < 0 && o3 * o4 < 0) return 0.0;
+    return std::min({point_segment(a, c, d), point_segment(b, c, d), point_segment(c, a, b),
+                     point_segment(d, a, b)});
+}
+
+// Random pairs of lines as programs have them (3 or 4 decimals): apart, crossing, touching at
+// an end, parallel beside each other (overlapping or not), collinear, tiny and of no length.
+// The distance is the independent one (to rounding), lies within the sampled bounds, and is
+// the distance at the fraction given.
+TEST(PlaneDistance, LinesNearestIsTheLeastDistanceBetweenTwoLinesAndWhereItIs) {
+    std::mt19937_64 rng(20261129);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int crossing = 0, parallel = 0, apart = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const int decimals = 3 + static_cast<int>(rng() % 2);
+        const auto rp = [&](double scale) {
+            return Vec2(round_to(scale * u(rng), decimals), round_to(scale * u(rng), decimals));
+        };
+        const double size = (rng() % 8 == 0) ? 0.01 : 5.0;
+        const Vec2 a = rp(5.0);
+        const Vec2 b = rng() % 20 == 0 ? a : a + rp(size);
+        Vec2 c = rp(5.0), d = c + rp(size);
+        switch (rng() % 4) {
+            case 0: {  // parallel beside it (a shifted copy, along and across)
+                const Vec2 shift = rp(1.0);
+                c = a + shift;
+                d = b + shift + round_to(u(rng), decimals) * (b - a);
+                break;
+            }
+            case 1:  // from the path's end or start
+                c = rng() % 2 == 0 ? b : a;
+                break;
+            default:
+                break;
+        }
+        const Parametric path = line(a, b), contour = line(c, d);
+        const pd::Nearest n = pd::lines_nearest(path, contour);
+        SCOPED_TRACE(::testing::Message()
+                     << k << ": " << a.transpose() << " -> " << b.transpose() << " against "
+                     << c.transpose() << " -> " << d.transpose());
+        const double independent = segments_apart(a, b, c, d);
+        EXPECT_NEAR(n.distance, independent, 1e-12);
+        ASSERT_GE(n.t, 0.0);
+        ASSERT_LE(n.t, 1.0);
+        EXPECT_NEAR(pd::distance_to(contour, pd::point_at(path, n.t)), n.distance, 1e-12);
+        const auto sa = sample(path, 400), sb = sample(contour, 400);
+        EXPECT_LE(n.distance, brute(sa, sb) + 1e-12);
+        EXPECT_GE(n.distance, brute(sa, sb) - 0.5 * (spacing(sa) + spacing(sb)) - 1e-12);
+        const bool along =
+            std::abs(geom::cross(b - a, d - c)) <= 1e-9 * (b - a).norm() * (d - c).norm();
+        (n.distance == 0.0 ? crossing : along ? parallel : apart) += 1;
+    }
+    EXPECT_GT(crossing, 100);  // the inputs have every kind
+    EXPECT_GT(parallel, 100);
+    EXPECT_GT(apart, 100);
+}
+
+// Where the lines cross at their very ends, and one step past them; along parallel lines the
+// first of the places as near.
+TEST(PlaneDistance, LinesNearestAtTheEdges) {
+    // Crossing at the path's end and the contour's start: 0 there.
+    const pd::Nearest at_end = pd::lines_nearest(line({0, 0}, {2, 0}), line({2, 0}, {2, 3}));
+    EXPECT_EQ(at_end.distance, 0.0);
+    EXPECT_EQ(at_end.t, 1.0);
+    // The contour's start one step past the path's end: the distance of that step, at the end.
+    const double step = 1e-9;
+    const pd::Nearest past =
+        pd::lines_nearest(line({0, 0}, {2, 0}), line({2 + step, 0}, {2 + step, 3}));
+    EXPECT_NEAR(past.distance, step, 1e-15);
+    EXPECT_GT(past.distance, 0.0);
+    EXPECT_EQ(past.t, 1.0);
+    // Crossing at the path's start, inside the contour: t 0.
+    const pd::Nearest at_start = pd::lines_nearest(line({1, 0}, {1, 4}), line({0, 0}, {2, 0}));
+    EXPECT_EQ(at_start.distance, 0.0);
+    EXPECT_EQ(at_start.t, 0.0);
+    // Crossing in the middle of both.
+    const pd::Nearest middle = pd::lines_nearest(line({0, -1}, {0, 3}), line({-1, 0}, {1, 0}));
+    EXPECT_EQ(middle.distance, 0.0);
+    EXPECT_DOUBLE_EQ(middle.t, 0.25);
+    // Parallel, the contour beside the path's middle: its start's foot (0.2), not its end's.
+    const pd::Nearest beside = pd::lines_nearest(line({0, 0}, {10, 0}), line({2, 1}, {5, 1}));
+    EXPECT_DOUBLE_EQ(beside.distance, 1.0);
+    EXPECT_DOUBLE_EQ(beside.t, 0.2);
+    // Parallel and overlapping from the path's start: the start.
+    const pd::Nearest overlap = pd::lines_nearest(line({0, 0}, {10, 0}), line({-1, 1}, {5, 1}));
+    EXPECT_DOUBLE_EQ(overlap.distance, 1.0);
+    EXPECT_EQ(overlap.t, 0.0);
+    // Parallel, the contour beyond the path's end: the end.
+    const pd::Nearest beyond = pd::lines_nearest(line({0, 0}, {1, 0}), line({4, 4}, {5, 4}));
+    EXPECT_DOUBLE_EQ(beyond.distance, 5.0);
+    EXPECT_EQ(beyond.t, 1.0);
+    // A path of no length: its point.
+    const pd::Nearest point = pd::lines_nearest(line({1, 1}, {1, 1}), line({0, 0}, {2, 0}));
+    EXPECT_DOUBLE_EQ(point.distance, 1.0);
+    EXPECT_EQ(point.t, 0.0);
 }
 
 TEST(PlaneDistance, KnownConfigurations) {
@@ -350,11 +465,15 @@ TEST(PlaneDistance, AnArcMadeAgainFromItsTermsIsTheSameBitForBit) {
             EXPECT_EQ(again.end, e.end);
             EXPECT_EQ(again.centre, e.centre);
             // Bit for bit (a -0.0 or another NaN would differ).
-            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.r0), std::bit_cast<std::uint64_t>(e.r0)) << i;
-            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.r1), std::bit_cast<std::uint64_t>(e.r1)) << i;
-            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.phi0), std::bit_cast<std::uint64_t>(e.phi0))
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.r0), std::bit_cast<std::uint64_t>(e.r0))
                 << i;
-            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.sweep), std::bit_cast<std::uint64_t>(e.sweep))
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.r1), std::bit_cast<std::uint64_t>(e.r1))
+                << i;
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.phi0),
+                      std::bit_cast<std::uint64_t>(e.phi0))
+                << i;
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(again.sweep),
+                      std::bit_cast<std::uint64_t>(e.sweep))
                 << i;
         }
     }

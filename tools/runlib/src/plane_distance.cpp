@@ -472,4 +472,26 @@ bool apart_by_side(const Parametric& a, const Parametric& b, double limit) noexc
     return lo >= rmax + limit || hi <= rmin - limit;
 }
 
+Nearest lines_nearest(const Parametric& path, const Parametric& contour) noexcept {
+    const Vec2 d = path.end - path.start;
+    const Vec2 e = contour.end - contour.start;
+    const double den = cross(d, e);
+    if (den != 0.0) {
+        const Vec2 w = contour.start - path.start;
+        const double t = cross(w, e) / den;
+        const double u = cross(w, d) / den;
+        if (t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0) return Nearest{0.0, t};
+    }
+    Nearest best{distance_to(contour, path.start), 0.0};
+    const auto take = [&](double t) {
+        const double dist = distance_to(contour, point_at(path, t));
+        if (dist < best.distance) best = Nearest{dist, t};
+    };
+    take(1.0);
+    const double dd = d.squaredNorm();
+    for (const Vec2& q : {contour.start, contour.end})
+        take(dd > 0.0 ? std::clamp((q - path.start).dot(d) / dd, 0.0, 1.0) : 0.0);
+    return best;
+}
+
 }  // namespace apci::run::plane

@@ -200,11 +200,7 @@ using detail::StoredShape;
 using plane::distance_to;
 using plane::point_at;
 
-// The least distance from `path` to `contour`, and the fraction of `path` where it is.
-struct Nearest {
-    double distance = INFINITY;
-    double t = 0.0;
-};
+using plane::Nearest;
 
 // The least distance of `contour` from the part [a, b] of `path`, where it has one minimum
 // (golden-section search, to 1e-11 mm along the path).
@@ -237,7 +233,10 @@ Nearest polish(const Shape& path, const Shape& contour, double a, double b, int&
 // polished, so the search ends at the minimum rather than at the first point below the
 // threshold.
 Nearest least_distance(const Shape& path, const Shape& contour, double threshold) {
-    constexpr double kExact = 1e-9;         // mm: the least distance to this
+    // Two lines: exactly, at once (along parallel lines the search below would refine a flat
+    // distance to its evaluation cap, 32,768 distances, for every such pair).
+    if (!is_arc(path) && !is_arc(contour)) return plane::lines_nearest(path, contour);
+    constexpr double kExact = 1e-9;          // mm: the least distance to this
     constexpr int kMaxRefinement = 1 << 15;  // evaluations once a point below is found
     struct Span {
         double t0, t1, d0, d1, bound;

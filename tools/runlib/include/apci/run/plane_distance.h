@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "geometry/element.h"
 
@@ -60,6 +61,18 @@ Vec2 point_at(const Parametric& e, double t) noexcept;
 // direction from the centre lies within its turn (to the arc's radius at that angle), else to
 // the nearer end.
 double distance_to(const Parametric& e, const Vec2& p) noexcept;
+
+// The least distance from a path to a contour element, and the fraction of the path where it is.
+struct Nearest {
+    double distance = INFINITY;
+    double t = 0.0;
+};
+
+// Between two lines, exactly: 0 where they cross, else at an end of one of them (the distance
+// from a point moving along a line to a segment is convex in its position). Where several
+// places are as near (parallel lines), the first of: `path`'s start, its end, the foot on it of
+// `contour`'s start, of its end.
+Nearest lines_nearest(const Parametric& path, const Parametric& contour) noexcept;
 
 // True when every point of `a` is at least `limit` from every point of `b`, proved: an arc is
 // taken as circular arcs of its middle radius, each within |r1 - r0| / 2 of it, halved where the
