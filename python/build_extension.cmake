@@ -5,7 +5,7 @@
 #   cmake -DSOURCE_DIR=checkout -DBUILD_DIR=dir -DOUTPUT_DIR=dir -DPYTHON=python
 #         -DEXTENSION=_apci.cpython-311-x86_64-linux-gnu.so -DLIBRARY=libapci.so.1
 #         -P build_extension.cmake
-# Configured as ./test.sh configures (RelWithDebInfo; ccache when installed; warnings as errors
+# Configured as ./test.sh configures (Release; ccache when installed; warnings as errors
 # when $APCI_WERROR says so), without tests and benchmarks, for the interpreter that runs pip,
 # with the extension's RPATH $ORIGIN (APCI_PYTHON_BUNDLE_LIBAPCI). BUILD_DIR is build-pip/ in
 # the checkout, beside ./test.sh's build/: the same sources compiled with the same flags from
@@ -27,7 +27,7 @@ if(CCACHE)
 endif()
 execute_process(
   COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR}
-          -DCMAKE_BUILD_TYPE=RelWithDebInfo ${launcher}
+          -DCMAKE_BUILD_TYPE=Release ${launcher}
           -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF -DAPCI_BUILD_PYTHON=ON
           -DAPCI_PYTHON_BUNDLE_LIBAPCI=ON -DPython3_EXECUTABLE=${PYTHON}
   OUTPUT_QUIET

@@ -77,13 +77,15 @@ apci_werror() {
 }
 
 # apci_configure BUILD_DIR [cmake options]: configures BUILD_DIR as ./test.sh
-# does (RelWithDebInfo, ccache), quietly.
+# does (Release: -O3, what a user's Release build compiles, so that CI's
+# warnings-as-errors and the suite cover the optimiser's view in one build;
+# ccache), quietly.
 apci_configure() {
   local build_dir="$1" werror
   shift
   werror=$(apci_werror) || return
   # shellcheck disable=SC2046
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo $(apci_launcher_args) \
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release $(apci_launcher_args) \
     -DAPCI_WERROR="$werror" "$@" >/dev/null
 }
 

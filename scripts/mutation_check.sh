@@ -236,7 +236,7 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
     launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   fi
   echo "configuring $build"
-  cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
+  cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
     -DAPCI_BUILD_BENCH=OFF -DAPCI_WERROR=ON > "$logs/configure.log" 2>&1 || die "configure failed: $logs/configure.log"
 fi
 

@@ -36,7 +36,7 @@ run_asan() {
   configure build-asan address,undefined
   cmake --build build-asan -j"$(nproc)" >/dev/null
   # The gouge agreement (1,700 programs, 4 minutes of test time under ASan) is there for its
-  # statistics, which ./test.sh and the release stage give; here its code runs on the first 10
+  # statistics, which ./test.sh gives; here its code runs on the first 10
   # programs of each family.
   GOUGE_SEEDS=1000:10 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" --timeout 900
 }
