@@ -351,6 +351,103 @@ TEST(DaemonDescriptors, OutOfFileDescriptorsANewcomerIsToldWhyAndTheDaemonDoesNo
     EXPECT_EQ(d->stop(), 0);
 }
 
+// The daemon's spare descriptor (/dev/null, opened close-on-exec), found in /proc; -1 when it
+// has none.
+int spare_of(pid_t pid) {
+    std::error_code ec;
+    const std::filesystem::path dir = "/proc/" + std::to_string(pid) + "/fd";
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        std::error_code link_ec;
+        if (std::filesystem::read_symlink(entry.path(), link_ec) != "/dev/null") continue;
+        std::ifstream info("/proc/" + std::to_string(pid) + "/fdinfo/" +
+                           entry.path().filename().string());
+        std::string key;
+        std::string flags;
+        while (info >> key >> flags)
+            if (key == "flags:" && (std::stoul(flags, nullptr, 8) & O_CLOEXEC) != 0)
+                return std::stoi(entry.path().filename().string());
+    }
+    return -1;
+}
+
+// The spare lost (the descriptor it gave up was taken before it was opened again: here the
+// open-files limit is lowered to the spare's own number, so once the numbers below it are
+// taken, neither a newcomer nor the spare fits): the descriptor that comes free next goes to
+// the spare before any newcomer, so the newcomers beyond the limit are still told why (the
+// freed descriptor went to the first of them, and the next was told nothing).
+TEST(DaemonDescriptors, ASpareLostIsTakenAgainBeforeTheNextNewcomer) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    // Served once, and the connection that saw it start gone (two sockets left: its listener
+    // and ours): the daemon's descriptors stay as they are while nobody comes.
+    std::vector<std::unique_ptr<RawClient>> greeted;
+    greeted.push_back(std::make_unique<RawClient>(d->socket_path()));
+    objif::Frame frame;
+    ASSERT_TRUE(greeted.back()->receive_any(frame, 10s));
+    ASSERT_TRUE(daemon_test::is_greeting(frame));
+    ASSERT_TRUE(apci_test::eventually(
+        [&] { return count_of(descriptors_of(d->pid()), ":socket:") == 2; }))
+        << descriptors_of(d->pid());
+    rlimit original{};
+    ASSERT_EQ(::prlimit(d->pid(), RLIMIT_NOFILE, nullptr, &original), 0);
+    const auto limit_to = [&](rlim_t soft) {
+        const rlimit l{soft, original.rlim_max};
+        return ::prlimit(d->pid(), RLIMIT_NOFILE, &l, nullptr) == 0;
+    };
+    int spare = spare_of(d->pid());
+    ASSERT_GE(spare, 3) << descriptors_of(d->pid());
+    ASSERT_TRUE(limit_to(static_cast<rlim_t>(spare)));
+    // Newcomers take the free numbers below the spare's (greeted) until one finds none: the
+    // spare, given up for it, does not fit again, and the newcomer is told nothing.
+    std::vector<std::unique_ptr<RawClient>> waiting;
+    for (int i = 0; i < 64 && !contains(d->log(), "no spare descriptor"); ++i) {
+        auto c = std::make_unique<RawClient>(d->socket_path());
+        ASSERT_TRUE(c->connected());
+        bool told = false;
+        ASSERT_TRUE(apci_test::eventually([&] {
+            told = c->receive_any(frame, 20ms);
+            return told || contains(d->log(), "no spare descriptor");
+        })) << "client " << i << ": " << descriptors_of(d->pid()) << "\n" << d->log();
+        if (!told) {
+            waiting.push_back(std::move(c));
+        } else if (daemon_test::is_greeting(frame)) {
+            greeted.push_back(std::move(c));
+        } else {
+            // Refused on a spare that moved to a number below (one the daemon held for a
+            // moment, under ThreadSanitizer's runtime say, came free): the limit follows it.
+            ASSERT_TRUE(apci_test::eventually([&] { return spare_of(d->pid()) >= 3; }));
+            spare = spare_of(d->pid());
+            ASSERT_TRUE(limit_to(static_cast<rlim_t>(spare)));
+        }
+    }
+    ASSERT_FALSE(waiting.empty()) << descriptors_of(d->pid()) << "\n" << d->log();
+    EXPECT_EQ(spare_of(d->pid()), -1) << descriptors_of(d->pid());
+    // Room for one descriptor more: it goes to the spare, and each newcomer waiting is told
+    // why; so is the next one.
+    ASSERT_TRUE(limit_to(static_cast<rlim_t>(spare) + 1));
+    const auto refused = [&](RawClient& c) {
+        objif::Notice notice;
+        return c.receive_any(frame, 10s) &&
+               objif::decode(frame.payload, notice) == objif::FrameError::kNone &&
+               notice.status == objif::Status::kTransportError &&
+               notice.text.starts_with("out of file descriptors (") && c.closed_by_peer();
+    };
+    for (const auto& c : waiting)
+        EXPECT_TRUE(refused(*c)) << descriptors_of(d->pid()) << "\n" << d->log();
+    RawClient next(d->socket_path());
+    EXPECT_TRUE(refused(next)) << descriptors_of(d->pid()) << "\n" << d->log();
+    // (The daemon gives the spare up for a moment whenever it accepts at the limit.)
+    EXPECT_TRUE(apci_test::eventually([&] { return spare_of(d->pid()) == spare; }))
+        << descriptors_of(d->pid());
+    // The limit as it was: newcomers are greeted again.
+    ASSERT_TRUE(limit_to(original.rlim_cur));
+    RawClient later(d->socket_path());
+    ASSERT_TRUE(later.receive_any(frame, 10s));
+    EXPECT_TRUE(daemon_test::is_greeting(frame));
+    greeted.clear();
+    EXPECT_EQ(d->stop(), 0);
+}
+
 // The default --max-clients of up to 4096 met a soft limit of 1024 open files: the daemon
 // raises its soft limit to the hard one, and where that is too small it says what happens.
 TEST(DaemonDescriptors, AnOpenFilesLimitBelowMaxClientsIsRaisedOrNamed) {

@@ -234,6 +234,11 @@ TEST(PlaneDistance, LinesNearestAtTheEdges) {
     const pd::Nearest overlap = pd::lines_nearest(line({0, 0}, {10, 0}), line({-1, 1}, {5, 1}));
     EXPECT_DOUBLE_EQ(overlap.distance, 1.0);
     EXPECT_EQ(overlap.t, 0.0);
+    // Parallel, the contour beside the path's second half: the end (1), not the foot of the
+    // contour's start (0.5), which is as near.
+    const pd::Nearest end_first = pd::lines_nearest(line({0, 1}, {2, 1}), line({1, 0}, {5, 0}));
+    EXPECT_DOUBLE_EQ(end_first.distance, 1.0);
+    EXPECT_EQ(end_first.t, 1.0);
     // Parallel, the contour beyond the path's end: the end.
     const pd::Nearest beyond = pd::lines_nearest(line({0, 0}, {1, 0}), line({4, 4}, {5, 4}));
     EXPECT_DOUBLE_EQ(beyond.distance, 5.0);
@@ -242,6 +247,28 @@ TEST(PlaneDistance, LinesNearestAtTheEdges) {
     const pd::Nearest point = pd::lines_nearest(line({1, 1}, {1, 1}), line({0, 0}, {2, 0}));
     EXPECT_DOUBLE_EQ(point.distance, 1.0);
     EXPECT_EQ(point.t, 0.0);
+}
+
+// Lines that cross at an end of one of them, where the distance measured at that end is not 0
+// but a rounding error: (-0.5, -0.17) lies three tenths along the line from (-0.77, 0.07) to
+// (0.13, -0.73) (their cross product is exactly 0), but its distance from that segment rounds
+// to 2.8e-17. The crossing is 0 in each of the four ways it can lie: at the path's start, at
+// its end, at the contour's start and at its end.
+TEST(PlaneDistance, LinesNearestIsZeroAtACrossingAtAnEndWhereTheMeasuredDistanceRounds) {
+    const Vec2 p(-0.5, -0.17), q(1.9, 0.73), a(-0.77, 0.07), b(0.13, -0.73);
+    ASSERT_GT(pd::point_segment(p, a, b), 0.0);  // else this tests nothing
+    const pd::Nearest path_start = pd::lines_nearest(line(p, q), line(a, b));
+    EXPECT_EQ(path_start.distance, 0.0);
+    EXPECT_EQ(path_start.t, 0.0);
+    const pd::Nearest path_end = pd::lines_nearest(line(q, p), line(a, b));
+    EXPECT_EQ(path_end.distance, 0.0);
+    EXPECT_EQ(path_end.t, 1.0);
+    const pd::Nearest contour_start = pd::lines_nearest(line(a, b), line(p, q));
+    EXPECT_EQ(contour_start.distance, 0.0);
+    EXPECT_NEAR(contour_start.t, 0.3, 1e-15);
+    const pd::Nearest contour_end = pd::lines_nearest(line(a, b), line(q, p));
+    EXPECT_EQ(contour_end.distance, 0.0);
+    EXPECT_NEAR(contour_end.t, 0.3, 1e-15);
 }
 
 TEST(PlaneDistance, KnownConfigurations) {

@@ -204,6 +204,31 @@ TEST(SelfApproachRules, TheDistanceReportedIsTheLeastToTheBillionthOfAMillimetre
         }
 }
 
+// Between a line path and a line wall the distance and the marker are exact
+// (docs/compensation.md, "Self-approach"): 0 where the path crosses the wall, at the crossing;
+// along a parallel wall, where many places are as near, at the first of them (here the foot of
+// the wall's start), not wherever a search along the path stopped.
+TEST(SelfApproachRules, BetweenTwoLinesTheDistanceAndTheMarkerAreExact) {
+    const Stretch wall = wall_line(10, 0, 20, 0, 0, 0);
+    const auto finding = [&](const PathSegment& path) {
+        const auto found = run({wall, probe(20, path)});
+        for (const auto& f : found)
+            if (f.path_block.number == 21 && f.contour_block.number == 11) return f;
+        ADD_FAILURE() << "no finding of N21 against N11";
+        return SelfApproachFinding{};
+    };
+    // Across the wall at three tenths of the path: 0 there.
+    const SelfApproachFinding across = finding(line(0, {5, -0.3, 0}, {6, 0.7, 0}));
+    EXPECT_EQ(across.distance, 0.0);
+    EXPECT_NEAR(across.where.x(), 5.3, 1e-12);
+    EXPECT_NEAR(across.where.y(), 0.0, 1e-12);
+    // 0.5 beside the whole wall, from x -10 to 30: as near from x 0 to 20; the marker at x 0.
+    const SelfApproachFinding beside = finding(line(0, {-10, 0.5, 0}, {30, 0.5, 0}));
+    EXPECT_EQ(beside.distance, 0.5);
+    EXPECT_EQ(beside.where.x(), 0.0);
+    EXPECT_EQ(beside.where.y(), 0.5);
+}
+
 // A closed square loop (0, 0)..(10, 10), tool outside (G41 clockwise), entered at the middle
 // of its left side (0, 5) by the approach N10 from `from`; N11..N15 its sides from there.
 Stretch entered_square(const Point& from, double r) {
