@@ -96,15 +96,23 @@ def select(db, regex, root, cache_path, todo_path, keys_path):
           f"since found clean, {len(todo)} to analyse")
 
 
+def read_keys(path):
+    """{PATH: {KEY, ...}} of a "KEY PATH" file (a file compiled by two targets has two keys)."""
+    keys = {}
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                if line.strip():
+                    key, unit = line.split()
+                    keys.setdefault(unit, set()).add(key)
+    return keys
+
+
 def update(keys_path, cache_path):
-    entries = {}
-    if os.path.exists(cache_path):
-        with open(cache_path) as f:
-            entries = {line.split()[1]: line for line in f if line.strip()}
-    with open(keys_path) as f:
-        entries.update({line.split()[1]: line for line in f if line.strip()})
+    entries = read_keys(cache_path)
+    entries.update(read_keys(keys_path))
     with open(cache_path, "w") as f:
-        f.writelines(entries[p] for p in sorted(entries))
+        f.writelines(f"{key} {unit}\n" for unit in sorted(entries) for key in sorted(entries[unit]))
 
 
 def main(argv):

@@ -122,6 +122,12 @@ class TidyCacheTest(unittest.TestCase):
         tidy_cache.update(keys, cache)
         with open(cache) as f:
             self.assertEqual(f.read(), f"{self.before['src/a.cpp']} src/a.cpp\n2222 src/gone.cpp\n")
+        # A unit compiled by two targets has a key for each, both kept.
+        with open(keys, "w") as f:
+            f.write("3333 src/b.cpp\n4444 src/b.cpp\n")
+        tidy_cache.update(keys, cache)
+        with open(cache) as f:
+            self.assertIn("3333 src/b.cpp\n4444 src/b.cpp\n", f.read())
 
 
 if __name__ == "__main__":
