@@ -26,6 +26,7 @@ import json
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -72,7 +73,8 @@ def select(db, regex, root, cache_path, todo_path, keys_path):
     root = os.path.realpath(root)
     with open(db) as f:
         entries = [e for e in json.load(f) if re.search(regex, e["file"])]
-    version = subprocess.run(["clang-tidy-14", "--version"], capture_output=True).stdout
+    tidy = shutil.which("clang-tidy-14")  # (none: no key matches a clean one; all analysed)
+    version = subprocess.run([tidy, "--version"], capture_output=True).stdout if tidy else b"-"
     with open(os.path.join(root, ".clang-tidy"), "rb") as f:
         salt = version + b"\0" + f.read() + b"\0"
     cache = set()

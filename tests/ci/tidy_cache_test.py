@@ -37,7 +37,7 @@ class Tree:
 
     def database(self):
         entries = [{"directory": self.root,
-                    "command": f"/usr/bin/clang++-14 {self.flags} -I{self.root}/src -o x.o "
+                    "command": f"c++ {self.flags} -I{self.root}/src -o x.o "
                                f"-c {self.root}/src/{n}",
                     "file": f"{self.root}/src/{n}"} for n in ("a.cpp", "b.cpp")]
         self.write("compile_commands.json", json.dumps(entries))
