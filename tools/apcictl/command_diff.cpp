@@ -571,8 +571,9 @@ class DiffCommand final : public Command {
             a.json = &json.emplace(json_file.file());
         }
         if (Outcome o = record_run(program_, in, here, a); !o.ok()) return o;
+        a.json = nullptr;  // the first run is over; its writer goes in publish_json()
         if (json)
-            if (Outcome o = publish_json(*json, json_file, a.outcome); !o.ok()) return o;
+            if (Outcome o = publish_json(json, json_file, a.outcome); !o.ok()) return o;
         SecondRun b(a.positions, tolerance_);
         if (Outcome o = record_run(program_, in, there, b); !o.ok()) return o;
         compared = std::min(a.samples, b.samples);
@@ -590,11 +591,14 @@ class DiffCommand final : public Command {
         return Outcome::success();
     }
 
-    // The first run's JSON finished, closed and renamed over its target.
-    Outcome publish_json(apci::run::JsonRunWriter& json, OutputFile& file,
+    // The first run's JSON finished, closed and renamed over its target. The writer goes
+    // before its file is closed: its destructor flushes the FILE it was given (left to the
+    // end of diff_nc, it flushed a FILE closed here: glibc aborted or the run crashed).
+    Outcome publish_json(std::optional<apci::run::JsonRunWriter>& json, OutputFile& file,
                          const apci::run::RunOutcome& run) const {
         const bool written =
-            json.finish(run.errors, run.registers, run.variables, run.notices, run.warnings);
+            json->finish(run.errors, run.registers, run.variables, run.notices, run.warnings);
+        json.reset();
         std::string why = file.close();
         if (why.empty() && !written) why = "the write failed";
         if (why.empty()) why = file.publish();
