@@ -69,35 +69,6 @@ def key_of(entry, root, salt):
     return h.hexdigest()
 
 
-def select(db, regex, root, cache_path, todo_path, keys_path):
-    root = os.path.realpath(root)
-    with open(db) as f:
-        entries = [e for e in json.load(f) if re.search(regex, e["file"])]
-    tidy = shutil.which("clang-tidy-14")  # (none: no key matches a clean one; all analysed)
-    version = subprocess.run([tidy, "--version"], capture_output=True).stdout if tidy else b"-"
-    with open(os.path.join(root, ".clang-tidy"), "rb") as f:
-        salt = version + b"\0" + f.read() + b"\0"
-    cache = set()
-    if os.path.exists(cache_path):
-        with open(cache_path) as f:
-            cache = {tuple(line.split()) for line in f if line.strip()}
-    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        keys = list(pool.map(lambda e: key_of(e, root, salt), entries))
-    todo, lines = [], []
-    for entry, key in zip(entries, keys):
-        path = os.path.relpath(entry["file"], root)
-        if key is None or (key, path) not in cache:
-            todo.append(entry["file"])
-        if key is not None:
-            lines.append(f"{key} {path}\n")
-    with open(todo_path, "w") as f:
-        f.writelines("^" + re.escape(p) + "$\n" for p in todo)
-    with open(keys_path, "w") as f:
-        f.writelines(lines)
-    print(f"clang-tidy cache: {len(entries) - len(todo)} of {len(entries)} units unchanged "
-          f"since found clean, {len(todo)} to analyse")
-
-
 def read_keys(path):
     """{PATH: {KEY, ...}} of a "KEY PATH" file (a file compiled by two targets has two keys)."""
     keys = {}
@@ -108,6 +79,32 @@ def read_keys(path):
                     key, unit = line.split()
                     keys.setdefault(unit, set()).add(key)
     return keys
+
+
+def select(db, regex, root, cache_path, todo_path, keys_path):
+    root = os.path.realpath(root)
+    with open(db) as f:
+        entries = [e for e in json.load(f) if re.search(regex, e["file"])]
+    tidy = shutil.which("clang-tidy-14")  # (none: no key matches a clean one; all analysed)
+    version = subprocess.run([tidy, "--version"], capture_output=True).stdout if tidy else b"-"
+    with open(os.path.join(root, ".clang-tidy"), "rb") as f:
+        salt = version + b"\0" + f.read() + b"\0"
+    cache = read_keys(cache_path)
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        keys = list(pool.map(lambda e: key_of(e, root, salt), entries))
+    todo, lines = [], []
+    for entry, key in zip(entries, keys):
+        path = os.path.relpath(entry["file"], root)
+        if key is None or key not in cache.get(path, ()):
+            todo.append(entry["file"])
+        if key is not None:
+            lines.append(f"{key} {path}\n")
+    with open(todo_path, "w") as f:
+        f.writelines("^" + re.escape(p) + "$\n" for p in todo)
+    with open(keys_path, "w") as f:
+        f.writelines(lines)
+    print(f"clang-tidy cache: {len(entries) - len(todo)} of {len(entries)} units unchanged "
+          f"since found clean, {len(todo)} to analyse")
 
 
 def update(keys_path, cache_path):
