@@ -19,6 +19,10 @@
 
 namespace test_support {
 
+// The glibc tunables every child runs with unless the test sets its own (run_process).
+inline constexpr const char* kFreedMemoryTunables =
+    "glibc.malloc.tcache_count=0:glibc.malloc.perturb=165";
+
 struct ProcessResult {
     int exit_code = -1;  // -1: killed by a signal
     std::string out;
@@ -42,6 +46,11 @@ inline ProcessResult run_process(const std::vector<std::string>& argv,
         for (int fd : {in_pipe[0], in_pipe[1], out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]})
             close(fd);
         if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(126);
+        // glibc's malloc without its per-thread cache and with freed memory overwritten: a
+        // use of freed memory in the child (a FILE used after fclose, a dangling buffer)
+        // fails at once instead of only when the heap happens to reuse it (a caller's own
+        // GLIBC_TUNABLES, in env or inherited, is kept).
+        setenv("GLIBC_TUNABLES", kFreedMemoryTunables, 0);
         for (const auto& [name, value] : env) setenv(name.c_str(), value.c_str(), 1);
         std::vector<char*> args;
         args.reserve(argv.size() + 1);
