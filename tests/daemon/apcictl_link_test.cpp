@@ -134,10 +134,19 @@ TEST(ApcictlLink, TheShellOpensALinkTheDaemonClosedWhileIdleAgain) {
     ASSERT_TRUE(shell.send("read 1300 0 20 0\nwrite 1300 0 20 0 2.5\nread 1300 0 20 0\n"));
     EXPECT_EQ(shell.finish(), 0) << shell.err();
     EXPECT_EQ(shell.out(), "1.5\n1.5\n2.5\n");
-    EXPECT_EQ(shell.err(),
-              "apcictl: note: the link to " + d->unix_uri() +
-                  " had been closed (a daemon closes a link idle for its --idle-timeout); opened "
-                  "again\n");
+    // Every link the daemon closed and the shell used again is opened again and noted once:
+    // the closure waited for above, and on a loaded machine perhaps one more (the shell's
+    // first request more than a second after it opened the link). No more notes than the
+    // daemon closed links idle, and nothing else said.
+    const std::string note = "apcictl: note: the link to " + d->unix_uri() +
+                             " had been closed (a daemon closes a link idle for its "
+                             "--idle-timeout); opened again\n";
+    const std::size_t notes = test_support::count_of(shell.err(), note);
+    EXPECT_GE(notes, 1u) << shell.err();
+    EXPECT_LE(notes, test_support::count_of(d->log(), "idle for 1 s")) << d->log();
+    std::string all_notes;
+    for (std::size_t i = 0; i < notes; ++i) all_notes += note;
+    EXPECT_EQ(shell.err(), all_notes);
 }
 
 // A link the daemon closed (it shut down): every kind of command says the daemon's words after

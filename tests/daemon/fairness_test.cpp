@@ -72,9 +72,12 @@ objif::ClockReply clock_reply(const objif::Frame& frame) {
 apci_motion_status status_of(const std::string& uri) {
     apci_board* b = nullptr;
     apci_motion_status st{};
-    EXPECT_EQ(apci_open(uri.c_str(), &b), APCI_OK) << apci_last_error(nullptr);
+    // The link's timeout from the start: it also bounds the wait for the daemon's greeting,
+    // which comes between two of the other client's turns; one turn (a whole step) takes
+    // seconds under ThreadSanitizer on a loaded machine (the default 2000 ms ran out there).
+    const std::string patient = uri + "?timeout=60000";
+    EXPECT_EQ(apci_open(patient.c_str(), &b), APCI_OK) << apci_last_error(nullptr);
     if (b == nullptr) return st;
-    EXPECT_EQ(apci_set_timeout(b, 60'000), APCI_OK);
     EXPECT_EQ(apci_motion_status_get(b, &st), APCI_OK) << apci_last_error(b);
     apci_close(b);
     return st;
