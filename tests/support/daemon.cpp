@@ -20,17 +20,23 @@
 #include <sstream>
 
 #include "objif/mailbox.h"
+#include "process.h"
 #include "text.h"
 
 namespace apci_test {
 namespace {
 
+// The test's environment with the daemon's runtime directory, and glibc's malloc made strict
+// as for every child of a test (process.h) unless the test runs with its own tunables.
 std::vector<std::string> environment_with(const std::string& runtime_dir) {
     std::vector<std::string> env;
+    bool tunables = false;
     for (char** e = environ; *e != nullptr; ++e) {
         if (std::strncmp(*e, "APCI_RUNTIME_DIR=", 17) != 0) env.emplace_back(*e);
+        if (std::strncmp(*e, "GLIBC_TUNABLES=", 15) == 0) tunables = true;
     }
     env.push_back("APCI_RUNTIME_DIR=" + runtime_dir);
+    if (!tunables) env.push_back(std::string("GLIBC_TUNABLES=") + test_support::kFreedMemoryTunables);
     return env;
 }
 
