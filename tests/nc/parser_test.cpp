@@ -57,12 +57,22 @@ TEST(Parser, ProgramNameLine) {
 }
 
 TEST(Parser, ProgramNameErrors) {
-    EXPECT_EQ(error("%"),
+    EXPECT_EQ(error("% !"),
               "prog.nc:12:2: expected a program name after '%' (letters, digits, "
               "'_', '.', '-')");
     EXPECT_EQ(error("%abc G1"),
               "prog.nc:12:6: unexpected 'G' after the program name: the '%' line holds only "
               "the name");
+}
+
+// '%' alone (with blanks and comments): the tape's start or end mark, not a program name.
+TEST(Parser, PercentAloneIsATapeMark) {
+    for (std::string_view t : {"%", "  %  ", "% (start of tape)", "%;"}) {
+        Parsed p = parse(t);
+        ASSERT_TRUE(p.ok) << t << ": " << p.err.to_string();
+        EXPECT_EQ(p.line.kind, LineKind::kTapeMark) << t;
+    }
+    EXPECT_EQ(parse("%a").line.kind, LineKind::kProgramName);
 }
 
 TEST(Parser, BlankAndCommentOnlyLinesAreEmpty) {
@@ -342,8 +352,19 @@ TEST(Parser, IsgSelectionMethodsAndSpindleFeedsAreRefusedAsNotEmulated) {
 }
 
 TEST(Parser, UnknownMCode) {
-    EXPECT_EQ(error("M3"), "prog.nc:12:1: unknown M code M3 (known: M30)");
-    EXPECT_EQ(error_kind("M02"), ErrorKind::kUnknownWord);
+    EXPECT_EQ(error("M3"), "prog.nc:12:1: unknown M code M3 (known: M2, M30: the program's end)");
+    EXPECT_EQ(error_kind("M1"), ErrorKind::kUnknownWord);
+    EXPECT_EQ(error_kind("M29"), ErrorKind::kUnknownWord);
+    EXPECT_EQ(error_kind("M31"), ErrorKind::kUnknownWord);
+}
+
+// M2 (M02) ends the program as M30 does (DIN 66025 defines both).
+TEST(Parser, M2AndM30EndTheProgram) {
+    for (std::string_view t : {"M2", "M02", "N99 M2", "M30", "m30"}) {
+        Parsed p = parse(t);
+        ASSERT_TRUE(p.ok) << t << ": " << p.err.to_string();
+        EXPECT_TRUE(p.line.block.end_of_program.present()) << t;
+    }
 }
 
 TEST(Parser, UnexpectedCharacter) {
@@ -391,7 +412,8 @@ TEST(Parser, SameWordTwice) {
     EXPECT_EQ(error("G2 I1 I2"), "prog.nc:12:7: 'I' appears twice in one block");
     EXPECT_EQ(error("D1 D2"), "prog.nc:12:4: 'D' appears twice in one block");
     EXPECT_EQ(error("F1 F2"), "prog.nc:12:4: 'F' appears twice in one block");
-    EXPECT_EQ(error("M30 M30"), "prog.nc:12:5: M30 appears twice in one block");
+    EXPECT_EQ(error("M30 M30"), "prog.nc:12:5: the program's end (M2 or M30) appears twice in one block");
+    EXPECT_EQ(error("M2 M30"), "prog.nc:12:4: the program's end (M2 or M30) appears twice in one block");
 }
 
 TEST(Parser, RadiusAndCenterExcludeEachOther) {

@@ -52,6 +52,59 @@ TEST(Program, ProgramNameOnlyOnFirstSignificantLine) {
               "prog.nc:2:1: '%name' must be the first line of the program (and appear once)");
 }
 
+// '%' alone: the tape's start mark on the first significant line, its end mark after the
+// program's end; once each, nowhere else (post-processors write both).
+TEST(Program, PercentAloneMarksTheTapesStartAndEnd) {
+    EXPECT_EQ(error_of("%\nG0 X1\nM30\n%\n"), "");
+    EXPECT_EQ(error_of("; header\n%\n%demo\nG0 X1\nM30\n\n% (end)\n; done\n"), "");
+    EXPECT_EQ(error_of("G0 X1\nM2\n%\n"), "");
+    const std::string rule =
+        ": '%' alone marks the tape's start (the first line) or its end (after M30 or M2), "
+        "once each";
+    EXPECT_EQ(error_of("G0 X1\n%\nM30\n"), "prog.nc:2:1" + rule);
+    EXPECT_EQ(error_of("%\n  %\nG0 X1\nM30\n"), "prog.nc:2:3" + rule);
+    EXPECT_EQ(error_of("%demo\n%\nG0 X1\nM30\n"), "prog.nc:2:1" + rule);
+    EXPECT_EQ(error_of("G0 X1\nM30\n%\n%\n"), "prog.nc:4:1" + rule);
+    EXPECT_EQ(error_of("G0 X1\nM30\n%\nG0 X2\n"),
+              "prog.nc:4:1: block after M30: the program has already ended");
+    EXPECT_EQ(error_of("%\nG0 X1\n%\n"), "prog.nc:3:1" + rule);
+    EXPECT_EQ(error_of("%\nG0 X1\n"), "prog.nc:2:1: the program ends without M30");
+}
+
+// M2 ends a program as M30 does; nothing but comments after it.
+TEST(Program, M2EndsTheProgram) {
+    EXPECT_EQ(error_of("G0 X1\nM2\n; end\n"), "");
+    EXPECT_EQ(error_of("G0 X1\nM02\nG0 X2\n"),
+              "prog.nc:3:1: block after M30: the program has already ended");
+}
+
+// A UTF-8 byte-order mark at the start of the program is left out (and not counted in the first
+// line's length); anywhere else it is an unexpected character.
+TEST(Program, AByteOrderMarkAtTheStartIsLeftOut) {
+    const std::string bom = "\xEF\xBB\xBF";
+    EXPECT_EQ(error_of(bom + "G0 X1\nM30\n"), "");
+    EXPECT_EQ(error_of(bom + "%\nG0 X1\nM30\n%\n"), "");
+    EXPECT_EQ(error_of(bom + "%demo\nG0 X1\nM30\n"), "");
+    EXPECT_EQ(error_of(bom + "G0 X1 @\nM30\n").rfind("prog.nc:1:7: unexpected character '@'", 0),
+              0u)
+        << "columns count from after the mark";
+    EXPECT_NE(error_of("G0 X1\n" + bom + "M30\n"), "");
+    EXPECT_NE(error_of(" " + bom + "G0 X1\nM30\n"), "");
+    // The first line at the length bound after the mark, in text and through a file's buffer.
+    for (std::size_t length : {LineSource::kMaxLineLength, LineSource::kMaxLineLength + 1}) {
+        std::string text = bom + "G0 X1 ;";
+        text.append(length - 7, 'x');
+        text += "\nM30\n";
+        const bool fits = length == LineSource::kMaxLineLength;
+        EXPECT_EQ(error_of(text), fits ? "" : "prog.nc:1:65537: line longer than 65536 characters");
+        Result<Program> p = Program::load(temp_file("bom_edge.nc", text));
+        EXPECT_EQ(static_cast<bool>(p), fits) << length;
+    }
+    // The tool list is read the same way.
+    Result<ToolTable> tools = parse_tool_table(bom + "wz[1].radius 5\n", "t.tools");
+    EXPECT_TRUE(tools) << tools.error().to_string();
+}
+
 TEST(Program, KlartextDialectIsDetectedByBeginPgm) {
     // Told by content: these are Klartext programs (tests/nc/klartext_test.cpp), refused here
     // only because they stop before END PGM.

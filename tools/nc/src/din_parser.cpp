@@ -139,11 +139,16 @@ class BlockParser : public LineParse {
         const std::uint32_t col = c_.column();
         while (is_program_name_char(c_.peek())) c_.advance();
         const std::string_view name = c_.line().substr(begin, c_.offset() - begin);
+        if (!skip_blanks_and_comments(c_, file_, line_, err_)) return false;
+        if (name.empty() && c_.at_end()) {  // '%' alone: the tape's start or end mark
+            out_.kind = LineKind::kTapeMark;
+            out_.program_name_column = col;  // as for a name: the column after the '%'
+            return true;
+        }
         if (name.empty()) {
             return fail_here(ErrorKind::kSyntax, col,
                              "expected a program name after '%' (letters, digits, '_', '.', '-')");
         }
-        if (!skip_blanks_and_comments(c_, file_, line_, err_)) return false;
         if (!c_.at_end()) {
             return fail_here(ErrorKind::kSyntax, c_.column(),
                              fmt::format("unexpected {} after the program name: the '%' line holds "
@@ -379,12 +384,15 @@ class BlockParser : public LineParse {
     bool m_code(std::uint32_t col) {
         std::uint64_t m = 0;
         if (!whole('M', m, "M code")) return false;
-        if (m != 30) {
+        // M2 (M02) and M30: the program's end (DIN 66025 defines both; the emulated board has
+        // no spindle or tape to tell them apart).
+        if (m != 2 && m != 30) {
             return fail_here(ErrorKind::kUnknownWord, col,
-                             fmt::format("unknown M code M{} (known: M30)", m));
+                             fmt::format("unknown M code M{} (known: M2, M30: the program's end)", m));
         }
         if (b_.end_of_program.present()) {
-            return fail_here(ErrorKind::kConflict, col, "M30 appears twice in one block");
+            return fail_here(ErrorKind::kConflict, col,
+                             "the program's end (M2 or M30) appears twice in one block");
         }
         b_.end_of_program.value = true;
         b_.end_of_program.column = col;

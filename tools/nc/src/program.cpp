@@ -77,6 +77,24 @@ bool EventStream::line(std::string_view text) {
             return true;
         case LineKind::kEmpty:
             return true;
+        case LineKind::kTapeMark: {
+            // The tape's start mark before everything else, its end mark after the program's
+            // end; then nothing but blank lines and comments (docs/nc-programs.md).
+            const bool at_start = !seen_block_ && !tape_start_ && program_name_.empty();
+            const bool at_end = interpreter_.state().ended && !tape_end_;
+            if (!at_start && !at_end) {
+                Diagnostic d;
+                d.kind = ErrorKind::kProgramRule;
+                d.file = source_.name();
+                d.line = n;
+                d.column = parsed_.program_name_column - 1;
+                d.message = "'%' alone marks the tape's start (the first line) or its end (after "
+                            "M30 or M2), once each";
+                return fail(std::move(d));
+            }
+            (at_start ? tape_start_ : tape_end_) = true;
+            return true;
+        }
         case LineKind::kProgramName:
             if (seen_block_ || !program_name_.empty()) {
                 Diagnostic d;

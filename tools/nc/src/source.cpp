@@ -107,6 +107,13 @@ LineSource::Read LineSource::next(std::string_view& line, Diagnostic& err) {
     for (;;) {
         const char* start = data_ + pos_;
         const std::size_t avail = end_ - pos_;
+        // A UTF-8 byte-order mark at the very start (editors on Windows and CAM systems write
+        // one) is no character of the first line: left out, and not counted in its length.
+        const std::size_t mark = base_ + pos_ == 0 && avail >= kByteOrderMark.size() &&
+                                         std::string_view(start, kByteOrderMark.size()) ==
+                                             kByteOrderMark
+                                     ? kByteOrderMark.size()
+                                     : 0;
         const auto* nl = static_cast<const char*>(std::memchr(start, '\n', avail));
         std::size_t len = 0;
         bool have_line = false;
@@ -123,11 +130,11 @@ LineSource::Read LineSource::next(std::string_view& line, Diagnostic& err) {
         if (have_line) {
             if (len > 0 && start[len - 1] == '\r') --len;
             ++line_number_;
-            if (len > kMaxLineLength) break;
-            line = std::string_view(start, len);
+            if (len - mark > kMaxLineLength) break;
+            line = std::string_view(start + mark, len - mark);
             return Read::kLine;
         }
-        if (avail > kMaxLineLength) {
+        if (avail > kMaxLineLength + mark) {
             ++line_number_;
             break;
         }

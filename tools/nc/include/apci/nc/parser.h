@@ -31,6 +31,7 @@ DialectProbe detect_dialect(std::string_view line) noexcept;
 enum class LineKind : std::uint8_t {
     kEmpty,        // blank, or only comments
     kProgramName,  // "%name"
+    kTapeMark,     // "%" alone: the tape's start or end mark (ISO 6983), first or after M30
     kBlock,        // at least one word (an "N10" alone is a block)
     kIsg,          // an ISG command: #OTC, #KIN, #TRAFO, #HSC, $FOR, $ENDFOR (after an optional N)
     kAssignment,   // "P1 = expr", "V.G.WZ_AKT.WEAR_CONST = expr" or

@@ -124,6 +124,7 @@ class EventStream : private ExpressionContext {
     std::size_t batch_pos_ = 0;
     Dialect dialect_ = Dialect::kUndecided;
     bool seen_block_ = false;
+    bool tape_start_ = false, tape_end_ = false;  // a '%' alone seen first, after the end
     bool at_end_ = false;
     bool failed_ = false;
     std::uint64_t blocks_ = 0;

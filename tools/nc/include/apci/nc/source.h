@@ -19,6 +19,8 @@ class LineSource {
     // Longest accepted line in bytes (without its line end); longer lines are an error, so that
     // memory stays bounded whatever the input.
     static constexpr std::size_t kMaxLineLength = std::size_t{64} * 1024;
+    // UTF-8's byte-order mark: at the start of a source it is left out (next()).
+    static constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
     // Opens a file for reading; the diagnostic names the path and the system's reason.
     static Result<LineSource> open_file(const std::string& path);
