@@ -865,12 +865,22 @@ TEST(OtcBackToStart, ARisingEdgeMovesTheAxisBackToWhereManualModeBegan) {
     EXPECT_EQ(r.position()[0], 10.0);
     EXPECT_EQ(r.position()[1], 5.0);  // the other axes stay
     EXPECT_EQ(r.back_read(0, otc::kSubBackState), 0);
-    // The edge has passed: holding the command moves nothing; a new edge with no offset left
-    // neither.
+    // The edge has passed: holding the command (1 written again while it is 1) moves nothing,
+    // though X has an offset again (manual mode goes on, its start still X10).
+    r.jog(0, 25.0);
+    r.run();
     r.jog(1, 8.0);
     r.run();
     ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    EXPECT_EQ(r.back_read(0, otc::kSubBackState), 0);
     r.run();
+    EXPECT_EQ(r.position()[0], 25.0);
+    EXPECT_EQ(r.position()[1], 8.0);
+    // A new edge takes X back; one more with no offset left is ignored.
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
+    ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);
+    r.run();
+    EXPECT_EQ(r.position()[0], 10.0);
     EXPECT_EQ(r.position()[1], 8.0);
     ASSERT_EQ(r.back(0, otc::kSubBackCommand, 0), Status::kOk);
     ASSERT_EQ(r.back(0, otc::kSubBackCommand, 1), Status::kOk);

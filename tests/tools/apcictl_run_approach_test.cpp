@@ -59,6 +59,7 @@ TEST_F(ApcictlRun, ALoneG40DepartsByTheSelectionWordOfItsOwnBlock) {
                                                "N60 G2 X30 Y-10 I0 J-10\nN70 M30\n"),
                               {"--tools", tools(0.5)});
     EXPECT_EQ(roles(doc), "uncompensated/20 approach/30 contour/40 departure/40 uncompensated/60");
+    ASSERT_FALSE(doc.at("segments").empty());
     const json& arc = doc.at("segments").back();
     EXPECT_EQ(arc.at("kind"), "arc");
     EXPECT_LT((xy(arc.at("start")) - Eigen::Vector2d(20, 0)).norm(), 1e-9);
