@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: MIT
 # Mutation check (docs/testing.md, "Mutation check"): plants the one-line bugs of
 # scripts/mutants.txt, one at a time, in a scratch copy of the working tree, rebuilds only the
-# test programs each names, runs them and reports which mutants the tests kill and which
-# survive. The checkout itself is never written to.
+# test programs each names, runs them (or the CTest tests it names: `run: ctest=REGEX`) and
+# reports which mutants the tests kill and which survive. The checkout itself is never written
+# to.
 #
 # Usage: scripts/mutation_check.sh [options]
 #   --only ID[,ID...]  check only these mutants
@@ -79,7 +80,9 @@ finish_entry() {
     M_BUILD+=("${e[build]}")
   else
     local spec targets=""
-    for spec in ${e[run]}; do targets+="${spec%%=*} "; done
+    for spec in ${e[run]}; do
+      [ "${spec%%=*}" = ctest ] || targets+="${spec%%=*} "
+    done
     M_BUILD+=("${targets% }")
   fi
   M_ABOUT+=("${e[about]}")
@@ -276,6 +279,33 @@ run_program() {
   fi
 }
 
+# run_ctest REGEX LOG: runs the CTest tests whose names match REGEX (a script's test, such as
+# a Python one, is no GoogleTest program), each with the time limit; the tests that failed on
+# the unmutated tree are left out. Sets RUN_RESULT, RUN_TEST and RUN_FAILED as run_program.
+run_ctest() {
+  local regex=$1 log=$2 rc
+  local args=(-R "$regex" --output-on-failure --timeout "$timeout_s")
+  [ -n "${EXCLUDED[ctest=$regex]:-}" ] && args+=(-E "^(${EXCLUDED[ctest=$regex]})\$")
+  RUN_RESULT="" RUN_TEST="" RUN_FAILED=""
+  if [ -z "$regex" ]; then RUN_RESULT="none"; return; fi
+  (cd "$build" && ctest "${args[@]}") > "$log" 2>&1
+  rc=$?
+  # "The following tests FAILED:" then one "  N - NAME (Failed|Timeout|SEGFAULT|...)" a test.
+  RUN_FAILED="$(sed -n '/^The following tests FAILED:/,$s/^[[:space:]]*[0-9][0-9]* - \([^ ]*\) (.*$/\1/p' "$log")"
+  RUN_TEST="$(head -n 1 <<< "$RUN_FAILED")"
+  if grep -q '^No tests were found' "$log"; then
+    RUN_RESULT="none"
+  elif [ $rc -eq 0 ]; then
+    RUN_RESULT="pass"
+  elif [ -z "$RUN_FAILED" ]; then
+    RUN_RESULT="crash"; RUN_TEST="ctest (exit $rc)"
+  elif grep -q "^[[:space:]]*[0-9][0-9]* - $RUN_TEST (Timeout)" "$log"; then
+    RUN_RESULT="timeout"
+  else
+    RUN_RESULT="fail"
+  fi
+}
+
 # The gtest filter of FILTER without the tests that fail on the unmutated tree.
 declare -A EXCLUDED=()
 with_exclusions() {
@@ -286,9 +316,10 @@ with_exclusions() {
   if [[ "$filter" == *-* ]]; then printf '%s:%s' "$filter" "$ex"; else printf '%s-%s' "$filter" "$ex"; fi
 }
 
-build_targets() {  # build_targets LOG TARGET...
+build_targets() {  # build_targets LOG TARGET... (none: nothing to build)
   local log=$1
   shift
+  [ $# -gt 0 ] || { echo "nothing to build" > "$log"; return 0; }
   cmake --build "$build" -j"$jobs" --target "$@" > "$log" 2>&1
 }
 
@@ -297,25 +328,40 @@ build_targets() {  # build_targets LOG TARGET...
 declare -A all_targets=() all_programs=()
 for i in "${SEL[@]}"; do
   for t in ${M_BUILD[$i]}; do all_targets[$t]=1; done
-  for spec in ${M_RUN[$i]}; do all_programs[${spec%%=*}]=1; done
+  for spec in ${M_RUN[$i]}; do
+    # A CTest selection is run (and its failures left out) as written, a program as a whole.
+    if [ "${spec%%=*}" = ctest ]; then all_programs[$spec]=1; else all_programs[${spec%%=*}]=1; fi
+  done
 done
 echo "baseline: building ${!all_targets[*]}"
 build_targets "$logs/baseline.build.log" "${!all_targets[@]}" ||
   die "the unmutated tree does not build: $logs/baseline.build.log"
 baseline_notes=()
+baseline_n=0
 for program in "${!all_programs[@]}"; do
-  run_program "$program" "" "$logs/baseline.$program.log"
+  if [ "${program%%=*}" = ctest ]; then
+    baseline_n=$((baseline_n + 1))
+    baseline_log="$logs/baseline.ctest-$baseline_n.log"
+    run_ctest "${program#ctest=}" "$baseline_log"
+  else
+    baseline_log="$logs/baseline.$program.log"
+    run_program "$program" "" "$baseline_log"
+  fi
   case "$RUN_RESULT" in
     pass) ;;
     fail)
       # Tests that fail without any mutant cannot tell a mutant apart: left out, with a note.
-      EXCLUDED[$program]="$(paste -sd: <<< "$RUN_FAILED")"
+      if [ "${program%%=*}" = ctest ]; then
+        EXCLUDED[$program]="$(paste -sd'|' <<< "$RUN_FAILED" | sed 's/\./\\./g')"
+      else
+        EXCLUDED[$program]="$(paste -sd: <<< "$RUN_FAILED")"
+      fi
       while IFS= read -r t; do
         baseline_notes+=("$program: $t fails on the unmutated tree: left out")
         echo "warning: $program: $t fails on the unmutated tree: left out" >&2
       done <<< "$RUN_FAILED"
       ;;
-    *) die "baseline: $program: $RUN_RESULT ${RUN_TEST:-} ($logs/baseline.$program.log)" ;;
+    *) die "baseline: $program: $RUN_RESULT ${RUN_TEST:-} ($baseline_log)" ;;
   esac
 done
 
@@ -361,7 +407,11 @@ for i in "${SEL[@]}"; do
         program="${spec%%=*}"
         filter=""
         [[ "$spec" == *=* ]] && filter="${spec#*=}"
-        run_program "$program" "$(with_exclusions "$program" "$filter")" "$logs/$id.$program.log"
+        if [ "$program" = ctest ]; then
+          run_ctest "$filter" "$logs/$id.ctest.log"
+        else
+          run_program "$program" "$(with_exclusions "$program" "$filter")" "$logs/$id.$program.log"
+        fi
         case "$RUN_RESULT" in
           pass) ;;
           fail)

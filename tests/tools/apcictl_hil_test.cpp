@@ -396,6 +396,28 @@ TEST_F(ApcictlDiff, JsonInADirectoryThatIsNotThereIsAUsageError) {
     EXPECT_TRUE(contains(r.err, "No such file or directory")) << r.err;
 }
 
+// A --json file that cannot be written whole is an error that names it and its cause, and
+// nothing is published: on a full device (written in place), and past the file size limit (the
+// write fails with EFBIG): the old file stays as it was, and no temporary file is left beside it.
+TEST_F(ApcictlDiff, JsonThatCannotBeWrittenIsReportedAndLeavesTheOldFile) {
+    auto r = diff({"--against", "emu:", "--tools", kTools, kInsideCorners, "--json", "/dev/full"},
+                  "emu:");
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, "diff: cannot write /dev/full: No space left on device")) << r.err;
+    const std::string json = script_file(dir_, "kept", "old.json");
+    // ulimit -f counts blocks of 512 bytes (dash); SIGXFSZ ignored stays ignored across exec.
+    r = test_support::run_process({"/bin/sh", "-c", "trap '' XFSZ; ulimit -f 2; exec \"$@\"",
+                                   "sh", APCICTL_PATH, "--device", "emu:", "diff", "--against",
+                                   "emu:", "--tools", kTools, kInsideCorners, "--json", json});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, "diff: cannot write " + json + ": File too large")) << r.err;
+    EXPECT_EQ(test_support::read_text(json), "kept");
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir_.path()))
+        ++entries;
+    EXPECT_EQ(entries, 1u) << "old.json only";
+}
+
 // A Klartext program (*.h) with its correction table (--corr, as for run) on both boards.
 TEST_F(ApcictlDiff, KlartextProgramTakesItsCorrectionTable) {
     const std::string examples = std::string(APCI_SOURCE_DIR) + "/examples";
