@@ -334,7 +334,17 @@ TEST(Parser, CdonAndCdofAreWordsOfTheirOwn) {
 TEST(Parser, UnknownGCode) {
     EXPECT_EQ(error("N10 G04"),
               "prog.nc:12:5: N10: unknown G code G4 (known: G0-G3, G17-G19, G25, "
-              "G26, G40-G42, G70, G71, G90, G91)");
+              "G26, G40-G42, G70, G71, G90, G91, G138, G139, G237)");
+    // Fanuc-style units: this dialect's word named.
+    EXPECT_EQ(error("G21 G1 X1"),
+              "prog.nc:12:1: unknown G code G21 (known: G0-G3, G17-G19, G25, G26, G40-G42, G70, "
+              "G71, G90, G91, G138, G139, G237): this dialect sets millimetres with G71");
+    EXPECT_EQ(error("G20"),
+              "prog.nc:12:1: unknown G code G20 (known: G0-G3, G17-G19, G25, G26, G40-G42, G70, "
+              "G71, G90, G91, G138, G139, G237): this dialect sets inches with G70");
+    EXPECT_EQ(error("G22"),
+              "prog.nc:12:1: unknown G code G22 (known: G0-G3, G17-G19, G25, G26, G40-G42, G70, "
+              "G71, G90, G91, G138, G139, G237)");
 }
 
 TEST(Parser, IsgSelectionMethodsAndSpindleFeedsAreRefusedAsNotEmulated) {

@@ -57,7 +57,7 @@ namespace {
 
 constexpr std::string_view kKnownWords = "N G X Y Z B I J K R F D M, CDON CDOF";
 constexpr std::string_view kKnownGCodes =
-    "G0-G3, G17-G19, G25, G26, G40-G42, G70, G71, G90, G91";
+    "G0-G3, G17-G19, G25, G26, G40-G42, G70, G71, G90, G91, G138, G139, G237";
 
 bool is_program_name_char(char c) {
     return is_letter(c) || is_digit(c) || c == '_' || c == '.' || c == '-';
@@ -375,6 +375,14 @@ class BlockParser : public LineParse {
                 return set_group(b_.distance, DistanceMode::kAbsolute, col, "distance mode");
             case 91:
                 return set_group(b_.distance, DistanceMode::kIncremental, col, "distance mode");
+            case 20:
+            case 21:
+                // What Fanuc-style posts write first: name this dialect's word for it.
+                return fail_here(ErrorKind::kUnknownWord, col,
+                                 fmt::format("unknown G code G{} (known: {}): this dialect "
+                                             "sets {} with {}",
+                                             g, kKnownGCodes, g == 20 ? "inches" : "millimetres",
+                                             g == 20 ? "G70" : "G71"));
             default:
                 return fail_here(ErrorKind::kUnknownWord, col,
                                  fmt::format("unknown G code G{} (known: {})", g, kKnownGCodes));
