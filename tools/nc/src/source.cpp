@@ -127,7 +127,9 @@ LineSource::Read LineSource::next(std::string_view& line, Diagnostic& err) {
             line = std::string_view(start, len);
             return Read::kLine;
         }
-        if (avail > kMaxLineLength) {
+        // No line end yet: more than the bound is a line too long, but a line of exactly the
+        // bound may end in "\r" with its "\n" not read yet (the buffer's last byte).
+        if (avail > kMaxLineLength + 1) {
             ++line_number_;
             break;
         }
