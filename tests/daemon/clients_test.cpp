@@ -625,8 +625,8 @@ TEST(DaemonList, ASocketPathWithALineEndIsListedOnOneLine) {
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, 2);
         ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
-        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket",
-                socket.c_str(), nullptr);
+        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket", socket.c_str(),
+                nullptr);
         ::_exit(127);
     }
     const std::string entry = dir.file("rwmos-emu." + std::to_string(pid));

@@ -212,8 +212,8 @@ TEST(ScriptBounds, AScriptFileOfLinesOfExactly65536CharactersRunsAndOneMoreIsRef
         auto r = test_support::run_process({APCICTL_PATH, "script", path});
         EXPECT_EQ(r.exit_code, 0) << r.err;
         EXPECT_EQ(r.out, "8\n8\n");
-        std::ofstream(path, std::ios::binary) << line_of(kMax, "read 1000 0 3 0") + end +
-                                                     line_of(kMax + 1, "read 1000 0 3 0") + end;
+        std::ofstream(path, std::ios::binary)
+            << line_of(kMax, "read 1000 0 3 0") + end + line_of(kMax + 1, "read 1000 0 3 0") + end;
         r = test_support::run_process({APCICTL_PATH, "script", path});
         EXPECT_EQ(r.exit_code, 2) << r.err;
         EXPECT_EQ(r.out, "") << "a line ran";
