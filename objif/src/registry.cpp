@@ -23,6 +23,8 @@ std::string entry_name(pid_t pid) {
     return fmt::format("{}{}", kPrefix, pid);
 }
 
+// Whether `pid` names a live process. Only a positive pid names one: kill(0, 0) asks this
+// process's group and kill(-N, 0) a group (kill(-1, 0) every process), which answer.
 bool alive(pid_t pid) {
     return pid > 0 && (::kill(pid, 0) == 0 || errno == EPERM);
 }
@@ -286,7 +288,7 @@ bool registered_daemons(std::vector<RegisteredDaemon>& out, std::string& why) {
     while (const dirent* e = ::readdir(d.get())) {
         RegisteredDaemon entry;
         entry.pid = pid_of_entry(e->d_name);
-        if (entry.pid <= 0 || !alive(entry.pid)) continue;
+        if (!alive(entry.pid)) continue;  // also an entry of no pid (0)
         if (!read_entry(::dirfd(d.get()), e->d_name, text) || !parse_entry(text, entry)) continue;
         out.push_back(std::move(entry));
     }

@@ -613,4 +613,32 @@ TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
     EXPECT_TRUE(contains(r.out, "shm:" + dir.file("emu.dpram") + " ")) << r.out;
 }
 
+// A socket path with a line end and "shm FILE" after it: the registry keeps it whole, and
+// `apcictl list` prints it escaped on the board's one line (it printed a second line,
+// "shm precious.txt  rwmos-emu daemon, pid N").
+TEST(DaemonList, ASocketPathWithALineEndIsListedOnOneLine) {
+    TempDir dir;
+    const std::string socket = dir.file("x\nshm precious.txt");
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 2);
+        ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
+        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket", socket.c_str(),
+                nullptr);
+        ::_exit(127);
+    }
+    const std::string entry = dir.file("rwmos-emu." + std::to_string(pid));
+    EXPECT_TRUE(apci_test::eventually([&] { return std::filesystem::exists(entry); }));
+    const auto r =
+        test_support::run_process({APCICTL_PATH, "list"}, {}, {{"APCI_RUNTIME_DIR", dir.path()}});
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "unix:" + dir.file("x\\nshm precious.txt") + "  rwmos-emu daemon, pid " +
+                         std::to_string(pid) + "\n");
+}
+
 }  // namespace

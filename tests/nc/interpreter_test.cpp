@@ -507,6 +507,13 @@ TEST(Interpreter, AnArcWhosePathLeavesTheBoardsRangeIsRefused) {
     EXPECT_EQ(error_of("G0 Y99991 X10\nG3 X-10 Y99991 I-10 F100\nM30"),
               "prog.nc:2:16: the arc reaches Y 100001.0000 mm (centre X 0.0000 Y 99991.0000, "
               "radius 10.0000 mm), beyond the board's coordinate range of +-100000 mm");
+    // Exactly at the limit where the circle's bounding box is not (it passes +Y's limit, where
+    // the arc does not turn): centre (99995, 99997), radius 5, counter-clockwise from (4, -3)
+    // to (4, 3) about it through +X, reaching X 100000 and no more; one micrometre further, beyond.
+    EXPECT_EQ(error_of("G0 X99999 Y99994\nG3 X99999 Y100000 I-4 J3 F100\nM30"), "");
+    EXPECT_EQ(error_of("G0 X99999.001 Y99994\nG3 X99999.001 Y100000 I-4 J3 F100\nM30"),
+              "prog.nc:2:23: the arc reaches X 100000.0010 mm (centre X 99995.0010 Y 99997.0000, "
+              "radius 5.0000 mm), beyond the board's coordinate range of +-100000 mm");
 }
 
 // The range check counts an arc whose ends lie at most 1e-9 apart as a whole turn (as the board

@@ -236,6 +236,30 @@ TEST(Program, ALineOfExactlyTheLimitIsReadAndOneMoreIsRefused) {
     }
 }
 
+// The file reader's buffer holds two bounds' worth: a line of exactly the bound whose "\r" is
+// the buffer's last byte, its "\n" not read yet, is still a line (it was refused as longer
+// than the bound). The line before it fills the buffer's first half, less that one byte.
+TEST(Program, ALineOfExactlyTheLimitWhoseLineEndStraddlesTheReadBufferIsRead) {
+    const auto line = [](std::size_t length) {
+        std::string l = "G0 X1 ;";
+        l.append(length - l.size(), 'x');
+        return l;
+    };
+    const std::string first = line(LineSource::kMaxLineLength - 2) + "\n";
+    const std::string second = line(LineSource::kMaxLineLength) + "\r\n";
+    ASSERT_EQ(first.size() + second.size() - 1, 2 * LineSource::kMaxLineLength);  // to the "\r"
+    const std::string ok_path = temp_file("straddle_edge_ok.nc", first + second + "M30\r\n");
+    Result<Program> ok = Program::load(ok_path);
+    EXPECT_TRUE(ok) << ok.error().to_string();
+    // One character more on the second line, whose "\r" then follows the buffer's end.
+    const std::string bad_path = temp_file(
+        "straddle_edge_bad.nc", first + line(LineSource::kMaxLineLength + 1) + "\r\nM30\r\n");
+    Result<Program> refused = Program::load(bad_path);
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().to_string(),
+              bad_path + ":2:65537: line longer than 65536 characters");
+}
+
 TEST(Program, LinesAcrossTheReadBufferKeepTheirText) {
     // Enough lines of varying length that many straddle the file reader's buffer boundary.
     std::string text = "G1 F100\n";

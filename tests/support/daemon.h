@@ -62,7 +62,11 @@ class Daemon {
 };
 
 // Runs build/bin/rwmos-emu with `args` to completion (for --help and usage
-// errors); returns the exit code and its stdout+stderr in `output`.
+// errors); returns the exit code and its stdout+stderr in `output`. A daemon
+// still running after kRunDaemonLimit (it serves where it should have
+// refused) is killed: kStillRunning, and `output` says so.
+inline constexpr std::chrono::seconds kRunDaemonLimit{30};
+inline constexpr int kStillRunning = -2;
 int run_daemon(const std::vector<std::string>& args, std::string& output,
                const std::string& runtime_dir);
 

@@ -199,6 +199,32 @@ TEST(ScriptBounds, EndlessInputIsRefusedAndNothingRuns) {
     EXPECT_TRUE(contains(r.err, "/dev/zero: larger than 16 MiB")) << r.err;
 }
 
+// `apcictl script FILE` (its own reader of the file, not the one above): a script whose lines
+// are exactly 65,536 characters runs; one line one character longer is refused by its number
+// and nothing runs.
+TEST(ScriptBounds, AScriptFileOfLinesOfExactly65536CharactersRunsAndOneMoreIsRefused) {
+    std::string templ = ::testing::TempDir() + "script_bounds_XXXXXX";
+    ASSERT_NE(::mkdtemp(templ.data()), nullptr);
+    const std::string path = templ + "/edge.apci";
+    for (const char* end : {"\n", "\r\n"}) {
+        std::ofstream(path, std::ios::binary)
+            << line_of(kMax, "read 1000 0 3 0") + end + line_of(kMax, "read 1000 0 3 0") + end;
+        auto r = test_support::run_process({APCICTL_PATH, "script", path});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(r.out, "8\n8\n");
+        std::ofstream(path, std::ios::binary)
+            << line_of(kMax, "read 1000 0 3 0") + end + line_of(kMax + 1, "read 1000 0 3 0") + end;
+        r = test_support::run_process({APCICTL_PATH, "script", path});
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(r.out, "") << "a line ran";
+        EXPECT_EQ(r.err,
+                  "apcictl: line 2: longer than 65536 characters; not run (it starts 'read 1000 0 "
+                  "3 0 #xxx')\n");
+    }
+    std::remove(path.c_str());
+    ::rmdir(templ.c_str());
+}
+
 TEST(ShellBounds, AShellLineOfExactly65536CharactersRunsAndOneMoreIsRefused) {
     const std::string input = line_of(kMax, "read 1000 0 3 0") + "\n" +
                               line_of(kMax + 1, "read 1000 0 3 0") + "\r\n" +

@@ -9,6 +9,10 @@
 // A registered socket is a daemon only if it greets as one (libapci waits
 // 500 ms for the greeting); anything else listening there is listed as
 // "not an rwmos-emu daemon (registered by pid N; what it did)".
+//
+// One board, one line: a socket path may hold any byte but NUL, so a URI or a description
+// is printed with its backslashes, line ends and other control characters escaped as the
+// registry writes paths (\\, \n, \xHH); a path with a line end printed a second line.
 #include <fmt/format.h>
 
 #include <string>
@@ -16,6 +20,7 @@
 #include <vector>
 
 #include "command.h"
+#include "objif/registry.h"
 
 namespace apcictl {
 namespace {
@@ -44,6 +49,10 @@ class ListCommand final : public Command {
             &found);
         if (s != APCI_OK)
             return Outcome::board_error(fmt::format("list: {}", apci_last_error(nullptr)));
+        for (auto& [uri, description] : found) {
+            uri = objif::escape_registry_path(uri);
+            description = objif::escape_registry_path(description);
+        }
         std::size_t width = 0;
         for (const auto& [uri, description] : found) width = std::max(width, uri.size());
         for (const auto& [uri, description] : found)

@@ -134,7 +134,10 @@ LineSource::Read LineSource::next(std::string_view& line, Diagnostic& err) {
             line = std::string_view(start + mark, len - mark);
             return Read::kLine;
         }
-        if (avail > kMaxLineLength + mark) {
+        // No line end yet: more than the bound is a line too long, but a line of exactly the
+        // bound may end in "\r" with its "\n" not read yet (the buffer's last byte), and the
+        // first line may begin with a byte-order mark.
+        if (avail > kMaxLineLength + 1 + mark) {
             ++line_number_;
             break;
         }
