@@ -584,28 +584,40 @@ TEST(DaemonList, ListenerThatIsNotADaemonIsListedAsNotOne) {
         << r.out;
 }
 
-// A daemon started with relative paths registers them absolute: `apcictl list` run from
-// another directory prints URIs that open the board (it printed "unix:emu.sock").
-TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
-    TempDir dir;
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
+// `apcictl list` while a daemon started in `dir` (its runtime directory and working directory)
+// with `args` is registered; the daemon (its pid in `pid`) is stopped before the answer is
+// returned.
+test_support::ProcessResult listed_with_daemon(const TempDir& dir,
+                                               const std::vector<std::string>& args, pid_t& pid) {
+    pid = ::fork();
+    if (pid < 0) return {};
     if (pid == 0) {
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, 2);
         if (::chdir(dir.path().c_str()) != 0) ::_exit(126);
         ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
-        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket", "emu.sock",
-                "--shm", "./emu.dpram", nullptr);
+        std::vector<char*> argv{const_cast<char*>(apci_test::daemon_binary())};
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(apci_test::daemon_binary(), argv.data());
         ::_exit(127);
     }
     const std::string entry = dir.file("rwmos-emu." + std::to_string(pid));
     EXPECT_TRUE(apci_test::eventually([&] { return std::filesystem::exists(entry); }));
-    const auto r =
+    auto r =
         test_support::run_process({APCICTL_PATH, "list"}, {}, {{"APCI_RUNTIME_DIR", dir.path()}});
     ::kill(pid, SIGTERM);
     int status = 0;
     ::waitpid(pid, &status, 0);
+    return r;
+}
+
+// A daemon started with relative paths registers them absolute: `apcictl list` run from
+// another directory prints URIs that open the board (it printed "unix:emu.sock").
+TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
+    TempDir dir;
+    pid_t pid = 0;
+    const auto r = listed_with_daemon(dir, {"--socket", "emu.sock", "--shm", "./emu.dpram"}, pid);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(contains(
         r.out, "unix:" + dir.file("emu.sock") + "  rwmos-emu daemon, pid " + std::to_string(pid)))
@@ -618,24 +630,8 @@ TEST(DaemonList, RelativePathsAreRegisteredAbsolute) {
 // "shm precious.txt  rwmos-emu daemon, pid N").
 TEST(DaemonList, ASocketPathWithALineEndIsListedOnOneLine) {
     TempDir dir;
-    const std::string socket = dir.file("x\nshm precious.txt");
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        const int null = ::open("/dev/null", O_WRONLY);
-        ::dup2(null, 2);
-        ::setenv("APCI_RUNTIME_DIR", dir.path().c_str(), 1);
-        ::execl(apci_test::daemon_binary(), apci_test::daemon_binary(), "--socket", socket.c_str(),
-                nullptr);
-        ::_exit(127);
-    }
-    const std::string entry = dir.file("rwmos-emu." + std::to_string(pid));
-    EXPECT_TRUE(apci_test::eventually([&] { return std::filesystem::exists(entry); }));
-    const auto r =
-        test_support::run_process({APCICTL_PATH, "list"}, {}, {{"APCI_RUNTIME_DIR", dir.path()}});
-    ::kill(pid, SIGTERM);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
+    pid_t pid = 0;
+    const auto r = listed_with_daemon(dir, {"--socket", dir.file("x\nshm precious.txt")}, pid);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, "unix:" + dir.file("x\\nshm precious.txt") + "  rwmos-emu daemon, pid " +
                          std::to_string(pid) + "\n");
