@@ -105,6 +105,32 @@ TEST(Program, AByteOrderMarkAtTheStartIsLeftOut) {
     EXPECT_TRUE(tools) << tools.error().to_string();
 }
 
+// Only the file's start: a mark at the start of a later line is an unexpected character, also
+// where that line is the first of a file's buffer when it is read again (at 2 * 65,536 bytes).
+TEST(Program, AByteOrderMarkAtTheStartOfALaterBufferIsNoMark) {
+    const std::string bom = "\xEF\xBB\xBF";
+    const std::size_t buffer = 2 * LineSource::kMaxLineLength;
+    for (std::size_t before : {std::size_t{0}, std::size_t{2}}) {  // starts at, straddles it
+        std::string text;
+        std::size_t lines = 0;
+        while (text.size() + 1000 <= buffer - before) {
+            text += "; " + std::string(997, 'x') + "\n";
+            ++lines;
+        }
+        text += "; " + std::string(buffer - before - text.size() - 3, 'x') + "\n";
+        ++lines;
+        ASSERT_EQ(text.size(), buffer - before);
+        text += bom + "G0 X1\nM30\n";
+        const std::string path = temp_file("bom_later_buffer.nc", text);
+        Result<Program> p = Program::load(path);
+        ASSERT_FALSE(p) << before;
+        EXPECT_EQ(p.error().to_string().rfind(
+                      path + ":" + std::to_string(lines + 1) + ":1: unexpected character", 0),
+                  0u)
+            << p.error().to_string();
+    }
+}
+
 TEST(Program, KlartextDialectIsDetectedByBeginPgm) {
     // Told by content: these are Klartext programs (tests/nc/klartext_test.cpp), refused here
     // only because they stop before END PGM.
