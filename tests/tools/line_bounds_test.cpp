@@ -154,6 +154,18 @@ TEST(PlcBounds, APlcLineOfExactly65536CharactersParsesAndOneMoreIsRefused) {
     }
 }
 
+// A PLC script's lines are read as an NC program's (apci::nc::LineSource): a byte-order mark at
+// its start is left out, one on a later line is the line's error.
+TEST(PlcBounds, AByteOrderMarkAtTheStartIsLeftOut) {
+    auto ok = apci::run::parse_plc_script("\xEF\xBB\xBF" "cycle 0 tool_holder 1\n", "p.plc");
+    ASSERT_TRUE(ok) << ok.error().to_string();
+    EXPECT_EQ(ok.value().cycle_writes().size(), 1u);
+    auto bad = apci::run::parse_plc_script(
+        "cycle 0 tool_holder 1\n\xEF\xBB\xBF" "cycle 1 tool_holder 1\n", "p.plc");
+    ASSERT_FALSE(bad);
+    EXPECT_EQ(bad.error().line, 2u);
+}
+
 // A PLC script is read with a bound: /dev/zero is refused after 16 MiB (it was read to 1.2 GB,
 // then std::bad_alloc), and a file of 16 MiB + 1 byte likewise; 16 MiB is read.
 TEST(PlcBounds, APlcScriptLargerThan16MiBIsRefusedUnread) {

@@ -15,6 +15,7 @@
 
 #include "apci/nc/block.h"
 #include "apci/nc/lexer.h"
+#include "apci/nc/source.h"
 #include "apci/run/run_files.h"
 #include "objif/map/object_map.h"
 
@@ -277,30 +278,20 @@ std::string plc_unit_name(const PlcWrite& w) {
 nc::Result<PlcScript> parse_plc_script(std::string_view text, std::string_view file) {
     PlcScript s;
     s.file_ = std::string(file);
-    std::uint64_t n = 0;
-    std::size_t pos = 0;
-    while (pos <= text.size()) {
-        const std::size_t nl = text.find('\n', pos);
-        std::string_view line =
-            text.substr(pos, nl == std::string_view::npos ? text.size() - pos : nl - pos);
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        ++n;
-        if (line.size() > kMaxPlcLineLength) {
-            Diagnostic err;
-            err.kind = ErrorKind::kValue;
-            err.file = std::string(file);
-            err.line = n;
-            err.column = static_cast<std::uint32_t>(kMaxPlcLineLength + 1);
-            err.message = fmt::format("line longer than {} characters", kMaxPlcLineLength);
-            return err;
-        }
-        Diagnostic err;
+    // Lines as the NC front end reads them (apci::nc::LineSource: the line ends, the length
+    // bound kMaxPlcLineLength, a byte-order mark at the start).
+    nc::LineSource source = nc::LineSource::from_text(text, std::string(file));
+    std::string_view line;
+    Diagnostic err;
+    for (;;) {
+        const nc::LineSource::Read r = source.next(line, err);
+        if (r == nc::LineSource::Read::kError) return err;
+        if (r == nc::LineSource::Read::kEnd) break;
+        Diagnostic bad;
         PlcWrite w;
         bool empty = false;
-        if (!LineParser(line, n, file, err).parse(w, empty)) return err;
+        if (!LineParser(line, source.line_number(), file, bad).parse(w, empty)) return bad;
         if (!empty) (w.when == PlcWrite::When::kCycle ? s.cycle_ : s.block_).push_back(w);
-        if (nl == std::string_view::npos) break;
-        pos = nl + 1;
     }
     std::stable_sort(s.cycle_.begin(), s.cycle_.end(),
                      [](const PlcWrite& a, const PlcWrite& b) { return a.at < b.at; });
