@@ -296,6 +296,70 @@ TEST_F(ApcictlRun, AProgramThatEndsUnderG41IsToldSo) {
     EXPECT_LT((xy(doc.at("segments").back().at("end")) - Eigen::Vector2d(20, 0.5)).norm(), 1e-9);
 }
 
+namespace {
+// The notices of a run's JSON with the given code, as "line: message".
+std::vector<std::string> notices_of(const json& doc, const std::string& code) {
+    std::vector<std::string> out;
+    if (!doc.contains("notices")) return out;
+    for (const json& n : doc.at("notices"))
+        if (n.at("code") == code)
+            out.push_back(std::to_string(n.at("block").get<int>()) + ": " +
+                          n.at("message").get<std::string>());
+    return out;
+}
+}  // namespace
+
+TEST_F(ApcictlRun, CompensationWithoutARadiusIsToldOncePerToolWithTheReason) {
+    // No D word, then D1 (radius 0), D2 (radius 5 written as if mm, in 0.1 um: 0.0005 mm),
+    // D3 (0.000999 mm, in mm: one step under the bound), D4 (0.001 mm: at the bound). Each
+    // selects G41 twice; a tool is named once.
+    const std::string list = write("small.tools",
+                                   "wz[1].gueltig 1\n"
+                                   "wz[2].gueltig 1\nwz[2].radius 5\n"
+                                   "wz[3].gueltig 1\nwz[3].mass_einheit 1\nwz[3].radius 0.000999\n"
+                                   "wz[4].gueltig 1\nwz[4].mass_einheit 1\nwz[4].radius 0.001\n");
+    std::string text = "F1000\n";
+    for (const char* d : {"", "D1 ", "D2 ", "D3 ", "D4 "})
+        for (int pass = 0; pass < 2; ++pass)
+            text += std::string(d) + "G0 X-10 Y0\nG41 G1 X0 Y0\nG1 X20\nG40 G1 X20 Y-10\n";
+    text += "G42 G1 X0 Y0\nG1 X-5\nG40 G1 X-10\nM30\n";  // D4 in force, G42: nothing to say
+    std::string numbered;  // line n is block N(10 n)
+    int line = 0;
+    for (std::size_t at = 0; at < text.size();) {
+        const std::size_t end = text.find('\n', at);
+        numbered += "N" + std::to_string(10 * ++line) + " " + text.substr(at, end + 1 - at);
+        at = end + 1;
+    }
+    const json doc = run_json(write("small.nc", numbered), {"--tools", list});
+    const std::vector<std::string> told = notices_of(doc, "NoRadius");
+    ASSERT_EQ(told.size(), 4u) << doc.dump();
+    EXPECT_EQ(told[0],
+              "30: G41 with no tool selected (no D word yet, or D0) compensates by radius 0: the "
+              "path is the programmed contour; select the tool with D n");
+    EXPECT_EQ(told[1],
+              "110: G41 with tool 1, whose radius is 0, compensates by nothing: the path is the "
+              "programmed contour");
+    EXPECT_EQ(told[2],
+              "190: G41 with tool 2 compensates by 0.0005 mm only: the tool list gives lengths in "
+              "0.1 um unless wz[2].mass_einheit is 1 (radius 50000 is 5 mm)");
+    EXPECT_EQ(told[3], "270: G41 with tool 3 compensates by 0.000999 mm only");
+    EXPECT_TRUE(contains(last_.out, "notice: line 3 (N30): G41 with no tool selected")) << last_.out;
+    EXPECT_EQ(doc.at("errors").size(), 0u);
+}
+
+TEST_F(ApcictlRun, D0AfterAToolIsToldAgainAndG42SaysItsOwnWord) {
+    const std::string prog = write("d0.nc",
+                                   "N10 D1 F1000\nN20 G0 X-10 Y0\nN30 G42 G1 X0 Y0\nN40 G1 X20\n"
+                                   "N50 G40 G1 X20 Y10\nN60 D0\nN70 G42 G1 X0 Y10\nN80 G40 G1 X0 "
+                                   "Y20\nN90 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(0.5)});
+    const std::vector<std::string> told = notices_of(doc, "NoRadius");
+    ASSERT_EQ(told.size(), 1u) << doc.dump();
+    EXPECT_EQ(told[0],
+              "70: G42 with no tool selected (no D word yet, or D0) compensates by radius 0: the "
+              "path is the programmed contour; select the tool with D n");
+}
+
 TEST_F(ApcictlRun, TheIsgGeneralExampleWearsOnlyItsContour) {
     // [ISG-OTC] section 2.2's general example: N60 G41 (selection, "verschleißfreie Bewegung"),
     // N70 X1000, N80 G40 X50 (deselection): only N70's 950 mm of contour wear, at the disc's

@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "tc_unit.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
 #include <fmt/format.h>
 
 #include "run_context.h"
@@ -160,6 +165,7 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
         !run_.write(status, std::int32_t{1}, at, "STATUS = 1"))
         return false;
     state_.comp_on = true;
+    notice_small_radius(at, side);
     state_.comp_plane = state_.plane;
     state_.comp_side = side == nc::Compensation::kLeft ? 1 : -1;
     // A turning tool's path is its imaginary tip; the check measures the nose centre.
@@ -171,6 +177,38 @@ bool TcUnit::compensation(const BlockRef& at, nc::Compensation side) {
         run_.outcome().plot_plane = state_.plane;
     }
     return true;
+}
+
+// G41/G42 with no radius runs the programmed contour itself, as a control does (CAM programs
+// for wear-only offsets select a register holding 0): said once per tool, naming why.
+void TcUnit::notice_small_radius(const BlockRef& at, nc::Compensation side) {
+    if (std::abs(state_.radius) >= kLeastRadius) return;
+    const int tool = state_.current_tool;
+    if (std::find(small_radius_tools_.begin(), small_radius_tools_.end(), tool) !=
+        small_radius_tools_.end())
+        return;
+    small_radius_tools_.push_back(tool);
+    const nc::ToolData* t =
+        run_.tools() != nullptr && tool > 0 ? run_.tool_list().find(tool) : nullptr;
+    const int g = nc::g_number(side);
+    std::string text;
+    if (tool <= 0)
+        text = fmt::format("G{} with no tool selected (no D word yet, or D0) compensates by radius "
+                           "0: the path is the programmed contour; select the tool with D n",
+                           g);
+    else if (state_.radius == 0.0)
+        text = fmt::format("G{} with tool {}, whose radius is 0, compensates by nothing: the path "
+                           "is the programmed contour",
+                           g, tool);
+    else
+        text = fmt::format("G{} with tool {} compensates by {:g} mm only{}", g, tool,
+                           state_.radius,
+                           t != nullptr && t->mass_einheit == 0
+                               ? fmt::format(": the tool list gives lengths in 0.1 um unless "
+                                             "wz[{}].mass_einheit is 1 (radius 50000 is 5 mm)",
+                                             tool)
+                               : std::string{});
+    run_.outcome().notices.push_back(RunError{at, "NoRadius", std::move(text)});
 }
 
 // STATUS = 0: the held profile is spooled ([APCI-TC] section 1); under G237 with the

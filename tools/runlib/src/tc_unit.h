@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "apci/apci.hpp"
 #include "apci/nc/events.h"
@@ -16,6 +17,10 @@
 namespace apci::run::exec {
 
 inline constexpr std::int32_t kGroups = objif::map::tc::kGroupCount;
+// The least tool radius G41/G42 compensates with without a notice (mm): 1 um, less than any
+// cutter's, more than a radius in mm written into a tool list in its 0.1 um unit (radius 5:
+// 0.0005 mm).
+inline constexpr double kLeastRadius = 1e-3;
 
 class TcUnit final : public ModuleUnit {
   public:
@@ -59,8 +64,11 @@ class TcUnit final : public ModuleUnit {
     // Writes value to sub of every group (CornerMode, SelectionMode: the program's modes).
     bool every_group(const BlockRef& at, std::int32_t sub, std::int32_t value,
                      std::string_view what);
+    // A notice where G41/G42 compensates with a radius under kLeastRadius (once per tool).
+    void notice_small_radius(const BlockRef& at, nc::Compensation side);
 
     State state_;
+    std::vector<int> small_radius_tools_;  // the tools notice_small_radius() named
 };
 
 }  // namespace apci::run::exec
