@@ -361,6 +361,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     if (!mode)
         throw py::value_error("self_approach must be warn, error or off, not " + self_approach);
     settings.self_approach = *mode;
+    settings.dry_run_first = !apci::run::embedded_emulator(py_board.uri());
     const apci::run::ProgramSource source = program_is_text
                                                 ? apci::run::ProgramSource::in_memory(program, name)
                                                 : apci::run::ProgramSource::file(program);

@@ -4,7 +4,9 @@
 import json
 import pathlib
 import subprocess
+import tempfile
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -290,3 +292,38 @@ def test_samples_beyond_max_samples_are_counted_not_kept():
     np.testing.assert_array_equal(result.segments["end"][0], [3.0, 4.0, 0.0])
     with pytest.raises(ValueError, match="max_samples must be an int >= 0"):
         apci.run("M30\n", max_samples=-1)
+
+
+SPIKE = ("N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+         "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+         "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n")
+
+
+def test_self_approach_error_on_a_daemon_refuses_by_a_dry_run_before_anything_moves(apcictl):
+    """On a board that moves a machine, a finding of the check as an error comes from a dry
+    run on the embedded emulator, as a ProgramError: the daemon's board never moves."""
+    # A short directory: a socket path holds at most 107 bytes, a build tree's may not.
+    with tempfile.TemporaryDirectory(prefix="apci-") as short:
+        sock = pathlib.Path(short) / "d.sock"
+        daemon = subprocess.Popen([str(apcictl.parent / "rwmos-emu"), "--socket", str(sock),
+                                   "--log-level", "warn"])
+        try:
+            deadline = time.monotonic() + 10
+            while not sock.exists() and time.monotonic() < deadline:
+                time.sleep(0.01)
+
+            def where():
+                with apci.open(f"unix:{sock}?timeout=10000") as b:
+                    return [b.read(f"board.position[{i}]") for i in range(3)]
+            assert where() == [0.0, 0.0, 0.0]
+            with pytest.raises(apci.ProgramError, match="found by a dry run") as refused:
+                apci.run(SPIKE, tools=TOOL_R5, device=f"unix:{sock}", self_approach="error")
+            assert refused.value.block == 50
+            assert where() == [0.0, 0.0, 0.0]
+            # Only warned, it runs on the daemon's board and warns.
+            done = apci.run(SPIKE, tools=TOOL_R5, device=f"unix:{sock}")
+            assert any(w.code == "SelfApproach" for w in done.warnings)
+            assert where() != [0.0, 0.0, 0.0]
+        finally:
+            daemon.terminate()
+            daemon.wait(timeout=10)

@@ -467,3 +467,136 @@ TEST_F(ApcictlDiff, NcProgramFromStandardInputIsAUsageError) {
 }
 
 }  // namespace
+
+namespace {
+
+// ---- run --self-approach error on a board that moves a machine: a dry run first
+
+class ApcictlRunDryRun : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        daemon_ = Daemon::start();
+        ASSERT_NE(daemon_, nullptr);
+        tools_ = script_file(dir_, "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n",
+                             "r5.tools");
+        // A square inside which G41 runs, entered from where the tool stands, left by G40: its
+        // last element's path ends perpendicular at the corner, 5 mm into the first one's wall
+        // where the tool came from outside the square (from (0, 0), the first move is no
+        // approach and the square's first element is: no wall, no finding).
+        square_ = script_file(dir_,
+                              "N10 D1 F600\nN20 G41 G1 X0 Y0\nN30 G1 X50\nN40 G1 Y50\n"
+                              "N50 G1 X0\nN60 G1 Y0\nN70 G40 G1 X-10 Y-10\nN80 M30\n",
+                              "square.nc");
+    }
+    ProcessResult on_daemon(std::vector<std::string> args) {
+        std::vector<std::string> all{"--device", daemon_->unix_uri()};
+        all.insert(all.end(), args.begin(), args.end());
+        return apcictl(all);
+    }
+    // The daemon's clock and axes after one more cycle ("cycle N (+1) ... X.. Y.."), less the
+    // cycle count's own step.
+    std::string where() {
+        const ProcessResult r = on_daemon({"step", "1"});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return r.out;
+    }
+    TempDir dir_;
+    std::unique_ptr<Daemon> daemon_;
+    std::string tools_, square_;
+};
+
+TEST_F(ApcictlRunDryRun, AFindingOfTheDryRunStopsTheRunBeforeAnythingMoves) {
+    ASSERT_EQ(on_daemon({"direct", "JA", "X-20", "Y-20"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"step", "--idle"}).exit_code, 0);
+    const std::string before = where();
+    EXPECT_TRUE(contains(before, " X-20 Y-20 ")) << before;
+    const std::string json = dir_.file("square.json");
+    const ProcessResult r = on_daemon(
+        {"run", square_, "--tools", tools_, "--self-approach", "error", "--json", json});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, square_ + ":6:1: N60: the tool path of N60 comes within 0.0000 mm "
+                                          "of the contour at N30"))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "(found by a dry run on the embedded emulator set up as the board "
+                                "stands, before anything moved: --self-approach error)"))
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(json));
+    // Nothing moved: one cycle later than before (the step of where()), the axes where they were.
+    const std::string after = where();
+    const auto cycle = [](const std::string& s) { return std::stoull(s.substr(s.find(' ') + 1)); };
+    EXPECT_EQ(cycle(after), cycle(before) + 1) << before << after;
+    EXPECT_EQ(after.substr(after.find(" fill")), before.substr(before.find(" fill")));
+}
+
+TEST_F(ApcictlRunDryRun, TheDryRunStartsWhereTheBoardsAxesStandAndOnlyStopsAnError) {
+    // From (0, 0) (where the embedded emulator starts) the square has no finding: on a board
+    // whose axes stand at (-20, -20) the dry run finds N60 only if it starts there too.
+    EXPECT_EQ(apcictl({"run", square_, "--tools", tools_, "--self-approach", "error"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"direct", "JA", "X-20", "Y-20"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"step", "--idle"}).exit_code, 0);
+    // Only warned: no dry run, the board runs it and the warning follows.
+    const ProcessResult warned = on_daemon({"run", square_, "--tools", tools_});
+    EXPECT_EQ(warned.exit_code, 0) << warned.err;
+    EXPECT_TRUE(contains(warned.out, "warning: N60: SelfApproach: the tool path of N60"))
+        << warned.out;
+    EXPECT_FALSE(contains(warned.out + warned.err, "dry run"));
+}
+
+TEST_F(ApcictlRunDryRun, TheDryRunTakesTheBoardsAxisNumbers) {
+    // X and Y on board axes 3 and 4 (A, B), which stand at -20; axes 0 and 1 stay at 0, where
+    // the square has no finding.
+    ASSERT_EQ(on_daemon({"write", "1300", "0", "11", "0", "3"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"write", "1300", "0", "11", "1", "4"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"direct", "JA", "A-20", "B-20"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"step", "--idle"}).exit_code, 0);
+    const ProcessResult r =
+        on_daemon({"run", square_, "--tools", tools_, "--self-approach", "error"});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, "N60: the tool path of N60 comes within 0.0000 mm")) << r.err;
+    EXPECT_TRUE(contains(r.err, "found by a dry run")) << r.err;
+}
+
+TEST_F(ApcictlRunDryRun, ACorrectProgramRunsAfterItsDryRunAsWithoutOne) {
+    const std::string examples = std::string(APCI_SOURCE_DIR) + "/examples";
+    const std::vector<std::string> run{"run", examples + "/wr_quad_disc.nc", "--tools",
+                                       examples + "/tools/wr_quad_disc.tools", "--json"};
+    const ProcessResult checked = on_daemon(
+        {run[0], run[1], run[2], run[3], run[4], dir_.file("a.json"), "--self-approach", "error"});
+    EXPECT_EQ(checked.exit_code, 0) << checked.err;
+    EXPECT_TRUE(contains(checked.out, "11 blocks, 11 executed, 11 segments")) << checked.out;
+    // The same program once more from where the first run left the axes, only warned: the same
+    // segments (the dry run moved nothing of the daemon's board).
+    auto fresh = Daemon::start();
+    ASSERT_NE(fresh, nullptr);
+    const ProcessResult plain = apcictl({"--device", fresh->unix_uri(), run[0], run[1], run[2],
+                                         run[3], run[4], dir_.file("b.json")});
+    EXPECT_EQ(plain.exit_code, 0) << plain.err;
+    EXPECT_EQ(test_support::read_text(dir_.file("a.json")),
+              test_support::read_text(dir_.file("b.json")));
+}
+
+TEST(ApcictlRunWithoutTc, ABoardWithoutTheTcModuleHasNoDryRunAndRefusesG41Itself) {
+    DaemonOptions o;
+    o.option_tc = false;
+    auto d = Daemon::start(o);
+    ASSERT_NE(d, nullptr);
+    TempDir dir;
+    // A spike whose path cuts into itself on any board that compensates (the embedded
+    // emulator's dry run would refuse it): this board refuses G42 first.
+    const std::string prog = script_file(
+        dir,
+        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n",
+        "spike.nc");
+    const std::string tools =
+        script_file(dir, "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 5\n", "r5.tools");
+    EXPECT_EQ(apcictl({"run", prog, "--tools", tools, "--self-approach", "error"}).exit_code, 1);
+    const ProcessResult r = apcictl(
+        {"--device", d->unix_uri(), "run", prog, "--tools", tools, "--self-approach", "error"});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.out, "line 3 (N30): NoSuchDevice: G42 needs the TC module")) << r.out;
+    EXPECT_FALSE(contains(r.out + r.err, "dry run"));
+}
+
+}  // namespace

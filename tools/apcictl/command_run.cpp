@@ -99,12 +99,6 @@ const RunError* link_failure(const std::vector<RunError>& errors) {
     return nullptr;
 }
 
-// The embedded emulator ("emu:", "emu:?no-option-tc", or no device given): a board inside this
-// process, which nothing else sees and which ends with it (apci.h, apci_open).
-bool embedded_board(std::string_view uri) {
-    return uri.empty() || uri.starts_with("emu:");
-}
-
 // An output (or none) that is held back in a temporary file until the run is published
 // (run_files.h): not standard output, nor an existing file that is written where it stands (a
 // FIFO, a device). A target that cannot be opened fails at its open.
@@ -273,14 +267,15 @@ class RunCommand final : public Command {
         // and board) keeps one and the two helper threads below share the other
         // (cpu_placement.h); declared first, so the helpers end before it goes.
         std::optional<apci::run::CpuPlacement> placement;
-        if (embedded_board(session.uri()) && !one_thread_) placement.emplace();
+        if (apci::run::embedded_emulator(session.uri()) && !one_thread_) placement.emplace();
         const apci::run::CpuPlacement* const cpus = placement ? &*placement : nullptr;
         // The front end reads ahead on a thread of its own and the writers run on another, fed
         // in order through a bounded ring (pipeline.h; not with --one-thread); declared after
         // `outputs`, so the threads end before they go.
-        apci::run::ProgramRun program(*board, outputs, inputs, settings(cpus));
+        apci::run::ProgramRun program(*board, outputs, inputs,
+                                      settings(cpus, apci::run::embedded_emulator(session.uri())));
 
-        if (Outcome o = open_program(embedded_board(session.uri()), files, program); !o.ok())
+        if (Outcome o = open_program(apci::run::embedded_emulator(session.uri()), files, program); !o.ok())
             return o;
         if (Outcome o = open_outputs(files, program); !o.ok()) return o;
         if (Outcome o = attach_writers(files, program, outputs); !o.ok()) return o;
@@ -329,7 +324,7 @@ class RunCommand final : public Command {
     // thread of its own (read_ahead.h) and the writers run on another (pipeline.h): the same
     // events, errors and variable reads, the program parsed and the outputs written while the
     // board runs; --one-thread keeps everything on this one.
-    apci::run::RunSettings settings(const apci::run::CpuPlacement* cpus) const {
+    apci::run::RunSettings settings(const apci::run::CpuPlacement* cpus, bool embedded) const {
         apci::run::RunSettings s;
         s.threads = !one_thread_;
         s.cpus = cpus;
@@ -337,6 +332,9 @@ class RunCommand final : public Command {
         s.self_approach = apci::run::self_approach_mode(self_approach_)
                               .value_or(apci::run::SelfApproachMode::kWarn);
         s.bottleneck_blocks = bottleneck_blocks_;
+        // A finding of --self-approach error stops a run on another board only once it moved:
+        // there the program runs first on an embedded emulator set up as the board stands.
+        s.dry_run_first = !embedded;
         return s;
     }
 

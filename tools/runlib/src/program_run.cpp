@@ -3,6 +3,8 @@
 
 #include <utility>
 
+#include "dry_run.h"
+
 namespace apci::run {
 
 nc::Result<RunInputs> load_run_inputs(const RunInputFiles& files) {
@@ -45,9 +47,15 @@ std::optional<SelfApproachMode> self_approach_mode(std::string_view name) noexce
     return std::nullopt;
 }
 
+bool embedded_emulator(std::string_view uri) noexcept {
+    return uri.empty() || uri.starts_with("emu:");
+}
+
 ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& inputs,
                        const RunSettings& settings)
-    : inputs_(inputs),
+    : board_(board),
+      inputs_(inputs),
+      settings_(settings),
       head_(chain(sink, settings)),
       executor_(board, head_, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
                 &inputs.corrections) {
@@ -85,6 +93,8 @@ std::optional<nc::Diagnostic> ProgramRun::open_validated(const ProgramSource& so
     auto events = program_->events();
     if (!events) return events.error();
     stream_.emplace(std::move(events).value());
+    if (settings_.dry_run_first && settings_.self_approach == SelfApproachMode::kError)
+        return detail::self_approach_dry_run(board_, inputs_, source, settings_);
     return std::nullopt;
 }
 

@@ -72,6 +72,10 @@ nc::Diagnostic name_missing_input(nc::Diagnostic d, const RunInputs& inputs);
 // "error", "off"); nullopt for another name.
 std::optional<SelfApproachMode> self_approach_mode(std::string_view name) noexcept;
 
+// The embedded emulator ("emu:", "emu:?no-option-tc", or no device given): a board inside this
+// process, which nothing else sees and which ends with it (apci.h, apci_open).
+bool embedded_emulator(std::string_view uri) noexcept;
+
 // What a caller chooses about a run.
 struct RunSettings {
     SelfApproachMode self_approach = SelfApproachMode::kWarn;
@@ -83,6 +87,11 @@ struct RunSettings {
     // placed as that says.
     bool threads = false;
     const CpuPlacement* cpus = nullptr;
+    // The board moves a machine (a daemon's, a real one: not the embedded emulator, whose run
+    // is its own dry run): with the self-approach check an error, open_validated() runs the
+    // program first on an embedded emulator set up as the board stands, and refuses it at a
+    // finding there, before anything moves (its findings come only after the moves otherwise).
+    bool dry_run_first = false;
 };
 
 // A program: a file, or a text the caller holds (it must outlive the run).
@@ -119,7 +128,9 @@ class ProgramRun {
     // the axes stand, the board's cycle, the inputs to check D n and CORRDATA against.
     const nc::InterpreterOptions& options() const noexcept { return options_; }
 
-    // Validates the whole program before anything runs; the refusal, or nothing.
+    // Validates the whole program before anything runs; the refusal, or nothing. With
+    // RunSettings::dry_run_first and the check an error, a self-approach finding of the dry run
+    // is a refusal too.
     std::optional<nc::Diagnostic> open_validated(const ProgramSource& source);
     // Opens the program to be validated while it runs (nc::SinglePass): the caller holds its
     // outputs back until finish() says the program was valid. A file that cannot be opened is
@@ -149,7 +160,9 @@ class ProgramRun {
     // The chain of sinks in front of `sink` the settings ask for; its head.
     RunSink& chain(RunSink& sink, const RunSettings& settings);
 
+    apci::Board& board_;
     const RunInputs& inputs_;
+    const RunSettings settings_;
     // The chain's links (declared before the executor that feeds them; the pipeline ends
     // before a check behind it goes).
     std::optional<SelfApproachSink> check_;
