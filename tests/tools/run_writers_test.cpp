@@ -494,6 +494,27 @@ TEST(RunSummary, NoErrorsSaysNone) {
     EXPECT_TRUE(contains(f.text(), "(0 cycles of 250 us)\nerrors: none\n")) << f.text();
 }
 
+TEST(RunSummary, OneOfEachIsSingularAndNoneAndTwoArePlural) {
+    RunTotals t;
+    t.file = "p.nc";
+    t.blocks = 1;
+    t.blocks_executed = 1;
+    t.segments = 1;
+    t.cycles = 1;
+    t.cycle_seconds = 0.001;
+    MemoryFile one;
+    print_summary(one.get(), t, {});
+    EXPECT_TRUE(contains(one.text(), "p.nc: 1 block, 1 executed, 1 segment\n")) << one.text();
+    EXPECT_TRUE(contains(one.text(), "(1 cycle of 1 ms)\n")) << one.text();
+    t.blocks = 2;
+    t.segments = 0;
+    t.cycles = 2;
+    MemoryFile two;
+    print_summary(two.get(), t, {});
+    EXPECT_TRUE(contains(two.text(), "p.nc: 2 blocks, 1 executed, 0 segments\n")) << two.text();
+    EXPECT_TRUE(contains(two.text(), "(2 cycles of 1 ms)\n")) << two.text();
+}
+
 TEST(RunSummary, LongErrorListIsCut) {
     std::vector<RunError> errors(kSummaryErrorLines + 3, RunError{{1, 0}, "KorrError", "x"});
     MemoryFile f;

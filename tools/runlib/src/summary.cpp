@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
 
 namespace apci::run {
 
@@ -45,14 +48,19 @@ std::string cycle_text(double seconds) {
     return fmt::format("{:g} us", us);
 }
 
+// "1 segment", "0 segments", "2 segments".
+std::string counted(std::uint64_t n, std::string_view noun) {
+    return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+
 }  // namespace
 
 void print_summary(std::FILE* out, const RunTotals& t, std::span<const RunError> errors) {
-    fmt::print(out, "{}: {} blocks, {} executed, {} segments\n", t.file, t.blocks,
-               t.blocks_executed, t.segments);
-    fmt::print(out, "path {:.3f} mm (rapid {:.3f} mm), time {:.3f} s ({} cycles of {})\n",
+    fmt::print(out, "{}: {}, {} executed, {}\n", t.file, counted(t.blocks, "block"),
+               t.blocks_executed, counted(t.segments, "segment"));
+    fmt::print(out, "path {:.3f} mm (rapid {:.3f} mm), time {:.3f} s ({} of {})\n",
                t.path_length, t.rapid_length, static_cast<double>(t.cycles) * t.cycle_seconds,
-               t.cycles, cycle_text(t.cycle_seconds));
+               counted(t.cycles, "cycle"), cycle_text(t.cycle_seconds));
     if (errors.empty()) {
         fmt::print(out, "errors: none\n");
         return;
