@@ -139,6 +139,15 @@ TEST(ApcictlOutput, FailedWriteOfTheOutputIsAnError) {
         {"--version", ""},
         {"read --help", ""},
         {"script -", "read 1300 1 1 7\nstatus\n"},
+        {"status --json", ""},
+        {"step 10", ""},
+        {"shell", "read 1300 1 1 7\nstatus\n"},
+        {"run " + std::string(APCI_SOURCE_DIR) + "/examples/wr_quad_disc.nc --tools " +
+             APCI_SOURCE_DIR + "/examples/tools/wr_quad_disc.tools",
+         ""},
+        {"diff --against emu: " + std::string(APCI_SOURCE_DIR) + "/examples/wr_quad_disc.nc " +
+             "--tools " + APCI_SOURCE_DIR + "/examples/tools/wr_quad_disc.tools",
+         ""},
     };
     for (const auto& [args, input] : commands) {
         for (const auto& [redirect, reason] :
