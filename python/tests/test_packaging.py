@@ -3,6 +3,10 @@
 
 import builtins
 import importlib.metadata
+import importlib.util
+import shutil
+
+import pytest
 
 import apci
 
@@ -33,3 +37,38 @@ def test_unknown_name_suggests_the_index_typed_without_brackets():
             assert e.suggestions == ["tc.group[2].radius"]
         else:
             raise AssertionError("tc.group2.radius was read")
+
+
+def load_installed_hil_example(tmp_path, monkeypatch, source_dir):
+    """examples/python/test_hil.py where python3-apci installs it: /usr/share/doc/python3-apci/
+    examples/python, with no examples/ of a source tree beside it (here under tmp_path)."""
+    beside = tmp_path / "usr/share/doc/python3-apci/examples/python"
+    beside.mkdir(parents=True)
+    shutil.copy(source_dir / "examples/python/test_hil.py", beside)
+    monkeypatch.delenv("APCI_SOURCE_DIR", raising=False)
+    spec = importlib.util.spec_from_file_location("installed_test_hil", beside / "test_hil.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_installed_hil_example_finds_the_program_apci_tools_installs(tmp_path, monkeypatch,
+                                                                     source_dir):
+    hil = load_installed_hil_example(tmp_path, monkeypatch, source_dir)
+    # apci-tools' examples (/usr/share/doc/apci-tools/examples), staged under tmp_path.
+    tools_examples = tmp_path / "usr/share/doc/apci-tools/examples"
+    (tools_examples / "tools").mkdir(parents=True)
+    shutil.copy(source_dir / "examples/wr_quad_disc.nc", tools_examples)
+    shutil.copy(source_dir / "examples/tools/wr_quad_disc.tools", tools_examples / "tools")
+    monkeypatch.setattr(hil, "INSTALLED_EXAMPLES", tools_examples)
+    assert hil.find_example("wr_quad_disc.nc") == tools_examples / "wr_quad_disc.nc"
+    assert (hil.find_example("tools", "wr_quad_disc.tools")
+            == tools_examples / "tools" / "wr_quad_disc.tools")
+
+
+def test_installed_hil_example_without_apci_tools_says_to_install_it(tmp_path, monkeypatch,
+                                                                     source_dir):
+    hil = load_installed_hil_example(tmp_path, monkeypatch, source_dir)
+    monkeypatch.setattr(hil, "INSTALLED_EXAMPLES", tmp_path / "usr/share/doc/apci-tools/examples")
+    with pytest.raises(pytest.fail.Exception, match="install apci-tools"):
+        hil.find_example("wr_quad_disc.nc")

@@ -5,7 +5,7 @@
 # writer) with the sources it checks for s390x, a big-endian Debian architecture, with Debian's
 # cross compiler (g++-s390x-linux-gnu), statically, and runs it under QEMU's user-mode
 # emulation (qemu-user). The packages' `Architecture: linux-any` rests on this. Cheap: one
-# program of nine source files, a few seconds of emulation.
+# program of eleven source files, a few seconds of emulation.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/deps.sh

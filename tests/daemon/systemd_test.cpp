@@ -15,10 +15,12 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apci/apci.hpp"
 #include "daemon.h"
+#include "process.h"
 #include "text.h"
 
 namespace {
@@ -220,6 +222,23 @@ TEST(RwmosEmuSystemd, VersionNamesProgramPackageAndVersion) {
     TempDir dir;
     EXPECT_EQ(apci_test::run_daemon({"--version"}, output, dir.path()), 0);
     EXPECT_EQ(output, std::string("rwmos-emu (apci8001) ") + APCI8001_VERSION + "\n");
+}
+
+// --version and --help whose standard output cannot take the text (a full device, a closed
+// descriptor): exit 1 saying so, as apcictl does, not 0 as if it had been printed.
+TEST(RwmosEmuSystemd, VersionAndHelpThatCannotBeWrittenExitOne) {
+    for (const char* option : {"--version", "--help"}) {
+        for (const auto& [redirect, reason] :
+             {std::pair<std::string, std::string>{">/dev/full", "No space left on device"},
+              {">&-", "Bad file descriptor"}}) {
+            SCOPED_TRACE(std::string(option) + " " + redirect);
+            const auto r = test_support::run_process(
+                {"/bin/sh", "-c", std::string("exec \"$0\" ") + option + " " + redirect,
+                 apci_test::daemon_binary()});
+            EXPECT_EQ(r.exit_code, 1);
+            EXPECT_EQ(r.err, "rwmos-emu: cannot write standard output: " + reason + "\n");
+        }
+    }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // could not be written, and object-name suggestions that keep the index typed without brackets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <string>
 #include <vector>
@@ -38,6 +39,45 @@ TEST(ApcictlHelp, HelpCommandShowsTheCommandsHelp) {
         EXPECT_EQ(help.err, "");
         EXPECT_EQ(help.out, flag.out) << command;
         EXPECT_NE(help.out.find("Usage: apcictl " + command), std::string::npos) << help.out;
+    }
+}
+
+// The commands `apcictl --help` lists under "Subcommands:", `help` among them.
+std::vector<std::string> listed_commands() {
+    const auto help = test_support::apcictl({"--help"});
+    std::vector<std::string> commands;
+    bool in_list = false;
+    std::size_t start = 0;
+    while (start < help.out.size()) {
+        std::size_t end = help.out.find('\n', start);
+        if (end == std::string::npos) end = help.out.size();
+        const std::string line = help.out.substr(start, end - start);
+        start = end + 1;
+        if (line == "Subcommands:") {
+            in_list = true;
+        } else if (in_list) {
+            std::smatch m;
+            if (!std::regex_match(line, m, std::regex("  ([a-z]+) .*"))) break;
+            commands.push_back(m[1]);
+        }
+    }
+    return commands;
+}
+
+// `help COMMAND` for every command apcictl lists, `help` too (it said "unknown command 'help';
+// did you mean 'shell'?"): the command's own --help, exit 0.
+TEST(ApcictlHelp, HelpOfEveryListedCommandIsItsHelp) {
+    const auto commands = listed_commands();
+    ASSERT_GE(commands.size(), 14u) << "apcictl --help lists too few commands";
+    EXPECT_NE(std::find(commands.begin(), commands.end(), "help"), commands.end());
+    for (const std::string& command : commands) {
+        SCOPED_TRACE(command);
+        const auto help = test_support::apcictl({"help", command});
+        const auto flag = test_support::apcictl({command, "--help"});
+        EXPECT_EQ(help.exit_code, 0) << help.err;
+        EXPECT_EQ(help.err, "");
+        EXPECT_EQ(help.out, flag.out);
+        EXPECT_NE(help.out.find("Usage: apcictl " + command + " "), std::string::npos) << help.out;
     }
 }
 
@@ -99,6 +139,15 @@ TEST(ApcictlOutput, FailedWriteOfTheOutputIsAnError) {
         {"--version", ""},
         {"read --help", ""},
         {"script -", "read 1300 1 1 7\nstatus\n"},
+        {"status --json", ""},
+        {"step 10", ""},
+        {"shell", "read 1300 1 1 7\nstatus\n"},
+        {"run " + std::string(APCI_SOURCE_DIR) + "/examples/wr_quad_disc.nc --tools " +
+             APCI_SOURCE_DIR + "/examples/tools/wr_quad_disc.tools",
+         ""},
+        {"diff --against emu: " + std::string(APCI_SOURCE_DIR) + "/examples/wr_quad_disc.nc " +
+             "--tools " + APCI_SOURCE_DIR + "/examples/tools/wr_quad_disc.tools",
+         ""},
     };
     for (const auto& [args, input] : commands) {
         for (const auto& [redirect, reason] :

@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apci/run/svg_writer.h"
@@ -369,6 +370,59 @@ TEST(SvgSimplification, VerticesBelowHalfAPixelAreLeftOut) {
         from = to;
     }
     EXPECT_EQ(path_vertices(write_svg(coarse, 17, "zigzag.nc"), "contour").size(), 101u);
+}
+
+// A contour run pass after pass (a loop, step-downs seen from above: the plot's plane does not
+// show the depth) is drawn once: 50,000 passes of a 20-sided polygon (1,000,000 segments, every
+// other pass the way back) give the plot of one pass.
+// A pass two millimetres (about 18 pixels) aside is a second line and is drawn; segments that
+// all differ are all drawn, more of them than the table of drawn segments remembers.
+TEST(SvgSimplification, SegmentsDrawnAgainAreLeftOut) {
+    constexpr int kSides = 20;
+    std::vector<Point> corners;
+    for (int i = 0; i < kSides; ++i) {
+        const double t = 2 * 3.141592653589793 * i / kSides;
+        corners.emplace_back(50 + 50 * std::cos(t), 50 + 50 * std::sin(t), 0);
+    }
+    const auto draw = [&](SvgPlotWriter& plot, int passes, double shift) {
+        for (int pass = 0; pass < passes; ++pass)
+            for (int i = 0; i < kSides; ++i) {
+                // Odd passes go the way back, corner to corner.
+                const int from = pass % 2 == 0 ? i : kSides - i;
+                const int to = pass % 2 == 0 ? i + 1 : kSides - i - 1;
+                Point a = corners[static_cast<std::size_t>(from % kSides)];
+                Point b = corners[static_cast<std::size_t>(to % kSides)];
+                for (Point* p : {&a, &b}) {
+                    p->x() += pass % 2 == 1 ? shift : 0.0;
+                    p->z() = -0.001 * pass;  // one step down a pass
+                }
+                plot.executed(line(a, b, Role::kContour));
+            }
+    };
+    SvgPlotWriter once;
+    draw(once, 1, 0.0);
+    SvgPlotWriter passes;
+    draw(passes, 50'000, 0.0);
+    const std::string svg = write_svg(passes, 17, "passes.nc");
+    EXPECT_LT(svg.size(), 10'000u) << "1,000,000 segments of one contour drawn again and again";
+    EXPECT_EQ(path_vertices(svg, "contour"),
+              path_vertices(write_svg(once, 17, "passes.nc"), "contour"));
+
+    SvgPlotWriter aside;
+    draw(aside, 1'000, 2.0);
+    // Each of the two lines once: M and kSides vertices each.
+    EXPECT_EQ(path_vertices(write_svg(aside, 17, "aside.nc"), "contour").size(),
+              2u * (kSides + 1));
+
+    // 150,000 different lines a pixel or more apart (ends on a 0.25 mm grid; the page is about
+    // 120 mm wide, 0.12 mm a pixel): each drawn, M and L.
+    SvgPlotWriter distinct;
+    constexpr int kDistinct = 150'000;
+    for (int k = 0; k < kDistinct; ++k)
+        distinct.executed(line(Point(0.25 * (k % 400), 0, 0), Point(0.25 * (k / 400), 100, 0),
+                               Role::kContour));
+    EXPECT_EQ(path_vertices(write_svg(distinct, 17, "distinct.nc"), "contour").size(),
+              2u * kDistinct);
 }
 
 TEST(SvgLayout, WrapCutsAfterASpaceOrSlashElseBetweenCharacters) {

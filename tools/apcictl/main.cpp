@@ -47,8 +47,10 @@ int print_help(const CLI::App& app, const std::string& command) {
                                                        CLI::AppFormatMode::Normal));
         return 0;
     }
+    // The command table's commands and `help` itself (`help help` is `help --help`).
     std::vector<std::string> names;
     for (const auto& spec : apcictl::command_table()) names.emplace_back(spec.name);
+    names.emplace_back("help");
     if (std::find(names.begin(), names.end(), command) == names.end()) {
         const std::string meant = apcictl::closest_name(command, names);
         fmt::print(stderr, "apcictl: help: unknown command '{}'{}\n", command,
@@ -88,6 +90,8 @@ int run(int argc, char** argv) {
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "Show the help of apcictl or of one command");
     help->add_option("COMMAND", help_topic, "The command whose help to show");
+    help->footer("Without COMMAND the same as 'apcictl --help'; with it the same as "
+                 "'apcictl COMMAND --help'.");
 
     // `apcictl __complete WORDS...` (only as the first word): the candidates for the last word,
     // for the bash and zsh scripts of completions/ (completion.h); no command, no help line.

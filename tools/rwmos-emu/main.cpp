@@ -399,13 +399,21 @@ int run(int argc, char** argv) {
         "SIGPWR, SIGSTKFLT, real-time signals); SIGPIPE is ignored. Logs go to stderr (with "
         "their syslog priority when stderr is the journal). A listening socket passed by "
         "systemd (socket activation, LISTEN_FDS) is served in place of --socket's own.\n"
-        "Exit codes: 0 ok (stopped by SIGTERM or SIGINT), 1 could not serve, 2 usage, "
-        "128+N stopped by signal N.");
+        "Exit codes: 0 ok (stopped by SIGTERM or SIGINT), 1 could not serve (or --help or "
+        "--version could not be written), 2 usage, 128+N stopped by signal N.");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);
-        return code == 0 ? kExitOk : kExitUsage;
+        if (code != 0) return kExitUsage;
+        // --help or --version: what they printed must have reached standard output (a full
+        // disk, a closed descriptor), else say so and fail, as apcictl does.
+        if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+            std::fprintf(stderr, "rwmos-emu: cannot write standard output: %s\n",
+                         std::strerror(errno));
+            return kExitFailure;
+        }
+        return kExitOk;
     }
     if (!o.group.empty() && !resolve_group(o.group, o.gid)) {
         std::fprintf(stderr, "rwmos-emu: --group %s: no such group\n", o.group.c_str());

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apci/run/text_sink.h"
@@ -198,6 +200,97 @@ class Frame {
     int decimals_ = 3;
 };
 
+// The segments one layer has drawn, each as its plotted ends (and an arc's centre and sense)
+// on a grid of a quarter pixel: a segment with the same key lies within half a pixel of one
+// drawn before, everywhere, so drawing it again shows nothing new. A program that runs one
+// contour pass after pass (step-downs seen from above, a loop) would otherwise write every
+// pass (3 million segments of 20 elements repeated made a 231 MB plot). The table is bounded
+// (kSlots, a few MiB): once it is three quarters full, new keys are no longer remembered and
+// those segments are drawn, so nothing is ever left out that was not drawn.
+class DrawnSegments {
+  public:
+    static constexpr std::size_t kSlots = std::size_t{1} << 17;
+
+    DrawnSegments(const Frame& frame, double grid) : frame_(frame), grid_(grid) {}
+
+    // True when `s` (in the plotted plane) was drawn before; else remembers it (while there
+    // is room) and says false. Arcs out of the plotted plane and lines shorter than half a
+    // pixel are never taken for drawn.
+    bool drawn_before(const PathSegment& s) {
+        Key key{};
+        if (!key_of(s, key)) return false;
+        if (slots_.empty()) slots_.resize(kSlots);
+        std::size_t i = hash(key) & (kSlots - 1);
+        while (slots_[i].used) {
+            if (slots_[i].key == key) return true;
+            i = (i + 1) & (kSlots - 1);
+        }
+        if (count_ < kSlots / 4 * 3) {
+            slots_[i].key = key;
+            slots_[i].used = true;
+            ++count_;
+        }
+        return false;
+    }
+
+  private:
+    struct Key {
+        std::array<std::int32_t, 6> v{};  // start, end, centre: plotted coordinates on the grid
+        std::uint8_t kind = 0;
+        std::uint8_t ccw = 0;
+        bool operator==(const Key&) const = default;
+    };
+    struct Slot {
+        Key key;
+        bool used = false;
+    };
+
+    bool on_grid(double value, double origin, std::int32_t& out) const {
+        const double steps = std::round((value - origin) / grid_);
+        if (!(std::abs(steps) < 1e9)) return false;
+        out = static_cast<std::int32_t>(steps);
+        return true;
+    }
+    bool key_of(const PathSegment& s, Key& key) const {
+        const PlaneAxes& a = frame_.axes();
+        const bool arc = s.kind == SegmentKind::kArc;
+        if (!(grid_ > 0.0) || (arc && plane_axes(s.plane).third != a.third)) return false;
+        // A line shorter than two grid steps (half a pixel) is left to the vertices' own
+        // simplification (PathEmitter::line_to), which keeps a path's last vertex where the
+        // path ends.
+        if (!arc && std::hypot(s.end[a.first] - s.start[a.first],
+                               s.end[a.second] - s.start[a.second]) < 2.0 * grid_)
+            return false;
+        key.kind = static_cast<std::uint8_t>(s.kind);
+        key.ccw = arc && s.ccw ? 1 : 0;
+        Point from = s.start, to = s.end;
+        // A line is the same drawn either way.
+        if (!arc && std::pair(to[a.first], to[a.second]) < std::pair(from[a.first], from[a.second]))
+            std::swap(from, to);
+        const Point centre = arc ? s.center : Point::Zero();
+        const std::array<const Point*, 3> points{&from, &to, &centre};
+        for (std::size_t i = 0; i < 3; ++i)
+            if (!on_grid((*points[i])[a.first], frame_.u0(), key.v[2 * i]) ||
+                !on_grid((*points[i])[a.second], frame_.v0(), key.v[2 * i + 1]))
+                return false;
+        return true;
+    }
+    static std::size_t hash(const Key& key) noexcept {
+        std::uint64_t h = (std::uint64_t{key.kind} << 8) | key.ccw;
+        for (const std::int32_t v : key.v) {
+            h ^= static_cast<std::uint32_t>(v);
+            h *= 0x9E3779B97F4A7C15ULL;
+            h ^= h >> 29;
+        }
+        return static_cast<std::size_t>(h);
+    }
+
+    const Frame& frame_;
+    double grid_;
+    std::vector<Slot> slots_;  // allocated at the first segment
+    std::size_t count_ = 0;
+};
+
 // Writes one layer's segments as <path> elements: consecutive segments continue one path,
 // a gap starts a new subpath ("M"), and a path is closed after kCommandsPerPath commands.
 class PathEmitter {
@@ -208,15 +301,33 @@ class PathEmitter {
     // plane) to the last one written are left out, the last of a run written as it ends: a
     // detail below half a pixel cannot be seen, and a program of millions of tiny segments
     // would otherwise write every one (a 3-million-segment program made an 82 MB SVG).
+    // A segment drawn before (DrawnSegments, on a grid of half min_step) is left out, and the
+    // next one starts a new subpath where it does not join the last one written.
     PathEmitter(TextSink& sink, const Frame& frame, std::string_view css_class, double min_step)
-        : sink_(sink), frame_(frame), class_(css_class), min_step_(min_step) {}
+        : sink_(sink), frame_(frame), class_(css_class), min_step_(min_step),
+          drawn_(frame, 0.5 * min_step) {}
     ~PathEmitter() { close(); }
 
     void add(const PathSegment& s) {
+        if (drawn_.drawn_before(s)) {
+            skipped_ = true;
+            return;
+        }
         const PlaneAxes& a = frame_.axes();
-        const bool joined = open_ &&
-                            std::abs(s.start[a.first] - last_[a.first]) <= kSamePointTolerance &&
-                            std::abs(s.start[a.second] - last_[a.second]) <= kSamePointTolerance;
+        bool joined = open_ &&
+                      std::abs(s.start[a.first] - last_[a.first]) <= kSamePointTolerance &&
+                      std::abs(s.start[a.second] - last_[a.second]) <= kSamePointTolerance;
+        // After segments left out, one that starts less than min_step from the pen goes on
+        // from there (the step between is below half a pixel) instead of a new subpath each.
+        if (!joined && open_ && skipped_ && written_any_) {
+            const Point& pen = has_pending_ ? pending_ : written_;
+            if (std::hypot(s.start[a.first] - pen[a.first], s.start[a.second] - pen[a.second]) <
+                min_step_) {
+                line_to(s.start);
+                joined = true;
+            }
+        }
+        skipped_ = false;
         if (open_ && commands_ >= kCommandsPerPath) close();
         if (!open_) {
             sink_.print("<path class=\"{}\" d=\"", class_);
@@ -306,6 +417,8 @@ class PathEmitter {
     const Frame& frame_;
     std::string_view class_;
     double min_step_ = 0.0;
+    DrawnSegments drawn_;
+    bool skipped_ = false;  // segments were left out since the last one added
     bool open_ = false;
     bool written_any_ = false;  // the open path has its first "M"
     std::size_t commands_ = 0;
