@@ -31,6 +31,7 @@
 
 #include "mailbox_link.h"
 #include "mapped_file.h"
+#include "objif/byte_order.h"
 #include "objif/usb_layout.h"
 #include "guarded.h"
 
@@ -130,17 +131,21 @@ class IoPortWindow final : public mb::Window {
         lock_word(offset, F_UNLCK);
         return equal && error_ == 0;
     }
+    // Frame bytes: the kernel gives (and takes) an I/O BAR's word as the value of the
+    // little-endian bus word in the host's order (ioread32/iowrite32), so the board's bytes are
+    // that value stored little-endian, on any host (docs/transports.md).
     void read(std::size_t offset, std::uint8_t* out, std::size_t size) noexcept override {
         for (std::size_t i = 0; i < size; i += 4) {
-            const std::uint32_t word = load(offset + i);
-            std::memcpy(out + i, &word, std::min<std::size_t>(4, size - i));
+            std::uint8_t word[4];
+            objif::store_little<std::uint32_t>(word, load(offset + i));
+            std::memcpy(out + i, word, std::min<std::size_t>(4, size - i));
         }
     }
     void write(std::size_t offset, const std::uint8_t* in, std::size_t size) noexcept override {
         for (std::size_t i = 0; i < size; i += 4) {
-            std::uint32_t word = 0;
-            std::memcpy(&word, in + i, std::min<std::size_t>(4, size - i));
-            store(offset + i, word);
+            std::uint8_t word[4] = {0, 0, 0, 0};
+            std::memcpy(word, in + i, std::min<std::size_t>(4, size - i));
+            store(offset + i, objif::load_little<std::uint32_t>(word));
         }
     }
     Status error() const noexcept override {
