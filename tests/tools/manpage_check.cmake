@@ -2,8 +2,8 @@
 # Checks a man page written from its page of docs/ (cmake/manpages.cmake) against its program:
 # the sections man-pages(7) asks for, in its order (NAME, SYNOPSIS, DESCRIPTION, ..., EXIT
 # STATUS, ENVIRONMENT, FILES, EXAMPLES, SEE ALSO), an entry for every subcommand the
-# program's --help lists, each environment variable in ENV named, no path relative to docs/
-# (the installed pages instead), and groff renders it without a single warning.
+# program's --help lists, each environment variable in ENV named in ENVIRONMENT, no path
+# relative to docs/ (the installed pages instead), and groff renders it without a single warning.
 #   cmake -DPROGRAM=... -DPAGE=... -DDOCDIR=... [-DENV="A;B"] -P manpage_check.cmake
 cmake_minimum_required(VERSION 3.25)
 if(NOT EXISTS "${PAGE}")
@@ -44,11 +44,16 @@ if(NOT at EQUAL -1)
   endforeach()
 endif()
 
+# Each variable of ENV is named in the ENVIRONMENT section itself (not only elsewhere).
+string(FIND "${page}" ".SH ENVIRONMENT\n" env_at)
+string(SUBSTRING "${page}" ${env_at} -1 environment)
+string(FIND "${environment}" "\n.SH " env_end)
+string(SUBSTRING "${environment}" 0 ${env_end} environment)
 foreach(variable IN LISTS ENV)
-  string(REPLACE "_" "\\_" troff_variable "${variable}")
-  string(FIND "${page}" "${variable}" at)
+  string(FIND "${environment}" "${variable}" at)
   if(at EQUAL -1)
-    message(FATAL_ERROR "${PAGE}: the environment variable ${variable} is not named")
+    message(FATAL_ERROR "${PAGE}: the environment variable ${variable} is not named in its "
+                        "ENVIRONMENT section")
   endif()
 endforeach()
 if(page MATCHES "[^/a-z]docs/[a-z0-9-]+\\.md")
