@@ -8,7 +8,7 @@
 # (which installs libapci1, libapci-dev, apci-tools and python3-apci on this
 # machine and runs the installed tools, the C consumer, the Python package and
 # its HIL example against the installed files only), and builds the Python
-# module with pip into a venv from pyproject.toml. The packages are removed
+# module with pip into a venv from pyproject.toml. The packages are purged
 # again at the end unless APCI_KEEP_PACKAGE=1.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -88,7 +88,7 @@ work="$(mktemp -d)"
 cleanup() {
   rm -rf "$work"
   if [ "${APCI_KEEP_PACKAGE:-0}" != 1 ]; then
-    DEBIAN_FRONTEND=noninteractive apt-get remove -y -qq "${packages[@]}" >/dev/null 2>&1 || true
+    DEBIAN_FRONTEND=noninteractive apt-get purge -y -qq "${packages[@]}" >/dev/null 2>&1 || true
   fi
 }
 trap cleanup EXIT
