@@ -121,6 +121,7 @@ foreach(page IN LISTS pages)
   get_filename_component(page_name ${page} NAME)
   file(READ ${page} text)
   string(REPLACE "\\-" "-" text "${text}")
+  string(REPLACE "\\:" "" text "${text}")  # a path's break points (cmake/manpage.lua)
   # The pages of docs/ it names (written from docs/, cmake/manpages.cmake) are installed.
   string(REGEX MATCHALL "${CONFIGURED_PREFIX}/[^ \n\\)\"]*\\.md" docs "${text}")
   if(NOT docs)
