@@ -8,7 +8,7 @@
 -- The sections man(7) orders at the end go there, in its order: EXIT STATUS, ENVIRONMENT,
 -- FILES, EXAMPLES, SEE ALSO; a page without the first four is an error. Paths "docs/NAME.md"
 -- and links to NAME.md become the installed page, docdir/NAME.md; figures (images) are left
--- out, as man cannot show them, with their caption kept.
+-- out, as man cannot show them, with their caption kept. A path may break after a "/".
 
 local program, summary, docdir
 
@@ -38,7 +38,17 @@ local inline_filter = {
   end,
   Str = function(s)
     s.text = rewrite_text(s.text)
-    return s
+    -- The page is never hyphenated (cmake/manpages.cmake): a path may break after each "/"
+    -- instead (\: is a break point that prints nothing), so a long one fits a table cell.
+    if not s.text:find("/.") then return s end
+    local parts = {}
+    for piece in s.text:gmatch("[^/]*/?") do
+      if piece ~= "" then
+        table.insert(parts, pandoc.Str(piece))
+        if piece:sub(-1) == "/" then table.insert(parts, pandoc.RawInline("man", "\\:")) end
+      end
+    end
+    return parts
   end,
   Link = function(l)
     local target = installed(l.target)

@@ -36,11 +36,14 @@ function(apci_add_manpage target)
   # honours SOURCE_DATE_EPOCH (reproducible builds, as dpkg-buildpackage sets it).
   string(TIMESTAMP date "%Y-%m-%d" UTC)
   set(page ${CMAKE_BINARY_DIR}/man/man1/${target}.1)
+  # Left-adjusted and never hyphenated (.nh): a path, an option or an object name broken at a
+  # line end would be copied wrong. pandoc's man writer hyphenates unless the variable
+  # hyphenate is empty (any text, "false" too, turns it on).
   add_custom_command(OUTPUT ${page}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${CMAKE_BINARY_DIR}/man/man1
     COMMAND ${APCI_PANDOC} --standalone --from=gfm --to=man
             --lua-filter=${APCI_MANPAGE_FILTER}
-            -M title=${title} -M section=1 -M date=${date} -V adjusting=l -V hyphenate=false
+            -M title=${title} -M section=1 -M date=${date} -V adjusting=l -V hyphenate=
             -M "footer=apci8001 ${PROJECT_VERSION}" -M "header=User Commands"
             -M program=${target} -M "summary=${M_SUMMARY}"
             -M docdir=${CMAKE_INSTALL_FULL_DOCDIR}

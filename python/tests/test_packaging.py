@@ -27,6 +27,9 @@ def test_star_import_does_not_shadow_the_builtin_open():
     for name in ("Board", "run", "Status", "UnknownNameError", "RunResult"):
         assert name in namespace, name
     assert callable(apci.open)
+    # No other public name is a built-in's either (id, input, filter, ...).
+    assert sorted(set(apci.__all__) & set(dir(builtins))) == []
+    assert sorted(set(namespace) - {"__builtins__"}) == sorted(apci.__all__)
 
 
 def test_unknown_name_suggests_the_index_typed_without_brackets():

@@ -8,7 +8,7 @@
 # (which installs libapci1, libapci-dev, apci-tools and python3-apci on this
 # machine and runs the installed tools, the C consumer, the Python package and
 # its HIL example against the installed files only), and builds the Python
-# module with pip into a venv from pyproject.toml. The packages are removed
+# module with pip into a venv from pyproject.toml. The packages are purged
 # again at the end unless APCI_KEEP_PACKAGE=1.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -88,7 +88,7 @@ work="$(mktemp -d)"
 cleanup() {
   rm -rf "$work"
   if [ "${APCI_KEEP_PACKAGE:-0}" != 1 ]; then
-    DEBIAN_FRONTEND=noninteractive apt-get remove -y -qq "${packages[@]}" >/dev/null 2>&1 || true
+    DEBIAN_FRONTEND=noninteractive apt-get purge -y -qq "${packages[@]}" >/dev/null 2>&1 || true
   fi
 }
 trap cleanup EXIT
@@ -137,10 +137,28 @@ rm -rf "$pip_src"
 copy_tree "$pip_src"
 /usr/bin/python3 -m venv --system-site-packages "$work/venv"
 start=$SECONDS
+touch "$work/pip-started"
 if ! (cd "$pip_src" && "$work/venv/bin/pip" install --no-build-isolation --no-index .) \
     >"$out/pip.log" 2>&1; then
   tail -n 40 "$out/pip.log" >&2
   echo "package: pip install failed; the whole log is $out/pip.log" >&2
+  exit 1
+fi
+# What pip wrote into the tree (meson-python's native file and build directory, build-pip/)
+# is all ignored by .gitignore and none of it tracked, so a user's checkout stays clean.
+written=$(cd "$pip_src" && find . -type f -newer "$work/pip-started" -printf '%P\n' | LC_ALL=C sort)
+dirty=""
+if [ -n "$written" ]; then
+  dirty=$( {
+    LC_ALL=C comm -12 <(printf '%s\n' "$written") <(git ls-files | LC_ALL=C sort)
+    printf '%s\n' "$written" | { git check-ignore --stdin --non-matching --verbose || true; } |
+      sed -n 's/^::\t//p'
+  } | LC_ALL=C sort -u)
+fi
+if [ -n "$dirty" ]; then
+  echo "package: pip install wrote files into the checkout that git would show" \
+    "(tracked, or not in .gitignore):" >&2
+  printf '  %s\n' $dirty >&2
   exit 1
 fi
 (cd "$work" && "$work/venv/bin/python" - "$work/venv" <<'PY'

@@ -66,20 +66,30 @@ struct Child {
     }
 };
 
+// How the descriptors are handed over: systemd's way (LISTEN_FDS=1, LISTEN_PID = the daemon's
+// pid), or with `count` sockets (fd 3 .. 3+count-1, each a copy of the one given), or meant for
+// another process (LISTEN_PID = its parent's pid, as when a service's child inherits them).
+struct Handover {
+    int count = 1;
+    bool for_the_daemon = true;
+};
+
 // Starts rwmos-emu with `args`, stderr to `log`, in `dir`'s registry; `listen_fd` >= 0 is
 // handed over as systemd does (fd 3, LISTEN_FDS=1, LISTEN_PID = the daemon's pid);
 // `journal_stream`, when set, becomes $JOURNAL_STREAM.
 Child spawn(const std::vector<std::string>& args, const TempDir& dir, const std::string& log,
-            int listen_fd, const std::string& journal_stream = {}) {
+            int listen_fd, const std::string& journal_stream = {}, Handover handover = {}) {
     Child c;
+    const pid_t parent = ::getpid();
     c.pid = ::fork();
     if (c.pid == 0) {
         const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
         ::dup2(err, 2);
         if (listen_fd >= 0) {
-            ::dup2(listen_fd, 3);
-            ::setenv("LISTEN_FDS", "1", 1);
-            ::setenv("LISTEN_PID", std::to_string(::getpid()).c_str(), 1);
+            for (int i = 0; i < handover.count; ++i) ::dup2(listen_fd, 3 + i);
+            ::setenv("LISTEN_FDS", std::to_string(handover.count).c_str(), 1);
+            ::setenv("LISTEN_PID",
+                     std::to_string(handover.for_the_daemon ? ::getpid() : parent).c_str(), 1);
         }
         if (!journal_stream.empty()) {
             ::setenv("JOURNAL_STREAM", journal_stream.c_str(), 1);
@@ -157,6 +167,56 @@ TEST(RwmosEmuSystemd, PassedFdThatIsNotAListeningSocketIsRefused) {
     EXPECT_EQ(daemon.wait(), 1);
     EXPECT_NE(read_text(dir.file("log")).find("systemd (fd 3)"), std::string::npos)
         << read_text(dir.file("log"));
+}
+
+// sd_listen_fds(3): the variables count only for the process LISTEN_PID names. A socket passed
+// to another process (the daemon inherited it) is not taken: the daemon binds --socket itself.
+TEST(RwmosEmuSystemd, SocketPassedToAnotherProcessIsNotTaken) {
+    TempDir dir;
+    const OwnedFd socket{listening_socket(dir.file("activated.sock"))};
+    ASSERT_GE(socket.fd, 0) << std::strerror(errno);
+    Child daemon = spawn({"--socket", dir.file("own.sock")}, dir, dir.file("log"), socket.fd, {},
+                         Handover{1, false});
+    ASSERT_TRUE(eventually([&] {
+        return read_text(dir.file("log")).find("serving one board") != std::string::npos;
+    })) << read_text(dir.file("log"));
+    apci::Board board("unix:" + dir.file("own.sock"));
+    EXPECT_TRUE(board) << board.last_error();
+    board = apci::Board();
+    ::kill(daemon.pid, SIGTERM);
+    EXPECT_EQ(daemon.wait(), 0);
+    const std::string log = read_text(dir.file("log"));
+    EXPECT_EQ(log.find("from systemd"), std::string::npos) << log;
+    EXPECT_NE(log.find("on socket " + dir.file("own.sock")), std::string::npos) << log;
+}
+
+// One ListenStream= is all the daemon serves: two passed sockets are a usage error (exit 2)
+// that says so; one is served (ServesTheSocketSystemdPassedAndLeavesItInPlace).
+TEST(RwmosEmuSystemd, MoreThanOnePassedSocketIsAUsageError) {
+    TempDir dir;
+    const OwnedFd socket{listening_socket(dir.file("activated.sock"))};
+    ASSERT_GE(socket.fd, 0) << std::strerror(errno);
+    Child daemon = spawn({}, dir, dir.file("log"), socket.fd, {}, Handover{2, true});
+    EXPECT_EQ(daemon.wait(), 2);
+    EXPECT_NE(read_text(dir.file("log")).find("systemd passed 2 sockets; rwmos-emu serves one"),
+              std::string::npos)
+        << read_text(dir.file("log"));
+}
+
+// An error in the journal carries LOG_ERR's prefix <3> (the other levels: below).
+TEST(RwmosEmuSystemd, ErrorLineInTheJournalCarriesPriority3) {
+    TempDir dir;
+    const std::string log = dir.file("log");
+    std::ofstream(log).close();
+    struct stat st {};
+    ASSERT_EQ(::stat(log.c_str(), &st), 0);
+    const std::string stream = std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+    Child daemon = spawn({"--socket", dir.file("no-such-dir/s.sock")}, dir, log, -1, stream);
+    EXPECT_EQ(daemon.wait(), 1);
+    const std::string text = read_text(log);
+    EXPECT_EQ(text.rfind("<3>rwmos-emu: error: socket directory " + dir.file("no-such-dir"), 0),
+              0u)
+        << text;
 }
 
 // The journal's stream is stderr when $JOURNAL_STREAM names its device and inode.

@@ -3,12 +3,14 @@
 # outside TMP: every file it writes is listed, and any outside TMP fails the
 # test. Run as root, the install runs as user nobody (setpriv), so it also
 # shows that installing needs no root; either way install_manifest.txt lists
-# every file written. Then the installed tree: the udev rule, the systemd
-# unit, the documentation and the man pages are there, and every reference
-# the man pages (DOCUMENTATION, SEE ALSO) and the unit (Documentation=) make
-# names an installed file.
+# every file written. Then the installed tree: the udev rule (alone where udev
+# reads rules; the opt-in raw-BAR rule elsewhere), the systemd units, the shell
+# completion where bash-completion and zsh look, the documentation and the man
+# pages are there, and every reference the man pages (DOCUMENTATION, SEE ALSO)
+# and the unit (Documentation=) make names an installed file.
 #   cmake -DBUILD_DIR=... -DWORK_DIR=... -DCONFIGURED_PREFIX=${CMAKE_INSTALL_PREFIX}
 #         -DDOCDIR=${CMAKE_INSTALL_DOCDIR} -DMANDIR=${CMAKE_INSTALL_MANDIR}
+#         -DDATADIR=${CMAKE_INSTALL_DATADIR}
 #         -DUDEV_RULES_DESTINATION=... -DSYSTEMD_USER_UNIT_DESTINATION=... (relative)
 #         -P install_stays_in_prefix.cmake
 function(run)
@@ -81,7 +83,13 @@ message(STATUS "${n} files written, all under ${prefix}")
 # What must be there.
 foreach(f
     ${UDEV_RULES_DESTINATION}/60-apci8001.rules
+    ${DATADIR}/apci8001/udev/61-apci8001-raw-bar.rules
     ${SYSTEMD_USER_UNIT_DESTINATION}/rwmos-emu.service
+    ${SYSTEMD_USER_UNIT_DESTINATION}/rwmos-emu.socket
+    ${DATADIR}/bash-completion/completions/apcictl
+    ${DATADIR}/bash-completion/completions/rwmos-emu
+    ${DATADIR}/zsh/vendor-completions/_apcictl
+    ${DATADIR}/zsh/vendor-completions/_rwmos-emu
     ${MANDIR}/man1/apcictl.1
     ${MANDIR}/man1/rwmos-emu.1
     ${DOCDIR}/README.md
@@ -94,6 +102,12 @@ foreach(f
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
+# Where udev reads rules, only the rules for USB boards: the raw-BAR grant is opt-in
+# (docs/transports.md, "Permissions for real boards").
+file(GLOB rules RELATIVE ${prefix}/${UDEV_RULES_DESTINATION} ${prefix}/${UDEV_RULES_DESTINATION}/*)
+if(NOT rules STREQUAL "60-apci8001.rules")
+  message(FATAL_ERROR "installed where udev reads rules: ${rules} (only 60-apci8001.rules)")
+endif()
 if(EXISTS ${prefix}/${DOCDIR}/examples/CMakeLists.txt)
   message(FATAL_ERROR "the examples' build rules were installed with them")
 endif()
@@ -121,6 +135,7 @@ foreach(page IN LISTS pages)
   get_filename_component(page_name ${page} NAME)
   file(READ ${page} text)
   string(REPLACE "\\-" "-" text "${text}")
+  string(REPLACE "\\:" "" text "${text}")  # a path's break points (cmake/manpage.lua)
   # The pages of docs/ it names (written from docs/, cmake/manpages.cmake) are installed.
   string(REGEX MATCHALL "${CONFIGURED_PREFIX}/[^ \n\\)\"]*\\.md" docs "${text}")
   if(NOT docs)

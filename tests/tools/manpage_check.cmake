@@ -2,14 +2,17 @@
 # Checks a man page written from its page of docs/ (cmake/manpages.cmake) against its program:
 # the sections man-pages(7) asks for, in its order (NAME, SYNOPSIS, DESCRIPTION, ..., EXIT
 # STATUS, ENVIRONMENT, FILES, EXAMPLES, SEE ALSO), an entry for every subcommand the
-# program's --help lists, each environment variable in ENV named, no path relative to docs/
-# (the installed pages instead), and groff renders it without a single warning.
+# program's --help lists, each environment variable in ENV named in ENVIRONMENT, no path
+# relative to docs/ (the installed pages instead), and groff renders it without a single warning
+# and without a hyphenated word.
 #   cmake -DPROGRAM=... -DPAGE=... -DDOCDIR=... [-DENV="A;B"] -P manpage_check.cmake
 cmake_minimum_required(VERSION 3.25)
 if(NOT EXISTS "${PAGE}")
   message(FATAL_ERROR "man page ${PAGE} was not generated")
 endif()
 file(READ "${PAGE}" page)
+# The break points after each "/" of a path (\:, cmake/manpage.lua) print nothing.
+string(REPLACE "\\:" "" page "${page}")
 set(last -1)
 foreach(section "NAME" "SYNOPSIS" "DESCRIPTION" "EXIT STATUS" "ENVIRONMENT" "FILES" "EXAMPLES"
                 "SEE ALSO")
@@ -44,11 +47,16 @@ if(NOT at EQUAL -1)
   endforeach()
 endif()
 
+# Each variable of ENV is named in the ENVIRONMENT section itself (not only elsewhere).
+string(FIND "${page}" ".SH ENVIRONMENT\n" env_at)
+string(SUBSTRING "${page}" ${env_at} -1 environment)
+string(FIND "${environment}" "\n.SH " env_end)
+string(SUBSTRING "${environment}" 0 ${env_end} environment)
 foreach(variable IN LISTS ENV)
-  string(REPLACE "_" "\\_" troff_variable "${variable}")
-  string(FIND "${page}" "${variable}" at)
+  string(FIND "${environment}" "${variable}" at)
   if(at EQUAL -1)
-    message(FATAL_ERROR "${PAGE}: the environment variable ${variable} is not named")
+    message(FATAL_ERROR "${PAGE}: the environment variable ${variable} is not named in its "
+                        "ENVIRONMENT section")
   endif()
 endforeach()
 if(page MATCHES "[^/a-z]docs/[a-z0-9-]+\\.md")
@@ -77,4 +85,14 @@ if(GROFF AND TBL AND SED)
   if(NOT rc EQUAL 0 OR NOT warnings STREQUAL "")
     message(FATAL_ERROR "groff: ${PAGE} does not render cleanly:\n${warnings}")
   endif()
+  # No word is hyphenated at a line end (groff marks such a break with U+2010), at man's
+  # width and at a narrow terminal's: a path or an option is never split.
+  foreach(width 80 60)
+    execute_process(COMMAND ${TBL} "${PAGE}" COMMAND ${GROFF} -man -Tutf8 -P-bou -rLL=${width}n
+      OUTPUT_VARIABLE text ERROR_QUIET)
+    if(text MATCHES "([^\n]*)‐\n")
+      message(FATAL_ERROR "${PAGE} hyphenates at a line end (${width} columns): "
+                          "'${CMAKE_MATCH_1}‐'")
+    endif()
+  endforeach()
 endif()
