@@ -355,6 +355,20 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     if (!inputs) return failure(inputs.error());
 
     const PyBoard::Use use(py_board);
+    // The board's motion is the run's while it runs, as for `apcictl run` (docs/motion-claim.md),
+    // unless the caller's handle holds it already. Held by another program:
+    // {"claimed": libapci's words naming the holder, "status": the code}; nothing ran.
+    apci::Board& board = py_board.board(use);
+    std::optional<apci::MotionClaim> claim;
+    if (const auto held = board.motion_claim(); !(held.ok() && held.value.yours != 0)) {
+        claim.emplace(board);
+        if (!claim->held() && claim->status() != APCI_NOT_SUPPORTED) {
+            py::dict out;
+            out["claimed"] = std::string(board.last_error());
+            out["status"] = claim->status();
+            return out;
+        }
+    }
     Collector collector(samples, max_samples);
     apci::run::RunSettings settings;
     const auto mode = apci::run::self_approach_mode(self_approach);
@@ -367,8 +381,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     std::optional<apci::nc::Result<apci::run::RunOutcome>> ran;
     {
         py::gil_scoped_release unlocked;
-        ran.emplace(apci::run::run_program(py_board.board(use), collector, inputs.value(), source,
-                                           settings));
+        ran.emplace(apci::run::run_program(board, collector, inputs.value(), source, settings));
     }
     if (!*ran) return failure(ran->error());
     const apci::run::RunOutcome& result = ran->value();
