@@ -5,6 +5,7 @@ add_library(apci SHARED
   src/apci.cpp
   src/apci_link.cpp
   src/apci_motion.cpp
+  src/apci_claim.cpp
   src/tc_names.cpp
   src/transport.cpp
   src/frame_transport.cpp

@@ -9,6 +9,7 @@ add_library(rwmos_emu STATIC
   ${CMAKE_CURRENT_LIST_DIR}/src/comp3d_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/comp3d_module.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/frame_server.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/motion_claim.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/motion_layer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/board_motion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/motion_wire.cpp

@@ -102,7 +102,7 @@ apci_status read_typed(apci_board* board, apci_object_descriptor* object, T* val
     if (!objif::ok(s)) {
         return fail(board, s, [&] {
             return describe(fmt::format("read {}", objif::value_type_name(want)), d.address, {},
-                            s, board->transport->failure_detail());
+                            s, apci::failure_words(board, s));
         });
     }
     if (v.type() != want) {  // a board must never answer another type; do not guess
@@ -131,7 +131,7 @@ apci_status write_value(apci_board* board, apci_object_descriptor* object,
     if (!objif::ok(s)) {
         return fail(board, s, [&] {
             return describe(fmt::format("write {}", objif::value_type_name(v.type())), d.address,
-                            v.to_string(), s, board->transport->failure_detail());
+                            v.to_string(), s, apci::failure_words(board, s));
         });
     }
     board->last_error.clear();
@@ -188,6 +188,8 @@ apci_status apci_open(const char* uri, apci_board** out) noexcept {
 }
 
 void apci_close(apci_board* board) noexcept {
+    if (board == nullptr) return;
+    apci::drop_motion_claim(board);
     delete board;  // the transport's destructor closes the link; it does not throw
 }
 

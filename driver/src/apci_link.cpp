@@ -71,6 +71,9 @@ apci_status apci_reconnect(apci_board* board) noexcept {
         return fail(nullptr, Status::kInvalidArgument,
                     [] { return std::string("apci_reconnect: board is NULL"); });
     }
+    // The claim ends with the link it was made on; where the board knows its host by process
+    // rather than by link (the dual-port RAM), it is given back first.
+    apci::drop_motion_claim(board);
     const Status s = board->transport->reconnect();
     if (!objif::ok(s)) {
         return fail(board, s, [&] {

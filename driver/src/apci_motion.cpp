@@ -122,7 +122,7 @@ apci_status clock_call(apci_board* board, objif::ClockRequest req, apci_motion_s
             return fail(board, s, [&] {
                 return fmt::format(
                     "{}: {}", op,
-                    reason(s, clock_refusal(req, s), board->transport->failure_detail()));
+                    reason(s, clock_refusal(req, s), apci::failure_words(board, s)));
             });
         }
         fill_status(rep, status);
@@ -151,7 +151,7 @@ apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::
                 if (objif::ok(s)) return done(board);
                 return fail(board, s, [&] {
                     return fmt::format("{}: {}", op,
-                                       reason(s, {}, board->transport->failure_detail()));
+                                       reason(s, {}, apci::failure_words(board, s)));
                 });
             }
         }
@@ -164,7 +164,7 @@ apci_status read_items(apci_board* board, objif::TraceKind what, Out* out, std::
                 *count = got;  // what was read so far is the caller's now
                 return fail(board, s, [&] {
                     return fmt::format("{}: {}", op,
-                                       reason(s, {}, board->transport->failure_detail()));
+                                       reason(s, {}, apci::failure_words(board, s)));
                 });
             }
             std::size_t n = 0;

@@ -15,6 +15,8 @@ struct apci_board {
     std::unique_ptr<apci::Transport> transport;
     std::string last_error;     // "" after a successful call
     std::string board_message;  // the board's own words for the last failed motion call
+    // This handle holds the board's motion (apci_claim_motion); apci_close releases it.
+    bool holds_motion = false;
 };
 
 namespace apci {
@@ -38,6 +40,15 @@ inline void record(std::string& slot, std::string_view text) noexcept {
 inline std::string& error_slot(apci_board* board) noexcept {
     return board != nullptr ? board->last_error : t_last_error;
 }
+
+// The words that follow a failed call's status: for MotionClaimed, who holds the board's
+// motion ("the board's motion is held by pid 4242 (apcictl) since ..."; one more request, a
+// claim query, made only on that failure), else the transport's failure detail. apci_claim.cpp.
+std::string failure_words(apci_board* board, objif::Status s);
+
+// Gives back the motion claim this handle holds, if any, without a word on failure (apci_close,
+// apci_reconnect: the claim ends with the handle or its link whatever the board answers).
+void drop_motion_claim(apci_board* board) noexcept;
 
 // Records the text `format()` makes as the last error and returns `s` as a C code.
 template <class Format>

@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include <cerrno>  // program_invocation_short_name
 #include <charconv>
 #include <new>
 
@@ -148,6 +151,7 @@ Status FrameTransport::reconnect() noexcept {
     return guarded([&] {
         std::string why;
         const Status s = link_->reconnect(why);
+        exclusive_claim_ = false;  // a claim ends with the link it was made on
         if (s != Status::kOk) return fail(s, fmt::format("{}: reconnect failed: {}", name_, why));
         detail_.clear();
         return Status::kOk;
@@ -251,6 +255,41 @@ Status FrameTransport::clock(const objif::ClockRequest& req, objif::ClockReply& 
 }
 Status FrameTransport::read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept {
     return request(objif::Opcode::kReadTrace, req, rep);
+}
+
+Status FrameTransport::claim(const objif::ClaimRequest& req, objif::ClaimReply& rep) noexcept {
+    return guarded([&] { return claim_unguarded(req, rep); });
+}
+
+Status FrameTransport::claim_unguarded(const objif::ClaimRequest& req, objif::ClaimReply& rep) {
+    if (link_->exclusive()) {
+        // Nobody else reaches the board through this link: the claim is this link's to give.
+        if (!link_->connected())
+            return fail(Status::kTransportError, fmt::format("{}: link lost", name_));
+        const bool claim = req.action == objif::ClaimAction::kClaim;
+        const bool release = req.action == objif::ClaimAction::kRelease;
+        Status s = Status::kOk;
+        if ((claim && exclusive_claim_) || (release && !exclusive_claim_))
+            s = Status::kWrongDeviceState;
+        else if (claim || release)
+            exclusive_claim_ = claim;
+        rep = objif::ClaimReply{};
+        rep.status = s;
+        rep.held = rep.yours = exclusive_claim_;
+        if (exclusive_claim_) {
+            rep.pid = static_cast<std::int32_t>(::getpid());
+            rep.name = std::string(program_invocation_short_name).substr(0, objif::kMaxHolderName);
+        }
+        detail_.clear();
+        return s;
+    }
+    const Status s = request(objif::Opcode::kMotionClaim, req, rep);
+    if (s == Status::kUnknownOpcode)
+        return fail(Status::kNotSupported,
+                    fmt::format("{}: the board does not serve motion claims (MotionClaim, "
+                                "opcode 0x0008; docs/motion-claim.md)",
+                                name_));
+    return s;
 }
 
 }  // namespace apci

@@ -53,6 +53,11 @@ class FrameLink {
 
     // False once the link is known to be gone. Non-blocking.
     virtual bool connected() const noexcept = 0;
+
+    // True when the link itself is exclusive to this process (USB: the interface claim made
+    // at open, libusb_claim_interface), so nobody else can move the board through it: a
+    // motion claim is then this link's without asking the board. Non-blocking.
+    virtual bool exclusive() const noexcept { return false; }
 };
 
 // Reads one reply frame from a byte stream (unix socket, USB bulk IN):
@@ -90,6 +95,8 @@ class FrameTransport final : public Transport {
     objif::Status clock(const objif::ClockRequest& req, objif::ClockReply& rep) noexcept override;
     objif::Status read_trace(const objif::TraceRequest& req,
                              objif::TraceReply& rep) noexcept override;
+    // A MotionClaim request; on an exclusive link (FrameLink::exclusive) answered here.
+    objif::Status claim(const objif::ClaimRequest& req, objif::ClaimReply& rep) noexcept override;
     std::string_view failure_detail() const noexcept override { return detail_; }
 
     objif::Status set_timeout(Millis timeout) noexcept override;
@@ -111,6 +118,7 @@ class FrameTransport final : public Transport {
     template <class Request, class Reply>
     objif::Status request(objif::Opcode op, const Request& req, Reply& rep) noexcept;
 
+    objif::Status claim_unguarded(const objif::ClaimRequest& req, objif::ClaimReply& rep);
     objif::Status fail(objif::Status s, std::string text) noexcept;
     objif::Status bad_reply(objif::FrameError e, std::string_view what) noexcept;
 
@@ -118,6 +126,7 @@ class FrameTransport final : public Transport {
     std::string name_;
     Millis timeout_;
     std::uint32_t sequence_ = 0;
+    bool exclusive_claim_ = false;  // an exclusive link's motion claim, kept here
     std::string detail_;
     // Scratch buffers, reused so a round trip allocates nothing once warm.
     std::vector<std::uint8_t> payload_;

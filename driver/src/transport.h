@@ -94,6 +94,14 @@ public:
         (void)rep;
         return objif::Status::kNotSupported;
     }
+    // MotionClaim (docs/motion-claim.md): claims, releases or asks who holds the board's
+    // motion for this link; the reply names the holder. The board keeps the claim per link and
+    // ends it with the link. Blocking: as read(). Default: kNotSupported, nothing sent.
+    virtual objif::Status claim(const objif::ClaimRequest& req, objif::ClaimReply& rep) noexcept {
+        (void)req;
+        (void)rep;
+        return objif::Status::kNotSupported;
+    }
     // Executed segments, oldest first, straight into the caller's records (apci_read_segments):
     // up to `max`, `got` of them. A backend that holds the board in this process copies each
     // segment once; the default, kNotSupported, has the caller read them through read_trace

@@ -5,12 +5,16 @@
 // thread at a time, which the C API's contract already guarantees.
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>  // program_invocation_short_name
 #include <new>
 #include <span>
 
 #include "guarded.h"
 #include "rwmos/board.h"
+#include "rwmos/motion_claim.h"
 #include "rwmos/motion_wire.h"
 #include "transport.h"
 
@@ -60,6 +64,17 @@ public:
     objif::Status read_trace(const objif::TraceRequest& req, objif::TraceReply& rep) noexcept override {
         return guarded([&] { rep = rwmos::serve_trace(board_, req); return rep.status; });
     }
+    // The board is this handle's alone (every "emu:" opens a board of its own), so its claim
+    // has one host; it is kept by the same code as the daemon's (rwmos::MotionClaim).
+    objif::Status claim(const objif::ClaimRequest& req, objif::ClaimReply& rep) noexcept override {
+        return guarded([&] {
+            rwmos::Host self;
+            self.pid = static_cast<std::int32_t>(::getpid());
+            self.name = program_invocation_short_name;
+            rep = claim_.serve(self, req);
+            return rep.status;
+        });
+    }
     // From the emulator's segment log straight into the caller's records: no reply to build
     // and copy (read_trace makes two vectors a call), each segment converted where the log
     // holds it.
@@ -81,6 +96,7 @@ public:
 
 private:
     rwmos::EmulatedBoard board_;
+    rwmos::MotionClaim claim_;
 };
 
 // "emu:?no-option-tc&option-tc": the last word on an option wins.

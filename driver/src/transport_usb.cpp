@@ -256,6 +256,9 @@ class UsbLink final : public FrameLink {
 
     Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return handle_ != nullptr; }
+    // Interface 0 is claimed at open (libusb_claim_interface): a second program, or a second
+    // handle, cannot open the board while this one has it.
+    bool exclusive() const noexcept override { return true; }
 
   private:
     static unsigned remaining_ms(SteadyClock::time_point deadline) {

@@ -10,12 +10,13 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 
 namespace objif {
 
 bool opcode_known(std::uint16_t op) noexcept {
     return op >= static_cast<std::uint16_t>(Opcode::kObjectRead) &&
-           op <= static_cast<std::uint16_t>(Opcode::kReadTrace);
+           op <= static_cast<std::uint16_t>(Opcode::kMotionClaim);
 }
 
 std::string_view opcode_name(std::uint16_t op) noexcept {
@@ -28,6 +29,7 @@ std::string_view opcode_name(std::uint16_t op) noexcept {
         case Opcode::kSsfCommand: return reply ? "SsfCommandReply" : "SsfCommand";
         case Opcode::kClock: return reply ? "ClockReply" : "Clock";
         case Opcode::kReadTrace: return reply ? "ReadTraceReply" : "ReadTrace";
+        case Opcode::kMotionClaim: return reply ? "MotionClaimReply" : "MotionClaim";
         case Opcode::kNotice:
             return "Notice";
         case Opcode::kError: return "Error";
@@ -560,6 +562,81 @@ FrameError decode(std::span<const std::uint8_t> p, TraceReply& m) {
         for (WireSegment& s : m.segments) OBJIF_TRY(take(r, s));
     }
     return FrameError::kNone;
+}
+
+void encode(const ClaimRequest& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u8(static_cast<std::uint8_t>(m.action));
+}
+FrameError decode(std::span<const std::uint8_t> p, ClaimRequest& m) {
+    ByteReader r(p);
+    std::uint8_t action;
+    OBJIF_NEED(r.u8(action) && r.done());
+    OBJIF_NEED(action <= static_cast<std::uint8_t>(ClaimAction::kQuery));
+    m.action = static_cast<ClaimAction>(action);
+    return FrameError::kNone;
+}
+
+void encode(const ClaimReply& m, std::vector<std::uint8_t>& out) {
+    ByteWriter w(out);
+    w.u32(status_code(m.status));
+    w.u8(m.held ? 1 : 0);
+    w.u8(m.yours ? 1 : 0);
+    w.i32(m.pid);
+    w.u64(m.since_ms);
+    const std::size_t n = std::min(m.name.size(), kMaxHolderName);
+    w.u8(static_cast<std::uint8_t>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<std::uint8_t>(m.name[i]);
+        w.u8(printable(c) ? c : static_cast<std::uint8_t>('?'));
+    }
+}
+FrameError decode(std::span<const std::uint8_t> p, ClaimReply& m) {
+    ByteReader r(p);
+    OBJIF_TRY(status_of(r, m.status));
+    std::uint8_t n;
+    OBJIF_NEED(flag(r, m.held) && flag(r, m.yours) && r.i32(m.pid) && r.u64(m.since_ms) &&
+               r.u8(n));
+    OBJIF_NEED(n <= kMaxHolderName && r.remaining() == n && (m.held || !m.yours) && m.pid >= 0);
+    const auto text = p.subspan(p.size() - n);
+    OBJIF_NEED(std::all_of(text.begin(), text.end(), printable));
+    m.name.assign(text.begin(), text.end());
+    return FrameError::kNone;
+}
+
+std::string claim_holder_text(const ClaimReply& reply) {
+    std::string out;
+    if (reply.pid != 0) {
+        out = "pid " + std::to_string(reply.pid);
+        if (!reply.name.empty()) out += " (" + reply.name + ")";
+    } else {
+        out = reply.name.empty() ? "another host" : reply.name;
+    }
+    if (reply.since_ms != 0) {
+        const auto seconds = static_cast<std::time_t>(reply.since_ms / 1000);
+        std::tm utc{};
+        char when[32];
+        if (::gmtime_r(&seconds, &utc) != nullptr &&
+            std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S UTC", &utc) != 0)
+            out += std::string(" since ") + when;
+    }
+    return out;
+}
+
+bool guarded_by_motion_claim(std::uint16_t opcode, std::span<const std::uint8_t> payload) noexcept {
+    switch (static_cast<Opcode>(opcode)) {
+        case Opcode::kObjectWrite:    // every writable object acts on the motion or its record
+        case Opcode::kSpoolProfile:
+        case Opcode::kDirectCommand:
+        case Opcode::kSsfCommand:
+        case Opcode::kReadTrace:      // takes the samples and segments the holder's run records
+            return true;
+        case Opcode::kClock:
+            // The mode is the payload's first byte; a clock query changes nothing.
+            return payload.empty() || payload[0] != static_cast<std::uint8_t>(ClockMode::kQuery);
+        default:  // object reads, the claim itself, replies and opcodes nobody serves
+            return false;
+    }
 }
 
 #undef OBJIF_TRY

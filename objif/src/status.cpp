@@ -28,6 +28,7 @@ constexpr std::array kStatusTable{
     StatusRow{Status::kInvalidValue, "InvalidValue", "value not allowed (NaN, infinity or not one of the permitted values)"},
     StatusRow{Status::kWrongDeviceState, "WrongDeviceState", "not possible in the present device state"},
     StatusRow{Status::kBusy, "Busy", "spooler full, nothing taken; try again"},
+    StatusRow{Status::kMotionClaimed, "MotionClaimed", "another client holds the board's motion; nothing was done"},
     StatusRow{Status::kGeneralError, "GeneralError", "general error (the message says where)"},
     StatusRow{Status::kBadFrame, "BadFrame", "malformed wire frame"},
     StatusRow{Status::kUnknownOpcode, "UnknownOpcode", "frame opcode not served"},

@@ -18,7 +18,8 @@ docs/python.md documents the package; it is a layer over libapci (apci.h) and th
 
 from ._apci import version as _library_version
 from ._board import Board, ObjectInfo, UnknownNameError, object_info, object_names, open
-from ._errors import Error, ObjectError, ProgramError, RunError, TransportError
+from ._errors import (Error, MotionClaimedError, ObjectError, ProgramError, RunError,
+                      TransportError)
 from ._run import SEGMENT_DTYPE, SEGMENT_KINDS, SEGMENT_ROLES, RunIssue, RunResult, run
 from ._status import (GroupStatus, Status, TcError, TcStatus, decode_status, status_message,
                       status_name)
@@ -29,7 +30,7 @@ __version__ = _library_version()
 # the importing module: call it apci.open().
 __all__ = [
     "Board", "run", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
-    "Error", "ObjectError", "TransportError", "ProgramError", "RunError",
+    "Error", "ObjectError", "TransportError", "ProgramError", "RunError", "MotionClaimedError",
     "Status", "TcError", "TcStatus", "GroupStatus", "decode_status", "status_name",
     "status_message",
     "RunResult", "RunIssue", "SEGMENT_DTYPE", "SEGMENT_KINDS", "SEGMENT_ROLES",

@@ -39,6 +39,11 @@ class ObjectError(Error):
     """The board refused an object access: no such object, wrong type, out of range, state."""
 
 
+class MotionClaimedError(Error):
+    """Another program holds the board's motion (apci_claim_motion); nothing ran. ``message``
+    names the holder: "... the board's motion is held by pid 4242 (apcictl) since ..."."""
+
+
 class ProgramError(Error):
     """An NC program (or its tool list, correction table, PLC script) cannot be used: nothing
     ran. ``file``, ``line``, ``column`` (1-based; 0 when the whole file is meant) and ``block``

@@ -11,7 +11,7 @@ import numpy as np
 
 from . import _apci
 from ._board import Board
-from ._errors import ProgramError, RunError
+from ._errors import MotionClaimedError, ProgramError, RunError
 from ._status import GroupStatus, TcError, decode_status
 
 # The segment kinds and roles by their numbers in RunResult.segments["kind"] / ["role"]: the
@@ -202,8 +202,9 @@ def run(program, tools=None, device="emu:", *, name: str | None = None, corr=Non
     check          raise RunError when the board stopped the run with an error (the partial
                    result is its .result); False: return the result with .errors
 
-    Raises ProgramError when the program (or a file it needs) cannot be used; nothing ran
-    then. Raises TransportError when the device does not open.
+    Raises ProgramError when the program (or a file it needs) cannot be used, and
+    MotionClaimedError when another program holds the board's motion (the run claims it for
+    itself while it runs, as apcictl run does; docs/motion-claim.md); nothing ran then. Raises TransportError when the device does not open.
     """
     text, is_text = _source(program, "program")
     tools_text, tools_is_text = (None, False) if tools is None else _source(tools, "tools")
@@ -225,6 +226,8 @@ def run(program, tools=None, device="emu:", *, name: str | None = None, corr=Non
     else:
         raise TypeError(f"device must be a URI (str) or an apci.Board, not "
                         f"{type(device).__name__}")
+    if "claimed" in raw:
+        raise MotionClaimedError(raw["claimed"], raw["status"])
     if "diagnostic" in raw:
         raise ProgramError(raw["diagnostic"])
     result = _result(raw)

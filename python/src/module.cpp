@@ -114,7 +114,7 @@ std::vector<std::pair<std::string, apci::Status>> status_codes() {
         APCI_OK, APCI_NO_SUCH_DEVICE, APCI_OBJECT_MISSING, APCI_SUB_MISSING, APCI_STALE_HANDLE,
         APCI_HANDLE_MISMATCH, APCI_READ_ONLY, APCI_WRITE_ONLY, APCI_TYPE_MISMATCH,
         APCI_VALUE_TOO_HIGH, APCI_VALUE_TOO_LOW, APCI_INVALID_VALUE, APCI_WRONG_DEVICE_STATE,
-        APCI_BUSY, APCI_GENERAL_ERROR, APCI_BAD_FRAME, APCI_UNKNOWN_OPCODE, APCI_TRANSPORT_ERROR,
+        APCI_BUSY, APCI_MOTION_CLAIMED, APCI_GENERAL_ERROR, APCI_BAD_FRAME, APCI_UNKNOWN_OPCODE, APCI_TRANSPORT_ERROR,
         APCI_TIMEOUT, APCI_NOT_SUPPORTED, APCI_INVALID_ARGUMENT, APCI_NO_MEMORY};
     // clang-format on
     std::vector<std::pair<std::string, apci::Status>> out;
@@ -355,6 +355,20 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     if (!inputs) return failure(inputs.error());
 
     const PyBoard::Use use(py_board);
+    // The board's motion is the run's while it runs, as for `apcictl run` (docs/motion-claim.md),
+    // unless the caller's handle holds it already. Held by another program:
+    // {"claimed": libapci's words naming the holder, "status": the code}; nothing ran.
+    apci::Board& board = py_board.board(use);
+    std::optional<apci::MotionClaim> claim;
+    if (const auto held = board.motion_claim(); !(held.ok() && held.value.yours != 0)) {
+        claim.emplace(board);
+        if (!claim->held() && claim->status() != APCI_NOT_SUPPORTED) {
+            py::dict out;
+            out["claimed"] = std::string(board.last_error());
+            out["status"] = claim->status();
+            return out;
+        }
+    }
     Collector collector(samples, max_samples);
     apci::run::RunSettings settings;
     const auto mode = apci::run::self_approach_mode(self_approach);
@@ -368,8 +382,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     std::optional<apci::nc::Result<apci::run::RunOutcome>> ran;
     {
         py::gil_scoped_release unlocked;
-        ran.emplace(apci::run::run_program(py_board.board(use), collector, inputs.value(), source,
-                                           settings));
+        ran.emplace(apci::run::run_program(board, collector, inputs.value(), source, settings));
     }
     if (!*ran) return failure(ran->error());
     const apci::run::RunOutcome& result = ran->value();

@@ -145,6 +145,6 @@ def test_a_device_that_does_not_open_is_a_transport_error():
 def test_status_codes_are_libapcis():
     assert apci.status_name(0x06070010) == "TypeMismatch"
     assert apci.Status.TypeMismatch == 0x06070010
-    assert len(apci.Status) == 22
+    assert len(apci.Status) == 23
     assert apci.status_name(0x12345678) == "Unknown"
     assert apci.__version__.count(".") == 2

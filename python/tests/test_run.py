@@ -2,6 +2,7 @@
 """apci.run(): the same path as `apcictl run --json`/`--csv`, errors with their line."""
 
 import json
+import os
 import pathlib
 import subprocess
 import tempfile
@@ -327,3 +328,35 @@ def test_self_approach_error_on_a_daemon_refuses_by_a_dry_run_before_anything_mo
         finally:
             daemon.terminate()
             daemon.wait(timeout=10)
+
+
+def test_a_run_on_a_board_another_program_holds_is_refused_and_moves_nothing(tmp_path, apcictl):
+    # The daemon, a holder of its motion (libapci's own claim call, through ctypes: the package
+    # has no call to claim by hand), and a run that must not move the board meanwhile.
+    import ctypes
+    build_dir = apcictl.parent.parent
+    sock = tmp_path / "emu.sock"
+    daemon = subprocess.Popen([str(build_dir / "bin" / "rwmos-emu"), "--socket", str(sock)],
+                              stderr=subprocess.DEVNULL,
+                              env={**os.environ, "APCI_RUNTIME_DIR": str(tmp_path)})
+    try:
+        for _ in range(500):
+            if sock.exists():
+                break
+            time.sleep(0.01)
+        lib = ctypes.CDLL(str(sorted((build_dir / "lib").glob("libapci.so.*"))[0]))
+        holder = ctypes.c_void_p()
+        assert lib.apci_open(f"unix:{sock}".encode(), ctypes.byref(holder)) == 0
+        assert lib.apci_claim_motion(holder) == 0
+        with pytest.raises(apci.MotionClaimedError,
+                           match=rf"the board's motion is held by pid {os.getpid()} \(") as caught:
+            apci.run("N10 G1 X3 Y4 F600\nM30\n", device=f"unix:{sock}")
+        assert caught.value.status == apci.Status.MotionClaimed
+        with apci.open(f"unix:{sock}") as board:
+            assert board.read(1000, 0, 10, 0) == 0.0  # axis 0 did not move
+        lib.apci_close(holder)
+        # Released (closed), the same run runs.
+        assert apci.run("N10 G1 X3 Y4 F600\nM30\n", device=f"unix:{sock}").ok
+    finally:
+        daemon.terminate()
+        daemon.wait(timeout=10)

@@ -22,7 +22,8 @@ void FrameServer::reject(std::uint32_t sequence, FrameError why, std::vector<std
     objif::encode_frame(reply_opcode(Opcode::kError), sequence, payload, reply);
 }
 
-FrameError FrameServer::serve(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply) {
+FrameError FrameServer::serve(std::span<const std::uint8_t> request, const Host& host,
+                              std::vector<std::uint8_t>& reply) {
     objif::Frame frame;
     std::size_t used = 0;
     bool need_more = false;
@@ -32,13 +33,14 @@ FrameError FrameServer::serve(std::span<const std::uint8_t> request, std::vector
         reject(used != 0 ? frame.sequence : 0, e, reply);
         return e;
     }
-    return handle(frame, reply);
+    return handle(frame, host, reply);
 }
 
-FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
+FrameError FrameServer::handle(const objif::Frame& request, const Host& host,
+                               std::vector<std::uint8_t>& reply) {
     const std::size_t before = reply.size();
     try {
-        return serve_decoded(request, reply);
+        return serve_decoded(request, host, reply);
     } catch (const std::bad_alloc&) {
         reply.resize(before);
         ++out_of_memory_;
@@ -49,9 +51,56 @@ FrameError FrameServer::handle(const objif::Frame& request, std::vector<std::uin
     }
 }
 
-FrameError FrameServer::serve_decoded(const objif::Frame& request,
+void FrameServer::refuse_unclaimed(const objif::Frame& request, std::vector<std::uint8_t>& reply) {
+    const objif::Status refused = objif::Status::kMotionClaimed;
+    switch (static_cast<Opcode>(request.opcode)) {
+        case Opcode::kObjectWrite: {
+            objif::WriteRequest req;
+            objif::WriteReply rep;
+            rep.status = refused;
+            // The handle is echoed as sent: nothing was resolved.
+            if (objif::decode(request.payload, req) == FrameError::kNone)
+                rep.handle = req.descriptor.handle;
+            objif::encode(rep, payload_);
+            break;
+        }
+        case Opcode::kSpoolProfile:
+        case Opcode::kDirectCommand:
+        case Opcode::kSsfCommand: {
+            objif::MotionReply rep;
+            rep.status = refused;
+            rep.message = claim_.held_text();
+            objif::encode(rep, payload_);
+            break;
+        }
+        case Opcode::kClock: {
+            objif::ClockReply rep;
+            rep.status = refused;
+            objif::encode(rep, payload_);
+            break;
+        }
+        default: {  // kReadTrace, the last opcode guarded_by_motion_claim names
+            objif::TraceRequest req;
+            objif::TraceReply rep;
+            rep.status = refused;
+            if (objif::decode(request.payload, req) == FrameError::kNone) rep.what = req.what;
+            objif::encode(rep, payload_);
+            break;
+        }
+    }
+    objif::encode_frame(static_cast<std::uint16_t>(request.opcode | objif::kReplyFlag),
+                        request.sequence, payload_, reply);
+}
+
+FrameError FrameServer::serve_decoded(const objif::Frame& request, const Host& host,
                                       std::vector<std::uint8_t>& reply) {
     payload_.clear();
+    // The claim is checked before the payload is decoded: a guarded request of a host that
+    // does not hold it never reaches the board, malformed or not.
+    if (objif::guarded_by_motion_claim(request.opcode, request.payload) && !claim_.allows(host)) {
+        refuse_unclaimed(request, reply);
+        return FrameError::kNone;
+    }
     switch (static_cast<Opcode>(request.opcode)) {
         case Opcode::kObjectRead: {
             objif::ReadRequest req;
@@ -122,6 +171,15 @@ FrameError FrameServer::serve_decoded(const objif::Frame& request,
                 return e;
             }
             objif::encode(serve_trace(board_, req), payload_);
+            break;
+        }
+        case Opcode::kMotionClaim: {
+            objif::ClaimRequest req;
+            if (const FrameError e = objif::decode(request.payload, req); e != FrameError::kNone) {
+                reject(request.sequence, e, reply);
+                return e;
+            }
+            objif::encode(claim_.serve(host, req), payload_);
             break;
         }
         default:

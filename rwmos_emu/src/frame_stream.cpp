@@ -31,7 +31,7 @@ FrameStream::Result FrameStream::serve(FrameServer& server, std::vector<std::uin
         if (e == objif::FrameError::kNone) {
             // A frame whose payload does not decode, or whose opcode is not
             // served, is answered with an Error reply too: counted.
-            if (server.handle(frame_, replies) != objif::FrameError::kNone) ++result.rejected;
+            if (server.handle(frame_, host_, replies) != objif::FrameError::kNone) ++result.rejected;
         } else if (need_more) {
             break;
         } else if (consumed == 0) {

@@ -276,6 +276,7 @@ TEST(StatusCodes, EqualTheObjectInterfaceCodesWithTheSameNames) {
         {APCI_INVALID_VALUE, objif::Status::kInvalidValue},
         {APCI_WRONG_DEVICE_STATE, objif::Status::kWrongDeviceState},
         {APCI_BUSY, objif::Status::kBusy},
+        {APCI_MOTION_CLAIMED, objif::Status::kMotionClaimed},
         {APCI_GENERAL_ERROR, objif::Status::kGeneralError},
         {APCI_BAD_FRAME, objif::Status::kBadFrame},
         {APCI_UNKNOWN_OPCODE, objif::Status::kUnknownOpcode},

@@ -13,7 +13,8 @@ TEST(StatusTable, EveryCodeHasANameAndMessageAndRoundTrips) {
         Status::kSubMissing,   Status::kStaleHandle,     Status::kHandleMismatch,
         Status::kReadOnly,     Status::kWriteOnly,       Status::kTypeMismatch,
         Status::kValueTooHigh, Status::kValueTooLow,     Status::kInvalidValue,
-        Status::kWrongDeviceState, Status::kBusy,        Status::kGeneralError,
+        Status::kWrongDeviceState, Status::kBusy,        Status::kMotionClaimed,
+        Status::kGeneralError,
         Status::kBadFrame,     Status::kUnknownOpcode,   Status::kTransportError,
         Status::kTimeout,      Status::kNotSupported,    Status::kInvalidArgument,
         Status::kNoMemory};

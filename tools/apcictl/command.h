@@ -50,6 +50,12 @@ public:
     // idle timeout, a restart), opens it again; returns what happened, for the user ("" when
     // nothing was to be done). `apcictl shell` asks before each line.
     std::string reconnect_if_lost();
+    // Claims the board's motion for the rest of the session (apci_claim_motion), which
+    // `command` ("run", "diff") needs for itself; the claim ends when the session's board is
+    // closed. A board held by another program: a board error naming the holder and what to do,
+    // nothing moved. A board that does not serve claims: a warning on stderr, and the command
+    // goes on.
+    Outcome claim_motion(std::string_view command);
 
 private:
     std::string uri_;

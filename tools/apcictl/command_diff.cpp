@@ -520,6 +520,9 @@ class DiffCommand final : public Command {
 
     Outcome run(Session& session) override {
         Session there(against_);
+        // Both boards' motion is the diff's until it ends, as for `run`.
+        if (Outcome o = session.claim_motion("diff"); !o.ok()) return o;
+        if (Outcome o = there.claim_motion("diff"); !o.ok()) return o;
         std::optional<Difference> first;
         std::size_t compared = 0;
         std::string unit = "script lines";

@@ -259,6 +259,9 @@ class RunCommand final : public Command {
         Outcome failure;
         apci::Board* board = session.board(failure);
         if (board == nullptr) return failure;
+        // The board's motion is this run's until it ends: another program's moves cannot
+        // interleave with its own, and a second run is refused before it moves anything.
+        if (Outcome o = session.claim_motion("run"); !o.ok()) return o;
 
         // Outputs, declared before the writers (which go first).
         RunOutputFiles files(json_, svg_, csv_, tools_out_);

@@ -80,6 +80,35 @@ std::string Session::reconnect_if_lost() {
         uri_);
 }
 
+Outcome Session::claim_motion(std::string_view command) {
+    Outcome failure;
+    apci::Board* board = this->board(failure);
+    if (board == nullptr) return failure;
+    const apci::Status s = board->claim_motion().status;
+    if (s == APCI_OK) return Outcome::success();
+    if (s == APCI_NOT_SUPPORTED) {
+        fmt::print(stderr,
+                   "apcictl: warning: {}: {} does not serve motion claims: nothing stops another "
+                   "program from moving its axes at the same time\n",
+                   command, uri_);
+        return Outcome::success();
+    }
+    if (s != APCI_MOTION_CLAIMED)
+        return Outcome::board_error(fmt::format("{}: claim the board's motion: {}", command,
+                                                describe_failure(*board, s)));
+    // libapci's words name the holder: "claim motion: MotionClaimed (...): the board's motion
+    // is held by pid 4242 (apcictl) since ...".
+    const std::string_view said = board->last_error();
+    const std::size_t at = said.find("the board's motion is held by");
+    const std::string holder(at == std::string_view::npos ? said : said.substr(at));
+    std::string what_to_do = "wait until it has finished";
+    if (const auto claim = board->motion_claim(); claim.ok() && claim.value.pid > 0)
+        what_to_do += fmt::format(", or stop it (kill {})", claim.value.pid);
+    return Outcome::board_error(
+        fmt::format("{}: {}: {}; nothing was moved: {}, then run again", command, uri_, holder,
+                    what_to_do));
+}
+
 apci::Board* Session::board(Outcome& failure) {
     if (!opened_) {
         opened_ = true;

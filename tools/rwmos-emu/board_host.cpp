@@ -33,14 +33,19 @@ rwmos::FrameStream::Result BoardHost::serve_turn(rwmos::FrameStream& stream,
     return result;
 }
 
-void BoardHost::serve_frame(std::span<const std::uint8_t> request,
+void BoardHost::serve_frame(std::span<const std::uint8_t> request, const rwmos::Host& host,
                             std::vector<std::uint8_t>& reply) {
     const std::lock_guard lock(turns_);
     const std::uint64_t out_of_memory = server_.out_of_memory();
-    const objif::FrameError e = server_.serve(request, reply);
+    const objif::FrameError e = server_.serve(request, host, reply);
     ++counts_.frames;
     if (e != objif::FrameError::kNone || server_.out_of_memory() != out_of_memory)
         ++counts_.rejected;
+}
+
+bool BoardHost::drop_claim(std::uint64_t key) {
+    const std::lock_guard lock(turns_);
+    return server_.claim().drop(key);
 }
 
 std::uint64_t BoardHost::pace(std::chrono::steady_clock::time_point now) {

@@ -43,15 +43,21 @@ class BoardTurns {
 
 class BoardHost {
   public:
-    explicit BoardHost(const rwmos::BoardConfig& config) : board_(config), server_(board_) {}
+    // `alive`: whether a mailbox host's process still runs (rwmos::MotionClaim).
+    explicit BoardHost(const rwmos::BoardConfig& config, rwmos::HostAlive alive = nullptr)
+        : board_(config), server_(board_, alive) {}
 
     // Serves one turn of a client's buffered byte stream (see
     // rwmos::FrameStream::serve).
     rwmos::FrameStream::Result serve_turn(rwmos::FrameStream& stream,
                                           std::vector<std::uint8_t>& replies,
                                           const rwmos::FrameStream::Turn& turn);
-    // Serves one whole request frame (the dual-port RAM mailbox).
-    void serve_frame(std::span<const std::uint8_t> request, std::vector<std::uint8_t>& reply);
+    // Serves one whole request frame (the dual-port RAM mailbox) from `host`.
+    void serve_frame(std::span<const std::uint8_t> request, const rwmos::Host& host,
+                     std::vector<std::uint8_t>& reply);
+
+    // The host `key`'s link closed: its motion claim, if it held it, ends. True when it did.
+    bool drop_claim(std::uint64_t key);
 
     ServedCounts counts() const;
     // Requests answered NoMemory (the daemon ran out of memory serving them).

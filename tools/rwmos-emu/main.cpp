@@ -25,6 +25,7 @@
 
 #include "board_host.h"
 #include "log.h"
+#include "peer.h"
 #include "objif/adaptive_spin.h"
 #include "objif/registry.h"
 #include "shm_server.h"
@@ -324,7 +325,7 @@ int serve(const Options& o) {
     rwmos::BoardConfig config;
     config.option_tc = !o.no_option_tc;
     config.trace_memory = o.trace_memory_mib << 20;
-    BoardHost host(config);
+    BoardHost host(config, host_process_alive);
     SocketServer sockets(host, fds.epoll,
                          ClientLimits{o.max_clients, std::chrono::seconds(o.idle_timeout_s)});
     ShmServer shm(host);

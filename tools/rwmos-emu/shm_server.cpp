@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "log.h"
+#include "peer.h"
 
 namespace rwmos_emu {
 
@@ -209,6 +210,8 @@ void ShmServer::serve_loop() {
     reply.reserve(mb::kRecordCapacity);
     std::chrono::milliseconds sleep = kFirstSleep;
     mb::AdaptiveSpin spin(kShortestSpin, kLongestSpin);
+    rwmos::Host sender;
+    std::uint32_t sender_token = 0;
     while (!stop_.load(std::memory_order_relaxed)) {
         if (guard_->lost()) return give_up(damage());
         if (!mb::take_request(*window_, request, spin, sleep)) {
@@ -221,7 +224,14 @@ void ShmServer::serve_loop() {
         if (guard_->lost()) return give_up(damage());
         sleep = kFirstSleep;
         reply.clear();
-        host_.serve_frame(request.frame, reply);
+        // The host in this exchange holds the host lock; its token is its pid (docs/dpram.md).
+        // Looked up in /proc only when another host's turn comes, not once per request.
+        const std::uint32_t token = window_->load(mb::kOffHostLock);
+        if (token != sender_token) {
+            sender = mailbox_host(token);
+            sender_token = token;
+        }
+        host_.serve_frame(request.frame, sender, reply);
         mb::put_reply(*window_, request, reply);
     }
 }

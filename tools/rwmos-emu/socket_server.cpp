@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "log.h"
+#include "peer.h"
 #include "objif/frame.h"
 #include "objif/registry.h"
 
@@ -481,6 +482,7 @@ void SocketServer::accept_one(int fd) {
     }
     Client& c = clients_[fd];
     c.id = next_id_++;
+    c.stream.set_host(socket_host(fd, c.id));
     c.armed = ev.events;
     c.last_active = SteadyClock::now();
     if (limits_.idle_timeout.count() > 0 && !idle_timer_armed_)
@@ -657,6 +659,10 @@ void SocketServer::drop(int fd, std::string_view why) {
     auto it = clients_.find(fd);
     if (it == clients_.end()) return;
     if (!why.empty()) log(Level::kInfo, "client {} {}: connection closed", it->second.id, why);
+    // A client that is gone, however it went (closed, crashed, killed), leaves no claim behind.
+    if (host_.drop_claim(it->second.id))
+        log(Level::kInfo, "client {} (pid {}) closed while it held the board's motion: released",
+            it->second.id, it->second.stream.host().pid);
     if (it->second.awaits_turn) std::erase(left_over_, fd);
     ::epoll_ctl(epoll_fd_, EPOLL_CTL_DEL, fd, nullptr);
     ::close(fd);

@@ -89,6 +89,7 @@ typedef uint32_t apci_status;
 /* State. */
 #define APCI_WRONG_DEVICE_STATE  ((apci_status)0x08000022u) /* e.g. XAxis written while compensation runs */
 #define APCI_BUSY                ((apci_status)0x0F000010u) /* spooler full, nothing taken: retry */
+#define APCI_MOTION_CLAIMED      ((apci_status)0x0F000011u) /* another handle holds the motion (apci_claim_motion) */
 #define APCI_GENERAL_ERROR       ((apci_status)0x08000000u)
 /* Frames and transports. */
 #define APCI_BAD_FRAME           ((apci_status)0x0F000100u)
@@ -100,7 +101,7 @@ typedef uint32_t apci_status;
 #define APCI_NO_MEMORY           ((apci_status)0x0F000302u)
 
 /* Number of codes listed above. */
-#define APCI_STATUS_COUNT 22
+#define APCI_STATUS_COUNT 23
 
 /* "TypeMismatch" for APCI_TYPE_MISMATCH; "Unknown" for a code not listed. Never NULL. */
 APCI_API const char* apci_status_name(apci_status status) APCI_NOEXCEPT;
@@ -197,6 +198,53 @@ APCI_API int apci_is_connected(const apci_board* board) APCI_NOEXCEPT;
  * Errors: as apci_open(); on failure the link stays closed.
  */
 APCI_API apci_status apci_reconnect(apci_board* board) APCI_NOEXCEPT;
+
+/* ---- Exclusive use of the board's motion ------------------------------------ */
+
+/*
+ * A handle that claims the board's motion holds it until it releases it, closes, reconnects or
+ * its process ends (as libusb_claim_interface holds an interface, or flock a file). While one
+ * handle holds it, every other handle's request that starts or changes motion or takes from the
+ * holder's record -- object writes, profiles, direct and SSF commands, stepping or running the
+ * clock, trace on/off, reading samples or segments -- is refused with APCI_MOTION_CLAIMED and
+ * changes nothing; apci_last_error() names the holder ("the board's motion is held by pid 4242
+ * (apcictl) since 2024-05-01 12:00:00 UTC"). Object reads and apci_motion_status_get stay open
+ * to every handle. A board nobody claims serves every handle as before. docs/motion-claim.md
+ * says what each transport can do: the daemon keeps the claim per connection (unix:) and per
+ * process (shm:, and pci: through a bridge that serves it); emu: boards are each handle's own;
+ * usb: is the opening handle's alone already (the interface claim).
+ */
+
+/*
+ * Claims the board's motion for `board`.
+ * Errors: APCI_INVALID_ARGUMENT (board NULL); APCI_MOTION_CLAIMED (another handle holds it:
+ * apci_last_error() names it; nothing changed); APCI_WRONG_DEVICE_STATE (this handle holds it
+ * already: a claim is not counted, so a second would be released by the first release);
+ * APCI_NOT_SUPPORTED (the board does not serve claims); transport errors.
+ */
+APCI_API apci_status apci_claim_motion(apci_board* board) APCI_NOEXCEPT;
+
+/*
+ * Releases the claim `board` holds. The handle no longer holds it afterwards, whatever the
+ * board answered (a lost link has ended it on the board's side).
+ * Errors: APCI_INVALID_ARGUMENT (board NULL); APCI_WRONG_DEVICE_STATE (this handle holds no
+ * claim); transport errors.
+ */
+APCI_API apci_status apci_release_motion(apci_board* board) APCI_NOEXCEPT;
+
+/* Who holds the board's motion (apci_motion_claim_get). */
+typedef struct apci_motion_claim {
+    int32_t held;      /* 1: a handle holds the motion */
+    int32_t yours;     /* 1: it is this handle */
+    int32_t pid;       /* the holder's process id; 0 when the board does not know it */
+    uint32_t reserved; /* 0 */
+    uint64_t since_ms; /* when it claimed, milliseconds since 1970-01-01 UTC; 0 if unknown */
+    char name[16];     /* the holder's command name, NUL-terminated; "" if unknown */
+} apci_motion_claim;
+
+/* Asks the board who holds its motion, changing nothing.
+ * Errors: APCI_INVALID_ARGUMENT (board or claim NULL); APCI_NOT_SUPPORTED; transport errors. */
+APCI_API apci_status apci_motion_claim_get(apci_board* board, apci_motion_claim* claim) APCI_NOEXCEPT;
 
 /* ---- Finding boards ------------------------------------------------------- */
 

@@ -114,6 +114,16 @@ public:
     bool connected() const noexcept { return apci_is_connected(handle_) != 0; }
     Result<void> reconnect() noexcept { return Result<void>{apci_reconnect(handle_)}; }
 
+    // The board's motion for this handle alone (apci.h "Exclusive use of the board's motion").
+    // MotionClaim below holds it for a scope.
+    Result<void> claim_motion() noexcept { return Result<void>{apci_claim_motion(handle_)}; }
+    Result<void> release_motion() noexcept { return Result<void>{apci_release_motion(handle_)}; }
+    Result<apci_motion_claim> motion_claim() noexcept {
+        Result<apci_motion_claim> r;
+        r.status = apci_motion_claim_get(handle_, &r.value);
+        return r;
+    }
+
     Result<std::int32_t> read_int(ObjectDescriptor& o) noexcept {
         Result<std::int32_t> r;
         r.status = apci_read_int(handle_, &o, &r.value);
@@ -204,6 +214,27 @@ private:
     apci_board* handle_ = nullptr;
     Status open_status_ = APCI_INVALID_ARGUMENT;  // "not opened" for a default Board
     std::string open_error_ = "board not open";
+};
+
+// Holds the board's motion for a scope, as std::lock_guard holds a mutex: claims it when made
+// (check held(); the board's last_error() names the holder when another has it) and releases
+// it when destroyed.
+class MotionClaim {
+public:
+    explicit MotionClaim(Board& board) noexcept
+        : board_(&board), status_(board.claim_motion().status) {}
+    ~MotionClaim() {
+        if (held()) (void)board_->release_motion();
+    }
+    MotionClaim(const MotionClaim&) = delete;
+    MotionClaim& operator=(const MotionClaim&) = delete;
+
+    bool held() const noexcept { return status_ == APCI_OK; }
+    Status status() const noexcept { return status_; }
+
+private:
+    Board* board_;
+    Status status_;
 };
 
 // A board apci_list_devices() found.

@@ -47,6 +47,7 @@ enum class Opcode : std::uint16_t {
     kSsfCommand = 0x0005,
     kClock = 0x0006,      // step / run the interpolation clock
     kReadTrace = 0x0007,  // per-cycle axis samples
+    kMotionClaim = 0x0008,  // claim, release or ask who holds the board's motion (ClaimRequest)
     kNotice = 0x7FFE,     // sent by the daemon on its own (as 0xFFFE, sequence 0): greeting,
                           // refusal, or why it closes the connection (NoticeFrame)
     kError = 0x7FFF,      // reply only: the request could not be decoded
@@ -322,6 +323,46 @@ FrameError decode(std::span<const std::uint8_t> p, ClockRequest& m);
 FrameError decode(std::span<const std::uint8_t> p, ClockReply& m);
 FrameError decode(std::span<const std::uint8_t> p, TraceRequest& m);
 FrameError decode(std::span<const std::uint8_t> p, TraceReply& m);
+
+// ---- The motion claim (docs/motion-claim.md): one host at a time holds the board's motion;
+// while one does, the board refuses the others' requests that start or change motion
+// (MotionClaimed). The board knows its hosts by their link (a socket connection, a mailbox
+// host's pid) and names the holder to the others.
+enum class ClaimAction : std::uint8_t {
+    kClaim = 0,    // take the motion for this host; MotionClaimed while another holds it
+    kRelease = 1,  // give it back; WrongDeviceState when this host does not hold it
+    kQuery = 2,    // who holds it, changing nothing
+};
+struct ClaimRequest {
+    ClaimAction action = ClaimAction::kQuery;
+};
+// The longest holder name on the wire: a Linux command name (comm) is at most 15 bytes.
+inline constexpr std::size_t kMaxHolderName = 15;
+struct ClaimReply {
+    Status status = Status::kOk;
+    bool held = false;         // someone holds the motion (after the action)
+    bool yours = false;        // and it is the host that asked
+    std::int32_t pid = 0;      // the holder's process id, 0 when the board does not know it
+    std::uint64_t since_ms = 0;  // when it claimed, milliseconds since 1970-01-01 UTC
+    std::string name;          // the holder's command name ("apcictl"); printable ASCII
+};
+
+// "pid 4242 (apcictl) since 2024-05-01 12:00:00 UTC" for a reply whose `held` is set (the
+// name and the pid left out where the board does not know them): the one way the board side
+// and libapci name a holder.
+std::string claim_holder_text(const ClaimReply& reply);
+
+void encode(const ClaimRequest& m, std::vector<std::uint8_t>& out);
+void encode(const ClaimReply& m, std::vector<std::uint8_t>& out);
+FrameError decode(std::span<const std::uint8_t> p, ClaimRequest& m);
+FrameError decode(std::span<const std::uint8_t> p, ClaimReply& m);
+
+// Whether a request starts or changes the board's motion, or takes from what the holder's
+// run records, and is therefore refused to a host that does not hold a claim another host
+// holds: object writes, profiles, direct and SSF commands, clock requests other than a query,
+// trace reads (docs/motion-claim.md, "What the claim guards"). Object reads, clock queries and
+// MotionClaim requests are answered to everyone.
+bool guarded_by_motion_claim(std::uint16_t opcode, std::span<const std::uint8_t> payload) noexcept;
 
 // A reply's status word: the first 4 payload bytes of every reply.
 FrameError decode_status(std::span<const std::uint8_t> p, Status& s);

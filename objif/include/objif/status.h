@@ -29,6 +29,7 @@ enum class Status : std::uint32_t {
     // State.
     kWrongDeviceState = 0x0800'0022,  // CANopen: not possible in present device state
     kBusy = 0x0F00'0010,              // spooler full: nothing was taken, try again
+    kMotionClaimed = 0x0F00'0011,     // another client holds the board's motion (docs/motion-claim.md)
     kGeneralError = 0x0800'0000,      // CANopen: general error
     // Frames and transports.
     kBadFrame = 0x0F00'0100,       // malformed wire frame (reason given separately)
@@ -41,7 +42,7 @@ enum class Status : std::uint32_t {
 };
 
 // Number of Status values; status.cpp static_asserts its table against it.
-inline constexpr std::size_t kStatusCount = 22;
+inline constexpr std::size_t kStatusCount = 23;
 
 // "kObjectMissing" -> "ObjectMissing"; unknown codes give "Unknown".
 std::string_view status_name(Status s) noexcept;

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "objif/frame.h"
+#include <utility>
+
 #include "rwmos/frame_server.h"
 
 namespace rwmos {
@@ -52,6 +54,11 @@ class FrameStream {
     // (or garbage) are left for the next.
     Result serve(FrameServer& server, std::vector<std::uint8_t>& replies, const Turn& turn);
 
+    // The host at the other end of the stream (a daemon's socket client): every frame is
+    // served as its request (FrameServer::handle). Host{} until set.
+    void set_host(Host host) { host_ = std::move(host); }
+    const Host& host() const noexcept { return host_; }
+
     // Bytes buffered and not yet served: an incomplete frame waiting for the
     // rest, or what a turn left.
     std::size_t pending() const noexcept { return buffer_.size() - start_; }
@@ -64,6 +71,7 @@ class FrameStream {
     std::vector<std::uint8_t> buffer_;
     std::size_t start_ = 0;  // first byte not yet consumed
     objif::Frame frame_;     // scratch, reused
+    Host host_;
 };
 
 }  // namespace rwmos

@@ -1,0 +1,374 @@
+// SPDX-License-Identifier: MIT
+// The motion claim on one daemon (docs/motion-claim.md, docs/rwmos-emu.md "Clients and
+// robustness"): one client claims the board's motion; another's claim is refused naming the
+// holder, and so is each of its requests that starts or changes motion, with nothing changed;
+// reads stay open to everyone; the claim ends when the holder releases it, closes, or is
+// killed (SIGKILL: nothing is released by the client, the daemon sees the connection end);
+// mailbox hosts are known by their process. And `apcictl run` twice at once on one daemon:
+// the second is refused naming the first and moves nothing; the first completes whole.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apci/apci.h"
+#include "apcictl.h"
+#include "daemon.h"
+#include "text.h"
+
+namespace {
+
+using apci_test::Daemon;
+using apci_test::DaemonOptions;
+using apci_test::TempDir;
+using test_support::contains;
+using namespace std::chrono_literals;
+
+struct Client {
+    apci_board* board = nullptr;
+    explicit Client(const std::string& uri) {
+        EXPECT_EQ(apci_open(uri.c_str(), &board), APCI_OK) << apci_last_error(nullptr);
+    }
+    ~Client() { apci_close(board); }
+    Client(const Client&) = delete;
+    Client& operator=(const Client&) = delete;
+    std::string error() const { return apci_last_error(board); }
+    apci_motion_claim claim() {
+        apci_motion_claim c{};
+        EXPECT_EQ(apci_motion_claim_get(board, &c), APCI_OK) << error();
+        return c;
+    }
+    std::uint64_t now() {
+        apci_motion_status st{};
+        EXPECT_EQ(apci_motion_status_get(board, &st), APCI_OK) << error();
+        return st.now;
+    }
+};
+
+// TC group 1's RADIUS, which every client may read.
+apci_object_descriptor radius() {
+    return apci_object_descriptor{APCI_TC_BUS, APCI_TC_DEVICE_GROUP, 1, APCI_TC_RADIUS, 0};
+}
+
+std::string self_holder() {
+    return fmt::format("the board's motion is held by pid {} (", ::getpid());
+}
+
+class MotionClaimDaemon : public ::testing::Test {
+protected:
+    void SetUp() override {
+        DaemonOptions o;
+        o.shm = true;
+        daemon_ = Daemon::start(o);
+        ASSERT_NE(daemon_, nullptr);
+    }
+    std::unique_ptr<Daemon> daemon_;
+};
+
+TEST_F(MotionClaimDaemon, SecondClientsClaimIsRefusedNamingTheHolder) {
+    Client a(daemon_->unix_uri()), b(daemon_->unix_uri());
+    EXPECT_EQ(a.claim().held, 0);
+    ASSERT_EQ(apci_claim_motion(a.board), APCI_OK) << a.error();
+    EXPECT_EQ(apci_claim_motion(b.board), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(b.error(), self_holder())) << b.error();
+    EXPECT_TRUE(contains(b.error(), " since 20")) << b.error();
+    const apci_motion_claim seen = b.claim();
+    EXPECT_EQ(seen.held, 1);
+    EXPECT_EQ(seen.yours, 0);
+    EXPECT_EQ(seen.pid, ::getpid());
+    const apci_motion_claim own = a.claim();
+    EXPECT_EQ(own.yours, 1);
+    EXPECT_EQ(own.since_ms, seen.since_ms);
+    // The refused handle holds nothing: its release is one without a claim.
+    EXPECT_EQ(apci_release_motion(b.board), APCI_WRONG_DEVICE_STATE);
+    EXPECT_EQ(a.claim().yours, 1);
+}
+
+TEST_F(MotionClaimDaemon, NonHoldersMotionRequestsAreRefusedAndChangeNothing) {
+    Client a(daemon_->unix_uri()), b(daemon_->unix_uri());
+    apci_object_descriptor r = radius();
+    ASSERT_EQ(apci_write_double(a.board, &r, 2.5), APCI_OK) << a.error();
+    ASSERT_EQ(apci_claim_motion(a.board), APCI_OK) << a.error();
+    const std::uint64_t before = a.now();
+
+    apci_object_descriptor rb = radius();
+    EXPECT_EQ(apci_write_double(b.board, &rb, 7.0), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(b.error(), self_holder())) << b.error();
+    apci_profile p{};
+    p.kind = APCI_PROFILE_LINE;
+    p.axes = 0x01;
+    p.feed = 600.0;
+    p.target[0] = 10.0;
+    EXPECT_EQ(apci_spool_profile(b.board, &p, nullptr), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(b.error(), self_holder())) << b.error();
+    apci_direct_command ja{};
+    ja.code = APCI_DIRECT_JA;
+    ja.axes = 0x01;
+    ja.target[0] = 3.0;
+    EXPECT_EQ(apci_direct_command_send(b.board, &ja), APCI_MOTION_CLAIMED);
+    EXPECT_EQ(apci_ssf_command(b.board, 0x03, APCI_SSF_RELEASE_HELD_PROFILE, nullptr),
+              APCI_MOTION_CLAIMED);
+    apci_motion_status st{};
+    EXPECT_EQ(apci_step(b.board, 100, &st), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(b.error(), self_holder())) << b.error();
+    EXPECT_EQ(apci_run_until_idle(b.board, 100, &st), APCI_MOTION_CLAIMED);
+    EXPECT_EQ(apci_trace_enable(b.board, 16), APCI_MOTION_CLAIMED);
+    apci_segment seg[2];
+    size_t n = 99;
+    EXPECT_EQ(apci_read_segments(b.board, seg, 2, &n), APCI_MOTION_CLAIMED);
+    apci_trace_sample sample[2];
+    EXPECT_EQ(apci_read_trace(b.board, sample, 2, &n), APCI_MOTION_CLAIMED);
+
+    // Nothing of it reached the board.
+    double value = 0;
+    ASSERT_EQ(apci_read_double(a.board, &r, &value), APCI_OK);
+    EXPECT_EQ(value, 2.5);
+    ASSERT_EQ(apci_motion_status_get(a.board, &st), APCI_OK);
+    EXPECT_EQ(st.now, before);
+    EXPECT_EQ(st.fill, 0u);
+    EXPECT_EQ(st.position[0], 0.0);
+    EXPECT_EQ(st.flags & APCI_MOTION_TRACING, 0u);
+}
+
+TEST_F(MotionClaimDaemon, HolderMovesWhileOthersRead) {
+    Client a(daemon_->unix_uri()), b(daemon_->unix_uri());
+    ASSERT_EQ(apci_claim_motion(a.board), APCI_OK);
+    apci_profile p{};
+    p.kind = APCI_PROFILE_LINE;
+    p.axes = 0x01;
+    p.feed = 600.0;
+    p.target[0] = 10.0;
+    ASSERT_EQ(apci_spool_profile(a.board, &p, nullptr), APCI_OK) << a.error();
+    apci_motion_status st{};
+    ASSERT_EQ(apci_step(a.board, 500, &st), APCI_OK) << a.error();
+    // Reads and the motion status stay open to the other client.
+    apci_motion_status seen{};
+    ASSERT_EQ(apci_motion_status_get(b.board, &seen), APCI_OK) << b.error();
+    EXPECT_EQ(seen.now, st.now);
+    EXPECT_EQ(seen.position[0], st.position[0]);
+    apci_object_descriptor r = radius();
+    double value = -1;
+    EXPECT_EQ(apci_read_double(b.board, &r, &value), APCI_OK) << b.error();
+    uint32_t fill = 0, capacity = 0;
+    EXPECT_EQ(apci_spooler_fill(b.board, &fill, &capacity), APCI_OK) << b.error();
+    EXPECT_EQ(fill, 1u);
+    // And so does `apcictl status`.
+    const auto status = test_support::apcictl({"--device", daemon_->unix_uri(), "status"});
+    EXPECT_EQ(status.exit_code, 0) << status.err;
+    EXPECT_TRUE(contains(status.out, "spooler 1 of")) << status.out;
+    ASSERT_EQ(apci_run_until_idle(a.board, 1'000'000, &st), APCI_OK);
+    EXPECT_EQ(st.position[0], 10.0);
+    apci_segment seg[2];
+    size_t n = 0;
+    ASSERT_EQ(apci_read_segments(a.board, seg, 2, &n), APCI_OK);
+    EXPECT_EQ(n, 1u);
+}
+
+TEST_F(MotionClaimDaemon, ReleaseAndCloseEachGiveTheClaimBack) {
+    Client b(daemon_->unix_uri());
+    {
+        Client a(daemon_->unix_uri());
+        ASSERT_EQ(apci_claim_motion(a.board), APCI_OK);
+        ASSERT_EQ(apci_release_motion(a.board), APCI_OK) << a.error();
+        ASSERT_EQ(apci_claim_motion(b.board), APCI_OK) << b.error();
+        ASSERT_EQ(apci_release_motion(b.board), APCI_OK);
+        ASSERT_EQ(apci_claim_motion(a.board), APCI_OK) << a.error();
+        EXPECT_EQ(apci_claim_motion(b.board), APCI_MOTION_CLAIMED);
+    }  // a closes holding it
+    EXPECT_EQ(apci_claim_motion(b.board), APCI_OK) << b.error();
+}
+
+// A child process that opens `uri`, claims the motion, tells the parent on `ready` and waits
+// to be killed.
+pid_t claiming_child(const std::string& uri) {
+    int ready[2];
+    if (::pipe(ready) != 0) return -1;
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::close(ready[0]);
+        apci_board* board = nullptr;
+        const char ok = apci_open(uri.c_str(), &board) == APCI_OK &&
+                                apci_claim_motion(board) == APCI_OK
+                            ? 'y'
+                            : 'n';
+        (void)!::write(ready[1], &ok, 1);
+        for (;;) ::pause();
+    }
+    ::close(ready[1]);
+    char got = 0;
+    const bool ok = pid > 0 && ::read(ready[0], &got, 1) == 1 && got == 'y';
+    ::close(ready[0]);
+    if (!ok && pid > 0) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, nullptr, 0);
+        return -1;
+    }
+    return pid;
+}
+
+void kill_and_reap(pid_t pid) {
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+}
+
+TEST_F(MotionClaimDaemon, ClaimOfAKilledClientEndsWithItsConnection) {
+    const pid_t child = claiming_child(daemon_->unix_uri());
+    ASSERT_GT(child, 0);
+    Client b(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(b.board), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(b.error(), fmt::format("held by pid {} (", child))) << b.error();
+    kill_and_reap(child);
+    // The daemon sees the connection end; nothing else is needed.
+    EXPECT_TRUE(apci_test::eventually([&] { return apci_claim_motion(b.board) == APCI_OK; }))
+        << b.error();
+    EXPECT_EQ(b.claim().yours, 1);
+    EXPECT_TRUE(contains(daemon_->log(), "closed while it held the board's motion: released"))
+        << daemon_->log();
+}
+
+TEST_F(MotionClaimDaemon, MailboxHostsClaimIsItsProcesssAndEndsWithIt) {
+    const pid_t child = claiming_child(daemon_->shm_uri());
+    ASSERT_GT(child, 0);
+    Client sock(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(sock.error(), fmt::format("held by pid {} (", child))) << sock.error();
+    apci_object_descriptor r = radius();
+    EXPECT_EQ(apci_write_double(sock.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    // Another mailbox host of another process is refused as well; this process's own mailbox
+    // handle is another host than the child.
+    Client mail(daemon_->shm_uri());
+    EXPECT_EQ(apci_write_double(mail.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    kill_and_reap(child);
+    // The process is gone: its claim with it, at the next request that asks.
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+    // And a socket holder refuses a mailbox host's motion.
+    EXPECT_EQ(apci_write_double(mail.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(mail.error(), self_holder())) << mail.error();
+    EXPECT_EQ(apci_claim_motion(mail.board), APCI_MOTION_CLAIMED);
+}
+
+TEST_F(MotionClaimDaemon, MailboxHandleReleasesItsClaimWhenClosed) {
+    Client sock(daemon_->unix_uri());
+    {
+        Client mail(daemon_->shm_uri());
+        ASSERT_EQ(apci_claim_motion(mail.board), APCI_OK) << mail.error();
+        EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
+        // A second mailbox handle of the same process is the same host to the board, which
+        // knows mailbox hosts by process: refused, and said so.
+        Client mail2(daemon_->shm_uri());
+        EXPECT_EQ(apci_claim_motion(mail2.board), APCI_MOTION_CLAIMED);
+        EXPECT_TRUE(contains(mail2.error(), "another handle of this process")) << mail2.error();
+    }
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+}
+
+// ---- apcictl run, twice at once on one daemon
+
+// A program long enough that a second run starts while the first still runs: `blocks` lines
+// back and forth on X.
+std::string long_program(const TempDir& dir, int blocks) {
+    const std::string path = dir.path() + "/long.nc";
+    std::ofstream out(path);
+    out << "G90 G01 F6000\n";
+    for (int i = 1; i <= blocks; ++i) out << fmt::format("N{} X{} Y{}\n", i, i % 2 == 0 ? 0 : 10, i % 7);
+    out << "M30\n";
+    return path;
+}
+
+std::string segments_line(const std::string& out) {
+    std::smatch m;
+    if (!std::regex_search(out, m, std::regex(R"((\d+) blocks, (\d+) executed, (\d+) segments)")))
+        return {};
+    return m[0];
+}
+
+TEST_F(MotionClaimDaemon, SecondApcictlRunIsRefusedAndTheFirstCompletesWhole) {
+    TempDir dir;
+    const std::string program = long_program(dir, 4000);
+    // The program alone on a board of its own: what the first run must report.
+    const auto alone = test_support::apcictl({"--device", "emu:", "run", program});
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    const std::string expected = segments_line(alone.out);
+    ASSERT_FALSE(expected.empty()) << alone.out;
+
+    // The first run in the background; the second once the daemon names the first as holder.
+    test_support::ProcessResult first;
+    std::thread first_run([&] {
+        first = test_support::apcictl({"--device", daemon_->unix_uri(), "run", program});
+    });
+    Client watcher(daemon_->unix_uri());
+    const bool held = apci_test::eventually([&] { return watcher.claim().held == 1; }, 30s);
+    const apci_motion_claim holder = watcher.claim();
+    const std::uint64_t now_before = watcher.now();
+    test_support::ProcessResult second;
+    if (held) second = test_support::apcictl({"--device", daemon_->unix_uri(), "run", program});
+    first_run.join();
+    ASSERT_TRUE(held) << "the first run never held the board's motion: " << first.out << first.err;
+    const std::string first_out = first.out + first.err;
+
+    EXPECT_EQ(second.exit_code, 1) << second.out << second.err;
+    EXPECT_TRUE(contains(second.err,
+                         fmt::format("apcictl: run: {}: the board's motion is held by pid {} "
+                                     "(apcictl) since ",
+                                     daemon_->unix_uri(), holder.pid)))
+        << second.err;
+    EXPECT_TRUE(contains(second.err, fmt::format("nothing was moved: wait until it has "
+                                                 "finished, or stop it (kill {}), then run again",
+                                                 holder.pid)))
+        << second.err;
+    EXPECT_EQ(second.out, "");  // no summary of a run that did not run
+    EXPECT_EQ(first.exit_code, 0) << first_out;
+    EXPECT_EQ(segments_line(first_out), expected) << first_out;
+    EXPECT_TRUE(contains(first_out, "errors: none")) << first_out;
+    // The board ran the first run's cycles only (the second stepped nothing): at least as
+    // many as were run when the second was refused, and the claim ended with the run.
+    EXPECT_GE(watcher.now(), now_before);
+    EXPECT_EQ(watcher.claim().held, 0);
+}
+
+TEST_F(MotionClaimDaemon, ApcictlRunOnAHeldBoardMovesNothing) {
+    TempDir dir;
+    const std::string program = long_program(dir, 5);
+    Client holder(daemon_->unix_uri());
+    ASSERT_EQ(apci_claim_motion(holder.board), APCI_OK);
+    const std::uint64_t before = holder.now();
+    const auto r = test_support::apcictl({"--device", daemon_->unix_uri(), "run", program});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.err, self_holder())) << r.err;
+    EXPECT_TRUE(contains(r.err, fmt::format("(kill {})", ::getpid()))) << r.err;
+    apci_motion_status st{};
+    ASSERT_EQ(apci_motion_status_get(holder.board, &st), APCI_OK);
+    EXPECT_EQ(st.now, before);
+    EXPECT_EQ(st.fill, 0u);
+    EXPECT_EQ(st.segments_pending, 0u);
+    for (const double x : st.position) EXPECT_EQ(x, 0.0);
+    // Released, the same run runs.
+    ASSERT_EQ(apci_release_motion(holder.board), APCI_OK);
+    const auto again = test_support::apcictl({"--device", daemon_->unix_uri(), "run", program});
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_TRUE(contains(again.out, "7 blocks, 7 executed, 5 segments")) << again.out;
+}
+
+TEST_F(MotionClaimDaemon, ApcictlDiffClaimsBothBoards) {
+    TempDir dir;
+    const std::string program = long_program(dir, 3);
+    Client holder(daemon_->unix_uri());
+    ASSERT_EQ(apci_claim_motion(holder.board), APCI_OK);
+    const auto r = test_support::apcictl(
+        {"--device", "emu:", "diff", "--against", daemon_->unix_uri(), program});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.err, "apcictl: diff: " + daemon_->unix_uri() + ": " + self_holder()))
+        << r.err;
+}
+
+}  // namespace
