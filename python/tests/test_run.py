@@ -335,7 +335,10 @@ def test_a_run_on_a_board_another_program_holds_is_refused_and_moves_nothing(tmp
     # has no call to claim by hand), and a run that must not move the board meanwhile.
     import ctypes
     build_dir = apcictl.parent.parent
-    sock = tmp_path / "emu.sock"
+    # A short directory: a socket path holds at most 107 bytes, and pytest's tmp_path for a
+    # test of this name is longer once pytest has numbered a hundred of its runs.
+    short = tempfile.TemporaryDirectory(prefix="apci-")
+    sock = pathlib.Path(short.name) / "emu.sock"
     daemon = subprocess.Popen([str(build_dir / "bin" / "rwmos-emu"), "--socket", str(sock)],
                               stderr=subprocess.DEVNULL,
                               env={**os.environ, "APCI_RUNTIME_DIR": str(tmp_path)})
@@ -344,7 +347,9 @@ def test_a_run_on_a_board_another_program_holds_is_refused_and_moves_nothing(tmp
             if sock.exists():
                 break
             time.sleep(0.01)
-        lib = ctypes.CDLL(str(sorted((build_dir / "lib").glob("libapci.so.*"))[0]))
+        # The very libapci the module runs on (a build tree may hold an older SONAME's too).
+        maps = pathlib.Path("/proc/self/maps").read_text().splitlines()
+        lib = ctypes.CDLL(next(line.split()[-1] for line in maps if "/libapci.so" in line))
         holder = ctypes.c_void_p()
         assert lib.apci_open(f"unix:{sock}".encode(), ctypes.byref(holder)) == 0
         assert lib.apci_claim_motion(holder) == 0
@@ -360,3 +365,4 @@ def test_a_run_on_a_board_another_program_holds_is_refused_and_moves_nothing(tmp
     finally:
         daemon.terminate()
         daemon.wait(timeout=10)
+        short.cleanup()
