@@ -556,6 +556,30 @@ TEST_F(ApcictlRunDryRun, TheDryRunTakesTheBoardsAxisNumbers) {
     EXPECT_TRUE(contains(r.err, "found by a dry run")) << r.err;
 }
 
+TEST_F(ApcictlRunDryRun, TheDryRunTakesTheBoardsInterpolationCycle) {
+    // After the square, 100 mm at F0.001: 6e8 cycles of 10 ms, within the limit of 1e9 cycles
+    // a move; 6e9 of the emulator's own 1 ms, beyond it. The dry run finds N60 only on an
+    // emulator with the board's cycle (with its own it refuses the program and finds nothing).
+    const std::string slow = script_file(dir_,
+                                         "N10 D1 F600\nN20 G41 G1 X0 Y0\nN30 G1 X50\nN40 G1 Y50\n"
+                                         "N50 G1 X0\nN60 G1 Y0\nN70 G40 G1 X-10 Y-10\n"
+                                         "N75 G1 F0.001 X90\nN80 M30\n",
+                                         "slow.nc");
+    const ProcessResult embedded = apcictl({"run", slow, "--tools", tools_});
+    EXPECT_EQ(embedded.exit_code, 1) << embedded.out << embedded.err;
+    EXPECT_TRUE(contains(embedded.err, "N75: feed F0.001 makes this 100 mm move take")) << embedded.err;
+    ASSERT_EQ(on_daemon({"write", "1000", "0", "4", "0", "10000"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"direct", "JA", "X-20", "Y-20"}).exit_code, 0);
+    ASSERT_EQ(on_daemon({"step", "--idle"}).exit_code, 0);
+    const std::string before = where();
+    const ProcessResult r = on_daemon({"run", slow, "--tools", tools_, "--self-approach", "error"});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, "N60: the tool path of N60 comes within 0.0000 mm")) << r.err;
+    EXPECT_TRUE(contains(r.err, "found by a dry run")) << r.err;
+    const std::string after = where();
+    EXPECT_EQ(after.substr(after.find(" fill")), before.substr(before.find(" fill")));
+}
+
 TEST_F(ApcictlRunDryRun, ACorrectProgramRunsAfterItsDryRunAsWithoutOne) {
     const std::string examples = std::string(APCI_SOURCE_DIR) + "/examples";
     const std::vector<std::string> run{"run", examples + "/wr_quad_disc.nc", "--tools",

@@ -131,6 +131,16 @@ TEST(SelfApproachModeName, TheThreeNamesAndNoOther) {
         EXPECT_FALSE(self_approach_mode(bad).has_value()) << bad;
 }
 
+// The boards whose run is its own dry run (apci_open: NULL, "" or "emu:" with its options) and
+// the ones that move a machine (a daemon's, a real one).
+TEST(EmbeddedEmulator, NoDeviceAndEmuWithItsOptionsAreEmbeddedEveryOtherSchemeIsNot) {
+    for (const char* embedded : {"", "emu:", "emu:?no-option-tc"})
+        EXPECT_TRUE(embedded_emulator(embedded)) << '"' << embedded << '"';
+    for (const char* other : {"unix:/run/apci/board.sock", "shm:/dev/shm/apci", "pci:0000:03:00.0",
+                              "usb:", "emu", "EMU:", " emu:", "unix:emu:"})
+        EXPECT_FALSE(embedded_emulator(other)) << '"' << other << '"';
+}
+
 const std::string kSquare =
     "N10 G17 G90 F1000 D1\nN20 G41 G1 X0 Y0\nN30 X60\nN40 Y60\nN50 X0\nN60 Y0\n"
     "N70 G40 G1 X-20 Y0\nN80 M30\n";

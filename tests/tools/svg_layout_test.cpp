@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <regex>
@@ -423,6 +424,149 @@ TEST(SvgSimplification, SegmentsDrawnAgainAreLeftOut) {
                                Role::kContour));
     EXPECT_EQ(path_vertices(write_svg(distinct, 17, "distinct.nc"), "contour").size(),
               2u * kDistinct);
+}
+
+PathSegment arc(const Point& a, const Point& b, const Point& centre, bool ccw, int plane) {
+    PathSegment s = line(a, b, Role::kContour);
+    s.kind = SegmentKind::kArc;
+    s.center = centre;
+    s.ccw = ccw;
+    s.plane = plane;
+    return s;
+}
+
+// The commands of a layer's paths (the legend's sample left out), each with its end point:
+// "M", "L" or "A" and x, y as written.
+struct Command {
+    char c;
+    double x, y;
+};
+std::vector<Command> path_commands(const std::string& svg, std::string_view css) {
+    const std::string open = "<path class=\"" + std::string(css) + "\" d=\"";
+    std::vector<std::string> paths;
+    for (std::size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at)) {
+        at += open.size();
+        const std::size_t end = svg.find('"', at);
+        if (end == std::string::npos) break;
+        paths.push_back(svg.substr(at, end - at));
+        at = end;
+    }
+    if (!paths.empty()) paths.pop_back();
+    std::vector<Command> out;
+    for (const std::string& d : paths) {
+        std::istringstream in{d};
+        char c = 0;
+        while (in >> c) {
+            double skip = 0.0;
+            if (c == 'A')
+                for (int i = 0; i < 5; ++i) in >> skip;  // rx ry rotation large-arc sweep
+            Command k{c, 0.0, 0.0};
+            if (!(in >> k.x >> k.y)) break;
+            out.push_back(k);
+        }
+    }
+    return out;
+}
+std::string letters(const std::vector<Command>& commands) {
+    std::string out;
+    for (const Command& k : commands) out += k.c;
+    return out;
+}
+
+// The frame of the tests below: a programmed diagonal over 100 x 100 mm, about 0.12 mm a
+// pixel of the 1000-pixel page, coordinates written to 0.01 mm.
+void frame_100(SvgPlotWriter& plot) {
+    plot.programmed(line(Point(0, 0, 0), Point(100, 100, 0), Role::kContour));
+}
+
+// An arc of the plotted plane is the same drawn again only with the same ends, centre and
+// sense: the other way round between the same ends (the rest of its circle) and another
+// circle through them are other arcs.
+TEST(SvgSimplification, AnArcIsDrawnAgainOnlyWithItsEndsCentreAndSense) {
+    SvgPlotWriter plot;
+    frame_100(plot);
+    const Point a(60, 50, 0), b(50, 60, 0);
+    plot.executed(arc(a, b, Point(50, 50, 0), true, 17));   // a quarter: one A
+    plot.executed(arc(a, b, Point(50, 50, 0), false, 17));  // three quarters: two halves
+    plot.executed(arc(a, b, Point(60, 60, 0), false, 17));  // a quarter of another circle
+    plot.executed(arc(a, b, Point(50, 50, 0), true, 17));   // the first again: left out
+    const std::string drawn = letters(path_commands(write_svg(plot, 17, "arcs.nc"), "contour"));
+    EXPECT_EQ(std::count(drawn.begin(), drawn.end(), 'A'), 4) << drawn;
+}
+
+// An arc out of the plotted plane is drawn as its projection whatever was drawn before: two
+// half circles in the YZ plane from one point, of radius 10 and 20, both project onto the
+// point (50, 50) at their ends and centres, yet reach 10 and 20 mm along Y seen from above.
+TEST(SvgSimplification, ArcsOutOfThePlottedPlaneAreNeverTakenForDrawn) {
+    SvgPlotWriter plot;
+    frame_100(plot);
+    plot.executed(arc(Point(50, 50, 0), Point(50, 50, 20), Point(50, 50, 10), true, 19));
+    plot.executed(arc(Point(50, 50, 0), Point(50, 50, 40), Point(50, 50, 20), true, 19));
+    double reach = 0.0;
+    for (const Command& k : path_commands(write_svg(plot, 17, "yz.nc"), "contour")) {
+        EXPECT_NEAR(k.x, 50.0, 0.01);
+        reach = std::max(reach, std::abs(-k.y - 50.0));
+    }
+    EXPECT_NEAR(reach, 20.0, 0.05);  // the polyline's vertex nearest the top
+}
+
+// Lines a pixel and more apart (0.15 mm, a pixel about 0.12 mm) are each drawn: the table of
+// drawn segments keys them on a quarter pixel, not coarser.
+TEST(SvgSimplification, LinesAPixelApartAreEachDrawn) {
+    SvgPlotWriter plot;
+    frame_100(plot);
+    constexpr int kLines = 20;
+    for (int k = 0; k < kLines; ++k)
+        plot.executed(line(Point(0, 20 + 0.15 * k, 0), Point(100, 20 + 0.15 * k, 0),
+                           Role::kContour));
+    EXPECT_EQ(letters(path_commands(write_svg(plot, 17, "hatch.nc"), "contour")),
+              [] {
+                  std::string ml;
+                  for (int k = 0; k < kLines; ++k) ml += "ML";
+                  return ml;
+              }());
+}
+
+// A line under half a pixel is left to the vertices' simplification, even where the same one
+// was drawn before: a path that ends with it ends where it ends (0.04 mm past the corner).
+TEST(SvgSimplification, AShortLineDrawnBeforeStillEndsItsPath) {
+    SvgPlotWriter plot;
+    frame_100(plot);
+    const PathSegment tail = line(Point(50, 50, 0), Point(50.04, 50, 0), Role::kContour);
+    plot.executed(tail);
+    plot.executed(line(Point(0, 80, 0), Point(50, 50, 0), Role::kContour));
+    plot.executed(tail);
+    const std::vector<Command> drawn = path_commands(write_svg(plot, 17, "tail.nc"), "contour");
+    ASSERT_FALSE(drawn.empty());
+    EXPECT_NEAR(drawn.back().x, 50.04, 0.005);
+    EXPECT_NEAR(drawn.back().y, -50.0, 0.005);
+}
+
+// After segments left out, a segment that starts within half a pixel of where the pen stands
+// goes on from there (a line to its start, then the segment) instead of a subpath of its own;
+// a gap as small with nothing left out before it starts a subpath ("M"), as any gap does.
+TEST(SvgSimplification, AfterSegmentsLeftOutTheNextGoesOnFromThePen) {
+    SvgPlotWriter plot;
+    frame_100(plot);
+    const std::vector<Point> square{Point(0, 0, 0), Point(50, 0, 0), Point(50, 50, 0),
+                                    Point(0, 50, 0), Point(0, 0, 0)};
+    for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t i = 0; i + 1 < square.size(); ++i)
+            plot.executed(line(square[i], square[i + 1], Role::kContour));
+    // The second pass was left out; the pen stands at (0, 0). A quarter arc from 0.02 mm
+    // beside it.
+    plot.executed(arc(Point(0.02, 0, 0), Point(10.02, -10, 0), Point(0.02, -10, 0), false, 17));
+    const std::vector<Command> drawn = path_commands(write_svg(plot, 17, "pen.nc"), "contour");
+    EXPECT_EQ(letters(drawn), "MLLLLLA");
+    ASSERT_EQ(drawn.size(), 7u);
+    EXPECT_NEAR(drawn[5].x, 0.02, 0.005);  // the line to the arc's start
+    EXPECT_NEAR(drawn[5].y, 0.0, 0.005);
+
+    SvgPlotWriter gap;
+    frame_100(gap);
+    gap.executed(line(Point(0, 0, 0), Point(50, 0, 0), Role::kContour));
+    gap.executed(line(Point(50.02, 0, 0), Point(50.02, 50, 0), Role::kContour));
+    EXPECT_EQ(letters(path_commands(write_svg(gap, 17, "gap.nc"), "contour")), "MLML");
 }
 
 TEST(SvgLayout, WrapCutsAfterASpaceOrSlashElseBetweenCharacters) {
