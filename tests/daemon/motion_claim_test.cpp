@@ -318,6 +318,34 @@ TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
     kill_and_reap(reborn);
 }
 
+TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidHoldsItsOwnClaim) {
+    const pid_t holder = claiming_child(daemon_->shm_uri());
+    ASSERT_GT(holder, 0);
+    Client sock(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
+    kill_and_reap(holder);
+    std::this_thread::sleep_for(50ms);
+    // The next mailbox exchange is the new process's: its claim is its own, with its own start
+    // time, and holds as long as it runs.
+    pid_t reborn = -1;
+    for (int attempt = 0; attempt < 200 && reborn != holder; ++attempt) {
+        {
+            std::ofstream last("/proc/sys/kernel/ns_last_pid");
+            last << holder - 1;
+            last.flush();
+            if (!last) break;
+        }
+        reborn = claiming_child(daemon_->shm_uri());
+        if (reborn > 0 && reborn != holder) kill_and_reap(reborn);
+    }
+    if (reborn != holder) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED) << sock.error();
+    apci_object_descriptor r = radius();
+    EXPECT_EQ(apci_write_double(sock.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    kill_and_reap(reborn);
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+}
+
 TEST_F(MotionClaimDaemon, MailboxHandleReleasesItsClaimWhenClosed) {
     Client sock(daemon_->unix_uri());
     {
