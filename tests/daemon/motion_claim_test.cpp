@@ -283,10 +283,11 @@ TEST_F(MotionClaimDaemon, MailboxHolderWhoseNameHoldsParenthesesAndSpacesIsKnown
     EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
 }
 
-// A child that waits to be killed, with the pid `pid` if the kernel gives it (the pid it hands
-// out next set through /proc/sys/kernel/ns_last_pid, as root; other processes may take it
-// first, so a few tries): its pid, or -1.
-pid_t child_with_pid(pid_t pid) {
+// The child `make` starts (its pid, -1 on failure) made with the pid `pid` if the kernel gives
+// it: the pid it hands out next is set through /proc/sys/kernel/ns_last_pid (as root); other
+// processes may take it first, so a few tries. Its pid, or -1.
+template <class Make>
+pid_t child_with_pid(pid_t pid, Make make) {
     for (int attempt = 0; attempt < 200; ++attempt) {
         {
             std::ofstream last("/proc/sys/kernel/ns_last_pid");
@@ -294,14 +295,19 @@ pid_t child_with_pid(pid_t pid) {
             last.flush();
             if (!last) return -1;
         }
-        const pid_t child = ::fork();
-        if (child == 0) {
-            for (;;) ::pause();
-        }
+        const pid_t child = make();
         if (child == pid) return child;
         if (child > 0) kill_and_reap(child);
     }
     return -1;
+}
+
+pid_t idle_child() {
+    const pid_t child = ::fork();
+    if (child == 0) {
+        for (;;) ::pause();
+    }
+    return child;
 }
 
 TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
@@ -312,7 +318,7 @@ TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
     kill_and_reap(holder);
     // Another process with the holder's pid, started later (a clock tick is 10 ms at most).
     std::this_thread::sleep_for(50ms);
-    const pid_t reborn = child_with_pid(holder);
+    const pid_t reborn = child_with_pid(holder, idle_child);
     if (reborn < 0) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
     EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
     kill_and_reap(reborn);
@@ -327,18 +333,9 @@ TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidHoldsItsOwnClaim) 
     std::this_thread::sleep_for(50ms);
     // The next mailbox exchange is the new process's: its claim is its own, with its own start
     // time, and holds as long as it runs.
-    pid_t reborn = -1;
-    for (int attempt = 0; attempt < 200 && reborn != holder; ++attempt) {
-        {
-            std::ofstream last("/proc/sys/kernel/ns_last_pid");
-            last << holder - 1;
-            last.flush();
-            if (!last) break;
-        }
-        reborn = claiming_child(daemon_->shm_uri());
-        if (reborn > 0 && reborn != holder) kill_and_reap(reborn);
-    }
-    if (reborn != holder) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
+    const pid_t reborn =
+        child_with_pid(holder, [&] { return claiming_child(daemon_->shm_uri()); });
+    if (reborn < 0) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
     EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED) << sock.error();
     apci_object_descriptor r = radius();
     EXPECT_EQ(apci_write_double(sock.board, &r, 1.0), APCI_MOTION_CLAIMED);
