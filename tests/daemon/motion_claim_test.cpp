@@ -9,10 +9,15 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <fstream>
 #include <regex>
@@ -23,6 +28,10 @@
 #include "apci/apci.h"
 #include "apcictl.h"
 #include "daemon.h"
+#include "objif/frame.h"
+#include "raw_client.h"
+#include "rwmos/board.h"
+#include "rwmos/frame_server.h"
 #include "text.h"
 
 namespace {
@@ -189,12 +198,14 @@ TEST_F(MotionClaimDaemon, ReleaseAndCloseEachGiveTheClaimBack) {
 
 // A child process that opens `uri`, claims the motion, tells the parent on `ready` and waits
 // to be killed.
-pid_t claiming_child(const std::string& uri) {
+// With `comm`, the child's command name is that first (prctl PR_SET_NAME).
+pid_t claiming_child(const std::string& uri, const char* comm = nullptr) {
     int ready[2];
     if (::pipe(ready) != 0) return -1;
     const pid_t pid = ::fork();
     if (pid == 0) {
         ::close(ready[0]);
+        if (comm != nullptr) (void)::prctl(PR_SET_NAME, comm, 0, 0, 0);
         apci_board* board = nullptr;
         const char ok = apci_open(uri.c_str(), &board) == APCI_OK &&
                                 apci_claim_motion(board) == APCI_OK
@@ -257,6 +268,81 @@ TEST_F(MotionClaimDaemon, MailboxHostsClaimIsItsProcesssAndEndsWithIt) {
     EXPECT_EQ(apci_claim_motion(mail.board), APCI_MOTION_CLAIMED);
 }
 
+TEST_F(MotionClaimDaemon, MailboxHolderWhoseNameHoldsParenthesesAndSpacesIsKnown) {
+    // /proc/PID/stat puts the command name in parentheses; a name with ") " in it must not
+    // shift the fields after it (the start time that tells the holder alive).
+    const pid_t child = claiming_child(daemon_->shm_uri(), "x) 1 2 3 4 5");
+    ASSERT_GT(child, 0);
+    Client sock(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
+    EXPECT_TRUE(contains(sock.error(), fmt::format("held by pid {} (x) 1 2 3 4 5)", child)))
+        << sock.error();
+    apci_object_descriptor r = radius();
+    EXPECT_EQ(apci_write_double(sock.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    kill_and_reap(child);
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+}
+
+// The child `make` starts (its pid, -1 on failure) made with the pid `pid` if the kernel gives
+// it: the pid it hands out next is set through /proc/sys/kernel/ns_last_pid (as root); other
+// processes may take it first, so a few tries. Its pid, or -1.
+template <class Make>
+pid_t child_with_pid(pid_t pid, Make make) {
+    for (int attempt = 0; attempt < 200; ++attempt) {
+        {
+            std::ofstream last("/proc/sys/kernel/ns_last_pid");
+            last << pid - 1;
+            last.flush();
+            if (!last) return -1;
+        }
+        const pid_t child = make();
+        if (child == pid) return child;
+        if (child > 0) kill_and_reap(child);
+    }
+    return -1;
+}
+
+pid_t idle_child() {
+    const pid_t child = ::fork();
+    if (child == 0) {
+        for (;;) ::pause();
+    }
+    return child;
+}
+
+TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
+    const pid_t holder = claiming_child(daemon_->shm_uri());
+    ASSERT_GT(holder, 0);
+    Client sock(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
+    kill_and_reap(holder);
+    // Another process with the holder's pid, started later (a clock tick is 10 ms at most).
+    std::this_thread::sleep_for(50ms);
+    const pid_t reborn = child_with_pid(holder, idle_child);
+    if (reborn < 0) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+    kill_and_reap(reborn);
+}
+
+TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidHoldsItsOwnClaim) {
+    const pid_t holder = claiming_child(daemon_->shm_uri());
+    ASSERT_GT(holder, 0);
+    Client sock(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
+    kill_and_reap(holder);
+    std::this_thread::sleep_for(50ms);
+    // The next mailbox exchange is the new process's: its claim is its own, with its own start
+    // time, and holds as long as it runs.
+    const pid_t reborn =
+        child_with_pid(holder, [&] { return claiming_child(daemon_->shm_uri()); });
+    if (reborn < 0) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED) << sock.error();
+    apci_object_descriptor r = radius();
+    EXPECT_EQ(apci_write_double(sock.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    kill_and_reap(reborn);
+    EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+}
+
 TEST_F(MotionClaimDaemon, MailboxHandleReleasesItsClaimWhenClosed) {
     Client sock(daemon_->unix_uri());
     {
@@ -270,6 +356,83 @@ TEST_F(MotionClaimDaemon, MailboxHandleReleasesItsClaimWhenClosed) {
         EXPECT_TRUE(contains(mail2.error(), "another handle of this process")) << mail2.error();
     }
     EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
+}
+
+// A MotionClaim request of `action` sent by a bare socket client (what libapci never sends
+// where its handle knows the answer) and the daemon's reply.
+bool raw_claim(daemon_test::RawClient& raw, objif::ClaimAction action, objif::ClaimReply& rep) {
+    std::vector<std::uint8_t> payload;
+    objif::encode(objif::ClaimRequest{action}, payload);
+    if (!raw.send(daemon_test::frame_bytes(objif::Opcode::kMotionClaim, 7, payload))) return false;
+    objif::Frame reply;
+    if (!raw.receive(reply)) return false;
+    EXPECT_EQ(reply.opcode, static_cast<std::uint16_t>(objif::Opcode::kMotionClaim) |
+                                objif::kReplyFlag);
+    EXPECT_EQ(reply.sequence, 7u);
+    return objif::decode(reply.payload, rep) == objif::FrameError::kNone;
+}
+
+TEST_F(MotionClaimDaemon, AnotherClientsReleaseIsRefusedAndTheClaimStays) {
+    Client a(daemon_->unix_uri());
+    ASSERT_EQ(apci_claim_motion(a.board), APCI_OK) << a.error();
+    daemon_test::RawClient raw(daemon_->socket_path());
+    ASSERT_TRUE(raw.connected());
+    objif::ClaimReply rep;
+    ASSERT_TRUE(raw_claim(raw, objif::ClaimAction::kRelease, rep));
+    EXPECT_EQ(rep.status, objif::Status::kWrongDeviceState);
+    EXPECT_TRUE(rep.held);
+    EXPECT_FALSE(rep.yours);
+    EXPECT_EQ(rep.pid, ::getpid());
+    // The holder still holds it, and a third client is still refused.
+    EXPECT_EQ(a.claim().yours, 1);
+    Client b(daemon_->unix_uri());
+    EXPECT_EQ(apci_claim_motion(b.board), APCI_MOTION_CLAIMED);
+    apci_object_descriptor r = radius();
+    EXPECT_EQ(apci_write_double(b.board, &r, 3.0), APCI_MOTION_CLAIMED);
+    // The holder's own release is served.
+    ASSERT_TRUE(raw_claim(raw, objif::ClaimAction::kQuery, rep));
+    EXPECT_EQ(rep.status, objif::Status::kOk);
+    EXPECT_TRUE(rep.held);
+    EXPECT_EQ(apci_release_motion(a.board), APCI_OK) << a.error();
+    ASSERT_TRUE(raw_claim(raw, objif::ClaimAction::kQuery, rep));
+    EXPECT_FALSE(rep.held);
+}
+
+TEST_F(MotionClaimDaemon, RefusedTraceReadSaysWhatWasAskedFor) {
+    Client a(daemon_->unix_uri());
+    ASSERT_EQ(apci_claim_motion(a.board), APCI_OK) << a.error();
+    daemon_test::RawClient raw(daemon_->socket_path());
+    ASSERT_TRUE(raw.connected());
+    for (const objif::TraceKind what : {objif::TraceKind::kSegments, objif::TraceKind::kSamples}) {
+        std::vector<std::uint8_t> payload;
+        objif::encode(objif::TraceRequest{what, 4}, payload);
+        ASSERT_TRUE(raw.send(daemon_test::frame_bytes(objif::Opcode::kReadTrace, 9, payload)));
+        objif::Frame reply;
+        ASSERT_TRUE(raw.receive(reply));
+        EXPECT_EQ(reply.opcode,
+                  static_cast<std::uint16_t>(objif::Opcode::kReadTrace) | objif::kReplyFlag);
+        objif::TraceReply rep;
+        ASSERT_EQ(objif::decode(reply.payload, rep), objif::FrameError::kNone);
+        EXPECT_EQ(rep.status, objif::Status::kMotionClaimed);
+        EXPECT_EQ(rep.what, what);
+        EXPECT_TRUE(rep.samples.empty());
+        EXPECT_TRUE(rep.segments.empty());
+    }
+}
+
+TEST_F(MotionClaimDaemon, DeadMailboxHolderBlocksNoMotionRequest) {
+    const pid_t child = claiming_child(daemon_->shm_uri());
+    ASSERT_GT(child, 0);
+    Client sock(daemon_->unix_uri());
+    apci_object_descriptor r = radius();
+    EXPECT_EQ(apci_write_double(sock.board, &r, 1.0), APCI_MOTION_CLAIMED);
+    kill_and_reap(child);
+    // The first request after the holder's end is a motion request, not a claim or a query:
+    // the board finds the holder gone there too.
+    EXPECT_EQ(apci_write_double(sock.board, &r, 2.0), APCI_OK) << sock.error();
+    double value = 0;
+    ASSERT_EQ(apci_read_double(sock.board, &r, &value), APCI_OK);
+    EXPECT_EQ(value, 2.0);
 }
 
 // ---- apcictl run, twice at once on one daemon
@@ -369,6 +532,98 @@ TEST_F(MotionClaimDaemon, ApcictlDiffClaimsBothBoards) {
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_TRUE(contains(r.err, "apcictl: diff: " + daemon_->unix_uri() + ": " + self_holder()))
         << r.err;
+}
+
+// ---- A board that does not serve MotionClaim (firmware or a bridge of before the claim)
+
+// A socket server that greets as the daemon and serves an emulated board's frames, but answers
+// MotionClaim UnknownOpcode as such a board does: one connection at a time, until stopped.
+class BoardWithoutClaims {
+public:
+    explicit BoardWithoutClaims(const std::string& path) : path_(path) {
+        listen_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        sockaddr_un a{};
+        a.sun_family = AF_UNIX;
+        std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
+        ok_ = listen_ >= 0 && ::bind(listen_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
+              ::listen(listen_, 4) == 0;
+        if (ok_) thread_ = std::thread([this] { serve(); });
+    }
+    ~BoardWithoutClaims() {
+        stop_ = true;
+        ::shutdown(listen_, SHUT_RDWR);
+        if (thread_.joinable()) thread_.join();
+        if (listen_ >= 0) ::close(listen_);
+    }
+    BoardWithoutClaims(const BoardWithoutClaims&) = delete;
+    BoardWithoutClaims& operator=(const BoardWithoutClaims&) = delete;
+    bool ok() const { return ok_; }
+    std::string uri() const { return "unix:" + path_; }
+
+private:
+    void serve() {
+        rwmos::EmulatedBoard board;
+        rwmos::FrameServer server(board);
+        while (!stop_) {
+            const int fd = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC);
+            if (fd < 0) return;
+            std::vector<std::uint8_t> out, payload, in;
+            objif::encode(objif::Notice{objif::Status::kOk, std::string(objif::kDaemonGreeting)},
+                          payload);
+            objif::encode_frame(static_cast<std::uint16_t>(objif::Opcode::kNotice) |
+                                    objif::kReplyFlag,
+                                0, payload, out);
+            (void)!::send(fd, out.data(), out.size(), MSG_NOSIGNAL);
+            std::uint8_t chunk[65536];
+            for (;;) {
+                const ssize_t got = ::recv(fd, chunk, sizeof chunk, 0);
+                if (got <= 0) break;
+                in.insert(in.end(), chunk, chunk + got);
+                out.clear();
+                for (;;) {
+                    objif::Frame frame;
+                    std::size_t used = 0;
+                    bool need_more = false;
+                    if (objif::decode_frame(in, frame, used, need_more) != objif::FrameError::kNone)
+                        break;
+                    in.erase(in.begin(), in.begin() + static_cast<std::ptrdiff_t>(used));
+                    if (frame.opcode == static_cast<std::uint16_t>(objif::Opcode::kMotionClaim))
+                        rwmos::FrameServer::reject(frame.sequence,
+                                                   objif::FrameError::kUnknownOpcode, out);
+                    else
+                        (void)server.handle(frame, out);
+                }
+                if (!out.empty()) (void)!::send(fd, out.data(), out.size(), MSG_NOSIGNAL);
+            }
+            ::close(fd);
+        }
+    }
+
+    std::string path_;
+    int listen_ = -1;
+    bool ok_ = false;
+    std::atomic<bool> stop_{false};
+    std::thread thread_;
+};
+
+TEST(MotionClaimWithoutSupport, ClaimIsNotSupportedAndApcictlRunGoesOnWithAWarning) {
+    TempDir dir;
+    BoardWithoutClaims board(dir.path() + "/old.sock");
+    ASSERT_TRUE(board.ok());
+    {
+        Client c(board.uri());
+        EXPECT_EQ(apci_claim_motion(c.board), APCI_NOT_SUPPORTED);
+        EXPECT_TRUE(contains(c.error(), "the board does not serve motion claims")) << c.error();
+        apci_motion_claim seen{};
+        EXPECT_EQ(apci_motion_claim_get(c.board, &seen), APCI_NOT_SUPPORTED);
+    }
+    const std::string program = long_program(dir, 3);
+    const auto r = test_support::apcictl({"--device", board.uri(), "run", program});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "apcictl: warning: run: " + board.uri() +
+                                    " does not serve motion claims"))
+        << r.err;
+    EXPECT_TRUE(contains(r.out, "5 blocks, 5 executed, 3 segments")) << r.out;
 }
 
 }  // namespace

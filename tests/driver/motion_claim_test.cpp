@@ -133,6 +133,24 @@ TEST(MotionClaimEmbedded, ReconnectEndsTheClaim) {
     EXPECT_EQ(apci_claim_motion(h.board), APCI_OK);
 }
 
+TEST(MotionClaimEmbedded, ClaimAgainAtOnceAfterReconnect) {
+    // The handle forgets its claim with the link: its first claim after the reconnect is a
+    // new one, not "already held".
+    Handle h;
+    ASSERT_EQ(apci_claim_motion(h.board), APCI_OK);
+    ASSERT_EQ(apci_reconnect(h.board), APCI_OK);
+    EXPECT_EQ(apci_claim_motion(h.board), APCI_OK) << last_error(h.board);
+    EXPECT_EQ(claim_of(h.board).yours, 1);
+}
+
+TEST(MotionClaimEmbedded, ReleaseAfterReconnectIsOneWithoutAClaim) {
+    Handle h;
+    ASSERT_EQ(apci_claim_motion(h.board), APCI_OK);
+    ASSERT_EQ(apci_reconnect(h.board), APCI_OK);
+    EXPECT_EQ(apci_release_motion(h.board), APCI_WRONG_DEVICE_STATE);
+    EXPECT_NE(last_error(h.board).find("holds no claim"), std::string::npos) << last_error(h.board);
+}
+
 TEST(MotionClaimCpp, ScopeClaimHoldsUntilItEnds) {
     apci::Board board("emu:");
     ASSERT_TRUE(board);

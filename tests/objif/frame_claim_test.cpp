@@ -55,6 +55,28 @@ TEST(ClaimPayload, ReplyRoundTrips) {
     EXPECT_EQ(back.name, "apcictl");
 }
 
+TEST(ClaimPayload, ReplyOfNobodyAndOfAHolderWithoutPidRoundTrip) {
+    // Nobody holds the claim: pid 0, no name, no time (a query of a free board).
+    std::vector<std::uint8_t> bytes;
+    objif::encode(ClaimReply{}, bytes);
+    ClaimReply back = holder();
+    ASSERT_EQ(objif::decode(bytes, back), FrameError::kNone);
+    EXPECT_FALSE(back.held);
+    EXPECT_FALSE(back.yours);
+    EXPECT_EQ(back.pid, 0);
+    EXPECT_EQ(back.since_ms, 0u);
+    EXPECT_EQ(back.name, "");
+    // A holder the board knows only by name (pid 0).
+    ClaimReply m = holder();
+    m.pid = 0;
+    bytes.clear();
+    objif::encode(m, bytes);
+    ASSERT_EQ(objif::decode(bytes, back), FrameError::kNone);
+    EXPECT_TRUE(back.held);
+    EXPECT_EQ(back.pid, 0);
+    EXPECT_EQ(back.name, "apcictl");
+}
+
 TEST(ClaimPayload, ReplyNameIsCutAtFifteenBytesAndNonPrintableReplaced) {
     ClaimReply m = holder();
     m.name = std::string("a\x01") + std::string(20, 'b');
@@ -126,6 +148,8 @@ TEST(ClaimGuards, EveryRequestThatActsOnMotionOrItsRecordAndNothingElse) {
         EXPECT_TRUE(objif::guarded_by_motion_claim(op(Opcode::kClock), clock_payload(mode)));
     EXPECT_FALSE(objif::guarded_by_motion_claim(op(Opcode::kClock),
                                                 clock_payload(objif::ClockMode::kQuery)));
+    // A clock request without its mode is guarded too: it is refused before it is decoded.
+    EXPECT_TRUE(objif::guarded_by_motion_claim(op(Opcode::kClock), none));
     EXPECT_FALSE(objif::guarded_by_motion_claim(op(Opcode::kObjectRead), none));
     EXPECT_FALSE(objif::guarded_by_motion_claim(op(Opcode::kMotionClaim), none));
     EXPECT_FALSE(objif::guarded_by_motion_claim(0x0009, none));  // no such request

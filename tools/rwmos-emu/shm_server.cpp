@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "log.h"
+#include "objif/byte_order.h"
+#include "objif/frame.h"
 #include "peer.h"
 
 namespace rwmos_emu {
@@ -225,9 +227,16 @@ void ShmServer::serve_loop() {
         sleep = kFirstSleep;
         reply.clear();
         // The host in this exchange holds the host lock; its token is its pid (docs/dpram.md).
-        // Looked up in /proc only when another host's turn comes, not once per request.
+        // Looked up in /proc only when another host's turn comes, not once per request, and
+        // for each MotionClaim request, which may record the sender as the holder with its
+        // start time: a process that got a dead host's pid since is recorded as itself, not
+        // as the dead one (whose start time would end its claim at once).
         const std::uint32_t token = window_->load(mb::kOffHostLock);
-        if (token != sender_token) {
+        const bool claim_request =
+            request.frame.size() >= objif::kFrameHeaderSize &&
+            objif::load_little<std::uint16_t>(request.frame.data() + 6) ==
+                static_cast<std::uint16_t>(objif::Opcode::kMotionClaim);
+        if (token != sender_token || claim_request) {
             sender = mailbox_host(token);
             sender_token = token;
         }
