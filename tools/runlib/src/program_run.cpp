@@ -55,13 +55,15 @@ ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& input
                        const RunSettings& settings)
     : board_(board),
       inputs_(inputs),
-      settings_(settings),
       head_(chain(sink, settings)),
       executor_(board, head_, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
                 &inputs.corrections) {
     executor_.set_avoid_bottlenecks(settings.bottleneck_blocks);
     executor_.set_read_ahead(settings.threads, settings.cpus);
     options_ = executor_.interpreter_options();
+    bottleneck_blocks_ = settings.bottleneck_blocks;
+    threads_ = settings.threads;
+    dry_run_ = settings.dry_run_first && settings.self_approach == SelfApproachMode::kError;
 }
 
 RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
@@ -93,8 +95,12 @@ std::optional<nc::Diagnostic> ProgramRun::open_validated(const ProgramSource& so
     auto events = program_->events();
     if (!events) return events.error();
     stream_.emplace(std::move(events).value());
-    if (settings_.dry_run_first && settings_.self_approach == SelfApproachMode::kError)
-        return detail::self_approach_dry_run(board_, inputs_, source, settings_);
+    if (dry_run_) {
+        RunSettings dry;
+        dry.bottleneck_blocks = bottleneck_blocks_;
+        dry.threads = threads_;
+        return detail::self_approach_dry_run(board_, inputs_, source, dry);
+    }
     return std::nullopt;
 }
 

@@ -162,7 +162,6 @@ class ProgramRun {
 
     apci::Board& board_;
     const RunInputs& inputs_;
-    const RunSettings settings_;
     // The chain's links (declared before the executor that feeds them; the pipeline ends
     // before a check behind it goes).
     std::optional<SelfApproachSink> check_;
@@ -174,6 +173,11 @@ class ProgramRun {
     std::optional<nc::Program> program_;
     std::optional<nc::EventStream> stream_;
     std::optional<nc::SinglePass> single_;
+    // What the dry run takes of the settings (RunSettings::dry_run_first): whether there is
+    // one, and how the program runs (the bottleneck avoidance changes the path).
+    int bottleneck_blocks_ = 0;
+    bool threads_ = false;
+    bool dry_run_ = false;
 };
 
 // A run validated first, as `apcictl diff` and the Python module run: the refusal of a program
