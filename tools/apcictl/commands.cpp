@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "command.h"
+#include "objif/frame.h"
 
 namespace apcictl {
 namespace {
@@ -96,14 +97,20 @@ Outcome Session::claim_motion(std::string_view command) {
     if (s != APCI_MOTION_CLAIMED)
         return Outcome::board_error(fmt::format("{}: claim the board's motion: {}", command,
                                                 describe_failure(*board, s)));
-    // libapci's words name the holder: "claim motion: MotionClaimed (...): the board's motion
-    // is held by pid 4242 (apcictl) since ...".
-    const std::string_view said = board->last_error();
-    const std::size_t at = said.find("the board's motion is held by");
-    const std::string holder(at == std::string_view::npos ? said : said.substr(at));
+    // The holder from the board's record, named as libapci names it (objif::claim_holder_text);
+    // released meanwhile, libapci's words of the refusal.
+    std::string holder(board->last_error());  // before the query, which clears it
+    const auto claim = board->motion_claim();
     std::string what_to_do = "wait until it has finished";
-    if (const auto claim = board->motion_claim(); claim.ok() && claim.value.pid > 0)
-        what_to_do += fmt::format(", or stop it (kill {})", claim.value.pid);
+    if (claim.ok() && claim.value.held != 0) {
+        objif::ClaimReply rep;
+        rep.held = true;
+        rep.pid = claim.value.pid;
+        rep.since_ms = claim.value.since_ms;
+        rep.name = claim.value.name;
+        holder = "the board's motion is held by " + objif::claim_holder_text(rep);
+        if (claim.value.pid > 0) what_to_do += fmt::format(", or stop it (kill {})", claim.value.pid);
+    }
     return Outcome::board_error(
         fmt::format("{}: {}: {}; nothing was moved: {}, then run again", command, uri_, holder,
                     what_to_do));
