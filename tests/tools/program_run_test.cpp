@@ -412,7 +412,7 @@ TEST(RunProgram, TheCheckMeasuresATurningToolsNoseCentreNotItsTip) {
 // while the board runs; without, everything on the caller's thread. The program is longer than
 // the reader may run ahead (read_ahead.h), so the reader is still there when the first segment
 // comes back.
-TEST(RunProgram, ThreadsRunTheFrontEndAndTheSinkOnThreadsOfTheirOwn) {
+TEST(RunProgram, ThreadsRunTheFrontEndTheCheckAndTheSinkOnThreadsOfTheirOwn) {
     struct Threads final : RunSink {
         int most = 0;
         std::thread::id thread;
@@ -427,16 +427,24 @@ TEST(RunProgram, ThreadsRunTheFrontEndAndTheSinkOnThreadsOfTheirOwn) {
     for (int i = 0; i < 20000; ++i)
         zigzag += "G1 X" + std::to_string(i % 2) + " Y" + std::to_string(i) + "\n";
     zigzag += "M30\n";
-    for (const bool threads : {false, true}) {
-        apci::Board board("emu:");
-        Threads sink;
-        RunSettings settings;
-        settings.threads = threads;
-        auto out =
-            run_program(board, sink, in, ProgramSource::in_memory(zigzag, "zigzag.nc"), settings);
-        ASSERT_TRUE(out) << out.error().to_string();
-        EXPECT_EQ(sink.most, before + (threads ? 2 : 0)) << "threads " << threads;
-        EXPECT_EQ(sink.thread == std::this_thread::get_id(), !threads);
+    // The reader and the writers; with the check warning (the default), the check on a third
+    // (ProgramRun::chain). With the check stopping the run, it runs on the caller's thread.
+    for (const SelfApproachMode mode :
+         {SelfApproachMode::kWarn, SelfApproachMode::kOff, SelfApproachMode::kError}) {
+        for (const bool threads : {false, true}) {
+            apci::Board board("emu:");
+            Threads sink;
+            RunSettings settings;
+            settings.threads = threads;
+            settings.self_approach = mode;
+            auto out = run_program(board, sink, in, ProgramSource::in_memory(zigzag, "zigzag.nc"),
+                                   settings);
+            ASSERT_TRUE(out) << out.error().to_string();
+            const int helpers = !threads ? 0 : mode == SelfApproachMode::kWarn ? 3 : 2;
+            EXPECT_EQ(sink.most, before + helpers)
+                << "threads " << threads << " mode " << static_cast<int>(mode);
+            EXPECT_EQ(sink.thread == std::this_thread::get_id(), !threads);
+        }
     }
 }
 

@@ -17,6 +17,7 @@
 #include "apci/nc/program.h"
 #include "apci/run/cpu_placement.h"
 #include "apci/run/pipeline.h"
+#include "apci/run/program_run.h"
 #include "apci/run/read_ahead.h"
 
 namespace apci::run {
@@ -101,6 +102,21 @@ TEST(CpuPlacement, OnTwoCpusTheExecutorKeepsOneAndTheHelpersTheOther) {
     EXPECT_EQ(cpus_of_thread(), two.cpus());  // both again, once it ended
 }
 
+TEST(CpuPlacement, AHelperPlacedOnEitherCpuMayRunOnBoth) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    std::vector<int> started, placed;
+    std::thread([&] {
+        started = cpus_of_thread();  // a thread the executor's started: its CPU only
+        placement.place_helper(HelperCpu::kEither);
+        placed = cpus_of_thread();
+    }).join();
+    EXPECT_EQ(started, std::vector<int>{placement.executor_cpu()});
+    EXPECT_EQ(placed, two.cpus());
+}
+
 TEST(CpuPlacement, WithOneCpuOrMoreThanTwoNothingIsPlaced) {
     for (const std::size_t n : {std::size_t{1}, std::size_t{3}}) {
         const Restricted some(n);
@@ -110,11 +126,13 @@ TEST(CpuPlacement, WithOneCpuOrMoreThanTwoNothingIsPlaced) {
         EXPECT_EQ(placement.executor_cpu(), -1);
         EXPECT_EQ(cpus_of_thread(), some.cpus()) << n << " CPUs";
         std::vector<int> helper;
-        std::thread([&] {
-            placement.place_helper();
-            helper = cpus_of_thread();
-        }).join();
-        EXPECT_EQ(helper, some.cpus()) << n << " CPUs";
+        for (const HelperCpu where : {HelperCpu::kOther, HelperCpu::kEither}) {
+            std::thread([&] {
+                placement.place_helper(where);
+                helper = cpus_of_thread();
+            }).join();
+            EXPECT_EQ(helper, some.cpus()) << n << " CPUs";
+        }
     }
 }
 
@@ -138,6 +156,58 @@ TEST(CpuPlacement, TheWriterThreadRunsOnTheHelpersCpu) {
     EXPECT_EQ(inner.cpus, std::vector<int>{placement.helper_cpu()});
 }
 
+TEST(CpuPlacement, AWriterThreadPlacedOnEitherCpuRunsOnBoth) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    WhereWritten inner;
+    {
+        PipelinedSink pipeline(inner, &placement, HelperCpu::kEither);
+        pipeline.executed(PathSegment{});
+        pipeline.finish();
+    }
+    EXPECT_EQ(inner.cpus, two.cpus());
+}
+
+// A run through ProgramRun: with the self-approach check warning, the check has the helpers'
+// CPU to itself and the caller's sink is written on a thread that may run on either; without
+// the check (or with it stopping the run, on the executor's thread) the writers keep the
+// helpers' CPU.
+TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    auto tools = load_run_inputs([] {
+        RunInputFiles f;
+        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 2\n";
+        f.tools_is_text = true;
+        return f;
+    }());
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    const std::string program =
+        "N10 G17 G90 F1000 D1\nN20 G41 G1 X0 Y0\nN30 X60\nN40 Y60\nN50 X0\nN60 Y0\n"
+        "N70 G40 G1 X-20 Y0\nN80 M30\n";
+    for (const SelfApproachMode mode :
+         {SelfApproachMode::kWarn, SelfApproachMode::kOff, SelfApproachMode::kError}) {
+        const CpuPlacement placement;
+        ASSERT_TRUE(placement.active());
+        apci::Board board("emu:");
+        WhereWritten sink;
+        RunSettings settings;
+        settings.self_approach = mode;
+        settings.threads = true;
+        settings.cpus = &placement;
+        auto out = run_program(board, sink, tools.value(),
+                               ProgramSource::in_memory(program, "square.nc"), settings);
+        ASSERT_TRUE(out) << out.error().to_string();
+        EXPECT_TRUE(out.value().errors.empty());
+        const std::vector<int> expected = mode == SelfApproachMode::kWarn
+                                              ? two.cpus()
+                                              : std::vector<int>{placement.helper_cpu()};
+        EXPECT_EQ(sink.cpus, expected) << static_cast<int>(mode);
+    }
+}
+
 TEST(CpuPlacement, TheReaderThreadRunsOnTheHelpersCpu) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
@@ -157,6 +227,29 @@ TEST(CpuPlacement, TheReaderThreadRunsOnTheHelpersCpu) {
     for (const auto& cpus : other_threads_cpus())
         if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper_cpu;
     EXPECT_EQ(on_helper_cpu, 1);
+    ahead.stop();
+}
+
+TEST(CpuPlacement, AReaderThreadPlacedOnEitherCpuRunsOnBoth) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    std::string text = "%many\nN1 G17 G90 F3000\n";
+    for (int i = 0; i < 20000; ++i)
+        text += "N" + std::to_string(i + 2) + " G1 X" + std::to_string(i % 97) + "\n";
+    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    ReadAhead ahead(stream, &placement, HelperCpu::kEither);
+    nc::Event ev;
+    ASSERT_EQ(ahead.next(ev), nc::EventStream::Next::kEvent);
+    std::this_thread::sleep_for(100ms);  // the reader fills the ring and waits
+    int on_helper_cpu = 0, on_both = 0;
+    for (const auto& cpus : other_threads_cpus()) {
+        if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper_cpu;
+        if (cpus == two.cpus()) ++on_both;
+    }
+    EXPECT_EQ(on_helper_cpu, 0);
+    EXPECT_GE(on_both, 1);
     ahead.stop();
 }
 

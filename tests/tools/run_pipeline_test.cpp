@@ -406,6 +406,29 @@ TEST(RunPipeline, TheWriterMeasuresTheExecutedSegmentsAndSumsTheirLengthsInOrder
     EXPECT_EQ(path, expected.path_length);
 }
 
+// A pipeline fed by another (the check's, ProgramRun) has its segments measured already: it
+// takes their lengths as they come and measures only those that come unmeasured.
+TEST(RunPipeline, ASegmentThatComesMeasuredIsNotMeasuredAgain) {
+    class Lengths final : public RunSink {
+      public:
+        std::vector<double> lengths;
+        void executed(const PathSegment& s) override { lengths.push_back(s.length); }
+    } inner;
+    PathSegment measured = segment(1), unmeasured = segment(2);
+    measure(measured);
+    measured.length += 0.5;  // not what measure() gives: seen as it came
+    PipelinedSink pipeline(inner);
+    pipeline.executed(measured);
+    pipeline.executed(unmeasured);
+    double path = 0.0, rapid = 0.0;
+    pipeline.measured_lengths(path, rapid);
+    pipeline.finish();
+    ASSERT_EQ(inner.lengths.size(), 2u);
+    EXPECT_EQ(inner.lengths[0], measured.length);
+    EXPECT_EQ(inner.lengths[1], segment_length(unmeasured));
+    EXPECT_EQ(path, measured.length + segment_length(unmeasured));
+}
+
 // A writer that failed does not hold measured_lengths().
 TEST(RunPipeline, MeasuredLengthsDoesNotWaitForAWriterThatFailed) {
     Recorder inner;

@@ -31,8 +31,13 @@ CpuPlacement::~CpuPlacement() {
     if (active()) ::sched_setaffinity(0, sizeof original_, &original_);
 }
 
-void CpuPlacement::place_helper() const noexcept {
-    if (active()) set_cpu(helper_cpu_);
+void CpuPlacement::place_helper(HelperCpu where) const noexcept {
+    if (!active()) return;
+    if (where == HelperCpu::kOther) {
+        set_cpu(helper_cpu_);
+    } else {
+        ::sched_setaffinity(0, sizeof original_, &original_);
+    }
 }
 
 }  // namespace apci::run

@@ -84,9 +84,10 @@ void stop_reading(nc::EventStream& events) noexcept {
 
 }  // namespace
 
-RunOutcome RunContext::run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus) {
+RunOutcome RunContext::run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus,
+                           HelperCpu where) {
     if (!read_ahead) return run_events(events);
-    ReadAhead ahead(events, cpus);  // stopped and joined on every path out
+    ReadAhead ahead(events, cpus, where);  // stopped and joined on every path out
     return run_events(ahead);
 }
 
@@ -419,7 +420,7 @@ Point ProgramExecutor::position() {
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto context = std::make_unique<exec::RunContext>(board_, sink_, tools_, plc_, corrections_,
                                                       bottleneck_blocks_);
-    return context->run(events, read_ahead_, read_ahead_cpus_);
+    return context->run(events, read_ahead_, read_ahead_cpus_, read_ahead_where_);
 }
 
 }  // namespace apci::run

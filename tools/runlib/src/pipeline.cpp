@@ -2,6 +2,7 @@
 #include "apci/run/pipeline.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "quiet_thread.h"
 
@@ -16,8 +17,8 @@ void PipelinedSink::Batch::clear() noexcept {
     stretches.clear();
 }
 
-PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus)
-    : inner_(inner), cpus_(cpus) {}
+PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where)
+    : inner_(inner), cpus_(cpus), where_(where) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();
@@ -115,7 +116,9 @@ void PipelinedSink::deliver(Batch& b) {
                 break;
             case Kind::kExecuted: {
                 PathSegment& s = b.segments[i];
-                measure(s);
+                // Unmeasured from the executor; measured where this pipeline is fed by another
+                // (the check's, ProgramRun): not again.
+                if (std::isnan(s.length)) measure(s);
                 count_segment(measured_, s);
                 inner_.executed(s);
                 break;
@@ -158,7 +161,7 @@ void PipelinedSink::deliver(Batch& b) {
 }
 
 void PipelinedSink::write_loop() noexcept {
-    if (cpus_ != nullptr) cpus_->place_helper();
+    if (cpus_ != nullptr) cpus_->place_helper(where_);
     try {
         while (Batch* b = ring_.front()) {
             if (ring_.cancelled()) break;  // the caller left without finish()

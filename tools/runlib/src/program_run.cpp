@@ -59,11 +59,17 @@ ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& input
       executor_(board, head_, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
                 &inputs.corrections) {
     executor_.set_avoid_bottlenecks(settings.bottleneck_blocks);
-    executor_.set_read_ahead(settings.threads, settings.cpus);
+    executor_.set_read_ahead(settings.threads, settings.cpus, helpers_beside_check(settings));
     options_ = executor_.interpreter_options();
     bottleneck_blocks_ = settings.bottleneck_blocks;
     threads_ = settings.threads;
     dry_run_ = settings.dry_run_first && settings.self_approach == SelfApproachMode::kError;
+}
+
+HelperCpu ProgramRun::helpers_beside_check(const RunSettings& settings) noexcept {
+    return settings.threads && settings.self_approach == SelfApproachMode::kWarn
+               ? HelperCpu::kEither
+               : HelperCpu::kOther;
 }
 
 RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
@@ -75,8 +81,16 @@ RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
     switch (mode) {
         case SelfApproachMode::kOff:
             return pipeline_.emplace(sink, settings.cpus);
-        case SelfApproachMode::kWarn:  // on the writer thread, behind the pipeline
-            return pipeline_.emplace(check_.emplace(sink, mode), settings.cpus);
+        case SelfApproachMode::kWarn:
+            // The check on a thread of its own, on the CPU the executor leaves (it is the
+            // run's longest chain of work on a program of many contours), fed through the
+            // pipeline; the writers behind it on another, fed through a second, which runs
+            // wherever there is time (beside the executor, or beside the check where the
+            // executor is the longer): docs/performance.md, "Three helper threads".
+            return pipeline_.emplace(
+                check_.emplace(output_.emplace(sink, settings.cpus, helpers_beside_check(settings)),
+                               mode),
+                settings.cpus);
         case SelfApproachMode::kError:  // on the executor's thread, where it stops the run
             break;
     }
@@ -138,7 +152,8 @@ nc::EventStream& ProgramRun::events() {
 
 RunOutcome ProgramRun::run() {
     RunOutcome out = executor_.run(events());
-    if (pipeline_) pipeline_->finish();
+    if (pipeline_) pipeline_->finish();  // every event through the check
+    if (output_) output_->finish();      // and to the caller's sink
     if (check_) check_->results(out);
     return out;
 }

@@ -9,8 +9,8 @@ namespace apci::run {
 
 using Next = nc::EventStream::Next;
 
-ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus)
-    : stream_(stream), cpus_(cpus) {}
+ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where)
+    : stream_(stream), cpus_(cpus), where_(where) {}
 
 ReadAhead::~ReadAhead() {
     stop();
@@ -46,7 +46,7 @@ void ReadAhead::commit() {
 }
 
 void ReadAhead::read_loop() noexcept {
-    if (cpus_ != nullptr) cpus_->place_helper();
+    if (cpus_ != nullptr) cpus_->place_helper(where_);
     try {
         nc::Event ev;
         for (;;) {

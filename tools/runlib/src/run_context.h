@@ -86,7 +86,8 @@ class RunContext {
               const nc::CorrectionTable* corrections, int bottleneck_blocks = 0);
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
-    RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr);
+    RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr,
+                   HelperCpu where = HelperCpu::kOther);
 
     // ---- what the units reach through the context
 

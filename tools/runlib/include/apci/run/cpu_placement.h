@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Where the threads of `apcictl run` on the embedded emulator run. The executor's thread (the
-// executor and the board, the run's longest chain of work) and two helper threads (the NC front
-// end's reader, read_ahead.h, and the writer, pipeline.h) are three busy threads. Where the
-// process may use exactly two CPUs, the scheduler, left alone, keeps moving them and preempts
-// the executor for a helper for about a tenth of the run (docs/performance.md); there a
-// CpuPlacement keeps the executor's thread on the CPU it runs on and the two helpers on the
-// other, where they share the time between them. With one CPU, or three and more (room for
-// every thread), it places nothing.
+// executor and the board) and the helper threads (the NC front end's reader, read_ahead.h, and
+// the writer, pipeline.h; with the self-approach check warning, the check on a thread of its
+// own and the writers on another) are three or four busy threads. Where the process may use
+// exactly two CPUs, the scheduler, left alone, keeps moving them and preempts the executor for
+// a helper for about a tenth of the run (docs/performance.md); there a CpuPlacement keeps the
+// executor's thread on the CPU it runs on and the helpers on the other, where they share the
+// time between them (HelperCpu::kOther) -- but for the reader and the writers beside the
+// check, which may run on either CPU (HelperCpu::kEither): the check keeps the other CPU busy
+// on a program of many contours, the executor its own on one long contour, and the two lighter
+// threads go where there is time. With one CPU, or three and more (room for every thread), it
+// places nothing.
 //
 //   - it changes only the affinity of the threads of the run, within the CPUs the process was
 //     given (taskset, cgroups): the CPUs stay shared with every other process, and the
@@ -17,7 +21,13 @@
 
 #include <sched.h>
 
+#include <cstdint>
+
 namespace apci::run {
+
+// Where a helper thread runs: on the CPU the executor leaves to the helpers, or on either
+// (where the scheduler finds time: beside a helper that keeps the other CPU busy).
+enum class HelperCpu : std::uint8_t { kOther, kEither };
 
 class CpuPlacement {
   public:
@@ -31,8 +41,10 @@ class CpuPlacement {
 
     // Whether it placed the executor (and places helpers).
     bool active() const noexcept { return helper_cpu_ >= 0; }
-    // On a helper thread: keeps it to the other CPU. Nothing when not active().
-    void place_helper() const noexcept;
+    // On a helper thread: keeps it to the other CPU (kOther), or lets it run on either of the
+    // two (kEither: a thread started by the executor's has only the executor's CPU). Nothing
+    // when not active().
+    void place_helper(HelperCpu where = HelperCpu::kOther) const noexcept;
     // The CPUs (for tests): the executor's, the helpers'; -1 when not active().
     int executor_cpu() const noexcept { return executor_cpu_; }
     int helper_cpu() const noexcept { return helper_cpu_; }

@@ -207,10 +207,13 @@ class ProgramExecutor {
     // With read-ahead, run() reads the stream through a ReadAhead (read_ahead.h): the NC front
     // end on a thread of its own, the same events, errors and variable reads at the same
     // places. The stream is the caller's again when run() returns. With `cpus` (which must
-    // outlive run()), the reader runs where that places helpers (cpu_placement.h).
-    void set_read_ahead(bool on, const CpuPlacement* cpus = nullptr) noexcept {
+    // outlive run()), the reader runs where that places helpers (cpu_placement.h), on the CPU
+    // `where` says.
+    void set_read_ahead(bool on, const CpuPlacement* cpus = nullptr,
+                        HelperCpu where = HelperCpu::kOther) noexcept {
         read_ahead_ = on;
         read_ahead_cpus_ = cpus;
+        read_ahead_where_ = where;
     }
 
   private:
@@ -222,6 +225,7 @@ class ProgramExecutor {
     int bottleneck_blocks_ = 0;
     bool read_ahead_ = false;
     const CpuPlacement* read_ahead_cpus_ = nullptr;
+    HelperCpu read_ahead_where_ = HelperCpu::kOther;
 };
 
 }  // namespace apci::run

@@ -15,12 +15,14 @@
 //     unchanged while the run goes;
 //   - measured on the writer thread: the executed segments come unmeasured
 //     (measures_executed()); the writer thread measures each (measure()) before the inner sink
-//     has it, and sums the lengths in their order as count_segment() does, which
-//     measured_lengths() hands back once the writer has had every segment: the inner sink and
-//     the totals see the same values, bit for bit, as when the executor measured them;
+//     has it (one that comes measured, from a pipeline in front, is taken as it comes), and
+//     sums the lengths in their order as count_segment() does, which measured_lengths() hands
+//     back once the writer has had every segment: the inner sink and the totals see the same
+//     values, bit for bit, as when the executor measured them;
 //   - the compensated stretches (stretch_begin, stretch_end, walls) go to the inner sink in
 //     their place like every other call: a SelfApproachSink there (self_approach_sink.h) checks
-//     the run on the writer thread. The inner sink cannot stop the run (take_stop() is not
+//     the run on the writer thread (and hands every call on to a second pipeline, whose thread
+//     writes the outputs: ProgramRun). The inner sink cannot stop the run (take_stop() is not
 //     passed on): a check whose finding stops the run stands before the pipeline;
 //   - errors: an exception of the inner sink on the writer thread stops the writer (the
 //     producer drops what follows instead of waiting) and is rethrown by finish(). Write
@@ -58,7 +60,8 @@ class PipelinedSink final : public RunSink {
 
     // `inner` must outlive this. The writer thread starts with the first event. With `cpus`
     // (which must outlive this too), it runs where that places helpers (cpu_placement.h).
-    explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr);
+    explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr,
+                           HelperCpu where = HelperCpu::kOther);
     ~PipelinedSink() override;
     PipelinedSink(const PipelinedSink&) = delete;
     PipelinedSink& operator=(const PipelinedSink&) = delete;
@@ -140,6 +143,7 @@ class PipelinedSink final : public RunSink {
 
     RunSink& inner_;
     const CpuPlacement* cpus_;
+    HelperCpu where_;
     // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
     // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
     // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),

@@ -162,8 +162,13 @@ class ProgramRun {
 
     apci::Board& board_;
     const RunInputs& inputs_;
-    // The chain's links (declared before the executor that feeds them; the pipeline ends
-    // before a check behind it goes).
+    // Where the reader and the writers' thread run: on either CPU where the check has a
+    // thread of its own, else on the helpers' (cpu_placement.h).
+    static HelperCpu helpers_beside_check(const RunSettings& settings) noexcept;
+    // The chain's links (declared before the executor that feeds them, each after the link it
+    // feeds: the pipeline ends before a check behind it goes, the check before the writers'
+    // pipeline behind it).
+    std::optional<PipelinedSink> output_;
     std::optional<SelfApproachSink> check_;
     std::optional<PipelinedSink> pipeline_;
     RunSink& head_;

@@ -50,7 +50,8 @@ class ReadAhead {
 
     // `stream` must outlive this; the reader thread starts with the first next(). With `cpus`
     // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h).
-    explicit ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus = nullptr);
+    explicit ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus = nullptr,
+                       HelperCpu where = HelperCpu::kOther);
     ~ReadAhead();
     ReadAhead(const ReadAhead&) = delete;
     ReadAhead& operator=(const ReadAhead&) = delete;
@@ -119,6 +120,7 @@ class ReadAhead {
     SpscRing<Batch> ring_{kBatches, 4};
     nc::EventStream& stream_;
     const CpuPlacement* cpus_;
+    HelperCpu where_;
     nc::VariableSource* source_ = nullptr;  // the caller's
     Batch* filling_ = nullptr;              // the reader's
     Batch* reading_ = nullptr;              // the caller's
