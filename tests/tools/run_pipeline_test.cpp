@@ -427,6 +427,15 @@ TEST(RunPipeline, ASegmentThatComesMeasuredIsNotMeasuredAgain) {
     EXPECT_EQ(inner.lengths[0], measured.length);
     EXPECT_EQ(inner.lengths[1], segment_length(unmeasured));
     EXPECT_EQ(path, measured.length + segment_length(unmeasured));
+    // One that leaves the measuring to the caller's thread says so (the executor then measures
+    // and sums itself) and takes the segments as they come.
+    EXPECT_TRUE(pipeline.measures_executed());
+    Lengths as_they_come;
+    PipelinedSink unmeasuring(as_they_come, nullptr, HelperCpu::kOther, false);
+    EXPECT_FALSE(unmeasuring.measures_executed());
+    unmeasuring.executed(measured);
+    unmeasuring.finish();
+    EXPECT_EQ(as_they_come.lengths, std::vector<double>{measured.length});
 }
 
 // A writer that failed does not hold measured_lengths().

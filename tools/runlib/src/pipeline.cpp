@@ -17,8 +17,9 @@ void PipelinedSink::Batch::clear() noexcept {
     stretches.clear();
 }
 
-PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where)
-    : inner_(inner), cpus_(cpus), where_(where) {}
+PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where,
+                             bool measures)
+    : inner_(inner), cpus_(cpus), where_(where), measures_(measures) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();

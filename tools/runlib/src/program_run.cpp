@@ -86,11 +86,12 @@ RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
             // run's longest chain of work on a program of many contours), fed through the
             // pipeline; the writers behind it on another, fed through a second, which runs
             // wherever there is time (beside the executor, or beside the check where the
-            // executor is the longer): docs/performance.md, "Three helper threads".
+            // executor is the longer): docs/performance.md, "Three helper threads". The
+            // executor measures the segments, off the check's thread.
             return pipeline_.emplace(
                 check_.emplace(output_.emplace(sink, settings.cpus, helpers_beside_check(settings)),
                                mode),
-                settings.cpus);
+                settings.cpus, HelperCpu::kOther, false);
         case SelfApproachMode::kError:  // on the executor's thread, where it stops the run
             break;
     }

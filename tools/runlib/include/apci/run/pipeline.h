@@ -60,8 +60,10 @@ class PipelinedSink final : public RunSink {
 
     // `inner` must outlive this. The writer thread starts with the first event. With `cpus`
     // (which must outlive this too), it runs where that places helpers (cpu_placement.h).
+    // With `measures` false the executed segments are measured where they are made (on the
+    // caller's thread: measures_executed() is false), not on the writer thread.
     explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr,
-                           HelperCpu where = HelperCpu::kOther);
+                           HelperCpu where = HelperCpu::kOther, bool measures = true);
     ~PipelinedSink() override;
     PipelinedSink(const PipelinedSink&) = delete;
     PipelinedSink& operator=(const PipelinedSink&) = delete;
@@ -78,7 +80,7 @@ class PipelinedSink final : public RunSink {
     void progress(std::uint64_t blocks, std::uint64_t offset) override {
         inner_.progress(blocks, offset);
     }
-    bool measures_executed() const override { return true; }
+    bool measures_executed() const override { return measures_; }
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
     void stretch_begin(const CompensatedStretch& s) override;
@@ -144,6 +146,7 @@ class PipelinedSink final : public RunSink {
     RunSink& inner_;
     const CpuPlacement* cpus_;
     HelperCpu where_;
+    bool measures_;
     // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
     // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
     // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),
