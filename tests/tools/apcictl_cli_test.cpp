@@ -87,6 +87,18 @@ TEST(ApcictlCli, NoCommandSaysSoAndListsThem) {
     EXPECT_TRUE(r.err.ends_with("see 'apcictl --help')\n")) << r.err;
 }
 
+// A command's argument not given: the command named, and its help.
+TEST(ApcictlCli, AMissingArgumentNamesItsCommandAndItsHelp) {
+    auto r = test_support::apcictl({"run"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: run: PROGRAM is required (see 'apcictl run --help')\n");
+    r = test_support::apcictl({"run", "--tools", "t.tools"});
+    EXPECT_EQ(r.err, "apcictl: run: PROGRAM is required (see 'apcictl run --help')\n");
+    r = test_support::apcictl({"read"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: read: NAME|BUS is required (see 'apcictl read --help')\n");
+}
+
 TEST(ApcictlCli, AfterTheEndOfOptionsAMistypedCommandIsStillNamed) {
     EXPECT_EQ(test_support::apcictl({"--", "raed"}).err,
               "apcictl: unknown command 'raed'; did you mean 'read'?\n");

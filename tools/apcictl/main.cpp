@@ -118,7 +118,7 @@ int run(int argc, char** argv) {
             return std::fflush(stdout) != 0 || std::ferror(stdout) ? output_failed(0) : code;
         }
         // One line naming what is wrong: an unknown command or option with the one meant.
-        fmt::print(stderr, "apcictl: {}\n", apcictl::explain_parse_error(app, e));
+        fmt::print(stderr, "apcictl: {}\n", apcictl::explain_command_line_error(app, e));
         return static_cast<int>(Exit::kUsage);
     }
 

@@ -113,4 +113,13 @@ std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& erro
     return plain_text(error.what());
 }
 
+std::string explain_command_line_error(const CLI::App& app, const CLI::ParseError& error) {
+    const CLI::App& active = active_command(app);
+    if (&active != &app && dynamic_cast<const CLI::RequiredError*>(&error) != nullptr &&
+        app.remaining(true).empty())
+        return fmt::format("{}: {} (see '{}')", active.get_name(), plain_text(error.what()),
+                           help_command(app, active));
+    return explain_parse_error(app, error);
+}
+
 }  // namespace apcictl

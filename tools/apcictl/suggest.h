@@ -27,5 +27,9 @@ std::string closest_name(std::string_view typed, std::span<const std::string> ca
 // unknown command or option named, with the one meant if there is a close one, else CLI11's
 // message. `app` is apcictl's command line or the parser of one script line.
 std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error);
+// The same for apcictl's command line, where a command's argument not given also names the
+// command and its help ("run: PROGRAM is required (see 'apcictl run --help')"); a script line
+// names its words itself.
+std::string explain_command_line_error(const CLI::App& app, const CLI::ParseError& error);
 
 }  // namespace apcictl
