@@ -62,6 +62,23 @@ TEST_F(ApcictlRun, CalcErrorForAConcaveArcSmallerThanTheTool) {
     ASSERT_EQ(doc.at("errors").size(), 1u);
     EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
     EXPECT_EQ(doc.at("errors")[0].at("code"), "CalcError");
+    // The board's words, and the radii they compare.
+    EXPECT_TRUE(doc.at("errors")[0].at("message").get<std::string>().ends_with(
+        "concave side: the tool would cut into the arc (use a tool no larger than the arc's "
+        "radius); arc radius 4.0000 mm, tool radius 5.0000 mm"))
+        << doc.at("errors")[0].at("message");
+    EXPECT_TRUE(contains(last_.out, "; arc radius 4.0000 mm, tool radius 5.0000 mm")) << last_.out;
+    // G42 on a clockwise arc a thousandth smaller than the tool: as near as a file writes it.
+    const std::string near = write("calc42.nc",
+                                   "N10 F1000 D1\nN40 G42 G1 X0 Y0\nN50 X20\n"
+                                   "N60 G2 X24.999 Y-4.999 I0 J-4.999\nN70 G1 Y-20\n"
+                                   "N100 G40 G1 X40\nN110 M30\n");
+    const json doc42 = run_json(near, {"--tools", tools(5.0)}, 1);
+    ASSERT_EQ(doc42.at("errors").size(), 1u);
+    EXPECT_EQ(doc42.at("errors")[0].at("code"), "CalcError");
+    EXPECT_TRUE(doc42.at("errors")[0].at("message").get<std::string>().ends_with(
+        "; arc radius 4.9990 mm, tool radius 5.0000 mm"))
+        << doc42.at("errors")[0].at("message");
 }
 
 TEST_F(ApcictlRun, CompensationWithoutTheTcOptionIsAnErrorNamingIt) {

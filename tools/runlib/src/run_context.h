@@ -168,6 +168,8 @@ class RunContext {
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p);
 
     bool write_failure(const BlockRef& at, apci::Status status, std::string_view what);
+    // A CalcError's radii where the block at fault is a concave arc smaller than the tool.
+    std::string concave_arc_radii(const BlockRef& at) const;
     bool tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text);
     void program_error(const nc::Diagnostic& d);
     void report_bottleneck(const detail::Bottleneck& b);
