@@ -208,6 +208,58 @@ TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
     }
 }
 
+// The same run seen from /proc while it goes: the executor (the caller's thread) keeps its CPU,
+// the check's thread alone the helpers', and the reader and the writers may run on either.
+TEST(CpuPlacement, WithTheCheckWarningOnlyTheCheckKeepsTheHelpersCpu) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    struct Census final : RunSink {
+        bool taken = false;
+        std::vector<int> own;                     // the writers' thread
+        std::vector<std::vector<int>> others;     // every other thread's, at that moment
+        void executed(const PathSegment&) override {
+            if (taken) return;
+            taken = true;
+            own = cpus_of_thread();
+            others = other_threads_cpus();
+        }
+    };
+    auto tools = load_run_inputs([] {
+        RunInputFiles f;
+        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.1\n";
+        f.tools_is_text = true;
+        return f;
+    }());
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    // Long enough that the reader still reads when the first segment is written.
+    std::string program = "N1 G17 G90 F60000 D1\nN2 G41 G1 X0 Y0\n";
+    for (int i = 0; i < 40000; ++i)
+        program += "G1 X" + std::to_string(i % 2 == 0 ? 10 : 0) + " Y" + std::to_string(i) + "\n";
+    program += "G40 G1 X-5\nM30\n";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    apci::Board board("emu:");
+    Census sink;
+    RunSettings settings;
+    settings.self_approach = SelfApproachMode::kWarn;
+    settings.threads = true;
+    settings.cpus = &placement;
+    auto out = run_program(board, sink, tools.value(),
+                           ProgramSource::in_memory(program, "zigzag.nc"), settings);
+    ASSERT_TRUE(out) << out.error().to_string();
+    ASSERT_TRUE(sink.taken);
+    EXPECT_EQ(sink.own, two.cpus());
+    int on_executor = 0, on_helper = 0, on_both = 0;
+    for (const auto& cpus : sink.others) {
+        if (cpus == std::vector<int>{placement.executor_cpu()}) ++on_executor;
+        if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper;
+        if (cpus == two.cpus()) ++on_both;
+    }
+    EXPECT_EQ(on_executor, 1);  // the caller's
+    EXPECT_EQ(on_helper, 1);    // the check's
+    EXPECT_GE(on_both, 1);      // the reader's (and the writers' own, above)
+}
+
 TEST(CpuPlacement, TheReaderThreadRunsOnTheHelpersCpu) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
