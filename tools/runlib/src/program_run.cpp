@@ -66,6 +66,12 @@ ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& input
     dry_run_ = settings.dry_run_first && settings.self_approach == SelfApproachMode::kError;
 }
 
+ProgramRun::~ProgramRun() {
+    pipeline_.reset();  // its thread calls the check: ended and joined first
+    check_.reset();     // it calls the writers' pipeline
+    output_.reset();
+}
+
 HelperCpu ProgramRun::helpers_beside_check(const RunSettings& settings) noexcept {
     return settings.threads && settings.self_approach == SelfApproachMode::kWarn
                ? HelperCpu::kEither

@@ -121,6 +121,9 @@ class ProgramRun {
   public:
     ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& inputs,
                const RunSettings& settings);
+    // The check's pipeline ends first (its thread calls the check), then the check, then the
+    // writers' pipeline behind it.
+    ~ProgramRun();
     ProgramRun(const ProgramRun&) = delete;
     ProgramRun& operator=(const ProgramRun&) = delete;
 
@@ -160,20 +163,20 @@ class ProgramRun {
     // The chain of sinks in front of `sink` the settings ask for; its head.
     RunSink& chain(RunSink& sink, const RunSettings& settings);
 
-    apci::Board& board_;
-    const RunInputs& inputs_;
     // Where the reader and the writers' thread run: on either CPU where the check has a
     // thread of its own, else on the helpers' (cpu_placement.h).
     static HelperCpu helpers_beside_check(const RunSettings& settings) noexcept;
-    // The chain's links (declared before the executor that feeds them, each after the link it
-    // feeds: the pipeline ends before a check behind it goes, the check before the writers'
-    // pipeline behind it).
+
+    // The chain's links, declared before the executor that feeds them (and in the order that
+    // packs them: the destructor ends them in the order they feed each other).
     std::optional<PipelinedSink> output_;
-    std::optional<SelfApproachSink> check_;
     std::optional<PipelinedSink> pipeline_;
+    std::optional<SelfApproachSink> check_;
+    apci::Board& board_;
+    const RunInputs& inputs_;
     RunSink& head_;
-    ProgramExecutor executor_;
     nc::InterpreterOptions options_;
+    ProgramExecutor executor_;
     ProgramSource source_;
     std::optional<nc::Program> program_;
     std::optional<nc::EventStream> stream_;
