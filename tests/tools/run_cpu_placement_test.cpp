@@ -260,49 +260,48 @@ TEST(CpuPlacement, WithTheCheckWarningOnlyTheCheckKeepsTheHelpersCpu) {
     EXPECT_GE(on_both, 1);      // the reader's (and the writers' own, above)
 }
 
-TEST(CpuPlacement, TheReaderThreadRunsOnTheHelpersCpu) {
-    const Restricted two(2);
-    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+// The CPUs of every other thread while a reader placed `where` waits: its program (20,000
+// moves) is more than its ring holds, so it fills the ring and waits, alive.
+std::vector<std::vector<int>> threads_beside_a_reader(const CpuPlacement& placement,
+                                                      HelperCpu where) {
     std::string text = "%many\nN1 G17 G90 F3000\n";
     for (int i = 0; i < 20000; ++i)
         text += "N" + std::to_string(i + 2) + " G1 X" + std::to_string(i % 97) + "\n";
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    ReadAhead ahead(stream, &placement, where);
+    nc::Event ev;
+    EXPECT_EQ(ahead.next(ev), nc::EventStream::Next::kEvent);
+    std::this_thread::sleep_for(100ms);  // the reader fills the ring and waits
+    std::vector<std::vector<int>> cpus = other_threads_cpus();
+    ahead.stop();
+    return cpus;
+}
+
+TEST(CpuPlacement, TheReaderThreadRunsOnTheHelpersCpu) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
     const CpuPlacement placement;
     ASSERT_TRUE(placement.active());
-    ReadAhead ahead(stream, &placement);
-    nc::Event ev;
-    ASSERT_EQ(ahead.next(ev), nc::EventStream::Next::kEvent);
-    std::this_thread::sleep_for(100ms);  // the reader fills the ring and waits
     // The reader is the one thread on the helpers' CPU alone (a sanitizer's own thread, if
     // any, may run anywhere).
     int on_helper_cpu = 0;
-    for (const auto& cpus : other_threads_cpus())
+    for (const auto& cpus : threads_beside_a_reader(placement, HelperCpu::kOther))
         if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper_cpu;
     EXPECT_EQ(on_helper_cpu, 1);
-    ahead.stop();
 }
 
 TEST(CpuPlacement, AReaderThreadPlacedOnEitherCpuRunsOnBoth) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
-    std::string text = "%many\nN1 G17 G90 F3000\n";
-    for (int i = 0; i < 20000; ++i)
-        text += "N" + std::to_string(i + 2) + " G1 X" + std::to_string(i % 97) + "\n";
-    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
     const CpuPlacement placement;
     ASSERT_TRUE(placement.active());
-    ReadAhead ahead(stream, &placement, HelperCpu::kEither);
-    nc::Event ev;
-    ASSERT_EQ(ahead.next(ev), nc::EventStream::Next::kEvent);
-    std::this_thread::sleep_for(100ms);  // the reader fills the ring and waits
     int on_helper_cpu = 0, on_both = 0;
-    for (const auto& cpus : other_threads_cpus()) {
+    for (const auto& cpus : threads_beside_a_reader(placement, HelperCpu::kEither)) {
         if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper_cpu;
         if (cpus == two.cpus()) ++on_both;
     }
     EXPECT_EQ(on_helper_cpu, 0);
     EXPECT_GE(on_both, 1);
-    ahead.stop();
 }
 
 }  // namespace
