@@ -226,6 +226,8 @@ class Recorder final : public RunSink {
 
     void programmed(const PathSegment& s) override { note("p" + std::to_string(s.block.number)); }
     bool wants_programmed() const override { return want_programmed; }
+    bool take_programmed = true;
+    bool takes_programmed() const override { return take_programmed; }
     void executed(const PathSegment& s) override {
         if (++executed_count == fail_at) throw std::runtime_error("writer failed");
         note("e" + std::to_string(s.block.number) + "," + std::to_string(s.end.x()) + "," +
@@ -288,6 +290,29 @@ TEST(RunPipeline, TheInnerSinkGetsEveryCallInOrderOnTheWriterThread) {
     EXPECT_EQ(inner.calls, direct.calls);
     EXPECT_EQ(inner.calls.size(), 3u * 5000 + 2 + 6 + 1);
     EXPECT_NE(inner.thread, std::this_thread::get_id());
+}
+
+// An inner sink that takes no programmed moves (apcictl without a plot) gets every other call,
+// in order, and the moves are not handed over at all.
+TEST(RunPipeline, ProgrammedMovesAreNotHandedToASinkThatTakesNone) {
+    Recorder direct;
+    feed(direct, 3000);
+    std::vector<std::string> expected;
+    for (const std::string& c : direct.calls)
+        if (!c.starts_with("p")) expected.push_back(c);
+    ASSERT_LT(expected.size(), direct.calls.size());  // the feed has programmed moves
+    Recorder inner;
+    inner.take_programmed = false;
+    {
+        PipelinedSink pipeline(inner);
+        EXPECT_FALSE(pipeline.takes_programmed());
+        feed(pipeline, 3000);
+        pipeline.finish();
+    }
+    EXPECT_EQ(inner.calls, expected);
+    Recorder taking;
+    PipelinedSink pipeline(taking);
+    EXPECT_TRUE(pipeline.takes_programmed());
 }
 
 TEST(RunPipeline, WantsAndProgressAreAskedOfTheInnerSinkAtOnce) {

@@ -127,6 +127,7 @@ class Outputs final : public apci::run::RunSink {
         if (svg) svg->programmed(s);
     }
     bool wants_programmed() const override { return svg != nullptr; }
+    bool takes_programmed() const override { return svg != nullptr; }
     void executed(const PathSegment& s) override {
         if (json) json->segment(s);
         if (svg) svg->executed(s);

@@ -51,6 +51,7 @@ void PipelinedSink::commit() {
 }
 
 void PipelinedSink::programmed(const PathSegment& s) {
+    if (!inner_.takes_programmed()) return;  // not copied for nothing
     Batch* b = open_batch();
     if (b == nullptr) return;
     b->segments.push_back(s);

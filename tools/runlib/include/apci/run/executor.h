@@ -68,6 +68,10 @@ class RunSink {
     virtual ~RunSink() = default;
     // A move of the program (absolute, before compensation), as the executor sends it.
     virtual void programmed(const PathSegment& s) { (void)s; }
+    // False where programmed() does nothing (a sink that writes only what was executed): a
+    // pipeline in front of it does not hand the moves on. Asked as each move comes, on the
+    // caller's thread: what it reads must not change while the run goes.
+    virtual bool takes_programmed() const { return true; }
     // True to get the rest of the program's moves through programmed() after an error stopped
     // the run (a plot shows the whole contour).
     virtual bool wants_programmed() const { return false; }

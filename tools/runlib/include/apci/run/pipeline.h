@@ -70,6 +70,7 @@ class PipelinedSink final : public RunSink {
 
     void programmed(const PathSegment& s) override;
     bool wants_programmed() const override { return inner_.wants_programmed(); }
+    bool takes_programmed() const override { return inner_.takes_programmed(); }
     void executed(const PathSegment& s) override;
     void axes(std::span<const std::string> names) override;
     void axis_numbers(const std::array<int, 3>& xyz) override;
