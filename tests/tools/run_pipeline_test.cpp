@@ -452,15 +452,36 @@ TEST(RunPipeline, ASegmentThatComesMeasuredIsNotMeasuredAgain) {
     EXPECT_EQ(inner.lengths[0], measured.length);
     EXPECT_EQ(inner.lengths[1], segment_length(unmeasured));
     EXPECT_EQ(path, measured.length + segment_length(unmeasured));
-    // One that leaves the measuring to the caller's thread says so (the executor then measures
-    // and sums itself) and takes the segments as they come.
+}
+
+// A pipeline whose inner sink measures the segments itself (a second pipeline, as ProgramRun
+// puts one behind the check) hands them on as they came and gives the inner sink's sums, asked
+// once the inner sink has had every segment.
+TEST(RunPipeline, WhereTheInnerSinkMeasuresTheSegmentsGoOnUnmeasured) {
+    class Measuring final : public RunSink {
+      public:
+        std::vector<double> lengths;
+        bool measures_executed() const override { return true; }
+        void executed(const PathSegment& s) override { lengths.push_back(s.length); }
+        void measured_lengths(double& path, double& rapid) override {
+            path = 42.0 + static_cast<double>(lengths.size());
+            rapid = 7.0;
+        }
+    } inner;
+    PathSegment measured = segment(1);
+    measure(measured);
+    PipelinedSink pipeline(inner);
     EXPECT_TRUE(pipeline.measures_executed());
-    Lengths as_they_come;
-    PipelinedSink unmeasuring(as_they_come, nullptr, HelperCpu::kOther, false);
-    EXPECT_FALSE(unmeasuring.measures_executed());
-    unmeasuring.executed(measured);
-    unmeasuring.finish();
-    EXPECT_EQ(as_they_come.lengths, std::vector<double>{measured.length});
+    pipeline.executed(segment(2));
+    pipeline.executed(measured);
+    double path = 0.0, rapid = 0.0;
+    pipeline.measured_lengths(path, rapid);
+    EXPECT_EQ(path, 44.0);  // the inner sink's, after both segments
+    EXPECT_EQ(rapid, 7.0);
+    pipeline.finish();
+    ASSERT_EQ(inner.lengths.size(), 2u);
+    EXPECT_TRUE(std::isnan(inner.lengths[0]));
+    EXPECT_EQ(inner.lengths[1], measured.length);
 }
 
 // A writer that failed does not hold measured_lengths().

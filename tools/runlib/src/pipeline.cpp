@@ -17,9 +17,8 @@ void PipelinedSink::Batch::clear() noexcept {
     stretches.clear();
 }
 
-PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where,
-                             bool measures)
-    : inner_(inner), cpus_(cpus), where_(where), measures_(measures) {}
+PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where)
+    : inner_(inner), cpus_(cpus), where_(where) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();
@@ -27,6 +26,7 @@ PipelinedSink::~PipelinedSink() {
 
 void PipelinedSink::start() {
     started_ = true;
+    inner_measures_ = inner_.measures_executed();  // before the writer reads it
     writer_ = exec::quiet_thread([this] { write_loop(); });
 }
 
@@ -118,10 +118,13 @@ void PipelinedSink::deliver(Batch& b) {
                 break;
             case Kind::kExecuted: {
                 PathSegment& s = b.segments[i];
-                // Unmeasured from the executor; measured where this pipeline is fed by another
-                // (the check's, ProgramRun): not again.
-                if (std::isnan(s.length)) measure(s);
-                count_segment(measured_, s);
+                // Unmeasured from the executor, and measured here unless the inner sink
+                // measures them (then they go on as they came); one that comes measured is
+                // not measured again.
+                if (!inner_measures_) {
+                    if (std::isnan(s.length)) measure(s);
+                    count_segment(measured_, s);
+                }
                 inner_.executed(s);
                 break;
             }
@@ -203,6 +206,10 @@ void PipelinedSink::sync() {
 
 void PipelinedSink::measured_lengths(double& path, double& rapid) {
     sync();
+    if (inner_measures_) {  // every segment is the inner sink's now: its sums
+        inner_.measured_lengths(path, rapid);
+        return;
+    }
     path = measured_.path_length;
     rapid = measured_.rapid_length;
 }

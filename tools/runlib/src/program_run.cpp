@@ -93,11 +93,11 @@ RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
             // pipeline; the writers behind it on another, fed through a second, which runs
             // wherever there is time (beside the executor, or beside the check where the
             // executor is the longer): docs/performance.md, "Three helper threads". The
-            // executor measures the segments, off the check's thread.
+            // writers' pipeline measures the segments, on the lighter thread.
             return pipeline_.emplace(
                 check_.emplace(output_.emplace(sink, settings.cpus, helpers_beside_check(settings)),
                                mode),
-                settings.cpus, HelperCpu::kOther, false);
+                settings.cpus);
         case SelfApproachMode::kError:  // on the executor's thread, where it stops the run
             break;
     }

@@ -15,10 +15,12 @@
 //     unchanged while the run goes;
 //   - measured on the writer thread: the executed segments come unmeasured
 //     (measures_executed()); the writer thread measures each (measure()) before the inner sink
-//     has it (one that comes measured, from a pipeline in front, is taken as it comes), and
-//     sums the lengths in their order as count_segment() does, which measured_lengths() hands
-//     back once the writer has had every segment: the inner sink and the totals see the same
-//     values, bit for bit, as when the executor measured them;
+//     has it (one that comes measured is taken as it comes), and sums the lengths in their
+//     order as count_segment() does, which measured_lengths() hands back once the writer has
+//     had every segment: the inner sink and the totals see the same values, bit for bit, as
+//     when the executor measured them. Where the inner sink measures them itself (a second
+//     pipeline behind a check: ProgramRun), they go on unmeasured and measured_lengths() is
+//     the inner sink's, asked once the writer has had every segment;
 //   - the compensated stretches (stretch_begin, stretch_end, walls) go to the inner sink in
 //     their place like every other call: a SelfApproachSink there (self_approach_sink.h) checks
 //     the run on the writer thread (and hands every call on to a second pipeline, whose thread
@@ -60,10 +62,8 @@ class PipelinedSink final : public RunSink {
 
     // `inner` must outlive this. The writer thread starts with the first event. With `cpus`
     // (which must outlive this too), it runs where that places helpers (cpu_placement.h).
-    // With `measures` false the executed segments are measured where they are made (on the
-    // caller's thread: measures_executed() is false), not on the writer thread.
     explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr,
-                           HelperCpu where = HelperCpu::kOther, bool measures = true);
+                           HelperCpu where = HelperCpu::kOther);
     ~PipelinedSink() override;
     PipelinedSink(const PipelinedSink&) = delete;
     PipelinedSink& operator=(const PipelinedSink&) = delete;
@@ -81,7 +81,7 @@ class PipelinedSink final : public RunSink {
     void progress(std::uint64_t blocks, std::uint64_t offset) override {
         inner_.progress(blocks, offset);
     }
-    bool measures_executed() const override { return measures_; }
+    bool measures_executed() const override { return true; }
     // Waits until the writer thread has had every event handed over (or stopped).
     void measured_lengths(double& path, double& rapid) override;
     void stretch_begin(const CompensatedStretch& s) override;
@@ -147,7 +147,8 @@ class PipelinedSink final : public RunSink {
     RunSink& inner_;
     const CpuPlacement* cpus_;
     HelperCpu where_;
-    bool measures_;
+    // The inner sink measures the executed segments itself (asked when the writer starts).
+    bool inner_measures_ = false;
     // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
     // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
     // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),
