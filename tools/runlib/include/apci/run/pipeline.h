@@ -9,9 +9,10 @@
 //   - bounded: kBatches batches of at most kBatchEvents events; a producer that finds every
 //     batch taken waits for the writer (memory stays flat however long the program);
 //   - in order: the inner sink sees exactly the calls, in the order, it would have seen
-//     without the pipeline, so every output is byte for byte the same;
-//   - progress() goes to the inner sink at once, on the caller's thread, and wants_programmed()
-//     and wants_samples() are asked of it there too: the inner sink must keep what these read
+//     without the pipeline (but the programmed moves where it takes none, takes_programmed()),
+//     so every output is byte for byte the same;
+//   - progress() goes to the inner sink at once, on the caller's thread, and wants_programmed(),
+//     takes_programmed() and wants_samples() are asked of it there too: the inner sink must keep what these read
 //     unchanged while the run goes;
 //   - measured on the writer thread: the executed segments come unmeasured
 //     (measures_executed()); the writer thread measures each (measure()) before the inner sink
