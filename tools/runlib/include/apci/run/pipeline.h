@@ -12,8 +12,8 @@
 //     without the pipeline (but the programmed moves where it takes none, takes_programmed()),
 //     so every output is byte for byte the same;
 //   - progress() goes to the inner sink at once, on the caller's thread, and wants_programmed(),
-//     takes_programmed() and wants_samples() are asked of it there too: the inner sink must keep what these read
-//     unchanged while the run goes;
+//     takes_programmed() and wants_samples() are asked of it there too: the inner sink must
+//     keep what these read unchanged while the run goes;
 //   - measured on the writer thread: the executed segments come unmeasured
 //     (measures_executed()); the writer thread measures each (measure()) before the inner sink
 //     has it (one that comes measured is taken as it comes), and sums the lengths in their
