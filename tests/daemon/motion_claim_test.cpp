@@ -499,6 +499,33 @@ TEST_F(MotionClaimDaemon, SecondApcictlRunIsRefusedAndTheFirstCompletesWhole) {
     EXPECT_EQ(watcher.claim().held, 0);
 }
 
+// `status` says who holds the board's motion, as a refused claim names the holder.
+TEST_F(MotionClaimDaemon, StatusNamesTheHolderOfTheBoardsMotion) {
+    const std::string uri = daemon_->unix_uri();
+    auto r = test_support::apcictl({"--device", uri, "status"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "\nmotion: free\n")) << r.out;
+    r = test_support::apcictl({"--device", uri, "status", "--json"});
+    EXPECT_TRUE(contains(r.out, R"("motion":{"held":false,"served":true})")) << r.out;
+    Client holder(uri);
+    ASSERT_EQ(apci_claim_motion(holder.board), APCI_OK) << holder.error();
+    const apci_motion_claim claim = holder.claim();
+    r = test_support::apcictl({"--device", uri, "status"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, fmt::format("\nmotion: held by pid {} (", ::getpid()))) << r.out;
+    EXPECT_TRUE(contains(r.out, " since 20")) << r.out;
+    r = test_support::apcictl({"--device", uri, "status", "--json"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, fmt::format(R"("held":true,"holder":"pid {} ()", ::getpid())))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, fmt::format(R"("pid":{},"served":true,"since_ms":{}}})",
+                                            ::getpid(), claim.since_ms)))
+        << r.out;
+    ASSERT_EQ(apci_release_motion(holder.board), APCI_OK) << holder.error();
+    r = test_support::apcictl({"--device", uri, "status"});
+    EXPECT_TRUE(contains(r.out, "\nmotion: free\n")) << r.out;
+}
+
 TEST_F(MotionClaimDaemon, ApcictlRunOnAHeldBoardMovesNothing) {
     TempDir dir;
     const std::string program = long_program(dir, 5);
@@ -624,6 +651,12 @@ TEST(MotionClaimWithoutSupport, ClaimIsNotSupportedAndApcictlRunGoesOnWithAWarni
                                     " does not serve motion claims"))
         << r.err;
     EXPECT_TRUE(contains(r.out, "5 blocks, 5 executed, 3 segments")) << r.out;
+    // `status` says that nothing keeps two programs apart there.
+    const auto s = test_support::apcictl({"--device", board.uri(), "status"});
+    EXPECT_TRUE(contains(s.out, "\nmotion: " + board.uri() + " does not serve motion claims\n"))
+        << s.out << s.err;
+    const auto j = test_support::apcictl({"--device", board.uri(), "status", "--json"});
+    EXPECT_TRUE(contains(j.out, R"("motion":{"served":false})")) << j.out << j.err;
 }
 
 }  // namespace

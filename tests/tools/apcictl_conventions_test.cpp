@@ -206,7 +206,9 @@ TEST(ApcictlStatusJson, SaysWhatTheTextSays) {
 TEST(ApcictlStatusJson, WithoutOptionTcTheTcIsNull) {
     const auto r = test_support::apcictl({"--device", "emu:?no-option-tc", "status", "--json"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(r.out, "{\"spooler\":{\"capacity\":256,\"fill\":0},\"tc\":null}\n");
+    EXPECT_EQ(r.out,
+              "{\"motion\":{\"held\":false,\"served\":true},\"spooler\":{\"capacity\":256,"
+              "\"fill\":0},\"tc\":null}\n");
 }
 
 // ---- object names typed without brackets

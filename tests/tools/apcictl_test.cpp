@@ -35,6 +35,7 @@ TEST(Apcictl, MustShowStatusNamesTheBits) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::regex_search(r.out, std::regex("^board \\(bus 1000\\): spooler 0 of [1-9][0-9]* profiles\n")))
         << r.out;
+    EXPECT_TRUE(contains(r.out, "\nmotion: free\n")) << r.out;  // the run's own board: no holder
     EXPECT_TRUE(contains(r.out, "TC module (bus 1300): TcPlane 17 (X-Y)\n")) << r.out;
     for (int g = 1; g <= 3; ++g)
         EXPECT_TRUE(contains(r.out, "group " + std::to_string(g) + ": ERROR 0x")) << r.out;
@@ -323,6 +324,7 @@ TEST(ApcictlStatus, WithoutOptionTcSaysSo) {
     const auto r = apcictl({"--device", "emu:?no-option-tc", "status"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::regex_match(r.out, std::regex("board \\(bus 1000\\): spooler 0 of [1-9][0-9]* profiles\n"
+                                                   "motion: free\n"
                                                    "TC module \\(bus 1300\\): absent, the firmware "
                                                    "has no optionTC\n")))
         << r.out;

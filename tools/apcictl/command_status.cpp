@@ -3,6 +3,7 @@
 // compensation group and of the active group, decoded by the bit names of [APCI-TC] (Tables 4 and 5)
 // ([APCI-TC] section 2.3 "Fehlerabfrage von TC").
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
+#include "objif/frame.h"
 #include "objif/map/object_map.h"
 
 namespace apcictl {
@@ -65,6 +67,28 @@ nlohmann::json bit_names(std::int32_t value, const char* (*name_of)(int)) {
     return names;
 }
 
+// Who holds the board's motion (docs/motion-claim.md), from the board's record: the holder as
+// libapci names it (objif::claim_holder_text). `served` false where the transport does not
+// serve claims (nothing then keeps two programs apart).
+struct MotionHolder {
+    apci::Status status = APCI_OK;  // of the query: APCI_OK, APCI_NOT_SUPPORTED or an error
+    apci_motion_claim claim{};
+    bool served() const { return status != APCI_NOT_SUPPORTED; }
+    std::string holder() const {
+        objif::ClaimReply rep;
+        rep.held = claim.held != 0;
+        rep.pid = claim.pid;
+        rep.since_ms = claim.since_ms;
+        rep.name = name();
+        return objif::claim_holder_text(rep);
+    }
+    std::string name() const { return {claim.name, ::strnlen(claim.name, sizeof claim.name)}; }
+};
+MotionHolder motion_holder(apci::Board& board) {
+    const auto r = board.motion_claim();
+    return MotionHolder{r.status, r.value};
+}
+
 // A register read for --json: {"value": 1, "set": ["Run"]}, or {"unreadable": "StatusName"}.
 nlohmann::json register_json(const apci::Result<std::int32_t>& r, const char* (*name_of)(int)) {
     if (!r) return {{"unreadable", std::string(apci::status_name(r.status))}};
@@ -77,11 +101,11 @@ public:
         app.add_flag("--json", json_,
                      "Print one JSON object instead (docs/apcictl.md, \"status --json\")");
         app.footer(
-            "Reads the spooler fill level (bus 1000), TcPlane, then ERROR (SubIndex 1) and STATUS (SubIndex 3) of compensation "
+            "Reads the spooler fill level (bus 1000), who holds the board's motion (docs/motion-claim.md), TcPlane, then ERROR (SubIndex 1) and STATUS (SubIndex 3) of compensation "
             "groups 1..3 and of the active group (Index 0) on bus 1300, DeviceNumber 1, and "
             "names the set bits. Says so when the firmware has no optionTC. Exit 1 if a "
             "register could not be read. --json prints the same as one JSON object: spooler "
-            "{fill, capacity}, tc {bus, plane, plane_name, groups [{group, active, error "
+            "{fill, capacity}, motion {served, held, pid, name, since_ms, holder}, tc {bus, plane, plane_name, groups [{group, active, error "
             "{value, set}, status {value, set}}]} (tc null without optionTC; an unreadable "
             "register {unreadable: STATUS}).");
     }
@@ -93,6 +117,7 @@ public:
 
         if (json_) return run_json(*board);
         Outcome outcome = show_spooler(*board);
+        show_motion(*board, session.uri(), outcome);
 
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
         const auto plane = board->read_int(plane_object);
@@ -128,6 +153,19 @@ private:
             const apci::Status s = fill ? capacity.status : fill.status;
             out["spooler"] = {{"unreadable", std::string(apci::status_name(s))}};
             outcome = failed(board, "spooler", s);
+        }
+        const MotionHolder motion = motion_holder(board);
+        if (!motion.served()) {
+            out["motion"] = {{"served", false}};
+        } else if (motion.status != APCI_OK) {
+            out["motion"] = {{"unreadable", std::string(apci::status_name(motion.status))}};
+            if (outcome.ok()) outcome = failed(board, "motion claim", motion.status);
+        } else if (motion.claim.held == 0) {
+            out["motion"] = {{"served", true}, {"held", false}};
+        } else {
+            out["motion"] = {{"served", true},         {"held", true},
+                             {"pid", motion.claim.pid}, {"name", motion.name()},
+                             {"since_ms", motion.claim.since_ms}, {"holder", motion.holder()}};
         }
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
         const auto plane = board.read_int(plane_object);
@@ -178,6 +216,22 @@ private:
         const apci::Status s = fill ? capacity.status : fill.status;
         fmt::print("board (bus {}): spooler unreadable, {}\n", b::kBus, describe_status(s));
         return failed(board, "spooler", s);
+    }
+
+    // "motion: free", "motion: held by pid 4242 (apcictl) since ...", or that the transport
+    // does not serve claims; an error of the query becomes the outcome, if it is the first.
+    static void show_motion(apci::Board& board, const std::string& uri, Outcome& outcome) {
+        const MotionHolder motion = motion_holder(board);
+        if (!motion.served()) {
+            fmt::print("motion: {} does not serve motion claims\n", uri);
+        } else if (motion.status != APCI_OK) {
+            fmt::print("motion: unreadable, {}\n", describe_status(motion.status));
+            if (outcome.ok()) outcome = failed(board, "motion claim", motion.status);
+        } else if (motion.claim.held == 0) {
+            fmt::print("motion: free\n");
+        } else {
+            fmt::print("motion: held by {}\n", motion.holder());
+        }
     }
 
     // Prints one line; the first unreadable register becomes the outcome.

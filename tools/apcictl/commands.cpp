@@ -25,7 +25,7 @@ constexpr std::array kCommands{
                 "Type commands at a prompt against one board session: editing, history, "
                 "completion",
                 false, make_shell_command},
-    CommandSpec{"status", "Show the spooler fill and the TC registers ERROR and STATUS per group, by bit name",
+    CommandSpec{"status", "Show the spooler fill, who holds the motion, and the TC registers ERROR and STATUS per group, by bit name",
                 true, make_status_command},
     CommandSpec{"spool", "Spool one profile: G00..G03 with N, F, axis and centre words", true,
                 make_spool_command},
