@@ -17,7 +17,8 @@ docs/python.md documents the package; it is a layer over libapci (apci.h) and th
 """
 
 from ._apci import version as _library_version
-from ._board import Board, ObjectInfo, UnknownNameError, object_info, object_names, open
+from ._board import (Board, MotionClaim, ObjectInfo, UnknownNameError, object_info, object_names,
+                     open)
 from ._errors import (Error, MotionClaimedError, ObjectError, ProgramError, RunError,
                       TransportError)
 from ._run import SEGMENT_DTYPE, SEGMENT_KINDS, SEGMENT_ROLES, RunIssue, RunResult, run
@@ -29,7 +30,7 @@ __version__ = _library_version()
 # `from apci import *` brings everything but open(), which would shadow the built-in open() of
 # the importing module: call it apci.open().
 __all__ = [
-    "Board", "run", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
+    "Board", "MotionClaim", "run", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
     "Error", "ObjectError", "TransportError", "ProgramError", "RunError", "MotionClaimedError",
     "Status", "TcError", "TcStatus", "GroupStatus", "decode_status", "status_name",
     "status_message",

@@ -8,7 +8,7 @@ import math
 import numbers
 
 from . import _apci
-from ._errors import Error, ObjectError, TransportError, error_class
+from ._errors import Error, MotionClaimedError, ObjectError, TransportError, error_class
 from ._status import GroupStatus, Status, TcError, decode_status
 
 _INT32_MIN = -(2**31)
@@ -110,6 +110,27 @@ def _object_at(address) -> ObjectInfo | None:
 def object_names() -> list[str]:
     """Every dotted name of the object map, in map order (docs/object-map.md, "Names")."""
     return _apci.object_names()
+
+
+@dataclasses.dataclass(frozen=True)
+class MotionClaim:
+    """Who holds the board's motion (Board.motion_claim(); docs/motion-claim.md).
+
+    ``held``      a program holds it
+    ``yours``     this Board holds it
+    ``pid``       the holder's process id; 0 when the board does not know it
+    ``since_ms``  when it claimed, milliseconds since 1970-01-01 UTC; 0 when not known
+    ``name``      the holder's command name; "" when not known
+    ``holder``    the holder as a refusal names it ("pid 4242 (apcictl) since 2024-05-01
+                  12:00:00 UTC"); "" when nobody holds it
+    """
+
+    held: bool
+    yours: bool
+    pid: int
+    since_ms: int
+    name: str
+    holder: str
 
 
 class Board:
@@ -258,6 +279,39 @@ class Board:
             return status
         return board.write_int(*address, _as_int32(label, value))
 
+    # ---- the board's motion (docs/motion-claim.md)
+
+    def claim_motion(self) -> None:
+        """Holds the board's motion for this Board until release_motion() or close(): another
+        program's moves (another apcictl run, apci.run on another Board) are refused meanwhile;
+        apci.run on this Board runs.
+
+        Raises MotionClaimedError naming the holder where another program holds it, ObjectError
+        with Status.WrongDeviceState where this Board holds it already, and with
+        Status.NotSupported where the board does not serve claims; TransportError when the
+        link fails.
+        """
+        self._motion_answer("claim the board's motion", self._board().claim_motion())
+
+    def release_motion(self) -> None:
+        """Ends this Board's claim. ObjectError (Status.WrongDeviceState) where it holds none."""
+        self._motion_answer("release the board's motion", self._board().release_motion())
+
+    def motion_claim(self) -> MotionClaim:
+        """Who holds the board's motion, changing nothing (a MotionClaim). ObjectError
+        (Status.NotSupported) where the board does not serve claims."""
+        status, *claim = self._board().motion_claim()
+        self._motion_answer("ask who holds the board's motion", status)
+        return MotionClaim(*claim)
+
+    def _motion_answer(self, what: str, status: int) -> None:
+        if status == 0:
+            return
+        message = self._native.last_error() or f"{what}: {_apci.status_name(status)}"
+        if status == Status.MotionClaimed:
+            raise MotionClaimedError(message, status)
+        raise error_class(status)(message, status)
+
     # ---- TC status
 
     def status(self, group: int = 1) -> GroupStatus:
@@ -278,5 +332,5 @@ def open(uri: str = "emu:") -> Board:  # noqa: A001 - the package's verb, as apc
     return Board(uri)
 
 
-__all__ = ["Board", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
+__all__ = ["Board", "MotionClaim", "ObjectInfo", "UnknownNameError", "object_info", "object_names",
            "Error", "ObjectError", "TransportError", "TcError"]

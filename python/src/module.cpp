@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -31,6 +32,7 @@
 #include "apci/run/program_run.h"
 #include "apci/run/summary.h"
 #include "objif/descriptor.h"
+#include "objif/frame.h"
 #include "objif/names.h"
 #include "objif/object_info.h"
 #include "objif/value.h"
@@ -83,6 +85,32 @@ class PyBoard {
         const Use use(*this);
         auto o = apci::object(bus, device, index, subindex);
         return board_.write_double(o, value).status;
+    }
+
+    // The board's motion (docs/motion-claim.md): claim, release, and who holds it as (status,
+    // held, yours, pid, since_ms, name, holder), the holder as libapci names it in a refusal
+    // (objif::claim_holder_text; "" when free).
+    apci::Status claim_motion() {
+        const Use use(*this);
+        return board_.claim_motion().status;
+    }
+    apci::Status release_motion() {
+        const Use use(*this);
+        return board_.release_motion().status;
+    }
+    std::tuple<apci::Status, bool, bool, std::int32_t, std::uint64_t, std::string, std::string>
+    motion_claim() {
+        const Use use(*this);
+        const auto r = board_.motion_claim();
+        if (!r.ok()) return {r.status, false, false, 0, 0, {}, {}};
+        objif::ClaimReply rep;
+        rep.held = r.value.held != 0;
+        rep.pid = r.value.pid;
+        rep.since_ms = r.value.since_ms;
+        rep.name = std::string(r.value.name, ::strnlen(r.value.name, sizeof r.value.name));
+        return {r.status,   rep.held, r.value.yours != 0,
+                rep.pid,    rep.since_ms, rep.name,
+                rep.held ? objif::claim_holder_text(rep) : std::string()};
     }
 
     // Holds the board for one call, or throws RuntimeError when another thread holds it.
@@ -493,7 +521,10 @@ PYBIND11_MODULE(_apci, m) {
         .def("read_int", &PyBoard::read_int)
         .def("read_double", &PyBoard::read_double)
         .def("write_int", &PyBoard::write_int)
-        .def("write_double", &PyBoard::write_double);
+        .def("write_double", &PyBoard::write_double)
+        .def("claim_motion", &PyBoard::claim_motion)
+        .def("release_motion", &PyBoard::release_motion)
+        .def("motion_claim", &PyBoard::motion_claim);
 
     m.def("run_program", &run_program, py::arg("board"), py::arg("program"),
           py::arg("program_is_text"), py::arg("name"), py::arg("tools"), py::arg("tools_is_text"),

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """apci.run(): the same path as `apcictl run --json`/`--csv`, errors with their line."""
 
+import contextlib
 import json
 import os
 import pathlib
@@ -295,15 +296,10 @@ def test_samples_beyond_max_samples_are_counted_not_kept():
         apci.run("M30\n", max_samples=-1)
 
 
-SPIKE = ("N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
-         "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
-         "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n")
-
-
-def test_self_approach_error_on_a_daemon_refuses_by_a_dry_run_before_anything_moves(apcictl):
-    """On a board that moves a machine, a finding of the check as an error comes from a dry
-    run on the embedded emulator, as a ProgramError: the daemon's board never moves."""
-    # A short directory: a socket path holds at most 107 bytes, a build tree's may not.
+@contextlib.contextmanager
+def _daemon(apcictl):
+    """The daemon of the build tree on a socket of its own (a short directory: a socket path
+    holds at most 107 bytes, a build tree's may not); its path, until the block ends."""
     with tempfile.TemporaryDirectory(prefix="apci-") as short:
         sock = pathlib.Path(short) / "d.sock"
         daemon = subprocess.Popen([str(apcictl.parent / "rwmos-emu"), "--socket", str(sock),
@@ -312,27 +308,77 @@ def test_self_approach_error_on_a_daemon_refuses_by_a_dry_run_before_anything_mo
             deadline = time.monotonic() + 10
             while not sock.exists() and time.monotonic() < deadline:
                 time.sleep(0.01)
-
-            def where():
-                with apci.open(f"unix:{sock}?timeout=10000") as b:
-                    return [b.read(f"board.position[{i}]") for i in range(3)]
-            assert where() == [0.0, 0.0, 0.0]
-            with pytest.raises(apci.ProgramError, match="found by a dry run") as refused:
-                apci.run(SPIKE, tools=TOOL_R5, device=f"unix:{sock}", self_approach="error")
-            assert refused.value.block == 50
-            assert where() == [0.0, 0.0, 0.0]
-            # Only warned, it runs on the daemon's board and warns.
-            done = apci.run(SPIKE, tools=TOOL_R5, device=f"unix:{sock}")
-            assert any(w.code == "SelfApproach" for w in done.warnings)
-            assert where() != [0.0, 0.0, 0.0]
+            yield sock
         finally:
             daemon.terminate()
             daemon.wait(timeout=10)
 
 
+SPIKE = ("N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+         "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+         "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN100 M30\n")
+
+
+def test_self_approach_error_on_a_daemon_refuses_by_a_dry_run_before_anything_moves(apcictl):
+    """On a board that moves a machine, a finding of the check as an error comes from a dry
+    run on the embedded emulator, as a ProgramError: the daemon's board never moves."""
+    with _daemon(apcictl) as sock:
+        def where():
+            with apci.open(f"unix:{sock}?timeout=10000") as b:
+                return [b.read(f"board.position[{i}]") for i in range(3)]
+        assert where() == [0.0, 0.0, 0.0]
+        with pytest.raises(apci.ProgramError, match="found by a dry run") as refused:
+            apci.run(SPIKE, tools=TOOL_R5, device=f"unix:{sock}", self_approach="error")
+        assert refused.value.block == 50
+        assert where() == [0.0, 0.0, 0.0]
+        # Only warned, it runs on the daemon's board and warns.
+        done = apci.run(SPIKE, tools=TOOL_R5, device=f"unix:{sock}")
+        assert any(w.code == "SelfApproach" for w in done.warnings)
+        assert where() != [0.0, 0.0, 0.0]
+
+
+def test_a_board_holds_the_motion_for_its_runs_and_another_program_is_refused(apcictl):
+    """Board.claim_motion(): the board's motion is this Board's; its runs run, another Board's
+    claim and run are refused naming the holder, and release_motion() (or close) ends it."""
+    with _daemon(apcictl) as sock:
+        uri = f"unix:{sock}"
+        with apci.open(uri) as mine, apci.open(uri) as other:
+            assert mine.motion_claim() == apci.MotionClaim(False, False, 0, 0, "", "")
+            mine.claim_motion()
+            own = mine.motion_claim()
+            assert own.held and own.yours and own.pid == os.getpid()
+            assert own.holder.startswith(f"pid {os.getpid()} (") and " since 20" in own.holder
+            seen = other.motion_claim()
+            assert seen.held and not seen.yours and seen.since_ms == own.since_ms
+            assert seen.holder == own.holder
+            with pytest.raises(apci.ObjectError) as twice:
+                mine.claim_motion()
+            assert twice.value.status == apci.Status.WrongDeviceState
+            with pytest.raises(apci.MotionClaimedError,
+                               match=rf"the board's motion is held by pid {os.getpid()} \("):
+                other.claim_motion()
+            with pytest.raises(apci.MotionClaimedError) as refused:
+                apci.run("N10 G1 X3 Y4 F600\nM30\n", device=other)
+            assert refused.value.status == apci.Status.MotionClaimed
+            assert other.read(1000, 0, 10, 0) == 0.0  # axis 0 did not move
+            # The holder's own runs run, and it still holds the motion after them.
+            assert apci.run("N10 G1 X3 Y4 F600\nM30\n", device=mine).ok
+            assert mine.motion_claim().yours
+            mine.release_motion()
+            assert not other.motion_claim().held
+            with pytest.raises(apci.ObjectError) as none:
+                mine.release_motion()
+            assert none.value.status == apci.Status.WrongDeviceState
+            other.claim_motion()
+        # Closed, the claim is gone with the Board.
+        with apci.open(uri) as after:
+            assert not after.motion_claim().held
+
+
 def test_a_run_on_a_board_another_program_holds_is_refused_and_moves_nothing(tmp_path, apcictl):
-    # The daemon, a holder of its motion (libapci's own claim call, through ctypes: the package
-    # has no call to claim by hand), and a run that must not move the board meanwhile.
+    # The daemon, a holder of its motion (libapci's own claim call, through ctypes: a C
+    # program's claim, beside Board.claim_motion() above), and a run that must not move the
+    # board meanwhile.
     import ctypes
     build_dir = apcictl.parent.parent
     # A short directory: a socket path holds at most 107 bytes, and pytest's tmp_path for a
