@@ -97,6 +97,13 @@ TEST(ApcictlCli, AMissingArgumentNamesItsCommandAndItsHelp) {
     r = test_support::apcictl({"read"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: read: NAME|BUS is required (see 'apcictl read --help')\n");
+    // Other errors of a command's words name what they name, as before.
+    r = test_support::apcictl({"run", "--json"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: --json: 1 required TEXT missing\n");
+    r = test_support::apcictl({"run", "p.nc", "--self-approach", "maybe"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "apcictl: --self-approach: maybe not in {warn,error,off}\n");
 }
 
 TEST(ApcictlCli, AfterTheEndOfOptionsAMistypedCommandIsStillNamed) {

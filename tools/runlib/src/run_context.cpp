@@ -290,9 +290,11 @@ bool RunContext::board_failure(const BlockRef& at, apci::Status status, std::str
 
 // One error per Table 4 bit set.
 bool RunContext::tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text) {
-    const std::string radii = (static_cast<std::uint32_t>(bits) & APCI_TC_ERROR_CALC) != 0
-                                  ? concave_arc_radii(at)
-                                  : std::string();
+    const PathSegment* move = recent_.find(encode_block_tag(at));
+    const std::string radii =
+        (static_cast<std::uint32_t>(bits) & APCI_TC_ERROR_CALC) != 0 && move != nullptr
+            ? concave_arc_radii(*move, tc_.state())
+            : std::string();
     for (int bit = 0; bit < 32; ++bit) {
         if ((static_cast<std::uint32_t>(bits) & (1u << bit)) == 0) continue;
         const char* name = apci_tc_error_bit_name(bit);
@@ -303,19 +305,12 @@ bool RunContext::tc_errors(const BlockRef& at, std::int32_t bits, const std::str
     return false;
 }
 
-// The board's CalcError compares an arc's radius with the tool's on the arc's concave side
-// ([APCI-TC] Table 4): where the block at fault is such an arc under compensation, smaller than
-// the tool, both radii, so that the user sees by how much ("; arc radius 4.0000 mm, tool radius
-// 5.0000 mm"); else nothing.
-std::string RunContext::concave_arc_radii(const BlockRef& at) const {
-    const TcUnit::State& tc = tc_.state();
-    const PathSegment* s = recent_.find(encode_block_tag(at));
-    if (!tc.comp_on || s == nullptr || s->kind != SegmentKind::kArc || s->plane != tc.comp_plane)
-        return {};
+std::string concave_arc_radii(const PathSegment& s, const TcUnit::State& tc) {
+    if (!tc.comp_on || s.kind != SegmentKind::kArc || s.plane != tc.comp_plane) return {};
     // G41 (left) on a counter-clockwise arc, G42 on a clockwise one: the centre on the
     // tool's side.
-    if ((tc.comp_side > 0) != s->ccw) return {};
-    const double r0 = arc_radius(*s), r1 = arc_end_radius(*s);
+    if ((tc.comp_side > 0) != s.ccw) return {};
+    const double r0 = arc_radius(s), r1 = arc_end_radius(s);
     if (std::min(r0, r1) >= tc.radius) return {};
     if (std::abs(r1 - r0) <= 5e-5)
         return fmt::format("; arc radius {:.4f} mm, tool radius {:.4f} mm", r0, tc.radius);

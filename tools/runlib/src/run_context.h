@@ -80,6 +80,12 @@ struct HeadState {
     double c = 0.0;
 };
 
+// The board's CalcError compares an arc's radius with the tool's on the arc's concave side
+// ([APCI-TC] Table 4): where the programmed move `s` is such an arc under the compensation
+// `tc`, smaller than the tool, both radii, so that the user sees by how much ("; arc radius
+// 4.0000 mm, tool radius 5.0000 mm"; a spiral's "4.0000 to 4.0010 mm"); else "".
+std::string concave_arc_radii(const PathSegment& s, const TcUnit::State& tc);
+
 class RunContext {
   public:
     RunContext(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
@@ -168,8 +174,6 @@ class RunContext {
     bool spool(const BlockRef& at, const PathSegment& programmed, const apci_profile& p);
 
     bool write_failure(const BlockRef& at, apci::Status status, std::string_view what);
-    // A CalcError's radii where the block at fault is a concave arc smaller than the tool.
-    std::string concave_arc_radii(const BlockRef& at) const;
     bool tc_errors(const BlockRef& at, std::int32_t bits, const std::string& text);
     void program_error(const nc::Diagnostic& d);
     void report_bottleneck(const detail::Bottleneck& b);
