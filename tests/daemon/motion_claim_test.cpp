@@ -310,14 +310,23 @@ pid_t idle_child() {
     return child;
 }
 
-TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
-    const pid_t holder = claiming_child(daemon_->shm_uri());
-    ASSERT_GT(holder, 0);
-    Client sock(daemon_->unix_uri());
+// A child that claimed the board's motion through the mailbox, seen holding it by `sock`, then
+// killed; its pid (-1 where it could not be started), once a clock tick has passed, so that a
+// process started from now on has a later start time.
+pid_t dead_mailbox_holder(const std::string& shm_uri, Client& sock) {
+    const pid_t holder = claiming_child(shm_uri);
+    if (holder <= 0) return -1;
     EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
     kill_and_reap(holder);
-    // Another process with the holder's pid, started later (a clock tick is 10 ms at most).
-    std::this_thread::sleep_for(50ms);
+    std::this_thread::sleep_for(50ms);  // a clock tick is 10 ms at most
+    return holder;
+}
+
+TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
+    Client sock(daemon_->unix_uri());
+    const pid_t holder = dead_mailbox_holder(daemon_->shm_uri(), sock);
+    ASSERT_GT(holder, 0);
+    // Another process with the holder's pid, started later.
     const pid_t reborn = child_with_pid(holder, idle_child);
     if (reborn < 0) GTEST_SKIP() << "the kernel did not hand out pid " << holder << " again";
     EXPECT_EQ(apci_claim_motion(sock.board), APCI_OK) << sock.error();
@@ -325,12 +334,9 @@ TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidIsNotTheHolder) {
 }
 
 TEST_F(MotionClaimDaemon, ProcessThatGotADeadMailboxHoldersPidHoldsItsOwnClaim) {
-    const pid_t holder = claiming_child(daemon_->shm_uri());
-    ASSERT_GT(holder, 0);
     Client sock(daemon_->unix_uri());
-    EXPECT_EQ(apci_claim_motion(sock.board), APCI_MOTION_CLAIMED);
-    kill_and_reap(holder);
-    std::this_thread::sleep_for(50ms);
+    const pid_t holder = dead_mailbox_holder(daemon_->shm_uri(), sock);
+    ASSERT_GT(holder, 0);
     // The next mailbox exchange is the new process's: its claim is its own, with its own start
     // time, and holds as long as it runs.
     const pid_t reborn =
