@@ -3,7 +3,6 @@
 // compensation group and of the active group, decoded by the bit names of [APCI-TC] (Tables 4 and 5)
 // ([APCI-TC] section 2.3 "Fehlerabfrage von TC").
 #include <cstdint>
-#include <cstring>
 #include <optional>
 #include <string>
 
@@ -11,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
-#include "objif/frame.h"
 #include "objif/map/object_map.h"
 
 namespace apcictl {
@@ -67,26 +65,18 @@ nlohmann::json bit_names(std::int32_t value, const char* (*name_of)(int)) {
     return names;
 }
 
-// Who holds the board's motion (docs/motion-claim.md), from the board's record: the holder as
-// libapci names it (objif::claim_holder_text). `served` false where the transport does not
-// serve claims (nothing then keeps two programs apart).
+// Who holds the board's motion (docs/motion-claim.md), from the board's record (claim_reply):
+// the holder as libapci names it (objif::claim_holder_text). `served` false where the
+// transport does not serve claims (nothing then keeps two programs apart).
 struct MotionHolder {
     apci::Status status = APCI_OK;  // of the query: APCI_OK, APCI_NOT_SUPPORTED or an error
-    apci_motion_claim claim{};
+    objif::ClaimReply claim;
     bool served() const { return status != APCI_NOT_SUPPORTED; }
-    std::string holder() const {
-        objif::ClaimReply rep;
-        rep.held = claim.held != 0;
-        rep.pid = claim.pid;
-        rep.since_ms = claim.since_ms;
-        rep.name = name();
-        return objif::claim_holder_text(rep);
-    }
-    std::string name() const { return {claim.name, ::strnlen(claim.name, sizeof claim.name)}; }
+    std::string holder() const { return objif::claim_holder_text(claim); }
 };
 MotionHolder motion_holder(apci::Board& board) {
     const auto r = board.motion_claim();
-    return MotionHolder{r.status, r.value};
+    return MotionHolder{r.status, r.ok() ? claim_reply(r.value) : objif::ClaimReply{}};
 }
 
 // A register read for --json: {"value": 1, "set": ["Run"]}, or {"unreadable": "StatusName"}.
@@ -160,11 +150,11 @@ private:
         } else if (motion.status != APCI_OK) {
             out["motion"] = {{"unreadable", std::string(apci::status_name(motion.status))}};
             if (outcome.ok()) outcome = failed(board, "motion claim", motion.status);
-        } else if (motion.claim.held == 0) {
+        } else if (!motion.claim.held) {
             out["motion"] = {{"served", true}, {"held", false}};
         } else {
             out["motion"] = {{"served", true},         {"held", true},
-                             {"pid", motion.claim.pid}, {"name", motion.name()},
+                             {"pid", motion.claim.pid}, {"name", motion.claim.name},
                              {"since_ms", motion.claim.since_ms}, {"holder", motion.holder()}};
         }
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
@@ -227,7 +217,7 @@ private:
         } else if (motion.status != APCI_OK) {
             fmt::print("motion: unreadable, {}\n", describe_status(motion.status));
             if (outcome.ok()) outcome = failed(board, "motion claim", motion.status);
-        } else if (motion.claim.held == 0) {
+        } else if (!motion.claim.held) {
             fmt::print("motion: free\n");
         } else {
             fmt::print("motion: held by {}\n", motion.holder());

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include <array>
+#include <cstring>
 
 #include <fmt/format.h>
 
 #include "command.h"
-#include "objif/frame.h"
 
 namespace apcictl {
 namespace {
@@ -81,6 +81,16 @@ std::string Session::reconnect_if_lost() {
         uri_);
 }
 
+objif::ClaimReply claim_reply(const apci_motion_claim& claim) {
+    objif::ClaimReply rep;
+    rep.held = claim.held != 0;
+    rep.yours = claim.yours != 0;
+    rep.pid = claim.pid;
+    rep.since_ms = claim.since_ms;
+    rep.name.assign(claim.name, ::strnlen(claim.name, sizeof claim.name));
+    return rep;
+}
+
 Outcome Session::claim_motion(std::string_view command) {
     Outcome failure;
     apci::Board* board = this->board(failure);
@@ -103,12 +113,8 @@ Outcome Session::claim_motion(std::string_view command) {
     const auto claim = board->motion_claim();
     std::string what_to_do = "wait until it has finished";
     if (claim.ok() && claim.value.held != 0) {
-        objif::ClaimReply rep;
-        rep.held = true;
-        rep.pid = claim.value.pid;
-        rep.since_ms = claim.value.since_ms;
-        rep.name = claim.value.name;
-        holder = "the board's motion is held by " + objif::claim_holder_text(rep);
+        holder =
+            "the board's motion is held by " + objif::claim_holder_text(claim_reply(claim.value));
         if (claim.value.pid > 0) what_to_do += fmt::format(", or stop it (kill {})", claim.value.pid);
     }
     return Outcome::board_error(
