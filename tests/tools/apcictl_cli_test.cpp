@@ -189,6 +189,8 @@ TEST(ApcictlCli, EveryErrorLineStartsWithTheProgramName) {
         {{"step", "0"}, {}},                             // count out of range
         {{"spool", "G01", "Q5"}, {}},                    // bad word
         {{"run", "--plane", "5", no_tool}, {}},
+        {{"run", "--plane", "", no_tool}, {}},  // given, but empty
+        {{"run", "--avoid-bottlenecks", "1", no_tool}, {}},
         {{"run", "--self-approach", "bogus", no_tool}, {}},
         {{"run", bad_nc}, {}},                                         // bad program
         {{"run", no_tool}, {}},                                        // run error

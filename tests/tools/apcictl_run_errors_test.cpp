@@ -140,9 +140,15 @@ TEST_F(ApcictlRun, UsageErrorsExitTwo) {
     EXPECT_EQ(apcictl({"run", "x.nc", "--bogus"}).exit_code, 2);
     // --avoid-bottlenecks: 0 (off) or 2..64 moves back.
     const std::string wr = kExamples + "/wr_quad_disc.nc", wr_tools = kExamples + "/tools/wr_quad_disc.tools";
-    for (const char* bad : {"1", "65", "-1", "x"})
-        EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", bad}).exit_code, 2)
+    for (const char* bad : {"1", "65", "-1", "x", "2.5", ""}) {
+        const auto r = apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", bad});
+        EXPECT_EQ(r.exit_code, 2) << bad;
+        EXPECT_EQ(r.out, "") << bad;  // nothing ran
+        // The option, the value and what it may be; not the parser's words.
+        EXPECT_EQ(r.err, "apcictl: run: --avoid-bottlenecks '" + std::string(bad) +
+                             "' is not 0 (never) or a number of moves to look back, 2..64\n")
             << bad;
+    }
     for (const char* good : {"0", "2", "64"})
         EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", good}).exit_code, 0)
             << good;
@@ -163,6 +169,9 @@ TEST_F(ApcictlRun, HelpNamesTheOptions) {
     EXPECT_EQ(r.exit_code, 0);
     for (const char* opt : {"--tools", "--svg", "--json", "--csv"})
         EXPECT_TRUE(contains(r.out, opt)) << opt;
+    // A number's option shows what it takes in its text, not the parser's validator terms.
+    EXPECT_TRUE(contains(r.out, "--avoid-bottlenecks N ")) << r.out;
+    EXPECT_FALSE(contains(r.out, "AND")) << r.out;
 }
 
 TEST_F(ApcictlRun, ProgramFromStandardInput) {

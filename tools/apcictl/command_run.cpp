@@ -208,7 +208,7 @@ class RunCommand final : public Command {
         app.add_flag("--svg-cycles", svg_cycles_,
                      "Draw the axes of every interpolation cycle in the plot too (the OTC offsets "
                      "show there, not in the segments)");
-        app.add_option("--plane", plane_text_,
+        plane_option_ = app.add_option("--plane", plane_text_,
                        "Draw the plot in this plane (17, 18, 19) instead of "
                        "the program's")
             ->type_name("INT");
@@ -217,12 +217,11 @@ class RunCommand final : public Command {
                        "contour away from its corners (the contour comes back near itself): "
                        "warn (default), error (the run fails there) or off")
             ->check(CLI::IsMember({"warn", "error", "off"}));
-        app.add_option("--avoid-bottlenecks", bottleneck_blocks_,
+        bottleneck_option_ = app.add_option("--avoid-bottlenecks", bottleneck_text_,
                        "Leave out the moves between two compensated moves whose tool paths "
                        "cross, looking this many moves back (2..64, as SINUMERIK's CDON with MD "
                        "20240), and warn 'Bottleneck'; 0 (the default): never")
-            ->check(CLI::Range(0, apci::run::ProgramExecutor::kMaxBottleneckBlocks) &
-                    !CLI::IsMember({1}));
+            ->type_name("N");
         app.add_flag("--one-thread", one_thread_,
                      "Run the NC front end, the board and the writers on this one thread (for "
                      "debugging: the same outputs, byte for byte)");
@@ -244,12 +243,25 @@ class RunCommand final : public Command {
     }
 
     Outcome prepare() override {
-        if (!plane_text_.empty()) {
+        if (plane_option_->count() > 0) {
             std::int64_t plane = 0;
             if (!parse_integer("--plane", plane_text_, 17, 19, plane).empty())
                 return Outcome::usage_error(
                     fmt::format("run: --plane '{}' is not 17, 18 or 19", plane_text_));
             plane_ = static_cast<int>(plane);
+        }
+        if (bottleneck_option_->count() > 0) {
+            // 0 (never) or 2..64: looking one move back finds nothing, a move's neighbour
+            // shares its corner.
+            constexpr std::int64_t kMax = apci::run::ProgramExecutor::kMaxBottleneckBlocks;
+            std::int64_t blocks = 0;
+            if (!parse_integer("--avoid-bottlenecks", bottleneck_text_, 0, kMax, blocks).empty() ||
+                blocks == 1)
+                return Outcome::usage_error(fmt::format(
+                    "run: --avoid-bottlenecks '{}' is not 0 (never) or a number of moves to look "
+                    "back, 2..{}",
+                    plain_text(bottleneck_text_), kMax));
+            bottleneck_blocks_ = static_cast<int>(blocks);
         }
         return refuse_output_over_input();
     }
@@ -549,6 +561,9 @@ class RunCommand final : public Command {
     std::string csv_;
     std::string tools_out_;
     std::string self_approach_ = "warn";
+    std::string bottleneck_text_;
+    const CLI::Option* bottleneck_option_ = nullptr;
+    const CLI::Option* plane_option_ = nullptr;
     int bottleneck_blocks_ = 0;
     bool svg_cycles_ = false;
     bool one_thread_ = false;
