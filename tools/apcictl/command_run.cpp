@@ -429,6 +429,13 @@ class RunCommand final : public Command {
         return Outcome::success();
     }
 
+    // "<lead>line 4 (N60)" for an error of a block, nothing for one of none (the board's clock,
+    // a lost link found between blocks).
+    static std::string at_block(const apci::run::BlockRef& b, std::string_view lead) {
+        if (b.number == apci::run::kNoBlock && b.line == 0) return {};
+        return fmt::format("{}{}", lead, apci::run::block_text(b));
+    }
+
     // The writers finish; every output is closed (its last bytes written, synced), and only
     // when all of them are complete are they renamed over their targets, together. Empty
     // when every output was published, else why not.
@@ -442,9 +449,9 @@ class RunCommand final : public Command {
         std::string written_error;
         if (const RunError* lost = link_failure(result.errors))
             written_error = fmt::format(
-                "run {}: no output written (any old ones are kept): the run did not finish, "
-                "{}: {}",
-                result.totals.file, apci::run::block_text(lost->block), lost->message);
+                "run {}: no output written (any old ones are kept): the run did not finish{}: "
+                "{}",
+                result.totals.file, at_block(lost->block, ", "), lost->message);
         for (std::size_t i = 0; i < files.named.size(); ++i) {
             // The output's own record of its first failed write names the cause; the plot
             // can fail reading back its temporary records too.
@@ -509,9 +516,8 @@ class RunCommand final : public Command {
             fmt::print(stderr, "apcictl: {}\n", written_error);
         if (!result.errors.empty()) {
             const RunError& first = result.errors.front();
-            return Outcome::board_error(fmt::format("run {}: stopped at {}: {}", result.totals.file,
-                                                    apci::run::block_text(first.block),
-                                                    first.code));
+            return Outcome::board_error(fmt::format("run {}: stopped{}: {}", result.totals.file,
+                                                    at_block(first.block, " at "), first.code));
         }
         if (!written_error.empty()) return Outcome::board_error(written_error);
         return Outcome::success();

@@ -284,13 +284,16 @@ void RunContext::place_head() noexcept {
 void RunContext::finish() {
     // The move under way ends (after a TC error the board holds the rest). A clock that
     // failed already is not asked again; its error is recorded.
-    if (set_up_ && clock_ok_) (void)run_clock();
+    // A link to the board that was lost (a daemon that stopped, a board unplugged) is not
+    // asked again: every call would fail as the one that found it, and the run has that error.
+    const bool linked = board_.connected();
+    if (set_up_ && clock_ok_ && linked) (void)run_clock();
     // PLC writes due after the program's last move: the clock runs on to them.
-    if (set_up_ && clock_ok_ && out_.errors.empty()) (void)plc_.after_end();
-    if (set_up_ && out_.otc_present) otc_.check_out_tool();
-    if (set_up_) variables_.read_all();
+    if (set_up_ && clock_ok_ && linked && out_.errors.empty()) (void)plc_.after_end();
+    if (set_up_ && linked && out_.otc_present) otc_.check_out_tool();
+    if (set_up_ && linked) variables_.read_all();
     out_.tools_after = tools_mut_;
-    if (out_.tc_present) tc_.read_registers();
+    if (out_.tc_present && linked) tc_.read_registers();
     out_.totals.cycles = cycles_seen_ - start_cycle_;
     if (!tc_.state().comp_plane_seen) out_.plot_plane = tc_.state().plane;
 }

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+// A run whose board goes away (the daemon stops): the run has one error, the call that found
+// the link lost, and the board is not asked again (the clock run to the end, the registers):
+// every later call would fail the same way and name the same cause a second time.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <string>
+
+#include "apci/apci.hpp"
+#include "apci/nc/program.h"
+#include "apci/run/executor.h"
+#include "daemon.h"
+
+namespace {
+
+using apci::run::ProgramExecutor;
+using apci::run::RunOutcome;
+using apci::run::RunSink;
+using apci_test::Daemon;
+
+// Stops the daemon at the first progress call: the run is under way, between two blocks.
+class StopsTheDaemon final : public RunSink {
+  public:
+    explicit StopsTheDaemon(Daemon& d) : daemon_(d) {}
+    void progress(std::uint64_t, std::uint64_t) override {
+        if (stopped_) return;
+        stopped_ = true;
+        (void)daemon_.stop(SIGKILL);
+    }
+    bool stopped() const { return stopped_; }
+
+  private:
+    Daemon& daemon_;
+    bool stopped_ = false;
+};
+
+std::string back_and_forth(int moves) {
+    std::string text = "N1 G1 F60000\n";
+    for (int i = 0; i < moves; ++i) text += i % 2 == 0 ? "X1\n" : "X0\n";
+    return text + "M30\n";
+}
+
+TEST(RunLostLink, TheCallThatFoundTheLinkLostIsTheRunsOneError) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apci::Board board(d->unix_uri());
+    ASSERT_TRUE(board) << board.last_error();
+    StopsTheDaemon sink(*d);
+    ProgramExecutor executor(board, sink, nullptr);
+    apci::nc::InterpreterOptions options;
+    options.start_position = executor.position();
+    options.cycle_seconds = executor.cycle_seconds();
+    const std::string text = back_and_forth(2 * static_cast<int>(ProgramExecutor::kProgressEvery));
+    auto program = apci::nc::Program::from_text(text, "p.nc", options);
+    ASSERT_TRUE(program) << program.error().to_string();
+    auto events = program.value().events();
+    ASSERT_TRUE(events);
+    const RunOutcome out = executor.run(events.value());
+    ASSERT_TRUE(sink.stopped()) << (out.errors.empty() ? "no error" : out.errors[0].message);
+    EXPECT_FALSE(board.connected());
+    ASSERT_EQ(out.errors.size(), 1u);
+    EXPECT_EQ(out.errors[0].code, "TransportError");
+    // The block the run was at when it found the link lost: after the progress call.
+    EXPECT_GT(out.errors[0].block.line, ProgramExecutor::kProgressEvery);
+}
+
+}  // namespace
