@@ -133,6 +133,71 @@ TEST_F(ApcictlRun, BadToolListNamesFileAndLine) {
     EXPECT_TRUE(contains(r.err, "bad.tools:2:")) << r.err;
 }
 
+// ---- Moves an earlier program left in a daemon's spooler
+
+// A run that stopped at a compensation error leaves what it spooled before the error in the
+// board's spooler, held. The next program on that board must not run them as its own (they ran
+// under its block numbers, from a start it never programmed): its setup discards them, as a
+// reset does, and says so.
+TEST_F(ApcictlRun, MovesAnErrorLeftInADaemonsSpoolerAreDiscardedBeforeTheNextProgram) {
+    const std::string socket = path("emu.sock");
+    const pid_t daemon = start_daemon(socket);
+    ASSERT_GT(daemon, 0);
+    const std::string device = "unix:" + socket;
+    const std::string calc = write("calc.nc",
+                                   "N10 G17 G90 D1\nN20 G0 X-20 Y10\nN30 G1 G41 X0 Y10 F600\n"
+                                   "N40 G1 X20\nN50 G3 X26 Y10 I3 J0\nN60 G1 X50\n"
+                                   "N70 G40 G1 X70 Y30\nN90 M30\n");
+    const std::string next =
+        write("next.nc", "N10 D1\nN20 G1 G41 X20 F100\nN30 X40\nN40 G40 X50\nM30\n");
+    const auto stopped = apcictl({"--device", device, "run", calc, "--tools", tools(5.0)});
+    EXPECT_EQ(stopped.exit_code, 1) << stopped.err;
+    EXPECT_TRUE(contains(stopped.out, "CalcError")) << stopped.out;
+    const auto held = apcictl({"--device", device, "status"});
+    EXPECT_TRUE(contains(held.out, "spooler 2 of 256 profiles")) << held.out;
+    const json doc = run_json(next, {"--tools", tools(5.0), "--device", device});
+    const std::string summary = last_.out;
+    const auto after = apcictl({"--device", device, "status"});
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+    // Its own moves only, from where the axes stood: the embedded board's run, segment for
+    // segment.
+    const json fresh = run_json(next, {"--tools", tools(5.0)});
+    EXPECT_EQ(doc.at("segments"), fresh.at("segments"));
+    ASSERT_EQ(doc.at("notices").size(), 1u) << doc.at("notices");
+    EXPECT_EQ(doc.at("notices")[0].at("code"), "Discarded");
+    EXPECT_TRUE(contains(summary,
+                         "notice: the board's spooler held 2 moves of an earlier program that "
+                         "stopped at a compensation error: discarded before this run"))
+        << summary;
+    EXPECT_TRUE(contains(after.out, "spooler 0 of 256 profiles")) << after.out;
+}
+
+// Moves another program spooled and has not run (the board does not hold them) are not this
+// program's to run or to discard: the run is refused before it changes anything.
+TEST_F(ApcictlRun, MovesAnotherProgramSpooledAndDidNotRunRefuseTheRunAndStay) {
+    const std::string socket = path("emu.sock");
+    const pid_t daemon = start_daemon(socket);
+    ASSERT_GT(daemon, 0);
+    const std::string device = "unix:" + socket;
+    const auto spooled = apcictl({"--device", device, "spool", "G01", "N7", "F600", "X10"});
+    EXPECT_EQ(spooled.exit_code, 0) << spooled.err;
+    const std::string prog = write("p.nc", "N10 G1 X5 F600\nM30\n");
+    const auto r = apcictl({"--device", device, "run", prog, "--json", path("p.json")});
+    const auto after = apcictl({"--device", device, "status"});
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.out,
+                         "SpoolerInUse: the board's spooler holds 1 move another program spooled "
+                         "and has not run yet: they would run as this program's. Let them run to "
+                         "their end (apcictl step) or discard them (apcictl direct js), then run "
+                         "again; nothing was moved"))
+        << r.out << r.err;
+    EXPECT_TRUE(contains(r.err, "stopped: SpoolerInUse")) << r.err;
+    EXPECT_TRUE(contains(after.out, "spooler 1 of 256 profiles")) << after.out;
+}
+
 // ---- Exit codes and usage
 
 TEST_F(ApcictlRun, UsageErrorsExitTwo) {

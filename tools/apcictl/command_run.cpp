@@ -429,11 +429,12 @@ class RunCommand final : public Command {
         return Outcome::success();
     }
 
-    // "<lead>line 4 (N60)" for an error of a block, nothing for one of none (the board's clock,
-    // a lost link found between blocks).
-    static std::string at_block(const apci::run::BlockRef& b, std::string_view lead) {
+    // "<lead>line 4 (N60)<tail>" for a message of a block, nothing for one of none (the board's
+    // clock, a lost link found between blocks, what the run did before its first block).
+    static std::string at_block(const apci::run::BlockRef& b, std::string_view lead,
+                                std::string_view tail = {}) {
         if (b.number == apci::run::kNoBlock && b.line == 0) return {};
-        return fmt::format("{}{}", lead, apci::run::block_text(b));
+        return fmt::format("{}{}{}", lead, apci::run::block_text(b), tail);
     }
 
     // The writers finish; every output is closed (its last bytes written, synced), and only
@@ -507,10 +508,10 @@ class RunCommand final : public Command {
             if (out->is_stdout() || names_standard_output(*name)) summary_to = stderr;
         apci::run::print_summary(summary_to, result.totals, result.errors);
         for (const RunError& w : result.warnings)
-            fmt::print(summary_to, "warning: {}: {}: {}\n", apci::run::block_text(w.block), w.code,
+            fmt::print(summary_to, "warning: {}{}: {}\n", at_block(w.block, "", ": "), w.code,
                        w.message);
         for (const RunError& n : result.notices)
-            fmt::print(summary_to, "notice: {}: {}\n", apci::run::block_text(n.block), n.message);
+            fmt::print(summary_to, "notice: {}{}\n", at_block(n.block, "", ": "), n.message);
         std::fflush(summary_to);
         if (!result.errors.empty() && !written_error.empty())
             fmt::print(stderr, "apcictl: {}\n", written_error);

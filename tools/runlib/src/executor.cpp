@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <array>
 #include <memory>
+#include <string>
 #include <type_traits>
 #include <variant>
+#include <vector>
 
 #include "apci/run/csv_writer.h"
 #include "apci/run/read_ahead.h"
@@ -218,8 +220,13 @@ void RunContext::draw_rest(Events& events) {
 bool RunContext::setup() {
     for (std::size_t i = 0; i < out_.axis_names.size(); ++i)
         out_.axis_names[i] = "a" + std::to_string(i);
-    const auto st = board_.motion_status();
+    auto st = board_.motion_status();
     if (!st) return board_failure({}, st.status, "motion status");
+    if (st.value.fill > 0) {
+        if (!discard_earlier_moves(st.value)) return false;
+        st = board_.motion_status();
+        if (!st) return board_failure({}, st.status, "motion status");
+    }
     start_cycle_ = st.value.now;
     cycles_seen_ = st.value.now;
     segments_lost_ = st.value.segments_lost;
@@ -249,6 +256,45 @@ bool RunContext::setup() {
         if (!r) return board_failure({}, r.status, "trace on");
         tracing_ = true;
     }
+    return true;
+}
+
+// Moves in the spooler before the run are an earlier program's, and would run as this one's
+// (under its block numbers) once its clock runs. Held after a compensation error (that program
+// stopped there and the board never ran them), they are discarded as a reset discards them,
+// by a direct command (JS: the spooler and the held profile are dropped, [APCI-TC] section 1),
+// with a notice; the segments the board logged before are not this run's either and are read
+// and dropped. Not held, they are another program's that has not run them yet: the run is
+// refused before anything changes (docs/apcictl.md, "Run").
+bool RunContext::discard_earlier_moves(const apci_motion_status& st) {
+    const std::string moves = fmt::format("{} move{}", st.fill, st.fill == 1 ? "" : "s");
+    if ((st.flags & APCI_MOTION_HELD) == 0)
+        return record({}, "SpoolerInUse",
+                      fmt::format("the board's spooler holds {} another program spooled and has "
+                                  "not run yet: they would run as this program's. Let them run "
+                                  "to their end (apcictl step) or discard them (apcictl direct "
+                                  "js), then run again; nothing was moved",
+                                  moves));
+    apci_direct_command js{};
+    js.code = APCI_DIRECT_JS;
+    if (const auto r = board_.direct(js); !r)
+        return board_failure({}, r.status, "discard the earlier program's moves (JS)");
+    const auto after = board_.motion_status();
+    if (!after) return board_failure({}, after.status, "motion status");
+    std::vector<apci_segment> earlier(64);
+    for (std::uint64_t left = after.value.segments_pending; left > 0;) {
+        const auto r = board_.read_segments(
+            earlier.data(), static_cast<std::size_t>(std::min<std::uint64_t>(left, earlier.size())));
+        if (!r) return board_failure({}, r.status, "read segments");
+        if (r.value == 0) break;
+        left -= std::min<std::uint64_t>(left, r.value);
+    }
+    out_.notices.push_back(RunError{
+        {}, "Discarded",
+        fmt::format("the board's spooler held {} of an earlier program that stopped at a "
+                    "compensation error: discarded before this run, as a reset discards them "
+                    "(they did not run)",
+                    moves)});
     return true;
 }
 

@@ -158,6 +158,7 @@ class RunContext {
     template <typename Events>
     void draw_rest(Events& events);
     bool setup();
+    bool discard_earlier_moves(const apci_motion_status& st);
     bool read_axis_numbers();
     void finish();
     bool dispatch(const nc::Event& ev);
