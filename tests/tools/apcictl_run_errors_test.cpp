@@ -217,6 +217,19 @@ TEST_F(ApcictlRun, UsageErrorsExitTwo) {
     for (const char* good : {"0", "2", "64"})
         EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", good}).exit_code, 0)
             << good;
+    // The plot's options without a plot: refused, not taken and ignored.
+    for (const std::vector<std::string>& plot_only :
+         {std::vector<std::string>{"--svg-cycles"}, std::vector<std::string>{"--plane", "18"}}) {
+        std::vector<std::string> args{"run", wr, "--tools", wr_tools};
+        args.insert(args.end(), plot_only.begin(), plot_only.end());
+        const auto r = apcictl(args);
+        EXPECT_EQ(r.exit_code, 2) << plot_only[0];
+        EXPECT_EQ(r.out, "") << plot_only[0];
+        EXPECT_EQ(r.err, "apcictl: run: " + plot_only[0] +
+                             " is an option of the plot: give --svg FILE too\n");
+        args.insert(args.end(), {"--svg", path("plot.svg")});
+        EXPECT_EQ(apcictl(args).exit_code, 0) << plot_only[0];
+    }
     const auto missing = apcictl({"run", path("missing.nc")});
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_TRUE(contains(missing.err, "missing.nc: cannot open")) << missing.err;

@@ -193,7 +193,9 @@ class Outputs final : public apci::run::RunSink {
 class RunCommand final : public Command {
   public:
     void declare(CLI::App& app) override {
-        app.add_option("PROGRAM", program_, "NC program (DIN 66025), or - to read standard input")
+        app.add_option("PROGRAM", program_,
+                       "NC program (DIN 66025, or Heidenhain Klartext), or - to read standard "
+                       "input")
             ->required();
         inputs_.declare(app);
         app.add_option("--svg", svg_,
@@ -234,15 +236,23 @@ class RunCommand final : public Command {
             "publishing no output unless it is valid). Then every block drives the board (spooled "
             "profiles tagged with the block number, TC objects for D, G17-G19, G25/G26, "
             "G40-G42) and a summary is printed: blocks, path length, time, errors by name. "
-            "Coordinates in the outputs are the tool centre point in mm. Exit 0 ok, 1 board or "
-            "program error (the run stops at the first board error), 2 usage (bad option, "
-            "unreadable program, output file that cannot be written). Outputs are written to "
+            "Coordinates in the JSON, the plot and the summary are the tool centre point in mm; "
+            "the CSV's are the machine's axes (the tool length included). Exit 0 ok, 1 board or "
+            "program error (the run stops at the first board error) or an output whose writing "
+            "failed, 2 usage (bad option, unreadable program, output file that cannot be "
+            "created). Outputs are written to "
             "temporary files beside them and replace them only when the whole run was written; "
             "with an output on standard output (-) the summary goes to standard error. A "
             "program on standard input may be at most 64 MiB. See docs/apcictl.md.");
     }
 
     Outcome prepare() override {
+        // The plot's options without a plot would be taken and do nothing.
+        for (const auto& [option, given] :
+             {std::pair{"--svg-cycles", svg_cycles_}, std::pair{"--plane", plane_option_->count() > 0}})
+            if (given && svg_.empty())
+                return Outcome::usage_error(fmt::format(
+                    "run: {} is an option of the plot: give --svg FILE too", option));
         if (plane_option_->count() > 0) {
             std::int64_t plane = 0;
             if (!parse_integer("--plane", plane_text_, 17, 19, plane).empty())
