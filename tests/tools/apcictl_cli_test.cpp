@@ -136,6 +136,11 @@ TEST(ApcictlCli, UnknownOptionWithNothingCloseNamesTheHelp) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: unknown option '--frobnicate' (see 'apcictl read --help')\n");
     EXPECT_EQ(test_support::apcictl({"-x"}).err, "apcictl: unknown option '-x' (see 'apcictl --help')\n");
+    // Typed before the command it is apcictl's option that is unknown, after it the command's.
+    EXPECT_EQ(test_support::apcictl({"-x", "read", "1300", "1", "1", "1"}).err,
+              "apcictl: unknown option '-x' (see 'apcictl --help')\n");
+    EXPECT_EQ(test_support::apcictl({"read", "-x", "1300", "1", "1", "1"}).err,
+              "apcictl: unknown option '-x' (see 'apcictl read --help')\n");
 }
 
 TEST(ApcictlCli, LeftOverArgumentsAreNamedInTheOrderTyped) {

@@ -109,6 +109,7 @@ int run(int argc, char** argv) {
     std::vector<std::string> args;
     for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
     apcictl::protect_negative_numbers(args);
+    const std::vector<std::string> typed = args;  // in order, for the error's help pointer
     std::reverse(args.begin(), args.end());
     try {
         app.parse(args);
@@ -118,7 +119,7 @@ int run(int argc, char** argv) {
             return std::fflush(stdout) != 0 || std::ferror(stdout) ? output_failed(0) : code;
         }
         // One line naming what is wrong: an unknown command or option with the one meant.
-        fmt::print(stderr, "apcictl: {}\n", apcictl::explain_command_line_error(app, e));
+        fmt::print(stderr, "apcictl: {}\n", apcictl::explain_command_line_error(app, e, typed));
         return static_cast<int>(Exit::kUsage);
     }
 

@@ -45,14 +45,28 @@ void add_option_names(const CLI::App& app, std::vector<std::string>& names) {
     }
 }
 
-std::string unknown_option(const CLI::App& top, const CLI::App& active, std::string_view typed) {
+// The command whose help an unknown option points to: apcictl's own where the option was
+// typed before the command's name (`words`, as typed; empty: not known), else the command's.
+const CLI::App& help_for(const CLI::App& top, const CLI::App& active, std::string_view typed,
+                         std::span<const std::string> words) {
+    if (&active == &top) return top;
+    for (const std::string& word : words) {
+        if (word == active.get_name()) return active;
+        if (word == typed) return top;
+    }
+    return active;
+}
+
+std::string unknown_option(const CLI::App& top, const CLI::App& active, std::string_view typed,
+                           std::span<const std::string> words = {}) {
     const std::string_view name = typed.substr(0, typed.find('='));
     std::vector<std::string> names;
     add_option_names(active, names);
     if (&active != &top) add_option_names(top, names);  // --device may follow the command
     const std::string meant = closest_name(name, names);
     if (!meant.empty()) return fmt::format("unknown option '{}'; did you mean '{}'?", name, meant);
-    return fmt::format("unknown option '{}' (see '{}')", name, help_command(top, active));
+    return fmt::format("unknown option '{}' (see '{}')", name,
+                       help_command(top, help_for(top, active, typed, words)));
 }
 
 std::string unknown_command(const CLI::App& top, std::string_view typed) {
@@ -83,14 +97,16 @@ std::string closest_name(std::string_view typed, std::span<const std::string> ca
     return best == nullptr ? std::string() : *best;
 }
 
-std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error) {
+namespace {
+std::string explain(const CLI::App& app, const CLI::ParseError& error,
+                    std::span<const std::string> words) {
     const CLI::App& active = active_command(app);
     // The words no option or positional took; a negative number (marked, arguments.h) is not an
     // option. An unknown option first: the words after it may be its value.
     std::vector<std::string> extras = app.remaining(true);
     std::erase(extras, std::string("--"));
     for (const std::string& word : extras)
-        if (is_option(word)) return unknown_option(app, active, word);
+        if (is_option(word)) return unknown_option(app, active, word, words);
     for (std::string& word : extras) word = plain_text(word);
     const bool has_commands = !app.get_subcommands({}).empty();
     if (has_commands && &active == &app) {
@@ -112,14 +128,20 @@ std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& erro
     }
     return plain_text(error.what());
 }
+}  // namespace
 
-std::string explain_command_line_error(const CLI::App& app, const CLI::ParseError& error) {
+std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error) {
+    return explain(app, error, {});
+}
+
+std::string explain_command_line_error(const CLI::App& app, const CLI::ParseError& error,
+                                       std::span<const std::string> words) {
     const CLI::App& active = active_command(app);
     if (&active != &app && dynamic_cast<const CLI::RequiredError*>(&error) != nullptr &&
         app.remaining(true).empty())
         return fmt::format("{}: {} (see '{}')", active.get_name(), plain_text(error.what()),
                            help_command(app, active));
-    return explain_parse_error(app, error);
+    return explain(app, error, words);
 }
 
 }  // namespace apcictl

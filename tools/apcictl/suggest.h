@@ -28,8 +28,10 @@ std::string closest_name(std::string_view typed, std::span<const std::string> ca
 // message. `app` is apcictl's command line or the parser of one script line.
 std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error);
 // The same for apcictl's command line, where a command's argument not given also names the
-// command and its help ("run: PROGRAM is required (see 'apcictl run --help')"); a script line
-// names its words itself.
-std::string explain_command_line_error(const CLI::App& app, const CLI::ParseError& error);
+// command and its help ("run: PROGRAM is required (see 'apcictl run --help')"), and an unknown
+// option typed before the command points to apcictl's own help (`words`: the command line as
+// typed, without the program's name); a script line names its words itself.
+std::string explain_command_line_error(const CLI::App& app, const CLI::ParseError& error,
+                                       std::span<const std::string> words = {});
 
 }  // namespace apcictl
