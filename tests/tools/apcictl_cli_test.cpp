@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cctype>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "apcictl.h"
+#include "run_report.h"
 #include "suggest.h"
 #include "text.h"
 
@@ -22,6 +25,72 @@ using apcictl::closest_name;
 using apcictl::edit_distance;
 using test_support::lines_of;
 using test_support::ProcessResult;
+
+// ---- the help an unknown option points to (explain_*: pure functions of a parsed app)
+
+// Parses `typed` (in order) with a command line of one command, `read`; the explanation of
+// the error it gives, with the words as typed (or none).
+std::string explained(const std::vector<std::string>& typed, bool with_words) {
+    CLI::App app("test", "apcictl");
+    CLI::App* read = app.add_subcommand("read", "read an object");
+    std::string address;
+    read->add_option("ADDRESS", address);
+    std::vector<std::string> reversed(typed.rbegin(), typed.rend());
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        return with_words ? apcictl::explain_command_line_error(app, e, typed)
+                          : apcictl::explain_parse_error(app, e);
+    }
+    return "parsed";
+}
+
+TEST(ApcictlSuggest, AnUnknownOptionPointsToTheHelpOfWhereItWasTyped) {
+    EXPECT_EQ(explained({"read", "--zzz", "1300"}, true),
+              "unknown option '--zzz' (see 'apcictl read --help')");
+    EXPECT_EQ(explained({"--zzz", "read", "1300"}, true),
+              "unknown option '--zzz' (see 'apcictl --help')");
+    // Without the words as typed, the command's.
+    EXPECT_EQ(explained({"read", "--zzz", "1300"}, false),
+              "unknown option '--zzz' (see 'apcictl read --help')");
+    EXPECT_EQ(explained({"--zzz"}, false), "unknown option '--zzz' (see 'apcictl --help')");
+}
+
+// ---- how `run` names a block in its messages (pure functions)
+
+TEST(ApcictlRunReport, AMessageOfABlockNamesItAndOneOfNoneSaysNothing) {
+    using apci::run::BlockRef;
+    using apci::run::RunError;
+    const BlockRef n60{60, 4}, line_only{apci::run::kNoBlock, 7}, number_only{60, 0}, none{};
+    EXPECT_EQ(apcictl::at_block(n60, " at "), " at line 4 (N60)");
+    EXPECT_EQ(apcictl::at_block(line_only, "", ": "), "line 7: ");
+    EXPECT_EQ(apcictl::at_block(number_only, "<", ">"), "<N60>");
+    EXPECT_EQ(apcictl::at_block(none, " at ", ": "), "");
+    EXPECT_EQ(apcictl::stopped_run("p.nc", RunError{n60, "KorrError", "x"}),
+              "run p.nc: stopped at line 4 (N60): KorrError");
+    EXPECT_EQ(apcictl::stopped_run("p.nc", RunError{none, "TransportError", "x"}),
+              "run p.nc: stopped: TransportError");
+    EXPECT_EQ(apcictl::unfinished_run("p.nc", RunError{n60, "TransportError", "spool: gone"}),
+              "run p.nc: no output written (any old ones are kept): the run did not finish, "
+              "line 4 (N60): spool: gone");
+    EXPECT_EQ(apcictl::unfinished_run("p.nc", RunError{none, "Timeout", "run clock: late"}),
+              "run p.nc: no output written (any old ones are kept): the run did not finish: run "
+              "clock: late");
+    apci::run::RunOutcome out;
+    out.warnings.push_back(RunError{n60, "SelfApproach", "near"});
+    out.notices.push_back(RunError{none, "Discarded", "held 2 moves"});
+    out.notices.push_back(RunError{line_only, "NoRadius", "no tool"});
+    char* text = nullptr;
+    std::size_t size = 0;
+    std::FILE* f = ::open_memstream(&text, &size);
+    ASSERT_NE(f, nullptr);
+    apcictl::print_warnings_and_notices(f, out);
+    std::fclose(f);
+    EXPECT_EQ(std::string(text, size),
+              "warning: line 4 (N60): SelfApproach: near\nnotice: held 2 moves\n"
+              "notice: line 7: no tool\n");
+    std::free(text);
+}
 
 // ---- the distance and the closest name (pure functions)
 
@@ -141,6 +210,10 @@ TEST(ApcictlCli, UnknownOptionWithNothingCloseNamesTheHelp) {
               "apcictl: unknown option '-x' (see 'apcictl --help')\n");
     EXPECT_EQ(test_support::apcictl({"read", "-x", "1300", "1", "1", "1"}).err,
               "apcictl: unknown option '-x' (see 'apcictl read --help')\n");
+    // A script line has its command only: that command's help.
+    EXPECT_EQ(test_support::apcictl({"script", "-"}, "read --frobnicate 1300 1 1 1\n").err,
+              "apcictl: line 1: read --frobnicate 1300 1 1 1: unknown option '--frobnicate' "
+              "(see 'apcictl read --help')\n");
 }
 
 TEST(ApcictlCli, LeftOverArgumentsAreNamedInTheOrderTyped) {

@@ -36,6 +36,7 @@
 #include "arguments.h"
 #include "command.h"
 #include "run_inputs.h"
+#include "run_report.h"
 
 namespace apcictl {
 namespace {
@@ -439,14 +440,6 @@ class RunCommand final : public Command {
         return Outcome::success();
     }
 
-    // "<lead>line 4 (N60)<tail>" for a message of a block, nothing for one of none (the board's
-    // clock, a lost link found between blocks, what the run did before its first block).
-    static std::string at_block(const apci::run::BlockRef& b, std::string_view lead,
-                                std::string_view tail = {}) {
-        if (b.number == apci::run::kNoBlock && b.line == 0) return {};
-        return fmt::format("{}{}{}", lead, apci::run::block_text(b), tail);
-    }
-
     // The writers finish; every output is closed (its last bytes written, synced), and only
     // when all of them are complete are they renamed over their targets, together. Empty
     // when every output was published, else why not.
@@ -459,10 +452,7 @@ class RunCommand final : public Command {
         // over the old outputs (docs/apcictl.md, "Outputs").
         std::string written_error;
         if (const RunError* lost = link_failure(result.errors))
-            written_error = fmt::format(
-                "run {}: no output written (any old ones are kept): the run did not finish{}: "
-                "{}",
-                result.totals.file, at_block(lost->block, ", "), lost->message);
+            written_error = unfinished_run(result.totals.file, *lost);
         for (std::size_t i = 0; i < files.named.size(); ++i) {
             // The output's own record of its first failed write names the cause; the plot
             // can fail reading back its temporary records too.
@@ -517,18 +507,12 @@ class RunCommand final : public Command {
         for (auto [out, name] : files.named)
             if (out->is_stdout() || names_standard_output(*name)) summary_to = stderr;
         apci::run::print_summary(summary_to, result.totals, result.errors);
-        for (const RunError& w : result.warnings)
-            fmt::print(summary_to, "warning: {}{}: {}\n", at_block(w.block, "", ": "), w.code,
-                       w.message);
-        for (const RunError& n : result.notices)
-            fmt::print(summary_to, "notice: {}{}\n", at_block(n.block, "", ": "), n.message);
+        print_warnings_and_notices(summary_to, result);
         std::fflush(summary_to);
         if (!result.errors.empty() && !written_error.empty())
             fmt::print(stderr, "apcictl: {}\n", written_error);
         if (!result.errors.empty()) {
-            const RunError& first = result.errors.front();
-            return Outcome::board_error(fmt::format("run {}: stopped{}: {}", result.totals.file,
-                                                    at_block(first.block, " at "), first.code));
+            return Outcome::board_error(stopped_run(result.totals.file, result.errors.front()));
         }
         if (!written_error.empty()) return Outcome::board_error(written_error);
         return Outcome::success();
