@@ -168,7 +168,8 @@ TEST_F(ApcictlRun, MovesAnErrorLeftInADaemonsSpoolerAreDiscardedBeforeTheNextPro
     EXPECT_EQ(doc.at("notices")[0].at("code"), "Discarded");
     EXPECT_TRUE(contains(summary,
                          "notice: the board's spooler held 2 moves of an earlier program that "
-                         "stopped at a compensation error: discarded before this run"))
+                         "stopped at a compensation error: discarded before this run, as a reset "
+                         "discards them (the axes stay where they stood)\n"))
         << summary;
     EXPECT_TRUE(contains(after.out, "spooler 0 of 256 profiles")) << after.out;
 }
@@ -185,17 +186,60 @@ TEST_F(ApcictlRun, MovesAnotherProgramSpooledAndDidNotRunRefuseTheRunAndStay) {
     const std::string prog = write("p.nc", "N10 G1 X5 F600\nM30\n");
     const auto r = apcictl({"--device", device, "run", prog, "--json", path("p.json")});
     const auto after = apcictl({"--device", device, "status"});
-    ::kill(daemon, SIGTERM);
-    ::waitpid(daemon, nullptr, 0);
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.out,
-                         "SpoolerInUse: the board's spooler holds 1 move another program spooled "
-                         "and has not run yet: they would run as this program's. Let them run to "
-                         "their end (apcictl step) or discard them (apcictl direct js), then run "
-                         "again; nothing was moved"))
+                         "SpoolerInUse: the board's spooler holds 1 move that another program "
+                         "spooled and the board has not run to its end: it would run as this "
+                         "program's. Let it run to its end (apcictl step) or discard it (apcictl "
+                         "direct js), then run again; nothing was moved"))
         << r.out << r.err;
     EXPECT_TRUE(contains(r.err, "stopped: SpoolerInUse")) << r.err;
     EXPECT_TRUE(contains(after.out, "spooler 1 of 256 profiles")) << after.out;
+    // Part of the way run is not to its end: still refused, and the board goes on as it was.
+    const auto stepped = apcictl({"--device", device, "script", "-"},
+                                 "spool G01 N8 F600 X20\nstep 500\n");
+    EXPECT_EQ(stepped.exit_code, 0) << stepped.err;
+    const auto again = apcictl({"--device", device, "run", prog, "--json", "-"});
+    EXPECT_EQ(again.exit_code, 1);
+    EXPECT_TRUE(contains(again.out, "\"code\":\"SpoolerInUse\"")) << again.out;
+    EXPECT_TRUE(contains(again.err, "spooler holds 2 moves that another program spooled and the "
+                                    "board has not run to their end: they would run"))
+        << again.err;
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+}
+
+// A move under way when the board came to hold (a compensation error refused a later profile
+// before the clock ran it to its end): discarding stops it where it is, and what the board
+// logs of it is the earlier program's, not this run's. The summary goes to standard error with
+// the JSON on standard output, the notice with it.
+TEST_F(ApcictlRun, AMoveUnderWayWhenTheBoardHeldIsStoppedAndItsSegmentIsNotThisRuns) {
+    const std::string socket = path("emu.sock");
+    const pid_t daemon = start_daemon(socket);
+    ASSERT_GT(daemon, 0);
+    const std::string device = "unix:" + socket;
+    // N5 under way at X10; group 1 compensating (radius 1, left), N3's centre off its circle.
+    const auto held = apcictl({"--device", device, "script", "-"},
+                              "spool G01 N5 X100 F600\nstep 1000\nwrite 1300 1 1 7 1\n"
+                              "write 1300 1 1 9 0\nwrite 1300 1 1 3 1\n"
+                              "spool G01 N1 X110 Y-10 F600\nspool G03 N3 X100 Y10 I100 J0 F600\n");
+    EXPECT_EQ(held.exit_code, 1);
+    EXPECT_TRUE(contains(held.err, "TC group 1 ERROR bits 0x10, block 3")) << held.err;
+    const std::string prog = write("p.nc", "N10 G1 X20 F600\nM30\n");
+    const auto r = apcictl({"--device", device, "run", prog, "--json", "-"});
+    ::kill(daemon, SIGTERM);
+    ::waitpid(daemon, nullptr, 0);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json doc = json::parse(r.out);  // standard output is the JSON alone
+    ASSERT_EQ(doc.at("segments").size(), 1u) << doc.at("segments");
+    EXPECT_EQ(doc.at("segments")[0].at("block"), 10);
+    // From where N5 stopped.
+    EXPECT_EQ(doc.at("segments")[0].at("start"), json::array({10, 0, 0}));
+    EXPECT_TRUE(contains(r.err,
+                         "notice: the board's spooler held 2 moves of an earlier program that "
+                         "stopped at a compensation error: discarded before this run, as a reset "
+                         "discards them (the axes stay where they stood)\n"))
+        << r.err;
 }
 
 // ---- Exit codes and usage
@@ -217,6 +261,11 @@ TEST_F(ApcictlRun, UsageErrorsExitTwo) {
     for (const char* good : {"0", "2", "64"})
         EXPECT_EQ(apcictl({"run", wr, "--tools", wr_tools, "--avoid-bottlenecks", good}).exit_code, 0)
             << good;
+    // --plane given empty is no plane (it was taken as not given).
+    const auto empty_plane =
+        apcictl({"run", wr, "--tools", wr_tools, "--svg", path("e.svg"), "--plane", ""});
+    EXPECT_EQ(empty_plane.exit_code, 2);
+    EXPECT_EQ(empty_plane.err, "apcictl: run: --plane '' is not 17, 18 or 19\n");
     // The plot's options without a plot: refused, not taken and ignored.
     for (const std::vector<std::string>& plot_only :
          {std::vector<std::string>{"--svg-cycles"}, std::vector<std::string>{"--plane", "18"}}) {

@@ -267,14 +267,17 @@ bool RunContext::setup() {
 // and dropped. Not held, they are another program's that has not run them yet: the run is
 // refused before anything changes (docs/apcictl.md, "Run").
 bool RunContext::discard_earlier_moves(const apci_motion_status& st) {
-    const std::string moves = fmt::format("{} move{}", st.fill, st.fill == 1 ? "" : "s");
+    const bool one = st.fill == 1;
+    const std::string moves = fmt::format("{} move{}", st.fill, one ? "" : "s");
     if ((st.flags & APCI_MOTION_HELD) == 0)
         return record({}, "SpoolerInUse",
-                      fmt::format("the board's spooler holds {} another program spooled and has "
-                                  "not run yet: they would run as this program's. Let them run "
-                                  "to their end (apcictl step) or discard them (apcictl direct "
-                                  "js), then run again; nothing was moved",
-                                  moves));
+                      fmt::format("the board's spooler holds {} that another program spooled and "
+                                  "the board has not run to {} end: {} would run as this "
+                                  "program's. Let {} run to {} end (apcictl step) or discard {} "
+                                  "(apcictl direct js), then run again; nothing was moved",
+                                  moves, one ? "its" : "their", one ? "it" : "they",
+                                  one ? "it" : "them", one ? "its" : "their",
+                                  one ? "it" : "them"));
     apci_direct_command js{};
     js.code = APCI_DIRECT_JS;
     if (const auto r = board_.direct(js); !r)
@@ -292,9 +295,9 @@ bool RunContext::discard_earlier_moves(const apci_motion_status& st) {
     out_.notices.push_back(RunError{
         {}, "Discarded",
         fmt::format("the board's spooler held {} of an earlier program that stopped at a "
-                    "compensation error: discarded before this run, as a reset discards them "
-                    "(they did not run)",
-                    moves)});
+                    "compensation error: discarded before this run, as a reset discards {} (the "
+                    "axes stay where they stood)",
+                    moves, one ? "it" : "them")});
     return true;
 }
 
