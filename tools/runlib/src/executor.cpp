@@ -11,7 +11,6 @@
 #include <string>
 #include <type_traits>
 #include <variant>
-#include <vector>
 
 #include "apci/run/csv_writer.h"
 #include "apci/run/read_ahead.h"
@@ -222,11 +221,7 @@ bool RunContext::setup() {
         out_.axis_names[i] = "a" + std::to_string(i);
     auto st = board_.motion_status();
     if (!st) return board_failure({}, st.status, "motion status");
-    if (st.value.fill > 0) {
-        if (!discard_earlier_moves(st.value)) return false;
-        st = board_.motion_status();
-        if (!st) return board_failure({}, st.status, "motion status");
-    }
+    if (st.value.fill > 0 && !discard_earlier_moves(st.value)) return false;
     start_cycle_ = st.value.now;
     cycles_seen_ = st.value.now;
     segments_lost_ = st.value.segments_lost;
@@ -265,39 +260,34 @@ bool RunContext::setup() {
 // by a direct command (JS: the spooler and the held profile are dropped, [APCI-TC] section 1),
 // with a notice; the segments the board logged before are not this run's either and are read
 // and dropped. Not held, they are another program's that has not run them yet: the run is
-// refused before anything changes (docs/apcictl.md, "Run").
-bool RunContext::discard_earlier_moves(const apci_motion_status& st) {
+// refused before anything changes (docs/apcictl.md, "Run"). `st`, the status that found them,
+// is the status after the discard on return.
+bool RunContext::discard_earlier_moves(apci_motion_status& st) {
     const bool one = st.fill == 1;
     const std::string moves = fmt::format("{} move{}", st.fill, one ? "" : "s");
+    const char* const its = one ? "its" : "their";
+    const char* const them = one ? "it" : "them";
     if ((st.flags & APCI_MOTION_HELD) == 0)
         return record({}, "SpoolerInUse",
-                      fmt::format("the board's spooler holds {} that another program spooled and "
-                                  "the board has not run to {} end: {} would run as this "
-                                  "program's. Let {} run to {} end (apcictl step) or discard {} "
-                                  "(apcictl direct js), then run again; nothing was moved",
-                                  moves, one ? "its" : "their", one ? "it" : "they",
-                                  one ? "it" : "them", one ? "its" : "their",
-                                  one ? "it" : "them"));
+                      fmt::format("the board's spooler holds {0} that another program spooled "
+                                  "and the board has not run to {1} end: {2} would run as this "
+                                  "program's. Let {3} run to {1} end (apcictl step) or discard "
+                                  "{3} (apcictl direct js), then run again; nothing was moved",
+                                  moves, its, one ? "it" : "they", them));
     apci_direct_command js{};
     js.code = APCI_DIRECT_JS;
     if (const auto r = board_.direct(js); !r)
         return board_failure({}, r.status, "discard the earlier program's moves (JS)");
     const auto after = board_.motion_status();
     if (!after) return board_failure({}, after.status, "motion status");
-    std::vector<apci_segment> earlier(64);
-    for (std::uint64_t left = after.value.segments_pending; left > 0;) {
-        const auto r = board_.read_segments(
-            earlier.data(), static_cast<std::size_t>(std::min<std::uint64_t>(left, earlier.size())));
-        if (!r) return board_failure({}, r.status, "read segments");
-        if (r.value == 0) break;
-        left -= std::min<std::uint64_t>(left, r.value);
-    }
+    st = after.value;
+    if (!drop_segments(st.segments_pending)) return false;
     out_.notices.push_back(RunError{
         {}, "Discarded",
         fmt::format("the board's spooler held {} of an earlier program that stopped at a "
                     "compensation error: discarded before this run, as a reset discards {} (the "
                     "axes stay where they stood)",
-                    moves, one ? "it" : "them")});
+                    moves, them)});
     return true;
 }
 

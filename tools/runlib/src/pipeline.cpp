@@ -209,7 +209,7 @@ void PipelinedSink::measured_lengths(double& path, double& rapid) {
     // Every segment is the inner sink's now: its sums. The writer thread waits for the next
     // batch (sync() ordered what it did before this), so the caller's thread may call the
     // inner sink (a second pipeline's measured_lengths() hands over its barrier from here).
-    if (inner_measures_) {  // every segment is the inner sink's now: its sums
+    if (inner_measures_) {
         inner_.measured_lengths(path, rapid);
         return;
     }

@@ -438,6 +438,13 @@ bool RunContext::drain_segments(std::uint64_t pending) {
         });
 }
 
+bool RunContext::drop_segments(std::uint64_t pending) {
+    return drain(
+        pending, segments_, "read segments",
+        [this](apci_segment* out, std::size_t n) { return board_.read_segments(out, n); },
+        [](const apci_segment&) { return true; });
+}
+
 bool RunContext::drain_samples(std::uint64_t pending) {
     return drain(
         pending, samples_, "read trace",

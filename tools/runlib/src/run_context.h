@@ -158,7 +158,7 @@ class RunContext {
     template <typename Events>
     void draw_rest(Events& events);
     bool setup();
-    bool discard_earlier_moves(const apci_motion_status& st);
+    bool discard_earlier_moves(apci_motion_status& st);
     bool read_axis_numbers();
     void finish();
     bool dispatch(const nc::Event& ev);
@@ -183,6 +183,8 @@ class RunContext {
     bool run_clock_until_idle();
     bool clocked(const apci::Result<apci_motion_status>& st, std::string_view what);
     bool drain_segments(std::uint64_t pending);
+    // Reads `pending` segments and drops them (logged before the run: not its own).
+    bool drop_segments(std::uint64_t pending);
     bool drain_samples(std::uint64_t pending);
     template <class Item, class Read, class Each>
     bool drain(std::uint64_t pending, std::vector<Item>& buffer, std::string_view what, Read read,
