@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include "apci/run/plane_distance.h"
@@ -1005,13 +1006,719 @@ struct SelfApproachCheck::Candidate {
     }
 };
 
+// Calls held back (docs/performance.md, "Stretches held back"). A call is kept, to be worked
+// later in its order, where working it now would give nothing out: nothing the check found waits
+// to be given out (settled()) and the call brings no pair near. A call that may bring a pair
+// near, or whose items could make a grid let items go, has the kept calls worked first
+// (release()), in order, and is then worked itself: the check has then had every call in order,
+// as if none had been kept, and gives out what it would have, where it would have (the kept
+// calls gave nothing out). Calls still kept when the run ends are never worked: they gave
+// nothing out, and let nothing go (limits() is the same).
+//
+// "Brings no pair near" is proved by the check's own tests, over more pairs than it asks:
+// - an item against every other stretch: the box of the item, widened by the plane's largest
+//   tool radius and kSeparation, meets no other stretch's zone (a box holding the boxes the
+//   grid keeps of all of its items): near_enough() is false for every such pair;
+// - a path against the elements of its own stretch, and an element against its stretch's paths:
+//   each pair check_path() and programmed() would make of them goes as it would go there: left
+//   out by the same rules (its relation and part, an approach's start, the wall model's word
+//   on a lead), proved apart by consider()'s proofs, measured no nearer than its threshold
+//   where settle() would measure it, or waiting, as the check's waiting_, until the model
+//   places its elements and review() decides it. The rules that only leave a pair out and ask
+//   what the hold does not know (a loop's clearing, a repeat's key, a tiny element, a
+//   stretch's first element) are not applied: more pairs are asked than the check asks.
+// Of each stretch whose items may still meet more of its own, the hold keeps the elements and
+// paths (Record); a stretch with more than kOwn of either ends the holding for the run (a proof
+// would take too many), and a call in a plane whose grid could let items go before the kept
+// calls were all in it is worked (room()). The hold follows what the check would have been given (its own PendingQueue,
+// the stretches' numbers and radii, a wall model given the same elements), so that it knows,
+// call by call, the numbers the check would have given the items and what its model says.
+struct SelfApproachCheck::Hold {
+    enum class Kind : std::uint8_t { kBegin, kEnd, kProgrammed, kExecuted, kWalls };
+    // A call as given, its segment as much of it as the check reads.
+    struct Call {
+        BlockRef block{};
+        double start[3]{}, end[3]{}, centre[3]{};
+        double sweep = 0.0;    // kProgrammed, kExecuted; the radius of a kBegin
+        int plane = 17;        // a kBegin's or the segment's
+        std::int8_t side = 1;  // kBegin
+        Kind kind = Kind::kBegin;
+        SegmentKind segment = SegmentKind::kLine;
+        Role role = Role::kUncompensated;
+        bool ccw = false;
+        bool on = false;  // kWalls
+        static void make(Call& c, Kind k, const PathSegment& s) {
+            c.kind = k;
+            c.block = s.block;
+            for (int i = 0; i < 3; ++i) {
+                c.start[i] = s.start[i];
+                c.end[i] = s.end[i];
+                c.centre[i] = s.center[i];
+            }
+            c.sweep = s.sweep;
+            c.plane = s.plane;
+            c.segment = s.kind;
+            c.role = s.role;
+            c.ccw = s.ccw;
+        }
+        PathSegment segment_of() const {
+            PathSegment s;
+            s.block = block;
+            s.kind = segment;
+            s.role = role;
+            for (int i = 0; i < 3; ++i) {
+                s.start[i] = start[i];
+                s.end[i] = end[i];
+                s.center[i] = centre[i];
+            }
+            s.ccw = ccw;
+            s.plane = plane;
+            s.sweep = sweep;
+            return s;
+        }
+    };
+    struct Box {
+        Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+        bool holds(const Box& b) const {
+            return (b.lo.array() >= lo.array()).all() && (b.hi.array() <= hi.array()).all();
+        }
+    };
+    // An element or a path of a stretch as the proofs take it: its shape as shape_of() makes
+    // it, and what the model said of its element once placed (kept: it does not change).
+    struct Item {
+        Shape shape;
+        Extent extent;  // no smaller than the grid's (StoredShape's, rounded outward)
+        std::uint64_t index = 0;  // its element's number
+        double r = 0.0;           // a path's tool radius
+        Vec2 entry = Vec2::Zero();  // an approach's entry point (its element's end)
+        bool transition = false;  // a path's role
+        bool approach = false;
+        bool arc = false;
+        detail::WallRole role = detail::WallRole::kUndecided;
+    };
+    // A pair the check would ask the model about before it measures it (its elements not
+    // placed): it waits, as in the check's waiting_, and is decided when both are.
+    struct Waiting {
+        Shape path, part;
+        double threshold = 0.0;
+        bool cross = false;
+        std::uint64_t contour = 0, path_index = 0;
+    };
+    struct Record {
+        std::uint64_t stretch = 0;
+        int plane = 17;
+        bool ended = false;
+        bool large = false;  // more than kOwn elements or paths
+        std::vector<Item> elements, paths;
+        // A box holding the stretch's items, proved apart from every other stretch's zone in
+        // the epoch `epoch` (every item since was proved so or lies in it).
+        Box clear;
+        std::uint64_t epoch = 0;
+    };
+    // A stretch's zone: a box holding every item of it, and whether it is listed among the
+    // plane's wide ones rather than in its cells.
+    struct Zone {
+        Box box;
+        Box items;  // the least box holding its items (box holds it, and the boxes proved)
+        int plane = 17;
+        bool wide = false;
+    };
+    struct Counts {
+        std::size_t elements = 0, paths = 0, element_entries = 0, path_entries = 0;
+    };
+    static constexpr std::size_t kOwn = 256;
+    static constexpr double kZoneCell = 64.0;        // mm
+    static constexpr std::int64_t kZoneCells = 256;  // a zone over more is a wide one
+    static constexpr std::size_t kMostWide = 16;     // per plane; more: nothing is kept again
+    static constexpr std::size_t kMostStretches = std::size_t{1} << 18;
+    static constexpr double kSeparation = 1e-3;      // mm beyond the largest tool radius
+    static constexpr double kMostCoordinate = 1e12;  // mm: beyond, nothing is kept again
+    static constexpr double kRoom = 4.0;             // mm a stretch's proved box may grow by
+    // Pairs waiting at most (the check's queue takes kMaxDeferred before it measures the
+    // oldest as things stand).
+    static constexpr std::size_t kMostWaiting = kMaxDeferred / 2;
+
+    // What the check would have been given (its fields of the same names).
+    bool active = false;
+    double r = 0.0;
+    int plane = 17;
+    std::uint64_t stretch = 0;
+    std::uint64_t next_index = 0;
+    PendingQueue pending;
+    std::array<double, 3> max_r{};
+    // What the check's wall model says of the elements of the stretches whose items may be
+    // kept: leads are a stretch's own (wall_model.h), so a model given those stretches'
+    // elements as the check's is given them places them as the check's does. It is asked
+    // about leads and CDOF only (a loop's clearing is left to the pair's geometry), so every
+    // element takes the same key (its loops are one, never compared).
+    detail::WallModel walls;
+    bool walls_on = true;
+    std::vector<Waiting> waiting;
+    std::uint64_t reviewed = 0;  // the model's generation at the last review
+    std::deque<Record> records;  // the stretches whose items may still meet more of their own
+    std::vector<Record> spare;   // records let go, their memory kept for the next
+    std::vector<Zone> zones;     // by stretch number - 1
+    detail::CellIndex<3> cells;  // per plane (list), the stretches listed in each zone cell
+    std::array<std::vector<std::uint32_t>, 3> wide;
+    std::vector<std::uint32_t> found;
+    // Grows with each call worked: a stretch's box proved clear before is asked again.
+    std::uint64_t epoch = 1;
+    // The calls kept, and the items they bring per plane.
+    std::deque<Call> calls;
+    std::array<Counts, 3> held{};
+    bool off = false;  // nothing is kept from now on (too many stretches, or too wide)
+
+    static std::size_t slot(int p) { return p == 18 ? 1 : p == 19 ? 2 : 0; }
+    bool holding() const noexcept { return !calls.empty(); }
+    // Whether a call that brings no pair near may be kept.
+    bool may_keep(const SelfApproachCheck& c) const { return !off && (holding() || c.settled()); }
+
+    static bool finite_box(const Box& b) {
+        return b.lo.allFinite() && b.hi.allFinite() &&
+               b.lo.cwiseAbs().maxCoeff() < kMostCoordinate &&
+               b.hi.cwiseAbs().maxCoeff() < kMostCoordinate;
+    }
+    // More than a float's rounding of v, and of the sums the boxes are made of (the grid keeps
+    // boxes in floats, rounded outward: StoredShape).
+    static double slack(double v) { return 1e-6 + 4e-7 * std::abs(v); }
+    static Box widened(Box b) {
+        const double m = slack(std::max(b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()));
+        b.lo.array() -= m;
+        b.hi.array() += m;
+        return b;
+    }
+    static Box box_of(const Shape& e) { return widened(Box{e.lo, e.hi}); }
+    // Made in place: shape e, element number `index`.
+    static void make(Item& x, const Shape& e, std::uint64_t index) {
+        x.shape = e;
+        const Box b = box_of(e);
+        x.extent = Extent{b.lo, b.hi, e.low - slack(e.low), e.high + slack(e.high)};
+        x.arc = is_arc(e);
+        x.index = index;
+        x.role = detail::WallRole::kUndecided;
+    }
+
+    // The zone cells of a box.
+    struct Cells {
+        std::int64_t i0, i1, j0, j1;
+        std::int64_t count() const { return (i1 - i0 + 1) * (j1 - j0 + 1); }
+    };
+    static Cells cells_of(const Vec2& lo, const Vec2& hi) {
+        return {detail::floor_index(lo.x() / kZoneCell), detail::floor_index(hi.x() / kZoneCell),
+                detail::floor_index(lo.y() / kZoneCell), detail::floor_index(hi.y() / kZoneCell)};
+    }
+    static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
+        return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
+    }
+
+    // The stretch's zone made to hold b, an item's box or (not `item`) a box proved apart
+    // (listed in the cells it now covers).
+    void grow(std::uint64_t id, const Box& b, bool item = true) {
+        if (off) return;
+        Zone& z = zones[static_cast<std::size_t>(id - 1)];
+        if (item) z.items = Box{z.items.lo.cwiseMin(b.lo), z.items.hi.cwiseMax(b.hi)};
+        if (z.box.holds(b)) return;
+        if (!finite_box(b)) {
+            off = true;
+            return;
+        }
+        const bool had = z.box.lo.x() <= z.box.hi.x();
+        const Vec2 lo = z.box.lo.cwiseMin(b.lo), hi = z.box.hi.cwiseMax(b.hi);
+        const std::size_t list = slot(z.plane);
+        const Cells now = cells_of(lo, hi);
+        if (!z.wide && now.count() > kZoneCells) {
+            z.wide = true;
+            wide[list].push_back(static_cast<std::uint32_t>(id));
+            if (wide[list].size() > kMostWide) off = true;
+        }
+        if (!z.wide) {
+            const Cells old = had ? cells_of(z.box.lo, z.box.hi) : Cells{1, 0, 1, 0};
+            for (std::int64_t i = now.i0; i <= now.i1; ++i)
+                for (std::int64_t j = now.j0; j <= now.j1; ++j)
+                    if (i < old.i0 || i > old.i1 || j < old.j0 || j > old.j1)
+                        cells.add(list, cell_key(i, j), static_cast<std::uint32_t>(id));
+        }
+        z.box = Box{lo, hi};
+    }
+    // True where b lies farther than `reach` from every zone of plane `p` but stretch `id`'s on
+    // one axis.
+    bool apart_from_others(std::uint64_t id, int p, const Box& b, double reach) {
+        const std::size_t list = slot(p);
+        const Cells look = cells_of(Vec2(b.lo.array() - reach), Vec2(b.hi.array() + reach));
+        if (look.count() > 64) return false;
+        found.clear();
+        for (std::int64_t i = look.i0; i <= look.i1; ++i)
+            for (std::int64_t j = look.j0; j <= look.j1; ++j)
+                cells.append(list, cell_key(i, j), found);
+        found.insert(found.end(), wide[list].begin(), wide[list].end());
+        for (const std::uint32_t other : found) {
+            if (other == id) continue;
+            const Box& z = zones[other - 1].box;
+            if (z.lo.x() - b.hi.x() >= reach || b.lo.x() - z.hi.x() >= reach ||
+                z.lo.y() - b.hi.y() >= reach || b.lo.y() - z.hi.y() >= reach)
+                continue;
+            return false;
+        }
+        return true;
+    }
+    // True where the box b of an item of `rec` lies farther than the plane's largest tool radius
+    // and kSeparation from every other stretch's zone on one axis: proved now, or lying within
+    // a box of the stretch proved so earlier in this epoch (a box proved is made part of the
+    // stretch's zone, so every item of another stretch proved since was proved apart from it;
+    // an epoch ends with every call worked, whose items nothing proved). A box proved is the
+    // stretch's zone and b, with room to grow where that is apart too (fewer proofs).
+    bool alone(Record& rec, const Box& b) {
+        if (rec.epoch == epoch && rec.clear.holds(b)) return true;
+        if (!finite_box(b)) return false;
+        const double reach = max_r[slot(rec.plane)] + kSeparation;
+        const Box& items = zones[static_cast<std::size_t>(rec.stretch - 1)].items;
+        const Box both{items.lo.cwiseMin(b.lo), items.hi.cwiseMax(b.hi)};
+        for (const double room : {kRoom, 0.0}) {
+            const Box wider{Vec2(both.lo.array() - room), Vec2(both.hi.array() + room)};
+            if (apart_from_others(rec.stretch, rec.plane, wider, reach)) {
+                rec.clear = wider;
+                rec.epoch = epoch;
+                grow(rec.stretch, wider, false);
+                return true;
+            }
+        }
+        return false;
+    }
+
+    Record* record_of(std::uint64_t id) {
+        for (Record& rec : records)
+            if (rec.stretch == id) return &rec;
+        return nullptr;
+    }
+    // The stretches that ended and whose elements were all executed (or let go) have no more
+    // items of their own.
+    void prune() {
+        while (!records.empty() && records.front().ended &&
+               (pending.waiting() == 0 || records.front().stretch < pending.at(0).stretch)) {
+            Record& rec = records.front();
+            rec.elements.clear();
+            rec.paths.clear();
+            spare.push_back(std::move(rec));
+            records.pop_front();
+        }
+    }
+    // A new item of the record's (null where the record is or becomes large), to be made.
+    static Item* add(Record& rec, std::vector<Item>& to) {
+        if (rec.large) return nullptr;
+        if (to.size() >= kOwn) {
+            rec.large = true;
+            return nullptr;
+        }
+        return &to.emplace_back();
+    }
+
+    // Whether the grid of plane `p` keeps every item the kept calls would bring, and this one
+    // (an element, or a path) whose length is at most `length`, without letting any go: at
+    // most as many items as the grid takes before it lets some go, and entries counted as the
+    // most such an item takes (every item counted, its cells at the grid's cell size now, which
+    // only grows). Where the grid has not sized its cells yet, the kept elements stay fewer
+    // than it sizes them by (a cost, not a proof: its cells are then sized).
+    std::size_t entries_of(const SelfApproachCheck& c, int p, double length) const {
+        const Grid* g = c.grids_[slot(p)].get();
+        const double cell = g != nullptr && g->cell > 0.0 ? g->cell : 0.5;
+        const double samples = std::max(1.0, std::ceil(length / (0.5 * cell)));
+        return samples < 1e9 ? std::max<std::size_t>(4, static_cast<std::size_t>(samples) + 1)
+                             : std::numeric_limits<std::size_t>::max() / 4;
+    }
+    bool room(const SelfApproachCheck& c, int p, bool element, std::size_t entries) const {
+        const std::size_t list = slot(p);
+        const Grid* g = c.grids_[list].get();
+        const Counts& h = held[list];
+        const std::size_t most = element ? c.window_ : Grid::kPathsPerElement * c.window_;
+        const Grid::List* kept = g == nullptr ? nullptr : element ? &g->contour : &g->path;
+        const std::size_t items = kept == nullptr ? 0 : kept->items.size();
+        const std::size_t kept_entries = kept == nullptr ? 0 : kept->entries;
+        if (items + (element ? h.elements : h.paths) + 1 >= 2 * most) return false;
+        if (kept_entries + (element ? h.element_entries : h.path_entries) + entries >=
+            2 * c.entry_budget_)
+            return false;
+        return !element || (g != nullptr && g->sized) ||
+               (g == nullptr ? 0 : g->first_lengths.size()) + h.elements + 1 < Grid::kSizing;
+    }
+    void count(int p, bool element, std::size_t entries) {
+        Counts& h = held[slot(p)];
+        (element ? h.elements : h.paths) += 1;
+        (element ? h.element_entries : h.path_entries) += entries;
+    }
+
+    // What the model says of an item's element, kept once it is placed.
+    detail::WallRole role_of(Item& x) const {
+        if (x.role == detail::WallRole::kUndecided) {
+            std::uint64_t loop = 0;
+            x.role = walls.placement(x.index, loop);
+        }
+        return x.role;
+    }
+    detail::WallRole placement(std::uint64_t index) const {
+        std::uint64_t loop = 0;
+        return walls.placement(index, loop);
+    }
+    // No wall by its placement alone (the check's model says so too; a loop's element may be
+    // cleared as well, which the hold leaves to the geometry).
+    static bool no_wall(detail::WallRole role) {
+        return role == detail::WallRole::kLead || role == detail::WallRole::kOff;
+    }
+
+    // Whether consider() proves the pair apart (an approach at its entry point held only to a
+    // crossing).
+    static bool proved(const Shape& path, const Shape& part, double threshold, bool cross) {
+        if (cross && plane::apart(path, part, SelfApproachCheck::kTolerance + kApartMargin))
+            return true;
+        return plane::apart_by_side(path, part, threshold + kApartMargin) ||
+               plane::apart(path, part, threshold + kApartMargin);
+    }
+    // Whether settle() finds nothing of a pair it measures.
+    static bool measured_clear(const Shape& path, const Shape& part, double threshold,
+                               bool cross) {
+        const double d = least_distance(path, part, threshold).distance;
+        return d >= threshold || (cross && d > SelfApproachCheck::kTolerance);
+    }
+    // A pair consider() is given, as it goes on there: proved apart, or (both its elements
+    // placed) measured clear, or (not placed) waiting for the model. False where the check may
+    // find something of it now.
+    bool pair_clear(const Shape& path, const Shape& part, double threshold, bool cross,
+                    bool placed, std::uint64_t contour, std::uint64_t path_index) {
+        if (proved(path, part, threshold, cross)) return true;
+        if (placed) return measured_clear(path, part, threshold, cross);
+        waiting.push_back(Waiting{path, part, threshold, cross, contour, path_index});
+        return waiting.size() < kMostWaiting;
+    }
+    // The pairs waiting whose elements the model has placed now, decided as review() decides
+    // them: left out (no wall) or measured. False where one may be found.
+    bool review() {
+        if (walls.generation() == reviewed) return true;
+        reviewed = walls.generation();
+        bool clear = true;
+        std::erase_if(waiting, [&](const Waiting& w) {
+            if (!clear) return false;
+            const detail::WallRole role = placement(w.contour);
+            if (role == detail::WallRole::kUndecided ||
+                placement(w.path_index) == detail::WallRole::kUndecided)
+                return false;
+            clear = no_wall(role) || measured_clear(w.path, w.part, w.threshold, w.cross);
+            return clear;
+        });
+        return clear;
+    }
+    // The pairs programmed() makes of element e (number `index`) and its stretch's paths, each
+    // gone on with as there.
+    bool clear_of_paths(Record& rec, const Shape& e, std::uint64_t index) {
+        if (rec.paths.empty()) return true;
+        Shape scratch;
+        const detail::WallRole self = placement(index);
+        for (Item& p : rec.paths) {
+            const Relation rel = relation(index, rec.stretch, p.index, rec.stretch, p.transition);
+            const Shape* part = checked_part(e, rel, scratch);
+            if (part == nullptr) continue;
+            const double threshold = threshold_for(rel, p.r);
+            // The path as the grid keeps it (its length rounded up).
+            const detail::StoredShape stored(p.shape);
+            if (!near_enough(stored.extent(), extent_of(*part), threshold)) continue;
+            const bool placed = role_of(p) != detail::WallRole::kUndecided &&
+                                self != detail::WallRole::kUndecided;
+            if (placed && no_wall(self)) continue;
+            const Shape path = stored.shape();
+            if (p.approach && stands_near(path, *part, threshold)) continue;
+            const bool cross = p.approach && at_entry(e, p.entry);
+            if (!pair_clear(path, *part, threshold, cross, placed, index, p.index)) return false;
+        }
+        return true;
+    }
+    // The pairs check_path() makes of path e (of element p) and its stretch's elements, each
+    // gone on with as there.
+    bool clear_of_elements(Record& rec, const Shape& e, const Pending& p, bool transition,
+                           bool approach) {
+        const Extent extent = extent_of(e);
+        bool self_placed = !(active && rec.stretch == stretch);
+        if (!self_placed) self_placed = placement(p.index) != detail::WallRole::kUndecided;
+        Shape scratch;
+        for (Item& c : rec.elements) {
+            // Farther than r on an axis: farther than every threshold.
+            if (c.extent.lo.x() - extent.hi.x() >= p.r || extent.lo.x() - c.extent.hi.x() >= p.r ||
+                c.extent.lo.y() - extent.hi.y() >= p.r || extent.lo.y() - c.extent.hi.y() >= p.r)
+                continue;
+            const Relation rel = relation(c.index, rec.stretch, p.index, rec.stretch, transition);
+            if (rel == Relation::kOwn ||
+                ((rel == Relation::kHeld || rel == Relation::kNext) && !c.arc))
+                continue;
+            const double threshold = threshold_for(rel, p.r);
+            if (!near_enough(extent, c.extent, threshold)) continue;
+            const detail::WallRole role = role_of(c);
+            const bool placed = self_placed && role != detail::WallRole::kUndecided;
+            if (placed && no_wall(role)) continue;  // whatever part of it is asked
+            const Shape* part = checked_part(c.shape, rel, scratch);
+            if (part == nullptr) continue;
+            if (part != &c.shape && !near_enough(extent, extent_of(*part), threshold)) continue;
+            if (approach && stands_near(e, *part, threshold)) continue;
+            const bool cross = approach && at_entry(c.shape, p.end);
+            if (!pair_clear(e, *part, threshold, cross, placed, c.index, p.index)) return false;
+        }
+        return true;
+    }
+
+    // The calls: each follows what the check would do with it, and answers whether it is kept
+    // (true: not to be worked now).
+    bool begin(const SelfApproachCheck& c, double radius, int p, int side) {
+        active = true;
+        r = std::max(0.0, radius);
+        plane = p;
+        ++stretch;
+        max_r[slot(p)] = std::max(max_r[slot(p)], r);
+        if (stretch > kMostStretches) off = true;
+        if (!off) {
+            zones.push_back(Zone{Box{}, Box{}, p, false});
+            Record rec;
+            if (!spare.empty()) {
+                rec = std::move(spare.back());
+                spare.pop_back();
+            }
+            rec.stretch = stretch;
+            rec.plane = p;
+            rec.ended = rec.large = false;
+            rec.epoch = 0;
+            records.push_back(std::move(rec));
+            walls.begin(p, side);
+        }
+        // A begin gives nothing out: kept while calls are (they come before it), or to start.
+        if (!holding() && (off || !c.settled())) return false;
+        Call k;
+        k.kind = Kind::kBegin;
+        k.sweep = radius;
+        k.plane = p;
+        k.side = static_cast<std::int8_t>(side < 0 ? -1 : 1);
+        calls.push_back(k);
+        return true;
+    }
+    bool set_walls(const SelfApproachCheck& c, bool on) {
+        walls_on = on;
+        if (!holding() && (off || !c.settled())) return false;
+        Call k;
+        k.kind = Kind::kWalls;
+        k.on = on;
+        calls.push_back(k);
+        return true;
+    }
+    bool end(const SelfApproachCheck& c) {
+        if (!active) return true;  // the check does nothing with it
+        active = false;
+        if (!records.empty() && records.back().stretch == stretch) records.back().ended = true;
+        walls.end();
+        prune();
+        if (!review() || !may_keep(c)) return false;
+        Call k;
+        k.kind = Kind::kEnd;
+        calls.push_back(k);
+        return true;
+    }
+    bool programmed(const SelfApproachCheck& c, const PathSegment& s) {
+        if (!active || r <= 0.0 || c.done()) return true;  // the check does nothing with it
+        if (s.kind != SegmentKind::kLine && s.kind != SegmentKind::kArc) return true;
+        const std::uint64_t index = next_index++;
+        const PlaneAxes a = plane_axes(plane);
+        pending.push(Pending{s.block, index, stretch, r, plane, Vec2(s.end[a.first], s.end[a.second])});
+        if (off) return false;
+        Record& rec = records.back();
+        Item* x = add(rec, rec.elements);
+        if (x == nullptr) {  // a large stretch: nothing is kept from now on
+            off = true;
+            return false;
+        }
+        make(*x, shape_of(s, plane), index);
+        const Shape& e = x->shape;
+        bool keep = may_keep(c);
+        // The model is given the element as programmed() gives the check's.
+        const bool moves = (s.kind == SegmentKind::kArc && s.plane == plane) ||
+                           std::hypot(s.end[a.first] - s.start[a.first],
+                                      s.end[a.second] - s.start[a.second]) > kFullCircle;
+        if (moves) {
+            detail::PlaneMove m;
+            m.start = e.start;
+            m.end = e.end;
+            m.arc = s.kind == SegmentKind::kArc && s.plane == plane;
+            m.ccw = s.ccw;
+            m.centre = e.centre;
+            m.terms = true;
+            m.sweep = e.sweep;
+            m.phi0 = e.phi0;
+            m.low = e.low;
+            m.high = e.high;
+            walls.element(index, m, 0, walls_on, false);
+        }
+        const Box b = box_of(e);
+        // What the model placed now decides the pairs waiting for it (the check's review()
+        // after its model is given the element), then the element's own pairs.
+        if (!review()) keep = false;
+        if (keep) {
+            const std::size_t entries = entries_of(c, plane, static_cast<double>(up(e.length)));
+            keep = room(c, plane, true, entries) && alone(rec, b) &&
+                   clear_of_paths(rec, e, index);
+            if (keep) count(plane, true, entries);
+        }
+        grow(stretch, b);
+        if (!keep || off) return false;
+        Call::make(calls.emplace_back(), Kind::kProgrammed, s);
+        return true;
+    }
+    bool executed(const SelfApproachCheck& c, const PathSegment& s) {
+        if (c.done()) return false;
+        const std::size_t waiting_now = pending.waiting();
+        const std::size_t at = pending.find(s);
+        const bool counted = s.role == Role::kContour || s.role == Role::kTransition ||
+                             s.role == Role::kApproach || s.role == Role::kDeparture;
+        if (counted && at != waiting_now) {
+            pending.advance(at);
+            prune();
+            const Pending p = pending.at(0);
+            if (s.role != Role::kDeparture && !off && !path(c, s, p)) return false;
+        }
+        if (!may_keep(c) || off) return false;
+        Call::make(calls.emplace_back(), Kind::kExecuted, s);
+        return true;
+    }
+    // An executed path of element p: its stretch's zone holds it, its record too while the
+    // stretch may have more elements; true where it brings no pair near (and may be kept).
+    bool path(const SelfApproachCheck& c, const PathSegment& s, const Pending& p) {
+        Record* rec = record_of(p.stretch);
+        if (rec == nullptr || rec->large) {  // nothing is kept from now on
+            off = true;
+            return false;
+        }
+        const bool transition = s.role == Role::kTransition;
+        const bool approach = s.role == Role::kApproach;
+        const bool store = !rec->ended;  // its stretch's later elements are held to it
+        bool keep = may_keep(c);
+        if (!keep && !store) {
+            grow(p.stretch, outer_box(s, p.plane));
+            return false;
+        }
+        const Shape e = shape_of(s, p.plane);
+        const Box b = box_of(e);
+        if (keep) {
+            const std::size_t entries = entries_of(c, p.plane, e.length * (1.0 + 1e-6));
+            keep = room(c, p.plane, false, entries) && alone(*rec, b) &&
+                   clear_of_elements(*rec, e, p, transition, approach);
+            if (keep) count(p.plane, false, entries);
+        }
+        if (store) {
+            Item* x = add(*rec, rec->paths);
+            if (x == nullptr) {  // a large stretch: nothing is kept from now on
+                off = true;
+                return false;
+            }
+            make(*x, e, p.index);
+            x->r = p.r;
+            x->transition = transition;
+            x->approach = approach;
+            x->entry = p.end;
+        }
+        grow(p.stretch, b);
+        return keep;
+    }
+    // A box no smaller than the one the grid keeps of s in `p` (shape_of()'s, rounded outward),
+    // without making its shape: a line's ends; an arc's circle at its larger radius, widened by
+    // the change of radius as add_arc_to_box() widens it.
+    static Box outer_box(const PathSegment& s, int p) {
+        const PlaneAxes a = plane_axes(p);
+        const Vec2 start(s.start[a.first], s.start[a.second]), end(s.end[a.first], s.end[a.second]);
+        Box b{start.cwiseMin(end), start.cwiseMax(end)};
+        if (s.kind == SegmentKind::kArc && s.plane == p) {
+            const Vec2 centre(s.center[a.first], s.center[a.second]);
+            const double r0 = (start - centre).norm(), r1 = (end - centre).norm();
+            const double rmax = std::max(r0, r1);
+            const double reach =
+                rmax + std::abs(r1 - r0) + 1e-9 * (1.0 + centre.cwiseAbs().maxCoeff() + rmax);
+            b.lo = b.lo.cwiseMin(Vec2(centre.array() - reach));
+            b.hi = b.hi.cwiseMax(Vec2(centre.array() + reach));
+        }
+        return widened(b);
+    }
+};
+
 SelfApproachCheck::SelfApproachCheck(std::size_t window, std::size_t entry_budget,
-                                     Candidates candidates)
+                                     Candidates candidates, Schedule schedule)
     : window_(std::max<std::size_t>(window, 1)),
       entry_budget_(entry_budget),
       walls_(std::make_unique<detail::WallModel>()),
-      candidates_(candidates) {}
+      candidates_(candidates) {
+    if (schedule == Schedule::kHoldApart) hold_ = std::make_unique<Hold>();
+}
 SelfApproachCheck::~SelfApproachCheck() = default;
+
+void SelfApproachCheck::begin(double r, int plane, int side) {
+    if (hold_ && hold_->begin(*this, r, plane, side)) return;
+    begin_now(r, plane, side);
+}
+
+void SelfApproachCheck::set_walls(bool on) {
+    if (hold_ && hold_->set_walls(*this, on)) return;
+    walls_on_ = on;
+}
+
+void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
+    if (hold_) {
+        if (hold_->end(*this)) return;
+        release(out);
+    }
+    end_now(out);
+}
+
+void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+    if (hold_) {
+        if (hold_->programmed(*this, s)) return;
+        release(out);
+    }
+    programmed_now(s, out);
+}
+
+void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+    if (hold_) {
+        if (hold_->executed(*this, s)) return;
+        release(out);
+    }
+    executed_now(s, out);
+}
+
+void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
+    ++hold_->epoch;  // a call is worked: what was proved of the zones is asked again
+    if (!hold_->holding() && !hold_->off) {
+        hold_->waiting.clear();
+        return;
+    }
+    std::deque<Hold::Call> calls;
+    calls.swap(hold_->calls);
+    hold_->held = {};
+    hold_->waiting.clear();
+    for (const Hold::Call& k : calls) {
+        switch (k.kind) {
+            case Hold::Kind::kBegin: begin_now(k.sweep, k.plane, k.side); break;
+            case Hold::Kind::kEnd: end_now(out); break;
+            case Hold::Kind::kProgrammed: programmed_now(k.segment_of(), out); break;
+            case Hold::Kind::kExecuted: executed_now(k.segment_of(), out); break;
+            case Hold::Kind::kWalls: walls_on_ = k.on; break;
+        }
+    }
+    // Nothing is kept from now on: the hold lets its records go.
+    if (hold_->off) {
+        hold_.reset();
+        return;
+    }
+    calls.clear();
+    hold_->calls.swap(calls);  // its memory, for the next calls kept
+}
+
+std::size_t SelfApproachCheck::held() const noexcept { return hold_ ? hold_->calls.size() : 0; }
+
+bool SelfApproachCheck::settled() const {
+    if (done() || !open_.empty() || !held_.empty() || !deferred_.empty() || !waiting_.empty())
+        return false;
+    return std::all_of(undecided_.begin(), undecided_.end(),
+                       [](const Undecided& u) { return u.held.empty(); });
+}
 
 namespace {
 
@@ -1057,10 +1764,12 @@ std::size_t SelfApproachCheck::kept() const noexcept {
     std::size_t n = 0;
     for (const auto& g : grids_)
         if (g) n += g->contour.items.size() + g->path.items.size();
+    if (hold_)
+        for (const Hold::Counts& h : hold_->held) n += h.elements + h.paths;
     return n;
 }
 
-void SelfApproachCheck::begin(double r, int plane, int side) {
+void SelfApproachCheck::begin_now(double r, int plane, int side) {
     active_ = true;
     walls_->begin(plane, side);
     latest_ = kNone;
@@ -1080,7 +1789,7 @@ void SelfApproachCheck::begin(double r, int plane, int side) {
     g.set_max_r(r_);
 }
 
-void SelfApproachCheck::end(std::vector<SelfApproachFinding>& out) {
+void SelfApproachCheck::end_now(std::vector<SelfApproachFinding>& out) {
     if (!active_) return;
     active_ = false;
     // Whether the stretch's last element is its departure is known from the first segment
@@ -1263,18 +1972,14 @@ void SelfApproachCheck::flush(std::vector<SelfApproachFinding>& out) {
     open_.clear();
 }
 
-void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+void SelfApproachCheck::programmed_now(const PathSegment& s,
+                                       std::vector<SelfApproachFinding>& out) {
     if (!active_ || r_ <= 0.0 || done()) return;
     if (s.kind != SegmentKind::kLine && s.kind != SegmentKind::kArc) return;
     const std::uint64_t index = next_index_++;
     const PlaneAxes axes = plane_axes(plane_);
-    pending_.push_back(Pending{s.block, index, stretch_, r_, plane_,
-                               Vec2(s.end[axes.first], s.end[axes.second])});
-    if (pending_.size() - pending_head_ > 4096) ++pending_head_;  // never executed: not checked
-    if (pending_head_ > 1024 && 2 * pending_head_ > pending_.size()) {
-        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
-        pending_head_ = 0;
-    }
+    pending_.push(
+        Pending{s.block, index, stretch_, r_, plane_, Vec2(s.end[axes.first], s.end[axes.second])});
     Grid& g = grid(plane_);
     // A move that stays where it is in the plane (a plunge in Z under G17, G41 G1 to the point
     // the tool stands on) is no element of the contour; the stretch's first element, its
@@ -1344,7 +2049,8 @@ void SelfApproachCheck::programmed(const PathSegment& s, std::vector<SelfApproac
     forget_let_go();
 }
 
-void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
+void SelfApproachCheck::executed_now(const PathSegment& s,
+                                     std::vector<SelfApproachFinding>& out) {
     // A segment of another block: the findings of the one before are final.
     if (!seen_ || !same_block(current_, s.block)) {
         if (!open_.empty()) flush(out);
@@ -1352,53 +2058,67 @@ void SelfApproachCheck::executed(const PathSegment& s, std::vector<SelfApproachF
         seen_ = true;
     }
     if (done()) return;
-    const std::size_t waiting = pending_.size() - pending_head_;
-    const std::size_t at = pending_of(s);
+    const std::size_t waiting = pending_.waiting();
+    const std::size_t at = pending_.find(s);
     leave_undecided(s, at, out);
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach &&
         s.role != Role::kDeparture)
         return;
     if (at == waiting) return;
-    pending_head_ += at;
-    const Pending p = pending_[pending_head_];
+    pending_.advance(at);
+    const Pending p = pending_.at(0);
     // The last element of a stretch that has ended: no segment of its block is checked after
     // this one (G139: the G40 block departs; G237: the board's departure, not checked), and
     // none of another block may come to give its findings out.
-    const bool running = active_ || pending_head_ + 1 < pending_.size();
-    // Compact now and then: the elements before the head are done.
-    if (pending_head_ > 1024 && 2 * pending_head_ > pending_.size()) {
-        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_head_));
-        pending_head_ = 0;
-    }
+    const bool running = active_ || pending_.waiting() > 1;
     // The approach cuts as the contour does (under G139 it is the first element's whole move).
     if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
         return;
     check_path(s, p, running, out);
 }
 
-// The programmed element an executed segment belongs to, as a position after pending_head_
+// The programmed element an executed segment belongs to, as a position after the head
 // (the number waiting where it has none): the first pending one of its block (executed segments
 // come in program order; transitions and the departure belong to the element before, the
 // approach to the first). A rapid or an uncompensated move has none (the programmed elements
 // are compensated ones): only the first is looked at, not the elements the run has programmed
 // ahead.
-std::size_t SelfApproachCheck::pending_of(const PathSegment& s) const {
-    const std::size_t waiting = pending_.size() - pending_head_;
+std::size_t SelfApproachCheck::PendingQueue::find(const PathSegment& s) const {
+    const std::size_t n = waiting();
     const std::size_t looked = s.role == Role::kUncompensated ? 1 : 64;
-    for (std::size_t i = 0; i < waiting && i < looked; ++i)
-        if (same_block(pending_[pending_head_ + i].block, s.block)) return i;
-    return waiting;
+    for (std::size_t i = 0; i < n && i < looked; ++i)
+        if (same_block(items_[head_ + i].block, s.block)) return i;
+    return n;
+}
+
+void SelfApproachCheck::PendingQueue::push(const Pending& p) {
+    items_.push_back(p);
+    if (waiting() > kMost) ++head_;  // never executed: not checked
+    compact();
+}
+
+void SelfApproachCheck::PendingQueue::advance(std::size_t n) {
+    head_ += n;
+    compact();
+}
+
+// Now and then: the elements before the head are done.
+void SelfApproachCheck::PendingQueue::compact() {
+    if (head_ > 1024 && 2 * head_ > items_.size()) {
+        items_.erase(items_.begin(), items_.begin() + static_cast<std::ptrdiff_t>(head_));
+        head_ = 0;
+    }
 }
 
 // The stretches that ended undecided and whose last element the run has left: the first
 // segment after it (of a later element, or of none) gives their findings out.
 void SelfApproachCheck::leave_undecided(const PathSegment& s, std::size_t at,
                                         std::vector<SelfApproachFinding>& out) {
-    const std::size_t waiting = pending_.size() - pending_head_;
+    const std::size_t waiting = pending_.waiting();
     while (!undecided_.empty()) {
         Undecided& u = undecided_.front();
         const bool found = at != waiting;
-        const std::uint64_t index = found ? pending_[pending_head_ + at].index : 0;
+        const std::uint64_t index = found ? pending_.at(at).index : 0;
         if (found && index == u.last_index) {
             u.reached = true;
             break;

@@ -7,8 +7,12 @@
 
 namespace apci::run {
 
-SelfApproachSink::SelfApproachSink(RunSink& next, SelfApproachMode mode)
-    : next_(next), mode_(mode) {}
+SelfApproachSink::SelfApproachSink(RunSink& next, SelfApproachMode mode,
+                                   SelfApproachCheck::Schedule schedule)
+    : next_(next),
+      mode_(mode),
+      check_(SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
+             SelfApproachCheck::Candidates::kGrid, schedule) {}
 
 void SelfApproachSink::programmed(const PathSegment& s) {
     next_.programmed(s);

@@ -26,7 +26,9 @@
 // Memory is bounded: per plane, each executed segment is compared with at least the last
 // `window` distinct programmed elements and each element with the paths of at least as many,
 // fewer where they are long (at most kEntryBudget grid entries); at most twice as many are kept,
-// and where some were let go the check says so.
+// and where some were let go the check says so. A call proved to give nothing out (its stretch
+// apart from every other, its own pairs clear) is held back and worked only when a later call
+// may give something out (Schedule): most of a CAM program's calls are never worked.
 #pragma once
 
 #include <array>
@@ -86,9 +88,16 @@ class SelfApproachCheck {
     // (a reference for tests: the same questions asked in the same order), or (a reference for
     // tests, quadratic) every element kept, and the same for an element's.
     enum class Candidates { kGrid, kIndexed, kAll };
+    // When the calls are worked: a stretch apart from every other, whose own paths keep clear
+    // of its own elements, held back (its calls kept, in order) and worked only once a later
+    // call could give something out (docs/performance.md, "Stretches held back"): the
+    // findings, where and when they are given out, are those of working every call at once
+    // (the reference for tests).
+    enum class Schedule { kHoldApart, kAtOnce };
     explicit SelfApproachCheck(std::size_t window = kWindow,
                                std::size_t entry_budget = kEntryBudget,
-                               Candidates candidates = Candidates::kGrid);
+                               Candidates candidates = Candidates::kGrid,
+                               Schedule schedule = Schedule::kHoldApart);
     ~SelfApproachCheck();
     SelfApproachCheck(const SelfApproachCheck&) = delete;
     SelfApproachCheck& operator=(const SelfApproachCheck&) = delete;
@@ -99,11 +108,10 @@ class SelfApproachCheck {
     void begin(double r, int plane, int side = 1);
     // Whether the elements programmed from now on may be walls (CDON, the default) or not
     // (CDOF: the program says they are not what it leaves standing; paths are still checked).
-    void set_walls(bool on) noexcept { walls_on_ = on; }
+    void set_walls(bool on);
     // It ends (G40, a rapid move, the end of the program). Findings against its last element
     // come with the first executed segment after that element's (its departure, or not).
     void end(std::vector<SelfApproachFinding>& out);
-    bool active() const noexcept { return active_; }
     // A line or arc spooled in the stretch, in program order; findings (a path executed
     // before that comes near it) are appended to `out`.
     void programmed(const PathSegment& s, std::vector<SelfApproachFinding>& out);
@@ -113,9 +121,11 @@ class SelfApproachCheck {
     // compared with those more than `window` distinct elements before it) and where it began,
     // and whether more pairs than kMaxFindings came near (the check then stopped looking).
     SelfApproachLimits limits() const;
-    // The elements and paths kept, over all planes: per plane at most 2 * window elements and
-    // 6 * window paths.
+    // The elements and paths kept, over all planes, the calls held back counted as items: per
+    // plane at most 2 * window elements and 6 * window paths.
     std::size_t kept() const noexcept;
+    // The calls held back now (Schedule::kHoldApart), for tests.
+    std::size_t held() const noexcept;
 
   private:
     struct Grid;
@@ -135,10 +145,43 @@ class SelfApproachCheck {
         int plane = 17;
         Eigen::Vector2d end = Eigen::Vector2d::Zero();  // its programmed end, in the plane
     };
+    // The programmed elements not yet executed, oldest first, and the one an executed segment
+    // belongs to (the check's, and the same kept by the calls held back: hold()).
+    class PendingQueue {
+      public:
+        // Appends p; the oldest is let go where more than kMost wait (never executed: not
+        // checked).
+        void push(const Pending& p);
+        std::size_t waiting() const noexcept { return items_.size() - head_; }
+        // Position after the head of the element s belongs to (waiting() where none), see
+        // pending_of().
+        std::size_t find(const PathSegment& s) const;
+        const Pending& at(std::size_t i) const { return items_[head_ + i]; }
+        // The head moves on by n (the elements before it are done).
+        void advance(std::size_t n);
+
+      private:
+        static constexpr std::size_t kMost = 4096;
+        void compact();
+        std::vector<Pending> items_;
+        std::size_t head_ = 0;
+    };
     using Pair = std::array<std::uint64_t, 4>;  // (path, contour) blocks: number, line each
     Grid& grid(int plane);
+    // The calls as worked (the public calls hand them here, or keep them: Hold).
+    void begin_now(double r, int plane, int side);
+    void end_now(std::vector<SelfApproachFinding>& out);
+    void programmed_now(const PathSegment& s, std::vector<SelfApproachFinding>& out);
+    void executed_now(const PathSegment& s, std::vector<SelfApproachFinding>& out);
+    // The calls held back and what they must be proved to leave alone (self_approach.cpp).
+    struct Hold;
+    std::unique_ptr<Hold> hold_;
+    // The calls held back worked, in order (none of them gives anything out).
+    void release(std::vector<SelfApproachFinding>& out);
+    // Nothing found waits to be given out (nor can be: done() is false): a call that brings no
+    // pair near gives nothing out.
+    bool settled() const;
     // executed()'s steps (self_approach.cpp).
-    std::size_t pending_of(const PathSegment& s) const;
     void leave_undecided(const PathSegment& s, std::size_t at,
                          std::vector<SelfApproachFinding>& out);
     void check_path(const PathSegment& s, const Pending& p, bool running,
@@ -196,8 +239,7 @@ class SelfApproachCheck {
     void leave(const PathSegment& s, std::vector<SelfApproachFinding>& out);
 
     std::unique_ptr<Grid> grids_[3];
-    std::vector<Pending> pending_;  // programmed compensated elements, from pending_head_
-    std::size_t pending_head_ = 0;  // the first not yet executed
+    PendingQueue pending_;  // programmed compensated elements not yet executed
     std::vector<Pair> reported_;    // pairs given out or open, each once
     // Findings of the path block whose segments are coming (current_), the least distance per
     // contour block: given out with the first segment of another block.

@@ -40,8 +40,10 @@ enum class SelfApproachMode { kWarn, kError, kOff };
 
 class SelfApproachSink final : public RunSink {
   public:
-    // `next` must outlive this. `mode` is kWarn or kError (kOff: no check, no sink).
-    SelfApproachSink(RunSink& next, SelfApproachMode mode);
+    // `next` must outlive this. `mode` is kWarn or kError (kOff: no check, no sink); `schedule`
+    // as SelfApproachCheck's (the same findings either way: kAtOnce is the tests' reference).
+    SelfApproachSink(RunSink& next, SelfApproachMode mode,
+                     SelfApproachCheck::Schedule schedule = SelfApproachCheck::Schedule::kHoldApart);
 
     void programmed(const PathSegment& s) override;
     bool wants_programmed() const override { return next_.wants_programmed(); }

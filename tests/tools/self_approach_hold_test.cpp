@@ -1,0 +1,420 @@
+// SPDX-License-Identifier: MIT
+// The self-approach check with calls held back (SelfApproachCheck::Schedule::kHoldApart, the
+// default; docs/performance.md "Stretches held back") against the reference that works every
+// call at once (kAtOnce): the same findings, the same warnings, given out at the same call, the
+// same notices. Fed as the run feeds it: the calls the executor makes on the embedded emulator
+// for programs shaped like CAM output (every family of tests/support/cam_programs.h, correct,
+// gouging and refused, and the benchmark's program of profiles placed apart), recorded once and
+// given to two SelfApproachSinks; and stretches fed to the check directly, with the programmed
+// moves running ahead of the executed ones by a random lead, with small windows and entry
+// budgets (the grid lets items go), planes, tool radii, CDOF and stretches too long to hold.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "apci/apci.hpp"
+#include "apci/run/executor.h"
+#include "apci/run/program_run.h"
+#include "apci/run/self_approach.h"
+#include "apci/run/self_approach_sink.h"
+#include "cam_program.h"
+#include "cam_programs.h"
+
+namespace apci::test {
+namespace {
+
+using run::PathSegment;
+using run::Point;
+using run::Role;
+using run::SegmentKind;
+using run::SelfApproachCheck;
+using run::SelfApproachFinding;
+using Schedule = SelfApproachCheck::Schedule;
+
+// ---- The run's calls, recorded once, given to both schedules.
+
+struct Programmed {
+    PathSegment s;
+};
+struct Executed {
+    PathSegment s;
+};
+struct Begin {
+    run::CompensatedStretch s;
+};
+struct End {};
+struct Walls {
+    bool on;
+};
+struct Error {
+    run::RunError e;
+    Point where;
+};
+using Event = std::variant<Programmed, Executed, Begin, End, Walls, Error>;
+
+// What the executor hands the sinks behind it (the check off: the calls the check's sink gets).
+class Recorder final : public run::RunSink {
+  public:
+    void programmed(const PathSegment& s) override { events.emplace_back(Programmed{s}); }
+    void executed(const PathSegment& s) override { events.emplace_back(Executed{s}); }
+    void stretch_begin(const run::CompensatedStretch& s) override { events.emplace_back(Begin{s}); }
+    void stretch_end() override { events.emplace_back(End{}); }
+    void walls(bool on) override { events.emplace_back(Walls{on}); }
+    void error(const run::RunError& e, const Point& where) override {
+        events.emplace_back(Error{e, where});
+    }
+    std::vector<Event> events;
+};
+
+std::vector<Event> record(const std::string& text, const std::string& tools) {
+    run::RunInputFiles files;
+    files.tools = tools;
+    files.tools_is_text = true;
+    auto inputs = run::load_run_inputs(files);
+    EXPECT_TRUE(static_cast<bool>(inputs));
+    if (!inputs) return {};
+    apci::Board board("emu:");
+    EXPECT_TRUE(board.is_open());
+    Recorder sink;
+    run::RunSettings settings;
+    settings.self_approach = run::SelfApproachMode::kOff;
+    auto ran = run::run_program(board, sink, inputs.value(),
+                                run::ProgramSource::in_memory(text, "hold.nc"), settings);
+    EXPECT_TRUE(static_cast<bool>(ran));
+    return std::move(sink.events);
+}
+
+// What a check's sink gives the sink behind it: each warning with the number of the call it
+// came at.
+class Warnings final : public run::RunSink {
+  public:
+    void warning(const run::RunError& w, const Point& where) override {
+        given.push_back({at, w.block.number, w.block.line, w.code, w.message, where});
+    }
+    struct Given {
+        std::size_t at;
+        std::int64_t number;
+        std::uint64_t line;
+        std::string code, message;
+        Point where;
+        bool operator==(const Given&) const = default;
+    };
+    std::size_t at = 0;
+    std::vector<Given> given;
+};
+
+struct Replayed {
+    std::vector<Warnings::Given> warnings;
+    run::RunOutcome outcome;
+    std::size_t most_held = 0;  // of the check's sink held back at once (kHoldApart)
+};
+
+void give(run::SelfApproachSink& sink, const Event& e) {
+    std::visit(
+        [&](const auto& x) {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, Programmed>) sink.programmed(x.s);
+            if constexpr (std::is_same_v<T, Executed>) sink.executed(x.s);
+            if constexpr (std::is_same_v<T, Begin>) sink.stretch_begin(x.s);
+            if constexpr (std::is_same_v<T, End>) sink.stretch_end();
+            if constexpr (std::is_same_v<T, Walls>) sink.walls(x.on);
+            if constexpr (std::is_same_v<T, Error>) sink.error(x.e, x.where);
+        },
+        e);
+}
+
+// Both schedules given the same calls, side by side: the warnings must agree after every call
+// (a difference is reported at the first call it shows at).
+void expect_same_run(const std::vector<Event>& events, const std::string& name,
+                     std::size_t* most_held = nullptr) {
+    SCOPED_TRACE(name);
+    Warnings held_out, once_out;
+    run::SelfApproachSink held(held_out, run::SelfApproachMode::kWarn, Schedule::kHoldApart);
+    run::SelfApproachSink once(once_out, run::SelfApproachMode::kWarn, Schedule::kAtOnce);
+    for (std::size_t i = 0; i < events.size(); ++i) {
+        held_out.at = once_out.at = i;
+        give(held, events[i]);
+        give(once, events[i]);
+        if (held_out.given != once_out.given) {
+            ADD_FAILURE() << "call " << i << " of " << events.size() << ": held back "
+                          << held_out.given.size() << " warnings, at once "
+                          << once_out.given.size();
+            return;
+        }
+    }
+    run::RunOutcome a, b;
+    held.results(a);
+    once.results(b);
+    ASSERT_EQ(a.self_approach.size(), b.self_approach.size());
+    for (std::size_t i = 0; i < a.self_approach.size(); ++i) {
+        EXPECT_EQ(a.self_approach[i].distance, b.self_approach[i].distance);
+        EXPECT_EQ(a.self_approach[i].where, b.self_approach[i].where);
+    }
+    ASSERT_EQ(a.notices.size(), b.notices.size());
+    for (std::size_t i = 0; i < a.notices.size(); ++i) {
+        EXPECT_EQ(a.notices[i].code, b.notices[i].code);
+        EXPECT_EQ(a.notices[i].message, b.notices[i].message);
+    }
+    if (most_held != nullptr) *most_held = held_out.given.size();
+}
+
+// Every family of CAM-shaped programs, correct ones, gouges the run warns and gouges the
+// compensation refuses: the same warnings held back as at once.
+TEST(SelfApproachHold, CamProgramsOfEveryFamilyWarnAsAtOnce) {
+    std::size_t warned = 0, refused = 0;
+    for (const CamFamilyInfo& f : cam_families()) {
+        for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+            const CamProgram p = generate_cam_program(f.family, seed);
+            const std::vector<Event> events = record(p.text, p.tool_list);
+            std::size_t given = 0;
+            expect_same_run(events, p.name, &given);
+            warned += given > 0 ? 1 : 0;
+            refused += std::any_of(events.begin(), events.end(),
+                                   [](const Event& e) { return std::holds_alternative<Error>(e); })
+                           ? 1
+                           : 0;
+        }
+    }
+    // Not a comparison of silent runs only.
+    EXPECT_GT(warned, 30u);
+    EXPECT_GT(refused, 10u);
+}
+
+// The benchmark's program (profiles placed apart, nothing repeated): the check holds nearly
+// every call back and gives nothing out, as at once; with a neighbour moved onto a profile the
+// pair it makes is warned at the same call.
+TEST(SelfApproachHold, ProfilesPlacedApartAreHeldBackAndAgree) {
+    const std::string program =
+        apci::bench::cam_program(120, apci::bench::Dialect::kApcictl).text;
+    const std::vector<Event> events = record(program, apci::bench::contour_tools());
+    ASSERT_GT(events.size(), 3000u);
+    expect_same_run(events, "cam 120");
+    // Held back: the sink's check, fed alone, keeps most calls (all but those before its grid
+    // sized its cells).
+    Warnings out;
+    run::SelfApproachSink sink(out, run::SelfApproachMode::kWarn, Schedule::kHoldApart);
+    SelfApproachCheck check;
+    std::vector<SelfApproachFinding> found;
+    std::size_t most = 0;
+    for (const Event& e : events) {
+        if (const auto* p = std::get_if<Programmed>(&e)) check.programmed(p->s, found);
+        if (const auto* x = std::get_if<Executed>(&e)) check.executed(x->s, found);
+        if (const auto* b = std::get_if<Begin>(&e)) check.begin(b->s.radius, b->s.plane, b->s.side);
+        if (std::holds_alternative<End>(e)) check.end(found);
+        most = std::max(most, check.held());
+    }
+    EXPECT_TRUE(found.empty());
+    EXPECT_GT(most, events.size() / 2);
+}
+
+// ---- Stretches fed directly, the programmed moves ahead of the executed ones.
+
+PathSegment line(int n, const Point& a, const Point& b, Role role = Role::kContour) {
+    PathSegment s;
+    s.block.number = n;
+    s.kind = SegmentKind::kLine;
+    s.role = role;
+    s.start = a;
+    s.end = b;
+    return s;
+}
+
+// A stretch: its plane, radius, whether its elements are walls, the elements and each one's
+// executed segments (their blocks the element's).
+struct Stretch {
+    int plane = 17;
+    double r = 1.0;
+    bool walls = true;
+    std::vector<PathSegment> elements;
+    std::vector<std::vector<PathSegment>> paths;
+};
+
+// In the plane's axes: (u, v) -> the point.
+Point in_plane(int plane, double u, double v, double w = 0.0) {
+    if (plane == 18) return Point(v, w, u);  // Z-X: first Z, second X
+    if (plane == 19) return Point(w, u, v);  // Y-Z: first Y, second Z
+    return Point(u, v, w);
+}
+
+// A closed polygon of k corners round (cx, cy) with leads, its paths beside its sides outside
+// at 1.0 to 1.2 r, or (one time in `near_one_in`) 0.3 to 1.0 r: a path that comes near.
+Stretch polygon(int& n, int plane, double cx, double cy, double rad, int k, double r,
+                int near_one_in, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Stretch s;
+    s.plane = plane;
+    s.r = r;
+    std::vector<std::pair<double, double>> c;
+    for (int i = 0; i < k; ++i) {
+        const double a = 2.0 * 3.141592653589793 * (i + 0.4 * u(rng)) / k;
+        const double q = rad * (0.7 + 0.6 * u(rng));
+        c.emplace_back(cx + q * std::cos(a), cy + q * std::sin(a));
+    }
+    const auto add = [&](double u0, double v0, double u1, double v1, Role role, double off) {
+        const Point a = in_plane(plane, u0, v0), b = in_plane(plane, u1, v1);
+        s.elements.push_back(line(n, a, b, role));
+        const double du = u1 - u0, dv = v1 - v0, len = std::hypot(du, dv);
+        const double ou = len > 0 ? dv / len * off : 0.0, ov = len > 0 ? -du / len * off : 0.0;
+        s.paths.push_back({line(n, in_plane(plane, u0 + ou, v0 + ov),
+                                in_plane(plane, u1 + ou, v1 + ov), role)});
+        ++n;
+    };
+    const double lead = 2.0 * r + 1.0;
+    add(c[0].first, c[0].second + lead, c[0].first, c[0].second, Role::kApproach, 0.0);
+    for (int i = 0; i < k; ++i) {
+        const auto& a = c[static_cast<std::size_t>(i)];
+        const auto& b = c[static_cast<std::size_t>((i + 1) % k)];
+        const bool near = near_one_in > 0 && static_cast<int>(u(rng) * near_one_in) == 0;
+        add(a.first, a.second, b.first, b.second, Role::kContour,
+            r * (near ? 0.3 + 0.7 * u(rng) : 1.0 + 0.2 * u(rng)));
+    }
+    add(c[0].first, c[0].second, c[0].first + lead, c[0].second, Role::kContour, r * 1.1);
+    return s;
+}
+
+// Calls given to both checks, the executed moves `lead` elements behind the programmed ones
+// (a rapid between stretches): the findings given after every call must agree.
+void expect_same_feed(const std::vector<Stretch>& stretches, std::size_t window,
+                      std::size_t budget, int lead, std::size_t& held_most,
+                      std::size_t& findings) {
+    SelfApproachCheck held(window, budget, SelfApproachCheck::Candidates::kGrid,
+                           Schedule::kHoldApart);
+    SelfApproachCheck once(window, budget, SelfApproachCheck::Candidates::kGrid,
+                           Schedule::kAtOnce);
+    std::vector<SelfApproachFinding> a, b;
+    std::size_t calls = 0;
+    const auto same = [&] {
+        ++calls;
+        held_most = std::max(held_most, held.held());
+        if (a.size() != b.size()) return false;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (a[i].path_block.number != b[i].path_block.number ||
+                a[i].contour_block.number != b[i].contour_block.number ||
+                a[i].distance != b[i].distance || a[i].where != b[i].where)
+                return false;
+        return true;
+    };
+    // The programmed side: begin, walls, elements, end; the executed side: each element's
+    // paths, then a rapid away.
+    struct Call {
+        int kind;  // 0 begin, 1 walls, 2 programmed, 3 end, 4 executed
+        const Stretch* s;
+        const PathSegment* seg;
+    };
+    std::vector<Call> programmed, executed;
+    for (const Stretch& s : stretches) {
+        programmed.push_back({0, &s, nullptr});
+        programmed.push_back({1, &s, nullptr});
+        for (std::size_t k = 0; k < s.elements.size(); ++k) {
+            programmed.push_back({2, &s, &s.elements[k]});
+            for (const PathSegment& p : s.paths[k]) executed.push_back({4, &s, &p});
+            executed.push_back({5, &s, nullptr});  // this element's executed part is done
+        }
+        programmed.push_back({3, &s, nullptr});
+    }
+    std::size_t pi = 0, ei = 0;
+    int ahead = 0;  // elements programmed and not yet executed
+    const PathSegment rapid = line(999999, Point(-5e3, -5e3, 50), Point(-5e3, -4e3, 50),
+                                   Role::kUncompensated);
+    const auto call = [&](const Call& c) {
+        switch (c.kind) {
+            case 0:
+                held.begin(c.s->r, c.s->plane, 1);
+                once.begin(c.s->r, c.s->plane, 1);
+                break;
+            case 1:
+                held.set_walls(c.s->walls);
+                once.set_walls(c.s->walls);
+                break;
+            case 2:
+                held.programmed(*c.seg, a);
+                once.programmed(*c.seg, b);
+                ++ahead;
+                break;
+            case 3:
+                held.end(a);
+                once.end(b);
+                held.executed(rapid, a);
+                once.executed(rapid, b);
+                break;
+            case 4:
+                held.executed(*c.seg, a);
+                once.executed(*c.seg, b);
+                break;
+            default:
+                --ahead;
+                return;
+        }
+        ASSERT_TRUE(same()) << "after call " << calls << " (kind " << c.kind << ")";
+    };
+    while (ei < executed.size()) {
+        while (pi < programmed.size() && (ahead <= lead || executed[ei].kind == 5)) {
+            if (executed[ei].kind == 5 && ahead > 0) break;
+            call(programmed[pi++]);
+            if (testing::Test::HasFatalFailure()) return;
+        }
+        call(executed[ei++]);
+        if (testing::Test::HasFatalFailure()) return;
+    }
+    while (pi < programmed.size()) {
+        call(programmed[pi++]);
+        if (testing::Test::HasFatalFailure()) return;
+    }
+    held.executed(line(999998, Point(1e4, 1e4, 0), Point(1e4 + 1, 1e4, 0)), a);
+    once.executed(line(999998, Point(1e4, 1e4, 0), Point(1e4 + 1, 1e4, 0)), b);
+    ASSERT_TRUE(same());
+    const auto la = held.limits(), lb = once.limits();
+    EXPECT_EQ(la.truncated, lb.truncated);
+    EXPECT_EQ(la.truncated_at.number, lb.truncated_at.number);
+    EXPECT_EQ(la.truncated_plane, lb.truncated_plane);
+    EXPECT_EQ(la.capped, lb.capped);
+    findings += b.size();
+}
+
+TEST(SelfApproachHold, StretchesFedWithALeadAgreeCallByCall) {
+    std::size_t held_most = 0, findings = 0;
+    for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        std::vector<Stretch> stretches;
+        int n = 10;
+        const int count = 20 + static_cast<int>(40 * u(rng));
+        for (int k = 0; k < count; ++k) {
+            // Mostly apart on a grid; now and then one placed onto the one before, in another
+            // plane, with a larger tool, under CDOF, or too long to hold.
+            const int plane = u(rng) < 0.1 ? (u(rng) < 0.5 ? 18 : 19) : 17;
+            const double r = u(rng) < 0.15 ? 2.0 + 2.0 * u(rng) : 1.0;
+            double cx = 60.0 * (k % 8), cy = 60.0 * (k / 8);
+            if (u(rng) < 0.12 && k > 0) cx -= 60.0 - 10.0 * u(rng);
+            const int sides = u(rng) < 0.05 ? 300 : 3 + static_cast<int>(9 * u(rng));
+            Stretch s = polygon(n, plane, cx, cy, 8.0 + 12.0 * u(rng), sides, r,
+                                seed % 3 == 0 ? 6 : 0, rng);
+            s.walls = u(rng) > 0.08;
+            stretches.push_back(std::move(s));
+            n += 10;
+        }
+        const int lead = static_cast<int>(40 * u(rng));
+        for (const auto& [window, budget] :
+             {std::pair<std::size_t, std::size_t>{SelfApproachCheck::kWindow,
+                                                  SelfApproachCheck::kEntryBudget},
+              {256, 4096},
+              {24, 96}}) {
+            SCOPED_TRACE(window);
+            expect_same_feed(stretches, window, budget, lead, held_most, findings);
+            if (HasFatalFailure()) return;
+        }
+    }
+    EXPECT_GT(held_most, 50u);  // calls were held back
+    EXPECT_GT(findings, 50u);   // and findings given out
+}
+
+}  // namespace
+}  // namespace apci::test
