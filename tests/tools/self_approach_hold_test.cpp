@@ -266,6 +266,7 @@ Stretch polygon(int& n, int plane, double cx, double cy, double rad, int k, doub
                                 in_plane(plane, u1 + ou, v1 + ov), role)});
         ++n;
     };
+    if (c.empty()) return s;
     const double lead = 2.0 * r + 1.0;
     add(c[0].first, c[0].second + lead, c[0].first, c[0].second, Role::kApproach, 0.0);
     for (int i = 0; i < k; ++i) {
