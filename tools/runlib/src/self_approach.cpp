@@ -1134,6 +1134,7 @@ struct SelfApproachCheck::Hold {
     static constexpr double kSeparation = 1e-3;      // mm beyond the largest tool radius
     static constexpr double kMostCoordinate = 1e12;  // mm: beyond, nothing is kept again
     static constexpr double kRoom = 4.0;             // mm a stretch's proved box may grow by
+    static constexpr std::size_t kCallsPerWindow = 4;
     // Pairs waiting at most (the check's queue takes kMaxDeferred before it measures the
     // oldest as things stand).
     static constexpr std::size_t kMostWaiting = kMaxDeferred / 2;
@@ -1170,8 +1171,12 @@ struct SelfApproachCheck::Hold {
 
     static std::size_t slot(int p) { return p == 18 ? 1 : p == 19 ? 2 : 0; }
     bool holding() const noexcept { return !calls.empty(); }
-    // Whether a call that brings no pair near may be kept.
-    bool may_keep(const SelfApproachCheck& c) const { return !off && (holding() || c.settled()); }
+    // Whether a call that brings no pair near may be kept: the check settled, or calls kept
+    // already (fewer than kCallsPerWindow for each element of the window: their memory is
+    // bounded as the grid's is).
+    bool may_keep(const SelfApproachCheck& c) const {
+        return !off && calls.size() < kCallsPerWindow * c.window_ && (holding() || c.settled());
+    }
 
     static bool finite_box(const Box& b) {
         return b.lo.allFinite() && b.hi.allFinite() &&
@@ -1293,6 +1298,7 @@ struct SelfApproachCheck::Hold {
     // The stretches that ended and whose elements were all executed (or let go) have no more
     // items of their own.
     void prune() {
+        bool pruned = false;
         while (!records.empty() && records.front().ended &&
                (pending.waiting() == 0 || records.front().stretch < pending.at(0).stretch)) {
             Record& rec = records.front();
@@ -1300,7 +1306,13 @@ struct SelfApproachCheck::Hold {
             rec.paths.clear();
             spare.push_back(std::move(rec));
             records.pop_front();
+            pruned = true;
         }
+        // The model lets go of what it knew of their elements (never asked about again).
+        if (pruned)
+            walls.forget_before(records.empty() || records.front().elements.empty()
+                                    ? next_index
+                                    : records.front().elements.front().index);
     }
     // A new item of the record's (null where the record is or becomes large), to be made.
     static Item* add(Record& rec, std::vector<Item>& to) {
@@ -1508,8 +1520,9 @@ struct SelfApproachCheck::Hold {
         active = false;
         if (!records.empty() && records.back().stretch == stretch) records.back().ended = true;
         walls.end();
+        const bool clear = review();
         prune();
-        if (!review() || !may_keep(c)) return false;
+        if (!clear || !may_keep(c)) return false;
         Call k;
         k.kind = Kind::kEnd;
         calls.push_back(k);
