@@ -276,7 +276,9 @@ Stretch polygon(int& n, int plane, double cx, double cy, double rad, int k, doub
         add(a.first, a.second, b.first, b.second, Role::kContour,
             r * (near ? 0.3 + 0.7 * u(rng) : 1.0 + 0.2 * u(rng)));
     }
-    add(c[0].first, c[0].second, c[0].first + lead, c[0].second, Role::kContour, r * 1.1);
+    const bool near_last = near_one_in > 0 && static_cast<int>(u(rng) * near_one_in) == 0;
+    add(c[0].first, c[0].second, c[0].first + lead, c[0].second, Role::kContour,
+        r * (near_last ? 0.5 : 1.1));
     return s;
 }
 
@@ -379,38 +381,191 @@ void expect_same_feed(const std::vector<Stretch>& stretches, std::size_t window,
     findings += b.size();
 }
 
+// A stretch along the polyline `pts` in G17 (its first segment the approach), each element's
+// path its offset r to the left; `path_off[k]`, where given, moves element k's path instead.
+Stretch strip(int& n, const std::vector<Point>& pts, double r,
+              const std::vector<std::pair<std::size_t, Point>>& moved = {}) {
+    Stretch s;
+    s.r = r;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+        const Point d = (pts[k + 1] - pts[k]).normalized();
+        Point off = r * Point(-d.y(), d.x(), 0);
+        for (const auto& [at, by] : moved)
+            if (at == k) off = by;
+        const Role role = k == 0 ? Role::kApproach : Role::kContour;
+        s.elements.push_back(line(n, pts[k], pts[k + 1], role));
+        s.paths.push_back({line(n, pts[k] + off, pts[k + 1] + off, role)});
+        ++n;
+    }
+    return s;
+}
+
+// Each a shape the hold must take as the check does, with findings (not a silent comparison).
+TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
+    std::vector<std::pair<std::string, std::vector<Stretch>>> cases;
+    int n = 10;
+    {  // a zone over more than 256 zone cells (an L a metre and a half each way), then a wall
+       // beside its far leg whose path crosses within r of it
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, -5, 0), Point(0, 0, 0), Point(1500, 0, 0),
+                              Point(1500, 1500, 0), Point(1505, 1505, 0)},
+                          1.0));
+        n += 10;
+        v.push_back(strip(n, {Point(1500.5, 690, 0), Point(1500.5, 700, 0),
+                              Point(1500.5, 800, 0), Point(1500.5, 810, 0)},
+                          1.0));
+        cases.emplace_back("wide zone", std::move(v));
+    }
+    {  // r = 4 in G17: a wall, then one 6 mm from it whose path passes 2 mm from it; the next
+       // stretch in G18 with r = 1 (its plane's reach is not theirs)
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(50, 0, 0),
+                              Point(55, 0, 0)},
+                          4.0));
+        n += 10;
+        v.push_back(strip(n, {Point(-5, -6, 0), Point(0, -6, 0), Point(50, -6, 0),
+                              Point(55, -6, 0)},
+                          4.0));
+        n += 10;
+        Stretch g18 = strip(n, {Point(500, 0, 0), Point(510, 0, 0), Point(520, 5, 0),
+                                Point(530, 5, 0)},
+                            1.0);
+        g18.plane = 18;
+        v.push_back(std::move(g18));
+        cases.emplace_back("another plane's reach", std::move(v));
+    }
+    {  // a wall, one far away, then one laid over the first whose path runs 0.5 mm from it
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(50, 0, 0),
+                              Point(55, 0, 0)},
+                          1.0));
+        n += 10;
+        v.push_back(strip(n, {Point(495, 0, 0), Point(500, 0, 0), Point(550, 0, 0),
+                              Point(555, 0, 0)},
+                          1.0));
+        n += 10;
+        v.push_back(strip(n, {Point(45, 1.5, 0), Point(40, 1.5, 0), Point(10, 1.5, 0),
+                              Point(5, 1.5, 0)},
+                          1.0));
+        cases.emplace_back("laid over a stretch let go", std::move(v));
+    }
+    {  // a path near its stretch's last element (a reversal: given when the run leaves it),
+       // then a stretch far away
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(20, 0, 0),
+                              Point(20, 2.5, 0), Point(0, 1.5, 0)},
+                          1.0));
+        n += 10;
+        v.push_back(strip(n, {Point(495, 0, 0), Point(500, 0, 0), Point(550, 0, 0),
+                              Point(555, 0, 0)},
+                          1.0));
+        cases.emplace_back("finding at a stretch's end", std::move(v));
+    }
+    {  // an arc of 300 degrees, radius 1, then a sharp corner: its transition (a segment of the
+       // arc's block) passes within r of the arc's first part
+        std::vector<Stretch> v;
+        Stretch s = strip(n, {Point(25, 0, 0), Point(20, 0, 0), Point(10, 0, 0)}, 3.0);
+        PathSegment a = line(n, Point(10, 0, 0), Point(10.0 + std::cos(-0.5236), 1.0 + std::sin(-0.5236), 0));
+        a.kind = SegmentKind::kArc;
+        a.center = Point(10, 1, 0);
+        a.ccw = false;
+        a.plane = 17;
+        s.elements.push_back(a);
+        PathSegment offset = a;  // on the tool's side, outside, at 4
+        offset.start = Point(10, -3, 0);
+        offset.end = Point(10.0 + 4 * std::cos(-0.5236), 1.0 + 4 * std::sin(-0.5236), 0);
+        PathSegment transition = line(n, offset.end, Point(9.2, -0.4, 0), Role::kTransition);
+        s.paths.push_back({offset, transition});
+        ++n;
+        const Point e = a.end;
+        s.elements.push_back(line(n, e, e + Point(0, 10, 0)));
+        s.paths.push_back({line(n, e + Point(-3, 0, 0), e + Point(-3, 10, 0))});
+        ++n;
+        v.push_back(std::move(s));
+        cases.emplace_back("transition near a long arc", std::move(v));
+    }
+    {  // a path whose start comes within r of an element programmed after it ran (no approach)
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, -3, 0), Point(0, 0, 0), Point(20, 0, 0),
+                              Point(20, 5, 0), Point(0, 1.3, 0), Point(-5, 1.3, 0)},
+                          1.0));
+        cases.emplace_back("a path's start near a later element", std::move(v));
+    }
+    for (const auto& [name, stretches] : cases) {
+        SCOPED_TRACE(name);
+        std::size_t found = 0;
+        for (const int lead : {0, 1, 2, 40}) {
+            SCOPED_TRACE(lead);
+            std::size_t held_most = 0, findings = 0;
+            expect_same_feed(stretches, SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
+                             lead, held_most, findings);
+            if (HasFatalFailure()) return;
+            found += findings;
+        }
+        EXPECT_GT(found, 0u);  // the shape comes near
+    }
+}
+
+// The sets of stretches the fed tests draw: mostly apart on a grid, now and then one placed
+// onto the one before, in another plane, with a larger tool, under CDOF, or too long to hold;
+// or (regime 1) a square over a metre wide (a wide zone) with small ones beside its far sides;
+// or (2) stretches laid over one drawn earlier; or (3) long sides (the grid's entries fill).
+std::vector<Stretch> draw(std::uint64_t seed, int regime) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Stretch> stretches;
+    int n = 10;
+    const int near_one_in = seed % 3 == 0 ? 6 : regime == 0 ? 0 : 4;
+    if (regime == 1) {
+        const double side = 1300.0 + 200.0 * u(rng);
+        stretches.push_back(polygon(n, 17, side / 2, side / 2, side * 0.72, 4, 1.0, 0, rng));
+        n += 10;
+    }
+    const int count = 20 + static_cast<int>(40 * u(rng));
+    for (int k = 0; k < count; ++k) {
+        const int plane = u(rng) < 0.1 ? (u(rng) < 0.5 ? 18 : 19) : 17;
+        const double r = u(rng) < 0.15 ? 2.0 + 2.0 * u(rng) : 1.0;
+        double cx = 60.0 * (k % 8), cy = 60.0 * (k / 8);
+        double rad = 8.0 + 12.0 * u(rng);
+        if (u(rng) < 0.12 && k > 0) cx -= 60.0 - 10.0 * u(rng);
+        if (regime == 1) {  // beside the square's far side, about r from its path
+            cx = 200.0 + 900.0 * u(rng);
+            cy = stretches.front().elements[2].start.y() + rad + 1.0 + 3.0 * u(rng);
+        }
+        if (regime == 2 && k > 1 && u(rng) < 0.3) {  // over one drawn before
+            const auto& old = stretches[static_cast<std::size_t>(u(rng) * (k - 1))];
+            cx = old.elements[1].start.x() + 4.0 * u(rng);
+            cy = old.elements[1].start.y() + 4.0 * u(rng);
+        }
+        if (regime == 3) rad = 30.0 + 50.0 * u(rng), cx *= 3.0, cy *= 3.0;
+        const int sides = u(rng) < 0.05 ? 300 : 3 + static_cast<int>(9 * u(rng));
+        Stretch s = polygon(n, plane, cx, cy, rad, sides, r, near_one_in, rng);
+        s.walls = u(rng) > 0.08;
+        stretches.push_back(std::move(s));
+        n += 10;
+    }
+    return stretches;
+}
+
 TEST(SelfApproachHold, StretchesFedWithALeadAgreeCallByCall) {
     std::size_t held_most = 0, findings = 0;
-    for (std::uint64_t seed = 1; seed <= 24; ++seed) {
-        SCOPED_TRACE(seed);
-        std::mt19937_64 rng(seed);
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        std::vector<Stretch> stretches;
-        int n = 10;
-        const int count = 20 + static_cast<int>(40 * u(rng));
-        for (int k = 0; k < count; ++k) {
-            // Mostly apart on a grid; now and then one placed onto the one before, in another
-            // plane, with a larger tool, under CDOF, or too long to hold.
-            const int plane = u(rng) < 0.1 ? (u(rng) < 0.5 ? 18 : 19) : 17;
-            const double r = u(rng) < 0.15 ? 2.0 + 2.0 * u(rng) : 1.0;
-            double cx = 60.0 * (k % 8), cy = 60.0 * (k / 8);
-            if (u(rng) < 0.12 && k > 0) cx -= 60.0 - 10.0 * u(rng);
-            const int sides = u(rng) < 0.05 ? 300 : 3 + static_cast<int>(9 * u(rng));
-            Stretch s = polygon(n, plane, cx, cy, 8.0 + 12.0 * u(rng), sides, r,
-                                seed % 3 == 0 ? 6 : 0, rng);
-            s.walls = u(rng) > 0.08;
-            stretches.push_back(std::move(s));
-            n += 10;
-        }
-        const int lead = static_cast<int>(40 * u(rng));
-        for (const auto& [window, budget] :
-             {std::pair<std::size_t, std::size_t>{SelfApproachCheck::kWindow,
-                                                  SelfApproachCheck::kEntryBudget},
-              {256, 4096},
-              {24, 96}}) {
-            SCOPED_TRACE(window);
-            expect_same_feed(stretches, window, budget, lead, held_most, findings);
-            if (HasFatalFailure()) return;
+    for (int regime = 0; regime < 4; ++regime) {
+        for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+            SCOPED_TRACE(::testing::Message() << "regime " << regime << " seed " << seed);
+            const std::vector<Stretch> stretches = draw(seed + 100 * regime, regime);
+            // No lookahead, a little, or much (every element of several stretches ahead).
+            for (const int lead : {0, 1 + static_cast<int>(seed % 7), 40}) {
+                for (const auto& [window, budget] :
+                     {std::pair<std::size_t, std::size_t>{SelfApproachCheck::kWindow,
+                                                          SelfApproachCheck::kEntryBudget},
+                      {256, 4096},
+                      {40, 400},
+                      {24, 96}}) {
+                    SCOPED_TRACE(::testing::Message() << "lead " << lead << " window " << window);
+                    expect_same_feed(stretches, window, budget, lead, held_most, findings);
+                    if (HasFatalFailure()) return;
+                }
+            }
         }
     }
     EXPECT_GT(held_most, 50u);  // calls were held back
