@@ -550,11 +550,11 @@ std::vector<Stretch> draw(std::uint64_t seed, int regime) {
 TEST(SelfApproachHold, StretchesFedWithALeadAgreeCallByCall) {
     std::size_t held_most = 0, findings = 0;
     for (int regime = 0; regime < 4; ++regime) {
-        for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-            SCOPED_TRACE(::testing::Message() << "regime " << regime << " seed " << seed);
-            const std::vector<Stretch> stretches = draw(seed + 100 * regime, regime);
+        for (std::uint64_t k = 1; k <= 12; ++k) {
+            SCOPED_TRACE(::testing::Message() << "regime " << regime << " set " << k);
+            const std::vector<Stretch> stretches = draw(100 * regime + k, regime);
             // No lookahead, a little, or much (every element of several stretches ahead).
-            for (const int lead : {0, 1 + static_cast<int>(seed % 7), 40}) {
+            for (const int lead : {0, 1 + static_cast<int>(k % 7), 40}) {
                 for (const auto& [window, budget] :
                      {std::pair<std::size_t, std::size_t>{SelfApproachCheck::kWindow,
                                                           SelfApproachCheck::kEntryBudget},
