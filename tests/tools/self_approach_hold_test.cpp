@@ -461,26 +461,40 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
                           1.0));
         cases.emplace_back("finding at a stretch's end", std::move(v));
     }
-    {  // an arc of 300 degrees, radius 1, then a sharp corner: its transition (a segment of the
-       // arc's block) passes within r of the arc's first part
-        std::vector<Stretch> v;
-        Stretch s = strip(n, {Point(25, 0, 0), Point(20, 0, 0), Point(10, 0, 0)}, 3.0);
-        PathSegment a = line(n, Point(10, 0, 0), Point(10.0 + std::cos(-0.5236), 1.0 + std::sin(-0.5236), 0));
+    {  // an arc of 300 degrees (radius 1, clockwise from (0, 1), the tool outside at r = 3),
+       // after a short approach along it and before a short line leaving at a right angle:
+       // the transition round that corner (a segment of the arc's block) is the first thing to
+       // come within r of anything, of the arc's first part (more than half a turn from it)
+        const double c150 = std::cos(2.6179938779914944), s150 = std::sin(2.6179938779914944);
+        const Point e(c150, s150, 0);           // the arc's end
+        const Point d2(-c150, -s150, 0);        // leaving direction: (0.866, -0.5)
+        const Point n2(-d2.y(), d2.x(), 0);     // its left normal
+        Stretch s;
+        s.r = 3.0;
+        s.elements.push_back(line(n, Point(-0.5, 1, 0), Point(0, 1, 0), Role::kApproach));
+        s.paths.push_back({line(n, Point(-0.5, 4, 0), Point(0, 4, 0), Role::kApproach)});
+        ++n;
+        PathSegment a = line(n, Point(0, 1, 0), e);
         a.kind = SegmentKind::kArc;
-        a.center = Point(10, 1, 0);
+        a.center = Point(0, 0, 0);
         a.ccw = false;
-        a.plane = 17;
         s.elements.push_back(a);
-        PathSegment offset = a;  // on the tool's side, outside, at 4
-        offset.start = Point(10, -3, 0);
-        offset.end = Point(10.0 + 4 * std::cos(-0.5236), 1.0 + 4 * std::sin(-0.5236), 0);
-        PathSegment transition = line(n, offset.end, Point(9.2, -0.4, 0), Role::kTransition);
+        PathSegment offset = a;
+        offset.start = Point(0, 4, 0);
+        offset.end = 4.0 * e;
+        PathSegment transition = offset;
+        transition.role = Role::kTransition;
+        transition.start = 4.0 * e;
+        transition.end = e + 3.0 * n2;
+        transition.center = e;
         s.paths.push_back({offset, transition});
         ++n;
-        const Point e = a.end;
-        s.elements.push_back(line(n, e, e + Point(0, 10, 0)));
-        s.paths.push_back({line(n, e + Point(-3, 0, 0), e + Point(-3, 10, 0))});
+        // Its path (moved away: clear of everything) is the first segment of another block,
+        // where the transition's finding is given out.
+        s.elements.push_back(line(n, e, e + 1.5 * d2));
+        s.paths.push_back({line(n, e + Point(20, 0, 0), e + Point(20, 0, 0) + 1.5 * d2)});
         ++n;
+        std::vector<Stretch> v;
         v.push_back(std::move(s));
         cases.emplace_back("transition near a long arc", std::move(v));
     }
@@ -503,6 +517,38 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
             found += findings;
         }
         EXPECT_GT(found, 0u);  // the shape comes near
+    }
+}
+
+// The queue of elements waiting to be executed is compacted when its head passes the 1,024th:
+// the segment executed then belongs to the element at the head, not the one before it. Straight
+// strips, 1,025 elements with a tool of 4 mm, then strips with 1 mm (the first of them at the
+// head at that moment): every path keeps its radius, so nothing is found, by either schedule
+// (a path taken as the element's before it would be held to the tool of 4 mm, and to its own
+// element as another stretch's).
+TEST(SelfApproachHold, ThePathAtTheQueuesCompactionIsItsOwnElements) {
+    std::vector<Stretch> stretches;
+    int n = 10;
+    for (int k = 0; k < 205; ++k) {  // 5 elements each
+        const double y = 20.0 * k;
+        stretches.push_back(strip(n, {Point(0, y, 0), Point(5, y, 0), Point(10, y, 0),
+                                      Point(15, y, 0), Point(20, y, 0), Point(25, y, 0)},
+                                  4.0));
+        n += 10;
+    }
+    for (int k = 0; k < 10; ++k) {
+        const double y = 20.0 * k;
+        stretches.push_back(strip(n, {Point(100, y, 0), Point(105, y, 0), Point(110, y, 0),
+                                      Point(115, y, 0)},
+                                  1.0));
+        n += 10;
+    }
+    for (const int lead : {0, 1, 3}) {
+        SCOPED_TRACE(lead);
+        std::size_t held_most = 0, findings = 0;
+        expect_same_feed(stretches, SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
+                         lead, held_most, findings);
+        EXPECT_EQ(findings, 0u);
     }
 }
 
