@@ -1030,9 +1030,10 @@ struct SelfApproachCheck::Candidate {
 // Of each stretch whose items may still meet more of its own, the hold keeps the elements and
 // paths (Record); a stretch with more than kOwn of either ends the holding for the run (a proof
 // would take too many), and a call in a plane whose grid could let items go before the kept
-// calls were all in it is worked (room()). The hold follows what the check would have been given (its own PendingQueue,
-// the stretches' numbers and radii, a wall model given the same elements), so that it knows,
-// call by call, the numbers the check would have given the items and what its model says.
+// calls were all in it is worked (room()). The hold follows what the check would have been
+// given (its own PendingQueue, the stretches' numbers and radii, a wall model given the same
+// elements), so that it knows, call by call, the numbers the check would have given the items
+// and what its model says.
 struct SelfApproachCheck::Hold {
     enum class Kind : std::uint8_t { kBegin, kEnd, kProgrammed, kExecuted, kWalls };
     // A call as given, its segment as much of it as the check reads.
@@ -1533,7 +1534,8 @@ struct SelfApproachCheck::Hold {
         if (s.kind != SegmentKind::kLine && s.kind != SegmentKind::kArc) return true;
         const std::uint64_t index = next_index++;
         const PlaneAxes a = plane_axes(plane);
-        pending.push(Pending{s.block, index, stretch, r, plane, Vec2(s.end[a.first], s.end[a.second])});
+        pending.push(
+            Pending{s.block, index, stretch, r, plane, Vec2(s.end[a.first], s.end[a.second])});
         if (off) return false;
         Record& rec = records.back();
         Item* x = add(rec, rec.elements);
