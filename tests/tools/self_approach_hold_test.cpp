@@ -552,6 +552,68 @@ TEST(SelfApproachHold, ThePathAtTheQueuesCompactionIsItsOwnElements) {
     }
 }
 
+// A grid of a window of 24 lets items go at its 48th distinct element: here the program's last,
+// with nothing found before, so that it may come while calls are held. The check that holds
+// must work it (its grid lets items go there, and the run says so), as the check at once does.
+TEST(SelfApproachHold, TheElementWhereTheGridLetsItemsGoIsWorked) {
+    for (const int per : {6, 8, 12}) {  // elements per stretch: 48 in all
+        SCOPED_TRACE(per);
+        std::vector<Stretch> stretches;
+        int n = 10;
+        for (int k = 0; k < 48 / per; ++k) {
+            std::vector<Point> pts;
+            for (int i = 0; i <= per; ++i) pts.emplace_back(5.0 * i, 30.0 * k, 0.0);
+            stretches.push_back(strip(n, pts, 1.0));
+            n += 100;
+        }
+        for (const int lead : {0, 1, 3, 60}) {
+            SCOPED_TRACE(lead);
+            std::size_t held_most = 0, findings = 0;
+            expect_same_feed(stretches, 24, SelfApproachCheck::kEntryBudget, lead, held_most,
+                             findings);
+            EXPECT_EQ(findings, 0u);
+        }
+        // Not a comparison of runs that let nothing go.
+        SelfApproachCheck once(24, SelfApproachCheck::kEntryBudget,
+                               SelfApproachCheck::Candidates::kGrid, Schedule::kAtOnce);
+        std::vector<SelfApproachFinding> found;
+        for (const Stretch& s : stretches) {
+            once.begin(s.r, 17, 1);
+            for (const PathSegment& e : s.elements) once.programmed(e, found);
+            once.end(found);
+        }
+        EXPECT_TRUE(once.limits().truncated);
+    }
+    // The paths' list (three a window element: 144 here) let go at its 144th path, the last:
+    // 36 elements, each executed in four pieces.
+    std::vector<Stretch> stretches;
+    int n = 10;
+    for (int k = 0; k < 6; ++k) {
+        std::vector<Point> pts;
+        for (int i = 0; i <= 6; ++i) pts.emplace_back(5.0 * i, 30.0 * k, 0.0);
+        Stretch s = strip(n, pts, 1.0);
+        for (auto& pieces : s.paths) {
+            const PathSegment whole = pieces.front();
+            pieces.clear();
+            for (int q = 0; q < 4; ++q) {
+                PathSegment piece = whole;
+                piece.start = whole.start + (whole.end - whole.start) * (q / 4.0);
+                piece.end = whole.start + (whole.end - whole.start) * ((q + 1) / 4.0);
+                pieces.push_back(piece);
+            }
+        }
+        stretches.push_back(std::move(s));
+        n += 100;
+    }
+    for (const int lead : {0, 1, 3, 60}) {
+        SCOPED_TRACE(lead);
+        std::size_t held_most = 0, findings = 0;
+        expect_same_feed(stretches, 24, SelfApproachCheck::kEntryBudget, lead, held_most,
+                         findings);
+        EXPECT_EQ(findings, 0u);
+    }
+}
+
 // The sets of stretches the fed tests draw: mostly apart on a grid, now and then one placed
 // onto the one before, in another plane, with a larger tool, under CDOF, or too long to hold;
 // or (regime 1) a square over a metre wide (a wide zone) with small ones beside its far sides;
