@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <random>
 #include <string>
 #include <utility>
@@ -520,6 +521,30 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
     }
 }
 
+// `count` straight strips (tool radius r) of `per` elements of 5 mm along X from x0, 20 mm
+// apart, appended to `to`: every path keeps its radius, nothing comes near.
+void straight_strips(std::vector<Stretch>& to, int count, int per, double x0, double r, int& n) {
+    for (int k = 0; k < count; ++k) {
+        std::vector<Point> pts;
+        for (int i = 0; i <= per; ++i) pts.emplace_back(x0 + 5.0 * i, 20.0 * k, 0.0);
+        to.push_back(strip(n, pts, r));
+        n += 100;
+    }
+}
+
+// Stretches where nothing comes near, fed to both schedules with these leads: the same, and no
+// finding.
+void expect_same_and_silent(const std::vector<Stretch>& stretches, std::size_t window,
+                            std::initializer_list<int> leads) {
+    for (const int lead : leads) {
+        SCOPED_TRACE(lead);
+        std::size_t held_most = 0, findings = 0;
+        expect_same_feed(stretches, window, SelfApproachCheck::kEntryBudget, lead, held_most,
+                         findings);
+        EXPECT_EQ(findings, 0u);
+    }
+}
+
 // The queue of elements waiting to be executed is compacted when its head passes the 1,024th:
 // the segment executed then belongs to the element at the head, not the one before it. Straight
 // strips, 1,025 elements with a tool of 4 mm, then strips with 1 mm (the first of them at the
@@ -529,27 +554,9 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
 TEST(SelfApproachHold, ThePathAtTheQueuesCompactionIsItsOwnElements) {
     std::vector<Stretch> stretches;
     int n = 10;
-    for (int k = 0; k < 205; ++k) {  // 5 elements each
-        const double y = 20.0 * k;
-        stretches.push_back(strip(n, {Point(0, y, 0), Point(5, y, 0), Point(10, y, 0),
-                                      Point(15, y, 0), Point(20, y, 0), Point(25, y, 0)},
-                                  4.0));
-        n += 10;
-    }
-    for (int k = 0; k < 10; ++k) {
-        const double y = 20.0 * k;
-        stretches.push_back(strip(n, {Point(100, y, 0), Point(105, y, 0), Point(110, y, 0),
-                                      Point(115, y, 0)},
-                                  1.0));
-        n += 10;
-    }
-    for (const int lead : {0, 1, 3}) {
-        SCOPED_TRACE(lead);
-        std::size_t held_most = 0, findings = 0;
-        expect_same_feed(stretches, SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
-                         lead, held_most, findings);
-        EXPECT_EQ(findings, 0u);
-    }
+    straight_strips(stretches, 205, 5, 0.0, 4.0, n);
+    straight_strips(stretches, 10, 3, 1000.0, 1.0, n);
+    expect_same_and_silent(stretches, SelfApproachCheck::kWindow, {0, 1, 3});
 }
 
 // A grid of a window of 24 lets items go at its 48th distinct element: here the program's last,
@@ -560,19 +567,8 @@ TEST(SelfApproachHold, TheElementWhereTheGridLetsItemsGoIsWorked) {
         SCOPED_TRACE(per);
         std::vector<Stretch> stretches;
         int n = 10;
-        for (int k = 0; k < 48 / per; ++k) {
-            std::vector<Point> pts;
-            for (int i = 0; i <= per; ++i) pts.emplace_back(5.0 * i, 30.0 * k, 0.0);
-            stretches.push_back(strip(n, pts, 1.0));
-            n += 100;
-        }
-        for (const int lead : {0, 1, 3, 60}) {
-            SCOPED_TRACE(lead);
-            std::size_t held_most = 0, findings = 0;
-            expect_same_feed(stretches, 24, SelfApproachCheck::kEntryBudget, lead, held_most,
-                             findings);
-            EXPECT_EQ(findings, 0u);
-        }
+        straight_strips(stretches, 48 / per, per, 0.0, 1.0, n);
+        expect_same_and_silent(stretches, 24, {0, 1, 3, 60});
         // Not a comparison of runs that let nothing go.
         SelfApproachCheck once(24, SelfApproachCheck::kEntryBudget,
                                SelfApproachCheck::Candidates::kGrid, Schedule::kAtOnce);
@@ -588,10 +584,8 @@ TEST(SelfApproachHold, TheElementWhereTheGridLetsItemsGoIsWorked) {
     // 36 elements, each executed in four pieces.
     std::vector<Stretch> stretches;
     int n = 10;
-    for (int k = 0; k < 6; ++k) {
-        std::vector<Point> pts;
-        for (int i = 0; i <= 6; ++i) pts.emplace_back(5.0 * i, 30.0 * k, 0.0);
-        Stretch s = strip(n, pts, 1.0);
+    straight_strips(stretches, 6, 6, 0.0, 1.0, n);
+    for (Stretch& s : stretches)
         for (auto& pieces : s.paths) {
             const PathSegment whole = pieces.front();
             pieces.clear();
@@ -602,16 +596,7 @@ TEST(SelfApproachHold, TheElementWhereTheGridLetsItemsGoIsWorked) {
                 pieces.push_back(piece);
             }
         }
-        stretches.push_back(std::move(s));
-        n += 100;
-    }
-    for (const int lead : {0, 1, 3, 60}) {
-        SCOPED_TRACE(lead);
-        std::size_t held_most = 0, findings = 0;
-        expect_same_feed(stretches, 24, SelfApproachCheck::kEntryBudget, lead, held_most,
-                         findings);
-        EXPECT_EQ(findings, 0u);
-    }
+    expect_same_and_silent(stretches, 24, {0, 1, 3, 60});
 }
 
 // The sets of stretches the fed tests draw: mostly apart on a grid, now and then one placed

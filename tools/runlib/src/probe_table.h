@@ -160,6 +160,12 @@ class CellIndex {
     std::array<std::vector<Node>, Lists> nodes_;
 };
 
+// A cell of a uniform grid, column i and row j, as one key of a ProbeTable or CellIndex (the
+// column in the high half, the row in the low: ProbeTable's hash mixes the halves).
+inline std::uint64_t cell_key(std::int64_t i, std::int64_t j) noexcept {
+    return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
+}
+
 // static_cast<std::int64_t>(std::floor(q)) for every q whose floor an int64 holds, without a
 // call into the library (x86-64 before SSE4.1 has no instruction for floor): truncated towards
 // zero, one less where that is above q.

@@ -17,6 +17,7 @@
 #include "wall_model.h"
 
 namespace apci::run {
+using detail::cell_key;
 namespace {
 
 using Vec2 = Eigen::Vector2d;
@@ -110,6 +111,44 @@ Shape shape_of(const PathSegment& s, int plane) {
     out.length = std::abs(out.sweep) * 0.5 * (out.r0 + out.r1);
     add_arc_to_box(out);
     return out;
+}
+
+// Whether a programmed move moves in the plane (a plunge in Z under G17, G41 G1 to the point
+// the tool stands on, does not): the wall model's elements, and a stretch's first is its
+// approach.
+bool moves_in(const PathSegment& s, int plane) {
+    const PlaneAxes a = plane_axes(plane);
+    return (s.kind == SegmentKind::kArc && s.plane == plane) ||
+           std::hypot(s.end[a.first] - s.start[a.first], s.end[a.second] - s.start[a.second]) >
+               kFullCircle;
+}
+
+// A move as the wall model takes it, in the axes of `plane`: an arc's terms those of `e` where
+// given (its shape made already), else worked out by the model.
+detail::PlaneMove plane_move(const PathSegment& s, int plane, const Shape* e) {
+    const PlaneAxes a = plane_axes(plane);
+    detail::PlaneMove m;
+    m.start = {s.start[a.first], s.start[a.second]};
+    m.end = {s.end[a.first], s.end[a.second]};
+    m.arc = s.kind == SegmentKind::kArc && s.plane == plane;
+    m.ccw = s.ccw;
+    m.centre = {s.center[a.first], s.center[a.second]};
+    m.terms = e != nullptr;
+    m.sweep = e != nullptr ? e->sweep : 0.0;
+    m.phi0 = e != nullptr ? e->phi0 : 0.0;
+    m.low = std::min(s.start[a.third], s.end[a.third]);
+    m.high = std::max(s.start[a.third], s.end[a.third]);
+    return m;
+}
+
+// An executed segment of a programmed element (the queue moves on to it), and one of those the
+// check holds to the elements (not the departure).
+bool of_element(Role r) {
+    return r == Role::kContour || r == Role::kTransition || r == Role::kApproach ||
+           r == Role::kDeparture;
+}
+bool held_to_elements(Role r) {
+    return r == Role::kContour || r == Role::kTransition || r == Role::kApproach;
 }
 
 // A float no larger (down) or no smaller (up) than v: a box rounded outward still holds every
@@ -437,9 +476,6 @@ struct SelfApproachCheck::Grid {
     BlockRef truncated_at{};  // the block whose element or path let the first go
     int plane = 17;
 
-    static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
-        return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
-    }
     std::int64_t index_of(double v) const { return detail::floor_index(v / cell); }
 
     // The samples of e are n + 1 points, from its start to its end.
@@ -1094,7 +1130,6 @@ struct SelfApproachCheck::Hold {
         Vec2 entry = Vec2::Zero();  // an approach's entry point (its element's end)
         bool transition = false;  // a path's role
         bool approach = false;
-        bool arc = false;
         detail::WallRole role = detail::WallRole::kUndecided;
     };
     // A pair the check would ask the model about before it measures it (its elements not
@@ -1109,7 +1144,6 @@ struct SelfApproachCheck::Hold {
         std::uint64_t stretch = 0;
         int plane = 17;
         bool ended = false;
-        bool large = false;  // more than kOwn elements or paths
         std::vector<Item> elements, paths;
         // A box holding the stretch's items, proved apart from every other stretch's zone in
         // the epoch `epoch` (every item since was proved so or lies in it).
@@ -1199,22 +1233,15 @@ struct SelfApproachCheck::Hold {
         x.shape = e;
         const Box b = box_of(e);
         x.extent = Extent{b.lo, b.hi, e.low - slack(e.low), e.high + slack(e.high)};
-        x.arc = is_arc(e);
         x.index = index;
         x.role = detail::WallRole::kUndecided;
     }
 
     // The zone cells of a box.
-    struct Cells {
-        std::int64_t i0, i1, j0, j1;
-        std::int64_t count() const { return (i1 - i0 + 1) * (j1 - j0 + 1); }
-    };
+    using Cells = Grid::CellRange;
     static Cells cells_of(const Vec2& lo, const Vec2& hi) {
         return {detail::floor_index(lo.x() / kZoneCell), detail::floor_index(hi.x() / kZoneCell),
                 detail::floor_index(lo.y() / kZoneCell), detail::floor_index(hi.y() / kZoneCell)};
-    }
-    static std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
-        return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
     }
 
     // The stretch's zone made to hold b, an item's box or (not `item`) a box proved apart
@@ -1315,14 +1342,9 @@ struct SelfApproachCheck::Hold {
                                     ? next_index
                                     : records.front().elements.front().index);
     }
-    // A new item of the record's (null where the record is or becomes large), to be made.
-    static Item* add(Record& rec, std::vector<Item>& to) {
-        if (rec.large) return nullptr;
-        if (to.size() >= kOwn) {
-            rec.large = true;
-            return nullptr;
-        }
-        return &to.emplace_back();
+    // A new item of the record's, to be made (null where it has kOwn already).
+    static Item* add(std::vector<Item>& to) {
+        return to.size() < kOwn ? &to.emplace_back() : nullptr;
     }
 
     // Whether the grid of plane `p` keeps every item the kept calls would bring, and this one
@@ -1457,7 +1479,7 @@ struct SelfApproachCheck::Hold {
                 continue;
             const Relation rel = relation(c.index, rec.stretch, p.index, rec.stretch, transition);
             if (rel == Relation::kOwn ||
-                ((rel == Relation::kHeld || rel == Relation::kNext) && !c.arc))
+                ((rel == Relation::kHeld || rel == Relation::kNext) && !is_arc(c.shape)))
                 continue;
             const double threshold = threshold_for(rel, p.r);
             if (!near_enough(extent, c.extent, threshold)) continue;
@@ -1492,7 +1514,7 @@ struct SelfApproachCheck::Hold {
             }
             rec.stretch = stretch;
             rec.plane = p;
-            rec.ended = rec.large = false;
+            rec.ended = false;
             rec.epoch = 0;
             records.push_back(std::move(rec));
             walls.begin(p, side);
@@ -1538,7 +1560,7 @@ struct SelfApproachCheck::Hold {
             Pending{s.block, index, stretch, r, plane, Vec2(s.end[a.first], s.end[a.second])});
         if (off) return false;
         Record& rec = records.back();
-        Item* x = add(rec, rec.elements);
+        Item* x = add(rec.elements);
         if (x == nullptr) {  // a large stretch: nothing is kept from now on
             off = true;
             return false;
@@ -1547,23 +1569,7 @@ struct SelfApproachCheck::Hold {
         const Shape& e = x->shape;
         bool keep = may_keep(c);
         // The model is given the element as programmed() gives the check's.
-        const bool moves = (s.kind == SegmentKind::kArc && s.plane == plane) ||
-                           std::hypot(s.end[a.first] - s.start[a.first],
-                                      s.end[a.second] - s.start[a.second]) > kFullCircle;
-        if (moves) {
-            detail::PlaneMove m;
-            m.start = e.start;
-            m.end = e.end;
-            m.arc = s.kind == SegmentKind::kArc && s.plane == plane;
-            m.ccw = s.ccw;
-            m.centre = e.centre;
-            m.terms = true;
-            m.sweep = e.sweep;
-            m.phi0 = e.phi0;
-            m.low = e.low;
-            m.high = e.high;
-            walls.element(index, m, 0, walls_on, false);
-        }
+        if (moves_in(s, plane)) walls.element(index, plane_move(s, plane, &e), 0, walls_on, false);
         const Box b = box_of(e);
         // What the model placed now decides the pairs waiting for it (the check's review()
         // after its model is given the element), then the element's own pairs.
@@ -1583,13 +1589,11 @@ struct SelfApproachCheck::Hold {
         if (c.done()) return false;
         const std::size_t waiting_now = pending.waiting();
         const std::size_t at = pending.find(s);
-        const bool counted = s.role == Role::kContour || s.role == Role::kTransition ||
-                             s.role == Role::kApproach || s.role == Role::kDeparture;
-        if (counted && at != waiting_now) {
+        if (of_element(s.role) && at != waiting_now) {
             pending.advance(at);
             prune();
             const Pending p = pending.at(0);
-            if (s.role != Role::kDeparture && !off && !path(c, s, p)) return false;
+            if (held_to_elements(s.role) && !off && !path(c, s, p)) return false;
         }
         if (!may_keep(c) || off) return false;
         Call::make(calls.emplace_back(), Kind::kExecuted, s);
@@ -1599,7 +1603,7 @@ struct SelfApproachCheck::Hold {
     // stretch may have more elements; true where it brings no pair near (and may be kept).
     bool path(const SelfApproachCheck& c, const PathSegment& s, const Pending& p) {
         Record* rec = record_of(p.stretch);
-        if (rec == nullptr || rec->large) {  // nothing is kept from now on
+        if (rec == nullptr) {  // nothing is kept from now on
             off = true;
             return false;
         }
@@ -1620,7 +1624,7 @@ struct SelfApproachCheck::Hold {
             if (keep) count(p.plane, false, entries);
         }
         if (store) {
-            Item* x = add(*rec, rec->paths);
+            Item* x = add(rec->paths);
             if (x == nullptr) {  // a large stretch: nothing is kept from now on
                 off = true;
                 return false;
@@ -1999,9 +2003,7 @@ void SelfApproachCheck::programmed_now(const PathSegment& s,
     // A move that stays where it is in the plane (a plunge in Z under G17, G41 G1 to the point
     // the tool stands on) is no element of the contour; the stretch's first element, its
     // approach, is the first that moves in the plane (as the board runs it).
-    const bool moves = (s.kind == SegmentKind::kArc && s.plane == plane_) ||
-                       std::hypot(s.end[axes.first] - s.start[axes.first],
-                                  s.end[axes.second] - s.start[axes.second]) > kFullCircle;
+    const bool moves = moves_in(s, plane_);
     const bool first = first_in_stretch_ && moves;
     if (moves) first_in_stretch_ = false;
     // The element before is not the last: what came near it counts.
@@ -2014,18 +2016,8 @@ void SelfApproachCheck::programmed_now(const PathSegment& s,
     const Shape e = fresh ? shape_of(s, plane_) : Shape{};
     // Every element that moves in the plane, repeats too: the loops are the program's.
     if (moves) {
-        detail::PlaneMove m;
-        m.start = {s.start[axes.first], s.start[axes.second]};
-        m.end = {s.end[axes.first], s.end[axes.second]};
-        m.arc = s.kind == SegmentKind::kArc && s.plane == plane_;
-        m.ccw = s.ccw;
-        m.centre = {s.center[axes.first], s.center[axes.second]};
-        m.terms = fresh;
-        m.sweep = e.sweep;
-        m.phi0 = e.phi0;
-        m.low = std::min(s.start[axes.third], s.end[axes.third]);
-        m.high = std::max(s.start[axes.third], s.end[axes.third]);
-        walls_->element(index, m, key, walls_on_, !fresh);
+        walls_->element(index, plane_move(s, plane_, fresh ? &e : nullptr), key, walls_on_,
+                        !fresh);
         review(out);
     }
     if (!fresh) return;  // programmed before
@@ -2076,10 +2068,7 @@ void SelfApproachCheck::executed_now(const PathSegment& s,
     const std::size_t waiting = pending_.waiting();
     const std::size_t at = pending_.find(s);
     leave_undecided(s, at, out);
-    if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach &&
-        s.role != Role::kDeparture)
-        return;
-    if (at == waiting) return;
+    if (!of_element(s.role) || at == waiting) return;
     pending_.advance(at);
     const Pending p = pending_.at(0);
     // The last element of a stretch that has ended: no segment of its block is checked after
@@ -2087,8 +2076,7 @@ void SelfApproachCheck::executed_now(const PathSegment& s,
     // none of another block may come to give its findings out.
     const bool running = active_ || pending_.waiting() > 1;
     // The approach cuts as the contour does (under G139 it is the first element's whole move).
-    if (s.role != Role::kContour && s.role != Role::kTransition && s.role != Role::kApproach)
-        return;
+    if (!held_to_elements(s.role)) return;
     check_path(s, p, running, out);
 }
 

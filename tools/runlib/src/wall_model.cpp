@@ -19,9 +19,6 @@ std::uint64_t mix(std::uint64_t x) {
 std::int64_t cell_of(double v) {
     return static_cast<std::int64_t>(std::floor(v / WallModel::kTolerance));
 }
-std::uint64_t cell_key(std::int64_t i, std::int64_t j) {
-    return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
-}
 
 }  // namespace
 
