@@ -498,6 +498,66 @@ TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
     EXPECT_EQ(m.role(a + 2), C);
 }
 
+// Many loops let go while the first is kept (the same contour again, its levels joined, so that
+// its last element keeps growing): each later one is let go all the same, and what the loops
+// kept and let go say stays right as the index of loops is made again (more than 64 let go).
+// Then more than 1,024 let go at the front: they are forgotten, the numbers of those kept stay,
+// and a larger pass about the last one still finds and clears it.
+TEST(WallModel, LoopsLetGoBehindOneKeptAndAtTheFrontAnswerAsBefore) {
+    // The repeated contour: the same keys each time (its elements' geometry).
+    const auto repeat = [](WallModel& m, std::uint64_t first) {
+        m.begin(17, 1);
+        std::uint64_t n = first;
+        std::uint64_t key = 1;
+        for (const Parametric& e : square_stretch(0, 0, 5, false, 0, 0))
+            m.element(n++, move_of(e, 0.0), 0xABCDEFULL * key++, true, false);
+        m.end();
+        return n;
+    };
+    {
+        WallModel m;
+        std::uint64_t n = repeat(m, 0);
+        std::uint64_t repeated = 0;  // the first element of its last run
+        std::vector<std::uint64_t> firsts;
+        for (int i = 0; i < 200; ++i) {
+            firsts.push_back(n);
+            m.forget_before(n);
+            n = feed(m, n, square_stretch(100.0 * (i + 1), 0, 5, false, 2, 1));
+            if (i % 10 == 9) {
+                repeated = n;
+                n = repeat(m, n);
+            }
+        }
+        // The repeated contour and the last pocket.
+        EXPECT_EQ(m.loops(), 2U);
+        EXPECT_EQ(m.role(firsts[3] + 2), W);  // let go: a wall
+        const std::uint64_t last = firsts.back();
+        EXPECT_EQ(m.role(last + 2), W);
+        // A larger pass about the last pocket clears it; one about the repeated contour too.
+        n = feed(m, n, square_stretch(100.0 * 200, 0, 8, false, 2, 1));
+        EXPECT_EQ(m.role(last + 2), C);
+        n = feed(m, n, square_stretch(0, 0, 8, false, 2, 1));
+        EXPECT_EQ(m.role(repeated + 2), C);
+        // A larger pass about a pocket let go clears nothing of it.
+        feed(m, n, square_stretch(100.0 * 4, 0, 8, false, 2, 1));
+        EXPECT_EQ(m.role(firsts[3] + 2), W);
+    }
+    {
+        WallModel m;
+        std::uint64_t n = 0;
+        std::uint64_t last = 0;
+        for (int i = 0; i < 1100; ++i) {
+            m.forget_before(n);
+            last = n;
+            n = feed(m, n, square_stretch(100.0 * i, 0, 5, false, 2, 1));
+        }
+        EXPECT_EQ(m.loops(), 1U);
+        feed(m, n, square_stretch(100.0 * 1099, 0, 8, false, 2, 1));
+        EXPECT_EQ(m.role(last + 2), C);
+        EXPECT_EQ(m.loops(), 2U);
+    }
+}
+
 // ---- probe_table.h
 
 // A grid cell's index: the floor of the coordinate over the cell size, as an integer, the same

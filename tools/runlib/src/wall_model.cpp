@@ -327,10 +327,11 @@ void WallModel::index_loop(std::uint64_t number) {
 }
 
 void WallModel::reindex_loops() {
+    unindexed_ = 0;
     loop_cells_.clear();
     wide_loops_.clear();
     loop_by_key_.clear();
-    for (std::size_t k = 0; k < loops_.size(); ++k) {
+    for (std::size_t k = live_; k < loops_.size(); ++k) {
         if (loops_[k].dropped) continue;
         index_loop(loops_first_ + k);
         loop_by_key_.emplace(loops_[k].key).first = loops_first_ + k;
@@ -351,7 +352,7 @@ void WallModel::candidates(const Loop& loop, std::vector<std::uint64_t>& out) {
         add_cell(loop_cell(centre.x()), loop_cell(centre.y()));
     } else if ((i1 - i0 + 1) * (j1 - j0 + 1) > kLoopCells) {
         out.clear();
-        for (std::size_t k = 0; k < loops_.size(); ++k) out.push_back(loops_first_ + k);
+        for (std::size_t k = live_; k < loops_.size(); ++k) out.push_back(loops_first_ + k);
     } else {
         for (std::int64_t i = i0; i <= i1; ++i)
             for (std::int64_t j = j0; j <= j1; ++j) add_cell(i, j);
@@ -412,25 +413,30 @@ void WallModel::forget_before(std::uint64_t index) {
         records_.erase(records_.begin(), records_.begin() + static_cast<std::ptrdiff_t>(records_head_));
         records_head_ = 0;
     }
-    bool dropped_any = false;
-    for (Loop& l : loops_)
+    // Loops before live_ are all dropped: only those from it on may be let go now.
+    for (std::size_t k = live_; k < loops_.size(); ++k) {
+        Loop& l = loops_[k];
         if (!l.dropped && l.last < index) {
             l.dropped = true;
             l.elements = {};
-            dropped_any = true;
             ++loops_dropped_;
+            ++unindexed_;
         }
-    // Loops let go at the front are forgotten (numbers stay as they were).
-    std::size_t gone = 0;
-    while (gone < loops_.size() && loops_[gone].dropped) ++gone;
-    if (gone > 1024 && 2 * gone > loops_.size()) {
-        loops_.erase(loops_.begin(), loops_.begin() + static_cast<std::ptrdiff_t>(gone));
-        loops_first_ += gone;
-        loops_dropped_ -= gone;
-        dropped_any = true;  // the index's numbers changed
-
     }
-    if (dropped_any) reindex_loops();
+    while (live_ < loops_.size() && loops_[live_].dropped) ++live_;
+    // Loops let go at the front are forgotten (numbers stay as they were).
+    if (live_ > 1024 && 2 * live_ > loops_.size()) {
+        loops_.erase(loops_.begin(), loops_.begin() + static_cast<std::ptrdiff_t>(live_));
+        loops_first_ += live_;
+        loops_dropped_ -= live_;
+        live_ = 0;
+        reindex_loops();  // the index's numbers changed
+        return;
+    }
+    // A dropped loop left in the index is passed over where it is found (clears(), the key's
+    // lookup in close_loop()); the index is made again once they outnumber the loops kept, so
+    // that each drop costs the index a share of one remaking.
+    if (unindexed_ > std::max<std::size_t>(64, loops())) reindex_loops();
 }
 
 }  // namespace apci::run::detail

@@ -187,6 +187,8 @@ class WallModel {
     std::vector<Loop> loops_;       // numbered from loops_first_
     std::uint64_t loops_first_ = 0;
     std::size_t loops_dropped_ = 0;
+    std::size_t live_ = 0;  // loops_[k] for k < live_ are all dropped
+    std::size_t unindexed_ = 0;  // loops dropped since the index was last made
     // The loop of each geometry key (its number; a key of a loop let go finds it dropped).
     ProbeTable<std::uint64_t> loop_by_key_;
     // The stretch under way.
