@@ -665,5 +665,23 @@ TEST(SelfApproachHold, StretchesFedWithALeadAgreeCallByCall) {
     EXPECT_GT(findings, 50u);   // and findings given out
 }
 
+// More calls held than one chunk of the hold's memory keeps (a huge page: about 18,700 calls),
+// then a stretch laid onto the first strip's wall: every call kept is worked, in order, across
+// the chunks, and the findings are those of the check at once.
+TEST(SelfApproachHold, CallsHeldOverSeveralChunksAreWorkedInOrder) {
+    std::vector<Stretch> stretches;
+    int n = 10;
+    straight_strips(stretches, 3500, 5, 0.0, 1.0, n);
+    stretches.push_back(strip(n, {Point(-5, 0.5, 0), Point(2, 0.5, 0), Point(20, 0.5, 0),
+                                  Point(22, 0.5, 0)},
+                              1.0, {{1, Point(0, -0.5, 0)}}));
+    std::size_t held_most = 0, findings = 0;
+    expect_same_feed(stretches, SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget, 1,
+                     held_most, findings);
+    EXPECT_GT(held_most, 40'000u);
+    EXPECT_GT(findings, 0u);
+}
+
 }  // namespace
 }  // namespace apci::test
+

@@ -25,6 +25,7 @@ PipelinedSink::~PipelinedSink() {
 }
 
 void PipelinedSink::start() {
+    segments_ = HugeRegion(kBatches * kBatchEvents * sizeof(PathSegment));
     started_ = true;
     inner_measures_ = inner_.measures_executed();  // before the writer reads it
     writer_ = exec::quiet_thread([this] { write_loop(); });
@@ -35,7 +36,12 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
     if (finished_) return nullptr;
     if (!started_) start();
     filling_ = ring_.acquire();  // nullptr: the writer stopped
-    if (filling_ != nullptr) filling_->clear();
+    if (filling_ == nullptr) return nullptr;
+    filling_->clear();
+    // The ring hands its slots out in turn: the first kBatches are each new once.
+    if (!filling_->segments.placed())
+        filling_->segments.place(static_cast<PathSegment*>(segments_.data()) +
+                                 kBatchEvents * placed_++);
     return filling_;
 }
 

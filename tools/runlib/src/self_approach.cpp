@@ -6,12 +6,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <new>
 #include <numbers>
 #include <optional>
+#include <type_traits>
 #include <utility>
 
+#include "apci/run/huge_region.h"
 #include "apci/run/plane_distance.h"
 #include "probe_table.h"
 #include "wall_model.h"
@@ -1042,6 +1047,52 @@ struct SelfApproachCheck::Candidate {
     }
 };
 
+namespace {
+
+// Items kept in order, in chunks of a huge page each (HugeRegion), kept when the array is
+// cleared. The calls held back are written one after the other and read once, if at all: a
+// chunk is one page fault where pages of 4 KiB are 512, and keeping an item never allocates but
+// at a chunk's start, nor moves the items before it (as a vector's growth would). T has nothing
+// to destroy.
+template <class T>
+class ChunkedArray {
+    static_assert(std::is_trivially_destructible_v<T>);
+
+  public:
+    static constexpr std::size_t kPerChunk = HugeRegion::kHugePage / sizeof(T);
+
+    // A new item at the end, value-initialised.
+    T& emplace_back() {
+        if (size_ == chunks_.size() * kPerChunk) chunks_.emplace_back(HugeRegion::kHugePage);
+        T* t = new (at(size_)) T{};
+        ++size_;
+        return *t;
+    }
+    void push_back(const T& t) { emplace_back() = t; }
+    std::size_t size() const noexcept { return size_; }
+    bool empty() const noexcept { return size_ == 0; }
+    T& operator[](std::size_t i) noexcept { return *at(i); }
+    // Empties it; its chunks stay for the next items.
+    void clear() noexcept { size_ = 0; }
+    void swap(ChunkedArray& other) noexcept {
+        chunks_.swap(other.chunks_);
+        std::swap(size_, other.size_);
+    }
+    template <class F>
+    void for_each(F&& f) const {
+        for (std::size_t i = 0; i < size_; ++i) f(*at(i));
+    }
+
+  private:
+    T* at(std::size_t i) const noexcept {
+        return static_cast<T*>(chunks_[i / kPerChunk].data()) + i % kPerChunk;
+    }
+    std::vector<HugeRegion> chunks_;
+    std::size_t size_ = 0;
+};
+
+}  // namespace
+
 // Calls held back (docs/performance.md, "Stretches held back"). A call is kept, to be worked
 // later in its order, where working it now would give nothing out: nothing the check found waits
 // to be given out (settled()) and the call brings no pair near. A call that may bring a pair
@@ -1193,14 +1244,14 @@ struct SelfApproachCheck::Hold {
     std::uint64_t reviewed = 0;  // the model's generation at the last review
     std::deque<Record> records;  // the stretches whose items may still meet more of their own
     std::vector<Record> spare;   // records let go, their memory kept for the next
-    std::vector<Zone> zones;     // by stretch number - 1
+    ChunkedArray<Zone> zones;      // by stretch number - 1
     detail::CellIndex<3> cells;  // per plane (list), the stretches listed in each zone cell
     std::array<std::vector<std::uint32_t>, 3> wide;
     std::vector<std::uint32_t> found;
     // Grows with each call worked: a stretch's box proved clear before is asked again.
     std::uint64_t epoch = 1;
     // The calls kept, and the items they bring per plane.
-    std::deque<Call> calls;
+    ChunkedArray<Call> calls;
     std::array<Counts, 3> held{};
     bool off = false;  // nothing is kept from now on (too many stretches, or too wide)
 
@@ -1506,7 +1557,7 @@ struct SelfApproachCheck::Hold {
         max_r[slot(p)] = std::max(max_r[slot(p)], r);
         if (stretch > kMostStretches) off = true;
         if (!off) {
-            zones.push_back(Zone{Box{}, Box{}, p, false});
+            zones.emplace_back().plane = p;
             Record rec;
             if (!spare.empty()) {
                 rec = std::move(spare.back());
@@ -1708,11 +1759,11 @@ void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
         hold_->waiting.clear();
         return;
     }
-    std::deque<Hold::Call> calls;
+    ChunkedArray<Hold::Call> calls;
     calls.swap(hold_->calls);
     hold_->held = {};
     hold_->waiting.clear();
-    for (const Hold::Call& k : calls) {
+    calls.for_each([&](const Hold::Call& k) {
         switch (k.kind) {
             case Hold::Kind::kBegin: begin_now(k.sweep, k.plane, k.side); break;
             case Hold::Kind::kEnd: end_now(out); break;
@@ -1720,7 +1771,7 @@ void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
             case Hold::Kind::kExecuted: executed_now(k.segment_of(), out); break;
             case Hold::Kind::kWalls: walls_on_ = k.on; break;
         }
-    }
+    });
     // Nothing is kept from now on: the hold lets its records go.
     if (hold_->off) {
         hold_.reset();
