@@ -73,7 +73,11 @@ bool is_full_circle(const Element& e) noexcept {
 
 double arc_sweep(const Vec2& u0, const Vec2& u1, bool ccw, bool full) noexcept {
     // hypot: no overflow of the squares for a radius beyond 1e154 (a program's R1e200).
-    const double r0 = std::hypot(u0.x(), u0.y()), r1 = std::hypot(u1.x(), u1.y());
+    return arc_sweep(u0, u1, std::hypot(u0.x(), u0.y()), std::hypot(u1.x(), u1.y()), ccw, full);
+}
+
+double arc_sweep(const Vec2& u0, const Vec2& u1, double r0, double r1, bool ccw,
+                 bool full) noexcept {
     if (full || !(r0 > 0.0) || !(r1 > 0.0)) return ccw ? kTwoPi : -kTwoPi;
     const Vec2 a = u0 / r0, b = u1 / r1;
     double sweep = turn_angle(a, b);  // between the unit radii

@@ -558,6 +558,44 @@ TEST(WallModel, LoopsLetGoBehindOneKeptAndAtTheFrontAnswerAsBefore) {
     }
 }
 
+// A model asked only where elements are placed (Asks::kPlacement) places every element as one
+// asked for roles does: leads, CDOF, a loop's elements and an open contour's. It keeps nothing of
+// the loops: no loop number, no clearing (a loop's element is a wall), none held.
+TEST(WallModel, AModelAskedOnlyForPlacementPlacesAsTheOtherAndKeepsNoLoop) {
+    WallModel roles_model;
+    WallModel places(WallModel::Asks::kPlacement);
+    std::uint64_t n = 0;
+    const auto both = [&](const std::vector<Parametric>& s, bool walls) {
+        feed(roles_model, n, s, 1, 0.0, walls);
+        n = feed(places, n, s, 1, 0.0, walls);
+    };
+    both(square_stretch(0, 0, 5, false, 2, 1), true);    // a pocket pass, with leads
+    both(square_stretch(0, 0, 8, false, 2, 1), true);    // a larger one clears it
+    both(square_stretch(50, 0, 5, true, 1, 2), false);   // under CDOF
+    both({line(100, 0, 110, 0), line(110, 0, 110, 10)}, true);  // an open contour
+    std::size_t loops = 0, cleared = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+        SCOPED_TRACE(i);
+        std::uint64_t loop_r = 0, loop_p = 0;
+        const WallRole r = roles_model.placement(i, loop_r);
+        EXPECT_EQ(places.placement(i, loop_p), r);
+        EXPECT_EQ(places.looped(i), roles_model.looped(i));
+        EXPECT_EQ(loop_p, WallModel::kNoLoop);
+        if (roles_model.looped(i)) ++loops;
+        if (roles_model.role(i) == C) {
+            ++cleared;
+            EXPECT_EQ(places.role(i), W);
+        } else {
+            EXPECT_EQ(places.role(i), roles_model.role(i));
+        }
+    }
+    EXPECT_GT(loops, 10U);
+    EXPECT_GT(cleared, 3U);
+    EXPECT_EQ(places.loops(), 0U);
+    EXPECT_FALSE(places.cleared(0));
+    EXPECT_GT(roles_model.loops(), 0U);
+}
+
 // ---- probe_table.h
 
 // A grid cell's index: the floor of the coordinate over the cell size, as an integer, the same

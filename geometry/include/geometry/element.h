@@ -56,6 +56,10 @@ double angle_between(const Vec2& a, const Vec2& b, bool ccw) noexcept;
 // 1e18 over 20 mm), where the difference of two atan2 angles vanishes and the raw vectors'
 // products lose the turn. Board and host take every arc's sweep from here.
 double arc_sweep(const Vec2& u0, const Vec2& u1, bool ccw, bool full) noexcept;
+// The same, with the radii r0 = std::hypot(u0.x(), u0.y()) and r1 = std::hypot(u1.x(),
+// u1.y()) the caller has already (the same numbers: the same sweep).
+double arc_sweep(const Vec2& u0, const Vec2& u1, double r0, double r1, bool ccw,
+                 bool full) noexcept;
 
 double radius(const Element& arc) noexcept;      // start radius
 double end_radius(const Element& arc) noexcept;  // |end - centre|

@@ -73,7 +73,7 @@ void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, d
     const double dx = ex - sx, dy = ey - sy;
     const bool full = !(std::max(std::fabs(dx), std::fabs(dy)) > 2.0 * kFullCircleTolerance ||
                         std::hypot(dx, dy) > kFullCircleTolerance);
-    m.sweep = geom::arc_sweep({sx, sy}, {ex, ey}, ccw, full);
+    m.sweep = geom::arc_sweep({sx, sy}, {ex, ey}, m.radius, m.end_radius, ccw, full);
 }
 
 double arc_plane_length(const Move& m) noexcept {

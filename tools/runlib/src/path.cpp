@@ -50,9 +50,10 @@ double angle_about(const Point& p, const Point& c, const PlaneAxes& a) noexcept 
 
 namespace {
 
-// arc_sweep in the plane of axes First, Second (constants: no index looked up per coordinate).
+// arc_sweep in the plane of axes First, Second (constants: no index looked up per coordinate),
+// with its radii r0 and r1 (std::hypot of the start's and the end's radius vectors).
 template <int First, int Second>
-double sweep_in(const PathSegment& arc) noexcept {
+double sweep_in(const PathSegment& arc, double r0, double r1) noexcept {
     const double du = arc.end[First] - arc.start[First];
     const double dv = arc.end[Second] - arc.start[Second];
     // A chord with a component over twice the tolerance is longer than it: no hypot needed.
@@ -61,17 +62,32 @@ double sweep_in(const PathSegment& arc) noexcept {
     const bool full = !long_chord && std::hypot(du, dv) <= kSamePointTolerance;
     return geom::arc_sweep({arc.start[First] - arc.center[First], arc.start[Second] - arc.center[Second]},
                            {arc.end[First] - arc.center[First], arc.end[Second] - arc.center[Second]},
-                           arc.ccw, full);
+                           r0, r1, arc.ccw, full);
+}
+
+template <int First, int Second>
+double start_radius_in(const PathSegment& s) noexcept {
+    return std::hypot(s.start[First] - s.center[First], s.start[Second] - s.center[Second]);
+}
+template <int First, int Second>
+double end_radius_in(const PathSegment& s) noexcept {
+    return std::hypot(s.end[First] - s.center[First], s.end[Second] - s.center[Second]);
+}
+
+template <int First, int Second>
+double sweep_in(const PathSegment& arc) noexcept {
+    return sweep_in<First, Second>(arc, start_radius_in<First, Second>(arc),
+                                   end_radius_in<First, Second>(arc));
 }
 
 // measure() of an arc in the plane of axes First, Second with Third its normal: the formulas of
-// arc_sweep, arc_radius, arc_end_radius and segment_length, with the axes as constants.
+// arc_sweep, arc_radius, arc_end_radius and segment_length, with the axes as constants (the
+// radii taken once, for the sweep and the length).
 template <int First, int Second, int Third>
 void measure_arc(PathSegment& s) noexcept {
-    s.sweep = sweep_in<First, Second>(s);
-    const double r0 =
-        std::hypot(s.start[First] - s.center[First], s.start[Second] - s.center[Second]);
-    const double r1 = std::hypot(s.end[First] - s.center[First], s.end[Second] - s.center[Second]);
+    const double r0 = start_radius_in<First, Second>(s);
+    const double r1 = end_radius_in<First, Second>(s);
+    s.sweep = sweep_in<First, Second>(s, r0, r1);
     const double planar = std::abs(s.sweep) * 0.5 * (r0 + r1);
     const double normal = s.end[Third] - s.start[Third];
     // hypot(planar, 0) is |planar| exactly (planar >= 0): a flat arc needs no root.

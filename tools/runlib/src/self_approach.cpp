@@ -1236,9 +1236,9 @@ struct SelfApproachCheck::Hold {
     // What the check's wall model says of the elements of the stretches whose items may be
     // kept: leads are a stretch's own (wall_model.h), so a model given those stretches'
     // elements as the check's is given them places them as the check's does. It is asked
-    // about leads and CDOF only (a loop's clearing is left to the pair's geometry), so every
-    // element takes the same key (its loops are one, never compared).
-    detail::WallModel walls;
+    // about leads and CDOF only (a loop's clearing is left to the pair's geometry): it keeps
+    // nothing of the loops (Asks::kPlacement), and every element takes the same key.
+    detail::WallModel walls{detail::WallModel::Asks::kPlacement};
     bool walls_on = true;
     std::vector<Waiting> waiting;
     std::uint64_t reviewed = 0;  // the model's generation at the last review

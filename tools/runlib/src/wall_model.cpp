@@ -107,7 +107,7 @@ void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t k
     if (from < pending_.size()) close_loop(from);
 }
 
-void WallModel::close_loop(std::size_t from) {
+std::uint64_t WallModel::keep_loop(std::size_t from) {
     Loop loop;
     loop.plane = plane_;
     loop.low = pending_[from].move.low;
@@ -157,6 +157,12 @@ void WallModel::close_loop(std::size_t from) {
         loop_by_key_.emplace(key).first = number;
         index_loop(number);
     }
+    return number;
+}
+
+void WallModel::close_loop(std::size_t from) {
+    // A model asked only where elements are placed keeps nothing of the loop.
+    const std::uint64_t number = asks_ == Asks::kPlacement ? kNoLoop : keep_loop(from);
     place_run(from, stretch_loops_ > 0, true);
     const std::size_t members = pending_.size() - from;
     pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(from));
@@ -393,7 +399,8 @@ WallRole WallModel::role(std::uint64_t index) {
         case Place::kOpen:
             return WallRole::kWall;
         case Place::kLoop: {
-            if (r->loop < loops_first_) return WallRole::kWall;
+            if (r->loop < loops_first_ || r->loop - loops_first_ >= loops_.size())
+                return WallRole::kWall;
             Loop& loop = loops_[static_cast<std::size_t>(r->loop - loops_first_)];
             if (loop.dropped) return WallRole::kWall;
             decide(loop, r->loop);

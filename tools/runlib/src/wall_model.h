@@ -54,6 +54,13 @@ struct PlaneMove {
 
 class WallModel {
   public:
+    // What a model is asked: roles (a loop's clearing among them), or only where the elements
+    // are placed (placement(): leads, CDOF, loops' and open contours' elements), for which it
+    // keeps nothing of the loops (their geometry, levels and index: role() takes every loop's
+    // element for a wall, cleared() is false).
+    enum class Asks : std::uint8_t { kRoles, kPlacement };
+    explicit WallModel(Asks asks = Asks::kRoles) : asks_(asks) {}
+
     // Two loops' elements closer than this touch (a pass widened on some sides only), and
     // an end this close to an earlier start closes a loop; levels overlap within it.
     static constexpr double kTolerance = 1e-4;
@@ -143,6 +150,9 @@ class WallModel {
         std::size_t known = 0;  // loops there were when it was last decided
         bool dropped = false;
     };
+    // Keeps the loop of the pending elements from `from` on (its geometry, or the same loop's
+    // levels joined): its number.
+    std::uint64_t keep_loop(std::size_t from);
     void index_loop(std::uint64_t number);
     // The loops that may clear `loop`: those whose box holds its box's centre (a pocket pass
     // enclosing it), or whose box's centre its box holds (a boss pass it encloses).
@@ -187,6 +197,7 @@ class WallModel {
     std::vector<Loop> loops_;       // numbered from loops_first_
     std::uint64_t loops_first_ = 0;
     std::size_t loops_dropped_ = 0;
+    Asks asks_ = Asks::kRoles;
     std::size_t live_ = 0;  // loops_[k] for k < live_ are all dropped
     std::size_t unindexed_ = 0;  // loops dropped since the index was last made
     // The loop of each geometry key (its number; a key of a loop let go finds it dropped).
