@@ -235,6 +235,7 @@ struct Stretch {
     bool walls = true;
     std::vector<PathSegment> elements;
     std::vector<std::vector<PathSegment>> paths;
+    std::vector<std::size_t> cdof;  // elements programmed under CDOF (CDON again after each)
 };
 
 // In the plane's axes: (u, v) -> the point.
@@ -308,7 +309,7 @@ void expect_same_feed(const std::vector<Stretch>& stretches, std::size_t window,
     // The programmed side: begin, walls, elements, end; the executed side: each element's
     // paths, then a rapid away.
     struct Call {
-        int kind;  // 0 begin, 1 walls, 2 programmed, 3 end, 4 executed
+        int kind;  // 0 begin, 1 walls, 2 programmed, 3 end, 4 executed, 6 CDOF
         const Stretch* s;
         const PathSegment* seg;
     };
@@ -317,7 +318,10 @@ void expect_same_feed(const std::vector<Stretch>& stretches, std::size_t window,
         programmed.push_back({0, &s, nullptr});
         programmed.push_back({1, &s, nullptr});
         for (std::size_t k = 0; k < s.elements.size(); ++k) {
+            const bool off = std::find(s.cdof.begin(), s.cdof.end(), k) != s.cdof.end();
+            if (off) programmed.push_back({6, &s, nullptr});
             programmed.push_back({2, &s, &s.elements[k]});
+            if (off) programmed.push_back({1, &s, nullptr});
             for (const PathSegment& p : s.paths[k]) executed.push_back({4, &s, &p});
             executed.push_back({5, &s, nullptr});  // this element's executed part is done
         }
@@ -351,6 +355,10 @@ void expect_same_feed(const std::vector<Stretch>& stretches, std::size_t window,
             case 4:
                 held.executed(*c.seg, a);
                 once.executed(*c.seg, b);
+                break;
+            case 6:
+                held.set_walls(false);
+                once.set_walls(false);
                 break;
             default:
                 --ahead;
@@ -401,6 +409,52 @@ Stretch strip(int& n, const std::vector<Point>& pts, double r,
     return s;
 }
 
+// A stretch along the polyline `pts` in G17 (its first segment the approach), its paths as the
+// compensation makes them with the tool r to the left: where the offset lines meet at an inside
+// corner, each ends there; at an outside corner an arc of radius r round the corner (a
+// transition, of the element before's block) joins them.
+Stretch compensated(int& n, const std::vector<Point>& pts, double r) {
+    Stretch s;
+    s.r = r;
+    const auto dir = [&](std::size_t k) {
+        const Point d = pts[k + 1] - pts[k];
+        return Point(d.x(), d.y(), 0).normalized();
+    };
+    const auto left = [&](std::size_t k) {
+        const Point d = dir(k);
+        return Point(-d.y(), d.x(), 0);
+    };
+    const auto cross = [](const Point& a, const Point& b) { return a.x() * b.y() - a.y() * b.x(); };
+    Point from = pts[0] + r * left(0);
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+        const Role role = k == 0 ? Role::kApproach : Role::kContour;
+        s.elements.push_back(line(n, pts[k], pts[k + 1], role));
+        const Point corner = pts[k + 1];
+        Point to = corner + r * left(k), next = to;
+        PathSegment transition;
+        bool outside = false;
+        if (k + 2 < pts.size()) {
+            const double turn = cross(dir(k), dir(k + 1));
+            if (turn > 1e-12) {  // inside: where the offset lines meet
+                const Point shift = r * (left(k + 1) - left(k));
+                to = next = corner + r * left(k) + cross(shift, dir(k + 1)) / turn * dir(k);
+            } else if (turn < -1e-12) {  // outside: round the corner
+                outside = true;
+                next = corner + r * left(k + 1);
+                transition = line(n, to, next, Role::kTransition);
+                transition.kind = SegmentKind::kArc;
+                transition.center = corner;
+                transition.ccw = false;
+            }
+        }
+        s.paths.push_back({line(n, from, to, role)});
+        if (outside) s.paths.back().push_back(transition);
+        from = next;
+        ++n;
+    }
+    return s;
+}
+
 // Each a shape the hold must take as the check does, with findings (not a silent comparison).
 TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
     std::vector<std::pair<std::string, std::vector<Stretch>>> cases;
@@ -434,6 +488,25 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
         g18.plane = 18;
         v.push_back(std::move(g18));
         cases.emplace_back("another plane's reach", std::move(v));
+    }
+    {  // the same with r = 8, the walls 14 mm apart: the first one's zone, proved with 4 mm of
+       // room, lies 2 mm from the second one's path, which passes 6 mm from the wall: within
+       // G17's reach (8 mm), not within G18's (1 mm)
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(50, 0, 0),
+                              Point(55, 0, 0)},
+                          8.0));
+        n += 10;
+        v.push_back(strip(n, {Point(-5, -14, 0), Point(0, -14, 0), Point(50, -14, 0),
+                              Point(55, -14, 0)},
+                          8.0));
+        n += 10;
+        Stretch g18 = strip(n, {Point(500, 0, 0), Point(510, 0, 0), Point(520, 5, 0),
+                                Point(530, 5, 0)},
+                            1.0);
+        g18.plane = 18;
+        v.push_back(std::move(g18));
+        cases.emplace_back("another plane's reach beyond the room", std::move(v));
     }
     {  // a wall, one far away, then one laid over the first whose path runs 0.5 mm from it
         std::vector<Stretch> v;
@@ -505,6 +578,107 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
                               Point(20, 5, 0), Point(0, 1.3, 0), Point(-5, 1.3, 0)},
                           1.0));
         cases.emplace_back("a path's start near a later element", std::move(v));
+    }
+    {  // the depth rule near Z = -100: the first three elements at Z -100.000007, the path that
+       // comes back along them (0.5 mm beside them, after going round) at -99.999901, so that
+       // their top lies kTolerance and 1e-6 mm below its tip; the grid keeps that top as a
+       // float rounded up (-100), and the check measures the pair and finds it
+        const double low = -100.000007, high = -99.999901;
+        std::vector<Stretch> v;
+        v.push_back(strip(n, {Point(-5, 0, low), Point(0, 0, low), Point(20, 0, low),
+                              Point(25, 0, low), Point(25, -20, high), Point(-5, -20, high),
+                              Point(-5, -1.5, high), Point(20, -1.5, high)},
+                          1.0));
+        cases.emplace_back("a path just over its stretch's elements far down", std::move(v));
+    }
+    {  // the transition near a long arc again, the element before the arc a line under CDOF
+       // (no wall, and no approach: the approach is far away), so that the arc's first part is
+       // the only wall the transition comes near
+        const double c150 = std::cos(2.6179938779914944), s150 = std::sin(2.6179938779914944);
+        const Point e(c150, s150, 0);
+        const Point d2(-c150, -s150, 0);
+        const Point n2(-d2.y(), d2.x(), 0);
+        Stretch s;
+        s.r = 3.0;
+        s.elements.push_back(line(n, Point(-10, -4, 0), Point(-10, 1, 0), Role::kApproach));
+        s.paths.push_back({line(n, Point(-13, -4, 0), Point(-13, 1, 0), Role::kApproach)});
+        ++n;
+        s.cdof.push_back(s.elements.size());
+        s.elements.push_back(line(n, Point(-10, 1, 0), Point(0, 1, 0)));
+        s.paths.push_back({line(n, Point(-10, 4, 0), Point(0, 4, 0))});
+        ++n;
+        PathSegment a = line(n, Point(0, 1, 0), e);
+        a.kind = SegmentKind::kArc;
+        a.center = Point(0, 0, 0);
+        a.ccw = false;
+        s.elements.push_back(a);
+        PathSegment offset = a;
+        offset.start = Point(0, 4, 0);
+        offset.end = 4.0 * e;
+        PathSegment transition = offset;
+        transition.role = Role::kTransition;
+        transition.start = 4.0 * e;
+        transition.end = e + 3.0 * n2;
+        transition.center = e;
+        s.paths.push_back({offset, transition});
+        ++n;
+        s.elements.push_back(line(n, e, e + 1.5 * d2));
+        s.paths.push_back({line(n, e + Point(20, 0, 0), e + Point(20, 0, 0) + 1.5 * d2)});
+        ++n;
+        std::vector<Stretch> v;
+        v.push_back(std::move(s));
+        cases.emplace_back("transition near a long arc after a line under CDOF", std::move(v));
+    }
+    {  // an approach onto an inside corner of a square (a pocket), fed one element ahead: the
+       // first side's path starts 0.9 mm from the closing side, not programmed when it runs
+        std::vector<Stretch> v;
+        v.push_back(compensated(n, {Point(-0.5, 5, 0), Point(0, 0, 0), Point(10, 0, 0),
+                                    Point(10, 10, 0), Point(0, 10, 0), Point(0, 0, 0),
+                                    Point(5, 5, 0)},
+                                1.0));
+        cases.emplace_back("an approach onto an inside corner", std::move(v));
+    }
+    {  // three lines in, then a pocket with a tongue that leaves a neck of 1.5 mm for a tool of
+       // 1 mm: its paths come near the pocket's side (and the side near the first path) before
+       // the loop closes; the loop's close places the first line (an open contour's)
+        std::vector<Stretch> v;
+        v.push_back(compensated(n, {Point(5, 6, 0), Point(5, 3, 0), Point(3, 3, 0),
+                                    Point(0, 0, 0), Point(20, 0, 0), Point(20, 10, 0),
+                                    Point(12, 10, 0), Point(12, 1.5, 0), Point(8, 1.5, 0),
+                                    Point(8, 10, 0), Point(0, 10, 0), Point(0, 0, 0),
+                                    Point(2, 2, 0)},
+                                1.0));
+        cases.emplace_back("a neck before the loop closes", std::move(v));
+    }
+    {  // r = 8: a wall (g) 5 mm from the first part of a stretch's last element's path, an arc
+       // of 270 degrees round a circle of 10 mm (the tool outside), so that its second part
+       // runs while that finding is open, after the stretch ended; then a stretch along a line
+       // 14 mm above the arc (6 mm from its path's top, 10 mm from the element's box)
+        std::vector<Stretch> v;
+        const double a240 = 4.1887902047863905;
+        const Point g(23 * std::cos(a240), 23 * std::sin(a240), 0);
+        const Point t(-std::sin(a240), std::cos(a240), 0);  // along the circle, anticlockwise
+        v.push_back(compensated(n, {1.6 * (g + 2 * t), g + 2 * t, g - 2 * t}, 8.0));
+        n += 10;
+        Stretch s = compensated(n, {Point(30, -10, 0), Point(20, -10, 0), Point(0, -10, 0)}, 8.0);
+        PathSegment arc = line(n, Point(0, -10, 0), Point(10, 0, 0));
+        arc.kind = SegmentKind::kArc;
+        arc.center = Point(0, 0, 0);
+        arc.ccw = false;
+        s.elements.push_back(arc);
+        const double a210 = 3.6651914291880923;
+        const Point mid(18 * std::cos(a210), 18 * std::sin(a210), 0);
+        PathSegment first = arc, second = arc;
+        first.start = Point(0, -18, 0);
+        first.end = second.start = mid;
+        second.end = Point(18, 0, 0);
+        s.paths.push_back({first, second});
+        v.push_back(std::move(s));
+        n += 10;
+        v.push_back(compensated(n, {Point(-60, 24, 0), Point(-50, 24, 0), Point(-40, 24, 0),
+                                    Point(-30, 24, 0), Point(30, 24, 0), Point(40, 24, 0)},
+                                8.0));
+        cases.emplace_back("an arc's path boxed after its stretch ended", std::move(v));
     }
     for (const auto& [name, stretches] : cases) {
         SCOPED_TRACE(name);
