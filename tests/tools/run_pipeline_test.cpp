@@ -27,7 +27,6 @@
 #include "apci/nc/move_time.h"
 #include "apci/nc/program.h"
 #include "apci/run/executor.h"
-#include "apci/run/huge_region.h"
 #include "apci/run/json_writer.h"
 #include "apci/run/pipeline.h"
 #include "apci/run/program_run.h"
@@ -281,8 +280,7 @@ void feed(RunSink& sink, int moves) {
     sink.error(RunError{BlockRef{moves, 3}, "KorrError", "the board's words"}, Point(0, 7.5, 0));
 }
 
-// 36,000 events: the ring's 32 batches of 512 each filled twice and more (each batch's segments
-// in its own part of the sink's segment memory).
+// 36,000 events: the ring's 32 batches of 512 each filled twice and more.
 TEST(RunPipeline, TheInnerSinkGetsEveryCallInOrderOnTheWriterThread) {
     Recorder direct;
     feed(direct, 12000);
@@ -814,55 +812,6 @@ TEST(RunPipeline, ASinkThatHandsAStopAtAStretchsEndEndsTheRunThere) {
 
 // More segments than the in-process transport takes from the log per step (256), read in one
 // call: every one, in order, as the board logged them.
-// ---- The memory of data written once (huge_region.h): the pipeline's segments, the calls the
-// self-approach check holds back.
-
-TEST(HugeRegion, IsWholeHugePagesAlignedToOneZeroedAndWritable) {
-    constexpr std::size_t kPage = apci::run::HugeRegion::kHugePage;
-    for (const std::size_t bytes : {std::size_t{1}, kPage - 1, kPage, kPage + 1, 3 * kPage}) {
-        SCOPED_TRACE(bytes);
-        apci::run::HugeRegion r(bytes);
-        ASSERT_NE(r.data(), nullptr);
-        EXPECT_EQ(r.size(), (bytes + kPage - 1) / kPage * kPage);
-        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(r.data()) % kPage, 0u);
-        auto* p = static_cast<unsigned char*>(r.data());
-        std::size_t nonzero = 0;
-        for (std::size_t i = 0; i < r.size(); i += 4096) nonzero += p[i] != 0;
-        EXPECT_EQ(nonzero, 0u);
-        p[0] = 1;
-        p[r.size() - 1] = 2;  // the whole of it is ours
-        EXPECT_EQ(p[0] + p[r.size() - 1], 3);
-    }
-    apci::run::HugeRegion none(0);
-    EXPECT_EQ(none.data(), nullptr);
-    EXPECT_EQ(none.size(), 0u);
-    // More than a terabyte is refused before any mapping is asked for.
-    EXPECT_THROW(apci::run::HugeRegion((std::size_t{1} << 40) + 1), std::bad_alloc);
-}
-
-TEST(HugeRegion, AMoveHandsTheMappingOverAndTheLastOwnerUnmapsIt) {
-    apci::run::HugeRegion a(100);
-    void* const at = a.data();
-    static_cast<char*>(at)[5] = 'x';
-    apci::run::HugeRegion b(std::move(a));
-    EXPECT_EQ(a.data(), nullptr);  // NOLINT(bugprone-use-after-move): what a move leaves
-    EXPECT_EQ(a.size(), 0u);
-    EXPECT_EQ(b.data(), at);
-    EXPECT_EQ(static_cast<char*>(b.data())[5], 'x');
-    apci::run::HugeRegion c(1);
-    c = std::move(b);
-    EXPECT_EQ(c.data(), at);
-    EXPECT_EQ(b.data(), nullptr);  // NOLINT(bugprone-use-after-move)
-    {
-        apci::run::HugeRegion gone = std::move(c);
-        EXPECT_EQ(gone.data(), at);
-    }
-    // Unmapped with its last owner: the page is no longer mapped (mincore refuses it).
-    unsigned char in_core = 0;
-    EXPECT_EQ(::mincore(at, 4096, &in_core), -1);
-    EXPECT_EQ(errno, ENOMEM);
-}
-
 TEST(SegmentReadBack, OneReadTakesEverySegmentInOrder) {
     apci::Board board("emu:");
     ASSERT_TRUE(board.is_open());

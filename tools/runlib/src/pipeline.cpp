@@ -25,7 +25,6 @@ PipelinedSink::~PipelinedSink() {
 }
 
 void PipelinedSink::start() {
-    segments_ = HugeRegion(kBatches * kBatchEvents * sizeof(PathSegment));
     started_ = true;
     inner_measures_ = inner_.measures_executed();  // before the writer reads it
     writer_ = exec::quiet_thread([this] { write_loop(); });
@@ -36,12 +35,7 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
     if (finished_) return nullptr;
     if (!started_) start();
     filling_ = ring_.acquire();  // nullptr: the writer stopped
-    if (filling_ == nullptr) return nullptr;
-    filling_->clear();
-    // The ring hands its slots out in turn: the first kBatches are each new once.
-    if (!filling_->segments.placed())
-        filling_->segments.place(static_cast<PathSegment*>(segments_.data()) +
-                                 kBatchEvents * placed_++);
+    if (filling_ != nullptr) filling_->clear();
     return filling_;
 }
 

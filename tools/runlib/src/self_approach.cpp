@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -16,7 +17,6 @@
 #include <type_traits>
 #include <utility>
 
-#include "apci/run/huge_region.h"
 #include "apci/run/plane_distance.h"
 #include "probe_table.h"
 #include "wall_model.h"
@@ -1049,21 +1049,24 @@ struct SelfApproachCheck::Candidate {
 
 namespace {
 
-// Items kept in order, in chunks of a huge page each (HugeRegion), kept when the array is
-// cleared. The calls held back are written one after the other and read once, if at all: a
-// chunk is one page fault where pages of 4 KiB are 512, and keeping an item never allocates but
-// at a chunk's start, nor moves the items before it (as a vector's growth would). T has nothing
-// to destroy.
+// Items kept in order, in chunks of 2 MiB each allocated once (untouched until used) and kept
+// when the array is cleared. The calls held back are written one after the other and read once,
+// if at all: keeping one never allocates but at a chunk's start (a std::deque's chunk holds four
+// of them), nor moves the items before it (as a vector's growth would). T has nothing to
+// destroy.
 template <class T>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);
+    static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
 
   public:
-    static constexpr std::size_t kPerChunk = HugeRegion::kHugePage / sizeof(T);
+    static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;
+    static constexpr std::size_t kPerChunk = kChunkBytes / sizeof(T);
 
     // A new item at the end, value-initialised.
     T& emplace_back() {
-        if (size_ == chunks_.size() * kPerChunk) chunks_.emplace_back(HugeRegion::kHugePage);
+        if (size_ == chunks_.size() * kPerChunk)
+            chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(kPerChunk * sizeof(T)));
         T* t = new (at(size_)) T{};
         ++size_;
         return *t;
@@ -1085,9 +1088,9 @@ class ChunkedArray {
 
   private:
     T* at(std::size_t i) const noexcept {
-        return static_cast<T*>(chunks_[i / kPerChunk].data()) + i % kPerChunk;
+        return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk].get()) + i % kPerChunk);
     }
-    std::vector<HugeRegion> chunks_;
+    std::vector<std::unique_ptr<std::byte[]>> chunks_;
     std::size_t size_ = 0;
 };
 

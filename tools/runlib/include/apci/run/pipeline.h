@@ -43,17 +43,14 @@
 #include <exception>
 #include <memory>
 #include <mutex>
-#include <new>
 #include <span>
 #include <string>
 #include <thread>
-#include <type_traits>
 #include <vector>
 
 #include "apci/apci.h"
 #include "apci/run/cpu_placement.h"
 #include "apci/run/executor.h"
-#include "apci/run/huge_region.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 
@@ -123,28 +120,11 @@ class PipelinedSink final : public RunSink {
         RunError what;
         Point where = Point::Zero();
     };
-    // A batch's segments: kBatchEvents places in the sink's segment memory (segments_),
-    // given to the batch when its slot is first filled.
-    class Segments {
-      public:
-        bool placed() const noexcept { return data_ != nullptr; }
-        void place(PathSegment* at) noexcept { data_ = at; }
-        // At most kBatchEvents (a batch is committed at as many events).
-        void push_back(const PathSegment& s) noexcept { new (data_ + size_++) PathSegment(s); }
-        std::size_t size() const noexcept { return size_; }
-        PathSegment& operator[](std::size_t i) noexcept { return data_[i]; }
-        void clear() noexcept { size_ = 0; }
-
-      private:
-        PathSegment* data_ = nullptr;
-        std::size_t size_ = 0;
-    };
-    static_assert(std::is_trivially_destructible_v<PathSegment>);
     // One batch: the order of its events, each an index into the array of its kind. The
     // arrays keep their capacity from batch to batch.
     struct Batch {
         std::vector<std::pair<Kind, std::uint32_t>> order;
-        Segments segments;
+        std::vector<PathSegment> segments;
         std::vector<Sample> samples;
         std::vector<Note> notes;
         std::vector<std::string> names;
@@ -176,11 +156,6 @@ class PipelinedSink final : public RunSink {
     // 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A sleeping side wakes
     // for 8 batches, so the executor never waits long for room.
     SpscRing<Batch> ring_{kBatches, 8};
-    // The segments of every batch (kBatches x kBatchEvents, about 2.4 MB): written once per
-    // pass through the ring, on huge pages where the kernel gives them (huge_region.h), mapped
-    // when the writer starts. placed_: the batches given their part so far.
-    HugeRegion segments_;
-    std::size_t placed_ = 0;
     Batch* filling_ = nullptr;
     bool started_ = false;
     bool finished_ = false;
