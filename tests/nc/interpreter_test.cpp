@@ -556,7 +556,14 @@ TEST(Interpreter, BlockAfterM30IsError) {
 
 TEST(Interpreter, ProgramWithoutM30IsError) {
     EXPECT_EQ(error_of("G0 X1\nG0 X2\n"), "prog.nc:2:1: the program ends without M30");
-    EXPECT_EQ(error_of(""), "prog.nc:1:1: the program ends without M30");
+    // No block at all (an empty file, blank lines): nothing to run, said so.
+    EXPECT_EQ(error_of(""),
+              "prog.nc:1:1: the program has no blocks: nothing to run (a program's blocks end "
+              "with M30)");
+    EXPECT_EQ(error_of("\n\n"),
+              "prog.nc:2:1: the program has no blocks: nothing to run (a program's blocks end "
+              "with M30)");
+    EXPECT_EQ(error_of("G17\n"), "prog.nc:1:1: the program ends without M30");
 }
 
 TEST(Interpreter, FailedBlockChangesNoState) {

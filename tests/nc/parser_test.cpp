@@ -311,6 +311,23 @@ TEST(Parser, UnknownWordsAreErrors) {
     EXPECT_EQ(error_kind("S1000"), ErrorKind::kUnknownWord);
 }
 
+// A tool change as other controls write it is answered with the word this dialect takes.
+TEST(Parser, ATToolChangeIsAnsweredWithD) {
+    EXPECT_EQ(error("T1 M6"),
+              "prog.nc:12:1: unknown word 'T': the tool is selected with D (D1 takes tool 1 of the "
+              "tool list); T and M6 are not read (known words: N G X Y Z B I J K R F D M, CDON "
+              "CDOF)");
+    EXPECT_EQ(error("t2"), error("T2"));
+    EXPECT_EQ(error_kind("T1"), ErrorKind::kUnknownWord);
+    EXPECT_EQ(error("D1 M6"),
+              "prog.nc:12:4: unknown M code M6: the tool is selected with D (D1 takes tool 1 of "
+              "the tool list), no tool change is programmed (known: M2, M30: the program's end)");
+    EXPECT_EQ(error_kind("M06"), ErrorKind::kUnknownWord);
+    // M5 and M7 on either side are unknown M codes, without the hint.
+    EXPECT_EQ(error("M5"), "prog.nc:12:1: unknown M code M5 (known: M2, M30: the program's end)");
+    EXPECT_EQ(error("M7"), "prog.nc:12:1: unknown M code M7 (known: M2, M30: the program's end)");
+}
+
 TEST(Parser, CdonAndCdofAreWordsOfTheirOwn) {
     // SINUMERIK's bottleneck detection on/off: here whether the compensated elements from the
     // block on are walls for apcictl run's gouge check (docs/compensation.md).

@@ -47,12 +47,12 @@ std::string explained(const std::vector<std::string>& typed, bool with_words) {
 
 TEST(ApcictlSuggest, AnUnknownOptionPointsToTheHelpOfWhereItWasTyped) {
     EXPECT_EQ(explained({"read", "--zzz", "1300"}, true),
-              "unknown option '--zzz' (see 'apcictl read --help')");
+              "read: unknown option '--zzz' (see 'apcictl read --help')");
     EXPECT_EQ(explained({"--zzz", "read", "1300"}, true),
               "unknown option '--zzz' (see 'apcictl --help')");
     // Without the words as typed, the command's.
     EXPECT_EQ(explained({"read", "--zzz", "1300"}, false),
-              "unknown option '--zzz' (see 'apcictl read --help')");
+              "read: unknown option '--zzz' (see 'apcictl read --help')");
     EXPECT_EQ(explained({"--zzz"}, false), "unknown option '--zzz' (see 'apcictl --help')");
 }
 
@@ -166,13 +166,13 @@ TEST(ApcictlCli, AMissingArgumentNamesItsCommandAndItsHelp) {
     r = test_support::apcictl({"read"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "apcictl: read: NAME|BUS is required (see 'apcictl read --help')\n");
-    // Other errors of a command's words name what they name, as before.
+    // Other errors of a command's words name what they name, after the command's name.
     r = test_support::apcictl({"run", "--json"});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "apcictl: --json: 1 required TEXT missing\n");
+    EXPECT_EQ(r.err, "apcictl: run: --json: 1 required TEXT missing\n");
     r = test_support::apcictl({"run", "p.nc", "--self-approach", "maybe"});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "apcictl: --self-approach: maybe not in {warn,error,off}\n");
+    EXPECT_EQ(r.err, "apcictl: run: --self-approach: maybe not in {warn,error,off}\n");
 }
 
 TEST(ApcictlCli, AfterTheEndOfOptionsAMistypedCommandIsStillNamed) {
@@ -190,26 +190,29 @@ TEST(ApcictlCli, OptionWithoutItsValueSaysSo) {
 TEST(ApcictlCli, MistypedOptionSaysWhatWasMeant) {
     auto r = test_support::apcictl({"run", "p.nc", "--tool", "t"});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "apcictl: unknown option '--tool'; did you mean '--tools'?\n");
+    EXPECT_EQ(r.err, "apcictl: run: unknown option '--tool'; did you mean '--tools'?\n");
     r = test_support::apcictl({"run", "p.nc", "--tool=t"});
-    EXPECT_EQ(r.err, "apcictl: unknown option '--tool'; did you mean '--tools'?\n");
+    EXPECT_EQ(r.err, "apcictl: run: unknown option '--tool'; did you mean '--tools'?\n");
     r = test_support::apcictl({"step", "--idel"});
-    EXPECT_EQ(r.err, "apcictl: unknown option '--idel'; did you mean '--idle'?\n");
+    EXPECT_EQ(r.err, "apcictl: step: unknown option '--idel'; did you mean '--idle'?\n");
     // The command line's own options count too: --device may follow the command.
     r = test_support::apcictl({"status", "--devise", "emu:"});
+    EXPECT_EQ(r.err, "apcictl: status: unknown option '--devise'; did you mean '--device'?\n");
+    // Typed before the command: apcictl's own option, without a command's name.
+    r = test_support::apcictl({"--devise", "emu:", "status"});
     EXPECT_EQ(r.err, "apcictl: unknown option '--devise'; did you mean '--device'?\n");
 }
 
 TEST(ApcictlCli, UnknownOptionWithNothingCloseNamesTheHelp) {
     const auto r = test_support::apcictl({"read", "--frobnicate", "1300", "0", "12", "0"});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "apcictl: unknown option '--frobnicate' (see 'apcictl read --help')\n");
+    EXPECT_EQ(r.err, "apcictl: read: unknown option '--frobnicate' (see 'apcictl read --help')\n");
     EXPECT_EQ(test_support::apcictl({"-x"}).err, "apcictl: unknown option '-x' (see 'apcictl --help')\n");
     // Typed before the command it is apcictl's option that is unknown, after it the command's.
     EXPECT_EQ(test_support::apcictl({"-x", "read", "1300", "1", "1", "1"}).err,
               "apcictl: unknown option '-x' (see 'apcictl --help')\n");
     EXPECT_EQ(test_support::apcictl({"read", "-x", "1300", "1", "1", "1"}).err,
-              "apcictl: unknown option '-x' (see 'apcictl read --help')\n");
+              "apcictl: read: unknown option '-x' (see 'apcictl read --help')\n");
     // A script line has its command only: that command's help.
     EXPECT_EQ(test_support::apcictl({"script", "-"}, "read --frobnicate 1300 1 1 1\n").err,
               "apcictl: line 1: read --frobnicate 1300 1 1 1: unknown option '--frobnicate' "
@@ -219,7 +222,7 @@ TEST(ApcictlCli, UnknownOptionWithNothingCloseNamesTheHelp) {
 TEST(ApcictlCli, LeftOverArgumentsAreNamedInTheOrderTyped) {
     const auto r = test_support::apcictl({"read", "1300", "0", "12", "0", "5", "6"});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "apcictl: The following arguments were not expected: 5 6\n");
+    EXPECT_EQ(r.err, "apcictl: read: The following arguments were not expected: 5 6\n");
 }
 
 TEST(ApcictlCli, MistypedScriptLinesSayWhatWasMeantToo) {

@@ -57,6 +57,12 @@ const CLI::App& help_for(const CLI::App& top, const CLI::App& active, std::strin
     return active;
 }
 
+// The command's name before what is said of the words typed after it ("run: "); nothing for
+// apcictl's own.
+std::string said_of(const CLI::App& top, const CLI::App& command) {
+    return &command == &top ? std::string() : command.get_name() + ": ";
+}
+
 std::string unknown_option(const CLI::App& top, const CLI::App& active, std::string_view typed,
                            std::span<const std::string> words = {}) {
     const std::string_view name = typed.substr(0, typed.find('='));
@@ -64,9 +70,12 @@ std::string unknown_option(const CLI::App& top, const CLI::App& active, std::str
     add_option_names(active, names);
     if (&active != &top) add_option_names(top, names);  // --device may follow the command
     const std::string meant = closest_name(name, names);
-    if (!meant.empty()) return fmt::format("unknown option '{}'; did you mean '{}'?", name, meant);
-    return fmt::format("unknown option '{}' (see '{}')", name,
-                       help_command(top, help_for(top, active, typed, words)));
+    const CLI::App& owner = help_for(top, active, typed, words);
+    if (!meant.empty())
+        return fmt::format("{}unknown option '{}'; did you mean '{}'?", said_of(top, owner), name,
+                           meant);
+    return fmt::format("{}unknown option '{}' (see '{}')", said_of(top, owner), name,
+                       help_command(top, owner));
 }
 
 std::string unknown_command(const CLI::App& top, std::string_view typed) {
@@ -123,10 +132,10 @@ std::string explain(const CLI::App& app, const CLI::ParseError& error,
     // Words left over after a command's arguments, in the order typed (CLI11's message has
     // them last first).
     if (!extras.empty() && dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) {
-        return fmt::format("The following argument{} not expected: {}",
+        return fmt::format("{}The following argument{} not expected: {}", said_of(app, active),
                            extras.size() == 1 ? " was" : "s were", fmt::join(extras, " "));
     }
-    return plain_text(error.what());
+    return said_of(app, active) + plain_text(error.what());
 }
 }  // namespace
 
@@ -139,7 +148,7 @@ std::string explain_command_line_error(const CLI::App& app, const CLI::ParseErro
     const CLI::App& active = active_command(app);
     if (&active != &app && dynamic_cast<const CLI::RequiredError*>(&error) != nullptr &&
         app.remaining(true).empty())
-        return fmt::format("{}: {} (see '{}')", active.get_name(), plain_text(error.what()),
+        return fmt::format("{}{} (see '{}')", said_of(app, active), plain_text(error.what()),
                            help_command(app, active));
     return explain(app, error, words);
 }

@@ -195,6 +195,12 @@ class BlockParser : public LineParse {
                 return feed(col);
             case 'C':
                 return collision_detection(col);
+            case 'T':  // a tool change as other controls write it (T1 M6)
+                return fail_here(ErrorKind::kUnknownWord, col,
+                                 fmt::format("unknown word 'T': the tool is selected with D (D1 "
+                                             "takes tool 1 of the tool list); T and M6 are not "
+                                             "read (known words: {})",
+                                             kKnownWords));
             default:
                 return fail_here(
                     ErrorKind::kUnknownWord, col,
@@ -394,6 +400,12 @@ class BlockParser : public LineParse {
         if (!whole('M', m, "M code")) return false;
         // M2 (M02) and M30: the program's end (DIN 66025 defines both; the emulated board has
         // no spindle or tape to tell them apart).
+        if (m == 6) {
+            return fail_here(ErrorKind::kUnknownWord, col,
+                             "unknown M code M6: the tool is selected with D (D1 takes tool 1 of "
+                             "the tool list), no tool change is programmed (known: M2, M30: the "
+                             "program's end)");
+        }
         if (m != 2 && m != 30) {
             return fail_here(ErrorKind::kUnknownWord, col,
                              fmt::format("unknown M code M{} (known: M2, M30: the program's end)", m));

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -161,8 +162,13 @@ bool EventStream::read_batch() {
                     d.file = source_.name();
                     d.line = source_.line_number() == 0 ? 1 : source_.line_number();
                     d.column = 1;
-                    d.message = dialect_ == Dialect::kKlartext ? "the program ends without END PGM"
-                                                               : "the program ends without M30";
+                    const std::string_view end =
+                        dialect_ == Dialect::kKlartext ? "END PGM" : "M30";
+                    d.message = blocks_ == 0
+                                    ? fmt::format("the program has no blocks: nothing to run (a "
+                                                  "program's blocks end with {})",
+                                                  end)
+                                    : fmt::format("the program ends without {}", end);
                     return fail(std::move(d));
                 }
                 at_end_ = true;
