@@ -74,7 +74,7 @@ def test_run_matches_apcictl_json_and_csv(source_dir, apcictl, tmp_path):
 
     # The summary: apcictl's text, and the counts in it.
     assert result.summary() == summary
-    assert summary.startswith(f"{program}: 11 blocks, 11 executed, {len(want)} segments\n")
+    assert summary.startswith(f"{program}: 11 blocks, 11 sent to the board, {len(want)} segments executed\n")
     assert result.blocks == 11 and result.blocks_executed == 11
     assert f"path {result.path_length:.3f} mm" in summary
     assert f"({result.cycles} cycles of 1 ms)" in summary

@@ -218,7 +218,7 @@ TEST(WalkProgram, FirstBlocksRunInApcictl) {
         {APCICTL_PATH, "run", "-", "--tools", tools, "--json", "-", "--self-approach", "error"},
         program.text);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("3000 blocks, 3000 executed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("3000 blocks, 3000 sent to the board"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("errors: none"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("\"errors\":[]"), std::string::npos) << r.out.substr(0, 200);

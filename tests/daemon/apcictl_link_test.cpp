@@ -184,7 +184,7 @@ TEST(ApcictlRunOnADaemon, AProgramFromAPipeIsReadOnce) {
         "N10 G1 X10 F600\nM30\n");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(contains(r.out, "\"block\":10")) << r.out;
-    EXPECT_TRUE(contains(r.err, "/dev/stdin: 2 blocks, 2 executed, 1 segment")) << r.err;
+    EXPECT_TRUE(contains(r.err, "/dev/stdin: 2 blocks, 2 sent to the board, 1 segment executed")) << r.err;
 }
 
 // The daemon killed in the middle of a run: the run did not finish, so nothing of it replaces

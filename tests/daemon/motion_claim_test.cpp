@@ -456,7 +456,7 @@ std::string long_program(const TempDir& dir, int blocks) {
 
 std::string segments_line(const std::string& out) {
     std::smatch m;
-    if (!std::regex_search(out, m, std::regex(R"((\d+) blocks, (\d+) executed, (\d+) segments)")))
+    if (!std::regex_search(out, m, std::regex(R"((\d+) blocks, (\d+) sent to the board, (\d+) segments executed)")))
         return {};
     return m[0];
 }
@@ -552,7 +552,7 @@ TEST_F(MotionClaimDaemon, ApcictlRunOnAHeldBoardMovesNothing) {
     ASSERT_EQ(apci_release_motion(holder.board), APCI_OK);
     const auto again = test_support::apcictl({"--device", daemon_->unix_uri(), "run", program});
     EXPECT_EQ(again.exit_code, 0) << again.err;
-    EXPECT_TRUE(contains(again.out, "7 blocks, 7 executed, 5 segments")) << again.out;
+    EXPECT_TRUE(contains(again.out, "7 blocks, 7 sent to the board, 5 segments executed")) << again.out;
 }
 
 TEST_F(MotionClaimDaemon, ApcictlDiffClaimsBothBoards) {
@@ -656,7 +656,7 @@ TEST(MotionClaimWithoutSupport, ClaimIsNotSupportedAndApcictlRunGoesOnWithAWarni
     EXPECT_TRUE(contains(r.err, "apcictl: warning: run: " + board.uri() +
                                     " does not serve motion claims"))
         << r.err;
-    EXPECT_TRUE(contains(r.out, "5 blocks, 5 executed, 3 segments")) << r.out;
+    EXPECT_TRUE(contains(r.out, "5 blocks, 5 sent to the board, 3 segments executed")) << r.out;
     // `status` says that nothing keeps two programs apart there.
     const auto s = test_support::apcictl({"--device", board.uri(), "status"});
     EXPECT_TRUE(contains(s.out, "\nmotion: " + board.uri() + " does not serve motion claims\n"))

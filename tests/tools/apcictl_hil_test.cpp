@@ -587,7 +587,7 @@ TEST_F(ApcictlRunDryRun, ACorrectProgramRunsAfterItsDryRunAsWithoutOne) {
     const ProcessResult checked = on_daemon(
         {run[0], run[1], run[2], run[3], run[4], dir_.file("a.json"), "--self-approach", "error"});
     EXPECT_EQ(checked.exit_code, 0) << checked.err;
-    EXPECT_TRUE(contains(checked.out, "11 blocks, 11 executed, 11 segments")) << checked.out;
+    EXPECT_TRUE(contains(checked.out, "11 blocks, 11 sent to the board, 11 segments executed")) << checked.out;
     // The same program once more from where the first run left the axes, only warned: the same
     // segments (the dry run moved nothing of the daemon's board).
     auto fresh = Daemon::start();

@@ -409,7 +409,7 @@ TEST_F(ApcictlOutputs, DashWritesTheOutputToStandardOutputAndTheSummaryToStandar
     ASSERT_EQ(j.exit_code, 0) << j.err;
     const json doc = json::parse(j.out);  // nothing else on standard output
     EXPECT_EQ(doc.at("segments").size(), 1u);
-    EXPECT_TRUE(contains(j.err, "p.nc: 2 blocks, 2 executed, 1 segment")) << j.err;
+    EXPECT_TRUE(contains(j.err, "p.nc: 2 blocks, 2 sent to the board, 1 segment executed")) << j.err;
     EXPECT_TRUE(path_exists(path("out.csv")));
     const auto c = run({"run", "p.nc", "--csv", "-"});
     ASSERT_EQ(c.exit_code, 0) << c.err;
@@ -438,7 +438,7 @@ TEST_F(ApcictlOutputs, AnOutputThatIsALinkToAPipeIsWrittenThroughIt) {
     auto r = test_support::run_process({APCICTL_PATH, "run", program, "--json", "/dev/stdout"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(json::parse(r.out).at("segments").size(), 1u);  // the summary is not in it
-    EXPECT_TRUE(contains(r.err, "p.nc: 2 blocks, 2 executed, 1 segment")) << r.err;
+    EXPECT_TRUE(contains(r.err, "p.nc: 2 blocks, 2 sent to the board, 1 segment executed")) << r.err;
     r = test_support::run_process({APCICTL_PATH, "run", program, "--svg", "/dev/stderr"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "</svg>\n")) << r.err.substr(0, 200);
@@ -461,7 +461,7 @@ TEST_F(ApcictlOutputs, AProgramFromAPipeIsReadOnce) {
     auto r = test_support::run_process({APCICTL_PATH, "run", "/dev/stdin", "--json", "-"}, kShort);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(json::parse(r.out).at("segments").size(), 1u);
-    EXPECT_TRUE(contains(r.err, "/dev/stdin: 2 blocks, 2 executed, 1 segment")) << r.err;
+    EXPECT_TRUE(contains(r.err, "/dev/stdin: 2 blocks, 2 sent to the board, 1 segment executed")) << r.err;
     r = test_support::run_process({APCICTL_PATH, "run", "/dev/stdin", "--csv", "-"}, kShort);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1001);

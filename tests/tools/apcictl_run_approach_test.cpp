@@ -379,7 +379,7 @@ TEST_F(ApcictlRun, ManyZeroLengthMovesRunWhole) {
     const json doc = run_json(write("zero.nc", text));
     EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
     EXPECT_EQ(doc.at("segments").size(), 1001u);
-    EXPECT_TRUE(contains(last_.out, ": 1003 blocks, 1003 executed, 1001 segments")) << last_.out;
+    EXPECT_TRUE(contains(last_.out, ": 1003 blocks, 1003 sent to the board, 1001 segments executed")) << last_.out;
     EXPECT_TRUE(contains(last_.out, "(60 cycles of 1 ms)")) << last_.out;  // 1 mm at 1000 mm/min
     // From the start: none of the moves takes a cycle.
     std::string still = "F1000\n";

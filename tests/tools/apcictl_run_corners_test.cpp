@@ -21,7 +21,7 @@ TEST_F(ApcictlRun, MustShowWrQuadDiscSummaryJsonAndSvg) {
                             "--json", path("p.json")});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     // 11 segments: N40, the approach N60, 4 contour elements, 4 transitions, N100.
-    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 executed, 11 segments\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "wr_quad_disc.nc: 11 blocks, 11 sent to the board, 11 segments executed\n")) << r.out;
     EXPECT_TRUE(contains(r.out, "\nerrors: none\n")) << r.out;
     EXPECT_EQ(r.err, "");
     const json doc = json::parse(read_text(path("p.json")));
@@ -279,7 +279,7 @@ TEST_F(ApcictlRun, ClosedContourUnderG237KeepsTheRadiusWithPerpendicularApproach
 TEST_F(ApcictlRun, ProgramLongerThanTheSpoolerRunsWhole) {
     const std::string text = apci::test::plate_program(100);
     const json doc = run_json(write("long.nc", text), {"--tools", tools(1.0)});
-    EXPECT_TRUE(contains(last_.out, ": 1205 blocks, 1205 executed, ")) << last_.out;
+    EXPECT_TRUE(contains(last_.out, ": 1205 blocks, 1205 sent to the board, ")) << last_.out;
     expect_continuous(doc);
     int last_block = 0;
     std::set<int> contour_blocks;

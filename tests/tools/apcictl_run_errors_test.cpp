@@ -304,7 +304,7 @@ TEST_F(ApcictlRun, HelpNamesTheOptions) {
 TEST_F(ApcictlRun, ProgramFromStandardInput) {
     const auto r = apcictl({"run", "-", "--json", path("in.json")}, "N10 G1 X3 Y4 F600\nM30\n");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(contains(r.out, "<stdin>: 2 blocks, 2 executed, 1 segment\npath 5.000 mm"))
+    EXPECT_TRUE(contains(r.out, "<stdin>: 2 blocks, 2 sent to the board, 1 segment executed\npath 5.000 mm"))
         << r.out;
     const auto bad = apcictl({"run", "-"}, "N10 G1 X\n");
     EXPECT_EQ(bad.exit_code, 1);

@@ -176,7 +176,7 @@ TEST_F(ApcictlRun, AProgramFromAPipeRunsOnTheEmbeddedBoard) {
         {"/usr/bin/timeout", "60", APCICTL_PATH, "run", fifo, "--json", path("pipe.json")});
     writer.join();
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(contains(r.out, fifo + ": 5003 blocks, 5003 executed")) << r.out;
+    EXPECT_TRUE(contains(r.out, fifo + ": 5003 blocks, 5003 sent to the board")) << r.out;
     EXPECT_EQ(read_text(path("pipe.json")), read_text(path("file.json")));
 }
 

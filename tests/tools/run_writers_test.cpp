@@ -477,7 +477,7 @@ TEST(RunSummary, NamesBlocksPathAndErrorsByName) {
     MemoryFile f;
     print_summary(f.get(), t, errors);
     EXPECT_EQ(f.text(),
-              "p.nc: 11 blocks, 9 executed, 2 segments\n"
+              "p.nc: 11 blocks, 9 sent to the board, 2 segments executed\n"
               "path 15.000 mm (rapid 5.000 mm), time 1.500 s (1500 cycles of 1 ms)\n"
               "errors: 3 (KorrError 2, CalcError 1)\n"
               "  N80: KorrError: too short\n"
@@ -504,14 +504,14 @@ TEST(RunSummary, OneOfEachIsSingularAndNoneAndTwoArePlural) {
     t.cycle_seconds = 0.001;
     MemoryFile one;
     print_summary(one.get(), t, {});
-    EXPECT_TRUE(contains(one.text(), "p.nc: 1 block, 1 executed, 1 segment\n")) << one.text();
+    EXPECT_TRUE(contains(one.text(), "p.nc: 1 block, 1 sent to the board, 1 segment executed\n")) << one.text();
     EXPECT_TRUE(contains(one.text(), "(1 cycle of 1 ms)\n")) << one.text();
     t.blocks = 2;
     t.segments = 0;
     t.cycles = 2;
     MemoryFile two;
     print_summary(two.get(), t, {});
-    EXPECT_TRUE(contains(two.text(), "p.nc: 2 blocks, 1 executed, 0 segments\n")) << two.text();
+    EXPECT_TRUE(contains(two.text(), "p.nc: 2 blocks, 1 sent to the board, 0 segments executed\n")) << two.text();
     EXPECT_TRUE(contains(two.text(), "(2 cycles of 1 ms)\n")) << two.text();
 }
 

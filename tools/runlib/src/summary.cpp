@@ -56,8 +56,10 @@ std::string counted(std::uint64_t n, std::string_view noun) {
 }  // namespace
 
 void print_summary(std::FILE* out, const RunTotals& t, std::span<const RunError> errors) {
-    fmt::print(out, "{}: {}, {} executed, {}\n", t.file, counted(t.blocks, "block"),
-               t.blocks_executed, counted(t.segments, "segment"));
+    // What reached the board (a run stopped at a refusal sent the refused block) and what the
+    // board executed: a block sent is not yet a block executed.
+    fmt::print(out, "{}: {}, {} sent to the board, {} executed\n", t.file,
+               counted(t.blocks, "block"), t.blocks_executed, counted(t.segments, "segment"));
     fmt::print(out, "path {:.3f} mm (rapid {:.3f} mm), time {:.3f} s ({} of {})\n",
                t.path_length, t.rapid_length, static_cast<double>(t.cycles) * t.cycle_seconds,
                counted(t.cycles, "cycle"), cycle_text(t.cycle_seconds));

@@ -23,7 +23,7 @@ namespace apci::run {
 struct RunTotals {
     std::string file;
     std::uint64_t blocks = 0;           // blocks of the program (validation pass)
-    std::uint64_t blocks_executed = 0;  // blocks whose events reached the board
+    std::uint64_t blocks_executed = 0;  // blocks whose events reached the board (sent)
     std::uint64_t segments = 0;         // executed segments read back
     double path_length = 0.0;           // tool-centre path, every segment, mm
     double rapid_length = 0.0;          // of which rapid moves
