@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apci/run/plane_distance.h"
+#include "chunked_array.h"
 #include "contour_loop.h"
 #include "probe_table.h"
 #include "wall_model.h"
@@ -498,54 +499,83 @@ TEST(WallModel, ForgettingLetsGoOfLoopsBelowAndKeepsTheRest) {
     EXPECT_EQ(m.role(a + 2), C);
 }
 
-// Many loops let go while the first is kept (the same contour again, its levels joined, so that
-// its last element keeps growing): each later one is let go all the same, and what the loops
-// kept and let go say stays right as the index of loops is made again (more than 64 let go).
-// Then more than 1,024 let go at the front: they are forgotten, the numbers of those kept stay,
-// and a larger pass about the last one still finds and clears it.
-TEST(WallModel, LoopsLetGoBehindOneKeptAndAtTheFrontAnswerAsBefore) {
-    // The repeated contour: the same keys each time (its elements' geometry).
-    const auto repeat = [](WallModel& m, std::uint64_t first) {
+// A contour run again with the same keys (its levels joined) after each of many other pockets,
+// each forgotten before the contour's repeat: the contour's loop is kept, the pockets behind it
+// let go (the index remade as they pile up), and what the loops say stays right.
+TEST(WallModel, AContourKeptWhileThePocketsAfterItAreLetGo) {
+    // Contour A: the same keys each time (its elements' geometry).
+    const auto contour = [](WallModel& m, std::uint64_t first, double a) {
         m.begin(17, 1);
         std::uint64_t n = first;
         std::uint64_t key = 1;
-        for (const Parametric& e : square_stretch(0, 0, 5, false, 0, 0))
+        for (const Parametric& e : square_stretch(0, 0, a, false, 0, 0))
             m.element(n++, move_of(e, 0.0), 0xABCDEFULL * key++, true, false);
         m.end();
         return n;
     };
+    WallModel m;
+    std::uint64_t n = contour(m, 0, 8);
+    for (int i = 0; i < 200; ++i) {
+        n = feed(m, n, square_stretch(100.0 * (i + 1), 0, 5, false, 2, 1));
+        const std::uint64_t repeat = n;
+        n = contour(m, n, 8);
+        m.forget_before(repeat);  // the pocket before the repeat goes, the contour stays
+        ASSERT_EQ(m.loops(), 1U) << i;
+    }
+    // A smaller pass inside the contour kept is cleared by it.
+    const std::uint64_t inner = n;
+    n = feed(m, n, square_stretch(0, 0, 5, false, 2, 1));
+    EXPECT_EQ(m.role(inner + 2), C);
+    m.forget_before(n);
+    EXPECT_EQ(m.loops(), 0U);
+}
+
+// A contour run again after another loop joins its first run, not the other's: a larger pass
+// about it clears the repeat's elements.
+TEST(WallModel, AContourRunAgainAfterAnotherLoopIsTheFirstRunsLoop) {
+    const auto keyed = [](WallModel& m, std::uint64_t first, double cx, std::uint64_t base) {
+        m.begin(17, 1);
+        std::uint64_t n = first;
+        std::uint64_t key = base;
+        for (const Parametric& e : square_stretch(cx, 0, 5, false, 0, 0))
+            m.element(n++, move_of(e, 0.0), 0x9E3779B9ULL * key++, true, false);
+        m.end();
+        return n;
+    };
+    WallModel m;
+    std::uint64_t n = keyed(m, 0, 0, 1);       // A
+    n = keyed(m, n, 100, 50);                  // B
+    const std::uint64_t again = n;
+    n = keyed(m, n, 0, 1);                     // A again: A's loop
+    EXPECT_EQ(m.loops(), 2U);
+    feed(m, n, square_stretch(0, 0, 8, false, 2, 1));  // a larger pass about A
+    EXPECT_EQ(m.role(again + 1), C);
+    EXPECT_EQ(m.role(1), C);
+}
+
+// Loops let go at the front (more than 1,024) are forgotten while the last pocket is held: its
+// number stays, a smaller pass inside it is cleared by it, it stays a wall, and a larger pass
+// about it clears it. Also where every loop was let go first.
+TEST(WallModel, LoopsLetGoAtTheFrontAreForgottenAndTheLoopHeldAnswersAsBefore) {
     {
         WallModel m;
-        std::uint64_t n = repeat(m, 0);
-        std::uint64_t repeated = 0;  // the first element of its last run
-        std::vector<std::uint64_t> firsts;
-        for (int i = 0; i < 200; ++i) {
-            firsts.push_back(n);
-            m.forget_before(n);
-            n = feed(m, n, square_stretch(100.0 * (i + 1), 0, 5, false, 2, 1));
-            if (i % 10 == 9) {
-                repeated = n;
-                n = repeat(m, n);
-            }
+        std::uint64_t n = 0, last = 0;
+        for (int i = 0; i < 1026; ++i) {
+            last = n;
+            n = feed(m, n, square_stretch(100.0 * i, 0, 8, false, 2, 1));
+            m.forget_before(last);  // the pockets before this one
         }
-        // The repeated contour and the last pocket.
-        EXPECT_EQ(m.loops(), 2U);
-        EXPECT_EQ(m.role(firsts[3] + 2), W);  // let go: a wall
-        const std::uint64_t last = firsts.back();
+        EXPECT_EQ(m.loops(), 1U);
+        const std::uint64_t inner = n;
+        n = feed(m, n, square_stretch(100.0 * 1025, 0, 5, false, 2, 1));
+        EXPECT_EQ(m.role(inner + 2), C);
         EXPECT_EQ(m.role(last + 2), W);
-        // A larger pass about the last pocket clears it; one about the repeated contour too.
-        n = feed(m, n, square_stretch(100.0 * 200, 0, 8, false, 2, 1));
+        feed(m, n, square_stretch(100.0 * 1025, 0, 12, false, 2, 1));
         EXPECT_EQ(m.role(last + 2), C);
-        n = feed(m, n, square_stretch(0, 0, 8, false, 2, 1));
-        EXPECT_EQ(m.role(repeated + 2), C);
-        // A larger pass about a pocket let go clears nothing of it.
-        feed(m, n, square_stretch(100.0 * 4, 0, 8, false, 2, 1));
-        EXPECT_EQ(m.role(firsts[3] + 2), W);
     }
     {
         WallModel m;
-        std::uint64_t n = 0;
-        std::uint64_t last = 0;
+        std::uint64_t n = 0, last = 0;
         for (int i = 0; i < 1100; ++i) {
             m.forget_before(n);
             last = n;
@@ -556,6 +586,20 @@ TEST(WallModel, LoopsLetGoBehindOneKeptAndAtTheFrontAnswerAsBefore) {
         EXPECT_EQ(m.role(last + 2), C);
         EXPECT_EQ(m.loops(), 2U);
     }
+}
+
+// A boss pass too wide for the index's cells (a box over 256 cells of 16 mm) is found among the
+// wide loops: a larger one about it is cleared, behind a loop let go.
+TEST(WallModel, AWideBossPassIsFoundAndClearsTheOneAboutIt) {
+    WallModel m;
+    std::uint64_t n = feed(m, 0, square_stretch(-1000, 0, 5, true, 2, 1));
+    m.forget_before(n);  // let go: the wide ones come after it
+    const std::uint64_t small = n;
+    n = feed(m, n, square_stretch(0, 0, 200, true, 2, 1));  // a boss 400 mm across
+    const std::uint64_t large = n;
+    feed(m, n, square_stretch(0, 0, 210, true, 2, 1));      // 420 mm about it
+    EXPECT_EQ(m.role(large + 2), C);
+    EXPECT_EQ(m.role(small + 2), W);
 }
 
 // A model asked only where elements are placed (Asks::kPlacement) places every element as one
@@ -594,6 +638,59 @@ TEST(WallModel, AModelAskedOnlyForPlacementPlacesAsTheOtherAndKeepsNoLoop) {
     EXPECT_EQ(places.loops(), 0U);
     EXPECT_FALSE(places.cleared(0));
     EXPECT_GT(roles_model.loops(), 0U);
+}
+
+// ---- chunked_array.h
+
+// Items kept across chunks: each read back where it was put, by index and in order, over many
+// chunk boundaries (chunks of three items here, and of 2 MiB); cleared, the chunks hold new
+// items; swapped, each array has the other's.
+TEST(ChunkedArray, KeepsEveryItemInOrderAcrossChunks) {
+    struct Item {
+        std::uint64_t a = 7;
+        double b = 0.5;
+    };
+    using Small = apci::run::detail::ChunkedArray<Item, 3 * sizeof(Item)>;
+    static_assert(Small::kPerChunk == 3);
+    const auto fill = [](auto& array, std::uint64_t count, std::uint64_t base) {
+        for (std::uint64_t i = 0; i < count; ++i) {
+            Item& x = array.emplace_back();
+            EXPECT_EQ(x.a, 7U);  // value-initialised, also where a cleared item was
+            x.a = base + i;
+            x.b = static_cast<double>(base + i) * 0.25;
+        }
+    };
+    const auto expect_all = [](auto& array, std::uint64_t count, std::uint64_t base) {
+        ASSERT_EQ(array.size(), count);
+        for (std::uint64_t i = 0; i < count; ++i) {
+            ASSERT_EQ(array[i].a, base + i) << i;
+            ASSERT_EQ(array[i].b, static_cast<double>(base + i) * 0.25) << i;
+        }
+        std::uint64_t next = base;
+        array.for_each([&](const Item& x) { EXPECT_EQ(x.a, next++); });
+        EXPECT_EQ(next, base + count);
+    };
+    Small s;
+    EXPECT_TRUE(s.empty());
+    fill(s, 3, 0);  // exactly one chunk
+    expect_all(s, 3, 0);
+    fill(s, 29, 3);  // then across ten more boundaries
+    expect_all(s, 32, 0);
+    s.clear();
+    EXPECT_TRUE(s.empty());
+    fill(s, 10, 1000);
+    expect_all(s, 10, 1000);
+    Small t;
+    t.push_back(Item{42, 1.0});
+    s.swap(t);
+    ASSERT_EQ(s.size(), 1U);
+    EXPECT_EQ(s[0].a, 42U);
+    expect_all(t, 10, 1000);
+    // The default chunks of 2 MiB: one item past the first chunk, and the first kept.
+    apci::run::detail::ChunkedArray<Item> big;
+    const std::uint64_t n = decltype(big)::kPerChunk + 2;
+    fill(big, n, 0);
+    expect_all(big, n, 0);
 }
 
 // ---- probe_table.h

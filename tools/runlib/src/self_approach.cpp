@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "apci/run/plane_distance.h"
+#include "chunked_array.h"
 #include "probe_table.h"
 #include "wall_model.h"
 
@@ -1047,54 +1048,6 @@ struct SelfApproachCheck::Candidate {
     }
 };
 
-namespace {
-
-// Items kept in order, in chunks of 2 MiB each allocated once (untouched until used) and kept
-// when the array is cleared. The calls held back are written one after the other and read once,
-// if at all: keeping one never allocates but at a chunk's start (a std::deque's chunk holds four
-// of them), nor moves the items before it (as a vector's growth would). T has nothing to
-// destroy.
-template <class T>
-class ChunkedArray {
-    static_assert(std::is_trivially_destructible_v<T>);
-    static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
-
-  public:
-    static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;
-    static constexpr std::size_t kPerChunk = kChunkBytes / sizeof(T);
-
-    // A new item at the end, value-initialised.
-    T& emplace_back() {
-        if (size_ == chunks_.size() * kPerChunk)
-            chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(kPerChunk * sizeof(T)));
-        T* t = new (at(size_)) T{};
-        ++size_;
-        return *t;
-    }
-    void push_back(const T& t) { emplace_back() = t; }
-    std::size_t size() const noexcept { return size_; }
-    bool empty() const noexcept { return size_ == 0; }
-    T& operator[](std::size_t i) noexcept { return *at(i); }
-    // Empties it; its chunks stay for the next items.
-    void clear() noexcept { size_ = 0; }
-    void swap(ChunkedArray& other) noexcept {
-        chunks_.swap(other.chunks_);
-        std::swap(size_, other.size_);
-    }
-    template <class F>
-    void for_each(F&& f) const {
-        for (std::size_t i = 0; i < size_; ++i) f(*at(i));
-    }
-
-  private:
-    T* at(std::size_t i) const noexcept {
-        return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk].get()) + i % kPerChunk);
-    }
-    std::vector<std::unique_ptr<std::byte[]>> chunks_;
-    std::size_t size_ = 0;
-};
-
-}  // namespace
 
 // Calls held back (docs/performance.md, "Stretches held back"). A call is kept, to be worked
 // later in its order, where working it now would give nothing out: nothing the check found waits
@@ -1247,14 +1200,14 @@ struct SelfApproachCheck::Hold {
     std::uint64_t reviewed = 0;  // the model's generation at the last review
     std::deque<Record> records;  // the stretches whose items may still meet more of their own
     std::vector<Record> spare;   // records let go, their memory kept for the next
-    ChunkedArray<Zone> zones;      // by stretch number - 1
+    detail::ChunkedArray<Zone> zones;  // by stretch number - 1
     detail::CellIndex<3> cells;  // per plane (list), the stretches listed in each zone cell
     std::array<std::vector<std::uint32_t>, 3> wide;
     std::vector<std::uint32_t> found;
     // Grows with each call worked: a stretch's box proved clear before is asked again.
     std::uint64_t epoch = 1;
     // The calls kept, and the items they bring per plane.
-    ChunkedArray<Call> calls;
+    detail::ChunkedArray<Call> calls;
     std::array<Counts, 3> held{};
     bool off = false;  // nothing is kept from now on (too many stretches, or too wide)
 
@@ -1762,7 +1715,7 @@ void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
         hold_->waiting.clear();
         return;
     }
-    ChunkedArray<Hold::Call> calls;
+    detail::ChunkedArray<Hold::Call> calls;
     calls.swap(hold_->calls);
     hold_->held = {};
     hold_->waiting.clear();
