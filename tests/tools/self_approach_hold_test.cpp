@@ -455,6 +455,36 @@ Stretch compensated(int& n, const std::vector<Point>& pts, double r) {
     return s;
 }
 
+// Appends to s (tool radius 3, G17) a clockwise arc of 210 degrees about the origin from (0, 1)
+// (more than half a turn), its path 3 mm outside it and the transition round the outside corner
+// at its end, then a line leaving it whose path is moved away (clear of everything: the first
+// segment of another block, where the transition's finding is given out). The transition comes
+// within r of the arc's first part, more than half a turn from the corner.
+void long_arc_with_transition(Stretch& s, int& n) {
+    const double c150 = std::cos(2.6179938779914944), s150 = std::sin(2.6179938779914944);
+    const Point e(c150, s150, 0);        // the arc's end
+    const Point d2(-c150, -s150, 0);     // leaving direction: (0.866, -0.5)
+    const Point n2(-d2.y(), d2.x(), 0);  // its left normal
+    PathSegment a = line(n, Point(0, 1, 0), e);
+    a.kind = SegmentKind::kArc;
+    a.center = Point(0, 0, 0);
+    a.ccw = false;
+    s.elements.push_back(a);
+    PathSegment offset = a;
+    offset.start = Point(0, 4, 0);
+    offset.end = 4.0 * e;
+    PathSegment transition = offset;
+    transition.role = Role::kTransition;
+    transition.start = 4.0 * e;
+    transition.end = e + 3.0 * n2;
+    transition.center = e;
+    s.paths.push_back({offset, transition});
+    ++n;
+    s.elements.push_back(line(n, e, e + 1.5 * d2));
+    s.paths.push_back({line(n, e + Point(20, 0, 0), e + Point(20, 0, 0) + 1.5 * d2)});
+    ++n;
+}
+
 // Each a shape the hold must take as the check does, with findings (not a silent comparison).
 TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
     std::vector<std::pair<std::string, std::vector<Stretch>>> cases;
@@ -539,35 +569,12 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
        // after a short approach along it and before a short line leaving at a right angle:
        // the transition round that corner (a segment of the arc's block) is the first thing to
        // come within r of anything, of the arc's first part (more than half a turn from it)
-        const double c150 = std::cos(2.6179938779914944), s150 = std::sin(2.6179938779914944);
-        const Point e(c150, s150, 0);           // the arc's end
-        const Point d2(-c150, -s150, 0);        // leaving direction: (0.866, -0.5)
-        const Point n2(-d2.y(), d2.x(), 0);     // its left normal
         Stretch s;
         s.r = 3.0;
         s.elements.push_back(line(n, Point(-0.5, 1, 0), Point(0, 1, 0), Role::kApproach));
         s.paths.push_back({line(n, Point(-0.5, 4, 0), Point(0, 4, 0), Role::kApproach)});
         ++n;
-        PathSegment a = line(n, Point(0, 1, 0), e);
-        a.kind = SegmentKind::kArc;
-        a.center = Point(0, 0, 0);
-        a.ccw = false;
-        s.elements.push_back(a);
-        PathSegment offset = a;
-        offset.start = Point(0, 4, 0);
-        offset.end = 4.0 * e;
-        PathSegment transition = offset;
-        transition.role = Role::kTransition;
-        transition.start = 4.0 * e;
-        transition.end = e + 3.0 * n2;
-        transition.center = e;
-        s.paths.push_back({offset, transition});
-        ++n;
-        // Its path (moved away: clear of everything) is the first segment of another block,
-        // where the transition's finding is given out.
-        s.elements.push_back(line(n, e, e + 1.5 * d2));
-        s.paths.push_back({line(n, e + Point(20, 0, 0), e + Point(20, 0, 0) + 1.5 * d2)});
-        ++n;
+        long_arc_with_transition(s, n);
         std::vector<Stretch> v;
         v.push_back(std::move(s));
         cases.emplace_back("transition near a long arc", std::move(v));
@@ -594,10 +601,6 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
     {  // the transition near a long arc again, the element before the arc a line under CDOF
        // (no wall, and no approach: the approach is far away), so that the arc's first part is
        // the only wall the transition comes near
-        const double c150 = std::cos(2.6179938779914944), s150 = std::sin(2.6179938779914944);
-        const Point e(c150, s150, 0);
-        const Point d2(-c150, -s150, 0);
-        const Point n2(-d2.y(), d2.x(), 0);
         Stretch s;
         s.r = 3.0;
         s.elements.push_back(line(n, Point(-10, -4, 0), Point(-10, 1, 0), Role::kApproach));
@@ -607,24 +610,7 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
         s.elements.push_back(line(n, Point(-10, 1, 0), Point(0, 1, 0)));
         s.paths.push_back({line(n, Point(-10, 4, 0), Point(0, 4, 0))});
         ++n;
-        PathSegment a = line(n, Point(0, 1, 0), e);
-        a.kind = SegmentKind::kArc;
-        a.center = Point(0, 0, 0);
-        a.ccw = false;
-        s.elements.push_back(a);
-        PathSegment offset = a;
-        offset.start = Point(0, 4, 0);
-        offset.end = 4.0 * e;
-        PathSegment transition = offset;
-        transition.role = Role::kTransition;
-        transition.start = 4.0 * e;
-        transition.end = e + 3.0 * n2;
-        transition.center = e;
-        s.paths.push_back({offset, transition});
-        ++n;
-        s.elements.push_back(line(n, e, e + 1.5 * d2));
-        s.paths.push_back({line(n, e + Point(20, 0, 0), e + Point(20, 0, 0) + 1.5 * d2)});
-        ++n;
+        long_arc_with_transition(s, n);
         std::vector<Stretch> v;
         v.push_back(std::move(s));
         cases.emplace_back("transition near a long arc after a line under CDOF", std::move(v));
