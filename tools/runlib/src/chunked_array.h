@@ -22,18 +22,19 @@ template <class T, std::size_t ChunkBytes = (std::size_t{2} << 20)>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);
     static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
-    static_assert(ChunkBytes >= sizeof(T));
 
   public:
     static constexpr std::size_t kPerChunk = ChunkBytes / sizeof(T);
+    static_assert(kPerChunk >= 1, "a chunk holds at least one item");
 
     // A new item at the end, value-initialised.
     T& emplace_back() {
         if (size_ == chunks_.size() * kPerChunk)
             chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(kPerChunk * sizeof(T)));
-        T* t = new (at(size_)) T{};
+        T* const slot = at(size_);
+        ::new (static_cast<void*>(slot)) T{};
         ++size_;
-        return *t;
+        return *slot;
     }
     void push_back(const T& t) { emplace_back() = t; }
     std::size_t size() const noexcept { return size_; }
