@@ -501,43 +501,31 @@ TEST(SelfApproachHold, ChosenShapesAgreeCallByCall) {
                           1.0));
         cases.emplace_back("wide zone", std::move(v));
     }
-    {  // r = 4 in G17: a wall, then one 6 mm from it whose path passes 2 mm from it; the next
-       // stretch in G18 with r = 1 (its plane's reach is not theirs)
+    // A wall in G17 (tool radius r), a second one `gap` below it, then a stretch in G18 with
+    // r = 1 (its plane's reach is not theirs).
+    const auto walls_then_g18 = [&n](double r, double gap) {
         std::vector<Stretch> v;
         v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(50, 0, 0),
                               Point(55, 0, 0)},
-                          4.0));
+                          r));
         n += 10;
-        v.push_back(strip(n, {Point(-5, -6, 0), Point(0, -6, 0), Point(50, -6, 0),
-                              Point(55, -6, 0)},
-                          4.0));
+        v.push_back(strip(n, {Point(-5, -gap, 0), Point(0, -gap, 0), Point(50, -gap, 0),
+                              Point(55, -gap, 0)},
+                          r));
         n += 10;
         Stretch g18 = strip(n, {Point(500, 0, 0), Point(510, 0, 0), Point(520, 5, 0),
                                 Point(530, 5, 0)},
                             1.0);
         g18.plane = 18;
         v.push_back(std::move(g18));
-        cases.emplace_back("another plane's reach", std::move(v));
-    }
-    {  // the same with r = 8, the walls 14 mm apart: the first one's zone, proved with 4 mm of
-       // room, lies 2 mm from the second one's path, which passes 6 mm from the wall: within
-       // G17's reach (8 mm), not within G18's (1 mm)
-        std::vector<Stretch> v;
-        v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(50, 0, 0),
-                              Point(55, 0, 0)},
-                          8.0));
-        n += 10;
-        v.push_back(strip(n, {Point(-5, -14, 0), Point(0, -14, 0), Point(50, -14, 0),
-                              Point(55, -14, 0)},
-                          8.0));
-        n += 10;
-        Stretch g18 = strip(n, {Point(500, 0, 0), Point(510, 0, 0), Point(520, 5, 0),
-                                Point(530, 5, 0)},
-                            1.0);
-        g18.plane = 18;
-        v.push_back(std::move(g18));
-        cases.emplace_back("another plane's reach beyond the room", std::move(v));
-    }
+        return v;
+    };
+    // r = 4: the second wall 6 mm from the first, its path passing 2 mm from it.
+    cases.emplace_back("another plane's reach", walls_then_g18(4.0, 6.0));
+    // r = 8, the walls 14 mm apart: the first one's zone, proved with 4 mm of room, lies 2 mm
+    // from the second one's path, which passes 6 mm from the wall: within G17's reach (8 mm),
+    // not within G18's (1 mm).
+    cases.emplace_back("another plane's reach beyond the room", walls_then_g18(8.0, 14.0));
     {  // a wall, one far away, then one laid over the first whose path runs 0.5 mm from it
         std::vector<Stretch> v;
         v.push_back(strip(n, {Point(-5, 0, 0), Point(0, 0, 0), Point(50, 0, 0),

@@ -14,10 +14,10 @@
 namespace apci::run::detail {
 
 // Items kept in order, in chunks of ChunkBytes (2 MiB) each allocated once (untouched until
-// used) and kept when the array is cleared. The calls held back are written one after the other and read once,
-// if at all: keeping one never allocates but at a chunk's start (a std::deque's chunk holds four
-// of them), nor moves the items before it (as a vector's growth would). T has nothing to
-// destroy.
+// used) and kept when the array is cleared. The calls held back are written one after the
+// other and read once, if at all: keeping one never allocates but at a chunk's start (a
+// std::deque's chunk holds four of them), nor moves the items before it (as a vector's growth
+// would). T has nothing to destroy.
 template <class T, std::size_t ChunkBytes = (std::size_t{2} << 20)>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);

@@ -11,10 +11,8 @@
 #include <cstring>
 #include <limits>
 #include <memory>
-#include <new>
 #include <numbers>
 #include <optional>
-#include <type_traits>
 #include <utility>
 
 #include "apci/run/plane_distance.h"
