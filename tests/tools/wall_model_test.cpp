@@ -5,13 +5,18 @@
 // that clear each other and those that do not, levels, CDOF, each rule at its edge.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "apci/run/plane_distance.h"
 #include "chunked_array.h"
 #include "contour_loop.h"
+#include "held_calls.h"
 #include "probe_table.h"
 #include "wall_model.h"
 
@@ -642,9 +647,8 @@ TEST(WallModel, AModelAskedOnlyForPlacementPlacesAsTheOtherAndKeepsNoLoop) {
 
 // ---- chunked_array.h
 
-// Items kept across chunks: each read back where it was put, by index and in order, over many
-// chunk boundaries (chunks of three items here, and of 2 MiB); cleared, the chunks hold new
-// items; swapped, each array has the other's.
+// Items kept across chunks: each read back where it was put, over many chunk boundaries (chunks
+// of three items here, and of 2 MiB), value-initialised when made.
 TEST(ChunkedArray, KeepsEveryItemInOrderAcrossChunks) {
     struct Item {
         std::uint64_t a = 7;
@@ -655,7 +659,8 @@ TEST(ChunkedArray, KeepsEveryItemInOrderAcrossChunks) {
     const auto fill = [](auto& array, std::uint64_t count, std::uint64_t base) {
         for (std::uint64_t i = 0; i < count; ++i) {
             Item& x = array.emplace_back();
-            EXPECT_EQ(x.a, 7U);  // value-initialised, also where a cleared item was
+            EXPECT_EQ(x.a, 7U);  // value-initialised
+            EXPECT_EQ(x.b, 0.5);
             x.a = base + i;
             x.b = static_cast<double>(base + i) * 0.25;
         }
@@ -666,31 +671,257 @@ TEST(ChunkedArray, KeepsEveryItemInOrderAcrossChunks) {
             ASSERT_EQ(array[i].a, base + i) << i;
             ASSERT_EQ(array[i].b, static_cast<double>(base + i) * 0.25) << i;
         }
-        std::uint64_t next = base;
-        array.for_each([&](const Item& x) { EXPECT_EQ(x.a, next++); });
-        EXPECT_EQ(next, base + count);
     };
     Small s;
     EXPECT_TRUE(s.empty());
     fill(s, 3, 0);  // exactly one chunk
     expect_all(s, 3, 0);
+    EXPECT_FALSE(s.empty());
     fill(s, 29, 3);  // then across ten more boundaries
     expect_all(s, 32, 0);
-    s.clear();
-    EXPECT_TRUE(s.empty());
-    fill(s, 10, 1000);
-    expect_all(s, 10, 1000);
-    Small t;
-    t.push_back(Item{42, 1.0});
-    s.swap(t);
-    ASSERT_EQ(s.size(), 1U);
-    EXPECT_EQ(s[0].a, 42U);
-    expect_all(t, 10, 1000);
     // The default chunks of 2 MiB: one item past the first chunk, and the first kept.
     apci::run::detail::ChunkedArray<Item> big;
     const std::uint64_t n = decltype(big)::kPerChunk + 2;
     fill(big, n, 0);
     expect_all(big, n, 0);
+}
+
+// ---- held_calls.h
+
+using apci::run::BlockRef;
+using apci::run::PathSegment;
+using apci::run::Point;
+using apci::run::Role;
+using apci::run::SegmentKind;
+using apci::run::detail::HeldCall;
+using apci::run::detail::HeldCalls;
+
+bool same_bits(double a, double b) {
+    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+// A call as HeldCalls must give it back: the segment's fields the check reads, bit for bit.
+void expect_same_call(const HeldCall& got, const HeldCall& want, std::size_t i) {
+    ASSERT_EQ(got.kind, want.kind) << i;
+    switch (want.kind) {
+        case HeldCall::Kind::kBegin:
+            EXPECT_TRUE(same_bits(got.radius, want.radius)) << i;
+            EXPECT_EQ(got.plane, want.plane) << i;
+            EXPECT_EQ(got.side, want.side) << i;
+            return;
+        case HeldCall::Kind::kEnd: return;
+        case HeldCall::Kind::kWalls: EXPECT_EQ(got.on, want.on) << i; return;
+        case HeldCall::Kind::kProgrammed:
+        case HeldCall::Kind::kExecuted: break;
+    }
+    const PathSegment& g = got.segment;
+    const PathSegment& w = want.segment;
+    EXPECT_EQ(g.block.number, w.block.number) << i;
+    EXPECT_EQ(g.block.line, w.block.line) << i;
+    EXPECT_EQ(g.kind, w.kind) << i;
+    EXPECT_EQ(g.role, w.role) << i;
+    EXPECT_EQ(g.ccw, w.ccw) << i;
+    EXPECT_EQ(g.plane, w.plane) << i;
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_TRUE(same_bits(g.start[a], w.start[a])) << i << " start " << a;
+        EXPECT_TRUE(same_bits(g.end[a], w.end[a])) << i << " end " << a;
+        EXPECT_TRUE(same_bits(g.center[a], w.center[a])) << i << " centre " << a;
+    }
+    EXPECT_TRUE(same_bits(g.sweep, w.sweep)) << i;
+}
+
+void put_call(HeldCalls& calls, const HeldCall& c) {
+    switch (c.kind) {
+        case HeldCall::Kind::kBegin: calls.begin(c.radius, c.plane, c.side); break;
+        case HeldCall::Kind::kEnd: calls.end(); break;
+        case HeldCall::Kind::kWalls: calls.walls(c.on); break;
+        case HeldCall::Kind::kProgrammed:
+        case HeldCall::Kind::kExecuted: calls.segment(c.kind, c.segment); break;
+    }
+}
+
+void expect_calls(const HeldCalls& calls, const std::vector<HeldCall>& want) {
+    ASSERT_EQ(calls.size(), want.size());
+    std::size_t i = 0;
+    calls.for_each([&](const HeldCall& c) {
+        ASSERT_LT(i, want.size());
+        expect_same_call(c, want[i], i);
+        ++i;
+    });
+    EXPECT_EQ(i, want.size());
+}
+
+// Random calls of every kind, the segments drawn so that each shortcut of the writing is taken
+// and not: a start that is (or is not) the last end of the same kind of segment (the other
+// kind's end between), the block the last one's, the next one or another (no N number, line 0,
+// the largest numbers), a coordinate the same as the start's or not (the end's and the
+// centre's), zeros of both signs, a centre of zeros or of -0, a sweep NaN (the quiet one and
+// another), 0, -0 or a number, planes 17 to 19 and others; in chunks of 200 bytes (a record
+// never split), then cleared and refilled, then swapped.
+TEST(HeldCalls, GiveBackEveryCallBitForBit) {
+    std::mt19937_64 rng(20261130);
+    const auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double other_nan = std::bit_cast<double>(std::uint64_t{0x7ff8'0000'dead'beefULL});
+    const double values[] = {0.0, -0.0, 1.5, -2.25, 1e-300, 1e300, 12.3456, -0.001, nan};
+    const auto value = [&]() {
+        return pick(4) == 0 ? values[pick(9)] : std::uniform_real_distribution<>(-500, 500)(rng);
+    };
+    const auto make = [&](std::size_t n) {
+        std::vector<HeldCall> calls;
+        Point last_end[2] = {Point::Zero(), Point::Zero()};
+        BlockRef last_block{};
+        for (std::size_t i = 0; i < n; ++i) {
+            HeldCall c;
+            const int k = pick(10);
+            if (k == 0) {
+                c.kind = HeldCall::Kind::kBegin;
+                c.radius = value();
+                c.plane = pick(4) == 0 ? pick(41) - 20 : 17 + pick(3);
+                c.side = pick(2) == 0 ? -1 : 1;
+            } else if (k == 1) {
+                c.kind = HeldCall::Kind::kEnd;
+            } else if (k == 2) {
+                c.kind = HeldCall::Kind::kWalls;
+                c.on = pick(2) == 0;
+            } else {
+                c.kind = k < 6 ? HeldCall::Kind::kProgrammed : HeldCall::Kind::kExecuted;
+                const int slot = c.kind == HeldCall::Kind::kExecuted ? 1 : 0;
+                PathSegment& s = c.segment;
+                // The next block (past the largest numbers: the smallest, as if they wrapped).
+                const bool largest =
+                    last_block.number == std::numeric_limits<std::int64_t>::max() ||
+                    last_block.line == std::numeric_limits<std::uint64_t>::max();
+                const BlockRef next =
+                    largest ? BlockRef{std::numeric_limits<std::int64_t>::min(), 0}
+                            : BlockRef{last_block.number + 1, last_block.line + 1};
+                switch (pick(5)) {
+                    case 0: s.block = last_block; break;
+                    case 1: s.block = next; break;
+                    case 2: s.block = {next.number, next.line + 1}; break;
+                    case 3:
+                        s.block = {apci::run::kNoBlock, static_cast<std::uint64_t>(pick(3))};
+                        break;
+                    default:
+                        s.block = pick(2) == 0
+                                      ? BlockRef{std::numeric_limits<std::int64_t>::max(),
+                                                 std::numeric_limits<std::uint64_t>::max()}
+                                      : BlockRef{pick(1000), static_cast<std::uint64_t>(pick(9))};
+                }
+                s.kind = static_cast<SegmentKind>(pick(3));
+                s.role = static_cast<Role>(pick(5));
+                s.ccw = pick(2) == 0;
+                s.plane = pick(5) == 0 ? 1000 - pick(2000) : 17 + pick(3);
+                for (int a = 0; a < 3; ++a) s.start[a] = value();
+                if (pick(2) == 0) s.start = last_end[slot];
+                for (int a = 0; a < 3; ++a) {
+                    s.end[a] = pick(2) == 0 ? s.start[a] : value();
+                    s.center[a] = pick(2) == 0 ? s.start[a] : value();
+                }
+                const int centre = pick(4);
+                if (centre == 0) s.center = Point::Zero();
+                if (centre == 1) s.center = Point(-0.0, 0.0, 0.0);
+                const double sweeps[] = {nan, other_nan, 0.0, -0.0, value()};
+                s.sweep = sweeps[pick(5)];
+                last_end[slot] = s.end;
+                last_block = s.block;
+            }
+            calls.push_back(c);
+        }
+        return calls;
+    };
+    HeldCalls held(200);
+    EXPECT_TRUE(held.empty());
+    const std::vector<HeldCall> first = make(5000);
+    for (const HeldCall& c : first) put_call(held, c);
+    expect_calls(held, first);
+    held.clear();
+    EXPECT_TRUE(held.empty());
+    EXPECT_EQ(held.bytes(), 0U);
+    const std::vector<HeldCall> second = make(3000);
+    for (const HeldCall& c : second) put_call(held, c);
+    expect_calls(held, second);
+    HeldCalls other;
+    const std::vector<HeldCall> third = make(10);
+    for (const HeldCall& c : third) put_call(other, c);
+    held.swap(other);
+    expect_calls(held, third);
+    expect_calls(other, second);
+}
+
+// What a record takes: the header of six bytes and the numbers not found from the record before
+// it. A contour traced as it is run: each element starts where the last of its kind ended, in
+// the block after it or the same, the end's and the centre's coordinates that are the start's
+// left out, a line's sweep (0, or NaN) too; a call with no segment the header (a begin its
+// radius).
+TEST(HeldCalls, WriteOnlyWhatTheRecordBeforeDoesNotGive) {
+    HeldCalls held;
+    const auto segment = [](std::int64_t n, Point start, Point end) {
+        PathSegment s;
+        s.block = {n, static_cast<std::uint64_t>(n + 1)};
+        s.kind = SegmentKind::kLine;
+        s.role = Role::kContour;
+        s.start = start;
+        s.end = end;
+        return s;
+    };
+    held.begin(1.5, 17, -1);
+    EXPECT_EQ(held.bytes(), 6U + 8U);
+    held.walls(false);
+    EXPECT_EQ(held.bytes(), 6U + 8U + 6U);
+    PathSegment a = segment(10, Point(0, 0, -2), Point(10, 0, -2));
+    a.sweep = 0.0;
+    held.segment(HeldCall::Kind::kProgrammed, a);  // the first: block, start, end's X
+    std::size_t was = held.bytes();
+    EXPECT_EQ(was, 20U + 6U + 16U + 24U + 8U);  // Y and Z the start's
+    PathSegment b = segment(11, Point(10, 0, -2), Point(12, 5, -2));
+    b.sweep = std::numeric_limits<double>::quiet_NaN();
+    held.segment(HeldCall::Kind::kProgrammed, b);  // the next block, from the last end: X, Y
+    EXPECT_EQ(held.bytes() - was, 6U + 16U);
+    was = held.bytes();
+    PathSegment e = segment(10, Point(0, 1.5, -2), Point(10, 1.5, -2));
+    e.role = Role::kContour;
+    e.sweep = 0.0;
+    held.segment(HeldCall::Kind::kExecuted, e);  // the first executed: block, start, end's X
+    EXPECT_EQ(held.bytes() - was, 6U + 16U + 24U + 8U);
+    was = held.bytes();
+    PathSegment f = segment(10, Point(10, 1.5, -2), Point(11.5, 0, -2));
+    f.kind = SegmentKind::kArc;
+    f.role = Role::kTransition;
+    f.center = Point(10, 0, -2);
+    f.sweep = -std::numbers::pi / 2;
+    // The same block, from the last end: the end's X and Y, the centre's Y, the sweep.
+    held.segment(HeldCall::Kind::kExecuted, f);
+    EXPECT_EQ(held.bytes() - was, 6U + 16U + 8U + 8U);
+    was = held.bytes();
+    PathSegment g = segment(11, Point(11.5, 0, -2), Point(11.5, 5, -2));
+    g.sweep = 0.0;
+    held.segment(HeldCall::Kind::kExecuted, g);  // the next block, X unchanged: Y only
+    EXPECT_EQ(held.bytes() - was, 6U + 8U);
+    was = held.bytes();
+    held.end();
+    EXPECT_EQ(held.bytes() - was, 6U);
+    PathSegment h = segment(12, Point(12, 5, -2), Point(12, 5, 3));
+    h.block = {12, 40};  // another line: the block written; from b's end, up in Z
+    held.segment(HeldCall::Kind::kProgrammed, h);
+    EXPECT_EQ(held.bytes() - was - 6U, 6U + 16U + 8U);
+    expect_calls(held, [&] {
+        std::vector<HeldCall> want(10);
+        want[0].kind = HeldCall::Kind::kBegin;
+        want[0].radius = 1.5;
+        want[0].side = -1;
+        want[1].kind = HeldCall::Kind::kWalls;
+        const PathSegment* segs[] = {&a, &b, &e, &f, &g};
+        for (int i = 0; i < 5; ++i) {
+            want[2 + i].kind = i < 2 ? HeldCall::Kind::kProgrammed : HeldCall::Kind::kExecuted;
+            want[2 + i].segment = *segs[i];
+        }
+        want[7].kind = HeldCall::Kind::kEnd;
+        want[8].kind = HeldCall::Kind::kProgrammed;
+        want[8].segment = h;
+        want.pop_back();
+        return want;
+    }());
 }
 
 // ---- probe_table.h

@@ -17,6 +17,7 @@
 
 #include "apci/run/plane_distance.h"
 #include "chunked_array.h"
+#include "held_calls.h"
 #include "probe_table.h"
 #include "wall_model.h"
 
@@ -1076,49 +1077,7 @@ struct SelfApproachCheck::Candidate {
 // elements), so that it knows, call by call, the numbers the check would have given the items
 // and what its model says.
 struct SelfApproachCheck::Hold {
-    enum class Kind : std::uint8_t { kBegin, kEnd, kProgrammed, kExecuted, kWalls };
-    // A call as given, its segment as much of it as the check reads.
-    struct Call {
-        BlockRef block{};
-        double start[3]{}, end[3]{}, centre[3]{};
-        double sweep = 0.0;    // kProgrammed, kExecuted; the radius of a kBegin
-        int plane = 17;        // a kBegin's or the segment's
-        std::int8_t side = 1;  // kBegin
-        Kind kind = Kind::kBegin;
-        SegmentKind segment = SegmentKind::kLine;
-        Role role = Role::kUncompensated;
-        bool ccw = false;
-        bool on = false;  // kWalls
-        static void make(Call& c, Kind k, const PathSegment& s) {
-            c.kind = k;
-            c.block = s.block;
-            for (int i = 0; i < 3; ++i) {
-                c.start[i] = s.start[i];
-                c.end[i] = s.end[i];
-                c.centre[i] = s.center[i];
-            }
-            c.sweep = s.sweep;
-            c.plane = s.plane;
-            c.segment = s.kind;
-            c.role = s.role;
-            c.ccw = s.ccw;
-        }
-        PathSegment segment_of() const {
-            PathSegment s;
-            s.block = block;
-            s.kind = segment;
-            s.role = role;
-            for (int i = 0; i < 3; ++i) {
-                s.start[i] = start[i];
-                s.end[i] = end[i];
-                s.center[i] = centre[i];
-            }
-            s.ccw = ccw;
-            s.plane = plane;
-            s.sweep = sweep;
-            return s;
-        }
-    };
+    using Kind = detail::HeldCall::Kind;
     struct Box {
         Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
         bool holds(const Box& b) const {
@@ -1205,7 +1164,7 @@ struct SelfApproachCheck::Hold {
     // Grows with each call worked: a stretch's box proved clear before is asked again.
     std::uint64_t epoch = 1;
     // The calls kept, and the items they bring per plane.
-    detail::ChunkedArray<Call> calls;
+    detail::HeldCalls calls;
     std::array<Counts, 3> held{};
     bool off = false;  // nothing is kept from now on (too many stretches, or too wide)
 
@@ -1526,21 +1485,13 @@ struct SelfApproachCheck::Hold {
         }
         // A begin gives nothing out: kept while calls are (they come before it), or to start.
         if (!holding() && (off || !c.settled())) return false;
-        Call k;
-        k.kind = Kind::kBegin;
-        k.sweep = radius;
-        k.plane = p;
-        k.side = static_cast<std::int8_t>(side < 0 ? -1 : 1);
-        calls.push_back(k);
+        calls.begin(radius, p, side);
         return true;
     }
     bool set_walls(const SelfApproachCheck& c, bool on) {
         walls_on = on;
         if (!holding() && (off || !c.settled())) return false;
-        Call k;
-        k.kind = Kind::kWalls;
-        k.on = on;
-        calls.push_back(k);
+        calls.walls(on);
         return true;
     }
     bool end(const SelfApproachCheck& c) {
@@ -1551,9 +1502,7 @@ struct SelfApproachCheck::Hold {
         const bool clear = review();
         prune();
         if (!clear || !may_keep(c)) return false;
-        Call k;
-        k.kind = Kind::kEnd;
-        calls.push_back(k);
+        calls.end();
         return true;
     }
     bool programmed(const SelfApproachCheck& c, const PathSegment& s) {
@@ -1587,7 +1536,7 @@ struct SelfApproachCheck::Hold {
         }
         grow(stretch, b);
         if (!keep || off) return false;
-        Call::make(calls.emplace_back(), Kind::kProgrammed, s);
+        calls.segment(Kind::kProgrammed, s);
         return true;
     }
     bool executed(const SelfApproachCheck& c, const PathSegment& s) {
@@ -1601,7 +1550,7 @@ struct SelfApproachCheck::Hold {
             if (held_to_elements(s.role) && !off && !path(c, s, p)) return false;
         }
         if (!may_keep(c) || off) return false;
-        Call::make(calls.emplace_back(), Kind::kExecuted, s);
+        calls.segment(Kind::kExecuted, s);
         return true;
     }
     // An executed path of element p: its stretch's zone holds it, its record too while the
@@ -1713,16 +1662,16 @@ void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
         hold_->waiting.clear();
         return;
     }
-    detail::ChunkedArray<Hold::Call> calls;
+    detail::HeldCalls calls;
     calls.swap(hold_->calls);
     hold_->held = {};
     hold_->waiting.clear();
-    calls.for_each([&](const Hold::Call& k) {
+    calls.for_each([&](const detail::HeldCall& k) {
         switch (k.kind) {
-            case Hold::Kind::kBegin: begin_now(k.sweep, k.plane, k.side); break;
+            case Hold::Kind::kBegin: begin_now(k.radius, k.plane, k.side); break;
             case Hold::Kind::kEnd: end_now(out); break;
-            case Hold::Kind::kProgrammed: programmed_now(k.segment_of(), out); break;
-            case Hold::Kind::kExecuted: executed_now(k.segment_of(), out); break;
+            case Hold::Kind::kProgrammed: programmed_now(k.segment, out); break;
+            case Hold::Kind::kExecuted: executed_now(k.segment, out); break;
             case Hold::Kind::kWalls: walls_on_ = k.on; break;
         }
     });
