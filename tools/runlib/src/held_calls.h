@@ -4,6 +4,7 @@
 // (docs/performance.md "Held calls written compactly").
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -68,8 +69,8 @@ class HeldCalls {
     // What a record is written against (and read against): the ends of the last programmed and
     // executed segments, and the block of the last segment.
     struct Last {
-        Point end[2] = {Point::Zero(), Point::Zero()};
-        bool has_end[2] = {false, false};
+        std::array<Point, 2> end{Point::Zero(), Point::Zero()};
+        std::array<bool, 2> has_end{false, false};
         BlockRef block{};
         bool has_block = false;
     };
