@@ -32,7 +32,6 @@
 #include "apci/run/program_run.h"
 #include "apci/run/summary.h"
 #include "objif/descriptor.h"
-#include "objif/frame.h"
 #include "objif/names.h"
 #include "objif/object_info.h"
 #include "objif/value.h"
@@ -89,7 +88,7 @@ class PyBoard {
 
     // The board's motion (docs/motion-claim.md): claim, release, and who holds it as (status,
     // held, yours, pid, since_ms, name, holder), the holder as libapci names it in a refusal
-    // (objif::claim_holder_text; "" when free).
+    // (apci_motion_claim_holder; "" when free).
     apci::Status claim_motion() {
         const Use use(*this);
         return board_.claim_motion().status;
@@ -103,14 +102,10 @@ class PyBoard {
         const Use use(*this);
         const auto r = board_.motion_claim();
         if (!r.ok()) return {r.status, false, false, 0, 0, {}, {}};
-        objif::ClaimReply rep;
-        rep.held = r.value.held != 0;
-        rep.pid = r.value.pid;
-        rep.since_ms = r.value.since_ms;
-        rep.name = std::string(r.value.name, ::strnlen(r.value.name, sizeof r.value.name));
-        return {r.status,   rep.held, r.value.yours != 0,
-                rep.pid,    rep.since_ms, rep.name,
-                rep.held ? objif::claim_holder_text(rep) : std::string()};
+        const apci_motion_claim& c = r.value;
+        return {r.status,   c.held != 0, c.yours != 0, c.pid, c.since_ms,
+                std::string(c.name, ::strnlen(c.name, sizeof c.name)),
+                apci::motion_claim_holder(c)};
     }
 
     // Holds the board for one call, or throws RuntimeError when another thread holds it.

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <string>
 
 #include "apci/apci.h"
@@ -83,6 +84,63 @@ TEST(MotionClaimEmbedded, ClaimNamesThisProcessAndWhen) {
     EXPECT_EQ(c.pid, static_cast<int32_t>(::getpid()));
     EXPECT_STREQ(c.name, std::string(program_invocation_short_name).substr(0, 15).c_str());
     EXPECT_GT(c.since_ms, 1'600'000'000'000u);  // after September 2020: a real date
+}
+
+// The holder named as libapci names it in a refusal (apci_motion_claim_holder): pid and name
+// and when (UTC), the pid alone, a host's name, another host; "" when nobody holds it or there
+// is no record. Written as snprintf writes: cut short to the room with its NUL, the whole
+// length returned, nothing written without room; a name of 16 characters without its NUL read
+// no further than the record.
+TEST(MotionClaimHolder, NamesTheHolderAsARefusalDoes) {
+    const auto holder = [](const apci_motion_claim& c) {
+        char text[128];
+        const std::size_t n = apci_motion_claim_holder(&c, text, sizeof text);
+        EXPECT_EQ(n, std::string(text).size());
+        EXPECT_EQ(apci::motion_claim_holder(c), text);
+        return std::string(text);
+    };
+    apci_motion_claim c{};
+    EXPECT_EQ(holder(c), "");  // held 0
+    c.pid = 4242;
+    std::strcpy(c.name, "apcictl");
+    c.since_ms = 1'714'564'800'000u;  // 2024-05-01 12:00:00 UTC
+    EXPECT_EQ(holder(c), "") << "not held: nobody is named, whatever the record holds";
+    c.held = 1;
+    EXPECT_EQ(holder(c), "pid 4242 (apcictl) since 2024-05-01 12:00:00 UTC");
+    c.since_ms = 0;
+    EXPECT_EQ(holder(c), "pid 4242 (apcictl)");
+    c.name[0] = '\0';
+    EXPECT_EQ(holder(c), "pid 4242");
+    c.pid = 0;
+    EXPECT_EQ(holder(c), "another host");
+    std::memcpy(c.name, "sixteen-letters!", 16);  // no NUL in the record
+    EXPECT_EQ(holder(c), "sixteen-letters!");
+    EXPECT_EQ(apci_motion_claim_holder(nullptr, nullptr, 0), 0u);
+    char text[8] = "unused";
+    EXPECT_EQ(apci_motion_claim_holder(nullptr, text, sizeof text), 0u);
+    EXPECT_STREQ(text, "");
+    // Cut short: the room less one, and the NUL; no room at all: nothing written.
+    std::strcpy(c.name, "apcictl");
+    c.pid = 4242;
+    EXPECT_EQ(apci_motion_claim_holder(&c, text, sizeof text), 18u);
+    EXPECT_STREQ(text, "pid 424");
+    EXPECT_EQ(apci_motion_claim_holder(&c, text, 1), 18u);
+    EXPECT_STREQ(text, "");
+    text[0] = 'x';
+    EXPECT_EQ(apci_motion_claim_holder(&c, text, 0), 18u);
+    EXPECT_EQ(text[0], 'x');
+    EXPECT_EQ(apci_motion_claim_holder(&c, nullptr, 0), 18u);
+}
+
+// The holder of a board this process claims, named from the board's record.
+TEST(MotionClaimHolder, NamesThisProcessWhenItHoldsTheBoard) {
+    Handle h;
+    ASSERT_EQ(apci_claim_motion(h.board), APCI_OK);
+    const std::string name = std::string(program_invocation_short_name).substr(0, 15);
+    const std::string holder = apci::motion_claim_holder(claim_of(h.board));
+    EXPECT_EQ(holder.rfind("pid " + std::to_string(::getpid()) + " (" + name + ") since 20", 0), 0U)
+        << holder;
+    EXPECT_EQ(holder.substr(holder.size() - 4), " UTC") << holder;
 }
 
 TEST(MotionClaimEmbedded, EachHandleHoldsItsOwnBoard) {

@@ -18,7 +18,6 @@
 
 #include "apci/apci.hpp"
 #include "objif/descriptor.h"
-#include "objif/frame.h"
 
 namespace apcictl {
 
@@ -124,9 +123,5 @@ std::string describe_status(apci::Status status);
 // PATH closed the connection: idle for 300 s (--idle-timeout 300); ..."), which the status
 // name alone drops.
 std::string describe_failure(const apci::Board& board, apci::Status status);
-
-// The board's record of who holds its motion (apci_motion_claim_get) as the wire has it, for
-// objif::claim_holder_text, which names the holder as libapci names it in a refusal.
-objif::ClaimReply claim_reply(const apci_motion_claim& claim);
 
 }  // namespace apcictl

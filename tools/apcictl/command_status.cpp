@@ -3,6 +3,7 @@
 // compensation group and of the active group, decoded by the bit names of [APCI-TC] (Tables 4 and 5)
 // ([APCI-TC] section 2.3 "Fehlerabfrage von TC").
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 
@@ -65,18 +66,20 @@ nlohmann::json bit_names(std::int32_t value, const char* (*name_of)(int)) {
     return names;
 }
 
-// Who holds the board's motion (docs/motion-claim.md), from the board's record (claim_reply):
-// the holder as libapci names it (objif::claim_holder_text). `served` false where the
-// transport does not serve claims (nothing then keeps two programs apart).
+// Who holds the board's motion (docs/motion-claim.md), from the board's record
+// (apci_motion_claim_get): the holder as libapci names it (apci_motion_claim_holder). `served`
+// false where the transport does not serve claims (nothing then keeps two programs apart).
 struct MotionHolder {
     apci::Status status = APCI_OK;  // of the query: APCI_OK, APCI_NOT_SUPPORTED or an error
-    objif::ClaimReply claim;
+    apci_motion_claim claim{};
     bool served() const { return status != APCI_NOT_SUPPORTED; }
-    std::string holder() const { return objif::claim_holder_text(claim); }
+    bool held() const { return claim.held != 0; }
+    std::string name() const { return {claim.name, ::strnlen(claim.name, sizeof claim.name)}; }
+    std::string holder() const { return apci::motion_claim_holder(claim); }
 };
 MotionHolder motion_holder(apci::Board& board) {
     const auto r = board.motion_claim();
-    return MotionHolder{r.status, r.ok() ? claim_reply(r.value) : objif::ClaimReply{}};
+    return MotionHolder{r.status, r.ok() ? r.value : apci_motion_claim{}};
 }
 
 // A register read for --json: {"value": 1, "set": ["Run"]}, or {"unreadable": "StatusName"}.
@@ -150,11 +153,11 @@ private:
         } else if (motion.status != APCI_OK) {
             out["motion"] = {{"unreadable", std::string(apci::status_name(motion.status))}};
             if (outcome.ok()) outcome = failed(board, "motion claim", motion.status);
-        } else if (!motion.claim.held) {
+        } else if (!motion.held()) {
             out["motion"] = {{"served", true}, {"held", false}};
         } else {
             out["motion"] = {{"served", true},         {"held", true},
-                             {"pid", motion.claim.pid}, {"name", motion.claim.name},
+                             {"pid", motion.claim.pid}, {"name", motion.name()},
                              {"since_ms", motion.claim.since_ms}, {"holder", motion.holder()}};
         }
         auto plane_object = apci::object(APCI_TC_BUS, APCI_TC_DEVICE_INIT, APCI_TC_PLANE, 0);
@@ -217,7 +220,7 @@ private:
         } else if (motion.status != APCI_OK) {
             fmt::print("motion: unreadable, {}\n", describe_status(motion.status));
             if (outcome.ok()) outcome = failed(board, "motion claim", motion.status);
-        } else if (!motion.claim.held) {
+        } else if (!motion.held()) {
             fmt::print("motion: free\n");
         } else {
             fmt::print("motion: held by {}\n", motion.holder());

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #include <array>
-#include <cstring>
 
 #include <fmt/format.h>
 
@@ -81,16 +80,6 @@ std::string Session::reconnect_if_lost() {
         uri_);
 }
 
-objif::ClaimReply claim_reply(const apci_motion_claim& claim) {
-    objif::ClaimReply rep;
-    rep.held = claim.held != 0;
-    rep.yours = claim.yours != 0;
-    rep.pid = claim.pid;
-    rep.since_ms = claim.since_ms;
-    rep.name.assign(claim.name, ::strnlen(claim.name, sizeof claim.name));
-    return rep;
-}
-
 Outcome Session::claim_motion(std::string_view command) {
     Outcome failure;
     apci::Board* board = this->board(failure);
@@ -107,14 +96,13 @@ Outcome Session::claim_motion(std::string_view command) {
     if (s != APCI_MOTION_CLAIMED)
         return Outcome::board_error(fmt::format("{}: claim the board's motion: {}", command,
                                                 describe_failure(*board, s)));
-    // The holder from the board's record, named as libapci names it (objif::claim_holder_text);
+    // The holder from the board's record, named as libapci names it (apci_motion_claim_holder);
     // released meanwhile, libapci's words of the refusal.
     std::string holder(board->last_error());  // before the query, which clears it
     const auto claim = board->motion_claim();
     std::string what_to_do = "wait until it has finished";
     if (claim.ok() && claim.value.held != 0) {
-        holder =
-            "the board's motion is held by " + objif::claim_holder_text(claim_reply(claim.value));
+        holder = "the board's motion is held by " + apci::motion_claim_holder(claim.value);
         if (claim.value.pid > 0) what_to_do += fmt::format(", or stop it (kill {})", claim.value.pid);
     }
     return Outcome::board_error(

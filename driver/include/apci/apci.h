@@ -246,6 +246,14 @@ typedef struct apci_motion_claim {
  * Errors: APCI_INVALID_ARGUMENT (board or claim NULL); APCI_NOT_SUPPORTED; transport errors. */
 APCI_API apci_status apci_motion_claim_get(apci_board* board, apci_motion_claim* claim) APCI_NOEXCEPT;
 
+/* The holder of `claim` named as libapci names it in a refusal: "pid 4242 (apcictl) since
+ * 2024-05-01 12:00:00 UTC", "pid 4242", "another host", a host's name; "" when nobody holds it
+ * (claim NULL, or held 0). Writes at most `size` bytes, the NUL included, into `text` (which
+ * may be NULL when size is 0) and returns the length of the whole name, as snprintf does: a
+ * result of `size` or more means it was cut short. */
+APCI_API size_t apci_motion_claim_holder(const apci_motion_claim* claim, char* text,
+                                         size_t size) APCI_NOEXCEPT;
+
 /* ---- Finding boards ------------------------------------------------------- */
 
 /* Called once per board found: its device URI (for apci_open) and one line

@@ -237,6 +237,14 @@ private:
     Status status_;
 };
 
+// The holder of `claim` named as libapci names it in a refusal (apci_motion_claim_holder):
+// "pid 4242 (apcictl) since 2024-05-01 12:00:00 UTC"; "" when nobody holds it.
+inline std::string motion_claim_holder(const apci_motion_claim& claim) {
+    std::string text(apci_motion_claim_holder(&claim, nullptr, 0), '\0');
+    if (!text.empty()) (void)apci_motion_claim_holder(&claim, text.data(), text.size() + 1);
+    return text;
+}
+
 // A board apci_list_devices() found.
 struct FoundBoard {
     std::string uri;
