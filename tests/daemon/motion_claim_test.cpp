@@ -527,6 +527,12 @@ TEST_F(MotionClaimDaemon, StatusNamesTheHolderOfTheBoardsMotion) {
     EXPECT_TRUE(contains(r.out, fmt::format(R"("pid":{},"served":true,"since_ms":{}}})",
                                             ::getpid(), claim.since_ms)))
         << r.out;
+    // The holder's command name as it is, no more (the record keeps 16 bytes, NULs after it).
+    const std::string name = std::string(program_invocation_short_name).substr(0, 15);
+    EXPECT_TRUE(contains(r.out, fmt::format(R"("holder":"pid {} ({}) since 20)", ::getpid(), name)))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, fmt::format(R"("name":"{}","pid":{},)", name, ::getpid())))
+        << r.out;
     ASSERT_EQ(apci_release_motion(holder.board), APCI_OK) << holder.error();
     r = test_support::apcictl({"--device", uri, "status"});
     EXPECT_TRUE(contains(r.out, "\nmotion: free\n")) << r.out;
