@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -104,8 +103,7 @@ class PyBoard {
         if (!r.ok()) return {r.status, false, false, 0, 0, {}, {}};
         const apci_motion_claim& c = r.value;
         return {r.status,   c.held != 0, c.yours != 0, c.pid, c.since_ms,
-                std::string(c.name, ::strnlen(c.name, sizeof c.name)),
-                apci::motion_claim_holder(c)};
+                apci::motion_claim_name(c), apci::motion_claim_holder(c)};
     }
 
     // Holds the board for one call, or throws RuntimeError when another thread holds it.

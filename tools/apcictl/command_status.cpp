@@ -3,7 +3,6 @@
 // compensation group and of the active group, decoded by the bit names of [APCI-TC] (Tables 4 and 5)
 // ([APCI-TC] section 2.3 "Fehlerabfrage von TC").
 #include <cstdint>
-#include <cstring>
 #include <optional>
 #include <string>
 
@@ -74,7 +73,7 @@ struct MotionHolder {
     apci_motion_claim claim{};
     bool served() const { return status != APCI_NOT_SUPPORTED; }
     bool held() const { return claim.held != 0; }
-    std::string name() const { return {claim.name, ::strnlen(claim.name, sizeof claim.name)}; }
+    std::string name() const { return apci::motion_claim_name(claim); }
     std::string holder() const { return apci::motion_claim_holder(claim); }
 };
 MotionHolder motion_holder(apci::Board& board) {

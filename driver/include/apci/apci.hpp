@@ -237,6 +237,14 @@ private:
     Status status_;
 };
 
+// The holder's command name in `claim`: its characters up to the NUL, no more than the record
+// holds.
+inline std::string motion_claim_name(const apci_motion_claim& claim) {
+    std::size_t n = 0;
+    while (n < sizeof claim.name && claim.name[n] != '\0') ++n;
+    return {claim.name, n};
+}
+
 // The holder of `claim` named as libapci names it in a refusal (apci_motion_claim_holder):
 // "pid 4242 (apcictl) since 2024-05-01 12:00:00 UTC"; "" when nobody holds it.
 inline std::string motion_claim_holder(const apci_motion_claim& claim) {

@@ -56,6 +56,9 @@ bool skip_comments(LineCursor& c, std::string_view file, std::uint64_t line, Dia
 namespace {
 
 constexpr std::string_view kKnownWords = "N G X Y Z B I J K R F D M, CDON CDOF";
+// What a tool change written as other controls write it (T1 M6) is told.
+constexpr std::string_view kToolByD =
+    "the tool is selected with D (D1 takes tool 1 of the tool list)";
 constexpr std::string_view kKnownGCodes =
     "G0-G3, G17-G19, G25, G26, G40-G42, G70, G71, G90, G91, G138, G139, G237";
 
@@ -197,10 +200,9 @@ class BlockParser : public LineParse {
                 return collision_detection(col);
             case 'T':  // a tool change as other controls write it (T1 M6)
                 return fail_here(ErrorKind::kUnknownWord, col,
-                                 fmt::format("unknown word 'T': the tool is selected with D (D1 "
-                                             "takes tool 1 of the tool list); T and M6 are not "
-                                             "read (known words: {})",
-                                             kKnownWords));
+                                 fmt::format("unknown word 'T': {}; T and M6 are not read "
+                                             "(known words: {})",
+                                             kToolByD, kKnownWords));
             default:
                 return fail_here(
                     ErrorKind::kUnknownWord, col,
@@ -402,9 +404,9 @@ class BlockParser : public LineParse {
         // no spindle or tape to tell them apart).
         if (m == 6) {
             return fail_here(ErrorKind::kUnknownWord, col,
-                             "unknown M code M6: the tool is selected with D (D1 takes tool 1 of "
-                             "the tool list), no tool change is programmed (known: M2, M30: the "
-                             "program's end)");
+                             fmt::format("unknown M code M6: {}, no tool change is programmed "
+                                         "(known: M2, M30: the program's end)",
+                                         kToolByD));
         }
         if (m != 2 && m != 30) {
             return fail_here(ErrorKind::kUnknownWord, col,

@@ -3,7 +3,6 @@
 #include "held_calls.h"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -15,8 +14,9 @@ namespace {
 
 // A record: a header of kHeaderBytes, then the numbers its flags say are there, in this order:
 // the plane (kPlaneWide), the block (neither kSameBlock nor kNextBlock), the start (not
-// kStartIsLast), the end's coordinates not in `same` (bits 0-2: the start's), the centre's not
-// in it (bits 3-5: the start's) where kCentre, the sweep (kSweep); a kBegin its radius.
+// kStartIsLast), the end's coordinates not in `same_as_start` (bits 0-2: the start's), the
+// centre's not in it (bits 3-5: the start's) where kCentre, the sweep (kSweep); a kBegin its
+// radius.
 enum Flag : std::uint8_t {
     kCcw = 1,
     kStartIsLast = 2,   // the start is the last segment's of its kind's end
@@ -29,7 +29,7 @@ enum Flag : std::uint8_t {
 // The flags of the other records.
 constexpr std::uint8_t kOn = 1;           // kWalls
 constexpr std::uint8_t kSideNegative = 1;  // kBegin
-constexpr std::size_t kHeaderBytes = 6;  // kind, segment kind, role, flags, same, plane code
+constexpr std::size_t kHeaderBytes = 6;  // kind, segment kind, role, flags, same_as_start, plane
 constexpr std::uint8_t kPlaneWide = 3;   // plane code: an int32 plane follows
 
 std::uint8_t plane_code(int plane) {
@@ -39,14 +39,8 @@ int plane_of(std::uint8_t code) {
     return 17 + code;
 }
 
-bool same(double a, double b) {
-    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
-bool same(const Point& a, const Point& b) {
-    return same(a[0], b[0]) && same(a[1], b[1]) && same(a[2], b[2]);
-}
 bool zero_bits(const Point& p) {
-    return same(p, Point::Zero());
+    return same_bits(p, Point::Zero());
 }
 
 template <class T>
@@ -126,7 +120,7 @@ void HeldCalls::segment(HeldCall::Kind kind, const PathSegment& s) {
     std::byte* at = room();
     const std::size_t k = slot_of(kind);
     std::uint8_t flags = s.ccw ? kCcw : 0;
-    if (last_.has_end[k] && same(s.start, last_.end[k])) flags |= kStartIsLast;
+    if (last_.has_end[k] && same_bits(s.start, last_.end[k])) flags |= kStartIsLast;
     if (last_.has_block && s.block.number == last_.block.number &&
         s.block.line == last_.block.line)
         flags |= kSameBlock;
@@ -135,14 +129,14 @@ void HeldCalls::segment(HeldCall::Kind kind, const PathSegment& s) {
              s.block.number == last_.block.number + 1 && s.block.line == last_.block.line + 1)
         flags |= kNextBlock;
     if (!zero_bits(s.center)) flags |= kCentre;
-    if (same(s.sweep, 0.0))
+    if (same_bits(s.sweep, 0.0))
         flags |= kSweepZero;
-    else if (!same(s.sweep, std::numeric_limits<double>::quiet_NaN()))
+    else if (!same_bits(s.sweep, std::numeric_limits<double>::quiet_NaN()))
         flags |= kSweep;
     std::uint8_t same_as_start = 0;
     for (int i = 0; i < 3; ++i) {
-        if (same(s.end[i], s.start[i])) same_as_start |= static_cast<std::uint8_t>(1u << i);
-        if (same(s.center[i], s.start[i])) same_as_start |= static_cast<std::uint8_t>(8u << i);
+        if (same_bits(s.end[i], s.start[i])) same_as_start |= static_cast<std::uint8_t>(1u << i);
+        if (same_bits(s.center[i], s.start[i])) same_as_start |= static_cast<std::uint8_t>(8u << i);
     }
     const std::uint8_t code = plane_code(s.plane);
     const std::uint8_t header[kHeaderBytes] = {static_cast<std::uint8_t>(kind),

@@ -279,13 +279,6 @@ char* json_number(char* out, double v) {
     return std::to_chars(out, out + kNumberMax, v).ptr;
 }
 
-// The same bits, not only equal values: -0 and 0 are written differently.
-bool same_bits(const Point& a, const Point& b) {
-    for (int i = 0; i < 3; ++i)
-        if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
-    return true;
-}
-
 // The text of v at out from `last` when v has its bits, else formatted there and kept in `last`;
 // returns its end. Writes kNumberMax characters either way (the text, then garbage).
 template <typename AxisText>

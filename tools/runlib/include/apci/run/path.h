@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <bit>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -107,6 +108,15 @@ struct PathSegment {
 
 // Two points this close in the plane are one point (an arc between them is a full circle).
 inline constexpr double kSamePointTolerance = 1e-9;
+
+// The same bits, not only equal values: -0 and 0 apart, a NaN the same as itself with its
+// payload (what a writer keeps of a number it gives back, or writes once for both).
+inline bool same_bits(double a, double b) noexcept {
+    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+inline bool same_bits(const Point& a, const Point& b) noexcept {
+    return same_bits(a[0], b[0]) && same_bits(a[1], b[1]) && same_bits(a[2], b[2]);
+}
 
 // Signed angle an arc turns through, counter-clockwise positive, magnitude in (0, 2 pi].
 double arc_sweep(const PathSegment& arc) noexcept;
