@@ -93,7 +93,13 @@ void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t k
             from = at;
     };
     if (!hashed) {
-        for (std::size_t i = 0; i < pending_.size() && from == pending_.size(); ++i) consider(i);
+        // The first that does, walked with an iterator (a deque's [] costs a division).
+        std::size_t i = 0;
+        for (auto it = pending_.begin(); it != pending_.end(); ++it, ++i)
+            if ((it->move.start - e.end).squaredNorm() <= kTolerance * kTolerance) {
+                from = i;
+                break;
+            }
     } else {
         const std::int64_t ci = cell_of(e.end.x()), cj = cell_of(e.end.y());
         for (std::int64_t i = ci - 1; i <= ci + 1; ++i)
@@ -113,8 +119,9 @@ std::uint64_t WallModel::keep_loop(std::size_t from) {
     loop.low = pending_[from].move.low;
     loop.high = pending_[from].move.high;
     std::uint64_t key = 0x5851F42D4C957F2DULL + static_cast<std::uint64_t>(plane_);
-    for (std::size_t i = from; i < pending_.size(); ++i) {
-        const Pending& p = pending_[i];
+    for (auto it = pending_.begin() + static_cast<std::ptrdiff_t>(from); it != pending_.end();
+         ++it) {
+        const Pending& p = *it;
         loop.low = std::min(loop.low, p.move.low);
         loop.high = std::max(loop.high, p.move.high);
         key += mix(p.key);  // the same elements in any order: the same loop
@@ -177,10 +184,11 @@ void WallModel::close_loop(std::size_t from) {
 void WallModel::place_run(std::size_t count, bool after_loop, bool before_loop) {
     const std::size_t tail = count > 0 ? tail_of(pending_[0].index) : records_.size();
     bool opened = false;
-    for (std::size_t i = 0; i < count; ++i) {
+    auto it = pending_.begin();
+    for (std::size_t i = 0; i < count; ++i, ++it) {
         const bool lead = (after_loop && i < kLeadElements) ||
                           (before_loop && count - i <= kLeadElements);
-        Record* r = record(pending_[i].index);
+        Record* r = record(it->index);
         if (r == nullptr) continue;
         r->place = lead ? Place::kLead : Place::kOpen;
         if (!lead) opened = true;
@@ -196,8 +204,9 @@ void WallModel::place_run(std::size_t count, bool after_loop, bool before_loop) 
 // in the same order).
 void WallModel::place_pending(std::size_t count, Place place, std::uint64_t loop) {
     const std::size_t tail = count > 0 ? tail_of(pending_[0].index) : records_.size();
-    for (std::size_t i = 0; i < count; ++i) {
-        Record* r = record(pending_[i].index);
+    auto it = pending_.begin();
+    for (std::size_t i = 0; i < count; ++i, ++it) {
+        Record* r = record(it->index);
         if (r == nullptr) continue;
         r->place = place;
         r->loop = loop;
