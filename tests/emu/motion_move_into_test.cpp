@@ -64,7 +64,7 @@ void expect_same(const Move& a, const Move& b) {
     EXPECT_EQ(a.plane_axes, b.plane_axes);
     for (const auto& [x, y] :
          {std::pair{a.cx, b.cx}, std::pair{a.cy, b.cy}, std::pair{a.radius, b.radius},
-          std::pair{a.end_radius, b.end_radius}, std::pair{a.start_angle, b.start_angle},
+          std::pair{a.end_radius, b.end_radius}, std::pair{start_angle_of(a), start_angle_of(b)},
           std::pair{a.sweep, b.sweep}})
         EXPECT_EQ(std::bit_cast<std::uint64_t>(x), std::bit_cast<std::uint64_t>(y));
 }
@@ -122,4 +122,40 @@ TEST(MoveInto, ArcOverAnOldMoveIsANewArc) {
     EXPECT_EQ(full.plane, 0);
     EXPECT_EQ(full.side, 0);
     EXPECT_FALSE(full.direct);
+}
+
+TEST(MoveInto, AnArcsStartAngleIsTakenWhenFirstAskedWithTheSameBits) {
+    // An arc whose start lies off the axes: atan2 of the start about the centre, taken only
+    // when position_at or tangent_at (or anyone) first asks, and then kept.
+    AxisVector start = filled(0.0), end = filled(0.0);
+    start[0] = 1.0 + 3.0 * std::cos(0.7);
+    start[1] = -2.0 + 3.0 * std::sin(0.7);
+    end[0] = 1.0 + 3.0 * std::cos(2.1);
+    end[1] = -2.0 + 3.0 * std::sin(2.1);
+    Move m = stale();
+    m.start = start;
+    m.end = end;
+    arc_move_into(m, {0, 1}, 1.0, -2.0, true, 600.0, SegmentRole::kContour, 3);
+    EXPECT_TRUE(m.angle_due);
+    const double angle = std::atan2(start[1] - -2.0, start[0] - 1.0);
+    AxisVector mid{};
+    position_at(m, 1, 2, mid);  // half way: asks for the angle
+    EXPECT_FALSE(m.angle_due);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(m.start_angle), std::bit_cast<std::uint64_t>(angle));
+    const double half = angle + m.sweep * 0.5;
+    const double r = m.radius + (m.end_radius - m.radius) * 0.5;
+    EXPECT_EQ(mid[0], 1.0 + r * std::cos(half));
+    EXPECT_EQ(mid[1], -2.0 + r * std::sin(half));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(start_angle_of(m)), std::bit_cast<std::uint64_t>(angle));
+    // A line over it: no angle due, 0.
+    line_move_into(m, 600.0, SegmentRole::kContour, 4);
+    EXPECT_FALSE(m.angle_due);
+    EXPECT_EQ(start_angle_of(m), 0.0);
+    // tangent_at asks as well.
+    arc_move_into(m, {0, 1}, 1.0, -2.0, true, 600.0, SegmentRole::kContour, 3);
+    EXPECT_TRUE(m.angle_due);
+    AxisVector t{};
+    tangent_at(m, 0, 2, t);
+    EXPECT_FALSE(m.angle_due);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(m.start_angle), std::bit_cast<std::uint64_t>(angle));
 }

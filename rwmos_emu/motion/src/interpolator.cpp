@@ -53,6 +53,7 @@ void line_move_into(Move& m, double feed, SegmentRole role, std::uint32_t tag) n
     m.cx = m.cy = 0.0;
     m.radius = m.end_radius = 0.0;
     m.start_angle = m.sweep = 0.0;
+    m.angle_due = false;
 }
 
 void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, double cy, bool ccw,
@@ -67,13 +68,22 @@ void arc_move_into(Move& m, std::array<std::uint8_t, 2> plane_axes, double cx, d
     const double ex = end[plane_axes[0]] - cx, ey = end[plane_axes[1]] - cy;
     m.radius = std::hypot(sx, sy);
     m.end_radius = std::hypot(ex, ey);
-    m.start_angle = std::atan2(sy, sx);
+    m.start_angle = 0.0;
+    m.angle_due = true;  // start_angle_of() takes atan2(sy, sx) when it is needed
     // The chord's length is at least its larger component (hypot within a rounding of it):
     // a component over twice the tolerance needs no root.
     const double dx = ex - sx, dy = ey - sy;
     const bool full = !(std::max(std::fabs(dx), std::fabs(dy)) > 2.0 * kFullCircleTolerance ||
                         std::hypot(dx, dy) > kFullCircleTolerance);
     m.sweep = geom::arc_sweep({sx, sy}, {ex, ey}, m.radius, m.end_radius, ccw, full);
+}
+
+double start_angle_of(const Move& m) noexcept {
+    if (m.angle_due) {
+        m.start_angle = std::atan2(m.start[m.plane_axes[1]] - m.cy, m.start[m.plane_axes[0]] - m.cx);
+        m.angle_due = false;
+    }
+    return m.start_angle;
 }
 
 double arc_plane_length(const Move& m) noexcept {
@@ -151,7 +161,7 @@ void position_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& ou
     const double t = static_cast<double>(k) / static_cast<double>(n);
     for (int a = 0; a < kAxisCount; ++a) out[a] = m.start[a] + (m.end[a] - m.start[a]) * t;
     if (m.kind == SegmentKind::kArc) {
-        const double angle = m.start_angle + m.sweep * t;
+        const double angle = start_angle_of(m) + m.sweep * t;
         const double r = m.radius + (m.end_radius - m.radius) * t;
         out[m.plane_axes[0]] = m.cx + r * std::cos(angle);
         out[m.plane_axes[1]] = m.cy + r * std::sin(angle);
@@ -172,7 +182,7 @@ void tangent_at(const Move& m, std::uint64_t k, std::uint64_t n, AxisVector& out
     for (int a = 0; a < kAxisCount; ++a) out[a] = m.end[a] - m.start[a];
     if (m.kind == SegmentKind::kArc) {
         const double t = n == 0 || k >= n ? 1.0 : static_cast<double>(k) / static_cast<double>(n);
-        const double angle = m.start_angle + m.sweep * t;
+        const double angle = start_angle_of(m) + m.sweep * t;
         const double r = m.radius + (m.end_radius - m.radius) * t;
         const double dr = m.end_radius - m.radius;
         out[m.plane_axes[0]] = dr * std::cos(angle) - r * m.sweep * std::sin(angle);

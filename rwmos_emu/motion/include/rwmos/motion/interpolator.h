@@ -54,13 +54,20 @@ struct Move {
     AxisVector end{};
     double feed = 0.0;  // units/min, > 0
     // Arcs: centre on plane_axes, start and end radius, start angle and signed sweep
-    // (> 0 counter-clockwise from the first axis to the second).
+    // (> 0 counter-clockwise from the first axis to the second). The start angle is taken
+    // (atan2 of the start about the centre) when first asked, start_angle_of(): a move the
+    // clock runs through in one step never needs it. `angle_due`: not taken yet.
     double cx = 0.0, cy = 0.0;
     double radius = 0.0;
     double end_radius = 0.0;
-    double start_angle = 0.0;
+    mutable double start_angle = 0.0;
+    mutable bool angle_due = false;
     double sweep = 0.0;
 };
+
+// An arc's start angle about its centre (atan2 of start - centre on its plane axes), the same
+// bits whenever it is taken; 0 for a line.
+double start_angle_of(const Move& m) noexcept;
 
 // Start and end in plane coordinates closer than this make an arc a full
 // circle: the geometry's point tolerance, so both agree on what a full circle is.
