@@ -329,7 +329,10 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     if (!programmed_move_fits(p, res, exec, cycle_seconds))
         return refuse(Status::kValueTooLow, kTooLong);
 
-    Compensation trial = comp_;
+    // The contour goes on in comp_ itself; what it was is kept (one copy, not a trial copy and
+    // a copy back) and put back wherever the call takes nothing.
+    comp_before_ = comp_;
+    Compensation& trial = comp_;
     Batch batch(exec, length_at_end_);
     // [APCI-TC] section 1: only G01/G02/G03 are compensated, by the active
     // group while it runs. Anything else ends the contour under way ([APCI-TC]
@@ -348,15 +351,17 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     if (MotionResult r = compensated
                              ? spool_compensated(p, tc, res, feed, number, trial, batch)
                              : spool_uncompensated(p, tc, res, feed, number, batch);
-        !r.ok())
+        !r.ok()) {
+        comp_ = comp_before_;
         return r;
+    }
     const bool pushed = compensated;  // a Pending entry, for this profile
 
     if (MotionResult r = commit(batch, exec, capacity); !r.ok()) {
         if (pushed) pending_.pop_back();
+        comp_ = comp_before_;
         return r;
     }
-    comp_ = trial;
     length_at_end_ = batch.length;
     program_ = res.program;
     path_ = p.kind == ProfileKind::kRapid ? res.program : res.path;

@@ -215,6 +215,7 @@ class Spooler {
     static MotionResult commit(Batch& batch, const Executor& exec, std::size_t capacity);
 
     Compensation comp_;
+    Compensation comp_before_;  // comp_ as it was when spool() began (put back on a refusal)
     Fifo<Pending> pending_;
     std::uint32_t next_index_ = 1;
     std::uint64_t profiles_ = 0;  // profiles taken (profiles_taken)
