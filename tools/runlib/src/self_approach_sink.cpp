@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <utility>
 
 namespace apci::run {
@@ -12,7 +13,8 @@ SelfApproachSink::SelfApproachSink(RunSink& next, SelfApproachMode mode,
     : next_(next),
       mode_(mode),
       check_(SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
-             SelfApproachCheck::Candidates::kGrid, schedule) {}
+             SelfApproachCheck::Candidates::kGrid, schedule),
+      next_measures_(next.measures_executed()) {}
 
 void SelfApproachSink::programmed(const PathSegment& s) {
     next_.programmed(s);
@@ -22,8 +24,20 @@ void SelfApproachSink::programmed(const PathSegment& s) {
 }
 
 void SelfApproachSink::executed(const PathSegment& s) {
-    next_.executed(s);
-    check_.executed(nose_centre_path(s, edge_, plane_), new_);
+    // Where the next sink would measure the segment (a pipeline's writers), it is measured here
+    // instead and handed on measured: the check's shape takes its sweep (shape_of), and the
+    // writers take it as it comes (the same values, on whichever thread).
+    const PathSegment* at = &s;
+    if (next_measures_ && std::isnan(s.length)) {
+        measured_ = s;
+        measure(measured_);
+        at = &measured_;
+    }
+    next_.executed(*at);
+    if (edge_.isZero(0.0))
+        check_.executed(*at, new_);
+    else
+        check_.executed(nose_centre_path(*at, edge_, plane_), new_);
     found();
 }
 

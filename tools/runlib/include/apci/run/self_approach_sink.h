@@ -9,7 +9,9 @@
 //   programmed      a move programmed while a stretch is open is an element of the contour;
 //                   the moves given after the run stopped (the rest of the program, drawn) are
 //                   not run and not checked;
-//   executed        every executed segment is a path the check measures;
+//   executed        every executed segment is a path the check measures; where the next sink
+//                   measures the segments (measures_executed()), this one measures each
+//                   (measure()) and hands it on measured, so that both take the same sweep;
 //   stretch_end     the stretch ends;
 //   walls           CDON / CDOF (docs/compensation.md, "What is a wall").
 //
@@ -79,6 +81,10 @@ class SelfApproachSink final : public RunSink {
     RunSink& next_;
     SelfApproachMode mode_;
     SelfApproachCheck check_;
+    // The next sink measures the executed segments (measures_executed(), asked once): this one
+    // measures them for it, into measured_, before the check takes them.
+    bool next_measures_;
+    PathSegment measured_;
     // The plane and cutting edge offset of the stretch under way or last run.
     int plane_ = 17;
     Eigen::Vector2d edge_ = Eigen::Vector2d::Zero();
