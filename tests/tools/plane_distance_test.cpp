@@ -470,6 +470,36 @@ TEST(PlaneDistance, ApartBySideTakesASpiralsRadialDistanceWithinItsTurn) {
     EXPECT_FALSE(pd::apart_by_side(spiral, leaving, 1.0 + 1e-9));
 }
 
+// An arc whose radii differ by a rounding (less than 1e-9: its ends and centre written with a
+// few decimals) is taken as lying within the annulus of its two radii, without the angle of the
+// direction asked: looser by that difference, never nearer than it is. A quarter turn about the
+// origin from radius 5 out to 5 + 8e-10, 45 to 135 degrees; at 90 degrees its radius is 5 + 4e-10.
+TEST(PlaneDistance, ApartBySideOfAnArcWithRoundedRadiiTakesItsLargerRadiusOutsideAndSmallerInside) {
+    const Vec2 u45(std::sqrt(0.5), std::sqrt(0.5)), u135(-std::sqrt(0.5), std::sqrt(0.5));
+    const Parametric arc = pd::arc_element(5.0 * u45, (5.0 + 8e-10) * u135, {0, 0}, true);
+    ASSERT_GT(arc.r1 - arc.r0, 5e-10);
+    ASSERT_LT(arc.r1 - arc.r0, 1e-9);
+    const double limit = 1.0;
+    // A line across the top, 1 - 2e-10 above the arc's radius at 90 degrees: nearer than the
+    // limit, never proved apart; 1 + 1e-9 above its larger radius: apart.
+    const auto across = [](double y) { return line({-1.0, y}, {1.0, y}); };
+    EXPECT_FALSE(pd::apart_by_side(across(6.0 + 2e-10), arc, limit));
+    EXPECT_TRUE(pd::apart_by_side(across(6.0 + 8e-10 + 1e-9), arc, limit));
+    // A line leaving the arc radially at 90 degrees from 1 - 2e-10 beyond its radius there: not
+    // proved; from 1 + 4e-10 beyond its larger radius: apart.
+    const auto leaving = [](double from) { return line({0.0, from}, {0.0, from + 5.0}); };
+    EXPECT_FALSE(pd::apart_by_side(arc, leaving(6.0 + 2e-10), limit));
+    EXPECT_TRUE(pd::apart_by_side(arc, leaving(6.0 + 1.2e-9), limit));
+    // Inside: a line rising along the radius to 1 + 4e-10 below the smaller radius is apart; one
+    // rising to 1 - 4e-10 below it is not proved (all the proof knows is the annulus).
+    const auto rising = [](double to) { return line({0.0, to - 2.0}, {0.0, to}); };
+    EXPECT_TRUE(pd::apart_by_side(arc, rising(4.0 - 4e-10), limit));
+    EXPECT_FALSE(pd::apart_by_side(arc, rising(4.0 + 4e-10), limit));
+    // What the first claims rest on: nearer than the limit (samples at 90 degrees on both).
+    for (const Parametric& b : {across(6.0 + 2e-10), leaving(6.0 + 2e-10)})
+        EXPECT_LT(brute(sample(arc, 20000), sample(b, 50)), limit);
+}
+
 // An arc made again from the sweep and start angle arc_element gave (as the check keeps them
 // for its stored elements and the wall model for its loops) is the same element bit for bit:
 // spirals, near-full arcs, full circles, both senses, radii over six orders of magnitude.

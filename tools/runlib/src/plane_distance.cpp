@@ -18,6 +18,11 @@ namespace apci::run::plane {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Radii of an arc that differ by no more than this (mm; a rounding's worth where the ends and the
+// centre were written with a few decimals) make the bounds below take the arc as lying within
+// the annulus of its two radii, without the angle of a direction along it: looser by at most
+// this, far below every limit a proof is asked for.
+constexpr double kRoundedRadii = 1e-9;
 
 using geom::cross;
 
@@ -350,7 +355,8 @@ double most_along(const Parametric& e, const Vec2& n) {
     const double k = (e.r1 - e.r0) / turn;
     const bool half = turn <= std::numbers::pi;
     if (within_turn(from, to, e.sweep, n)) {
-        if (!half) return std::max(ends, e.centre.dot(n) + rmax);
+        if (!half || std::abs(e.r1 - e.r0) <= kRoundedRadii)
+            return std::max(ends, e.centre.dot(n) + rmax);
         // At the angle delta from n the point is rho cos(delta) along it, rho = rho_n + k delta
         // the radius there: with cos(delta) <= 1 - 2 delta^2 / pi^2 that is at most rho_n +
         // k delta - 2 rmin delta^2 / pi^2, at most rho_n + pi^2 k^2 / (8 rmin): the radius at
@@ -385,17 +391,25 @@ double most_along(const Parametric& e, const Vec2& n) {
 // the radius's whole change.
 double distance_at_least(const Parametric& e, const Vec2& p) {
     if (!is_arc(e)) return point_segment(p, e.start, e.end);
-    const double radial = distance_to(e, p);
-    const double loose = radial - std::abs(e.r1 - e.r0);
+    // The radial distance less the radius's whole change.
+    const auto loose = [&] { return distance_to(e, p) - std::abs(e.r1 - e.r0); };
     const double turn = std::abs(e.sweep);
-    if (turn > std::numbers::pi || e.r0 <= 0.0 || e.r1 <= 0.0) return loose;
+    if (turn > std::numbers::pi || e.r0 <= 0.0 || e.r1 <= 0.0) return loose();
     const Vec2 v = p - e.centre;
     const double big_r = v.norm();
-    if (big_r == 0.0) return loose;
+    if (big_r == 0.0) return loose();
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
     const double k = (e.r1 - e.r0) / turn;
     const double c = 4.0 * std::min(e.r0, e.r1) * big_r / (std::numbers::pi * std::numbers::pi);
-    if (within_turn(from, to, e.sweep, v)) return radial * std::sqrt(c / (k * k + c));
+    if (within_turn(from, to, e.sweep, v)) {
+        // Radii a rounding apart: the distance from the annulus they span (every point of the
+        // arc lies in it), at most kRoundedRadii below the radial distance at p's direction.
+        const double radial =
+            std::abs(e.r1 - e.r0) <= kRoundedRadii
+                ? std::max({0.0, big_r - std::max(e.r0, e.r1), std::min(e.r0, e.r1) - big_r})
+                : distance_to(e, p);
+        return radial * std::sqrt(c / (k * k + c));
+    }
     // p's direction beyond the turn, delta0 from its nearer end (radius rho0 there): going
     // along the arc by x from that end, delta = delta0 + x while delta0 + turn <= pi, and
     // (rho - R)^2 + c delta^2 >= max(0, A - |k| x)^2 + c x^2 + c delta0^2, A = |rho0 - R|.
@@ -404,7 +418,7 @@ double distance_at_least(const Parametric& e, const Vec2& p) {
     const Vec2 u = v / big_r;
     const double cs = u.dot(from), ce = u.dot(to);
     const bool start_nearer = cs >= ce;
-    if (std::max(cs, ce) < -from.dot(to)) return loose;
+    if (std::max(cs, ce) < -from.dot(to)) return loose();
     const double chord = (u - (start_nearer ? from : to)).norm();
     const double a = std::abs((start_nearer ? e.r0 : e.r1) - big_r);
     return std::sqrt(a * a * c / (k * k + c) + c * chord * chord);
