@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,23 @@ apci_status apci_get_timeout(const apci_board* board, uint32_t* milliseconds) no
 
 int apci_is_connected(const apci_board* board) noexcept {
     return board != nullptr && board->transport->connected() ? 1 : 0;
+}
+
+size_t apci_link_lost(const apci_board* board, char* text, size_t size) noexcept {
+    std::string cause;
+    if (board != nullptr && !board->transport->connected()) {
+        try {
+            cause = board->transport->lost_reason();
+        } catch (...) {
+            cause.clear();  // no memory for the words: nothing said
+        }
+    }
+    if (text != nullptr && size > 0) {
+        const std::size_t n = std::min(cause.size(), size - 1);
+        std::memcpy(text, cause.data(), n);
+        text[n] = '\0';
+    }
+    return cause.size();
 }
 
 apci_status apci_reconnect(apci_board* board) noexcept {

@@ -53,6 +53,8 @@ class FrameLink {
 
     // False once the link is known to be gone. Non-blocking.
     virtual bool connected() const noexcept = 0;
+    // What ended the link, in words, without what to do about it (Transport::lost_reason).
+    virtual std::string lost_reason() const { return {}; }
 
     // True when the link itself is exclusive to this process (USB: the interface claim made
     // at open, libusb_claim_interface), so nobody else can move the board through it: a
@@ -103,6 +105,7 @@ class FrameTransport final : public Transport {
     Millis timeout() const noexcept override { return timeout_; }
     objif::Status reconnect() noexcept override;
     bool connected() const noexcept override { return link_->connected(); }
+    std::string lost_reason() const override { return link_->lost_reason(); }
 
     // One request of any opcode: sends `payload` as opcode `op` and returns
     // the reply's payload. An Error reply becomes its status (detail names

@@ -122,7 +122,7 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
                              std::string& why) noexcept {
     try {
         if (!window_) {
-            why = fmt::format("link lost ({}); apci_reconnect() reopens it", lost_);
+            why = still_lost_words(lost_);
             return Status::kTransportError;
         }
         if (window_->load(mb::kOffGeneration) != generation_) {
@@ -130,7 +130,7 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
                         ? window_->error_text()
                         : "the board restarted since the link was opened";
             window_.reset();
-            why = fmt::format("{}; apci_reconnect() reopens the link", lost_);
+            why = lost_link_words(lost_);
             return Status::kTransportError;
         }
         mb::HostOptions options;
@@ -152,7 +152,7 @@ Status MailboxLink::exchange(std::span<const std::uint8_t> request, std::uint32_
                     : restarted && !stopped ? "the board restarted"
                                             : why;
             window_.reset();
-            why = fmt::format("{}; apci_reconnect() reopens the link", lost_);
+            why = lost_link_words(lost_);
             return Status::kTransportError;
         }
         return s;

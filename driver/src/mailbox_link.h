@@ -35,6 +35,7 @@ class MailboxLink final : public FrameLink {
                            std::string& why) noexcept override;
     objif::Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return window_ != nullptr; }
+    std::string lost_reason() const override { return window_ ? std::string() : lost_; }
 
     // The file a window maps, as /proc/PID/maps names it: to tell whether the process whose
     // pid holds the host lock is a host of this mailbox or another that got the pid later.

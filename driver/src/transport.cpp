@@ -132,4 +132,13 @@ objif::Status list_devices(std::vector<FoundDevice>& out, std::vector<std::strin
     });
 }
 
+std::string lost_link_words(std::string_view cause, bool once_back) {
+    return fmt::format("{}; apci_reconnect() reopens the link{}", cause,
+                       once_back ? " once it is back" : "");
+}
+
+std::string still_lost_words(std::string_view cause) {
+    return lost_link_words(fmt::format("link lost: {}", cause));
+}
+
 }  // namespace apci

@@ -138,10 +138,21 @@ public:
     // unplugged); requests then answer kTransportError until reconnect()
     // succeeds. Non-blocking.
     virtual bool connected() const noexcept { return true; }
+    // What ended the link, in words, without what to do about it (apci_link_lost()): "" while
+    // it works, or where the transport cannot lose it.
+    virtual std::string lost_reason() const { return {}; }
 
 private:
     std::chrono::milliseconds timeout_{2000};
 };
+
+// The words of a call that finds the link lost (apci_last_error()): what ended it, then how a
+// program opens it again (`once_back`: a device that must come back first). The cause comes
+// first and whole, so that a tool that opens links itself can put its own hint after it
+// (apci_link_lost() gives the cause alone).
+std::string lost_link_words(std::string_view cause, bool once_back = false);
+// The words of a later call on a link already lost.
+std::string still_lost_words(std::string_view cause);
 
 // From `start` on an apci_segment is doubles and 64-bit counters with no gap or tail: only its
 // head has padding (segment_to_c zeroes the head).

@@ -120,7 +120,7 @@ class UnixLink final : public FrameLink {
                     std::vector<std::uint8_t>& reply, Millis timeout,
                     std::string& why) noexcept override {
         if (fd_ < 0) {
-            why = fmt::format("link lost ({}); apci_reconnect() reopens it", lost_);
+            why = still_lost_words(lost_);
             return Status::kTransportError;
         }
         const auto deadline = SteadyClock::now() + timeout;
@@ -164,6 +164,8 @@ class UnixLink final : public FrameLink {
         pollfd p{fd_, POLLRDHUP, 0};
         return ::poll(&p, 1, 0) <= 0 || (p.revents & (POLLRDHUP | POLLHUP | POLLERR)) == 0;
     }
+    // Known once a request found the link lost (a hang-up not yet read says nothing yet).
+    std::string lost_reason() const override { return fd_ < 0 ? lost_ : std::string(); }
     // After open() was refused, or found a peer that is not a daemon: what
     // the peer did instead of greeting.
     const std::string& answer() const noexcept { return answer_; }
@@ -271,7 +273,7 @@ class UnixLink final : public FrameLink {
     Status lose(std::string text, std::string& why) {
         lost_ = std::move(text);
         close_socket();
-        why = fmt::format("{}; apci_reconnect() reopens the link", lost_);
+        why = lost_link_words(lost_);
         return Status::kTransportError;
     }
 

@@ -234,7 +234,7 @@ class UsbLink final : public FrameLink {
                     std::vector<std::uint8_t>& reply, Millis timeout,
                     std::string& why) noexcept override {
         if (handle_ == nullptr) {
-            why = fmt::format("link lost ({}); apci_reconnect() reopens it", lost_);
+            why = still_lost_words(lost_);
             return Status::kTransportError;
         }
         const auto deadline = SteadyClock::now() + timeout;
@@ -256,6 +256,7 @@ class UsbLink final : public FrameLink {
 
     Status reconnect(std::string& why) noexcept override { return open(why); }
     bool connected() const noexcept override { return handle_ != nullptr; }
+    std::string lost_reason() const override { return handle_ ? std::string() : lost_; }
     // Interface 0 is claimed at open (libusb_claim_interface): a second program, or a second
     // handle, cannot open the board while this one has it.
     bool exclusive() const noexcept override { return true; }
@@ -335,7 +336,7 @@ class UsbLink final : public FrameLink {
         if (rc == LIBUSB_ERROR_NO_DEVICE) {
             lost_ = fmt::format("{} was unplugged (port {})", name_, port_text(port_));
             close_handle();
-            why = fmt::format("{}; apci_reconnect() reopens the link once it is back", lost_);
+            why = lost_link_words(lost_, /*once_back=*/true);
             return Status::kTransportError;
         }
         if (rc == LIBUSB_ERROR_TIMEOUT) {

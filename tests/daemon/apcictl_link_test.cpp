@@ -171,6 +171,9 @@ TEST(ApcictlLink, EveryCommandSaysWhyTheLinkFailed) {
         const std::string said = shell.err().substr(at, shell.err().find('\n', at) - at);
         EXPECT_TRUE(contains(said, "TransportError (transport to the board failed): ")) << said;
         EXPECT_TRUE(contains(said, "closed the connection: shutting down (SIGTERM)")) << said;
+        // apcictl's hint, not the C API's: its user cannot call apci_reconnect().
+        EXPECT_FALSE(contains(said, "apci_reconnect")) << said;
+        EXPECT_TRUE(said.ends_with("; the next command opens the link again")) << said;
     }
 }
 

@@ -9,11 +9,14 @@
 
 #include "apci/apci.hpp"
 #include "apci/nc/program.h"
+#include "apci/run/board_words.h"
 #include "apci/run/executor.h"
 #include "daemon.h"
 
 namespace {
 
+using apci::run::board_words;
+using apci::run::kLostLinkHint;
 using apci::run::ProgramExecutor;
 using apci::run::RunOutcome;
 using apci::run::RunSink;
@@ -63,6 +66,21 @@ TEST(RunLostLink, TheCallThatFoundTheLinkLostIsTheRunsOneError) {
     EXPECT_EQ(out.errors[0].code, "TransportError");
     // The block the run was at when it found the link lost: after the progress call.
     EXPECT_GT(out.errors[0].block.line, ProgramExecutor::kProgressEvery);
+    // What ended the link, then the tools' hint (board_words), not the C API's.
+    const std::string& said = out.errors[0].message;
+    EXPECT_NE(said.find(board.link_lost() + "; " + std::string(kLostLinkHint)), std::string::npos)
+        << said;
+    EXPECT_EQ(said.find("apci_reconnect"), std::string::npos) << said;
+}
+
+// board_words: libapci's words unchanged while the link works (a refusal's own words).
+TEST(RunLostLink, BoardWordsAreLibapcisWhileTheLinkWorks) {
+    apci::Board board("emu:");
+    ASSERT_TRUE(board) << board.last_error();
+    auto bad = apci::object(1000, 0, 3, 0);
+    EXPECT_EQ(board.write_int(bad, 1).status, APCI_READ_ONLY);
+    EXPECT_FALSE(board.last_error().empty());
+    EXPECT_EQ(board_words(board), std::string(board.last_error()));
 }
 
 }  // namespace

@@ -305,13 +305,39 @@ TEST(UnixTransport, DaemonStoppingLosesTheLinkUntilReconnect) {
     auto o = axis_count();
     std::int32_t v = 0;
     ASSERT_EQ(apci_read_int(b, &o, &v), APCI_OK);
+    EXPECT_EQ(apci_link_lost(b, nullptr, 0), 0u) << "the link works";
     ASSERT_EQ(d->stop(), 0);
 
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_TRANSPORT_ERROR);
     EXPECT_TRUE(contains(apci_last_error(b), "closed the connection")) << apci_last_error(b);
     EXPECT_EQ(apci_is_connected(b), 0);
+    // What ended the link, alone; the call's words give it, then the C API's hint.
+    char cause[512];
+    const std::size_t n = apci_link_lost(b, cause, sizeof cause);
+    ASSERT_GT(n, 0u);
+    ASSERT_LT(n, sizeof cause);
+    EXPECT_EQ(std::string(cause), "daemon " + d->socket_path() +
+                                      " closed the connection: shutting down (SIGTERM)");
+    EXPECT_TRUE(contains(apci_last_error(b),
+                         std::string(cause) + "; apci_reconnect() reopens the link"))
+        << apci_last_error(b);
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_TRANSPORT_ERROR);
-    EXPECT_TRUE(contains(apci_last_error(b), "apci_reconnect()")) << apci_last_error(b);
+    EXPECT_TRUE(contains(apci_last_error(b), "link lost: " + std::string(cause) +
+                                                 "; apci_reconnect() reopens the link"))
+        << apci_last_error(b);
+    EXPECT_EQ(apci_link_lost(b, nullptr, 0), n) << "the same cause for a later call";
+    // Written as snprintf writes: cut to the room given, NUL-terminated, the whole length
+    // returned; no room, nothing written.
+    char small[8];
+    std::memset(small, 'x', sizeof small);
+    EXPECT_EQ(apci_link_lost(b, small, 5), n);
+    EXPECT_EQ(std::string(small), "daem");
+    EXPECT_EQ(small[5], 'x');
+    small[0] = 'x';
+    EXPECT_EQ(apci_link_lost(b, small, 0), n);
+    EXPECT_EQ(small[0], 'x');
+    EXPECT_EQ(apci_link_lost(nullptr, small, sizeof small), 0u);
+    EXPECT_EQ(small[0], '\0') << "no board: an empty text";
     EXPECT_EQ(apci_reconnect(b), APCI_TRANSPORT_ERROR) << "nothing listens yet";
     EXPECT_TRUE(contains(apci_last_error(b), "reconnect")) << apci_last_error(b);
 
@@ -322,6 +348,8 @@ TEST(UnixTransport, DaemonStoppingLosesTheLinkUntilReconnect) {
     ASSERT_NE(d2, nullptr);
     ASSERT_EQ(apci_reconnect(b), APCI_OK) << apci_last_error(b);
     EXPECT_EQ(apci_is_connected(b), 1);
+    EXPECT_EQ(apci_link_lost(b, cause, sizeof cause), 0u) << "opened again";
+    EXPECT_EQ(cause[0], '\0');
     EXPECT_EQ(apci_read_int(b, &o, &v), APCI_STALE_HANDLE)
         << "a new board: the old handle means nothing";
     o.handle = 0;
@@ -385,6 +413,14 @@ TEST(ShmTransport, DaemonStoppingLosesTheLinkAndReconnectFindsTheNewOne) {
     EXPECT_EQ(apci_read_int(b, &obj, &v), APCI_TRANSPORT_ERROR);
     EXPECT_TRUE(contains(apci_last_error(b), "apci_reconnect()")) << apci_last_error(b);
     EXPECT_EQ(apci_is_connected(b), 0);
+    {
+        std::string cause(apci_link_lost(b, nullptr, 0), '\0');
+        ASSERT_EQ(apci_link_lost(b, cause.data(), cause.size() + 1), cause.size());
+        EXPECT_FALSE(cause.empty());
+        EXPECT_FALSE(contains(cause, "apci_reconnect")) << cause;
+        EXPECT_TRUE(contains(apci_last_error(b), cause + "; apci_reconnect() reopens the link"))
+            << apci_last_error(b);
+    }
 
     DaemonOptions again;
     again.socket = false;
@@ -621,10 +657,13 @@ TEST(CppLink, TimeoutConnectedReconnectAndListWrapTheCApi) {
     EXPECT_EQ(board.timeout().value_or(0), 1234u);
     EXPECT_EQ(board.set_timeout(0).status, APCI_INVALID_ARGUMENT);
     EXPECT_TRUE(board.connected());
+    EXPECT_EQ(board.link_lost(), "");
     ASSERT_EQ(d->stop(), 0);
     auto o = apci::object(1000, 0, 3, 0);
     EXPECT_EQ(board.read_int(o).status, APCI_TRANSPORT_ERROR);
     EXPECT_FALSE(board.connected());
+    EXPECT_EQ(board.link_lost(),
+              "daemon " + d->socket_path() + " closed the connection: shutting down (SIGTERM)");
     EXPECT_EQ(board.reconnect().status, APCI_TRANSPORT_ERROR);
     DaemonOptions again;
     again.socket_path = d->socket_path();

@@ -129,6 +129,14 @@ TEST_F(UsbTransport, UnplugIsAClearErrorAndReconnectFindsTheBoardOnTheSamePort) 
     EXPECT_TRUE(contains(apci_last_error(b), "was unplugged")) << apci_last_error(b);
     EXPECT_TRUE(contains(apci_last_error(b), "apci_reconnect()")) << apci_last_error(b);
     EXPECT_EQ(apci_is_connected(b), 0);
+    // What ended it, alone: the device and its port, without the C API's hint.
+    std::string cause(apci_link_lost(b, nullptr, 0), '\0');
+    ASSERT_EQ(apci_link_lost(b, cause.data(), cause.size() + 1), cause.size());
+    EXPECT_TRUE(cause.ends_with(" was unplugged (port 1-2)") || contains(cause, "was unplugged (port "))
+        << cause;
+    EXPECT_TRUE(contains(apci_last_error(b),
+                         cause + "; apci_reconnect() reopens the link once it is back"))
+        << apci_last_error(b);
     EXPECT_EQ(apci_reconnect(b), APCI_TRANSPORT_ERROR) << "still unplugged";
     EXPECT_TRUE(contains(apci_last_error(b), "still unplugged")) << apci_last_error(b);
 

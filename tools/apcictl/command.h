@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "apci/apci.hpp"
+#include "apci/run/board_words.h"
 #include "objif/descriptor.h"
 
 namespace apcictl {

@@ -39,7 +39,7 @@ std::string joined(const std::vector<std::string>& words) {
 
 // The board's last error without the C function's own prefix ("spool G01 N1: ").
 std::string board_says(apci::Board& board) {
-    std::string text(board.last_error());
+    std::string text = apci::run::board_words(board);
     const auto colon = text.find(": ");
     return colon == std::string::npos ? text : text.substr(colon + 2);
 }

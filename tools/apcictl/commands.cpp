@@ -59,11 +59,11 @@ std::string describe_status(apci::Status status) {
 std::string describe_failure(const apci::Board& board, apci::Status status) {
     std::string text = describe_status(status);
     // libapci's words are "CALL OBJECT: Name (message)[: detail]": the detail follows the
-    // status's own words.
-    const std::string_view said = board.last_error();
+    // status's own words (a lost link's with apcictl's hint, board_words).
+    const std::string said = apci::run::board_words(board);
     const auto at = said.find(text);
     if (at != std::string_view::npos) {
-        const std::string_view detail = said.substr(at + text.size());
+        const std::string_view detail = std::string_view(said).substr(at + text.size());
         if (detail.starts_with(": ")) text += detail;
     }
     return text;

@@ -190,6 +190,17 @@ APCI_API apci_status apci_get_timeout(const apci_board* board, uint32_t* millise
 APCI_API int apci_is_connected(const apci_board* board) APCI_NOEXCEPT;
 
 /*
+ * What ended the board's link, in words, without what to do about it: "usb:1:4 was unplugged
+ * (port 1-2)", "daemon /run/user/1000/rwmos-emu.sock closed the connection: shutting down
+ * (SIGTERM)". apci_last_error() of a call that found the link lost says this, then how
+ * apci_reconnect() opens it again; a program that opens links in its own way (a tool, a shell)
+ * can give its own hint after it. Written as snprintf writes: at most size - 1 bytes and a NUL
+ * (nothing where text is NULL or size 0). Returns the whole length: 0 while the link works (or
+ * before a request found it lost), for the embedded emulator, or where board is NULL.
+ */
+APCI_API size_t apci_link_lost(const apci_board* board, char* text, size_t size) APCI_NOEXCEPT;
+
+/*
  * Closes the link and opens it again to the same device: the same socket or
  * file, the same PCI function, the USB board on the same port (for "usb:",
  * the first board found). The board's own state is what the board kept (a

@@ -113,6 +113,12 @@ public:
     }
     bool connected() const noexcept { return apci_is_connected(handle_) != 0; }
     Result<void> reconnect() noexcept { return Result<void>{apci_reconnect(handle_)}; }
+    // What ended the link, without what to do about it ("" while it works: apci_link_lost).
+    std::string link_lost() const {
+        std::string text(apci_link_lost(handle_, nullptr, 0), '\0');
+        if (!text.empty()) (void)apci_link_lost(handle_, text.data(), text.size() + 1);
+        return text;
+    }
 
     // The board's motion for this handle alone (apci.h "Exclusive use of the board's motion").
     // MotionClaim below holds it for a scope.

@@ -21,6 +21,7 @@
 
 #include "apci/apci.hpp"
 #include "apci/nc/events.h"
+#include "apci/run/board_words.h"
 #include "apci/run/executor.h"
 #include "objif/map/limits.h"
 #include "apci/run/self_approach.h"

@@ -20,7 +20,7 @@ namespace tcomp = objif::map::tempcomp;
 template <typename T>
 bool value_of(const apci::Result<T>& r, apci::Board& board, double& out, std::string& why) {
     if (!r) {
-        why = std::string(board.last_error());
+        why = board_words(board);
         return false;
     }
     out = r.value;
