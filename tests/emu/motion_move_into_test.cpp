@@ -147,10 +147,15 @@ TEST(MoveInto, AnArcsStartAngleIsTakenWhenFirstAskedWithTheSameBits) {
     EXPECT_EQ(mid[0], 1.0 + r * std::cos(half));
     EXPECT_EQ(mid[1], -2.0 + r * std::sin(half));
     EXPECT_EQ(std::bit_cast<std::uint64_t>(start_angle_of(m)), std::bit_cast<std::uint64_t>(angle));
-    // A line over it: no angle due, 0.
+    // A line over it: no angle due, 0 (also over an arc whose angle was never asked).
     line_move_into(m, 600.0, SegmentRole::kContour, 4);
     EXPECT_FALSE(m.angle_due);
     EXPECT_EQ(start_angle_of(m), 0.0);
+    arc_move_into(m, {0, 1}, 1.0, -2.0, true, 600.0, SegmentRole::kContour, 3);
+    ASSERT_TRUE(m.angle_due);
+    line_move_into(m, 600.0, SegmentRole::kContour, 4);
+    EXPECT_FALSE(m.angle_due);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(start_angle_of(m)), std::bit_cast<std::uint64_t>(0.0));
     // tangent_at asks as well.
     arc_move_into(m, {0, 1}, 1.0, -2.0, true, 600.0, SegmentRole::kContour, 3);
     EXPECT_TRUE(m.angle_due);

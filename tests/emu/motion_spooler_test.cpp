@@ -663,6 +663,24 @@ TEST_F(Spooler, BusyWhileCompensatingLeavesTheHeldProfileAsItWas) {
     }
 }
 
+TEST_F(Spooler, AProfileRefusedAfterItsCallEndedTheContourLeavesTheHeldProfileAsItWas) {
+    // The radius changed while a profile is held: the next profile's call ends the contour
+    // (the held profile's departure) and begins another, whose first element the compensator
+    // refuses (an arc whose centre is not as far from its end as from its start). The call
+    // takes nothing: the held profile is still held, nothing was added to the queue.
+    using namespace rwmos::tc;
+    setup_group(1.0);
+    activate();
+    spool_ok(line(1, 10, 0));
+    ASSERT_TRUE(prof_marked());
+    const std::uint32_t fill = board.motion_status().fill;
+    ASSERT_EQ(write_double(kBus, kDevGroups, 1, kSubRadius, 2.0), Status::kOk);
+    const MotionResult r = board.spool(arc(2, true, 20, 10, 10, 3));
+    EXPECT_NE(r.status, Status::kOk);
+    EXPECT_TRUE(prof_marked()) << "the held profile is still held";
+    EXPECT_EQ(board.motion_status().fill, fill);
+}
+
 // ---- Bad profiles: refused with a named reason, nothing changes
 
 TEST_F(Spooler, BadProfilesAreRefusedAndChangeNothing) {

@@ -500,6 +500,47 @@ TEST(PlaneDistance, ApartBySideOfAnArcWithRoundedRadiiTakesItsLargerRadiusOutsid
         EXPECT_LT(brute(sample(arc, 20000), sample(b, 50)), limit);
 }
 
+// The annulus bound of an arc with rounded radii is taken however short its turn: an arc of
+// 2e-6 rad at radius 5 whose radii differ by 5e-10 has a slope k = 2.5e-4 per radian, whose
+// spiral term (pi^2 k^2 / 8 rmin, 1.5e-8) would make the bound looser than the annulus. A
+// line across its top 1 + 5e-9 beyond its larger radius is proved apart.
+TEST(PlaneDistance, ApartBySideTakesTheAnnulusOfRoundedRadiiHoweverShortTheTurn) {
+    const double a0 = kPi / 2 - 1e-6, a1 = kPi / 2 + 1e-6;
+    const Parametric arc = pd::arc_element(5.0 * Vec2(std::cos(a0), std::sin(a0)),
+                                           (5.0 + 5e-10) * Vec2(std::cos(a1), std::sin(a1)),
+                                           {0, 0}, true);
+    ASSERT_LT(std::abs(arc.r1 - arc.r0), 1e-9);
+    ASSERT_GT(std::abs(arc.r1 - arc.r0), 1e-10);
+    const double top = std::max(arc.r0, arc.r1) + 1.0 + 5e-9;
+    EXPECT_TRUE(pd::apart_by_side(line({-1.0, top}, {1.0, top}), arc, 1.0));
+    EXPECT_FALSE(pd::apart_by_side(line({-1.0, top - 1e-8}, {1.0, top - 1e-8}), arc, 1.0));
+}
+
+// A spiral whose radii differ by more than a rounding (1e-7) keeps its radius at the direction
+// asked: a quarter turn from radius 5 to 5 + 1e-7 is 5 + 5e-8 at its top, and a line across
+// 1 + 2e-8 above that (less than 1 beyond its larger radius) is proved apart.
+TEST(PlaneDistance, ApartBySideTakesTheRadiusAtTheDirectionOfASpiralBeyondARounding) {
+    const Vec2 u45(std::sqrt(0.5), std::sqrt(0.5)), u135(-std::sqrt(0.5), std::sqrt(0.5));
+    const Parametric spiral = pd::arc_element(5.0 * u45, (5.0 + 1e-7) * u135, {0, 0}, true);
+    const double top = 5.0 + 5e-8 + 1.0 + 2e-8;
+    EXPECT_TRUE(pd::apart_by_side(line({-1.0, top}, {1.0, top}), spiral, 1.0));
+    EXPECT_FALSE(pd::apart_by_side(line({-1.0, top - 4e-8}, {1.0, top - 4e-8}), spiral, 1.0));
+}
+
+// A spiral of more than half a turn bounds a point's distance by the radial distance less the
+// radius's whole change: three quarters of a turn from radius 10 to 10.5; a line leaving it
+// radially at 135 degrees (radius 10.25 there) from 0.8 beyond it is not proved apart by 1.
+TEST(PlaneDistance, ApartBySideOfASpiralOfMoreThanHalfATurnTakesOffTheWholeChange) {
+    const Parametric spiral = pd::arc_element({10, 0}, {0, -10.5}, {0, 0}, true);
+    ASSERT_NEAR(spiral.sweep, 1.5 * kPi, 1e-12);
+    const Vec2 u(-std::sqrt(0.5), std::sqrt(0.5));
+    const Parametric leaving = line(11.05 * u, 16.0 * u);
+    EXPECT_LT(brute(sample(spiral, 30000), sample(leaving, 50)), 0.81);  // what it rests on
+    EXPECT_FALSE(pd::apart_by_side(spiral, leaving, 1.0));
+    // 1.6 beyond it (1.1 once the change is taken off): apart.
+    EXPECT_TRUE(pd::apart_by_side(spiral, line(11.85 * u, 16.0 * u), 1.0));
+}
+
 // An arc made again from the sweep and start angle arc_element gave (as the check keeps them
 // for its stored elements and the wall model for its loops) is the same element bit for bit:
 // spirals, near-full arcs, full circles, both senses, radii over six orders of magnitude.

@@ -267,6 +267,63 @@ TEST(WallModel, AnEndWithinTheToleranceOfAnEarlierStartClosesALoopAndBeyondItDoe
     }
 }
 
+TEST(WallModel, AnEndExactlyTheToleranceFromAnEarlierStartClosesALoop) {
+    // Few elements pending (walked in order) and more than 64 (looked up by cell): the same
+    // rule, the distance at most the tolerance.
+    for (const int sides : {3, 80}) {
+        std::vector<Parametric> s;
+        for (int i = 0; i + 1 < sides; ++i) {
+            const double a0 = 2 * kPi * i / sides, a1 = 2 * kPi * (i + 1) / sides;
+            s.push_back(line(10 * std::sin(a0), 10 - 10 * std::cos(a0), 10 * std::sin(a1),
+                             10 - 10 * std::cos(a1)));
+        }
+        // The last side back to the first start (0, 0), ending exactly the tolerance above it.
+        s.push_back(line(s.back().end.x(), s.back().end.y(), 0.0, WallModel::kTolerance));
+        WallModel m;
+        const std::uint64_t end = feed(m, 0, s);
+        EXPECT_EQ(m.loops(), 1U) << sides << " sides";
+        EXPECT_EQ(roles(m, 0, end), std::vector<WallRole>(s.size(), W)) << sides << " sides";
+        // 1.5 tolerances above it (in the next cell of the lookup): no loop.
+        s.back() = line(s.back().start.x(), s.back().start.y(), 0.0, 1.5 * WallModel::kTolerance);
+        WallModel open;
+        feed(open, 0, s);
+        EXPECT_EQ(open.loops(), 0U) << sides << " sides";
+    }
+}
+
+TEST(WallModel, ALoopClosesAtTheEarliestStartWithinTheTolerance) {
+    // A first element 1.5 tolerances long (it does not close on itself): the last end, half way
+    // along it, lies within the tolerance of both its start and the next one's. The loop is
+    // all four elements (none is a lead).
+    const double step = 1.5 * WallModel::kTolerance;
+    WallModel m;
+    const std::uint64_t end = feed(m, 0,
+                                   {line(0, 0, step, 0), line(step, 0, 10, 0), line(10, 0, 10, 10),
+                                    line(10, 10, 0.5 * step, 0)});
+    EXPECT_EQ(m.loops(), 1U);
+    EXPECT_EQ(roles(m, 0, end), (std::vector<WallRole>{W, W, W, W}));
+    EXPECT_TRUE(m.looped(0));
+}
+
+TEST(WallModel, ALoopsGeometryIsItsOwnElementsNotTheLeadsBeforeIt) {
+    // The same rectangle after two different lead-ins: one loop (the leads are not part of its
+    // key, which says what geometry it is), and the leads are leads each time.
+    const auto r = rectangle(0, 0, 10, 10);
+    WallModel m;
+    std::uint64_t n = 0;
+    for (const double from : {-5.0, -7.0}) {
+        m.begin(17, 1);
+        m.element(n++, move_of(line(from, -3, 0, 0), -1), 900 + static_cast<int>(-from), true,
+                  false);
+        for (std::uint64_t i = 0; i < 4; ++i) m.element(n++, move_of(r[i], -1), 100 + i, true, from != -5.0);
+        m.end();
+    }
+    EXPECT_EQ(m.loops(), 1U);
+    EXPECT_EQ(m.role(0), L);
+    EXPECT_EQ(m.role(5), L);
+    EXPECT_EQ(m.role(1), W);
+}
+
 TEST(WallModel, ElementsArePlacedWhenTheirStretchEnds) {
     WallModel m;
     m.begin(17, 1);
