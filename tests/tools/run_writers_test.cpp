@@ -18,6 +18,7 @@
 #include "apci/run/summary.h"
 #include "apci/run/svg_writer.h"
 #include "memory_file.h"
+#include "test_segments.h"
 #include "text.h"
 
 namespace apci::run {
@@ -28,24 +29,14 @@ using nlohmann::json;
 
 using apci_test::MemoryFile;
 
+// The writers' segments: contour elements of blocks 10 (lines) and 20 (arcs) unless named.
 PathSegment line(const Point& a, const Point& b, Role role = Role::kContour, std::int64_t n = 10) {
-    PathSegment s;
-    s.block.number = n;
-    s.kind = SegmentKind::kLine;
-    s.role = role;
-    s.start = a;
-    s.end = b;
-    return s;
+    return test_segments::line(n, a, b, role);
 }
 
 PathSegment arc(const Point& a, const Point& b, const Point& c, bool ccw, int plane = 17,
                 Role role = Role::kContour, std::int64_t n = 20) {
-    PathSegment s = line(a, b, role, n);
-    s.kind = SegmentKind::kArc;
-    s.center = c;
-    s.ccw = ccw;
-    s.plane = plane;
-    return s;
+    return test_segments::arc(n, a, b, c, ccw, role, plane);
 }
 
 // ---- path geometry

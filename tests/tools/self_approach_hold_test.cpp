@@ -27,6 +27,7 @@
 #include "apci/run/self_approach_sink.h"
 #include "cam_program.h"
 #include "cam_programs.h"
+#include "test_segments.h"
 
 namespace apci::test {
 namespace {
@@ -217,14 +218,9 @@ TEST(SelfApproachHold, ProfilesPlacedApartAreHeldBackAndAgree) {
 
 // ---- Stretches fed directly, the programmed moves ahead of the executed ones.
 
+// The stretches' segments: contour elements unless named.
 PathSegment line(int n, const Point& a, const Point& b, Role role = Role::kContour) {
-    PathSegment s;
-    s.block.number = n;
-    s.kind = SegmentKind::kLine;
-    s.role = role;
-    s.start = a;
-    s.end = b;
-    return s;
+    return test_segments::line(n, a, b, role);
 }
 
 // A stretch: its plane, radius, whether its elements are walls, the elements and each one's

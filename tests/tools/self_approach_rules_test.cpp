@@ -21,6 +21,7 @@
 #include "apci/run/path.h"
 #include "apci/run/self_approach.h"
 #include "apci/run/self_approach_sink.h"
+#include "test_segments.h"
 
 namespace {
 
@@ -33,24 +34,14 @@ using Point = apci::run::Point;
 
 constexpr double kTol = SelfApproachCheck::kTolerance;
 
+// The rules' segments: programmed elements (uncompensated) unless a path's role is named.
 PathSegment line(int n, const Point& a, const Point& b, Role role = Role::kUncompensated) {
-    PathSegment s;
-    s.block.number = n;
-    s.kind = SegmentKind::kLine;
-    s.role = role;
-    s.start = a;
-    s.end = b;
-    return s;
+    return test_segments::line(n, a, b, role);
 }
 
 PathSegment arc(int n, const Point& a, const Point& b, const Point& centre, bool ccw,
                 Role role = Role::kUncompensated) {
-    PathSegment s = line(n, a, b, role);
-    s.kind = SegmentKind::kArc;
-    s.center = centre;
-    s.ccw = ccw;
-    s.plane = 17;
-    return s;
+    return test_segments::arc(n, a, b, centre, ccw, role);
 }
 
 // One compensated stretch as the run feeds it: each element, and after it the executed path

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "apci/run/svg_writer.h"
+#include "test_segments.h"
 
 namespace apci::run {
 namespace {
@@ -34,13 +35,7 @@ std::string write_svg(SvgPlotWriter& w, int plane, std::string_view title) {
 }
 
 PathSegment line(const Point& a, const Point& b, Role role) {
-    PathSegment s;
-    s.block.number = 10;
-    s.kind = SegmentKind::kLine;
-    s.role = role;
-    s.start = a;
-    s.end = b;
-    return s;
+    return test_segments::line(10, a, b, role);
 }
 
 double number(const std::string& text) {
@@ -427,12 +422,7 @@ TEST(SvgSimplification, SegmentsDrawnAgainAreLeftOut) {
 }
 
 PathSegment arc(const Point& a, const Point& b, const Point& centre, bool ccw, int plane) {
-    PathSegment s = line(a, b, Role::kContour);
-    s.kind = SegmentKind::kArc;
-    s.center = centre;
-    s.ccw = ccw;
-    s.plane = plane;
-    return s;
+    return test_segments::arc(10, a, b, centre, ccw, Role::kContour, plane);
 }
 
 // The commands of a layer's paths (the legend's sample left out), each with its end point:
