@@ -142,26 +142,16 @@ apci_status apci_motion_claim_get(apci_board* board, apci_motion_claim* claim) n
 }
 
 size_t apci_motion_claim_holder(const apci_motion_claim* claim, char* text, size_t size) noexcept {
-    std::string holder;
-    if (claim != nullptr && claim->held != 0) {
-        try {
-            objif::ClaimReply rep;
-            rep.held = true;
-            rep.yours = claim->yours != 0;
-            rep.pid = claim->pid;
-            rep.since_ms = claim->since_ms;
-            rep.name.assign(claim->name, ::strnlen(claim->name, sizeof claim->name));
-            holder = objif::claim_holder_text(rep);
-        } catch (...) {
-            holder.clear();  // no memory for the words: nothing named
-        }
-    }
-    if (text != nullptr && size > 0) {
-        const std::size_t n = std::min(holder.size(), size - 1);
-        std::memcpy(text, holder.data(), n);
-        text[n] = '\0';
-    }
-    return holder.size();
+    return apci::give_words(text, size, [&] {
+        if (claim == nullptr || claim->held == 0) return std::string();
+        objif::ClaimReply rep;
+        rep.held = true;
+        rep.yours = claim->yours != 0;
+        rep.pid = claim->pid;
+        rep.since_ms = claim->since_ms;
+        rep.name.assign(claim->name, ::strnlen(claim->name, sizeof claim->name));
+        return objif::claim_holder_text(rep);
+    });
 }
 
 }  // extern "C"

@@ -4,9 +4,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -69,20 +67,11 @@ int apci_is_connected(const apci_board* board) noexcept {
 }
 
 size_t apci_link_lost(const apci_board* board, char* text, size_t size) noexcept {
-    std::string cause;
-    if (board != nullptr && !board->transport->connected()) {
-        try {
-            cause = board->transport->lost_reason();
-        } catch (...) {
-            cause.clear();  // no memory for the words: nothing said
-        }
-    }
-    if (text != nullptr && size > 0) {
-        const std::size_t n = std::min(cause.size(), size - 1);
-        std::memcpy(text, cause.data(), n);
-        text[n] = '\0';
-    }
-    return cause.size();
+    return apci::give_words(text, size, [&] {
+        return board != nullptr && !board->transport->connected()
+                   ? board->transport->lost_reason()
+                   : std::string();
+    });
 }
 
 apci_status apci_reconnect(apci_board* board) noexcept {

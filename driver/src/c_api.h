@@ -3,6 +3,8 @@
 // the board handle and the one way a call records its last-error text.
 #pragma once
 
+#include <algorithm>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -49,6 +51,26 @@ std::string failure_words(apci_board* board, objif::Status s);
 // Gives back the motion claim this handle holds, if any, without a word on failure (apci_close,
 // apci_reconnect: the claim ends with the handle or its link whatever the board answers).
 void drop_motion_claim(apci_board* board) noexcept;
+
+// The words `make()` gives, written into a caller's buffer as snprintf writes (at most size - 1
+// bytes and a NUL; nothing where text is NULL or size 0), their whole length returned: the
+// C API's calls that hand out words (apci_motion_claim_holder, apci_link_lost). No memory for
+// the words: none given (0).
+template <class Make>
+std::size_t give_words(char* text, std::size_t size, Make&& make) noexcept {
+    std::string words;
+    try {
+        words = make();
+    } catch (...) {
+        words.clear();
+    }
+    if (text != nullptr && size > 0) {
+        const std::size_t n = std::min(words.size(), size - 1);
+        std::memcpy(text, words.data(), n);
+        text[n] = '\0';
+    }
+    return words.size();
+}
 
 // Records the text `format()` makes as the last error and returns `s` as a C code.
 template <class Format>
