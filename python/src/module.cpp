@@ -26,6 +26,7 @@
 
 #include "apci/apci.hpp"
 #include "apci/nc/diagnostic.h"
+#include "apci/run/board_words.h"
 #include "apci/run/executor.h"
 #include "apci/run/path.h"
 #include "apci/run/program_run.h"
@@ -51,7 +52,11 @@ class PyBoard {
 
     bool is_open() const noexcept { return board_.is_open(); }
     apci::Status open_status() const noexcept { return board_.open_status(); }
-    std::string last_error() const { return std::string(board_.last_error()); }
+    // libapci's words; a lost link's end with the module's hint instead of apci_reconnect()
+    // (a Python Board is not reopened: apci.open() opens the board again).
+    std::string last_error() const {
+        return apci::run::board_words(board_, "apci.open() opens the board again");
+    }
     const std::string& uri() const noexcept { return uri_; }
     void close() {
         const Use use(*this);

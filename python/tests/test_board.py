@@ -148,3 +148,36 @@ def test_status_codes_are_libapcis():
     assert len(apci.Status) == 23
     assert apci.status_name(0x12345678) == "Unknown"
     assert apci.__version__.count(".") == 2
+
+
+def test_a_lost_link_says_what_ended_it_and_how_python_opens_the_board_again(tmp_path):
+    # A daemon stops under an open board: the read fails with what ended the link, followed by
+    # the module's hint, not libapci's apci_reconnect() (a C function Python does not offer).
+    import subprocess
+    import time
+
+    import apci
+    from conftest import BUILD_DIR
+
+    socket = tmp_path / "s.sock"
+    daemon = subprocess.Popen([str(BUILD_DIR / "bin" / "rwmos-emu"), "--socket", str(socket)],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        for _ in range(500):
+            if socket.exists():
+                break
+            time.sleep(0.01)
+        with apci.open(f"unix:{socket}") as b:
+            assert b.read(1000, 0, 3, 0) == 8
+            daemon.terminate()
+            assert daemon.wait(timeout=10) == 0
+            with pytest.raises(apci.TransportError) as lost:
+                b.read(1000, 0, 3, 0)
+            said = str(lost.value)
+            assert "closed the connection: shutting down (SIGTERM)" in said, said
+            assert "apci_reconnect" not in said, said
+            assert said.endswith("; apci.open() opens the board again"), said
+    finally:
+        if daemon.poll() is None:
+            daemon.kill()
+            daemon.wait()

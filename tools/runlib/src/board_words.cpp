@@ -3,7 +3,7 @@
 
 namespace apci::run {
 
-std::string board_words(const apci::Board& board) {
+std::string board_words(const apci::Board& board, std::string_view hint) {
     std::string said(board.last_error());
     if (board.connected()) return said;
     // libapci's words end with the cause, then its hint: the cause kept, the hint ours.
@@ -12,7 +12,7 @@ std::string board_words(const apci::Board& board) {
     if (at == std::string::npos) return said;
     said.resize(at + cause.size());
     said += "; ";
-    said += kLostLinkHint;
+    said += hint;
     return said;
 }
 

@@ -15,6 +15,7 @@ namespace apci::run {
 
 inline constexpr std::string_view kLostLinkHint = "the next command opens the link again";
 
-std::string board_words(const apci::Board& board);
+// `hint`: what the tool's user does to open the link again (the Python module's is its own).
+std::string board_words(const apci::Board& board, std::string_view hint = kLostLinkHint);
 
 }  // namespace apci::run
