@@ -150,16 +150,19 @@ def test_status_codes_are_libapcis():
     assert apci.__version__.count(".") == 2
 
 
-def test_a_lost_link_says_what_ended_it_and_how_python_opens_the_board_again(tmp_path):
+def test_a_lost_link_says_what_ended_it_and_how_python_opens_the_board_again():
     # A daemon stops under an open board: the read fails with what ended the link, followed by
     # the module's hint, not libapci's apci_reconnect() (a C function Python does not offer).
+    import pathlib
     import subprocess
     import time
 
     import apci
     from conftest import BUILD_DIR
 
-    socket = tmp_path / "s.sock"
+    # A socket's path has room for 107 bytes: a short directory, not the build tree's.
+    scratch = tempfile.TemporaryDirectory(dir="/tmp", prefix="apci-py-")
+    socket = pathlib.Path(scratch.name) / "s.sock"
     daemon = subprocess.Popen([str(BUILD_DIR / "bin" / "rwmos-emu"), "--socket", str(socket)],
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -181,3 +184,4 @@ def test_a_lost_link_says_what_ended_it_and_how_python_opens_the_board_again(tmp
         if daemon.poll() is None:
             daemon.kill()
             daemon.wait()
+        scratch.cleanup()
