@@ -35,6 +35,17 @@ constexpr ObjectDescriptor object(std::int32_t bus, std::int32_t device, std::in
 inline std::string_view status_name(Status s) noexcept { return apci_status_name(s); }
 inline std::string_view status_message(Status s) noexcept { return apci_status_message(s); }
 
+namespace detail {
+// The words of a C call that writes them as snprintf does (`write(text, size)` returns their
+// whole length): asked once for the length, then into a string of that size.
+template <class Write>
+std::string words_of(Write&& write) {
+    std::string text(write(nullptr, 0), '\0');
+    if (!text.empty()) (void)write(text.data(), text.size() + 1);
+    return text;
+}
+}  // namespace detail
+
 // Status of one call plus, for reads, the value (meaningful only when ok()).
 template <class T>
 struct Result {
@@ -115,9 +126,8 @@ public:
     Result<void> reconnect() noexcept { return Result<void>{apci_reconnect(handle_)}; }
     // What ended the link, without what to do about it ("" while it works: apci_link_lost).
     std::string link_lost() const {
-        std::string text(apci_link_lost(handle_, nullptr, 0), '\0');
-        if (!text.empty()) (void)apci_link_lost(handle_, text.data(), text.size() + 1);
-        return text;
+        return detail::words_of(
+            [&](char* text, std::size_t size) { return apci_link_lost(handle_, text, size); });
     }
 
     // The board's motion for this handle alone (apci.h "Exclusive use of the board's motion").
@@ -254,9 +264,9 @@ inline std::string motion_claim_name(const apci_motion_claim& claim) {
 // The holder of `claim` named as libapci names it in a refusal (apci_motion_claim_holder):
 // "pid 4242 (apcictl) since 2024-05-01 12:00:00 UTC"; "" when nobody holds it.
 inline std::string motion_claim_holder(const apci_motion_claim& claim) {
-    std::string text(apci_motion_claim_holder(&claim, nullptr, 0), '\0');
-    if (!text.empty()) (void)apci_motion_claim_holder(&claim, text.data(), text.size() + 1);
-    return text;
+    return detail::words_of([&](char* text, std::size_t size) {
+        return apci_motion_claim_holder(&claim, text, size);
+    });
 }
 
 // A board apci_list_devices() found.

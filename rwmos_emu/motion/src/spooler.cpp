@@ -332,7 +332,6 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     // The contour goes on in comp_ itself; what it was is kept (one copy, not a trial copy and
     // a copy back) and put back wherever the call takes nothing.
     comp_before_ = comp_;
-    Compensation& trial = comp_;
     Batch batch(exec, length_at_end_);
     // [APCI-TC] section 1: only G01/G02/G03 are compensated, by the active
     // group while it runs. Anything else ends the contour under way ([APCI-TC]
@@ -341,15 +340,15 @@ MotionResult Spooler::spool(const Profile& p, const TcSettings& tc, Executor& ex
     // departure: the tool leaves from where the compensated path ended.
     const bool compensate =
         is_interpolation(p.kind) && tc.present && tc.run && tc.active_group != 0;
-    if (trial.comp.running() && (!compensate || trial.group != tc.active_group))
-        end_contour(trial, /*keep_departure=*/false, batch);
+    if (comp_.comp.running() && (!compensate || comp_.group != tc.active_group))
+        end_contour(comp_, /*keep_departure=*/false, batch);
 
     const double feed = p.feed == 0.0 ? kDefaultRapidFeed : p.feed;
     const std::uint64_t number = profiles_ + 1;  // this profile's, once taken
     // Everything but a compensated G01/G02/G03 goes uncompensated.
     const bool compensated = p.kind != ProfileKind::kRapid && compensate;
     if (MotionResult r = compensated
-                             ? spool_compensated(p, tc, res, feed, number, trial, batch)
+                             ? spool_compensated(p, tc, res, feed, number, comp_, batch)
                              : spool_uncompensated(p, tc, res, feed, number, batch);
         !r.ok()) {
         comp_ = comp_before_;

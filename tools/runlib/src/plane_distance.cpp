@@ -23,6 +23,12 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // the annulus of its two radii, without the angle of a direction along it: looser by at most
 // this, far below every limit a proof is asked for.
 constexpr double kRoundedRadii = 1e-9;
+bool rounded_radii(const Parametric& e) { return std::abs(e.r1 - e.r0) <= kRoundedRadii; }
+
+// The distance of a point `dist` from a centre to the annulus about it between rmin <= rmax.
+double from_annulus(double dist, double rmin, double rmax) {
+    return dist > rmax ? dist - rmax : (dist < rmin ? rmin - dist : 0.0);
+}
 
 using geom::cross;
 
@@ -355,7 +361,7 @@ double most_along(const Parametric& e, const Vec2& n) {
     const double k = (e.r1 - e.r0) / turn;
     const bool half = turn <= std::numbers::pi;
     if (within_turn(from, to, e.sweep, n)) {
-        if (!half || std::abs(e.r1 - e.r0) <= kRoundedRadii)
+        if (!half || rounded_radii(e))
             return std::max(ends, e.centre.dot(n) + rmax);
         // At the angle delta from n the point is rho cos(delta) along it, rho = rho_n + k delta
         // the radius there: with cos(delta) <= 1 - 2 delta^2 / pi^2 that is at most rho_n +
@@ -404,10 +410,9 @@ double distance_at_least(const Parametric& e, const Vec2& p) {
     if (within_turn(from, to, e.sweep, v)) {
         // Radii a rounding apart: the distance from the annulus they span (every point of the
         // arc lies in it), at most kRoundedRadii below the radial distance at p's direction.
-        const double radial =
-            std::abs(e.r1 - e.r0) <= kRoundedRadii
-                ? std::max({0.0, big_r - std::max(e.r0, e.r1), std::min(e.r0, e.r1) - big_r})
-                : distance_to(e, p);
+        const double radial = rounded_radii(e)
+                                  ? from_annulus(big_r, std::min(e.r0, e.r1), std::max(e.r0, e.r1))
+                                  : distance_to(e, p);
         return radial * std::sqrt(c / (k * k + c));
     }
     // p's direction beyond the turn, delta0 from its nearer end (radius rho0 there): going
@@ -437,7 +442,7 @@ void distances_from(const Parametric& e, const Vec2& c, double& lo, double& hi) 
     const double dist = d.norm();
     const double rmin = std::min(e.r0, e.r1), rmax = std::max(e.r0, e.r1);
     if (dist == 0.0 || e.r0 <= 0.0 || e.r1 <= 0.0) {  // every point rmin..rmax away
-        lo = std::min(lo, dist > rmax ? dist - rmax : (dist < rmin ? rmin - dist : 0.0));
+        lo = std::min(lo, from_annulus(dist, rmin, rmax));
         hi = std::max(hi, dist + rmax);
         return;
     }
@@ -445,7 +450,7 @@ void distances_from(const Parametric& e, const Vec2& c, double& lo, double& hi) 
     const Vec2 from = (e.start - e.centre) / e.r0, to = (e.end - e.centre) / e.r1;
     // Nearest: towards c; farthest: away from it (the radius anywhere between rmin and rmax).
     if (within_turn(from, to, e.sweep, u))
-        lo = std::min(lo, dist >= rmax ? dist - rmax : (dist <= rmin ? rmin - dist : 0.0));
+        lo = std::min(lo, from_annulus(dist, rmin, rmax));
     if (within_turn(from, to, e.sweep, -u)) hi = std::max(hi, dist + rmax);
 }
 

@@ -88,19 +88,21 @@ void WallModel::element(std::uint64_t index, const PlaneMove& e, std::uint64_t k
     }
     // Does it end where an element since the last loop started? The earliest such one.
     std::size_t from = pending_.size();
-    const auto consider = [&](std::size_t at) {
-        if (at < from && (pending_[at].move.start - e.end).squaredNorm() <= kTolerance * kTolerance)
-            from = at;
+    const auto closes_at = [&](const Pending& p) {
+        return (p.move.start - e.end).squaredNorm() <= kTolerance * kTolerance;
     };
     if (!hashed) {
         // The first that does, walked with an iterator (a deque's [] costs a division).
         std::size_t i = 0;
         for (auto it = pending_.begin(); it != pending_.end(); ++it, ++i)
-            if ((it->move.start - e.end).squaredNorm() <= kTolerance * kTolerance) {
+            if (closes_at(*it)) {
                 from = i;
                 break;
             }
     } else {
+        const auto consider = [&](std::size_t at) {
+            if (at < from && closes_at(pending_[at])) from = at;
+        };
         const std::int64_t ci = cell_of(e.end.x()), cj = cell_of(e.end.y());
         for (std::int64_t i = ci - 1; i <= ci + 1; ++i)
             for (std::int64_t j = cj - 1; j <= cj + 1; ++j) {
