@@ -113,4 +113,28 @@ TEST(MotionRing, StorageNeverExceedsTheCapacity) {
     }
 }
 
+// A ring drained as fast as it fills (the executed-segment log read back after every clock
+// run) starts again at its first slot: its storage stays what the most entries waiting at once
+// need, not the capacity (memory touched once, no page faults for entries long taken).
+TEST(MotionRing, StorageFollowsWhatWaitsNotWhatPassedThrough) {
+    Ring<int> ring(4096);
+    int next = 0;
+    std::vector<int> out(3);
+    for (int round = 0; round < 1000; ++round) {
+        for (int i = 0; i < 3; ++i) ring.push(next++);
+        ASSERT_EQ(ring.take(out), 3U);
+        EXPECT_EQ(out[0], next - 3);
+        EXPECT_EQ(out[2], next - 1);
+        ASSERT_TRUE(ring.empty());
+    }
+    EXPECT_EQ(ring.reserved(), 4U) << "3 waiting at most: storage for 4 (doubling from 1)";
+    // Drained in place too (take_runs).
+    for (int round = 0; round < 1000; ++round) {
+        for (int i = 0; i < 4; ++i) ring.push(next++);
+        EXPECT_EQ(ring.take_runs(4, [](std::span<const int> run) { EXPECT_FALSE(run.empty()); }),
+                  4U);
+    }
+    EXPECT_EQ(ring.reserved(), 4U);
+}
+
 }  // namespace

@@ -2,7 +2,9 @@
 // A bounded FIFO that keeps the newest entries: when full, a push drops the
 // oldest and counts it as lost. Used for the per-cycle trace and the executed
 // segment log, which the host drains at its own pace.
-// The storage grows with the content, up to the capacity: a board that never
+// The storage grows with the content waiting, up to the capacity (an empty ring
+// starts again at its first slot, so a log drained as it fills keeps the storage
+// it has): a board that never
 // logs many segments never pays for the whole log (a fresh board is built per
 // request in the frame fuzzer and per test), and a large trace capacity costs
 // memory only once that many samples wait unread. It never reserves more than
@@ -50,6 +52,10 @@ class Ring {
             ++lost_;
             return;
         }
+        // An empty ring starts again at its first slot: a log drained as fast as it fills
+        // reuses the storage it has (memory already touched) instead of growing to its
+        // capacity.
+        if (size_ == 0) head_ = 0;
         // While buf_ is shorter than the capacity the content has never
         // wrapped: it lies at [head_, head_ + size_) with head_ + size_ <= buf_.size().
         std::size_t slot = head_ + size_;
