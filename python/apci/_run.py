@@ -11,7 +11,7 @@ import numpy as np
 
 from . import _apci
 from ._board import Board
-from ._errors import MotionClaimedError, ProgramError, RunError
+from ._errors import MotionClaimedError, ProgramError, RunError, error_class
 from ._status import GroupStatus, TcError, decode_status
 
 # The segment kinds and roles by their numbers in RunResult.segments["kind"] / ["role"]: the
@@ -204,7 +204,10 @@ def run(program, tools=None, device="emu:", *, name: str | None = None, corr=Non
 
     Raises ProgramError when the program (or a file it needs) cannot be used, and
     MotionClaimedError when another program holds the board's motion (the run claims it for
-    itself while it runs, as apcictl run does; docs/motion-claim.md); nothing ran then. Raises TransportError when the device does not open.
+    itself while it runs, as apcictl run does; docs/motion-claim.md); nothing ran then. Raises
+    TransportError when the device does not open or its link is lost before the run (the
+    message ends with what to do: "apci.open() opens the board again"); a link lost during the
+    run is the run's error (RunError, or .errors with check=False), in the same words.
     """
     text, is_text = _source(program, "program")
     tools_text, tools_is_text = (None, False) if tools is None else _source(tools, "tools")
@@ -228,6 +231,8 @@ def run(program, tools=None, device="emu:", *, name: str | None = None, corr=Non
                         f"{type(device).__name__}")
     if "claimed" in raw:
         raise MotionClaimedError(raw["claimed"], raw["status"])
+    if "board_error" in raw:
+        raise error_class(raw["status"])(raw["board_error"], raw["status"])
     if "diagnostic" in raw:
         raise ProgramError(raw["diagnostic"])
     result = _result(raw)

@@ -40,6 +40,10 @@ namespace py = pybind11;
 
 namespace {
 
+// What a Python program does to open a lost link again, in the words of a lost link (the
+// board's last_error and a run's errors): a Python Board is not reopened by its next call.
+constexpr std::string_view kLostLinkHint = "apci.open() opens the board again";
+
 // ---- Boards
 
 // An open board for Python: apci::Board plus close(). A board is used from one thread at a time
@@ -55,7 +59,7 @@ class PyBoard {
     // libapci's words; a lost link's end with the module's hint instead of apci_reconnect()
     // (a Python Board is not reopened: apci.open() opens the board again).
     std::string last_error() const {
-        return apci::run::board_words(board_, "apci.open() opens the board again");
+        return apci::run::board_words(board_, kLostLinkHint);
     }
     const std::string& uri() const noexcept { return uri_; }
     void close() {
@@ -383,14 +387,23 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     const PyBoard::Use use(py_board);
     // The board's motion is the run's while it runs, as for `apcictl run` (docs/motion-claim.md),
     // unless the caller's handle holds it already. Held by another program:
-    // {"claimed": libapci's words naming the holder, "status": the code}; nothing ran.
+    // {"claimed": libapci's words naming the holder, "status": the code}; refused otherwise (a
+    // lost link): {"board_error": the words, "status": the code}. Nothing ran either way.
     apci::Board& board = py_board.board(use);
     std::optional<apci::MotionClaim> claim;
     if (const auto held = board.motion_claim(); !(held.ok() && held.value.yours != 0)) {
         claim.emplace(board);
-        if (!claim->held() && claim->status() != APCI_NOT_SUPPORTED) {
+        if (!claim->held() && claim->status() == APCI_MOTION_CLAIMED) {
             py::dict out;
             out["claimed"] = std::string(board.last_error());
+            out["status"] = claim->status();
+            return out;
+        }
+        // The claim failed otherwise (a lost link): the board's words, nothing ran.
+        if (!claim->held() && claim->status() != APCI_NOT_SUPPORTED) {
+            py::dict out;
+            out["board_error"] = "claim the board's motion: " +
+                                 apci::run::board_words(board, kLostLinkHint);
             out["status"] = claim->status();
             return out;
         }
@@ -402,6 +415,7 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
         throw py::value_error("self_approach must be warn, error or off, not " + self_approach);
     settings.self_approach = *mode;
     settings.dry_run_first = !apci::run::embedded_emulator(py_board.uri());
+    settings.lost_link_hint = std::string(kLostLinkHint);
     const apci::run::ProgramSource source = program_is_text
                                                 ? apci::run::ProgramSource::in_memory(program, name)
                                                 : apci::run::ProgramSource::file(program);

@@ -11,6 +11,7 @@
 #include "apci/nc/program.h"
 #include "apci/run/board_words.h"
 #include "apci/run/executor.h"
+#include "apci/run/program_run.h"
 #include "daemon.h"
 
 namespace {
@@ -70,6 +71,31 @@ TEST(RunLostLink, TheCallThatFoundTheLinkLostIsTheRunsOneError) {
     const std::string& said = out.errors[0].message;
     EXPECT_NE(said.find(board.link_lost() + "; " + std::string(kLostLinkHint)), std::string::npos)
         << said;
+    EXPECT_EQ(said.find("apci_reconnect"), std::string::npos) << said;
+}
+
+// A run's own hint (RunSettings::lost_link_hint, the Python module's) in place of apcictl's: the
+// settings reach the executor's errors.
+TEST(RunLostLink, TheRunsSettingsNameItsOwnHint) {
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apci::Board board(d->unix_uri());
+    ASSERT_TRUE(board) << board.last_error();
+    StopsTheDaemon sink(*d);
+    const apci::run::RunInputs inputs;
+    apci::run::RunSettings settings;
+    settings.lost_link_hint = "open it again by hand";
+    const std::string text = back_and_forth(2 * static_cast<int>(ProgramExecutor::kProgressEvery));
+    auto ran = apci::run::run_program(board, sink, inputs,
+                                      apci::run::ProgramSource::in_memory(text, "p.nc"), settings);
+    ASSERT_TRUE(ran) << ran.error().to_string();
+    const RunOutcome& out = ran.value();
+    ASSERT_TRUE(sink.stopped());
+    ASSERT_EQ(out.errors.size(), 1u);
+    EXPECT_EQ(out.errors[0].code, "TransportError");
+    const std::string& said = out.errors[0].message;
+    EXPECT_NE(said.find(board.link_lost() + "; open it again by hand"), std::string::npos) << said;
+    EXPECT_EQ(said.find(kLostLinkHint), std::string::npos) << said;
     EXPECT_EQ(said.find("apci_reconnect"), std::string::npos) << said;
 }
 

@@ -56,11 +56,12 @@ BlockRef block_of(const nc::BlockOrigin& o) noexcept {
 
 RunContext::RunContext(apci::Board& board, RunSink& sink, const nc::ToolTable* tools,
                        const PlcScript* plc, const nc::CorrectionTable* corrections,
-                       int bottleneck_blocks)
+                       int bottleneck_blocks, std::string lost_link_hint)
     : board_(board),
       sink_(sink),
       tools_(tools),
       bottleneck_blocks_(bottleneck_blocks),
+      lost_link_hint_(std::move(lost_link_hint)),
       tc_(*this),
       otc_(*this),
       c3_(*this, corrections),
@@ -461,7 +462,7 @@ Point ProgramExecutor::position() {
 
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto context = std::make_unique<exec::RunContext>(board_, sink_, tools_, plc_, corrections_,
-                                                      bottleneck_blocks_);
+                                                      bottleneck_blocks_, lost_link_hint_);
     return context->run(events, read_ahead_, read_ahead_cpus_, read_ahead_where_);
 }
 

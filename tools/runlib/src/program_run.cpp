@@ -60,6 +60,7 @@ ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& input
                 &inputs.corrections) {
     executor_.set_avoid_bottlenecks(settings.bottleneck_blocks);
     executor_.set_read_ahead(settings.threads, settings.cpus, helpers_beside_check(settings));
+    executor_.set_lost_link_hint(settings.lost_link_hint);
     options_ = executor_.interpreter_options();
     bottleneck_blocks_ = settings.bottleneck_blocks;
     threads_ = settings.threads;

@@ -93,7 +93,7 @@ bool RunContext::head_only_move(const BlockRef& at) {
     apci::Result<apci_motion_result> r;
     if (!spool_profile(p, r)) return false;
     if (r.ok()) return true;
-    return record(at, std::string(apci::status_name(r.status)), board_words(board_));
+    return record(at, std::string(apci::status_name(r.status)), board_words());
 }
 
 PathSegment RunContext::line_segment(const BlockRef& at, SegmentKind kind,
@@ -212,10 +212,10 @@ bool RunContext::spool(const BlockRef& at, const PathSegment& programmed_move,
     const std::string_view said = board_.last_board_message();
     if (r.value.errors != 0)
         return tc_errors(decode_block_tag(r.value.tag), r.value.errors,
-                         said.empty() ? board_words(board_) : std::string(said));
+                         said.empty() ? board_words() : std::string(said));
     // Any other refusal: the board's words too, not the driver's call and tag.
     return record(at, std::string(apci::status_name(r.status)),
-                  said.empty() ? board_words(board_) : std::string(said));
+                  said.empty() ? board_words() : std::string(said));
 }
 
 // Spools p; Busy (the spooler is full) makes room and tries again. False when the clock could
@@ -268,7 +268,7 @@ template bool RunContext::write(ObjectDescriptor, double, const BlockRef&, std::
 
 // A refused write: a TC error bit it set (InitError) names it, else the status does.
 bool RunContext::write_failure(const BlockRef& at, apci::Status status, std::string_view what) {
-    const std::string text = fmt::format("{}: {}", what, board_words(board_));
+    const std::string text = fmt::format("{}: {}", what, board_words());
     if (out_.tc_present && status != APCI_NO_SUCH_DEVICE) {
         auto e = group_object(tc::kActiveGroupIndex, tc::kSubError);
         const auto bits = board_.read_int(e);
@@ -285,7 +285,7 @@ bool RunContext::no_module(const BlockRef& at, std::string_view what, std::strin
 
 bool RunContext::board_failure(const BlockRef& at, apci::Status status, std::string_view what) {
     return record(at, std::string(apci::status_name(status)),
-                  fmt::format("{}: {}", what, board_words(board_)));
+                  fmt::format("{}: {}", what, board_words()));
 }
 
 // One error per Table 4 bit set.

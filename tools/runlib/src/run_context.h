@@ -90,7 +90,8 @@ std::string concave_arc_radii(const PathSegment& s, const TcUnit::State& tc);
 class RunContext {
   public:
     RunContext(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
-              const nc::CorrectionTable* corrections, int bottleneck_blocks = 0);
+              const nc::CorrectionTable* corrections, int bottleneck_blocks = 0,
+              std::string lost_link_hint = std::string(kLostLinkHint));
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
     RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr,
@@ -99,6 +100,9 @@ class RunContext {
     // ---- what the units reach through the context
 
     apci::Board& board() noexcept { return board_; }
+    // libapci's words for the board's last call, a lost link's with the run's hint
+    // (RunSettings::lost_link_hint).
+    std::string board_words() const { return apci::run::board_words(board_, lost_link_hint_); }
     const nc::ToolTable* tools() const noexcept { return tools_; }
     TcUnit& tc_unit() noexcept { return tc_; }
     OtcUnit& otc_unit() noexcept { return otc_; }
@@ -201,6 +205,7 @@ class RunContext {
     RunSink& sink_;
     const nc::ToolTable* tools_;
     int bottleneck_blocks_ = 0;  // 0: no bottleneck avoidance (bottleneck.h)
+    std::string lost_link_hint_;
     std::int32_t cycle_us_ = 1000;
     bool tracing_ = false;
     bool set_up_ = false;   // setup() succeeded: the board was configured for the run

@@ -18,9 +18,9 @@ namespace tcomp = objif::map::tempcomp;
 
 // A read's value, or why the board could not give it.
 template <typename T>
-bool value_of(const apci::Result<T>& r, apci::Board& board, double& out, std::string& why) {
+bool value_of(const apci::Result<T>& r, const RunContext& run, double& out, std::string& why) {
     if (!r) {
-        why = board_words(board);
+        why = run.board_words();
         return false;
     }
     out = r.value;
@@ -58,7 +58,7 @@ bool VariablesUnit::read(const nc::VariableRef& v, double& out, std::string& why
             return false;
         }
         auto o = temp_object(tcomp::kIdxToolTempComp, v.index);
-        return value_of(board.read_double(o), board, out, why);
+        return value_of(board.read_double(o), run_, out, why);
     }
     if (!run_.outcome().otc_present) {
         why = "the board has no OTC module (bus 1330)";
@@ -86,8 +86,8 @@ bool VariablesUnit::read(const nc::VariableRef& v, double& out, std::string& why
         case nc::NcVariable::kToolTempComp:
             break;  // above
     }
-    if (is_int) return value_of(board.read_int(o), board, out, why);
-    return value_of(board.read_double(o), board, out, why);
+    if (is_int) return value_of(board.read_int(o), run_, out, why);
+    return value_of(board.read_double(o), run_, out, why);
 }
 
 // The variables at the end of the run, by their names in [ISG-OTC] (docs/design.md section 7 JSON).

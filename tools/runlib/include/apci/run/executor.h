@@ -44,6 +44,7 @@
 #include "apci/nc/correction_table.h"
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
+#include "apci/run/board_words.h"
 #include "apci/run/cpu_placement.h"
 #include "apci/run/path.h"
 #include "apci/run/plc_script.h"
@@ -220,6 +221,9 @@ class ProgramExecutor {
         read_ahead_where_ = where;
     }
 
+    // What the run's errors say after a lost link's cause (RunSettings::lost_link_hint).
+    void set_lost_link_hint(std::string hint) { lost_link_hint_ = std::move(hint); }
+
   private:
     apci::Board& board_;
     RunSink& sink_;
@@ -230,6 +234,7 @@ class ProgramExecutor {
     bool read_ahead_ = false;
     const CpuPlacement* read_ahead_cpus_ = nullptr;
     HelperCpu read_ahead_where_ = HelperCpu::kOther;
+    std::string lost_link_hint_ = std::string(kLostLinkHint);
 };
 
 }  // namespace apci::run

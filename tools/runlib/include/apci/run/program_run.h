@@ -31,6 +31,7 @@
 #include "apci/nc/diagnostic.h"
 #include "apci/nc/program.h"
 #include "apci/nc/tools.h"
+#include "apci/run/board_words.h"
 #include "apci/run/cpu_placement.h"
 #include "apci/run/executor.h"
 #include "apci/run/pipeline.h"
@@ -92,6 +93,9 @@ struct RunSettings {
     // program first on an embedded emulator set up as the board stands, and refuses it at a
     // finding there, before anything moves (its findings come only after the moves otherwise).
     bool dry_run_first = false;
+    // What the run's errors say, after a lost link's cause, the user does to open the link
+    // again (board_words.h): apcictl's next command does; a Python program calls apci.open().
+    std::string lost_link_hint = std::string(kLostLinkHint);
 };
 
 // A program: a file, or a text the caller holds (it must outlive the run).
