@@ -115,26 +115,35 @@ TEST(MotionRing, StorageNeverExceedsTheCapacity) {
 
 // A ring drained as fast as it fills (the executed-segment log read back after every clock
 // run) starts again at its first slot: its storage stays what the most entries waiting at once
-// need, not the capacity (memory touched once, no page faults for entries long taken).
+// need, not the capacity (memory touched once, no page faults for entries long taken). Drained
+// with its content in the middle of the storage (3 taken of a storage of 4), the next pushes
+// would otherwise reach the storage's end and grow it although its first slots are free.
 TEST(MotionRing, StorageFollowsWhatWaitsNotWhatPassedThrough) {
     Ring<int> ring(4096);
     int next = 0;
-    std::vector<int> out(3);
+    std::vector<int> out(4);
     for (int round = 0; round < 1000; ++round) {
-        for (int i = 0; i < 3; ++i) ring.push(next++);
-        ASSERT_EQ(ring.take(out), 3U);
-        EXPECT_EQ(out[0], next - 3);
-        EXPECT_EQ(out[2], next - 1);
+        const std::size_t n = round % 2 == 0 ? 4 : 3;  // 4, 3, 4, 3, ...
+        for (std::size_t i = 0; i < n; ++i) ring.push(next++);
+        ASSERT_EQ(ring.take(std::span<int>(out.data(), n)), n);
+        EXPECT_EQ(out[0], next - static_cast<int>(n));
+        EXPECT_EQ(out[n - 1], next - 1);
         ASSERT_TRUE(ring.empty());
+        ASSERT_EQ(ring.reserved(), 4U) << "round " << round << ": 4 waiting at most";
     }
-    EXPECT_EQ(ring.reserved(), 4U) << "3 waiting at most: storage for 4 (doubling from 1)";
-    // Drained in place too (take_runs).
+    // Drained in place too (take_runs): 3, 4, 3, 4, ...
     for (int round = 0; round < 1000; ++round) {
-        for (int i = 0; i < 4; ++i) ring.push(next++);
-        EXPECT_EQ(ring.take_runs(4, [](std::span<const int> run) { EXPECT_FALSE(run.empty()); }),
-                  4U);
+        const std::size_t n = round % 2 == 0 ? 3 : 4;
+        for (std::size_t i = 0; i < n; ++i) ring.push(next++);
+        int first = -1;
+        EXPECT_EQ(ring.take_runs(n,
+                                 [&](std::span<const int> run) {
+                                     if (first < 0) first = run.front();
+                                 }),
+                  n);
+        EXPECT_EQ(first, next - static_cast<int>(n));
+        ASSERT_EQ(ring.reserved(), 4U) << "round " << round;
     }
-    EXPECT_EQ(ring.reserved(), 4U);
 }
 
 }  // namespace

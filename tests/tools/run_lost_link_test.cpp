@@ -99,6 +99,72 @@ TEST(RunLostLink, TheRunsSettingsNameItsOwnHint) {
     EXPECT_EQ(said.find("apci_reconnect"), std::string::npos) << said;
 }
 
+// Stops the daemon at the program's CDOF (the sink's walls(false)): the next block's board call
+// is the first to find the link lost.
+class StopsAtCdof final : public RunSink {
+  public:
+    explicit StopsAtCdof(Daemon& d) : daemon_(d) {}
+    void walls(bool on) override {
+        if (on || stopped_) return;
+        stopped_ = true;
+        (void)daemon_.stop(SIGKILL);
+    }
+    bool stopped() const { return stopped_; }
+
+  private:
+    Daemon& daemon_;
+    bool stopped_ = false;
+};
+
+// Every place a run words a board call that found the link lost names the run's hint: a spool,
+// the clock run, an object write (the TC's side, a variable written, OTC switched on), a
+// variable read.
+TEST(RunLostLink, EveryBoardCallOfARunNamesTheRunsHint) {
+    // A grinding tool (type 2): #OTC ON needs one.
+    const char* const kTools = "wz[1].gueltig 1\nwz[1].typ 2\nwz[1].mass_einheit 1\n"
+                               "wz[1].radius 2\nwz[1].laenge 10\nwz[2].gueltig 1\n"
+                               "wz[2].mass_einheit 1\nwz[2].radius 3\n";
+    struct Probe {
+        const char* what;
+        const char* lines;  // after N10 D1 / N20 CDOF
+    };
+    for (const Probe& probe : {Probe{"a move", "N30 G1 X10 F1000\n"},
+                               Probe{"the clock run before a tool change", "N30 D2\n"},
+                               Probe{"a TC object written (G41's side)", "N30 G41\n"},
+                               Probe{"a variable written", "N30 V.G.WZ_AKT.WEAR_CONST = 200000\n"},
+                               Probe{"OTC switched on", "N30 #OTC ON [LENGTH]\nN40 G1 X10 F1000\n"},
+                               Probe{"a variable read", "N30 P1 = V.G.OTC_ACTIVE\nN40 G1 X[P1 + 1] F1000\n"}}) {
+        SCOPED_TRACE(probe.what);
+        auto d = Daemon::start();
+        ASSERT_NE(d, nullptr);
+        apci::Board board(d->unix_uri());
+        ASSERT_TRUE(board) << board.last_error();
+        StopsAtCdof sink(*d);
+        apci::run::RunInputFiles files;
+        files.tools = kTools;
+        files.tools_is_text = true;
+        auto inputs = apci::run::load_run_inputs(files);
+        ASSERT_TRUE(inputs) << inputs.error().to_string();
+        apci::run::RunSettings settings;
+        settings.lost_link_hint = "open it again by hand";
+        const std::string text = std::string("N10 D1\nN20 CDOF\n") + probe.lines + "N90 M30\n";
+        auto ran = apci::run::run_program(
+            board, sink, inputs.value(), apci::run::ProgramSource::in_memory(text, "p.nc"),
+            settings);
+        ASSERT_TRUE(sink.stopped());
+        std::string said;
+        if (ran) {
+            ASSERT_FALSE(ran.value().errors.empty());
+            said = ran.value().errors[0].message;
+        } else {
+            said = ran.error().to_string();
+        }
+        EXPECT_NE(said.find(board.link_lost() + "; open it again by hand"), std::string::npos)
+            << said;
+        EXPECT_EQ(said.find(kLostLinkHint), std::string::npos) << said;
+    }
+}
+
 // board_words: libapci's words unchanged while the link works (a refusal's own words).
 TEST(RunLostLink, BoardWordsAreLibapcisWhileTheLinkWorks) {
     apci::Board board("emu:");

@@ -186,7 +186,7 @@ bool Comp3dUnit::write(ObjectDescriptor o, T value, const BlockRef& at, std::str
 // The module's LastError names a refusal (objif::map::comp3d::Refusal); it is cleared for the
 // next one.
 bool Comp3dUnit::failure(const BlockRef& at, apci::Status status, std::string_view what) {
-    const std::string text = fmt::format("{}: {}", what, run_.board_words());
+    const std::string text = run_.failure_words(what);
     auto last = c3_object(c3::kIdxLastError);
     const auto code = run_.board().read_int(last);
     if (code && code.value != 0) {

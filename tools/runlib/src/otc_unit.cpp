@@ -85,7 +85,7 @@ bool OtcUnit::write(ObjectDescriptor o, T value, const BlockRef& at, std::string
                                                what));
             continue;
         }
-        const std::string text = fmt::format("{}: {}", what, run_.board_words());
+        const std::string text = run_.failure_words(what);
         auto last = otc_object(otc::kDevChannel, otc::kIdxLastError);
         const auto code = run_.board().read_int(last);
         if (code && code.value != 0) {

@@ -268,7 +268,7 @@ template bool RunContext::write(ObjectDescriptor, double, const BlockRef&, std::
 
 // A refused write: a TC error bit it set (InitError) names it, else the status does.
 bool RunContext::write_failure(const BlockRef& at, apci::Status status, std::string_view what) {
-    const std::string text = fmt::format("{}: {}", what, board_words());
+    const std::string text = failure_words(what);
     if (out_.tc_present && status != APCI_NO_SUCH_DEVICE) {
         auto e = group_object(tc::kActiveGroupIndex, tc::kSubError);
         const auto bits = board_.read_int(e);
@@ -284,8 +284,11 @@ bool RunContext::no_module(const BlockRef& at, std::string_view what, std::strin
 }
 
 bool RunContext::board_failure(const BlockRef& at, apci::Status status, std::string_view what) {
-    return record(at, std::string(apci::status_name(status)),
-                  fmt::format("{}: {}", what, board_words()));
+    return record(at, std::string(apci::status_name(status)), failure_words(what));
+}
+
+std::string RunContext::failure_words(std::string_view what) const {
+    return fmt::format("{}: {}", what, board_words());
 }
 
 // One error per Table 4 bit set.

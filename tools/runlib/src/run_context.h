@@ -103,6 +103,8 @@ class RunContext {
     // libapci's words for the board's last call, a lost link's with the run's hint
     // (RunSettings::lost_link_hint).
     std::string board_words() const { return apci::run::board_words(board_, lost_link_hint_); }
+    // How a run names a board call that failed: "WHAT: " and board_words().
+    std::string failure_words(std::string_view what) const;
     const nc::ToolTable* tools() const noexcept { return tools_; }
     TcUnit& tc_unit() noexcept { return tc_; }
     OtcUnit& otc_unit() noexcept { return otc_; }
