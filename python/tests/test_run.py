@@ -297,21 +297,30 @@ def test_samples_beyond_max_samples_are_counted_not_kept():
 
 
 @contextlib.contextmanager
-def _daemon(apcictl):
+def _daemon_process(apcictl):
     """The daemon of the build tree on a socket of its own (a short directory: a socket path
-    holds at most 107 bytes, a build tree's may not); its path, until the block ends."""
+    holds at most 107 bytes, a build tree's may not): its path and process, until the block
+    ends (stopped then, if the block has not stopped it)."""
     with tempfile.TemporaryDirectory(prefix="apci-") as short:
         sock = pathlib.Path(short) / "d.sock"
         daemon = subprocess.Popen([str(apcictl.parent / "rwmos-emu"), "--socket", str(sock),
-                                   "--log-level", "warn"])
+                                   "--log-level", "error"])
         try:
             deadline = time.monotonic() + 10
             while not sock.exists() and time.monotonic() < deadline:
                 time.sleep(0.01)
-            yield sock
+            yield sock, daemon
         finally:
-            daemon.terminate()
+            if daemon.poll() is None:
+                daemon.terminate()
             daemon.wait(timeout=10)
+
+
+@contextlib.contextmanager
+def _daemon(apcictl):
+    """_daemon_process's socket path."""
+    with _daemon_process(apcictl) as (sock, _):
+        yield sock
 
 
 SPIKE = ("N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
@@ -420,53 +429,42 @@ def test_a_lost_link_says_how_a_python_program_opens_the_board_again(apcictl):
     a Python program does, apci.open(); not apcictl's next command, nor libapci's
     apci_reconnect() (a C function Python does not offer)."""
     hint = "; apci.open() opens the board again"
-    with tempfile.TemporaryDirectory(prefix="apci-") as short:
-        sock = pathlib.Path(short) / "d.sock"
-        daemon = subprocess.Popen([str(apcictl.parent / "rwmos-emu"), "--socket", str(sock),
-                                   "--log-level", "error"])
-        try:
-            deadline = time.monotonic() + 10
-            while not sock.exists() and time.monotonic() < deadline:
-                time.sleep(0.01)
-            uri = f"unix:{sock}"
-            # Long enough to be under way for seconds over the socket.
-            program = "N1 G1 F60000\n" + "X1\nX0\n" * 50000 + "M30\n"
-            outcome = {}
+    with _daemon_process(apcictl) as (sock, daemon):
+        uri = f"unix:{sock}"
+        # Long enough to be under way for seconds over the socket.
+        program = "N1 G1 F60000\n" + "X1\nX0\n" * 50000 + "M30\n"
+        outcome = {}
 
-            def run():
-                try:
-                    outcome["result"] = apci.run(program, device=uri, samples=False, check=False)
-                except apci.Error as e:  # pragma: no cover - named by the assert below
-                    outcome["raised"] = e
+        def run():
+            try:
+                outcome["result"] = apci.run(program, device=uri, samples=False, check=False)
+            except apci.Error as e:  # pragma: no cover - named by the assert below
+                outcome["raised"] = e
 
-            with apci.open(uri) as watcher:
-                thread = threading.Thread(target=run)
-                thread.start()
-                # The run holds the board's motion once it is under way.
-                deadline = time.monotonic() + 30
-                while not watcher.motion_claim().held and time.monotonic() < deadline:
-                    time.sleep(0.001)
-                daemon.terminate()
-                assert daemon.wait(timeout=10) == 0
-                thread.join(timeout=120)
-                assert not thread.is_alive()
-                assert "raised" not in outcome, outcome.get("raised")
-                result = outcome["result"]
-                assert not result.ok and result.errors, "the run went on without its board"
-                first = result.errors[0]
-                assert first.code == "TransportError", first
-                assert "shutting down (SIGTERM)" in first.message, first.message
-                assert hint in first.message, first.message
-                assert "apci_reconnect" not in first.message, first.message
-                assert "next command" not in first.message, first.message
-                # A run about to start on a board whose link is lost: its claim says so.
-                with pytest.raises(apci.TransportError) as lost:
-                    apci.run("N10 G1 X1 F600\nM30\n", device=watcher)
-                said = str(lost.value)
-                assert said.startswith("claim the board's motion: "), said
-                assert said.endswith(hint), said
-                assert lost.value.status == apci.Status.TransportError
-        finally:
-            if daemon.poll() is None:
-                daemon.kill()
-                daemon.wait()
+        with apci.open(uri) as watcher:
+            thread = threading.Thread(target=run)
+            thread.start()
+            # The run holds the board's motion once it is under way.
+            deadline = time.monotonic() + 30
+            while not watcher.motion_claim().held and time.monotonic() < deadline:
+                time.sleep(0.001)
+            daemon.terminate()
+            assert daemon.wait(timeout=10) == 0
+            thread.join(timeout=120)
+            assert not thread.is_alive()
+            assert "raised" not in outcome, outcome.get("raised")
+            result = outcome["result"]
+            assert not result.ok and result.errors, "the run went on without its board"
+            first = result.errors[0]
+            assert first.code == "TransportError", first
+            assert "shutting down (SIGTERM)" in first.message, first.message
+            assert hint in first.message, first.message
+            assert "apci_reconnect" not in first.message, first.message
+            assert "next command" not in first.message, first.message
+            # A run about to start on a board whose link is lost: its claim says so.
+            with pytest.raises(apci.TransportError) as lost:
+                apci.run("N10 G1 X1 F600\nM30\n", device=watcher)
+            said = str(lost.value)
+            assert said.startswith("claim the board's motion: "), said
+            assert said.endswith(hint), said
+            assert lost.value.status == apci.Status.TransportError

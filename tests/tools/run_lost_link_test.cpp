@@ -23,19 +23,29 @@ using apci::run::RunOutcome;
 using apci::run::RunSink;
 using apci_test::Daemon;
 
-// Stops the daemon at the first progress call: the run is under way, between two blocks.
+// Stops the daemon once, at the first progress call (the run is under way, between two blocks)
+// or at the program's CDOF (the sink's walls(false): the next block's board call is the first to
+// find the link lost).
 class StopsTheDaemon final : public RunSink {
   public:
-    explicit StopsTheDaemon(Daemon& d) : daemon_(d) {}
+    enum class At { kProgress, kCdof };
+    explicit StopsTheDaemon(Daemon& d, At at = At::kProgress) : daemon_(d), at_(at) {}
     void progress(std::uint64_t, std::uint64_t) override {
-        if (stopped_) return;
-        stopped_ = true;
-        (void)daemon_.stop(SIGKILL);
+        if (at_ == At::kProgress) stop();
+    }
+    void walls(bool on) override {
+        if (at_ == At::kCdof && !on) stop();
     }
     bool stopped() const { return stopped_; }
 
   private:
+    void stop() {
+        if (stopped_) return;
+        stopped_ = true;
+        (void)daemon_.stop(SIGKILL);
+    }
     Daemon& daemon_;
+    At at_;
     bool stopped_ = false;
 };
 
@@ -99,23 +109,6 @@ TEST(RunLostLink, TheRunsSettingsNameItsOwnHint) {
     EXPECT_EQ(said.find("apci_reconnect"), std::string::npos) << said;
 }
 
-// Stops the daemon at the program's CDOF (the sink's walls(false)): the next block's board call
-// is the first to find the link lost.
-class StopsAtCdof final : public RunSink {
-  public:
-    explicit StopsAtCdof(Daemon& d) : daemon_(d) {}
-    void walls(bool on) override {
-        if (on || stopped_) return;
-        stopped_ = true;
-        (void)daemon_.stop(SIGKILL);
-    }
-    bool stopped() const { return stopped_; }
-
-  private:
-    Daemon& daemon_;
-    bool stopped_ = false;
-};
-
 // Every place a run words a board call that found the link lost names the run's hint: a spool,
 // the clock run, an object write (the TC's side, a variable written, OTC switched on), a
 // variable read.
@@ -139,7 +132,7 @@ TEST(RunLostLink, EveryBoardCallOfARunNamesTheRunsHint) {
         ASSERT_NE(d, nullptr);
         apci::Board board(d->unix_uri());
         ASSERT_TRUE(board) << board.last_error();
-        StopsAtCdof sink(*d);
+        StopsTheDaemon sink(*d, StopsTheDaemon::At::kCdof);
         apci::run::RunInputFiles files;
         files.tools = kTools;
         files.tools_is_text = true;
