@@ -4,12 +4,11 @@
 // segment log, which the host drains at its own pace.
 // The storage grows with the content waiting, up to the capacity (an empty ring
 // starts again at its first slot, so a log drained as it fills keeps the storage
-// it has): a board that never
-// logs many segments never pays for the whole log (a fresh board is built per
-// request in the frame fuzzer and per test), and a large trace capacity costs
-// memory only once that many samples wait unread. It never reserves more than
-// the capacity (a vector doubling on its own could take twice the capacity's
-// memory, and then some while it moves).
+// it has): a board that never logs many segments never pays for the whole log (a
+// fresh board is built per request in the frame fuzzer and per test), and a large
+// trace capacity costs memory only once that many samples wait unread. It never
+// reserves more than the capacity (a vector doubling on its own could take twice
+// the capacity's memory, and then some while it moves).
 #pragma once
 
 #include <cstddef>
