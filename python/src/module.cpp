@@ -393,17 +393,13 @@ py::dict run_program(PyBoard& py_board, const std::string& program, bool program
     std::optional<apci::MotionClaim> claim;
     if (const auto held = board.motion_claim(); !(held.ok() && held.value.yours != 0)) {
         claim.emplace(board);
-        if (!claim->held() && claim->status() == APCI_MOTION_CLAIMED) {
-            py::dict out;
-            out["claimed"] = std::string(board.last_error());
-            out["status"] = claim->status();
-            return out;
-        }
-        // The claim failed otherwise (a lost link): the board's words, nothing ran.
         if (!claim->held() && claim->status() != APCI_NOT_SUPPORTED) {
             py::dict out;
-            out["board_error"] = "claim the board's motion: " +
-                                 apci::run::board_words(board, kLostLinkHint);
+            if (claim->status() == APCI_MOTION_CLAIMED)
+                out["claimed"] = std::string(board.last_error());
+            else  // a lost link: the board's words
+                out["board_error"] = "claim the board's motion: " +
+                                     apci::run::board_words(board, kLostLinkHint);
             out["status"] = claim->status();
             return out;
         }
