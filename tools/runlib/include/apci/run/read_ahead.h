@@ -46,7 +46,11 @@ namespace apci::run {
 class ReadAhead {
   public:
     static constexpr std::size_t kBatchEvents = 128;
-    static constexpr std::size_t kBatches = 16;
+    static constexpr std::size_t kBatches = 64;
+    // The memory its ring holds: kBatches batches of kBatchEvents events, made once.
+    static constexpr std::size_t ring_bytes() noexcept {
+        return kBatches * (sizeof(Batch) + kBatchEvents * sizeof(Item));
+    }
 
     // `stream` must outlive this; the reader thread starts with the first next(). With `cpus`
     // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h).
@@ -114,10 +118,12 @@ class ReadAhead {
     void join() noexcept;
 
     // (In the order that packs them.)
-    // 16 batches (2,048 events, about 2 ms of the executor's work): the reader shares a core with
-    // the writer thread, and the executor must not run dry while it waits for its turn; a
-    // sleeping side wakes for 4 batches.
-    SpscRing<Batch> ring_{kBatches, 4};
+    // 64 batches (8,192 events, 4 to 6 ms of the executor's work): the reader shares the CPUs
+    // with the check and the writers, and a reader woken for room may wait a few milliseconds
+    // for its turn; with 16 batches the executor ran dry 2 to 23 times a run on the CAM program
+    // (up to 17 ms in all), now 1 to 4 (docs/performance.md, "A deeper read-ahead"). A sleeping
+    // side wakes for 16 batches: the reader still has 6,144 events ahead when it is woken.
+    SpscRing<Batch> ring_{kBatches, 16};
     nc::EventStream& stream_;
     const CpuPlacement* cpus_;
     HelperCpu where_;
