@@ -15,9 +15,9 @@
 #include "plate_program.h"
 #include "apci/apci.hpp"
 #include "apci/nc/program.h"
-#include "apci/run/read_ahead.h"
 #include "apci/run/executor.h"
 #include "apci/run/json_writer.h"
+#include "apci/run/read_ahead.h"
 #include "apci/run/svg_writer.h"
 
 namespace apci::run {
@@ -120,16 +120,18 @@ TEST(RunStreaming, TenTimesTheBlocksNeedNoMoreHeapWithTheFrontEndReadingAhead) {
     EXPECT_GT(large.segments, 9 * small.segments);
     std::printf(
         "peak heap reading ahead: %zu bytes for %llu segments, %zu bytes for %llu "
-        "segments (%zu without)\n",
+        "segments (%zu without; the ring %zu)\n",
         small.peak_bytes, static_cast<unsigned long long>(small.segments), large.peak_bytes,
-        static_cast<unsigned long long>(large.segments), direct.peak_bytes);
+        static_cast<unsigned long long>(large.segments), direct.peak_bytes,
+        ReadAhead::ring_bytes());
     // Two threads allocate side by side, so a few small blocks of either may or may not be live
     // at the peak (16 bytes apart from run to run, seen): 1 KiB of room for that; anything kept
     // per block would be megabytes here.
     EXPECT_LE(large.peak_bytes, small.peak_bytes + 1024);
     // The ring's batches and the reader's thread (its own bits, 256 KiB at most), nothing per
     // block.
-    EXPECT_LE(small.peak_bytes, direct.peak_bytes + ReadAhead::ring_bytes() + (std::size_t{256} << 10));
+    EXPECT_LE(small.peak_bytes,
+              direct.peak_bytes + ReadAhead::ring_bytes() + (std::size_t{256} << 10));
 }
 
 }  // namespace
