@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "apci/apci.hpp"
+#include "apci/run/pipeline.h"
+#include "apci/run/read_ahead.h"
 #include "scratch_dir.h"
 #include "text.h"
 #include "thread_count.h"
@@ -410,8 +412,9 @@ TEST(RunProgram, TheCheckMeasuresATurningToolsNoseCentreNotItsTip) {
 
 // With threads the NC front end runs on a thread of its own and the caller's sink on another
 // while the board runs; without, everything on the caller's thread. The program is longer than
-// the reader may run ahead (read_ahead.h), so the reader is still there when the first segment
-// comes back.
+// the reader may run ahead (read_ahead.h) beyond all that the two pipelines' rings hold
+// (pipeline.h; a line gives at least one event), so the reader is still there when the first
+// segment comes back, however late the helper threads get their turn.
 TEST(RunProgram, ThreadsRunTheFrontEndTheCheckAndTheSinkOnThreadsOfTheirOwn) {
     struct Threads final : RunSink {
         int most = 0;
@@ -423,8 +426,11 @@ TEST(RunProgram, ThreadsRunTheFrontEndTheCheckAndTheSinkOnThreadsOfTheirOwn) {
     };
     const int before = apci::test::baseline_thread_count();
     const RunInputs in = tool5();
+    constexpr std::size_t kLines = ReadAhead::kBatches * ReadAhead::kBatchEvents +
+                                   2 * PipelinedSink::kBatches * PipelinedSink::kBatchEvents +
+                                   2 * PipelinedSink::kBatchEvents;
     std::string zigzag = "N1 G17 G90 G1 F60000\n";
-    for (int i = 0; i < 20000; ++i)
+    for (std::size_t i = 0; i < kLines; ++i)
         zigzag += "G1 X" + std::to_string(i % 2) + " Y" + std::to_string(i) + "\n";
     zigzag += "M30\n";
     // The reader and the writers; with the check warning (the default), the check on a third

@@ -178,6 +178,65 @@ TEST(SpscRing, ASleepingSideWakesForSeveralSlots) {
     EXPECT_EQ(taken.load(), 5);
 }
 
+// Each side has a count of its own (the read-ahead's ring: its reader woken for many free
+// slots, its executor for the first committed). A consumer asleep on the empty ring wakes for
+// one slot; a producer asleep on the full ring only once four are free; each side's sleeps are
+// counted apart.
+TEST(SpscRing, EachSideWakesForItsOwnCount) {
+    SpscRing<int> ring(8, 4, 1);
+    std::atomic<int> taken{0};
+    std::thread consumer([&] {
+        while (const int* v = ring.front()) {
+            (void)v;
+            ring.pop();
+            taken.fetch_add(1);
+        }
+    });
+    for (int i = 0; i < 2000 && ring.consumer_sleeps() == 0; ++i) std::this_thread::sleep_for(1ms);
+    ASSERT_EQ(ring.consumer_sleeps(), 1u);  // asleep on the empty ring
+    *ring.acquire() = 0;
+    ring.commit();
+    for (int i = 0; i < 2000 && taken.load() < 1; ++i) std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(taken.load(), 1);  // one ready: woken
+    ring.close();
+    consumer.join();
+    EXPECT_EQ(ring.producer_sleeps(), 0u);
+
+    SpscRing<int> full(8, 4, 1);
+    std::atomic<int> given{0};
+    std::thread producer([&] {
+        for (int i = 0; i < 12; ++i) {
+            int* slot = full.acquire();
+            if (slot == nullptr) return;
+            *slot = i;
+            full.commit();
+            given.fetch_add(1);
+        }
+        full.close();
+    });
+    for (int i = 0; i < 2000 && full.producer_sleeps() == 0; ++i) std::this_thread::sleep_for(1ms);
+    ASSERT_EQ(full.producer_sleeps(), 1u);  // asleep on the full ring
+    EXPECT_EQ(given.load(), 8);
+    for (int i = 0; i < 3; ++i) {
+        ASSERT_NE(full.front(), nullptr);
+        full.pop();
+    }
+    std::this_thread::sleep_for(50ms);
+    EXPECT_EQ(given.load(), 8);  // three free: not yet woken
+    ASSERT_NE(full.front(), nullptr);
+    full.pop();
+    for (int i = 0; i < 2000 && given.load() < 12; ++i) std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(given.load(), 12);  // four free: woken, and the last four fit
+    producer.join();              // and closed
+    int rest = 0;
+    while (full.front() != nullptr) {
+        full.pop();
+        ++rest;
+    }
+    EXPECT_EQ(rest, 8);
+    EXPECT_EQ(full.consumer_sleeps(), 0u);  // something was always there, or the end
+}
+
 // flush() wakes a consumer asleep for several slots for the one committed (a producer that
 // waits on the consumer's answer to it).
 TEST(SpscRing, FlushWakesASleepingConsumerForWhatIsThere) {

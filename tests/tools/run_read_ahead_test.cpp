@@ -140,6 +140,25 @@ TEST(ReadAhead, TheReaderWaitsOnTheBoundedRing) {
     EXPECT_EQ(stream.next(ev), Next::kEvent);  // between two events: it reads on
 }
 
+// An executor that waits has the reader 8,192 events ahead (64 batches of 128, docs/apcictl.md):
+// a reader woken for room still has milliseconds of the executor's work in the ring to get a
+// CPU (docs/performance.md, "A deeper read-ahead").
+TEST(ReadAhead, TheReaderFillsItsWholeRingWhileTheExecutorWaits) {
+    const std::string text = many_blocks(100000);
+    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    {
+        ReadAhead ahead(stream);
+        nc::Event ev;
+        ASSERT_EQ(ahead.next(ev), Next::kEvent);
+        // The reader sleeps when every batch is taken.
+        for (int i = 0; i < 2000 && ahead.reader_waits() == 0; ++i)
+            std::this_thread::sleep_for(5ms);
+        ASSERT_GT(ahead.reader_waits(), 0u) << "the reader never found the ring full";
+        ahead.stop();
+    }
+    EXPECT_GE(stream.events_read(), 8192u);
+}
+
 // A board whose variable is what the caller has taken so far, read on the caller's thread.
 struct Counting final : nc::VariableSource {
     std::uint64_t taken = 0;

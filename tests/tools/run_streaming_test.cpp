@@ -128,10 +128,9 @@ TEST(RunStreaming, TenTimesTheBlocksNeedNoMoreHeapWithTheFrontEndReadingAhead) {
     // at the peak (16 bytes apart from run to run, seen): 1 KiB of room for that; anything kept
     // per block would be megabytes here.
     EXPECT_LE(large.peak_bytes, small.peak_bytes + 1024);
-    // The ring's batches and the reader's thread (its own bits, 256 KiB at most), nothing per
-    // block.
-    EXPECT_LE(small.peak_bytes,
-              direct.peak_bytes + ReadAhead::ring_bytes() + (std::size_t{256} << 10));
+    // The ring's batches and the reader's thread (its own few small blocks, 2 KiB at most),
+    // nothing per block.
+    EXPECT_LE(small.peak_bytes, direct.peak_bytes + ReadAhead::ring_bytes() + 2048);
 }
 
 }  // namespace

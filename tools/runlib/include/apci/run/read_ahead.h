@@ -79,8 +79,9 @@ class ReadAhead {
 
     // Stops the reader and joins it (see above). Idempotent.
     void stop() noexcept;
-    // Times a side slept on the ring (for tests and measurements).
+    // Times a side slept on the ring, and the reader alone (for tests and measurements).
     std::uint64_t waits() const noexcept { return ring_.sleeps(); }
+    std::uint64_t reader_waits() const noexcept { return ring_.producer_sleeps(); }
 
   private:
     struct Item {
@@ -121,9 +122,10 @@ class ReadAhead {
     // 64 batches (8,192 events, 4 to 6 ms of the executor's work): the reader shares the CPUs
     // with the check and the writers, and a reader woken for room may wait a few milliseconds
     // for its turn; with 16 batches the executor ran dry 2 to 23 times a run on the CAM program
-    // (up to 17 ms in all), now 1 to 4 (docs/performance.md, "A deeper read-ahead"). A sleeping
-    // side wakes for 16 batches: the reader still has 6,144 events ahead when it is woken.
-    SpscRing<Batch> ring_{kBatches, 16};
+    // (up to 17 ms in all), now 1 to 4 (docs/performance.md, "A deeper read-ahead"). The reader,
+    // asleep on a full ring, is woken for 16 free batches (6,144 events still ahead of the
+    // executor); the executor, asleep on an empty one (at the start), for the first batch.
+    SpscRing<Batch> ring_{kBatches, 16, 1};
     nc::EventStream& stream_;
     const CpuPlacement* cpus_;
     HelperCpu where_;
