@@ -235,6 +235,46 @@ TEST(SpscRing, EachSideWakesForItsOwnCount) {
     }
     EXPECT_EQ(rest, 8);
     EXPECT_EQ(full.consumer_sleeps(), 0u);  // something was always there, or the end
+    EXPECT_EQ(ring.sleeps(), ring.producer_sleeps() + ring.consumer_sleeps());
+    EXPECT_EQ(full.sleeps(), full.producer_sleeps() + full.consumer_sleeps());
+}
+
+// The other way round: a producer woken for one free slot while the consumer's count is four,
+// and a count above half the ring taken as half (a sleeper would otherwise wait for more than
+// the other side may ever leave it).
+TEST(SpscRing, AProducerWakesForItsCountEvenBelowTheConsumersAndNoCountExceedsHalf) {
+    // The producer asleep on a full ring; `pops` slots freed one by one; how many it had given
+    // `wait_ms` later at most (9 once woken, 8 while still asleep).
+    const auto given_after = [](SpscRing<int>& ring, int pops, int wait_ms) {
+        std::atomic<int> given{0};
+        std::thread producer([&] {
+            for (int i = 0; i < 9; ++i) {
+                int* slot = ring.acquire();
+                if (slot == nullptr) return;
+                *slot = i;
+                ring.commit();
+                given.fetch_add(1);
+            }
+        });
+        for (int i = 0; i < 2000 && ring.producer_sleeps() == 0; ++i)
+            std::this_thread::sleep_for(1ms);
+        EXPECT_EQ(ring.producer_sleeps(), 1u);
+        for (int i = 0; i < pops; ++i) {
+            EXPECT_NE(ring.front(), nullptr);
+            ring.pop();
+        }
+        for (int i = 0; i < wait_ms && given.load() < 9; ++i) std::this_thread::sleep_for(1ms);
+        const int seen = given.load();
+        ring.cancel();  // a producer still asleep takes no more
+        producer.join();
+        return seen;
+    };
+    SpscRing<int> one(8, 1, 4);
+    EXPECT_EQ(given_after(one, 1, 2000), 9);  // one free: woken
+    SpscRing<int> half(8, 100, 100);
+    EXPECT_EQ(given_after(half, 3, 50), 8);  // three free: asleep
+    SpscRing<int> half_again(8, 100, 100);
+    EXPECT_EQ(given_after(half_again, 4, 2000), 9);  // four free (half of 8): woken
 }
 
 // flush() wakes a consumer asleep for several slots for the one committed (a producer that
