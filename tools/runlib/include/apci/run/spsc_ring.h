@@ -128,11 +128,10 @@ class SpscRing {
     }
 
     // Spins while ready(1) is false, then sleeps until ready(wake) and counts the sleep in
-    // `slept`. `ready` reads the
-    // other side's index with seq_cst loads: with the seq_cst store of `sleeping` here and the
-    // seq_cst index stores and `sleeping` loads of commit(), pop(), close() and cancel(), the
-    // other side either sees the sleeper (and wakes it, under the mutex, once enough is
-    // ready) or moved before this side's last look: no wakeup is lost.
+    // `slept`. `ready` reads the other side's index with seq_cst loads: with the seq_cst store
+    // of `sleeping` here and the seq_cst index stores and `sleeping` loads of commit(), pop(),
+    // close() and cancel(), the other side either sees the sleeper (and wakes it, under the
+    // mutex, once enough is ready) or moved before this side's last look: no wakeup is lost.
     template <typename Ready>
     void wait_for(const Ready& ready, std::atomic<bool>& sleeping, std::size_t wake,
                   std::atomic<std::uint64_t>& slept) {
@@ -149,7 +148,7 @@ class SpscRing {
         wakeup_.notify_all();
     }
 
-    // The producer's line: what commit() writes, and what both only read.
+    // The producer's line: what commit() writes, what both only read, and its sleeps.
     alignas(64) std::atomic<std::uint64_t> head_{0};  // slots committed
     std::atomic<bool> producer_asleep_{false};
     std::atomic<std::uint64_t> flushed_{0};  // flush(): the consumer wakes for slots below
