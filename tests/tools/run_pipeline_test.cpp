@@ -147,18 +147,37 @@ TEST(SpscRing, CancelReleasesAWaitingProducer) {
     EXPECT_EQ(ring.acquire(), nullptr);
 }
 
+// A consumer thread that takes every slot of `ring` until its end, counting each in `taken`.
+std::thread counting_consumer(SpscRing<int>& ring, std::atomic<int>& taken) {
+    return std::thread([&ring, &taken] {
+        while (ring.front() != nullptr) {
+            ring.pop();
+            taken.fetch_add(1);
+        }
+    });
+}
+
+// A producer thread that commits 0..n-1 to `ring`, counting each in `given`, and closes the
+// ring after the last (it stops where the consumer cancelled).
+std::thread counting_producer(SpscRing<int>& ring, int n, std::atomic<int>& given) {
+    return std::thread([&ring, n, &given] {
+        for (int i = 0; i < n; ++i) {
+            int* slot = ring.acquire();
+            if (slot == nullptr) return;
+            *slot = i;
+            ring.commit();
+            given.fetch_add(1);
+        }
+        ring.close();
+    });
+}
+
 // A sleeping consumer is woken once `wake_after` slots are ready, not for each one; closing
 // wakes it whatever is ready.
 TEST(SpscRing, ASleepingSideWakesForSeveralSlots) {
     SpscRing<int> ring(8, 4);
     std::atomic<int> taken{0};
-    std::thread consumer([&] {
-        while (const int* v = ring.front()) {
-            (void)v;
-            ring.pop();
-            taken.fetch_add(1);
-        }
-    });
+    std::thread consumer = counting_consumer(ring, taken);
     std::this_thread::sleep_for(30ms);  // the consumer is asleep on the empty ring
     for (int i = 0; i < 3; ++i) {
         *ring.acquire() = i;
@@ -185,13 +204,7 @@ TEST(SpscRing, ASleepingSideWakesForSeveralSlots) {
 TEST(SpscRing, EachSideWakesForItsOwnCount) {
     SpscRing<int> ring(8, 4, 1);
     std::atomic<int> taken{0};
-    std::thread consumer([&] {
-        while (const int* v = ring.front()) {
-            (void)v;
-            ring.pop();
-            taken.fetch_add(1);
-        }
-    });
+    std::thread consumer = counting_consumer(ring, taken);
     for (int i = 0; i < 2000 && ring.consumer_sleeps() == 0; ++i) std::this_thread::sleep_for(1ms);
     ASSERT_EQ(ring.consumer_sleeps(), 1u);  // asleep on the empty ring
     *ring.acquire() = 0;
@@ -204,16 +217,7 @@ TEST(SpscRing, EachSideWakesForItsOwnCount) {
 
     SpscRing<int> full(8, 4, 1);
     std::atomic<int> given{0};
-    std::thread producer([&] {
-        for (int i = 0; i < 12; ++i) {
-            int* slot = full.acquire();
-            if (slot == nullptr) return;
-            *slot = i;
-            full.commit();
-            given.fetch_add(1);
-        }
-        full.close();
-    });
+    std::thread producer = counting_producer(full, 12, given);
     for (int i = 0; i < 2000 && full.producer_sleeps() == 0; ++i) std::this_thread::sleep_for(1ms);
     ASSERT_EQ(full.producer_sleeps(), 1u);  // asleep on the full ring
     EXPECT_EQ(given.load(), 8);
@@ -247,15 +251,7 @@ TEST(SpscRing, AProducerWakesForItsCountEvenBelowTheConsumersAndNoCountExceedsHa
     // `wait_ms` later at most (9 once woken, 8 while still asleep).
     const auto given_after = [](SpscRing<int>& ring, int pops, int wait_ms) {
         std::atomic<int> given{0};
-        std::thread producer([&] {
-            for (int i = 0; i < 9; ++i) {
-                int* slot = ring.acquire();
-                if (slot == nullptr) return;
-                *slot = i;
-                ring.commit();
-                given.fetch_add(1);
-            }
-        });
+        std::thread producer = counting_producer(ring, 9, given);
         for (int i = 0; i < 2000 && ring.producer_sleeps() == 0; ++i)
             std::this_thread::sleep_for(1ms);
         EXPECT_EQ(ring.producer_sleeps(), 1u);
@@ -282,13 +278,7 @@ TEST(SpscRing, AProducerWakesForItsCountEvenBelowTheConsumersAndNoCountExceedsHa
 TEST(SpscRing, FlushWakesASleepingConsumerForWhatIsThere) {
     SpscRing<int> ring(8, 4);
     std::atomic<int> taken{0};
-    std::thread consumer([&] {
-        while (const int* v = ring.front()) {
-            (void)v;
-            ring.pop();
-            taken.fetch_add(1);
-        }
-    });
+    std::thread consumer = counting_consumer(ring, taken);
     std::this_thread::sleep_for(30ms);  // the consumer is asleep on the empty ring
     *ring.acquire() = 1;
     ring.commit();
