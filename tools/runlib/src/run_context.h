@@ -90,8 +90,8 @@ std::string concave_arc_radii(const PathSegment& s, const TcUnit::State& tc);
 class RunContext {
   public:
     RunContext(apci::Board& board, RunSink& sink, const nc::ToolTable* tools, const PlcScript* plc,
-              const nc::CorrectionTable* corrections, int bottleneck_blocks = 0,
-              std::string lost_link_hint = std::string(kLostLinkHint));
+              const nc::CorrectionTable* corrections, int bottleneck_blocks,
+              std::string lost_link_hint);
 
     // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
     RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr,
