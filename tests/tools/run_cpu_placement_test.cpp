@@ -81,6 +81,46 @@ std::vector<std::vector<int>> other_threads_cpus() {
     return all;
 }
 
+// The CPUs of the thread of this process named `name` (/proc/self/task/TID/comm); empty where
+// there is none.
+std::vector<int> named_thread_cpus(const std::string& name) {
+    std::vector<int> cpus;
+    DIR* d = ::opendir("/proc/self/task");
+    if (d == nullptr) return cpus;
+    while (const dirent* e = ::readdir(d)) {
+        if (e->d_name[0] == '.') continue;
+        std::FILE* f = std::fopen(("/proc/self/task/" + std::string(e->d_name) + "/comm").c_str(), "r");
+        if (f == nullptr) continue;
+        char comm[32] = {};
+        const bool read = std::fgets(comm, sizeof comm, f) != nullptr;
+        std::fclose(f);
+        if (read && std::string(comm) == name + "\n") {
+            cpus = cpus_of_thread(static_cast<pid_t>(std::atoi(e->d_name)));
+            break;
+        }
+    }
+    ::closedir(d);
+    return cpus;
+}
+
+// The reader's rule (follow_backlog) at its edges: half full or more, beside the executor; an
+// eighth full or less, on the other CPU; in between, where it is.
+TEST(FollowBacklog, HalfFullOrMoreGoesBesideTheExecutorAndAnEighthOrLessToTheOtherCpu) {
+    for (const HelperCpu now : {HelperCpu::kOther, HelperCpu::kEither, HelperCpu::kExecutor}) {
+        EXPECT_EQ(follow_backlog(32, 32, now), HelperCpu::kExecutor);
+        EXPECT_EQ(follow_backlog(16, 32, now), HelperCpu::kExecutor);
+        EXPECT_EQ(follow_backlog(15, 32, now), now);
+        EXPECT_EQ(follow_backlog(5, 32, now), now);
+        EXPECT_EQ(follow_backlog(4, 32, now), HelperCpu::kOther);
+        EXPECT_EQ(follow_backlog(0, 32, now), HelperCpu::kOther);
+        // A capacity that neither divides: 17 of 33 is half, 16 not; 4 of 33 an eighth, 5 not.
+        EXPECT_EQ(follow_backlog(17, 33, now), HelperCpu::kExecutor);
+        EXPECT_EQ(follow_backlog(16, 33, now), now);
+        EXPECT_EQ(follow_backlog(5, 33, now), now);
+        EXPECT_EQ(follow_backlog(4, 33, now), HelperCpu::kOther);
+    }
+}
+
 TEST(CpuPlacement, OnTwoCpusTheExecutorKeepsOneAndTheHelpersTheOther) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
@@ -209,19 +249,22 @@ TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
 }
 
 // The same run seen from /proc while it goes: the executor (the caller's thread) keeps its CPU,
-// the check's thread alone the helpers', and the reader and the writers may run on either.
-TEST(CpuPlacement, WithTheCheckWarningOnlyTheCheckKeepsTheHelpersCpu) {
+// the check's thread alone the helpers', the writers may run on either, and the reader goes
+// where the check's ring says.
+TEST(CpuPlacement, WithTheCheckWarningTheCheckAloneKeepsTheHelpersCpu) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
     struct Census final : RunSink {
         bool taken = false;
         std::vector<int> own;                     // the writers' thread
         std::vector<std::vector<int>> others;     // every other thread's, at that moment
+        std::vector<int> reader;                  // the reader's, among them
         void executed(const PathSegment&) override {
             if (taken) return;
             taken = true;
             own = cpus_of_thread();
             others = other_threads_cpus();
+            reader = named_thread_cpus("apci-reader");
         }
     };
     auto tools = load_run_inputs([] {
@@ -255,26 +298,82 @@ TEST(CpuPlacement, WithTheCheckWarningOnlyTheCheckKeepsTheHelpersCpu) {
         if (cpus == std::vector<int>{placement.helper_cpu()}) ++on_helper;
         if (cpus == two.cpus()) ++on_both;
     }
+    // The reader follows the check's ring (the tests with a ring of a set fill below): where
+    // it is at this moment depends on how far the check has fallen behind, so it is counted
+    // apart.
+    const std::vector<int> reader = sink.reader;
+    ASSERT_FALSE(reader.empty());
+    EXPECT_TRUE(reader == two.cpus() || reader == std::vector<int>{placement.executor_cpu()} ||
+                reader == std::vector<int>{placement.helper_cpu()});
+    if (reader == std::vector<int>{placement.executor_cpu()}) --on_executor;
+    if (reader == std::vector<int>{placement.helper_cpu()}) --on_helper;
     // The caller's (and a sanitizer's own thread, which ThreadSanitizer starts with the first
     // thread the caller starts, on the caller's CPU).
     EXPECT_GE(on_executor, 1);
     EXPECT_EQ(on_helper, 1);  // the check's
-    EXPECT_GE(on_both, 1);    // the reader's (and the writers' own, above)
 }
 
-// The CPUs of every other thread while a reader placed `where` waits: its program (20,000
-// moves) is more than its ring holds, so it fills the ring and waits, alive.
+// A run whose check falls behind (its writers stall, so the check waits for them and its own
+// ring fills) moves the reader beside the executor: ProgramRun gives the reader the check's
+// ring to follow.
+TEST(CpuPlacement, WhereTheCheckFallsBehindTheReaderGoesBesideTheExecutor) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    struct Stall final : RunSink {
+        bool taken = false;
+        std::vector<int> reader;
+        void executed(const PathSegment&) override {
+            if (taken) return;
+            taken = true;
+            // Meanwhile the writers' ring fills, then the check's, and the executor waits.
+            std::this_thread::sleep_for(300ms);
+            reader = named_thread_cpus("apci-reader");
+        }
+    };
+    auto tools = load_run_inputs([] {
+        RunInputFiles f;
+        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.1\n";
+        f.tools_is_text = true;
+        return f;
+    }());
+    ASSERT_TRUE(tools) << tools.error().to_string();
+    // More than the three rings hold (8,192 + 2 x 16,384 events): the reader still reads.
+    std::string program = "N1 G17 G90 F60000 D1\nN2 G41 G1 X0 Y0\n";
+    for (int i = 0; i < 80000; ++i)
+        program += "G1 X" + std::to_string(i % 2 == 0 ? 10 : 0) + " Y" + std::to_string(i) + "\n";
+    program += "G40 G1 X-5\nM30\n";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    apci::Board board("emu:");
+    Stall sink;
+    RunSettings settings;
+    settings.self_approach = SelfApproachMode::kWarn;
+    settings.threads = true;
+    settings.cpus = &placement;
+    auto out = run_program(board, sink, tools.value(),
+                           ProgramSource::in_memory(program, "zigzag.nc"), settings);
+    ASSERT_TRUE(out) << out.error().to_string();
+    ASSERT_TRUE(sink.taken);
+    EXPECT_EQ(sink.reader, std::vector<int>{placement.executor_cpu()});
+}
+
+// The CPUs of every other thread while a reader placed `where` (and following `follows`, where
+// given) waits: its program (20,000 moves) is more than its ring holds, so it fills the ring
+// and waits, alive. The reader's own, by its name, in `reader`.
 std::vector<std::vector<int>> threads_beside_a_reader(const CpuPlacement& placement,
-                                                      HelperCpu where) {
+                                                      HelperCpu where,
+                                                      const RingFill* follows = nullptr,
+                                                      std::vector<int>* reader = nullptr) {
     std::string text = "%many\nN1 G17 G90 F3000\n";
     for (int i = 0; i < 20000; ++i)
         text += "N" + std::to_string(i + 2) + " G1 X" + std::to_string(i % 97) + "\n";
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
-    ReadAhead ahead(stream, &placement, where);
+    ReadAhead ahead(stream, &placement, where, follows);
     nc::Event ev;
     EXPECT_EQ(ahead.next(ev), nc::EventStream::Next::kEvent);
     std::this_thread::sleep_for(100ms);  // the reader fills the ring and waits
     std::vector<std::vector<int>> cpus = other_threads_cpus();
+    if (reader != nullptr) *reader = named_thread_cpus("apci-reader");
     ahead.stop();
     return cpus;
 }
@@ -304,6 +403,46 @@ TEST(CpuPlacement, AReaderThreadPlacedOnEitherCpuRunsOnBoth) {
     }
     EXPECT_EQ(on_helper_cpu, 0);
     EXPECT_GE(on_both, 1);
+}
+
+// A ring of a fill the test sets.
+class SetFill final : public RingFill {
+  public:
+    SetFill(std::size_t backlog, std::size_t capacity) : backlog_(backlog), capacity_(capacity) {}
+    std::size_t backlog() const noexcept override { return backlog_; }
+    std::size_t capacity() const noexcept override { return capacity_; }
+
+  private:
+    std::size_t backlog_, capacity_;
+};
+
+// A reader that follows a ring looks at it every ReadAhead::kFollowEvery batches it opens (it
+// opens all of its ring's while it fills it, here): half full, it goes beside the executor; an
+// eighth full, to the helpers' CPU; in between it stays on the CPU it started on.
+TEST(CpuPlacement, AReaderFollowsTheFillOfTheRingItIsGiven) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    static_assert(ReadAhead::kFollowEvery < ReadAhead::kBatches);
+    const std::vector<int> executor{placement.executor_cpu()}, helper{placement.helper_cpu()};
+    struct Case {
+        std::size_t backlog;
+        HelperCpu start;
+        std::vector<int> expected;
+    };
+    const std::vector<Case> cases = {
+        {16, HelperCpu::kEither, executor}, {16, HelperCpu::kOther, executor},
+        {4, HelperCpu::kEither, helper},    {4, HelperCpu::kExecutor, helper},
+        {10, HelperCpu::kEither, two.cpus()}, {10, HelperCpu::kOther, helper},
+    };
+    for (const Case& c : cases) {
+        const SetFill fill(c.backlog, 32);
+        std::vector<int> reader;
+        threads_beside_a_reader(placement, c.start, &fill, &reader);
+        EXPECT_EQ(reader, c.expected) << "backlog " << c.backlog << " of 32, starting on "
+                                      << static_cast<int>(c.start);
+    }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <pthread.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -17,6 +18,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -1193,6 +1195,167 @@ TEST(OutputWriteBack, TheFirstWriteDropsTheCachedPagesOfTheFileItWillReplace) {
         out.discard();  // the run failed: nothing published
     }
     EXPECT_TRUE(read_whole(target) == std::string(kSize, 'o'));
+    std::remove(target.c_str());
+    ::rmdir(dir.c_str());
+}
+
+// Counts the executed segments it is given, for a thread that waits for them.
+class CountingSink final : public RunSink {
+  public:
+    std::atomic<std::uint64_t> executed_count{0};
+    void executed(const PathSegment& s) override {
+        (void)s;
+        executed_count.fetch_add(1, std::memory_order_release);
+    }
+};
+
+// Waits up to `limit` for `sink` to have `n` executed segments.
+bool reaches(const CountingSink& sink, std::uint64_t n, std::chrono::milliseconds limit) {
+    const auto until = std::chrono::steady_clock::now() + limit;
+    while (sink.executed_count.load(std::memory_order_acquire) < n) {
+        if (std::chrono::steady_clock::now() > until) return false;
+        std::this_thread::sleep_for(1ms);
+    }
+    return true;
+}
+
+// A writer woken for one batch (the self-approach check's pipeline) takes the first batch as
+// soon as it is full, while the producer gives nothing more and neither flushes nor finishes;
+// woken for the default count it waits for more (the writers of a run: fewer wakeups).
+TEST(PipelineWake, AWriterWokenForOneBatchTakesTheFirstBatchAtOnce) {
+    CountingSink one;
+    PipelinedSink pipeline(one, nullptr, HelperCpu::kOther, 1);
+    for (std::size_t i = 0; i < PipelinedSink::kBatchEvents; ++i)
+        pipeline.executed(segment(static_cast<std::int64_t>(i)));
+    EXPECT_TRUE(reaches(one, PipelinedSink::kBatchEvents, 10s));
+    pipeline.finish();
+    EXPECT_EQ(one.executed_count.load(), PipelinedSink::kBatchEvents);
+}
+
+TEST(PipelineWake, AWriterWokenForTheDefaultCountWaitsForMoreThanOneBatch) {
+    static_assert(PipelinedSink::kWriterWakesAfter > 1);
+    CountingSink many;
+    PipelinedSink pipeline(many);
+    for (std::size_t i = 0; i < PipelinedSink::kBatchEvents; ++i)
+        pipeline.executed(segment(static_cast<std::int64_t>(i)));
+    // The writer spins briefly before it sleeps: it may take the batch if it was still
+    // spinning when the batch came; after that it sleeps until kWriterWakesAfter are ready.
+    std::this_thread::sleep_for(20ms);
+    for (std::size_t i = 0; i < PipelinedSink::kBatchEvents; ++i)
+        pipeline.executed(segment(static_cast<std::int64_t>(i)));
+    EXPECT_FALSE(reaches(many, 2 * PipelinedSink::kBatchEvents, 200ms));
+    pipeline.finish();
+    EXPECT_EQ(many.executed_count.load(), 2 * PipelinedSink::kBatchEvents);
+}
+
+// How many of this process's descriptors are open on the file (dev, ino): /proc/self/fd's links,
+// followed (a file renamed over, or removed, is still there through them).
+int descriptors_on(dev_t dev, ino_t ino) {
+    int n = 0;
+    for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) {
+        struct stat st {};
+        if (::stat(entry.path().c_str(), &st) == 0 && st.st_dev == dev && st.st_ino == ino) ++n;
+    }
+    return n;
+}
+
+struct FileId {
+    dev_t dev = 0;
+    ino_t ino = 0;
+};
+FileId id_of(const std::string& path) {
+    struct stat st {};
+    EXPECT_EQ(::stat(path.c_str(), &st), 0) << path;
+    return {st.st_dev, st.st_ino};
+}
+
+// The file an output replaces is held open from the first write (so that the rename frees
+// nothing), not before; after the rename the target is the new file, and once the output is
+// gone (its thread that closed the old file joined) nothing holds the old one.
+TEST(OutputWriteBack, TheReplacedFileIsHeldFromTheFirstWriteAndLetGoAfterThePublish) {
+    char dir_template[] = "/tmp/apci-hold-XXXXXX";
+    ASSERT_NE(::mkdtemp(dir_template), nullptr);
+    const std::string dir = dir_template;
+    const std::string target = dir + "/old.json";
+    write_cached(target, std::size_t{1} << 20, 'o');
+    const FileId old = id_of(target);
+    {
+        OutputFile out;
+        ASSERT_EQ(out.open(target), "");
+        EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);  // opening alone holds nothing
+        TextSink sink(out.file());
+        sink.append("{\"new\":1}\n");
+        ASSERT_TRUE(sink.flush());
+        EXPECT_EQ(descriptors_on(old.dev, old.ino), 1);
+        ASSERT_EQ(out.close(), "");
+        EXPECT_EQ(descriptors_on(old.dev, old.ino), 1);  // held until the rename
+        ASSERT_EQ(out.publish(), "");
+        EXPECT_EQ(read_whole(target), "{\"new\":1}\n");
+        const FileId now = id_of(target);
+        EXPECT_FALSE(now.dev == old.dev && now.ino == old.ino);
+    }
+    EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);
+    std::remove(target.c_str());
+    ::rmdir(dir.c_str());
+}
+
+// An output not published lets the file it would have replaced go at once, unchanged.
+TEST(OutputWriteBack, AnOutputNotPublishedLetsTheFileItWouldReplaceGoAtOnce) {
+    char dir_template[] = "/tmp/apci-hold-XXXXXX";
+    ASSERT_NE(::mkdtemp(dir_template), nullptr);
+    const std::string dir = dir_template;
+    const std::string target = dir + "/old.json";
+    write_cached(target, std::size_t{1} << 20, 'o');
+    const FileId old = id_of(target);
+    OutputFile out;
+    ASSERT_EQ(out.open(target), "");
+    TextSink sink(out.file());
+    sink.append("{\"new\":1}\n");
+    ASSERT_TRUE(sink.flush());
+    EXPECT_EQ(descriptors_on(old.dev, old.ino), 1);
+    out.discard();  // the run failed
+    EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);
+    EXPECT_TRUE(read_whole(target) == std::string(std::size_t{1} << 20, 'o'));
+    std::remove(target.c_str());
+    ::rmdir(dir.c_str());
+}
+
+// As another user (nobody), a target it may write but not read (mode 0200, its own) is not
+// held (it cannot be opened for reading) and is still replaced whole by the rename.
+TEST(OutputWriteBack, ATargetTheUserMayNotReadIsReplacedWithoutBeingHeld) {
+    if (::geteuid() != 0) GTEST_SKIP() << "needs root to become another user";
+    char dir_template[] = "/tmp/apci-hold-XXXXXX";
+    ASSERT_NE(::mkdtemp(dir_template), nullptr);
+    const std::string dir = dir_template;
+    ASSERT_EQ(::chown(dir.c_str(), 65534, 65534), 0);
+    const std::string target = dir + "/old.json";
+    write_cached(target, 4096, 'o');
+    ASSERT_EQ(::chown(target.c_str(), 65534, 65534), 0);
+    ASSERT_EQ(::chmod(target.c_str(), 0200), 0);
+    const FileId old = id_of(target);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        // The child: 1 where becoming nobody failed, 2 where the output failed, 3 where the
+        // old file was held, 0 when it was replaced without.
+        if (::setgid(65534) != 0 || ::setuid(65534) != 0) ::_exit(1);
+        int code = 0;
+        {
+            OutputFile out;
+            if (!out.open(target).empty()) ::_exit(2);
+            TextSink sink(out.file());
+            sink.append("{\"new\":1}\n");
+            if (!sink.flush()) ::_exit(2);
+            if (descriptors_on(old.dev, old.ino) != 0) code = 3;
+            if (!out.close().empty() || !out.publish().empty()) ::_exit(2);
+        }
+        ::_exit(code);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_EQ(read_whole(target), "{\"new\":1}\n");
     std::remove(target.c_str());
     ::rmdir(dir.c_str());
 }

@@ -292,7 +292,8 @@ class RunCommand final : public Command {
         Outputs outputs;
         // On the embedded emulator, where the process may use two CPUs, this thread (executor
         // and board) keeps one and the two helper threads below share the other
-        // (cpu_placement.h); declared first, so the helpers end before it goes.
+        // (cpu_placement.h); declared first, so the helpers end before it goes (it goes as
+        // soon as the run has ended).
         std::optional<apci::run::CpuPlacement> placement;
         if (apci::run::embedded_emulator(session.uri()) && !one_thread_) placement.emplace();
         const apci::run::CpuPlacement* const cpus = placement ? &*placement : nullptr;
@@ -308,6 +309,9 @@ class RunCommand final : public Command {
         if (Outcome o = attach_writers(files, program, outputs); !o.ok()) return o;
 
         apci::run::RunOutcome result = program.run();  // every event written, threads ended
+        // The helpers have ended: this thread gets its CPUs back, and the threads that free
+        // the files the outputs replace (run_files.h) run on any of them.
+        placement.reset();
         if (Outcome o = count_blocks(program, outputs, result); !o.ok()) return o;
         const std::string written_error = write_outputs(files, outputs, result);
         return report(files, result, written_error);

@@ -14,6 +14,12 @@ bool set_cpu(int cpu) noexcept {
 
 }  // namespace
 
+HelperCpu follow_backlog(std::size_t backlog, std::size_t capacity, HelperCpu now) noexcept {
+    if (2 * backlog >= capacity) return HelperCpu::kExecutor;
+    if (8 * backlog <= capacity) return HelperCpu::kOther;
+    return now;
+}
+
 CpuPlacement::CpuPlacement() noexcept {
     if (::sched_getaffinity(0, sizeof original_, &original_) != 0 || CPU_COUNT(&original_) != 2)
         return;
@@ -35,6 +41,8 @@ void CpuPlacement::place_helper(HelperCpu where) const noexcept {
     if (!active()) return;
     if (where == HelperCpu::kOther) {
         set_cpu(helper_cpu_);
+    } else if (where == HelperCpu::kExecutor) {
+        set_cpu(executor_cpu_);
     } else {
         ::sched_setaffinity(0, sizeof original_, &original_);
     }

@@ -87,9 +87,9 @@ void stop_reading(nc::EventStream& events) noexcept {
 }  // namespace
 
 RunOutcome RunContext::run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus,
-                           HelperCpu where) {
+                           HelperCpu where, const RingFill* follows) {
     if (!read_ahead) return run_events(events);
-    ReadAhead ahead(events, cpus, where);  // stopped and joined on every path out
+    ReadAhead ahead(events, cpus, where, follows);  // stopped and joined on every path out
     return run_events(ahead);
 }
 
@@ -463,7 +463,8 @@ Point ProgramExecutor::position() {
 RunOutcome ProgramExecutor::run(nc::EventStream& events) {
     auto context = std::make_unique<exec::RunContext>(board_, sink_, tools_, plc_, corrections_,
                                                       bottleneck_blocks_, lost_link_hint_);
-    return context->run(events, read_ahead_, read_ahead_cpus_, read_ahead_where_);
+    return context->run(events, read_ahead_, read_ahead_cpus_, read_ahead_where_,
+                        read_ahead_follows_);
 }
 
 }  // namespace apci::run

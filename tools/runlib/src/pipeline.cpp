@@ -17,8 +17,9 @@ void PipelinedSink::Batch::clear() noexcept {
     stretches.clear();
 }
 
-PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where)
-    : inner_(inner), cpus_(cpus), where_(where) {}
+PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where,
+                             std::size_t writer_wakes_after)
+    : inner_(inner), cpus_(cpus), where_(where), ring_(kBatches, 8, writer_wakes_after) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();
@@ -27,7 +28,7 @@ PipelinedSink::~PipelinedSink() {
 void PipelinedSink::start() {
     started_ = true;
     inner_measures_ = inner_.measures_executed();  // before the writer reads it
-    writer_ = exec::quiet_thread([this] { write_loop(); });
+    writer_ = exec::quiet_thread("apci-pipeline", [this] { write_loop(); });
 }
 
 PipelinedSink::Batch* PipelinedSink::open_batch() {

@@ -59,7 +59,12 @@ ProgramRun::ProgramRun(apci::Board& board, RunSink& sink, const RunInputs& input
       executor_(board, head_, &inputs.tools, inputs.plc ? &*inputs.plc : nullptr,
                 &inputs.corrections) {
     executor_.set_avoid_bottlenecks(settings.bottleneck_blocks);
-    executor_.set_read_ahead(settings.threads, settings.cpus, helpers_beside_check(settings));
+    // With the check on a thread of its own (warn, threads: chain() made the check's pipeline
+    // and the writers' behind it), the reader follows the check's ring: beside the executor
+    // while the check falls behind, beside the check while it keeps up.
+    const RingFill* check_ring = check_ && pipeline_ && output_ ? &*pipeline_ : nullptr;
+    executor_.set_read_ahead(settings.threads, settings.cpus, helpers_beside_check(settings),
+                             check_ring);
     executor_.set_lost_link_hint(settings.lost_link_hint);
     options_ = executor_.interpreter_options();
     bottleneck_blocks_ = settings.bottleneck_blocks;
@@ -94,11 +99,14 @@ RunSink& ProgramRun::chain(RunSink& sink, const RunSettings& settings) {
             // pipeline; the writers behind it on another, fed through a second, which runs
             // wherever there is time (beside the executor, or beside the check where the
             // executor is the longer): docs/performance.md, "Three helper threads". The
-            // writers' pipeline measures the segments, on the lighter thread.
+            // writers' pipeline measures the segments, on the lighter thread. The check, asleep
+            // on its empty ring (at the start), is woken for the first batch: on a program of
+            // many contours it is the longer chain, and every batch it waits for there is
+            // waited for again at the end (docs/performance.md, "The run's ends").
             return pipeline_.emplace(
                 check_.emplace(output_.emplace(sink, settings.cpus, helpers_beside_check(settings)),
                                mode),
-                settings.cpus);
+                settings.cpus, HelperCpu::kOther, 1);
         case SelfApproachMode::kError:  // on the executor's thread, where it stops the run
             break;
     }

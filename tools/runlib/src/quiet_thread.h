@@ -25,14 +25,18 @@ inline sigset_t process_signals() noexcept {
 }
 
 // A thread running `f` with the process's signals blocked (it inherits the mask in force when
-// it is made); the caller's mask is as it was.
+// it is made); the caller's mask is as it was. The thread is named `name` (a literal of at most
+// 15 characters: what top -H, gdb and /proc/PID/task/TID/comm show).
 template <typename F>
-std::thread quiet_thread(F&& f) {
+std::thread quiet_thread(const char* name, F&& f) {
     const sigset_t block = process_signals();
     sigset_t saved;
     ::pthread_sigmask(SIG_BLOCK, &block, &saved);
     try {
-        std::thread t(std::forward<F>(f));
+        std::thread t([name, body = std::forward<F>(f)]() mutable {
+            ::pthread_setname_np(::pthread_self(), name);
+            body();
+        });
         ::pthread_sigmask(SIG_SETMASK, &saved, nullptr);
         return t;
     } catch (...) {

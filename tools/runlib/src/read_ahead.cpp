@@ -9,8 +9,9 @@ namespace apci::run {
 
 using Next = nc::EventStream::Next;
 
-ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where)
-    : stream_(stream), cpus_(cpus), where_(where) {}
+ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where,
+                     const RingFill* follows)
+    : stream_(stream), cpus_(cpus), where_(where), follows_(follows) {}
 
 ReadAhead::~ReadAhead() {
     stop();
@@ -24,13 +25,20 @@ void ReadAhead::set_variable_source(nc::VariableSource* source) noexcept {
 
 void ReadAhead::start() {
     started_ = true;
-    reader_ = exec::quiet_thread([this] { read_loop(); });
+    reader_ = exec::quiet_thread("apci-reader", [this] { read_loop(); });
 }
 
 // ---- the reader thread
 
 ReadAhead::Batch* ReadAhead::open_batch() {
     if (filling_ != nullptr) return filling_;
+    if (follows_ != nullptr && ++opened_ % kFollowEvery == 0) {
+        const HelperCpu want = follow_backlog(follows_->backlog(), follows_->capacity(), placed_);
+        if (want != placed_) {
+            placed_ = want;
+            if (cpus_ != nullptr) cpus_->place_helper(want);
+        }
+    }
     filling_ = ring_.acquire();  // nullptr: stopped
     if (filling_ != nullptr) {
         filling_->size = 0;
@@ -46,6 +54,7 @@ void ReadAhead::commit() {
 }
 
 void ReadAhead::read_loop() noexcept {
+    placed_ = where_;
     if (cpus_ != nullptr) cpus_->place_helper(where_);
     try {
         nc::Event ev;

@@ -93,9 +93,10 @@ class RunContext {
               const nc::CorrectionTable* corrections, int bottleneck_blocks,
               std::string lost_link_hint);
 
-    // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h).
-    RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus = nullptr,
-                   HelperCpu where = HelperCpu::kOther);
+    // With `read_ahead` the stream is read through a ReadAhead (read_ahead.h), its reader
+    // placed by `cpus`, `where` and `follows` (ProgramExecutor::set_read_ahead).
+    RunOutcome run(nc::EventStream& events, bool read_ahead, const CpuPlacement* cpus,
+                   HelperCpu where, const RingFill* follows);
 
     // ---- what the units reach through the context
 

@@ -17,6 +17,9 @@
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+#include <utility>
+
+#include "quiet_thread.h"
 
 namespace apci::run {
 
@@ -250,9 +253,9 @@ std::string OutputFile::attach(int fd, bool owns_fd) {
 
 ssize_t OutputFile::cookie_write(void* cookie, const char* data, std::size_t size) {
     auto* self = static_cast<OutputFile*>(cookie);
-    if (!self->replaced_dropped_) {
-        self->replaced_dropped_ = true;
-        self->drop_replaced_pages();
+    if (!self->replaced_held_) {
+        self->replaced_held_ = true;
+        self->hold_replaced();
     }
     std::size_t done = 0;
     while (done < size) {
@@ -272,16 +275,37 @@ ssize_t OutputFile::cookie_write(void* cookie, const char* data, std::size_t siz
 
 // The file publish() will replace is read no more: its cached pages are dropped now, on the
 // thread that writes (the writer thread of `apcictl run`), rather than freed by the rename at
-// the end, which then has less to do (docs/performance.md). Its contents stay as they are, on
-// the disk; only a regular file is touched, opened for reading without following a link.
-void OutputFile::drop_replaced_pages() const noexcept {
+// the end, which then has less to do (docs/performance.md). It is held open from here on, so
+// that the rename frees nothing at all: its blocks are freed where its last descriptor closes
+// (release_replaced()). Its contents stay as they are, on the disk; only a regular file is
+// touched, opened for reading without following a link.
+void OutputFile::hold_replaced() noexcept {
     if (temp_.empty()) return;
     const int fd =
         ::open(final_.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0) return;  // none yet, or not ours to open
     struct stat st {};
-    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode))
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
         (void)::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
+        replaced_fd_ = fd;
+        return;
+    }
+    ::close(fd);
+}
+
+// The replaced file's descriptor goes: after the rename (published) on a thread of its own,
+// where the kernel frees the file's blocks while the caller goes on (it would have in the
+// rename); else at once (the file was not replaced: closing it frees nothing).
+void OutputFile::release_replaced(bool published) noexcept {
+    if (replaced_fd_ < 0) return;
+    const int fd = std::exchange(replaced_fd_, -1);
+    if (published && !releaser_.joinable()) {
+        try {
+            releaser_ = exec::quiet_thread("apci-release", [fd] { ::close(fd); });
+            return;
+        } catch (...) {  // no thread: closed here, as the rename would have freed it
+        }
+    }
     ::close(fd);
 }
 
@@ -324,10 +348,17 @@ std::string OutputFile::publish() {
     forget_temporary(slot_);
     slot_ = -1;
     temp_.clear();
+    release_replaced(true);
     return {};
 }
 
+OutputFile::~OutputFile() {
+    discard();
+    if (releaser_.joinable()) releaser_.join();
+}
+
 void OutputFile::discard() noexcept {
+    release_replaced(false);
     if (file_ != nullptr) {
         std::fclose(file_);
         file_ = nullptr;

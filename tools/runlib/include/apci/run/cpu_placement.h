@@ -21,13 +21,39 @@
 
 #include <sched.h>
 
+#include <cstddef>
 #include <cstdint>
 
 namespace apci::run {
 
-// Where a helper thread runs: on the CPU the executor leaves to the helpers, or on either
-// (where the scheduler finds time: beside a helper that keeps the other CPU busy).
-enum class HelperCpu : std::uint8_t { kOther, kEither };
+// Where a helper thread runs: on the CPU the executor leaves to the helpers, on either (where
+// the scheduler finds time: beside a helper that keeps the other CPU busy), or on the
+// executor's (beside it, where the helper on the other CPU is the longer chain of work).
+enum class HelperCpu : std::uint8_t { kOther, kEither, kExecutor };
+
+// How full a ring is whose fill a helper's placement follows (the self-approach check's
+// pipeline, pipeline.h): batches committed and not yet taken, of how many. Read from another
+// thread than the ring's two: a value as recent as the reading thread can see.
+class RingFill {
+  public:
+    virtual std::size_t backlog() const noexcept = 0;
+    virtual std::size_t capacity() const noexcept = 0;
+
+  protected:
+    RingFill() = default;
+    RingFill(const RingFill&) = default;
+    RingFill& operator=(const RingFill&) = default;
+    ~RingFill() = default;
+};
+
+// Where the NC front end's reader goes while a run goes, following the ring that feeds the
+// thread on the other CPU (the check): beside the executor once that thread has fallen behind
+// (its ring half full or more: the other CPU is the busier), on the other CPU once it has
+// caught up (an eighth full or less: the executor's is), else where it is (`now`). On a
+// program of many contours the check is the longer chain and the reader goes beside the
+// executor; on one long contour the executor is, and it goes beside the check (docs/
+// performance.md, "The run's ends").
+HelperCpu follow_backlog(std::size_t backlog, std::size_t capacity, HelperCpu now) noexcept;
 
 class CpuPlacement {
   public:
@@ -41,9 +67,9 @@ class CpuPlacement {
 
     // Whether it placed the executor (and places helpers).
     bool active() const noexcept { return helper_cpu_ >= 0; }
-    // On a helper thread: keeps it to the other CPU (kOther), or lets it run on either of the
-    // two (kEither: a thread started by the executor's has only the executor's CPU). Nothing
-    // when not active().
+    // On a helper thread: keeps it to the other CPU (kOther) or to the executor's (kExecutor),
+    // or lets it run on either of the two (kEither: a thread started by the executor's has
+    // only the executor's CPU). Nothing when not active().
     void place_helper(HelperCpu where = HelperCpu::kOther) const noexcept;
     // The CPUs (for tests): the executor's, the helpers'; -1 when not active().
     int executor_cpu() const noexcept { return executor_cpu_; }

@@ -213,12 +213,15 @@ class ProgramExecutor {
     // end on a thread of its own, the same events, errors and variable reads at the same
     // places. The stream is the caller's again when run() returns. With `cpus` (which must
     // outlive run()), the reader runs where that places helpers (cpu_placement.h), on the CPU
-    // `where` says.
+    // `where` says, and with `follows` (which must outlive run() too) where that ring's fill
+    // says (ReadAhead).
     void set_read_ahead(bool on, const CpuPlacement* cpus = nullptr,
-                        HelperCpu where = HelperCpu::kOther) noexcept {
+                        HelperCpu where = HelperCpu::kOther,
+                        const RingFill* follows = nullptr) noexcept {
         read_ahead_ = on;
         read_ahead_cpus_ = cpus;
         read_ahead_where_ = where;
+        read_ahead_follows_ = follows;
     }
 
     // What the run's errors say after a lost link's cause (RunSettings::lost_link_hint).
@@ -234,6 +237,7 @@ class ProgramExecutor {
     bool read_ahead_ = false;
     const CpuPlacement* read_ahead_cpus_ = nullptr;
     HelperCpu read_ahead_where_ = HelperCpu::kOther;
+    const RingFill* read_ahead_follows_ = nullptr;
     std::string lost_link_hint_ = std::string(kLostLinkHint);
 };
 

@@ -56,15 +56,22 @@
 
 namespace apci::run {
 
-class PipelinedSink final : public RunSink {
+class PipelinedSink final : public RunSink, public RingFill {
   public:
     static constexpr std::size_t kBatchEvents = 512;
     static constexpr std::size_t kBatches = 32;
+    // Batches a writer asleep on an empty ring is woken for by default (a writer faster than
+    // the producer sleeps often: one wakeup per 8 batches, not one per batch).
+    static constexpr std::size_t kWriterWakesAfter = 8;
 
     // `inner` must outlive this. The writer thread starts with the first event. With `cpus`
-    // (which must outlive this too), it runs where that places helpers (cpu_placement.h).
+    // (which must outlive this too), it runs where that places helpers (cpu_placement.h). The
+    // writer, asleep on an empty ring, is woken when `writer_wakes_after` batches are ready (at
+    // least 1, at most half the ring), or the stream ends; the producer, asleep on a full ring,
+    // when 8 are free.
     explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr,
-                           HelperCpu where = HelperCpu::kOther);
+                           HelperCpu where = HelperCpu::kOther,
+                           std::size_t writer_wakes_after = kWriterWakesAfter);
     ~PipelinedSink() override;
     PipelinedSink(const PipelinedSink&) = delete;
     PipelinedSink& operator=(const PipelinedSink&) = delete;
@@ -95,6 +102,10 @@ class PipelinedSink final : public RunSink {
     // Batches the producer waited for (the writer was behind) and the writer waited for (the
     // producer was behind), together: for measurements.
     std::uint64_t waits() const noexcept { return ring_.sleeps(); }
+    // Batches handed over and not yet taken by the writer, of kBatches (RingFill: the NC front
+    // end's reader follows the check's ring, read_ahead.h).
+    std::size_t backlog() const noexcept override { return ring_.backlog(); }
+    std::size_t capacity() const noexcept override { return ring_.capacity(); }
 
   private:
     enum class Kind : std::uint8_t {
@@ -153,9 +164,10 @@ class PipelinedSink final : public RunSink {
     // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
     // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
     // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),
-    // 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A sleeping side wakes
-    // for 8 batches, so the executor never waits long for room.
-    SpscRing<Batch> ring_{kBatches, 8};
+    // 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A sleeping producer
+    // wakes for 8 batches, so the executor never waits long for room; a sleeping writer for
+    // the count the constructor was given.
+    SpscRing<Batch> ring_;
     Batch* filling_ = nullptr;
     bool started_ = false;
     bool finished_ = false;

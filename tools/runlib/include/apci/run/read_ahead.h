@@ -52,10 +52,15 @@ class ReadAhead {
         return kBatches * (sizeof(Batch) + kBatchEvents * sizeof(Item));
     }
 
+    // Batches the reader opens between two looks at the ring it follows.
+    static constexpr std::size_t kFollowEvery = 8;
+
     // `stream` must outlive this; the reader thread starts with the first next(). With `cpus`
-    // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h).
+    // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h),
+    // first on the CPU `where` says; with `follows` (which must outlive this too) it moves,
+    // every kFollowEvery batches it opens, where follow_backlog() says for that ring's fill.
     explicit ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus = nullptr,
-                       HelperCpu where = HelperCpu::kOther);
+                       HelperCpu where = HelperCpu::kOther, const RingFill* follows = nullptr);
     ~ReadAhead();
     ReadAhead(const ReadAhead&) = delete;
     ReadAhead& operator=(const ReadAhead&) = delete;
@@ -129,6 +134,9 @@ class ReadAhead {
     nc::EventStream& stream_;
     const CpuPlacement* cpus_;
     HelperCpu where_;
+    const RingFill* follows_;
+    HelperCpu placed_ = HelperCpu::kOther;  // the reader's: where it runs now
+    std::size_t opened_ = 0;                // the reader's: batches it opened
     nc::VariableSource* source_ = nullptr;  // the caller's
     Batch* filling_ = nullptr;              // the reader's
     Batch* reading_ = nullptr;              // the caller's

@@ -50,6 +50,13 @@ class SpscRing {
     SpscRing& operator=(const SpscRing&) = delete;
 
     std::size_t capacity() const noexcept { return slots_.size(); }
+    // Slots committed and not yet popped, as any thread sees them now (a third thread's view
+    // may be a little behind either side's).
+    std::size_t backlog() const noexcept {
+        const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
+        const std::uint64_t head = head_.load(std::memory_order_relaxed);
+        return head > tail ? static_cast<std::size_t>(head - tail) : 0;
+    }
 
     // ---- producer
 
