@@ -1270,8 +1270,8 @@ FileId id_of(const std::string& path) {
 }
 
 // The file an output replaces is held open from the first write (so that the rename frees
-// nothing), not before; after the rename the target is the new file, and once the output is
-// gone (its thread that closed the old file joined) nothing holds the old one.
+// nothing), not before; after the rename the target is the new file, and the thread that
+// closes the old one soon lets it go.
 TEST(OutputWriteBack, TheReplacedFileIsHeldFromTheFirstWriteAndLetGoAfterThePublish) {
     char dir_template[] = "/tmp/apci-hold-XXXXXX";
     ASSERT_NE(::mkdtemp(dir_template), nullptr);
@@ -1294,6 +1294,9 @@ TEST(OutputWriteBack, TheReplacedFileIsHeldFromTheFirstWriteAndLetGoAfterThePubl
         const FileId now = id_of(target);
         EXPECT_FALSE(now.dev == old.dev && now.ino == old.ino);
     }
+    const auto until = std::chrono::steady_clock::now() + 10s;
+    while (descriptors_on(old.dev, old.ino) != 0 && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(1ms);
     EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);
     std::remove(target.c_str());
     ::rmdir(dir.c_str());

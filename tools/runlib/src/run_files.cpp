@@ -295,13 +295,14 @@ void OutputFile::hold_replaced() noexcept {
 
 // The replaced file's descriptor goes: after the rename (published) on a thread of its own,
 // where the kernel frees the file's blocks while the caller goes on (it would have in the
-// rename); else at once (the file was not replaced: closing it frees nothing).
+// rename; the caller tears down and ends meanwhile); else at once (the file was not replaced:
+// closing it frees nothing).
 void OutputFile::release_replaced(bool published) noexcept {
     if (replaced_fd_ < 0) return;
     const int fd = std::exchange(replaced_fd_, -1);
-    if (published && !releaser_.joinable()) {
+    if (published) {
         try {
-            releaser_ = exec::quiet_thread("apci-release", [fd] { ::close(fd); });
+            exec::quiet_thread("apci-release", [fd] { ::close(fd); }).detach();
             return;
         } catch (...) {  // no thread: closed here, as the rename would have freed it
         }
@@ -350,11 +351,6 @@ std::string OutputFile::publish() {
     temp_.clear();
     release_replaced(true);
     return {};
-}
-
-OutputFile::~OutputFile() {
-    discard();
-    if (releaser_.joinable()) releaser_.join();
 }
 
 void OutputFile::discard() noexcept {

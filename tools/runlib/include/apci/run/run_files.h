@@ -11,7 +11,7 @@
 //    be caught: its temporary files stay behind). At the first write, the cached pages of the
 //    target the temporary file will replace are dropped (its contents stay as they are) and
 //    the target is held open: the rename at the end then frees nothing, and the replaced
-//    file's blocks are freed on a thread of the output's own, while the caller goes on;
+//    file's blocks are freed on a thread of their own, while the process goes on (and ends);
 //  - a program read from standard input is held in memory, at most kStdinProgramLimit bytes.
 #pragma once
 
@@ -21,7 +21,6 @@
 #include <cstddef>
 #include <cstdio>
 #include <string>
-#include <thread>
 
 namespace apci::run {
 
@@ -60,8 +59,7 @@ class DeferSignals {
 class OutputFile {
   public:
     OutputFile() = default;
-    // discard(), and waits for the thread that frees the file publish() replaced.
-    ~OutputFile();
+    ~OutputFile() { discard(); }
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
 
@@ -80,7 +78,8 @@ class OutputFile {
     // Renames the (closed) temporary file over the target. Empty on success, else why not.
     // The file it replaced, held open since the first write, is closed on a thread of its own
     // (its blocks freed there: 2 to 4 ms for a file of 13 MB on an ext4 mounted with discard),
-    // which the destructor joins.
+    // left to run while the caller goes on: it does nothing else, and a process that ends
+    // first ends it after the close (the kernel finishes a close it has begun).
     std::string publish();
     // Closes and removes the temporary file, if any; the target is not touched.
     void discard() noexcept;
@@ -111,10 +110,9 @@ class OutputFile {
     off_t writeback_from_ = 0;
     // The first write dropped the cached pages of the file publish() replaces, and opened it:
     // replaced_fd_ (-1: none, or not a regular file), closed by discard() where the output is
-    // not published, else by releaser_ after the rename.
+    // not published, else on a thread of its own after the rename.
     bool replaced_held_ = false;
     int replaced_fd_ = -1;
-    std::thread releaser_;
 };
 
 namespace detail {
