@@ -1227,7 +1227,7 @@ TEST(PipelineWake, AWriterWokenForOneBatchTakesTheFirstBatchAtOnce) {
     PipelinedSink pipeline(one, nullptr, HelperCpu::kOther, 1);
     for (std::size_t i = 0; i < PipelinedSink::kBatchEvents; ++i)
         pipeline.executed(segment(static_cast<std::int64_t>(i)));
-    EXPECT_TRUE(reaches(one, PipelinedSink::kBatchEvents, 10s));
+    EXPECT_TRUE(reaches(one, PipelinedSink::kBatchEvents, std::chrono::seconds(10)));
     pipeline.finish();
     EXPECT_EQ(one.executed_count.load(), PipelinedSink::kBatchEvents);
 }
@@ -1294,7 +1294,7 @@ TEST(OutputWriteBack, TheReplacedFileIsHeldFromTheFirstWriteAndLetGoAfterThePubl
         const FileId now = id_of(target);
         EXPECT_FALSE(now.dev == old.dev && now.ino == old.ino);
     }
-    const auto until = std::chrono::steady_clock::now() + 10s;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
     while (descriptors_on(old.dev, old.ino) != 0 && std::chrono::steady_clock::now() < until)
         std::this_thread::sleep_for(1ms);
     EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);
