@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <sched.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <string>
@@ -415,6 +416,41 @@ class SetFill final : public RingFill {
   private:
     std::size_t backlog_, capacity_;
 };
+
+// A ring that reads `first` for its first `looks` looks and `then` after, counting the looks.
+class ChangingFill final : public RingFill {
+  public:
+    ChangingFill(std::size_t first, int looks, std::size_t then)
+        : first_(first), then_(then), left_(looks) {}
+    std::size_t backlog() const noexcept override {
+        looked.fetch_add(1);
+        return left_.fetch_sub(1) > 0 ? first_ : then_;
+    }
+    std::size_t capacity() const noexcept override { return 32; }
+    mutable std::atomic<int> looked{0};
+
+  private:
+    std::size_t first_, then_;
+    mutable std::atomic<int> left_;
+};
+
+// The reader looks at the ring once every ReadAhead::kFollowEvery batches it opens: filling its
+// ring of kBatches (and waiting to open one more), kBatches / kFollowEvery times. A reader that
+// started on the helpers' CPU, moved beside the executor by a ring half full, goes back once
+// the ring has emptied (it knows where it is now, not only where it started).
+TEST(CpuPlacement, AReaderLooksEveryFewBatchesAndGoesBackWhenTheRingEmpties) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    static_assert(ReadAhead::kBatches % ReadAhead::kFollowEvery == 0);
+    const ChangingFill fill(16, 2, 0);
+    std::vector<int> reader;
+    threads_beside_a_reader(placement, HelperCpu::kOther, &fill, &reader);
+    EXPECT_EQ(fill.looked.load(),
+              static_cast<int>(ReadAhead::kBatches / ReadAhead::kFollowEvery));
+    EXPECT_EQ(reader, std::vector<int>{placement.helper_cpu()});
+}
 
 // A reader that follows a ring looks at it every ReadAhead::kFollowEvery batches it opens (it
 // opens all of its ring's while it fills it, here): half full, it goes beside the executor; an

@@ -1225,7 +1225,11 @@ bool reaches(const CountingSink& sink, std::uint64_t n, std::chrono::millisecond
 TEST(PipelineWake, AWriterWokenForOneBatchTakesTheFirstBatchAtOnce) {
     CountingSink one;
     PipelinedSink pipeline(one, nullptr, HelperCpu::kOther, 1);
-    for (std::size_t i = 0; i < PipelinedSink::kBatchEvents; ++i)
+    // The writer starts with the first event; given time, it finds the ring empty and sleeps
+    // (a writer that came to the ring only after the batch would take it without sleeping).
+    pipeline.executed(segment(0));
+    std::this_thread::sleep_for(50ms);
+    for (std::size_t i = 1; i < PipelinedSink::kBatchEvents; ++i)
         pipeline.executed(segment(static_cast<std::int64_t>(i)));
     EXPECT_TRUE(reaches(one, PipelinedSink::kBatchEvents, std::chrono::seconds(10)));
     pipeline.finish();
@@ -1246,6 +1250,36 @@ TEST(PipelineWake, AWriterWokenForTheDefaultCountWaitsForMoreThanOneBatch) {
     EXPECT_FALSE(reaches(many, 2 * PipelinedSink::kBatchEvents, 200ms));
     pipeline.finish();
     EXPECT_EQ(many.executed_count.load(), 2 * PipelinedSink::kBatchEvents);
+}
+
+// The pipeline's fill, as the NC front end's reader follows it (RingFill): the batches handed
+// over and not yet taken back by the writer (the one it is delivering counts until it is done),
+// of its 32.
+TEST(PipelineFill, TheBacklogIsTheBatchesHandedOverAndNotYetTaken) {
+    class Gate final : public RunSink {
+      public:
+        std::atomic<bool> open{false};
+        std::atomic<bool> entered{false};
+        void executed(const PathSegment& s) override {
+            (void)s;
+            entered.store(true);
+            while (!open.load()) std::this_thread::sleep_for(1ms);
+        }
+    };
+    Gate gate;
+    PipelinedSink pipeline(gate, nullptr, HelperCpu::kOther, 1);
+    EXPECT_EQ(pipeline.capacity(), PipelinedSink::kBatches);
+    EXPECT_EQ(pipeline.backlog(), 0u);
+    for (std::size_t i = 0; i < 3 * PipelinedSink::kBatchEvents; ++i)
+        pipeline.executed(segment(static_cast<std::int64_t>(i)));
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!gate.entered.load() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(1ms);
+    ASSERT_TRUE(gate.entered.load());
+    EXPECT_EQ(pipeline.backlog(), 3u);  // the first being delivered, two waiting
+    gate.open.store(true);
+    pipeline.finish();
+    EXPECT_EQ(pipeline.backlog(), 0u);
 }
 
 // How many of this process's descriptors are open on the file (dev, ino): /proc/self/fd's links,
