@@ -249,6 +249,35 @@ TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
     }
 }
 
+// A tool of radius 0.1 (D1), and a zigzag of `moves` compensated lines 10 long, 1 apart.
+RunInputs thin_tool() {
+    auto tools = load_run_inputs([] {
+        RunInputFiles f;
+        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.1\n";
+        f.tools_is_text = true;
+        return f;
+    }());
+    EXPECT_TRUE(tools) << tools.error().to_string();
+    return tools ? tools.value() : RunInputs{};
+}
+std::string zigzag(int moves) {
+    std::string program = "N1 G17 G90 F60000 D1\nN2 G41 G1 X0 Y0\n";
+    for (int i = 0; i < moves; ++i)
+        program += "G1 X" + std::to_string(i % 2 == 0 ? 10 : 0) + " Y" + std::to_string(i) + "\n";
+    return program + "G40 G1 X-5\nM30\n";
+}
+// `program` run as apcictl runs it (the check warning on its own thread), placed by `placement`.
+void run_warned(const CpuPlacement& placement, RunSink& sink, const std::string& program) {
+    apci::Board board("emu:");
+    RunSettings settings;
+    settings.self_approach = SelfApproachMode::kWarn;
+    settings.threads = true;
+    settings.cpus = &placement;
+    auto out = run_program(board, sink, thin_tool(), ProgramSource::in_memory(program, "zigzag.nc"),
+                           settings);
+    ASSERT_TRUE(out) << out.error().to_string();
+}
+
 // The same run seen from /proc while it goes: the executor (the caller's thread) keeps its CPU,
 // the check's thread alone the helpers', the writers may run on either, and the reader goes
 // where the check's ring says.
@@ -268,29 +297,11 @@ TEST(CpuPlacement, WithTheCheckWarningTheCheckAloneKeepsTheHelpersCpu) {
             reader = named_thread_cpus("apci-reader");
         }
     };
-    auto tools = load_run_inputs([] {
-        RunInputFiles f;
-        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.1\n";
-        f.tools_is_text = true;
-        return f;
-    }());
-    ASSERT_TRUE(tools) << tools.error().to_string();
-    // Long enough that the reader still reads when the first segment is written.
-    std::string program = "N1 G17 G90 F60000 D1\nN2 G41 G1 X0 Y0\n";
-    for (int i = 0; i < 40000; ++i)
-        program += "G1 X" + std::to_string(i % 2 == 0 ? 10 : 0) + " Y" + std::to_string(i) + "\n";
-    program += "G40 G1 X-5\nM30\n";
     const CpuPlacement placement;
     ASSERT_TRUE(placement.active());
-    apci::Board board("emu:");
     Census sink;
-    RunSettings settings;
-    settings.self_approach = SelfApproachMode::kWarn;
-    settings.threads = true;
-    settings.cpus = &placement;
-    auto out = run_program(board, sink, tools.value(),
-                           ProgramSource::in_memory(program, "zigzag.nc"), settings);
-    ASSERT_TRUE(out) << out.error().to_string();
+    // Long enough that the reader still reads when the first segment is written.
+    run_warned(placement, sink, zigzag(40000));
     ASSERT_TRUE(sink.taken);
     EXPECT_EQ(sink.own, two.cpus());
     int on_executor = 0, on_helper = 0, on_both = 0;
@@ -331,29 +342,11 @@ TEST(CpuPlacement, WhereTheCheckFallsBehindTheReaderGoesBesideTheExecutor) {
             reader = named_thread_cpus("apci-reader");
         }
     };
-    auto tools = load_run_inputs([] {
-        RunInputFiles f;
-        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.1\n";
-        f.tools_is_text = true;
-        return f;
-    }());
-    ASSERT_TRUE(tools) << tools.error().to_string();
-    // More than the three rings hold (8,192 + 2 x 16,384 events): the reader still reads.
-    std::string program = "N1 G17 G90 F60000 D1\nN2 G41 G1 X0 Y0\n";
-    for (int i = 0; i < 80000; ++i)
-        program += "G1 X" + std::to_string(i % 2 == 0 ? 10 : 0) + " Y" + std::to_string(i) + "\n";
-    program += "G40 G1 X-5\nM30\n";
     const CpuPlacement placement;
     ASSERT_TRUE(placement.active());
-    apci::Board board("emu:");
     Stall sink;
-    RunSettings settings;
-    settings.self_approach = SelfApproachMode::kWarn;
-    settings.threads = true;
-    settings.cpus = &placement;
-    auto out = run_program(board, sink, tools.value(),
-                           ProgramSource::in_memory(program, "zigzag.nc"), settings);
-    ASSERT_TRUE(out) << out.error().to_string();
+    // More than the three rings hold (8,192 + 2 x 16,384 events): the reader still reads.
+    run_warned(placement, sink, zigzag(80000));
     ASSERT_TRUE(sink.taken);
     EXPECT_EQ(sink.reader, std::vector<int>{placement.executor_cpu()});
 }

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <new>
 #include <stdexcept>
@@ -1303,58 +1304,74 @@ FileId id_of(const std::string& path) {
     return {st.st_dev, st.st_ino};
 }
 
+// A directory of its own holding a target of 1 MiB of 'o' (written, synced, cached), which an
+// output will replace; both removed at the end.
+struct OldTarget {
+    std::string dir, path;
+    FileId id;
+    OldTarget() {
+        char dir_template[] = "/tmp/apci-hold-XXXXXX";
+        if (::mkdtemp(dir_template) == nullptr) {
+            ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
+            return;
+        }
+        dir = dir_template;
+        path = dir + "/old.json";
+        write_cached(path, std::size_t{1} << 20, 'o');
+        id = id_of(path);
+    }
+    ~OldTarget() {
+        std::remove(path.c_str());
+        ::rmdir(dir.c_str());
+    }
+    OldTarget(const OldTarget&) = delete;
+    OldTarget& operator=(const OldTarget&) = delete;
+    int held() const { return descriptors_on(id.dev, id.ino); }
+};
+
+// The new output's text, written as the writers write it (its first write).
+void write_new(OutputFile& out) {
+    TextSink sink(out.file());
+    sink.append("{\"new\":1}\n");
+    ASSERT_TRUE(sink.flush());
+}
+
 // The file an output replaces is held open from the first write (so that the rename frees
 // nothing), not before; after the rename the target is the new file, and the thread that
 // closes the old one soon lets it go.
 TEST(OutputWriteBack, TheReplacedFileIsHeldFromTheFirstWriteAndLetGoAfterThePublish) {
-    char dir_template[] = "/tmp/apci-hold-XXXXXX";
-    ASSERT_NE(::mkdtemp(dir_template), nullptr);
-    const std::string dir = dir_template;
-    const std::string target = dir + "/old.json";
-    write_cached(target, std::size_t{1} << 20, 'o');
-    const FileId old = id_of(target);
+    const OldTarget old;
+    ASSERT_FALSE(old.path.empty());
     {
         OutputFile out;
-        ASSERT_EQ(out.open(target), "");
-        EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);  // opening alone holds nothing
-        TextSink sink(out.file());
-        sink.append("{\"new\":1}\n");
-        ASSERT_TRUE(sink.flush());
-        EXPECT_EQ(descriptors_on(old.dev, old.ino), 1);
+        ASSERT_EQ(out.open(old.path), "");
+        EXPECT_EQ(old.held(), 0);  // opening alone holds nothing
+        write_new(out);
+        EXPECT_EQ(old.held(), 1);
         ASSERT_EQ(out.close(), "");
-        EXPECT_EQ(descriptors_on(old.dev, old.ino), 1);  // held until the rename
+        EXPECT_EQ(old.held(), 1);  // held until the rename
         ASSERT_EQ(out.publish(), "");
-        EXPECT_EQ(read_whole(target), "{\"new\":1}\n");
-        const FileId now = id_of(target);
-        EXPECT_FALSE(now.dev == old.dev && now.ino == old.ino);
+        EXPECT_EQ(read_whole(old.path), "{\"new\":1}\n");
+        const FileId now = id_of(old.path);
+        EXPECT_FALSE(now.dev == old.id.dev && now.ino == old.id.ino);
     }
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (descriptors_on(old.dev, old.ino) != 0 && std::chrono::steady_clock::now() < until)
+    while (old.held() != 0 && std::chrono::steady_clock::now() < until)
         std::this_thread::sleep_for(1ms);
-    EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);
-    std::remove(target.c_str());
-    ::rmdir(dir.c_str());
+    EXPECT_EQ(old.held(), 0);
 }
 
 // An output not published lets the file it would have replaced go at once, unchanged.
 TEST(OutputWriteBack, AnOutputNotPublishedLetsTheFileItWouldReplaceGoAtOnce) {
-    char dir_template[] = "/tmp/apci-hold-XXXXXX";
-    ASSERT_NE(::mkdtemp(dir_template), nullptr);
-    const std::string dir = dir_template;
-    const std::string target = dir + "/old.json";
-    write_cached(target, std::size_t{1} << 20, 'o');
-    const FileId old = id_of(target);
+    const OldTarget old;
+    ASSERT_FALSE(old.path.empty());
     OutputFile out;
-    ASSERT_EQ(out.open(target), "");
-    TextSink sink(out.file());
-    sink.append("{\"new\":1}\n");
-    ASSERT_TRUE(sink.flush());
-    EXPECT_EQ(descriptors_on(old.dev, old.ino), 1);
+    ASSERT_EQ(out.open(old.path), "");
+    write_new(out);
+    EXPECT_EQ(old.held(), 1);
     out.discard();  // the run failed
-    EXPECT_EQ(descriptors_on(old.dev, old.ino), 0);
-    EXPECT_TRUE(read_whole(target) == std::string(std::size_t{1} << 20, 'o'));
-    std::remove(target.c_str());
-    ::rmdir(dir.c_str());
+    EXPECT_EQ(old.held(), 0);
+    EXPECT_TRUE(read_whole(old.path) == std::string(std::size_t{1} << 20, 'o'));
 }
 
 // As another user (nobody), a target it may write but not read (mode 0200, its own) is not
