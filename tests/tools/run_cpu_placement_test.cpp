@@ -17,6 +17,7 @@
 
 #include "apci/nc/program.h"
 #include "apci/run/cpu_placement.h"
+#include "apci/run/executor.h"
 #include "apci/run/pipeline.h"
 #include "apci/run/program_run.h"
 #include "apci/run/read_ahead.h"
@@ -323,6 +324,46 @@ TEST(CpuPlacement, WithTheCheckWarningTheCheckAloneKeepsTheHelpersCpu) {
     // thread the caller starts, on the caller's CPU).
     EXPECT_GE(on_executor, 1);
     EXPECT_EQ(on_helper, 1);  // the check's
+}
+
+// ProgramExecutor::set_read_ahead's placement reaches the reader: a reader placed on either
+// CPU, following no ring, runs on both; placed beside the executor, on the executor's alone.
+TEST(CpuPlacement, TheExecutorsReadAheadPlacesItsReaderWhereItIsAsked) {
+    const Restricted two(2);
+    if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
+    struct Census final : RunSink {
+        bool taken = false;
+        std::vector<int> reader;
+        void executed(const PathSegment&) override {
+            if (taken) return;
+            taken = true;
+            reader = named_thread_cpus("apci-reader");
+        }
+    };
+    const CpuPlacement placement;
+    ASSERT_TRUE(placement.active());
+    const RunInputs tools = thin_tool();
+    const std::string program = zigzag(40000);  // the pass reads it where it is
+    for (const HelperCpu where : {HelperCpu::kEither, HelperCpu::kExecutor}) {
+        apci::Board board("emu:");
+        Census sink;
+        ProgramExecutor executor(board, sink, &tools.tools);
+        executor.set_read_ahead(true, &placement, where);
+        nc::InterpreterOptions options;
+        options.tools = &tools.tools;
+        options.start_position = executor.position();
+        options.cycle_seconds = executor.cycle_seconds();
+        nc::SinglePass pass = nc::SinglePass::from_text(program, "zigzag.nc", options);
+        const RunOutcome out = executor.run(pass.events());
+        std::string errors;
+        for (const RunError& e : out.errors) errors += e.code + ": " + e.message + "\n";
+        ASSERT_EQ(errors, "");
+        ASSERT_TRUE(sink.taken);
+        EXPECT_EQ(sink.reader, where == HelperCpu::kEither
+                                   ? two.cpus()
+                                   : std::vector<int>{placement.executor_cpu()})
+            << static_cast<int>(where);
+    }
 }
 
 // A run whose check falls behind (its writers stall, so the check waits for them and its own
