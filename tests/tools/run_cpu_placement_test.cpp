@@ -212,6 +212,16 @@ TEST(CpuPlacement, AWriterThreadPlacedOnEitherCpuRunsOnBoth) {
     EXPECT_EQ(inner.cpus, two.cpus());
 }
 
+// The run's inputs with one tool (D1) of the radius given (mm, as the tool list writes it).
+RunInputs one_tool(const std::string& radius) {
+    RunInputFiles f;
+    f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius " + radius + "\n";
+    f.tools_is_text = true;
+    auto tools = load_run_inputs(f);
+    EXPECT_TRUE(tools) << tools.error().to_string();
+    return tools ? tools.value() : RunInputs{};
+}
+
 // A run through ProgramRun: with the self-approach check warning, the check has the helpers'
 // CPU to itself and the caller's sink is written on a thread that may run on either; without
 // the check (or with it stopping the run, on the executor's thread) the writers keep the
@@ -219,13 +229,7 @@ TEST(CpuPlacement, AWriterThreadPlacedOnEitherCpuRunsOnBoth) {
 TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
-    auto tools = load_run_inputs([] {
-        RunInputFiles f;
-        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 2\n";
-        f.tools_is_text = true;
-        return f;
-    }());
-    ASSERT_TRUE(tools) << tools.error().to_string();
+    const RunInputs tools = one_tool("2");
     const std::string program =
         "N10 G17 G90 F1000 D1\nN20 G41 G1 X0 Y0\nN30 X60\nN40 Y60\nN50 X0\nN60 Y0\n"
         "N70 G40 G1 X-20 Y0\nN80 M30\n";
@@ -239,8 +243,8 @@ TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
         settings.self_approach = mode;
         settings.threads = true;
         settings.cpus = &placement;
-        auto out = run_program(board, sink, tools.value(),
-                               ProgramSource::in_memory(program, "square.nc"), settings);
+        auto out = run_program(board, sink, tools, ProgramSource::in_memory(program, "square.nc"),
+                               settings);
         ASSERT_TRUE(out) << out.error().to_string();
         EXPECT_TRUE(out.value().errors.empty());
         const std::vector<int> expected = mode == SelfApproachMode::kWarn
@@ -252,14 +256,7 @@ TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
 
 // A tool of radius 0.1 (D1), and a zigzag of `moves` compensated lines 10 long, 1 apart.
 RunInputs thin_tool() {
-    auto tools = load_run_inputs([] {
-        RunInputFiles f;
-        f.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.1\n";
-        f.tools_is_text = true;
-        return f;
-    }());
-    EXPECT_TRUE(tools) << tools.error().to_string();
-    return tools ? tools.value() : RunInputs{};
+    return one_tool("0.1");
 }
 std::string zigzag(int moves) {
     std::string program = "N1 G17 G90 F60000 D1\nN2 G41 G1 X0 Y0\n";
@@ -326,27 +323,35 @@ TEST(CpuPlacement, WithTheCheckWarningTheCheckAloneKeepsTheHelpersCpu) {
     EXPECT_EQ(on_helper, 1);  // the check's
 }
 
+// The reader's CPUs (by its name) at the first executed segment, after holding that segment
+// `stall` long.
+struct ReaderAtFirstSegment final : RunSink {
+    explicit ReaderAtFirstSegment(std::chrono::milliseconds stall = 0ms) : stall_(stall) {}
+    bool taken = false;
+    std::vector<int> reader;
+    void executed(const PathSegment&) override {
+        if (taken) return;
+        taken = true;
+        std::this_thread::sleep_for(stall_);
+        reader = named_thread_cpus("apci-reader");
+    }
+
+  private:
+    std::chrono::milliseconds stall_;
+};
+
 // ProgramExecutor::set_read_ahead's placement reaches the reader: a reader placed on either
 // CPU, following no ring, runs on both; placed beside the executor, on the executor's alone.
 TEST(CpuPlacement, TheExecutorsReadAheadPlacesItsReaderWhereItIsAsked) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
-    struct Census final : RunSink {
-        bool taken = false;
-        std::vector<int> reader;
-        void executed(const PathSegment&) override {
-            if (taken) return;
-            taken = true;
-            reader = named_thread_cpus("apci-reader");
-        }
-    };
     const CpuPlacement placement;
     ASSERT_TRUE(placement.active());
     const RunInputs tools = thin_tool();
     const std::string program = zigzag(40000);  // the pass reads it where it is
     for (const HelperCpu where : {HelperCpu::kEither, HelperCpu::kExecutor}) {
         apci::Board board("emu:");
-        Census sink;
+        ReaderAtFirstSegment sink;
         ProgramExecutor executor(board, sink, &tools.tools);
         executor.set_read_ahead(true, &placement, where);
         nc::InterpreterOptions options;
@@ -372,20 +377,10 @@ TEST(CpuPlacement, TheExecutorsReadAheadPlacesItsReaderWhereItIsAsked) {
 TEST(CpuPlacement, WhereTheCheckFallsBehindTheReaderGoesBesideTheExecutor) {
     const Restricted two(2);
     if (!two.ok()) GTEST_SKIP() << "fewer than two CPUs";
-    struct Stall final : RunSink {
-        bool taken = false;
-        std::vector<int> reader;
-        void executed(const PathSegment&) override {
-            if (taken) return;
-            taken = true;
-            // Meanwhile the writers' ring fills, then the check's, and the executor waits.
-            std::this_thread::sleep_for(300ms);
-            reader = named_thread_cpus("apci-reader");
-        }
-    };
     const CpuPlacement placement;
     ASSERT_TRUE(placement.active());
-    Stall sink;
+    // Meanwhile the writers' ring fills, then the check's, and the executor waits.
+    ReaderAtFirstSegment sink(300ms);
     // More than the three rings hold (8,192 + 2 x 16,384 events): the reader still reads.
     run_warned(placement, sink, zigzag(80000));
     ASSERT_TRUE(sink.taken);

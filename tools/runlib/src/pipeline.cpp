@@ -19,7 +19,7 @@ void PipelinedSink::Batch::clear() noexcept {
 
 PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where,
                              std::size_t writer_wakes_after)
-    : inner_(inner), cpus_(cpus), where_(where), ring_(kBatches, 8, writer_wakes_after) {}
+    : inner_(inner), cpus_(cpus), where_(where), ring_(kBatches, kProducerWakesAfter, writer_wakes_after) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();

@@ -63,12 +63,14 @@ class PipelinedSink final : public RunSink, public RingFill {
     // Batches a writer asleep on an empty ring is woken for by default (a writer faster than
     // the producer sleeps often: one wakeup per 8 batches, not one per batch).
     static constexpr std::size_t kWriterWakesAfter = 8;
+    // Free batches a producer asleep on a full ring is woken for.
+    static constexpr std::size_t kProducerWakesAfter = 8;
 
     // `inner` must outlive this. The writer thread starts with the first event. With `cpus`
     // (which must outlive this too), it runs where that places helpers (cpu_placement.h). The
     // writer, asleep on an empty ring, is woken when `writer_wakes_after` batches are ready (at
     // least 1, at most half the ring), or the stream ends; the producer, asleep on a full ring,
-    // when 8 are free.
+    // when kProducerWakesAfter are free.
     explicit PipelinedSink(RunSink& inner, const CpuPlacement* cpus = nullptr,
                            HelperCpu where = HelperCpu::kOther,
                            std::size_t writer_wakes_after = kWriterWakesAfter);
