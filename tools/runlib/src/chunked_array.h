@@ -9,10 +9,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "ready_pages.h"
+
 namespace apci::run::detail {
 
-// Items kept in order, in chunks of ChunkBytes (2 MiB) each allocated once (untouched until
-// used): keeping one never allocates but at a chunk's start (a std::deque's chunk holds a few),
+// Items kept in order, in chunks of ChunkBytes (2 MiB) each allocated once (made ready a step
+// ahead of the items: ReadyAhead): keeping one never allocates but at a chunk's start (a std::deque's chunk holds a few),
 // nor moves the items before it (as a vector's growth would). T has nothing to destroy.
 template <class T, std::size_t ChunkBytes = (std::size_t{2} << 20)>
 class ChunkedArray {
@@ -25,8 +27,12 @@ class ChunkedArray {
 
     // A new item at the end, value-initialised.
     T& emplace_back() {
-        if (size_ == chunks_.size() * kPerChunk)
+        if (size_ == chunks_.size() * kPerChunk) {
             chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(kPerChunk * sizeof(T)));
+            ready_ = ReadyAhead{};
+        }
+        ready_.before_write(chunks_.back().get(), size_ % kPerChunk * sizeof(T), sizeof(T),
+                            kPerChunk * sizeof(T));
         T* const slot = at(size_);
         ::new (static_cast<void*>(slot)) T{};
         ++size_;
@@ -41,6 +47,7 @@ class ChunkedArray {
         return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk].get()) + i % kPerChunk);
     }
     std::vector<std::unique_ptr<std::byte[]>> chunks_;
+    ReadyAhead ready_;  // the last chunk's pages, made ready ahead of its items (ready_pages.h)
     std::size_t size_ = 0;
 };
 

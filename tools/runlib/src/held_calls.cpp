@@ -2,9 +2,12 @@
 // The hold's calls written compactly (held_calls.h).
 #include "held_calls.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <numeric>
 #include <utility>
 
@@ -71,20 +74,30 @@ std::size_t slot_of(HeldCall::Kind k) {
 HeldCalls::HeldCalls(std::size_t chunk_bytes)
     : chunk_bytes_(std::max(chunk_bytes, kMostRecord)) {}
 
+void HeldCalls::Unmap::operator()(std::byte* p) const noexcept {
+    ::munmap(p, bytes);
+}
+
+HeldCalls::Chunk HeldCalls::new_chunk() const {
+    // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
+    void* p = ::mmap(nullptr, chunk_bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+                     -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    return Chunk(static_cast<std::byte*>(p), Unmap{chunk_bytes_});
+}
+
 std::byte* HeldCalls::room() {
-    if (chunks_.empty()) {
-        chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(chunk_bytes_));
-        used_.push_back(0);
-        current_ = 0;
-    }
-    if (used_[current_] + kMostRecord > chunk_bytes_) {
-        ++current_;
+    if (chunks_.empty() || used_[current_] + kMostRecord > chunk_bytes_) {
+        if (!chunks_.empty()) ++current_;
         if (current_ == chunks_.size()) {
-            chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(chunk_bytes_));
+            chunks_.push_back(new_chunk());
             used_.push_back(0);
+            ready_.emplace_back();
         }
     }
-    return chunks_[current_].get() + used_[current_];
+    std::byte* const chunk = chunks_[current_].get();
+    ready_[current_].before_write(chunk, used_[current_], kMostRecord, chunk_bytes_);
+    return chunk + used_[current_];
 }
 
 void HeldCalls::wrote(std::byte* end) {
@@ -258,6 +271,7 @@ void HeldCalls::swap(HeldCalls& other) noexcept {
     std::swap(chunk_bytes_, other.chunk_bytes_);
     chunks_.swap(other.chunks_);
     used_.swap(other.used_);
+    ready_.swap(other.ready_);
     std::swap(current_, other.current_);
     std::swap(count_, other.count_);
     std::swap(last_, other.last_);

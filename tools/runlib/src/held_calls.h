@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apci/run/path.h"
+#include "ready_pages.h"
 
 namespace apci::run::detail {
 
@@ -87,10 +88,19 @@ class HeldCalls {
 
     std::byte* room();  // where the next record goes (at least kMostRecord bytes)
     void wrote(std::byte* end);
+    // A chunk's own mapping, unmapped with it.
+    struct Unmap {
+        std::size_t bytes = 0;
+        void operator()(std::byte* p) const noexcept;
+    };
+    using Chunk = std::unique_ptr<std::byte[], Unmap>;
+    Chunk new_chunk() const;
 
     std::size_t chunk_bytes_ = kChunkBytes;
-    std::vector<std::unique_ptr<std::byte[]>> chunks_;
-    std::vector<std::size_t> used_;  // bytes written in each chunk in use
+    std::vector<Chunk> chunks_;
+    std::vector<std::size_t> used_;   // bytes written in each chunk in use
+    // Each chunk's pages made ready ahead of the writer (ready_pages.h; kept when cleared).
+    std::vector<ReadyAhead> ready_;
     std::size_t current_ = 0;        // the chunk written to (when count_ > 0)
     std::size_t count_ = 0;
     Last last_;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "quiet_thread.h"
+#include "ready_pages.h"
 
 namespace apci::run {
 
@@ -36,7 +37,17 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
     if (finished_) return nullptr;
     if (!started_) start();
     filling_ = ring_.acquire();  // nullptr: the writer stopped
-    if (filling_ != nullptr) filling_->clear();
+    if (filling_ == nullptr) return nullptr;
+    filling_->clear();
+    if (filling_->order.capacity() == 0) {
+        // Its first time round: the arrays every full batch takes, made ready in one call each
+        // rather than faulted in a page at a time as they fill (ready_pages.h).
+        filling_->order.reserve(kBatchEvents);
+        filling_->segments.reserve(kBatchEvents);
+        detail::make_ready(filling_->order.data(), kBatchEvents * sizeof filling_->order[0]);
+        detail::make_ready(filling_->segments.data(),
+                           kBatchEvents * sizeof filling_->segments[0]);
+    }
     return filling_;
 }
 

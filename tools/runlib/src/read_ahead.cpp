@@ -4,10 +4,19 @@
 #include <utility>
 
 #include "quiet_thread.h"
+#include "ready_pages.h"
 
 namespace apci::run {
 
 using Next = nc::EventStream::Next;
+
+// The items' memory made ready in one call before they are made in it, rather than faulted in
+// a page at a time (ready_pages.h): the ring is made on the caller's thread before the run.
+ReadAhead::Batch::Batch() {
+    items.reserve(kBatchEvents);
+    detail::make_ready(items.data(), kBatchEvents * sizeof(Item));
+    items.resize(kBatchEvents);
+}
 
 ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where,
                      const RingFill* follows)

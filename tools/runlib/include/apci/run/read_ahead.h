@@ -98,7 +98,7 @@ class ReadAhead {
     // What follows a batch's events.
     enum class Tail : std::uint8_t { kMore, kRequest, kEnd, kError };
     struct Batch {
-        Batch() : items(kBatchEvents) {}
+        Batch();
         std::vector<Item> items;  // kBatchEvents, kept from batch to batch
         std::size_t size = 0;
         Tail tail = Tail::kMore;

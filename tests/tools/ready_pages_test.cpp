@@ -1,0 +1,321 @@
+// SPDX-License-Identifier: MIT
+// Memory made ready before it is written (tools/runlib/src/ready_pages.h) and its users: the
+// held calls' chunks, the hold's zones, the output pipeline's batches, the read-ahead's ring.
+// Which pages are present is read with mincore(2); the page faults a thread took with
+// getrusage(RUSAGE_THREAD) (pages a populating madvise brings in are not counted as faults).
+#include <gtest/gtest.h>
+#include <sys/mman.h>
+#include <linux/perf_event.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "apci/nc/program.h"
+#include "apci/run/pipeline.h"
+#include "apci/run/read_ahead.h"
+#include "chunked_array.h"
+#include "held_calls.h"
+#include "ready_pages.h"
+
+namespace {
+
+using apci::run::detail::make_ready;
+using apci::run::detail::ReadyAhead;
+
+std::size_t page_size() {
+    return static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+}
+
+// Anonymous memory nothing has touched yet, unmapped at the end.
+struct Untouched {
+    explicit Untouched(std::size_t pages) : bytes(pages * page_size()) {
+        void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1,
+                         0);
+        base = p == MAP_FAILED ? nullptr : static_cast<std::byte*>(p);
+    }
+    ~Untouched() {
+        if (base != nullptr) ::munmap(base, bytes);
+    }
+    Untouched(const Untouched&) = delete;
+    Untouched& operator=(const Untouched&) = delete;
+    // Which of its pages are present, one character each: '1' present, '.' not.
+    std::string present() const {
+        std::vector<unsigned char> v(bytes / page_size());
+        if (::mincore(base, bytes, v.data()) != 0) return "mincore failed";
+        std::string s;
+        for (unsigned char c : v) s += (c & 1) != 0 ? '1' : '.';
+        return s;
+    }
+    std::size_t bytes;
+    std::byte* base;
+};
+
+// Whether this kernel populates on request (MADV_POPULATE_WRITE, Linux 5.14): where it does not,
+// make_ready() does nothing by design and the pages fault in as they are written.
+bool kernel_populates() {
+    Untouched probe(1);
+    make_ready(probe.base, page_size());
+    return probe.present() == "1";
+}
+
+#define REQUIRE_POPULATE()                                                            \
+    do {                                                                              \
+        if (!kernel_populates()) GTEST_SKIP() << "no MADV_POPULATE_WRITE on this kernel"; \
+    } while (0)
+
+// The page faults the calling thread takes while it lives, as perf counts them: the pages a
+// populating madvise brings in are not among them (getrusage's counts include them).
+class ThreadFaults {
+  public:
+    ThreadFaults() {
+        perf_event_attr attr{};
+        attr.size = sizeof attr;
+        attr.type = PERF_TYPE_SOFTWARE;
+        attr.config = PERF_COUNT_SW_PAGE_FAULTS;
+        attr.exclude_hv = 1;
+        fd_ = static_cast<int>(::syscall(SYS_perf_event_open, &attr, 0, -1, -1, 0));
+    }
+    ~ThreadFaults() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    ThreadFaults(const ThreadFaults&) = delete;
+    ThreadFaults& operator=(const ThreadFaults&) = delete;
+    bool counting() const noexcept { return fd_ >= 0; }
+    long now() const {
+        std::uint64_t n = 0;
+        return ::read(fd_, &n, sizeof n) == static_cast<ssize_t>(sizeof n) ? static_cast<long>(n)
+                                                                           : -1;
+    }
+
+  private:
+    int fd_ = -1;
+};
+
+#define REQUIRE_COUNTING(faults)                                                         \
+    do {                                                                                 \
+        if (!(faults).counting())                                                        \
+            GTEST_SKIP() << "perf_event_open: " << std::strerror(errno)                  \
+                         << " (page faults are counted with perf's software counter)";   \
+    } while (0)
+
+// Page faults are a release build's figure: a sanitizer's shadow memory faults beside every
+// page the program writes.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define SKIP_UNDER_SANITIZER() GTEST_SKIP() << "page faults are counted without sanitizers"
+#else
+#define SKIP_UNDER_SANITIZER() (void)0
+#endif
+
+TEST(MakeReady, MakesTheWholePagesOfTheRangePresentAndNoOther) {
+    REQUIRE_POPULATE();
+    const std::size_t page = page_size();
+    Untouched m(8);
+    ASSERT_NE(m.base, nullptr);
+    ASSERT_EQ(m.present(), "........");
+    // From 100 bytes into page 0 to 100 bytes into page 5: pages 1 to 4 are whole in it.
+    make_ready(m.base + 100, 5 * page);
+    EXPECT_EQ(m.present(), ".1111...");
+}
+
+TEST(MakeReady, ARangeOnPageBoundariesTakesItsFirstAndLastPage) {
+    REQUIRE_POPULATE();
+    const std::size_t page = page_size();
+    Untouched m(6);
+    ASSERT_NE(m.base, nullptr);
+    make_ready(m.base + page, 3 * page);
+    EXPECT_EQ(m.present(), ".111..");
+    // One byte less: the last page is no longer whole.
+    Untouched n(6);
+    make_ready(n.base + page, 3 * page - 1);
+    EXPECT_EQ(n.present(), ".11...");
+}
+
+TEST(MakeReady, ARangeWithinOnePageOrEmptyMakesNothingReady) {
+    REQUIRE_POPULATE();
+    const std::size_t page = page_size();
+    Untouched m(3);
+    ASSERT_NE(m.base, nullptr);
+    make_ready(m.base + 1, page);  // ends one byte into page 1: no page whole
+    make_ready(m.base + page, 0);
+    make_ready(nullptr, page);
+    EXPECT_EQ(m.present(), "...");
+}
+
+TEST(MakeReady, WhatIsWrittenStaysAsItIs) {
+    const std::size_t page = page_size();
+    Untouched m(4);
+    ASSERT_NE(m.base, nullptr);
+    for (std::size_t i = 0; i < m.bytes; i += 97) m.base[i] = std::byte(i % 251);
+    make_ready(m.base, m.bytes);
+    for (std::size_t i = 0; i < m.bytes; i += 97) ASSERT_EQ(m.base[i], std::byte(i % 251)) << i;
+    (void)page;
+}
+
+TEST(ReadyAhead, MakesReadyAStepAheadOfTheWriterAndNoMore) {
+    REQUIRE_POPULATE();
+    const std::size_t page = page_size();
+    const std::size_t step_pages = ReadyAhead::kStep / page;
+    Untouched m(3 * step_pages);
+    ASSERT_NE(m.base, nullptr);
+    ReadyAhead ahead;
+    // The first write: its bytes and a step beyond them (the page partly covered stays).
+    ahead.before_write(m.base, 0, 100, m.bytes);
+    const std::string first = std::string(step_pages, '1') + std::string(2 * step_pages, '.');
+    EXPECT_EQ(m.present(), first);
+    // Writes within what is ready make nothing more ready.
+    ahead.before_write(m.base, ReadyAhead::kStep - 200, 100, m.bytes);
+    EXPECT_EQ(m.present(), first);
+    // A write that ends where the ready bytes end asks for nothing more.
+    ahead.before_write(m.base, ReadyAhead::kStep, 100, m.bytes);
+    EXPECT_EQ(m.present(), first);
+    // One byte past them: the next step, from the page where the last one ended (the page it
+    // only partly covered is made ready now).
+    ahead.before_write(m.base, ReadyAhead::kStep, 101, m.bytes);
+    EXPECT_EQ(m.present(), std::string(2 * step_pages, '1') + std::string(step_pages, '.'));
+}
+
+TEST(ReadyAhead, StopsAtTheBlocksEnd) {
+    REQUIRE_POPULATE();
+    const std::size_t page = page_size();
+    Untouched m(8);
+    ASSERT_NE(m.base, nullptr);
+    ReadyAhead ahead;
+    // A block of 3 pages in a mapping of 8: nothing beyond its end is made ready.
+    ahead.before_write(m.base, 0, 10, 3 * page);
+    EXPECT_EQ(m.present(), "111.....");
+    ahead.before_write(m.base, 3 * page - 10, 10, 3 * page);
+    EXPECT_EQ(m.present(), "111.....");
+}
+
+// A segment whose numbers the held calls cannot leave out (random ends and centre).
+apci::run::PathSegment random_arc(std::mt19937_64& rng, std::int64_t n) {
+    std::uniform_real_distribution<double> d(-100.0, 100.0);
+    apci::run::PathSegment s;
+    s.block = apci::run::BlockRef{n * 7, static_cast<std::uint64_t>(n * 3)};
+    s.kind = apci::run::SegmentKind::kArc;
+    s.role = apci::run::Role::kContour;
+    s.start = apci::run::Point(d(rng), d(rng), d(rng));
+    s.end = apci::run::Point(d(rng), d(rng), d(rng));
+    s.center = apci::run::Point(d(rng), d(rng), d(rng));
+    s.sweep = d(rng);
+    return s;
+}
+
+TEST(HeldCallsReady, WritingAChunkTakesFewPageFaults) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    using apci::run::detail::HeldCall;
+    apci::run::detail::HeldCalls calls;
+    std::mt19937_64 rng(7);
+    std::vector<apci::run::PathSegment> segments;
+    for (int i = 0; i < 16'000; ++i) segments.push_back(random_arc(rng, i));
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const long before = counter.now();
+    for (const auto& s : segments) calls.segment(HeldCall::Kind::kExecuted, s);
+    const long faults = counter.now() - before;
+    const auto pages = static_cast<long>(calls.bytes() / page_size());
+    ASSERT_GT(pages, 256);  // more than a step, within one chunk
+    ASSERT_LT(calls.bytes(), apci::run::detail::HeldCalls::kChunkBytes);
+    EXPECT_LT(faults, pages / 8) << pages << " pages written";
+    std::size_t n = 0;
+    calls.for_each([&](const HeldCall& c) {
+        ASSERT_LT(n, segments.size());
+        EXPECT_EQ(c.segment.end, segments[n].end);
+        ++n;
+    });
+    EXPECT_EQ(n, segments.size());
+}
+
+TEST(HeldCallsReady, AChunkUsedInPartIsMadeReadyAStepAheadOnly) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    // A short program's hold: its chunk's first step is ready, not the whole chunk. Read from
+    // the process's resident memory: a chunk made ready whole would add 2 MiB.
+    using apci::run::detail::HeldCall;
+    auto resident = [] {
+        rusage u{};
+        ::getrusage(RUSAGE_SELF, &u);
+        return u.ru_maxrss;  // KiB, the peak: grows by what becomes resident
+    };
+    std::mt19937_64 rng(11);
+    const long before = resident();
+    std::vector<apci::run::detail::HeldCalls> holds(8);
+    for (auto& calls : holds)
+        for (int i = 0; i < 10; ++i) calls.segment(HeldCall::Kind::kExecuted, random_arc(rng, i));
+    const long grown = resident() - before;
+    // Eight holds of a step (256 KiB) each: 2 MiB, against 16 MiB were each chunk made whole.
+    EXPECT_LT(grown, 4 * 1024) << grown << " KiB";
+}
+
+TEST(ChunkedArrayReady, KeepingItemsTakesFewPageFaults) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    struct Item {
+        double v[8];
+    };
+    apci::run::detail::ChunkedArray<Item> items;
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const long before = counter.now();
+    constexpr int kItems = 16'000;  // 1 MiB
+    for (int i = 0; i < kItems; ++i) items.emplace_back().v[0] = i;
+    const long faults = counter.now() - before;
+    const auto pages = static_cast<long>(kItems * sizeof(Item) / page_size());
+    EXPECT_LT(faults, pages / 8) << pages << " pages written";
+    for (int i = 0; i < kItems; i += 999) EXPECT_EQ(items[i].v[0], i);
+}
+
+// An inner sink that takes everything and does nothing with it.
+class Nothing final : public apci::run::RunSink {
+  public:
+    void executed(const apci::run::PathSegment&) override {}
+};
+
+TEST(PipelineReady, FillingEveryBatchOnceTakesFewPageFaults) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    using apci::run::PipelinedSink;
+    Nothing inner;
+    PipelinedSink pipe(inner);
+    apci::run::PathSegment s;
+    s.kind = apci::run::SegmentKind::kLine;
+    pipe.executed(s);  // the writer thread started: its start is not the batches'
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const long before = counter.now();
+    const std::size_t events = PipelinedSink::kBatches * PipelinedSink::kBatchEvents;
+    for (std::size_t i = 0; i < events; ++i) {
+        s.end.x() = static_cast<double>(i);
+        pipe.executed(s);
+    }
+    const long faults = counter.now() - before;
+    pipe.finish();
+    const auto pages =
+        static_cast<long>(events * sizeof(apci::run::PathSegment) / page_size());
+    EXPECT_LT(faults, pages / 8) << pages << " pages of segments";
+}
+
+TEST(ReadAheadReady, MakingTheRingTakesFewPageFaults) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    const std::string text = "G1 X1\nM2\n";
+    apci::nc::EventStream stream = apci::nc::EventStream::from_text(text, "ready.nc");
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const long before = counter.now();
+    apci::run::ReadAhead ahead(stream);
+    const long faults = counter.now() - before;
+    const auto pages = static_cast<long>(apci::run::ReadAhead::ring_bytes() / page_size());
+    EXPECT_LT(faults, pages / 8) << pages << " pages in the ring";
+}
+
+}  // namespace
