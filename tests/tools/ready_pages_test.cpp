@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -60,10 +61,15 @@ struct Untouched {
 
 // Whether this kernel populates on request (MADV_POPULATE_WRITE, Linux 5.14): where it does not,
 // make_ready() does nothing by design and the pages fault in as they are written.
+// Asked of the kernel itself, not through make_ready(), which it is to test.
 bool kernel_populates() {
+#ifdef MADV_POPULATE_WRITE
     Untouched probe(1);
-    make_ready(probe.base, page_size());
-    return probe.present() == "1";
+    return probe.base != nullptr &&
+           ::madvise(probe.base, page_size(), MADV_POPULATE_WRITE) == 0 && probe.present() == "1";
+#else
+    return false;
+#endif
 }
 
 #define REQUIRE_POPULATE()                                                            \
@@ -114,6 +120,24 @@ class ThreadFaults {
 #define SKIP_UNDER_SANITIZER() (void)0
 #endif
 
+// First in the file: run as one program (not one test per process, as ctest runs them), the
+// tests after it free memory the C library keeps, present, for the ring to be made in.
+TEST(ReadAheadReady, MakingTheRingTakesFewPageFaults) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    const std::string text = "G1 X1\nM2\n";
+    apci::nc::EventStream stream = apci::nc::EventStream::from_text(text, "ready.nc");
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const long before = counter.now();
+    apci::run::ReadAhead ahead(stream);
+    const long faults = counter.now() - before;
+    const auto pages = static_cast<long>(apci::run::ReadAhead::ring_bytes() / page_size());
+    // Each batch's items (six pages) take a fault or two where their array starts and ends
+    // within a page, which make_ready() leaves; without it every page faults.
+    EXPECT_LT(faults, pages / 4) << pages << " pages in the ring";
+}
+
 TEST(MakeReady, MakesTheWholePagesOfTheRangePresentAndNoOther) {
     REQUIRE_POPULATE();
     const std::size_t page = page_size();
@@ -147,6 +171,31 @@ TEST(MakeReady, ARangeWithinOnePageOrEmptyMakesNothingReady) {
     make_ready(m.base + page, 0);
     make_ready(nullptr, page);
     EXPECT_EQ(m.present(), "...");
+}
+
+TEST(MakeReady, ARangeOfOneWholePageMakesThatPageReady) {
+    REQUIRE_POPULATE();
+    const std::size_t page = page_size();
+    Untouched m(3);
+    ASSERT_NE(m.base, nullptr);
+    make_ready(m.base + page, page);
+    EXPECT_EQ(m.present(), ".1.");
+}
+
+TEST(MakeReady, PagesMadeReadyAreWrittenWithoutAFault) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const std::size_t page = page_size();
+    Untouched m(32);
+    ASSERT_NE(m.base, nullptr);
+    make_ready(m.base, m.bytes);
+    const long before = counter.now();
+    for (std::size_t i = 0; i < m.bytes; i += page) m.base[i] = std::byte{1};
+    // Present for reading only (the zero page, as a read would map it), each write would
+    // fault: made ready means writable.
+    EXPECT_EQ(counter.now() - before, 0);
 }
 
 TEST(MakeReady, WhatIsWrittenStaysAsItIs) {
@@ -235,6 +284,59 @@ TEST(HeldCallsReady, WritingAChunkTakesFewPageFaults) {
     EXPECT_EQ(n, segments.size());
 }
 
+TEST(HeldCallsReady, EveryChunkIsMadeReadyAsItFills) {
+    REQUIRE_POPULATE();
+    SKIP_UNDER_SANITIZER();
+    using apci::run::detail::HeldCall;
+    // Chunks of 512 KiB: 16,000 arcs fill three of them.
+    apci::run::detail::HeldCalls calls(std::size_t{512} << 10);
+    std::mt19937_64 rng(5);
+    std::vector<apci::run::PathSegment> segments;
+    for (int i = 0; i < 16'000; ++i) segments.push_back(random_arc(rng, i));
+    const ThreadFaults counter;
+    REQUIRE_COUNTING(counter);
+    const long before = counter.now();
+    for (const auto& s : segments) calls.segment(HeldCall::Kind::kExecuted, s);
+    const long faults = counter.now() - before;
+    const auto pages = static_cast<long>(calls.bytes() / page_size());
+    ASSERT_GT(calls.bytes(), std::size_t{2} * (std::size_t{512} << 10));
+    EXPECT_LT(faults, pages / 8) << pages << " pages written";
+    // Emptied, the chunks are written again: ready already, no fault and no new call.
+    calls.clear();
+    const long again = counter.now();
+    for (const auto& s : segments) calls.segment(HeldCall::Kind::kExecuted, s);
+    EXPECT_LT(counter.now() - again, pages / 8);
+}
+
+// The process's mapped memory (VmSize), in KiB.
+long mapped_kib() {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (f == nullptr) return -1;
+    char line[256];
+    long kib = -1;
+    while (std::fgets(line, sizeof line, f) != nullptr)
+        if (std::sscanf(line, "VmSize: %ld kB", &kib) == 1) break;
+    std::fclose(f);
+    return kib;
+}
+
+TEST(HeldCallsReady, AChunksMappingGoesWithIt) {
+    using apci::run::detail::HeldCall;
+    std::mt19937_64 rng(3);
+    const apci::run::PathSegment s = random_arc(rng, 1);
+    {  // the C library's and the test's own first allocations, before the count
+        apci::run::detail::HeldCalls calls;
+        calls.segment(HeldCall::Kind::kExecuted, s);
+    }
+    const long before = mapped_kib();
+    ASSERT_GT(before, 0);
+    for (int i = 0; i < 64; ++i) {  // 64 chunks of 2 MiB, one after the other
+        apci::run::detail::HeldCalls calls;
+        calls.segment(HeldCall::Kind::kExecuted, s);
+    }
+    EXPECT_LT(mapped_kib() - before, 16 * 1024) << "KiB still mapped after 64 holds ended";
+}
+
 TEST(HeldCallsReady, AChunkUsedInPartIsMadeReadyAStepAheadOnly) {
     REQUIRE_POPULATE();
     SKIP_UNDER_SANITIZER();
@@ -274,6 +376,32 @@ TEST(ChunkedArrayReady, KeepingItemsTakesFewPageFaults) {
     for (int i = 0; i < kItems; i += 999) EXPECT_EQ(items[i].v[0], i);
 }
 
+TEST(ChunkedArrayReady, EachChunkIsMadeReadyAStepAheadOfItsItems) {
+    REQUIRE_POPULATE();
+    struct Item {
+        double v[8];
+    };
+    using Array = apci::run::detail::ChunkedArray<Item>;
+    const std::size_t page = page_size();
+    Array items;
+    // The first chunk full, one item in the second.
+    for (std::size_t i = 0; i <= Array::kPerChunk; ++i) items.emplace_back().v[0] = 1.0;
+    auto* second = reinterpret_cast<std::byte*>(&items[Array::kPerChunk]);
+    const std::size_t chunk = Array::kPerChunk * sizeof(Item);
+    // From the second chunk's first whole page to its end, one character a page.
+    const auto skip = (page - reinterpret_cast<std::uintptr_t>(second) % page) % page;
+    std::byte* first_page = second + skip;
+    const std::size_t pages = (chunk - skip) / page;
+    std::vector<unsigned char> v(pages);
+    ASSERT_EQ(::mincore(first_page, pages * page, v.data()), 0) << std::strerror(errno);
+    std::string present;
+    for (unsigned char c : v) present += (c & 1) != 0 ? '1' : '.';
+    // Its first step ready (the page the step ends in partly, so one less), nothing after it.
+    const std::size_t step_pages = ReadyAhead::kStep / page;
+    EXPECT_EQ(present.substr(0, step_pages - 1), std::string(step_pages - 1, '1'));
+    EXPECT_EQ(present.substr(step_pages + 1), std::string(pages - step_pages - 1, '.'));
+}
+
 // An inner sink that takes everything and does nothing with it.
 class Nothing final : public apci::run::RunSink {
   public:
@@ -302,20 +430,6 @@ TEST(PipelineReady, FillingEveryBatchOnceTakesFewPageFaults) {
     const auto pages =
         static_cast<long>(events * sizeof(apci::run::PathSegment) / page_size());
     EXPECT_LT(faults, pages / 8) << pages << " pages of segments";
-}
-
-TEST(ReadAheadReady, MakingTheRingTakesFewPageFaults) {
-    REQUIRE_POPULATE();
-    SKIP_UNDER_SANITIZER();
-    const std::string text = "G1 X1\nM2\n";
-    apci::nc::EventStream stream = apci::nc::EventStream::from_text(text, "ready.nc");
-    const ThreadFaults counter;
-    REQUIRE_COUNTING(counter);
-    const long before = counter.now();
-    apci::run::ReadAhead ahead(stream);
-    const long faults = counter.now() - before;
-    const auto pages = static_cast<long>(apci::run::ReadAhead::ring_bytes() / page_size());
-    EXPECT_LT(faults, pages / 8) << pages << " pages in the ring";
 }
 
 }  // namespace

@@ -13,13 +13,13 @@
 
 namespace apci::run::detail {
 
-// Items kept in order, in chunks of ChunkBytes (2 MiB) each allocated once (made ready a step
+// Items kept in order, in chunks of ChunkBytes (2 MiB) each mapped once (made ready a step
 // ahead of the items: ReadyAhead): keeping one never allocates but at a chunk's start (a std::deque's chunk holds a few),
 // nor moves the items before it (as a vector's growth would). T has nothing to destroy.
 template <class T, std::size_t ChunkBytes = (std::size_t{2} << 20)>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);
-    static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+    static_assert(alignof(T) <= alignof(std::max_align_t));  // a mapping is page-aligned
 
   public:
     static constexpr std::size_t kPerChunk = ChunkBytes / sizeof(T);
@@ -28,7 +28,7 @@ class ChunkedArray {
     // A new item at the end, value-initialised.
     T& emplace_back() {
         if (size_ == chunks_.size() * kPerChunk) {
-            chunks_.push_back(std::make_unique_for_overwrite<std::byte[]>(kPerChunk * sizeof(T)));
+            chunks_.push_back(map_block(kPerChunk * sizeof(T)));
             ready_ = ReadyAhead{};
         }
         ready_.before_write(chunks_.back().get(), size_ % kPerChunk * sizeof(T), sizeof(T),
@@ -46,7 +46,7 @@ class ChunkedArray {
     T* at(std::size_t i) const noexcept {
         return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk].get()) + i % kPerChunk);
     }
-    std::vector<std::unique_ptr<std::byte[]>> chunks_;
+    std::vector<MappedBlock> chunks_;  // each mapped on its own (ready_pages.h)
     ReadyAhead ready_;  // the last chunk's pages, made ready ahead of its items (ready_pages.h)
     std::size_t size_ = 0;
 };

@@ -2,12 +2,9 @@
 // The hold's calls written compactly (held_calls.h).
 #include "held_calls.h"
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <cstring>
 #include <limits>
-#include <new>
 #include <numeric>
 #include <utility>
 
@@ -74,23 +71,11 @@ std::size_t slot_of(HeldCall::Kind k) {
 HeldCalls::HeldCalls(std::size_t chunk_bytes)
     : chunk_bytes_(std::max(chunk_bytes, kMostRecord)) {}
 
-void HeldCalls::Unmap::operator()(std::byte* p) const noexcept {
-    ::munmap(p, bytes);
-}
-
-HeldCalls::Chunk HeldCalls::new_chunk() const {
-    // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
-    void* p = ::mmap(nullptr, chunk_bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
-                     -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-    return Chunk(static_cast<std::byte*>(p), Unmap{chunk_bytes_});
-}
-
 std::byte* HeldCalls::room() {
     if (chunks_.empty() || used_[current_] + kMostRecord > chunk_bytes_) {
         if (!chunks_.empty()) ++current_;
         if (current_ == chunks_.size()) {
-            chunks_.push_back(new_chunk());
+            chunks_.push_back(map_block(chunk_bytes_));
             used_.push_back(0);
             ready_.emplace_back();
         }

@@ -88,16 +88,8 @@ class HeldCalls {
 
     std::byte* room();  // where the next record goes (at least kMostRecord bytes)
     void wrote(std::byte* end);
-    // A chunk's own mapping, unmapped with it.
-    struct Unmap {
-        std::size_t bytes = 0;
-        void operator()(std::byte* p) const noexcept;
-    };
-    using Chunk = std::unique_ptr<std::byte[], Unmap>;
-    Chunk new_chunk() const;
-
     std::size_t chunk_bytes_ = kChunkBytes;
-    std::vector<Chunk> chunks_;
+    std::vector<MappedBlock> chunks_;  // each mapped on its own (ready_pages.h)
     std::vector<std::size_t> used_;   // bytes written in each chunk in use
     // Each chunk's pages made ready ahead of the writer (ready_pages.h; kept when cleared).
     std::vector<ReadyAhead> ready_;

@@ -40,11 +40,11 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
     if (filling_ == nullptr) return nullptr;
     filling_->clear();
     if (filling_->order.capacity() == 0) {
-        // Its first time round: the arrays every full batch takes, made ready in one call each
-        // rather than faulted in a page at a time as they fill (ready_pages.h).
+        // Its first time round: the arrays every full batch takes, reserved at once; the
+        // segments' (80 KiB) made ready in one call rather than faulted in a page at a time as
+        // they fill (ready_pages.h; the order's 4 KiB hold no whole page to make ready).
         filling_->order.reserve(kBatchEvents);
         filling_->segments.reserve(kBatchEvents);
-        detail::make_ready(filling_->order.data(), kBatchEvents * sizeof filling_->order[0]);
         detail::make_ready(filling_->segments.data(),
                            kBatchEvents * sizeof filling_->segments[0]);
     }

@@ -4,8 +4,19 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 
 namespace apci::run::detail {
+
+// A block of memory mapped on its own (anonymous, private, page-aligned), unmapped with it: a
+// chunk made ready step by step takes only the pages it is given, none the C library had kept.
+struct Unmap {
+    std::size_t bytes = 0;
+    void operator()(std::byte* p) const noexcept;
+};
+using MappedBlock = std::unique_ptr<std::byte[], Unmap>;
+// `bytes` (at least 1) mapped; throws std::bad_alloc where the kernel maps nothing.
+MappedBlock map_block(std::size_t bytes);
 
 // Makes the whole pages within [p, p + bytes) of the process's private memory (mapped
 // anonymously, or the C library's heap) present and writable in one call
