@@ -38,6 +38,7 @@ std::size_t page_size() {
 // Anonymous memory nothing has touched yet, unmapped at the end.
 struct Untouched {
     explicit Untouched(std::size_t pages) : bytes(pages * page_size()) {
+        // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
         void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1,
                          0);
         base = p == MAP_FAILED ? nullptr : static_cast<std::byte*>(p);
