@@ -259,19 +259,31 @@ apci::run::PathSegment random_arc(std::mt19937_64& rng, std::int64_t n) {
     return s;
 }
 
+std::vector<apci::run::PathSegment> random_arcs(std::uint64_t seed, int n) {
+    std::mt19937_64 rng(seed);
+    std::vector<apci::run::PathSegment> segments;
+    for (int i = 0; i < n; ++i) segments.push_back(random_arc(rng, i));
+    return segments;
+}
+
+// The page faults the calling thread takes holding `segments` (executed) in `calls`.
+long faults_holding(apci::run::detail::HeldCalls& calls,
+                    const std::vector<apci::run::PathSegment>& segments,
+                    const ThreadFaults& counter) {
+    const long before = counter.now();
+    for (const auto& s : segments) calls.segment(apci::run::detail::HeldCall::Kind::kExecuted, s);
+    return counter.now() - before;
+}
+
 TEST(HeldCallsReady, WritingAChunkTakesFewPageFaults) {
     REQUIRE_POPULATE();
     SKIP_UNDER_SANITIZER();
     using apci::run::detail::HeldCall;
     apci::run::detail::HeldCalls calls;
-    std::mt19937_64 rng(7);
-    std::vector<apci::run::PathSegment> segments;
-    for (int i = 0; i < 16'000; ++i) segments.push_back(random_arc(rng, i));
+    const auto segments = random_arcs(7, 16'000);
     const ThreadFaults counter;
     REQUIRE_COUNTING(counter);
-    const long before = counter.now();
-    for (const auto& s : segments) calls.segment(HeldCall::Kind::kExecuted, s);
-    const long faults = counter.now() - before;
+    const long faults = faults_holding(calls, segments, counter);
     const auto pages = static_cast<long>(calls.bytes() / page_size());
     ASSERT_GT(pages, 256);  // more than a step, within one chunk
     ASSERT_LT(calls.bytes(), apci::run::detail::HeldCalls::kChunkBytes);
@@ -288,25 +300,18 @@ TEST(HeldCallsReady, WritingAChunkTakesFewPageFaults) {
 TEST(HeldCallsReady, EveryChunkIsMadeReadyAsItFills) {
     REQUIRE_POPULATE();
     SKIP_UNDER_SANITIZER();
-    using apci::run::detail::HeldCall;
     // Chunks of 512 KiB: 16,000 arcs fill three of them.
     apci::run::detail::HeldCalls calls(std::size_t{512} << 10);
-    std::mt19937_64 rng(5);
-    std::vector<apci::run::PathSegment> segments;
-    for (int i = 0; i < 16'000; ++i) segments.push_back(random_arc(rng, i));
+    const auto segments = random_arcs(5, 16'000);
     const ThreadFaults counter;
     REQUIRE_COUNTING(counter);
-    const long before = counter.now();
-    for (const auto& s : segments) calls.segment(HeldCall::Kind::kExecuted, s);
-    const long faults = counter.now() - before;
+    const long faults = faults_holding(calls, segments, counter);
     const auto pages = static_cast<long>(calls.bytes() / page_size());
     ASSERT_GT(calls.bytes(), std::size_t{2} * (std::size_t{512} << 10));
     EXPECT_LT(faults, pages / 8) << pages << " pages written";
-    // Emptied, the chunks are written again: ready already, no fault and no new call.
+    // Emptied, the chunks are written again: their pages are there already.
     calls.clear();
-    const long again = counter.now();
-    for (const auto& s : segments) calls.segment(HeldCall::Kind::kExecuted, s);
-    EXPECT_LT(counter.now() - again, pages / 8);
+    EXPECT_LT(faults_holding(calls, segments, counter), pages / 8);
 }
 
 // The process's mapped memory (VmSize), in KiB.
