@@ -14,8 +14,9 @@
 namespace apci::run::detail {
 
 // Items kept in order, in chunks of ChunkBytes (2 MiB) each mapped once (made ready a step
-// ahead of the items: ReadyAhead): keeping one never allocates but at a chunk's start (a std::deque's chunk holds a few),
-// nor moves the items before it (as a vector's growth would). T has nothing to destroy.
+// ahead of the items: ReadyAhead): keeping one never allocates but at a chunk's start (a
+// std::deque's chunk holds a few), nor moves the items before it (as a vector's growth would).
+// T has nothing to destroy.
 template <class T, std::size_t ChunkBytes = (std::size_t{2} << 20)>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);
