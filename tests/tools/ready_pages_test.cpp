@@ -3,17 +3,19 @@
 // held calls' chunks, the hold's zones, the output pipeline's batches, the read-ahead's ring.
 // Which pages are present is read with mincore(2); the page faults a thread took with
 // getrusage(RUSAGE_THREAD) (pages a populating madvise brings in are not counted as faults).
+#include "ready_pages.h"
+
 #include <gtest/gtest.h>
-#include <sys/mman.h>
 #include <linux/perf_event.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <string>
@@ -24,7 +26,6 @@
 #include "apci/run/read_ahead.h"
 #include "chunked_array.h"
 #include "held_calls.h"
-#include "ready_pages.h"
 
 namespace {
 
@@ -35,19 +36,13 @@ std::size_t page_size() {
     return static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
 }
 
-// Anonymous memory nothing has touched yet, unmapped at the end.
+// Anonymous memory nothing has touched yet (the run library's own mapping, map_block()),
+// unmapped at the end.
 struct Untouched {
-    explicit Untouched(std::size_t pages) : bytes(pages * page_size()) {
-        // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
-        void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1,
-                         0);
-        base = p == MAP_FAILED ? nullptr : static_cast<std::byte*>(p);
-    }
-    ~Untouched() {
-        if (base != nullptr) ::munmap(base, bytes);
-    }
-    Untouched(const Untouched&) = delete;
-    Untouched& operator=(const Untouched&) = delete;
+    explicit Untouched(std::size_t pages)
+        : bytes(pages * page_size()),
+          block(apci::run::detail::map_block(bytes)),
+          base(block.get()) {}
     // Which of its pages are present, one character each: '1' present, '.' not.
     std::string present() const {
         std::vector<unsigned char> v(bytes / page_size());
@@ -57,6 +52,7 @@ struct Untouched {
         return s;
     }
     std::size_t bytes;
+    apci::run::detail::MappedBlock block;
     std::byte* base;
 };
 
@@ -66,15 +62,15 @@ struct Untouched {
 bool kernel_populates() {
 #ifdef MADV_POPULATE_WRITE
     Untouched probe(1);
-    return probe.base != nullptr &&
-           ::madvise(probe.base, page_size(), MADV_POPULATE_WRITE) == 0 && probe.present() == "1";
+    return probe.base != nullptr && ::madvise(probe.base, page_size(), MADV_POPULATE_WRITE) == 0 &&
+           probe.present() == "1";
 #else
     return false;
 #endif
 }
 
-#define REQUIRE_POPULATE()                                                            \
-    do {                                                                              \
+#define REQUIRE_POPULATE()                                                                \
+    do {                                                                                  \
         if (!kernel_populates()) GTEST_SKIP() << "no MADV_POPULATE_WRITE on this kernel"; \
     } while (0)
 
@@ -106,11 +102,11 @@ class ThreadFaults {
     int fd_ = -1;
 };
 
-#define REQUIRE_COUNTING(faults)                                                         \
-    do {                                                                                 \
-        if (!(faults).counting())                                                        \
-            GTEST_SKIP() << "perf_event_open: " << std::strerror(errno)                  \
-                         << " (page faults are counted with perf's software counter)";   \
+#define REQUIRE_COUNTING(faults)                                                       \
+    do {                                                                               \
+        if (!(faults).counting())                                                      \
+            GTEST_SKIP() << "perf_event_open: " << std::strerror(errno)                \
+                         << " (page faults are counted with perf's software counter)"; \
     } while (0)
 
 // Page faults are a release build's figure: a sanitizer's shadow memory faults beside every
@@ -433,8 +429,7 @@ TEST(PipelineReady, FillingEveryBatchOnceTakesFewPageFaults) {
     }
     const long faults = counter.now() - before;
     pipe.finish();
-    const auto pages =
-        static_cast<long>(events * sizeof(apci::run::PathSegment) / page_size());
+    const auto pages = static_cast<long>(events * sizeof(apci::run::PathSegment) / page_size());
     EXPECT_LT(faults, pages / 8) << pages << " pages of segments";
 }
 

@@ -88,12 +88,13 @@ class HeldCalls {
 
     std::byte* room();  // where the next record goes (at least kMostRecord bytes)
     void wrote(std::byte* end);
+
     std::size_t chunk_bytes_ = kChunkBytes;
     std::vector<MappedBlock> chunks_;  // each mapped on its own (ready_pages.h)
-    std::vector<std::size_t> used_;   // bytes written in each chunk in use
+    std::vector<std::size_t> used_;    // bytes written in each chunk in use
     // Each chunk's pages made ready ahead of the writer (ready_pages.h; kept when cleared).
     std::vector<ReadyAhead> ready_;
-    std::size_t current_ = 0;        // the chunk written to (when count_ > 0)
+    std::size_t current_ = 0;  // the chunk written to (when count_ > 0)
     std::size_t count_ = 0;
     Last last_;
 };

@@ -20,7 +20,10 @@ void PipelinedSink::Batch::clear() noexcept {
 
 PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu where,
                              std::size_t writer_wakes_after)
-    : inner_(inner), cpus_(cpus), where_(where), ring_(kBatches, kProducerWakesAfter, writer_wakes_after) {}
+    : inner_(inner),
+      cpus_(cpus),
+      where_(where),
+      ring_(kBatches, kProducerWakesAfter, writer_wakes_after) {}
 
 PipelinedSink::~PipelinedSink() {
     stop();
@@ -45,8 +48,7 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
         // they fill (ready_pages.h; the order's 4 KiB hold no whole page to make ready).
         filling_->order.reserve(kBatchEvents);
         filling_->segments.reserve(kBatchEvents);
-        detail::make_ready(filling_->segments.data(),
-                           kBatchEvents * sizeof filling_->segments[0]);
+        detail::make_ready(filling_->segments.data(), kBatchEvents * sizeof filling_->segments[0]);
     }
     return filling_;
 }

@@ -34,8 +34,7 @@ class ReadyAhead {
     static constexpr std::size_t kStep = std::size_t{256} << 10;
 
     // Before `size` bytes are written at offset `at` of the block at `base` (`end` bytes long).
-    void before_write(std::byte* base, std::size_t at, std::size_t size,
-                      std::size_t end) noexcept {
+    void before_write(std::byte* base, std::size_t at, std::size_t size, std::size_t end) noexcept {
         if (at + size > ready_) advance(base, at + size, end);
     }
 
