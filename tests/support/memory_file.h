@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <string_view>
 
 namespace apci_test {
 
@@ -21,6 +22,11 @@ class MemoryFile {
     std::string text() {
         std::fflush(file_);
         return std::string(data_, size_);
+    }
+    // The same without a copy: valid until the next write.
+    std::string_view view() {
+        std::fflush(file_);
+        return std::string_view(data_, size_);
     }
 
   private:
