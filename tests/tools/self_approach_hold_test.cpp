@@ -784,30 +784,35 @@ std::vector<Stretch> draw(std::uint64_t seed, int regime) {
     return stretches;
 }
 
-TEST(SelfApproachHold, StretchesFedWithALeadAgreeCallByCall) {
+// One test for each regime of draw(): they run side by side (each is a few seconds, five
+// times that under AddressSanitizer).
+class StretchesFedWithALead : public ::testing::TestWithParam<int> {};
+
+TEST_P(StretchesFedWithALead, AgreeCallByCall) {
+    const int regime = GetParam();
     std::size_t held_most = 0, findings = 0;
-    for (int regime = 0; regime < 4; ++regime) {
-        for (std::uint64_t k = 1; k <= 12; ++k) {
-            SCOPED_TRACE(::testing::Message() << "regime " << regime << " set " << k);
-            const std::vector<Stretch> stretches = draw(100 * regime + k, regime);
-            // No lookahead, a little, or much (every element of several stretches ahead).
-            for (const int lead : {0, 1 + static_cast<int>(k % 7), 40}) {
-                for (const auto& [window, budget] :
-                     {std::pair<std::size_t, std::size_t>{SelfApproachCheck::kWindow,
-                                                          SelfApproachCheck::kEntryBudget},
-                      {256, 4096},
-                      {40, 400},
-                      {24, 96}}) {
-                    SCOPED_TRACE(::testing::Message() << "lead " << lead << " window " << window);
-                    expect_same_feed(stretches, window, budget, lead, held_most, findings);
-                    if (HasFatalFailure()) return;
-                }
+    for (std::uint64_t k = 1; k <= 12; ++k) {
+        SCOPED_TRACE(::testing::Message() << "regime " << regime << " set " << k);
+        const std::vector<Stretch> stretches = draw(100 * regime + k, regime);
+        // No lookahead, a little, or much (every element of several stretches ahead).
+        for (const int lead : {0, 1 + static_cast<int>(k % 7), 40}) {
+            for (const auto& [window, budget] :
+                 {std::pair<std::size_t, std::size_t>{SelfApproachCheck::kWindow,
+                                                      SelfApproachCheck::kEntryBudget},
+                  {256, 4096},
+                  {40, 400},
+                  {24, 96}}) {
+                SCOPED_TRACE(::testing::Message() << "lead " << lead << " window " << window);
+                expect_same_feed(stretches, window, budget, lead, held_most, findings);
+                if (HasFatalFailure()) return;
             }
         }
     }
     EXPECT_GT(held_most, 50u);  // calls were held back
     EXPECT_GT(findings, 50u);   // and findings given out
 }
+
+INSTANTIATE_TEST_SUITE_P(SelfApproachHold, StretchesFedWithALead, ::testing::Range(0, 4));
 
 // More calls held than one chunk of the hold's memory keeps (a huge page: about 18,700 calls),
 // then a stretch laid onto the first strip's wall: every call kept is worked, in order, across
