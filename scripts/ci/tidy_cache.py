@@ -5,7 +5,7 @@ analysis"): a translation unit whose whole analysis input is unchanged since cla
 found it clean is not analysed again.
 
 The key of a translation unit is the SHA-256 of everything its analysis reads: clang-tidy's
-version, the .clang-tidy file, the compile command (the checkout's path written as @ROOT@), and
+version (not the host CPU it reports), the .clang-tidy file, the compile command (the checkout's path written as @ROOT@), and
 the unit preprocessed with that command, comments kept (-E -C: a NOLINT comment is input too),
 line markers kept (a NOLINTNEXTLINE is about the next line), the checkout's path written as
 @ROOT@. Any change to the file, to any header it includes (ours, Eigen's, the standard
@@ -69,6 +69,15 @@ def key_of(entry, root, salt):
     return h.hexdigest()
 
 
+def tool_version(tidy):
+    """clang-tidy's --version without its "Host CPU:" line: the CPU the tool runs on (LLVM's
+    guess, "(unknown)" on some virtual machines), which its analysis does not depend on. With
+    it, every key changed from one machine to the next, and CI analysed every unit again."""
+    out = subprocess.run([tidy, "--version"], capture_output=True).stdout
+    return b"".join(line for line in out.splitlines(keepends=True)
+                    if not line.strip().startswith(b"Host CPU:"))
+
+
 def read_keys(path):
     """{PATH: {KEY, ...}} of a "KEY PATH" file (a file compiled by two targets has two keys)."""
     keys = {}
@@ -86,7 +95,7 @@ def select(db, regex, root, cache_path, todo_path, keys_path):
     with open(db) as f:
         entries = [e for e in json.load(f) if re.search(regex, e["file"])]
     tidy = shutil.which("clang-tidy-14")  # (none: no key matches a clean one; all analysed)
-    version = subprocess.run([tidy, "--version"], capture_output=True).stdout if tidy else b"-"
+    version = tool_version(tidy) if tidy else b"-"
     with open(os.path.join(root, ".clang-tidy"), "rb") as f:
         salt = version + b"\0" + f.read() + b"\0"
     cache = read_keys(cache_path)

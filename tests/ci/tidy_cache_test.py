@@ -135,6 +135,27 @@ class TidyCacheTest(unittest.TestCase):
         none = keys_with(None)
         self.assertEqual([p for p in none if none[p] in (old[p], new[p])], [])
 
+    def test_the_host_cpu_clang_tidy_names_is_no_part_of_the_key(self):
+        tool = os.path.join(self.dir, "bin", "clang-tidy-14")
+        os.makedirs(os.path.dirname(tool))
+
+        def keys_with(cpu):
+            with open(tool, "w") as f:
+                f.write("#!/bin/sh\necho 'Debian LLVM version 14.0.6'\necho '  Optimized build.'\n"
+                        f"echo '  Host CPU: {cpu}'\n")
+            os.chmod(tool, 0o755)
+            with mock.patch.object(tidy_cache.shutil, "which", lambda name: tool):
+                return self.tree.select(os.devnull)[0]
+
+        # The same tool on another machine: the same keys. Its version still counts.
+        unknown = keys_with("(unknown)")
+        self.assertEqual(keys_with("znver4"), unknown)
+        with open(tool, "w") as f:
+            f.write("#!/bin/sh\necho 'Debian LLVM version 14.0.7'\necho '  Host CPU: znver4'\n")
+        with mock.patch.object(tidy_cache.shutil, "which", lambda name: tool):
+            other = self.tree.select(os.devnull)[0]
+        self.assertEqual([p for p in other if other[p] == unknown[p]], [])
+
     def test_a_unit_that_does_not_preprocess_is_analysed_and_never_keyed(self):
         cache = os.path.join(self.dir, "clean.txt")
         with open(cache, "w") as f:
