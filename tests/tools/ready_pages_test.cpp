@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,6 +26,8 @@
 #include "apci/nc/program.h"
 #include "apci/run/pipeline.h"
 #include "apci/run/read_ahead.h"
+#include "apci/run/slab.h"
+#include "apci/run/spsc_ring.h"
 #include "chunked_array.h"
 #include "held_calls.h"
 
@@ -343,8 +347,11 @@ TEST(HeldCallsReady, AChunkUsedInPartIsMadeReadyAStepAheadOnly) {
     REQUIRE_POPULATE();
     SKIP_UNDER_SANITIZER();
     // A short program's hold: its chunk's first step is ready, not the whole chunk. Read from
-    // the process's resident memory: a chunk made ready whole would add 2 MiB.
+    // the process's resident memory: a chunk made ready whole would add 2 MiB. The chunks are
+    // a page short of a huge page: of ordinary pages (a chunk of a huge page's size is
+    // advised to be one, which the kernel then makes ready whole: MapBlock's tests).
     using apci::run::detail::HeldCall;
+    using apci::run::detail::HeldCalls;
     auto resident = [] {
         rusage u{};
         ::getrusage(RUSAGE_SELF, &u);
@@ -352,7 +359,8 @@ TEST(HeldCallsReady, AChunkUsedInPartIsMadeReadyAStepAheadOnly) {
     };
     std::mt19937_64 rng(11);
     const long before = resident();
-    std::vector<apci::run::detail::HeldCalls> holds(8);
+    std::vector<HeldCalls> holds;
+    for (int i = 0; i < 8; ++i) holds.emplace_back(HeldCalls::kChunkBytes - page_size());
     for (auto& calls : holds)
         for (int i = 0; i < 10; ++i) calls.segment(HeldCall::Kind::kExecuted, random_arc(rng, i));
     const long grown = resident() - before;
@@ -383,7 +391,9 @@ TEST(ChunkedArrayReady, EachChunkIsMadeReadyAStepAheadOfItsItems) {
     struct Item {
         double v[8];
     };
-    using Array = apci::run::detail::ChunkedArray<Item>;
+    // Chunks of ordinary pages (64 KiB short of a huge page; see HeldCallsReady above).
+    using Array = apci::run::detail::ChunkedArray<Item, apci::run::detail::kHugePage -
+                                                            (std::size_t{64} << 10)>;
     const std::size_t page = page_size();
     Array items;
     // The first chunk full, one item in the second.
@@ -431,6 +441,233 @@ TEST(PipelineReady, FillingEveryBatchOnceTakesFewPageFaults) {
     pipe.finish();
     const auto pages = static_cast<long>(events * sizeof(apci::run::PathSegment) / page_size());
     EXPECT_LT(faults, pages / 8) << pages << " pages of segments";
+}
+
+// ---- Huge pages: map_block's blocks of a whole number of them, the slab carved from them.
+
+using apci::run::detail::kHugePage;
+using apci::run::detail::map_block;
+using apci::run::detail::Slab;
+using apci::run::detail::SlabAllocator;
+
+// The mapping (/proc/self/smaps) that holds p: its range and its flags as listed after
+// "VmFlags:" ("hg": advised to be backed by huge pages, MADV_HUGEPAGE).
+struct Mapping {
+    std::uintptr_t lo = 0, hi = 0;
+    std::string flags;
+    bool advised_huge() const { return (flags + " ").find(" hg ") != std::string::npos; }
+};
+Mapping mapping_of(const void* p) {
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    std::ifstream smaps("/proc/self/smaps");
+    std::string line;
+    Mapping m;
+    bool in = false;
+    while (std::getline(smaps, line)) {
+        unsigned long lo = 0, hi = 0;
+        if (std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2) {
+            in = lo <= at && at < hi;
+            if (in) m.lo = lo, m.hi = hi;
+        } else if (in && line.rfind("VmFlags:", 0) == 0) {
+            m.flags = line.substr(8);
+            return m;
+        }
+    }
+    return m;
+}
+
+// The process's address space in KiB (VmSize, /proc/self/status).
+long address_space_kib() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmSize:", 0) == 0) return std::stol(line.substr(7));
+    return -1;
+}
+
+// Whether the kernel takes the advice (transparent huge pages built in and not "never").
+bool kernel_has_huge_pages() {
+    std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string modes;
+    return std::getline(f, modes) && modes.find("[never]") == std::string::npos;
+}
+
+#define REQUIRE_HUGE_PAGES()                                                            \
+    do {                                                                                \
+        if (!kernel_has_huge_pages()) GTEST_SKIP() << "no transparent huge pages here"; \
+    } while (0)
+
+TEST(MapBlock, AWholeNumberOfHugePagesIsAlignedToOneAndAdvisedHuge) {
+    REQUIRE_HUGE_PAGES();
+    for (const std::size_t pages : {1u, 2u, 3u}) {
+        SCOPED_TRACE(pages);
+        const std::size_t bytes = pages * kHugePage;
+        const auto block = map_block(bytes);
+        const auto at = reinterpret_cast<std::uintptr_t>(block.get());
+        EXPECT_EQ(at % kHugePage, 0u);
+        const Mapping m = mapping_of(block.get());
+        EXPECT_TRUE(m.advised_huge()) << m.flags;
+        EXPECT_LE(m.lo, at);
+        EXPECT_GE(m.hi, at + bytes);
+        // Written through to its last byte.
+        block[bytes - 1] = std::byte{7};
+        EXPECT_EQ(block[bytes - 1], std::byte{7});
+    }
+}
+
+TEST(MapBlock, OtherSizesAreOrdinaryPages) {
+    REQUIRE_HUGE_PAGES();
+    for (const std::size_t bytes :
+         {kHugePage - page_size(), kHugePage + page_size(), page_size()}) {
+        SCOPED_TRACE(bytes);
+        const auto block = map_block(bytes);
+        EXPECT_FALSE(mapping_of(block.get()).advised_huge()) << mapping_of(block.get()).flags;
+    }
+}
+
+// The huge page's more that aligns the block is given back: the block takes its own size of
+// the address space, and all of it goes with it.
+TEST(MapBlock, AHugeBlockTakesItsOwnSizeOfTheAddressSpace) {
+    const long before = address_space_kib();
+    ASSERT_GT(before, 0);
+    {
+        const auto block = map_block(2 * kHugePage);
+        EXPECT_EQ(address_space_kib() - before, static_cast<long>(2 * kHugePage / 1024));
+    }
+    EXPECT_EQ(address_space_kib(), before);
+}
+
+TEST(Slab, CarvesAlignedPiecesInOrderFromOneBlock) {
+    Slab slab;
+    EXPECT_EQ(slab.blocks(), 0u);
+    auto* a = static_cast<std::byte*>(slab.take(1));
+    auto* b = static_cast<std::byte*>(slab.take(100));
+    auto* c = static_cast<std::byte*>(slab.take(Slab::kAlign));
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a) % kHugePage, 0u);  // a block's start
+    EXPECT_EQ(b, a + Slab::kAlign);                                  // 1 byte rounded up to a line
+    EXPECT_EQ(c, b + 2 * Slab::kAlign);                              // 100 bytes to two
+    EXPECT_EQ(slab.blocks(), 1u);
+    for (auto* p : {a, b, c}) EXPECT_TRUE(slab.holds(p));
+}
+
+TEST(Slab, NothingOrTooMuchIsNotCarved) {
+    Slab slab;
+    EXPECT_EQ(slab.take(0), nullptr);
+    EXPECT_EQ(slab.take(Slab::kMostTaken + 1), nullptr);
+    EXPECT_EQ(slab.blocks(), 0u);
+    EXPECT_NE(slab.take(Slab::kMostTaken), nullptr);
+    EXPECT_EQ(slab.blocks(), 1u);
+}
+
+TEST(Slab, ABlockFilledExactlyThenTheNextPieceStartsANewOne) {
+    Slab slab;
+    auto* first = static_cast<std::byte*>(slab.take(Slab::kMostTaken));
+    slab.take(Slab::kMostTaken);
+    slab.take(Slab::kMostTaken);
+    auto* last = static_cast<std::byte*>(slab.take(Slab::kMostTaken - Slab::kAlign));
+    auto* line = static_cast<std::byte*>(slab.take(Slab::kAlign));
+    EXPECT_EQ(slab.blocks(), 1u) << "the block's last line is carved from it";
+    EXPECT_EQ(last, first + 3 * Slab::kMostTaken);
+    EXPECT_EQ(line, first + Slab::kBlockBytes - Slab::kAlign);
+    auto* next = static_cast<std::byte*>(slab.take(1));
+    EXPECT_EQ(slab.blocks(), 2u);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(next) % kHugePage, 0u);
+    // Its blocks and nothing else.
+    EXPECT_TRUE(slab.holds(first + Slab::kBlockBytes - 1));
+    EXPECT_TRUE(slab.holds(next + Slab::kBlockBytes - 1));
+    int elsewhere = 0;
+    EXPECT_FALSE(slab.holds(&elsewhere));
+    const auto heap = std::make_unique<int>(1);
+    EXPECT_FALSE(slab.holds(heap.get()));
+    // Just outside each block (where the other block is not mapped right there).
+    if (next != first + Slab::kBlockBytes) {
+        EXPECT_FALSE(slab.holds(first + Slab::kBlockBytes));
+    }
+    if (first != next + Slab::kBlockBytes) {
+        EXPECT_FALSE(slab.holds(next + Slab::kBlockBytes));
+        EXPECT_FALSE(slab.holds(first - 1));
+    }
+}
+
+TEST(Slab, WhatItCarvesIsMadeReady) {
+    REQUIRE_POPULATE();
+    Slab slab;
+    const std::size_t page = page_size();
+    auto* p = static_cast<std::byte*>(slab.take(8 * page));
+    std::vector<unsigned char> v(8);
+    ASSERT_EQ(::mincore(p, 8 * page, v.data()), 0) << std::strerror(errno);
+    for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(v[i] & 1, 1) << "page " << i;
+}
+
+TEST(SlabAllocator, AVectorsArrayIsCarvedFromTheSlabUpToTheMostItTakes) {
+    Slab slab;
+    using Alloc = SlabAllocator<double>;
+    std::vector<double, Alloc> small{Alloc(&slab)};
+    small.reserve(Slab::kMostTaken / sizeof(double));  // at the edge: carved
+    EXPECT_TRUE(slab.holds(small.data()));
+    std::vector<double, Alloc> large{Alloc(&slab)};
+    large.reserve(Slab::kMostTaken / sizeof(double) + 1);  // one more: from the heap
+    EXPECT_FALSE(slab.holds(large.data()));
+    large.assign(Slab::kMostTaken / sizeof(double) + 1, 2.5);
+    EXPECT_EQ(large.back(), 2.5);
+    std::vector<double, Alloc> none;  // no slab: the heap
+    none.reserve(16);
+    EXPECT_FALSE(slab.holds(none.data()));
+}
+
+TEST(SlabAllocator, ArraysOfTheSlabAreNotFreedToTheHeapAndOutliveTheirVector) {
+    Slab slab;
+    using Alloc = SlabAllocator<int>;
+    int* data = nullptr;
+    {
+        std::vector<int, Alloc> v{Alloc(&slab)};
+        v.assign(1000, 42);
+        data = v.data();
+        v.assign(100000, 1);  // grown: the first array given back, the second from the slab
+        EXPECT_TRUE(slab.holds(v.data()));
+    }
+    // Given back to the heap, either array would be a bad free (an abort, or AddressSanitizer's
+    // report); the slab's memory stays until the slab goes.
+    EXPECT_EQ(data[999], 42);
+}
+
+TEST(SlabAllocator, AssignedOrSwappedTheAllocatorGoesWithTheArray) {
+    Slab one, two;
+    using Alloc = SlabAllocator<int>;
+    EXPECT_TRUE(Alloc(&one) == Alloc(&one));
+    EXPECT_FALSE(Alloc(&one) == Alloc(&two));
+    EXPECT_TRUE(Alloc() == Alloc());
+    std::vector<int, Alloc> v;
+    v = std::vector<int, Alloc>(Alloc(&one));  // as a batch takes its slab's allocator
+    EXPECT_EQ(v.get_allocator().slab(), &one);
+    v.reserve(64);
+    EXPECT_TRUE(one.holds(v.data()));
+    std::vector<int, Alloc> w{Alloc(&two)};
+    w.reserve(8);
+    int* const w_data = w.data();
+    v.swap(w);
+    EXPECT_EQ(v.get_allocator().slab(), &two);
+    EXPECT_EQ(v.data(), w_data);
+    const SlabAllocator<double> rebound(v.get_allocator());
+    EXPECT_EQ(rebound.slab(), &two);
+}
+
+TEST(SpscRingSlots, EachSlotIsGivenOnceBeforeTheRingIsUsed) {
+    apci::run::SpscRing<int> ring(5);
+    int given = 0;
+    ring.each_slot([&](int& slot) { slot = ++given; });
+    EXPECT_EQ(given, 5);
+    for (int expected = 1; expected <= 5; ++expected) {
+        int* slot = ring.acquire();
+        ASSERT_NE(slot, nullptr);
+        EXPECT_EQ(*slot, expected);
+        ring.commit();
+        const int* read = ring.front();
+        ASSERT_NE(read, nullptr);
+        EXPECT_EQ(*read, expected);
+        ring.pop();
+    }
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ class ChunkedArray {
     // A new item at the end, value-initialised.
     T& emplace_back() {
         if (size_ == chunks_.size() * kPerChunk) {
-            chunks_.push_back(map_block(kPerChunk * sizeof(T)));
+            chunks_.push_back(map_block(ChunkBytes));  // whole: a huge page (ready_pages.h)
             ready_ = ReadyAhead{};
         }
         ready_.before_write(chunks_.back().get(), size_ % kPerChunk * sizeof(T), sizeof(T),

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "quiet_thread.h"
-#include "ready_pages.h"
 
 namespace apci::run {
 
@@ -43,12 +42,15 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
     if (filling_ == nullptr) return nullptr;
     filling_->clear();
     if (filling_->order.capacity() == 0) {
-        // Its first time round: the arrays every full batch takes, reserved at once; the
-        // segments' (80 KiB) made ready in one call rather than faulted in a page at a time as
-        // they fill (ready_pages.h; the order's 4 KiB hold no whole page to make ready).
+        // Its first time round: the arrays every full batch takes, carved from the slab at
+        // once (made ready there, on a huge page where the kernel has one: slab.h) rather than
+        // grown and faulted in a page at a time as they fill.
+        filling_->order =
+            decltype(filling_->order)(decltype(filling_->order)::allocator_type(&slab_));
+        filling_->segments =
+            decltype(filling_->segments)(decltype(filling_->segments)::allocator_type(&slab_));
         filling_->order.reserve(kBatchEvents);
         filling_->segments.reserve(kBatchEvents);
-        detail::make_ready(filling_->segments.data(), kBatchEvents * sizeof filling_->segments[0]);
     }
     return filling_;
 }

@@ -4,23 +4,22 @@
 #include <utility>
 
 #include "quiet_thread.h"
-#include "ready_pages.h"
 
 namespace apci::run {
 
 using Next = nc::EventStream::Next;
 
-// The items' memory made ready in one call before they are made in it, rather than faulted in
-// a page at a time (ready_pages.h): the ring is made on the caller's thread before the run.
-ReadAhead::Batch::Batch() {
-    items.reserve(kBatchEvents);
-    detail::make_ready(items.data(), kBatchEvents * sizeof(Item));
-    items.resize(kBatchEvents);
-}
-
+// The items of each batch carved from the slab (made ready there, on a huge page where the
+// kernel has one: slab.h) before they are made in it, rather than faulted in a page at a time:
+// the ring is made on the caller's thread before the run.
 ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where,
                      const RingFill* follows)
-    : stream_(stream), cpus_(cpus), where_(where), follows_(follows) {}
+    : stream_(stream), cpus_(cpus), where_(where), follows_(follows) {
+    ring_.each_slot([this](Batch& b) {
+        b.items = decltype(b.items)(decltype(b.items)::allocator_type(&slab_));
+        b.items.resize(kBatchEvents);
+    });
+}
 
 ReadAhead::~ReadAhead() {
     stop();

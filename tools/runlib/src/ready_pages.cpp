@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <new>
+
+#include "apci/run/slab.h"
 
 namespace apci::run::detail {
 
@@ -32,10 +35,28 @@ void Unmap::operator()(std::byte* p) const noexcept {
 }
 
 MappedBlock map_block(std::size_t bytes) {
+    if (bytes % kHugePage != 0) {
+        // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
+        void* p =
+            ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (p == MAP_FAILED) throw std::bad_alloc();
+        return MappedBlock(static_cast<std::byte*>(p), Unmap{bytes});
+    }
+    // A huge page's more, to cut an aligned block from: the rest is unmapped again.
     // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
-    void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    void* p = ::mmap(nullptr, bytes + kHugePage, PROT_READ | PROT_WRITE,
+                     MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) throw std::bad_alloc();
-    return MappedBlock(static_cast<std::byte*>(p), Unmap{bytes});
+    auto* const mapped = static_cast<std::byte*>(p);
+    const std::size_t before =
+        (kHugePage - reinterpret_cast<std::uintptr_t>(mapped) % kHugePage) % kHugePage;
+    if (before > 0) ::munmap(mapped, before);
+    ::munmap(mapped + before + bytes, kHugePage - before);  // never none: before < kHugePage
+    std::byte* const block = mapped + before;
+#ifdef MADV_HUGEPAGE
+    (void)::madvise(block, bytes, MADV_HUGEPAGE);
+#endif
+    return MappedBlock(block, Unmap{bytes});
 }
 
 void make_ready(void* p, std::size_t bytes) noexcept {
@@ -46,6 +67,31 @@ void make_ready(void* p, std::size_t bytes) noexcept {
     const std::uintptr_t last = (begin + bytes) / page * page;
     if (last <= first) return;
     (void)::madvise(static_cast<std::byte*>(p) + (first - begin), last - first, kPopulateWrite);
+}
+
+Slab::~Slab() {
+    for (std::byte* b : blocks_) ::munmap(b, kBlockBytes);
+}
+
+void* Slab::take(std::size_t bytes) {
+    if (bytes == 0 || bytes > kMostTaken) return nullptr;
+    bytes = (bytes + kAlign - 1) / kAlign * kAlign;
+    if (used_ + bytes > kBlockBytes) {
+        blocks_.reserve(blocks_.size() + 1);  // before the mapping, which would leak on a throw
+        blocks_.push_back(map_block(kBlockBytes).release());
+        used_ = 0;
+    }
+    std::byte* const p = blocks_.back() + used_;
+    used_ += bytes;
+    make_ready(p, bytes);
+    return p;
+}
+
+bool Slab::holds(const void* p) const noexcept {
+    const auto* b = static_cast<const std::byte*>(p);
+    return std::any_of(blocks_.begin(), blocks_.end(), [b](const std::byte* block) {
+        return std::less_equal<>()(block, b) && std::less<>()(b, block + kBlockBytes);
+    });
 }
 
 void ReadyAhead::advance(std::byte* base, std::size_t need, std::size_t end) noexcept {

@@ -15,7 +15,14 @@ struct Unmap {
     void operator()(std::byte* p) const noexcept;
 };
 using MappedBlock = std::unique_ptr<std::byte[], Unmap>;
-// `bytes` (at least 1) mapped; throws std::bad_alloc where the kernel maps nothing.
+// A huge page of x86-64 and arm64 with 4 KiB pages (2 MiB).
+inline constexpr std::size_t kHugePage = std::size_t{2} << 20;
+// `bytes` (at least 1) mapped; throws std::bad_alloc where the kernel maps nothing. A block of
+// a whole number of huge pages is aligned to one and advised to be backed by huge pages
+// (MADV_HUGEPAGE): made ready (make_ready), such a block's pages then take no fault each when
+// first written, where on some virtual machines a 4 KiB page does (docs/performance.md, "Huge
+// pages for the memory written once"). Where the kernel has no huge page to give, or
+// transparent huge pages are off, it has ordinary pages.
 MappedBlock map_block(std::size_t bytes);
 
 // Makes the whole pages within [p, p + bytes) of the process's private memory (mapped

@@ -51,6 +51,7 @@
 #include "apci/apci.h"
 #include "apci/run/cpu_placement.h"
 #include "apci/run/executor.h"
+#include "apci/run/slab.h"
 #include "apci/run/spsc_ring.h"
 #include "apci/run/summary.h"
 
@@ -136,8 +137,11 @@ class PipelinedSink final : public RunSink, public RingFill {
     // One batch: the order of its events, each an index into the array of its kind. The
     // arrays keep their capacity from batch to batch.
     struct Batch {
-        std::vector<std::pair<Kind, std::uint32_t>> order;
-        std::vector<PathSegment> segments;
+        // The arrays every batch fills, carved from the pipeline's slab the first time round.
+        std::vector<std::pair<Kind, std::uint32_t>,
+                    detail::SlabAllocator<std::pair<Kind, std::uint32_t>>>
+            order;
+        std::vector<PathSegment, detail::SlabAllocator<PathSegment>> segments;
         std::vector<Sample> samples;
         std::vector<Note> notes;
         std::vector<std::string> names;
@@ -169,6 +173,8 @@ class PipelinedSink final : public RunSink, public RingFill {
     // 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A sleeping producer
     // wakes for 8 batches, so the executor never waits long for room; a sleeping writer for
     // the count the constructor was given.
+    // The batches' orders and segments (slab.h): before the ring, which goes first.
+    detail::Slab slab_;
     SpscRing<Batch> ring_;
     Batch* filling_ = nullptr;
     bool started_ = false;

@@ -39,6 +39,7 @@
 
 #include "apci/nc/program.h"
 #include "apci/run/cpu_placement.h"
+#include "apci/run/slab.h"
 #include "apci/run/spsc_ring.h"
 
 namespace apci::run {
@@ -98,8 +99,8 @@ class ReadAhead {
     // What follows a batch's events.
     enum class Tail : std::uint8_t { kMore, kRequest, kEnd, kError };
     struct Batch {
-        Batch();
-        std::vector<Item> items;  // kBatchEvents, kept from batch to batch
+        // kBatchEvents, kept from batch to batch: carved from the read-ahead's slab.
+        std::vector<Item, detail::SlabAllocator<Item>> items;
         std::size_t size = 0;
         Tail tail = Tail::kMore;
         nc::VariableRef request;  // kRequest: the variable the front end waits for
@@ -130,6 +131,8 @@ class ReadAhead {
     // (up to 17 ms in all), now 1 to 4 (docs/performance.md, "A deeper read-ahead"). The reader,
     // asleep on a full ring, is woken for 16 free batches (6,144 events still ahead of the
     // executor); the executor, asleep on an empty one (at the start), for the first batch.
+    // The batches' items (slab.h): before the ring, which goes first.
+    detail::Slab slab_;
     SpscRing<Batch> ring_{kBatches, 16, 1};
     nc::EventStream& stream_;
     const CpuPlacement* cpus_;
