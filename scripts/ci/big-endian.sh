@@ -20,6 +20,7 @@ sources=(
   tests/bigendian/byte_order_check.cpp
   objif/src/frame.cpp objif/src/mailbox.cpp objif/src/status.cpp
   tools/runlib/src/json_writer.cpp tools/runlib/src/text_sink.cpp tools/runlib/src/path.cpp
+  tools/runlib/src/ready_pages.cpp
   tools/nc/src/move_time.cpp driver/src/tc_names.cpp
   geometry/src/element.cpp geometry/src/plane.cpp
 )

@@ -4,7 +4,27 @@
 #include <charconv>
 #include <cmath>
 
+#include "ready_pages.h"
+
 namespace apci::run {
+
+namespace {
+
+// A huge page (map_block), its first kCapacity bytes made ready.
+char* new_buffer() {
+    static_assert(TextSink::kCapacity <= detail::kHugePage);
+    detail::MappedBlock block = detail::map_block(detail::kHugePage);
+    detail::make_ready(block.get(), TextSink::kCapacity);
+    return reinterpret_cast<char*>(block.release());
+}
+
+}  // namespace
+
+TextSink::TextSink(std::FILE* out) : out_(out), buffer_(new_buffer()) {}
+
+void TextSink::Release::operator()(char* buffer) const noexcept {
+    detail::Unmap{detail::kHugePage}(reinterpret_cast<std::byte*>(buffer));
+}
 
 void TextSink::write_out() noexcept {
     if (!failed_ && used_ > 0 && std::fwrite(buffer_.get(), 1, used_, out_) != used_)
