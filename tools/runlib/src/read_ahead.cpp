@@ -14,7 +14,7 @@ using Next = nc::EventStream::Next;
 // the ring is made on the caller's thread before the run.
 ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where,
                      const RingFill* follows)
-    : stream_(stream), cpus_(cpus), where_(where), follows_(follows) {
+    : stream_(stream), cpus_(cpus), follows_(follows), where_(where) {
     ring_.each_slot([this](Batch& b) {
         b.items = decltype(b.items)(decltype(b.items)::allocator_type(&slab_));
         b.items.resize(kBatchEvents);

@@ -125,21 +125,20 @@ class ReadAhead {
     void join() noexcept;
 
     // (In the order that packs them.)
+    // The batches' items (slab.h): before the ring, which goes first; then what fills the
+    // line up to the ring.
+    detail::Slab slab_;
+    nc::EventStream& stream_;
+    const CpuPlacement* cpus_;
+    const RingFill* follows_;
+    std::size_t opened_ = 0;  // the reader's: batches it opened
     // 64 batches (8,192 events, 4 to 6 ms of the executor's work): the reader shares the CPUs
     // with the check and the writers, and a reader woken for room may wait a few milliseconds
     // for its turn; with 16 batches the executor ran dry 2 to 23 times a run on the CAM program
     // (up to 17 ms in all), now 1 to 4 (docs/performance.md, "A deeper read-ahead"). The reader,
     // asleep on a full ring, is woken for 16 free batches (6,144 events still ahead of the
     // executor); the executor, asleep on an empty one (at the start), for the first batch.
-    // The batches' items (slab.h): before the ring, which goes first.
-    detail::Slab slab_;
     SpscRing<Batch> ring_{kBatches, 16, 1};
-    nc::EventStream& stream_;
-    const CpuPlacement* cpus_;
-    HelperCpu where_;
-    const RingFill* follows_;
-    HelperCpu placed_ = HelperCpu::kOther;  // the reader's: where it runs now
-    std::size_t opened_ = 0;                // the reader's: batches it opened
     nc::VariableSource* source_ = nullptr;  // the caller's
     Batch* filling_ = nullptr;              // the reader's
     Batch* reading_ = nullptr;              // the caller's
@@ -155,6 +154,8 @@ class ReadAhead {
     std::mutex answer_mutex_;
     std::condition_variable answered_cv_;
     nc::EventStream::Next last_ = nc::EventStream::Next::kEnd;
+    HelperCpu where_;
+    HelperCpu placed_ = HelperCpu::kOther;  // the reader's: where it runs now
     bool started_ = false;
     bool ended_ = false;  // the reader ended and was joined: next() returns `last_`
     nc::Dialect dialect_ = nc::Dialect::kUndecided;
