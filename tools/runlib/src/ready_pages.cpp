@@ -23,6 +23,16 @@ constexpr int kPopulateWrite = MADV_POPULATE_WRITE;
 constexpr int kPopulateWrite = 23;
 #endif
 
+// `bytes` of anonymous private memory, mapped; throws std::bad_alloc where the kernel maps none.
+std::byte* map_anonymous(std::size_t bytes) {
+    constexpr int kProtection = PROT_READ | PROT_WRITE;
+    constexpr int kFlags = MAP_PRIVATE | MAP_ANONYMOUS;
+    // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
+    void* p = ::mmap(nullptr, bytes, kProtection, kFlags, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    return static_cast<std::byte*>(p);
+}
+
 std::uintptr_t page_size() noexcept {
     static const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
     return page;
@@ -35,19 +45,9 @@ void Unmap::operator()(std::byte* p) const noexcept {
 }
 
 MappedBlock map_block(std::size_t bytes) {
-    if (bytes % kHugePage != 0) {
-        // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
-        void* p =
-            ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-        if (p == MAP_FAILED) throw std::bad_alloc();
-        return MappedBlock(static_cast<std::byte*>(p), Unmap{bytes});
-    }
+    if (bytes % kHugePage != 0) return MappedBlock(map_anonymous(bytes), Unmap{bytes});
     // A huge page's more, to cut an aligned block from: the rest is unmapped again.
-    // cppcheck-suppress invalidFunctionArg ; fd -1 is what MAP_ANONYMOUS takes (mmap(2))
-    void* p = ::mmap(nullptr, bytes + kHugePage, PROT_READ | PROT_WRITE,
-                     MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-    auto* const mapped = static_cast<std::byte*>(p);
+    std::byte* const mapped = map_anonymous(bytes + kHugePage);
     const std::size_t before =
         (kHugePage - reinterpret_cast<std::uintptr_t>(mapped) % kHugePage) % kHugePage;
     if (before > 0) ::munmap(mapped, before);

@@ -57,8 +57,9 @@ class SlabAllocator {
 
     T* allocate(std::size_t n) {
         static_assert(alignof(T) <= Slab::kAlign);
-        if (slab_ != nullptr && n <= Slab::kMostTaken / sizeof(T))
-            if (void* p = slab_->take(n * sizeof(T))) return static_cast<T*>(p);
+        // (take() carves any such n: more than none, no more than kMostTaken.)
+        if (slab_ != nullptr && n > 0 && n <= Slab::kMostTaken / sizeof(T))
+            return static_cast<T*>(slab_->take(n * sizeof(T)));
         return std::allocator<T>().allocate(n);
     }
     void deallocate(T* p, std::size_t n) noexcept {
