@@ -526,16 +526,19 @@ TEST(MapBlock, OtherSizesAreOrdinaryPages) {
     }
 }
 
-// The huge page's more that aligns the block is given back: the block takes its own size of
-// the address space, and all of it goes with it.
-TEST(MapBlock, AHugeBlockTakesItsOwnSizeOfTheAddressSpace) {
-    const long before = address_space_kib();
-    ASSERT_GT(before, 0);
-    {
-        const auto block = map_block(2 * kHugePage);
-        EXPECT_EQ(address_space_kib() - before, static_cast<long>(2 * kHugePage / 1024));
+// A block takes its own size of the address space (of a huge block, the huge page's more that
+// aligns it is given back), and all of it goes with it.
+TEST(MapBlock, ABlockTakesItsOwnSizeOfTheAddressSpaceAndGivesItBack) {
+    for (const std::size_t bytes : {3 * page_size(), 2 * kHugePage}) {
+        SCOPED_TRACE(bytes);
+        const long before = address_space_kib();
+        ASSERT_GT(before, 0);
+        {
+            const auto block = map_block(bytes);
+            EXPECT_EQ(address_space_kib() - before, static_cast<long>(bytes / 1024));
+        }
+        EXPECT_EQ(address_space_kib(), before);
     }
-    EXPECT_EQ(address_space_kib(), before);
 }
 
 TEST(Slab, CarvesAlignedPiecesInOrderFromOneBlock) {
