@@ -17,7 +17,7 @@ namespace apci::run::detail {
 // ahead of the items: ReadyAhead): keeping one never allocates but at a chunk's start (a
 // std::deque's chunk holds a few), nor moves the items before it (as a vector's growth would).
 // T has nothing to destroy.
-template <class T, std::size_t ChunkBytes = (std::size_t{2} << 20)>
+template <class T, std::size_t ChunkBytes = kHugePage>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);
     static_assert(alignof(T) <= alignof(std::max_align_t));  // a mapping is page-aligned

@@ -37,7 +37,7 @@ struct HeldCall {
 // kept), so that what is read back is what was written. Chunks are kept when cleared.
 class HeldCalls {
   public:
-    static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;
+    static constexpr std::size_t kChunkBytes = kHugePage;  // one huge page (ready_pages.h)
 
     HeldCalls() = default;
     explicit HeldCalls(std::size_t chunk_bytes);

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <memory>
 
+#include "apci/run/slab.h"  // kHugePage
+
 namespace apci::run::detail {
 
 // A block of memory mapped on its own (anonymous, private, page-aligned), unmapped with it: a
@@ -15,8 +17,6 @@ struct Unmap {
     void operator()(std::byte* p) const noexcept;
 };
 using MappedBlock = std::unique_ptr<std::byte[], Unmap>;
-// A huge page of x86-64 and arm64 with 4 KiB pages (2 MiB).
-inline constexpr std::size_t kHugePage = std::size_t{2} << 20;
 // `bytes` (at least 1) mapped; throws std::bad_alloc where the kernel maps nothing. A block of
 // a whole number of huge pages is aligned to one and advised to be backed by huge pages
 // (MADV_HUGEPAGE): made ready (make_ready), such a block's pages then take no fault each when

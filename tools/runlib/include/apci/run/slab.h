@@ -11,12 +11,16 @@
 
 namespace apci::run::detail {
 
+// A huge page of x86-64 and arm64 with 4 KiB pages (2 MiB): the size of the run library's
+// blocks of memory written once (map_block, ready_pages.h).
+inline constexpr std::size_t kHugePage = std::size_t{2} << 20;
+
 // Blocks of kBlockBytes, each mapped on its own (map_block, ready_pages.h: aligned to a huge
 // page and advised to be backed by one), carved in order; what is carved is made ready
 // (make_ready) before it is given. Nothing is given back before the slab goes, with its blocks.
 class Slab {
   public:
-    static constexpr std::size_t kBlockBytes = std::size_t{2} << 20;
+    static constexpr std::size_t kBlockBytes = kHugePage;
     static constexpr std::size_t kAlign = 64;  // a cache line
     // The most one take() carves: more is left to the heap.
     static constexpr std::size_t kMostTaken = kBlockBytes / 4;
