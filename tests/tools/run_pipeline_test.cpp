@@ -1119,6 +1119,177 @@ TEST(OutputWriteBack, ALargeOutputIsPublishedWhole) {
     ::rmdir(dir.c_str());
 }
 
+// ---- the sync behind the writer: every 2 MiB, a thread of its own makes what was written
+// durable, so that the fsync at close() has only the last step left
+
+// The syncs a test's SyncCall was asked for, the file it was given (its inode), and how they
+// answer: each sync whose number (from 0) is in `failing` fails with EIO, the others succeed.
+std::atomic<int> g_syncs{0};
+std::atomic<unsigned> g_failing{0};  // bit i: the sync numbered i fails
+std::atomic<ino_t> g_synced_inode{0};
+int counted_sync(int fd) {
+    struct stat st {};
+    g_synced_inode = ::fstat(fd, &st) == 0 ? st.st_ino : 0;
+    const int n = g_syncs.fetch_add(1);
+    if (n < 32 && (g_failing.load() >> n & 1U) != 0) {
+        errno = EIO;
+        return -1;
+    }
+    return 0;
+}
+// Waits (at most 10 s) until the test's SyncCall was called `n` times.
+bool syncs_reach(int n) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (g_syncs.load() < n && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(1ms);
+    return g_syncs.load() >= n;
+}
+
+// An output in a directory of its own, syncing with counted_sync (counts reset), written in
+// pieces of the sizes asked (each piece one write(2): the output's FILE is unbuffered).
+struct SyncedOutput {
+    std::string dir, target;
+    OutputFile out;
+    explicit SyncedOutput(unsigned failing = 0) {
+        g_syncs = 0;
+        g_failing = failing;
+        char dir_template[] = "/tmp/apci-syncbehind-XXXXXX";
+        if (::mkdtemp(dir_template) == nullptr) {
+            ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
+            return;
+        }
+        dir = dir_template;
+        target = dir + "/out.json";
+        EXPECT_EQ(out.open(target), "");
+        out.sync_with(&counted_sync);
+    }
+    ~SyncedOutput() {
+        out.discard();
+        std::remove(target.c_str());
+        ::rmdir(dir.c_str());
+    }
+    SyncedOutput(const SyncedOutput&) = delete;
+    SyncedOutput& operator=(const SyncedOutput&) = delete;
+    void write(std::size_t bytes) {
+        const std::string piece(bytes, 'x');
+        ASSERT_EQ(std::fwrite(piece.data(), 1, piece.size(), out.file()), bytes);
+    }
+};
+constexpr std::size_t kMiB = std::size_t{1} << 20;
+
+// The step is checked where the write-back starts (every 1 MiB): 2 MiB less a byte made no
+// thread and no sync; 2 MiB make the thread, which syncs once; the output is published whole.
+TEST(SyncBehindTheWriter, TheFirstSyncComesAtTwoMiB) {
+    {
+        SyncedOutput o;
+        ASSERT_FALSE(o.target.empty());
+        o.write(kMiB);
+        o.write(kMiB - 1);
+        EXPECT_FALSE(o.out.syncs_behind());
+        ASSERT_EQ(o.out.close(), "");
+        EXPECT_EQ(g_syncs.load(), 0);
+    }
+    SyncedOutput o;
+    ASSERT_FALSE(o.target.empty());
+    o.write(kMiB);
+    EXPECT_FALSE(o.out.syncs_behind());
+    o.write(kMiB);
+    EXPECT_TRUE(o.out.syncs_behind());
+    EXPECT_TRUE(syncs_reach(1));
+    struct stat st {};
+    ASSERT_EQ(::stat(o.out.temporary().c_str(), &st), 0);
+    EXPECT_EQ(g_synced_inode.load(), st.st_ino);  // the temporary file's data was synced
+    ASSERT_EQ(o.out.close(), "");
+    EXPECT_FALSE(o.out.syncs_behind());  // close() ended it
+    EXPECT_EQ(g_syncs.load(), 1);        // nothing asked since: no sync more
+    ASSERT_EQ(o.out.publish(), "");
+    EXPECT_TRUE(read_whole(o.target) == std::string(2 * kMiB, 'x'));
+}
+
+// Each further 2 MiB asks again; between two steps nothing is asked: 5 MiB in pieces of 1 MiB
+// make two syncs (at 2 and 4 MiB), 6 MiB three.
+TEST(SyncBehindTheWriter, EachStepOfTwoMiBAsksOnce) {
+    for (const int mib : {5, 6}) {
+        SyncedOutput o;
+        ASSERT_FALSE(o.target.empty());
+        for (int i = 0; i < mib; ++i) {
+            o.write(kMiB);
+            // Each sync done before the next step: none is left out for one under way.
+            if (i % 2 == 1) {
+                EXPECT_TRUE(syncs_reach((i + 1) / 2)) << i;
+            }
+        }
+        ASSERT_EQ(o.out.close(), "");
+        EXPECT_EQ(g_syncs.load(), mib / 2) << mib;
+    }
+}
+
+// A sync behind the writer that failed fails close(), with its cause, though every sync after
+// it succeeded (the fsync at close() would not report it again); the output is not published.
+TEST(SyncBehindTheWriter, AFailedSyncFailsTheClose) {
+    std::string target;
+    {
+        SyncedOutput o(/*failing=*/1U);  // the first sync fails, the second succeeds
+        ASSERT_FALSE(o.target.empty());
+        target = o.target;
+        o.write(2 * kMiB);
+        ASSERT_TRUE(syncs_reach(1));
+        o.write(2 * kMiB);
+        ASSERT_TRUE(syncs_reach(2));
+        EXPECT_EQ(o.out.close(), std::strerror(EIO));
+    }
+    EXPECT_NE(::access(target.c_str(), F_OK), 0);  // nothing published, no temporary left
+    // Failing later instead: the same.
+    SyncedOutput o(/*failing=*/2U);
+    ASSERT_FALSE(o.target.empty());
+    o.write(2 * kMiB);
+    ASSERT_TRUE(syncs_reach(1));
+    o.write(2 * kMiB);
+    ASSERT_TRUE(syncs_reach(2));
+    EXPECT_EQ(o.out.close(), std::strerror(EIO));
+}
+
+// The threads of this process named `name` (/proc/self/task/*/comm).
+int threads_named(const std::string& name) {
+    int n = 0;
+    std::error_code ec;
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", ec))
+        if (read_whole(task.path().string() + "/comm") == name + "\n") ++n;
+    return n;
+}
+
+// An output discarded (the run failed) ends the thread (`apci-sync`) before its descriptor is
+// closed, and removes the temporary file; no thread outlives it.
+TEST(SyncBehindTheWriter, DiscardEndsTheThread) {
+    SyncedOutput o;
+    ASSERT_FALSE(o.target.empty());
+    o.write(2 * kMiB);
+    ASSERT_TRUE(o.out.syncs_behind());
+    const std::string temporary = o.out.temporary();
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (threads_named("apci-sync") == 0 && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(1ms);  // it names itself once it runs
+    EXPECT_EQ(threads_named("apci-sync"), 1);
+    o.out.discard();
+    EXPECT_FALSE(o.out.syncs_behind());
+    EXPECT_EQ(threads_named("apci-sync"), 0);
+    EXPECT_NE(::access(temporary.c_str(), F_OK), 0);
+}
+
+// Standard output and a target written in place (not a regular file) are never synced behind:
+// there is no temporary file to make durable before a rename.
+TEST(SyncBehindTheWriter, NoneForAnOutputWrittenInPlace) {
+    g_syncs = 0;
+    OutputFile out;
+    ASSERT_EQ(out.open("/dev/null"), "");
+    out.sync_with(&counted_sync);
+    const std::string piece(4 * kMiB, 'x');
+    ASSERT_EQ(std::fwrite(piece.data(), 1, piece.size(), out.file()), piece.size());
+    EXPECT_FALSE(out.syncs_behind());
+    ASSERT_EQ(out.close(), "");
+    EXPECT_EQ(g_syncs.load(), 0);
+}
+
 // How many of a file's pages are in the page cache (mincore over a fresh mapping); -1 if it
 // cannot be told.
 long cached_pages(const std::string& path) {

@@ -11,7 +11,10 @@
 //    be caught: its temporary files stay behind). At the first write, the cached pages of the
 //    target the temporary file will replace are dropped (its contents stay as they are) and
 //    the target is held open: the rename at the end then frees nothing, and the replaced
-//    file's blocks are freed on a thread of their own, while the process goes on (and ends);
+//    file's blocks are freed on a thread of their own, while the process goes on (and ends).
+//    While it is written, a temporary file's data goes to the disk every 1 MiB and is made
+//    durable every 2 MiB on a thread of its own, so that the fsync before the rename has only
+//    the last piece left;
 //  - a program read from standard input is held in memory, at most kStdinProgramLimit bytes.
 #pragma once
 
@@ -20,9 +23,14 @@
 #include <csignal>
 #include <cstddef>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 namespace apci::run {
+
+namespace detail {
+class SyncBehind;
+}  // namespace detail
 
 // The largest program `apcictl run -` reads from standard input (a larger one is a file).
 inline constexpr std::size_t kStdinProgramLimit = std::size_t{64} << 20;  // 64 MiB
@@ -58,8 +66,8 @@ class DeferSignals {
 // One output of a run. Not copyable or movable (the FILE refers to it).
 class OutputFile {
   public:
-    OutputFile() = default;
-    ~OutputFile() { discard(); }
+    OutputFile();
+    ~OutputFile();
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
 
@@ -84,10 +92,20 @@ class OutputFile {
     // Closes and removes the temporary file, if any; the target is not touched.
     void discard() noexcept;
 
+    // The call that makes the written data durable behind the writer (fdatasync(2), the
+    // default): a test gives one of its own, before the first write, to count the syncs or make
+    // one fail. It is called on the sync's own thread.
+    using SyncCall = int (*)(int fd);
+    void sync_with(SyncCall call) noexcept { sync_call_ = call; }
+    // Whether a thread syncs behind the writer (made at the first step, ended by close()).
+    bool syncs_behind() const noexcept { return sync_ != nullptr; }
+
   private:
     static ssize_t cookie_write(void* cookie, const char* data, std::size_t size);
     static int cookie_close(void* cookie);
     void start_writeback(std::size_t bytes) noexcept;
+    void sync_behind() noexcept;
+    int end_sync_behind() noexcept;
     void hold_replaced() noexcept;
     void release_replaced(bool published) noexcept;
     std::string open_temporary(const std::string& final_path);
@@ -108,6 +126,16 @@ class OutputFile {
     static constexpr off_t kWritebackStep = off_t{1} << 20;
     off_t written_ = 0;
     off_t writeback_from_ = 0;
+    // Made durable behind the writer (sync_behind): every kSyncStep bytes, a thread of its own
+    // (made at the first step; none for a smaller file) syncs what was written, so that the
+    // fsync at close() has at most that much left to make durable, where a disk's cache flush
+    // takes a time that grows with what it holds (docs/performance.md, "The sync behind the
+    // writer").
+    static constexpr off_t kSyncStep = off_t{2} << 20;
+    off_t synced_from_ = 0;
+    std::unique_ptr<detail::SyncBehind> sync_;
+    SyncCall sync_call_ = nullptr;   // nullptr: fdatasync(2)
+    bool sync_unavailable_ = false;  // no thread could be made: close() syncs it all
     // The first write dropped the cached pages of the file publish() replaces, and opened it:
     // replaced_fd_ (-1: none, or not a regular file), closed by discard() where the output is
     // not published, else on a thread of its own after the rename.
