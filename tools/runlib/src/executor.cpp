@@ -106,12 +106,20 @@ nc::EventStream::Next next_event(ReadAhead& events, nc::Event& /*storage*/,
     return events.next(event);
 }
 
+// Read ahead, the reader starts before the run is set up (the board asked, the outputs' first
+// lines written), and reads meanwhile; a stream read here waits for its first next().
+void begin_reading(nc::EventStream& /*events*/) {}
+void begin_reading(ReadAhead& events) {
+    events.begin();
+}
+
 }  // namespace
 
 template <typename Events>
 RunOutcome RunContext::run_events(Events& events) {
     // The program reads the board's V.G. variables ([ISG-OTC] section 2.8).
     events.set_variable_source(&variables_);
+    begin_reading(events);
     sink_measures_ = sink_.measures_executed();
     set_up_ = setup();
     if (set_up_) {
@@ -284,7 +292,8 @@ bool RunContext::discard_earlier_moves(apci_motion_status& st) {
     st = after.value;
     if (!drop_segments(st.segments_pending)) return false;
     out_.notices.push_back(RunError{
-        {}, "Discarded",
+        {},
+        "Discarded",
         fmt::format("the board's spooler held {} of an earlier program that stopped at a "
                     "compensation error: discarded before this run, as a reset discards {} (the "
                     "axes stay where they stood)",

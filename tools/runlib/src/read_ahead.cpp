@@ -14,12 +14,7 @@ using Next = nc::EventStream::Next;
 // the ring is made on the caller's thread before the run.
 ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where,
                      const RingFill* follows)
-    : stream_(stream), cpus_(cpus), follows_(follows), where_(where) {
-    ring_.each_slot([this](Batch& b) {
-        b.items = decltype(b.items)(decltype(b.items)::allocator_type(&slab_));
-        b.items.resize(kBatchEvents);
-    });
-}
+    : stream_(stream), cpus_(cpus), follows_(follows), where_(where) {}
 
 ReadAhead::~ReadAhead() {
     stop();
@@ -36,6 +31,10 @@ void ReadAhead::start() {
     reader_ = exec::quiet_thread("apci-reader", [this] { read_loop(); });
 }
 
+void ReadAhead::begin() {
+    if (!started_ && !ended_) start();
+}
+
 // ---- the reader thread
 
 ReadAhead::Batch* ReadAhead::open_batch() {
@@ -49,6 +48,13 @@ ReadAhead::Batch* ReadAhead::open_batch() {
     }
     filling_ = ring_.acquire();  // nullptr: stopped
     if (filling_ != nullptr) {
+        if (filling_->items.empty()) {
+            // The slot's first time round: its items carved from the slab, on this thread
+            // (made ready and written here, not on the caller's while it sets up the run).
+            filling_->items =
+                decltype(filling_->items)(decltype(filling_->items)::allocator_type(&slab_));
+            filling_->items.resize(kBatchEvents);
+        }
         filling_->size = 0;
         filling_->tail = Tail::kMore;
     }

@@ -56,7 +56,8 @@ class ReadAhead {
     // Batches the reader opens between two looks at the ring it follows.
     static constexpr std::size_t kFollowEvery = 8;
 
-    // `stream` must outlive this; the reader thread starts with the first next(). With `cpus`
+    // `stream` must outlive this; the reader thread starts with begin() or the first next(),
+    // whichever comes first. With `cpus`
     // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h),
     // first on the CPU `where` says; with `follows` (which must outlive this too) it moves,
     // every kFollowEvery batches it opens, where follow_backlog() says for that ring's fill.
@@ -69,6 +70,10 @@ class ReadAhead {
     // Where the board's variables come from (as EventStream::set_variable_source), read on the
     // caller's thread. Before the first next(), or after the reader ended.
     void set_variable_source(nc::VariableSource* source) noexcept;
+
+    // Starts the reader now, so that it reads ahead while the caller sets up its run: after
+    // set_variable_source(), if that is called at all. Idempotent; nothing once stopped.
+    void begin();
 
     // As EventStream::next. Serves the variable reads of the front end that are due. Rethrows
     // an exception that ended the reader.
@@ -99,7 +104,8 @@ class ReadAhead {
     // What follows a batch's events.
     enum class Tail : std::uint8_t { kMore, kRequest, kEnd, kError };
     struct Batch {
-        // kBatchEvents, kept from batch to batch: carved from the read-ahead's slab.
+        // kBatchEvents, kept from batch to batch: carved from the read-ahead's slab by the
+        // reader, the first time it fills the batch.
         std::vector<Item, detail::SlabAllocator<Item>> items;
         std::size_t size = 0;
         Tail tail = Tail::kMore;

@@ -50,11 +50,6 @@ class SpscRing {
     SpscRing& operator=(const SpscRing&) = delete;
 
     std::size_t capacity() const noexcept { return slots_.size(); }
-    // Each slot given to f, before either side has used the ring: its owner's set-up.
-    template <class F>
-    void each_slot(F&& f) {
-        for (T& slot : slots_) f(slot);
-    }
     // Slots committed and not yet popped, as any thread sees them now (a third thread's view
     // may be a little behind either side's).
     std::size_t backlog() const noexcept {
