@@ -292,8 +292,7 @@ bool RunContext::discard_earlier_moves(apci_motion_status& st) {
     st = after.value;
     if (!drop_segments(st.segments_pending)) return false;
     out_.notices.push_back(RunError{
-        {},
-        "Discarded",
+        {}, "Discarded",
         fmt::format("the board's spooler held {} of an earlier program that stopped at a "
                     "compensation error: discarded before this run, as a reset discards {} (the "
                     "axes stay where they stood)",
