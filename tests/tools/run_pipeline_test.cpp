@@ -1127,10 +1127,12 @@ TEST(OutputWriteBack, ALargeOutputIsPublishedWhole) {
 std::atomic<int> g_syncs{0};
 std::atomic<unsigned> g_failing{0};  // bit i: the sync numbered i fails
 std::atomic<ino_t> g_synced_inode{0};
+std::atomic<int> g_sync_ms{0};  // how long each sync takes (after it is counted)
 int counted_sync(int fd) {
     struct stat st {};
     g_synced_inode = ::fstat(fd, &st) == 0 ? st.st_ino : 0;
     const int n = g_syncs.fetch_add(1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(g_sync_ms.load()));
     if (n < 32 && (g_failing.load() >> n & 1U) != 0) {
         errno = EIO;
         return -1;
@@ -1150,9 +1152,10 @@ bool syncs_reach(int n) {
 struct SyncedOutput {
     std::string dir, target;
     OutputFile out;
-    explicit SyncedOutput(unsigned failing = 0) {
+    explicit SyncedOutput(unsigned failing = 0, int sync_ms = 0) {
         g_syncs = 0;
         g_failing = failing;
+        g_sync_ms = sync_ms;
         char dir_template[] = "/tmp/apci-syncbehind-XXXXXX";
         if (::mkdtemp(dir_template) == nullptr) {
             ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
@@ -1247,6 +1250,16 @@ TEST(SyncBehindTheWriter, AFailedSyncFailsTheClose) {
     o.write(2 * kMiB);
     ASSERT_TRUE(syncs_reach(2));
     EXPECT_EQ(o.out.close(), std::strerror(EIO));
+}
+
+// close() waits for the sync under way: one that fails after close() was called fails it too.
+TEST(SyncBehindTheWriter, CloseWaitsForTheSyncUnderWay) {
+    SyncedOutput o(/*failing=*/1U, /*sync_ms=*/300);
+    ASSERT_FALSE(o.target.empty());
+    o.write(2 * kMiB);
+    ASSERT_TRUE(syncs_reach(1));  // begun: it fails 300 ms from now
+    EXPECT_EQ(o.out.close(), std::strerror(EIO));
+    EXPECT_FALSE(o.out.syncs_behind());
 }
 
 // The threads of this process named `name` (/proc/self/task/*/comm).

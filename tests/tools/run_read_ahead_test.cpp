@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <variant>
@@ -157,6 +158,80 @@ TEST(ReadAhead, TheReaderFillsItsWholeRingWhileTheExecutorWaits) {
         ahead.stop();
     }
     EXPECT_GE(stream.events_read(), 8192u);
+}
+
+// begin() starts the reader before the first next(), once: a second begin(), and the first
+// next(), start no other; the events are those of the stream, in order.
+TEST(ReadAhead, BeginStartsTheReaderOnce) {
+    const std::string text = many_blocks(10000);  // more than the ring holds
+    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
+    Next direct_last{};
+    const std::vector<std::string> expected = read_all(direct, direct_last);
+    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    const int threads = baseline_thread_count();
+    ReadAhead ahead(stream);
+    EXPECT_EQ(thread_count(), threads);  // made, not started
+    ahead.begin();
+    EXPECT_EQ(thread_count(), threads + 1);
+    // The reader reads on its own before the first next(), until the ring is full.
+    for (int i = 0; i < 2000 && ahead.reader_waits() == 0; ++i) std::this_thread::sleep_for(5ms);
+    EXPECT_GT(ahead.reader_waits(), 0u);
+    ahead.begin();
+    EXPECT_EQ(thread_count(), threads + 1);
+    Next last{};
+    EXPECT_EQ(read_all(ahead, last), expected);
+    EXPECT_EQ(last, Next::kEnd);
+    EXPECT_EQ(thread_count(), threads);  // ended and joined
+    ahead.begin();                       // after the end: nothing
+    EXPECT_EQ(thread_count(), threads);
+}
+
+// Stopped before it began, a read-ahead starts nothing again: begin() makes no thread, next()
+// ends, and the stream was not read.
+TEST(ReadAhead, BeginAfterStopStartsNothing) {
+    nc::EventStream stream = nc::EventStream::from_text(many_blocks(100), "p.nc");
+    const int threads = baseline_thread_count();
+    ReadAhead ahead(stream);
+    ahead.stop();
+    ahead.begin();
+    EXPECT_EQ(thread_count(), threads);
+    nc::Event ev;
+    EXPECT_EQ(ahead.next(ev), Next::kEnd);
+    EXPECT_EQ(stream.events_read(), 0u);
+}
+
+// The variable source is the caller's to set before the reader runs, or after it ended: while
+// it may run (begun) it is refused, and the reader goes on as it was.
+TEST(ReadAhead, TheVariableSourceIsNotSetWhileTheReaderRuns) {
+    const std::string text = many_blocks(300);
+    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
+    Next direct_last{};
+    const std::vector<std::string> expected = read_all(direct, direct_last);
+    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    ReadAhead ahead(stream);
+    nc::VariableSource* none = nullptr;
+    ahead.set_variable_source(none);  // before it runs: taken
+    ahead.begin();
+    EXPECT_THROW(ahead.set_variable_source(none), std::logic_error);
+    Next last{};
+    EXPECT_EQ(read_all(ahead, last), expected);
+    ahead.set_variable_source(none);  // ended: taken
+}
+
+// The ring's items are carved once, the first time round: a program three times the ring's
+// events takes the read-ahead one block of memory, as a short one does.
+TEST(ReadAhead, TheRingGoesRoundOnTheItemsItCarvedOnce) {
+    const int blocks = static_cast<int>(3 * ReadAhead::kBatches * ReadAhead::kBatchEvents);
+    const std::string text = many_blocks(blocks);
+    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
+    Next direct_last{};
+    const std::vector<std::string> expected = read_all(direct, direct_last);
+    nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
+    ReadAhead ahead(stream);
+    Next last{};
+    EXPECT_EQ(read_all(ahead, last), expected);
+    EXPECT_EQ(last, Next::kEnd);
+    EXPECT_EQ(ahead.item_blocks(), 1u);
 }
 
 // A board whose variable is what the caller has taken so far, read on the caller's thread.

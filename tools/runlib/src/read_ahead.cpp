@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "apci/run/read_ahead.h"
 
+#include <stdexcept>
 #include <utility>
 
 #include "quiet_thread.h"
@@ -20,7 +21,10 @@ ReadAhead::~ReadAhead() {
     stop();
 }
 
-void ReadAhead::set_variable_source(nc::VariableSource* source) noexcept {
+void ReadAhead::set_variable_source(nc::VariableSource* source) {
+    // The reader reads the stream's source on its own thread.
+    if (started_ && !ended_)
+        throw std::logic_error("ReadAhead: the variable source set while the reader runs");
     source_ = source;
     // While the reader may run, its reads come to the caller through `requests_`.
     stream_.set_variable_source(source != nullptr && !ended_ ? &requests_ : source);

@@ -68,8 +68,9 @@ class ReadAhead {
     ReadAhead& operator=(const ReadAhead&) = delete;
 
     // Where the board's variables come from (as EventStream::set_variable_source), read on the
-    // caller's thread. Before the first next(), or after the reader ended.
-    void set_variable_source(nc::VariableSource* source) noexcept;
+    // caller's thread. Before begin() and the first next(), or after the reader ended; while
+    // the reader may run it throws std::logic_error (the reader reads the stream's source).
+    void set_variable_source(nc::VariableSource* source);
 
     // Starts the reader now, so that it reads ahead while the caller sets up its run: after
     // set_variable_source(), if that is called at all. Idempotent; nothing once stopped.
@@ -93,6 +94,9 @@ class ReadAhead {
     // Times a side slept on the ring, and the reader alone (for tests and measurements).
     std::uint64_t waits() const noexcept { return ring_.sleeps(); }
     std::uint64_t reader_waits() const noexcept { return ring_.producer_sleeps(); }
+    // Blocks of memory the ring's items were carved from, once the reader ended (for tests:
+    // one, however long the program).
+    std::size_t item_blocks() const noexcept { return slab_.blocks(); }
 
   private:
     struct Item {
