@@ -1147,6 +1147,16 @@ bool syncs_reach(int n) {
     return g_syncs.load() >= n;
 }
 
+// A new directory made from `name_template` (mkdtemp: its last six characters XXXXXX); empty,
+// with the test failed, where none can be made.
+std::string made_dir(std::string name_template) {
+    if (::mkdtemp(name_template.data()) == nullptr) {
+        ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
+        return {};
+    }
+    return name_template;
+}
+
 // An output in a directory of its own, syncing with counted_sync (counts reset), written in
 // pieces of the sizes asked (each piece one write(2): the output's FILE is unbuffered).
 struct SyncedOutput {
@@ -1156,12 +1166,8 @@ struct SyncedOutput {
         g_syncs = 0;
         g_failing = failing;
         g_sync_ms = sync_ms;
-        char dir_template[] = "/tmp/apci-syncbehind-XXXXXX";
-        if (::mkdtemp(dir_template) == nullptr) {
-            ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
-            return;
-        }
-        dir = dir_template;
+        dir = made_dir("/tmp/apci-syncbehind-XXXXXX");
+        if (dir.empty()) return;
         target = dir + "/out.json";
         EXPECT_EQ(out.open(target), "");
         out.sync_with(&counted_sync);
@@ -1494,12 +1500,8 @@ struct OldTarget {
     std::string dir, path;
     FileId id;
     OldTarget() {
-        char dir_template[] = "/tmp/apci-hold-XXXXXX";
-        if (::mkdtemp(dir_template) == nullptr) {
-            ADD_FAILURE() << "mkdtemp: " << std::strerror(errno);
-            return;
-        }
-        dir = dir_template;
+        dir = made_dir("/tmp/apci-hold-XXXXXX");
+        if (dir.empty()) return;
         path = dir + "/old.json";
         write_cached(path, std::size_t{1} << 20, 'o');
         id = id_of(path);

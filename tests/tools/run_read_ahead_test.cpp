@@ -62,6 +62,12 @@ std::vector<std::string> read_all(Source& source, Next& last) {
     return seen;
 }
 
+// What the stream itself gives of `text` (no read-ahead), and how it ends.
+std::vector<std::string> read_directly(const std::string& text, const char* name, Next& last) {
+    nc::EventStream direct = nc::EventStream::from_text(text, name);
+    return read_all(direct, last);
+}
+
 std::string many_blocks(int n) {
     std::string text = "%many\nN1 G17 G90 F3000\n";
     for (int i = 0; i < n; ++i)
@@ -72,9 +78,8 @@ std::string many_blocks(int n) {
 
 TEST(ReadAhead, EveryEventArrivesInOrderWithTheStreamsCounts) {
     const std::string text = many_blocks(5000);  // many batches
-    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
     Next direct_last{};
-    const std::vector<std::string> expected = read_all(direct, direct_last);
+    const std::vector<std::string> expected = read_directly(text, "p.nc", direct_last);
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
     ReadAhead ahead(stream);
     Next last{};
@@ -90,9 +95,8 @@ TEST(ReadAhead, EveryEventArrivesInOrderWithTheStreamsCounts) {
 TEST(ReadAhead, KlartextComesWithItsDialect) {
     const std::string text =
         "0 BEGIN PGM K MM\n1 L X+0 Y+0 Z+0 R0 F1000\n2 L X+10\n3 L Y+20 FMAX\n4 END PGM K MM\n";
-    nc::EventStream direct = nc::EventStream::from_text(text, "k.h");
     Next direct_last{};
-    const std::vector<std::string> expected = read_all(direct, direct_last);
+    const std::vector<std::string> expected = read_directly(text, "k.h", direct_last);
     nc::EventStream stream = nc::EventStream::from_text(text, "k.h");
     ReadAhead ahead(stream);
     Next last{};
@@ -106,9 +110,8 @@ TEST(ReadAhead, KlartextComesWithItsDialect) {
 TEST(ReadAhead, AnErrorLineInTheMiddleComesAfterTheEventsBeforeIt) {
     std::string text = many_blocks(3000);
     text.insert(text.find("N1500 "), "N1499 G1 Q7\n");
-    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
     Next direct_last{};
-    const std::vector<std::string> expected = read_all(direct, direct_last);
+    const std::vector<std::string> expected = read_directly(text, "p.nc", direct_last);
     ASSERT_EQ(direct_last, Next::kError);
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
     ReadAhead ahead(stream);
@@ -164,9 +167,8 @@ TEST(ReadAhead, TheReaderFillsItsWholeRingWhileTheExecutorWaits) {
 // next(), start no other; the events are those of the stream, in order.
 TEST(ReadAhead, BeginStartsTheReaderOnce) {
     const std::string text = many_blocks(10000);  // more than the ring holds
-    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
     Next direct_last{};
-    const std::vector<std::string> expected = read_all(direct, direct_last);
+    const std::vector<std::string> expected = read_directly(text, "p.nc", direct_last);
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
     const int threads = baseline_thread_count();
     ReadAhead ahead(stream);
@@ -204,9 +206,8 @@ TEST(ReadAhead, BeginAfterStopStartsNothing) {
 // it may run (begun) it is refused, and the reader goes on as it was.
 TEST(ReadAhead, TheVariableSourceIsNotSetWhileTheReaderRuns) {
     const std::string text = many_blocks(300);
-    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
     Next direct_last{};
-    const std::vector<std::string> expected = read_all(direct, direct_last);
+    const std::vector<std::string> expected = read_directly(text, "p.nc", direct_last);
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
     ReadAhead ahead(stream);
     nc::VariableSource* none = nullptr;
@@ -223,9 +224,8 @@ TEST(ReadAhead, TheVariableSourceIsNotSetWhileTheReaderRuns) {
 TEST(ReadAhead, TheRingGoesRoundOnTheItemsItCarvedOnce) {
     const int blocks = static_cast<int>(3 * ReadAhead::kBatches * ReadAhead::kBatchEvents);
     const std::string text = many_blocks(blocks);
-    nc::EventStream direct = nc::EventStream::from_text(text, "p.nc");
     Next direct_last{};
-    const std::vector<std::string> expected = read_all(direct, direct_last);
+    const std::vector<std::string> expected = read_directly(text, "p.nc", direct_last);
     nc::EventStream stream = nc::EventStream::from_text(text, "p.nc");
     ReadAhead ahead(stream);
     Next last{};
