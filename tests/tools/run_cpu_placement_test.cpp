@@ -381,7 +381,7 @@ TEST(CpuPlacement, WhereTheCheckFallsBehindTheReaderGoesBesideTheExecutor) {
     ASSERT_TRUE(placement.active());
     // Meanwhile the writers' ring fills, then the check's, and the executor waits.
     ReaderAtFirstSegment sink(300ms);
-    // More than the three rings hold (8,192 + 2 x 16,384 events): the reader still reads.
+    // More than the three rings hold (8,192 + 2 x 14,336 events): the reader still reads.
     run_warned(placement, sink, zigzag(80000));
     ASSERT_TRUE(sink.taken);
     EXPECT_EQ(sink.reader, std::vector<int>{placement.executor_cpu()});

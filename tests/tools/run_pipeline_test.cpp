@@ -372,7 +372,7 @@ void feed(RunSink& sink, int moves) {
     sink.error(RunError{BlockRef{moves, 3}, "KorrError", "the board's words"}, Point(0, 7.5, 0));
 }
 
-// 36,000 events: the ring's 32 batches of 512 each filled twice and more.
+// 36,000 events: the ring's 28 batches of 512 each filled twice and more.
 TEST(RunPipeline, TheInnerSinkGetsEveryCallInOrderOnTheWriterThread) {
     Recorder direct;
     feed(direct, 12000);

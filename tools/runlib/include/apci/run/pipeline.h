@@ -60,7 +60,10 @@ namespace apci::run {
 class PipelinedSink final : public RunSink, public RingFill {
   public:
     static constexpr std::size_t kBatchEvents = 512;
-    static constexpr std::size_t kBatches = 32;
+    // As many batches as one slab block holds (a huge page: 28 full batches of 72 KiB): a
+    // second block, a huge page of its own, would be made ready whole for a few batches
+    // (docs/performance.md, "What a fresh huge page costs here").
+    static constexpr std::size_t kBatches = 28;
     // Batches a writer asleep on an empty ring is woken for by default (a writer faster than
     // the producer sleeps often: one wakeup per 8 batches, not one per batch).
     static constexpr std::size_t kWriterWakesAfter = 8;
@@ -167,12 +170,12 @@ class PipelinedSink final : public RunSink, public RingFill {
     HelperCpu where_;
     // The inner sink measures the executed segments itself (asked when the writer starts).
     bool inner_measures_ = false;
-    // 32 batches (16,384 events, about 2 MB): the writer shares its core with the NC front end's
-    // reader (read_ahead.h) and falls behind while that runs; with 8 batches the executor found
-    // the ring full 10 to 20 times a run and slept up to a millisecond each time (perf sched),
-    // 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A sleeping producer
-    // wakes for 8 batches, so the executor never waits long for room; a sleeping writer for
-    // the count the constructor was given.
+    // 28 batches (14,336 events, 2 MB, one slab block): the writer shares its core with the NC
+    // front end's reader (read_ahead.h) and falls behind while that runs; with 8 batches the
+    // executor found the ring full 10 to 20 times a run and slept up to a millisecond each time
+    // (perf sched), 96 -> 85 ms wall for the 100k-block contour (docs/performance.md). A
+    // sleeping producer wakes for 8 batches, so the executor never waits long for room; a
+    // sleeping writer for the count the constructor was given.
     // The batches' orders and segments (slab.h): before the ring, which goes first.
     detail::Slab slab_;
     SpscRing<Batch> ring_;
