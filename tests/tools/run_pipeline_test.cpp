@@ -1162,11 +1162,11 @@ std::string made_dir(std::string name_template) {
 struct SyncedOutput {
     std::string dir, target;
     OutputFile out;
-    explicit SyncedOutput(unsigned failing = 0, int sync_ms = 0) {
+    explicit SyncedOutput(unsigned failing = 0, int sync_ms = 0)
+        : dir(made_dir("/tmp/apci-syncbehind-XXXXXX")) {
         g_syncs = 0;
         g_failing = failing;
         g_sync_ms = sync_ms;
-        dir = made_dir("/tmp/apci-syncbehind-XXXXXX");
         if (dir.empty()) return;
         target = dir + "/out.json";
         EXPECT_EQ(out.open(target), "");
@@ -1499,8 +1499,7 @@ FileId id_of(const std::string& path) {
 struct OldTarget {
     std::string dir, path;
     FileId id;
-    OldTarget() {
-        dir = made_dir("/tmp/apci-hold-XXXXXX");
+    OldTarget() : dir(made_dir("/tmp/apci-hold-XXXXXX")) {
         if (dir.empty()) return;
         path = dir + "/old.json";
         write_cached(path, std::size_t{1} << 20, 'o');
