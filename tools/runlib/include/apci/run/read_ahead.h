@@ -57,10 +57,10 @@ class ReadAhead {
     static constexpr std::size_t kFollowEvery = 8;
 
     // `stream` must outlive this; the reader thread starts with begin() or the first next(),
-    // whichever comes first. With `cpus`
-    // (which must outlive this too), the reader runs where it places helpers (cpu_placement.h),
-    // first on the CPU `where` says; with `follows` (which must outlive this too) it moves,
-    // every kFollowEvery batches it opens, where follow_backlog() says for that ring's fill.
+    // whichever comes first. With `cpus` (which must outlive this too), the reader runs where
+    // it places helpers (cpu_placement.h), first on the CPU `where` says; with `follows` (which
+    // must outlive this too) it moves, every kFollowEvery batches it opens, where
+    // follow_backlog() says for that ring's fill.
     explicit ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus = nullptr,
                        HelperCpu where = HelperCpu::kOther, const RingFill* follows = nullptr);
     ~ReadAhead();
