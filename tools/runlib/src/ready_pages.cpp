@@ -70,7 +70,7 @@ void make_ready(void* p, std::size_t bytes) noexcept {
 }
 
 Slab::~Slab() {
-    for (std::byte* b : blocks_) ::munmap(b, kBlockBytes);
+    for (std::byte* b : blocks_) Unmap{kBlockBytes}(b);
 }
 
 void* Slab::take(std::size_t bytes) {
