@@ -3,6 +3,8 @@
 // docs/compensation.md "What is a wall") and the closed-contour geometry under it
 // (contour_loop.h): areas, winding, enclosure; loops, leads and the runs beside them, passes
 // that clear each other and those that do not, levels, CDOF, each rule at its edge.
+#include "wall_model.h"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -14,11 +16,11 @@
 #include <vector>
 
 #include "apci/run/plane_distance.h"
+#include "apci/run/slab.h"
 #include "chunked_array.h"
 #include "contour_loop.h"
 #include "held_calls.h"
 #include "probe_table.h"
-#include "wall_model.h"
 
 namespace {
 
@@ -40,7 +42,7 @@ Parametric arc(double x0, double y0, double x1, double y1, double cx, double cy,
 // A rectangle from (x0, y0) to (x1, y1), counter-clockwise (or clockwise) from (x0, y0).
 std::vector<Parametric> rectangle(double x0, double y0, double x1, double y1, bool ccw = true) {
     std::vector<Parametric> r{line(x0, y0, x1, y0), line(x1, y0, x1, y1), line(x1, y1, x0, y1),
-                           line(x0, y1, x0, y0)};
+                              line(x0, y1, x0, y0)};
     if (!ccw) {
         std::vector<Parametric> back;
         back.reserve(r.size());
@@ -69,10 +71,10 @@ TEST(ContourLoop, SignedAreaIsPositiveCounterClockwiseAndCountsArcSegments) {
     // A 4 x 2 rectangle with corners rounded to 0.5: 8 - (4 - pi) 0.25.
     const double f = 0.5;
     const std::vector<Parametric> rounded{
-        line(f, 0, 4 - f, 0),         arc(4 - f, 0, 4, f, 4 - f, f, true),
-        line(4, f, 4, 2 - f),         arc(4, 2 - f, 4 - f, 2, 4 - f, 2 - f, true),
-        line(4 - f, 2, f, 2),         arc(f, 2, 0, 2 - f, f, 2 - f, true),
-        line(0, 2 - f, 0, f),         arc(0, f, f, 0, f, f, true)};
+        line(f, 0, 4 - f, 0), arc(4 - f, 0, 4, f, 4 - f, f, true),
+        line(4, f, 4, 2 - f), arc(4, 2 - f, 4 - f, 2, 4 - f, 2 - f, true),
+        line(4 - f, 2, f, 2), arc(f, 2, 0, 2 - f, f, 2 - f, true),
+        line(0, 2 - f, 0, f), arc(0, f, f, 0, f, f, true)};
     EXPECT_NEAR(plane::signed_area(rounded), 8 - (4 - kPi) * f * f, 1e-12);
 }
 
@@ -87,7 +89,7 @@ TEST(ContourLoop, WindingNumberInsideOutsideAndInAnArcsBulge) {
     // and the arc, and just beyond the arc, and just below the chord.
     const std::vector<Parametric> d{line(-2, 0, 2, 0), arc(2, 0, -2, 0, 0, 0, true)};
     EXPECT_EQ(plane::winding_number(d, {0, 1.99}), 1);
-    EXPECT_EQ(plane::winding_number(d, {1.4, 1.4}), 1);   // 1.98 from the centre
+    EXPECT_EQ(plane::winding_number(d, {1.4, 1.4}), 1);    // 1.98 from the centre
     EXPECT_EQ(plane::winding_number(d, {1.42, 1.42}), 0);  // 2.008 from it
     EXPECT_EQ(plane::winding_number(d, {0, -0.01}), 0);
     // The same D the other way round, the arc below: the region is on the arc's other side.
@@ -135,9 +137,9 @@ TEST(ContourLoop, WithinTellsNestedTouchingSameCrossingAndTheBudget) {
     // Crossing: not.
     EXPECT_EQ(plane::within(outer, rectangle(5, 5, 15, 8), tol, 1 << 20), plane::Within::kNot);
     // A C shape (a U opening to the right) whose box holds a square in its gap: not within.
-    const std::vector<Parametric> c{line(0, 0, 10, 0),  line(10, 0, 10, 3), line(10, 3, 3, 3),
-                                 line(3, 3, 3, 7),   line(3, 7, 10, 7),  line(10, 7, 10, 10),
-                                 line(10, 10, 0, 10), line(0, 10, 0, 0)};
+    const std::vector<Parametric> c{line(0, 0, 10, 0),   line(10, 0, 10, 3), line(10, 3, 3, 3),
+                                    line(3, 3, 3, 7),    line(3, 7, 10, 7),  line(10, 7, 10, 10),
+                                    line(10, 10, 0, 10), line(0, 10, 0, 0)};
     EXPECT_EQ(plane::within(c, rectangle(5, 4, 8, 6), tol, 1 << 20), plane::Within::kNot);
     EXPECT_EQ(plane::within(c, rectangle(0.5, 0.5, 2, 2), tol, 1 << 20), plane::Within::kWithin);
     // Within the C's box, near its sides and partly in its gap: touching its left side (a pass
@@ -181,7 +183,7 @@ std::uint64_t feed(WallModel& m, std::uint64_t first, const std::vector<Parametr
 // outside for G41) or counter-clockwise; with `lead` lead-in and lead-out elements (a line
 // from above and a line away).
 std::vector<Parametric> square_stretch(double cx, double cy, double a, bool clockwise, int lead_in,
-                                    int lead_out) {
+                                       int lead_out) {
     std::vector<Parametric> s;
     const double top = cy + a;
     for (int i = lead_in; i > 0; --i)
@@ -243,8 +245,7 @@ TEST(WallModel, ARunBetweenTwoLoopsHasLeadsAtBothEndsAndWallsBetween) {
         WallModel m;
         const std::uint64_t end = feed(m, 0, s);
         std::vector<WallRole> want(4, W);
-        for (int i = 0; i < between; ++i)
-            want.push_back(between == 5 && i == 2 ? W : L);
+        for (int i = 0; i < between; ++i) want.push_back(between == 5 && i == 2 ? W : L);
         for (int i = 0; i < 4; ++i) want.push_back(W);
         EXPECT_EQ(roles(m, 0, end), want) << between << " between";
         EXPECT_EQ(m.loops(), 2U);
@@ -315,7 +316,8 @@ TEST(WallModel, ALoopsGeometryIsItsOwnElementsNotTheLeadsBeforeIt) {
         m.begin(17, 1);
         m.element(n++, move_of(line(from, -3, 0, 0), -1), 900 + static_cast<int>(-from), true,
                   false);
-        for (std::uint64_t i = 0; i < 4; ++i) m.element(n++, move_of(r[i], -1), 100 + i, true, from != -5.0);
+        for (std::uint64_t i = 0; i < 4; ++i)
+            m.element(n++, move_of(r[i], -1), 100 + i, true, from != -5.0);
         m.end();
     }
     EXPECT_EQ(m.loops(), 1U);
@@ -507,12 +509,13 @@ TEST(WallModel, AnOpenStretchLongerThanThePendingBoundPlacesItsOldestAtOnce) {
     m.begin(17, 1);
     const std::uint64_t n = WallModel::kMaxPending + 1;
     for (std::uint64_t i = 0; i < n; ++i)
-        m.element(i, move_of(line(static_cast<double>(i), 0, static_cast<double>(i) + 1,
-                                  0.001 * (i % 2)),
-                             0),
-                  i + 1, true, false);
-    EXPECT_TRUE(m.placed(0));            // one past the bound: the oldest is an open contour's
-    EXPECT_FALSE(m.placed(1));           // at the bound: still pending
+        m.element(
+            i,
+            move_of(line(static_cast<double>(i), 0, static_cast<double>(i) + 1, 0.001 * (i % 2)),
+                    0),
+            i + 1, true, false);
+    EXPECT_TRUE(m.placed(0));   // one past the bound: the oldest is an open contour's
+    EXPECT_FALSE(m.placed(1));  // at the bound: still pending
     EXPECT_EQ(m.role(0), W);
     m.end();
     EXPECT_TRUE(m.placed(1));
@@ -528,9 +531,10 @@ TEST(WallModel, ALoopClosesAtAStartWhoseCellAnElementLetGoStartedInFirst) {
     const std::uint64_t n = WallModel::kMaxPending + 5;
     std::uint64_t i = 0;
     for (; i < n; ++i)
-        m.element(i, move_of(line(static_cast<double>(i), 0.001 * (i % 2), static_cast<double>(i) + 1,
-                                  0.001 * ((i + 1) % 2)),
-                             0),
+        m.element(i,
+                  move_of(line(static_cast<double>(i), 0.001 * (i % 2), static_cast<double>(i) + 1,
+                               0.001 * ((i + 1) % 2)),
+                          0),
                   i + 1, true, false);
     EXPECT_TRUE(m.placed(0));
     const double y = 0.001 * (n % 2);
@@ -605,10 +609,10 @@ TEST(WallModel, AContourRunAgainAfterAnotherLoopIsTheFirstRunsLoop) {
         return n;
     };
     WallModel m;
-    std::uint64_t n = keyed(m, 0, 0, 1);       // A
-    n = keyed(m, n, 100, 50);                  // B
+    std::uint64_t n = keyed(m, 0, 0, 1);  // A
+    n = keyed(m, n, 100, 50);             // B
     const std::uint64_t again = n;
-    n = keyed(m, n, 0, 1);                     // A again: A's loop
+    n = keyed(m, n, 0, 1);  // A again: A's loop
     EXPECT_EQ(m.loops(), 2U);
     feed(m, n, square_stretch(0, 0, 8, false, 2, 1));  // a larger pass about A
     EXPECT_EQ(m.role(again + 1), C);
@@ -659,7 +663,7 @@ TEST(WallModel, AWideBossPassIsFoundAndClearsTheOneAboutIt) {
     const std::uint64_t small = n;
     n = feed(m, n, square_stretch(0, 0, 200, true, 2, 1));  // a boss 400 mm across
     const std::uint64_t large = n;
-    feed(m, n, square_stretch(0, 0, 210, true, 2, 1));      // 420 mm about it
+    feed(m, n, square_stretch(0, 0, 210, true, 2, 1));  // 420 mm about it
     EXPECT_EQ(m.role(large + 2), C);
     EXPECT_EQ(m.role(small + 2), W);
 }
@@ -675,9 +679,9 @@ TEST(WallModel, AModelAskedOnlyForPlacementPlacesAsTheOtherAndKeepsNoLoop) {
         feed(roles_model, n, s, 1, 0.0, walls);
         n = feed(places, n, s, 1, 0.0, walls);
     };
-    both(square_stretch(0, 0, 5, false, 2, 1), true);    // a pocket pass, with leads
-    both(square_stretch(0, 0, 8, false, 2, 1), true);    // a larger one clears it
-    both(square_stretch(50, 0, 5, true, 1, 2), false);   // under CDOF
+    both(square_stretch(0, 0, 5, false, 2, 1), true);           // a pocket pass, with leads
+    both(square_stretch(0, 0, 8, false, 2, 1), true);           // a larger one clears it
+    both(square_stretch(50, 0, 5, true, 1, 2), false);          // under CDOF
     both({line(100, 0, 110, 0), line(110, 0, 110, 10)}, true);  // an open contour
     std::size_t loops = 0, cleared = 0;
     for (std::uint64_t i = 0; i < n; ++i) {
@@ -741,6 +745,18 @@ TEST(ChunkedArray, KeepsEveryItemInOrderAcrossChunks) {
     const std::uint64_t n = decltype(big)::kPerChunk + 2;
     fill(big, n, 0);
     expect_all(big, n, 0);
+    // Chunks carved from a slab, two arrays sharing it: their chunks interleave in one block.
+    apci::run::detail::Slab memory;
+    Small carved(memory);
+    using Wide = apci::run::detail::ChunkedArray<Item, apci::run::detail::Slab::kMostTaken>;
+    Wide wide(memory);
+    fill(carved, 31, 100);
+    const std::uint64_t m = Wide::kPerChunk + 1;
+    fill(wide, m, 5);
+    fill(carved, 1, 131);
+    expect_all(carved, 32, 100);
+    expect_all(wide, m, 5);
+    EXPECT_EQ(memory.blocks(), 1U);
 }
 
 // ---- held_calls.h
@@ -766,10 +782,14 @@ void expect_same_call(const HeldCall& got, const HeldCall& want, std::size_t i) 
             EXPECT_EQ(got.plane, want.plane) << i;
             EXPECT_EQ(got.side, want.side) << i;
             return;
-        case HeldCall::Kind::kEnd: return;
-        case HeldCall::Kind::kWalls: EXPECT_EQ(got.on, want.on) << i; return;
+        case HeldCall::Kind::kEnd:
+            return;
+        case HeldCall::Kind::kWalls:
+            EXPECT_EQ(got.on, want.on) << i;
+            return;
         case HeldCall::Kind::kProgrammed:
-        case HeldCall::Kind::kExecuted: break;
+        case HeldCall::Kind::kExecuted:
+            break;
     }
     const PathSegment& g = got.segment;
     const PathSegment& w = want.segment;
@@ -789,11 +809,19 @@ void expect_same_call(const HeldCall& got, const HeldCall& want, std::size_t i) 
 
 void put_call(HeldCalls& calls, const HeldCall& c) {
     switch (c.kind) {
-        case HeldCall::Kind::kBegin: calls.begin(c.radius, c.plane, c.side); break;
-        case HeldCall::Kind::kEnd: calls.end(); break;
-        case HeldCall::Kind::kWalls: calls.walls(c.on); break;
+        case HeldCall::Kind::kBegin:
+            calls.begin(c.radius, c.plane, c.side);
+            break;
+        case HeldCall::Kind::kEnd:
+            calls.end();
+            break;
+        case HeldCall::Kind::kWalls:
+            calls.walls(c.on);
+            break;
         case HeldCall::Kind::kProgrammed:
-        case HeldCall::Kind::kExecuted: calls.segment(c.kind, c.segment); break;
+        case HeldCall::Kind::kExecuted:
+            calls.segment(c.kind, c.segment);
+            break;
     }
 }
 
@@ -827,7 +855,7 @@ TEST(HeldCalls, GiveBackEveryCallBitForBit) {
     const auto make = [&](std::size_t n) {
         std::vector<HeldCall> calls;
         Point last_end[2] = {Point::Zero(), Point::Zero()};
-        BlockRef last_block{};
+        BlockRef last_blocks[2]{};  // each kind's, as the records are written against them
         for (std::size_t i = 0; i < n; ++i) {
             HeldCall c;
             const int k = pick(10);
@@ -844,18 +872,28 @@ TEST(HeldCalls, GiveBackEveryCallBitForBit) {
             } else {
                 c.kind = k < 6 ? HeldCall::Kind::kProgrammed : HeldCall::Kind::kExecuted;
                 const int slot = c.kind == HeldCall::Kind::kExecuted ? 1 : 0;
+                const BlockRef& last_block = last_blocks[slot];
                 PathSegment& s = c.segment;
                 // The next block (past the largest numbers: the smallest, as if they wrapped).
                 const bool largest =
                     last_block.number == std::numeric_limits<std::int64_t>::max() ||
                     last_block.line == std::numeric_limits<std::uint64_t>::max();
-                const BlockRef next =
-                    largest ? BlockRef{std::numeric_limits<std::int64_t>::min(), 0}
-                            : BlockRef{last_block.number + 1, last_block.line + 1};
-                switch (pick(5)) {
-                    case 0: s.block = last_block; break;
-                    case 1: s.block = next; break;
-                    case 2: s.block = {next.number, next.line + 1}; break;
+                const BlockRef next = largest
+                                          ? BlockRef{std::numeric_limits<std::int64_t>::min(), 0}
+                                          : BlockRef{last_block.number + 1, last_block.line + 1};
+                switch (pick(6)) {
+                    case 0:
+                        s.block = last_block;
+                        break;
+                    case 1:
+                        s.block = next;
+                        break;
+                    case 2:
+                        s.block = {next.number, next.line + 1};
+                        break;
+                    case 5:
+                        s.block = {next.number, last_block.line};
+                        break;  // its number alone
                     case 3:
                         s.block = {apci::run::kNoBlock, static_cast<std::uint64_t>(pick(3))};
                         break;
@@ -881,7 +919,7 @@ TEST(HeldCalls, GiveBackEveryCallBitForBit) {
                 const double sweeps[] = {nan, other_nan, 0.0, -0.0, value()};
                 s.sweep = sweeps[pick(5)];
                 last_end[slot] = s.end;
-                last_block = s.block;
+                last_blocks[slot] = s.block;
             }
             calls.push_back(c);
         }
@@ -904,6 +942,83 @@ TEST(HeldCalls, GiveBackEveryCallBitForBit) {
     held.swap(other);
     expect_calls(held, third);
     expect_calls(other, second);
+    // Chunks carved from a slab (of 512 KiB: 40,000 calls take several), given back the same;
+    // emptied, the same chunks are written again, and swapped, they go with the calls.
+    apci::run::detail::Slab memory;
+    HeldCalls carved(memory);
+    const std::vector<HeldCall> many = make(40000);
+    for (const HeldCall& c : many) put_call(carved, c);
+    ASSERT_GT(carved.bytes(), 2 * apci::run::detail::Slab::kMostTaken);
+    expect_calls(carved, many);
+    const std::size_t blocks = memory.blocks();
+    EXPECT_EQ(blocks, (carved.bytes() + apci::run::detail::Slab::kBlockBytes - 1) /
+                          apci::run::detail::Slab::kBlockBytes);
+    carved.clear();
+    for (const HeldCall& c : many) put_call(carved, c);
+    expect_calls(carved, many);
+    EXPECT_EQ(memory.blocks(), blocks);
+    HeldCalls mapped;
+    mapped.swap(carved);
+    expect_calls(mapped, many);
+    EXPECT_TRUE(carved.empty());
+    for (const HeldCall& c : third) put_call(carved, c);  // its own chunk, mapped
+    expect_calls(carved, third);
+    EXPECT_EQ(memory.blocks(), blocks);
+}
+
+// The programmed elements run ahead of the executed segments, so the two kinds interleave:
+// each record's block is written against the last of its own kind (the same, the next, or the
+// next number on the same line: an executed segment carries a block's number alone), and in
+// full where it is none of those.
+TEST(HeldCalls, EachKindFollowsItsOwnBlocks) {
+    HeldCalls held;
+    const auto line = [](BlockRef b, Point start, Point end) {
+        PathSegment s;
+        s.block = b;
+        s.kind = SegmentKind::kLine;
+        s.role = Role::kContour;
+        s.start = start;
+        s.end = end;
+        s.sweep = 0.0;
+        return s;
+    };
+    const Point o(0, 0, -2);
+    std::vector<HeldCall> want;
+    std::size_t was = 0;
+    const auto put = [&](HeldCall::Kind kind, const PathSegment& s) {
+        was = held.bytes();
+        held.segment(kind, s);
+        HeldCall c;
+        c.kind = kind;
+        c.segment = s;
+        want.push_back(c);
+        return held.bytes() - was;
+    };
+    using K = HeldCall::Kind;
+    // The first of each kind: its block, start, and the end's X.
+    EXPECT_EQ(put(K::kProgrammed, line({20, 21}, o, Point(1, 0, -2))), 6U + 16U + 24U + 8U);
+    EXPECT_EQ(put(K::kExecuted, line({10, 0}, o, Point(2, 0, -2))), 6U + 16U + 24U + 8U);
+    // Programmed 21 (line 22) after 20 (21): the next block; executed 11 (line 0) after 10 (0):
+    // the next number; each from its kind's last end, the end's X.
+    EXPECT_EQ(put(K::kProgrammed, line({21, 22}, Point(1, 0, -2), Point(3, 0, -2))), 6U + 8U);
+    EXPECT_EQ(put(K::kExecuted, line({11, 0}, Point(2, 0, -2), Point(4, 0, -2))), 6U + 8U);
+    EXPECT_EQ(put(K::kExecuted, line({11, 0}, Point(4, 0, -2), Point(5, 0, -2))), 6U + 8U);
+    // The next number two lines on, a number two on, the largest number's next: written.
+    EXPECT_EQ(put(K::kProgrammed, line({22, 24}, Point(3, 0, -2), Point(6, 0, -2))), 6U + 16U + 8U);
+    EXPECT_EQ(put(K::kExecuted, line({13, 0}, Point(5, 0, -2), Point(7, 0, -2))), 6U + 16U + 8U);
+    constexpr std::int64_t kLargest = std::numeric_limits<std::int64_t>::max();
+    EXPECT_EQ(put(K::kExecuted, line({kLargest, 0}, Point(7, 0, -2), Point(8, 0, -2))),
+              6U + 16U + 8U);
+    EXPECT_EQ(put(K::kExecuted, line({kLargest, 0}, Point(8, 0, -2), Point(9, 0, -2))), 6U + 8U);
+    EXPECT_EQ(put(K::kExecuted, line({std::numeric_limits<std::int64_t>::min(), 0}, Point(9, 0, -2),
+                                     Point(10, 0, -2))),
+              6U + 16U + 8U);
+    // The largest line's next: written (the number one on, the line past its largest).
+    constexpr std::uint64_t kLastLine = std::numeric_limits<std::uint64_t>::max();
+    EXPECT_EQ(put(K::kProgrammed, line({30, kLastLine}, Point(6, 0, -2), Point(7, 0, -2))),
+              6U + 16U + 8U);
+    EXPECT_EQ(put(K::kProgrammed, line({31, 0}, Point(7, 0, -2), Point(8, 0, -2))), 6U + 16U + 8U);
+    expect_calls(held, want);
 }
 
 // What a record takes: the header of six bytes and the numbers not found from the record before
@@ -987,10 +1102,10 @@ TEST(HeldCalls, WriteOnlyWhatTheRecordBeforeDoesNotGive) {
 // as std::floor gives at every integer, one step of rounding either side of it, zero of both
 // signs, halves, and out to 2^62 (where every double is an integer) on both sides.
 TEST(FloorIndex, IsTheFloorAtEveryIntegerAndOneRoundingStepEitherSide) {
-    std::vector<double> at{0.0, -0.0, 0.5, -0.5, 1e-300, -1e-300, 0x1p52, -0x1p52, 0x1p53,
-                           -0x1p53, 0x1p62, -0x1p62};
-    for (const double k : {1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 1e6, -1e6, 1e15, -1e15, 0x1p52 - 1,
-                           -(0x1p52 - 1)}) {
+    std::vector<double> at{0.0,    -0.0,    0.5,    -0.5,    1e-300, -1e-300,
+                           0x1p52, -0x1p52, 0x1p53, -0x1p53, 0x1p62, -0x1p62};
+    for (const double k :
+         {1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 1e6, -1e6, 1e15, -1e15, 0x1p52 - 1, -(0x1p52 - 1)}) {
         at.push_back(k);
         at.push_back(std::nextafter(k, -INFINITY));
         at.push_back(std::nextafter(k, INFINITY));

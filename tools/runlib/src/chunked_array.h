@@ -14,9 +14,9 @@
 namespace apci::run::detail {
 
 // Items kept in order, in chunks of ChunkBytes (2 MiB) each mapped once (made ready a step
-// ahead of the items: ReadyAhead): keeping one never allocates but at a chunk's start (a
-// std::deque's chunk holds a few), nor moves the items before it (as a vector's growth would).
-// T has nothing to destroy.
+// ahead of the items: ReadyAhead), or carved from a slab: keeping one never allocates but at a
+// chunk's start (a std::deque's chunk holds a few), nor moves the items before it (as a vector's
+// growth would). T has nothing to destroy.
 template <class T, std::size_t ChunkBytes = kHugePage>
 class ChunkedArray {
     static_assert(std::is_trivially_destructible_v<T>);
@@ -26,14 +26,31 @@ class ChunkedArray {
     static constexpr std::size_t kPerChunk = ChunkBytes / sizeof(T);
     static_assert(kPerChunk >= 1, "a chunk holds at least one item");
 
+    // Chunks mapped on their own.
+    ChunkedArray() = default;
+    // Chunks carved from `memory` (made ready as carved), which must outlive the array: a
+    // holder's memory shared with its other arrays, so that each takes no huge page of its own.
+    explicit ChunkedArray(Slab& memory) : slab_(&memory) {
+        static_assert(ChunkBytes <= Slab::kMostTaken, "a slab carves a chunk of this size");
+    }
+    ChunkedArray(const ChunkedArray&) = delete;
+    ChunkedArray& operator=(const ChunkedArray&) = delete;
+
     // A new item at the end, value-initialised.
     T& emplace_back() {
         if (size_ == chunks_.size() * kPerChunk) {
-            chunks_.push_back(map_block(ChunkBytes));  // whole: a huge page (ready_pages.h)
-            ready_ = ReadyAhead{};
+            chunks_.reserve(chunks_.size() + 1);  // before the chunk, which nothing would hold
+            if (slab_ != nullptr) {
+                chunks_.push_back(static_cast<std::byte*>(slab_->take(ChunkBytes)));
+            } else {
+                mapped_.push_back(map_block(ChunkBytes));  // a huge page's: one (ready_pages.h)
+                chunks_.push_back(mapped_.back().get());
+                ready_ = ReadyAhead{};
+            }
         }
-        ready_.before_write(chunks_.back().get(), size_ % kPerChunk * sizeof(T), sizeof(T),
-                            kPerChunk * sizeof(T));
+        if (slab_ == nullptr)
+            ready_.before_write(chunks_.back(), size_ % kPerChunk * sizeof(T), sizeof(T),
+                                kPerChunk * sizeof(T));
         T* const slot = at(size_);
         ::new (static_cast<void*>(slot)) T{};
         ++size_;
@@ -45,10 +62,14 @@ class ChunkedArray {
 
   private:
     T* at(std::size_t i) const noexcept {
-        return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk].get()) + i % kPerChunk);
+        return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk]) + i % kPerChunk);
     }
-    std::vector<MappedBlock> chunks_;  // each mapped on its own (ready_pages.h)
-    ReadyAhead ready_;  // the last chunk's pages, made ready ahead of its items (ready_pages.h)
+    Slab* slab_ = nullptr;             // where the chunks are carved from (none: mapped)
+    std::vector<std::byte*> chunks_;   // where each chunk starts
+    std::vector<MappedBlock> mapped_;  // the chunks mapped on their own (ready_pages.h)
+    // The last mapped chunk's pages, made ready ahead of its items (ready_pages.h). A slab's
+    // chunks are ready when carved.
+    ReadyAhead ready_;
     std::size_t size_ = 0;
 };
 

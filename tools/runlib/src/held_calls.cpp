@@ -13,24 +13,26 @@ namespace apci::run::detail {
 namespace {
 
 // A record: a header of kHeaderBytes, then the numbers its flags say are there, in this order:
-// the plane (kPlaneWide), the block (neither kSameBlock nor kNextBlock), the start (not
+// the plane (kPlaneWide), the block (none of kSameBlock, kNextBlock, kNextNumber), the start (not
 // kStartIsLast), the end's coordinates not in `same_as_start` (bits 0-2: the start's), the
 // centre's not in it (bits 3-5: the start's) where kCentre, the sweep (kSweep); a kBegin its
 // radius.
 enum Flag : std::uint8_t {
     kCcw = 1,
-    kStartIsLast = 2,   // the start is the last segment's of its kind's end
-    kSameBlock = 4,     // the block is the last segment's
-    kCentre = 8,        // the centre is not 0, 0, 0: its coordinates not the start's are written
-    kSweep = 16,        // the sweep is written (else kSweepZero: 0; neither: a quiet NaN)
+    kStartIsLast = 2,  // the start is the end of the last segment of its kind
+    kSameBlock = 4,    // the block is the last segment's of its kind
+    kCentre = 8,       // the centre is not 0, 0, 0: its coordinates not the start's are written
+    kSweep = 16,       // the sweep is written (else kSweepZero: 0; neither: a quiet NaN)
     kSweepZero = 32,
-    kNextBlock = 64,    // the block's number and line are the last segment's, each plus one
+    kNextBlock = 64,    // the block's number and line are the last one's of its kind, plus one
+    kNextNumber = 128,  // the block's number is the last one's plus one, its line the same (an
+                        // executed segment carries a block's number alone)
 };
 // The flags of the other records.
-constexpr std::uint8_t kOn = 1;           // kWalls
+constexpr std::uint8_t kOn = 1;            // kWalls
 constexpr std::uint8_t kSideNegative = 1;  // kBegin
-constexpr std::size_t kHeaderBytes = 6;  // kind, segment kind, role, flags, same_as_start, plane
-constexpr std::uint8_t kPlaneWide = 3;   // plane code: an int32 plane follows
+constexpr std::size_t kHeaderBytes = 6;    // kind, segment kind, role, flags, same_as_start, plane
+constexpr std::uint8_t kPlaneWide = 3;     // plane code: an int32 plane follows
 
 std::uint8_t plane_code(int plane) {
     return plane == 17 ? 0 : plane == 18 ? 1 : plane == 19 ? 2 : kPlaneWide;
@@ -68,25 +70,33 @@ std::size_t slot_of(HeldCall::Kind k) {
 
 }  // namespace
 
-HeldCalls::HeldCalls(std::size_t chunk_bytes)
-    : chunk_bytes_(std::max(chunk_bytes, kMostRecord)) {}
+HeldCalls::HeldCalls(std::size_t chunk_bytes) : chunk_bytes_(std::max(chunk_bytes, kMostRecord)) {}
+
+HeldCalls::HeldCalls(Slab& memory) : chunk_bytes_(Slab::kMostTaken), slab_(&memory) {}
 
 std::byte* HeldCalls::room() {
     if (chunks_.empty() || used_[current_] + kMostRecord > chunk_bytes_) {
         if (!chunks_.empty()) ++current_;
         if (current_ == chunks_.size()) {
-            chunks_.push_back(map_block(chunk_bytes_));
+            chunks_.reserve(chunks_.size() + 1);  // before the chunk, which nothing would hold
+            if (slab_ != nullptr) {
+                chunks_.push_back(static_cast<std::byte*>(slab_->take(chunk_bytes_)));
+            } else {
+                mapped_.push_back(map_block(chunk_bytes_));
+                chunks_.push_back(mapped_.back().get());
+            }
             used_.push_back(0);
             ready_.emplace_back();
         }
     }
-    std::byte* const chunk = chunks_[current_].get();
-    ready_[current_].before_write(chunk, used_[current_], kMostRecord, chunk_bytes_);
+    std::byte* const chunk = chunks_[current_];
+    if (slab_ == nullptr)
+        ready_[current_].before_write(chunk, used_[current_], kMostRecord, chunk_bytes_);
     return chunk + used_[current_];
 }
 
 void HeldCalls::wrote(std::byte* end) {
-    used_[current_] = static_cast<std::size_t>(end - chunks_[current_].get());
+    used_[current_] = static_cast<std::size_t>(end - chunks_[current_]);
     ++count_;
 }
 
@@ -94,7 +104,7 @@ void HeldCalls::begin(double radius, int plane, int side) {
     std::byte* at = room();
     const std::uint8_t code = plane_code(plane);
     const std::uint8_t header[kHeaderBytes] = {
-        static_cast<std::uint8_t>(HeldCall::Kind::kBegin), 0, 0,
+        static_cast<std::uint8_t>(HeldCall::Kind::kBegin),       0, 0,
         static_cast<std::uint8_t>(side < 0 ? kSideNegative : 0), 0, code};
     at = put(at, header);
     if (code == kPlaneWide) at = put(at, static_cast<std::int32_t>(plane));
@@ -109,8 +119,8 @@ void HeldCalls::end() {
 
 void HeldCalls::walls(bool on) {
     std::byte* at = room();
-    const std::uint8_t header[kHeaderBytes] = {static_cast<std::uint8_t>(HeldCall::Kind::kWalls),
-                                               0, 0, static_cast<std::uint8_t>(on ? kOn : 0)};
+    const std::uint8_t header[kHeaderBytes] = {static_cast<std::uint8_t>(HeldCall::Kind::kWalls), 0,
+                                               0, static_cast<std::uint8_t>(on ? kOn : 0)};
     wrote(put(at, header));
 }
 
@@ -118,14 +128,18 @@ void HeldCalls::segment(HeldCall::Kind kind, const PathSegment& s) {
     std::byte* at = room();
     const std::size_t k = slot_of(kind);
     std::uint8_t flags = s.ccw ? kCcw : 0;
-    if (last_.has_end[k] && same_bits(s.start, last_.end[k])) flags |= kStartIsLast;
-    if (last_.has_block && s.block.number == last_.block.number &&
-        s.block.line == last_.block.line)
+    const BlockRef& last = last_.block[k];
+    if (last_.has[k] && same_bits(s.start, last_.end[k])) flags |= kStartIsLast;
+    if (last_.has[k] && s.block.number == last.number && s.block.line == last.line)
         flags |= kSameBlock;
-    else if (last_.has_block && last_.block.number < std::numeric_limits<std::int64_t>::max() &&
-             last_.block.line < std::numeric_limits<std::uint64_t>::max() &&
-             s.block.number == last_.block.number + 1 && s.block.line == last_.block.line + 1)
-        flags |= kNextBlock;
+    else if (last_.has[k] && last.number < std::numeric_limits<std::int64_t>::max() &&
+             s.block.number == last.number + 1) {
+        if (s.block.line == last.line)
+            flags |= kNextNumber;
+        else if (last.line < std::numeric_limits<std::uint64_t>::max() &&
+                 s.block.line == last.line + 1)
+            flags |= kNextBlock;
+    }
     if (!zero_bits(s.center)) flags |= kCentre;
     if (same_bits(s.sweep, 0.0))
         flags |= kSweepZero;
@@ -145,7 +159,7 @@ void HeldCalls::segment(HeldCall::Kind kind, const PathSegment& s) {
                                                code};
     at = put(at, header);
     if (code == kPlaneWide) at = put(at, static_cast<std::int32_t>(s.plane));
-    if ((flags & (kSameBlock | kNextBlock)) == 0) {
+    if ((flags & (kSameBlock | kNextBlock | kNextNumber)) == 0) {
         at = put(at, s.block.number);
         at = put(at, s.block.line);
     }
@@ -158,9 +172,8 @@ void HeldCalls::segment(HeldCall::Kind kind, const PathSegment& s) {
     if ((flags & kSweep) != 0) at = put(at, s.sweep);
     wrote(at);
     last_.end[k] = s.end;
-    last_.has_end[k] = true;
-    last_.block = s.block;
-    last_.has_block = true;
+    last_.block[k] = s.block;
+    last_.has[k] = true;
 }
 
 bool HeldCalls::Reader::next(HeldCall& c) {
@@ -169,7 +182,7 @@ bool HeldCalls::Reader::next(HeldCall& c) {
         ++chunk_;
         at_ = 0;
     }
-    const std::byte* p = calls_.chunks_[chunk_].get() + at_;
+    const std::byte* p = calls_.chunks_[chunk_] + at_;
     std::uint8_t header[kHeaderBytes];
     p = get(p, header);
     c = HeldCall{};
@@ -187,8 +200,11 @@ bool HeldCalls::Reader::next(HeldCall& c) {
             c.side = (flags & kSideNegative) != 0 ? -1 : 1;
             p = get(p, c.radius);
             break;
-        case HeldCall::Kind::kEnd: break;
-        case HeldCall::Kind::kWalls: c.on = (flags & kOn) != 0; break;
+        case HeldCall::Kind::kEnd:
+            break;
+        case HeldCall::Kind::kWalls:
+            c.on = (flags & kOn) != 0;
+            break;
         case HeldCall::Kind::kProgrammed:
         case HeldCall::Kind::kExecuted: {
             PathSegment& s = c.segment;
@@ -198,9 +214,11 @@ bool HeldCalls::Reader::next(HeldCall& c) {
             s.ccw = (flags & kCcw) != 0;
             s.plane = plane;
             if ((flags & kSameBlock) != 0) {
-                s.block = last_.block;
+                s.block = last_.block[k];
             } else if ((flags & kNextBlock) != 0) {
-                s.block = BlockRef{last_.block.number + 1, last_.block.line + 1};
+                s.block = BlockRef{last_.block[k].number + 1, last_.block[k].line + 1};
+            } else if ((flags & kNextNumber) != 0) {
+                s.block = BlockRef{last_.block[k].number + 1, last_.block[k].line};
             } else {
                 p = get(p, s.block.number);
                 p = get(p, s.block.line);
@@ -230,13 +248,12 @@ bool HeldCalls::Reader::next(HeldCall& c) {
             else
                 s.sweep = std::numeric_limits<double>::quiet_NaN();
             last_.end[k] = s.end;
-            last_.has_end[k] = true;
-            last_.block = s.block;
-            last_.has_block = true;
+            last_.block[k] = s.block;
+            last_.has[k] = true;
             break;
         }
     }
-    at_ = static_cast<std::size_t>(p - calls_.chunks_[chunk_].get());
+    at_ = static_cast<std::size_t>(p - calls_.chunks_[chunk_]);
     ++read_;
     return true;
 }
@@ -254,7 +271,9 @@ void HeldCalls::clear() noexcept {
 
 void HeldCalls::swap(HeldCalls& other) noexcept {
     std::swap(chunk_bytes_, other.chunk_bytes_);
+    std::swap(slab_, other.slab_);
     chunks_.swap(other.chunks_);
+    mapped_.swap(other.mapped_);
     used_.swap(other.used_);
     ready_.swap(other.ready_);
     std::swap(current_, other.current_);

@@ -30,17 +30,24 @@ struct HeldCall {
 };
 
 // The calls in the order given. A record takes a few bytes of header and only the numbers that
-// are not found from the record before it: an executed segment starts where the one before it
-// ended, a programmed element where the element before it ended, consecutive segments of a
-// block share its reference, a line in its plane keeps the third coordinate, a line has no
-// centre and an element no sweep. A compare is of the bits (-0 and 0 apart, a NaN's payload
-// kept), so that what is read back is what was written. Chunks are kept when cleared.
+// are not found from the record of its kind before it: an executed segment starts where the
+// one before it ended, a programmed element where the element before it ended, a segment's
+// block is that of the last of its kind or the one after it (the check is given the programmed
+// elements ahead of the executed ones, so the two kinds interleave), a line in its plane keeps
+// the third coordinate, a line has no centre and an element no sweep. A compare is of the bits (-0
+// and 0 apart, a NaN's payload kept), so that what is read back is what was written. Chunks are
+// kept when cleared.
 class HeldCalls {
   public:
     static constexpr std::size_t kChunkBytes = kHugePage;  // one huge page (ready_pages.h)
 
     HeldCalls() = default;
+    // Chunks of chunk_bytes, each mapped on its own.
     explicit HeldCalls(std::size_t chunk_bytes);
+    // Chunks of Slab::kMostTaken carved from `memory` (made ready as carved), which must outlive
+    // the calls written (a holder's memory shared with its other arrays: fewer huge pages
+    // taken in part).
+    explicit HeldCalls(Slab& memory);
 
     void begin(double radius, int plane, int side);
     void end();
@@ -67,13 +74,12 @@ class HeldCalls {
   private:
     // The most bytes one record takes.
     static constexpr std::size_t kMostRecord = 128;
-    // What a record is written against (and read against): the ends of the last programmed and
-    // executed segments, and the block of the last segment.
+    // What a record is written against (and read against): the end and the block of the last
+    // programmed segment ([0]) and of the last executed one ([1]).
     struct Last {
         std::array<Point, 2> end{Point::Zero(), Point::Zero()};
-        std::array<bool, 2> has_end{false, false};
-        BlockRef block{};
-        bool has_block = false;
+        std::array<BlockRef, 2> block{};
+        std::array<bool, 2> has{false, false};
     };
     class Reader {
       public:
@@ -90,9 +96,12 @@ class HeldCalls {
     void wrote(std::byte* end);
 
     std::size_t chunk_bytes_ = kChunkBytes;
-    std::vector<MappedBlock> chunks_;  // each mapped on its own (ready_pages.h)
+    Slab* slab_ = nullptr;             // where the chunks are carved from (none: mapped)
+    std::vector<std::byte*> chunks_;   // where each chunk starts
+    std::vector<MappedBlock> mapped_;  // the chunks mapped on their own (ready_pages.h)
     std::vector<std::size_t> used_;    // bytes written in each chunk in use
-    // Each chunk's pages made ready ahead of the writer (ready_pages.h; kept when cleared).
+    // Each mapped chunk's pages made ready ahead of the writer (ready_pages.h; kept when
+    // cleared). A slab's chunks are ready when carved.
     std::vector<ReadyAhead> ready_;
     std::size_t current_ = 0;  // the chunk written to (when count_ > 0)
     std::size_t count_ = 0;

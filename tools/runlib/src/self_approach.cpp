@@ -91,8 +91,7 @@ plane::Parametric measured_arc(const PathSegment& s, const Vec2& start, const Ve
     const Vec2 chord = end - start;
     const bool long_chord = std::abs(chord.x()) > 2.0 * kSamePointTolerance ||
                             std::abs(chord.y()) > 2.0 * kSamePointTolerance;
-    if (std::isnan(s.sweep) || !long_chord)
-        return plane::arc_element(start, end, centre, s.ccw);
+    if (std::isnan(s.sweep) || !long_chord) return plane::arc_element(start, end, centre, s.ccw);
     const Vec2 u0 = start - centre;
     return plane::arc_element(start, end, centre, s.ccw, s.sweep, std::atan2(u0.y(), u0.x()));
 }
@@ -173,14 +172,18 @@ float down(double v) {
     const auto f = static_cast<float>(v);
     return static_cast<double>(f) > v ? float_below(f) : f;
 }
-float up(double v) { return -down(-v); }
+float up(double v) {
+    return -down(-v);
+}
 
 // What the cheap tests take of a shape: its box, and its range on the plane's third axis.
 struct Extent {
     Vec2 lo, hi;
     double low, high;
 };
-Extent extent_of(const Shape& e) { return {e.lo, e.hi, e.low, e.high}; }
+Extent extent_of(const Shape& e) {
+    return {e.lo, e.hi, e.low, e.high};
+}
 
 // The least distance between the boxes of a and b: at most that of any of their points.
 double box_distance(const Extent& a, const Extent& b) {
@@ -219,7 +222,10 @@ struct StoredShape {
           sweep(e.sweep),
           lo{down(e.lo.x()), down(e.lo.y())},
           hi{up(e.hi.x()), up(e.hi.y())},
-          low(down(e.low)), high(up(e.high)), length(up(e.length)), arc(is_arc(e)),
+          low(down(e.low)),
+          high(up(e.high)),
+          length(up(e.length)),
+          arc(is_arc(e)),
           ccw(e.sweep > 0.0) {}
     Extent extent() const {
         return {Vec2(lo[0], lo[1]), Vec2(hi[0], hi[1]), static_cast<double>(low),
@@ -399,7 +405,6 @@ std::string describe(const SelfApproachFinding& f) {
         f.radius - f.distance);
 }
 
-
 struct SelfApproachCheck::GridItem {
     GridItem(const Shape& e, const BlockRef& b, std::uint64_t i, std::uint64_t s, double radius)
         : shape(e), block(b), index(i), stretch(s), r(radius) {}
@@ -444,7 +449,7 @@ struct SelfApproachCheck::Grid {
                                               : nullptr;
         }
     };
-    double cell = 0.0;   // set by the plane's first stretch, made larger by a larger tool (begin)
+    double cell = 0.0;  // set by the plane's first stretch, made larger by a larger tool (begin)
     // The lengths of the plane's first kSizing elements: where most are longer than the cells,
     // the cells are made twice the median (size_by()).
     static constexpr std::size_t kSizing = 256;
@@ -476,9 +481,9 @@ struct SelfApproachCheck::Grid {
     // The cells of both lists: a cell is looked up once for a path's candidates and its own
     // entry (near_adding).
     detail::CellIndex<2> cells;
-    bool truncated = false;  // items were let go
+    bool truncated = false;       // items were let go
     std::uint64_t kept_from = 0;  // the elements numbered below it were let go
-    BlockRef truncated_at{};  // the block whose element or path let the first go
+    BlockRef truncated_at{};      // the block whose element or path let the first go
     int plane = 17;
 
     std::int64_t index_of(double v) const { return detail::floor_index(v / cell); }
@@ -841,8 +846,8 @@ struct SelfApproachCheck::Grid {
         const std::size_t at = to.items.size() - 1;
         const CellRange own = cells_of(to.items[at]);
         const CellRange box = cells_of(e, r + (list.sampled > 0 ? 0.25 * cell : 0.0));
-        const bool within = box.i0 <= own.i0 && own.i1 <= box.i1 && box.j0 <= own.j0 &&
-                            own.j1 <= box.j1;
+        const bool within =
+            box.i0 <= own.i0 && own.i1 <= box.i1 && box.j0 <= own.j0 && own.j1 <= box.j1;
         if (all || own.count() > kBoxCells || box.count() > 16 || !within) {
             index(to, at);
             return near(list, e, r);
@@ -971,9 +976,10 @@ bool stands_near(const Shape& approach, const Shape& element, double threshold) 
 }
 
 // The elements that meet at an approach's entry point (the one it leads onto, one that closes
-// a contour there, those of any other stretch over the same point): a straight approach onto an outside corner passes the entry point at
-// L r / sqrt(L^2 + r^2) < r (L its length), the entry move every control makes (LinuxCNC's
-// too); it is held to them only where its centre crosses one (a lead-in through the part).
+// a contour there, those of any other stretch over the same point): a straight approach onto an
+// outside corner passes the entry point at L r / sqrt(L^2 + r^2) < r (L its length), the entry move
+// every control makes (LinuxCNC's too); it is held to them only where its centre crosses one (a
+// lead-in through the part).
 bool at_entry(const Shape& element, const Vec2& entry) {
     return (element.start - entry).norm() <= SelfApproachCheck::kTolerance ||
            (element.end - entry).norm() <= SelfApproachCheck::kTolerance;
@@ -997,8 +1003,8 @@ const Shape* checked_part(const Shape& c, Relation rel, Shape& out) {
     if (rel == Relation::kOwn || !is_arc(c)) return nullptr;
     const double turn = std::abs(c.sweep);
     if (turn <= std::numbers::pi) return nullptr;
-    const double cut = rel == Relation::kHeld ? (turn - std::numbers::pi) / turn
-                                              : std::numbers::pi / turn;
+    const double cut =
+        rel == Relation::kHeld ? (turn - std::numbers::pi) / turn : std::numbers::pi / turn;
     const double t0 = rel == Relation::kHeld ? 0.0 : cut;
     const double t1 = rel == Relation::kHeld ? cut : 1.0;
     out = c;
@@ -1038,15 +1044,22 @@ struct SelfApproachCheck::Candidate {
     std::uint64_t contour_index = 0, path_index = 0, contour_id = 0;
     bool need_cross = false;
     explicit Candidate(const PairView& v)
-        : path(v.path), path_block(v.path_block), r(v.r), plane(v.plane), contour(v.contour),
-          contour_block(v.contour_block), threshold(v.threshold), contour_index(v.contour_index),
-          path_index(v.path_index), contour_id(v.contour_id), need_cross(v.need_cross) {}
+        : path(v.path),
+          path_block(v.path_block),
+          r(v.r),
+          plane(v.plane),
+          contour(v.contour),
+          contour_block(v.contour_block),
+          threshold(v.threshold),
+          contour_index(v.contour_index),
+          path_index(v.path_index),
+          contour_id(v.contour_id),
+          need_cross(v.need_cross) {}
     PairView view() const {
         return {path,      path_block,    r,          plane,      contour,   contour_block,
                 threshold, contour_index, path_index, contour_id, need_cross};
     }
 };
-
 
 // Calls held back (docs/performance.md, "Stretches held back"). A call is kept, to be worked
 // later in its order, where working it now would give nothing out: nothing the check found waits
@@ -1087,12 +1100,16 @@ struct SelfApproachCheck::Hold {
     // An element or a path of a stretch as the proofs take it: its shape as shape_of() makes
     // it, and what the model said of its element once placed (kept: it does not change).
     struct Item {
+        // Made in place from its shape and its element's number (no copy of a value-initialised
+        // one: an item is made for every element and path of a stretch kept).
+        Item(const Shape& e, std::uint64_t element)
+            : shape(e), extent(extent_for(e)), index(element) {}
         Shape shape;
-        Extent extent;  // no smaller than the grid's (StoredShape's, rounded outward)
-        std::uint64_t index = 0;  // its element's number
-        double r = 0.0;           // a path's tool radius
+        Extent extent;              // no smaller than the grid's (StoredShape's, rounded outward)
+        std::uint64_t index = 0;    // its element's number
+        double r = 0.0;             // a path's tool radius
         Vec2 entry = Vec2::Zero();  // an approach's entry point (its element's end)
-        bool transition = false;  // a path's role
+        bool transition = false;    // a path's role
         bool approach = false;
         detail::WallRole role = detail::WallRole::kUndecided;
     };
@@ -1157,14 +1174,19 @@ struct SelfApproachCheck::Hold {
     std::uint64_t reviewed = 0;  // the model's generation at the last review
     std::deque<Record> records;  // the stretches whose items may still meet more of their own
     std::vector<Record> spare;   // records let go, their memory kept for the next
-    detail::ChunkedArray<Zone> zones;  // by stretch number - 1
+    // The memory of the zones and the calls kept, carved from huge pages they share: the
+    // zones of a long program take a fifth of one (docs/performance.md, "One slab for the
+    // hold").
+    detail::Slab memory;
+    static constexpr std::size_t kZoneChunk = std::size_t{256} << 10;
+    detail::ChunkedArray<Zone, kZoneChunk> zones{memory};  // by stretch number - 1
     detail::CellIndex<3> cells;  // per plane (list), the stretches listed in each zone cell
     std::array<std::vector<std::uint32_t>, 3> wide;
     std::vector<std::uint32_t> found;
     // Grows with each call worked: a stretch's box proved clear before is asked again.
     std::uint64_t epoch = 1;
     // The calls kept, and the items they bring per plane.
-    detail::HeldCalls calls;
+    detail::HeldCalls calls{memory};
     std::array<Counts, 3> held{};
     bool off = false;  // nothing is kept from now on (too many stretches, or too wide)
 
@@ -1192,13 +1214,10 @@ struct SelfApproachCheck::Hold {
         return b;
     }
     static Box box_of(const Shape& e) { return widened(Box{e.lo, e.hi}); }
-    // Made in place: shape e, element number `index`.
-    static void make(Item& x, const Shape& e, std::uint64_t index) {
-        x.shape = e;
+    // An item's extent: its box, and its range on the third axis, widened by slack().
+    static Extent extent_for(const Shape& e) {
         const Box b = box_of(e);
-        x.extent = Extent{b.lo, b.hi, e.low - slack(e.low), e.high + slack(e.high)};
-        x.index = index;
-        x.role = detail::WallRole::kUndecided;
+        return Extent{b.lo, b.hi, e.low - slack(e.low), e.high + slack(e.high)};
     }
 
     // The zone cells of a box.
@@ -1306,9 +1325,10 @@ struct SelfApproachCheck::Hold {
                                     ? next_index
                                     : records.front().elements.front().index);
     }
-    // A new item of the record's, to be made (null where it has kOwn already).
-    static Item* add(std::vector<Item>& to) {
-        return to.size() < kOwn ? &to.emplace_back() : nullptr;
+    // A new item of the record's, of shape e and element number `index` (null where it has
+    // kOwn already).
+    static Item* add(std::vector<Item>& to, const Shape& e, std::uint64_t index) {
+        return to.size() < kOwn ? &to.emplace_back(e, index) : nullptr;
     }
 
     // Whether the grid of plane `p` keeps every item the kept calls would bring, and this one
@@ -1372,16 +1392,15 @@ struct SelfApproachCheck::Hold {
                plane::apart(path, part, threshold + kApartMargin);
     }
     // Whether settle() finds nothing of a pair it measures.
-    static bool measured_clear(const Shape& path, const Shape& part, double threshold,
-                               bool cross) {
+    static bool measured_clear(const Shape& path, const Shape& part, double threshold, bool cross) {
         const double d = least_distance(path, part, threshold).distance;
         return d >= threshold || (cross && d > SelfApproachCheck::kTolerance);
     }
     // A pair consider() is given, as it goes on there: proved apart, or (both its elements
     // placed) measured clear, or (not placed) waiting for the model. False where the check may
     // find something of it now.
-    bool pair_clear(const Shape& path, const Shape& part, double threshold, bool cross,
-                    bool placed, std::uint64_t contour, std::uint64_t path_index) {
+    bool pair_clear(const Shape& path, const Shape& part, double threshold, bool cross, bool placed,
+                    std::uint64_t contour, std::uint64_t path_index) {
         if (proved(path, part, threshold, cross)) return true;
         if (placed) return measured_clear(path, part, threshold, cross);
         waiting.push_back(Waiting{path, part, threshold, cross, contour, path_index});
@@ -1418,8 +1437,8 @@ struct SelfApproachCheck::Hold {
             // The path as the grid keeps it (its length rounded up).
             const detail::StoredShape stored(p.shape);
             if (!near_enough(stored.extent(), extent_of(*part), threshold)) continue;
-            const bool placed = role_of(p) != detail::WallRole::kUndecided &&
-                                self != detail::WallRole::kUndecided;
+            const bool placed =
+                role_of(p) != detail::WallRole::kUndecided && self != detail::WallRole::kUndecided;
             if (placed && no_wall(self)) continue;
             const Shape path = stored.shape();
             if (p.approach && stands_near(path, *part, threshold)) continue;
@@ -1514,12 +1533,11 @@ struct SelfApproachCheck::Hold {
             Pending{s.block, index, stretch, r, plane, Vec2(s.end[a.first], s.end[a.second])});
         if (off) return false;
         Record& rec = records.back();
-        Item* x = add(rec.elements);
+        Item* x = add(rec.elements, shape_of(s, plane), index);
         if (x == nullptr) {  // a large stretch: nothing is kept from now on
             off = true;
             return false;
         }
-        make(*x, shape_of(s, plane), index);
         const Shape& e = x->shape;
         bool keep = may_keep(c);
         // The model is given the element as programmed() gives the check's.
@@ -1530,8 +1548,7 @@ struct SelfApproachCheck::Hold {
         if (!review()) keep = false;
         if (keep) {
             const std::size_t entries = entries_of(c, plane, static_cast<double>(up(e.length)));
-            keep = room(c, plane, true, entries) && alone(rec, b) &&
-                   clear_of_paths(rec, e, index);
+            keep = room(c, plane, true, entries) && alone(rec, b) && clear_of_paths(rec, e, index);
             if (keep) count(plane, true, entries);
         }
         grow(stretch, b);
@@ -1578,12 +1595,11 @@ struct SelfApproachCheck::Hold {
             if (keep) count(p.plane, false, entries);
         }
         if (store) {
-            Item* x = add(rec->paths);
+            Item* x = add(rec->paths, e, p.index);
             if (x == nullptr) {  // a large stretch: nothing is kept from now on
                 off = true;
                 return false;
             }
-            make(*x, e, p.index);
             x->r = p.r;
             x->transition = transition;
             x->approach = approach;
@@ -1668,11 +1684,21 @@ void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
     hold_->waiting.clear();
     calls.for_each([&](const detail::HeldCall& k) {
         switch (k.kind) {
-            case Hold::Kind::kBegin: begin_now(k.radius, k.plane, k.side); break;
-            case Hold::Kind::kEnd: end_now(out); break;
-            case Hold::Kind::kProgrammed: programmed_now(k.segment, out); break;
-            case Hold::Kind::kExecuted: executed_now(k.segment, out); break;
-            case Hold::Kind::kWalls: walls_on_ = k.on; break;
+            case Hold::Kind::kBegin:
+                begin_now(k.radius, k.plane, k.side);
+                break;
+            case Hold::Kind::kEnd:
+                end_now(out);
+                break;
+            case Hold::Kind::kProgrammed:
+                programmed_now(k.segment, out);
+                break;
+            case Hold::Kind::kExecuted:
+                executed_now(k.segment, out);
+                break;
+            case Hold::Kind::kWalls:
+                walls_on_ = k.on;
+                break;
         }
     });
     // Nothing is kept from now on: the hold lets its records go.
@@ -1684,7 +1710,9 @@ void SelfApproachCheck::release(std::vector<SelfApproachFinding>& out) {
     hold_->calls.swap(calls);  // its memory, for the next calls kept
 }
 
-std::size_t SelfApproachCheck::held() const noexcept { return hold_ ? hold_->calls.size() : 0; }
+std::size_t SelfApproachCheck::held() const noexcept {
+    return hold_ ? hold_->calls.size() : 0;
+}
 
 bool SelfApproachCheck::settled() const {
     if (done() || !open_.empty() || !held_.empty() || !deferred_.empty() || !waiting_.empty())
@@ -1835,9 +1863,8 @@ void SelfApproachCheck::forget_let_go() {
 
 // The entry point of the approach that is element `index`'s, where it was executed and kept.
 const Eigen::Vector2d* SelfApproachCheck::approach_entry(std::uint64_t index) const {
-    const auto at = std::lower_bound(
-        approach_entries_.begin(), approach_entries_.end(), index,
-        [](const Entry& e, std::uint64_t i) { return e.index < i; });
+    const auto at = std::lower_bound(approach_entries_.begin(), approach_entries_.end(), index,
+                                     [](const Entry& e, std::uint64_t i) { return e.index < i; });
     return at != approach_entries_.end() && at->index == index ? &at->point : nullptr;
 }
 
@@ -1970,8 +1997,7 @@ void SelfApproachCheck::programmed_now(const PathSegment& s,
     const Shape e = fresh ? shape_of(s, plane_) : Shape{};
     // Every element that moves in the plane, repeats too: the loops are the program's.
     if (moves) {
-        walls_->element(index, plane_move(s, plane_, fresh ? &e : nullptr), key, walls_on_,
-                        !fresh);
+        walls_->element(index, plane_move(s, plane_, fresh ? &e : nullptr), key, walls_on_, !fresh);
         review(out);
     }
     if (!fresh) return;  // programmed before
@@ -2010,8 +2036,7 @@ void SelfApproachCheck::programmed_now(const PathSegment& s,
     forget_let_go();
 }
 
-void SelfApproachCheck::executed_now(const PathSegment& s,
-                                     std::vector<SelfApproachFinding>& out) {
+void SelfApproachCheck::executed_now(const PathSegment& s, std::vector<SelfApproachFinding>& out) {
     // A segment of another block: the findings of the one before are final.
     if (!seen_ || !same_block(current_, s.block)) {
         if (!open_.empty()) flush(out);
@@ -2126,8 +2151,8 @@ void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool 
             placed = self_placed && role != detail::WallRole::kUndecided;
             return placed && role != detail::WallRole::kWall;
         };
-        const bool whole = rel == Relation::kOther || rel == Relation::kBefore ||
-                           rel == Relation::kAfter;
+        const bool whole =
+            rel == Relation::kOther || rel == Relation::kBefore || rel == Relation::kAfter;
         if (whole && no_wall()) continue;
         const Shape contour = c.shape.shape();
         const Shape* part = checked_part(contour, rel, scratch);
@@ -2183,7 +2208,6 @@ void SelfApproachCheck::settle(const PairView& k, bool running,
     else
         give(f, running, out);
 }
-
 
 // False for a pair given out already (or, at kMaxFindings pairs given out, a new pair once one
 // more was found: the check then stops).
