@@ -817,6 +817,53 @@ INSTANTIATE_TEST_SUITE_P(SelfApproachHold, StretchesFedWithALead, ::testing::Ran
 // More calls held than one chunk of the hold's memory keeps (a huge page: about 18,700 calls),
 // then a stretch laid onto the first strip's wall: every call kept is worked, in order, across
 // the chunks, and the findings are those of the check at once.
+// A stretch's record keeps at most 256 elements and 256 paths (Hold::kOwn): a stretch of 256
+// is held like any other, and the holding goes on after it; its 257th element ends the holding
+// for the run (the calls kept are worked, none kept after). Fed to a held check alone, each
+// element executed after it is programmed, after 80 short strips (the grid sized, holding
+// begun), then four more short strips far from the others.
+TEST(SelfApproachHold, TheTwoHundredAndFiftySeventhItemOfAStretchEndsTheHolding) {
+    for (const int per : {256, 257}) {
+        SCOPED_TRACE(per);
+        std::vector<Stretch> stretches;
+        int n = 10;
+        straight_strips(stretches, 80, 5, 0.0, 1.0, n);
+        std::vector<Point> pts;
+        for (int i = 0; i <= per; ++i) pts.emplace_back(5.0 * i, -500.0, 0.0);
+        stretches.push_back(strip(n, pts, 1.0));
+        n += 1000;
+        straight_strips(stretches, 4, 5, 3000.0, 1.0, n);
+        SelfApproachCheck check(SelfApproachCheck::kWindow, SelfApproachCheck::kEntryBudget,
+                                SelfApproachCheck::Candidates::kGrid, Schedule::kHoldApart);
+        std::vector<SelfApproachFinding> found;
+        const PathSegment rapid =
+            line(999999, Point(-5e3, -5e3, 50), Point(-5e3, -4e3, 50), Role::kUncompensated);
+        std::size_t held_before = 0, held_in_long = 0, held_after = 0;
+        for (std::size_t i = 0; i < stretches.size(); ++i) {
+            const Stretch& st = stretches[i];
+            check.begin(st.r, st.plane, 1);
+            check.set_walls(true);
+            for (std::size_t k = 0; k < st.elements.size(); ++k) {
+                check.programmed(st.elements[k], found);
+                for (const PathSegment& p : st.paths[k]) check.executed(p, found);
+                if (i == 80) held_in_long = std::max(held_in_long, check.held());
+            }
+            check.end(found);
+            check.executed(rapid, found);
+            std::size_t& most = i < 80 ? held_before : i == 80 ? held_in_long : held_after;
+            most = std::max(most, check.held());
+        }
+        EXPECT_TRUE(found.empty());
+        EXPECT_GT(held_before, 0u);  // holding had begun
+        if (per == 256) {
+            EXPECT_GT(held_in_long, 2u * 256u);   // the long stretch's calls kept
+            EXPECT_GT(held_after, held_in_long);  // and the later ones
+        } else {
+            EXPECT_EQ(held_after, 0u) << "calls kept after a stretch of 257 elements";
+        }
+    }
+}
+
 TEST(SelfApproachHold, CallsHeldOverSeveralChunksAreWorkedInOrder) {
     std::vector<Stretch> stretches;
     int n = 10;

@@ -964,6 +964,14 @@ TEST(HeldCalls, GiveBackEveryCallBitForBit) {
     for (const HeldCall& c : third) put_call(carved, c);  // its own chunk, mapped
     expect_calls(carved, third);
     EXPECT_EQ(memory.blocks(), blocks);
+    // Mapped chunks go with the calls swapped out of a holder that then ends.
+    HeldCalls outer;
+    {
+        HeldCalls inner(4096);
+        for (const HeldCall& c : second) put_call(inner, c);
+        outer.swap(inner);
+    }
+    expect_calls(outer, second);
 }
 
 // The programmed elements run ahead of the executed segments, so the two kinds interleave:
