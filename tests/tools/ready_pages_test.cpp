@@ -11,6 +11,7 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -371,6 +372,66 @@ TEST(HeldCallsReady, AChunksMappingGoesWithIt) {
         calls.segment(HeldCall::Kind::kExecuted, s);
     }
     EXPECT_LT(mapped_kib() - before, 16 * 1024) << "KiB still mapped after 64 holds ended";
+}
+
+// Where no chunk can be had (the address space limited, in a child process), the call that
+// needed one throws std::bad_alloc and changes nothing: the calls written before read back,
+// and the holder takes calls again once memory is there. Both ways of getting chunks: mapped
+// on their own, and carved from a slab.
+TEST(HeldCallsReady, NoChunkToBeHadChangesNothing) {
+    SKIP_UNDER_SANITIZER();
+    using apci::run::detail::HeldCall;
+    using apci::run::detail::HeldCalls;
+    for (const bool carved : {false, true}) {
+        SCOPED_TRACE(carved);
+        std::mt19937_64 rng(17);
+        std::vector<apci::run::PathSegment> segments;
+        for (int i = 0; i < 400'000; ++i) segments.push_back(random_arc(rng, i));
+        std::fflush(nullptr);
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            apci::run::detail::Slab memory;
+            HeldCalls calls = carved ? HeldCalls(memory) : HeldCalls();
+            // The soft limit only: the hard one, lowered, could not be raised again.
+            const long kib = mapped_kib();
+            rlimit was{};
+            if (kib <= 0 || ::getrlimit(RLIMIT_AS, &was) != 0) ::_exit(3);
+            const rlimit limit{static_cast<rlim_t>(kib + 12 * 1024) * 1024, was.rlim_max};
+            if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(3);
+            std::size_t written = 0;
+            bool refused = false;
+            for (; written < segments.size(); ++written) {
+                try {
+                    calls.segment(HeldCall::Kind::kExecuted, segments[written]);
+                } catch (const std::bad_alloc&) {
+                    refused = true;
+                    break;
+                }
+            }
+            if (!refused) ::_exit(4);  // the limit was never reached: nothing shown
+            if (calls.size() != written) ::_exit(5);
+            std::size_t n = 0;
+            bool same = true;
+            calls.for_each([&](const HeldCall& c) {
+                same = same && n < written && c.segment.end == segments[n].end;
+                ++n;
+            });
+            if (!same || n != written) ::_exit(6);
+            if (::setrlimit(RLIMIT_AS, &was) != 0) ::_exit(3);
+            calls.segment(HeldCall::Kind::kExecuted, segments[written]);
+            n = 0;
+            calls.for_each([&](const HeldCall& c) {
+                same = same && c.segment.end == segments[n].end;
+                ++n;
+            });
+            ::_exit(same && n == written + 1 ? 0 : 7);
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        ASSERT_TRUE(WIFEXITED(status)) << status;
+        EXPECT_EQ(WEXITSTATUS(status), 0);
+    }
 }
 
 TEST(HeldCallsReady, AChunkUsedInPartIsMadeReadyAStepAheadOnly) {

@@ -76,9 +76,13 @@ HeldCalls::HeldCalls(Slab& memory) : chunk_bytes_(Slab::kMostTaken), slab_(&memo
 
 std::byte* HeldCalls::room() {
     if (chunks_.empty() || used_[current_] + kMostRecord > chunk_bytes_) {
-        if (!chunks_.empty()) ++current_;
-        if (current_ == chunks_.size()) {
-            chunks_.reserve(chunks_.size() + 1);  // before the chunk, which nothing would hold
+        const std::size_t next = chunks_.empty() ? 0 : current_ + 1;
+        if (next == chunks_.size()) {
+            // Room first, and the chunk taken last: where none can be had (std::bad_alloc),
+            // nothing has changed.
+            chunks_.reserve(chunks_.size() + 1);
+            used_.reserve(used_.size() + 1);
+            ready_.reserve(ready_.size() + 1);
             if (slab_ != nullptr) {
                 chunks_.push_back(static_cast<std::byte*>(slab_->take(chunk_bytes_)));
             } else {
@@ -88,6 +92,7 @@ std::byte* HeldCalls::room() {
             used_.push_back(0);
             ready_.emplace_back();
         }
+        current_ = next;
     }
     std::byte* const chunk = chunks_[current_];
     if (slab_ == nullptr)
