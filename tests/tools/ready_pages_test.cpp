@@ -665,6 +665,70 @@ TEST(Slab, NothingOrTooMuchIsNotCarved) {
     EXPECT_EQ(slab.blocks(), 1u);
 }
 
+TEST(Slab, CarvedIsTheSizeRoundedUpToALine) {
+    static_assert(Slab::carved(0) == 0);
+    static_assert(Slab::carved(1) == Slab::kAlign);
+    static_assert(Slab::carved(Slab::kAlign) == Slab::kAlign);
+    static_assert(Slab::carved(Slab::kAlign + 1) == 2 * Slab::kAlign);
+    // What take() carves: the next piece starts carved(bytes) on.
+    Slab slab;
+    auto* a = static_cast<std::byte*>(slab.take(Slab::kAlign + 1));
+    auto* b = static_cast<std::byte*>(slab.take(1));
+    EXPECT_EQ(b, a + Slab::carved(Slab::kAlign + 1));
+}
+
+TEST(Chunks, CarvedFromASlabInOrderAndNoneTooLarge) {
+    using apci::run::detail::Chunks;
+    Slab slab;
+    Chunks chunks(slab);
+    EXPECT_TRUE(chunks.carved());
+    std::byte* const first = chunks.add(Slab::kMostTaken);
+    std::byte* const second = chunks.add(Slab::kAlign);
+    EXPECT_EQ(chunks.size(), 2u);
+    EXPECT_EQ(chunks[0], first);
+    EXPECT_EQ(chunks.back(), second);
+    EXPECT_EQ(second, first + Slab::kMostTaken);
+    EXPECT_TRUE(slab.holds(first) && slab.holds(second));
+    // More than a slab carves: std::bad_alloc, and nothing changes.
+    EXPECT_THROW(chunks.add(Slab::kMostTaken + 1), std::bad_alloc);
+    EXPECT_EQ(chunks.size(), 2u);
+    EXPECT_EQ(chunks.back(), second);
+    EXPECT_EQ(slab.blocks(), 1u);
+}
+
+TEST(Chunks, MappedOnTheirOwnAndSwappedWithTheirMappings) {
+    using apci::run::detail::Chunks;
+    Slab slab;
+    Chunks carved(slab);
+    carved.add(Slab::kAlign);
+    {
+        Chunks mapped;
+        EXPECT_FALSE(mapped.carved());
+        std::byte* const a = mapped.add(kHugePage);
+        std::byte* const b = mapped.add(kHugePage);
+        EXPECT_NE(a, b);
+        EXPECT_FALSE(slab.holds(a) || slab.holds(b));
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a) % kHugePage, 0u);
+        a[0] = std::byte{1};
+        b[kHugePage - 1] = std::byte{2};
+        mapped.swap(carved);
+        EXPECT_TRUE(mapped.carved());
+        EXPECT_FALSE(carved.carved());
+        ASSERT_EQ(carved.size(), 2u);
+        EXPECT_EQ(carved[0], a);
+        EXPECT_EQ(carved.back(), b);
+        EXPECT_EQ(mapped.size(), 1u);
+    }  // the swapped-out holder ends: the mappings stay with `carved`
+    EXPECT_EQ(carved[0][0], std::byte{1});
+    EXPECT_EQ(carved[1][kHugePage - 1], std::byte{2});
+    carved[1][0] = std::byte{3};
+    EXPECT_EQ(carved[1][0], std::byte{3});
+    std::byte* const c = carved.add(kHugePage);  // mapped too, after the swap
+    EXPECT_EQ(carved.back(), c);
+    EXPECT_EQ(carved.size(), 3u);
+    EXPECT_FALSE(slab.holds(c));
+}
+
 TEST(Slab, ABlockFilledExactlyThenTheNextPieceStartsANewOne) {
     Slab slab;
     auto* first = static_cast<std::byte*>(slab.take(Slab::kMostTaken));

@@ -30,7 +30,7 @@ class ChunkedArray {
     ChunkedArray() = default;
     // Chunks carved from `memory` (made ready as carved), which must outlive the array: a
     // holder's memory shared with its other arrays, so that each takes no huge page of its own.
-    explicit ChunkedArray(Slab& memory) : slab_(&memory) {
+    explicit ChunkedArray(Slab& memory) : chunks_(memory) {
         static_assert(ChunkBytes <= Slab::kMostTaken, "a slab carves a chunk of this size");
     }
     ChunkedArray(const ChunkedArray&) = delete;
@@ -39,16 +39,10 @@ class ChunkedArray {
     // A new item at the end, value-initialised.
     T& emplace_back() {
         if (size_ == chunks_.size() * kPerChunk) {
-            chunks_.reserve(chunks_.size() + 1);  // before the chunk, which nothing would hold
-            if (slab_ != nullptr) {
-                chunks_.push_back(static_cast<std::byte*>(slab_->take(ChunkBytes)));
-            } else {
-                mapped_.push_back(map_block(ChunkBytes));  // a huge page's: one (ready_pages.h)
-                chunks_.push_back(mapped_.back().get());
-                ready_ = ReadyAhead{};
-            }
+            chunks_.add(ChunkBytes);  // mapped, a huge page's: one (ready_pages.h)
+            if (!chunks_.carved()) ready_ = ReadyAhead{};
         }
-        if (slab_ == nullptr)
+        if (!chunks_.carved())
             ready_.before_write(chunks_.back(), size_ % kPerChunk * sizeof(T), sizeof(T),
                                 kPerChunk * sizeof(T));
         T* const slot = at(size_);
@@ -64,9 +58,7 @@ class ChunkedArray {
     T* at(std::size_t i) const noexcept {
         return std::launder(reinterpret_cast<T*>(chunks_[i / kPerChunk]) + i % kPerChunk);
     }
-    Slab* slab_ = nullptr;             // where the chunks are carved from (none: mapped)
-    std::vector<std::byte*> chunks_;   // where each chunk starts
-    std::vector<MappedBlock> mapped_;  // the chunks mapped on their own (ready_pages.h)
+    Chunks chunks_;  // mapped, or carved from a slab (ready_pages.h)
     // The last mapped chunk's pages, made ready ahead of its items (ready_pages.h). A slab's
     // chunks are ready when carved.
     ReadyAhead ready_;

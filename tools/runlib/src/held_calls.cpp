@@ -72,7 +72,7 @@ std::size_t slot_of(HeldCall::Kind k) {
 
 HeldCalls::HeldCalls(std::size_t chunk_bytes) : chunk_bytes_(std::max(chunk_bytes, kMostRecord)) {}
 
-HeldCalls::HeldCalls(Slab& memory) : chunk_bytes_(Slab::kMostTaken), slab_(&memory) {}
+HeldCalls::HeldCalls(Slab& memory) : chunk_bytes_(Slab::kMostTaken), chunks_(memory) {}
 
 std::byte* HeldCalls::room() {
     if (chunks_.empty() || used_[current_] + kMostRecord > chunk_bytes_) {
@@ -80,22 +80,16 @@ std::byte* HeldCalls::room() {
         if (next == chunks_.size()) {
             // Room first, and the chunk taken last: where none can be had (std::bad_alloc),
             // nothing has changed.
-            chunks_.reserve(chunks_.size() + 1);
             used_.reserve(used_.size() + 1);
             ready_.reserve(ready_.size() + 1);
-            if (slab_ != nullptr) {
-                chunks_.push_back(static_cast<std::byte*>(slab_->take(chunk_bytes_)));
-            } else {
-                mapped_.push_back(map_block(chunk_bytes_));
-                chunks_.push_back(mapped_.back().get());
-            }
+            chunks_.add(chunk_bytes_);
             used_.push_back(0);
             ready_.emplace_back();
         }
         current_ = next;
     }
     std::byte* const chunk = chunks_[current_];
-    if (slab_ == nullptr)
+    if (!chunks_.carved())
         ready_[current_].before_write(chunk, used_[current_], kMostRecord, chunk_bytes_);
     return chunk + used_[current_];
 }
@@ -276,9 +270,7 @@ void HeldCalls::clear() noexcept {
 
 void HeldCalls::swap(HeldCalls& other) noexcept {
     std::swap(chunk_bytes_, other.chunk_bytes_);
-    std::swap(slab_, other.slab_);
     chunks_.swap(other.chunks_);
-    mapped_.swap(other.mapped_);
     used_.swap(other.used_);
     ready_.swap(other.ready_);
     std::swap(current_, other.current_);

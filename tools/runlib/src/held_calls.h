@@ -96,10 +96,8 @@ class HeldCalls {
     void wrote(std::byte* end);
 
     std::size_t chunk_bytes_ = kChunkBytes;
-    Slab* slab_ = nullptr;             // where the chunks are carved from (none: mapped)
-    std::vector<std::byte*> chunks_;   // where each chunk starts
-    std::vector<MappedBlock> mapped_;  // the chunks mapped on their own (ready_pages.h)
-    std::vector<std::size_t> used_;    // bytes written in each chunk in use
+    Chunks chunks_;                  // mapped, or carved from a slab (ready_pages.h)
+    std::vector<std::size_t> used_;  // bytes written in each chunk in use
     // Each mapped chunk's pages made ready ahead of the writer (ready_pages.h; kept when
     // cleared). A slab's chunks are ready when carved.
     std::vector<ReadyAhead> ready_;

@@ -23,14 +23,12 @@ PipelinedSink::PipelinedSink(RunSink& inner, const CpuPlacement* cpus, HelperCpu
       cpus_(cpus),
       where_(where),
       ring_(kBatches, kProducerWakesAfter, writer_wakes_after) {
-    // Every batch's arrays, full, carved from one block of the slab (each take rounded up to
-    // its alignment).
-    constexpr auto carved = [](std::size_t bytes) {
-        return (bytes + detail::Slab::kAlign - 1) / detail::Slab::kAlign * detail::Slab::kAlign;
-    };
-    static_assert(kBatches * (carved(kBatchEvents * sizeof(decltype(Batch::order)::value_type)) +
-                              carved(kBatchEvents * sizeof(PathSegment))) <=
-                  detail::Slab::kBlockBytes);
+    // Every batch's arrays, full, carved from one block of the slab.
+    using detail::Slab;
+    static_assert(kBatches *
+                      (Slab::carved(kBatchEvents * sizeof(decltype(Batch::order)::value_type)) +
+                       Slab::carved(kBatchEvents * sizeof(PathSegment))) <=
+                  Slab::kBlockBytes);
 }
 
 PipelinedSink::~PipelinedSink() {

@@ -69,13 +69,33 @@ void make_ready(void* p, std::size_t bytes) noexcept {
     (void)::madvise(static_cast<std::byte*>(p) + (first - begin), last - first, kPopulateWrite);
 }
 
+std::byte* Chunks::add(std::size_t bytes) {
+    starts_.reserve(starts_.size() + 1);  // room first: a chunk had is held
+    if (slab_ != nullptr) {
+        auto* const p = static_cast<std::byte*>(slab_->take(bytes));
+        if (p == nullptr) throw std::bad_alloc();  // more than a slab carves
+        starts_.push_back(p);
+    } else {
+        mapped_.reserve(mapped_.size() + 1);
+        mapped_.push_back(map_block(bytes));
+        starts_.push_back(mapped_.back().get());
+    }
+    return starts_.back();
+}
+
+void Chunks::swap(Chunks& other) noexcept {
+    std::swap(slab_, other.slab_);
+    starts_.swap(other.starts_);
+    mapped_.swap(other.mapped_);
+}
+
 Slab::~Slab() {
     for (std::byte* b : blocks_) Unmap{kBlockBytes}(b);
 }
 
 void* Slab::take(std::size_t bytes) {
     if (bytes == 0 || bytes > kMostTaken) return nullptr;
-    bytes = (bytes + kAlign - 1) / kAlign * kAlign;
+    bytes = carved(bytes);
     if (used_ + bytes > kBlockBytes) {
         blocks_.reserve(blocks_.size() + 1);  // before the mapping, which would leak on a throw
         blocks_.push_back(map_block(kBlockBytes).release());

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "apci/run/slab.h"  // kHugePage
 
@@ -48,6 +49,32 @@ class ReadyAhead {
   private:
     void advance(std::byte* base, std::size_t need, std::size_t end) noexcept;
     std::size_t ready_ = 0;  // the block's first bytes made ready
+};
+
+// The chunks of an array kept in order (HeldCalls, ChunkedArray): each mapped on its own
+// (map_block, to be made ready as it is written: ReadyAhead), or carved from a slab its holder
+// shares with its other arrays (made ready as carved: fewer huge pages taken in part).
+class Chunks {
+  public:
+    Chunks() = default;
+    // Carved from `memory`, which must outlive the chunks' use.
+    explicit Chunks(Slab& memory) noexcept : slab_(&memory) {}
+
+    // A new chunk of `bytes` (from a slab at most Slab::kMostTaken) at the end; throws
+    // std::bad_alloc, changing nothing, where none can be had.
+    std::byte* add(std::size_t bytes);
+    std::byte* operator[](std::size_t i) const noexcept { return starts_[i]; }
+    std::byte* back() const noexcept { return starts_.back(); }
+    std::size_t size() const noexcept { return starts_.size(); }
+    bool empty() const noexcept { return starts_.empty(); }
+    // Whether the chunks are carved from a slab, ready when added.
+    bool carved() const noexcept { return slab_ != nullptr; }
+    void swap(Chunks& other) noexcept;
+
+  private:
+    Slab* slab_ = nullptr;
+    std::vector<std::byte*> starts_;   // where each chunk starts
+    std::vector<MappedBlock> mapped_;  // the chunks mapped on their own
 };
 
 }  // namespace apci::run::detail

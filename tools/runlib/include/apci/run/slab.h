@@ -30,8 +30,12 @@ class Slab {
     Slab(const Slab&) = delete;
     Slab& operator=(const Slab&) = delete;
 
-    // `bytes` (rounded up to kAlign), aligned to kAlign and made ready; nullptr where `bytes`
-    // is 0 or more than kMostTaken. Throws std::bad_alloc where no block can be mapped.
+    // What a take() of `bytes` carves: `bytes` rounded up to kAlign.
+    static constexpr std::size_t carved(std::size_t bytes) noexcept {
+        return (bytes + kAlign - 1) / kAlign * kAlign;
+    }
+    // carved(bytes), aligned to kAlign and made ready; nullptr where `bytes` is 0 or more than
+    // kMostTaken. Throws std::bad_alloc where no block can be mapped.
     void* take(std::size_t bytes);
     // Whether p lies in one of its blocks.
     bool holds(const void* p) const noexcept;
