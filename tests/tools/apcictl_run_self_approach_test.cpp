@@ -8,6 +8,9 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "apcictl_run.h"
 
@@ -190,6 +193,67 @@ TEST_F(ApcictlRun, SelfApproachAsAnErrorStopsTheRunBeforeTheBlocksAfterIt) {
     EXPECT_EQ(later_blocks(stopped), 0) << stopped.at("segments").dump();
 }
 
+// Stopped by the check on the embedded emulator (its own dry run: the board runs on with what
+// was spooled), the run's outputs end where the check stopped it: the summary's time and the
+// CSV's samples end with the last segment reported, as its path does. The whole program is one
+// stretch here, so the finding comes only after every block was spooled.
+TEST_F(ApcictlRun, SelfApproachAsAnErrorEndsTheTimeAndSamplesWithTheLastSegmentReported) {
+    const std::string prog =
+        write("neck.nc",
+              "N10 G17 G90 D1 F700\nN20 G0 X-6 Y0\nN30 G41 G1 X-6 Y-6\nN40 G3 X0 Y-12 I6 J0\n"
+              "N50 G3 X11.314 Y-4 I0 J12\nN60 G1 X38.686 Y-4\nN70 G3 X38.686 Y4 I11.314 J4\n"
+              "N80 G1 X11.314 Y4\nN90 G3 X0 Y-12 I-11.314 J-4\nN100 G3 X6 Y-6 I0 J6\n"
+              "N110 G40 G1 X6 Y0\nN120 M30\n");
+    // The cycle the summary's time names: "time S s (C cycles of 1 ms)".
+    const auto summary_cycles = [this]() -> long {
+        const std::string out = last_.out;
+        const std::size_t at = out.find(" cycles of ");
+        if (at == std::string::npos) return -1;
+        const std::size_t open = out.rfind('(', at);
+        return std::stol(out.substr(open + 1, at - open - 1));
+    };
+    // The CSV's sample rows: cycle, time, X, Y, ...
+    const auto samples = [this]() {
+        std::vector<std::vector<double>> rows;
+        std::istringstream in(read_text(path("out.csv")));
+        std::string line;
+        std::getline(in, line);  // the header
+        while (std::getline(in, line)) {
+            std::vector<double> row;
+            std::istringstream cells(line);
+            std::string cell;
+            while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+            rows.push_back(row);
+        }
+        return rows;
+    };
+    const json warned = run_json(prog, {"--tools", tools(5.0), "--csv", path("out.csv")});
+    ASSERT_FALSE(warned.at("warnings").empty());
+    const long all_cycles = summary_cycles();
+    const auto warned_rows = samples();
+    ASSERT_EQ(static_cast<long>(warned_rows.size()), all_cycles);
+
+    const json stopped = run_json(
+        prog, {"--tools", tools(5.0), "--csv", path("out.csv"), "--self-approach", "error"}, 1);
+    ASSERT_EQ(stopped.at("errors").size(), 1u);
+    EXPECT_EQ(stopped.at("errors")[0].at("code"), "SelfApproach");
+    const auto& segments = stopped.at("segments");
+    ASSERT_FALSE(segments.empty());
+    ASSERT_LT(segments.size(), warned.at("segments").size());
+    const long cycles = summary_cycles();
+    EXPECT_GT(cycles, 0) << last_.out;
+    EXPECT_LT(cycles, all_cycles) << last_.out;
+    // One sample a cycle up to the stop, the last where the last segment reported ends.
+    const auto rows = samples();
+    ASSERT_EQ(static_cast<long>(rows.size()), cycles) << last_.out;
+    EXPECT_EQ(static_cast<long>(rows.back()[0]), cycles);
+    const apci::run::Point end = point(segments.back().at("end"));
+    EXPECT_NEAR(rows.back()[2], end.x(), 1e-6);
+    EXPECT_NEAR(rows.back()[3], end.y(), 1e-6);
+    // The same motion as far as it went: its samples are the warned run's first ones.
+    for (std::size_t i = 0; i < rows.size(); ++i) ASSERT_EQ(rows[i], warned_rows[i]) << i;
+}
+
 // "G1 X<x> Y<y>" and a newline, y to 3 decimals.
 std::string fmt_xy(double x, double y) {
     char text[64];
@@ -203,7 +267,8 @@ std::string fmt_message(int n, double d) {
     std::snprintf(text, sizeof text,
                   "the tool path of N40 comes within %.4f mm of the contour at N%d (tool radius "
                   "5.0000 mm): the contour comes back near itself there, which no corner rule "
-                  "sees; the path cuts %.4f mm into it",
+                  "sees; the path cuts %.4f mm into it (use a smaller tool, or give the contour "
+                  "more room there)",
                   d, n, 5.0 - d);
     return text;
 }

@@ -342,7 +342,7 @@ void RunContext::finish() {
     if (set_up_ && linked) variables_.read_all();
     out_.tools_after = tools_mut_;
     if (out_.tc_present && linked) tc_.read_registers();
-    out_.totals.cycles = cycles_seen_ - start_cycle_;
+    out_.totals.cycles = stop_cycle_.value_or(cycles_seen_) - start_cycle_;
     if (!tc_.state().comp_plane_seen) out_.plot_plane = tc_.state().plane;
 }
 

@@ -243,7 +243,11 @@ bool RunContext::end_stretch() {
 
 bool RunContext::sink_lets_go_on() {
     std::optional<RunError> stop = sink_.take_stop();
-    return !stop || record(stop->block, std::move(stop->code), std::move(stop->message));
+    if (!stop) return true;
+    // The run's outputs end with the last segment the sink was given: the samples after it are
+    // not read, and the time is counted to its end.
+    stop_cycle_ = std::max(start_cycle_, given_end_cycle_);
+    return record(stop->block, std::move(stop->code), std::move(stop->message));
 }
 
 // ---- board access
@@ -402,8 +406,11 @@ bool RunContext::step_clock(std::uint64_t cycles) {
 bool RunContext::clocked(const apci::Result<apci_motion_status>& st, std::string_view what) {
     if (!st) return board_failure({}, st.status, what);
     cycles_seen_ = st.value.now;
-    return drain_segments(st.value.segments_pending) &&
-           (!tracing_ || drain_samples(st.value.trace_pending));
+    const bool segments = drain_segments(st.value.segments_pending);
+    // Where the sink stopped the run among these segments, the samples up to its stop are the
+    // run's still (drain_samples leaves out those after it).
+    if (!tracing_ || (!segments && !stop_cycle_)) return segments;
+    return drain_samples(st.value.trace_pending) && segments;
 }
 
 // Reads the `pending` items a clock call reported with `read` in batches of at most the
@@ -437,6 +444,7 @@ bool RunContext::drain_segments(std::uint64_t pending) {
                 count_segment(out_.totals, s);
             }
             sink_.executed(s);
+            given_end_cycle_ = s.end_cycle;
             return sink_lets_go_on();
         });
 }
@@ -453,6 +461,7 @@ bool RunContext::drain_samples(std::uint64_t pending) {
         pending, samples_, "read trace",
         [this](apci_trace_sample* out, std::size_t n) { return board_.read_trace(out, n); },
         [this](const apci_trace_sample& t) {
+            if (stop_cycle_ && t.cycle > *stop_cycle_) return true;  // after the sink's stop
             const double time =
                 static_cast<double>(t.cycle * static_cast<std::uint64_t>(cycle_us_)) / 1e6;
             sink_.sample(t.cycle, time, std::span<const double>(t.position, APCI_AXIS_COUNT));

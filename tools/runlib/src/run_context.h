@@ -217,6 +217,11 @@ class RunContext {
     bool sink_measures_ = false;  // the sink measures the executed segments (measures_executed)
     std::uint64_t start_cycle_ = 0;
     std::uint64_t cycles_seen_ = 0;
+    // The end cycle of the last executed segment given to the sink, and, once the sink stopped
+    // the run (sink_lets_go_on), that cycle: the outputs and the time end there, though the
+    // board ran on with what was spooled (the embedded emulator's own dry run).
+    std::uint64_t given_end_cycle_ = 0;
+    std::optional<std::uint64_t> stop_cycle_;
     std::uint64_t segments_lost_ = 0;
     std::uint64_t trace_lost_ = 0;
     // #TRAFO switched the frame the host reads the axes in: the standing point's tool tip is

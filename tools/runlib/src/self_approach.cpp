@@ -400,7 +400,7 @@ std::string describe(const SelfApproachFinding& f) {
     return fmt::format(
         "the tool path of {} comes within {:.4f} mm of the contour at {} (tool radius {:.4f} mm): "
         "the contour comes back near itself there, which no corner rule sees; the path cuts "
-        "{:.4f} mm into it",
+        "{:.4f} mm into it (use a smaller tool, or give the contour more room there)",
         block_name(f.path_block), f.distance, block_name(f.contour_block), f.radius,
         f.radius - f.distance);
 }
