@@ -254,6 +254,45 @@ TEST_F(ApcictlRun, SelfApproachAsAnErrorEndsTheTimeAndSamplesWithTheLastSegmentR
     for (std::size_t i = 0; i < rows.size(); ++i) ASSERT_EQ(rows[i], warned_rows[i]) << i;
 }
 
+// The same stop found among the segments of a clock call within the program (the spooler full
+// of the long tail after the spike), with a CSV (the samples read in chunks) and without: the
+// run stops there either way, no segment of a later block is reported, and both report the
+// same segments and error.
+TEST_F(ApcictlRun, SelfApproachAsAnErrorStopsWithinTheProgramWithOrWithoutSamples) {
+    std::string text =
+        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\n";
+    for (int i = 0; i < 3000; ++i)
+        text += fmt::format("N{} G1 X{} Y{}\n", 200 + i, 100 + (i % 2) * 10, 100 + i * 0.01);
+    text += "N9000 M30\n";
+    const std::string prog = write("spike_tail.nc", text);
+    const auto later_blocks = [](const json& doc) {
+        int n = 0;
+        for (const auto& s : doc.at("segments")) n += s.at("block").get<int>() >= 200;
+        return n;
+    };
+    const json warned = run_json(prog, {"--tools", tools(5.0)});
+    ASSERT_FALSE(warned.at("warnings").empty());
+    ASSERT_EQ(later_blocks(warned), 3000);
+    const json plain = run_json(prog, {"--tools", tools(5.0), "--self-approach", "error"}, 1);
+    const std::string plain_out = last_.out;
+    const json traced = run_json(
+        prog, {"--tools", tools(5.0), "--self-approach", "error", "--csv", path("out.csv")}, 1);
+    for (const json* doc : {&plain, &traced}) {
+        ASSERT_EQ(doc->at("errors").size(), 1u) << doc->at("errors").dump();
+        EXPECT_EQ(doc->at("errors")[0].at("code"), "SelfApproach");
+        EXPECT_EQ(later_blocks(*doc), 0);
+    }
+    EXPECT_EQ(traced.at("segments"), plain.at("segments"));
+    // The summary's first two lines (blocks sent, segments, path and time) are the same.
+    const auto head = [](const std::string& out) {
+        const std::size_t first = out.find('\n');
+        return out.substr(0, out.find('\n', first + 1));
+    };
+    EXPECT_EQ(head(last_.out), head(plain_out));
+}
+
 // "G1 X<x> Y<y>" and a newline, y to 3 decimals.
 std::string fmt_xy(double x, double y) {
     char text[64];

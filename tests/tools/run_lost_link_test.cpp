@@ -84,6 +84,52 @@ TEST(RunLostLink, TheCallThatFoundTheLinkLostIsTheRunsOneError) {
     EXPECT_EQ(said.find("apci_reconnect"), std::string::npos) << said;
 }
 
+// Samples recorded (a CSV's run), the link lost while the executed segments of a clock call are
+// given to the sink (the daemon stopped at the first one): the segments were read whole (a
+// clock call leaves at most the board's 256 queued moves, one read's worth), so the next call,
+// the trace's read, finds the link lost, and it is the run's one error.
+TEST(RunLostLink, ALinkLostAsTheSegmentsAreGivenIsTheOneErrorWhileTracing) {
+    class StopsAtTheFirstSegment final : public RunSink {
+      public:
+        explicit StopsAtTheFirstSegment(Daemon& d) : daemon_(d) {}
+        bool wants_samples() const override { return true; }
+        void executed(const apci::run::PathSegment&) override {
+            if (stopped_) return;
+            stopped_ = true;
+            (void)daemon_.stop(SIGKILL);
+        }
+        bool stopped() const { return stopped_; }
+
+      private:
+        Daemon& daemon_;
+        bool stopped_ = false;
+    };
+    auto d = Daemon::start();
+    ASSERT_NE(d, nullptr);
+    apci::Board board(d->unix_uri());
+    ASSERT_TRUE(board) << board.last_error();
+    StopsAtTheFirstSegment sink(*d);
+    apci::run::RunInputFiles files;
+    files.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.2\n";
+    files.tools_is_text = true;
+    auto inputs = apci::run::load_run_inputs(files);
+    ASSERT_TRUE(inputs) << inputs.error().to_string();
+    // A compensated square wave, long enough to fill the board's queue.
+    std::string text = "N10 D1 F60000\nN20 G41 G1 X0 Y0\n";
+    for (int i = 0; i < 1000; ++i)
+        text += std::string(i % 2 == 0 ? "X10" : "X0") + " Y" + std::to_string(i + 1) + "\n";
+    text += "G40 G1 X-5 Y0\nM30\n";
+    auto ran = apci::run::run_program(board, sink, inputs.value(),
+                                      apci::run::ProgramSource::in_memory(text, "p.nc"), {});
+    ASSERT_TRUE(ran) << ran.error().to_string();
+    const RunOutcome& out = ran.value();
+    ASSERT_TRUE(sink.stopped());
+    EXPECT_FALSE(board.connected());
+    ASSERT_EQ(out.errors.size(), 1u) << (out.errors.empty() ? "" : out.errors.back().message);
+    EXPECT_EQ(out.errors[0].code, "TransportError");
+    EXPECT_EQ(out.errors[0].message.rfind("read trace: ", 0), 0u) << out.errors[0].message;
+}
+
 // A run's own hint (RunSettings::lost_link_hint, the Python module's) in place of apcictl's: the
 // settings reach the executor's errors.
 TEST(RunLostLink, TheRunsSettingsNameItsOwnHint) {
