@@ -169,21 +169,28 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
 }
 
+// A stretch whose path cuts back into its contour (a spike: N70's path comes within the tool
+// radius of N50), its G40 at N90: the blocks after it are numbered from N200.
+constexpr const char* kSpike =
+    "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
+    "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
+    "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\n";
+
+// The segments of blocks numbered 200 or more (those after kSpike).
+int later_blocks(const json& doc) {
+    int n = 0;
+    for (const auto& s : doc.at("segments")) n += s.at("block").get<int>() >= 200;
+    return n;
+}
+
 // As an error the self-approach check stops the run where it hands its finding: the spike's
 // stretch, and then a second one far from it, which runs when the check only warns and not at
 // all when it stops the run (no segment of its blocks is executed or reported).
 TEST_F(ApcictlRun, SelfApproachAsAnErrorStopsTheRunBeforeTheBlocksAfterIt) {
-    const std::string prog = write(
-        "spike2.nc",
-        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
-        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
-        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\nN200 G0 X200 Y200\n"
-        "N210 G41 G1 X210 Y210\nN220 G1 X260\nN230 G1 Y260\nN240 G40 G1 X300 Y300\nN250 M30\n");
-    const auto later_blocks = [](const json& doc) {
-        int n = 0;
-        for (const auto& s : doc.at("segments")) n += s.at("block").get<int>() >= 200;
-        return n;
-    };
+    const std::string prog =
+        write("spike2.nc", std::string(kSpike) +
+                               "N200 G0 X200 Y200\nN210 G41 G1 X210 Y210\nN220 G1 X260\n"
+                               "N230 G1 Y260\nN240 G40 G1 X300 Y300\nN250 M30\n");
     const json warned = run_json(prog, {"--tools", tools(5.0)});
     ASSERT_FALSE(warned.at("warnings").empty());
     EXPECT_GT(later_blocks(warned), 3);
@@ -259,19 +266,11 @@ TEST_F(ApcictlRun, SelfApproachAsAnErrorEndsTheTimeAndSamplesWithTheLastSegmentR
 // run stops there either way, no segment of a later block is reported, and both report the
 // same segments and error.
 TEST_F(ApcictlRun, SelfApproachAsAnErrorStopsWithinTheProgramWithOrWithoutSamples) {
-    std::string text =
-        "N10 G17 G90 G26 D1 F600\nN20 G0 X-74.257 Y-49.657\nN30 G42 G1 X-35.095 Y-27.491\n"
-        "N50 G1 X-4.063 Y-82.318\nN60 G1 X-4.273 Y-81.223\nN70 G1 X-34.475 Y-136.512\n"
-        "N80 G1 X-50 Y-150\nN90 G40 G1 X-73.967 Y-114.939\n";
+    std::string text = kSpike;
     for (int i = 0; i < 3000; ++i)
         text += fmt::format("N{} G1 X{} Y{}\n", 200 + i, 100 + (i % 2) * 10, 100 + i * 0.01);
     text += "N9000 M30\n";
     const std::string prog = write("spike_tail.nc", text);
-    const auto later_blocks = [](const json& doc) {
-        int n = 0;
-        for (const auto& s : doc.at("segments")) n += s.at("block").get<int>() >= 200;
-        return n;
-    };
     const json warned = run_json(prog, {"--tools", tools(5.0)});
     ASSERT_FALSE(warned.at("warnings").empty());
     ASSERT_EQ(later_blocks(warned), 3000);
