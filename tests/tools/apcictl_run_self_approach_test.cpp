@@ -8,7 +8,6 @@
 #include <numbers>
 #include <random>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -219,25 +218,10 @@ TEST_F(ApcictlRun, SelfApproachAsAnErrorEndsTheTimeAndSamplesWithTheLastSegmentR
         const std::size_t open = out.rfind('(', at);
         return std::stol(out.substr(open + 1, at - open - 1));
     };
-    // The CSV's sample rows: cycle, time, X, Y, ...
-    const auto samples = [this]() {
-        std::vector<std::vector<double>> rows;
-        std::istringstream in(read_text(path("out.csv")));
-        std::string line;
-        std::getline(in, line);  // the header
-        while (std::getline(in, line)) {
-            std::vector<double> row;
-            std::istringstream cells(line);
-            std::string cell;
-            while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-            rows.push_back(row);
-        }
-        return rows;
-    };
     const json warned = run_json(prog, {"--tools", tools(5.0), "--csv", path("out.csv")});
     ASSERT_FALSE(warned.at("warnings").empty());
     const long all_cycles = summary_cycles();
-    const auto warned_rows = samples();
+    const auto warned_rows = test_support::read_csv(path("out.csv"));
     ASSERT_EQ(static_cast<long>(warned_rows.size()), all_cycles);
 
     const json stopped = run_json(
@@ -251,7 +235,7 @@ TEST_F(ApcictlRun, SelfApproachAsAnErrorEndsTheTimeAndSamplesWithTheLastSegmentR
     EXPECT_GT(cycles, 0) << last_.out;
     EXPECT_LT(cycles, all_cycles) << last_.out;
     // One sample a cycle up to the stop, the last where the last segment reported ends.
-    const auto rows = samples();
+    const auto rows = test_support::read_csv(path("out.csv"));
     ASSERT_EQ(static_cast<long>(rows.size()), cycles) << last_.out;
     EXPECT_EQ(static_cast<long>(rows.back()[0]), cycles);
     const apci::run::Point end = point(segments.back().at("end"));

@@ -23,18 +23,23 @@ using apci::run::RunOutcome;
 using apci::run::RunSink;
 using apci_test::Daemon;
 
-// Stops the daemon once, at the first progress call (the run is under way, between two blocks)
-// or at the program's CDOF (the sink's walls(false): the next block's board call is the first to
-// find the link lost).
+// Stops the daemon once, at the first progress call (the run is under way, between two blocks),
+// at the program's CDOF (the sink's walls(false): the next block's board call is the first to
+// find the link lost) or at the first executed segment given to it (it asks for samples then,
+// as a CSV's run does).
 class StopsTheDaemon final : public RunSink {
   public:
-    enum class At { kProgress, kCdof };
+    enum class At { kProgress, kCdof, kFirstSegment };
     explicit StopsTheDaemon(Daemon& d, At at = At::kProgress) : daemon_(d), at_(at) {}
+    bool wants_samples() const override { return at_ == At::kFirstSegment; }
     void progress(std::uint64_t, std::uint64_t) override {
         if (at_ == At::kProgress) stop();
     }
     void walls(bool on) override {
         if (at_ == At::kCdof && !on) stop();
+    }
+    void executed(const apci::run::PathSegment&) override {
+        if (at_ == At::kFirstSegment) stop();
     }
     bool stopped() const { return stopped_; }
 
@@ -89,26 +94,11 @@ TEST(RunLostLink, TheCallThatFoundTheLinkLostIsTheRunsOneError) {
 // clock call leaves at most the board's 256 queued moves, one read's worth), so the next call,
 // the trace's read, finds the link lost, and it is the run's one error.
 TEST(RunLostLink, ALinkLostAsTheSegmentsAreGivenIsTheOneErrorWhileTracing) {
-    class StopsAtTheFirstSegment final : public RunSink {
-      public:
-        explicit StopsAtTheFirstSegment(Daemon& d) : daemon_(d) {}
-        bool wants_samples() const override { return true; }
-        void executed(const apci::run::PathSegment&) override {
-            if (stopped_) return;
-            stopped_ = true;
-            (void)daemon_.stop(SIGKILL);
-        }
-        bool stopped() const { return stopped_; }
-
-      private:
-        Daemon& daemon_;
-        bool stopped_ = false;
-    };
     auto d = Daemon::start();
     ASSERT_NE(d, nullptr);
     apci::Board board(d->unix_uri());
     ASSERT_TRUE(board) << board.last_error();
-    StopsAtTheFirstSegment sink(*d);
+    StopsTheDaemon sink(*d, StopsTheDaemon::At::kFirstSegment);
     apci::run::RunInputFiles files;
     files.tools = "wz[1].gueltig 1\nwz[1].mass_einheit 1\nwz[1].radius 0.2\n";
     files.tools_is_text = true;
