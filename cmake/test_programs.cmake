@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # apci_test_program(NAME SOURCES file... [LIBRARIES lib...] [RUNS program...]
 #                   [DEFINITIONS def...] [INCLUDES dir...] [PREFIX prefix] [THREADED]
-#                   [EMULATOR program] [DISCOVERY_TIMEOUT seconds] [PROPERTIES name value...])
+#                   [EMULATOR program] [DISCOVERY_TIMEOUT seconds] [PROPERTIES name value...]
+#                   [OPTIMIZED file...])
 # One GoogleTest program of the suite and its tests, as every tests/*/CMakeLists.txt adds them:
 # - tests/support on the include path (the shared helpers), GTest::gtest_main linked with LIBRARIES;
 # - APCI_SOURCE_DIR, the source tree, defined;
@@ -11,14 +12,36 @@
 #   umockdev-wrapper for the emulated USB board (tests/support/CMakeLists.txt);
 # - its tests discovered as PREFIX<suite>.<test> with PROPERTIES (TIMEOUT, LABELS, ...); THREADED
 #   ones through apci_threaded_gtest (cmake/sanitizers.cmake), so the TSan stage runs them.
+#
+# APCI_TEST_COMPILE_OPTIONS: options for the test programs' own sources only (not for the
+# libraries they test, nor tests/support), after the build type's: the sanitizer stages pass
+# -O0, which halves what compiling a test program costs under ASan/TSan (scripts/ci/sanitizers.sh,
+# docs/hardening.md) while the code under test keeps the build type's optimisation. The
+# sources a program names OPTIMIZED are left out: those whose own code computes the references
+# (brute-force sampling, property sweeps over thousands of cases), which at -O0 under ASan would
+# run for minutes.
+set(APCI_TEST_COMPILE_OPTIONS "" CACHE STRING
+    "Compile options of the test programs' own sources, e.g. -O0 (empty: the build type's)")
 function(apci_test_program name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "THREADED" "PREFIX;DISCOVERY_TIMEOUT;EMULATOR"
-                        "SOURCES;LIBRARIES;RUNS;DEFINITIONS;INCLUDES;PROPERTIES")
+                        "SOURCES;LIBRARIES;RUNS;DEFINITIONS;INCLUDES;PROPERTIES;OPTIMIZED")
   if(arg_UNPARSED_ARGUMENTS OR NOT arg_SOURCES)
     message(FATAL_ERROR "apci_test_program(${name}): SOURCES needed; not understood: "
                         "${arg_UNPARSED_ARGUMENTS}")
   endif()
+  foreach(source IN LISTS arg_OPTIMIZED)
+    if(NOT source IN_LIST arg_SOURCES)
+      message(FATAL_ERROR "apci_test_program(${name}): OPTIMIZED ${source} is not in SOURCES")
+    endif()
+  endforeach()
   add_executable(${name} ${arg_SOURCES})
+  if(APCI_TEST_COMPILE_OPTIONS)
+    foreach(source IN LISTS arg_SOURCES)
+      if(NOT source IN_LIST arg_OPTIMIZED)
+        set_property(SOURCE ${source} APPEND PROPERTY COMPILE_OPTIONS ${APCI_TEST_COMPILE_OPTIONS})
+      endif()
+    endforeach()
+  endif()
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support ${arg_INCLUDES})
   target_link_libraries(${name} PRIVATE ${arg_LIBRARIES} GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE APCI_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
