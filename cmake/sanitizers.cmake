@@ -27,6 +27,12 @@ elseif(APCI_SANITIZE)
   # No recovery: the first report fails the test that caused it.
   add_compile_options(-fsanitize=${APCI_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_link_options(-fsanitize=${APCI_SANITIZE})
+  # clang links a C program with the C part of UBSan's runtime only; one that links libapci,
+  # whose C++ is instrumented, needs the C++ part too, and the C++ library that part uses
+  # (examples/pcap_tc_init.c, tests/driver/consumer).
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang" AND APCI_SANITIZE MATCHES "undefined")
+    add_link_options("$<$<LINK_LANGUAGE:C>:-fsanitize-link-c++-runtime;-lstdc++>")
+  endif()
   # gcc 12's flow-sensitive warnings see the sanitizers' instrumentation: it
   # reports std::regex's internal std::function as maybe uninitialized
   # (libstdc++ code, not ours). The warning stays an error in every build

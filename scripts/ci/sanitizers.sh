@@ -22,7 +22,8 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 # build), line tables enough for symbolised reports; NDEBUG as in ./test.sh.
 # The test programs' own sources at -O0 (APCI_TEST_COMPILE_OPTIONS): under the
 # sanitizers gcc compiles a GoogleTest file at -O0 in half the time of -O1,
-# and the code they test (libraries, tools, tests/support) keeps -O1.
+# and the code they test (libraries, tools, tests/support) and the sources
+# named OPTIMIZED keep -O1.
 # The Python package is left out: its extension would be loaded into an
 # uninstrumented interpreter (the sanitizer runtime not first, the
 # interpreter's own allocations counted as leaks); the C++ it binds (libapci,

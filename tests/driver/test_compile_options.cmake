@@ -1,0 +1,65 @@
+# SPDX-License-Identifier: MIT
+# APCI_TEST_COMPILE_OPTIONS (cmake/test_programs.cmake) reaches the test programs' own sources
+# and nothing else: not the libraries and tools under test, not tests/support, not the sources
+# a program names OPTIMIZED; without it no file gets the option. Configures SOURCE_DIR twice
+# (no build) and reads the compile commands.
+#   cmake -DSOURCE_DIR=... -DWORK_DIR=... -P test_compile_options.cmake
+cmake_minimum_required(VERSION 3.25)
+set(option -fno-apci-test-marker)  # never compiled: configure only
+function(files_with out)
+  set(dir ${WORK_DIR}/${out})
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${dir} ${ARGN}
+      -DAPCI_BUILD_TESTS=ON -DAPCI_BUILD_BENCH=OFF -DAPCI_BUILD_PYTHON=OFF
+      -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
+    RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "configure ${ARGN} failed (${rc}):\n${o}\n${e}")
+  endif()
+  file(READ ${dir}/compile_commands.json json)
+  string(JSON n LENGTH "${json}")
+  set(with "")
+  math(EXPR last "${n} - 1")
+  foreach(i RANGE ${last})
+    string(JSON command GET "${json}" ${i} command)
+    string(JSON file GET "${json}" ${i} file)
+    file(RELATIVE_PATH file ${SOURCE_DIR} ${file})
+    if(command MATCHES " ${option}( |$)")
+      list(APPEND with ${file})
+    endif()
+  endforeach()
+  set(${out}_total ${n} PARENT_SCOPE)
+  set(${out} ${with} PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+files_with(none)
+if(none)
+  message(FATAL_ERROR "without APCI_TEST_COMPILE_OPTIONS, ${none} compile with ${option}")
+endif()
+files_with(marked -DAPCI_TEST_COMPILE_OPTIONS=${option})
+list(LENGTH marked count)
+# Most of the suite's sources are test programs' own.
+if(count LESS 100)
+  message(FATAL_ERROR "only ${count} of ${marked_total} files compile with ${option}: ${marked}")
+endif()
+foreach(file IN LISTS marked)
+  if(NOT file MATCHES "^tests/")
+    message(FATAL_ERROR "${file}, not a test program's source, compiles with ${option}")
+  endif()
+endforeach()
+# A test program's source, each of another program; tests/support and what is tested; the
+# sources named OPTIMIZED.
+foreach(file tests/geometry/plane_test.cpp tests/tools/self_approach_rules_test.cpp
+             tests/objif/frame_test.cpp)
+  if(NOT file IN_LIST marked)
+    message(FATAL_ERROR "${file} compiles without ${option}")
+  endif()
+endforeach()
+foreach(file tests/support/stock_oracle.cpp geometry/src/element.cpp
+             tools/runlib/src/self_approach.cpp tests/geometry/property_test.cpp
+             tests/geometry/rounded_property_test.cpp tests/tools/plane_distance_test.cpp
+             tests/tools/self_approach_hold_test.cpp tests/tools/stock_oracle_test.cpp)
+  if(file IN_LIST marked)
+    message(FATAL_ERROR "${file} compiles with ${option}")
+  endif()
+endforeach()
