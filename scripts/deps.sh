@@ -90,8 +90,12 @@ apci_configure() {
 }
 
 # apci_build [BUILD_DIR]: configures with the tests and benchmarks and builds everything.
+# The test programs' own sources at -O1 (APCI_TEST_COMPILE_OPTIONS, cmake/test_programs.cmake):
+# what they test keeps -O3, and so do the sources named OPTIMIZED; -O1 compiles a test file
+# in about three quarters of the time (docs/hardening.md, "Warnings and the Release build").
 apci_build() {
   local build_dir="${1:-build}"
-  apci_configure "$build_dir" -DAPCI_BUILD_TESTS=ON -DAPCI_BUILD_BENCH=ON
+  apci_configure "$build_dir" -DAPCI_BUILD_TESTS=ON -DAPCI_BUILD_BENCH=ON \
+    -DAPCI_TEST_COMPILE_OPTIONS=-O1
   cmake --build "$build_dir" -j"$(nproc)"
 }
