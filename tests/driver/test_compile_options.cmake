@@ -5,17 +5,11 @@
 # (no build) and reads the compile commands.
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -P test_compile_options.cmake
 cmake_minimum_required(VERSION 3.25)
+include(${CMAKE_CURRENT_LIST_DIR}/compile_commands.cmake)
 set(option -fno-apci-test-marker)  # never compiled: configure only
 function(files_with out)
-  set(dir ${WORK_DIR}/${out})
-  execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${dir} ${ARGN}
-      -DAPCI_BUILD_TESTS=ON -DAPCI_BUILD_BENCH=OFF -DAPCI_BUILD_PYTHON=OFF
-      -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
-    RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "configure ${ARGN} failed (${rc}):\n${o}\n${e}")
-  endif()
-  file(READ ${dir}/compile_commands.json json)
+  apci_compile_commands(${WORK_DIR}/${out} json ${ARGN}
+    -DAPCI_BUILD_TESTS=ON -DAPCI_BUILD_BENCH=OFF -DAPCI_BUILD_PYTHON=OFF)
   string(JSON n LENGTH "${json}")
   set(with "")
   math(EXPR last "${n} - 1")

@@ -5,15 +5,10 @@
 # compiles every file with it. Configures SOURCE_DIR twice (no build) and reads
 # the compile commands.
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -P werror_option.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/compile_commands.cmake)
 function(compile_commands out)
-  set(dir ${WORK_DIR}/${out})
-  execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${dir} ${ARGN}
-      -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
-    RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "configure ${ARGN} failed (${rc}):\n${o}\n${e}")
-  endif()
-  file(READ ${dir}/compile_commands.json json)
+  apci_compile_commands(${WORK_DIR}/${out} json ${ARGN}
+    -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF)
   string(JSON n LENGTH "${json}")
   if(n LESS 50)
     message(FATAL_ERROR "${out}: only ${n} compile commands")
