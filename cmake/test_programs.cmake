@@ -15,8 +15,9 @@
 #
 # APCI_TEST_COMPILE_OPTIONS: options for the test programs' own sources only (not for the
 # libraries they test, nor tests/support), after the build type's: the sanitizer stages pass
-# -O0, which halves what compiling a test program costs under ASan/TSan (scripts/ci/sanitizers.sh,
-# docs/hardening.md) while the code under test keeps the build type's optimisation. The
+# -O0, which halves what compiling a test program costs under ASan/TSan (scripts/ci/sanitizers.sh),
+# and ./test.sh -O1 (scripts/deps.sh, apci_build), while the code under test keeps the build
+# type's optimisation (docs/hardening.md). The
 # sources a program names OPTIMIZED are left out: those whose own code computes the references
 # (brute-force sampling, property sweeps over thousands of cases), which at -O0 under ASan would
 # run for minutes.
