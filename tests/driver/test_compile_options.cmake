@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: MIT
 # APCI_TEST_COMPILE_OPTIONS (cmake/test_programs.cmake) reaches the test programs' own sources
 # and nothing else: not the libraries and tools under test, not tests/support, not the sources
-# a program names OPTIMIZED; without it no file gets the option. Configures SOURCE_DIR twice
-# (no build) and reads the compile commands.
+# a program names OPTIMIZED; without it no file gets the option; and an OPTIMIZED source the
+# program does not compile is a configure error naming it. Configures SOURCE_DIR twice (no
+# build) and reads the compile commands, then a one-line project.
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -P test_compile_options.cmake
 cmake_minimum_required(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/compile_commands.cmake)
@@ -57,3 +58,16 @@ foreach(file tests/support/stock_oracle.cpp geometry/src/element.cpp
     message(FATAL_ERROR "${file} compiles with ${option}")
   endif()
 endforeach()
+
+# A source named OPTIMIZED that the program does not compile is a configure error naming it.
+set(project ${WORK_DIR}/optimized_not_a_source)
+file(WRITE ${project}/CMakeLists.txt
+  "cmake_minimum_required(VERSION 3.25)\n"
+  "project(optimized_not_a_source NONE)\n"
+  "include(${SOURCE_DIR}/cmake/test_programs.cmake)\n"
+  "apci_test_program(probe_test SOURCES probe_test.cpp OPTIMIZED probe_tset.cpp)\n")
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${project} -B ${project}/build
+  RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+if(rc EQUAL 0 OR NOT e MATCHES "apci_test_program\\(probe_test\\): OPTIMIZED probe_tset.cpp is not in SOURCES")
+  message(FATAL_ERROR "an OPTIMIZED source not in SOURCES was not refused by name (${rc}):\n${o}\n${e}")
+endif()
