@@ -17,10 +17,9 @@
 # libraries they test, nor tests/support), after the build type's: the sanitizer stages pass
 # -O0, which halves what compiling a test program costs under ASan/TSan (scripts/ci/sanitizers.sh),
 # and ./test.sh -O1 (scripts/deps.sh, apci_build), while the code under test keeps the build
-# type's optimisation (docs/hardening.md). The
-# sources a program names OPTIMIZED are left out: those whose own code computes the references
-# (brute-force sampling, property sweeps over thousands of cases), which at -O0 under ASan would
-# run for minutes.
+# type's optimisation (docs/hardening.md). The sources a program names OPTIMIZED are left out:
+# those whose own code computes the references (brute-force sampling, property sweeps over
+# thousands of cases), which at -O0 under ASan would run for minutes.
 set(APCI_TEST_COMPILE_OPTIONS "" CACHE STRING
     "Compile options of the test programs' own sources, e.g. -O0 (empty: the build type's)")
 function(apci_test_program name)
@@ -37,11 +36,9 @@ function(apci_test_program name)
   endforeach()
   add_executable(${name} ${arg_SOURCES})
   if(APCI_TEST_COMPILE_OPTIONS)
-    foreach(source IN LISTS arg_SOURCES)
-      if(NOT source IN_LIST arg_OPTIMIZED)
-        set_property(SOURCE ${source} APPEND PROPERTY COMPILE_OPTIONS ${APCI_TEST_COMPILE_OPTIONS})
-      endif()
-    endforeach()
+    set(reduced ${arg_SOURCES})
+    list(REMOVE_ITEM reduced ${arg_OPTIMIZED})
+    set_property(SOURCE ${reduced} APPEND PROPERTY COMPILE_OPTIONS ${APCI_TEST_COMPILE_OPTIONS})
   endif()
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support ${arg_INCLUDES})
   target_link_libraries(${name} PRIVATE ${arg_LIBRARIES} GTest::gtest_main)

@@ -7,22 +7,14 @@
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -P werror_option.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/compile_commands.cmake)
 function(compile_commands out)
-  apci_compile_commands(${WORK_DIR}/${out} json ${ARGN}
+  apci_files_compiled_with(${WORK_DIR}/${out} -Werror with n ${ARGN}
     -DAPCI_BUILD_TESTS=OFF -DAPCI_BUILD_BENCH=OFF)
-  string(JSON n LENGTH "${json}")
   if(n LESS 50)
     message(FATAL_ERROR "${out}: only ${n} compile commands")
   endif()
-  set(with 0)
-  math(EXPR last "${n} - 1")
-  foreach(i RANGE ${last})
-    string(JSON command GET "${json}" ${i} command)
-    if(command MATCHES " -Werror( |$)")
-      math(EXPR with "${with} + 1")
-    endif()
-  endforeach()
+  list(LENGTH with count)
   set(${out}_total ${n} PARENT_SCOPE)
-  set(${out}_werror ${with} PARENT_SCOPE)
+  set(${out}_werror ${count} PARENT_SCOPE)
 endfunction()
 
 file(REMOVE_RECURSE ${WORK_DIR})
