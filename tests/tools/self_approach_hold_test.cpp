@@ -814,7 +814,7 @@ TEST_P(StretchesFedWithALead, AgreeCallByCall) {
 
 INSTANTIATE_TEST_SUITE_P(SelfApproachHold, StretchesFedWithALead, ::testing::Range(0, 4));
 
-// More calls held than one chunk of the hold's memory keeps (a huge page: about 18,700 calls),
+// More calls held than one chunk of the hold's memory keeps (2 MiB: about 18,700 calls),
 // then a stretch laid onto the first strip's wall: every call kept is worked, in order, across
 // the chunks, and the findings are those of the check at once.
 // A stretch's record keeps at most 256 elements and 256 paths (Hold::kOwn): a stretch of 256

@@ -29,7 +29,7 @@ class ChunkedArray {
     // Chunks mapped on their own.
     ChunkedArray() = default;
     // Chunks carved from `memory` (made ready as carved), which must outlive the array: a
-    // holder's memory shared with its other arrays, so that each takes no huge page of its own.
+    // holder's memory shared with its other arrays, so that each takes no block of its own.
     explicit ChunkedArray(Slab& memory) : chunks_(memory) {
         static_assert(ChunkBytes <= Slab::kMostTaken, "a slab carves a chunk of this size");
     }
@@ -39,7 +39,7 @@ class ChunkedArray {
     // A new item at the end, value-initialised.
     T& emplace_back() {
         if (size_ == chunks_.size() * kPerChunk) {
-            chunks_.add(ChunkBytes);  // mapped, a huge page's: one (ready_pages.h)
+            chunks_.add(ChunkBytes);  // mapped on its own (ready_pages.h)
             if (!chunks_.carved()) ready_ = ReadyAhead{};
         }
         if (!chunks_.carved())

@@ -39,13 +39,13 @@ struct HeldCall {
 // kept when cleared.
 class HeldCalls {
   public:
-    static constexpr std::size_t kChunkBytes = kHugePage;  // one huge page (ready_pages.h)
+    static constexpr std::size_t kChunkBytes = kHugePage;  // a huge page's size (ready_pages.h)
 
     HeldCalls() = default;
     // Chunks of chunk_bytes, each mapped on its own.
     explicit HeldCalls(std::size_t chunk_bytes);
     // Chunks of Slab::kMostTaken carved from `memory` (made ready as carved), which must outlive
-    // the calls written (a holder's memory shared with its other arrays: fewer huge pages
+    // the calls written (a holder's memory shared with its other arrays: fewer blocks
     // taken in part).
     explicit HeldCalls(Slab& memory);
 

@@ -50,7 +50,7 @@ PipelinedSink::Batch* PipelinedSink::open_batch() {
     filling_->clear();
     if (filling_->order.capacity() == 0) {
         // Its first time round: the arrays every full batch takes, carved from the slab at
-        // once (made ready there, on a huge page where the kernel has one: slab.h) rather than
+        // once (made ready there: slab.h) rather than
         // grown and faulted in a page at a time as they fill.
         filling_->order =
             decltype(filling_->order)(decltype(filling_->order)::allocator_type(&slab_));

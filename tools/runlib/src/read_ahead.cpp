@@ -11,8 +11,8 @@ namespace apci::run {
 using Next = nc::EventStream::Next;
 
 // The ring's batches get their items from the reader (open_batch), the first time it fills
-// each: carved from the slab (made ready there, on a huge page where the kernel has one:
-// slab.h) rather than faulted in a page at a time, and not on the caller's thread.
+// each: carved from the slab (made ready there: slab.h) rather than faulted in a page at a time,
+// and not on the caller's thread.
 ReadAhead::ReadAhead(nc::EventStream& stream, const CpuPlacement* cpus, HelperCpu where,
                      const RingFill* follows)
     : stream_(stream), cpus_(cpus), follows_(follows), where_(where) {}

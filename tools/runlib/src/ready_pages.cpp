@@ -52,11 +52,9 @@ MappedBlock map_block(std::size_t bytes) {
         (kHugePage - reinterpret_cast<std::uintptr_t>(mapped) % kHugePage) % kHugePage;
     if (before > 0) ::munmap(mapped, before);
     ::munmap(mapped + before + bytes, kHugePage - before);  // never none: before < kHugePage
-    std::byte* const block = mapped + before;
-#ifdef MADV_HUGEPAGE
-    (void)::madvise(block, bytes, MADV_HUGEPAGE);
-#endif
-    return MappedBlock(block, Unmap{bytes});
+    // No MADV_HUGEPAGE: the system's policy decides (docs/performance.md, "Ordinary pages
+    // again").
+    return MappedBlock(mapped + before, Unmap{bytes});
 }
 
 void make_ready(void* p, std::size_t bytes) noexcept {

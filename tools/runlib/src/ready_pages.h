@@ -19,11 +19,11 @@ struct Unmap {
 };
 using MappedBlock = std::unique_ptr<std::byte[], Unmap>;
 // `bytes` (at least 1) mapped; throws std::bad_alloc where the kernel maps nothing. A block of
-// a whole number of huge pages is aligned to one and advised to be backed by huge pages
-// (MADV_HUGEPAGE): made ready (make_ready), such a block's pages then take no fault each when
-// first written, where on some virtual machines a 4 KiB page does (docs/performance.md, "Huge
-// pages for the memory written once"). Where the kernel has no huge page to give, or
-// transparent huge pages are off, it has ordinary pages.
+// a whole number of huge pages is aligned to one, so that where the system's policy backs all
+// anonymous memory with huge pages (transparent huge pages "always") it is whole huge pages; it
+// is not advised either way (no MADV_HUGEPAGE): under the usual policy ("madvise") it has
+// ordinary pages, which cost a run less on a virtual machine whose host backs a fresh huge page
+// 4 KiB at a time (docs/performance.md, "Ordinary pages again").
 MappedBlock map_block(std::size_t bytes);
 
 // Makes the whole pages within [p, p + bytes) of the process's private memory (mapped
@@ -53,7 +53,7 @@ class ReadyAhead {
 
 // The chunks of an array kept in order (HeldCalls, ChunkedArray): each mapped on its own
 // (map_block, to be made ready as it is written: ReadyAhead), or carved from a slab its holder
-// shares with its other arrays (made ready as carved: fewer huge pages taken in part).
+// shares with its other arrays (made ready as carved: fewer blocks taken in part).
 class Chunks {
   public:
     Chunks() = default;

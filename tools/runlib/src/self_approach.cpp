@@ -1174,7 +1174,7 @@ struct SelfApproachCheck::Hold {
     std::uint64_t reviewed = 0;  // the model's generation at the last review
     std::deque<Record> records;  // the stretches whose items may still meet more of their own
     std::vector<Record> spare;   // records let go, their memory kept for the next
-    // The memory of the zones and the calls kept, carved from huge pages they share: the
+    // The memory of the zones and the calls kept, carved from blocks they share: the
     // zones of a long program take a fifth of one (docs/performance.md, "One slab for the
     // hold").
     detail::Slab memory;

@@ -10,7 +10,7 @@ namespace apci::run {
 
 namespace {
 
-// A huge page (map_block), its first kCapacity bytes made ready.
+// A block of a huge page's size (map_block), its first kCapacity bytes made ready.
 char* new_buffer() {
     static_assert(TextSink::kCapacity <= detail::kHugePage);
     detail::MappedBlock block = detail::map_block(detail::kHugePage);

@@ -60,9 +60,9 @@ namespace apci::run {
 class PipelinedSink final : public RunSink, public RingFill {
   public:
     static constexpr std::size_t kBatchEvents = 512;
-    // As many batches as one slab block holds (a huge page: 28 full batches of 72 KiB): a
-    // second block, a huge page of its own, would be made ready whole for a few batches
-    // (docs/performance.md, "What a fresh huge page costs here").
+    // As many batches as one slab block holds (2 MiB: 28 full batches of 72 KiB): no second
+    // block is mapped for a few batches (docs/performance.md, "What a fresh huge page costs
+    // here").
     static constexpr std::size_t kBatches = 28;
     // Batches a writer asleep on an empty ring is woken for by default (a writer faster than
     // the producer sleeps often: one wakeup per 8 batches, not one per batch).

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Memory for the arrays a run makes once and keeps to its end (a pipeline's batches), carved in
-// order from blocks of their own that the kernel backs with huge pages where it can, and made
-// ready as carved (docs/performance.md, "Huge pages for the memory written once").
+// order from blocks of their own, and made ready as carved (docs/performance.md, "Huge pages
+// for the memory written once" and "Ordinary pages again").
 #pragma once
 
 #include <cstddef>
@@ -16,7 +16,7 @@ namespace apci::run::detail {
 inline constexpr std::size_t kHugePage = std::size_t{2} << 20;
 
 // Blocks of kBlockBytes, each mapped on its own (map_block, ready_pages.h: aligned to a huge
-// page and advised to be backed by one), carved in order; what is carved is made ready
+// page, not advised to be backed by one), carved in order; what is carved is made ready
 // (make_ready) before it is given. Nothing is given back before the slab goes, with its blocks.
 class Slab {
   public:

@@ -19,9 +19,9 @@ class TextSink {
     // 1 MiB: a 27 MB JSON in 26 write(2) calls instead of 412 (docs/performance.md).
     static constexpr std::size_t kCapacity = std::size_t{1} << 20;
 
-    // The buffer is a huge page of its own, made ready at once (the run library's
-    // ready_pages.h): a long output writes its first MiB without a page fault per 4 KiB
-    // (docs/performance.md, "Huge pages for the memory written once").
+    // The buffer is a block of its own, its first MiB made ready at once (the run library's
+    // ready_pages.h): a long output writes it without a page fault per 4 KiB
+    // (docs/performance.md, "Memory made ready before it is written").
     explicit TextSink(std::FILE* out);
     TextSink(const TextSink&) = delete;
     TextSink& operator=(const TextSink&) = delete;
