@@ -322,8 +322,9 @@ double first_meeting(const Element& h, const Element& n, double r, bool left) {
     return std::nan("");
 }
 
-// Our refusal "previous element is too short for the corner" comes from the board's lookahead,
-// not from the tolerance model, when the held element h joins the element before it
+// Our refusal "element is too short for the corner at its end" (of the held element h, reported
+// on its own block) comes from the board's lookahead, not from the tolerance model, when the held
+// element h joins the element before it
 // tangentially or turning away from the tool (no trim there) and the offsets of h and of the
 // next element first meet before h's start: the trim would have to reach back into the element
 // before or its transition, which the board, holding one profile, has spooled already.
@@ -331,7 +332,7 @@ double first_meeting(const Element& h, const Element& n, double r, bool left) {
 // to it) and trims there; where it had flushed the element before, it refuses as we do ("...
 // cannot be reached by the tool without gouging"). Checked here from the program alone.
 bool beyond_one_profile(const Case& c, const OurRun& ours) {
-    if (ours.error.find("previous element is too short") == std::string::npos) return false;
+    if (ours.error.find("too short for the corner at its end") == std::string::npos) return false;
     // The compensated elements: the selection block's line (program line 4), then the program's.
     std::vector<Element> elements{make_line(c.program.start, c.program.entry_end)};
     elements.insert(elements.end(), c.contour.begin(), c.contour.end());

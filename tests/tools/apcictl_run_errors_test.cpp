@@ -27,8 +27,8 @@ TEST_F(ApcictlRun, KorrErrorIsReportedWithBlockAndNameAndTheRunStops) {
     EXPECT_EQ(doc.at("errors")[0].at("code"), "KorrError");
     // The board's own words and what to change; not the driver's call, status or tag.
     EXPECT_EQ(doc.at("errors")[0].at("message"),
-              "element is too short for the corner: its offset would reverse (lengthen it, join it "
-              "into its neighbour, or use a smaller tool)");
+              "element is too short for the corner at its start: its offset would reverse "
+              "(lengthen it, join it into its neighbour, or use a smaller tool)");
     EXPECT_EQ(doc.at("registers").at("1").at("ERROR_bits"), json::array({"KorrError"}));
     EXPECT_TRUE(contains(last_.out, "errors: 1 (KorrError 1)\n  line 4 (N60): KorrError: ")) << last_.out;
     EXPECT_TRUE(contains(last_.err, "apcictl: run " + prog + ": stopped at line 4 (N60): KorrError\n"))
@@ -39,6 +39,25 @@ TEST_F(ApcictlRun, KorrErrorIsReportedWithBlockAndNameAndTheRunStops) {
     EXPECT_TRUE(contains(svg, ">N60 KorrError</text>"));
     // The rest of the program is still drawn, so the place of the error is seen.
     EXPECT_TRUE(contains(svg, "L0 20") || contains(svg, "L0 2"));
+}
+
+// The step N60 is long enough for the corner at its start (the offsets meet 5 mm up it) but
+// not for the one at its end as well (N70's offset lies 3 mm up): the board refuses when N70
+// comes, and names N60, the element that is too short, and the corner at its end.
+TEST_F(ApcictlRun, AHeldElementTooShortIsNamedWithTheCornerAtItsEnd) {
+    const std::string prog = write("korr_held.nc",
+                                   "N10 F1000 D1\nN40 G41 G1 X0 Y0\nN50 X60\nN60 Y8\nN70 X0\n"
+                                   "N100 G40 G1 X0 Y-20\nN110 M30\n");
+    const json doc = run_json(prog, {"--tools", tools(5.0)}, 1);
+    ASSERT_EQ(doc.at("errors").size(), 1u);
+    EXPECT_EQ(doc.at("errors")[0].at("block"), 60);
+    EXPECT_EQ(doc.at("errors")[0].at("message"),
+              "element is too short for the corner at its end: its offset would reverse "
+              "(lengthen it, join it into its neighbour, or use a smaller tool)");
+    EXPECT_TRUE(contains(last_.out,
+                         "  line 4 (N60): KorrError: element is too short for the "
+                         "corner at its end"))
+        << last_.out;
 }
 
 TEST_F(ApcictlRun, AnErrorInABlockWithoutNumberNamesItsLineNeverAnInternalTag) {

@@ -82,7 +82,7 @@ TEST_F(ApcictlRun, CollinearLinesWrittenWithSixDecimalsCompensateAtEveryHeading)
 TEST_F(ApcictlRun, LineTangentArcLineWrittenWithThreeDecimalsCompensatesOnBothSides) {
     // The commonest shape of CAM output: a line, a tangent arc, a tangent line, to 0.001 mm.
     // The arc's end radius is 9.99978 (rounding); with G42 it used to stop at N50 with
-    // "previous element is too short".
+    // "element is too short for the corner at its end" (then "previous element is too short").
     for (const char* side : {"G41", "G42"}) {
         const std::string prog = write(
             "tangent.nc", std::string("%tangent\nN10 G17 G90 D1 F600\nN20 G0 X-10 Y-5\nN30 ") +

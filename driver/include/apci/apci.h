@@ -157,7 +157,8 @@ APCI_API const char* apci_last_error(const apci_board* board) APCI_NOEXCEPT;
 /*
  * The board's own words for the last call on `board` if it was a spool,
  * direct command or SSF call the board refused: the reason its firmware gave
- * ("element is too short for the corner: its offset would reverse"), which
+ * ("element is too short for the corner at its start: its offset would
+ * reverse"), which
  * apci_last_error() also contains among the call's name and status. "" when
  * the last call succeeded, was another call, or the board gave no reason (and
  * for board == NULL). Valid until the next call on the board. Never NULL.

@@ -47,12 +47,12 @@ constexpr std::array kReasonTable{
               "element does not start where the previous element ends"},
     ReasonRow{
         Reason::kHeldElementTooShort, kKorr, "HeldElementTooShort",
-        "previous element is too short for the corner: its offset would reverse (lengthen it, "
+        "element is too short for the corner at its end: its offset would reverse (lengthen it, "
         "join it into its neighbour, or use a smaller tool)"},
     ReasonRow{
         Reason::kNextElementTooShort, kKorr, "NextElementTooShort",
-        "element is too short for the corner: its offset would reverse (lengthen it, join it into "
-        "its neighbour, or use a smaller tool)"},
+        "element is too short for the corner at its start: its offset would reverse (lengthen "
+        "it, join it into its neighbour, or use a smaller tool)"},
     ReasonRow{
         Reason::kNoCornerSolution, kKorr, "NoCornerSolution",
         "offset elements do not meet at this inside corner: the tool does not fit into it (use a "
