@@ -168,6 +168,69 @@ TEST_F(ApcictlRun, SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked) {
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
 }
 
+// A lead-out is held to the part as a lead-in is: the G40 block's move (the departure) that runs
+// back through the part is warned against each wall it crosses, with the G40 block's number;
+// one that leaves the exit corner as every control leaves it (within r of the corner, crossing
+// nothing) is not.
+TEST_F(ApcictlRun, SelfApproachWarnsALeadOutThroughThePartAndNotOnePastTheExitCorner) {
+    // A boss 60 x 40 with rounded corners, a line and a tangent arc on and off; the G40 line
+    // from the lead-out arc's offset end (-5, 22) runs right through the part to (75, 25).
+    const std::string across =
+        write("leadout_across.nc",
+              "N10 G17 G90 D1 F800\nN20 G0 X-15 Y15\nN30 G41 G1 X-5 Y15\nN40 G3 X0 Y20 I0 J5\n"
+              "N50 G1 Y35\nN60 G2 X5 Y40 I5 J0\nN70 G1 X55\nN80 G2 X60 Y35 I0 J-5\nN90 G1 Y5\n"
+              "N100 G2 X55 Y0 I-5 J0\nN110 G1 X5\nN120 G2 X0 Y5 I0 J5\nN130 G1 Y20\n"
+              "N140 G3 X-5 Y25 I-5 J0\nN150 G40 G1 X75 Y25\nN160 M30\n");
+    json doc = run_json(across, {"--tools", tools(3.0)});
+    EXPECT_TRUE(doc.at("errors").empty()) << doc.at("errors").dump();
+    std::set<int> walls;
+    for (const auto& w : doc.value("warnings", json::array())) {
+        EXPECT_EQ(w.at("code"), "SelfApproach");
+        EXPECT_EQ(w.at("block"), 150) << w.dump();
+        const std::string m = w.at("message");
+        if (contains(m, "comes within 0.0000 mm") && contains(m, "cuts 3.0000 mm")) {
+            if (contains(m, "of the contour at N50 ")) walls.insert(50);
+            if (contains(m, "of the contour at N90 ")) walls.insert(90);
+        }
+    }
+    EXPECT_EQ(walls, (std::set<int>{50, 90})) << doc.dump();
+    // The same boss left back the way it came: nothing.
+    const std::string back =
+        write("leadout_back.nc",
+              read_text(across).replace(read_text(across).find("X75 Y25"), 7, "X-15 Y25"));
+    doc = run_json(back, {"--tools", tools(3.0)});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+
+    // A square boss closed at its start corner (0, 0), no lead arcs: the departure starts at
+    // (0, -3), r below the last element N70's end.
+    const auto square = [&](const std::string& to) {
+        return write("leadout_square.nc",
+                     "N10 G17 G90 D1 F600\nN20 G0 X-10 Y-10\nN30 G41 G1 X0 Y0\nN40 Y40\n"
+                     "N50 X60\nN60 Y0\nN70 X0\nN80 G40 G1 " +
+                         to + "\nN90 M30\n");
+    };
+    // Away past the corner: within 3 mm of the corner (2.34 mm), crossing nothing.
+    doc = run_json(square("X-10 Y5"), {"--tools", tools(3.0)});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+    doc = run_json(square("X-10 Y-10"), {"--tools", tools(3.0)});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+    // Under G237 the board's own departure steps back from (0, -3) onto the programmed end
+    // (0, 0), in N70's block: not held to the part (the programmer's end point), and the G40
+    // block's move from there is uncompensated.
+    doc = run_json(write("leadout_g237.nc",
+                         "N10 G17 G90 D1 F600\nN20 G0 X-10 Y-10\nN25 G237\nN30 G41 G1 X0 Y0\n"
+                         "N40 Y40\nN50 X60\nN60 Y0\nN70 X0\nN80 G40 G1 X-10 Y-10\nN90 M30\n"),
+                   {"--tools", tools(3.0)});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+    // Back up through its own last element into the part: warned against N70.
+    doc = run_json(square("X10 Y5"), {"--tools", tools(3.0)});
+    ASSERT_EQ(doc.value("warnings", json::array()).size(), 1u) << doc.dump();
+    EXPECT_EQ(doc.at("warnings")[0].at("block"), 80);
+    EXPECT_TRUE(contains(doc.at("warnings")[0].at("message").get<std::string>(),
+                         "the tool path of N80 comes within 0.0000 mm of the contour at N70 "))
+        << doc.at("warnings")[0].dump();
+}
+
 // A stretch whose path cuts back into its contour (a spike: N70's path comes within the tool
 // radius of N50), its G40 at N90: the blocks after it are numbered from N200.
 constexpr const char* kSpike =

@@ -232,7 +232,7 @@ TEST(CpuPlacement, WithTheCheckWarningTheWritersRunOnEitherCpu) {
     const RunInputs tools = one_tool("2");
     const std::string program =
         "N10 G17 G90 F1000 D1\nN20 G41 G1 X0 Y0\nN30 X60\nN40 Y60\nN50 X0\nN60 Y0\n"
-        "N70 G40 G1 X-20 Y0\nN80 M30\n";
+        "N70 G40 G1 X30 Y30\nN80 M30\n";  // out to the pocket's middle, not through its wall
     for (const SelfApproachMode mode :
          {SelfApproachMode::kWarn, SelfApproachMode::kOff, SelfApproachMode::kError}) {
         const CpuPlacement placement;

@@ -8,6 +8,7 @@
 // given to two SelfApproachSinks; and stretches fed to the check directly, with the programmed
 // moves running ahead of the executed ones by a random lead, with small windows and entry
 // budgets (the grid lets items go), planes, tool radii, CDOF and stretches too long to hold.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -187,6 +188,44 @@ TEST(SelfApproachHold, CamProgramsOfEveryFamilyWarnAsAtOnce) {
     // Not a comparison of silent runs only.
     EXPECT_GT(warned, 30u);
     EXPECT_GT(refused, 10u);
+}
+
+// Square bosses placed apart (tool radius 1), each closed at its start corner and left by a G40
+// line: past the exit corner (within r of it, crossing nothing), straight away, or back up
+// through its own last element into the part. The departures are held to the part as at once,
+// and each that runs back into the part is warned, once, with its G40 block.
+TEST(SelfApproachHold, LeadOutsHeldBackWarnAsAtOnce) {
+    std::mt19937_64 rng(27);
+    std::uniform_real_distribution<double> side(8.0, 30.0), jitter(-0.5, 0.5);
+    for (int round = 0; round < 6; ++round) {
+        std::string text = "N10 G17 G90 D1 F600\n";
+        int n = 20, crossing = 0;
+        const auto word = [](char axis, double v) { return fmt::format(" {}{:.4f}", axis, v); };
+        for (int k = 0; k < 24; ++k) {
+            const double a = side(rng), x = 50.0 * k + jitter(rng), y = 40.0 * round + jitter(rng);
+            const int way = static_cast<int>(rng() % 3);  // 0 past the corner, 1 away, 2 back in
+            const double tx = way == 0 ? x - 3.0 : way == 1 ? x - 2.0 : x + 0.25 * a;
+            const double ty = way == 0 ? y + 1.6 : way == 1 ? y - 4.0 : y + 0.25 * a;
+            crossing += way == 2;
+            const auto block = [&](const std::string& words) {
+                text += "N" + std::to_string(n) + words + "\n";
+                n += 10;
+            };
+            block(" G0" + word('X', x - 3.0) + word('Y', y - 3.0));
+            block(" G41 G1" + word('X', x) + word('Y', y));
+            block(" G1" + word('Y', y + a));
+            block(word('X', x + a));
+            block(word('Y', y));
+            block(word('X', x));
+            block(" G40 G1" + word('X', tx) + word('Y', ty));
+        }
+        text += "N" + std::to_string(n) + " M30\n";
+        const std::vector<Event> events = record(text, apci::bench::contour_tools());
+        std::size_t given = 0;
+        expect_same_run(events, "lead-outs, round " + std::to_string(round), &given);
+        EXPECT_EQ(given, static_cast<std::size_t>(crossing)) << text;
+        EXPECT_GT(crossing, 0);
+    }
 }
 
 // The benchmark's program (profiles placed apart, nothing repeated): the check holds nearly

@@ -146,10 +146,18 @@ detail::PlaneMove plane_move(const PathSegment& s, int plane, const Shape* e) {
 }
 
 // An executed segment of a programmed element (the queue moves on to it), and one of those the
-// check holds to the elements (not the departure).
+// check holds to the elements (not the departure of G237, the board's step back onto the
+// programmed end; the departure of a block of its own is, departs_head()).
 bool of_element(Role r) {
     return r == Role::kContour || r == Role::kTransition || r == Role::kApproach ||
            r == Role::kDeparture;
+}
+// A departure of a block with no element of its own (under G139 the G40 block's move, or the
+// move after a lone G40; PendingQueue::find() finds none, `at` == `waiting`) leaves the element
+// at the queue's head, the last its stretch executed, from its offset end, and is held to the
+// elements (a lead-out through the part is a gouge).
+bool departs_head(const PathSegment& s, std::size_t at, std::size_t waiting) {
+    return s.role == Role::kDeparture && at == waiting && waiting > 0;
 }
 bool held_to_elements(Role r) {
     return r == Role::kContour || r == Role::kTransition || r == Role::kApproach;
@@ -968,18 +976,40 @@ Relation relation(std::uint64_t contour_index, std::uint64_t contour_stretch,
     return Relation::kOther;
 }
 
+// How a contour element stands to an executed path: relation(), but a departure is no offset of
+// the element it leaves (the stretch's last, whose offset end it starts from): that element is
+// the one before it, met at the exit point (at_entry(): held to it only where it crosses it).
+Relation path_relation(std::uint64_t contour_index, std::uint64_t contour_stretch,
+                       std::uint64_t path_index, std::uint64_t path_stretch, bool transition,
+                       bool departure) {
+    const Relation rel =
+        relation(contour_index, contour_stretch, path_index, path_stretch, transition);
+    return departure && rel == Relation::kOwn ? Relation::kBefore : rel;
+}
+
 // An approach starts where the tool stands when the compensation begins; where that is already
 // closer to an element than the threshold, the move that brought the tool there (uncompensated,
-// not checked) put it there, and the approach is not held to the element.
+// not checked) put it there, and the approach is not held to the element. A departure starts
+// where the compensated path ends: where that is already near an element, the path before it
+// (checked) put the tool there.
 bool stands_near(const Shape& approach, const Shape& element, double threshold) {
     return plane::distance_to(element, approach.start) < threshold;
+}
+// A departure ends at the programmed end of its block, where the program puts the tool's
+// centre (ISG's #OTC example returns onto the contour it ground: "G40 X50 (WRK-Abwahl mit
+// Verfahrbewegung um WZR abzubauen)"): an element that end is within the threshold of is the
+// program's own choice, and the departure is not held to it.
+bool ends_near(const Shape& departure, const Shape& element, double threshold) {
+    return plane::distance_to(element, departure.end) < threshold;
 }
 
 // The elements that meet at an approach's entry point (the one it leads onto, one that closes
 // a contour there, those of any other stretch over the same point): a straight approach onto an
 // outside corner passes the entry point at L r / sqrt(L^2 + r^2) < r (L its length), the entry move
 // every control makes (LinuxCNC's too); it is held to them only where its centre crosses one (a
-// lead-in through the part).
+// lead-in through the part). A departure leaves its exit point (its element's end, the last of
+// the stretch) the same way, and is held to the elements that meet there only where it crosses
+// one (a lead-out through the part).
 bool at_entry(const Shape& element, const Vec2& entry) {
     return (element.start - entry).norm() <= SelfApproachCheck::kTolerance ||
            (element.end - entry).norm() <= SelfApproachCheck::kTolerance;
@@ -1450,7 +1480,7 @@ struct SelfApproachCheck::Hold {
     // The pairs check_path() makes of path e (of element p) and its stretch's elements, each
     // gone on with as there.
     bool clear_of_elements(Record& rec, const Shape& e, const Pending& p, bool transition,
-                           bool approach) {
+                           bool approach, bool departure) {
         const Extent extent = extent_of(e);
         bool self_placed = !(active && rec.stretch == stretch);
         if (!self_placed) self_placed = placement(p.index) != detail::WallRole::kUndecided;
@@ -1460,7 +1490,8 @@ struct SelfApproachCheck::Hold {
             if (c.extent.lo.x() - extent.hi.x() >= p.r || extent.lo.x() - c.extent.hi.x() >= p.r ||
                 c.extent.lo.y() - extent.hi.y() >= p.r || extent.lo.y() - c.extent.hi.y() >= p.r)
                 continue;
-            const Relation rel = relation(c.index, rec.stretch, p.index, rec.stretch, transition);
+            const Relation rel =
+                path_relation(c.index, rec.stretch, p.index, rec.stretch, transition, departure);
             if (rel == Relation::kOwn ||
                 ((rel == Relation::kHeld || rel == Relation::kNext) && !is_arc(c.shape)))
                 continue;
@@ -1472,8 +1503,9 @@ struct SelfApproachCheck::Hold {
             const Shape* part = checked_part(c.shape, rel, scratch);
             if (part == nullptr) continue;
             if (part != &c.shape && !near_enough(extent, extent_of(*part), threshold)) continue;
-            if (approach && stands_near(e, *part, threshold)) continue;
-            const bool cross = approach && at_entry(c.shape, p.end);
+            if ((approach || departure) && stands_near(e, *part, threshold)) continue;
+            if (departure && ends_near(e, *part, threshold)) continue;
+            const bool cross = (approach || departure) && at_entry(c.shape, p.end);
             if (!pair_clear(e, *part, threshold, cross, placed, c.index, p.index)) return false;
         }
         return true;
@@ -1560,11 +1592,12 @@ struct SelfApproachCheck::Hold {
         if (c.done()) return false;
         const std::size_t waiting_now = pending.waiting();
         const std::size_t at = pending.find(s);
-        if (of_element(s.role) && at != waiting_now) {
-            pending.advance(at);
+        const bool leaves_head = departs_head(s, at, waiting_now);
+        if (of_element(s.role) && (at != waiting_now || leaves_head)) {
+            pending.advance(leaves_head ? 0 : at);
             prune();
             const Pending p = pending.at(0);
-            if (held_to_elements(s.role) && !off && !path(c, s, p)) return false;
+            if ((held_to_elements(s.role) || leaves_head) && !off && !path(c, s, p)) return false;
         }
         if (!may_keep(c) || off) return false;
         calls.segment(Kind::kExecuted, s);
@@ -1580,6 +1613,7 @@ struct SelfApproachCheck::Hold {
         }
         const bool transition = s.role == Role::kTransition;
         const bool approach = s.role == Role::kApproach;
+        const bool departure = s.role == Role::kDeparture;
         const bool store = !rec->ended;  // its stretch's later elements are held to it
         bool keep = may_keep(c);
         if (!keep && !store) {
@@ -1591,7 +1625,7 @@ struct SelfApproachCheck::Hold {
         if (keep) {
             const std::size_t entries = entries_of(c, p.plane, e.length * (1.0 + 1e-6));
             keep = room(c, p.plane, false, entries) && alone(*rec, b) &&
-                   clear_of_elements(*rec, e, p, transition, approach);
+                   clear_of_elements(*rec, e, p, transition, approach, departure);
             if (keep) count(p.plane, false, entries);
         }
         if (store) {
@@ -2047,15 +2081,17 @@ void SelfApproachCheck::executed_now(const PathSegment& s, std::vector<SelfAppro
     const std::size_t waiting = pending_.waiting();
     const std::size_t at = pending_.find(s);
     leave_undecided(s, at, out);
-    if (!of_element(s.role) || at == waiting) return;
-    pending_.advance(at);
+    const bool leaves_head = departs_head(s, at, waiting);
+    if (!of_element(s.role) || (at == waiting && !leaves_head)) return;
+    pending_.advance(leaves_head ? 0 : at);
     const Pending p = pending_.at(0);
     // The last element of a stretch that has ended: no segment of its block is checked after
     // this one (G139: the G40 block departs; G237: the board's departure, not checked), and
     // none of another block may come to give its findings out.
     const bool running = active_ || pending_.waiting() > 1;
-    // The approach cuts as the contour does (under G139 it is the first element's whole move).
-    if (!held_to_elements(s.role)) return;
+    // The approach cuts as the contour does (under G139 it is the first element's whole move),
+    // and so does the G40 block's departure.
+    if (!held_to_elements(s.role) && !leaves_head) return;
     check_path(s, p, running, out);
 }
 
@@ -2124,6 +2160,7 @@ void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool 
     if (e.length <= kFullCircle) return;
     const bool transition = s.role == Role::kTransition;
     const bool approach = s.role == Role::kApproach;
+    const bool departure = s.role == Role::kDeparture;
     Grid::Item self(e, s.block, p.index, p.stretch, p.r);
     self.transition = transition;
     self.approach = approach;
@@ -2134,7 +2171,8 @@ void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool 
     for (const std::uint32_t at : g.lookup_adding(g.contour, e, p.r, g.path, self)) {
         Grid::Item& c = g.contour.items[at];
         if (!c.protect) continue;
-        const Relation rel = relation(c.index, c.stretch, p.index, p.stretch, transition);
+        const Relation rel =
+            path_relation(c.index, c.stretch, p.index, p.stretch, transition, departure);
         // What checked_part() leaves out whatever the shape: the path's own element, and a
         // line at the path's own corner.
         if (rel == Relation::kOwn ||
@@ -2159,8 +2197,9 @@ void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool 
         if (part == nullptr) continue;
         if (part != &contour && !near_enough(extent, extent_of(*part), threshold)) continue;
         if (!whole && no_wall()) continue;
-        if (approach && stands_near(e, *part, threshold)) continue;
-        const bool cross = approach && at_entry(contour, p.end);
+        if ((approach || departure) && stands_near(e, *part, threshold)) continue;
+        if (departure && ends_near(e, *part, threshold)) continue;
+        const bool cross = (approach || departure) && at_entry(contour, p.end);
         consider(PairView{e, s.block, p.r, p.plane, *part, c.block, threshold, c.index, p.index,
                           g.contour.first + at, cross},
                  placed, running, out);
