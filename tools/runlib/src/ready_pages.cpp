@@ -52,9 +52,10 @@ MappedBlock map_block(std::size_t bytes) {
         (kHugePage - reinterpret_cast<std::uintptr_t>(mapped) % kHugePage) % kHugePage;
     if (before > 0) ::munmap(mapped, before);
     ::munmap(mapped + before + bytes, kHugePage - before);  // never none: before < kHugePage
+    std::byte* const block = mapped + before;
     // No MADV_HUGEPAGE: the system's policy decides (docs/performance.md, "Ordinary pages
     // again").
-    return MappedBlock(mapped + before, Unmap{bytes});
+    return MappedBlock(block, Unmap{bytes});
 }
 
 void make_ready(void* p, std::size_t bytes) noexcept {
