@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <set>
@@ -188,6 +189,11 @@ TEST_F(ApcictlRun, SelfApproachWarnsALeadOutThroughThePartAndNotOnePastTheExitCo
         EXPECT_EQ(w.at("code"), "SelfApproach");
         EXPECT_EQ(w.at("block"), 150) << w.dump();
         const std::string m = w.at("message");
+        EXPECT_TRUE(contains(m,
+                             "(tool radius 3.0000 mm): the lead-out runs into the part there; "
+                             "the path cuts ") &&
+                    contains(m, " mm into it (end the lead-out clear of the part)"))
+            << m;
         if (contains(m, "comes within 0.0000 mm") && contains(m, "cuts 3.0000 mm")) {
             if (contains(m, "of the contour at N50 ")) walls.insert(50);
             if (contains(m, "of the contour at N90 ")) walls.insert(90);
@@ -229,6 +235,53 @@ TEST_F(ApcictlRun, SelfApproachWarnsALeadOutThroughThePartAndNotOnePastTheExitCo
     EXPECT_TRUE(contains(doc.at("warnings")[0].at("message").get<std::string>(),
                          "the tool path of N80 comes within 0.0000 mm of the contour at N70 "))
         << doc.at("warnings")[0].dump();
+}
+
+// The warning says what came near what, and what to change: a lead-in through the part, two
+// features too close (the paths of one near the other's walls), a contour near itself (the
+// spike of SelfApproachIsAWarningNamingBothBlocksOrAnErrorWhenAsked).
+TEST_F(ApcictlRun, SelfApproachSaysWhetherALeadTwoFeaturesOrOneContourComeNear) {
+    const auto messages = [&](const std::string& name, const std::string& text, double r) {
+        const json doc = run_json(write(name, text), {"--tools", tools(r)});
+        std::map<int, std::vector<std::string>> by_block;
+        for (const auto& w : doc.value("warnings", json::array()))
+            by_block[w.at("block").get<int>()].push_back(w.at("message"));
+        return by_block;
+    };
+    // A boss 60 x 40 whose lead-in comes from (75, 15), right through it.
+    auto m = messages("lead_in_across.nc",
+                      "N10 G17 G90 D1 F800\nN20 G0 X75 Y15\nN30 G41 G1 X-5 Y15\n"
+                      "N40 G3 X0 Y20 I0 J5\nN50 G1 Y35\nN60 G2 X5 Y40 I5 J0\nN70 G1 X55\n"
+                      "N80 G2 X60 Y35 I0 J-5\nN90 G1 Y5\nN100 G2 X55 Y0 I-5 J0\nN110 G1 X5\n"
+                      "N120 G2 X0 Y5 I0 J5\nN130 G1 Y20\nN140 G3 X-5 Y25 I-5 J0\n"
+                      "N150 G40 G1 X-15 Y25\nN160 M30\n",
+                      3.0);
+    ASSERT_EQ(m.size(), 1u);
+    ASSERT_EQ(m[30].size(), 2u);  // against N90 and N130, the walls it crosses
+    for (const std::string& text : m[30])
+        EXPECT_TRUE(contains(text,
+                             "(tool radius 3.0000 mm): the lead-in runs into the part "
+                             "there; the path cuts 3.0000 mm into it (start the lead-in "
+                             "clear of the part)"))
+            << text;
+    // Two square bosses 5 mm apart, each with its own G41 ... G40, a tool of radius 3: the
+    // first one's right side and the second's left side.
+    m = messages("two_bosses.nc",
+                 "N10 G17 G90 D1 F600\nN20 G0 X-10 Y-10\nN30 G41 G1 X0 Y0\nN40 Y20\nN50 X20\n"
+                 "N60 Y0\nN70 X0\nN80 G40 G1 X-10 Y-10\nN90 G0 X35 Y-10\nN100 G41 G1 X25 Y-3\n"
+                 "N105 Y0\nN110 Y20\nN120 X45\nN130 Y0\nN140 X25\nN150 G40 G1 X35 Y-10\n"
+                 "N160 M30\n",
+                 3.0);
+    bool features = false;
+    for (const auto& [block, texts] : m)
+        for (const std::string& text : texts) {
+            EXPECT_TRUE(contains(text, "two features come that close there; the path cuts ") &&
+                        contains(text, "(place them farther apart, or use a smaller tool)"))
+                << block << ": " << text;
+            features |= block == 60 && contains(text, "of the contour at N110 ") &&
+                        contains(text, "comes within 2.0000 mm");
+        }
+    EXPECT_TRUE(features);
 }
 
 // A stretch whose path cuts back into its contour (a spike: N70's path comes within the tool

@@ -405,12 +405,30 @@ std::string block_name(const BlockRef& b) {
 }  // namespace
 
 std::string describe(const SelfApproachFinding& f) {
+    // Why it comes that near, and what to change.
+    const char* why = "the contour comes back near itself there, which no corner rule sees";
+    const char* change = "use a smaller tool, or give the contour more room there";
+    switch (f.kind) {
+        case SelfApproachKind::kContour:
+            break;
+        case SelfApproachKind::kFeatures:
+            why = "two features come that close there";
+            change = "place them farther apart, or use a smaller tool";
+            break;
+        case SelfApproachKind::kLeadIn:
+            why = "the lead-in runs into the part there";
+            change = "start the lead-in clear of the part";
+            break;
+        case SelfApproachKind::kLeadOut:
+            why = "the lead-out runs into the part there";
+            change = "end the lead-out clear of the part";
+            break;
+    }
     return fmt::format(
         "the tool path of {} comes within {:.4f} mm of the contour at {} (tool radius {:.4f} mm): "
-        "the contour comes back near itself there, which no corner rule sees; the path cuts "
-        "{:.4f} mm into it (use a smaller tool, or give the contour more room there)",
-        block_name(f.path_block), f.distance, block_name(f.contour_block), f.radius,
-        f.radius - f.distance);
+        "{}; the path cuts {:.4f} mm into it ({})",
+        block_name(f.path_block), f.distance, block_name(f.contour_block), f.radius, why,
+        f.radius - f.distance, change);
 }
 
 struct SelfApproachCheck::GridItem {
@@ -976,6 +994,14 @@ Relation relation(std::uint64_t contour_index, std::uint64_t contour_stretch,
     return Relation::kOther;
 }
 
+// What a finding of a path is: a lead-in's or a lead-out's first, else between features (the
+// path's stretch not the element's) or within one contour.
+SelfApproachKind kind_of(bool approach, bool departure, bool other_stretch) {
+    if (approach) return SelfApproachKind::kLeadIn;
+    if (departure) return SelfApproachKind::kLeadOut;
+    return other_stretch ? SelfApproachKind::kFeatures : SelfApproachKind::kContour;
+}
+
 // How a contour element stands to an executed path: relation(), but a departure is no offset of
 // the element it leaves (the stretch's last, whose offset end it starts from): that element is
 // the one before it, met at the exit point (at_entry(): held to it only where it crosses it).
@@ -1060,6 +1086,7 @@ struct SelfApproachCheck::PairView {
     double threshold;
     std::uint64_t contour_index, path_index, contour_id;
     bool need_cross;
+    SelfApproachKind kind;
 };
 
 // A pair that waits for the wall model, its shapes copied.
@@ -1073,6 +1100,7 @@ struct SelfApproachCheck::Candidate {
     double threshold = 0.0;
     std::uint64_t contour_index = 0, path_index = 0, contour_id = 0;
     bool need_cross = false;
+    SelfApproachKind kind = SelfApproachKind::kContour;
     explicit Candidate(const PairView& v)
         : path(v.path),
           path_block(v.path_block),
@@ -1084,10 +1112,11 @@ struct SelfApproachCheck::Candidate {
           contour_index(v.contour_index),
           path_index(v.path_index),
           contour_id(v.contour_id),
-          need_cross(v.need_cross) {}
+          need_cross(v.need_cross),
+          kind(v.kind) {}
     PairView view() const {
-        return {path,      path_block,    r,          plane,      contour,   contour_block,
-                threshold, contour_index, path_index, contour_id, need_cross};
+        return {path,      path_block,    r,          plane,      contour,    contour_block,
+                threshold, contour_index, path_index, contour_id, need_cross, kind};
     }
 };
 
@@ -2063,7 +2092,7 @@ void SelfApproachCheck::programmed_now(const PathSegment& s,
         const Eigen::Vector2d* entry = p.approach ? approach_entry(p.index) : nullptr;
         const bool cross = entry != nullptr && at_entry(e, *entry);
         consider(PairView{path, p.block, p.r, plane_, *part, s.block, threshold, index, p.index,
-                          latest_, cross},
+                          latest_, cross, kind_of(p.approach, false, p.stretch != stretch_)},
                  placed, false, out);
     }
     g.bound(g.contour);
@@ -2201,7 +2230,8 @@ void SelfApproachCheck::check_path(const PathSegment& s, const Pending& p, bool 
         if (departure && ends_near(e, *part, threshold)) continue;
         const bool cross = (approach || departure) && at_entry(contour, p.end);
         consider(PairView{e, s.block, p.r, p.plane, *part, c.block, threshold, c.index, p.index,
-                          g.contour.first + at, cross},
+                          g.contour.first + at, cross,
+                          kind_of(approach, departure, c.stretch != p.stretch)},
                  placed, running, out);
     }
     if (!running) flush(out);
@@ -2271,6 +2301,7 @@ bool SelfApproachCheck::measure(const PairView& k, SelfApproachFinding& f) {
     f = SelfApproachFinding{};
     f.path_block = k.path_block;
     f.contour_block = k.contour_block;
+    f.kind = k.kind;
     f.distance = n.distance;
     f.radius = k.r;
     // The point of the path nearest the element, for the plot's marker (the third axis at

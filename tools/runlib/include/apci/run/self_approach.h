@@ -50,9 +50,14 @@ class WallModel;
 enum class WallRole : std::uint8_t;
 }
 
+// What comes near what: a stretch's path near its own contour, a path near another stretch's
+// (another feature), a lead-in (the approach) or a lead-out (the departure) near the part.
+enum class SelfApproachKind : std::uint8_t { kContour, kFeatures, kLeadIn, kLeadOut };
+
 struct SelfApproachFinding {
     BlockRef path_block;     // the block whose compensated path comes near
     BlockRef contour_block;  // the programmed element it comes near (not a neighbour)
+    SelfApproachKind kind = SelfApproachKind::kContour;
     double distance = 0.0;   // the least distance found, mm
     double radius = 0.0;     // the tool radius, mm
     Point where = Point::Zero();  // the point of the path, program coordinates
