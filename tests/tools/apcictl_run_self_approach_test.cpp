@@ -228,6 +228,18 @@ TEST_F(ApcictlRun, SelfApproachWarnsALeadOutThroughThePartAndNotOnePastTheExitCo
                          "N40 Y40\nN50 X60\nN60 Y0\nN70 X0\nN80 G40 G1 X-10 Y-10\nN90 M30\n"),
                    {"--tools", tools(3.0)});
     EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+    // Its programmed end within the threshold (r less twice the path tolerance, 2.9998 mm: N70
+    // is the element before it) of N70: the program's own choice, not held to N70; at the
+    // threshold and beyond it is, and it crosses N70 into the part.
+    doc = run_json(square("X10 Y2.9997"), {"--tools", tools(3.0)});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
+    doc = run_json(square("X10 Y2.9998"), {"--tools", tools(3.0)});
+    EXPECT_EQ(doc.value("warnings", json::array()).size(), 1u) << doc.dump();
+    // ISG's #OTC example returns along the line it ground onto its start ("G40 X50 (WRK-Abwahl
+    // mit Verfahrbewegung um WZR abzubauen)"): the program's end point, nothing warned.
+    doc = run_json(kExamples + "/otc_general.nc",
+                   {"--tools", kExamples + "/tools/wr_quad_disc.tools"});
+    EXPECT_FALSE(doc.contains("warnings")) << doc.at("warnings").dump();
     // Back up through its own last element into the part: warned against N70.
     doc = run_json(square("X10 Y5"), {"--tools", tools(3.0)});
     ASSERT_EQ(doc.value("warnings", json::array()).size(), 1u) << doc.dump();

@@ -190,9 +190,10 @@ TEST(SelfApproachHold, CamProgramsOfEveryFamilyWarnAsAtOnce) {
     EXPECT_GT(refused, 10u);
 }
 
-// Square bosses placed apart (tool radius 1), each closed at its start corner and left by a G40
-// line: past the exit corner (within r of it, crossing nothing), straight away, or back up
-// through its own last element into the part. The departures are held to the part as at once,
+// Square bosses placed apart (tool radius 1), each closed at its start corner (or its last
+// element stopping short of it) and left by a G40 line: past the exit corner (within r of it,
+// crossing nothing), straight away, back up through its own last element into the part, or
+// to an end just inside it. The departures are held to the part as at once,
 // and each that runs back into the part is warned, once, with its G40 block.
 TEST(SelfApproachHold, LeadOutsHeldBackWarnAsAtOnce) {
     std::mt19937_64 rng(27);
@@ -203,10 +204,21 @@ TEST(SelfApproachHold, LeadOutsHeldBackWarnAsAtOnce) {
         const auto word = [](char axis, double v) { return fmt::format(" {}{:.4f}", axis, v); };
         for (int k = 0; k < 24; ++k) {
             const double a = side(rng), x = 50.0 * k + jitter(rng), y = 40.0 * round + jitter(rng);
-            const int way = static_cast<int>(rng() % 3);  // 0 past the corner, 1 away, 2 back in
-            const double tx = way == 0 ? x - 3.0 : way == 1 ? x - 2.0 : x + 0.25 * a;
-            const double ty = way == 0 ? y + 1.6 : way == 1 ? y - 4.0 : y + 0.25 * a;
-            crossing += way == 2;
+            // 0 past the corner, 1 away, 2 back in; 3 back in from a last element that stops a
+            // quarter of the way short of the corner (nothing but that element near the exit);
+            // 4 back in to an end 0.5 inside the last element (the program's end point: not
+            // held to that element).
+            const int way = static_cast<int>(rng() % 5);
+            const double last_x = way == 3 ? x + 0.25 * a : x;
+            const double tx = way == 0   ? x - 3.0
+                              : way == 1 ? x - 2.0
+                              : way == 2 ? x + 0.25 * a
+                                         : x + 0.5 * a;
+            const double ty = way == 0   ? y + 1.6
+                              : way == 1 ? y - 4.0
+                              : way == 4 ? y + 0.5
+                                         : y + 0.25 * a;
+            crossing += way == 2 || way == 3;
             const auto block = [&](const std::string& words) {
                 text += "N" + std::to_string(n) + words + "\n";
                 n += 10;
@@ -216,7 +228,7 @@ TEST(SelfApproachHold, LeadOutsHeldBackWarnAsAtOnce) {
             block(" G1" + word('Y', y + a));
             block(word('X', x + a));
             block(word('Y', y));
-            block(word('X', x));
+            block(word('X', last_x));
             block(" G40 G1" + word('X', tx) + word('Y', ty));
         }
         text += "N" + std::to_string(n) + " M30\n";
